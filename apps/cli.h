@@ -1,0 +1,49 @@
+#pragma once
+// Shared pieces of the plantarch command: global options, the subcommand registry and
+// terminal output helpers. Each subcommand lives in its own file and registers itself with
+// PLANTARCH_REGISTER_COMMAND, so adding one never touches main.cpp.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "plantarch/Context.h"
+
+namespace plantarch::cli {
+
+/// Options every subcommand sees.
+struct GlobalOptions {
+    int verbose = 0;             ///< -v count
+    std::uint64_t seed = 42;     ///< --seed
+    int threads = 0;             ///< --threads (0 = all cores)
+};
+
+/// A subcommand: `setup` adds it to the app and returns the function run when it is chosen.
+struct Command {
+    std::string name;
+    int order;  ///< position in --help
+    std::function<std::function<int()>(CLI::App& app, GlobalOptions& global)> setup;
+};
+
+std::vector<Command>& commandRegistry();
+
+struct CommandRegistrar {
+    explicit CommandRegistrar(Command c) { commandRegistry().push_back(std::move(c)); }
+};
+
+#define PLANTARCH_REGISTER_COMMAND(ident, name, order, setupFn) \
+    static ::plantarch::cli::CommandRegistrar ident##_registrar{{name, order, setupFn}}
+
+/// Message on stderr when -v was given.
+void info(const GlobalOptions& g, const std::string& message);
+
+/// Writes `ctx` to `path`, format from the extension (.obj, .ply, .png). Used by every
+/// subcommand that produces geometry. Throws plantarch::Error on an unknown extension.
+void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g);
+
+/// The extensions writeSceneFile accepts, for help text and errors.
+std::string sceneFileExtensions();
+
+}  // namespace plantarch::cli

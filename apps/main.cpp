@@ -1,0 +1,73 @@
+// plantarch: the command-line front end. Exit status: 0 success, 2 bad input (one line on
+// stderr naming what was wrong), 1 internal error.
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+
+#include <omp.h>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/Version.h"
+
+namespace plantarch::cli {
+
+std::vector<Command>& commandRegistry() {
+    static std::vector<Command> registry;
+    return registry;
+}
+
+void info(const GlobalOptions& g, const std::string& message) {
+    if (g.verbose > 0) std::fprintf(stderr, "%s\n", message.c_str());
+}
+
+}  // namespace plantarch::cli
+
+int main(int argc, char** argv) {
+    using namespace plantarch::cli;
+    CLI::App app{"plantarch: builds and grows 3D plants from a phytomer-based parameter model",
+                 "plantarch"};
+    app.set_version_flag("--version", std::string("plantarch ") + PLANTARCH_VERSION_STRING);
+    app.require_subcommand(1);
+    GlobalOptions global;
+    app.add_flag("-v,--verbose", global.verbose, "Report progress and details on stderr");
+    app.add_option("--seed", global.seed, "Random seed of the scene (same seed, same output)");
+    app.add_option("--threads", global.threads, "Worker threads (0 = all cores)")
+        ->check(CLI::NonNegativeNumber);
+
+    auto& registry = commandRegistry();
+    std::sort(registry.begin(), registry.end(),
+              [](const Command& a, const Command& b) { return a.order < b.order; });
+    std::vector<std::pair<CLI::App*, std::function<int()>>> runners;
+    for (auto& cmd : registry) {
+        CLI::App* sub = app.add_subcommand(cmd.name);
+        runners.emplace_back(sub, cmd.setup(*sub, global));
+    }
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "plantarch: %s\n", e.what());
+        return 2;
+    }
+
+    if (global.threads > 0) omp_set_num_threads(global.threads);
+    try {
+        for (auto& [sub, run] : runners)
+            if (sub->parsed()) return run();
+    } catch (const plantarch::Error& e) {
+        std::fprintf(stderr, "plantarch: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "plantarch: internal error: %s\n", e.what());
+        return 1;
+    }
+    return 1;
+}

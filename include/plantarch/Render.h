@@ -1,0 +1,183 @@
+#pragma once
+// plantarch preview renderer: ray casts a Context on Embree and writes PNG images.
+//
+// Two kinds of picture:
+//  - Shaded: a sky (ambient hemisphere, optionally with ambient occlusion rays), a sun with
+//    soft shadows (jittered shadow rays toward a sun disc), two-sided Lambert surfaces with
+//    per-material colours or textures, an analytic ground plane that receives shadows,
+//    stratified anti-aliasing and sRGB output.
+//  - Label masks (LabelOrgan, LabelObject): one ray through each pixel centre, a flat colour
+//    per organ kind or per object ID, black background, no shading, no anti-aliasing, so the
+//    image is an exact segmentation mask.
+//
+// Output is deterministic: every pixel draws its random numbers from a stream seeded by
+// (RenderOptions::seed, pixel index), so the bytes never depend on the thread count.
+//
+// Colours in Material::color and in the options below are display (sRGB) values in 0..1; the
+// renderer converts them to linear light for shading and back to sRGB for the image.
+//
+// Organ label colours (LabelOrgan), read from the object string data "organ":
+//
+//   organ          RGB
+//   internode      230  25  75
+//   petiole        245 130  48
+//   leaf            60 180  75
+//   peduncle       255 225  25
+//   flower_closed  240  50 230
+//   flower_open    145  30 180
+//   fruit            0 130 200
+//   ground         128 128 128
+//   (other/unset)  255 255 255
+//   background       0   0   0   (also the analytic ground plane)
+//
+// Object label colours (LabelObject): objectLabelColor(id) is a bijection of (id + 1) onto the
+// nonzero 24-bit colours, so distinct objects always get distinct colours, none is black, and
+// objectIDFromLabelColor() recovers the ID from a pixel.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "plantarch/Context.h"
+#include "plantarch/Mesh.h"
+
+namespace plantarch {
+
+/// An 8-bit RGB image, rows top to bottom, 3 bytes per pixel.
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> rgb;  ///< width * height * 3 bytes
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), rgb(std::size_t(w) * std::size_t(h) * 3, 0) {}
+
+    std::array<std::uint8_t, 3> pixel(int x, int y) const {
+        const std::size_t i = (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3;
+        return {rgb[i], rgb[i + 1], rgb[i + 2]};
+    }
+};
+
+/// A pinhole camera. With autoFrame the eye and target are computed from the scene's bounding
+/// box (visible objects): the camera looks from (azimuthDeg, elevationDeg) and stands as close
+/// as it can while the whole box fits in the frame with `margin` to spare on each side.
+struct Camera {
+    bool autoFrame = true;
+    vec3 eye{0.0f};     ///< camera position (m); used when !autoFrame
+    vec3 target{0.0f};  ///< point looked at (m); used when !autoFrame
+    vec3 up{0.0f, 0.0f, 1.0f};
+    float fovDeg = 35.0f;  ///< vertical field of view, degrees (0 to 170 exclusive)
+
+    // Auto-framing only.
+    float azimuthDeg = -60.0f;   ///< direction from the target to the eye, from +x toward +y
+    float elevationDeg = 22.0f;  ///< above the horizontal, degrees (-89 to 89)
+    float margin = 0.05f;        ///< free border as a fraction of the half-frame (0 to 0.9)
+};
+
+enum class RenderMode {
+    Shaded,       ///< lit, anti-aliased preview
+    LabelOrgan,   ///< flat colour per organ kind (see the table above)
+    LabelObject,  ///< flat colour per object ID (objectLabelColor)
+};
+
+/// What is prepared once per scene (RenderScene); the one-shot render() takes it from
+/// RenderOptions::scene.
+struct RenderSceneOptions {
+    /// Interpolate vertex normals on smooth surfaces (tubes); corners sharper than about
+    /// 40 degrees (boxes) stay flat.
+    bool smoothNormals = true;
+    /// A texture that cannot be read is an Error; with this set the material colour is used.
+    bool ignoreMissingTextures = false;
+};
+
+struct RenderOptions {
+    int width = 1024;  ///< pixels, 1 to 16384
+    int height = 768;  ///< pixels, 1 to 16384
+    Camera camera;
+    RenderMode mode = RenderMode::Shaded;
+
+    /// A horizontal plane at the scene's lowest z, extended to the horizon. It is
+    /// background in the label modes.
+    bool groundPlane = true;
+    vec3 groundColor{0.50f, 0.42f, 0.34f};  ///< sRGB albedo, neutral soil
+
+    /// Direction toward the sun (normalised internally; must have z > 0 to light anything).
+    vec3 sunDirection{0.45f, -0.25f, 0.86f};
+    float sunAngularRadiusDeg = 2.5f;  ///< larger gives softer shadows (the real sun: 0.27)
+    float sunIntensity = 2.6f;         ///< irradiance on a surface facing the sun
+    vec3 skyZenithColor{0.42f, 0.62f, 0.90f};   ///< sRGB, background straight up
+    vec3 skyHorizonColor{0.83f, 0.89f, 0.95f};  ///< sRGB, background at the horizon
+    float skyIntensity = 1.0f;  ///< scales the sky's light on surfaces (not the background)
+    float exposure = 1.0f;      ///< linear scale before sRGB encoding
+    /// Fraction of the sun's light a surface passes to its back side (thin leaves glow when
+    /// lit from behind; closed surfaces shadow themselves so it does not apply to them).
+    float translucency = 0.25f;
+
+    int samplesPerPixel = 4;  ///< stratified jittered camera rays per pixel (1 to 1024)
+    int shadowSamples = 1;    ///< sun rays per camera sample, toward random points on the disc
+    int aoSamples = 1;        ///< sky-visibility rays per camera sample; 0 = unoccluded sky
+    std::uint64_t seed = 0;   ///< picks the sample pattern; same seed, same bytes
+
+    RenderSceneOptions scene;  ///< used by the one-shot render()
+};
+
+/// The organ label colour table (see the header comment), in table order.
+struct OrganLabelColor {
+    std::string_view organ;
+    std::array<std::uint8_t, 3> rgb;
+};
+const std::vector<OrganLabelColor>& organLabelColors();
+/// Colour of an organ name in LabelOrgan mode; unknown names give the "other" colour (white).
+std::array<std::uint8_t, 3> organLabelColor(std::string_view organ);
+/// Colour of an object in LabelObject mode: a bijection of (id + 1) onto the 24-bit colours.
+std::array<std::uint8_t, 3> objectLabelColor(ObjectID id);
+/// Inverse of objectLabelColor; nullopt for black (background).
+std::optional<ObjectID> objectIDFromLabelColor(std::array<std::uint8_t, 3> rgb);
+
+/// The resolved camera of a render (after auto-framing).
+struct CameraFrame {
+    vec3 eye, target, up;
+    float fovDeg;
+};
+
+/// A Context prepared for ray casting: geometry copied into an Embree BVH, materials and
+/// textures loaded. It is a snapshot: later changes to the Context are not seen. Building it
+/// is the costly part; render() can then be called many times (several views, label masks).
+class RenderScene {
+public:
+    /// Throws plantarch::Error when a texture cannot be read (unless ignored).
+    explicit RenderScene(const Context& context, const RenderSceneOptions& options = {});
+    ~RenderScene();
+    RenderScene(RenderScene&&) noexcept;
+    RenderScene& operator=(RenderScene&&) noexcept;
+    RenderScene(const RenderScene&) = delete;
+    RenderScene& operator=(const RenderScene&) = delete;
+
+    /// Renders with OpenMP over rows. Throws plantarch::Error on invalid options.
+    Image render(const RenderOptions& options) const;
+    /// The camera render() would use with these options.
+    CameraFrame camera(const RenderOptions& options) const;
+
+    /// Box around the visible (not hidden) objects; empty for an empty scene.
+    const AABB& bounds() const;
+    std::size_t triangleCount() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// One-shot: builds a RenderScene from `context` with options.scene and renders it.
+Image render(const Context& context, const RenderOptions& options = {});
+
+/// Writes `image` as a PNG, atomically (temporary file in the same folder, then rename).
+/// Throws plantarch::Error naming the path when it cannot be written.
+void writePNG(const Image& image, const std::string& path);
+/// Reads a PNG (or any format stb_image knows) as 8-bit RGB. Throws plantarch::Error.
+Image readImage(const std::string& path);
+
+}  // namespace plantarch

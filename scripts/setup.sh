@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs every Debian package plantarch needs (idempotent, quiet on success), then
+# configures and builds the project into build/ (Release) unless --no-build is given.
+# Usage: bash scripts/setup.sh [--no-build] [--sanitize]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git clang
+  libglm-dev libpugixml-dev libembree-dev libstb-dev libtinyobjloader-dev
+  libtinygltf-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpcg-cpp-dev
+  libomp-dev libgtest-dev libgmock-dev libbenchmark-dev libclang-rt-14-dev
+  pybind11-dev python3 python3-dev python3-numpy python3-pytest
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "setup: missing packages (${missing[*]}); run as root or install them" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq >/dev/null
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+build=1
+sanitize=OFF
+for a in "$@"; do
+  case "$a" in
+    --no-build) build=0 ;;
+    --sanitize) sanitize=ON ;;
+    *) echo "setup: unknown option '$a' (valid: --no-build, --sanitize)" >&2; exit 2 ;;
+  esac
+done
+((build)) || exit 0
+
+dir=build
+[ "$sanitize" = ON ] && dir=build-asan
+type=Release
+[ "$sanitize" = ON ] && type=RelWithDebInfo
+cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DPLANTARCH_SANITIZE="$sanitize" >/dev/null
+cmake --build "$dir" --parallel "$(nproc)" >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log" >&2; exit 1; }

@@ -1,0 +1,630 @@
+// The Context's storage: contiguous pools for positions, UVs and indices, one record per
+// object, a primitive-to-object table, columnar object data and sparse primitive data.
+
+#include "plantarch/Context.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+#include <utility>
+
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+struct ObjectRecord {
+    std::uint32_t firstVertex = 0;
+    std::uint32_t vertexCount = 0;
+    std::uint32_t firstIndex = 0;
+    std::uint32_t indexCount = 0;
+    PrimitiveID firstPrimitive = 0;
+    MaterialID material = 0;
+    bool alive = false;
+    bool hidden = false;
+    bool hasUVs = false;
+};
+
+// One object-data label: values indexed by object ID, with a presence flag.
+struct Column {
+    DataType type = DataType::Int;
+    std::vector<std::int32_t> ints;  // Int values, or string-table indices for String
+    std::vector<float> floats;
+    std::vector<vec3> vecs;
+    std::vector<std::uint8_t> present;
+};
+
+struct PrimitiveColumn {
+    DataType type = DataType::Int;
+    std::unordered_map<PrimitiveID, DataValue> values;
+};
+
+DataType typeOf(const DataValue& v) { return static_cast<DataType>(v.index()); }
+
+std::string objectText(ObjectID id) { return std::to_string(id); }
+
+}  // namespace
+
+const char* dataTypeName(DataType type) {
+    switch (type) {
+        case DataType::Int: return "int";
+        case DataType::Float: return "float";
+        case DataType::String: return "string";
+        case DataType::Vec3: return "vec3";
+    }
+    return "?";
+}
+
+struct Context::Impl {
+    std::vector<vec3> positions;
+    std::vector<vec2> uvs;  // parallel to positions once any object has UVs, else empty
+    bool uvsEnabled = false;
+    std::vector<std::uint32_t> indices;
+    std::vector<ObjectRecord> objects;
+    std::vector<ObjectID> primitiveOwner;  // PrimitiveID -> ObjectID or kNone
+    std::vector<Material> materials;
+    std::map<std::string, Column, std::less<>> columns;
+    std::map<std::string, PrimitiveColumn, std::less<>> primitiveColumns;
+    std::vector<std::string> strings;
+    std::unordered_map<std::string, std::int32_t> stringIndex;
+
+    std::size_t liveObjects = 0;
+    std::size_t liveTriangles = 0;
+    std::size_t liveVertices = 0;
+    std::size_t liveIndices = 0;
+
+    Impl() { materials.push_back(Material{}); }
+
+    const ObjectRecord& record(ObjectID id, const char* what) const {
+        if (id >= objects.size() || !objects[id].alive)
+            throw Error(std::string(what) + ": no such object",
+                        {.parameter = "objectID", .value = objectText(id)});
+        return objects[id];
+    }
+    ObjectRecord& record(ObjectID id, const char* what) {
+        return const_cast<ObjectRecord&>(std::as_const(*this).record(id, what));
+    }
+
+    void checkMaterial(MaterialID m) const {
+        if (m >= materials.size())
+            throw Error("no such material",
+                        {.parameter = "materialID", .value = std::to_string(m),
+                         .validRange = "0 to " + std::to_string(materials.size() - 1)});
+    }
+
+    static void checkGeometry(std::span<const vec3> pos, std::span<const vec2> uv,
+                              std::span<const std::uint32_t> idx) {
+        Mesh probe;  // reuse Mesh::validate's messages without copying large arrays twice
+        if (idx.size() % 3 != 0 || (!uv.empty() && uv.size() != pos.size())) {
+            probe.indices.assign(idx.begin(), idx.end());
+            probe.positions.resize(pos.size());
+            probe.uvs.resize(uv.size());
+            probe.validate();
+        }
+        for (std::size_t i = 0; i < idx.size(); ++i)
+            if (idx[i] >= pos.size())
+                throw Error("vertex index out of range",
+                            {.parameter = "mesh.indices[" + std::to_string(i) + "]",
+                             .value = std::to_string(idx[i]),
+                             .validRange = "0 to " + std::to_string(pos.size()) + " (exclusive)"});
+        for (std::size_t i = 0; i < pos.size(); ++i)
+            if (!std::isfinite(pos[i].x) || !std::isfinite(pos[i].y) || !std::isfinite(pos[i].z))
+                throw Error("vertex position is not finite",
+                            {.parameter = "mesh.positions[" + std::to_string(i) + "]",
+                             .validRange = "finite coordinates"});
+        if (pos.size() >= kNone || idx.size() >= kNone)
+            throw Error("mesh too large", {.value = std::to_string(pos.size()) + " vertices"});
+    }
+
+    PrimitiveID allocatePrimitives(ObjectID owner, std::uint32_t count) {
+        const auto first = static_cast<PrimitiveID>(primitiveOwner.size());
+        if (primitiveOwner.size() + count >= kNone)
+            throw Error("primitive ID space exhausted (4 billion triangles ever created)");
+        primitiveOwner.resize(primitiveOwner.size() + count, owner);
+        return first;
+    }
+
+    void releasePrimitives(const ObjectRecord& r) {
+        const std::uint32_t n = r.indexCount / 3;
+        for (std::uint32_t i = 0; i < n; ++i) primitiveOwner[r.firstPrimitive + i] = kNone;
+        for (auto& [label, col] : primitiveColumns)
+            if (!col.values.empty())
+                for (std::uint32_t i = 0; i < n; ++i) col.values.erase(r.firstPrimitive + i);
+    }
+
+    // Writes geometry into the pools: in place when it fits the object's current ranges,
+    // else at the end of the pools (the old ranges become garbage until compact()).
+    void storeGeometry(ObjectRecord& r, std::span<const vec3> pos, std::span<const vec2> uv,
+                       std::span<const std::uint32_t> idx) {
+        const auto nv = static_cast<std::uint32_t>(pos.size());
+        const auto ni = static_cast<std::uint32_t>(idx.size());
+        if (!uv.empty() && !uvsEnabled) {
+            uvsEnabled = true;
+            uvs.resize(positions.size());
+        }
+        const bool fits = r.alive && nv <= r.vertexCount && ni <= r.indexCount;
+        if (!fits) {
+            r.firstVertex = static_cast<std::uint32_t>(positions.size());
+            r.firstIndex = static_cast<std::uint32_t>(indices.size());
+            if (positions.size() + nv >= kNone || indices.size() + ni >= kNone)
+                throw Error("Context is full (more than 4 billion vertices or indices)");
+            positions.resize(positions.size() + nv);
+            if (uvsEnabled) uvs.resize(positions.size());
+            indices.resize(indices.size() + ni);
+        }
+        std::copy(pos.begin(), pos.end(), positions.begin() + r.firstVertex);
+        if (!uv.empty())
+            std::copy(uv.begin(), uv.end(), uvs.begin() + r.firstVertex);
+        std::copy(idx.begin(), idx.end(), indices.begin() + r.firstIndex);
+        r.vertexCount = nv;
+        r.indexCount = ni;
+        r.hasUVs = !uv.empty();
+    }
+
+    std::size_t garbage() const {
+        return (positions.size() - liveVertices) * sizeof(vec3) +
+               (indices.size() - liveIndices) * sizeof(std::uint32_t);
+    }
+
+    void maybeCompact() {
+        const std::size_t total =
+            positions.size() * sizeof(vec3) + indices.size() * sizeof(std::uint32_t);
+        if (total > (1u << 20) && garbage() * 2 > total) compact();
+    }
+
+    void compact() {
+        std::vector<vec3> newPos;
+        std::vector<vec2> newUV;
+        std::vector<std::uint32_t> newIdx;
+        newPos.reserve(liveVertices);
+        newIdx.reserve(liveIndices);
+        const bool anyUV = uvsEnabled;
+        if (anyUV) newUV.reserve(liveVertices);
+        for (ObjectRecord& r : objects) {
+            if (!r.alive) continue;
+            const auto fv = static_cast<std::uint32_t>(newPos.size());
+            const auto fi = static_cast<std::uint32_t>(newIdx.size());
+            newPos.insert(newPos.end(), positions.begin() + r.firstVertex,
+                          positions.begin() + r.firstVertex + r.vertexCount);
+            if (anyUV)
+                newUV.insert(newUV.end(), uvs.begin() + r.firstVertex,
+                             uvs.begin() + r.firstVertex + r.vertexCount);
+            newIdx.insert(newIdx.end(), indices.begin() + r.firstIndex,
+                          indices.begin() + r.firstIndex + r.indexCount);
+            r.firstVertex = fv;
+            r.firstIndex = fi;
+        }
+        positions = std::move(newPos);
+        uvs = std::move(newUV);
+        indices = std::move(newIdx);
+    }
+
+    std::int32_t intern(const std::string& s) {
+        auto [it, inserted] = stringIndex.try_emplace(s, static_cast<std::int32_t>(strings.size()));
+        if (inserted) strings.push_back(s);
+        return it->second;
+    }
+
+    Column& columnFor(std::string_view label, DataType type) {
+        auto it = columns.find(label);
+        if (it == columns.end()) {
+            if (label.empty()) throw Error("data label must not be empty", {.parameter = "label"});
+            it = columns.emplace(std::string(label), Column{}).first;
+            it->second.type = type;
+        } else if (it->second.type != type) {
+            throw Error(std::string("object data label already holds ") +
+                            dataTypeName(it->second.type) + " values",
+                        {.parameter = std::string(label), .value = dataTypeName(type),
+                         .validRange = dataTypeName(it->second.type)});
+        }
+        return it->second;
+    }
+
+    void eraseObjectData(ObjectID id) {
+        for (auto& [label, col] : columns)
+            if (id < col.present.size()) col.present[id] = 0;
+    }
+};
+
+Context::Context() : impl_(std::make_unique<Impl>()) {}
+Context::~Context() = default;
+Context::Context(const Context& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
+Context& Context::operator=(const Context& o) {
+    if (this != &o) impl_ = std::make_unique<Impl>(*o.impl_);
+    return *this;
+}
+Context::Context(Context&&) noexcept = default;
+Context& Context::operator=(Context&&) noexcept = default;
+
+// ---- materials -------------------------------------------------------------------------
+
+MaterialID Context::addMaterial(const Material& m) {
+    for (std::size_t i = 0; i < impl_->materials.size(); ++i)
+        if (impl_->materials[i] == m) return static_cast<MaterialID>(i);
+    impl_->materials.push_back(m);
+    return static_cast<MaterialID>(impl_->materials.size() - 1);
+}
+
+const Material& Context::material(MaterialID id) const {
+    impl_->checkMaterial(id);
+    return impl_->materials[id];
+}
+
+std::size_t Context::materialCount() const { return impl_->materials.size(); }
+
+// ---- objects ---------------------------------------------------------------------------
+
+ObjectID Context::addObject(const Mesh& mesh, MaterialID material) {
+    return addObject(mesh.positions, mesh.uvs, mesh.indices, material);
+}
+
+ObjectID Context::addObject(const Mesh& mesh, const Material& material) {
+    return addObject(mesh, addMaterial(material));
+}
+
+ObjectID Context::addObject(std::span<const vec3> positions, std::span<const vec2> uvs,
+                            std::span<const std::uint32_t> indices, MaterialID material) {
+    Impl& d = *impl_;
+    Impl::checkGeometry(positions, uvs, indices);
+    d.checkMaterial(material);
+    if (d.objects.size() >= kNone - 1) throw Error("object ID space exhausted");
+    const auto id = static_cast<ObjectID>(d.objects.size());
+    ObjectRecord r;
+    d.storeGeometry(r, positions, uvs, indices);
+    r.alive = true;
+    r.material = material;
+    r.firstPrimitive = d.allocatePrimitives(id, static_cast<std::uint32_t>(indices.size() / 3));
+    d.objects.push_back(r);
+    ++d.liveObjects;
+    d.liveTriangles += indices.size() / 3;
+    d.liveVertices += positions.size();
+    d.liveIndices += indices.size();
+    return id;
+}
+
+void Context::setObjectMesh(ObjectID id, const Mesh& mesh) {
+    Impl& d = *impl_;
+    ObjectRecord& r = d.record(id, "setObjectMesh");
+    Impl::checkGeometry(mesh.positions, mesh.uvs, mesh.indices);
+    const std::uint32_t oldTris = r.indexCount / 3;
+    const auto newTris = static_cast<std::uint32_t>(mesh.triangleCount());
+    d.liveTriangles += newTris;
+    d.liveTriangles -= oldTris;
+    d.liveVertices += mesh.positions.size();
+    d.liveVertices -= r.vertexCount;
+    d.liveIndices += mesh.indices.size();
+    d.liveIndices -= r.indexCount;
+    if (newTris != oldTris) {
+        d.releasePrimitives(r);
+        r.firstPrimitive = d.allocatePrimitives(id, newTris);
+    }
+    d.storeGeometry(r, mesh.positions, mesh.uvs, mesh.indices);
+    d.maybeCompact();
+}
+
+void Context::setObjectMaterial(ObjectID id, MaterialID material) {
+    impl_->checkMaterial(material);
+    impl_->record(id, "setObjectMaterial").material = material;
+}
+
+ObjectID Context::copyObject(ObjectID id) {
+    Impl& d = *impl_;
+    const ObjectRecord src = d.record(id, "copyObject");
+    // Copy out first: adding may reallocate the pools the spans point into.
+    const std::vector<vec3> pos(d.positions.begin() + src.firstVertex,
+                                d.positions.begin() + src.firstVertex + src.vertexCount);
+    std::vector<vec2> uv;
+    if (src.hasUVs)
+        uv.assign(d.uvs.begin() + src.firstVertex, d.uvs.begin() + src.firstVertex + src.vertexCount);
+    const std::vector<std::uint32_t> idx(d.indices.begin() + src.firstIndex,
+                                         d.indices.begin() + src.firstIndex + src.indexCount);
+    const ObjectID copy = addObject(pos, uv, idx, src.material);
+    d.objects[copy].hidden = src.hidden;
+    for (auto& [label, col] : d.columns) {
+        if (id >= col.present.size() || !col.present[id]) continue;
+        col.present.resize(std::max<std::size_t>(col.present.size(), copy + 1), 0);
+        col.present[copy] = 1;
+        switch (col.type) {
+            case DataType::Int:
+            case DataType::String:
+                col.ints.resize(col.present.size());
+                col.ints[copy] = col.ints[id];
+                break;
+            case DataType::Float:
+                col.floats.resize(col.present.size());
+                col.floats[copy] = col.floats[id];
+                break;
+            case DataType::Vec3:
+                col.vecs.resize(col.present.size());
+                col.vecs[copy] = col.vecs[id];
+                break;
+        }
+    }
+    return copy;
+}
+
+void Context::transformObject(ObjectID id, const mat4& transform) {
+    const ObjectRecord& r = impl_->record(id, "transformObject");
+    auto first = impl_->positions.begin() + r.firstVertex;
+    for (auto it = first; it != first + r.vertexCount; ++it)
+        *it = vec3(transform * glm::vec4(*it, 1.0f));
+}
+
+void Context::setObjectHidden(ObjectID id, bool hidden) {
+    impl_->record(id, "setObjectHidden").hidden = hidden;
+}
+
+bool Context::isObjectHidden(ObjectID id) const {
+    return impl_->record(id, "isObjectHidden").hidden;
+}
+
+void Context::deleteObject(ObjectID id) {
+    Impl& d = *impl_;
+    ObjectRecord& r = d.record(id, "deleteObject");
+    d.releasePrimitives(r);
+    d.eraseObjectData(id);
+    d.liveTriangles -= r.indexCount / 3;
+    d.liveVertices -= r.vertexCount;
+    d.liveIndices -= r.indexCount;
+    --d.liveObjects;
+    r.alive = false;
+    r.vertexCount = r.indexCount = 0;
+    d.maybeCompact();
+}
+
+void Context::deleteObjects(std::span<const ObjectID> ids) {
+    for (ObjectID id : ids) impl_->record(id, "deleteObjects");  // all-or-nothing
+    for (ObjectID id : ids)
+        if (doesObjectExist(id)) deleteObject(id);
+}
+
+bool Context::doesObjectExist(ObjectID id) const {
+    return id < impl_->objects.size() && impl_->objects[id].alive;
+}
+
+bool Context::doesPrimitiveExist(PrimitiveID id) const {
+    return id < impl_->primitiveOwner.size() && impl_->primitiveOwner[id] != kNone;
+}
+
+std::vector<ObjectID> Context::objectIDs() const {
+    std::vector<ObjectID> ids;
+    ids.reserve(impl_->liveObjects);
+    for (std::size_t i = 0; i < impl_->objects.size(); ++i)
+        if (impl_->objects[i].alive) ids.push_back(static_cast<ObjectID>(i));
+    return ids;
+}
+
+std::size_t Context::objectCount() const { return impl_->liveObjects; }
+std::size_t Context::triangleCount() const { return impl_->liveTriangles; }
+std::size_t Context::vertexCount() const { return impl_->liveVertices; }
+ObjectID Context::objectIDLimit() const { return static_cast<ObjectID>(impl_->objects.size()); }
+
+ObjectView Context::object(ObjectID id) const {
+    const Impl& d = *impl_;
+    const ObjectRecord& r = d.record(id, "object");
+    ObjectView v;
+    v.id = id;
+    v.positions = std::span<const vec3>(d.positions.data() + r.firstVertex, r.vertexCount);
+    if (r.hasUVs) v.uvs = std::span<const vec2>(d.uvs.data() + r.firstVertex, r.vertexCount);
+    v.indices = std::span<const std::uint32_t>(d.indices.data() + r.firstIndex, r.indexCount);
+    v.material = r.material;
+    v.primitives = {r.firstPrimitive, r.indexCount / 3};
+    v.hidden = r.hidden;
+    return v;
+}
+
+PrimitiveRange Context::objectPrimitives(ObjectID id) const {
+    const ObjectRecord& r = impl_->record(id, "objectPrimitives");
+    return {r.firstPrimitive, r.indexCount / 3};
+}
+
+MaterialID Context::objectMaterial(ObjectID id) const {
+    return impl_->record(id, "objectMaterial").material;
+}
+
+ObjectID Context::primitiveObject(PrimitiveID id) const {
+    if (!doesPrimitiveExist(id))
+        throw Error("no such primitive", {.parameter = "primitiveID", .value = std::to_string(id)});
+    return impl_->primitiveOwner[id];
+}
+
+std::array<vec3, 3> Context::primitiveVertices(PrimitiveID id) const {
+    const ObjectRecord& r = impl_->objects[primitiveObject(id)];
+    const std::uint32_t t = (id - r.firstPrimitive) * 3;
+    const std::uint32_t* tri = impl_->indices.data() + r.firstIndex + t;
+    const vec3* p = impl_->positions.data() + r.firstVertex;
+    return {p[tri[0]], p[tri[1]], p[tri[2]]};
+}
+
+Mesh Context::objectMesh(ObjectID id) const {
+    const ObjectView v = object(id);
+    Mesh m;
+    m.positions.assign(v.positions.begin(), v.positions.end());
+    m.uvs.assign(v.uvs.begin(), v.uvs.end());
+    m.indices.assign(v.indices.begin(), v.indices.end());
+    return m;
+}
+
+AABB Context::objectBoundingBox(ObjectID id) const {
+    AABB box;
+    for (const vec3& p : object(id).positions) box.add(p);
+    return box;
+}
+
+AABB Context::boundingBox(bool includeHidden) const {
+    AABB box;
+    for (const ObjectRecord& r : impl_->objects) {
+        if (!r.alive || (r.hidden && !includeHidden)) continue;
+        const vec3* p = impl_->positions.data() + r.firstVertex;
+        for (std::uint32_t i = 0; i < r.vertexCount; ++i) box.add(p[i]);
+    }
+    return box;
+}
+
+double Context::objectArea(ObjectID id) const {
+    const ObjectView v = object(id);
+    double total = 0.0;
+    for (std::size_t t = 0; t < v.indices.size(); t += 3) {
+        const glm::dvec3 a(v.positions[v.indices[t]]), b(v.positions[v.indices[t + 1]]),
+            c(v.positions[v.indices[t + 2]]);
+        total += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    return total;
+}
+
+// ---- object data -----------------------------------------------------------------------
+
+void Context::setObjectData(ObjectID id, std::string_view label, DataValue value) {
+    Impl& d = *impl_;
+    d.record(id, "setObjectData");
+    Column& col = d.columnFor(label, typeOf(value));
+    if (col.present.size() <= id) col.present.resize(d.objects.size(), 0);
+    col.present[id] = 1;
+    const std::size_t n = col.present.size();
+    switch (col.type) {
+        case DataType::Int:
+            col.ints.resize(n);
+            col.ints[id] = std::get<std::int32_t>(value);
+            break;
+        case DataType::String:
+            col.ints.resize(n);
+            col.ints[id] = d.intern(std::get<std::string>(value));
+            break;
+        case DataType::Float:
+            col.floats.resize(n);
+            col.floats[id] = std::get<float>(value);
+            break;
+        case DataType::Vec3:
+            col.vecs.resize(n);
+            col.vecs[id] = std::get<vec3>(value);
+            break;
+    }
+}
+
+std::optional<DataValue> Context::objectData(ObjectID id, std::string_view label) const {
+    const Impl& d = *impl_;
+    d.record(id, "objectData");
+    auto it = d.columns.find(label);
+    if (it == d.columns.end()) return std::nullopt;
+    const Column& col = it->second;
+    if (id >= col.present.size() || !col.present[id]) return std::nullopt;
+    switch (col.type) {
+        case DataType::Int: return DataValue(col.ints[id]);
+        case DataType::String: return DataValue(d.strings[col.ints[id]]);
+        case DataType::Float: return DataValue(col.floats[id]);
+        case DataType::Vec3: return DataValue(col.vecs[id]);
+    }
+    return std::nullopt;
+}
+
+bool Context::hasObjectData(ObjectID id, std::string_view label) const {
+    return objectData(id, label).has_value();
+}
+
+void Context::clearObjectData(ObjectID id, std::string_view label) {
+    impl_->record(id, "clearObjectData");
+    auto it = impl_->columns.find(label);
+    if (it != impl_->columns.end() && id < it->second.present.size()) it->second.present[id] = 0;
+}
+
+namespace {
+template <class T>
+std::optional<T> typedData(const Context& ctx, ObjectID id, std::string_view label,
+                           DataType want) {
+    auto type = ctx.objectDataType(label);
+    if (type && *type != want)
+        throw Error(std::string("object data label holds ") + dataTypeName(*type) + " values",
+                    {.parameter = std::string(label), .value = dataTypeName(want),
+                     .validRange = dataTypeName(*type)});
+    auto v = ctx.objectData(id, label);
+    if (!v) return std::nullopt;
+    return std::get<T>(*v);
+}
+}  // namespace
+
+std::optional<std::int32_t> Context::objectDataInt(ObjectID id, std::string_view label) const {
+    return typedData<std::int32_t>(*this, id, label, DataType::Int);
+}
+std::optional<float> Context::objectDataFloat(ObjectID id, std::string_view label) const {
+    return typedData<float>(*this, id, label, DataType::Float);
+}
+std::optional<std::string> Context::objectDataString(ObjectID id, std::string_view label) const {
+    return typedData<std::string>(*this, id, label, DataType::String);
+}
+std::optional<vec3> Context::objectDataVec3(ObjectID id, std::string_view label) const {
+    return typedData<vec3>(*this, id, label, DataType::Vec3);
+}
+
+std::vector<std::string> Context::objectDataLabels() const {
+    std::vector<std::string> labels;
+    for (const auto& [label, col] : impl_->columns) labels.push_back(label);
+    return labels;
+}
+
+std::optional<DataType> Context::objectDataType(std::string_view label) const {
+    auto it = impl_->columns.find(label);
+    if (it == impl_->columns.end()) return std::nullopt;
+    return it->second.type;
+}
+
+// ---- primitive data --------------------------------------------------------------------
+
+void Context::setPrimitiveData(PrimitiveID id, std::string_view label, DataValue value) {
+    primitiveObject(id);  // existence check with a clear error
+    if (label.empty()) throw Error("data label must not be empty", {.parameter = "label"});
+    auto it = impl_->primitiveColumns.find(label);
+    if (it == impl_->primitiveColumns.end()) {
+        it = impl_->primitiveColumns.emplace(std::string(label), PrimitiveColumn{}).first;
+        it->second.type = typeOf(value);
+    } else if (it->second.type != typeOf(value)) {
+        throw Error(std::string("primitive data label already holds ") +
+                        dataTypeName(it->second.type) + " values",
+                    {.parameter = std::string(label), .value = dataTypeName(typeOf(value)),
+                     .validRange = dataTypeName(it->second.type)});
+    }
+    it->second.values[id] = std::move(value);
+}
+
+std::optional<DataValue> Context::primitiveData(PrimitiveID id, std::string_view label) const {
+    primitiveObject(id);
+    auto it = impl_->primitiveColumns.find(label);
+    if (it == impl_->primitiveColumns.end()) return std::nullopt;
+    auto v = it->second.values.find(id);
+    if (v == it->second.values.end()) return std::nullopt;
+    return v->second;
+}
+
+std::vector<std::string> Context::primitiveDataLabels() const {
+    std::vector<std::string> labels;
+    for (const auto& [label, col] : impl_->primitiveColumns) labels.push_back(label);
+    return labels;
+}
+
+// ---- housekeeping ----------------------------------------------------------------------
+
+void Context::clear() { impl_ = std::make_unique<Impl>(); }
+
+void Context::compact() { impl_->compact(); }
+
+std::size_t Context::memoryBytes() const {
+    const Impl& d = *impl_;
+    std::size_t bytes = sizeof(Impl);
+    bytes += d.positions.capacity() * sizeof(vec3) + d.uvs.capacity() * sizeof(vec2) +
+             d.indices.capacity() * sizeof(std::uint32_t) +
+             d.objects.capacity() * sizeof(ObjectRecord) +
+             d.primitiveOwner.capacity() * sizeof(ObjectID) +
+             d.materials.capacity() * sizeof(Material);
+    for (const auto& [label, col] : d.columns)
+        bytes += label.capacity() + col.ints.capacity() * 4 + col.floats.capacity() * 4 +
+                 col.vecs.capacity() * sizeof(vec3) + col.present.capacity();
+    for (const auto& [label, col] : d.primitiveColumns)
+        bytes += label.capacity() + col.values.size() * (sizeof(DataValue) + 32);
+    for (const std::string& s : d.strings) bytes += s.capacity() + 48;
+    return bytes;
+}
+
+}  // namespace plantarch

@@ -1,0 +1,46 @@
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+std::string formatError(const std::string& message, const ErrorContext& c) {
+    std::string out;
+    if (!c.file.empty()) {
+        out.append(c.file);
+        if (c.line > 0) out.append(":").append(std::to_string(c.line));
+        out.append(": ");
+    }
+    if (!c.parameter.empty()) {
+        out.append(c.parameter);
+        if (!c.value.empty()) out.append(" = ").append(c.value);
+        out.append(": ");
+    } else if (!c.value.empty()) {
+        out.append("'").append(c.value).append("': ");
+    }
+    out.append(message);
+    if (!c.validRange.empty()) out.append(" (valid: ").append(c.validRange).append(")");
+    // Keep it to one line whatever the pieces held.
+    for (char& ch : out)
+        if (ch == '\n' || ch == '\r') ch = ' ';
+    return out;
+}
+
+Error::Error(const std::string& message, ErrorContext context)
+    : std::runtime_error(formatError(message, context)),
+      message_(message),
+      context_(std::move(context)) {}
+
+Error Error::withFile(const std::string& file, int line) const {
+    if (!context_.file.empty()) return *this;
+    ErrorContext c = context_;
+    c.file = file;
+    if (c.line == 0) c.line = line;
+    return Error(message_, c);
+}
+
+Error Error::withParameterPrefix(const std::string& prefix) const {
+    ErrorContext c = context_;
+    c.parameter = c.parameter.empty() ? prefix : prefix + "." + c.parameter;
+    return Error(message_, c);
+}
+
+}  // namespace plantarch
