@@ -27,6 +27,7 @@
 //   flower_open    145  30 180
 //   fruit            0 130 200
 //   ground         128 128 128
+//   obstacle        70 240 240
 //   (other/unset)  255 255 255
 //   background       0   0   0   (also the analytic ground plane)
 //
@@ -75,7 +76,7 @@ struct Camera {
     // Auto-framing only.
     float azimuthDeg = -60.0f;   ///< direction from the target to the eye, from +x toward +y
     float elevationDeg = 22.0f;  ///< above the horizontal, degrees (-89 to 89)
-    float margin = 0.05f;        ///< free border as a fraction of the half-frame (0 to 0.9)
+    float margin = 0.07f;        ///< free border as a fraction of the half-frame (0 to 0.9)
 };
 
 enum class RenderMode {
@@ -92,6 +93,10 @@ struct RenderSceneOptions {
     bool smoothNormals = true;
     /// A texture that cannot be read is an Error; with this set the material colour is used.
     bool ignoreMissingTextures = false;
+    /// Embree BVH build quality: Low builds about twice as fast and traces somewhat slower;
+    /// High is for many renders of one scene.
+    enum class BvhQuality { Low, Medium, High };
+    BvhQuality bvhQuality = BvhQuality::Medium;
 };
 
 struct RenderOptions {
@@ -103,11 +108,11 @@ struct RenderOptions {
     /// A horizontal plane at the scene's lowest z, extended to the horizon. It is
     /// background in the label modes.
     bool groundPlane = true;
-    vec3 groundColor{0.50f, 0.42f, 0.34f};  ///< sRGB albedo, neutral soil
+    vec3 groundColor{0.42f, 0.38f, 0.33f};  ///< sRGB albedo, neutral soil
 
     /// Direction toward the sun (normalised internally; must have z > 0 to light anything).
     vec3 sunDirection{0.45f, -0.25f, 0.86f};
-    float sunAngularRadiusDeg = 2.5f;  ///< larger gives softer shadows (the real sun: 0.27)
+    float sunAngularRadiusDeg = 1.2f;  ///< larger gives softer shadows (the real sun: 0.27)
     float sunIntensity = 2.6f;         ///< irradiance on a surface facing the sun
     vec3 skyZenithColor{0.42f, 0.62f, 0.90f};   ///< sRGB, background straight up
     vec3 skyHorizonColor{0.83f, 0.89f, 0.95f};  ///< sRGB, background at the horizon

@@ -1,0 +1,39 @@
+#pragma once
+// Helpers shared by the benchmarks: resident memory and synthetic leaf-like meshes.
+
+#include <cstddef>
+#include <cstdio>
+#include <unistd.h>
+
+#include "plantarch/Mesh.h"
+
+namespace plantarch::bench {
+
+/// Resident set size of this process in bytes (from /proc/self/statm).
+inline std::size_t residentBytes() {
+    std::FILE* f = std::fopen("/proc/self/statm", "r");
+    if (!f) return 0;
+    unsigned long size = 0, resident = 0;
+    const int n = std::fscanf(f, "%lu %lu", &size, &resident);
+    std::fclose(f);
+    return n == 2 ? resident * static_cast<std::size_t>(sysconf(_SC_PAGESIZE)) : 0;
+}
+
+/// A leaf-like grid of nx*ny quads (2*nx*ny triangles) with UVs, 10 cm long, gently curved.
+inline Mesh leafGrid(int nx = 10, int ny = 5) {
+    Mesh m;
+    for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+            const float u = float(i) / nx, v = float(j) / ny;
+            m.positions.push_back({0.1f * u, 0.04f * (v - 0.5f), 0.01f * u * u});
+            m.uvs.push_back({u, v});
+        }
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            const std::uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
+            m.indices.insert(m.indices.end(), {a, b, d, a, d, c});
+        }
+    return m;
+}
+
+}  // namespace plantarch::bench

@@ -1,0 +1,135 @@
+#pragma once
+// Writing a Context to mesh files (Wavefront OBJ + MTL, PLY) and reading OBJ files back.
+//
+// Every writer writes into a temporary file next to the target (`<path>.tmp-<pid>-<n>`)
+// and renames it over the target only once everything was written, so an export that
+// fails or is interrupted never leaves a partial file and never damages an existing one.
+// Failures throw plantarch::Error naming the file, e.g.
+//   out/plant.obj: cannot open for writing: No such file or directory
+//
+// Output is deterministic: the same Context and options give the same bytes. Objects are
+// written in increasing object ID order; numbers use the shortest text that reads back to
+// the same float (std::to_chars), so OBJ and ASCII PLY coordinates round-trip exactly.
+//
+// Object data read by the writers:
+//   "organ"    (string) organ kind: OBJ group names, PLY per-face organ label
+//   "plantID"  (int)    PLY per-face plant_id (-1 when absent)
+
+#include <array>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "plantarch/Context.h"
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+// ---- OBJ ---------------------------------------------------------------------------
+
+/// Options of writeOBJ. Defaults give one OBJ with normals, UVs and a material library.
+struct ObjOptions {
+    /// Also write hidden objects (skipped by default).
+    bool includeHidden = false;
+    /// Write smooth per-vertex normals (`vn`): per object, the area-weighted average of
+    /// the normals of the triangles around each vertex. Off: smaller files, faces `v/vt`.
+    bool normals = true;
+    /// Write texture coordinates (`vt`) of objects that have UVs.
+    bool uvs = true;
+    /// Write the .mtl material library, `mtllib` and one `usemtl` per object.
+    bool materials = true;
+    /// One OBJ file per object instead of one for the scene. `path` then names a directory
+    /// (created when missing, with its parents) that receives `obj<ID>[_<organ>].obj` for
+    /// each object and one shared `materials.mtl`. Every file is written to a temporary
+    /// first and all are renamed into place together at the end; files already in the
+    /// directory are left alone.
+    bool splitPerObject = false;
+};
+
+/// Writes the visible objects of `context` as a Wavefront OBJ file and, next to it, a
+/// material library with the same stem (`scene.obj` -> `scene.mtl`).
+///
+/// Layout: per object an `o` and a `g` line named `obj<ID>` or `obj<ID>_<organ>` (from the
+/// object's "organ" string data, characters other than letters, digits, `-`, `_` and `.`
+/// replaced by `_`), a `usemtl` line, its `v` (and `vt`, `vn`, one per vertex) lines and
+/// its faces `f v/vt/vn`. Materials are named after Material::name or `material<ID>`;
+/// the .mtl holds `Kd` (the colour) and `map_Kd` (the texture; a relative texture path
+/// is rewritten relative to the .mtl's directory so viewers find it).
+///
+/// Throws Error (naming the file) when a file cannot be written, or when the object data
+/// "organ" exists with a type other than string.
+void writeOBJ(const Context& context, const std::string& path, const ObjOptions& options = {});
+
+/// Options of readOBJ.
+struct ObjReadOptions {
+    /// Directory searched for the .mtl files named by `mtllib`; empty: the OBJ's directory.
+    /// Texture paths in the .mtl are resolved against this directory too.
+    std::string mtlSearchPath;
+    /// Store each shape's name (from `o` / `g`) as object string data "name".
+    bool storeShapeNames = true;
+    /// Receives tinyobjloader's warnings (for example a .mtl that was not found, which is
+    /// not an error: the objects get the default material). Ignored when empty.
+    std::function<void(const std::string& message)> onWarning;
+};
+
+/// Reads a Wavefront OBJ file (with its .mtl materials) into `context` and returns the IDs
+/// of the objects added, in file order.
+///
+/// One object per run of faces of one shape (`o` / `g`) with the same material. Polygons
+/// are triangulated (fan); UVs are kept when present; normals in the file are ignored.
+/// Each object's material takes the colour (`Kd`), texture path (`map_Kd`, resolved so it
+/// can be opened from the working directory) and name of its .mtl material; faces without
+/// a material get Material{}.
+///
+/// Throws Error naming the file when it cannot be read, is malformed (tinyobjloader's
+/// message included; also an index out of range or a coordinate that is not finite), or
+/// holds no faces. On error `context` is left unchanged.
+std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
+                              const ObjReadOptions& options = {});
+
+// ---- PLY ---------------------------------------------------------------------------
+
+enum class PlyFormat {
+    BinaryLittleEndian,  ///< `format binary_little_endian 1.0`: compact and fast
+    Ascii,               ///< `format ascii 1.0`: human-readable
+};
+
+/// Options of writePLY.
+struct PlyOptions {
+    PlyFormat format = PlyFormat::BinaryLittleEndian;
+    /// Also write hidden objects (skipped by default).
+    bool includeHidden = false;
+    /// Add per-vertex smooth normals (`nx ny nz`, computed as for OBJ).
+    bool normals = false;
+};
+
+/// Integer organ labels written by writePLY, index = label. Objects without "organ" data
+/// (or with an empty string) get 0. Organ strings not in this list get the next integers
+/// (10, 11, ...) in sorted order of the strings present among the exported objects.
+inline constexpr std::array<std::string_view, 10> kOrganLabels = {
+    "unlabelled", "internode",     "petiole",     "leaf",   "peduncle",
+    "flower_closed", "flower_open", "fruit",       "ground", "obstacle"};
+
+/// The organ label table writePLY would use for `context`: kOrganLabels followed by the
+/// other organ strings of the exported objects in sorted order. Entry i names label i.
+std::vector<std::string> organLabelTable(const Context& context, bool includeHidden = false);
+
+/// Writes the visible objects of `context` as a PLY mesh, ready to use as segmentation
+/// ground truth:
+///
+///   element vertex N: float x, y, z (and nx, ny, nz with PlyOptions::normals)
+///   element face M:   list uchar int vertex_indices, int plant_id, int object_id,
+///                     int organ
+///
+/// plant_id is the object's "plantID" int data (-1 when absent), object_id its object ID,
+/// organ its label (see kOrganLabels). The header lists the label names as lines
+/// `comment organ_label <int> <name>`. Vertices of each object are written in order, so
+/// objects never share vertices.
+///
+/// Throws Error (naming the file) when the file cannot be written, when "organ" or
+/// "plantID" data have the wrong type, or when the scene has more vertices than an int
+/// index can address.
+void writePLY(const Context& context, const std::string& path, const PlyOptions& options = {});
+
+}  // namespace plantarch

@@ -1,0 +1,178 @@
+#pragma once
+// plantarch::PlantArchitecture: builds plants from shoot types and keeps their geometry in a
+// Context. Method names follow the model specification so its example programs compile with
+// only the include line and namespace changed.
+//
+// A plant is state (PlantState.h); after every call that changes a plant, its geometry in
+// the Context is regenerated from that state. Each organ keeps its object IDs while its
+// shape changes. Every object carries the data a segmentation user needs: plantID,
+// plant_name, organ, shootID, rank, age, and leafID for leaves.
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plantarch/Context.h"
+#include "plantarch/Parameters.h"
+#include "plantarch/PlantState.h"
+
+namespace plantarch {
+
+/// One piece of an organ prototype: geometry in prototype units (unit length along +x, base
+/// at the origin, +z up) and its material. A flower may have several (petals, centre).
+struct PrototypePart {
+    Mesh mesh;
+    Material material;
+};
+using OrganPrototype = std::vector<PrototypePart>;
+
+/// Builds a leaf prototype. `leafletIndex`: 0 tip, negative left, positive right.
+using LeafPrototypeFunction =
+    std::function<OrganPrototype(const LeafPrototype& params, Rng& rng, int leafletIndex)>;
+/// Builds a flower or fruit prototype; `open` tells an open flower from a closed one.
+using FloralPrototypeFunction = std::function<OrganPrototype(Rng& rng, bool open)>;
+
+/// Where and how a new shoot starts (the options of addBaseStemShoot and friends).
+struct ShootSpec {
+    unsigned phytomers = 1;               ///< number of phytomers to create now
+    AxisRotation baseRotation;            ///< degrees
+    float internodeRadius = 0.001f;       ///< m
+    float internodeLengthMax = 0.02f;     ///< full internode length, m
+    float internodeLengthScale = 1.0f;    ///< current / full internode length, (0, 1]
+    float leafScale = 1.0f;               ///< current / full petiole and leaf size, (0, 1]
+    float radiusTaper = 0.0f;             ///< tip radius reduction along the shoot, [0, 1]
+    std::string shootType;                ///< label given to defineShootType
+};
+
+class PlantArchitecture {
+public:
+    explicit PlantArchitecture(Context* context);
+    ~PlantArchitecture();
+    PlantArchitecture(const PlantArchitecture&) = delete;
+    PlantArchitecture& operator=(const PlantArchitecture&) = delete;
+
+    Context& context() { return *context_; }
+
+    /// Seed of the scene: plant i draws from Rng::forPlant(seed, i).
+    void setSeed(std::uint64_t seed);
+    std::uint64_t seed() const { return seed_; }
+
+    // ---- shoot types ---------------------------------------------------------------
+    /// Defines (or replaces) a shoot type for plants added from now on. Validated.
+    void defineShootType(const std::string& label, const ShootParameters& params);
+    const ShootParameters& shootType(const std::string& label) const;
+    std::vector<std::string> listShootTypeLabels() const;
+    /// The shoot types of one plant (its own copy).
+    std::vector<std::string> listShootTypeLabels(unsigned plantID) const;
+
+    // ---- manual building -----------------------------------------------------------
+    /// A new plant with no shoots, its base at `base_position`, `current_age` days old.
+    unsigned addPlantInstance(const vec3& base_position, float current_age);
+    void deletePlantInstance(unsigned plantID);
+
+    /// The base stem of a plant. Returns the shoot ID (0).
+    unsigned addBaseStemShoot(unsigned plantID, const ShootSpec& spec);
+    unsigned addBaseStemShoot(unsigned plantID, unsigned current_node_number,
+                              const AxisRotation& base_rotation, float internode_radius,
+                              float internode_length_max, float internode_length_scale_factor_fraction,
+                              float leaf_scale_factor_fraction, float radius_taper,
+                              const std::string& shoot_type_label);
+    /// A shoot continuing from the tip of `parentShootID` (same axis, rotated by the spec).
+    unsigned appendShoot(unsigned plantID, unsigned parentShootID, const ShootSpec& spec);
+    unsigned appendShoot(unsigned plantID, int parent_shoot_ID, unsigned current_node_number,
+                         const AxisRotation& base_rotation, float internode_radius,
+                         float internode_length_max, float internode_length_scale_factor_fraction,
+                         float leaf_scale_factor_fraction, float radius_taper,
+                         const std::string& shoot_type_label);
+    /// A lateral shoot from the axil of petiole `petioleIndex` at node `parentNode`. The
+    /// insertion angle comes from the parent type's insertion_angle_tip and decay rate,
+    /// measured from the tip; spec.baseRotation.pitch is added to it.
+    unsigned addChildShoot(unsigned plantID, unsigned parentShootID, unsigned parentNode,
+                           const ShootSpec& spec, unsigned petioleIndex = 0);
+    unsigned addChildShoot(unsigned plantID, int parent_shoot_ID, unsigned parent_node_index,
+                           unsigned current_node_number, const AxisRotation& shoot_base_rotation,
+                           float internode_radius, float internode_length_max,
+                           float internode_length_scale_factor_fraction,
+                           float leaf_scale_factor_fraction, float radius_taper,
+                           const std::string& shoot_type_label, unsigned petiole_index = 0);
+    /// One more phytomer at the tip of a shoot, built from `phytomer_parameters`.
+    unsigned appendPhytomerToShoot(unsigned plantID, unsigned shootID,
+                                   const PhytomerParameters& phytomer_parameters,
+                                   float internode_radius, float internode_length_max,
+                                   float internode_length_scale_factor_fraction,
+                                   float leaf_scale_factor_fraction);
+
+    /// Removes the shoot's phytomers from `node` on, and every shoot growing from them.
+    void pruneBranch(unsigned plantID, unsigned shootID, unsigned node);
+    void removePlantLeaves(unsigned plantID);
+    /// Removes every vegetative bud (apical and axillary) so the plant stops branching.
+    void removeShootVegetativeBuds(unsigned plantID, unsigned shootID);
+    void removeShootFloralBuds(unsigned plantID, unsigned shootID);
+    /// Removes flowers (open and closed) and fruit, keeping peduncles.
+    void removePlantFlowers(unsigned plantID);
+    /// Harvest: removes all fruit and returns how many there were.
+    unsigned harvestPlant(unsigned plantID);
+
+    /// Adds a flowering bud at a node with the given stage (for hand-built plants; growth
+    /// makes them on its own). Returns the number of flowers on its peduncle.
+    unsigned addFloralBud(unsigned plantID, unsigned shootID, unsigned node, FloralStage stage,
+                          unsigned petioleIndex = 0);
+
+    // ---- organ prototypes ----------------------------------------------------------
+    void registerLeafPrototype(const std::string& name, LeafPrototypeFunction fn);
+    void registerFloralPrototype(const std::string& name, FloralPrototypeFunction fn);
+    bool hasLeafPrototype(const std::string& name) const;
+    bool hasFloralPrototype(const std::string& name) const;
+
+    // ---- queries -------------------------------------------------------------------
+    std::vector<unsigned> getAllPlantIDs() const;
+    const PlantInstance& plant(unsigned plantID) const;
+    vec3 getPlantBasePosition(unsigned plantID) const;
+    float getPlantAge(unsigned plantID) const;
+    /// Top of the plant's geometry above its base, m.
+    float getPlantHeight(unsigned plantID) const;
+    /// Height of the tip of the base stem above the plant base, m.
+    float getPlantStemHeight(unsigned plantID) const;
+    unsigned getPlantLeafCount(unsigned plantID) const;
+    /// One-sided area of all leaves, m^2.
+    float getPlantLeafArea(unsigned plantID) const;
+    std::vector<ObjectID> getPlantInternodeObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getPlantPetioleObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getPlantLeafObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getPlantPeduncleObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getPlantFlowerObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getPlantFruitObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getAllPlantObjectIDs(unsigned plantID) const;
+    std::vector<ObjectID> getAllObjectIDs() const;
+
+    unsigned getShootCount(unsigned plantID) const;
+    unsigned getShootNodeCount(unsigned plantID, unsigned shootID) const;
+    int getShootParent(unsigned plantID, unsigned shootID) const;
+    unsigned getShootRank(unsigned plantID, unsigned shootID) const;
+    std::vector<unsigned> getShootChildren(unsigned plantID, unsigned shootID) const;
+    /// Every shoot growing from this one, at any depth, in increasing ID order.
+    std::vector<unsigned> getShootDescendants(unsigned plantID, unsigned shootID) const;
+    /// Shoots with no children.
+    std::vector<unsigned> getTerminalShoots(unsigned plantID) const;
+    /// Shoot IDs from this shoot down to the base stem (inclusive).
+    std::vector<unsigned> getShootPathToRoot(unsigned plantID, unsigned shootID) const;
+
+    /// World position of a node (the tip of internode `node`) as the geometry stands now.
+    vec3 getNodePosition(unsigned plantID, unsigned shootID, unsigned node) const;
+
+    // ---- geometry ------------------------------------------------------------------
+    /// Regenerates the plant's geometry from its state (called by every mutating method;
+    /// call it after editing state through other means).
+    void updateGeometry(unsigned plantID);
+
+    struct Impl;  ///< internal; public so the implementation files can share it
+
+private:
+    Context* context_;
+    std::uint64_t seed_ = 42;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace plantarch

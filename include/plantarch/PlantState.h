@@ -1,0 +1,164 @@
+#pragma once
+// The botanical state of a plant: what every organ is now. Growth changes this state only;
+// geometry is a pure function of it (see PlantArchitecture). All directions are unit
+// vectors in world coordinates (z up); angles are degrees; lengths metres; times days.
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "plantarch/Context.h"
+#include "plantarch/Parameters.h"
+#include "plantarch/Random.h"
+
+namespace plantarch {
+
+inline constexpr ObjectID kNoObject = std::numeric_limits<ObjectID>::max();
+
+/// Rotation of a shoot relative to its parent (or to vertical for a base stem), degrees:
+/// pitch tilts it away from the parent axis, yaw turns it about the parent axis, roll turns
+/// it about its own axis.
+struct AxisRotation {
+    float pitch = 0.0f;
+    float yaw = 0.0f;
+    float roll = 0.0f;
+};
+
+enum class BudState { Dormant, Active, Broken, Dead };
+enum class FloralStage { Bud, FlowerClosed, FlowerOpen, Fruit, Removed };
+enum class OrganKind { Internode, Petiole, Leaf, Peduncle, FlowerClosed, FlowerOpen, Fruit };
+
+/// Label written to object data "organ" for each kind.
+const char* organName(OrganKind kind);
+const char* budStateName(BudState state);
+const char* floralStageName(FloralStage stage);
+
+struct VegetativeBud {
+    BudState state = BudState::Dormant;
+    float time = 0.0f;        ///< days since creation (or since dormancy broke)
+    int childShoot = -1;      ///< shoot grown from this bud, -1 if none
+    std::string shootType;    ///< type the bud will grow into (chosen when it breaks)
+};
+
+struct FlowerOrgan {
+    float position = 1.0f;    ///< along the peduncle from its base, fraction of its length
+    float azimuth = 0.0f;     ///< side of the peduncle, degrees
+    float pitch = 0.0f;       ///< from the peduncle axis, degrees
+    float roll = 0.0f;        ///< about its own axis, degrees
+    float flowerScale = 0.0f; ///< flower length, m
+    float fruitScale = 0.0f;  ///< full-grown fruit length, m
+    float gravityFactor = 0.0f;
+    unsigned variant = 0;     ///< prototype variant
+    std::vector<ObjectID> objects;  ///< one per prototype part
+};
+
+struct FloralBud {
+    FloralStage stage = FloralStage::Bud;
+    BudState state = BudState::Dormant;
+    bool terminal = false;    ///< at the shoot tip (else axillary)
+    float time = 0.0f;        ///< days in the current stage
+    float fruitAge = 0.0f;    ///< days since fruit set
+    float fruitGrowth = 1.0f; ///< current fruit size / full-grown size
+    // Peduncle, realized when the bud breaks.
+    float peduncleLength = 0.0f;
+    float peduncleRadius = 0.0f;
+    float pedunclePitch = 0.0f;
+    float peduncleRoll = 0.0f;
+    float peduncleCurvature = 0.0f;
+    ObjectID peduncleObject = kNoObject;
+    std::vector<FlowerOrgan> flowers;
+};
+
+struct LeafOrgan {
+    int leafletIndex = 0;     ///< 0 tip, negative left, positive right (pairs from the tip)
+    float position = 1.0f;    ///< along the petiole from its base, fraction of its length
+    float scale = 0.0f;       ///< full-grown length, m
+    float pitch = 0.0f;
+    float yaw = 0.0f;
+    float roll = 0.0f;
+    unsigned variant = 0;     ///< prototype variant
+    int leafID = -1;          ///< unique within the plant
+    float age = 0.0f;         ///< days
+    bool removed = false;
+    std::vector<ObjectID> objects;
+};
+
+struct Petiole {
+    float azimuth = 0.0f;     ///< about the internode axis from its roll reference, degrees
+    float pitch = 0.0f;       ///< from the internode axis, degrees
+    float length = 0.0f;      ///< full-grown length, m
+    float radius = 0.0f;      ///< base radius, m
+    float curvature = 0.0f;   ///< degrees per m
+    float taper = 0.0f;
+    std::vector<LeafOrgan> leaves;
+    std::vector<VegetativeBud> vegetativeBuds;
+    std::vector<FloralBud> floralBuds;
+    ObjectID object = kNoObject;
+};
+
+struct Internode {
+    vec3 direction{0, 0, 1};  ///< axis of this internode (after zig-zag pitch)
+    vec3 guide{0, 0, 1};      ///< shoot axis here (curvature, random walk, steering applied)
+    vec3 rollReference{1, 0, 0};  ///< unit, perpendicular to guide: azimuth 0 of the petioles
+    float length = 0.0f;      ///< full-grown length, m
+    float radius = 0.0f;      ///< current radius, m
+    float pitch = 0.0f;       ///< realized zig-zag pitch, degrees
+    float phyllotacticAngle = 0.0f;  ///< realized roll from the previous phytomer, degrees
+    float azimuth = 0.0f;     ///< accumulated phyllotactic roll, degrees
+    float gravitropicTurn = 0.0f;    ///< zenith change from gravitropism, degrees
+    float walkZenith = 0.0f;  ///< random-walk zenith perturbation, degrees
+    float walkYaw = 0.0f;     ///< random-walk yaw perturbation, degrees
+    ObjectID object = kNoObject;
+};
+
+struct Phytomer {
+    Internode internode;
+    std::vector<Petiole> petioles;
+    float age = 0.0f;               ///< days
+    float internodeFraction = 1.0f; ///< current internode length / full length
+    float leafFraction = 1.0f;      ///< current petiole and leaf size / full size
+    std::string parametersLabel;    ///< shoot type whose phytomer template built it
+};
+
+struct Shoot {
+    unsigned id = 0;
+    std::string type;
+    int parent = -1;          ///< parent shoot ID, -1 for the base stem
+    int parentNode = -1;      ///< node index on the parent
+    int parentPetiole = 0;    ///< petiole index on that node
+    unsigned rank = 0;        ///< 0 base stem, 1 its children, ...
+    AxisRotation baseRotation;
+    float insertionAngle = 0.0f;  ///< realized angle from the parent axis, degrees
+    float radiusTaper = 0.0f;
+    // Realized shoot parameters.
+    int maxNodes = 0;
+    int maxNodesPerSeason = 0;
+    float internodeLengthMax = 0.0f;
+    float phyllochron = 0.0f;
+    float elongationRate = 0.0f;
+    float gravitropicCurvature = 0.0f;
+    float tortuosity = 0.0f;
+    float girthAreaFactor = 0.0f;
+    VegetativeBud apicalBud;
+    std::vector<FloralBud> terminalFloralBuds;
+    std::vector<Phytomer> phytomers;
+    std::vector<unsigned> children;
+    float phyllochronCounter = 0.0f;
+    int nodesThisSeason = 0;
+    bool removed = false;
+};
+
+struct PlantInstance {
+    unsigned id = 0;
+    std::string name;         ///< species or user label (object data plant_name)
+    vec3 base{0.0f};
+    float age = 0.0f;         ///< days
+    std::vector<Shoot> shoots;  ///< indexed by shoot ID
+    std::map<std::string, ShootParameters> shootTypes;  ///< the plant's own copy
+    Rng rng;
+    int nextLeafID = 0;
+};
+
+}  // namespace plantarch

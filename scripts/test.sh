@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds plantarch (via setup.sh) and runs the whole test suite: the C++ tests through ctest
+# and the Python binding's tests through pytest when the module is built.
+# Usage: bash scripts/test.sh [--sanitize]   (--sanitize: ASan+UBSan build in build-asan/)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh "$@"
+dir=build
+for a in "$@"; do [ "$a" = --sanitize ] && dir=build-asan; done
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --test-dir "$dir" --output-on-failure --timeout 600 -j "$(nproc)"
+if [ -d python/tests ] && ls "$dir"/python/plantarch*.so >/dev/null 2>&1; then
+  PYTHONPATH="$PWD/$dir/python" /usr/bin/python3 -m pytest -q python/tests
+fi

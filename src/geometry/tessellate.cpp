@@ -1,0 +1,419 @@
+// Tessellation: a plant's state becomes Context objects (one or more per organ), each
+// labelled for segmentation. A pure function of state: running it twice changes nothing,
+// and organs keep their object IDs while their shapes change.
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "geometry/tube.h"
+#include "model/architecture_impl.h"
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+namespace {
+
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+const vec3 kUp{0.0f, 0.0f, 1.0f};
+
+vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
+    const float a = azimuth * kDeg;
+    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
+}
+
+// Point and tangent at fraction `f` of the arc length of a polyline.
+std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts, float f) {
+    float total = 0.0f;
+    for (std::size_t i = 1; i < pts.size(); ++i) total += glm::length(pts[i] - pts[i - 1]);
+    float want = std::clamp(f, 0.0f, 1.0f) * total;
+    for (std::size_t i = 1; i < pts.size(); ++i) {
+        const vec3 d = pts[i] - pts[i - 1];
+        const float len = glm::length(d);
+        if (want <= len || i + 1 == pts.size()) {
+            const vec3 t = len > 0.0f ? d / len : vec3(0, 0, 1);
+            return {pts[i - 1] + t * std::min(want, len), t};
+        }
+        want -= len;
+    }
+    return {pts.front(), kUp};
+}
+
+// An organ frame: x along the organ, z its "up" (lamina normal for leaves).
+struct OrganFrame {
+    vec3 x, y, z;
+};
+
+// Frame with x = `axis` and z as close to world up as possible.
+OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
+    OrganFrame f;
+    f.x = glm::normalize(axis);
+    vec3 z = kUp - glm::dot(kUp, f.x) * f.x;
+    if (glm::length(z) < 1e-4f) z = fallbackUp - glm::dot(fallbackUp, f.x) * f.x;
+    if (glm::length(z) < 1e-6f) z = geometry::anyPerpendicular(f.x);
+    f.z = glm::normalize(z);
+    f.y = glm::cross(f.z, f.x);
+    return f;
+}
+
+// Pitch lifts x toward z, yaw turns x toward y about z, roll turns about x.
+OrganFrame rotated(OrganFrame f, float pitch, float yaw, float roll) {
+    const float p = pitch * kDeg, w = yaw * kDeg, r = roll * kDeg;
+    const vec3 x1 = std::cos(p) * f.x + std::sin(p) * f.z;
+    const vec3 z1 = -std::sin(p) * f.x + std::cos(p) * f.z;
+    const vec3 x2 = std::cos(w) * x1 + std::sin(w) * f.y;
+    const vec3 y2 = -std::sin(w) * x1 + std::cos(w) * f.y;
+    const vec3 y3 = std::cos(r) * y2 + std::sin(r) * z1;
+    const vec3 z3 = -std::sin(r) * y2 + std::cos(r) * z1;
+    return {x2, y3, z3};
+}
+
+mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
+    mat4 m(1.0f);
+    m[0] = glm::vec4(f.x * scale, 0.0f);
+    m[1] = glm::vec4(f.y * scale, 0.0f);
+    m[2] = glm::vec4(f.z * scale, 0.0f);
+    m[3] = glm::vec4(origin, 1.0f);
+    return m;
+}
+
+// Writes one organ's geometry into the Context, reusing its objects.
+class OrganWriter {
+public:
+    OrganWriter(Context& ctx, const PlantInstance& plant) : ctx_(ctx), plant_(plant) {}
+
+    struct Labels {
+        OrganKind kind;
+        const Shoot* shoot;
+        int node;
+        float age;
+        int leafID = -1;
+    };
+
+    void write(ObjectID& object, const Mesh& mesh, const Material& material, const Labels& l) {
+        if (object != kNoObject && ctx_.doesObjectExist(object)) {
+            ctx_.setObjectMesh(object, mesh);
+            ctx_.setObjectMaterial(object, ctx_.addMaterial(material));
+        } else {
+            object = ctx_.addObject(mesh, ctx_.addMaterial(material));
+            ctx_.setObjectData(object, "plantID", int(plant_.id));
+            ctx_.setObjectData(object, "plant_name", plant_.name);
+            ctx_.setObjectData(object, "shootID", int(l.shoot->id));
+            ctx_.setObjectData(object, "rank", int(l.shoot->rank));
+            ctx_.setObjectData(object, "node", l.node);
+            if (l.leafID >= 0) ctx_.setObjectData(object, "leafID", l.leafID);
+        }
+        ctx_.setObjectData(object, "organ", std::string(organName(l.kind)));
+        ctx_.setObjectData(object, "age", l.age);
+    }
+
+    // Places every part of a prototype; extra old objects are deleted.
+    void writeParts(std::vector<ObjectID>& objects, const OrganPrototype& proto, const mat4& xf,
+                    const Labels& l) {
+        for (std::size_t i = proto.size(); i < objects.size(); ++i)
+            if (ctx_.doesObjectExist(objects[i])) ctx_.deleteObject(objects[i]);
+        objects.resize(proto.size(), kNoObject);
+        for (std::size_t i = 0; i < proto.size(); ++i) {
+            Mesh m = proto[i].mesh;
+            m.transform(xf);
+            write(objects[i], m, proto[i].material, l);
+        }
+    }
+
+private:
+    Context& ctx_;
+    const PlantInstance& plant_;
+};
+
+void deleteIf(Context& ctx, ObjectID& id) {
+    if (id != kNoObject && ctx.doesObjectExist(id)) ctx.deleteObject(id);
+    id = kNoObject;
+}
+
+void deleteAll(Context& ctx, std::vector<ObjectID>& ids) {
+    for (ObjectID& id : ids) deleteIf(ctx, id);
+    ids.clear();
+}
+
+std::string variantKey(const std::string& fn, const std::string& params, int leaflet,
+                       unsigned variant) {
+    return fn + "|" + params + "|" + std::to_string(leaflet) + "|" + std::to_string(variant);
+}
+
+// A compact description of a leaf prototype for the cache key.
+std::string describePrototype(const LeafPrototype& p) {
+    std::string s = p.prototype_function + ";" + p.shape + ";" + p.OBJ_model_file + ";";
+    for (const auto& [i, f] : p.leaf_texture_file) s += std::to_string(i) + "=" + f + ",";
+    for (const RandomFloat* r :
+         {&p.leaf_aspect_ratio, &p.widest_point, &p.tip_angle, &p.base_angle, &p.lobe_depth,
+          &p.serration_depth, &p.midrib_fold_fraction, &p.longitudinal_curvature,
+          &p.lateral_curvature, &p.petiole_roll, &p.wave_period, &p.wave_amplitude,
+          &p.leaf_buckle_length, &p.leaf_buckle_angle})
+        s += r->describe() + ";";
+    s += p.lobes.describe() + ";" + p.serrations.describe() + ";" + std::to_string(p.subdivisions) +
+         ";" + std::to_string(p.build_petiolule) + ";";
+    for (int i = 0; i < 3; ++i) s += std::to_string(p.color[i]) + "," + std::to_string(p.leaf_offset[i]) + ";";
+    return s;
+}
+
+std::uint64_t hashKey(const std::string& s) {
+    std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
+    return h;
+}
+
+}  // namespace
+
+std::vector<vec3> shootNodePositions(const PlantInstance& plant, unsigned shootID) {
+    const Shoot& s = plant.shoots[shootID];
+    vec3 base = plant.base;
+    if (s.parent >= 0) {
+        const std::vector<vec3> parent = shootNodePositions(plant, unsigned(s.parent));
+        base = parent[std::min<std::size_t>(std::size_t(s.parentNode) + 1, parent.size() - 1)];
+    }
+    std::vector<vec3> nodes{base};
+    for (const Phytomer& ph : s.phytomers)
+        nodes.push_back(nodes.back() +
+                        ph.internode.direction * ph.internode.length * ph.internodeFraction);
+    return nodes;
+}
+
+namespace {
+
+struct Tessellator {
+    PlantArchitecture::Impl& impl;
+    Context& ctx;
+    PlantInstance& plant;
+    OrganWriter writer;
+    std::vector<std::vector<vec3>> nodes;  // per shoot
+
+    const OrganPrototype& prototype(const std::string& fn, const LeafPrototype* leaf, int leaflet,
+                                    unsigned variant, bool open, bool& uniqueOut) {
+        const std::string params = leaf ? describePrototype(*leaf) : (open ? "open" : "closed");
+        const unsigned variants = leaf ? leaf->unique_prototypes : 1u;
+        uniqueOut = leaf && variants == 0;
+        const std::string key = variantKey(fn, params, leaflet, variant);
+        if (!uniqueOut) {
+            if (auto hit = impl.cache.find(key)) return *hit;
+        }
+        // Variants are seeded from their key, not the plant's stream, so every plant sharing
+        // a prototype sees the same shapes and the cache never changes a plant's numbers.
+        Rng rng(hashKey(key), 7);
+        auto built = std::make_shared<OrganPrototype>(
+            leaf ? impl.leafPrototypes.at(fn)(*leaf, rng, leaflet)
+                 : impl.floralPrototypes.at(fn)(rng, open));
+        if (uniqueOut) {
+            scratch = built;
+            return *scratch;
+        }
+        impl.cache.insert(key, built);
+        return *built;
+    }
+    std::shared_ptr<const OrganPrototype> scratch;
+
+    void internodes(Shoot& s) {
+        const std::vector<vec3>& pts = nodes[s.id];
+        const ShootParameters& type = impl.shootTypeFor(plant, s.type);
+        const unsigned segs = std::max(1u, type.phytomer_parameters.internode.length_segments);
+        std::vector<vec3> line;
+        std::vector<float> radii;
+        for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
+            const float rNext = i + 1 < s.phytomers.size()
+                                    ? s.phytomers[i + 1].internode.radius
+                                    : s.phytomers[i].internode.radius;
+            for (unsigned k = 0; k < segs; ++k) {
+                const float f = float(k) / float(segs);
+                line.push_back(glm::mix(pts[i], pts[i + 1], f));
+                radii.push_back(s.phytomers[i].internode.radius);
+            }
+            if (i + 1 == s.phytomers.size()) {
+                line.push_back(pts[i + 1]);
+                radii.push_back(rNext);
+            }
+        }
+        if (s.phytomers.empty()) return;
+        const std::vector<geometry::Ring> rings =
+            geometry::tubeRings(line, radii, s.phytomers.front().internode.rollReference);
+        const InternodeParameters& ip = type.phytomer_parameters.internode;
+        const Material mat{ip.color, ip.image_texture, ""};
+        for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
+            Phytomer& ph = s.phytomers[i];
+            const Mesh m = geometry::tubeMesh(rings, i * segs, (i + 1) * segs, ip.radial_subdivisions);
+            writer.write(ph.internode.object, m, mat,
+                         {OrganKind::Internode, &s, int(i), ph.age});
+        }
+    }
+
+    void petiole(Shoot& s, Phytomer& ph, int node, Petiole& pt, const PhytomerParameters& pp) {
+        const Internode& in = ph.internode;
+        const vec3 top = nodes[s.id][std::size_t(node) + 1];
+        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth);
+        side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+        const float p = pt.pitch * kDeg;
+        const vec3 dir = glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
+        const float length = pt.length * ph.leafFraction;
+        const unsigned segs = std::max(1u, pp.petiole.length_segments);
+        const vec3 start = top + side * in.radius * 0.5f;
+        std::vector<vec3> path = geometry::curvedPath(start, dir, std::max(length, 1e-6f),
+                                                      pt.curvature, kUp, segs);
+        if (length > 1e-5f && pt.radius > 0.0f) {
+            std::vector<float> radii;
+            const float r0 = pt.radius * ph.leafFraction;
+            // Tip radius = taper x base, kept above 2% of the base so no triangle degenerates.
+            const float tip = std::max(pt.taper, 0.02f);
+            for (unsigned k = 0; k <= segs; ++k)
+                radii.push_back(r0 * (1.0f - (1.0f - tip) * float(k) / float(segs)));
+            const auto rings = geometry::tubeRings(path, radii, in.direction);
+            const Mesh m = geometry::tubeMesh(rings, 0, rings.size() - 1,
+                                              pp.petiole.radial_subdivisions);
+            writer.write(pt.object, m, Material{pp.petiole.color, "", ""},
+                         {OrganKind::Petiole, &s, node, ph.age});
+        } else {
+            deleteIf(ctx, pt.object);
+        }
+        for (LeafOrgan& leaf : pt.leaves) placeLeaf(s, ph, node, path, side, leaf, pp.leaf);
+    }
+
+    void placeLeaf(Shoot& s, Phytomer& ph, int node, const std::vector<vec3>& path, vec3 side,
+                   LeafOrgan& leaf, const LeafParameters& lp) {
+        if (leaf.removed) {
+            deleteAll(ctx, leaf.objects);
+            return;
+        }
+        auto [origin, tangent] = alongPath(path, leaf.position);
+        OrganFrame f = uprightFrame(tangent, side);
+        if (leaf.leafletIndex != 0) {
+            // Lateral leaflet: perpendicular to the rachis on its side (left +y, right -y),
+            // swung toward the tip by yaw; roll mirrored so pairs are symmetric.
+            const float sideSign = leaf.leafletIndex < 0 ? 1.0f : -1.0f;
+            const float w = leaf.yaw * kDeg;
+            OrganFrame lf;
+            lf.z = f.z;
+            lf.x = glm::normalize(std::sin(w) * f.x + std::cos(w) * sideSign * f.y);
+            lf.y = glm::cross(lf.z, lf.x);
+            f = rotated(lf, leaf.pitch, 0.0f, leaf.roll * sideSign);
+        } else {
+            f = rotated(f, leaf.pitch, leaf.yaw, leaf.roll);
+        }
+        const float scale = leaf.scale * ph.leafFraction;
+        const LeafPrototype& proto = lp.prototype;
+        const unsigned variants = proto.unique_prototypes;
+        if (variants > 0) leaf.variant = leaf.variant % variants;
+        bool unique = false;
+        const std::string& fn = proto.prototype_function;
+        const int leafletKey = proto.leaf_texture_file.count(leaf.leafletIndex) ? leaf.leafletIndex
+                               : leaf.leafletIndex == 0 ? 0
+                                                        : (leaf.leafletIndex < 0 ? -1 : 1);
+        const OrganPrototype& shape =
+            prototype(fn, &proto, leafletKey, variants == 0 ? unsigned(leaf.leafID) : leaf.variant,
+                      false, unique);
+        const vec3 offset = proto.leaf_offset * scale;
+        const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
+        writer.writeParts(leaf.objects, shape, placement(f, base, scale),
+                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
+    }
+
+    void floral(Shoot& s, Phytomer& ph, int node, Petiole& pt, FloralBud& fb,
+                const PhytomerParameters& pp) {
+        const bool visible = fb.stage == FloralStage::FlowerClosed ||
+                             fb.stage == FloralStage::FlowerOpen || fb.stage == FloralStage::Fruit;
+        if (!visible) {
+            deleteIf(ctx, fb.peduncleObject);
+            for (FlowerOrgan& fl : fb.flowers) deleteAll(ctx, fl.objects);
+            return;
+        }
+        const Internode& in = ph.internode;
+        const vec3 top = nodes[s.id][std::size_t(node) + 1];
+        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth + fb.peduncleRoll);
+        side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+        const float p = fb.pedunclePitch * kDeg;
+        const vec3 dir = glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
+        const unsigned segs = std::max(1u, pp.peduncle.length_segments);
+        const std::vector<vec3> path = geometry::curvedPath(
+            top, dir, std::max(fb.peduncleLength, 1e-6f), fb.peduncleCurvature, kUp, segs);
+        if (fb.peduncleLength > 1e-5f && fb.peduncleRadius > 0.0f) {
+            const std::vector<float> radii(path.size(), fb.peduncleRadius);
+            const auto rings = geometry::tubeRings(path, radii, in.direction);
+            writer.write(fb.peduncleObject,
+                         geometry::tubeMesh(rings, 0, rings.size() - 1,
+                                            pp.peduncle.radial_subdivisions),
+                         Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
+        }
+        const InflorescenceParameters& inf = pp.inflorescence;
+        const bool fruit = fb.stage == FloralStage::Fruit;
+        const bool open = fb.stage == FloralStage::FlowerOpen;
+        const std::string& fn = fruit ? inf.fruit_prototype_function : inf.flower_prototype_function;
+        const std::string name = fn.empty() ? (fruit ? "builtin_fruit" : "builtin_flower") : fn;
+        const float maturity = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
+        for (FlowerOrgan& fl : fb.flowers) {
+            auto [origin, tangent] = alongPath(path, fl.position);
+            OrganFrame f = uprightFrame(tangent, side);
+            // Flowers stand on alternating sides of the peduncle (azimuth about its axis).
+            const float az = fl.azimuth * kDeg;
+            const vec3 flSide = std::cos(az) * f.z + std::sin(az) * f.y;
+            const float pitch = fl.pitch * kDeg;
+            vec3 axis = glm::normalize(std::cos(pitch) * f.x + std::sin(pitch) * flSide);
+            if (fruit && fl.gravityFactor > 0.0f) {
+                axis = glm::normalize(glm::mix(axis, -kUp, std::clamp(fl.gravityFactor * maturity, 0.0f, 0.999f)));
+            }
+            OrganFrame of = uprightFrame(axis, f.z);
+            of = rotated(of, 0.0f, 0.0f, fl.roll);
+            const float scale = fruit ? fl.fruitScale * maturity : fl.flowerScale;
+            bool unique = false;
+            const OrganPrototype& shape = prototype(name, nullptr, 0, fl.variant, open, unique);
+            writer.writeParts(fl.objects, shape, placement(of, origin, scale),
+                              {fruit ? OrganKind::Fruit
+                                     : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed),
+                               &s, node, ph.age});
+        }
+    }
+
+    void run() {
+        nodes.assign(plant.shoots.size(), {});
+        for (const Shoot& s : plant.shoots)
+            if (!s.removed) nodes[s.id] = shootNodePositions(plant, s.id);
+        for (Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            internodes(s);
+            for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
+                Phytomer& ph = s.phytomers[i];
+                const ShootParameters& type = impl.shootTypeFor(plant, ph.parametersLabel);
+                const PhytomerParameters& pp = type.phytomer_parameters;
+                for (Petiole& pt : ph.petioles) {
+                    petiole(s, ph, int(i), pt, pp);
+                    for (FloralBud& fb : pt.floralBuds) floral(s, ph, int(i), pt, fb, pp);
+                }
+            }
+        }
+    }
+};
+
+}  // namespace
+
+void tessellatePlant(PlantArchitecture::Impl& impl, Context& ctx, PlantInstance& plant) {
+    Tessellator t{impl, ctx, plant, OrganWriter(ctx, plant), {}, {}};
+    t.run();
+}
+
+void deletePhytomerObjects(Context& ctx, Phytomer& ph) {
+    deleteIf(ctx, ph.internode.object);
+    for (Petiole& pt : ph.petioles) {
+        deleteIf(ctx, pt.object);
+        for (LeafOrgan& l : pt.leaves) deleteAll(ctx, l.objects);
+        for (FloralBud& fb : pt.floralBuds) {
+            deleteIf(ctx, fb.peduncleObject);
+            for (FlowerOrgan& fl : fb.flowers) deleteAll(ctx, fl.objects);
+        }
+    }
+}
+
+void deleteShootObjects(Context& ctx, Shoot& s) {
+    for (Phytomer& ph : s.phytomers) deletePhytomerObjects(ctx, ph);
+    for (FloralBud& fb : s.terminalFloralBuds) {
+        deleteIf(ctx, fb.peduncleObject);
+        for (FlowerOrgan& fl : fb.flowers) deleteAll(ctx, fl.objects);
+    }
+}
+
+}  // namespace plantarch

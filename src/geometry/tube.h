@@ -1,0 +1,45 @@
+#pragma once
+// Tubes for internodes, petioles and peduncles, and the curved centre lines they follow.
+
+#include <span>
+#include <vector>
+
+#include "plantarch/Mesh.h"
+
+namespace plantarch::geometry {
+
+/// A circle of vertices around a centre-line point.
+struct Ring {
+    vec3 center;
+    vec3 tangent;  ///< unit direction of the centre line here
+    vec3 normal;   ///< unit, perpendicular to tangent: where the ring's first vertex lies
+    float radius = 0.0f;
+    float arcLength = 0.0f;  ///< distance along the centre line from its start, m
+};
+
+/// Rings through `points` (at least 2) with the given radii. Inner rings face the average of
+/// the adjoining segment directions so consecutive segments join without gaps; the first
+/// vertex direction is carried along by parallel transport (no twist) starting from the
+/// component of `referenceNormal` perpendicular to the first segment.
+std::vector<Ring> tubeRings(std::span<const vec3> points, std::span<const float> radii,
+                            vec3 referenceNormal);
+
+/// The tube between rings[first] and rings[last] (inclusive), `sides` vertices per ring.
+/// UVs: u around the circumference (0..1), v = arc length / circumference at the start.
+Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last,
+              unsigned sides);
+
+/// A centre line of `segments` equal steps starting at `start` heading along `direction`,
+/// turning by `curvature` degrees per metre toward `bendToward` (a unit vector; negative
+/// curvature turns away from it). Turning stops once the heading is aligned with the target
+/// direction, so a curve never overshoots. Returns segments + 1 points.
+std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float curvature,
+                             vec3 bendToward, unsigned segments);
+
+/// A unit vector perpendicular to `v` (any, but deterministic).
+vec3 anyPerpendicular(vec3 v);
+
+/// Rotates `v` about the unit `axis` by `angle` radians (right-hand rule).
+vec3 rotateAbout(vec3 v, vec3 axis, float angle);
+
+}  // namespace plantarch::geometry

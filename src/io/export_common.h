@@ -1,0 +1,51 @@
+#pragma once
+// Pieces shared by the OBJ and PLY writers: number formatting into a raw buffer, the
+// choice of objects to export, smooth normals and the typed object data they read.
+
+#include <charconv>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plantarch/Context.h"
+
+namespace plantarch::io {
+
+/// Longest text writeFloat produces ("-1.17549435e-38").
+inline constexpr std::size_t kMaxFloatChars = 16;
+
+/// Shortest text that reads back as the same float; -0 is written as 0.
+inline char* writeFloat(char* out, float value) {
+    return std::to_chars(out, out + kMaxFloatChars, value + 0.0f).ptr;
+}
+
+inline char* writeUInt(char* out, std::uint64_t value) {
+    return std::to_chars(out, out + 20, value).ptr;
+}
+
+inline char* writeInt(char* out, std::int64_t value) {
+    return std::to_chars(out, out + 21, value).ptr;
+}
+
+inline char* writeText(char* out, std::string_view text) {
+    for (char c : text) *out++ = c;
+    return out;
+}
+
+/// The objects a writer exports, in increasing ID order.
+std::vector<ObjectID> exportedObjects(const Context& context, bool includeHidden);
+
+/// Smooth per-vertex normals of one object: the area-weighted sum of the normals of the
+/// triangles around each vertex, normalized; (0, 0, 1) where that sum vanishes.
+void smoothNormals(const ObjectView& object, std::vector<vec3>& normals);
+
+/// Throws Error (naming `file`) when object data `label` exists with a type other than
+/// `expected`, so writers can then use the typed getters without surprises.
+void requireDataType(const Context& context, std::string_view label, DataType expected,
+                     const std::string& file);
+
+/// "organ" data of an object, empty when absent.
+std::string organOf(const Context& context, ObjectID id);
+
+}  // namespace plantarch::io

@@ -1,0 +1,198 @@
+// Wavefront OBJ reader on tinyobjloader. Everything is parsed and checked before the Context
+// is touched, so a bad file leaves the Context unchanged.
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <tiny_obj_loader.h>
+
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+
+namespace plantarch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string trimmed(const std::string& text) {
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos) return {};
+    const std::size_t last = text.find_last_not_of(" \t\r\n");
+    return text.substr(first, last - first + 1);
+}
+
+// tinyobjloader's warnings, one per line, without blanks.
+std::vector<std::string> warningLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::string line = trimmed(text.substr(start, end - start));
+        if (!line.empty() && line != ".") lines.push_back(std::move(line));
+        start = end + 1;
+    }
+    return lines;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+    std::string out;
+    for (const std::string& l : lines) out += (out.empty() ? "" : "; ") + l;
+    return out;
+}
+
+// A texture named in a .mtl, as a path usable from the working directory.
+std::string resolveTexture(const std::string& texture, const fs::path& baseDir) {
+    if (texture.empty()) return {};
+    const fs::path t(texture);
+    if (t.is_absolute() || baseDir.empty()) return t.lexically_normal().generic_string();
+    return (baseDir / t).lexically_normal().generic_string();
+}
+
+// One object to be: a run of faces of one shape with one material.
+struct PendingObject {
+    Mesh mesh;
+    int material = -1;  // tinyobjloader material index, -1 for none
+    const std::string* name = nullptr;
+};
+
+class ObjConverter {
+public:
+    ObjConverter(const tinyobj::attrib_t& attrib, const std::string& path,
+                 const std::string& warnings)
+        : attrib_(attrib), path_(path), warnings_(warnings) {}
+
+    // Splits every shape into runs of faces with the same material.
+    std::vector<PendingObject> convert(const std::vector<tinyobj::shape_t>& shapes) {
+        std::vector<PendingObject> objects;
+        for (const tinyobj::shape_t& shape : shapes) {
+            const tinyobj::mesh_t& m = shape.mesh;
+            std::size_t corner = 0;
+            for (std::size_t face = 0; face < m.num_face_vertices.size(); ++face) {
+                const int material = face < m.material_ids.size() ? m.material_ids[face] : -1;
+                if (objects.empty() || face == 0 || objects.back().material != material) {
+                    objects.push_back({.mesh = {}, .material = material, .name = &shape.name});
+                    remap_.clear();
+                }
+                const std::size_t n = m.num_face_vertices[face];
+                if (corner + n > m.indices.size()) malformed("face list is truncated");
+                for (std::size_t k = 1; k + 1 < n; ++k) {  // fan; tinyobjloader gives n == 3
+                    for (std::size_t c : {corner, corner + k, corner + k + 1})
+                        objects.back().mesh.indices.push_back(vertex(objects.back().mesh, m.indices[c]));
+                }
+                corner += n;
+            }
+        }
+        std::erase_if(objects, [](const PendingObject& o) { return o.mesh.empty(); });
+        return objects;
+    }
+
+private:
+    [[noreturn]] void malformed(const std::string& what) const {
+        std::string message = "malformed OBJ: " + what;
+        if (!warnings_.empty()) message += " (tinyobjloader: " + warnings_ + ")";
+        throw Error(message, {.file = path_});
+    }
+
+    // The object-local vertex for one face corner, created on first use.
+    std::uint32_t vertex(Mesh& mesh, const tinyobj::index_t& index) {
+        const std::size_t vertexCount = attrib_.vertices.size() / 3;
+        const std::size_t uvCount = attrib_.texcoords.size() / 2;
+        if (index.vertex_index < 0 || std::size_t(index.vertex_index) >= vertexCount)
+            malformed("vertex index " + std::to_string(index.vertex_index + 1) +
+                      " out of range (1 to " + std::to_string(vertexCount) + ")");
+        if (index.texcoord_index >= 0 && std::size_t(index.texcoord_index) >= uvCount)
+            malformed("texture coordinate index " + std::to_string(index.texcoord_index + 1) +
+                      " out of range (1 to " + std::to_string(uvCount) + ")");
+        const std::uint64_t key = (std::uint64_t(std::uint32_t(index.vertex_index)) << 32) |
+                                  std::uint32_t(index.texcoord_index + 1);
+        const auto [it, added] = remap_.try_emplace(key, std::uint32_t(mesh.positions.size()));
+        if (!added) return it->second;
+
+        const float* p = &attrib_.vertices[3 * std::size_t(index.vertex_index)];
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+            malformed("vertex " + std::to_string(index.vertex_index + 1) + " is not finite");
+        mesh.positions.push_back({p[0], p[1], p[2]});
+        vec2 uv(0.0f);
+        const bool hasUV = index.texcoord_index >= 0;
+        if (hasUV) {
+            const float* t = &attrib_.texcoords[2 * std::size_t(index.texcoord_index)];
+            uv = {t[0], t[1]};
+        }
+        // A mesh has UVs for all vertices or none: start them at the first corner with one.
+        if (hasUV && mesh.uvs.empty()) mesh.uvs.assign(mesh.positions.size() - 1, vec2(0.0f));
+        if (!mesh.uvs.empty()) mesh.uvs.push_back(uv);
+        return it->second;
+    }
+
+    const tinyobj::attrib_t& attrib_;
+    const std::string& path_;
+    const std::string& warnings_;
+    std::unordered_map<std::uint64_t, std::uint32_t> remap_;
+};
+
+}  // namespace
+
+std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
+                              const ObjReadOptions& options) {
+    if (options.storeShapeNames) {
+        const auto type = context.objectDataType("name");
+        if (type && *type != DataType::String)
+            throw Error(std::string("object data has type ") + dataTypeName(*type) +
+                            ", readOBJ stores shape names as string",
+                        {.file = path, .parameter = "name"});
+    }
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    config.mtl_search_path = options.mtlSearchPath;
+    tinyobj::ObjReader reader;
+    const bool ok = reader.ParseFromFile(path, config);
+    const std::vector<std::string> warnings = warningLines(reader.Warning());
+    if (!ok) {
+        const std::string why = trimmed(reader.Error());
+        throw Error("cannot read OBJ: " + (why.empty() ? std::string("unknown error") : why),
+                    {.file = path});
+    }
+    if (options.onWarning)
+        for (const std::string& w : warnings) options.onWarning(w);
+
+    const std::string warningText = joined(warnings);
+    ObjConverter converter(reader.GetAttrib(), path, warningText);
+    std::vector<PendingObject> objects = converter.convert(reader.GetShapes());
+    if (objects.empty()) {
+        std::string message = "OBJ file has no faces";
+        if (!warningText.empty()) message += " (tinyobjloader: " + warningText + ")";
+        throw Error(message, {.file = path});
+    }
+
+    // Materials as the Context will hold them; added only now that the file is known good.
+    const fs::path baseDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path()
+                                                           : fs::path(options.mtlSearchPath);
+    const auto& tinyMaterials = reader.GetMaterials();
+    std::vector<MaterialID> materialIDs(tinyMaterials.size());
+    for (std::size_t i = 0; i < tinyMaterials.size(); ++i) {
+        const tinyobj::material_t& m = tinyMaterials[i];
+        materialIDs[i] = context.addMaterial(
+            {.color = {m.diffuse[0], m.diffuse[1], m.diffuse[2]},
+             .texture = resolveTexture(m.diffuse_texname, baseDir),
+             .name = m.name});
+    }
+    const MaterialID plain = context.addMaterial(Material{});
+
+    std::vector<ObjectID> ids;
+    ids.reserve(objects.size());
+    for (PendingObject& o : objects) {
+        const bool known = o.material >= 0 && std::size_t(o.material) < materialIDs.size();
+        const ObjectID id = context.addObject(o.mesh, known ? materialIDs[o.material] : plain);
+        if (options.storeShapeNames && !o.name->empty()) context.setObjectData(id, "name", *o.name);
+        ids.push_back(id);
+    }
+    return ids;
+}
+
+}  // namespace plantarch

@@ -1,0 +1,180 @@
+// Validation of species parameters, driven by the declaration table.
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "model/parameter_table.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantState.h"
+
+namespace plantarch {
+
+namespace {
+
+std::string number(double v) {
+    char buf[32];
+    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+std::string rangeText(const params::FieldInfo& f) {
+    if (f.min == -params::kInf && f.max == params::kInf) return "any finite number";
+    if (f.max == params::kInf) return ">= " + number(f.min);
+    if (f.min == -params::kInf) return "<= " + number(f.max);
+    return number(f.min) + " to " + number(f.max);
+}
+
+// Visits every field and throws on the first value outside its declared range.
+struct Validator {
+    std::string path;
+
+    std::string at(const params::FieldInfo& f) const {
+        return path.empty() ? f.name : path + "." + f.name;
+    }
+    [[noreturn]] void fail(const params::FieldInfo& f, const std::string& value,
+                           const std::string& why, std::string range = "") const {
+        throw Error(why, {.parameter = at(f), .value = value,
+                          .validRange = range.empty() ? rangeText(f) : range});
+    }
+    void checkNumber(const params::FieldInfo& f, double lo, double hi, const std::string& text) const {
+        if (!std::isfinite(lo) && lo != -params::kInf) fail(f, text, "not a number");
+        if (lo < f.min || hi > f.max) fail(f, text, "out of range");
+    }
+
+    void field(const params::FieldInfo& f, const RandomFloat& v) const {
+        if (v.kind() == RandomFloat::Kind::Normal) {
+            // Normal tails are unbounded: the mean and 3 standard deviations must fit.
+            checkNumber(f, v.a() - 3.0 * v.b(), v.a() + 3.0 * v.b(), v.describe());
+        } else {
+            checkNumber(f, v.lowerBound(), v.upperBound(), v.describe());
+        }
+    }
+    void field(const params::FieldInfo& f, const RandomInt& v) const {
+        checkNumber(f, v.min(), v.max(), v.describe());
+    }
+    void field(const params::FieldInfo& f, const float& v) const {
+        checkNumber(f, v, v, number(v));
+    }
+    void field(const params::FieldInfo& f, const unsigned& v) const {
+        checkNumber(f, v, v, std::to_string(v));
+    }
+    void field(const params::FieldInfo& f, const int& v) const {
+        checkNumber(f, v, v, std::to_string(v));
+    }
+    void field(const params::FieldInfo&, const bool&) const {}
+    void field(const params::FieldInfo& f, const vec3& v) const {
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(v[i]) || v[i] < f.min || v[i] > f.max)
+                fail(f, number(v.x) + " " + number(v.y) + " " + number(v.z), "out of range");
+    }
+    void field(const params::FieldInfo& f, const std::string& v) const {
+        if (!f.choices) return;
+        std::string choices = f.choices;
+        std::stringstream ss(choices);
+        for (std::string c; std::getline(ss, c, '|');)
+            if (c == v) return;
+        std::string nice = choices;
+        for (char& ch : nice)
+            if (ch == '|') ch = ',';
+        fail(f, v, "unknown value", "one of: " + nice);
+    }
+    void field(const params::FieldInfo&, const std::map<int, std::string>&) const {}
+    void field(const params::FieldInfo& f, const std::map<std::string, float>& types) const {
+        if (types.empty()) return;
+        double sum = 0.0;
+        for (const auto& [label, prob] : types) {
+            if (!(prob >= 0.0f && prob <= 1.0f))
+                throw Error("child shoot type probability out of range",
+                            {.parameter = at(f) + "." + label, .value = number(prob),
+                             .validRange = "0 to 1"});
+            sum += prob;
+        }
+        if (std::abs(sum - 1.0) > 1e-4)
+            fail(f, number(sum), "child shoot type probabilities must sum to 1", "sum of 1");
+    }
+    template <class G, class Fn>
+    void group(const char* name, const G&, Fn&& visit) const {
+        Validator sub{path.empty() ? name : path + "." + name};
+        visit(sub);
+    }
+};
+
+}  // namespace
+
+void validate(const PhytomerParameters& p, const std::string& prefix) {
+    Validator v{prefix};
+    params::describeParameters(p, v);
+}
+
+void validate(const ShootParameters& p, const std::string& prefix) {
+    Validator v{prefix};
+    params::describeParameters(p, v);
+    auto at = [&](const char* name) { return prefix.empty() ? name : prefix + "." + name; };
+    if (p.internode_length_min.lowerBound() > p.internode_length_max.upperBound())
+        throw Error("internode_length_min exceeds internode_length_max",
+                    {.parameter = at("internode_length_min"),
+                     .value = p.internode_length_min.describe(),
+                     .validRange = "<= internode_length_max (" +
+                                   p.internode_length_max.describe() + ")"});
+    if (p.vegetative_bud_break_probability_min.lowerBound() >
+        p.vegetative_bud_break_probability_max.upperBound())
+        throw Error("vegetative_bud_break_probability_min exceeds the maximum",
+                    {.parameter = at("vegetative_bud_break_probability_min"),
+                     .value = p.vegetative_bud_break_probability_min.describe(),
+                     .validRange = "<= vegetative_bud_break_probability_max"});
+    if (p.max_nodes_per_season.min() < 1 || p.max_nodes.min() < 1)
+        throw Error("node limits must be at least 1", {.parameter = at("max_nodes")});
+}
+
+void ShootParameters::defineChildShootTypes(const std::vector<std::string>& labels,
+                                            const std::vector<float>& probabilities) {
+    if (labels.size() != probabilities.size())
+        throw Error("one probability per child shoot type is needed",
+                    {.parameter = "child_shoot_types",
+                     .value = std::to_string(labels.size()) + " labels, " +
+                              std::to_string(probabilities.size()) + " probabilities"});
+    std::map<std::string, float> types;
+    for (std::size_t i = 0; i < labels.size(); ++i) types[labels[i]] = probabilities[i];
+    ShootParameters probe;
+    probe.child_shoot_types = types;
+    Validator v{};
+    v.field({"child_shoot_types", "", 0, 1, ""}, probe.child_shoot_types);
+    child_shoot_types = std::move(types);
+}
+
+const char* organName(OrganKind kind) {
+    switch (kind) {
+        case OrganKind::Internode: return "internode";
+        case OrganKind::Petiole: return "petiole";
+        case OrganKind::Leaf: return "leaf";
+        case OrganKind::Peduncle: return "peduncle";
+        case OrganKind::FlowerClosed: return "flower_closed";
+        case OrganKind::FlowerOpen: return "flower_open";
+        case OrganKind::Fruit: return "fruit";
+    }
+    return "unknown";
+}
+
+const char* budStateName(BudState s) {
+    switch (s) {
+        case BudState::Dormant: return "dormant";
+        case BudState::Active: return "active";
+        case BudState::Broken: return "broken";
+        case BudState::Dead: return "dead";
+    }
+    return "unknown";
+}
+
+const char* floralStageName(FloralStage s) {
+    switch (s) {
+        case FloralStage::Bud: return "bud";
+        case FloralStage::FlowerClosed: return "flower_closed";
+        case FloralStage::FlowerOpen: return "flower_open";
+        case FloralStage::Fruit: return "fruit";
+        case FloralStage::Removed: return "removed";
+    }
+    return "unknown";
+}
+
+}  // namespace plantarch

@@ -1,0 +1,523 @@
+// Manual building: plants, shoots and phytomers as state, with the orientation conventions
+// of the model (pitch away from the parent axis, yaw about the parent axis, roll about the
+// element's own axis; phyllotaxis as a roll between successive phytomers).
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "geometry/tube.h"
+#include "model/architecture_impl.h"
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+namespace {
+
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+
+std::string str(float v) {
+    std::string s = std::to_string(v);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+}
+
+// Unit direction at `azimuth` degrees about `axis` from `reference` (both unit, orthogonal).
+vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
+    const float a = azimuth * kDeg;
+    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
+}
+
+// Orientation of a shoot start relative to a parent frame (axis, reference): yaw turns the
+// tilt direction about the parent axis, pitch tilts away from the axis, roll turns the new
+// reference about the new axis.
+struct Frame {
+    vec3 axis;
+    vec3 reference;
+};
+
+Frame orient(const Frame& parent, float pitch, float yaw, float roll) {
+    const vec3 tiltDir = azimuthDirection(parent.axis, parent.reference, yaw);
+    const float p = pitch * kDeg;
+    Frame f;
+    f.axis = glm::normalize(std::cos(p) * parent.axis + std::sin(p) * tiltDir);
+    vec3 ref = -std::sin(p) * parent.axis + std::cos(p) * tiltDir;
+    ref = glm::normalize(ref - glm::dot(ref, f.axis) * f.axis);
+    f.reference = geometry::rotateAbout(ref, f.axis, roll * kDeg);
+    return f;
+}
+
+void checkSpec(const ShootSpec& s) {
+    auto bad = [](const char* name, float v, const char* range) {
+        throw Error("invalid shoot argument", {.parameter = name, .value = str(v), .validRange = range});
+    };
+    if (s.phytomers < 1)
+        throw Error("a shoot needs at least one phytomer",
+                    {.parameter = "current_node_number", .value = "0", .validRange = ">= 1"});
+    if (s.phytomers > 100000) bad("current_node_number", float(s.phytomers), "1 to 100000");
+    if (!(s.internodeRadius > 0.0f && s.internodeRadius <= 10.0f))
+        bad("internode_radius", s.internodeRadius, "> 0 and <= 10 m");
+    if (!(s.internodeLengthMax >= 0.0f && s.internodeLengthMax <= 100.0f))
+        bad("internode_length_max", s.internodeLengthMax, "0 to 100 m");
+    if (!(s.internodeLengthScale > 0.0f && s.internodeLengthScale <= 1.0f))
+        bad("internode_length_scale_factor_fraction", s.internodeLengthScale, "> 0 and <= 1");
+    if (!(s.leafScale > 0.0f && s.leafScale <= 1.0f))
+        bad("leaf_scale_factor_fraction", s.leafScale, "> 0 and <= 1");
+    if (!(s.radiusTaper >= 0.0f && s.radiusTaper <= 1.0f))
+        bad("radius_taper", s.radiusTaper, "0 to 1");
+    for (float a : {s.baseRotation.pitch, s.baseRotation.yaw, s.baseRotation.roll})
+        if (!std::isfinite(a)) bad("base_rotation", a, "finite angles in degrees");
+}
+
+ShootSpec specFrom(unsigned nodes, const AxisRotation& rot, float radius, float lengthMax,
+                   float lengthScale, float leafScale, float taper, const std::string& type) {
+    return ShootSpec{nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type};
+}
+
+}  // namespace
+
+// ---- Impl helpers ----------------------------------------------------------------------
+
+std::shared_ptr<const OrganPrototype> PrototypeCache::find(const std::string& key) const {
+    auto it = entries_.find(key);
+    return it == entries_.end() ? nullptr : it->second;
+}
+
+void PrototypeCache::insert(const std::string& key, std::shared_ptr<const OrganPrototype> p) {
+    entries_[key] = std::move(p);
+}
+
+PlantInstance& PlantArchitecture::Impl::plant(unsigned id) {
+    return const_cast<PlantInstance&>(std::as_const(*this).plant(id));
+}
+
+const PlantInstance& PlantArchitecture::Impl::plant(unsigned id) const {
+    auto it = plants.find(id);
+    if (it == plants.end()) {
+        std::string range = plants.empty() ? "no plants exist"
+                                           : std::to_string(plants.begin()->first) + " to " +
+                                                 std::to_string(plants.rbegin()->first);
+        throw Error("no such plant", {.parameter = "plantID", .value = std::to_string(id),
+                                      .validRange = range});
+    }
+    return it->second;
+}
+
+Shoot& PlantArchitecture::Impl::shoot(PlantInstance& p, unsigned id) {
+    return const_cast<Shoot&>(shoot(std::as_const(p), id));
+}
+
+const Shoot& PlantArchitecture::Impl::shoot(const PlantInstance& p, unsigned id) const {
+    if (id >= p.shoots.size() || p.shoots[id].removed)
+        throw Error("no such shoot on plant " + std::to_string(p.id),
+                    {.parameter = "shootID", .value = std::to_string(id),
+                     .validRange = p.shoots.empty()
+                                       ? "the plant has no shoots"
+                                       : "0 to " + std::to_string(p.shoots.size() - 1)});
+    return p.shoots[id];
+}
+
+const ShootParameters& PlantArchitecture::Impl::shootTypeFor(PlantInstance& p,
+                                                             const std::string& label) {
+    auto it = p.shootTypes.find(label);
+    if (it != p.shootTypes.end()) return it->second;
+    auto global = shootTypes.find(label);
+    if (global == shootTypes.end()) {
+        std::string known;
+        for (const auto& [name, params] : shootTypes) known += (known.empty() ? "" : ", ") + name;
+        throw Error("unknown shoot type", {.parameter = "shoot_type_label", .value = label,
+                                           .validRange = known.empty() ? "no shoot types defined"
+                                                                       : "one of: " + known});
+    }
+    return p.shootTypes.emplace(label, global->second).first->second;
+}
+
+void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
+                                             const std::string& label) const {
+    const auto& ph = params.phytomer_parameters;
+    auto list = [](const auto& registry) {
+        std::string names;
+        for (const auto& [name, fn] : registry) names += (names.empty() ? "" : ", ") + name;
+        return "one of: " + names;
+    };
+    const std::string& leafFn = ph.leaf.prototype.prototype_function;
+    if (!leafPrototypes.count(leafFn))
+        throw Error("unknown leaf prototype function",
+                    {.parameter = label + ".phytomer.leaf.prototype.prototype_function",
+                     .value = leafFn, .validRange = list(leafPrototypes)});
+    for (const auto& [field, name] :
+         {std::pair{"flower_prototype_function", ph.inflorescence.flower_prototype_function},
+          std::pair{"fruit_prototype_function", ph.inflorescence.fruit_prototype_function}})
+        if (!name.empty() && !floralPrototypes.count(name))
+            throw Error("unknown flower/fruit prototype function",
+                        {.parameter = label + ".phytomer.inflorescence." + field, .value = name,
+                         .validRange = list(floralPrototypes)});
+}
+
+// ---- phytomer creation -----------------------------------------------------------------
+
+namespace {
+
+void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
+    const int n = lp.leaves_per_petiole.sample(plant.rng);
+    const float offset = lp.leaflet_offset.sample(plant.rng);
+    const float shrink = lp.leaflet_scale.sample(plant.rng);
+    auto leaf = [&](int index, float position, float scaleFactor, bool rotated) {
+        LeafOrgan l;
+        l.leafletIndex = index;
+        l.position = std::max(0.0f, position);
+        l.scale = lp.prototype_scale.sample(plant.rng) * scaleFactor;
+        l.pitch = rotated ? lp.pitch.sample(plant.rng) : 0.0f;
+        l.yaw = rotated ? lp.yaw.sample(plant.rng) : 0.0f;
+        l.roll = rotated ? lp.roll.sample(plant.rng) : 0.0f;
+        l.leafID = plant.nextLeafID++;
+        pt.leaves.push_back(l);
+    };
+    if (n <= 1) {
+        leaf(0, 1.0f, 1.0f, true);
+        return;
+    }
+    // Compound leaf: an odd count has one tip leaflet (unscaled, unrotated); an even count
+    // has a pair at the tip. Pairs below sit leaflet_offset apart, each leaflet_scale times
+    // the size of the pair above.
+    int pair = 0;
+    if (n % 2 == 1) leaf(0, 1.0f, 1.0f, false);
+    const int pairs = n / 2;
+    for (int i = 0; i < pairs; ++i) {
+        const int step = (n % 2 == 1) ? i + 1 : i;  // distance from the tip in pair steps
+        const float scale = std::pow(shrink, float(step));
+        const float position = 1.0f - float(step) * offset;
+        ++pair;
+        leaf(-pair, position, scale, true);
+        leaf(pair, position, scale, true);
+    }
+}
+
+}  // namespace
+
+void createPhytomer(PlantInstance& plant, Shoot& shoot, const ShootParameters& type,
+                    const PhytomerParameters& pp, float radius, float lengthMax,
+                    float internodeFraction, float leafFraction, const Internode* start) {
+    Phytomer ph;
+    ph.parametersLabel = shoot.type;
+    ph.internodeFraction = internodeFraction;
+    ph.leafFraction = leafFraction;
+    Internode& in = ph.internode;
+    if (shoot.phytomers.empty()) {
+        in.guide = start->guide;
+        in.rollReference = start->rollReference;
+        in.azimuth = 0.0f;
+    } else {
+        const Internode& prev = shoot.phytomers.back().internode;
+        in.phyllotacticAngle = pp.internode.phyllotactic_angle.sample(plant.rng);
+        in.azimuth = std::fmod(prev.azimuth + in.phyllotacticAngle, 360.0f);
+        vec3 g = prev.guide;
+        // Gravitropism: turn toward vertical by s (1 - cos theta_z) L curvature, with
+        // s = 1 when the tip points down and 0.5 otherwise (theta_z from vertical).
+        const float L = lengthMax;
+        const float cosZ = std::clamp(g.z, -1.0f, 1.0f);
+        const float s = cosZ < 0.0f ? 1.0f : 0.5f;
+        in.gravitropicTurn = s * (1.0f - cosZ) * L * shoot.gravitropicCurvature;
+        // Random walk on zenith and yaw: the damping term pulls the previous perturbation back
+        // and the tortuosity term adds N(0, L) noise.
+        const float sd = std::sqrt(std::max(L, 0.0f));
+        in.walkZenith = prev.walkZenith - 0.5f * prev.walkZenith * L +
+                        shoot.tortuosity * float(plant.rng.normal01()) * sd;
+        in.walkYaw = prev.walkYaw - 0.5f * prev.walkYaw * L +
+                     shoot.tortuosity * float(plant.rng.normal01()) * sd;
+        const float zenithChange = -in.gravitropicTurn + (in.walkZenith - prev.walkZenith);
+        const vec3 horizontal = vec3(g.x, g.y, 0.0f);
+        // Rotating about this horizontal axis by a positive angle increases the zenith angle.
+        const vec3 tiltAxis = glm::length(horizontal) > 1e-6f
+                                  ? glm::normalize(glm::cross(vec3(0, 0, 1), horizontal))
+                                  : glm::normalize(glm::cross(g, prev.rollReference));
+        const float zenith = std::acos(cosZ);
+        const float newZenith = std::clamp(zenith + zenithChange * kDeg, 0.0f, 3.14159265f);
+        g = geometry::rotateAbout(g, tiltAxis, newZenith - zenith);
+        g = geometry::rotateAbout(g, vec3(0, 0, 1), (in.walkYaw - prev.walkYaw) * kDeg);
+        in.guide = glm::normalize(g);
+        // Carry the roll reference along with the smallest rotation (no twist).
+        vec3 ref = prev.rollReference - glm::dot(prev.rollReference, in.guide) * in.guide;
+        in.rollReference = glm::length(ref) > 1e-6f ? glm::normalize(ref)
+                                                   : geometry::anyPerpendicular(in.guide);
+    }
+    in.pitch = pp.internode.pitch.sample(plant.rng);
+    const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
+    const float p = in.pitch * kDeg;
+    in.direction = glm::normalize(std::cos(p) * in.guide - std::sin(p) * side);
+    in.length = lengthMax;
+    in.radius = radius;
+
+    const unsigned petioles = pp.petiole.petioles_per_internode;
+    for (unsigned j = 0; j < petioles; ++j) {
+        Petiole pt;
+        pt.azimuth = in.azimuth + 360.0f * float(j) / float(petioles);
+        pt.pitch = pp.petiole.pitch.sample(plant.rng);
+        pt.radius = pp.petiole.radius.sample(plant.rng);
+        pt.length = pp.petiole.length.sample(plant.rng);
+        pt.curvature = pp.petiole.curvature.sample(plant.rng);
+        pt.taper = pp.petiole.taper.sample(plant.rng);
+        addLeaves(plant, pt, pp.leaf);
+        pt.vegetativeBuds.resize(std::max(0, pp.internode.max_vegetative_buds_per_petiole.sample(plant.rng)));
+        pt.floralBuds.resize(std::max(0, pp.internode.max_floral_buds_per_petiole.sample(plant.rng)));
+        ph.petioles.push_back(std::move(pt));
+    }
+    (void)type;
+    shoot.phytomers.push_back(std::move(ph));
+}
+
+// ---- shoots ----------------------------------------------------------------------------
+
+namespace {
+
+enum class StartMode { Base, Append, Child };
+
+void realizeShoot(Shoot& s, const ShootParameters& t, Rng& rng) {
+    s.maxNodes = t.max_nodes.sample(rng);
+    s.maxNodesPerSeason = t.max_nodes_per_season.sample(rng);
+    s.internodeLengthMax = t.internode_length_max.sample(rng);
+    s.phyllochron = t.phyllochron_min.sample(rng);
+    s.elongationRate = t.elongation_rate_max.sample(rng);
+    s.gravitropicCurvature = t.gravitropic_curvature.sample(rng);
+    s.tortuosity = t.tortuosity.sample(rng);
+    s.girthAreaFactor = t.girth_area_factor.sample(rng);
+    s.apicalBud.state = BudState::Active;
+}
+
+}  // namespace
+
+unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const ShootSpec& spec,
+                     StartMode mode, int parentID, unsigned parentNode, unsigned parentPetiole) {
+    checkSpec(spec);
+    const ShootParameters& type = impl.shootTypeFor(plant, spec.shootType);
+    Shoot s;
+    s.id = static_cast<unsigned>(plant.shoots.size());
+    s.type = spec.shootType;
+    s.parent = parentID;
+    s.baseRotation = spec.baseRotation;
+    s.radiusTaper = spec.radiusTaper;
+    realizeShoot(s, type, plant.rng);
+
+    Internode start;  // frame of the first phytomer
+    const AxisRotation& r = spec.baseRotation;
+    if (mode == StartMode::Base) {
+        const Frame f = orient({vec3(0, 0, 1), vec3(1, 0, 0)}, r.pitch, r.yaw, r.roll);
+        start.guide = f.axis;
+        start.rollReference = f.reference;
+    } else {
+        Shoot& parent = impl.shoot(plant, unsigned(parentID));
+        s.rank = parent.rank + (mode == StartMode::Child ? 1 : 0);
+        if (mode == StartMode::Append) {
+            const Internode& tip = parent.phytomers.back().internode;
+            const Frame f = orient({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
+            start.guide = f.axis;
+            start.rollReference = f.reference;
+            s.parentNode = int(parent.phytomers.size()) - 1;
+            parent.apicalBud.state = BudState::Dead;
+        } else {
+            if (parentNode >= parent.phytomers.size())
+                throw Error("parent node out of range",
+                            {.parameter = "parent_node_index", .value = std::to_string(parentNode),
+                             .validRange = "0 to " + std::to_string(parent.phytomers.size() - 1)});
+            Phytomer& node = parent.phytomers[parentNode];
+            if (parentPetiole >= node.petioles.size())
+                throw Error("petiole index out of range",
+                            {.parameter = "petiole_index", .value = std::to_string(parentPetiole),
+                             .validRange = node.petioles.empty()
+                                               ? "the node has no petioles"
+                                               : "0 to " + std::to_string(node.petioles.size() - 1)});
+            const ShootParameters& parentType = impl.shootTypeFor(plant, parent.type);
+            const int fromTip = int(parent.phytomers.size()) - 1 - int(parentNode);
+            const float tipAngle = parentType.insertion_angle_tip.sample(plant.rng);
+            const float decay = parentType.insertion_angle_decay_rate.sample(plant.rng);
+            // The angle grows by the decay rate per node down from the tip, up to 90 degrees.
+            const float insertion = std::min(90.0f, tipAngle + decay * float(fromTip));
+            s.insertionAngle = insertion + r.pitch;
+            const float yaw = type.base_yaw.sample(plant.rng) + r.yaw;
+            const float roll = type.base_roll.sample(plant.rng) + r.roll;
+            const Internode& pin = node.internode;
+            const vec3 axis = pin.direction;
+            vec3 budSide = azimuthDirection(pin.guide, pin.rollReference,
+                                            node.petioles[parentPetiole].azimuth);
+            budSide = glm::normalize(budSide - glm::dot(budSide, axis) * axis);
+            budSide = geometry::rotateAbout(budSide, axis, yaw * kDeg);
+            const float a = s.insertionAngle * kDeg;
+            start.guide = glm::normalize(std::cos(a) * axis + std::sin(a) * budSide);
+            // By default the first petiole points along the parent's axis.
+            vec3 ref = axis - glm::dot(axis, start.guide) * start.guide;
+            ref = glm::length(ref) > 1e-6f ? glm::normalize(ref) : budSide;
+            start.rollReference = geometry::rotateAbout(ref, start.guide, roll * kDeg);
+            s.parentNode = int(parentNode);
+            s.parentPetiole = int(parentPetiole);
+            // The axillary bud the shoot grows from has broken.
+            auto& buds = node.petioles[parentPetiole].vegetativeBuds;
+            if (buds.empty()) buds.emplace_back();
+            for (VegetativeBud& b : buds)
+                if (b.childShoot < 0) {
+                    b.state = BudState::Broken;
+                    b.childShoot = int(s.id);
+                    b.shootType = s.type;
+                    break;
+                }
+        }
+    }
+    plant.shoots.push_back(std::move(s));
+    Shoot& shoot = plant.shoots.back();
+    if (parentID >= 0) plant.shoots[unsigned(parentID)].children.push_back(shoot.id);
+    for (unsigned k = 0; k < spec.phytomers; ++k) {
+        const float radius =
+            spec.internodeRadius * (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
+        createPhytomer(plant, shoot, type, type.phytomer_parameters, std::max(radius, 1e-6f),
+                       spec.internodeLengthMax, spec.internodeLengthScale, spec.leafScale,
+                       &start);
+    }
+    return shoot.id;
+}
+
+// ---- public API ------------------------------------------------------------------------
+
+PlantArchitecture::PlantArchitecture(Context* context)
+    : context_(context), impl_(std::make_unique<Impl>()) {
+    if (!context) throw Error("PlantArchitecture needs a Context", {.parameter = "context"});
+    registerBuiltinPrototypes(*this);
+}
+
+PlantArchitecture::~PlantArchitecture() = default;
+
+void PlantArchitecture::setSeed(std::uint64_t seed) { seed_ = seed; }
+
+void PlantArchitecture::defineShootType(const std::string& label, const ShootParameters& params) {
+    if (label.empty())
+        throw Error("shoot type label must not be empty", {.parameter = "shoot_type_label"});
+    validate(params, label);
+    impl_->checkFunctions(params, label);
+    impl_->shootTypes[label] = params;
+}
+
+const ShootParameters& PlantArchitecture::shootType(const std::string& label) const {
+    auto it = impl_->shootTypes.find(label);
+    if (it == impl_->shootTypes.end())
+        throw Error("unknown shoot type", {.parameter = "shoot_type_label", .value = label});
+    return it->second;
+}
+
+std::vector<std::string> PlantArchitecture::listShootTypeLabels() const {
+    std::vector<std::string> labels;
+    for (const auto& [label, p] : impl_->shootTypes) labels.push_back(label);
+    return labels;
+}
+
+std::vector<std::string> PlantArchitecture::listShootTypeLabels(unsigned plantID) const {
+    std::vector<std::string> labels;
+    for (const auto& [label, p] : impl_->plant(plantID).shootTypes) labels.push_back(label);
+    return labels;
+}
+
+unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float current_age) {
+    if (!std::isfinite(base_position.x) || !std::isfinite(base_position.y) ||
+        !std::isfinite(base_position.z))
+        throw Error("plant base position must be finite", {.parameter = "base_position"});
+    if (!(current_age >= 0.0f && std::isfinite(current_age)))
+        throw Error("invalid plant age", {.parameter = "current_age", .value = str(current_age),
+                                          .validRange = ">= 0 days"});
+    PlantInstance p;
+    p.id = impl_->nextPlantID++;
+    p.base = base_position;
+    p.age = current_age;
+    p.rng = Rng::forPlant(seed_, p.id);
+    p.shootTypes = impl_->shootTypes;
+    return impl_->plants.emplace(p.id, std::move(p)).first->first;
+}
+
+void PlantArchitecture::deletePlantInstance(unsigned plantID) {
+    PlantInstance& p = impl_->plant(plantID);
+    for (Shoot& s : p.shoots) deleteShootObjects(*context_, s);
+    impl_->plants.erase(plantID);
+}
+
+unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, const ShootSpec& spec) {
+    PlantInstance& p = impl_->plant(plantID);
+    if (!p.shoots.empty())
+        throw Error("the plant already has a base stem",
+                    {.parameter = "plantID", .value = std::to_string(plantID)});
+    const unsigned id = createShoot(*impl_, p, spec, StartMode::Base, -1, 0, 0);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, unsigned nodes,
+                                             const AxisRotation& rot, float radius, float lengthMax,
+                                             float lengthScale, float leafScale, float taper,
+                                             const std::string& type) {
+    return addBaseStemShoot(plantID,
+                            specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+}
+
+unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID,
+                                        const ShootSpec& spec) {
+    PlantInstance& p = impl_->plant(plantID);
+    impl_->shoot(p, parentShootID);
+    const unsigned id = createShoot(*impl_, p, spec, StartMode::Append, int(parentShootID), 0, 0);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::appendShoot(unsigned plantID, int parentShootID, unsigned nodes,
+                                        const AxisRotation& rot, float radius, float lengthMax,
+                                        float lengthScale, float leafScale, float taper,
+                                        const std::string& type) {
+    if (parentShootID < 0)
+        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
+                                      .value = std::to_string(parentShootID), .validRange = ">= 0"});
+    return appendShoot(plantID, unsigned(parentShootID),
+                       specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+}
+
+unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShootID,
+                                          unsigned parentNode, const ShootSpec& spec,
+                                          unsigned petioleIndex) {
+    PlantInstance& p = impl_->plant(plantID);
+    impl_->shoot(p, parentShootID);
+    const unsigned id = createShoot(*impl_, p, spec, StartMode::Child, int(parentShootID),
+                                    parentNode, petioleIndex);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::addChildShoot(unsigned plantID, int parentShootID, unsigned parentNode,
+                                          unsigned nodes, const AxisRotation& rot, float radius,
+                                          float lengthMax, float lengthScale, float leafScale,
+                                          float taper, const std::string& type,
+                                          unsigned petioleIndex) {
+    if (parentShootID < 0)
+        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
+                                      .value = std::to_string(parentShootID), .validRange = ">= 0"});
+    return addChildShoot(plantID, unsigned(parentShootID), parentNode,
+                         specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type),
+                         petioleIndex);
+}
+
+unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned shootID,
+                                                  const PhytomerParameters& pp, float radius,
+                                                  float lengthMax, float lengthScale,
+                                                  float leafScale) {
+    PlantInstance& p = impl_->plant(plantID);
+    Shoot& s = impl_->shoot(p, shootID);
+    ShootSpec spec;
+    spec.internodeRadius = radius;
+    spec.internodeLengthMax = lengthMax;
+    spec.internodeLengthScale = lengthScale;
+    spec.leafScale = leafScale;
+    checkSpec(spec);
+    validate(pp, "phytomer_parameters");
+    ShootParameters probe = impl_->shootTypeFor(p, s.type);
+    probe.phytomer_parameters = pp;
+    impl_->checkFunctions(probe, s.type);
+    createPhytomer(p, s, impl_->shootTypeFor(p, s.type), pp, radius, lengthMax, lengthScale,
+                   leafScale, nullptr);
+    updateGeometry(plantID);
+    return unsigned(s.phytomers.size());
+}
+
+}  // namespace plantarch

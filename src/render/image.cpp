@@ -1,0 +1,274 @@
+// Images: PNG writing (atomic), image and texture reading, label colours, sRGB tables.
+
+#include <array>
+#include <atomic>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include <unistd.h>
+
+#include "plantarch/Error.h"
+#include "plantarch/Render.h"
+#include "render/render_internal.h"
+
+// stb is compiled here with static linkage so that another file of the library (or a user's
+// program) may include its own copy without duplicate symbols.
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#endif
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+namespace plantarch {
+
+namespace {
+
+void appendBytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+}
+
+std::string systemMessage(int err) { return std::generic_category().message(err); }
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
+/// reader never sees a partial file.
+void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+    namespace fs = std::filesystem;
+    static std::atomic<unsigned> counter{0};
+    const fs::path target(path);
+    const fs::path temp = target.parent_path() /
+                          (target.filename().string() + ".tmp" + std::to_string(::getpid()) +
+                           "_" + std::to_string(counter.fetch_add(1)));
+    std::FILE* f = std::fopen(temp.c_str(), "wb");
+    if (!f) throw Error("cannot write: " + systemMessage(errno), {.file = path});
+    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const int writeErr = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (!written || !closed) {
+        std::error_code ignore;
+        fs::remove(temp, ignore);
+        throw Error("cannot write: " + systemMessage(written ? errno : writeErr), {.file = path});
+    }
+    std::error_code ec;
+    fs::rename(temp, target, ec);
+    if (ec) {
+        std::error_code ignore;
+        fs::remove(temp, ignore);
+        throw Error("cannot write: " + ec.message(), {.file = path});
+    }
+}
+
+}  // namespace
+
+void writePNG(const Image& image, const std::string& path) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgb.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
+        throw Error("image has no pixels or a wrong buffer size", {.file = path});
+    std::vector<std::uint8_t> bytes;
+    bytes.reserve(image.rgb.size() / 2 + 1024);
+    const int ok = stbi_write_png_to_func(appendBytes, &bytes, image.width, image.height, 3,
+                                          image.rgb.data(), image.width * 3);
+    if (!ok) throw Error("PNG encoding failed", {.file = path});
+    writeFileAtomically(path, bytes);
+}
+
+Image readImage(const std::string& path) {
+    int w = 0, h = 0, channels = 0;
+    std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
+    if (!data) {
+        const char* why = stbi_failure_reason();
+        throw Error(std::string("cannot read image: ") + (why ? why : "unknown reason"),
+                    {.file = path});
+    }
+    Image image(w, h);
+    std::memcpy(image.rgb.data(), data, image.rgb.size());
+    stbi_image_free(data);
+    return image;
+}
+
+// ---- label colours -----------------------------------------------------------------------
+
+const std::vector<OrganLabelColor>& organLabelColors() {
+    static const std::vector<OrganLabelColor> table = {
+        {"internode", {230, 25, 75}},     {"petiole", {245, 130, 48}},
+        {"leaf", {60, 180, 75}},          {"peduncle", {255, 225, 25}},
+        {"flower_closed", {240, 50, 230}}, {"flower_open", {145, 30, 180}},
+        {"fruit", {0, 130, 200}},         {"ground", {128, 128, 128}},
+        {"obstacle", {70, 240, 240}},
+    };
+    return table;
+}
+
+std::array<std::uint8_t, 3> organLabelColor(std::string_view organ) {
+    for (const auto& entry : organLabelColors())
+        if (entry.organ == organ) return entry.rgb;
+    return {255, 255, 255};
+}
+
+// An invertible scramble of 24-bit integers (xorshift steps and odd multipliers modulo 2^24
+// are bijections that keep 0 at 0), so neighbouring IDs get visibly different colours.
+namespace {
+constexpr std::uint32_t kMask24 = 0xFFFFFFu;
+constexpr std::uint32_t kMul1 = 0x9E3B5Du;  // odd
+constexpr std::uint32_t kMul2 = 0x5BD1E5u;  // odd
+
+std::uint32_t inverseOdd(std::uint32_t a) {
+    // Newton iteration for the inverse modulo 2^24 (each step doubles the correct bits).
+    std::uint32_t x = a;
+    for (int i = 0; i < 5; ++i) x = (x * (2u - a * x)) & kMask24;
+    return x;
+}
+
+std::uint32_t undoXorShift(std::uint32_t y, int shift) {
+    std::uint32_t x = y;
+    for (int i = 0; i < 24 / shift + 1; ++i) x = y ^ (x >> shift);
+    return x & kMask24;
+}
+
+std::uint32_t scramble24(std::uint32_t x) {
+    x &= kMask24;
+    x ^= x >> 12;
+    x = (x * kMul1) & kMask24;
+    x ^= x >> 11;
+    x = (x * kMul2) & kMask24;
+    x ^= x >> 12;
+    return x;
+}
+
+std::uint32_t unscramble24(std::uint32_t x) {
+    x = undoXorShift(x, 12);
+    x = (x * inverseOdd(kMul2)) & kMask24;
+    x = undoXorShift(x, 11);
+    x = (x * inverseOdd(kMul1)) & kMask24;
+    x = undoXorShift(x, 12);
+    return x;
+}
+}  // namespace
+
+std::array<std::uint8_t, 3> objectLabelColor(ObjectID id) {
+    if (id >= kMask24) throw Error("object ID too large for a 24-bit label colour",
+                                   {.value = std::to_string(id), .validRange = "0 to 16777214"});
+    const std::uint32_t c = scramble24(id + 1);
+    return {std::uint8_t(c >> 16), std::uint8_t(c >> 8), std::uint8_t(c)};
+}
+
+std::optional<ObjectID> objectIDFromLabelColor(std::array<std::uint8_t, 3> rgb) {
+    const std::uint32_t c = (std::uint32_t(rgb[0]) << 16) | (std::uint32_t(rgb[1]) << 8) | rgb[2];
+    if (c == 0) return std::nullopt;
+    return unscramble24(c) - 1;
+}
+
+namespace render_detail {
+
+// ---- sRGB ------------------------------------------------------------------------------
+
+namespace {
+struct SrgbTables {
+    std::array<float, 256> toLinear{};
+    // Encoding by table on a fine linear grid (4096 steps) keeps it fast and exact enough
+    // that each byte is the rounded sRGB value of the grid point.
+    std::array<std::uint8_t, 4097> toByte{};
+    SrgbTables() {
+        for (int i = 0; i < 256; ++i) toLinear[i] = srgbToLinear(float(i) / 255.0f);
+        for (int i = 0; i <= 4096; ++i) {
+            const float l = float(i) / 4096.0f;
+            const float s = l <= 0.0031308f ? 12.92f * l
+                                            : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+            toByte[i] = std::uint8_t(std::lround(std::clamp(s, 0.0f, 1.0f) * 255.0f));
+        }
+    }
+};
+const SrgbTables& srgbTables() {
+    static const SrgbTables tables;
+    return tables;
+}
+}  // namespace
+
+std::uint8_t linearToSrgbByte(float linear) {
+    if (!(linear > 0.0f)) return 0;  // also catches NaN
+    if (linear >= 1.0f) return 255;
+    return srgbTables().toByte[std::size_t(linear * 4096.0f + 0.5f)];
+}
+
+float srgbByteToLinear(std::uint8_t value) { return srgbTables().toLinear[value]; }
+
+// ---- textures --------------------------------------------------------------------------
+
+Texture loadTexture(const std::string& path) {
+    int w = 0, h = 0, channels = 0;
+    std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
+    if (!data) {
+        const char* why = stbi_failure_reason();
+        throw Error(std::string("cannot read texture: ") + (why ? why : "unknown reason"),
+                    {.file = path});
+    }
+    Texture t;
+    t.width = w;
+    t.height = h;
+    t.rgba.assign(data, data + std::size_t(w) * std::size_t(h) * 4);
+    stbi_image_free(data);
+    glm::dvec3 sum(0.0);
+    std::size_t opaque = 0;
+    for (std::size_t i = 0; i < t.rgba.size(); i += 4) {
+        if (t.rgba[i + 3] < 128) {
+            t.hasMask = true;
+            continue;
+        }
+        sum += glm::dvec3(srgbByteToLinear(t.rgba[i]), srgbByteToLinear(t.rgba[i + 1]),
+                          srgbByteToLinear(t.rgba[i + 2]));
+        ++opaque;
+    }
+    if (opaque > 0) t.meanColor = vec3(sum / double(opaque));
+    return t;
+}
+
+namespace {
+inline int wrap(int i, int n) {
+    const int r = i % n;
+    return r < 0 ? r + n : r;
+}
+}  // namespace
+
+vec3 Texture::color(vec2 uv) const {
+    // Texel centres at half-integers; row 0 of the image is the top (v = 1).
+    const float x = uv.x * float(width) - 0.5f;
+    const float y = (1.0f - uv.y) * float(height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const int x0 = wrap(int(fx), width), x1 = wrap(int(fx) + 1, width);
+    const int y0 = wrap(int(fy), height), y1 = wrap(int(fy) + 1, height);
+    auto texel = [&](int tx, int ty) {
+        const std::uint8_t* p = &rgba[(std::size_t(ty) * std::size_t(width) + std::size_t(tx)) * 4];
+        return vec3(srgbByteToLinear(p[0]), srgbByteToLinear(p[1]), srgbByteToLinear(p[2]));
+    };
+    return (1.0f - ay) * ((1.0f - ax) * texel(x0, y0) + ax * texel(x1, y0)) +
+           ay * ((1.0f - ax) * texel(x0, y1) + ax * texel(x1, y1));
+}
+
+float Texture::alpha(vec2 uv) const {
+    const int x = wrap(int(std::floor(uv.x * float(width))), width);
+    const int y = wrap(int(std::floor((1.0f - uv.y) * float(height))), height);
+    return float(rgba[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4 + 3]) / 255.0f;
+}
+
+}  // namespace render_detail
+}  // namespace plantarch
