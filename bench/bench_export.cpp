@@ -7,9 +7,8 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "bench_util.h"
 #include "plantarch/Context.h"
@@ -28,8 +27,8 @@ const Context& scene4M() {
         for (int i = 0; i < 40000; ++i) {
             // 100 plants of 400 leaves, spread over 10 x 10 m, leaves around a 1.5 m stem.
             const int plant = i / 400, k = i % 400;
-            mat4 m = glm::translate(mat4(1.0f), vec3(float(plant % 10), float(plant / 10),
-                                                     0.05f + 0.0037f * float(k)));
+            mat4 m = glm::translate(
+                mat4(1.0f), vec3(float(plant % 10), float(plant / 10), 0.05f + 0.0037f * float(k)));
             m = glm::rotate(m, glm::radians(137.5f * float(k)), vec3(0, 0, 1));
             m = glm::rotate(m, glm::radians(-30.0f), vec3(0, 1, 0));
             Mesh placed = leaf;
@@ -54,9 +53,8 @@ void runExport(benchmark::State& state, const std::string& path, Write&& write) 
         state.ResumeTiming();
     }
     state.SetBytesProcessed(static_cast<std::int64_t>(bytes * state.iterations()));
-    state.counters["MB_per_s"] =
-        benchmark::Counter(double(bytes) * double(state.iterations()) / 1e6,
-                           benchmark::Counter::kIsRate);
+    state.counters["MB_per_s"] = benchmark::Counter(
+        double(bytes) * double(state.iterations()) / 1e6, benchmark::Counter::kIsRate);
     state.counters["file_MB"] = double(bytes) / 1e6;
     state.counters["triangles"] = double(ctx.triangleCount());
     std::filesystem::remove(path);

@@ -4,6 +4,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_util.h"
@@ -43,9 +44,9 @@ const Context& canopy() {
 
 void setCounters(benchmark::State& state, const RenderOptions& o) {
     state.counters["triangles"] = double(canopy().triangleCount());
-    state.counters["pixels_per_s"] = benchmark::Counter(
-        double(o.width) * double(o.height) * double(state.iterations()),
-        benchmark::Counter::kIsRate);
+    state.counters["pixels_per_s"] =
+        benchmark::Counter(double(o.width) * double(o.height) * double(state.iterations()),
+                           benchmark::Counter::kIsRate);
 }
 
 }  // namespace
@@ -81,7 +82,13 @@ BENCHMARK(BM_RenderTraceLabel4M)->Unit(benchmark::kMillisecond)->UseRealTime()->
 
 static void BM_RenderOneShot4M(benchmark::State& state) {
     RenderOptions o;
-    for (auto _ : state) benchmark::DoNotOptimize(render(canopy(), o).rgb.data());
+    Image image;
+    for (auto _ : state) {
+        image = render(canopy(), o);
+        benchmark::DoNotOptimize(image.rgb.data());
+    }
     setCounters(state, o);
+    // PLANTARCH_BENCH_PNG=path keeps a look at what was rendered.
+    if (const char* path = std::getenv("PLANTARCH_BENCH_PNG")) writePNG(image, path);
 }
 BENCHMARK(BM_RenderOneShot4M)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);

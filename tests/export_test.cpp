@@ -2,8 +2,9 @@
 // byte-for-byte determinism, atomic writes (failures leave no file and never damage an
 // existing one), per-object split, and readOBJ's errors.
 
-#include <gtest/gtest.h>
+#include "plantarch/Export.h"
 
+#include <gtest/gtest.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -12,17 +13,16 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "io/atomic_file.h"
+#include "io/export_common.h"
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
-#include "plantarch/Export.h"
 
 using namespace plantarch;
 namespace fs = std::filesystem;
@@ -264,7 +264,8 @@ TEST_F(ExportTest, ObjTextLayoutForOneQuad) {
               "# plantarch material library\n\n"
               "newmtl m\nKa 0 0 0\nKd 0.25 0.5 0.1\nKs 0 0 0\nd 1\nillum 1\n");
 
-    writeOBJ(c, (dir_ / "plain.obj").string(), {.normals = false, .uvs = false, .materials = false});
+    writeOBJ(c, (dir_ / "plain.obj").string(),
+             {.normals = false, .uvs = false, .materials = false});
     EXPECT_EQ(readBytes(dir_ / "plain.obj"),
               "# plantarch OBJ: 1 objects, 2 triangles\n"
               "o obj0_leaf\ng obj0_leaf\n"
@@ -312,7 +313,8 @@ TEST_F(ExportTest, ObjNormalsAreAreaWeighted) {
     writeOBJ(c, (dir_ / "n.obj").string(), {.materials = false});
     std::istringstream text(readBytes(dir_ / "n.obj"));
     std::string line;
-    while (std::getline(text, line) && line.rfind("vn ", 0) != 0) {}
+    while (std::getline(text, line) && line.rfind("vn ", 0) != 0) {
+    }
     std::istringstream first(line.substr(3));
     vec3 n;
     first >> n.x >> n.y >> n.z;
@@ -320,15 +322,30 @@ TEST_F(ExportTest, ObjNormalsAreAreaWeighted) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(n[k], expected[k], 1e-6f);
 }
 
+TEST(ExportFormat, FixedSixDecimals) {
+    auto text = [](float v) {
+        char buffer[32];
+        return std::string(buffer, io::writeFixed6(buffer, v));
+    };
+    EXPECT_EQ(text(0.70710678f), "0.707107");
+    EXPECT_EQ(text(-1.0f), "-1");
+    EXPECT_EQ(text(1.0f), "1");
+    EXPECT_EQ(text(0.0f), "0");
+    EXPECT_EQ(text(-0.0f), "0");
+    EXPECT_EQ(text(-4e-7f), "0");  // rounds to zero: no "-0"
+    EXPECT_EQ(text(0.1f), "0.1");
+    EXPECT_EQ(text(-0.000123f), "-0.000123");
+    EXPECT_EQ(text(12.25f), "12.25");
+}
+
 TEST_F(ExportTest, ObjSplitPerObjectWritesOneFilePerObject) {
     Scene s;
     buildScene(s);
     const fs::path out = dir_ / "parts" / "plant";  // created with its parent
     writeOBJ(s.ctx, out.string(), {.splitPerObject = true});
-    EXPECT_EQ(filesIn(out), (std::vector<std::string>{"materials.mtl", "obj0_leaf.obj",
-                                                      "obj1_petiole.obj", "obj3.obj",
-                                                      "obj4_weird_organ.obj",
-                                                      "obj5_aardvark.obj"}));
+    EXPECT_EQ(filesIn(out),
+              (std::vector<std::string>{"materials.mtl", "obj0_leaf.obj", "obj1_petiole.obj",
+                                        "obj3.obj", "obj4_weird_organ.obj", "obj5_aardvark.obj"}));
     const std::vector<ObjectID> visible = {s.leaf, s.textured, s.bare, s.odd1, s.odd2};
     const std::vector<std::string> files = filesIn(out);
     for (std::size_t i = 0; i < visible.size(); ++i) {
@@ -419,13 +436,13 @@ TEST_F(ExportTest, PlyBinaryHasLabelsAndCoordinates) {
                           "organ_label 0 unlabelled", "organ_label 1 internode",
                           "organ_label 2 petiole", "organ_label 3 leaf", "organ_label 4 peduncle",
                           "organ_label 5 flower_closed", "organ_label 6 flower_open",
-                          "organ_label 7 fruit", "organ_label 8 ground",
-                          "organ_label 9 obstacle", "organ_label 10 aardvark",
-                          "organ_label 11 weird organ"}));
+                          "organ_label 7 fruit", "organ_label 8 ground", "organ_label 9 obstacle",
+                          "organ_label 10 aardvark", "organ_label 11 weird organ"}));
     const std::string header = readBytes(path).substr(0, 1200);
-    EXPECT_TRUE(contains(header, "property list uchar int vertex_indices\n"
-                                 "property int plant_id\nproperty int object_id\n"
-                                 "property int organ\nend_header\n"));
+    EXPECT_TRUE(contains(header,
+                         "property list uchar int vertex_indices\n"
+                         "property int plant_id\nproperty int object_id\n"
+                         "property int organ\nend_header\n"));
 }
 
 TEST_F(ExportTest, PlyAsciiMatchesBinary) {
@@ -437,11 +454,18 @@ TEST_F(ExportTest, PlyAsciiMatchesBinary) {
     EXPECT_FALSE(ascii.binary);
     checkPlyMatchesScene(ascii, s, true);
     checkPlyMatchesScene(binary, s, true);
-    EXPECT_EQ(ascii.vertices, binary.vertices);
+    // Positions are exact in both; ASCII normals have 6 decimals.
+    ASSERT_EQ(ascii.vertices.size(), binary.vertices.size());
+    for (std::size_t i = 0; i < ascii.vertices.size(); ++i) {
+        if (i % 6 < 3) {
+            EXPECT_EQ(ascii.vertices[i], binary.vertices[i]);
+        } else {
+            EXPECT_NEAR(ascii.vertices[i], binary.vertices[i], 6e-7f);
+        }
+    }
     EXPECT_EQ(ascii.faces, binary.faces);
     EXPECT_EQ(ascii.comments, binary.comments);
-    EXPECT_EQ(ascii.vertexProperties,
-              (std::vector<std::string>{"x", "y", "z", "nx", "ny", "nz"}));
+    EXPECT_EQ(ascii.vertexProperties, (std::vector<std::string>{"x", "y", "z", "nx", "ny", "nz"}));
 }
 
 TEST_F(ExportTest, PlyHiddenObjectsOnlyWhenAsked) {
@@ -610,6 +634,22 @@ TEST_F(ExportTest, AtomicFileWritesBuffersAndCleansUp) {
         abandoned.finish();
     }  // destroyed without commit
     EXPECT_EQ(readBytes(path).size(), 100009u);
+    EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"f.bin"});
+    {
+        // A stale temporary with the next name (left by a killed process) is stepped over.
+        io::AtomicFile probe(path);
+        const std::string used = probe.temporaryPath();
+        const std::string counter = used.substr(used.rfind('-') + 1);
+        const std::string next =
+            used.substr(0, used.rfind('-') + 1) + std::to_string(std::stoul(counter) + 1);
+        writeText(next, "stale");
+        io::AtomicFile f(path);
+        EXPECT_NE(f.temporaryPath(), next);
+        f.write("fresh");
+        f.commit();
+        fs::remove(next);
+    }
+    EXPECT_EQ(readBytes(path), "fresh");
     EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"f.bin"});
 }
 

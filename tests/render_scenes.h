@@ -7,9 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "plantarch/Context.h"
 
@@ -21,7 +20,8 @@ inline constexpr float kPi = 3.14159265358979f;
 inline Mesh boxMesh(vec3 lo, vec3 hi) {
     Mesh m;
     for (int i = 0; i < 8; ++i)
-        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+        m.positions.push_back(
+            {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
     m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
                  2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
     return m;
@@ -62,7 +62,8 @@ inline Mesh sphereMesh(vec3 c, float r, int stacks = 10, int slices = 14) {
     Mesh m;
     for (int i = 0; i <= stacks; ++i)
         for (int j = 0; j < slices; ++j) {
-            const float th = kPi * float(i) / float(stacks), ph = 2.0f * kPi * float(j) / float(slices);
+            const float th = kPi * float(i) / float(stacks),
+                        ph = 2.0f * kPi * float(j) / float(slices);
             m.positions.push_back(c + r * vec3(std::sin(th) * std::cos(ph),
                                                std::sin(th) * std::sin(ph), std::cos(th)));
         }
@@ -82,7 +83,8 @@ inline Mesh leafBlade(float length, float width, float droop, int nu = 12, int n
     for (int i = 0; i <= nu; ++i)
         for (int j = 0; j <= nv; ++j) {
             const float u = float(i) / float(nu), v = 2.0f * float(j) / float(nv) - 1.0f;
-            const float half = 0.5f * width * std::pow(std::max(0.0f, std::sin(kPi * std::pow(u, 0.8f))), 0.9f);
+            const float half =
+                0.5f * width * std::pow(std::max(0.0f, std::sin(kPi * std::pow(u, 0.8f))), 0.9f);
             const float y = v * half;
             const float z = -droop * u * u * length + 0.15f * std::abs(y);
             m.positions.push_back({u * length, y, z});
@@ -105,16 +107,17 @@ inline Mesh flowerMesh(int petals, float radius) {
         const vec3 dir(std::cos(a), std::sin(a), 0.0f), side(-std::sin(a), std::cos(a), 0.0f);
         const auto base = std::uint32_t(m.positions.size());
         m.positions.push_back(0.15f * radius * dir);
-        m.positions.push_back(0.6f * radius * dir + 0.22f * radius * side + vec3(0, 0, 0.1f * radius));
+        m.positions.push_back(0.6f * radius * dir + 0.22f * radius * side +
+                              vec3(0, 0, 0.1f * radius));
         m.positions.push_back(radius * dir + vec3(0, 0, 0.25f * radius));
-        m.positions.push_back(0.6f * radius * dir - 0.22f * radius * side + vec3(0, 0, 0.1f * radius));
+        m.positions.push_back(0.6f * radius * dir - 0.22f * radius * side +
+                              vec3(0, 0, 0.1f * radius));
         m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }
     return m;
 }
 
-inline ObjectID addOrgan(Context& ctx, const Mesh& mesh, vec3 color, const char* organ,
-                         int plant) {
+inline ObjectID addOrgan(Context& ctx, const Mesh& mesh, vec3 color, const char* organ, int plant) {
     const ObjectID id = ctx.addObject(mesh, Material{color, "", ""});
     ctx.setObjectData(id, "organ", std::string(organ));
     ctx.setObjectData(id, "plantID", std::int32_t(plant));
@@ -131,9 +134,11 @@ inline void addDemoPlant(Context& ctx, vec3 base, int nodes, float height, int p
     vec3 p = base;
     for (int i = 0; i < nodes; ++i) {
         const float f = float(i) / float(nodes);
-        const vec3 lean(0.08f * std::sin(1.3f * float(i) + phase), 0.06f * std::cos(float(i)), 1.0f);
+        const vec3 lean(0.08f * std::sin(1.3f * float(i) + phase), 0.06f * std::cos(float(i)),
+                        1.0f);
         const vec3 q = p + internode * glm::normalize(lean);
-        const float r0 = 0.012f * (1.0f - 0.6f * f), r1 = 0.012f * (1.0f - 0.6f * (f + 1.0f / nodes));
+        const float r0 = 0.012f * (1.0f - 0.6f * f),
+                    r1 = 0.012f * (1.0f - 0.6f * (f + 1.0f / nodes));
         addOrgan(ctx, tubeMesh(p, q, r0, r1), stemColor, "internode", plant);
         p = q;
         if (i == 0) continue;
@@ -163,8 +168,8 @@ inline void addDemoPlant(Context& ctx, vec3 base, int nodes, float height, int p
                 addOrgan(ctx, sphereMesh(end, 0.012f, 6, 8), vec3(0.85f, 0.55f, 0.75f),
                          "flower_closed", plant);
             } else {
-                addOrgan(ctx, sphereMesh(end - vec3(0, 0, 0.02f), 0.025f), vec3(0.80f, 0.12f, 0.08f),
-                         "fruit", plant);
+                addOrgan(ctx, sphereMesh(end - vec3(0, 0, 0.02f), 0.025f),
+                         vec3(0.80f, 0.12f, 0.08f), "fruit", plant);
             }
         }
     }

@@ -1,7 +1,11 @@
 // Preview renderer: image size and content, label masks, shadows, textures, determinism,
 // PNG output, option checks; and the `plantarch render` command.
 
+#include "plantarch/Render.h"
+
 #include <gtest/gtest.h>
+#include <omp.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -11,11 +15,8 @@
 #include <set>
 #include <string>
 
-#include <omp.h>
-
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
-#include "plantarch/Render.h"
 #include "render_scenes.h"
 
 #if defined(__GNUC__)
@@ -67,8 +68,9 @@ Context leafAndInternode() {
     Context ctx;
     test::addOrgan(ctx, test::boxMesh({-0.05f, -0.05f, 0.0f}, {0.05f, 0.05f, 0.6f}),
                    {0.4f, 0.3f, 0.2f}, "internode", 0);
-    test::addOrgan(ctx, test::quadMesh({-0.4f, -0.3f, 0.6f}, {0.4f, -0.3f, 0.6f},
-                                       {0.4f, 0.3f, 0.9f}, {-0.4f, 0.3f, 0.9f}),
+    test::addOrgan(ctx,
+                   test::quadMesh({-0.4f, -0.3f, 0.6f}, {0.4f, -0.3f, 0.6f}, {0.4f, 0.3f, 0.9f},
+                                  {-0.4f, 0.3f, 0.9f}),
                    {0.2f, 0.6f, 0.1f}, "leaf", 0);
     return ctx;
 }
@@ -230,8 +232,8 @@ TEST(Render, OrganLabelsUseOnlyTableColours) {
     RenderOptions o = small();
     o.mode = RenderMode::LabelOrgan;
     const Image mask = render(ctx, o);
-    const std::set<RGB> expected = {{0, 0, 0}, organLabelColor("leaf"),
-                                    organLabelColor("internode")};
+    const std::set<RGB> expected = {
+        {0, 0, 0}, organLabelColor("leaf"), organLabelColor("internode")};
     EXPECT_EQ(colours(mask), expected);  // exactly these: no blending at edges
 
     const Image shaded = render(ctx, small());
@@ -304,9 +306,9 @@ TEST(Render, TextureColourAndAlphaMask) {
     ASSERT_TRUE(stbi_write_png(texture.c_str(), 4, 4, 4, rgba.data(), 16));
 
     Context ctx;
-    const ObjectID quad = ctx.addObject(
-        test::quadMesh({-1, 0, 0}, {1, 0, 0}, {1, 0, 2}, {-1, 0, 2}),
-        Material{{0.1f, 0.9f, 0.1f}, texture, "masked"});
+    const ObjectID quad =
+        ctx.addObject(test::quadMesh({-1, 0, 0}, {1, 0, 0}, {1, 0, 2}, {-1, 0, 2}),
+                      Material{{0.1f, 0.9f, 0.1f}, texture, "masked"});
     RenderOptions o = small(200, 200);
     o.groundPlane = false;
     o.camera.autoFrame = false;
@@ -450,4 +452,117 @@ TEST(RenderPNG, UnwritablePathIsAnErrorAndLeavesNothing) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
     EXPECT_THROW(writePNG(Image(), (dir / "empty.png").string()), Error);
     EXPECT_THROW(readImage((dir / "missing.png").string()), Error);
+}
+
+// ---- the plantarch render command -----------------------------------------------------------
+
+namespace {
+
+struct CommandResult {
+    int status = -1;
+    std::string stderrText;
+};
+
+CommandResult runCli(const std::string& args, const fs::path& dir) {
+    const fs::path err = dir / "stderr.txt";
+    const std::string cmd =
+        std::string("\"") + PLANTARCH_CLI + "\" " + args + " 2> \"" + err.string() + "\"";
+    const int raw = std::system(cmd.c_str());
+    CommandResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream in(err);
+    r.stderrText.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return r;
+}
+
+/// A box "internode" under a quad "leaf", with group names as plantarch's OBJ writer makes them.
+void writeSmallObj(const fs::path& path) {
+    std::ofstream out(path);
+    out << "# two organs\n"
+           "g obj0_internode\n"
+           "v -0.05 -0.05 0\nv 0.05 -0.05 0\nv 0.05 0.05 0\nv -0.05 0.05 0\n"
+           "v -0.05 -0.05 0.6\nv 0.05 -0.05 0.6\nv 0.05 0.05 0.6\nv -0.05 0.05 0.6\n"
+           "f 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 5 6 7 8\n"
+           "g obj1_leaf\n"
+           "v -0.4 -0.3 0.6\nv 0.4 -0.3 0.6\nv 0.4 0.3 0.9\nv -0.4 0.3 0.9\n"
+           "f 9 10 11 12\n";
+}
+
+}  // namespace
+
+TEST(RenderCli, RendersAnObjFile) {
+    TempDir dir;
+    writeSmallObj(dir / "in.obj");
+    const fs::path png = dir / "out.png";
+    const auto r = runCli("render \"" + (dir / "in.obj").string() + "\" -o \"" + png.string() +
+                              "\" --width 96 --height 64",
+                          dir.path());
+    ASSERT_EQ(r.status, 0) << r.stderrText;
+    const Image img = readImage(png.string());
+    EXPECT_EQ(img.width, 96);
+    EXPECT_EQ(img.height, 64);
+    EXPECT_GT(colours(img).size(), 10u);
+}
+
+TEST(RenderCli, LabelMaskAndExplicitCamera) {
+    TempDir dir;
+    writeSmallObj(dir / "in.obj");
+    const fs::path png = dir / "mask.png";
+    const auto r = runCli("render \"" + (dir / "in.obj").string() + "\" -o \"" + png.string() +
+                              "\" --width 80 --height 60 --label organ --no-ground"
+                              " --eye 2,-2,1.5 --target 0,0,0.4 --fov 40",
+                          dir.path());
+    ASSERT_EQ(r.status, 0) << r.stderrText;
+    // Organ labels come back from the group names obj<ID>_<organ>.
+    const std::set<RGB> expected = {
+        {0, 0, 0}, organLabelColor("leaf"), organLabelColor("internode")};
+    EXPECT_EQ(colours(readImage(png.string())), expected);
+}
+
+TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
+    TempDir dir;
+    writeSmallObj(dir / "in.obj");
+    const std::string in = "\"" + (dir / "in.obj").string() + "\"";
+    const std::string out = " -o \"" + (dir / "out.png").string() + "\"";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"render \"" + (dir / "missing.obj").string() + "\"" + out, "missing.obj"},
+        {"render " + in + out + " --eye 1,2", "--eye"},
+        {"render " + in + out + " --eye 1,2,3 --target a,b,c", "--target"},
+        {"render " + in + out + " --label leaves", "--label"},
+        {"render " + in + " -o \"" + (dir / "no" / "dir" / "x.png").string() + "\"", "x.png"},
+    };
+    for (const auto& [args, mentions] : cases) {
+        const auto r = runCli(args, dir.path());
+        EXPECT_EQ(r.status, 2) << args << "\n" << r.stderrText;
+        EXPECT_EQ(std::count(r.stderrText.begin(), r.stderrText.end(), '\n'), 1) << r.stderrText;
+        EXPECT_NE(r.stderrText.find(mentions), std::string::npos) << r.stderrText;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out.png"));
+}
+
+// ---- docs images -----------------------------------------------------------------------------
+
+// Regenerates docs/images/render-demo.png (shaded) and render-demo-organs.png (organ mask)
+// when PLANTARCH_WRITE_DOCS_IMAGES is set; otherwise renders the same scene small as a check.
+TEST(RenderDocs, DemoImages) {
+    Context ctx;
+    test::addDemoScene(ctx);
+    const bool write = std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr;
+    RenderOptions o;
+    if (write) {
+        o.samplesPerPixel = 16;
+    } else {
+        o.width = 128;
+        o.height = 96;
+    }
+    RenderScene scene(ctx);
+    const Image shaded = scene.render(o);
+    o.mode = RenderMode::LabelOrgan;
+    const Image organs = scene.render(o);
+    EXPECT_NE(shaded.rgb, organs.rgb);
+    if (!write) return;
+    const fs::path dir = fs::path(PLANTARCH_SOURCE_DIR) / "docs" / "images";
+    fs::create_directories(dir);
+    writePNG(shaded, (dir / "render-demo.png").string());
+    writePNG(organs, (dir / "render-demo-organs.png").string());
 }

@@ -8,8 +8,9 @@
 //   out/plant.obj: cannot open for writing: No such file or directory
 //
 // Output is deterministic: the same Context and options give the same bytes. Objects are
-// written in increasing object ID order; numbers use the shortest text that reads back to
-// the same float (std::to_chars), so OBJ and ASCII PLY coordinates round-trip exactly.
+// written in increasing object ID order. Positions, UVs and colours use the shortest text
+// that reads back to the same float (std::to_chars), so they round-trip exactly; normals
+// in text formats are written with 6 decimals (ample for unit vectors, and much faster).
 //
 // Object data read by the writers:
 //   "organ"    (string) organ kind: OBJ group names, PLY per-face organ label
@@ -33,7 +34,8 @@ struct ObjOptions {
     /// Also write hidden objects (skipped by default).
     bool includeHidden = false;
     /// Write smooth per-vertex normals (`vn`): per object, the area-weighted average of
-    /// the normals of the triangles around each vertex. Off: smaller files, faces `v/vt`.
+    /// the normals of the triangles around each vertex, 6 decimals. Off: smaller files and
+    /// faster export, faces `v/vt`.
     bool normals = true;
     /// Write texture coordinates (`vt`) of objects that have UVs.
     bool uvs = true;
@@ -108,8 +110,8 @@ struct PlyOptions {
 /// (or with an empty string) get 0. Organ strings not in this list get the next integers
 /// (10, 11, ...) in sorted order of the strings present among the exported objects.
 inline constexpr std::array<std::string_view, 10> kOrganLabels = {
-    "unlabelled", "internode",     "petiole",     "leaf",   "peduncle",
-    "flower_closed", "flower_open", "fruit",       "ground", "obstacle"};
+    "unlabelled",    "internode",   "petiole", "leaf",   "peduncle",
+    "flower_closed", "flower_open", "fruit",   "ground", "obstacle"};
 
 /// The organ label table writePLY would use for `context`: kOrganLabels followed by the
 /// other organ strings of the exported objects in sorted order. Entry i names label i.

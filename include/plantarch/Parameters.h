@@ -45,6 +45,11 @@ struct LeafPrototype {
     RandomFloat lobe_depth = 0.0f;          ///< lobe sinus depth, fraction of half-width
     RandomInt serrations = 0;               ///< teeth along each margin
     RandomFloat serration_depth = 0.0f;     ///< tooth depth, fraction of length
+    /// Width of a truncate base (grass blades), fraction of the maximum width (0: pointed)
+    RandomFloat base_width = 0.0f;
+    /// Depth of the basal sinus of notched shapes (cordate, reniform, sagittate, hastate,
+    /// palmately lobed), fraction of length: the petiole attaches at (sinus_depth, 0)
+    RandomFloat sinus_depth = 0.15f;
 
     // Deformations.
     RandomFloat midrib_fold_fraction = 0.0f;    ///< fold about the midrib (0 flat, 1 closed)
@@ -118,8 +123,16 @@ struct InflorescenceParameters {
     RandomFloat roll = 0.0f;            ///< about the flower/fruit axis, degrees
     RandomFloat flower_prototype_scale = 0.0075f;  ///< m
     std::string flower_prototype_function;         ///< registered prototype name
+    /// Shape parameters of the flower prototype family (names and ranges per family).
+    std::map<std::string, float> flower_prototype_parameters;
+    vec3 flower_color{0.95f, 0.95f, 0.95f};        ///< main (petal) colour
+    unsigned flower_subdivisions = 8;              ///< flower mesh resolution
     RandomFloat fruit_prototype_scale = 0.0075f;   ///< m
     std::string fruit_prototype_function;          ///< registered prototype name
+    /// Shape parameters of the fruit prototype family (names and ranges per family).
+    std::map<std::string, float> fruit_prototype_parameters;
+    vec3 fruit_color{0.75f, 0.12f, 0.08f};         ///< main fruit colour
+    unsigned fruit_subdivisions = 12;              ///< fruit mesh resolution
     /// How far fruit turn toward the ground as they grow (0 none, 1 hang vertically).
     RandomFloat fruit_gravity_factor_fraction = 0.0f;
     unsigned unique_prototypes = 1;

@@ -31,8 +31,18 @@ using OrganPrototype = std::vector<PrototypePart>;
 /// Builds a leaf prototype. `leafletIndex`: 0 tip, negative left, positive right.
 using LeafPrototypeFunction =
     std::function<OrganPrototype(const LeafPrototype& params, Rng& rng, int leafletIndex)>;
-/// Builds a flower or fruit prototype; `open` tells an open flower from a closed one.
-using FloralPrototypeFunction = std::function<OrganPrototype(Rng& rng, bool open)>;
+/// What a flower or fruit prototype is asked to build.
+struct FloralPrototypeRequest {
+    bool fruit = false;  ///< a fruit (else a flower)
+    bool open = true;    ///< for flowers: open (else a closed bud)
+    /// Family shape parameters from the species (may be empty: family defaults apply).
+    std::map<std::string, float> parameters;
+    vec3 color{1.0f};           ///< main colour from the species
+    unsigned subdivisions = 8;  ///< mesh resolution
+};
+/// Builds a flower or fruit prototype in prototype units (length 1 along +x).
+using FloralPrototypeFunction =
+    std::function<OrganPrototype(const FloralPrototypeRequest& request, Rng& rng)>;
 
 /// Where and how a new shoot starts (the options of addBaseStemShoot and friends).
 struct ShootSpec {

@@ -14,7 +14,11 @@
 // (RenderOptions::seed, pixel index), so the bytes never depend on the thread count.
 //
 // Colours in Material::color and in the options below are display (sRGB) values in 0..1; the
-// renderer converts them to linear light for shading and back to sRGB for the image.
+// renderer converts them to linear light for shading and back to sRGB for the image. A
+// material's texture (PNG, JPEG, ... read with stb_image) replaces its colour, looked up
+// bilinearly with the object's UVs (v = 0 at the image's bottom row, as in OBJ); texels with
+// alpha below one half are cut out (rays pass through). An object without UVs uses the
+// texture's mean colour.
 //
 // Organ label colours (LabelOrgan), read from the object string data "organ":
 //
@@ -68,10 +72,10 @@ struct Image {
 /// as it can while the whole box fits in the frame with `margin` to spare on each side.
 struct Camera {
     bool autoFrame = true;
-    vec3 eye{0.0f};     ///< camera position (m); used when !autoFrame
-    vec3 target{0.0f};  ///< point looked at (m); used when !autoFrame
-    vec3 up{0.0f, 0.0f, 1.0f};
-    float fovDeg = 35.0f;  ///< vertical field of view, degrees (0 to 170 exclusive)
+    vec3 eye{0.0f};             ///< camera position (m); used when !autoFrame
+    vec3 target{0.0f};          ///< point looked at (m); used when !autoFrame
+    vec3 up{0.0f, 0.0f, 1.0f};  ///< image "up" direction; used when !autoFrame
+    float fovDeg = 35.0f;       ///< vertical field of view, degrees (0 to 170 exclusive)
 
     // Auto-framing only.
     float azimuthDeg = -60.0f;   ///< direction from the target to the eye, from +x toward +y
@@ -111,10 +115,10 @@ struct RenderOptions {
     vec3 groundColor{0.42f, 0.38f, 0.33f};  ///< sRGB albedo, neutral soil
 
     /// Direction toward the sun (normalised internally; must have z > 0 to light anything).
-    vec3 sunDirection{0.45f, -0.25f, 0.86f};
-    float sunAngularRadiusDeg = 1.2f;  ///< larger gives softer shadows (the real sun: 0.27)
-    float sunIntensity = 2.6f;         ///< irradiance on a surface facing the sun
-    vec3 skyZenithColor{0.42f, 0.62f, 0.90f};   ///< sRGB, background straight up
+    vec3 sunDirection{0.54f, 0.20f, 0.82f};
+    float sunAngularRadiusDeg = 1.2f;          ///< larger gives softer shadows (the real sun: 0.27)
+    float sunIntensity = 2.6f;                 ///< irradiance on a surface facing the sun
+    vec3 skyZenithColor{0.42f, 0.62f, 0.90f};  ///< sRGB, background straight up
     vec3 skyHorizonColor{0.83f, 0.89f, 0.95f};  ///< sRGB, background at the horizon
     float skyIntensity = 1.0f;  ///< scales the sky's light on surfaces (not the background)
     float exposure = 1.0f;      ///< linear scale before sRGB encoding

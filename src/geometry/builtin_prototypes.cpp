@@ -47,13 +47,14 @@ Mesh revolve(Profile r, unsigned rings, unsigned sides) {
     return m;
 }
 
-OrganPrototype builtinFruit(Rng&, bool) {
+OrganPrototype builtinFruit(const FloralPrototypeRequest& req, Rng&) {
     Mesh m = revolve([](float t) { return 0.45f * std::sqrt(std::max(0.0f, t * (1.0f - t))) * 2.0f; },
                      12, 12);
-    return {{std::move(m), Material{{0.75f, 0.12f, 0.08f}, "", "fruit"}}};
+    return {{std::move(m), Material{req.color, "", "fruit"}}};
 }
 
-OrganPrototype builtinFlower(Rng&, bool open) {
+OrganPrototype builtinFlower(const FloralPrototypeRequest& req, Rng&) {
+    const bool open = req.open;
     OrganPrototype proto;
     if (!open) {
         Mesh bud = revolve([](float t) { return 0.3f * std::sin(kPi * t) * (1.0f - 0.4f * t); }, 8, 8);
@@ -94,7 +95,7 @@ OrganPrototype builtinFlower(Rng&, bool open) {
         xf[2] = glm::vec4(glm::cross(axis, width), 0);
         petals.append(petal, xf);
     }
-    proto.push_back({std::move(petals), Material{{0.95f, 0.95f, 0.95f}, "", "petals"}});
+    proto.push_back({std::move(petals), Material{req.color, "", "petals"}});
     Mesh centre = revolve([](float t) { return 0.12f * std::sin(kPi * t); }, 6, 8);
     centre.transform(glm::mat4(0.25f, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1));
     proto.push_back({std::move(centre), Material{{0.95f, 0.8f, 0.1f}, "", "flower_centre"}});

@@ -157,6 +157,13 @@ std::string describePrototype(const LeafPrototype& p) {
     return s;
 }
 
+std::string describeFloral(const FloralPrototypeRequest& r) {
+    std::string s = std::string(r.fruit ? "fruit;" : "flower;") + (r.open ? "open;" : "closed;");
+    for (const auto& [k, v] : r.parameters) s += k + "=" + std::to_string(v) + ";";
+    for (int i = 0; i < 3; ++i) s += std::to_string(r.color[i]) + ",";
+    return s + std::to_string(r.subdivisions);
+}
+
 std::uint64_t hashKey(const std::string& s) {
     std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
     for (unsigned char c : s) h = (h ^ c) * 1099511628211ULL;
@@ -189,8 +196,9 @@ struct Tessellator {
     std::vector<std::vector<vec3>> nodes;  // per shoot
 
     const OrganPrototype& prototype(const std::string& fn, const LeafPrototype* leaf, int leaflet,
-                                    unsigned variant, bool open, bool& uniqueOut) {
-        const std::string params = leaf ? describePrototype(*leaf) : (open ? "open" : "closed");
+                                    unsigned variant, const FloralPrototypeRequest* floral,
+                                    bool& uniqueOut) {
+        const std::string params = leaf ? describePrototype(*leaf) : describeFloral(*floral);
         const unsigned variants = leaf ? leaf->unique_prototypes : 1u;
         uniqueOut = leaf && variants == 0;
         const std::string key = variantKey(fn, params, leaflet, variant);
@@ -202,7 +210,7 @@ struct Tessellator {
         Rng rng(hashKey(key), 7);
         auto built = std::make_shared<OrganPrototype>(
             leaf ? impl.leafPrototypes.at(fn)(*leaf, rng, leaflet)
-                 : impl.floralPrototypes.at(fn)(rng, open));
+                 : impl.floralPrototypes.at(fn)(*floral, rng));
         if (uniqueOut) {
             scratch = built;
             return *scratch;
@@ -307,7 +315,7 @@ struct Tessellator {
                                                         : (leaf.leafletIndex < 0 ? -1 : 1);
         const OrganPrototype& shape =
             prototype(fn, &proto, leafletKey, variants == 0 ? unsigned(leaf.leafID) : leaf.variant,
-                      false, unique);
+                      nullptr, unique);
         const vec3 offset = proto.leaf_offset * scale;
         const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
         writer.writeParts(leaf.objects, shape, placement(f, base, scale),
@@ -346,6 +354,12 @@ struct Tessellator {
         const std::string& fn = fruit ? inf.fruit_prototype_function : inf.flower_prototype_function;
         const std::string name = fn.empty() ? (fruit ? "builtin_fruit" : "builtin_flower") : fn;
         const float maturity = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
+        FloralPrototypeRequest request;
+        request.fruit = fruit;
+        request.open = open;
+        request.parameters = fruit ? inf.fruit_prototype_parameters : inf.flower_prototype_parameters;
+        request.color = fruit ? inf.fruit_color : inf.flower_color;
+        request.subdivisions = fruit ? inf.fruit_subdivisions : inf.flower_subdivisions;
         for (FlowerOrgan& fl : fb.flowers) {
             auto [origin, tangent] = alongPath(path, fl.position);
             OrganFrame f = uprightFrame(tangent, side);
@@ -361,7 +375,7 @@ struct Tessellator {
             of = rotated(of, 0.0f, 0.0f, fl.roll);
             const float scale = fruit ? fl.fruitScale * maturity : fl.flowerScale;
             bool unique = false;
-            const OrganPrototype& shape = prototype(name, nullptr, 0, fl.variant, open, unique);
+            const OrganPrototype& shape = prototype(name, nullptr, 0, fl.variant, &request, unique);
             writer.writeParts(fl.objects, shape, placement(of, origin, scale),
                               {fruit ? OrganKind::Fruit
                                      : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed),

@@ -30,9 +30,16 @@ AtomicFile::AtomicFile(std::string path, std::size_t bufferBytes)
       temp_(temporaryName(path_)),
       capacity_(std::max(bufferBytes, 2 * kMaxReserve)) {
     if (path_.empty()) throw Error("cannot open for writing: empty file name");
-    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd_ < 0) fail("cannot open for writing", errno);
-    buffer_ = std::make_unique_for_overwrite<char[]>(capacity_);
+    buffer_ = std::make_unique_for_overwrite<char[]>(capacity_);  // before the file exists
+    // A name left behind by a killed process whose PID has been reused: take the next one.
+    for (int attempt = 0;; ++attempt) {
+        fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd_ >= 0) break;
+        const int err = errno;
+        if (err == EINTR) continue;
+        if (err != EEXIST || attempt >= 100) fail("cannot open for writing", err);
+        temp_ = temporaryName(path_);
+    }
 }
 
 AtomicFile::AtomicFile(AtomicFile&& o) noexcept
@@ -74,7 +81,9 @@ void AtomicFile::flushBuffer() {
     writeAll(buffer_.get(), n);
 }
 
-void AtomicFile::makeRoom(std::size_t) { flushBuffer(); }
+void AtomicFile::makeRoom(std::size_t) {
+    flushBuffer();
+}
 
 void AtomicFile::write(const void* data, std::size_t size) {
     const char* bytes = static_cast<const char*>(data);

@@ -8,8 +8,7 @@ namespace plantarch::io {
 
 std::vector<ObjectID> exportedObjects(const Context& context, bool includeHidden) {
     std::vector<ObjectID> ids = context.objectIDs();
-    if (!includeHidden)
-        std::erase_if(ids, [&](ObjectID id) { return context.isObjectHidden(id); });
+    if (!includeHidden) std::erase_if(ids, [&](ObjectID id) { return context.isObjectHidden(id); });
     return ids;
 }
 

@@ -3,6 +3,7 @@
 // choice of objects to export, smooth normals and the typed object data they read.
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -18,6 +19,35 @@ inline constexpr std::size_t kMaxFloatChars = 16;
 /// Shortest text that reads back as the same float; -0 is written as 0.
 inline char* writeFloat(char* out, float value) {
     return std::to_chars(out, out + kMaxFloatChars, value + 0.0f).ptr;
+}
+
+/// Fixed-point text with up to 6 decimals, trailing zeros dropped ("0.707107", "-1", "0").
+/// For unit normals, where 1e-6 is far below any use and shortest round-trip text (nine
+/// digits, through the general algorithm) would cost most of the export time.
+/// Requires |value| < 9e12.
+inline char* writeFixed6(char* out, float value) {
+    std::int64_t scaled = std::llround(double(value) * 1e6);
+    if (scaled < 0) {
+        *out++ = '-';
+        scaled = -scaled;
+    }
+    const std::uint64_t whole = std::uint64_t(scaled) / 1000000u;
+    std::uint32_t fraction = std::uint32_t(std::uint64_t(scaled) % 1000000u);
+    out = std::to_chars(out, out + 20, whole).ptr;
+    if (fraction != 0) {
+        int digits = 6;
+        while (fraction % 10 == 0) {
+            fraction /= 10;
+            --digits;
+        }
+        *out++ = '.';
+        for (int i = digits - 1; i >= 0; --i) {
+            out[i] = char('0' + fraction % 10);
+            fraction /= 10;
+        }
+        out += digits;
+    }
+    return out;
 }
 
 inline char* writeUInt(char* out, std::uint64_t value) {

@@ -1,13 +1,13 @@
 // Wavefront OBJ reader on tinyobjloader. Everything is parsed and checked before the Context
 // is touched, so a bad file leaves the Context unchanged.
 
+#include <tiny_obj_loader.h>
+
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <unordered_map>
 #include <vector>
-
-#include <tiny_obj_loader.h>
 
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -82,7 +82,8 @@ public:
                 if (corner + n > m.indices.size()) malformed("face list is truncated");
                 for (std::size_t k = 1; k + 1 < n; ++k) {  // fan; tinyobjloader gives n == 3
                     for (std::size_t c : {corner, corner + k, corner + k + 1})
-                        objects.back().mesh.indices.push_back(vertex(objects.back().mesh, m.indices[c]));
+                        objects.back().mesh.indices.push_back(
+                            vertex(objects.back().mesh, m.indices[c]));
                 }
                 corner += n;
             }
@@ -177,10 +178,9 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     std::vector<MaterialID> materialIDs(tinyMaterials.size());
     for (std::size_t i = 0; i < tinyMaterials.size(); ++i) {
         const tinyobj::material_t& m = tinyMaterials[i];
-        materialIDs[i] = context.addMaterial(
-            {.color = {m.diffuse[0], m.diffuse[1], m.diffuse[2]},
-             .texture = resolveTexture(m.diffuse_texname, baseDir),
-             .name = m.name});
+        materialIDs[i] = context.addMaterial({.color = {m.diffuse[0], m.diffuse[1], m.diffuse[2]},
+                                              .texture = resolveTexture(m.diffuse_texname, baseDir),
+                                              .name = m.name});
     }
     const MaterialID plain = context.addMaterial(Material{});
 

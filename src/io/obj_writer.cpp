@@ -81,8 +81,8 @@ std::string textureReference(const std::string& texture, const fs::path& mtlDir)
     return rel.empty() ? target.lexically_normal().generic_string() : rel.generic_string();
 }
 
-void writeMTL(io::AtomicFile& out, const Context& context,
-              const std::vector<std::string>& names, const fs::path& mtlDir) {
+void writeMTL(io::AtomicFile& out, const Context& context, const std::vector<std::string>& names,
+              const fs::path& mtlDir) {
     out.write("# plantarch material library\n");
     for (MaterialID m = 0; m < names.size(); ++m) {
         if (names[m].empty()) continue;
@@ -140,7 +140,13 @@ public:
                 char* p = out.reserve(kLineBytes);
                 *p++ = 'v';
                 *p++ = 'n';
-                p = vec3Text(p, n);
+                *p++ = ' ';
+                p = io::writeFixed6(p, n.x);
+                *p++ = ' ';
+                p = io::writeFixed6(p, n.y);
+                *p++ = ' ';
+                p = io::writeFixed6(p, n.z);
+                *p++ = '\n';
                 out.advance(p);
             }
         }
@@ -171,14 +177,18 @@ private:
             char* p = out.reserve(kLineBytes);
             *p++ = 'f';
             for (int k = 0; k < 3; ++k) {
+                // Format the index once; copy a fixed 24 bytes (one or two stores, no call)
+                // and keep `len` of them. The line's reserve() leaves room for the excess.
+                char number[24];
+                const std::uint64_t v = vBase + idx[t + k];
+                const std::size_t len = static_cast<std::size_t>(io::writeUInt(number, v) - number);
                 *p++ = ' ';
-                char* start = p;
-                p = io::writeUInt(p, vBase + idx[t + k]);
-                const std::size_t len = static_cast<std::size_t>(p - start);
+                std::memcpy(p, number, sizeof(number));
+                p += len;
                 if (uvs) {
                     *p++ = '/';
                     if (sameUVIndex) {
-                        std::memcpy(p, start, len);
+                        std::memcpy(p, number, sizeof(number));
                         p += len;
                     } else {
                         p = io::writeUInt(p, tBase + idx[t + k]);
@@ -187,7 +197,7 @@ private:
                 if (normals) {
                     *p++ = '/';
                     if (!uvs) *p++ = '/';
-                    std::memcpy(p, start, len);
+                    std::memcpy(p, number, sizeof(number));
                     p += len;
                 }
             }
@@ -216,8 +226,7 @@ void writeSplit(const Context& context, const std::string& dir, const ObjOptions
                 const std::vector<ObjectID>& ids) {
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec)
-        throw Error("cannot create directory: " + ec.message(), {.file = dir});
+    if (ec) throw Error("cannot create directory: " + ec.message(), {.file = dir});
     const fs::path root(dir);
     std::vector<std::string> names;
     std::vector<io::AtomicFile> files;  // all finished first, then renamed together
@@ -230,13 +239,11 @@ void writeSplit(const Context& context, const std::string& dir, const ObjOptions
     ObjBodyWriter body(context, options);
     const std::string mtlFile = options.materials ? kSplitMaterialFile : "";
     for (ObjectID id : ids) {
-        files.emplace_back((root / (objectName(context, id) + ".obj")).string(),
-                           kSplitBufferBytes);
+        files.emplace_back((root / (objectName(context, id) + ".obj")).string(), kSplitBufferBytes);
         io::AtomicFile& out = files.back();
         writeHeader(out, context, {id}, mtlFile);
         body.restartNumbering();
-        body.writeObject(out, id,
-                         options.materials ? &names[context.objectMaterial(id)] : nullptr);
+        body.writeObject(out, id, options.materials ? &names[context.objectMaterial(id)] : nullptr);
         out.finish();
     }
     for (io::AtomicFile& f : files) f.commit();

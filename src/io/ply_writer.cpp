@@ -74,8 +74,8 @@ void writeHeader(io::AtomicFile& out, const PlyOptions& options, const SceneLabe
     h += options.format == PlyFormat::Ascii ? "ascii 1.0\n" : "binary_little_endian 1.0\n";
     h += "comment plantarch export: per-face plant_id (-1: none), object_id, organ label\n";
     for (std::size_t i = 0; i < labels.organNames.size(); ++i)
-        h += "comment organ_label " + std::to_string(i) + " " + oneLine(labels.organNames[i]) +
-             "\n";
+        h +=
+            "comment organ_label " + std::to_string(i) + " " + oneLine(labels.organNames[i]) + "\n";
     h += "element vertex " + std::to_string(vertices) + "\n";
     h += "property float x\nproperty float y\nproperty float z\n";
     if (options.normals) h += "property float nx\nproperty float ny\nproperty float nz\n";
@@ -146,11 +146,11 @@ void writeAsciiVertices(io::AtomicFile& out, const ObjectView& o, const PlyOptio
         if (options.normals) {
             const vec3& n = normals[i];
             *p++ = ' ';
-            p = io::writeFloat(p, n.x);
+            p = io::writeFixed6(p, n.x);
             *p++ = ' ';
-            p = io::writeFloat(p, n.y);
+            p = io::writeFixed6(p, n.y);
             *p++ = ' ';
-            p = io::writeFloat(p, n.z);
+            p = io::writeFixed6(p, n.z);
         }
         *p++ = '\n';
         out.advance(p);
@@ -202,7 +202,8 @@ void writePLY(const Context& context, const std::string& path, const PlyOptions&
     }
     if (vertices > static_cast<std::size_t>(INT_MAX))
         throw Error("too many vertices for PLY int indices",
-                    {.file = path, .value = std::to_string(vertices),
+                    {.file = path,
+                     .value = std::to_string(vertices),
                      .validRange = "at most " + std::to_string(INT_MAX)});
 
     io::AtomicFile out(path);

@@ -176,10 +176,20 @@ void describeParameters(S& p, V& v) {
     v.field({"flower_prototype_scale", "m", 0, 10, "Flower length"}, p.flower_prototype_scale);
     v.field({"flower_prototype_function", "", 0, 0, "Registered flower prototype"},
             p.flower_prototype_function);
+    v.field({"flower_prototype_parameters", "", -1e6, 1e6,
+             "Shape parameters of the flower prototype family"},
+            p.flower_prototype_parameters);
+    v.field({"flower_color", "", 0, 1, "Main flower (petal) RGB colour"}, p.flower_color);
+    v.field({"flower_subdivisions", "", 2, 200, "Flower mesh resolution"}, p.flower_subdivisions);
     v.field({"fruit_prototype_scale", "m", 0, 10, "Full-grown fruit length"},
             p.fruit_prototype_scale);
     v.field({"fruit_prototype_function", "", 0, 0, "Registered fruit prototype"},
             p.fruit_prototype_function);
+    v.field({"fruit_prototype_parameters", "", -1e6, 1e6,
+             "Shape parameters of the fruit prototype family"},
+            p.fruit_prototype_parameters);
+    v.field({"fruit_color", "", 0, 1, "Main fruit RGB colour"}, p.fruit_color);
+    v.field({"fruit_subdivisions", "", 2, 200, "Fruit mesh resolution"}, p.fruit_subdivisions);
     v.field({"fruit_gravity_factor_fraction", "", 0, 1,
              "How far fruit turn toward the ground as they grow (1 hangs vertically)"},
             p.fruit_gravity_factor_fraction);

@@ -81,6 +81,13 @@ struct Validator {
     }
     void field(const params::FieldInfo&, const std::map<int, std::string>&) const {}
     void field(const params::FieldInfo& f, const std::map<std::string, float>& types) const {
+        if (std::string(f.name) != "child_shoot_types") {
+            for (const auto& [key, value] : types)
+                if (!std::isfinite(value) || value < f.min || value > f.max)
+                    throw Error("out of range", {.parameter = at(f) + "." + key,
+                                                 .value = number(value), .validRange = rangeText(f)});
+            return;
+        }
         if (types.empty()) return;
         double sum = 0.0;
         for (const auto& [label, prob] : types) {

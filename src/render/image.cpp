@@ -1,8 +1,10 @@
 // Images: PNG writing (atomic), image and texture reading, label colours, sRGB tables.
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <array>
 #include <atomic>
-#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -11,8 +13,6 @@
 #include <string>
 #include <system_error>
 #include <vector>
-
-#include <unistd.h>
 
 #include "plantarch/Error.h"
 #include "plantarch/Render.h"
@@ -47,7 +47,9 @@ void appendBytes(void* context, void* data, int size) {
     out->insert(out->end(), bytes, bytes + size);
 }
 
-std::string systemMessage(int err) { return std::generic_category().message(err); }
+std::string systemMessage(int err) {
+    return std::generic_category().message(err);
+}
 
 /// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
 /// reader never sees a partial file.
@@ -55,9 +57,9 @@ void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t
     namespace fs = std::filesystem;
     static std::atomic<unsigned> counter{0};
     const fs::path target(path);
-    const fs::path temp = target.parent_path() /
-                          (target.filename().string() + ".tmp" + std::to_string(::getpid()) +
-                           "_" + std::to_string(counter.fetch_add(1)));
+    const fs::path temp =
+        target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()) +
+                                "_" + std::to_string(counter.fetch_add(1)));
     std::FILE* f = std::fopen(temp.c_str(), "wb");
     if (!f) throw Error("cannot write: " + systemMessage(errno), {.file = path});
     const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
@@ -109,10 +111,10 @@ Image readImage(const std::string& path) {
 
 const std::vector<OrganLabelColor>& organLabelColors() {
     static const std::vector<OrganLabelColor> table = {
-        {"internode", {230, 25, 75}},     {"petiole", {245, 130, 48}},
-        {"leaf", {60, 180, 75}},          {"peduncle", {255, 225, 25}},
+        {"internode", {230, 25, 75}},      {"petiole", {245, 130, 48}},
+        {"leaf", {60, 180, 75}},           {"peduncle", {255, 225, 25}},
         {"flower_closed", {240, 50, 230}}, {"flower_open", {145, 30, 180}},
-        {"fruit", {0, 130, 200}},         {"ground", {128, 128, 128}},
+        {"fruit", {0, 130, 200}},          {"ground", {128, 128, 128}},
         {"obstacle", {70, 240, 240}},
     };
     return table;
@@ -165,8 +167,9 @@ std::uint32_t unscramble24(std::uint32_t x) {
 }  // namespace
 
 std::array<std::uint8_t, 3> objectLabelColor(ObjectID id) {
-    if (id >= kMask24) throw Error("object ID too large for a 24-bit label colour",
-                                   {.value = std::to_string(id), .validRange = "0 to 16777214"});
+    if (id >= kMask24)
+        throw Error("object ID too large for a 24-bit label colour",
+                    {.value = std::to_string(id), .validRange = "0 to 16777214"});
     const std::uint32_t c = scramble24(id + 1);
     return {std::uint8_t(c >> 16), std::uint8_t(c >> 8), std::uint8_t(c)};
 }
@@ -191,8 +194,8 @@ struct SrgbTables {
         for (int i = 0; i < 256; ++i) toLinear[i] = srgbToLinear(float(i) / 255.0f);
         for (int i = 0; i <= 4096; ++i) {
             const float l = float(i) / 4096.0f;
-            const float s = l <= 0.0031308f ? 12.92f * l
-                                            : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
+            const float s =
+                l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
             toByte[i] = std::uint8_t(std::lround(std::clamp(s, 0.0f, 1.0f) * 255.0f));
         }
     }
@@ -209,7 +212,9 @@ std::uint8_t linearToSrgbByte(float linear) {
     return srgbTables().toByte[std::size_t(linear * 4096.0f + 0.5f)];
 }
 
-float srgbByteToLinear(std::uint8_t value) { return srgbTables().toLinear[value]; }
+float srgbByteToLinear(std::uint8_t value) {
+    return srgbTables().toLinear[value];
+}
 
 // ---- textures --------------------------------------------------------------------------
 

@@ -1,5 +1,7 @@
 // The preview renderer: camera framing, shading and the pixel loop.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,7 +24,9 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-float radians(float deg) { return deg * kPi / 180.0f; }
+float radians(float deg) {
+    return deg * kPi / 180.0f;
+}
 
 // ---- option checks ---------------------------------------------------------------------
 
@@ -30,7 +34,7 @@ template <class T>
 void checkRange(const char* name, T value, T lo, T hi, const std::string& range) {
     if (!(value >= lo && value <= hi))
         throw Error("render option out of range",
-                    {.parameter = name, .value = std::to_string(value), .validRange = range});
+                    {.parameter = name, .value = fmt::format("{}", value), .validRange = range});
 }
 
 void checkFinite(const char* name, const vec3& v) {
@@ -50,6 +54,11 @@ void validate(const RenderOptions& o) {
     checkRange("sunAngularRadiusDeg", o.sunAngularRadiusDeg, 0.0f, 45.0f, "0 to 45");
     checkRange("exposure", o.exposure, 0.0f, 1000.0f, "0 to 1000");
     checkRange("translucency", o.translucency, 0.0f, 1.0f, "0 to 1");
+    checkRange("sunIntensity", o.sunIntensity, 0.0f, 1000.0f, "0 to 1000");
+    checkRange("skyIntensity", o.skyIntensity, 0.0f, 1000.0f, "0 to 1000");
+    checkFinite("groundColor", o.groundColor);
+    checkFinite("skyZenithColor", o.skyZenithColor);
+    checkFinite("skyHorizonColor", o.skyHorizonColor);
     checkFinite("camera.eye", o.camera.eye);
     checkFinite("camera.target", o.camera.target);
     checkFinite("camera.up", o.camera.up);
@@ -317,8 +326,8 @@ Surface triangleSurface(const Setup& s, const Hit& hit, const vec3& dir) {
 /// randomly shifted rank-1 lattice (Kronecker sequence on the golden ratio) over all the
 /// pixel's rays, which spreads them far more evenly than independent random numbers.
 struct SampleIndex {
-    int index;          ///< camera sample, 0 .. spp-1
-    vec2 sunShift;      ///< per-pixel random shifts
+    int index;      ///< camera sample, 0 .. spp-1
+    vec2 sunShift;  ///< per-pixel random shifts
     vec2 skyShift;
 };
 
@@ -357,8 +366,8 @@ vec3 shade(const Setup& s, RTCIntersectContext& ictx, const vec3& p, const Surfa
     if (s.aoSamples > 0) {
         vec3 sky(0.0f);
         for (int i = 0; i < s.aoSamples; ++i) {
-            const vec2 u = latticePoint(si.index * s.aoSamples + i, s.spp * s.aoSamples,
-                                        si.skyShift);
+            const vec2 u =
+                latticePoint(si.index * s.aoSamples + i, s.spp * s.aoSamples, si.skyShift);
             vec3 d = sampleCosine(surf.ns, u.x, u.y);
             const float dn = glm::dot(d, surf.ng);
             if (dn < 0.0f) d -= 2.0f * dn * surf.ng;  // keep it above the true surface
@@ -368,8 +377,8 @@ vec3 shade(const Setup& s, RTCIntersectContext& ictx, const vec3& p, const Surfa
         light += sky / float(s.aoSamples);
     } else {
         const float up = 0.5f + 0.5f * surf.ns.z;
-        light += glm::mix(s.groundRadiance, s.skyIntensity * glm::mix(s.horizon, s.zenith, 0.5f),
-                          up);
+        light +=
+            glm::mix(s.groundRadiance, s.skyIntensity * glm::mix(s.horizon, s.zenith, 0.5f), up);
     }
     return surf.albedo * light;
 }
@@ -413,8 +422,12 @@ RenderScene::~RenderScene() = default;
 RenderScene::RenderScene(RenderScene&&) noexcept = default;
 RenderScene& RenderScene::operator=(RenderScene&&) noexcept = default;
 
-const AABB& RenderScene::bounds() const { return impl_->data.bounds; }
-std::size_t RenderScene::triangleCount() const { return impl_->data.triangles; }
+const AABB& RenderScene::bounds() const {
+    return impl_->data.bounds;
+}
+std::size_t RenderScene::triangleCount() const {
+    return impl_->data.triangles;
+}
 
 CameraFrame RenderScene::camera(const RenderOptions& o) const {
     validate(o);

@@ -2,12 +2,12 @@
 // Internals of the preview renderer shared by its source files: the prepared scene, textures,
 // colour conversion and the per-pixel sampler. Not installed.
 
+#include <embree3/rtcore.h>
+
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <embree3/rtcore.h>
 
 #include "plantarch/Render.h"
 
@@ -53,8 +53,8 @@ inline constexpr std::uint8_t kOrganOther = 255;
 /// What shading needs to know about one object.
 struct ObjectInfo {
     ObjectID id = 0;
-    vec3 albedo{0.5f};    ///< linear; used when texture < 0
-    std::int32_t texture = -1;  ///< index into Impl::textures, -1 for a plain colour
+    vec3 albedo{0.5f};                 ///< linear; used when texture < 0
+    std::int32_t texture = -1;         ///< index into Impl::textures, -1 for a plain colour
     std::uint8_t organ = kOrganOther;  ///< index into organLabelColors()
 };
 
@@ -63,12 +63,12 @@ struct ObjectInfo {
 /// (an Embree filter function discards hits on transparent texels).
 struct GeometryData {
     RTCGeometry geometry = nullptr;
-    const float* positions = nullptr;         ///< Embree's vertex buffer (xyz per vertex)
+    const float* positions = nullptr;        ///< Embree's vertex buffer (xyz per vertex)
     const std::uint32_t* indices = nullptr;  ///< Embree's index buffer
     std::size_t vertexCount = 0;
     std::vector<std::uint32_t> triangleObject;  ///< object slot (into Impl::objects)
-    std::vector<vec3> normals;  ///< per-vertex smooth normals; empty when disabled
-    std::vector<vec2> uvs;      ///< per-vertex UVs; empty when no object here is textured
+    std::vector<vec3> normals;                  ///< per-vertex smooth normals; empty when disabled
+    std::vector<vec2> uvs;  ///< per-vertex UVs; empty when no object here is textured
     const struct SceneData* scene = nullptr;
 };
 

@@ -1,17 +1,14 @@
 // Preparing a Context for ray casting: one Embree BVH over every visible triangle, plus the
 // tables that map a hit back to its object, material, texture and organ kind.
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <omp.h>
-#include <cstdio>
-#include <chrono>
-static double nowS(){return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();}
 
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
@@ -54,8 +51,8 @@ void alphaMaskFilter(const RTCFilterFunctionNArguments* args) {
 /// Per-object placement in one of the two geometries.
 struct Placement {
     ObjectID id;
-    std::uint32_t slot;      ///< index into SceneData::objects
-    std::uint8_t geometry;   ///< 0 opaque, 1 alpha-masked
+    std::uint32_t slot;     ///< index into SceneData::objects
+    std::uint8_t geometry;  ///< 0 opaque, 1 alpha-masked
     std::size_t firstVertex;
     std::size_t firstTriangle;
 };
@@ -70,7 +67,6 @@ SceneData::~SceneData() {
 }
 
 void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& options) {
-    double T0=nowS();
     // ---- materials and textures --------------------------------------------------------
     struct MaterialInfo {
         vec3 albedo;
@@ -128,7 +124,6 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
     }
     data.triangles = triangleCount[0] + triangleCount[1];
 
-    double T1=nowS();
     // ---- Embree device, scene and buffers -----------------------------------------------
     const std::string config = "threads=" + std::to_string(std::max(1, omp_get_max_threads()));
     data.device = rtcNewDevice(config.c_str());
@@ -164,7 +159,6 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
         if (textured[k]) g.uvs.assign(vertexCount[k], vec2(0.0f));
     }
 
-    double T2=nowS();
     // ---- fill, one object per iteration (objects are independent) -------------------------
     const std::ptrdiff_t n = std::ptrdiff_t(placements.size());
 #pragma omp parallel for schedule(dynamic, 64)
@@ -205,7 +199,6 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
         }
     }
 
-    double T3=nowS();
     for (int k = 0; k < 2; ++k) {
         GeometryData& g = data.geometries[k];
         if (!g.geometry) continue;
@@ -219,7 +212,6 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
     }
     rtcCommitScene(data.scene);
     throwOnDeviceError(data.device, "BVH build");
-    double T4=nowS(); std::fprintf(stderr,"objects %.3f alloc %.3f fill %.3f commit %.3f\n",T1-T0,T2-T1,T3-T2,T4-T3);
 }
 
 }  // namespace plantarch::render_detail

@@ -1,0 +1,229 @@
+#pragma once
+// Procedural leaf blades: outline families, a mesh that follows the outline, the deformations
+// of the reference's procedural leaf, and outlines traced from a PNG's alpha channel.
+//
+// Prototype frame (the convention of every organ prototype): the blade lies in the xy plane
+// with its upper side facing +z, the midrib runs along +x from the petiole attachment to the
+// tip at (1, 0) and the width runs along y. A flat outline spans x in [0, 1]; its widest
+// point has half-width leaf_aspect_ratio / 2. For the families with a notched base (cordate,
+// reniform, sagittate, hastate, palmate) the basal lobes reach back to x = 0 and the
+// petiole attaches in the sinus at (sinus_depth, 0); species then set `leaf_offset` to
+// (-sinus_depth, 0, 0) to put the sinus on the petiole tip.
+//
+// The pieces can be used alone: leafOutline() gives the polygon, meshLeafOutline() a flat
+// triangle mesh of it, deformLeafMesh() bends it; buildLeafPrototype() does everything from
+// a LeafPrototype, drawing its random fields from the caller's stream.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "plantarch/Mesh.h"
+#include "plantarch/Parameters.h"
+#include "plantarch/Random.h"
+
+namespace plantarch {
+
+// ---- outline families ----------------------------------------------------------------
+
+/// Outline families (the `shape` field of LeafPrototype, in lower case: "elliptic",
+/// "palmate", ...). A family fixes the form of the margin;
+/// the numbers (aspect ratio, widest point, angles, lobes, teeth) come from the parameters.
+/// leafShapePreset() gives typical numbers for each family.
+enum class LeafShape {
+    Elliptic,        ///< widest at the middle, both ends tapered alike (walnut, pistachio)
+    Ovate,           ///< egg-shaped, widest below the middle (apple, bean leaflets, soybean)
+    Obovate,         ///< widest above the middle, tapering to the base (lettuce, strawberry)
+    Lanceolate,      ///< narrow, widest below the middle, long acute tip (almond, olive)
+    Oblanceolate,    ///< narrow, widest above the middle
+    Linear,          ///< grass blade: long, nearly parallel-sided, pointed tip (maize, rice)
+    Needle,          ///< very narrow flat needle or cladode, pointed at both ends (asparagus)
+    Spatulate,       ///< spoon-shaped: rounded end on a long narrow base
+    Oblong,          ///< parallel sides, rounded ends (sugar beet, puncturevine leaflets)
+    Orbicular,       ///< nearly round
+    Deltoid,         ///< triangular: broad truncate base, straight sides to the tip
+    Cordate,         ///< heart-shaped: notched base with rounded basal lobes (redbud)
+    Reniform,        ///< kidney-shaped: wider than long, notched base, rounded tip
+    Sagittate,       ///< arrow-shaped: pointed basal lobes pointing back (bindweed)
+    Hastate,         ///< halberd-shaped: pointed basal lobes spreading sideways
+    Palmate,         ///< palmately lobed: notched base, lobes radiating from the petiole (grape)
+};
+
+/// Every family, in declaration order.
+const std::vector<LeafShape>& allLeafShapes();
+/// Lower-case name used in parameter files ("palmate").
+std::string_view leafShapeName(LeafShape shape);
+/// The family named `name` ("palmately_lobed" is accepted for "palmate"); throws
+/// plantarch::Error listing the valid names.
+LeafShape leafShapeFromName(std::string_view name);
+
+/// Realized (non-random) outline parameters. Lengths are fractions of the leaf length,
+/// angles are degrees.
+struct LeafOutlineParams {
+    LeafShape shape = LeafShape::Elliptic;
+    float aspect_ratio = 0.5f;  ///< maximum width / length, 0.01 to 4
+    float widest_point = 0.5f;  ///< x of the widest point, 0.05 to 0.95
+    /// Included angle between the two margins at the tip, 1 to 180 (180: rounded tip).
+    /// An angle much smaller than the taper of the blade gives a drawn-out (acuminate) tip.
+    float tip_angle = 60.0f;
+    /// Included angle between the two margins at the base, measured through the blade:
+    /// below 180 a wedge-shaped base, 180 a rounded one. The notched families take 180 to
+    /// 360: the larger, the narrower the sinus (360 would close it).
+    float base_angle = 90.0f;
+    /// Width of a truncate base (margins start at (0, +-w/2)), fraction of the maximum
+    /// width, 0 to 0.95; 0 = the margins meet at the base. Not used by notched families.
+    float base_width = 0.0f;
+    /// Notched families: depth of the basal sinus, from the back of the basal lobes to the
+    /// petiole attachment, fraction of the length, 0.01 to 0.6.
+    float sinus_depth = 0.15f;
+    /// Total number of lobes including the terminal one (3, 5, 7...; an even count acts as
+    /// the odd count below it; 0 or 1: unlobed). Notched families lobe radially from the
+    /// petiole attachment (palmate); the others pinnately along the midrib.
+    int lobes = 0;
+    /// Depth of the sinuses between lobes, fraction of the lobe radius (palmate) or of the
+    /// half-width (pinnate), 0 to 0.9. Sagittate/hastate: depth of the notch between the basal
+    /// lobes and the body.
+    float lobe_depth = 0.0f;
+    int serrations = 0;            ///< teeth along each margin, 0 to 200
+    float serration_depth = 0.0f;  ///< tooth depth, fraction of the length, 0 to 0.1
+    /// Largest distance between the polygon and the exact curve, fraction of the length (it
+    /// is scaled down for narrow blades so that the area error stays below 0.2 %).
+    float tolerance = 5e-4f;
+};
+
+/// Typical numbers for a family (as drawn in docs/images/leaf-shapes.png).
+LeafOutlineParams leafShapePreset(LeafShape shape);
+
+/// The outline as a simple counter-clockwise polygon in the prototype frame, symmetric about
+/// the x axis. Out-of-range values are clamped to the ranges documented above. The first
+/// vertex is the base (the petiole attachment on the midrib); the tip (1, 0) is a vertex.
+std::vector<vec2> leafOutline(const LeafOutlineParams& params);
+
+// ---- PNG outlines ------------------------------------------------------------------------
+
+/// An outline traced from an image's alpha channel and the map from the prototype frame to
+/// the image's texture coordinates.
+///
+/// The image's left edge is the leaf base and its right edge the tip; its vertical centre is
+/// the midrib. The opaque part is scaled uniformly (the image's proportions are kept) so it
+/// spans x in [0, 1]. Texture coordinates are those of OBJ: u from the left edge, v from the
+/// bottom row.
+struct TracedLeafOutline {
+    std::vector<vec2> outline;  ///< simple, counter-clockwise, prototype frame
+    float uAtBase = 0.0f;       ///< u of x = 0
+    float uPerX = 1.0f;         ///< du/dx
+    float vPerY = 1.0f;         ///< dv/dy (v = 0.5 at y = 0)
+    float aspect_ratio = 0.0f;  ///< opaque height / opaque width
+
+    /// Texture coordinates of a point of the flat blade.
+    vec2 uvAt(vec2 p) const { return {uAtBase + uPerX * p.x, 0.5f + vPerY * p.y}; }
+};
+
+/// Traces the largest opaque region of a PNG (alpha >= 0.5, marching squares with sub-pixel
+/// edges, simplified to 0.35 pixel). Throws plantarch::Error naming the file when it cannot
+/// be read, has no alpha channel, or is fully transparent or fully opaque.
+TracedLeafOutline traceLeafImage(const std::string& path);
+/// Just the outline of traceLeafImage().
+std::vector<vec2> traceLeafOutlinePNG(const std::string& path);
+
+// ---- meshing and deformation ---------------------------------------------------------------
+
+/// Options of meshLeafOutline().
+struct LeafMeshOptions {
+    /// Rows of the mesh along the midrib: interior vertices are placed on a triangular
+    /// lattice of spacing 1 / subdivisions (so columns follow the width). Values below 4 act
+    /// as 4, the fewest rows with which fold and curvature show and triangles stay well
+    /// shaped. The boundary always follows the outline (no triangle leaves it).
+    unsigned subdivisions = 8;
+    /// Mesh each half separately and mirror it, so the midrib (y = 0) is a line of edges and
+    /// the fold is a clean crease. Needs an outline symmetric about y = 0 with a single base
+    /// vertex on the axis (procedural outlines, as leafOutline() returns them).
+    bool symmetric = true;
+};
+
+/// A flat mesh of `outline` (z = 0, upper side +z, counter-clockwise triangles seen from
+/// +z). Every outline vertex is a mesh vertex, extra boundary vertices lie on outline edges,
+/// so the mesh area equals the polygon area. UVs: u = x, v = 0.5 + y / width where width is
+/// the outline's extent in y (the texture is stretched over the blade's bounding box).
+/// Throws plantarch::Error for a polygon that is not simple or has fewer than 3 vertices.
+Mesh meshLeafOutline(const std::vector<vec2>& outline, const LeafMeshOptions& options = {});
+
+/// Realized deformation values (see LeafPrototype for the fields' meaning and units).
+struct LeafDeformation {
+    float midrib_fold_fraction = 0.0f;
+    float longitudinal_curvature = 0.0f;
+    float lateral_curvature = 0.0f;
+    float petiole_roll = 0.0f;
+    float wave_period = 0.0f;
+    float wave_amplitude = 0.0f;
+    float leaf_buckle_length = 0.0f;
+    float leaf_buckle_angle = 0.0f;
+    /// Width used to normalize the cross-section of the lateral curvature (the blade's
+    /// leaf_aspect_ratio); <= 0 takes the mesh's extent in y.
+    float blade_width = 0.0f;
+    /// Rescale so the bounding box runs from x = 0 to x = 1 after bending (see
+    /// deformLeafMesh()).
+    bool normalize_length = true;
+};
+
+/// Bends a flat blade mesh (as meshLeafOutline() makes it) in place, in this order:
+///  - lateral curvature: z += lateral_curvature * (y / w)^2 / 4, with w = blade width, so
+///    the margin at the widest point moves by lateral_curvature / 16 leaf lengths (the
+///    reference's magnitude, with a smooth parabolic cross-section); + cups the margins up.
+///  - waves: z += wave_amplitude * 2|y| * sin(pi x / wave_period + phase), phase 0 on the
+///    y < 0 half and pi on the y > 0 half. wave_period is the distance between successive
+///    sign changes (half a wavelength) as in the reference; the amplitude grows from 0 on
+///    the midrib to wave_amplitude times the local width at the margin.
+///  - fold and petiole roll: each half rotates about the midrib by
+///    midrib_fold_fraction * 90 deg + petiole_roll * exp(-x / 0.05) deg, raising the margins
+///    (fold 1 closes the blade; petiole_roll curls the basal 10-15 % of the blade).
+///  - longitudinal curvature and buckle: the midrib becomes a curve of unchanged length whose
+///    angle to +x is 4 * longitudinal_curvature * x^3 radians (so the tip rises by about
+///    longitudinal_curvature leaf lengths, like the reference's z = c x^4 but without
+///    stretching), minus leaf_buckle_angle degrees ramped in over x = leaf_buckle_length
+///    +- 0.025 (a crease that bends the rest of the blade down). Cross-sections keep their
+///    shape and stay perpendicular to the midrib.
+///  - normalization: bending shortens the blade's projection; when normalize_length is set
+///    the mesh is scaled uniformly about the origin and shifted so x spans [0, 1] again, as
+///    every prototype does (prototype_scale is then the projected length of the bent leaf).
+void deformLeafMesh(Mesh& mesh, const LeafDeformation& deformation);
+
+// ---- building from a LeafPrototype -------------------------------------------------------
+
+/// Every value of a LeafPrototype that buildLeafMesh() uses, realized.
+struct RealizedLeafShape {
+    LeafOutlineParams outline;
+    LeafDeformation deformation;
+    unsigned subdivisions = 1;
+    bool build_petiolule = false;
+    vec3 leaf_offset{0.0f};
+    /// PNG whose alpha gives the outline (empty: the procedural outline).
+    std::string texture_file;
+};
+
+/// The image used for a leaflet: leaf_texture_file[leafletIndex], else [0], else "".
+std::string leafTextureFile(const LeafPrototype& proto, int leafletIndex = 0);
+
+/// Draws every random field of `proto` once, in a fixed order that does not depend on the
+/// family or on whether a texture is used (so one leaf's draws never shift another's):
+/// leaf_aspect_ratio, widest_point, tip_angle, base_angle, base_width, sinus_depth, lobes,
+/// lobe_depth, serrations, serration_depth, midrib_fold_fraction, longitudinal_curvature,
+/// lateral_curvature, petiole_roll, wave_period, wave_amplitude, leaf_buckle_length,
+/// leaf_buckle_angle. Draws outside a parameter's range are clamped. Throws
+/// plantarch::Error for an unknown `shape`.
+RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int leafletIndex = 0);
+
+/// Builds the blade: outline (procedural, or traced from texture_file), mesh, deformation,
+/// normalization to x in [0, 1], optional petiolule, then leaf_offset. With a petiolule the
+/// blade is moved forward by 0.08 and a short tapered stalk fills x in [0, 0.1] before the
+/// whole leaf is normalized to x in [0, 1]. UVs map the texture image (traced leaves) or the
+/// blade's bounding box (procedural leaves) as meshLeafOutline() describes.
+Mesh buildLeafMesh(const RealizedLeafShape& leaf);
+
+/// realizeLeafShape() then buildLeafMesh(). The same stream state gives the same bytes.
+/// `prototype_function`, `OBJ_model_file`, `color` and `unique_prototypes` are not read
+/// here: choosing a custom or OBJ prototype, colouring and caching are the caller's job.
+Mesh buildLeafPrototype(const LeafPrototype& proto, Rng& rng, int leafletIndex = 0);
+
+}  // namespace plantarch

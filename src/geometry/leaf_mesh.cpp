@@ -1,0 +1,341 @@
+// Leaf blades: meshing an outline, the deformations, and building from a LeafPrototype.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "geometry/polygon_mesh.h"
+#include "plantarch/Error.h"
+#include "plantarch/LeafShapes.h"
+
+namespace plantarch {
+
+namespace {
+
+using glm::dvec2;
+constexpr double kPi = std::numbers::pi;
+constexpr unsigned kMinRows = 4;
+constexpr double kPetioluleLength = 0.08;  // of the blade length, as in the reference (0.07)
+
+std::vector<dvec2> toDouble(const std::vector<vec2>& poly) {
+    std::vector<dvec2> out;
+    out.reserve(poly.size());
+    for (const vec2& p : poly) out.emplace_back(p.x, p.y);
+    return out;
+}
+
+// Drops repeated consecutive vertices (a traced or user outline may have them).
+std::vector<dvec2> withoutRepeats(std::vector<dvec2> poly) {
+    std::vector<dvec2> out;
+    for (const dvec2& p : poly)
+        if (out.empty() || glm::length(p - out.back()) > 1e-12) out.push_back(p);
+    while (out.size() > 1 && glm::length(out.front() - out.back()) <= 1e-12) out.pop_back();
+    return out;
+}
+
+// The upper half of a symmetric outline as a counter-clockwise polygon closed along the
+// midrib: base, tip, then the upper margin back to the base. Empty when `full` is not
+// symmetric in the way leafOutline() makes it.
+std::vector<dvec2> upperHalf(const std::vector<dvec2>& full) {
+    const std::size_t n = full.size();
+    if (n < 4 || n % 2 != 0 || std::abs(full[0].y) > 1e-7) return {};
+    const std::size_t tipIndex = n / 2;
+    if (std::abs(full[tipIndex].y) > 1e-7 || full[tipIndex].x <= full[0].x) return {};
+    for (std::size_t i = 1; i < tipIndex; ++i) {
+        const dvec2 lower = full[i], upper = full[n - i];
+        if (!(lower.y < 0) || std::abs(lower.x - upper.x) > 1e-6 ||
+            std::abs(lower.y + upper.y) > 1e-6)
+            return {};
+    }
+    std::vector<dvec2> half{full[0], full[tipIndex]};
+    for (std::size_t i = tipIndex + 1; i < n; ++i) half.push_back(full[i]);
+    return half;
+}
+
+void appendPlanar(Mesh& mesh, const polygon::Triangulation& tri, bool mirror) {
+    const auto base = std::uint32_t(mesh.positions.size());
+    for (const dvec2& p : tri.points)
+        mesh.positions.emplace_back(float(p.x), float(mirror ? -p.y : p.y), 0.0f);
+    for (const auto& t : tri.triangles) {
+        if (mirror) mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[2], base + t[1]});
+        else mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
+    }
+}
+
+// Merges vertices at identical positions (the midrib shared by the two halves).
+void weld(Mesh& mesh) {
+    std::vector<std::uint32_t> order(mesh.positions.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto less = [&](std::uint32_t a, std::uint32_t b) {
+        const vec3 &p = mesh.positions[a], &q = mesh.positions[b];
+        if (p.x != q.x) return p.x < q.x;
+        if (p.y != q.y) return p.y < q.y;
+        return a < b;
+    };
+    std::sort(order.begin(), order.end(), less);
+    std::vector<std::uint32_t> remap(mesh.positions.size());
+    std::vector<std::uint32_t> keepFirst(mesh.positions.size(), 0);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const bool same = k > 0 && mesh.positions[order[k]] == mesh.positions[order[k - 1]];
+        remap[order[k]] = same ? remap[order[k - 1]] : order[k];
+    }
+    // Compact, keeping the first occurrence order.
+    std::vector<std::uint32_t> newIndex(mesh.positions.size(), UINT32_MAX);
+    std::vector<vec3> positions;
+    for (std::uint32_t i = 0; i < mesh.positions.size(); ++i)
+        if (remap[i] == i) {
+            newIndex[i] = std::uint32_t(positions.size());
+            positions.push_back(mesh.positions[i]);
+        }
+    for (std::uint32_t& idx : mesh.indices) idx = newIndex[remap[idx]];
+    mesh.positions = std::move(positions);
+}
+
+void setPlanarUVs(Mesh& mesh) {
+    float lo = 0.0f, hi = 0.0f;
+    for (const vec3& p : mesh.positions) {
+        lo = std::min(lo, p.y);
+        hi = std::max(hi, p.y);
+    }
+    const float width = std::max(2.0f * std::max(-lo, hi), 1e-6f);
+    mesh.uvs.clear();
+    for (const vec3& p : mesh.positions) mesh.uvs.emplace_back(p.x, 0.5f + p.y / width);
+}
+
+// ---- deformation pieces -------------------------------------------------------------------
+
+// The bent midrib: its angle to +x as a function of the flat x, integrated into a table of
+// (x, z) positions so that its length is unchanged.
+class Midrib {
+public:
+    Midrib(const LeafDeformation& d, double xLo, double xHi)
+        : curvature_(d.longitudinal_curvature),
+          buckle_(d.leaf_buckle_length > 0 ? d.leaf_buckle_angle * kPi / 180.0 : 0.0),
+          buckleAt_(d.leaf_buckle_length),
+          lo_(xLo),
+          step_(std::max(xHi - xLo, 1e-6) / kSteps) {
+        // Integrate from x = 0 both ways, so the base stays at the origin.
+        table_.assign(kSteps + 1, dvec2(0.0));
+        const int zero = int(std::clamp(std::round(-lo_ / step_), 0.0, double(kSteps)));
+        table_[zero] = {lo_ + zero * step_, 0.0};
+        for (int i = zero + 1; i <= kSteps; ++i) {
+            const double a = angle(lo_ + (i - 0.5) * step_);
+            table_[i] = table_[i - 1] + step_ * dvec2(std::cos(a), std::sin(a));
+        }
+        for (int i = zero - 1; i >= 0; --i) {
+            const double a = angle(lo_ + (i + 0.5) * step_);
+            table_[i] = table_[i + 1] - step_ * dvec2(std::cos(a), std::sin(a));
+        }
+    }
+    /// Angle of the midrib to +x at flat x, radians (+ turns up).
+    double angle(double x) const {
+        const double s = std::max(x, 0.0);
+        double a = 4.0 * curvature_ * s * s * s;
+        if (buckle_ != 0.0) {
+            const double t = std::clamp((x - (buckleAt_ - kRamp)) / (2.0 * kRamp), 0.0, 1.0);
+            a -= buckle_ * t * t * (3.0 - 2.0 * t);
+        }
+        return a;
+    }
+    /// Position (x, z) of the midrib at flat x.
+    dvec2 point(double x) const {
+        const double f = std::clamp((x - lo_) / step_, 0.0, double(kSteps));
+        const int i = std::min(int(f), kSteps - 1);
+        return glm::mix(table_[i], table_[i + 1], f - i);
+    }
+
+private:
+    static constexpr int kSteps = 4096;
+    static constexpr double kRamp = 0.025;  // half-length of the buckle crease
+    double curvature_, buckle_, buckleAt_, lo_, step_;
+    std::vector<dvec2> table_;
+};
+
+void normalizeExtent(Mesh& mesh) {
+    AABB box;
+    for (const vec3& p : mesh.positions) box.add(p);
+    const float length = box.max.x - box.min.x;
+    if (!(length > 1e-6f)) return;
+    const float scale = 1.0f / length;
+    for (vec3& p : mesh.positions) p = vec3(p.x - box.min.x, p.y, p.z) * scale;
+}
+
+Mesh petiolule(double length, double radius) {
+    constexpr unsigned sides = 6, rings = 4;
+    Mesh m;
+    for (unsigned i = 0; i <= rings; ++i) {
+        const double t = double(i) / rings;
+        const double r = radius * (1.0 - 0.35 * t);
+        for (unsigned k = 0; k < sides; ++k) {
+            const double a = 2.0 * kPi * k / sides;
+            m.positions.emplace_back(float(t * length), float(r * std::cos(a)),
+                                     float(r * std::sin(a)));
+            m.uvs.emplace_back(0.02f, 0.5f);
+        }
+    }
+    for (unsigned i = 0; i < rings; ++i)
+        for (unsigned k = 0; k < sides; ++k) {
+            const std::uint32_t a = i * sides + k, b = i * sides + (k + 1) % sides;
+            m.indices.insert(m.indices.end(), {a, b, b + sides, a, b + sides, a + sides});
+        }
+    return m;
+}
+
+float clampedDraw(const RandomFloat& value, Rng& rng, float lo, float hi) {
+    const float v = value.sample(rng);
+    return std::isfinite(v) ? std::clamp(v, lo, hi) : lo;
+}
+
+}  // namespace
+
+// ---- meshing -----------------------------------------------------------------------------
+
+Mesh meshLeafOutline(const std::vector<vec2>& outline, const LeafMeshOptions& options) {
+    std::vector<dvec2> poly = withoutRepeats(toDouble(outline));
+    if (poly.size() < 3) throw Error("leaf outline has fewer than 3 vertices");
+    if (polygon::signedArea(poly) < 0) std::reverse(poly.begin(), poly.end());
+    if (!polygon::isSimple(poly)) throw Error("leaf outline is not a simple polygon");
+    const double spacing = 1.0 / std::max(options.subdivisions, kMinRows);
+
+    Mesh mesh;
+    const std::vector<dvec2> half = options.symmetric ? upperHalf(poly) : std::vector<dvec2>{};
+    if (!half.empty()) {
+        const polygon::Triangulation tri = polygon::triangulate(half, spacing);
+        appendPlanar(mesh, tri, false);
+        appendPlanar(mesh, tri, true);
+        weld(mesh);
+    } else {
+        appendPlanar(mesh, polygon::triangulate(poly, spacing), false);
+    }
+    setPlanarUVs(mesh);
+    return mesh;
+}
+
+// ---- deformation -------------------------------------------------------------------------
+
+void deformLeafMesh(Mesh& mesh, const LeafDeformation& d) {
+    if (mesh.positions.empty()) return;
+    float xLo = 0.0f, xHi = 1.0f, yMax = 0.0f;
+    for (const vec3& p : mesh.positions) {
+        xLo = std::min(xLo, p.x);
+        xHi = std::max(xHi, p.x);
+        yMax = std::max(yMax, std::abs(p.y));
+    }
+    const double width = d.blade_width > 0 ? d.blade_width : 2.0 * yMax;
+    const double foldBase = std::clamp(double(d.midrib_fold_fraction), -1.0, 1.0) * 0.5 * kPi;
+    const double roll = d.petiole_roll * kPi / 180.0;
+    const bool waves = d.wave_period > 1e-6f && d.wave_amplitude != 0.0f;
+    const Midrib midrib(d, xLo, xHi);
+
+    for (vec3& v : mesh.positions) {
+        const double x = v.x, y = v.y;
+        const double side = y < 0 ? -1.0 : 1.0, across = std::abs(y);
+        // Cross-section in the blade's own frame: (across, z).
+        double z = v.z + d.lateral_curvature * (y / width) * (y / width) / 4.0;
+        if (waves)
+            z += d.wave_amplitude * 2.0 * across *
+                 std::sin(kPi * x / d.wave_period + (side > 0 ? kPi : 0.0));
+        const double fold = foldBase + roll * std::exp(-std::max(x, 0.0) / 0.05);
+        const double a = across * std::cos(fold) - z * std::sin(fold);
+        const double b = across * std::sin(fold) + z * std::cos(fold);
+        // Place the cross-section on the bent midrib.
+        const dvec2 m = midrib.point(x);
+        const double theta = midrib.angle(x);
+        const dvec2 normal(-std::sin(theta), std::cos(theta));  // in the (x, z) plane
+        v = vec3(float(m.x + b * normal.x), float(side * a), float(m.y + b * normal.y));
+    }
+    if (d.normalize_length) normalizeExtent(mesh);
+}
+
+// ---- from a LeafPrototype ----------------------------------------------------------------
+
+std::string leafTextureFile(const LeafPrototype& proto, int leafletIndex) {
+    auto it = proto.leaf_texture_file.find(leafletIndex);
+    if (it == proto.leaf_texture_file.end()) it = proto.leaf_texture_file.find(0);
+    return it == proto.leaf_texture_file.end() ? std::string() : it->second;
+}
+
+RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int leafletIndex) {
+    RealizedLeafShape r;
+    LeafOutlineParams& o = r.outline;
+    o.shape = leafShapeFromName(proto.shape);
+    o.aspect_ratio = clampedDraw(proto.leaf_aspect_ratio, rng, 0.01f, 4.0f);
+    o.widest_point = clampedDraw(proto.widest_point, rng, 0.05f, 0.95f);
+    o.tip_angle = clampedDraw(proto.tip_angle, rng, 1.0f, 180.0f);
+    o.base_angle = clampedDraw(proto.base_angle, rng, 1.0f, 360.0f);
+    o.base_width = clampedDraw(proto.base_width, rng, 0.0f, 0.95f);
+    o.sinus_depth = clampedDraw(proto.sinus_depth, rng, 0.01f, 0.6f);
+    o.lobes = std::clamp(proto.lobes.sample(rng), 0, 31);
+    o.lobe_depth = clampedDraw(proto.lobe_depth, rng, 0.0f, 0.9f);
+    o.serrations = std::clamp(proto.serrations.sample(rng), 0, 200);
+    o.serration_depth = clampedDraw(proto.serration_depth, rng, 0.0f, 0.1f);
+
+    LeafDeformation& d = r.deformation;
+    d.midrib_fold_fraction = clampedDraw(proto.midrib_fold_fraction, rng, -1.0f, 1.0f);
+    d.longitudinal_curvature = clampedDraw(proto.longitudinal_curvature, rng, -2.0f, 2.0f);
+    d.lateral_curvature = clampedDraw(proto.lateral_curvature, rng, -5.0f, 5.0f);
+    d.petiole_roll = clampedDraw(proto.petiole_roll, rng, -180.0f, 180.0f);
+    d.wave_period = clampedDraw(proto.wave_period, rng, 0.0f, 1.0f);
+    d.wave_amplitude = clampedDraw(proto.wave_amplitude, rng, 0.0f, 0.5f);
+    d.leaf_buckle_length = clampedDraw(proto.leaf_buckle_length, rng, 0.0f, 1.0f);
+    d.leaf_buckle_angle = clampedDraw(proto.leaf_buckle_angle, rng, -180.0f, 180.0f);
+    d.blade_width = o.aspect_ratio;
+
+    r.subdivisions = proto.subdivisions;
+    r.build_petiolule = proto.build_petiolule;
+    r.leaf_offset = proto.leaf_offset;
+    r.texture_file = leafTextureFile(proto, leafletIndex);
+    return r;
+}
+
+Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
+    Mesh mesh;
+    LeafDeformation deformation = leaf.deformation;
+    LeafMeshOptions options{.subdivisions = leaf.subdivisions};
+    if (!leaf.texture_file.empty()) {
+        const TracedLeafOutline traced = traceLeafImage(leaf.texture_file);
+        options.symmetric = false;
+        mesh = meshLeafOutline(traced.outline, options);
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+            mesh.uvs[i] = traced.uvAt(vec2(mesh.positions[i]));
+        deformation.blade_width = 0.0f;  // the traced width
+    } else {
+        mesh = meshLeafOutline(leafOutline(leaf.outline), options);
+        // Texture space is the blade's bounding box of width leaf_aspect_ratio.
+        const float width = std::max(leaf.outline.aspect_ratio, 1e-6f);
+        for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+            mesh.uvs[i] = {mesh.positions[i].x, 0.5f + mesh.positions[i].y / width};
+    }
+    // Follow the petiole attachment (the base, or the sinus of notched outlines) through the
+    // deformation as an extra vertex that no triangle uses.
+    const bool notched = leaf.texture_file.empty() && (leaf.outline.shape == LeafShape::Cordate ||
+                                                       leaf.outline.shape == LeafShape::Reniform ||
+                                                       leaf.outline.shape == LeafShape::Palmate ||
+                                                       leaf.outline.shape == LeafShape::Sagittate ||
+                                                       leaf.outline.shape == LeafShape::Hastate);
+    const float attachX = notched ? std::clamp(leaf.outline.sinus_depth, 0.0f, 0.6f) : 0.0f;
+    mesh.positions.emplace_back(attachX, 0.0f, 0.0f);
+    mesh.uvs.emplace_back(0.0f, 0.5f);
+    deformation.normalize_length = true;
+    deformLeafMesh(mesh, deformation);
+    const vec3 attach = mesh.positions.back();
+    mesh.positions.pop_back();
+    mesh.uvs.pop_back();
+
+    if (leaf.build_petiolule) {
+        // The stalk runs along +x from the origin into the attachment point.
+        for (vec3& p : mesh.positions) p += vec3(float(kPetioluleLength), 0.0f, 0.0f) - attach;
+        Mesh stalk = petiolule(kPetioluleLength + 0.01, 0.012);
+        mesh.append(stalk);
+        normalizeExtent(mesh);
+    }
+    for (vec3& p : mesh.positions) p += leaf.leaf_offset;
+    return mesh;
+}
+
+Mesh buildLeafPrototype(const LeafPrototype& proto, Rng& rng, int leafletIndex) {
+    return buildLeafMesh(realizeLeafShape(proto, rng, leafletIndex));
+}
+
+}  // namespace plantarch
