@@ -340,7 +340,7 @@ TEST(LeafMesh, AreaMatchesTheOutline) {
         EXPECT_NEAR(m.area(), shoelace(poly), 1e-4 * shoelace(poly));
         // And the polygon is within 1 % of the exact curve (a much finer outline).
         LeafOutlineParams fine = params;
-        fine.tolerance = 1e-6f;
+        fine.tolerance = 2e-5f;
         EXPECT_NEAR(m.area(), shoelace(leafOutline(fine)), 0.01 * shoelace(poly));
     }
 }

@@ -98,6 +98,9 @@ LeafOutlineParams leafShapePreset(LeafShape shape);
 /// The outline as a simple counter-clockwise polygon in the prototype frame, symmetric about
 /// the x axis. Out-of-range values are clamped to the ranges documented above. The first
 /// vertex is the base (the petiole attachment on the midrib); the tip (1, 0) is a vertex.
+/// Teeth or lobes too deep for the shape (they would make the margin cross itself) are made
+/// shallower, then dropped; a combination that still fails falls back to the plain elliptic
+/// form with the same proportions, so every realized parameter set gives a valid outline.
 std::vector<vec2> leafOutline(const LeafOutlineParams& params);
 
 // ---- PNG outlines ------------------------------------------------------------------------
@@ -121,7 +124,7 @@ struct TracedLeafOutline {
 };
 
 /// Traces the largest opaque region of a PNG (alpha >= 0.5, marching squares with sub-pixel
-/// edges, simplified to 0.35 pixel). Throws plantarch::Error naming the file when it cannot
+/// edges, simplified to half a pixel or 0.1 % of the leaf's length, whichever is larger). Throws plantarch::Error naming the file when it cannot
 /// be read, has no alpha channel, or is fully transparent or fully opaque.
 TracedLeafOutline traceLeafImage(const std::string& path);
 /// Just the outline of traceLeafImage().

@@ -190,10 +190,25 @@ struct ShootParameters {
                                const std::vector<float>& probabilities);
 };
 
+/// Timing of a plant's phenological stages, days. A negative threshold disables that
+/// transition (the next one is timed from the previous enabled one).
+struct PhenologyParameters {
+    float time_to_dormancy_break = 0.0f;      ///< dormancy (also winter length) to bud break
+    float time_to_flower_initiation = -1.0f;  ///< dormancy break to closed flowers
+    float time_to_flower_opening = -1.0f;     ///< flower initiation to open flowers
+    float time_to_fruit_set = -1.0f;          ///< previous stage to fruit
+    float time_to_fruit_maturity = -1.0f;     ///< fruit set to full-size fruit
+    float time_to_senescence = -1.0f;         ///< dormancy break to senescence (season end)
+    float max_leaf_lifespan = 1e6f;           ///< leaves older than this are shed
+    bool evergreen = false;                   ///< keep leaves through dormancy
+    float max_age = 999.0f;                   ///< the plant stops developing at this age
+};
+
 /// Checks every field against its declared range (and child probabilities: each in [0,1],
 /// summing to 1). Throws plantarch::Error naming the parameter path, value and range;
 /// `prefix` is put in front of the path (e.g. the shoot type label).
 void validate(const ShootParameters& params, const std::string& prefix = "");
 void validate(const PhytomerParameters& params, const std::string& prefix = "");
+void validate(const PhenologyParameters& params, const std::string& prefix = "");
 
 }  // namespace plantarch

@@ -44,6 +44,29 @@ struct FloralPrototypeRequest {
 using FloralPrototypeFunction =
     std::function<OrganPrototype(const FloralPrototypeRequest& request, Rng& rng)>;
 
+/// What a phytomer creation function sees: the new phytomer (which it may change: kill
+/// buds, scale organs, remove leaves) and where it stands.
+struct PhytomerCreationContext {
+    PlantInstance& plant;
+    Shoot& shoot;
+    Phytomer& phytomer;
+    unsigned nodeIndex;        ///< index of the new phytomer on its shoot
+    int parentNodeIndex;       ///< node of the parent shoot this shoot grows from (-1: none)
+    int shootMaxNodes;         ///< the shoot's realized max_nodes
+    double plantAge;           ///< days
+};
+using PhytomerCreationFunction = std::function<void(PhytomerCreationContext&)>;
+
+/// What a phytomer callback sees, once per phytomer at every whole day of plant age.
+struct PhytomerCallbackContext {
+    PlantInstance& plant;
+    Shoot& shoot;
+    Phytomer& phytomer;
+    unsigned nodeIndex;
+    double plantAge;           ///< days
+};
+using PhytomerCallbackFunction = std::function<void(PhytomerCallbackContext&)>;
+
 /// Where and how a new shoot starts (the options of addBaseStemShoot and friends).
 struct ShootSpec {
     unsigned phytomers = 1;               ///< number of phytomers to create now
@@ -129,6 +152,25 @@ public:
     /// makes them on its own). Returns the number of flowers on its peduncle.
     unsigned addFloralBud(unsigned plantID, unsigned shootID, unsigned node, FloralStage stage,
                           unsigned petioleIndex = 0);
+
+    // ---- growth --------------------------------------------------------------------
+    /// Grows every plant by `days` (any step size: the same plant results from one call of
+    /// 60 days, 60 calls of 1 day or any other split, because growth is driven by events at
+    /// exact plant ages). Geometry is regenerated once at the end.
+    void advanceTime(double days);
+    void advanceTime(unsigned plantID, double days);
+    void advanceTime(const std::vector<unsigned>& plantIDs, double days);
+
+    /// Sets the phenological thresholds of a plant (validated).
+    void setPlantPhenologicalThresholds(unsigned plantID, const PhenologyParameters& thresholds);
+    /// Thresholds given to plants added from now on.
+    void setDefaultPhenology(const PhenologyParameters& thresholds);
+    PhenologyStage getPhenologyStage(unsigned plantID) const;
+
+    /// Named functions that shoot types refer to (phytomer_creation_function,
+    /// phytomer_callback_function). Registering a name again replaces it.
+    void registerPhytomerCreationFunction(const std::string& name, PhytomerCreationFunction fn);
+    void registerPhytomerCallbackFunction(const std::string& name, PhytomerCallbackFunction fn);
 
     // ---- organ prototypes ----------------------------------------------------------
     void registerLeafPrototype(const std::string& name, LeafPrototypeFunction fn);

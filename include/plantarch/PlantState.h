@@ -29,15 +29,20 @@ struct AxisRotation {
 enum class BudState { Dormant, Active, Broken, Dead };
 enum class FloralStage { Bud, FlowerClosed, FlowerOpen, Fruit, Removed };
 enum class OrganKind { Internode, Petiole, Leaf, Peduncle, FlowerClosed, FlowerOpen, Fruit };
+/// Where a plant is in its yearly cycle.
+enum class PhenologyStage { Dormant, Vegetative, Reproductive, Senescent };
 
 /// Label written to object data "organ" for each kind.
 const char* organName(OrganKind kind);
 const char* budStateName(BudState state);
 const char* floralStageName(FloralStage stage);
+const char* phenologyStageName(PhenologyStage stage);
 
 struct VegetativeBud {
     BudState state = BudState::Dormant;
     float time = 0.0f;        ///< days since creation (or since dormancy broke)
+    /// Plant age at which the bud breaks (or fails to); negative: waiting for dormancy to end.
+    double breakTime = -1.0;
     int childShoot = -1;      ///< shoot grown from this bud, -1 if none
     std::string shootType;    ///< type the bud will grow into (chosen when it breaks)
 };
@@ -61,6 +66,9 @@ struct FloralBud {
     float time = 0.0f;        ///< days in the current stage
     float fruitAge = 0.0f;    ///< days since fruit set
     float fruitGrowth = 1.0f; ///< current fruit size / full-grown size
+    double stageTime = 0.0;   ///< plant age when the current stage began
+    /// Plant age of the next stage change; negative: none pending (or waiting for dormancy).
+    double nextTime = -1.0;
     // Peduncle, realized when the bud breaks.
     float peduncleLength = 0.0f;
     float peduncleRadius = 0.0f;
@@ -81,6 +89,7 @@ struct LeafOrgan {
     unsigned variant = 0;     ///< prototype variant
     int leafID = -1;          ///< unique within the plant
     float age = 0.0f;         ///< days
+    double birth = 0.0;       ///< plant age when it appeared
     bool removed = false;
     std::vector<ObjectID> objects;
 };
@@ -117,8 +126,12 @@ struct Phytomer {
     Internode internode;
     std::vector<Petiole> petioles;
     float age = 0.0f;               ///< days
+    double birth = 0.0;             ///< plant age when it was created
     float internodeFraction = 1.0f; ///< current internode length / full length
     float leafFraction = 1.0f;      ///< current petiole and leaf size / full size
+    float internodeFraction0 = 1.0f;  ///< internode fraction at creation
+    float leafFraction0 = 1.0f;       ///< petiole and leaf fraction at creation
+    float radiusInitial = 0.0f;     ///< internode radius at creation (girth never goes below)
     std::string parametersLabel;    ///< shoot type whose phytomer template built it
 };
 
@@ -147,6 +160,9 @@ struct Shoot {
     std::vector<unsigned> children;
     float phyllochronCounter = 0.0f;
     int nodesThisSeason = 0;
+    /// Plant age at which the apical bud makes its next phytomer; negative: not scheduled.
+    double nextPhytomerTime = -1.0;
+    bool flowering = false;   ///< determinate shoots stop growing once flowering
     bool removed = false;
 };
 
@@ -154,11 +170,18 @@ struct PlantInstance {
     unsigned id = 0;
     std::string name;         ///< species or user label (object data plant_name)
     vec3 base{0.0f};
-    float age = 0.0f;         ///< days
+    double age = 0.0;         ///< days
     std::vector<Shoot> shoots;  ///< indexed by shoot ID
     std::map<std::string, ShootParameters> shootTypes;  ///< the plant's own copy
+    PhenologyParameters phenology;
     Rng rng;
     int nextLeafID = 0;
+    // Phenology clock (plant ages, days).
+    PhenologyStage stage = PhenologyStage::Dormant;
+    double dormancyBreakTime = -1.0;  ///< when the current season began; negative: not yet
+    double nextDormancyBreak = 0.0;   ///< when dormancy breaks next; negative: never
+    double senescenceTime = -1.0;     ///< when the current season ends; negative: never
+    int season = 0;                   ///< growing seasons begun
 };
 
 }  // namespace plantarch

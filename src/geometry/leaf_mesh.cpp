@@ -293,6 +293,7 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
     Mesh mesh;
     LeafDeformation deformation = leaf.deformation;
     LeafMeshOptions options{.subdivisions = leaf.subdivisions};
+    vec2 attach(0.0f);  // where the petiole meets the blade (the sinus of notched outlines)
     if (!leaf.texture_file.empty()) {
         const TracedLeafOutline traced = traceLeafImage(leaf.texture_file);
         options.symmetric = false;
@@ -301,31 +302,27 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
             mesh.uvs[i] = traced.uvAt(vec2(mesh.positions[i]));
         deformation.blade_width = 0.0f;  // the traced width
     } else {
-        mesh = meshLeafOutline(leafOutline(leaf.outline), options);
+        const std::vector<vec2> outline = leafOutline(leaf.outline);
+        attach = outline.front();
+        mesh = meshLeafOutline(outline, options);
         // Texture space is the blade's bounding box of width leaf_aspect_ratio.
         const float width = std::max(leaf.outline.aspect_ratio, 1e-6f);
         for (std::size_t i = 0; i < mesh.positions.size(); ++i)
             mesh.uvs[i] = {mesh.positions[i].x, 0.5f + mesh.positions[i].y / width};
     }
-    // Follow the petiole attachment (the base, or the sinus of notched outlines) through the
-    // deformation as an extra vertex that no triangle uses.
-    const bool notched = leaf.texture_file.empty() && (leaf.outline.shape == LeafShape::Cordate ||
-                                                       leaf.outline.shape == LeafShape::Reniform ||
-                                                       leaf.outline.shape == LeafShape::Palmate ||
-                                                       leaf.outline.shape == LeafShape::Sagittate ||
-                                                       leaf.outline.shape == LeafShape::Hastate);
-    const float attachX = notched ? std::clamp(leaf.outline.sinus_depth, 0.0f, 0.6f) : 0.0f;
-    mesh.positions.emplace_back(attachX, 0.0f, 0.0f);
+    // Follow the attachment point through the deformation as an extra vertex that no
+    // triangle uses.
+    mesh.positions.emplace_back(attach.x, attach.y, 0.0f);
     mesh.uvs.emplace_back(0.0f, 0.5f);
     deformation.normalize_length = true;
     deformLeafMesh(mesh, deformation);
-    const vec3 attach = mesh.positions.back();
+    const vec3 attached = mesh.positions.back();
     mesh.positions.pop_back();
     mesh.uvs.pop_back();
 
     if (leaf.build_petiolule) {
         // The stalk runs along +x from the origin into the attachment point.
-        for (vec3& p : mesh.positions) p += vec3(float(kPetioluleLength), 0.0f, 0.0f) - attach;
+        for (vec3& p : mesh.positions) p += vec3(float(kPetioluleLength), 0.0f, 0.0f) - attached;
         Mesh stalk = petiolule(kPetioluleLength + 0.01, 0.012);
         mesh.append(stalk);
         normalizeExtent(mesh);

@@ -133,12 +133,6 @@ Cubic baseQuarter(dvec2 start, dvec2 w, double baseAngle, const FamilyForm& f, d
     return {start, start + handle * dir, p2, w};
 }
 
-double minX(const Cubic& c) {
-    double m = std::min(c.p0.x, c.p3.x);
-    for (int i = 1; i < 200; ++i) m = std::min(m, c.at(i / 200.0).x);
-    return m;
-}
-
 // ---- the three forms ---------------------------------------------------------------------
 
 std::vector<dvec2> simpleHalf(const LeafOutlineParams& p, const FamilyForm& f) {
@@ -151,22 +145,27 @@ std::vector<dvec2> simpleHalf(const LeafOutlineParams& p, const FamilyForm& f) {
     return half;
 }
 
+// Notched forms: from the sinus S = (sinus, 0) the margin leaves backwards at half the base
+// angle and sweeps round to the back of the basal lobe B = (0, yB), where it runs straight up
+// (so the lobe reaches exactly x = 0), then on to the widest point. The back of the lobe sits
+// lower for a narrow sinus, whose margin first runs back along the midrib.
 std::vector<dvec2> notchedHalf(double sinus, double widest, const LeafOutlineParams& p,
                                const FamilyForm& f) {
     const double halfWidth = 0.5 * p.aspect_ratio;
+    const double beta = 0.5 * radians(p.base_angle);  // 92 to 178 degrees
     const dvec2 s(sinus, 0.0), w(widest, halfWidth);
-    const double beta = 0.5 * radians(p.base_angle);
-    // Longest handle that keeps y monotone, then bisect for the lobe reaching x = 0.
-    const double hMax = halfWidth / std::max(std::sin(beta), 1e-3);
-    double lo = 0.0, hi = hMax;
-    if (minX(baseQuarter(s, w, p.base_angle, f, 0.0, hMax)) < 0.0) {
-        for (int i = 0; i < 50; ++i) {
-            const double mid = 0.5 * (lo + hi);
-            (minX(baseQuarter(s, w, p.base_angle, f, 0.0, mid)) < 0.0 ? hi : lo) = mid;
-        }
-    }
+    const double yB = halfWidth * (0.15 + 0.45 * (kPi - beta) / (0.5 * kPi));
+    const dvec2 back(0.0, yB);
+    const dvec2 dir(std::cos(beta), std::sin(beta));
+    // Handles keep both coordinates monotone on the way to the back of the lobe.
+    const double h2 = 0.55 * yB;
+    const double h1 = std::min({0.55 * glm::length(back - s), 0.95 * sinus / -dir.x,
+                                (yB - h2) / dir.y});
     std::vector<dvec2> half{s};
-    appendCubic(half, baseQuarter(s, w, p.base_angle, f, 0.0, hi), 600);
+    appendCubic(half, {s, s + h1 * dir, back - dvec2(0.0, h2), back}, 300);
+    const double h3 = f.baseHandle * (halfWidth - yB);
+    appendCubic(half, {back, back + dvec2(0.0, h3), w - dvec2(f.baseFullness * widest, 0.0), w},
+                300);
     appendCubic(half, tipQuarter(w, p.tip_angle, f));
     return half;
 }
@@ -213,14 +212,24 @@ void pinnateLobes(std::vector<dvec2>& half, int lateral, double depth) {
 std::vector<dvec2> palmateLobes(const std::vector<dvec2>& half, int lateral, double depth,
                                 double tipAngle, std::vector<std::size_t>& corners) {
     const dvec2 origin = half.front();
-    // The unlobed margin as radius against angle (angle decreases from S to the tip).
-    std::vector<std::pair<double, double>> polar;
+    // The unlobed margin as radius against angle (the angle falls from S to the tip). Close
+    // to S a ray may cross the margin twice: bins keep the outer crossing.
+    double thetaMax = 0.0;
     for (std::size_t i = 1; i < half.size(); ++i) {
         const dvec2 d = half[i] - origin;
-        if (glm::length(d) > 1e-9) polar.push_back({std::atan2(d.y, d.x), glm::length(d)});
+        if (glm::length(d) > 1e-9) thetaMax = std::max(thetaMax, std::atan2(d.y, d.x));
     }
-    std::sort(polar.begin(), polar.end());
-    const double thetaMax = polar.back().first;
+    constexpr int kBins = 2048;
+    std::vector<double> binRadius(kBins + 1, -1.0);
+    for (std::size_t i = 1; i < half.size(); ++i) {
+        const dvec2 d = half[i] - origin;
+        const double theta = std::clamp(std::atan2(d.y, d.x), 0.0, thetaMax);
+        const int bin = int(std::round(theta / thetaMax * kBins));
+        binRadius[bin] = std::max(binRadius[bin], glm::length(d));
+    }
+    std::vector<std::pair<double, double>> polar;
+    for (int b = 0; b <= kBins; ++b)
+        if (binRadius[b] >= 0) polar.push_back({thetaMax * b / kBins, binRadius[b]});
     auto unlobed = [&](double theta) {
         const auto it = std::lower_bound(polar.begin(), polar.end(), std::pair{theta, -1.0});
         if (it == polar.begin()) return it->second;
@@ -262,7 +271,8 @@ std::vector<dvec2> palmateLobes(const std::vector<dvec2>& half, int lateral, dou
     };
     // Lobe width such that neighbouring lobes meet, half a sector off their axes, at
     // 1 - depth of their length.
-    double narrow = 0.02, wide = 4.0;
+    // (At most 1.6 wide: wider lobes would not be star-shaped around their base.)
+    double narrow = 0.02, wide = 1.6;
     for (int i = 0; i < 30; ++i) {
         const double mid = 0.5 * (narrow + wide);
         lobeParams.aspect_ratio = float(mid);
@@ -449,10 +459,10 @@ std::vector<dvec2> cutTeeth(const std::vector<dvec2>& half, const std::vector<st
         const double period = (ends[i] - from[i]) / teeth[i];
         const double u = (a - from[i]) / period;
         const double f = std::clamp(u - std::floor(u), 0.0, 1.0);
-        // Convex teeth with V notches; shallower beside a sharp corner (lobe tip) so the
+        // Straight-sided teeth with V notches; shallower beside a sharp corner (lobe tip) so the
         // corner does not turn into a thin spike.
-        double profile = std::pow(f < notchAt ? f / notchAt : (1.0 - f) / (1.0 - notchAt), 1.3);
-        for (double c : sharpAt) profile *= smoothstep(0.0, 0.8 * period, std::abs(a - c));
+        double profile = f < notchAt ? f / notchAt : (1.0 - f) / (1.0 - notchAt);
+        for (double c : sharpAt) profile *= smoothstep(0.0, 0.4 * period, std::abs(a - c));
         const double offset = profile * allowedNotch(half, s, a, 0.25 * period, depth, inward);
         out.push_back(q + offset * inward);
     }
@@ -463,51 +473,64 @@ std::vector<dvec2> cutTeeth(const std::vector<dvec2>& half, const std::vector<st
 
 // ---- assembly --------------------------------------------------------------------------
 
-std::vector<dvec2> buildHalf(const LeafOutlineParams& p, const FamilyForm& f) {
-    const int lateral = p.lobes >= 3 ? (p.lobes - 1) / 2 : 0;
+// The smooth (untoothed) upper half of the family's form with its lobes, normalized;
+// `corners` receives the sharp points (lobe tips) where tooth tips go.
+std::vector<dvec2> smoothHalf(const LeafOutlineParams& p, const FamilyForm& f,
+                              std::vector<std::size_t>& corners) {
+    // Sinuses shallower than 2 % of the radius would not show: no lobes then.
+    const int lateral = p.lobes >= 3 && p.lobe_depth >= 0.02f ? (p.lobes - 1) / 2 : 0;
     std::vector<dvec2> half;
-    std::vector<std::size_t> corners;  // sharp points (lobe tips): tooth tips go there
+    corners.clear();
     if (f.form == Form::Simple) {
         half = simpleHalf(p, f);
-        if (lateral > 0 && p.lobe_depth > 0) {
+        if (lateral > 0) {
             pinnateLobes(half, lateral, p.lobe_depth);
             normalizeHalf(half, 0.5 * p.aspect_ratio);
         }
-    } else {
-        // Bending the lobe back moves the extremes: correct the construction points so that
-        // the normalized outline puts the sinus and the widest point where asked.
-        double sinus = p.sinus_depth, widest = p.widest_point;
-        for (int iteration = 0; iteration < 8; ++iteration) {
-            corners.clear();
-            if (f.form == Form::Notched) {
-                half = notchedHalf(sinus, widest, p, f);
-                if (lateral > 0 && p.lobe_depth > 0)
-                    half = palmateLobes(half, lateral, p.lobe_depth, p.tip_angle, corners);
-            } else {
-                half = arrowHalf(sinus, widest, p, f, corners);
-            }
-            normalizeHalf(half, 0.5 * p.aspect_ratio);
-            double widestNow = 0.0, top = -1.0;
-            for (const dvec2& q : half)
-                if (q.y > top) top = q.y, widestNow = q.x;
-            const double sinusError = p.sinus_depth - half.front().x;
-            const double widestError =
-                f.form == Form::Notched && lateral == 0 ? p.widest_point - widestNow : 0.0;
-            if (std::abs(sinusError) < 2e-4 && std::abs(widestError) < 2e-4) break;
-            sinus = std::clamp(sinus + sinusError, 0.005, 0.9);
-            widest = std::clamp(widest + widestError, sinus + 0.02, 0.97);
-        }
+        return half;
     }
+    // Lobes and the arrow's bowed edges move the extremes a little: correct the sinus (and,
+    // unlobed, the widest point) so the normalized outline puts them where asked.
+    double sinus = p.sinus_depth, widest = p.widest_point;
+    for (int iteration = 0; iteration < 6; ++iteration) {
+        corners.clear();
+        if (f.form == Form::Notched) {
+            half = notchedHalf(sinus, widest, p, f);
+            if (lateral > 0) half = palmateLobes(half, lateral, p.lobe_depth, p.tip_angle, corners);
+        } else {
+            half = arrowHalf(sinus, widest, p, f, corners);
+        }
+        normalizeHalf(half, 0.5 * p.aspect_ratio);
+        const double sinusError = p.sinus_depth - half.front().x;
+        const double widestError = f.form == Form::Notched && lateral == 0
+                                       ? p.widest_point - half[extremes(half)[0]].x
+                                       : 0.0;
+        if (std::abs(sinusError) < 1e-3 && std::abs(widestError) < 1e-3) break;
+        widest = std::clamp(widest + widestError, 0.06, 0.95);
+        sinus = std::clamp(sinus + sinusError, 0.005, 0.8 * widest);
+    }
+    return half;
+}
+
+// Teeth, simplification, and interior points kept off the midrib.
+std::vector<dvec2> finishHalf(std::vector<dvec2> half, const std::vector<std::size_t>& corners,
+                              const LeafOutlineParams& p) {
     // The extremes (widest point, back of the basal lobes) are tooth tips, so teeth do not
     // change the blade's extent, and simplification keeps them.
     if (p.serrations > 0 && p.serration_depth > 0)
         half = cutTeeth(half, corners, extremes(half), p.serrations, p.serration_depth);
     const double tolerance = p.tolerance * std::min(1.0, double(p.aspect_ratio));
     half = polygon::simplifyPolyline(half, tolerance, extremes(half));
-    // Interior points must stay off the axis.
     for (std::size_t i = 1; i + 1 < half.size(); ++i)
         half[i].y = std::max(half[i].y, 1e-4 * double(p.aspect_ratio));
     return half;
+}
+
+std::vector<vec2> toFloat(const std::vector<dvec2>& poly) {
+    std::vector<vec2> out;
+    out.reserve(poly.size());
+    for (const dvec2& q : poly) out.emplace_back(float(q.x), float(q.y));
+    return out;
 }
 
 std::vector<dvec2> mirrorHalf(const std::vector<dvec2>& half) {
@@ -627,21 +650,36 @@ LeafOutlineParams leafShapePreset(LeafShape shape) {
 
 std::vector<vec2> leafOutline(const LeafOutlineParams& params) {
     const FamilyForm form = familyForm(params.shape);
-    LeafOutlineParams p = clamped(params, form.form);
+    const LeafOutlineParams asked = clamped(params, form.form);
+    // Teeth or lobes too deep for a tight bend could make the margin cross itself: make
+    // them shallower until the polygon is simple, then drop them, and as a last resort draw
+    // the plain elliptic form with the same proportions.
     std::vector<dvec2> full;
-    // Teeth or lobes too deep for a tight bend could make the margin cross itself: halve
-    // them until the polygon is simple (the smooth outline always is).
-    for (int attempt = 0; attempt < 8; ++attempt) {
-        full = mirrorHalf(buildHalf(p, form));
-        if (polygon::isSimple(full)) break;
-        p.serration_depth *= 0.5f;
-        if (attempt >= 3) p.lobe_depth *= 0.5f;
-        if (attempt == 6) p.serrations = 0, p.lobes = 0;
+    auto accept = [&](const std::vector<dvec2>& half) {
+        full = mirrorHalf(half);
+        return polygon::isSimple(full) && polygon::signedArea(full) > 0;
+    };
+    std::vector<std::size_t> corners;
+    for (float lobeScale : {1.0f, 0.5f, 0.25f, 0.0f}) {
+        LeafOutlineParams p = asked;
+        p.lobe_depth *= lobeScale;
+        if (lobeScale == 0.0f) p.lobes = 0;
+        if (asked.lobes < 3 && lobeScale < 1.0f) break;  // unlobed: nothing to reduce
+        const std::vector<dvec2> smooth = smoothHalf(p, form, corners);
+        for (float toothScale : {1.0f, 0.5f, 0.25f, 0.125f, 0.0f}) {
+            if (toothScale < 1.0f && (asked.serrations == 0 || asked.serration_depth == 0)) break;
+            LeafOutlineParams t = p;
+            t.serration_depth *= toothScale;
+            if (toothScale == 0.0f) t.serrations = 0;
+            if (accept(finishHalf(smooth, corners, t))) return toFloat(full);
+        }
     }
-    std::vector<vec2> out;
-    out.reserve(full.size());
-    for (const dvec2& q : full) out.emplace_back(float(q.x), float(q.y));
-    return out;
+    LeafOutlineParams plain = asked;
+    plain.base_angle = 180.0f;
+    plain.lobes = plain.serrations = 0;
+    if (accept(finishHalf(simpleHalf(plain, FamilyForm{}), {}, plain))) return toFloat(full);
+    throw Error("leaf outline is not a simple polygon",
+                {.parameter = "shape", .value = std::string(leafShapeName(asked.shape))});
 }
 
 }  // namespace plantarch

@@ -199,8 +199,16 @@ TracedLeafOutline traceLeafImage(const std::string& path) {
     const auto largest = std::max_element(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
         return std::abs(polygon::signedArea(a)) < std::abs(polygon::signedArea(b));
     });
+    // Simplify to half a pixel, or 0.1 % of the leaf's length on large images; fall back to
+    // finer tolerances if simplification made the loop touch itself.
+    double width = 0.0;
+    {
+        double lo = 1e300, hi = -1e300;
+        for (const dvec2& p : *largest) lo = std::min(lo, p.x), hi = std::max(hi, p.x);
+        width = hi - lo;
+    }
     std::vector<dvec2> loop;
-    for (double tolerance : {0.35, 0.1, 0.0}) {
+    for (double tolerance : {std::max(0.5, 0.001 * width), 0.25, 0.0}) {
         loop = tolerance > 0 ? simplifyLoop(*largest, tolerance) : *largest;
         if (loop.size() >= 3 && polygon::isSimple(loop)) break;
     }

@@ -403,19 +403,36 @@ void Mesher::refine(const std::vector<dvec2>& poly, double minAngle, double minS
         const dvec2 e = p - apex, f = q - apex;
         return std::atan2(std::abs(cross(e, f)), glm::dot(e, f));
     };
-    std::vector<std::array<std::uint32_t, 3>> skipped;
-    auto isSkipped = [&](std::array<std::uint32_t, 3> v) {
+    auto sorted = [](std::array<std::uint32_t, 3> v) {
         std::sort(v.begin(), v.end());
-        return std::find(skipped.begin(), skipped.end(), v) != skipped.end();
+        return v;
     };
-    auto skip = [&](std::array<std::uint32_t, 3> v) {
-        std::sort(v.begin(), v.end());
-        skipped.push_back(v);
+    // A boundary edge of triangle t (or of its neighbours) whose diametral circle holds p.
+    auto encroached = [&](int t, dvec2 p, int& edgeT, int& edgeI) {
+        std::array<int, 4> near{t, tris_[t].n[0], tris_[t].n[1], tris_[t].n[2]};
+        for (int u : near) {
+            if (u < 0) continue;
+            for (int i = 0; i < 3; ++i) {
+                if (tris_[u].n[i] >= 0) continue;
+                const dvec2 a = pts_[tris_[u].v[(i + 1) % 3]], b = pts_[tris_[u].v[(i + 2) % 3]];
+                if (glm::length(p - 0.5 * (a + b)) < 0.5 * glm::length(b - a)) {
+                    edgeT = u, edgeI = i;
+                    return true;
+                }
+            }
+        }
+        return false;
     };
-    for (std::size_t added = 0; added < budget;) {
-        // The worst triangle that refinement can improve.
-        int worst = -1;
-        double worstAngle = minAngle;
+    std::vector<std::array<std::uint32_t, 3>> skipped;  // sorted, kept sorted
+    std::size_t added = 0;
+    for (int pass = 0; pass < 64 && added < budget; ++pass) {
+        // Bad triangles that refinement can improve, worst first.
+        struct Bad {
+            double angle;
+            int tri;
+            std::array<std::uint32_t, 3> v;
+        };
+        std::vector<Bad> bad;
         for (int t = 0; t < int(tris_.size()); ++t) {
             const auto& v = tris_[t].v;
             double smallest = 1e9;
@@ -424,50 +441,63 @@ void Mesher::refine(const std::vector<dvec2>& poly, double minAngle, double minS
                 const double a = angleAt(pts_[v[k]], pts_[v[(k + 1) % 3]], pts_[v[(k + 2) % 3]]);
                 if (a < smallest) smallest = a, at = k;
             }
-            if (smallest >= worstAngle) continue;
+            if (smallest >= minAngle) continue;
             if (v[at] < corners && cornerAngle[v[at]] < 3.0 * minAngle) continue;
-            if (isSkipped(v)) continue;
-            worst = t;
-            worstAngle = smallest;
+            if (std::binary_search(skipped.begin(), skipped.end(), sorted(v))) continue;
+            bad.push_back({smallest, t, v});
         }
-        if (worst < 0) return;
-        const auto v = tris_[worst].v;
-        const dvec2 a = pts_[v[0]], b = pts_[v[1]], c = pts_[v[2]];
-        const double d = 2.0 * cross(b - a, c - a);
-        const dvec2 ab = b - a, ac = c - a;
-        const dvec2 centre = a + dvec2(ac.y * glm::dot(ab, ab) - ab.y * glm::dot(ac, ac),
-                                       ab.x * glm::dot(ac, ac) - ac.x * glm::dot(ab, ab)) / d;
-        if (glm::length(centre - a) < minSize) {
-            skip(v);
-            continue;
-        }
-        // A boundary edge whose diametral circle holds the centre is split instead.
-        int splitT = -1, splitI = -1;
-        for (int t = 0; t < int(tris_.size()) && splitT < 0; ++t)
-            for (int i = 0; i < 3; ++i) {
-                if (tris_[t].n[i] >= 0) continue;
-                const dvec2 p = pts_[tris_[t].v[(i + 1) % 3]], q = pts_[tris_[t].v[(i + 2) % 3]];
-                if (glm::length(centre - 0.5 * (p + q)) < 0.5 * glm::length(q - p)) {
-                    splitT = t, splitI = i;
-                    break;
-                }
-            }
-        if (splitT >= 0) {
-            const dvec2 p = pts_[tris_[splitT].v[(splitI + 1) % 3]];
-            const dvec2 q = pts_[tris_[splitT].v[(splitI + 2) % 3]];
-            if (glm::length(q - p) < 2.0 * minSize) {
-                skip(v);
+        if (bad.empty()) return;
+        std::sort(bad.begin(), bad.end(), [](const Bad& x, const Bad& y) { return x.angle < y.angle; });
+        auto skip = [&](const std::array<std::uint32_t, 3>& v) {
+            const auto key = sorted(v);
+            skipped.insert(std::upper_bound(skipped.begin(), skipped.end(), key), key);
+        };
+        for (const Bad& b : bad) {
+            if (added >= budget) return;
+            if (b.tri >= int(tris_.size()) || sorted(tris_[b.tri].v) != sorted(b.v)) continue;
+            const dvec2 a = pts_[b.v[0]], p1 = pts_[b.v[1]], p2 = pts_[b.v[2]];
+            const dvec2 ab = p1 - a, ac = p2 - a;
+            const double d = 2.0 * cross(ab, ac);
+            const dvec2 centre = a + dvec2(ac.y * glm::dot(ab, ab) - ab.y * glm::dot(ac, ac),
+                                           ab.x * glm::dot(ac, ac) - ac.x * glm::dot(ab, ab)) / d;
+            if (glm::length(centre - a) < minSize) {
+                skip(b.v);
                 continue;
             }
-            splitEdge(splitT, splitI, 0.5 * (p + q));
+            // Walk toward the centre; a boundary edge in the way is split instead.
+            int cur = b.tri, edgeT = -1, edgeI = -1;
+            for (std::size_t steps = 0; steps < tris_.size(); ++steps) {
+                int exit = -1;
+                for (int i = 0; i < 3 && exit < 0; ++i) {
+                    const dvec2 e0 = pts_[tris_[cur].v[(i + 1) % 3]], e1 = pts_[tris_[cur].v[(i + 2) % 3]];
+                    if (orient(e0, e1, centre) < -1e-12 * glm::length(e1 - e0)) exit = i;
+                }
+                if (exit < 0) break;
+                if (tris_[cur].n[exit] < 0) {
+                    edgeT = cur, edgeI = exit;
+                    break;
+                }
+                cur = tris_[cur].n[exit];
+            }
+            if (edgeT < 0) encroached(cur, centre, edgeT, edgeI);
+            if (edgeT >= 0) {
+                const dvec2 e0 = pts_[tris_[edgeT].v[(edgeI + 1) % 3]];
+                const dvec2 e1 = pts_[tris_[edgeT].v[(edgeI + 2) % 3]];
+                if (glm::length(e1 - e0) < 2.0 * minSize) {
+                    skip(b.v);
+                    continue;
+                }
+                splitEdge(edgeT, edgeI, 0.5 * (e0 + e1));
+                ++added;
+                continue;
+            }
+            hint_ = cur;
+            if (!contains(poly, centre) || !insert(centre)) {
+                skip(b.v);
+                continue;
+            }
             ++added;
-            continue;
         }
-        if (!contains(poly, centre) || !insert(centre)) {
-            skip(v);
-            continue;
-        }
-        ++added;
     }
 }
 

@@ -106,6 +106,7 @@ public:
         }
         ctx_.setObjectData(object, "organ", std::string(organName(l.kind)));
         ctx_.setObjectData(object, "age", l.age);
+        ctx_.setObjectData(object, "phenology_stage", std::string(phenologyStageName(plant_.stage)));
     }
 
     // Places every part of a prototype; extra old objects are deleted.
@@ -195,30 +196,16 @@ struct Tessellator {
     OrganWriter writer;
     std::vector<std::vector<vec3>> nodes;  // per shoot
 
-    const OrganPrototype& prototype(const std::string& fn, const LeafPrototype* leaf, int leaflet,
-                                    unsigned variant, const FloralPrototypeRequest* floral,
-                                    bool& uniqueOut) {
-        const std::string params = leaf ? describePrototype(*leaf) : describeFloral(*floral);
-        const unsigned variants = leaf ? leaf->unique_prototypes : 1u;
-        uniqueOut = leaf && variants == 0;
-        const std::string key = variantKey(fn, params, leaflet, variant);
-        if (!uniqueOut) {
-            if (auto hit = impl.cache.find(key)) return *hit;
-        }
-        // Variants are seeded from their key, not the plant's stream, so every plant sharing
-        // a prototype sees the same shapes and the cache never changes a plant's numbers.
+    // Flower and fruit prototypes, one per (function, request, variant), cached.
+    const OrganPrototype& floralPrototype(const std::string& fn, unsigned variant,
+                                          const FloralPrototypeRequest& request) {
+        const std::string key = variantKey(fn, describeFloral(request), 0, variant);
+        if (auto hit = impl.cache.find(key)) return *hit;
         Rng rng(hashKey(key), 7);
-        auto built = std::make_shared<OrganPrototype>(
-            leaf ? impl.leafPrototypes.at(fn)(*leaf, rng, leaflet)
-                 : impl.floralPrototypes.at(fn)(*floral, rng));
-        if (uniqueOut) {
-            scratch = built;
-            return *scratch;
-        }
+        auto built = std::make_shared<OrganPrototype>(impl.floralPrototypes.at(fn)(request, rng));
         impl.cache.insert(key, built);
         return *built;
     }
-    std::shared_ptr<const OrganPrototype> scratch;
 
     void internodes(Shoot& s) {
         const std::vector<vec3>& pts = nodes[s.id];
@@ -306,16 +293,7 @@ struct Tessellator {
         }
         const float scale = leaf.scale * ph.leafFraction;
         const LeafPrototype& proto = lp.prototype;
-        const unsigned variants = proto.unique_prototypes;
-        if (variants > 0) leaf.variant = leaf.variant % variants;
-        bool unique = false;
-        const std::string& fn = proto.prototype_function;
-        const int leafletKey = proto.leaf_texture_file.count(leaf.leafletIndex) ? leaf.leafletIndex
-                               : leaf.leafletIndex == 0 ? 0
-                                                        : (leaf.leafletIndex < 0 ? -1 : 1);
-        const OrganPrototype& shape =
-            prototype(fn, &proto, leafletKey, variants == 0 ? unsigned(leaf.leafID) : leaf.variant,
-                      nullptr, unique);
+        const OrganPrototype& shape = impl.leafPrototype(lp, leaf);
         const vec3 offset = proto.leaf_offset * scale;
         const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
         writer.writeParts(leaf.objects, shape, placement(f, base, scale),
@@ -324,6 +302,30 @@ struct Tessellator {
 
     void floral(Shoot& s, Phytomer& ph, int node, Petiole& pt, FloralBud& fb,
                 const PhytomerParameters& pp) {
+        const Internode& in = ph.internode;
+        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth + fb.peduncleRoll);
+        side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+        inflorescence(s, ph, node, fb, pp, nodes[s.id][std::size_t(node) + 1], in.direction, side);
+    }
+
+    // Terminal floral buds sit at the shoot tip, spread evenly around its axis.
+    void terminal(Shoot& s, const PhytomerParameters& pp) {
+        if (s.phytomers.empty()) return;
+        Phytomer& ph = s.phytomers.back();
+        const Internode& in = ph.internode;
+        const std::size_t n = s.terminalFloralBuds.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            FloralBud& fb = s.terminalFloralBuds[i];
+            const float az = in.azimuth + 360.0f * float(i) / float(n) + fb.peduncleRoll;
+            vec3 side = azimuthDirection(in.guide, in.rollReference, az);
+            side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+            inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, pp, nodes[s.id].back(),
+                          in.direction, side);
+        }
+    }
+
+    void inflorescence(Shoot& s, Phytomer& ph, int node, FloralBud& fb,
+                       const PhytomerParameters& pp, vec3 top, vec3 axis, vec3 side) {
         const bool visible = fb.stage == FloralStage::FlowerClosed ||
                              fb.stage == FloralStage::FlowerOpen || fb.stage == FloralStage::Fruit;
         if (!visible) {
@@ -331,18 +333,14 @@ struct Tessellator {
             for (FlowerOrgan& fl : fb.flowers) deleteAll(ctx, fl.objects);
             return;
         }
-        const Internode& in = ph.internode;
-        const vec3 top = nodes[s.id][std::size_t(node) + 1];
-        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth + fb.peduncleRoll);
-        side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
         const float p = fb.pedunclePitch * kDeg;
-        const vec3 dir = glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
+        const vec3 dir = glm::normalize(std::cos(p) * axis + std::sin(p) * side);
         const unsigned segs = std::max(1u, pp.peduncle.length_segments);
         const std::vector<vec3> path = geometry::curvedPath(
             top, dir, std::max(fb.peduncleLength, 1e-6f), fb.peduncleCurvature, kUp, segs);
         if (fb.peduncleLength > 1e-5f && fb.peduncleRadius > 0.0f) {
             const std::vector<float> radii(path.size(), fb.peduncleRadius);
-            const auto rings = geometry::tubeRings(path, radii, in.direction);
+            const auto rings = geometry::tubeRings(path, radii, axis);
             writer.write(fb.peduncleObject,
                          geometry::tubeMesh(rings, 0, rings.size() - 1,
                                             pp.peduncle.radial_subdivisions),
@@ -374,8 +372,7 @@ struct Tessellator {
             OrganFrame of = uprightFrame(axis, f.z);
             of = rotated(of, 0.0f, 0.0f, fl.roll);
             const float scale = fruit ? fl.fruitScale * maturity : fl.flowerScale;
-            bool unique = false;
-            const OrganPrototype& shape = prototype(name, nullptr, 0, fl.variant, &request, unique);
+            const OrganPrototype& shape = floralPrototype(name, fl.variant, request);
             writer.writeParts(fl.objects, shape, placement(of, origin, scale),
                               {fruit ? OrganKind::Fruit
                                      : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed),
@@ -399,14 +396,43 @@ struct Tessellator {
                     for (FloralBud& fb : pt.floralBuds) floral(s, ph, int(i), pt, fb, pp);
                 }
             }
+            terminal(s, impl.shootTypeFor(plant, s.type).phytomer_parameters);
         }
     }
 };
 
 }  // namespace
 
+const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameters& lp,
+                                                              const LeafOrgan& leaf) {
+    const LeafPrototype& proto = lp.prototype;
+    const unsigned variants = proto.unique_prototypes;
+    // Leaflets use the texture (outline) of their own index when one is given, else the tip's
+    // for the tip leaflet and the side's first for lateral ones.
+    const int leaflet = proto.leaf_texture_file.count(leaf.leafletIndex) ? leaf.leafletIndex
+                        : leaf.leafletIndex == 0                         ? 0
+                                                                         : (leaf.leafletIndex < 0 ? -1 : 1);
+    const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
+    const std::string key = variantKey(proto.prototype_function, describePrototype(proto), leaflet,
+                                       variant) + (variants == 0 ? "|unique" : "");
+    if (auto hit = cache.find(key)) return *hit;
+    // Variants are seeded from their key, not the plant's stream, so plants sharing a
+    // prototype see the same shapes and building one never shifts a plant's random numbers.
+    Rng rng(hashKey(key), 7);
+    auto built = std::make_shared<OrganPrototype>(
+        leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet));
+    cache.insert(key, built);
+    return *built;
+}
+
+double PlantArchitecture::Impl::leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf) {
+    double area = 0.0;
+    for (const PrototypePart& part : leafPrototype(lp, leaf)) area += part.mesh.area();
+    return area;
+}
+
 void tessellatePlant(PlantArchitecture::Impl& impl, Context& ctx, PlantInstance& plant) {
-    Tessellator t{impl, ctx, plant, OrganWriter(ctx, plant), {}, {}};
+    Tessellator t{impl, ctx, plant, OrganWriter(ctx, plant), {}};
     t.run();
 }
 

@@ -29,7 +29,16 @@ struct PlantArchitecture::Impl {
     unsigned nextPlantID = 0;
     std::map<std::string, LeafPrototypeFunction> leafPrototypes;
     std::map<std::string, FloralPrototypeFunction> floralPrototypes;
+    std::map<std::string, PhytomerCreationFunction> creationFunctions;
+    std::map<std::string, PhytomerCallbackFunction> callbackFunctions;
     PrototypeCache cache;
+    PhenologyParameters defaultPhenology;
+
+    /// The prototype a leaf uses (built and cached on first use).
+    const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf);
+    /// One-sided area of a leaf prototype at unit scale (cached).
+    double leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf);
+    std::shared_ptr<const OrganPrototype> uniqueScratch;
 
     PlantInstance& plant(unsigned id);
     const PlantInstance& plant(unsigned id) const;
@@ -40,6 +49,25 @@ struct PlantArchitecture::Impl {
     /// Throws if a prototype function named by the parameters is not registered.
     void checkFunctions(const ShootParameters& params, const std::string& label) const;
 };
+
+enum class StartMode { Base, Append, Child };
+
+/// Creates a shoot (and its first spec.phytomers phytomers) as state; no geometry.
+unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const ShootSpec& spec,
+                     StartMode mode, int parentID, unsigned parentNode, unsigned parentPetiole);
+/// Appends one phytomer to a shoot as state (calls the creation function when named).
+void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot,
+                    const PhytomerParameters& pp, float radius, float lengthMax,
+                    float internodeFraction, float leafFraction, const Internode* start);
+
+// Growth (growth/growth.cpp).
+/// Grows one plant by `days`; object IDs of organs that fell off are added to `deletes`.
+void growPlant(PlantArchitecture::Impl& impl, PlantInstance& plant, double days,
+               std::vector<ObjectID>& deletes);
+/// Draws a floral bud's peduncle and flowers from the phytomer parameters.
+void realizeInflorescence(PlantInstance& plant, FloralBud& bud, const PhytomerParameters& pp);
+/// Starts a newly created shoot's clock: its apical bud, its axillary buds.
+void scheduleNewShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot);
 
 // Builtin organ prototypes (geometry/builtin_prototypes.cpp).
 void registerBuiltinPrototypes(PlantArchitecture& arch);

@@ -170,33 +170,12 @@ unsigned PlantArchitecture::addFloralBud(unsigned plantID, unsigned shootID, uns
     FloralBud fb;
     fb.stage = stage;
     fb.state = BudState::Broken;
-    fb.peduncleLength = pp.peduncle.length.sample(p.rng);
-    fb.peduncleRadius = pp.peduncle.radius.sample(p.rng);
-    fb.pedunclePitch = pp.peduncle.pitch.sample(p.rng);
-    fb.peduncleRoll = pp.peduncle.roll.sample(p.rng);
-    fb.peduncleCurvature = pp.peduncle.curvature.sample(p.rng);
-    const InflorescenceParameters& inf = pp.inflorescence;
-    const int count = std::max(1, inf.flowers_per_peduncle.sample(p.rng));
-    const float offset = inf.flower_offset.sample(p.rng);
-    const bool opposite = inf.flower_arrangement == "opposite";
-    for (int i = 0; i < count; ++i) {
-        FlowerOrgan fl;
-        // Alternate: one flower per position, sides alternating. Opposite: pairs per position.
-        const int step = opposite ? i / 2 : i;
-        fl.position = std::max(0.0f, 1.0f - float(step) * offset);
-        fl.azimuth = opposite ? (i % 2 ? 180.0f : 0.0f) : (i % 2 ? 180.0f : 0.0f);
-        if (opposite) fl.azimuth += 90.0f;
-        fl.pitch = inf.pitch.sample(p.rng);
-        fl.roll = inf.roll.sample(p.rng);
-        fl.flowerScale = inf.flower_prototype_scale.sample(p.rng);
-        fl.fruitScale = inf.fruit_prototype_scale.sample(p.rng);
-        fl.gravityFactor = inf.fruit_gravity_factor_fraction.sample(p.rng);
-        fl.variant = inf.unique_prototypes > 1 ? p.rng.nextU32() % inf.unique_prototypes : 0;
-        fb.flowers.push_back(fl);
-    }
+    fb.stageTime = p.age;
+    realizeInflorescence(p, fb, pp);
+    const unsigned count = unsigned(fb.flowers.size());
     ph.petioles[petioleIndex].floralBuds.push_back(fb);
     updateGeometry(plantID);
-    return unsigned(count);
+    return count;
 }
 
 // ---- registries ------------------------------------------------------------------------

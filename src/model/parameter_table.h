@@ -43,8 +43,8 @@ void describeParameters(S& p, V& v) {
              "Image per leaflet index (0 tip, -n left, +n right); alpha gives the outline"},
             p.leaf_texture_file);
     v.field({"shape", "", 0, 0, "Outline family",
-             "elliptic|ovate|obovate|lanceolate|linear|cordate|deltoid|palmate|oblong|"
-             "reniform|sagittate|orbicular|spatulate|needle"},
+             "elliptic|ovate|obovate|lanceolate|oblanceolate|linear|needle|spatulate|oblong|"
+             "orbicular|deltoid|cordate|reniform|sagittate|hastate|palmate"},
             p.shape);
     v.field({"leaf_aspect_ratio", "", 0.001, 100, "Leaf width / length"}, p.leaf_aspect_ratio);
     v.field({"widest_point", "", 0.01, 0.99, "Position of the widest point, fraction of length"},
@@ -59,6 +59,13 @@ void describeParameters(S& p, V& v) {
     v.field({"serrations", "", 0, 200, "Teeth along each margin"}, p.serrations);
     v.field({"serration_depth", "", 0, 0.2, "Tooth depth, fraction of length"},
             p.serration_depth);
+    v.field({"base_width", "", 0, 0.95,
+             "Width of a truncate base, fraction of the maximum width (0: pointed base)"},
+            p.base_width);
+    v.field({"sinus_depth", "", 0.01, 0.6,
+             "Notched shapes: depth of the basal sinus where the petiole attaches, fraction "
+             "of length"},
+            p.sinus_depth);
     v.field({"midrib_fold_fraction", "", -1, 1, "Fold about the midrib (0 flat, 1 closed)"},
             p.midrib_fold_fraction);
     v.field({"longitudinal_curvature", "", -2, 2,
@@ -279,6 +286,33 @@ void describeParameters(S& p, V& v) {
             p.child_shoot_types);
     v.group("phytomer", p.phytomer_parameters,
             [&](auto& sub) { describeParameters(p.phytomer_parameters, sub); });
+}
+
+template <class S, class V>
+    requires SameAs<S, PhenologyParameters>
+void describeParameters(S& p, V& v) {
+    v.field({"time_to_dormancy_break", "days", -1, 100000,
+             "Dormancy (and each winter) until buds break; negative disables"},
+            p.time_to_dormancy_break);
+    v.field({"time_to_flower_initiation", "days", -1, 100000,
+             "Dormancy break until closed flowers appear; negative skips closed flowers"},
+            p.time_to_flower_initiation);
+    v.field({"time_to_flower_opening", "days", -1, 100000,
+             "Flower initiation (or dormancy break) until flowers open; negative disables"},
+            p.time_to_flower_opening);
+    v.field({"time_to_fruit_set", "days", -1, 100000,
+             "Previous enabled stage until flowers set fruit; negative disables fruit"},
+            p.time_to_fruit_set);
+    v.field({"time_to_fruit_maturity", "days", -1, 100000,
+             "Fruit set until fruit reach full size"},
+            p.time_to_fruit_maturity);
+    v.field({"time_to_senescence", "days", -1, 100000,
+             "Dormancy break until the season ends (leaves dropped unless evergreen)"},
+            p.time_to_senescence);
+    v.field({"max_leaf_lifespan", "days", 0, 1e6, "Leaves older than this are shed"},
+            p.max_leaf_lifespan);
+    v.field({"evergreen", "", 0, 1, "Keep leaves through dormancy"}, p.evergreen);
+    v.field({"max_age", "days", 0, 1e6, "The plant stops developing at this age"}, p.max_age);
 }
 
 }  // namespace plantarch::params

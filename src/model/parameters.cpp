@@ -114,6 +114,11 @@ void validate(const PhytomerParameters& p, const std::string& prefix) {
     params::describeParameters(p, v);
 }
 
+void validate(const PhenologyParameters& p, const std::string& prefix) {
+    Validator v{prefix};
+    params::describeParameters(p, v);
+}
+
 void validate(const ShootParameters& p, const std::string& prefix) {
     Validator v{prefix};
     params::describeParameters(p, v);

@@ -146,6 +146,16 @@ void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
         throw Error("unknown leaf prototype function",
                     {.parameter = label + ".phytomer.leaf.prototype.prototype_function",
                      .value = leafFn, .validRange = list(leafPrototypes)});
+    if (!ph.phytomer_creation_function.empty() &&
+        !creationFunctions.count(ph.phytomer_creation_function))
+        throw Error("unknown phytomer creation function",
+                    {.parameter = label + ".phytomer.phytomer_creation_function",
+                     .value = ph.phytomer_creation_function, .validRange = list(creationFunctions)});
+    if (!ph.phytomer_callback_function.empty() &&
+        !callbackFunctions.count(ph.phytomer_callback_function))
+        throw Error("unknown phytomer callback function",
+                    {.parameter = label + ".phytomer.phytomer_callback_function",
+                     .value = ph.phytomer_callback_function, .validRange = list(callbackFunctions)});
     for (const auto& [field, name] :
          {std::pair{"flower_prototype_function", ph.inflorescence.flower_prototype_function},
           std::pair{"fruit_prototype_function", ph.inflorescence.fruit_prototype_function}})
@@ -196,13 +206,15 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
 
 }  // namespace
 
-void createPhytomer(PlantInstance& plant, Shoot& shoot, const ShootParameters& type,
+void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot,
                     const PhytomerParameters& pp, float radius, float lengthMax,
                     float internodeFraction, float leafFraction, const Internode* start) {
     Phytomer ph;
     ph.parametersLabel = shoot.type;
-    ph.internodeFraction = internodeFraction;
-    ph.leafFraction = leafFraction;
+    ph.internodeFraction = ph.internodeFraction0 = internodeFraction;
+    ph.leafFraction = ph.leafFraction0 = leafFraction;
+    ph.birth = plant.age;
+    ph.radiusInitial = radius;
     Internode& in = ph.internode;
     if (shoot.phytomers.empty()) {
         in.guide = start->guide;
@@ -217,7 +229,8 @@ void createPhytomer(PlantInstance& plant, Shoot& shoot, const ShootParameters& t
         // s = 1 when the tip points down and 0.5 otherwise (theta_z from vertical).
         const float L = lengthMax;
         const float cosZ = std::clamp(g.z, -1.0f, 1.0f);
-        const float s = cosZ < 0.0f ? 1.0f : 0.5f;
+        // Pointing down means clearly below horizontal (float noise at exactly 90 is not).
+        const float s = cosZ < -1e-5f ? 1.0f : 0.5f;
         in.gravitropicTurn = s * (1.0f - cosZ) * L * shoot.gravitropicCurvature;
         // Random walk on zenith and yaw: the damping term pulls the previous perturbation back
         // and the tortuosity term adds N(0, L) noise.
@@ -259,19 +272,28 @@ void createPhytomer(PlantInstance& plant, Shoot& shoot, const ShootParameters& t
         pt.curvature = pp.petiole.curvature.sample(plant.rng);
         pt.taper = pp.petiole.taper.sample(plant.rng);
         addLeaves(plant, pt, pp.leaf);
+        for (LeafOrgan& l : pt.leaves) l.birth = plant.age;
         pt.vegetativeBuds.resize(std::max(0, pp.internode.max_vegetative_buds_per_petiole.sample(plant.rng)));
         pt.floralBuds.resize(std::max(0, pp.internode.max_floral_buds_per_petiole.sample(plant.rng)));
         ph.petioles.push_back(std::move(pt));
     }
-    (void)type;
     shoot.phytomers.push_back(std::move(ph));
+    if (!pp.phytomer_creation_function.empty()) {
+        auto fn = impl.creationFunctions.find(pp.phytomer_creation_function);
+        if (fn == impl.creationFunctions.end())
+            throw Error("unknown phytomer creation function",
+                        {.parameter = shoot.type + ".phytomer.phytomer_creation_function",
+                         .value = pp.phytomer_creation_function});
+        PhytomerCreationContext c{plant, shoot, shoot.phytomers.back(),
+                                  unsigned(shoot.phytomers.size() - 1), shoot.parentNode,
+                                  shoot.maxNodes, plant.age};
+        fn->second(c);
+    }
 }
 
 // ---- shoots ----------------------------------------------------------------------------
 
 namespace {
-
-enum class StartMode { Base, Append, Child };
 
 void realizeShoot(Shoot& s, const ShootParameters& t, Rng& rng) {
     s.maxNodes = t.max_nodes.sample(rng);
@@ -368,11 +390,14 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
     for (unsigned k = 0; k < spec.phytomers; ++k) {
         const float radius =
             spec.internodeRadius * (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
-        createPhytomer(plant, shoot, type, type.phytomer_parameters, std::max(radius, 1e-6f),
+        createPhytomer(impl, plant, shoot, type.phytomer_parameters, std::max(radius, 1e-6f),
                        spec.internodeLengthMax, spec.internodeLengthScale, spec.leafScale,
                        &start);
     }
-    return shoot.id;
+    Shoot& created = plant.shoots.back();  // the creation function cannot add shoots
+    created.internodeLengthMax = spec.internodeLengthMax;
+    scheduleNewShoot(impl, plant, created);
+    return created.id;
 }
 
 // ---- public API ------------------------------------------------------------------------
@@ -427,6 +452,10 @@ unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float cu
     p.age = current_age;
     p.rng = Rng::forPlant(seed_, p.id);
     p.shootTypes = impl_->shootTypes;
+    p.phenology = impl_->defaultPhenology;
+    p.nextDormancyBreak = p.phenology.time_to_dormancy_break < 0.0f
+                              ? -1.0
+                              : p.age + p.phenology.time_to_dormancy_break;
     return impl_->plants.emplace(p.id, std::move(p)).first->first;
 }
 
@@ -514,8 +543,8 @@ unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned sho
     ShootParameters probe = impl_->shootTypeFor(p, s.type);
     probe.phytomer_parameters = pp;
     impl_->checkFunctions(probe, s.type);
-    createPhytomer(p, s, impl_->shootTypeFor(p, s.type), pp, radius, lengthMax, lengthScale,
-                   leafScale, nullptr);
+    createPhytomer(*impl_, p, s, pp, radius, lengthMax, lengthScale, leafScale, nullptr);
+    scheduleNewShoot(*impl_, p, s);
     updateGeometry(plantID);
     return unsigned(s.phytomers.size());
 }

@@ -1,0 +1,44 @@
+// plantarch list: the species of the library, one per line with common and latin names.
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/SpeciesIO.h"
+
+namespace plantarch::cli {
+namespace {
+
+int run(const GlobalOptions& g) {
+    const std::vector<std::string> names = listSpecies();
+    info(g, "species library: " + speciesLibraryDirectory());
+    std::size_t width = 0;
+    for (const std::string& n : names) width = std::max(width, n.size());
+    int status = 0;
+    for (const std::string& name : names) {
+        try {
+            const SpeciesModel s = loadSpecies(name);
+            std::string names = s.commonName;
+            if (!s.latinName.empty()) names += (names.empty() ? "" : " ") + ("(" + s.latinName + ")");
+            std::printf("%s\n", fmt::format("{:<{}}  {}", name, width, names).c_str());
+        } catch (const Error& e) {
+            // One broken file does not hide the others; the status says something was wrong.
+            std::printf("%s\n", fmt::format("{:<{}}  (invalid: {})", name, width, e.what()).c_str());
+            status = 2;
+        }
+    }
+    return status;
+}
+
+std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
+    app.description("List the species of the library (PLANTARCH_SPECIES_DIR overrides where)");
+    return [&global] { return run(global); };
+}
+
+}  // namespace
+
+PLANTARCH_REGISTER_COMMAND(list, "list", 60, setup);
+
+}  // namespace plantarch::cli

@@ -1,0 +1,88 @@
+#pragma once
+// Species files: strict reading, complete writing, the species library on disk, and building
+// a plant's initial structure from a species. The format is described in
+// docs/species-format.md.
+//
+// Reading is strict: an unknown or misspelt element or attribute, a missing required value,
+// a value of the wrong type, a value outside its declared range, a duplicate element, child
+// shoot probabilities that do not sum to 1, or a reference to an undefined shoot type or
+// build step is a plantarch::Error whose one-line message names the file, the line, the
+// parameter path (e.g. `trifoliate.phytomer.petiole.pitch`), the value and what is valid.
+
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "plantarch/Species.h"
+
+namespace plantarch {
+
+class PlantArchitecture;
+
+// ---- reading and writing ---------------------------------------------------------------
+
+/// Reads a species file. Throws plantarch::Error (see above); a file that cannot be opened
+/// is an Error naming it.
+SpeciesModel readSpeciesFile(const std::string& path);
+/// Reads a species from XML text; `nameForErrors` stands for the file in error messages and
+/// becomes the model's sourceFile.
+SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameForErrors);
+
+struct SpeciesWriteOptions {
+    /// Put each field's unit, valid range and description in an XML comment after it.
+    bool comments = true;
+};
+
+/// Writes every field of every shoot type (not only those that differ from the defaults),
+/// numbers in their shortest round-trip form, so the text reads back to an identical model.
+void writeSpecies(const SpeciesModel& model, std::ostream& out,
+                  const SpeciesWriteOptions& options = {});
+std::string writeSpeciesString(const SpeciesModel& model, const SpeciesWriteOptions& options = {});
+/// Writes to `path` through a temporary file renamed into place (never half a file).
+void writeSpeciesFile(const SpeciesModel& model, const std::string& path,
+                      const SpeciesWriteOptions& options = {});
+
+// ---- the species library ---------------------------------------------------------------
+
+/// The folder holding the library's species files, the first that exists of:
+///  1. the environment variable PLANTARCH_SPECIES_DIR (used as given, even if missing);
+///  2. `<dir of the running executable>/../share/plantarch/species` (an installed plantarch);
+///  3. the `species/` folder of the source tree this library was compiled from;
+///  4. `<dir of the running executable>/../species` and `<dir of the executable>/species`;
+///  5. `species/` in the current directory.
+/// Throws plantarch::Error listing the places searched when none exists.
+std::string speciesLibraryDirectory();
+/// Names of the library's species (the *.xml files of speciesLibraryDirectory() without the
+/// extension), sorted.
+std::vector<std::string> listSpecies();
+/// A species by library name ("bean") or by path: an argument that contains '/' or ends in
+/// ".xml" is a path. An unknown name is an Error listing the available names.
+SpeciesModel loadSpecies(const std::string& nameOrPath);
+
+// ---- building ----------------------------------------------------------------------------
+
+/// Defines every shoot type of the species in `arch` (PlantArchitecture::defineShootType), so
+/// plants added afterwards can use them. Errors (e.g. an unregistered prototype function)
+/// name the species file.
+void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species);
+
+/// The species' build parameters with `overrides` applied: every name must be a build
+/// parameter of the species (else an Error listing the valid names) and every value within
+/// its declared range (else an Error giving the range).
+std::map<std::string, float> resolveBuildParameters(
+    const SpeciesModel& species, const std::map<std::string, float>& overrides = {});
+
+/// Builds the species' initial structure (its <build> steps, in order) on plant `plantID`,
+/// which must have no shoots yet, through addBaseStemShoot / appendShoot / addChildShoot.
+/// The species' shoot types must be defined in `arch` before the plant was added
+/// (defineSpeciesShootTypes). Returns the IDs of the shoots created, in creation order.
+///
+/// Random expressions in the steps draw from their own stream,
+/// Rng::forPlant(arch.seed(), 2^62 + plantID): deterministic per (seed, plant) and
+/// independent of the plant's own stream, which the shoots created draw from as usual.
+std::vector<unsigned> buildInitialStructure(PlantArchitecture& arch, unsigned plantID,
+                                            const SpeciesModel& species,
+                                            const std::map<std::string, float>& overrides = {});
+
+}  // namespace plantarch

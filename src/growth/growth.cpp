@@ -1,0 +1,666 @@
+// Growth over time, driven by events at exact plant ages.
+//
+// Everything that changes the plant's topology or draws random numbers is an event with a
+// time stored on the organ it concerns (a shoot's next phytomer, a bud's break time, a
+// flower's next stage, a season boundary, a leaf's fall, a whole-day callback). advanceTime
+// processes the events due before the target age in time order (ties broken by a fixed key),
+// so splitting a period into any number of calls visits the same events in the same order
+// and draws the same random numbers. Elongation, fruit growth and ages are closed-form
+// functions of age, evaluated at the end of each call.
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <tuple>
+
+#include "model/architecture_impl.h"
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+enum EventKind : int {
+    kDormancyBreak = 0,
+    kSenescence = 1,
+    kDaily = 2,
+    kLeafFall = 3,
+    kFloral = 4,
+    kBudBreak = 5,
+    kPhytomer = 6,
+};
+
+struct Event {
+    double time;
+    int kind;
+    unsigned shoot = 0, node = 0, petiole = 0, index = 0;
+    bool terminal = false;
+
+    auto key() const { return std::tie(time, kind, shoot, node, petiole, index, terminal); }
+    bool operator>(const Event& o) const { return key() > o.key(); }
+};
+
+// Probability that an axillary bud at node `k` of a shoot with `n` nodes breaks. A positive
+// decay rate makes it highest at the tip (dropping by the rate per node below it), a
+// negative one highest at the base; never below the minimum. With no decay the minimum
+// applies all along the shoot.
+float budBreakProbability(const ShootParameters& t, Rng& rng, int k, int n) {
+    const float pmin = t.vegetative_bud_break_probability_min.sample(rng);
+    const float pmax = t.vegetative_bud_break_probability_max.sample(rng);
+    const float decay = t.vegetative_bud_break_probability_decay_rate.sample(rng);
+    if (decay > 0.0f) return std::max(pmin, pmax - decay * float(n - 1 - k));
+    if (decay < 0.0f) return std::max(pmin, pmax + decay * float(k));
+    return pmin;
+}
+
+// Full internode length of a child shoot growing from node `k` of a parent with `n` nodes:
+// basitonic (decay < 0) is longest at the parent's base, acrotonic (decay > 0) at its tip.
+float childInternodeLength(const ShootParameters& parentType, Rng& rng, int k, int n) {
+    const float lmax = parentType.internode_length_max.sample(rng);
+    const float lmin = parentType.internode_length_min.sample(rng);
+    const float decay = parentType.internode_length_decay_rate.sample(rng);
+    if (decay < 0.0f) return std::max(lmin, lmax + decay * float(k));
+    if (decay > 0.0f) return std::max(lmin, lmax - decay * float(n - 1 - k));
+    return lmax;
+}
+
+std::string chooseChildType(const ShootParameters& parentType, const std::string& parentLabel,
+                            Rng& rng) {
+    if (parentType.child_shoot_types.empty()) return parentLabel;
+    const float u = rng.uniform01();
+    float acc = 0.0f;
+    std::string last;
+    for (const auto& [label, p] : parentType.child_shoot_types) {
+        acc += p;
+        last = label;
+        if (u < acc) return label;
+    }
+    return last;  // rounding: the sum may fall a hair short of 1
+}
+
+struct Grower {
+    PlantArchitecture::Impl& impl;
+    PlantInstance& plant;
+    std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue;
+
+    const ShootParameters& typeOf(const std::string& label) {
+        return impl.shootTypeFor(plant, label);
+    }
+    bool growingSeason() const {
+        return plant.stage == PhenologyStage::Vegetative ||
+               plant.stage == PhenologyStage::Reproductive;
+    }
+
+    // ---- scheduling --------------------------------------------------------------------
+
+    double floweringTime() const {
+        if (plant.dormancyBreakTime < 0.0) return -1.0;
+        const PhenologyParameters& ph = plant.phenology;
+        if (ph.time_to_flower_initiation >= 0.0f)
+            return plant.dormancyBreakTime + ph.time_to_flower_initiation;
+        if (ph.time_to_flower_opening >= 0.0f)
+            return plant.dormancyBreakTime + ph.time_to_flower_opening;
+        return -1.0;
+    }
+
+    void push(double time, int kind, unsigned shoot, unsigned node = 0, unsigned petiole = 0,
+              unsigned index = 0, bool terminal = false) {
+        if (time >= 0.0) queue.push(Event{time, kind, shoot, node, petiole, index, terminal});
+    }
+
+    // Puts every pending time stored on the plant into the queue.
+    void enqueueAll(double now) {
+        push(plant.nextDormancyBreak, kDormancyBreak, 0);
+        push(plant.senescenceTime, kSenescence, 0);
+        if (usesCallbacks()) push(std::floor(now) + 1.0, kDaily, 0);
+        for (Shoot& s : plant.shoots)
+            if (!s.removed) enqueueShoot(s);
+    }
+
+    void enqueueShoot(Shoot& s) {
+        push(s.nextPhytomerTime, kPhytomer, s.id);
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) enqueuePhytomer(s, k);
+        for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i)
+            push(s.terminalFloralBuds[i].nextTime, kFloral, s.id, 0, 0, i, true);
+    }
+
+    void enqueuePhytomer(Shoot& s, unsigned k) {
+        Phytomer& ph = s.phytomers[k];
+        const float lifespan = plant.phenology.max_leaf_lifespan;
+        for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+            Petiole& pt = ph.petioles[j];
+            for (unsigned b = 0; b < pt.vegetativeBuds.size(); ++b)
+                if (pt.vegetativeBuds[b].state == BudState::Dormant)
+                    push(pt.vegetativeBuds[b].breakTime, kBudBreak, s.id, k, j, b);
+            for (unsigned b = 0; b < pt.floralBuds.size(); ++b)
+                push(pt.floralBuds[b].nextTime, kFloral, s.id, k, j, b);
+            if (lifespan < 1e6f)
+                for (unsigned l = 0; l < pt.leaves.size(); ++l)
+                    if (!pt.leaves[l].removed)
+                        push(pt.leaves[l].birth + lifespan, kLeafFall, s.id, k, j, l);
+        }
+    }
+
+    bool usesCallbacks() {
+        for (const auto& [label, t] : plant.shootTypes)
+            if (!t.phytomer_parameters.phytomer_callback_function.empty()) return true;
+        return false;
+    }
+
+    // Sets the stored times of a phytomer's buds (new phytomers and new seasons).
+    void scheduleBuds(Shoot& s, Phytomer& ph) {
+        const ShootParameters& t = typeOf(s.type);
+        const double flowering = floweringTime();
+        for (Petiole& pt : ph.petioles) {
+            for (VegetativeBud& b : pt.vegetativeBuds)
+                if (b.state == BudState::Dormant && b.breakTime < 0.0 && growingSeason() &&
+                    !t.growth_requires_dormancy)
+                    b.breakTime = plant.age + t.vegetative_bud_break_time.sample(plant.rng);
+            for (FloralBud& fb : pt.floralBuds)
+                if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
+                    fb.nextTime < 0.0 && flowering >= 0.0 && !t.flowers_require_dormancy)
+                    fb.nextTime = std::max(flowering, plant.age);
+        }
+    }
+
+    bool canGrow(const Shoot& s, const ShootParameters& t) const {
+        return s.apicalBud.state == BudState::Active && int(s.phytomers.size()) < s.maxNodes &&
+               s.nodesThisSeason < s.maxNodesPerSeason &&
+               !(t.determinate_shoot_growth && s.flowering);
+    }
+
+    // ---- events ------------------------------------------------------------------------
+
+    void onPhytomer(Shoot& s, double now) {
+        s.nextPhytomerTime = -1.0;
+        const ShootParameters& t = typeOf(s.type);
+        if (!growingSeason()) return;  // resumes when dormancy breaks
+        if (!canGrow(s, t)) {
+            stopShoot(s, t);
+            return;
+        }
+        const PhytomerParameters& pp = t.phytomer_parameters;
+        const float radius = pp.internode.radius_initial.sample(plant.rng);
+        createPhytomer(impl, plant, s, pp, radius, s.internodeLengthMax, 0.01f, 0.01f, nullptr);
+        s.nodesThisSeason++;
+        scheduleBuds(s, s.phytomers.back());
+        enqueuePhytomer(s, unsigned(s.phytomers.size() - 1));
+        if (canGrow(s, t)) {
+            s.nextPhytomerTime = now + s.phyllochron;
+            push(s.nextPhytomerTime, kPhytomer, s.id);
+        } else {
+            stopShoot(s, t);
+        }
+    }
+
+    // A shoot that stops growing this season sets its terminal floral buds.
+    void stopShoot(Shoot& s, const ShootParameters& t) {
+        const int n = t.max_terminal_floral_buds.sample(plant.rng);
+        if (s.terminalFloralBuds.empty() && n > 0 && !s.phytomers.empty()) {
+            s.terminalFloralBuds.resize(std::size_t(n));
+            const double flowering = floweringTime();
+            for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i) {
+                FloralBud& fb = s.terminalFloralBuds[i];
+                fb.terminal = true;
+                if (!t.flowers_require_dormancy && flowering >= 0.0) {
+                    fb.nextTime = std::max(flowering, plant.age);
+                    push(fb.nextTime, kFloral, s.id, 0, 0, i, true);
+                }
+            }
+        }
+    }
+
+    void onBudBreak(const Event& e) {
+        Shoot& s = plant.shoots[e.shoot];
+        VegetativeBud& bud = s.phytomers[e.node].petioles[e.petiole].vegetativeBuds[e.index];
+        bud.breakTime = -1.0;
+        if (bud.state != BudState::Dormant) return;
+        if (!growingSeason()) return;  // rescheduled when dormancy breaks
+        const ShootParameters& t = typeOf(s.type);
+        const int n = int(s.phytomers.size());
+        const float p = budBreakProbability(t, plant.rng, int(e.node), n);
+        if (!plant.rng.chance(p)) {
+            bud.state = BudState::Dead;
+            return;
+        }
+        const std::string childType = chooseChildType(t, s.type, plant.rng);
+        const ShootParameters& ct = typeOf(childType);
+        ShootSpec spec;
+        spec.phytomers = 1;
+        spec.shootType = childType;
+        spec.internodeRadius = std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
+        spec.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
+        spec.internodeLengthScale = 0.01f;
+        spec.leafScale = 0.01f;
+        const unsigned id = createShoot(impl, plant, spec, StartMode::Child, int(e.shoot), e.node,
+                                        e.petiole);
+        enqueueShoot(plant.shoots[id]);
+    }
+
+    FloralBud& floralBud(const Event& e) {
+        Shoot& s = plant.shoots[e.shoot];
+        return e.terminal ? s.terminalFloralBuds[e.index]
+                          : s.phytomers[e.node].petioles[e.petiole].floralBuds[e.index];
+    }
+
+    void onFloral(const Event& e, double now) {
+        Shoot& s = plant.shoots[e.shoot];
+        FloralBud& fb = floralBud(e);
+        fb.nextTime = -1.0;
+        const ShootParameters& t = typeOf(s.type);
+        const PhenologyParameters& ph = plant.phenology;
+        const PhytomerParameters& pp =
+            e.terminal ? t.phytomer_parameters
+                       : typeOf(s.phytomers[e.node].parametersLabel).phytomer_parameters;
+        auto next = [&](float delay) { return delay >= 0.0f ? now + delay : -1.0; };
+        switch (fb.stage) {
+            case FloralStage::Bud: {
+                if (fb.state != BudState::Dormant || !growingSeason()) return;
+                if (!plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
+                    fb.state = BudState::Dead;
+                    fb.stage = FloralStage::Removed;
+                    return;
+                }
+                realizeInflorescence(plant, fb, pp);
+                fb.state = BudState::Broken;
+                s.flowering = true;
+                if (plant.stage == PhenologyStage::Vegetative) plant.stage = PhenologyStage::Reproductive;
+                if (ph.time_to_flower_initiation >= 0.0f) {
+                    fb.stage = FloralStage::FlowerClosed;
+                    fb.nextTime = next(ph.time_to_flower_opening >= 0.0f ? ph.time_to_flower_opening
+                                                                         : ph.time_to_fruit_set);
+                    if (ph.time_to_flower_opening < 0.0f && fb.nextTime >= 0.0) fb.state = BudState::Active;
+                } else {
+                    fb.stage = FloralStage::FlowerOpen;
+                    fb.nextTime = next(ph.time_to_fruit_set);
+                }
+                break;
+            }
+            case FloralStage::FlowerClosed:
+                if (fb.state == BudState::Active) {  // opening disabled: straight to fruit
+                    setFruit(fb, t, now);
+                } else {
+                    fb.stage = FloralStage::FlowerOpen;
+                    fb.nextTime = next(ph.time_to_fruit_set);
+                }
+                break;
+            case FloralStage::FlowerOpen:
+                setFruit(fb, t, now);
+                break;
+            default:
+                return;
+        }
+        fb.stageTime = now;
+        push(fb.nextTime, kFloral, e.shoot, e.node, e.petiole, e.index, e.terminal);
+    }
+
+    void setFruit(FloralBud& fb, const ShootParameters& t, double now) {
+        const float p = t.fruit_set_probability.sample(plant.rng);
+        std::vector<FlowerOrgan> set;
+        for (FlowerOrgan& fl : fb.flowers) {
+            if (plant.rng.chance(p)) set.push_back(fl);
+            else removeObjects(fl.objects);
+        }
+        fb.flowers = std::move(set);
+        fb.stage = fb.flowers.empty() ? FloralStage::Removed : FloralStage::Fruit;
+        fb.fruitAge = 0.0f;
+        fb.fruitGrowth = 0.0f;
+        fb.stageTime = now;
+    }
+
+    std::vector<ObjectID> pendingDeletes;
+    void removeObjects(std::vector<ObjectID>& ids) {
+        pendingDeletes.insert(pendingDeletes.end(), ids.begin(), ids.end());
+        ids.clear();
+    }
+
+    void onDormancyBreak(double now) {
+        plant.nextDormancyBreak = -1.0;
+        plant.stage = PhenologyStage::Vegetative;
+        plant.dormancyBreakTime = now;
+        plant.season++;
+        const float senesce = plant.phenology.time_to_senescence;
+        plant.senescenceTime = senesce >= 0.0f ? now + senesce : -1.0;
+        push(plant.senescenceTime, kSenescence, 0);
+        const double flowering = floweringTime();
+        for (Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            const ShootParameters& t = typeOf(s.type);
+            s.nodesThisSeason = 0;
+            if (s.apicalBud.state == BudState::Dormant) s.apicalBud.state = BudState::Active;
+            if (s.nextPhytomerTime < 0.0 && canGrow(s, t)) {
+                s.nextPhytomerTime = now + s.phyllochron;
+                push(s.nextPhytomerTime, kPhytomer, s.id);
+            }
+            for (unsigned k = 0; k < s.phytomers.size(); ++k)
+                for (unsigned j = 0; j < s.phytomers[k].petioles.size(); ++j) {
+                    Petiole& pt = s.phytomers[k].petioles[j];
+                    for (unsigned b = 0; b < pt.vegetativeBuds.size(); ++b) {
+                        VegetativeBud& bud = pt.vegetativeBuds[b];
+                        if (bud.state == BudState::Dormant && bud.breakTime < 0.0) {
+                            bud.breakTime = now + t.vegetative_bud_break_time.sample(plant.rng);
+                            push(bud.breakTime, kBudBreak, s.id, k, j, b);
+                        }
+                    }
+                    for (unsigned b = 0; b < pt.floralBuds.size(); ++b) {
+                        FloralBud& fb = pt.floralBuds[b];
+                        if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
+                            fb.nextTime < 0.0 && flowering >= 0.0) {
+                            fb.nextTime = flowering;
+                            push(fb.nextTime, kFloral, s.id, k, j, b);
+                        }
+                    }
+                }
+            for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i) {
+                FloralBud& fb = s.terminalFloralBuds[i];
+                if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
+                    fb.nextTime < 0.0 && flowering >= 0.0) {
+                    fb.nextTime = flowering;
+                    push(fb.nextTime, kFloral, s.id, 0, 0, i, true);
+                }
+            }
+        }
+    }
+
+    // The season ends: leaves fall unless evergreen, flowers and fruit are shed, growth
+    // stops until the next dormancy break.
+    void onSenescence(double now) {
+        plant.senescenceTime = -1.0;
+        updateGirth();  // girth keeps the peak it reached with the leaves still on
+        for (Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            const ShootParameters& t = typeOf(s.type);
+            if (s.apicalBud.state == BudState::Active) stopShoot(s, t);
+            if (s.apicalBud.state == BudState::Active) s.apicalBud.state = BudState::Dormant;
+            s.nextPhytomerTime = -1.0;
+            auto shed = [&](FloralBud& fb) {
+                if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen ||
+                    fb.stage == FloralStage::Fruit) {
+                    fb.stage = FloralStage::Removed;
+                    fb.state = BudState::Dead;
+                    fb.nextTime = -1.0;
+                }
+            };
+            for (Phytomer& ph : s.phytomers)
+                for (Petiole& pt : ph.petioles) {
+                    if (!plant.phenology.evergreen)
+                        for (LeafOrgan& l : pt.leaves) l.removed = true;
+                    for (FloralBud& fb : pt.floralBuds) shed(fb);
+                    for (VegetativeBud& b : pt.vegetativeBuds)
+                        if (b.state == BudState::Dormant) b.breakTime = -1.0;
+                }
+            for (FloralBud& fb : s.terminalFloralBuds) shed(fb);
+        }
+        plant.stage = PhenologyStage::Dormant;
+        const float winter = plant.phenology.time_to_dormancy_break;
+        plant.nextDormancyBreak = winter >= 0.0f ? now + winter : -1.0;
+        push(plant.nextDormancyBreak, kDormancyBreak, 0);
+    }
+
+    void onDaily(double now) {
+        for (Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+                const std::string& name =
+                    typeOf(s.phytomers[k].parametersLabel).phytomer_parameters.phytomer_callback_function;
+                if (name.empty()) continue;
+                auto fn = impl.callbackFunctions.find(name);
+                if (fn == impl.callbackFunctions.end())
+                    throw Error("unknown phytomer callback function",
+                                {.parameter = s.type + ".phytomer.phytomer_callback_function",
+                                 .value = name});
+                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now};
+                fn->second(c);
+            }
+        }
+        push(now + 1.0, kDaily, 0);
+    }
+
+    // ---- continuous state --------------------------------------------------------------
+
+    void updateContinuous(double now) {
+        for (Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            const float rate = s.elongationRate;
+            for (Phytomer& ph : s.phytomers) {
+                const double age = std::max(0.0, now - ph.birth);
+                ph.age = float(age);
+                ph.internodeFraction = float(std::min(1.0, ph.internodeFraction0 + rate * age));
+                ph.leafFraction = float(std::min(1.0, ph.leafFraction0 + rate * age));
+                for (Petiole& pt : ph.petioles) {
+                    for (LeafOrgan& l : pt.leaves) l.age = float(std::max(0.0, now - l.birth));
+                    for (FloralBud& fb : pt.floralBuds) updateFruit(fb, now);
+                }
+            }
+            for (FloralBud& fb : s.terminalFloralBuds) updateFruit(fb, now);
+        }
+    }
+
+    void updateFruit(FloralBud& fb, double now) {
+        if (fb.stage != FloralStage::Fruit) return;
+        const float maturity = plant.phenology.time_to_fruit_maturity;
+        fb.fruitAge = float(now - fb.stageTime);
+        fb.fruitGrowth = maturity > 0.0f ? std::min(1.0f, fb.fruitAge / maturity) : 1.0f;
+    }
+
+    // Internode cross-section = girth_area_factor (cm^2 per m^2) x leaf area downstream;
+    // radii never shrink and never fall below their initial value.
+    void updateGirth() {
+        std::vector<double> shootTotal(plant.shoots.size(), 0.0);
+        for (std::size_t i = plant.shoots.size(); i-- > 0;) {
+            Shoot& s = plant.shoots[i];
+            if (s.removed) continue;
+            std::vector<double> atNode(s.phytomers.size(), 0.0);
+            for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
+                Phytomer& ph = s.phytomers[k];
+                const LeafParameters& lp = typeOf(ph.parametersLabel).phytomer_parameters.leaf;
+                for (Petiole& pt : ph.petioles)
+                    for (LeafOrgan& l : pt.leaves)
+                        if (!l.removed) {
+                            const double size = double(l.scale) * ph.leafFraction;
+                            atNode[k] += impl.leafPrototypeArea(lp, l) * size * size;
+                        }
+            }
+            for (unsigned c : s.children) {
+                const Shoot& child = plant.shoots[c];
+                if (!child.removed && child.parentNode >= 0 &&
+                    std::size_t(child.parentNode) < atNode.size())
+                    atNode[std::size_t(child.parentNode)] += shootTotal[c];
+            }
+            double downstream = 0.0;
+            for (std::size_t k = s.phytomers.size(); k-- > 0;) {
+                downstream += atNode[k];
+                Internode& in = s.phytomers[k].internode;
+                if (s.girthAreaFactor > 0.0f) {
+                    const double area = double(s.girthAreaFactor) * downstream * 1e-4;  // m^2
+                    const float r = float(std::sqrt(area / kPi));
+                    in.radius = std::max({in.radius, r, s.phytomers[k].radiusInitial});
+                }
+            }
+            shootTotal[i] = downstream;
+        }
+    }
+
+    void run(double target) {
+        const double stop = std::min(target, std::max(plant.age, double(plant.phenology.max_age)));
+        enqueueAll(plant.age);
+        while (!queue.empty() && queue.top().time <= stop) {
+            const Event e = queue.top();
+            queue.pop();
+            if (!valid(e)) continue;
+            plant.age = e.time;
+            if (e.kind == kLeafFall || e.kind == kSenescence) updateContinuous(e.time);
+            switch (e.kind) {
+                case kDormancyBreak: onDormancyBreak(e.time); break;
+                case kSenescence: onSenescence(e.time); break;
+                case kDaily: onDaily(e.time); break;
+                case kPhytomer: onPhytomer(plant.shoots[e.shoot], e.time); break;
+                case kBudBreak: onBudBreak(e); break;
+                case kFloral: onFloral(e, e.time); break;
+                case kLeafFall: {
+                    updateGirth();
+                    LeafOrgan& l = plant.shoots[e.shoot].phytomers[e.node].petioles[e.petiole].leaves[e.index];
+                    l.removed = true;
+                    break;
+                }
+            }
+        }
+        plant.age = std::max(plant.age, stop);
+        updateContinuous(plant.age);
+        updateGirth();
+        plant.age = target;
+        if (target > plant.phenology.max_age) plant.stage = PhenologyStage::Senescent;
+    }
+
+    // An event is current only if the time stored on its organ still says so (organs may
+    // have been pruned, removed or rescheduled since it was queued).
+    bool valid(const Event& e) {
+        switch (e.kind) {
+            case kDormancyBreak: return plant.nextDormancyBreak == e.time;
+            case kSenescence: return plant.senescenceTime == e.time;
+            case kDaily: return true;
+            default: break;
+        }
+        if (e.shoot >= plant.shoots.size() || plant.shoots[e.shoot].removed) return false;
+        Shoot& s = plant.shoots[e.shoot];
+        if (e.kind == kPhytomer) return s.nextPhytomerTime == e.time;
+        if (e.terminal) return e.index < s.terminalFloralBuds.size() &&
+                               s.terminalFloralBuds[e.index].nextTime == e.time;
+        if (e.node >= s.phytomers.size() || e.petiole >= s.phytomers[e.node].petioles.size())
+            return false;
+        Petiole& pt = s.phytomers[e.node].petioles[e.petiole];
+        switch (e.kind) {
+            case kBudBreak:
+                return e.index < pt.vegetativeBuds.size() && pt.vegetativeBuds[e.index].breakTime == e.time;
+            case kFloral:
+                return e.index < pt.floralBuds.size() && pt.floralBuds[e.index].nextTime == e.time;
+            case kLeafFall:
+                return e.index < pt.leaves.size() && !pt.leaves[e.index].removed &&
+                       pt.leaves[e.index].birth + plant.phenology.max_leaf_lifespan == e.time;
+        }
+        return false;
+    }
+};
+
+}  // namespace
+
+void realizeInflorescence(PlantInstance& p, FloralBud& fb, const PhytomerParameters& pp) {
+    fb.peduncleLength = pp.peduncle.length.sample(p.rng);
+    fb.peduncleRadius = pp.peduncle.radius.sample(p.rng);
+    fb.pedunclePitch = pp.peduncle.pitch.sample(p.rng);
+    fb.peduncleRoll = pp.peduncle.roll.sample(p.rng);
+    fb.peduncleCurvature = pp.peduncle.curvature.sample(p.rng);
+    const InflorescenceParameters& inf = pp.inflorescence;
+    const int count = std::max(1, inf.flowers_per_peduncle.sample(p.rng));
+    const float offset = inf.flower_offset.sample(p.rng);
+    const bool opposite = inf.flower_arrangement == "opposite";
+    fb.flowers.clear();
+    for (int i = 0; i < count; ++i) {
+        FlowerOrgan fl;
+        // Alternate: one flower per position, sides alternating. Opposite: pairs per position.
+        const int step = opposite ? i / 2 : i;
+        fl.position = std::max(0.0f, 1.0f - float(step) * offset);
+        fl.azimuth = (i % 2 ? 180.0f : 0.0f) + (opposite ? 90.0f : 0.0f);
+        fl.pitch = inf.pitch.sample(p.rng);
+        fl.roll = inf.roll.sample(p.rng);
+        fl.flowerScale = inf.flower_prototype_scale.sample(p.rng);
+        fl.fruitScale = inf.fruit_prototype_scale.sample(p.rng);
+        fl.gravityFactor = inf.fruit_gravity_factor_fraction.sample(p.rng);
+        fl.variant = inf.unique_prototypes > 1 ? p.rng.nextU32() % inf.unique_prototypes : 0;
+        fb.flowers.push_back(fl);
+    }
+}
+
+void scheduleNewShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot) {
+    Grower g{impl, plant, {}};
+    const ShootParameters& t = g.typeOf(shoot.type);
+    shoot.nodesThisSeason = int(shoot.phytomers.size());
+    if (shoot.nextPhytomerTime < 0.0 && g.growingSeason() && g.canGrow(shoot, t))
+        shoot.nextPhytomerTime = plant.age + shoot.phyllochron;
+    for (Phytomer& ph : shoot.phytomers) g.scheduleBuds(shoot, ph);
+}
+
+void growPlant(PlantArchitecture::Impl& impl, PlantInstance& plant, double days,
+               std::vector<ObjectID>& deletes) {
+    double target = plant.age + days;
+    // Snap to a 1/1024-day grid when within float rounding of it, so steps such as 0.1f x 10
+    // or 19.9f + 0.1f land exactly on the day an event is due.
+    const double grid = std::nearbyint(target * 1024.0) / 1024.0;
+    if (std::abs(target - grid) < 1e-5) target = grid;
+    Grower g{impl, plant, {}};
+    g.run(target);
+    deletes.insert(deletes.end(), g.pendingDeletes.begin(), g.pendingDeletes.end());
+}
+
+// ---- public API ------------------------------------------------------------------------
+
+void PlantArchitecture::advanceTime(double days) { advanceTime(getAllPlantIDs(), days); }
+
+void PlantArchitecture::advanceTime(unsigned plantID, double days) {
+    advanceTime(std::vector<unsigned>{plantID}, days);
+}
+
+void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, double days) {
+    if (!(days >= 0.0) || !std::isfinite(days))
+        throw Error("time step must be a finite number of days >= 0",
+                    {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
+    for (unsigned id : plantIDs) impl_->plant(id);  // all exist, or nothing happens
+    for (unsigned id : plantIDs) {
+        std::vector<ObjectID> deletes;
+        growPlant(*impl_, impl_->plant(id), days, deletes);
+        for (ObjectID o : deletes)
+            if (context_->doesObjectExist(o)) context_->deleteObject(o);
+        updateGeometry(id);
+    }
+}
+
+void PlantArchitecture::setPlantPhenologicalThresholds(unsigned plantID,
+                                                       const PhenologyParameters& t) {
+    validate(t, "phenology");
+    PlantInstance& p = impl_->plant(plantID);
+    p.phenology = t;
+    if (p.dormancyBreakTime < 0.0)
+        p.nextDormancyBreak = t.time_to_dormancy_break < 0.0f ? -1.0 : p.age + t.time_to_dormancy_break;
+    else
+        p.senescenceTime = t.time_to_senescence < 0.0f ? -1.0
+                                                       : p.dormancyBreakTime + t.time_to_senescence;
+}
+
+void PlantArchitecture::setDefaultPhenology(const PhenologyParameters& t) {
+    validate(t, "phenology");
+    impl_->defaultPhenology = t;
+}
+
+PhenologyStage PlantArchitecture::getPhenologyStage(unsigned plantID) const {
+    return impl_->plant(plantID).stage;
+}
+
+void PlantArchitecture::registerPhytomerCreationFunction(const std::string& name,
+                                                         PhytomerCreationFunction fn) {
+    if (name.empty() || !fn)
+        throw Error("a phytomer creation function needs a name and a function",
+                    {.parameter = "name", .value = name});
+    impl_->creationFunctions[name] = std::move(fn);
+}
+
+void PlantArchitecture::registerPhytomerCallbackFunction(const std::string& name,
+                                                         PhytomerCallbackFunction fn) {
+    if (name.empty() || !fn)
+        throw Error("a phytomer callback function needs a name and a function",
+                    {.parameter = "name", .value = name});
+    impl_->callbackFunctions[name] = std::move(fn);
+}
+
+const char* phenologyStageName(PhenologyStage s) {
+    switch (s) {
+        case PhenologyStage::Dormant: return "dormant";
+        case PhenologyStage::Vegetative: return "vegetative";
+        case PhenologyStage::Reproductive: return "reproductive";
+        case PhenologyStage::Senescent: return "senescent";
+    }
+    return "unknown";
+}
+
+}  // namespace plantarch

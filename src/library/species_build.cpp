@@ -1,0 +1,249 @@
+// From a species to a plant: defining its shoot types and building its initial structure
+// from the <build> steps through the manual building API.
+
+#include <cmath>
+#include <limits>
+
+#include "library/expression.h"
+#include "library/species_xml.h"
+#include "library/value_text.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+namespace plantarch {
+
+namespace {
+
+// The line of `path` (or of the nearest enclosing path) in the species file.
+int lineOf(const SpeciesModel& s, std::string path) {
+    while (!path.empty()) {
+        auto it = s.lines.find(path);
+        if (it != s.lines.end()) return it->second;
+        const auto dot = path.rfind('.');
+        if (dot == std::string::npos) break;
+        path.resize(dot);
+    }
+    return 0;
+}
+
+std::vector<std::string> buildParameterNames(const SpeciesModel& s) {
+    std::vector<std::string> names;
+    for (const BuildParameter& p : s.buildParameters) names.push_back(p.name);
+    return names;
+}
+
+// The manual building API names its arguments after the seed's listings; a step's attribute
+// is what the species file calls the same value.
+std::string attributeFor(const std::string& apiParameter) {
+    static const std::map<std::string, std::string> names = {
+        {"current_node_number", "nodes"},
+        {"base_rotation", "pitch"},
+        {"internode_radius", "radius"},
+        {"internode_length_max", "internode_length"},
+        {"internode_length_scale_factor_fraction", "internode_scale"},
+        {"leaf_scale_factor_fraction", "leaf_scale"},
+        {"radius_taper", "taper"},
+        {"parent_node_index", "node"},
+        {"petiole_index", "petiole"},
+        {"shoot_type_label", "type"}};
+    auto it = names.find(apiParameter);
+    return it == names.end() ? "" : it->second;
+}
+
+class StepRunner {
+public:
+    StepRunner(PlantArchitecture& arch, unsigned plantID, const SpeciesModel& species,
+               const std::map<std::string, float>& parameters)
+        : arch_(arch),
+          plantID_(plantID),
+          species_(species),
+          rng_(Rng::forPlant(arch.seed(), (std::uint64_t(1) << 62) + plantID)) {
+        for (const auto& [name, value] : parameters) variables_[name] = value;
+        variables_["i"] = 0.0;
+        variables_["parent_i"] = 0.0;
+    }
+
+    std::vector<unsigned> run() {
+        int index = 0;
+        for (const BuildStep& step : species_.build) runStep(step, ++index);
+        return created_;
+    }
+
+private:
+    std::string stepPath(const BuildStep& step, int index) const {
+        const std::string kind = species_xml::buildStepElement(step.kind);
+        return "build." + (step.id.empty() ? kind + "[" + std::to_string(index) + "]" : step.id);
+    }
+
+    [[noreturn]] void fail(const BuildStep& step, const std::string& path,
+                           const std::string& message, std::string value = "",
+                           std::string validRange = "") const {
+        throw Error(message, {.file = species_.sourceFile, .line = step.line, .parameter = path,
+                              .value = std::move(value), .validRange = std::move(validRange)});
+    }
+
+    double number(const BuildStep& step, const std::string& path, const std::string& attribute,
+                  const std::string& expression) {
+        try {
+            return expr::evaluate(expression, variables_, rng_);
+        } catch (const Error& e) {
+            ErrorContext c = e.context();
+            c.file = species_.sourceFile;
+            c.line = step.line;
+            c.parameter = path + "." + attribute;
+            throw Error(e.message(), c);
+        }
+    }
+
+    unsigned whole(const BuildStep& step, const std::string& path, const std::string& attribute,
+                   const std::string& expression, long minimum) {
+        const double v = number(step, path, attribute, expression);
+        const long rounded = std::lround(v);
+        if (rounded < minimum || rounded > 1000000) {
+            const std::string value = text::formatDouble(v);
+            fail(step, path + "." + attribute, "out of range",
+                 value == expression ? value : value + " (from '" + expression + "')",
+                 std::to_string(minimum) + " to 1000000");
+        }
+        return unsigned(rounded);
+    }
+
+    float real(const BuildStep& step, const std::string& path, const std::string& attribute,
+               const std::string& expression) {
+        return float(number(step, path, attribute, expression));
+    }
+
+    void runStep(const BuildStep& step, int index) {
+        const std::string path = stepPath(step, index);
+        auto type = species_.shootTypes.find(step.shootType);
+        if (type == species_.shootTypes.end())
+            fail(step, path + ".type", "unknown shoot type", step.shootType);
+        std::vector<int> parents = {-1};
+        if (step.kind != BuildStep::Kind::BaseStem) {
+            auto it = shootsByStep_.find(step.parent);
+            if (it == shootsByStep_.end())
+                fail(step, path + ".parent", "unknown parent step", step.parent,
+                     "the id of an earlier step");
+            parents.assign(it->second.begin(), it->second.end());
+        }
+        std::vector<unsigned>& made = shootsByStep_[step.id];
+        for (std::size_t p = 0; p < parents.size(); ++p) {
+            variables_["parent_i"] = double(p);
+            variables_["i"] = 0.0;
+            const unsigned copies = step.kind == BuildStep::Kind::Child
+                                        ? whole(step, path, "repeat", step.repeat, 0)
+                                        : 1u;
+            for (unsigned i = 0; i < copies; ++i) {
+                variables_["i"] = double(i);
+                const unsigned id = makeShoot(step, path, type->second, parents[p]);
+                made.push_back(id);
+                created_.push_back(id);
+            }
+        }
+        if (step.id.empty()) shootsByStep_.erase(step.id);
+    }
+
+    // Evaluates the step's attributes (in the documented order) and calls the building API.
+    unsigned makeShoot(const BuildStep& step, const std::string& path, const ShootParameters& type,
+                       int parent) {
+        ShootSpec spec;
+        spec.shootType = step.shootType;
+        spec.phytomers = whole(step, path, "nodes", step.nodes, 1);
+        unsigned node = 0;
+        unsigned petiole = 0;
+        if (step.kind == BuildStep::Kind::Child) {
+            node = whole(step, path, "node", step.parentNode, 0);
+            petiole = whole(step, path, "petiole", step.petiole, 0);
+        }
+        spec.baseRotation.pitch = real(step, path, "pitch", step.pitch);
+        spec.baseRotation.yaw = real(step, path, "yaw", step.yaw);
+        spec.baseRotation.roll = real(step, path, "roll", step.roll);
+        spec.internodeRadius = step.radius.empty()
+                                   ? type.phytomer_parameters.internode.radius_initial.sample(rng_)
+                                   : real(step, path, "radius", step.radius);
+        spec.internodeLengthMax = step.internodeLength.empty()
+                                      ? type.internode_length_max.sample(rng_)
+                                      : real(step, path, "internode_length", step.internodeLength);
+        spec.internodeLengthScale = real(step, path, "internode_scale", step.internodeScale);
+        spec.leafScale = real(step, path, "leaf_scale", step.leafScale);
+        spec.radiusTaper = real(step, path, "taper", step.taper);
+        try {
+            switch (step.kind) {
+                case BuildStep::Kind::BaseStem: return arch_.addBaseStemShoot(plantID_, spec);
+                case BuildStep::Kind::Append:
+                    return arch_.appendShoot(plantID_, unsigned(parent), spec);
+                case BuildStep::Kind::Child:
+                    return arch_.addChildShoot(plantID_, unsigned(parent), node, spec, petiole);
+            }
+        } catch (const Error& e) {
+            const std::string attribute = attributeFor(e.parameter());
+            ErrorContext c = e.context();
+            c.file = species_.sourceFile;
+            c.line = step.line;
+            c.parameter = attribute.empty() ? path : path + "." + attribute;
+            throw Error(e.message(), c);
+        }
+        return 0;
+    }
+
+    PlantArchitecture& arch_;
+    unsigned plantID_;
+    const SpeciesModel& species_;
+    Rng rng_;
+    std::map<std::string, double> variables_;
+    std::map<std::string, std::vector<unsigned>> shootsByStep_;
+    std::vector<unsigned> created_;
+};
+
+}  // namespace
+
+void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species) {
+    for (const auto& [label, params] : species.shootTypes) {
+        try {
+            arch.defineShootType(label, params);
+        } catch (const Error& e) {
+            throw e.withFile(species.sourceFile, lineOf(species, e.parameter()));
+        }
+    }
+}
+
+std::map<std::string, float> resolveBuildParameters(const SpeciesModel& species,
+                                                    const std::map<std::string, float>& overrides) {
+    std::map<std::string, float> values;
+    for (const BuildParameter& p : species.buildParameters) values[p.name] = p.value;
+    const std::vector<std::string> names = buildParameterNames(species);
+    for (const auto& [name, value] : overrides) {
+        const BuildParameter* found = nullptr;
+        for (const BuildParameter& p : species.buildParameters)
+            if (p.name == name) found = &p;
+        if (!found) {
+            const std::string near = text::closestMatch(name, names);
+            throw Error("unknown build parameter of species '" + species.name + "'" +
+                            (near.empty() ? "" : ", did you mean '" + near + "'?"),
+                        {.parameter = name, .value = text::formatFloat(value),
+                         .validRange = names.empty() ? "the species has no build parameters"
+                                                     : "one of: " + text::joinNames(names)});
+        }
+        if (!std::isfinite(value) || value < found->min || value > found->max)
+            throw Error("build parameter out of range",
+                        {.parameter = name, .value = text::formatFloat(value),
+                         .validRange = text::formatFloat(found->min) + " to " +
+                                       text::formatFloat(found->max) +
+                                       (found->unit.empty() ? "" : " " + found->unit)});
+        values[name] = value;
+    }
+    return values;
+}
+
+std::vector<unsigned> buildInitialStructure(PlantArchitecture& arch, unsigned plantID,
+                                            const SpeciesModel& species,
+                                            const std::map<std::string, float>& overrides) {
+    const std::map<std::string, float> parameters = resolveBuildParameters(species, overrides);
+    if (species.build.empty())
+        throw Error("species has no build steps", {.file = species.sourceFile,
+                                                   .parameter = "build"});
+    return StepRunner(arch, plantID, species, parameters).run();
+}
+
+}  // namespace plantarch

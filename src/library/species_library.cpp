@@ -1,0 +1,94 @@
+// The species library on disk: where it is, what it holds, loading by name or path.
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+
+#include "library/value_text.h"
+#include "plantarch/Error.h"
+#include "plantarch/SpeciesIO.h"
+
+namespace plantarch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path executableDirectory() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path() : exe.parent_path();
+}
+
+// The species/ folder of the source tree this file was compiled from. __FILE__ is the
+// absolute path of this source (src/library/species_library.cpp) when the build system
+// passes absolute paths, as CMake does; a relative one is not trusted.
+fs::path sourceTreeSpecies() {
+    const fs::path self(__FILE__);
+    if (!self.is_absolute()) return {};
+    return self.parent_path().parent_path().parent_path() / "species";
+}
+
+bool isDirectory(const fs::path& p) {
+    std::error_code ec;
+    return !p.empty() && fs::is_directory(p, ec);
+}
+
+bool looksLikePath(const std::string& s) {
+    return s.find('/') != std::string::npos ||
+           (s.size() >= 4 && s.compare(s.size() - 4, 4, ".xml") == 0);
+}
+
+}  // namespace
+
+std::string speciesLibraryDirectory() {
+    if (const char* env = std::getenv("PLANTARCH_SPECIES_DIR"); env && *env) return env;
+    std::vector<fs::path> candidates;
+    const fs::path exeDir = executableDirectory();
+    if (!exeDir.empty()) candidates.push_back(exeDir / ".." / "share" / "plantarch" / "species");
+    candidates.push_back(sourceTreeSpecies());
+    if (!exeDir.empty()) {
+        candidates.push_back(exeDir / ".." / "species");
+        candidates.push_back(exeDir / "species");
+    }
+    candidates.push_back(fs::path("species"));
+    std::vector<std::string> searched;
+    for (const fs::path& c : candidates) {
+        if (c.empty()) continue;
+        if (isDirectory(c)) return c.lexically_normal().string();
+        searched.push_back(c.lexically_normal().string());
+    }
+    throw Error("species library not found; set PLANTARCH_SPECIES_DIR",
+                {.validRange = "searched: " + text::joinNames(searched)});
+}
+
+std::vector<std::string> listSpecies() {
+    const fs::path dir = speciesLibraryDirectory();
+    std::error_code ec;
+    fs::directory_iterator it(dir, ec);
+    if (ec) throw Error("cannot list the species library: " + ec.message(), {.file = dir.string()});
+    std::vector<std::string> names;
+    for (const fs::directory_entry& entry : it) {
+        std::error_code fileEc;
+        if (entry.path().extension() == ".xml" && entry.is_regular_file(fileEc))
+            names.push_back(entry.path().stem().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+SpeciesModel loadSpecies(const std::string& nameOrPath) {
+    if (looksLikePath(nameOrPath)) return readSpeciesFile(nameOrPath);
+    const fs::path file = fs::path(speciesLibraryDirectory()) / (nameOrPath + ".xml");
+    std::error_code ec;
+    if (fs::is_regular_file(file, ec)) return readSpeciesFile(file.string());
+    const std::vector<std::string> names = listSpecies();
+    const std::string near = text::closestMatch(nameOrPath, names);
+    throw Error("unknown species" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
+                {.parameter = "species", .value = nameOrPath,
+                 .validRange = names.empty() ? "the library at " + speciesLibraryDirectory() +
+                                                   " holds no species"
+                                             : "one of: " + text::joinNames(names)});
+}
+
+}  // namespace plantarch

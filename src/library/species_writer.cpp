@@ -1,0 +1,266 @@
+// Writer of species files: every field of the declaration table, in table order, numbers in
+// their shortest round-trip form, so what is written reads back to the same model.
+
+#include <ostream>
+#include <sstream>
+
+#include "io/atomic_file.h"
+#include "library/species_xml.h"
+#include "library/value_text.h"
+#include "model/parameter_table.h"
+#include "plantarch/SpeciesIO.h"
+
+namespace plantarch {
+
+namespace {
+
+std::string escape(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (char c : s) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+// Text safe inside <!-- -->: no "--" and no trailing '-'.
+std::string commentText(std::string s) {
+    for (std::size_t i = 0; (i = s.find("--", i)) != std::string::npos;) s.replace(i, 2, "- ");
+    while (!s.empty() && s.back() == '-') s.pop_back();
+    return s;
+}
+
+std::string rangeText(const params::FieldInfo& f) {
+    using text::formatDouble;
+    if (f.min == -params::kInf && f.max == params::kInf) return "";
+    if (f.max == params::kInf) return ">= " + formatDouble(f.min);
+    if (f.min == -params::kInf) return "<= " + formatDouble(f.max);
+    return formatDouble(f.min) + " to " + formatDouble(f.max);
+}
+
+class Writer {
+public:
+    Writer(std::ostream& out, bool comments) : out_(out), comments_(comments) {}
+
+    void indent(int depth) {
+        for (int i = 0; i < depth; ++i) out_ << "  ";
+    }
+
+    void comment(const std::string& text) {
+        if (comments_ && !text.empty()) out_ << "  <!-- " << commentText(text) << " -->";
+    }
+
+    // <name>value</name>, or <name/> when the value is empty.
+    void element(int depth, const std::string& name, const std::string& value,
+                 const std::string& note = "") {
+        indent(depth);
+        if (value.empty()) out_ << "<" << name << "/>";
+        else out_ << "<" << name << ">" << escape(value) << "</" << name << ">";
+        comment(note);
+        out_ << "\n";
+    }
+
+    void open(int depth, const std::string& tag, const std::string& note = "") {
+        indent(depth);
+        out_ << "<" << tag << ">";
+        comment(note);
+        out_ << "\n";
+    }
+    void close(int depth, const std::string& name) {
+        indent(depth);
+        out_ << "</" << name << ">\n";
+    }
+
+    std::ostream& out() { return out_; }
+
+private:
+    std::ostream& out_;
+    bool comments_;
+};
+
+// Visitor of the declaration table writing one element per field.
+class FieldWriter {
+public:
+    FieldWriter(Writer& w, int depth) : w_(w), depth_(depth) {}
+
+    void field(const params::FieldInfo& f, const RandomFloat& v) { put(f, text::formatRandomFloat(v)); }
+    void field(const params::FieldInfo& f, const RandomInt& v) { put(f, v.describe()); }
+    void field(const params::FieldInfo& f, const float& v) { put(f, text::formatFloat(v)); }
+    void field(const params::FieldInfo& f, const unsigned& v) { put(f, std::to_string(v)); }
+    void field(const params::FieldInfo& f, const int& v) { put(f, std::to_string(v)); }
+    void field(const params::FieldInfo& f, const bool& v) { put(f, text::formatBool(v), false); }
+    void field(const params::FieldInfo& f, const vec3& v) { put(f, text::formatVec3(v)); }
+    void field(const params::FieldInfo& f, const std::string& v) {
+        std::string note;
+        if (f.choices) {
+            note = std::string("one of: ") + f.choices;
+            for (char& c : note)
+                if (c == '|') c = ',';
+            note = replaceAll(note, ",", ", ");
+        }
+        w_.element(depth_, f.name, v, join(note, f.doc));
+    }
+    void field(const params::FieldInfo& f, const std::map<int, std::string>& m) {
+        writeMap(f, m, [](int k) { return std::to_string(k); },
+                 [](const std::string& v) { return v; });
+    }
+    void field(const params::FieldInfo& f, const std::map<std::string, float>& m) {
+        writeMap(f, m, [](const std::string& k) { return k; },
+                 [](float v) { return text::formatFloat(v); });
+    }
+
+    template <class G, class Fn>
+    void group(const char* name, const G&, Fn&& visit) {
+        w_.open(depth_, name);
+        FieldWriter sub(w_, depth_ + 1);
+        visit(sub);
+        w_.close(depth_, name);
+    }
+
+private:
+    static std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
+        for (std::size_t i = 0; (i = s.find(from, i)) != std::string::npos; i += to.size())
+            s.replace(i, from.size(), to);
+        return s;
+    }
+    static std::string join(const std::string& a, const std::string& b) {
+        if (a.empty()) return b;
+        if (b.empty()) return a;
+        return a + ". " + b;
+    }
+
+    void put(const params::FieldInfo& f, const std::string& value, bool withRange = true) {
+        std::string note = f.unit;
+        const std::string range = withRange ? rangeText(f) : "";
+        if (!range.empty()) note = note.empty() ? range : note + ", " + range;
+        w_.element(depth_, f.name, value, join(note, f.doc));
+    }
+
+    template <class M, class KeyText, class ValueText>
+    void writeMap(const params::FieldInfo& f, const M& m, KeyText&& keyText,
+                  ValueText&& valueText) {
+        const auto spell =
+            species_xml::mapSpelling(f.name, std::is_same_v<typename M::key_type, int>);
+        if (m.empty()) {
+            w_.element(depth_, f.name, "", f.doc);
+            return;
+        }
+        w_.open(depth_, f.name, f.doc);
+        for (const auto& [key, value] : m) {
+            w_.indent(depth_ + 1);
+            auto& o = w_.out();
+            o << "<" << spell.element << " " << spell.keyAttribute << "=\""
+              << escape(keyText(key)) << "\"";
+            if (spell.valueAttribute)
+                o << " " << spell.valueAttribute << "=\"" << escape(valueText(value)) << "\"/>\n";
+            else
+                o << ">" << escape(valueText(value)) << "</" << spell.element << ">\n";
+        }
+        w_.close(depth_, f.name);
+    }
+
+    Writer& w_;
+    int depth_;
+};
+
+void writeBuildParameters(Writer& w, const SpeciesModel& m) {
+    if (m.buildParameters.empty()) {
+        w.element(1, "build_parameters", "", "adjustable numbers of the initial structure");
+        return;
+    }
+    w.open(1, "build_parameters");
+    for (const BuildParameter& p : m.buildParameters) {
+        w.indent(2);
+        auto& o = w.out();
+        o << "<parameter name=\"" << escape(p.name) << "\" default=\""
+          << text::formatFloat(p.value) << "\" min=\"" << text::formatFloat(p.min)
+          << "\" max=\"" << text::formatFloat(p.max) << "\"";
+        if (!p.unit.empty()) o << " unit=\"" << escape(p.unit) << "\"";
+        if (!p.doc.empty()) o << " doc=\"" << escape(p.doc) << "\"";
+        o << "/>\n";
+    }
+    w.close(1, "build_parameters");
+}
+
+void writeBuild(Writer& w, const SpeciesModel& m) {
+    w.open(1, "build", "initial structure; angles in degrees, lengths in m");
+    for (const BuildStep& step : m.build) {
+        const std::string kind = species_xml::buildStepElement(step.kind);
+        w.indent(2);
+        auto& o = w.out();
+        o << "<" << kind;
+        for (const std::string& name : species_xml::buildStepAttributes(kind)) {
+            const std::string& value = step.*species_xml::buildStepMember(name);
+            // An empty id, radius or internode_length means "none" or "the type's value".
+            if (value.empty()) continue;
+            o << " " << name << "=\"" << escape(value) << "\"";
+        }
+        o << "/>\n";
+    }
+    w.close(1, "build");
+}
+
+}  // namespace
+
+void writeSpecies(const SpeciesModel& m, std::ostream& out, const SpeciesWriteOptions& options) {
+    Writer w(out, options.comments);
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    if (options.comments)
+        out << "<!-- plantarch species file, format " << species_xml::kFormatVersion
+            << " (docs/species-format.md). Units: m, degrees, days. -->\n";
+    out << "<" << species_xml::kRoot << " format=\"" << species_xml::kFormatVersion << "\">\n";
+    w.element(1, "name", m.name);
+    w.element(1, "common_name", m.commonName);
+    w.element(1, "latin_name", m.latinName);
+    if (!m.plantType.empty()) w.element(1, "plant_type", m.plantType);
+    w.element(1, "description", m.description);
+    w.indent(1);
+    out << "<recommended_age min=\"" << text::formatFloat(m.recommendedAgeMin) << "\" max=\""
+        << text::formatFloat(m.recommendedAgeMax) << "\" default=\""
+        << text::formatFloat(m.recommendedAge) << "\"/>";
+    w.comment("days");
+    out << "\n";
+    w.element(1, "max_height", text::formatFloat(m.maxHeight),
+              "m, plausible upper bound of the plant height (0: unchecked)");
+
+    w.open(1, "phenology");
+    FieldWriter phenology(w, 2);
+    params::describeParameters(m.phenology, phenology);
+    w.close(1, "phenology");
+
+    writeBuildParameters(w, m);
+
+    for (const auto& [label, params] : m.shootTypes) {
+        w.indent(1);
+        out << "<shoot_type label=\"" << escape(label) << "\">\n";
+        FieldWriter fields(w, 2);
+        params::describeParameters(params, fields);
+        w.close(1, "shoot_type");
+    }
+
+    writeBuild(w, m);
+    out << "</" << species_xml::kRoot << ">\n";
+}
+
+std::string writeSpeciesString(const SpeciesModel& model, const SpeciesWriteOptions& options) {
+    std::ostringstream out;
+    writeSpecies(model, out, options);
+    return out.str();
+}
+
+void writeSpeciesFile(const SpeciesModel& model, const std::string& path,
+                      const SpeciesWriteOptions& options) {
+    const std::string text = writeSpeciesString(model, options);
+    io::AtomicFile file(path);
+    file.write(text);
+    file.commit();
+}
+
+}  // namespace plantarch

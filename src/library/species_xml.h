@@ -1,0 +1,95 @@
+#pragma once
+// Pieces shared by the species reader and writer: the element names of the file format and
+// how the table's map fields are spelled in XML.
+
+#include <string>
+#include <vector>
+
+#include "plantarch/Species.h"
+
+namespace plantarch::species_xml {
+
+inline constexpr const char* kRoot = "plantarch_species";
+inline constexpr const char* kFormatVersion = "1";
+
+/// Valid values of <plant_type>.
+inline const std::vector<std::string>& plantTypes() {
+    static const std::vector<std::string> types = {"herbaceous", "weed", "tree"};
+    return types;
+}
+
+/// How a map field is written: one child element per entry, with the key in an attribute
+/// and the value in another attribute (valueAttribute set) or as the element's text.
+struct MapSpelling {
+    const char* element;
+    const char* keyAttribute;
+    const char* valueAttribute;  ///< nullptr: the value is the element text
+};
+
+/// Spelling of the table's map fields, by field name: child_shoot_types as
+/// <type label="..." probability="..."/>, leaf_texture_file as <image leaflet="-1">f.png</image>,
+/// other name->number maps as <param name="...">5</param>, other index->text maps as
+/// <entry index="...">text</entry>.
+inline MapSpelling mapSpelling(const std::string& field, bool integerKeys) {
+    if (field == "child_shoot_types") return {"type", "label", "probability"};
+    if (field == "leaf_texture_file") return {"image", "leaflet", nullptr};
+    if (integerKeys) return {"entry", "index", nullptr};
+    return {"param", "name", nullptr};
+}
+
+/// Attributes of the build steps, in the order they are written.
+inline const std::vector<std::string>& buildStepAttributes(const std::string& kind) {
+    static const std::vector<std::string> base = {
+        "id",     "type",   "nodes", "pitch",           "yaw",           "roll",
+        "radius", "internode_length", "internode_scale", "leaf_scale", "taper"};
+    static const std::vector<std::string> append = [] {
+        std::vector<std::string> a = {"id", "parent"};
+        a.insert(a.end(), base.begin() + 1, base.end());
+        return a;
+    }();
+    static const std::vector<std::string> child = [] {
+        std::vector<std::string> a = {"id", "parent", "node", "petiole", "repeat"};
+        a.insert(a.end(), base.begin() + 1, base.end());
+        return a;
+    }();
+    if (kind == "append") return append;
+    if (kind == "child") return child;
+    return base;
+}
+
+/// Element name of a build step kind.
+inline const char* buildStepElement(BuildStep::Kind kind) {
+    switch (kind) {
+        case BuildStep::Kind::BaseStem: return "base_stem";
+        case BuildStep::Kind::Append: return "append";
+        case BuildStep::Kind::Child: return "child";
+    }
+    return "base_stem";
+}
+
+/// The BuildStep member an attribute is stored in.
+inline std::string BuildStep::*buildStepMember(const std::string& attribute) {
+    if (attribute == "id") return &BuildStep::id;
+    if (attribute == "parent") return &BuildStep::parent;
+    if (attribute == "type") return &BuildStep::shootType;
+    if (attribute == "nodes") return &BuildStep::nodes;
+    if (attribute == "node") return &BuildStep::parentNode;
+    if (attribute == "petiole") return &BuildStep::petiole;
+    if (attribute == "repeat") return &BuildStep::repeat;
+    if (attribute == "pitch") return &BuildStep::pitch;
+    if (attribute == "yaw") return &BuildStep::yaw;
+    if (attribute == "roll") return &BuildStep::roll;
+    if (attribute == "radius") return &BuildStep::radius;
+    if (attribute == "internode_length") return &BuildStep::internodeLength;
+    if (attribute == "internode_scale") return &BuildStep::internodeScale;
+    if (attribute == "leaf_scale") return &BuildStep::leafScale;
+    if (attribute == "taper") return &BuildStep::taper;
+    return nullptr;
+}
+
+/// Attributes whose value is a name rather than an expression.
+inline bool isNameAttribute(const std::string& attribute) {
+    return attribute == "id" || attribute == "parent" || attribute == "type";
+}
+
+}  // namespace plantarch::species_xml

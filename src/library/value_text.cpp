@@ -1,0 +1,272 @@
+// Text forms of parameter values: strict parsers and shortest round-trip formatting.
+
+#include "library/value_text.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "plantarch/Error.h"
+
+namespace plantarch::text {
+
+namespace {
+
+constexpr const char* kFloatForms =
+    "a number, or uniform(min, max), normal(mean, stddev), weibull(shape, scale)";
+constexpr const char* kIntForms =
+    "a whole number, or uniform(min, max), discrete(a, b, ...) of whole numbers";
+
+[[noreturn]] void fail(const std::string& message, std::string_view value,
+                       std::string validRange = "") {
+    throw Error(message, {.value = std::string(value), .validRange = std::move(validRange)});
+}
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+// A number at the start of `s`; returns false when `s` is not exactly one finite number.
+bool readFloat(std::string_view s, float& out) {
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
+    if (s.empty()) return false;
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return false;
+    return std::isfinite(out);
+}
+
+bool readInt(std::string_view s, int& out) {
+    if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
+    if (s.empty()) return false;
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
+    return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+// "name(a, b, ...)" split into its name and trimmed arguments.
+struct Call {
+    std::string_view name;
+    std::vector<std::string_view> args;
+};
+
+bool splitCall(std::string_view s, Call& call) {
+    const auto open = s.find('(');
+    if (open == std::string_view::npos) return false;
+    if (s.back() != ')') fail("missing ')' at the end", s);
+    call.name = trim(s.substr(0, open));
+    std::string_view inner = s.substr(open + 1, s.size() - open - 2);
+    if (inner.find_first_of("()") != std::string_view::npos) fail("unexpected parenthesis", s);
+    if (!trim(inner).empty()) {
+        std::size_t start = 0;
+        while (true) {
+            const auto comma = inner.find(',', start);
+            call.args.push_back(trim(inner.substr(start, comma - start)));
+            if (comma == std::string_view::npos) break;
+            start = comma + 1;
+        }
+    }
+    return true;
+}
+
+float floatArg(const Call& c, std::size_t i, std::string_view whole) {
+    float v = 0.0f;
+    if (!readFloat(c.args[i], v))
+        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) +
+                 " is not a number ('" + std::string(c.args[i]) + "')",
+             whole, kFloatForms);
+    return v;
+}
+
+int intArg(const Call& c, std::size_t i, std::string_view whole) {
+    int v = 0;
+    if (!readInt(c.args[i], v))
+        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) +
+                 " is not a whole number ('" + std::string(c.args[i]) + "')",
+             whole, kIntForms);
+    return v;
+}
+
+void requireArgs(const Call& c, std::size_t n, const char* names, std::string_view whole) {
+    if (c.args.size() != n)
+        fail(std::string(c.name) + " takes " + std::to_string(n) + " arguments (" + names +
+                 "), got " + std::to_string(c.args.size()),
+             whole);
+}
+
+}  // namespace
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
+    while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+float parseFloat(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    float v = 0.0f;
+    if (!readFloat(s, v)) fail("expected a number", s, "a finite number");
+    return v;
+}
+
+int parseInt(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    int v = 0;
+    if (!readInt(s, v)) fail("expected a whole number", s, "a whole number");
+    return v;
+}
+
+unsigned parseUnsigned(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    unsigned v = 0;
+    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
+        fail("expected a whole number >= 0", s, "a whole number >= 0");
+    return v;
+}
+
+bool parseBool(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    if (s == "true") return true;
+    if (s == "false") return false;
+    fail("expected true or false", s, "true, false");
+}
+
+vec3 parseVec3(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    std::vector<std::string_view> parts;
+    std::size_t i = 0;
+    while (i < s.size()) {
+        while (i < s.size() && (isSpace(s[i]) || s[i] == ',')) ++i;
+        std::size_t j = i;
+        while (j < s.size() && !isSpace(s[j]) && s[j] != ',') ++j;
+        if (j > i) parts.push_back(s.substr(i, j - i));
+        i = j;
+    }
+    vec3 v{0.0f};
+    bool ok = parts.size() == 3;
+    for (std::size_t k = 0; ok && k < 3; ++k) ok = readFloat(parts[k], v[int(k)]);
+    if (!ok) fail("expected three numbers", s, "three numbers such as '0.2 0.25 0.05'");
+    return v;
+}
+
+RandomFloat parseRandomFloat(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    float constant = 0.0f;
+    if (readFloat(s, constant)) return RandomFloat(constant);
+    Call c;
+    if (s.empty() || !splitCall(s, c)) fail("expected a number or a distribution", s, kFloatForms);
+    if (c.name == "uniform") {
+        requireArgs(c, 2, "min, max", s);
+        return RandomFloat::uniform(floatArg(c, 0, s), floatArg(c, 1, s));
+    }
+    if (c.name == "normal") {
+        requireArgs(c, 2, "mean, stddev", s);
+        return RandomFloat::normal(floatArg(c, 0, s), floatArg(c, 1, s));
+    }
+    if (c.name == "weibull") {
+        requireArgs(c, 2, "shape, scale", s);
+        return RandomFloat::weibull(floatArg(c, 0, s), floatArg(c, 1, s));
+    }
+    const std::string near = closestMatch(c.name, {"uniform", "normal", "weibull"});
+    fail("unknown distribution '" + std::string(c.name) + "'" +
+             (near.empty() ? "" : ", did you mean '" + near + "'?"),
+         s, kFloatForms);
+}
+
+RandomInt parseRandomInt(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    int constant = 0;
+    if (readInt(s, constant)) return RandomInt(constant);
+    Call c;
+    if (s.empty() || !splitCall(s, c)) fail("expected a whole number or a distribution", s, kIntForms);
+    if (c.name == "uniform") {
+        requireArgs(c, 2, "min, max", s);
+        return RandomInt::uniform(intArg(c, 0, s), intArg(c, 1, s));
+    }
+    if (c.name == "discrete") {
+        if (c.args.empty()) fail("discrete needs at least one value", s, kIntForms);
+        std::vector<int> values;
+        for (std::size_t i = 0; i < c.args.size(); ++i) values.push_back(intArg(c, i, s));
+        return RandomInt::discrete(std::move(values));
+    }
+    const std::string near = closestMatch(c.name, {"uniform", "discrete"});
+    fail("unknown integer distribution '" + std::string(c.name) + "'" +
+             (near.empty() ? "" : ", did you mean '" + near + "'?"),
+         s, kIntForms);
+}
+
+namespace {
+
+// Shortest round-trip text, in plain notation when that is short ("0.0001", "1000000")
+// and in exponent notation otherwise ("1e-09", "3.4028235e+38").
+template <class T>
+std::string shortest(T v) {
+    char general[64];
+    char fixed[64];
+    const auto g = std::to_chars(general, general + sizeof general, v);
+    const auto f = std::to_chars(fixed, fixed + sizeof fixed, v, std::chars_format::fixed);
+    if (f.ec == std::errc() && f.ptr - fixed <= 12) return std::string(fixed, f.ptr);
+    return std::string(general, g.ptr);
+}
+
+}  // namespace
+
+std::string formatFloat(float v) { return shortest(v); }
+
+std::string formatDouble(double v) { return shortest(v); }
+
+std::string formatRandomFloat(const RandomFloat& v) {
+    auto call = [&](const char* name) {
+        return std::string(name) + "(" + formatFloat(v.a()) + ", " + formatFloat(v.b()) + ")";
+    };
+    switch (v.kind()) {
+        case RandomFloat::Kind::Constant: return formatFloat(v.a());
+        case RandomFloat::Kind::Uniform: return call("uniform");
+        case RandomFloat::Kind::Normal: return call("normal");
+        case RandomFloat::Kind::Weibull: return call("weibull");
+    }
+    return formatFloat(v.a());
+}
+
+std::string formatVec3(const vec3& v) {
+    return formatFloat(v.x) + " " + formatFloat(v.y) + " " + formatFloat(v.z);
+}
+
+std::size_t editDistance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates) {
+    const std::size_t limit = std::clamp<std::size_t>(word.size() / 3, 1, 3);
+    std::string best;
+    std::size_t bestDistance = limit + 1;
+    for (const std::string& c : candidates) {
+        const std::size_t d = editDistance(word, c);
+        if (d < bestDistance) {
+            bestDistance = d;
+            best = c;
+        }
+    }
+    return best;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) {
+        if (!out.empty()) out += ", ";
+        out += n;
+    }
+    return out;
+}
+
+}  // namespace plantarch::text

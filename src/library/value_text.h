@@ -1,0 +1,50 @@
+#pragma once
+// Parameter values as text, the way species files (and other XML files) write them:
+//   float        "0.025", "-1e-05"               (finite; shortest round-trip form on output)
+//   RandomFloat  "20", "uniform(10, 30)", "normal(0, 5)", "weibull(1.5, 2)"
+//   RandomInt    "3", "uniform(1, 4)", "discrete(2, 5, 11)"
+//   unsigned/int "7", "-2"
+//   bool         "true" or "false"
+//   vec3         "0.2 0.25 0.05" (whitespace or commas between the three numbers)
+//
+// Parsers trim surrounding whitespace and reject anything else with a plantarch::Error whose
+// message says what was expected and whose value is the offending text; the caller adds the
+// file, line and parameter path.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "plantarch/Mesh.h"
+#include "plantarch/Random.h"
+
+namespace plantarch::text {
+
+std::string_view trim(std::string_view s);
+
+float parseFloat(std::string_view s);
+int parseInt(std::string_view s);
+unsigned parseUnsigned(std::string_view s);
+bool parseBool(std::string_view s);
+vec3 parseVec3(std::string_view s);
+RandomFloat parseRandomFloat(std::string_view s);
+RandomInt parseRandomInt(std::string_view s);
+
+/// Shortest text that reads back to exactly the same value, in plain notation when that
+/// takes at most 12 characters ("0.0001", "1000000"), else with an exponent ("1e-09").
+std::string formatFloat(float v);
+std::string formatDouble(double v);
+std::string formatVec3(const vec3& v);
+/// As RandomFloat::describe() with formatFloat() numbers; RandomInt::describe() is exact.
+std::string formatRandomFloat(const RandomFloat& v);
+inline std::string formatBool(bool b) { return b ? "true" : "false"; }
+
+/// Levenshtein distance (for "did you mean" suggestions).
+std::size_t editDistance(std::string_view a, std::string_view b);
+/// The candidate closest to `word` when it is close enough to be a likely misspelling
+/// (distance at most a third of the word's length, at least 1, at most 3), else "".
+std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates);
+/// "a, b, c"
+std::string joinNames(const std::vector<std::string>& names);
+
+}  // namespace plantarch::text

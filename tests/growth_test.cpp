@@ -1,0 +1,563 @@
+// Growth and phenology: each rule checked with parameters chosen so the answer is known.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+using namespace plantarch;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979;
+
+// Vertical, deterministic shoot: phyllochron 2 days, no branching, no flowers.
+ShootParameters growingShoot() {
+    ShootParameters s;
+    s.phytomer_parameters.internode.pitch = 0.0f;
+    s.phytomer_parameters.internode.phyllotactic_angle = 180.0f;
+    s.phytomer_parameters.internode.radius_initial = 0.002f;
+    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 0;
+    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 0;
+    s.phytomer_parameters.petiole.length = 0.04f;
+    s.phytomer_parameters.leaf.prototype_scale = 0.05f;
+    s.max_nodes = 30;
+    s.phyllochron_min = 2.0f;
+    s.elongation_rate_max = 0.1f;
+    s.internode_length_max = 0.03f;
+    return s;
+}
+
+struct Garden {
+    Context ctx;
+    PlantArchitecture arch{&ctx};
+
+    unsigned plant(const ShootParameters& type, unsigned nodes = 1, float pitch = 0.0f,
+                   const vec3& base = vec3(0.0f), float lengthScale = 0.01f) {
+        arch.defineShootType("main", type);
+        const unsigned id = arch.addPlantInstance(base, 0.0f);
+        ShootSpec spec;
+        spec.phytomers = nodes;
+        spec.baseRotation.pitch = pitch;
+        spec.internodeRadius = 0.002f;
+        spec.internodeLengthMax = 0.03f;
+        spec.internodeLengthScale = lengthScale;
+        spec.leafScale = lengthScale;
+        spec.shootType = "main";
+        arch.addBaseStemShoot(id, spec);
+        return id;
+    }
+    const PlantInstance& state(unsigned id) const { return arch.plant(id); }
+};
+
+std::vector<vec3> allPositions(const Context& ctx) {
+    std::vector<vec3> out;
+    ctx.forEachObject([&](const ObjectView& v) { out.insert(out.end(), v.positions.begin(), v.positions.end()); });
+    return out;
+}
+
+}  // namespace
+
+TEST(Growth, NewPhytomerEveryPhyllochron) {
+    Garden g;
+    const unsigned p = g.plant(growingShoot());
+    for (int day = 1; day <= 20; ++day) {
+        g.arch.advanceTime(1.0f);
+        // A phytomer at days 2, 4, 6, ...: 1 + floor(day / 2) in all.
+        EXPECT_EQ(g.arch.getShootNodeCount(p, 0), unsigned(1 + day / 2)) << "day " << day;
+    }
+    EXPECT_DOUBLE_EQ(g.arch.getPlantAge(p), 20.0);
+}
+
+TEST(Growth, MaxNodesStopsTheShoot) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 5;
+    Garden g;
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(100.0f);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 5u);
+}
+
+TEST(Growth, InternodeElongatesLinearlyToFullLength) {
+    Garden g;
+    const unsigned p = g.plant(growingShoot());
+    // The first phytomer starts at 1% and gains 10% of its full length per day.
+    for (float day : {1.0f, 3.0f, 5.0f, 9.0f, 9.9f, 12.0f}) {
+        g.arch.advanceTime(day - float(g.arch.getPlantAge(p)));
+        const Phytomer& ph = g.state(p).shoots[0].phytomers[0];
+        const float expected = std::min(1.0f, 0.01f + 0.1f * day);
+        EXPECT_NEAR(ph.internodeFraction, expected, 1e-5f) << "day " << day;
+        const AABB box = g.ctx.objectBoundingBox(ph.internode.object);
+        EXPECT_NEAR(box.max.z - box.min.z, 0.03f * expected, 1e-5f) << "day " << day;
+        // Petioles and leaves grow at the same relative rate.
+        EXPECT_NEAR(ph.leafFraction, expected, 1e-5f);
+    }
+}
+
+namespace {
+// A parent with `nodes` nodes whose every axillary bud breaks at once, so child internode
+// lengths can be read off along the parent.
+std::vector<float> childLengths(float decay) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 8;
+    s.phyllochron_min = 1.0f;
+    s.internode_length_max = 0.05f;
+    s.internode_length_min = 0.01f;
+    s.internode_length_decay_rate = decay;
+    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
+    s.vegetative_bud_break_probability_min = 1.0f;
+    s.vegetative_bud_break_time = 0.0f;
+    s.child_shoot_types = {{"child", 1.0f}};
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    child.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 0;
+    Garden g;
+    g.arch.defineShootType("child", child);
+    const unsigned p = g.plant(s, 8);  // all 8 nodes exist before the buds break
+    g.arch.advanceTime(0.0f);
+    std::vector<float> lengths(8, -1.0f);
+    for (const Shoot& sh : g.state(p).shoots)
+        if (sh.parent == 0) lengths[std::size_t(sh.parentNode)] = sh.internodeLengthMax;
+    return lengths;
+}
+}  // namespace
+
+TEST(Growth, BasitonicChildInternodesShortenUpTheParent) {
+    const std::vector<float> l = childLengths(-0.01f);
+    // 0.05 at the base, 0.01 less per node, never below 0.01.
+    const float expected[] = {0.05f, 0.04f, 0.03f, 0.02f, 0.01f, 0.01f, 0.01f, 0.01f};
+    for (int k = 0; k < 8; ++k) EXPECT_NEAR(l[std::size_t(k)], expected[k], 1e-6f) << "node " << k;
+}
+
+TEST(Growth, AcrotonicChildInternodesLengthenTowardTheTip) {
+    const std::vector<float> l = childLengths(0.01f);
+    const float expected[] = {0.01f, 0.01f, 0.01f, 0.01f, 0.02f, 0.03f, 0.04f, 0.05f};
+    for (int k = 0; k < 8; ++k) EXPECT_NEAR(l[std::size_t(k)], expected[k], 1e-6f) << "node " << k;
+}
+
+TEST(Growth, ConstantChildInternodeLengthWithoutDecay) {
+    for (float l : childLengths(0.0f)) EXPECT_NEAR(l, 0.05f, 1e-6f);
+}
+
+TEST(Growth, InsertionAnglesIncreaseDownTheShoot) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 6;
+    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
+    s.vegetative_bud_break_probability_min = 1.0f;
+    s.vegetative_bud_break_time = 0.0f;
+    s.insertion_angle_tip = 20.0f;
+    s.insertion_angle_decay_rate = 15.0f;
+    s.child_shoot_types = {{"child", 1.0f}};
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    Garden g;
+    g.arch.defineShootType("child", child);
+    const unsigned p = g.plant(s, 6);
+    g.arch.advanceTime(0.0f);
+    for (const Shoot& sh : g.state(p).shoots)
+        if (sh.parent == 0) {
+            EXPECT_NEAR(sh.insertionAngle, std::min(90.0f, 20.0f + 15.0f * float(5 - sh.parentNode)),
+                        1e-4f);
+        }
+}
+
+TEST(Growth, GravitropismFollowsTheEquation) {
+    ShootParameters s = growingShoot();
+    s.gravitropic_curvature = 300.0f;  // degrees per metre
+    s.max_nodes = 15;
+    Garden g;
+    const unsigned p = g.plant(s, 1, 90.0f);  // starts horizontal
+    g.arch.advanceTime(28.0f);
+    const Shoot& sh = g.state(p).shoots[0];
+    ASSERT_EQ(sh.phytomers.size(), 15u);
+    // Zenith of the shoot axis: dz = -s (1 - cos z) L C with s = 1 below horizontal, else 0.5.
+    double zenith = 90.0;
+    for (std::size_t k = 1; k < sh.phytomers.size(); ++k) {
+        const double c = std::cos(zenith * kPi / 180.0);
+        const double sfac = zenith > 90.0 ? 1.0 : 0.5;
+        zenith -= sfac * (1.0 - c) * 0.03 * 300.0;
+        const vec3 guide = sh.phytomers[k].internode.guide;
+        const double measured = std::acos(double(guide.z)) * 180.0 / kPi;
+        EXPECT_NEAR(measured, zenith, 1e-2) << "node " << k;
+    }
+    EXPECT_LT(zenith, 70.0);  // it did bend up
+}
+
+TEST(Growth, RandomWalkHasZeroMeanAndTheEquationsVariance) {
+    ShootParameters s = growingShoot();
+    s.tortuosity = 10.0f;  // degrees per sqrt(m)
+    s.max_nodes = 11;
+    Garden g;
+    g.arch.defineShootType("main", s);
+    const int plants = 600;
+    std::vector<double> zen, yaw;
+    for (int i = 0; i < plants; ++i) {
+        const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
+        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+    }
+    g.arch.advanceTime(20.0f);
+    for (unsigned id : g.arch.getAllPlantIDs()) {
+        const Internode& last = g.state(id).shoots[0].phytomers.back().internode;
+        zen.push_back(last.walkZenith);
+        yaw.push_back(last.walkYaw);
+    }
+    // theta_{t+1} = (1 - L/2) theta_t + T N(0, L), from 0 over 10 steps.
+    const double L = 0.03, a = 1.0 - L / 2.0, T = 10.0;
+    double var = 0.0;
+    for (int j = 0; j < 10; ++j) var += T * T * L * std::pow(a, 2 * j);
+    for (const auto* v : {&zen, &yaw}) {
+        const double mean = std::accumulate(v->begin(), v->end(), 0.0) / double(v->size());
+        double s2 = 0.0;
+        for (double x : *v) s2 += (x - mean) * (x - mean);
+        s2 /= double(v->size() - 1);
+        EXPECT_NEAR(mean, 0.0, 5.0 * std::sqrt(var / plants));
+        // Sample variance of a normal: relative standard error sqrt(2 / (n - 1)).
+        EXPECT_NEAR(s2 / var, 1.0, 5.0 * std::sqrt(2.0 / (plants - 1)));
+    }
+}
+
+TEST(Growth, GirthFollowsDownstreamLeafArea) {
+    ShootParameters s = growingShoot();
+    s.girth_area_factor = 50.0f;  // cm^2 per m^2
+    s.max_nodes = 6;
+    Garden g;
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(40.0f);
+    const Shoot& sh = g.state(p).shoots[0];
+    // Downstream of internode k: every leaf at nodes k..end, read from the geometry.
+    for (std::size_t k = 0; k < sh.phytomers.size(); ++k) {
+        double area = 0.0;
+        for (std::size_t j = k; j < sh.phytomers.size(); ++j)
+            for (const Petiole& pt : sh.phytomers[j].petioles)
+                for (const LeafOrgan& l : pt.leaves) area += g.ctx.objectArea(l.objects[0]);
+        const double r = std::sqrt(50.0 * area * 1e-4 / kPi);
+        EXPECT_NEAR(sh.phytomers[k].internode.radius, std::max(r, 0.002), 1e-6) << "node " << k;
+    }
+    EXPECT_GT(sh.phytomers[0].internode.radius, sh.phytomers[5].internode.radius);
+    // Girth never shrinks when leaves go.
+    const float before = sh.phytomers[0].internode.radius;
+    g.arch.removePlantLeaves(p);
+    g.arch.advanceTime(5.0f);
+    EXPECT_EQ(g.state(p).shoots[0].phytomers[0].internode.radius, before);
+}
+
+TEST(Growth, ZeroGirthFactorLocksTheRadius) {
+    Garden g;
+    const unsigned p = g.plant(growingShoot());
+    g.arch.advanceTime(30.0f);
+    for (const Phytomer& ph : g.state(p).shoots[0].phytomers)
+        EXPECT_FLOAT_EQ(ph.internode.radius, ph.radiusInitial);
+}
+
+TEST(Growth, BudBreakFractionMatchesProbability) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 1;
+    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
+    s.vegetative_bud_break_probability_min = 0.3f;
+    s.vegetative_bud_break_probability_decay_rate = 0.0f;
+    s.vegetative_bud_break_time = 3.0f;
+    s.child_shoot_types = {{"child", 1.0f}};
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    Garden g;
+    g.arch.defineShootType("child", child);
+    g.arch.defineShootType("main", s);
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+        const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
+        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+    }
+    g.arch.advanceTime(2.9f);  // not yet: buds break after 3 days
+    int broken = 0;
+    for (unsigned id : g.arch.getAllPlantIDs()) broken += int(g.arch.getShootCount(id)) - 1;
+    EXPECT_EQ(broken, 0);
+    g.arch.advanceTime(0.2f);
+    for (unsigned id : g.arch.getAllPlantIDs()) broken += int(g.arch.getShootCount(id)) - 1;
+    const double sd = std::sqrt(n * 0.3 * 0.7);
+    EXPECT_NEAR(broken, n * 0.3, 5 * sd);
+}
+
+TEST(Growth, BudBreakProbabilityDecaysFromTheBase) {
+    // Basitonic: probability 1 at node 0, -0.25 per node up, at least 0.1.
+    ShootParameters s = growingShoot();
+    s.max_nodes = 6;
+    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
+    s.vegetative_bud_break_probability_min = 0.1f;
+    s.vegetative_bud_break_probability_decay_rate = -0.25f;
+    s.vegetative_bud_break_time = 0.0f;
+    s.child_shoot_types = {{"child", 1.0f}};
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    Garden g;
+    g.arch.defineShootType("child", child);
+    g.arch.defineShootType("main", s);
+    const int n = 1500;
+    for (int i = 0; i < n; ++i) {
+        const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
+        g.arch.addBaseStemShoot(id, 6, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+    }
+    g.arch.advanceTime(0.0f);
+    std::vector<int> perNode(6, 0);
+    for (unsigned id : g.arch.getAllPlantIDs())
+        for (const Shoot& sh : g.state(id).shoots)
+            if (sh.parent == 0) perNode[std::size_t(sh.parentNode)]++;
+    const double p[] = {1.0, 0.75, 0.5, 0.25, 0.1, 0.1};
+    for (int k = 0; k < 6; ++k)
+        EXPECT_NEAR(perNode[std::size_t(k)], n * p[k], 5 * std::sqrt(n * p[k] * (1 - p[k])) + 1e-9)
+            << "node " << k;
+}
+
+TEST(Growth, PhenologyStagesOnTheirDays) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 12;
+    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+    s.flower_bud_break_probability = 1.0f;
+    s.fruit_set_probability = 1.0f;
+    s.determinate_shoot_growth = false;
+    Garden g;
+    PhenologyParameters ph;
+    ph.time_to_dormancy_break = 5;
+    ph.time_to_flower_initiation = 20;
+    ph.time_to_flower_opening = 4;
+    ph.time_to_fruit_set = 6;
+    ph.time_to_fruit_maturity = 10;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    auto count = [&](std::vector<ObjectID> (PlantArchitecture::*f)(unsigned) const) {
+        return (g.arch.*f)(p).size();
+    };
+    g.arch.advanceTime(4.9f);
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 1u);
+    g.arch.advanceTime(0.1f);  // day 5: dormancy breaks
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Vegetative);
+    g.arch.advanceTime(19.9f);  // day 24.9
+    EXPECT_EQ(count(&PlantArchitecture::getPlantFlowerObjectIDs), 0u);
+    g.arch.advanceTime(0.1f);  // day 25: closed flowers
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Reproductive);
+    EXPECT_GT(count(&PlantArchitecture::getPlantFlowerObjectIDs), 0u);
+    for (ObjectID id : g.arch.getPlantFlowerObjectIDs(p))
+        EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_closed");
+    g.arch.advanceTime(4.0f);  // day 29: open
+    for (ObjectID id : g.arch.getPlantFlowerObjectIDs(p))
+        EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_open");
+    g.arch.advanceTime(5.9f);
+    EXPECT_EQ(count(&PlantArchitecture::getPlantFruitObjectIDs), 0u);
+    g.arch.advanceTime(0.1f);  // day 35: fruit
+    EXPECT_GT(count(&PlantArchitecture::getPlantFruitObjectIDs), 0u);
+    // Fruit grow to full size over the maturity time.
+    const FloralBud* bud = nullptr;
+    for (const Phytomer& phy : g.state(p).shoots[0].phytomers)
+        for (const FloralBud& fb : phy.petioles[0].floralBuds)
+            if (fb.stage == FloralStage::Fruit && !bud) bud = &fb;
+    ASSERT_NE(bud, nullptr);
+    EXPECT_FLOAT_EQ(bud->fruitGrowth, 0.0f);
+    g.arch.advanceTime(5.0f);
+    EXPECT_NEAR(bud->fruitGrowth, 0.5f, 1e-6f);
+    g.arch.advanceTime(10.0f);
+    EXPECT_FLOAT_EQ(bud->fruitGrowth, 1.0f);
+}
+
+TEST(Growth, DeterminateShootStopsAtFlowering) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 50;
+    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+    s.flower_bud_break_probability = 1.0f;
+    s.determinate_shoot_growth = true;
+    Garden g;
+    PhenologyParameters ph;
+    ph.time_to_flower_opening = 10;  // no closed stage: open flowers on day 10
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(30.0f);
+    // Phytomers at days 2..10 (the one on day 10 comes after flowering is decided? no: the
+    // flower event sorts first at equal times), so growth stops at day 10.
+    EXPECT_LE(g.arch.getShootNodeCount(p, 0), 6u);
+    EXPECT_TRUE(g.state(p).shoots[0].flowering);
+}
+
+namespace {
+unsigned perennial(Garden& g, bool evergreen) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 40;
+    s.max_nodes_per_season = 5;
+    PhenologyParameters ph;
+    ph.time_to_dormancy_break = 10;
+    ph.time_to_senescence = 30;
+    ph.evergreen = evergreen;
+    g.arch.setDefaultPhenology(ph);
+    return g.plant(s);
+}
+}  // namespace
+
+TEST(Growth, TwoSeasonsOfAPerennial) {
+    Garden g;
+    const unsigned p = perennial(g, false);
+    g.arch.advanceTime(9.0f);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 1u);  // dormant until day 10
+    g.arch.advanceTime(30.0f);                       // day 39: season 1, 5 new nodes at most
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 6u);
+    EXPECT_GT(g.arch.getPlantLeafCount(p), 0u);
+    g.arch.advanceTime(1.0f);  // day 40: senescence, leaves fall
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 0u);
+    EXPECT_TRUE(g.arch.getPlantLeafObjectIDs(p).empty());
+    g.arch.advanceTime(9.0f);  // day 49: still winter
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 6u);
+    g.arch.advanceTime(11.0f);  // day 60: season 2 began on day 50
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Vegetative);
+    EXPECT_EQ(g.state(p).season, 2);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 11u);  // 5 more
+    EXPECT_GT(g.arch.getPlantLeafCount(p), 0u);      // new leaves only
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 5u);
+}
+
+TEST(Growth, EvergreenKeepsItsLeavesThroughDormancy) {
+    Garden g;
+    const unsigned p = perennial(g, true);
+    g.arch.advanceTime(41.0f);
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 6u);
+    g.arch.advanceTime(5.0f);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 6u);  // but it does not grow
+}
+
+TEST(Growth, LeavesFallAtTheirMaximumLifespan) {
+    ShootParameters s = growingShoot();
+    Garden g;
+    PhenologyParameters ph;
+    ph.max_leaf_lifespan = 9.0f;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(20.0f);
+    // Leaves made on days 0, 2, ..., 20; those older than 9 days (days 0..10) have fallen.
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 5u);
+}
+
+TEST(Growth, CustomFunctionsAreCalledWithTheirArguments) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 6;
+    s.phytomer_parameters.phytomer_creation_function = "halve_late_leaves";
+    s.phytomer_parameters.phytomer_callback_function = "count";
+    Garden g;
+    std::vector<std::tuple<unsigned, int, int, double>> created;
+    int calls = 0;
+    std::vector<double> callbackAges;
+    g.arch.registerPhytomerCreationFunction("halve_late_leaves", [&](PhytomerCreationContext& c) {
+        created.emplace_back(c.nodeIndex, c.parentNodeIndex, c.shootMaxNodes, c.plantAge);
+        if (c.nodeIndex >= 3)
+            for (Petiole& pt : c.phytomer.petioles)
+                for (LeafOrgan& l : pt.leaves) l.scale *= 0.5f;
+    });
+    g.arch.registerPhytomerCallbackFunction("count", [&](PhytomerCallbackContext& c) {
+        ++calls;
+        if (c.nodeIndex == 0) callbackAges.push_back(c.plantAge);
+    });
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(4.5f);
+    g.arch.advanceTime(7.5f);
+    ASSERT_EQ(created.size(), 6u);
+    for (unsigned k = 0; k < 6; ++k) {
+        EXPECT_EQ(std::get<0>(created[k]), k);
+        EXPECT_EQ(std::get<1>(created[k]), -1);
+        EXPECT_EQ(std::get<2>(created[k]), 6);
+        EXPECT_DOUBLE_EQ(std::get<3>(created[k]), 2.0 * k);
+    }
+    const auto& phs = g.state(p).shoots[0].phytomers;
+    EXPECT_FLOAT_EQ(phs[4].petioles[0].leaves[0].scale, 0.025f);
+    EXPECT_FLOAT_EQ(phs[1].petioles[0].leaves[0].scale, 0.05f);
+    // Callbacks once per phytomer on every whole day: days 1..12.
+    EXPECT_EQ(callbackAges, (std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}));
+    EXPECT_GT(calls, 12);
+    // An unregistered name is an error when the type is defined.
+    ShootParameters bad = growingShoot();
+    bad.phytomer_parameters.phytomer_creation_function = "nope";
+    EXPECT_THROW(g.arch.defineShootType("bad", bad), Error);
+}
+
+TEST(Growth, StepSizeInvariance) {
+    // A branching, flowering, randomised plant grown 60 days in different splits.
+    auto grow = [](const std::vector<float>& steps) {
+        ShootParameters s = growingShoot();
+        s.max_nodes = 20;
+        s.phyllochron_min = 1.5f;
+        s.tortuosity = 5.0f;
+        s.gravitropic_curvature = 50.0f;
+        s.girth_area_factor = 20.0f;
+        s.phytomer_parameters.internode.phyllotactic_angle = RandomFloat::uniform(130, 150);
+        s.phytomer_parameters.petiole.pitch = RandomFloat::normal(50, 8);
+        s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
+        s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+        s.vegetative_bud_break_probability_min = 0.2f;
+        s.vegetative_bud_break_probability_decay_rate = -0.3f;
+        s.vegetative_bud_break_time = RandomFloat::uniform(3, 9);
+        s.flower_bud_break_probability = 0.6f;
+        s.fruit_set_probability = 0.5f;
+        s.determinate_shoot_growth = false;
+        s.phytomer_parameters.inflorescence.flowers_per_peduncle = RandomInt::uniform(1, 3);
+        s.phytomer_parameters.inflorescence.flower_offset = 0.3f;
+        s.phytomer_parameters.leaf.leaves_per_petiole = 3;
+        s.phytomer_parameters.leaf.leaflet_offset = 0.3f;
+        PhenologyParameters ph;
+        ph.time_to_flower_initiation = 25;
+        ph.time_to_flower_opening = 4;
+        ph.time_to_fruit_set = 4;
+        ph.time_to_fruit_maturity = 15;
+        ph.max_leaf_lifespan = 40;
+        auto g = std::make_unique<Garden>();
+        g->arch.setSeed(11);
+        g->arch.setDefaultPhenology(ph);
+        const unsigned p = g->plant(s);
+        for (float d : steps) g->arch.advanceTime(d);
+        struct Result {
+            std::size_t shoots, leaves, flowers, fruit, objects, triangles;
+            std::vector<vec3> positions;
+        };
+        return Result{g->arch.getShootCount(p), g->arch.getPlantLeafCount(p),
+                      g->arch.getPlantFlowerObjectIDs(p).size(),
+                      g->arch.getPlantFruitObjectIDs(p).size(), g->ctx.objectCount(),
+                      g->ctx.triangleCount(), allPositions(g->ctx)};
+    };
+    const auto once = grow({60.0f});
+    EXPECT_GT(once.shoots, 3u);
+    EXPECT_GT(once.fruit, 0u);
+    std::vector<std::vector<float>> splits = {std::vector<float>(60, 1.0f),
+                                              {7.0f, 13.0f, 40.0f},
+                                              std::vector<float>(120, 0.5f),
+                                              std::vector<float>(600, 0.1f),
+                                              {0.0f, 59.0f, 0.25f, 0.75f}};
+    for (const auto& steps : splits) {
+        const auto other = grow(steps);
+        EXPECT_EQ(other.shoots, once.shoots);
+        EXPECT_EQ(other.leaves, once.leaves);
+        EXPECT_EQ(other.flowers, once.flowers);
+        EXPECT_EQ(other.fruit, once.fruit);
+        EXPECT_EQ(other.objects, once.objects);
+        ASSERT_EQ(other.triangles, once.triangles);
+        // Object IDs may be issued in another order; compare the sorted positions.
+        auto a = once.positions, b = other.positions;
+        auto less = [](const vec3& x, const vec3& y) {
+            return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z);
+        };
+        ASSERT_EQ(a.size(), b.size());
+        std::sort(a.begin(), a.end(), less);
+        std::sort(b.begin(), b.end(), less);
+        double worst = 0.0;
+        for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(glm::length(a[i] - b[i])));
+        EXPECT_LT(worst, 1e-5) << steps.size() << " steps";
+    }
+}
+
+TEST(Growth, InvalidTimeStepsAreErrors) {
+    Garden g;
+    const unsigned p = g.plant(growingShoot());
+    EXPECT_THROW(g.arch.advanceTime(-1.0f), Error);
+    EXPECT_THROW(g.arch.advanceTime(std::nanf("")), Error);
+    EXPECT_THROW(g.arch.advanceTime(99u, 1.0f), Error);
+    PhenologyParameters bad;
+    bad.max_leaf_lifespan = -3;
+    EXPECT_THROW(g.arch.setPlantPhenologicalThresholds(p, bad), Error);
+}
