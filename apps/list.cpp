@@ -21,11 +21,13 @@ int run(const GlobalOptions& g) {
         try {
             const SpeciesModel s = loadSpecies(name);
             std::string names = s.commonName;
-            if (!s.latinName.empty()) names += (names.empty() ? "" : " ") + ("(" + s.latinName + ")");
+            if (!s.latinName.empty())
+                names += (names.empty() ? "" : " ") + ("(" + s.latinName + ")");
             std::printf("%s\n", fmt::format("{:<{}}  {}", name, width, names).c_str());
         } catch (const Error& e) {
             // One broken file does not hide the others; the status says something was wrong.
-            std::printf("%s\n", fmt::format("{:<{}}  (invalid: {})", name, width, e.what()).c_str());
+            std::printf("%s\n",
+                        fmt::format("{:<{}}  (invalid: {})", name, width, e.what()).c_str());
             status = 2;
         }
     }

@@ -312,7 +312,7 @@ TEST(Growth, BudBreakProbabilityDecaysFromTheBase) {
 
 TEST(Growth, PhenologyStagesOnTheirDays) {
     ShootParameters s = growingShoot();
-    s.max_nodes = 12;
+    s.max_nodes = 4;  // nodes on days 0, 7, 9, 11: every bud exists before flowering
     s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
     s.flower_bud_break_probability = 1.0f;
     s.fruit_set_probability = 1.0f;
@@ -491,8 +491,9 @@ TEST(Growth, StepSizeInvariance) {
         s.phytomer_parameters.petiole.pitch = RandomFloat::normal(50, 8);
         s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
         s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
-        s.vegetative_bud_break_probability_min = 0.2f;
-        s.vegetative_bud_break_probability_decay_rate = -0.3f;
+        s.vegetative_bud_break_probability_min = 0.05f;
+        s.vegetative_bud_break_probability_max = 0.6f;
+        s.vegetative_bud_break_probability_decay_rate = -0.25f;
         s.vegetative_bud_break_time = RandomFloat::uniform(3, 9);
         s.flower_bud_break_probability = 0.6f;
         s.fruit_set_probability = 0.5f;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -39,7 +40,9 @@ constexpr double kPi = std::numbers::pi;
 
 // ---- geometry helpers ----------------------------------------------------------------------
 
-double cross(dvec2 a, dvec2 b) { return a.x * b.y - a.y * b.x; }
+double cross(dvec2 a, dvec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 double shoelace(const std::vector<vec2>& poly) {
     double sum = 0.0;
@@ -116,7 +119,8 @@ double smallestAngleDegrees(const Mesh& m, std::size_t t) {
 // Presets plus variants that exercise teeth, lobes and truncate bases on several forms.
 std::vector<std::pair<std::string, LeafOutlineParams>> outlineCases() {
     std::vector<std::pair<std::string, LeafOutlineParams>> cases;
-    for (LeafShape s : allLeafShapes()) cases.push_back({std::string(leafShapeName(s)), leafShapePreset(s)});
+    for (LeafShape s : allLeafShapes())
+        cases.push_back({std::string(leafShapeName(s)), leafShapePreset(s)});
     LeafOutlineParams p = leafShapePreset(LeafShape::Ovate);
     p.serrations = 14;
     p.serration_depth = 0.02f;
@@ -195,9 +199,9 @@ TEST(LeafOutline, RandomParametersStaySimple) {
 }
 
 TEST(LeafOutline, WidestPointIsWhereAsked) {
-    for (LeafShape s : {LeafShape::Elliptic, LeafShape::Ovate, LeafShape::Obovate,
-                        LeafShape::Lanceolate, LeafShape::Oblanceolate, LeafShape::Cordate,
-                        LeafShape::Reniform}) {
+    for (LeafShape s :
+         {LeafShape::Elliptic, LeafShape::Ovate, LeafShape::Obovate, LeafShape::Lanceolate,
+          LeafShape::Oblanceolate, LeafShape::Cordate, LeafShape::Reniform}) {
         for (float widest : {0.3f, 0.45f, 0.6f, 0.75f}) {
             LeafOutlineParams p = leafShapePreset(s);
             p.widest_point = widest;
@@ -248,8 +252,8 @@ int countNotches(const LeafOutlineParams& toothed) {
 
 TEST(LeafOutline, SerrationsCutTheRequestedNumberOfTeeth) {
     for (int teeth : {5, 12, 30}) {
-        for (LeafShape s : {LeafShape::Ovate, LeafShape::Oblong, LeafShape::Cordate,
-                            LeafShape::Palmate}) {
+        for (LeafShape s :
+             {LeafShape::Ovate, LeafShape::Oblong, LeafShape::Cordate, LeafShape::Palmate}) {
             LeafOutlineParams p = leafShapePreset(s);
             p.serrations = teeth;
             p.serration_depth = s == LeafShape::Palmate ? 0.02f : 0.012f;
@@ -361,7 +365,8 @@ TEST(LeafMesh, ResolutionFollowsSubdivisions) {
 
 TEST(LeafMesh, MidribIsALineOfEdges) {
     // Symmetric meshing: no triangle has vertices on both sides of the midrib.
-    const Mesh m = meshLeafOutline(leafOutline(leafShapePreset(LeafShape::Ovate)), {.subdivisions = 12});
+    const Mesh m =
+        meshLeafOutline(leafOutline(leafShapePreset(LeafShape::Ovate)), {.subdivisions = 12});
     for (std::size_t t = 0; t < m.indices.size(); t += 3) {
         bool below = false, above = false;
         for (int k = 0; k < 3; ++k) {
@@ -388,7 +393,8 @@ TEST(LeafMesh, RejectsBadPolygons) {
     // A bow tie crosses itself.
     EXPECT_THROW(meshLeafOutline({{0, 0}, {1, 1}, {1, 0}, {0, 1}}), Error);
     // A clockwise polygon is accepted (reversed).
-    const Mesh m = meshLeafOutline({{0, 0}, {0, 0.2f}, {1, 0}, {0.5f, -0.2f}}, {.symmetric = false});
+    const Mesh m =
+        meshLeafOutline({{0, 0}, {0, 0.2f}, {1, 0}, {0.5f, -0.2f}}, {.symmetric = false});
     EXPECT_NEAR(m.area(), 0.2, 1e-5);
 }
 
@@ -431,8 +437,8 @@ TEST(LeafDeform, FoldRaisesTheMarginsAndKeepsTheMidrib) {
 TEST(LeafDeform, LongitudinalCurvatureLiftsOrLowersTheTip) {
     for (float c : {0.3f, -0.3f}) {
         SCOPED_TRACE(c);
-        const Deformed r = deform(LeafShape::Lanceolate, {.longitudinal_curvature = c,
-                                                          .normalize_length = false});
+        const Deformed r =
+            deform(LeafShape::Lanceolate, {.longitudinal_curvature = c, .normalize_length = false});
         for (std::size_t i = 0; i < r.flat.positions.size(); ++i) {
             const vec3 f = r.flat.positions[i], b = r.bent.positions[i];
             if (std::abs(f.x - 1.0f) < 1e-6f && std::abs(f.y) < 1e-6f) {
@@ -447,16 +453,17 @@ TEST(LeafDeform, LongitudinalCurvatureLiftsOrLowersTheTip) {
             if (std::abs(r.flat.positions[i].y) < 1e-7f) midrib.push_back(r.bent.positions[i]);
         std::sort(midrib.begin(), midrib.end(), [](vec3 a, vec3 b) { return a.x < b.x; });
         double length = 0.0;
-        for (std::size_t i = 1; i < midrib.size(); ++i) length += glm::length(midrib[i] - midrib[i - 1]);
+        for (std::size_t i = 1; i < midrib.size(); ++i)
+            length += glm::length(midrib[i] - midrib[i - 1]);
         EXPECT_NEAR(length, 1.0, 0.01);
     }
 }
 
 TEST(LeafDeform, BuckleBendsDownAtTheGivenFraction) {
     const float at = 0.5f;
-    const Deformed r = deform(LeafShape::Linear, {.leaf_buckle_length = at,
-                                                  .leaf_buckle_angle = 45.0f,
-                                                  .normalize_length = false}, 40);
+    const Deformed r = deform(
+        LeafShape::Linear,
+        {.leaf_buckle_length = at, .leaf_buckle_angle = 45.0f, .normalize_length = false}, 40);
     std::vector<std::pair<float, float>> midrib;  // flat x, bent z
     for (std::size_t i = 0; i < r.flat.positions.size(); ++i) {
         const vec3 f = r.flat.positions[i], b = r.bent.positions[i];
@@ -471,8 +478,8 @@ TEST(LeafDeform, BuckleBendsDownAtTheGivenFraction) {
         if (midrib[i].first > at + 0.03f) {
             EXPECT_LT(midrib[i].second, midrib[i - 1].second);  // going down
             // Beyond the crease the midrib descends at the buckle angle.
-            const float slope = (midrib[i].second - midrib[i - 1].second) /
-                                (midrib[i].first - midrib[i - 1].first);
+            const float slope =
+                (midrib[i].second - midrib[i - 1].second) / (midrib[i].first - midrib[i - 1].first);
             EXPECT_NEAR(slope, -std::sin(float(kPi) / 4.0f), 0.02f);
         }
     EXPECT_NEAR(midrib.back().second, -(1.0f - at) * std::sin(float(kPi) / 4.0f), 0.03f);
@@ -491,9 +498,8 @@ TEST(LeafDeform, LateralCurvatureCupsTheBlade) {
             }
         }
         // The margin at the widest point moves by c / 16.
-        const auto widest = std::max_element(
-            r.flat.positions.begin(), r.flat.positions.end(),
-            [](vec3 a, vec3 b) { return a.y < b.y; });
+        const auto widest = std::max_element(r.flat.positions.begin(), r.flat.positions.end(),
+                                             [](vec3 a, vec3 b) { return a.y < b.y; });
         const std::size_t i = std::size_t(widest - r.flat.positions.begin());
         EXPECT_NEAR(r.bent.positions[i].z, c / 16.0f, 1e-3f);
     }
@@ -505,13 +511,16 @@ TEST(LeafDeform, WavesAlternateAlongTheMarginWithTheGivenPeriod) {
     const std::vector<vec2> poly = leafOutline(p);
     Mesh flat = meshLeafOutline(poly, {.subdivisions = 40});
     Mesh bent = flat;
-    deformLeafMesh(bent, {.wave_period = period, .wave_amplitude = 0.05f, .blade_width = p.aspect_ratio,
+    deformLeafMesh(bent, {.wave_period = period,
+                          .wave_amplitude = 0.05f,
+                          .blade_width = p.aspect_ratio,
                           .normalize_length = false});
     // Upper margin vertices, by x.
     std::vector<std::pair<float, float>> margin;
     for (std::size_t i = 0; i < flat.positions.size(); ++i) {
         const vec3 f = flat.positions[i];
-        if (f.y > 0.02f && distanceToBoundary(poly, dvec2(f)) < 1e-6) margin.push_back({f.x, bent.positions[i].z});
+        if (f.y > 0.02f && distanceToBoundary(poly, dvec2(f)) < 1e-6)
+            margin.push_back({f.x, bent.positions[i].z});
     }
     std::sort(margin.begin(), margin.end());
     std::vector<float> changes;
@@ -524,7 +533,8 @@ TEST(LeafDeform, WavesAlternateAlongTheMarginWithTheGivenPeriod) {
         const float k = std::round(x / period);
         EXPECT_NEAR(x, k * period, 0.03f);
     }
-    for (std::size_t i = 1; i < changes.size(); ++i) EXPECT_NEAR(changes[i] - changes[i - 1], period, 0.05f);
+    for (std::size_t i = 1; i < changes.size(); ++i)
+        EXPECT_NEAR(changes[i] - changes[i - 1], period, 0.05f);
     // The lower margin is in antiphase.
     for (std::size_t i = 0; i < flat.positions.size(); ++i) {
         const vec3 f = flat.positions[i];
@@ -536,7 +546,8 @@ TEST(LeafDeform, WavesAlternateAlongTheMarginWithTheGivenPeriod) {
 }
 
 TEST(LeafDeform, PetioleRollCurlsOnlyTheBase) {
-    const Deformed r = deform(LeafShape::Oblong, {.petiole_roll = 60.0f, .normalize_length = false});
+    const Deformed r =
+        deform(LeafShape::Oblong, {.petiole_roll = 60.0f, .normalize_length = false});
     for (std::size_t i = 0; i < r.flat.positions.size(); ++i) {
         const vec3 f = r.flat.positions[i], b = r.bent.positions[i];
         if (std::abs(f.y) < 0.05f) continue;
@@ -590,13 +601,15 @@ TEST(LeafPrototypeBuild, SameStreamSameBytes) {
     const Mesh m1 = buildLeafPrototype(proto, a);
     const Mesh m2 = buildLeafPrototype(proto, b);
     ASSERT_EQ(m1.positions.size(), m2.positions.size());
-    EXPECT_EQ(0, std::memcmp(m1.positions.data(), m2.positions.data(), m1.positions.size() * sizeof(vec3)));
+    EXPECT_EQ(0, std::memcmp(m1.positions.data(), m2.positions.data(),
+                             m1.positions.size() * sizeof(vec3)));
     EXPECT_EQ(0, std::memcmp(m1.uvs.data(), m2.uvs.data(), m1.uvs.size() * sizeof(vec2)));
     EXPECT_EQ(m1.indices, m2.indices);
     EXPECT_EQ(a, b);
     // Another draw differs.
     const Mesh m3 = buildLeafPrototype(proto, a);
-    EXPECT_NE(0, std::memcmp(m1.positions.data(), m3.positions.data(), m1.positions.size() * sizeof(vec3)));
+    EXPECT_NE(0, std::memcmp(m1.positions.data(), m3.positions.data(),
+                             m1.positions.size() * sizeof(vec3)));
 }
 
 TEST(LeafPrototypeBuild, DrawsEveryRandomFieldOnceWhateverTheShape) {
@@ -674,7 +687,8 @@ TEST(LeafPrototypeBuild, PetioluleAndOffset) {
     // The stalk fills the first 8 % of the blade length: the blade starts there.
     float bladeStart = 1.0f;
     for (std::size_t i = 0; i < stalked.positions.size(); ++i)
-        if (std::abs(stalked.positions[i].y) > 0.05f) bladeStart = std::min(bladeStart, stalked.positions[i].x);
+        if (std::abs(stalked.positions[i].y) > 0.05f)
+            bladeStart = std::min(bladeStart, stalked.positions[i].x);
     EXPECT_GT(bladeStart, 0.07f);
     proto.build_petiolule = false;
     proto.leaf_offset = vec3(-0.3f, 0.0f, 0.01f);
@@ -689,8 +703,9 @@ class LeafImage : public ::testing::Test {
 protected:
     void SetUp() override {
         dir_ = std::filesystem::temp_directory_path() /
-               ("plantarch_leaf_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+               ("plantarch_leaf_test_" +
+                std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+                ::testing::UnitTest::GetInstance()->current_test_info()->name());
         std::filesystem::create_directories(dir_);
     }
     void TearDown() override { std::filesystem::remove_all(dir_); }
@@ -759,10 +774,12 @@ TEST_F(LeafImage, LeafBuiltFromAnImageFollowsItsAlpha) {
     EXPECT_NEAR(box.max.y - box.min.y, 90.0f / 140.0f, 0.02f);  // the image's own proportions
     // Every UV lands on an opaque pixel of the image (the ellipse, slightly shrunk).
     for (const vec2& uv : m.uvs) {
-        const double dx = (uv.x * 300.0 - 150.0) / 140.0, dy = ((1.0 - uv.y) * 300.0 - 150.0) / 90.0;
+        const double dx = (uv.x * 300.0 - 150.0) / 140.0,
+                     dy = ((1.0 - uv.y) * 300.0 - 150.0) / 90.0;
         EXPECT_LE(dx * dx + dy * dy, 1.03);
     }
-    EXPECT_NEAR(m.area(), kPi * 140.0 * 90.0 / (280.0 * 280.0), 0.03 * kPi * 140 * 90 / (280.0 * 280.0));
+    EXPECT_NEAR(m.area(), kPi * 140.0 * 90.0 / (280.0 * 280.0),
+                0.03 * kPi * 140 * 90 / (280.0 * 280.0));
 }
 
 TEST_F(LeafImage, ErrorsNameTheFile) {

@@ -2,18 +2,16 @@
 // build steps and their expressions, the library folder, and the list/info/validate commands.
 
 #include <gtest/gtest.h>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <memory>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <sstream>
 
 #include "library/expression.h"
@@ -229,8 +227,9 @@ TEST(SpeciesRoundTrip, BeanWritesAndReadsBackIdentically) {
 
 TEST(SpeciesRoundTrip, EveryKindOfValue) {
     const std::string rich = species(
-        {{"@SHOOT@", "<max_nodes_per_season>discrete(2, 3, 5)</max_nodes_per_season>"
-                     "<tortuosity>weibull(1.5, 2)</tortuosity>"},
+        {{"@SHOOT@",
+          "<max_nodes_per_season>discrete(2, 3, 5)</max_nodes_per_season>"
+          "<tortuosity>normal(2, 0.5)</tortuosity>"},
          {"@PETIOLE@", "<curvature>normal(0.1, 1e-07)</curvature><color>1 0 0.333333343</color>"},
          {"@PROTOTYPE@",
           "<leaf_texture_file><image leaflet=\"-1\">left &amp; right.png</image>"
@@ -249,11 +248,11 @@ TEST(SpeciesRoundTrip, EveryKindOfValue) {
     const SpeciesModel m = readSpeciesString(rich, "rich.xml");
     const ShootParameters& side = m.shootTypes.at("side");
     EXPECT_EQ(side.max_nodes_per_season, RandomInt::discrete({2, 3, 5}));
-    EXPECT_EQ(side.tortuosity, RandomFloat::weibull(1.5f, 2.0f));
+    EXPECT_EQ(side.tortuosity, RandomFloat::normal(2.0f, 0.5f));
     EXPECT_EQ(side.phytomer_parameters.leaf.prototype.leaf_texture_file.at(-1), "left & right.png");
     EXPECT_EQ(side.phytomer_parameters.inflorescence.flower_prototype_parameters.at("cup"), 0.25f);
-    EXPECT_TRUE(m.shootTypes.at("main").phytomer_parameters.inflorescence
-                    .flower_prototype_parameters.empty());
+    EXPECT_TRUE(m.shootTypes.at("main")
+                    .phytomer_parameters.inflorescence.flower_prototype_parameters.empty());
     const std::string first = writeSpeciesString(m);
     const SpeciesModel again = readSpeciesString(first, "again.xml");
     EXPECT_EQ(writeSpeciesString(again), first);
@@ -287,6 +286,15 @@ TEST(SpeciesRoundTrip, NumbersInShortestPlainForm) {
         EXPECT_EQ(text::parseFloat(text::formatFloat(v)), v);
 }
 
+TEST(SpeciesRoundTrip, RandomValuesAsText) {
+    for (const char* t : {"20", "uniform(10, 30)", "normal(0, 5)", "weibull(1.5, 2)",
+                          "uniform(-0.3, -0.2)", "0.0001"})
+        EXPECT_EQ(text::formatRandomFloat(text::parseRandomFloat(t)), t);
+    EXPECT_EQ(text::parseRandomFloat(" uniform( 1,2 ) "), RandomFloat::uniform(1, 2));
+    for (const char* t : {"3", "-2", "uniform(1, 4)", "discrete(2, 5, 11)"})
+        EXPECT_EQ(text::parseRandomInt(t).describe(), t);
+}
+
 // ---- the strict reader: a corpus of broken files ---------------------------------------
 
 struct BrokenCase {
@@ -299,172 +307,290 @@ struct BrokenCase {
 std::vector<BrokenCase> brokenCorpus() {
     return {
         // Unknown and misspelt keys at every level: the path, and the valid names nearby.
-        {"unknown top level", species({{"<name>mini</name>", "<name>mini</name><nmae/>"}}), 3,
+        {"unknown top level",
+         species({{"<name>mini</name>", "<name>mini</name><nmae/>"}}),
+         3,
          {"nmae", "did you mean 'name'", "shoot_type", "build_parameters"}},
-        {"unknown phenology key", species({{"@PHENOLOGY@", "<max_ag>3</max_ag>"}}), 6,
+        {"unknown phenology key",
+         species({{"@PHENOLOGY@", "<max_ag>3</max_ag>"}}),
+         6,
          {"phenology.max_ag", "did you mean 'max_age'", "time_to_fruit_set"}},
-        {"unknown shoot key", species({{"@SHOOT@", "<max_node>3</max_node>"}}), 12,
+        {"unknown shoot key",
+         species({{"@SHOOT@", "<max_node>3</max_node>"}}),
+         12,
          {"main.max_node", "did you mean 'max_nodes'", "phyllochron_min"}},
-        {"unknown phytomer group", species({{"<petiole>", "<petiol>"}, {"</petiole>", "</petiol>"}}),
-         17, {"main.phytomer.petiol", "did you mean 'petiole'", "internode", "inflorescence"}},
-        {"misspelt petiole key", species({{"@PETIOLE@", "<pitchh>3</pitchh>"}}), 18,
+        {"unknown phytomer group",
+         species({{"<petiole>", "<petiol>"}, {"</petiole>", "</petiol>"}}),
+         17,
+         {"main.phytomer.petiol", "did you mean 'petiole'", "internode", "inflorescence"}},
+        {"misspelt petiole key",
+         species({{"@PETIOLE@", "<pitchh>3</pitchh>"}}),
+         18,
          {"main.phytomer.petiole.pitchh", "did you mean 'pitch'", "petioles_per_internode",
           "radial_subdivisions"}},
-        {"unknown key, nothing close", species({{"@PETIOLE@", "<zzzzzzzz>3</zzzzzzzz>"}}), 18,
+        {"unknown key, nothing close",
+         species({{"@PETIOLE@", "<zzzzzzzz>3</zzzzzzzz>"}}),
+         18,
          {"main.phytomer.petiole.zzzzzzzz", "unknown element", "petioles_per_internode"}},
-        {"unknown prototype key", species({{"@PROTOTYPE@", "<shap>ovate</shap>"}}), 22,
+        {"unknown prototype key",
+         species({{"@PROTOTYPE@", "<shap>ovate</shap>"}}),
+         22,
          {"main.phytomer.leaf.prototype.shap", "did you mean 'shape'", "leaf_aspect_ratio"}},
-        {"unknown attribute on a value", species({{"<pitch>30</pitch>", "<pitch unit=\"deg\">30</pitch>"}}),
-         18, {"main.phytomer.petiole.pitch.unit", "unknown attribute 'unit'", "no attributes"}},
+        {"unknown attribute on a value",
+         species({{"<pitch>30</pitch>", "<pitch unit=\"deg\">30</pitch>"}}),
+         18,
+         {"main.phytomer.petiole.pitch.unit", "unknown attribute 'unit'", "no attributes"}},
         {"unknown shoot type attribute",
-         species({{"<shoot_type label=\"main\">", "<shoot_type label=\"main\" lable=\"x\">"}}), 11,
+         species({{"<shoot_type label=\"main\">", "<shoot_type label=\"main\" lable=\"x\">"}}),
+         11,
          {"lable", "did you mean 'label'"}},
         {"unknown build step attribute",
-         species({{"@STEPS@", "<append parent=\"stem\" type=\"main\" pich=\"3\"/>"}}), 28,
+         species({{"@STEPS@", "<append parent=\"stem\" type=\"main\" pich=\"3\"/>"}}),
+         28,
          {"build.append[2].pich", "did you mean 'pitch'", "internode_scale"}},
-        {"unknown build step kind", species({{"@STEPS@", "<branch/>"}}), 28,
+        {"unknown build step kind",
+         species({{"@STEPS@", "<branch/>"}}),
+         28,
          {"build.branch", "one of: base_stem, append, child"}},
         {"unknown map element",
-         species({{"<type label=\"main\" probability=\"1\"/>", "<child label=\"main\" probability=\"1\"/>"}}),
-         14, {"main.child_shoot_types.child", "one of: type"}},
+         species({{"<type label=\"main\" probability=\"1\"/>",
+                   "<child label=\"main\" probability=\"1\"/>"}}),
+         14,
+         {"main.child_shoot_types.child", "one of: type"}},
         {"unknown root attribute",
-         species({{"<plantarch_species format=\"1\">", "<plantarch_species format=\"1\" version=\"2\">"}}),
-         2, {"version", "unknown attribute"}},
+         species({{"<plantarch_species format=\"1\">",
+                   "<plantarch_species format=\"1\" version=\"2\">"}}),
+         2,
+         {"version", "unknown attribute"}},
         // Missing required values.
-        {"missing name", species({{"<name>mini</name>", ""}}), 2, {"missing required element <name>"}},
-        {"missing label", species({{"<shoot_type label=\"main\">", "<shoot_type>"}}), 11,
+        {"missing name",
+         species({{"<name>mini</name>", ""}}),
+         2,
+         {"missing required element <name>"}},
+        {"missing label",
+         species({{"<shoot_type label=\"main\">", "<shoot_type>"}}),
+         11,
          {"missing required attribute 'label'"}},
-        {"empty label", species({{"<shoot_type label=\"main\">", "<shoot_type label=\"\">"}}), 11,
+        {"empty label",
+         species({{"<shoot_type label=\"main\">", "<shoot_type label=\"\">"}}),
+         11,
          {"shoot type label"}},
-        {"missing step type", species({{"@STEPS@", "<append parent=\"stem\"/>"}}), 28,
+        {"missing step type",
+         species({{"@STEPS@", "<append parent=\"stem\"/>"}}),
+         28,
          {"missing required attribute 'type'"}},
-        {"missing step parent", species({{"@STEPS@", "<append type=\"main\"/>"}}), 28,
+        {"missing step parent",
+         species({{"@STEPS@", "<append type=\"main\"/>"}}),
+         28,
          {"missing required attribute 'parent'"}},
-        {"missing child node", species({{"@STEPS@", "<child parent=\"stem\" type=\"main\"/>"}}), 28,
+        {"missing child node",
+         species({{"@STEPS@", "<child parent=\"stem\" type=\"main\"/>"}}),
+         28,
          {"missing required attribute 'node'"}},
-        {"missing format", species({{" format=\"1\"", ""}}), 2, {"missing required attribute 'format'"}},
-        {"unsupported format", species({{"format=\"1\"", "format=\"7\""}}), 2,
+        {"missing format",
+         species({{" format=\"1\"", ""}}),
+         2,
+         {"missing required attribute 'format'"}},
+        {"unsupported format",
+         species({{"format=\"1\"", "format=\"7\""}}),
+         2,
          {"unsupported species file format", "7"}},
-        {"missing build", species({{"<build>", "<!--"}, {"</build>", "-->"}}), 2,
+        {"missing build",
+         species({{"<build>", "<!--"}, {"</build>", "-->"}}),
+         2,
          {"missing required element <build>"}},
         {"first step not a base stem",
          species({{"<base_stem id=\"stem\" type=\"main\" nodes=\"3\" pitch=\"angle / 2\"/>",
                    "<append parent=\"x\" type=\"main\"/>"}}),
-         28, {"first build step must be a <base_stem>"}},
-        {"no shoot type", species({{"<shoot_type label=\"main\">", "<!--"}, {"</shoot_type>", "-->"}}),
-         2, {"at least one <shoot_type>"}},
+         28,
+         {"first build step must be a <base_stem>"}},
+        {"no shoot type",
+         species({{"<shoot_type label=\"main\">", "<!--"}, {"</shoot_type>", "-->"}}),
+         2,
+         {"at least one <shoot_type>"}},
         // Wrong types and malformed distributions.
-        {"text for a float", species({{"@SHOOT@", "<internode_length_max>abc</internode_length_max>"}}),
-         12, {"main.internode_length_max = abc", "expected a number or a distribution"}},
-        {"bool for a number", species({{"<max_nodes>5</max_nodes>", "<max_nodes>true</max_nodes>"}}),
-         12, {"main.max_nodes = true", "expected a whole number"}},
-        {"fraction for an integer", species({{"<max_nodes>5</max_nodes>", "<max_nodes>5.5</max_nodes>"}}),
-         12, {"main.max_nodes = 5.5", "whole number"}},
-        {"negative unsigned", species({{"@PETIOLE@", "<radial_subdivisions>-3</radial_subdivisions>"}}),
-         18, {"radial_subdivisions = -3", "expected a whole number >= 0"}},
-        {"number for a bool", species({{"@PROTOTYPE@", "<build_petiolule>1</build_petiolule>"}}), 22,
+        {"text for a float",
+         species({{"@SHOOT@", "<internode_length_max>abc</internode_length_max>"}}),
+         12,
+         {"main.internode_length_max = abc", "expected a number or a distribution"}},
+        {"bool for a number",
+         species({{"<max_nodes>5</max_nodes>", "<max_nodes>true</max_nodes>"}}),
+         12,
+         {"main.max_nodes = true", "expected a whole number"}},
+        {"fraction for an integer",
+         species({{"<max_nodes>5</max_nodes>", "<max_nodes>5.5</max_nodes>"}}),
+         12,
+         {"main.max_nodes = 5.5", "whole number"}},
+        {"negative unsigned",
+         species({{"@PETIOLE@", "<radial_subdivisions>-3</radial_subdivisions>"}}),
+         18,
+         {"radial_subdivisions = -3", "expected a whole number >= 0"}},
+        {"number for a bool",
+         species({{"@PROTOTYPE@", "<build_petiolule>1</build_petiolule>"}}),
+         22,
          {"build_petiolule = 1", "expected true or false"}},
-        {"two numbers for a colour", species({{"@PETIOLE@", "<color>0.2 0.3</color>"}}), 18,
+        {"two numbers for a colour",
+         species({{"@PETIOLE@", "<color>0.2 0.3</color>"}}),
+         18,
          {"main.phytomer.petiole.color = 0.2 0.3", "expected three numbers"}},
-        {"uniform with one argument", species({{"<pitch>30</pitch>", "<pitch>uniform(3)</pitch>"}}),
-         18, {"main.phytomer.petiole.pitch = uniform(3)", "uniform takes 2 arguments (min, max), got 1"}},
-        {"misspelt distribution", species({{"<pitch>30</pitch>", "<pitch>unifrom(1, 2)</pitch>"}}),
-         18, {"unknown distribution 'unifrom'", "did you mean 'uniform'"}},
+        {"uniform with one argument",
+         species({{"<pitch>30</pitch>", "<pitch>uniform(3)</pitch>"}}),
+         18,
+         {"main.phytomer.petiole.pitch = uniform(3)",
+          "uniform takes 2 arguments (min, max), got 1"}},
+        {"misspelt distribution",
+         species({{"<pitch>30</pitch>", "<pitch>unifrom(1, 2)</pitch>"}}),
+         18,
+         {"unknown distribution 'unifrom'", "did you mean 'uniform'"}},
         {"distribution without closing parenthesis",
-         species({{"<pitch>30</pitch>", "<pitch>normal(0, 5</pitch>"}}), 18, {"missing ')'"}},
+         species({{"<pitch>30</pitch>", "<pitch>normal(0, 5</pitch>"}}),
+         18,
+         {"missing ')'"}},
         {"distribution argument not a number",
-         species({{"<pitch>30</pitch>", "<pitch>normal(0, x)</pitch>"}}), 18,
+         species({{"<pitch>30</pitch>", "<pitch>normal(0, x)</pitch>"}}),
+         18,
          {"argument 2 of normal is not a number"}},
-        {"uniform min above max", species({{"<pitch>30</pitch>", "<pitch>uniform(5, 1)</pitch>"}}),
-         18, {"min must not exceed max"}},
+        {"uniform min above max",
+         species({{"<pitch>30</pitch>", "<pitch>uniform(5, 1)</pitch>"}}),
+         18,
+         {"min must not exceed max"}},
         {"integer distribution with fractions",
-         species({{"<max_nodes>5</max_nodes>", "<max_nodes>uniform(1.5, 4)</max_nodes>"}}), 12,
+         species({{"<max_nodes>5</max_nodes>", "<max_nodes>uniform(1.5, 4)</max_nodes>"}}),
+         12,
          {"argument 1 of uniform is not a whole number"}},
-        {"elements inside a value", species({{"<pitch>30</pitch>", "<pitch><a/></pitch>"}}), 18,
+        {"elements inside a value",
+         species({{"<pitch>30</pitch>", "<pitch><a/></pitch>"}}),
+         18,
          {"holds a value, not elements"}},
-        {"text inside a group", species({{"<petiole>", "<petiole>5"}}), 17,
+        {"text inside a group",
+         species({{"<petiole>", "<petiole>5"}}),
+         17,
          {"unexpected text inside <petiole>"}},
         // Out of range: the declared range is in the message.
-        {"out of range", species({{"<pitch>30</pitch>", "<pitch>200</pitch>"}}), 18,
+        {"out of range",
+         species({{"<pitch>30</pitch>", "<pitch>200</pitch>"}}),
+         18,
          {"main.phytomer.petiole.pitch = 200", "out of range", "-180 to 180"}},
         {"distribution out of range",
-         species({{"<pitch>30</pitch>", "<pitch>uniform(0, 500)</pitch>"}}), 18,
+         species({{"<pitch>30</pitch>", "<pitch>uniform(0, 500)</pitch>"}}),
+         18,
          {"main.phytomer.petiole.pitch = uniform(0, 500)", "-180 to 180"}},
-        {"unsigned out of range", species({{"@PETIOLE@", "<radial_subdivisions>2</radial_subdivisions>"}}),
-         18, {"radial_subdivisions = 2", "3 to 100"}},
-        {"phenology out of range", species({{"@PHENOLOGY@", "<time_to_fruit_set>-5</time_to_fruit_set>"}}),
-         6, {"phenology.time_to_fruit_set = -5", "-1 to 100000"}},
-        {"unknown choice", species({{"<shape>ovate</shape>", "<shape>cordat</shape>"}}), 22,
+        {"unsigned out of range",
+         species({{"@PETIOLE@", "<radial_subdivisions>2</radial_subdivisions>"}}),
+         18,
+         {"radial_subdivisions = 2", "3 to 100"}},
+        {"phenology out of range",
+         species({{"@PHENOLOGY@", "<time_to_fruit_set>-5</time_to_fruit_set>"}}),
+         6,
+         {"phenology.time_to_fruit_set = -5", "out of range (valid: -1 to "}},
+        {"unknown choice",
+         species({{"<shape>ovate</shape>", "<shape>cordat</shape>"}}),
+         22,
          {"main.phytomer.leaf.prototype.shape = cordat", "did you mean 'cordate'", "elliptic"}},
-        {"unknown plant type", species({{"<name>mini</name>", "<name>mini</name><plant_type>bush</plant_type>"}}),
-         3, {"plant_type = bush", "herbaceous, weed, tree"}},
+        {"unknown plant type",
+         species({{"<name>mini</name>", "<name>mini</name><plant_type>bush</plant_type>"}}),
+         3,
+         {"plant_type = bush", "herbaceous, weed, tree"}},
         {"minimum above maximum",
-         species({{"@SHOOT@", "<internode_length_min>0.5</internode_length_min>"}}), 12,
+         species({{"@SHOOT@", "<internode_length_min>0.5</internode_length_min>"}}),
+         12,
          {"main.internode_length_min", "exceeds internode_length_max"}},
         {"recommended age default outside its range",
-         species({{"<name>mini</name>", "<name>mini</name><recommended_age min=\"10\" max=\"20\" default=\"30\"/>"}}),
-         3, {"recommended_age.default = 30", "10 to 20 days"}},
+         species({{"<name>mini</name>",
+                   "<name>mini</name><recommended_age min=\"10\" max=\"20\" default=\"30\"/>"}}),
+         3,
+         {"recommended_age.default = 30", "10 to 20 days"}},
         {"build parameter default outside its range",
-         species({{"default=\"30\" min=\"0\" max=\"90\"", "default=\"100\" min=\"0\" max=\"90\""}}), 9,
+         species({{"default=\"30\" min=\"0\" max=\"90\"", "default=\"100\" min=\"0\" max=\"90\""}}),
+         9,
          {"build_parameters.angle.default = 100", "0 to 90"}},
         {"reserved build parameter name",
-         species({{"@PARAMS@", "<parameter name=\"pi\" default=\"1\" min=\"0\" max=\"2\"/>"}}), 9,
+         species({{"@PARAMS@", "<parameter name=\"pi\" default=\"1\" min=\"0\" max=\"2\"/>"}}),
+         9,
          {"build_parameters.pi", "reserved name"}},
         // Child shoot probabilities and references.
         {"probabilities not summing to 1",
-         species({{"<type label=\"main\" probability=\"1\"/>", "<type label=\"main\" probability=\"0.5\"/>"}}),
-         13, {"main.child_shoot_types", "sum to 1"}},
+         species({{"<type label=\"main\" probability=\"1\"/>",
+                   "<type label=\"main\" probability=\"0.5\"/>"}}),
+         13,
+         {"main.child_shoot_types", "sum to 1"}},
         {"probability above 1",
-         species({{"<type label=\"main\" probability=\"1\"/>", "<type label=\"main\" probability=\"1.5\"/>"}}),
-         14, {"main.child_shoot_types.main = 1.5", "0 to 1"}},
+         species({{"<type label=\"main\" probability=\"1\"/>",
+                   "<type label=\"main\" probability=\"1.5\"/>"}}),
+         14,
+         {"main.child_shoot_types.main = 1.5", "0 to 1"}},
         {"unknown child type",
-         species({{"<type label=\"main\" probability=\"1\"/>", "<type label=\"mian\" probability=\"1\"/>"}}),
-         14, {"main.child_shoot_types.mian", "unknown shoot type 'mian'", "did you mean 'main'"}},
+         species({{"<type label=\"main\" probability=\"1\"/>",
+                   "<type label=\"mian\" probability=\"1\"/>"}}),
+         14,
+         {"main.child_shoot_types.mian", "unknown shoot type 'mian'", "did you mean 'main'"}},
         {"unknown inherited type",
-         species({{"@TYPES@", "<shoot_type label=\"side\" inherits=\"stem\"/>"}}), 26,
+         species({{"@TYPES@", "<shoot_type label=\"side\" inherits=\"stem\"/>"}}),
+         26,
          {"side.inherits = stem", "unknown shoot type 'stem'", "one of: main"}},
         {"unknown build shoot type",
-         species({{"@STEPS@", "<append parent=\"stem\" type=\"side\"/>"}}), 28,
+         species({{"@STEPS@", "<append parent=\"stem\" type=\"side\"/>"}}),
+         28,
          {"build.append[2].type = side", "unknown shoot type", "one of: main"}},
         {"unknown build parent",
-         species({{"@STEPS@", "<append parent=\"stme\" type=\"main\"/>"}}), 28,
+         species({{"@STEPS@", "<append parent=\"stme\" type=\"main\"/>"}}),
+         28,
          {"build.append[2].parent = stme", "did you mean 'stem'"}},
         {"bad expression",
-         species({{"pitch=\"angle / 2\"", "pitch=\"angle / (2 +\""}}), 28,
+         species({{"pitch=\"angle / 2\"", "pitch=\"angle / (2 +\""}}),
+         28,
          {"build.stem.pitch = angle / (2 +", "bad expression", "column"}},
-        {"unknown name in an expression", species({{"pitch=\"angle / 2\"", "pitch=\"angel / 2\""}}),
-         28, {"build.stem.pitch", "unknown name 'angel'", "did you mean 'angle'"}},
+        {"unknown name in an expression",
+         species({{"pitch=\"angle / 2\"", "pitch=\"angel / 2\""}}),
+         28,
+         {"build.stem.pitch", "unknown name 'angel'", "did you mean 'angle'"}},
         {"unknown function in an expression",
-         species({{"pitch=\"angle / 2\"", "pitch=\"unifrom(0, 1)\""}}), 28,
+         species({{"pitch=\"angle / 2\"", "pitch=\"unifrom(0, 1)\""}}),
+         28,
          {"unknown function 'unifrom'", "did you mean 'uniform'"}},
         // Duplicates.
-        {"duplicate element", species({{"@SHOOT@", "<max_nodes>7</max_nodes>"}}), 12,
+        {"duplicate element",
+         species({{"@SHOOT@", "<max_nodes>7</max_nodes>"}}),
+         12,
          {"main.max_nodes", "duplicate element <max_nodes> (first at line 12)"}},
         {"duplicate group",
-         species({{"</phytomer>", "<petiole/></phytomer>"}}), 25,
+         species({{"</phytomer>", "<petiole/></phytomer>"}}),
+         25,
          {"main.phytomer.petiole", "duplicate element <petiole> (first at line 17)"}},
-        {"duplicate shoot type", species({{"@TYPES@", "<shoot_type label=\"main\"/>"}}), 26,
+        {"duplicate shoot type",
+         species({{"@TYPES@", "<shoot_type label=\"main\"/>"}}),
+         26,
          {"duplicate shoot type 'main' (first at line 11)"}},
         {"duplicate step id",
-         species({{"@STEPS@", "<append id=\"stem\" parent=\"stem\" type=\"main\"/>"}}), 28,
+         species({{"@STEPS@", "<append id=\"stem\" parent=\"stem\" type=\"main\"/>"}}),
+         28,
          {"duplicate step id 'stem'"}},
         {"duplicate map key",
-         species({{"@PROTOTYPE@", "<leaf_texture_file><image leaflet=\"0\">a.png</image>"
-                                   "<image leaflet=\"0\">b.png</image></leaf_texture_file>"}}),
-         22, {"leaf_texture_file.0", "duplicate leaflet '0'"}},
+         species({{"@PROTOTYPE@",
+                   "<leaf_texture_file><image leaflet=\"0\">a.png</image>"
+                   "<image leaflet=\"0\">b.png</image></leaf_texture_file>"}}),
+         22,
+         {"leaf_texture_file.0", "duplicate leaflet '0'"}},
         {"duplicate build parameter",
-         species({{"@PARAMS@", "<parameter name=\"angle\" default=\"1\" min=\"0\" max=\"2\"/>"}}), 9,
+         species({{"@PARAMS@", "<parameter name=\"angle\" default=\"1\" min=\"0\" max=\"2\"/>"}}),
+         9,
          {"duplicate build parameter 'angle' (first at line 9)"}},
         {"duplicate attribute",
-         species({{"nodes=\"3\"", "nodes=\"3\" nodes=\"4\""}}), 28, {"duplicate attribute 'nodes'"}},
+         species({{"nodes=\"3\"", "nodes=\"3\" nodes=\"4\""}}),
+         28,
+         {"duplicate attribute 'nodes'"}},
         // Not a species file at all.
-        {"truncated XML", species().substr(0, species().find("</phytomer>")), 24,
+        {"truncated XML",
+         species().substr(0, species().find("</phytomer>")),
+         25,
          {"malformed XML", "ends too early"}},
         {"mismatched tags", species({{"</petiole>", "</petioles>"}}), 19, {"malformed XML"}},
         {"empty file", "", 1, {"empty file"}},
         {"blank file", "  \n\n  ", 1, {"empty file"}},
         {"not XML", "name = bean\nshoot types: unifoliate, trifoliate\n", 1, {"not an XML file"}},
-        {"another XML document", "<?xml version=\"1.0\"?>\n<svg width=\"3\"/>\n", 2,
+        {"another XML document",
+         "<?xml version=\"1.0\"?>\n<svg width=\"3\"/>\n",
+         2,
          {"not a species file", "<svg>", "<plantarch_species>"}},
         {"two root elements", species() + "<plantarch_species/>\n", 31, {"second root element"}},
     };
@@ -479,8 +605,8 @@ TEST(SpeciesReader, CorpusOfBrokenFiles) {
         EXPECT_EQ(what.rfind("broken.xml:" + std::to_string(c.line) + ": ", 0), 0u) << what;
         EXPECT_EQ(e.file(), "broken.xml");
         EXPECT_EQ(e.line(), c.line) << what;
-        for (const std::string& m : c.mentions) EXPECT_NE(what.find(m), std::string::npos)
-            << "missing '" << m << "' in: " << what;
+        for (const std::string& m : c.mentions)
+            EXPECT_NE(what.find(m), std::string::npos) << "missing '" << m << "' in: " << what;
     }
 }
 
@@ -502,6 +628,13 @@ TEST(SpeciesReader, ErrorsNameTheFile) {
     const Error e = errorOf([&] { readSpeciesFile(path); });
     EXPECT_EQ(std::string(e.what()).rfind(path + ":18: ", 0), 0u) << e.what();
     std::filesystem::remove(path);
+}
+
+TEST(SpeciesReader, WindowsLineEndingsKeepLineNumbers) {
+    const std::string crlf =
+        replaceAll(species({{"@PETIOLE@", "<pitchh>3</pitchh>"}}), "\n", "\r\n");
+    EXPECT_EQ(errorOf([&] { readSpeciesString(crlf, "crlf.xml"); }).line(), 18);
+    EXPECT_EQ(readSpeciesString(replaceAll(species(), "\n", "\r\n"), "crlf.xml").name, "mini");
 }
 
 TEST(SpeciesReader, ValuesAreTrimmedAndCommentsIgnored) {
@@ -526,7 +659,8 @@ std::string branchingSpecies() {
          {"@STEPS@",
           "<child id=\"branch\" parent=\"stem\" node=\"i\" repeat=\"branches\" type=\"main\" "
           "nodes=\"2\" internode_scale=\"0.5\"/>"
-          "<child id=\"twig\" parent=\"branch\" node=\"parent_i\" type=\"main\" nodes=\"1\"/>"}});
+          "<child id=\"twig\" parent=\"branch\" node=\"min(parent_i, 1)\" type=\"main\" "
+          "nodes=\"1\"/>"}});
 }
 
 struct Built {
@@ -599,8 +733,8 @@ TEST(SpeciesBuild, BuildTimeErrorsPointAtTheStep) {
     EXPECT_EQ(div.parameter(), "build.stem.pitch");
     EXPECT_NE(std::string(div.what()).find("division by zero"), std::string::npos);
 
-    const SpeciesModel scale = readSpeciesString(
-        species({{"pitch=\"angle / 2\"", "leaf_scale=\"2\""}}), "scale.xml");
+    const SpeciesModel scale =
+        readSpeciesString(species({{"pitch=\"angle / 2\"", "leaf_scale=\"2\""}}), "scale.xml");
     const Error s = errorOf([&] { buildFrom(scale); });
     EXPECT_EQ(s.parameter(), "build.stem.leaf_scale");
     EXPECT_EQ(s.line(), 28);
@@ -699,6 +833,25 @@ TEST(SpeciesLibrary, WriteSpeciesFileIsAtomicAndReadable) {
     writeSpeciesFile(bean, path);
     EXPECT_EQ(writeSpeciesString(readSpeciesFile(path)), writeSpeciesString(bean));
     std::filesystem::remove(path);
+}
+
+TEST(SpeciesLibrary, TheDocumentedExampleReadsAndBuilds) {
+    std::ifstream in(kSourceDir + "/docs/species-format.md");
+    std::stringstream doc;
+    doc << in.rdbuf();
+    const std::string text = doc.str();
+    const std::size_t start = text.find("```xml\n<?xml");
+    ASSERT_NE(start, std::string::npos);
+    const std::size_t end = text.find("```", start + 6);
+    const std::string xml = text.substr(start + 7, end - start - 7);
+    const SpeciesModel m = readSpeciesString(xml, "species-format.md");
+    EXPECT_EQ(m.shootTypes.size(), 3u);
+    EXPECT_EQ(m.shootTypes.at("twig").insertion_angle_tip, RandomFloat::uniform(40, 60));
+    EXPECT_EQ(writeSpeciesString(readSpeciesString(writeSpeciesString(m), "again.xml")),
+              writeSpeciesString(m));
+    // A trunk, three scaffolds and one twig on each.
+    EXPECT_EQ(buildFrom(m).shoots.size(), 7u);
+    EXPECT_EQ(buildFrom(m, {{"scaffolds", 6}, {"trunk_height", 0.3f}}).shoots.size(), 13u);
 }
 
 // ---- command line -----------------------------------------------------------------------

@@ -32,22 +32,22 @@ namespace plantarch {
 /// the numbers (aspect ratio, widest point, angles, lobes, teeth) come from the parameters.
 /// leafShapePreset() gives typical numbers for each family.
 enum class LeafShape {
-    Elliptic,        ///< widest at the middle, both ends tapered alike (walnut, pistachio)
-    Ovate,           ///< egg-shaped, widest below the middle (apple, bean leaflets, soybean)
-    Obovate,         ///< widest above the middle, tapering to the base (lettuce, strawberry)
-    Lanceolate,      ///< narrow, widest below the middle, long acute tip (almond, olive)
-    Oblanceolate,    ///< narrow, widest above the middle
-    Linear,          ///< grass blade: long, nearly parallel-sided, pointed tip (maize, rice)
-    Needle,          ///< very narrow flat needle or cladode, pointed at both ends (asparagus)
-    Spatulate,       ///< spoon-shaped: rounded end on a long narrow base
-    Oblong,          ///< parallel sides, rounded ends (sugar beet, puncturevine leaflets)
-    Orbicular,       ///< nearly round
-    Deltoid,         ///< triangular: broad truncate base, straight sides to the tip
-    Cordate,         ///< heart-shaped: notched base with rounded basal lobes (redbud)
-    Reniform,        ///< kidney-shaped: wider than long, notched base, rounded tip
-    Sagittate,       ///< arrow-shaped: pointed basal lobes pointing back (bindweed)
-    Hastate,         ///< halberd-shaped: pointed basal lobes spreading sideways
-    Palmate,         ///< palmately lobed: notched base, lobes radiating from the petiole (grape)
+    Elliptic,      ///< widest at the middle, both ends tapered alike (walnut, pistachio)
+    Ovate,         ///< egg-shaped, widest below the middle (apple, bean leaflets, soybean)
+    Obovate,       ///< widest above the middle, tapering to the base (lettuce, strawberry)
+    Lanceolate,    ///< narrow, widest below the middle, long acute tip (almond, olive)
+    Oblanceolate,  ///< narrow, widest above the middle
+    Linear,        ///< grass blade: long, nearly parallel-sided, pointed tip (maize, rice)
+    Needle,        ///< very narrow flat needle or cladode, pointed at both ends (asparagus)
+    Spatulate,     ///< spoon-shaped: rounded end on a long narrow base
+    Oblong,        ///< parallel sides, rounded ends (sugar beet, puncturevine leaflets)
+    Orbicular,     ///< nearly round
+    Deltoid,       ///< triangular: broad truncate base, straight sides to the tip
+    Cordate,       ///< heart-shaped: notched base with rounded basal lobes (redbud)
+    Reniform,      ///< kidney-shaped: wider than long, notched base, rounded tip
+    Sagittate,     ///< arrow-shaped: pointed basal lobes pointing back (bindweed)
+    Hastate,       ///< halberd-shaped: pointed basal lobes spreading sideways
+    Palmate,       ///< palmately lobed: notched base, lobes radiating from the petiole (grape)
 };
 
 /// Every family, in declaration order.
@@ -66,10 +66,12 @@ struct LeafOutlineParams {
     float widest_point = 0.5f;  ///< x of the widest point, 0.05 to 0.95
     /// Included angle between the two margins at the tip, 1 to 180 (180: rounded tip).
     /// An angle much smaller than the taper of the blade gives a drawn-out (acuminate) tip.
+    /// Palmate lobes: the angle at every lobe tip.
     float tip_angle = 60.0f;
     /// Included angle between the two margins at the base, measured through the blade:
-    /// below 180 a wedge-shaped base, 180 a rounded one. The notched families take 180 to
-    /// 360: the larger, the narrower the sinus (360 would close it).
+    /// below 180 a wedge-shaped base, 180 a rounded one. Cordate, reniform and palmate take
+    /// 184 to 356 (smaller values act as 184): the larger, the narrower the sinus. Not used by
+    /// sagittate and hastate, whose lobe direction follows from sinus_depth and the width.
     float base_angle = 90.0f;
     /// Width of a truncate base (margins start at (0, +-w/2)), fraction of the maximum
     /// width, 0 to 0.95; 0 = the margins meet at the base. Not used by notched families.
@@ -81,12 +83,16 @@ struct LeafOutlineParams {
     /// the odd count below it; 0 or 1: unlobed). Notched families lobe radially from the
     /// petiole attachment (palmate); the others pinnately along the midrib.
     int lobes = 0;
-    /// Depth of the sinuses between lobes, fraction of the lobe radius (palmate) or of the
-    /// half-width (pinnate), 0 to 0.9. Sagittate/hastate: depth of the notch between the basal
-    /// lobes and the body.
+    /// Depth of the sinuses between lobes, 0 to 0.9 (below 0.02: unlobed): palmate lobes meet
+    /// at (1 - lobe_depth) of their length from the petiole attachment; pinnate sinuses
+    /// narrow the half-width by this fraction. Sagittate/hastate: depth of the notch between
+    /// the basal lobes and the body, fraction of the half-width.
     float lobe_depth = 0.0f;
-    int serrations = 0;            ///< teeth along each margin, 0 to 200
-    float serration_depth = 0.0f;  ///< tooth depth, fraction of the length, 0 to 0.1
+    /// Teeth along each margin, 0 to 200. Serrate teeth (pointing to the tip) run over the part
+    /// of the margin wide enough for a full notch; lobe tips and the widest point are tooth
+    /// tips, so teeth never change the blade's extent.
+    int serrations = 0;
+    float serration_depth = 0.0f;  ///< depth of the notches, fraction of the length, 0 to 0.1
     /// Largest distance between the polygon and the exact curve, fraction of the length (it
     /// is scaled down for narrow blades so that the area error stays below 0.2 %).
     float tolerance = 5e-4f;
@@ -124,8 +130,9 @@ struct TracedLeafOutline {
 };
 
 /// Traces the largest opaque region of a PNG (alpha >= 0.5, marching squares with sub-pixel
-/// edges, simplified to half a pixel or 0.1 % of the leaf's length, whichever is larger). Throws plantarch::Error naming the file when it cannot
-/// be read, has no alpha channel, or is fully transparent or fully opaque.
+/// edges, simplified to half a pixel or 0.1 % of the leaf's length, whichever is larger). Throws
+/// plantarch::Error naming the file when it cannot be read, has no alpha channel, or is fully
+/// transparent or fully opaque.
 TracedLeafOutline traceLeafImage(const std::string& path);
 /// Just the outline of traceLeafImage().
 std::vector<vec2> traceLeafOutlinePNG(const std::string& path);

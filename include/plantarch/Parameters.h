@@ -53,11 +53,19 @@ struct LeafPrototype {
 
     // Deformations.
     RandomFloat midrib_fold_fraction = 0.0f;    ///< fold about the midrib (0 flat, 1 closed)
-    RandomFloat longitudinal_curvature = 0.0f;  ///< curvature along the midrib (+ lifts the tip)
-    RandomFloat lateral_curvature = 0.0f;       ///< curvature across the blade (+ cups up)
-    RandomFloat petiole_roll = 0.0f;            ///< roll of the blade about its base, degrees
-    RandomFloat wave_period = 0.0f;             ///< period of marginal waves, fraction of length
-    RandomFloat wave_amplitude = 0.0f;          ///< amplitude of marginal waves, fraction of length
+    /// Curvature along the midrib: the tip rises by about this fraction of the length (- droops)
+    RandomFloat longitudinal_curvature = 0.0f;
+    /// Curvature across the blade (+ cups up): the margin at the widest point moves by 1/16 of
+    /// this, in leaf lengths
+    RandomFloat lateral_curvature = 0.0f;
+    /// Curl of the blade's base about the midrib (both halves rise), degrees, fading over the
+    /// basal 10-15 % of the blade
+    RandomFloat petiole_roll = 0.0f;
+    /// Distance between sign changes of the marginal waves (half a wavelength, as in the
+    /// reference), fraction of length
+    RandomFloat wave_period = 0.0f;
+    /// Amplitude of the marginal waves, fraction of the local blade width
+    RandomFloat wave_amplitude = 0.0f;
     RandomFloat leaf_buckle_length = 0.0f;      ///< where the blade buckles, fraction of length
     RandomFloat leaf_buckle_angle = 0.0f;       ///< buckle angle, degrees (+ bends the tip down)
     vec3 leaf_offset{0.0f};                     ///< shift of the blade from the petiole tip

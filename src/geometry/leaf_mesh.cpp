@@ -58,8 +58,10 @@ void appendPlanar(Mesh& mesh, const polygon::Triangulation& tri, bool mirror) {
     for (const dvec2& p : tri.points)
         mesh.positions.emplace_back(float(p.x), float(mirror ? -p.y : p.y), 0.0f);
     for (const auto& t : tri.triangles) {
-        if (mirror) mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[2], base + t[1]});
-        else mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
+        if (mirror)
+            mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[2], base + t[1]});
+        else
+            mesh.indices.insert(mesh.indices.end(), {base + t[0], base + t[1], base + t[2]});
     }
 }
 

@@ -34,7 +34,9 @@ using glm::dvec2;
 constexpr double kPi = std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double radians(double degrees) { return degrees * kPi / 180.0; }
+double radians(double degrees) {
+    return degrees * kPi / 180.0;
+}
 double smoothstep(double e0, double e1, double x) {
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
@@ -70,18 +72,28 @@ FamilyForm familyForm(LeafShape shape) {
         case LeafShape::Ovate:
         case LeafShape::Obovate:
         case LeafShape::Lanceolate:
-        case LeafShape::Oblanceolate: return {Form::Simple, 0.7, 0.6, 0.7, 0.6};
-        case LeafShape::Oblong: return {Form::Simple, 0.85, 0.6, 0.85, 0.6};
-        case LeafShape::Linear: return {Form::Simple, 0.9, 0.6, 0.6, 0.5};
-        case LeafShape::Needle: return {Form::Simple, 0.8, 0.5, 0.6, 0.5};
-        case LeafShape::Spatulate: return {Form::Simple, 0.25, 0.6, 0.6, 0.55};
-        case LeafShape::Deltoid: return {Form::Simple, 0.3, 0.9, 0.05, 0.05};
+        case LeafShape::Oblanceolate:
+            return {Form::Simple, 0.7, 0.6, 0.7, 0.6};
+        case LeafShape::Oblong:
+            return {Form::Simple, 0.85, 0.6, 0.85, 0.6};
+        case LeafShape::Linear:
+            return {Form::Simple, 0.9, 0.6, 0.6, 0.5};
+        case LeafShape::Needle:
+            return {Form::Simple, 0.8, 0.5, 0.6, 0.5};
+        case LeafShape::Spatulate:
+            return {Form::Simple, 0.25, 0.6, 0.6, 0.55};
+        case LeafShape::Deltoid:
+            return {Form::Simple, 0.3, 0.9, 0.05, 0.05};
         case LeafShape::Cordate:
-        case LeafShape::Reniform: return {Form::Notched, 0.55, 0.55, 0.55, 0.55, 0.3};
-        case LeafShape::Palmate: return {Form::Notched, 0.55, 0.55, 0.55, 0.55, 0.55};
+        case LeafShape::Reniform:
+            return {Form::Notched, 0.55, 0.55, 0.55, 0.55, 0.3};
+        case LeafShape::Palmate:
+            return {Form::Notched, 0.55, 0.55, 0.55, 0.55, 0.55};
         case LeafShape::Sagittate:
-        case LeafShape::Hastate: return {Form::Arrow, 0.55, 0.55, 0.5, 0.5};
-        default: return {};
+        case LeafShape::Hastate:
+            return {Form::Arrow, 0.55, 0.55, 0.5, 0.5};
+        default:
+            return {};
     }
 }
 
@@ -159,8 +171,8 @@ std::vector<dvec2> notchedHalf(double sinus, double widest, const LeafOutlinePar
     const dvec2 dir(std::cos(beta), std::sin(beta));
     // Handles keep both coordinates monotone on the way to the back of the lobe.
     const double h2 = 0.55 * yB;
-    const double h1 = std::min({0.55 * glm::length(back - s), 0.95 * sinus / -dir.x,
-                                (yB - h2) / dir.y});
+    const double h1 =
+        std::min({0.55 * glm::length(back - s), 0.95 * sinus / -dir.x, (yB - h2) / dir.y});
     std::vector<dvec2> half{s};
     appendCubic(half, {s, s + h1 * dir, back - dvec2(0.0, h2), back}, 300);
     const double h3 = f.baseHandle * (halfWidth - yB);
@@ -342,7 +354,8 @@ std::vector<std::size_t> extremes(const std::vector<dvec2>& half) {
 
 std::vector<double> arcLengths(const std::vector<dvec2>& line) {
     std::vector<double> s(line.size(), 0.0);
-    for (std::size_t i = 1; i < line.size(); ++i) s[i] = s[i - 1] + glm::length(line[i] - line[i - 1]);
+    for (std::size_t i = 1; i < line.size(); ++i)
+        s[i] = s[i - 1] + glm::length(line[i] - line[i - 1]);
     return s;
 }
 
@@ -382,7 +395,7 @@ double allowedNotch(const std::vector<dvec2>& half, const std::vector<double>& s
 // the teeth by length. Within a tooth the margin drops from the previous tip to a notch at
 // 40 % of its length, cut inward along the normal, and rises to its own tip.
 std::vector<dvec2> cutTeeth(const std::vector<dvec2>& half, const std::vector<std::size_t>& sharp,
-                           const std::vector<std::size_t>& smooth, int count, double depth) {
+                            const std::vector<std::size_t>& smooth, int count, double depth) {
     constexpr double notchAt = 0.4;
     const std::vector<double> s = arcLengths(half);
     const double total = s.back();
@@ -451,7 +464,8 @@ std::vector<dvec2> cutTeeth(const std::vector<dvec2>& half, const std::vector<st
             out.push_back(q);
             continue;
         }
-        const std::size_t i = std::size_t(std::lower_bound(ends.begin(), ends.end(), a) - ends.begin());
+        const std::size_t i =
+            std::size_t(std::lower_bound(ends.begin(), ends.end(), a) - ends.begin());
         if (teeth[i] == 0) {
             out.push_back(q);
             continue;
@@ -547,31 +561,47 @@ std::vector<dvec2> mirrorHalf(const std::vector<dvec2>& half) {
 
 const std::vector<LeafShape>& allLeafShapes() {
     static const std::vector<LeafShape> shapes = {
-        LeafShape::Elliptic, LeafShape::Ovate,     LeafShape::Obovate,   LeafShape::Lanceolate,
-        LeafShape::Oblanceolate, LeafShape::Linear, LeafShape::Needle,   LeafShape::Spatulate,
-        LeafShape::Oblong,   LeafShape::Orbicular, LeafShape::Deltoid,   LeafShape::Cordate,
-        LeafShape::Reniform, LeafShape::Sagittate, LeafShape::Hastate,   LeafShape::Palmate};
+        LeafShape::Elliptic,     LeafShape::Ovate,     LeafShape::Obovate, LeafShape::Lanceolate,
+        LeafShape::Oblanceolate, LeafShape::Linear,    LeafShape::Needle,  LeafShape::Spatulate,
+        LeafShape::Oblong,       LeafShape::Orbicular, LeafShape::Deltoid, LeafShape::Cordate,
+        LeafShape::Reniform,     LeafShape::Sagittate, LeafShape::Hastate, LeafShape::Palmate};
     return shapes;
 }
 
 std::string_view leafShapeName(LeafShape shape) {
     switch (shape) {
-        case LeafShape::Elliptic: return "elliptic";
-        case LeafShape::Ovate: return "ovate";
-        case LeafShape::Obovate: return "obovate";
-        case LeafShape::Lanceolate: return "lanceolate";
-        case LeafShape::Oblanceolate: return "oblanceolate";
-        case LeafShape::Linear: return "linear";
-        case LeafShape::Needle: return "needle";
-        case LeafShape::Spatulate: return "spatulate";
-        case LeafShape::Oblong: return "oblong";
-        case LeafShape::Orbicular: return "orbicular";
-        case LeafShape::Deltoid: return "deltoid";
-        case LeafShape::Cordate: return "cordate";
-        case LeafShape::Reniform: return "reniform";
-        case LeafShape::Sagittate: return "sagittate";
-        case LeafShape::Hastate: return "hastate";
-        case LeafShape::Palmate: return "palmate";
+        case LeafShape::Elliptic:
+            return "elliptic";
+        case LeafShape::Ovate:
+            return "ovate";
+        case LeafShape::Obovate:
+            return "obovate";
+        case LeafShape::Lanceolate:
+            return "lanceolate";
+        case LeafShape::Oblanceolate:
+            return "oblanceolate";
+        case LeafShape::Linear:
+            return "linear";
+        case LeafShape::Needle:
+            return "needle";
+        case LeafShape::Spatulate:
+            return "spatulate";
+        case LeafShape::Oblong:
+            return "oblong";
+        case LeafShape::Orbicular:
+            return "orbicular";
+        case LeafShape::Deltoid:
+            return "deltoid";
+        case LeafShape::Cordate:
+            return "cordate";
+        case LeafShape::Reniform:
+            return "reniform";
+        case LeafShape::Sagittate:
+            return "sagittate";
+        case LeafShape::Hastate:
+            return "hastate";
+        case LeafShape::Palmate:
+            return "palmate";
     }
     return "elliptic";
 }
@@ -585,8 +615,9 @@ LeafShape leafShapeFromName(std::string_view name) {
         if (!valid.empty()) valid += ", ";
         valid += leafShapeName(s);
     }
-    throw Error("unknown leaf shape", {.parameter = "shape", .value = std::string(name),
-                                       .validRange = "one of: " + valid});
+    throw Error(
+        "unknown leaf shape",
+        {.parameter = "shape", .value = std::string(name), .validRange = "one of: " + valid});
 }
 
 LeafOutlineParams leafShapePreset(LeafShape shape) {
@@ -599,19 +630,37 @@ LeafOutlineParams leafShapePreset(LeafShape shape) {
         p.base_angle = base;
     };
     switch (shape) {
-        case LeafShape::Elliptic: set(0.5f, 0.5f, 90, 90); break;
-        case LeafShape::Ovate: set(0.6f, 0.38f, 60, 150); break;
-        case LeafShape::Obovate: set(0.6f, 0.65f, 160, 60); break;
-        case LeafShape::Lanceolate: set(0.25f, 0.38f, 30, 60); break;
-        case LeafShape::Oblanceolate: set(0.25f, 0.65f, 60, 25); break;
+        case LeafShape::Elliptic:
+            set(0.5f, 0.5f, 90, 90);
+            break;
+        case LeafShape::Ovate:
+            set(0.6f, 0.38f, 60, 150);
+            break;
+        case LeafShape::Obovate:
+            set(0.6f, 0.65f, 160, 60);
+            break;
+        case LeafShape::Lanceolate:
+            set(0.25f, 0.38f, 30, 60);
+            break;
+        case LeafShape::Oblanceolate:
+            set(0.25f, 0.65f, 60, 25);
+            break;
         case LeafShape::Linear:
             set(0.08f, 0.4f, 12, 20);
             p.base_width = 0.5f;
             break;
-        case LeafShape::Needle: set(0.03f, 0.5f, 8, 10); break;
-        case LeafShape::Spatulate: set(0.45f, 0.75f, 170, 20); break;
-        case LeafShape::Oblong: set(0.4f, 0.5f, 150, 150); break;
-        case LeafShape::Orbicular: set(0.95f, 0.5f, 180, 180); break;
+        case LeafShape::Needle:
+            set(0.03f, 0.5f, 8, 10);
+            break;
+        case LeafShape::Spatulate:
+            set(0.45f, 0.75f, 170, 20);
+            break;
+        case LeafShape::Oblong:
+            set(0.4f, 0.5f, 150, 150);
+            break;
+        case LeafShape::Orbicular:
+            set(0.95f, 0.5f, 180, 180);
+            break;
         case LeafShape::Deltoid:
             set(0.85f, 0.12f, 60, 120);
             p.base_width = 0.75f;

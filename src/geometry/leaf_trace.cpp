@@ -152,21 +152,44 @@ private:
         auto seg = [&](std::int64_t a, std::int64_t b) { link(a, pt(a), b, pt(b)); };
         const bool centreIn = 0.25 * (tl + tr + br + bl) >= kThreshold;
         switch (mask) {
-            case 1: case 14: seg(left, top); break;
-            case 2: case 13: seg(top, right); break;
-            case 3: case 12: seg(left, right); break;
-            case 4: case 11: seg(right, bottom); break;
-            case 6: case 9: seg(top, bottom); break;
-            case 7: case 8: seg(left, bottom); break;
+            case 1:
+            case 14:
+                seg(left, top);
+                break;
+            case 2:
+            case 13:
+                seg(top, right);
+                break;
+            case 3:
+            case 12:
+                seg(left, right);
+                break;
+            case 4:
+            case 11:
+                seg(right, bottom);
+                break;
+            case 6:
+            case 9:
+                seg(top, bottom);
+                break;
+            case 7:
+            case 8:
+                seg(left, bottom);
+                break;
             case 5:
-                if (centreIn) seg(top, right), seg(bottom, left);
-                else seg(left, top), seg(right, bottom);
+                if (centreIn)
+                    seg(top, right), seg(bottom, left);
+                else
+                    seg(left, top), seg(right, bottom);
                 break;
             case 10:
-                if (centreIn) seg(left, top), seg(right, bottom);
-                else seg(top, right), seg(bottom, left);
+                if (centreIn)
+                    seg(left, top), seg(right, bottom);
+                else
+                    seg(top, right), seg(bottom, left);
                 break;
-            default: break;
+            default:
+                break;
         }
     }
 
@@ -195,10 +218,12 @@ std::vector<dvec2> simplifyLoop(const std::vector<dvec2>& loop, double tolerance
 TracedLeafOutline traceLeafImage(const std::string& path) {
     const AlphaImage img = loadAlpha(path);
     std::vector<std::vector<dvec2>> loops = Tracer(img).loops();
-    if (loops.empty()) throw Error("leaf image has no outline in its alpha channel", {.file = path});
-    const auto largest = std::max_element(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
-        return std::abs(polygon::signedArea(a)) < std::abs(polygon::signedArea(b));
-    });
+    if (loops.empty())
+        throw Error("leaf image has no outline in its alpha channel", {.file = path});
+    const auto largest =
+        std::max_element(loops.begin(), loops.end(), [](const auto& a, const auto& b) {
+            return std::abs(polygon::signedArea(a)) < std::abs(polygon::signedArea(b));
+        });
     // Simplify to half a pixel, or 0.1 % of the leaf's length on large images; fall back to
     // finer tolerances if simplification made the loop touch itself.
     double width = 0.0;
@@ -228,7 +253,8 @@ TracedLeafOutline traceLeafImage(const std::string& path) {
     TracedLeafOutline out;
     std::vector<dvec2> mapped;
     mapped.reserve(loop.size());
-    for (const dvec2& p : loop) mapped.push_back({(p.x - lo) / length, (0.5 * img.height - p.y) / length});
+    for (const dvec2& p : loop)
+        mapped.push_back({(p.x - lo) / length, (0.5 * img.height - p.y) / length});
     if (polygon::signedArea(mapped) < 0) std::reverse(mapped.begin(), mapped.end());
     for (const dvec2& p : mapped) out.outline.emplace_back(float(p.x), float(p.y));
     out.uAtBase = float(lo / img.width);
@@ -238,6 +264,8 @@ TracedLeafOutline traceLeafImage(const std::string& path) {
     return out;
 }
 
-std::vector<vec2> traceLeafOutlinePNG(const std::string& path) { return traceLeafImage(path).outline; }
+std::vector<vec2> traceLeafOutlinePNG(const std::string& path) {
+    return traceLeafImage(path).outline;
+}
 
 }  // namespace plantarch

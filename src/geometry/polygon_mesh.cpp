@@ -18,8 +18,12 @@ namespace plantarch::polygon {
 
 namespace {
 
-double cross(dvec2 a, dvec2 b) { return a.x * b.y - a.y * b.x; }
-double orient(dvec2 a, dvec2 b, dvec2 c) { return cross(b - a, c - a); }
+double cross(dvec2 a, dvec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
+double orient(dvec2 a, dvec2 b, dvec2 c) {
+    return cross(b - a, c - a);
+}
 
 // Do segments ab and cd share a point?
 bool segmentsTouch(dvec2 a, dvec2 b, dvec2 c, dvec2 d) {
@@ -132,8 +136,8 @@ void Mesher::earClip(std::size_t count) {
     std::size_t remaining = n, i = 0, misses = 0;
     while (remaining > 3) {
         if (isEar(i)) {
-            tris_.push_back({{std::uint32_t(prev[i]), std::uint32_t(i), std::uint32_t(next[i])},
-                             {-1, -1, -1}});
+            tris_.push_back(
+                {{std::uint32_t(prev[i]), std::uint32_t(i), std::uint32_t(next[i])}, {-1, -1, -1}});
             next[prev[i]] = next[i];
             prev[next[i]] = prev[i];
             i = prev[i];
@@ -154,9 +158,9 @@ void Mesher::earClip(std::size_t count) {
                     }
                 }
                 if (bestValue <= 0) throw Error("polygon triangulation failed: no convex vertex");
-                tris_.push_back({{std::uint32_t(prev[best]), std::uint32_t(best),
-                                  std::uint32_t(next[best])},
-                                 {-1, -1, -1}});
+                tris_.push_back(
+                    {{std::uint32_t(prev[best]), std::uint32_t(best), std::uint32_t(next[best])},
+                     {-1, -1, -1}});
                 next[prev[best]] = next[best];
                 prev[next[best]] = prev[best];
                 i = prev[best];
@@ -165,8 +169,8 @@ void Mesher::earClip(std::size_t count) {
             }
         }
     }
-    tris_.push_back({{std::uint32_t(prev[i]), std::uint32_t(i), std::uint32_t(next[i])},
-                     {-1, -1, -1}});
+    tris_.push_back(
+        {{std::uint32_t(prev[i]), std::uint32_t(i), std::uint32_t(next[i])}, {-1, -1, -1}});
 }
 
 void Mesher::buildAdjacency() {
@@ -447,7 +451,8 @@ void Mesher::refine(const std::vector<dvec2>& poly, double minAngle, double minS
             bad.push_back({smallest, t, v});
         }
         if (bad.empty()) return;
-        std::sort(bad.begin(), bad.end(), [](const Bad& x, const Bad& y) { return x.angle < y.angle; });
+        std::sort(bad.begin(), bad.end(),
+                  [](const Bad& x, const Bad& y) { return x.angle < y.angle; });
         auto skip = [&](const std::array<std::uint32_t, 3>& v) {
             const auto key = sorted(v);
             skipped.insert(std::upper_bound(skipped.begin(), skipped.end(), key), key);
@@ -459,7 +464,8 @@ void Mesher::refine(const std::vector<dvec2>& poly, double minAngle, double minS
             const dvec2 ab = p1 - a, ac = p2 - a;
             const double d = 2.0 * cross(ab, ac);
             const dvec2 centre = a + dvec2(ac.y * glm::dot(ab, ab) - ab.y * glm::dot(ac, ac),
-                                           ab.x * glm::dot(ac, ac) - ac.x * glm::dot(ab, ab)) / d;
+                                           ab.x * glm::dot(ac, ac) - ac.x * glm::dot(ab, ab)) /
+                                         d;
             if (glm::length(centre - a) < minSize) {
                 skip(b.v);
                 continue;
@@ -469,7 +475,8 @@ void Mesher::refine(const std::vector<dvec2>& poly, double minAngle, double minS
             for (std::size_t steps = 0; steps < tris_.size(); ++steps) {
                 int exit = -1;
                 for (int i = 0; i < 3 && exit < 0; ++i) {
-                    const dvec2 e0 = pts_[tris_[cur].v[(i + 1) % 3]], e1 = pts_[tris_[cur].v[(i + 2) % 3]];
+                    const dvec2 e0 = pts_[tris_[cur].v[(i + 1) % 3]],
+                                e1 = pts_[tris_[cur].v[(i + 2) % 3]];
                     if (orient(e0, e1, centre) < -1e-12 * glm::length(e1 - e0)) exit = i;
                 }
                 if (exit < 0) break;

@@ -413,8 +413,11 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
                         : leaf.leafletIndex == 0                         ? 0
                                                                          : (leaf.leafletIndex < 0 ? -1 : 1);
     const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
-    const std::string key = variantKey(proto.prototype_function, describePrototype(proto), leaflet,
-                                       variant) + (variants == 0 ? "|unique" : "");
+    auto memo = prototypeKeys.find(&proto);
+    if (memo == prototypeKeys.end())
+        memo = prototypeKeys.emplace(&proto, describePrototype(proto)).first;
+    const std::string key = variantKey(proto.prototype_function, memo->second, leaflet, variant) +
+                            (variants == 0 ? "|unique" : "");
     if (auto hit = cache.find(key)) return *hit;
     // Variants are seeded from their key, not the plant's stream, so plants sharing a
     // prototype see the same shapes and building one never shifts a plant's random numbers.
@@ -426,12 +429,19 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
 }
 
 double PlantArchitecture::Impl::leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf) {
+    const unsigned variants = lp.prototype.unique_prototypes;
+    const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
+    const auto key = std::make_tuple(&lp.prototype, leaf.leafletIndex, variant);
+    auto it = prototypeAreas.find(key);
+    if (it != prototypeAreas.end()) return it->second;
     double area = 0.0;
     for (const PrototypePart& part : leafPrototype(lp, leaf)) area += part.mesh.area();
+    prototypeAreas.emplace(key, area);
     return area;
 }
 
 void tessellatePlant(PlantArchitecture::Impl& impl, Context& ctx, PlantInstance& plant) {
+    impl.clearCallMemos();
     Tessellator t{impl, ctx, plant, OrganWriter(ctx, plant), {}};
     t.run();
 }

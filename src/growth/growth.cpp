@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <queue>
 #include <tuple>
 
@@ -85,9 +86,15 @@ struct Grower {
     PlantInstance& plant;
     std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue;
 
+    // Shoot types by label; the plant's map is not modified during one call, so the
+    // references stay valid.
+    std::map<std::string, const ShootParameters*, std::less<>> types;
     const ShootParameters& typeOf(const std::string& label) {
-        return impl.shootTypeFor(plant, label);
+        auto it = types.find(label);
+        if (it == types.end()) it = types.emplace(label, &impl.shootTypeFor(plant, label)).first;
+        return *it->second;
     }
+    std::vector<double> girthTotals, girthNodes;  // reused by updateGirth
     bool growingSeason() const {
         return plant.stage == PhenologyStage::Vegetative ||
                plant.stage == PhenologyStage::Reproductive;
@@ -448,14 +455,16 @@ struct Grower {
     // Internode cross-section = girth_area_factor (cm^2 per m^2) x leaf area downstream;
     // radii never shrink and never fall below their initial value.
     void updateGirth() {
-        std::vector<double> shootTotal(plant.shoots.size(), 0.0);
+        std::vector<double>& shootTotal = girthTotals;
+        shootTotal.assign(plant.shoots.size(), 0.0);
         for (std::size_t i = plant.shoots.size(); i-- > 0;) {
             Shoot& s = plant.shoots[i];
             if (s.removed) continue;
-            std::vector<double> atNode(s.phytomers.size(), 0.0);
+            std::vector<double>& atNode = girthNodes;
+            atNode.assign(s.phytomers.size(), 0.0);
+            const LeafParameters& lp = typeOf(s.type).phytomer_parameters.leaf;
             for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
                 Phytomer& ph = s.phytomers[k];
-                const LeafParameters& lp = typeOf(ph.parametersLabel).phytomer_parameters.leaf;
                 for (Petiole& pt : ph.petioles)
                     for (LeafOrgan& l : pt.leaves)
                         if (!l.removed) {
@@ -574,7 +583,7 @@ void realizeInflorescence(PlantInstance& p, FloralBud& fb, const PhytomerParamet
 }
 
 void scheduleNewShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot) {
-    Grower g{impl, plant, {}};
+    Grower g{impl, plant, {}, {}, {}, {}};
     const ShootParameters& t = g.typeOf(shoot.type);
     shoot.nodesThisSeason = int(shoot.phytomers.size());
     if (shoot.nextPhytomerTime < 0.0 && g.growingSeason() && g.canGrow(shoot, t))
@@ -589,7 +598,8 @@ void growPlant(PlantArchitecture::Impl& impl, PlantInstance& plant, double days,
     // or 19.9f + 0.1f land exactly on the day an event is due.
     const double grid = std::nearbyint(target * 1024.0) / 1024.0;
     if (std::abs(target - grid) < 1e-5) target = grid;
-    Grower g{impl, plant, {}};
+    impl.clearCallMemos();
+    Grower g{impl, plant, {}, {}, {}, {}};
     g.run(target);
     deletes.insert(deletes.end(), g.pendingDeletes.begin(), g.pendingDeletes.end());
 }

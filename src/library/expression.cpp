@@ -18,8 +18,12 @@ namespace {
 const std::vector<std::string> kFunctions = {"uniform", "normal", "min",   "max",
                                              "floor",   "ceil",   "round", "abs"};
 
-bool isNameStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool isNameChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool isNameStart(char c) {
+    return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isNameChar(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
 
 class Parser {
 public:
@@ -41,14 +45,17 @@ public:
 private:
     bool evaluating() const { return names_ == nullptr; }
 
-    [[noreturn]] void fail(const std::string& what, std::string validRange = "") const {
-        throw Error("bad expression: " + what + " at column " + std::to_string(pos_ + 1),
+    [[noreturn]] void fail(const std::string& what, std::string validRange = "",
+                           const std::string& hint = "") const {
+        throw Error("bad expression: " + what + " at column " + std::to_string(pos_ + 1) + hint,
                     {.value = std::string(text_), .validRange = std::move(validRange)});
+    }
+    static std::string suggestion(const std::string& near) {
+        return near.empty() ? "" : ", did you mean '" + near + "'?";
     }
 
     void skipSpace() {
-        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_])))
-            ++pos_;
+        while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
     }
     bool accept(char c) {
         skipSpace();
@@ -68,9 +75,12 @@ private:
     double expression() {
         double v = term();
         while (true) {
-            if (accept('+')) v += term();
-            else if (accept('-')) v -= term();
-            else return v;
+            if (accept('+'))
+                v += term();
+            else if (accept('-'))
+                v -= term();
+            else
+                return v;
         }
     }
 
@@ -80,6 +90,7 @@ private:
             if (accept('*')) {
                 v *= unary();
             } else if (accept('/')) {
+                skipSpace();
                 const std::size_t at = pos_;
                 const double d = unary();
                 if (evaluating() && d == 0.0) {
@@ -147,8 +158,7 @@ private:
         known.push_back("pi");
         const std::string near = text::closestMatch(id, known);
         pos_ = start;
-        fail("unknown name '" + id + "'" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
-             "one of: " + text::joinNames(known));
+        fail("unknown name '" + id + "'", "one of: " + text::joinNames(known), suggestion(near));
     }
 
     double call(const std::string& fn, std::size_t start) {
@@ -162,8 +172,8 @@ private:
         auto arity = [&](std::size_t n, const char* names) {
             if (args.size() != n) {
                 pos_ = start;
-                fail(fn + " takes " + std::to_string(n) + " argument" + (n > 1 ? "s" : "") +
-                     " (" + names + "), got " + std::to_string(args.size()));
+                fail(fn + " takes " + std::to_string(n) + " argument" + (n > 1 ? "s" : "") + " (" +
+                     names + "), got " + std::to_string(args.size()));
             }
         };
         if (fn == "uniform") {
@@ -201,9 +211,8 @@ private:
         }
         const std::string near = text::closestMatch(fn, kFunctions);
         pos_ = start;
-        fail("unknown function '" + fn + "'" +
-                 (near.empty() ? "" : ", did you mean '" + near + "'?"),
-             "one of: " + text::joinNames(kFunctions));
+        fail("unknown function '" + fn + "'", "one of: " + text::joinNames(kFunctions),
+             suggestion(near));
     }
 
     std::string_view text_;

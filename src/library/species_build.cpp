@@ -79,8 +79,11 @@ private:
     [[noreturn]] void fail(const BuildStep& step, const std::string& path,
                            const std::string& message, std::string value = "",
                            std::string validRange = "") const {
-        throw Error(message, {.file = species_.sourceFile, .line = step.line, .parameter = path,
-                              .value = std::move(value), .validRange = std::move(validRange)});
+        throw Error(message, {.file = species_.sourceFile,
+                              .line = step.line,
+                              .parameter = path,
+                              .value = std::move(value),
+                              .validRange = std::move(validRange)});
     }
 
     double number(const BuildStep& step, const std::string& path, const std::string& attribute,
@@ -97,16 +100,15 @@ private:
     }
 
     unsigned whole(const BuildStep& step, const std::string& path, const std::string& attribute,
-                   const std::string& expression, long minimum) {
-        const double v = number(step, path, attribute, expression);
-        const long rounded = std::lround(v);
-        if (rounded < minimum || rounded > 1000000) {
+                   const std::string& expression, int minimum) {
+        const double v = std::round(number(step, path, attribute, expression));
+        if (!(v >= double(minimum) && v <= 1000000.0)) {
             const std::string value = text::formatDouble(v);
             fail(step, path + "." + attribute, "out of range",
                  value == expression ? value : value + " (from '" + expression + "')",
                  std::to_string(minimum) + " to 1000000");
         }
-        return unsigned(rounded);
+        return unsigned(v);
     }
 
     float real(const BuildStep& step, const std::string& path, const std::string& attribute,
@@ -170,7 +172,8 @@ private:
         spec.radiusTaper = real(step, path, "taper", step.taper);
         try {
             switch (step.kind) {
-                case BuildStep::Kind::BaseStem: return arch_.addBaseStemShoot(plantID_, spec);
+                case BuildStep::Kind::BaseStem:
+                    return arch_.addBaseStemShoot(plantID_, spec);
                 case BuildStep::Kind::Append:
                     return arch_.appendShoot(plantID_, unsigned(parent), spec);
                 case BuildStep::Kind::Child:
@@ -221,13 +224,15 @@ std::map<std::string, float> resolveBuildParameters(const SpeciesModel& species,
             const std::string near = text::closestMatch(name, names);
             throw Error("unknown build parameter of species '" + species.name + "'" +
                             (near.empty() ? "" : ", did you mean '" + near + "'?"),
-                        {.parameter = name, .value = text::formatFloat(value),
+                        {.parameter = name,
+                         .value = text::formatFloat(value),
                          .validRange = names.empty() ? "the species has no build parameters"
                                                      : "one of: " + text::joinNames(names)});
         }
         if (!std::isfinite(value) || value < found->min || value > found->max)
             throw Error("build parameter out of range",
-                        {.parameter = name, .value = text::formatFloat(value),
+                        {.parameter = name,
+                         .value = text::formatFloat(value),
                          .validRange = text::formatFloat(found->min) + " to " +
                                        text::formatFloat(found->max) +
                                        (found->unit.empty() ? "" : " " + found->unit)});
@@ -241,8 +246,8 @@ std::vector<unsigned> buildInitialStructure(PlantArchitecture& arch, unsigned pl
                                             const std::map<std::string, float>& overrides) {
     const std::map<std::string, float> parameters = resolveBuildParameters(species, overrides);
     if (species.build.empty())
-        throw Error("species has no build steps", {.file = species.sourceFile,
-                                                   .parameter = "build"});
+        throw Error("species has no build steps",
+                    {.file = species.sourceFile, .parameter = "build"});
     return StepRunner(arch, plantID, species, parameters).run();
 }
 

@@ -85,7 +85,8 @@ SpeciesModel loadSpecies(const std::string& nameOrPath) {
     const std::vector<std::string> names = listSpecies();
     const std::string near = text::closestMatch(nameOrPath, names);
     throw Error("unknown species" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
-                {.parameter = "species", .value = nameOrPath,
+                {.parameter = "species",
+                 .value = nameOrPath,
                  .validRange = names.empty() ? "the library at " + speciesLibraryDirectory() +
                                                    " holds no species"
                                              : "one of: " + text::joinNames(names)});

@@ -9,10 +9,9 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <pugixml.hpp>
 #include <set>
 #include <sstream>
-
-#include <pugixml.hpp>
 
 #include "library/expression.h"
 #include "library/species_xml.h"
@@ -32,8 +31,12 @@ std::string joinPath(const std::string& a, const std::string& b) {
     return a.empty() ? b : a + "." + b;
 }
 
-bool isElement(xml_node n) { return n.type() == pugi::node_element; }
-bool isText(xml_node n) { return n.type() == pugi::node_pcdata || n.type() == pugi::node_cdata; }
+bool isElement(xml_node n) {
+    return n.type() == pugi::node_element;
+}
+bool isText(xml_node n) {
+    return n.type() == pugi::node_pcdata || n.type() == pugi::node_cdata;
+}
 
 bool contains(const std::vector<std::string>& list, const std::string& s) {
     return std::find(list.begin(), list.end(), s) != list.end();
@@ -89,8 +92,11 @@ public:
 
     [[noreturn]] void fail(xml_node n, const std::string& path, const std::string& message,
                            std::string value = "", std::string validRange = "") const {
-        throw Error(message, {.file = file_, .line = line(n), .parameter = path,
-                              .value = std::move(value), .validRange = std::move(validRange)});
+        throw Error(message, {.file = file_,
+                              .line = line(n),
+                              .parameter = path,
+                              .value = std::move(value),
+                              .validRange = std::move(validRange)});
     }
 
     // An Error raised while converting a value, located at the element and parameter path.
@@ -121,10 +127,11 @@ Error locate(const Error& e, const std::string& file, const Lines& lines, int fa
     return e.withFile(file, fallbackLine);
 }
 
+// "unknown element 'pitchh' of <petiole>, did you mean 'pitch'?"
 std::string unknownMessage(const char* what, const std::string& name,
-                           const std::vector<std::string>& valid) {
+                           const std::vector<std::string>& valid, const std::string& where = "") {
     const std::string near = text::closestMatch(name, valid);
-    return std::string("unknown ") + what + " '" + name + "'" +
+    return std::string("unknown ") + what + " '" + name + "'" + where +
            (near.empty() ? "" : ", did you mean '" + near + "'?");
 }
 
@@ -140,9 +147,10 @@ void checkAttributes(const Source& src, xml_node e, const std::string& path,
     for (pugi::xml_attribute a : e.attributes()) {
         const std::string name = a.name();
         if (!contains(allowed, name))
-            src.fail(e, joinPath(path, name),
-                     unknownMessage("attribute", name, allowed) + " of <" + e.name() + ">",
-                     a.value(), allowed.empty() ? "no attributes" : validList(allowed));
+            src.fail(
+                e, joinPath(path, name),
+                unknownMessage("attribute", name, allowed, std::string(" of <") + e.name() + ">"),
+                a.value(), allowed.empty() ? "no attributes" : validList(allowed));
         if (!seen.insert(name).second)
             src.fail(e, joinPath(path, name), "duplicate attribute '" + name + "'", a.value());
     }
@@ -184,7 +192,8 @@ void checkChildren(const Source& src, xml_node e, const std::string& path,
 std::string valueText(const Source& src, xml_node e, const std::string& path) {
     std::string out;
     for (xml_node c : e.children()) {
-        if (isText(c)) out += c.value();
+        if (isText(c))
+            out += c.value();
         else if (isElement(c))
             src.fail(c, path,
                      std::string("<") + e.name() + "> holds a value, not elements (found <" +
@@ -311,8 +320,9 @@ private:
             }
             const Value value = convert(src_, c, entry, valueString, parseValue);
             if (!m.emplace(key, value).second)
-                src_.fail(c, entry, "duplicate " + std::string(spell.keyAttribute) + " '" +
-                                        keyText + "' in <" + f.name + ">");
+                src_.fail(c, entry,
+                          "duplicate " + std::string(spell.keyAttribute) + " '" + keyText +
+                              "' in <" + f.name + ">");
             lines_[entry] = src_.line(c);
         }
     }
@@ -352,8 +362,8 @@ void readGroup(const Source& src, Lines& lines, xml_node e, const std::string& p
 // ---- the species file -------------------------------------------------------------------
 
 const std::vector<std::string> kTopLevel = {
-    "name",      "common_name",  "latin_name",       "plant_type", "description",
-    "recommended_age", "max_height", "phenology", "build_parameters", "shoot_type", "build"};
+    "name",       "common_name", "latin_name",       "plant_type", "description", "recommended_age",
+    "max_height", "phenology",   "build_parameters", "shoot_type", "build"};
 
 class SpeciesReader {
 public:
@@ -392,9 +402,12 @@ private:
         m_.name = textOf(name, "name");
         if (!isLabel(m_.name))
             src_.fail(name, "name", "a species name is letters, digits, '_' or '-'", m_.name);
-        if (xml_node e = root.child("common_name")) m_.commonName = collapseSpaces(textOf(e, "common_name"));
-        if (xml_node e = root.child("latin_name")) m_.latinName = collapseSpaces(textOf(e, "latin_name"));
-        if (xml_node e = root.child("description")) m_.description = collapseSpaces(textOf(e, "description"));
+        if (xml_node e = root.child("common_name"))
+            m_.commonName = collapseSpaces(textOf(e, "common_name"));
+        if (xml_node e = root.child("latin_name"))
+            m_.latinName = collapseSpaces(textOf(e, "latin_name"));
+        if (xml_node e = root.child("description"))
+            m_.description = collapseSpaces(textOf(e, "description"));
         if (xml_node e = root.child("plant_type")) {
             m_.plantType = textOf(e, "plant_type");
             const auto& types = species_xml::plantTypes();
@@ -404,9 +417,11 @@ private:
         }
         if (xml_node e = root.child("recommended_age")) readRecommendedAge(e);
         if (xml_node e = root.child("max_height")) {
-            m_.maxHeight = convert(src_, e, "max_height", textOf(e, "max_height"), text::parseFloat);
+            m_.maxHeight =
+                convert(src_, e, "max_height", textOf(e, "max_height"), text::parseFloat);
             if (m_.maxHeight < 0.0f)
-                src_.fail(e, "max_height", "out of range", text::formatFloat(m_.maxHeight), ">= 0 m");
+                src_.fail(e, "max_height", "out of range", text::formatFloat(m_.maxHeight),
+                          ">= 0 m");
         }
     }
 
@@ -456,15 +471,17 @@ private:
             bp.name = requiredAttribute(src_, p, base, "name");
             const std::string path = joinPath(base, bp.name);
             if (!isIdentifier(bp.name))
-                src_.fail(p, path, "a build parameter name is a letter or '_' followed by "
-                                   "letters, digits or '_'", bp.name);
-            if (contains(expr::reservedNames(), bp.name) || bp.name == "i" ||
-                bp.name == "parent_i")
+                src_.fail(p, path,
+                          "a build parameter name is a letter or '_' followed by "
+                          "letters, digits or '_'",
+                          bp.name);
+            if (contains(expr::reservedNames(), bp.name) || bp.name == "i" || bp.name == "parent_i")
                 src_.fail(p, path, "reserved name, choose another", bp.name);
             for (const BuildParameter& other : m_.buildParameters)
                 if (other.name == bp.name)
-                    src_.fail(p, path, "duplicate build parameter '" + bp.name + "' (first at line " +
-                                           std::to_string(m_.lines[path]) + ")");
+                    src_.fail(p, path,
+                              "duplicate build parameter '" + bp.name + "' (first at line " +
+                                  std::to_string(m_.lines[path]) + ")");
             bp.value = floatAttribute(p, path, "default");
             bp.min = floatAttribute(p, path, "min");
             bp.max = floatAttribute(p, path, "max");
@@ -474,8 +491,7 @@ private:
                 src_.fail(p, path + ".min", "min exceeds max", text::formatFloat(bp.min),
                           "<= max (" + text::formatFloat(bp.max) + ")");
             if (bp.value < bp.min || bp.value > bp.max)
-                src_.fail(p, path + ".default", "default out of range",
-                          text::formatFloat(bp.value),
+                src_.fail(p, path + ".default", "default out of range", text::formatFloat(bp.value),
                           text::formatFloat(bp.min) + " to " + text::formatFloat(bp.max));
             m_.lines[path] = src_.line(p);
             m_.buildParameters.push_back(bp);
@@ -489,8 +505,9 @@ private:
                       "a shoot type label is letters, digits, '_' or '-' (no spaces or dots)",
                       label);
         if (m_.shootTypes.count(label))
-            src_.fail(e, label, "duplicate shoot type '" + label + "' (first at line " +
-                                    std::to_string(m_.lines[label]) + ")");
+            src_.fail(e, label,
+                      "duplicate shoot type '" + label + "' (first at line " +
+                          std::to_string(m_.lines[label]) + ")");
         ShootParameters params;
         if (pugi::xml_attribute base = e.attribute("inherits")) {
             const std::string from(text::trim(base.value()));
@@ -537,8 +554,11 @@ private:
                 if (!m_.shootTypes.count(child)) {
                     const std::string path = label + ".child_shoot_types." + child;
                     throw Error(unknownMessage("shoot type", child, labels),
-                                {.file = src_.file(), .line = m_.lines[path], .parameter = path,
-                                 .value = child, .validRange = validList(labels)});
+                                {.file = src_.file(),
+                                 .line = m_.lines[path],
+                                 .parameter = path,
+                                 .value = child,
+                                 .validRange = validList(labels)});
                 }
     }
 
@@ -647,13 +667,13 @@ SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameFo
     for (xml_node n : doc.children()) {
         if (!isElement(n)) continue;
         if (root)
-            src.fail(n, "", std::string("a second root element <") + n.name() +
-                                "> after <" + root.name() + ">");
+            src.fail(n, "",
+                     std::string("a second root element <") + n.name() + "> after <" + root.name() +
+                         ">");
         root = n;
     }
     if (std::string(root.name()) != species_xml::kRoot)
-        src.fail(root, "",
-                 std::string("not a species file: root element <") + root.name() + ">",
+        src.fail(root, "", std::string("not a species file: root element <") + root.name() + ">",
                  "", std::string("<") + species_xml::kRoot + ">");
     SpeciesModel model;
     model.sourceFile = nameForErrors;

@@ -19,12 +19,23 @@ std::string escape(std::string_view s) {
     out.reserve(s.size());
     for (char c : s) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -61,8 +72,10 @@ public:
     void element(int depth, const std::string& name, const std::string& value,
                  const std::string& note = "") {
         indent(depth);
-        if (value.empty()) out_ << "<" << name << "/>";
-        else out_ << "<" << name << ">" << escape(value) << "</" << name << ">";
+        if (value.empty())
+            out_ << "<" << name << "/>";
+        else
+            out_ << "<" << name << ">" << escape(value) << "</" << name << ">";
         comment(note);
         out_ << "\n";
     }
@@ -90,7 +103,9 @@ class FieldWriter {
 public:
     FieldWriter(Writer& w, int depth) : w_(w), depth_(depth) {}
 
-    void field(const params::FieldInfo& f, const RandomFloat& v) { put(f, text::formatRandomFloat(v)); }
+    void field(const params::FieldInfo& f, const RandomFloat& v) {
+        put(f, text::formatRandomFloat(v));
+    }
     void field(const params::FieldInfo& f, const RandomInt& v) { put(f, v.describe()); }
     void field(const params::FieldInfo& f, const float& v) { put(f, text::formatFloat(v)); }
     void field(const params::FieldInfo& f, const unsigned& v) { put(f, std::to_string(v)); }
@@ -108,12 +123,13 @@ public:
         w_.element(depth_, f.name, v, join(note, f.doc));
     }
     void field(const params::FieldInfo& f, const std::map<int, std::string>& m) {
-        writeMap(f, m, [](int k) { return std::to_string(k); },
-                 [](const std::string& v) { return v; });
+        writeMap(
+            f, m, [](int k) { return std::to_string(k); }, [](const std::string& v) { return v; });
     }
     void field(const params::FieldInfo& f, const std::map<std::string, float>& m) {
-        writeMap(f, m, [](const std::string& k) { return k; },
-                 [](float v) { return text::formatFloat(v); });
+        writeMap(
+            f, m, [](const std::string& k) { return k; },
+            [](float v) { return text::formatFloat(v); });
     }
 
     template <class G, class Fn>
@@ -156,8 +172,8 @@ private:
         for (const auto& [key, value] : m) {
             w_.indent(depth_ + 1);
             auto& o = w_.out();
-            o << "<" << spell.element << " " << spell.keyAttribute << "=\""
-              << escape(keyText(key)) << "\"";
+            o << "<" << spell.element << " " << spell.keyAttribute << "=\"" << escape(keyText(key))
+              << "\"";
             if (spell.valueAttribute)
                 o << " " << spell.valueAttribute << "=\"" << escape(valueText(value)) << "\"/>\n";
             else
@@ -179,9 +195,9 @@ void writeBuildParameters(Writer& w, const SpeciesModel& m) {
     for (const BuildParameter& p : m.buildParameters) {
         w.indent(2);
         auto& o = w.out();
-        o << "<parameter name=\"" << escape(p.name) << "\" default=\""
-          << text::formatFloat(p.value) << "\" min=\"" << text::formatFloat(p.min)
-          << "\" max=\"" << text::formatFloat(p.max) << "\"";
+        o << "<parameter name=\"" << escape(p.name) << "\" default=\"" << text::formatFloat(p.value)
+          << "\" min=\"" << text::formatFloat(p.min) << "\" max=\"" << text::formatFloat(p.max)
+          << "\"";
         if (!p.unit.empty()) o << " unit=\"" << escape(p.unit) << "\"";
         if (!p.doc.empty()) o << " doc=\"" << escape(p.doc) << "\"";
         o << "/>\n";

@@ -39,9 +39,17 @@ inline MapSpelling mapSpelling(const std::string& field, bool integerKeys) {
 
 /// Attributes of the build steps, in the order they are written.
 inline const std::vector<std::string>& buildStepAttributes(const std::string& kind) {
-    static const std::vector<std::string> base = {
-        "id",     "type",   "nodes", "pitch",           "yaw",           "roll",
-        "radius", "internode_length", "internode_scale", "leaf_scale", "taper"};
+    static const std::vector<std::string> base = {"id",
+                                                  "type",
+                                                  "nodes",
+                                                  "pitch",
+                                                  "yaw",
+                                                  "roll",
+                                                  "radius",
+                                                  "internode_length",
+                                                  "internode_scale",
+                                                  "leaf_scale",
+                                                  "taper"};
     static const std::vector<std::string> append = [] {
         std::vector<std::string> a = {"id", "parent"};
         a.insert(a.end(), base.begin() + 1, base.end());
@@ -60,9 +68,12 @@ inline const std::vector<std::string>& buildStepAttributes(const std::string& ki
 /// Element name of a build step kind.
 inline const char* buildStepElement(BuildStep::Kind kind) {
     switch (kind) {
-        case BuildStep::Kind::BaseStem: return "base_stem";
-        case BuildStep::Kind::Append: return "append";
-        case BuildStep::Kind::Child: return "child";
+        case BuildStep::Kind::BaseStem:
+            return "base_stem";
+        case BuildStep::Kind::Append:
+            return "append";
+        case BuildStep::Kind::Child:
+            return "child";
     }
     return "base_stem";
 }

@@ -23,7 +23,9 @@ constexpr const char* kIntForms =
     throw Error(message, {.value = std::string(value), .validRange = std::move(validRange)});
 }
 
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+bool isSpace(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
 
 // A number at the start of `s`; returns false when `s` is not exactly one finite number.
 bool readFloat(std::string_view s, float& out) {
@@ -176,7 +178,8 @@ RandomInt parseRandomInt(std::string_view raw) {
     int constant = 0;
     if (readInt(s, constant)) return RandomInt(constant);
     Call c;
-    if (s.empty() || !splitCall(s, c)) fail("expected a whole number or a distribution", s, kIntForms);
+    if (s.empty() || !splitCall(s, c))
+        fail("expected a whole number or a distribution", s, kIntForms);
     if (c.name == "uniform") {
         requireArgs(c, 2, "min, max", s);
         return RandomInt::uniform(intArg(c, 0, s), intArg(c, 1, s));
@@ -195,33 +198,42 @@ RandomInt parseRandomInt(std::string_view raw) {
 
 namespace {
 
-// Shortest round-trip text, in plain notation when that is short ("0.0001", "1000000")
-// and in exponent notation otherwise ("1e-09", "3.4028235e+38").
+// Shortest round-trip text, in plain notation unless that is more than two characters
+// longer than with an exponent: "0.0001", "1000000", but "1e-09", "3.4028235e+38".
 template <class T>
 std::string shortest(T v) {
     char general[64];
     char fixed[64];
     const auto g = std::to_chars(general, general + sizeof general, v);
     const auto f = std::to_chars(fixed, fixed + sizeof fixed, v, std::chars_format::fixed);
-    if (f.ec == std::errc() && f.ptr - fixed <= 12) return std::string(fixed, f.ptr);
+    if (f.ec == std::errc() && f.ptr - fixed <= g.ptr - general + 2)
+        return std::string(fixed, f.ptr);
     return std::string(general, g.ptr);
 }
 
 }  // namespace
 
-std::string formatFloat(float v) { return shortest(v); }
+std::string formatFloat(float v) {
+    return shortest(v);
+}
 
-std::string formatDouble(double v) { return shortest(v); }
+std::string formatDouble(double v) {
+    return shortest(v);
+}
 
 std::string formatRandomFloat(const RandomFloat& v) {
     auto call = [&](const char* name) {
         return std::string(name) + "(" + formatFloat(v.a()) + ", " + formatFloat(v.b()) + ")";
     };
     switch (v.kind()) {
-        case RandomFloat::Kind::Constant: return formatFloat(v.a());
-        case RandomFloat::Kind::Uniform: return call("uniform");
-        case RandomFloat::Kind::Normal: return call("normal");
-        case RandomFloat::Kind::Weibull: return call("weibull");
+        case RandomFloat::Kind::Constant:
+            return formatFloat(v.a());
+        case RandomFloat::Kind::Uniform:
+            return call("uniform");
+        case RandomFloat::Kind::Normal:
+            return call("normal");
+        case RandomFloat::Kind::Weibull:
+            return call("weibull");
     }
     return formatFloat(v.a());
 }
@@ -231,19 +243,21 @@ std::string formatVec3(const vec3& v) {
 }
 
 std::size_t editDistance(std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
+    // Optimal string alignment: insertions, deletions, substitutions and transpositions of
+    // neighbours ("lable" -> "label") each cost 1.
+    const std::size_t n = a.size(), m = b.size();
+    std::vector<std::size_t> d((n + 1) * (m + 1));
+    auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return d[i * (m + 1) + j]; };
+    for (std::size_t i = 0; i <= n; ++i) at(i, 0) = i;
+    for (std::size_t j = 0; j <= m; ++j) at(0, j) = j;
+    for (std::size_t i = 1; i <= n; ++i)
+        for (std::size_t j = 1; j <= m; ++j) {
             const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
-            diagonal = above;
+            at(i, j) = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + cost});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                at(i, j) = std::min(at(i, j), at(i - 2, j - 2) + 1);
         }
-    }
-    return row[b.size()];
+    return at(n, m);
 }
 
 std::string closestMatch(std::string_view word, const std::vector<std::string>& candidates) {

@@ -30,16 +30,18 @@ vec3 parseVec3(std::string_view s);
 RandomFloat parseRandomFloat(std::string_view s);
 RandomInt parseRandomInt(std::string_view s);
 
-/// Shortest text that reads back to exactly the same value, in plain notation when that
-/// takes at most 12 characters ("0.0001", "1000000"), else with an exponent ("1e-09").
+/// Shortest text that reads back to exactly the same value, in plain notation unless that is
+/// more than two characters longer than with an exponent ("0.0001", "1000000", "1e-09").
 std::string formatFloat(float v);
 std::string formatDouble(double v);
 std::string formatVec3(const vec3& v);
 /// As RandomFloat::describe() with formatFloat() numbers; RandomInt::describe() is exact.
 std::string formatRandomFloat(const RandomFloat& v);
-inline std::string formatBool(bool b) { return b ? "true" : "false"; }
+inline std::string formatBool(bool b) {
+    return b ? "true" : "false";
+}
 
-/// Levenshtein distance (for "did you mean" suggestions).
+/// Edit distance counting a swap of neighbours as one edit (for "did you mean").
 std::size_t editDistance(std::string_view a, std::string_view b);
 /// The candidate closest to `word` when it is close enough to be a likely misspelling
 /// (distance at most a third of the word's length, at least 1, at most 3), else "".

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 
 #include "plantarch/PlantArchitecture.h"
 
@@ -38,7 +39,14 @@ struct PlantArchitecture::Impl {
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf);
     /// One-sided area of a leaf prototype at unit scale (cached).
     double leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf);
-    std::shared_ptr<const OrganPrototype> uniqueScratch;
+    /// Cache keys of leaf prototypes by address, valid during one grow or tessellate call
+    /// (shoot types do not change within one); cleared at the start of each.
+    std::map<const LeafPrototype*, std::string> prototypeKeys;
+    std::map<std::tuple<const LeafPrototype*, int, unsigned>, double> prototypeAreas;
+    void clearCallMemos() {
+        prototypeKeys.clear();
+        prototypeAreas.clear();
+    }
 
     PlantInstance& plant(unsigned id);
     const PlantInstance& plant(unsigned id) const;

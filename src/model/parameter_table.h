@@ -73,11 +73,14 @@ void describeParameters(S& p, V& v) {
             p.longitudinal_curvature);
     v.field({"lateral_curvature", "", -5, 5, "Curvature across the blade; positive cups it"},
             p.lateral_curvature);
-    v.field({"petiole_roll", "degrees", -180, 180, "Roll of the blade about its base"},
+    v.field({"petiole_roll", "degrees", -180, 180,
+             "Curl of the blade's base about the midrib, fading over the basal 10-15 %"},
             p.petiole_roll);
-    v.field({"wave_period", "", 0, 1, "Period of marginal waves, fraction of length"},
+    v.field({"wave_period", "", 0, 1,
+             "Distance between sign changes of the marginal waves, fraction of length"},
             p.wave_period);
-    v.field({"wave_amplitude", "", 0, 0.5, "Amplitude of marginal waves, fraction of length"},
+    v.field({"wave_amplitude", "", 0, 0.5,
+             "Amplitude of the marginal waves, fraction of the local blade width"},
             p.wave_amplitude);
     v.field({"leaf_buckle_length", "", 0, 1, "Where the blade buckles, fraction of length"},
             p.leaf_buckle_length);

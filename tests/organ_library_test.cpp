@@ -1,0 +1,703 @@
+// Tests for plantarch/OrganLibrary.h: the flower and fruit prototype families, their
+// parameter table and validation, registration, and the gallery images in docs/images.
+//
+// Every family is checked against the prototype convention (bounding box from x = 0 to 1,
+// finite positions, valid indices, no zero-area triangles), for closed solid parts also
+// against edge manifoldness, and for documented parameter effects with measurements written
+// here (bounding boxes, connected components, width profiles).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <numeric>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "plantarch/Context.h"
+#include "plantarch/Error.h"
+#include "plantarch/OrganLibrary.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/Render.h"
+
+namespace {
+
+using namespace plantarch;
+namespace fs = std::filesystem;
+
+// ---- helpers -----------------------------------------------------------------------------
+
+OrganPrototype build(const std::string& family, std::map<std::string, float> params = {},
+                     bool open = true, unsigned subdivisions = 8, std::uint64_t seed = 1) {
+    FloralPrototypeRequest req;
+    req.fruit = floralFamily(family).fruit;
+    req.open = open;
+    req.parameters = std::move(params);
+    req.color = floralFamily(family).defaultColor;
+    req.subdivisions = subdivisions;
+    Rng rng(seed, 3);
+    return buildFloralPrototype(family, req, rng);
+}
+
+AABB bounds(const OrganPrototype& proto) {
+    AABB box;
+    for (const PrototypePart& p : proto)
+        for (const vec3& v : p.mesh.positions) box.add(v);
+    return box;
+}
+
+AABB bounds(const Mesh& m) {
+    AABB box;
+    for (const vec3& v : m.positions) box.add(v);
+    return box;
+}
+
+const PrototypePart* part(const OrganPrototype& proto, const std::string& name) {
+    for (const PrototypePart& p : proto)
+        if (p.material.name == name) return &p;
+    return nullptr;
+}
+
+std::size_t triangles(const OrganPrototype& proto) {
+    std::size_t n = 0;
+    for (const PrototypePart& p : proto) n += p.mesh.triangleCount();
+    return n;
+}
+
+double triangleArea(const Mesh& m, std::size_t t) {
+    const glm::dvec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                     c = m.positions[m.indices[3 * t + 2]];
+    return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+// The prototype convention, checked part by part.
+void expectConvention(const OrganPrototype& proto, const std::string& what) {
+    SCOPED_TRACE(what);
+    ASSERT_FALSE(proto.empty());
+    const AABB box = bounds(proto);
+    EXPECT_NEAR(box.min.x, 0.0f, 1e-4f);
+    EXPECT_NEAR(box.max.x, 1.0f, 1e-4f);
+    std::set<std::string> names;
+    for (const PrototypePart& p : proto) {
+        SCOPED_TRACE(p.material.name);
+        EXPECT_FALSE(p.material.name.empty());
+        EXPECT_TRUE(names.insert(p.material.name).second) << "one part per material";
+        EXPECT_FALSE(p.mesh.empty());
+        EXPECT_NO_THROW(p.mesh.validate());
+        EXPECT_EQ(p.mesh.indices.size() % 3, 0u);
+        for (const vec3& v : p.mesh.positions)
+            ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+        for (std::uint32_t i : p.mesh.indices) ASSERT_LT(i, p.mesh.positions.size());
+        std::size_t degenerate = 0;
+        for (std::size_t t = 0; t < p.mesh.triangleCount(); ++t)
+            if (!(triangleArea(p.mesh, t) > 1e-12)) ++degenerate;
+        EXPECT_EQ(degenerate, 0u);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_GE(p.material.color[c], 0.0f);
+            EXPECT_LE(p.material.color[c], 1.0f);
+        }
+    }
+}
+
+// Every edge is shared by exactly two triangles that traverse it in opposite directions
+// (a closed, consistently oriented 2-manifold), and the enclosed volume is positive.
+::testing::AssertionResult closedManifold(const Mesh& m) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (std::size_t t = 0; t < m.triangleCount(); ++t)
+        for (int e = 0; e < 3; ++e) {
+            const std::uint32_t a = m.indices[3 * t + e], b = m.indices[3 * t + (e + 1) % 3];
+            ++directed[{a, b}];
+        }
+    for (const auto& [edge, count] : directed) {
+        if (count != 1)
+            return ::testing::AssertionFailure()
+                   << "edge " << edge.first << "-" << edge.second << " used " << count
+                   << " times in one direction";
+        if (!directed.count({edge.second, edge.first}))
+            return ::testing::AssertionFailure()
+                   << "edge " << edge.first << "-" << edge.second << " is a border";
+    }
+    double volume = 0.0;
+    for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+        const glm::dvec3 a = m.positions[m.indices[3 * t]],
+                         b = m.positions[m.indices[3 * t + 1]],
+                         c = m.positions[m.indices[3 * t + 2]];
+        volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    if (!(volume > 0.0)) return ::testing::AssertionFailure() << "volume " << volume;
+    return ::testing::AssertionSuccess();
+}
+
+// Connected components of a mesh (vertices joined by triangles).
+std::size_t components(const Mesh& m) {
+    std::vector<std::uint32_t> parent(m.positions.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    auto root = [&](std::uint32_t v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (std::size_t t = 0; t < m.triangleCount(); ++t)
+        for (int e = 1; e < 3; ++e) parent[root(m.indices[3 * t + e])] = root(m.indices[3 * t]);
+    std::set<std::uint32_t> roots;
+    for (std::uint32_t i : m.indices) roots.insert(root(i));
+    return roots.size();
+}
+
+// Local maxima of a mesh's half-extent along `axis` (1 = y, 2 = z) over bins along x (empty
+// bins take the previous bin's value, so use fewer bins than the mesh has rings).
+int widthPeaks(const Mesh& m, int axis, int bins) {
+    std::vector<float> w(bins, -1.0f);
+    const AABB box = bounds(m);
+    for (const vec3& v : m.positions) {
+        const int b = std::clamp(int((v.x - box.min.x) / (box.max.x - box.min.x) * float(bins)),
+                                 0, bins - 1);
+        w[b] = std::max(w[b], std::abs(v[axis]));
+    }
+    for (int b = 1; b < bins; ++b)
+        if (w[b] < 0.0f) w[b] = w[b - 1];
+    int peaks = 0;
+    for (int b = 1; b + 1 < bins; ++b) {
+        if (!(w[b] > w[b - 1] || (w[b] == w[b - 1] && b > 1 && w[b] > w[b - 2]))) continue;
+        int e = b + 1;  // the end of a plateau
+        while (e < bins && w[e] == w[b]) ++e;
+        if (e < bins && w[e] < w[b]) ++peaks;
+        b = e - 1;
+    }
+    return peaks;
+}
+
+bool sameBytes(const OrganPrototype& a, const OrganPrototype& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const Mesh &x = a[i].mesh, &y = b[i].mesh;
+        if (x.positions.size() != y.positions.size() || x.indices != y.indices ||
+            !(a[i].material == b[i].material))
+            return false;
+        if (std::memcmp(x.positions.data(), y.positions.data(),
+                        x.positions.size() * sizeof(vec3)) != 0)
+            return false;
+    }
+    return true;
+}
+
+std::vector<std::string> familyNames() {
+    std::vector<std::string> names;
+    for (const FloralFamilyInfo& f : floralFamilies()) names.push_back(f.name);
+    return names;
+}
+
+// ---- the table ------------------------------------------------------------------------------
+
+TEST(OrganLibrary, FamilyTableIsWellFormed) {
+    const auto& families = floralFamilies();
+    ASSERT_GE(families.size(), 18u);
+    std::set<std::string> names;
+    for (const FloralFamilyInfo& f : families) {
+        SCOPED_TRACE(f.name);
+        EXPECT_TRUE(names.insert(f.name).second);
+        EXPECT_FALSE(f.description.empty());
+        EXPECT_FALSE(f.parts.empty());
+        EXPECT_EQ(&floralFamily(f.name), &f);
+        std::set<std::string> params;
+        for (const FloralParameterInfo& p : f.parameters) {
+            SCOPED_TRACE(p.name);
+            EXPECT_TRUE(params.insert(p.name).second);
+            EXPECT_FALSE(p.doc.empty());
+            EXPECT_LE(p.min, p.defaultValue);
+            EXPECT_LE(p.defaultValue, p.max);
+            if (p.integer) {
+                EXPECT_EQ(p.defaultValue, std::round(p.defaultValue));
+            }
+            EXPECT_EQ(f.parameter(p.name), &p);
+        }
+        EXPECT_EQ(f.parameter("no_such_parameter"), nullptr);
+    }
+    for (const char* expected :
+         {"petal_flower", "papilionaceous_flower", "funnel_flower", "bract_flower", "legume_pod",
+          "berry", "grape_cluster", "pepper", "strawberry", "almond", "walnut",
+          "pistachio_cluster", "apple", "olive", "wheat_spike", "rice_panicle",
+          "sorghum_panicle", "maize_tassel", "maize_ear"})
+        EXPECT_TRUE(names.count(expected)) << expected;
+}
+
+TEST(OrganLibrary, RegistersEveryFamily) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    registerOrganLibrary(arch);
+    for (const std::string& name : familyNames()) EXPECT_TRUE(arch.hasFloralPrototype(name));
+}
+
+// ---- validation -----------------------------------------------------------------------------
+
+TEST(OrganLibrary, UnknownFamilyIsAnError) {
+    try {
+        validateFloralParameters("tulip", {});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.value(), "tulip");
+        EXPECT_NE(e.validRange().find("petal_flower"), std::string::npos);
+    }
+    EXPECT_THROW(floralFamily("tulip"), Error);
+}
+
+TEST(OrganLibrary, UnknownParameterNamesFamilyAndValidNames) {
+    try {
+        validateFloralParameters("petal_flower", {{"petal_cuont", 5}});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.parameter(), "petal_cuont");
+        EXPECT_NE(std::string(e.what()).find("petal_flower"), std::string::npos);
+        EXPECT_NE(e.validRange().find("petal_count"), std::string::npos);
+    }
+}
+
+TEST(OrganLibrary, OutOfRangeValueNamesTheRange) {
+    try {
+        validateFloralParameters("petal_flower", {{"petal_count", 40}});
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.parameter(), "petal_count");
+        EXPECT_EQ(e.value(), "40");
+        EXPECT_EQ(e.validRange(), "3 to 20");
+        EXPECT_NE(std::string(e.what()).find("petal_flower"), std::string::npos);
+    }
+    EXPECT_THROW(validateFloralParameters("legume_pod", {{"width", -0.1f}}), Error);
+    EXPECT_THROW(validateFloralParameters("legume_pod", {{"width", NAN}}), Error);
+    EXPECT_THROW(validateFloralParameters("petal_flower", {{"petal_count", 5.5f}}), Error);
+    EXPECT_NO_THROW(validateFloralParameters("petal_flower", {{"petal_count", 20}}));
+    EXPECT_NO_THROW(validateFloralParameters("petal_flower", {{"petal_count", 3}}));
+}
+
+TEST(OrganLibrary, FamilyFunctionsThrowForBadParameters) {
+    EXPECT_THROW(build("berry", {{"aspect", 100}}), Error);
+    EXPECT_THROW(build("wheat_spike", {{"awns", 1}}), Error);
+}
+
+// A plant whose fruit come from the library: the registered function is used by the plant
+// model, its fruit have the prototype's proportions at the species' scale, and bad shape
+// parameters surface as an Error when the fruit is built.
+struct LibraryPlant {
+    Context ctx;
+    PlantArchitecture arch{&ctx};
+    unsigned plant = 0;
+
+    explicit LibraryPlant(const std::map<std::string, float>& fruitParameters) {
+        registerOrganLibrary(arch);
+        ShootParameters p;
+        p.phytomer_parameters.inflorescence.fruit_prototype_function = "berry";
+        p.phytomer_parameters.inflorescence.fruit_prototype_parameters = fruitParameters;
+        p.phytomer_parameters.inflorescence.fruit_prototype_scale = 0.05f;
+        p.phytomer_parameters.inflorescence.flowers_per_peduncle = 1;
+        arch.defineShootType("main", p);
+        plant = arch.addPlantInstance({0, 0, 0}, 10);
+        ShootSpec spec;
+        spec.phytomers = 2;
+        spec.shootType = "main";
+        arch.addBaseStemShoot(plant, spec);
+    }
+};
+
+TEST(OrganLibrary, PlantModelBuildsLibraryFruit) {
+    LibraryPlant good({{"sepal_count", 0}, {"stem_length", 0}});
+    EXPECT_EQ(good.arch.addFloralBud(good.plant, 0, 0, FloralStage::Fruit), 1u);
+    const std::vector<ObjectID> fruit = good.arch.getPlantFruitObjectIDs(good.plant);
+    ASSERT_FALSE(fruit.empty());
+    AABB box;
+    for (ObjectID id : fruit) box.add(good.ctx.objectBoundingBox(id));
+    const vec3 e = box.extent();
+    EXPECT_NEAR(std::max({e.x, e.y, e.z}), 0.05f, 0.01f);  // a round berry 5 cm across
+
+    LibraryPlant bad({{"ribs", 99}});
+    EXPECT_THROW(bad.arch.addFloralBud(bad.plant, 0, 0, FloralStage::Fruit), Error);
+}
+
+// ---- the convention -------------------------------------------------------------------------
+
+TEST(OrganLibrary, EveryFamilyObeysThePrototypeConvention) {
+    for (const FloralFamilyInfo& f : floralFamilies())
+        for (unsigned s : {2u, 3u, 6u, 12u})
+            for (bool open : {true, false}) {
+                if (f.fruit && !open) continue;
+                const OrganPrototype p = build(f.name, {}, open, s);
+                expectConvention(p, f.name + (open ? " open" : " closed") + " s=" +
+                                        std::to_string(s));
+                EXPECT_EQ(p.front().material.name, f.parts.front()) << f.name;
+                EXPECT_EQ(p.front().material.color, f.defaultColor) << f.name;
+                for (const PrototypePart& part : p)
+                    EXPECT_NE(std::find(f.parts.begin(), f.parts.end(), part.material.name),
+                              f.parts.end())
+                        << f.name << " " << part.material.name;
+            }
+}
+
+TEST(OrganLibrary, TriangleCountGrowsWithSubdivisions) {
+    for (const FloralFamilyInfo& f : floralFamilies())
+        for (bool open : {true, false}) {
+            if (f.fruit && !open) continue;
+            std::size_t previous = 0;
+            for (unsigned s : {2u, 4u, 8u, 16u}) {
+                const std::size_t n = triangles(build(f.name, {}, open, s));
+                EXPECT_GT(n, previous) << f.name << (open ? " open" : " closed") << " s=" << s;
+                previous = n;
+            }
+        }
+}
+
+TEST(OrganLibrary, SubdivisionsBelowTwoActAsTwo) {
+    for (const FloralFamilyInfo& f : floralFamilies())
+        EXPECT_TRUE(sameBytes(build(f.name, {}, true, 0), build(f.name, {}, true, 2))) << f.name;
+}
+
+TEST(OrganLibrary, SameStreamGivesSameBytes) {
+    for (const FloralFamilyInfo& f : floralFamilies())
+        for (bool open : {true, false})
+            EXPECT_TRUE(sameBytes(build(f.name, {}, open, 6, 99), build(f.name, {}, open, 6, 99)))
+                << f.name;
+    // Random packing does depend on the stream.
+    EXPECT_FALSE(sameBytes(build("grape_cluster", {}, true, 6, 1),
+                           build("grape_cluster", {}, true, 6, 2)));
+}
+
+TEST(OrganLibrary, MainColourComesFromTheRequest) {
+    FloralPrototypeRequest req;
+    req.color = {0.1f, 0.2f, 0.3f};
+    for (const FloralFamilyInfo& f : floralFamilies()) {
+        Rng rng(1);
+        req.fruit = f.fruit;
+        const OrganPrototype p = buildFloralPrototype(f.name, req, rng);
+        EXPECT_EQ(p.front().material.color, req.color) << f.name;
+    }
+}
+
+// Fruit bodies and other solid parts are closed, consistently oriented manifolds.
+TEST(OrganLibrary, SolidPartsAreWatertight) {
+    const std::vector<std::pair<std::string, std::map<std::string, float>>> cases = {
+        {"berry", {}},
+        {"berry", {{"ribs", 6}, {"rib_depth", 0.1f}}},
+        {"berry", {{"husk", 1}}},
+        {"grape_cluster", {}},
+        {"pepper", {}},
+        {"pepper", {{"blockiness", 0}, {"aspect", 4}, {"tip_curl", 40}}},
+        {"strawberry", {}},
+        {"apple", {}},
+        {"olive", {}},
+        {"walnut", {}},
+        {"almond", {}},
+        {"almond", {{"split", 0.7f}}},
+        {"legume_pod", {}},
+        {"legume_pod", {{"seed_count", 8}, {"curvature", 90}}},
+        {"pistachio_cluster", {}},
+    };
+    for (const auto& [family, params] : cases)
+        for (unsigned s : {3u, 10u}) {
+            const OrganPrototype p = build(family, params, true, s);
+            EXPECT_TRUE(closedManifold(p.front().mesh)) << family << " s=" << s;
+        }
+    EXPECT_TRUE(closedManifold(part(build("almond", {{"split", 0.7f}}), "shell")->mesh));
+    EXPECT_TRUE(closedManifold(part(build("maize_ear"), "cob")->mesh));
+    EXPECT_TRUE(closedManifold(part(build("strawberry"), "achenes")->mesh));
+}
+
+// ---- parameter effects ----------------------------------------------------------------------
+
+TEST(OrganLibrary, PetalCountSetsThePetals) {
+    // The petals part holds petal_count identical-resolution sheets.
+    for (bool open : {true, false}) {
+        const std::size_t five = part(build("petal_flower", {{"petal_count", 5}}, open), "petals")
+                                     ->mesh.triangleCount();
+        const std::size_t seven =
+            part(build("petal_flower", {{"petal_count", 7}}, open), "petals")->mesh.triangleCount();
+        EXPECT_EQ(five % 5, 0u);
+        EXPECT_EQ(five / 5 * 7, seven);
+        EXPECT_EQ(components(part(build("petal_flower", {{"petal_count", 7}}, open), "petals")->mesh),
+                  7u);
+    }
+    EXPECT_EQ(part(build("petal_flower", {{"sepal_count", 0}}), "sepals")->mesh.triangleCount(),
+              part(build("petal_flower", {{"sepal_count", 0}, {"petal_count", 9}}), "sepals")
+                  ->mesh.triangleCount());
+    EXPECT_EQ(components(part(build("bract_flower", {{"bract_count", 4}}), "bracts")->mesh), 4u);
+}
+
+TEST(OrganLibrary, FlowerCentreOnlyWhenOpen) {
+    EXPECT_NE(part(build("petal_flower", {}, true), "flower_centre"), nullptr);
+    EXPECT_EQ(part(build("petal_flower", {}, false), "flower_centre"), nullptr);
+    EXPECT_EQ(part(build("petal_flower", {{"centre_size", 0}, {"stamen_count", 0}}, true),
+                   "flower_centre"),
+              nullptr);
+    // An open funnel is wider than its bud.
+    const AABB open = bounds(build("funnel_flower", {}, true));
+    const AABB bud = bounds(build("funnel_flower", {}, false));
+    EXPECT_GT(open.extent().y, 2.0f * bud.extent().y);
+}
+
+TEST(OrganLibrary, PodProportionsFollowWidthAndThickness) {
+    for (float width : {0.08f, 0.2f}) {
+        const OrganPrototype p =
+            build("legume_pod", {{"width", width}, {"thickness", 0.05f}, {"curvature", 0},
+                                 {"hairs", 0}});
+        const AABB body = bounds(p.front().mesh);
+        EXPECT_NEAR(body.extent().z, width, 0.1f * width);
+        EXPECT_NEAR(body.extent().y, 0.05f, 0.01f);
+    }
+    // Curvature lifts the tip.
+    const AABB straight = bounds(build("legume_pod", {{"curvature", 0}}));
+    const AABB curved = bounds(build("legume_pod", {{"curvature", 60}}));
+    EXPECT_GT(curved.extent().z, straight.extent().z * 1.5f);
+}
+
+TEST(OrganLibrary, PodSeedBumpsMatchSeedCount) {
+    for (int seeds : {3, 5, 8}) {
+        const OrganPrototype p = build("legume_pod", {{"seed_count", float(seeds)},
+                                                      {"curvature", 0}, {"seed_bump", 0.3f}},
+                                       true, 12);
+        EXPECT_EQ(widthPeaks(p.front().mesh, 1, 40), seeds) << seeds;
+    }
+    const OrganPrototype smooth = build("legume_pod", {{"seed_count", 0}, {"curvature", 0}}, true, 12);
+    EXPECT_LE(widthPeaks(smooth.front().mesh, 1, 40), 1);
+}
+
+TEST(OrganLibrary, ClustersHaveTheRequestedCounts) {
+    for (int n : {1, 12, 60}) {
+        const OrganPrototype g = build("grape_cluster", {{"berry_count", float(n)}}, true, 4);
+        EXPECT_EQ(components(g.front().mesh), std::size_t(n));
+        const OrganPrototype p = build("pistachio_cluster", {{"drupe_count", float(n)}}, true, 4);
+        EXPECT_EQ(components(p.front().mesh), std::size_t(n));
+    }
+    const OrganPrototype w = build("wheat_spike", {{"spikelet_count", 10}, {"florets", 3}}, true, 4);
+    EXPECT_EQ(components(w.front().mesh), 30u);
+    EXPECT_EQ(part(build("wheat_spike", {{"awn_length", 0}}), "awns"), nullptr);
+    EXPECT_NE(part(build("wheat_spike", {{"awn_length", 0.5f}}), "awns"), nullptr);
+    const OrganPrototype r =
+        build("rice_panicle", {{"branch_count", 6}, {"grains_per_branch", 5}}, true, 4);
+    EXPECT_EQ(components(r.front().mesh), 30u);
+    const OrganPrototype t = build("strawberry", {{"achene_count", 50}}, true, 4);
+    EXPECT_EQ(components(part(t, "achenes")->mesh), 50u);
+}
+
+TEST(OrganLibrary, FruitAspectShowsInTheBoundingBox) {
+    for (float aspect : {0.8f, 1.0f, 1.5f}) {
+        const OrganPrototype p =
+            build("berry", {{"aspect", aspect}, {"sepal_count", 0}, {"stem_length", 0}});
+        const vec3 e = bounds(p.front().mesh).extent();
+        EXPECT_NEAR(e.x / e.y, aspect, 0.05f * aspect);
+    }
+    const vec3 olive = bounds(build("olive", {{"aspect", 1.6f}}).front().mesh).extent();
+    EXPECT_NEAR(olive.x / olive.y, 1.6f, 0.1f);
+}
+
+TEST(OrganLibrary, OptionalPartsAppearWhenAsked) {
+    EXPECT_EQ(part(build("berry"), "husk"), nullptr);
+    const OrganPrototype husked = build("berry", {{"husk", 1}});
+    ASSERT_NE(part(husked, "husk"), nullptr);
+    // The lantern encloses the berry.
+    const AABB berry = bounds(husked.front().mesh), husk = bounds(part(husked, "husk")->mesh);
+    EXPECT_GT(husk.extent().y, berry.extent().y);
+    EXPECT_EQ(part(build("almond"), "shell"), nullptr);
+    EXPECT_NE(part(build("almond", {{"split", 0.5f}}), "shell"), nullptr);
+    EXPECT_EQ(part(build("legume_pod", {{"hairs", 0}}), "hairs"), nullptr);
+    EXPECT_NE(part(build("legume_pod", {{"hairs", 1}}), "hairs"), nullptr);
+    EXPECT_EQ(part(build("maize_ear", {{"silk_length", 0}}), "silk"), nullptr);
+}
+
+// ---- presets --------------------------------------------------------------------------------
+
+TEST(OrganLibrary, PresetsUseValidParameters) {
+    const auto& presets = floralPresets();
+    ASSERT_GE(presets.size(), 20u);
+    std::set<std::string> names;
+    for (const FloralPreset& p : presets) {
+        SCOPED_TRACE(p.name);
+        EXPECT_TRUE(names.insert(p.name).second);
+        EXPECT_NO_THROW(validateFloralParameters(p.family, p.parameters));
+        EXPECT_EQ(floralFamily(p.family).fruit, p.fruit);
+        EXPECT_GT(p.prototypeScale, 0.0f);
+        EXPECT_FALSE(p.species.empty());
+        EXPECT_EQ(&floralPreset(p.name), &p);
+        FloralPrototypeRequest req{p.fruit, true, p.parameters, p.color, p.subdivisions};
+        Rng rng(4);
+        expectConvention(buildFloralPrototype(p.family, req, rng), p.name);
+    }
+    EXPECT_THROW(floralPreset("no_such_preset"), Error);
+}
+
+// ---- gallery --------------------------------------------------------------------------------
+
+// How a family is shown: the world directions of the prototype's +x (its axis) and +z. The
+// camera looks from -y; flowers face it, fruit hang, cereal heads stand.
+struct Pose {
+    vec3 axis, up;
+};
+
+Pose poseFor(const FloralFamilyInfo& f) {
+    const vec3 faceCamera = glm::normalize(vec3(0.0f, -0.55f, 0.85f));
+    const vec3 hang = glm::normalize(vec3(0.0f, 0.15f, -1.0f));
+    static const std::map<std::string, Pose> poses = {
+        {"legume_pod", {{1, 0, 0}, {0, 0, 1}}},
+        {"maize_ear", {{1, 0, 0}, {0, 0, 1}}},
+        {"almond", {{1, 0, 0}, {0, 0, 1}}},
+        {"wheat_spike", {{0, 0, 1}, {0, -1, 0}}},
+        {"rice_panicle", {{0, 0, 1}, {1, 0, 0}}},
+        {"sorghum_panicle", {{0, 0, 1}, {0, -1, 0}}},
+        {"maize_tassel", {{0, 0, 1}, {0, -1, 0}}},
+        {"catkin", {hang, {1, 0, 0}}},
+    };
+    const auto it = poses.find(f.name);
+    if (it != poses.end()) return it->second;
+    return f.fruit ? Pose{hang, {0, -1, 0}} : Pose{faceCamera, {0, 0, 1}};
+}
+
+mat4 poseMatrix(const Pose& pose) {
+    const vec3 x = glm::normalize(pose.axis);
+    const vec3 z = glm::normalize(pose.up - x * glm::dot(pose.up, x));
+    const vec3 y = glm::cross(z, x);
+    mat4 m(1.0f);
+    m[0] = glm::vec4(x, 0.0f);
+    m[1] = glm::vec4(y, 0.0f);
+    m[2] = glm::vec4(z, 0.0f);
+    return m;
+}
+
+struct GalleryItem {
+    std::string label;
+    OrganPrototype proto;
+    int group;  ///< a bud and its open flower share a scale
+};
+
+// Variants shown besides the presets, to show what the parameters do.
+struct Variant {
+    std::string family, label;
+    std::map<std::string, float> parameters;
+    vec3 color;
+    bool open = true;
+};
+
+const std::vector<Variant>& galleryVariants() {
+    static const std::vector<Variant> v = {
+        {"almond", "almond split", {{"split", 0.7f}}, {0.50f, 0.58f, 0.36f}},
+        {"pepper", "chili", {{"blockiness", 0.05f}, {"aspect", 4.5f}, {"lobes", 3},
+                             {"lobe_depth", 0.05f}, {"tip_curl", 35}, {"stem_length", 0.4f}},
+         {0.22f, 0.45f, 0.12f}},
+        {"maize_ear", "maize ear peeled", {{"husk_cover", 0.1f}}, {0.70f, 0.72f, 0.45f}},
+        {"maize_tassel", "maize tassel before anthesis", {}, {0.55f, 0.62f, 0.32f}, false},
+        {"berry", "grape berry", {{"aspect", 1.1f}, {"sepal_count", 0}, {"stem_length", 0.3f}},
+         {0.45f, 0.62f, 0.25f}},
+    };
+    return v;
+}
+
+std::vector<GalleryItem> galleryItems(const FloralFamilyInfo& f) {
+    std::vector<GalleryItem> items;
+    int group = 0;
+    auto add = [&](const std::string& label, std::map<std::string, float> params, vec3 color,
+                   bool open, unsigned subdivisions) {
+        FloralPrototypeRequest req{f.fruit, open, std::move(params), color, subdivisions};
+        Rng rng(11);
+        items.push_back({label, buildFloralPrototype(f.name, req, rng), group});
+    };
+    int presets = 0;
+    for (const FloralPreset& p : floralPresets()) {
+        if (p.family != f.name) continue;
+        const unsigned s = std::max(p.subdivisions, 10u);
+        // Flowers: the bud next to the open flower (for the first few presets).
+        if (!f.fruit && presets < 4) add(p.name + " closed", p.parameters, p.color, false, s);
+        add(p.name, p.parameters, p.color, true, s);
+        ++presets;
+        ++group;
+    }
+    if (presets == 0) {
+        if (!f.fruit) add(f.name + " closed", {}, f.defaultColor, false, 12);
+        add(f.name, {}, f.defaultColor, true, 12);
+        ++group;
+    }
+    for (const Variant& v : galleryVariants())
+        if (v.family == f.name) {
+            add(v.label, v.parameters, v.color, v.open, 12);
+            ++group;
+        }
+    return items;
+}
+
+// One image per family: its items (closed and open flowers, or fruit) each scaled to fit a
+// cell of a grid standing in the x-z plane, seen from -y.
+Image renderFamily(const FloralFamilyInfo& f, int width, int height) {
+    const mat4 pose = poseMatrix(poseFor(f));
+    const std::vector<GalleryItem> items = galleryItems(f);
+    const int n = int(items.size());
+    const int columns = std::max(1, int(std::ceil(std::sqrt(float(n) * float(width) /
+                                                            float(height)))));
+    std::vector<AABB> boxes(n);
+    std::map<int, float> groupSize;
+    for (int k = 0; k < n; ++k) {
+        for (const PrototypePart& part : items[k].proto) {
+            Mesh m = part.mesh;
+            m.transform(pose);
+            for (const vec3& v : m.positions) boxes[k].add(v);
+        }
+        const vec3 e = boxes[k].extent();
+        groupSize[items[k].group] = std::max(groupSize[items[k].group], std::max({e.x, e.y, e.z}));
+    }
+    Context ctx;
+    for (int k = 0; k < n; ++k) {
+        const vec3 cell{1.2f * float(k % columns), 0.0f, -1.2f * float(k / columns)};
+        const mat4 place = glm::translate(mat4(1.0f), cell) *
+                           glm::scale(mat4(1.0f), vec3(1.0f / groupSize[items[k].group])) *
+                           glm::translate(mat4(1.0f), -boxes[k].center());
+        for (const PrototypePart& part : items[k].proto) {
+            Mesh m = part.mesh;
+            m.transform(place * pose);
+            ctx.addObject(m, part.material);
+        }
+    }
+    RenderOptions o;
+    o.width = width;
+    o.height = height;
+    o.samplesPerPixel = 4;
+    o.groundPlane = false;
+    o.camera.azimuthDeg = -90.0f;
+    o.camera.elevationDeg = 10.0f;
+    o.camera.fovDeg = 30.0f;
+    o.camera.margin = 0.03f;
+    o.sunDirection = {-0.3f, -0.7f, 0.65f};
+    o.skyZenithColor = o.skyHorizonColor = {0.80f, 0.85f, 0.90f};
+    return render(ctx, o);
+}
+
+// Writes docs/images/organs/<family>.png and the contact sheet
+// docs/images/organs-flowers-fruit.png when PLANTARCH_WRITE_DOCS_IMAGES is set.
+TEST(OrganLibraryDocs, Gallery) {
+    if (!std::getenv("PLANTARCH_WRITE_DOCS_IMAGES"))
+        GTEST_SKIP() << "set PLANTARCH_WRITE_DOCS_IMAGES=1 to write the gallery";
+    const fs::path dir = fs::path(PLANTARCH_SOURCE_DIR) / "docs" / "images";
+    fs::create_directories(dir / "organs");
+    // Family images 640 x 320; the sheet holds them at half size, four to a row.
+    const int w = 640, h = 320, tileW = w / 2, tileH = h / 2, columns = 4;
+    const auto& families = floralFamilies();
+    const int rows = int((families.size() + columns - 1) / columns);
+    Image sheet(tileW * columns, tileH * rows);
+    std::fill(sheet.rgb.begin(), sheet.rgb.end(), std::uint8_t(255));
+    for (std::size_t i = 0; i < families.size(); ++i) {
+        const Image img = renderFamily(families[i], w, h);
+        writePNG(img, (dir / "organs" / (families[i].name + ".png")).string());
+        const int ox = int(i % columns) * tileW, oy = int(i / columns) * tileH;
+        for (int y = 0; y < tileH; ++y)
+            for (int x = 0; x < tileW; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    int sum = 0;
+                    for (int dy = 0; dy < 2; ++dy)
+                        for (int dx = 0; dx < 2; ++dx)
+                            sum += img.rgb[(std::size_t(2 * y + dy) * w + 2 * x + dx) * 3 + c];
+                    sheet.rgb[(std::size_t(oy + y) * sheet.width + ox + x) * 3 + c] =
+                        std::uint8_t((sum + 2) / 4);
+                }
+    }
+    writePNG(sheet, (dir / "organs-flowers-fruit.png").string());
+}
+
+}  // namespace
