@@ -27,7 +27,7 @@ struct BuildParameter {
 /// "uniform(0, 360)"); they are evaluated when a plant is built.
 struct BuildStep {
     enum class Kind { BaseStem, Append, Child } kind = Kind::BaseStem;
-    std::string id;            ///< name later steps use to refer to this shoot
+    std::string id;            ///< name later steps use to refer to the shoots it makes
     std::string parent;        ///< id of the parent step (Append, Child)
     std::string shootType;
     std::string nodes = "1";   ///< phytomers to create
