@@ -52,7 +52,10 @@ ShootParameters timelapseShoot() {
     p.leaf.yaw = 15.0f;
     p.leaf.pitch = RandomFloat::normal(0, 12);
     p.leaf.prototype_scale = RandomFloat::uniform(0.07f, 0.09f);
+    p.leaf.prototype.shape = "ovate";
     p.leaf.prototype.leaf_aspect_ratio = 0.7f;
+    p.leaf.prototype.midrib_fold_fraction = 0.2f;
+    p.leaf.prototype.lateral_curvature = -0.8f;
     p.leaf.prototype.subdivisions = 5;
     p.peduncle.length = 0.05f;
     p.peduncle.radius = 0.0008f;

@@ -610,6 +610,45 @@ TEST(SpeciesReader, CorpusOfBrokenFiles) {
     }
 }
 
+// Random damage to a valid file gives a clean one-line error (or a valid file), never a crash
+// or another exception.
+TEST(SpeciesReader, DamagedFilesGiveCleanErrors) {
+    std::ifstream in(kBeanPath);
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    const std::string bean = buffer.str();
+    const std::string alphabet = "<>/=\"' \n()-,.0123456789abcdefghijklmnopqrstuvwxyz_&!?";
+    Rng rng(2024);
+    for (int k = 0; k < 400; ++k) {
+        std::string damaged = bean;
+        const int edits = 1 + rng.uniformInt(0, 3);
+        for (int e = 0; e < edits; ++e) {
+            const auto at = std::size_t(rng.uniformInt(0, int(damaged.size()) - 1));
+            const char c = alphabet[std::size_t(rng.uniformInt(0, int(alphabet.size()) - 1))];
+            switch (rng.uniformInt(0, 2)) {
+                case 0: damaged.erase(at, std::size_t(rng.uniformInt(1, 8))); break;
+                case 1: damaged.insert(at, 1, c); break;
+                default: damaged[at] = c;
+            }
+        }
+        try {
+            // What still reads must also define and build, or fail cleanly.
+            const SpeciesModel m = readSpeciesString(damaged, "damaged.xml");
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            defineSpeciesShootTypes(arch, m);
+            buildInitialStructure(arch, arch.addPlantInstance(vec3(0.0f), 0.0f), m);
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind("damaged.xml:", 0), 0u) << what;
+            EXPECT_GT(e.line(), 0) << what;
+            EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "not a plantarch::Error: " << e.what();
+        }
+    }
+}
+
 TEST(SpeciesReader, TheTemplateItselfIsValid) {
     const SpeciesModel m = readSpeciesString(species(), "mini.xml");
     EXPECT_EQ(m.name, "mini");

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "model/architecture_impl.h"
+#include "plantarch/LeafShapes.h"
 
 namespace plantarch {
 
@@ -102,37 +103,14 @@ OrganPrototype builtinFlower(const FloralPrototypeRequest& req, Rng&) {
     return proto;
 }
 
-// Stand-in leaf until the outline families are available: an ellipse of the prototype's
-// aspect ratio on a strip grid of `subdivisions` rows.
-Mesh simpleLeaf(const LeafPrototype& p, Rng& rng) {
-    const float aspect = p.leaf_aspect_ratio.sample(rng);
-    const unsigned rows = std::max(2u, p.subdivisions * 2);
-    Mesh m;
-    for (unsigned i = 0; i <= rows; ++i) {
-        const float x = float(i) / float(rows);
-        const float half = 0.5f * aspect * std::sqrt(std::max(0.0f, 1.0f - (2 * x - 1) * (2 * x - 1)));
-        for (int j = -1; j <= 1; ++j) {
-            m.positions.push_back({x, float(j) * half, 0.0f});
-            m.uvs.push_back({x, 0.5f + 0.5f * float(j)});
-        }
-    }
-    for (unsigned i = 0; i < rows; ++i)
-        for (std::uint32_t j = 0; j < 2; ++j) {
-            const std::uint32_t a = i * 3 + j, b = a + 1, c = a + 3, d = c + 1;
-            if (i == 0) m.indices.insert(m.indices.end(), {a, d, c});
-            else if (i + 1 == rows) m.indices.insert(m.indices.end(), {a, b, c});
-            else m.indices.insert(m.indices.end(), {a, b, d, a, d, c});
-        }
-    return m;
-}
-
 }  // namespace
 
 void registerBuiltinPrototypes(PlantArchitecture& arch) {
+    // Procedural leaves: the outline family (or a traced PNG, which then also textures the
+    // leaf), meshed to the outline and deformed.
     arch.registerLeafPrototype("procedural", [](const LeafPrototype& p, Rng& rng, int leaflet) {
-        (void)leaflet;
-        return OrganPrototype{{simpleLeaf(p, rng),
-                               Material{p.color, "", "leaf"}}};
+        return OrganPrototype{{buildLeafPrototype(p, rng, leaflet),
+                               Material{p.color, leafTextureFile(p, leaflet), "leaf"}}};
     });
     arch.registerFloralPrototype("builtin_fruit", builtinFruit);
     arch.registerFloralPrototype("builtin_flower", builtinFlower);

@@ -52,8 +52,8 @@ FloralFamilyInfo wheatInfo() {
     auto& t = f.parameters;
     t.push_back(whole("spikelet_count", 18, 2, 40, "Spikelets, alternating sides"));
     t.push_back(whole("florets", 3, 1, 6, "Florets (grains) per spikelet"));
-    t.push_back(real("spikelet_length", 0.12f, 0.03f, 0.4f, "Spikelet length / spike length"));
-    t.push_back(real("spikelet_angle", 30.0f, 5.0f, 80.0f,
+    t.push_back(real("spikelet_length", 0.14f, 0.03f, 0.4f, "Spikelet length / spike length"));
+    t.push_back(real("spikelet_angle", 22.0f, 5.0f, 80.0f,
                      "Spikelets' angle from the rachis, degrees"));
     t.push_back(real("awn_length", 0.35f, 0.0f, 1.5f, "Awn length / spike length (0 = awnless)"));
     t.push_back(real("stalk_length", 0.06f, 0.0f, 0.4f, "Bare stalk below the spike / length"));
@@ -70,11 +70,11 @@ OrganPrototype buildWheat(const FloralPrototypeRequest& req, const Params& p, Rn
     const float stalk = p("stalk_length"), ls = p("spikelet_length");
     const float top = 1.0f - 0.6f * ls, spacing = (top - stalk) / float(n);
     const float angle = p("spikelet_angle") * kDeg, awn = p("awn_length");
-    parts.add("rachis", tube({0, 0, 0}, {top + 0.02f, 0, 0}, 0.012f, 0.008f, resolution(s, 0.5f, 3), 2));
+    parts.add("rachis", tube({0, 0, 0}, {top, 0, 0}, 0.01f, 0.006f, resolution(s, 0.5f, 3), 2));
     const unsigned rows = resolution(s, 0.5f, 2), sides = resolution(s, 0.5f, 4);
     for (int k = 0; k < n; ++k) {
         const float side = k % 2 ? -1.0f : 1.0f;
-        const vec3 base{stalk + spacing * (float(k) + 0.5f), 0.01f * side, 0};
+        const vec3 base{stalk + spacing * (float(k) + 0.5f), 0.004f * side, 0};
         const vec3 dir = std::cos(angle) * kX + std::sin(angle) * side * kY;
         const vec3 fanAxis = glm::normalize(glm::cross(dir, kZ));  // florets fan about it
         // Spikelets shrink toward the tip of the spike.
@@ -83,7 +83,7 @@ OrganPrototype buildWheat(const FloralPrototypeRequest& req, const Params& p, Rn
             const float spread = (float(j) - 0.5f * float(florets - 1)) * 20.0f * kDeg;
             const vec3 fdir = rotateVec(dir, fanAxis, spread + 0.03f * rng.uniform(-1.0f, 1.0f));
             const float fl = size * (1.0f - 0.12f * std::abs(float(j) - 0.5f * float(florets - 1)));
-            parts.add("spikelets", grain(base, fdir, kZ, fl, 0.32f * size, 0.26f * size, 0.7f,
+            parts.add("spikelets", grain(base, fdir, kZ, fl, 0.42f * size, 0.3f * size, 0.7f,
                                          rows, sides));
             if (awn > 0.0f) {
                 const vec3 tip = base + fdir * fl;
@@ -253,7 +253,7 @@ void tasselSpikelets(PartSet& parts, std::span<const vec3> line, float density, 
         const vec3 dir = glm::normalize(at.tangent + 0.35f * out);
         const vec3 base = at.position + out * 0.006f;
         parts.add("spikelets", grain(base, dir, out, 0.032f, 0.012f, 0.010f, 0.5f, rows, sides));
-        if (anthers && k % 2 == 0) {
+        if (anthers && k % 3 == 0) {
             const vec3 hang = glm::normalize(-kX + 0.3f * out);
             const vec3 c = base + dir * 0.02f + out * 0.01f;
             parts.add("anthers", grain(c, hang, out, 0.02f, 0.007f, 0.006f, 0.0f, rows, sides));
@@ -269,7 +269,7 @@ OrganPrototype buildTassel(const FloralPrototypeRequest& req, const Params& p, R
     parts.declare("anthers", {0.92f, 0.82f, 0.36f});
     const bool open = req.open, anthers = open && p.flag("anthers");
     const float density = p("spikelet_density");
-    const unsigned rows = resolution(s, 0.25f, 2), sides = resolution(s, 0.5f, 3);
+    const unsigned rows = resolution(s, 0.25f, 2), sides = resolution(s, 0.25f, 3);
     const std::vector<vec3> spike = arcPath({0, 0, 0}, kX, kZ, 1.0f, 3.0f, 8);
     parts.add("axes", tube(spike, std::vector<float>{0.014f, 0.013f, 0.012f, 0.011f, 0.01f, 0.009f,
                                                      0.008f, 0.007f, 0.005f},

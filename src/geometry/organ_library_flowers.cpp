@@ -44,7 +44,7 @@ FloralFamilyInfo petalFlowerInfo() {
     auto& t = f.parameters;
     t.push_back(whole("petal_count", 5, 3, 20, "Number of petals"));
     t.push_back(real("petal_length", 0.6f, 0.1f, 2.0f,
-                     "Petal length, in units of the pedicel stub + receptacle (0.2)"));
+                     "Petal length, in flower units (pedicel stub + receptacle = 0.2)"));
     t.push_back(real("petal_width", 0.75f, 0.05f, 1.5f, "Petal width / petal length"));
     t.push_back(real("petal_tip", 0.0f, 0.0f, 1.0f, "Petal tip: 0 rounded .. 1 pointed"));
     t.push_back(real("petal_widest", 0.62f, 0.1f, 0.9f,
@@ -360,12 +360,13 @@ OrganPrototype buildFunnel(const FloralPrototypeRequest& req, const Params& p, R
     parts.declare("throat", p.color("throat"));
     parts.declare("calyx", kSepalGreen);
     funnelCalyx(parts, p, req.open, s);
-    const unsigned sides = resolution(s, 4.0f, 8);
+    const unsigned sides = resolution(s, 3.0f, 6);
     const int lobes = p.count("lobes");
     const float x0 = 0.05f;
     if (!req.open) {
         const float twist = p("bud_twist") * kDeg;
-        parts.add("corolla", closedBody(resolution(s, 2.0f, 4), sides, [&](float u, float th) {
+        parts.add("corolla", closedBody(resolution(s, 1.5f, 4), resolution(s, 2.0f, 6),
+                                        [&](float u, float th) {
             const float r = 0.11f * ppow(std::sin(kPi * std::pow(u, 0.75f)), 0.8f) *
                             (1.0f - 0.35f * u) *
                             (1.0f + 0.12f * std::cos(float(std::max(lobes, 1)) * th + twist * u));

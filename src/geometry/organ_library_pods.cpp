@@ -127,7 +127,7 @@ FloralFamilyInfo almondInfo() {
         "Almond fruit: a flattened, pointed, velvety grey-green hull with a groove along its "
         "ventral suture; when split, the two halves of the hull gape open along the suture "
         "and show the pitted brown shell inside.";
-    f.defaultColor = {0.56f, 0.62f, 0.40f};
+    f.defaultColor = {0.46f, 0.54f, 0.34f};
     f.parts = {"hull", "shell", "stem"};
     auto& t = f.parameters;
     t.push_back(real("width", 0.72f, 0.3f, 1.2f, "Hull height from suture to back (z) / length"));
@@ -138,7 +138,7 @@ FloralFamilyInfo almondInfo() {
     t.push_back(real("suture_depth", 0.06f, 0.0f, 0.2f, "Depth of the suture groove"));
     t.push_back(real("split", 0.0f, 0.0f, 1.0f,
                      "Hull split: 0 closed, 1 both halves folded fully open"));
-    addColor(t, "shell", {0.56f, 0.40f, 0.26f}, "Shell");
+    addColor(t, "shell", {0.50f, 0.36f, 0.24f}, "Shell");
     t.push_back(real("stem_length", 0.05f, 0.0f, 0.3f, "Stem length / length"));
     return f;
 }

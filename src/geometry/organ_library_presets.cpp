@@ -84,7 +84,7 @@ void addFlowerPresets(std::vector<FloralPreset>& v) {
 
 void addFruitPresets(std::vector<FloralPreset>& v) {
     auto add = [&](FloralPreset p) { v.push_back(std::move(p)); };
-    add({"almond_hull", "almond", true, {}, {0.50f, 0.58f, 0.36f}, 10, 0.04f,
+    add({"almond_hull", "almond", true, {}, {0.46f, 0.54f, 0.34f}, 10, 0.04f,
          {"almond", "almond_aldrich", "almond_wood_colony"}});
     add({"apple_fruit", "apple", true, {}, {0.74f, 0.13f, 0.10f}, 12, 0.075f,
          {"apple", "apple_fruitingwall"}});

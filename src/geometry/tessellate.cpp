@@ -150,7 +150,7 @@ std::string describePrototype(const LeafPrototype& p) {
          {&p.leaf_aspect_ratio, &p.widest_point, &p.tip_angle, &p.base_angle, &p.lobe_depth,
           &p.serration_depth, &p.midrib_fold_fraction, &p.longitudinal_curvature,
           &p.lateral_curvature, &p.petiole_roll, &p.wave_period, &p.wave_amplitude,
-          &p.leaf_buckle_length, &p.leaf_buckle_angle})
+          &p.leaf_buckle_length, &p.leaf_buckle_angle, &p.base_width, &p.sinus_depth})
         s += r->describe() + ";";
     s += p.lobes.describe() + ";" + p.serrations.describe() + ";" + std::to_string(p.subdivisions) +
          ";" + std::to_string(p.build_petiolule) + ";";
