@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "cli.h"
@@ -20,10 +21,10 @@ int run(const GlobalOptions& g) {
     for (const std::string& name : names) {
         try {
             const SpeciesModel s = loadSpecies(name);
-            std::string names = s.commonName;
+            std::string title = s.commonName;
             if (!s.latinName.empty())
-                names += (names.empty() ? "" : " ") + ("(" + s.latinName + ")");
-            std::printf("%s\n", fmt::format("{:<{}}  {}", name, width, names).c_str());
+                title += (title.empty() ? "" : " ") + ("(" + s.latinName + ")");
+            std::printf("%s\n", fmt::format("{:<{}}  {}", name, width, title).c_str());
         } catch (const Error& e) {
             // One broken file does not hide the others; the status says something was wrong.
             std::printf("%s\n",

@@ -31,6 +31,9 @@ struct LeafPrototype {
     std::string prototype_function = "procedural";
     /// OBJ file used instead of the procedural outline when not empty.
     std::string OBJ_model_file;
+    /// Scale and move an OBJ model to the prototype convention (length 1 along +x, base at
+    /// the origin); false: a model that does not already follow it is an error.
+    bool normalize_OBJ_model = false;
     /// Image per leaflet index (0 tip, negative left, positive right): its alpha channel
     /// gives the outline and its colours the texture. Empty: procedural outline and colour.
     std::map<int, std::string> leaf_texture_file;
@@ -144,6 +147,9 @@ struct InflorescenceParameters {
     /// How far fruit turn toward the ground as they grow (0 none, 1 hang vertically).
     RandomFloat fruit_gravity_factor_fraction = 0.0f;
     unsigned unique_prototypes = 1;
+    /// Scale and move OBJ flower/fruit models (a prototype function naming a .obj file) to
+    /// the prototype convention; false: a model that does not follow it is an error.
+    bool normalize_OBJ_model = false;
 };
 
 struct PhytomerParameters {

@@ -100,6 +100,30 @@ public:
     /// The shoot types of one plant (its own copy).
     std::vector<std::string> listShootTypeLabels(unsigned plantID) const;
 
+    // ---- species library -----------------------------------------------------------
+    /// Loads a species by library name ("bean") or file path ("my/plant.xml"): its shoot
+    /// types replace the current ones and its phenology becomes the default.
+    void loadPlantModelFromLibrary(const std::string& nameOrPath);
+    /// Names of the species in the library directory, sorted.
+    std::vector<std::string> getAvailablePlantModels() const;
+    /// Name of the loaded species ("" when none).
+    std::string getCurrentPlantModel() const;
+    /// Shoot types of any library species (or file) without loading it.
+    std::vector<std::string> listShootTypeLabels(const std::string& nameOrPath) const;
+    /// Builds a plant of the loaded species at `base_position`, grown to `age` days. Build
+    /// parameters (trunk height, scaffolds...) override the species' defaults and are checked
+    /// against their ranges.
+    unsigned buildPlantInstanceFromLibrary(const vec3& base_position, float age,
+                                           const std::map<std::string, float>& build_parameters = {});
+    /// Current parameters of one shoot type, or of all of them.
+    ShootParameters getCurrentShootParameters(const std::string& shoot_type_label) const;
+    std::map<std::string, ShootParameters> getCurrentShootParameters() const;
+    /// Replaces a shoot type's parameters (every field; validated). Plants built afterwards
+    /// use them; existing plants keep their own copy.
+    void updateCurrentShootParameters(const std::string& shoot_type_label,
+                                      const ShootParameters& params);
+    void updateCurrentShootParameters(const std::map<std::string, ShootParameters>& params);
+
     // ---- manual building -----------------------------------------------------------
     /// A new plant with no shoots, its base at `base_position`, `current_age` days old.
     unsigned addPlantInstance(const vec3& base_position, float current_age);

@@ -9,6 +9,7 @@
 
 #include "geometry/tube.h"
 #include "model/architecture_impl.h"
+#include "plantarch/OrganPrototypes.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -144,7 +145,8 @@ std::string variantKey(const std::string& fn, const std::string& params, int lea
 
 // A compact description of a leaf prototype for the cache key.
 std::string describePrototype(const LeafPrototype& p) {
-    std::string s = p.prototype_function + ";" + p.shape + ";" + p.OBJ_model_file + ";";
+    std::string s = p.prototype_function + ";" + p.shape + ";" + p.OBJ_model_file +
+                    (p.normalize_OBJ_model ? "|normalized;" : ";");
     for (const auto& [i, f] : p.leaf_texture_file) s += std::to_string(i) + "=" + f + ",";
     for (const RandomFloat* r :
          {&p.leaf_aspect_ratio, &p.widest_point, &p.tip_angle, &p.base_angle, &p.lobe_depth,
@@ -198,11 +200,14 @@ struct Tessellator {
 
     // Flower and fruit prototypes, one per (function, request, variant), cached.
     const OrganPrototype& floralPrototype(const std::string& fn, unsigned variant,
-                                          const FloralPrototypeRequest& request) {
-        const std::string key = variantKey(fn, describeFloral(request), 0, variant);
+                                          const FloralPrototypeRequest& request, bool normalizeOBJ) {
+        const std::string key = variantKey(fn, describeFloral(request), 0, variant) +
+                                (normalizeOBJ ? "|normalized" : "");
         if (auto hit = impl.cache.find(key)) return *hit;
         Rng rng(hashKey(key), 7);
-        auto built = std::make_shared<OrganPrototype>(impl.floralPrototypes.at(fn)(request, rng));
+        auto built = std::make_shared<OrganPrototype>(
+            isOBJPrototypeName(fn) ? loadOBJPrototype(fn, normalizeOBJ)
+                                   : impl.floralPrototypes.at(fn)(request, rng));
         impl.cache.insert(key, built);
         return *built;
     }
@@ -372,7 +377,8 @@ struct Tessellator {
             OrganFrame of = uprightFrame(axis, f.z);
             of = rotated(of, 0.0f, 0.0f, fl.roll);
             const float scale = fruit ? fl.fruitScale * maturity : fl.flowerScale;
-            const OrganPrototype& shape = floralPrototype(name, fl.variant, request);
+            const OrganPrototype& shape =
+                floralPrototype(name, fl.variant, request, inf.normalize_OBJ_model);
             writer.writeParts(fl.objects, shape, placement(of, origin, scale),
                               {fruit ? OrganKind::Fruit
                                      : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed),
@@ -423,7 +429,9 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
     // prototype see the same shapes and building one never shifts a plant's random numbers.
     Rng rng(hashKey(key), 7);
     auto built = std::make_shared<OrganPrototype>(
-        leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet));
+        proto.OBJ_model_file.empty()
+            ? leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
+            : loadOBJPrototype(proto.OBJ_model_file, proto.normalize_OBJ_model));
     cache.insert(key, built);
     return *built;
 }

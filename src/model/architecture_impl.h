@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/Species.h"
 
 namespace plantarch {
 
@@ -34,6 +35,7 @@ struct PlantArchitecture::Impl {
     std::map<std::string, PhytomerCallbackFunction> callbackFunctions;
     PrototypeCache cache;
     PhenologyParameters defaultPhenology;
+    std::shared_ptr<const SpeciesModel> species;  ///< the loaded species, if any
 
     /// The prototype a leaf uses (built and cached on first use).
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf);
@@ -76,6 +78,9 @@ void growPlant(PlantArchitecture::Impl& impl, PlantInstance& plant, double days,
 void realizeInflorescence(PlantInstance& plant, FloralBud& bud, const PhytomerParameters& pp);
 /// Starts a newly created shoot's clock: its apical bud, its axillary buds.
 void scheduleNewShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot);
+
+// Named functions of the library species (library/species_functions.cpp).
+void registerSpeciesFunctions(PlantArchitecture& arch);
 
 // Builtin organ prototypes (geometry/builtin_prototypes.cpp).
 void registerBuiltinPrototypes(PlantArchitecture& arch);

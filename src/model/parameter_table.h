@@ -39,6 +39,9 @@ void describeParameters(S& p, V& v) {
             p.prototype_function);
     v.field({"OBJ_model_file", "", 0, 0, "OBJ model used as the leaf instead of an outline"},
             p.OBJ_model_file);
+    v.field({"normalize_OBJ_model", "", 0, 1,
+             "Scale and move the OBJ model to unit length along +x with its base at the origin"},
+            p.normalize_OBJ_model);
     v.field({"leaf_texture_file", "", 0, 0,
              "Image per leaflet index (0 tip, -n left, +n right); alpha gives the outline"},
             p.leaf_texture_file);
@@ -184,7 +187,8 @@ void describeParameters(S& p, V& v) {
     v.field({"pitch", "degrees", -180, 180, "Flower/fruit axis from the peduncle axis"}, p.pitch);
     v.field({"roll", "degrees", -360, 360, "Rotation about the flower/fruit axis"}, p.roll);
     v.field({"flower_prototype_scale", "m", 0, 10, "Flower length"}, p.flower_prototype_scale);
-    v.field({"flower_prototype_function", "", 0, 0, "Registered flower prototype"},
+    v.field({"flower_prototype_function", "", 0, 0,
+             "Registered flower prototype, or an .obj file"},
             p.flower_prototype_function);
     v.field({"flower_prototype_parameters", "", -1e6, 1e6,
              "Shape parameters of the flower prototype family"},
@@ -193,7 +197,7 @@ void describeParameters(S& p, V& v) {
     v.field({"flower_subdivisions", "", 2, 200, "Flower mesh resolution"}, p.flower_subdivisions);
     v.field({"fruit_prototype_scale", "m", 0, 10, "Full-grown fruit length"},
             p.fruit_prototype_scale);
-    v.field({"fruit_prototype_function", "", 0, 0, "Registered fruit prototype"},
+    v.field({"fruit_prototype_function", "", 0, 0, "Registered fruit prototype, or an .obj file"},
             p.fruit_prototype_function);
     v.field({"fruit_prototype_parameters", "", -1e6, 1e6,
              "Shape parameters of the fruit prototype family"},
@@ -205,6 +209,9 @@ void describeParameters(S& p, V& v) {
             p.fruit_gravity_factor_fraction);
     v.field({"unique_prototypes", "", 1, 1000, "Distinct flower/fruit shape variants"},
             p.unique_prototypes);
+    v.field({"normalize_OBJ_model", "", 0, 1,
+             "Scale and move .obj flower/fruit models to the prototype convention"},
+            p.normalize_OBJ_model);
 }
 
 template <class S, class V>

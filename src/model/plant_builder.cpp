@@ -7,7 +7,10 @@
 #include <utility>
 
 #include "geometry/tube.h"
+#include <filesystem>
+
 #include "model/architecture_impl.h"
+#include "plantarch/OrganPrototypes.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -141,6 +144,14 @@ void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
         for (const auto& [name, fn] : registry) names += (names.empty() ? "" : ", ") + name;
         return "one of: " + names;
     };
+    auto checkFile = [&](const std::string& file, const std::string& field) {
+        if (!std::filesystem::is_regular_file(file))
+            throw Error("OBJ model file not found",
+                        {.file = file, .parameter = label + ".phytomer." + field, .value = file,
+                         .validRange = "an existing .obj file"});
+    };
+    if (!ph.leaf.prototype.OBJ_model_file.empty())
+        checkFile(ph.leaf.prototype.OBJ_model_file, "leaf.prototype.OBJ_model_file");
     const std::string& leafFn = ph.leaf.prototype.prototype_function;
     if (!leafPrototypes.count(leafFn))
         throw Error("unknown leaf prototype function",
@@ -159,7 +170,8 @@ void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
     for (const auto& [field, name] :
          {std::pair{"flower_prototype_function", ph.inflorescence.flower_prototype_function},
           std::pair{"fruit_prototype_function", ph.inflorescence.fruit_prototype_function}})
-        if (!name.empty() && !floralPrototypes.count(name))
+        if (isOBJPrototypeName(name)) checkFile(name, std::string("inflorescence.") + field);
+        else if (!name.empty() && !floralPrototypes.count(name))
             throw Error("unknown flower/fruit prototype function",
                         {.parameter = label + ".phytomer.inflorescence." + field, .value = name,
                          .validRange = list(floralPrototypes)});
@@ -406,6 +418,7 @@ PlantArchitecture::PlantArchitecture(Context* context)
     : context_(context), impl_(std::make_unique<Impl>()) {
     if (!context) throw Error("PlantArchitecture needs a Context", {.parameter = "context"});
     registerBuiltinPrototypes(*this);
+    registerSpeciesFunctions(*this);
 }
 
 PlantArchitecture::~PlantArchitecture() = default;

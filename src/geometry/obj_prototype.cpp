@@ -1,0 +1,61 @@
+#include "plantarch/OrganPrototypes.h"
+
+#include <cmath>
+
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+
+namespace plantarch {
+
+namespace {
+
+std::string num(float v) {
+    std::string s = std::to_string(v);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+}
+
+}  // namespace
+
+bool isOBJPrototypeName(const std::string& name) {
+    return name.size() > 4 && name.compare(name.size() - 4, 4, ".obj") == 0;
+}
+
+OrganPrototype loadOBJPrototype(const std::string& path, bool normalize) {
+    Context ctx;
+    const std::vector<ObjectID> ids = readOBJ(ctx, path);
+    AABB box;
+    for (ObjectID id : ids) box.add(ctx.objectBoundingBox(id));
+    const float length = box.extent().x;
+    if (!(length > 0.0f))
+        throw Error("OBJ prototype has no extent along +x (the organ axis)",
+                    {.file = path, .value = "length " + num(length), .validRange = "> 0"});
+    mat4 xf(1.0f);
+    if (normalize) {
+        // Base (smallest x) to the origin, centred on the axis there, unit length.
+        vec3 base(box.min.x, 0.0f, 0.0f);
+        AABB atBase;
+        for (ObjectID id : ids)
+            for (const vec3& p : ctx.object(id).positions)
+                if (p.x <= box.min.x + 0.02f * length) atBase.add(p);
+        base.y = atBase.center().y;
+        base.z = atBase.center().z;
+        const float s = 1.0f / length;
+        xf = mat4(s, 0, 0, 0, 0, s, 0, 0, 0, 0, s, 0, -base.x * s, -base.y * s, -base.z * s, 1);
+    } else if (std::abs(box.min.x) > 0.01f || std::abs(box.max.x - 1.0f) > 0.01f) {
+        throw Error("OBJ prototype does not follow the convention (length 1 along +x from the "
+                    "origin); set normalize_OBJ_model to fit it",
+                    {.file = path, .value = "x from " + num(box.min.x) + " to " + num(box.max.x),
+                     .validRange = "x from 0 to 1 (within 0.01)"});
+    }
+    OrganPrototype proto;
+    for (ObjectID id : ids) {
+        PrototypePart part{ctx.objectMesh(id), ctx.material(ctx.objectMaterial(id))};
+        part.mesh.transform(xf);
+        proto.push_back(std::move(part));
+    }
+    return proto;
+}
+
+}  // namespace plantarch
