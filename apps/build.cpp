@@ -94,6 +94,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
         const unsigned plant =
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));

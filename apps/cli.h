@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "plantarch/Context.h"
+#include "plantarch/Progress.h"
 
 namespace plantarch::cli {
 
@@ -42,6 +43,10 @@ void info(const GlobalOptions& g, const std::string& message);
 /// Writes `ctx` to `path`, format from the extension (.obj, .ply, .png). Used by every
 /// subcommand that produces geometry. Throws plantarch::Error on an unknown extension.
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g);
+
+/// A progress bar on stderr for work that takes over a second; empty (no output at all)
+/// when stderr is not a terminal, so scripts and logs stay clean.
+ProgressCallback terminalProgress();
 
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();

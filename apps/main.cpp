@@ -6,6 +6,9 @@
 #include <exception>
 
 #include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -16,6 +19,21 @@ namespace plantarch::cli {
 std::vector<Command>& commandRegistry() {
     static std::vector<Command> registry;
     return registry;
+}
+
+ProgressCallback terminalProgress() {
+    if (!isatty(STDERR_FILENO)) return {};
+    const auto start = std::chrono::steady_clock::now();
+    return [start](std::string_view stage, double fraction) {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (seconds < 1.0 && fraction < 1.0) return;
+        const int width = 30, filled = int(fraction * width + 0.5);
+        std::fprintf(stderr, "\r%-10.*s [%.*s%*s] %3d%%", int(stage.size()), stage.data(), filled,
+                     "##############################", width - filled, "", int(fraction * 100 + 0.5));
+        if (fraction >= 1.0) std::fprintf(stderr, "\r%*s\r", width + 20, "");
+        std::fflush(stderr);
+    };
 }
 
 void info(const GlobalOptions& g, const std::string& message) {

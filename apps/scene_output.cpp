@@ -27,6 +27,7 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         writePLY(ctx, path);
     } else if (ext == ".png") {
         RenderOptions o;
+        o.progress = terminalProgress();
         o.seed = g.seed;
         writePNG(render(ctx, o), path);
     } else {

@@ -119,3 +119,26 @@ TEST(DocsImages, GrowthTimeLapse) {
     EXPECT_NE(frames[0].rgb, frames[3].rgb);
     if (writing()) writePNG(out, docsPath("growth-timelapse.png"));
 }
+
+TEST(DocsImages, RenderReportsProgressAndBandsDoNotChangePixels) {
+    Context ctx;
+    Mesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.5f}, {0, 1, 0.5f}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    ctx.addObject(quad, Material{{0.2f, 0.6f, 0.2f}});
+    RenderOptions o;
+    o.width = 64;
+    o.height = 150;  // three bands of 64, 64 and 22 rows
+    o.samplesPerPixel = 1;
+    const Image quiet = render(ctx, o);
+    std::vector<double> fractions;
+    o.progress = [&](std::string_view stage, double f) {
+        EXPECT_EQ(stage, "rendering");
+        fractions.push_back(f);
+    };
+    const Image reported = render(ctx, o);
+    EXPECT_EQ(quiet.rgb, reported.rgb);
+    ASSERT_EQ(fractions.size(), 3u);
+    EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+    EXPECT_LT(fractions.front(), fractions[1]);
+}

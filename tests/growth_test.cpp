@@ -562,3 +562,19 @@ TEST(Growth, InvalidTimeStepsAreErrors) {
     bad.max_leaf_lifespan = -3;
     EXPECT_THROW(g.arch.setPlantPhenologicalThresholds(p, bad), Error);
 }
+
+TEST(Growth, ProgressCallbackReportsEachPlant) {
+    Garden g;
+    g.arch.defineShootType("main", growingShoot());
+    for (int i = 0; i < 4; ++i) {
+        const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
+        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+    }
+    std::vector<double> fractions;
+    g.arch.setProgressCallback([&](std::string_view stage, double f) {
+        EXPECT_EQ(stage, "growing");
+        fractions.push_back(f);
+    });
+    g.arch.advanceTime(5.0);
+    EXPECT_EQ(fractions, (std::vector<double>{0.25, 0.5, 0.75, 1.0}));
+}

@@ -14,14 +14,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <map>
 #include <numeric>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
@@ -119,17 +118,15 @@ void expectConvention(const OrganPrototype& proto, const std::string& what) {
         }
     for (const auto& [edge, count] : directed) {
         if (count != 1)
-            return ::testing::AssertionFailure()
-                   << "edge " << edge.first << "-" << edge.second << " used " << count
-                   << " times in one direction";
+            return ::testing::AssertionFailure() << "edge " << edge.first << "-" << edge.second
+                                                 << " used " << count << " times in one direction";
         if (!directed.count({edge.second, edge.first}))
             return ::testing::AssertionFailure()
                    << "edge " << edge.first << "-" << edge.second << " is a border";
     }
     double volume = 0.0;
     for (std::size_t t = 0; t < m.triangleCount(); ++t) {
-        const glm::dvec3 a = m.positions[m.indices[3 * t]],
-                         b = m.positions[m.indices[3 * t + 1]],
+        const glm::dvec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
                          c = m.positions[m.indices[3 * t + 2]];
         volume += glm::dot(a, glm::cross(b, c)) / 6.0;
     }
@@ -158,8 +155,8 @@ int widthPeaks(const Mesh& m, int axis, int bins) {
     std::vector<float> w(bins, -1.0f);
     const AABB box = bounds(m);
     for (const vec3& v : m.positions) {
-        const int b = std::clamp(int((v.x - box.min.x) / (box.max.x - box.min.x) * float(bins)),
-                                 0, bins - 1);
+        const int b =
+            std::clamp(int((v.x - box.min.x) / (box.max.x - box.min.x) * float(bins)), 0, bins - 1);
         w[b] = std::max(w[b], std::abs(v[axis]));
     }
     for (int b = 1; b < bins; ++b)
@@ -223,9 +220,9 @@ TEST(OrganLibrary, FamilyTableIsWellFormed) {
     }
     for (const char* expected :
          {"petal_flower", "papilionaceous_flower", "funnel_flower", "bract_flower", "legume_pod",
-          "berry", "grape_cluster", "pepper", "strawberry", "almond", "walnut",
-          "pistachio_cluster", "apple", "olive", "wheat_spike", "rice_panicle",
-          "sorghum_panicle", "maize_tassel", "maize_ear"})
+          "berry", "grape_cluster", "pepper", "strawberry", "almond", "walnut", "pistachio_cluster",
+          "apple", "olive", "wheat_spike", "rice_panicle", "sorghum_panicle", "maize_tassel",
+          "maize_ear"})
         EXPECT_TRUE(names.count(expected)) << expected;
 }
 
@@ -247,6 +244,8 @@ TEST(OrganLibrary, UnknownFamilyIsAnError) {
         EXPECT_NE(e.validRange().find("petal_flower"), std::string::npos);
     }
     EXPECT_THROW(floralFamily("tulip"), Error);
+    EXPECT_FALSE(isFloralFamily("tulip"));
+    EXPECT_TRUE(isFloralFamily("berry"));
 }
 
 TEST(OrganLibrary, UnknownParameterNamesFamilyAndValidNames) {
@@ -316,8 +315,14 @@ TEST(OrganLibrary, PlantModelBuildsLibraryFruit) {
     const vec3 e = box.extent();
     EXPECT_NEAR(std::max({e.x, e.y, e.z}), 0.05f, 0.01f);  // a round berry 5 cm across
 
-    LibraryPlant bad({{"ribs", 99}});
-    EXPECT_THROW(bad.arch.addFloralBud(bad.plant, 0, 0, FloralStage::Fruit), Error);
+    // Out-of-range family parameters are rejected when the shoot type is defined.
+    try {
+        LibraryPlant bad({{"ribs", 99}});
+        FAIL() << "expected an Error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.parameter(), "main.phytomer.inflorescence.fruit_prototype_parameters.ribs");
+        EXPECT_EQ(e.value(), "99");
+    }
 }
 
 // ---- the convention -------------------------------------------------------------------------
@@ -328,8 +333,8 @@ TEST(OrganLibrary, EveryFamilyObeysThePrototypeConvention) {
             for (bool open : {true, false}) {
                 if (f.fruit && !open) continue;
                 const OrganPrototype p = build(f.name, {}, open, s);
-                expectConvention(p, f.name + (open ? " open" : " closed") + " s=" +
-                                        std::to_string(s));
+                expectConvention(p,
+                                 f.name + (open ? " open" : " closed") + " s=" + std::to_string(s));
                 EXPECT_EQ(p.front().material.name, f.parts.front()) << f.name;
                 EXPECT_EQ(p.front().material.color, f.defaultColor) << f.name;
                 for (const PrototypePart& part : p)
@@ -363,8 +368,8 @@ TEST(OrganLibrary, SameStreamGivesSameBytes) {
             EXPECT_TRUE(sameBytes(build(f.name, {}, open, 6, 99), build(f.name, {}, open, 6, 99)))
                 << f.name;
     // Random packing does depend on the stream.
-    EXPECT_FALSE(sameBytes(build("grape_cluster", {}, true, 6, 1),
-                           build("grape_cluster", {}, true, 6, 2)));
+    EXPECT_FALSE(
+        sameBytes(build("grape_cluster", {}, true, 6, 1), build("grape_cluster", {}, true, 6, 2)));
 }
 
 TEST(OrganLibrary, MainColourComesFromTheRequest) {
@@ -412,14 +417,15 @@ TEST(OrganLibrary, SolidPartsAreWatertight) {
 TEST(OrganLibrary, PetalCountSetsThePetals) {
     // The petals part holds petal_count identical-resolution sheets.
     for (bool open : {true, false}) {
-        const std::size_t five = part(build("petal_flower", {{"petal_count", 5}}, open), "petals")
-                                     ->mesh.triangleCount();
+        const std::size_t five =
+            part(build("petal_flower", {{"petal_count", 5}}, open), "petals")->mesh.triangleCount();
         const std::size_t seven =
             part(build("petal_flower", {{"petal_count", 7}}, open), "petals")->mesh.triangleCount();
         EXPECT_EQ(five % 5, 0u);
         EXPECT_EQ(five / 5 * 7, seven);
-        EXPECT_EQ(components(part(build("petal_flower", {{"petal_count", 7}}, open), "petals")->mesh),
-                  7u);
+        EXPECT_EQ(
+            components(part(build("petal_flower", {{"petal_count", 7}}, open), "petals")->mesh),
+            7u);
     }
     EXPECT_EQ(part(build("petal_flower", {{"sepal_count", 0}}), "sepals")->mesh.triangleCount(),
               part(build("petal_flower", {{"sepal_count", 0}, {"petal_count", 9}}), "sepals")
@@ -441,9 +447,8 @@ TEST(OrganLibrary, FlowerCentreOnlyWhenOpen) {
 
 TEST(OrganLibrary, PodProportionsFollowWidthAndThickness) {
     for (float width : {0.08f, 0.2f}) {
-        const OrganPrototype p =
-            build("legume_pod", {{"width", width}, {"thickness", 0.05f}, {"curvature", 0},
-                                 {"hairs", 0}});
+        const OrganPrototype p = build(
+            "legume_pod", {{"width", width}, {"thickness", 0.05f}, {"curvature", 0}, {"hairs", 0}});
         const AABB body = bounds(p.front().mesh);
         EXPECT_NEAR(body.extent().z, width, 0.1f * width);
         EXPECT_NEAR(body.extent().y, 0.05f, 0.01f);
@@ -456,12 +461,13 @@ TEST(OrganLibrary, PodProportionsFollowWidthAndThickness) {
 
 TEST(OrganLibrary, PodSeedBumpsMatchSeedCount) {
     for (int seeds : {3, 5, 8}) {
-        const OrganPrototype p = build("legume_pod", {{"seed_count", float(seeds)},
-                                                      {"curvature", 0}, {"seed_bump", 0.3f}},
-                                       true, 12);
+        const OrganPrototype p =
+            build("legume_pod",
+                  {{"seed_count", float(seeds)}, {"curvature", 0}, {"seed_bump", 0.3f}}, true, 12);
         EXPECT_EQ(widthPeaks(p.front().mesh, 1, 40), seeds) << seeds;
     }
-    const OrganPrototype smooth = build("legume_pod", {{"seed_count", 0}, {"curvature", 0}}, true, 12);
+    const OrganPrototype smooth =
+        build("legume_pod", {{"seed_count", 0}, {"curvature", 0}}, true, 12);
     EXPECT_LE(widthPeaks(smooth.front().mesh, 1, 40), 1);
 }
 
@@ -472,7 +478,8 @@ TEST(OrganLibrary, ClustersHaveTheRequestedCounts) {
         const OrganPrototype p = build("pistachio_cluster", {{"drupe_count", float(n)}}, true, 4);
         EXPECT_EQ(components(p.front().mesh), std::size_t(n));
     }
-    const OrganPrototype w = build("wheat_spike", {{"spikelet_count", 10}, {"florets", 3}}, true, 4);
+    const OrganPrototype w =
+        build("wheat_spike", {{"spikelet_count", 10}, {"florets", 3}}, true, 4);
     EXPECT_EQ(components(w.front().mesh), 30u);
     EXPECT_EQ(part(build("wheat_spike", {{"awn_length", 0}}), "awns"), nullptr);
     EXPECT_NE(part(build("wheat_spike", {{"awn_length", 0.5f}}), "awns"), nullptr);
@@ -541,14 +548,10 @@ Pose poseFor(const FloralFamilyInfo& f) {
     const vec3 faceCamera = glm::normalize(vec3(0.0f, -0.55f, 0.85f));
     const vec3 hang = glm::normalize(vec3(0.0f, 0.15f, -1.0f));
     static const std::map<std::string, Pose> poses = {
-        {"legume_pod", {{1, 0, 0}, {0, 0, 1}}},
-        {"maize_ear", {{1, 0, 0}, {0, 0, 1}}},
-        {"almond", {{1, 0, 0}, {0, 0, 1}}},
-        {"wheat_spike", {{0, 0, 1}, {0, -1, 0}}},
-        {"rice_panicle", {{0, 0, 1}, {1, 0, 0}}},
-        {"sorghum_panicle", {{0, 0, 1}, {0, -1, 0}}},
-        {"maize_tassel", {{0, 0, 1}, {0, -1, 0}}},
-        {"catkin", {hang, {1, 0, 0}}},
+        {"legume_pod", {{1, 0, 0}, {0, 0, 1}}},    {"maize_ear", {{1, 0, 0}, {0, 0, 1}}},
+        {"almond", {{1, 0, 0}, {0, 0, 1}}},        {"wheat_spike", {{0, 0, 1}, {0, -1, 0}}},
+        {"rice_panicle", {{0, 0, 1}, {1, 0, 0}}},  {"sorghum_panicle", {{0, 0, 1}, {0, -1, 0}}},
+        {"maize_tassel", {{0, 0, 1}, {0, -1, 0}}}, {"catkin", {hang, {1, 0, 0}}},
     };
     const auto it = poses.find(f.name);
     if (it != poses.end()) return it->second;
@@ -583,12 +586,20 @@ struct Variant {
 const std::vector<Variant>& galleryVariants() {
     static const std::vector<Variant> v = {
         {"almond", "almond split", {{"split", 0.7f}}, {0.46f, 0.54f, 0.34f}},
-        {"pepper", "chili", {{"blockiness", 0.05f}, {"aspect", 4.5f}, {"lobes", 3},
-                             {"lobe_depth", 0.05f}, {"tip_curl", 35}, {"stem_length", 0.4f}},
+        {"pepper",
+         "chili",
+         {{"blockiness", 0.05f},
+          {"aspect", 4.5f},
+          {"lobes", 3},
+          {"lobe_depth", 0.05f},
+          {"tip_curl", 35},
+          {"stem_length", 0.4f}},
          {0.22f, 0.45f, 0.12f}},
         {"maize_ear", "maize ear peeled", {{"husk_cover", 0.1f}}, {0.70f, 0.72f, 0.45f}},
         {"maize_tassel", "maize tassel before anthesis", {}, {0.55f, 0.62f, 0.32f}, false},
-        {"berry", "grape berry", {{"aspect", 1.1f}, {"sepal_count", 0}, {"stem_length", 0.3f}},
+        {"berry",
+         "grape berry",
+         {{"aspect", 1.1f}, {"sepal_count", 0}, {"stem_length", 0.3f}},
          {0.45f, 0.62f, 0.25f}},
     };
     return v;
@@ -632,8 +643,8 @@ Image renderFamily(const FloralFamilyInfo& f, int width, int height) {
     const mat4 pose = poseMatrix(poseFor(f));
     const std::vector<GalleryItem> items = galleryItems(f);
     const int n = int(items.size());
-    const int columns = std::max(1, int(std::ceil(std::sqrt(float(n) * float(width) /
-                                                            float(height)))));
+    const int columns =
+        std::max(1, int(std::ceil(std::sqrt(float(n) * float(width) / float(height)))));
     std::vector<AABB> boxes(n);
     std::map<int, float> groupSize;
     for (int k = 0; k < n; ++k) {

@@ -149,7 +149,10 @@ TEST(SpeciesBean, LoadsWithTheReferenceNumbers) {
     EXPECT_EQ(uni.phytomer_parameters.leaf.prototype.shape, "cordate");
     EXPECT_EQ(tri.phytomer_parameters.leaf.prototype.shape, "ovate");
     EXPECT_EQ(uni.child_shoot_types, (std::map<std::string, float>{{"trifoliate", 1.0f}}));
-    EXPECT_TRUE(tri.phytomer_parameters.inflorescence.flower_prototype_function.empty());
+    EXPECT_EQ(tri.phytomer_parameters.inflorescence.flower_prototype_function,
+              "papilionaceous_flower");
+    EXPECT_EQ(tri.phytomer_parameters.inflorescence.fruit_prototype_function, "legume_pod");
+    EXPECT_EQ(tri.phytomer_parameters.inflorescence.fruit_prototype_parameters.at("seed_count"), 6.0f);
     EXPECT_EQ(bean.phenology.time_to_flower_initiation, 40.0f);
     EXPECT_EQ(bean.phenology.max_age, 365.0f);
     ASSERT_EQ(bean.build.size(), 2u);
@@ -185,7 +188,8 @@ TEST(SpeciesBean, BuildsTheSeedling) {
     EXPECT_GT(p.shoots[0].phytomers[0].internode.guide.z, std::cos(9.01f * 3.14159265f / 180));
     // The appended shoot takes the trifoliate type's radius and internode length.
     EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].internode.radius, 0.001f);
-    EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].internode.length, 0.025f);
+    // legume_phytomer shortens main-stem internodes made at emergence to 20 % of 0.025 m.
+    EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].internode.length, 0.025f * 0.2f);
     EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].leafFraction, 0.1f);
     EXPECT_GT(ctx.objectCount(), 0u);
 }

@@ -16,9 +16,12 @@
 // The first part of every prototype is the main part, coloured by the request's colour
 // (the species' flower_color or fruit_color); the other parts (calyx, stem, centre, seeds...)
 // have their own botanical colours, some of them set by parameters named <part>_r, _g, _b.
-// `subdivisions` is the mesh resolution: every family's triangle count grows with it. Flower
-// families build an open flower or a closed bud (FloralPrototypeRequest::open); fruit
+// `subdivisions` is the mesh resolution (values below 2 act as 2): every family's triangle
+// count grows with it. A family builds its own kind of organ whatever request.fruit says.
+// Flower families build an open flower or a closed bud (FloralPrototypeRequest::open); fruit
 // families ignore `open` except where documented (the maize tassel sheds pollen when open).
+// A bud is normalised to unit length like the open flower, so both take the same
+// prototype_scale: the bud is as long along its axis as the open flower is deep.
 // Random variation (berry packing, small petal irregularities) is drawn from the Rng passed
 // in, so the same generator state always gives the same mesh.
 
@@ -37,8 +40,8 @@ namespace plantarch {
 struct FloralParameterInfo {
     std::string name;
     float defaultValue = 0.0f;
-    float min = 0.0f;  ///< smallest valid value (inclusive)
-    float max = 0.0f;  ///< largest valid value (inclusive)
+    float min = 0.0f;      ///< smallest valid value (inclusive)
+    float max = 0.0f;      ///< largest valid value (inclusive)
     bool integer = false;  ///< a count or a switch: the value must be a whole number
     std::string doc;       ///< one line, with the unit where there is one
 };
@@ -61,6 +64,9 @@ struct FloralFamilyInfo {
 /// Every family, in a fixed order (flowers first, then fruit, then cereal heads).
 const std::vector<FloralFamilyInfo>& floralFamilies();
 
+/// True when `name` is a family of this library (not a custom or OBJ prototype).
+bool isFloralFamily(std::string_view name);
+
 /// The family named `name`; throws plantarch::Error listing the family names.
 const FloralFamilyInfo& floralFamily(std::string_view name);
 
@@ -72,21 +78,21 @@ void validateFloralParameters(std::string_view family,
                               const std::map<std::string, float>& parameters);
 
 /// Builds one prototype of a family (validating the request's parameters first).
-OrganPrototype buildFloralPrototype(std::string_view family,
-                                    const FloralPrototypeRequest& request, Rng& rng);
+OrganPrototype buildFloralPrototype(std::string_view family, const FloralPrototypeRequest& request,
+                                    Rng& rng);
 
 /// Registers every family with `arch` under its name (floralFamilies()[i].name).
 void registerOrganLibrary(PlantArchitecture& arch);
 
 /// A family with the parameters and colour that reproduce one species' flower or fruit.
 struct FloralPreset {
-    std::string name;     ///< e.g. "tomato_flower", "bean_pod"
-    std::string family;   ///< a floralFamilies() name
-    bool fruit = false;   ///< used as a fruit (else a flower)
+    std::string name;    ///< e.g. "tomato_flower", "bean_pod"
+    std::string family;  ///< a floralFamilies() name
+    bool fruit = false;  ///< used as a fruit (else a flower)
     std::map<std::string, float> parameters;
-    vec3 color{1.0f};              ///< main colour
-    unsigned subdivisions = 8;     ///< suggested resolution
-    float prototypeScale = 0.05f;  ///< suggested prototype_scale: organ length along x, m
+    vec3 color{1.0f};                  ///< main colour
+    unsigned subdivisions = 8;         ///< suggested resolution
+    float prototypeScale = 0.05f;      ///< suggested prototype_scale: organ length along x, m
     std::vector<std::string> species;  ///< reference species models that use it
 };
 

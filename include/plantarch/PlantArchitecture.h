@@ -16,6 +16,7 @@
 
 #include "plantarch/Context.h"
 #include "plantarch/Parameters.h"
+#include "plantarch/Progress.h"
 #include "plantarch/PlantState.h"
 
 namespace plantarch {
@@ -184,6 +185,9 @@ public:
     void advanceTime(double days);
     void advanceTime(unsigned plantID, double days);
     void advanceTime(const std::vector<unsigned>& plantIDs, double days);
+
+    /// Receives progress of advanceTime over the plants ("growing", 0..1); may be empty.
+    void setProgressCallback(ProgressCallback callback);
 
     /// Sets the phenological thresholds of a plant (validated).
     void setPlantPhenologicalThresholds(unsigned plantID, const PhenologyParameters& thresholds);

@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "plantarch/Context.h"
+#include "plantarch/Progress.h"
 #include "plantarch/Mesh.h"
 
 namespace plantarch {
@@ -132,6 +133,8 @@ struct RenderOptions {
     std::uint64_t seed = 0;   ///< picks the sample pattern; same seed, same bytes
 
     RenderSceneOptions scene;  ///< used by the one-shot render()
+    /// Told how many image rows are done ("rendering", 0..1); may be empty.
+    ProgressCallback progress;
 };
 
 /// The organ label colour table (see the header comment), in table order.

@@ -6,6 +6,7 @@
 
 #include "model/architecture_impl.h"
 #include "plantarch/LeafShapes.h"
+#include "plantarch/OrganLibrary.h"
 
 namespace plantarch {
 
@@ -112,6 +113,7 @@ void registerBuiltinPrototypes(PlantArchitecture& arch) {
         return OrganPrototype{{buildLeafPrototype(p, rng, leaflet),
                                Material{p.color, leafTextureFile(p, leaflet), "leaf"}}};
     });
+    registerOrganLibrary(arch);
     arch.registerFloralPrototype("builtin_fruit", builtinFruit);
     arch.registerFloralPrototype("builtin_flower", builtinFlower);
 }

@@ -1,11 +1,11 @@
 // The organ library's family table, parameter validation, registration and the part
 // collector that applies the prototype convention (OrganLibrary.h).
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "geometry/organ_library_internal.h"
 #include "plantarch/Error.h"
@@ -19,8 +19,7 @@ namespace {
 const std::vector<Family>& familyTable() {
     static const std::vector<Family> table = [] {
         std::vector<Family> all;
-        for (auto* group : {&flowerFamilies, &fruitFamilies, &podAndDrupeFamilies,
-                            &cerealFamilies})
+        for (auto* group : {&flowerFamilies, &fruitFamilies, &podAndDrupeFamilies, &cerealFamilies})
             for (Family& f : group()) all.push_back(std::move(f));
         return all;
     }();
@@ -33,7 +32,9 @@ const Family* findFamily(std::string_view name) {
     return nullptr;
 }
 
-std::string number(float v) { return fmt::format("{}", v); }
+std::string number(float v) {
+    return fmt::format("{}", v);
+}
 
 std::string familyNames() {
     std::string s = "one of:";
@@ -49,25 +50,26 @@ std::string parameterNames(const FloralFamilyInfo& info) {
 
 const Family& requireFamily(std::string_view name) {
     if (const Family* f = findFamily(name)) return *f;
-    throw Error("unknown flower/fruit prototype family",
-                {.parameter = "prototype family", .value = std::string(name),
-                 .validRange = familyNames()});
+    throw Error(
+        "unknown flower/fruit prototype family",
+        {.parameter = "prototype family", .value = std::string(name), .validRange = familyNames()});
 }
 
 void validate(const FloralFamilyInfo& info, const std::map<std::string, float>& given) {
     for (const auto& [name, value] : given) {
         const FloralParameterInfo* p = info.parameter(name);
         if (!p)
-            throw Error("not a parameter of the " + info.name + " prototype family",
-                        {.parameter = name, .value = number(value),
-                         .validRange = parameterNames(info)});
+            throw Error(
+                "not a parameter of the " + info.name + " prototype family",
+                {.parameter = name, .value = number(value), .validRange = parameterNames(info)});
         const std::string range = number(p->min) + " to " + number(p->max);
         if (!std::isfinite(value) || value < p->min || value > p->max)
             throw Error("out of range for the " + info.name + " prototype family",
                         {.parameter = name, .value = number(value), .validRange = range});
         if (p->integer && value != std::round(value))
             throw Error("must be a whole number for the " + info.name + " prototype family",
-                        {.parameter = name, .value = number(value),
+                        {.parameter = name,
+                         .value = number(value),
                          .validRange = "whole numbers from " + range});
     }
 }
@@ -90,7 +92,9 @@ float Params::operator()(std::string_view name) const {
     return it == given_->end() ? p->defaultValue : it->second;
 }
 
-int Params::count(std::string_view name) const { return int(std::lround((*this)(name))); }
+int Params::count(std::string_view name) const {
+    return int(std::lround((*this)(name)));
+}
 
 vec3 Params::color(std::string_view prefix) const {
     const std::string p(prefix);
@@ -166,8 +170,8 @@ OrganPrototype PartSet::finish() {
     if (out.empty() || !(length > 0.0f))
         throw std::logic_error("organ library: a prototype with no length along x");
     for (PrototypePart& p : out) {
-        for (vec3& v : p.mesh.positions) v = {(v.x - box.min.x) / length, v.y / length,
-                                              v.z / length};
+        for (vec3& v : p.mesh.positions)
+            v = {(v.x - box.min.x) / length, v.y / length, v.z / length};
         dropDegenerate(p.mesh);
     }
     return out;
@@ -192,6 +196,10 @@ const std::vector<FloralFamilyInfo>& floralFamilies() {
     return infos;
 }
 
+bool isFloralFamily(std::string_view name) {
+    return organs::findFamily(name) != nullptr;
+}
+
 const FloralFamilyInfo& floralFamily(std::string_view name) {
     const organs::Family& f = organs::requireFamily(name);
     return floralFamilies()[std::size_t(&f - organs::familyTable().data())];
@@ -202,8 +210,8 @@ void validateFloralParameters(std::string_view family,
     organs::validate(organs::requireFamily(family).info, parameters);
 }
 
-OrganPrototype buildFloralPrototype(std::string_view family,
-                                    const FloralPrototypeRequest& request, Rng& rng) {
+OrganPrototype buildFloralPrototype(std::string_view family, const FloralPrototypeRequest& request,
+                                    Rng& rng) {
     const organs::Family& f = organs::requireFamily(family);
     const organs::Params params(f.info, request.parameters);
     return f.build(request, params, rng);

@@ -20,8 +20,8 @@ const vec3 kZ{0.0f, 0.0f, 1.0f};
 const vec3 kStalkGreen{0.42f, 0.50f, 0.22f};
 
 // A grain or floret: a closed body pointed at the far end, along `dir` from `base`.
-Mesh grain(vec3 base, vec3 dir, vec3 up, float length, float width, float thickness,
-           float point, unsigned rows, unsigned sides) {
+Mesh grain(vec3 base, vec3 dir, vec3 up, float length, float width, float thickness, float point,
+           unsigned rows, unsigned sides) {
     const vec3 across = glm::normalize(glm::cross(up, dir));
     const vec3 normal = glm::cross(dir, across);
     return closedBody(rows, sides, [&](float u, float th) {
@@ -29,7 +29,8 @@ Mesh grain(vec3 base, vec3 dir, vec3 up, float length, float width, float thickn
         const float x = length * glm::mix(round, u > 0.5f ? u : round, point);
         const float env = std::sin(kPi * u);
         return base + dir * x +
-               env * (0.5f * width * std::cos(th) * across + 0.5f * thickness * std::sin(th) * normal);
+               env * (0.5f * width * std::cos(th) * across +
+                      0.5f * thickness * std::sin(th) * normal);
     });
 }
 
@@ -53,8 +54,8 @@ FloralFamilyInfo wheatInfo() {
     t.push_back(whole("spikelet_count", 18, 2, 40, "Spikelets, alternating sides"));
     t.push_back(whole("florets", 3, 1, 6, "Florets (grains) per spikelet"));
     t.push_back(real("spikelet_length", 0.14f, 0.03f, 0.4f, "Spikelet length / spike length"));
-    t.push_back(real("spikelet_angle", 22.0f, 5.0f, 80.0f,
-                     "Spikelets' angle from the rachis, degrees"));
+    t.push_back(
+        real("spikelet_angle", 22.0f, 5.0f, 80.0f, "Spikelets' angle from the rachis, degrees"));
     t.push_back(real("awn_length", 0.35f, 0.0f, 1.5f, "Awn length / spike length (0 = awnless)"));
     t.push_back(real("stalk_length", 0.06f, 0.0f, 0.4f, "Bare stalk below the spike / length"));
     return f;
@@ -83,8 +84,8 @@ OrganPrototype buildWheat(const FloralPrototypeRequest& req, const Params& p, Rn
             const float spread = (float(j) - 0.5f * float(florets - 1)) * 20.0f * kDeg;
             const vec3 fdir = rotateVec(dir, fanAxis, spread + 0.03f * rng.uniform(-1.0f, 1.0f));
             const float fl = size * (1.0f - 0.12f * std::abs(float(j) - 0.5f * float(florets - 1)));
-            parts.add("spikelets", grain(base, fdir, kZ, fl, 0.42f * size, 0.3f * size, 0.7f,
-                                         rows, sides));
+            parts.add("spikelets",
+                      grain(base, fdir, kZ, fl, 0.42f * size, 0.3f * size, 0.7f, rows, sides));
             if (awn > 0.0f) {
                 const vec3 tip = base + fdir * fl;
                 const vec3 adir = glm::normalize(fdir + 0.15f * side * kY);
@@ -115,8 +116,8 @@ FloralFamilyInfo riceInfo() {
     t.push_back(real("droop", 80.0f, 0.0f, 180.0f,
                      "How far the panicle nods: bend of the main axis (toward -z), degrees"));
     t.push_back(real("spread", 30.0f, 5.0f, 90.0f, "Branch angle from the main axis, degrees"));
-    t.push_back(real("branch_length", 0.4f, 0.1f, 0.8f,
-                     "Longest (lowest) branch / panicle length"));
+    t.push_back(
+        real("branch_length", 0.4f, 0.1f, 0.8f, "Longest (lowest) branch / panicle length"));
     t.push_back(real("grain_length", 0.07f, 0.02f, 0.2f, "Grain length / panicle length"));
     return f;
 }
@@ -129,7 +130,8 @@ OrganPrototype buildRice(const FloralPrototypeRequest& req, const Params& p, Rng
     const int branches = p.count("branch_count"), grains = p.count("grains_per_branch");
     const float droop = p("droop"), gl = p("grain_length");
     const std::vector<vec3> axis = arcPath({0, 0, 0}, kX, -kZ, 1.0f, 0.6f * droop, 16);
-    parts.add("branches", tube(axis, std::vector<float>(axis.size(), 0.009f), resolution(s, 0.5f, 3)));
+    parts.add("branches",
+              tube(axis, std::vector<float>(axis.size(), 0.009f), resolution(s, 0.5f, 3)));
     const unsigned rows = resolution(s, 0.5f, 2), sides = resolution(s, 0.5f, 4);
     for (int b = 0; b < branches; ++b) {
         const float f = 0.2f + 0.75f * float(b) / float(std::max(branches - 1, 1));
@@ -141,20 +143,20 @@ OrganPrototype buildRice(const FloralPrototypeRequest& req, const Params& p, Rng
         const float len = p("branch_length") * (1.0f - 0.55f * f);
         vec3 down = -kZ - dir * glm::dot(-kZ, dir);
         if (glm::length(down) < 1e-3f) down = perpendicular(dir);
-        const std::vector<vec3> arm = arcPath(at.position, dir, glm::normalize(down), len,
-                                              0.5f * droop, 6);
+        const std::vector<vec3> arm =
+            arcPath(at.position, dir, glm::normalize(down), len, 0.5f * droop, 6);
         parts.add("branches", tube(arm, std::vector<float>(arm.size(), 0.005f), 3));
         for (int g = 0; g < grains; ++g) {
             const float gf = 0.2f + 0.8f * (float(g) + 0.5f) / float(grains);
             const PathPoint on = pathAt(arm, glm::normalize(down), gf);
             const float side = g % 2 ? 1.0f : -1.0f;
             const float tilt = (25.0f + 10.0f * rng.uniform(-1.0f, 1.0f)) * kDeg;
-            const vec3 gdir = glm::normalize(std::cos(tilt) * on.tangent +
-                                             std::sin(tilt) * side * on.side);
+            const vec3 gdir =
+                glm::normalize(std::cos(tilt) * on.tangent + std::sin(tilt) * side * on.side);
             const vec3 gbase = on.position + gdir * 0.01f;
             parts.add("branches", tube(on.position, gbase + gdir * 0.004f, 0.003f, 0.003f, 3));
-            parts.add("grains", grain(gbase, gdir, on.normal, gl, 0.36f * gl, 0.27f * gl, 0.6f,
-                                      rows, sides));
+            parts.add("grains",
+                      grain(gbase, gdir, on.normal, gl, 0.36f * gl, 0.27f * gl, 0.6f, rows, sides));
         }
     }
     return parts.finish();
@@ -193,10 +195,10 @@ OrganPrototype buildSorghum(const FloralPrototypeRequest& req, const Params& p, 
         return rmax * ppow(std::sin(kPi * t), 0.65f) * (1.1f - 0.3f * t);
     };
     parts.add("core", tube({0, 0, 0}, {x0 + 0.05f, 0, 0}, 0.02f, 0.025f, resolution(s, 0.5f, 3)));
-    parts.add("core", closedBody(resolution(s, 1.0f, 4), resolution(s, 1.0f, 6),
-                                 [&](float u, float th) {
-        return vec3(x0 + length * u, 0, 0) + 0.8f * envelope(u) * radialDir(th);
-    }));
+    parts.add("core",
+              closedBody(resolution(s, 1.0f, 4), resolution(s, 1.0f, 6), [&](float u, float th) {
+                  return vec3(x0 + length * u, 0, 0) + 0.8f * envelope(u) * radialDir(th);
+              }));
     const int rows = p.count("grain_rows"), perRow = p.count("grains_per_row");
     const unsigned grows = resolution(s, 0.25f, 2), gsides = resolution(s, 0.5f, 4);
     for (int i = 0; i < rows; ++i) {
@@ -271,8 +273,9 @@ OrganPrototype buildTassel(const FloralPrototypeRequest& req, const Params& p, R
     const float density = p("spikelet_density");
     const unsigned rows = resolution(s, 0.25f, 2), sides = resolution(s, 0.25f, 3);
     const std::vector<vec3> spike = arcPath({0, 0, 0}, kX, kZ, 1.0f, 3.0f, 8);
-    parts.add("axes", tube(spike, std::vector<float>{0.014f, 0.013f, 0.012f, 0.011f, 0.01f, 0.009f,
-                                                     0.008f, 0.007f, 0.005f},
+    parts.add("axes", tube(spike,
+                           std::vector<float>{0.014f, 0.013f, 0.012f, 0.011f, 0.01f, 0.009f, 0.008f,
+                                              0.007f, 0.005f},
                            resolution(s, 0.5f, 3)));
     tasselSpikelets(parts, spike, density, anthers, rows, sides, 0.38f);
     const int branches = p.count("branch_count");
@@ -343,9 +346,9 @@ Mesh earCob(const EarShape& ear, const Params& p, unsigned s) {
     return closedBody(rows, sides, [&](float u, float th) {
         const float rows01 = 0.5f + 0.5f * std::cos(float(kr) * th);
         const float along = 0.5f + 0.5f * std::cos(2.0f * kPi * float(kn) * u);
-        const float r = ear.radiusAt(u) *
-                        (1.0f - rowBump * (1.0f - std::sqrt(rows01)) -
-                         kernelBump * (1.0f - std::sqrt(along)) * smooth(0.0f, 0.1f, u));
+        const float r =
+            ear.radiusAt(u) * (1.0f - rowBump * (1.0f - std::sqrt(rows01)) -
+                               kernelBump * (1.0f - std::sqrt(along)) * smooth(0.0f, 0.1f, u));
         return vec3(ear.x0 + ear.length * u, 0, 0) + r * radialDir(th);
     });
 }
@@ -394,17 +397,17 @@ OrganPrototype buildEar(const FloralPrototypeRequest& req, const Params& p, Rng&
     }
     const float silk = p("silk_length");
     if (silk > 0.0f) {
-        const vec3 tip = open > 0.3f || leaves == 0 ? vec3(ear.x0 + ear.length, 0, 0)
-                                                      : vec3(0.99f, 0, 0);
+        const vec3 tip =
+            open > 0.3f || leaves == 0 ? vec3(ear.x0 + ear.length, 0, 0) : vec3(0.99f, 0, 0);
         for (int k = 0; k < 18; ++k) {
             const vec3 out = radialDir(float(k) * 2.39996f);
             const vec3 dir = glm::normalize(kX + (0.3f + 0.5f * rng.uniform01()) * out);
-            const std::vector<vec3> strand = arcPath(tip, dir, out, silk * rng.uniform(0.7f, 1.0f),
-                                                     50.0f, 4);
+            const std::vector<vec3> strand =
+                arcPath(tip, dir, out, silk * rng.uniform(0.7f, 1.0f), 50.0f, 4);
             const vec3 w = perpendicular(dir) * 0.004f;
             parts.add("silk", gridMesh({4, 1, false, false, false}, [&](unsigned i, unsigned j) {
-                return strand[i] + (j ? w : -w) * (1.0f - 0.5f * float(i) / 4.0f);
-            }));
+                          return strand[i] + (j ? w : -w) * (1.0f - 0.5f * float(i) / 4.0f);
+                      }));
         }
     }
     return parts.finish();

@@ -58,8 +58,8 @@ FloralFamilyInfo petalFlowerInfo() {
     t.push_back(real("petal_cupping", 0.12f, -0.5f, 0.8f,
                      "Cross curvature of a petal, fraction of its width (positive = concave "
                      "toward the flower's front)"));
-    t.push_back(real("petal_wave", 0.0f, 0.0f, 0.3f,
-                     "Margin waviness, fraction of the petal width"));
+    t.push_back(
+        real("petal_wave", 0.0f, 0.0f, 0.3f, "Margin waviness, fraction of the petal width"));
     t.push_back(whole("sepal_count", 5, 0, 20, "Number of sepals (0 = none)"));
     t.push_back(real("sepal_length", 0.3f, 0.02f, 2.0f, "Sepal length, same units as petals"));
     t.push_back(real("sepal_width", 0.35f, 0.05f, 1.0f, "Sepal width / sepal length"));
@@ -78,8 +78,7 @@ FloralFamilyInfo petalFlowerInfo() {
 }
 
 // Sepals between the petals (open) or clasping the bud (closed).
-void petalFlowerSepals(PartSet& parts, const Params& p, bool open, unsigned rows,
-                       unsigned cols) {
+void petalFlowerSepals(PartSet& parts, const Params& p, bool open, unsigned rows, unsigned cols) {
     const int n = p.count("sepal_count");
     const int petals = p.count("petal_count");
     for (int k = 0; k < n; ++k) {
@@ -110,16 +109,16 @@ void petalFlowerCentre(PartSet& parts, const Params& p, unsigned s) {
     const vec3 c{kRecLength, 0, 0};
     const unsigned rows = resolution(s, 0.5f, 2), sides = resolution(s, 1.0f, 4);
     if (cs > 0.0f)
-        parts.add("flower_centre", ellipsoid(c, {0.45f * cs, 0, 0}, {0, cs, 0}, {0, 0, cs},
-                                             rows, sides));
+        parts.add("flower_centre",
+                  ellipsoid(c, {0.45f * cs, 0, 0}, {0, cs, 0}, {0, 0, cs}, rows, sides));
     const float cone = p("anther_cone");
     if (cone > 0.0f) {
         const float rb = std::max(cs, 0.05f) * 0.9f;
-        parts.add("flower_centre", closedBody(resolution(s, 1.0f, 2), sides, [&](float u,
-                                                                                float th) {
-            const float r = rb * ppow(std::sin(kPi * std::min(u, 0.5f)), 0.5f) * (1.1f - u);
-            return c + vec3(cone * u, 0, 0) + r * radialDir(th + 0.3f * u);
-        }));
+        parts.add(
+            "flower_centre", closedBody(resolution(s, 1.0f, 2), sides, [&](float u, float th) {
+                const float r = rb * ppow(std::sin(kPi * std::min(u, 0.5f)), 0.5f) * (1.1f - u);
+                return c + vec3(cone * u, 0, 0) + r * radialDir(th + 0.3f * u);
+            }));
     }
     const int n = p.count("stamen_count");
     const float len = p("stamen_length");
@@ -132,9 +131,9 @@ void petalFlowerCentre(PartSet& parts, const Params& p, unsigned s) {
         const vec3 dir = std::cos(spread) * kX + std::sin(spread) * r;
         const vec3 tip = base + dir * len * (k % 2 ? 0.85f : 1.0f);
         parts.add("flower_centre", tube(base, tip, 0.006f, 0.005f, 3));
-        parts.add("flower_centre", ellipsoid(tip + dir * 0.012f, dir * 0.014f,
-                                             glm::cross(dir, r) * 0.02f, r * 0.012f,
-                                             antherRows, 4));
+        parts.add("flower_centre",
+                  ellipsoid(tip + dir * 0.012f, dir * 0.014f, glm::cross(dir, r) * 0.02f,
+                            r * 0.012f, antherRows, 4));
     }
 }
 
@@ -224,8 +223,8 @@ FloralFamilyInfo papilionaceousInfo() {
     return f;
 }
 
-Mesh calyxCup(float x0, float length, float radius, int teeth, float toothLength,
-              unsigned rows, unsigned sides) {
+Mesh calyxCup(float x0, float length, float radius, int teeth, float toothLength, unsigned rows,
+              unsigned sides) {
     return gridMesh({rows, sides, true, true, false}, [&](unsigned i, unsigned j) {
         const float u = float(i) / float(rows);
         const float th = 2.0f * kPi * float(j) / float(sides);
@@ -258,15 +257,15 @@ void papilionaceousOpen(PartSet& parts, const Params& p, unsigned s) {
         wing.tipAngle = p("wing_angle");
         wing.cupping = 0.08f;
         const vec3 radial = glm::normalize(vec3(0, float(side), 0.15f));
-        parts.add("petals", petalMesh(wing, {xm - 0.02f, 0.035f * float(side), 0.0f}, kX,
-                                      radial, rows, cols));
+        parts.add("petals", petalMesh(wing, {xm - 0.02f, 0.035f * float(side), 0.0f}, kX, radial,
+                                      rows, cols));
     }
     // Keel: a laterally flattened beak curving up from below the wings.
     const float len = p("keel_length");
     const std::vector<vec3> path =
         arcPath({xm - 0.03f, 0, -0.02f}, kX, {0, 0, 1}, len, p("keel_curl"), rows);
-    parts.add("petals", sweptBody(path, {0, 0, 1}, resolution(s, 1.5f, 2),
-                                  resolution(s, 1.0f, 4), [&](float u, float th) {
+    parts.add("petals", sweptBody(path, {0, 0, 1}, resolution(s, 1.5f, 2), resolution(s, 1.0f, 4),
+                                  [&](float u, float th) {
                                       const float r = ppow(std::sin(kPi * u), 0.6f) *
                                                       (1.0f - 0.6f * u) * 0.16f * len;
                                       return vec2(0.45f * r * std::cos(th), r * std::sin(th));
@@ -281,8 +280,7 @@ OrganPrototype buildPapilionaceous(const FloralPrototypeRequest& req, const Para
     const unsigned sides = resolution(s, 1.0f, 6);
     const float calyxLength = p("calyx_length");
     parts.add("calyx", tube({0, 0, 0}, {0.08f, 0, 0}, 0.025f, 0.03f, sides));
-    parts.add("calyx", calyxCup(0.06f, calyxLength, 0.1f, 5, 0.07f, resolution(s, 0.5f, 2),
-                                sides));
+    parts.add("calyx", calyxCup(0.06f, calyxLength, 0.1f, 5, 0.07f, resolution(s, 0.5f, 2), sides));
     if (req.open) {
         papilionaceousOpen(parts, p, s);
     } else {
@@ -293,8 +291,7 @@ OrganPrototype buildPapilionaceous(const FloralPrototypeRequest& req, const Para
                                       resolution(s, 1.0f, 4), [&](float u, float th) {
                                           const float r = ppow(std::sin(kPi * u), 0.7f) *
                                                           (1.0f - 0.45f * u) * 0.17f * len;
-                                          return vec2(0.45f * r * std::cos(th),
-                                                      r * std::sin(th));
+                                          return vec2(0.45f * r * std::cos(th), r * std::sin(th));
                                       }));
     }
     return parts.finish();
@@ -327,8 +324,8 @@ FloralFamilyInfo funnelInfo() {
     t.push_back(real("throat_fraction", 0.4f, 0.0f, 1.0f,
                      "Part of the corolla from its base drawn in the throat colour"));
     addColor(t, "throat", {0.97f, 0.93f, 0.62f}, "Throat");
-    t.push_back(real("sepal_length", 0.14f, 0.02f, 0.6f,
-                     "Sepal length, fraction of the corolla length"));
+    t.push_back(
+        real("sepal_length", 0.14f, 0.02f, 0.6f, "Sepal length, fraction of the corolla length"));
     t.push_back(real("bud_twist", 200.0f, 0.0f, 720.0f, "Spiral twist of the closed bud, degrees"));
     return f;
 }
@@ -365,13 +362,14 @@ OrganPrototype buildFunnel(const FloralPrototypeRequest& req, const Params& p, R
     const float x0 = 0.05f;
     if (!req.open) {
         const float twist = p("bud_twist") * kDeg;
-        parts.add("corolla", closedBody(resolution(s, 1.5f, 4), resolution(s, 2.0f, 6),
-                                        [&](float u, float th) {
-            const float r = 0.11f * ppow(std::sin(kPi * std::pow(u, 0.75f)), 0.8f) *
-                            (1.0f - 0.35f * u) *
-                            (1.0f + 0.12f * std::cos(float(std::max(lobes, 1)) * th + twist * u));
-            return vec3(x0 + 0.8f * u, 0, 0) + r * radialDir(th);
-        }));
+        parts.add(
+            "corolla",
+            closedBody(resolution(s, 1.5f, 4), resolution(s, 2.0f, 6), [&](float u, float th) {
+                const float r =
+                    0.11f * ppow(std::sin(kPi * std::pow(u, 0.75f)), 0.8f) * (1.0f - 0.35f * u) *
+                    (1.0f + 0.12f * std::cos(float(std::max(lobes, 1)) * th + twist * u));
+                return vec3(x0 + 0.8f * u, 0, 0) + r * radialDir(th);
+            }));
         return parts.finish();
     }
     const float length = 1.0f - x0;
@@ -388,8 +386,8 @@ OrganPrototype buildFunnel(const FloralPrototypeRequest& req, const Params& p, R
         return vec3(x, 0, 0) + r * radialDir(th);
     };
     // Rows below the throat fraction go to the throat part (the boundary row is repeated).
-    const unsigned split = std::min(rows - 1, unsigned(std::lround(p("throat_fraction") *
-                                                                   float(rows))));
+    const unsigned split =
+        std::min(rows - 1, unsigned(std::lround(p("throat_fraction") * float(rows))));
     const auto band = [&](unsigned first, unsigned last, bool apex) {
         return gridMesh({last - first, sides, true, apex, false}, [&](unsigned i, unsigned j) {
             const float u = float(first + i) / float(rows);
@@ -522,10 +520,10 @@ OrganPrototype buildCatkin(const FloralPrototypeRequest& req, const Params& p, R
     // scaled to unit length like the open catkin).
     const float length = 1.0f;
     const float radius = 0.5f * p("width") * (req.open ? 1.0f : 1.6f);
-    const std::vector<vec3> axis = arcPath({0, 0, 0}, kX, {0, 0, -1}, length,
-                                           req.open ? p("droop") : 0.0f, 10);
-    parts.add("axis", tube(axis, std::vector<float>(axis.size(), 0.2f * radius),
-                           resolution(s, 0.5f, 3)));
+    const std::vector<vec3> axis =
+        arcPath({0, 0, 0}, kX, {0, 0, -1}, length, req.open ? p("droop") : 0.0f, 10);
+    parts.add("axis",
+              tube(axis, std::vector<float>(axis.size(), 0.2f * radius), resolution(s, 0.5f, 3)));
     const unsigned rows = resolution(s, 0.25f, 2), sides = resolution(s, 0.5f, 4);
     const float step = 0.92f / float(whorls);
     for (int w = 0; w < whorls; ++w) {

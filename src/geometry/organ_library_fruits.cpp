@@ -38,8 +38,8 @@ FloralFamilyInfo berryInfo() {
     t.push_back(real("shoulder_dent", 0.04f, 0.0f, 0.2f,
                      "Depression around the stem, fraction of the diameter"));
     t.push_back(whole("sepal_count", 5, 0, 12, "Sepals of the calyx star (0 = none)"));
-    t.push_back(real("sepal_length", 0.35f, 0.02f, 1.5f,
-                     "Sepal length, fraction of the fruit diameter"));
+    t.push_back(
+        real("sepal_length", 0.35f, 0.02f, 1.5f, "Sepal length, fraction of the fruit diameter"));
     t.push_back(real("sepal_width", 0.22f, 0.05f, 1.0f, "Sepal width / sepal length"));
     t.push_back(real("sepal_curl", 25.0f, -60.0f, 120.0f,
                      "Bend of the sepals away from the fruit from base to tip, degrees"));
@@ -64,18 +64,19 @@ OrganPrototype buildBerry(const FloralPrototypeRequest& req, const Params& p, Rn
     const float x0 = stem - dent;  // the shoulders are at x = stem
     const int ribs = p.count("ribs");
     const float ribDepth = p("rib_depth");
-    parts.add("fruit", closedBody(resolution(s, 1.0f, 4), resolution(s, 2.0f, 6),
-                                  [&](float u, float th) {
-        const float phi = kPi * u;
-        float r = 0.5f * diameter * std::sin(phi);
-        if (ribs > 0) {
-            const float groove = 0.5f - 0.5f * std::cos(float(ribs) * th);
-            r *= 1.0f - ribDepth * groove * groove * ppow(std::sin(phi), 0.5f) * (1.0f - 0.5f * u);
-        }
-        const float x = x0 + 0.5f * length * (1.0f - std::cos(phi)) +
-                        dent * std::exp(-(u / 0.16f) * (u / 0.16f));
-        return vec3(x, 0, 0) + r * radialDir(th);
-    }));
+    parts.add(
+        "fruit", closedBody(resolution(s, 1.0f, 4), resolution(s, 2.0f, 6), [&](float u, float th) {
+            const float phi = kPi * u;
+            float r = 0.5f * diameter * std::sin(phi);
+            if (ribs > 0) {
+                const float groove = 0.5f - 0.5f * std::cos(float(ribs) * th);
+                r *= 1.0f -
+                     ribDepth * groove * groove * ppow(std::sin(phi), 0.5f) * (1.0f - 0.5f * u);
+            }
+            const float x = x0 + 0.5f * length * (1.0f - std::cos(phi)) +
+                            dent * std::exp(-(u / 0.16f) * (u / 0.16f));
+            return vec3(x, 0, 0) + r * radialDir(th);
+        }));
     const unsigned sides = resolution(s, 0.5f, 3);
     parts.add("calyx", tube({0, 0, 0}, {x0 + dent + 0.01f, 0, 0}, 0.035f * diameter,
                             0.045f * diameter, sides, 2));
@@ -86,20 +87,21 @@ OrganPrototype buildBerry(const FloralPrototypeRequest& req, const Params& p, Rn
         const float hl = p("husk_size") * length;
         const float hr = 0.5f * diameter * 1.05f * std::max(1.0f, p("husk_size") * 0.8f);
         const float start = std::max(0.2f * stem, x0 + 0.5f * length - 0.45f * hl);
-        parts.add("husk", closedBody(resolution(s, 1.5f, 4), resolution(s, 3.0f, 10),
-                                     [&](float u, float th) {
-            const float angles = 0.5f + 0.5f * std::cos(5.0f * th);
-            const float ribs = 0.5f + 0.5f * std::cos(10.0f * th);
-            const float r = hr * ppow(std::sin(kPi * std::pow(u, 0.8f)), 0.8f) *
-                            (0.86f + 0.2f * angles * angles + 0.03f * ribs);
-            const float x = start + hl * u + 0.12f * hl * std::exp(-(u / 0.12f) * (u / 0.12f));
-            return vec3(x, 0, 0) + r * radialDir(th);
-        }));
+        parts.add(
+            "husk",
+            closedBody(resolution(s, 1.5f, 4), resolution(s, 3.0f, 10), [&](float u, float th) {
+                const float angles = 0.5f + 0.5f * std::cos(5.0f * th);
+                const float ribs = 0.5f + 0.5f * std::cos(10.0f * th);
+                const float r = hr * ppow(std::sin(kPi * std::pow(u, 0.8f)), 0.8f) *
+                                (0.86f + 0.2f * angles * angles + 0.03f * ribs);
+                const float x = start + hl * u + 0.12f * hl * std::exp(-(u / 0.12f) * (u / 0.12f));
+                return vec3(x, 0, 0) + r * radialDir(th);
+            }));
     } else if (p.count("sepal_count") > 0) {
         const float sl = p("sepal_length") * diameter;
-        parts.add("calyx", sepalStar(p.count("sepal_count"), x0 + dent * 0.7f, 0.04f * diameter,
-                                     sl, p("sepal_width") * sl, 80.0f, 80.0f + p("sepal_curl"),
-                                     0.2f, rows, cols));
+        parts.add("calyx", sepalStar(p.count("sepal_count"), x0 + dent * 0.7f, 0.04f * diameter, sl,
+                                     p("sepal_width") * sl, 80.0f, 80.0f + p("sepal_curl"), 0.2f,
+                                     rows, cols));
     }
     return parts.finish();
 }
@@ -162,8 +164,8 @@ std::vector<Berry> packBerries(const Params& p, Rng& rng) {
         Berry best{{x, 0, 0}, radius};
         float bestRoom = -1e9f;
         for (int attempt = 0; attempt < 40; ++attempt) {
-            const float rho = std::max(envelope(x) - radius, 0.0f) *
-                              (0.35f + 0.65f * std::sqrt(rng.uniform01()));
+            const float rho =
+                std::max(envelope(x) - radius, 0.0f) * (0.35f + 0.65f * std::sqrt(rng.uniform01()));
             const float az = rng.uniform(0.0f, 2.0f * kPi);
             const vec3 c{x + rng.uniform(-0.5f, 0.5f) * radius, 0, 0};
             const Berry b{c + rho * radialDir(az), radius};
@@ -196,8 +198,8 @@ OrganPrototype buildGrapeCluster(const FloralPrototypeRequest& req, const Params
                              0, 0};
         vec3 dir = b.centre - axisPoint;
         dir = glm::length(dir) > 1e-4f ? glm::normalize(dir) : kX;
-        const vec3 side = glm::normalize(glm::cross(dir, std::abs(dir.z) < 0.9f ? vec3(0, 0, 1)
-                                                                             : vec3(0, 1, 0)));
+        const vec3 side =
+            glm::normalize(glm::cross(dir, std::abs(dir.z) < 0.9f ? vec3(0, 0, 1) : vec3(0, 1, 0)));
         const vec3 up = glm::cross(side, dir);
         parts.add("berries", ellipsoid(b.centre, dir * (b.radius * aspect), side * b.radius,
                                        up * b.radius, rows, sides));
@@ -205,8 +207,8 @@ OrganPrototype buildGrapeCluster(const FloralPrototypeRequest& req, const Params
             parts.add("rachis", tube(axisPoint, b.centre, 0.006f, 0.005f, 3));
         end = std::max(end, axisPoint.x);
     }
-    parts.add("rachis", tube({0, 0, 0}, {end + 0.01f, 0, 0}, 0.014f, 0.008f,
-                             resolution(s, 0.5f, 3), 2));
+    parts.add("rachis",
+              tube({0, 0, 0}, {end + 0.01f, 0, 0}, 0.014f, 0.008f, resolution(s, 0.5f, 3), 2));
     return parts.finish();
 }
 
@@ -239,13 +241,13 @@ vec3 pepperPoint(const Params& p, float xb, float u, float th) {
     const int lobes = p.count("lobes");
     const float tau = std::abs(2.0f * u - 1.0f);
     const float bell = 0.5f * ppow(1.0f - std::pow(tau, 3.5f), 1.0f / 3.5f) * (1.0f - 0.1f * u);
-    const float horn = 0.5f * ppow(std::sin(0.5f * kPi * std::min(u / 0.14f, 1.0f)), 0.7f) *
-                       ppow(1.0f - u, 0.8f);
+    const float horn =
+        0.5f * ppow(std::sin(0.5f * kPi * std::min(u / 0.14f, 1.0f)), 0.7f) * ppow(1.0f - u, 0.8f);
     float r = glm::mix(horn, bell, block);
     const float lobe = lobes > 0 ? std::cos(float(lobes) * th) : 0.0f;
     r *= 1.0f + lobeDepth * lobe * (0.4f + 0.6f * u);
     float x = xb + length * u;
-    x += (0.05f + 0.1f * block) * std::exp(-(u / 0.1f) * (u / 0.1f));  // stem cavity
+    x += (0.05f + 0.1f * block) * std::exp(-(u / 0.1f) * (u / 0.1f));           // stem cavity
     x -= 0.08f * block * std::exp(-((1.0f - u) / 0.1f) * ((1.0f - u) / 0.1f));  // bottom dimple
     x += 0.35f * lobeDepth * block * lobe * smooth(0.7f, 1.0f, u) * std::sin(kPi * u);
     vec3 pt = vec3(x, 0, 0) + r * radialDir(th);
@@ -274,18 +276,16 @@ OrganPrototype buildPepper(const FloralPrototypeRequest& req, const Params& p, R
     radii.back() = 0.07f;
     parts.add("calyx", tube(path, radii, resolution(s, 0.5f, 4)));
     const float cs = 0.5f * p("calyx_size");
-    parts.add("calyx", gridMesh({resolution(s, 0.25f, 1), resolution(s, 2.0f, 6), true, true,
-                                 false},
-                                [&](unsigned i, unsigned j) {
-                                    const float u = float(i) / float(resolution(s, 0.25f, 1));
-                                    const float th = 2.0f * kPi * float(j) /
-                                                     float(resolution(s, 2.0f, 6));
-                                    const float r = cs * u * (1.0f + 0.15f * std::cos(5 * th));
-                                    return vec3(cavity - 0.02f + 0.06f * u * u, 0, 0) +
-                                           r * radialDir(th);
-                                }));
-    parts.add("calyx", sepalStar(5, cavity + 0.02f, cs * 0.8f, cs * 0.7f, cs * 0.5f, 80.0f,
-                                 75.0f, 0.3f, resolution(s, 0.5f, 1), resolution(s, 0.25f, 1)));
+    parts.add("calyx",
+              gridMesh({resolution(s, 0.25f, 1), resolution(s, 2.0f, 6), true, true, false},
+                       [&](unsigned i, unsigned j) {
+                           const float u = float(i) / float(resolution(s, 0.25f, 1));
+                           const float th = 2.0f * kPi * float(j) / float(resolution(s, 2.0f, 6));
+                           const float r = cs * u * (1.0f + 0.15f * std::cos(5 * th));
+                           return vec3(cavity - 0.02f + 0.06f * u * u, 0, 0) + r * radialDir(th);
+                       }));
+    parts.add("calyx", sepalStar(5, cavity + 0.02f, cs * 0.8f, cs * 0.7f, cs * 0.5f, 80.0f, 75.0f,
+                                 0.3f, resolution(s, 0.5f, 1), resolution(s, 0.25f, 1)));
     return parts.finish();
 }
 
@@ -304,8 +304,8 @@ FloralFamilyInfo strawberryInfo() {
     t.push_back(real("aspect", 1.25f, 0.6f, 2.5f, "Fruit length / diameter"));
     t.push_back(real("shoulder", 0.28f, 0.05f, 0.6f,
                      "Position of the widest point, fraction of the length from the calyx"));
-    t.push_back(real("tip", 1.1f, 0.4f, 3.0f,
-                     "Taper toward the tip: below 1 blunt, above 1 pointed"));
+    t.push_back(
+        real("tip", 1.1f, 0.4f, 3.0f, "Taper toward the tip: below 1 blunt, above 1 pointed"));
     t.push_back(whole("achene_count", 140, 0, 600, "Number of achenes (seeds)"));
     t.push_back(real("achene_size", 0.045f, 0.01f, 0.12f, "Achene length / fruit diameter"));
     t.push_back(real("dimple_depth", 0.018f, 0.0f, 0.06f,
@@ -336,7 +336,8 @@ std::vector<Achene> placeAchenes(const Params& p) {
     std::vector<float> cdf(129, 0.0f);
     const float u0 = 0.1f, u1 = 0.97f;
     for (int i = 1; i <= 128; ++i) {
-        const float a = u0 + (u1 - u0) * float(i - 1) / 128.0f, b = u0 + (u1 - u0) * float(i) / 128.0f;
+        const float a = u0 + (u1 - u0) * float(i - 1) / 128.0f,
+                    b = u0 + (u1 - u0) * float(i) / 128.0f;
         const float ra = strawberryRadius(p, a), rb = strawberryRadius(p, b);
         cdf[i] = cdf[i - 1] + 0.5f * (ra + rb) * std::hypot(length * (b - a), rb - ra);
     }
@@ -362,7 +363,8 @@ OrganPrototype buildStrawberry(const FloralPrototypeRequest& req, const Params& 
     const float xb = stem;
     const std::vector<Achene> achenes = placeAchenes(p);
     // Pit width from the mean spacing of the achenes over the surface (area ~ 2.3 d^2 L).
-    const float spacing = std::sqrt(2.3f * length / float(std::max<std::size_t>(achenes.size(), 1)));
+    const float spacing =
+        std::sqrt(2.3f * length / float(std::max<std::size_t>(achenes.size(), 1)));
     const float sigma = 0.35f * spacing;
     auto surface = [&](float u, float th, bool pitted) {
         float r = strawberryRadius(p, u);
@@ -393,9 +395,9 @@ OrganPrototype buildStrawberry(const FloralPrototypeRequest& req, const Params& 
                             std::vector<float>(4, 0.03f), resolution(s, 0.5f, 3)));
     if (p.count("sepal_count") > 0) {
         const float sl = p("sepal_length");
-        parts.add("calyx", sepalStar(p.count("sepal_count"), xb + 0.03f, 0.05f, sl, 0.3f * sl,
-                                     95.0f, 120.0f, 0.1f, resolution(s, 0.5f, 2),
-                                     resolution(s, 0.25f, 1)));
+        parts.add("calyx",
+                  sepalStar(p.count("sepal_count"), xb + 0.03f, 0.05f, sl, 0.3f * sl, 95.0f, 120.0f,
+                            0.1f, resolution(s, 0.5f, 2), resolution(s, 0.25f, 1)));
     }
     return parts.finish();
 }
@@ -418,8 +420,8 @@ FloralFamilyInfo appleInfo() {
     t.push_back(real("taper", 0.15f, 0.0f, 0.5f, "Narrowing toward the calyx end"));
     t.push_back(whole("ribs", 5, 0, 8, "Ribs (broad lobes) around the fruit"));
     t.push_back(real("rib_depth", 0.025f, 0.0f, 0.15f, "Rib height, fraction of the radius"));
-    t.push_back(real("stem_length", 0.18f, 0.0f, 0.6f,
-                     "Stem length beyond the shoulders / diameter"));
+    t.push_back(
+        real("stem_length", 0.18f, 0.0f, 0.6f, "Stem length beyond the shoulders / diameter"));
     return f;
 }
 
@@ -447,14 +449,15 @@ OrganPrototype buildApple(const FloralPrototypeRequest& req, const Params& p, Rn
     parts.declare("calyx", {0.30f, 0.24f, 0.14f});
     // Shift so the shoulders (smallest x of the body) sit at x = stem_length.
     float shoulder = 1e9f;
-    for (int i = 0; i <= 200; ++i) shoulder = std::min(shoulder, applePoint(p, float(i) / 200.0f, 0).x);
+    for (int i = 0; i <= 200; ++i)
+        shoulder = std::min(shoulder, applePoint(p, float(i) / 200.0f, 0).x);
     const vec3 shift{p("stem_length") + 0.005f - shoulder, 0, 0};
     Mesh body = closedBody(resolution(s, 2.0f, 6), resolution(s, 2.0f, 8),
                            [&](float u, float th) { return shift + applePoint(p, u, th); });
     parts.add("fruit", body);
     const vec3 cavity = shift + applePoint(p, 0, 0);
-    const std::vector<vec3> stemPath = arcPath({0, 0, 0}, kX, {0, 0.5f, 1}, cavity.x + 0.01f,
-                                               15.0f, 3);
+    const std::vector<vec3> stemPath =
+        arcPath({0, 0, 0}, kX, {0, 0.5f, 1}, cavity.x + 0.01f, 15.0f, 3);
     parts.add("stem", tube(stemPath, std::vector<float>{0.018f, 0.016f, 0.017f, 0.022f},
                            resolution(s, 0.5f, 3)));
     const vec3 basin = shift + applePoint(p, 1, 0);

@@ -137,17 +137,17 @@ void flipWinding(Mesh& mesh);
 /// baseAngle at its base to tipAngle at its tip; its width lies along axis x radial.
 struct PetalSpec {
     float length = 1.0f;
-    float width = 0.5f;     ///< full width at the widest point
-    float widest = 0.6f;    ///< position of the widest point, fraction of the length
-    float tip = 0.0f;       ///< 0 rounded tip .. 1 pointed tip
-    float claw = 0.15f;     ///< width at the base, fraction of the width
+    float width = 0.5f;       ///< full width at the widest point
+    float widest = 0.6f;      ///< position of the widest point, fraction of the length
+    float tip = 0.0f;         ///< 0 rounded tip .. 1 pointed tip
+    float claw = 0.15f;       ///< width at the base, fraction of the width
     float baseAngle = 90.0f;  ///< degrees from `axis` at the base
     float tipAngle = 90.0f;   ///< degrees from `axis` at the tip
     /// Cross curvature: the margins rise toward the inner side (the side of +axis when the
     /// sheet is spread flat) by this fraction of the width; negative curls them outward.
     float cupping = 0.0f;
-    float wave = 0.0f;     ///< margin wave amplitude, fraction of the width
-    float waves = 3.0f;    ///< wave count along each margin
+    float wave = 0.0f;      ///< margin wave amplitude, fraction of the width
+    float waves = 3.0f;     ///< wave count along each margin
     float twistDeg = 0.0f;  ///< twist about the midrib from base to tip
     /// Offset along the sheet's inner normal, fraction of the length (avoids coincident
     /// overlapping petals).
@@ -166,13 +166,17 @@ Mesh sepalStar(int count, float x0, float r0, float length, float width, float b
 float petalHalfWidth(const PetalSpec& spec, float u);
 
 /// Unit vector (0, cos a, sin a): the radial direction at azimuth `a` about +x.
-inline vec3 radialDir(float a) { return {0.0f, std::cos(a), std::sin(a)}; }
+inline vec3 radialDir(float a) {
+    return {0.0f, std::cos(a), std::sin(a)};
+}
 
 /// Rotates `v` about the unit `axis` by `angle` radians (right-hand rule).
 vec3 rotateVec(vec3 v, vec3 axis, float angle);
 
 /// pow of the non-negative part of x (sin(pi) is slightly negative in floats).
-inline float ppow(float x, float e) { return std::pow(std::max(x, 0.0f), e); }
+inline float ppow(float x, float e) {
+    return std::pow(std::max(x, 0.0f), e);
+}
 
 /// Smooth step from 0 (x <= a) to 1 (x >= b).
 float smooth(float a, float b, float x);

@@ -25,9 +25,7 @@ vec3 tint(vec3 color, float t) {
 Mesh gridMesh(const Grid& g, const std::function<vec3(unsigned i, unsigned j)>& point) {
     Mesh m;
     const unsigned colVerts = g.wrap ? g.cols : g.cols + 1;
-    auto isApex = [&](unsigned i) {
-        return (i == 0 && g.apexStart) || (i == g.rows && g.apexEnd);
-    };
+    auto isApex = [&](unsigned i) { return (i == 0 && g.apexStart) || (i == g.rows && g.apexEnd); };
     std::vector<std::uint32_t> rowStart(g.rows + 1);
     for (unsigned i = 0; i <= g.rows; ++i) {
         rowStart[i] = std::uint32_t(m.positions.size());
@@ -141,15 +139,14 @@ Mesh tube(std::span<const vec3> path, std::span<const float> radii, unsigned sid
     for (std::size_t i = 0; i < n; ++i)
         if (radii[i] > 1e-7f) rows.push_back({&frames[i], radii[i]});
     rows.push_back({&frames[n - 1], 0.0f});
-    Mesh m = gridMesh({unsigned(rows.size() - 1), sides, true, true, true},
-                      [&](unsigned i, unsigned j) {
-                          const Row& r = rows[i];
-                          if (r.radius <= 0.0f) return r.frame->centre;
-                          const float a = 2.0f * kPi * float(j) / float(sides);
-                          const vec3 b = glm::cross(r.frame->tangent, r.frame->normal);
-                          return r.frame->centre +
-                                 r.radius * (std::cos(a) * r.frame->normal + std::sin(a) * b);
-                      });
+    Mesh m =
+        gridMesh({unsigned(rows.size() - 1), sides, true, true, true}, [&](unsigned i, unsigned j) {
+            const Row& r = rows[i];
+            if (r.radius <= 0.0f) return r.frame->centre;
+            const float a = 2.0f * kPi * float(j) / float(sides);
+            const vec3 b = glm::cross(r.frame->tangent, r.frame->normal);
+            return r.frame->centre + r.radius * (std::cos(a) * r.frame->normal + std::sin(a) * b);
+        });
     if (signedVolume(m) < 0.0) flipWinding(m);
     return m;
 }
@@ -284,8 +281,8 @@ Mesh sepalStar(int count, float x0, float r0, float length, float width, float b
     for (int k = 0; k < count; ++k) {
         const float az = phase + 2.0f * kPi * float(k) / float(count);
         s.lift = 0.002f * float(k % 2);
-        m.append(petalMesh(s, vec3(x0, 0, 0) + radialDir(az) * r0, {1, 0, 0}, radialDir(az),
-                           rows, cols));
+        m.append(petalMesh(s, vec3(x0, 0, 0) + radialDir(az) * r0, {1, 0, 0}, radialDir(az), rows,
+                           cols));
     }
     return m;
 }

@@ -101,8 +101,8 @@ OrganPrototype buildPod(const FloralPrototypeRequest& req, const Params& p, Rng&
     parts.declare("pod", req.color);
     parts.declare("calyx", kStalkGreen);
     parts.declare("hairs", p.color("hair"));
-    const PodShape shape{p("width"), p("thickness"), p("seed_bump"), p("beak_length"),
-                         p("section_lens"), p.count("seed_count")};
+    const PodShape shape{p("width"),       p("thickness"),    p("seed_bump"),
+                         p("beak_length"), p("section_lens"), p.count("seed_count")};
     const float stalk = std::max(p("stalk_length"), 0.01f);
     const unsigned rows = resolution(s, 3.0f, 4) + 3u * unsigned(shape.seeds);
     const std::vector<vec3> path =
@@ -117,7 +117,8 @@ OrganPrototype buildPod(const FloralPrototypeRequest& req, const Params& p, Rng&
     return parts.finish();
 }
 
-// ---- almond ---------------------------------------------------------------------------------------
+// ---- almond
+// ---------------------------------------------------------------------------------------
 
 FloralFamilyInfo almondInfo() {
     FloralFamilyInfo f;
@@ -133,11 +134,11 @@ FloralFamilyInfo almondInfo() {
     t.push_back(real("width", 0.72f, 0.3f, 1.2f, "Hull height from suture to back (z) / length"));
     t.push_back(real("thickness", 0.6f, 0.2f, 1.2f, "Hull thickness across (y) / length"));
     t.push_back(real("tip", 0.6f, 0.0f, 1.0f, "Pointedness of the far end"));
-    t.push_back(real("asymmetry", 0.1f, 0.0f, 0.4f,
-                     "Straighter ventral (suture) side, more convex back"));
+    t.push_back(
+        real("asymmetry", 0.1f, 0.0f, 0.4f, "Straighter ventral (suture) side, more convex back"));
     t.push_back(real("suture_depth", 0.06f, 0.0f, 0.2f, "Depth of the suture groove"));
-    t.push_back(real("split", 0.0f, 0.0f, 1.0f,
-                     "Hull split: 0 closed, 1 both halves folded fully open"));
+    t.push_back(
+        real("split", 0.0f, 0.0f, 1.0f, "Hull split: 0 closed, 1 both halves folded fully open"));
     addColor(t, "shell", {0.50f, 0.36f, 0.24f}, "Shell");
     t.push_back(real("stem_length", 0.05f, 0.0f, 0.3f, "Stem length / length"));
     return f;
@@ -150,7 +151,8 @@ vec3 drupePoint(float x0, float length, float ry, float rz, float tip, float asy
     const float x = x0 + length * (u < 0.5f ? round : glm::mix(round, u, tip));
     const float env = std::sin(kPi * u);
     const float zc = -asym * rz * env;
-    return {x, ry * env * std::cos(th), zc + rz * env * std::sin(th) * (1.0f + asym * std::sin(th))};
+    return {x, ry * env * std::cos(th),
+            zc + rz * env * std::sin(th) * (1.0f + asym * std::sin(th))};
 }
 
 OrganPrototype buildAlmond(const FloralPrototypeRequest& req, const Params& p, Rng&) {
@@ -180,17 +182,17 @@ OrganPrototype buildAlmond(const FloralPrototypeRequest& req, const Params& p, R
     const unsigned half = std::max(sides / 2, 2u);
     for (int side : {1, -1}) {
         const float a0 = side > 0 ? -0.5f * kPi : 0.5f * kPi;
-        Mesh valve = gridMesh({rows, 2 * (half + 1), true, true, true}, [&](unsigned i,
-                                                                             unsigned j) {
-            const float u = float(i) / float(rows);
-            const bool inner = j > half;
-            const unsigned k = inner ? 2 * half + 1 - j : j;
-            const float th = a0 + kPi * float(k) / float(half);
-            const vec3 q = outer(u, th);
-            if (!inner) return q;
-            const vec3 c = drupePoint(x0, length, 0, 0, tip, asym, u, th);
-            return c + (q - c) * 0.78f;
-        });
+        Mesh valve =
+            gridMesh({rows, 2 * (half + 1), true, true, true}, [&](unsigned i, unsigned j) {
+                const float u = float(i) / float(rows);
+                const bool inner = j > half;
+                const unsigned k = inner ? 2 * half + 1 - j : j;
+                const float th = a0 + kPi * float(k) / float(half);
+                const vec3 q = outer(u, th);
+                if (!inner) return q;
+                const vec3 c = drupePoint(x0, length, 0, 0, tip, asym, u, th);
+                return c + (q - c) * 0.78f;
+            });
         if (signedVolume(valve) < 0.0) flipWinding(valve);
         const vec3 hinge{0, 0, -rz * (1.0f + asym)};
         const float angle = -float(side) * split * 80.0f * kDeg;
@@ -198,16 +200,18 @@ OrganPrototype buildAlmond(const FloralPrototypeRequest& req, const Params& p, R
         parts.add("hull", valve);
     }
     parts.add("shell", closedBody(rows, sides, [&](float u, float th) {
-        const vec3 c = drupePoint(x0 + 0.06f * length, 0.86f * length, 0, 0, 0.8f, asym, u, th);
-        const vec3 q = drupePoint(x0 + 0.06f * length, 0.86f * length, 0.68f * ry, 0.72f * rz,
-                                  0.8f, asym, u, th);
-        const float pits = 1.0f + 0.025f * std::sin(23.0f * u) * std::sin(7.0f * th);
-        return c + (q - c) * pits;
-    }));
+                  const vec3 c =
+                      drupePoint(x0 + 0.06f * length, 0.86f * length, 0, 0, 0.8f, asym, u, th);
+                  const vec3 q = drupePoint(x0 + 0.06f * length, 0.86f * length, 0.68f * ry,
+                                            0.72f * rz, 0.8f, asym, u, th);
+                  const float pits = 1.0f + 0.025f * std::sin(23.0f * u) * std::sin(7.0f * th);
+                  return c + (q - c) * pits;
+              }));
     return parts.finish();
 }
 
-// ---- walnut ---------------------------------------------------------------------------------------
+// ---- walnut
+// ---------------------------------------------------------------------------------------
 
 FloralFamilyInfo walnutInfo() {
     FloralFamilyInfo f;
@@ -231,20 +235,23 @@ OrganPrototype buildWalnut(const FloralPrototypeRequest& req, const Params& p, R
     parts.declare("hull", req.color);
     parts.declare("stem", {0.36f, 0.36f, 0.20f});
     const float length = p("aspect"), x0 = std::max(p("stem_length"), 0.02f), tip = p("tip");
-    parts.add("hull", closedBody(resolution(s, 2.0f, 4), resolution(s, 2.0f, 6),
-                                 [&](float u, float th) {
-        const float phi = kPi * u;
-        const float e = (1.0f - u) / 0.08f;
-        const float x = x0 + 0.5f * length * (1.0f - std::cos(phi)) + tip * length * std::exp(-e * e) +
-                        0.02f * std::exp(-(u / 0.1f) * (u / 0.1f));
-        const float r = 0.5f * std::sin(phi) * (1.0f - 0.06f * std::sin(2.0f * th) * std::sin(2.0f * th));
-        return vec3(x, 0, 0) + r * radialDir(th);
-    }));
+    parts.add(
+        "hull", closedBody(resolution(s, 2.0f, 4), resolution(s, 2.0f, 6), [&](float u, float th) {
+            const float phi = kPi * u;
+            const float e = (1.0f - u) / 0.08f;
+            const float x = x0 + 0.5f * length * (1.0f - std::cos(phi)) +
+                            tip * length * std::exp(-e * e) +
+                            0.02f * std::exp(-(u / 0.1f) * (u / 0.1f));
+            const float r =
+                0.5f * std::sin(phi) * (1.0f - 0.06f * std::sin(2.0f * th) * std::sin(2.0f * th));
+            return vec3(x, 0, 0) + r * radialDir(th);
+        }));
     parts.add("stem", tube({0, 0, 0}, {x0 + 0.04f, 0, 0}, 0.04f, 0.05f, resolution(s, 0.5f, 3)));
     return parts.finish();
 }
 
-// ---- olive ----------------------------------------------------------------------------------------
+// ---- olive
+// ----------------------------------------------------------------------------------------
 
 FloralFamilyInfo oliveInfo() {
     FloralFamilyInfo f;
@@ -269,10 +276,10 @@ OrganPrototype buildOlive(const FloralPrototypeRequest& req, const Params& p, Rn
     parts.declare("fruit", req.color);
     parts.declare("stem", {0.40f, 0.42f, 0.22f});
     const float length = p("aspect"), x0 = std::max(p("stem_length"), 0.02f);
-    parts.add("fruit", closedBody(resolution(s, 2.0f, 4), resolution(s, 2.0f, 6),
-                                  [&](float u, float th) {
-        return drupePoint(x0, length, 0.5f, 0.5f, p("tip"), p("asymmetry"), u, th);
-    }));
+    parts.add("fruit",
+              closedBody(resolution(s, 2.0f, 4), resolution(s, 2.0f, 6), [&](float u, float th) {
+                  return drupePoint(x0, length, 0.5f, 0.5f, p("tip"), p("asymmetry"), u, th);
+              }));
     parts.add("stem", tube({0, 0, 0}, {x0 + 0.03f, 0, 0}, 0.025f, 0.035f, resolution(s, 0.5f, 3)));
     return parts.finish();
 }
@@ -306,7 +313,8 @@ OrganPrototype buildPistachio(const FloralPrototypeRequest& req, const Params& p
     const float len = p("drupe_length"), dr = 0.5f * len / p("drupe_aspect");
     const float half = 0.5f * p("cluster_width");
     const float axisEnd = 1.0f - len;
-    parts.add("rachis", tube({0, 0, 0}, {axisEnd, 0, 0}, 0.014f, 0.008f, resolution(s, 0.5f, 3), 2));
+    parts.add("rachis",
+              tube({0, 0, 0}, {axisEnd, 0, 0}, 0.014f, 0.008f, resolution(s, 0.5f, 3), 2));
     // Branches spiral around the rachis, longer near its base.
     struct Branch {
         vec3 base, dir;
@@ -326,7 +334,8 @@ OrganPrototype buildPistachio(const FloralPrototypeRequest& req, const Params& p
     for (int k = 0; k < n; ++k) {
         const Branch& arm = arms[std::size_t(k) % arms.size()];
         const int slot = k / int(arms.size());
-        const float f = 0.3f + 0.7f * std::fmod(0.618034f * float(slot) + 0.2f * rng.uniform01(), 1.0f);
+        const float f =
+            0.3f + 0.7f * std::fmod(0.618034f * float(slot) + 0.2f * rng.uniform01(), 1.0f);
         const vec3 at = arm.base + arm.dir * (arm.length * f);
         const float az = rng.uniform(0.0f, 2.0f * kPi);
         const vec3 side = glm::normalize(glm::cross(arm.dir, radialDir(az)));

@@ -617,13 +617,19 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
         throw Error("time step must be a finite number of days >= 0",
                     {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
     for (unsigned id : plantIDs) impl_->plant(id);  // all exist, or nothing happens
+    std::size_t done = 0;
     for (unsigned id : plantIDs) {
         std::vector<ObjectID> deletes;
         growPlant(*impl_, impl_->plant(id), days, deletes);
         for (ObjectID o : deletes)
             if (context_->doesObjectExist(o)) context_->deleteObject(o);
         updateGeometry(id);
+        if (impl_->progress) impl_->progress("growing", double(++done) / double(plantIDs.size()));
     }
+}
+
+void PlantArchitecture::setProgressCallback(ProgressCallback callback) {
+    impl_->progress = std::move(callback);
 }
 
 void PlantArchitecture::setPlantPhenologicalThresholds(unsigned plantID,

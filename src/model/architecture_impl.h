@@ -35,6 +35,7 @@ struct PlantArchitecture::Impl {
     std::map<std::string, PhytomerCallbackFunction> callbackFunctions;
     PrototypeCache cache;
     PhenologyParameters defaultPhenology;
+    ProgressCallback progress;
     std::shared_ptr<const SpeciesModel> species;  ///< the loaded species, if any
 
     /// The prototype a leaf uses (built and cached on first use).

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "model/architecture_impl.h"
+#include "plantarch/OrganLibrary.h"
 #include "plantarch/OrganPrototypes.h"
 #include "plantarch/Error.h"
 
@@ -171,6 +172,16 @@ void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
          {std::pair{"flower_prototype_function", ph.inflorescence.flower_prototype_function},
           std::pair{"fruit_prototype_function", ph.inflorescence.fruit_prototype_function}})
         if (isOBJPrototypeName(name)) checkFile(name, std::string("inflorescence.") + field);
+        else if (isFloralFamily(name)) {
+            const bool fruit = std::string(field).rfind("fruit", 0) == 0;
+            try {
+                validateFloralParameters(name, fruit ? ph.inflorescence.fruit_prototype_parameters
+                                                     : ph.inflorescence.flower_prototype_parameters);
+            } catch (const Error& e) {
+                throw e.withParameterPrefix(label + ".phytomer.inflorescence." +
+                                            (fruit ? "fruit" : "flower") + "_prototype_parameters");
+            }
+        }
         else if (!name.empty() && !floralPrototypes.count(name))
             throw Error("unknown flower/fruit prototype function",
                         {.parameter = label + ".phytomer.inflorescence." + field, .value = name,
