@@ -332,6 +332,15 @@ struct Grower {
         plant.senescenceTime = senesce >= 0.0f ? now + senesce : -1.0;
         push(plant.senescenceTime, kSenescence, 0);
         const double flowering = floweringTime();
+        // A dormant floral bud still waiting flowers this season.
+        auto awaken = [&](FloralBud& fb, unsigned shoot, unsigned node, unsigned petiole,
+                          unsigned index, bool terminal) {
+            if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
+                fb.nextTime < 0.0 && flowering >= 0.0) {
+                fb.nextTime = flowering;
+                push(fb.nextTime, kFloral, shoot, node, petiole, index, terminal);
+            }
+        };
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
             const ShootParameters& t = typeOf(s.type);
@@ -351,23 +360,11 @@ struct Grower {
                             push(bud.breakTime, kBudBreak, s.id, k, j, b);
                         }
                     }
-                    for (unsigned b = 0; b < pt.floralBuds.size(); ++b) {
-                        FloralBud& fb = pt.floralBuds[b];
-                        if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
-                            fb.nextTime < 0.0 && flowering >= 0.0) {
-                            fb.nextTime = flowering;
-                            push(fb.nextTime, kFloral, s.id, k, j, b);
-                        }
-                    }
+                    for (unsigned b = 0; b < pt.floralBuds.size(); ++b)
+                        awaken(pt.floralBuds[b], s.id, k, j, b, false);
                 }
-            for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i) {
-                FloralBud& fb = s.terminalFloralBuds[i];
-                if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
-                    fb.nextTime < 0.0 && flowering >= 0.0) {
-                    fb.nextTime = flowering;
-                    push(fb.nextTime, kFloral, s.id, 0, 0, i, true);
-                }
-            }
+            for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i)
+                awaken(s.terminalFloralBuds[i], s.id, 0, 0, i, true);
         }
     }
 
