@@ -80,12 +80,25 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     auto a = std::make_shared<BuildArgs>();
     app.add_option("species", a->species, "Library species name or species file (.xml)")
         ->required();
-    app.add_option("--age", a->age, "Plant age in days")->required()->check(CLI::NonNegativeNumber);
+    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
+        ->required()
+        ->check([](const std::string& text) -> std::string {
+            try {
+                const double v = std::stod(text);
+                if (v >= 0.0 && v <= 100000.0) return "";
+            } catch (const std::exception&) {
+            }
+            return "age = " + text + ": not a number of days (valid: 0 to 100000)";
+        });
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     return [a, &global]() {
         for (const std::string& out : a->outputs) {
+            const std::string ext = std::filesystem::path(out).extension().string();
+            if (ext != ".obj" && ext != ".ply" && ext != ".png")
+                throw Error("unknown output format",
+                            {.file = out, .value = ext, .validRange = sceneFileExtensions()});
             const auto dir = std::filesystem::path(out).parent_path();
             std::error_code ec;
             if (!dir.empty()) std::filesystem::create_directories(dir, ec);

@@ -1,0 +1,92 @@
+// The build and demo subcommands as a user runs them: outputs, summaries, exit codes.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+struct CliResult {
+    int status;
+    std::string out;  // stdout and stderr together
+};
+
+CliResult run(const std::string& args) {
+    const std::string cmd = std::string(PLANTARCH_CLI) + " " + args + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf{};
+    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string tmp(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / "plantarch-cli-build";
+    std::filesystem::remove_all(dir / name);
+    return (dir / name).string();
+}
+
+int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+TEST(CliBuild, BuildsTheBeanWithASummary) {
+    const std::string dir = tmp("bean");
+    const CliResult r = run("build bean --age 30 -o " + dir + "/b.obj -o " + dir + "/b.ply");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("bean at 30 days (seed 42)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("leaves"), std::string::npos);
+    EXPECT_GT(std::filesystem::file_size(dir + "/b.obj"), 10000u);
+    EXPECT_GT(std::filesystem::file_size(dir + "/b.ply"), 10000u);
+}
+
+TEST(CliBuild, StatsIsOneJSONObjectAndSeedsDiffer) {
+    const CliResult a = run("--seed 3 build bean --age 25 -o " + tmp("s1") + "/x.ply --stats");
+    const CliResult b = run("--seed 3 build bean --age 25 -o " + tmp("s2") + "/x.ply --stats");
+    const CliResult c = run("--seed 4 build bean --age 25 -o " + tmp("s3") + "/x.ply --stats");
+    ASSERT_EQ(a.status, 0) << a.out;
+    EXPECT_EQ(lines(a.out), 1);
+    EXPECT_EQ(a.out.front(), '{');
+    for (const char* key : {"\"species\": \"bean\"", "\"age\": 25", "\"seed\": 3", "\"height\"",
+                            "\"leaves\"", "\"leaf_area\"", "\"shoots\"", "\"flowers\"", "\"fruit\"",
+                            "\"triangles\""})
+        EXPECT_NE(a.out.find(key), std::string::npos) << key;
+    EXPECT_EQ(a.out, b.out);  // same seed, same plant
+    EXPECT_NE(a.out, c.out);
+}
+
+TEST(CliBuild, BadInputIsOneLineAndStatus2) {
+    for (const std::string args :
+         {"build nosuch --age 10 -o /tmp/x.obj", "build bean --age -3 -o /tmp/x.obj",
+          "build bean --age 10 -o /tmp/x.stl", "build bean --age 10 -D foo -o /tmp/x.obj",
+          "build bean --age 10 -D trunk_height=1 -o /tmp/x.obj", "build bean -o /tmp/x.obj",
+          "nosuchcommand"}) {
+        const CliResult r = run(args);
+        EXPECT_EQ(r.status, 2) << args << ": " << r.out;
+        EXPECT_EQ(lines(r.out), 1) << args << ": " << r.out;
+    }
+}
+
+TEST(CliBuild, DemoWritesObjAndPng) {
+    const std::string dir = tmp("demo");
+    const CliResult r = run("demo -o " + dir);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/demo.obj"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/demo.png"));
+    EXPECT_NE(r.out.find("Demo plant"), std::string::npos);
+}
+
+TEST(CliBuild, VersionAndHelp) {
+    const CliResult v = run("--version");
+    EXPECT_EQ(v.status, 0);
+    EXPECT_NE(v.out.find("plantarch 0.1.0"), std::string::npos);
+    const CliResult h = run("--help");
+    EXPECT_EQ(h.status, 0);
+    for (const char* sub : {"demo", "build", "render", "list", "info", "validate"})
+        EXPECT_NE(h.out.find(sub), std::string::npos) << sub;
+}
