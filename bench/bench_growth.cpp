@@ -77,3 +77,20 @@ static void BM_Grow60Days_TenthDayCalls(benchmark::State& s) { growIn(s, 600); }
 BENCHMARK(BM_Grow60Days_OneCall)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Grow60Days_DailyCalls)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Grow60Days_TenthDayCalls)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// The library bean grown to 50 days (load, build, grow, tessellate), for comparison with
+// other tools' per-plant build times.
+static void BM_LibraryBean50Days(benchmark::State& state) {
+    std::size_t triangles = 0, leaves = 0;
+    for (auto _ : state) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f);
+        triangles = ctx.triangleCount();
+        leaves = arch.getPlantLeafCount(p);
+    }
+    state.counters["triangles"] = double(triangles);
+    state.counters["leaves"] = double(leaves);
+}
+BENCHMARK(BM_LibraryBean50Days)->Unit(benchmark::kMillisecond);
