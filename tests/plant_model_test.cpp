@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -507,4 +508,23 @@ TEST(PlantModel, SameSeedSameGeometry) {
     };
     EXPECT_EQ(build(7), build(7));
     EXPECT_NE(build(7), build(8));
+}
+
+TEST(PlantModel, LeavesShareAFewShapeVariantsOrAreAllUnique) {
+    auto distinctShapes = [](unsigned variants) {
+        ShootParameters p = straightShoot();
+        p.phytomer_parameters.leaf.prototype.unique_prototypes = variants;
+        p.phytomer_parameters.leaf.prototype.leaf_aspect_ratio = RandomFloat::uniform(0.3f, 0.7f);
+        p.phytomer_parameters.leaf.prototype.subdivisions = 3;
+        Fixture f(p, 20);
+        std::set<double> areas;  // a leaf's area divided by its scale^2 identifies its shape
+        for (const Phytomer& ph : f.shoot().phytomers) {
+            const LeafOrgan& l = ph.petioles[0].leaves[0];
+            areas.insert(std::round(f.ctx.objectArea(l.objects[0]) / (l.scale * l.scale) * 1e5));
+        }
+        return areas.size();
+    };
+    EXPECT_EQ(distinctShapes(1), 1u);
+    EXPECT_EQ(distinctShapes(3), 3u);  // 20 leaves over 3 variants: all used (deterministic for the fixed seed)
+    EXPECT_EQ(distinctShapes(0), 20u);
 }

@@ -205,6 +205,9 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
         l.yaw = rotated ? lp.yaw.sample(plant.rng) : 0.0f;
         l.roll = rotated ? lp.roll.sample(plant.rng) : 0.0f;
         l.leafID = plant.nextLeafID++;
+        // Which of the prototype's shape variants this leaf wears (0 = every leaf unique).
+        const unsigned variants = lp.prototype.unique_prototypes;
+        l.variant = variants > 1 ? plant.rng.nextU32() % variants : 0;
         pt.leaves.push_back(l);
     };
     if (n <= 1) {
