@@ -116,6 +116,21 @@ public:
     /// against their ranges.
     unsigned buildPlantInstanceFromLibrary(const vec3& base_position, float age,
                                            const std::map<std::string, float>& build_parameters = {});
+    /// A canopy of the loaded species on a grid of `plant_count` (x, y) plants `plant_spacing`
+    /// apart (m), centred on `canopy_center`. Each position germinates with probability
+    /// `germination_rate`. Plants are grown in parallel (OpenMP), each from its own random
+    /// stream, and added to the Context in a fixed order: the same seed gives the same bytes
+    /// for any thread count. Returns the IDs of the plants made.
+    std::vector<unsigned> buildPlantCanopyFromLibrary(
+        const vec3& canopy_center, const vec2& plant_spacing, const glm::ivec2& plant_count,
+        float age, float germination_rate = 1.0f,
+        const std::map<std::string, float>& build_parameters = {});
+    /// A canopy of `plant_count` plants scattered uniformly at random over a rectangle of
+    /// `canopy_extent` (x, y) metres centred on `canopy_center`.
+    std::vector<unsigned> buildPlantCanopyFromLibrary(
+        const vec3& canopy_center, const vec2& canopy_extent, unsigned plant_count, float age,
+        float germination_rate = 1.0f, const std::map<std::string, float>& build_parameters = {});
+
     /// Current parameters of one shoot type, or of all of them.
     ShootParameters getCurrentShootParameters(const std::string& shoot_type_label) const;
     std::map<std::string, ShootParameters> getCurrentShootParameters() const;
@@ -250,6 +265,9 @@ public:
     struct Impl;  ///< internal; public so the implementation files can share it
 
 private:
+    std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
+                                        const std::map<std::string, float>& build_parameters);
+
     Context* context_;
     std::uint64_t seed_ = 42;
     std::unique_ptr<Impl> impl_;

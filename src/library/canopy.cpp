@@ -1,0 +1,190 @@
+// Canopies: many plants of the loaded species, grown in parallel and merged in plant order.
+//
+// Each thread owns a worker (its own Context and PlantArchitecture with the same species,
+// functions and seed) so nothing is shared while plants grow. A plant's numbers depend only
+// on its ID (its random stream is Rng::forPlant(seed, ID)) and prototype variants are seeded
+// from their parameters, so which worker grows a plant does not matter. The merge then copies
+// every plant's objects into the caller's Context in plant order and object order, giving the
+// same IDs and bytes whatever the thread count.
+
+#include <cmath>
+#include <algorithm>
+#include <memory>
+
+#include <omp.h>
+
+#include "model/architecture_impl.h"
+#include "plantarch/Error.h"
+#include "plantarch/SpeciesIO.h"
+
+namespace plantarch {
+
+namespace {
+
+constexpr std::uint64_t kCanopyStream = 0x63616e6f7079ULL;  // scene-level draws ("canopy")
+
+template <class F>
+void forEachObjectID(PlantInstance& p, F&& f) {
+    for (Shoot& s : p.shoots) {
+        auto floral = [&](FloralBud& fb) {
+            f(fb.peduncleObject);
+            for (FlowerOrgan& fl : fb.flowers)
+                for (ObjectID& id : fl.objects) f(id);
+        };
+        for (Phytomer& ph : s.phytomers) {
+            f(ph.internode.object);
+            for (Petiole& pt : ph.petioles) {
+                f(pt.object);
+                for (LeafOrgan& l : pt.leaves)
+                    for (ObjectID& id : l.objects) f(id);
+                for (FloralBud& fb : pt.floralBuds) floral(fb);
+            }
+        }
+        for (FloralBud& fb : s.terminalFloralBuds) floral(fb);
+    }
+}
+
+void checkCanopyArguments(float age, float germination) {
+    if (!(age >= 0.0f) || !std::isfinite(age))
+        throw Error("invalid plant age", {.parameter = "age", .value = std::to_string(age),
+                                          .validRange = ">= 0 days"});
+    if (!(germination >= 0.0f && germination <= 1.0f))
+        throw Error("germination rate out of range",
+                    {.parameter = "germination_rate", .value = std::to_string(germination),
+                     .validRange = "0 to 1"});
+}
+
+}  // namespace
+
+std::vector<unsigned> PlantArchitecture::buildPlantsAt(
+    const std::vector<vec3>& positions, float age,
+    const std::map<std::string, float>& buildParameters) {
+    if (!impl_->species)
+        throw Error("no species loaded: call loadPlantModelFromLibrary first",
+                    {.parameter = "species", .validRange = "one of the library species"});
+    resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
+    const unsigned first = impl_->nextPlantID;
+    const int n = int(positions.size());
+    const int threads = std::max(1, std::min(omp_get_max_threads(), n));
+
+    struct Worker {
+        Context ctx;
+        std::unique_ptr<PlantArchitecture> arch;
+    };
+    std::vector<Worker> workers(static_cast<std::size_t>(threads));
+    for (Worker& w : workers) {
+        w.arch = std::make_unique<PlantArchitecture>(&w.ctx);
+        w.arch->seed_ = seed_;
+        Impl& wi = *w.arch->impl_;
+        wi.shootTypes = impl_->shootTypes;
+        wi.species = impl_->species;
+        wi.defaultPhenology = impl_->defaultPhenology;
+        wi.leafPrototypes = impl_->leafPrototypes;
+        wi.floralPrototypes = impl_->floralPrototypes;
+        wi.creationFunctions = impl_->creationFunctions;
+        wi.callbackFunctions = impl_->callbackFunctions;
+    }
+
+    // Grow every plant in a worker; remember where each one is.
+    std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
+    std::vector<std::string> errors(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (int i = 0; i < n; ++i) {
+        const int t = omp_get_thread_num();
+        PlantArchitecture& w = *workers[std::size_t(t)].arch;
+        try {
+            w.impl_->nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
+            w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
+            builtBy[std::size_t(i)] = t;
+        } catch (const std::exception& e) {
+            errors[std::size_t(i)] = e.what();
+        }
+    }
+    for (int i = 0; i < n; ++i)
+        if (!errors[std::size_t(i)].empty())
+            throw Error("building canopy plant " + std::to_string(i) + " failed: " +
+                        errors[std::size_t(i)]);
+
+    // Merge in plant order: copy objects (ascending worker IDs) and remap the state's IDs.
+    std::vector<unsigned> ids;
+    for (int i = 0; i < n; ++i) {
+        PlantArchitecture& w = *workers[std::size_t(builtBy[std::size_t(i)])].arch;
+        const unsigned id = first + unsigned(i);
+        PlantInstance plant = std::move(w.impl_->plant(id));
+        Context& wctx = workers[std::size_t(builtBy[std::size_t(i)])].ctx;
+        std::vector<ObjectID> objects;
+        forEachObjectID(plant, [&](ObjectID& o) {
+            if (o != kNoObject) objects.push_back(o);
+        });
+        std::sort(objects.begin(), objects.end());
+        std::map<ObjectID, ObjectID> remap;
+        for (ObjectID o : objects) {
+            const ObjectView v = wctx.object(o);
+            const ObjectID copy = context_->addObject(v.positions, v.uvs, v.indices,
+                                                      context_->addMaterial(wctx.material(v.material)));
+            for (const std::string& label : wctx.objectDataLabels())
+                if (auto value = wctx.objectData(o, label)) context_->setObjectData(copy, label, *value);
+            remap[o] = copy;
+        }
+        forEachObjectID(plant, [&](ObjectID& o) {
+            if (o != kNoObject) o = remap.at(o);
+        });
+        w.impl_->plants.erase(id);
+        impl_->plants.emplace(id, std::move(plant));
+        ids.push_back(id);
+    }
+    impl_->nextPlantID = first + unsigned(n);
+    return ids;
+}
+
+std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(
+    const vec3& center, const vec2& spacing, const glm::ivec2& count, float age,
+    float germination, const std::map<std::string, float>& buildParameters) {
+    checkCanopyArguments(age, germination);
+    if (count.x < 1 || count.y < 1 || std::int64_t(count.x) * count.y > 1000000)
+        throw Error("plant count out of range",
+                    {.parameter = "plant_count",
+                     .value = std::to_string(count.x) + " x " + std::to_string(count.y),
+                     .validRange = "at least 1 x 1, at most 1,000,000 plants"});
+    if (!(spacing.x > 0.0f && spacing.y > 0.0f) || !std::isfinite(spacing.x) ||
+        !std::isfinite(spacing.y))
+        throw Error("plant spacing must be positive",
+                    {.parameter = "plant_spacing",
+                     .value = std::to_string(spacing.x) + " x " + std::to_string(spacing.y),
+                     .validRange = "> 0 m in x and y"});
+    Rng scene(seed_, kCanopyStream);
+    std::vector<vec3> positions;
+    for (int j = 0; j < count.y; ++j)
+        for (int i = 0; i < count.x; ++i) {
+            const bool germinates = scene.chance(germination);  // one draw per position
+            if (!germinates) continue;
+            positions.push_back(center + vec3((float(i) - 0.5f * float(count.x - 1)) * spacing.x,
+                                              (float(j) - 0.5f * float(count.y - 1)) * spacing.y,
+                                              0.0f));
+        }
+    return buildPlantsAt(positions, age, buildParameters);
+}
+
+std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(
+    const vec3& center, const vec2& extent, unsigned count, float age, float germination,
+    const std::map<std::string, float>& buildParameters) {
+    checkCanopyArguments(age, germination);
+    if (count < 1 || count > 1000000)
+        throw Error("plant count out of range", {.parameter = "plant_count",
+                                                 .value = std::to_string(count),
+                                                 .validRange = "1 to 1000000"});
+    if (!(extent.x >= 0.0f && extent.y >= 0.0f) || !std::isfinite(extent.x) ||
+        !std::isfinite(extent.y))
+        throw Error("canopy extent must not be negative", {.parameter = "canopy_extent",
+                                                           .validRange = ">= 0 m in x and y"});
+    Rng scene(seed_, kCanopyStream);
+    std::vector<vec3> positions;
+    for (unsigned k = 0; k < count; ++k) {
+        const float x = (scene.uniform01() - 0.5f) * extent.x;
+        const float y = (scene.uniform01() - 0.5f) * extent.y;
+        if (scene.chance(germination)) positions.push_back(center + vec3(x, y, 0.0f));
+    }
+    return buildPlantsAt(positions, age, buildParameters);
+}
+
+}  // namespace plantarch
