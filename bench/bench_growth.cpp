@@ -3,6 +3,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_util.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
@@ -94,3 +95,20 @@ static void BM_LibraryBean50Days(benchmark::State& state) {
     state.counters["leaves"] = double(leaves);
 }
 BENCHMARK(BM_LibraryBean50Days)->Unit(benchmark::kMillisecond);
+
+// A 10 x 10 canopy of library beans at 40 days, grown in parallel on all cores.
+static void BM_BeanCanopy10x10At40Days(benchmark::State& state) {
+    std::size_t triangles = 0;
+    for (auto _ : state) {
+        const std::size_t before = plantarch::bench::residentBytes();
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f, 0.3f), glm::ivec2(10, 10), 40.0f);
+        triangles = ctx.triangleCount();
+        state.counters["rss_growth_MiB"] =
+            double(plantarch::bench::residentBytes() - before) / (1024.0 * 1024.0);
+    }
+    state.counters["triangles"] = double(triangles);
+}
+BENCHMARK(BM_BeanCanopy10x10At40Days)->Unit(benchmark::kMillisecond)->UseRealTime();

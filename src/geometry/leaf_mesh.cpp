@@ -304,7 +304,14 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
             mesh.uvs[i] = traced.uvAt(vec2(mesh.positions[i]));
         deformation.blade_width = 0.0f;  // the traced width
     } else {
-        const std::vector<vec2> outline = leafOutline(leaf.outline);
+        // The outline is kept as close to the curve as the mesh resolution can show: about
+        // a twentieth of a row's spacing (never coarser than 1 % of the length), so a coarse
+        // leaf does not carry hundreds of margin vertices into every copy.
+        LeafOutlineParams params = leaf.outline;
+        const double rowSpacing = 1.0 / std::max(1u, leaf.subdivisions);
+        params.tolerance = float(std::clamp(0.05 * rowSpacing * rowSpacing * 4.0,
+                                            double(params.tolerance), 0.01));
+        const std::vector<vec2> outline = leafOutline(params);
         attach = outline.front();
         mesh = meshLeafOutline(outline, options);
         // Texture space is the blade's bounding box of width leaf_aspect_ratio.

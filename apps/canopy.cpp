@@ -1,0 +1,97 @@
+// plantarch canopy SPECIES --count NxM --spacing DXxDY --age D [--germination G] -o FILE
+// Builds a grid canopy of a species, in parallel, and writes it (OBJ, PLY or PNG).
+
+#include <cstdio>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::cli {
+
+namespace {
+
+// "10x12" or "0.3x0.25": two positive numbers joined by 'x'.
+template <class T>
+std::pair<T, T> parsePair(const std::string& text, const char* option) {
+    const auto x = text.find('x');
+    try {
+        if (x != std::string::npos) {
+            std::size_t a = 0, b = 0;
+            const double first = std::stod(text.substr(0, x), &a);
+            const double second = std::stod(text.substr(x + 1), &b);
+            if (a == x && b == text.size() - x - 1 && first > 0 && second > 0)
+                return {T(first), T(second)};
+        }
+    } catch (const std::exception&) {
+    }
+    throw Error("expected two positive numbers joined by 'x'",
+                {.parameter = option, .value = text, .validRange = "e.g. 10x10 or 0.3x0.3"});
+}
+
+struct CanopyArgs {
+    std::string species, count = "10x10", spacing = "0.3x0.3";
+    float age = -1.0f, germination = 1.0f;
+    std::vector<std::string> outputs;
+    bool stats = false;
+};
+
+std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
+    app.description("Build a grid canopy of a species grown to an age and write it");
+    auto a = std::make_shared<CanopyArgs>();
+    app.add_option("species", a->species, "Library species name or species file (.xml)")->required();
+    app.add_option("--count", a->count, "Plants along x and y, e.g. 10x10");
+    app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
+    app.add_option("--age", a->age, "Plant age in days")->required();
+    app.add_option("--germination", a->germination, "Probability each position has a plant (0 to 1)");
+    app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
+    app.add_flag("--stats", a->stats, "Print a JSON summary of the canopy");
+    return [a, &global]() {
+        const auto [nx, ny] = parsePair<int>(a->count, "--count");
+        const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
+        for (const std::string& out : a->outputs) {
+            const std::string ext = std::filesystem::path(out).extension().string();
+            if (ext != ".obj" && ext != ".ply" && ext != ".png")
+                throw Error("unknown output format",
+                            {.file = out, .value = ext, .validRange = sceneFileExtensions()});
+            const auto dir = std::filesystem::path(out).parent_path();
+            std::error_code ec;
+            if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+            if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
+        }
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(global.seed);
+        arch.loadPlantModelFromLibrary(a->species);
+        const auto plants = arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy),
+                                                             glm::ivec2(nx, ny), a->age,
+                                                             a->germination);
+        for (const std::string& out : a->outputs) writeSceneFile(ctx, out, global);
+        std::size_t leaves = 0;
+        double area = 0.0;
+        for (unsigned p : plants) {
+            leaves += arch.getPlantLeafCount(p);
+            area += arch.getPlantLeafArea(p);
+        }
+        const std::string line =
+            a->stats ? fmt::format("{{\"species\": \"{}\", \"plants\": {}, \"age\": {}, \"seed\": {}, "
+                                   "\"leaves\": {}, \"leaf_area\": {:.4f}, \"triangles\": {}}}\n",
+                                   arch.getCurrentPlantModel(), plants.size(), a->age, global.seed,
+                                   leaves, area, ctx.triangleCount())
+                     : fmt::format("{} canopy: {} plants of {}x{} positions, {} days (seed {}): {} "
+                                   "leaves, {:.3f} m^2 leaf area, {} triangles.\n",
+                                   arch.getCurrentPlantModel(), plants.size(), nx, ny, a->age,
+                                   global.seed, leaves, area, ctx.triangleCount());
+        std::printf("%s", line.c_str());
+        return 0;
+    };
+}
+
+}  // namespace
+
+PLANTARCH_REGISTER_COMMAND(canopy, "canopy", 30, setupCanopy);
+
+}  // namespace plantarch::cli
