@@ -90,3 +90,19 @@ TEST(CliBuild, VersionAndHelp) {
     for (const char* sub : {"demo", "build", "render", "list", "info", "validate"})
         EXPECT_NE(h.out.find(sub), std::string::npos) << sub;
 }
+
+TEST(CliBuild, CanopyCommand) {
+    const std::string dir = tmp("canopy");
+    const CliResult r = run("canopy bean --count 3x2 --spacing 0.3x0.4 --age 15 -o " + dir +
+                            "/c.ply --stats");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("\"plants\": 6"), std::string::npos) << r.out;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/c.ply"));
+    for (const std::string args : {"canopy bean --count 3 --age 5 -o /tmp/c.ply",
+                                   "canopy bean --count 2x2 --spacing 0x1 --age 5 -o /tmp/c.ply",
+                                   "canopy bean --count 2x2 --germination 2 --age 5 -o /tmp/c.ply"}) {
+        const CliResult bad = run(args);
+        EXPECT_EQ(bad.status, 2) << args << ": " << bad.out;
+        EXPECT_EQ(lines(bad.out), 1) << args << ": " << bad.out;
+    }
+}
