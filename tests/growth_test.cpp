@@ -578,3 +578,25 @@ TEST(Growth, ProgressCallbackReportsEachPlant) {
     g.arch.advanceTime(5.0);
     EXPECT_EQ(fractions, (std::vector<double>{0.25, 0.5, 0.75, 1.0}));
 }
+
+TEST(Growth, WithNoFlowerStagesFruitFollowDormancyBreak) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 3;
+    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+    s.flower_bud_break_probability = 1.0f;
+    s.fruit_set_probability = 1.0f;
+    Garden g;
+    PhenologyParameters ph;
+    ph.time_to_flower_initiation = -1;
+    ph.time_to_flower_opening = -1;
+    ph.time_to_fruit_set = 12;
+    ph.time_to_fruit_maturity = 8;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(11.9);
+    EXPECT_TRUE(g.arch.getPlantFruitObjectIDs(p).empty());
+    EXPECT_TRUE(g.arch.getPlantFlowerObjectIDs(p).empty());
+    g.arch.advanceTime(0.1);  // day 12: fruit, never a flower
+    EXPECT_FALSE(g.arch.getPlantFruitObjectIDs(p).empty());
+    EXPECT_TRUE(g.arch.getPlantFlowerObjectIDs(p).empty());
+}

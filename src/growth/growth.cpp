@@ -109,6 +109,8 @@ struct Grower {
             return plant.dormancyBreakTime + ph.time_to_flower_initiation;
         if (ph.time_to_flower_opening >= 0.0f)
             return plant.dormancyBreakTime + ph.time_to_flower_opening;
+        // No flower stages at all: fruit follow dormancy break by time_to_fruit_set.
+        if (ph.time_to_fruit_set >= 0.0f) return plant.dormancyBreakTime + ph.time_to_fruit_set;
         return -1.0;
     }
 
@@ -274,7 +276,9 @@ struct Grower {
                 fb.state = BudState::Broken;
                 s.flowering = true;
                 if (plant.stage == PhenologyStage::Vegetative) plant.stage = PhenologyStage::Reproductive;
-                if (ph.time_to_flower_initiation >= 0.0f) {
+                if (ph.time_to_flower_initiation < 0.0f && ph.time_to_flower_opening < 0.0f) {
+                    setFruit(fb, t, now);  // no flower stages: the bud sets fruit directly
+                } else if (ph.time_to_flower_initiation >= 0.0f) {
                     fb.stage = FloralStage::FlowerClosed;
                     fb.nextTime = next(ph.time_to_flower_opening >= 0.0f ? ph.time_to_flower_opening
                                                                          : ph.time_to_fruit_set);

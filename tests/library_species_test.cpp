@@ -1,0 +1,49 @@
+// Every species file in the library: it loads, and a plant built at the youngest, usual and
+// oldest recommended ages is sane (finite, non-empty geometry; height and leaves plausible).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+
+TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
+    const std::vector<std::string> names = listSpecies();
+    ASSERT_FALSE(names.empty());
+    for (const std::string& name : names) {
+        SCOPED_TRACE(name);
+        const SpeciesModel model = loadSpecies(name);
+        EXPECT_EQ(model.name, name);
+        EXPECT_GT(model.recommendedAge, 0.0f);
+        float lastHeight = -1.0f;
+        for (float age : {model.recommendedAgeMin, model.recommendedAge, model.recommendedAgeMax}) {
+            SCOPED_TRACE("age " + std::to_string(age));
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.loadPlantModelFromLibrary(name);
+            const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+            ASSERT_GT(ctx.triangleCount(), 0u);
+            bool finite = true;
+            ctx.forEachObject([&](const ObjectView& v) {
+                for (const vec3& q : v.positions)
+                    finite = finite && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+            });
+            EXPECT_TRUE(finite);
+            const float height = arch.getPlantHeight(p);
+            EXPECT_GT(height, 0.0f);
+            const float maxHeight = model.maxHeight > 0.0f ? model.maxHeight : 10.0f;
+            EXPECT_LE(height, maxHeight);
+            EXPECT_GE(height, lastHeight - 0.05f * maxHeight);  // plants do not shrink much
+            lastHeight = height;
+            if (age >= model.recommendedAge) {
+                EXPECT_GT(arch.getPlantLeafCount(p) + arch.getPlantFruitObjectIDs(p).size(), 0u);
+            }
+            // Every object is labelled as the plant's organ.
+            for (ObjectID id : arch.getAllPlantObjectIDs(p))
+                EXPECT_EQ(ctx.objectDataString(id, "plant_name"), name);
+        }
+    }
+}
