@@ -92,6 +92,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         });
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
+    addImageSizeOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     return [a, &global]() {
         for (const std::string& out : a->outputs) {

@@ -48,6 +48,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("--age", a->age, "Plant age in days")->required();
     app.add_option("--germination", a->germination, "Probability each position has a plant (0 to 1)");
     app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
+    addImageSizeOption(app, global);
     app.add_flag("--stats", a->stats, "Print a JSON summary of the canopy");
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");

@@ -19,7 +19,12 @@ struct GlobalOptions {
     int verbose = 0;             ///< -v count
     std::uint64_t seed = 42;     ///< --seed
     int threads = 0;             ///< --threads (0 = all cores)
+    int imageWidth = 1024;       ///< size of PNG outputs (--image-size on build and canopy)
+    int imageHeight = 768;
 };
+
+/// Adds --image-size WxH (PNG output size) to a subcommand, stored in `global`.
+void addImageSizeOption(CLI::App& app, GlobalOptions& global);
 
 /// A subcommand: `setup` adds it to the app and returns the function run when it is chosen.
 struct Command {

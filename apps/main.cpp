@@ -74,6 +74,9 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "plantarch: %s\n", e.what());
         return 2;
+    } catch (const plantarch::Error& e) {  // thrown by an option's own check
+        std::fprintf(stderr, "plantarch: %s\n", e.what());
+        return 2;
     }
 
     if (global.threads > 0) omp_set_num_threads(global.threads);

@@ -1,6 +1,7 @@
 // Writing a scene in the format its file extension names; shared by every subcommand that
 // produces geometry.
 
+#include <cstdio>
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -27,6 +28,8 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         writePLY(ctx, path);
     } else if (ext == ".png") {
         RenderOptions o;
+        o.width = g.imageWidth;
+        o.height = g.imageHeight;
         o.progress = terminalProgress();
         o.seed = g.seed;
         writePNG(render(ctx, o), path);
@@ -36,6 +39,23 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
             {.file = path, .value = ext.empty() ? path : ext, .validRange = sceneFileExtensions()});
     }
     info(g, "wrote " + path);
+}
+
+void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
+    app.add_option_function<std::string>(
+           "--image-size",
+           [&global](const std::string& text) {
+               int w = 0, h = 0;
+               char x = 0, extra = 0;
+               if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
+                   w < 16 || h < 16 || w > 16384 || h > 16384)
+                   throw Error("image size is WIDTHxHEIGHT in pixels",
+                               {.parameter = "--image-size", .value = text,
+                                .validRange = "16x16 to 16384x16384"});
+               global.imageWidth = w;
+               global.imageHeight = h;
+           },
+           "PNG output size, WIDTHxHEIGHT (default 1024x768)");
 }
 
 }  // namespace plantarch::cli

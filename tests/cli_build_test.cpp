@@ -65,6 +65,7 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
          {"build nosuch --age 10 -o /tmp/x.obj", "build bean --age -3 -o /tmp/x.obj",
           "build bean --age 10 -o /tmp/x.stl", "build bean --age 10 -D foo -o /tmp/x.obj",
           "build bean --age 10 -D trunk_height=1 -o /tmp/x.obj", "build bean -o /tmp/x.obj",
+          "build bean --age 10 -o /tmp/x.png --image-size 32",
           "nosuchcommand"}) {
         const CliResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << ": " << r.out;

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Renders every library species at its recommended age into docs/images/gallery/ and writes
+# docs/gallery.md (pictures plus the statistics of each plant). Usage: bash scripts/make-gallery.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+out=docs/images/gallery
+mkdir -p "$out"
+page=docs/gallery.md
+{
+  echo "# Species gallery"
+  echo
+  echo "Every species of the library at its recommended age (seed 42), made by"
+  echo "\`bash scripts/make-gallery.sh\`. Statistics from \`plantarch build --stats\`; leaves"
+  echo "count leaflets. Compare with the reference pictures in \`../shared/reference/renders/\`."
+  echo
+  echo "| species | age (d) | height (m) | leaves | shoots | flowers | fruit | triangles |"
+  echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+} > "$page.tmp"
+pictures=""
+for file in species/*.xml; do
+  name=$(basename "$file" .xml)
+  age=$(grep -o '<recommended_age[^>]*default="[0-9.]*"' "$file" | grep -o 'default="[0-9.]*"' | tr -dc '0-9.')
+  stats=$(build/plantarch build "$name" --age "$age" -o "$out/$name.png" --image-size 480x360 --stats)
+  field() { echo "$stats" | grep -o "\"$1\": [0-9.]*" | awk '{print $2}'; }
+  echo "| $name | $age | $(field height) | $(field leaves) | $(field shoots) | $(field flowers) | $(field fruit) | $(field triangles) |" >> "$page.tmp"
+  pictures+=$'\n'"### $name, $age days"$'\n\n'"![$name at $age days](images/gallery/$name.png)"$'\n'
+done
+echo "$pictures" >> "$page.tmp"
+mv "$page.tmp" "$page"
+echo "gallery: $(ls species/*.xml | wc -l) species written to $page"
