@@ -95,16 +95,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     return [a, &global]() {
-        for (const std::string& out : a->outputs) {
-            const std::string ext = std::filesystem::path(out).extension().string();
-            if (ext != ".obj" && ext != ".ply" && ext != ".png")
-                throw Error("unknown output format",
-                            {.file = out, .value = ext, .validRange = sceneFileExtensions()});
-            const auto dir = std::filesystem::path(out).parent_path();
-            std::error_code ec;
-            if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-            if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
-        }
+        prepareSceneOutputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);

@@ -53,16 +53,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
-        for (const std::string& out : a->outputs) {
-            const std::string ext = std::filesystem::path(out).extension().string();
-            if (ext != ".obj" && ext != ".ply" && ext != ".png")
-                throw Error("unknown output format",
-                            {.file = out, .value = ext, .validRange = sceneFileExtensions()});
-            const auto dir = std::filesystem::path(out).parent_path();
-            std::error_code ec;
-            if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-            if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
-        }
+        prepareSceneOutputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);

@@ -53,6 +53,10 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
 /// when stderr is not a terminal, so scripts and logs stay clean.
 ProgressCallback terminalProgress();
 
+/// Checks every output's format before any work is done and creates missing directories;
+/// throws plantarch::Error naming the first bad path.
+void prepareSceneOutputs(const std::vector<std::string>& paths);
+
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();
 

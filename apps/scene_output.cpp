@@ -1,9 +1,9 @@
 // Writing a scene in the format its file extension names; shared by every subcommand that
 // produces geometry.
 
-#include <cstdio>
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -39,6 +39,19 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
             {.file = path, .value = ext.empty() ? path : ext, .validRange = sceneFileExtensions()});
     }
     info(g, "wrote " + path);
+}
+
+void prepareSceneOutputs(const std::vector<std::string>& paths) {
+    for (const std::string& out : paths) {
+        const std::string ext = std::filesystem::path(out).extension().string();
+        if (ext != ".obj" && ext != ".ply" && ext != ".png")
+            throw Error("unknown output format",
+                        {.file = out, .value = ext, .validRange = sceneFileExtensions()});
+        const auto dir = std::filesystem::path(out).parent_path();
+        std::error_code ec;
+        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
+    }
 }
 
 void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
