@@ -53,6 +53,20 @@ struct Garden {
     const PlantInstance& state(unsigned id) const { return arch.plant(id); }
 };
 
+// A parent type whose every axillary bud may grow a one-node "child" shoot (defined in `g`).
+ShootParameters branchingParent(Garden& g, int maxNodes, float breakProbability, float breakTime) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = maxNodes;
+    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
+    s.vegetative_bud_break_probability_min = breakProbability;
+    s.vegetative_bud_break_time = breakTime;
+    s.child_shoot_types = {{"child", 1.0f}};
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    g.arch.defineShootType("child", child);
+    return s;
+}
+
 std::vector<vec3> allPositions(const Context& ctx) {
     std::vector<vec3> out;
     ctx.forEachObject([&](const ObjectView& v) { out.insert(out.end(), v.positions.begin(), v.positions.end()); });
@@ -101,21 +115,12 @@ namespace {
 // A parent with `nodes` nodes whose every axillary bud breaks at once, so child internode
 // lengths can be read off along the parent.
 std::vector<float> childLengths(float decay) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 8;
+    Garden g;
+    ShootParameters s = branchingParent(g, 8, 1.0f, 0.0f);
     s.phyllochron_min = 1.0f;
     s.internode_length_max = 0.05f;
     s.internode_length_min = 0.01f;
     s.internode_length_decay_rate = decay;
-    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
-    s.vegetative_bud_break_probability_min = 1.0f;
-    s.vegetative_bud_break_time = 0.0f;
-    s.child_shoot_types = {{"child", 1.0f}};
-    ShootParameters child = growingShoot();
-    child.max_nodes = 1;
-    child.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 0;
-    Garden g;
-    g.arch.defineShootType("child", child);
     const unsigned p = g.plant(s, 8);  // all 8 nodes exist before the buds break
     g.arch.advanceTime(0.0f);
     std::vector<float> lengths(8, -1.0f);
@@ -143,18 +148,10 @@ TEST(Growth, ConstantChildInternodeLengthWithoutDecay) {
 }
 
 TEST(Growth, InsertionAnglesIncreaseDownTheShoot) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 6;
-    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
-    s.vegetative_bud_break_probability_min = 1.0f;
-    s.vegetative_bud_break_time = 0.0f;
+    Garden g;
+    ShootParameters s = branchingParent(g, 6, 1.0f, 0.0f);
     s.insertion_angle_tip = 20.0f;
     s.insertion_angle_decay_rate = 15.0f;
-    s.child_shoot_types = {{"child", 1.0f}};
-    ShootParameters child = growingShoot();
-    child.max_nodes = 1;
-    Garden g;
-    g.arch.defineShootType("child", child);
     const unsigned p = g.plant(s, 6);
     g.arch.advanceTime(0.0f);
     for (const Shoot& sh : g.state(p).shoots)
@@ -253,17 +250,9 @@ TEST(Growth, ZeroGirthFactorLocksTheRadius) {
 }
 
 TEST(Growth, BudBreakFractionMatchesProbability) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 1;
-    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
-    s.vegetative_bud_break_probability_min = 0.3f;
-    s.vegetative_bud_break_probability_decay_rate = 0.0f;
-    s.vegetative_bud_break_time = 3.0f;
-    s.child_shoot_types = {{"child", 1.0f}};
-    ShootParameters child = growingShoot();
-    child.max_nodes = 1;
     Garden g;
-    g.arch.defineShootType("child", child);
+    ShootParameters s = branchingParent(g, 1, 0.3f, 3.0f);
+    s.vegetative_bud_break_probability_decay_rate = 0.0f;
     g.arch.defineShootType("main", s);
     const int n = 2000;
     for (int i = 0; i < n; ++i) {
@@ -282,17 +271,9 @@ TEST(Growth, BudBreakFractionMatchesProbability) {
 
 TEST(Growth, BudBreakProbabilityDecaysFromTheBase) {
     // Basitonic: probability 1 at node 0, -0.25 per node up, at least 0.1.
-    ShootParameters s = growingShoot();
-    s.max_nodes = 6;
-    s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
-    s.vegetative_bud_break_probability_min = 0.1f;
-    s.vegetative_bud_break_probability_decay_rate = -0.25f;
-    s.vegetative_bud_break_time = 0.0f;
-    s.child_shoot_types = {{"child", 1.0f}};
-    ShootParameters child = growingShoot();
-    child.max_nodes = 1;
     Garden g;
-    g.arch.defineShootType("child", child);
+    ShootParameters s = branchingParent(g, 6, 0.1f, 0.0f);
+    s.vegetative_bud_break_probability_decay_rate = -0.25f;
     g.arch.defineShootType("main", s);
     const int n = 1500;
     for (int i = 0; i < n; ++i) {

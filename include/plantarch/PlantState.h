@@ -40,7 +40,6 @@ const char* phenologyStageName(PhenologyStage stage);
 
 struct VegetativeBud {
     BudState state = BudState::Dormant;
-    float time = 0.0f;        ///< days since creation (or since dormancy broke)
     /// Plant age at which the bud breaks (or fails to); negative: waiting for dormancy to end.
     double breakTime = -1.0;
     int childShoot = -1;      ///< shoot grown from this bud, -1 if none
@@ -63,7 +62,6 @@ struct FloralBud {
     FloralStage stage = FloralStage::Bud;
     BudState state = BudState::Dormant;
     bool terminal = false;    ///< at the shoot tip (else axillary)
-    float time = 0.0f;        ///< days in the current stage
     float fruitAge = 0.0f;    ///< days since fruit set
     float fruitGrowth = 1.0f; ///< current fruit size / full-grown size
     double stageTime = 0.0;   ///< plant age when the current stage began
@@ -158,7 +156,6 @@ struct Shoot {
     std::vector<FloralBud> terminalFloralBuds;
     std::vector<Phytomer> phytomers;
     std::vector<unsigned> children;
-    float phyllochronCounter = 0.0f;
     int nodesThisSeason = 0;
     /// Plant age at which the apical bud makes its next phytomer; negative: not scheduled.
     double nextPhytomerTime = -1.0;
