@@ -759,6 +759,51 @@ TEST(SpeciesBuild, OverridesAreValidatedAndHonoured) {
     EXPECT_EQ(none.validRange(), "the species has no build parameters");
 }
 
+TEST(SpeciesBuild, StepFlagsStripLeavesBudsAndApex) {
+    // A trained trunk: bare, without buds, headed; a branch on it keeps everything.
+    const SpeciesModel m = readSpeciesString(
+        species({{"<base_stem id=\"stem\" type=\"main\" nodes=\"3\" pitch=\"angle / 2\"/>",
+                  "<base_stem id=\"stem\" type=\"main\" nodes=\"3\" leaves=\"false\" "
+                  "vegetative_buds=\"false\" floral_buds=\"false\" apex=\"false\"/>"
+                  "<child parent=\"stem\" node=\"2\" type=\"main\" nodes=\"1\"/>"}}),
+        "trunk.xml");
+    EXPECT_EQ(m.build[0].leaves, "false");
+    EXPECT_EQ(m.build[1].apex, "true");
+    Built b = buildFrom(m);
+    const PlantInstance& p = b.arch->plant(b.plant);
+    const Shoot& trunk = p.shoots[0];
+    for (const Phytomer& ph : trunk.phytomers)
+        for (const Petiole& pt : ph.petioles) {
+            EXPECT_EQ(pt.object, kNoObject);  // no petiole drawn
+            for (const LeafOrgan& l : pt.leaves) {
+                EXPECT_TRUE(l.removed);
+                EXPECT_TRUE(l.objects.empty());
+            }
+            for (const VegetativeBud& vb : pt.vegetativeBuds)
+                EXPECT_TRUE(vb.state == BudState::Dead || vb.state == BudState::Broken);
+            for (const FloralBud& fb : pt.floralBuds) EXPECT_EQ(fb.state, BudState::Dead);
+        }
+    EXPECT_EQ(trunk.apicalBud.state, BudState::Dead);
+    const Shoot& branch = p.shoots[1];
+    EXPECT_NE(branch.phytomers[0].petioles[0].object, kNoObject);
+    EXPECT_FALSE(branch.phytomers[0].petioles[0].leaves[0].removed);
+    b.arch->advanceTime(40.0);
+    const PlantInstance& grown = b.arch->plant(b.plant);
+    EXPECT_EQ(grown.shoots[0].phytomers.size(), 3u);      // headed: no new trunk nodes
+    EXPECT_GT(grown.shoots[1].phytomers.size(), 1u);      // the branch grows on
+    for (const Shoot& s : grown.shoots) EXPECT_TRUE(s.parent != 0 || s.parentNode == 2);
+    // The flags are written back by the writer and must be true or false.
+    std::ostringstream out;
+    writeSpecies(m, out);
+    EXPECT_NE(out.str().find("leaves=\"false\""), std::string::npos);
+    const Error bad = errorOf([&] {
+        readSpeciesString(species({{"nodes=\"3\" pitch", "nodes=\"3\" apex=\"no\" pitch"}}),
+                          "bad.xml");
+    });
+    EXPECT_EQ(bad.parameter(), "build.stem.apex");
+    EXPECT_EQ(bad.validRange(), "true or false");
+}
+
 TEST(SpeciesBuild, BuildTimeErrorsPointAtTheStep) {
     // Node 9 does not exist on a 3-node stem: found when building, reported at the step.
     const SpeciesModel m = readSpeciesString(

@@ -180,8 +180,15 @@ public:
     /// Removes the shoot's phytomers from `node` on, and every shoot growing from them.
     void pruneBranch(unsigned plantID, unsigned shootID, unsigned node);
     void removePlantLeaves(unsigned plantID);
+    /// Removes the leaves of a shoot together with their petioles (bare nodes that keep their
+    /// buds), as on a trained trunk.
+    void removeShootLeaves(unsigned plantID, unsigned shootID);
     /// Removes every vegetative bud (apical and axillary) so the plant stops branching.
     void removeShootVegetativeBuds(unsigned plantID, unsigned shootID);
+    /// Removes the axillary vegetative buds only; the shoot keeps growing from its tip.
+    void removeShootAxillaryVegetativeBuds(unsigned plantID, unsigned shootID);
+    /// Kills the apical bud: the shoot makes no more phytomers (a headed or topped shoot).
+    void removeShootApex(unsigned plantID, unsigned shootID);
     void removeShootFloralBuds(unsigned plantID, unsigned shootID);
     /// Removes flowers (open and closed) and fruit, keeping peduncles.
     void removePlantFlowers(unsigned plantID);

@@ -171,14 +171,23 @@ private:
         spec.leafScale = real(step, path, "leaf_scale", step.leafScale);
         spec.radiusTaper = real(step, path, "taper", step.taper);
         try {
+            unsigned id = 0;
             switch (step.kind) {
                 case BuildStep::Kind::BaseStem:
-                    return arch_.addBaseStemShoot(plantID_, spec);
+                    id = arch_.addBaseStemShoot(plantID_, spec);
+                    break;
                 case BuildStep::Kind::Append:
-                    return arch_.appendShoot(plantID_, unsigned(parent), spec);
+                    id = arch_.appendShoot(plantID_, unsigned(parent), spec);
+                    break;
                 case BuildStep::Kind::Child:
-                    return arch_.addChildShoot(plantID_, unsigned(parent), node, spec, petiole);
+                    id = arch_.addChildShoot(plantID_, unsigned(parent), node, spec, petiole);
+                    break;
             }
+            if (step.leaves == "false") arch_.removeShootLeaves(plantID_, id);
+            if (step.vegetativeBuds == "false") arch_.removeShootAxillaryVegetativeBuds(plantID_, id);
+            if (step.floralBuds == "false") arch_.removeShootFloralBuds(plantID_, id);
+            if (step.apex == "false") arch_.removeShootApex(plantID_, id);
+            return id;
         } catch (const Error& e) {
             const std::string attribute = attributeFor(e.parameter());
             ErrorContext c = e.context();

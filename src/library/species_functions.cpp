@@ -3,11 +3,11 @@
 
 #include <algorithm>
 
+#include "library/species_functions.h"
 #include "model/architecture_impl.h"
 
 namespace plantarch {
-
-namespace {
+namespace species_functions {
 
 void killVegetativeBuds(Phytomer& ph) {
     for (Petiole& p : ph.petioles)
@@ -23,6 +23,8 @@ void killFloralBuds(Phytomer& ph) {
                 b.stage = FloralStage::Removed;
             }
 }
+
+namespace {
 
 // Legumes (bean, cowpea, soybean): the six lowest nodes of the main stem and its branches
 // branch but do not flower, higher nodes and higher-order shoots flower but do not branch.
@@ -40,8 +42,17 @@ void legumePhytomer(PhytomerCreationContext& c) {
 
 }  // namespace
 
-void registerSpeciesFunctions(PlantArchitecture& arch) {
+void registerLegumes(PlantArchitecture& arch) {
     arch.registerPhytomerCreationFunction("legume_phytomer", legumePhytomer);
+}
+
+}  // namespace species_functions
+
+void registerSpeciesFunctions(PlantArchitecture& arch) {
+    species_functions::registerLegumes(arch);
+    species_functions::registerTrees(arch);
+    species_functions::registerVines(arch);
+    species_functions::registerHerbs(arch);
 }
 
 }  // namespace plantarch

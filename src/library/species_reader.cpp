@@ -604,7 +604,10 @@ private:
             if (!a) continue;
             const std::string value = collapseSpaces(a.value());
             const std::string at = path + "." + name;
-            if (species_xml::isNameAttribute(name)) {
+            if (species_xml::isFlagAttribute(name)) {
+                if (value != "true" && value != "false")
+                    src_.fail(e, at, "expected true or false", value, "true or false");
+            } else if (species_xml::isNameAttribute(name)) {
                 if (!isLabel(value))
                     src_.fail(e, at, "expected a name of letters, digits, '_' or '-'", value);
             } else {

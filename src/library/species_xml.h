@@ -49,7 +49,11 @@ inline const std::vector<std::string>& buildStepAttributes(const std::string& ki
                                                   "internode_length",
                                                   "internode_scale",
                                                   "leaf_scale",
-                                                  "taper"};
+                                                  "taper",
+                                                  "leaves",
+                                                  "vegetative_buds",
+                                                  "floral_buds",
+                                                  "apex"};
     static const std::vector<std::string> append = [] {
         std::vector<std::string> a = {"id", "parent"};
         a.insert(a.end(), base.begin() + 1, base.end());
@@ -95,7 +99,17 @@ inline std::string BuildStep::*buildStepMember(const std::string& attribute) {
     if (attribute == "internode_scale") return &BuildStep::internodeScale;
     if (attribute == "leaf_scale") return &BuildStep::leafScale;
     if (attribute == "taper") return &BuildStep::taper;
+    if (attribute == "leaves") return &BuildStep::leaves;
+    if (attribute == "vegetative_buds") return &BuildStep::vegetativeBuds;
+    if (attribute == "floral_buds") return &BuildStep::floralBuds;
+    if (attribute == "apex") return &BuildStep::apex;
     return nullptr;
+}
+
+/// Attributes whose value is true or false rather than an expression.
+inline bool isFlagAttribute(const std::string& attribute) {
+    return attribute == "leaves" || attribute == "vegetative_buds" || attribute == "floral_buds" ||
+           attribute == "apex";
 }
 
 /// Attributes whose value is a name rather than an expression.

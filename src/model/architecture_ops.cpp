@@ -98,14 +98,38 @@ void PlantArchitecture::removePlantLeaves(unsigned plantID) {
     updateGeometry(plantID);
 }
 
-void PlantArchitecture::removeShootVegetativeBuds(unsigned plantID, unsigned shootID) {
+void PlantArchitecture::removeShootLeaves(unsigned plantID, unsigned shootID) {
     PlantInstance& p = impl_->plant(plantID);
     Shoot& s = impl_->shoot(p, shootID);
-    s.apicalBud.state = BudState::Dead;
+    for (Phytomer& ph : s.phytomers)
+        for (Petiole& pt : ph.petioles) {
+            for (LeafOrgan& l : pt.leaves) l.removed = true;
+            // A petiole of zero size is not drawn; its node keeps its buds.
+            pt.length = 0.0f;
+            pt.radius = 0.0f;
+        }
+    updateGeometry(plantID);
+}
+
+void PlantArchitecture::removeShootVegetativeBuds(unsigned plantID, unsigned shootID) {
+    removeShootAxillaryVegetativeBuds(plantID, shootID);
+    removeShootApex(plantID, shootID);
+}
+
+void PlantArchitecture::removeShootAxillaryVegetativeBuds(unsigned plantID, unsigned shootID) {
+    PlantInstance& p = impl_->plant(plantID);
+    Shoot& s = impl_->shoot(p, shootID);
     for (Phytomer& ph : s.phytomers)
         for (Petiole& pt : ph.petioles)
             for (VegetativeBud& b : pt.vegetativeBuds)
                 if (b.state != BudState::Broken) b.state = BudState::Dead;
+}
+
+void PlantArchitecture::removeShootApex(unsigned plantID, unsigned shootID) {
+    PlantInstance& p = impl_->plant(plantID);
+    Shoot& s = impl_->shoot(p, shootID);
+    s.apicalBud.state = BudState::Dead;
+    s.nextPhytomerTime = -1.0;
 }
 
 void PlantArchitecture::removeShootFloralBuds(unsigned plantID, unsigned shootID) {
