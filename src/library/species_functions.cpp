@@ -51,7 +51,7 @@ void registerLegumes(PlantArchitecture& arch) {
 void registerSpeciesFunctions(PlantArchitecture& arch) {
     species_functions::registerLegumes(arch);
     species_functions::registerTrees(arch);
-    species_functions::registerVines(arch);
+    species_functions::registerOrchard(arch);
     species_functions::registerHerbs(arch);
 }
 

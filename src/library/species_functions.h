@@ -16,7 +16,7 @@ void killFloralBuds(Phytomer& ph);
 
 void registerLegumes(PlantArchitecture& arch);     // species_functions.cpp
 void registerTrees(PlantArchitecture& arch);       // species_functions_trees.cpp
-void registerVines(PlantArchitecture& arch);       // species_functions_vines.cpp
+void registerOrchard(PlantArchitecture& arch);     // species_functions_orchard.cpp
 void registerHerbs(PlantArchitecture& arch);       // species_functions_herbs.cpp
 
 }  // namespace species_functions

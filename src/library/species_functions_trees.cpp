@@ -1,4 +1,4 @@
-// Named per-phytomer functions of the library species: Orchard and ornamental trees (almond, apple, olive, pistachio, walnut, eastern redbud).
+// Named per-phytomer functions of the library species: Nut trees (almond and its training variants, pistachio, walnut).
 
 #include "library/species_functions.h"
 #include "model/architecture_impl.h"

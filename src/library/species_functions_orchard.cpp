@@ -1,11 +1,11 @@
-// Named per-phytomer functions of the library species: Grapevines.
+// Named per-phytomer functions of the library species: Trained fruit plants (olive, apple, eastern redbud, grapevine).
 
 #include "library/species_functions.h"
 #include "model/architecture_impl.h"
 
 namespace plantarch::species_functions {
 
-void registerVines(PlantArchitecture& arch) {
+void registerOrchard(PlantArchitecture& arch) {
     (void)arch;
 }
 
