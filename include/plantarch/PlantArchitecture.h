@@ -274,6 +274,7 @@ public:
 private:
     std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
                                         const std::map<std::string, float>& build_parameters);
+    void mergePlant(const Context& from, PlantInstance plant);
 
     Context* context_;
     std::uint64_t seed_ = 42;

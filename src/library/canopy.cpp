@@ -56,6 +56,34 @@ void checkCanopyArguments(float age, float germination) {
 
 }  // namespace
 
+// Copies a plant grown in another Context into this one (objects in ascending ID order, so
+// IDs follow plant order) and takes over its state with the object IDs remapped.
+void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant) {
+    std::vector<ObjectID> objects;
+    forEachObjectID(plant, [&](ObjectID& o) {
+        if (o != kNoObject) objects.push_back(o);
+    });
+    std::sort(objects.begin(), objects.end());
+    const std::vector<std::string> labels = from.objectDataLabels();
+    std::map<MaterialID, MaterialID> materials;
+    std::map<ObjectID, ObjectID> remap;
+    for (ObjectID o : objects) {
+        const ObjectView v = from.object(o);
+        auto m = materials.find(v.material);
+        if (m == materials.end())
+            m = materials.emplace(v.material, context_->addMaterial(from.material(v.material))).first;
+        const ObjectID copy = context_->addObject(v.positions, v.uvs, v.indices, m->second);
+        for (const std::string& label : labels)
+            if (auto value = from.objectData(o, label)) context_->setObjectData(copy, label, *value);
+        remap[o] = copy;
+    }
+    forEachObjectID(plant, [&](ObjectID& o) {
+        if (o != kNoObject) o = remap.at(o);
+    });
+    const unsigned id = plant.id;
+    impl_->plants.emplace(id, std::move(plant));
+}
+
 std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     const std::vector<vec3>& positions, float age,
     const std::map<std::string, float>& buildParameters) {
@@ -85,54 +113,39 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.callbackFunctions = impl_->callbackFunctions;
     }
 
-    // Grow every plant in a worker; remember where each one is.
-    std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
+    // Grow every plant in a worker. As soon as a plant is grown it is merged into the
+    // caller's Context, in plant order (the ordered region), and its worker's Context is
+    // emptied: the merge of one plant overlaps the growth of the next ones, and at most one
+    // plant per thread is held twice.
     std::vector<std::string> errors(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    std::vector<unsigned> ids;
+    bool failed = false;
+#pragma omp parallel for ordered schedule(dynamic, 1) num_threads(threads)
     for (int i = 0; i < n; ++i) {
-        const int t = omp_get_thread_num();
-        PlantArchitecture& w = *workers[std::size_t(t)].arch;
+        Worker& worker = workers[std::size_t(omp_get_thread_num())];
+        PlantArchitecture& w = *worker.arch;
+        const unsigned id = first + unsigned(i);
         try {
-            w.impl_->nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
+            w.impl_->nextPlantID = id;  // the plant's ID picks its stream
             w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
-            builtBy[std::size_t(i)] = t;
         } catch (const std::exception& e) {
             errors[std::size_t(i)] = e.what();
+        }
+#pragma omp ordered
+        {
+            if (!errors[std::size_t(i)].empty()) failed = true;
+            if (!failed) {
+                mergePlant(worker.ctx, std::move(w.impl_->plant(id)));
+                ids.push_back(id);
+            }
+            w.impl_->plants.erase(id);
+            worker.ctx.clear();
         }
     }
     for (int i = 0; i < n; ++i)
         if (!errors[std::size_t(i)].empty())
             throw Error("building canopy plant " + std::to_string(i) + " failed: " +
                         errors[std::size_t(i)]);
-
-    // Merge in plant order: copy objects (ascending worker IDs) and remap the state's IDs.
-    std::vector<unsigned> ids;
-    for (int i = 0; i < n; ++i) {
-        PlantArchitecture& w = *workers[std::size_t(builtBy[std::size_t(i)])].arch;
-        const unsigned id = first + unsigned(i);
-        PlantInstance plant = std::move(w.impl_->plant(id));
-        Context& wctx = workers[std::size_t(builtBy[std::size_t(i)])].ctx;
-        std::vector<ObjectID> objects;
-        forEachObjectID(plant, [&](ObjectID& o) {
-            if (o != kNoObject) objects.push_back(o);
-        });
-        std::sort(objects.begin(), objects.end());
-        std::map<ObjectID, ObjectID> remap;
-        for (ObjectID o : objects) {
-            const ObjectView v = wctx.object(o);
-            const ObjectID copy = context_->addObject(v.positions, v.uvs, v.indices,
-                                                      context_->addMaterial(wctx.material(v.material)));
-            for (const std::string& label : wctx.objectDataLabels())
-                if (auto value = wctx.objectData(o, label)) context_->setObjectData(copy, label, *value);
-            remap[o] = copy;
-        }
-        forEachObjectID(plant, [&](ObjectID& o) {
-            if (o != kNoObject) o = remap.at(o);
-        });
-        w.impl_->plants.erase(id);
-        impl_->plants.emplace(id, std::move(plant));
-        ids.push_back(id);
-    }
     impl_->nextPlantID = first + unsigned(n);
     return ids;
 }
