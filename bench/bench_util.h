@@ -9,6 +9,9 @@
 
 namespace plantarch::bench {
 
+/// Registers one benchmark per library species (bench_species.cpp).
+void registerSpeciesBenchmarks();
+
 /// Resident set size of this process in bytes (from /proc/self/statm).
 inline std::size_t residentBytes() {
     std::FILE* f = std::fopen("/proc/self/statm", "r");

@@ -1,0 +1,107 @@
+// Every library species built at its representative age (the default of its recommended
+// age range): load, build, grow and tessellate one plant. Counters: triangles, leaves,
+// shoots, and peak_MiB, the peak memory the build adds, measured once in a forked child
+// (its peak resident size minus the resident size at the fork).
+//
+//   build/plantarch_bench --benchmark_filter=Species/ --benchmark_repetitions=5
+//       --benchmark_report_aggregates_only=true   (one line)
+
+#include <malloc.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include <benchmark/benchmark.h>
+
+#include "bench_util.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+
+namespace {
+
+unsigned buildOne(PlantArchitecture& arch, const std::string& name, float age) {
+    arch.loadPlantModelFromLibrary(name);
+    return arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+}
+
+// A field of /proc/self/status in bytes ("VmHWM", "VmRSS"); 0 if unreadable.
+double statusBytes(const char* field) {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return 0.0;
+    char line[256];
+    double kib = 0.0;
+    const std::size_t n = std::strlen(field);
+    while (std::fgets(line, sizeof line, f))
+        if (std::strncmp(line, field, n) == 0 && line[n] == ':') kib = std::atof(line + n + 1);
+    std::fclose(f);
+    return kib * 1024.0;
+}
+
+// Peak extra memory of one build, in MiB, measured in a child process: its peak resident
+// size is reset (clear_refs 5) after the heap left by earlier builds is trimmed, then the build's peak over the starting size is reported
+// through a pipe. -1 if anything fails.
+double peakMiB(const std::string& name, float age) {
+    int fds[2];
+    if (pipe(fds) != 0) return -1.0;
+    const pid_t pid = fork();
+    if (pid < 0) return -1.0;
+    if (pid == 0) {
+        close(fds[0]);
+        double mib = -1.0;
+        malloc_trim(0);  // give back the heap the parent freed, so the build's pages count
+        if (std::FILE* c = std::fopen("/proc/self/clear_refs", "w")) {
+            std::fputs("5", c);
+            std::fclose(c);
+            const double start = statusBytes("VmRSS");
+            {
+                Context ctx;
+                PlantArchitecture arch(&ctx);
+                buildOne(arch, name, age);
+            }
+            mib = (statusBytes("VmHWM") - start) / (1024.0 * 1024.0);
+        }
+        const ssize_t written = write(fds[1], &mib, sizeof mib);
+        _exit(written == ssize_t(sizeof mib) ? 0 : 1);
+    }
+    close(fds[1]);
+    double mib = -1.0;
+    if (read(fds[0], &mib, sizeof mib) != ssize_t(sizeof mib)) mib = -1.0;
+    close(fds[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return mib;
+}
+
+void buildSpecies(benchmark::State& state, const std::string& name, float age) {
+    std::size_t triangles = 0, leaves = 0, shoots = 0;
+    for (auto _ : state) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const unsigned p = buildOne(arch, name, age);
+        triangles = ctx.triangleCount();
+        leaves = arch.getPlantLeafCount(p);
+        shoots = arch.plant(p).shoots.size();
+    }
+    state.counters["age_d"] = age;
+    state.counters["triangles"] = double(triangles);
+    state.counters["leaves"] = double(leaves);
+    state.counters["shoots"] = double(shoots);
+    state.counters["peak_MiB"] = peakMiB(name, age);
+}
+
+}  // namespace
+
+// One benchmark per species file found in the library (called from main: reading species
+// files needs the library's static tables, which are not ready during static construction).
+void plantarch::bench::registerSpeciesBenchmarks() {
+    for (const std::string& name : listSpecies()) {
+        const float age = loadSpecies(name).recommendedAge;
+        benchmark::RegisterBenchmark(("Species/" + name).c_str(), buildSpecies, name, age)
+            ->Unit(benchmark::kMillisecond);
+    }
+}
