@@ -407,9 +407,13 @@ struct Grower {
         push(plant.nextDormancyBreak, kDormancyBreak, 0);
     }
 
+    // Callbacks see the plant as it stands on this day: run() brings elongation up to date
+    // before this event, and node positions are computed per shoot when first needed.
     void onDaily(double now) {
+        std::vector<vec3> positions;
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
+            positions.clear();
             for (unsigned k = 0; k < s.phytomers.size(); ++k) {
                 const std::string& name =
                     typeOf(s.phytomers[k].parametersLabel).phytomer_parameters.phytomer_callback_function;
@@ -419,7 +423,8 @@ struct Grower {
                     throw Error("unknown phytomer callback function",
                                 {.parameter = s.type + ".phytomer.phytomer_callback_function",
                                  .value = name});
-                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now};
+                if (positions.empty()) positions = shootNodePositions(plant, s.id);
+                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now, positions[k]};
                 fn->second(c);
             }
         }
@@ -501,7 +506,8 @@ struct Grower {
             queue.pop();
             if (!valid(e)) continue;
             plant.age = e.time;
-            if (e.kind == kLeafFall || e.kind == kSenescence) updateContinuous(e.time);
+            if (e.kind == kLeafFall || e.kind == kSenescence || e.kind == kDaily)
+                updateContinuous(e.time);
             switch (e.kind) {
                 case kDormancyBreak: onDormancyBreak(e.time); break;
                 case kSenescence: onSenescence(e.time); break;
