@@ -62,12 +62,32 @@ void cherryTomatoPruning(PhytomerCallbackContext& c) {
     if (c.nodeBase.z - c.plant.base.z < kCherryTomatoPruningHeight) removeLeaves(c.phytomer);
 }
 
+// Capsicum: the main stem's first 6 nodes are bare (no leaf, petiole, branch or flower);
+// shoots of rank 2 and up neither branch nor flower. Leaves grow with the node, from 60 % of
+// full size at node 0 to full size at node 5; main-stem internodes made at emergence are 5 %
+// of full length, full length from day 15.
+void capsicumPhytomer(PhytomerCreationContext& c) {
+    if (c.shoot.rank == 0 && c.nodeIndex < 6) {
+        killFloralBuds(c.phytomer);
+        killVegetativeBuds(c.phytomer);
+        removeLeaves(c.phytomer);
+    }
+    if (c.shoot.rank >= 2) {
+        killFloralBuds(c.phytomer);
+        killVegetativeBuds(c.phytomer);
+    }
+    scaleLeaves(c.phytomer, std::min(1.0f, 0.6f + 0.4f * float(c.nodeIndex) / 5.0f));
+    if (c.shoot.rank == 0)
+        c.phytomer.internode.length *= std::min(1.0f, 0.05f + 0.95f * float(c.plantAge) / 15.0f);
+}
+
 }  // namespace
 
 void registerHerbs(PlantArchitecture& arch) {
     arch.registerPhytomerCreationFunction("tomato_phytomer", tomatoPhytomer);
     arch.registerPhytomerCreationFunction("cherrytomato_phytomer", cherryTomatoPhytomer);
     arch.registerPhytomerCallbackFunction("cherrytomato_pruning", cherryTomatoPruning);
+    arch.registerPhytomerCreationFunction("capsicum_phytomer", capsicumPhytomer);
 }
 
 }  // namespace plantarch::species_functions
