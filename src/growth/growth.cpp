@@ -168,10 +168,15 @@ struct Grower {
                     !t.growth_requires_dormancy)
                     b.breakTime = plant.age + t.vegetative_bud_break_time.sample(plant.rng);
             for (FloralBud& fb : pt.floralBuds)
-                if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
-                    fb.nextTime < 0.0 && flowering >= 0.0 && !t.flowers_require_dormancy)
+                if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
+                    flowering >= 0.0 && !t.flowers_require_dormancy)
                     fb.nextTime = std::max(flowering, plant.age);
         }
+    }
+
+    // A floral bud still to flower: dormant, or made active (forced) by a rule function.
+    static bool waiting(const FloralBud& fb) {
+        return fb.state == BudState::Dormant || fb.state == BudState::Active;
     }
 
     bool canGrow(const Shoot& s, const ShootParameters& t) const {
@@ -261,13 +266,15 @@ struct Grower {
         const ShootParameters& t = typeOf(s.type);
         const PhenologyParameters& ph = plant.phenology;
         const PhytomerParameters& pp =
-            e.terminal ? t.phytomer_parameters
-                       : typeOf(s.phytomers[e.node].parametersLabel).phytomer_parameters;
+            !fb.parametersLabel.empty() ? typeOf(fb.parametersLabel).phytomer_parameters
+            : e.terminal                ? t.phytomer_parameters
+                         : typeOf(s.phytomers[e.node].parametersLabel).phytomer_parameters;
         auto next = [&](float delay) { return delay >= 0.0f ? now + delay : -1.0; };
         switch (fb.stage) {
             case FloralStage::Bud: {
-                if (fb.state != BudState::Dormant || !growingSeason()) return;
-                if (!plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
+                if (!waiting(fb) || !growingSeason()) return;
+                const bool forced = fb.state == BudState::Active;
+                if (!forced && !plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
                     fb.state = BudState::Dead;
                     fb.stage = FloralStage::Removed;
                     return;
@@ -339,8 +346,8 @@ struct Grower {
         // A dormant floral bud still waiting flowers this season.
         auto awaken = [&](FloralBud& fb, unsigned shoot, unsigned node, unsigned petiole,
                           unsigned index, bool terminal) {
-            if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
-                fb.nextTime < 0.0 && flowering >= 0.0) {
+            if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
+                flowering >= 0.0) {
                 fb.nextTime = flowering;
                 push(fb.nextTime, kFloral, shoot, node, petiole, index, terminal);
             }

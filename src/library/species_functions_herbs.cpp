@@ -5,6 +5,7 @@
 
 #include "library/species_functions.h"
 #include "model/architecture_impl.h"
+#include "plantarch/Error.h"
 
 namespace plantarch::species_functions {
 
@@ -81,6 +82,39 @@ void capsicumPhytomer(PhytomerCreationContext& c) {
         c.phytomer.internode.length *= std::min(1.0f, 0.05f + 0.95f * float(c.plantAge) / 15.0f);
 }
 
+// Maize: leaves grow from 70 % of full size at node 0 to full size at node 5 (and so do those
+// internodes), and shrink again over the top nodes (to about 77 % at the flag leaf). Nodes 9
+// to 11 bear an ear: their floral bud is forced to flower and drawn from the shoot type
+// "ear" (a short thick shank, the ear fruit); every other node's floral bud is removed, so the
+// only other inflorescence is the tassel, the shoot's terminal floral bud.
+constexpr const char* kMaizeEarType = "ear";
+
+void maizePhytomer(PhytomerCreationContext& c) {
+    const int node = int(c.nodeIndex), n = c.shootMaxNodes;
+    float s = 1.0f;
+    if (node <= 5) {
+        s = std::min(1.0f, 0.7f + 0.3f * float(node) / 5.0f);
+        c.phytomer.internode.length *= s;
+    } else if (node >= n - 5) {
+        s = std::min(1.0f, 0.65f + 0.35f * float(n - node) / 3.0f);
+    }
+    scaleLeaves(c.phytomer, s);
+    if (node < 9 || node > 11) {
+        killFloralBuds(c.phytomer);
+        return;
+    }
+    if (!c.plant.shootTypes.count(kMaizeEarType))
+        throw Error("maize_phytomer needs a shoot type for the ears",
+                    {.parameter = "shoot_type_label", .value = kMaizeEarType,
+                     .validRange = "a shoot type labelled 'ear' in the species"});
+    for (Petiole& p : c.phytomer.petioles)
+        for (FloralBud& b : p.floralBuds)
+            if (b.stage == FloralStage::Bud && b.state == BudState::Dormant) {
+                b.state = BudState::Active;
+                b.parametersLabel = kMaizeEarType;
+            }
+}
+
 }  // namespace
 
 void registerHerbs(PlantArchitecture& arch) {
@@ -88,6 +122,7 @@ void registerHerbs(PlantArchitecture& arch) {
     arch.registerPhytomerCreationFunction("cherrytomato_phytomer", cherryTomatoPhytomer);
     arch.registerPhytomerCallbackFunction("cherrytomato_pruning", cherryTomatoPruning);
     arch.registerPhytomerCreationFunction("capsicum_phytomer", capsicumPhytomer);
+    arch.registerPhytomerCreationFunction("maize_phytomer", maizePhytomer);
 }
 
 }  // namespace plantarch::species_functions
