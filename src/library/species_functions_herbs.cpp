@@ -115,6 +115,22 @@ void maizePhytomer(PhytomerCreationContext& c) {
             }
 }
 
+// Small grains (sorghum, wheat): leaves and internodes grow from 70 % of full size at node 0
+// to full size at node 5.
+void scaleEarlyGrassNodes(PhytomerCreationContext& c) {
+    const float s = std::min(1.0f, 0.7f + 0.3f * float(c.nodeIndex) / 5.0f);
+    scaleLeaves(c.phytomer, s);
+    c.phytomer.internode.length *= s;
+}
+
+// Sorghum: as wheat, and the flag leaf (the shoot's last node) stands 25 degrees more upright
+// (its petiole pitch, negative for the other blades, is raised by 25 degrees).
+void sorghumPhytomer(PhytomerCreationContext& c) {
+    scaleEarlyGrassNodes(c);
+    if (int(c.nodeIndex) + 1 == c.shootMaxNodes)
+        for (Petiole& p : c.phytomer.petioles) p.pitch += 25.0f;
+}
+
 }  // namespace
 
 void registerHerbs(PlantArchitecture& arch) {
@@ -123,6 +139,8 @@ void registerHerbs(PlantArchitecture& arch) {
     arch.registerPhytomerCallbackFunction("cherrytomato_pruning", cherryTomatoPruning);
     arch.registerPhytomerCreationFunction("capsicum_phytomer", capsicumPhytomer);
     arch.registerPhytomerCreationFunction("maize_phytomer", maizePhytomer);
+    arch.registerPhytomerCreationFunction("sorghum_phytomer", sorghumPhytomer);
+    arch.registerPhytomerCreationFunction("wheat_phytomer", scaleEarlyGrassNodes);
 }
 
 }  // namespace plantarch::species_functions
