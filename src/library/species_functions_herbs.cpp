@@ -2,6 +2,7 @@
 // cherry tomato, capsicum, maize, sorghum, wheat, asparagus, butter lettuce).
 
 #include <algorithm>
+#include <cmath>
 
 #include "library/species_functions.h"
 #include "model/architecture_impl.h"
@@ -131,6 +132,48 @@ void sorghumPhytomer(PhytomerCreationContext& c) {
         for (Petiole& p : c.phytomer.petioles) p.pitch += 25.0f;
 }
 
+// Asparagus: the first 3 nodes of every shoot make no branch and carry cladodes at 60 % of
+// full size.
+void asparagusPhytomer(PhytomerCreationContext& c) {
+    if (c.nodeIndex > 2) return;
+    scaleLeaves(c.phytomer, 0.6f);
+    killVegetativeBuds(c.phytomer);
+}
+
+// Asparagus cladode: a slender three-sided spine tapering from its base to a point, in
+// prototype units (length 1 along +x from the origin). Its base diameter is the prototype's
+// leaf_aspect_ratio and `subdivisions` sets the segments along it: 9 to 15 triangles where a
+// flat needle outline meshed to its true shape takes about 150.
+OrganPrototype asparagusCladode(const LeafPrototype& p, Rng& rng, int leaflet) {
+    (void)leaflet;
+    constexpr int kSides = 3;
+    constexpr float kPi = 3.14159265358979f;
+    const float radius = 0.5f * p.leaf_aspect_ratio.sample(rng);
+    const int segments = int(std::clamp(p.subdivisions, 1u, 8u));
+    Mesh m;
+    for (int k = 0; k < segments; ++k) {  // rings at x = k / segments, tapering linearly
+        const float x = float(k) / float(segments), r = radius * (1.0f - x);
+        for (int j = 0; j < kSides; ++j) {
+            const float a = 2.0f * kPi * float(j) / float(kSides);
+            m.positions.push_back({x, r * std::cos(a), r * std::sin(a)});
+        }
+    }
+    const auto tip = std::uint32_t(m.positions.size());
+    m.positions.push_back({1.0f, 0.0f, 0.0f});
+    auto ring = [](int k, int j) { return std::uint32_t(k * kSides + (j % kSides)); };
+    for (int k = 0; k < segments; ++k)
+        for (int j = 0; j < kSides; ++j) {
+            if (k + 1 < segments) {
+                m.indices.insert(m.indices.end(), {ring(k, j), ring(k, j + 1), ring(k + 1, j + 1)});
+                m.indices.insert(m.indices.end(), {ring(k, j), ring(k + 1, j + 1), ring(k + 1, j)});
+            } else {
+                m.indices.insert(m.indices.end(), {ring(k, j), ring(k, j + 1), tip});
+            }
+        }
+    m.indices.insert(m.indices.end(), {ring(0, 0), ring(0, 2), ring(0, 1)});  // the base
+    return OrganPrototype{{std::move(m), Material{p.color, "", "leaf"}}};
+}
+
 }  // namespace
 
 void registerHerbs(PlantArchitecture& arch) {
@@ -141,6 +184,8 @@ void registerHerbs(PlantArchitecture& arch) {
     arch.registerPhytomerCreationFunction("maize_phytomer", maizePhytomer);
     arch.registerPhytomerCreationFunction("sorghum_phytomer", sorghumPhytomer);
     arch.registerPhytomerCreationFunction("wheat_phytomer", scaleEarlyGrassNodes);
+    arch.registerPhytomerCreationFunction("asparagus_phytomer", asparagusPhytomer);
+    arch.registerLeafPrototype("asparagus_cladode", asparagusCladode);
 }
 
 }  // namespace plantarch::species_functions
