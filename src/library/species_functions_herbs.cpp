@@ -174,6 +174,15 @@ OrganPrototype asparagusCladode(const LeafPrototype& p, Rng& rng, int leaflet) {
     return OrganPrototype{{std::move(m), Material{p.color, "", "leaf"}}};
 }
 
+// Butter lettuce: each leaf is pitched down by 60 degrees x (max_nodes - node) / max_nodes,
+// so the outer (older) leaves spread and droop and the inner ones stand upright in a head.
+void butterLettucePhytomer(PhytomerCreationContext& c) {
+    if (c.shootMaxNodes <= 0) return;
+    const float fact = float(c.shootMaxNodes - int(c.nodeIndex)) / float(c.shootMaxNodes);
+    for (Petiole& p : c.phytomer.petioles)
+        for (LeafOrgan& l : p.leaves) l.pitch -= 60.0f * fact;
+}
+
 }  // namespace
 
 void registerHerbs(PlantArchitecture& arch) {
@@ -186,6 +195,7 @@ void registerHerbs(PlantArchitecture& arch) {
     arch.registerPhytomerCreationFunction("wheat_phytomer", scaleEarlyGrassNodes);
     arch.registerPhytomerCreationFunction("asparagus_phytomer", asparagusPhytomer);
     arch.registerLeafPrototype("asparagus_cladode", asparagusCladode);
+    arch.registerPhytomerCreationFunction("butterlettuce_phytomer", butterLettucePhytomer);
 }
 
 }  // namespace plantarch::species_functions
