@@ -58,13 +58,17 @@ struct PhytomerCreationContext {
 };
 using PhytomerCreationFunction = std::function<void(PhytomerCreationContext&)>;
 
-/// What a phytomer callback sees, once per phytomer at every whole day of plant age.
+/// What a phytomer callback sees, once per phytomer at every whole day of plant age (it may
+/// change the phytomer: remove leaves, kill buds).
 struct PhytomerCallbackContext {
     PlantInstance& plant;
     Shoot& shoot;
     Phytomer& phytomer;
     unsigned nodeIndex;
     double plantAge;           ///< days
+    /// World position of the base of the phytomer's internode at this age (organs elongated
+    /// to their size on this day); its height above the plant is nodeBase.z - plant.base.z.
+    vec3 nodeBase{0.0f};
 };
 using PhytomerCallbackFunction = std::function<void(PhytomerCallbackContext&)>;
 

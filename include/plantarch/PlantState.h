@@ -60,8 +60,14 @@ struct FlowerOrgan {
 
 struct FloralBud {
     FloralStage stage = FloralStage::Bud;
+    /// At stage Bud: Dormant waits to flower with flower_bud_break_probability; Active (set by
+    /// a rule function) flowers without that draw; Dead never flowers.
     BudState state = BudState::Dormant;
     bool terminal = false;    ///< at the shoot tip (else axillary)
+    /// Shoot type whose phytomer template (peduncle, inflorescence) realizes and draws this
+    /// bud; empty: the type that made its phytomer (terminal buds: the shoot's type). Rule
+    /// functions set it to give some nodes other flowers or fruit (maize ears).
+    std::string parametersLabel;
     float fruitAge = 0.0f;    ///< days since fruit set
     float fruitGrowth = 1.0f; ///< current fruit size / full-grown size
     double stageTime = 0.0;   ///< plant age when the current stage began

@@ -305,12 +305,20 @@ struct Tessellator {
                           {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
+    // The template a floral bud is drawn from: its own when a rule function gave it one.
+    const PhytomerParameters& budParameters(const FloralBud& fb, const PhytomerParameters& pp) {
+        return fb.parametersLabel.empty()
+                   ? pp
+                   : impl.shootTypeFor(plant, fb.parametersLabel).phytomer_parameters;
+    }
+
     void floral(Shoot& s, Phytomer& ph, int node, Petiole& pt, FloralBud& fb,
                 const PhytomerParameters& pp) {
         const Internode& in = ph.internode;
         vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth + fb.peduncleRoll);
         side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
-        inflorescence(s, ph, node, fb, pp, nodes[s.id][std::size_t(node) + 1], in.direction, side);
+        inflorescence(s, ph, node, fb, budParameters(fb, pp), nodes[s.id][std::size_t(node) + 1],
+                      in.direction, side);
     }
 
     // Terminal floral buds sit at the shoot tip, spread evenly around its axis.
@@ -324,8 +332,8 @@ struct Tessellator {
             const float az = in.azimuth + 360.0f * float(i) / float(n) + fb.peduncleRoll;
             vec3 side = azimuthDirection(in.guide, in.rollReference, az);
             side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
-            inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, pp, nodes[s.id].back(),
-                          in.direction, side);
+            inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, budParameters(fb, pp),
+                          nodes[s.id].back(), in.direction, side);
         }
     }
 

@@ -168,10 +168,15 @@ struct Grower {
                     !t.growth_requires_dormancy)
                     b.breakTime = plant.age + t.vegetative_bud_break_time.sample(plant.rng);
             for (FloralBud& fb : pt.floralBuds)
-                if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
-                    fb.nextTime < 0.0 && flowering >= 0.0 && !t.flowers_require_dormancy)
+                if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
+                    flowering >= 0.0 && !t.flowers_require_dormancy)
                     fb.nextTime = std::max(flowering, plant.age);
         }
+    }
+
+    // A floral bud still to flower: dormant, or made active (forced) by a rule function.
+    static bool waiting(const FloralBud& fb) {
+        return fb.state == BudState::Dormant || fb.state == BudState::Active;
     }
 
     bool canGrow(const Shoot& s, const ShootParameters& t) const {
@@ -261,13 +266,15 @@ struct Grower {
         const ShootParameters& t = typeOf(s.type);
         const PhenologyParameters& ph = plant.phenology;
         const PhytomerParameters& pp =
-            e.terminal ? t.phytomer_parameters
-                       : typeOf(s.phytomers[e.node].parametersLabel).phytomer_parameters;
+            !fb.parametersLabel.empty() ? typeOf(fb.parametersLabel).phytomer_parameters
+            : e.terminal                ? t.phytomer_parameters
+                         : typeOf(s.phytomers[e.node].parametersLabel).phytomer_parameters;
         auto next = [&](float delay) { return delay >= 0.0f ? now + delay : -1.0; };
         switch (fb.stage) {
             case FloralStage::Bud: {
-                if (fb.state != BudState::Dormant || !growingSeason()) return;
-                if (!plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
+                if (!waiting(fb) || !growingSeason()) return;
+                const bool forced = fb.state == BudState::Active;
+                if (!forced && !plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
                     fb.state = BudState::Dead;
                     fb.stage = FloralStage::Removed;
                     return;
@@ -339,8 +346,8 @@ struct Grower {
         // A dormant floral bud still waiting flowers this season.
         auto awaken = [&](FloralBud& fb, unsigned shoot, unsigned node, unsigned petiole,
                           unsigned index, bool terminal) {
-            if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant &&
-                fb.nextTime < 0.0 && flowering >= 0.0) {
+            if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
+                flowering >= 0.0) {
                 fb.nextTime = flowering;
                 push(fb.nextTime, kFloral, shoot, node, petiole, index, terminal);
             }
@@ -407,9 +414,13 @@ struct Grower {
         push(plant.nextDormancyBreak, kDormancyBreak, 0);
     }
 
+    // Callbacks see the plant as it stands on this day: run() brings elongation up to date
+    // before this event, and node positions are computed per shoot when first needed.
     void onDaily(double now) {
+        std::vector<vec3> positions;
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
+            positions.clear();
             for (unsigned k = 0; k < s.phytomers.size(); ++k) {
                 const std::string& name =
                     typeOf(s.phytomers[k].parametersLabel).phytomer_parameters.phytomer_callback_function;
@@ -419,7 +430,8 @@ struct Grower {
                     throw Error("unknown phytomer callback function",
                                 {.parameter = s.type + ".phytomer.phytomer_callback_function",
                                  .value = name});
-                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now};
+                if (positions.empty()) positions = shootNodePositions(plant, s.id);
+                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now, positions[k]};
                 fn->second(c);
             }
         }
@@ -501,7 +513,8 @@ struct Grower {
             queue.pop();
             if (!valid(e)) continue;
             plant.age = e.time;
-            if (e.kind == kLeafFall || e.kind == kSenescence) updateContinuous(e.time);
+            if (e.kind == kLeafFall || e.kind == kSenescence || e.kind == kDaily)
+                updateContinuous(e.time);
             switch (e.kind) {
                 case kDormancyBreak: onDormancyBreak(e.time); break;
                 case kSenescence: onSenescence(e.time); break;
