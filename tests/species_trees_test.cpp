@@ -1,0 +1,219 @@
+// The nut trees of the species library (almond and its two training variants, pistachio,
+// walnut): each rule function's effect on grown plants, the build parameters of the trained
+// young trees, and the phenology of the renders' age.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+
+namespace {
+
+// The error a call throws, or a failure when it throws none.
+template <class Fn>
+Error errorOf(Fn&& fn) {
+    try {
+        fn();
+    } catch (const Error& e) {
+        return e;
+    }
+    ADD_FAILURE() << "no plantarch::Error was thrown";
+    return Error("none");
+}
+
+// One library plant in its own scene.
+struct Tree {
+    std::unique_ptr<Context> ctx = std::make_unique<Context>();
+    std::unique_ptr<PlantArchitecture> arch = std::make_unique<PlantArchitecture>(ctx.get());
+    unsigned id = 0;
+    const PlantInstance& plant() const { return arch->plant(id); }
+};
+
+Tree grow(const std::string& species, float age, const std::map<std::string, float>& params = {},
+          std::uint64_t seed = 42) {
+    Tree t;
+    t.arch->setSeed(seed);
+    t.arch->loadPlantModelFromLibrary(species);
+    t.id = t.arch->buildPlantInstanceFromLibrary(vec3(0.0f), age, params);
+    return t;
+}
+
+std::vector<const Shoot*> shootsOfType(const PlantInstance& p, const std::string& type) {
+    std::vector<const Shoot*> out;
+    for (const Shoot& s : p.shoots)
+        if (!s.removed && s.type == type) out.push_back(&s);
+    return out;
+}
+
+bool anyChildFrom(const PlantInstance& p, const Shoot& s, unsigned node) {
+    for (unsigned c : s.children)
+        if (!p.shoots[c].removed && p.shoots[c].parentNode == int(node)) return true;
+    return false;
+}
+
+bool flowered(const FloralBud& b) { return b.state == BudState::Broken; }
+
+// Phytomers of a shoot made in the season that began at `begin` (plant age) and ended before
+// `end`.
+int nodesBornIn(const Shoot& s, double begin, double end) {
+    int n = 0;
+    for (const Phytomer& ph : s.phytomers) n += ph.birth >= begin && ph.birth < end;
+    return n;
+}
+
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+
+}  // namespace
+
+// ---- almond ----------------------------------------------------------------------------
+
+TEST(SpeciesTreesAlmond, ASpurGrowsSevenNodesASeasonALongShootTwenty) {
+    // Two shoots added by hand to a scaffold of the planted (dormant) tree: one with 5 mm
+    // internodes (a spur), one with 2 cm internodes.
+    Tree t = grow("almond", 0.0f);
+    const unsigned scaffold = shootsOfType(t.plant(), "scaffold").at(0)->id;
+    ShootSpec spec;
+    spec.shootType = "proleptic";
+    spec.internodeRadius = 0.002f;
+    spec.internodeLengthMax = 0.005f;
+    const unsigned spur = t.arch->addChildShoot(t.id, scaffold, 1, spec);
+    spec.internodeLengthMax = 0.02f;
+    const unsigned shoot = t.arch->addChildShoot(t.id, scaffold, 3, spec);
+    EXPECT_EQ(t.plant().shoots[spur].maxNodesPerSeason, 7);
+    EXPECT_EQ(t.plant().shoots[shoot].maxNodesPerSeason, 20);  // the type's value
+
+    // Dormancy breaks at day 90 and again at 455; each season adds 7 nodes to the spur
+    // (1 + 7 + 7) and 20 to the long shoot (1 + 20 + 20).
+    t.arch->advanceTime(300.0);
+    EXPECT_EQ(t.plant().shoots[spur].phytomers.size(), 8u);
+    EXPECT_EQ(t.plant().shoots[shoot].phytomers.size(), 21u);
+    t.arch->advanceTime(330.0);
+    const Shoot& s = t.plant().shoots[spur];
+    EXPECT_EQ(s.phytomers.size(), 15u);
+    EXPECT_EQ(t.plant().shoots[shoot].phytomers.size(), 41u);
+    // Spur nodes: no branch, no axillary flower, leaves at 80 % of the type's 0.12 m.
+    EXPECT_TRUE(s.children.empty());
+    for (const Phytomer& ph : s.phytomers)
+        for (const Petiole& pt : ph.petioles) {
+            for (const VegetativeBud& b : pt.vegetativeBuds) EXPECT_EQ(b.state, BudState::Dead);
+            for (const FloralBud& b : pt.floralBuds) EXPECT_FALSE(flowered(b));
+            for (const LeafOrgan& l : pt.leaves) EXPECT_NEAR(l.scale, 0.096f, 1e-6f);
+        }
+    const Shoot& longShoot = t.plant().shoots[shoot];
+    EXPECT_NEAR(longShoot.phytomers.back().petioles[0].leaves[0].scale, 0.12f, 1e-6f);
+}
+
+TEST(SpeciesTreesAlmond, GrownTreeHasSpursThatObeyTheRule) {
+    // Buds far below a shoot tip grow into spurs (the scaffold type's acrotonic internode
+    // decay of 2 mm per node); every spur keeps the rule over three seasons.
+    Tree t = grow("almond", 1000.0f);
+    const PlantInstance& p = t.plant();
+    int spurs = 0, longShoots = 0;
+    const double breaks[] = {90.0, 455.0, 820.0, 1185.0};
+    for (const Shoot* s : shootsOfType(p, "proleptic")) {
+        const bool spur = s->phytomers[0].internode.length < 0.01f;
+        if (!spur) {
+            ++longShoots;
+            EXPECT_EQ(s->maxNodesPerSeason, 20);
+            continue;
+        }
+        ++spurs;
+        EXPECT_EQ(s->maxNodesPerSeason, 7);
+        EXPECT_TRUE(s->children.empty());
+        for (int k = 0; k < 3; ++k) EXPECT_LE(nodesBornIn(*s, breaks[k], breaks[k + 1]), 7);
+    }
+    EXPECT_GT(spurs, 0);
+    EXPECT_GT(longShoots, 0);
+}
+
+TEST(SpeciesTreesAlmond, RepresentativeAgeIsMidSecondSeasonWithFruit) {
+    // 630 days: planted dormant, bud break at 90, leaf fall at 365, bud break at 455: in
+    // leaf, flowers over (open 3 days after bud break, fruit set 7 days later), fruit grown.
+    Tree t = grow("almond", 630.0f);
+    EXPECT_EQ(t.arch->getPhenologyStage(t.id), PhenologyStage::Reproductive);
+    EXPECT_EQ(t.plant().season, 2);
+    EXPECT_TRUE(t.arch->getPlantFlowerObjectIDs(t.id).empty());
+    EXPECT_FALSE(t.arch->getPlantFruitObjectIDs(t.id).empty());
+    const unsigned leaves = t.arch->getPlantLeafCount(t.id);
+    // ref: 462 leaves, 28 shoots at this age; the same order here.
+    EXPECT_GT(leaves, 230u);
+    EXPECT_LT(leaves, 930u);
+    // In winter (day 400) the tree is bare and dormant.
+    Tree winter = grow("almond", 400.0f);
+    EXPECT_EQ(winter.arch->getPhenologyStage(winter.id), PhenologyStage::Dormant);
+    EXPECT_EQ(winter.arch->getPlantLeafCount(winter.id), 0u);
+}
+
+TEST(SpeciesTreesAlmond, TrunkIsBareHeadedAndCarriesTheScaffolds) {
+    Tree t = grow("almond", 630.0f);
+    const PlantInstance& p = t.plant();
+    const Shoot& trunk = p.shoots[0];
+    EXPECT_EQ(trunk.type, "trunk");
+    EXPECT_EQ(trunk.phytomers.size(), 20u);  // 0.6 m of 3 cm internodes
+    for (const Phytomer& ph : trunk.phytomers)
+        for (const Petiole& pt : ph.petioles)
+            for (const LeafOrgan& l : pt.leaves) EXPECT_TRUE(l.removed);
+    // Only the scaffolds and the 1 cm top node grow from the trunk.
+    for (unsigned c : trunk.children) {
+        const Shoot& child = p.shoots[c];
+        EXPECT_TRUE(child.type == "scaffold" || child.type == "trunk") << child.type;
+    }
+    EXPECT_EQ(shootsOfType(p, "scaffold").size(), 4u);
+    EXPECT_GT(trunk.phytomers[0].internode.radius, 0.015f);  // thickened by the canopy
+}
+
+TEST(SpeciesTreesAlmond, BuildParametersMoveTheScaffolds) {
+    for (float h : {0.45f, 0.6f, 1.2f}) {
+        SCOPED_TRACE(h);
+        Tree t = grow("almond", 0.0f, {{"trunk_height", h}});
+        const PlantInstance& p = t.plant();
+        const unsigned nodes = unsigned(std::floor(h / 0.03f + 1e-4f));
+        EXPECT_EQ(p.shoots[0].phytomers.size(), nodes);
+        // The trunk leans at most 9 degrees; its 1 cm top node stands above it.
+        const float stem = t.arch->getPlantStemHeight(t.id);
+        EXPECT_GT(stem, 0.98f * h);
+        EXPECT_LT(stem, h + 0.011f);
+        // Scaffold 0 on the top node, the others on the trunk's highest nodes.
+        std::vector<int> onTrunk;
+        for (const Shoot* s : shootsOfType(p, "scaffold"))
+            if (s->parent == 0) onTrunk.push_back(s->parentNode);
+        EXPECT_EQ(onTrunk, (std::vector<int>{int(nodes) - 1, int(nodes) - 2, int(nodes) - 3}));
+    }
+    for (int n : {2, 6}) {
+        Tree t = grow("almond", 0.0f, {{"num_scaffolds", float(n)}});
+        EXPECT_EQ(shootsOfType(t.plant(), "scaffold").size(), std::size_t(n));
+    }
+    for (float angle : {20.0f, 70.0f}) {
+        Tree t = grow("almond", 0.0f, {{"scaffold_angle", angle}});
+        for (const Shoot* s : shootsOfType(t.plant(), "scaffold")) {
+            // Insertion angle = the step's pitch: scaffold_angle +- 0.1 rad.
+            EXPECT_NEAR(s->insertionAngle, angle, 5.74f);
+            const vec3 axis = s->phytomers[0].internode.guide;
+            EXPECT_NEAR(std::acos(axis.z) / kDeg, angle, 5.74f + 9.0f);  // + trunk lean
+        }
+    }
+}
+
+TEST(SpeciesTreesAlmond, BuildParameterErrors) {
+    const Error high = errorOf([] { grow("almond", 0.0f, {{"trunk_height", 3.5f}}); });
+    EXPECT_EQ(high.parameter(), "trunk_height");
+    EXPECT_EQ(high.validRange(), "0.1 to 3 m");
+    const Error many = errorOf([] { grow("almond", 0.0f, {{"num_scaffolds", 9}}); });
+    EXPECT_EQ(many.parameter(), "num_scaffolds");
+    const Error angle = errorOf([] { grow("almond", 0.0f, {{"scaffold_angle", 10}}); });
+    EXPECT_EQ(angle.parameter(), "scaffold_angle");
+    // A 9 cm trunk has 3 nodes: it cannot hold 8 scaffolds one node apart.
+    const Error crowded = errorOf(
+        [] { grow("almond", 0.0f, {{"trunk_height", 0.1f}, {"num_scaffolds", 8}}); });
+    EXPECT_NE(crowded.parameter().find(".node"), std::string::npos) << crowded.what();
+    EXPECT_NE(crowded.file().find("almond.xml"), std::string::npos);
+}
