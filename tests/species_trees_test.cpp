@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,12 +54,6 @@ std::vector<const Shoot*> shootsOfType(const PlantInstance& p, const std::string
     for (const Shoot& s : p.shoots)
         if (!s.removed && s.type == type) out.push_back(&s);
     return out;
-}
-
-bool anyChildFrom(const PlantInstance& p, const Shoot& s, unsigned node) {
-    for (unsigned c : s.children)
-        if (!p.shoots[c].removed && p.shoots[c].parentNode == int(node)) return true;
-    return false;
 }
 
 bool flowered(const FloralBud& b) { return b.state == BudState::Broken; }
@@ -216,4 +212,68 @@ TEST(SpeciesTreesAlmond, BuildParameterErrors) {
         [] { grow("almond", 0.0f, {{"trunk_height", 0.1f}, {"num_scaffolds", 8}}); });
     EXPECT_NE(crowded.parameter().find(".node"), std::string::npos) << crowded.what();
     EXPECT_NE(crowded.file().find("almond.xml"), std::string::npos);
+}
+
+// ---- almond training variants ------------------------------------------------------------
+
+TEST(SpeciesTreesAlmondVariants, FixedLayoutsOfTheReferenceAreTheDefaults) {
+    struct Layout {
+        const char* species;
+        unsigned trunkNodes, scaffolds;
+        float pitchMin, pitchMax;
+    };
+    for (const Layout& l : {Layout{"almond_aldrich", 19, 4, 5, 35},
+                            Layout{"almond_wood_colony", 14, 5, 45, 60}}) {
+        SCOPED_TRACE(l.species);
+        std::set<std::size_t> nodeCounts;
+        for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+            Tree t = grow(l.species, 0.0f, {}, seed);
+            const PlantInstance& p = t.plant();
+            EXPECT_EQ(p.shoots[0].phytomers.size(), l.trunkNodes);
+            const auto scaffolds = shootsOfType(p, "scaffold");
+            ASSERT_EQ(scaffolds.size(), l.scaffolds);
+            for (const Shoot* s : scaffolds) {
+                nodeCounts.insert(s->phytomers.size());
+                EXPECT_GE(s->insertionAngle, l.pitchMin);
+                EXPECT_LE(s->insertionAngle, l.pitchMax);
+            }
+        }
+        // 7, 8 or 9 nodes per scaffold, each of them occurring.
+        EXPECT_EQ(nodeCounts, (std::set<std::size_t>{7, 8, 9}));
+    }
+}
+
+TEST(SpeciesTreesAlmondVariants, TrunkHeightAndScaffoldCountAdjustTheLayout) {
+    Tree t = grow("almond_wood_colony", 0.0f, {{"trunk_height", 0.9f}, {"num_scaffolds", 3}});
+    EXPECT_EQ(t.plant().shoots[0].phytomers.size(), 30u);
+    EXPECT_EQ(shootsOfType(t.plant(), "scaffold").size(), 3u);
+    // The scaffold angles are the variant's own spread, not a parameter.
+    const Error e = errorOf([] { grow("almond_aldrich", 0.0f, {{"scaffold_angle", 40}}); });
+    EXPECT_EQ(e.parameter(), "scaffold_angle");
+    EXPECT_EQ(e.validRange(), "one of: trunk_height, num_scaffolds");
+}
+
+TEST(SpeciesTreesAlmondVariants, ShapesAtTheRepresentativeAge) {
+    // ref renders at 630 d: Aldrich an upright vase 2.12 m tall, Wood Colony a low, wide one
+    // of 1.38 m. Wood Colony spreads wider than it is tall above its trunk.
+    Tree aldrich = grow("almond_aldrich", 630.0f);
+    Tree wood = grow("almond_wood_colony", 630.0f);
+    const float hA = aldrich.arch->getPlantHeight(aldrich.id);
+    const float hW = wood.arch->getPlantHeight(wood.id);
+    EXPECT_GT(hA, 1.5f);
+    EXPECT_LT(hA, 3.0f);
+    EXPECT_GT(hW, 0.9f);
+    EXPECT_LT(hW, 2.0f);
+    auto spread = [](const Tree& t) {
+        float r = 0.0f;
+        t.ctx->forEachObject([&](const ObjectView& v) {
+            for (const vec3& q : v.positions) r = std::max(r, std::hypot(q.x, q.y));
+        });
+        return r;
+    };
+    EXPECT_GT(spread(wood) / (hW - 0.42f), spread(aldrich) / (hA - 0.57f));
+    for (const Tree* t : {&aldrich, &wood}) {
+        EXPECT_EQ(t->arch->getPhenologyStage(t->id), PhenologyStage::Reproductive);
+        EXPECT_GT(t->arch->getPlantLeafCount(t->id), 150u);
+    }
 }
