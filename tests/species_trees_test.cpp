@@ -277,3 +277,185 @@ TEST(SpeciesTreesAlmondVariants, ShapesAtTheRepresentativeAge) {
         EXPECT_GT(t->arch->getPlantLeafCount(t->id), 150u);
     }
 }
+
+// ---- walnut ------------------------------------------------------------------------------
+
+TEST(SpeciesTreesWalnut, FirstFourNodesOfEveryShootAreBlind) {
+    // No branch and no flower from nodes 0 to 3 of any scaffold or branch, over three
+    // seasons; further out the shoots branch and flower.
+    for (float age : {630.0f, 1000.0f}) {
+        SCOPED_TRACE(age);
+        Tree t = grow("walnut", age);
+        const PlantInstance& p = t.plant();
+        int branchesOut = 0, flowersOut = 0, readyBudsOut = 0;
+        for (const Shoot& s : p.shoots) {
+            if (s.removed || s.type == "trunk") continue;
+            for (unsigned k = 0; k < s.phytomers.size(); ++k)
+                for (const Petiole& pt : s.phytomers[k].petioles) {
+                    for (const VegetativeBud& b : pt.vegetativeBuds) {
+                        if (k < 4) EXPECT_EQ(b.state, BudState::Dead) << s.id << " node " << k;
+                        else branchesOut += b.state == BudState::Broken;
+                        if (k >= 4) readyBudsOut += b.state == BudState::Dormant;
+                    }
+                    for (const FloralBud& b : pt.floralBuds) {
+                        if (k < 4) EXPECT_FALSE(flowered(b)) << s.id << " node " << k;
+                        else flowersOut += flowered(b);
+                    }
+                }
+            for (unsigned c : s.children) EXPECT_GE(p.shoots[c].parentNode, 4);
+        }
+        EXPECT_GT(branchesOut, 0);
+        EXPECT_GT(flowersOut, 0);
+        EXPECT_GT(readyBudsOut, 0);  // buds of this season's nodes wait for next spring
+    }
+}
+
+TEST(SpeciesTreesWalnut, PhenologyAtTheRepresentativeAge) {
+    // Bud break at 165 and 530 days, leaf fall at 365: at 630 d the tree is in leaf with
+    // husked nuts; at 535 d its catkins are out; at 400 d it is bare, petioles fallen too.
+    Tree t = grow("walnut", 630.0f);
+    EXPECT_EQ(t.arch->getPhenologyStage(t.id), PhenologyStage::Reproductive);
+    EXPECT_EQ(t.plant().season, 2);
+    EXPECT_TRUE(t.arch->getPlantFlowerObjectIDs(t.id).empty());
+    EXPECT_FALSE(t.arch->getPlantFruitObjectIDs(t.id).empty());
+    Tree spring = grow("walnut", 535.0f);
+    EXPECT_FALSE(spring.arch->getPlantFlowerObjectIDs(spring.id).empty());
+    Tree winter = grow("walnut", 400.0f);
+    EXPECT_EQ(winter.arch->getPhenologyStage(winter.id), PhenologyStage::Dormant);
+    EXPECT_EQ(winter.arch->getPlantLeafCount(winter.id), 0u);
+    EXPECT_TRUE(winter.arch->getPlantPetioleObjectIDs(winter.id).empty());
+    // In leaf, exactly the petioles that still hold leaflets are drawn.
+    std::size_t leafy = 0;
+    for (const Shoot& s : t.plant().shoots)
+        for (const Phytomer& ph : s.phytomers)
+            for (const Petiole& pt : ph.petioles)
+                for (const LeafOrgan& l : pt.leaves)
+                    if (!l.removed) {
+                        ++leafy;
+                        break;
+                    }
+    EXPECT_GT(leafy, 0u);
+    EXPECT_EQ(t.arch->getPlantPetioleObjectIDs(t.id).size(), leafy);
+}
+
+TEST(SpeciesTreesWalnut, BuildParameters) {
+    for (float h : {0.8f, 1.2f}) {
+        Tree t = grow("walnut", 0.0f, {{"trunk_height", h}});
+        EXPECT_EQ(t.plant().shoots[0].phytomers.size(), std::size_t(std::lround(h / 0.04f)));
+        EXPECT_NEAR(t.plant().shoots[0].phytomers[0].internode.length, 0.04f, 1e-6f);
+        for (const Shoot* s : shootsOfType(t.plant(), "scaffold")) {
+            EXPECT_GE(s->phytomers.size(), 5u);
+            EXPECT_LE(s->phytomers.size(), 7u);
+        }
+    }
+    Tree t = grow("walnut", 0.0f, {{"num_scaffolds", 6}, {"scaffold_angle", 60}});
+    const auto scaffolds = shootsOfType(t.plant(), "scaffold");
+    EXPECT_EQ(scaffolds.size(), 6u);
+    for (const Shoot* s : scaffolds) EXPECT_NEAR(s->insertionAngle, 60.0f, 5.74f);
+    // The walnut's scaffold angles run from 25 to 60 degrees (almond's from 20 to 70).
+    const Error e = errorOf([] { grow("walnut", 0.0f, {{"scaffold_angle", 20}}); });
+    EXPECT_EQ(e.parameter(), "scaffold_angle");
+    EXPECT_EQ(e.validRange(), "25 to 60 degrees");
+}
+
+// ---- pistachio ---------------------------------------------------------------------------
+
+TEST(SpeciesTreesPistachio, FirstNodeOfEveryShootNeverBranches) {
+    Tree t = grow("pistachio", 1000.0f);
+    const PlantInstance& p = t.plant();
+    int branchesAboveFirst = 0;
+    for (const Shoot* s : shootsOfType(p, "proleptic")) {
+        for (const VegetativeBud& b : s->phytomers[0].petioles[0].vegetativeBuds)
+            EXPECT_EQ(b.state, BudState::Dead);
+        for (unsigned c : s->children) {
+            EXPECT_GE(p.shoots[c].parentNode, 1);
+            ++branchesAboveFirst;
+        }
+    }
+    EXPECT_GT(branchesAboveFirst, 0);
+    // Its floral buds are dead from the start, while those of the next node wait for
+    // spring (on shoots grown in the first season, before any winter has made them ready).
+    Tree young = grow("pistachio", 300.0f);
+    int grownShoots = 0;
+    for (const Shoot* s : shootsOfType(young.plant(), "proleptic")) {
+        if (s->phytomers[0].birth < 165.0) continue;  // a scaffold built with the tree
+        ++grownShoots;
+        ASSERT_GE(s->phytomers.size(), 2u);
+        for (const FloralBud& b : s->phytomers[0].petioles[0].floralBuds)
+            EXPECT_EQ(b.state, BudState::Dead);
+        for (const FloralBud& b : s->phytomers[1].petioles[0].floralBuds)
+            EXPECT_EQ(b.state, BudState::Dormant);
+    }
+    EXPECT_GT(grownShoots, 0);
+}
+
+TEST(SpeciesTreesPistachio, WinterMakesFloralBudsOfOlderNodesReadyAgain) {
+    // The same tree before leaf fall (day 360), in winter (400) and in its second summer
+    // (630). Floral buds that fruited in the first season are made ready again in winter,
+    // except on the three nodes nearest each shoot tip, and fruit again the next summer.
+    Tree t = grow("pistachio", 360.0f);
+    struct Key {
+        unsigned shoot, node, bud;
+    };
+    std::vector<Key> fruited;
+    for (const Shoot* s : shootsOfType(t.plant(), "proleptic"))
+        for (unsigned k = 0; k < s->phytomers.size(); ++k) {
+            const auto& buds = s->phytomers[k].petioles[0].floralBuds;
+            for (unsigned b = 0; b < buds.size(); ++b)
+                if (buds[b].stage == FloralStage::Fruit) fruited.push_back({s->id, k, b});
+        }
+    ASSERT_GT(fruited.size(), 5u);
+
+    t.arch->advanceTime(40.0);  // day 400: dormant
+    ASSERT_EQ(t.arch->getPhenologyStage(t.id), PhenologyStage::Dormant);
+    for (const Shoot* s : shootsOfType(t.plant(), "proleptic"))
+        for (unsigned k = 0; k + 3 < s->phytomers.size(); ++k)
+            for (const FloralBud& b : s->phytomers[k].petioles[0].floralBuds) {
+                EXPECT_EQ(b.stage, FloralStage::Bud);
+                EXPECT_EQ(b.state, BudState::Dormant);
+            }
+
+    t.arch->advanceTime(230.0);  // day 630: the old buds flowered again
+    int again = 0;
+    for (const Key& key : fruited)
+        again += flowered(t.plant().shoots[key.shoot].phytomers[key.node].petioles[0].floralBuds[key.bud]);
+    // Each bud flowers with probability 0.35: about a third of them.
+    EXPECT_GT(again, int(fruited.size()) / 8);
+    EXPECT_LT(again, int(fruited.size()) * 3 / 4);
+    EXPECT_EQ(t.ctx->objectCount(), t.arch->getAllPlantObjectIDs(t.id).size());
+
+    // From fruit on the tree (drawn at day 360) to the next summer in one call: the buds
+    // that flowered again take the place of their first-season fruit, whose objects go.
+    Tree once = grow("pistachio", 360.0f);
+    once.arch->advanceTime(270.0);
+    EXPECT_EQ(once.ctx->objectCount(), once.arch->getAllPlantObjectIDs(once.id).size());
+    EXPECT_EQ(once.ctx->objectCount(), t.ctx->objectCount());
+}
+
+TEST(SpeciesTreesPistachio, ScaffoldsFaceTheCardinalDirections) {
+    Tree t = grow("pistachio", 0.0f);
+    const PlantInstance& p = t.plant();
+    EXPECT_EQ(p.shoots[0].phytomers.size(), 20u);  // 1 m of 5 cm internodes
+    std::vector<vec3> dirs;
+    for (const Shoot* s : shootsOfType(p, "proleptic")) {
+        vec3 g = s->phytomers[0].internode.guide;
+        dirs.push_back(glm::normalize(vec3(g.x, g.y, 0.0f)));
+        EXPECT_NEAR(s->insertionAngle, 50.0f, 8.6f);
+    }
+    ASSERT_EQ(dirs.size(), 4u);
+    // Two on the top node facing away from each other, two on the node below, at right
+    // angles to them (within the trunk's lean of up to 9 degrees).
+    EXPECT_LT(glm::dot(dirs[0], dirs[1]), -0.9f);
+    EXPECT_LT(glm::dot(dirs[2], dirs[3]), -0.9f);
+    EXPECT_LT(std::abs(glm::dot(dirs[0], dirs[2])), 0.35f);
+    for (int n : {2, 3}) {
+        Tree fewer = grow("pistachio", 0.0f, {{"num_scaffolds", float(n)}});
+        EXPECT_EQ(shootsOfType(fewer.plant(), "proleptic").size(), std::size_t(n));
+    }
+    // At most one scaffold per cardinal direction: more is an error, not ignored.
+    const Error e = errorOf([] { grow("pistachio", 0.0f, {{"num_scaffolds", 5}}); });
+    EXPECT_EQ(e.parameter(), "num_scaffolds");
+    EXPECT_EQ(e.validRange(), "2 to 4");
+    Tree low = grow("pistachio", 0.0f, {{"trunk_height", 0.5f}});
+    EXPECT_EQ(low.plant().shoots[0].phytomers.size(), 10u);
+}
