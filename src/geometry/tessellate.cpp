@@ -257,7 +257,11 @@ struct Tessellator {
         const vec3 start = top + side * in.radius * 0.5f;
         std::vector<vec3> path = geometry::curvedPath(start, dir, std::max(length, 1e-6f),
                                                       pt.curvature, kUp, segs);
-        if (length > 1e-5f && pt.radius > 0.0f) {
+        // A petiole falls with its leaves (leaf fall, senescence, pruning).
+        const bool bare = !pt.leaves.empty() &&
+                          std::all_of(pt.leaves.begin(), pt.leaves.end(),
+                                      [](const LeafOrgan& l) { return l.removed; });
+        if (!bare && length > 1e-5f && pt.radius > 0.0f) {
             std::vector<float> radii;
             const float r0 = pt.radius * ph.leafFraction;
             // Tip radius = taper x base, kept above 2% of the base so no triangle degenerates.

@@ -279,6 +279,9 @@ struct Grower {
                     fb.stage = FloralStage::Removed;
                     return;
                 }
+                // A bud made ready again by a rule function may still hold the objects of its
+                // previous inflorescence when no geometry update ran in between.
+                for (FlowerOrgan& fl : fb.flowers) removeObjects(fl.objects);
                 realizeInflorescence(plant, fb, pp);
                 fb.state = BudState::Broken;
                 s.flowering = true;
