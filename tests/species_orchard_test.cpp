@@ -1,0 +1,484 @@
+// The trained fruit plants of the library (olive, apple, apple_fruitingwall, easternredbud,
+// grapevine_VSP, grapevine_Wye): each rule function's effect on grown plants, and each
+// species' build parameters (their effect on the young plant and their range errors).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+
+namespace {
+
+struct Grown {
+    std::unique_ptr<Context> ctx = std::make_unique<Context>();
+    std::unique_ptr<PlantArchitecture> arch = std::make_unique<PlantArchitecture>(ctx.get());
+    unsigned id = 0;
+    const PlantInstance& plant() const { return arch->plant(id); }
+};
+
+// A library plant built and grown to `age` days (seed 42).
+Grown grow(const std::string& species, float age, const std::map<std::string, float>& params = {}) {
+    Grown g;
+    g.arch->loadPlantModelFromLibrary(species);
+    g.id = g.arch->buildPlantInstanceFromLibrary(vec3(0.0f), age, params);
+    return g;
+}
+
+template <class Fn>
+Error errorOf(Fn&& fn) {
+    try {
+        fn();
+    } catch (const Error& e) {
+        return e;
+    }
+    ADD_FAILURE() << "no plantarch::Error was thrown";
+    return Error("none");
+}
+
+bool liveFloralBud(const Phytomer& ph) {
+    for (const Petiole& pt : ph.petioles)
+        for (const FloralBud& fb : pt.floralBuds)
+            if (fb.stage == FloralStage::Bud && fb.state == BudState::Dormant) return true;
+    return false;
+}
+
+bool dormantVegetativeBud(const Phytomer& ph) {
+    for (const Petiole& pt : ph.petioles)
+        for (const VegetativeBud& vb : pt.vegetativeBuds)
+            if (vb.state == BudState::Dormant) return true;
+    return false;
+}
+
+bool flowered(const Phytomer& ph) {  // a flower or fruit, or a peduncle left by one
+    for (const Petiole& pt : ph.petioles)
+        for (const FloralBud& fb : pt.floralBuds)
+            if (fb.state == BudState::Broken || fb.stage == FloralStage::FlowerOpen ||
+                fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::Fruit)
+                return true;
+    return false;
+}
+
+unsigned childrenOfType(const PlantInstance& p, unsigned parent) {
+    unsigned n = 0;
+    for (const Shoot& s : p.shoots) n += (!s.removed && s.parent == int(parent)) ? 1 : 0;
+    return n;
+}
+
+}  // namespace
+
+// ---- olive -------------------------------------------------------------------------------
+
+// While the tree is dormant, nodes more than 8 below a shoot's tip lose their floral buds;
+// while it grows, they keep them. Checked in the first and the second winter.
+TEST(SpeciesOrchard, OliveFlowersOnlyOnTheEightDistalNodesAfterEachWinterBegins) {
+    for (const auto& [growing, winter] : {std::pair{364.0f, 366.0f}, std::pair{729.0f, 731.0f}}) {
+        SCOPED_TRACE("winter from day " + std::to_string(winter));
+        const Grown before = grow("olive", growing);
+        EXPECT_NE(before.arch->getPhenologyStage(before.id), PhenologyStage::Dormant);
+        unsigned liveBelow = 0;
+        for (const Shoot& s : before.plant().shoots)
+            for (std::size_t k = 0; k + 8 < s.phytomers.size(); ++k)
+                liveBelow += liveFloralBud(s.phytomers[k]) ? 1 : 0;
+        EXPECT_GT(liveBelow, 5u);  // the rule does not act in the growing season
+
+        const Grown after = grow("olive", winter);
+        EXPECT_EQ(after.arch->getPhenologyStage(after.id), PhenologyStage::Dormant);
+        unsigned liveTop = 0;
+        for (const Shoot& s : after.plant().shoots) {
+            const std::size_t n = s.phytomers.size();
+            for (std::size_t k = 0; k < n; ++k) {
+                if (k + 8 < n) EXPECT_FALSE(liveFloralBud(s.phytomers[k])) << s.type << " node " << k;
+                else liveTop += liveFloralBud(s.phytomers[k]) ? 1 : 0;
+            }
+        }
+        EXPECT_GT(liveTop, 10u);  // the distal 8 nodes keep theirs
+    }
+}
+
+// In the second spring the flowers (now olives) come only from the distal 8 nodes of each
+// shoot as it stood at the end of the first season.
+TEST(SpeciesOrchard, OliveFruitGrowsNearTheShootTips) {
+    const Grown g = grow("olive", 630.0f);
+    unsigned fruitingNodes = 0;
+    for (const Shoot& s : g.plant().shoots) {
+        std::size_t firstSeason = 0;  // nodes the shoot had when the first season ended
+        while (firstSeason < s.phytomers.size() && s.phytomers[firstSeason].birth < 365.0)
+            ++firstSeason;
+        for (std::size_t k = 0; k < firstSeason; ++k)
+            if (flowered(s.phytomers[k]) && s.phytomers[k].birth > 1.0) {
+                EXPECT_GE(k + 8, firstSeason) << s.type << " node " << k;
+                ++fruitingNodes;
+            }
+    }
+    EXPECT_GT(fruitingNodes, 5u);
+    EXPECT_GT(g.arch->getPlantFruitObjectIDs(g.id).size(), 20u);
+}
+
+TEST(SpeciesOrchard, OliveIsBuiltAsAHeadedTrunkWithFourScaffolds) {
+    const Grown g = grow("olive", 0.0f);
+    const PlantInstance& p = g.plant();
+    EXPECT_EQ(g.arch->getPhenologyStage(g.id), PhenologyStage::Dormant);
+    const Shoot& trunk = p.shoots[0];
+    ASSERT_EQ(trunk.phytomers.size(), 19u);
+    EXPECT_EQ(trunk.apicalBud.state, BudState::Dead);
+    for (const Phytomer& ph : trunk.phytomers) {
+        EXPECT_FALSE(liveFloralBud(ph));
+        for (const Petiole& pt : ph.petioles)
+            for (const LeafOrgan& l : pt.leaves) EXPECT_TRUE(l.removed);
+    }
+    ASSERT_EQ(p.shoots.size(), 5u);
+    for (unsigned i = 1; i < 5; ++i) {
+        const Shoot& s = p.shoots[i];
+        EXPECT_EQ(s.type, "scaffold");
+        EXPECT_EQ(s.parentNode, int(19 - i));
+        EXPECT_GE(s.phytomers.size(), 5u);
+        EXPECT_LE(s.phytomers.size(), 7u);
+        EXPECT_GE(s.insertionAngle, 30.0f);  // the trunk adds no insertion angle
+        EXPECT_LE(s.insertionAngle, 35.0f);
+    }
+    // The olive takes no build parameters.
+    const Error e = errorOf([] { grow("olive", 0.0f, {{"trunk_height", 1.0f}}); });
+    EXPECT_EQ(e.validRange(), "the species has no build parameters");
+}
+
+// ---- apple -------------------------------------------------------------------------------
+
+// Shoots whose internodes are at the 1 cm minimum are spurs: no axillary branches or flowers,
+// leaves at 80 %, at most 6 nodes a season, a terminal flower bud.
+TEST(SpeciesOrchard, AppleShortShootsAreSpurs) {
+    const Grown g = grow("apple", 1000.0f);
+    const PlantInstance& p = g.plant();
+    unsigned spurs = 0, others = 0;
+    for (const Shoot& s : p.shoots) {
+        if (s.type != "proleptic" || s.phytomers.empty()) continue;
+        const bool spur = s.phytomers.back().internode.length <= 0.01f * 1.0001f;
+        if (spur) {
+            ++spurs;
+            EXPECT_EQ(s.maxNodesPerSeason, 6);
+            EXPECT_LE(s.phytomers.size(), 12u);  // two seasons at most by day 1000
+            EXPECT_EQ(childrenOfType(p, s.id), 0u);
+            EXPECT_EQ(s.terminalFloralBuds.size(), 1u);
+            for (const Phytomer& ph : s.phytomers) {
+                EXPECT_FALSE(dormantVegetativeBud(ph));
+                EXPECT_FALSE(liveFloralBud(ph));
+                EXPECT_FALSE(flowered(ph));
+                for (const Petiole& pt : ph.petioles)
+                    for (const LeafOrgan& l : pt.leaves) EXPECT_FLOAT_EQ(l.scale, 0.12f * 0.8f);
+            }
+        } else {
+            ++others;
+            EXPECT_EQ(s.maxNodesPerSeason, 20);
+            for (const Phytomer& ph : s.phytomers)
+                for (const Petiole& pt : ph.petioles)
+                    for (const LeafOrgan& l : pt.leaves) EXPECT_FLOAT_EQ(l.scale, 0.12f);
+        }
+    }
+    EXPECT_GT(spurs, 5u);
+    EXPECT_GT(others, 5u);
+}
+
+TEST(SpeciesOrchard, AppleBuildParametersMoveAndTurnTheScaffolds) {
+    auto scaffolds = [](const Grown& g) {
+        std::vector<const Shoot*> v;
+        for (const Shoot& s : g.plant().shoots)
+            if (s.parent == 0) v.push_back(&s);
+        return v;
+    };
+    const Grown standard = grow("apple", 0.0f);
+    EXPECT_EQ(standard.plant().shoots[0].phytomers.size(), 20u);  // 0.8 m of 4 cm
+    ASSERT_EQ(scaffolds(standard).size(), 4u);
+    for (const Shoot* s : scaffolds(standard)) {
+        EXPECT_GE(s->parentNode, 16);
+        EXPECT_NEAR(s->insertionAngle, 40.0f, 5.8f);
+        EXPECT_TRUE(s->phytomers[0].petioles[0].leaves[0].removed);  // a dormant tree is bare
+    }
+    const Grown tall = grow("apple", 0.0f, {{"trunk_height", 1.6f}, {"num_scaffolds", 6},
+                                            {"scaffold_angle", 65}});
+    EXPECT_EQ(tall.plant().shoots[0].phytomers.size(), 40u);
+    ASSERT_EQ(scaffolds(tall).size(), 6u);
+    for (const Shoot* s : scaffolds(tall)) {
+        EXPECT_GE(s->parentNode, 34);
+        EXPECT_NEAR(s->insertionAngle, 65.0f, 5.8f);
+        const float z = tall.arch->getNodePosition(tall.id, 0, unsigned(s->parentNode)).z;
+        EXPECT_GT(z, 1.3f);
+    }
+    // A trunk with fewer nodes than scaffolds: the extra scaffolds share its lowest node.
+    const Grown stub = grow("apple", 0.0f, {{"trunk_height", 0.1f}, {"num_scaffolds", 8}});
+    EXPECT_EQ(stub.plant().shoots[0].phytomers.size(), 2u);
+    EXPECT_EQ(scaffolds(stub).size(), 8u);
+
+    const Error high = errorOf([] { grow("apple", 0.0f, {{"trunk_height", 3.5f}}); });
+    EXPECT_EQ(high.parameter(), "trunk_height");
+    EXPECT_EQ(high.validRange(), "0.1 to 3 m");
+    const Error many = errorOf([] { grow("apple", 0.0f, {{"num_scaffolds", 9}}); });
+    EXPECT_EQ(many.validRange(), "2 to 8");
+    const Error flat = errorOf([] { grow("apple", 0.0f, {{"scaffold_angle", 10}}); });
+    EXPECT_EQ(flat.validRange(), "20 to 70 degrees");
+}
+
+// ---- apple fruiting wall -----------------------------------------------------------------
+
+TEST(SpeciesOrchard, FruitingWallLateralsLieAlongTheRowAtTheWireHeights) {
+    const Grown g = grow("apple_fruitingwall", 0.0f);
+    const PlantInstance& p = g.plant();
+    ASSERT_EQ(p.shoots[0].phytomers.size(), 28u);
+    EXPECT_EQ(p.shoots[0].apicalBud.state, BudState::Dead);
+    std::vector<int> nodes;
+    int towardPlusY = 0;
+    for (const Shoot& s : p.shoots) {
+        if (s.parent != 0) continue;
+        EXPECT_EQ(s.type, "lateral");
+        nodes.push_back(s.parentNode);
+        const vec3 d = s.phytomers[0].internode.guide;
+        EXPECT_LT(std::abs(d.z), 0.35f);  // within 20 degrees of horizontal (81 to 94 degrees
+                                          // from a leader tilted up to 9)
+        EXPECT_LT(std::abs(d.x), 0.05f);  // along the row (y)
+        towardPlusY += d.y > 0.0f ? 1 : 0;
+    }
+    std::sort(nodes.begin(), nodes.end());
+    EXPECT_EQ(nodes, (std::vector<int>{7, 8, 17, 18, 24, 25, 26, 27}));
+    EXPECT_EQ(towardPlusY, 4);  // one lateral of each pair to each side
+    // The pair for the 1.6 m wire sits at it.
+    EXPECT_NEAR(g.arch->getNodePosition(g.id, 0, 17).z, 1.6f, 0.05f);
+    // Grown, the wall stays narrow across the row and long along it.
+    const Grown grown = grow("apple_fruitingwall", 630.0f);
+    float xMax = 0.0f, yMax = 0.0f;
+    for (const Shoot& s : grown.plant().shoots)
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const vec3 q = grown.arch->getNodePosition(grown.id, s.id, k);
+            xMax = std::max(xMax, std::abs(q.x));
+            yMax = std::max(yMax, std::abs(q.y));
+        }
+    EXPECT_GT(yMax, 2.0f * xMax);
+    const Error e = errorOf([] { grow("apple_fruitingwall", 0.0f, {{"tree_spacing", 1.0f}}); });
+    EXPECT_EQ(e.validRange(), "the species has no build parameters");
+}
+
+// ---- eastern redbud ----------------------------------------------------------------------
+
+// Each winter every shoot keeps vegetative buds only on its N distal nodes and floral buds
+// only below them, N from 2 to 4 drawn once per shoot and winter: late in the winter no node
+// of the last season is left blind. Checked in the first and the second winter.
+TEST(SpeciesOrchard, RedbudBranchesFromTheTipAndFlowersBelowEachWinter) {
+    std::set<int> distalCounts;
+    for (const auto& [growing, winter] : {std::pair{364.0f, 520.0f}, std::pair{729.0f, 880.0f}}) {
+        SCOPED_TRACE("winter day " + std::to_string(winter));
+        const Grown before = grow("easternredbud", growing);
+        unsigned mixed = 0;  // nodes with both kinds of bud alive
+        for (const Shoot& s : before.plant().shoots)
+            for (const Phytomer& ph : s.phytomers)
+                mixed += (liveFloralBud(ph) && dormantVegetativeBud(ph)) ? 1 : 0;
+        EXPECT_GT(mixed, 10u);
+
+        const Grown after = grow("easternredbud", winter);
+        EXPECT_EQ(after.arch->getPhenologyStage(after.id), PhenologyStage::Dormant);
+        unsigned floweringNodes = 0;
+        for (const Shoot& s : after.plant().shoots) {
+            const int n = int(s.phytomers.size());
+            if (s.type != "eastern_redbud_shoot" || n < 5) continue;
+            int firstVegetative = n;
+            for (int k = n - 1; k >= 0 && dormantVegetativeBud(s.phytomers[std::size_t(k)]); --k)
+                firstVegetative = k;
+            const int distal = n - firstVegetative;
+            EXPECT_GE(distal, 2) << "shoot " << s.id;
+            EXPECT_LE(distal, 4) << "shoot " << s.id;
+            distalCounts.insert(distal);
+            for (int k = 0; k < n; ++k) {
+                const Phytomer& ph = s.phytomers[std::size_t(k)];
+                if (k < firstVegetative) {
+                    EXPECT_FALSE(dormantVegetativeBud(ph)) << "shoot " << s.id << " node " << k;
+                    // Nodes of the last season all keep floral buds for the spring.
+                    if (ph.birth > growing - 200.0f) {
+                        EXPECT_TRUE(liveFloralBud(ph)) << "shoot " << s.id << " node " << k;
+                    }
+                    floweringNodes += liveFloralBud(ph) ? 1 : 0;
+                } else {
+                    EXPECT_FALSE(liveFloralBud(ph)) << "shoot " << s.id << " node " << k;
+                }
+            }
+        }
+        EXPECT_GT(floweringNodes, 10u);
+    }
+    EXPECT_EQ(distalCounts.size(), 3u);  // N is drawn per shoot: 2, 3 and 4 all occur
+}
+
+// The once-per-winter rule gives the same tree whatever the time steps.
+TEST(SpeciesOrchard, RedbudRuleIsTheSameForAnyStepSize) {
+    auto states = [](const Grown& g) {
+        std::string s;
+        for (const Shoot& sh : g.plant().shoots)
+            for (const Phytomer& ph : sh.phytomers)
+                s += std::string(dormantVegetativeBud(ph) ? "v" : "-") +
+                     (liveFloralBud(ph) ? "f" : "-");
+        return s;
+    };
+    const Grown once = grow("easternredbud", 400.0f);
+    Grown steps;
+    steps.arch->loadPlantModelFromLibrary("easternredbud");
+    steps.id = steps.arch->buildPlantInstanceFromLibrary(vec3(0.0f), 0.0f);
+    for (int i = 0; i < 160; ++i) steps.arch->advanceTime(2.5);
+    EXPECT_EQ(steps.plant().shoots.size(), once.plant().shoots.size());
+    EXPECT_EQ(states(steps), states(once));
+}
+
+TEST(SpeciesOrchard, RedbudIsBuiltAsABareWhipWithBudsAtTheTop) {
+    const Grown g = grow("easternredbud", 0.0f);
+    const PlantInstance& p = g.plant();
+    ASSERT_EQ(p.shoots.size(), 2u);
+    EXPECT_EQ(p.shoots[0].phytomers.size() + p.shoots[1].phytomers.size(), 16u);
+    for (const Phytomer& ph : p.shoots[0].phytomers) EXPECT_FALSE(dormantVegetativeBud(ph));
+    for (const Phytomer& ph : p.shoots[1].phytomers) EXPECT_TRUE(dormantVegetativeBud(ph));
+    EXPECT_EQ(g.arch->getPlantLeafCount(g.id), 0u);
+    // 16 internodes of 5 cm, tilted up to 18 degrees at the base and bending back up.
+    const float top = g.arch->getNodePosition(g.id, 1, 3).z;
+    EXPECT_GT(top, 0.8f * std::cos(18.0f * 3.14159265f / 180.0f));
+    EXPECT_LE(top, 0.8f + 1e-4f);
+}
+
+// ---- grapevines --------------------------------------------------------------------------
+
+// Bunches only at a shoot's first two nodes; shoots of rank 1 branch only from nodes 0-7;
+// laterals (rank 2) neither branch nor flower.
+TEST(SpeciesOrchard, GrapevineBunchesAtTheShootBaseAndBlindLaterals) {
+    for (const char* name : {"grapevine_VSP", "grapevine_Wye"}) {
+        SCOPED_TRACE(name);
+        const Grown g = grow(name, 300.0f);
+        const PlantInstance& p = g.plant();
+        unsigned laterals = 0, rankOne = 0, bunchNodes = 0;
+        for (const Shoot& s : p.shoots) {
+            if (s.rank >= 2) {
+                ++laterals;
+                EXPECT_EQ(childrenOfType(p, s.id), 0u);
+                for (const Phytomer& ph : s.phytomers) {
+                    EXPECT_FALSE(dormantVegetativeBud(ph));
+                    EXPECT_FALSE(liveFloralBud(ph));
+                    EXPECT_FALSE(flowered(ph));
+                }
+            }
+            if (s.rank == 1) ++rankOne;
+            for (std::size_t k = 2; k < s.phytomers.size(); ++k)
+                EXPECT_FALSE(liveFloralBud(s.phytomers[k]) || flowered(s.phytomers[k]))
+                    << s.type << " node " << k;
+            for (std::size_t k = 0; k < std::min<std::size_t>(2, s.phytomers.size()); ++k)
+                bunchNodes += flowered(s.phytomers[k]) ? 1 : 0;
+        }
+        for (const Shoot& s : p.shoots)
+            if (s.parent >= 0 && p.shoots[std::size_t(s.parent)].rank == 1) {
+                EXPECT_LT(s.parentNode, 8);
+            }
+        EXPECT_GT(rankOne, 10u);
+        EXPECT_GT(laterals, 0u);
+        EXPECT_GT(bunchNodes, 0u);
+        EXPECT_GT(g.arch->getPlantFruitObjectIDs(g.id).size(), 0u);
+    }
+}
+
+TEST(SpeciesOrchard, VSPCanesFollowVineSpacingAndTheTrunkItsHeight) {
+    auto caneReach = [](const Grown& g) {
+        float reach = 0.0f;
+        for (const Shoot& s : g.plant().shoots)
+            if (s.type == "grapevine_cane")
+                reach = std::max(reach, std::abs(g.arch->getNodePosition(
+                                            g.id, s.id, unsigned(s.phytomers.size() - 1)).x));
+        return reach;
+    };
+    const Grown standard = grow("grapevine_VSP", 0.0f);
+    const PlantInstance& p = standard.plant();
+    ASSERT_EQ(p.shoots.size(), 3u);
+    EXPECT_EQ(p.shoots[1].phytomers.size(), 8u);  // floor(1.2 / 0.15)
+    EXPECT_EQ(p.shoots[1].apicalBud.state, BudState::Dead);
+    EXPECT_NEAR(caneReach(standard), 1.2f, 0.1f);
+    EXPECT_NEAR(standard.arch->getNodePosition(standard.id, 0, 0).z, 0.1f, 0.01f);
+    // Canes lie along the row, one each way, buds on top.
+    EXPECT_LT(p.shoots[1].phytomers[0].internode.guide.x * p.shoots[2].phytomers[0].internode.guide.x, 0.0f);
+
+    const Grown wide = grow("grapevine_VSP", 0.0f, {{"vine_spacing", 4.0f}, {"trunk_height", 0.75f}});
+    EXPECT_EQ(wide.plant().shoots[1].phytomers.size(), 13u);  // floor(2 / 0.15)
+    EXPECT_NEAR(caneReach(wide), 1.95f, 0.1f);
+    const unsigned top = unsigned(wide.plant().shoots[0].phytomers.size() - 1);
+    EXPECT_NEAR(wide.arch->getNodePosition(wide.id, 0, top).z, 0.75f, 0.01f);
+
+    const Error e = errorOf([] { grow("grapevine_VSP", 0.0f, {{"vine_spacing", 0.2f}}); });
+    EXPECT_EQ(e.parameter(), "vine_spacing");
+    EXPECT_EQ(e.validRange(), "0.5 to 5 m");
+    // Shoots grow up from the canes.
+    const Grown grown = grow("grapevine_VSP", 270.0f);
+    unsigned upright = 0, fromCanes = 0;
+    for (const Shoot& s : grown.plant().shoots)
+        if (s.parent == 1 || s.parent == 2) {
+            ++fromCanes;
+            upright += grown.arch->getNodePosition(grown.id, s.id, unsigned(s.phytomers.size() - 1)).z > 0.8f;
+        }
+    EXPECT_GT(fromCanes, 10u);
+    EXPECT_GT(upright, fromCanes / 2);
+}
+
+TEST(SpeciesOrchard, WyeArmsFollowCordonSpacingAndCordonsVineSpacing) {
+    auto heads = [](const Grown& g) {  // |y| of the arms' tips, cordon reach along x
+        std::pair<float, float> r{0.0f, 0.0f};
+        for (const Shoot& s : g.plant().shoots) {
+            const vec3 tip = g.arch->getNodePosition(g.id, s.id, unsigned(s.phytomers.size() - 1));
+            if (s.type == "grapevine_trunk" && s.id != 0) r.first += std::abs(tip.y) / 2.0f;
+            if (s.type == "grapevine_cordon") r.second = std::max(r.second, std::abs(tip.x));
+        }
+        return r;
+    };
+    const Grown standard = grow("grapevine_Wye", 0.0f);
+    const PlantInstance& p = standard.plant();
+    ASSERT_EQ(p.shoots.size(), 7u);  // trunk, 2 arms, 4 cordons
+    EXPECT_EQ(p.shoots[0].phytomers.size(), 8u);
+    EXPECT_NEAR(standard.arch->getNodePosition(standard.id, 0, 7).z, 0.165f, 0.002f);
+    EXPECT_NEAR(heads(standard).first, 0.3f, 0.03f);
+    EXPECT_NEAR(heads(standard).second, 8 * 0.11f, 0.05f);
+    for (const Shoot& s : p.shoots)
+        if (s.type == "grapevine_cordon") {
+            EXPECT_EQ(s.phytomers.size(), 8u);
+            EXPECT_LT(std::abs(s.phytomers[0].internode.guide.z), 0.05f);  // horizontal
+            EXPECT_GT(std::abs(s.phytomers[0].internode.guide.x), 0.99f);  // along the row
+        }
+    const Grown wide = grow("grapevine_Wye", 0.0f, {{"cordon_spacing", 1.2f}, {"vine_spacing", 3.0f},
+                                                    {"trunk_height", 0.5f}});
+    EXPECT_NEAR(heads(wide).first, 0.6f, 0.06f);
+    EXPECT_NEAR(heads(wide).second, 13 * 0.11f, 0.05f);
+    const unsigned top = unsigned(wide.plant().shoots[0].phytomers.size() - 1);
+    EXPECT_NEAR(wide.arch->getNodePosition(wide.id, 0, top).z, 0.5f, 0.005f);
+
+    // catch_wire_height only places the trellis wires: the vine is the same.
+    const Grown low = grow("grapevine_Wye", 120.0f, {{"catch_wire_height", 0.5f}});
+    const Grown high = grow("grapevine_Wye", 120.0f, {{"catch_wire_height", 4.0f}});
+    EXPECT_EQ(low.ctx->triangleCount(), high.ctx->triangleCount());
+    EXPECT_EQ(low.arch->getNodePosition(low.id, 3, 5), high.arch->getNodePosition(high.id, 3, 5));
+    const Error e = errorOf([] { grow("grapevine_Wye", 0.0f, {{"catch_wire_height", 4.5f}}); });
+    EXPECT_EQ(e.parameter(), "catch_wire_height");
+    EXPECT_EQ(e.validRange(), "0.5 to 4 m");
+    const Error c = errorOf([] { grow("grapevine_Wye", 0.0f, {{"cordon_spacing", 0.1f}}); });
+    EXPECT_EQ(c.validRange(), "0.2 to 2 m");
+}
+
+// ---- all six -------------------------------------------------------------------------------
+
+// Trained plants start dormant (bare wood) and grow from the end of their first winter.
+TEST(SpeciesOrchard, EveryPlantWaitsForTheFirstWinterToEnd) {
+    for (const char* name : {"olive", "apple", "apple_fruitingwall", "easternredbud",
+                             "grapevine_VSP", "grapevine_Wye"}) {
+        SCOPED_TRACE(name);
+        const Grown young = grow(name, 160.0f);
+        const Grown fresh = grow(name, 0.0f);
+        EXPECT_EQ(young.arch->getPhenologyStage(young.id), PhenologyStage::Dormant);
+        EXPECT_EQ(young.plant().shoots.size(), fresh.plant().shoots.size());
+        EXPECT_EQ(young.arch->getPlantLeafCount(young.id), fresh.arch->getPlantLeafCount(fresh.id));
+        const Grown grown = grow(name, 230.0f);
+        EXPECT_NE(grown.arch->getPhenologyStage(grown.id), PhenologyStage::Dormant);
+        EXPECT_GT(grown.arch->getPlantLeafCount(grown.id), young.arch->getPlantLeafCount(young.id));
+    }
+}
