@@ -19,8 +19,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include "geometry/polygon_mesh.h"
 #include "plantarch/Error.h"
@@ -697,7 +700,9 @@ LeafOutlineParams leafShapePreset(LeafShape shape) {
 
 // ---- outline -----------------------------------------------------------------------------
 
-std::vector<vec2> leafOutline(const LeafOutlineParams& params) {
+namespace {
+
+std::vector<vec2> computeLeafOutline(const LeafOutlineParams& params) {
     const FamilyForm form = familyForm(params.shape);
     const LeafOutlineParams asked = clamped(params, form.form);
     // Teeth or lobes too deep for a tight bend could make the margin cross itself: make
@@ -729,6 +734,39 @@ std::vector<vec2> leafOutline(const LeafOutlineParams& params) {
     if (accept(finishHalf(simpleHalf(plain, FamilyForm{}), {}, plain))) return toFloat(full);
     throw Error("leaf outline is not a simple polygon",
                 {.parameter = "shape", .value = std::string(leafShapeName(asked.shape))});
+}
+
+// Outlines are a pure function of their parameters and palmate ones cost milliseconds, while
+// a plant asks for the same outline once per leaf variant and a canopy once per worker: a
+// small process-wide memo, shared by all threads, keeps one computation per parameter set.
+using OutlineKey = std::tuple<int, float, float, float, float, float, float, int, float, int,
+                              float, float>;
+
+static_assert(sizeof(LeafOutlineParams) == 12 * 4, "a new outline parameter must join OutlineKey");
+
+OutlineKey outlineKey(const LeafOutlineParams& p) {
+    return {int(p.shape),  p.aspect_ratio, p.widest_point, p.tip_angle,
+            p.base_angle,  p.base_width,   p.sinus_depth,  p.lobes,
+            p.lobe_depth,  p.serrations,   p.serration_depth, p.tolerance};
+}
+
+}  // namespace
+
+std::vector<vec2> leafOutline(const LeafOutlineParams& params) {
+    static std::mutex mutex;
+    static std::map<OutlineKey, std::vector<vec2>> memo;
+    constexpr std::size_t kMaxEntries = 512;
+    const OutlineKey key = outlineKey(params);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        auto it = memo.find(key);
+        if (it != memo.end()) return it->second;
+    }
+    std::vector<vec2> outline = computeLeafOutline(params);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (memo.size() >= kMaxEntries) memo.clear();
+    memo.emplace(key, outline);
+    return outline;
 }
 
 }  // namespace plantarch
