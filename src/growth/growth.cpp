@@ -234,8 +234,10 @@ struct Grower {
         if (!growingSeason()) return;  // rescheduled when dormancy breaks
         const ShootParameters& t = typeOf(s.type);
         const int n = int(s.phytomers.size());
-        const float p = budBreakProbability(t, plant.rng, int(e.node), n);
-        if (!plant.rng.chance(p)) {
+        // Buds that need a winter were sorted when dormancy broke; the others are sorted now,
+        // by their place below the growing tip.
+        if (!t.growth_requires_dormancy &&
+            !plant.rng.chance(budBreakProbability(t, plant.rng, int(e.node), n))) {
             bud.state = BudState::Dead;
             return;
         }
@@ -370,6 +372,14 @@ struct Grower {
                     for (unsigned b = 0; b < pt.vegetativeBuds.size(); ++b) {
                         VegetativeBud& bud = pt.vegetativeBuds[b];
                         if (bud.state == BudState::Dormant && bud.breakTime < 0.0) {
+                            // Buds that need a winter are sorted as the season begins, by
+                            // their place on the shoot as it stands now.
+                            if (t.growth_requires_dormancy &&
+                                !plant.rng.chance(budBreakProbability(
+                                    t, plant.rng, int(k), int(s.phytomers.size())))) {
+                                bud.state = BudState::Dead;
+                                continue;
+                            }
                             bud.breakTime = now + t.vegetative_bud_break_time.sample(plant.rng);
                             push(bud.breakTime, kBudBreak, s.id, k, j, b);
                         }
