@@ -269,11 +269,13 @@ TEST(Growth, BudBreakFractionMatchesProbability) {
     EXPECT_NEAR(broken, n * 0.3, 5 * sd);
 }
 
-TEST(Growth, BudBreakProbabilityDecaysFromTheBase) {
-    // Basitonic: probability 1 at node 0, -0.25 per node up, at least 0.1.
+// Fraction of 1500 six-node shoots branching at each node, for a basitonic decay of -0.25
+// with a minimum of 0.1, on buds that need a winter (or not).
+std::vector<int> basitonicBranchesPerNode(bool needsWinter) {
     Garden g;
     ShootParameters s = branchingParent(g, 6, 0.1f, 0.0f);
     s.vegetative_bud_break_probability_decay_rate = -0.25f;
+    s.growth_requires_dormancy = needsWinter;
     g.arch.defineShootType("main", s);
     const int n = 1500;
     for (int i = 0; i < n; ++i) {
@@ -285,10 +287,26 @@ TEST(Growth, BudBreakProbabilityDecaysFromTheBase) {
     for (unsigned id : g.arch.getAllPlantIDs())
         for (const Shoot& sh : g.state(id).shoots)
             if (sh.parent == 0) perNode[std::size_t(sh.parentNode)]++;
+    return perNode;
+}
+
+TEST(Growth, BudBreakProbabilityDecaysFromTheBaseAfterWinter) {
+    // Basitonic buds sorted as dormancy breaks: probability 1 at node 0, -0.25 per node up,
+    // at least 0.1.
+    const std::vector<int> perNode = basitonicBranchesPerNode(true);
+    const int n = 1500;
     const double p[] = {1.0, 0.75, 0.5, 0.25, 0.1, 0.1};
     for (int k = 0; k < 6; ++k)
         EXPECT_NEAR(perNode[std::size_t(k)], n * p[k], 5 * std::sqrt(n * p[k] * (1 - p[k])) + 1e-9)
             << "node " << k;
+}
+
+TEST(Growth, BudBreakProbabilityIsTheMinimumWithoutWinterWhenBasitonic) {
+    // Shoots that grow on without a winter take the minimum, 0.1, at every node.
+    const std::vector<int> perNode = basitonicBranchesPerNode(false);
+    const int n = 1500;
+    for (int k = 0; k < 6; ++k)
+        EXPECT_NEAR(perNode[std::size_t(k)], n * 0.1, 5 * std::sqrt(n * 0.1 * 0.9)) << "node " << k;
 }
 
 TEST(Growth, PhenologyStagesOnTheirDays) {
@@ -472,7 +490,7 @@ TEST(Growth, StepSizeInvariance) {
         s.phytomer_parameters.petiole.pitch = RandomFloat::normal(50, 8);
         s.phytomer_parameters.internode.max_vegetative_buds_per_petiole = 1;
         s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
-        s.vegetative_bud_break_probability_min = 0.05f;
+        s.vegetative_bud_break_probability_min = 0.3f;
         s.vegetative_bud_break_probability_max = 0.6f;
         s.vegetative_bud_break_probability_decay_rate = -0.25f;
         s.vegetative_bud_break_time = RandomFloat::uniform(3, 9);

@@ -44,15 +44,16 @@ struct Event {
 };
 
 // Probability that an axillary bud at node `k` of a shoot with `n` nodes breaks. A positive
-// decay rate makes it highest at the tip (dropping by the rate per node below it), a
-// negative one highest at the base; never below the minimum. With no decay the minimum
-// applies all along the shoot.
-float budBreakProbability(const ShootParameters& t, Rng& rng, int k, int n) {
+// decay rate makes it highest at the tip (dropping by the rate per node below it). A
+// negative one makes it highest at the base of shoots that grew from buds sorted after a
+// winter (`afterWinter`); shoots that grow on without a winter take the minimum there. Never
+// below the minimum; with no decay the minimum applies all along the shoot.
+float budBreakProbability(const ShootParameters& t, Rng& rng, int k, int n, bool afterWinter) {
     const float pmin = t.vegetative_bud_break_probability_min.sample(rng);
     const float pmax = t.vegetative_bud_break_probability_max.sample(rng);
     const float decay = t.vegetative_bud_break_probability_decay_rate.sample(rng);
     if (decay > 0.0f) return std::max(pmin, pmax - decay * float(n - 1 - k));
-    if (decay < 0.0f) return std::max(pmin, pmax + decay * float(k));
+    if (decay < 0.0f && afterWinter) return std::max(pmin, pmax + decay * float(k));
     return pmin;
 }
 
@@ -237,7 +238,7 @@ struct Grower {
         // Buds that need a winter were sorted when dormancy broke; the others are sorted now,
         // by their place below the growing tip.
         if (!t.growth_requires_dormancy &&
-            !plant.rng.chance(budBreakProbability(t, plant.rng, int(e.node), n))) {
+            !plant.rng.chance(budBreakProbability(t, plant.rng, int(e.node), n, false))) {
             bud.state = BudState::Dead;
             return;
         }
@@ -376,7 +377,7 @@ struct Grower {
                             // their place on the shoot as it stands now.
                             if (t.growth_requires_dormancy &&
                                 !plant.rng.chance(budBreakProbability(
-                                    t, plant.rng, int(k), int(s.phytomers.size())))) {
+                                    t, plant.rng, int(k), int(s.phytomers.size()), true))) {
                                 bud.state = BudState::Dead;
                                 continue;
                             }
