@@ -1,4 +1,5 @@
-// plantarch canopy SPECIES --count NxM --spacing DXxDY --age D [--germination G] -o FILE
+// plantarch canopy SPECIES --count NxM --spacing DXxDY --age D [--germination G]
+//                 [-D name=value ...] -o FILE [--stats]
 // Builds a grid canopy of a species, in parallel, and writes it (OBJ, PLY or PNG).
 
 #include <cstdio>
@@ -35,6 +36,7 @@ std::pair<T, T> parsePair(const std::string& text, const char* option) {
 struct CanopyArgs {
     std::string species, count = "10x10", spacing = "0.3x0.3";
     float age = -1.0f, germination = 1.0f;
+    std::vector<std::string> defines;
     std::vector<std::string> outputs;
     bool stats = false;
 };
@@ -47,9 +49,10 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
     app.add_option("--age", a->age, "Plant age in days")->required();
     app.add_option("--germination", a->germination, "Probability each position has a plant (0 to 1)");
+    app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
     addImageSizeOption(app, global);
-    app.add_flag("--stats", a->stats, "Print a JSON summary of the canopy");
+    app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
@@ -60,24 +63,25 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.loadPlantModelFromLibrary(a->species);
         const auto plants = arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy),
                                                              glm::ivec2(nx, ny), a->age,
-                                                             a->germination);
+                                                             a->germination,
+                                                             parseDefines(a->defines));
         for (const std::string& out : a->outputs) writeSceneFile(ctx, out, global);
+        if (a->stats) {
+            for (unsigned p : plants)
+                std::printf("%s\n", plantStatsJSON(arch, ctx, p, global.seed).c_str());
+            return 0;
+        }
         std::size_t leaves = 0;
         double area = 0.0;
         for (unsigned p : plants) {
             leaves += arch.getPlantLeafCount(p);
             area += arch.getPlantLeafArea(p);
         }
-        const std::string line =
-            a->stats ? fmt::format("{{\"species\": \"{}\", \"plants\": {}, \"age\": {}, \"seed\": {}, "
-                                   "\"leaves\": {}, \"leaf_area\": {:.4f}, \"triangles\": {}}}\n",
-                                   arch.getCurrentPlantModel(), plants.size(), a->age, global.seed,
-                                   leaves, area, ctx.triangleCount())
-                     : fmt::format("{} canopy: {} plants of {}x{} positions, {} days (seed {}): {} "
-                                   "leaves, {:.3f} m^2 leaf area, {} triangles.\n",
-                                   arch.getCurrentPlantModel(), plants.size(), nx, ny, a->age,
-                                   global.seed, leaves, area, ctx.triangleCount());
-        std::printf("%s", line.c_str());
+        std::printf("%s", fmt::format("{} canopy: {} plants of {}x{} positions, {} days (seed {}): "
+                                      "{} leaves, {:.3f} m^2 leaf area, {} triangles.\n",
+                                      arch.getCurrentPlantModel(), plants.size(), nx, ny, a->age,
+                                      global.seed, leaves, area, ctx.triangleCount())
+                                .c_str());
         return 0;
     };
 }

@@ -3,13 +3,16 @@
 // terminal output helpers. Each subcommand lives in its own file and registers itself with
 // PLANTARCH_REGISTER_COMMAND, so adding one never touches main.cpp.
 
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "plantarch/Context.h"
+#include "plantarch/PlantArchitecture.h"
 #include "plantarch/Progress.h"
 
 namespace plantarch::cli {
@@ -59,5 +62,13 @@ void prepareSceneOutputs(const std::vector<std::string>& paths);
 
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();
+
+/// Build parameters given as -D name=value (each a finite number), by name.
+std::map<std::string, float> parseDefines(const std::vector<std::string>& defines);
+
+/// One plant's statistics as one line of JSON (species, plant, age, seed, height, leaves,
+/// leaf_area, shoots, flowers, fruit, triangles), for --stats.
+std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, unsigned plant,
+                           std::uint64_t seed);
 
 }  // namespace plantarch::cli

@@ -97,8 +97,20 @@ TEST(CliBuild, CanopyCommand) {
     const CliResult r = run("canopy bean --count 3x2 --spacing 0.3x0.4 --age 15 -o " + dir +
                             "/c.ply --stats");
     ASSERT_EQ(r.status, 0) << r.out;
-    EXPECT_NE(r.out.find("\"plants\": 6"), std::string::npos) << r.out;
+    // One JSON object per plant, in plant order.
+    EXPECT_EQ(lines(r.out), 6) << r.out;
+    for (int p = 0; p < 6; ++p)
+        EXPECT_NE(r.out.find("\"plant\": " + std::to_string(p) + ", \"age\": 15"), std::string::npos)
+            << r.out;
     EXPECT_TRUE(std::filesystem::exists(dir + "/c.ply"));
+    // Build parameters reach every plant of a canopy, and are checked.
+    const CliResult trees = run("canopy almond --count 2x1 --spacing 3x3 --age 0 -D trunk_height=1.2 -o " +
+                                dir + "/a.obj --stats");
+    ASSERT_EQ(trees.status, 0) << trees.out;
+    EXPECT_EQ(lines(trees.out), 2) << trees.out;
+    const CliResult bad = run("canopy almond --count 2x1 --age 0 -D trunk_height=9 -o " + dir + "/a.obj");
+    EXPECT_EQ(bad.status, 2) << bad.out;
+    EXPECT_NE(bad.out.find("trunk_height"), std::string::npos) << bad.out;
     for (const std::string args : {"canopy bean --count 3 --age 5 -o /tmp/c.ply",
                                    "canopy bean --count 2x2 --spacing 0x1 --age 5 -o /tmp/c.ply",
                                    "canopy bean --count 2x2 --germination 2 --age 5 -o /tmp/c.ply"}) {

@@ -1,0 +1,64 @@
+// Helpers shared by the commands that build plants (build, canopy): -D build parameters and
+// the --stats JSON of one plant.
+
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::cli {
+
+std::map<std::string, float> parseDefines(const std::vector<std::string>& defines) {
+    std::map<std::string, float> out;
+    for (const std::string& d : defines) {
+        const auto eq = d.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw Error("a build parameter is written name=value",
+                        {.parameter = "-D", .value = d, .validRange = "name=value"});
+        const std::string name = d.substr(0, eq), text = d.substr(eq + 1);
+        std::size_t used = 0;
+        float value = 0.0f;
+        try {
+            value = std::stof(text, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != text.size() || !std::isfinite(value))
+            throw Error("build parameter value is not a number",
+                        {.parameter = name, .value = text, .validRange = "a finite number"});
+        out[name] = value;
+    }
+    return out;
+}
+
+std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, unsigned plant,
+                      std::uint64_t seed) {
+    const PlantInstance& p = arch.plant(plant);
+    std::size_t flowers = 0, fruit = 0;
+    for (const Shoot& s : p.shoots) {
+        if (s.removed) continue;
+        auto count = [&](const FloralBud& fb) {
+            if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
+                flowers += fb.flowers.size();
+            if (fb.stage == FloralStage::Fruit) fruit += fb.flowers.size();
+        };
+        for (const Phytomer& ph : s.phytomers)
+            for (const Petiole& pt : ph.petioles)
+                for (const FloralBud& fb : pt.floralBuds) count(fb);
+        for (const FloralBud& fb : s.terminalFloralBuds) count(fb);
+    }
+    std::size_t triangles = 0;
+    for (ObjectID id : arch.getAllPlantObjectIDs(plant)) triangles += ctx.objectPrimitives(id).count;
+    return fmt::format(
+        "{{\"species\": \"{}\", \"plant\": {}, \"age\": {}, \"seed\": {}, \"height\": {:.4f}, "
+        "\"leaves\": {}, \"leaf_area\": {:.5f}, \"shoots\": {}, \"flowers\": {}, \"fruit\": {}, "
+        "\"triangles\": {}}}",
+        p.name, plant, p.age, seed, arch.getPlantHeight(plant), arch.getPlantLeafCount(plant),
+        arch.getPlantLeafArea(plant), arch.getShootCount(plant), flowers, fruit, triangles);
+}
+
+}  // namespace plantarch::cli
