@@ -301,11 +301,14 @@ void checkPlant(PlantInstance& p, const std::string& where) {
                                      "variant out of range", std::to_string(pt.leaves[l].variant),
                                      "0 to " + std::to_string(leafVariants - 1));
                 for (std::size_t b = 0; b < pt.vegetativeBuds.size(); ++b) {
-                    const int c = pt.vegetativeBuds[b].childShoot;
-                    if (c >= int(n))
-                        inconsistent(ptPath + ".vegetative_bud[" + std::to_string(b) + "].child_shoot_ID",
-                                     "no such shoot", std::to_string(c),
-                                     "-1 to " + std::to_string(n - 1));
+                    const VegetativeBud& bud = pt.vegetativeBuds[b];
+                    const std::string budPath = ptPath + ".vegetative_bud[" + std::to_string(b) + "]";
+                    if (bud.childShoot >= int(n))
+                        inconsistent(budPath + ".child_shoot_ID", "no such shoot",
+                                     std::to_string(bud.childShoot), "-1 to " + std::to_string(n - 1));
+                    if (!bud.shootType.empty() && !p.shootTypes.count(bud.shootType))
+                        inconsistent(budPath + ".shoot_type_label", "unknown shoot type",
+                                     bud.shootType, typeLabels());
                 }
                 for (std::size_t b = 0; b < pt.floralBuds.size(); ++b) {
                     const unsigned variants = std::max(1u, pp.inflorescence.unique_prototypes);
