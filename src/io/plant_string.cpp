@@ -111,6 +111,8 @@ private:
                 out_ += std::to_string(l.leafletIndex);
                 out_ += '(';
                 numbers({l.scale * f, l.pitch, l.yaw, l.roll, l.position});
+                out_ += ',';
+                out_ += std::to_string(l.variant);
                 out_ += ')';
             }
             for (const FloralBud& fb : pt.floralBuds) floral(fb);
@@ -139,6 +141,8 @@ private:
             out_ += "f(";
             numbers({fl.position, fl.azimuth, fl.pitch, fl.roll,
                      fruit ? fl.fruitScale * m : fl.flowerScale, fl.gravityFactor * m});
+            out_ += ',';
+            out_ += std::to_string(fl.variant);
             out_ += ')';
         }
     }
@@ -244,6 +248,25 @@ private:
         return v;
     }
 
+    // N numbers, each followed by a comma (a whole number comes next).
+    template <std::size_t N>
+    std::array<float, N> numbersThen() {
+        std::array<float, N> v{};
+        for (std::size_t i = 0; i < N; ++i) {
+            v[i] = number<float>();
+            expect(',');
+        }
+        return v;
+    }
+
+    // A prototype variant and the closing parenthesis.
+    unsigned variant() {
+        const double v = number<double>();
+        if (v < 0.0 || v > 1e6 || v != std::floor(v)) fail("expected a variant number", "a whole number >= 0");
+        expect(')');
+        return unsigned(v);
+    }
+
     vec3 direction(float x, float y, float z) {
         const vec3 v(x, y, z);
         const float l = glm::length(v);
@@ -326,8 +349,10 @@ private:
             pos_ = start;
             fail("expected a leaflet index", "a whole number from -1000 to 1000");
         }
-        const auto v = tuple<5>();
+        expect('(');
+        const auto v = numbersThen<5>();
         LeafOrgan l;
+        l.variant = variant();
         l.leafletIndex = index;
         l.scale = v[0];
         l.pitch = v[1];
@@ -355,8 +380,10 @@ private:
         const bool fruit = fb.stage == FloralStage::Fruit;
         while (peek() == 'f') {
             ++pos_;
-            const auto q = tuple<6>();
+            expect('(');
+            const auto q = numbersThen<6>();
             FlowerOrgan fl;
+            fl.variant = variant();
             fl.position = q[0];
             fl.azimuth = q[1];
             fl.pitch = q[2];
@@ -406,7 +433,8 @@ void notePresent(PlantInstance& p, Presence& m) {
                 for (LeafOrgan& l : pt.leaves)
                     for (const void* v : {(const void*)&l.leafletIndex, (const void*)&l.scale,
                                           (const void*)&l.pitch, (const void*)&l.yaw,
-                                          (const void*)&l.roll, (const void*)&l.position})
+                                          (const void*)&l.roll, (const void*)&l.position,
+                                          (const void*)&l.variant})
                         m.note(v);
                 for (FloralBud& fb : pt.floralBuds) floral(fb);
             }
