@@ -126,7 +126,7 @@ TEST(PlantString, MalformedStringsGiveOneClearError) {
               std::string::npos);
     EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)").find("expected '}'"),
               std::string::npos);
-    EXPECT_NE(stringError("@(0,0,x,5)").find("character 7: expected a number"), std::string::npos);
+    EXPECT_NE(stringError("@(0,0,x,5)").find("character 7 = @(0,0,x,5): expected a number"), std::string::npos);
     EXPECT_NE(stringError("@(0,0,0,-5)").find("negative plant age"), std::string::npos);
     EXPECT_NE(stringError("@(0,0,0,5)S(1,0,0){}").find("expected a shoot type label"), std::string::npos);
     EXPECT_NE(stringError(good + "x").find("text after the plant's base stem"), std::string::npos);
