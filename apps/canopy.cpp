@@ -47,13 +47,14 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
     app.add_option("--age", a->age, "Plant age in days")->required();
     app.add_option("--germination", a->germination, "Probability each position has a plant (0 to 1)");
-    app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
     addImageSizeOption(app, global);
+    addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print a JSON summary of the canopy");
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
-        prepareSceneOutputs(a->outputs);
+        preparePlantOutputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -61,7 +62,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         const auto plants = arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy),
                                                              glm::ivec2(nx, ny), a->age,
                                                              a->germination);
-        for (const std::string& out : a->outputs) writeSceneFile(ctx, out, global);
+        for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
         std::size_t leaves = 0;
         double area = 0.0;
         for (unsigned p : plants) {
