@@ -274,10 +274,7 @@ public:
     // An element of the listing that carries nothing plantarch keeps: a number, checked.
     void legacy(const char* name) {
         names_.push_back(name);
-        if (Kid* k = take(name)) {
-            const std::string path = r_.pathTo(name);
-            convert(k->node, path, valueOf(k->node, path), text::parseFloat);
-        }
+        if (Kid* k = take(name)) convert(k->node, name, valueOf(k->node, name), text::parseFloat);
     }
 
     // State table group: fn(visitor) visits the nested element's content.
@@ -460,9 +457,9 @@ private:
     }
 
     // The text of an element that holds a value (no child elements), trimmed.
-    std::string_view valueOf(xml_node e, const std::string& path) {
+    std::string_view valueOf(xml_node e, const char* name) {
         if (e.first_attribute())
-            r_.doc.fail(e, path + "." + e.first_attribute().name(),
+            r_.doc.fail(e, r_.pathTo(name) + "." + e.first_attribute().name(),
                         std::string("<") + e.name() + "> takes no attributes",
                         e.first_attribute().value());
         xml_node first = e.first_child();
@@ -473,11 +470,21 @@ private:
             if (isText(c))
                 scratch_ += c.value();
             else if (isElement(c))
-                r_.doc.fail(c, path,
+                r_.doc.fail(c, r_.pathTo(name),
                             std::string("<") + e.name() + "> holds a value, not elements (found <" +
                                 c.name() + ">)");
         }
         return text::trim(scratch_);
+    }
+
+    template <class Parse>
+    std::invoke_result_t<Parse, std::string_view> convert(xml_node e, const char* name,
+                                                          std::string_view value, Parse&& parse) {
+        try {
+            return parse(value);
+        } catch (const Error& err) {
+            r_.doc.relocate(err, e, r_.pathTo(name));
+        }
     }
 
     template <class Parse>
@@ -490,100 +497,86 @@ private:
         }
     }
 
-    void checkRange(const state::FieldInfo& f, xml_node e, const std::string& path, double v,
-                    std::string_view text) {
+    void checkRange(const state::FieldInfo& f, xml_node e, double v, std::string_view text) {
         if (v < f.min || v > f.max)
-            r_.doc.fail(e, path, "out of range", std::string(text), rangeText(f.min, f.max));
+            r_.doc.fail(e, r_.pathTo(f.name), "out of range", std::string(text),
+                        rangeText(f.min, f.max));
     }
-    void checkRange(const params::FieldInfo&, xml_node, const std::string&, double,
-                    std::string_view) {}  // parameters: validate() afterwards
+    void checkRange(const params::FieldInfo&, xml_node, double, std::string_view) {
+    }  // parameters: validate() afterwards
 
     template <class Info>
     void readValue(const Info& f, xml_node e, float& m) {
-        const std::string path = r_.pathTo(f.name);
-        const std::string_view s = valueOf(e, path);
-        m = convert(e, path, s, text::parseFloat);
-        checkRange(f, e, path, m, s);
+        const std::string_view s = valueOf(e, f.name);
+        m = convert(e, f.name, s, text::parseFloat);
+        checkRange(f, e, m, s);
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, double& m) {
-        const std::string path = r_.pathTo(f.name);
-        const std::string_view s = valueOf(e, path);
-        m = convert(e, path, s, parseDouble);
-        checkRange(f, e, path, m, s);
+        const std::string_view s = valueOf(e, f.name);
+        m = convert(e, f.name, s, parseDouble);
+        checkRange(f, e, m, s);
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, int& m) {
-        const std::string path = r_.pathTo(f.name);
-        const std::string_view s = valueOf(e, path);
-        m = convert(e, path, s, text::parseInt);
-        checkRange(f, e, path, m, s);
+        const std::string_view s = valueOf(e, f.name);
+        m = convert(e, f.name, s, text::parseInt);
+        checkRange(f, e, m, s);
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, unsigned& m) {
-        const std::string path = r_.pathTo(f.name);
-        const std::string_view s = valueOf(e, path);
-        m = convert(e, path, s, text::parseUnsigned);
-        checkRange(f, e, path, m, s);
+        const std::string_view s = valueOf(e, f.name);
+        m = convert(e, f.name, s, text::parseUnsigned);
+        checkRange(f, e, m, s);
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, bool& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path), text::parseBool);
+        m = convert(e, f.name, valueOf(e, f.name), text::parseBool);
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, vec3& m) {
-        const std::string path = r_.pathTo(f.name);
-        const std::string_view s = valueOf(e, path);
-        m = convert(e, path, s, text::parseVec3);
-        for (int i = 0; i < 3; ++i) checkRange(f, e, path, m[i], s);
+        const std::string_view s = valueOf(e, f.name);
+        m = convert(e, f.name, s, text::parseVec3);
+        for (int i = 0; i < 3; ++i) checkRange(f, e, m[i], s);
         if constexpr (std::is_same_v<Info, state::FieldInfo>) {
             const double length = std::sqrt(double(m.x) * m.x + double(m.y) * m.y + double(m.z) * m.z);
             if (f.unitVector && std::abs(length - 1.0) > 1e-3)
-                r_.doc.fail(e, path, "not a unit vector (length " + number(length) + ")",
+                r_.doc.fail(e, r_.pathTo(f.name), "not a unit vector (length " + number(length) + ")",
                             std::string(s), "a direction of length 1");
         }
     }
     void readValue(const state::FieldInfo& f, xml_node e, AxisRotation& m) {
-        const std::string path = r_.pathTo(f.name);
-        const std::string_view s = valueOf(e, path);
-        const vec3 v = convert(e, path, s, text::parseVec3);
-        for (int i = 0; i < 3; ++i) checkRange(f, e, path, v[i], s);
+        const std::string_view s = valueOf(e, f.name);
+        const vec3 v = convert(e, f.name, s, text::parseVec3);
+        for (int i = 0; i < 3; ++i) checkRange(f, e, v[i], s);
         m = {v.x, v.y, v.z};
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, std::string& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = std::string(valueOf(e, path));
+        m = std::string(valueOf(e, f.name));
     }
     void readValue(const state::FieldInfo& f, xml_node e, BudState& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path),
+        m = convert(e, f.name, valueOf(e, f.name),
                     [](std::string_view s) { return parseEnum<BudState>(s, 4, budStateName); });
     }
     void readValue(const state::FieldInfo& f, xml_node e, FloralStage& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path), [](std::string_view s) {
+        m = convert(e, f.name, valueOf(e, f.name), [](std::string_view s) {
             return parseEnum<FloralStage>(s, 5, floralStageName);
         });
     }
     void readValue(const state::FieldInfo& f, xml_node e, PhenologyStage& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path), [](std::string_view s) {
+        m = convert(e, f.name, valueOf(e, f.name), [](std::string_view s) {
             return parseEnum<PhenologyStage>(s, 4, phenologyStageName);
         });
     }
     void readValue(const state::FieldInfo& f, xml_node e, Rng& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path), parseRng);
+        m = convert(e, f.name, valueOf(e, f.name), parseRng);
     }
     void readValue(const params::FieldInfo& f, xml_node e, RandomFloat& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path), text::parseRandomFloat);
+        m = convert(e, f.name, valueOf(e, f.name), text::parseRandomFloat);
     }
     void readValue(const params::FieldInfo& f, xml_node e, RandomInt& m) {
-        const std::string path = r_.pathTo(f.name);
-        m = convert(e, path, valueOf(e, path), text::parseRandomInt);
+        m = convert(e, f.name, valueOf(e, f.name), text::parseRandomInt);
     }
 
     // Map parameters: one child element per entry (species_xml::mapSpelling).
