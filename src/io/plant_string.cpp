@@ -35,6 +35,8 @@ char stageLetter(FloralStage s) {
     }
 }
 
+constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
+
 // ---- writing -------------------------------------------------------------------------
 
 class StringWriter {
@@ -49,7 +51,7 @@ public:
         out_ += ',';
         number(p_.age);
         out_ += ')';
-        if (drawn(0)) shoot(0);
+        if (drawn(0)) shoot(0, 0);
         return std::move(out_);
     }
 
@@ -76,7 +78,10 @@ private:
         return id < p_.shoots.size() && !p_.shoots[id].removed && !p_.shoots[id].phytomers.empty();
     }
 
-    void shoot(unsigned id) {
+    void shoot(unsigned id, int depth) {
+        if (depth >= kMaxDepth)
+            throw Error("the plant's shoots nest too deep for a plant string",
+                        {.parameter = "shoot " + std::to_string(id), .validRange = "at most 1000 levels"});
         const Shoot& s = p_.shoots[id];
         out_ += 'S';
         out_ += s.type;
@@ -84,15 +89,15 @@ private:
         const vec3 r = s.phytomers.front().internode.rollReference;
         numbers({r.x, r.y, r.z});
         out_ += "){";
-        for (std::size_t k = 0; k < s.phytomers.size(); ++k) node(s, k);
+        for (std::size_t k = 0; k < s.phytomers.size(); ++k) node(s, k, depth);
         for (const FloralBud& fb : s.terminalFloralBuds) floral(fb);
         for (unsigned c : s.children) {
-            if (drawn(c) && p_.shoots[c].rank == s.rank) shoot(c);  // appended at the tip
+            if (drawn(c) && p_.shoots[c].rank == s.rank) shoot(c, depth + 1);  // appended at the tip
         }
         out_ += '}';
     }
 
-    void node(const Shoot& s, std::size_t k) {
+    void node(const Shoot& s, std::size_t k, int depth) {
         const Phytomer& ph = s.phytomers[k];
         const Internode& in = ph.internode;
         out_ += "I(";
@@ -120,7 +125,7 @@ private:
                 const Shoot& child = p_.shoots[c];
                 if (drawn(c) && child.rank != s.rank && child.parentNode == int(k) &&
                     child.parentPetiole == int(j))
-                    shoot(c);
+                    shoot(c, depth + 1);
             }
             out_ += ']';
         }
@@ -153,8 +158,6 @@ private:
 };
 
 // ---- reading -------------------------------------------------------------------------
-
-constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
 
 class StringParser {
 public:
