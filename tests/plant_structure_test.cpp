@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "io/plant_state_table.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -266,7 +267,9 @@ TEST(PlantStructureXML, PrunedAndHarvestedPlantsRoundTrip) {
     EXPECT_EQ(b.getShootCount(q), a.getShootCount(p));
     EXPECT_EQ(b.getTerminalShoots(q), a.getTerminalShoots(p));
     for (unsigned s = 0; s < a.plant(p).shoots.size(); ++s)
-        if (!a.plant(p).shoots[s].removed) EXPECT_EQ(b.getShootChildren(q, s), a.getShootChildren(p, s));
+        if (!a.plant(p).shoots[s].removed) {
+            EXPECT_EQ(b.getShootChildren(q, s), a.getShootChildren(p, s));
+        }
     EXPECT_EQ(b.getPlantFruitObjectIDs(q).size(), 0u);
     EXPECT_GE(harvested, 0u);
     EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a, {p})), "");
@@ -449,4 +452,44 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
     const std::string e = readError(d);
     EXPECT_NE(e.find("unknown phytomer creation function"), std::string::npos) << e;
     EXPECT_EQ(e.rfind("plants.xml: ", 0), 0u) << e;
+}
+
+namespace {
+
+// Names of every state field, group and list, at every level of the state table.
+struct StateNames {
+    std::vector<std::string> names;
+    template <class T>
+    void field(const plantarch::state::FieldInfo& f, T&) {
+        names.emplace_back(f.name);
+    }
+    void legacy(const char* name) { names.emplace_back(name); }
+    template <class Fn>
+    void group(const char* name, Fn&& fn) {
+        names.emplace_back(name);
+        fn(*this);
+    }
+    template <class T>
+    void list(const char* name, std::vector<T>& items, bool = false) {
+        names.emplace_back(name);
+        items.resize(1);
+        plantarch::state::describeState(items[0], *this);
+    }
+    template <class P>
+    void parameters(const char* name, P&) {
+        names.emplace_back(name);
+    }
+};
+
+}  // namespace
+
+TEST(PlantStructureXML, DocsNameEveryElement) {
+    PlantInstance p;
+    StateNames v;
+    plantarch::state::describeState(p, v);
+    ASSERT_GT(v.names.size(), 80u);
+    const std::string doc =
+        plantarch::testing::fileBytes(std::string(PLANTARCH_SOURCE_DIR) + "/docs/plant-xml.md");
+    for (const std::string& name : v.names)
+        EXPECT_NE(doc.find("`" + name + "`"), std::string::npos) << name << " is not in docs/plant-xml.md";
 }

@@ -168,8 +168,10 @@ void describeState(S& s, V& v) {
     v.field({"rank", 0, kCount, "0 base stem, 1 its children, ..."}, s.rank);
     v.field({"insertion_angle", -kBig, kBig, "from the parent axis, degrees"}, s.insertionAngle);
     v.field({"radius_taper", -kBig, kBig, ""}, s.radiusTaper);
-    v.field({"max_nodes", -kCount, kCount, "realized"}, s.maxNodes);
-    v.field({"max_nodes_per_season", -kCount, kCount, "realized"}, s.maxNodesPerSeason);
+    // Realized from integer parameters, which never leave their declared range (<= 100000):
+    // this bounds the growth a file can ask for.
+    v.field({"max_nodes", 0, 100000, "realized"}, s.maxNodes);
+    v.field({"max_nodes_per_season", 0, 100000, "realized"}, s.maxNodesPerSeason);
     v.field({"internode_length_max", -kBig, kBig, "realized, m"}, s.internodeLengthMax);
     v.field({"phyllochron", -kBig, kBig, "realized, days per node"}, s.phyllochron);
     v.field({"elongation_rate", -kBig, kBig, "realized, per day"}, s.elongationRate);
