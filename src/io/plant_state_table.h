@@ -22,13 +22,21 @@
 
 namespace plantarch::state {
 
+/// What a reader checks beyond the range.
+enum class Check {
+    None,
+    UnitVector,     ///< a direction: length 1 (within 1e-3)
+    Label,          ///< a shoot type label: letters, digits, '_' or '-'
+    LabelOrEmpty,   ///< a label, or nothing
+};
+
 /// What a state field is. The range bounds the value (each component of a vector).
 struct FieldInfo {
     const char* name;  ///< XML element
     double min;
     double max;
     const char* doc;   ///< meaning and unit
-    bool unitVector = false;  ///< a direction: length 1 (within 1e-3) on reading
+    Check check = Check::None;
 };
 
 using params::SameAs;
@@ -47,7 +55,8 @@ void describeState(S& b, V& v) {
     v.field({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)"},
             b.breakTime);
     v.field({"child_shoot_ID", -1, kCount, "shoot grown from this bud (-1: none)"}, b.childShoot);
-    v.field({"shoot_type_label", 0, 0, "type it grows into (chosen when it breaks)"},
+    v.field({"shoot_type_label", 0, 0, "type it grows into (chosen when it breaks)",
+             Check::LabelOrEmpty},
             b.shootType);
 }
 
@@ -127,10 +136,12 @@ void describeState(S& in, V& v) {
     v.field({"phyllotactic_angle", -kBig, kBig, "roll from the previous phytomer, degrees"},
             in.phyllotacticAngle);
     v.field({"azimuth", -kBig, kBig, "accumulated phyllotactic roll, degrees"}, in.azimuth);
-    v.field({"direction", -1, 1, "axis of the internode", true}, in.direction);
-    v.field({"shoot_axis", -1, 1, "shoot axis here (curvature, walk, steering)", true},
+    v.field({"direction", -1, 1, "axis of the internode", Check::UnitVector}, in.direction);
+    v.field({"shoot_axis", -1, 1, "shoot axis here (curvature, walk, steering)",
+             Check::UnitVector},
             in.guide);
-    v.field({"roll_reference", -1, 1, "azimuth 0 of the petioles", true}, in.rollReference);
+    v.field({"roll_reference", -1, 1, "azimuth 0 of the petioles", Check::UnitVector},
+            in.rollReference);
     v.field({"gravitropic_turn", -kBig, kBig, "degrees"}, in.gravitropicTurn);
     v.field({"walk_zenith", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkZenith);
     v.field({"walk_yaw", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkYaw);
@@ -148,7 +159,7 @@ void describeState(S& ph, V& v) {
     v.field({"internode_fraction_initial", -kBig, kBig, "at creation"}, ph.internodeFraction0);
     v.field({"leaf_fraction_initial", -kBig, kBig, "at creation"}, ph.leafFraction0);
     v.field({"radius_initial", -kBig, kBig, "internode radius at creation, m"}, ph.radiusInitial);
-    v.field({"parameters_label", 0, 0, "shoot type whose template built it"},
+    v.field({"parameters_label", 0, 0, "shoot type whose template built it", Check::Label},
             ph.parametersLabel);
     // The specification nests the petioles inside the internode.
     v.group("internode", [&](auto& sub) {
@@ -160,7 +171,7 @@ void describeState(S& ph, V& v) {
 template <class S, class V>
     requires SameAs<S, Shoot>
 void describeState(S& s, V& v) {
-    v.field({"shoot_type_label", 0, 0, "shoot type"}, s.type);
+    v.field({"shoot_type_label", 0, 0, "shoot type", Check::Label}, s.type);
     v.field({"parent_shoot_ID", -1, kCount, "-1 for the base stem"}, s.parent);
     v.field({"parent_node_index", -1, kCount, "node on the parent"}, s.parentNode);
     v.field({"parent_petiole_index", 0, kCount, "petiole on that node"}, s.parentPetiole);

@@ -540,7 +540,7 @@ private:
         for (int i = 0; i < 3; ++i) checkRange(f, e, m[i], s);
         if constexpr (std::is_same_v<Info, state::FieldInfo>) {
             const double length = std::sqrt(double(m.x) * m.x + double(m.y) * m.y + double(m.z) * m.z);
-            if (f.unitVector && std::abs(length - 1.0) > 1e-3)
+            if (f.check == state::Check::UnitVector && std::abs(length - 1.0) > 1e-3)
                 r_.doc.fail(e, r_.pathTo(f.name), "not a unit vector (length " + number(length) + ")",
                             std::string(s), "a direction of length 1");
         }
@@ -554,6 +554,13 @@ private:
     template <class Info>
     void readValue(const Info& f, xml_node e, std::string& m) {
         m = std::string(valueOf(e, f.name));
+        if constexpr (std::is_same_v<Info, state::FieldInfo>) {
+            const bool optional = f.check == state::Check::LabelOrEmpty;
+            if ((f.check == state::Check::Label || optional) && !(optional && m.empty()) &&
+                !isLabel(m))
+                r_.doc.fail(e, r_.pathTo(f.name), "a shoot type label is letters, digits, '_' or '-'",
+                            m, optional ? "a label, or nothing" : "a label");
+        }
     }
     void readValue(const state::FieldInfo& f, xml_node e, BudState& m) {
         m = convert(e, f.name, valueOf(e, f.name),

@@ -22,6 +22,10 @@ void appendEscaped(std::string& out, std::string_view s) {
             case '>': out += "&gt;"; break;
             case '"': out += "&quot;"; break;
             case '\'': out += "&apos;"; break;
+            // Written as references: raw line ends would be normalized when read back.
+            case '\r': out += "&#13;"; break;
+            case '\n': out += "&#10;"; break;
+            case '\t': out += "&#9;"; break;
             default: out += c;
         }
     }
