@@ -445,6 +445,9 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
     d = setFirst("shoot_type_label", "trifoliat", "<vegetative_bud>");
     expectError(d, "trifoliat<", "shoot_type_label = trifoliat: unknown shoot type");
 
+    d = damage("<shoot ID=\"0\">\n      <shoot_type_label>unifoliate</shoot_type_label>", "<shoot ID=\"0\">");
+    expectError(d, "<shoot ID=\"0\">", "plant_instance[0].shoot[0].shoot_type_label: missing <shoot_type_label>");
+
     // Embedded parameters are validated like species files.
     d = damage("<max_nodes>25</max_nodes>", "<max_nodes>-3</max_nodes>");
     expectError(d, "<max_nodes>-3", "max_nodes = -3: out of range");

@@ -51,8 +51,9 @@ Frame orient(const Frame& parent, const AxisRotation& r) {
 
 class Completer {
 public:
-    Completer(PlantInstance& p, const Presence& m, const Defaults& d, std::vector<std::string>& notes)
-        : p_(p), m_(m), d_(d), notes_(notes) {}
+    Completer(PlantInstance& p, const Presence& m, const Defaults& d, std::vector<std::string>& notes,
+              std::string where)
+        : p_(p), m_(m), d_(d), notes_(notes), where_(std::move(where)) {}
 
     void run(unsigned plantID) {
         if (m_.missing(&p_.rng)) p_.rng = Rng::forPlant(d_.seed, plantID);
@@ -158,7 +159,7 @@ private:
     void shoot(Shoot& s, std::size_t i) {
         if (m_.missing(&s.type) || s.type.empty())
             throw Error("missing <shoot_type_label>",
-                        {.parameter = "shoot[" + std::to_string(i) + "].shoot_type_label",
+                        {.parameter = where_ + ".shoot[" + std::to_string(i) + "].shoot_type_label",
                          .validRange = "the label of a shoot type"});
         if (m_.missing(&s.rank))
             s.rank = s.parent >= 0 && std::size_t(s.parent) < i ? p_.shoots[std::size_t(s.parent)].rank + 1 : 0;
@@ -240,6 +241,7 @@ private:
     const Presence& m_;
     const Defaults& d_;
     std::vector<std::string>& notes_;
+    std::string where_;
     int nextLeafID_ = 0;
 };
 
@@ -251,8 +253,8 @@ private:
 }  // namespace
 
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
-                   unsigned plantID, std::vector<std::string>& notes) {
-    Completer(plant, presence, defaults, notes).run(plantID);
+                   unsigned plantID, std::vector<std::string>& notes, const std::string& where) {
+    Completer(plant, presence, defaults, notes, where).run(plantID);
 }
 
 void checkPlant(PlantInstance& p, const std::string& where) {

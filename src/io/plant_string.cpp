@@ -458,7 +458,7 @@ ReadResult readPlantString(const std::string& text, const Defaults& defaults) {
     Presence present = Presence::recordingPresent();
     notePresent(plant, present);
     std::vector<std::string> notes;
-    completePlant(plant, present, defaults, defaults.firstPlantID, notes);
+    completePlant(plant, present, defaults, defaults.firstPlantID, notes, "plant string");
     checkPlant(plant, "plant string");
     for (const std::string& n : notes)
         if (n.find("default parameters") != std::string::npos)

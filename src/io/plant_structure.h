@@ -63,9 +63,9 @@ struct ReadResult {
 };
 
 /// Fills the values `presence` reports missing; `notes` receives what was taken from where
-/// (e.g. "shoot_type unifoliate: the loaded shoot types").
+/// (e.g. "shoot type unifoliate: the PlantArchitecture's"). Errors name paths below `where`.
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
-                   unsigned plantID, std::vector<std::string>& notes);
+                   unsigned plantID, std::vector<std::string>& notes, const std::string& where);
 
 /// Throws plantarch::Error (parameter path such as "plant_instance[0].shoot[3].parent_shoot_ID")
 /// when the plant is inconsistent; derives Shoot::children.

@@ -90,17 +90,25 @@ xml_node resolve(xml_node from, const std::string& path) {
         if (end == std::string::npos) end = path.size();
         std::string part = path.substr(start, end - start);
         start = end + 1;
-        int index = 0;
+        // "name[3]": the fourth <name>; "name[label]": the <name label="label">.
+        std::string key;
         if (const auto b = part.find('['); b != std::string::npos) {
-            index = std::atoi(part.c_str() + b + 1);
+            key = part.substr(b + 1, part.size() - b - 2);
             part.resize(b);
         }
+        const bool numeric = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+            return c >= '0' && c <= '9';
+        });
+        int index = numeric ? std::atoi(key.c_str()) : 0;
         xml_node next;
-        for (xml_node c = at.child(part.c_str()); c; c = c.next_sibling(part.c_str()))
-            if (index-- == 0) {
+        for (xml_node c = at.child(part.c_str()); c; c = c.next_sibling(part.c_str())) {
+            const bool hit = key.empty() || numeric ? index-- == 0
+                                                    : key == text::trim(c.attribute("label").value());
+            if (hit) {
                 next = c;
                 break;
             }
+        }
         if (!next) break;
         at = next;
     }
@@ -763,9 +771,10 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
         state::describeState(plant, top);
         top.finish();
         std::vector<std::string> notes;
-        if (!reader.presence.complete())
-            completePlant(plant, reader.presence, defaults, defaults.firstPlantID + index, notes);
         try {
+            if (!reader.presence.complete())
+                completePlant(plant, reader.presence, defaults, defaults.firstPlantID + index,
+                              notes, where);
             checkPlant(plant, where);
         } catch (const Error& err) {
             std::string rel = err.parameter();
