@@ -161,3 +161,30 @@ TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {
     EXPECT_EQ(warning, "plant string: shoot type other: plantarch's default parameters");
     EXPECT_EQ(arch.getPlantLeafObjectIDs(p).size(), 1u);
 }
+
+// Fuzz finding: a phytomer built by another shoot type than its shoot's (possible in a file)
+// kept its type in the string; before, the string named only the shoot's type and the
+// phytomer's leaf variants could be out of range for it.
+TEST(PlantString, PhytomerOfAnotherShootTypeKeepsItsType) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    ShootParameters plain, varied;
+    varied.phytomer_parameters.leaf.prototype.unique_prototypes = 4;
+    varied.phytomer_parameters.leaf.prototype.shape = "cordate";
+    arch.defineShootType("plain", plain);
+    arch.defineShootType("varied", varied);
+    const unsigned p = arch.addPlantInstance(vec3(0.0f), 1.0f);
+    arch.addBaseStemShoot(p, 2, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "plain");
+    std::string xml = arch.getPlantStructureXML({p});
+    const std::string from = "<parameters_label>plain</parameters_label>";
+    xml.replace(xml.rfind(from), from.size(), "<parameters_label>varied</parameters_label>");
+    const std::string variant = "<variant>0</variant>";
+    xml.replace(xml.rfind(variant), variant.size(), "<variant>3</variant>");
+    const unsigned q = arch.readPlantStructureXMLString(xml).at(0);
+    const std::string s = arch.getPlantString(q);
+    EXPECT_NE(s.find("Ivaried("), std::string::npos) << s;
+    const unsigned r = arch.generatePlantFromString(s);
+    EXPECT_EQ(arch.getPlantString(r), s);
+    EXPECT_EQ(arch.plant(r).shoots[0].phytomers[1].parametersLabel, "varied");
+    EXPECT_EQ(arch.getPlantLeafArea(r), arch.getPlantLeafArea(q));
+}

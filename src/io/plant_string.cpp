@@ -100,7 +100,9 @@ private:
     void node(const Shoot& s, std::size_t k, int depth) {
         const Phytomer& ph = s.phytomers[k];
         const Internode& in = ph.internode;
-        out_ += "I(";
+        out_ += 'I';
+        if (ph.parametersLabel != s.type) out_ += ph.parametersLabel;  // built by another type
+        out_ += '(';
         numbers({in.length * ph.internodeFraction, in.radius, in.pitch, in.azimuth, in.guide.x,
                  in.guide.y, in.guide.z});
         out_ += ')';
@@ -308,8 +310,10 @@ private:
 
     void internode(unsigned shootID, int depth) {
         expect('I');
-        const auto v = tuple<7>();
         Phytomer ph;
+        ph.parametersLabel = label(false);
+        if (ph.parametersLabel.empty()) ph.parametersLabel = p_.shoots[shootID].type;
+        const auto v = tuple<7>();
         ph.internode.length = v[0];
         ph.internode.radius = v[1];
         ph.internode.pitch = v[2];
@@ -422,7 +426,8 @@ void notePresent(PlantInstance& p, Presence& m) {
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
             Phytomer& ph = s.phytomers[k];
             Internode& in = ph.internode;
-            for (const void* v : {(const void*)&ph.internodeFraction, (const void*)&ph.leafFraction,
+            for (const void* v : {(const void*)&ph.parametersLabel,
+                                  (const void*)&ph.internodeFraction, (const void*)&ph.leafFraction,
                                   (const void*)&in.length, (const void*)&in.radius,
                                   (const void*)&in.pitch, (const void*)&in.azimuth,
                                   (const void*)&in.guide})
