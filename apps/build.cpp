@@ -24,7 +24,7 @@ struct BuildArgs {
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
-    app.description("Build one plant of a species grown to an age and write it (OBJ, PLY, PNG)");
+    app.description("Build one plant of a species grown to an age and write it (OBJ, PLY, PNG, plant XML or string)");
     auto a = std::make_shared<BuildArgs>();
     app.add_option("species", a->species, "Library species name or species file (.xml)")
         ->required();
@@ -39,11 +39,12 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
             return "age = " + text + ": not a number of days (valid: 0 to 100000)";
         });
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
-    app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
     addImageSizeOption(app, global);
+    addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     return [a, &global]() {
-        prepareSceneOutputs(a->outputs);
+        preparePlantOutputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -51,7 +52,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.loadPlantModelFromLibrary(a->species);
         const unsigned plant =
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));
-        for (const std::string& out : a->outputs) writeSceneFile(ctx, out, global);
+        for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
         if (a->stats) {
             std::printf("%s\n", plantStatsJSON(arch, ctx, plant, global.seed).c_str());
         } else {

@@ -50,13 +50,14 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("--age", a->age, "Plant age in days")->required();
     app.add_option("--germination", a->germination, "Probability each position has a plant (0 to 1)");
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
-    app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
     addImageSizeOption(app, global);
+    addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
-        prepareSceneOutputs(a->outputs);
+        preparePlantOutputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -65,7 +66,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
                                                              glm::ivec2(nx, ny), a->age,
                                                              a->germination,
                                                              parseDefines(a->defines));
-        for (const std::string& out : a->outputs) writeSceneFile(ctx, out, global);
+        for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
         if (a->stats) {
             for (unsigned p : plants)
                 std::printf("%s\n", plantStatsJSON(arch, ctx, p, global.seed).c_str());

@@ -24,6 +24,7 @@ struct GlobalOptions {
     int threads = 0;             ///< --threads (0 = all cores)
     int imageWidth = 1024;       ///< size of PNG outputs (--image-size on build and canopy)
     int imageHeight = 768;
+    int stringDigits = 4;        ///< significant digits of plant strings (--digits)
 };
 
 /// Adds --image-size WxH (PNG output size) to a subcommand, stored in `global`.
@@ -70,5 +71,24 @@ std::map<std::string, float> parseDefines(const std::vector<std::string>& define
 /// leaf_area, shoots, flowers, fruit, triangles), for --stats.
 std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, unsigned plant,
                            std::uint64_t seed);
+
+// ---- plant outputs (plant_output.cpp) ---------------------------------------------------
+
+/// The extensions writePlantOutput accepts: the scene formats, .xml (plant structure file)
+/// and .txt (plant strings, one per line).
+std::string plantFileExtensions();
+/// prepareSceneOutputs for commands that have plants: .xml and .txt are accepted too.
+void preparePlantOutputs(const std::vector<std::string>& paths);
+/// Writes `plants` of `arch` to `path`: a plant structure file (.xml), plant strings
+/// (.txt), or the whole scene through writeSceneFile.
+void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
+                      const std::string& path, const GlobalOptions& g);
+/// Reads plants from a plant structure file (.xml; its warnings go to stderr) or a file of
+/// plant strings (.txt, whose shoot types come from `species`, required then). Returns
+/// the plants' IDs.
+std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
+                                     const std::string& species);
+/// Adds --digits (significant digits of plant strings) to a subcommand.
+void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
 
 }  // namespace plantarch::cli

@@ -18,6 +18,7 @@
 #include "plantarch/Parameters.h"
 #include "plantarch/Progress.h"
 #include "plantarch/PlantState.h"
+#include "plantarch/PlantStructureIO.h"
 
 namespace plantarch {
 
@@ -267,6 +268,37 @@ public:
 
     /// World position of a node (the tip of internode `node`) as the geometry stands now.
     vec3 getNodePosition(unsigned plantID, unsigned shootID, unsigned node) const;
+
+    // ---- plant structure files and strings (docs/plant-xml.md) ------------------------
+    /// Writes plants as a plant structure XML file: their whole state (every organ's realized
+    /// values, directions, bud states and timers, the phenology clock, the random stream) and
+    /// their species parameters, so the file needs nothing loaded to be read back, and reading
+    /// it gives the same plants: the same geometry now and the same growth later. Written
+    /// through a temporary file (never half a file). Several plants (a canopy) share one file.
+    void writePlantStructureXML(unsigned plantID, const std::string& filename) const;
+    void writePlantStructureXML(const std::vector<unsigned>& plantIDs,
+                                const std::string& filename) const;
+    /// The document writePlantStructureXML writes, as a string.
+    std::string getPlantStructureXML(const std::vector<unsigned>& plantIDs) const;
+    /// Adds every plant of a plant structure file and returns their IDs, in file order (new
+    /// IDs: the file's are not reused). A file in the specification's listing form (root
+    /// <helios>, only the values its sample shows) loads too: missing values take defaults
+    /// (shoot types from this PlantArchitecture, realized values at their means) and
+    /// options.onWarning receives the list. Bad input throws plantarch::Error naming the
+    /// file, line, element path and value; nothing is added then.
+    std::vector<unsigned> readPlantStructureXML(const std::string& filename,
+                                                const PlantStructureReadOptions& options = {});
+    std::vector<unsigned> readPlantStructureXMLString(const std::string& xml,
+                                                      const PlantStructureReadOptions& options = {});
+    /// A compact one-line text of the plant's visible structure (shoots, internodes,
+    /// petioles, leaves, flowers and fruit with their current sizes and angles), for machine
+    /// learning. Its grammar is in docs/plant-xml.md.
+    std::string getPlantString(unsigned plantID, const PlantStringOptions& options = {}) const;
+    /// Adds the plant a plant string describes and returns its ID. Shoot types are this
+    /// PlantArchitecture's current ones (load the species first). getPlantString of the
+    /// result, with the digits the string was written with, gives the same string.
+    unsigned generatePlantFromString(const std::string& plantString,
+                                     const PlantStructureReadOptions& options = {});
 
     // ---- geometry ------------------------------------------------------------------
     /// Regenerates the plant's geometry from its state (called by every mutating method;

@@ -175,17 +175,37 @@ std::uint64_t hashKey(const std::string& s) {
 
 }  // namespace
 
-std::vector<vec3> shootNodePositions(const PlantInstance& plant, unsigned shootID) {
-    const Shoot& s = plant.shoots[shootID];
-    vec3 base = plant.base;
-    if (s.parent >= 0) {
-        const std::vector<vec3> parent = shootNodePositions(plant, unsigned(s.parent));
-        base = parent[std::min<std::size_t>(std::size_t(s.parentNode) + 1, parent.size() - 1)];
-    }
+namespace {
+
+// Node positions of a shoot whose base is `base`.
+std::vector<vec3> nodesFrom(const Shoot& s, vec3 base) {
     std::vector<vec3> nodes{base};
+    nodes.reserve(s.phytomers.size() + 1);
     for (const Phytomer& ph : s.phytomers)
         nodes.push_back(nodes.back() +
                         ph.internode.direction * ph.internode.length * ph.internodeFraction);
+    return nodes;
+}
+
+// Where a shoot starts on its parent's nodes.
+vec3 baseOn(const Shoot& s, const std::vector<vec3>& parentNodes) {
+    return parentNodes[std::min<std::size_t>(std::size_t(s.parentNode) + 1, parentNodes.size() - 1)];
+}
+
+}  // namespace
+
+std::vector<vec3> shootNodePositions(const PlantInstance& plant, unsigned shootID) {
+    // Walk down from the base stem (no recursion: a chain of appended shoots can be long).
+    std::vector<unsigned> chain{shootID};
+    while (plant.shoots[chain.back()].parent >= 0)
+        chain.push_back(unsigned(plant.shoots[chain.back()].parent));
+    std::vector<vec3> nodes;
+    vec3 base = plant.base;
+    for (std::size_t i = chain.size(); i-- > 0;) {
+        const Shoot& s = plant.shoots[chain[i]];
+        if (i + 1 < chain.size()) base = baseOn(s, nodes);
+        nodes = nodesFrom(s, base);
+    }
     return nodes;
 }
 
@@ -399,9 +419,16 @@ struct Tessellator {
     }
 
     void run() {
+        // Parents come before their children (a shoot grows from one made earlier), so each
+        // shoot starts from its parent's nodes computed just before: linear in the plant's size.
         nodes.assign(plant.shoots.size(), {});
-        for (const Shoot& s : plant.shoots)
-            if (!s.removed) nodes[s.id] = shootNodePositions(plant, s.id);
+        for (const Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            const bool parentDone = s.parent >= 0 && unsigned(s.parent) < s.id &&
+                                    !nodes[unsigned(s.parent)].empty();
+            nodes[s.id] = parentDone ? nodesFrom(s, baseOn(s, nodes[unsigned(s.parent)]))
+                                     : shootNodePositions(plant, s.id);
+        }
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
             internodes(s);

@@ -1,0 +1,65 @@
+// plantarch grow IN.xml --days N -o OUT [-o OUT ...]
+// Continues the growth of saved plants: reads a plant structure file, grows every plant in
+// it by N days and writes the result (.xml to save it again, or .txt, .obj, .ply, .png).
+
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::cli {
+
+namespace {
+
+struct GrowArgs {
+    std::string input, species;
+    double days = -1.0;
+    std::vector<std::string> outputs;
+};
+
+std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
+    app.description("Grow the plants of a plant structure file (.xml) on by a number of days");
+    auto a = std::make_shared<GrowArgs>();
+    app.add_option("input", a->input, "Plant structure file (.xml) or plant strings (.txt)")->required();
+    app.add_option("--days", a->days, "Days to grow (0 to 100000)")
+        ->required()
+        ->check([](const std::string& text) -> std::string {
+            try {
+                const double v = std::stod(text);
+                if (v >= 0.0 && v <= 100000.0) return "";
+            } catch (const std::exception&) {
+            }
+            return "days = " + text + ": not a number of days (valid: 0 to 100000)";
+        });
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
+    app.add_option("--species", a->species,
+                   "Species giving the shoot types of plant strings (.txt input)");
+    addImageSizeOption(app, global);
+    addStringDigitsOption(app, global);
+    return [a, &global]() {
+        preparePlantOutputs(a->outputs);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(global.seed);
+        arch.setProgressCallback(terminalProgress());
+        const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
+        arch.advanceTime(plants, a->days);
+        for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+        std::size_t leaves = 0;
+        for (unsigned p : plants) leaves += arch.getPlantLeafCount(p);
+        std::printf("%s", fmt::format("{} plant(s) grown {} days: {} leaves, {} triangles.\n",
+                                      plants.size(), a->days, leaves, ctx.triangleCount())
+                              .c_str());
+        return 0;
+    };
+}
+
+}  // namespace
+
+PLANTARCH_REGISTER_COMMAND(grow, "grow", 36, setupGrow);
+
+}  // namespace plantarch::cli

@@ -1,0 +1,132 @@
+// Plant outputs and inputs shared by the commands that make or read plants: plant structure
+// files (.xml), plant strings (.txt) and, through writeSceneFile, the scene formats.
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::cli {
+
+namespace {
+
+std::string extensionOf(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// Writes through a temporary file renamed into place, so a failure never leaves half a file.
+void writeWhole(const std::string& path, const std::string& text) {
+    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream out(temp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out) {
+            std::error_code ec;
+            std::filesystem::remove(temp, ec);
+            throw Error("cannot write", {.file = path});
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::filesystem::remove(temp, ec);
+        throw Error("cannot write: " + ec.message(), {.file = path});
+    }
+}
+
+}  // namespace
+
+std::string plantFileExtensions() {
+    return sceneFileExtensions() + ", .xml, .txt";
+}
+
+void preparePlantOutputs(const std::vector<std::string>& paths) {
+    std::vector<std::string> scenes;
+    for (const std::string& out : paths) {
+        const std::string ext = extensionOf(out);
+        if (ext != ".xml" && ext != ".txt") {
+            if (ext != ".obj" && ext != ".ply" && ext != ".png")
+                throw Error("unknown output format",
+                            {.file = out, .value = ext, .validRange = plantFileExtensions()});
+            scenes.push_back(out);
+            continue;
+        }
+        const auto dir = std::filesystem::path(out).parent_path();
+        std::error_code ec;
+        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
+    }
+    prepareSceneOutputs(scenes);
+}
+
+void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
+                      const std::string& path, const GlobalOptions& g) {
+    const std::string ext = extensionOf(path);
+    if (ext == ".xml") {
+        arch.writePlantStructureXML(plants, path);
+    } else if (ext == ".txt") {
+        PlantStringOptions o;
+        o.significantDigits = g.stringDigits;
+        std::string text;
+        for (unsigned id : plants) text += arch.getPlantString(id, o) + "\n";
+        writeWhole(path, text);
+    } else {
+        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g);
+        return;
+    }
+    info(g, "wrote " + path);
+}
+
+std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
+                                     const std::string& species) {
+    const std::string ext = extensionOf(path);
+    PlantStructureReadOptions o;
+    o.onWarning = [](const std::string& w) { std::fprintf(stderr, "plantarch: warning: %s\n", w.c_str()); };
+    if (ext == ".xml") {
+        if (!species.empty()) arch.loadPlantModelFromLibrary(species);  // defaults for listings
+        return arch.readPlantStructureXML(path, o);
+    }
+    if (ext != ".txt")
+        throw Error("unknown plant file format", {.file = path, .value = ext, .validRange = ".xml, .txt"});
+    if (species.empty())
+        throw Error("plant strings name shoot types only: give the species with --species",
+                    {.file = path, .parameter = "--species", .validRange = "a library species or species file"});
+    arch.loadPlantModelFromLibrary(species);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot open plant string file", {.file = path});
+    std::vector<unsigned> ids;
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        try {
+            ids.push_back(arch.generatePlantFromString(line, o));
+        } catch (const Error& e) {
+            throw e.withFile(path, number);
+        }
+    }
+    return ids;
+}
+
+void addStringDigitsOption(CLI::App& app, GlobalOptions& global) {
+    app.add_option_function<int>(
+           "--digits",
+           [&global](int digits) {
+               if (digits < 0 || digits > 6)
+                   throw Error("significant digits of plant strings out of range",
+                               {.parameter = "--digits", .value = std::to_string(digits),
+                                .validRange = "1 to 6, or 0 for exact values"});
+               global.stringDigits = digits;
+           },
+           "Significant digits of plant strings in .txt outputs (1 to 6, 0 exact; default 4)");
+}
+
+}  // namespace plantarch::cli

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer, in
+# build-fuzz/) and runs one of them for a number of seconds on one core:
+#
+#   bash scripts/fuzz.sh plant_xml 600      # TARGET: plant_xml, plant_string or species
+#
+# The seeds in fuzz/corpus/TARGET/ (small, kept in the repository) start the run; inputs the
+# fuzzer finds interesting go to build-fuzz/corpus/TARGET/ (kept between runs, not
+# committed). A crash, sanitizer report, timeout (10 s) or memory blow-up (2 GB) stops the
+# run with a non-zero status and saves the input under build-fuzz/artifacts/TARGET/;
+# replay it with  build-fuzz/fuzz_TARGET FILE.
+set -euo pipefail
+
+usage="usage: scripts/fuzz.sh TARGET SECONDS   (TARGET: plant_xml, plant_string, species)"
+target=${1:?$usage}
+seconds=${2:?$usage}
+case "$target" in
+    plant_xml | species) max_len=16384 ;;
+    plant_string) max_len=8192 ;;
+    *) echo "$usage" >&2; exit 2 ;;
+esac
+[[ "$seconds" =~ ^[0-9]+$ ]] || { echo "$usage" >&2; exit 2; }
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${PLANTARCH_FUZZ_BUILD:-$root/build-fuzz}
+launcher=()
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" \
+    -DPLANTARCH_FUZZ=ON -DPLANTARCH_BUILD_TESTS=OFF -DPLANTARCH_BUILD_BENCH=OFF \
+    -DPLANTARCH_BUILD_PYTHON=OFF > /dev/null
+cmake --build "$build" --parallel 2 --target "fuzz_$target"
+
+corpus="$build/corpus/$target"
+artifacts="$build/artifacts/$target"
+mkdir -p "$corpus" "$artifacts"
+exec "$build/fuzz_$target" "$corpus" "$root/fuzz/corpus/$target" \
+    -dict="$root/fuzz/$target.dict" -max_total_time="$seconds" -max_len="$max_len" \
+    -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$artifacts/" -print_final_stats=1

@@ -1,0 +1,352 @@
+// Completing plants read from partial input (the specification's listing form, plant
+// strings) and checking that every plant read is consistent.
+//
+// Defaults follow what plantarch itself would have made: the PlantArchitecture's current
+// shoot types and phenology, its seed's stream for the plant, realized shoot values at the
+// means of their distributions, phytomers fully grown, leaflets numbered and placed as
+// compound leaves are, and internode frames rebuilt from the listed angles (straight shoot
+// axes: the listing does not record curvature or random-walk turns).
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "geometry/tube.h"
+#include "io/plant_structure.h"
+#include "plantarch/Error.h"
+
+namespace plantarch::plant_io {
+
+namespace {
+
+constexpr float kDeg = 3.14159265358979f / 180.0f;
+
+vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
+    const float a = azimuth * kDeg;
+    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
+}
+
+vec3 unitOr(vec3 v, vec3 fallback) {
+    const float l = glm::length(v);
+    return l > 1e-6f && std::isfinite(l) ? v / l : fallback;
+}
+
+struct Frame {
+    vec3 axis;
+    vec3 reference;
+};
+
+// Pitch away from the parent axis toward the yaw direction, then roll about the new axis
+// (the convention of PlantArchitecture's shoot starts).
+Frame orient(const Frame& parent, const AxisRotation& r) {
+    const vec3 tiltDir = azimuthDirection(parent.axis, parent.reference, r.yaw);
+    const float p = r.pitch * kDeg;
+    Frame f;
+    f.axis = unitOr(std::cos(p) * parent.axis + std::sin(p) * tiltDir, parent.axis);
+    vec3 ref = -std::sin(p) * parent.axis + std::cos(p) * tiltDir;
+    ref = unitOr(ref - glm::dot(ref, f.axis) * f.axis, geometry::anyPerpendicular(f.axis));
+    f.reference = geometry::rotateAbout(ref, f.axis, r.roll * kDeg);
+    return f;
+}
+
+class Completer {
+public:
+    Completer(PlantInstance& p, const Presence& m, const Defaults& d, std::vector<std::string>& notes,
+              std::string where)
+        : p_(p), m_(m), d_(d), notes_(notes), where_(std::move(where)) {}
+
+    void run(unsigned plantID) {
+        if (m_.missing(&p_.rng)) p_.rng = Rng::forPlant(d_.seed, plantID);
+        if (m_.missing(&p_.phenology)) p_.phenology = d_.phenology;
+        if (m_.missing(&p_.nextDormancyBreak)) {
+            const float wait = p_.phenology.time_to_dormancy_break;
+            p_.nextDormancyBreak = wait < 0.0f ? -1.0 : p_.age + wait;
+        }
+        shootTypes();
+        int maxID = -1;
+        forEachLeaf([&](LeafOrgan& l) {
+            if (!m_.missing(&l.leafID)) maxID = std::max(maxID, l.leafID);
+        });
+        nextLeafID_ = maxID + 1;
+        for (std::size_t i = 0; i < p_.shoots.size(); ++i) shoot(p_.shoots[i], i);
+        if (m_.missing(&p_.nextLeafID)) p_.nextLeafID = nextLeafID_;
+    }
+
+private:
+    template <class F>
+    void forEachLeaf(F&& f) {
+        for (Shoot& s : p_.shoots)
+            for (Phytomer& ph : s.phytomers)
+                for (Petiole& pt : ph.petioles)
+                    for (LeafOrgan& l : pt.leaves) f(l);
+    }
+
+    // Shoot types the file does not hold: from the PlantArchitecture, else plantarch's defaults.
+    void shootTypes() {
+        if (m_.missing(&p_.shootTypes) && d_.shootTypes) {
+            p_.shootTypes = *d_.shootTypes;
+            if (!p_.shootTypes.empty()) notes_.push_back("shoot types: the current ones of the PlantArchitecture");
+        }
+        std::set<std::string> needed;
+        for (Shoot& s : p_.shoots) {
+            if (s.type.empty()) continue;
+            needed.insert(s.type);
+            for (Phytomer& ph : s.phytomers)
+                if (!m_.missing(&ph.parametersLabel) && !ph.parametersLabel.empty())
+                    needed.insert(ph.parametersLabel);
+        }
+        for (const std::string& label : needed) {
+            if (p_.shootTypes.count(label)) continue;
+            if (d_.shootTypes && d_.shootTypes->count(label)) {
+                p_.shootTypes.emplace(label, d_.shootTypes->at(label));
+                notes_.push_back("shoot type " + label + ": the PlantArchitecture's");
+            } else {
+                p_.shootTypes.emplace(label, ShootParameters{});
+                notes_.push_back("shoot type " + label + ": plantarch's default parameters");
+            }
+        }
+    }
+
+    const ShootParameters* typeOf(const std::string& label) const {
+        auto it = p_.shootTypes.find(label);
+        return it == p_.shootTypes.end() ? nullptr : &it->second;
+    }
+
+    void realized(Shoot& s, const ShootParameters& t) {
+        auto fill = [&](auto& member, auto value) {
+            if (m_.missing(&member)) member = static_cast<std::remove_reference_t<decltype(member)>>(value);
+        };
+        fill(s.maxNodes, std::lround(t.max_nodes.mean()));
+        fill(s.maxNodesPerSeason, std::lround(t.max_nodes_per_season.mean()));
+        fill(s.internodeLengthMax, t.internode_length_max.mean());
+        fill(s.phyllochron, t.phyllochron_min.mean());
+        fill(s.elongationRate, t.elongation_rate_max.mean());
+        fill(s.gravitropicCurvature, t.gravitropic_curvature.mean());
+        fill(s.tortuosity, t.tortuosity.mean());
+        fill(s.girthAreaFactor, t.girth_area_factor.mean());
+    }
+
+    // Frame of the first phytomer of shoot `s` (index i), as the builder makes it.
+    Frame startFrame(const Shoot& s, std::size_t i) const {
+        const Frame upright{vec3(0, 0, 1), vec3(1, 0, 0)};
+        if (s.parent < 0 || std::size_t(s.parent) >= i) return orient(upright, s.baseRotation);
+        const Shoot& parent = p_.shoots[std::size_t(s.parent)];
+        if (parent.phytomers.empty()) return orient(upright, s.baseRotation);
+        const bool appended = !m_.missing(&s.rank) && s.rank == parent.rank;
+        if (appended) {
+            const Internode& tip = parent.phytomers.back().internode;
+            return orient({tip.guide, tip.rollReference}, s.baseRotation);
+        }
+        const std::size_t node =
+            std::min<std::size_t>(std::size_t(std::max(s.parentNode, 0)), parent.phytomers.size() - 1);
+        const Phytomer& ph = parent.phytomers[node];
+        const Internode& in = ph.internode;
+        const float az = std::size_t(s.parentPetiole) < ph.petioles.size()
+                             ? ph.petioles[std::size_t(s.parentPetiole)].azimuth
+                             : in.azimuth;
+        const vec3 axis = in.direction;
+        vec3 side = azimuthDirection(in.guide, in.rollReference, az);
+        side = unitOr(side - glm::dot(side, axis) * axis, geometry::anyPerpendicular(axis));
+        side = geometry::rotateAbout(side, axis, s.baseRotation.yaw * kDeg);
+        const float angle = (m_.missing(&s.insertionAngle) ? s.baseRotation.pitch : s.insertionAngle) * kDeg;
+        Frame f;
+        f.axis = unitOr(std::cos(angle) * axis + std::sin(angle) * side, axis);
+        const vec3 ref = unitOr(axis - glm::dot(axis, f.axis) * f.axis, side);
+        f.reference = geometry::rotateAbout(ref, f.axis, s.baseRotation.roll * kDeg);
+        return f;
+    }
+
+    void shoot(Shoot& s, std::size_t i) {
+        if (m_.missing(&s.type) || s.type.empty())
+            throw Error("missing <shoot_type_label>",
+                        {.parameter = where_ + ".shoot[" + std::to_string(i) + "].shoot_type_label",
+                         .validRange = "the label of a shoot type"});
+        if (m_.missing(&s.rank))
+            s.rank = s.parent >= 0 && std::size_t(s.parent) < i ? p_.shoots[std::size_t(s.parent)].rank + 1 : 0;
+        const ShootParameters* t = typeOf(s.type);
+        if (t) realized(s, *t);
+        if (m_.missing(&s.apicalBud.state)) s.apicalBud.state = BudState::Active;
+        if (m_.missing(&s.nodesThisSeason)) s.nodesThisSeason = int(s.phytomers.size());
+        const Frame start = startFrame(s, i);
+        for (std::size_t k = 0; k < s.phytomers.size(); ++k)
+            phytomer(s, k, start);
+        for (FloralBud& fb : s.terminalFloralBuds) {
+            if (m_.missing(&fb.terminal)) fb.terminal = true;
+            floral(fb);
+        }
+    }
+
+    void phytomer(Shoot& s, std::size_t k, const Frame& start) {
+        Phytomer& ph = s.phytomers[k];
+        if (m_.missing(&ph.parametersLabel)) ph.parametersLabel = s.type;
+        if (m_.missing(&ph.birth)) ph.birth = 0.0;
+        if (m_.missing(&ph.age)) ph.age = float(std::max(0.0, p_.age - ph.birth));
+        Internode& in = ph.internode;
+        if (m_.missing(&ph.radiusInitial)) ph.radiusInitial = in.radius;
+        const Internode* prev = k > 0 ? &s.phytomers[k - 1].internode : nullptr;
+        if (m_.missing(&in.azimuth))
+            in.azimuth = prev ? std::fmod(prev->azimuth + in.phyllotacticAngle, 360.0f) : 0.0f;
+        if (m_.missing(&in.guide)) in.guide = prev ? prev->guide : start.axis;
+        if (m_.missing(&in.rollReference)) {
+            if (!prev) {
+                in.rollReference = start.reference;
+            } else {
+                // Carried along the axis with the smallest rotation (no twist).
+                const vec3 r = prev->rollReference - glm::dot(prev->rollReference, in.guide) * in.guide;
+                in.rollReference = unitOr(r, geometry::anyPerpendicular(in.guide));
+            }
+        }
+        if (m_.missing(&in.direction)) {
+            const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
+            const float p = in.pitch * kDeg;
+            in.direction = unitOr(std::cos(p) * in.guide - std::sin(p) * side, in.guide);
+        }
+        const ShootParameters* t = typeOf(ph.parametersLabel);
+        const std::size_t n = ph.petioles.size();
+        for (std::size_t j = 0; j < n; ++j) {
+            Petiole& pt = ph.petioles[j];
+            if (m_.missing(&pt.azimuth)) pt.azimuth = in.azimuth + 360.0f * float(j) / float(n);
+            if (m_.missing(&pt.taper) && t) pt.taper = t->phytomer_parameters.petiole.taper.mean();
+            leaves(ph, pt, t);
+            for (FloralBud& fb : pt.floralBuds) floral(fb);
+        }
+    }
+
+    // Leaflets in the order compound leaves are made: an odd count starts with the tip
+    // leaflet (index 0), then pairs -1, 1, -2, 2, ... each a leaflet_offset further down.
+    void leaves(const Phytomer& ph, Petiole& pt, const ShootParameters* t) {
+        const int n = int(pt.leaves.size());
+        const float offset = t ? t->phytomer_parameters.leaf.leaflet_offset.mean() : 0.0f;
+        for (int i = 0; i < n; ++i) {
+            LeafOrgan& l = pt.leaves[std::size_t(i)];
+            const bool tip = n % 2 == 1 && i == 0;
+            const int pair = n % 2 == 1 ? (i + 1) / 2 : i / 2 + 1;   // 1-based pair number
+            const int step = n % 2 == 1 ? pair : pair - 1;           // pair steps from the tip
+            if (m_.missing(&l.leafletIndex)) l.leafletIndex = tip ? 0 : ((i - (n % 2)) % 2 == 0 ? -pair : pair);
+            if (m_.missing(&l.position))
+                l.position = tip || n == 1 ? 1.0f : std::max(0.0f, 1.0f - float(step) * offset);
+            if (m_.missing(&l.leafID)) l.leafID = nextLeafID_++;
+            if (m_.missing(&l.birth)) l.birth = ph.birth;
+            if (m_.missing(&l.age)) l.age = float(std::max(0.0, p_.age - l.birth));
+        }
+    }
+
+    void floral(FloralBud& fb) {
+        const bool shown = fb.stage != FloralStage::Bud && fb.stage != FloralStage::Removed;
+        if (m_.missing(&fb.state) && shown) fb.state = BudState::Broken;
+        if (m_.missing(&fb.stageTime)) fb.stageTime = p_.age;
+    }
+
+    PlantInstance& p_;
+    const Presence& m_;
+    const Defaults& d_;
+    std::vector<std::string>& notes_;
+    std::string where_;
+    int nextLeafID_ = 0;
+};
+
+[[noreturn]] void inconsistent(const std::string& path, const std::string& message,
+                               const std::string& value, const std::string& range) {
+    throw Error(message, {.parameter = path, .value = value, .validRange = range});
+}
+
+}  // namespace
+
+void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
+                   unsigned plantID, std::vector<std::string>& notes, const std::string& where) {
+    Completer(plant, presence, defaults, notes, where).run(plantID);
+}
+
+void checkPlant(PlantInstance& p, const std::string& where) {
+    const std::size_t n = p.shoots.size();
+    auto at = [&](std::size_t i, const std::string& rest) {
+        return where + ".shoot[" + std::to_string(i) + "]" + (rest.empty() ? "" : "." + rest);
+    };
+    auto typeLabels = [&] {
+        std::string out;
+        for (const auto& [label, t] : p.shootTypes) out += (out.empty() ? "" : ", ") + label;
+        return out.empty() ? std::string("no shoot types defined") : "one of: " + out;
+    };
+    for (const auto& [label, t] : p.shootTypes)
+        for (const auto& [child, prob] : t.child_shoot_types)
+            if (!p.shootTypes.count(child))
+                inconsistent(where + ".shoot_type[" + label + "].child_shoot_types." + child,
+                             "unknown shoot type", child, typeLabels());
+    for (std::size_t i = 0; i < n; ++i) {
+        Shoot& s = p.shoots[i];
+        s.id = unsigned(i);
+        s.children.clear();
+        if (!p.shootTypes.count(s.type))
+            inconsistent(at(i, "shoot_type_label"), "unknown shoot type", s.type, typeLabels());
+        if (i == 0 && s.parent != -1)
+            inconsistent(at(i, "parent_shoot_ID"), "shoot 0 is the base stem: it has no parent",
+                         std::to_string(s.parent), "-1");
+        if (i > 0 && (s.parent < 0 || std::size_t(s.parent) >= i))
+            inconsistent(at(i, "parent_shoot_ID"),
+                         "a shoot grows from a shoot listed before it", std::to_string(s.parent),
+                         "0 to " + std::to_string(i - 1));
+        for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
+            Phytomer& ph = s.phytomers[k];
+            const std::string phPath = at(i, "phytomer[" + std::to_string(k) + "]");
+            auto type = p.shootTypes.find(ph.parametersLabel);
+            if (type == p.shootTypes.end())
+                inconsistent(phPath + ".parameters_label", "unknown shoot type", ph.parametersLabel,
+                             typeLabels());
+            const PhytomerParameters& pp = type->second.phytomer_parameters;
+            const unsigned leafVariants = pp.leaf.prototype.unique_prototypes;
+            for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
+                Petiole& pt = ph.petioles[j];
+                const std::string ptPath = phPath + ".internode.petiole[" + std::to_string(j) + "]";
+                for (std::size_t l = 0; l < pt.leaves.size(); ++l)
+                    if (leafVariants > 0 && pt.leaves[l].variant >= leafVariants)
+                        inconsistent(ptPath + ".leaf[" + std::to_string(l) + "].variant",
+                                     "variant out of range", std::to_string(pt.leaves[l].variant),
+                                     "0 to " + std::to_string(leafVariants - 1));
+                for (std::size_t b = 0; b < pt.vegetativeBuds.size(); ++b) {
+                    const VegetativeBud& bud = pt.vegetativeBuds[b];
+                    const std::string budPath = ptPath + ".vegetative_bud[" + std::to_string(b) + "]";
+                    if (bud.childShoot >= int(n))
+                        inconsistent(budPath + ".child_shoot_ID", "no such shoot",
+                                     std::to_string(bud.childShoot), "-1 to " + std::to_string(n - 1));
+                    if (!bud.shootType.empty() && !p.shootTypes.count(bud.shootType))
+                        inconsistent(budPath + ".shoot_type_label", "unknown shoot type",
+                                     bud.shootType, typeLabels());
+                }
+                for (std::size_t b = 0; b < pt.floralBuds.size(); ++b) {
+                    const unsigned variants = std::max(1u, pp.inflorescence.unique_prototypes);
+                    for (std::size_t f = 0; f < pt.floralBuds[b].flowers.size(); ++f)
+                        if (pt.floralBuds[b].flowers[f].variant >= variants)
+                            inconsistent(ptPath + ".floral_bud[" + std::to_string(b) +
+                                             "].peduncle.flower[" + std::to_string(f) + "].variant",
+                                         "variant out of range",
+                                         std::to_string(pt.floralBuds[b].flowers[f].variant),
+                                         "0 to " + std::to_string(variants - 1));
+                }
+            }
+        }
+        const unsigned terminalVariants =
+            std::max(1u, p.shootTypes.at(s.type).phytomer_parameters.inflorescence.unique_prototypes);
+        for (std::size_t b = 0; b < s.terminalFloralBuds.size(); ++b)
+            for (const FlowerOrgan& fl : s.terminalFloralBuds[b].flowers)
+                if (fl.variant >= terminalVariants)
+                    inconsistent(at(i, "terminal_floral_bud[" + std::to_string(b) + "]"),
+                                 "flower variant out of range", std::to_string(fl.variant),
+                                 "0 to " + std::to_string(terminalVariants - 1));
+        if (s.removed || s.parent < 0) continue;
+        Shoot& parent = p.shoots[std::size_t(s.parent)];
+        if (parent.removed)
+            inconsistent(at(i, "removed"), "a shoot growing from a removed shoot must be removed too",
+                         "false", "true");
+        if (s.parentNode < 0 || std::size_t(s.parentNode) >= parent.phytomers.size())
+            inconsistent(at(i, "parent_node_index"), "no such node on the parent shoot",
+                         std::to_string(s.parentNode),
+                         parent.phytomers.empty()
+                             ? "the parent has no phytomers"
+                             : "0 to " + std::to_string(parent.phytomers.size() - 1));
+        parent.children.push_back(unsigned(i));
+    }
+    if (p.nextLeafID < 0)
+        inconsistent(where + ".next_leaf_ID", "negative", std::to_string(p.nextLeafID), ">= 0");
+}
+
+}  // namespace plantarch::plant_io

@@ -1,0 +1,228 @@
+#pragma once
+// The one declaration of every plant-state field that plant structure files hold: element
+// name, valid range and meaning, in file order.
+//
+// describeState(object, visitor) calls, for each piece of the object:
+//   v.field(info, member)        a value (number, flag, vector, text, stage, generator)
+//   v.group(name, fn)            a nested element; fn(subVisitor) visits its content
+//   v.list(name, vector, ids)    one element per item (ids: items carry ID="index")
+//   v.parameters(name, member)   species parameters, read and written through the parameter
+//                                table (model/parameter_table.h)
+//   v.legacy(name)               an element of the specification's listing that plantarch
+//                                accepts on reading and never writes
+// The XML writer, the XML reader (with its range checks and missing-value report) are
+// visitors, so a new state field is one line here: it is then written, read back, range
+// checked, and reported as missing (default used) in older files.
+//
+// Object IDs are not state of the plant (they belong to one Context) and are not listed;
+// Shoot::children is derived from the parents on reading.
+
+#include "model/parameter_table.h"
+#include "plantarch/PlantState.h"
+
+namespace plantarch::state {
+
+/// What a reader checks beyond the range.
+enum class Check {
+    None,
+    UnitVector,     ///< a direction: length 1 (within 1e-3)
+    Label,          ///< a shoot type label: letters, digits, '_' or '-'
+    LabelOrEmpty,   ///< a label, or nothing
+};
+
+/// What a state field is. The range bounds the value (each component of a vector).
+struct FieldInfo {
+    const char* name;  ///< XML element
+    double min;
+    double max;
+    const char* doc;   ///< meaning and unit
+    Check check = Check::None;
+};
+
+using params::SameAs;
+
+// Generous bounds that keep geometry finite; realized values of unbounded distributions may
+// fall outside a parameter's nominal range, so these are wider than the parameter table's.
+inline constexpr double kBig = 1e6;          ///< lengths (m), angles (degrees), rates
+inline constexpr double kTime = 1e9;         ///< plant ages, days (negative: not scheduled)
+inline constexpr double kCount = 1e9;        ///< counters and indices
+inline constexpr double kMaxLeafID = 1 << 30;
+
+template <class S, class V>
+    requires SameAs<S, VegetativeBud>
+void describeState(S& b, V& v) {
+    v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
+    v.field({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)"},
+            b.breakTime);
+    v.field({"child_shoot_ID", -1, kCount, "shoot grown from this bud (-1: none)"}, b.childShoot);
+    v.field({"shoot_type_label", 0, 0, "type it grows into (chosen when it breaks)",
+             Check::LabelOrEmpty},
+            b.shootType);
+}
+
+template <class S, class V>
+    requires SameAs<S, FlowerOrgan>
+void describeState(S& f, V& v) {
+    v.field({"position", -kBig, kBig, "along the peduncle, fraction of its length"}, f.position);
+    v.field({"azimuth", -kBig, kBig, "side of the peduncle, degrees"}, f.azimuth);
+    v.field({"pitch", -kBig, kBig, "from the peduncle axis, degrees"}, f.pitch);
+    v.field({"roll", -kBig, kBig, "about its own axis, degrees"}, f.roll);
+    v.field({"flower_scale", -kBig, kBig, "flower length, m"}, f.flowerScale);
+    v.field({"fruit_scale", -kBig, kBig, "full-grown fruit length, m"}, f.fruitScale);
+    v.field({"gravity_factor", -kBig, kBig, "how far the fruit turns to the ground"},
+            f.gravityFactor);
+    v.field({"variant", 0, kCount, "prototype shape variant"}, f.variant);
+}
+
+template <class S, class V>
+    requires SameAs<S, FloralBud>
+void describeState(S& b, V& v) {
+    v.field({"stage", 0, 0, "bud, flower_closed, flower_open, fruit or removed"}, b.stage);
+    v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
+    v.field({"terminal", 0, 1, "at the shoot tip (else axillary)"}, b.terminal);
+    v.field({"parameters_label", 0, 0,
+             "shoot type whose template makes and draws it (empty: its phytomer's)",
+             Check::LabelOrEmpty},
+            b.parametersLabel);
+    v.field({"fruit_age", -kTime, kTime, "days since fruit set"}, b.fruitAge);
+    v.field({"fruit_growth", -kBig, kBig, "current / full-grown fruit size"}, b.fruitGrowth);
+    v.field({"stage_time", -kTime, kTime, "plant age when the stage began, days"}, b.stageTime);
+    v.field({"next_time", -kTime, kTime, "plant age of the next stage (negative: none)"},
+            b.nextTime);
+    v.group("peduncle", [&](auto& p) {
+        p.field({"peduncle_length", -kBig, kBig, "m"}, b.peduncleLength);
+        p.field({"peduncle_radius", -kBig, kBig, "m"}, b.peduncleRadius);
+        p.field({"peduncle_pitch", -kBig, kBig, "degrees"}, b.pedunclePitch);
+        p.field({"peduncle_roll", -kBig, kBig, "degrees"}, b.peduncleRoll);
+        p.field({"peduncle_curvature", -kBig, kBig, "degrees per m"}, b.peduncleCurvature);
+        p.list("flower", b.flowers);
+    });
+}
+
+template <class S, class V>
+    requires SameAs<S, LeafOrgan>
+void describeState(S& l, V& v) {
+    v.field({"leaf_scale", -kBig, kBig, "full-grown length, m"}, l.scale);
+    v.field({"leaf_pitch", -kBig, kBig, "degrees"}, l.pitch);
+    v.field({"leaf_yaw", -kBig, kBig, "degrees"}, l.yaw);
+    v.field({"leaf_roll", -kBig, kBig, "degrees"}, l.roll);
+    v.field({"leaflet_index", -1000, 1000, "0 tip, negative left, positive right"},
+            l.leafletIndex);
+    v.field({"position", -kBig, kBig, "along the petiole, fraction of its length"}, l.position);
+    v.field({"variant", 0, kCount, "prototype shape variant"}, l.variant);
+    v.field({"leaf_ID", -1, kMaxLeafID, "unique within the plant"}, l.leafID);
+    v.field({"age", -kTime, kTime, "days"}, l.age);
+    v.field({"birth", -kTime, kTime, "plant age when it appeared, days"}, l.birth);
+    v.field({"removed", 0, 1, "shed or removed"}, l.removed);
+}
+
+template <class S, class V>
+    requires SameAs<S, Petiole>
+void describeState(S& p, V& v) {
+    v.field({"petiole_length", -kBig, kBig, "full-grown length, m"}, p.length);
+    v.field({"petiole_radius", -kBig, kBig, "base radius, m"}, p.radius);
+    v.field({"petiole_pitch", -kBig, kBig, "from the internode axis, degrees"}, p.pitch);
+    v.field({"petiole_curvature", -kBig, kBig, "degrees per m"}, p.curvature);
+    v.legacy("leaflet_scale");  // the listing's value; each leaf here carries its own scale
+    v.field({"petiole_taper", -kBig, kBig, "tip radius / base radius"}, p.taper);
+    v.field({"petiole_azimuth", -kBig, kBig, "about the internode axis, degrees"}, p.azimuth);
+    v.list("leaf", p.leaves);
+    v.list("vegetative_bud", p.vegetativeBuds);
+    v.list("floral_bud", p.floralBuds);
+}
+
+template <class S, class V>
+    requires SameAs<S, Internode>
+void describeState(S& in, V& v) {
+    v.field({"internode_length", -kBig, kBig, "full-grown length, m"}, in.length);
+    v.field({"internode_radius", -kBig, kBig, "current radius, m"}, in.radius);
+    v.field({"internode_pitch", -kBig, kBig, "realized zig-zag pitch, degrees"}, in.pitch);
+    v.field({"phyllotactic_angle", -kBig, kBig, "roll from the previous phytomer, degrees"},
+            in.phyllotacticAngle);
+    v.field({"azimuth", -kBig, kBig, "accumulated phyllotactic roll, degrees"}, in.azimuth);
+    v.field({"direction", -1, 1, "axis of the internode", Check::UnitVector}, in.direction);
+    v.field({"shoot_axis", -1, 1, "shoot axis here (curvature, walk, steering)",
+             Check::UnitVector},
+            in.guide);
+    v.field({"roll_reference", -1, 1, "azimuth 0 of the petioles", Check::UnitVector},
+            in.rollReference);
+    v.field({"gravitropic_turn", -kBig, kBig, "degrees"}, in.gravitropicTurn);
+    v.field({"walk_zenith", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkZenith);
+    v.field({"walk_yaw", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkYaw);
+}
+
+template <class S, class V>
+    requires SameAs<S, Phytomer>
+void describeState(S& ph, V& v) {
+    v.field({"age", -kTime, kTime, "days"}, ph.age);
+    v.field({"birth", -kTime, kTime, "plant age when it was created, days"}, ph.birth);
+    v.field({"internode_fraction", -kBig, kBig, "current / full internode length"},
+            ph.internodeFraction);
+    v.field({"leaf_fraction", -kBig, kBig, "current / full petiole and leaf size"},
+            ph.leafFraction);
+    v.field({"internode_fraction_initial", -kBig, kBig, "at creation"}, ph.internodeFraction0);
+    v.field({"leaf_fraction_initial", -kBig, kBig, "at creation"}, ph.leafFraction0);
+    v.field({"radius_initial", -kBig, kBig, "internode radius at creation, m"}, ph.radiusInitial);
+    v.field({"parameters_label", 0, 0, "shoot type whose template built it", Check::Label},
+            ph.parametersLabel);
+    // The specification nests the petioles inside the internode.
+    v.group("internode", [&](auto& sub) {
+        describeState(ph.internode, sub);
+        sub.list("petiole", ph.petioles);
+    });
+}
+
+template <class S, class V>
+    requires SameAs<S, Shoot>
+void describeState(S& s, V& v) {
+    v.field({"shoot_type_label", 0, 0, "shoot type", Check::Label}, s.type);
+    v.field({"parent_shoot_ID", -1, kCount, "-1 for the base stem"}, s.parent);
+    v.field({"parent_node_index", -1, kCount, "node on the parent"}, s.parentNode);
+    v.field({"parent_petiole_index", 0, kCount, "petiole on that node"}, s.parentPetiole);
+    v.field({"base_rotation", -kBig, kBig, "pitch, yaw, roll, degrees"}, s.baseRotation);
+    v.field({"rank", 0, kCount, "0 base stem, 1 its children, ..."}, s.rank);
+    v.field({"insertion_angle", -kBig, kBig, "from the parent axis, degrees"}, s.insertionAngle);
+    v.field({"radius_taper", -kBig, kBig, ""}, s.radiusTaper);
+    // Realized from integer parameters, which never leave their declared range (<= 100000):
+    // this bounds the growth a file can ask for.
+    v.field({"max_nodes", 0, 100000, "realized"}, s.maxNodes);
+    v.field({"max_nodes_per_season", 0, 100000, "realized"}, s.maxNodesPerSeason);
+    v.field({"internode_length_max", -kBig, kBig, "realized, m"}, s.internodeLengthMax);
+    v.field({"phyllochron", -kBig, kBig, "realized, days per node"}, s.phyllochron);
+    v.field({"elongation_rate", -kBig, kBig, "realized, per day"}, s.elongationRate);
+    v.field({"gravitropic_curvature", -kBig, kBig, "realized, degrees per m"},
+            s.gravitropicCurvature);
+    v.field({"tortuosity", -kBig, kBig, "realized"}, s.tortuosity);
+    v.field({"girth_area_factor", -kBig, kBig, "realized, cm^2 per m^2"}, s.girthAreaFactor);
+    v.field({"nodes_this_season", -kCount, kCount, ""}, s.nodesThisSeason);
+    v.field({"next_phytomer_time", -kTime, kTime, "plant age, days (negative: none)"},
+            s.nextPhytomerTime);
+    v.field({"flowering", 0, 1, ""}, s.flowering);
+    v.field({"removed", 0, 1, "pruned away"}, s.removed);
+    v.group("apical_bud", [&](auto& sub) { describeState(s.apicalBud, sub); });
+    v.list("phytomer", s.phytomers);
+    v.list("terminal_floral_bud", s.terminalFloralBuds);
+}
+
+template <class S, class V>
+    requires SameAs<S, PlantInstance>
+void describeState(S& p, V& v) {
+    v.field({"plant_name", 0, 0, "species or user label"}, p.name);
+    v.field({"base_position", -kBig, kBig, "m"}, p.base);
+    v.field({"plant_age", 0, kTime, "days"}, p.age);
+    v.field({"random_generator", 0, 0, "PCG32 state and increment"}, p.rng);
+    v.field({"next_leaf_ID", 0, kMaxLeafID, ""}, p.nextLeafID);
+    v.field({"phenology_stage", 0, 0, "dormant, vegetative, reproductive or senescent"},
+            p.stage);
+    v.field({"dormancy_break_time", -kTime, kTime, "when the season began, days"},
+            p.dormancyBreakTime);
+    v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)"},
+            p.nextDormancyBreak);
+    v.field({"senescence_time", -kTime, kTime, "days (negative: never)"}, p.senescenceTime);
+    v.field({"season", 0, kCount, "growing seasons begun"}, p.season);
+    v.parameters("phenology", p.phenology);
+    v.parameters("shoot_type", p.shootTypes);
+    v.list("shoot", p.shoots, true);
+}
+
+}  // namespace plantarch::state

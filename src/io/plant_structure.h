@@ -1,0 +1,89 @@
+#pragma once
+// Plant structure files and plant strings (docs/plant-xml.md), the internal side: the
+// readers produce PlantInstances that PlantArchitecture then adopts, the writers take them.
+//
+// Both readers note which values their input left out (a Presence), and completePlant()
+// fills those the way a plant built by plantarch would have them (species parameters from
+// the PlantArchitecture, realized values from the parameters' means, internode frames from
+// the listed angles), so a file in the specification's listing form, or a plant string,
+// becomes a whole plant that can be drawn and grown. checkPlant() then verifies that the
+// plant is consistent (shoot references, node indices, shoot types), so what reaches growth
+// and tessellation can never index out of range.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "plantarch/PlantState.h"
+
+namespace plantarch::plant_io {
+
+inline constexpr const char* kRoot = "plantarch_plants";
+/// Root element of the specification's sample listing, read as the listing form.
+inline constexpr const char* kListingRoot = "helios";
+inline constexpr int kFormatVersion = 1;
+
+/// Which members of a plant being read were given by the input. Addresses of members
+/// stay valid while a plant is read and completed (every vector is sized once, before its
+/// items are read).
+class Presence {
+public:
+    /// Records members that were absent (XML reader: most members are present) ...
+    static Presence recordingMissing() { return Presence(false); }
+    /// ... or members that were given (string reader: most members are absent).
+    static Presence recordingPresent() { return Presence(true); }
+
+    void note(const void* member) { set_.insert(member); }
+    bool missing(const void* member) const {
+        return recordsPresent_ ? set_.count(member) == 0 : set_.count(member) != 0;
+    }
+    /// True when nothing was absent (a complete file): completion has nothing to do.
+    bool complete() const { return !recordsPresent_ && set_.empty(); }
+
+private:
+    explicit Presence(bool recordsPresent) : recordsPresent_(recordsPresent) {}
+    bool recordsPresent_;
+    std::unordered_set<const void*> set_;
+};
+
+/// What the PlantArchitecture provides for values an input leaves out.
+struct Defaults {
+    const std::map<std::string, ShootParameters>* shootTypes = nullptr;  ///< current types
+    PhenologyParameters phenology;
+    std::uint64_t seed = 0;
+    unsigned firstPlantID = 0;  ///< ID the first plant read will get (its random stream)
+};
+
+/// Plants read from a file or string, with one warning per plant that needed defaults.
+struct ReadResult {
+    std::vector<PlantInstance> plants;
+    std::vector<std::string> warnings;
+};
+
+/// Fills the values `presence` reports missing; `notes` receives what was taken from where
+/// (e.g. "shoot type unifoliate: the PlantArchitecture's"). Errors name paths below `where`.
+void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
+                   unsigned plantID, std::vector<std::string>& notes, const std::string& where);
+
+/// Throws plantarch::Error (parameter path such as "plant_instance[0].shoot[3].parent_shoot_ID")
+/// when the plant is inconsistent; derives Shoot::children.
+void checkPlant(PlantInstance& plant, const std::string& where);
+
+// ---- XML ---------------------------------------------------------------------------
+
+/// A complete plant structure document holding `plants`, numbers in shortest round-trip form.
+std::string writePlantsXML(const std::vector<const PlantInstance*>& plants);
+
+/// Reads a plant structure document (the complete form or the specification's listing
+/// form). Throws plantarch::Error naming `fileName`, the line, the element path and the value.
+ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
+                         const Defaults& defaults);
+
+// ---- plant strings -------------------------------------------------------------------
+
+std::string writePlantString(const PlantInstance& plant, int significantDigits);
+ReadResult readPlantString(const std::string& text, const Defaults& defaults);
+
+}  // namespace plantarch::plant_io

@@ -1,0 +1,99 @@
+// The convert and grow subcommands and .xml/.txt outputs of build and canopy, as a user
+// runs them: saved plants grow on exactly as if never saved; conversions; clear errors.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "plant_geometry_bytes.h"
+
+namespace {
+
+struct CliResult {
+    int status;
+    std::string out;  // stdout and stderr together
+};
+
+CliResult run(const std::string& args) {
+    const std::string cmd = std::string(PLANTARCH_CLI) + " " + args + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf{};
+    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string dir(const std::string& name) {
+    const auto d = std::filesystem::temp_directory_path() / "plantarch-cli-plant-files" / name;
+    std::filesystem::remove_all(d);
+    std::filesystem::create_directories(d);
+    return d.string();
+}
+
+using plantarch::testing::fileBytes;
+using plantarch::testing::firstDifference;
+
+}  // namespace
+
+TEST(CliPlantFiles, SavedPlantGrowsOnAsIfNeverSaved) {
+    const std::string d = dir("grow");
+    CliResult r = run("build bean --age 35 -o " + d + "/b35.xml");
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = run("grow " + d + "/b35.xml --days 15 -o " + d + "/b50.xml -o " + d + "/b50.ply");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("1 plant(s) grown 15 days"), std::string::npos) << r.out;
+    r = run("build bean --age 50 -o " + d + "/direct.xml");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(firstDifference(fileBytes(d + "/b50.xml"), fileBytes(d + "/direct.xml")), "");
+    EXPECT_GT(std::filesystem::file_size(d + "/b50.ply"), 100000u);
+}
+
+TEST(CliPlantFiles, ConvertsBetweenFormats) {
+    const std::string d = dir("convert");
+    ASSERT_EQ(run("canopy cowpea --count 2x1 --age 20 -o " + d + "/c.xml -o " + d + "/c.txt").status, 0);
+    // Two plant strings, one per line.
+    const std::string strings = fileBytes(d + "/c.txt");
+    EXPECT_EQ(std::count(strings.begin(), strings.end(), '\n'), 2);
+    EXPECT_EQ(strings.rfind("@cowpea(", 0), 0u);
+
+    CliResult r = run("convert " + d + "/c.xml " + d + "/c.obj");
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = run("convert " + d + "/c.xml " + d + "/c.png --image-size 64x48");
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = run("convert " + d + "/c.obj " + d + "/c.ply");  // geometry only
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = run("convert " + d + "/c.xml " + d + "/again.xml");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(firstDifference(fileBytes(d + "/again.xml"), fileBytes(d + "/c.xml")), "");
+    // Plant strings read back with their species and write the same strings.
+    r = run("convert " + d + "/c.txt " + d + "/again.txt --species cowpea");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(fileBytes(d + "/again.txt"), strings);
+    for (const char* f : {"c.obj", "c.mtl", "c.png", "c.ply"})
+        EXPECT_GT(std::filesystem::file_size(d + "/" + f), 100u) << f;
+}
+
+TEST(CliPlantFiles, BadInputsExitWithOneLine) {
+    const std::string d = dir("errors");
+    ASSERT_EQ(run("build bean --age 10 -o " + d + "/b.xml -o " + d + "/b.obj").status, 0);
+    CliResult r = run("convert " + d + "/b.obj " + d + "/x.xml");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("an OBJ file holds geometry only"), std::string::npos) << r.out;
+    r = run("convert " + d + "/b.xml " + d + "/x.gltf");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("unknown output format"), std::string::npos) << r.out;
+    r = run("convert " + d + "/missing.xml " + d + "/x.obj");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("cannot open plant structure file"), std::string::npos) << r.out;
+    r = run("grow " + d + "/b.xml --days -3 -o " + d + "/x.xml");
+    EXPECT_EQ(r.status, 2);
+    r = run("build bean --age 10 --digits 9 -o " + d + "/b.txt");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.out.find("--digits = 9"), std::string::npos) << r.out;
+    for (const CliResult& e : {r})
+        EXPECT_EQ(std::count(e.out.begin(), e.out.end(), '\n'), 1) << e.out;
+}

@@ -1,0 +1,190 @@
+// Plant strings: the documented grammar, exact string -> plant -> string round trips for
+// every library species at three ages, the structure kept, and clear errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "plant_geometry_bytes.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+using plantarch::testing::firstDifference;
+
+namespace {
+
+struct Counts {
+    unsigned shoots = 0, internodes = 0, petioles = 0, leaves = 0, floral = 0, flowers = 0;
+    bool operator==(const Counts&) const = default;
+};
+
+// What a plant string holds: drawn shoots, their organs, visible flowers and fruit.
+Counts countVisible(const PlantInstance& p) {
+    Counts c;
+    auto floral = [&](const FloralBud& fb) {
+        if (fb.stage == FloralStage::Bud || fb.stage == FloralStage::Removed) return;
+        ++c.floral;
+        c.flowers += unsigned(fb.flowers.size());
+    };
+    for (const Shoot& s : p.shoots) {
+        if (s.removed || s.phytomers.empty()) continue;
+        ++c.shoots;
+        for (const Phytomer& ph : s.phytomers) {
+            ++c.internodes;
+            for (const Petiole& pt : ph.petioles) {
+                ++c.petioles;
+                for (const LeafOrgan& l : pt.leaves) c.leaves += l.removed ? 0 : 1;
+                for (const FloralBud& fb : pt.floralBuds) floral(fb);
+            }
+        }
+        for (const FloralBud& fb : s.terminalFloralBuds) floral(fb);
+    }
+    return c;
+}
+
+std::string stringError(const std::string& text) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    try {
+        arch.generatePlantFromString(text);
+    } catch (const Error& e) {
+        EXPECT_TRUE(arch.getAllPlantIDs().empty());
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(PlantString, HandBuiltPlantGivesTheDocumentedString) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    ShootParameters sp;
+    sp.phytomer_parameters.internode.pitch = 0.0f;
+    sp.phytomer_parameters.internode.phyllotactic_angle = 180.0f;
+    sp.phytomer_parameters.petiole.pitch = 45.0f;
+    sp.phytomer_parameters.petiole.length = 0.04f;
+    sp.phytomer_parameters.petiole.radius = 0.001f;
+    sp.phytomer_parameters.leaf.prototype_scale = 0.06f;
+    sp.phytomer_parameters.leaf.pitch = 10.0f;
+    sp.phytomer_parameters.internode.max_floral_buds_per_petiole = 0;
+    arch.defineShootType("stem", sp);
+    const unsigned p = arch.addPlantInstance(vec3(0.5f, 0, 0), 10.0f);
+    arch.addBaseStemShoot(p, 2, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "stem");
+    EXPECT_EQ(arch.getPlantString(p),
+              "@(0.5,0,0,10)Sstem(1,0,0){"
+              "I(0.03,0.002,0,0,0,0,1)[P(0.04,0.001,45,0,0)L0(0.06,10,0,0,1,0)]"
+              "I(0.03,0.002,0,180,0,0,1)[P(0.04,0.001,45,0,0)L0(0.06,10,0,0,1,0)]}");
+    const unsigned q = arch.generatePlantFromString(arch.getPlantString(p));
+    EXPECT_EQ(arch.getPlantString(q), arch.getPlantString(p));
+    // Same organs in the same places (this plant's values are exact at 4 digits).
+    EXPECT_EQ(arch.getNodePosition(q, 0, 1), arch.getNodePosition(p, 0, 1) + vec3(0.0f));
+    EXPECT_EQ(arch.getPlantLeafArea(q), arch.getPlantLeafArea(p));
+}
+
+TEST(PlantString, EverySpeciesAtThreeAgesRoundTripsExactly) {
+    for (const std::string& name : listSpecies()) {
+        const SpeciesModel model = loadSpecies(name);
+        for (float age : {model.recommendedAgeMin, model.recommendedAge, model.recommendedAgeMax}) {
+            SCOPED_TRACE(name + " at " + std::to_string(age) + " days");
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.loadPlantModelFromLibrary(name);
+            const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+            for (int digits : {3, 0}) {
+                SCOPED_TRACE("digits " + std::to_string(digits));
+                PlantStringOptions o;
+                o.significantDigits = digits;
+                const std::string s = arch.getPlantString(p, o);
+                std::string warning;
+                PlantStructureReadOptions r;
+                r.onWarning = [&](const std::string& w) { warning = w; };
+                const unsigned q = arch.generatePlantFromString(s, r);
+                EXPECT_EQ(warning, "");
+                EXPECT_EQ(firstDifference(arch.getPlantString(q, o), s), "");
+                EXPECT_EQ(countVisible(arch.plant(q)), countVisible(arch.plant(p)));
+                // The shape survives: leaf area and height within the rounding.
+                const float tolerance = digits == 3 ? 0.01f : 0.001f;
+                EXPECT_NEAR(arch.getPlantLeafArea(q), arch.getPlantLeafArea(p),
+                            tolerance * arch.getPlantLeafArea(p) + 1e-9f);
+                EXPECT_NEAR(arch.getPlantHeight(q), arch.getPlantHeight(p),
+                            tolerance * arch.getPlantHeight(p) + 1e-4f);
+                arch.deletePlantInstance(q);
+            }
+        }
+    }
+}
+
+TEST(PlantString, MalformedStringsGiveOneClearError) {
+    const std::string good = "@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)]}";
+    EXPECT_EQ(stringError(good), "");
+    EXPECT_EQ(stringError(""), "plant string, character 1: expected '@' (valid: '@')");
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){}").find("a shoot needs at least one internode"),
+              std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)").find("expected '}'"),
+              std::string::npos);
+    EXPECT_NE(stringError("@(0,0,x,5)").find("character 7 = @(0,0,x,5): expected a number"), std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,-5)").find("negative plant age"), std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)S(1,0,0){}").find("expected a shoot type label"), std::string::npos);
+    EXPECT_NE(stringError(good + "x").find("text after the plant's base stem"), std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(0,0,0){I(0.01,0.001,0,0,0,0,1)}").find("length close to 1"),
+              std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)Fz(1,1,1,1,1)]}")
+                  .find("flower stage letter"),
+              std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(1e9,0.001,0,0,0,0,1)}").find("out of range"),
+              std::string::npos);
+    // Nesting deeper than 1000 shoots is refused (appended shoots nest in their parent).
+    std::string deep = "@(0,0,0,5)";
+    for (int i = 0; i < 1200; ++i) deep += "Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)";
+    EXPECT_NE(stringError(deep).find("shoots nested too deep"), std::string::npos);
+
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 10.0f);
+    EXPECT_THROW(arch.getPlantString(p, PlantStringOptions{7}), Error);
+    EXPECT_THROW(arch.getPlantString(p, PlantStringOptions{-1}), Error);
+}
+
+TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    std::string warning;
+    PlantStructureReadOptions o;
+    o.onWarning = [&](const std::string& w) { warning = w; };
+    const unsigned p = arch.generatePlantFromString(
+        "@(0,0,0,5)Sother(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)]}", o);
+    EXPECT_EQ(warning, "plant string: shoot type other: plantarch's default parameters");
+    EXPECT_EQ(arch.getPlantLeafObjectIDs(p).size(), 1u);
+}
+
+// Fuzz finding: a phytomer built by another shoot type than its shoot's (possible in a file)
+// kept its type in the string; before, the string named only the shoot's type and the
+// phytomer's leaf variants could be out of range for it.
+TEST(PlantString, PhytomerOfAnotherShootTypeKeepsItsType) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    ShootParameters plain, varied;
+    varied.phytomer_parameters.leaf.prototype.unique_prototypes = 4;
+    varied.phytomer_parameters.leaf.prototype.shape = "cordate";
+    arch.defineShootType("plain", plain);
+    arch.defineShootType("varied", varied);
+    const unsigned p = arch.addPlantInstance(vec3(0.0f), 1.0f);
+    arch.addBaseStemShoot(p, 2, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "plain");
+    std::string xml = arch.getPlantStructureXML({p});
+    const std::string from = "<parameters_label>plain</parameters_label>";
+    xml.replace(xml.rfind(from), from.size(), "<parameters_label>varied</parameters_label>");
+    const std::string variant = "<variant>0</variant>";
+    xml.replace(xml.rfind(variant), variant.size(), "<variant>3</variant>");
+    const unsigned q = arch.readPlantStructureXMLString(xml).at(0);
+    const std::string s = arch.getPlantString(q);
+    EXPECT_NE(s.find("Ivaried("), std::string::npos) << s;
+    const unsigned r = arch.generatePlantFromString(s);
+    EXPECT_EQ(arch.getPlantString(r), s);
+    EXPECT_EQ(arch.plant(r).shoots[0].phytomers[1].parametersLabel, "varied");
+    EXPECT_EQ(arch.getPlantLeafArea(r), arch.getPlantLeafArea(q));
+}

@@ -1,0 +1,498 @@
+// Plant structure files: exact round trips (same geometry bytes now, same plant after more
+// growth), canopies in one file, the specification's listing form, and clear errors.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "io/plant_state_table.h"
+#include "plant_geometry_bytes.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+using plantarch::testing::firstDifference;
+using plantarch::testing::organBytes;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string tempPath(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("plantarch_xml_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return (dir / name).string();
+}
+
+struct Built {
+    Context ctx;
+    PlantArchitecture arch{&ctx};
+    unsigned id = 0;
+};
+
+// The specification's sample listing, as printed.
+const char* kListing = R"(<helios>
+  <plant_instance ID="0">
+    <base_position> 0 0 0 </base_position>
+    <plant_age> 2 </plant_age>
+    <shoot ID="0">
+      <shoot_type_label> unifoliate </shoot_type_label>
+      <parent_shoot_ID> -1 </parent_shoot_ID>
+      <parent_node_index> 0 </parent_node_index>
+      <parent_petiole_index> 0 </parent_petiole_index>
+      <base_rotation> 7.79857 143.494 62.5022 </base_rotation>
+      <phytomer>
+        <internode>
+          <internode_length>0.0063</internode_length>
+          <internode_radius>0.000657844</internode_radius>
+          <internode_pitch>0</internode_pitch>
+          <phyllotactic_angle>213.865</phyllotactic_angle>
+          <petiole>
+            <petiole_length>0.00623</petiole_length>
+            <petiole_radius>0.00145</petiole_radius>
+            <petiole_pitch>58.0717</petiole_pitch>
+            <petiole_curvature>-94.6669</petiole_curvature>
+            <leaflet_scale>1</leaflet_scale>
+            <leaf>
+              <leaf_scale>0.0084</leaf_scale>
+              <leaf_pitch>5.60887</leaf_pitch>
+              <leaf_yaw>0</leaf_yaw>
+              <leaf_roll>-15</leaf_roll>
+            </leaf>
+          </petiole>
+        </internode>
+      </phytomer>
+    </shoot>
+  </plant_instance>
+</helios>
+)";
+
+// The error message of reading `xml` into a fresh PlantArchitecture ("" when it reads).
+std::string readError(const std::string& xml) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    PlantStructureReadOptions o;
+    o.nameForErrors = "plants.xml";
+    try {
+        arch.readPlantStructureXMLString(xml, o);
+    } catch (const Error& e) {
+        EXPECT_EQ(arch.getAllPlantIDs().size(), 0u) << "nothing is added on error";
+        EXPECT_EQ(ctx.objectCount(), 0u);
+        return e.what();
+    }
+    return "";
+}
+
+// A bean written to text, for the error tests to damage.
+const std::string& beanXML() {
+    static const std::string text = [] {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        const unsigned id = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 20.0f);
+        return arch.getPlantStructureXML({id});
+    }();
+    return text;
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+    const auto at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) s.replace(at, from.size(), to);
+    return s;
+}
+
+}  // namespace
+
+TEST(PlantStructureXML, BeanRoundTripGivesTheSameGeometryAndText) {
+    Built a;
+    a.arch.loadPlantModelFromLibrary("bean");
+    a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.1f, -0.2f, 0.0f), 45.0f);
+    const std::string path = tempPath("bean45.xml");
+    a.arch.writePlantStructureXML(a.id, path);
+
+    Context ctx;
+    PlantArchitecture b(&ctx);  // nothing loaded: the file carries the species parameters
+    std::vector<std::string> warnings;
+    PlantStructureReadOptions o;
+    o.onWarning = [&](const std::string& w) { warnings.push_back(w); };
+    const std::vector<unsigned> ids = b.readPlantStructureXML(path, o);
+    ASSERT_EQ(ids.size(), 1u);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_EQ(firstDifference(organBytes(b, ids), organBytes(a.arch, {a.id})), "");
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML(ids), a.arch.getPlantStructureXML({a.id})), "");
+    EXPECT_EQ(b.plant(ids[0]).rng, a.arch.plant(a.id).rng);
+    EXPECT_EQ(b.getPlantLeafArea(ids[0]), a.arch.getPlantLeafArea(a.id));
+    EXPECT_EQ(b.getShootChildren(ids[0], 0), a.arch.getShootChildren(a.id, 0));
+
+    // Exported in organ order, both give the same OBJ and PLY bytes.
+    const Context ca = plantarch::testing::canonicalScene(a.arch, {a.id});
+    const Context cb = plantarch::testing::canonicalScene(b, ids);
+    fs::create_directories(tempPath("a"));
+    fs::create_directories(tempPath("b"));
+    writeOBJ(ca, tempPath("a/scene.obj"));
+    writeOBJ(cb, tempPath("b/scene.obj"));
+    writePLY(ca, tempPath("a/scene.ply"));
+    writePLY(cb, tempPath("b/scene.ply"));
+    using plantarch::testing::fileBytes;
+    const std::string obj = fileBytes(tempPath("a/scene.obj"));
+    EXPECT_GT(obj.size(), 1000000u);
+    EXPECT_EQ(firstDifference(obj, fileBytes(tempPath("b/scene.obj"))), "");
+    EXPECT_EQ(firstDifference(fileBytes(tempPath("a/scene.mtl")), fileBytes(tempPath("b/scene.mtl"))), "");
+    EXPECT_EQ(firstDifference(fileBytes(tempPath("a/scene.ply")), fileBytes(tempPath("b/scene.ply"))), "");
+}
+
+TEST(PlantStructureXML, ContinuedGrowthMatchesTheOriginal) {
+    Built a;
+    a.arch.loadPlantModelFromLibrary("bean");
+    a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.0f), 25.0f);
+    const std::string text = a.arch.getPlantStructureXML({a.id});
+
+    Context ctx;
+    PlantArchitecture b(&ctx);
+    const unsigned id = b.readPlantStructureXMLString(text).at(0);
+    a.arch.advanceTime(30.0);
+    b.advanceTime(30.0);
+    EXPECT_GT(a.arch.getPlantLeafCount(a.id), 0u);
+    EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}), a.arch.getPlantStructureXML({a.id})), "");
+}
+
+TEST(PlantStructureXML, EverySpeciesAtThreeAgesRoundTripsAndGrowsOnIdentically) {
+    for (const std::string& name : listSpecies()) {
+        const SpeciesModel model = loadSpecies(name);
+        for (float age : {model.recommendedAgeMin, model.recommendedAge, model.recommendedAgeMax}) {
+            SCOPED_TRACE(name + " at " + std::to_string(age) + " days");
+            Built a;
+            a.arch.loadPlantModelFromLibrary(name);
+            a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+            const std::string text = a.arch.getPlantStructureXML({a.id});
+
+            Context ctx;
+            PlantArchitecture b(&ctx);
+            PlantStructureReadOptions o;
+            std::string warning;
+            o.onWarning = [&](const std::string& w) { warning = w; };
+            const unsigned id = b.readPlantStructureXMLString(text, o).at(0);
+            EXPECT_EQ(warning, "");
+            EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
+            EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}), text), "");
+
+            // Grown on, the copy stays the original (same events, same random numbers).
+            const double more = std::max(10.0, 0.25 * model.recommendedAge);
+            a.arch.advanceTime(more);
+            b.advanceTime(more);
+            EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
+            EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}),
+                                      a.arch.getPlantStructureXML({a.id})),
+                      "");
+        }
+    }
+}
+
+TEST(PlantStructureXML, CanopyInOneFile) {
+    Context ctx;
+    PlantArchitecture a(&ctx);
+    a.setSeed(3);
+    a.loadPlantModelFromLibrary("cowpea");
+    const auto ids = a.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.4f, 0.4f), glm::ivec2(3, 2), 30.0f);
+    ASSERT_EQ(ids.size(), 6u);
+    const std::string path = tempPath("canopy.xml");
+    a.writePlantStructureXML(ids, path);
+
+    Context ctx2;
+    PlantArchitecture b(&ctx2);
+    const auto read = b.readPlantStructureXML(path);
+    EXPECT_EQ(read, ids);  // a fresh PlantArchitecture numbers them as the original did
+    EXPECT_EQ(firstDifference(organBytes(b, read), organBytes(a, ids)), "");
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        EXPECT_EQ(b.getPlantBasePosition(read[i]), a.getPlantBasePosition(ids[i]));
+    // Read again into the same PlantArchitecture: six more plants with new IDs.
+    const auto again = b.readPlantStructureXML(path);
+    EXPECT_EQ(again, (std::vector<unsigned>{6, 7, 8, 9, 10, 11}));
+    EXPECT_EQ(b.getAllPlantIDs().size(), 12u);
+}
+
+TEST(PlantStructureXML, HandBuiltPlantWithItsOwnShootTypeNeedsNothingPreloaded) {
+    Context ctx;
+    PlantArchitecture a(&ctx);
+    ShootParameters sp;
+    sp.phytomer_parameters.leaf.leaves_per_petiole = 5;
+    sp.phytomer_parameters.leaf.leaflet_offset = 0.2f;
+    sp.phytomer_parameters.leaf.prototype.shape = "lanceolate";
+    sp.phytomer_parameters.internode.phyllotactic_angle = RandomFloat::normal(137.5f, 10.0f);
+    sp.child_shoot_types = {{"mine", 1.0f}};
+    sp.max_nodes = 12;
+    a.defineShootType("mine", sp);
+    const unsigned p = a.addPlantInstance(vec3(1, 2, 0), 3.0f);
+    a.addBaseStemShoot(p, 4, {5, 10, 0}, 0.002f, 0.1f, 1.0f, 1.0f, 0.2f, "mine");
+    a.addChildShoot(p, 0, 2, ShootSpec{2, {}, 0.001f, 0.05f, 1.0f, 1.0f, 0.0f, "mine"});
+    a.advanceTime(12.0);
+    const std::string text = a.getPlantStructureXML({p});
+    // Numbers in their shortest round-trip form.
+    EXPECT_NE(text.find("<internode_length>0.1</internode_length>"), std::string::npos);
+    EXPECT_NE(text.find("<base_position>1 2 0</base_position>"), std::string::npos);
+    EXPECT_NE(text.find("<phyllotactic_angle>normal(137.5, 10)</phyllotactic_angle>"),
+              std::string::npos);
+
+    Context ctx2;
+    PlantArchitecture b(&ctx2);
+    EXPECT_TRUE(b.listShootTypeLabels().empty());
+    const unsigned q = b.readPlantStructureXMLString(text).at(0);
+    EXPECT_EQ(b.listShootTypeLabels(q), std::vector<std::string>{"mine"});
+    EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a, {p})), "");
+    a.advanceTime(20.0);
+    b.advanceTime(20.0);
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML({q}), a.getPlantStructureXML({p})), "");
+}
+
+TEST(PlantStructureXML, PrunedAndHarvestedPlantsRoundTrip) {
+    Context ctx;
+    PlantArchitecture a(&ctx);
+    a.loadPlantModelFromLibrary("bean");
+    const unsigned p = a.buildPlantInstanceFromLibrary(vec3(0.0f), 60.0f);
+    ASSERT_GT(a.getShootCount(p), 3u);
+    const unsigned harvested = a.harvestPlant(p);
+    const unsigned last = unsigned(a.plant(p).shoots.size()) - 1;
+    a.pruneBranch(p, last, 0);  // a whole shoot goes
+    a.pruneBranch(p, 1, 6);     // the main stem is cut back, with the branches above node 6
+    a.removeShootLeaves(p, 1);
+    const std::string text = a.getPlantStructureXML({p});
+    EXPECT_NE(text.find("<removed>true</removed>"), std::string::npos);
+
+    Context ctx2;
+    PlantArchitecture b(&ctx2);
+    const unsigned q = b.readPlantStructureXMLString(text).at(0);
+    EXPECT_EQ(b.getShootCount(q), a.getShootCount(p));
+    EXPECT_EQ(b.getTerminalShoots(q), a.getTerminalShoots(p));
+    for (unsigned s = 0; s < a.plant(p).shoots.size(); ++s)
+        if (!a.plant(p).shoots[s].removed) {
+            EXPECT_EQ(b.getShootChildren(q, s), a.getShootChildren(p, s));
+        }
+    EXPECT_EQ(b.getPlantFruitObjectIDs(q).size(), 0u);
+    EXPECT_GE(harvested, 0u);
+    EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a, {p})), "");
+    a.advanceTime(15.0);
+    b.advanceTime(15.0);
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML({q}), a.getPlantStructureXML({p})), "");
+}
+
+TEST(PlantStructureXML, SpecificationListingLoadsWithDefaultsAndAWarning) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    std::vector<std::string> warnings;
+    PlantStructureReadOptions o;
+    o.nameForErrors = "listing.xml";
+    o.onWarning = [&](const std::string& w) { warnings.push_back(w); };
+    const auto ids = arch.readPlantStructureXMLString(kListing, o);
+    ASSERT_EQ(ids.size(), 1u);
+    ASSERT_EQ(warnings.size(), 1u);
+    const std::string& w = warnings[0];
+    EXPECT_EQ(w.rfind("listing.xml: plant_instance 0: values missing, defaults used: ", 0), 0u) << w;
+    for (const char* missing : {"random_generator", "phenology", "shoot_type", "shoot.phytomer.internode.direction",
+                                "shoot.phytomer.internode.petiole.leaf.leaflet_index", "shoot.max_nodes"})
+        EXPECT_NE(w.find(missing), std::string::npos) << missing << " in " << w;
+    EXPECT_NE(w.find("the current ones of the PlantArchitecture"), std::string::npos) << w;
+
+    // The listed values are the plant's.
+    const unsigned id = ids[0];
+    const PlantInstance& p = arch.plant(id);
+    EXPECT_EQ(p.age, 2.0);
+    ASSERT_EQ(p.shoots.size(), 1u);
+    EXPECT_EQ(p.shoots[0].type, "unifoliate");
+    EXPECT_EQ(p.shoots[0].baseRotation.yaw, 143.494f);
+    const Phytomer& ph = p.shoots[0].phytomers.at(0);
+    EXPECT_EQ(ph.internode.length, 0.0063f);
+    EXPECT_EQ(ph.internode.phyllotacticAngle, 213.865f);
+    EXPECT_EQ(ph.petioles.at(0).curvature, -94.6669f);
+    EXPECT_EQ(ph.petioles[0].leaves.at(0).scale, 0.0084f);
+    EXPECT_EQ(ph.petioles[0].leaves[0].roll, -15.0f);
+    // Drawn: one internode, one petiole, one leaf; the stem tilts by the base pitch.
+    EXPECT_EQ(arch.getPlantInternodeObjectIDs(id).size(), 1u);
+    EXPECT_EQ(arch.getPlantPetioleObjectIDs(id).size(), 1u);
+    EXPECT_EQ(arch.getPlantLeafObjectIDs(id).size(), 1u);
+    const vec3 tip = arch.getNodePosition(id, 0, 0);
+    EXPECT_NEAR(glm::length(tip), 0.0063f, 1e-6f);
+    EXPECT_NEAR(std::acos(tip.z / glm::length(tip)) * 180.0 / 3.14159265, 7.79857, 1e-3);
+    // The bean's unifoliate stem has one node; as a trifoliate shoot the same listing grows on
+    // with the bean's parameters.
+    arch.advanceTime(20.0);
+    EXPECT_EQ(arch.getPlantAge(id), 22.0f);
+    EXPECT_EQ(arch.getShootNodeCount(id, 0), 1u);
+    const std::string trifoliate = replaced(kListing, "> unifoliate <", ">trifoliate<");
+    const unsigned grown = arch.readPlantStructureXMLString(trifoliate).at(0);
+    arch.advanceTime(grown, 20.0);
+    EXPECT_GT(arch.getShootNodeCount(grown, 0), 5u);
+}
+
+TEST(PlantStructureXML, ListingWithoutASpeciesUsesDefaultParameters) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    std::string warning;
+    PlantStructureReadOptions o;
+    o.onWarning = [&](const std::string& w) { warning = w; };
+    const auto ids = arch.readPlantStructureXMLString(kListing, o);
+    ASSERT_EQ(ids.size(), 1u);
+    EXPECT_NE(warning.find("shoot type unifoliate: plantarch's default parameters"), std::string::npos)
+        << warning;
+    EXPECT_EQ(arch.getPlantLeafObjectIDs(ids[0]).size(), 1u);
+}
+
+namespace {
+
+int lineOf(const std::string& text, const std::string& needle) {
+    const auto at = text.find(needle);
+    return at == std::string::npos ? -1 : 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+}
+
+// Reads `damaged` and expects one error, on the line of `marker`, saying `message`.
+void expectError(const std::string& damaged, const std::string& marker, const std::string& message) {
+    SCOPED_TRACE(message);
+    const std::string e = readError(damaged);
+    const std::string where = "plants.xml:" + std::to_string(lineOf(damaged, marker)) + ": ";
+    EXPECT_EQ(e.rfind(where, 0), 0u) << e;
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos);
+}
+
+// The bean file with the first `from` replaced.
+std::string damage(const std::string& from, const std::string& to) {
+    return replaced(beanXML(), from, to);
+}
+
+// The bean file with the value of the first <tag> (after `after`) set to `value`.
+std::string setFirst(const std::string& tag, const std::string& value, const std::string& after = "") {
+    std::string s = beanXML();
+    const auto open = s.find("<" + tag + ">", after.empty() ? 0 : s.find(after));
+    const auto close = s.find("</" + tag + ">", open);
+    EXPECT_NE(open, std::string::npos) << tag;
+    const auto start = open + tag.size() + 2;
+    s.replace(start, close - start, value);
+    return s;
+}
+
+// The bean file with the first element <from> renamed to <to>.
+std::string renameElement(const std::string& from, const std::string& to) {
+    std::string s = beanXML();
+    const auto open = s.find("<" + from + ">");
+    const auto close = s.find("</" + from + ">", open);
+    s.replace(close, from.size() + 3, "</" + to + ">");
+    s.replace(open, from.size() + 2, "<" + to + ">");
+    return s;
+}
+
+}  // namespace
+
+TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
+    EXPECT_EQ(readError(beanXML()), "");
+    EXPECT_EQ(readError(""), "plants.xml:1: empty file, expected a <plantarch_plants> document");
+    EXPECT_NE(readError(beanXML().substr(0, beanXML().size() / 2)).find("the file ends too early"),
+              std::string::npos);
+    EXPECT_NE(readError("<plant_instance/>").find("not a plant structure file: root element <plant_instance>"),
+              std::string::npos);
+    EXPECT_NE(readError("<plantarch_plants format=\"7\"/>").find("newer format"), std::string::npos);
+    EXPECT_NE(readError("<plantarch_plants/>").find("missing required attribute 'format'"),
+              std::string::npos);
+    EXPECT_EQ(readError("<plantarch_plants format=\"1\"/>"), "");  // no plants is fine
+
+    // Wrong types and values out of range.
+    std::string d = setFirst("internode_length", "abc");
+    expectError(d, ">abc<", "plant_instance[0].shoot[0].phytomer[0].internode.internode_length = abc");
+    expectError(d, ">abc<", "expected a number");
+    d = setFirst("internode_length", "1e30");
+    expectError(d, ">1e30<", "out of range (valid: -1000000 to 1000000)");
+    d = setFirst("internode_length", "nan");
+    expectError(d, ">nan<", "expected a number");
+    d = setFirst("next_leaf_ID", "99999999999999");
+    expectError(d, "99999999999999", "next_leaf_ID = 99999999999999: expected a whole number");
+    d = setFirst("next_leaf_ID", "-5");
+    expectError(d, ">-5<", "next_leaf_ID = -5: out of range (valid: 0 to 1073741824)");
+    d = setFirst("state", "sleeping");
+    expectError(d, "sleeping", "unknown value");
+    d = setFirst("phenology_stage", "reproductiv");
+    expectError(d, "reproductiv<", "did you mean 'reproductive'?");
+    d = setFirst("direction", "0 0.5 0.5");
+    expectError(d, ">0 0.5 0.5<", "not a unit vector");
+    d = setFirst("random_generator", "12 4");
+    expectError(d, ">12 4<", "increment");
+    d = setFirst("random_generator", "12");
+    expectError(d, ">12<", "expected two whole numbers");
+    d = setFirst("flowering", "yes");
+    expectError(d, ">yes<", "expected true or false");
+
+    // Unknown, duplicate and misplaced elements.
+    d = renameElement("internode_length", "internode_lenght");
+    expectError(d, "<internode_lenght>", "did you mean <internode_length>?");
+    d = damage("<leaf_pitch>", "<leaf_roll>1</leaf_roll><leaf_pitch>");
+    expectError(d, "<leaf_roll>1</leaf_roll><leaf_pitch>", "duplicate element <leaf_roll>");
+    d = damage("<plant_age>", "<plant_age>3</plant_age><plant_age>");
+    expectError(d, "<plant_age>3", "duplicate element <plant_age>");
+    d = damage("<internode_radius>", "<internode_radius><x/>");
+    expectError(d, "<x/>", "holds a value, not elements");
+    d = damage("<shoot ID=\"1\">", "<shoot ID=\"7\">");
+    expectError(d, "<shoot ID=\"7\">", "IDs must count 0, 1, 2, ... in file order");
+
+    // References that do not hold.
+    d = damage("<parent_shoot_ID>0</parent_shoot_ID>", "<parent_shoot_ID>99</parent_shoot_ID>");
+    expectError(d, "<parent_shoot_ID>99", "a shoot grows from a shoot listed before it");
+    d = damage("<parent_node_index>0</parent_node_index>\n      <parent_petiole_index>0</parent_petiole_index>\n      <base_rotation>0 0 90",
+               "<parent_node_index>40</parent_node_index>\n      <parent_petiole_index>0</parent_petiole_index>\n      <base_rotation>0 0 90");
+    expectError(d, "<parent_node_index>40", "no such node on the parent shoot (valid: 0 to 0)");
+    d = setFirst("shoot_type_label", "trifoliat", "<shoot ID=\"1\">");
+    expectError(d, "trifoliat<", "shoot[1].shoot_type_label = trifoliat: unknown shoot type");
+    d = setFirst("shoot_type_label", "trifoliat", "<vegetative_bud>");
+    expectError(d, "trifoliat<", "shoot_type_label = trifoliat: unknown shoot type");
+
+    d = damage("<shoot ID=\"0\">\n      <shoot_type_label>unifoliate</shoot_type_label>", "<shoot ID=\"0\">");
+    expectError(d, "<shoot ID=\"0\">", "plant_instance[0].shoot[0].shoot_type_label: missing <shoot_type_label>");
+
+    // Embedded parameters are validated like species files.
+    d = damage("<max_nodes>25</max_nodes>", "<max_nodes>-3</max_nodes>");
+    expectError(d, "<max_nodes>-3", "max_nodes = -3: out of range");
+    d = damage("<phytomer_creation_function>", "<phytomer_creation_function>no_such_function");
+    const std::string e = readError(d);
+    EXPECT_NE(e.find("unknown phytomer creation function"), std::string::npos) << e;
+    EXPECT_EQ(e.rfind("plants.xml: ", 0), 0u) << e;
+}
+
+namespace {
+
+// Names of every state field, group and list, at every level of the state table.
+struct StateNames {
+    std::vector<std::string> names;
+    template <class T>
+    void field(const plantarch::state::FieldInfo& f, T&) {
+        names.emplace_back(f.name);
+    }
+    void legacy(const char* name) { names.emplace_back(name); }
+    template <class Fn>
+    void group(const char* name, Fn&& fn) {
+        names.emplace_back(name);
+        fn(*this);
+    }
+    template <class T>
+    void list(const char* name, std::vector<T>& items, bool = false) {
+        names.emplace_back(name);
+        items.resize(1);
+        plantarch::state::describeState(items[0], *this);
+    }
+    template <class P>
+    void parameters(const char* name, P&) {
+        names.emplace_back(name);
+    }
+};
+
+}  // namespace
+
+TEST(PlantStructureXML, DocsNameEveryElement) {
+    PlantInstance p;
+    StateNames v;
+    plantarch::state::describeState(p, v);
+    ASSERT_GT(v.names.size(), 80u);
+    const std::string doc =
+        plantarch::testing::fileBytes(std::string(PLANTARCH_SOURCE_DIR) + "/docs/plant-xml.md");
+    for (const std::string& name : v.names)
+        EXPECT_NE(doc.find("`" + name + "`"), std::string::npos) << name << " is not in docs/plant-xml.md";
+}
