@@ -13,6 +13,8 @@
 
 #include <omp.h>
 
+#include "collision/collision_world.h"
+#include "collision/growth_driver.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
@@ -54,8 +56,17 @@ void checkCanopyArguments(float age, float germination) {
                      .validRange = "0 to 1"});
 }
 
+struct CanopyWorker {
+    Context ctx;
+    std::unique_ptr<PlantArchitecture> arch;
+};
+
 }  // namespace
 
+// With soft collision avoidance the plants must see each other while they grow, so they are
+// first built (initial structure only) by the workers, then grown together by
+// collision::growTogether (each step on all threads, every plant seeing the scene as it stood
+// at the step's start), then tessellated by their workers and merged as usual.
 std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     const std::vector<vec3>& positions, float age,
     const std::map<std::string, float>& buildParameters) {
@@ -63,16 +74,15 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         throw Error("no species loaded: call loadPlantModelFromLibrary first",
                     {.parameter = "species", .validRange = "one of the library species"});
     resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
+    const bool together = impl_->collision && impl_->collision->soft();
+    // Plants with attraction points of their own count their work in this scene's stats.
+    if (impl_->species->attraction) collision::worldOf(*impl_);
     const unsigned first = impl_->nextPlantID;
     const int n = int(positions.size());
     const int threads = std::max(1, std::min(omp_get_max_threads(), n));
 
-    struct Worker {
-        Context ctx;
-        std::unique_ptr<PlantArchitecture> arch;
-    };
-    std::vector<Worker> workers(static_cast<std::size_t>(threads));
-    for (Worker& w : workers) {
+    std::vector<CanopyWorker> workers(static_cast<std::size_t>(threads));
+    for (CanopyWorker& w : workers) {
         w.arch = std::make_unique<PlantArchitecture>(&w.ctx);
         w.arch->seed_ = seed_;
         Impl& wi = *w.arch->impl_;
@@ -83,9 +93,10 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.floralPrototypes = impl_->floralPrototypes;
         wi.creationFunctions = impl_->creationFunctions;
         wi.callbackFunctions = impl_->callbackFunctions;
+        if (!together) wi.collision = impl_->collision;
     }
 
-    // Grow every plant in a worker; remember where each one is.
+    // Build (and, alone, grow) every plant in a worker; remember where each one is.
     std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
     std::vector<std::string> errors(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
@@ -94,7 +105,10 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         PlantArchitecture& w = *workers[std::size_t(t)].arch;
         try {
             w.impl_->nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
-            w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
+            if (together)
+                w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
+            else
+                w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
             builtBy[std::size_t(i)] = t;
         } catch (const std::exception& e) {
             errors[std::size_t(i)] = e.what();
@@ -104,6 +118,33 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         if (!errors[std::size_t(i)].empty())
             throw Error("building canopy plant " + std::to_string(i) + " failed: " +
                         errors[std::size_t(i)]);
+
+    if (together) {
+        std::vector<collision::GrowthSlot> slots;
+        std::vector<Impl*> impls;
+        for (CanopyWorker& w : workers) {
+            w.arch->impl_->collision = impl_->collision;
+            impls.push_back(w.arch->impl_.get());
+        }
+        for (int i = 0; i < n; ++i) {
+            Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
+            const unsigned id = first + unsigned(i);
+            slots.push_back({&owner.plant(id), collision::attractionFor(owner, id), {}});
+        }
+        collision::growTogether(*impl_->collision, slots, age, seed_, impls, impl_->progress);
+        // Each worker regenerates its own plants' geometry in its own Context.
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+        for (int t = 0; t < threads; ++t) {
+            CanopyWorker& w = workers[std::size_t(t)];
+            for (int i = 0; i < n; ++i) {
+                if (builtBy[std::size_t(i)] != t) continue;
+                collision::GrowthSlot& slot = slots[std::size_t(i)];
+                for (ObjectID o : slot.deletes)
+                    if (w.ctx.doesObjectExist(o)) w.ctx.deleteObject(o);
+                tessellatePlant(*w.arch->impl_, w.ctx, *slot.plant);
+            }
+        }
+    }
 
     // Merge in plant order: copy objects (ascending worker IDs) and remap the state's IDs.
     std::vector<unsigned> ids;
@@ -131,6 +172,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         });
         w.impl_->plants.erase(id);
         impl_->plants.emplace(id, std::move(plant));
+        auto own = w.impl_->plantAttraction.find(id);
+        if (own != w.impl_->plantAttraction.end()) impl_->plantAttraction[id] = own->second;
         ids.push_back(id);
     }
     impl_->nextPlantID = first + unsigned(n);

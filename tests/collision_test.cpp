@@ -1,0 +1,255 @@
+// Collision avoidance and attraction points, checked on the geometry they produce.
+
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "collision/intersections.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+using namespace plantarch;
+
+namespace {
+
+// An axis-aligned box (12 triangles).
+ObjectID addBox(Context& ctx, vec3 lo, vec3 hi) {
+    Mesh m;
+    for (int i = 0; i < 8; ++i)
+        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+    m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    return ctx.addObject(m, Material{{0.7f, 0.7f, 0.7f}, "", "obstacle"});
+}
+
+// Extreme coordinate of every vertex of the plant's objects along `axis`.
+float extreme(const Context& ctx, const PlantArchitecture& arch, unsigned plant, int axis, bool max) {
+    float v = max ? -1e30f : 1e30f;
+    for (ObjectID o : arch.getAllPlantObjectIDs(plant))
+        for (const vec3& p : ctx.object(o).positions) v = max ? std::max(v, p[axis]) : std::min(v, p[axis]);
+    return v;
+}
+
+// A trained vine: a bare trunk up to the height of a trellis wire, then a cane trained along
+// +x that grows about 4 cm a day; the wire is declared in the species file.
+const char* kVine = R"(<?xml version="1.0" encoding="UTF-8"?>
+<plantarch_species format="1">
+  <name>test_vine</name>
+  <phenology>
+    <max_age>365</max_age>
+  </phenology>
+  <build_parameters>
+    <parameter name="wire_height" default="0.5" min="0.2" max="2" unit="m" doc="trellis wire height"/>
+    <parameter name="wire_length" default="1.2" min="0.2" max="5" unit="m" doc="wire length along +x"/>
+  </build_parameters>
+  <shoot_type label="cane">
+    <max_nodes>@NODES@</max_nodes>
+    <internode_length_max>0.04</internode_length_max>
+    <phyllochron_min>1</phyllochron_min>
+    <elongation_rate_max>0.25</elongation_rate_max>
+    <gravitropic_curvature>60</gravitropic_curvature>
+    <tortuosity>3</tortuosity>
+    <phytomer>
+      <internode>
+        <pitch>5</pitch>
+        <phyllotactic_angle>180</phyllotactic_angle>
+        <radius_initial>0.003</radius_initial>
+      </internode>
+      <petiole>
+        <pitch>40</pitch>
+        <length>0.05</length>
+        <radius>0.001</radius>
+      </petiole>
+      <leaf>
+        <prototype_scale>0.06</prototype_scale>
+        <prototype>
+          <shape>ovate</shape>
+        </prototype>
+      </leaf>
+    </phytomer>
+  </shoot_type>
+  <build>
+    <base_stem id="trunk" type="cane" nodes="wire_height / 0.05" internode_length="0.05"
+               leaves="false" vegetative_buds="false" apex="false"/>
+    <append id="cordon" parent="trunk" type="cane" nodes="1" pitch="90"/>
+  </build>@ATTRACTION@
+</plantarch_species>
+)";
+
+const char* kVineWire = R"(
+  <attraction_points half_angle="70" look_ahead="0.25" inertia="0.3">
+    <wire from="0.02, 0, wire_height" to="wire_length, 0, wire_height" spacing="0.02"/>
+  </attraction_points>)";
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+    for (std::size_t i = 0; (i = s.find(from, i)) != std::string::npos; i += to.size())
+        s.replace(i, from.size(), to);
+    return s;
+}
+
+// Writes a species file into the temporary folder and returns its path.
+std::string speciesFile(const std::string& name, const std::string& text) {
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("plantarch_collision_" + std::to_string(::getpid()) + "_" + name + ".xml"))
+                                 .string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+std::string vine(bool wire, int nodes = 28) {
+    return replaced(replaced(kVine, "@ATTRACTION@", wire ? kVineWire : ""), "@NODES@",
+                    std::to_string(nodes));
+}
+
+// Distance from p to the segment a-b.
+float toSegment(vec3 p, vec3 a, vec3 b) {
+    const vec3 ab = b - a;
+    const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    return glm::length(p - (a + t * ab));
+}
+
+}  // namespace
+
+TEST(Collision, ShootsFollowAnAttractionWire) {
+    const vec3 a(0.02f, 0, 0.5f), b(1.2f, 0, 0.5f);
+    const unsigned cane = 1;
+    for (bool wire : {true, false}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary(speciesFile("vine", vine(wire)));
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 40.0f);
+        const unsigned nodes = arch.getShootNodeCount(p, cane);
+        const vec3 tip = arch.getNodePosition(p, cane, nodes - 1);
+        // Every node from the one nearest the wire on stays near it.
+        float worst = 0.0f;
+        bool reached = false;
+        for (unsigned k = 0; k < nodes; ++k) {
+            const float d = toSegment(arch.getNodePosition(p, cane, k), a, b);
+            reached = reached || d < 0.03f;
+            if (wire && std::getenv("VINE_DEBUG")) {
+                const vec3 q = arch.getNodePosition(p, cane, k);
+                std::printf("  node %u (%.3f %.3f %.3f) d %.3f\n", k, q.x, q.y, q.z, d);
+            }
+            if (reached) worst = std::max(worst, d);
+        }
+        std::printf("wire %d: %u nodes, tip (%.3f %.3f %.3f) %.4f m from the wire, worst after "
+                    "reaching %.4f, attracted %llu\n",
+                    wire, nodes, tip.x, tip.y, tip.z, toSegment(tip, a, b), worst,
+                    (unsigned long long)arch.getCollisionStats().attracted);
+        if (wire) {
+            EXPECT_EQ(arch.getAttractionPoints(p).size(), 60u);
+            EXPECT_LT(toSegment(tip, a, b), 0.03f);
+            EXPECT_LT(worst, 0.05f);
+            EXPECT_GT(tip.x, 0.6f);  // it went along the wire, not just up to it
+        } else {
+            EXPECT_GT(toSegment(tip, a, b), 0.15f);
+        }
+    }
+}
+
+TEST(Collision, WallIsNeverCrossed) {
+    for (float age : {20.0f, 40.0f, 60.0f}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const ObjectID wall = addBox(ctx, {0.1f, -2, -1}, {0.3f, 2, 3});
+        arch.loadPlantModelFromLibrary("bean");
+        arch.enableSolidObstacleAvoidance({wall}, 0.2f);
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, age);
+        const float maxX = extreme(ctx, arch, p, 0, true);
+        const CollisionStats st = arch.getCollisionStats();
+        std::printf("age %.0f: max x %.4f, steered %llu of %llu, turned %llu unresolved %llu\n", age,
+                    maxX, (unsigned long long)st.solidSteered, (unsigned long long)st.solidCones,
+                    (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
+        EXPECT_LE(maxX, 0.1f);
+        Context free;
+        PlantArchitecture a2(&free);
+        a2.loadPlantModelFromLibrary("bean");
+        const unsigned q = a2.buildPlantInstanceFromLibrary({0, 0, 0}, age);
+        std::printf("  without: max x %.4f\n", extreme(free, a2, q, 0, true));
+    }
+}
+
+TEST(Collision, CeilingIsNeverCrossed) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const ObjectID ceiling = addBox(ctx, {-2, -2, 0.25f}, {2, 2, 0.3f});
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSolidObstacleAvoidance({ceiling}, 0.2f);
+    const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 60.0f);
+    const float top = extreme(ctx, arch, p, 2, true);
+    std::printf("ceiling: top %.4f\n", top);
+    EXPECT_LE(top, 0.25f);
+}
+
+TEST(Collision, StrawberryFruitStayAboveTheGround) {
+    for (bool adjust : {true, false}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const ObjectID ground = addBox(ctx, {-2, -2, -0.1f}, {2, 2, 0.0f});
+        arch.loadPlantModelFromLibrary("strawberry");
+        arch.enableSolidObstacleAvoidance({ground}, 0.1f, adjust);
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 90.0f);
+        float lowest = 1e30f;
+        for (ObjectID o : arch.getPlantFruitObjectIDs(p))
+            for (const vec3& v : ctx.object(o).positions) lowest = std::min(lowest, v.z);
+        const CollisionStats st = arch.getCollisionStats();
+        std::printf("adjust %d: %zu fruit objects, lowest fruit vertex %.4f, turned %llu, "
+                    "unresolved %llu\n",
+                    adjust, arch.getPlantFruitObjectIDs(p).size(), lowest,
+                    (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
+        ASSERT_GT(arch.getPlantFruitObjectIDs(p).size(), 3u);
+        if (adjust) EXPECT_GE(lowest, -1e-4f);
+        else EXPECT_LT(lowest, -0.01f);  // without adjustment some hang into the ground
+    }
+}
+
+namespace {
+
+std::vector<ObjectID> leaves(const PlantArchitecture& arch) {
+    std::vector<ObjectID> out;
+    for (unsigned p : arch.getAllPlantIDs())
+        for (ObjectID o : arch.getPlantLeafObjectIDs(p)) out.push_back(o);
+    return out;
+}
+
+// Every object's ID, labels and vertex bytes, in ID order.
+std::string fingerprint(const Context& ctx) {
+    std::string out;
+    ctx.forEachObject([&](const ObjectView& v) {
+        out += std::to_string(v.id) + ":" + std::to_string(*ctx.objectDataInt(v.id, "plantID")) +
+               *ctx.objectDataString(v.id, "organ") + ";";
+        out.append(reinterpret_cast<const char*>(v.positions.data()),
+                   v.positions.size() * sizeof(vec3));
+    });
+    return out;
+}
+
+}  // namespace
+
+TEST(Collision, SoftAvoidanceReducesCrossingLeaves) {
+    std::size_t crossings[2] = {0, 0};
+    for (int soft = 0; soft < 2; ++soft) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(3);
+        arch.loadPlantModelFromLibrary("bean");
+        if (soft) arch.enableSoftCollisionAvoidance();
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {4, 4}, 35.0f);
+        const std::vector<ObjectID> l = leaves(arch);
+        crossings[soft] = collision::countIntersectingPairs(ctx, l, collision::petioleGroups(ctx, l));
+        const CollisionStats st = arch.getCollisionStats();
+        std::printf("soft %d: %zu leaves, %zu crossing pairs; cones %llu steered %llu rays %llu "
+                    "refreshes %llu rebuilt %llu kept %llu tris %llu\n",
+                    soft, l.size(), crossings[soft], (unsigned long long)st.softCones,
+                    (unsigned long long)st.softSteered, (unsigned long long)st.softRays,
+                    (unsigned long long)st.sceneRefreshes, (unsigned long long)st.plantsRebuilt,
+                    (unsigned long long)st.plantsUnchanged, (unsigned long long)st.sceneTriangles);
+    }
+    EXPECT_LT(crossings[1], crossings[0]);
+}
