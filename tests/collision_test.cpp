@@ -10,7 +10,9 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "collision/collision_world.h"
 #include "collision/intersections.h"
+#include "collision/steering.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
@@ -252,4 +254,149 @@ TEST(Collision, SoftAvoidanceReducesCrossingLeaves) {
                     (unsigned long long)st.plantsUnchanged, (unsigned long long)st.sceneTriangles);
     }
     EXPECT_LT(crossings[1], crossings[0]);
+}
+
+namespace {
+
+std::string softCanopy(int threads, unsigned seed = 11) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(seed);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSoftCollisionAvoidance();
+    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {3, 3}, 30.0f);
+    omp_set_num_threads(before);
+    return fingerprint(ctx);
+}
+
+// Node positions of every shoot of every plant.
+std::vector<vec3> nodes(const PlantArchitecture& arch) {
+    std::vector<vec3> out;
+    for (unsigned p : arch.getAllPlantIDs())
+        for (unsigned s = 0; s < arch.getShootCount(p); ++s)
+            for (unsigned k = 0; k < arch.getShootNodeCount(p, s); ++k)
+                out.push_back(arch.getNodePosition(p, s, k));
+    return out;
+}
+
+}  // namespace
+
+TEST(Collision, SoftCanopyIsTheSameForAnyThreadCount) {
+    const std::string one = softCanopy(1);
+    EXPECT_EQ(one, softCanopy(2));
+    EXPECT_EQ(one, softCanopy(2));
+    EXPECT_NE(one, softCanopy(2, 12));  // and the seed matters
+}
+
+TEST(Collision, SoftGrowthDoesNotDependOnTheStepSize) {
+    std::vector<std::vector<vec3>> results;
+    std::vector<std::size_t> triangles;
+    for (double step : {20.0, 1.0, 0.5, 0.3}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(4);
+        arch.loadPlantModelFromLibrary("bean");
+        arch.enableSoftCollisionAvoidance();
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 10.0f);
+        double done = 0.0;
+        while (done < 20.0 - 1e-9) {
+            const double d = std::min(step, 20.0 - done);
+            arch.advanceTime(d);
+            done += d;
+        }
+        results.push_back(nodes(arch));
+        triangles.push_back(ctx.triangleCount());
+    }
+    for (std::size_t r = 1; r < results.size(); ++r) {
+        ASSERT_EQ(results[r].size(), results[0].size()) << r;
+        EXPECT_EQ(triangles[r], triangles[0]) << r;
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < results[0].size(); ++i)
+            worst = std::max(worst, glm::length(results[r][i] - results[0][i]));
+        EXPECT_LT(worst, 1e-5f) << r;
+    }
+}
+
+TEST(Collision, DistantObstaclesChangeNothing) {
+    auto build = [](bool obstacles) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        if (obstacles) {
+            const ObjectID wall = addBox(ctx, {5, -1, 0}, {5.1f, 1, 2});
+            arch.enableSolidObstacleAvoidance({wall}, 0.2f, true);
+            arch.enableAttractionPoints({vec3(-5, 0, 1)}, 60.0f, 0.2f, 0.3f);
+        }
+        arch.buildPlantInstanceFromLibrary({0, 0, 0}, 50.0f);
+        std::string out;
+        for (ObjectID o : arch.getAllPlantObjectIDs(0)) {
+            const ObjectView v = ctx.object(o);
+            out.append(reinterpret_cast<const char*>(v.positions.data()),
+                       v.positions.size() * sizeof(vec3));
+        }
+        return out;
+    };
+    EXPECT_EQ(build(false), build(true));
+}
+
+// The cone rays tested against nearby triangles give what Embree's ray tracing gives.
+TEST(Collision, ConeSamplingMatchesRayTracing) {
+    Rng rng(99, 1);
+    Context ctx;
+    std::vector<ObjectID> objects;
+    collision::TriangleSoup plant;
+    std::vector<collision::OrganTag> tags;
+    for (int i = 0; i < 400; ++i) {
+        const vec3 c(rng.uniform(-0.15f, 0.15f), rng.uniform(-0.15f, 0.15f), rng.uniform(0.0f, 0.3f));
+        vec3 p[3];
+        for (vec3& q : p) q = c + vec3(rng.uniform(-0.03f, 0.03f), rng.uniform(-0.03f, 0.03f),
+                                       rng.uniform(-0.03f, 0.03f));
+        if (i % 2) {
+            Mesh m;
+            m.positions = {p[0], p[1], p[2]};
+            m.indices = {0, 1, 2};
+            objects.push_back(ctx.addObject(m));
+        } else {
+            plant.insert(plant.end(), {p[0], p[1], p[2]});
+            tags.push_back(collision::organTag(unsigned(i % 3), unsigned(i % 5)));
+        }
+    }
+    collision::World world;
+    SoftCollisionOptions o;
+    o.objects = objects;
+    world.setSoft(o, ctx);
+    world.reservePlants({7});
+    world.setPlantProxies(7, std::move(plant), std::move(tags));
+    world.commit();
+    std::size_t cells = 0, differ = 0, blocked = 0;
+    for (int c = 0; c < 200; ++c) {
+        const vec3 apex(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), rng.uniform(0.0f, 0.3f));
+        const vec3 axis = glm::normalize(vec3(rng.normal(0, 1), rng.normal(0, 1), rng.normal(0, 1)));
+        PerceptionCone cone;
+        cone.halfAngle = rng.uniform(10.0f, 170.0f);
+        cone.lookAhead = rng.uniform(0.02f, 0.2f);
+        cone.rays = 64 + rng.nextU32() % 400;
+        collision::Ignore ignore;
+        ignore.plant = 7;
+        ignore.organs[0] = collision::organTag(1, 1);
+        Rng r1(c, 3), r2(c, 3);
+        collision::ConeSample fast, traced;
+        collision::sampleCone(world, apex, axis, cone, r1, 1e-4f, ignore, fast);
+        collision::sampleCone(world, apex, axis, cone, r2, 1e-4f, ignore, traced, true);
+        if (fast.dirs.empty()) {  // nothing within reach: every traced ray is free
+            EXPECT_EQ(traced.hits, 0);
+            continue;
+        }
+        ASSERT_EQ(fast.blocked.size(), traced.blocked.size());
+        for (std::size_t k = 0; k < fast.blocked.size(); ++k) {
+            ++cells;
+            blocked += traced.blocked[k];
+            differ += fast.blocked[k] != traced.blocked[k];
+        }
+    }
+    std::printf("%zu rays, %zu blocked, %zu differ\n", cells, blocked, differ);
+    EXPECT_GT(blocked, cells / 20);
+    EXPECT_LE(differ, cells / 10000 + 2);  // rays grazing an edge may go either way
 }

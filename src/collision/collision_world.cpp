@@ -2,6 +2,8 @@
 
 #include "collision/collision_world.h"
 
+#include "collision/proxies.h"
+
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -134,8 +136,10 @@ World::World() : rtc_(std::make_unique<Embree>()) {
 // Plant slots release their Embree handles before the device goes.
 World::~World() { plants_.clear(); }
 
+
 void World::setSoft(std::optional<SoftCollisionOptions> options, const Context& ctx) {
     soft_ = std::move(options);
+    memos.clear();  // the organ kinds may differ
     buildStaticScenes(ctx);
 }
 
@@ -168,6 +172,8 @@ void World::buildStaticScenes(const Context& ctx) {
         rtc_->staticInstance = instanceOf(rtc_->device, rtc_->statics);
         rtcAttachGeometryByID(rtc_->top, rtc_->staticInstance, 0);
     }
+    if (instances_.empty()) instances_.resize(1);
+    instances_[0] = {&softStatic_, nullptr, 0};
     rtcCommitScene(rtc_->top);
     check(rtc_->device, "building the obstacle scenes");
 }
@@ -176,6 +182,8 @@ void World::reservePlants(const std::vector<unsigned>& ids) {
     for (unsigned id : ids) {
         auto& slot = plants_[id];
         if (!slot) slot = std::make_unique<PlantSlot>();
+        auto& memo = memos[id];
+        if (!memo) memo = std::make_unique<PlantProxyMemo>();
     }
 }
 
@@ -212,6 +220,7 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
 }
 
 void World::removePlant(unsigned plantID) {
+    memos.erase(plantID);
     auto it = plants_.find(plantID);
     if (it == plants_.end()) return;
     if (it->second->attached) rtcDetachGeometry(rtc_->top, plantID + 1);
@@ -220,11 +229,14 @@ void World::removePlant(unsigned plantID) {
 }
 
 void World::commit() {
+    instances_.assign(plants_.empty() ? 1 : plants_.rbegin()->first + 2, InstanceView{});
+    instances_[0] = {&softStatic_, nullptr, 0};
     for (auto& [id, slot] : plants_) {
         const bool want = slot->instance && !slot->triangles.empty();
         if (want && !slot->attached) rtcAttachGeometryByID(rtc_->top, slot->instance, id + 1);
         if (!want && slot->attached) rtcDetachGeometry(rtc_->top, id + 1);
         slot->attached = want;
+        instances_[id + 1] = {&slot->triangles, &slot->tags, id};
     }
     rtcCommitScene(rtc_->top);
     check(rtc_->device, "refreshing the collision scene");
@@ -318,6 +330,45 @@ vec3 closestOnTriangle(vec3 p, vec3 a, vec3 b, vec3 c) {
 }
 
 }  // namespace
+
+namespace {
+
+struct SoftNearQuery {
+    const std::vector<World::InstanceView>* instances;
+    const Ignore* ignore;
+    std::vector<const vec3*>* out;
+};
+
+bool collectSoftNear(RTCPointQueryFunctionArguments* args) {
+    auto* q = static_cast<SoftNearQuery*>(args->userPtr);
+    const unsigned inst = args->context->instID[0];
+    if (inst >= q->instances->size()) return false;
+    const World::InstanceView& v = (*q->instances)[inst];
+    if (!v.triangles) return false;
+    if (q->ignore && v.tags && v.plant == q->ignore->plant) {
+        const OrganTag tag = (*v.tags)[args->primID];
+        if (tag == q->ignore->organs[0] || tag == q->ignore->organs[1]) return false;
+    }
+    q->out->push_back(v.triangles->data() + 3 * std::size_t(args->primID));
+    return false;
+}
+
+}  // namespace
+
+void World::softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
+                              std::vector<const vec3*>& out) const {
+    out.clear();
+    RTCPointQuery q{};
+    q.x = center.x;
+    q.y = center.y;
+    q.z = center.z;
+    q.radius = radius;
+    q.time = 0.0f;
+    RTCPointQueryContext pctx;
+    rtcInitPointQueryContext(&pctx);
+    SoftNearQuery sq{&instances_, ignore, &out};
+    rtcPointQuery(rtc_->top, &q, &pctx, collectSoftNear, &sq);
+}
 
 void World::solidTrianglesNear(vec3 center, float radius, std::vector<unsigned>& out) const {
     out.clear();

@@ -23,6 +23,7 @@
 namespace plantarch::collision {
 
 class AttractionIndex;
+struct PlantProxyMemo;
 
 /// Triangle corners, three per triangle, world coordinates.
 using TriangleSoup = std::vector<vec3>;
@@ -88,12 +89,20 @@ public:
     double clock = 0.0;
     /// Plants whose proxies must be rebuilt at the next call (edited outside growth).
     std::map<unsigned, bool> stale;
+    /// Proxies of each plant's organs kept between refreshes (proxies.cpp); an entry is only
+    /// touched by the thread refreshing that plant.
+    std::map<unsigned, std::unique_ptr<PlantProxyMemo>> memos;
 
     // ---- queries (thread-safe) ---------------------------------------------------------
     /// Whether anything soft or solid lies on the segment org + t dir, t in [tnear, tfar],
     /// the organs in `ignore` (if given) excepted.
     bool softOccluded(vec3 org, vec3 dir, float tnear, float tfar,
                       const Ignore* ignore = nullptr) const;
+    /// The soft obstacle triangles (plant proxies, obstacle objects) whose bounds come within
+    /// `radius` of `center`, the organs in `ignore` excepted: pointers to their first corner
+    /// (three consecutive corners each), valid until the scene changes.
+    void softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
+                           std::vector<const vec3*>& out) const;
     /// Nearest solid obstacle on the segment, if any.
     std::optional<SolidHit> solidHit(vec3 org, vec3 dir, float tnear, float tfar) const;
     bool hasSolid() const { return !solidTriangles_.empty(); }
@@ -109,6 +118,12 @@ public:
     void resetStats();
 
     struct Embree;  ///< Embree handles (collision_world.cpp)
+    /// Triangles and tags of an instance of the top scene (0: the static scene).
+    struct InstanceView {
+        const TriangleSoup* triangles = nullptr;
+        const std::vector<OrganTag>* tags = nullptr;
+        unsigned plant = 0;
+    };
 
 private:
     void buildStaticScenes(const Context& ctx);
@@ -120,6 +135,7 @@ private:
     TriangleSoup softStatic_;  ///< soft objects and solid obstacles
     struct PlantSlot;
     std::map<unsigned, std::unique_ptr<PlantSlot>> plants_;
+    std::vector<InstanceView> instances_;  ///< by instance ID in the top scene
     std::unique_ptr<Embree> rtc_;
     mutable AtomicStats stats_;
 };

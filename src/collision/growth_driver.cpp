@@ -71,8 +71,7 @@ void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
         PlantInstance& plant = *slots[which[k]].plant;
         TriangleSoup soup;
         std::vector<OrganTag> tags;
-        ProxySink sink(proxyCache(impl), organs, soup, tags);
-        tessellatePlant(impl, sink, plant);
+        buildProxies(impl, plant, organs, *world.memos.at(plant.id), soup, tags);
         world.setPlantProxies(plant.id, std::move(soup), std::move(tags));
     });
     world.commit();
@@ -100,6 +99,19 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         if (progress) progress("growing", 1.0);
         return;
     }
+    // Memos of prototype keys and areas last for the whole call (shoot types cannot change).
+    struct Pin {
+        const std::vector<Impl*>& impls;
+        explicit Pin(const std::vector<Impl*>& i) : impls(i) {
+            for (Impl* impl : impls) {
+                impl->clearCallMemos();
+                impl->memosPinned = true;
+            }
+        }
+        ~Pin() {
+            for (Impl* impl : impls) impl->memosPinned = false;
+        }
+    } pin(impls);
     // Plants new to the scene, or edited since it was refreshed, are seen from now on.
     std::vector<std::size_t> fresh, all;
     for (std::size_t i = 0; i < slots.size(); ++i) {

@@ -9,8 +9,9 @@ namespace plantarch::collision {
 
 namespace {
 
-// Stations along a leaf blade for its outline proxy: 4 gives 8 triangles per leaf.
-constexpr int kStations = 4;
+// Stations along a leaf blade for its outline proxy: 2 (base, middle, tip) give a hexagon of
+// 4 triangles per leaf.
+constexpr int kStations = 2;
 
 // The blade as a strip of quads between stations along x: at each station the extent of
 // the vertices in y (width) and their mean z (curvature).
@@ -47,13 +48,17 @@ TriangleSoup bladeOutline(const OrganPrototype& proto, const AABB& bounds) {
     auto right = [&](int k) {
         return vec3(x0 + step * float(k), st[k].ymax, st[k].zsum / float(std::max(1, st[k].n)));
     };
+    TriangleSoup all;
+    float total = 0.0f;
     for (int k = 0; k < kStations; ++k) {
         const vec3 a = left(k), b = right(k), c = right(k + 1), d = left(k + 1);
-        if (b.y - a.y > 0.0f || c.y - d.y > 0.0f) {
-            out.insert(out.end(), {a, b, c});
-            out.insert(out.end(), {a, c, d});
-        }
+        all.insert(all.end(), {a, b, c, a, c, d});
+        total += glm::length(glm::cross(b - a, c - a)) + glm::length(glm::cross(c - a, d - a));
     }
+    // Slivers at a pointed base or tip (under 2% of the outline) add nothing but cost.
+    for (std::size_t t = 0; t < all.size(); t += 3)
+        if (glm::length(glm::cross(all[t + 1] - all[t], all[t + 2] - all[t])) > 0.02f * total)
+            out.insert(out.end(), {all[t], all[t + 1], all[t + 2]});
     return out;
 }
 
@@ -95,6 +100,60 @@ ProxyCache& proxyCache(PlantArchitecture::Impl& impl) {
 }
 
 // ---- proxies ---------------------------------------------------------------------------
+
+namespace {
+
+// Everything that shapes a petiole and its leaves relative to the petiole's start.
+void petioleKey(const Phytomer& ph, const Petiole& pt, std::vector<float>& key) {
+    const Internode& in = ph.internode;
+    key.clear();
+    for (const vec3& v : {in.direction, in.guide, in.rollReference, pt.clearance.axis})
+        key.insert(key.end(), {v.x, v.y, v.z});
+    key.insert(key.end(), {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle,
+                           ph.leafFraction});
+    for (const LeafOrgan& l : pt.leaves) key.push_back(l.removed ? 1.0f : 0.0f);
+}
+
+}  // namespace
+
+void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
+    out.clear();
+    tags.clear();
+    if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
+        ProxySink sink(proxyCache(impl), organs, out, tags);
+        tessellatePlant(impl, sink, plant);
+        return;
+    }
+    if (!organs.leaves) return;
+    OrganPlacer placer(impl, plant);
+    TriangleSoup scratch;
+    std::vector<OrganTag> scratchTags;
+    ProxySink sink(proxyCache(impl), organs, scratch, scratchTags);
+    std::vector<float> key;
+    for (const Shoot& s : plant.shoots) {
+        if (s.removed) continue;
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const Phytomer& ph = s.phytomers[k];
+            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+                petioleKey(ph, ph.petioles[j], key);
+                PlantProxyMemo::Entry& e =
+                    memo.petioles[(std::uint64_t(s.id) << 40) | (std::uint64_t(k) << 8) | j];
+                const vec3 start = placer.petioleStart(s.id, k, j);
+                if (e.key != key) {
+                    scratch.clear();
+                    scratchTags.clear();
+                    placer.petiole(sink, s.id, k, j);
+                    e.local.resize(scratch.size());
+                    for (std::size_t i = 0; i < scratch.size(); ++i) e.local[i] = scratch[i] - start;
+                    e.key = key;
+                }
+                for (const vec3& p : e.local) out.push_back(p + start);
+                tags.resize(out.size() / 3, organTag(s.id, k));
+            }
+        }
+    }
+}
 
 bool ProxySink::wants(OrganKind kind) const {
     switch (kind) {

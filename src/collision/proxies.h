@@ -5,7 +5,7 @@
 
 #include <map>
 #include <memory>
-#include <mutex>
+#include <unordered_map>
 
 #include "collision/collision_world.h"
 #include "geometry/organ_sink.h"
@@ -30,6 +30,22 @@ private:
 
 /// The cache of `impl` (made on first use).
 ProxyCache& proxyCache(PlantArchitecture::Impl& impl);
+
+/// Leaf proxies of a plant's petioles kept between refreshes, relative to each petiole's
+/// start: reused while nothing that shapes the petiole and its leaves has changed (a grown
+/// leaf on a grown node keeps its proxy while the stem below it still lengthens or thickens).
+struct PlantProxyMemo {
+    struct Entry {
+        std::vector<float> key;
+        TriangleSoup local;
+    };
+    std::unordered_map<std::uint64_t, Entry> petioles;  ///< by (shoot, node, petiole)
+};
+
+/// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves
+/// alone go through `memo`; other kinds are placed afresh every time.
+void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags);
 
 /// Collects proxies of the organ kinds that are obstacles.
 class ProxySink final : public OrganSink {

@@ -49,6 +49,8 @@ public:
 
     /// The petiole `petiole` of node `node` on shoot `shoot`, with its leaves.
     void petiole(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole);
+    /// Where that petiole starts (its organs move with this point when the plant below grows).
+    vec3 petioleStart(unsigned shoot, unsigned node, unsigned petiole) const;
     /// A floral bud's peduncle, flowers or fruit: an axillary bud (petiole, bud) of a node, or
     /// the shoot's terminal bud `bud` when `terminal`.
     void floralBud(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole, unsigned bud,

@@ -262,7 +262,11 @@ struct Tessellator {
         }
     }
 
-    void petiole(Shoot& s, Phytomer& ph, int node, Petiole& pt, const PhytomerParameters& pp) {
+    // Where a petiole starts, the side it leans to and its initial direction.
+    struct PetioleFrame {
+        vec3 side, dir, start;
+    };
+    PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node, const Petiole& pt) const {
         const Internode& in = ph.internode;
         const vec3 top = nodes[s.id][std::size_t(node) + 1];
         vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth);
@@ -270,9 +274,14 @@ struct Tessellator {
         const float p = pt.pitch * kDeg;
         const vec3 dir =
             turned(glm::normalize(std::cos(p) * in.direction + std::sin(p) * side), pt.clearance);
+        return {side, dir, top + side * in.radius * 0.5f};
+    }
+
+    void petiole(Shoot& s, Phytomer& ph, int node, Petiole& pt, const PhytomerParameters& pp) {
+        const Internode& in = ph.internode;
+        const auto [side, dir, start] = petioleFrame(s, ph, node, pt);
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
-        const vec3 start = top + side * in.radius * 0.5f;
         std::vector<vec3> path = geometry::curvedPath(start, dir, std::max(length, 1e-6f),
                                                       pt.curvature, kUp, segs);
         if (!sink->wants(OrganKind::Petiole)) {
@@ -443,12 +452,17 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
                         : leaf.leafletIndex == 0                         ? 0
                                                                          : (leaf.leafletIndex < 0 ? -1 : 1);
     const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
+    const auto fast = prototypeMemo.find(std::make_tuple(&proto, leaflet, variant));
+    if (fast != prototypeMemo.end()) return *fast->second;
     auto memo = prototypeKeys.find(&proto);
     if (memo == prototypeKeys.end())
         memo = prototypeKeys.emplace(&proto, describePrototype(proto)).first;
     const std::string key = variantKey(proto.prototype_function, memo->second, leaflet, variant) +
                             (variants == 0 ? "|unique" : "");
-    if (auto hit = cache.find(key)) return *hit;
+    if (auto hit = cache.find(key)) {
+        prototypeMemo.emplace(std::make_tuple(&proto, leaflet, variant), hit.get());
+        return *hit;
+    }
     // Variants are seeded from their key, not the plant's stream, so plants sharing a
     // prototype see the same shapes and building one never shifts a plant's random numbers.
     Rng rng(hashKey(key), 7);
@@ -457,6 +471,7 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
             ? leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
             : loadOBJPrototype(proto.OBJ_model_file, proto.normalize_OBJ_model));
     cache.insert(key, built);
+    prototypeMemo.emplace(std::make_tuple(&proto, leaflet, variant), built.get());
     return *built;
 }
 
@@ -505,6 +520,13 @@ void OrganPlacer::petiole(OrganSink& sink, unsigned shoot, unsigned node, unsign
     const PhytomerParameters& pp =
         t.impl.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
     t.petiole(s, ph, int(node), ph.petioles[petiole], pp);
+}
+
+vec3 OrganPlacer::petioleStart(unsigned shoot, unsigned node, unsigned petiole) const {
+    const Tessellator& t = state_->tessellator;
+    const Shoot& s = t.plant.shoots[shoot];
+    const Phytomer& ph = s.phytomers[node];
+    return t.petioleFrame(s, ph, int(node), ph.petioles[petiole]).start;
 }
 
 void OrganPlacer::floralBud(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole,

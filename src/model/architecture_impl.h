@@ -62,9 +62,15 @@ struct PlantArchitecture::Impl {
     /// (shoot types do not change within one); cleared at the start of each.
     std::map<const LeafPrototype*, std::string> prototypeKeys;
     std::map<std::tuple<const LeafPrototype*, int, unsigned>, double> prototypeAreas;
+    std::map<std::tuple<const LeafPrototype*, int, unsigned>, const OrganPrototype*> prototypeMemo;
+    /// Set while plants grow together in many short steps (collision avoidance): shoot types
+    /// cannot change meanwhile, so the memos stay valid from one step to the next.
+    bool memosPinned = false;
     void clearCallMemos() {
+        if (memosPinned) return;
         prototypeKeys.clear();
         prototypeAreas.clear();
+        prototypeMemo.clear();
     }
 
     PlantInstance& plant(unsigned id);
