@@ -23,6 +23,7 @@ struct BuildArgs {
     std::vector<std::string> defines;
     std::vector<std::string> outputs;
     bool stats = false;
+    CollisionArgs collision;
 };
 
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines) {
@@ -94,13 +95,16 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
     addImageSizeOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
+    addCollisionOptions(app, a->collision);
     return [a, &global]() {
         prepareSceneOutputs(a->outputs);
+        checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
+        applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant =
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));
         for (const std::string& out : a->outputs) writeSceneFile(ctx, out, global);

@@ -37,6 +37,7 @@ struct CanopyArgs {
     float age = -1.0f, germination = 1.0f;
     std::vector<std::string> outputs;
     bool stats = false;
+    CollisionArgs collision;
 };
 
 std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
@@ -50,14 +51,17 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("-o,--output", a->outputs, "Output file(s): .obj, .ply or .png")->required();
     addImageSizeOption(app, global);
     app.add_flag("--stats", a->stats, "Print a JSON summary of the canopy");
+    addCollisionOptions(app, a->collision);
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
         prepareSceneOutputs(a->outputs);
+        checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.loadPlantModelFromLibrary(a->species);
+        applyCollisionOptions(a->collision, arch, ctx);
         const auto plants = arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy),
                                                              glm::ivec2(nx, ny), a->age,
                                                              a->germination);

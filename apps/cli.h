@@ -12,6 +12,10 @@
 #include "plantarch/Context.h"
 #include "plantarch/Progress.h"
 
+namespace plantarch {
+class PlantArchitecture;
+}
+
 namespace plantarch::cli {
 
 /// Options every subcommand sees.
@@ -59,5 +63,21 @@ void prepareSceneOutputs(const std::vector<std::string>& paths);
 
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();
+
+/// Collision avoidance options of `build` and `canopy` (collision_options.cpp).
+struct CollisionArgs {
+    bool soft = false;                   ///< --soft-collision
+    std::string cone;                    ///< --cone half-angle,look-ahead,rays,inertia
+    std::vector<std::string> obstacles;  ///< --obstacle FILE.obj (repeatable)
+    std::string avoidDistance;           ///< --avoid-distance m
+    bool fruitAdjustment = false;        ///< --fruit-adjustment
+    std::string attractionPoints;        ///< --attraction-points FILE.csv
+    std::string attractionCone;          ///< --attraction-cone half-angle,look-ahead,inertia
+};
+void addCollisionOptions(CLI::App& app, CollisionArgs& args);
+/// Checks the options' forms and that their files open, before any work is done.
+void checkCollisionOptions(const CollisionArgs& args);
+/// Reads obstacles and points into `ctx` and enables what was asked for.
+void applyCollisionOptions(const CollisionArgs& args, PlantArchitecture& arch, Context& ctx);
 
 }  // namespace plantarch::cli
