@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <tuple>
 #include <fstream>
 #include <unistd.h>
 
@@ -15,6 +17,7 @@
 #include "collision/steering.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
 
@@ -399,4 +402,146 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
     std::printf("%zu rays, %zu blocked, %zu differ\n", cells, blocked, differ);
     EXPECT_GT(blocked, cells / 20);
     EXPECT_LE(differ, cells / 10000 + 2);  // rays grazing an edge may go either way
+}
+
+// ---- the species file hook ------------------------------------------------------------
+
+namespace {
+
+Error errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e;
+    }
+    ADD_FAILURE() << "no error";
+    return Error("none");
+}
+
+}  // namespace
+
+TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
+    const SpeciesModel m = readSpeciesString(vine(true), "vine.xml");
+    ASSERT_TRUE(m.attraction);
+    ASSERT_EQ(m.attraction->wires.size(), 1u);
+    EXPECT_EQ(m.attraction->wires[0].from, "0.02, 0, wire_height");
+    EXPECT_EQ(m.attraction->wires[0].spacing, "0.02");
+    EXPECT_EQ(m.attraction->halfAngle, "70");
+    EXPECT_EQ(m.attraction->wires[0].line, 43);
+    // Written and read back: the same declaration.
+    const SpeciesModel again = readSpeciesString(writeSpeciesString(m), "again.xml");
+    ASSERT_TRUE(again.attraction);
+    EXPECT_EQ(again.attraction->wires[0].to, m.attraction->wires[0].to);
+    EXPECT_EQ(again.attraction->inertia, "0.3");
+    EXPECT_FALSE(readSpeciesString(vine(false), "plain.xml").attraction);
+    // Evaluated with the build parameters, relative to the plant's base.
+    const AttractionPoints p = speciesAttractionPoints(m, 1, 0, vec3(1, 2, 0), {{"wire_height", 0.8f}});
+    ASSERT_EQ(p.points.size(), 60u);
+    EXPECT_EQ(p.points.front(), vec3(1.02f, 2, 0.8f));
+    EXPECT_NEAR(p.points.back().x, 2.2f, 1e-6f);
+    EXPECT_FLOAT_EQ(p.lookAhead, 0.25f);
+    // A plant built from the species gets them; the user's global points do not replace them.
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary(speciesFile("vine_hook", vine(true)));
+    arch.enableAttractionPoints({vec3(0, 0, 5)});
+    const unsigned plant = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 1.0f, {{"wire_length", 2}});
+    EXPECT_EQ(arch.getAttractionPoints(plant).size(), 100u);
+    arch.disableAttractionPoints(plant);  // now it follows the global ones
+    EXPECT_EQ(arch.getAttractionPoints(plant), std::vector<vec3>{vec3(0, 0, 5)});
+}
+
+TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
+    const std::string wire = "<wire from=\"0.02, 0, wire_height\" to=\"wire_length, 0, wire_height\" spacing=\"0.02\"/>";
+    struct Case {
+        std::string from, to, expected;
+        int line;
+    };
+    const Case cases[] = {
+        {"0.02, 0, wire_height\" to", "0.02, 0\" to", "three expressions", 43},
+        {"0.02, 0, wire_height\" to", "0.02, 0, wire_heigth\" to", "wire_heigth", 43},
+        {"<wire from", "<wire form", "unknown attribute 'form'", 43},
+        {"<wire from", "<wires from", "unknown element 'wires'", 43},
+        {"inertia=\"0.3\"", "inertia=\"0.3\" shoot_types=\"cane stem\"", "unknown shoot type 'stem'", 42},
+        {wire, "", "needs at least one <wire> or <point>", 42},
+        {" to=\"wire_length, 0, wire_height\"", "", "missing required attribute 'to'", 43},
+    };
+    for (const Case& c : cases) {
+        const std::string xml = replaced(vine(true), c.from, c.to);
+        const Error e = errorOf([&] { readSpeciesString(xml, "bad.xml"); });
+        EXPECT_NE(std::string(e.what()).find(c.expected), std::string::npos) << e.what();
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_EQ(e.file(), "bad.xml");
+    }
+    // Values are checked when a plant is built.
+    for (const auto& [from, to, expected, line] :
+         {std::tuple{std::string("spacing=\"0.02\""), std::string("spacing=\"0\""),
+                     std::string("attraction_points.wire[1].spacing = 0"), 43},
+          std::tuple{std::string("half_angle=\"70\""), std::string("half_angle=\"wire_height * 400\""),
+                     std::string("attraction_points.half_angle = 200"), 42}}) {
+        const SpeciesModel m = readSpeciesString(replaced(vine(true), from, to), "late.xml");
+        const Error e = errorOf([&] { speciesAttractionPoints(m, 1, 0, vec3(0)); });
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        EXPECT_EQ(e.file(), "late.xml");
+        EXPECT_EQ(e.line(), line);
+    }
+}
+
+// ---- the API ---------------------------------------------------------------------------
+
+TEST(CollisionApi, OptionsAreValidated) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    auto softError = [&](PerceptionCone cone, double interval = 1.0) {
+        SoftCollisionOptions o;
+        o.cone = cone;
+        o.updateInterval = interval;
+        return errorOf([&] { arch.enableSoftCollisionAvoidance(o); });
+    };
+    EXPECT_EQ(softError({0, 0.1f, 256, 0.4f}).parameter(), "view_half_angle_deg");
+    EXPECT_EQ(softError({180, 0.1f, 256, 0.4f}).parameter(), "view_half_angle_deg");
+    EXPECT_EQ(softError({80, 0, 256, 0.4f}).parameter(), "look_ahead_distance");
+    EXPECT_EQ(softError({80, 0.1f, 7, 0.4f}).parameter(), "ray_count");
+    EXPECT_EQ(softError({80, 0.1f, 256, -0.1f}).parameter(), "inertia");
+    EXPECT_EQ(softError({80, 0.1f, 256, 0.4f}, 0.0).parameter(), "update_interval");
+    EXPECT_EQ(softError({80, 0.1f, 256, std::nanf("")}).parameter(), "inertia");
+    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({}, 0.2f); }).parameter(), "obstacle_IDs");
+    const Error missing = errorOf([&] { arch.enableSolidObstacleAvoidance({42}, 0.2f); });
+    EXPECT_EQ(missing.parameter(), "obstacle_IDs");
+    EXPECT_EQ(missing.value(), "42");
+    const ObjectID wall = addBox(ctx, {1, 0, 0}, {2, 1, 1});
+    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({wall}, -1.0f); }).parameter(),
+              "avoidance_distance");
+    EXPECT_EQ(errorOf([&] { arch.enableAttractionPoints({vec3(0, 0, NAN)}); }).parameter(),
+              "attraction_points[0]");
+    EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints({vec3(0)}); }).parameter(), "attraction_points");
+    EXPECT_EQ(errorOf([&] { arch.setCollisionRelevantOrgans(true, true, false, false, false); })
+                  .validRange(),
+              "call enableSoftCollisionAvoidance first");
+    // A failed call changes nothing: no collision work is done.
+    EXPECT_EQ(arch.getCollisionStats().softCones, 0u);
+}
+
+TEST(CollisionApi, AttractionPointsUpdateAppendDisable) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const unsigned a = arch.addPlantInstance({0, 0, 0}, 0);
+    const unsigned b = arch.addPlantInstance({1, 0, 0}, 0);
+    EXPECT_TRUE(arch.getAttractionPoints(a).empty());
+    arch.enableAttractionPoints({vec3(0, 0, 1)}, 60, 0.3f, 0.5f);
+    arch.appendAttractionPoints({vec3(0, 0, 2)});
+    EXPECT_EQ(arch.getAttractionPoints(a), (std::vector<vec3>{vec3(0, 0, 1), vec3(0, 0, 2)}));
+    arch.enableAttractionPoints(b, {vec3(1, 0, 1)});
+    arch.appendAttractionPoints(b, {vec3(1, 0, 3)});
+    EXPECT_EQ(arch.getAttractionPoints(b), (std::vector<vec3>{vec3(1, 0, 1), vec3(1, 0, 3)}));
+    arch.updateAttractionPoints(b, {vec3(1, 1, 1)});
+    EXPECT_EQ(arch.getAttractionPoints(b), std::vector<vec3>{vec3(1, 1, 1)});
+    arch.updateAttractionPoints({vec3(5, 5, 5)});
+    EXPECT_EQ(arch.getAttractionPoints(a), std::vector<vec3>{vec3(5, 5, 5)});
+    arch.disableAttractionPoints();
+    EXPECT_TRUE(arch.getAttractionPoints(a).empty());
+    EXPECT_EQ(arch.getAttractionPoints(b).size(), 1u);
+    arch.deletePlantInstance(b);
+    EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints(a, {vec3(0)}); }).parameter(),
+              "attraction_points");
 }
