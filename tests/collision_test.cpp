@@ -18,99 +18,13 @@
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
+#include "collision_scenes.h"
 
 using namespace plantarch;
 
 namespace {
 
-// An axis-aligned box (12 triangles).
-ObjectID addBox(Context& ctx, vec3 lo, vec3 hi) {
-    Mesh m;
-    for (int i = 0; i < 8; ++i)
-        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
-    m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
-                 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
-    return ctx.addObject(m, Material{{0.7f, 0.7f, 0.7f}, "", "obstacle"});
-}
-
-// Extreme coordinate of every vertex of the plant's objects along `axis`.
-float extreme(const Context& ctx, const PlantArchitecture& arch, unsigned plant, int axis, bool max) {
-    float v = max ? -1e30f : 1e30f;
-    for (ObjectID o : arch.getAllPlantObjectIDs(plant))
-        for (const vec3& p : ctx.object(o).positions) v = max ? std::max(v, p[axis]) : std::min(v, p[axis]);
-    return v;
-}
-
-// A trained vine: a bare trunk up to the height of a trellis wire, then a cane trained along
-// +x that grows about 4 cm a day; the wire is declared in the species file.
-const char* kVine = R"(<?xml version="1.0" encoding="UTF-8"?>
-<plantarch_species format="1">
-  <name>test_vine</name>
-  <phenology>
-    <max_age>365</max_age>
-  </phenology>
-  <build_parameters>
-    <parameter name="wire_height" default="0.5" min="0.2" max="2" unit="m" doc="trellis wire height"/>
-    <parameter name="wire_length" default="1.2" min="0.2" max="5" unit="m" doc="wire length along +x"/>
-  </build_parameters>
-  <shoot_type label="cane">
-    <max_nodes>@NODES@</max_nodes>
-    <internode_length_max>0.04</internode_length_max>
-    <phyllochron_min>1</phyllochron_min>
-    <elongation_rate_max>0.25</elongation_rate_max>
-    <gravitropic_curvature>60</gravitropic_curvature>
-    <tortuosity>3</tortuosity>
-    <phytomer>
-      <internode>
-        <pitch>5</pitch>
-        <phyllotactic_angle>180</phyllotactic_angle>
-        <radius_initial>0.003</radius_initial>
-      </internode>
-      <petiole>
-        <pitch>40</pitch>
-        <length>0.05</length>
-        <radius>0.001</radius>
-      </petiole>
-      <leaf>
-        <prototype_scale>0.06</prototype_scale>
-        <prototype>
-          <shape>ovate</shape>
-        </prototype>
-      </leaf>
-    </phytomer>
-  </shoot_type>
-  <build>
-    <base_stem id="trunk" type="cane" nodes="wire_height / 0.05" internode_length="0.05"
-               leaves="false" vegetative_buds="false" apex="false"/>
-    <append id="cordon" parent="trunk" type="cane" nodes="1" pitch="90"/>
-  </build>@ATTRACTION@
-</plantarch_species>
-)";
-
-const char* kVineWire = R"(
-  <attraction_points half_angle="70" look_ahead="0.25" inertia="0.3">
-    <wire from="0.02, 0, wire_height" to="wire_length, 0, wire_height" spacing="0.02"/>
-  </attraction_points>)";
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    for (std::size_t i = 0; (i = s.find(from, i)) != std::string::npos; i += to.size())
-        s.replace(i, from.size(), to);
-    return s;
-}
-
-// Writes a species file into the temporary folder and returns its path.
-std::string speciesFile(const std::string& name, const std::string& text) {
-    const std::string path = (std::filesystem::temp_directory_path() /
-                              ("plantarch_collision_" + std::to_string(::getpid()) + "_" + name + ".xml"))
-                                 .string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-}
-
-std::string vine(bool wire, int nodes = 28) {
-    return replaced(replaced(kVine, "@ATTRACTION@", wire ? kVineWire : ""), "@NODES@",
-                    std::to_string(nodes));
-}
+using namespace plantarch::test;
 
 // Distance from p to the segment a-b.
 float toSegment(vec3 p, vec3 a, vec3 b) {
@@ -137,10 +51,6 @@ TEST(Collision, ShootsFollowAnAttractionWire) {
         for (unsigned k = 0; k < nodes; ++k) {
             const float d = toSegment(arch.getNodePosition(p, cane, k), a, b);
             reached = reached || d < 0.03f;
-            if (wire && std::getenv("VINE_DEBUG")) {
-                const vec3 q = arch.getNodePosition(p, cane, k);
-                std::printf("  node %u (%.3f %.3f %.3f) d %.3f\n", k, q.x, q.y, q.z, d);
-            }
             if (reached) worst = std::max(worst, d);
         }
         std::printf("wire %d: %u nodes, tip (%.3f %.3f %.3f) %.4f m from the wire, worst after "
@@ -427,12 +337,13 @@ TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
     EXPECT_EQ(m.attraction->wires[0].from, "0.02, 0, wire_height");
     EXPECT_EQ(m.attraction->wires[0].spacing, "0.02");
     EXPECT_EQ(m.attraction->halfAngle, "70");
-    EXPECT_EQ(m.attraction->wires[0].line, 43);
+    EXPECT_EQ(m.attraction->wires[0].line, 51);
     // Written and read back: the same declaration.
     const SpeciesModel again = readSpeciesString(writeSpeciesString(m), "again.xml");
     ASSERT_TRUE(again.attraction);
     EXPECT_EQ(again.attraction->wires[0].to, m.attraction->wires[0].to);
     EXPECT_EQ(again.attraction->inertia, "0.3");
+    EXPECT_EQ(again.attraction->shootTypes, std::vector<std::string>{"cane"});
     EXPECT_FALSE(readSpeciesString(vine(false), "plain.xml").attraction);
     // Evaluated with the build parameters, relative to the plant's base.
     const AttractionPoints p = speciesAttractionPoints(m, 1, 0, vec3(1, 2, 0), {{"wire_height", 0.8f}});
@@ -458,13 +369,13 @@ TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
         int line;
     };
     const Case cases[] = {
-        {"0.02, 0, wire_height\" to", "0.02, 0\" to", "three expressions", 43},
-        {"0.02, 0, wire_height\" to", "0.02, 0, wire_heigth\" to", "wire_heigth", 43},
-        {"<wire from", "<wire form", "unknown attribute 'form'", 43},
-        {"<wire from", "<wires from", "unknown element 'wires'", 43},
-        {"inertia=\"0.3\"", "inertia=\"0.3\" shoot_types=\"cane stem\"", "unknown shoot type 'stem'", 42},
-        {wire, "", "needs at least one <wire> or <point>", 42},
-        {" to=\"wire_length, 0, wire_height\"", "", "missing required attribute 'to'", 43},
+        {"0.02, 0, wire_height\" to", "0.02, 0\" to", "three expressions", 51},
+        {"0.02, 0, wire_height\" to", "0.02, 0, wire_heigth\" to", "wire_heigth", 51},
+        {"<wire from", "<wire form", "unknown attribute 'form'", 51},
+        {"<wire from", "<wires from", "unknown element 'wires'", 51},
+        {"shoot_types=\"cane\"", "shoot_types=\"cane stem\"", "unknown shoot type 'stem'", 50},
+        {wire, "", "needs at least one <wire> or <point>", 50},
+        {" to=\"wire_length, 0, wire_height\"", "", "missing required attribute 'to'", 51},
     };
     for (const Case& c : cases) {
         const std::string xml = replaced(vine(true), c.from, c.to);
@@ -476,9 +387,9 @@ TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
     // Values are checked when a plant is built.
     for (const auto& [from, to, expected, line] :
          {std::tuple{std::string("spacing=\"0.02\""), std::string("spacing=\"0\""),
-                     std::string("attraction_points.wire[1].spacing = 0"), 43},
+                     std::string("attraction_points.wire[1].spacing = 0"), 51},
           std::tuple{std::string("half_angle=\"70\""), std::string("half_angle=\"wire_height * 400\""),
-                     std::string("attraction_points.half_angle = 200"), 42}}) {
+                     std::string("attraction_points.half_angle = 200"), 50}}) {
         const SpeciesModel m = readSpeciesString(replaced(vine(true), from, to), "late.xml");
         const Error e = errorOf([&] { speciesAttractionPoints(m, 1, 0, vec3(0)); });
         EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
