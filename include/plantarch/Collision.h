@@ -92,6 +92,7 @@ struct CollisionStats {
     std::uint64_t plantsUnchanged = 0;  ///< plants whose geometry had not changed (kept)
     std::uint64_t sceneTriangles = 0;   ///< plant proxy triangles in the scene now
     double refreshSeconds = 0.0;        ///< wall time of refreshes (varies run to run)
+    double coneSeconds = 0.0;           ///< thread time in soft avoidance cones (varies)
 };
 
 }  // namespace plantarch

@@ -423,6 +423,7 @@ CollisionStats World::snapshotStats() const {
     s.plantsUnchanged = get(stats_.plantsUnchanged);
     s.sceneTriangles = plantTriangles();
     s.refreshSeconds = stats_.refreshSeconds.load(std::memory_order_relaxed);
+    s.coneSeconds = double(stats_.coneNanoseconds.load(std::memory_order_relaxed)) * 1e-9;
     return s;
 }
 
@@ -433,6 +434,7 @@ void World::resetStats() {
                     &stats_.plantsRebuilt, &stats_.plantsUnchanged})
         a->store(0, std::memory_order_relaxed);
     stats_.refreshSeconds.store(0.0, std::memory_order_relaxed);
+    stats_.coneNanoseconds.store(0, std::memory_order_relaxed);
 }
 
 }  // namespace plantarch::collision

@@ -45,6 +45,7 @@ struct AtomicStats {
         solidSteered{0}, attractionQueries{0}, attracted{0}, organsTurned{0},
         organsUnresolved{0}, sceneRefreshes{0}, plantsRebuilt{0}, plantsUnchanged{0};
     std::atomic<double> refreshSeconds{0.0};
+    std::atomic<std::int64_t> coneNanoseconds{0};
 };
 
 struct SolidHit {

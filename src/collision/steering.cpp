@@ -8,6 +8,7 @@
 #include "collision/steering.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -249,8 +250,19 @@ std::optional<vec3> softTarget(const World& world, vec3 apex, vec3 axis, const P
                                Rng& rng, float tnear, const Ignore& ignore) {
     thread_local ConeSample sample;
     thread_local std::vector<int> component, stack;
-    sampleCone(world, apex, axis, cone, rng, tnear, ignore, sample);
     AtomicStats& st = world.stats();
+    const auto started = std::chrono::steady_clock::now();
+    struct Timer {
+        AtomicStats& st;
+        std::chrono::steady_clock::time_point started;
+        ~Timer() {
+            st.coneNanoseconds.fetch_add(
+                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - started)
+                    .count(),
+                std::memory_order_relaxed);
+        }
+    } timer{st, started};
+    sampleCone(world, apex, axis, cone, rng, tnear, ignore, sample);
     st.softCones.fetch_add(1, std::memory_order_relaxed);
     const int n = sample.rings * sample.sectors;
     const int hits = sample.hits;
