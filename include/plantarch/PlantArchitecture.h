@@ -204,7 +204,9 @@ public:
     // ---- growth --------------------------------------------------------------------
     /// Grows every plant by `days` (any step size: the same plant results from one call of
     /// 60 days, 60 calls of 1 day or any other split, because growth is driven by events at
-    /// exact plant ages). Geometry is regenerated once at the end.
+    /// exact plant ages). Geometry is regenerated once at the end. With collision avoidance
+    /// on, new organs are steered as they are made; with soft avoidance the plants grow
+    /// together (in parallel) in steps of the collision scene's update interval.
     void advanceTime(double days);
     void advanceTime(unsigned plantID, double days);
     void advanceTime(const std::vector<unsigned>& plantIDs, double days);
