@@ -119,21 +119,6 @@ void rasterize(ConeSample& cone, const vec3* tri, const ConeFrame& f) {
     const float dist = glm::length(centre);
     if (dist - radius > f.lookAhead) return;
     if (!(l0 > 0.0f && l1 > 0.0f && l2 > 0.0f)) return;
-    // Edge planes through the apex: a ray hits the triangle's plane inside it when it is on
-    // the inner side of all three.
-    vec3 n0 = glm::cross(q0, q1), n1 = glm::cross(q1, q2), n2 = glm::cross(q2, q0);
-    const float volume = glm::dot(q0, n1);
-    if (std::abs(volume) < 1e-18f) return;  // seen edge-on
-    if (volume < 0.0f) {
-        n0 = -n0;
-        n1 = -n1;
-        n2 = -n2;
-    }
-    const vec3 normal = glm::cross(q1 - q0, q2 - q0);
-    const float planeDist = glm::dot(q0, normal);  // t = planeDist / dot(dir, normal)
-    const bool checkFar = std::max({l0, l1, l2}) > f.lookAhead;
-    const bool checkNear = dist - radius <= f.tnear;
-
     // The directions to the corners lie in a cap; so do all directions that hit the triangle.
     const int rings = cone.rings, sectors = cone.sectors;
     int ringLo = 0, ringHi = rings - 1, sectorLo = 0, sectorHi = sectors - 1;
@@ -176,6 +161,31 @@ void rasterize(ConeSample& cone, const vec3* tri, const ConeFrame& f) {
             }
         }
     }
+    // Hidden behind nearer triangles already: every cell it could cover is blocked.
+    bool open = false;
+    for (int jj = sectorLo; jj <= sectorHi && !open; ++jj) {
+        const int j = jj < 0 ? jj + sectors : (jj >= sectors ? jj - sectors : jj);
+        for (int i = ringLo; i <= ringHi; ++i)
+            if (!cone.blocked[std::size_t(i * sectors + j)]) {
+                open = true;
+                break;
+            }
+    }
+    if (!open) return;
+    // Edge planes through the apex: a ray hits the triangle's plane inside it when it is on
+    // the inner side of all three.
+    vec3 n0 = glm::cross(q0, q1), n1 = glm::cross(q1, q2), n2 = glm::cross(q2, q0);
+    const float volume = glm::dot(q0, n1);
+    if (std::abs(volume) < 1e-18f) return;  // seen edge-on
+    if (volume < 0.0f) {
+        n0 = -n0;
+        n1 = -n1;
+        n2 = -n2;
+    }
+    const vec3 normal = glm::cross(q1 - q0, q2 - q0);
+    const float planeDist = glm::dot(q0, normal);  // t = planeDist / dot(dir, normal)
+    const bool checkFar = std::max({l0, l1, l2}) > f.lookAhead;
+    const bool checkNear = dist - radius <= f.tnear;
     for (int jj = sectorLo; jj <= sectorHi; ++jj) {
         const int j = jj < 0 ? jj + sectors : (jj >= sectors ? jj - sectors : jj);
         for (int i = ringLo; i <= ringHi; ++i) {
