@@ -220,7 +220,9 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
 }
 
 void World::removePlant(unsigned plantID) {
+    if (!plants_.count(plantID) && !memos.count(plantID)) return;  // nothing written
     memos.erase(plantID);
+    stale.erase(plantID);
     auto it = plants_.find(plantID);
     if (it == plants_.end()) return;
     if (it->second->attached) rtcDetachGeometry(rtc_->top, plantID + 1);

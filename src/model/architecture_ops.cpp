@@ -235,8 +235,9 @@ bool PlantArchitecture::hasFloralPrototype(const std::string& name) const {
 
 void PlantArchitecture::updateGeometry(unsigned plantID) {
     tessellatePlant(*impl_, *context_, impl_->plant(plantID));
-    // An edit outside growth: the collision scene reads the plant again at the next call.
-    if (impl_->collision) impl_->collision->stale[plantID] = true;
+    // An edit outside growth: the soft collision scene reads the plant again at the next
+    // call. (Without soft avoidance canopy workers share the scene: nothing is written.)
+    if (impl_->collision && impl_->collision->soft()) impl_->collision->stale[plantID] = true;
 }
 
 // ---- queries ---------------------------------------------------------------------------
