@@ -141,8 +141,9 @@ std::vector<ObjectID> leaves(const PlantArchitecture& arch) {
 std::string fingerprint(const Context& ctx) {
     std::string out;
     ctx.forEachObject([&](const ObjectView& v) {
-        out += std::to_string(v.id) + ":" + std::to_string(*ctx.objectDataInt(v.id, "plantID")) +
-               *ctx.objectDataString(v.id, "organ") + ";";
+        out += std::to_string(v.id) + ":" +
+               std::to_string(ctx.objectDataInt(v.id, "plantID").value_or(-1)) +
+               ctx.objectDataString(v.id, "organ").value_or("") + ";";
         out.append(reinterpret_cast<const char*>(v.positions.data()),
                    v.positions.size() * sizeof(vec3));
     });
@@ -459,4 +460,33 @@ TEST(CollisionApi, AttractionPointsUpdateAppendDisable) {
     arch.deletePlantInstance(b);
     EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints(a, {vec3(0)}); }).parameter(),
               "attraction_points");
+}
+
+// Canopies without soft avoidance grow plants apart in workers that share the obstacles and
+// keep each plant's own attraction points; any thread count gives the same bytes.
+TEST(Collision, CanopiesWithObstaclesAndOwnAttractionPointsAreDeterministic) {
+    auto build = [](int threads) {
+        const int before = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const ObjectID wall = addBox(ctx, {-2, 0.3f, 0}, {2, 0.32f, 2});
+        arch.loadPlantModelFromLibrary(speciesFile("vine_rows", vine(true, 20)));
+        arch.enableSolidObstacleAvoidance({wall}, 0.15f);
+        const auto ids = arch.buildPlantCanopyFromLibrary({0, 0, 0}, {1.5f, 0.4f}, {2, 2}, 25.0f);
+        omp_set_num_threads(before);
+        EXPECT_EQ(ids.size(), 4u);
+        // Each plant follows its own wire, placed at its base.
+        for (unsigned id : ids) {
+            const std::vector<vec3> points = arch.getAttractionPoints(id);
+            EXPECT_EQ(points.size(), 60u);
+            if (!points.empty()) {
+                EXPECT_EQ(points.front() - vec3(0.02f, 0, 0.5f), arch.getPlantBasePosition(id));
+            }
+        }
+        for (unsigned id : ids) EXPECT_LE(extreme(ctx, arch, id, 1, true), 0.3f);
+        EXPECT_GT(arch.getCollisionStats().attracted, 0u);
+        return fingerprint(ctx);
+    };
+    EXPECT_EQ(build(1), build(2));
 }
