@@ -21,6 +21,7 @@ struct BuildArgs {
     std::vector<std::string> defines;
     std::vector<std::string> outputs;
     bool stats = false;
+    CollisionArgs collision;
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
@@ -43,13 +44,16 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
+    addCollisionOptions(app, a->collision);
     return [a, &global]() {
         preparePlantOutputs(a->outputs);
+        checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
+        applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant =
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));
         for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);

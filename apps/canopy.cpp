@@ -39,6 +39,7 @@ struct CanopyArgs {
     std::vector<std::string> defines;
     std::vector<std::string> outputs;
     bool stats = false;
+    CollisionArgs collision;
 };
 
 std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
@@ -54,14 +55,17 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
+    addCollisionOptions(app, a->collision);
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
         preparePlantOutputs(a->outputs);
+        checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.loadPlantModelFromLibrary(a->species);
+        applyCollisionOptions(a->collision, arch, ctx);
         const auto plants = arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy),
                                                              glm::ivec2(nx, ny), a->age,
                                                              a->germination,

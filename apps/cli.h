@@ -91,4 +91,20 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
 /// Adds --digits (significant digits of plant strings) to a subcommand.
 void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
 
+/// Collision avoidance options of `build` and `canopy` (collision_options.cpp).
+struct CollisionArgs {
+    bool soft = false;                   ///< --soft-collision
+    std::string cone;                    ///< --cone half-angle,look-ahead,rays,inertia
+    std::vector<std::string> obstacles;  ///< --obstacle FILE.obj (repeatable)
+    std::string avoidDistance;           ///< --avoid-distance m
+    bool fruitAdjustment = false;        ///< --fruit-adjustment
+    std::string attractionPoints;        ///< --attraction-points FILE.csv
+    std::string attractionCone;          ///< --attraction-cone half-angle,look-ahead,inertia
+};
+void addCollisionOptions(CLI::App& app, CollisionArgs& args);
+/// Checks the options' forms and that their files open, before any work is done.
+void checkCollisionOptions(const CollisionArgs& args);
+/// Reads obstacles and points into `ctx` and enables what was asked for.
+void applyCollisionOptions(const CollisionArgs& args, PlantArchitecture& arch, Context& ctx);
+
 }  // namespace plantarch::cli

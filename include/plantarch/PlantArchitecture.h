@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "plantarch/Collision.h"
 #include "plantarch/Context.h"
 #include "plantarch/Parameters.h"
 #include "plantarch/Progress.h"
@@ -208,10 +209,59 @@ public:
     // ---- growth --------------------------------------------------------------------
     /// Grows every plant by `days` (any step size: the same plant results from one call of
     /// 60 days, 60 calls of 1 day or any other split, because growth is driven by events at
-    /// exact plant ages). Geometry is regenerated once at the end.
+    /// exact plant ages). Geometry is regenerated once at the end. With collision avoidance
+    /// on, new organs are steered as they are made; with soft avoidance the plants grow
+    /// together (in parallel) in steps of the collision scene's update interval.
     void advanceTime(double days);
     void advanceTime(unsigned plantID, double days);
     void advanceTime(const std::vector<unsigned>& plantIDs, double days);
+
+    // ---- collision avoidance and attraction points (docs/collision.md) ------------------
+    /// Soft avoidance: new internodes (optionally petioles, peduncles) turn toward the
+    /// largest open gap in their perception cone among plant organs (leaves by default) and
+    /// the given obstacle objects. With it on, plants grow together in steps of the update
+    /// interval so that each sees its neighbours. Options are validated.
+    void enableSoftCollisionAvoidance(const SoftCollisionOptions& options = {});
+    /// The same with the cone given: half-angle (degrees), look-ahead distance (m), number
+    /// of rays, inertia (0: turn fully to the gap, 1: unchanged).
+    void enableSoftCollisionAvoidance(float view_half_angle_deg, float look_ahead_distance,
+                                      unsigned ray_count, float inertia);
+    void disableSoftCollisionAvoidance();
+    /// Which plant organs are obstacles for soft avoidance (leaves only by default).
+    void setCollisionRelevantOrgans(bool internodes, bool leaves, bool petioles, bool flowers,
+                                    bool fruit);
+    /// Solid obstacles: Context objects growth never enters. Growth within
+    /// `avoidance_distance` (m) of one turns along its surface; with `fruit_adjustment`, fruit
+    /// crossing one are turned out of it about their attachment point.
+    void enableSolidObstacleAvoidance(const std::vector<ObjectID>& obstacle_IDs,
+                                      float avoidance_distance = 0.2f,
+                                      bool fruit_adjustment = false);
+    void enableSolidObstacleAvoidance(const SolidObstacleOptions& options);
+    void disableSolidObstacleAvoidance();
+    /// Attraction points for every plant that has none of its own: a growing tip that sees
+    /// one in its cone turns toward the nearest. Solid obstacles keep priority.
+    void enableAttractionPoints(const std::vector<vec3>& attraction_points,
+                                float view_half_angle_deg = 80.0f,
+                                float look_ahead_distance = 0.1f, float inertia = 0.4f);
+    void enableAttractionPoints(const AttractionPoints& points);
+    /// A plant's own attraction points (library plants on trellises set theirs when built);
+    /// they replace the global ones for this plant.
+    void enableAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points,
+                                float view_half_angle_deg = 80.0f,
+                                float look_ahead_distance = 0.1f, float inertia = 0.4f);
+    void enableAttractionPoints(unsigned plantID, const AttractionPoints& points);
+    /// Replaces or extends the points, keeping the cone (attraction points must be enabled).
+    void updateAttractionPoints(const std::vector<vec3>& attraction_points);
+    void updateAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points);
+    void appendAttractionPoints(const std::vector<vec3>& attraction_points);
+    void appendAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points);
+    void disableAttractionPoints();
+    void disableAttractionPoints(unsigned plantID);
+    /// The attraction points a plant steers by (its own, else the global ones; empty: none).
+    std::vector<vec3> getAttractionPoints(unsigned plantID) const;
+    /// Work done by collision avoidance since it was enabled or the counts were reset.
+    CollisionStats getCollisionStats() const;
+    void resetCollisionStats();
 
     /// Receives progress of advanceTime over the plants ("growing", 0..1); may be empty.
     void setProgressCallback(ProgressCallback callback);
@@ -308,9 +358,13 @@ public:
     struct Impl;  ///< internal; public so the implementation files can share it
 
 private:
+    /// A plant of the loaded species with its initial structure (and its own attraction
+    /// points), not grown.
+    unsigned buildPlantStructure(const vec3& base_position,
+                                 const std::map<std::string, float>& build_parameters);
     std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
                                         const std::map<std::string, float>& build_parameters);
-    void mergePlant(const Context& from, PlantInstance plant);
+    void mergePlant(const Context& from, PlantInstance plant, Impl& owner);
 
     Context* context_;
     std::uint64_t seed_ = 42;

@@ -38,6 +38,14 @@ const char* budStateName(BudState state);
 const char* floralStageName(FloralStage stage);
 const char* phenologyStageName(PhenologyStage stage);
 
+/// A turn of an organ about its attachment point (world axis, degrees), set by solid obstacle
+/// avoidance to keep the organ out of obstacles; angle 0 means none.
+struct OrganTurn {
+    vec3 axis{0.0f, 0.0f, 1.0f};
+    float angle = 0.0f;
+    bool operator==(const OrganTurn&) const = default;
+};
+
 struct VegetativeBud {
     BudState state = BudState::Dormant;
     /// Plant age at which the bud breaks (or fails to); negative: waiting for dormancy to end.
@@ -55,6 +63,7 @@ struct FlowerOrgan {
     float fruitScale = 0.0f;  ///< full-grown fruit length, m
     float gravityFactor = 0.0f;
     unsigned variant = 0;     ///< prototype variant
+    OrganTurn clearance;      ///< fruit adjustment (solid obstacles), after gravity
     std::vector<ObjectID> objects;  ///< one per prototype part
 };
 
@@ -79,6 +88,7 @@ struct FloralBud {
     float pedunclePitch = 0.0f;
     float peduncleRoll = 0.0f;
     float peduncleCurvature = 0.0f;
+    OrganTurn peduncleClearance;  ///< peduncle and flowers turned out of solid obstacles
     ObjectID peduncleObject = kNoObject;
     std::vector<FlowerOrgan> flowers;
 };
@@ -105,6 +115,7 @@ struct Petiole {
     float radius = 0.0f;      ///< base radius, m
     float curvature = 0.0f;   ///< degrees per m
     float taper = 0.0f;
+    OrganTurn clearance;      ///< petiole and leaves turned out of solid obstacles
     std::vector<LeafOrgan> leaves;
     std::vector<VegetativeBud> vegetativeBuds;
     std::vector<FloralBud> floralBuds;

@@ -4,6 +4,7 @@
 // express is a named function registered in C++ and referred to by name.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,28 @@ struct BuildStep {
     int line = 0;              ///< line in the species file, for errors
 };
 
+/// Attraction points every plant of the species gets when built (trellis wires, a post):
+/// expressions over the build parameters, coordinates relative to the plant's base (m).
+/// A vector is three expressions separated by commas, e.g. "0, -cordon_length, wire_height".
+struct SpeciesAttraction {
+    struct Wire {
+        std::string from, to;       ///< end points
+        std::string spacing = "0.05";  ///< distance between points along the wire, m
+        int line = 0;
+    };
+    struct Point {
+        std::string at;
+        int line = 0;
+    };
+    std::vector<Wire> wires;
+    std::vector<Point> points;
+    std::string halfAngle = "80";   ///< perception cone half-angle, degrees
+    std::string lookAhead = "0.1";  ///< m
+    std::string inertia = "0.4";    ///< 0 to 1
+    std::vector<std::string> shootTypes;  ///< attracted shoot types (empty: all)
+    int line = 0;
+};
+
 struct SpeciesModel {
     std::string name;          ///< library name, e.g. "bean"
     std::string commonName;
@@ -68,6 +91,8 @@ struct SpeciesModel {
     PhenologyParameters phenology;
     std::vector<BuildParameter> buildParameters;
     std::vector<BuildStep> build;
+    /// The plant's own attraction points (<attraction_points>), if the species declares any.
+    std::optional<SpeciesAttraction> attraction;
     /// Line in sourceFile of each value read, by parameter path ("trifoliate.max_nodes",
     /// "phenology.max_age"), so later errors about a value can point at it. Empty for a
     /// model made in code.

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "plantarch/Collision.h"
 #include "plantarch/Species.h"
 
 namespace plantarch {
@@ -84,5 +85,13 @@ std::map<std::string, float> resolveBuildParameters(
 std::vector<unsigned> buildInitialStructure(PlantArchitecture& arch, unsigned plantID,
                                             const SpeciesModel& species,
                                             const std::map<std::string, float>& overrides = {});
+
+/// The attraction points of a plant of the species at `base` (its <attraction_points>
+/// evaluated with the build parameters, wires sampled at their spacing). Random expressions
+/// draw from Rng::forPlant(seed, 3 * 2^61 + plantID). Errors name the file and line. The
+/// species must declare attraction points.
+AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint64_t seed,
+                                         unsigned plantID, const vec3& base,
+                                         const std::map<std::string, float>& overrides = {});
 
 }  // namespace plantarch

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "geometry/tube.h"
+#include "geometry/organ_sink.h"
 #include "model/architecture_impl.h"
 #include "plantarch/OrganPrototypes.h"
 #include "plantarch/Error.h"
@@ -79,20 +80,15 @@ mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
     return m;
 }
 
-// Writes one organ's geometry into the Context, reusing its objects.
-class OrganWriter {
+// Writes organs into the Context, reusing their objects.
+class ContextSink final : public OrganSink {
 public:
-    OrganWriter(Context& ctx, const PlantInstance& plant) : ctx_(ctx), plant_(plant) {}
+    ContextSink(Context& ctx, const PlantInstance& plant) : ctx_(ctx), plant_(plant) {}
 
-    struct Labels {
-        OrganKind kind;
-        const Shoot* shoot;
-        int node;
-        float age;
-        int leafID = -1;
-    };
+    bool wants(OrganKind) const override { return true; }
 
-    void write(ObjectID& object, const Mesh& mesh, const Material& material, const Labels& l) {
+    void write(ObjectID& object, const Mesh& mesh, const Material& material,
+               const OrganLabels& l) override {
         if (object != kNoObject && ctx_.doesObjectExist(object)) {
             ctx_.setObjectMesh(object, mesh);
             ctx_.setObjectMaterial(object, ctx_.addMaterial(material));
@@ -112,7 +108,7 @@ public:
 
     // Places every part of a prototype; extra old objects are deleted.
     void writeParts(std::vector<ObjectID>& objects, const OrganPrototype& proto, const mat4& xf,
-                    const Labels& l) {
+                    const OrganLabels& l) override {
         for (std::size_t i = proto.size(); i < objects.size(); ++i)
             if (ctx_.doesObjectExist(objects[i])) ctx_.deleteObject(objects[i]);
         objects.resize(proto.size(), kNoObject);
@@ -121,6 +117,16 @@ public:
             m.transform(xf);
             write(objects[i], m, proto[i].material, l);
         }
+    }
+
+    void remove(ObjectID& id) override {
+        if (id != kNoObject && ctx_.doesObjectExist(id)) ctx_.deleteObject(id);
+        id = kNoObject;
+    }
+
+    void removeAll(std::vector<ObjectID>& ids) override {
+        for (ObjectID& id : ids) remove(id);
+        ids.clear();
     }
 
 private:
@@ -136,6 +142,11 @@ void deleteIf(Context& ctx, ObjectID& id) {
 void deleteAll(Context& ctx, std::vector<ObjectID>& ids) {
     for (ObjectID& id : ids) deleteIf(ctx, id);
     ids.clear();
+}
+
+// Turns a direction by an organ's clearance turn (none when its angle is 0).
+vec3 turned(vec3 v, const OrganTurn& t) {
+    return t.angle == 0.0f ? v : glm::normalize(geometry::rotateAbout(v, t.axis, t.angle * kDeg));
 }
 
 std::string variantKey(const std::string& fn, const std::string& params, int leaflet,
@@ -213,10 +224,22 @@ namespace {
 
 struct Tessellator {
     PlantArchitecture::Impl& impl;
-    Context& ctx;
     PlantInstance& plant;
-    OrganWriter writer;
+    OrganSink* sink = nullptr;
     std::vector<std::vector<vec3>> nodes;  // per shoot
+
+    void computeNodes() {
+        // Parents come before their children (a shoot grows from one made earlier), so each
+        // shoot starts from its parent's nodes computed just before: linear in the plant's size.
+        nodes.assign(plant.shoots.size(), {});
+        for (const Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            const bool parentDone = s.parent >= 0 && unsigned(s.parent) < s.id &&
+                                    !nodes[unsigned(s.parent)].empty();
+            nodes[s.id] = parentDone ? nodesFrom(s, baseOn(s, nodes[unsigned(s.parent)]))
+                                     : shootNodePositions(plant, s.id);
+        }
+    }
 
     // Flower and fruit prototypes, one per (function, request, variant), cached.
     const OrganPrototype& floralPrototype(const std::string& fn, unsigned variant,
@@ -233,6 +256,7 @@ struct Tessellator {
     }
 
     void internodes(Shoot& s) {
+        if (!sink->wants(OrganKind::Internode)) return;
         const std::vector<vec3>& pts = nodes[s.id];
         const ShootParameters& type = impl.shootTypeFor(plant, s.type);
         const unsigned segs = std::max(1u, type.phytomer_parameters.internode.length_segments);
@@ -260,28 +284,39 @@ struct Tessellator {
         for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
             Phytomer& ph = s.phytomers[i];
             const Mesh m = geometry::tubeMesh(rings, i * segs, (i + 1) * segs, ip.radial_subdivisions);
-            writer.write(ph.internode.object, m, mat,
+            sink->write(ph.internode.object, m, mat,
                          {OrganKind::Internode, &s, int(i), ph.age});
         }
     }
 
-    void petiole(Shoot& s, Phytomer& ph, int node, Petiole& pt, const PhytomerParameters& pp) {
+    // Where a petiole starts, the side it leans to and its initial direction.
+    struct PetioleFrame {
+        vec3 side, dir, start;
+    };
+    PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node, const Petiole& pt) const {
         const Internode& in = ph.internode;
         const vec3 top = nodes[s.id][std::size_t(node) + 1];
         vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth);
         side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
         const float p = pt.pitch * kDeg;
-        const vec3 dir = glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
+        const vec3 dir =
+            turned(glm::normalize(std::cos(p) * in.direction + std::sin(p) * side), pt.clearance);
+        return {side, dir, top + side * in.radius * 0.5f};
+    }
+
+    void petiole(Shoot& s, Phytomer& ph, int node, Petiole& pt, const PhytomerParameters& pp) {
+        const Internode& in = ph.internode;
+        const auto [side, dir, start] = petioleFrame(s, ph, node, pt);
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
-        const vec3 start = top + side * in.radius * 0.5f;
         std::vector<vec3> path = geometry::curvedPath(start, dir, std::max(length, 1e-6f),
                                                       pt.curvature, kUp, segs);
         // A petiole falls with its leaves (leaf fall, senescence, pruning).
         const bool bare = !pt.leaves.empty() &&
                           std::all_of(pt.leaves.begin(), pt.leaves.end(),
                                       [](const LeafOrgan& l) { return l.removed; });
-        if (!bare && length > 1e-5f && pt.radius > 0.0f) {
+        if (!sink->wants(OrganKind::Petiole)) {
+        } else if (!bare && length > 1e-5f && pt.radius > 0.0f) {
             std::vector<float> radii;
             const float r0 = pt.radius * ph.leafFraction;
             // Tip radius = taper x base, kept above 2% of the base so no triangle degenerates.
@@ -291,18 +326,19 @@ struct Tessellator {
             const auto rings = geometry::tubeRings(path, radii, in.direction);
             const Mesh m = geometry::tubeMesh(rings, 0, rings.size() - 1,
                                               pp.petiole.radial_subdivisions);
-            writer.write(pt.object, m, Material{pp.petiole.color, "", ""},
-                         {OrganKind::Petiole, &s, node, ph.age});
+            sink->write(pt.object, m, Material{pp.petiole.color, "", ""},
+                        {OrganKind::Petiole, &s, node, ph.age});
         } else {
-            deleteIf(ctx, pt.object);
+            sink->remove(pt.object);
         }
-        for (LeafOrgan& leaf : pt.leaves) placeLeaf(s, ph, node, path, side, leaf, pp.leaf);
+        if (sink->wants(OrganKind::Leaf))
+            for (LeafOrgan& leaf : pt.leaves) placeLeaf(s, ph, node, path, side, leaf, pp.leaf);
     }
 
     void placeLeaf(Shoot& s, Phytomer& ph, int node, const std::vector<vec3>& path, vec3 side,
                    LeafOrgan& leaf, const LeafParameters& lp) {
         if (leaf.removed) {
-            deleteAll(ctx, leaf.objects);
+            sink->removeAll(leaf.objects);
             return;
         }
         auto [origin, tangent] = alongPath(path, leaf.position);
@@ -325,8 +361,8 @@ struct Tessellator {
         const OrganPrototype& shape = impl.leafPrototype(lp, leaf);
         const vec3 offset = proto.leaf_offset * scale;
         const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
-        writer.writeParts(leaf.objects, shape, placement(f, base, scale),
-                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
+        sink->writeParts(leaf.objects, shape, placement(f, base, scale),
+                         {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
     // The template a floral bud is drawn from: its own when a rule function gave it one.
@@ -347,18 +383,20 @@ struct Tessellator {
 
     // Terminal floral buds sit at the shoot tip, spread evenly around its axis.
     void terminal(Shoot& s, const PhytomerParameters& pp) {
+        for (std::size_t i = 0; i < s.terminalFloralBuds.size(); ++i) terminalBud(s, pp, i);
+    }
+
+    void terminalBud(Shoot& s, const PhytomerParameters& pp, std::size_t i) {
         if (s.phytomers.empty()) return;
         Phytomer& ph = s.phytomers.back();
         const Internode& in = ph.internode;
         const std::size_t n = s.terminalFloralBuds.size();
-        for (std::size_t i = 0; i < n; ++i) {
-            FloralBud& fb = s.terminalFloralBuds[i];
-            const float az = in.azimuth + 360.0f * float(i) / float(n) + fb.peduncleRoll;
-            vec3 side = azimuthDirection(in.guide, in.rollReference, az);
-            side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
-            inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, budParameters(fb, pp),
-                          nodes[s.id].back(), in.direction, side);
-        }
+        FloralBud& fb = s.terminalFloralBuds[i];
+        const float az = in.azimuth + 360.0f * float(i) / float(n) + fb.peduncleRoll;
+        vec3 side = azimuthDirection(in.guide, in.rollReference, az);
+        side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+        inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, budParameters(fb, pp),
+                      nodes[s.id].back(), in.direction, side);
     }
 
     void inflorescence(Shoot& s, Phytomer& ph, int node, FloralBud& fb,
@@ -366,26 +404,31 @@ struct Tessellator {
         const bool visible = fb.stage == FloralStage::FlowerClosed ||
                              fb.stage == FloralStage::FlowerOpen || fb.stage == FloralStage::Fruit;
         if (!visible) {
-            deleteIf(ctx, fb.peduncleObject);
-            for (FlowerOrgan& fl : fb.flowers) deleteAll(ctx, fl.objects);
+            sink->remove(fb.peduncleObject);
+            for (FlowerOrgan& fl : fb.flowers) sink->removeAll(fl.objects);
             return;
         }
         const float p = fb.pedunclePitch * kDeg;
-        const vec3 dir = glm::normalize(std::cos(p) * axis + std::sin(p) * side);
+        const vec3 dir =
+            turned(glm::normalize(std::cos(p) * axis + std::sin(p) * side), fb.peduncleClearance);
         const unsigned segs = std::max(1u, pp.peduncle.length_segments);
         const std::vector<vec3> path = geometry::curvedPath(
             top, dir, std::max(fb.peduncleLength, 1e-6f), fb.peduncleCurvature, kUp, segs);
-        if (fb.peduncleLength > 1e-5f && fb.peduncleRadius > 0.0f) {
+        if (fb.peduncleLength > 1e-5f && fb.peduncleRadius > 0.0f &&
+            sink->wants(OrganKind::Peduncle)) {
             const std::vector<float> radii(path.size(), fb.peduncleRadius);
             const auto rings = geometry::tubeRings(path, radii, axis);
-            writer.write(fb.peduncleObject,
-                         geometry::tubeMesh(rings, 0, rings.size() - 1,
-                                            pp.peduncle.radial_subdivisions),
-                         Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
+            sink->write(fb.peduncleObject,
+                        geometry::tubeMesh(rings, 0, rings.size() - 1,
+                                           pp.peduncle.radial_subdivisions),
+                        Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
         }
         const InflorescenceParameters& inf = pp.inflorescence;
         const bool fruit = fb.stage == FloralStage::Fruit;
         const bool open = fb.stage == FloralStage::FlowerOpen;
+        const OrganKind kind =
+            fruit ? OrganKind::Fruit : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed);
+        if (!sink->wants(kind)) return;
         const std::string& fn = fruit ? inf.fruit_prototype_function : inf.flower_prototype_function;
         const std::string name = fn.empty() ? (fruit ? "builtin_fruit" : "builtin_flower") : fn;
         const float maturity = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
@@ -406,29 +449,19 @@ struct Tessellator {
             if (fruit && fl.gravityFactor > 0.0f) {
                 axis = glm::normalize(glm::mix(axis, -kUp, std::clamp(fl.gravityFactor * maturity, 0.0f, 0.999f)));
             }
+            axis = turned(axis, fl.clearance);
             OrganFrame of = uprightFrame(axis, f.z);
             of = rotated(of, 0.0f, 0.0f, fl.roll);
             const float scale = fruit ? fl.fruitScale * maturity : fl.flowerScale;
             const OrganPrototype& shape =
                 floralPrototype(name, fl.variant, request, inf.normalize_OBJ_model);
-            writer.writeParts(fl.objects, shape, placement(of, origin, scale),
-                              {fruit ? OrganKind::Fruit
-                                     : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed),
-                               &s, node, ph.age});
+            sink->writeParts(fl.objects, shape, placement(of, origin, scale),
+                             {kind, &s, node, ph.age});
         }
     }
 
     void run() {
-        // Parents come before their children (a shoot grows from one made earlier), so each
-        // shoot starts from its parent's nodes computed just before: linear in the plant's size.
-        nodes.assign(plant.shoots.size(), {});
-        for (const Shoot& s : plant.shoots) {
-            if (s.removed) continue;
-            const bool parentDone = s.parent >= 0 && unsigned(s.parent) < s.id &&
-                                    !nodes[unsigned(s.parent)].empty();
-            nodes[s.id] = parentDone ? nodesFrom(s, baseOn(s, nodes[unsigned(s.parent)]))
-                                     : shootNodePositions(plant, s.id);
-        }
+        computeNodes();
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
             internodes(s);
@@ -458,12 +491,17 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
                         : leaf.leafletIndex == 0                         ? 0
                                                                          : (leaf.leafletIndex < 0 ? -1 : 1);
     const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
+    const auto fast = prototypeMemo.find(std::make_tuple(&proto, leaflet, variant));
+    if (fast != prototypeMemo.end()) return *fast->second;
     auto memo = prototypeKeys.find(&proto);
     if (memo == prototypeKeys.end())
         memo = prototypeKeys.emplace(&proto, describePrototype(proto)).first;
     const std::string key = variantKey(proto.prototype_function, memo->second, leaflet, variant) +
                             (variants == 0 ? "|unique" : "");
-    if (auto hit = cache.find(key)) return *hit;
+    if (auto hit = cache.find(key)) {
+        prototypeMemo.emplace(std::make_tuple(&proto, leaflet, variant), hit.get());
+        return *hit;
+    }
     // Variants are seeded from their key, not the plant's stream, so plants sharing a
     // prototype see the same shapes and building one never shifts a plant's random numbers.
     Rng rng(hashKey(key), 7);
@@ -472,6 +510,7 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
             ? leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
             : loadOBJPrototype(proto.OBJ_model_file, proto.normalize_OBJ_model));
     cache.insert(key, built);
+    prototypeMemo.emplace(std::make_tuple(&proto, leaflet, variant), built.get());
     return *built;
 }
 
@@ -487,10 +526,62 @@ double PlantArchitecture::Impl::leafPrototypeArea(const LeafParameters& lp, cons
     return area;
 }
 
-void tessellatePlant(PlantArchitecture::Impl& impl, Context& ctx, PlantInstance& plant) {
+void tessellatePlant(PlantArchitecture::Impl& impl, OrganSink& sink, PlantInstance& plant) {
     impl.clearCallMemos();
-    Tessellator t{impl, ctx, plant, OrganWriter(ctx, plant), {}};
+    Tessellator t{impl, plant, &sink, {}};
     t.run();
+}
+
+void tessellatePlant(PlantArchitecture::Impl& impl, Context& ctx, PlantInstance& plant) {
+    ContextSink sink(ctx, plant);
+    tessellatePlant(impl, sink, plant);
+}
+
+// ---- single organs -----------------------------------------------------------------------
+
+struct OrganPlacer::State {
+    Tessellator tessellator;
+};
+
+OrganPlacer::OrganPlacer(PlantArchitecture::Impl& impl, PlantInstance& plant)
+    : state_(std::make_unique<State>(State{Tessellator{impl, plant, nullptr, {}}})) {
+    impl.clearCallMemos();
+    state_->tessellator.computeNodes();
+}
+
+OrganPlacer::~OrganPlacer() = default;
+
+void OrganPlacer::petiole(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole) {
+    Tessellator& t = state_->tessellator;
+    t.sink = &sink;
+    Shoot& s = t.plant.shoots[shoot];
+    Phytomer& ph = s.phytomers[node];
+    const PhytomerParameters& pp =
+        t.impl.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
+    t.petiole(s, ph, int(node), ph.petioles[petiole], pp);
+}
+
+vec3 OrganPlacer::petioleStart(unsigned shoot, unsigned node, unsigned petiole) const {
+    const Tessellator& t = state_->tessellator;
+    const Shoot& s = t.plant.shoots[shoot];
+    const Phytomer& ph = s.phytomers[node];
+    return t.petioleFrame(s, ph, int(node), ph.petioles[petiole]).start;
+}
+
+void OrganPlacer::floralBud(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole,
+                            unsigned bud, bool terminal) {
+    Tessellator& t = state_->tessellator;
+    t.sink = &sink;
+    Shoot& s = t.plant.shoots[shoot];
+    if (terminal) {
+        t.terminalBud(s, t.impl.shootTypeFor(t.plant, s.type).phytomer_parameters, bud);
+        return;
+    }
+    Phytomer& ph = s.phytomers[node];
+    const PhytomerParameters& pp =
+        t.impl.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
+    Petiole& pt = ph.petioles[petiole];
+    t.floral(s, ph, int(node), pt, pt.floralBuds[bud], pp);
 }
 
 void deletePhytomerObjects(Context& ctx, Phytomer& ph) {

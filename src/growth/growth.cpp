@@ -14,6 +14,8 @@
 #include <queue>
 #include <tuple>
 
+#include "collision/growth_driver.h"
+#include "collision/steering.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 
@@ -286,6 +288,9 @@ struct Grower {
                 // previous inflorescence when no geometry update ran in between.
                 for (FlowerOrgan& fl : fb.flowers) removeObjects(fl.objects);
                 realizeInflorescence(plant, fb, pp);
+                if (impl.steering)
+                    collision::steerPeduncle(impl, plant, s, e.node, e.petiole, e.index,
+                                             e.terminal, fb);
                 fb.state = BudState::Broken;
                 s.flowering = true;
                 if (plant.stage == PhenologyStage::Vegetative) plant.stage = PhenologyStage::Reproductive;
@@ -645,6 +650,10 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
         throw Error("time step must be a finite number of days >= 0",
                     {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
     for (unsigned id : plantIDs) impl_->plant(id);  // all exist, or nothing happens
+    if (collision::collisionActive(*impl_)) {
+        collision::advanceWithCollision(*impl_, *context_, seed_, plantIDs, days);
+        return;
+    }
     std::size_t done = 0;
     for (unsigned id : plantIDs) {
         std::vector<ObjectID> deletes;

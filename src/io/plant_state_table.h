@@ -72,6 +72,10 @@ void describeState(S& f, V& v) {
     v.field({"gravity_factor", -kBig, kBig, "how far the fruit turns to the ground"},
             f.gravityFactor);
     v.field({"variant", 0, kCount, "prototype shape variant"}, f.variant);
+    v.field({"clearance_axis", -1, 1, "fruit adjustment: world axis", Check::UnitVector},
+            f.clearance.axis);
+    v.field({"clearance_angle", -kBig, kBig, "fruit adjustment, degrees (0: none)"},
+            f.clearance.angle);
 }
 
 template <class S, class V>
@@ -95,6 +99,12 @@ void describeState(S& b, V& v) {
         p.field({"peduncle_pitch", -kBig, kBig, "degrees"}, b.pedunclePitch);
         p.field({"peduncle_roll", -kBig, kBig, "degrees"}, b.peduncleRoll);
         p.field({"peduncle_curvature", -kBig, kBig, "degrees per m"}, b.peduncleCurvature);
+        p.field({"peduncle_clearance_axis", -1, 1, "turn out of solid obstacles: world axis",
+                 Check::UnitVector},
+                b.peduncleClearance.axis);
+        p.field({"peduncle_clearance_angle", -kBig, kBig,
+                 "turn out of solid obstacles, degrees (0: none)"},
+                b.peduncleClearance.angle);
         p.list("flower", b.flowers);
     });
 }
@@ -126,6 +136,11 @@ void describeState(S& p, V& v) {
     v.legacy("leaflet_scale");  // the listing's value; each leaf here carries its own scale
     v.field({"petiole_taper", -kBig, kBig, "tip radius / base radius"}, p.taper);
     v.field({"petiole_azimuth", -kBig, kBig, "about the internode axis, degrees"}, p.azimuth);
+    v.field({"clearance_axis", -1, 1, "turn out of solid obstacles: world axis",
+             Check::UnitVector},
+            p.clearance.axis);
+    v.field({"clearance_angle", -kBig, kBig, "turn out of solid obstacles, degrees (0: none)"},
+            p.clearance.angle);
     v.list("leaf", p.leaves);
     v.list("vegetative_bud", p.vegetativeBuds);
     v.list("floral_bud", p.floralBuds);

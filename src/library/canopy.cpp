@@ -13,6 +13,8 @@
 
 #include <omp.h>
 
+#include "collision/collision_world.h"
+#include "collision/growth_driver.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
@@ -54,11 +56,17 @@ void checkCanopyArguments(float age, float germination) {
                      .validRange = "0 to 1"});
 }
 
+struct CanopyWorker {
+    Context ctx;
+    std::unique_ptr<PlantArchitecture> arch;
+};
+
 }  // namespace
 
 // Copies a plant grown in another Context into this one (objects in ascending ID order, so
-// IDs follow plant order) and takes over its state with the object IDs remapped.
-void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant) {
+// IDs follow plant order) and takes over its state, with the object IDs remapped, and its
+// own attraction points.
+void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant, Impl& owner) {
     std::vector<ObjectID> objects;
     forEachObjectID(plant, [&](ObjectID& o) {
         if (o != kNoObject) objects.push_back(o);
@@ -81,9 +89,19 @@ void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant) {
         if (o != kNoObject) o = remap.at(o);
     });
     const unsigned id = plant.id;
+    owner.plants.erase(id);
     impl_->plants.emplace(id, std::move(plant));
+    auto own = owner.plantAttraction.find(id);
+    if (own != owner.plantAttraction.end()) impl_->plantAttraction[id] = own->second;
 }
 
+// With soft collision avoidance the plants must see each other while they grow, so they are
+// first built (initial structure only) by the workers, then grown together by
+// collision::growTogether (each step on all threads, every plant seeing the scene as it stood
+// at the step's start), then tessellated by their workers and merged in plant order.
+// Without it, each plant is merged into the caller's Context as soon as it is grown, in plant
+// order (an ordered region), and its worker's Context emptied: the merge of one plant
+// overlaps the growth of the next ones, and at most one plant per thread is held twice.
 std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     const std::vector<vec3>& positions, float age,
     const std::map<std::string, float>& buildParameters) {
@@ -91,16 +109,15 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         throw Error("no species loaded: call loadPlantModelFromLibrary first",
                     {.parameter = "species", .validRange = "one of the library species"});
     resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
+    const bool together = impl_->collision && impl_->collision->soft();
+    // Plants with attraction points of their own count their work in this scene's stats.
+    if (impl_->species->attraction) collision::worldOf(*impl_);
     const unsigned first = impl_->nextPlantID;
     const int n = int(positions.size());
     const int threads = std::max(1, std::min(omp_get_max_threads(), n));
 
-    struct Worker {
-        Context ctx;
-        std::unique_ptr<PlantArchitecture> arch;
-    };
-    std::vector<Worker> workers(static_cast<std::size_t>(threads));
-    for (Worker& w : workers) {
+    std::vector<CanopyWorker> workers(static_cast<std::size_t>(threads));
+    for (CanopyWorker& w : workers) {
         w.arch = std::make_unique<PlantArchitecture>(&w.ctx);
         w.arch->seed_ = seed_;
         Impl& wi = *w.arch->impl_;
@@ -111,41 +128,95 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.floralPrototypes = impl_->floralPrototypes;
         wi.creationFunctions = impl_->creationFunctions;
         wi.callbackFunctions = impl_->callbackFunctions;
+        if (!together) wi.collision = impl_->collision;
     }
 
-    // Grow every plant in a worker. As soon as a plant is grown it is merged into the
-    // caller's Context, in plant order (the ordered region), and its worker's Context is
-    // emptied: the merge of one plant overlaps the growth of the next ones, and at most one
-    // plant per thread is held twice.
+    std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
     std::vector<std::string> errors(static_cast<std::size_t>(n));
+    auto throwFirstError = [&] {
+        for (int i = 0; i < n; ++i)
+            if (!errors[std::size_t(i)].empty())
+                throw Error("building canopy plant " + std::to_string(i) + " failed: " +
+                            errors[std::size_t(i)]);
+    };
     std::vector<unsigned> ids;
-    bool failed = false;
+    if (!together) {
+        bool failed = false;
 #pragma omp parallel for ordered schedule(dynamic, 1) num_threads(threads)
+        for (int i = 0; i < n; ++i) {
+            CanopyWorker& worker = workers[std::size_t(omp_get_thread_num())];
+            PlantArchitecture& w = *worker.arch;
+            const unsigned id = first + unsigned(i);
+            try {
+                w.impl_->nextPlantID = id;  // the plant's ID picks its stream
+                w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
+            } catch (const std::exception& e) {
+                errors[std::size_t(i)] = e.what();
+            }
+#pragma omp ordered
+            {
+                if (!errors[std::size_t(i)].empty()) failed = true;
+                if (!failed) {
+                    mergePlant(worker.ctx, std::move(w.impl_->plant(id)), *w.impl_);
+                    ids.push_back(id);
+                }
+                w.impl_->plants.erase(id);
+                worker.ctx.clear();
+            }
+        }
+        throwFirstError();
+        impl_->nextPlantID = first + unsigned(n);
+        return ids;
+    }
+
+    // Together: build every plant's initial structure in a worker.
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (int i = 0; i < n; ++i) {
-        Worker& worker = workers[std::size_t(omp_get_thread_num())];
-        PlantArchitecture& w = *worker.arch;
-        const unsigned id = first + unsigned(i);
+        const int t = omp_get_thread_num();
+        PlantArchitecture& w = *workers[std::size_t(t)].arch;
         try {
-            w.impl_->nextPlantID = id;  // the plant's ID picks its stream
-            w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
+            w.impl_->nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
+            w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
+            builtBy[std::size_t(i)] = t;
         } catch (const std::exception& e) {
             errors[std::size_t(i)] = e.what();
         }
-#pragma omp ordered
-        {
-            if (!errors[std::size_t(i)].empty()) failed = true;
-            if (!failed) {
-                mergePlant(worker.ctx, std::move(w.impl_->plant(id)));
-                ids.push_back(id);
-            }
-            w.impl_->plants.erase(id);
-            worker.ctx.clear();
+    }
+    throwFirstError();
+
+    // Grow them together, then each worker regenerates its plants' geometry.
+    std::vector<collision::GrowthSlot> slots;
+    std::vector<Impl*> impls;
+    for (CanopyWorker& w : workers) {
+        w.arch->impl_->collision = impl_->collision;
+        impls.push_back(w.arch->impl_.get());
+    }
+    for (int i = 0; i < n; ++i) {
+        Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
+        const unsigned id = first + unsigned(i);
+        slots.push_back({&owner.plant(id), collision::attractionFor(owner, id), {}});
+    }
+    collision::growTogether(*impl_->collision, slots, age, seed_, impls, impl_->progress);
+    // Each worker regenerates its own plants' geometry in its own Context.
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+    for (int t = 0; t < threads; ++t) {
+        CanopyWorker& w = workers[std::size_t(t)];
+        for (int i = 0; i < n; ++i) {
+            if (builtBy[std::size_t(i)] != t) continue;
+            collision::GrowthSlot& slot = slots[std::size_t(i)];
+            for (ObjectID o : slot.deletes)
+                if (w.ctx.doesObjectExist(o)) w.ctx.deleteObject(o);
+            tessellatePlant(*w.arch->impl_, w.ctx, *slot.plant);
         }
     }
-    for (int i = 0; i < n; ++i)
-        if (!errors[std::size_t(i)].empty())
-            throw Error("building canopy plant " + std::to_string(i) + " failed: " +
-                        errors[std::size_t(i)]);
+
+    // Merge in plant order.
+    for (int i = 0; i < n; ++i) {
+        CanopyWorker& worker = workers[std::size_t(builtBy[std::size_t(i)])];
+        const unsigned id = first + unsigned(i);
+        mergePlant(worker.ctx, std::move(worker.arch->impl_->plant(id)), *worker.arch->impl_);
+        ids.push_back(id);
+    }
     impl_->nextPlantID = first + unsigned(n);
     return ids;
 }

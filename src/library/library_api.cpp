@@ -41,13 +41,27 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
     if (!(age >= 0.0f) || !std::isfinite(age))
         throw Error("invalid plant age", {.parameter = "age", .value = std::to_string(age),
                                           .validRange = ">= 0 days"});
+    resolveBuildParameters(*impl_->species, build_parameters);  // range errors before any change
+    const unsigned id = buildPlantStructure(base_position, build_parameters);
+    try {
+        advanceTime(id, age);
+    } catch (...) {
+        deletePlantInstance(id);
+        throw;
+    }
+    return id;
+}
+
+unsigned PlantArchitecture::buildPlantStructure(const vec3& base_position,
+                                                const std::map<std::string, float>& build_parameters) {
     const SpeciesModel& model = *impl_->species;
-    resolveBuildParameters(model, build_parameters);  // range errors before any change
     const unsigned id = addPlantInstance(base_position, 0.0f);
     try {
         impl_->plant(id).name = model.name;
         buildInitialStructure(*this, id, model, build_parameters);
-        advanceTime(id, age);
+        if (model.attraction)
+            enableAttractionPoints(id, speciesAttractionPoints(model, seed(), id, base_position,
+                                                               build_parameters));
     } catch (...) {
         deletePlantInstance(id);
         throw;

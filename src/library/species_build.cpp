@@ -208,7 +208,93 @@ private:
     std::vector<unsigned> created_;
 };
 
+// Evaluates the expressions of <attraction_points> with the build parameters.
+class AttractionEvaluator {
+public:
+    AttractionEvaluator(const SpeciesModel& s, const std::map<std::string, float>& parameters,
+                        Rng rng)
+        : species_(s), rng_(rng) {
+        for (const auto& [name, value] : parameters) variables_[name] = value;
+    }
+
+    double number(int line, const std::string& parameter, const std::string& text) {
+        try {
+            return expr::evaluate(text, variables_, rng_);
+        } catch (const Error& e) {
+            ErrorContext c = e.context();
+            c.file = species_.sourceFile;
+            c.line = line;
+            c.parameter = "attraction_points." + parameter;
+            throw Error(e.message(), c);
+        }
+    }
+
+    vec3 vector(int line, const std::string& parameter, const std::string& text) {
+        const std::vector<std::string> parts = species_xml::splitVector(text);
+        if (parts.size() != 3)
+            throw Error("expected three expressions x, y, z separated by commas",
+                        {.file = species_.sourceFile, .line = line,
+                         .parameter = "attraction_points." + parameter, .value = text,
+                         .validRange = "e.g. \"0, 0, wire_height\""});
+        return {float(number(line, parameter, parts[0])), float(number(line, parameter, parts[1])),
+                float(number(line, parameter, parts[2]))};
+    }
+
+private:
+    const SpeciesModel& species_;
+    Rng rng_;
+    std::map<std::string, double> variables_;
+};
+
 }  // namespace
+
+AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint64_t seed,
+                                         unsigned plantID, const vec3& base,
+                                         const std::map<std::string, float>& overrides) {
+    if (!species.attraction)
+        throw Error("species declares no attraction points",
+                    {.file = species.sourceFile, .parameter = "attraction_points"});
+    const SpeciesAttraction& a = *species.attraction;
+    AttractionEvaluator ev(species, resolveBuildParameters(species, overrides),
+                           Rng::forPlant(seed, 3 * (std::uint64_t(1) << 61) + plantID));
+    AttractionPoints out;
+    out.halfAngle = float(ev.number(a.line, "half_angle", a.halfAngle));
+    out.lookAhead = float(ev.number(a.line, "look_ahead", a.lookAhead));
+    out.inertia = float(ev.number(a.line, "inertia", a.inertia));
+    out.shootTypes = a.shootTypes;
+    auto outOfRange = [&](const char* what, double v, const char* range) {
+        throw Error("out of range", {.file = species.sourceFile, .line = a.line,
+                                     .parameter = std::string("attraction_points.") + what,
+                                     .value = text::formatDouble(v), .validRange = range});
+    };
+    if (!(out.halfAngle > 0.0f && out.halfAngle < 180.0f))
+        outOfRange("half_angle", out.halfAngle, "> 0 and < 180 degrees");
+    if (!(out.lookAhead > 0.0f && out.lookAhead <= 100.0f))
+        outOfRange("look_ahead", out.lookAhead, "> 0 and <= 100 m");
+    if (!(out.inertia >= 0.0f && out.inertia <= 1.0f)) outOfRange("inertia", out.inertia, "0 to 1");
+    for (std::size_t w = 0; w < a.wires.size(); ++w) {
+        const SpeciesAttraction::Wire& wire = a.wires[w];
+        const std::string path = "wire[" + std::to_string(w + 1) + "]";
+        const vec3 from = base + ev.vector(wire.line, path + ".from", wire.from);
+        const vec3 to = base + ev.vector(wire.line, path + ".to", wire.to);
+        const double spacing = ev.number(wire.line, path + ".spacing", wire.spacing);
+        const double length = glm::length(to - from);
+        if (!(spacing > 0.0) || length / spacing > 1e6)
+            throw Error("wire point spacing out of range",
+                        {.file = species.sourceFile, .line = wire.line,
+                         .parameter = "attraction_points." + path + ".spacing",
+                         .value = text::formatDouble(spacing),
+                         .validRange = "> 0 m and at most 1e6 points per wire"});
+        const int segments = std::max(1, int(std::ceil(length / spacing - 1e-4)));
+        for (int k = 0; k <= segments; ++k)
+            out.points.push_back(glm::mix(from, to, float(k) / float(segments)));
+    }
+    for (std::size_t p = 0; p < a.points.size(); ++p)
+        out.points.push_back(base + ev.vector(a.points[p].line,
+                                              "point[" + std::to_string(p + 1) + "].at",
+                                              a.points[p].at));
+    return out;
+}
 
 void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species) {
     for (const auto& [label, params] : species.shootTypes) {

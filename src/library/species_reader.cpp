@@ -363,7 +363,7 @@ void readGroup(const Source& src, Lines& lines, xml_node e, const std::string& p
 
 const std::vector<std::string> kTopLevel = {
     "name",       "common_name", "latin_name",       "plant_type", "description", "recommended_age",
-    "max_height", "phenology",   "build_parameters", "shoot_type", "build"};
+    "max_height", "phenology",   "build_parameters", "shoot_type", "build", "attraction_points"};
 
 class SpeciesReader {
 public:
@@ -387,6 +387,7 @@ public:
         xml_node build = root.child("build");
         if (!build) src_.fail(root, "build", "missing required element <build>");
         readBuild(build);
+        if (xml_node e = root.child("attraction_points")) readAttraction(e);
     }
 
 private:
@@ -578,6 +579,84 @@ private:
             m_.build.push_back(readStep(e, index, names, ids));
         }
         if (m_.build.empty()) src_.fail(build, "build", "<build> needs a <base_stem> step");
+    }
+
+    // <attraction_points half_angle look_ahead inertia shoot_types> with <wire from to
+    // spacing/> and <point at/> children; numbers are expressions over the build parameters.
+    void readAttraction(xml_node e) {
+        const std::string path = "attraction_points";
+        checkAttributes(src_, e, path, {"half_angle", "look_ahead", "inertia", "shoot_types"});
+        checkChildren(src_, e, path, {"wire", "point"}, {"wire", "point"});
+        std::vector<std::string> names;
+        for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
+        auto expression = [&](xml_node n, const std::string& at, const char* attribute,
+                              bool vector, bool required, std::string& out) {
+            pugi::xml_attribute a = n.attribute(attribute);
+            if (!a) {
+                if (required) requiredAttribute(src_, n, at, attribute);
+                return;
+            }
+            const std::string value = collapseSpaces(a.value());
+            const std::string where = at + "." + attribute;
+            const std::vector<std::string> parts =
+                vector ? species_xml::splitVector(value) : std::vector<std::string>{value};
+            if (parts.size() != 3 && vector)
+                src_.fail(n, where, "expected three expressions x, y, z separated by commas",
+                          value, "e.g. \"0, 0, wire_height\"");
+            for (const std::string& part : parts) {
+                try {
+                    expr::check(part, names);
+                } catch (const Error& err) {
+                    src_.relocate(err, n, where);
+                }
+            }
+            out = value;
+        };
+        SpeciesAttraction a;
+        a.line = src_.line(e);
+        m_.lines[path] = a.line;
+        expression(e, path, "half_angle", false, false, a.halfAngle);
+        expression(e, path, "look_ahead", false, false, a.lookAhead);
+        expression(e, path, "inertia", false, false, a.inertia);
+        if (pugi::xml_attribute t = e.attribute("shoot_types")) {
+            std::string list = t.value();
+            std::replace(list.begin(), list.end(), ',', ' ');
+            std::stringstream ss(list);
+            const std::vector<std::string> labels = shootTypeLabels();
+            for (std::string label; ss >> label;) {
+                if (!m_.shootTypes.count(label))
+                    src_.fail(e, path + ".shoot_types", unknownMessage("shoot type", label, labels),
+                              label, validList(labels));
+                a.shootTypes.push_back(label);
+            }
+        }
+        int wires = 0, points = 0;
+        for (xml_node c : e.children()) {
+            if (!isElement(c)) continue;
+            const std::string kind = c.name();
+            if (kind == "wire") {
+                const std::string at = path + ".wire[" + std::to_string(++wires) + "]";
+                checkAttributes(src_, c, at, {"from", "to", "spacing"});
+                checkChildren(src_, c, at, {});
+                SpeciesAttraction::Wire w;
+                w.line = src_.line(c);
+                expression(c, at, "from", true, true, w.from);
+                expression(c, at, "to", true, true, w.to);
+                expression(c, at, "spacing", false, false, w.spacing);
+                a.wires.push_back(w);
+            } else {
+                const std::string at = path + ".point[" + std::to_string(++points) + "]";
+                checkAttributes(src_, c, at, {"at"});
+                checkChildren(src_, c, at, {});
+                SpeciesAttraction::Point p;
+                p.line = src_.line(c);
+                expression(c, at, "at", true, true, p.at);
+                a.points.push_back(p);
+            }
+        }
+        if (a.wires.empty() && a.points.empty())
+            src_.fail(e, path, "<attraction_points> needs at least one <wire> or <point>");
+        m_.attraction = std::move(a);
     }
 
     BuildStep readStep(xml_node e, int index, const std::vector<std::string>& names,

@@ -223,6 +223,31 @@ void writeBuild(Writer& w, const SpeciesModel& m) {
     w.close(1, "build");
 }
 
+void writeAttraction(Writer& w, const SpeciesAttraction& a) {
+    auto& o = w.out();
+    w.indent(1);
+    o << "<attraction_points half_angle=\"" << escape(a.halfAngle) << "\" look_ahead=\""
+      << escape(a.lookAhead) << "\" inertia=\"" << escape(a.inertia) << "\"";
+    if (!a.shootTypes.empty()) {
+        std::string list;
+        for (const std::string& t : a.shootTypes) list += (list.empty() ? "" : " ") + t;
+        o << " shoot_types=\"" << escape(list) << "\"";
+    }
+    o << ">";
+    w.comment("relative to the plant base; degrees, m");
+    o << "\n";
+    for (const SpeciesAttraction::Wire& wire : a.wires) {
+        w.indent(2);
+        o << "<wire from=\"" << escape(wire.from) << "\" to=\"" << escape(wire.to)
+          << "\" spacing=\"" << escape(wire.spacing) << "\"/>\n";
+    }
+    for (const SpeciesAttraction::Point& p : a.points) {
+        w.indent(2);
+        o << "<point at=\"" << escape(p.at) << "\"/>\n";
+    }
+    w.close(1, "attraction_points");
+}
+
 }  // namespace
 
 void writeSpecies(const SpeciesModel& m, std::ostream& out, const SpeciesWriteOptions& options) {
@@ -262,6 +287,7 @@ void writeSpecies(const SpeciesModel& m, std::ostream& out, const SpeciesWriteOp
     }
 
     writeBuild(w, m);
+    if (m.attraction) writeAttraction(w, *m.attraction);
     out << "</" << species_xml::kRoot << ">\n";
 }
 

@@ -112,6 +112,28 @@ inline bool isFlagAttribute(const std::string& attribute) {
            attribute == "apex";
 }
 
+/// The parts of a vector of expressions "x, y, z": split at the commas outside parentheses
+/// (so "uniform(0, 1), 0, h" has three parts). Parts are trimmed.
+inline std::vector<std::string> splitVector(const std::string& text) {
+    std::vector<std::string> parts(1);
+    int depth = 0;
+    for (char c : text) {
+        if (c == '(') ++depth;
+        if (c == ')') --depth;
+        if (c == ',' && depth == 0) {
+            parts.emplace_back();
+            continue;
+        }
+        parts.back() += c;
+    }
+    for (std::string& p : parts) {
+        const auto a = p.find_first_not_of(" \t\n\r");
+        const auto b = p.find_last_not_of(" \t\n\r");
+        p = a == std::string::npos ? std::string() : p.substr(a, b - a + 1);
+    }
+    return parts;
+}
+
 /// Attributes whose value is a name rather than an expression.
 inline bool isNameAttribute(const std::string& attribute) {
     return attribute == "id" || attribute == "parent" || attribute == "type";

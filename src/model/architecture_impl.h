@@ -12,6 +12,13 @@
 
 namespace plantarch {
 
+namespace collision {
+class World;
+class AttractionIndex;
+class ProxyCache;
+struct Steering;
+}  // namespace collision
+
 /// Prototypes built once per (function, parameters, leaflet index, variant) and placed by
 /// transform, so a canopy does not rebuild a leaf mesh per leaf.
 class PrototypeCache {
@@ -38,6 +45,15 @@ struct PlantArchitecture::Impl {
     ProgressCallback progress;
     std::shared_ptr<const SpeciesModel> species;  ///< the loaded species, if any
 
+    // Collision avoidance (collision/): the scene (shared with canopy workers; null until
+    // enabled), each plant's own attraction points, collision proxies of the cached
+    // prototypes (cleared with the cache), and the steering of the plant being grown (set
+    // only while growth runs, so hand-built shoots are never steered).
+    std::shared_ptr<collision::World> collision;
+    std::map<unsigned, std::shared_ptr<const collision::AttractionIndex>> plantAttraction;
+    std::shared_ptr<collision::ProxyCache> proxies;
+    collision::Steering* steering = nullptr;
+
     /// The prototype a leaf uses (built and cached on first use).
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf);
     /// One-sided area of a leaf prototype at unit scale (cached).
@@ -46,9 +62,15 @@ struct PlantArchitecture::Impl {
     /// (shoot types do not change within one); cleared at the start of each.
     std::map<const LeafPrototype*, std::string> prototypeKeys;
     std::map<std::tuple<const LeafPrototype*, int, unsigned>, double> prototypeAreas;
+    std::map<std::tuple<const LeafPrototype*, int, unsigned>, const OrganPrototype*> prototypeMemo;
+    /// Set while plants grow together in many short steps (collision avoidance): shoot types
+    /// cannot change meanwhile, so the memos stay valid from one step to the next.
+    bool memosPinned = false;
     void clearCallMemos() {
+        if (memosPinned) return;
         prototypeKeys.clear();
         prototypeAreas.clear();
+        prototypeMemo.clear();
     }
 
     PlantInstance& plant(unsigned id);

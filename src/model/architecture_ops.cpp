@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "collision/collision_world.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 
@@ -209,6 +210,7 @@ void PlantArchitecture::registerLeafPrototype(const std::string& name, LeafProto
         throw Error("a leaf prototype needs a name and a function", {.parameter = "name", .value = name});
     impl_->leafPrototypes[name] = std::move(fn);
     impl_->cache.clear();
+    impl_->proxies.reset();
 }
 
 void PlantArchitecture::registerFloralPrototype(const std::string& name,
@@ -218,6 +220,7 @@ void PlantArchitecture::registerFloralPrototype(const std::string& name,
                     {.parameter = "name", .value = name});
     impl_->floralPrototypes[name] = std::move(fn);
     impl_->cache.clear();
+    impl_->proxies.reset();
 }
 
 bool PlantArchitecture::hasLeafPrototype(const std::string& name) const {
@@ -232,6 +235,9 @@ bool PlantArchitecture::hasFloralPrototype(const std::string& name) const {
 
 void PlantArchitecture::updateGeometry(unsigned plantID) {
     tessellatePlant(*impl_, *context_, impl_->plant(plantID));
+    // An edit outside growth: the soft collision scene reads the plant again at the next
+    // call. (Without soft avoidance canopy workers share the scene: nothing is written.)
+    if (impl_->collision && impl_->collision->soft()) impl_->collision->stale[plantID] = true;
 }
 
 // ---- queries ---------------------------------------------------------------------------

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <utility>
 
-#include "geometry/tube.h"
 #include <filesystem>
 
+#include "collision/steering.h"
+#include "geometry/tube.h"
+#include "collision/collision_world.h"
 #include "model/architecture_impl.h"
 #include "plantarch/OrganLibrary.h"
 #include "plantarch/OrganPrototypes.h"
@@ -281,12 +283,15 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
         in.rollReference = glm::length(ref) > 1e-6f ? glm::normalize(ref)
                                                    : geometry::anyPerpendicular(in.guide);
     }
+    // Collision avoidance and attraction points turn the axis of internodes made by growth.
+    if (impl.steering) collision::steerShootAxis(impl, plant, shoot, in, lengthMax);
     in.pitch = pp.internode.pitch.sample(plant.rng);
     const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
     const float p = in.pitch * kDeg;
     in.direction = glm::normalize(std::cos(p) * in.guide - std::sin(p) * side);
     in.length = lengthMax;
     in.radius = radius;
+    if (impl.steering) collision::keepInternodeClear(impl, plant, shoot, in);
 
     const unsigned petioles = pp.petiole.petioles_per_internode;
     for (unsigned j = 0; j < petioles; ++j) {
@@ -297,6 +302,8 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
         pt.length = pp.petiole.length.sample(plant.rng);
         pt.curvature = pp.petiole.curvature.sample(plant.rng);
         pt.taper = pp.petiole.taper.sample(plant.rng);
+        if (impl.steering)
+            collision::steerPetiole(impl, plant, shoot, in, internodeFraction, j, pt);
         addLeaves(plant, pt, pp.leaf);
         for (LeafOrgan& l : pt.leaves) l.birth = plant.age;
         pt.vegetativeBuds.resize(std::max(0, pp.internode.max_vegetative_buds_per_petiole.sample(plant.rng)));
@@ -490,6 +497,8 @@ void PlantArchitecture::deletePlantInstance(unsigned plantID) {
     PlantInstance& p = impl_->plant(plantID);
     for (Shoot& s : p.shoots) deleteShootObjects(*context_, s);
     impl_->plants.erase(plantID);
+    impl_->plantAttraction.erase(plantID);
+    if (impl_->collision) impl_->collision->removePlant(plantID);
 }
 
 unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, const ShootSpec& spec) {

@@ -1,0 +1,220 @@
+// PlantArchitecture's collision avoidance and attraction point methods.
+
+#include <cmath>
+#include <string>
+
+#include "collision/attraction.h"
+#include "collision/collision_world.h"
+#include "collision/growth_driver.h"
+#include "model/architecture_impl.h"
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+namespace {
+
+std::string num(double v) {
+    std::string s = std::to_string(v);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+}
+
+void checkRange(const char* name, double v, double lo, double hi, bool openLow,
+                const char* range) {
+    const bool ok = std::isfinite(v) && (openLow ? v > lo : v >= lo) && v <= hi;
+    if (!ok)
+        throw Error("collision option out of range",
+                    {.parameter = name, .value = num(v), .validRange = range});
+}
+
+void checkAngle(const char* name, float v) {
+    if (!(std::isfinite(v) && v > 0.0f && v < 180.0f))
+        throw Error("collision option out of range",
+                    {.parameter = name, .value = num(v), .validRange = "> 0 and < 180 degrees"});
+}
+
+void checkRays(const char* name, unsigned n) {
+    if (n < 8 || n > 16384)
+        throw Error("collision option out of range",
+                    {.parameter = name, .value = std::to_string(n), .validRange = "8 to 16384"});
+}
+
+void checkObjects(const Context& ctx, const std::vector<ObjectID>& ids, const char* name) {
+    for (ObjectID id : ids)
+        if (!ctx.doesObjectExist(id))
+            throw Error("no such object in the Context",
+                        {.parameter = name, .value = std::to_string(id),
+                         .validRange = "IDs of existing objects"});
+}
+
+void checkPoints(const std::vector<vec3>& points) {
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
+            throw Error("attraction point is not finite",
+                        {.parameter = "attraction_points[" + std::to_string(i) + "]",
+                         .validRange = "finite coordinates in m"});
+}
+
+void validate(const AttractionPoints& a) {
+    checkPoints(a.points);
+    checkAngle("view_half_angle_deg", a.halfAngle);
+    checkRange("look_ahead_distance", a.lookAhead, 0.0, 100.0, true, "> 0 and <= 100 m");
+    checkRange("inertia", a.inertia, 0.0, 1.0, false, "0 to 1");
+}
+
+}  // namespace
+
+void PlantArchitecture::enableSoftCollisionAvoidance(const SoftCollisionOptions& o) {
+    checkAngle("view_half_angle_deg", o.cone.halfAngle);
+    checkRange("look_ahead_distance", o.cone.lookAhead, 0.0, 100.0, true, "> 0 and <= 100 m");
+    checkRays("ray_count", o.cone.rays);
+    checkRange("inertia", o.cone.inertia, 0.0, 1.0, false, "0 to 1");
+    checkRange("update_interval", o.updateInterval, 1.0 / 1024.0, 365.0, false,
+               "1/1024 to 365 days");
+    checkObjects(*context_, o.objects, "obstacle_objects");
+    collision::World& w = collision::worldOf(*impl_);
+    const bool wasOn = w.soft().has_value();
+    w.setSoft(o, *context_);
+    if (!wasOn) w.clock = 0.0;
+    // Plants are (re)read at the next growth call: obstacle kinds may have changed.
+    for (const auto& [id, plant] : impl_->plants) w.stale[id] = true;
+}
+
+void PlantArchitecture::enableSoftCollisionAvoidance(float halfAngle, float lookAhead,
+                                                     unsigned rays, float inertia) {
+    SoftCollisionOptions o = impl_->collision && impl_->collision->soft()
+                                 ? *impl_->collision->soft()
+                                 : SoftCollisionOptions{};
+    o.cone = PerceptionCone{halfAngle, lookAhead, rays, inertia};
+    enableSoftCollisionAvoidance(o);
+}
+
+void PlantArchitecture::disableSoftCollisionAvoidance() {
+    if (impl_->collision) impl_->collision->setSoft(std::nullopt, *context_);
+}
+
+void PlantArchitecture::setCollisionRelevantOrgans(bool internodes, bool leaves, bool petioles,
+                                                   bool flowers, bool fruit) {
+    if (!impl_->collision || !impl_->collision->soft())
+        throw Error("soft collision avoidance is not enabled",
+                    {.parameter = "setCollisionRelevantOrgans",
+                     .validRange = "call enableSoftCollisionAvoidance first"});
+    SoftCollisionOptions o = *impl_->collision->soft();
+    o.obstacles = CollisionOrgans{internodes, leaves, petioles, flowers, fruit};
+    enableSoftCollisionAvoidance(o);
+}
+
+void PlantArchitecture::enableSolidObstacleAvoidance(const std::vector<ObjectID>& ids,
+                                                     float distance, bool fruitAdjustment) {
+    SolidObstacleOptions o;
+    o.obstacles = ids;
+    o.avoidanceDistance = distance;
+    o.fruitAdjustment = fruitAdjustment;
+    enableSolidObstacleAvoidance(o);
+}
+
+void PlantArchitecture::enableSolidObstacleAvoidance(const SolidObstacleOptions& o) {
+    if (o.obstacles.empty())
+        throw Error("no solid obstacles given",
+                    {.parameter = "obstacle_IDs", .validRange = "at least one object ID"});
+    checkObjects(*context_, o.obstacles, "obstacle_IDs");
+    checkRange("avoidance_distance", o.avoidanceDistance, 0.0, 100.0, true, "> 0 and <= 100 m");
+    checkAngle("view_half_angle_deg", o.coneHalfAngle);
+    checkRays("ray_count", o.rays);
+    collision::World& w = collision::worldOf(*impl_);
+    w.setSolid(o, *context_);
+}
+
+void PlantArchitecture::disableSolidObstacleAvoidance() {
+    if (impl_->collision) impl_->collision->setSolid(std::nullopt, *context_);
+}
+
+void PlantArchitecture::enableAttractionPoints(const std::vector<vec3>& points, float halfAngle,
+                                               float lookAhead, float inertia) {
+    enableAttractionPoints(AttractionPoints{points, halfAngle, lookAhead, inertia, {}});
+}
+
+void PlantArchitecture::enableAttractionPoints(const AttractionPoints& a) {
+    validate(a);
+    collision::worldOf(*impl_).globalAttraction = std::make_shared<collision::AttractionIndex>(a);
+}
+
+void PlantArchitecture::enableAttractionPoints(unsigned plantID, const std::vector<vec3>& points,
+                                               float halfAngle, float lookAhead, float inertia) {
+    enableAttractionPoints(plantID, AttractionPoints{points, halfAngle, lookAhead, inertia, {}});
+}
+
+void PlantArchitecture::enableAttractionPoints(unsigned plantID, const AttractionPoints& a) {
+    impl_->plant(plantID);
+    validate(a);
+    impl_->plantAttraction[plantID] = std::make_shared<collision::AttractionIndex>(a);
+}
+
+namespace {
+
+AttractionPoints current(const std::shared_ptr<const collision::AttractionIndex>& index,
+                         const std::string& which) {
+    if (!index)
+        throw Error("attraction points are not enabled" + which,
+                    {.parameter = "attraction_points",
+                     .validRange = "call enableAttractionPoints first"});
+    return index->options();
+}
+
+}  // namespace
+
+void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) {
+    AttractionPoints a = current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
+    a.points = points;
+    enableAttractionPoints(a);
+}
+
+void PlantArchitecture::updateAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
+    impl_->plant(plantID);
+    auto it = impl_->plantAttraction.find(plantID);
+    AttractionPoints a = current(it == impl_->plantAttraction.end() ? nullptr : it->second,
+                                 " for plant " + std::to_string(plantID));
+    a.points = points;
+    enableAttractionPoints(plantID, a);
+}
+
+void PlantArchitecture::appendAttractionPoints(const std::vector<vec3>& points) {
+    AttractionPoints a = current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
+    a.points.insert(a.points.end(), points.begin(), points.end());
+    enableAttractionPoints(a);
+}
+
+void PlantArchitecture::appendAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
+    impl_->plant(plantID);
+    auto it = impl_->plantAttraction.find(plantID);
+    AttractionPoints a = current(it == impl_->plantAttraction.end() ? nullptr : it->second,
+                                 " for plant " + std::to_string(plantID));
+    a.points.insert(a.points.end(), points.begin(), points.end());
+    enableAttractionPoints(plantID, a);
+}
+
+void PlantArchitecture::disableAttractionPoints() {
+    if (impl_->collision) impl_->collision->globalAttraction.reset();
+}
+
+void PlantArchitecture::disableAttractionPoints(unsigned plantID) {
+    impl_->plant(plantID);
+    impl_->plantAttraction.erase(plantID);
+}
+
+std::vector<vec3> PlantArchitecture::getAttractionPoints(unsigned plantID) const {
+    impl_->plant(plantID);
+    const collision::AttractionIndex* a = collision::attractionFor(*impl_, plantID);
+    return a ? a->options().points : std::vector<vec3>{};
+}
+
+CollisionStats PlantArchitecture::getCollisionStats() const {
+    return impl_->collision ? impl_->collision->snapshotStats() : CollisionStats{};
+}
+
+void PlantArchitecture::resetCollisionStats() {
+    if (impl_->collision) impl_->collision->resetStats();
+}
+
+}  // namespace plantarch

@@ -1,0 +1,192 @@
+// Growing plants with collision avoidance.
+//
+// Without soft avoidance each plant only perceives static things (solid obstacles, attraction
+// points), so plants grow independently, in parallel. With soft avoidance plants perceive
+// each other's organs, so they grow together in steps that end on the whole multiples of the
+// update interval of the collision clock; after each step the scene is refreshed from every
+// plant's state. Within a step every plant sees the scene as it stood at the step's start, so
+// the order (and thread) in which plants are grown changes nothing: the same seed gives the
+// same plants for any thread count. Cone rays come from per-organ streams (steering.cpp).
+
+#include "collision/growth_driver.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+
+#include "collision/attraction.h"
+#include "collision/clearance.h"
+#include "collision/collision_world.h"
+#include "collision/proxies.h"
+#include "collision/steering.h"
+
+namespace plantarch::collision {
+
+namespace {
+
+using Impl = PlantArchitecture::Impl;
+
+// Runs f(index, impl) for every index, on up to impls.size() threads (one impl per thread);
+// rethrows the error of the lowest index once all have run.
+template <class F>
+void forEach(std::size_t n, const std::vector<Impl*>& impls, F&& f) {
+    std::vector<std::exception_ptr> errors(n);
+    const int threads = std::max(1, std::min(int(impls.size()), int(n)));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && !omp_in_parallel())
+    for (int i = 0; i < int(n); ++i) {
+        try {
+            f(std::size_t(i), *impls[std::size_t(omp_get_thread_num())]);
+        } catch (...) {
+            errors[std::size_t(i)] = std::current_exception();
+        }
+    }
+    for (const auto& e : errors)
+        if (e) std::rethrow_exception(e);
+}
+
+// Grows one plant with its steering set on the thread's Impl, then clears its side organs.
+void growOne(const World& world, GrowthSlot& slot, Impl& impl, double days, std::uint64_t seed) {
+    Steering steering{&world, slot.attraction, seed};
+    struct Reset {
+        Impl& impl;
+        ~Reset() { impl.steering = nullptr; }
+    } reset{impl};
+    impl.steering = &steering;
+    growPlant(impl, *slot.plant, days, slot.deletes);
+    clearOrgans(impl, world, *slot.plant);
+}
+
+void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which,
+             const std::vector<Impl*>& impls) {
+    if (!world.soft() || which.empty()) return;
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<unsigned> ids;
+    for (std::size_t i : which) ids.push_back(slots[i].plant->id);
+    world.reservePlants(ids);
+    const CollisionOrgans organs = world.soft()->obstacles;
+    forEach(which.size(), impls, [&](std::size_t k, Impl& impl) {
+        PlantInstance& plant = *slots[which[k]].plant;
+        TriangleSoup soup;
+        std::vector<OrganTag> tags;
+        buildProxies(impl, plant, organs, *world.memos.at(plant.id), soup, tags);
+        world.setPlantProxies(plant.id, std::move(soup), std::move(tags));
+    });
+    world.commit();
+    for (unsigned id : ids) world.stale.erase(id);
+    AtomicStats& st = world.stats();
+    st.sceneRefreshes.fetch_add(1, std::memory_order_relaxed);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    st.refreshSeconds.store(st.refreshSeconds.load() + seconds);
+}
+
+}  // namespace
+
+void refreshPlants(World& world, std::vector<GrowthSlot>& slots, const std::vector<Impl*>& impls) {
+    std::vector<std::size_t> all(slots.size());
+    for (std::size_t i = 0; i < slots.size(); ++i) all[i] = i;
+    refresh(world, slots, all, impls);
+}
+
+void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std::uint64_t seed,
+                  const std::vector<Impl*>& impls, const ProgressCallback& progress) {
+    if (!world.soft()) {
+        forEach(slots.size(), impls,
+                [&](std::size_t i, Impl& impl) { growOne(world, slots[i], impl, days, seed); });
+        if (progress) progress("growing", 1.0);
+        return;
+    }
+    // Memos of prototype keys and areas last for the whole call (shoot types cannot change).
+    struct Pin {
+        const std::vector<Impl*>& impls;
+        explicit Pin(const std::vector<Impl*>& i) : impls(i) {
+            for (Impl* impl : impls) {
+                impl->clearCallMemos();
+                impl->memosPinned = true;
+            }
+        }
+        ~Pin() {
+            for (Impl* impl : impls) impl->memosPinned = false;
+        }
+    } pin(impls);
+    // Plants new to the scene, or edited since it was refreshed, are seen from now on.
+    std::vector<std::size_t> fresh, all;
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+        all.push_back(i);
+        const unsigned id = slots[i].plant->id;
+        if (!world.hasPlant(id) || world.stale.count(id)) fresh.push_back(i);
+    }
+    refresh(world, slots, fresh, impls);
+
+    const double interval = world.soft()->updateInterval;
+    double done = 0.0;
+    while (days - done > 1e-9) {
+        const double clock = world.clock;
+        const double next = (std::floor(clock / interval + 1e-9) + 1.0) * interval;
+        const bool reaches = days - done >= next - clock - 1e-9;
+        const double step = reaches ? next - clock : days - done;
+        forEach(slots.size(), impls,
+                [&](std::size_t i, Impl& impl) { growOne(world, slots[i], impl, step, seed); });
+        world.clock = reaches ? next : clock + step;
+        done += step;
+        if (reaches) refresh(world, slots, all, impls);
+        if (progress) progress("growing", std::min(1.0, done / days));
+    }
+}
+
+std::unique_ptr<Impl> workerImpl(const Impl& impl) {
+    auto w = std::make_unique<Impl>();
+    w->shootTypes = impl.shootTypes;
+    w->leafPrototypes = impl.leafPrototypes;
+    w->floralPrototypes = impl.floralPrototypes;
+    w->creationFunctions = impl.creationFunctions;
+    w->callbackFunctions = impl.callbackFunctions;
+    w->cache = impl.cache;  // shared immutable prototypes
+    w->defaultPhenology = impl.defaultPhenology;
+    w->species = impl.species;
+    w->collision = impl.collision;
+    return w;
+}
+
+const AttractionIndex* attractionFor(const Impl& impl, unsigned plantID) {
+    auto it = impl.plantAttraction.find(plantID);
+    if (it != impl.plantAttraction.end()) return it->second.get();
+    return impl.collision ? impl.collision->globalAttraction.get() : nullptr;
+}
+
+bool collisionActive(const Impl& impl) {
+    if (!impl.plantAttraction.empty()) return true;
+    const World* w = impl.collision.get();
+    return w && (w->soft() || w->solid() || w->globalAttraction);
+}
+
+World& worldOf(Impl& impl) {
+    if (!impl.collision) impl.collision = std::make_shared<World>();
+    return *impl.collision;
+}
+
+void advanceWithCollision(Impl& impl, Context& ctx, std::uint64_t seed,
+                          const std::vector<unsigned>& plantIDs, double days) {
+    World& world = worldOf(impl);
+    std::vector<GrowthSlot> slots;
+    for (unsigned id : plantIDs) slots.push_back({&impl.plant(id), attractionFor(impl, id), {}});
+    // Helpers for the other threads when plants grow together (they share nothing mutable).
+    std::vector<std::unique_ptr<Impl>> helpers;
+    std::vector<Impl*> impls{&impl};
+    const int threads = omp_in_parallel() ? 1 : omp_get_max_threads();
+    for (int t = 1; t < std::min(threads, int(slots.size())); ++t) {
+        helpers.push_back(workerImpl(impl));
+        impls.push_back(helpers.back().get());
+    }
+    growTogether(world, slots, days, seed, impls, impl.progress);
+    for (GrowthSlot& slot : slots) {
+        for (ObjectID o : slot.deletes)
+            if (ctx.doesObjectExist(o)) ctx.deleteObject(o);
+        tessellatePlant(impl, ctx, *slot.plant);
+    }
+}
+
+}  // namespace plantarch::collision

@@ -1,0 +1,298 @@
+// Organ proxies and overlap tests (see proxies.h).
+
+#include "collision/proxies.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plantarch::collision {
+
+namespace {
+
+// Stations along a leaf blade for its outline proxy: 2 (base, middle, tip) give a hexagon of
+// 4 triangles per leaf.
+constexpr int kStations = 2;
+
+// The blade as a strip of quads between stations along x: at each station the extent of
+// the vertices in y (width) and their mean z (curvature).
+TriangleSoup bladeOutline(const OrganPrototype& proto, const AABB& bounds) {
+    TriangleSoup out;
+    const float x0 = bounds.min.x, x1 = bounds.max.x;
+    if (!(x1 > x0)) return out;
+    struct Station {
+        float ymin = 1e30f, ymax = -1e30f, zsum = 0.0f;
+        int n = 0;
+    };
+    Station st[kStations + 1];
+    const float step = (x1 - x0) / float(kStations);
+    for (const PrototypePart& part : proto)
+        for (const vec3& p : part.mesh.positions) {
+            const int k = std::clamp(int(std::lround((p.x - x0) / step)), 0, kStations);
+            st[k].ymin = std::min(st[k].ymin, p.y);
+            st[k].ymax = std::max(st[k].ymax, p.y);
+            st[k].zsum += p.z;
+            st[k].n++;
+        }
+    // Empty stations borrow their neighbours' (thin leaves with sparse vertices).
+    for (int k = 0; k <= kStations; ++k)
+        if (st[k].n == 0) {
+            for (int d = 1; d <= kStations; ++d) {
+                const int a = k - d, b = k + d;
+                if (a >= 0 && st[a].n > 0) { st[k] = st[a]; break; }
+                if (b <= kStations && st[b].n > 0) { st[k] = st[b]; break; }
+            }
+        }
+    auto left = [&](int k) {
+        return vec3(x0 + step * float(k), st[k].ymin, st[k].zsum / float(std::max(1, st[k].n)));
+    };
+    auto right = [&](int k) {
+        return vec3(x0 + step * float(k), st[k].ymax, st[k].zsum / float(std::max(1, st[k].n)));
+    };
+    TriangleSoup all;
+    float total = 0.0f;
+    for (int k = 0; k < kStations; ++k) {
+        const vec3 a = left(k), b = right(k), c = right(k + 1), d = left(k + 1);
+        all.insert(all.end(), {a, b, c, a, c, d});
+        total += glm::length(glm::cross(b - a, c - a)) + glm::length(glm::cross(c - a, d - a));
+    }
+    // Slivers at a pointed base or tip (under 2% of the outline) add nothing but cost.
+    for (std::size_t t = 0; t < all.size(); t += 3)
+        if (glm::length(glm::cross(all[t + 1] - all[t], all[t + 2] - all[t])) > 0.02f * total)
+            out.insert(out.end(), {all[t], all[t + 1], all[t + 2]});
+    return out;
+}
+
+TriangleSoup boxTriangles(const AABB& b) {
+    vec3 c[8];
+    for (int i = 0; i < 8; ++i)
+        c[i] = {(i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                (i & 4) ? b.max.z : b.min.z};
+    static const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6},
+                                     {0, 1, 4}, {1, 5, 4}, {2, 6, 3}, {3, 6, 7},
+                                     {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    TriangleSoup out;
+    for (const auto& f : faces) out.insert(out.end(), {c[f[0]], c[f[1]], c[f[2]]});
+    return out;
+}
+
+void appendTransformed(const TriangleSoup& local, const mat4& xf, TriangleSoup& out) {
+    for (const vec3& p : local) out.push_back(vec3(xf * glm::vec4(p, 1.0f)));
+}
+
+}  // namespace
+
+const PrototypeShape& ProxyCache::shape(const OrganPrototype& proto) {
+    auto it = shapes_.find(&proto);
+    if (it != shapes_.end()) return it->second;
+    PrototypeShape s;
+    for (const PrototypePart& part : proto)
+        for (const vec3& p : part.mesh.positions) s.bounds.add(p);
+    if (!s.bounds.empty()) {
+        s.outline = bladeOutline(proto, s.bounds);
+        s.box = boxTriangles(s.bounds);
+    }
+    return shapes_.emplace(&proto, std::move(s)).first->second;
+}
+
+ProxyCache& proxyCache(PlantArchitecture::Impl& impl) {
+    if (!impl.proxies) impl.proxies = std::make_shared<ProxyCache>();
+    return *impl.proxies;
+}
+
+// ---- proxies ---------------------------------------------------------------------------
+
+namespace {
+
+// Everything that shapes a petiole and its leaves relative to the petiole's start.
+void petioleKey(const Phytomer& ph, const Petiole& pt, std::vector<float>& key) {
+    const Internode& in = ph.internode;
+    key.clear();
+    for (const vec3& v : {in.direction, in.guide, in.rollReference, pt.clearance.axis})
+        key.insert(key.end(), {v.x, v.y, v.z});
+    key.insert(key.end(), {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle,
+                           ph.leafFraction});
+    for (const LeafOrgan& l : pt.leaves) key.push_back(l.removed ? 1.0f : 0.0f);
+}
+
+}  // namespace
+
+void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
+    out.clear();
+    tags.clear();
+    if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
+        ProxySink sink(proxyCache(impl), organs, out, tags);
+        tessellatePlant(impl, sink, plant);
+        return;
+    }
+    if (!organs.leaves) return;
+    OrganPlacer placer(impl, plant);
+    TriangleSoup scratch;
+    std::vector<OrganTag> scratchTags;
+    ProxySink sink(proxyCache(impl), organs, scratch, scratchTags);
+    std::vector<float> key;
+    for (const Shoot& s : plant.shoots) {
+        if (s.removed) continue;
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const Phytomer& ph = s.phytomers[k];
+            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+                petioleKey(ph, ph.petioles[j], key);
+                PlantProxyMemo::Entry& e =
+                    memo.petioles[(std::uint64_t(s.id) << 40) | (std::uint64_t(k) << 8) | j];
+                const vec3 start = placer.petioleStart(s.id, k, j);
+                if (e.key != key) {
+                    scratch.clear();
+                    scratchTags.clear();
+                    placer.petiole(sink, s.id, k, j);
+                    e.local.resize(scratch.size());
+                    for (std::size_t i = 0; i < scratch.size(); ++i) e.local[i] = scratch[i] - start;
+                    e.key = key;
+                }
+                for (const vec3& p : e.local) out.push_back(p + start);
+                tags.resize(out.size() / 3, organTag(s.id, k));
+            }
+        }
+    }
+}
+
+bool ProxySink::wants(OrganKind kind) const {
+    switch (kind) {
+        case OrganKind::Internode: return organs_.internodes;
+        case OrganKind::Petiole: return organs_.petioles;
+        case OrganKind::Leaf: return organs_.leaves;
+        case OrganKind::Peduncle: return organs_.petioles;
+        case OrganKind::FlowerClosed:
+        case OrganKind::FlowerOpen: return organs_.flowers;
+        case OrganKind::Fruit: return organs_.fruit;
+    }
+    return false;
+}
+
+void ProxySink::write(ObjectID&, const Mesh& mesh, const Material&, const OrganLabels& labels) {
+    for (std::uint32_t i : mesh.indices) out_.push_back(mesh.positions[i]);
+    tags_.resize(out_.size() / 3, organTag(labels.shoot->id, unsigned(labels.node)));
+}
+
+void ProxySink::writeParts(std::vector<ObjectID>&, const OrganPrototype& proto, const mat4& xf,
+                           const OrganLabels& labels) {
+    const PrototypeShape& s = cache_.shape(proto);
+    appendTransformed(labels.kind == OrganKind::Leaf ? s.outline : s.box, xf, out_);
+    tags_.resize(out_.size() / 3, organTag(labels.shoot->id, unsigned(labels.node)));
+}
+
+// ---- trial shapes ----------------------------------------------------------------------
+
+void ShapeSink::setWanted(std::initializer_list<OrganKind> kinds) {
+    std::fill(std::begin(kinds_), std::end(kinds_), false);
+    for (OrganKind k : kinds) kinds_[int(k)] = true;
+}
+
+void ShapeSink::clear() {
+    triangles.clear();
+    boxes.clear();
+    bounds = AABB{};
+}
+
+void ShapeSink::write(ObjectID&, const Mesh& mesh, const Material&, const OrganLabels&) {
+    for (std::uint32_t i : mesh.indices) {
+        triangles.push_back(mesh.positions[i]);
+        bounds.add(mesh.positions[i]);
+    }
+}
+
+void ShapeSink::writeParts(std::vector<ObjectID>&, const OrganPrototype& proto, const mat4& xf,
+                           const OrganLabels&) {
+    const PrototypeShape& s = cache_.shape(proto);
+    if (s.bounds.empty()) return;
+    OrientedBox b;
+    const vec3 localCenter = s.bounds.center();
+    const vec3 localHalf = 0.5f * s.bounds.extent();
+    b.center = vec3(xf * glm::vec4(localCenter, 1.0f));
+    for (int i = 0; i < 3; ++i) {
+        const vec3 col = vec3(xf[i]);
+        const float len = glm::length(col);
+        b.axis[i] = len > 0.0f ? col / len : vec3(i == 0, i == 1, i == 2);
+        b.half[i] = localHalf[i] * len;
+    }
+    boxes.push_back(b);
+    for (int i = 0; i < 8; ++i) {
+        vec3 corner = b.center;
+        for (int k = 0; k < 3; ++k) corner += ((i >> k) & 1 ? 1.0f : -1.0f) * b.half[k] * b.axis[k];
+        bounds.add(corner);
+    }
+}
+
+// ---- overlap tests (separating axes) ---------------------------------------------------
+
+namespace {
+
+// Projections of a point set on an axis.
+template <std::size_t N>
+void project(const vec3 (&pts)[N], vec3 axis, float& lo, float& hi) {
+    lo = hi = glm::dot(pts[0], axis);
+    for (std::size_t i = 1; i < N; ++i) {
+        const float d = glm::dot(pts[i], axis);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+    }
+}
+
+}  // namespace
+
+bool boxTriangleOverlap(const OrientedBox& box, vec3 a, vec3 b, vec3 c, float tol) {
+    // In box coordinates the box is [-half, half]; triangle corners relative to the centre.
+    const vec3 v[3] = {
+        {glm::dot(a - box.center, box.axis[0]), glm::dot(a - box.center, box.axis[1]),
+         glm::dot(a - box.center, box.axis[2])},
+        {glm::dot(b - box.center, box.axis[0]), glm::dot(b - box.center, box.axis[1]),
+         glm::dot(b - box.center, box.axis[2])},
+        {glm::dot(c - box.center, box.axis[0]), glm::dot(c - box.center, box.axis[1]),
+         glm::dot(c - box.center, box.axis[2])}};
+    const vec3 h = box.half;
+    auto separated = [&](vec3 axis) {
+        const float len = glm::length(axis);
+        if (len < 1e-12f) return false;
+        axis /= len;
+        float lo, hi;
+        project(v, axis, lo, hi);
+        const float r = h.x * std::abs(axis.x) + h.y * std::abs(axis.y) + h.z * std::abs(axis.z);
+        return lo >= r - tol || hi <= -r + tol;
+    };
+    for (int i = 0; i < 3; ++i) {
+        vec3 e(0.0f);
+        e[i] = 1.0f;
+        if (separated(e)) return false;
+    }
+    const vec3 edges[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+    if (separated(glm::cross(edges[0], edges[1]))) return false;
+    for (int i = 0; i < 3; ++i)
+        for (const vec3& e : edges) {
+            vec3 u(0.0f);
+            u[i] = 1.0f;
+            if (separated(glm::cross(u, e))) return false;
+        }
+    return true;
+}
+
+bool triangleTriangleOverlap(const std::array<vec3, 3>& t, vec3 a, vec3 b, vec3 c, float tol) {
+    const vec3 p[3] = {t[0], t[1], t[2]};
+    const vec3 q[3] = {a, b, c};
+    auto separated = [&](vec3 axis) {
+        const float len = glm::length(axis);
+        if (len < 1e-12f) return false;
+        axis /= len;
+        float plo, phi, qlo, qhi;
+        project(p, axis, plo, phi);
+        project(q, axis, qlo, qhi);
+        return plo >= qhi - tol || qlo >= phi - tol;
+    };
+    const vec3 ep[3] = {p[1] - p[0], p[2] - p[1], p[0] - p[2]};
+    const vec3 eq[3] = {q[1] - q[0], q[2] - q[1], q[0] - q[2]};
+    if (separated(glm::cross(ep[0], ep[1])) || separated(glm::cross(eq[0], eq[1]))) return false;
+    for (const vec3& e : ep)
+        for (const vec3& f : eq)
+            if (separated(glm::cross(e, f))) return false;
+    return true;
+}
+
+}  // namespace plantarch::collision

@@ -1,0 +1,102 @@
+#pragma once
+// Light stand-ins of organs for the collision scene, and oriented boxes of organs for the
+// solid-obstacle clearance tests. Both come from the tessellator's placement code through an
+// OrganSink, so they sit exactly where the organs' meshes do.
+
+#include <map>
+#include <memory>
+#include <unordered_map>
+
+#include "collision/collision_world.h"
+#include "geometry/organ_sink.h"
+
+namespace plantarch::collision {
+
+/// What collision needs of one prototype, in prototype coordinates.
+struct PrototypeShape {
+    TriangleSoup outline;  ///< a few triangles following the blade (leaves)
+    TriangleSoup box;      ///< the bounding box as 12 triangles (flowers, fruit)
+    AABB bounds;
+};
+
+/// Shapes per prototype, built on first use. Not thread-safe: one per PlantArchitecture.
+class ProxyCache {
+public:
+    const PrototypeShape& shape(const OrganPrototype& prototype);
+
+private:
+    std::map<const OrganPrototype*, PrototypeShape> shapes_;
+};
+
+/// The cache of `impl` (made on first use).
+ProxyCache& proxyCache(PlantArchitecture::Impl& impl);
+
+/// Leaf proxies of a plant's petioles kept between refreshes, relative to each petiole's
+/// start: reused while nothing that shapes the petiole and its leaves has changed (a grown
+/// leaf on a grown node keeps its proxy while the stem below it still lengthens or thickens).
+struct PlantProxyMemo {
+    struct Entry {
+        std::vector<float> key;
+        TriangleSoup local;
+    };
+    std::unordered_map<std::uint64_t, Entry> petioles;  ///< by (shoot, node, petiole)
+};
+
+/// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves
+/// alone go through `memo`; other kinds are placed afresh every time.
+void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags);
+
+/// Collects proxies of the organ kinds that are obstacles.
+class ProxySink final : public OrganSink {
+public:
+    ProxySink(ProxyCache& cache, const CollisionOrgans& organs, TriangleSoup& out,
+              std::vector<OrganTag>& tags)
+        : cache_(cache), organs_(organs), out_(out), tags_(tags) {}
+    bool wants(OrganKind kind) const override;
+    void write(ObjectID&, const Mesh& mesh, const Material&, const OrganLabels&) override;
+    void writeParts(std::vector<ObjectID>&, const OrganPrototype& prototype, const mat4& transform,
+                    const OrganLabels& labels) override;
+
+private:
+    ProxyCache& cache_;
+    const CollisionOrgans& organs_;
+    TriangleSoup& out_;
+    std::vector<OrganTag>& tags_;
+};
+
+/// An oriented box: centre, unit axes, half extents.
+struct OrientedBox {
+    vec3 center{0.0f};
+    vec3 axis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    vec3 half{0.0f};
+};
+
+/// The geometry of organs placed on trial: tubes as triangles, prototype parts as boxes.
+class ShapeSink final : public OrganSink {
+public:
+    explicit ShapeSink(ProxyCache& cache) : cache_(cache) {}
+    bool wants(OrganKind kind) const override { return kinds_[int(kind)]; }
+    void setWanted(std::initializer_list<OrganKind> kinds);
+    void write(ObjectID&, const Mesh& mesh, const Material&, const OrganLabels&) override;
+    void writeParts(std::vector<ObjectID>&, const OrganPrototype& prototype, const mat4& transform,
+                    const OrganLabels& labels) override;
+    void clear();
+
+    TriangleSoup triangles;
+    std::vector<OrientedBox> boxes;
+    AABB bounds;  ///< around everything collected
+
+private:
+    ProxyCache& cache_;
+    bool kinds_[7] = {};
+};
+
+/// Whether the box and triangle (a, b, c) overlap by more than `tolerance` (m): touching
+/// surfaces count as clear.
+bool boxTriangleOverlap(const OrientedBox& box, vec3 a, vec3 b, vec3 c, float tolerance);
+/// Whether two triangles cross by more than `tolerance`.
+bool triangleTriangleOverlap(const std::array<vec3, 3>& t, vec3 a, vec3 b, vec3 c,
+                             float tolerance);
+
+}  // namespace plantarch::collision

@@ -1,0 +1,532 @@
+// Perception cones and the three steering rules (see Collision.h and docs/collision.md).
+//
+// Cone rays are stratified over equal solid angles (rings of equal area on the unit sphere
+// times equal sectors) and jittered by a random stream keyed by (seed, plant, shoot, node,
+// organ): the plant's own numbers, drawn the same way whatever the thread, the step size or
+// the other plants, and without shifting the plant's growth stream.
+
+#include "collision/steering.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "collision/attraction.h"
+#include "collision/collision_world.h"
+#include "geometry/tube.h"
+
+namespace plantarch::collision {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kDeg = kPi / 180.0f;
+
+enum ConeKind : unsigned { kConeInternode = 1, kConePetiole = 2, kConePeduncle = 3, kConeSolid = 4 };
+
+vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
+    const float a = azimuth * kDeg;
+    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
+}
+
+std::uint64_t splitmix(std::uint64_t x) {
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+Rng coneRng(std::uint64_t seed, unsigned plant, unsigned shoot, unsigned node, ConeKind kind,
+            unsigned index) {
+    std::uint64_t h = splitmix(seed ^ 0x636f6c6c6973696fULL);  // "collisio"
+    for (std::uint64_t v : {std::uint64_t(plant), std::uint64_t(shoot), std::uint64_t(node),
+                            std::uint64_t(kind), std::uint64_t(index)})
+        h = splitmix(h ^ v);
+    return Rng(h, kind);
+}
+
+vec3 blend(vec3 current, vec3 target, float inertia) {
+    const vec3 v = inertia * current + (1.0f - inertia) * target;
+    const float len = glm::length(v);
+    return len > 1e-6f ? v / len : current;
+}
+
+// The cone's rays: `rings` bands of equal solid angle from the axis out to the half-angle,
+// each split into `sectors` equal sectors; one jittered ray per cell.
+struct ConeGrid {
+    int rings = 1, sectors = 3;
+    explicit ConeGrid(unsigned rays) {
+        rings = std::max(1, int(std::lround(std::sqrt(double(rays) / 4.0))));
+        sectors = std::max(3, int(rays) / rings);
+    }
+    int size() const { return rings * sectors; }
+};
+
+struct ConeRays {
+    std::vector<vec3> dirs;
+    void make(const ConeGrid& g, vec3 axis, float halfAngle, Rng& rng) {
+        const vec3 e1 = geometry::anyPerpendicular(axis);
+        const vec3 e2 = glm::cross(axis, e1);
+        const float oneMinusCos = 1.0f - std::cos(halfAngle * kDeg);
+        dirs.resize(std::size_t(g.size()));
+        for (int i = 0; i < g.rings; ++i)
+            for (int j = 0; j < g.sectors; ++j) {
+                const float u = (float(i) + rng.uniform01()) / float(g.rings);
+                const float phi = 2.0f * kPi * (float(j) + rng.uniform01()) / float(g.sectors);
+                const float cosT = 1.0f - u * oneMinusCos;
+                const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
+                dirs[std::size_t(i * g.sectors + j)] =
+                    glm::normalize(cosT * axis + sinT * (std::cos(phi) * e1 + std::sin(phi) * e2));
+            }
+    }
+};
+
+// Marks the cone's rays that hit triangle (p0, p1, p2) within [tnear, lookAhead]. Only the
+// rays of the cells that the triangle's bounding cap (as seen from the apex) can cover are
+// tested (Moller-Trumbore). The cap's ring range comes from cosines alone.
+struct ConeFrame {
+    vec3 apex, axis, e1, e2;
+    float cosHalf, sinHalf, tnear, lookAhead;
+};
+
+// atan2 within 1e-5 rad (a polynomial on [0, 1] and the octant symmetries); the sector ranges
+// it feeds have a margin of 1e-3 rad.
+float fastAtan2(float y, float x) {
+    const float ax = std::abs(x), ay = std::abs(y);
+    const float mx = std::max(ax, ay);
+    if (mx == 0.0f) return 0.0f;
+    const float a = std::min(ax, ay) / mx;
+    const float s = a * a;
+    float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
+    if (ay > ax) r = 1.57079637f - r;
+    if (x < 0.0f) r = 3.14159274f - r;
+    return y < 0.0f ? -r : r;
+}
+
+void rasterize(ConeSample& cone, const vec3* tri, const ConeFrame& f) {
+    const vec3 q0 = tri[0] - f.apex, q1 = tri[1] - f.apex, q2 = tri[2] - f.apex;
+    // Wholly behind the apex, for a cone no wider than a hemisphere.
+    if (f.cosHalf >= 0.0f && glm::dot(q0, f.axis) <= 0.0f && glm::dot(q1, f.axis) <= 0.0f &&
+        glm::dot(q2, f.axis) <= 0.0f)
+        return;
+    const float l0 = glm::length(q0), l1 = glm::length(q1), l2 = glm::length(q2);
+    // Beyond reach: the bounding sphere about the centroid lies past the look-ahead.
+    const vec3 centre = (q0 + q1 + q2) * (1.0f / 3.0f);
+    const float radius = std::sqrt(std::max({glm::dot(q0 - centre, q0 - centre),
+                                             glm::dot(q1 - centre, q1 - centre),
+                                             glm::dot(q2 - centre, q2 - centre)}));
+    const float dist = glm::length(centre);
+    if (dist - radius > f.lookAhead) return;
+    if (!(l0 > 0.0f && l1 > 0.0f && l2 > 0.0f)) return;
+    // The directions to the corners lie in a cap; so do all directions that hit the triangle.
+    const int rings = cone.rings, sectors = cone.sectors;
+    int ringLo = 0, ringHi = rings - 1, sectorLo = 0, sectorHi = sectors - 1;
+    const vec3 d0 = q0 / l0, d1 = q1 / l1, d2 = q2 / l2;
+    const vec3 sum = d0 + d1 + d2;
+    const float sumLen = glm::length(sum);
+    const vec3 d = sumLen > 1e-6f ? sum / sumLen : vec3(0.0f);
+    const float cb = sumLen > 1e-6f ? std::min({glm::dot(d, d0), glm::dot(d, d1), glm::dot(d, d2)}) - 1e-4f
+                                    : -1.0f;
+    if (cb > 0.0f) {  // a cap narrower than a hemisphere
+        const float sb = std::sqrt(std::max(0.0f, 1.0f - cb * cb));
+        const float c = std::clamp(glm::dot(d, f.axis), -1.0f, 1.0f);
+        const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+        // Outside the cone: the cap's centre is farther from the axis than half-angle + radius
+        // (a sum below 180 degrees when the half-angle is at most 90 or the cap is narrow).
+        const bool sumBelowPi = f.cosHalf >= 0.0f || sb < f.sinHalf;
+        if (sumBelowPi && c < f.cosHalf * cb - f.sinHalf * sb - 1e-5f) return;
+        const bool pastEdge =
+            (f.cosHalf >= 0.0f && sb >= f.sinHalf) || c < f.cosHalf * cb + f.sinHalf * sb + 1e-5f;
+        const float oneMinusCos = 1.0f - f.cosHalf;
+        auto ringOf = [&](float cosTheta) {
+            const float u = (1.0f - cosTheta) / oneMinusCos;
+            return std::clamp(int(u * float(rings)), 0, rings - 1);
+        };
+        ringHi = pastEdge ? rings - 1 : ringOf(c * cb - s * sb + 1e-5f);
+        if (c < cb) {  // the cap does not contain the axis
+            ringLo = ringOf(c * cb + s * sb - 1e-5f);
+            if (sb < s) {  // nor the opposite direction: a range of sectors
+                const float ratio = sb / s;
+                const float half = fastAtan2(ratio, std::sqrt(1.0f - ratio * ratio)) + 1e-3f;
+                float phi = fastAtan2(glm::dot(d, f.e2), glm::dot(d, f.e1));
+                if (phi < 0.0f) phi += 2.0f * kPi;
+                const float perSector = float(sectors) / (2.0f * kPi);
+                sectorLo = int(std::floor((phi - half) * perSector));
+                sectorHi = int(std::floor((phi + half) * perSector));
+                if (sectorHi - sectorLo + 1 >= sectors) {
+                    sectorLo = 0;
+                    sectorHi = sectors - 1;
+                }
+            }
+        }
+    }
+    // Hidden behind nearer triangles already: every cell it could cover is blocked.
+    bool open = false;
+    for (int jj = sectorLo; jj <= sectorHi && !open; ++jj) {
+        const int j = jj < 0 ? jj + sectors : (jj >= sectors ? jj - sectors : jj);
+        for (int i = ringLo; i <= ringHi; ++i)
+            if (!cone.blocked[std::size_t(i * sectors + j)]) {
+                open = true;
+                break;
+            }
+    }
+    if (!open) return;
+    // Edge planes through the apex: a ray hits the triangle's plane inside it when it is on
+    // the inner side of all three.
+    vec3 n0 = glm::cross(q0, q1), n1 = glm::cross(q1, q2), n2 = glm::cross(q2, q0);
+    const float volume = glm::dot(q0, n1);
+    if (std::abs(volume) < 1e-18f) return;  // seen edge-on
+    if (volume < 0.0f) {
+        n0 = -n0;
+        n1 = -n1;
+        n2 = -n2;
+    }
+    const vec3 normal = glm::cross(q1 - q0, q2 - q0);
+    const float planeDist = glm::dot(q0, normal);  // t = planeDist / dot(dir, normal)
+    const bool checkFar = std::max({l0, l1, l2}) > f.lookAhead;
+    const bool checkNear = dist - radius <= f.tnear;
+    for (int jj = sectorLo; jj <= sectorHi; ++jj) {
+        const int j = jj < 0 ? jj + sectors : (jj >= sectors ? jj - sectors : jj);
+        for (int i = ringLo; i <= ringHi; ++i) {
+            const std::size_t k = std::size_t(i * sectors + j);
+            if (cone.blocked[k]) continue;
+            const vec3& dir = cone.dirs[k];
+            if (glm::dot(dir, n0) < 0.0f || glm::dot(dir, n1) < 0.0f || glm::dot(dir, n2) < 0.0f)
+                continue;
+            if (checkFar || checkNear) {
+                const float den = glm::dot(dir, normal);
+                if (std::abs(den) < 1e-20f) continue;
+                const float t = planeDist / den;
+                if (t > f.lookAhead || t < f.tnear) continue;
+            }
+            cone.blocked[k] = 1;
+        }
+    }
+}
+
+}  // namespace
+
+void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& cone, Rng& rng,
+                float tnear, const Ignore& ignore, ConeSample& out, bool embreeRays) {
+    const ConeGrid grid(cone.rays);
+    out.rings = grid.rings;
+    out.sectors = grid.sectors;
+    out.hits = 0;
+    out.blocked.assign(std::size_t(grid.size()), 0);
+    thread_local std::vector<const vec3*> near;
+    world.softTrianglesNear(apex, cone.lookAhead + tnear, &ignore, near);
+    if (near.empty() && !embreeRays) {
+        out.dirs.clear();
+        return;  // nothing within reach: every ray is free (no rays need casting)
+    }
+    ConeRays rays;
+    rays.dirs.swap(out.dirs);
+    rays.make(grid, axis, cone.halfAngle, rng);
+    rays.dirs.swap(out.dirs);
+    world.stats().softRays.fetch_add(std::uint64_t(grid.size()), std::memory_order_relaxed);
+    if (embreeRays) {
+        for (std::size_t k = 0; k < out.dirs.size(); ++k)
+            out.blocked[k] = world.softOccluded(apex, out.dirs[k], tnear, cone.lookAhead, &ignore);
+    } else {
+        ConeFrame f;
+        f.apex = apex;
+        f.axis = axis;
+        f.e1 = geometry::anyPerpendicular(axis);
+        f.e2 = glm::cross(axis, f.e1);
+        f.cosHalf = std::cos(cone.halfAngle * kDeg);
+        f.sinHalf = std::sin(cone.halfAngle * kDeg);
+        f.tnear = tnear;
+        f.lookAhead = cone.lookAhead;
+        // Nearest first: cells they block are skipped cheaply by the triangles behind.
+        thread_local std::vector<std::pair<float, const vec3*>> order;
+        order.clear();
+        for (const vec3* tri : near) {
+            const vec3 c = (tri[0] + tri[1] + tri[2]) * (1.0f / 3.0f) - apex;
+            order.emplace_back(glm::dot(c, c), tri);
+        }
+        std::sort(order.begin(), order.end());
+        for (const auto& [d2, tri] : order) rasterize(out, tri, f);
+
+    }
+    for (char b : out.blocked) out.hits += b;
+}
+
+namespace {
+
+// Soft avoidance: the centre of the largest open gap in the cone, favouring gaps near the
+// axis; nothing when the cone is all open (growth unchanged) or all blocked.
+std::optional<vec3> softTarget(const World& world, vec3 apex, vec3 axis, const PerceptionCone& cone,
+                               Rng& rng, float tnear, const Ignore& ignore) {
+    thread_local ConeSample sample;
+    thread_local std::vector<int> component, stack;
+    AtomicStats& st = world.stats();
+    const auto started = std::chrono::steady_clock::now();
+    struct Timer {
+        AtomicStats& st;
+        std::chrono::steady_clock::time_point started;
+        ~Timer() {
+            st.coneNanoseconds.fetch_add(
+                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - started)
+                    .count(),
+                std::memory_order_relaxed);
+        }
+    } timer{st, started};
+    sampleCone(world, apex, axis, cone, rng, tnear, ignore, sample);
+    st.softCones.fetch_add(1, std::memory_order_relaxed);
+    const int n = sample.rings * sample.sectors;
+    const int hits = sample.hits;
+    if (hits == 0 || hits == n) return std::nullopt;
+    const std::vector<char>& blocked = sample.blocked;
+    struct {
+        int rings, sectors;
+    } grid{sample.rings, sample.sectors};
+    const ConeSample& rays = sample;
+
+    // Open cells connected through shared edges (sectors wrap around; the innermost ring's
+    // cells all meet at the axis).
+    component.assign(std::size_t(n), -1);
+    float bestScore = -1.0f;
+    vec3 bestDir(0.0f);
+    int label = 0;
+    for (int start = 0; start < n; ++start) {
+        if (blocked[std::size_t(start)] || component[std::size_t(start)] >= 0) continue;
+        stack.assign(1, start);
+        component[std::size_t(start)] = label;
+        int size = 0;
+        vec3 sum(0.0f);
+        auto visit = [&](int c) {
+            if (!blocked[std::size_t(c)] && component[std::size_t(c)] < 0) {
+                component[std::size_t(c)] = label;
+                stack.push_back(c);
+            }
+        };
+        while (!stack.empty()) {
+            const int c = stack.back();
+            stack.pop_back();
+            ++size;
+            sum += rays.dirs[std::size_t(c)];
+            const int i = c / grid.sectors, j = c % grid.sectors;
+            visit(i * grid.sectors + (j + 1) % grid.sectors);
+            visit(i * grid.sectors + (j + grid.sectors - 1) % grid.sectors);
+            if (i + 1 < grid.rings) visit((i + 1) * grid.sectors + j);
+            if (i > 0) visit((i - 1) * grid.sectors + j);
+            if (i == 0)
+                for (int k = 0; k < grid.sectors; ++k) visit(k);
+        }
+        const float len = glm::length(sum);
+        if (len > 1e-6f) {
+            const vec3 centre = sum / len;
+            const float angle = std::acos(std::clamp(glm::dot(centre, axis), -1.0f, 1.0f));
+            // Gap size (fraction of the cone) weighed against its distance from the axis.
+            const float score = float(size) / float(n) * (1.0f - 0.5f * angle / (cone.halfAngle * kDeg));
+            if (score > bestScore) {
+                bestScore = score;
+                bestDir = centre;
+            }
+        }
+        ++label;
+    }
+    if (bestScore < 0.0f) return std::nullopt;
+    st.softSteered.fetch_add(1, std::memory_order_relaxed);
+    return bestDir;
+}
+
+// The nearest solid obstacle in a cone (the axis ray included).
+std::optional<SolidHit> nearestSolid(const World& world, vec3 apex, vec3 axis,
+                                     const SolidObstacleOptions& o, Rng& rng) {
+    const ConeGrid grid(o.rays);
+    thread_local ConeRays rays;
+    rays.make(grid, axis, o.coneHalfAngle, rng);
+    rays.dirs.push_back(axis);
+    std::optional<SolidHit> best;
+    for (const vec3& d : rays.dirs) {
+        const float reach = best ? best->distance : o.avoidanceDistance;
+        if (auto h = world.solidHit(apex, d, 1e-5f, reach))
+            if (!best || h->distance < best->distance) best = h;
+    }
+    world.stats().solidCones.fetch_add(1, std::memory_order_relaxed);
+    return best;
+}
+
+// The component of `v` along the surface with normal `n`; `fallback` when v is (nearly) normal.
+vec3 tangential(vec3 v, vec3 n, vec3 fallback) {
+    vec3 t = v - glm::dot(v, n) * n;
+    if (glm::length(t) < 1e-3f) t = fallback - glm::dot(fallback, n) * n;
+    if (glm::length(t) < 1e-6f) t = geometry::anyPerpendicular(n);
+    return glm::normalize(t);
+}
+
+// Solid obstacles: growth heading toward the nearest obstacle turns toward its tangent plane,
+// the more the closer; within a quarter of the avoidance distance it follows the tangent.
+vec3 solidSteer(const World& world, vec3 apex, vec3 g, vec3 fallback, Rng& rng) {
+    const SolidObstacleOptions& o = *world.solid();
+    const auto hit = nearestSolid(world, apex, g, o, rng);
+    if (!hit || glm::dot(g, hit->normal) >= 0.0f) return g;
+    const vec3 t = tangential(g, hit->normal, fallback);
+    const float nearest = 0.25f * o.avoidanceDistance;
+    const float w = std::clamp((o.avoidanceDistance - hit->distance) / (o.avoidanceDistance - nearest),
+                               0.0f, 1.0f);
+    world.stats().solidSteered.fetch_add(1, std::memory_order_relaxed);
+    if (w >= 1.0f) return t;
+    const vec3 v = glm::mix(g, t, w);
+    return glm::length(v) > 1e-6f ? glm::normalize(v) : t;
+}
+
+// Pitch from the internode axis and azimuth about the shoot axis of a side organ whose
+// direction should be `d` (the inverse of the tessellator's placement).
+void toPitchAzimuth(const Internode& in, vec3 d, float& pitch, float& azimuth) {
+    const float c = std::clamp(glm::dot(d, in.direction), -1.0f, 1.0f);
+    pitch = std::acos(c) / kDeg;
+    vec3 s = d - c * in.direction;
+    s -= glm::dot(s, in.guide) * in.guide;
+    if (glm::length(s) < 1e-6f) return;
+    azimuth = std::atan2(glm::dot(s, glm::cross(in.guide, in.rollReference)),
+                         glm::dot(s, in.rollReference)) /
+              kDeg;
+}
+
+// Direction of a side organ at `pitch` from the internode axis and `azimuth` about the
+// shoot axis, and the side it leans to (as the tessellator places petioles and peduncles).
+vec3 sideDirection(const Internode& in, float pitch, float azimuth, vec3* sideOut = nullptr) {
+    vec3 side = azimuthDirection(in.guide, in.rollReference, azimuth);
+    side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+    if (sideOut) *sideOut = side;
+    const float p = pitch * kDeg;
+    return glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
+}
+
+bool softSteers(const Steering* s) { return s && s->world && s->world->soft(); }
+
+// A growing tip does not see the young organs it grows out of: those of the node it starts
+// from (and of the node its shoot grows from).
+Ignore ownNode(const PlantInstance& plant, const Shoot& shoot, int node, bool parentNode) {
+    Ignore ig;
+    ig.plant = plant.id;
+    if (node >= 0) ig.organs[0] = organTag(shoot.id, unsigned(node));
+    if (parentNode && shoot.parent >= 0 && shoot.parentNode >= 0)
+        ig.organs[1] = organTag(unsigned(shoot.parent), unsigned(shoot.parentNode));
+    return ig;
+}
+
+}  // namespace
+
+vec3 nodePosition(const PlantInstance& plant, unsigned shootID, std::size_t internodes, double now,
+                  bool mature) {
+    const Shoot& s = plant.shoots[shootID];
+    vec3 p = plant.base;
+    if (s.parent >= 0) {
+        const Shoot& parent = plant.shoots[unsigned(s.parent)];
+        p = nodePosition(plant, unsigned(s.parent),
+                         std::min(std::size_t(s.parentNode) + 1, parent.phytomers.size()), now,
+                         mature);
+    }
+    const std::size_t n = std::min(internodes, s.phytomers.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        const Phytomer& ph = s.phytomers[i];
+        const float f = mature ? 1.0f
+                               : float(std::min(1.0, ph.internodeFraction0 +
+                                                          s.elongationRate * std::max(0.0, now - ph.birth)));
+        p += ph.internode.direction * ph.internode.length * f;
+    }
+    return p;
+}
+
+void steerShootAxis(PlantArchitecture::Impl& impl, const PlantInstance& plant, const Shoot& shoot,
+                    Internode& in, float lengthMax) {
+    const Steering* st = impl.steering;
+    if (!st) return;
+    const World* world = st->world;
+    const unsigned node = unsigned(shoot.phytomers.size());
+    vec3 g = in.guide;
+    bool attracted = false;
+    if (st->attraction && st->attraction->attracts(shoot.type)) {
+        const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, true);
+        const AttractionPoints& o = st->attraction->options();
+        if (world) world->stats().attractionQueries.fetch_add(1, std::memory_order_relaxed);
+        // Points nearer than half an internode are passed by anyway (and have no direction).
+        if (auto p = st->attraction->nearestInCone(apex, g, std::max(1e-4f, 0.5f * lengthMax))) {
+            g = blend(g, glm::normalize(*p - apex), o.inertia);
+            attracted = true;
+            if (world) world->stats().attracted.fetch_add(1, std::memory_order_relaxed);
+        }
+    }
+    if (!attracted && softSteers(st) && world->soft()->steerInternodes) {
+        const SoftCollisionOptions& o = *world->soft();
+        const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, false);
+        Rng rng = coneRng(st->seed, plant.id, shoot.id, node, kConeInternode, 0);
+        const Ignore ignore = ownNode(plant, shoot, int(node) - 1, true);
+        if (auto t = softTarget(*world, apex, g, o.cone, rng, 2.0f * in.radius + 1e-4f, ignore))
+            g = blend(g, *t, o.cone.inertia);
+    }
+    if (world && world->hasSolid()) {
+        const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, true);
+        Rng rng = coneRng(st->seed, plant.id, shoot.id, node, kConeSolid, 0);
+        g = solidSteer(*world, apex, g, in.rollReference, rng);
+    }
+    if (g == in.guide) return;
+    in.guide = g;
+    // Carry the roll reference along with the smallest rotation (no twist).
+    vec3 ref = in.rollReference - glm::dot(in.rollReference, g) * g;
+    in.rollReference = glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(g);
+}
+
+void keepInternodeClear(PlantArchitecture::Impl& impl, const PlantInstance& plant,
+                        const Shoot& shoot, Internode& in) {
+    const Steering* st = impl.steering;
+    if (!st || !st->world || !st->world->hasSolid()) return;
+    const World& world = *st->world;
+    const vec3 apex =
+        nodePosition(plant, shoot.id, shoot.phytomers.size(), plant.age, true);
+    // The mature internode and its radius, with a millimetre to spare.
+    const float reach = in.length + 2.0f * in.radius + 1e-3f;
+    for (int attempt = 0; attempt < 4; ++attempt) {
+        const auto hit = world.solidHit(apex, in.direction, 1e-5f, reach);
+        if (!hit) return;
+        in.direction = tangential(in.direction, hit->normal, in.rollReference);
+        if (attempt == 3) in.direction = hit->normal;  // cornered: grow away
+    }
+}
+
+void steerPetiole(PlantArchitecture::Impl& impl, const PlantInstance& plant, const Shoot& shoot,
+                  const Internode& in, float internodeFraction, unsigned petioleIndex,
+                  Petiole& pt) {
+    const Steering* st = impl.steering;
+    if (!softSteers(st) || !st->world->soft()->steerPetioles) return;
+    const SoftCollisionOptions& o = *st->world->soft();
+    const unsigned node = unsigned(shoot.phytomers.size());
+    vec3 side;
+    const vec3 dir = sideDirection(in, pt.pitch, pt.azimuth, &side);
+    const vec3 top = nodePosition(plant, shoot.id, node, plant.age, false) +
+                     in.direction * in.length * internodeFraction;
+    const vec3 start = top + side * in.radius * 0.5f;
+    Rng rng = coneRng(st->seed, plant.id, shoot.id, node, kConePetiole, petioleIndex);
+    Ignore ignore = ownNode(plant, shoot, int(node), false);
+    if (node > 0) ignore.organs[1] = organTag(shoot.id, node - 1);
+    if (auto t = softTarget(*st->world, start, dir, o.cone, rng, 2.0f * pt.radius + 1e-4f, ignore))
+        toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), pt.pitch, pt.azimuth);
+}
+
+void steerPeduncle(PlantArchitecture::Impl& impl, const PlantInstance& plant, const Shoot& shoot,
+                   unsigned node, unsigned petiole, unsigned bud, bool terminal, FloralBud& fb) {
+    const Steering* st = impl.steering;
+    if (!softSteers(st) || !st->world->soft()->steerPeduncles || shoot.phytomers.empty()) return;
+    const SoftCollisionOptions& o = *st->world->soft();
+    const unsigned k = terminal ? unsigned(shoot.phytomers.size() - 1) : node;
+    const Internode& in = shoot.phytomers[k].internode;
+    const float base = terminal ? in.azimuth + 360.0f * float(bud) / float(shoot.terminalFloralBuds.size())
+                                : shoot.phytomers[k].petioles[petiole].azimuth;
+    const vec3 dir = sideDirection(in, fb.pedunclePitch, base + fb.peduncleRoll);
+    const vec3 top = nodePosition(plant, shoot.id, k + 1, plant.age, false);
+    Rng rng = coneRng(st->seed, plant.id, shoot.id, k, kConePeduncle,
+                      (terminal ? 0x10000u : 0u) + petiole * 256u + bud);
+    const Ignore ignore = ownNode(plant, shoot, int(k), false);
+    if (auto t = softTarget(*st->world, top, dir, o.cone, rng, 2.0f * fb.peduncleRadius + 1e-4f,
+                            ignore)) {
+        float azimuth = base + fb.peduncleRoll;
+        toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), fb.pedunclePitch, azimuth);
+        fb.peduncleRoll = azimuth - base;
+    }
+}
+
+}  // namespace plantarch::collision

@@ -1,0 +1,498 @@
+// Collision avoidance and attraction points, checked on the geometry they produce.
+
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <tuple>
+#include <fstream>
+#include <unistd.h>
+
+#include "collision/collision_world.h"
+#include "collision/intersections.h"
+#include "collision/steering.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+#include "collision_scenes.h"
+
+using namespace plantarch;
+
+namespace {
+
+using namespace plantarch::test;
+
+// Distance from p to the segment a-b.
+float toSegment(vec3 p, vec3 a, vec3 b) {
+    const vec3 ab = b - a;
+    const float t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0f, 1.0f);
+    return glm::length(p - (a + t * ab));
+}
+
+}  // namespace
+
+TEST(Collision, ShootsFollowAnAttractionWire) {
+    const vec3 a(0.02f, 0, 0.5f), b(1.2f, 0, 0.5f);
+    const unsigned cane = 1;
+    for (bool wire : {true, false}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary(speciesFile("vine", vine(wire)));
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 40.0f);
+        const unsigned nodes = arch.getShootNodeCount(p, cane);
+        const vec3 tip = arch.getNodePosition(p, cane, nodes - 1);
+        // Every node from the one nearest the wire on stays near it.
+        float worst = 0.0f;
+        bool reached = false;
+        for (unsigned k = 0; k < nodes; ++k) {
+            const float d = toSegment(arch.getNodePosition(p, cane, k), a, b);
+            reached = reached || d < 0.03f;
+            if (reached) worst = std::max(worst, d);
+        }
+        std::printf("wire %d: %u nodes, tip (%.3f %.3f %.3f) %.4f m from the wire, worst after "
+                    "reaching %.4f, attracted %llu\n",
+                    wire, nodes, tip.x, tip.y, tip.z, toSegment(tip, a, b), worst,
+                    (unsigned long long)arch.getCollisionStats().attracted);
+        if (wire) {
+            EXPECT_EQ(arch.getAttractionPoints(p).size(), 60u);
+            EXPECT_LT(toSegment(tip, a, b), 0.03f);
+            EXPECT_LT(worst, 0.05f);
+            EXPECT_GT(tip.x, 0.6f);  // it went along the wire, not just up to it
+        } else {
+            EXPECT_GT(toSegment(tip, a, b), 0.15f);
+        }
+    }
+}
+
+TEST(Collision, WallIsNeverCrossed) {
+    for (float age : {20.0f, 40.0f, 60.0f}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const ObjectID wall = addBox(ctx, {0.1f, -2, -1}, {0.3f, 2, 3});
+        arch.loadPlantModelFromLibrary("bean");
+        arch.enableSolidObstacleAvoidance({wall}, 0.2f);
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, age);
+        const float maxX = extreme(ctx, arch, p, 0, true);
+        const CollisionStats st = arch.getCollisionStats();
+        std::printf("age %.0f: max x %.4f, steered %llu of %llu, turned %llu unresolved %llu\n", age,
+                    maxX, (unsigned long long)st.solidSteered, (unsigned long long)st.solidCones,
+                    (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
+        EXPECT_LE(maxX, 0.1f);
+        Context free;
+        PlantArchitecture a2(&free);
+        a2.loadPlantModelFromLibrary("bean");
+        const unsigned q = a2.buildPlantInstanceFromLibrary({0, 0, 0}, age);
+        std::printf("  without: max x %.4f\n", extreme(free, a2, q, 0, true));
+    }
+}
+
+TEST(Collision, CeilingIsNeverCrossed) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const ObjectID ceiling = addBox(ctx, {-2, -2, 0.25f}, {2, 2, 0.3f});
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSolidObstacleAvoidance({ceiling}, 0.2f);
+    const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 60.0f);
+    const float top = extreme(ctx, arch, p, 2, true);
+    EXPECT_LE(top, 0.25f);
+    Context free;  // without avoidance the bean grows well above it
+    PlantArchitecture plain(&free);
+    plain.loadPlantModelFromLibrary("bean");
+    const unsigned q = plain.buildPlantInstanceFromLibrary({0, 0, 0}, 60.0f);
+    EXPECT_GT(extreme(free, plain, q, 2, true), 0.4f);
+}
+
+TEST(Collision, StrawberryFruitStayAboveTheGround) {
+    for (bool adjust : {true, false}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const ObjectID ground = addBox(ctx, {-2, -2, -0.1f}, {2, 2, 0.0f});
+        arch.setSeed(4);  // a plant with seven fruit
+        arch.loadPlantModelFromLibrary("strawberry");
+        // Fruit stalks longer and more arched than the library's, so ripe fruit reach the soil.
+        ShootParameters crown = arch.getCurrentShootParameters("mainstem");
+        crown.phytomer_parameters.peduncle.length = 0.3f;
+        crown.phytomer_parameters.peduncle.curvature = -400.0f;
+        arch.updateCurrentShootParameters("mainstem", crown);
+        arch.enableSolidObstacleAvoidance({ground}, 0.1f, adjust);
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 90.0f);
+        float lowest = 1e30f;
+        for (ObjectID o : arch.getPlantFruitObjectIDs(p))
+            for (const vec3& v : ctx.object(o).positions) lowest = std::min(lowest, v.z);
+        const CollisionStats st = arch.getCollisionStats();
+        std::printf("adjust %d: %zu fruit objects, lowest fruit vertex %.4f, turned %llu, "
+                    "unresolved %llu\n",
+                    adjust, arch.getPlantFruitObjectIDs(p).size(), lowest,
+                    (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
+        ASSERT_GT(arch.getPlantFruitObjectIDs(p).size(), 3u);
+        if (adjust) EXPECT_GE(lowest, -1e-4f);
+        else EXPECT_LT(lowest, -0.01f);  // without adjustment some hang into the ground
+    }
+}
+
+namespace {
+
+std::vector<ObjectID> leaves(const PlantArchitecture& arch) {
+    std::vector<ObjectID> out;
+    for (unsigned p : arch.getAllPlantIDs())
+        for (ObjectID o : arch.getPlantLeafObjectIDs(p)) out.push_back(o);
+    return out;
+}
+
+// Every object's ID, labels and vertex bytes, in ID order.
+std::string fingerprint(const Context& ctx) {
+    std::string out;
+    ctx.forEachObject([&](const ObjectView& v) {
+        out += std::to_string(v.id) + ":" +
+               std::to_string(ctx.objectDataInt(v.id, "plantID").value_or(-1)) +
+               ctx.objectDataString(v.id, "organ").value_or("") + ";";
+        out.append(reinterpret_cast<const char*>(v.positions.data()),
+                   v.positions.size() * sizeof(vec3));
+    });
+    return out;
+}
+
+}  // namespace
+
+TEST(Collision, SoftAvoidanceReducesCrossingLeaves) {
+    std::size_t crossings[2] = {0, 0};
+    for (int soft = 0; soft < 2; ++soft) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(3);
+        arch.loadPlantModelFromLibrary("bean");
+        if (soft) arch.enableSoftCollisionAvoidance();
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {4, 4}, 35.0f);
+        const std::vector<ObjectID> l = leaves(arch);
+        crossings[soft] = collision::countIntersectingPairs(ctx, l, collision::petioleGroups(ctx, l));
+        const CollisionStats st = arch.getCollisionStats();
+        std::printf("soft %d: %zu leaves, %zu crossing pairs; cones %llu steered %llu rays %llu "
+                    "refreshes %llu rebuilt %llu kept %llu tris %llu\n",
+                    soft, l.size(), crossings[soft], (unsigned long long)st.softCones,
+                    (unsigned long long)st.softSteered, (unsigned long long)st.softRays,
+                    (unsigned long long)st.sceneRefreshes, (unsigned long long)st.plantsRebuilt,
+                    (unsigned long long)st.plantsUnchanged, (unsigned long long)st.sceneTriangles);
+    }
+    EXPECT_LT(crossings[1], crossings[0]);
+}
+
+namespace {
+
+std::string softCanopy(int threads, unsigned seed = 11) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(seed);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSoftCollisionAvoidance();
+    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {3, 3}, 30.0f);
+    omp_set_num_threads(before);
+    return fingerprint(ctx);
+}
+
+// Node positions of every shoot of every plant.
+std::vector<vec3> nodes(const PlantArchitecture& arch) {
+    std::vector<vec3> out;
+    for (unsigned p : arch.getAllPlantIDs())
+        for (unsigned s = 0; s < arch.getShootCount(p); ++s)
+            for (unsigned k = 0; k < arch.getShootNodeCount(p, s); ++k)
+                out.push_back(arch.getNodePosition(p, s, k));
+    return out;
+}
+
+}  // namespace
+
+TEST(Collision, SoftCanopyIsTheSameForAnyThreadCount) {
+    const std::string one = softCanopy(1);
+    EXPECT_EQ(one, softCanopy(2));
+    EXPECT_EQ(one, softCanopy(2));
+    EXPECT_NE(one, softCanopy(2, 12));  // and the seed matters
+}
+
+TEST(Collision, SoftGrowthDoesNotDependOnTheStepSize) {
+    std::vector<std::vector<vec3>> results;
+    std::vector<std::size_t> triangles;
+    for (double step : {20.0, 1.0, 0.5, 0.3}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(4);
+        arch.loadPlantModelFromLibrary("bean");
+        arch.enableSoftCollisionAvoidance();
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 10.0f);
+        double done = 0.0;
+        while (done < 20.0 - 1e-9) {
+            const double d = std::min(step, 20.0 - done);
+            arch.advanceTime(d);
+            done += d;
+        }
+        results.push_back(nodes(arch));
+        triangles.push_back(ctx.triangleCount());
+    }
+    for (std::size_t r = 1; r < results.size(); ++r) {
+        ASSERT_EQ(results[r].size(), results[0].size()) << r;
+        EXPECT_EQ(triangles[r], triangles[0]) << r;
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < results[0].size(); ++i)
+            worst = std::max(worst, glm::length(results[r][i] - results[0][i]));
+        EXPECT_LT(worst, 1e-5f) << r;
+    }
+}
+
+TEST(Collision, DistantObstaclesChangeNothing) {
+    auto build = [](bool obstacles) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        if (obstacles) {
+            const ObjectID wall = addBox(ctx, {5, -1, 0}, {5.1f, 1, 2});
+            arch.enableSolidObstacleAvoidance({wall}, 0.2f, true);
+            arch.enableAttractionPoints({vec3(-5, 0, 1)}, 60.0f, 0.2f, 0.3f);
+        }
+        arch.buildPlantInstanceFromLibrary({0, 0, 0}, 50.0f);
+        std::string out;
+        for (ObjectID o : arch.getAllPlantObjectIDs(0)) {
+            const ObjectView v = ctx.object(o);
+            out.append(reinterpret_cast<const char*>(v.positions.data()),
+                       v.positions.size() * sizeof(vec3));
+        }
+        return out;
+    };
+    EXPECT_EQ(build(false), build(true));
+}
+
+// The cone rays tested against nearby triangles give what Embree's ray tracing gives.
+TEST(Collision, ConeSamplingMatchesRayTracing) {
+    Rng rng(99, 1);
+    Context ctx;
+    std::vector<ObjectID> objects;
+    collision::TriangleSoup plant;
+    std::vector<collision::OrganTag> tags;
+    for (int i = 0; i < 400; ++i) {
+        const vec3 c(rng.uniform(-0.15f, 0.15f), rng.uniform(-0.15f, 0.15f), rng.uniform(0.0f, 0.3f));
+        vec3 p[3];
+        for (vec3& q : p) q = c + vec3(rng.uniform(-0.03f, 0.03f), rng.uniform(-0.03f, 0.03f),
+                                       rng.uniform(-0.03f, 0.03f));
+        if (i % 2) {
+            Mesh m;
+            m.positions = {p[0], p[1], p[2]};
+            m.indices = {0, 1, 2};
+            objects.push_back(ctx.addObject(m));
+        } else {
+            plant.insert(plant.end(), {p[0], p[1], p[2]});
+            tags.push_back(collision::organTag(unsigned(i % 3), unsigned(i % 5)));
+        }
+    }
+    collision::World world;
+    SoftCollisionOptions o;
+    o.objects = objects;
+    world.setSoft(o, ctx);
+    world.reservePlants({7});
+    world.setPlantProxies(7, std::move(plant), std::move(tags));
+    world.commit();
+    std::size_t cells = 0, differ = 0, blocked = 0;
+    for (int c = 0; c < 200; ++c) {
+        const vec3 apex(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), rng.uniform(0.0f, 0.3f));
+        const vec3 axis = glm::normalize(vec3(rng.normal(0, 1), rng.normal(0, 1), rng.normal(0, 1)));
+        PerceptionCone cone;
+        cone.halfAngle = rng.uniform(10.0f, 170.0f);
+        cone.lookAhead = rng.uniform(0.02f, 0.2f);
+        cone.rays = 64 + rng.nextU32() % 400;
+        collision::Ignore ignore;
+        ignore.plant = 7;
+        ignore.organs[0] = collision::organTag(1, 1);
+        Rng r1(c, 3), r2(c, 3);
+        collision::ConeSample fast, traced;
+        collision::sampleCone(world, apex, axis, cone, r1, 1e-4f, ignore, fast);
+        collision::sampleCone(world, apex, axis, cone, r2, 1e-4f, ignore, traced, true);
+        if (fast.dirs.empty()) {  // nothing within reach: every traced ray is free
+            EXPECT_EQ(traced.hits, 0);
+            continue;
+        }
+        ASSERT_EQ(fast.blocked.size(), traced.blocked.size());
+        for (std::size_t k = 0; k < fast.blocked.size(); ++k) {
+            ++cells;
+            blocked += traced.blocked[k];
+            differ += fast.blocked[k] != traced.blocked[k];
+        }
+    }
+    std::printf("%zu rays, %zu blocked, %zu differ\n", cells, blocked, differ);
+    EXPECT_GT(blocked, cells / 20);
+    EXPECT_LE(differ, cells / 10000 + 2);  // rays grazing an edge may go either way
+}
+
+// ---- the species file hook ------------------------------------------------------------
+
+namespace {
+
+Error errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e;
+    }
+    ADD_FAILURE() << "no error";
+    return Error("none");
+}
+
+}  // namespace
+
+TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
+    const SpeciesModel m = readSpeciesString(vine(true), "vine.xml");
+    ASSERT_TRUE(m.attraction);
+    ASSERT_EQ(m.attraction->wires.size(), 1u);
+    EXPECT_EQ(m.attraction->wires[0].from, "0.02, 0, wire_height");
+    EXPECT_EQ(m.attraction->wires[0].spacing, "0.02");
+    EXPECT_EQ(m.attraction->halfAngle, "70");
+    EXPECT_EQ(m.attraction->wires[0].line, 51);
+    // Written and read back: the same declaration.
+    const SpeciesModel again = readSpeciesString(writeSpeciesString(m), "again.xml");
+    ASSERT_TRUE(again.attraction);
+    EXPECT_EQ(again.attraction->wires[0].to, m.attraction->wires[0].to);
+    EXPECT_EQ(again.attraction->inertia, "0.3");
+    EXPECT_EQ(again.attraction->shootTypes, std::vector<std::string>{"cane"});
+    EXPECT_FALSE(readSpeciesString(vine(false), "plain.xml").attraction);
+    // Evaluated with the build parameters, relative to the plant's base.
+    const AttractionPoints p = speciesAttractionPoints(m, 1, 0, vec3(1, 2, 0), {{"wire_height", 0.8f}});
+    ASSERT_EQ(p.points.size(), 60u);
+    EXPECT_EQ(p.points.front(), vec3(1.02f, 2, 0.8f));
+    EXPECT_NEAR(p.points.back().x, 2.2f, 1e-6f);
+    EXPECT_FLOAT_EQ(p.lookAhead, 0.25f);
+    // A plant built from the species gets them; the user's global points do not replace them.
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary(speciesFile("vine_hook", vine(true)));
+    arch.enableAttractionPoints({vec3(0, 0, 5)});
+    const unsigned plant = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 1.0f, {{"wire_length", 2}});
+    EXPECT_EQ(arch.getAttractionPoints(plant).size(), 100u);
+    arch.disableAttractionPoints(plant);  // now it follows the global ones
+    EXPECT_EQ(arch.getAttractionPoints(plant), std::vector<vec3>{vec3(0, 0, 5)});
+}
+
+TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
+    const std::string wire = "<wire from=\"0.02, 0, wire_height\" to=\"wire_length, 0, wire_height\" spacing=\"0.02\"/>";
+    struct Case {
+        std::string from, to, expected;
+        int line;
+    };
+    const Case cases[] = {
+        {"0.02, 0, wire_height\" to", "0.02, 0\" to", "three expressions", 51},
+        {"0.02, 0, wire_height\" to", "0.02, 0, wire_heigth\" to", "wire_heigth", 51},
+        {"<wire from", "<wire form", "unknown attribute 'form'", 51},
+        {"<wire from", "<wires from", "unknown element 'wires'", 51},
+        {"shoot_types=\"cane\"", "shoot_types=\"cane stem\"", "unknown shoot type 'stem'", 50},
+        {wire, "", "needs at least one <wire> or <point>", 50},
+        {" to=\"wire_length, 0, wire_height\"", "", "missing required attribute 'to'", 51},
+    };
+    for (const Case& c : cases) {
+        const std::string xml = replaced(vine(true), c.from, c.to);
+        const Error e = errorOf([&] { readSpeciesString(xml, "bad.xml"); });
+        EXPECT_NE(std::string(e.what()).find(c.expected), std::string::npos) << e.what();
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_EQ(e.file(), "bad.xml");
+    }
+    // Values are checked when a plant is built.
+    for (const auto& [from, to, expected, line] :
+         {std::tuple{std::string("spacing=\"0.02\""), std::string("spacing=\"0\""),
+                     std::string("attraction_points.wire[1].spacing = 0"), 51},
+          std::tuple{std::string("half_angle=\"70\""), std::string("half_angle=\"wire_height * 400\""),
+                     std::string("attraction_points.half_angle = 200"), 50}}) {
+        const SpeciesModel m = readSpeciesString(replaced(vine(true), from, to), "late.xml");
+        const Error e = errorOf([&] { speciesAttractionPoints(m, 1, 0, vec3(0)); });
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+        EXPECT_EQ(e.file(), "late.xml");
+        EXPECT_EQ(e.line(), line);
+    }
+}
+
+// ---- the API ---------------------------------------------------------------------------
+
+TEST(CollisionApi, OptionsAreValidated) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    auto softError = [&](PerceptionCone cone, double interval = 1.0) {
+        SoftCollisionOptions o;
+        o.cone = cone;
+        o.updateInterval = interval;
+        return errorOf([&] { arch.enableSoftCollisionAvoidance(o); });
+    };
+    EXPECT_EQ(softError({0, 0.1f, 256, 0.4f}).parameter(), "view_half_angle_deg");
+    EXPECT_EQ(softError({180, 0.1f, 256, 0.4f}).parameter(), "view_half_angle_deg");
+    EXPECT_EQ(softError({80, 0, 256, 0.4f}).parameter(), "look_ahead_distance");
+    EXPECT_EQ(softError({80, 0.1f, 7, 0.4f}).parameter(), "ray_count");
+    EXPECT_EQ(softError({80, 0.1f, 256, -0.1f}).parameter(), "inertia");
+    EXPECT_EQ(softError({80, 0.1f, 256, 0.4f}, 0.0).parameter(), "update_interval");
+    EXPECT_EQ(softError({80, 0.1f, 256, std::nanf("")}).parameter(), "inertia");
+    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({}, 0.2f); }).parameter(), "obstacle_IDs");
+    const Error missing = errorOf([&] { arch.enableSolidObstacleAvoidance({42}, 0.2f); });
+    EXPECT_EQ(missing.parameter(), "obstacle_IDs");
+    EXPECT_EQ(missing.value(), "42");
+    const ObjectID wall = addBox(ctx, {1, 0, 0}, {2, 1, 1});
+    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({wall}, -1.0f); }).parameter(),
+              "avoidance_distance");
+    EXPECT_EQ(errorOf([&] { arch.enableAttractionPoints({vec3(0, 0, NAN)}); }).parameter(),
+              "attraction_points[0]");
+    EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints({vec3(0)}); }).parameter(), "attraction_points");
+    EXPECT_EQ(errorOf([&] { arch.setCollisionRelevantOrgans(true, true, false, false, false); })
+                  .validRange(),
+              "call enableSoftCollisionAvoidance first");
+    // A failed call changes nothing: no collision work is done.
+    EXPECT_EQ(arch.getCollisionStats().softCones, 0u);
+}
+
+TEST(CollisionApi, AttractionPointsUpdateAppendDisable) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const unsigned a = arch.addPlantInstance({0, 0, 0}, 0);
+    const unsigned b = arch.addPlantInstance({1, 0, 0}, 0);
+    EXPECT_TRUE(arch.getAttractionPoints(a).empty());
+    arch.enableAttractionPoints({vec3(0, 0, 1)}, 60, 0.3f, 0.5f);
+    arch.appendAttractionPoints({vec3(0, 0, 2)});
+    EXPECT_EQ(arch.getAttractionPoints(a), (std::vector<vec3>{vec3(0, 0, 1), vec3(0, 0, 2)}));
+    arch.enableAttractionPoints(b, {vec3(1, 0, 1)});
+    arch.appendAttractionPoints(b, {vec3(1, 0, 3)});
+    EXPECT_EQ(arch.getAttractionPoints(b), (std::vector<vec3>{vec3(1, 0, 1), vec3(1, 0, 3)}));
+    arch.updateAttractionPoints(b, {vec3(1, 1, 1)});
+    EXPECT_EQ(arch.getAttractionPoints(b), std::vector<vec3>{vec3(1, 1, 1)});
+    arch.updateAttractionPoints({vec3(5, 5, 5)});
+    EXPECT_EQ(arch.getAttractionPoints(a), std::vector<vec3>{vec3(5, 5, 5)});
+    arch.disableAttractionPoints();
+    EXPECT_TRUE(arch.getAttractionPoints(a).empty());
+    EXPECT_EQ(arch.getAttractionPoints(b).size(), 1u);
+    arch.deletePlantInstance(b);
+    EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints(a, {vec3(0)}); }).parameter(),
+              "attraction_points");
+}
+
+// Canopies without soft avoidance grow plants apart in workers that share the obstacles and
+// keep each plant's own attraction points; any thread count gives the same bytes.
+TEST(Collision, CanopiesWithObstaclesAndOwnAttractionPointsAreDeterministic) {
+    auto build = [](int threads) {
+        const int before = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        const ObjectID wall = addBox(ctx, {-2, 0.3f, 0}, {2, 0.32f, 2});
+        arch.loadPlantModelFromLibrary(speciesFile("vine_rows", vine(true, 20)));
+        arch.enableSolidObstacleAvoidance({wall}, 0.15f);
+        const auto ids = arch.buildPlantCanopyFromLibrary({0, 0, 0}, {1.5f, 0.4f}, {2, 2}, 25.0f);
+        omp_set_num_threads(before);
+        EXPECT_EQ(ids.size(), 4u);
+        // Each plant follows its own wire, placed at its base.
+        for (unsigned id : ids) {
+            const std::vector<vec3> points = arch.getAttractionPoints(id);
+            EXPECT_EQ(points.size(), 60u);
+            if (!points.empty()) {
+                EXPECT_EQ(points.front() - vec3(0.02f, 0, 0.5f), arch.getPlantBasePosition(id));
+            }
+        }
+        for (unsigned id : ids) EXPECT_LE(extreme(ctx, arch, id, 1, true), 0.3f);
+        EXPECT_GT(arch.getCollisionStats().attracted, 0u);
+        return fingerprint(ctx);
+    };
+    EXPECT_EQ(build(1), build(2));
+}
