@@ -1,7 +1,7 @@
-// libFuzzer target: the plant structure XML reader (PlantArchitecture::readPlantStructureXMLString).
-// Any input must either read or throw plantarch::Error; a plant that reads must write a file
-// that reads back to the same file, and give a plant string that reads back (with the plant's
-// shoot types defined) to the same string.
+// libFuzzer target: the plant structure XML reader
+// (PlantArchitecture::readPlantStructureXMLString). Any input must either read or throw
+// plantarch::Error; a plant that reads must write a file that reads back to the same file, and give
+// a plant string that reads back (with the plant's shoot types defined) to the same string.
 
 #include <cstddef>
 #include <cstdint>
@@ -45,7 +45,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::fprintf(stderr, "%s\n", e.what());
         finding("a file written from plants that were read does not read back");
     }
-    if (again.getPlantStructureXML(ids2) != written) finding("write -> read -> write changed the file");
+    if (again.getPlantStructureXML(ids2) != written)
+        finding("write -> read -> write changed the file");
     for (unsigned id : ids) {
         std::string s;
         try {
@@ -65,7 +66,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
         try {
             const unsigned q = withTypes.generatePlantFromString(s);
-            if (withTypes.getPlantString(q) != s) finding("plant string round trip changed the string");
+            if (withTypes.getPlantString(q) != s)
+                finding("plant string round trip changed the string");
         } catch (const Error& e) {
             std::fprintf(stderr, "%s\n", e.what());
             finding("a plant string written from a plant does not read back");
