@@ -19,8 +19,9 @@ struct ConvertArgs {
 };
 
 std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
-    app.description("Convert plants between .xml (plant structure), .txt (plant strings), "
-                    ".obj, .ply and .png");
+    app.description(
+        "Convert plants between .xml (plant structure), .txt (plant strings), "
+        ".obj, .ply and .png");
     auto a = std::make_shared<ConvertArgs>();
     app.add_option("input", a->input, "Plant file (.xml or .txt) or geometry (.obj)")->required();
     app.add_option("output", a->output, "Output file: " + plantFileExtensions())->required();

@@ -2,10 +2,10 @@
 // Continues the growth of saved plants: reads a plant structure file, grows every plant in
 // it by N days and writes the result (.xml to save it again, or .txt, .obj, .ply, .png).
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
-
-#include <fmt/format.h>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -24,7 +24,8 @@ struct GrowArgs {
 std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     app.description("Grow the plants of a plant structure file (.xml) on by a number of days");
     auto a = std::make_shared<GrowArgs>();
-    app.add_option("input", a->input, "Plant structure file (.xml) or plant strings (.txt)")->required();
+    app.add_option("input", a->input, "Plant structure file (.xml) or plant strings (.txt)")
+        ->required();
     app.add_option("--days", a->days, "Days to grow (0 to 100000)")
         ->required()
         ->check([](const std::string& text) -> std::string {
@@ -35,7 +36,8 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
             }
             return "days = " + text + ": not a number of days (valid: 0 to 100000)";
         });
-    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
+        ->required();
     app.add_option("--species", a->species,
                    "Species giving the shoot types of plant strings (.txt input)");
     addImageSizeOption(app, global);

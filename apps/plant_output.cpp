@@ -1,12 +1,12 @@
 // Plant outputs and inputs shared by the commands that make or read plants: plant structure
 // files (.xml), plant strings (.txt) and, through writeSceneFile, the scene formats.
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <unistd.h>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -90,16 +90,21 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                                      const std::string& species) {
     const std::string ext = extensionOf(path);
     PlantStructureReadOptions o;
-    o.onWarning = [](const std::string& w) { std::fprintf(stderr, "plantarch: warning: %s\n", w.c_str()); };
+    o.onWarning = [](const std::string& w) {
+        std::fprintf(stderr, "plantarch: warning: %s\n", w.c_str());
+    };
     if (ext == ".xml") {
         if (!species.empty()) arch.loadPlantModelFromLibrary(species);  // defaults for listings
         return arch.readPlantStructureXML(path, o);
     }
     if (ext != ".txt")
-        throw Error("unknown plant file format", {.file = path, .value = ext, .validRange = ".xml, .txt"});
+        throw Error("unknown plant file format",
+                    {.file = path, .value = ext, .validRange = ".xml, .txt"});
     if (species.empty())
         throw Error("plant strings name shoot types only: give the species with --species",
-                    {.file = path, .parameter = "--species", .validRange = "a library species or species file"});
+                    {.file = path,
+                     .parameter = "--species",
+                     .validRange = "a library species or species file"});
     arch.loadPlantModelFromLibrary(species);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open plant string file", {.file = path});
@@ -118,15 +123,16 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
 
 void addStringDigitsOption(CLI::App& app, GlobalOptions& global) {
     app.add_option_function<int>(
-           "--digits",
-           [&global](int digits) {
-               if (digits < 0 || digits > 6)
-                   throw Error("significant digits of plant strings out of range",
-                               {.parameter = "--digits", .value = std::to_string(digits),
-                                .validRange = "1 to 6, or 0 for exact values"});
-               global.stringDigits = digits;
-           },
-           "Significant digits of plant strings in .txt outputs (1 to 6, 0 exact; default 4)");
+        "--digits",
+        [&global](int digits) {
+            if (digits < 0 || digits > 6)
+                throw Error("significant digits of plant strings out of range",
+                            {.parameter = "--digits",
+                             .value = std::to_string(digits),
+                             .validRange = "1 to 6, or 0 for exact values"});
+            global.stringDigits = digits;
+        },
+        "Significant digits of plant strings in .txt outputs (1 to 6, 0 exact; default 4)");
 }
 
 }  // namespace plantarch::cli

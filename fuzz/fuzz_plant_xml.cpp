@@ -1,6 +1,7 @@
-// libFuzzer target: the plant structure XML reader (PlantArchitecture::readPlantStructureXMLString).
-// Any input must either read or throw plantarch::Error; a plant that reads must write a file
-// that reads back to the same file, and give a plant string that reads back too.
+// libFuzzer target: the plant structure XML reader
+// (PlantArchitecture::readPlantStructureXMLString). Any input must either read or throw
+// plantarch::Error; a plant that reads must write a file that reads back to the same file, and give
+// a plant string that reads back (with the plant's shoot types defined) to the same string.
 
 #include <cstddef>
 #include <cstdint>
@@ -44,7 +45,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::fprintf(stderr, "%s\n", e.what());
         finding("a file written from plants that were read does not read back");
     }
-    if (again.getPlantStructureXML(ids2) != written) finding("write -> read -> write changed the file");
+    if (again.getPlantStructureXML(ids2) != written)
+        finding("write -> read -> write changed the file");
     for (unsigned id : ids) {
         std::string s;
         try {
@@ -52,9 +54,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         } catch (const Error&) {
             continue;  // nested too deep for a plant string
         }
+        // A string names shoot types: read it where the plant's own types are defined.
+        Context ctx3;
+        PlantArchitecture withTypes(&ctx3);
         try {
-            const unsigned q = again.generatePlantFromString(s);
-            if (again.getPlantString(q) != s) finding("plant string round trip changed the string");
+            for (const auto& [label, params] : arch.plant(id).shootTypes)
+                withTypes.defineShootType(label, params);
+        } catch (const Error& e) {
+            std::fprintf(stderr, "%s\n", e.what());
+            finding("the shoot types of a plant that was read cannot be defined");
+        }
+        try {
+            const unsigned q = withTypes.generatePlantFromString(s);
+            if (withTypes.getPlantString(q) != s)
+                finding("plant string round trip changed the string");
         } catch (const Error& e) {
             std::fprintf(stderr, "%s\n", e.what());
             finding("a plant string written from a plant does not read back");

@@ -54,7 +54,8 @@ TEST(CliPlantFiles, SavedPlantGrowsOnAsIfNeverSaved) {
 
 TEST(CliPlantFiles, ConvertsBetweenFormats) {
     const std::string d = dir("convert");
-    ASSERT_EQ(run("canopy cowpea --count 2x1 --age 20 -o " + d + "/c.xml -o " + d + "/c.txt").status, 0);
+    ASSERT_EQ(
+        run("canopy cowpea --count 2x1 --age 20 -o " + d + "/c.xml -o " + d + "/c.txt").status, 0);
     // Two plant strings, one per line.
     const std::string strings = fileBytes(d + "/c.txt");
     EXPECT_EQ(std::count(strings.begin(), strings.end(), '\n'), 2);

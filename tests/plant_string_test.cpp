@@ -119,24 +119,33 @@ TEST(PlantString, EverySpeciesAtThreeAgesRoundTripsExactly) {
 }
 
 TEST(PlantString, MalformedStringsGiveOneClearError) {
-    const std::string good = "@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)]}";
+    const std::string good =
+        "@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,"
+        "0)]}";
     EXPECT_EQ(stringError(good), "");
     EXPECT_EQ(stringError(""), "plant string, character 1: expected '@' (valid: '@')");
-    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){}").find("a shoot needs at least one internode"),
+    EXPECT_NE(
+        stringError("@(0,0,0,5)Sunifoliate(1,0,0){}").find("a shoot needs at least one internode"),
+        std::string::npos);
+    EXPECT_NE(
+        stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)").find("expected '}'"),
+        std::string::npos);
+    EXPECT_NE(stringError("@(0,0,x,5)").find("character 7 = @(0,0,x,5): expected a number"),
               std::string::npos);
-    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)").find("expected '}'"),
-              std::string::npos);
-    EXPECT_NE(stringError("@(0,0,x,5)").find("character 7 = @(0,0,x,5): expected a number"), std::string::npos);
     EXPECT_NE(stringError("@(0,0,0,-5)").find("negative plant age"), std::string::npos);
-    EXPECT_NE(stringError("@(0,0,0,5)S(1,0,0){}").find("expected a shoot type label"), std::string::npos);
-    EXPECT_NE(stringError(good + "x").find("text after the plant's base stem"), std::string::npos);
-    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(0,0,0){I(0.01,0.001,0,0,0,0,1)}").find("length close to 1"),
+    EXPECT_NE(stringError("@(0,0,0,5)S(1,0,0){}").find("expected a shoot type label"),
               std::string::npos);
-    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)Fz(1,1,1,1,1)]}")
+    EXPECT_NE(stringError(good + "x").find("text after the plant's base stem"), std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(0,0,0){I(0.01,0.001,0,0,0,0,1)}")
+                  .find("length close to 1"),
+              std::string::npos);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,"
+                          "0)Fz(1,1,1,1,1)]}")
                   .find("flower stage letter"),
               std::string::npos);
-    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(1e9,0.001,0,0,0,0,1)}").find("out of range"),
-              std::string::npos);
+    EXPECT_NE(
+        stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(1e9,0.001,0,0,0,0,1)}").find("out of range"),
+        std::string::npos);
     // Nesting deeper than 1000 shoots is refused (appended shoots nest in their parent).
     std::string deep = "@(0,0,0,5)";
     for (int i = 0; i < 1200; ++i) deep += "Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)";
@@ -157,7 +166,8 @@ TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {
     PlantStructureReadOptions o;
     o.onWarning = [&](const std::string& w) { warning = w; };
     const unsigned p = arch.generatePlantFromString(
-        "@(0,0,0,5)Sother(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)]}", o);
+        "@(0,0,0,5)Sother(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)]}",
+        o);
     EXPECT_EQ(warning, "plant string: shoot type other: plantarch's default parameters");
     EXPECT_EQ(arch.getPlantLeafObjectIDs(p).size(), 1u);
 }

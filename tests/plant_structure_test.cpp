@@ -20,7 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string tempPath(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("plantarch_xml_test_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("plantarch_xml_test_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     return (dir / name).string();
 }
@@ -121,7 +122,8 @@ TEST(PlantStructureXML, BeanRoundTripGivesTheSameGeometryAndText) {
     ASSERT_EQ(ids.size(), 1u);
     EXPECT_TRUE(warnings.empty()) << warnings.front();
     EXPECT_EQ(firstDifference(organBytes(b, ids), organBytes(a.arch, {a.id})), "");
-    EXPECT_EQ(firstDifference(b.getPlantStructureXML(ids), a.arch.getPlantStructureXML({a.id})), "");
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML(ids), a.arch.getPlantStructureXML({a.id})),
+              "");
     EXPECT_EQ(b.plant(ids[0]).rng, a.arch.plant(a.id).rng);
     EXPECT_EQ(b.getPlantLeafArea(ids[0]), a.arch.getPlantLeafArea(a.id));
     EXPECT_EQ(b.getShootChildren(ids[0], 0), a.arch.getShootChildren(a.id, 0));
@@ -139,8 +141,12 @@ TEST(PlantStructureXML, BeanRoundTripGivesTheSameGeometryAndText) {
     const std::string obj = fileBytes(tempPath("a/scene.obj"));
     EXPECT_GT(obj.size(), 1000000u);
     EXPECT_EQ(firstDifference(obj, fileBytes(tempPath("b/scene.obj"))), "");
-    EXPECT_EQ(firstDifference(fileBytes(tempPath("a/scene.mtl")), fileBytes(tempPath("b/scene.mtl"))), "");
-    EXPECT_EQ(firstDifference(fileBytes(tempPath("a/scene.ply")), fileBytes(tempPath("b/scene.ply"))), "");
+    EXPECT_EQ(
+        firstDifference(fileBytes(tempPath("a/scene.mtl")), fileBytes(tempPath("b/scene.mtl"))),
+        "");
+    EXPECT_EQ(
+        firstDifference(fileBytes(tempPath("a/scene.ply")), fileBytes(tempPath("b/scene.ply"))),
+        "");
 }
 
 TEST(PlantStructureXML, ContinuedGrowthMatchesTheOriginal) {
@@ -156,7 +162,8 @@ TEST(PlantStructureXML, ContinuedGrowthMatchesTheOriginal) {
     b.advanceTime(30.0);
     EXPECT_GT(a.arch.getPlantLeafCount(a.id), 0u);
     EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
-    EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}), a.arch.getPlantStructureXML({a.id})), "");
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}), a.arch.getPlantStructureXML({a.id})),
+              "");
 }
 
 TEST(PlantStructureXML, EverySpeciesAtThreeAgesRoundTripsAndGrowsOnIdentically) {
@@ -184,9 +191,9 @@ TEST(PlantStructureXML, EverySpeciesAtThreeAgesRoundTripsAndGrowsOnIdentically) 
             a.arch.advanceTime(more);
             b.advanceTime(more);
             EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
-            EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}),
-                                      a.arch.getPlantStructureXML({a.id})),
-                      "");
+            EXPECT_EQ(
+                firstDifference(b.getPlantStructureXML({id}), a.arch.getPlantStructureXML({a.id})),
+                "");
         }
     }
 }
@@ -196,7 +203,8 @@ TEST(PlantStructureXML, CanopyInOneFile) {
     PlantArchitecture a(&ctx);
     a.setSeed(3);
     a.loadPlantModelFromLibrary("cowpea");
-    const auto ids = a.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.4f, 0.4f), glm::ivec2(3, 2), 30.0f);
+    const auto ids =
+        a.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.4f, 0.4f), glm::ivec2(3, 2), 30.0f);
     ASSERT_EQ(ids.size(), 6u);
     const std::string path = tempPath("canopy.xml");
     a.writePlantStructureXML(ids, path);
@@ -290,9 +298,11 @@ TEST(PlantStructureXML, SpecificationListingLoadsWithDefaultsAndAWarning) {
     ASSERT_EQ(ids.size(), 1u);
     ASSERT_EQ(warnings.size(), 1u);
     const std::string& w = warnings[0];
-    EXPECT_EQ(w.rfind("listing.xml: plant_instance 0: values missing, defaults used: ", 0), 0u) << w;
-    for (const char* missing : {"random_generator", "phenology", "shoot_type", "shoot.phytomer.internode.direction",
-                                "shoot.phytomer.internode.petiole.leaf.leaflet_index", "shoot.max_nodes"})
+    EXPECT_EQ(w.rfind("listing.xml: plant_instance 0: values missing, defaults used: ", 0), 0u)
+        << w;
+    for (const char* missing :
+         {"random_generator", "phenology", "shoot_type", "shoot.phytomer.internode.direction",
+          "shoot.phytomer.internode.petiole.leaf.leaflet_index", "shoot.max_nodes"})
         EXPECT_NE(w.find(missing), std::string::npos) << missing << " in " << w;
     EXPECT_NE(w.find("the current ones of the PlantArchitecture"), std::string::npos) << w;
 
@@ -335,7 +345,8 @@ TEST(PlantStructureXML, ListingWithoutASpeciesUsesDefaultParameters) {
     o.onWarning = [&](const std::string& w) { warning = w; };
     const auto ids = arch.readPlantStructureXMLString(kListing, o);
     ASSERT_EQ(ids.size(), 1u);
-    EXPECT_NE(warning.find("shoot type unifoliate: plantarch's default parameters"), std::string::npos)
+    EXPECT_NE(warning.find("shoot type unifoliate: plantarch's default parameters"),
+              std::string::npos)
         << warning;
     EXPECT_EQ(arch.getPlantLeafObjectIDs(ids[0]).size(), 1u);
 }
@@ -344,11 +355,14 @@ namespace {
 
 int lineOf(const std::string& text, const std::string& needle) {
     const auto at = text.find(needle);
-    return at == std::string::npos ? -1 : 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+    return at == std::string::npos
+               ? -1
+               : 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
 }
 
 // Reads `damaged` and expects one error, on the line of `marker`, saying `message`.
-void expectError(const std::string& damaged, const std::string& marker, const std::string& message) {
+void expectError(const std::string& damaged, const std::string& marker,
+                 const std::string& message) {
     SCOPED_TRACE(message);
     const std::string e = readError(damaged);
     const std::string where = "plants.xml:" + std::to_string(lineOf(damaged, marker)) + ": ";
@@ -363,7 +377,8 @@ std::string damage(const std::string& from, const std::string& to) {
 }
 
 // The bean file with the value of the first <tag> (after `after`) set to `value`.
-std::string setFirst(const std::string& tag, const std::string& value, const std::string& after = "") {
+std::string setFirst(const std::string& tag, const std::string& value,
+                     const std::string& after = "") {
     std::string s = beanXML();
     const auto open = s.find("<" + tag + ">", after.empty() ? 0 : s.find(after));
     const auto close = s.find("</" + tag + ">", open);
@@ -390,16 +405,19 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
     EXPECT_EQ(readError(""), "plants.xml:1: empty file, expected a <plantarch_plants> document");
     EXPECT_NE(readError(beanXML().substr(0, beanXML().size() / 2)).find("the file ends too early"),
               std::string::npos);
-    EXPECT_NE(readError("<plant_instance/>").find("not a plant structure file: root element <plant_instance>"),
+    EXPECT_NE(readError("<plant_instance/>")
+                  .find("not a plant structure file: root element <plant_instance>"),
               std::string::npos);
-    EXPECT_NE(readError("<plantarch_plants format=\"7\"/>").find("newer format"), std::string::npos);
+    EXPECT_NE(readError("<plantarch_plants format=\"7\"/>").find("newer format"),
+              std::string::npos);
     EXPECT_NE(readError("<plantarch_plants/>").find("missing required attribute 'format'"),
               std::string::npos);
     EXPECT_EQ(readError("<plantarch_plants format=\"1\"/>"), "");  // no plants is fine
 
     // Wrong types and values out of range.
     std::string d = setFirst("internode_length", "abc");
-    expectError(d, ">abc<", "plant_instance[0].shoot[0].phytomer[0].internode.internode_length = abc");
+    expectError(d, ">abc<",
+                "plant_instance[0].shoot[0].phytomer[0].internode.internode_length = abc");
     expectError(d, ">abc<", "expected a number");
     d = setFirst("internode_length", "1e30");
     expectError(d, ">1e30<", "out of range (valid: -1000000 to 1000000)");
@@ -437,16 +455,21 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
     // References that do not hold.
     d = damage("<parent_shoot_ID>0</parent_shoot_ID>", "<parent_shoot_ID>99</parent_shoot_ID>");
     expectError(d, "<parent_shoot_ID>99", "a shoot grows from a shoot listed before it");
-    d = damage("<parent_node_index>0</parent_node_index>\n      <parent_petiole_index>0</parent_petiole_index>\n      <base_rotation>0 0 90",
-               "<parent_node_index>40</parent_node_index>\n      <parent_petiole_index>0</parent_petiole_index>\n      <base_rotation>0 0 90");
+    d = damage(
+        "<parent_node_index>0</parent_node_index>\n      "
+        "<parent_petiole_index>0</parent_petiole_index>\n      <base_rotation>0 0 90",
+        "<parent_node_index>40</parent_node_index>\n      "
+        "<parent_petiole_index>0</parent_petiole_index>\n      <base_rotation>0 0 90");
     expectError(d, "<parent_node_index>40", "no such node on the parent shoot (valid: 0 to 0)");
     d = setFirst("shoot_type_label", "trifoliat", "<shoot ID=\"1\">");
     expectError(d, "trifoliat<", "shoot[1].shoot_type_label = trifoliat: unknown shoot type");
     d = setFirst("shoot_type_label", "trifoliat", "<vegetative_bud>");
     expectError(d, "trifoliat<", "shoot_type_label = trifoliat: unknown shoot type");
 
-    d = damage("<shoot ID=\"0\">\n      <shoot_type_label>unifoliate</shoot_type_label>", "<shoot ID=\"0\">");
-    expectError(d, "<shoot ID=\"0\">", "plant_instance[0].shoot[0].shoot_type_label: missing <shoot_type_label>");
+    d = damage("<shoot ID=\"0\">\n      <shoot_type_label>unifoliate</shoot_type_label>",
+               "<shoot ID=\"0\">");
+    expectError(d, "<shoot ID=\"0\">",
+                "plant_instance[0].shoot[0].shoot_type_label: missing <shoot_type_label>");
 
     // Embedded parameters are validated like species files.
     d = damage("<max_nodes>25</max_nodes>", "<max_nodes>-3</max_nodes>");
@@ -494,5 +517,6 @@ TEST(PlantStructureXML, DocsNameEveryElement) {
     const std::string doc =
         plantarch::testing::fileBytes(std::string(PLANTARCH_SOURCE_DIR) + "/docs/plant-xml.md");
     for (const std::string& name : v.names)
-        EXPECT_NE(doc.find("`" + name + "`"), std::string::npos) << name << " is not in docs/plant-xml.md";
+        EXPECT_NE(doc.find("`" + name + "`"), std::string::npos)
+            << name << " is not in docs/plant-xml.md";
 }

@@ -17,14 +17,17 @@ int main() {
     Context other;
     PlantArchitecture fresh(&other);  // no species loaded: the file carries its parameters
     PlantStructureReadOptions options;
-    options.onWarning = [](const std::string& w) { std::fprintf(stderr, "warning: %s\n", w.c_str()); };
+    options.onWarning = [](const std::string& w) {
+        std::fprintf(stderr, "warning: %s\n", w.c_str());
+    };
     const unsigned copy = fresh.readPlantStructureXML("bean_30_days.xml", options).at(0);
 
     arch.advanceTime(20);
     fresh.advanceTime(20);
     const bool same = arch.getPlantStructureXML({bean}) == fresh.getPlantStructureXML({copy});
-    std::printf("grown on after saving: %s (%u leaves, %.4f m^2)\n", same ? "same plant" : "DIFFERENT",
-                fresh.getPlantLeafCount(copy), fresh.getPlantLeafArea(copy));
+    std::printf("grown on after saving: %s (%u leaves, %.4f m^2)\n",
+                same ? "same plant" : "DIFFERENT", fresh.getPlantLeafCount(copy),
+                fresh.getPlantLeafArea(copy));
 
     const std::string text = fresh.getPlantString(copy);  // 4 significant digits
     std::printf("plant string: %zu characters, starts %.60s...\n", text.size(), text.c_str());

@@ -51,8 +51,8 @@ Frame orient(const Frame& parent, const AxisRotation& r) {
 
 class Completer {
 public:
-    Completer(PlantInstance& p, const Presence& m, const Defaults& d, std::vector<std::string>& notes,
-              std::string where)
+    Completer(PlantInstance& p, const Presence& m, const Defaults& d,
+              std::vector<std::string>& notes, std::string where)
         : p_(p), m_(m), d_(d), notes_(notes), where_(std::move(where)) {}
 
     void run(unsigned plantID) {
@@ -85,7 +85,8 @@ private:
     void shootTypes() {
         if (m_.missing(&p_.shootTypes) && d_.shootTypes) {
             p_.shootTypes = *d_.shootTypes;
-            if (!p_.shootTypes.empty()) notes_.push_back("shoot types: the current ones of the PlantArchitecture");
+            if (!p_.shootTypes.empty())
+                notes_.push_back("shoot types: the current ones of the PlantArchitecture");
         }
         std::set<std::string> needed;
         for (Shoot& s : p_.shoots) {
@@ -114,7 +115,8 @@ private:
 
     void realized(Shoot& s, const ShootParameters& t) {
         auto fill = [&](auto& member, auto value) {
-            if (m_.missing(&member)) member = static_cast<std::remove_reference_t<decltype(member)>>(value);
+            if (m_.missing(&member))
+                member = static_cast<std::remove_reference_t<decltype(member)>>(value);
         };
         fill(s.maxNodes, std::lround(t.max_nodes.mean()));
         fill(s.maxNodesPerSeason, std::lround(t.max_nodes_per_season.mean()));
@@ -137,8 +139,8 @@ private:
             const Internode& tip = parent.phytomers.back().internode;
             return orient({tip.guide, tip.rollReference}, s.baseRotation);
         }
-        const std::size_t node =
-            std::min<std::size_t>(std::size_t(std::max(s.parentNode, 0)), parent.phytomers.size() - 1);
+        const std::size_t node = std::min<std::size_t>(std::size_t(std::max(s.parentNode, 0)),
+                                                       parent.phytomers.size() - 1);
         const Phytomer& ph = parent.phytomers[node];
         const Internode& in = ph.internode;
         const float az = std::size_t(s.parentPetiole) < ph.petioles.size()
@@ -148,7 +150,8 @@ private:
         vec3 side = azimuthDirection(in.guide, in.rollReference, az);
         side = unitOr(side - glm::dot(side, axis) * axis, geometry::anyPerpendicular(axis));
         side = geometry::rotateAbout(side, axis, s.baseRotation.yaw * kDeg);
-        const float angle = (m_.missing(&s.insertionAngle) ? s.baseRotation.pitch : s.insertionAngle) * kDeg;
+        const float angle =
+            (m_.missing(&s.insertionAngle) ? s.baseRotation.pitch : s.insertionAngle) * kDeg;
         Frame f;
         f.axis = unitOr(std::cos(angle) * axis + std::sin(angle) * side, axis);
         const vec3 ref = unitOr(axis - glm::dot(axis, f.axis) * f.axis, side);
@@ -162,14 +165,15 @@ private:
                         {.parameter = where_ + ".shoot[" + std::to_string(i) + "].shoot_type_label",
                          .validRange = "the label of a shoot type"});
         if (m_.missing(&s.rank))
-            s.rank = s.parent >= 0 && std::size_t(s.parent) < i ? p_.shoots[std::size_t(s.parent)].rank + 1 : 0;
+            s.rank = s.parent >= 0 && std::size_t(s.parent) < i
+                         ? p_.shoots[std::size_t(s.parent)].rank + 1
+                         : 0;
         const ShootParameters* t = typeOf(s.type);
         if (t) realized(s, *t);
         if (m_.missing(&s.apicalBud.state)) s.apicalBud.state = BudState::Active;
         if (m_.missing(&s.nodesThisSeason)) s.nodesThisSeason = int(s.phytomers.size());
         const Frame start = startFrame(s, i);
-        for (std::size_t k = 0; k < s.phytomers.size(); ++k)
-            phytomer(s, k, start);
+        for (std::size_t k = 0; k < s.phytomers.size(); ++k) phytomer(s, k, start);
         for (FloralBud& fb : s.terminalFloralBuds) {
             if (m_.missing(&fb.terminal)) fb.terminal = true;
             floral(fb);
@@ -192,7 +196,8 @@ private:
                 in.rollReference = start.reference;
             } else {
                 // Carried along the axis with the smallest rotation (no twist).
-                const vec3 r = prev->rollReference - glm::dot(prev->rollReference, in.guide) * in.guide;
+                const vec3 r =
+                    prev->rollReference - glm::dot(prev->rollReference, in.guide) * in.guide;
                 in.rollReference = unitOr(r, geometry::anyPerpendicular(in.guide));
             }
         }
@@ -220,9 +225,10 @@ private:
         for (int i = 0; i < n; ++i) {
             LeafOrgan& l = pt.leaves[std::size_t(i)];
             const bool tip = n % 2 == 1 && i == 0;
-            const int pair = n % 2 == 1 ? (i + 1) / 2 : i / 2 + 1;   // 1-based pair number
-            const int step = n % 2 == 1 ? pair : pair - 1;           // pair steps from the tip
-            if (m_.missing(&l.leafletIndex)) l.leafletIndex = tip ? 0 : ((i - (n % 2)) % 2 == 0 ? -pair : pair);
+            const int pair = n % 2 == 1 ? (i + 1) / 2 : i / 2 + 1;  // 1-based pair number
+            const int step = n % 2 == 1 ? pair : pair - 1;          // pair steps from the tip
+            if (m_.missing(&l.leafletIndex))
+                l.leafletIndex = tip ? 0 : ((i - (n % 2)) % 2 == 0 ? -pair : pair);
             if (m_.missing(&l.position))
                 l.position = tip || n == 1 ? 1.0f : std::max(0.0f, 1.0f - float(step) * offset);
             if (m_.missing(&l.leafID)) l.leafID = nextLeafID_++;
@@ -282,9 +288,8 @@ void checkPlant(PlantInstance& p, const std::string& where) {
             inconsistent(at(i, "parent_shoot_ID"), "shoot 0 is the base stem: it has no parent",
                          std::to_string(s.parent), "-1");
         if (i > 0 && (s.parent < 0 || std::size_t(s.parent) >= i))
-            inconsistent(at(i, "parent_shoot_ID"),
-                         "a shoot grows from a shoot listed before it", std::to_string(s.parent),
-                         "0 to " + std::to_string(i - 1));
+            inconsistent(at(i, "parent_shoot_ID"), "a shoot grows from a shoot listed before it",
+                         std::to_string(s.parent), "0 to " + std::to_string(i - 1));
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
             Phytomer& ph = s.phytomers[k];
             const std::string phPath = at(i, "phytomer[" + std::to_string(k) + "]");
@@ -304,10 +309,12 @@ void checkPlant(PlantInstance& p, const std::string& where) {
                                      "0 to " + std::to_string(leafVariants - 1));
                 for (std::size_t b = 0; b < pt.vegetativeBuds.size(); ++b) {
                     const VegetativeBud& bud = pt.vegetativeBuds[b];
-                    const std::string budPath = ptPath + ".vegetative_bud[" + std::to_string(b) + "]";
+                    const std::string budPath =
+                        ptPath + ".vegetative_bud[" + std::to_string(b) + "]";
                     if (bud.childShoot >= int(n))
                         inconsistent(budPath + ".child_shoot_ID", "no such shoot",
-                                     std::to_string(bud.childShoot), "-1 to " + std::to_string(n - 1));
+                                     std::to_string(bud.childShoot),
+                                     "-1 to " + std::to_string(n - 1));
                     if (!bud.shootType.empty() && !p.shootTypes.count(bud.shootType))
                         inconsistent(budPath + ".shoot_type_label", "unknown shoot type",
                                      bud.shootType, typeLabels());
@@ -324,8 +331,8 @@ void checkPlant(PlantInstance& p, const std::string& where) {
                 }
             }
         }
-        const unsigned terminalVariants =
-            std::max(1u, p.shootTypes.at(s.type).phytomer_parameters.inflorescence.unique_prototypes);
+        const unsigned terminalVariants = std::max(
+            1u, p.shootTypes.at(s.type).phytomer_parameters.inflorescence.unique_prototypes);
         for (std::size_t b = 0; b < s.terminalFloralBuds.size(); ++b)
             for (const FlowerOrgan& fl : s.terminalFloralBuds[b].flowers)
                 if (fl.variant >= terminalVariants)
@@ -335,8 +342,9 @@ void checkPlant(PlantInstance& p, const std::string& where) {
         if (s.removed || s.parent < 0) continue;
         Shoot& parent = p.shoots[std::size_t(s.parent)];
         if (parent.removed)
-            inconsistent(at(i, "removed"), "a shoot growing from a removed shoot must be removed too",
-                         "false", "true");
+            inconsistent(at(i, "removed"),
+                         "a shoot growing from a removed shoot must be removed too", "false",
+                         "true");
         if (s.parentNode < 0 || std::size_t(s.parentNode) >= parent.phytomers.size())
             inconsistent(at(i, "parent_node_index"), "no such node on the parent shoot",
                          std::to_string(s.parentNode),

@@ -25,9 +25,9 @@ namespace plantarch::state {
 /// What a reader checks beyond the range.
 enum class Check {
     None,
-    UnitVector,     ///< a direction: length 1 (within 1e-3)
-    Label,          ///< a shoot type label: letters, digits, '_' or '-'
-    LabelOrEmpty,   ///< a label, or nothing
+    UnitVector,    ///< a direction: length 1 (within 1e-3)
+    Label,         ///< a shoot type label: letters, digits, '_' or '-'
+    LabelOrEmpty,  ///< a label, or nothing
 };
 
 /// What a state field is. The range bounds the value (each component of a vector).
@@ -35,7 +35,7 @@ struct FieldInfo {
     const char* name;  ///< XML element
     double min;
     double max;
-    const char* doc;   ///< meaning and unit
+    const char* doc;  ///< meaning and unit
     Check check = Check::None;
 };
 
@@ -43,13 +43,13 @@ using params::SameAs;
 
 // Generous bounds that keep geometry finite; realized values of unbounded distributions may
 // fall outside a parameter's nominal range, so these are wider than the parameter table's.
-inline constexpr double kBig = 1e6;          ///< lengths (m), angles (degrees), rates
-inline constexpr double kTime = 1e9;         ///< plant ages, days (negative: not scheduled)
-inline constexpr double kCount = 1e9;        ///< counters and indices
+inline constexpr double kBig = 1e6;    ///< lengths (m), angles (degrees), rates
+inline constexpr double kTime = 1e9;   ///< plant ages, days (negative: not scheduled)
+inline constexpr double kCount = 1e9;  ///< counters and indices
 inline constexpr double kMaxLeafID = 1 << 30;
 
 template <class S, class V>
-    requires SameAs<S, VegetativeBud>
+requires SameAs<S, VegetativeBud>
 void describeState(S& b, V& v) {
     v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
     v.field({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)"},
@@ -61,7 +61,7 @@ void describeState(S& b, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, FlowerOrgan>
+requires SameAs<S, FlowerOrgan>
 void describeState(S& f, V& v) {
     v.field({"position", -kBig, kBig, "along the peduncle, fraction of its length"}, f.position);
     v.field({"azimuth", -kBig, kBig, "side of the peduncle, degrees"}, f.azimuth);
@@ -79,7 +79,7 @@ void describeState(S& f, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, FloralBud>
+requires SameAs<S, FloralBud>
 void describeState(S& b, V& v) {
     v.field({"stage", 0, 0, "bud, flower_closed, flower_open, fruit or removed"}, b.stage);
     v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
@@ -110,14 +110,13 @@ void describeState(S& b, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, LeafOrgan>
+requires SameAs<S, LeafOrgan>
 void describeState(S& l, V& v) {
     v.field({"leaf_scale", -kBig, kBig, "full-grown length, m"}, l.scale);
     v.field({"leaf_pitch", -kBig, kBig, "degrees"}, l.pitch);
     v.field({"leaf_yaw", -kBig, kBig, "degrees"}, l.yaw);
     v.field({"leaf_roll", -kBig, kBig, "degrees"}, l.roll);
-    v.field({"leaflet_index", -1000, 1000, "0 tip, negative left, positive right"},
-            l.leafletIndex);
+    v.field({"leaflet_index", -1000, 1000, "0 tip, negative left, positive right"}, l.leafletIndex);
     v.field({"position", -kBig, kBig, "along the petiole, fraction of its length"}, l.position);
     v.field({"variant", 0, kCount, "prototype shape variant"}, l.variant);
     v.field({"leaf_ID", -1, kMaxLeafID, "unique within the plant"}, l.leafID);
@@ -127,7 +126,7 @@ void describeState(S& l, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, Petiole>
+requires SameAs<S, Petiole>
 void describeState(S& p, V& v) {
     v.field({"petiole_length", -kBig, kBig, "full-grown length, m"}, p.length);
     v.field({"petiole_radius", -kBig, kBig, "base radius, m"}, p.radius);
@@ -147,7 +146,7 @@ void describeState(S& p, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, Internode>
+requires SameAs<S, Internode>
 void describeState(S& in, V& v) {
     v.field({"internode_length", -kBig, kBig, "full-grown length, m"}, in.length);
     v.field({"internode_radius", -kBig, kBig, "current radius, m"}, in.radius);
@@ -156,8 +155,7 @@ void describeState(S& in, V& v) {
             in.phyllotacticAngle);
     v.field({"azimuth", -kBig, kBig, "accumulated phyllotactic roll, degrees"}, in.azimuth);
     v.field({"direction", -1, 1, "axis of the internode", Check::UnitVector}, in.direction);
-    v.field({"shoot_axis", -1, 1, "shoot axis here (curvature, walk, steering)",
-             Check::UnitVector},
+    v.field({"shoot_axis", -1, 1, "shoot axis here (curvature, walk, steering)", Check::UnitVector},
             in.guide);
     v.field({"roll_reference", -1, 1, "azimuth 0 of the petioles", Check::UnitVector},
             in.rollReference);
@@ -167,7 +165,7 @@ void describeState(S& in, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, Phytomer>
+requires SameAs<S, Phytomer>
 void describeState(S& ph, V& v) {
     v.field({"age", -kTime, kTime, "days"}, ph.age);
     v.field({"birth", -kTime, kTime, "plant age when it was created, days"}, ph.birth);
@@ -188,7 +186,7 @@ void describeState(S& ph, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, Shoot>
+requires SameAs<S, Shoot>
 void describeState(S& s, V& v) {
     v.field({"shoot_type_label", 0, 0, "shoot type", Check::Label}, s.type);
     v.field({"parent_shoot_ID", -1, kCount, "-1 for the base stem"}, s.parent);
@@ -220,19 +218,17 @@ void describeState(S& s, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, PlantInstance>
+requires SameAs<S, PlantInstance>
 void describeState(S& p, V& v) {
     v.field({"plant_name", 0, 0, "species or user label"}, p.name);
     v.field({"base_position", -kBig, kBig, "m"}, p.base);
     v.field({"plant_age", 0, kTime, "days"}, p.age);
     v.field({"random_generator", 0, 0, "PCG32 state and increment"}, p.rng);
     v.field({"next_leaf_ID", 0, kMaxLeafID, ""}, p.nextLeafID);
-    v.field({"phenology_stage", 0, 0, "dormant, vegetative, reproductive or senescent"},
-            p.stage);
+    v.field({"phenology_stage", 0, 0, "dormant, vegetative, reproductive or senescent"}, p.stage);
     v.field({"dormancy_break_time", -kTime, kTime, "when the season began, days"},
             p.dormancyBreakTime);
-    v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)"},
-            p.nextDormancyBreak);
+    v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)"}, p.nextDormancyBreak);
     v.field({"senescence_time", -kTime, kTime, "days (negative: never)"}, p.senescenceTime);
     v.field({"season", 0, kCount, "growing seasons begun"}, p.season);
     v.parameters("phenology", p.phenology);

@@ -18,8 +18,8 @@ namespace plantarch::plant_io {
 namespace {
 
 bool isLabelChar(char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c == '_' || c == '-';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
 }
 
 bool isLabel(const std::string& s) {
@@ -28,10 +28,14 @@ bool isLabel(const std::string& s) {
 
 char stageLetter(FloralStage s) {
     switch (s) {
-        case FloralStage::FlowerClosed: return 'c';
-        case FloralStage::FlowerOpen: return 'o';
-        case FloralStage::Fruit: return 'f';
-        default: return 0;
+        case FloralStage::FlowerClosed:
+            return 'c';
+        case FloralStage::FlowerOpen:
+            return 'o';
+        case FloralStage::Fruit:
+            return 'f';
+        default:
+            return 0;
     }
 }
 
@@ -59,9 +63,9 @@ private:
     template <class T>
     void number(T v) {
         char buf[64];
-        const auto r = digits_ == 0
-                           ? std::to_chars(buf, buf + sizeof buf, v)
-                           : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, digits_);
+        const auto r = digits_ == 0 ? std::to_chars(buf, buf + sizeof buf, v)
+                                    : std::to_chars(buf, buf + sizeof buf, v,
+                                                    std::chars_format::general, digits_);
         out_.append(buf, r.ptr);
     }
     void numbers(std::initializer_list<float> values) {
@@ -80,8 +84,9 @@ private:
 
     void shoot(unsigned id, int depth) {
         if (depth >= kMaxDepth)
-            throw Error("the plant's shoots nest too deep for a plant string",
-                        {.parameter = "shoot " + std::to_string(id), .validRange = "at most 1000 levels"});
+            throw Error(
+                "the plant's shoots nest too deep for a plant string",
+                {.parameter = "shoot " + std::to_string(id), .validRange = "at most 1000 levels"});
         const Shoot& s = p_.shoots[id];
         out_ += 'S';
         out_ += s.type;
@@ -92,7 +97,8 @@ private:
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) node(s, k, depth);
         for (const FloralBud& fb : s.terminalFloralBuds) floral(fb);
         for (unsigned c : s.children) {
-            if (drawn(c) && p_.shoots[c].rank == s.rank) shoot(c, depth + 1);  // appended at the tip
+            if (drawn(c) && p_.shoots[c].rank == s.rank)
+                shoot(c, depth + 1);  // appended at the tip
         }
         out_ += '}';
     }
@@ -198,8 +204,8 @@ private:
     }
 
     void skipSpace() {
-        while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\n' || s_[pos_] == '\r' ||
-                                    s_[pos_] == '\t'))
+        while (pos_ < s_.size() &&
+               (s_[pos_] == ' ' || s_[pos_] == '\n' || s_[pos_] == '\r' || s_[pos_] == '\t'))
             ++pos_;
     }
     char peek() {
@@ -267,7 +273,8 @@ private:
     // A prototype variant and the closing parenthesis.
     unsigned variant() {
         const double v = number<double>();
-        if (v < 0.0 || v > 1e6 || v != std::floor(v)) fail("expected a variant number", "a whole number >= 0");
+        if (v < 0.0 || v > 1e6 || v != std::floor(v))
+            fail("expected a variant number", "a whole number >= 0");
         expect(')');
         return unsigned(v);
     }
@@ -275,7 +282,8 @@ private:
     vec3 direction(float x, float y, float z) {
         const vec3 v(x, y, z);
         const float l = glm::length(v);
-        if (!(l > 0.5f && l < 1.5f)) fail("a direction must have length close to 1", "a unit vector");
+        if (!(l > 0.5f && l < 1.5f))
+            fail("a direction must have length close to 1", "a unit vector");
         return v;
     }
 
@@ -297,7 +305,8 @@ private:
         expect('{');
         while (peek() == 'I') internode(id, depth);
         if (p_.shoots[id].phytomers.empty()) fail("a shoot needs at least one internode", "'I('");
-        p_.shoots[id].phytomers.front().internode.rollReference = direction(roll[0], roll[1], roll[2]);
+        p_.shoots[id].phytomers.front().internode.rollReference =
+            direction(roll[0], roll[1], roll[2]);
         while (peek() == 'F') {
             FloralBud fb = floral();
             fb.terminal = true;
@@ -373,10 +382,14 @@ private:
         expect('F');
         FloralBud fb;
         const char letter = pos_ < s_.size() ? s_[pos_] : '\0';
-        if (letter == 'c') fb.stage = FloralStage::FlowerClosed;
-        else if (letter == 'o') fb.stage = FloralStage::FlowerOpen;
-        else if (letter == 'f') fb.stage = FloralStage::Fruit;
-        else fail("expected a flower stage letter", "c (closed flower), o (open flower), f (fruit)");
+        if (letter == 'c')
+            fb.stage = FloralStage::FlowerClosed;
+        else if (letter == 'o')
+            fb.stage = FloralStage::FlowerOpen;
+        else if (letter == 'f')
+            fb.stage = FloralStage::Fruit;
+        else
+            fail("expected a flower stage letter", "c (closed flower), o (open flower), f (fruit)");
         ++pos_;
         const auto v = tuple<5>();
         fb.peduncleLength = v[0];
@@ -412,9 +425,9 @@ void notePresent(PlantInstance& p, Presence& m) {
     for (const void* v : {(const void*)&p.name, (const void*)&p.base, (const void*)&p.age})
         m.note(v);
     for (Shoot& s : p.shoots) {
-        for (const void* v : {(const void*)&s.type, (const void*)&s.parent,
-                              (const void*)&s.parentNode, (const void*)&s.parentPetiole,
-                              (const void*)&s.rank})
+        for (const void* v :
+             {(const void*)&s.type, (const void*)&s.parent, (const void*)&s.parentNode,
+              (const void*)&s.parentPetiole, (const void*)&s.rank})
             m.note(v);
         auto floral = [&](FloralBud& fb) {
             for (const void* v : {(const void*)&fb.stage, (const void*)&fb.terminal,
@@ -426,23 +439,22 @@ void notePresent(PlantInstance& p, Presence& m) {
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
             Phytomer& ph = s.phytomers[k];
             Internode& in = ph.internode;
-            for (const void* v : {(const void*)&ph.parametersLabel,
-                                  (const void*)&ph.internodeFraction, (const void*)&ph.leafFraction,
-                                  (const void*)&in.length, (const void*)&in.radius,
-                                  (const void*)&in.pitch, (const void*)&in.azimuth,
-                                  (const void*)&in.guide})
+            for (const void* v :
+                 {(const void*)&ph.parametersLabel, (const void*)&ph.internodeFraction,
+                  (const void*)&ph.leafFraction, (const void*)&in.length, (const void*)&in.radius,
+                  (const void*)&in.pitch, (const void*)&in.azimuth, (const void*)&in.guide})
                 m.note(v);
             if (k == 0) m.note(&in.rollReference);
             for (Petiole& pt : ph.petioles) {
-                for (const void* v : {(const void*)&pt.length, (const void*)&pt.radius,
-                                      (const void*)&pt.pitch, (const void*)&pt.curvature,
-                                      (const void*)&pt.taper})
+                for (const void* v :
+                     {(const void*)&pt.length, (const void*)&pt.radius, (const void*)&pt.pitch,
+                      (const void*)&pt.curvature, (const void*)&pt.taper})
                     m.note(v);
                 for (LeafOrgan& l : pt.leaves)
-                    for (const void* v : {(const void*)&l.leafletIndex, (const void*)&l.scale,
-                                          (const void*)&l.pitch, (const void*)&l.yaw,
-                                          (const void*)&l.roll, (const void*)&l.position,
-                                          (const void*)&l.variant})
+                    for (const void* v :
+                         {(const void*)&l.leafletIndex, (const void*)&l.scale,
+                          (const void*)&l.pitch, (const void*)&l.yaw, (const void*)&l.roll,
+                          (const void*)&l.position, (const void*)&l.variant})
                         m.note(v);
                 for (FloralBud& fb : pt.floralBuds) floral(fb);
             }

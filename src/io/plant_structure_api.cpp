@@ -75,7 +75,8 @@ void PlantArchitecture::writePlantStructureXML(const std::vector<unsigned>& plan
     file.commit();
 }
 
-void PlantArchitecture::writePlantStructureXML(unsigned plantID, const std::string& filename) const {
+void PlantArchitecture::writePlantStructureXML(unsigned plantID,
+                                               const std::string& filename) const {
     writePlantStructureXML(std::vector<unsigned>{plantID}, filename);
 }
 

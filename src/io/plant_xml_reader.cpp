@@ -53,7 +53,8 @@ public:
 
     int lineAt(std::ptrdiff_t offset) const {
         if (offset < 0) return 1;
-        const auto end = text_.begin() + std::min<std::ptrdiff_t>(offset, std::ptrdiff_t(text_.size()));
+        const auto end =
+            text_.begin() + std::min<std::ptrdiff_t>(offset, std::ptrdiff_t(text_.size()));
         return 1 + int(std::count(text_.begin(), end, '\n'));
     }
     int line(xml_node n) const { return lineAt(n.offset_debug()); }
@@ -102,8 +103,9 @@ xml_node resolve(xml_node from, const std::string& path) {
         int index = numeric ? std::atoi(key.c_str()) : 0;
         xml_node next;
         for (xml_node c = at.child(part.c_str()); c; c = c.next_sibling(part.c_str())) {
-            const bool hit = key.empty() || numeric ? index-- == 0
-                                                    : key == text::trim(c.attribute("label").value());
+            const bool hit = key.empty() || numeric
+                                 ? index-- == 0
+                                 : key == text::trim(c.attribute("label").value());
             if (hit) {
                 next = c;
                 break;
@@ -128,7 +130,8 @@ double parseDouble(std::string_view raw) {
     const std::string_view s = text::trim(raw);
     double v = 0.0;
     if (!readDouble(s, v))
-        throw Error("expected a number", {.value = std::string(s), .validRange = "a finite number"});
+        throw Error("expected a number",
+                    {.value = std::string(s), .validRange = "a finite number"});
     return v;
 }
 
@@ -177,7 +180,7 @@ bool isLabel(std::string_view s) {
 struct PlantReader {
     const Document& doc;
     Presence presence = Presence::recordingMissing();
-    std::map<std::string, int> missingCounts;  // "shoot.phytomer.age" -> how many
+    std::map<std::string, int> missingCounts;       // "shoot.phytomer.age" -> how many
     std::vector<std::pair<const char*, int>> path;  // element names (and list index, or -1)
 
     std::string pathTo(const char* leaf, bool indices = true) const {
@@ -241,21 +244,22 @@ public:
             if (isElement(c)) {
                 kids_.push_back({c, false});
             } else if (isText(c) && !text::trim(c.value()).empty()) {
-                r_.doc.fail(c, r_.pathTo(nullptr),
-                            std::string("unexpected text inside <") + node.name() +
-                                ">, expected elements",
-                            std::string(text::trim(c.value())).substr(0, 40));
+                r_.doc.fail(
+                    c, r_.pathTo(nullptr),
+                    std::string("unexpected text inside <") + node.name() + ">, expected elements",
+                    std::string(text::trim(c.value())).substr(0, 40));
             }
         }
         for (pugi::xml_attribute a = node.first_attribute(); a; a = a.next_attribute()) {
-            const bool known = std::any_of(attributes.begin(), attributes.end(),
-                                           [&](const char* n) { return std::strcmp(n, a.name()) == 0; });
+            const bool known =
+                std::any_of(attributes.begin(), attributes.end(),
+                            [&](const char* n) { return std::strcmp(n, a.name()) == 0; });
             if (!known)
-                r_.doc.fail(node, r_.pathTo(a.name()),
-                            std::string("unknown attribute '") + a.name() + "' of <" + node.name() +
-                                ">",
-                            a.value(),
-                            attributes.empty() ? "no attributes" : "one of: " + joined(attributes));
+                r_.doc.fail(
+                    node, r_.pathTo(a.name()),
+                    std::string("unknown attribute '") + a.name() + "' of <" + node.name() + ">",
+                    a.value(),
+                    attributes.empty() ? "no attributes" : "one of: " + joined(attributes));
         }
     }
 
@@ -332,8 +336,8 @@ public:
             k.used = true;
             r_.path.emplace_back(name, int(i));
             if (ids) checkID(k.node, i);
-            ElementReader sub(r_, k.node, ids ? std::vector<const char*>{"ID"}
-                                              : std::vector<const char*>{});
+            ElementReader sub(r_, k.node,
+                              ids ? std::vector<const char*>{"ID"} : std::vector<const char*>{});
             state::describeState(items[i], sub);
             sub.finish();
             r_.path.pop_back();
@@ -402,8 +406,8 @@ public:
             if (k.used) continue;
             const std::string name = k.node.name();
             const std::string path = r_.pathTo(name.c_str());
-            const bool declared = std::any_of(names_.begin(), names_.end(),
-                                              [&](const char* n) { return name == n; });
+            const bool declared =
+                std::any_of(names_.begin(), names_.end(), [&](const char* n) { return name == n; });
             if (declared) {
                 int first = 0;
                 for (const Kid& o : kids_)
@@ -547,10 +551,12 @@ private:
         m = convert(e, f.name, s, text::parseVec3);
         for (int i = 0; i < 3; ++i) checkRange(f, e, m[i], s);
         if constexpr (std::is_same_v<Info, state::FieldInfo>) {
-            const double length = std::sqrt(double(m.x) * m.x + double(m.y) * m.y + double(m.z) * m.z);
+            const double length =
+                std::sqrt(double(m.x) * m.x + double(m.y) * m.y + double(m.z) * m.z);
             if (f.check == state::Check::UnitVector && std::abs(length - 1.0) > 1e-3)
-                r_.doc.fail(e, r_.pathTo(f.name), "not a unit vector (length " + number(length) + ")",
-                            std::string(s), "a direction of length 1");
+                r_.doc.fail(e, r_.pathTo(f.name),
+                            "not a unit vector (length " + number(length) + ")", std::string(s),
+                            "a direction of length 1");
         }
     }
     void readValue(const state::FieldInfo& f, xml_node e, AxisRotation& m) {
@@ -566,8 +572,9 @@ private:
             const bool optional = f.check == state::Check::LabelOrEmpty;
             if ((f.check == state::Check::Label || optional) && !(optional && m.empty()) &&
                 !isLabel(m))
-                r_.doc.fail(e, r_.pathTo(f.name), "a shoot type label is letters, digits, '_' or '-'",
-                            m, optional ? "a label, or nothing" : "a label");
+                r_.doc.fail(e, r_.pathTo(f.name),
+                            "a shoot type label is letters, digits, '_' or '-'", m,
+                            optional ? "a label, or nothing" : "a label");
         }
     }
     void readValue(const state::FieldInfo& f, xml_node e, BudState& m) {
@@ -614,8 +621,9 @@ private:
                             std::string("unknown element <") + c.name() + "> in <" + f.name + ">",
                             "", std::string("<") + spell.element + ">");
             for (pugi::xml_attribute a = c.first_attribute(); a; a = a.next_attribute()) {
-                const bool known = std::strcmp(a.name(), spell.keyAttribute) == 0 ||
-                                   (spell.valueAttribute && std::strcmp(a.name(), spell.valueAttribute) == 0);
+                const bool known =
+                    std::strcmp(a.name(), spell.keyAttribute) == 0 ||
+                    (spell.valueAttribute && std::strcmp(a.name(), spell.valueAttribute) == 0);
                 if (!known)
                     r_.doc.fail(c, path + "." + a.name(),
                                 std::string("unknown attribute '") + a.name() + "'", a.value());
@@ -631,8 +639,9 @@ private:
             if (spell.valueAttribute) {
                 pugi::xml_attribute v = c.attribute(spell.valueAttribute);
                 if (!v)
-                    r_.doc.fail(c, entry, std::string("missing required attribute '") +
-                                              spell.valueAttribute + "'");
+                    r_.doc.fail(
+                        c, entry,
+                        std::string("missing required attribute '") + spell.valueAttribute + "'");
                 if (c.first_child())
                     r_.doc.fail(c, entry, std::string("<") + spell.element + "> takes no content");
                 valueText = text::trim(v.value());
@@ -644,8 +653,8 @@ private:
             }
             const Value value = convert(c, entry, valueText, parseValue);
             if (!m.emplace(key, value).second)
-                r_.doc.fail(c, entry, "duplicate " + std::string(spell.keyAttribute) + " '" +
-                                          keyText + "'");
+                r_.doc.fail(c, entry,
+                            "duplicate " + std::string(spell.keyAttribute) + " '" + keyText + "'");
         }
     }
     void readValue(const params::FieldInfo& f, xml_node e, std::map<int, std::string>& m) {
@@ -683,11 +692,13 @@ xml_node rootOf(const pugi::xml_document& doc, const Document& d) {
     xml_node root;
     for (xml_node n = doc.first_child(); n; n = n.next_sibling()) {
         if (isText(n) && !text::trim(n.value()).empty())
-            d.fail(n, "", "text outside the root element", std::string(text::trim(n.value())).substr(0, 40));
+            d.fail(n, "", "text outside the root element",
+                   std::string(text::trim(n.value())).substr(0, 40));
         if (!isElement(n)) continue;
         if (root)
-            d.fail(n, "", std::string("a second root element <") + n.name() + "> after <" +
-                              root.name() + ">");
+            d.fail(n, "",
+                   std::string("a second root element <") + n.name() + "> after <" + root.name() +
+                       ">");
         root = n;
     }
     return root;
@@ -721,14 +732,15 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                std::string("<") + kRoot + ">");
     for (pugi::xml_attribute a = root.first_attribute(); a; a = a.next_attribute())
         if (listing || std::strcmp(a.name(), "format") != 0)
-            d.fail(root, a.name(), std::string("unknown attribute '") + a.name() + "' of <" +
-                                       rootName + ">",
+            d.fail(root, a.name(),
+                   std::string("unknown attribute '") + a.name() + "' of <" + rootName + ">",
                    a.value(), listing ? "no attributes" : "format");
     if (!listing) {
         const pugi::xml_attribute format = root.attribute("format");
         if (!format)
-            d.fail(root, "format", std::string("missing required attribute 'format' of <") + kRoot + ">",
-                   "", std::to_string(kFormatVersion));
+            d.fail(root, "format",
+                   std::string("missing required attribute 'format' of <") + kRoot + ">", "",
+                   std::to_string(kFormatVersion));
         const std::string version(text::trim(format.value()));
         if (version != std::to_string(kFormatVersion)) {
             int v = 0;
@@ -782,8 +794,9 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
             d.relocate(err, resolve(e, rel), err.parameter());
         }
         if (!reader.missingCounts.empty()) {
-            std::string w = fileName + ": plant_instance " + std::to_string(index) +
-                            ": values missing, defaults used: " + missingReport(reader.missingCounts);
+            std::string w =
+                fileName + ": plant_instance " + std::to_string(index) +
+                ": values missing, defaults used: " + missingReport(reader.missingCounts);
             for (const std::string& n : notes) w += "; " + n;
             result.warnings.push_back(std::move(w));
         }

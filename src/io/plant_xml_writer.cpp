@@ -17,16 +17,33 @@ namespace {
 void appendEscaped(std::string& out, std::string_view s) {
     for (char c : s) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            case '\'': out += "&apos;"; break;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
             // Written as references: raw line ends would be normalized when read back.
-            case '\r': out += "&#13;"; break;
-            case '\n': out += "&#10;"; break;
-            case '\t': out += "&#9;"; break;
-            default: out += c;
+            case '\r':
+                out += "&#13;";
+                break;
+            case '\n':
+                out += "&#10;";
+                break;
+            case '\t':
+                out += "&#9;";
+                break;
+            default:
+                out += c;
         }
     }
 }
@@ -43,7 +60,9 @@ void appendNumber(std::string& out, float v) {
         out.append(buf, g.ptr);
 }
 
-void appendNumber(std::string& out, double v) { out += text::formatDouble(v); }
+void appendNumber(std::string& out, double v) {
+    out += text::formatDouble(v);
+}
 
 template <class Int>
 void appendInteger(std::string& out, Int v) {
@@ -119,12 +138,14 @@ public:
     void field(const params::FieldInfo& f, const vec3& v) { put(f, text::formatVec3(v)); }
     void field(const params::FieldInfo& f, const std::string& v) { put(f, v); }
     void field(const params::FieldInfo& f, const std::map<int, std::string>& m) {
-        writeMap(f, m, [](std::string& o, int k) { appendInteger(o, k); },
-                 [](std::string& o, const std::string& v) { appendEscaped(o, v); });
+        writeMap(
+            f, m, [](std::string& o, int k) { appendInteger(o, k); },
+            [](std::string& o, const std::string& v) { appendEscaped(o, v); });
     }
     void field(const params::FieldInfo& f, const std::map<std::string, float>& m) {
-        writeMap(f, m, [](std::string& o, const std::string& k) { appendEscaped(o, k); },
-                 [](std::string& o, float v) { appendNumber(o, v); });
+        writeMap(
+            f, m, [](std::string& o, const std::string& k) { appendEscaped(o, k); },
+            [](std::string& o, float v) { appendNumber(o, v); });
     }
     template <class G, class Fn>
     void group(const char* name, const G&, Fn&& visit) {
@@ -293,7 +314,8 @@ std::string writePlantsXML(const std::vector<const PlantInstance*>& plants) {
     std::string out;
     out.reserve(std::size_t(1) << 16);
     out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    out += "<!-- plantarch plant structure file (docs/plant-xml.md). Units: m, degrees, days. -->\n";
+    out +=
+        "<!-- plantarch plant structure file (docs/plant-xml.md). Units: m, degrees, days. -->\n";
     out += "<";
     out += kRoot;
     out.append(" format=\"").append(std::to_string(kFormatVersion)).append("\">\n");

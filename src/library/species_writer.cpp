@@ -34,6 +34,9 @@ std::string escape(std::string_view s) {
             case '\'':
                 out += "&apos;";
                 break;
+            case '\r':  // a raw one would read back as '\n' (XML line-end normalization)
+                out += "&#13;";
+                break;
             default:
                 out += c;
         }
