@@ -496,3 +496,53 @@ TEST(Collision, CanopiesWithObstaclesAndOwnAttractionPointsAreDeterministic) {
     };
     EXPECT_EQ(build(1), build(2));
 }
+
+// Solid obstacles keep priority over attraction points: points behind a wall pull the plant
+// toward it, never through it.
+TEST(Collision, ObstaclesKeepPriorityOverAttraction) {
+    std::vector<vec3> lure;
+    for (int i = 0; i <= 40; ++i) lure.push_back(vec3(0.3f, 0, 0.02f * float(i)));
+    float reach[2];
+    for (int wall = 0; wall < 2; ++wall) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        if (wall) arch.enableSolidObstacleAvoidance({addBox(ctx, {0.15f, -1, 0}, {0.17f, 1, 2})}, 0.2f);
+        arch.enableAttractionPoints(lure, 80, 0.3f, 0.2f);
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 45.0f);
+        reach[wall] = extreme(ctx, arch, p, 0, true);
+        EXPECT_GT(arch.getCollisionStats().attracted, 10u);
+    }
+    EXPECT_GT(reach[0], 0.2f);   // drawn past where the wall would be
+    EXPECT_LE(reach[1], 0.15f);  // but not through it
+}
+
+// Every organ kind as an obstacle, petioles and peduncles steered too: the slower path
+// (no kept proxies) gives the same plants for 1 and 2 threads.
+TEST(Collision, AllOrganKindsAndSteeredSideOrgansAreDeterministic) {
+    auto build = [](int threads) {
+        const int before = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(8);
+        arch.loadPlantModelFromLibrary("bean");
+        SoftCollisionOptions o;
+        o.cone = PerceptionCone{60, 0.08f, 64, 0.5f};
+        o.steerPetioles = true;
+        o.steerPeduncles = true;
+        o.obstacles = CollisionOrgans{true, true, true, true, true};
+        arch.enableSoftCollisionAvoidance(o);
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 50.0f);
+        omp_set_num_threads(before);
+        const CollisionStats st = arch.getCollisionStats();
+        EXPECT_GT(st.softCones, st.softSteered);
+        EXPECT_GT(st.softSteered, 100u);
+        // More cones than internodes: petioles and peduncles look too.
+        std::size_t internodes = 0;
+        for (unsigned p : arch.getAllPlantIDs()) internodes += arch.getPlantInternodeObjectIDs(p).size();
+        EXPECT_GT(st.softCones, internodes);
+        return fingerprint(ctx);
+    };
+    EXPECT_EQ(build(1), build(2));
+}

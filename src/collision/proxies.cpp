@@ -9,12 +9,12 @@ namespace plantarch::collision {
 
 namespace {
 
-// Stations along a leaf blade for its outline proxy: 2 (base, middle, tip) give a hexagon of
-// 4 triangles per leaf.
-constexpr int kStations = 2;
+// Stations along a leaf blade at which its width is measured.
+constexpr int kStations = 8;
 
-// The blade as a strip of quads between stations along x: at each station the extent of
-// the vertices in y (width) and their mean z (curvature).
+// The blade as a rhombus of 2 triangles: from the middle of its base, to both edges at its
+// widest station, to the middle of its tip; heights are the mean z of the vertices there
+// (curvature).
 TriangleSoup bladeOutline(const OrganPrototype& proto, const AABB& bounds) {
     TriangleSoup out;
     const float x0 = bounds.min.x, x1 = bounds.max.x;
@@ -22,6 +22,8 @@ TriangleSoup bladeOutline(const OrganPrototype& proto, const AABB& bounds) {
     struct Station {
         float ymin = 1e30f, ymax = -1e30f, zsum = 0.0f;
         int n = 0;
+        float width() const { return n ? ymax - ymin : -1.0f; }
+        vec3 at(float x, float y) const { return {x, y, zsum / float(std::max(1, n))}; }
     };
     Station st[kStations + 1];
     const float step = (x1 - x0) / float(kStations);
@@ -33,32 +35,21 @@ TriangleSoup bladeOutline(const OrganPrototype& proto, const AABB& bounds) {
             st[k].zsum += p.z;
             st[k].n++;
         }
-    // Empty stations borrow their neighbours' (thin leaves with sparse vertices).
-    for (int k = 0; k <= kStations; ++k)
-        if (st[k].n == 0) {
-            for (int d = 1; d <= kStations; ++d) {
-                const int a = k - d, b = k + d;
-                if (a >= 0 && st[a].n > 0) { st[k] = st[a]; break; }
-                if (b <= kStations && st[b].n > 0) { st[k] = st[b]; break; }
-            }
-        }
-    auto left = [&](int k) {
-        return vec3(x0 + step * float(k), st[k].ymin, st[k].zsum / float(std::max(1, st[k].n)));
-    };
-    auto right = [&](int k) {
-        return vec3(x0 + step * float(k), st[k].ymax, st[k].zsum / float(std::max(1, st[k].n)));
-    };
-    TriangleSoup all;
-    float total = 0.0f;
-    for (int k = 0; k < kStations; ++k) {
-        const vec3 a = left(k), b = right(k), c = right(k + 1), d = left(k + 1);
-        all.insert(all.end(), {a, b, c, a, c, d});
-        total += glm::length(glm::cross(b - a, c - a)) + glm::length(glm::cross(c - a, d - a));
-    }
-    // Slivers at a pointed base or tip (under 2% of the outline) add nothing but cost.
-    for (std::size_t t = 0; t < all.size(); t += 3)
-        if (glm::length(glm::cross(all[t + 1] - all[t], all[t + 2] - all[t])) > 0.02f * total)
-            out.insert(out.end(), {all[t], all[t + 1], all[t + 2]});
+    int widest = -1;
+    for (int k = 1; k < kStations; ++k)
+        if (st[k].n && (widest < 0 || st[k].width() > st[widest].width())) widest = k;
+    int base = 0, tip = kStations;
+    while (base < kStations && !st[base].n) ++base;
+    while (tip > 0 && !st[tip].n) --tip;
+    if (widest < 0 || base >= widest || tip <= widest || !(st[widest].width() > 0.0f)) return out;
+    const Station& b = st[base];
+    const Station& w = st[widest];
+    const Station& t = st[tip];
+    const vec3 B = b.at(x0 + step * float(base), 0.5f * (b.ymin + b.ymax));
+    const vec3 T = t.at(x0 + step * float(tip), 0.5f * (t.ymin + t.ymax));
+    const vec3 L = w.at(x0 + step * float(widest), w.ymin);
+    const vec3 R = w.at(x0 + step * float(widest), w.ymax);
+    out.insert(out.end(), {B, R, T, B, T, L});
     return out;
 }
 
