@@ -520,3 +520,32 @@ TEST(PlantStructureXML, DocsNameEveryElement) {
         EXPECT_NE(doc.find("`" + name + "`"), std::string::npos)
             << name << " is not in docs/plant-xml.md";
 }
+
+// A shoot type defined after the plant was made, that the plant's own types name as a child
+// type: the plant would copy it when a bud first grows into it, so the file carries it too.
+TEST(PlantStructureXML, ChildTypeDefinedAfterThePlantIsWritten) {
+    Context ctx;
+    PlantArchitecture a(&ctx);
+    ShootParameters main;
+    main.child_shoot_types = {{"side", 1.0f}};
+    main.vegetative_bud_break_probability_min = 1.0f;
+    main.vegetative_bud_break_time = 2.0f;
+    main.max_nodes = 6;
+    a.defineShootType("main", main);
+    const unsigned p = a.addPlantInstance(vec3(0.0f), 0.0f);
+    a.addBaseStemShoot(p, 1, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "main");
+    ShootParameters side;
+    side.max_nodes = 3;
+    a.defineShootType("side", side);
+    EXPECT_EQ(a.listShootTypeLabels(p), std::vector<std::string>{"main"});
+    const std::string text = a.getPlantStructureXML({p});
+    EXPECT_NE(text.find("<shoot_type label=\"side\">"), std::string::npos);
+
+    Context ctx2;
+    PlantArchitecture b(&ctx2);
+    const unsigned q = b.readPlantStructureXMLString(text).at(0);
+    a.advanceTime(20.0);
+    b.advanceTime(20.0);
+    EXPECT_GT(a.getShootCount(p), 1u);  // branches of type "side" grew
+    EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a, {p})), "");
+}
