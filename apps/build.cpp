@@ -31,14 +31,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
         ->required()
-        ->check([](const std::string& text) -> std::string {
-            try {
-                const double v = std::stod(text);
-                if (v >= 0.0 && v <= 100000.0) return "";
-            } catch (const std::exception&) {
-            }
-            return "age = " + text + ": not a number of days (valid: 0 to 100000)";
-        });
+        ->check(daysValidator("age"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
     addImageSizeOption(app, global);

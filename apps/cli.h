@@ -64,6 +64,9 @@ void prepareSceneOutputs(const std::vector<std::string>& paths);
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();
 
+/// Checks an option holding a number of days, 0 to 100000 ("age = x: not a number of days").
+std::function<std::string(const std::string&)> daysValidator(const std::string& name);
+
 /// Build parameters given as -D name=value (each a finite number), by name.
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines);
 

@@ -28,14 +28,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--days", a->days, "Days to grow (0 to 100000)")
         ->required()
-        ->check([](const std::string& text) -> std::string {
-            try {
-                const double v = std::stod(text);
-                if (v >= 0.0 && v <= 100000.0) return "";
-            } catch (const std::exception&) {
-            }
-            return "days = " + text + ": not a number of days (valid: 0 to 100000)";
-        });
+        ->check(daysValidator("days"));
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     app.add_option("--species", a->species,

@@ -1,4 +1,4 @@
-// Helpers shared by the commands that build plants (build, canopy): -D build parameters and
+// Helpers shared by the commands that build and grow plants: days, -D build parameters and
 // the --stats JSON of one plant.
 
 #include <cmath>
@@ -11,6 +11,17 @@
 #include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::cli {
+
+std::function<std::string(const std::string&)> daysValidator(const std::string& name) {
+    return [name](const std::string& text) -> std::string {
+        try {
+            const double v = std::stod(text);
+            if (v >= 0.0 && v <= 100000.0) return "";
+        } catch (const std::exception&) {
+        }
+        return name + " = " + text + ": not a number of days (valid: 0 to 100000)";
+    };
+}
 
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines) {
     std::map<std::string, float> out;

@@ -14,39 +14,6 @@ namespace plantarch::plant_io {
 
 namespace {
 
-void appendEscaped(std::string& out, std::string_view s) {
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            case '\'':
-                out += "&apos;";
-                break;
-            // Written as references: raw line ends would be normalized when read back.
-            case '\r':
-                out += "&#13;";
-                break;
-            case '\n':
-                out += "&#10;";
-                break;
-            case '\t':
-                out += "&#9;";
-                break;
-            default:
-                out += c;
-        }
-    }
-}
 
 void appendNumber(std::string& out, float v) {
     char buf[48];
@@ -140,11 +107,11 @@ public:
     void field(const params::FieldInfo& f, const std::map<int, std::string>& m) {
         writeMap(
             f, m, [](std::string& o, int k) { appendInteger(o, k); },
-            [](std::string& o, const std::string& v) { appendEscaped(o, v); });
+            [](std::string& o, const std::string& v) { text::appendXmlEscaped(o, v); });
     }
     void field(const params::FieldInfo& f, const std::map<std::string, float>& m) {
         writeMap(
-            f, m, [](std::string& o, const std::string& k) { appendEscaped(o, k); },
+            f, m, [](std::string& o, const std::string& k) { text::appendXmlEscaped(o, k); },
             [](std::string& o, float v) { appendNumber(o, v); });
     }
     template <class G, class Fn>
@@ -157,7 +124,7 @@ public:
 
 private:
     void put(const params::FieldInfo& f, const std::string& value) {
-        x_.element(f.name, [&](std::string& o) { appendEscaped(o, value); });
+        x_.element(f.name, [&](std::string& o) { text::appendXmlEscaped(o, value); });
     }
 
     template <class M, class KeyText, class ValueText>
@@ -224,7 +191,7 @@ public:
         triple(f.name, r.pitch, r.yaw, r.roll);
     }
     void field(const state::FieldInfo& f, const std::string& v) {
-        x_.element(f.name, [&](std::string& o) { appendEscaped(o, v); });
+        x_.element(f.name, [&](std::string& o) { text::appendXmlEscaped(o, v); });
     }
     void field(const state::FieldInfo& f, const BudState& v) { word(f.name, budStateName(v)); }
     void field(const state::FieldInfo& f, const FloralStage& v) {
@@ -283,7 +250,7 @@ public:
             o += '<';
             o += name;
             o += " label=\"";
-            appendEscaped(o, label);
+            text::appendXmlEscaped(o, label);
             o += "\">\n";
             ParameterWriter sub(o, x_.depth() + 1);
             params::describeParameters(params, sub);

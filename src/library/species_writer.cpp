@@ -14,35 +14,6 @@ namespace plantarch {
 
 namespace {
 
-std::string escape(std::string_view s) {
-    std::string out;
-    out.reserve(s.size());
-    for (char c : s) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            case '\'':
-                out += "&apos;";
-                break;
-            case '\r':  // a raw one would read back as '\n' (XML line-end normalization)
-                out += "&#13;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
 
 // Text safe inside <!-- -->: no "--" and no trailing '-'.
 std::string commentText(std::string s) {
@@ -78,7 +49,7 @@ public:
         if (value.empty())
             out_ << "<" << name << "/>";
         else
-            out_ << "<" << name << ">" << escape(value) << "</" << name << ">";
+            out_ << "<" << name << ">" << text::xmlEscaped(value) << "</" << name << ">";
         comment(note);
         out_ << "\n";
     }
@@ -175,12 +146,12 @@ private:
         for (const auto& [key, value] : m) {
             w_.indent(depth_ + 1);
             auto& o = w_.out();
-            o << "<" << spell.element << " " << spell.keyAttribute << "=\"" << escape(keyText(key))
+            o << "<" << spell.element << " " << spell.keyAttribute << "=\"" << text::xmlEscaped(keyText(key))
               << "\"";
             if (spell.valueAttribute)
-                o << " " << spell.valueAttribute << "=\"" << escape(valueText(value)) << "\"/>\n";
+                o << " " << spell.valueAttribute << "=\"" << text::xmlEscaped(valueText(value)) << "\"/>\n";
             else
-                o << ">" << escape(valueText(value)) << "</" << spell.element << ">\n";
+                o << ">" << text::xmlEscaped(valueText(value)) << "</" << spell.element << ">\n";
         }
         w_.close(depth_, f.name);
     }
@@ -198,11 +169,11 @@ void writeBuildParameters(Writer& w, const SpeciesModel& m) {
     for (const BuildParameter& p : m.buildParameters) {
         w.indent(2);
         auto& o = w.out();
-        o << "<parameter name=\"" << escape(p.name) << "\" default=\"" << text::formatFloat(p.value)
+        o << "<parameter name=\"" << text::xmlEscaped(p.name) << "\" default=\"" << text::formatFloat(p.value)
           << "\" min=\"" << text::formatFloat(p.min) << "\" max=\"" << text::formatFloat(p.max)
           << "\"";
-        if (!p.unit.empty()) o << " unit=\"" << escape(p.unit) << "\"";
-        if (!p.doc.empty()) o << " doc=\"" << escape(p.doc) << "\"";
+        if (!p.unit.empty()) o << " unit=\"" << text::xmlEscaped(p.unit) << "\"";
+        if (!p.doc.empty()) o << " doc=\"" << text::xmlEscaped(p.doc) << "\"";
         o << "/>\n";
     }
     w.close(1, "build_parameters");
@@ -219,7 +190,7 @@ void writeBuild(Writer& w, const SpeciesModel& m) {
             const std::string& value = step.*species_xml::buildStepMember(name);
             // An empty id, radius or internode_length means "none" or "the type's value".
             if (value.empty()) continue;
-            o << " " << name << "=\"" << escape(value) << "\"";
+            o << " " << name << "=\"" << text::xmlEscaped(value) << "\"";
         }
         o << "/>\n";
     }
@@ -229,24 +200,24 @@ void writeBuild(Writer& w, const SpeciesModel& m) {
 void writeAttraction(Writer& w, const SpeciesAttraction& a) {
     auto& o = w.out();
     w.indent(1);
-    o << "<attraction_points half_angle=\"" << escape(a.halfAngle) << "\" look_ahead=\""
-      << escape(a.lookAhead) << "\" inertia=\"" << escape(a.inertia) << "\"";
+    o << "<attraction_points half_angle=\"" << text::xmlEscaped(a.halfAngle) << "\" look_ahead=\""
+      << text::xmlEscaped(a.lookAhead) << "\" inertia=\"" << text::xmlEscaped(a.inertia) << "\"";
     if (!a.shootTypes.empty()) {
         std::string list;
         for (const std::string& t : a.shootTypes) list += (list.empty() ? "" : " ") + t;
-        o << " shoot_types=\"" << escape(list) << "\"";
+        o << " shoot_types=\"" << text::xmlEscaped(list) << "\"";
     }
     o << ">";
     w.comment("relative to the plant base; degrees, m");
     o << "\n";
     for (const SpeciesAttraction::Wire& wire : a.wires) {
         w.indent(2);
-        o << "<wire from=\"" << escape(wire.from) << "\" to=\"" << escape(wire.to)
-          << "\" spacing=\"" << escape(wire.spacing) << "\"/>\n";
+        o << "<wire from=\"" << text::xmlEscaped(wire.from) << "\" to=\"" << text::xmlEscaped(wire.to)
+          << "\" spacing=\"" << text::xmlEscaped(wire.spacing) << "\"/>\n";
     }
     for (const SpeciesAttraction::Point& p : a.points) {
         w.indent(2);
-        o << "<point at=\"" << escape(p.at) << "\"/>\n";
+        o << "<point at=\"" << text::xmlEscaped(p.at) << "\"/>\n";
     }
     w.close(1, "attraction_points");
 }
@@ -283,7 +254,7 @@ void writeSpecies(const SpeciesModel& m, std::ostream& out, const SpeciesWriteOp
 
     for (const auto& [label, params] : m.shootTypes) {
         w.indent(1);
-        out << "<shoot_type label=\"" << escape(label) << "\">\n";
+        out << "<shoot_type label=\"" << text::xmlEscaped(label) << "\">\n";
         FieldWriter fields(w, 2);
         params::describeParameters(params, fields);
         w.close(1, "shoot_type");

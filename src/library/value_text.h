@@ -49,4 +49,15 @@ std::string closestMatch(std::string_view word, const std::vector<std::string>& 
 /// "a, b, c"
 std::string joinNames(const std::vector<std::string>& names);
 
+/// Appends `s` escaped for XML text or a quoted attribute: the five markup characters as
+/// entities, and carriage returns, line feeds and tabs as character references (raw ones
+/// would be normalized when read back).
+void appendXmlEscaped(std::string& out, std::string_view s);
+inline std::string xmlEscaped(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    appendXmlEscaped(out, s);
+    return out;
+}
+
 }  // namespace plantarch::text
