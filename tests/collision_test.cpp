@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "collision/collision_world.h"
+#include "collision/cone.h"
 #include "collision/intersections.h"
 #include "collision/steering.h"
 #include "plantarch/Error.h"
@@ -309,7 +310,7 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
         collision::ConeSample fast, traced;
         collision::sampleCone(world, apex, axis, cone, r1, 1e-4f, ignore, fast);
         collision::sampleCone(world, apex, axis, cone, r2, 1e-4f, ignore, traced, true);
-        if (fast.dirs.empty()) {  // nothing within reach: every traced ray is free
+        if (!fast.cast) {  // nothing within reach: every traced ray is free
             EXPECT_EQ(traced.hits, 0);
             continue;
         }

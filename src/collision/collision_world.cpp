@@ -2,6 +2,7 @@
 
 #include "collision/collision_world.h"
 
+#include "collision/cone.h"
 #include "collision/proxies.h"
 
 #include <embree3/rtcore.h>
@@ -56,34 +57,6 @@ RTCScene sceneOf(RTCDevice device, const TriangleSoup& soup) {
     return s;
 }
 
-RTCGeometry instanceOf(RTCDevice device, RTCScene scene) {
-    RTCGeometry inst = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, scene);
-    const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-    rtcCommitGeometry(inst);
-    return inst;
-}
-
-// The context of a soft query: Embree's, then what the query must not see.
-struct QueryContext {
-    RTCIntersectContext rtc;
-    const Ignore* ignore;
-};
-
-// Drops hits on the ignored organs of the querying plant (plant geometries only).
-void ignoreFilter(const RTCFilterFunctionNArguments* args) {
-    const auto* q = reinterpret_cast<const QueryContext*>(args->context);
-    if (!q->ignore) return;
-    const auto* tags = static_cast<const std::vector<OrganTag>*>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] != -1) continue;
-        if (RTCHitN_instID(args->hit, args->N, i, 0) != q->ignore->plant + 1) continue;
-        const OrganTag tag = (*tags)[RTCHitN_primID(args->hit, args->N, i)];
-        if (tag == q->ignore->organs[0] || tag == q->ignore->organs[1]) args->valid[i] = 0;
-    }
-}
-
 void appendObject(const Context& ctx, ObjectID id, TriangleSoup& out) {
     const ObjectView v = ctx.object(id);
     for (std::uint32_t k : v.indices) out.push_back(v.positions[k]);
@@ -94,52 +67,34 @@ void appendObject(const Context& ctx, ObjectID id, TriangleSoup& out) {
 struct World::Embree {
     RTCDevice device = nullptr;
     RTCScene solid = nullptr;
-    RTCScene statics = nullptr;
-    RTCScene top = nullptr;
-    RTCGeometry staticInstance = nullptr;
     ~Embree() {
-        if (staticInstance) rtcReleaseGeometry(staticInstance);
-        if (top) rtcReleaseScene(top);
-        if (statics) rtcReleaseScene(statics);
         if (solid) rtcReleaseScene(solid);
         if (device) rtcReleaseDevice(device);
     }
 };
 
 struct World::PlantSlot {
-    unsigned id = 0;
-    RTCScene scene = nullptr;
-    RTCGeometry instance = nullptr;
     TriangleSoup triangles;
-    std::vector<OrganTag> tags;  ///< per triangle
-    bool attached = false;
-    ~PlantSlot() {
-        if (instance) rtcReleaseGeometry(instance);
-        if (scene) rtcReleaseScene(scene);
-    }
+    std::vector<OrganTag> tags;         ///< per triangle
+    std::vector<glm::vec4> spheres;     ///< per triangle
+    bool set = false;
 };
 
 World::World() : rtc_(std::make_unique<Embree>()) {
     rtc_->device = rtcNewDevice(nullptr);
     if (!rtc_->device) throw std::runtime_error("cannot create an Embree device");
-    rtc_->top = rtcNewScene(rtc_->device);
-    rtcSetSceneFlags(rtc_->top, RTC_SCENE_FLAG_DYNAMIC);
-    rtcSetSceneBuildQuality(rtc_->top, RTC_BUILD_QUALITY_LOW);
-    rtcCommitScene(rtc_->top);
-    solidTriangles_.clear();
     TriangleSoup none;
     rtc_->solid = sceneOf(rtc_->device, none);
-    rtc_->statics = sceneOf(rtc_->device, none);
     check(rtc_->device, "creating the collision scene");
 }
 
-// Plant slots release their Embree handles before the device goes.
-World::~World() { plants_.clear(); }
+World::~World() = default;
 
 
 void World::setSoft(std::optional<SoftCollisionOptions> options, const Context& ctx) {
     soft_ = std::move(options);
     memos.clear();  // the organ kinds may differ
+    softPatterns_ = soft_ ? conePatterns(soft_->cone.rays, soft_->cone.halfAngle) : nullptr;
     buildStaticScenes(ctx);
 }
 
@@ -159,22 +114,10 @@ void World::buildStaticScenes(const Context& ctx) {
     if (soft_)
         for (ObjectID id : soft_->objects) appendObject(ctx, id, softStatic_);
 
+    boundingSpheres(softStatic_, softStaticSpheres_);
     rtcReleaseScene(rtc_->solid);
     rtc_->solid = sceneOf(rtc_->device, solid);
-    rtcReleaseScene(rtc_->statics);
-    rtc_->statics = sceneOf(rtc_->device, softStatic_);
-    if (rtc_->staticInstance) {
-        rtcDetachGeometry(rtc_->top, 0);
-        rtcReleaseGeometry(rtc_->staticInstance);
-        rtc_->staticInstance = nullptr;
-    }
-    if (!softStatic_.empty()) {
-        rtc_->staticInstance = instanceOf(rtc_->device, rtc_->statics);
-        rtcAttachGeometryByID(rtc_->top, rtc_->staticInstance, 0);
-    }
-    if (instances_.empty()) instances_.resize(1);
-    instances_[0] = {&softStatic_, nullptr, 0};
-    rtcCommitScene(rtc_->top);
+    commit();
     check(rtc_->device, "building the obstacle scenes");
 }
 
@@ -190,7 +133,7 @@ void World::reservePlants(const std::vector<unsigned>& ids) {
 bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
                             std::vector<OrganTag>&& tags) {
     PlantSlot& slot = *plants_.at(plantID);
-    if (slot.scene && slot.triangles.size() == triangles.size() && slot.tags == tags &&
+    if (slot.set && slot.triangles.size() == triangles.size() && slot.tags == tags &&
         (triangles.empty() ||
          std::memcmp(slot.triangles.data(), triangles.data(), triangles.size() * sizeof(vec3)) == 0)) {
         stats_.plantsUnchanged.fetch_add(1, std::memory_order_relaxed);
@@ -198,23 +141,8 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     }
     slot.triangles = std::move(triangles);
     slot.tags = std::move(tags);
-    if (slot.scene) rtcReleaseScene(slot.scene);
-    slot.scene = rtcNewScene(rtc_->device);
-    rtcSetSceneBuildQuality(slot.scene, RTC_BUILD_QUALITY_LOW);
-    if (!slot.triangles.empty()) {
-        RTCGeometry g = triangleGeometry(rtc_->device, slot.triangles);
-        rtcSetGeometryUserData(g, &slot.tags);
-        rtcSetGeometryOccludedFilterFunction(g, ignoreFilter);
-        rtcCommitGeometry(g);
-        rtcAttachGeometryByID(slot.scene, g, 0);
-        rtcReleaseGeometry(g);
-    }
-    rtcCommitScene(slot.scene);
-    if (!slot.instance) slot.instance = rtcNewGeometry(rtc_->device, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(slot.instance, slot.scene);
-    const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
-    rtcSetGeometryTransform(slot.instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
-    rtcCommitGeometry(slot.instance);
+    boundingSpheres(slot.triangles, slot.spheres);
+    slot.set = true;
     stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
     return true;
 }
@@ -223,25 +151,16 @@ void World::removePlant(unsigned plantID) {
     if (!plants_.count(plantID) && !memos.count(plantID)) return;  // nothing written
     memos.erase(plantID);
     stale.erase(plantID);
-    auto it = plants_.find(plantID);
-    if (it == plants_.end()) return;
-    if (it->second->attached) rtcDetachGeometry(rtc_->top, plantID + 1);
-    plants_.erase(it);
-    rtcCommitScene(rtc_->top);
+    if (plants_.erase(plantID)) commit();
 }
 
 void World::commit() {
-    instances_.assign(plants_.empty() ? 1 : plants_.rbegin()->first + 2, InstanceView{});
-    instances_[0] = {&softStatic_, nullptr, 0};
-    for (auto& [id, slot] : plants_) {
-        const bool want = slot->instance && !slot->triangles.empty();
-        if (want && !slot->attached) rtcAttachGeometryByID(rtc_->top, slot->instance, id + 1);
-        if (!want && slot->attached) rtcDetachGeometry(rtc_->top, id + 1);
-        slot->attached = want;
-        instances_[id + 1] = {&slot->triangles, &slot->tags, id};
-    }
-    rtcCommitScene(rtc_->top);
-    check(rtc_->device, "refreshing the collision scene");
+    std::vector<SoftGrid::Source> sources;
+    sources.push_back({&softStatic_, &softStaticSpheres_, nullptr, 0});
+    for (auto& [id, slot] : plants_)
+        sources.push_back({&slot->triangles, &slot->spheres, &slot->tags, id + 1});
+    // Cells about as large as the look-ahead: a query visits a few cells a side.
+    grid_.build(sources, soft_ ? std::max(soft_->cone.lookAhead, 0.005f) : 0.1f);
 }
 
 std::uint64_t World::plantTriangles() const {
@@ -250,25 +169,34 @@ std::uint64_t World::plantTriangles() const {
     return n;
 }
 
+std::shared_ptr<const ConePatterns> World::patterns(const PerceptionCone& cone) const {
+    if (softPatterns_ && soft_->cone.rays == cone.rays && soft_->cone.halfAngle == cone.halfAngle)
+        return softPatterns_;
+    return conePatterns(cone.rays, cone.halfAngle);
+}
+
 // ---- queries ---------------------------------------------------------------------------
 
 bool World::softOccluded(vec3 org, vec3 dir, float tnear, float tfar, const Ignore* ignore) const {
-    QueryContext q;
-    rtcInitIntersectContext(&q.rtc);
-    q.ignore = ignore;
-    RTCRay ray{};
-    ray.org_x = org.x;
-    ray.org_y = org.y;
-    ray.org_z = org.z;
-    ray.dir_x = dir.x;
-    ray.dir_y = dir.y;
-    ray.dir_z = dir.z;
-    ray.tnear = tnear;
-    ray.tfar = tfar;
-    ray.mask = 0xFFFFFFFFu;
-    ray.flags = 0;
-    rtcOccluded1(rtc_->top, &q.rtc, &ray);
-    return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+    // Moller-Trumbore against every triangle: slow and plain, the cones' reference.
+    bool hit = false;
+    grid_.forEach(ignore, [&](const vec3* p) {
+        if (hit) return;
+        const vec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
+        const vec3 h = glm::cross(dir, e2);
+        const float det = glm::dot(e1, h);
+        if (std::abs(det) < 1e-20f) return;
+        const float inv = 1.0f / det;
+        const vec3 s = org - p[0];
+        const float u = glm::dot(s, h) * inv;
+        if (u < 0.0f || u > 1.0f) return;
+        const vec3 q = glm::cross(s, e1);
+        const float v = glm::dot(dir, q) * inv;
+        if (v < 0.0f || u + v > 1.0f) return;
+        const float t = glm::dot(e2, q) * inv;
+        hit = t >= tnear && t <= tfar;
+    });
+    return hit;
 }
 
 std::optional<SolidHit> World::solidHit(vec3 org, vec3 dir, float tnear, float tfar) const {
@@ -333,43 +261,10 @@ vec3 closestOnTriangle(vec3 p, vec3 a, vec3 b, vec3 c) {
 
 }  // namespace
 
-namespace {
-
-struct SoftNearQuery {
-    const std::vector<World::InstanceView>* instances;
-    const Ignore* ignore;
-    std::vector<const vec3*>* out;
-};
-
-bool collectSoftNear(RTCPointQueryFunctionArguments* args) {
-    auto* q = static_cast<SoftNearQuery*>(args->userPtr);
-    const unsigned inst = args->context->instID[0];
-    if (inst >= q->instances->size()) return false;
-    const World::InstanceView& v = (*q->instances)[inst];
-    if (!v.triangles) return false;
-    if (q->ignore && v.tags && v.plant == q->ignore->plant) {
-        const OrganTag tag = (*v.tags)[args->primID];
-        if (tag == q->ignore->organs[0] || tag == q->ignore->organs[1]) return false;
-    }
-    q->out->push_back(v.triangles->data() + 3 * std::size_t(args->primID));
-    return false;
-}
-
-}  // namespace
-
 void World::softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
                               std::vector<const vec3*>& out) const {
     out.clear();
-    RTCPointQuery q{};
-    q.x = center.x;
-    q.y = center.y;
-    q.z = center.z;
-    q.radius = radius;
-    q.time = 0.0f;
-    RTCPointQueryContext pctx;
-    rtcInitPointQueryContext(&pctx);
-    SoftNearQuery sq{&instances_, ignore, &out};
-    rtcPointQuery(rtc_->top, &q, &pctx, collectSoftNear, &sq);
+    grid_.near(center, radius, ignore, out);
 }
 
 void World::solidTrianglesNear(vec3 center, float radius, std::vector<unsigned>& out) const {

@@ -1,13 +1,14 @@
 #pragma once
-// The collision scene: Embree BVHs of what growing tips can perceive.
+// The collision scene: what growing tips can perceive.
 //
-//   solid scene   the solid obstacles (ray hits with normals, nearby-triangle queries)
-//   static scene  the soft obstacle objects and the solid obstacles (built when enabled)
-//   plant scenes  one small BVH per plant over light proxies of its collision organs
-//   top scene     instances of the static scene and of every plant scene
+//   solid scene   the solid obstacles in an Embree BVH (ray hits with normals, nearby-triangle
+//                 queries)
+//   soft scene    light proxies of every plant's collision organs, the soft obstacle objects
+//                 and the solid obstacles, in a hashed grid (soft_grid.h) for the perception
+//                 cones' "every triangle within reach" query
 //
-// Plants are separate BVHs so a refresh rebuilds only the plants whose proxies changed and the
-// small top level over the instances; distant plants are culled by their instance bounds.
+// Each plant's proxies are kept between refreshes and replaced only when they changed; the
+// grid over all of them is rebuilt at each commit (a counting sort, linear in the triangles).
 // Queries are const and may run on many threads at once; changes may not overlap queries.
 
 #include <array>
@@ -17,12 +18,14 @@
 #include <optional>
 #include <vector>
 
+#include "collision/soft_grid.h"
 #include "plantarch/Collision.h"
 #include "plantarch/Context.h"
 
 namespace plantarch::collision {
 
 class AttractionIndex;
+class ConePatterns;
 struct PlantProxyMemo;
 
 /// Triangle corners, three per triangle, world coordinates.
@@ -74,13 +77,12 @@ public:
     // ---- plants (soft avoidance) -------------------------------------------------------
     /// Makes room for these plants (call before setPlantProxies for them, single-threaded).
     void reservePlants(const std::vector<unsigned>& plantIDs);
-    /// Replaces a plant's proxies; rebuilds its BVH only when they changed. Safe to call for
-    /// distinct plants from several threads at once (after reservePlants). Returns whether
-    /// the BVH was rebuilt.
+    /// Replaces a plant's proxies (kept as they are when unchanged). Safe to call for distinct
+    /// plants from several threads at once (after reservePlants). Returns whether they changed.
     bool setPlantProxies(unsigned plantID, TriangleSoup&& triangles, std::vector<OrganTag>&& tags);
     void removePlant(unsigned plantID);
     bool hasPlant(unsigned plantID) const { return plants_.count(plantID) > 0; }
-    /// Commits the top level after plant changes (single-threaded).
+    /// Rebuilds the soft scene's grid after plant changes (single-threaded).
     void commit();
     std::uint64_t plantTriangles() const;
 
@@ -96,7 +98,8 @@ public:
 
     // ---- queries (thread-safe) ---------------------------------------------------------
     /// Whether anything soft or solid lies on the segment org + t dir, t in [tnear, tfar],
-    /// the organs in `ignore` (if given) excepted.
+    /// the organs in `ignore` (if given) excepted. Tests every triangle of the soft scene:
+    /// the reference the perception cones are checked against, not for growth.
     bool softOccluded(vec3 org, vec3 dir, float tnear, float tfar,
                       const Ignore* ignore = nullptr) const;
     /// The soft obstacle triangles (plant proxies, obstacle objects) whose bounds come within
@@ -114,29 +117,27 @@ public:
     /// normal facing `p`.
     std::optional<SolidHit> closestSolid(vec3 p, float radius) const;
 
+    /// The ray sets of a perception cone's shape (the soft cone's are kept at hand).
+    std::shared_ptr<const ConePatterns> patterns(const PerceptionCone& cone) const;
+
     AtomicStats& stats() const { return stats_; }
     CollisionStats snapshotStats() const;
     void resetStats();
 
     struct Embree;  ///< Embree handles (collision_world.cpp)
-    /// Triangles and tags of an instance of the top scene (0: the static scene).
-    struct InstanceView {
-        const TriangleSoup* triangles = nullptr;
-        const std::vector<OrganTag>* tags = nullptr;
-        unsigned plant = 0;
-    };
 
 private:
     void buildStaticScenes(const Context& ctx);
-    void attachInstances();
 
     std::optional<SoftCollisionOptions> soft_;
     std::optional<SolidObstacleOptions> solid_;
     std::vector<std::array<vec3, 3>> solidTriangles_;
     TriangleSoup softStatic_;  ///< soft objects and solid obstacles
+    std::vector<glm::vec4> softStaticSpheres_;
     struct PlantSlot;
     std::map<unsigned, std::unique_ptr<PlantSlot>> plants_;
-    std::vector<InstanceView> instances_;  ///< by instance ID in the top scene
+    SoftGrid grid_;
+    std::shared_ptr<const ConePatterns> softPatterns_;
     std::unique_ptr<Embree> rtc_;
     mutable AtomicStats stats_;
 };

@@ -1,9 +1,9 @@
-// Perception cones and the three steering rules (see Collision.h and docs/collision.md).
+// The three steering rules (see Collision.h and docs/collision.md); the soft cones' sampling is
+// in cone.cpp.
 //
-// Cone rays are stratified over equal solid angles (rings of equal area on the unit sphere
-// times equal sectors) and jittered by a random stream keyed by (seed, plant, shoot, node,
-// organ): the plant's own numbers, drawn the same way whatever the thread, the step size or
-// the other plants, and without shifting the plant's growth stream.
+// Every cone draws from a random stream keyed by (seed, plant, shoot, node, organ): the
+// plant's own numbers, drawn the same way whatever the thread, the step size or the other
+// plants, and without shifting the plant's growth stream.
 
 #include "collision/steering.h"
 
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "collision/attraction.h"
+#include "collision/cone.h"
 #include "collision/collision_world.h"
 #include "geometry/tube.h"
 
@@ -82,175 +83,7 @@ struct ConeRays {
     }
 };
 
-// Marks the cone's rays that hit triangle (p0, p1, p2) within [tnear, lookAhead]. Only the
-// rays of the cells that the triangle's bounding cap (as seen from the apex) can cover are
-// tested (Moller-Trumbore). The cap's ring range comes from cosines alone.
-struct ConeFrame {
-    vec3 apex, axis, e1, e2;
-    float cosHalf, sinHalf, tnear, lookAhead;
-};
-
-// atan2 within 1e-5 rad (a polynomial on [0, 1] and the octant symmetries); the sector ranges
-// it feeds have a margin of 1e-3 rad.
-float fastAtan2(float y, float x) {
-    const float ax = std::abs(x), ay = std::abs(y);
-    const float mx = std::max(ax, ay);
-    if (mx == 0.0f) return 0.0f;
-    const float a = std::min(ax, ay) / mx;
-    const float s = a * a;
-    float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
-    if (ay > ax) r = 1.57079637f - r;
-    if (x < 0.0f) r = 3.14159274f - r;
-    return y < 0.0f ? -r : r;
-}
-
-void rasterize(ConeSample& cone, const vec3* tri, const ConeFrame& f) {
-    const vec3 q0 = tri[0] - f.apex, q1 = tri[1] - f.apex, q2 = tri[2] - f.apex;
-    // Wholly behind the apex, for a cone no wider than a hemisphere.
-    if (f.cosHalf >= 0.0f && glm::dot(q0, f.axis) <= 0.0f && glm::dot(q1, f.axis) <= 0.0f &&
-        glm::dot(q2, f.axis) <= 0.0f)
-        return;
-    const float l0 = glm::length(q0), l1 = glm::length(q1), l2 = glm::length(q2);
-    // Beyond reach: the bounding sphere about the centroid lies past the look-ahead.
-    const vec3 centre = (q0 + q1 + q2) * (1.0f / 3.0f);
-    const float radius = std::sqrt(std::max({glm::dot(q0 - centre, q0 - centre),
-                                             glm::dot(q1 - centre, q1 - centre),
-                                             glm::dot(q2 - centre, q2 - centre)}));
-    const float dist = glm::length(centre);
-    if (dist - radius > f.lookAhead) return;
-    if (!(l0 > 0.0f && l1 > 0.0f && l2 > 0.0f)) return;
-    // The directions to the corners lie in a cap; so do all directions that hit the triangle.
-    const int rings = cone.rings, sectors = cone.sectors;
-    int ringLo = 0, ringHi = rings - 1, sectorLo = 0, sectorHi = sectors - 1;
-    const vec3 d0 = q0 / l0, d1 = q1 / l1, d2 = q2 / l2;
-    const vec3 sum = d0 + d1 + d2;
-    const float sumLen = glm::length(sum);
-    const vec3 d = sumLen > 1e-6f ? sum / sumLen : vec3(0.0f);
-    const float cb = sumLen > 1e-6f ? std::min({glm::dot(d, d0), glm::dot(d, d1), glm::dot(d, d2)}) - 1e-4f
-                                    : -1.0f;
-    if (cb > 0.0f) {  // a cap narrower than a hemisphere
-        const float sb = std::sqrt(std::max(0.0f, 1.0f - cb * cb));
-        const float c = std::clamp(glm::dot(d, f.axis), -1.0f, 1.0f);
-        const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
-        // Outside the cone: the cap's centre is farther from the axis than half-angle + radius
-        // (a sum below 180 degrees when the half-angle is at most 90 or the cap is narrow).
-        const bool sumBelowPi = f.cosHalf >= 0.0f || sb < f.sinHalf;
-        if (sumBelowPi && c < f.cosHalf * cb - f.sinHalf * sb - 1e-5f) return;
-        const bool pastEdge =
-            (f.cosHalf >= 0.0f && sb >= f.sinHalf) || c < f.cosHalf * cb + f.sinHalf * sb + 1e-5f;
-        const float oneMinusCos = 1.0f - f.cosHalf;
-        auto ringOf = [&](float cosTheta) {
-            const float u = (1.0f - cosTheta) / oneMinusCos;
-            return std::clamp(int(u * float(rings)), 0, rings - 1);
-        };
-        ringHi = pastEdge ? rings - 1 : ringOf(c * cb - s * sb + 1e-5f);
-        if (c < cb) {  // the cap does not contain the axis
-            ringLo = ringOf(c * cb + s * sb - 1e-5f);
-            if (sb < s) {  // nor the opposite direction: a range of sectors
-                const float ratio = sb / s;
-                const float half = fastAtan2(ratio, std::sqrt(1.0f - ratio * ratio)) + 1e-3f;
-                float phi = fastAtan2(glm::dot(d, f.e2), glm::dot(d, f.e1));
-                if (phi < 0.0f) phi += 2.0f * kPi;
-                const float perSector = float(sectors) / (2.0f * kPi);
-                sectorLo = int(std::floor((phi - half) * perSector));
-                sectorHi = int(std::floor((phi + half) * perSector));
-                if (sectorHi - sectorLo + 1 >= sectors) {
-                    sectorLo = 0;
-                    sectorHi = sectors - 1;
-                }
-            }
-        }
-    }
-    // Hidden behind nearer triangles already: every cell it could cover is blocked.
-    bool open = false;
-    for (int jj = sectorLo; jj <= sectorHi && !open; ++jj) {
-        const int j = jj < 0 ? jj + sectors : (jj >= sectors ? jj - sectors : jj);
-        for (int i = ringLo; i <= ringHi; ++i)
-            if (!cone.blocked[std::size_t(i * sectors + j)]) {
-                open = true;
-                break;
-            }
-    }
-    if (!open) return;
-    // Edge planes through the apex: a ray hits the triangle's plane inside it when it is on
-    // the inner side of all three.
-    vec3 n0 = glm::cross(q0, q1), n1 = glm::cross(q1, q2), n2 = glm::cross(q2, q0);
-    const float volume = glm::dot(q0, n1);
-    if (std::abs(volume) < 1e-18f) return;  // seen edge-on
-    if (volume < 0.0f) {
-        n0 = -n0;
-        n1 = -n1;
-        n2 = -n2;
-    }
-    const vec3 normal = glm::cross(q1 - q0, q2 - q0);
-    const float planeDist = glm::dot(q0, normal);  // t = planeDist / dot(dir, normal)
-    const bool checkFar = std::max({l0, l1, l2}) > f.lookAhead;
-    const bool checkNear = dist - radius <= f.tnear;
-    for (int jj = sectorLo; jj <= sectorHi; ++jj) {
-        const int j = jj < 0 ? jj + sectors : (jj >= sectors ? jj - sectors : jj);
-        for (int i = ringLo; i <= ringHi; ++i) {
-            const std::size_t k = std::size_t(i * sectors + j);
-            if (cone.blocked[k]) continue;
-            const vec3& dir = cone.dirs[k];
-            if (glm::dot(dir, n0) < 0.0f || glm::dot(dir, n1) < 0.0f || glm::dot(dir, n2) < 0.0f)
-                continue;
-            if (checkFar || checkNear) {
-                const float den = glm::dot(dir, normal);
-                if (std::abs(den) < 1e-20f) continue;
-                const float t = planeDist / den;
-                if (t > f.lookAhead || t < f.tnear) continue;
-            }
-            cone.blocked[k] = 1;
-        }
-    }
-}
-
 }  // namespace
-
-void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& cone, Rng& rng,
-                float tnear, const Ignore& ignore, ConeSample& out, bool embreeRays) {
-    const ConeGrid grid(cone.rays);
-    out.rings = grid.rings;
-    out.sectors = grid.sectors;
-    out.hits = 0;
-    out.blocked.assign(std::size_t(grid.size()), 0);
-    thread_local std::vector<const vec3*> near;
-    world.softTrianglesNear(apex, cone.lookAhead + tnear, &ignore, near);
-    if (near.empty() && !embreeRays) {
-        out.dirs.clear();
-        return;  // nothing within reach: every ray is free (no rays need casting)
-    }
-    ConeRays rays;
-    rays.dirs.swap(out.dirs);
-    rays.make(grid, axis, cone.halfAngle, rng);
-    rays.dirs.swap(out.dirs);
-    world.stats().softRays.fetch_add(std::uint64_t(grid.size()), std::memory_order_relaxed);
-    if (embreeRays) {
-        for (std::size_t k = 0; k < out.dirs.size(); ++k)
-            out.blocked[k] = world.softOccluded(apex, out.dirs[k], tnear, cone.lookAhead, &ignore);
-    } else {
-        ConeFrame f;
-        f.apex = apex;
-        f.axis = axis;
-        f.e1 = geometry::anyPerpendicular(axis);
-        f.e2 = glm::cross(axis, f.e1);
-        f.cosHalf = std::cos(cone.halfAngle * kDeg);
-        f.sinHalf = std::sin(cone.halfAngle * kDeg);
-        f.tnear = tnear;
-        f.lookAhead = cone.lookAhead;
-        // Nearest first: cells they block are skipped cheaply by the triangles behind.
-        thread_local std::vector<std::pair<float, const vec3*>> order;
-        order.clear();
-        for (const vec3* tri : near) {
-            const vec3 c = (tri[0] + tri[1] + tri[2]) * (1.0f / 3.0f) - apex;
-            order.emplace_back(glm::dot(c, c), tri);
-        }
-        std::sort(order.begin(), order.end());
-        for (const auto& [d2, tri] : order) rasterize(out, tri, f);
-
-    }
-    for (char b : out.blocked) out.hits += b;
-}
 
 namespace {
 
@@ -259,7 +92,6 @@ namespace {
 std::optional<vec3> softTarget(const World& world, vec3 apex, vec3 axis, const PerceptionCone& cone,
                                Rng& rng, float tnear, const Ignore& ignore) {
     thread_local ConeSample sample;
-    thread_local std::vector<int> component, stack;
     AtomicStats& st = world.stats();
     const auto started = std::chrono::steady_clock::now();
     struct Timer {
@@ -274,62 +106,9 @@ std::optional<vec3> softTarget(const World& world, vec3 apex, vec3 axis, const P
     } timer{st, started};
     sampleCone(world, apex, axis, cone, rng, tnear, ignore, sample);
     st.softCones.fetch_add(1, std::memory_order_relaxed);
-    const int n = sample.rings * sample.sectors;
-    const int hits = sample.hits;
-    if (hits == 0 || hits == n) return std::nullopt;
-    const std::vector<char>& blocked = sample.blocked;
-    struct {
-        int rings, sectors;
-    } grid{sample.rings, sample.sectors};
-    const ConeSample& rays = sample;
-
-    // Open cells connected through shared edges (sectors wrap around; the innermost ring's
-    // cells all meet at the axis).
-    component.assign(std::size_t(n), -1);
-    float bestScore = -1.0f;
-    vec3 bestDir(0.0f);
-    int label = 0;
-    for (int start = 0; start < n; ++start) {
-        if (blocked[std::size_t(start)] || component[std::size_t(start)] >= 0) continue;
-        stack.assign(1, start);
-        component[std::size_t(start)] = label;
-        int size = 0;
-        vec3 sum(0.0f);
-        auto visit = [&](int c) {
-            if (!blocked[std::size_t(c)] && component[std::size_t(c)] < 0) {
-                component[std::size_t(c)] = label;
-                stack.push_back(c);
-            }
-        };
-        while (!stack.empty()) {
-            const int c = stack.back();
-            stack.pop_back();
-            ++size;
-            sum += rays.dirs[std::size_t(c)];
-            const int i = c / grid.sectors, j = c % grid.sectors;
-            visit(i * grid.sectors + (j + 1) % grid.sectors);
-            visit(i * grid.sectors + (j + grid.sectors - 1) % grid.sectors);
-            if (i + 1 < grid.rings) visit((i + 1) * grid.sectors + j);
-            if (i > 0) visit((i - 1) * grid.sectors + j);
-            if (i == 0)
-                for (int k = 0; k < grid.sectors; ++k) visit(k);
-        }
-        const float len = glm::length(sum);
-        if (len > 1e-6f) {
-            const vec3 centre = sum / len;
-            const float angle = std::acos(std::clamp(glm::dot(centre, axis), -1.0f, 1.0f));
-            // Gap size (fraction of the cone) weighed against its distance from the axis.
-            const float score = float(size) / float(n) * (1.0f - 0.5f * angle / (cone.halfAngle * kDeg));
-            if (score > bestScore) {
-                bestScore = score;
-                bestDir = centre;
-            }
-        }
-        ++label;
-    }
-    if (bestScore < 0.0f) return std::nullopt;
-    st.softSteered.fetch_add(1, std::memory_order_relaxed);
-    return bestDir;
+    const std::optional<vec3> gap = bestGap(sample, cone.halfAngle);
+    if (gap) st.softSteered.fetch_add(1, std::memory_order_relaxed);
+    return gap;
 }
 
 // The nearest solid obstacle in a cone (the axis ray included).

@@ -22,21 +22,6 @@ struct Steering {
 class World;
 struct Ignore;
 
-/// The rays of a perception cone (rings of equal solid angle from the axis out, each split
-/// into equal sectors, one jittered ray per cell, ring-major) and which of them are blocked.
-struct ConeSample {
-    int rings = 1, sectors = 1;
-    std::vector<vec3> dirs;     ///< empty when nothing was within reach (no ray cast)
-    std::vector<char> blocked;  ///< per cell
-    int hits = 0;
-};
-
-/// Casts the cone's rays against the soft obstacles: the triangles the scene finds within
-/// reach are tested against the rays of the cells they can cover (or, with `embreeRays`, every
-/// ray is traced by Embree: the reference the tests compare with).
-void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& cone, Rng& rng,
-                float tnear, const Ignore& ignore, ConeSample& out, bool embreeRays = false);
-
 /// Position of node `internodes` of a shoot (0: its base) at plant age `now`; with `mature`,
 /// as if every internode had reached its full length.
 vec3 nodePosition(const PlantInstance& plant, unsigned shootID, std::size_t internodes,

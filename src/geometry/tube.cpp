@@ -103,24 +103,29 @@ std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float cur
     std::vector<vec3> pts;
     pts.reserve(segments + 1);
     pts.push_back(start);
-    vec3 dir = glm::normalize(direction);
+    const vec3 d0 = glm::normalize(direction);
     const float step = length / float(segments);
     const vec3 target = curvature >= 0.0f ? bendToward : -bendToward;
+    // The path bends in the plane of d0 and the target, by a constant angle per length, until
+    // it points at the target: at angle theta from d0 it runs along cos(theta) d0 + sin(theta) u.
+    const vec3 across = target - glm::dot(target, d0) * d0;
+    const float sinA = glm::length(glm::cross(d0, target));
     const float turn = std::abs(curvature) * step * kPi / 180.0f;  // radians per step
     vec3 p = start;
+    if (sinA < 1e-7f || turn == 0.0f) {  // straight (aligned, opposite, or no curvature)
+        for (unsigned s = 0; s < segments; ++s) {
+            p += d0 * step;
+            pts.push_back(p);
+        }
+        return pts;
+    }
+    const vec3 u = across / glm::length(across);
+    const float limit = std::atan2(sinA, glm::dot(d0, target));
     for (unsigned s = 0; s < segments; ++s) {
-        // Half the turn before the step and half after keeps the path symmetric in s.
-        auto bend = [&](float angle) {
-            const vec3 axis = glm::cross(dir, target);
-            const float sinA = glm::length(axis);
-            const float remaining = std::atan2(sinA, glm::dot(dir, target));
-            if (sinA < 1e-7f) return;  // aligned (or exactly opposite: no preferred plane)
-            dir = glm::normalize(rotateAbout(dir, axis / sinA, std::min(angle, remaining)));
-        };
-        bend(0.5f * turn);
-        p += dir * step;
+        // Half a step's turn before the step and half after keeps the path symmetric in s.
+        const float theta = std::min(turn * (float(s) + 0.5f), limit);
+        p += (std::cos(theta) * d0 + std::sin(theta) * u) * step;
         pts.push_back(p);
-        bend(0.5f * turn);
     }
     return pts;
 }

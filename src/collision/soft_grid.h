@@ -1,0 +1,70 @@
+#pragma once
+// The soft obstacles of the collision scene in a hashed uniform grid, for the one query
+// perception cones make: every triangle within a radius of a point.
+//
+// Triangles are binned by the centre of their bounding sphere in cells about as large as the
+// look-ahead distance; a query visits the cells near its sphere and keeps the triangles whose
+// bounding spheres reach it. Triangles larger than a cell (walls, the ground) are kept in a
+// list every query scans. The grid is rebuilt from the plants' proxies at each refresh by a
+// counting sort, which costs less than keeping a tree up to date for plants that all grow.
+
+#include <cstdint>
+#include <vector>
+
+#include "plantarch/Mesh.h"
+
+namespace plantarch::collision {
+
+struct Ignore;
+
+/// A triangle of the scene: its three consecutive corners, the plant it belongs to (plant
+/// ID + 1; 0 for obstacle objects) and its organ tag.
+struct SoftTriangle {
+    const vec3* corners = nullptr;
+    unsigned owner = 0;
+    std::uint64_t tag = 0;
+};
+
+/// Bounding spheres of a triangle soup (centre, radius), three corners per triangle.
+void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres);
+
+class SoftGrid {
+public:
+    /// One block of triangles: corners, their spheres, their tags (null: obstacle objects).
+    struct Source {
+        const std::vector<vec3>* soup = nullptr;
+        const std::vector<glm::vec4>* spheres = nullptr;
+        const std::vector<std::uint64_t>* tags = nullptr;
+        unsigned owner = 0;
+    };
+
+    /// Rebuilds the grid over `sources` with cells of `cell` metres.
+    void build(const std::vector<Source>& sources, float cell);
+    /// Appends to `out` the first corners of the triangles whose bounding spheres come within
+    /// `radius` of `centre`, except the organs in `ignore`; in a fixed order.
+    void near(vec3 centre, float radius, const Ignore* ignore, std::vector<const vec3*>& out) const;
+    /// Every triangle, except the organs in `ignore`.
+    template <class F>
+    void forEach(const Ignore* ignore, F&& f) const {
+        for (const auto* list : {&small_, &large_})
+            for (const SoftTriangle& t : *list)
+                if (!ignored(t, ignore)) f(t.corners);
+    }
+    std::size_t size() const { return small_.size() + large_.size(); }
+
+private:
+    static bool ignored(const SoftTriangle& t, const Ignore* ignore);
+    std::uint64_t keyOf(vec3 p) const;
+    std::size_t bucketOf(std::uint64_t key) const { return std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_); }
+
+    float cell_ = 1.0f, inverse_ = 1.0f, maxRadius_ = 0.0f;
+    int shift_ = 63;
+    std::vector<std::uint32_t> start_;      ///< bucket b: [start_[b], start_[b + 1])
+    std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order)
+    std::vector<glm::vec4> spheres_;        ///< per small triangle (bucket order)
+    std::vector<SoftTriangle> small_;       ///< bucket order
+    std::vector<glm::vec4> largeSpheres_;
+    std::vector<SoftTriangle> large_;
+};
+
+}  // namespace plantarch::collision
