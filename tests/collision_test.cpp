@@ -296,7 +296,7 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
     world.setPlantProxies(7, std::move(plant), std::move(tags));
     world.commit();
     std::size_t cells = 0, differ = 0, blocked = 0;
-    for (int c = 0; c < 200; ++c) {
+    for (int c = 0; c < 500; ++c) {
         const vec3 apex(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), rng.uniform(0.0f, 0.3f));
         const vec3 axis = glm::normalize(vec3(rng.normal(0, 1), rng.normal(0, 1), rng.normal(0, 1)));
         PerceptionCone cone;

@@ -137,21 +137,36 @@ void rasterize(ConeSample& cone, const vec3* tri, const Frame& f) {
             return std::clamp(int(u * float(rings)), 0, rings - 1);
         };
         ringHi = pastEdge ? rings - 1 : ringOf(c * cb - s * sb + 1e-5f);
-        if (c < cb) {  // the cap does not contain the axis
-            ringLo = ringOf(c * cb + s * sb - 1e-5f);
-            if (sb < s) {  // nor the opposite direction: a range of sectors
-                const float ratio = sb / s;
-                const float half = fastAtan2(ratio, std::sqrt(1.0f - ratio * ratio)) + 1e-3f;
-                float phi = fastAtan2(d.y, d.x);
-                if (phi < 0.0f) phi += 2.0f * kPi;
-                const float perSector = float(sectors) / (2.0f * kPi);
-                sectorLo = int(std::floor((phi - half) * perSector));
-                sectorHi = int(std::floor((phi + half) * perSector));
-                if (sectorHi - sectorLo + 1 >= sectors) {
-                    sectorLo = 0;
-                    sectorHi = sectors - 1;
-                }
-            }
+        if (c < cb) ringLo = ringOf(c * cb + s * sb - 1e-5f);  // the cap misses the axis
+    }
+    // Sectors: when the triangle's shadow on the cone's base plane (x, y) misses the origin
+    // (the triangle crosses neither the axis nor its extension backward), the azimuths it
+    // covers are those between its corners' (an edge's azimuth runs monotonically: it lies
+    // on a great circle, whose shadow is an ellipse about the origin).
+    const float c01 = q0.x * q1.y - q0.y * q1.x, c12 = q1.x * q2.y - q1.y * q2.x,
+                c20 = q2.x * q0.y - q2.y * q0.x;
+    const float maxL = std::max({l0, l1, l2});
+    const float eps = 1e-5f * maxL * maxL;  // shadows that nearly touch the origin count
+    const bool aroundAxis = (c01 >= -eps && c12 >= -eps && c20 >= -eps) ||
+                            (c01 <= eps && c12 <= eps && c20 <= eps);
+    if (!aroundAxis) {
+        const float p0 = fastAtan2(q0.y, q0.x);
+        float p1 = fastAtan2(q1.y, q1.x) - p0, p2 = fastAtan2(q2.y, q2.x) - p0;
+        // Relative to corner 0, each within half a turn (the span is under half a turn).
+        p1 -= p1 > kPi ? 2.0f * kPi : (p1 < -kPi ? -2.0f * kPi : 0.0f);
+        p2 -= p2 > kPi ? 2.0f * kPi : (p2 < -kPi ? -2.0f * kPi : 0.0f);
+        float lo = p0 + std::min({0.0f, p1, p2}) - 1e-3f;
+        float hi = p0 + std::max({0.0f, p1, p2}) + 1e-3f;
+        if (lo < 0.0f) {
+            lo += 2.0f * kPi;
+            hi += 2.0f * kPi;
+        }
+        const float perSector = float(sectors) / (2.0f * kPi);
+        sectorLo = int(std::floor(lo * perSector));
+        sectorHi = int(std::floor(hi * perSector));
+        if (sectorHi - sectorLo + 1 >= sectors) {
+            sectorLo = 0;
+            sectorHi = sectors - 1;
         }
     }
     // Edge planes through the apex, facing inward.
@@ -165,8 +180,7 @@ void rasterize(ConeSample& cone, const vec3* tri, const Frame& f) {
     }
     const vec3 normal = glm::cross(q1 - q0, q2 - q0);
     const float planeDist = glm::dot(q0, normal);
-    const bool checkReach =
-        std::max({l0, l1, l2}) > f.reach.lookAhead || dist - radius <= f.reach.tnear;
+    const bool checkReach = maxL > f.reach.lookAhead || dist - radius <= f.reach.tnear;
     // The sector range as at most two runs inside [0, sectors).
     int runs[2][2] = {{sectorLo, sectorHi}, {0, -1}};
     if (sectorLo < 0) {

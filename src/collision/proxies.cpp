@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace plantarch::collision {
 
@@ -95,14 +96,21 @@ ProxyCache& proxyCache(PlantArchitecture::Impl& impl) {
 namespace {
 
 // Everything that shapes a petiole and its leaves relative to the petiole's start.
-void petioleKey(const Phytomer& ph, const Petiole& pt, std::vector<float>& key) {
+PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
     const Internode& in = ph.internode;
-    key.clear();
+    PlantProxyMemo::Key key{};
+    std::size_t k = 0;
     for (const vec3& v : {in.direction, in.guide, in.rollReference, pt.clearance.axis})
-        key.insert(key.end(), {v.x, v.y, v.z});
-    key.insert(key.end(), {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle,
-                           ph.leafFraction});
-    for (const LeafOrgan& l : pt.leaves) key.push_back(l.removed ? 1.0f : 0.0f);
+        for (int i = 0; i < 3; ++i) key[k++] = v[i];
+    for (float v : {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle, ph.leafFraction})
+        key[k++] = v;
+    // Which leaves have fallen: one bit each (leaf i and i + 32 share a bit: a change to both
+    // at once between two refreshes is as good as impossible, and only costs a stale proxy).
+    std::uint32_t fallen = 0;
+    for (std::size_t i = 0; i < pt.leaves.size(); ++i)
+        if (pt.leaves[i].removed) fallen ^= std::uint32_t(1) << (i % 32);
+    std::memcpy(&key[k], &fallen, sizeof fallen);
+    return key;
 }
 
 }  // namespace
@@ -121,23 +129,23 @@ void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const Col
     TriangleSoup scratch;
     std::vector<OrganTag> scratchTags;
     ProxySink sink(proxyCache(impl), organs, scratch, scratchTags);
-    std::vector<float> key;
     for (const Shoot& s : plant.shoots) {
         if (s.removed) continue;
         for (unsigned k = 0; k < s.phytomers.size(); ++k) {
             const Phytomer& ph = s.phytomers[k];
             for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                petioleKey(ph, ph.petioles[j], key);
+                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
                 PlantProxyMemo::Entry& e =
                     memo.petioles[(std::uint64_t(s.id) << 40) | (std::uint64_t(k) << 8) | j];
                 const vec3 start = placer.petioleStart(s.id, k, j);
-                if (e.key != key) {
+                if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
                     scratch.clear();
                     scratchTags.clear();
                     placer.petiole(sink, s.id, k, j);
                     e.local.resize(scratch.size());
                     for (std::size_t i = 0; i < scratch.size(); ++i) e.local[i] = scratch[i] - start;
                     e.key = key;
+                    e.set = true;
                 }
                 for (const vec3& p : e.local) out.push_back(p + start);
                 tags.resize(out.size() / 3, organTag(s.id, k));
@@ -166,7 +174,11 @@ void ProxySink::write(ObjectID&, const Mesh& mesh, const Material&, const OrganL
 
 void ProxySink::writeParts(std::vector<ObjectID>&, const OrganPrototype& proto, const mat4& xf,
                            const OrganLabels& labels) {
-    const PrototypeShape& s = cache_.shape(proto);
+    if (&proto != lastPrototype_) {  // leaves of a plant mostly share a few prototypes
+        lastPrototype_ = &proto;
+        lastShape_ = &cache_.shape(proto);
+    }
+    const PrototypeShape& s = *lastShape_;
     appendTransformed(labels.kind == OrganKind::Leaf ? s.outline : s.box, xf, out_);
     tags_.resize(out_.size() / 3, organTag(labels.shoot->id, unsigned(labels.node)));
 }

@@ -3,6 +3,7 @@
 // solid-obstacle clearance tests. Both come from the tessellator's placement code through an
 // OrganSink, so they sit exactly where the organs' meshes do.
 
+#include <array>
 #include <map>
 #include <memory>
 #include <unordered_map>
@@ -35,8 +36,11 @@ ProxyCache& proxyCache(PlantArchitecture::Impl& impl);
 /// start: reused while nothing that shapes the petiole and its leaves has changed (a grown
 /// leaf on a grown node keeps its proxy while the stem below it still lengthens or thickens).
 struct PlantProxyMemo {
+    /// The petiole's and internode's directions, angles, length, growth, fallen leaves.
+    using Key = std::array<float, 19>;
     struct Entry {
-        std::vector<float> key;
+        Key key{};
+        bool set = false;
         TriangleSoup local;
     };
     std::unordered_map<std::uint64_t, Entry> petioles;  ///< by (shoot, node, petiole)
@@ -63,6 +67,8 @@ private:
     const CollisionOrgans& organs_;
     TriangleSoup& out_;
     std::vector<OrganTag>& tags_;
+    const OrganPrototype* lastPrototype_ = nullptr;
+    const PrototypeShape* lastShape_ = nullptr;
 };
 
 /// An oriented box: centre, unit axes, half extents.

@@ -15,14 +15,14 @@ namespace {
 constexpr std::int64_t kBias = std::int64_t(1) << 20;
 constexpr std::int64_t kMask = (std::int64_t(1) << 21) - 1;
 
-std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+inline std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
     return std::uint64_t((x + kBias) & kMask) | (std::uint64_t((y + kBias) & kMask) << 21) |
            (std::uint64_t((z + kBias) & kMask) << 42);
 }
 
-std::int64_t cellIndex(float v, float inverse) {
-    const double c = std::floor(double(v) * double(inverse));
-    return std::int64_t(std::clamp(c, double(-kBias), double(kBias - 1)));
+inline std::int64_t cellIndex(float v, float inverse) {
+    const float c = std::floor(v * inverse);
+    return std::int64_t(std::clamp(c, float(-kBias), float(kBias - 1)));
 }
 
 }  // namespace
@@ -44,7 +44,7 @@ bool SoftGrid::ignored(const SoftTriangle& t, const Ignore* ignore) {
            (t.tag == ignore->organs[0] || t.tag == ignore->organs[1]);
 }
 
-std::uint64_t SoftGrid::keyOf(vec3 p) const {
+inline std::uint64_t SoftGrid::keyOf(vec3 p) const {
     return pack(cellIndex(p.x, inverse_), cellIndex(p.y, inverse_), cellIndex(p.z, inverse_));
 }
 

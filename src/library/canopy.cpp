@@ -184,7 +184,14 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     }
     throwFirstError();
 
-    // Grow them together, then each worker regenerates its plants' geometry.
+    // The initial structures' geometry is not needed: every plant is tessellated afresh when
+    // grown, one at a time per worker.
+    for (int i = 0; i < n; ++i)
+        forEachObjectID(workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_->plant(first + unsigned(i)),
+                        [](ObjectID& o) { o = kNoObject; });
+    for (CanopyWorker& w : workers) w.ctx.clear();
+
+    // Grow them together.
     std::vector<collision::GrowthSlot> slots;
     std::vector<Impl*> impls;
     for (CanopyWorker& w : workers) {
@@ -197,26 +204,33 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         slots.push_back({&owner.plant(id), collision::attractionFor(owner, id), {}});
     }
     collision::growTogether(*impl_->collision, slots, age, seed_, impls, impl_->progress);
-    // Each worker regenerates its own plants' geometry in its own Context.
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (int t = 0; t < threads; ++t) {
-        CanopyWorker& w = workers[std::size_t(t)];
-        for (int i = 0; i < n; ++i) {
-            if (builtBy[std::size_t(i)] != t) continue;
-            collision::GrowthSlot& slot = slots[std::size_t(i)];
-            for (ObjectID o : slot.deletes)
-                if (w.ctx.doesObjectExist(o)) w.ctx.deleteObject(o);
-            tessellatePlant(*w.arch->impl_, w.ctx, *slot.plant);
+
+    // Each worker tessellates its own plants; they are merged in plant order as they come (as
+    // without avoidance), each worker's Context emptied after each merge.
+    bool failed = false;
+#pragma omp parallel for ordered schedule(static, 1) num_threads(threads)
+    for (int i = 0; i < n; ++i) {
+        // The thread's own worker tessellates (whoever built the plant); the plant's owner's
+        // maps are only touched in the ordered region.
+        CanopyWorker& w = workers[std::size_t(omp_get_thread_num())];
+        Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
+        const unsigned id = first + unsigned(i);
+        try {
+            tessellatePlant(*w.arch->impl_, w.ctx, *slots[std::size_t(i)].plant);
+        } catch (const std::exception& e) {
+            errors[std::size_t(i)] = e.what();
+        }
+#pragma omp ordered
+        {
+            if (!errors[std::size_t(i)].empty()) failed = true;
+            if (!failed) {
+                mergePlant(w.ctx, std::move(owner.plant(id)), owner);
+                ids.push_back(id);
+            }
+            w.ctx.clear();
         }
     }
-
-    // Merge in plant order.
-    for (int i = 0; i < n; ++i) {
-        CanopyWorker& worker = workers[std::size_t(builtBy[std::size_t(i)])];
-        const unsigned id = first + unsigned(i);
-        mergePlant(worker.ctx, std::move(worker.arch->impl_->plant(id)), *worker.arch->impl_);
-        ids.push_back(id);
-    }
+    throwFirstError();
     impl_->nextPlantID = first + unsigned(n);
     return ids;
 }
