@@ -77,6 +77,8 @@ struct World::PlantSlot {
     TriangleSoup triangles;
     std::vector<OrganTag> tags;         ///< per triangle
     std::vector<glm::vec4> spheres;     ///< per triangle
+    std::vector<std::uint64_t> keys;    ///< grid cell per triangle, for cells of keyCell
+    float keyCell = 0.0f;
     bool set = false;
 };
 
@@ -142,6 +144,8 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     slot.triangles = std::move(triangles);
     slot.tags = std::move(tags);
     boundingSpheres(slot.triangles, slot.spheres);
+    slot.keyCell = gridCell();
+    SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);
     slot.set = true;
     stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
     return true;
@@ -154,13 +158,22 @@ void World::removePlant(unsigned plantID) {
     if (plants_.erase(plantID)) commit();
 }
 
+// Cells about as large as the look-ahead: a query visits a few cells a side.
+float World::gridCell() const { return soft_ ? std::max(soft_->cone.lookAhead, 0.005f) : 0.1f; }
+
 void World::commit() {
+    const float cell = gridCell();
+    SoftGrid::cellKeys(softStaticSpheres_, cell, softStaticKeys_);
     std::vector<SoftGrid::Source> sources;
-    sources.push_back({&softStatic_, &softStaticSpheres_, nullptr, 0});
-    for (auto& [id, slot] : plants_)
-        sources.push_back({&slot->triangles, &slot->spheres, &slot->tags, id + 1});
-    // Cells about as large as the look-ahead: a query visits a few cells a side.
-    grid_.build(sources, soft_ ? std::max(soft_->cone.lookAhead, 0.005f) : 0.1f);
+    sources.push_back({&softStatic_, &softStaticSpheres_, &softStaticKeys_, nullptr, 0});
+    for (auto& [id, slot] : plants_) {
+        if (slot->keyCell != cell) {  // the look-ahead changed since they were binned
+            slot->keyCell = cell;
+            SoftGrid::cellKeys(slot->spheres, cell, slot->keys);
+        }
+        sources.push_back({&slot->triangles, &slot->spheres, &slot->keys, &slot->tags, id + 1});
+    }
+    grid_.build(sources, cell);
 }
 
 std::uint64_t World::plantTriangles() const {

@@ -128,12 +128,14 @@ public:
 
 private:
     void buildStaticScenes(const Context& ctx);
+    float gridCell() const;
 
     std::optional<SoftCollisionOptions> soft_;
     std::optional<SolidObstacleOptions> solid_;
     std::vector<std::array<vec3, 3>> solidTriangles_;
     TriangleSoup softStatic_;  ///< soft objects and solid obstacles
     std::vector<glm::vec4> softStaticSpheres_;
+    std::vector<std::uint64_t> softStaticKeys_;
     struct PlantSlot;
     std::map<unsigned, std::unique_ptr<PlantSlot>> plants_;
     SoftGrid grid_;

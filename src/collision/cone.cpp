@@ -316,8 +316,8 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
         for (int j = 0; j < sectors && start < 0; ++j)
             if (row[j]) start = j;
         int current = -1;
-        for (int step = 1; step <= sectors; ++step) {
-            const int j = start < 0 ? step - 1 : (start + step) % sectors;
+        for (int step = 1, j = start < 0 ? 0 : start + 1; step <= sectors; ++step, ++j) {
+            if (j == sectors) j = 0;
             if (row[j]) {
                 current = -1;
                 continue;

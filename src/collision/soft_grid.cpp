@@ -44,65 +44,58 @@ bool SoftGrid::ignored(const SoftTriangle& t, const Ignore* ignore) {
            (t.tag == ignore->organs[0] || t.tag == ignore->organs[1]);
 }
 
-inline std::uint64_t SoftGrid::keyOf(vec3 p) const {
-    return pack(cellIndex(p.x, inverse_), cellIndex(p.y, inverse_), cellIndex(p.z, inverse_));
+void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
+                        std::vector<std::uint64_t>& keys) {
+    const float inverse = 1.0f / std::max(cell, kMinCell);
+    keys.resize(spheres.size());
+    for (std::size_t t = 0; t < spheres.size(); ++t)
+        keys[t] = spheres[t].w > std::max(cell, kMinCell)
+                      ? kLarge
+                      : pack(cellIndex(spheres[t].x, inverse), cellIndex(spheres[t].y, inverse),
+                             cellIndex(spheres[t].z, inverse));
 }
 
 void SoftGrid::build(const std::vector<Source>& sources, float cell) {
-    cell_ = std::max(cell, 1e-4f);
+    cell_ = std::max(cell, kMinCell);
     inverse_ = 1.0f / cell_;
     maxRadius_ = 0.0f;
-    small_.clear();
     large_.clear();
     largeSpheres_.clear();
     std::size_t total = 0;
     for (const Source& s : sources) total += s.spheres->size();
-    // Buckets: a power of two, at least twice the triangles.
+    // Buckets: a power of two, at least as many as triangles.
     int bits = 6;
-    while ((std::size_t(1) << bits) < 2 * total && bits < 30) ++bits;
+    while ((std::size_t(1) << bits) < total && bits < 30) ++bits;
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
-    thread_local std::vector<std::uint64_t> keys;
-    thread_local std::vector<std::uint32_t> bucketOfTriangle;
-    thread_local std::vector<SoftTriangle> triangles;
-    thread_local std::vector<glm::vec4> spheres;
-    keys.clear();
-    bucketOfTriangle.clear();
-    triangles.clear();
-    spheres.clear();
     start_.assign(buckets + 1, 0);
-    for (const Source& s : sources) {
-        const std::vector<glm::vec4>& sp = *s.spheres;
-        for (std::size_t t = 0; t < sp.size(); ++t) {
-            const SoftTriangle tri{s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0};
-            if (sp[t].w > cell_) {
-                large_.push_back(tri);
-                largeSpheres_.push_back(sp[t]);
+    // Counting sort by bucket; large triangles aside.
+    for (const Source& s : sources)
+        for (std::size_t t = 0; t < s.keys->size(); ++t) {
+            const std::uint64_t key = (*s.keys)[t];
+            if (key == kLarge) {
+                large_.push_back({s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0});
+                largeSpheres_.push_back((*s.spheres)[t]);
                 continue;
             }
-            maxRadius_ = std::max(maxRadius_, sp[t].w);
-            const std::uint64_t key = keyOf(vec3(sp[t]));
-            const std::size_t b = bucketOf(key);
-            keys.push_back(key);
-            bucketOfTriangle.push_back(std::uint32_t(b));
-            triangles.push_back(tri);
-            spheres.push_back(sp[t]);
-            ++start_[b + 1];
+            maxRadius_ = std::max(maxRadius_, (*s.spheres)[t].w);
+            ++start_[bucketOf(key) + 1];
         }
-    }
     for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
-    const std::size_t n = triangles.size();
+    const std::size_t n = start_[buckets];
     small_.resize(n);
     keys_.resize(n);
     spheres_.resize(n);
-    thread_local std::vector<std::uint32_t> fill;
-    fill.assign(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) {  // stable: sources' order within each bucket
-        const std::uint32_t at = fill[bucketOfTriangle[i]]++;
-        small_[at] = triangles[i];
-        keys_[at] = keys[i];
-        spheres_[at] = spheres[i];
-    }
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (const Source& s : sources)  // stable: sources' order within each bucket
+        for (std::size_t t = 0; t < s.keys->size(); ++t) {
+            const std::uint64_t key = (*s.keys)[t];
+            if (key == kLarge) continue;
+            const std::uint32_t at = fill_[bucketOf(key)]++;
+            small_[at] = {s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0};
+            keys_[at] = key;
+            spheres_[at] = (*s.spheres)[t];
+        }
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore,

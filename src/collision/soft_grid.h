@@ -30,14 +30,20 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
 
 class SoftGrid {
 public:
-    /// One block of triangles: corners, their spheres, their tags (null: obstacle objects).
+    /// One block of triangles: corners, their spheres and cell keys (cellKeys, for the cell
+    /// size the grid is built with), their tags (null: obstacle objects).
     struct Source {
         const std::vector<vec3>* soup = nullptr;
         const std::vector<glm::vec4>* spheres = nullptr;
+        const std::vector<std::uint64_t>* keys = nullptr;
         const std::vector<std::uint64_t>* tags = nullptr;
         unsigned owner = 0;
     };
 
+    /// The cell of each sphere's centre for cells of `cell` metres (spheres larger than a
+    /// cell get a mark that keeps them out of the cells).
+    static void cellKeys(const std::vector<glm::vec4>& spheres, float cell,
+                         std::vector<std::uint64_t>& keys);
     /// Rebuilds the grid over `sources` with cells of `cell` metres.
     void build(const std::vector<Source>& sources, float cell);
     /// Appends to `out` the first corners of the triangles whose bounding spheres come within
@@ -53,13 +59,15 @@ public:
     std::size_t size() const { return small_.size() + large_.size(); }
 
 private:
+    static constexpr float kMinCell = 1e-4f;
+    static constexpr std::uint64_t kLarge = ~std::uint64_t(0);
     static bool ignored(const SoftTriangle& t, const Ignore* ignore);
-    std::uint64_t keyOf(vec3 p) const;
     std::size_t bucketOf(std::uint64_t key) const { return std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_); }
 
     float cell_ = 1.0f, inverse_ = 1.0f, maxRadius_ = 0.0f;
     int shift_ = 63;
     std::vector<std::uint32_t> start_;      ///< bucket b: [start_[b], start_[b + 1])
+    std::vector<std::uint32_t> fill_;       ///< scratch of build
     std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order)
     std::vector<glm::vec4> spheres_;        ///< per small triangle (bucket order)
     std::vector<SoftTriangle> small_;       ///< bucket order
