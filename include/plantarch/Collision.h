@@ -88,7 +88,7 @@ struct CollisionStats {
     std::uint64_t organsTurned = 0;     ///< petioles, peduncles and fruit turned out of obstacles
     std::uint64_t organsUnresolved = 0; ///< ... that no turn could clear (left as grown)
     std::uint64_t sceneRefreshes = 0;   ///< refreshes of the collision scene
-    std::uint64_t plantsRebuilt = 0;    ///< plant BVHs rebuilt at refreshes (geometry changed)
+    std::uint64_t plantsRebuilt = 0;    ///< plants whose proxies changed at refreshes (re-binned)
     std::uint64_t plantsUnchanged = 0;  ///< plants whose geometry had not changed (kept)
     std::uint64_t sceneTriangles = 0;   ///< plant proxy triangles in the scene now
     double refreshSeconds = 0.0;        ///< wall time of refreshes (varies run to run)
