@@ -61,24 +61,25 @@ Float4 load4(const float* p) {
 
 Float4 splat(float v) { return Float4{v, v, v, v}; }
 
+// A triangle's edge planes through the apex (facing inward) and its plane, broadcast.
+struct Planes {
+    Float4 ax, ay, az, bx, by, bz, cx, cy, cz, nx, ny, nz, dist;
+};
+
 // Marks the cells [first, last] (and up to three past it: the arrays are padded, and every
 // cell is tested exactly, so extra cells are only extra work) whose rays pass inside the edge
-// planes n0, n1, n2 and, with `reach`, hit the plane (t = planeDist / dot(ray, normal))
-// within reach.
+// planes and, with kReach, hit the plane (t = dist / dot(ray, normal)) within reach.
 template <bool kReach>
-void markInside(const ConeSample& cone, std::uint32_t* blocked, int first, int last, vec3 n0,
-                vec3 n1, vec3 n2, vec3 normal, float planeDist, Reach reach) {
-    const Float4 ax = splat(n0.x), ay = splat(n0.y), az = splat(n0.z);
-    const Float4 bx = splat(n1.x), by = splat(n1.y), bz = splat(n1.z);
-    const Float4 cx = splat(n2.x), cy = splat(n2.y), cz = splat(n2.z);
+void markInside(const ConeSample& cone, std::uint32_t* blocked, int first, int last,
+                const Planes& p, Float4 tnear, Float4 tfar) {
     const Float4 zero = splat(0.0f);
     for (int k = first & ~3; k <= last; k += 4) {
         const Float4 x = load4(cone.x + k), y = load4(cone.y + k), z = load4(cone.z + k);
-        Int4 in = (x * ax + y * ay + z * az >= zero) & (x * bx + y * by + z * bz >= zero) &
-                  (x * cx + y * cy + z * cz >= zero);
+        Int4 in = (x * p.ax + y * p.ay + z * p.az >= zero) & (x * p.bx + y * p.by + z * p.bz >= zero) &
+                  (x * p.cx + y * p.cy + z * p.cz >= zero);
         if constexpr (kReach) {
-            const Float4 t = splat(planeDist) / (x * normal.x + y * normal.y + z * normal.z);
-            in &= (t >= splat(reach.tnear)) & (t <= splat(reach.lookAhead));
+            const Float4 t = p.dist / (x * p.nx + y * p.ny + z * p.nz);
+            in &= (t >= tnear) & (t <= tfar);
         }
         Int4 b;
         std::memcpy(&b, blocked + k, sizeof b);
@@ -192,14 +193,18 @@ void rasterize(ConeSample& cone, const vec3* tri, const Frame& f) {
         runs[1][1] = sectorHi - sectors;
     }
     std::uint32_t* blocked = cone.blocked.data();
+    const Planes p{splat(n0.x),     splat(n0.y),     splat(n0.z),     splat(n1.x), splat(n1.y),
+                   splat(n1.z),     splat(n2.x),     splat(n2.y),     splat(n2.z), splat(normal.x),
+                   splat(normal.y), splat(normal.z), splat(planeDist)};
+    const Float4 tnear = splat(f.reach.tnear), tfar = splat(f.reach.lookAhead);
     for (int i = ringLo; i <= ringHi; ++i)
         for (const auto& run : runs) {
             if (run[1] < run[0]) continue;
             const int first = i * sectors + run[0], last = i * sectors + run[1];
             if (checkReach)
-                markInside<true>(cone, blocked, first, last, n0, n1, n2, normal, planeDist, f.reach);
+                markInside<true>(cone, blocked, first, last, p, tnear, tfar);
             else
-                markInside<false>(cone, blocked, first, last, n0, n1, n2, normal, planeDist, f.reach);
+                markInside<false>(cone, blocked, first, last, p, tnear, tfar);
         }
 }
 
@@ -342,12 +347,13 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
             if (runs[j] >= 0 && below[j] >= 0) unite(runs[j], below[j]);
     }
     const std::size_t components = parent.size();
+    for (std::size_t r = 0; r < components; ++r) parent[r] = find(int(r));  // roots, flat
     size.assign(components, 0);
     sum.assign(components, vec3(0.0f));
     for (int k = 0; k < n; ++k) {
         const int r = runOf[std::size_t(k)];
         if (r < 0) continue;
-        const std::size_t root = std::size_t(find(r));
+        const std::size_t root = std::size_t(parent[std::size_t(r)]);
         ++size[root];
         sum[root] += vec3(sample.x[k], sample.y[k], sample.z[k]);
     }
