@@ -55,7 +55,7 @@ BENCHMARK(BM_BeanCanopy10x10At40DaysSoftAvoidance)
     ->UseRealTime();
 
 // One more day of the grown canopy: growth of 100 plants, one scene refresh (every plant's
-// proxies rebuilt), tessellation.
+// proxies placed again where they grew, the grid rebuilt), tessellation.
 static void BM_SoftCanopyOneMoreDay(benchmark::State& state) {
     Context ctx;
     PlantArchitecture arch(&ctx);
@@ -68,8 +68,9 @@ static void BM_SoftCanopyOneMoreDay(benchmark::State& state) {
 }
 BENCHMARK(BM_SoftCanopyOneMoreDay)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
 
-// Refreshing a scene whose plants did not change: the proxies are rebuilt and compared, no
-// BVH is rebuilt (plants past their last phytomer: a 0-day step after a refresh).
+// Refreshing a scene whose plants did not change: every plant's proxies are gathered and
+// compared (all kept), the grid is rebuilt (plants past their last phytomer: a 0-day step
+// after a refresh).
 static void BM_SoftSceneRefreshUnchanged(benchmark::State& state) {
     Context ctx;
     PlantArchitecture arch(&ctx);
@@ -82,7 +83,7 @@ static void BM_SoftSceneRefreshUnchanged(benchmark::State& state) {
         state.PauseTiming();
         for (unsigned id : ids) arch.updateGeometry(id);  // marks every plant for a re-read
         state.ResumeTiming();
-        arch.advanceTime(0.0);  // re-reads them: nothing changed, no BVH rebuilt
+        arch.advanceTime(0.0);  // re-reads them: nothing changed, every plant kept
     }
     reportCollision(state, arch.getCollisionStats());
 }
