@@ -1,0 +1,32 @@
+// The 10 x 10 bean canopy at 40 days, with or without soft collision avoidance, once: a
+// program for counting instructions (docs/performance.md, "Collision avoidance"):
+//
+//   OMP_NUM_THREADS=1 valgrind --tool=callgrind build/plantarch_soft_canopy none
+//   OMP_NUM_THREADS=1 valgrind --tool=callgrind build/plantarch_soft_canopy soft
+
+#include <cstdio>
+#include <cstring>
+
+#include "plantarch/PlantArchitecture.h"
+
+using namespace plantarch;
+
+int main(int argc, char** argv) {
+    if (argc != 2 || (std::strcmp(argv[1], "none") != 0 && std::strcmp(argv[1], "soft") != 0)) {
+        std::fprintf(stderr, "usage: plantarch_soft_canopy none|soft\n");
+        return 2;
+    }
+    const bool soft = std::strcmp(argv[1], "soft") == 0;
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    if (soft) arch.enableSoftCollisionAvoidance(SoftCollisionOptions{});
+    arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f, 0.3f), glm::ivec2(10, 10), 40.0f);
+    const CollisionStats st = arch.getCollisionStats();
+    std::printf("triangles %zu cones %llu steered %llu refreshes %llu proxy_triangles %llu\n",
+                ctx.triangleCount(), static_cast<unsigned long long>(st.softCones),
+                static_cast<unsigned long long>(st.softSteered),
+                static_cast<unsigned long long>(st.sceneRefreshes),
+                static_cast<unsigned long long>(st.sceneTriangles));
+    return 0;
+}
