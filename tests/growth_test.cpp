@@ -309,6 +309,35 @@ TEST(Growth, BudBreakProbabilityIsTheMinimumWithoutWinterWhenBasitonic) {
         EXPECT_NEAR(perNode[std::size_t(k)], n * 0.1, 5 * std::sqrt(n * 0.1 * 0.9)) << "node " << k;
 }
 
+TEST(Growth, BudBreakProbabilityWithoutWinterCountsFromTheTipWhenTheBudBreaks) {
+    // Acrotonic (decay 0.25 per node below the tip, minimum 0.1), no winter: a new node every
+    // day up to 6, buds breaking 2.5 days after they form. Bud k is sorted when it breaks, the
+    // tip then min(2, 5 - k) nodes above it: 0.5 at nodes 0 to 3, 0.75 at node 4, 1 at node
+    // 5. (Sorted as it forms it would sit at the tip, 1 everywhere; against the final 6-node
+    // shoot it would be 0.1, 0.1, 0.25, 0.5, 0.75, 1.)
+    Garden g;
+    ShootParameters s = branchingParent(g, 6, 0.1f, 2.5f);
+    s.phyllochron_min = 1.0f;
+    s.vegetative_bud_break_probability_decay_rate = 0.25f;
+    g.arch.defineShootType("main", s);
+    const int n = 1500;
+    for (int i = 0; i < n; ++i) {
+        const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
+        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+    }
+    g.arch.advanceTime(10.0f);
+    std::vector<int> perNode(6, 0);
+    for (unsigned id : g.arch.getAllPlantIDs()) {
+        ASSERT_EQ(g.state(id).shoots[0].phytomers.size(), 6u);
+        for (const Shoot& sh : g.state(id).shoots)
+            if (sh.parent == 0) perNode[std::size_t(sh.parentNode)]++;
+    }
+    const double p[] = {0.5, 0.5, 0.5, 0.5, 0.75, 1.0};
+    for (int k = 0; k < 6; ++k)
+        EXPECT_NEAR(perNode[std::size_t(k)], n * p[k], 5 * std::sqrt(n * p[k] * (1 - p[k])) + 1e-9)
+            << "node " << k;
+}
+
 TEST(Growth, PhenologyStagesOnTheirDays) {
     ShootParameters s = growingShoot();
     s.max_nodes = 4;  // nodes on days 0, 7, 9, 11: every bud exists before flowering
