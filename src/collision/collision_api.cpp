@@ -145,10 +145,11 @@ void PlantArchitecture::enableAttractionPoints(unsigned plantID, const std::vect
     enableAttractionPoints(plantID, AttractionPoints{points, halfAngle, lookAhead, inertia, {}});
 }
 
+// A plant's own points are its state (saved with it); the index is built when it grows.
 void PlantArchitecture::enableAttractionPoints(unsigned plantID, const AttractionPoints& a) {
-    impl_->plant(plantID);
+    PlantInstance& plant = impl_->plant(plantID);
     validate(a);
-    impl_->plantAttraction[plantID] = std::make_shared<collision::AttractionIndex>(a);
+    plant.attraction = a;
 }
 
 namespace {
@@ -162,6 +163,14 @@ AttractionPoints current(const std::shared_ptr<const collision::AttractionIndex>
     return index->options();
 }
 
+AttractionPoints ownPoints(const PlantInstance& plant) {
+    if (!plant.attraction)
+        throw Error("attraction points are not enabled for plant " + std::to_string(plant.id),
+                    {.parameter = "attraction_points",
+                     .validRange = "call enableAttractionPoints(plantID, ...) first"});
+    return *plant.attraction;
+}
+
 }  // namespace
 
 void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) {
@@ -171,10 +180,7 @@ void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) 
 }
 
 void PlantArchitecture::updateAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
-    impl_->plant(plantID);
-    auto it = impl_->plantAttraction.find(plantID);
-    AttractionPoints a = current(it == impl_->plantAttraction.end() ? nullptr : it->second,
-                                 " for plant " + std::to_string(plantID));
+    AttractionPoints a = ownPoints(impl_->plant(plantID));
     a.points = points;
     enableAttractionPoints(plantID, a);
 }
@@ -186,10 +192,7 @@ void PlantArchitecture::appendAttractionPoints(const std::vector<vec3>& points) 
 }
 
 void PlantArchitecture::appendAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
-    impl_->plant(plantID);
-    auto it = impl_->plantAttraction.find(plantID);
-    AttractionPoints a = current(it == impl_->plantAttraction.end() ? nullptr : it->second,
-                                 " for plant " + std::to_string(plantID));
+    AttractionPoints a = ownPoints(impl_->plant(plantID));
     a.points.insert(a.points.end(), points.begin(), points.end());
     enableAttractionPoints(plantID, a);
 }
@@ -199,14 +202,16 @@ void PlantArchitecture::disableAttractionPoints() {
 }
 
 void PlantArchitecture::disableAttractionPoints(unsigned plantID) {
-    impl_->plant(plantID);
-    impl_->plantAttraction.erase(plantID);
+    impl_->plant(plantID).attraction.reset();
+    impl_->attractionIndexes.erase(plantID);
 }
 
 std::vector<vec3> PlantArchitecture::getAttractionPoints(unsigned plantID) const {
-    impl_->plant(plantID);
-    const collision::AttractionIndex* a = collision::attractionFor(*impl_, plantID);
-    return a ? a->options().points : std::vector<vec3>{};
+    const PlantInstance& plant = impl_->plant(plantID);
+    if (plant.attraction) return plant.attraction->points;
+    const collision::World* w = impl_->collision.get();
+    return w && w->globalAttraction ? w->globalAttraction->options().points
+                                    : std::vector<vec3>{};
 }
 
 CollisionStats PlantArchitecture::getCollisionStats() const {
