@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <tuple>
 
 #include "io/plant_state_table.h"
@@ -620,6 +621,25 @@ TEST(PlantStructureXML, OwnAttractionPointsTravelWithThePlant) {
     EXPECT_EQ(warning, "");  // optional: nothing is reported missing
     EXPECT_FALSE(c.plant(r).attraction.has_value());
     EXPECT_TRUE(c.getAttractionPoints(r).empty());
+    // A file written before the element existed (the fuzzing seed): no attraction points, and
+    // the element is not among the values reported missing.
+    const std::string seeds = std::string(PLANTARCH_SOURCE_DIR) + "/fuzz/corpus/plant_xml/";
+    {
+        Context ctx3;
+        PlantArchitecture d(&ctx3);
+        std::string old;
+        PlantStructureReadOptions keep;
+        keep.onWarning = [&](const std::string& w) { old = w; };
+        const unsigned o1 =
+            d.readPlantStructureXML(seeds + "small_plant_with_parameters.xml", keep).at(0);
+        EXPECT_FALSE(d.plant(o1).attraction.has_value());
+        EXPECT_EQ(old.find("attraction"), std::string::npos) << old;
+        const unsigned o2 =
+            d.readPlantStructureXML(seeds + "small_plant_with_attraction_points.xml").at(0);
+        ASSERT_TRUE(d.plant(o2).attraction.has_value());
+        EXPECT_EQ(d.plant(o2).attraction->points.size(), 3u);
+        EXPECT_EQ(d.plant(o2).attraction->shootTypes, std::vector<std::string>{"main"});
+    }
 
     a.arch.advanceTime(25.0);
     b.advanceTime(25.0);
@@ -698,4 +718,46 @@ TEST(PlantStructureXML, BadAttractionPointsGiveOneClearError) {
                       0),
               0u)
         << e;
+}
+
+// The trellis species carry their wires in their files: read back, a plant grows on along
+// them exactly as the original does. (The Wye's default wires are above what its shoots reach
+// by then; lowered, they catch them.)
+TEST(PlantStructureXML, TrellisPlantsFollowTheirWiresAfterReading) {
+    struct Case {
+        const char* species;
+        std::map<std::string, float> parameters;
+        float age;
+        double days;
+        std::size_t points;
+    };
+    for (const Case& c : {Case{"apple_fruitingwall", {}, 180.0f, 450.0, 32},
+                          Case{"grapevine_Wye", {{"catch_wire_height", 1.2f}}, 200.0f, 70.0, 48}}) {
+        SCOPED_TRACE(c.species);
+        Built a;
+        a.arch.loadPlantModelFromLibrary(c.species);
+        a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.3f, 0.1f, 0.0f), c.age, c.parameters);
+        const std::string text = a.arch.getPlantStructureXML({a.id});
+        std::size_t points = 0;
+        for (auto at = text.find("<point>"); at != std::string::npos; at = text.find("<point>", at + 1))
+            ++points;
+        EXPECT_EQ(points, c.points);
+
+        Context ctx, ctx2;
+        PlantArchitecture b(&ctx), bare(&ctx2);
+        const unsigned q = b.readPlantStructureXMLString(text).at(0);
+        const unsigned r = bare.readPlantStructureXMLString(withoutAttraction(text)).at(0);
+        EXPECT_EQ(b.getAttractionPoints(q), a.arch.getAttractionPoints(a.id));
+        a.arch.resetCollisionStats();
+        a.arch.advanceTime(c.days);
+        b.advanceTime(c.days);
+        bare.advanceTime(c.days);
+        EXPECT_GT(b.getCollisionStats().attracted, 50u);
+        EXPECT_EQ(b.getCollisionStats().attracted, a.arch.getCollisionStats().attracted);
+        EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a.arch, {a.id})), "");
+        EXPECT_EQ(
+            firstDifference(b.getPlantStructureXML({q}), a.arch.getPlantStructureXML({a.id})), "");
+        // Read without its wires, the plant grows otherwise.
+        EXPECT_NE(firstDifference(organBytes(bare, {r}), organBytes(a.arch, {a.id})), "");
+    }
 }
