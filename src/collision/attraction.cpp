@@ -32,8 +32,9 @@ AttractionIndex::AttractionIndex(AttractionPoints points) : options_(std::move(p
 }
 
 AttractionIndex::Cell AttractionIndex::cellOf(vec3 p) const {
-    return {int(std::floor(p.x / cell_)), int(std::floor(p.y / cell_)),
-            int(std::floor(p.z / cell_))};
+    // Clamped so that any finite coordinate gives a valid int (far cells share keys anyway).
+    auto index = [this](float v) { return int(std::clamp(std::floor(v / cell_), -1e9f, 1e9f)); };
+    return {index(p.x), index(p.y), index(p.z)};
 }
 
 std::int64_t AttractionIndex::key(int x, int y, int z) const {
