@@ -497,6 +497,24 @@ TEST(Collision, CanopiesWithObstaclesAndOwnAttractionPointsAreDeterministic) {
     EXPECT_EQ(build(1), build(2));
 }
 
+// Plants grown together (soft avoidance) in workers keep their own points when merged, and
+// carry them in their plant structure file.
+TEST(Collision, CanopyPlantsGrownTogetherKeepTheirOwnPoints) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary(speciesFile("vine_together", vine(true, 16)));
+    arch.enableSoftCollisionAvoidance();
+    const auto ids = arch.buildPlantCanopyFromLibrary({0, 0, 0}, {1.5f, 0.6f}, {2, 1}, 20.0f);
+    ASSERT_EQ(ids.size(), 2u);
+    EXPECT_GT(arch.getCollisionStats().attracted, 0u);
+    for (unsigned id : ids) {
+        ASSERT_TRUE(arch.plant(id).attraction.has_value());
+        EXPECT_EQ(arch.plant(id).attraction->points.front() - vec3(0.02f, 0, 0.5f),
+                  arch.getPlantBasePosition(id));
+        EXPECT_NE(arch.getPlantStructureXML({id}).find("<attraction_points>"), std::string::npos);
+    }
+}
+
 // Solid obstacles keep priority over attraction points: points behind a wall pull the plant
 // toward it, never through it.
 TEST(Collision, ObstaclesKeepPriorityOverAttraction) {
