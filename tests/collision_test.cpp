@@ -466,6 +466,12 @@ TEST(CollisionApi, AttractionPointsUpdateAppendDisable) {
     arch.deletePlantInstance(b);
     EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints(a, {vec3(0)}); }).parameter(),
               "attraction_points");
+    // Shoot types are labels, as plant structure files write them.
+    AttractionPoints spaced{{vec3(0)}, 60, 0.3f, 0.5f, {"cane", "old wood"}};
+    const Error e = errorOf([&] { arch.enableAttractionPoints(a, spaced); });
+    EXPECT_EQ(e.parameter(), "shoot_types");
+    EXPECT_EQ(e.value(), "old wood");
+    EXPECT_TRUE(arch.getAttractionPoints(a).empty());  // nothing changed
 }
 
 // Canopies without soft avoidance grow plants apart in workers that share the obstacles and

@@ -1,5 +1,7 @@
 // PlantArchitecture's collision avoidance and attraction point methods.
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 
@@ -56,8 +58,22 @@ void checkPoints(const std::vector<vec3>& points) {
                          .validRange = "finite coordinates in m"});
 }
 
+// Shoot types are labels (as plant structure files spell them, separated by spaces).
+void checkShootTypes(const std::vector<std::string>& types) {
+    for (const std::string& t : types) {
+        const bool label = !t.empty() && std::all_of(t.begin(), t.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+        });
+        if (!label)
+            throw Error("attraction shoot type is not a shoot type label",
+                        {.parameter = "shoot_types", .value = t,
+                         .validRange = "letters, digits, '_' or '-'"});
+    }
+}
+
 void validate(const AttractionPoints& a) {
     checkPoints(a.points);
+    checkShootTypes(a.shootTypes);
     checkAngle("view_half_angle_deg", a.halfAngle);
     checkRange("look_ahead_distance", a.lookAhead, 0.0, 100.0, true, "> 0 and <= 100 m");
     checkRange("inertia", a.inertia, 0.0, 1.0, false, "0 to 1");
