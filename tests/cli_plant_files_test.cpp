@@ -52,6 +52,19 @@ TEST(CliPlantFiles, SavedPlantGrowsOnAsIfNeverSaved) {
     EXPECT_GT(std::filesystem::file_size(d + "/b50.ply"), 100000u);
 }
 
+// A trellis plant's file holds its wires (attraction points): grown on, it follows them.
+TEST(CliPlantFiles, SavedTrellisPlantGrowsOnAsIfNeverSaved) {
+    const std::string d = dir("trellis");
+    CliResult r = run("build apple_fruitingwall --age 200 -o " + d + "/a200.xml");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(fileBytes(d + "/a200.xml").find("<attraction_points>"), std::string::npos);
+    r = run("grow " + d + "/a200.xml --days 100 -o " + d + "/a300.xml");
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = run("build apple_fruitingwall --age 300 -o " + d + "/direct.xml");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(firstDifference(fileBytes(d + "/a300.xml"), fileBytes(d + "/direct.xml")), "");
+}
+
 TEST(CliPlantFiles, ConvertsBetweenFormats) {
     const std::string d = dir("convert");
     ASSERT_EQ(

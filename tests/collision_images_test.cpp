@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -119,4 +120,31 @@ TEST(CollisionImages, DenseCanopyWithoutAndWithSoftAvoidance) {
     }
     EXPECT_NE(frames[0].rgb, frames[1].rgb);
     if (writing()) writePNG(sideBySide(frames), docsPath("collision-canopy.png"));
+}
+
+// For docs/species-orchard.md: the fruiting-wall apple at 630 days seen across the row, bare
+// wood only, without (left) and with (right) its wires' attraction points; the wires in blue.
+TEST(CollisionImages, FruitingWallOnItsWires) {
+    std::vector<Image> frames;
+    for (bool points : {false, true}) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("apple_fruitingwall");
+        const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 0.0f);
+        if (!points) arch.disableAttractionPoints(p);
+        arch.advanceTime(630.0);
+        const std::vector<ObjectID> wood = arch.getPlantInternodeObjectIDs(p);
+        for (ObjectID o : arch.getAllPlantObjectIDs(p))
+            if (std::find(wood.begin(), wood.end(), o) == wood.end()) ctx.deleteObject(o);
+        for (float z : {0.75f, 1.6f, 2.25f, 2.8f})
+            addBox(ctx, {-0.006f, -0.6f, z - 0.006f}, {0.006f, 0.6f, z + 0.006f},
+                   vec3(0.15f, 0.3f, 0.9f));
+        RenderOptions o = options(560, 720);
+        o.camera.eye = {7.0f, 0.0f, 2.0f};
+        o.camera.target = {0.0f, 0.0f, 1.95f};
+        o.camera.fovDeg = 34.0f;
+        frames.push_back(render(ctx, o));
+    }
+    EXPECT_NE(frames[0].rgb, frames[1].rgb);
+    if (writing()) writePNG(sideBySide(frames), docsPath("trellis-apple-fruitingwall.png"));
 }

@@ -467,6 +467,12 @@ TEST(CollisionApi, AttractionPointsUpdateAppendDisable) {
     arch.deletePlantInstance(b);
     EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints(a, {vec3(0)}); }).parameter(),
               "attraction_points");
+    // Shoot types are labels, as plant structure files write them.
+    AttractionPoints spaced{{vec3(0)}, 60, 0.3f, 0.5f, {"cane", "old wood"}};
+    const Error e = errorOf([&] { arch.enableAttractionPoints(a, spaced); });
+    EXPECT_EQ(e.parameter(), "shoot_types");
+    EXPECT_EQ(e.value(), "old wood");
+    EXPECT_TRUE(arch.getAttractionPoints(a).empty());  // nothing changed
 }
 
 // Canopies without soft avoidance grow plants apart in workers that share the obstacles and
@@ -496,6 +502,24 @@ TEST(Collision, CanopiesWithObstaclesAndOwnAttractionPointsAreDeterministic) {
         return fingerprint(ctx);
     };
     EXPECT_EQ(build(1), build(2));
+}
+
+// Plants grown together (soft avoidance) in workers keep their own points when merged, and
+// carry them in their plant structure file.
+TEST(Collision, CanopyPlantsGrownTogetherKeepTheirOwnPoints) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary(speciesFile("vine_together", vine(true, 16)));
+    arch.enableSoftCollisionAvoidance();
+    const auto ids = arch.buildPlantCanopyFromLibrary({0, 0, 0}, {1.5f, 0.6f}, {2, 1}, 20.0f);
+    ASSERT_EQ(ids.size(), 2u);
+    EXPECT_GT(arch.getCollisionStats().attracted, 0u);
+    for (unsigned id : ids) {
+        ASSERT_TRUE(arch.plant(id).attraction.has_value());
+        EXPECT_EQ(arch.plant(id).attraction->points.front() - vec3(0.02f, 0, 0.5f),
+                  arch.getPlantBasePosition(id));
+        EXPECT_NE(arch.getPlantStructureXML({id}).find("<attraction_points>"), std::string::npos);
+    }
 }
 
 // Solid obstacles keep priority over attraction points: points behind a wall pull the plant
@@ -546,4 +570,82 @@ TEST(Collision, AllOrganKindsAndSteeredSideOrgansAreDeterministic) {
         return fingerprint(ctx);
     };
     EXPECT_EQ(build(1), build(2));
+}
+
+// ---- following a wire --------------------------------------------------------------------
+
+namespace {
+
+// A straight stem (2 cm internodes, no curvature or random walk) from `base`, and a wire of
+// points 2 cm apart along x at height `wireZ` (x from -0.4 to 0.4, y = 0), grown 40 days.
+struct WireScene {
+    Context ctx;
+    PlantArchitecture arch{&ctx};
+    unsigned id = 0;
+    WireScene(vec3 base, float wireZ, bool points, AxisRotation rotation = {}) {
+        ShootParameters sp;
+        sp.max_nodes = 30;
+        sp.internode_length_max = 0.02f;
+        sp.phyllochron_min = 1.0f;
+        sp.phytomer_parameters.internode.pitch = 0.0f;
+        arch.defineShootType("stem", sp);
+        id = arch.addPlantInstance(base, 0.0f);
+        arch.addBaseStemShoot(id, 1, rotation, 0.002f, 0.02f, 1.0f, 1.0f, 0.0f, "stem");
+        if (points) {
+            AttractionPoints a;
+            for (int k = 0; k <= 40; ++k) a.points.push_back({-0.4f + 0.02f * float(k), 0.0f, wireZ});
+            a.halfAngle = 60.0f;
+            a.lookAhead = 0.2f;
+            a.inertia = 0.3f;
+            arch.enableAttractionPoints(id, a);
+        }
+        arch.advanceTime(40.0);
+    }
+    std::vector<vec3> nodes() const {
+        std::vector<vec3> out;
+        for (unsigned k = 0; k < arch.getShootNodeCount(id, 0); ++k)
+            out.push_back(arch.getNodePosition(id, 0, k));
+        return out;
+    }
+};
+
+}  // namespace
+
+// Growing straight at a wire, a tip turns along it when it reaches it (within one internode)
+// and follows it to its end, instead of crossing it as the nearest point in its cone would
+// have it do.
+TEST(Collision, TipsMeetingAWireHeadOnFollowIt) {
+    const WireScene free({0.05f, 0, 0}, 0.3f, false);
+    const WireScene held({0.05f, 0, 0}, 0.3f, true);
+    ASSERT_EQ(held.nodes().size(), 30u);
+    EXPECT_GT(free.nodes().back().z, 0.55f);  // straight up, 0.6 m
+    float top = 0.0f;
+    for (const vec3& q : held.nodes()) top = std::max(top, q.z);
+    EXPECT_LT(top, 0.3f + 0.025f);  // never more than about an internode above the wire
+    // It went along the wire (toward +x: the first point it saw), and stays on it to the end.
+    const vec3 tip = held.nodes().back();
+    EXPECT_GT(tip.x, 0.3f);
+    float worst = 0.0f;
+    for (const vec3& q : held.nodes())
+        if (q.x > 0.1f && q.x < 0.4f) worst = std::max(worst, std::hypot(q.y, q.z - 0.3f));
+    EXPECT_LT(worst, 0.01f);
+    EXPECT_GT(held.arch.getCollisionStats().attracted, 15u);
+}
+
+// A shoot that starts on a wire and grows away from it (a shoot from a tied cane) is not held
+// by it; one that starts on it and grows along it follows it, and goes on straight past its
+// end, where nothing holds it.
+TEST(Collision, ShootsGrowFreelyAwayFromTheWireTheyStartOn) {
+    const WireScene born({0.0f, 0, 0.3f}, 0.3f, true);  // the stem starts on the wire
+    EXPECT_GT(born.nodes().back().z, 0.3f + 0.5f);
+    const WireScene along({0.2f, 0, 0.29f}, 0.3f, true, {80, 0, 0});  // 1 cm below it
+    const WireScene alone({0.2f, 0, 0.29f}, 0.3f, false, {80, 0, 0});
+    EXPECT_GT(alone.nodes().back().z, 0.35f);  // 10 degrees up, unheld
+    for (const vec3& q : along.nodes())
+        if (q.x > 0.26f && q.x < 0.4f) {
+            EXPECT_LT(std::hypot(q.y, q.z - 0.3f), 0.003f);
+        }
+    const vec3 tip = along.nodes().back();
+    EXPECT_GT(tip.x, 0.75f);
+    EXPECT_LT(std::hypot(tip.y, tip.z - 0.3f), 0.005f);  // on the wire's line, 0.4 m past its end
 }

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <tuple>
 
 #include "io/plant_state_table.h"
 #include "plant_geometry_bytes.h"
@@ -501,6 +503,16 @@ struct StateNames {
         items.resize(1);
         plantarch::state::describeState(items[0], *this);
     }
+    template <class T>
+    void values(const plantarch::state::FieldInfo& f, std::vector<T>&) {
+        names.emplace_back(f.name);
+    }
+    template <class T>
+    void optional(const char* name, std::optional<T>& item) {
+        names.emplace_back(name);
+        item.emplace();
+        plantarch::state::describeState(*item, *this);
+    }
     template <class P>
     void parameters(const char* name, P&) {
         names.emplace_back(name);
@@ -548,4 +560,204 @@ TEST(PlantStructureXML, ChildTypeDefinedAfterThePlantIsWritten) {
     b.advanceTime(20.0);
     EXPECT_GT(a.getShootCount(p), 1u);  // branches of type "side" grew
     EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a, {p})), "");
+}
+
+// ---- a plant's own attraction points ---------------------------------------------------
+
+namespace {
+
+// A bean whose trifoliate shoots are pulled toward a leaning stake beside it.
+AttractionPoints stake() {
+    AttractionPoints a;
+    for (int k = 0; k <= 25; ++k) a.points.push_back(vec3(0.12f, 0.0f, 0.1f + 0.02f * float(k)));
+    a.halfAngle = 80.0f;
+    a.lookAhead = 0.3f;
+    a.inertia = 0.3f;
+    a.shootTypes = {"trifoliate"};
+    return a;
+}
+
+// The XML of `text` without its <attraction_points> element.
+std::string withoutAttraction(const std::string& text) {
+    const auto open = text.find("    <attraction_points>");
+    const std::string close = "</attraction_points>\n";
+    const auto end = text.find(close, open);
+    EXPECT_NE(open, std::string::npos);
+    EXPECT_NE(end, std::string::npos);
+    if (open == std::string::npos || end == std::string::npos) return text;
+    return text.substr(0, open) + text.substr(end + close.size());
+}
+
+}  // namespace
+
+// Points given by the API are part of the plant: written, read back, followed after reading.
+TEST(PlantStructureXML, OwnAttractionPointsTravelWithThePlant) {
+    Built a;
+    a.arch.loadPlantModelFromLibrary("bean");
+    a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.0f), 20.0f);
+    a.arch.enableAttractionPoints(a.id, stake());
+    const std::string text = a.arch.getPlantStructureXML({a.id});
+    EXPECT_NE(text.find("<attraction_points>\n      <half_angle>80</half_angle>\n      "
+                        "<look_ahead>0.3</look_ahead>\n      <inertia>0.3</inertia>\n      "
+                        "<shoot_types>trifoliate</shoot_types>\n      <point>0.12 0 0.1</point>"),
+              std::string::npos);
+
+    Context ctx;
+    PlantArchitecture b(&ctx);
+    std::string warning;
+    PlantStructureReadOptions o;
+    o.onWarning = [&](const std::string& w) { warning = w; };
+    const unsigned q = b.readPlantStructureXMLString(text, o).at(0);
+    EXPECT_EQ(warning, "");
+    ASSERT_TRUE(b.plant(q).attraction.has_value());
+    EXPECT_EQ(*b.plant(q).attraction, stake());
+    EXPECT_EQ(b.getAttractionPoints(q), stake().points);
+    EXPECT_EQ(b.getPlantStructureXML({q}), text);
+
+    // The same file without the element: a plant without points (an older file).
+    Context ctx2;
+    PlantArchitecture c(&ctx2);
+    const unsigned r = c.readPlantStructureXMLString(withoutAttraction(text), o).at(0);
+    EXPECT_EQ(warning, "");  // optional: nothing is reported missing
+    EXPECT_FALSE(c.plant(r).attraction.has_value());
+    EXPECT_TRUE(c.getAttractionPoints(r).empty());
+    // A file written before the element existed (the fuzzing seed): no attraction points, and
+    // the element is not among the values reported missing.
+    const std::string seeds = std::string(PLANTARCH_SOURCE_DIR) + "/fuzz/corpus/plant_xml/";
+    {
+        Context ctx3;
+        PlantArchitecture d(&ctx3);
+        std::string old;
+        PlantStructureReadOptions keep;
+        keep.onWarning = [&](const std::string& w) { old = w; };
+        const unsigned o1 =
+            d.readPlantStructureXML(seeds + "small_plant_with_parameters.xml", keep).at(0);
+        EXPECT_FALSE(d.plant(o1).attraction.has_value());
+        EXPECT_EQ(old.find("attraction"), std::string::npos) << old;
+        const unsigned o2 =
+            d.readPlantStructureXML(seeds + "small_plant_with_attraction_points.xml").at(0);
+        ASSERT_TRUE(d.plant(o2).attraction.has_value());
+        EXPECT_EQ(d.plant(o2).attraction->points.size(), 3u);
+        EXPECT_EQ(d.plant(o2).attraction->shootTypes, std::vector<std::string>{"main"});
+    }
+
+    a.arch.advanceTime(25.0);
+    b.advanceTime(25.0);
+    c.advanceTime(25.0);
+    EXPECT_GT(b.getCollisionStats().attracted, 10u);
+    EXPECT_EQ(b.getCollisionStats().attracted, a.arch.getCollisionStats().attracted);
+    EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a.arch, {a.id})), "");
+    EXPECT_EQ(firstDifference(b.getPlantStructureXML({q}), a.arch.getPlantStructureXML({a.id})),
+              "");
+    // The points made a difference: the plant read without them grew otherwise.
+    EXPECT_EQ(c.getCollisionStats().attracted, 0u);
+    EXPECT_NE(firstDifference(organBytes(c, {r}), organBytes(a.arch, {a.id})), "");
+
+    // Disabled, the plant is written without them; deleted, they go with it.
+    b.disableAttractionPoints(q);
+    EXPECT_EQ(b.getPlantStructureXML({q}).find("<attraction_points>"), std::string::npos);
+    const unsigned other = b.addPlantInstance(vec3(1, 0, 0), 0.0f);
+    b.enableAttractionPoints(q, stake());
+    b.deletePlantInstance(q);
+    b.resetCollisionStats();
+    b.advanceTime(other, 5.0);
+    EXPECT_EQ(b.getCollisionStats().attractionQueries, 0u);
+}
+
+// Every bad value of <attraction_points> is one error naming file, line, element, value and
+// the valid range.
+TEST(PlantStructureXML, BadAttractionPointsGiveOneClearError) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned id = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 5.0f);
+    arch.enableAttractionPoints(id, stake());
+    const std::string good = arch.getPlantStructureXML({id});
+    EXPECT_EQ(readError(good), "");
+    const std::string at = "plant_instance[0].attraction_points.";
+    const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+        {"<half_angle>80<", "<half_angle>0<",
+         at + "half_angle = 0: out of range (valid: > 0 and < 180)"},
+        {"<half_angle>80<", "<half_angle>180<",
+         at + "half_angle = 180: out of range (valid: > 0 and < 180)"},
+        {"<half_angle>80<", "<half_angle>wide<", at + "half_angle = wide: expected a number"},
+        {"<look_ahead>0.3<", "<look_ahead>0<",
+         at + "look_ahead = 0: out of range (valid: > 0 and <= 100)"},
+        {"<look_ahead>0.3<", "<look_ahead>101<",
+         at + "look_ahead = 101: out of range (valid: > 0 and <= 100)"},
+        {"<inertia>0.3<", "<inertia>1.5<", at + "inertia = 1.5: out of range (valid: 0 to 1)"},
+        {"<inertia>0.3<", "<inertia>-0.1<", at + "inertia = -0.1: out of range (valid: 0 to 1)"},
+        {"<shoot_types>trifoliate<", "<shoot_types>trifoliate,unifoliate<",
+         at + "shoot_types = trifoliate,unifoliate: a shoot type label is letters, digits, '_' "
+              "or '-' (valid: shoot type labels separated by spaces)"},
+        {"<point>0.12 0 0.1<", "<point>0.12 0<", at + "point = 0.12 0: expected three numbers"},
+        {"<point>0.12 0 0.1<", "<point>0.12 nan 0.1<", at + "point = 0.12 nan 0.1: expected three numbers"},
+        {"<point>0.12 0 0.1<", "<point>0.12 0 2e6<",
+         at + "point = 0.12 0 2e6: out of range (valid: -1000000 to 1000000)"},
+        {"<inertia>0.3</inertia>", "<inertia>0.3</inertia><inertia>0.3</inertia>",
+         "duplicate element <inertia>"},
+        {"<attraction_points>", "<attraction_points ID=\"1\">",
+         "unknown attribute 'ID' of <attraction_points>"},
+        {"<attraction_points>", "<attraction_points>x", "unexpected text inside"},
+    };
+    for (const auto& [from, to, message] : cases) {
+        SCOPED_TRACE(to);
+        const std::string damaged = replaced(good, from, to);
+        const std::string e = readError(damaged);
+        EXPECT_EQ(e.rfind("plants.xml:" + std::to_string(lineOf(damaged, to)) + ": ", 0), 0u)
+            << e;
+        EXPECT_NE(e.find(message), std::string::npos) << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos);
+    }
+    const std::string misspelt =
+        replaced(replaced(good, "<half_angle>", "<half_angel>"), "</half_angle>", "</half_angel>");
+    const std::string e = readError(misspelt);
+    EXPECT_EQ(e.rfind("plants.xml:" + std::to_string(lineOf(misspelt, "<half_angel>")) + ": " +
+                          at + "half_angel: unknown element <half_angel> in <attraction_points>, "
+                               "did you mean <half_angle>?",
+                      0),
+              0u)
+        << e;
+}
+
+// The trellis species carry their wires in their files: read back, a plant grows on along
+// them exactly as the original does. (The Wye's default wires are above what its shoots reach
+// by then; lowered, they catch them.)
+TEST(PlantStructureXML, TrellisPlantsFollowTheirWiresAfterReading) {
+    struct Case {
+        const char* species;
+        std::map<std::string, float> parameters;
+        float age;
+        double days;
+        std::size_t points;
+    };
+    for (const Case& c : {Case{"apple_fruitingwall", {}, 180.0f, 450.0, 32},
+                          Case{"grapevine_Wye", {{"catch_wire_height", 1.2f}}, 200.0f, 70.0, 48}}) {
+        SCOPED_TRACE(c.species);
+        Built a;
+        a.arch.loadPlantModelFromLibrary(c.species);
+        a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.3f, 0.1f, 0.0f), c.age, c.parameters);
+        const std::string text = a.arch.getPlantStructureXML({a.id});
+        std::size_t points = 0;
+        for (auto at = text.find("<point>"); at != std::string::npos; at = text.find("<point>", at + 1))
+            ++points;
+        EXPECT_EQ(points, c.points);
+
+        Context ctx, ctx2;
+        PlantArchitecture b(&ctx), bare(&ctx2);
+        const unsigned q = b.readPlantStructureXMLString(text).at(0);
+        const unsigned r = bare.readPlantStructureXMLString(withoutAttraction(text)).at(0);
+        EXPECT_EQ(b.getAttractionPoints(q), a.arch.getAttractionPoints(a.id));
+        a.arch.resetCollisionStats();
+        a.arch.advanceTime(c.days);
+        b.advanceTime(c.days);
+        bare.advanceTime(c.days);
+        EXPECT_GT(b.getCollisionStats().attracted, 50u);
+        EXPECT_EQ(b.getCollisionStats().attracted, a.arch.getCollisionStats().attracted);
+        EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a.arch, {a.id})), "");
+        EXPECT_EQ(
+            firstDifference(b.getPlantStructureXML({q}), a.arch.getPlantStructureXML({a.id})), "");
+        // Read without its wires, the plant grows otherwise.
+        EXPECT_NE(firstDifference(organBytes(bare, {r}), organBytes(a.arch, {a.id})), "");
+    }
 }

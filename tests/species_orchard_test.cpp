@@ -264,6 +264,142 @@ TEST(SpeciesOrchard, FruitingWallLateralsLieAlongTheRowAtTheWireHeights) {
     EXPECT_EQ(e.validRange(), "the species has no build parameters");
 }
 
+// ---- trellis wires (attraction points) -----------------------------------------------------
+
+namespace {
+
+// A horizontal wire: the line through `at` along `along` (unit).
+struct WireLine {
+    vec3 at;
+    vec3 along;
+    float distance(vec3 p) const {
+        const vec3 d = p - at;
+        return glm::length(d - glm::dot(d, along) * along);
+    }
+};
+
+// The wires of a plant: its own points in runs of 8 (a species' <wire>s).
+std::vector<WireLine> wiresOf(const PlantInstance& p) {
+    std::vector<WireLine> wires;
+    if (!p.attraction) return wires;
+    const std::vector<vec3>& pts = p.attraction->points;
+    for (std::size_t i = 0; i + 7 < pts.size(); i += 8)
+        wires.push_back({pts[i], glm::normalize(pts[i + 7] - pts[i])});
+    return wires;
+}
+
+float toNearestWire(const std::vector<WireLine>& wires, vec3 q) {
+    float best = 1e9f;
+    for (const WireLine& w : wires) best = std::min(best, w.distance(q));
+    return best;
+}
+
+vec3 tipOf(const Grown& g, const Shoot& s) {
+    return g.arch->getNodePosition(g.id, s.id, unsigned(s.phytomers.size() - 1));
+}
+
+// The plant of `species` built and grown to `age` days with its attraction points, or with
+// them disabled once built.
+Grown growTrained(const std::string& species, float age, bool points,
+                  const std::map<std::string, float>& params = {}) {
+    Grown g = grow(species, 0.0f, params);
+    if (!points) g.arch->disableAttractionPoints(g.id);
+    g.arch->advanceTime(age);
+    return g;
+}
+
+}  // namespace
+
+// The laterals start as 2-node stubs along the row, the upper one of each pair a leader node
+// (9 cm) above its wire, and grow under the attraction points, which lay them on the wires.
+TEST(SpeciesOrchard, FruitingWallLateralsAreLaidOnTheirWiresByTheAttractionPoints) {
+    const Grown g = growTrained("apple_fruitingwall", 630.0f, true);
+    const PlantInstance& p = g.plant();
+    ASSERT_TRUE(p.attraction.has_value());
+    EXPECT_EQ(p.attraction->points.size(), 32u);
+    EXPECT_EQ(p.attraction->points.front(), vec3(0.0f, -0.6f, 0.75f));
+    EXPECT_NEAR(p.attraction->points[7].y, 0.6f, 1e-6f);
+    EXPECT_EQ(p.attraction->halfAngle, 45.0f);
+    EXPECT_EQ(p.attraction->lookAhead, 1.0f);
+    EXPECT_EQ(p.attraction->inertia, 0.2f);
+    const std::vector<WireLine> wires = wiresOf(p);
+    ASSERT_EQ(wires.size(), 4u);
+    const Grown free = growTrained("apple_fruitingwall", 630.0f, false);
+    float worst = 0.0f, worstFree = 0.0f;
+    unsigned laterals = 0;
+    for (const Shoot& s : p.shoots) {
+        if (s.type != "lateral") continue;
+        ++laterals;
+        EXPECT_EQ(s.phytomers.size(), 20u);
+        worst = std::max(worst, toNearestWire(wires, tipOf(g, s)));
+        worstFree = std::max(worstFree, toNearestWire(wires, tipOf(free, free.plant().shoots[s.id])));
+    }
+    EXPECT_EQ(laterals, 8u);
+    EXPECT_LT(worst, 0.04f);       // every lateral ends on its wire's line
+    EXPECT_GT(worstFree, 0.08f);   // without the points some do not
+    EXPECT_GT(g.arch->getCollisionStats().attracted, 500u);
+}
+
+// With the wires within the shoots' reach, shoots that come to a wire are laid along it
+// instead of crossing it; without the points none ends on a wire.
+TEST(SpeciesOrchard, WyeShootsAreCaughtByLowWires) {
+    const std::map<std::string, float> low{{"catch_wire_height", 1.2f}};
+    const Grown g = growTrained("grapevine_Wye", 270.0f, true, low);
+    const Grown free = growTrained("grapevine_Wye", 270.0f, false, low);
+    const std::vector<WireLine> wires = wiresOf(g.plant());
+    ASSERT_EQ(wires.size(), 6u);
+    EXPECT_EQ(g.plant().attraction->points.size(), 48u);
+    unsigned caught = 0, caughtFree = 0, shoots = 0, crossed = 0;
+    for (const Shoot& s : g.plant().shoots) {
+        if (s.type != "grapevine_shoot") continue;
+        ++shoots;
+        caught += toNearestWire(wires, tipOf(g, s)) < 0.03f;
+        const Shoot& f = free.plant().shoots.at(s.id);
+        if (f.type == "grapevine_shoot" && !f.phytomers.empty())
+            caughtFree += toNearestWire(wires, tipOf(free, f)) < 0.03f;
+        // A shoot that came within 3 cm of a wire does not leave it by more than 10 cm
+        // (except past its end, |x| > 0.9 m). Shoots born on a wire grow away freely.
+        const Shoot& parent = g.plant().shoots[unsigned(s.parent)];
+        if (toNearestWire(wires, g.arch->getNodePosition(g.id, parent.id, unsigned(s.parentNode))) <
+            0.1f)
+            continue;
+        bool reached = false;
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const vec3 q = g.arch->getNodePosition(g.id, s.id, k);
+            const float d = toNearestWire(wires, q);
+            if (std::abs(q.x) > 0.9f) break;
+            crossed += reached && d > 0.1f;
+            reached = reached || d < 0.03f;
+        }
+    }
+    EXPECT_GT(shoots, 30u);
+    EXPECT_GE(caught, shoots / 3);
+    EXPECT_LE(caughtFree, 1u);
+    EXPECT_EQ(crossed, 0u);
+}
+
+// The wires follow the build parameters, relative to the plant's base.
+TEST(SpeciesOrchard, WyeWiresFollowTheBuildParameters) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("grapevine_Wye");
+    const unsigned id = arch.buildPlantInstanceFromLibrary(
+        vec3(5, 1, 0), 0.0f, {{"cordon_spacing", 1.0f}, {"vine_spacing", 2.8f},
+                              {"catch_wire_height", 3.0f}});
+    const std::vector<vec3> pts = arch.getAttractionPoints(id);
+    ASSERT_EQ(pts.size(), 48u);
+    const vec3 base(5, 1, 0);
+    auto near = [](vec3 a, vec3 b) { return glm::length(a - b) < 1e-5f; };
+    EXPECT_TRUE(near(pts[0], base + vec3(-1.4f, -0.5f, 2.65f)));    // fruiting wire, -y
+    EXPECT_TRUE(near(pts[7], base + vec3(1.4f, -0.5f, 2.65f)));
+    EXPECT_TRUE(near(pts[8], base + vec3(-1.4f, 0.5f, 2.65f)));     // fruiting wire, +y
+    EXPECT_TRUE(near(pts[16], base + vec3(-1.4f, -0.65f, 2.65f)));  // first catch wires
+    EXPECT_TRUE(near(pts[24], base + vec3(-1.4f, 0.65f, 2.65f)));
+    EXPECT_TRUE(near(pts[32], base + vec3(-1.4f, -0.85f, 3.0f)));   // second catch wires
+    EXPECT_TRUE(near(pts[47], base + vec3(1.4f, 0.85f, 3.0f)));
+    EXPECT_TRUE(near(pts[1], base + vec3(-1.0f, -0.5f, 2.65f)));    // 8 points, 0.4 m apart
+}
+
 // ---- eastern redbud ----------------------------------------------------------------------
 
 // Each winter every shoot keeps vegetative buds only on its N distal nodes and floral buds

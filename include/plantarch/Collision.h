@@ -66,6 +66,8 @@ struct SolidObstacleOptions {
 };
 
 /// Attraction points: shoots grow toward the nearest point they see (e.g. along a wire).
+/// A plant's own points are part of its state (PlantInstance::attraction): they are saved in
+/// its plant structure file and travel with it.
 struct AttractionPoints {
     std::vector<vec3> points;   ///< world positions, m
     float halfAngle = 80.0f;    ///< degrees, (0, 180)
@@ -73,6 +75,7 @@ struct AttractionPoints {
     float inertia = 0.4f;       ///< 0 to 1
     /// Shoot types that are attracted (empty: all).
     std::vector<std::string> shootTypes;
+    bool operator==(const AttractionPoints&) const = default;
 };
 
 /// Counts of the work collision avoidance did (since it was enabled or the counts were reset).

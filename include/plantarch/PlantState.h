@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "plantarch/Collision.h"
 #include "plantarch/Context.h"
 #include "plantarch/Parameters.h"
 #include "plantarch/Random.h"
@@ -196,6 +198,10 @@ struct PlantInstance {
     double nextDormancyBreak = 0.0;   ///< when dormancy breaks next; negative: never
     double senescenceTime = -1.0;     ///< when the current season ends; negative: never
     int season = 0;                   ///< growing seasons begun
+    /// The plant's own attraction points (a trellis species' wires, or set with
+    /// PlantArchitecture::enableAttractionPoints(plantID, ...)): it steers by these instead
+    /// of the global ones. None: it follows the global points, if any.
+    std::optional<AttractionPoints> attraction;
 };
 
 }  // namespace plantarch

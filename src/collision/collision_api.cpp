@@ -1,5 +1,7 @@
 // PlantArchitecture's collision avoidance and attraction point methods.
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 
@@ -56,8 +58,22 @@ void checkPoints(const std::vector<vec3>& points) {
                          .validRange = "finite coordinates in m"});
 }
 
+// Shoot types are labels (as plant structure files spell them, separated by spaces).
+void checkShootTypes(const std::vector<std::string>& types) {
+    for (const std::string& t : types) {
+        const bool label = !t.empty() && std::all_of(t.begin(), t.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+        });
+        if (!label)
+            throw Error("attraction shoot type is not a shoot type label",
+                        {.parameter = "shoot_types", .value = t,
+                         .validRange = "letters, digits, '_' or '-'"});
+    }
+}
+
 void validate(const AttractionPoints& a) {
     checkPoints(a.points);
+    checkShootTypes(a.shootTypes);
     checkAngle("view_half_angle_deg", a.halfAngle);
     checkRange("look_ahead_distance", a.lookAhead, 0.0, 100.0, true, "> 0 and <= 100 m");
     checkRange("inertia", a.inertia, 0.0, 1.0, false, "0 to 1");
@@ -145,10 +161,11 @@ void PlantArchitecture::enableAttractionPoints(unsigned plantID, const std::vect
     enableAttractionPoints(plantID, AttractionPoints{points, halfAngle, lookAhead, inertia, {}});
 }
 
+// A plant's own points are its state (saved with it); the index is built when it grows.
 void PlantArchitecture::enableAttractionPoints(unsigned plantID, const AttractionPoints& a) {
-    impl_->plant(plantID);
+    PlantInstance& plant = impl_->plant(plantID);
     validate(a);
-    impl_->plantAttraction[plantID] = std::make_shared<collision::AttractionIndex>(a);
+    plant.attraction = a;
 }
 
 namespace {
@@ -162,6 +179,14 @@ AttractionPoints current(const std::shared_ptr<const collision::AttractionIndex>
     return index->options();
 }
 
+AttractionPoints ownPoints(const PlantInstance& plant) {
+    if (!plant.attraction)
+        throw Error("attraction points are not enabled for plant " + std::to_string(plant.id),
+                    {.parameter = "attraction_points",
+                     .validRange = "call enableAttractionPoints(plantID, ...) first"});
+    return *plant.attraction;
+}
+
 }  // namespace
 
 void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) {
@@ -171,10 +196,7 @@ void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) 
 }
 
 void PlantArchitecture::updateAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
-    impl_->plant(plantID);
-    auto it = impl_->plantAttraction.find(plantID);
-    AttractionPoints a = current(it == impl_->plantAttraction.end() ? nullptr : it->second,
-                                 " for plant " + std::to_string(plantID));
+    AttractionPoints a = ownPoints(impl_->plant(plantID));
     a.points = points;
     enableAttractionPoints(plantID, a);
 }
@@ -186,10 +208,7 @@ void PlantArchitecture::appendAttractionPoints(const std::vector<vec3>& points) 
 }
 
 void PlantArchitecture::appendAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
-    impl_->plant(plantID);
-    auto it = impl_->plantAttraction.find(plantID);
-    AttractionPoints a = current(it == impl_->plantAttraction.end() ? nullptr : it->second,
-                                 " for plant " + std::to_string(plantID));
+    AttractionPoints a = ownPoints(impl_->plant(plantID));
     a.points.insert(a.points.end(), points.begin(), points.end());
     enableAttractionPoints(plantID, a);
 }
@@ -199,14 +218,16 @@ void PlantArchitecture::disableAttractionPoints() {
 }
 
 void PlantArchitecture::disableAttractionPoints(unsigned plantID) {
-    impl_->plant(plantID);
-    impl_->plantAttraction.erase(plantID);
+    impl_->plant(plantID).attraction.reset();
+    impl_->attractionIndexes.erase(plantID);
 }
 
 std::vector<vec3> PlantArchitecture::getAttractionPoints(unsigned plantID) const {
-    impl_->plant(plantID);
-    const collision::AttractionIndex* a = collision::attractionFor(*impl_, plantID);
-    return a ? a->options().points : std::vector<vec3>{};
+    const PlantInstance& plant = impl_->plant(plantID);
+    if (plant.attraction) return plant.attraction->points;
+    const collision::World* w = impl_->collision.get();
+    return w && w->globalAttraction ? w->globalAttraction->options().points
+                                    : std::vector<vec3>{};
 }
 
 CollisionStats PlantArchitecture::getCollisionStats() const {

@@ -151,14 +151,22 @@ std::unique_ptr<Impl> workerImpl(const Impl& impl) {
     return w;
 }
 
-const AttractionIndex* attractionFor(const Impl& impl, unsigned plantID) {
-    auto it = impl.plantAttraction.find(plantID);
-    if (it != impl.plantAttraction.end()) return it->second.get();
-    return impl.collision ? impl.collision->globalAttraction.get() : nullptr;
+const AttractionIndex* attractionFor(Impl& impl, unsigned plantID) {
+    const PlantInstance& plant = impl.plant(plantID);
+    if (!plant.attraction) {
+        impl.attractionIndexes.erase(plantID);
+        return impl.collision ? impl.collision->globalAttraction.get() : nullptr;
+    }
+    // The index is derived from the plant's points: rebuilt when they changed.
+    std::shared_ptr<const AttractionIndex>& index = impl.attractionIndexes[plantID];
+    if (!index || index->options() != *plant.attraction)
+        index = std::make_shared<const AttractionIndex>(*plant.attraction);
+    return index.get();
 }
 
 bool collisionActive(const Impl& impl) {
-    if (!impl.plantAttraction.empty()) return true;
+    for (const auto& [id, plant] : impl.plants)
+        if (plant.attraction) return true;
     const World* w = impl.collision.get();
     return w && (w->soft() || w->solid() || w->globalAttraction);
 }

@@ -36,8 +36,10 @@ void refreshPlants(World& world, std::vector<GrowthSlot>& slots,
 /// functions and prototypes (shared, immutable), its own caches; no plants.
 std::unique_ptr<PlantArchitecture::Impl> workerImpl(const PlantArchitecture::Impl& impl);
 
-/// The attraction points a plant steers by: its own, else the global ones, else null.
-const AttractionIndex* attractionFor(const PlantArchitecture::Impl& impl, unsigned plantID);
+/// The attraction points a plant steers by: its own (PlantInstance::attraction, indexed on
+/// first use and again whenever they change), else the global ones, else null. The pointer
+/// stays valid until the next call for this plant.
+const AttractionIndex* attractionFor(PlantArchitecture::Impl& impl, unsigned plantID);
 
 /// Whether any collision feature is on.
 bool collisionActive(const PlantArchitecture::Impl& impl);

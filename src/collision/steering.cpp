@@ -223,8 +223,11 @@ void steerShootAxis(PlantArchitecture::Impl& impl, const PlantInstance& plant, c
         const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, true);
         const AttractionPoints& o = st->attraction->options();
         if (world) world->stats().attractionQueries.fetch_add(1, std::memory_order_relaxed);
-        // Points nearer than half an internode are passed by anyway (and have no direction).
-        if (auto p = st->attraction->nearestInCone(apex, g, std::max(1e-4f, 0.5f * lengthMax))) {
+        // Points nearer than half an internode are passed by anyway (and have no direction);
+        // a wire within one internode is followed (attraction.h).
+        const TipQuery tip{apex, g, nodePosition(plant, shoot.id, 0, plant.age, true),
+                           std::max(1e-4f, 0.5f * lengthMax), lengthMax};
+        if (auto p = st->attraction->target(tip)) {
             g = blend(g, glm::normalize(*p - apex), o.inertia);
             attracted = true;
             if (world) world->stats().attracted.fetch_add(1, std::memory_order_relaxed);

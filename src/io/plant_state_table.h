@@ -6,6 +6,9 @@
 //   v.field(info, member)        a value (number, flag, vector, text, stage, generator)
 //   v.group(name, fn)            a nested element; fn(subVisitor) visits its content
 //   v.list(name, vector, ids)    one element per item (ids: items carry ID="index")
+//   v.values(info, vector)       one element per value (a list of numbers or vectors)
+//   v.optional(name, optional)   a nested element that may be absent (then: none, and no
+//                                missing-value warning); its content is the type's table
 //   v.parameters(name, member)   species parameters, read and written through the parameter
 //                                table (model/parameter_table.h)
 //   v.legacy(name)               an element of the specification's listing that plantarch
@@ -28,6 +31,8 @@ enum class Check {
     UnitVector,    ///< a direction: length 1 (within 1e-3)
     Label,         ///< a shoot type label: letters, digits, '_' or '-'
     LabelOrEmpty,  ///< a label, or nothing
+    ExclusiveMin,  ///< the range excludes its minimum: min < value <= max
+    Exclusive,     ///< the range excludes both ends: min < value < max
 };
 
 /// What a state field is. The range bounds the value (each component of a vector).
@@ -217,6 +222,21 @@ void describeState(S& s, V& v) {
     v.list("terminal_floral_bud", s.terminalFloralBuds);
 }
 
+// A plant's own attraction points (docs/collision.md): the cone and the points, in world
+// coordinates. The shoot types are labels separated by spaces (none: every type).
+template <class S, class V>
+requires SameAs<S, AttractionPoints>
+void describeState(S& a, V& v) {
+    v.field({"half_angle", 0, 180, "perception cone half-angle, degrees", Check::Exclusive},
+            a.halfAngle);
+    v.field({"look_ahead", 0, 100, "perception cone length, m", Check::ExclusiveMin},
+            a.lookAhead);
+    v.field({"inertia", 0, 1, "0: turns fully toward the point, 1: unchanged"}, a.inertia);
+    v.field({"shoot_types", 0, 0, "attracted shoot types (none: all)", Check::Label},
+            a.shootTypes);
+    v.values({"point", -kBig, kBig, "an attraction point, world position, m"}, a.points);
+}
+
 template <class S, class V>
 requires SameAs<S, PlantInstance>
 void describeState(S& p, V& v) {
@@ -231,6 +251,7 @@ void describeState(S& p, V& v) {
     v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)"}, p.nextDormancyBreak);
     v.field({"senescence_time", -kTime, kTime, "days (negative: never)"}, p.senescenceTime);
     v.field({"season", 0, kCount, "growing seasons begun"}, p.season);
+    v.optional("attraction_points", p.attraction);
     v.parameters("phenology", p.phenology);
     v.parameters("shoot_type", p.shootTypes);
     v.list("shoot", p.shoots, true);

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <pugixml.hpp>
 #include <type_traits>
 
@@ -230,6 +231,10 @@ struct MissingVisitor {
     }
     template <class T>
     void list(const char*, std::vector<T>&, bool = false) {}
+    template <class T>
+    void values(const state::FieldInfo&, std::vector<T>&) {}
+    template <class T>
+    void optional(const char*, std::optional<T>&) {}  // absent: none, nothing missing
     template <class P>
     void parameters(const char* name, P& member) {
         r.missing(name, &member);
@@ -343,6 +348,39 @@ public:
             r_.path.pop_back();
             ++i;
         }
+    }
+
+    // Every <name> child is one value of the list (none: an empty list).
+    template <class T>
+    void values(const state::FieldInfo& f, std::vector<T>& items) {
+        names_.push_back(f.name);
+        std::size_t count = 0;
+        for (const Kid& k : kids_)
+            if (std::strcmp(k.node.name(), f.name) == 0) ++count;
+        items.assign(count, T{});  // at most the elements present: bounded by the input
+        std::size_t i = 0;
+        for (Kid& k : kids_) {
+            if (std::strcmp(k.node.name(), f.name) != 0) continue;
+            k.used = true;
+            readValue(f, k.node, items[i++]);  // errors name the element's line
+        }
+    }
+
+    // An optional element: absent, the member is none (and nothing is missing).
+    template <class T>
+    void optional(const char* name, std::optional<T>& member) {
+        names_.push_back(name);
+        Kid* k = take(name);
+        if (!k) {
+            member.reset();
+            return;
+        }
+        member.emplace();
+        r_.path.emplace_back(name, -1);
+        ElementReader sub(r_, k->node);
+        state::describeState(*member, sub);
+        sub.finish();
+        r_.path.pop_back();
     }
 
     void parameters(const char* name, PhenologyParameters& p) {
@@ -510,9 +548,15 @@ private:
     }
 
     void checkRange(const state::FieldInfo& f, xml_node e, double v, std::string_view text) {
-        if (v < f.min || v > f.max)
-            r_.doc.fail(e, r_.pathTo(f.name), "out of range", std::string(text),
-                        rangeText(f.min, f.max));
+        const bool openMin = f.check == state::Check::ExclusiveMin ||
+                             f.check == state::Check::Exclusive;
+        const bool openMax = f.check == state::Check::Exclusive;
+        const bool inside = (openMin ? v > f.min : v >= f.min) && (openMax ? v < f.max : v <= f.max);
+        if (inside) return;
+        const std::string range =
+            !openMin ? rangeText(f.min, f.max)
+                     : "> " + number(f.min) + " and " + (openMax ? "< " : "<= ") + number(f.max);
+        r_.doc.fail(e, r_.pathTo(f.name), "out of range", std::string(text), range);
     }
     void checkRange(const params::FieldInfo&, xml_node, double, std::string_view) {
     }  // parameters: validate() afterwards
@@ -575,6 +619,25 @@ private:
                 r_.doc.fail(e, r_.pathTo(f.name),
                             "a shoot type label is letters, digits, '_' or '-'", m,
                             optional ? "a label, or nothing" : "a label");
+        }
+    }
+    // Labels separated by white space.
+    void readValue(const state::FieldInfo& f, xml_node e, std::vector<std::string>& m) {
+        const std::string_view s = valueOf(e, f.name);
+        m.clear();
+        std::size_t at = 0;
+        while (at < s.size()) {
+            const std::size_t start = s.find_first_not_of(" \t\r\n", at);
+            if (start == std::string_view::npos) break;
+            std::size_t end = s.find_first_of(" \t\r\n", start);
+            if (end == std::string_view::npos) end = s.size();
+            const std::string label(s.substr(start, end - start));
+            if (!isLabel(label))
+                r_.doc.fail(e, r_.pathTo(f.name),
+                            "a shoot type label is letters, digits, '_' or '-'", label,
+                            "shoot type labels separated by spaces");
+            m.push_back(label);
+            at = end;
         }
     }
     void readValue(const state::FieldInfo& f, xml_node e, BudState& m) {

@@ -3,6 +3,7 @@
 // form, so reading the text back gives the same plant bit for bit.
 
 #include <charconv>
+#include <optional>
 
 #include "io/plant_state_table.h"
 #include "io/plant_structure.h"
@@ -193,6 +194,14 @@ public:
     void field(const state::FieldInfo& f, const std::string& v) {
         x_.element(f.name, [&](std::string& o) { text::appendXmlEscaped(o, v); });
     }
+    void field(const state::FieldInfo& f, const std::vector<std::string>& labels) {
+        x_.element(f.name, [&](std::string& o) {
+            for (std::size_t i = 0; i < labels.size(); ++i) {
+                if (i) o += ' ';
+                text::appendXmlEscaped(o, labels[i]);
+            }
+        });
+    }
     void field(const state::FieldInfo& f, const BudState& v) { word(f.name, budStateName(v)); }
     void field(const state::FieldInfo& f, const FloralStage& v) {
         word(f.name, floralStageName(v));
@@ -209,6 +218,19 @@ public:
     }
 
     void legacy(const char*) {}
+
+    void values(const state::FieldInfo& f, const std::vector<vec3>& items) {
+        for (const vec3& v : items) triple(f.name, v.x, v.y, v.z);
+    }
+
+    template <class T>
+    void optional(const char* name, const std::optional<T>& item) {
+        if (!item) return;
+        x_.open(name);
+        StateWriter sub(x_.out(), x_.depth() + 1);
+        state::describeState(*item, sub);
+        x_.close(name);
+    }
 
     template <class Fn>
     void group(const char* name, Fn&& visit) {

@@ -64,8 +64,8 @@ struct CanopyWorker {
 }  // namespace
 
 // Copies a plant grown in another Context into this one (objects in ascending ID order, so
-// IDs follow plant order) and takes over its state, with the object IDs remapped, and its
-// own attraction points.
+// IDs follow plant order) and takes over its state (its own attraction points included), with
+// the object IDs remapped.
 void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant, Impl& owner) {
     std::vector<ObjectID> objects;
     forEachObjectID(plant, [&](ObjectID& o) {
@@ -90,9 +90,9 @@ void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant, Imp
     });
     const unsigned id = plant.id;
     owner.plants.erase(id);
-    impl_->plants.emplace(id, std::move(plant));
-    auto own = owner.plantAttraction.find(id);
-    if (own != owner.plantAttraction.end()) impl_->plantAttraction[id] = own->second;
+    owner.attractionIndexes.erase(id);
+    impl_->plants.emplace(id, std::move(plant));  // with its own attraction points
+    impl_->attractionIndexes.erase(id);
 }
 
 // With soft collision avoidance the plants must see each other while they grow, so they are

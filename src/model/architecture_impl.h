@@ -46,11 +46,13 @@ struct PlantArchitecture::Impl {
     std::shared_ptr<const SpeciesModel> species;  ///< the loaded species, if any
 
     // Collision avoidance (collision/): the scene (shared with canopy workers; null until
-    // enabled), each plant's own attraction points, collision proxies of the cached
-    // prototypes (cleared with the cache), and the steering of the plant being grown (set
-    // only while growth runs, so hand-built shoots are never steered).
+    // enabled), the spatial indexes of the plants' own attraction points (a cache: the points
+    // are PlantInstance::attraction, and an index is rebuilt when they differ from its own),
+    // collision proxies of the cached prototypes (cleared with the cache), and the steering
+    // of the plant being grown (set only while growth runs, so hand-built shoots are never
+    // steered).
     std::shared_ptr<collision::World> collision;
-    std::map<unsigned, std::shared_ptr<const collision::AttractionIndex>> plantAttraction;
+    std::map<unsigned, std::shared_ptr<const collision::AttractionIndex>> attractionIndexes;
     std::shared_ptr<collision::ProxyCache> proxies;
     collision::Steering* steering = nullptr;
 

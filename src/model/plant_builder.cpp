@@ -497,7 +497,7 @@ void PlantArchitecture::deletePlantInstance(unsigned plantID) {
     PlantInstance& p = impl_->plant(plantID);
     for (Shoot& s : p.shoots) deleteShootObjects(*context_, s);
     impl_->plants.erase(plantID);
-    impl_->plantAttraction.erase(plantID);
+    impl_->attractionIndexes.erase(plantID);
     if (impl_->collision) impl_->collision->removePlant(plantID);
 }
 
