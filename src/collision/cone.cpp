@@ -139,6 +139,13 @@ void rasterize(ConeSample& cone, const vec3* tri, const Frame& f) {
         };
         ringHi = pastEdge ? rings - 1 : ringOf(c * cb - s * sb + 1e-5f);
         if (c < cb) ringLo = ringOf(c * cb + s * sb - 1e-5f);  // the cap misses the axis
+        // Wholly in front of the apex, the triangle is farthest from the axis at a corner
+        // (along a great-circle arc in the front half-space the height z is a positive arc
+        // of a cosine, least at an end).
+        if (q0.z > 0.0f && q1.z > 0.0f && q2.z > 0.0f) {
+            const float leastCos = std::min({q0.z / l0, q1.z / l1, q2.z / l2});
+            if (leastCos > f.cosHalf) ringHi = std::min(ringHi, ringOf(leastCos - 1e-5f));
+        }
     }
     // Sectors: when the triangle's shadow on the cone's base plane (x, y) misses the origin
     // (the triangle crosses neither the axis nor its extension backward), the azimuths it
