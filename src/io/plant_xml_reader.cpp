@@ -21,6 +21,7 @@
 #include "io/plant_structure.h"
 #include "library/species_xml.h"
 #include "library/value_text.h"
+#include "library/xml_source.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {
@@ -45,42 +46,6 @@ std::string rangeText(double lo, double hi) {
 }
 
 // ---- the document ------------------------------------------------------------------------
-
-class Document {
-public:
-    Document(const std::string& text, std::string file) : text_(text), file_(std::move(file)) {}
-
-    const std::string& file() const { return file_; }
-
-    int lineAt(std::ptrdiff_t offset) const {
-        if (offset < 0) return 1;
-        const auto end =
-            text_.begin() + std::min<std::ptrdiff_t>(offset, std::ptrdiff_t(text_.size()));
-        return 1 + int(std::count(text_.begin(), end, '\n'));
-    }
-    int line(xml_node n) const { return lineAt(n.offset_debug()); }
-
-    [[noreturn]] void fail(xml_node n, const std::string& path, const std::string& message,
-                           std::string value = "", std::string validRange = "") const {
-        throw Error(message, {.file = file_,
-                              .line = line(n),
-                              .parameter = path,
-                              .value = std::move(value),
-                              .validRange = std::move(validRange)});
-    }
-
-    [[noreturn]] void relocate(const Error& e, xml_node n, const std::string& path) const {
-        ErrorContext c = e.context();
-        c.file = file_;
-        c.line = line(n);
-        if (!path.empty()) c.parameter = path;
-        throw Error(e.message(), c);
-    }
-
-private:
-    const std::string& text_;
-    std::string file_;
-};
 
 // The element a path such as "shoot[2].phytomer[0].internode.petiole[1]" names, starting at
 // `from` (as far as the path can be followed), for locating errors found after reading.
@@ -179,7 +144,7 @@ bool isLabel(std::string_view s) {
 // State shared while one plant is read: where errors go, the element path (for messages)
 // and what was missing.
 struct PlantReader {
-    const Document& doc;
+    const XmlSource& doc;
     Presence presence = Presence::recordingMissing();
     std::map<std::string, int> missingCounts;       // "shoot.phytomer.age" -> how many
     std::vector<std::pair<const char*, int>> path;  // element names (and list index, or -1)
@@ -751,7 +716,7 @@ std::string missingReport(const std::map<std::string, int>& counts) {
     return out;
 }
 
-xml_node rootOf(const pugi::xml_document& doc, const Document& d) {
+xml_node rootOf(const pugi::xml_document& doc, const XmlSource& d) {
     xml_node root;
     for (xml_node n = doc.first_child(); n; n = n.next_sibling()) {
         if (isText(n) && !text::trim(n.value()).empty())
@@ -771,7 +736,7 @@ xml_node rootOf(const pugi::xml_document& doc, const Document& d) {
 
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults) {
-    Document d(xml, fileName);
+    XmlSource d(xml, fileName);
     if (text::trim(xml).empty())
         throw Error(std::string("empty file, expected a <") + kRoot + "> document",
                     {.file = fileName, .line = 1});

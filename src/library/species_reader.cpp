@@ -16,6 +16,7 @@
 #include "library/expression.h"
 #include "library/species_xml.h"
 #include "library/value_text.h"
+#include "library/xml_source.h"
 #include "model/parameter_table.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
@@ -72,47 +73,6 @@ std::string collapseSpaces(std::string_view s) {
     return out;
 }
 
-// The text being read: file name for errors and line numbers of node offsets.
-class Source {
-public:
-    Source(const std::string& text, std::string file) : file_(std::move(file)) {
-        lineStarts_.push_back(0);
-        for (std::size_t i = 0; i < text.size(); ++i)
-            if (text[i] == '\n') lineStarts_.push_back(std::ptrdiff_t(i + 1));
-    }
-
-    const std::string& file() const { return file_; }
-
-    int lineAt(std::ptrdiff_t offset) const {
-        if (offset < 0) return 1;
-        auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
-        return int(it - lineStarts_.begin());
-    }
-    int line(xml_node n) const { return lineAt(n.offset_debug()); }
-
-    [[noreturn]] void fail(xml_node n, const std::string& path, const std::string& message,
-                           std::string value = "", std::string validRange = "") const {
-        throw Error(message, {.file = file_,
-                              .line = line(n),
-                              .parameter = path,
-                              .value = std::move(value),
-                              .validRange = std::move(validRange)});
-    }
-
-    // An Error raised while converting a value, located at the element and parameter path.
-    [[noreturn]] void relocate(const Error& e, xml_node n, const std::string& path) const {
-        ErrorContext c = e.context();
-        c.file = file_;
-        c.line = line(n);
-        c.parameter = path;
-        throw Error(e.message(), c);
-    }
-
-private:
-    std::string file_;
-    std::vector<std::ptrdiff_t> lineStarts_;
-};
-
 // An error about `path` found after reading (range validation): put it at the line of the
 // value it names, or of the nearest enclosing element that was read.
 Error locate(const Error& e, const std::string& file, const Lines& lines, int fallbackLine) {
@@ -141,7 +101,7 @@ std::string validList(const std::vector<std::string>& valid) {
 
 // ---- structure checks -----------------------------------------------------------------
 
-void checkAttributes(const Source& src, xml_node e, const std::string& path,
+void checkAttributes(const XmlSource& src, xml_node e, const std::string& path,
                      const std::vector<std::string>& allowed) {
     std::set<std::string> seen;
     for (pugi::xml_attribute a : e.attributes()) {
@@ -156,7 +116,7 @@ void checkAttributes(const Source& src, xml_node e, const std::string& path,
     }
 }
 
-std::string requiredAttribute(const Source& src, xml_node e, const std::string& path,
+std::string requiredAttribute(const XmlSource& src, xml_node e, const std::string& path,
                               const char* name) {
     pugi::xml_attribute a = e.attribute(name);
     if (!a)
@@ -166,7 +126,7 @@ std::string requiredAttribute(const Source& src, xml_node e, const std::string& 
 }
 
 // Children must be elements named in `allowed`, each at most once unless in `repeatable`.
-void checkChildren(const Source& src, xml_node e, const std::string& path,
+void checkChildren(const XmlSource& src, xml_node e, const std::string& path,
                    const std::vector<std::string>& allowed,
                    const std::vector<std::string>& repeatable = {}) {
     std::map<std::string, xml_node> seen;
@@ -189,7 +149,7 @@ void checkChildren(const Source& src, xml_node e, const std::string& path,
 }
 
 // The text of an element that holds a value: no child elements, surrounding space trimmed.
-std::string valueText(const Source& src, xml_node e, const std::string& path) {
+std::string valueText(const XmlSource& src, xml_node e, const std::string& path) {
     std::string out;
     for (xml_node c : e.children()) {
         if (isText(c))
@@ -203,7 +163,7 @@ std::string valueText(const Source& src, xml_node e, const std::string& path) {
 }
 
 template <class Parse>
-auto convert(const Source& src, xml_node e, const std::string& path, const std::string& text,
+auto convert(const XmlSource& src, xml_node e, const std::string& path, const std::string& text,
              Parse&& parse) {
     try {
         return parse(text);
@@ -232,12 +192,12 @@ class FieldReader;
 // Reads a group element (shoot type, phenology, phytomer, leaf, ...) through `visit`, which
 // runs describeParameters on the struct being filled with the visitor it is given.
 template <class Visit>
-void readGroup(const Source& src, Lines& lines, xml_node e, const std::string& path,
+void readGroup(const XmlSource& src, Lines& lines, xml_node e, const std::string& path,
                const std::vector<std::string>& attributes, Visit&& visit);
 
 class FieldReader {
 public:
-    FieldReader(const Source& src, Lines& lines, xml_node node, std::string path)
+    FieldReader(const XmlSource& src, Lines& lines, xml_node node, std::string path)
         : src_(src), lines_(lines), node_(node), path_(std::move(path)) {}
 
     template <class T>
@@ -342,14 +302,14 @@ private:
         readMap(f, e, path, m, key, text::parseFloat);
     }
 
-    const Source& src_;
+    const XmlSource& src_;
     Lines& lines_;
     xml_node node_;
     std::string path_;
 };
 
 template <class Visit>
-void readGroup(const Source& src, Lines& lines, xml_node e, const std::string& path,
+void readGroup(const XmlSource& src, Lines& lines, xml_node e, const std::string& path,
                const std::vector<std::string>& attributes, Visit&& visit) {
     NameCollector names;
     visit(names);
@@ -367,7 +327,7 @@ const std::vector<std::string> kTopLevel = {
 
 class SpeciesReader {
 public:
-    SpeciesReader(const Source& src, SpeciesModel& model) : src_(src), m_(model) {}
+    SpeciesReader(const XmlSource& src, SpeciesModel& model) : src_(src), m_(model) {}
 
     void read(xml_node root) {
         checkAttributes(src_, root, "", {"format"});
@@ -721,7 +681,7 @@ private:
         return step;
     }
 
-    const Source& src_;
+    const XmlSource& src_;
     SpeciesModel& m_;
     std::vector<std::string> order_;  // shoot type labels in file order
 };
@@ -729,7 +689,7 @@ private:
 }  // namespace
 
 SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameForErrors) {
-    Source src(xml, nameForErrors);
+    XmlSource src(xml, nameForErrors);
     if (text::trim(xml).empty())
         throw Error("empty file, expected a <plantarch_species> document",
                     {.file = nameForErrors, .line = 1});
