@@ -275,9 +275,9 @@ vec3 closestOnTriangle(vec3 p, vec3 a, vec3 b, vec3 c) {
 }  // namespace
 
 void World::softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
-                              std::vector<const vec3*>& out) const {
+                              std::vector<const vec3*>& out, const vec3* front) const {
     out.clear();
-    grid_.near(center, radius, ignore, out);
+    grid_.near(center, radius, ignore, out, front);
 }
 
 void World::solidTrianglesNear(vec3 center, float radius, std::vector<unsigned>& out) const {

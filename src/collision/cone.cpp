@@ -277,7 +277,9 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
     out.e2 = cr * e2 - sr * e1;
 
     thread_local std::vector<const vec3*> near;
-    world.softTrianglesNear(apex, cone.lookAhead + tnear, &ignore, near);
+    // A cone no wider than a hemisphere sees nothing behind its apex.
+    world.softTrianglesNear(apex, cone.lookAhead + tnear, &ignore, near,
+                            patterns->cosHalf >= 0.0f && !traced ? &axis : nullptr);
     if (near.empty() && !traced) {  // nothing within reach: every ray is free
         out.blocked.resize(std::size_t(patterns->cells()));
         return;

@@ -99,11 +99,13 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore,
-                    std::vector<const vec3*>& out) const {
+                    std::vector<const vec3*>& out, const vec3* front) const {
+    const vec3 facing = front ? *front : vec3(0.0f);
+    const float behind = front ? 0.0f : 1.0f;  // with no plane, nothing is behind it
     auto reaches = [&](const glm::vec4& s) {
         const vec3 d = vec3(s) - centre;
         const float r = radius + s.w;
-        return glm::dot(d, d) <= r * r;
+        return glm::dot(d, d) <= r * r && glm::dot(d, facing) + s.w + behind >= 0.0f;
     };
     for (std::size_t i = 0; i < large_.size(); ++i)
         if (reaches(largeSpheres_[i]) && !ignored(large_[i], ignore)) out.push_back(large_[i].corners);

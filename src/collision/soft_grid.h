@@ -47,8 +47,10 @@ public:
     /// Rebuilds the grid over `sources` with cells of `cell` metres.
     void build(const std::vector<Source>& sources, float cell);
     /// Appends to `out` the first corners of the triangles whose bounding spheres come within
-    /// `radius` of `centre`, except the organs in `ignore`; in a fixed order.
-    void near(vec3 centre, float radius, const Ignore* ignore, std::vector<const vec3*>& out) const;
+    /// `radius` of `centre`, except the organs in `ignore` and, given `front` (unit), those
+    /// whose spheres lie wholly behind the plane through `centre` facing it; in a fixed order.
+    void near(vec3 centre, float radius, const Ignore* ignore, std::vector<const vec3*>& out,
+              const vec3* front = nullptr) const;
     /// Every triangle, except the organs in `ignore`.
     template <class F>
     void forEach(const Ignore* ignore, F&& f) const {
