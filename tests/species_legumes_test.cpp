@@ -1,9 +1,11 @@
 // The legumes of the library (bean, soybean, cowpea): where they branch (legume_phytomer)
 // and how much, against the reference plants (species/bean.xml: ref bean of about 386
-// leaflets at 50 days, a bush; the ref soybean and cowpea pictures at 50 days, bushy plants).
+// leaflets at 50 days, a bush; the ref soybean and cowpea pictures at 50 days, bushy plants),
+// and the soybean's footprint against its reference picture.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "plantarch/PlantArchitecture.h"
@@ -53,6 +55,27 @@ Counts meanCounts(const std::string& species, float age, int seeds) {
     return c;
 }
 
+struct Footprint {
+    double wide = 0, narrow = 0, height = 0;  // m: wider and narrower of x and y, z extent
+};
+
+// Mean bounding-box extents over seeds 1 to `seeds` of a species grown to `age`.
+Footprint meanFootprint(const std::string& species, float age, int seeds) {
+    Footprint f;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        const auto g = grow(species, age, std::uint64_t(seed));
+        const AABB box = g->ctx.boundingBox();
+        const double x = box.max.x - box.min.x, y = box.max.y - box.min.y;
+        f.wide += std::max(x, y);
+        f.narrow += std::min(x, y);
+        f.height += box.max.z - box.min.z;
+    }
+    f.wide /= seeds;
+    f.narrow /= seeds;
+    f.height /= seeds;
+    return f;
+}
+
 }  // namespace
 
 TEST(SpeciesLegumes, BranchesOnlyFromTheFirstSixNodesOfLowOrderShoots) {
@@ -98,6 +121,19 @@ TEST(SpeciesLegumes, SoybeanBranchesFromItsLowerNodes) {
     EXPECT_LE(c.shoots, 14.0);
     EXPECT_GE(c.leaflets, 120.0);
     EXPECT_LE(c.leaflets, 220.0);
+}
+
+TEST(SpeciesLegumes, SoybeanIsABushOfTheReferenceFootprint) {
+    // Ref render at 50 days: 0.77 x 0.43 m wide, 0.91 m tall. With the ref's zig-zag and
+    // petiole pitch the petioles and branches stood close to the stems: a column 0.30 x 0.27 m
+    // and 0.86 m tall (means of seeds 1 to 8); species/soybean.xml gives 0.69 x 0.56 x 0.84.
+    const Footprint f = meanFootprint("soybean", 50, 8);
+    EXPECT_GE(f.wide, 0.55);
+    EXPECT_LE(f.wide, 0.95);
+    EXPECT_GE(f.narrow, 0.35);
+    EXPECT_LE(f.narrow, 0.70);
+    EXPECT_GE(f.height, 0.75);
+    EXPECT_LE(f.height, 1.05);
 }
 
 TEST(SpeciesLegumes, CowpeaIsTheBushiestLegume) {
