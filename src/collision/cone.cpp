@@ -251,6 +251,8 @@ std::shared_ptr<const ConePatterns> conePatterns(unsigned rays, float halfAngleD
     gridOf(rays, rings, sectors);
     const std::pair<int, float> key(rings * 100000 + sectors, halfAngleDegrees);
     std::lock_guard<std::mutex> lock(mutex);
+    // A few shapes at a time (a scene uses one or two); cones in flight keep theirs alive.
+    if (made.size() >= 16 && !made.count(key)) made.clear();
     auto& p = made[key];
     if (!p) p = std::make_shared<const ConePatterns>(rays, halfAngleDegrees);
     return p;
