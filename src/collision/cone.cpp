@@ -260,7 +260,8 @@ std::shared_ptr<const ConePatterns> conePatterns(unsigned rays, float halfAngleD
 
 void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& cone, Rng& rng,
                 float tnear, const Ignore& ignore, ConeSample& out, bool traced) {
-    const std::shared_ptr<const ConePatterns> patterns = world.patterns(cone);
+    out.patterns = world.patterns(cone);
+    const ConePatterns* patterns = out.patterns.get();
     const int set = int(rng.nextU32() % unsigned(ConePatterns::kSets));
     const float roll = 2.0f * kPi * rng.uniform01();
     out.rings = patterns->rings;

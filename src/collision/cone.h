@@ -50,6 +50,7 @@ struct ConeSample {
     int rings = 1, sectors = 1;
     bool cast = false;                 ///< false: nothing within reach, no ray was cast
     vec3 e1{1, 0, 0}, e2{0, 1, 0}, axis{0, 0, 1};  ///< the rolled frame (world)
+    std::shared_ptr<const ConePatterns> patterns;  ///< keeps the ray set alive
     const float* x = nullptr;          ///< the ray set used, in the frame
     const float* y = nullptr;
     const float* z = nullptr;
