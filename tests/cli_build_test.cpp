@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_run.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -10,20 +12,8 @@
 
 namespace {
 
-struct CliResult {
-    int status;
-    std::string out;  // stdout and stderr together
-};
-
-CliResult run(const std::string& args) {
-    const std::string cmd = std::string(PLANTARCH_CLI) + " " + args + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf{};
-    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using cli::run;
+using CliResult = cli::Result;
 
 std::string tmp(const std::string& name) {
     const auto dir = std::filesystem::temp_directory_path() / "plantarch-cli-build";
