@@ -526,28 +526,15 @@ private:
     void checkRange(const params::FieldInfo&, xml_node, double, std::string_view) {
     }  // parameters: validate() afterwards
 
-    template <class Info>
-    void readValue(const Info& f, xml_node e, float& m) {
+    template <class Info, class T>
+        requires std::is_same_v<T, float> || std::is_same_v<T, double> ||
+                 std::is_same_v<T, int> || std::is_same_v<T, unsigned>
+    void readValue(const Info& f, xml_node e, T& m) {
         const std::string_view s = valueOf(e, f.name);
-        m = convert(e, f.name, s, text::parseFloat);
-        checkRange(f, e, m, s);
-    }
-    template <class Info>
-    void readValue(const Info& f, xml_node e, double& m) {
-        const std::string_view s = valueOf(e, f.name);
-        m = convert(e, f.name, s, parseDouble);
-        checkRange(f, e, m, s);
-    }
-    template <class Info>
-    void readValue(const Info& f, xml_node e, int& m) {
-        const std::string_view s = valueOf(e, f.name);
-        m = convert(e, f.name, s, text::parseInt);
-        checkRange(f, e, m, s);
-    }
-    template <class Info>
-    void readValue(const Info& f, xml_node e, unsigned& m) {
-        const std::string_view s = valueOf(e, f.name);
-        m = convert(e, f.name, s, text::parseUnsigned);
+        if constexpr (std::is_same_v<T, float>) m = convert(e, f.name, s, text::parseFloat);
+        else if constexpr (std::is_same_v<T, double>) m = convert(e, f.name, s, parseDouble);
+        else if constexpr (std::is_same_v<T, int>) m = convert(e, f.name, s, text::parseInt);
+        else m = convert(e, f.name, s, text::parseUnsigned);
         checkRange(f, e, m, s);
     }
     template <class Info>
