@@ -275,7 +275,7 @@ vec3 closestOnTriangle(vec3 p, vec3 a, vec3 b, vec3 c) {
 }  // namespace
 
 void World::softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
-                              std::vector<const vec3*>& out, const vec3* front) const {
+                              TriangleBatch& out, const vec3* front) const {
     out.clear();
     grid_.near(center, radius, ignore, out, front);
 }

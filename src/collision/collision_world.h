@@ -104,10 +104,9 @@ public:
                       const Ignore* ignore = nullptr) const;
     /// The soft obstacle triangles (plant proxies, obstacle objects) whose bounds come within
     /// `radius` of `center`, the organs in `ignore` excepted, and, given `front`, not wholly
-    /// behind the plane through `center` facing `front`: pointers to their first corner (three
-    /// consecutive corners each), valid until the scene changes.
-    void softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
-                           std::vector<const vec3*>& out, const vec3* front = nullptr) const;
+    /// behind the plane through `center` facing `front`, copied into `out` (cleared first).
+    void softTrianglesNear(vec3 center, float radius, const Ignore* ignore, TriangleBatch& out,
+                           const vec3* front = nullptr) const;
     /// Nearest solid obstacle on the segment, if any.
     std::optional<SolidHit> solidHit(vec3 org, vec3 dir, float tnear, float tfar) const;
     bool hasSolid() const { return !solidTriangles_.empty(); }

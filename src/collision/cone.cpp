@@ -15,6 +15,10 @@
 #include <map>
 #include <mutex>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 #include "collision/collision_world.h"
 #include "geometry/tube.h"
 
@@ -31,25 +35,8 @@ void gridOf(unsigned rays, int& rings, int& sectors) {
     sectors = std::max(3, int(rays) / rings);
 }
 
-// atan2 within 1e-5 rad (a polynomial on [0, 1] and the octant symmetries); the sector ranges
-// it feeds have a margin of 1e-3 rad.
-float fastAtan2(float y, float x) {
-    const float ax = std::abs(x), ay = std::abs(y);
-    const float mx = std::max(ax, ay);
-    if (mx == 0.0f) return 0.0f;
-    const float a = std::min(ax, ay) / mx;
-    const float s = a * a;
-    float r = ((-0.0464964749f * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
-    if (ay > ax) r = 1.57079637f - r;
-    if (x < 0.0f) r = 3.14159274f - r;
-    return y < 0.0f ? -r : r;
-}
-
-struct Reach {
-    float tnear, lookAhead;
-};
-
-// Four rays at a time (GCC/Clang vector extensions: SSE on x86-64, NEON on ARM).
+// Four lanes at a time (GCC/Clang vector extensions: SSE on x86-64, NEON on ARM): four rays
+// against one triangle when marking cells, four triangles at once when bounding them.
 typedef float Float4 __attribute__((vector_size(16)));
 typedef std::int32_t Int4 __attribute__((vector_size(16)));
 
@@ -61,6 +48,38 @@ Float4 load4(const float* p) {
 
 Float4 splat(float v) { return Float4{v, v, v, v}; }
 
+Float4 select(Int4 mask, Float4 a, Float4 b) {
+    return reinterpret_cast<Float4>((reinterpret_cast<Int4>(a) & mask) | (reinterpret_cast<Int4>(b) & ~mask));
+}
+Float4 min4(Float4 a, Float4 b) { return select(a < b, a, b); }
+Float4 max4(Float4 a, Float4 b) { return select(a > b, a, b); }
+Float4 abs4(Float4 a) {
+    return reinterpret_cast<Float4>(reinterpret_cast<Int4>(a) & Int4{0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff});
+}
+Float4 sqrt4(Float4 v) {
+#if defined(__SSE__)
+    return reinterpret_cast<Float4>(_mm_sqrt_ps(reinterpret_cast<__m128>(v)));
+#else
+    return Float4{std::sqrt(v[0]), std::sqrt(v[1]), std::sqrt(v[2]), std::sqrt(v[3])};
+#endif
+}
+bool any(Int4 m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+
+// atan2 within 1e-5 rad (a polynomial on [0, 1] and the octant symmetries); the sector ranges
+// it feeds have a margin of 1e-3 rad.
+Float4 atan2v(Float4 y, Float4 x) {
+    const Float4 ax = abs4(x), ay = abs4(y);
+    const Float4 mx = max4(ax, ay);
+    const Int4 zero = mx == splat(0.0f);
+    const Float4 a = min4(ax, ay) / select(zero, splat(1.0f), mx);
+    const Float4 s = a * a;
+    Float4 r = ((splat(-0.0464964749f) * s + 0.15931422f) * s - 0.327622764f) * s * a + a;
+    r = select(ay > ax, 1.57079637f - r, r);
+    r = select(x < 0.0f, 3.14159274f - r, r);
+    r = select(y < 0.0f, -r, r);
+    return select(zero, splat(0.0f), r);
+}
+
 // A triangle's edge planes through the apex (facing inward) and its plane, broadcast.
 struct Planes {
     Float4 ax, ay, az, bx, by, bz, cx, cy, cz, nx, ny, nz, dist;
@@ -70,11 +89,12 @@ struct Planes {
 // cell is tested exactly, so extra cells are only extra work) whose rays pass inside the edge
 // planes and, with kReach, hit the plane (t = dist / dot(ray, normal)) within reach.
 template <bool kReach>
-void markInside(const ConeSample& cone, std::uint32_t* blocked, int first, int last,
-                const Planes& p, Float4 tnear, Float4 tfar) {
+void markInside(const float* __restrict rx, const float* __restrict ry, const float* __restrict rz,
+                std::uint32_t* __restrict blocked, int first, int last, const Planes& p,
+                Float4 tnear, Float4 tfar) {
     const Float4 zero = splat(0.0f);
     for (int k = first & ~3; k <= last; k += 4) {
-        const Float4 x = load4(cone.x + k), y = load4(cone.y + k), z = load4(cone.z + k);
+        const Float4 x = load4(rx + k), y = load4(ry + k), z = load4(rz + k);
         Int4 in = (x * p.ax + y * p.ay + z * p.az >= zero) & (x * p.bx + y * p.by + z * p.bz >= zero) &
                   (x * p.cx + y * p.cy + z * p.cz >= zero);
         if constexpr (kReach) {
@@ -91,104 +111,169 @@ void markInside(const ConeSample& cone, std::uint32_t* blocked, int first, int l
 struct Frame {
     vec3 apex, e1, e2, axis;
     float cosHalf, sinHalf;
-    Reach reach;
+    float tnear, lookAhead;
 };
 
-// Marks the cells whose rays hit triangle (p0, p1, p2) within reach.
-void rasterize(ConeSample& cone, const vec3* tri, const Frame& f) {
-    auto local = [&](vec3 p) {
-        p -= f.apex;
-        return vec3(glm::dot(p, f.e1), glm::dot(p, f.e2), glm::dot(p, f.axis));
-    };
-    const vec3 q0 = local(tri[0]), q1 = local(tri[1]), q2 = local(tri[2]);
-    // Wholly behind the apex, for a cone no wider than a hemisphere.
-    if (f.cosHalf >= 0.0f && q0.z <= 0.0f && q1.z <= 0.0f && q2.z <= 0.0f) return;
-    const float l0 = glm::length(q0), l1 = glm::length(q1), l2 = glm::length(q2);
-    if (!(l0 > 0.0f && l1 > 0.0f && l2 > 0.0f)) return;
-    // Beyond reach: the bounding sphere about the centroid lies past the look-ahead.
-    const vec3 centre = (q0 + q1 + q2) * (1.0f / 3.0f);
-    const float radius = std::sqrt(std::max({glm::dot(q0 - centre, q0 - centre),
-                                             glm::dot(q1 - centre, q1 - centre),
-                                             glm::dot(q2 - centre, q2 - centre)}));
-    const float dist = glm::length(centre);
-    if (dist - radius > f.reach.lookAhead) return;
-    // The directions to the corners lie in a cap; so do all directions that hit the triangle.
-    const int rings = cone.rings, sectors = cone.sectors;
-    int ringLo = 0, ringHi = rings - 1, sectorLo = 0, sectorHi = sectors - 1;
-    const vec3 d0 = q0 / l0, d1 = q1 / l1, d2 = q2 / l2;
-    const vec3 sum = d0 + d1 + d2;
-    const float sumLen = glm::length(sum);
-    const vec3 d = sumLen > 1e-6f ? sum / sumLen : vec3(0.0f);
-    const float cb = sumLen > 1e-6f
-                         ? std::min({glm::dot(d, d0), glm::dot(d, d1), glm::dot(d, d2)}) - 1e-4f
-                         : -1.0f;
-    if (cb > 0.0f) {  // a cap narrower than a hemisphere
-        const float sb = std::sqrt(std::max(0.0f, 1.0f - cb * cb));
-        const float c = std::clamp(d.z, -1.0f, 1.0f);
-        const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
-        // Outside the cone: the cap's centre is farther from the axis than half-angle + radius
-        // (a sum below 180 degrees when the half-angle is at most 90 or the cap is narrow).
-        const bool sumBelowPi = f.cosHalf >= 0.0f || sb < f.sinHalf;
-        if (sumBelowPi && c < f.cosHalf * cb - f.sinHalf * sb - 1e-5f) return;
-        const bool pastEdge =
-            (f.cosHalf >= 0.0f && sb >= f.sinHalf) || c < f.cosHalf * cb + f.sinHalf * sb + 1e-5f;
-        const float oneMinusCos = 1.0f - f.cosHalf;
-        auto ringOf = [&](float cosTheta) {
-            const float u = (1.0f - cosTheta) / oneMinusCos;
-            return std::clamp(int(u * float(rings)), 0, rings - 1);
-        };
-        ringHi = pastEdge ? rings - 1 : ringOf(c * cb - s * sb + 1e-5f);
-        if (c < cb) ringLo = ringOf(c * cb + s * sb - 1e-5f);  // the cap misses the axis
-        // Wholly in front of the apex, the triangle is farthest from the axis at a corner
-        // (along a great-circle arc in the front half-space the height z is a positive arc
-        // of a cosine, least at an end).
-        if (q0.z > 0.0f && q1.z > 0.0f && q2.z > 0.0f) {
-            const float leastCos = std::min({q0.z / l0, q1.z / l1, q2.z / l2});
-            if (leastCos > f.cosHalf) ringHi = std::min(ringHi, ringOf(leastCos - 1e-5f));
-        }
+// One triangle that may block rays, in the cone's frame: its planes and the cells its
+// directions can reach (rings as cosines from the axis: 2 the first ring, -2 the last;
+// sectors as azimuths, or all of them).
+struct Candidate {
+    float n[3][3];
+    float normal[3], planeDist;
+    float cosLo, cosHi, azLo, azHi;
+    bool allSectors, checkReach;
+};
+
+// Bounds four triangles of `batch` (block `b`) at once; appends those that may block rays.
+//
+// Each triangle is moved into the cone's frame; the directions to its corners lie in a cap,
+// and so do all directions that hit it: the rings it can reach come from the cap and, for a
+// triangle wholly in front of the apex, from its corners (along a great-circle arc in the
+// front half-space the height z is a positive arc of a cosine, least at an end). When its
+// shadow on the cone's base plane misses the origin (it crosses neither the axis nor its
+// extension backward), the azimuths it covers are those between its corners' (an edge's
+// azimuth runs monotonically: it lies on a great circle, whose shadow is an ellipse about
+// the origin).
+void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
+                std::vector<Candidate>& out) {
+    const std::size_t count = std::min<std::size_t>(4, batch.size() - 4 * b);
+    Int4 valid = Int4{0, 1, 2, 3} < Int4{int(count), int(count), int(count), int(count)};
+    Float4 qx[3], qy[3], qz[3];
+    for (int c = 0; c < 3; ++c) {
+        const Float4 px = load4(batch.row(b, 3 * c)) - f.apex.x;
+        const Float4 py = load4(batch.row(b, 3 * c + 1)) - f.apex.y;
+        const Float4 pz = load4(batch.row(b, 3 * c + 2)) - f.apex.z;
+        qx[c] = px * f.e1.x + py * f.e1.y + pz * f.e1.z;
+        qy[c] = px * f.e2.x + py * f.e2.y + pz * f.e2.z;
+        qz[c] = px * f.axis.x + py * f.axis.y + pz * f.axis.z;
     }
-    // Sectors: when the triangle's shadow on the cone's base plane (x, y) misses the origin
-    // (the triangle crosses neither the axis nor its extension backward), the azimuths it
-    // covers are those between its corners' (an edge's azimuth runs monotonically: it lies
-    // on a great circle, whose shadow is an ellipse about the origin).
-    const float c01 = q0.x * q1.y - q0.y * q1.x, c12 = q1.x * q2.y - q1.y * q2.x,
-                c20 = q2.x * q0.y - q2.y * q0.x;
-    const float maxL = std::max({l0, l1, l2});
-    const float eps = 1e-5f * maxL * maxL;  // shadows that nearly touch the origin count
-    const bool aroundAxis = (c01 >= -eps && c12 >= -eps && c20 >= -eps) ||
-                            (c01 <= eps && c12 <= eps && c20 <= eps);
-    if (!aroundAxis) {
-        const float p0 = fastAtan2(q0.y, q0.x);
-        float p1 = fastAtan2(q1.y, q1.x) - p0, p2 = fastAtan2(q2.y, q2.x) - p0;
-        // Relative to corner 0, each within half a turn (the span is under half a turn).
-        p1 -= p1 > kPi ? 2.0f * kPi : (p1 < -kPi ? -2.0f * kPi : 0.0f);
-        p2 -= p2 > kPi ? 2.0f * kPi : (p2 < -kPi ? -2.0f * kPi : 0.0f);
-        float lo = p0 + std::min({0.0f, p1, p2}) - 1e-3f;
-        float hi = p0 + std::max({0.0f, p1, p2}) + 1e-3f;
-        if (lo < 0.0f) {
-            lo += 2.0f * kPi;
-            hi += 2.0f * kPi;
-        }
+    const Float4 zero = splat(0.0f);
+    // Wholly behind the apex, for a cone no wider than a hemisphere.
+    if (f.cosHalf >= 0.0f) valid &= (qz[0] > zero) | (qz[1] > zero) | (qz[2] > zero);
+    Float4 l[3];
+    for (int c = 0; c < 3; ++c) {
+        l[c] = sqrt4(qx[c] * qx[c] + qy[c] * qy[c] + qz[c] * qz[c]);
+        valid &= l[c] > zero;
+    }
+    // Beyond reach: the bounding sphere about the centroid lies past the look-ahead.
+    const Float4 third = splat(1.0f / 3.0f);
+    const Float4 mx = (qx[0] + qx[1] + qx[2]) * third, my = (qy[0] + qy[1] + qy[2]) * third,
+                 mz = (qz[0] + qz[1] + qz[2]) * third;
+    Float4 r2 = zero;
+    for (int c = 0; c < 3; ++c) {
+        const Float4 dx = qx[c] - mx, dy = qy[c] - my, dz = qz[c] - mz;
+        r2 = max4(r2, dx * dx + dy * dy + dz * dz);
+    }
+    const Float4 nearest = sqrt4(mx * mx + my * my + mz * mz) - sqrt4(r2);
+    valid &= nearest <= f.lookAhead;
+    if (!any(valid)) return;
+    // The cap around the corner directions.
+    Float4 dx[3], dy[3], dz[3];
+    for (int c = 0; c < 3; ++c) {
+        const Float4 inv = splat(1.0f) / select(valid, l[c], splat(1.0f));
+        dx[c] = qx[c] * inv;
+        dy[c] = qy[c] * inv;
+        dz[c] = qz[c] * inv;
+    }
+    const Float4 sx = dx[0] + dx[1] + dx[2], sy = dy[0] + dy[1] + dy[2], sz = dz[0] + dz[1] + dz[2];
+    const Float4 sumLen = sqrt4(sx * sx + sy * sy + sz * sz);
+    const Int4 centred = sumLen > 1e-6f;
+    const Float4 invSum = splat(1.0f) / select(centred, sumLen, splat(1.0f));
+    const Float4 cx = sx * invSum, cy = sy * invSum, cz = sz * invSum;
+    Float4 cb = cx * dx[0] + cy * dy[0] + cz * dz[0];
+    for (int c = 1; c < 3; ++c) cb = min4(cb, cx * dx[c] + cy * dy[c] + cz * dz[c]);
+    cb = select(centred, cb - 1e-4f, splat(-1.0f));
+    const Int4 capped = cb > zero;  // a cap narrower than a hemisphere
+    const Float4 sb = sqrt4(max4(zero, 1.0f - cb * cb));
+    const Float4 cc = max4(splat(-1.0f), min4(splat(1.0f), cz));
+    const Float4 sc = sqrt4(max4(zero, 1.0f - cc * cc));
+    const bool narrow = f.cosHalf >= 0.0f;
+    // Outside the cone: the cap's centre is farther from the axis than half-angle + radius
+    // (a sum below 180 degrees when the half-angle is at most 90 or the cap is narrow).
+    const Int4 sumBelowPi = narrow ? Int4{-1, -1, -1, -1} : (sb < f.sinHalf);
+    valid &= ~(capped & sumBelowPi & (cc < f.cosHalf * cb - f.sinHalf * sb - 1e-5f));
+    const Int4 pastEdge =
+        (narrow ? (sb >= f.sinHalf) : Int4{0, 0, 0, 0}) | (cc < f.cosHalf * cb + f.sinHalf * sb + 1e-5f);
+    Float4 cosHi = select(pastEdge, splat(-2.0f), cc * cb - sc * sb + 1e-5f);
+    Float4 cosLo = select(cc < cb, cc * cb + sc * sb - 1e-5f, splat(2.0f));
+    const Float4 leastCos = min4(dz[0], min4(dz[1], dz[2]));
+    const Int4 refine = (qz[0] > zero) & (qz[1] > zero) & (qz[2] > zero) & (leastCos > f.cosHalf);
+    cosHi = select(refine, max4(cosHi, leastCos - 1e-5f), cosHi);
+    cosHi = select(capped, cosHi, splat(-2.0f));
+    cosLo = select(capped, cosLo, splat(2.0f));
+    // Sectors.
+    const Float4 c01 = qx[0] * qy[1] - qy[0] * qx[1], c12 = qx[1] * qy[2] - qy[1] * qx[2],
+                 c20 = qx[2] * qy[0] - qy[2] * qx[0];
+    const Float4 maxL = max4(l[0], max4(l[1], l[2]));
+    const Float4 eps = 1e-5f * maxL * maxL;  // shadows that nearly touch the origin count
+    const Int4 aroundAxis = ((c01 >= -eps) & (c12 >= -eps) & (c20 >= -eps)) |
+                            ((c01 <= eps) & (c12 <= eps) & (c20 <= eps));
+    const Float4 pi = splat(kPi), twoPi = splat(2.0f * kPi);
+    const Float4 p0 = atan2v(qy[0], qx[0]);
+    Float4 p1 = atan2v(qy[1], qx[1]) - p0, p2 = atan2v(qy[2], qx[2]) - p0;
+    // Relative to corner 0, each within half a turn (the span is under half a turn).
+    p1 -= select(p1 > pi, twoPi, select(p1 < -pi, -twoPi, zero));
+    p2 -= select(p2 > pi, twoPi, select(p2 < -pi, -twoPi, zero));
+    Float4 lo = p0 + min4(zero, min4(p1, p2)) - 1e-3f;
+    Float4 hi = p0 + max4(zero, max4(p1, p2)) + 1e-3f;
+    const Int4 wrap = lo < zero;
+    lo += select(wrap, twoPi, zero);
+    hi += select(wrap, twoPi, zero);
+    // Edge planes through the apex, facing inward, and the triangle's plane.
+    auto cross = [](Float4 ax, Float4 ay, Float4 az, Float4 bx, Float4 by, Float4 bz, Float4* o) {
+        o[0] = ay * bz - az * by;
+        o[1] = az * bx - ax * bz;
+        o[2] = ax * by - ay * bx;
+    };
+    Float4 n[3][3];
+    for (int c = 0; c < 3; ++c) {
+        const int e = c == 2 ? 0 : c + 1;
+        cross(qx[c], qy[c], qz[c], qx[e], qy[e], qz[e], n[c]);
+    }
+    const Float4 volume = qx[0] * n[1][0] + qy[0] * n[1][1] + qz[0] * n[1][2];
+    valid &= abs4(volume) >= 1e-18f;  // not seen edge-on
+    if (!any(valid)) return;
+    const Float4 sign = select(volume < zero, splat(-1.0f), splat(1.0f));
+    Float4 normal[3];
+    cross(qx[1] - qx[0], qy[1] - qy[0], qz[1] - qz[0], qx[2] - qx[0], qy[2] - qy[0], qz[2] - qz[0],
+          normal);
+    const Float4 planeDist = qx[0] * normal[0] + qy[0] * normal[1] + qz[0] * normal[2];
+    const Int4 checkReach = (maxL > f.lookAhead) | (nearest <= f.tnear);
+    for (int k = 0; k < 4; ++k) {
+        if (!valid[k]) continue;
+        Candidate& t = out.emplace_back();
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 3; ++i) t.n[c][i] = n[c][i][k] * sign[k];
+        for (int i = 0; i < 3; ++i) t.normal[i] = normal[i][k];
+        t.planeDist = planeDist[k];
+        t.cosLo = cosLo[k];
+        t.cosHi = cosHi[k];
+        t.azLo = lo[k];
+        t.azHi = hi[k];
+        t.allSectors = aroundAxis[k] != 0;
+        t.checkReach = checkReach[k] != 0;
+    }
+}
+
+// Marks the cells whose rays hit candidate `t`.
+void rasterize(ConeSample& cone, const Candidate& t, const Frame& f) {
+    const int rings = cone.rings, sectors = cone.sectors;
+    const float oneMinusCos = 1.0f - f.cosHalf;
+    auto ringOf = [&](float cosTheta) {
+        const float u = (1.0f - cosTheta) / oneMinusCos * float(rings);
+        return int(std::clamp(u, 0.0f, float(rings - 1)));
+    };
+    const int ringLo = ringOf(t.cosLo), ringHi = ringOf(t.cosHi);
+    int sectorLo = 0, sectorHi = sectors - 1;
+    if (!t.allSectors) {
         const float perSector = float(sectors) / (2.0f * kPi);
-        sectorLo = int(std::floor(lo * perSector));
-        sectorHi = int(std::floor(hi * perSector));
+        sectorLo = int(std::floor(t.azLo * perSector));
+        sectorHi = int(std::floor(t.azHi * perSector));
         if (sectorHi - sectorLo + 1 >= sectors) {
             sectorLo = 0;
             sectorHi = sectors - 1;
         }
     }
-    // Edge planes through the apex, facing inward.
-    vec3 n0 = glm::cross(q0, q1), n1 = glm::cross(q1, q2), n2 = glm::cross(q2, q0);
-    const float volume = glm::dot(q0, n1);
-    if (std::abs(volume) < 1e-18f) return;  // seen edge-on
-    if (volume < 0.0f) {
-        n0 = -n0;
-        n1 = -n1;
-        n2 = -n2;
-    }
-    const vec3 normal = glm::cross(q1 - q0, q2 - q0);
-    const float planeDist = glm::dot(q0, normal);
-    const bool checkReach = maxL > f.reach.lookAhead || dist - radius <= f.reach.tnear;
     // The sector range as at most two runs inside [0, sectors).
     int runs[2][2] = {{sectorLo, sectorHi}, {0, -1}};
     if (sectorLo < 0) {
@@ -200,18 +285,19 @@ void rasterize(ConeSample& cone, const vec3* tri, const Frame& f) {
         runs[1][1] = sectorHi - sectors;
     }
     std::uint32_t* blocked = cone.blocked.data();
-    const Planes p{splat(n0.x),     splat(n0.y),     splat(n0.z),     splat(n1.x), splat(n1.y),
-                   splat(n1.z),     splat(n2.x),     splat(n2.y),     splat(n2.z), splat(normal.x),
-                   splat(normal.y), splat(normal.z), splat(planeDist)};
-    const Float4 tnear = splat(f.reach.tnear), tfar = splat(f.reach.lookAhead);
+    const Planes p{splat(t.n[0][0]),  splat(t.n[0][1]),  splat(t.n[0][2]),  splat(t.n[1][0]),
+                   splat(t.n[1][1]),  splat(t.n[1][2]),  splat(t.n[2][0]),  splat(t.n[2][1]),
+                   splat(t.n[2][2]),  splat(t.normal[0]), splat(t.normal[1]), splat(t.normal[2]),
+                   splat(t.planeDist)};
+    const Float4 tnear = splat(f.tnear), tfar = splat(f.lookAhead);
     for (int i = ringLo; i <= ringHi; ++i)
         for (const auto& run : runs) {
             if (run[1] < run[0]) continue;
             const int first = i * sectors + run[0], last = i * sectors + run[1];
-            if (checkReach)
-                markInside<true>(cone, blocked, first, last, p, tnear, tfar);
+            if (t.checkReach)
+                markInside<true>(cone.x, cone.y, cone.z, blocked, first, last, p, tnear, tfar);
             else
-                markInside<false>(cone, blocked, first, last, p, tnear, tfar);
+                markInside<false>(cone.x, cone.y, cone.z, blocked, first, last, p, tnear, tfar);
         }
 }
 
@@ -279,7 +365,7 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
     out.e1 = cr * e1 + sr * e2;
     out.e2 = cr * e2 - sr * e1;
 
-    thread_local std::vector<const vec3*> near;
+    thread_local TriangleBatch near;
     // A cone no wider than a hemisphere sees nothing behind its apex.
     world.softTrianglesNear(apex, cone.lookAhead + tnear, &ignore, near,
                             patterns->cosHalf >= 0.0f && !traced ? &axis : nullptr);
@@ -295,8 +381,11 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
                 world.softOccluded(apex, out.direction(k), tnear, cone.lookAhead, &ignore);
     } else {
         const Frame f{apex, out.e1, out.e2, axis, patterns->cosHalf, patterns->sinHalf,
-                      {tnear, cone.lookAhead}};
-        for (const vec3* tri : near) rasterize(out, tri, f);
+                      tnear, cone.lookAhead};
+        thread_local std::vector<Candidate> candidates;
+        candidates.clear();
+        for (std::size_t b = 0; b < near.blocks(); ++b) boundBlock(near, b, f, candidates);
+        for (const Candidate& t : candidates) rasterize(out, t, f);
     }
     out.blocked.resize(std::size_t(patterns->cells()));
     for (std::uint32_t b : out.blocked) out.hits += int(b);

@@ -84,6 +84,7 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
     const std::size_t n = start_[buckets];
     small_.resize(n);
+    corners_.resize(3 * n);
     keys_.resize(n);
     spheres_.resize(n);
     fill_.assign(start_.begin(), start_.end() - 1);
@@ -93,13 +94,14 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
             if (key == kLarge) continue;
             const std::uint32_t at = fill_[bucketOf(key)]++;
             small_[at] = {s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0};
+            std::copy_n(s.soup->data() + 3 * t, 3, corners_.data() + 3 * std::size_t(at));
             keys_[at] = key;
             spheres_[at] = (*s.spheres)[t];
         }
 }
 
-void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore,
-                    std::vector<const vec3*>& out, const vec3* front) const {
+void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,
+                    const vec3* front) const {
     const vec3 facing = front ? *front : vec3(0.0f);
     const float behind = front ? 0.0f : 1.0f;  // with no plane, nothing is behind it
     auto reaches = [&](const glm::vec4& s) {
@@ -108,29 +110,39 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore,
         return glm::dot(d, d) <= r * r && glm::dot(d, facing) + s.w + behind >= 0.0f;
     };
     for (std::size_t i = 0; i < large_.size(); ++i)
-        if (reaches(largeSpheres_[i]) && !ignored(large_[i], ignore)) out.push_back(large_[i].corners);
+        if (reaches(largeSpheres_[i]) && !ignored(large_[i], ignore)) out.push(large_[i].corners);
     if (small_.empty()) return;
     // Cells holding sphere centres within radius + the largest small sphere.
-    const float reach = radius + maxRadius_;
+    // (A margin of a thousandth of a cell covers rounding at cell borders.)
+    const float reach = radius + maxRadius_ + 1e-3f * cell_;
     const std::int64_t x0 = cellIndex(centre.x - reach, inverse_), x1 = cellIndex(centre.x + reach, inverse_);
     const std::int64_t y0 = cellIndex(centre.y - reach, inverse_), y1 = cellIndex(centre.y + reach, inverse_);
     const std::int64_t z0 = cellIndex(centre.z - reach, inverse_), z1 = cellIndex(centre.z + reach, inverse_);
     const float reach2 = reach * reach;
+    // A cell is wholly behind the plane when its farthest point in front of it, plus the
+    // largest sphere, still lies behind.
+    const float halfCell = 0.5f * cell_;
+    const float cellFront =
+        halfCell * (std::abs(facing.x) + std::abs(facing.y) + std::abs(facing.z)) + reach - radius + behind;
     for (std::int64_t x = x0; x <= x1; ++x) {
         const float dx = std::max({0.0f, float(x) * cell_ - centre.x, centre.x - float(x + 1) * cell_});
+        const float fx = (float(x) * cell_ + halfCell - centre.x) * facing.x;
         for (std::int64_t y = y0; y <= y1; ++y) {
             const float dy =
                 std::max({0.0f, float(y) * cell_ - centre.y, centre.y - float(y + 1) * cell_});
             if (dx * dx + dy * dy > reach2) continue;
+            const float fxy = fx + (float(y) * cell_ + halfCell - centre.y) * facing.y;
             for (std::int64_t z = z0; z <= z1; ++z) {
                 const float dz =
                     std::max({0.0f, float(z) * cell_ - centre.z, centre.z - float(z + 1) * cell_});
                 if (dx * dx + dy * dy + dz * dz > reach2) continue;
+                if (fxy + (float(z) * cell_ + halfCell - centre.z) * facing.z + cellFront < 0.0f)
+                    continue;
                 const std::uint64_t key = pack(x, y, z);
                 const std::size_t b = bucketOf(key);
                 for (std::uint32_t i = start_[b], end = start_[b + 1]; i < end; ++i)
                     if (keys_[i] == key && reaches(spheres_[i]) && !ignored(small_[i], ignore))
-                        out.push_back(small_[i].corners);
+                        out.push(corners_.data() + 3 * std::size_t(i));
             }
         }
     }

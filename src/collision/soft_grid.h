@@ -25,6 +25,41 @@ struct SoftTriangle {
     std::uint64_t tag = 0;
 };
 
+/// Triangles a query gathered, in blocks of four with each coordinate of each corner in a row
+/// of its own (x0 of the four triangles, then y0, ..., z2), so the perception cones can work
+/// on four triangles at once. Rows past size() hold zeros.
+class TriangleBatch {
+public:
+    static constexpr std::size_t kFloatsPerBlock = 36;
+    void clear() {
+        size_ = 0;
+        data_.clear();
+    }
+    void push(const vec3* corners) {
+        const std::size_t lane = size_ & 3;
+        if (lane == 0) data_.resize(data_.size() + kFloatsPerBlock, 0.0f);
+        float* block = data_.data() + data_.size() - kFloatsPerBlock;
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) block[(3 * c + k) * 4 + lane] = corners[c][k];
+        ++size_;
+    }
+    std::size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    std::size_t blocks() const { return (size_ + 3) / 4; }
+    /// Row `row` (corner row / 3, coordinate row % 3) of block `b`: four floats.
+    const float* row(std::size_t b, int row) const { return data_.data() + b * kFloatsPerBlock + 4 * row; }
+    /// Corner `c` of triangle `t`.
+    vec3 corner(std::size_t t, int c) const {
+        const float* r = row(t / 4, 3 * c);
+        const std::size_t lane = t & 3;
+        return {r[lane], r[4 + lane], r[8 + lane]};
+    }
+
+private:
+    std::vector<float> data_;
+    std::size_t size_ = 0;
+};
+
 /// Bounding spheres of a triangle soup (centre, radius), three corners per triangle.
 void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres);
 
@@ -46,10 +81,10 @@ public:
                          std::vector<std::uint64_t>& keys);
     /// Rebuilds the grid over `sources` with cells of `cell` metres.
     void build(const std::vector<Source>& sources, float cell);
-    /// Appends to `out` the first corners of the triangles whose bounding spheres come within
-    /// `radius` of `centre`, except the organs in `ignore` and, given `front` (unit), those
-    /// whose spheres lie wholly behind the plane through `centre` facing it; in a fixed order.
-    void near(vec3 centre, float radius, const Ignore* ignore, std::vector<const vec3*>& out,
+    /// Appends to `out` the triangles whose bounding spheres come within `radius` of
+    /// `centre`, except the organs in `ignore` and, given `front` (unit), those whose spheres
+    /// lie wholly behind the plane through `centre` facing it; in a fixed order.
+    void near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,
               const vec3* front = nullptr) const;
     /// Every triangle, except the organs in `ignore`.
     template <class F>
@@ -73,6 +108,7 @@ private:
     std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order)
     std::vector<glm::vec4> spheres_;        ///< per small triangle (bucket order)
     std::vector<SoftTriangle> small_;       ///< bucket order
+    std::vector<vec3> corners_;             ///< of small_, copied in bucket order (locality)
     std::vector<glm::vec4> largeSpheres_;
     std::vector<SoftTriangle> large_;
 };
