@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "collision/collision_world.h"
 
@@ -85,8 +86,8 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     const std::size_t n = start_[buckets];
     small_.resize(n);
     corners_.resize(3 * n);
-    keys_.resize(n);
-    spheres_.resize(n);
+    keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
+    for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
     fill_.assign(start_.begin(), start_.end() - 1);
     for (const Source& s : sources)  // stable: sources' order within each bucket
         for (std::size_t t = 0; t < s.keys->size(); ++t) {
@@ -96,7 +97,7 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
             small_[at] = {s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0};
             std::copy_n(s.soup->data() + 3 * t, 3, corners_.data() + 3 * std::size_t(at));
             keys_[at] = key;
-            spheres_[at] = (*s.spheres)[t];
+            for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
         }
 }
 
@@ -113,6 +114,25 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
         if (reaches(largeSpheres_[i]) && !ignored(large_[i], ignore)) out.push(large_[i].corners);
     if (small_.empty()) return;
     // Cells holding sphere centres within radius + the largest small sphere.
+    // Which of the four small triangles from i on reach the sphere (bit k: triangle i + k); the
+    // same arithmetic as `reaches`, four lanes at a time.
+    typedef float Float4 __attribute__((vector_size(16)));
+    typedef std::int32_t Int4 __attribute__((vector_size(16)));
+    auto load = [](const std::vector<float>& row, std::uint32_t i) {
+        Float4 v;
+        std::memcpy(&v, row.data() + i, sizeof v);
+        return v;
+    };
+    auto test4 = [&](std::uint32_t i) {
+        const Float4 dx = load(sphereRows_[0], i) - centre.x, dy = load(sphereRows_[1], i) - centre.y,
+                     dz = load(sphereRows_[2], i) - centre.z, w = load(sphereRows_[3], i);
+        const Float4 r = radius + w;
+        const Int4 in = (dx * dx + dy * dy + dz * dz <= r * r) &
+                        (dx * facing.x + dy * facing.y + dz * facing.z + w + behind >= 0.0f);
+        return unsigned((in[0] & 1) | (in[1] & 2) | (in[2] & 4) | (in[3] & 8));
+    };
+    const unsigned ignoredOwner = ignore ? ignore->plant + 1 : 0u;  // owner 0: no plant
+    const std::uint64_t ignoredTags[2] = {ignore ? ignore->organs[0] : 0, ignore ? ignore->organs[1] : 0};
     // (A margin of a thousandth of a cell covers rounding at cell borders.)
     const float reach = radius + maxRadius_ + 1e-3f * cell_;
     const std::int64_t x0 = cellIndex(centre.x - reach, inverse_), x1 = cellIndex(centre.x + reach, inverse_);
@@ -140,9 +160,20 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
                     continue;
                 const std::uint64_t key = pack(x, y, z);
                 const std::size_t b = bucketOf(key);
-                for (std::uint32_t i = start_[b], end = start_[b + 1]; i < end; ++i)
-                    if (keys_[i] == key && reaches(spheres_[i]) && !ignored(small_[i], ignore))
-                        out.push(corners_.data() + 3 * std::size_t(i));
+                // A bucket may also hold other cells (hashing): their keys differ.
+                for (std::uint32_t i = start_[b], end = start_[b + 1]; i < end; i += 4) {
+                    const unsigned same = unsigned(keys_[i] == key) | unsigned(keys_[i + 1] == key) << 1 |
+                                          unsigned(keys_[i + 2] == key) << 2 | unsigned(keys_[i + 3] == key) << 3;
+                    if (!same) continue;
+                    unsigned hits = test4(i) & same;
+                    if (end - i < 4) hits &= (1u << (end - i)) - 1u;
+                    for (; hits; hits &= hits - 1) {
+                        const std::uint32_t k = i + std::uint32_t(__builtin_ctz(hits));
+                        const SoftTriangle& t = small_[k];
+                        if (t.owner != ignoredOwner || (t.tag != ignoredTags[0] && t.tag != ignoredTags[1]))
+                            out.push(corners_.data() + 3 * std::size_t(k));
+                    }
+                }
             }
         }
     }

@@ -105,8 +105,10 @@ private:
     int shift_ = 63;
     std::vector<std::uint32_t> start_;      ///< bucket b: [start_[b], start_[b + 1])
     std::vector<std::uint32_t> fill_;       ///< scratch of build
-    std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order)
-    std::vector<glm::vec4> spheres_;        ///< per small triangle (bucket order)
+    std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order), padded
+    /// Bounding spheres of the small triangles (bucket order): centres' x, y, z and radii in
+    /// rows of their own, padded with four far-away spheres (so tests go four at a time).
+    std::vector<float> sphereRows_[4];
     std::vector<SoftTriangle> small_;       ///< bucket order
     std::vector<vec3> corners_;             ///< of small_, copied in bucket order (locality)
     std::vector<glm::vec4> largeSpheres_;
