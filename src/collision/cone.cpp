@@ -112,16 +112,17 @@ struct Frame {
     vec3 apex, e1, e2, axis;
     float cosHalf, sinHalf;
     float tnear, lookAhead;
+    int rings, sectors;
 };
 
 // One triangle that may block rays, in the cone's frame: its planes and the cells its
-// directions can reach (rings as cosines from the axis: 2 the first ring, -2 the last;
-// sectors as azimuths, or all of them).
+// directions can reach.
 struct Candidate {
     float n[3][3];
     float normal[3], planeDist;
-    float cosLo, cosHi, azLo, azHi;
-    bool allSectors, checkReach;
+    int ringLo, ringHi;
+    int runs[2][2];  ///< sector runs [first, last] within a ring; the second may be empty
+    bool checkReach;
 };
 
 // Bounds four triangles of `batch` (block `b`) at once; appends those that may block rays.
@@ -239,6 +240,20 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
           normal);
     const Float4 planeDist = qx[0] * normal[0] + qy[0] * normal[1] + qz[0] * normal[2];
     const Int4 checkReach = (maxL > f.lookAhead) | (nearest <= f.tnear);
+    // Rings from the cosines (2: the first ring; -2: the last), sectors from the azimuths.
+    const Float4 rings = splat(float(f.rings));
+    const Float4 ringScale = rings / (1.0f - f.cosHalf), lastRing = rings - 1.0f;
+    auto ringOf = [&](Float4 cosTheta) {
+        const Float4 u = max4(zero, min4(lastRing, (1.0f - cosTheta) * ringScale));
+        return __builtin_convertvector(u, Int4);  // u >= 0: truncation is the floor
+    };
+    const Int4 ringLo = ringOf(cosLo), ringHi = ringOf(cosHi);
+    const Float4 perSector = splat(float(f.sectors) / (2.0f * kPi));
+    auto floorOf = [](Float4 v) {
+        const Int4 t = __builtin_convertvector(v, Int4);
+        return t + (__builtin_convertvector(t, Float4) > v);  // a true comparison is -1
+    };
+    const Int4 sectorLo = floorOf(lo * perSector), sectorHi = floorOf(hi * perSector);
     for (int k = 0; k < 4; ++k) {
         if (!valid[k]) continue;
         Candidate& t = out.emplace_back();
@@ -246,59 +261,49 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
             for (int i = 0; i < 3; ++i) t.n[c][i] = n[c][i][k] * sign[k];
         for (int i = 0; i < 3; ++i) t.normal[i] = normal[i][k];
         t.planeDist = planeDist[k];
-        t.cosLo = cosLo[k];
-        t.cosHi = cosHi[k];
-        t.azLo = lo[k];
-        t.azHi = hi[k];
-        t.allSectors = aroundAxis[k] != 0;
+        t.ringLo = ringLo[k];
+        t.ringHi = ringHi[k];
         t.checkReach = checkReach[k] != 0;
+        // The sector range as at most two runs inside [0, sectors).
+        const int sectors = f.sectors, first = sectorLo[k], last = sectorHi[k];
+        int(&runs)[2][2] = t.runs;
+        runs[1][0] = 0;
+        runs[1][1] = -1;
+        if (aroundAxis[k] || last - first + 1 >= sectors) {
+            runs[0][0] = 0;
+            runs[0][1] = sectors - 1;
+        } else if (first < 0) {
+            runs[0][0] = first + sectors;
+            runs[0][1] = sectors - 1;
+            runs[1][1] = last;
+        } else if (last >= sectors) {
+            runs[0][0] = first;
+            runs[0][1] = sectors - 1;
+            runs[1][1] = last - sectors;
+        } else {
+            runs[0][0] = first;
+            runs[0][1] = last;
+        }
     }
 }
 
 // Marks the cells whose rays hit candidate `t`.
+template <bool kReach>
 void rasterize(ConeSample& cone, const Candidate& t, const Frame& f) {
-    const int rings = cone.rings, sectors = cone.sectors;
-    const float oneMinusCos = 1.0f - f.cosHalf;
-    auto ringOf = [&](float cosTheta) {
-        const float u = (1.0f - cosTheta) / oneMinusCos * float(rings);
-        return int(std::clamp(u, 0.0f, float(rings - 1)));
-    };
-    const int ringLo = ringOf(t.cosLo), ringHi = ringOf(t.cosHi);
-    int sectorLo = 0, sectorHi = sectors - 1;
-    if (!t.allSectors) {
-        const float perSector = float(sectors) / (2.0f * kPi);
-        sectorLo = int(std::floor(t.azLo * perSector));
-        sectorHi = int(std::floor(t.azHi * perSector));
-        if (sectorHi - sectorLo + 1 >= sectors) {
-            sectorLo = 0;
-            sectorHi = sectors - 1;
-        }
-    }
-    // The sector range as at most two runs inside [0, sectors).
-    int runs[2][2] = {{sectorLo, sectorHi}, {0, -1}};
-    if (sectorLo < 0) {
-        runs[0][0] = sectorLo + sectors;
-        runs[0][1] = sectors - 1;
-        runs[1][1] = sectorHi;
-    } else if (sectorHi >= sectors) {
-        runs[0][1] = sectors - 1;
-        runs[1][1] = sectorHi - sectors;
-    }
     std::uint32_t* blocked = cone.blocked.data();
     const Planes p{splat(t.n[0][0]),  splat(t.n[0][1]),  splat(t.n[0][2]),  splat(t.n[1][0]),
                    splat(t.n[1][1]),  splat(t.n[1][2]),  splat(t.n[2][0]),  splat(t.n[2][1]),
                    splat(t.n[2][2]),  splat(t.normal[0]), splat(t.normal[1]), splat(t.normal[2]),
                    splat(t.planeDist)};
     const Float4 tnear = splat(f.tnear), tfar = splat(f.lookAhead);
-    for (int i = ringLo; i <= ringHi; ++i)
-        for (const auto& run : runs) {
-            if (run[1] < run[0]) continue;
-            const int first = i * sectors + run[0], last = i * sectors + run[1];
-            if (t.checkReach)
-                markInside<true>(cone.x, cone.y, cone.z, blocked, first, last, p, tnear, tfar);
-            else
-                markInside<false>(cone.x, cone.y, cone.z, blocked, first, last, p, tnear, tfar);
-        }
+    const bool second = t.runs[1][1] >= 0;
+    for (int i = t.ringLo, row = i * f.sectors; i <= t.ringHi; ++i, row += f.sectors) {
+        markInside<kReach>(cone.x, cone.y, cone.z, blocked, row + t.runs[0][0], row + t.runs[0][1], p,
+                           tnear, tfar);
+        if (second)
+            markInside<kReach>(cone.x, cone.y, cone.z, blocked, row, row + t.runs[1][1], p, tnear,
+                               tfar);
+    }
 }
 
 }  // namespace
@@ -381,11 +386,12 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
                 world.softOccluded(apex, out.direction(k), tnear, cone.lookAhead, &ignore);
     } else {
         const Frame f{apex, out.e1, out.e2, axis, patterns->cosHalf, patterns->sinHalf,
-                      tnear, cone.lookAhead};
+                      tnear, cone.lookAhead, patterns->rings, patterns->sectors};
         thread_local std::vector<Candidate> candidates;
         candidates.clear();
         for (std::size_t b = 0; b < near.blocks(); ++b) boundBlock(near, b, f, candidates);
-        for (const Candidate& t : candidates) rasterize(out, t, f);
+        for (const Candidate& t : candidates)
+            t.checkReach ? rasterize<true>(out, t, f) : rasterize<false>(out, t, f);
     }
     out.blocked.resize(std::size_t(patterns->cells()));
     for (std::uint32_t b : out.blocked) out.hits += int(b);
