@@ -404,7 +404,7 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
     // are the lowest run numbers (so the components come in a fixed order).
     thread_local std::vector<int> runOf, parent, size;
     thread_local std::vector<vec3> sum;
-    runOf.assign(std::size_t(n), -1);
+    runOf.resize(std::size_t(n));
     parent.clear();
     auto find = [&](int r) {
         while (parent[std::size_t(r)] != r) {
@@ -424,34 +424,44 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
     for (int i = 0; i < rings; ++i) {
         const std::uint32_t* row = blocked + i * sectors;
         int* runs = runOf.data() + i * sectors;
-        int start = -1;  // a blocked cell to start from, so no run wraps past it
-        for (int j = 0; j < sectors && start < 0; ++j)
-            if (row[j]) start = j;
-        int current = -1;
-        for (int step = 1, j = start < 0 ? 0 : start + 1; step <= sectors; ++step, ++j) {
-            if (j == sectors) j = 0;
-            if (row[j]) {
-                current = -1;
-                continue;
+        int start = 0;  // a blocked cell to start from, so no run wraps past it
+        while (start < sectors && !row[start]) ++start;
+        if (start == sectors) {  // an open ring: one run
+            const int r = int(parent.size());
+            parent.push_back(r);
+            std::fill(runs, runs + sectors, r);
+        } else {
+            runs[start] = -1;
+            int current = -1;
+            for (int step = 1, j = start + 1; step < sectors; ++step, ++j) {
+                if (j == sectors) j = 0;
+                if (row[j]) {
+                    runs[j] = -1;
+                    current = -1;
+                    continue;
+                }
+                if (current < 0) {
+                    current = int(parent.size());
+                    parent.push_back(current);
+                }
+                runs[j] = current;
             }
-            if (current < 0) {
-                current = int(parent.size());
-                parent.push_back(current);
-            }
-            runs[j] = current;
         }
         if (i == 0) {  // the innermost ring's open cells all meet at the axis
-            int first = -1;
-            for (int j = 0; j < sectors; ++j)
-                if (runs[j] >= 0) {
-                    if (first < 0) first = runs[j];
-                    unite(runs[j], first);
-                }
+            for (std::size_t r = 1; r < parent.size(); ++r) parent[r] = 0;
             continue;
         }
+        // Neighbours across the ring boundary share a sector; a pair once joined is skipped
+        // along the rest of the two runs.
         const int* below = runs - sectors;
-        for (int j = 0; j < sectors; ++j)
-            if (runs[j] >= 0 && below[j] >= 0) unite(runs[j], below[j]);
+        int lastA = -1, lastB = -1;
+        for (int j = 0; j < sectors; ++j) {
+            const int a = runs[j], b = below[j];
+            if (a < 0 || b < 0 || (a == lastA && b == lastB)) continue;
+            unite(a, b);
+            lastA = a;
+            lastB = b;
+        }
     }
     const std::size_t components = parent.size();
     for (std::size_t r = 0; r < components; ++r) parent[r] = find(int(r));  // roots, flat
