@@ -143,7 +143,7 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     }
     slot.triangles = std::move(triangles);
     slot.tags = std::move(tags);
-    boundingSpheres(slot.triangles, slot.spheres);
+    boundingSpheres(slot.triangles, slot.spheres, &slot.tags);
     slot.keyCell = gridCell();
     SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);
     slot.set = true;

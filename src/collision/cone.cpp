@@ -80,27 +80,44 @@ Float4 atan2v(Float4 y, Float4 x) {
     return select(zero, splat(0.0f), r);
 }
 
-// A triangle's edge planes through the apex (facing inward) and its plane, broadcast.
+// A triangle's or quad's planes, broadcast: edge planes through the apex facing inward (a
+// triangle: e[0..2]; a quad (a, b, c, d): e[0], e[1] edges ab, bc; e[2] the diagonal ca as
+// the first triangle sees it; e[3], e[4] edges cd, da) and the planes of its triangles.
 struct Planes {
-    Float4 ax, ay, az, bx, by, bz, cx, cy, cz, nx, ny, nz, dist;
+    Float4 e[5][3];
+    Float4 n1[3], d1, n2[3], d2;
 };
+
+Float4 dot4(const Float4 (&n)[3], Float4 x, Float4 y, Float4 z) { return x * n[0] + y * n[1] + z * n[2]; }
 
 // Marks the cells [first, last] (and up to three past it: the arrays are padded, and every
 // cell is tested exactly, so extra cells are only extra work) whose rays pass inside the edge
-// planes and, with kReach, hit the plane (t = dist / dot(ray, normal)) within reach.
-template <bool kReach>
+// planes and, with kReach, hit the plane (t = dist / dot(ray, normal)) within reach. A quad's
+// ray is tested against the triangle on its side of the diagonal.
+template <bool kQuad, bool kReach>
 void markInside(const float* __restrict rx, const float* __restrict ry, const float* __restrict rz,
                 std::uint32_t* __restrict blocked, int first, int last, const Planes& p,
                 Float4 tnear, Float4 tfar) {
     const Float4 zero = splat(0.0f);
     for (int k = first & ~3; k <= last; k += 4) {
         const Float4 x = load4(rx + k), y = load4(ry + k), z = load4(rz + k);
-        Int4 in = (x * p.ax + y * p.ay + z * p.az >= zero) & (x * p.bx + y * p.by + z * p.bz >= zero) &
-                  (x * p.cx + y * p.cy + z * p.cz >= zero);
-        if constexpr (kReach) {
-            const Float4 t = p.dist / (x * p.nx + y * p.ny + z * p.nz);
-            in &= (t >= tnear) & (t <= tfar);
+        Int4 in;
+        Float4 t;
+        if constexpr (kQuad) {
+            const Int4 side = dot4(p.e[2], x, y, z) >= zero;
+            in = (side & (dot4(p.e[0], x, y, z) >= zero) & (dot4(p.e[1], x, y, z) >= zero)) |
+                 (~side & (dot4(p.e[3], x, y, z) >= zero) & (dot4(p.e[4], x, y, z) >= zero));
+            if constexpr (kReach) {
+                const Float4 denom = x * select(side, p.n1[0], p.n2[0]) + y * select(side, p.n1[1], p.n2[1]) +
+                                     z * select(side, p.n1[2], p.n2[2]);
+                t = select(side, p.d1, p.d2) / denom;
+            }
+        } else {
+            in = (dot4(p.e[0], x, y, z) >= zero) & (dot4(p.e[1], x, y, z) >= zero) &
+                 (dot4(p.e[2], x, y, z) >= zero);
+            if constexpr (kReach) t = p.d1 / dot4(p.n1, x, y, z);
         }
+        if constexpr (kReach) in &= (t >= tnear) & (t <= tfar);
         Int4 b;
         std::memcpy(&b, blocked + k, sizeof b);
         b |= in & 1;
@@ -115,32 +132,33 @@ struct Frame {
     int rings, sectors;
 };
 
-// One triangle that may block rays, in the cone's frame: its planes and the cells its
-// directions can reach.
+// One triangle or quad that may block rays, in the cone's frame: its planes (as Planes) and
+// the cells its directions can reach.
 struct Candidate {
-    float n[3][3];
-    float normal[3], planeDist;
+    float e[5][3];
+    float n1[3], d1, n2[3], d2;
     int ringLo, ringHi;
     int runs[2][2];  ///< sector runs [first, last] within a ring; the second may be empty
-    bool checkReach;
+    bool quad, checkReach;
 };
 
-// Bounds four triangles of `batch` (block `b`) at once; appends those that may block rays.
+// Bounds four quads of `batch` (block `b`) at once; appends those that may block rays.
 //
-// Each triangle is moved into the cone's frame; the directions to its corners lie in a cap,
-// and so do all directions that hit it: the rings it can reach come from the cap and, for a
-// triangle wholly in front of the apex, from its corners (along a great-circle arc in the
-// front half-space the height z is a positive arc of a cosine, least at an end). When its
-// shadow on the cone's base plane misses the origin (it crosses neither the axis nor its
-// extension backward), the azimuths it covers are those between its corners' (an edge's
-// azimuth runs monotonically: it lies on a great circle, whose shadow is an ellipse about
-// the origin).
+// Each quad is moved into the cone's frame; the directions to its corners lie in a cap, and
+// so do all directions that hit it: the rings it can reach come from the cap and, for a quad
+// wholly in front of the apex, from its corners (along a great-circle arc in the front
+// half-space the height z is a positive arc of a cosine, least at an end). When neither
+// triangle's shadow on the cone's base plane holds the origin (neither crosses the axis nor
+// its extension backward), the azimuths it covers are those between its corners' (an edge's
+// azimuth runs monotonically: it lies on a great circle, whose shadow is an ellipse about the
+// origin; each triangle spans less than half a turn and both hold corner a). A lone triangle
+// is a quad whose last two corners are the same: its second triangle is seen edge-on.
 void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
                 std::vector<Candidate>& out) {
     const std::size_t count = std::min<std::size_t>(4, batch.size() - 4 * b);
     Int4 valid = Int4{0, 1, 2, 3} < Int4{int(count), int(count), int(count), int(count)};
-    Float4 qx[3], qy[3], qz[3];
-    for (int c = 0; c < 3; ++c) {
+    Float4 qx[4], qy[4], qz[4];
+    for (int c = 0; c < 4; ++c) {
         const Float4 px = load4(batch.row(b, 3 * c)) - f.apex.x;
         const Float4 py = load4(batch.row(b, 3 * c + 1)) - f.apex.y;
         const Float4 pz = load4(batch.row(b, 3 * c + 2)) - f.apex.z;
@@ -150,18 +168,19 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     }
     const Float4 zero = splat(0.0f);
     // Wholly behind the apex, for a cone no wider than a hemisphere.
-    if (f.cosHalf >= 0.0f) valid &= (qz[0] > zero) | (qz[1] > zero) | (qz[2] > zero);
-    Float4 l[3];
-    for (int c = 0; c < 3; ++c) {
+    if (f.cosHalf >= 0.0f) valid &= (qz[0] > zero) | (qz[1] > zero) | (qz[2] > zero) | (qz[3] > zero);
+    Float4 l[4];
+    for (int c = 0; c < 4; ++c) {
         l[c] = sqrt4(qx[c] * qx[c] + qy[c] * qy[c] + qz[c] * qz[c]);
         valid &= l[c] > zero;
     }
-    // Beyond reach: the bounding sphere about the centroid lies past the look-ahead.
-    const Float4 third = splat(1.0f / 3.0f);
-    const Float4 mx = (qx[0] + qx[1] + qx[2]) * third, my = (qy[0] + qy[1] + qy[2]) * third,
-                 mz = (qz[0] + qz[1] + qz[2]) * third;
+    // Beyond reach: the bounding sphere about the corners' mean lies past the look-ahead.
+    const Float4 quarter = splat(0.25f);
+    const Float4 mx = (qx[0] + qx[1] + qx[2] + qx[3]) * quarter,
+                 my = (qy[0] + qy[1] + qy[2] + qy[3]) * quarter,
+                 mz = (qz[0] + qz[1] + qz[2] + qz[3]) * quarter;
     Float4 r2 = zero;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 4; ++c) {
         const Float4 dx = qx[c] - mx, dy = qy[c] - my, dz = qz[c] - mz;
         r2 = max4(r2, dx * dx + dy * dy + dz * dz);
     }
@@ -169,20 +188,21 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     valid &= nearest <= f.lookAhead;
     if (!any(valid)) return;
     // The cap around the corner directions.
-    Float4 dx[3], dy[3], dz[3];
-    for (int c = 0; c < 3; ++c) {
+    Float4 dx[4], dy[4], dz[4];
+    for (int c = 0; c < 4; ++c) {
         const Float4 inv = splat(1.0f) / select(valid, l[c], splat(1.0f));
         dx[c] = qx[c] * inv;
         dy[c] = qy[c] * inv;
         dz[c] = qz[c] * inv;
     }
-    const Float4 sx = dx[0] + dx[1] + dx[2], sy = dy[0] + dy[1] + dy[2], sz = dz[0] + dz[1] + dz[2];
+    const Float4 sx = dx[0] + dx[1] + dx[2] + dx[3], sy = dy[0] + dy[1] + dy[2] + dy[3],
+                 sz = dz[0] + dz[1] + dz[2] + dz[3];
     const Float4 sumLen = sqrt4(sx * sx + sy * sy + sz * sz);
     const Int4 centred = sumLen > 1e-6f;
     const Float4 invSum = splat(1.0f) / select(centred, sumLen, splat(1.0f));
     const Float4 cx = sx * invSum, cy = sy * invSum, cz = sz * invSum;
     Float4 cb = cx * dx[0] + cy * dy[0] + cz * dz[0];
-    for (int c = 1; c < 3; ++c) cb = min4(cb, cx * dx[c] + cy * dy[c] + cz * dz[c]);
+    for (int c = 1; c < 4; ++c) cb = min4(cb, cx * dx[c] + cy * dy[c] + cz * dz[c]);
     cb = select(centred, cb - 1e-4f, splat(-1.0f));
     const Int4 capped = cb > zero;  // a cap narrower than a hemisphere
     const Float4 sb = sqrt4(max4(zero, 1.0f - cb * cb));
@@ -197,48 +217,61 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
         (narrow ? (sb >= f.sinHalf) : Int4{0, 0, 0, 0}) | (cc < f.cosHalf * cb + f.sinHalf * sb + 1e-5f);
     Float4 cosHi = select(pastEdge, splat(-2.0f), cc * cb - sc * sb + 1e-5f);
     Float4 cosLo = select(cc < cb, cc * cb + sc * sb - 1e-5f, splat(2.0f));
-    const Float4 leastCos = min4(dz[0], min4(dz[1], dz[2]));
-    const Int4 refine = (qz[0] > zero) & (qz[1] > zero) & (qz[2] > zero) & (leastCos > f.cosHalf);
+    const Float4 leastCos = min4(min4(dz[0], dz[1]), min4(dz[2], dz[3]));
+    const Int4 refine = (qz[0] > zero) & (qz[1] > zero) & (qz[2] > zero) & (qz[3] > zero) &
+                        (leastCos > f.cosHalf);
     cosHi = select(refine, max4(cosHi, leastCos - 1e-5f), cosHi);
     cosHi = select(capped, cosHi, splat(-2.0f));
     cosLo = select(capped, cosLo, splat(2.0f));
-    // Sectors.
-    const Float4 c01 = qx[0] * qy[1] - qy[0] * qx[1], c12 = qx[1] * qy[2] - qy[1] * qx[2],
-                 c20 = qx[2] * qy[0] - qy[2] * qx[0];
-    const Float4 maxL = max4(l[0], max4(l[1], l[2]));
-    const Float4 eps = 1e-5f * maxL * maxL;  // shadows that nearly touch the origin count
-    const Int4 aroundAxis = ((c01 >= -eps) & (c12 >= -eps) & (c20 >= -eps)) |
-                            ((c01 <= eps) & (c12 <= eps) & (c20 <= eps));
-    const Float4 pi = splat(kPi), twoPi = splat(2.0f * kPi);
-    const Float4 p0 = atan2v(qy[0], qx[0]);
-    Float4 p1 = atan2v(qy[1], qx[1]) - p0, p2 = atan2v(qy[2], qx[2]) - p0;
-    // Relative to corner 0, each within half a turn (the span is under half a turn).
-    p1 -= select(p1 > pi, twoPi, select(p1 < -pi, -twoPi, zero));
-    p2 -= select(p2 > pi, twoPi, select(p2 < -pi, -twoPi, zero));
-    Float4 lo = p0 + min4(zero, min4(p1, p2)) - 1e-3f;
-    Float4 hi = p0 + max4(zero, max4(p1, p2)) + 1e-3f;
-    const Int4 wrap = lo < zero;
-    lo += select(wrap, twoPi, zero);
-    hi += select(wrap, twoPi, zero);
-    // Edge planes through the apex, facing inward, and the triangle's plane.
+    // Edge planes through the apex (edge i runs from corner i to corner i + 1; edge 4 is the
+    // diagonal c -> a), and which way each triangle faces the apex.
     auto cross = [](Float4 ax, Float4 ay, Float4 az, Float4 bx, Float4 by, Float4 bz, Float4* o) {
         o[0] = ay * bz - az * by;
         o[1] = az * bx - ax * bz;
         o[2] = ax * by - ay * bx;
     };
-    Float4 n[3][3];
-    for (int c = 0; c < 3; ++c) {
-        const int e = c == 2 ? 0 : c + 1;
+    Float4 n[5][3];
+    for (int c = 0; c < 4; ++c) {
+        const int e = c == 3 ? 0 : c + 1;
         cross(qx[c], qy[c], qz[c], qx[e], qy[e], qz[e], n[c]);
     }
-    const Float4 volume = qx[0] * n[1][0] + qy[0] * n[1][1] + qz[0] * n[1][2];
-    valid &= abs4(volume) >= 1e-18f;  // not seen edge-on
+    cross(qx[2], qy[2], qz[2], qx[0], qy[0], qz[0], n[4]);
+    const Float4 volume1 = qx[0] * n[1][0] + qy[0] * n[1][1] + qz[0] * n[1][2];
+    const Float4 volume2 = qx[0] * n[2][0] + qy[0] * n[2][1] + qz[0] * n[2][2];
+    const Int4 first = abs4(volume1) >= 1e-18f, second = abs4(volume2) >= 1e-18f;  // not edge-on
+    valid &= first | second;
     if (!any(valid)) return;
-    const Float4 sign = select(volume < zero, splat(-1.0f), splat(1.0f));
-    Float4 normal[3];
+    // Sectors (the 2-d cross products are the edge planes' z).
+    const Float4 maxL = max4(max4(l[0], l[1]), max4(l[2], l[3]));
+    const Float4 eps = 1e-5f * maxL * maxL;  // shadows that nearly touch the origin count
+    auto holdsAxis = [&](Float4 u, Float4 v, Float4 w) {
+        return ((u >= -eps) & (v >= -eps) & (w >= -eps)) | ((u <= eps) & (v <= eps) & (w <= eps));
+    };
+    const Int4 aroundAxis = (first & holdsAxis(n[0][2], n[1][2], n[4][2])) |
+                            (second & holdsAxis(-n[4][2], n[2][2], n[3][2]));
+    const Float4 pi = splat(kPi), twoPi = splat(2.0f * kPi);
+    const Float4 p0 = atan2v(qy[0], qx[0]);
+    Float4 lo = zero, hi = zero;
+    for (int c = 1; c < 4; ++c) {
+        // Relative to corner a, each within half a turn.
+        Float4 pc = atan2v(qy[c], qx[c]) - p0;
+        pc -= select(pc > pi, twoPi, select(pc < -pi, -twoPi, zero));
+        lo = min4(lo, pc);
+        hi = max4(hi, pc);
+    }
+    lo = p0 + lo - 1e-3f;
+    hi = p0 + hi + 1e-3f;
+    const Int4 wrap = lo < zero;
+    lo += select(wrap, twoPi, zero);
+    hi += select(wrap, twoPi, zero);
+    // The triangles' planes.
+    Float4 normal1[3], normal2[3];
     cross(qx[1] - qx[0], qy[1] - qy[0], qz[1] - qz[0], qx[2] - qx[0], qy[2] - qy[0], qz[2] - qz[0],
-          normal);
-    const Float4 planeDist = qx[0] * normal[0] + qy[0] * normal[1] + qz[0] * normal[2];
+          normal1);
+    cross(qx[2] - qx[0], qy[2] - qy[0], qz[2] - qz[0], qx[3] - qx[0], qy[3] - qy[0], qz[3] - qz[0],
+          normal2);
+    const Float4 dist1 = qx[0] * normal1[0] + qy[0] * normal1[1] + qz[0] * normal1[2];
+    const Float4 dist2 = qx[0] * normal2[0] + qy[0] * normal2[1] + qz[0] * normal2[2];
     const Int4 checkReach = (maxL > f.lookAhead) | (nearest <= f.tnear);
     // Rings from the cosines (2: the first ring; -2: the last), sectors from the azimuths.
     const Float4 rings = splat(float(f.rings));
@@ -256,53 +289,95 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     const Int4 sectorLo = floorOf(lo * perSector), sectorHi = floorOf(hi * perSector);
     for (int k = 0; k < 4; ++k) {
         if (!valid[k]) continue;
-        Candidate& t = out.emplace_back();
-        for (int c = 0; c < 3; ++c)
-            for (int i = 0; i < 3; ++i) t.n[c][i] = n[c][i][k] * sign[k];
-        for (int i = 0; i < 3; ++i) t.normal[i] = normal[i][k];
-        t.planeDist = planeDist[k];
-        t.ringLo = ringLo[k];
-        t.ringHi = ringHi[k];
-        t.checkReach = checkReach[k] != 0;
+        Candidate bounds;
+        bounds.ringLo = ringLo[k];
+        bounds.ringHi = ringHi[k];
+        bounds.checkReach = checkReach[k] != 0;
         // The sector range as at most two runs inside [0, sectors).
-        const int sectors = f.sectors, first = sectorLo[k], last = sectorHi[k];
-        int(&runs)[2][2] = t.runs;
+        const int sectors = f.sectors, lo = sectorLo[k], hi = sectorHi[k];
+        int(&runs)[2][2] = bounds.runs;
         runs[1][0] = 0;
         runs[1][1] = -1;
-        if (aroundAxis[k] || last - first + 1 >= sectors) {
+        if (aroundAxis[k] || hi - lo + 1 >= sectors) {
             runs[0][0] = 0;
             runs[0][1] = sectors - 1;
-        } else if (first < 0) {
-            runs[0][0] = first + sectors;
+        } else if (lo < 0) {
+            runs[0][0] = lo + sectors;
             runs[0][1] = sectors - 1;
-            runs[1][1] = last;
-        } else if (last >= sectors) {
-            runs[0][0] = first;
+            runs[1][1] = hi;
+        } else if (hi >= sectors) {
+            runs[0][0] = lo;
             runs[0][1] = sectors - 1;
-            runs[1][1] = last - sectors;
+            runs[1][1] = hi - sectors;
         } else {
-            runs[0][0] = first;
-            runs[0][1] = last;
+            runs[0][0] = lo;
+            runs[0][1] = hi;
+        }
+        // Planes facing inward: each triangle's edges flipped when it faces away.
+        const float s1 = volume1[k] < 0.0f ? -1.0f : 1.0f, s2 = volume2[k] < 0.0f ? -1.0f : 1.0f;
+        auto set = [&](float (&to)[3], const Float4 (&from)[3], float sign) {
+            for (int i = 0; i < 3; ++i) to[i] = from[i][k] * sign;
+        };
+        auto plane = [&](float (&to)[3], const Float4 (&from)[3]) {
+            for (int i = 0; i < 3; ++i) to[i] = from[i][k];
+        };
+        const bool one = first[k] != 0, two = second[k] != 0;
+        if (one && two && s1 == s2) {  // a quad: the triangles either side of the diagonal
+            Candidate& t = out.emplace_back(bounds);
+            t.quad = true;
+            set(t.e[0], n[0], s1);
+            set(t.e[1], n[1], s1);
+            set(t.e[2], n[4], s1);
+            set(t.e[3], n[2], s2);
+            set(t.e[4], n[3], s2);
+            plane(t.n1, normal1);
+            t.d1 = dist1[k];
+            plane(t.n2, normal2);
+            t.d2 = dist2[k];
+            continue;
+        }
+        if (one) {  // a lone triangle, or a quad folded as seen from the apex: one at a time
+            Candidate& t = out.emplace_back(bounds);
+            t.quad = false;
+            set(t.e[0], n[0], s1);
+            set(t.e[1], n[1], s1);
+            set(t.e[2], n[4], s1);
+            plane(t.n1, normal1);
+            t.d1 = dist1[k];
+        }
+        if (two) {
+            Candidate& t = out.emplace_back(bounds);
+            t.quad = false;
+            set(t.e[0], n[4], -s2);
+            set(t.e[1], n[2], s2);
+            set(t.e[2], n[3], s2);
+            plane(t.n1, normal2);
+            t.d1 = dist2[k];
         }
     }
 }
 
 // Marks the cells whose rays hit candidate `t`.
-template <bool kReach>
+template <bool kQuad, bool kReach>
 void rasterize(ConeSample& cone, const Candidate& t, const Frame& f) {
     std::uint32_t* blocked = cone.blocked.data();
-    const Planes p{splat(t.n[0][0]),  splat(t.n[0][1]),  splat(t.n[0][2]),  splat(t.n[1][0]),
-                   splat(t.n[1][1]),  splat(t.n[1][2]),  splat(t.n[2][0]),  splat(t.n[2][1]),
-                   splat(t.n[2][2]),  splat(t.normal[0]), splat(t.normal[1]), splat(t.normal[2]),
-                   splat(t.planeDist)};
+    Planes p;
+    for (int e = 0; e < (kQuad ? 5 : 3); ++e)
+        for (int i = 0; i < 3; ++i) p.e[e][i] = splat(t.e[e][i]);
+    for (int i = 0; i < 3; ++i) {
+        p.n1[i] = splat(t.n1[i]);
+        if (kQuad) p.n2[i] = splat(t.n2[i]);
+    }
+    p.d1 = splat(t.d1);
+    if (kQuad) p.d2 = splat(t.d2);
     const Float4 tnear = splat(f.tnear), tfar = splat(f.lookAhead);
     const bool second = t.runs[1][1] >= 0;
     for (int i = t.ringLo, row = i * f.sectors; i <= t.ringHi; ++i, row += f.sectors) {
-        markInside<kReach>(cone.x, cone.y, cone.z, blocked, row + t.runs[0][0], row + t.runs[0][1], p,
-                           tnear, tfar);
+        markInside<kQuad, kReach>(cone.x, cone.y, cone.z, blocked, row + t.runs[0][0],
+                                  row + t.runs[0][1], p, tnear, tfar);
         if (second)
-            markInside<kReach>(cone.x, cone.y, cone.z, blocked, row, row + t.runs[1][1], p, tnear,
-                               tfar);
+            markInside<kQuad, kReach>(cone.x, cone.y, cone.z, blocked, row, row + t.runs[1][1], p,
+                                      tnear, tfar);
     }
 }
 
@@ -390,8 +465,12 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
         thread_local std::vector<Candidate> candidates;
         candidates.clear();
         for (std::size_t b = 0; b < near.blocks(); ++b) boundBlock(near, b, f, candidates);
-        for (const Candidate& t : candidates)
-            t.checkReach ? rasterize<true>(out, t, f) : rasterize<false>(out, t, f);
+        for (const Candidate& t : candidates) {
+            if (t.quad)
+                t.checkReach ? rasterize<true, true>(out, t, f) : rasterize<true, false>(out, t, f);
+            else
+                t.checkReach ? rasterize<false, true>(out, t, f) : rasterize<false, false>(out, t, f);
+        }
     }
     out.blocked.resize(std::size_t(patterns->cells()));
     for (std::uint32_t b : out.blocked) out.hits += int(b);

@@ -28,15 +28,20 @@ inline std::int64_t cellIndex(float v, float inverse) {
 
 }  // namespace
 
-void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres) {
-    spheres.resize(soup.size() / 3);
-    for (std::size_t t = 0; t < spheres.size(); ++t) {
+void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres,
+                     const std::vector<std::uint64_t>* tags) {
+    const std::size_t n = soup.size() / 3;
+    spheres.resize(n);
+    for (std::size_t t = 0; t < n; ++t) {
         const vec3* p = soup.data() + 3 * t;
-        const vec3 c = (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
+        const bool quad = t + 1 < n && p[3] == p[0] && p[4] == p[2] && (!tags || (*tags)[t] == (*tags)[t + 1]);
+        const vec3 d = quad ? p[5] : p[2];
+        const vec3 c = quad ? (p[0] + p[1] + p[2] + d) * 0.25f : (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
         const float r2 = std::max({glm::dot(p[0] - c, p[0] - c), glm::dot(p[1] - c, p[1] - c),
-                                   glm::dot(p[2] - c, p[2] - c)});
+                                   glm::dot(p[2] - c, p[2] - c), glm::dot(d - c, d - c)});
         // A hair more than the farthest corner, so rounding never drops a touching triangle.
         spheres[t] = glm::vec4(c, std::sqrt(r2) * 1.0001f + 1e-7f);
+        if (quad) spheres[++t] = glm::vec4(c, -1.0f);
     }
 }
 
@@ -50,7 +55,8 @@ void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
     const float inverse = 1.0f / std::max(cell, kMinCell);
     keys.resize(spheres.size());
     for (std::size_t t = 0; t < spheres.size(); ++t)
-        keys[t] = spheres[t].w > std::max(cell, kMinCell)
+        keys[t] = spheres[t].w < 0.0f ? kSecond
+                  : spheres[t].w > std::max(cell, kMinCell)
                       ? kLarge
                       : pack(cellIndex(spheres[t].x, inverse), cellIndex(spheres[t].y, inverse),
                              cellIndex(spheres[t].z, inverse));
@@ -70,12 +76,17 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
     start_.assign(buckets + 1, 0);
-    // Counting sort by bucket; large triangles aside.
+    // Whether triangle t of a source starts a quad.
+    auto quadAt = [](const Source& s, std::size_t t) {
+        return t + 1 < s.keys->size() && (*s.keys)[t + 1] == kSecond;
+    };
+    // Counting sort by bucket; large quads aside.
     for (const Source& s : sources)
         for (std::size_t t = 0; t < s.keys->size(); ++t) {
             const std::uint64_t key = (*s.keys)[t];
+            if (key == kSecond) continue;
             if (key == kLarge) {
-                large_.push_back({s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0});
+                large_.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
                 largeSpheres_.push_back((*s.spheres)[t]);
                 continue;
             }
@@ -85,17 +96,20 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
     const std::size_t n = start_[buckets];
     small_.resize(n);
-    corners_.resize(3 * n);
+    corners_.resize(4 * n);
     keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
     for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
     fill_.assign(start_.begin(), start_.end() - 1);
     for (const Source& s : sources)  // stable: sources' order within each bucket
         for (std::size_t t = 0; t < s.keys->size(); ++t) {
             const std::uint64_t key = (*s.keys)[t];
-            if (key == kLarge) continue;
+            if (key == kLarge || key == kSecond) continue;
             const std::uint32_t at = fill_[bucketOf(key)]++;
-            small_[at] = {s.soup->data() + 3 * t, s.owner, s.tags ? (*s.tags)[t] : 0};
-            std::copy_n(s.soup->data() + 3 * t, 3, corners_.data() + 3 * std::size_t(at));
+            const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
+            small_[at] = q;
+            vec3* corners = corners_.data() + 4 * std::size_t(at);
+            std::copy_n(q.corners, 3, corners);
+            corners[3] = q.last();
             keys_[at] = key;
             for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
         }
@@ -111,7 +125,11 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
         return glm::dot(d, d) <= r * r && glm::dot(d, facing) + s.w + behind >= 0.0f;
     };
     for (std::size_t i = 0; i < large_.size(); ++i)
-        if (reaches(largeSpheres_[i]) && !ignored(large_[i], ignore)) out.push(large_[i].corners);
+        if (reaches(largeSpheres_[i]) && !ignored(large_[i], ignore)) {
+            const SoftTriangle& q = large_[i];
+            const vec3 corners[4] = {q.corners[0], q.corners[1], q.corners[2], q.last()};
+            out.push(corners);
+        }
     if (small_.empty()) return;
     // Cells holding sphere centres within radius + the largest small sphere.
     // Which of the four small triangles from i on reach the sphere (bit k: triangle i + k); the
@@ -171,7 +189,7 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
                         const std::uint32_t k = i + std::uint32_t(__builtin_ctz(hits));
                         const SoftTriangle& t = small_[k];
                         if (t.owner != ignoredOwner || (t.tag != ignoredTags[0] && t.tag != ignoredTags[1]))
-                            out.push(corners_.data() + 3 * std::size_t(k));
+                            out.push(corners_.data() + 4 * std::size_t(k));
                     }
                 }
             }

@@ -2,8 +2,10 @@
 // The soft obstacles of the collision scene in a hashed uniform grid, for the one query
 // perception cones make: every triangle within a radius of a point.
 //
-// Triangles are binned by the centre of their bounding sphere in cells about as large as the
-// look-ahead distance; a query visits the cells near its sphere and keeps the triangles whose
+// Two consecutive triangles (a, b, c) and (a, c, d) of one organ, as a leaf's outline is
+// made, are kept as one quad (a, b, c, d); a lone triangle is a quad whose last two corners
+// are the same. Quads are binned by the centre of their bounding sphere in cells about as
+// large as the look-ahead distance; a query visits the cells near its sphere and keeps the triangles whose
 // bounding spheres reach it. Triangles larger than a cell (walls, the ground) are kept in a
 // list every query scans. The grid is rebuilt from the plants' proxies at each refresh by a
 // counting sort, which costs less than keeping a tree up to date for plants that all grow.
@@ -17,20 +19,23 @@ namespace plantarch::collision {
 
 struct Ignore;
 
-/// A triangle of the scene: its three consecutive corners, the plant it belongs to (plant
-/// ID + 1; 0 for obstacle objects) and its organ tag.
+/// A quad of the scene (two triangles, or one): its first triangle's three consecutive
+/// corners (a quad's fourth corner is the third of the triangle after), the plant it belongs
+/// to (plant ID + 1; 0 for obstacle objects), its organ tag and whether it is two triangles.
 struct SoftTriangle {
     const vec3* corners = nullptr;
     unsigned owner = 0;
+    bool quad = false;
     std::uint64_t tag = 0;
+    vec3 last() const { return quad ? corners[5] : corners[2]; }
 };
 
-/// Triangles a query gathered, in blocks of four with each coordinate of each corner in a row
-/// of its own (x0 of the four triangles, then y0, ..., z2), so the perception cones can work
-/// on four triangles at once. Rows past size() hold zeros.
+/// Quads a query gathered, in blocks of four with each coordinate of each corner in a row of
+/// its own (x of corner a of the four quads, then y, z, then corner b, ..., corner d), so the
+/// perception cones can work on four at once. Rows past size() hold zeros.
 class TriangleBatch {
 public:
-    static constexpr std::size_t kFloatsPerBlock = 36;
+    static constexpr std::size_t kFloatsPerBlock = 48;
     void clear() {
         size_ = 0;
         data_.clear();
@@ -39,7 +44,7 @@ public:
         const std::size_t lane = size_ & 3;
         if (lane == 0) data_.resize(data_.size() + kFloatsPerBlock, 0.0f);
         float* block = data_.data() + data_.size() - kFloatsPerBlock;
-        for (int c = 0; c < 3; ++c)
+        for (int c = 0; c < 4; ++c)
             for (int k = 0; k < 3; ++k) block[(3 * c + k) * 4 + lane] = corners[c][k];
         ++size_;
     }
@@ -48,7 +53,7 @@ public:
     std::size_t blocks() const { return (size_ + 3) / 4; }
     /// Row `row` (corner row / 3, coordinate row % 3) of block `b`: four floats.
     const float* row(std::size_t b, int row) const { return data_.data() + b * kFloatsPerBlock + 4 * row; }
-    /// Corner `c` of triangle `t`.
+    /// Corner `c` (0 to 3) of quad `t`.
     vec3 corner(std::size_t t, int c) const {
         const float* r = row(t / 4, 3 * c);
         const std::size_t lane = t & 3;
@@ -60,8 +65,11 @@ private:
     std::size_t size_ = 0;
 };
 
-/// Bounding spheres of a triangle soup (centre, radius), three corners per triangle.
-void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres);
+/// Bounding spheres of a triangle soup (centre, radius), three corners per triangle: a
+/// triangle that makes a quad with the one before it (same tag, if `tags` are given) gets a
+/// negative radius, and that one the quad's sphere.
+void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres,
+                     const std::vector<std::uint64_t>* tags = nullptr);
 
 class SoftGrid {
 public:
@@ -76,7 +84,8 @@ public:
     };
 
     /// The cell of each sphere's centre for cells of `cell` metres (spheres larger than a
-    /// cell get a mark that keeps them out of the cells).
+    /// cell get a mark that keeps them out of the cells, the second triangles of quads one
+    /// that keeps them out of the grid).
     static void cellKeys(const std::vector<glm::vec4>& spheres, float cell,
                          std::vector<std::uint64_t>& keys);
     /// Rebuilds the grid over `sources` with cells of `cell` metres.
@@ -86,18 +95,25 @@ public:
     /// lie wholly behind the plane through `centre` facing it; in a fixed order.
     void near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,
               const vec3* front = nullptr) const;
-    /// Every triangle, except the organs in `ignore`.
+    /// Every triangle (three corners), except the organs in `ignore`.
     template <class F>
     void forEach(const Ignore* ignore, F&& f) const {
         for (const auto* list : {&small_, &large_})
-            for (const SoftTriangle& t : *list)
-                if (!ignored(t, ignore)) f(t.corners);
+            for (const SoftTriangle& t : *list) {
+                if (ignored(t, ignore)) continue;
+                f(t.corners);
+                if (t.quad) {
+                    const vec3 second[3] = {t.corners[0], t.corners[2], t.corners[5]};
+                    f(second);
+                }
+            }
     }
     std::size_t size() const { return small_.size() + large_.size(); }
 
 private:
     static constexpr float kMinCell = 1e-4f;
     static constexpr std::uint64_t kLarge = ~std::uint64_t(0);
+    static constexpr std::uint64_t kSecond = ~std::uint64_t(0) - 1;  ///< a quad's second triangle
     static bool ignored(const SoftTriangle& t, const Ignore* ignore);
     std::size_t bucketOf(std::uint64_t key) const { return std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_); }
 
@@ -110,7 +126,7 @@ private:
     /// rows of their own, padded with four far-away spheres (so tests go four at a time).
     std::vector<float> sphereRows_[4];
     std::vector<SoftTriangle> small_;       ///< bucket order
-    std::vector<vec3> corners_;             ///< of small_, copied in bucket order (locality)
+    std::vector<vec3> corners_;             ///< of small_, four each, in bucket order (locality)
     std::vector<glm::vec4> largeSpheres_;
     std::vector<SoftTriangle> large_;
 };
