@@ -80,6 +80,10 @@ Float4 atan2v(Float4 y, Float4 x) {
     return select(zero, splat(0.0f), r);
 }
 
+// What a candidate is: a triangle; a quad whose triangles lie either side of its diagonal as
+// seen from the apex; or a quad folded so that both lie on the same side (they may overlap).
+enum Kind { kTriangle, kQuad, kFolded };
+
 // A triangle's or quad's planes, broadcast: edge planes through the apex facing inward (a
 // triangle: e[0..2]; a quad (a, b, c, d): e[0], e[1] edges ab, bc; e[2] the diagonal ca as
 // the first triangle sees it; e[3], e[4] edges cd, da) and the planes of its triangles.
@@ -93,8 +97,9 @@ Float4 dot4(const Float4 (&n)[3], Float4 x, Float4 y, Float4 z) { return x * n[0
 // Marks the cells [first, last] (and up to three past it: the arrays are padded, and every
 // cell is tested exactly, so extra cells are only extra work) whose rays pass inside the edge
 // planes and, with kReach, hit the plane (t = dist / dot(ray, normal)) within reach. A quad's
-// ray is tested against the triangle on its side of the diagonal.
-template <bool kQuad, bool kReach>
+// ray is tested against the triangle on its side of the diagonal, a folded quad's against
+// both.
+template <int kKind, bool kReach>
 void markInside(const float* __restrict rx, const float* __restrict ry, const float* __restrict rz,
                 std::uint32_t* __restrict blocked, int first, int last, const Planes& p,
                 Float4 tnear, Float4 tfar) {
@@ -103,7 +108,17 @@ void markInside(const float* __restrict rx, const float* __restrict ry, const fl
         const Float4 x = load4(rx + k), y = load4(ry + k), z = load4(rz + k);
         Int4 in;
         Float4 t;
-        if constexpr (kQuad) {
+        if constexpr (kKind == kFolded) {
+            const Int4 side = dot4(p.e[2], x, y, z) >= zero;
+            Int4 in1 = side & (dot4(p.e[0], x, y, z) >= zero) & (dot4(p.e[1], x, y, z) >= zero);
+            Int4 in2 = side & (dot4(p.e[3], x, y, z) >= zero) & (dot4(p.e[4], x, y, z) >= zero);
+            if constexpr (kReach) {
+                const Float4 t1 = p.d1 / dot4(p.n1, x, y, z), t2 = p.d2 / dot4(p.n2, x, y, z);
+                in1 &= (t1 >= tnear) & (t1 <= tfar);
+                in2 &= (t2 >= tnear) & (t2 <= tfar);
+            }
+            in = in1 | in2;
+        } else if constexpr (kKind == kQuad) {
             const Int4 side = dot4(p.e[2], x, y, z) >= zero;
             in = (side & (dot4(p.e[0], x, y, z) >= zero) & (dot4(p.e[1], x, y, z) >= zero)) |
                  (~side & (dot4(p.e[3], x, y, z) >= zero) & (dot4(p.e[4], x, y, z) >= zero));
@@ -117,7 +132,7 @@ void markInside(const float* __restrict rx, const float* __restrict ry, const fl
                  (dot4(p.e[2], x, y, z) >= zero);
             if constexpr (kReach) t = p.d1 / dot4(p.n1, x, y, z);
         }
-        if constexpr (kReach) in &= (t >= tnear) & (t <= tfar);
+        if constexpr (kReach && kKind != kFolded) in &= (t >= tnear) & (t <= tfar);
         Int4 b;
         std::memcpy(&b, blocked + k, sizeof b);
         b |= in & 1;
@@ -139,7 +154,8 @@ struct Candidate {
     float n1[3], d1, n2[3], d2;
     int ringLo, ringHi;
     int runs[2][2];  ///< sector runs [first, last] within a ring; the second may be empty
-    bool quad, checkReach;
+    Kind kind;
+    bool checkReach;
 };
 
 // Bounds four quads of `batch` (block `b`) at once; appends those that may block rays.
@@ -322,9 +338,9 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
             for (int i = 0; i < 3; ++i) to[i] = from[i][k];
         };
         const bool one = first[k] != 0, two = second[k] != 0;
-        if (one && two && s1 == s2) {  // a quad: the triangles either side of the diagonal
+        if (one && two) {  // a quad
             Candidate& t = out.emplace_back(bounds);
-            t.quad = true;
+            t.kind = s1 == s2 ? kQuad : kFolded;
             set(t.e[0], n[0], s1);
             set(t.e[1], n[1], s1);
             set(t.e[2], n[4], s1);
@@ -336,18 +352,18 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
             t.d2 = dist2[k];
             continue;
         }
-        if (one) {  // a lone triangle, or a quad folded as seen from the apex: one at a time
+        if (one) {  // a lone triangle
             Candidate& t = out.emplace_back(bounds);
-            t.quad = false;
+            t.kind = kTriangle;
             set(t.e[0], n[0], s1);
             set(t.e[1], n[1], s1);
             set(t.e[2], n[4], s1);
             plane(t.n1, normal1);
             t.d1 = dist1[k];
         }
-        if (two) {
+        if (two) {  // a quad whose first triangle is seen edge-on
             Candidate& t = out.emplace_back(bounds);
-            t.quad = false;
+            t.kind = kTriangle;
             set(t.e[0], n[4], -s2);
             set(t.e[1], n[2], s2);
             set(t.e[2], n[3], s2);
@@ -358,25 +374,26 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
 }
 
 // Marks the cells whose rays hit candidate `t`.
-template <bool kQuad, bool kReach>
+template <int kKind, bool kReach>
 void rasterize(ConeSample& cone, const Candidate& t, const Frame& f) {
     std::uint32_t* blocked = cone.blocked.data();
+    constexpr bool kTwo = kKind != kTriangle;
     Planes p;
-    for (int e = 0; e < (kQuad ? 5 : 3); ++e)
+    for (int e = 0; e < (kTwo ? 5 : 3); ++e)
         for (int i = 0; i < 3; ++i) p.e[e][i] = splat(t.e[e][i]);
     for (int i = 0; i < 3; ++i) {
         p.n1[i] = splat(t.n1[i]);
-        if (kQuad) p.n2[i] = splat(t.n2[i]);
+        if (kTwo) p.n2[i] = splat(t.n2[i]);
     }
     p.d1 = splat(t.d1);
-    if (kQuad) p.d2 = splat(t.d2);
+    if (kTwo) p.d2 = splat(t.d2);
     const Float4 tnear = splat(f.tnear), tfar = splat(f.lookAhead);
     const bool second = t.runs[1][1] >= 0;
     for (int i = t.ringLo, row = i * f.sectors; i <= t.ringHi; ++i, row += f.sectors) {
-        markInside<kQuad, kReach>(cone.x, cone.y, cone.z, blocked, row + t.runs[0][0],
+        markInside<kKind, kReach>(cone.x, cone.y, cone.z, blocked, row + t.runs[0][0],
                                   row + t.runs[0][1], p, tnear, tfar);
         if (second)
-            markInside<kQuad, kReach>(cone.x, cone.y, cone.z, blocked, row, row + t.runs[1][1], p,
+            markInside<kKind, kReach>(cone.x, cone.y, cone.z, blocked, row, row + t.runs[1][1], p,
                                       tnear, tfar);
     }
 }
@@ -466,10 +483,17 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
         candidates.clear();
         for (std::size_t b = 0; b < near.blocks(); ++b) boundBlock(near, b, f, candidates);
         for (const Candidate& t : candidates) {
-            if (t.quad)
-                t.checkReach ? rasterize<true, true>(out, t, f) : rasterize<true, false>(out, t, f);
-            else
-                t.checkReach ? rasterize<false, true>(out, t, f) : rasterize<false, false>(out, t, f);
+            switch (t.kind) {
+                case kTriangle:
+                    t.checkReach ? rasterize<kTriangle, true>(out, t, f) : rasterize<kTriangle, false>(out, t, f);
+                    break;
+                case kQuad:
+                    t.checkReach ? rasterize<kQuad, true>(out, t, f) : rasterize<kQuad, false>(out, t, f);
+                    break;
+                case kFolded:
+                    t.checkReach ? rasterize<kFolded, true>(out, t, f) : rasterize<kFolded, false>(out, t, f);
+                    break;
+            }
         }
     }
     out.blocked.resize(std::size_t(patterns->cells()));
