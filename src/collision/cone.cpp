@@ -94,8 +94,9 @@ struct Planes {
 
 Float4 dot4(const Float4 (&n)[3], Float4 x, Float4 y, Float4 z) { return x * n[0] + y * n[1] + z * n[2]; }
 
-// Marks the cells [first, last] (and up to three past it: the arrays are padded, and every
-// cell is tested exactly, so extra cells are only extra work) whose rays pass inside the edge
+// Marks the cells [first, last] (and up to three past it, four at a time: the arrays are
+// padded, and every cell is tested exactly, so extra cells are only extra work, and the
+// cells past the last are cut off at the end) whose rays pass inside the edge
 // planes and, with kReach, hit the plane (t = dist / dot(ray, normal)) within reach. A quad's
 // ray is tested against the triangle on its side of the diagonal, a folded quad's against
 // both.
@@ -104,7 +105,7 @@ void markInside(const float* __restrict rx, const float* __restrict ry, const fl
                 std::uint32_t* __restrict blocked, int first, int last, const Planes& p,
                 Float4 tnear, Float4 tfar) {
     const Float4 zero = splat(0.0f);
-    for (int k = first & ~3; k <= last; k += 4) {
+    for (int k = first; k <= last; k += 4) {
         const Float4 x = load4(rx + k), y = load4(ry + k), z = load4(rz + k);
         Int4 in;
         Float4 t;
