@@ -204,42 +204,6 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     const Float4 nearest = sqrt4(mx * mx + my * my + mz * mz) - sqrt4(r2);
     valid &= nearest <= f.lookAhead;
     if (!any(valid)) return;
-    // The cap around the corner directions.
-    Float4 dx[4], dy[4], dz[4];
-    for (int c = 0; c < 4; ++c) {
-        const Float4 inv = splat(1.0f) / select(valid, l[c], splat(1.0f));
-        dx[c] = qx[c] * inv;
-        dy[c] = qy[c] * inv;
-        dz[c] = qz[c] * inv;
-    }
-    const Float4 sx = dx[0] + dx[1] + dx[2] + dx[3], sy = dy[0] + dy[1] + dy[2] + dy[3],
-                 sz = dz[0] + dz[1] + dz[2] + dz[3];
-    const Float4 sumLen = sqrt4(sx * sx + sy * sy + sz * sz);
-    const Int4 centred = sumLen > 1e-6f;
-    const Float4 invSum = splat(1.0f) / select(centred, sumLen, splat(1.0f));
-    const Float4 cx = sx * invSum, cy = sy * invSum, cz = sz * invSum;
-    Float4 cb = cx * dx[0] + cy * dy[0] + cz * dz[0];
-    for (int c = 1; c < 4; ++c) cb = min4(cb, cx * dx[c] + cy * dy[c] + cz * dz[c]);
-    cb = select(centred, cb - 1e-4f, splat(-1.0f));
-    const Int4 capped = cb > zero;  // a cap narrower than a hemisphere
-    const Float4 sb = sqrt4(max4(zero, 1.0f - cb * cb));
-    const Float4 cc = max4(splat(-1.0f), min4(splat(1.0f), cz));
-    const Float4 sc = sqrt4(max4(zero, 1.0f - cc * cc));
-    const bool narrow = f.cosHalf >= 0.0f;
-    // Outside the cone: the cap's centre is farther from the axis than half-angle + radius
-    // (a sum below 180 degrees when the half-angle is at most 90 or the cap is narrow).
-    const Int4 sumBelowPi = narrow ? Int4{-1, -1, -1, -1} : (sb < f.sinHalf);
-    valid &= ~(capped & sumBelowPi & (cc < f.cosHalf * cb - f.sinHalf * sb - 1e-5f));
-    const Int4 pastEdge =
-        (narrow ? (sb >= f.sinHalf) : Int4{0, 0, 0, 0}) | (cc < f.cosHalf * cb + f.sinHalf * sb + 1e-5f);
-    Float4 cosHi = select(pastEdge, splat(-2.0f), cc * cb - sc * sb + 1e-5f);
-    Float4 cosLo = select(cc < cb, cc * cb + sc * sb - 1e-5f, splat(2.0f));
-    const Float4 leastCos = min4(min4(dz[0], dz[1]), min4(dz[2], dz[3]));
-    const Int4 refine = (qz[0] > zero) & (qz[1] > zero) & (qz[2] > zero) & (qz[3] > zero) &
-                        (leastCos > f.cosHalf);
-    cosHi = select(refine, max4(cosHi, leastCos - 1e-5f), cosHi);
-    cosHi = select(capped, cosHi, splat(-2.0f));
-    cosLo = select(capped, cosLo, splat(2.0f));
     // Edge planes through the apex (edge i runs from corner i to corner i + 1; edge 4 is the
     // diagonal c -> a), and which way each triangle faces the apex.
     auto cross = [](Float4 ax, Float4 ay, Float4 az, Float4 bx, Float4 by, Float4 bz, Float4* o) {
@@ -257,8 +221,25 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     const Float4 volume2 = qx[0] * n[2][0] + qy[0] * n[2][1] + qz[0] * n[2][2];
     const Int4 first = abs4(volume1) >= 1e-18f, second = abs4(volume2) >= 1e-18f;  // not edge-on
     valid &= first | second;
-    if (!any(valid)) return;
-    // Sectors (the 2-d cross products are the edge planes' z).
+    // Rings: the quad's directions come nearest the axis at a corner, inside an edge (where
+    // its great circle passes nearest the axis, when that lies between the edge's ends), or on
+    // the axis itself (when it crosses it); wholly in front of the apex, they are farthest
+    // from it at a corner (along a great-circle arc in the front half-space the height z is a
+    // positive arc of a cosine, least at an end).
+    Float4 cosCorner[4];
+    for (int c = 0; c < 4; ++c) cosCorner[c] = qz[c] / select(valid, l[c], splat(1.0f));
+    Float4 maxCos = max4(max4(cosCorner[0], cosCorner[1]), max4(cosCorner[2], cosCorner[3]));
+    const Float4 minCos = min4(min4(cosCorner[0], cosCorner[1]), min4(cosCorner[2], cosCorner[3]));
+    static constexpr int kEnds[5][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {2, 0}};
+    for (int e = 0; e < 5; ++e) {
+        const int p = kEnds[e][0], q = kEnds[e][1];
+        const Float4(&m)[3] = n[e];
+        const Float4 mm = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+        const Int4 inside = (mm > zero) & (m[0] * qy[p] - m[1] * qx[p] >= zero) &
+                            (qx[q] * m[1] - qy[q] * m[0] >= zero);
+        const Float4 cosEdge = sqrt4(max4(zero, 1.0f - m[2] * m[2] / select(inside, mm, splat(1.0f))));
+        maxCos = select(inside, max4(maxCos, cosEdge), maxCos);
+    }
     const Float4 maxL = max4(max4(l[0], l[1]), max4(l[2], l[3]));
     const Float4 eps = 1e-5f * maxL * maxL;  // shadows that nearly touch the origin count
     auto holdsAxis = [&](Float4 u, Float4 v, Float4 w) {
@@ -266,6 +247,12 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     };
     const Int4 aroundAxis = (first & holdsAxis(n[0][2], n[1][2], n[4][2])) |
                             (second & holdsAxis(-n[4][2], n[2][2], n[3][2]));
+    maxCos = select(aroundAxis, splat(2.0f), maxCos + 1e-5f);
+    valid &= maxCos >= f.cosHalf;  // else wholly outside the cone
+    const Int4 front = (qz[0] > zero) & (qz[1] > zero) & (qz[2] > zero) & (qz[3] > zero);
+    const Float4 cosLo = maxCos, cosHi = select(front, minCos - 1e-5f, splat(-2.0f));
+    if (!any(valid)) return;
+    // Sectors (the 2-d cross products in holdsAxis are the edge planes' z).
     const Float4 pi = splat(kPi), twoPi = splat(2.0f * kPi);
     const Float4 p0 = atan2v(qy[0], qx[0]);
     Float4 lo = zero, hi = zero;
