@@ -3,6 +3,7 @@
 // shoot types, the prototype registries and the prototype cache.
 
 #include <map>
+#include <unordered_map>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -63,8 +64,17 @@ struct PlantArchitecture::Impl {
     /// Cache keys of leaf prototypes by address, valid during one grow or tessellate call
     /// (shoot types do not change within one); cleared at the start of each.
     std::map<const LeafPrototype*, std::string> prototypeKeys;
-    std::map<std::tuple<const LeafPrototype*, int, unsigned>, double> prototypeAreas;
-    std::map<std::tuple<const LeafPrototype*, int, unsigned>, const OrganPrototype*> prototypeMemo;
+    using LeafKey = std::tuple<const LeafPrototype*, int, unsigned>;  ///< prototype, leaflet, variant
+    struct LeafKeyHash {
+        std::size_t operator()(const LeafKey& k) const {
+            const std::uint64_t h = std::uint64_t(reinterpret_cast<std::uintptr_t>(std::get<0>(k))) ^
+                                    (std::uint64_t(std::uint32_t(std::get<1>(k))) << 32) ^
+                                    (std::uint64_t(std::get<2>(k)) * 0x9e3779b97f4a7c15ULL);
+            return std::size_t(h ^ (h >> 29));
+        }
+    };
+    std::unordered_map<LeafKey, double, LeafKeyHash> prototypeAreas;
+    std::unordered_map<LeafKey, const OrganPrototype*, LeafKeyHash> prototypeMemo;
     /// Set while plants grow together in many short steps (collision avoidance): shoot types
     /// cannot change meanwhile, so the memos stay valid from one step to the next.
     bool memosPinned = false;
