@@ -266,26 +266,56 @@ TEST(Collision, DistantObstaclesChangeNothing) {
     EXPECT_EQ(build(false), build(true));
 }
 
-// The cone rays tested against nearby triangles give what Embree's ray tracing gives.
+// Two consecutive triangles (a, b, c), (a, c, d) of one organ become one quad of the soft
+// scene, whose sphere holds all four corners; other neighbours stay triangles.
+TEST(Collision, SoftSceneKeepsLeafOutlinesAsQuads) {
+    const vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0.5f), e(3, 3, 3);
+    const collision::TriangleSoup soup{a, b, c, a, c, d, e, a, b, a, b, c};
+    std::vector<glm::vec4> spheres;
+    collision::boundingSpheres(soup, spheres);
+    ASSERT_EQ(spheres.size(), 4u);
+    EXPECT_GT(spheres[0].w, 0.0f);
+    EXPECT_LT(spheres[1].w, 0.0f);  // the quad's second triangle
+    for (const vec3& p : {a, b, c, d})
+        EXPECT_LE(glm::length(p - vec3(spheres[0])), spheres[0].w);
+    EXPECT_GT(spheres[2].w, 0.0f);  // (e, a, b) then (a, b, c): no shared corners in place
+    EXPECT_GT(spheres[3].w, 0.0f);
+    // The same pair from two organs is two triangles.
+    const std::vector<std::uint64_t> tags{1, 2, 3, 3};
+    collision::boundingSpheres(soup, spheres, &tags);
+    EXPECT_GT(spheres[1].w, 0.0f);
+    for (const vec3& p : {a, b, c}) EXPECT_LE(glm::length(p - vec3(spheres[0])), spheres[0].w);
+}
+
+// The cone rays tested against nearby triangles and quads (pairs of triangles (a, b, c),
+// (a, c, d), flat or folded) mark exactly the rays that tracing each ray on its own against
+// every triangle finds blocked.
 TEST(Collision, ConeSamplingMatchesRayTracing) {
     Rng rng(99, 1);
     Context ctx;
     std::vector<ObjectID> objects;
     collision::TriangleSoup plant;
     std::vector<collision::OrganTag> tags;
-    for (int i = 0; i < 400; ++i) {
+    for (int i = 0; i < 600; ++i) {
         const vec3 c(rng.uniform(-0.15f, 0.15f), rng.uniform(-0.15f, 0.15f), rng.uniform(0.0f, 0.3f));
-        vec3 p[3];
+        vec3 p[4];
         for (vec3& q : p) q = c + vec3(rng.uniform(-0.03f, 0.03f), rng.uniform(-0.03f, 0.03f),
                                        rng.uniform(-0.03f, 0.03f));
+        const bool quad = i % 4 >= 2;
         if (i % 2) {
             Mesh m;
-            m.positions = {p[0], p[1], p[2]};
+            m.positions = {p[0], p[1], p[2], p[3]};
             m.indices = {0, 1, 2};
+            if (quad) m.indices.insert(m.indices.end(), {0, 2, 3});
             objects.push_back(ctx.addObject(m));
         } else {
+            const collision::OrganTag tag = collision::organTag(unsigned(i % 3), unsigned(i % 5));
             plant.insert(plant.end(), {p[0], p[1], p[2]});
-            tags.push_back(collision::organTag(unsigned(i % 3), unsigned(i % 5)));
+            tags.push_back(tag);
+            if (quad) {  // every fifth pair from two organs: two triangles, not a quad
+                plant.insert(plant.end(), {p[0], p[2], p[3]});
+                tags.push_back(i % 5 == 0 ? collision::organTag(7, 7) : tag);
+            }
         }
     }
     collision::World world;
@@ -306,6 +336,7 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
         collision::Ignore ignore;
         ignore.plant = 7;
         ignore.organs[0] = collision::organTag(1, 1);
+        ignore.organs[1] = collision::organTag(7, 7);  // second triangles of some pairs
         Rng r1(c, 3), r2(c, 3);
         collision::ConeSample fast, traced;
         collision::sampleCone(world, apex, axis, cone, r1, 1e-4f, ignore, fast);
