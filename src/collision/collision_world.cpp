@@ -73,12 +73,7 @@ struct World::Embree {
     }
 };
 
-struct World::PlantSlot {
-    TriangleSoup triangles;
-    std::vector<OrganTag> tags;         ///< per triangle
-    std::vector<glm::vec4> spheres;     ///< per triangle
-    std::vector<std::uint64_t> keys;    ///< grid cell per triangle, for cells of keyCell
-    float keyCell = 0.0f;
+struct World::PlantSlot : PlantProxies {
     bool set = false;
 };
 
@@ -143,6 +138,24 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     }
     slot.triangles = std::move(triangles);
     slot.tags = std::move(tags);
+    boundingSpheres(slot.triangles, slot.spheres);
+    slot.keyCell = gridCell();
+    SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);
+    slot.set = true;
+    stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
+    return true;
+}
+
+bool World::swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool changed) {
+    PlantSlot& slot = *plants_.at(plantID);
+    if (slot.set && !changed) {
+        stats_.plantsUnchanged.fetch_add(1, std::memory_order_relaxed);
+        return false;
+    }
+    std::swap(slot.triangles, proxies.triangles);
+    std::swap(slot.tags, proxies.tags);
+    std::swap(slot.spheres, proxies.spheres);
+    std::swap(slot.keys, proxies.keys);
     boundingSpheres(slot.triangles, slot.spheres);
     slot.keyCell = gridCell();
     SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);

@@ -69,10 +69,10 @@ void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
     const CollisionOrgans organs = world.soft()->obstacles;
     forEach(which.size(), impls, [&](std::size_t k, Impl& impl) {
         PlantInstance& plant = *slots[which[k]].plant;
-        TriangleSoup soup;
-        std::vector<OrganTag> tags;
-        buildProxies(impl, plant, organs, *world.memos.at(plant.id), soup, tags);
-        world.setPlantProxies(plant.id, std::move(soup), std::move(tags));
+        PlantProxyMemo& memo = *world.memos.at(plant.id);
+        PlantProxies& next = memo.next;
+        const bool changed = buildProxies(impl, plant, organs, memo, next.triangles, next.tags);
+        world.swapPlantProxies(plant.id, next, changed);
     });
     world.commit();
     for (unsigned id : ids) world.stale.erase(id);

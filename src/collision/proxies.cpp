@@ -109,49 +109,99 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
     std::uint32_t fallen = 0;
     for (std::size_t i = 0; i < pt.leaves.size(); ++i)
         if (pt.leaves[i].removed) fallen ^= std::uint32_t(1) << (i % 32);
-    std::memcpy(&key[k], &fallen, sizeof fallen);
+    const std::uint32_t count = std::uint32_t(pt.leaves.size());
+    std::memcpy(&key[k++], &fallen, sizeof fallen);
+    std::memcpy(&key[k++], &count, sizeof count);
     return key;
+}
+
+bool sameBits(const vec3& a, const vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The outlines of the last few prototypes met (a plant's leaves share a few).
+class OutlineLookup {
+public:
+    explicit OutlineLookup(ProxyCache& cache) : cache_(cache) {}
+    const TriangleSoup& operator()(const OrganPrototype& proto) {
+        for (const auto& [p, outline] : recent_)
+            if (p == &proto) return *outline;
+        const TriangleSoup& outline = cache_.shape(proto).outline;
+        if (recent_.size() == 16) recent_.erase(recent_.begin());
+        recent_.emplace_back(&proto, &outline);
+        return outline;
+    }
+
+private:
+    ProxyCache& cache_;
+    std::vector<std::pair<const OrganPrototype*, const TriangleSoup*>> recent_;
+};
+
+// The leaf proxies of a plant: each petiole's leaves placed again where anything that shapes
+// them changed (OrganPlacer::leaves, the tessellator's own formulas), else moved with the
+// petiole's start.
+bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, PlantProxyMemo& memo,
+                      TriangleSoup& out, std::vector<OrganTag>& tags) {
+    OrganPlacer placer(impl, plant);
+    OutlineLookup outlineOf(proxyCache(impl));
+    const std::uint32_t visit = ++memo.visit;
+    std::size_t visited = 0;
+    bool changed = false;
+    if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
+    for (const Shoot& s : plant.shoots) {
+        if (s.removed) continue;
+        auto& nodes = memo.shoots[s.id];
+        nodes.resize(s.phytomers.size());
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const Phytomer& ph = s.phytomers[k];
+            auto& petioles = nodes[k];
+            petioles.resize(ph.petioles.size());
+            const OrganTag tag = organTag(s.id, k);
+            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+                PlantProxyMemo::Petiole& e = petioles[j];
+                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
+                ++visited;
+                if (e.visit + 1 != visit) changed = true;  // not read at the last refresh
+                e.visit = visit;
+                vec3 start;
+                if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
+                    start = placer.leaves(s.id, k, j, e.trig, memo.placements, e.side);
+                    e.local.clear();
+                    for (const LeafPlacement& leaf : memo.placements) {
+                        if (!leaf.prototype) continue;  // fallen
+                        // As ProxySink::writeParts places the outline.
+                        for (const vec3& p : outlineOf(*leaf.prototype))
+                            e.local.push_back(vec3(leaf.transform * glm::vec4(p, 1.0f)) - start);
+                    }
+                    e.key = key;
+                    e.set = true;
+                    changed = true;
+                } else {
+                    start = placer.petioleStartOn(s.id, k, e.side);
+                    changed = changed || !sameBits(start, e.start);
+                }
+                e.start = start;
+                for (const vec3& p : e.local) out.push_back(p + start);
+                tags.resize(out.size() / 3, tag);
+            }
+        }
+    }
+    if (visited != memo.visited) changed = true;  // petioles gone
+    memo.visited = visited;
+    return changed;
 }
 
 }  // namespace
 
-void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
                   PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
     out.clear();
     tags.clear();
     if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
         ProxySink sink(proxyCache(impl), organs, out, tags);
         tessellatePlant(impl, sink, plant);
-        return;
+        return true;
     }
-    if (!organs.leaves) return;
-    OrganPlacer placer(impl, plant);
-    TriangleSoup scratch;
-    std::vector<OrganTag> scratchTags;
-    ProxySink sink(proxyCache(impl), organs, scratch, scratchTags);
-    for (const Shoot& s : plant.shoots) {
-        if (s.removed) continue;
-        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-            const Phytomer& ph = s.phytomers[k];
-            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
-                PlantProxyMemo::Entry& e =
-                    memo.petioles[(std::uint64_t(s.id) << 40) | (std::uint64_t(k) << 8) | j];
-                const vec3 start = placer.petioleStart(s.id, k, j);
-                if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
-                    scratch.clear();
-                    scratchTags.clear();
-                    placer.petiole(sink, s.id, k, j);
-                    e.local.resize(scratch.size());
-                    for (std::size_t i = 0; i < scratch.size(); ++i) e.local[i] = scratch[i] - start;
-                    e.key = key;
-                    e.set = true;
-                }
-                for (const vec3& p : e.local) out.push_back(p + start);
-                tags.resize(out.size() / 3, organTag(s.id, k));
-            }
-        }
-    }
+    if (!organs.leaves) return true;
+    return buildLeafProxies(impl, plant, memo, out, tags);
 }
 
 bool ProxySink::wants(OrganKind kind) const {

@@ -99,8 +99,15 @@ Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last, 
 
 std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float curvature,
                              vec3 bendToward, unsigned segments) {
-    if (segments == 0) segments = 1;
     std::vector<vec3> pts;
+    curvedPath(start, direction, length, curvature, bendToward, segments, pts);
+    return pts;
+}
+
+void curvedPath(vec3 start, vec3 direction, float length, float curvature, vec3 bendToward,
+                unsigned segments, std::vector<vec3>& pts) {
+    if (segments == 0) segments = 1;
+    pts.clear();
     pts.reserve(segments + 1);
     pts.push_back(start);
     const vec3 d0 = glm::normalize(direction);
@@ -117,7 +124,7 @@ std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float cur
             p += d0 * step;
             pts.push_back(p);
         }
-        return pts;
+        return;
     }
     const vec3 u = across / glm::length(across);
     const float limit = std::atan2(sinA, glm::dot(d0, target));
@@ -127,7 +134,6 @@ std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float cur
         p += (std::cos(theta) * d0 + std::sin(theta) * u) * step;
         pts.push_back(p);
     }
-    return pts;
 }
 
 }  // namespace plantarch::geometry

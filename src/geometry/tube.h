@@ -35,6 +35,9 @@ Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last,
 /// direction, so a curve never overshoots. Returns segments + 1 points.
 std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float curvature,
                              vec3 bendToward, unsigned segments);
+/// The same into `out` (its storage reused).
+void curvedPath(vec3 start, vec3 direction, float length, float curvature, vec3 bendToward,
+                unsigned segments, std::vector<vec3>& out);
 
 /// A unit vector perpendicular to `v` (any, but deterministic).
 vec3 anyPerpendicular(vec3 v);
