@@ -135,15 +135,21 @@ private:
     std::vector<std::pair<const OrganPrototype*, const TriangleSoup*>> recent_;
 };
 
+// A point of a prototype placed by `xf` (the prototype's "w = 1" column), to the bit as
+// vec3(xf * vec4(p, 1)) computes it.
+inline vec3 placed(const mat4& xf, vec3 p) {
+    return (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3]));
+}
+
 // The leaf proxies of a plant: each petiole's leaves placed again where anything that shapes
 // them changed (OrganPlacer::leaves, the tessellator's own formulas), else moved with the
-// petiole's start.
+// petiole's start. `out` and `tags` are overwritten (their storage reused).
 bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, PlantProxyMemo& memo,
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
     OrganPlacer placer(impl, plant);
     OutlineLookup outlineOf(proxyCache(impl));
     const std::uint32_t visit = ++memo.visit;
-    std::size_t visited = 0;
+    std::size_t visited = 0, n = 0;
     bool changed = false;
     if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
     for (const Shoot& s : plant.shoots) {
@@ -154,7 +160,6 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
             const Phytomer& ph = s.phytomers[k];
             auto& petioles = nodes[k];
             petioles.resize(ph.petioles.size());
-            const OrganTag tag = organTag(s.id, k);
             for (unsigned j = 0; j < ph.petioles.size(); ++j) {
                 PlantProxyMemo::Petiole& e = petioles[j];
                 const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
@@ -164,12 +169,16 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                 vec3 start;
                 if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
                     start = placer.leaves(s.id, k, j, e.trig, memo.placements, e.side);
-                    e.local.clear();
+                    std::size_t corners = 0;
+                    for (const LeafPlacement& leaf : memo.placements)
+                        if (leaf.prototype) corners += outlineOf(*leaf.prototype).size();
+                    e.local.resize(corners);
+                    vec3* local = e.local.data();
                     for (const LeafPlacement& leaf : memo.placements) {
                         if (!leaf.prototype) continue;  // fallen
                         // As ProxySink::writeParts places the outline.
                         for (const vec3& p : outlineOf(*leaf.prototype))
-                            e.local.push_back(vec3(leaf.transform * glm::vec4(p, 1.0f)) - start);
+                            *local++ = placed(leaf.transform, p) - start;
                     }
                     e.key = key;
                     e.set = true;
@@ -179,11 +188,16 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     changed = changed || !sameBits(start, e.start);
                 }
                 e.start = start;
-                for (const vec3& p : e.local) out.push_back(p + start);
-                tags.resize(out.size() / 3, tag);
+                const std::size_t m = e.local.size();
+                if (out.size() < n + m) out.resize(std::max(2 * out.size(), n + m));
+                vec3* o = out.data() + n;
+                for (std::size_t i = 0; i < m; ++i) o[i] = e.local[i] + start;
+                n += m;
+                tags.resize(n / 3, organTag(s.id, k));
             }
         }
     }
+    out.resize(n);
     if (visited != memo.visited) changed = true;  // petioles gone
     memo.visited = visited;
     return changed;
@@ -193,15 +207,15 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
 
 bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
                   PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
-    out.clear();
     tags.clear();
+    if (organs.leaves && !organs.internodes && !organs.petioles && !organs.flowers && !organs.fruit)
+        return buildLeafProxies(impl, plant, memo, out, tags);
+    out.clear();
     if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
         ProxySink sink(proxyCache(impl), organs, out, tags);
         tessellatePlant(impl, sink, plant);
-        return true;
     }
-    if (!organs.leaves) return true;
-    return buildLeafProxies(impl, plant, memo, out, tags);
+    return true;
 }
 
 bool ProxySink::wants(OrganKind kind) const {

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "geometry/tube.h"
 #include "model/architecture_impl.h"
 
 namespace plantarch {
@@ -62,6 +63,10 @@ struct PetioleTrig {
     float azimuth = 0.0f, pitch = 0.0f;
     SinCos azimuthTrig, pitchTrig;
     bool set = false;
+    // The petiole's curve for its last direction and curvature sign.
+    vec3 direction{0.0f};
+    bool bendsUp = false, curveSet = false;
+    geometry::CurveBasis curve;
     std::vector<Leaf> leaves;
 };
 

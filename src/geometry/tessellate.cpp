@@ -174,6 +174,7 @@ PrototypeSlot prototypeSlot(const LeafParameters& lp, const LeafOrgan& leaf) {
 
 // Whether two floats are the same to the bit (-0 and 0 differ: their sines do).
 bool sameBits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
+bool sameBits(vec3 a, vec3 b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
 
 // Writes organs into the Context, reusing their objects.
 class ContextSink final : public OrganSink {
@@ -326,6 +327,8 @@ struct Tessellator {
     std::vector<vec3> petiolePath;
     PathMeasure petioleMeasure, peduncleMeasure;
     std::vector<std::pair<PrototypeSlot, const OrganPrototype*>> recentPrototypes;
+    std::string lastLabel;
+    const PhytomerParameters* lastParameters = nullptr;
 
     void computeNodes() {
         // Parents come before their children (a shoot grows from one made earlier), so each
@@ -465,7 +468,7 @@ struct Tessellator {
     vec3 leaves(Shoot& s, int node, Petiole& pt, PetioleTrig& trig,
                 std::vector<LeafPlacement>& out, vec3& side) {
         Phytomer& ph = s.phytomers[std::size_t(node)];
-        const PhytomerParameters& pp = impl.shootTypeFor(plant, ph.parametersLabel).phytomer_parameters;
+        const PhytomerParameters& pp = phytomerParameters(ph);
         if (!trig.set || !sameBits(trig.azimuth, pt.azimuth) || !sameBits(trig.pitch, pt.pitch)) {
             trig.azimuth = pt.azimuth;
             trig.pitch = pt.pitch;
@@ -478,7 +481,14 @@ struct Tessellator {
         side = petioleSide;
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
-        geometry::curvedPath(start, dir, std::max(length, 1e-6f), pt.curvature, kUp, segs,
+        const bool bendsUp = pt.curvature >= 0.0f;
+        if (!trig.curveSet || trig.bendsUp != bendsUp || !sameBits(trig.direction, dir)) {
+            trig.curve = geometry::curveBasis(dir, bendsUp ? kUp : -kUp);
+            trig.direction = dir;
+            trig.bendsUp = bendsUp;
+            trig.curveSet = true;
+        }
+        geometry::curvedPath(start, trig.curve, std::max(length, 1e-6f), pt.curvature, segs,
                              petiolePath);
         petioleMeasure.measure(petiolePath);
         const LeafParameters& lp = pp.leaf;
@@ -500,6 +510,16 @@ struct Tessellator {
             out[i].prototype = &leafPrototype(lp, leaf);
         }
         return start;
+    }
+
+    // The phytomer parameters of a phytomer's shoot type (the last one at hand: a plant's
+    // phytomers mostly share one).
+    const PhytomerParameters& phytomerParameters(const Phytomer& ph) {
+        if (!lastParameters || ph.parametersLabel != lastLabel) {
+            lastParameters = &impl.shootTypeFor(plant, ph.parametersLabel).phytomer_parameters;
+            lastLabel = ph.parametersLabel;
+        }
+        return *lastParameters;
     }
 
     // impl.leafPrototype with the last few answers at hand (a plant's leaves share a few).
