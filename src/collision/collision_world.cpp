@@ -146,19 +146,20 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     return true;
 }
 
+void World::index(PlantProxies& proxies) const {
+    boundingSpheres(proxies.triangles, proxies.spheres);
+    proxies.keyCell = gridCell();
+    SoftGrid::cellKeys(proxies.spheres, proxies.keyCell, proxies.keys);
+}
+
 bool World::swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool changed) {
     PlantSlot& slot = *plants_.at(plantID);
     if (slot.set && !changed) {
         stats_.plantsUnchanged.fetch_add(1, std::memory_order_relaxed);
         return false;
     }
-    std::swap(slot.triangles, proxies.triangles);
-    std::swap(slot.tags, proxies.tags);
-    std::swap(slot.spheres, proxies.spheres);
-    std::swap(slot.keys, proxies.keys);
-    boundingSpheres(slot.triangles, slot.spheres);
-    slot.keyCell = gridCell();
-    SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);
+    if (!changed) index(proxies);  // a plant new to the scene: proxies not indexed yet
+    std::swap(static_cast<PlantProxies&>(slot), proxies);
     slot.set = true;
     stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
     return true;

@@ -90,10 +90,13 @@ public:
     /// Replaces a plant's proxies (kept as they are when unchanged). Safe to call for distinct
     /// plants from several threads at once (after reservePlants). Returns whether they changed.
     bool setPlantProxies(unsigned plantID, TriangleSoup&& triangles, std::vector<OrganTag>&& tags);
-    /// The same for proxies whose change the caller knows: with `changed` false they are the
-    /// plant's already and nothing happens (unless the plant has none yet); else the
-    /// triangles and tags of `proxies` become the plant's, with their spheres and cells made
-    /// here, and `proxies` gets the old ones (to reuse their storage). Same thread safety.
+    /// Makes the spheres and grid cells of `proxies`' triangles (as setPlantProxies does).
+    /// Touches nothing of the scene: may run while the scene is queried.
+    void index(PlantProxies& proxies) const;
+    /// The same as setPlantProxies for proxies made by `index`, whose change the caller knows:
+    /// with `changed` false they are the plant's already and nothing happens (unless the plant
+    /// has none yet); else they become the plant's and `proxies` gets the old ones (to reuse
+    /// their storage). Same thread safety.
     bool swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool changed);
     void removePlant(unsigned plantID);
     bool hasPlant(unsigned plantID) const { return plants_.count(plantID) > 0; }

@@ -150,7 +150,7 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
     OutlineLookup outlineOf(proxyCache(impl));
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
-    bool changed = false;
+    bool changed = visit == 1;  // a new memo: the scene may hold anything for the plant
     if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
     for (const Shoot& s : plant.shoots) {
         if (s.removed) continue;

@@ -52,7 +52,8 @@ struct PlantProxyMemo {
     std::vector<std::vector<std::vector<Petiole>>> shoots;
     std::uint32_t visit = 0;         ///< refreshes so far
     std::size_t visited = 0;         ///< petioles read at the last refresh
-    PlantProxies next;               ///< storage for the next refresh's proxies
+    PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
+    bool nextChanged = true;         ///< whether they differ from the installed ones
     std::vector<LeafPlacement> placements;  ///< scratch
 };
 
