@@ -4,6 +4,7 @@
 //   OMP_NUM_THREADS=1 valgrind --tool=callgrind build/plantarch_soft_canopy none
 //   OMP_NUM_THREADS=1 valgrind --tool=callgrind build/plantarch_soft_canopy soft
 
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 
@@ -23,6 +24,17 @@ int main(int argc, char** argv) {
     if (soft) arch.enableSoftCollisionAvoidance(SoftCollisionOptions{});
     arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f, 0.3f), glm::ivec2(10, 10), 40.0f);
     const CollisionStats st = arch.getCollisionStats();
+    // A checksum of every vertex: equal between two builds only when the plants are the same
+    // to the bit (soft avoidance steers by the scene, so a changed proxy shows here).
+    std::uint64_t hash = 1469598103934665603ULL;  // FNV-1a
+    ctx.forEachObject([&](const ObjectView& v) {
+        for (const vec3& p : v.positions) {
+            unsigned char bytes[sizeof p];
+            std::memcpy(bytes, &p, sizeof p);
+            for (unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ULL;
+        }
+    });
+    std::printf("geometry %016llx\n", static_cast<unsigned long long>(hash));
     std::printf("triangles %zu cones %llu steered %llu refreshes %llu proxy_triangles %llu\n",
                 ctx.triangleCount(), static_cast<unsigned long long>(st.softCones),
                 static_cast<unsigned long long>(st.softSteered),

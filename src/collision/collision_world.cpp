@@ -73,12 +73,7 @@ struct World::Embree {
     }
 };
 
-struct World::PlantSlot {
-    TriangleSoup triangles;
-    std::vector<OrganTag> tags;         ///< per triangle
-    std::vector<glm::vec4> spheres;     ///< per triangle
-    std::vector<std::uint64_t> keys;    ///< grid cell per triangle, for cells of keyCell
-    float keyCell = 0.0f;
+struct World::PlantSlot : PlantProxies {
     bool set = false;
 };
 
@@ -146,6 +141,25 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     boundingSpheres(slot.triangles, slot.spheres, &slot.tags);
     slot.keyCell = gridCell();
     SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);
+    slot.set = true;
+    stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
+    return true;
+}
+
+void World::index(PlantProxies& proxies) const {
+    boundingSpheres(proxies.triangles, proxies.spheres, &proxies.tags);
+    proxies.keyCell = gridCell();
+    SoftGrid::cellKeys(proxies.spheres, proxies.keyCell, proxies.keys);
+}
+
+bool World::swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool changed) {
+    PlantSlot& slot = *plants_.at(plantID);
+    if (slot.set && !changed) {
+        stats_.plantsUnchanged.fetch_add(1, std::memory_order_relaxed);
+        return false;
+    }
+    if (!changed) index(proxies);  // a plant new to the scene: proxies not indexed yet
+    std::swap(static_cast<PlantProxies&>(slot), proxies);
     slot.set = true;
     stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
     return true;

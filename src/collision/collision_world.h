@@ -36,6 +36,16 @@ inline OrganTag organTag(unsigned shoot, unsigned node) {
     return (OrganTag(shoot) << 32) | node;
 }
 
+/// A plant's proxies as the scene holds them: triangles with their organ tags, bounding
+/// spheres and grid cells.
+struct PlantProxies {
+    TriangleSoup triangles;
+    std::vector<OrganTag> tags;         ///< per triangle
+    std::vector<glm::vec4> spheres;     ///< per triangle
+    std::vector<std::uint64_t> keys;    ///< grid cell per triangle, for cells of keyCell
+    float keyCell = 0.0f;
+};
+
 /// Organs of one plant a query does not see: a growing tip's own young leaves around it.
 struct Ignore {
     unsigned plant = 0;
@@ -80,6 +90,14 @@ public:
     /// Replaces a plant's proxies (kept as they are when unchanged). Safe to call for distinct
     /// plants from several threads at once (after reservePlants). Returns whether they changed.
     bool setPlantProxies(unsigned plantID, TriangleSoup&& triangles, std::vector<OrganTag>&& tags);
+    /// Makes the spheres and grid cells of `proxies`' triangles (as setPlantProxies does).
+    /// Touches nothing of the scene: may run while the scene is queried.
+    void index(PlantProxies& proxies) const;
+    /// The same as setPlantProxies for proxies made by `index`, whose change the caller knows:
+    /// with `changed` false they are the plant's already and nothing happens (unless the plant
+    /// has none yet); else they become the plant's and `proxies` gets the old ones (to reuse
+    /// their storage). Same thread safety.
+    bool swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool changed);
     void removePlant(unsigned plantID);
     bool hasPlant(unsigned plantID) const { return plants_.count(plantID) > 0; }
     /// Rebuilds the soft scene's grid after plant changes (single-threaded).

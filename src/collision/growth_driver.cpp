@@ -13,6 +13,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -29,12 +30,17 @@ namespace {
 
 using Impl = PlantArchitecture::Impl;
 
+// Threads that forEach runs n tasks on.
+int threadsFor(std::size_t n, const std::vector<Impl*>& impls) {
+    return std::max(1, std::min(int(impls.size()), int(n)));
+}
+
 // Runs f(index, impl) for every index, on up to impls.size() threads (one impl per thread);
 // rethrows the error of the lowest index once all have run.
 template <class F>
 void forEach(std::size_t n, const std::vector<Impl*>& impls, F&& f) {
     std::vector<std::exception_ptr> errors(n);
-    const int threads = std::max(1, std::min(int(impls.size()), int(n)));
+    const int threads = threadsFor(n, impls);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (threads > 1 && !omp_in_parallel())
     for (int i = 0; i < int(n); ++i) {
         try {
@@ -59,28 +65,66 @@ void growOne(const World& world, GrowthSlot& slot, Impl& impl, double days, std:
     clearOrgans(impl, world, *slot.plant);
 }
 
-void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which,
-             const std::vector<Impl*>& impls) {
-    if (!world.soft() || which.empty()) return;
+// Makes a plant's proxies for the next install into its memo, with their spheres and grid
+// cells, and notes whether they changed. Touches nothing the scene's queries read, so it runs
+// on the thread that grew the plant, while other plants still grow (their state is at hand).
+void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& plant, Impl& impl) {
+    PlantProxyMemo& memo = *world.memos.at(plant.id);
+    PlantProxies& next = memo.next;
+    memo.nextChanged = buildProxies(impl, plant, organs, memo, next.triangles, next.tags);
+    if (memo.nextChanged) world.index(next);
+}
+
+// Thread time spent preparing proxies during one growth step.
+struct PrepareClock {
+    std::atomic<std::int64_t> nanoseconds{0};
+    template <class F>
+    void time(F&& f) {
+        const auto start = std::chrono::steady_clock::now();
+        f();
+        nanoseconds.fetch_add(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                  std::chrono::steady_clock::now() - start)
+                                  .count(),
+                              std::memory_order_relaxed);
+    }
+};
+
+// Makes the prepared proxies of these plants the scene's and rebuilds its grid. `prepared`:
+// the seconds the preparation took (thread time over the number of threads).
+void install(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which,
+             double prepared) {
     const auto start = std::chrono::steady_clock::now();
-    std::vector<unsigned> ids;
-    for (std::size_t i : which) ids.push_back(slots[i].plant->id);
-    world.reservePlants(ids);
-    const CollisionOrgans organs = world.soft()->obstacles;
-    forEach(which.size(), impls, [&](std::size_t k, Impl& impl) {
-        PlantInstance& plant = *slots[which[k]].plant;
-        TriangleSoup soup;
-        std::vector<OrganTag> tags;
-        buildProxies(impl, plant, organs, *world.memos.at(plant.id), soup, tags);
-        world.setPlantProxies(plant.id, std::move(soup), std::move(tags));
-    });
+    for (std::size_t i : which) {
+        const unsigned id = slots[i].plant->id;
+        PlantProxyMemo& memo = *world.memos.at(id);
+        world.swapPlantProxies(id, memo.next, memo.nextChanged);
+        world.stale.erase(id);
+    }
     world.commit();
-    for (unsigned id : ids) world.stale.erase(id);
     AtomicStats& st = world.stats();
     st.sceneRefreshes.fetch_add(1, std::memory_order_relaxed);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    st.refreshSeconds.store(st.refreshSeconds.load() + seconds);
+    st.refreshSeconds.store(st.refreshSeconds.load() + prepared + seconds);
+}
+
+void reserve(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which) {
+    std::vector<unsigned> ids;
+    for (std::size_t i : which) ids.push_back(slots[i].plant->id);
+    world.reservePlants(ids);
+}
+
+void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which,
+             const std::vector<Impl*>& impls) {
+    if (!world.soft() || which.empty()) return;
+    const auto start = std::chrono::steady_clock::now();
+    reserve(world, slots, which);
+    const CollisionOrgans organs = world.soft()->obstacles;
+    forEach(which.size(), impls, [&](std::size_t k, Impl& impl) {
+        prepare(world, organs, *slots[which[k]].plant, impl);
+    });
+    install(world, slots, which,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace
@@ -120,6 +164,8 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         if (!world.hasPlant(id) || world.stale.count(id)) fresh.push_back(i);
     }
     refresh(world, slots, fresh, impls);
+    reserve(world, slots, all);
+    const CollisionOrgans organs = world.soft()->obstacles;
 
     const double interval = world.soft()->updateInterval;
     double done = 0.0;
@@ -128,11 +174,21 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         const double next = (std::floor(clock / interval + 1e-9) + 1.0) * interval;
         const bool reaches = days - done >= next - clock - 1e-9;
         const double step = reaches ? next - clock : days - done;
-        forEach(slots.size(), impls,
-                [&](std::size_t i, Impl& impl) { growOne(world, slots[i], impl, step, seed); });
+        // A step that ends on the interval refreshes the scene: each plant's proxies are
+        // prepared by the thread that grew it, right after (the scene itself is left as it
+        // stood for the plants still growing), and installed once all have grown.
+        PrepareClock prepareClock;
+        forEach(slots.size(), impls, [&](std::size_t i, Impl& impl) {
+            growOne(world, slots[i], impl, step, seed);
+            if (reaches)
+                prepareClock.time([&] { prepare(world, organs, *slots[i].plant, impl); });
+        });
         world.clock = reaches ? next : clock + step;
         done += step;
-        if (reaches) refresh(world, slots, all, impls);
+        if (reaches)
+            install(world, slots, all,
+                    double(prepareClock.nanoseconds.load()) * 1e-9 /
+                        double(threadsFor(slots.size(), impls)));
         if (progress) progress("growing", std::min(1.0, done / days));
     }
 }

@@ -109,49 +109,113 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
     std::uint32_t fallen = 0;
     for (std::size_t i = 0; i < pt.leaves.size(); ++i)
         if (pt.leaves[i].removed) fallen ^= std::uint32_t(1) << (i % 32);
-    std::memcpy(&key[k], &fallen, sizeof fallen);
+    const std::uint32_t count = std::uint32_t(pt.leaves.size());
+    std::memcpy(&key[k++], &fallen, sizeof fallen);
+    std::memcpy(&key[k++], &count, sizeof count);
     return key;
+}
+
+bool sameBits(const vec3& a, const vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The outlines of the last few prototypes met (a plant's leaves share a few).
+class OutlineLookup {
+public:
+    explicit OutlineLookup(ProxyCache& cache) : cache_(cache) {}
+    const TriangleSoup& operator()(const OrganPrototype& proto) {
+        for (const auto& [p, outline] : recent_)
+            if (p == &proto) return *outline;
+        const TriangleSoup& outline = cache_.shape(proto).outline;
+        if (recent_.size() == 16) recent_.erase(recent_.begin());
+        recent_.emplace_back(&proto, &outline);
+        return outline;
+    }
+
+private:
+    ProxyCache& cache_;
+    std::vector<std::pair<const OrganPrototype*, const TriangleSoup*>> recent_;
+};
+
+// A point of a prototype placed by `xf` (the prototype's "w = 1" column), to the bit as
+// vec3(xf * vec4(p, 1)) computes it.
+inline vec3 placed(const mat4& xf, vec3 p) {
+    return (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3]));
+}
+
+// The leaf proxies of a plant: each petiole's leaves placed again where anything that shapes
+// them changed (OrganPlacer::leaves, the tessellator's own formulas), else moved with the
+// petiole's start. `out` and `tags` are overwritten (their storage reused).
+bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, PlantProxyMemo& memo,
+                      TriangleSoup& out, std::vector<OrganTag>& tags) {
+    OrganPlacer placer(impl, plant);
+    OutlineLookup outlineOf(proxyCache(impl));
+    const std::uint32_t visit = ++memo.visit;
+    std::size_t visited = 0, n = 0;
+    bool changed = visit == 1;  // a new memo: the scene may hold anything for the plant
+    if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
+    for (const Shoot& s : plant.shoots) {
+        if (s.removed) continue;
+        auto& nodes = memo.shoots[s.id];
+        nodes.resize(s.phytomers.size());
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const Phytomer& ph = s.phytomers[k];
+            auto& petioles = nodes[k];
+            petioles.resize(ph.petioles.size());
+            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+                PlantProxyMemo::Petiole& e = petioles[j];
+                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
+                ++visited;
+                if (e.visit + 1 != visit) changed = true;  // not read at the last refresh
+                e.visit = visit;
+                vec3 start;
+                if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
+                    start = placer.leaves(s.id, k, j, e.trig, memo.placements, e.side);
+                    std::size_t corners = 0;
+                    for (const LeafPlacement& leaf : memo.placements)
+                        if (leaf.prototype) corners += outlineOf(*leaf.prototype).size();
+                    e.local.resize(corners);
+                    vec3* local = e.local.data();
+                    for (const LeafPlacement& leaf : memo.placements) {
+                        if (!leaf.prototype) continue;  // fallen
+                        // As ProxySink::writeParts places the outline.
+                        for (const vec3& p : outlineOf(*leaf.prototype))
+                            *local++ = placed(leaf.transform, p) - start;
+                    }
+                    e.key = key;
+                    e.set = true;
+                    changed = true;
+                } else {
+                    start = placer.petioleStartOn(s.id, k, e.side);
+                    changed = changed || !sameBits(start, e.start);
+                }
+                e.start = start;
+                const std::size_t m = e.local.size();
+                if (out.size() < n + m) out.resize(std::max(2 * out.size(), n + m));
+                vec3* o = out.data() + n;
+                for (std::size_t i = 0; i < m; ++i) o[i] = e.local[i] + start;
+                n += m;
+                tags.resize(n / 3, organTag(s.id, k));
+            }
+        }
+    }
+    out.resize(n);
+    if (visited != memo.visited) changed = true;  // petioles gone
+    memo.visited = visited;
+    return changed;
 }
 
 }  // namespace
 
-void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
                   PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
-    out.clear();
     tags.clear();
+    if (organs.leaves && !organs.internodes && !organs.petioles && !organs.flowers && !organs.fruit)
+        return buildLeafProxies(impl, plant, memo, out, tags);
+    out.clear();
     if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
         ProxySink sink(proxyCache(impl), organs, out, tags);
         tessellatePlant(impl, sink, plant);
-        return;
     }
-    if (!organs.leaves) return;
-    OrganPlacer placer(impl, plant);
-    TriangleSoup scratch;
-    std::vector<OrganTag> scratchTags;
-    ProxySink sink(proxyCache(impl), organs, scratch, scratchTags);
-    for (const Shoot& s : plant.shoots) {
-        if (s.removed) continue;
-        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-            const Phytomer& ph = s.phytomers[k];
-            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
-                PlantProxyMemo::Entry& e =
-                    memo.petioles[(std::uint64_t(s.id) << 40) | (std::uint64_t(k) << 8) | j];
-                const vec3 start = placer.petioleStart(s.id, k, j);
-                if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
-                    scratch.clear();
-                    scratchTags.clear();
-                    placer.petiole(sink, s.id, k, j);
-                    e.local.resize(scratch.size());
-                    for (std::size_t i = 0; i < scratch.size(); ++i) e.local[i] = scratch[i] - start;
-                    e.key = key;
-                    e.set = true;
-                }
-                for (const vec3& p : e.local) out.push_back(p + start);
-                tags.resize(out.size() / 3, organTag(s.id, k));
-            }
-        }
-    }
+    return true;
 }
 
 bool ProxySink::wants(OrganKind kind) const {

@@ -6,7 +6,6 @@
 #include <array>
 #include <map>
 #include <memory>
-#include <unordered_map>
 
 #include "collision/collision_world.h"
 #include "geometry/organ_sink.h"
@@ -35,20 +34,34 @@ ProxyCache& proxyCache(PlantArchitecture::Impl& impl);
 /// Leaf proxies of a plant's petioles kept between refreshes, relative to each petiole's
 /// start: reused while nothing that shapes the petiole and its leaves has changed (a grown
 /// leaf on a grown node keeps its proxy while the stem below it still lengthens or thickens).
+/// Only the thread refreshing the plant touches it.
 struct PlantProxyMemo {
-    /// The petiole's and internode's directions, angles, length, growth, fallen leaves.
-    using Key = std::array<float, 19>;
-    struct Entry {
+    /// The petiole's and internode's directions, angles, length, growth, leaf count, fallen
+    /// leaves.
+    using Key = std::array<float, 20>;
+    struct Petiole {
         Key key{};
-        bool set = false;
-        TriangleSoup local;
+        bool set = false;            ///< placed at least once
+        std::uint32_t visit = 0;     ///< the refresh that last read it
+        vec3 side{0.0f};             ///< the petiole's lean when last placed
+        vec3 start{0.0f};            ///< where it started at the last refresh
+        PetioleTrig trig;            ///< sines of its angles
+        TriangleSoup local;          ///< its leaves' proxies, relative to its start
     };
-    std::unordered_map<std::uint64_t, Entry> petioles;  ///< by (shoot, node, petiole)
+    /// By shoot ID, node, petiole.
+    std::vector<std::vector<std::vector<Petiole>>> shoots;
+    std::uint32_t visit = 0;         ///< refreshes so far
+    std::size_t visited = 0;         ///< petioles read at the last refresh
+    PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
+    bool nextChanged = true;         ///< whether they differ from the installed ones
+    std::vector<LeafPlacement> placements;  ///< scratch
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves
-/// alone go through `memo`; other kinds are placed afresh every time.
-void buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
+/// alone go through `memo`; other kinds are placed afresh every time. Returns false when
+/// the proxies are known to equal those `memo` gave at the last refresh, true when they may
+/// differ.
+bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
                   PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags);
 
 /// Collects proxies of the organ kinds that are obstacles.

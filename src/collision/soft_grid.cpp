@@ -2,6 +2,8 @@
 
 #include "collision/soft_grid.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -80,39 +82,113 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     auto quadAt = [](const Source& s, std::size_t t) {
         return t + 1 < s.keys->size() && (*s.keys)[t + 1] == kSecond;
     };
-    // Counting sort by bucket; large quads aside.
-    for (const Source& s : sources)
-        for (std::size_t t = 0; t < s.keys->size(); ++t) {
-            const std::uint64_t key = (*s.keys)[t];
-            if (key == kSecond) continue;
-            if (key == kLarge) {
-                large_.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
-                largeSpheres_.push_back((*s.spheres)[t]);
-                continue;
+    // A counting sort by bucket, large quads aside, on several threads: the sources are split
+    // into runs of about equal size; each run counts its quads per bucket, the counts become
+    // each run's first place in each bucket (after the earlier runs' quads there), and each
+    // run places its own. A bucket holds its quads in the sources' order, however many runs
+    // there are.
+    const int runs = total >= 8192 && !omp_in_parallel()
+                         ? std::clamp(omp_get_max_threads(), 1, std::min(8, int(sources.size())))
+                         : 1;
+    std::vector<std::size_t> firstSource(std::size_t(runs) + 1, sources.size());
+    firstSource[0] = 0;
+    for (std::size_t i = 0, seen = 0, r = 1; i < sources.size() && r < std::size_t(runs); ++i) {
+        seen += sources[i].keys->size();
+        if (seen * std::size_t(runs) >= total * r) firstSource[r++] = i + 1;
+    }
+    fill_.assign(std::size_t(runs) * buckets, 0);  // per run: counts, then places
+    struct Run {
+        float maxRadius = 0.0f;
+        std::uint32_t bucketTotal = 0;  ///< quads in this run's share of the buckets
+        std::vector<SoftTriangle> large;
+        std::vector<glm::vec4> largeSpheres;
+    };
+    std::vector<Run> run(static_cast<std::size_t>(runs));
+    const auto bucketRange = [&](int r) {
+        return std::pair{buckets * std::size_t(r) / std::size_t(runs),
+                         buckets * std::size_t(r + 1) / std::size_t(runs)};
+    };
+#pragma omp parallel num_threads(runs) if (runs > 1)
+    {
+#pragma omp for schedule(static)
+        for (int r = 0; r < runs; ++r) {
+            std::uint32_t* count = fill_.data() + std::size_t(r) * buckets;
+            Run& own = run[std::size_t(r)];
+            for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
+                const Source& s = sources[i];
+                for (std::size_t t = 0; t < s.keys->size(); ++t) {
+                    const std::uint64_t key = (*s.keys)[t];
+                    if (key == kSecond) continue;
+                    if (key == kLarge) {
+                        own.large.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t),
+                                             s.tags ? (*s.tags)[t] : 0});
+                        own.largeSpheres.push_back((*s.spheres)[t]);
+                        continue;
+                    }
+                    own.maxRadius = std::max(own.maxRadius, (*s.spheres)[t].w);
+                    ++count[bucketOf(key)];
+                }
             }
-            maxRadius_ = std::max(maxRadius_, (*s.spheres)[t].w);
-            ++start_[bucketOf(key) + 1];
         }
-    for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
-    const std::size_t n = start_[buckets];
-    small_.resize(n);
-    corners_.resize(4 * n);
-    keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
-    for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
-    fill_.assign(start_.begin(), start_.end() - 1);
-    for (const Source& s : sources)  // stable: sources' order within each bucket
-        for (std::size_t t = 0; t < s.keys->size(); ++t) {
-            const std::uint64_t key = (*s.keys)[t];
-            if (key == kLarge || key == kSecond) continue;
-            const std::uint32_t at = fill_[bucketOf(key)]++;
-            const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
-            small_[at] = q;
-            vec3* corners = corners_.data() + 4 * std::size_t(at);
-            std::copy_n(q.corners, 3, corners);
-            corners[3] = q.last();
-            keys_[at] = key;
-            for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
+#pragma omp for schedule(static)
+        for (int r = 0; r < runs; ++r) {
+            const auto [b0, b1] = bucketRange(r);
+            std::uint32_t sum = 0;
+            for (std::size_t b = b0; b < b1; ++b)
+                for (int q = 0; q < runs; ++q) sum += fill_[std::size_t(q) * buckets + b];
+            run[std::size_t(r)].bucketTotal = sum;
         }
+#pragma omp single
+        {
+            std::size_t n = 0;
+            for (const Run& r : run) n += r.bucketTotal;
+            start_[buckets] = std::uint32_t(n);
+            small_.resize(n);
+            corners_.resize(4 * n);
+            keys_.assign(n + 4, kLarge);  // padded with a key no cell has (tests go four at a time)
+            for (int k = 0; k < 4; ++k) sphereRows_[k].assign(n + 4, k < 3 ? 1e30f : 0.0f);
+        }
+#pragma omp for schedule(static)
+        for (int r = 0; r < runs; ++r) {
+            const auto [b0, b1] = bucketRange(r);
+            std::uint32_t at = 0;
+            for (int q = 0; q < r; ++q) at += run[std::size_t(q)].bucketTotal;
+            for (std::size_t b = b0; b < b1; ++b) {
+                start_[b] = at;
+                for (int q = 0; q < runs; ++q) {
+                    std::uint32_t& c = fill_[std::size_t(q) * buckets + b];
+                    const std::uint32_t here = c;
+                    c = at;
+                    at += here;
+                }
+            }
+        }
+#pragma omp for schedule(static)
+        for (int r = 0; r < runs; ++r) {
+            std::uint32_t* place = fill_.data() + std::size_t(r) * buckets;
+            for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
+                const Source& s = sources[i];
+                for (std::size_t t = 0; t < s.keys->size(); ++t) {
+                    const std::uint64_t key = (*s.keys)[t];
+                    if (key == kLarge || key == kSecond) continue;
+                    const std::uint32_t at = place[bucketOf(key)]++;
+                    const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t),
+                                         s.tags ? (*s.tags)[t] : 0};
+                    small_[at] = q;
+                    vec3* corners = corners_.data() + 4 * std::size_t(at);
+                    std::copy_n(q.corners, 3, corners);
+                    corners[3] = q.last();
+                    keys_[at] = key;
+                    for (int k = 0; k < 4; ++k) sphereRows_[k][at] = (*s.spheres)[t][k];
+                }
+            }
+        }
+    }
+    for (Run& r : run) {
+        maxRadius_ = std::max(maxRadius_, r.maxRadius);
+        large_.insert(large_.end(), r.large.begin(), r.large.end());
+        largeSpheres_.insert(largeSpheres_.end(), r.largeSpheres.begin(), r.largeSpheres.end());
+    }
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "geometry/tube.h"
 #include "model/architecture_impl.h"
 
 namespace plantarch {
@@ -38,6 +39,44 @@ public:
 /// Places every organ of the plant into `sink` (the plant's state as it stands).
 void tessellatePlant(PlantArchitecture::Impl& impl, OrganSink& sink, PlantInstance& plant);
 
+/// Cosine and sine of an angle.
+struct SinCos {
+    float c = 1.0f, s = 0.0f;
+};
+
+/// The sines and cosines of an organ's pitch, yaw and roll.
+struct TurnTrig {
+    SinCos pitch, yaw, roll;
+};
+
+/// What placing a petiole's leaves takes of its angles and its leaves' angles: kept by a caller
+/// that places the same petiole again and again (OrganPlacer::leaves), so the sines are taken
+/// again only where an angle changed. `set` false: nothing kept yet.
+struct PetioleTrig {
+    struct Leaf {
+        float pitch = 0.0f, yaw = 0.0f, roll = 0.0f;
+        int leaflet = 0;      ///< LeafOrgan::leafletIndex
+        TurnTrig turn;
+        SinCos swing;         ///< lateral leaflets: their swing toward the tip (yaw)
+        bool set = false;
+    };
+    float azimuth = 0.0f, pitch = 0.0f;
+    SinCos azimuthTrig, pitchTrig;
+    bool set = false;
+    // The petiole's curve for its last direction and curvature sign.
+    vec3 direction{0.0f};
+    bool bendsUp = false, curveSet = false;
+    geometry::CurveBasis curve;
+    std::vector<Leaf> leaves;
+};
+
+/// One leaf of a petiole as tessellation places it: its prototype (null: fallen) and the
+/// transform of the prototype's coordinates to the world.
+struct LeafPlacement {
+    const OrganPrototype* prototype = nullptr;
+    mat4 transform{1.0f};
+};
+
 /// Places single organs of one plant, for trials (collision clearance). Node positions are
 /// computed once when it is made: the plant's shape must not change while it is used.
 class OrganPlacer {
@@ -51,6 +90,16 @@ public:
     void petiole(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole);
     /// Where that petiole starts (its organs move with this point when the plant below grows).
     vec3 petioleStart(unsigned shoot, unsigned node, unsigned petiole) const;
+    /// The leaves of that petiole, placed by the same formulas as `petiole` places them but
+    /// with no mesh made and no sink: `out` gets one entry per leaf, in order. `trig` keeps the
+    /// angles' sines from one call to the next (for this petiole only). Returns where the
+    /// petiole starts; `side` is its lean (see petioleStartOn).
+    vec3 leaves(unsigned shoot, unsigned node, unsigned petiole, PetioleTrig& trig,
+                std::vector<LeafPlacement>& out, vec3& side);
+    /// Where the petiole of node `node` with lean `side` starts: equal to petioleStart while
+    /// its internode's direction, guide and roll reference and its own azimuth are those
+    /// `side` was had with (the internode's length and radius may differ).
+    vec3 petioleStartOn(unsigned shoot, unsigned node, vec3 side) const;
     /// A floral bud's peduncle, flowers or fruit: an axillary bud (petiole, bud) of a node, or
     /// the shoot's terminal bud `bud` when `terminal`.
     void floralBud(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole, unsigned bud,

@@ -3,6 +3,7 @@
 // and organs keep their object IDs while their shapes change.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -20,20 +21,44 @@ namespace {
 constexpr float kDeg = 3.14159265358979f / 180.0f;
 const vec3 kUp{0.0f, 0.0f, 1.0f};
 
-vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
-    const float a = azimuth * kDeg;
-    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
+// Every angle goes through here, so a sine kept by a caller (OrganPlacer::leaves) is the one
+// tessellation computes.
+SinCos sinCosDeg(float degrees) {
+    const float a = degrees * kDeg;
+    return {std::cos(a), std::sin(a)};
 }
 
-// Point and tangent at fraction `f` of the arc length of a polyline.
-std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts, float f) {
+vec3 azimuthDirection(vec3 axis, vec3 reference, SinCos a) {
+    return a.c * reference + a.s * glm::cross(axis, reference);
+}
+
+vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
+    return azimuthDirection(axis, reference, sinCosDeg(azimuth));
+}
+
+// The segment lengths of a polyline and their sum, measured once for all the organs placed
+// along it.
+struct PathMeasure {
+    std::vector<float> lengths;
     float total = 0.0f;
-    for (std::size_t i = 1; i < pts.size(); ++i) total += glm::length(pts[i] - pts[i - 1]);
-    float want = std::clamp(f, 0.0f, 1.0f) * total;
+
+    void measure(const std::vector<vec3>& pts) {
+        lengths.resize(pts.empty() ? 0 : pts.size() - 1);
+        total = 0.0f;
+        for (std::size_t i = 1; i < pts.size(); ++i) {
+            lengths[i - 1] = glm::length(pts[i] - pts[i - 1]);
+            total += lengths[i - 1];
+        }
+    }
+};
+
+// Point and tangent at fraction `f` of the arc length of a polyline measured by `m`.
+std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts, const PathMeasure& m, float f) {
+    float want = std::clamp(f, 0.0f, 1.0f) * m.total;
     for (std::size_t i = 1; i < pts.size(); ++i) {
-        const vec3 d = pts[i] - pts[i - 1];
-        const float len = glm::length(d);
+        const float len = m.lengths[i - 1];
         if (want <= len || i + 1 == pts.size()) {
+            const vec3 d = pts[i] - pts[i - 1];
             const vec3 t = len > 0.0f ? d / len : vec3(0, 0, 1);
             return {pts[i - 1] + t * std::min(want, len), t};
         }
@@ -60,15 +85,19 @@ OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
 }
 
 // Pitch lifts x toward z, yaw turns x toward y about z, roll turns about x.
-OrganFrame rotated(OrganFrame f, float pitch, float yaw, float roll) {
-    const float p = pitch * kDeg, w = yaw * kDeg, r = roll * kDeg;
-    const vec3 x1 = std::cos(p) * f.x + std::sin(p) * f.z;
-    const vec3 z1 = -std::sin(p) * f.x + std::cos(p) * f.z;
-    const vec3 x2 = std::cos(w) * x1 + std::sin(w) * f.y;
-    const vec3 y2 = -std::sin(w) * x1 + std::cos(w) * f.y;
-    const vec3 y3 = std::cos(r) * y2 + std::sin(r) * z1;
-    const vec3 z3 = -std::sin(r) * y2 + std::cos(r) * z1;
+OrganFrame rotated(OrganFrame f, const TurnTrig& t) {
+    const SinCos p = t.pitch, w = t.yaw, r = t.roll;
+    const vec3 x1 = p.c * f.x + p.s * f.z;
+    const vec3 z1 = -p.s * f.x + p.c * f.z;
+    const vec3 x2 = w.c * x1 + w.s * f.y;
+    const vec3 y2 = -w.s * x1 + w.c * f.y;
+    const vec3 y3 = r.c * y2 + r.s * z1;
+    const vec3 z3 = -r.s * y2 + r.c * z1;
     return {x2, y3, z3};
+}
+
+OrganFrame rotated(OrganFrame f, float pitch, float yaw, float roll) {
+    return rotated(f, TurnTrig{sinCosDeg(pitch), sinCosDeg(yaw), sinCosDeg(roll)});
 }
 
 mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
@@ -79,6 +108,73 @@ mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
     m[3] = glm::vec4(origin, 1.0f);
     return m;
 }
+
+// The sines a leaf's orientation takes of its angles.
+PetioleTrig::Leaf leafTrig(const LeafOrgan& leaf) {
+    PetioleTrig::Leaf t;
+    t.pitch = leaf.pitch;
+    t.yaw = leaf.yaw;
+    t.roll = leaf.roll;
+    t.leaflet = leaf.leafletIndex;
+    t.set = true;
+    if (leaf.leafletIndex != 0) {
+        // Lateral leaflets are swung by yaw before they turn; their roll is mirrored.
+        const float sideSign = leaf.leafletIndex < 0 ? 1.0f : -1.0f;
+        t.swing = sinCosDeg(leaf.yaw);
+        t.turn = {sinCosDeg(leaf.pitch), sinCosDeg(0.0f), sinCosDeg(leaf.roll * sideSign)};
+    } else {
+        t.turn = {sinCosDeg(leaf.pitch), sinCosDeg(leaf.yaw), sinCosDeg(leaf.roll)};
+    }
+    return t;
+}
+
+// Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along
+// `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`) and
+// scaled by `scale`; `offset` is the prototype's leaf_offset.
+mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const PetioleTrig::Leaf& t, float scale,
+                   vec3 offset) {
+    OrganFrame f = uprightFrame(tangent, side);
+    if (t.leaflet != 0) {
+        // Lateral leaflet: perpendicular to the rachis on its side (left +y, right -y),
+        // swung toward the tip by yaw; roll mirrored so pairs are symmetric.
+        const float sideSign = t.leaflet < 0 ? 1.0f : -1.0f;
+        OrganFrame lf;
+        lf.z = f.z;
+        lf.x = glm::normalize(t.swing.s * f.x + t.swing.c * sideSign * f.y);
+        lf.y = glm::cross(lf.z, lf.x);
+        f = rotated(lf, t.turn);
+    } else {
+        f = rotated(f, t.turn);
+    }
+    offset *= scale;
+    const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
+    return placement(f, base, scale);
+}
+
+// Which prototype a leaf uses: its parameters' prototype, the leaflet whose outline it takes,
+// its variant.
+struct PrototypeSlot {
+    const LeafPrototype* proto;
+    int leaflet;
+    unsigned variant;
+    bool operator==(const PrototypeSlot&) const = default;
+};
+
+PrototypeSlot prototypeSlot(const LeafParameters& lp, const LeafOrgan& leaf) {
+    const LeafPrototype& proto = lp.prototype;
+    const unsigned variants = proto.unique_prototypes;
+    // Leaflets use the texture (outline) of their own index when one is given, else the tip's
+    // for the tip leaflet and the side's first for lateral ones.
+    const int leaflet = proto.leaf_texture_file.count(leaf.leafletIndex) ? leaf.leafletIndex
+                        : leaf.leafletIndex == 0                         ? 0
+                                                                         : (leaf.leafletIndex < 0 ? -1 : 1);
+    const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
+    return {&proto, leaflet, variant};
+}
+
+// Whether two floats are the same to the bit (-0 and 0 differ: their sines do).
+bool sameBits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
+bool sameBits(vec3 a, vec3 b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
 
 // Writes organs into the Context, reusing their objects.
 class ContextSink final : public OrganSink {
@@ -227,6 +323,12 @@ struct Tessellator {
     PlantInstance& plant;
     OrganSink* sink = nullptr;
     std::vector<std::vector<vec3>> nodes;  // per shoot
+    // Scratch kept from one organ to the next: the petiole being placed, the peduncle.
+    std::vector<vec3> petiolePath;
+    PathMeasure petioleMeasure, peduncleMeasure;
+    std::vector<std::pair<PrototypeSlot, const OrganPrototype*>> recentPrototypes;
+    std::string lastLabel;
+    const PhytomerParameters* lastParameters = nullptr;
 
     void computeNodes() {
         // Parents come before their children (a shoot grows from one made earlier), so each
@@ -294,14 +396,24 @@ struct Tessellator {
         vec3 side, dir, start;
     };
     PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node, const Petiole& pt) const {
+        return petioleFrame(s, ph, node, pt, sinCosDeg(pt.azimuth), sinCosDeg(pt.pitch));
+    }
+    // The same with the sines of the petiole's azimuth and pitch given.
+    PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node, const Petiole& pt,
+                              SinCos azimuth, SinCos pitch) const {
         const Internode& in = ph.internode;
-        const vec3 top = nodes[s.id][std::size_t(node) + 1];
-        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth);
-        side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
-        const float p = pt.pitch * kDeg;
+        const vec3 side = petioleSide(in, azimuth);
         const vec3 dir =
-            turned(glm::normalize(std::cos(p) * in.direction + std::sin(p) * side), pt.clearance);
-        return {side, dir, top + side * in.radius * 0.5f};
+            turned(glm::normalize(pitch.c * in.direction + pitch.s * side), pt.clearance);
+        return {side, dir, startOn(s, node, side)};
+    }
+    static vec3 petioleSide(const Internode& in, SinCos azimuth) {
+        const vec3 side = azimuthDirection(in.guide, in.rollReference, azimuth);
+        return glm::normalize(side - glm::dot(side, in.direction) * in.direction);
+    }
+    vec3 startOn(const Shoot& s, int node, vec3 side) const {
+        const Internode& in = s.phytomers[std::size_t(node)].internode;
+        return nodes[s.id][std::size_t(node) + 1] + side * in.radius * 0.5f;
     }
 
     void petiole(Shoot& s, Phytomer& ph, int node, Petiole& pt, const PhytomerParameters& pp) {
@@ -309,8 +421,8 @@ struct Tessellator {
         const auto [side, dir, start] = petioleFrame(s, ph, node, pt);
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
-        std::vector<vec3> path = geometry::curvedPath(start, dir, std::max(length, 1e-6f),
-                                                      pt.curvature, kUp, segs);
+        std::vector<vec3>& path = petiolePath;
+        geometry::curvedPath(start, dir, std::max(length, 1e-6f), pt.curvature, kUp, segs, path);
         // A petiole falls with its leaves (leaf fall, senescence, pruning).
         const bool bare = !pt.leaves.empty() &&
                           std::all_of(pt.leaves.begin(), pt.leaves.end(),
@@ -331,38 +443,94 @@ struct Tessellator {
         } else {
             sink->remove(pt.object);
         }
-        if (sink->wants(OrganKind::Leaf))
-            for (LeafOrgan& leaf : pt.leaves) placeLeaf(s, ph, node, path, side, leaf, pp.leaf);
+        if (sink->wants(OrganKind::Leaf)) {
+            petioleMeasure.measure(path);
+            for (LeafOrgan& leaf : pt.leaves) placeLeaf(s, ph, node, side, leaf, pp.leaf);
+        }
     }
 
-    void placeLeaf(Shoot& s, Phytomer& ph, int node, const std::vector<vec3>& path, vec3 side,
-                   LeafOrgan& leaf, const LeafParameters& lp) {
+    // A leaf along petiolePath (measured).
+    void placeLeaf(Shoot& s, Phytomer& ph, int node, vec3 side, LeafOrgan& leaf,
+                   const LeafParameters& lp) {
         if (leaf.removed) {
             sink->removeAll(leaf.objects);
             return;
         }
-        auto [origin, tangent] = alongPath(path, leaf.position);
-        OrganFrame f = uprightFrame(tangent, side);
-        if (leaf.leafletIndex != 0) {
-            // Lateral leaflet: perpendicular to the rachis on its side (left +y, right -y),
-            // swung toward the tip by yaw; roll mirrored so pairs are symmetric.
-            const float sideSign = leaf.leafletIndex < 0 ? 1.0f : -1.0f;
-            const float w = leaf.yaw * kDeg;
-            OrganFrame lf;
-            lf.z = f.z;
-            lf.x = glm::normalize(std::sin(w) * f.x + std::cos(w) * sideSign * f.y);
-            lf.y = glm::cross(lf.z, lf.x);
-            f = rotated(lf, leaf.pitch, 0.0f, leaf.roll * sideSign);
-        } else {
-            f = rotated(f, leaf.pitch, leaf.yaw, leaf.roll);
-        }
+        const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const float scale = leaf.scale * ph.leafFraction;
-        const LeafPrototype& proto = lp.prototype;
-        const OrganPrototype& shape = impl.leafPrototype(lp, leaf);
-        const vec3 offset = proto.leaf_offset * scale;
-        const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
-        sink->writeParts(leaf.objects, shape, placement(f, base, scale),
+        const mat4 xf =
+            leafTransform(origin, tangent, side, leafTrig(leaf), scale, lp.prototype.leaf_offset);
+        sink->writeParts(leaf.objects, impl.leafPrototype(lp, leaf), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
+    }
+
+    // The leaves of a petiole as placeLeaf places them, with the sines kept in `trig`.
+    vec3 leaves(Shoot& s, int node, Petiole& pt, PetioleTrig& trig,
+                std::vector<LeafPlacement>& out, vec3& side) {
+        Phytomer& ph = s.phytomers[std::size_t(node)];
+        const PhytomerParameters& pp = phytomerParameters(ph);
+        if (!trig.set || !sameBits(trig.azimuth, pt.azimuth) || !sameBits(trig.pitch, pt.pitch)) {
+            trig.azimuth = pt.azimuth;
+            trig.pitch = pt.pitch;
+            trig.azimuthTrig = sinCosDeg(pt.azimuth);
+            trig.pitchTrig = sinCosDeg(pt.pitch);
+            trig.set = true;
+        }
+        const auto [petioleSide, dir, start] =
+            petioleFrame(s, ph, node, pt, trig.azimuthTrig, trig.pitchTrig);
+        side = petioleSide;
+        const float length = pt.length * ph.leafFraction;
+        const unsigned segs = std::max(1u, pp.petiole.length_segments);
+        const bool bendsUp = pt.curvature >= 0.0f;
+        if (!trig.curveSet || trig.bendsUp != bendsUp || !sameBits(trig.direction, dir)) {
+            trig.curve = geometry::curveBasis(dir, bendsUp ? kUp : -kUp);
+            trig.direction = dir;
+            trig.bendsUp = bendsUp;
+            trig.curveSet = true;
+        }
+        geometry::curvedPath(start, trig.curve, std::max(length, 1e-6f), pt.curvature, segs,
+                             petiolePath);
+        petioleMeasure.measure(petiolePath);
+        const LeafParameters& lp = pp.leaf;
+        out.resize(pt.leaves.size());
+        trig.leaves.resize(pt.leaves.size());
+        for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
+            const LeafOrgan& leaf = pt.leaves[i];
+            if (leaf.removed) {
+                out[i].prototype = nullptr;
+                continue;
+            }
+            PetioleTrig::Leaf& t = trig.leaves[i];
+            if (!t.set || t.leaflet != leaf.leafletIndex || !sameBits(t.pitch, leaf.pitch) ||
+                !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll))
+                t = leafTrig(leaf);
+            const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
+            const float scale = leaf.scale * ph.leafFraction;
+            out[i].transform = leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
+            out[i].prototype = &leafPrototype(lp, leaf);
+        }
+        return start;
+    }
+
+    // The phytomer parameters of a phytomer's shoot type (the last one at hand: a plant's
+    // phytomers mostly share one).
+    const PhytomerParameters& phytomerParameters(const Phytomer& ph) {
+        if (!lastParameters || ph.parametersLabel != lastLabel) {
+            lastParameters = &impl.shootTypeFor(plant, ph.parametersLabel).phytomer_parameters;
+            lastLabel = ph.parametersLabel;
+        }
+        return *lastParameters;
+    }
+
+    // impl.leafPrototype with the last few answers at hand (a plant's leaves share a few).
+    const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf) {
+        const PrototypeSlot slot = prototypeSlot(lp, leaf);
+        for (const auto& [key, shape] : recentPrototypes)
+            if (key == slot) return *shape;
+        const OrganPrototype& shape = impl.leafPrototype(lp, leaf);
+        if (recentPrototypes.size() == 16) recentPrototypes.erase(recentPrototypes.begin());
+        recentPrototypes.emplace_back(slot, &shape);
+        return shape;
     }
 
     // The template a floral bud is drawn from: its own when a rule function gave it one.
@@ -438,8 +606,9 @@ struct Tessellator {
         request.parameters = fruit ? inf.fruit_prototype_parameters : inf.flower_prototype_parameters;
         request.color = fruit ? inf.fruit_color : inf.flower_color;
         request.subdivisions = fruit ? inf.fruit_subdivisions : inf.flower_subdivisions;
+        peduncleMeasure.measure(path);
         for (FlowerOrgan& fl : fb.flowers) {
-            auto [origin, tangent] = alongPath(path, fl.position);
+            auto [origin, tangent] = alongPath(path, peduncleMeasure, fl.position);
             OrganFrame f = uprightFrame(tangent, side);
             // Flowers stand on alternating sides of the peduncle (azimuth about its axis).
             const float az = fl.azimuth * kDeg;
@@ -485,12 +654,9 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
                                                               const LeafOrgan& leaf) {
     const LeafPrototype& proto = lp.prototype;
     const unsigned variants = proto.unique_prototypes;
-    // Leaflets use the texture (outline) of their own index when one is given, else the tip's
-    // for the tip leaflet and the side's first for lateral ones.
-    const int leaflet = proto.leaf_texture_file.count(leaf.leafletIndex) ? leaf.leafletIndex
-                        : leaf.leafletIndex == 0                         ? 0
-                                                                         : (leaf.leafletIndex < 0 ? -1 : 1);
-    const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
+    const PrototypeSlot slot = prototypeSlot(lp, leaf);
+    const int leaflet = slot.leaflet;
+    const unsigned variant = slot.variant;
     const auto fast = prototypeMemo.find(std::make_tuple(&proto, leaflet, variant));
     if (fast != prototypeMemo.end()) return *fast->second;
     auto memo = prototypeKeys.find(&proto);
@@ -566,6 +732,18 @@ vec3 OrganPlacer::petioleStart(unsigned shoot, unsigned node, unsigned petiole) 
     const Shoot& s = t.plant.shoots[shoot];
     const Phytomer& ph = s.phytomers[node];
     return t.petioleFrame(s, ph, int(node), ph.petioles[petiole]).start;
+}
+
+vec3 OrganPlacer::leaves(unsigned shoot, unsigned node, unsigned petiole, PetioleTrig& trig,
+                         std::vector<LeafPlacement>& out, vec3& side) {
+    Tessellator& t = state_->tessellator;
+    Shoot& s = t.plant.shoots[shoot];
+    return t.leaves(s, int(node), s.phytomers[node].petioles[petiole], trig, out, side);
+}
+
+vec3 OrganPlacer::petioleStartOn(unsigned shoot, unsigned node, vec3 side) const {
+    const Tessellator& t = state_->tessellator;
+    return t.startOn(t.plant.shoots[shoot], int(node), side);
 }
 
 void OrganPlacer::floralBud(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole,

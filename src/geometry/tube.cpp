@@ -99,35 +99,51 @@ Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last, 
 
 std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float curvature,
                              vec3 bendToward, unsigned segments) {
-    if (segments == 0) segments = 1;
     std::vector<vec3> pts;
-    pts.reserve(segments + 1);
-    pts.push_back(start);
-    const vec3 d0 = glm::normalize(direction);
-    const float step = length / float(segments);
-    const vec3 target = curvature >= 0.0f ? bendToward : -bendToward;
+    curvedPath(start, direction, length, curvature, bendToward, segments, pts);
+    return pts;
+}
+
+void curvedPath(vec3 start, vec3 direction, float length, float curvature, vec3 bendToward,
+                unsigned segments, std::vector<vec3>& pts) {
+    curvedPath(start, curveBasis(direction, curvature >= 0.0f ? bendToward : -bendToward), length,
+               curvature, segments, pts);
+}
+
+CurveBasis curveBasis(vec3 direction, vec3 target) {
     // The path bends in the plane of d0 and the target, by a constant angle per length, until
     // it points at the target: at angle theta from d0 it runs along cos(theta) d0 + sin(theta) u.
-    const vec3 across = target - glm::dot(target, d0) * d0;
-    const float sinA = glm::length(glm::cross(d0, target));
+    CurveBasis b;
+    b.d0 = glm::normalize(direction);
+    b.sinA = glm::length(glm::cross(b.d0, target));
+    if (b.sinA < 1e-7f) return b;  // aligned or opposite: straight
+    const vec3 across = target - glm::dot(target, b.d0) * b.d0;
+    b.u = across / glm::length(across);
+    b.limit = std::atan2(b.sinA, glm::dot(b.d0, target));
+    return b;
+}
+
+void curvedPath(vec3 start, const CurveBasis& b, float length, float curvature,
+                unsigned segments, std::vector<vec3>& pts) {
+    if (segments == 0) segments = 1;
+    pts.resize(segments + 1);
+    pts[0] = start;
+    const float step = length / float(segments);
     const float turn = std::abs(curvature) * step * kPi / 180.0f;  // radians per step
     vec3 p = start;
-    if (sinA < 1e-7f || turn == 0.0f) {  // straight (aligned, opposite, or no curvature)
+    if (b.sinA < 1e-7f || turn == 0.0f) {  // straight (aligned, opposite, or no curvature)
         for (unsigned s = 0; s < segments; ++s) {
-            p += d0 * step;
-            pts.push_back(p);
+            p += b.d0 * step;
+            pts[s + 1] = p;
         }
-        return pts;
+        return;
     }
-    const vec3 u = across / glm::length(across);
-    const float limit = std::atan2(sinA, glm::dot(d0, target));
     for (unsigned s = 0; s < segments; ++s) {
         // Half a step's turn before the step and half after keeps the path symmetric in s.
-        const float theta = std::min(turn * (float(s) + 0.5f), limit);
-        p += (std::cos(theta) * d0 + std::sin(theta) * u) * step;
-        pts.push_back(p);
+        const float theta = std::min(turn * (float(s) + 0.5f), b.limit);
+        p += (std::cos(theta) * b.d0 + std::sin(theta) * b.u) * step;
+        pts[s + 1] = p;
     }
-    return pts;
 }
 
 }  // namespace plantarch::geometry

@@ -35,6 +35,23 @@ Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last,
 /// direction, so a curve never overshoots. Returns segments + 1 points.
 std::vector<vec3> curvedPath(vec3 start, vec3 direction, float length, float curvature,
                              vec3 bendToward, unsigned segments);
+/// The same into `out` (its storage reused).
+void curvedPath(vec3 start, vec3 direction, float length, float curvature, vec3 bendToward,
+                unsigned segments, std::vector<vec3>& out);
+
+/// What a curved path takes of its direction and of the direction it bends toward (the
+/// bendToward of curvedPath, negated for negative curvature): the same for paths that differ
+/// only in start, length and the curvature's size, so it can be kept for them.
+struct CurveBasis {
+    vec3 d0{0.0f, 0.0f, 1.0f};  ///< unit direction
+    vec3 u{0.0f};               ///< unit, across d0 toward the target
+    float sinA = 0.0f;          ///< sine of the angle between them (below 1e-7: straight)
+    float limit = 0.0f;         ///< that angle: the path turns no farther
+};
+CurveBasis curveBasis(vec3 direction, vec3 target);
+/// curvedPath on a basis from curveBasis (with the target for this curvature's sign).
+void curvedPath(vec3 start, const CurveBasis& basis, float length, float curvature,
+                unsigned segments, std::vector<vec3>& out);
 
 /// A unit vector perpendicular to `v` (any, but deterministic).
 vec3 anyPerpendicular(vec3 v);
