@@ -168,13 +168,13 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                 e.visit = visit;
                 vec3 start;
                 if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
-                    start = placer.leaves(s.id, k, j, e.trig, memo.placements, e.side);
+                    start = placer.leaves(s.id, k, j, e.trig, memo.leaves, e.side);
                     std::size_t corners = 0;
-                    for (const LeafPlacement& leaf : memo.placements)
+                    for (const LeafPlacement& leaf : memo.leaves)
                         if (leaf.prototype) corners += outlineOf(*leaf.prototype).size();
                     e.local.resize(corners);
                     vec3* local = e.local.data();
-                    for (const LeafPlacement& leaf : memo.placements) {
+                    for (const LeafPlacement& leaf : memo.leaves) {
                         if (!leaf.prototype) continue;  // fallen
                         // As ProxySink::writeParts places the outline.
                         for (const vec3& p : outlineOf(*leaf.prototype))
@@ -183,6 +183,7 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     e.key = key;
                     e.set = true;
                     changed = true;
+                    ++memo.placements;
                 } else {
                     start = placer.petioleStartOn(s.id, k, e.side);
                     changed = changed || !sameBits(start, e.start);
@@ -200,6 +201,7 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
     out.resize(n);
     if (visited != memo.visited) changed = true;  // petioles gone
     memo.visited = visited;
+    memo.reads += visited;
     return changed;
 }
 

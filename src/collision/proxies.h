@@ -52,9 +52,10 @@ struct PlantProxyMemo {
     std::vector<std::vector<std::vector<Petiole>>> shoots;
     std::uint32_t visit = 0;         ///< refreshes so far
     std::size_t visited = 0;         ///< petioles read at the last refresh
+    std::uint64_t reads = 0, placements = 0;  ///< petioles read and placed again, in all
     PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
     bool nextChanged = true;         ///< whether they differ from the installed ones
-    std::vector<LeafPlacement> placements;  ///< scratch
+    std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves
