@@ -17,6 +17,7 @@
 #include "collision/proxies.h"
 #include "geometry/organ_sink.h"
 #include "model/architecture_impl.h"
+#include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
@@ -49,11 +50,15 @@ std::vector<PlacedLeaf> tessellatedLeaves(Impl& impl, PlantInstance& plant) {
 }
 
 using PetioleID = std::tuple<unsigned, unsigned, unsigned>;
+struct KeptTrig {
+    PetioleTrig petiole;
+    std::vector<LeafTrig> leaves;
+};
 
 // The same leaves by OrganPlacer::leaves, with the sines kept in `trigs` from call to call.
 // Checks on the way that the start it returns is petioleStart's and petioleStartOn's.
 std::vector<PlacedLeaf> placerLeaves(Impl& impl, PlantInstance& plant,
-                                     std::map<PetioleID, PetioleTrig>& trigs) {
+                                     std::map<PetioleID, KeptTrig>& trigs) {
     std::vector<PlacedLeaf> out;
     OrganPlacer placer(impl, plant);
     std::vector<LeafPlacement> leaves;
@@ -62,7 +67,9 @@ std::vector<PlacedLeaf> placerLeaves(Impl& impl, PlantInstance& plant,
         for (unsigned k = 0; k < s.phytomers.size(); ++k)
             for (unsigned j = 0; j < s.phytomers[k].petioles.size(); ++j) {
                 vec3 side;
-                const vec3 start = placer.leaves(s.id, k, j, trigs[{s.id, k, j}], leaves, side);
+                KeptTrig& kept = trigs[{s.id, k, j}];
+                kept.leaves.resize(s.phytomers[k].petioles[j].leaves.size());
+                const vec3 start = placer.leaves(s.id, k, j, kept.petiole, kept.leaves, leaves, side);
                 const vec3 expected = placer.petioleStart(s.id, k, j);
                 const vec3 on = placer.petioleStartOn(s.id, k, side);
                 EXPECT_EQ(std::memcmp(&start, &expected, sizeof start), 0);
@@ -133,7 +140,7 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     arch.loadPlantModelFromLibrary("bean");
     const unsigned id = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 25.0f);
     Impl& impl = implOf(arch);
-    std::map<PetioleID, PetioleTrig> trigs;
+    std::map<PetioleID, KeptTrig> trigs;
     expectSameLeaves(placerLeaves(impl, impl.plant(id), trigs),
                      tessellatedLeaves(impl, impl.plant(id)));
     ASSERT_GT(trigs.size(), 10u);
@@ -168,8 +175,18 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     Internode& in = longest.phytomers[1].internode;
     in.direction = glm::normalize(in.direction + vec3(0.1f, 0.0f, 0.0f));
     expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    // One kept angle per leaf, or an error.
+    {
+        OrganPlacer placer(impl, plant);
+        KeptTrig& kept = trigs.begin()->second;
+        const auto [s, k, j] = trigs.begin()->first;
+        std::vector<LeafTrig> fewer(kept.leaves.size() - 1);
+        std::vector<LeafPlacement> leaves;
+        vec3 side;
+        EXPECT_THROW(placer.leaves(s, k, j, kept.petiole, fewer, leaves, side), Error);
+    }
     // And fresh sines give the same.
-    std::map<PetioleID, PetioleTrig> fresh;
+    std::map<PetioleID, KeptTrig> fresh;
     expectSameLeaves(placerLeaves(impl, plant, fresh), tessellatedLeaves(impl, plant));
 }
 
@@ -338,4 +355,22 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
     EXPECT_EQ(memo.placements, placed + 1);
     EXPECT_LT(soup.size(), before);
     expectFresh();
+
+    // Leaves fall everywhere, one a petiole at a time, until none is left (petioles whose
+    // proxies shrink leave room behind in the memo, which is taken back on the way).
+    for (int round = 0; round < 4; ++round) {
+        for (Shoot& s : plant.shoots)
+            for (Phytomer& ph : s.phytomers)
+                for (Petiole& pt : ph.petioles) {
+                    auto standing = std::find_if(pt.leaves.rbegin(), pt.leaves.rend(),
+                                                 [](const LeafOrgan& l) { return !l.removed; });
+                    if (standing != pt.leaves.rend()) standing->removed = true;
+                }
+        EXPECT_EQ(collision::buildProxies(impl, plant, leaves, memo, soup, tags), round < 3);
+        expectFresh();
+    }
+    EXPECT_TRUE(soup.empty());
+    std::size_t kept = 0;
+    for (const auto& m : memo.shoots) kept += m.local.size();
+    EXPECT_LT(kept, before / 2);  // taken back
 }

@@ -141,6 +141,46 @@ inline vec3 placed(const mat4& xf, vec3 p) {
     return (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3]));
 }
 
+// Drops what no petiole of the shoot uses from its arrays once it is as much as they use.
+void compact(PlantProxyMemo::Shoot& m) {
+    if (m.unusedCorners > 64 && 2 * m.unusedCorners > m.local.size()) {
+        TriangleSoup local;
+        local.reserve(m.local.size() - m.unusedCorners);
+        for (PlantProxyMemo::Petiole& e : m.petioles) {
+            const std::uint32_t first = std::uint32_t(local.size());
+            local.insert(local.end(), m.local.begin() + e.first, m.local.begin() + e.first + e.corners);
+            e.first = first;
+        }
+        m.local = std::move(local);
+        m.unusedCorners = 0;
+    }
+    if (m.unusedLeaves > 16 && 2 * m.unusedLeaves > m.leafTrig.size()) {
+        std::vector<LeafTrig> trig;
+        trig.reserve(m.leafTrig.size() - m.unusedLeaves);
+        for (PlantProxyMemo::Petiole& e : m.petioles) {
+            const std::uint32_t first = std::uint32_t(trig.size());
+            trig.insert(trig.end(), m.leafTrig.begin() + e.leafFirst,
+                        m.leafTrig.begin() + e.leafFirst + e.leaves);
+            e.leafFirst = first;
+        }
+        m.leafTrig = std::move(trig);
+        m.unusedLeaves = 0;
+    }
+}
+
+// Drops the shoot's petioles of nodes `node` on.
+void truncate(PlantProxyMemo::Shoot& m, std::size_t node) {
+    if (node + 1 >= m.nodeFirst.size()) return;
+    const std::uint32_t keep = m.nodeFirst[node];
+    for (std::size_t i = keep; i < m.petioles.size(); ++i) {
+        m.unusedCorners += m.petioles[i].corners;
+        m.unusedLeaves += m.petioles[i].leaves;
+    }
+    m.petioles.resize(keep);
+    m.trig.resize(keep);
+    m.nodeFirst.resize(node + 1);
+}
+
 // The leaf proxies of a plant: each petiole's leaves placed again where anything that shapes
 // them changed (OrganPlacer::leaves, the tessellator's own formulas), else moved with the
 // petiole's start. `out` and `tags` are overwritten (their storage reused).
@@ -154,26 +194,48 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
     if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
     for (const Shoot& s : plant.shoots) {
         if (s.removed) continue;
-        auto& nodes = memo.shoots[s.id];
-        nodes.resize(s.phytomers.size());
+        PlantProxyMemo::Shoot& m = memo.shoots[s.id];
+        compact(m);
+        truncate(m, s.phytomers.size());  // nodes pruned
         for (unsigned k = 0; k < s.phytomers.size(); ++k) {
             const Phytomer& ph = s.phytomers[k];
-            auto& petioles = nodes[k];
-            petioles.resize(ph.petioles.size());
-            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                PlantProxyMemo::Petiole& e = petioles[j];
-                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
+            const std::uint32_t count = std::uint32_t(ph.petioles.size());
+            if (k + 1 < m.nodeFirst.size() && m.nodeFirst[k + 1] - m.nodeFirst[k] != count)
+                truncate(m, k);  // the node's petioles changed: it and the nodes above anew
+            if (k + 1 == m.nodeFirst.size()) {  // a node new to the memo
+                m.nodeFirst.push_back(m.nodeFirst[k] + count);
+                m.petioles.resize(m.nodeFirst.back());
+                m.trig.resize(m.nodeFirst.back());
+            }
+            for (unsigned j = 0; j < count; ++j) {
+                const std::size_t index = m.nodeFirst[k] + j;
+                PlantProxyMemo::Petiole& e = m.petioles[index];
+                const Petiole& pt = ph.petioles[j];
+                const PlantProxyMemo::Key key = petioleKey(ph, pt);
                 ++visited;
                 if (e.visit + 1 != visit) changed = true;  // not read at the last refresh
                 e.visit = visit;
                 vec3 start;
                 if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
-                    start = placer.leaves(s.id, k, j, e.trig, memo.leaves, e.side);
-                    std::size_t corners = 0;
+                    if (e.leaves != pt.leaves.size()) {  // room for its leaves' sines
+                        m.unusedLeaves += e.leaves;
+                        e.leafFirst = std::uint32_t(m.leafTrig.size());
+                        e.leaves = std::uint32_t(pt.leaves.size());
+                        m.leafTrig.resize(m.leafTrig.size() + e.leaves);
+                    }
+                    start = placer.leaves(s.id, k, j, m.trig[index],
+                                          std::span(m.leafTrig).subspan(e.leafFirst, e.leaves),
+                                          memo.leaves, e.side);
+                    std::uint32_t corners = 0;
                     for (const LeafPlacement& leaf : memo.leaves)
-                        if (leaf.prototype) corners += outlineOf(*leaf.prototype).size();
-                    e.local.resize(corners);
-                    vec3* local = e.local.data();
+                        if (leaf.prototype) corners += std::uint32_t(outlineOf(*leaf.prototype).size());
+                    if (corners != e.corners) {  // room for its proxies
+                        m.unusedCorners += e.corners;
+                        e.first = std::uint32_t(m.local.size());
+                        e.corners = corners;
+                        m.local.resize(m.local.size() + corners);
+                    }
+                    vec3* local = m.local.data() + e.first;
                     for (const LeafPlacement& leaf : memo.leaves) {
                         if (!leaf.prototype) continue;  // fallen
                         // As ProxySink::writeParts places the outline.
@@ -189,11 +251,12 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     changed = changed || !sameBits(start, e.start);
                 }
                 e.start = start;
-                const std::size_t m = e.local.size();
-                if (out.size() < n + m) out.resize(std::max(2 * out.size(), n + m));
+                const std::size_t c = e.corners;
+                if (out.size() < n + c) out.resize(std::max(2 * out.size(), n + c));
                 vec3* o = out.data() + n;
-                for (std::size_t i = 0; i < m; ++i) o[i] = e.local[i] + start;
-                n += m;
+                const vec3* local = m.local.data() + e.first;
+                for (std::size_t i = 0; i < c; ++i) o[i] = local[i] + start;
+                n += c;
                 tags.resize(n / 3, organTag(s.id, k));
             }
         }

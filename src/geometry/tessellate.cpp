@@ -110,8 +110,8 @@ mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
 }
 
 // The sines a leaf's orientation takes of its angles.
-PetioleTrig::Leaf leafTrig(const LeafOrgan& leaf) {
-    PetioleTrig::Leaf t;
+LeafTrig trigOf(const LeafOrgan& leaf) {
+    LeafTrig t;
     t.pitch = leaf.pitch;
     t.yaw = leaf.yaw;
     t.roll = leaf.roll;
@@ -131,7 +131,7 @@ PetioleTrig::Leaf leafTrig(const LeafOrgan& leaf) {
 // Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along
 // `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`) and
 // scaled by `scale`; `offset` is the prototype's leaf_offset.
-mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const PetioleTrig::Leaf& t, float scale,
+mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
                    vec3 offset) {
     OrganFrame f = uprightFrame(tangent, side);
     if (t.leaflet != 0) {
@@ -459,13 +459,13 @@ struct Tessellator {
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const float scale = leaf.scale * ph.leafFraction;
         const mat4 xf =
-            leafTransform(origin, tangent, side, leafTrig(leaf), scale, lp.prototype.leaf_offset);
+            leafTransform(origin, tangent, side, trigOf(leaf), scale, lp.prototype.leaf_offset);
         sink->writeParts(leaf.objects, impl.leafPrototype(lp, leaf), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
     // The leaves of a petiole as placeLeaf places them, with the sines kept in `trig`.
-    vec3 leaves(Shoot& s, int node, Petiole& pt, PetioleTrig& trig,
+    vec3 leaves(Shoot& s, int node, Petiole& pt, PetioleTrig& trig, std::span<LeafTrig> leafTrig,
                 std::vector<LeafPlacement>& out, vec3& side) {
         Phytomer& ph = s.phytomers[std::size_t(node)];
         const PhytomerParameters& pp = phytomerParameters(ph);
@@ -492,18 +492,21 @@ struct Tessellator {
                              petiolePath);
         petioleMeasure.measure(petiolePath);
         const LeafParameters& lp = pp.leaf;
+        if (leafTrig.size() != pt.leaves.size())
+            throw Error("one kept leaf angle per leaf is needed",
+                        {.parameter = "leafTrig", .value = std::to_string(leafTrig.size()),
+                         .validRange = std::to_string(pt.leaves.size())});
         out.resize(pt.leaves.size());
-        trig.leaves.resize(pt.leaves.size());
         for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
             const LeafOrgan& leaf = pt.leaves[i];
             if (leaf.removed) {
                 out[i].prototype = nullptr;
                 continue;
             }
-            PetioleTrig::Leaf& t = trig.leaves[i];
+            LeafTrig& t = leafTrig[i];
             if (!t.set || t.leaflet != leaf.leafletIndex || !sameBits(t.pitch, leaf.pitch) ||
                 !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll))
-                t = leafTrig(leaf);
+                t = trigOf(leaf);
             const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
             const float scale = leaf.scale * ph.leafFraction;
             out[i].transform = leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
@@ -735,10 +738,11 @@ vec3 OrganPlacer::petioleStart(unsigned shoot, unsigned node, unsigned petiole) 
 }
 
 vec3 OrganPlacer::leaves(unsigned shoot, unsigned node, unsigned petiole, PetioleTrig& trig,
-                         std::vector<LeafPlacement>& out, vec3& side) {
+                         std::span<LeafTrig> leafTrig, std::vector<LeafPlacement>& out,
+                         vec3& side) {
     Tessellator& t = state_->tessellator;
     Shoot& s = t.plant.shoots[shoot];
-    return t.leaves(s, int(node), s.phytomers[node].petioles[petiole], trig, out, side);
+    return t.leaves(s, int(node), s.phytomers[node].petioles[petiole], trig, leafTrig, out, side);
 }
 
 vec3 OrganPlacer::petioleStartOn(unsigned shoot, unsigned node, vec3 side) const {
