@@ -64,6 +64,7 @@ struct PlantProxyMemo {
     PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
     bool nextChanged = true;         ///< whether they differ from the installed ones
     std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
+    std::vector<const TriangleSoup*> outlines;  ///< scratch: their outlines (null: fallen)
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves
