@@ -356,6 +356,8 @@ public:
     void updateGeometry(unsigned plantID);
 
     struct Impl;  ///< internal; public so the implementation files can share it
+    /// The internal state, for the library's own tests (src/model/architecture_impl.h).
+    friend Impl& implOf(PlantArchitecture& arch);
 
 private:
     /// A plant of the loaded species with its initial structure (and its own attraction

@@ -165,6 +165,11 @@ bool World::swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool chang
     return true;
 }
 
+const PlantProxies* World::plantProxies(unsigned plantID) const {
+    const auto it = plants_.find(plantID);
+    return it == plants_.end() || !it->second->set ? nullptr : it->second.get();
+}
+
 void World::removePlant(unsigned plantID) {
     if (!plants_.count(plantID) && !memos.count(plantID)) return;  // nothing written
     memos.erase(plantID);

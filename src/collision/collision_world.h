@@ -99,6 +99,8 @@ public:
     /// their storage). Same thread safety.
     bool swapPlantProxies(unsigned plantID, PlantProxies& proxies, bool changed);
     void removePlant(unsigned plantID);
+    /// The plant's proxies in the scene (null when it has none).
+    const PlantProxies* plantProxies(unsigned plantID) const;
     bool hasPlant(unsigned plantID) const { return plants_.count(plantID) > 0; }
     /// Rebuilds the soft scene's grid after plant changes (single-threaded).
     void commit();

@@ -3,8 +3,14 @@
 #include "collision/proxies.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace plantarch::collision {
 
@@ -100,8 +106,11 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
     const Internode& in = ph.internode;
     PlantProxyMemo::Key key{};
     std::size_t k = 0;
-    for (const vec3& v : {in.direction, in.guide, in.rollReference, pt.clearance.axis})
-        for (int i = 0; i < 3; ++i) key[k++] = v[i];
+    for (const vec3* v : {&in.direction, &in.guide, &in.rollReference, &pt.clearance.axis}) {
+        key[k++] = v->x;
+        key[k++] = v->y;
+        key[k++] = v->z;
+    }
     for (float v : {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle, ph.leafFraction})
         key[k++] = v;
     // Which leaves have fallen: one bit each (leaf i and i + 32 share a bit: a change to both
@@ -117,28 +126,85 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
 
 bool sameBits(const vec3& a, const vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// The outlines of the last few prototypes met (a plant's leaves share a few).
+// The outlines of the prototypes met last (a plant's leaves share a few).
 class OutlineLookup {
 public:
     explicit OutlineLookup(ProxyCache& cache) : cache_(cache) {}
     const TriangleSoup& operator()(const OrganPrototype& proto) {
-        for (const auto& [p, outline] : recent_)
-            if (p == &proto) return *outline;
-        const TriangleSoup& outline = cache_.shape(proto).outline;
-        if (recent_.size() == 16) recent_.erase(recent_.begin());
-        recent_.emplace_back(&proto, &outline);
-        return outline;
+        auto& [p, outline] = recent_[std::hash<const void*>{}(&proto) % recent_.size()];
+        if (p != &proto) {
+            p = &proto;
+            outline = &cache_.shape(proto).outline;
+        }
+        return *outline;
     }
 
 private:
     ProxyCache& cache_;
-    std::vector<std::pair<const OrganPrototype*, const TriangleSoup*>> recent_;
+    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32> recent_{};
 };
 
-// A point of a prototype placed by `xf` (the prototype's "w = 1" column), to the bit as
-// vec3(xf * vec4(p, 1)) computes it.
-inline vec3 placed(const mat4& xf, vec3 p) {
-    return (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3]));
+// The points of a prototype's outline placed by `xf`, less `start`, into `out`: to the bit
+// as vec3(xf * vec4(p, 1)) - start (glm's product: (x c0 + y c1) + (z c2 + c3), the same
+// operations in the same order, four lanes at once where SSE is at hand).
+void placeOutline(const mat4& xf, const TriangleSoup& outline, vec3 start, vec3* out) {
+#if defined(__SSE2__)
+    const __m128 c0 = _mm_loadu_ps(&xf[0][0]), c1 = _mm_loadu_ps(&xf[1][0]);
+    const __m128 c2 = _mm_loadu_ps(&xf[2][0]), c3 = _mm_loadu_ps(&xf[3][0]);
+    const __m128 s = _mm_setr_ps(start.x, start.y, start.z, 0.0f);
+    for (const vec3& p : outline) {
+        const __m128 r = _mm_sub_ps(
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(p.x)), _mm_mul_ps(c1, _mm_set1_ps(p.y))),
+                       _mm_add_ps(_mm_mul_ps(c2, _mm_set1_ps(p.z)), c3)),
+            s);
+        alignas(16) float v[4];
+        _mm_store_ps(v, r);
+        *out++ = vec3(v[0], v[1], v[2]);
+    }
+#else
+    for (const vec3& p : outline)
+        *out++ = (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3])) - start;
+#endif
+}
+
+// Drops what no petiole of the shoot uses from its arrays once it is as much as they use.
+void compact(PlantProxyMemo::Shoot& m) {
+    if (m.unusedCorners > 64 && 2 * m.unusedCorners > m.local.size()) {
+        TriangleSoup local;
+        local.reserve(m.local.size() - m.unusedCorners);
+        for (PlantProxyMemo::Petiole& e : m.petioles) {
+            const std::uint32_t first = std::uint32_t(local.size());
+            local.insert(local.end(), m.local.begin() + e.first, m.local.begin() + e.first + e.corners);
+            e.first = first;
+        }
+        m.local = std::move(local);
+        m.unusedCorners = 0;
+    }
+    if (m.unusedLeaves > 16 && 2 * m.unusedLeaves > m.leafTrig.size()) {
+        std::vector<LeafTrig> trig;
+        trig.reserve(m.leafTrig.size() - m.unusedLeaves);
+        for (PlantProxyMemo::Petiole& e : m.petioles) {
+            const std::uint32_t first = std::uint32_t(trig.size());
+            trig.insert(trig.end(), m.leafTrig.begin() + e.leafFirst,
+                        m.leafTrig.begin() + e.leafFirst + e.leaves);
+            e.leafFirst = first;
+        }
+        m.leafTrig = std::move(trig);
+        m.unusedLeaves = 0;
+    }
+}
+
+// Drops the shoot's petioles of nodes `node` on.
+void truncate(PlantProxyMemo::Shoot& m, std::size_t node) {
+    if (node + 1 >= m.nodeFirst.size()) return;
+    const std::uint32_t keep = m.nodeFirst[node];
+    for (std::size_t i = keep; i < m.petioles.size(); ++i) {
+        m.unusedCorners += m.petioles[i].corners;
+        m.unusedLeaves += m.petioles[i].leaves;
+    }
+    m.petioles.resize(keep);
+    m.trig.resize(keep);
+    m.nodeFirst.resize(node + 1);
 }
 
 // The leaf proxies of a plant: each petiole's leaves placed again where anything that shapes
@@ -148,58 +214,92 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
     OrganPlacer placer(impl, plant);
     OutlineLookup outlineOf(proxyCache(impl));
+    tags.resize(out.size() / 3);  // out and tags are written in step, growing together
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
     bool changed = visit == 1;  // a new memo: the scene may hold anything for the plant
     if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
     for (const Shoot& s : plant.shoots) {
         if (s.removed) continue;
-        auto& nodes = memo.shoots[s.id];
-        nodes.resize(s.phytomers.size());
+        PlantProxyMemo::Shoot& m = memo.shoots[s.id];
+        compact(m);
+        truncate(m, s.phytomers.size());  // nodes pruned
         for (unsigned k = 0; k < s.phytomers.size(); ++k) {
             const Phytomer& ph = s.phytomers[k];
-            auto& petioles = nodes[k];
-            petioles.resize(ph.petioles.size());
-            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                PlantProxyMemo::Petiole& e = petioles[j];
-                const PlantProxyMemo::Key key = petioleKey(ph, ph.petioles[j]);
+            const std::uint32_t count = std::uint32_t(ph.petioles.size());
+            if (k + 1 < m.nodeFirst.size() && m.nodeFirst[k + 1] - m.nodeFirst[k] != count)
+                truncate(m, k);  // the node's petioles changed: it and the nodes above anew
+            if (k + 1 == m.nodeFirst.size()) {  // a node new to the memo
+                m.nodeFirst.push_back(m.nodeFirst[k] + count);
+                m.petioles.resize(m.nodeFirst.back());
+                m.trig.resize(m.nodeFirst.back());
+            }
+            for (unsigned j = 0; j < count; ++j) {
+                const std::size_t index = m.nodeFirst[k] + j;
+                PlantProxyMemo::Petiole& e = m.petioles[index];
+                const Petiole& pt = ph.petioles[j];
+                const PlantProxyMemo::Key key = petioleKey(ph, pt);
                 ++visited;
                 if (e.visit + 1 != visit) changed = true;  // not read at the last refresh
                 e.visit = visit;
                 vec3 start;
                 if (!e.set || std::memcmp(e.key.data(), key.data(), sizeof key) != 0) {
-                    start = placer.leaves(s.id, k, j, e.trig, memo.placements, e.side);
-                    std::size_t corners = 0;
-                    for (const LeafPlacement& leaf : memo.placements)
-                        if (leaf.prototype) corners += outlineOf(*leaf.prototype).size();
-                    e.local.resize(corners);
-                    vec3* local = e.local.data();
-                    for (const LeafPlacement& leaf : memo.placements) {
-                        if (!leaf.prototype) continue;  // fallen
+                    if (e.leaves != pt.leaves.size()) {  // room for its leaves' sines
+                        m.unusedLeaves += e.leaves;
+                        e.leafFirst = std::uint32_t(m.leafTrig.size());
+                        e.leaves = std::uint32_t(pt.leaves.size());
+                        m.leafTrig.resize(m.leafTrig.size() + e.leaves);
+                    }
+                    start = placer.leaves(s.id, k, j, m.trig[index],
+                                          std::span(m.leafTrig).subspan(e.leafFirst, e.leaves),
+                                          memo.leaves, e.side);
+                    std::uint32_t corners = 0;
+                    memo.outlines.resize(memo.leaves.size());
+                    for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
+                        const OrganPrototype* proto = memo.leaves[i].prototype;
+                        memo.outlines[i] = proto ? &outlineOf(*proto) : nullptr;  // null: fallen
+                        if (proto) corners += std::uint32_t(memo.outlines[i]->size());
+                    }
+                    if (corners != e.corners) {  // room for its proxies
+                        m.unusedCorners += e.corners;
+                        e.first = std::uint32_t(m.local.size());
+                        e.corners = corners;
+                        m.local.resize(m.local.size() + corners);
+                    }
+                    vec3* local = m.local.data() + e.first;
+                    for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
+                        if (!memo.outlines[i]) continue;
                         // As ProxySink::writeParts places the outline.
-                        for (const vec3& p : outlineOf(*leaf.prototype))
-                            *local++ = placed(leaf.transform, p) - start;
+                        placeOutline(memo.leaves[i].transform, *memo.outlines[i], start, local);
+                        local += memo.outlines[i]->size();
                     }
                     e.key = key;
                     e.set = true;
                     changed = true;
+                    ++memo.placements;
                 } else {
                     start = placer.petioleStartOn(s.id, k, e.side);
                     changed = changed || !sameBits(start, e.start);
                 }
                 e.start = start;
-                const std::size_t m = e.local.size();
-                if (out.size() < n + m) out.resize(std::max(2 * out.size(), n + m));
+                const std::size_t c = e.corners;
+                if (out.size() < n + c) {
+                    out.resize(std::max(2 * out.size(), n + c));
+                    tags.resize(out.size() / 3);
+                }
                 vec3* o = out.data() + n;
-                for (std::size_t i = 0; i < m; ++i) o[i] = e.local[i] + start;
-                n += m;
-                tags.resize(n / 3, organTag(s.id, k));
+                const vec3* local = m.local.data() + e.first;
+                for (std::size_t i = 0; i < c; ++i) o[i] = local[i] + start;
+                std::fill_n(tags.data() + n / 3, c / 3, organTag(s.id, k));
+                n += c;
             }
         }
     }
     out.resize(n);
+    tags.resize(n / 3);
     if (visited != memo.visited) changed = true;  // petioles gone
     memo.visited = visited;
+    memo.reads += visited;
     return changed;
 }
 
@@ -207,10 +307,10 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
 
 bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
                   PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
-    tags.clear();
     if (organs.leaves && !organs.internodes && !organs.petioles && !organs.flowers && !organs.fruit)
         return buildLeafProxies(impl, plant, memo, out, tags);
     out.clear();
+    tags.clear();
     if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
         ProxySink sink(proxyCache(impl), organs, out, tags);
         tessellatePlant(impl, sink, plant);

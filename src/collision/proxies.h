@@ -34,27 +34,37 @@ ProxyCache& proxyCache(PlantArchitecture::Impl& impl);
 /// Leaf proxies of a plant's petioles kept between refreshes, relative to each petiole's
 /// start: reused while nothing that shapes the petiole and its leaves has changed (a grown
 /// leaf on a grown node keeps its proxy while the stem below it still lengthens or thickens).
-/// Only the thread refreshing the plant touches it.
+/// Each shoot's petioles lie in flat arrays in node order (read at every refresh, in order);
+/// a shoot that grows appends to them. Only the thread refreshing the plant touches it.
 struct PlantProxyMemo {
     /// The petiole's and internode's directions, angles, length, growth, leaf count, fallen
     /// leaves.
     using Key = std::array<float, 20>;
     struct Petiole {
         Key key{};
-        bool set = false;            ///< placed at least once
-        std::uint32_t visit = 0;     ///< the refresh that last read it
-        vec3 side{0.0f};             ///< the petiole's lean when last placed
-        vec3 start{0.0f};            ///< where it started at the last refresh
-        PetioleTrig trig;            ///< sines of its angles
-        TriangleSoup local;          ///< its leaves' proxies, relative to its start
+        std::uint32_t visit = 0;                  ///< the refresh that last read it
+        std::uint32_t first = 0, corners = 0;     ///< its proxies in the shoot's `local`
+        std::uint32_t leafFirst = 0, leaves = 0;  ///< its leaves' sines in `leafTrig`
+        bool set = false;                         ///< placed at least once
+        vec3 side{0.0f};                          ///< its lean when last placed
+        vec3 start{0.0f};                         ///< where it started at the last refresh
     };
-    /// By shoot ID, node, petiole.
-    std::vector<std::vector<std::vector<Petiole>>> shoots;
+    struct Shoot {
+        std::vector<std::uint32_t> nodeFirst{0};  ///< node k: petioles [nodeFirst[k], nodeFirst[k + 1])
+        std::vector<Petiole> petioles;
+        std::vector<PetioleTrig> trig;            ///< per petiole
+        std::vector<LeafTrig> leafTrig;
+        TriangleSoup local;                       ///< leaf proxies relative to their petiole's start
+        std::size_t unusedCorners = 0, unusedLeaves = 0;  ///< left behind in local, leafTrig
+    };
+    std::vector<Shoot> shoots;       ///< by shoot ID
     std::uint32_t visit = 0;         ///< refreshes so far
     std::size_t visited = 0;         ///< petioles read at the last refresh
+    std::uint64_t reads = 0, placements = 0;  ///< petioles read and placed again, in all
     PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
     bool nextChanged = true;         ///< whether they differ from the installed ones
-    std::vector<LeafPlacement> placements;  ///< scratch
+    std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
+    std::vector<const TriangleSoup*> outlines;  ///< scratch: their outlines (null: fallen)
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves

@@ -78,6 +78,7 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
     start_.assign(buckets + 1, 0);
+
     // Whether triangle t of a source starts a quad.
     auto quadAt = [](const Source& s, std::size_t t) {
         return t + 1 < s.keys->size() && (*s.keys)[t + 1] == kSecond;
@@ -99,89 +100,109 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     fill_.assign(std::size_t(runs) * buckets, 0);  // per run: counts, then places
     struct Run {
         float maxRadius = 0.0f;
-        std::uint32_t bucketTotal = 0;  ///< quads in this run's share of the buckets
+        std::uint32_t inRange = 0;  ///< quads in the run's share of the buckets (runs > 1)
         std::vector<SoftTriangle> large;
         std::vector<glm::vec4> largeSpheres;
     };
     std::vector<Run> run(static_cast<std::size_t>(runs));
-    const auto bucketRange = [&](int r) {
+    auto counts = [&](int r) { return fill_.data() + std::size_t(r) * buckets; };
+    auto countRun = [&](int r) {
+        std::uint32_t* count = counts(r);
+        Run& own = run[std::size_t(r)];
+        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
+            const Source& s = sources[i];
+            for (std::size_t t = 0; t < s.keys->size(); ++t) {
+                const std::uint64_t key = (*s.keys)[t];
+                if (key == kSecond) continue;
+                if (key == kLarge) {
+                    own.large.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
+                    own.largeSpheres.push_back((*s.spheres)[t]);
+                    continue;
+                }
+                own.maxRadius = std::max(own.maxRadius, (*s.spheres)[t].w);
+                ++count[bucketOf(key)];
+            }
+        }
+    };
+    // Bucket range r (runs > 1): its total, then every run's first places in it.
+    auto bucketRange = [&](int r) {
         return std::pair{buckets * std::size_t(r) / std::size_t(runs),
                          buckets * std::size_t(r + 1) / std::size_t(runs)};
     };
-#pragma omp parallel num_threads(runs) if (runs > 1)
-    {
-#pragma omp for schedule(static)
-        for (int r = 0; r < runs; ++r) {
-            std::uint32_t* count = fill_.data() + std::size_t(r) * buckets;
-            Run& own = run[std::size_t(r)];
-            for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
-                const Source& s = sources[i];
-                for (std::size_t t = 0; t < s.keys->size(); ++t) {
-                    const std::uint64_t key = (*s.keys)[t];
-                    if (key == kSecond) continue;
-                    if (key == kLarge) {
-                        own.large.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t),
-                                             s.tags ? (*s.tags)[t] : 0});
-                        own.largeSpheres.push_back((*s.spheres)[t]);
-                        continue;
-                    }
-                    own.maxRadius = std::max(own.maxRadius, (*s.spheres)[t].w);
-                    ++count[bucketOf(key)];
-                }
+    auto totalRange = [&](int r) {
+        const auto [b0, b1] = bucketRange(r);
+        std::uint32_t sum = 0;
+        for (int q = 0; q < runs; ++q)
+            for (std::size_t b = b0; b < b1; ++b) sum += counts(q)[b];
+        run[std::size_t(r)].inRange = sum;
+    };
+    auto placeRange = [&](int r) {
+        const auto [b0, b1] = bucketRange(r);
+        std::uint32_t at = 0;
+        for (int q = 0; q < r; ++q) at += run[std::size_t(q)].inRange;
+        for (std::size_t b = b0; b < b1; ++b) {
+            start_[b] = at;
+            for (int q = 0; q < runs; ++q) {
+                const std::uint32_t here = counts(q)[b];
+                counts(q)[b] = at;
+                at += here;
             }
         }
-#pragma omp for schedule(static)
-        for (int r = 0; r < runs; ++r) {
-            const auto [b0, b1] = bucketRange(r);
-            std::uint32_t sum = 0;
-            for (std::size_t b = b0; b < b1; ++b)
-                for (int q = 0; q < runs; ++q) sum += fill_[std::size_t(q) * buckets + b];
-            run[std::size_t(r)].bucketTotal = sum;
+    };
+    auto scatterRun = [&](int r) {
+        std::uint32_t* place = counts(r);
+        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
+            const Source& s = sources[i];
+            for (std::size_t t = 0; t < s.keys->size(); ++t) {
+                const std::uint64_t key = (*s.keys)[t];
+                if (key == kLarge || key == kSecond) continue;
+                const std::uint32_t at = place[bucketOf(key)]++;
+                const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
+                small_[at] = q;
+                vec3* corners = corners_.data() + 4 * std::size_t(at);
+                std::copy_n(q.corners, 3, corners);
+                corners[3] = q.last();
+                keys_[at] = key;
+                for (int k = 0; k < 4; ++k) sphereRows_[k][at] = (*s.spheres)[t][k];
+            }
         }
-#pragma omp single
+    };
+    auto allocate = [&] {
+        std::uint32_t n = 0;
+        if (runs == 1) {  // the counts become places at once
+            std::uint32_t* count = counts(0);
+            for (std::size_t b = 0; b < buckets; ++b) {
+                start_[b] = n;
+                const std::uint32_t here = count[b];
+                count[b] = n;
+                n += here;
+            }
+        } else {
+            for (const Run& r : run) n += r.inRange;
+        }
+        start_[buckets] = n;
+        small_.resize(n);
+        corners_.resize(4 * std::size_t(n));
+        keys_.assign(n + 4, kLarge);  // padded with a key no cell has (tests go four at a time)
+        for (int k = 0; k < 4; ++k) sphereRows_[k].assign(n + 4, k < 3 ? 1e30f : 0.0f);
+    };
+    if (runs == 1) {
+        countRun(0);
+        allocate();
+        scatterRun(0);
+    } else {
+#pragma omp parallel num_threads(runs)
         {
-            std::size_t n = 0;
-            for (const Run& r : run) n += r.bucketTotal;
-            start_[buckets] = std::uint32_t(n);
-            small_.resize(n);
-            corners_.resize(4 * n);
-            keys_.assign(n + 4, kLarge);  // padded with a key no cell has (tests go four at a time)
-            for (int k = 0; k < 4; ++k) sphereRows_[k].assign(n + 4, k < 3 ? 1e30f : 0.0f);
-        }
 #pragma omp for schedule(static)
-        for (int r = 0; r < runs; ++r) {
-            const auto [b0, b1] = bucketRange(r);
-            std::uint32_t at = 0;
-            for (int q = 0; q < r; ++q) at += run[std::size_t(q)].bucketTotal;
-            for (std::size_t b = b0; b < b1; ++b) {
-                start_[b] = at;
-                for (int q = 0; q < runs; ++q) {
-                    std::uint32_t& c = fill_[std::size_t(q) * buckets + b];
-                    const std::uint32_t here = c;
-                    c = at;
-                    at += here;
-                }
-            }
-        }
+            for (int r = 0; r < runs; ++r) countRun(r);
 #pragma omp for schedule(static)
-        for (int r = 0; r < runs; ++r) {
-            std::uint32_t* place = fill_.data() + std::size_t(r) * buckets;
-            for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
-                const Source& s = sources[i];
-                for (std::size_t t = 0; t < s.keys->size(); ++t) {
-                    const std::uint64_t key = (*s.keys)[t];
-                    if (key == kLarge || key == kSecond) continue;
-                    const std::uint32_t at = place[bucketOf(key)]++;
-                    const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t),
-                                         s.tags ? (*s.tags)[t] : 0};
-                    small_[at] = q;
-                    vec3* corners = corners_.data() + 4 * std::size_t(at);
-                    std::copy_n(q.corners, 3, corners);
-                    corners[3] = q.last();
-                    keys_[at] = key;
-                    for (int k = 0; k < 4; ++k) sphereRows_[k][at] = (*s.spheres)[t][k];
-                }
-            }
+            for (int r = 0; r < runs; ++r) totalRange(r);
+#pragma omp single
+            allocate();
+#pragma omp for schedule(static)
+            for (int r = 0; r < runs; ++r) placeRange(r);
+#pragma omp for schedule(static)
+            for (int r = 0; r < runs; ++r) scatterRun(r);
         }
     }
     for (Run& r : run) {

@@ -4,6 +4,7 @@
 // obstacles, and single organs placed on trial while turning them out of solid obstacles).
 // Both run the same placement code, so an organ's proxy sits exactly where its mesh does.
 
+#include <span>
 #include <vector>
 
 #include "geometry/tube.h"
@@ -49,17 +50,19 @@ struct TurnTrig {
     SinCos pitch, yaw, roll;
 };
 
-/// What placing a petiole's leaves takes of its angles and its leaves' angles: kept by a caller
-/// that places the same petiole again and again (OrganPlacer::leaves), so the sines are taken
-/// again only where an angle changed. `set` false: nothing kept yet.
+/// What placing a leaf takes of its angles: kept by a caller that places the same leaves again
+/// and again (OrganPlacer::leaves), so the sines are taken again only where an angle changed.
+/// `set` false: nothing kept yet.
+struct LeafTrig {
+    float pitch = 0.0f, yaw = 0.0f, roll = 0.0f;
+    int leaflet = 0;      ///< LeafOrgan::leafletIndex
+    TurnTrig turn;
+    SinCos swing;         ///< lateral leaflets: their swing toward the tip (yaw)
+    bool set = false;
+};
+
+/// The same for a petiole's own angles and curve.
 struct PetioleTrig {
-    struct Leaf {
-        float pitch = 0.0f, yaw = 0.0f, roll = 0.0f;
-        int leaflet = 0;      ///< LeafOrgan::leafletIndex
-        TurnTrig turn;
-        SinCos swing;         ///< lateral leaflets: their swing toward the tip (yaw)
-        bool set = false;
-    };
     float azimuth = 0.0f, pitch = 0.0f;
     SinCos azimuthTrig, pitchTrig;
     bool set = false;
@@ -67,7 +70,6 @@ struct PetioleTrig {
     vec3 direction{0.0f};
     bool bendsUp = false, curveSet = false;
     geometry::CurveBasis curve;
-    std::vector<Leaf> leaves;
 };
 
 /// One leaf of a petiole as tessellation places it: its prototype (null: fallen) and the
@@ -91,11 +93,12 @@ public:
     /// Where that petiole starts (its organs move with this point when the plant below grows).
     vec3 petioleStart(unsigned shoot, unsigned node, unsigned petiole) const;
     /// The leaves of that petiole, placed by the same formulas as `petiole` places them but
-    /// with no mesh made and no sink: `out` gets one entry per leaf, in order. `trig` keeps the
-    /// angles' sines from one call to the next (for this petiole only). Returns where the
-    /// petiole starts; `side` is its lean (see petioleStartOn).
+    /// with no mesh made and no sink: `out` gets one entry per leaf, in order. `trig` and
+    /// `leafTrig` (one per leaf) keep the angles' sines from one call to the next (for this
+    /// petiole only). Returns where the petiole starts; `side` is its lean (see
+    /// petioleStartOn).
     vec3 leaves(unsigned shoot, unsigned node, unsigned petiole, PetioleTrig& trig,
-                std::vector<LeafPlacement>& out, vec3& side);
+                std::span<LeafTrig> leafTrig, std::vector<LeafPlacement>& out, vec3& side);
     /// Where the petiole of node `node` with lean `side` starts: equal to petioleStart while
     /// its internode's direction, guide and roll reference and its own azimuth are those
     /// `side` was had with (the internode's length and radius may differ).

@@ -3,6 +3,7 @@
 // and organs keep their object IDs while their shapes change.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -42,7 +43,7 @@ struct PathMeasure {
     std::vector<float> lengths;
     float total = 0.0f;
 
-    void measure(const std::vector<vec3>& pts) {
+    [[gnu::always_inline]] void measure(const std::vector<vec3>& pts) {
         lengths.resize(pts.empty() ? 0 : pts.size() - 1);
         total = 0.0f;
         for (std::size_t i = 1; i < pts.size(); ++i) {
@@ -52,8 +53,9 @@ struct PathMeasure {
     }
 };
 
-// Point and tangent at fraction `f` of the arc length of a polyline measured by `m`.
-std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts, const PathMeasure& m, float f) {
+// Point and tangent at fraction `f` of the arc length of a polyline measured by `m`. (The
+// small functions of leaf placement are inlined: leaves are placed by the hundred thousand.)
+[[gnu::always_inline]] inline std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts, const PathMeasure& m, float f) {
     float want = std::clamp(f, 0.0f, 1.0f) * m.total;
     for (std::size_t i = 1; i < pts.size(); ++i) {
         const float len = m.lengths[i - 1];
@@ -73,7 +75,7 @@ struct OrganFrame {
 };
 
 // Frame with x = `axis` and z as close to world up as possible.
-OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
+[[gnu::always_inline]] inline OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
     OrganFrame f;
     f.x = glm::normalize(axis);
     vec3 z = kUp - glm::dot(kUp, f.x) * f.x;
@@ -85,7 +87,7 @@ OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
 }
 
 // Pitch lifts x toward z, yaw turns x toward y about z, roll turns about x.
-OrganFrame rotated(OrganFrame f, const TurnTrig& t) {
+[[gnu::always_inline]] inline OrganFrame rotated(const OrganFrame& f, const TurnTrig& t) {
     const SinCos p = t.pitch, w = t.yaw, r = t.roll;
     const vec3 x1 = p.c * f.x + p.s * f.z;
     const vec3 z1 = -p.s * f.x + p.c * f.z;
@@ -100,7 +102,7 @@ OrganFrame rotated(OrganFrame f, float pitch, float yaw, float roll) {
     return rotated(f, TurnTrig{sinCosDeg(pitch), sinCosDeg(yaw), sinCosDeg(roll)});
 }
 
-mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
+[[gnu::always_inline]] inline mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
     mat4 m(1.0f);
     m[0] = glm::vec4(f.x * scale, 0.0f);
     m[1] = glm::vec4(f.y * scale, 0.0f);
@@ -110,8 +112,8 @@ mat4 placement(const OrganFrame& f, vec3 origin, float scale) {
 }
 
 // The sines a leaf's orientation takes of its angles.
-PetioleTrig::Leaf leafTrig(const LeafOrgan& leaf) {
-    PetioleTrig::Leaf t;
+LeafTrig trigOf(const LeafOrgan& leaf) {
+    LeafTrig t;
     t.pitch = leaf.pitch;
     t.yaw = leaf.yaw;
     t.roll = leaf.roll;
@@ -131,7 +133,7 @@ PetioleTrig::Leaf leafTrig(const LeafOrgan& leaf) {
 // Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along
 // `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`) and
 // scaled by `scale`; `offset` is the prototype's leaf_offset.
-mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const PetioleTrig::Leaf& t, float scale,
+mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
                    vec3 offset) {
     OrganFrame f = uprightFrame(tangent, side);
     if (t.leaflet != 0) {
@@ -326,7 +328,7 @@ struct Tessellator {
     // Scratch kept from one organ to the next: the petiole being placed, the peduncle.
     std::vector<vec3> petiolePath;
     PathMeasure petioleMeasure, peduncleMeasure;
-    std::vector<std::pair<PrototypeSlot, const OrganPrototype*>> recentPrototypes;
+    std::array<std::pair<PrototypeSlot, const OrganPrototype*>, 32> recentPrototypes{};
     std::string lastLabel;
     const PhytomerParameters* lastParameters = nullptr;
 
@@ -459,13 +461,13 @@ struct Tessellator {
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const float scale = leaf.scale * ph.leafFraction;
         const mat4 xf =
-            leafTransform(origin, tangent, side, leafTrig(leaf), scale, lp.prototype.leaf_offset);
+            leafTransform(origin, tangent, side, trigOf(leaf), scale, lp.prototype.leaf_offset);
         sink->writeParts(leaf.objects, impl.leafPrototype(lp, leaf), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
     // The leaves of a petiole as placeLeaf places them, with the sines kept in `trig`.
-    vec3 leaves(Shoot& s, int node, Petiole& pt, PetioleTrig& trig,
+    vec3 leaves(Shoot& s, int node, Petiole& pt, PetioleTrig& trig, std::span<LeafTrig> leafTrig,
                 std::vector<LeafPlacement>& out, vec3& side) {
         Phytomer& ph = s.phytomers[std::size_t(node)];
         const PhytomerParameters& pp = phytomerParameters(ph);
@@ -492,18 +494,21 @@ struct Tessellator {
                              petiolePath);
         petioleMeasure.measure(petiolePath);
         const LeafParameters& lp = pp.leaf;
+        if (leafTrig.size() != pt.leaves.size())
+            throw Error("one kept leaf angle per leaf is needed",
+                        {.parameter = "leafTrig", .value = std::to_string(leafTrig.size()),
+                         .validRange = std::to_string(pt.leaves.size())});
         out.resize(pt.leaves.size());
-        trig.leaves.resize(pt.leaves.size());
         for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
             const LeafOrgan& leaf = pt.leaves[i];
             if (leaf.removed) {
                 out[i].prototype = nullptr;
                 continue;
             }
-            PetioleTrig::Leaf& t = trig.leaves[i];
+            LeafTrig& t = leafTrig[i];
             if (!t.set || t.leaflet != leaf.leafletIndex || !sameBits(t.pitch, leaf.pitch) ||
                 !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll))
-                t = leafTrig(leaf);
+                t = trigOf(leaf);
             const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
             const float scale = leaf.scale * ph.leafFraction;
             out[i].transform = leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
@@ -525,12 +530,14 @@ struct Tessellator {
     // impl.leafPrototype with the last few answers at hand (a plant's leaves share a few).
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf) {
         const PrototypeSlot slot = prototypeSlot(lp, leaf);
-        for (const auto& [key, shape] : recentPrototypes)
-            if (key == slot) return *shape;
-        const OrganPrototype& shape = impl.leafPrototype(lp, leaf);
-        if (recentPrototypes.size() == 16) recentPrototypes.erase(recentPrototypes.begin());
-        recentPrototypes.emplace_back(slot, &shape);
-        return shape;
+        const std::size_t h = (std::hash<const void*>{}(slot.proto) ^ std::size_t(slot.leaflet) * 31 ^
+                               std::size_t(slot.variant) * 1009) % recentPrototypes.size();
+        auto& [key, shape] = recentPrototypes[h];
+        if (!shape || !(key == slot)) {
+            key = slot;
+            shape = &impl.leafPrototype(lp, leaf);
+        }
+        return *shape;
     }
 
     // The template a floral bud is drawn from: its own when a rule function gave it one.
@@ -735,10 +742,11 @@ vec3 OrganPlacer::petioleStart(unsigned shoot, unsigned node, unsigned petiole) 
 }
 
 vec3 OrganPlacer::leaves(unsigned shoot, unsigned node, unsigned petiole, PetioleTrig& trig,
-                         std::vector<LeafPlacement>& out, vec3& side) {
+                         std::span<LeafTrig> leafTrig, std::vector<LeafPlacement>& out,
+                         vec3& side) {
     Tessellator& t = state_->tessellator;
     Shoot& s = t.plant.shoots[shoot];
-    return t.leaves(s, int(node), s.phytomers[node].petioles[petiole], trig, out, side);
+    return t.leaves(s, int(node), s.phytomers[node].petioles[petiole], trig, leafTrig, out, side);
 }
 
 vec3 OrganPlacer::petioleStartOn(unsigned shoot, unsigned node, vec3 side) const {

@@ -95,6 +95,9 @@ struct PlantArchitecture::Impl {
     void checkFunctions(const ShootParameters& params, const std::string& label) const;
 };
 
+/// The internal state of `arch` (for tests of internal parts).
+PlantArchitecture::Impl& implOf(PlantArchitecture& arch);
+
 enum class StartMode { Base, Append, Child };
 
 /// Creates a shoot (and its first spec.phytomers phytomers) as state; no geometry.

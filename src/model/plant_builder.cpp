@@ -444,6 +444,8 @@ PlantArchitecture::PlantArchitecture(Context* context)
 
 PlantArchitecture::~PlantArchitecture() = default;
 
+PlantArchitecture::Impl& implOf(PlantArchitecture& arch) { return *arch.impl_; }
+
 void PlantArchitecture::setSeed(std::uint64_t seed) { seed_ = seed; }
 
 void PlantArchitecture::defineShootType(const std::string& label, const ShootParameters& params) {

@@ -1,0 +1,376 @@
+// The soft collision scene's refresh: leaf proxies placed by the tessellator's own formulas
+// (OrganPlacer::leaves), kept per petiole while nothing that shapes them changed, plants
+// known unchanged without comparing their proxies, and a grid that is the same for any number
+// of threads.
+
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <tuple>
+
+#include "collision/collision_world.h"
+#include "collision/growth_driver.h"
+#include "collision/proxies.h"
+#include "geometry/organ_sink.h"
+#include "model/architecture_impl.h"
+#include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
+
+using namespace plantarch;
+
+namespace {
+
+using Impl = PlantArchitecture::Impl;
+
+// Every leaf tessellation places: its prototype and transform, in tessellation order.
+struct PlacedLeaf {
+    const OrganPrototype* prototype;
+    mat4 transform;
+};
+
+class LeafCapture final : public OrganSink {
+public:
+    std::vector<PlacedLeaf> leaves;
+    bool wants(OrganKind kind) const override { return kind == OrganKind::Leaf; }
+    void write(ObjectID&, const Mesh&, const Material&, const OrganLabels&) override {}
+    void writeParts(std::vector<ObjectID>&, const OrganPrototype& prototype, const mat4& xf,
+                    const OrganLabels&) override {
+        leaves.push_back({&prototype, xf});
+    }
+};
+
+std::vector<PlacedLeaf> tessellatedLeaves(Impl& impl, PlantInstance& plant) {
+    LeafCapture sink;
+    tessellatePlant(impl, sink, plant);
+    return sink.leaves;
+}
+
+using PetioleID = std::tuple<unsigned, unsigned, unsigned>;
+struct KeptTrig {
+    PetioleTrig petiole;
+    std::vector<LeafTrig> leaves;
+};
+
+// The same leaves by OrganPlacer::leaves, with the sines kept in `trigs` from call to call.
+// Checks on the way that the start it returns is petioleStart's and petioleStartOn's.
+std::vector<PlacedLeaf> placerLeaves(Impl& impl, PlantInstance& plant,
+                                     std::map<PetioleID, KeptTrig>& trigs) {
+    std::vector<PlacedLeaf> out;
+    OrganPlacer placer(impl, plant);
+    std::vector<LeafPlacement> leaves;
+    for (const Shoot& s : plant.shoots) {
+        if (s.removed) continue;
+        for (unsigned k = 0; k < s.phytomers.size(); ++k)
+            for (unsigned j = 0; j < s.phytomers[k].petioles.size(); ++j) {
+                vec3 side;
+                KeptTrig& kept = trigs[{s.id, k, j}];
+                kept.leaves.resize(s.phytomers[k].petioles[j].leaves.size());
+                const vec3 start = placer.leaves(s.id, k, j, kept.petiole, kept.leaves, leaves, side);
+                const vec3 expected = placer.petioleStart(s.id, k, j);
+                const vec3 on = placer.petioleStartOn(s.id, k, side);
+                EXPECT_EQ(std::memcmp(&start, &expected, sizeof start), 0);
+                EXPECT_EQ(std::memcmp(&on, &expected, sizeof on), 0);
+                EXPECT_EQ(leaves.size(), s.phytomers[k].petioles[j].leaves.size());
+                for (const LeafPlacement& l : leaves)
+                    if (l.prototype) out.push_back({l.prototype, l.transform});
+            }
+    }
+    return out;
+}
+
+// Equal to the bit.
+void expectSameLeaves(const std::vector<PlacedLeaf>& a, const std::vector<PlacedLeaf>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a[i].prototype != b[i].prototype ||
+            std::memcmp(&a[i].transform, &b[i].transform, sizeof(mat4)) != 0)
+            ++differ;
+    EXPECT_EQ(differ, 0u) << "of " << a.size() << " leaves";
+}
+
+// The leaf proxies of a plant placed afresh by the tessellator.
+collision::TriangleSoup freshProxies(Impl& impl, PlantInstance& plant,
+                                     std::vector<collision::OrganTag>& tags) {
+    collision::TriangleSoup soup;
+    CollisionOrgans leaves;  // leaves only (the default)
+    collision::ProxySink sink(collision::proxyCache(impl), leaves, soup, tags);
+    tessellatePlant(impl, sink, plant);
+    return soup;
+}
+
+// The scene's proxies of every plant are where the tessellator puts the leaves now (to
+// rounding: kept proxies are moved with their petiole's start), with the same tags, and the
+// spheres and cells the grid bins them by are those of these triangles.
+void expectSceneMatchesLeaves(PlantArchitecture& arch) {
+    Impl& impl = implOf(arch);
+    const collision::World& world = collision::worldOf(impl);
+    for (unsigned id : arch.getAllPlantIDs()) {
+        const collision::PlantProxies* p = world.plantProxies(id);
+        ASSERT_NE(p, nullptr) << id;
+        std::vector<collision::OrganTag> tags;
+        const collision::TriangleSoup fresh = freshProxies(impl, impl.plant(id), tags);
+        ASSERT_EQ(p->triangles.size(), fresh.size()) << id;
+        EXPECT_EQ(p->tags, tags) << id;
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < fresh.size(); ++i)
+            worst = std::max(worst, glm::length(p->triangles[i] - fresh[i]));
+        EXPECT_LT(worst, 1e-6f) << id;
+        std::vector<glm::vec4> spheres;
+        std::vector<std::uint64_t> keys;
+        collision::boundingSpheres(p->triangles, spheres);
+        collision::SoftGrid::cellKeys(spheres, p->keyCell, keys);
+        ASSERT_EQ(spheres.size(), p->spheres.size()) << id;
+        EXPECT_EQ(std::memcmp(spheres.data(), p->spheres.data(), spheres.size() * sizeof(glm::vec4)), 0) << id;
+        EXPECT_EQ(keys, p->keys) << id;
+    }
+}
+
+}  // namespace
+
+// OrganPlacer::leaves gives tessellation's transforms to the bit, also with the sines kept
+// from an earlier placement, and after the angles they were taken of changed.
+TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned id = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 25.0f);
+    Impl& impl = implOf(arch);
+    std::map<PetioleID, KeptTrig> trigs;
+    expectSameLeaves(placerLeaves(impl, impl.plant(id), trigs),
+                     tessellatedLeaves(impl, impl.plant(id)));
+    ASSERT_GT(trigs.size(), 10u);
+
+    // Grown: lengths and leaf sizes change, the kept sines still hold.
+    arch.advanceTime(4.0);
+    expectSameLeaves(placerLeaves(impl, impl.plant(id), trigs),
+                     tessellatedLeaves(impl, impl.plant(id)));
+
+    // Angles changed behind the kept sines: they are taken again.
+    PlantInstance& plant = impl.plant(id);
+    int changed = 0;
+    for (Shoot& s : plant.shoots)
+        for (Phytomer& ph : s.phytomers)
+            for (Petiole& pt : ph.petioles) {
+                switch (changed++ % 4) {
+                    case 0: pt.azimuth += 17.0f; break;
+                    case 1: pt.pitch -= 9.0f; break;
+                    case 2: pt.curvature = -pt.curvature - 50.0f; break;
+                    default: break;
+                }
+                for (LeafOrgan& leaf : pt.leaves) {
+                    leaf.pitch += 3.0f;
+                    leaf.roll = -leaf.roll;
+                    leaf.yaw += 1.0f;
+                }
+            }
+    Shoot& longest = *std::max_element(plant.shoots.begin(), plant.shoots.end(), [](auto& a, auto& b) {
+        return a.phytomers.size() < b.phytomers.size();
+    });
+    ASSERT_GE(longest.phytomers.size(), 3u);
+    Internode& in = longest.phytomers[1].internode;
+    in.direction = glm::normalize(in.direction + vec3(0.1f, 0.0f, 0.0f));
+    expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    // One kept angle per leaf, or an error.
+    {
+        OrganPlacer placer(impl, plant);
+        KeptTrig& kept = trigs.begin()->second;
+        const auto [s, k, j] = trigs.begin()->first;
+        std::vector<LeafTrig> fewer(kept.leaves.size() - 1);
+        std::vector<LeafPlacement> leaves;
+        vec3 side;
+        EXPECT_THROW(placer.leaves(s, k, j, kept.petiole, fewer, leaves, side), Error);
+    }
+    // And fresh sines give the same.
+    std::map<PetioleID, KeptTrig> fresh;
+    expectSameLeaves(placerLeaves(impl, plant, fresh), tessellatedLeaves(impl, plant));
+}
+
+// A canopy grown day by day with soft avoidance: after every refresh each plant's proxies are
+// where its leaves are, though most petioles keep their proxies from earlier refreshes.
+TEST(CollisionRefresh, ProxiesFollowTheLeavesAcrossRefreshes) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(5);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSoftCollisionAvoidance();
+    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 8.0f);
+    expectSceneMatchesLeaves(arch);
+    for (int day = 0; day < 20; ++day) {
+        arch.advanceTime(1.0);
+        expectSceneMatchesLeaves(arch);
+    }
+    // Both ways were taken: petioles placed again and petioles kept.
+    std::uint64_t placed = 0, read = 0;
+    for (const auto& [id, memo] : collision::worldOf(implOf(arch)).memos) {
+        placed += memo->placements;
+        read += memo->reads;
+    }
+    EXPECT_GT(placed, 100u);
+    EXPECT_GT(read, placed + 100u);
+}
+
+// Plants that did not change keep their proxies (not even compared); an edited plant gets
+// proxies of its new state.
+TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSoftCollisionAvoidance();
+    const std::vector<unsigned> ids =
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.2f, 0.2f}, {3, 1}, 20.0f);
+    const collision::World& world = collision::worldOf(implOf(arch));
+    std::vector<const vec3*> data;
+    for (unsigned id : ids) data.push_back(world.plantProxies(id)->triangles.data());
+
+    const CollisionStats before = arch.getCollisionStats();
+    for (unsigned id : ids) arch.updateGeometry(id);  // read again at the next call
+    arch.advanceTime(0.0);
+    CollisionStats after = arch.getCollisionStats();
+    EXPECT_EQ(after.plantsUnchanged - before.plantsUnchanged, ids.size());
+    EXPECT_EQ(after.plantsRebuilt, before.plantsRebuilt);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        EXPECT_EQ(world.plantProxies(ids[i])->triangles.data(), data[i]);  // untouched
+
+    // Leaves removed from one plant, a branch pruned on another.
+    auto longest = [&](unsigned plant) {
+        unsigned best = 0;
+        for (unsigned s = 1; s < arch.getShootCount(plant); ++s)
+            if (arch.getShootNodeCount(plant, s) > arch.getShootNodeCount(plant, best)) best = s;
+        return best;
+    };
+    const std::size_t full = world.plantProxies(ids[0])->triangles.size();
+    arch.removeShootLeaves(ids[0], longest(ids[0]));
+    ASSERT_GE(arch.getShootNodeCount(ids[1], longest(ids[1])), 4u);
+    arch.pruneBranch(ids[1], longest(ids[1]), 2);
+    arch.advanceTime(0.0);
+    const CollisionStats edited = arch.getCollisionStats();
+    EXPECT_EQ(edited.plantsRebuilt - after.plantsRebuilt, 2u);
+    EXPECT_EQ(edited.plantsUnchanged, after.plantsUnchanged);  // the third is not read again
+    EXPECT_LT(world.plantProxies(ids[0])->triangles.size(), full);
+    expectSceneMatchesLeaves(arch);
+    arch.advanceTime(2.0);
+    expectSceneMatchesLeaves(arch);
+}
+
+// The grid's counting sort splits its work among threads; the buckets hold the same
+// triangles in the same order for any number of them.
+TEST(CollisionRefresh, GridIsTheSameForAnyThreadCount) {
+    Rng rng(17, 3);
+    Context ctx;
+    collision::World world;
+    world.setSoft(SoftCollisionOptions{}, ctx);
+    std::vector<unsigned> ids;
+    for (unsigned p = 0; p < 40; ++p) ids.push_back(p);
+    world.reservePlants(ids);
+    for (unsigned p : ids) {
+        collision::TriangleSoup soup;
+        std::vector<collision::OrganTag> tags;
+        const vec3 base(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.0f);
+        for (int t = 0; t < 400; ++t) {
+            const vec3 c = base + vec3(rng.uniform(-0.3f, 0.3f), rng.uniform(-0.3f, 0.3f),
+                                       rng.uniform(0.0f, 0.6f));
+            for (int k = 0; k < 3; ++k)
+                soup.push_back(c + vec3(rng.uniform(-0.02f, 0.02f), rng.uniform(-0.02f, 0.02f),
+                                        rng.uniform(-0.02f, 0.02f)));
+            tags.push_back(collision::organTag(0, unsigned(t % 7)));
+        }
+        world.setPlantProxies(p, std::move(soup), std::move(tags));
+    }
+    std::vector<vec3> queries;
+    for (int q = 0; q < 300; ++q)
+        queries.push_back({rng.uniform(-1.3f, 1.3f), rng.uniform(-1.3f, 1.3f), rng.uniform(0.0f, 0.6f)});
+    auto answers = [&](int threads) {
+        const int saved = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        world.commit();
+        omp_set_num_threads(saved);
+        std::vector<std::vector<const vec3*>> out;
+        std::vector<const vec3*> near;
+        for (const vec3& q : queries) {
+            world.softTrianglesNear(q, 0.1f, nullptr, near);
+            out.push_back(near);
+        }
+        return out;
+    };
+    const auto one = answers(1);
+    std::size_t found = 0;
+    for (const auto& a : one) found += a.size();
+    EXPECT_GT(found, 1000u);
+    EXPECT_EQ(answers(2), one);
+    EXPECT_EQ(answers(3), one);
+}
+
+// buildProxies tells whether a plant's proxies may have changed since its last call: not when
+// nothing moved, yes when petioles only moved with the stem (kept, moved along) or a leaf fell.
+TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned id = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 25.0f);
+    Impl& impl = implOf(arch);
+    PlantInstance& plant = impl.plant(id);
+    collision::PlantProxyMemo memo;
+    collision::TriangleSoup soup;
+    std::vector<collision::OrganTag> tags;
+    const CollisionOrgans leaves;
+    auto expectFresh = [&] {
+        std::vector<collision::OrganTag> freshTags;
+        const collision::TriangleSoup fresh = freshProxies(impl, plant, freshTags);
+        ASSERT_EQ(soup.size(), fresh.size());
+        EXPECT_EQ(tags, freshTags);
+        float worst = 0.0f;
+        for (std::size_t i = 0; i < fresh.size(); ++i)
+            worst = std::max(worst, glm::length(soup[i] - fresh[i]));
+        EXPECT_LT(worst, 1e-6f);
+    };
+    EXPECT_TRUE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    expectFresh();
+    const std::uint64_t placed = memo.placements;
+    EXPECT_EQ(placed, memo.reads);
+    EXPECT_FALSE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    expectFresh();
+
+    // The stems thicken: every petiole's start moves, none is placed again.
+    for (Shoot& s : plant.shoots)
+        for (Phytomer& ph : s.phytomers) ph.internode.radius *= 1.5f;
+    EXPECT_TRUE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    expectFresh();
+    EXPECT_EQ(memo.placements, placed);
+    EXPECT_FALSE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+
+    // A leaf falls: its petiole is placed again, with one leaf fewer.
+    const std::size_t before = soup.size();
+    for (Shoot& s : plant.shoots)
+        for (Phytomer& ph : s.phytomers)
+            for (Petiole& pt : ph.petioles)
+                if (!pt.leaves.empty() && memo.placements == placed) {
+                    pt.leaves.back().removed = true;
+                    EXPECT_TRUE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+                }
+    EXPECT_EQ(memo.placements, placed + 1);
+    EXPECT_LT(soup.size(), before);
+    expectFresh();
+
+    // Leaves fall everywhere, one a petiole at a time, until none is left (petioles whose
+    // proxies shrink leave room behind in the memo, which is taken back on the way).
+    for (int round = 0; round < 4; ++round) {
+        for (Shoot& s : plant.shoots)
+            for (Phytomer& ph : s.phytomers)
+                for (Petiole& pt : ph.petioles) {
+                    auto standing = std::find_if(pt.leaves.rbegin(), pt.leaves.rend(),
+                                                 [](const LeafOrgan& l) { return !l.removed; });
+                    if (standing != pt.leaves.rend()) standing->removed = true;
+                }
+        EXPECT_EQ(collision::buildProxies(impl, plant, leaves, memo, soup, tags), round < 3);
+        expectFresh();
+    }
+    EXPECT_TRUE(soup.empty());
+    std::size_t kept = 0;
+    for (const auto& m : memo.shoots) kept += m.local.size();
+    EXPECT_LT(kept, before / 2);  // taken back
+}
