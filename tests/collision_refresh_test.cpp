@@ -289,17 +289,19 @@ TEST(CollisionRefresh, GridIsTheSameForAnyThreadCount) {
         omp_set_num_threads(threads);
         world.commit();
         omp_set_num_threads(saved);
-        std::vector<std::vector<const vec3*>> out;
-        std::vector<const vec3*> near;
+        std::vector<std::vector<vec3>> out;  // the corners found, in the order found
+        collision::TriangleBatch near;
         for (const vec3& q : queries) {
             world.softTrianglesNear(q, 0.1f, nullptr, near);
-            out.push_back(near);
+            std::vector<vec3>& corners = out.emplace_back();
+            for (std::size_t t = 0; t < near.size(); ++t)
+                for (int c = 0; c < 4; ++c) corners.push_back(near.corner(t, c));
         }
         return out;
     };
     const auto one = answers(1);
     std::size_t found = 0;
-    for (const auto& a : one) found += a.size();
+    for (const auto& a : one) found += a.size() / 4;
     EXPECT_GT(found, 1000u);
     EXPECT_EQ(answers(2), one);
     EXPECT_EQ(answers(3), one);
