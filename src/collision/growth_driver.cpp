@@ -71,7 +71,10 @@ void growOne(const World& world, GrowthSlot& slot, Impl& impl, double days, std:
 void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& plant, Impl& impl) {
     PlantProxyMemo& memo = *world.memos.at(plant.id);
     PlantProxies& next = memo.next;
-    memo.nextChanged = buildProxies(impl, plant, organs, memo, next.triangles, next.tags);
+    // Changes are told from the memo's last proxies: if those never reached the scene (another
+    // plant's growth failed before the install), these must.
+    memo.nextChanged = buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
+    memo.pending = true;
     if (memo.nextChanged) world.index(next);
 }
 
@@ -98,6 +101,7 @@ void install(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
         const unsigned id = slots[i].plant->id;
         PlantProxyMemo& memo = *world.memos.at(id);
         world.swapPlantProxies(id, memo.next, memo.nextChanged);
+        memo.pending = false;
         world.stale.erase(id);
     }
     world.commit();

@@ -63,6 +63,7 @@ struct PlantProxyMemo {
     std::uint64_t reads = 0, placements = 0;  ///< petioles read and placed again, in all
     PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
     bool nextChanged = true;         ///< whether they differ from the installed ones
+    bool pending = false;            ///< prepared proxies not installed (growth failed)
     std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
     std::vector<const TriangleSoup*> outlines;  ///< scratch: their outlines (null: fallen)
 };
