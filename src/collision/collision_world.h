@@ -40,9 +40,9 @@ inline OrganTag organTag(unsigned shoot, unsigned node) {
 /// spheres and grid cells.
 struct PlantProxies {
     TriangleSoup triangles;
-    std::vector<OrganTag> tags;         ///< per triangle
-    std::vector<glm::vec4> spheres;     ///< per triangle
-    std::vector<std::uint64_t> keys;    ///< grid cell per triangle, for cells of keyCell
+    std::vector<OrganTag> tags;       ///< per triangle
+    std::vector<glm::vec4> spheres;   ///< per triangle
+    std::vector<std::uint64_t> keys;  ///< grid cell per triangle, for cells of keyCell
     float keyCell = 0.0f;
 };
 

@@ -73,7 +73,8 @@ void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& p
     PlantProxies& next = memo.next;
     // Changes are told from the memo's last proxies: if those never reached the scene (another
     // plant's growth failed before the install), these must.
-    memo.nextChanged = buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
+    memo.nextChanged =
+        buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
     memo.pending = true;
     if (memo.nextChanged) world.index(next);
 }
@@ -184,8 +185,7 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         PrepareClock prepareClock;
         forEach(slots.size(), impls, [&](std::size_t i, Impl& impl) {
             growOne(world, slots[i], impl, step, seed);
-            if (reaches)
-                prepareClock.time([&] { prepare(world, organs, *slots[i].plant, impl); });
+            if (reaches) prepareClock.time([&] { prepare(world, organs, *slots[i].plant, impl); });
         });
         world.clock = reaches ? next : clock + step;
         done += step;

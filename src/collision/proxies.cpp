@@ -124,7 +124,9 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
     return key;
 }
 
-bool sameBits(const vec3& a, const vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(const vec3& a, const vec3& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 // The outlines of the prototypes met last (a plant's leaves share a few).
 class OutlineLookup {
@@ -153,17 +155,18 @@ void placeOutline(const mat4& xf, const TriangleSoup& outline, vec3 start, vec3*
     const __m128 c2 = _mm_loadu_ps(&xf[2][0]), c3 = _mm_loadu_ps(&xf[3][0]);
     const __m128 s = _mm_setr_ps(start.x, start.y, start.z, 0.0f);
     for (const vec3& p : outline) {
-        const __m128 r = _mm_sub_ps(
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(p.x)), _mm_mul_ps(c1, _mm_set1_ps(p.y))),
-                       _mm_add_ps(_mm_mul_ps(c2, _mm_set1_ps(p.z)), c3)),
-            s);
+        const __m128 r = _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(p.x)),
+                                                          _mm_mul_ps(c1, _mm_set1_ps(p.y))),
+                                               _mm_add_ps(_mm_mul_ps(c2, _mm_set1_ps(p.z)), c3)),
+                                    s);
         alignas(16) float v[4];
         _mm_store_ps(v, r);
         *out++ = vec3(v[0], v[1], v[2]);
     }
 #else
     for (const vec3& p : outline)
-        *out++ = (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3])) - start;
+        *out++ =
+            (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3])) - start;
 #endif
 }
 
@@ -174,7 +177,8 @@ void compact(PlantProxyMemo::Shoot& m) {
         local.reserve(m.local.size() - m.unusedCorners);
         for (PlantProxyMemo::Petiole& e : m.petioles) {
             const std::uint32_t first = std::uint32_t(local.size());
-            local.insert(local.end(), m.local.begin() + e.first, m.local.begin() + e.first + e.corners);
+            local.insert(local.end(), m.local.begin() + e.first,
+                         m.local.begin() + e.first + e.corners);
             e.first = first;
         }
         m.local = std::move(local);
@@ -305,8 +309,9 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
 
 }  // namespace
 
-bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
-                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
+bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant,
+                  const CollisionOrgans& organs, PlantProxyMemo& memo, TriangleSoup& out,
+                  std::vector<OrganTag>& tags) {
     if (organs.leaves && !organs.internodes && !organs.petioles && !organs.flowers && !organs.fruit)
         return buildLeafProxies(impl, plant, memo, out, tags);
     out.clear();

@@ -55,9 +55,9 @@ struct TurnTrig {
 /// `set` false: nothing kept yet.
 struct LeafTrig {
     float pitch = 0.0f, yaw = 0.0f, roll = 0.0f;
-    int leaflet = 0;      ///< LeafOrgan::leafletIndex
+    int leaflet = 0;  ///< LeafOrgan::leafletIndex
     TurnTrig turn;
-    SinCos swing;         ///< lateral leaflets: their swing toward the tip (yaw)
+    SinCos swing;  ///< lateral leaflets: their swing toward the tip (yaw)
     bool set = false;
 };
 
