@@ -110,6 +110,9 @@ public:
     /// Days of growth since soft avoidance was enabled (refreshes fall on multiples of the
     /// update interval of this clock).
     double clock = 0.0;
+    /// Growth calls with soft avoidance so far: the epoch within which the proxy memos keep
+    /// pointers to prototypes (PlantProxyMemo::epoch).
+    std::uint64_t calls = 0;
     /// Plants whose proxies must be rebuilt at the next call (edited outside growth).
     std::map<unsigned, bool> stale;
     /// Proxies of each plant's organs kept between refreshes (proxies.cpp); an entry is only

@@ -73,6 +73,7 @@ void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& p
     PlantProxies& next = memo.next;
     // Changes are told from the memo's last proxies: if those never reached the scene (another
     // plant's growth failed before the install), these must.
+    memo.epoch = world.calls;
     memo.nextChanged =
         buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
     memo.pending = true;
@@ -135,6 +136,7 @@ void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
 }  // namespace
 
 void refreshPlants(World& world, std::vector<GrowthSlot>& slots, const std::vector<Impl*>& impls) {
+    ++world.calls;
     std::vector<std::size_t> all(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) all[i] = i;
     refresh(world, slots, all, impls);
@@ -161,6 +163,7 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
             for (Impl* impl : impls) impl->memosPinned = false;
         }
     } pin(impls);
+    ++world.calls;
     // Plants new to the scene, or edited since it was refreshed, are seen from now on.
     std::vector<std::size_t> fresh, all;
     for (std::size_t i = 0; i < slots.size(); ++i) {

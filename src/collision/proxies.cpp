@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <functional>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -128,12 +127,21 @@ bool sameBits(const vec3& a, const vec3& b) {
     return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
-// The outlines of the prototypes met last (a plant's leaves share a few).
+// The outlines of the prototypes met last (a plant's leaves share a few), kept in the memo
+// within its epoch.
 class OutlineLookup {
 public:
-    explicit OutlineLookup(ProxyCache& cache) : cache_(cache) {}
+    OutlineLookup(ProxyCache& cache, PlantProxyMemo& memo) : cache_(cache), table_(memo.outlines) {
+        if (memo.epoch == 0 || memo.outlinesEpoch != memo.epoch) {
+            table_.fill({nullptr, nullptr});
+            memo.outlinesEpoch = memo.epoch;
+        }
+    }
     const TriangleSoup& operator()(const OrganPrototype& proto) {
-        auto& [p, outline] = recent_[std::hash<const void*>{}(&proto) % recent_.size()];
+        // A multiplicative hash: prototypes are aligned, their low bits all alike.
+        const std::size_t slot = std::size_t(
+            (std::uint64_t(reinterpret_cast<std::uintptr_t>(&proto)) * 0x9e3779b97f4a7c15ULL) >> 59);
+        auto& [p, outline] = table_[slot];
         if (p != &proto) {
             p = &proto;
             outline = &cache_.shape(proto).outline;
@@ -143,7 +151,7 @@ public:
 
 private:
     ProxyCache& cache_;
-    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32> recent_{};
+    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32>& table_;
 };
 
 // The points of a prototype's outline placed by `xf`, less `start`, into `out`: to the bit
@@ -217,7 +225,7 @@ void truncate(PlantProxyMemo::Shoot& m, std::size_t node) {
 bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, PlantProxyMemo& memo,
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
     OrganPlacer placer(impl, plant);
-    OutlineLookup outlineOf(proxyCache(impl));
+    OutlineLookup outlineOf(proxyCache(impl), memo);
     tags.resize(out.size() / 3);  // out and tags are written in step, growing together
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
@@ -254,15 +262,16 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                         e.leaves = std::uint32_t(pt.leaves.size());
                         m.leafTrig.resize(m.leafTrig.size() + e.leaves);
                     }
+                    m.trig[index].epoch = memo.epoch;
                     start = placer.leaves(s.id, k, j, m.trig[index],
                                           std::span(m.leafTrig).subspan(e.leafFirst, e.leaves),
                                           memo.leaves, e.side);
                     std::uint32_t corners = 0;
-                    memo.outlines.resize(memo.leaves.size());
+                    memo.leafOutlines.resize(memo.leaves.size());
                     for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
                         const OrganPrototype* proto = memo.leaves[i].prototype;
-                        memo.outlines[i] = proto ? &outlineOf(*proto) : nullptr;  // null: fallen
-                        if (proto) corners += std::uint32_t(memo.outlines[i]->size());
+                        memo.leafOutlines[i] = proto ? &outlineOf(*proto) : nullptr;  // null: fallen
+                        if (proto) corners += std::uint32_t(memo.leafOutlines[i]->size());
                     }
                     if (corners != e.corners) {  // room for its proxies
                         m.unusedCorners += e.corners;
@@ -272,10 +281,10 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     }
                     vec3* local = m.local.data() + e.first;
                     for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
-                        if (!memo.outlines[i]) continue;
+                        if (!memo.leafOutlines[i]) continue;
                         // As ProxySink::writeParts places the outline.
-                        placeOutline(memo.leaves[i].transform, *memo.outlines[i], start, local);
-                        local += memo.outlines[i]->size();
+                        placeOutline(memo.leaves[i].transform, *memo.leafOutlines[i], start, local);
+                        local += memo.leafOutlines[i]->size();
                     }
                     e.key = key;
                     e.set = true;

@@ -59,6 +59,11 @@ struct PlantProxyMemo {
         std::size_t unusedCorners = 0, unusedLeaves = 0;  ///< left behind in local, leafTrig
     };
     std::vector<Shoot> shoots;                ///< by shoot ID
+    /// Set before each build: pointers to prototypes and their outlines are kept from one
+    /// build to the next only within one epoch (World::calls), never with 0.
+    std::uint64_t epoch = 0;
+    std::uint64_t outlinesEpoch = 0;
+    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32> outlines{};
     std::uint32_t visit = 0;                  ///< refreshes so far
     std::size_t visited = 0;                  ///< petioles read at the last refresh
     std::uint64_t reads = 0, placements = 0;  ///< petioles read and placed again, in all
@@ -66,7 +71,7 @@ struct PlantProxyMemo {
     bool nextChanged = true;            ///< whether they differ from the installed ones
     bool pending = false;               ///< prepared proxies not installed (growth failed)
     std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
-    std::vector<const TriangleSoup*> outlines;  ///< scratch: their outlines (null: fallen)
+    std::vector<const TriangleSoup*> leafOutlines;  ///< scratch: their outlines (null: fallen)
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves

@@ -518,7 +518,15 @@ struct Tessellator {
             const float scale = leaf.scale * ph.leafFraction;
             out[i].transform =
                 leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
-            out[i].prototype = &leafPrototype(lp, leaf);
+            if (!t.prototype || trig.epoch == 0 || t.epoch != trig.epoch || t.parameters != &lp ||
+                t.variant != leaf.variant || t.leafID != leaf.leafID) {
+                t.prototype = &leafPrototype(lp, leaf);
+                t.parameters = &lp;
+                t.variant = leaf.variant;
+                t.leafID = leaf.leafID;
+                t.epoch = trig.epoch;
+            }
+            out[i].prototype = t.prototype;
         }
         return start;
     }
@@ -536,9 +544,12 @@ struct Tessellator {
     // impl.leafPrototype with the last few answers at hand (a plant's leaves share a few).
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf) {
         const PrototypeSlot slot = prototypeSlot(lp, leaf);
-        const std::size_t h = (std::hash<const void*>{}(slot.proto) ^
-                               std::size_t(slot.leaflet) * 31 ^ std::size_t(slot.variant) * 1009) %
-                              recentPrototypes.size();
+        // A multiplicative hash: the parameters are aligned, their low bits all alike.
+        const std::uint64_t mixed =
+            (std::uint64_t(reinterpret_cast<std::uintptr_t>(slot.proto)) ^
+             std::uint64_t(std::uint32_t(slot.leaflet)) << 40 ^ std::uint64_t(slot.variant) << 20) *
+            0x9e3779b97f4a7c15ULL;
+        const std::size_t h = std::size_t(mixed >> 59);  // 32 slots
         auto& [key, shape] = recentPrototypes[h];
         if (!shape || !(key == slot)) {
             key = slot;
