@@ -4,7 +4,6 @@
 // of threads.
 
 #include <gtest/gtest.h>
-
 #include <omp.h>
 
 #include <algorithm>
@@ -69,7 +68,8 @@ std::vector<PlacedLeaf> placerLeaves(Impl& impl, PlantInstance& plant,
                 vec3 side;
                 KeptTrig& kept = trigs[{s.id, k, j}];
                 kept.leaves.resize(s.phytomers[k].petioles[j].leaves.size());
-                const vec3 start = placer.leaves(s.id, k, j, kept.petiole, kept.leaves, leaves, side);
+                const vec3 start =
+                    placer.leaves(s.id, k, j, kept.petiole, kept.leaves, leaves, side);
                 const vec3 expected = placer.petioleStart(s.id, k, j);
                 const vec3 on = placer.petioleStartOn(s.id, k, side);
                 EXPECT_EQ(std::memcmp(&start, &expected, sizeof start), 0);
@@ -125,7 +125,9 @@ void expectSceneMatchesLeaves(PlantArchitecture& arch) {
         collision::boundingSpheres(p->triangles, spheres);
         collision::SoftGrid::cellKeys(spheres, p->keyCell, keys);
         ASSERT_EQ(spheres.size(), p->spheres.size()) << id;
-        EXPECT_EQ(std::memcmp(spheres.data(), p->spheres.data(), spheres.size() * sizeof(glm::vec4)), 0) << id;
+        EXPECT_EQ(
+            std::memcmp(spheres.data(), p->spheres.data(), spheres.size() * sizeof(glm::vec4)), 0)
+            << id;
         EXPECT_EQ(keys, p->keys) << id;
     }
 }
@@ -157,10 +159,17 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
         for (Phytomer& ph : s.phytomers)
             for (Petiole& pt : ph.petioles) {
                 switch (changed++ % 4) {
-                    case 0: pt.azimuth += 17.0f; break;
-                    case 1: pt.pitch -= 9.0f; break;
-                    case 2: pt.curvature = -pt.curvature - 50.0f; break;
-                    default: break;
+                    case 0:
+                        pt.azimuth += 17.0f;
+                        break;
+                    case 1:
+                        pt.pitch -= 9.0f;
+                        break;
+                    case 2:
+                        pt.curvature = -pt.curvature - 50.0f;
+                        break;
+                    default:
+                        break;
                 }
                 for (LeafOrgan& leaf : pt.leaves) {
                     leaf.pitch += 3.0f;
@@ -168,9 +177,9 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                     leaf.yaw += 1.0f;
                 }
             }
-    Shoot& longest = *std::max_element(plant.shoots.begin(), plant.shoots.end(), [](auto& a, auto& b) {
-        return a.phytomers.size() < b.phytomers.size();
-    });
+    Shoot& longest =
+        *std::max_element(plant.shoots.begin(), plant.shoots.end(),
+                          [](auto& a, auto& b) { return a.phytomers.size() < b.phytomers.size(); });
     ASSERT_GE(longest.phytomers.size(), 3u);
     Internode& in = longest.phytomers[1].internode;
     in.direction = glm::normalize(in.direction + vec3(0.1f, 0.0f, 0.0f));
@@ -283,7 +292,8 @@ TEST(CollisionRefresh, GridIsTheSameForAnyThreadCount) {
     }
     std::vector<vec3> queries;
     for (int q = 0; q < 300; ++q)
-        queries.push_back({rng.uniform(-1.3f, 1.3f), rng.uniform(-1.3f, 1.3f), rng.uniform(0.0f, 0.6f)});
+        queries.push_back(
+            {rng.uniform(-1.3f, 1.3f), rng.uniform(-1.3f, 1.3f), rng.uniform(0.0f, 0.6f)});
     auto answers = [&](int threads) {
         const int saved = omp_get_max_threads();
         omp_set_num_threads(threads);

@@ -94,7 +94,9 @@ struct CollisionStats {
     std::uint64_t plantsRebuilt = 0;    ///< plants whose proxies changed at refreshes (re-binned)
     std::uint64_t plantsUnchanged = 0;  ///< plants whose geometry had not changed (kept)
     std::uint64_t sceneTriangles = 0;   ///< plant proxy triangles in the scene now
-    double refreshSeconds = 0.0;        ///< wall time of refreshes (varies run to run)
+    double refreshSeconds = 0.0;        ///< time of refreshes: preparing the plants' proxies
+                                        ///< (thread time over the threads) and installing
+                                        ///< them (wall time); varies run to run
     double coneSeconds = 0.0;           ///< thread time in soft avoidance cones (varies)
 };
 

@@ -40,9 +40,9 @@ inline OrganTag organTag(unsigned shoot, unsigned node) {
 /// spheres and grid cells.
 struct PlantProxies {
     TriangleSoup triangles;
-    std::vector<OrganTag> tags;         ///< per triangle
-    std::vector<glm::vec4> spheres;     ///< per triangle
-    std::vector<std::uint64_t> keys;    ///< grid cell per triangle, for cells of keyCell
+    std::vector<OrganTag> tags;       ///< per triangle
+    std::vector<glm::vec4> spheres;   ///< per triangle
+    std::vector<std::uint64_t> keys;  ///< grid cell per triangle, for cells of keyCell
     float keyCell = 0.0f;
 };
 
@@ -110,6 +110,9 @@ public:
     /// Days of growth since soft avoidance was enabled (refreshes fall on multiples of the
     /// update interval of this clock).
     double clock = 0.0;
+    /// Growth calls with soft avoidance so far: the epoch within which the proxy memos keep
+    /// pointers to prototypes (PlantProxyMemo::epoch).
+    std::uint64_t calls = 0;
     /// Plants whose proxies must be rebuilt at the next call (edited outside growth).
     std::map<unsigned, bool> stale;
     /// Proxies of each plant's organs kept between refreshes (proxies.cpp); an entry is only

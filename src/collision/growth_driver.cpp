@@ -71,7 +71,12 @@ void growOne(const World& world, GrowthSlot& slot, Impl& impl, double days, std:
 void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& plant, Impl& impl) {
     PlantProxyMemo& memo = *world.memos.at(plant.id);
     PlantProxies& next = memo.next;
-    memo.nextChanged = buildProxies(impl, plant, organs, memo, next.triangles, next.tags);
+    // Changes are told from the memo's last proxies: if those never reached the scene (another
+    // plant's growth failed before the install), these must.
+    memo.epoch = world.calls;
+    memo.nextChanged =
+        buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
+    memo.pending = true;
     if (memo.nextChanged) world.index(next);
 }
 
@@ -98,6 +103,7 @@ void install(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
         const unsigned id = slots[i].plant->id;
         PlantProxyMemo& memo = *world.memos.at(id);
         world.swapPlantProxies(id, memo.next, memo.nextChanged);
+        memo.pending = false;
         world.stale.erase(id);
     }
     world.commit();
@@ -130,6 +136,7 @@ void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
 }  // namespace
 
 void refreshPlants(World& world, std::vector<GrowthSlot>& slots, const std::vector<Impl*>& impls) {
+    ++world.calls;
     std::vector<std::size_t> all(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) all[i] = i;
     refresh(world, slots, all, impls);
@@ -156,6 +163,7 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
             for (Impl* impl : impls) impl->memosPinned = false;
         }
     } pin(impls);
+    ++world.calls;
     // Plants new to the scene, or edited since it was refreshed, are seen from now on.
     std::vector<std::size_t> fresh, all;
     for (std::size_t i = 0; i < slots.size(); ++i) {
@@ -180,8 +188,7 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         PrepareClock prepareClock;
         forEach(slots.size(), impls, [&](std::size_t i, Impl& impl) {
             growOne(world, slots[i], impl, step, seed);
-            if (reaches)
-                prepareClock.time([&] { prepare(world, organs, *slots[i].plant, impl); });
+            if (reaches) prepareClock.time([&] { prepare(world, organs, *slots[i].plant, impl); });
         });
         world.clock = reaches ? next : clock + step;
         done += step;

@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <functional>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -124,14 +123,25 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
     return key;
 }
 
-bool sameBits(const vec3& a, const vec3& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(const vec3& a, const vec3& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
-// The outlines of the prototypes met last (a plant's leaves share a few).
+// The outlines of the prototypes met last (a plant's leaves share a few), kept in the memo
+// within its epoch.
 class OutlineLookup {
 public:
-    explicit OutlineLookup(ProxyCache& cache) : cache_(cache) {}
+    OutlineLookup(ProxyCache& cache, PlantProxyMemo& memo) : cache_(cache), table_(memo.outlines) {
+        if (memo.epoch == 0 || memo.outlinesEpoch != memo.epoch) {
+            table_.fill({nullptr, nullptr});
+            memo.outlinesEpoch = memo.epoch;
+        }
+    }
     const TriangleSoup& operator()(const OrganPrototype& proto) {
-        auto& [p, outline] = recent_[std::hash<const void*>{}(&proto) % recent_.size()];
+        // A multiplicative hash: prototypes are aligned, their low bits all alike.
+        const std::size_t slot = std::size_t(
+            (std::uint64_t(reinterpret_cast<std::uintptr_t>(&proto)) * 0x9e3779b97f4a7c15ULL) >> 59);
+        auto& [p, outline] = table_[slot];
         if (p != &proto) {
             p = &proto;
             outline = &cache_.shape(proto).outline;
@@ -141,7 +151,7 @@ public:
 
 private:
     ProxyCache& cache_;
-    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32> recent_{};
+    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32>& table_;
 };
 
 // The points of a prototype's outline placed by `xf`, less `start`, into `out`: to the bit
@@ -153,17 +163,18 @@ void placeOutline(const mat4& xf, const TriangleSoup& outline, vec3 start, vec3*
     const __m128 c2 = _mm_loadu_ps(&xf[2][0]), c3 = _mm_loadu_ps(&xf[3][0]);
     const __m128 s = _mm_setr_ps(start.x, start.y, start.z, 0.0f);
     for (const vec3& p : outline) {
-        const __m128 r = _mm_sub_ps(
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(p.x)), _mm_mul_ps(c1, _mm_set1_ps(p.y))),
-                       _mm_add_ps(_mm_mul_ps(c2, _mm_set1_ps(p.z)), c3)),
-            s);
+        const __m128 r = _mm_sub_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(c0, _mm_set1_ps(p.x)),
+                                                          _mm_mul_ps(c1, _mm_set1_ps(p.y))),
+                                               _mm_add_ps(_mm_mul_ps(c2, _mm_set1_ps(p.z)), c3)),
+                                    s);
         alignas(16) float v[4];
         _mm_store_ps(v, r);
         *out++ = vec3(v[0], v[1], v[2]);
     }
 #else
     for (const vec3& p : outline)
-        *out++ = (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3])) - start;
+        *out++ =
+            (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3])) - start;
 #endif
 }
 
@@ -174,7 +185,8 @@ void compact(PlantProxyMemo::Shoot& m) {
         local.reserve(m.local.size() - m.unusedCorners);
         for (PlantProxyMemo::Petiole& e : m.petioles) {
             const std::uint32_t first = std::uint32_t(local.size());
-            local.insert(local.end(), m.local.begin() + e.first, m.local.begin() + e.first + e.corners);
+            local.insert(local.end(), m.local.begin() + e.first,
+                         m.local.begin() + e.first + e.corners);
             e.first = first;
         }
         m.local = std::move(local);
@@ -213,7 +225,7 @@ void truncate(PlantProxyMemo::Shoot& m, std::size_t node) {
 bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, PlantProxyMemo& memo,
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
     OrganPlacer placer(impl, plant);
-    OutlineLookup outlineOf(proxyCache(impl));
+    OutlineLookup outlineOf(proxyCache(impl), memo);
     tags.resize(out.size() / 3);  // out and tags are written in step, growing together
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
@@ -250,15 +262,16 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                         e.leaves = std::uint32_t(pt.leaves.size());
                         m.leafTrig.resize(m.leafTrig.size() + e.leaves);
                     }
+                    m.trig[index].epoch = memo.epoch;
                     start = placer.leaves(s.id, k, j, m.trig[index],
                                           std::span(m.leafTrig).subspan(e.leafFirst, e.leaves),
                                           memo.leaves, e.side);
                     std::uint32_t corners = 0;
-                    memo.outlines.resize(memo.leaves.size());
+                    memo.leafOutlines.resize(memo.leaves.size());
                     for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
                         const OrganPrototype* proto = memo.leaves[i].prototype;
-                        memo.outlines[i] = proto ? &outlineOf(*proto) : nullptr;  // null: fallen
-                        if (proto) corners += std::uint32_t(memo.outlines[i]->size());
+                        memo.leafOutlines[i] = proto ? &outlineOf(*proto) : nullptr;  // null: fallen
+                        if (proto) corners += std::uint32_t(memo.leafOutlines[i]->size());
                     }
                     if (corners != e.corners) {  // room for its proxies
                         m.unusedCorners += e.corners;
@@ -268,10 +281,10 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     }
                     vec3* local = m.local.data() + e.first;
                     for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
-                        if (!memo.outlines[i]) continue;
+                        if (!memo.leafOutlines[i]) continue;
                         // As ProxySink::writeParts places the outline.
-                        placeOutline(memo.leaves[i].transform, *memo.outlines[i], start, local);
-                        local += memo.outlines[i]->size();
+                        placeOutline(memo.leaves[i].transform, *memo.leafOutlines[i], start, local);
+                        local += memo.leafOutlines[i]->size();
                     }
                     e.key = key;
                     e.set = true;
@@ -305,8 +318,9 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
 
 }  // namespace
 
-bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
-                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
+bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant,
+                  const CollisionOrgans& organs, PlantProxyMemo& memo, TriangleSoup& out,
+                  std::vector<OrganTag>& tags) {
     if (organs.leaves && !organs.internodes && !organs.petioles && !organs.flowers && !organs.fruit)
         return buildLeafProxies(impl, plant, memo, out, tags);
     out.clear();

@@ -50,29 +50,37 @@ struct PlantProxyMemo {
         vec3 start{0.0f};                         ///< where it started at the last refresh
     };
     struct Shoot {
-        std::vector<std::uint32_t> nodeFirst{0};  ///< node k: petioles [nodeFirst[k], nodeFirst[k + 1])
+        std::vector<std::uint32_t> nodeFirst{
+            0};  ///< node k: petioles [nodeFirst[k], nodeFirst[k + 1])
         std::vector<Petiole> petioles;
-        std::vector<PetioleTrig> trig;            ///< per petiole
+        std::vector<PetioleTrig> trig;  ///< per petiole
         std::vector<LeafTrig> leafTrig;
-        TriangleSoup local;                       ///< leaf proxies relative to their petiole's start
+        TriangleSoup local;  ///< leaf proxies relative to their petiole's start
         std::size_t unusedCorners = 0, unusedLeaves = 0;  ///< left behind in local, leafTrig
     };
-    std::vector<Shoot> shoots;       ///< by shoot ID
-    std::uint32_t visit = 0;         ///< refreshes so far
-    std::size_t visited = 0;         ///< petioles read at the last refresh
+    std::vector<Shoot> shoots;                ///< by shoot ID
+    /// Set before each build: pointers to prototypes and their outlines are kept from one
+    /// build to the next only within one epoch (World::calls), never with 0.
+    std::uint64_t epoch = 0;
+    std::uint64_t outlinesEpoch = 0;
+    std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32> outlines{};
+    std::uint32_t visit = 0;                  ///< refreshes so far
+    std::size_t visited = 0;                  ///< petioles read at the last refresh
     std::uint64_t reads = 0, placements = 0;  ///< petioles read and placed again, in all
-    PlantProxies next;               ///< the next refresh's proxies (prepared, not installed)
-    bool nextChanged = true;         ///< whether they differ from the installed ones
+    PlantProxies next;                  ///< the next refresh's proxies (prepared, not installed)
+    bool nextChanged = true;            ///< whether they differ from the installed ones
+    bool pending = false;               ///< prepared proxies not installed (growth failed)
     std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
-    std::vector<const TriangleSoup*> outlines;  ///< scratch: their outlines (null: fallen)
+    std::vector<const TriangleSoup*> leafOutlines;  ///< scratch: their outlines (null: fallen)
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves
 /// alone go through `memo`; other kinds are placed afresh every time. Returns false when
 /// the proxies are known to equal those `memo` gave at the last refresh, true when they may
 /// differ.
-bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, const CollisionOrgans& organs,
-                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags);
+bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant,
+                  const CollisionOrgans& organs, PlantProxyMemo& memo, TriangleSoup& out,
+                  std::vector<OrganTag>& tags);
 
 /// Collects proxies of the organ kinds that are obstacles.
 class ProxySink final : public OrganSink {

@@ -109,13 +109,15 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     auto countRun = [&](int r) {
         std::uint32_t* count = counts(r);
         Run& own = run[std::size_t(r)];
-        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
+        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1];
+             ++i) {
             const Source& s = sources[i];
             for (std::size_t t = 0; t < s.keys->size(); ++t) {
                 const std::uint64_t key = (*s.keys)[t];
                 if (key == kSecond) continue;
                 if (key == kLarge) {
-                    own.large.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
+                    own.large.push_back(
+                        {s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
                     own.largeSpheres.push_back((*s.spheres)[t]);
                     continue;
                 }
@@ -151,7 +153,8 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     };
     auto scatterRun = [&](int r) {
         std::uint32_t* place = counts(r);
-        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1]; ++i) {
+        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1];
+             ++i) {
             const Source& s = sources[i];
             for (std::size_t t = 0; t < s.keys->size(); ++t) {
                 const std::uint64_t key = (*s.keys)[t];

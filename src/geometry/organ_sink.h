@@ -55,14 +55,25 @@ struct TurnTrig {
 /// `set` false: nothing kept yet.
 struct LeafTrig {
     float pitch = 0.0f, yaw = 0.0f, roll = 0.0f;
-    int leaflet = 0;      ///< LeafOrgan::leafletIndex
+    int leaflet = 0;  ///< LeafOrgan::leafletIndex
     TurnTrig turn;
-    SinCos swing;         ///< lateral leaflets: their swing toward the tip (yaw)
+    SinCos swing;  ///< lateral leaflets: their swing toward the tip (yaw)
     bool set = false;
+    /// The leaf's prototype as last looked up, for the parameters, variant and leaf ID it was
+    /// looked up for, while PetioleTrig::epoch is the one it was looked up in.
+    const OrganPrototype* prototype = nullptr;
+    const LeafParameters* parameters = nullptr;
+    unsigned variant = 0;
+    int leafID = -1;
+    std::uint64_t epoch = 0;
 };
 
 /// The same for a petiole's own angles and curve.
 struct PetioleTrig {
+    /// Set by the caller: prototypes kept in LeafTrig are used again only within one epoch, not
+    /// at all with 0 (prototypes live as long as the caches of the PlantArchitecture that made
+    /// them).
+    std::uint64_t epoch = 0;
     float azimuth = 0.0f, pitch = 0.0f;
     SinCos azimuthTrig, pitchTrig;
     bool set = false;

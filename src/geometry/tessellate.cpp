@@ -6,14 +6,13 @@
 #include <array>
 #include <bit>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "geometry/tube.h"
 #include "geometry/organ_sink.h"
+#include "geometry/tube.h"
 #include "model/architecture_impl.h"
-#include "plantarch/OrganPrototypes.h"
 #include "plantarch/Error.h"
+#include "plantarch/OrganPrototypes.h"
 
 namespace plantarch {
 
@@ -55,7 +54,8 @@ struct PathMeasure {
 
 // Point and tangent at fraction `f` of the arc length of a polyline measured by `m`. (The
 // small functions of leaf placement are inlined: leaves are placed by the hundred thousand.)
-[[gnu::always_inline]] inline std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts, const PathMeasure& m, float f) {
+[[gnu::always_inline]] inline std::pair<vec3, vec3> alongPath(const std::vector<vec3>& pts,
+                                                              const PathMeasure& m, float f) {
     float want = std::clamp(f, 0.0f, 1.0f) * m.total;
     for (std::size_t i = 1; i < pts.size(); ++i) {
         const float len = m.lengths[i - 1];
@@ -169,14 +169,18 @@ PrototypeSlot prototypeSlot(const LeafParameters& lp, const LeafOrgan& leaf) {
     // for the tip leaflet and the side's first for lateral ones.
     const int leaflet = proto.leaf_texture_file.count(leaf.leafletIndex) ? leaf.leafletIndex
                         : leaf.leafletIndex == 0                         ? 0
-                                                                         : (leaf.leafletIndex < 0 ? -1 : 1);
+                                                 : (leaf.leafletIndex < 0 ? -1 : 1);
     const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
     return {&proto, leaflet, variant};
 }
 
 // Whether two floats are the same to the bit (-0 and 0 differ: their sines do).
-bool sameBits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
-bool sameBits(vec3 a, vec3 b) { return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z); }
+bool sameBits(float a, float b) {
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+}
+bool sameBits(vec3 a, vec3 b) {
+    return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z);
+}
 
 // Writes organs into the Context, reusing their objects.
 class ContextSink final : public OrganSink {
@@ -496,7 +500,8 @@ struct Tessellator {
         const LeafParameters& lp = pp.leaf;
         if (leafTrig.size() != pt.leaves.size())
             throw Error("one kept leaf angle per leaf is needed",
-                        {.parameter = "leafTrig", .value = std::to_string(leafTrig.size()),
+                        {.parameter = "leafTrig",
+                         .value = std::to_string(leafTrig.size()),
                          .validRange = std::to_string(pt.leaves.size())});
         out.resize(pt.leaves.size());
         for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
@@ -511,8 +516,17 @@ struct Tessellator {
                 t = trigOf(leaf);
             const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
             const float scale = leaf.scale * ph.leafFraction;
-            out[i].transform = leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
-            out[i].prototype = &leafPrototype(lp, leaf);
+            out[i].transform =
+                leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
+            if (!t.prototype || trig.epoch == 0 || t.epoch != trig.epoch || t.parameters != &lp ||
+                t.variant != leaf.variant || t.leafID != leaf.leafID) {
+                t.prototype = &leafPrototype(lp, leaf);
+                t.parameters = &lp;
+                t.variant = leaf.variant;
+                t.leafID = leaf.leafID;
+                t.epoch = trig.epoch;
+            }
+            out[i].prototype = t.prototype;
         }
         return start;
     }
@@ -530,8 +544,12 @@ struct Tessellator {
     // impl.leafPrototype with the last few answers at hand (a plant's leaves share a few).
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf) {
         const PrototypeSlot slot = prototypeSlot(lp, leaf);
-        const std::size_t h = (std::hash<const void*>{}(slot.proto) ^ std::size_t(slot.leaflet) * 31 ^
-                               std::size_t(slot.variant) * 1009) % recentPrototypes.size();
+        // A multiplicative hash: the parameters are aligned, their low bits all alike.
+        const std::uint64_t mixed =
+            (std::uint64_t(reinterpret_cast<std::uintptr_t>(slot.proto)) ^
+             std::uint64_t(std::uint32_t(slot.leaflet)) << 40 ^ std::uint64_t(slot.variant) << 20) *
+            0x9e3779b97f4a7c15ULL;
+        const std::size_t h = std::size_t(mixed >> 59);  // 32 slots
         auto& [key, shape] = recentPrototypes[h];
         if (!shape || !(key == slot)) {
             key = slot;

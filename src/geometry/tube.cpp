@@ -123,8 +123,8 @@ CurveBasis curveBasis(vec3 direction, vec3 target) {
     return b;
 }
 
-void curvedPath(vec3 start, const CurveBasis& b, float length, float curvature,
-                unsigned segments, std::vector<vec3>& pts) {
+void curvedPath(vec3 start, const CurveBasis& b, float length, float curvature, unsigned segments,
+                std::vector<vec3>& pts) {
     if (segments == 0) segments = 1;
     pts.resize(segments + 1);
     pts[0] = start;
