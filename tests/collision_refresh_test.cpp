@@ -384,3 +384,22 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
     for (const auto& m : memo.shoots) kept += m.local.size();
     EXPECT_LT(kept, before / 2);  // taken back
 }
+
+// Prototypes and their outlines are kept by pointer within one growth call only: registering
+// a prototype between calls drops every cached prototype, and the next call looks them up
+// again (built anew from the same keys, so the same shapes) instead of reading freed ones.
+TEST(CollisionRefresh, PrototypesAreLookedUpAgainAfterTheCachesAreCleared) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSoftCollisionAvoidance();
+    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 12.0f);
+    arch.advanceTime(1.0);
+    const std::uint64_t calls = collision::worldOf(implOf(arch)).calls;
+    arch.registerLeafPrototype("unused_test_leaf", [](const LeafPrototype&, Rng&, int) {
+        return OrganPrototype{};
+    });
+    arch.advanceTime(2.0);
+    EXPECT_EQ(collision::worldOf(implOf(arch)).calls, calls + 1);
+    expectSceneMatchesLeaves(arch);
+}
