@@ -1,10 +1,8 @@
 // The soft collision scene's refresh: leaf proxies placed by the tessellator's own formulas
-// (OrganPlacer::leaves), kept per petiole while nothing that shapes them changed, plants
-// known unchanged without comparing their proxies, and a grid that is the same for any number
-// of threads.
+// (OrganPlacer::leaves), kept per petiole while nothing that shapes them changed, and plants
+// known unchanged without comparing their proxies.
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -266,57 +264,6 @@ TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
     expectSceneMatchesLeaves(arch);
 }
 
-// The grid's counting sort splits its work among threads; the buckets hold the same
-// triangles in the same order for any number of them.
-TEST(CollisionRefresh, GridIsTheSameForAnyThreadCount) {
-    Rng rng(17, 3);
-    Context ctx;
-    collision::World world;
-    world.setSoft(SoftCollisionOptions{}, ctx);
-    std::vector<unsigned> ids;
-    for (unsigned p = 0; p < 40; ++p) ids.push_back(p);
-    world.reservePlants(ids);
-    for (unsigned p : ids) {
-        collision::TriangleSoup soup;
-        std::vector<collision::OrganTag> tags;
-        const vec3 base(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.0f);
-        for (int t = 0; t < 400; ++t) {
-            const vec3 c = base + vec3(rng.uniform(-0.3f, 0.3f), rng.uniform(-0.3f, 0.3f),
-                                       rng.uniform(0.0f, 0.6f));
-            for (int k = 0; k < 3; ++k)
-                soup.push_back(c + vec3(rng.uniform(-0.02f, 0.02f), rng.uniform(-0.02f, 0.02f),
-                                        rng.uniform(-0.02f, 0.02f)));
-            tags.push_back(collision::organTag(0, unsigned(t % 7)));
-        }
-        world.setPlantProxies(p, std::move(soup), std::move(tags));
-    }
-    std::vector<vec3> queries;
-    for (int q = 0; q < 300; ++q)
-        queries.push_back(
-            {rng.uniform(-1.3f, 1.3f), rng.uniform(-1.3f, 1.3f), rng.uniform(0.0f, 0.6f)});
-    auto answers = [&](int threads) {
-        const int saved = omp_get_max_threads();
-        omp_set_num_threads(threads);
-        world.commit();
-        omp_set_num_threads(saved);
-        std::vector<std::vector<vec3>> out;  // the corners found, in the order found
-        collision::TriangleBatch near;
-        for (const vec3& q : queries) {
-            world.softTrianglesNear(q, 0.1f, nullptr, near);
-            std::vector<vec3>& corners = out.emplace_back();
-            for (std::size_t t = 0; t < near.size(); ++t)
-                for (int c = 0; c < 4; ++c) corners.push_back(near.corner(t, c));
-        }
-        return out;
-    };
-    const auto one = answers(1);
-    std::size_t found = 0;
-    for (const auto& a : one) found += a.size() / 4;
-    EXPECT_GT(found, 1000u);
-    EXPECT_EQ(answers(2), one);
-    EXPECT_EQ(answers(3), one);
-}
-
 // buildProxies tells whether a plant's proxies may have changed since its last call: not when
 // nothing moved, yes when petioles only moved with the stem (kept, moved along) or a leaf fell.
 TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
@@ -385,4 +332,23 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
     std::size_t kept = 0;
     for (const auto& m : memo.shoots) kept += m.local.size();
     EXPECT_LT(kept, before / 2);  // taken back
+}
+
+// Prototypes and their outlines are kept by pointer within one growth call only: registering
+// a prototype between calls drops every cached prototype, and the next call looks them up
+// again (built anew from the same keys, so the same shapes) instead of reading freed ones.
+TEST(CollisionRefresh, PrototypesAreLookedUpAgainAfterTheCachesAreCleared) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.enableSoftCollisionAvoidance();
+    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 12.0f);
+    arch.advanceTime(1.0);
+    const std::uint64_t calls = collision::worldOf(implOf(arch)).calls;
+    arch.registerLeafPrototype("unused_test_leaf", [](const LeafPrototype&, Rng&, int) {
+        return OrganPrototype{};
+    });
+    arch.advanceTime(2.0);
+    EXPECT_EQ(collision::worldOf(implOf(arch)).calls, calls + 1);
+    expectSceneMatchesLeaves(arch);
 }

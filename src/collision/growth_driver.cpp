@@ -71,9 +71,9 @@ void growOne(const World& world, GrowthSlot& slot, Impl& impl, double days, std:
 void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& plant, Impl& impl) {
     PlantProxyMemo& memo = *world.memos.at(plant.id);
     PlantProxies& next = memo.next;
+    memo.epoch = world.calls;
     // Changes are told from the memo's last proxies: if those never reached the scene (another
     // plant's growth failed before the install), these must.
-    memo.epoch = world.calls;
     memo.nextChanged =
         buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
     memo.pending = true;

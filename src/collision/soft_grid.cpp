@@ -2,8 +2,6 @@
 
 #include "collision/soft_grid.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -78,141 +76,43 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
     start_.assign(buckets + 1, 0);
-
     // Whether triangle t of a source starts a quad.
     auto quadAt = [](const Source& s, std::size_t t) {
         return t + 1 < s.keys->size() && (*s.keys)[t + 1] == kSecond;
     };
-    // A counting sort by bucket, large quads aside, on several threads: the sources are split
-    // into runs of about equal size; each run counts its quads per bucket, the counts become
-    // each run's first place in each bucket (after the earlier runs' quads there), and each
-    // run places its own. A bucket holds its quads in the sources' order, however many runs
-    // there are.
-    const int runs = total >= 8192 && !omp_in_parallel()
-                         ? std::clamp(omp_get_max_threads(), 1, std::min(8, int(sources.size())))
-                         : 1;
-    std::vector<std::size_t> firstSource(std::size_t(runs) + 1, sources.size());
-    firstSource[0] = 0;
-    for (std::size_t i = 0, seen = 0, r = 1; i < sources.size() && r < std::size_t(runs); ++i) {
-        seen += sources[i].keys->size();
-        if (seen * std::size_t(runs) >= total * r) firstSource[r++] = i + 1;
-    }
-    fill_.assign(std::size_t(runs) * buckets, 0);  // per run: counts, then places
-    struct Run {
-        float maxRadius = 0.0f;
-        std::uint32_t inRange = 0;  ///< quads in the run's share of the buckets (runs > 1)
-        std::vector<SoftTriangle> large;
-        std::vector<glm::vec4> largeSpheres;
-    };
-    std::vector<Run> run(static_cast<std::size_t>(runs));
-    auto counts = [&](int r) { return fill_.data() + std::size_t(r) * buckets; };
-    auto countRun = [&](int r) {
-        std::uint32_t* count = counts(r);
-        Run& own = run[std::size_t(r)];
-        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1];
-             ++i) {
-            const Source& s = sources[i];
-            for (std::size_t t = 0; t < s.keys->size(); ++t) {
-                const std::uint64_t key = (*s.keys)[t];
-                if (key == kSecond) continue;
-                if (key == kLarge) {
-                    own.large.push_back(
-                        {s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
-                    own.largeSpheres.push_back((*s.spheres)[t]);
-                    continue;
-                }
-                own.maxRadius = std::max(own.maxRadius, (*s.spheres)[t].w);
-                ++count[bucketOf(key)];
+    // Counting sort by bucket; large quads aside.
+    for (const Source& s : sources)
+        for (std::size_t t = 0; t < s.keys->size(); ++t) {
+            const std::uint64_t key = (*s.keys)[t];
+            if (key == kSecond) continue;
+            if (key == kLarge) {
+                large_.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
+                largeSpheres_.push_back((*s.spheres)[t]);
+                continue;
             }
+            maxRadius_ = std::max(maxRadius_, (*s.spheres)[t].w);
+            ++start_[bucketOf(key) + 1];
         }
-    };
-    // Bucket range r (runs > 1): its total, then every run's first places in it.
-    auto bucketRange = [&](int r) {
-        return std::pair{buckets * std::size_t(r) / std::size_t(runs),
-                         buckets * std::size_t(r + 1) / std::size_t(runs)};
-    };
-    auto totalRange = [&](int r) {
-        const auto [b0, b1] = bucketRange(r);
-        std::uint32_t sum = 0;
-        for (int q = 0; q < runs; ++q)
-            for (std::size_t b = b0; b < b1; ++b) sum += counts(q)[b];
-        run[std::size_t(r)].inRange = sum;
-    };
-    auto placeRange = [&](int r) {
-        const auto [b0, b1] = bucketRange(r);
-        std::uint32_t at = 0;
-        for (int q = 0; q < r; ++q) at += run[std::size_t(q)].inRange;
-        for (std::size_t b = b0; b < b1; ++b) {
-            start_[b] = at;
-            for (int q = 0; q < runs; ++q) {
-                const std::uint32_t here = counts(q)[b];
-                counts(q)[b] = at;
-                at += here;
-            }
+    for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
+    const std::size_t n = start_[buckets];
+    small_.resize(n);
+    corners_.resize(4 * n);
+    keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
+    for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (const Source& s : sources)  // stable: sources' order within each bucket
+        for (std::size_t t = 0; t < s.keys->size(); ++t) {
+            const std::uint64_t key = (*s.keys)[t];
+            if (key == kLarge || key == kSecond) continue;
+            const std::uint32_t at = fill_[bucketOf(key)]++;
+            const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
+            small_[at] = q;
+            vec3* corners = corners_.data() + 4 * std::size_t(at);
+            std::copy_n(q.corners, 3, corners);
+            corners[3] = q.last();
+            keys_[at] = key;
+            for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
         }
-    };
-    auto scatterRun = [&](int r) {
-        std::uint32_t* place = counts(r);
-        for (std::size_t i = firstSource[std::size_t(r)]; i < firstSource[std::size_t(r) + 1];
-             ++i) {
-            const Source& s = sources[i];
-            for (std::size_t t = 0; t < s.keys->size(); ++t) {
-                const std::uint64_t key = (*s.keys)[t];
-                if (key == kLarge || key == kSecond) continue;
-                const std::uint32_t at = place[bucketOf(key)]++;
-                const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
-                small_[at] = q;
-                vec3* corners = corners_.data() + 4 * std::size_t(at);
-                std::copy_n(q.corners, 3, corners);
-                corners[3] = q.last();
-                keys_[at] = key;
-                for (int k = 0; k < 4; ++k) sphereRows_[k][at] = (*s.spheres)[t][k];
-            }
-        }
-    };
-    auto allocate = [&] {
-        std::uint32_t n = 0;
-        if (runs == 1) {  // the counts become places at once
-            std::uint32_t* count = counts(0);
-            for (std::size_t b = 0; b < buckets; ++b) {
-                start_[b] = n;
-                const std::uint32_t here = count[b];
-                count[b] = n;
-                n += here;
-            }
-        } else {
-            for (const Run& r : run) n += r.inRange;
-        }
-        start_[buckets] = n;
-        small_.resize(n);
-        corners_.resize(4 * std::size_t(n));
-        keys_.assign(n + 4, kLarge);  // padded with a key no cell has (tests go four at a time)
-        for (int k = 0; k < 4; ++k) sphereRows_[k].assign(n + 4, k < 3 ? 1e30f : 0.0f);
-    };
-    if (runs == 1) {
-        countRun(0);
-        allocate();
-        scatterRun(0);
-    } else {
-#pragma omp parallel num_threads(runs)
-        {
-#pragma omp for schedule(static)
-            for (int r = 0; r < runs; ++r) countRun(r);
-#pragma omp for schedule(static)
-            for (int r = 0; r < runs; ++r) totalRange(r);
-#pragma omp single
-            allocate();
-#pragma omp for schedule(static)
-            for (int r = 0; r < runs; ++r) placeRange(r);
-#pragma omp for schedule(static)
-            for (int r = 0; r < runs; ++r) scatterRun(r);
-        }
-    }
-    for (Run& r : run) {
-        maxRadius_ = std::max(maxRadius_, r.maxRadius);
-        large_.insert(large_.end(), r.large.begin(), r.large.end());
-        largeSpheres_.insert(largeSpheres_.end(), r.largeSpheres.begin(), r.largeSpheres.end());
-    }
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,

@@ -291,12 +291,18 @@ std::uint64_t hashKey(const std::string& s) {
 namespace {
 
 // Node positions of a shoot whose base is `base`.
-std::vector<vec3> nodesFrom(const Shoot& s, vec3 base) {
-    std::vector<vec3> nodes{base};
+void nodesFrom(const Shoot& s, vec3 base, std::vector<vec3>& nodes) {
+    nodes.clear();
     nodes.reserve(s.phytomers.size() + 1);
+    nodes.push_back(base);
     for (const Phytomer& ph : s.phytomers)
         nodes.push_back(nodes.back() +
                         ph.internode.direction * ph.internode.length * ph.internodeFraction);
+}
+
+std::vector<vec3> nodesFrom(const Shoot& s, vec3 base) {
+    std::vector<vec3> nodes;
+    nodesFrom(s, base, nodes);
     return nodes;
 }
 
@@ -339,13 +345,17 @@ struct Tessellator {
     void computeNodes() {
         // Parents come before their children (a shoot grows from one made earlier), so each
         // shoot starts from its parent's nodes computed just before: linear in the plant's size.
-        nodes.assign(plant.shoots.size(), {});
+        // (The vectors are reused: an OrganPlacer keeps those of the last one on its thread.)
+        nodes.resize(plant.shoots.size());
+        for (std::vector<vec3>& n : nodes) n.clear();
         for (const Shoot& s : plant.shoots) {
             if (s.removed) continue;
             const bool parentDone = s.parent >= 0 && unsigned(s.parent) < s.id &&
                                     !nodes[unsigned(s.parent)].empty();
-            nodes[s.id] = parentDone ? nodesFrom(s, baseOn(s, nodes[unsigned(s.parent)]))
-                                     : shootNodePositions(plant, s.id);
+            if (parentDone)
+                nodesFrom(s, baseOn(s, nodes[unsigned(s.parent)]), nodes[s.id]);
+            else
+                nodes[s.id] = shootNodePositions(plant, s.id);
         }
     }
 
@@ -734,13 +744,36 @@ struct OrganPlacer::State {
     Tessellator tessellator;
 };
 
+namespace {
+
+// The storage of the last OrganPlacer on this thread, for the next (collision refreshes make
+// one per plant and refresh).
+struct PlacerStorage {
+    std::vector<std::vector<vec3>> nodes;
+    std::vector<vec3> path;
+    PathMeasure measure;
+    void swap(Tessellator& t) {
+        t.nodes.swap(nodes);
+        t.petiolePath.swap(path);
+        std::swap(t.petioleMeasure, measure);
+    }
+};
+
+PlacerStorage& placerStorage() {
+    thread_local PlacerStorage storage;
+    return storage;
+}
+
+}  // namespace
+
 OrganPlacer::OrganPlacer(PlantArchitecture::Impl& impl, PlantInstance& plant)
     : state_(std::make_unique<State>(State{Tessellator{impl, plant, nullptr, {}}})) {
     impl.clearCallMemos();
+    placerStorage().swap(state_->tessellator);
     state_->tessellator.computeNodes();
 }
 
-OrganPlacer::~OrganPlacer() = default;
+OrganPlacer::~OrganPlacer() { placerStorage().swap(state_->tessellator); }
 
 void OrganPlacer::petiole(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole) {
     Tessellator& t = state_->tessellator;
