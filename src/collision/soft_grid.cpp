@@ -21,9 +21,14 @@ inline std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
            (std::uint64_t((z + kBias) & kMask) << 42);
 }
 
+// floor(v * inverse) within the grid's range, without a call to floor: clamped first (so the
+// conversion cannot overflow; NaN goes to the lowest cell), truncated, then one down for
+// negative non-integers.
 inline std::int64_t cellIndex(float v, float inverse) {
-    const float c = std::floor(v * inverse);
-    return std::int64_t(std::clamp(c, float(-kBias), float(kBias - 1)));
+    const float x = v * inverse, lo = float(-kBias), hi = float(kBias - 1);
+    const float c = x >= lo ? (x <= hi ? x : hi) : lo;
+    const std::int64_t t = std::int64_t(c);
+    return t - (float(t) > c ? 1 : 0);
 }
 
 }  // namespace
