@@ -3,7 +3,6 @@
 // known unchanged without comparing their proxies.
 
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cstring>
@@ -263,62 +262,6 @@ TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
     expectSceneMatchesLeaves(arch);
     arch.advanceTime(2.0);
     expectSceneMatchesLeaves(arch);
-}
-
-// The grid's quads are copied into place by up to two threads; the buckets hold the same
-// triangles and quads in the same order for any number of them.
-TEST(CollisionRefresh, GridIsTheSameForAnyThreadCount) {
-    Rng rng(17, 3);
-    Context ctx;
-    collision::World world;
-    world.setSoft(SoftCollisionOptions{}, ctx);
-    std::vector<unsigned> ids;
-    for (unsigned p = 0; p < 40; ++p) ids.push_back(p);
-    world.reservePlants(ids);
-    for (unsigned p : ids) {
-        collision::TriangleSoup soup;
-        std::vector<collision::OrganTag> tags;
-        const vec3 base(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.0f);
-        for (int t = 0; t < 400; ++t) {
-            const vec3 c = base + vec3(rng.uniform(-0.3f, 0.3f), rng.uniform(-0.3f, 0.3f),
-                                       rng.uniform(0.0f, 0.6f));
-            for (int k = 0; k < 3; ++k)
-                soup.push_back(c + vec3(rng.uniform(-0.02f, 0.02f), rng.uniform(-0.02f, 0.02f),
-                                        rng.uniform(-0.02f, 0.02f)));
-            tags.push_back(collision::organTag(0, unsigned(t % 7)));
-            if (t % 2) {  // a quad: (a, b, c) and (a, c, d)
-                const vec3 a = soup[soup.size() - 3], cc = soup.back();
-                soup.insert(soup.end(), {a, cc, c + vec3(0.0f, 0.0f, 0.03f)});
-                tags.push_back(tags.back());
-            }
-        }
-        world.setPlantProxies(p, std::move(soup), std::move(tags));
-    }
-    std::vector<vec3> queries;
-    for (int q = 0; q < 300; ++q)
-        queries.push_back(
-            {rng.uniform(-1.3f, 1.3f), rng.uniform(-1.3f, 1.3f), rng.uniform(0.0f, 0.6f)});
-    auto answers = [&](int threads) {
-        const int saved = omp_get_max_threads();
-        omp_set_num_threads(threads);
-        world.commit();
-        omp_set_num_threads(saved);
-        std::vector<std::vector<vec3>> out;  // the corners found, in the order found
-        collision::TriangleBatch near;
-        for (const vec3& q : queries) {
-            world.softTrianglesNear(q, 0.1f, nullptr, near);
-            std::vector<vec3>& corners = out.emplace_back();
-            for (std::size_t t = 0; t < near.size(); ++t)
-                for (int c = 0; c < 4; ++c) corners.push_back(near.corner(t, c));
-        }
-        return out;
-    };
-    const auto one = answers(1);
-    std::size_t found = 0;
-    for (const auto& a : one) found += a.size() / 4;
-    EXPECT_GT(found, 1000u);
-    EXPECT_EQ(answers(2), one);
-    EXPECT_EQ(answers(3), one);
 }
 
 // buildProxies tells whether a plant's proxies may have changed since its last call: not when

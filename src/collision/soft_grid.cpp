@@ -2,8 +2,6 @@
 
 #include "collision/soft_grid.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -107,30 +105,19 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
     for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
     fill_.assign(start_.begin(), start_.end() - 1);
-    // The quads are copied into place by up to two threads, each for half of the buckets (so
-    // each writes its own places; both read every key): the copies are most of the work. In
-    // every bucket the quads keep the sources' order, however many threads there are.
-    const int parts = n >= 8192 && !omp_in_parallel() ? std::min(2, omp_get_max_threads()) : 1;
-#pragma omp parallel for schedule(static, 1) num_threads(parts) if (parts > 1)
-    for (int part = 0; part < parts; ++part) {
-        const std::size_t b0 = buckets * std::size_t(part) / std::size_t(parts);
-        const std::size_t b1 = buckets * std::size_t(part + 1) / std::size_t(parts);
-        for (const Source& s : sources)
-            for (std::size_t t = 0; t < s.keys->size(); ++t) {
-                const std::uint64_t key = (*s.keys)[t];
-                if (key == kLarge || key == kSecond) continue;
-                const std::size_t b = bucketOf(key);
-                if (b < b0 || b >= b1) continue;
-                const std::uint32_t at = fill_[b]++;
-                const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
-                small_[at] = q;
-                vec3* corners = corners_.data() + 4 * std::size_t(at);
-                std::copy_n(q.corners, 3, corners);
-                corners[3] = q.last();
-                keys_[at] = key;
-                for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
-            }
-    }
+    for (const Source& s : sources)  // stable: sources' order within each bucket
+        for (std::size_t t = 0; t < s.keys->size(); ++t) {
+            const std::uint64_t key = (*s.keys)[t];
+            if (key == kLarge || key == kSecond) continue;
+            const std::uint32_t at = fill_[bucketOf(key)]++;
+            const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
+            small_[at] = q;
+            vec3* corners = corners_.data() + 4 * std::size_t(at);
+            std::copy_n(q.corners, 3, corners);
+            corners[3] = q.last();
+            keys_[at] = key;
+            for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
+        }
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,
