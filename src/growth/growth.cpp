@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <queue>
 #include <tuple>
@@ -117,9 +118,14 @@ struct Grower {
         return -1.0;
     }
 
+    // Events after the end of the current run are not queued: the run would stop before
+    // them, and their times stay stored on the plant, from which the next run queues them
+    // (plants grown in many short steps would otherwise queue every pending event each step).
+    double horizon = std::numeric_limits<double>::infinity();
     void push(double time, int kind, unsigned shoot, unsigned node = 0, unsigned petiole = 0,
               unsigned index = 0, bool terminal = false) {
-        if (time >= 0.0) queue.push(Event{time, kind, shoot, node, petiole, index, terminal});
+        if (time >= 0.0 && time <= horizon)
+            queue.push(Event{time, kind, shoot, node, petiole, index, terminal});
     }
 
     // Puts every pending time stored on the plant into the queue.
@@ -526,6 +532,7 @@ struct Grower {
 
     void run(double target) {
         const double stop = std::min(target, std::max(plant.age, double(plant.phenology.max_age)));
+        horizon = stop;
         enqueueAll(plant.age);
         while (!queue.empty() && queue.top().time <= stop) {
             const Event e = queue.top();
