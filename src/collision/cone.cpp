@@ -159,6 +159,88 @@ struct Candidate {
     bool checkReach;
 };
 
+// Four quads bounded at once (lane k: quad k of the block): whether each may block rays, its
+// edge planes (as in boundBlock), planes and the cells its directions can reach.
+struct BlockBounds {
+    Int4 valid, first, second, aroundAxis, checkReach, ringLo, ringHi, sectorLo, sectorHi;
+    Float4 volume1, volume2, dist1, dist2;
+    Float4 n[5][3], normal1[3], normal2[3];
+};
+
+// Appends the candidates of a bounded block: a quad (flat or folded as seen from the apex), or
+// the triangle of it that is not seen edge-on; planes facing inward.
+void emitCandidates(const BlockBounds& b, const Frame& f, std::vector<Candidate>& out) {
+    const Float4(&n)[5][3] = b.n;
+    for (int k = 0; k < 4; ++k) {
+        if (!b.valid[k]) continue;
+        Candidate bounds;
+        bounds.ringLo = b.ringLo[k];
+        bounds.ringHi = b.ringHi[k];
+        bounds.checkReach = b.checkReach[k] != 0;
+        // The sector range as at most two runs inside [0, sectors).
+        const int sectors = f.sectors, lo = b.sectorLo[k], hi = b.sectorHi[k];
+        int(&runs)[2][2] = bounds.runs;
+        runs[1][0] = 0;
+        runs[1][1] = -1;
+        if (b.aroundAxis[k] || hi - lo + 1 >= sectors) {
+            runs[0][0] = 0;
+            runs[0][1] = sectors - 1;
+        } else if (lo < 0) {
+            runs[0][0] = lo + sectors;
+            runs[0][1] = sectors - 1;
+            runs[1][1] = hi;
+        } else if (hi >= sectors) {
+            runs[0][0] = lo;
+            runs[0][1] = sectors - 1;
+            runs[1][1] = hi - sectors;
+        } else {
+            runs[0][0] = lo;
+            runs[0][1] = hi;
+        }
+        // Planes facing inward: each triangle's edges flipped when it faces away.
+        const float s1 = b.volume1[k] < 0.0f ? -1.0f : 1.0f, s2 = b.volume2[k] < 0.0f ? -1.0f : 1.0f;
+        auto set = [&](float (&to)[3], const Float4 (&from)[3], float sign) {
+            for (int i = 0; i < 3; ++i) to[i] = from[i][k] * sign;
+        };
+        auto plane = [&](float (&to)[3], const Float4 (&from)[3]) {
+            for (int i = 0; i < 3; ++i) to[i] = from[i][k];
+        };
+        const bool one = b.first[k] != 0, two = b.second[k] != 0;
+        if (one && two) {  // a quad
+            Candidate& t = out.emplace_back(bounds);
+            t.kind = s1 == s2 ? kQuad : kFolded;
+            set(t.e[0], n[0], s1);
+            set(t.e[1], n[1], s1);
+            set(t.e[2], n[4], s1);
+            set(t.e[3], n[2], s2);
+            set(t.e[4], n[3], s2);
+            plane(t.n1, b.normal1);
+            t.d1 = b.dist1[k];
+            plane(t.n2, b.normal2);
+            t.d2 = b.dist2[k];
+            continue;
+        }
+        if (one) {  // a lone triangle
+            Candidate& t = out.emplace_back(bounds);
+            t.kind = kTriangle;
+            set(t.e[0], n[0], s1);
+            set(t.e[1], n[1], s1);
+            set(t.e[2], n[4], s1);
+            plane(t.n1, b.normal1);
+            t.d1 = b.dist1[k];
+        }
+        if (two) {  // a quad whose first triangle is seen edge-on
+            Candidate& t = out.emplace_back(bounds);
+            t.kind = kTriangle;
+            set(t.e[0], n[4], -s2);
+            set(t.e[1], n[2], s2);
+            set(t.e[2], n[3], s2);
+            plane(t.n1, b.normal2);
+            t.d1 = b.dist2[k];
+        }
+    }
+}
+
 // Bounds four quads of `batch` (block `b`) at once; appends those that may block rays.
 //
 // Each quad is moved into the cone's frame; the directions to its corners lie in a cap, and
@@ -211,7 +293,8 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
         o[1] = az * bx - ax * bz;
         o[2] = ax * by - ay * bx;
     };
-    Float4 n[5][3];
+    BlockBounds bounds;  // what the candidates are made of (emitCandidates)
+    Float4(&n)[5][3] = bounds.n;
     for (int c = 0; c < 4; ++c) {
         const int e = c == 3 ? 0 : c + 1;
         cross(qx[c], qy[c], qz[c], qx[e], qy[e], qz[e], n[c]);
@@ -269,7 +352,8 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
     lo += select(wrap, twoPi, zero);
     hi += select(wrap, twoPi, zero);
     // The triangles' planes.
-    Float4 normal1[3], normal2[3];
+    Float4(&normal1)[3] = bounds.normal1;
+    Float4(&normal2)[3] = bounds.normal2;
     cross(qx[1] - qx[0], qy[1] - qy[0], qz[1] - qz[0], qx[2] - qx[0], qy[2] - qy[0], qz[2] - qz[0],
           normal1);
     cross(qx[2] - qx[0], qy[2] - qy[0], qz[2] - qz[0], qx[3] - qx[0], qy[3] - qy[0], qz[3] - qz[0],
@@ -291,74 +375,20 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
         return t + (__builtin_convertvector(t, Float4) > v);  // a true comparison is -1
     };
     const Int4 sectorLo = floorOf(lo * perSector), sectorHi = floorOf(hi * perSector);
-    for (int k = 0; k < 4; ++k) {
-        if (!valid[k]) continue;
-        Candidate bounds;
-        bounds.ringLo = ringLo[k];
-        bounds.ringHi = ringHi[k];
-        bounds.checkReach = checkReach[k] != 0;
-        // The sector range as at most two runs inside [0, sectors).
-        const int sectors = f.sectors, lo = sectorLo[k], hi = sectorHi[k];
-        int(&runs)[2][2] = bounds.runs;
-        runs[1][0] = 0;
-        runs[1][1] = -1;
-        if (aroundAxis[k] || hi - lo + 1 >= sectors) {
-            runs[0][0] = 0;
-            runs[0][1] = sectors - 1;
-        } else if (lo < 0) {
-            runs[0][0] = lo + sectors;
-            runs[0][1] = sectors - 1;
-            runs[1][1] = hi;
-        } else if (hi >= sectors) {
-            runs[0][0] = lo;
-            runs[0][1] = sectors - 1;
-            runs[1][1] = hi - sectors;
-        } else {
-            runs[0][0] = lo;
-            runs[0][1] = hi;
-        }
-        // Planes facing inward: each triangle's edges flipped when it faces away.
-        const float s1 = volume1[k] < 0.0f ? -1.0f : 1.0f, s2 = volume2[k] < 0.0f ? -1.0f : 1.0f;
-        auto set = [&](float (&to)[3], const Float4 (&from)[3], float sign) {
-            for (int i = 0; i < 3; ++i) to[i] = from[i][k] * sign;
-        };
-        auto plane = [&](float (&to)[3], const Float4 (&from)[3]) {
-            for (int i = 0; i < 3; ++i) to[i] = from[i][k];
-        };
-        const bool one = first[k] != 0, two = second[k] != 0;
-        if (one && two) {  // a quad
-            Candidate& t = out.emplace_back(bounds);
-            t.kind = s1 == s2 ? kQuad : kFolded;
-            set(t.e[0], n[0], s1);
-            set(t.e[1], n[1], s1);
-            set(t.e[2], n[4], s1);
-            set(t.e[3], n[2], s2);
-            set(t.e[4], n[3], s2);
-            plane(t.n1, normal1);
-            t.d1 = dist1[k];
-            plane(t.n2, normal2);
-            t.d2 = dist2[k];
-            continue;
-        }
-        if (one) {  // a lone triangle
-            Candidate& t = out.emplace_back(bounds);
-            t.kind = kTriangle;
-            set(t.e[0], n[0], s1);
-            set(t.e[1], n[1], s1);
-            set(t.e[2], n[4], s1);
-            plane(t.n1, normal1);
-            t.d1 = dist1[k];
-        }
-        if (two) {  // a quad whose first triangle is seen edge-on
-            Candidate& t = out.emplace_back(bounds);
-            t.kind = kTriangle;
-            set(t.e[0], n[4], -s2);
-            set(t.e[1], n[2], s2);
-            set(t.e[2], n[3], s2);
-            plane(t.n1, normal2);
-            t.d1 = dist2[k];
-        }
-    }
+    bounds.valid = valid;
+    bounds.first = first;
+    bounds.second = second;
+    bounds.aroundAxis = aroundAxis;
+    bounds.checkReach = checkReach;
+    bounds.ringLo = ringLo;
+    bounds.ringHi = ringHi;
+    bounds.sectorLo = sectorLo;
+    bounds.sectorHi = sectorHi;
+    bounds.volume1 = volume1;
+    bounds.volume2 = volume2;
+    bounds.dist1 = dist1;
+    bounds.dist2 = dist2;
+    emitCandidates(bounds, f, out);
 }
 
 // Marks the cells whose rays hit candidate `t`.
