@@ -138,9 +138,7 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
     }
     slot.triangles = std::move(triangles);
     slot.tags = std::move(tags);
-    boundingSpheres(slot.triangles, slot.spheres, &slot.tags);
-    slot.keyCell = gridCell();
-    SoftGrid::cellKeys(slot.spheres, slot.keyCell, slot.keys);
+    index(slot);
     slot.set = true;
     stats_.plantsRebuilt.fetch_add(1, std::memory_order_relaxed);
     return true;

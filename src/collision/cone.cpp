@@ -162,8 +162,10 @@ struct Candidate {
 // Four quads bounded at once (lane k: quad k of the block): whether each may block rays, its
 // edge planes (as in boundBlock), planes and the cells its directions can reach.
 struct BlockBounds {
-    Int4 valid, first, second, aroundAxis, checkReach, ringLo, ringHi, sectorLo, sectorHi;
-    Float4 volume1, volume2, dist1, dist2;
+    struct Lanes {
+        Int4 valid, first, second, aroundAxis, checkReach, ringLo, ringHi, sectorLo, sectorHi;
+        Float4 volume1, volume2, dist1, dist2;
+    } lanes;
     Float4 n[5][3], normal1[3], normal2[3];
 };
 
@@ -171,18 +173,19 @@ struct BlockBounds {
 // the triangle of it that is not seen edge-on; planes facing inward.
 void emitCandidates(const BlockBounds& b, const Frame& f, std::vector<Candidate>& out) {
     const Float4(&n)[5][3] = b.n;
+    const BlockBounds::Lanes& l = b.lanes;
     for (int k = 0; k < 4; ++k) {
-        if (!b.valid[k]) continue;
+        if (!l.valid[k]) continue;
         Candidate bounds;
-        bounds.ringLo = b.ringLo[k];
-        bounds.ringHi = b.ringHi[k];
-        bounds.checkReach = b.checkReach[k] != 0;
+        bounds.ringLo = l.ringLo[k];
+        bounds.ringHi = l.ringHi[k];
+        bounds.checkReach = l.checkReach[k] != 0;
         // The sector range as at most two runs inside [0, sectors).
-        const int sectors = f.sectors, lo = b.sectorLo[k], hi = b.sectorHi[k];
+        const int sectors = f.sectors, lo = l.sectorLo[k], hi = l.sectorHi[k];
         int(&runs)[2][2] = bounds.runs;
         runs[1][0] = 0;
         runs[1][1] = -1;
-        if (b.aroundAxis[k] || hi - lo + 1 >= sectors) {
+        if (l.aroundAxis[k] || hi - lo + 1 >= sectors) {
             runs[0][0] = 0;
             runs[0][1] = sectors - 1;
         } else if (lo < 0) {
@@ -198,14 +201,14 @@ void emitCandidates(const BlockBounds& b, const Frame& f, std::vector<Candidate>
             runs[0][1] = hi;
         }
         // Planes facing inward: each triangle's edges flipped when it faces away.
-        const float s1 = b.volume1[k] < 0.0f ? -1.0f : 1.0f, s2 = b.volume2[k] < 0.0f ? -1.0f : 1.0f;
+        const float s1 = l.volume1[k] < 0.0f ? -1.0f : 1.0f, s2 = l.volume2[k] < 0.0f ? -1.0f : 1.0f;
         auto set = [&](float (&to)[3], const Float4 (&from)[3], float sign) {
             for (int i = 0; i < 3; ++i) to[i] = from[i][k] * sign;
         };
         auto plane = [&](float (&to)[3], const Float4 (&from)[3]) {
             for (int i = 0; i < 3; ++i) to[i] = from[i][k];
         };
-        const bool one = b.first[k] != 0, two = b.second[k] != 0;
+        const bool one = l.first[k] != 0, two = l.second[k] != 0;
         if (one && two) {  // a quad
             Candidate& t = out.emplace_back(bounds);
             t.kind = s1 == s2 ? kQuad : kFolded;
@@ -215,9 +218,9 @@ void emitCandidates(const BlockBounds& b, const Frame& f, std::vector<Candidate>
             set(t.e[3], n[2], s2);
             set(t.e[4], n[3], s2);
             plane(t.n1, b.normal1);
-            t.d1 = b.dist1[k];
+            t.d1 = l.dist1[k];
             plane(t.n2, b.normal2);
-            t.d2 = b.dist2[k];
+            t.d2 = l.dist2[k];
             continue;
         }
         if (one) {  // a lone triangle
@@ -227,7 +230,7 @@ void emitCandidates(const BlockBounds& b, const Frame& f, std::vector<Candidate>
             set(t.e[1], n[1], s1);
             set(t.e[2], n[4], s1);
             plane(t.n1, b.normal1);
-            t.d1 = b.dist1[k];
+            t.d1 = l.dist1[k];
         }
         if (two) {  // a quad whose first triangle is seen edge-on
             Candidate& t = out.emplace_back(bounds);
@@ -236,7 +239,7 @@ void emitCandidates(const BlockBounds& b, const Frame& f, std::vector<Candidate>
             set(t.e[1], n[2], s2);
             set(t.e[2], n[3], s2);
             plane(t.n1, b.normal2);
-            t.d1 = b.dist2[k];
+            t.d1 = l.dist2[k];
         }
     }
 }
@@ -375,19 +378,8 @@ void boundBlock(const TriangleBatch& batch, std::size_t b, const Frame& f,
         return t + (__builtin_convertvector(t, Float4) > v);  // a true comparison is -1
     };
     const Int4 sectorLo = floorOf(lo * perSector), sectorHi = floorOf(hi * perSector);
-    bounds.valid = valid;
-    bounds.first = first;
-    bounds.second = second;
-    bounds.aroundAxis = aroundAxis;
-    bounds.checkReach = checkReach;
-    bounds.ringLo = ringLo;
-    bounds.ringHi = ringHi;
-    bounds.sectorLo = sectorLo;
-    bounds.sectorHi = sectorHi;
-    bounds.volume1 = volume1;
-    bounds.volume2 = volume2;
-    bounds.dist1 = dist1;
-    bounds.dist2 = dist2;
+    bounds.lanes = {valid,  first,    second,   aroundAxis, checkReach, ringLo, ringHi,
+                    sectorLo, sectorHi, volume1, volume2, dist1,      dist2};
     emitCandidates(bounds, f, out);
 }
 

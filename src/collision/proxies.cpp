@@ -178,32 +178,30 @@ void placeOutline(const mat4& xf, const TriangleSoup& outline, vec3 start, vec3*
 #endif
 }
 
+// Drops from `data` what no petiole uses once it is as much as they use (and more than
+// `slack`): each petiole's run [first, first + count) moves down in petiole order.
+template <class T>
+void compactRuns(std::vector<T>& data, std::size_t& unused, std::size_t slack,
+                 std::vector<PlantProxyMemo::Petiole>& petioles,
+                 std::uint32_t PlantProxyMemo::Petiole::*first,
+                 std::uint32_t PlantProxyMemo::Petiole::*count) {
+    if (unused <= slack || 2 * unused <= data.size()) return;
+    std::vector<T> kept;
+    kept.reserve(data.size() - unused);
+    for (PlantProxyMemo::Petiole& e : petioles) {
+        const std::uint32_t at = std::uint32_t(kept.size());
+        kept.insert(kept.end(), data.begin() + (e.*first), data.begin() + (e.*first) + (e.*count));
+        e.*first = at;
+    }
+    data = std::move(kept);
+    unused = 0;
+}
+
 // Drops what no petiole of the shoot uses from its arrays once it is as much as they use.
 void compact(PlantProxyMemo::Shoot& m) {
-    if (m.unusedCorners > 64 && 2 * m.unusedCorners > m.local.size()) {
-        TriangleSoup local;
-        local.reserve(m.local.size() - m.unusedCorners);
-        for (PlantProxyMemo::Petiole& e : m.petioles) {
-            const std::uint32_t first = std::uint32_t(local.size());
-            local.insert(local.end(), m.local.begin() + e.first,
-                         m.local.begin() + e.first + e.corners);
-            e.first = first;
-        }
-        m.local = std::move(local);
-        m.unusedCorners = 0;
-    }
-    if (m.unusedLeaves > 16 && 2 * m.unusedLeaves > m.leafTrig.size()) {
-        std::vector<LeafTrig> trig;
-        trig.reserve(m.leafTrig.size() - m.unusedLeaves);
-        for (PlantProxyMemo::Petiole& e : m.petioles) {
-            const std::uint32_t first = std::uint32_t(trig.size());
-            trig.insert(trig.end(), m.leafTrig.begin() + e.leafFirst,
-                        m.leafTrig.begin() + e.leafFirst + e.leaves);
-            e.leafFirst = first;
-        }
-        m.leafTrig = std::move(trig);
-        m.unusedLeaves = 0;
-    }
+    using P = PlantProxyMemo::Petiole;
+    compactRuns(m.local, m.unusedCorners, 64, m.petioles, &P::first, &P::corners);
+    compactRuns(m.leafTrig, m.unusedLeaves, 16, m.petioles, &P::leafFirst, &P::leaves);
 }
 
 // Drops the shoot's petioles of nodes `node` on.
