@@ -9,6 +9,7 @@
 // functions of age, evaluated at the end of each call.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -490,6 +491,36 @@ struct Grower {
         fb.fruitGrowth = maturity > 0.0f ? std::min(1.0f, fb.fruitAge / maturity) : 1.0f;
     }
 
+    // The prototype areas of one shoot's leaves (Impl::leafPrototypeArea) at hand by leaflet
+    // and variant: girth is updated at every growth step, and a shoot's leaves share a few
+    // prototypes (a prototype per leaf, unique_prototypes = 0, goes to the Impl's memo).
+    class ShootAreas {
+    public:
+        ShootAreas(PlantArchitecture::Impl& impl, const LeafParameters& lp)
+            : impl_(impl), lp_(lp), variants_(lp.prototype.unique_prototypes) {}
+        double operator()(const LeafOrgan& l) {
+            if (variants_ == 0 || variants_ > kVariants || l.leafletIndex < -kLeaflets ||
+                l.leafletIndex > kLeaflets)
+                return impl_.leafPrototypeArea(lp_, l);
+            const std::size_t slot = std::size_t(l.leafletIndex + kLeaflets) * kVariants +
+                                     l.variant % variants_;
+            if (!set_[slot]) {
+                area_[slot] = impl_.leafPrototypeArea(lp_, l);
+                set_[slot] = true;
+            }
+            return area_[slot];
+        }
+
+    private:
+        static constexpr int kLeaflets = 3;
+        static constexpr unsigned kVariants = 8;
+        PlantArchitecture::Impl& impl_;
+        const LeafParameters& lp_;
+        const unsigned variants_;
+        std::array<double, (2 * kLeaflets + 1) * kVariants> area_;
+        std::array<bool, (2 * kLeaflets + 1) * kVariants> set_{};
+    };
+
     // Internode cross-section = girth_area_factor (cm^2 per m^2) x leaf area downstream;
     // radii never shrink and never fall below their initial value.
     void updateGirth() {
@@ -501,13 +532,14 @@ struct Grower {
             std::vector<double>& atNode = girthNodes;
             atNode.assign(s.phytomers.size(), 0.0);
             const LeafParameters& lp = typeOf(s.type).phytomer_parameters.leaf;
+            ShootAreas areas(impl, lp);
             for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
                 Phytomer& ph = s.phytomers[k];
                 for (Petiole& pt : ph.petioles)
                     for (LeafOrgan& l : pt.leaves)
                         if (!l.removed) {
                             const double size = double(l.scale) * ph.leafFraction;
-                            atNode[k] += impl.leafPrototypeArea(lp, l) * size * size;
+                            atNode[k] += areas(l) * size * size;
                         }
             }
             for (unsigned c : s.children) {
