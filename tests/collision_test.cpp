@@ -215,6 +215,14 @@ TEST(Collision, SoftCanopyIsTheSameForAnyThreadCount) {
     EXPECT_NE(one, softCanopy(2, 12));  // and the seed matters
 }
 
+TEST(Collision, SoftCanopyIsTheSameWithEitherConeKernel) {
+    const std::string byDefault = softCanopy(2);
+    collision::setConeKernel(collision::ConeKernel::kPortable);
+    const std::string portable = softCanopy(2);
+    collision::setConeKernel(std::nullopt);
+    EXPECT_EQ(byDefault, portable);
+}
+
 TEST(Collision, SoftGrowthDoesNotDependOnTheStepSize) {
     std::vector<std::vector<vec3>> results;
     std::vector<std::size_t> triangles;
@@ -337,10 +345,16 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
         ignore.plant = 7;
         ignore.organs[0] = collision::organTag(1, 1);
         ignore.organs[1] = collision::organTag(7, 7);  // second triangles of some pairs
-        Rng r1(c, 3), r2(c, 3);
-        collision::ConeSample fast, traced;
+        Rng r1(c, 3), r2(c, 3), r3(c, 3);
+        collision::ConeSample fast, traced, portable;
         collision::sampleCone(world, apex, axis, cone, r1, 1e-4f, ignore, fast);
         collision::sampleCone(world, apex, axis, cone, r2, 1e-4f, ignore, traced, true);
+        // The portable kernel marks the same cells as the one the processor runs by default.
+        collision::setConeKernel(collision::ConeKernel::kPortable);
+        collision::sampleCone(world, apex, axis, cone, r3, 1e-4f, ignore, portable);
+        collision::setConeKernel(std::nullopt);
+        ASSERT_EQ(portable.blocked, fast.blocked);
+        ASSERT_EQ(portable.hits, fast.hits);
         if (!fast.cast) {  // nothing within reach: every traced ray is free
             EXPECT_EQ(traced.hits, 0);
             continue;
@@ -352,9 +366,26 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
             differ += fast.blocked[k] != traced.blocked[k];
         }
     }
-    std::printf("%zu rays, %zu blocked, %zu differ\n", cells, blocked, differ);
+    std::printf("%zu rays, %zu blocked, %zu differ (kernel: %s)\n", cells, blocked, differ,
+                collision::coneKernel() == collision::ConeKernel::kWide ? "wide" : "portable");
     EXPECT_GT(blocked, cells / 20);
     EXPECT_LE(differ, cells / 10000 + 2);  // rays grazing an edge may go either way
+}
+
+TEST(Collision, ConeKernelChoice) {
+    EXPECT_TRUE(collision::coneKernelAvailable(collision::ConeKernel::kPortable));
+    collision::setConeKernel(collision::ConeKernel::kPortable);
+    EXPECT_EQ(collision::coneKernel(), collision::ConeKernel::kPortable);
+    if (collision::coneKernelAvailable(collision::ConeKernel::kWide)) {
+        collision::setConeKernel(collision::ConeKernel::kWide);
+        EXPECT_EQ(collision::coneKernel(), collision::ConeKernel::kWide);
+        collision::setConeKernel(std::nullopt);  // the default: the widest available
+        EXPECT_EQ(collision::coneKernel(), collision::ConeKernel::kWide);
+    } else {
+        EXPECT_THROW(collision::setConeKernel(collision::ConeKernel::kWide), Error);
+        collision::setConeKernel(std::nullopt);
+        EXPECT_EQ(collision::coneKernel(), collision::ConeKernel::kPortable);
+    }
 }
 
 // ---- the species file hook ------------------------------------------------------------

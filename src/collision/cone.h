@@ -60,6 +60,18 @@ struct ConeSample {
     vec3 direction(int k) const { return x[k] * e1 + y[k] * e2 + z[k] * axis; }
 };
 
+/// The code that marks blocked cells: kPortable runs on any processor; kWide, on x86-64
+/// processors with AVX2, marks four cells of two rings at a time. Both mark the same cells to
+/// the bit (the same operations on each ray).
+enum class ConeKernel { kPortable, kWide };
+/// Whether this processor (and build) can run `kernel`.
+bool coneKernelAvailable(ConeKernel kernel);
+/// The kernel every cone uses from now on; nothing: the widest available (the default). For
+/// tests and benchmarks. Throws an Error for a kernel this processor cannot run.
+void setConeKernel(std::optional<ConeKernel> kernel);
+/// The kernel cones use now.
+ConeKernel coneKernel();
+
 /// Casts the cone's rays against the soft obstacles within reach (apex + t * ray, t in
 /// [tnear, look-ahead]), the organs in `ignore` excepted. With `traced`, every ray is traced
 /// on its own against every triangle (World::softOccluded), the reference the tests compare
