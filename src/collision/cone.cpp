@@ -16,7 +16,9 @@
 #include <map>
 #include <mutex>
 
-#if defined(__SSE__)
+#if defined(__x86_64__)
+#include <immintrin.h>
+#elif defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 
@@ -51,9 +53,9 @@ struct Frame {
 // The inner loops, for any processor and, where the compiler can target it, for AVX2
 // (cone_kernel.inc).
 namespace portable {
-#define PLANTARCH_CONE_ROWS 1
+#define PLANTARCH_CONE_LANES 4
 #include "collision/cone_kernel.inc"
-#undef PLANTARCH_CONE_ROWS
+#undef PLANTARCH_CONE_LANES
 }  // namespace portable
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -61,9 +63,9 @@ namespace portable {
 #pragma GCC push_options
 #pragma GCC target("avx2")
 namespace wide {
-#define PLANTARCH_CONE_ROWS 2
+#define PLANTARCH_CONE_LANES 8
 #include "collision/cone_kernel.inc"
-#undef PLANTARCH_CONE_ROWS
+#undef PLANTARCH_CONE_LANES
 }  // namespace wide
 #pragma GCC pop_options
 #endif

@@ -48,6 +48,12 @@ public:
             for (int k = 0; k < 3; ++k) block[(3 * c + k) * 4 + lane] = corners[c][k];
         ++size_;
     }
+    /// Appends zero blocks up to a whole multiple of `n` blocks, so that blocks can be read n
+    /// at a time (after the last push: the next one must follow clear()).
+    void padBlocks(std::size_t n) {
+        const std::size_t want = (blocks() + n - 1) / n * n;
+        data_.resize(want * kFloatsPerBlock, 0.0f);
+    }
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
     std::size_t blocks() const { return (size_ + 3) / 4; }
