@@ -196,11 +196,18 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
 std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
     const int rings = sample.rings, sectors = sample.sectors, n = rings * sectors;
     if (sample.hits == 0 || sample.hits == n) return std::nullopt;
-    // Runs of open cells along each ring, joined across rings by a union-find whose roots
-    // are the lowest run numbers (so the components come in a fixed order).
-    thread_local std::vector<int> runOf, parent, size;
+    // Each ring's open cells as pieces [first, last] in sector order; the runs they make (a
+    // run may wrap past the last sector: then its two pieces share it) are numbered ring by
+    // ring, from the first blocked cell around, and joined across rings by a union-find whose
+    // roots are the lowest run numbers (so the components come in a fixed order).
+    struct Piece {
+        int first, last, run;
+    };
+    thread_local std::vector<Piece> pieces;
+    thread_local std::vector<int> ringPieces, parent, size;
     thread_local std::vector<vec3> sum;
-    runOf.resize(std::size_t(n));
+    pieces.clear();
+    ringPieces.assign(1, 0);
     parent.clear();
     auto find = [&](int r) {
         while (parent[std::size_t(r)] != r) {
@@ -219,57 +226,65 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
     const std::uint32_t* blocked = sample.blocked.data();
     for (int i = 0; i < rings; ++i) {
         const std::uint32_t* row = blocked + i * sectors;
-        int* runs = runOf.data() + i * sectors;
-        int start = 0;  // a blocked cell to start from, so no run wraps past it
-        while (start < sectors && !row[start]) ++start;
-        if (start == sectors) {  // an open ring: one run
-            const int r = int(parent.size());
-            parent.push_back(r);
-            std::fill(runs, runs + sectors, r);
-        } else {
-            runs[start] = -1;
-            int current = -1;
-            for (int step = 1, j = start + 1; step < sectors; ++step, ++j) {
-                if (j == sectors) j = 0;
-                if (row[j]) {
-                    runs[j] = -1;
-                    current = -1;
-                    continue;
-                }
-                if (current < 0) {
-                    current = int(parent.size());
-                    parent.push_back(current);
-                }
-                runs[j] = current;
+        const std::size_t from = pieces.size();
+        for (int j = 0; j < sectors;) {
+            if (row[j]) {
+                ++j;
+                continue;
             }
+            const int first = j;
+            while (j < sectors && !row[j]) ++j;
+            pieces.push_back({first, j - 1, -1});
         }
+        Piece* ring = pieces.data() + from;
+        const std::size_t count = pieces.size() - from;
+        // Cells before the first blocked one belong to the ring's last run: the one that wraps
+        // (when the last cell is open) or one of their own.
+        const bool leading = count > 0 && ring[0].first == 0;
+        const bool open = leading && ring[0].last == sectors - 1;  // no blocked cell
+        for (std::size_t k = leading && !open ? 1 : 0; k < count; ++k) {
+            ring[k].run = int(parent.size());
+            parent.push_back(ring[k].run);
+        }
+        if (leading && !open) {
+            const bool wraps = count > 1 && ring[count - 1].last == sectors - 1;
+            ring[0].run = wraps ? ring[count - 1].run : int(parent.size());
+            if (!wraps) parent.push_back(ring[0].run);
+        }
+        ringPieces.push_back(int(pieces.size()));
         if (i == 0) {  // the innermost ring's open cells all meet at the axis
             for (std::size_t r = 1; r < parent.size(); ++r) parent[r] = 0;
             continue;
         }
-        // Neighbours across the ring boundary share a sector; a pair once joined is skipped
-        // along the rest of the two runs.
-        const int* below = runs - sectors;
-        int lastA = -1, lastB = -1;
-        for (int j = 0; j < sectors; ++j) {
-            const int a = runs[j], b = below[j];
-            if (a < 0 || b < 0 || (a == lastA && b == lastB)) continue;
-            unite(a, b);
-            lastA = a;
-            lastB = b;
+        // Neighbours across the ring boundary share a sector: pieces that overlap join.
+        const Piece* below = pieces.data() + ringPieces[std::size_t(i) - 1];
+        const Piece* belowEnd = ring;
+        for (const Piece* p = ring; p != ring + count && below != belowEnd;) {
+            if (below->last < p->first) {
+                ++below;
+            } else if (p->last < below->first) {
+                ++p;
+            } else {
+                unite(p->run, below->run);
+                if (p->last < below->last) ++p;
+                else ++below;
+            }
         }
     }
     const std::size_t components = parent.size();
     for (std::size_t r = 0; r < components; ++r) parent[r] = find(int(r));  // roots, flat
     size.assign(components, 0);
     sum.assign(components, vec3(0.0f));
-    for (int k = 0; k < n; ++k) {
-        const int r = runOf[std::size_t(k)];
-        if (r < 0) continue;
-        const std::size_t root = std::size_t(parent[std::size_t(r)]);
-        ++size[root];
-        sum[root] += vec3(sample.x[k], sample.y[k], sample.z[k]);
-    }
+    // Each component's directions summed in cell order (pieces come in it).
+    for (int i = 0; i < rings; ++i)
+        for (int q = ringPieces[std::size_t(i)]; q < ringPieces[std::size_t(i) + 1]; ++q) {
+            const Piece& p = pieces[std::size_t(q)];
+            const std::size_t root = std::size_t(parent[std::size_t(p.run)]);
+            size[root] += p.last - p.first + 1;
+            vec3& total = sum[root];
+            for (int k = i * sectors + p.first, end = i * sectors + p.last; k <= end; ++k)
+                total += vec3(sample.x[k], sample.y[k], sample.z[k]);
+        }
     const float halfRad = halfAngleDegrees * kDeg;
     float bestScore = -1.0f;
     vec3 best(0.0f);
