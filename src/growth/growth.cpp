@@ -491,34 +491,34 @@ struct Grower {
         fb.fruitGrowth = maturity > 0.0f ? std::min(1.0f, fb.fruitAge / maturity) : 1.0f;
     }
 
-    // The prototype areas of one shoot's leaves (Impl::leafPrototypeArea) at hand by leaflet
-    // and variant: girth is updated at every growth step, and a shoot's leaves share a few
-    // prototypes (a prototype per leaf, unique_prototypes = 0, goes to the Impl's memo).
+    // The prototype areas of one shoot's leaves (Impl::leafPrototypeArea) from the Impl's
+    // table of its prototype: girth is updated at every growth step, and a shoot's leaves
+    // share a few prototypes (a prototype per leaf, unique_prototypes = 0, goes to the memo).
     class ShootAreas {
     public:
+        using Table = PlantArchitecture::Impl::LeafAreaTable;
         ShootAreas(PlantArchitecture::Impl& impl, const LeafParameters& lp)
-            : impl_(impl), lp_(lp), variants_(lp.prototype.unique_prototypes) {}
+            : impl_(impl), lp_(lp), variants_(lp.prototype.unique_prototypes),
+              table_(variants_ > 0 && variants_ <= Table::kVariants
+                         ? &impl.leafAreaTables[&lp.prototype]
+                         : nullptr) {}
         double operator()(const LeafOrgan& l) {
-            if (variants_ == 0 || variants_ > kVariants || l.leafletIndex < -kLeaflets ||
-                l.leafletIndex > kLeaflets)
+            if (!table_ || l.leafletIndex < -Table::kLeaflets || l.leafletIndex > Table::kLeaflets)
                 return impl_.leafPrototypeArea(lp_, l);
-            const std::size_t slot = std::size_t(l.leafletIndex + kLeaflets) * kVariants +
+            const std::size_t slot = std::size_t(l.leafletIndex + Table::kLeaflets) * Table::kVariants +
                                      l.variant % variants_;
-            if (!set_[slot]) {
-                area_[slot] = impl_.leafPrototypeArea(lp_, l);
-                set_[slot] = true;
+            if (!table_->set[slot]) {
+                table_->area[slot] = impl_.leafPrototypeArea(lp_, l);
+                table_->set[slot] = true;
             }
-            return area_[slot];
+            return table_->area[slot];
         }
 
     private:
-        static constexpr int kLeaflets = 3;
-        static constexpr unsigned kVariants = 8;
         PlantArchitecture::Impl& impl_;
         const LeafParameters& lp_;
         const unsigned variants_;
-        std::array<double, (2 * kLeaflets + 1) * kVariants> area_;
-        std::array<bool, (2 * kLeaflets + 1) * kVariants> set_{};
+        Table* table_;
     };
 
     // Internode cross-section = girth_area_factor (cm^2 per m^2) x leaf area downstream;

@@ -2,6 +2,7 @@
 // Internal state of PlantArchitecture shared by its implementation files: the plants, the
 // shoot types, the prototype registries and the prototype cache.
 
+#include <array>
 #include <map>
 #include <unordered_map>
 #include <memory>
@@ -74,6 +75,15 @@ struct PlantArchitecture::Impl {
         }
     };
     std::unordered_map<LeafKey, double, LeafKeyHash> prototypeAreas;
+    /// prototypeAreas of one prototype by leaflet (-3 to 3) and variant (under 8), at hand
+    /// for girth updates (every growth step asks for every leaf's).
+    struct LeafAreaTable {
+        static constexpr int kLeaflets = 3;
+        static constexpr unsigned kVariants = 8;
+        std::array<double, (2 * kLeaflets + 1) * kVariants> area{};
+        std::array<bool, (2 * kLeaflets + 1) * kVariants> set{};
+    };
+    std::unordered_map<const LeafPrototype*, LeafAreaTable> leafAreaTables;
     std::unordered_map<LeafKey, const OrganPrototype*, LeafKeyHash> prototypeMemo;
     /// Set while plants grow together in many short steps (collision avoidance): shoot types
     /// cannot change meanwhile, so the memos stay valid from one step to the next.
@@ -82,6 +92,7 @@ struct PlantArchitecture::Impl {
         if (memosPinned) return;
         prototypeKeys.clear();
         prototypeAreas.clear();
+        leafAreaTables.clear();
         prototypeMemo.clear();
     }
 
