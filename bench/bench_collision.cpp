@@ -3,6 +3,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "collision/cone.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
@@ -27,13 +28,21 @@ void reportCollision(benchmark::State& state, const CollisionStats& st) {
 
 // The 10 x 10 bean canopy at 40 days (0.3 m grid) with soft collision avoidance: cone 80
 // degrees, 0.1 m, inertia 0.4, leaves as obstacles, and the number of rays and the scene's
-// update interval (tenths of a day) given as arguments (defaults: 256 rays, every day).
+// update interval (tenths of a day) given as arguments (defaults: 256 rays, every day), and
+// the cone kernel (1: the widest the processor runs, the default; 0: the portable one).
 static void BM_BeanCanopy10x10At40DaysSoftAvoidance(benchmark::State& state) {
     CollisionStats st;
     std::size_t triangles = 0;
     SoftCollisionOptions options;
     options.cone.rays = unsigned(state.range(0));
     options.updateInterval = double(state.range(1)) / 10.0;
+    struct Kernel {
+        explicit Kernel(bool portable) {
+            if (portable) collision::setConeKernel(collision::ConeKernel::kPortable);
+        }
+        ~Kernel() { collision::setConeKernel(std::nullopt); }
+    } kernel(state.range(2) == 0);
+    state.counters["wide_kernel"] = collision::coneKernel() == collision::ConeKernel::kWide;
     for (auto _ : state) {
         Context ctx;
         PlantArchitecture arch(&ctx);
@@ -47,10 +56,11 @@ static void BM_BeanCanopy10x10At40DaysSoftAvoidance(benchmark::State& state) {
     state.counters["triangles"] = double(triangles);
 }
 BENCHMARK(BM_BeanCanopy10x10At40DaysSoftAvoidance)
-    ->ArgNames({"rays", "interval_tenths"})
-    ->Args({256, 10})
-    ->Args({64, 10})
-    ->Args({256, 20})
+    ->ArgNames({"rays", "interval_tenths", "kernel"})
+    ->Args({256, 10, 1})
+    ->Args({64, 10, 1})
+    ->Args({256, 20, 1})
+    ->Args({256, 10, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
