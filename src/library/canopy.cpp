@@ -169,7 +169,9 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         return ids;
     }
 
-    // Together: build every plant's initial structure in a worker.
+    // Together: build every plant's initial structure in a worker (its geometry is not needed:
+    // every plant is tessellated afresh when grown).
+    for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (int i = 0; i < n; ++i) {
         const int t = omp_get_thread_num();
@@ -182,14 +184,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             errors[std::size_t(i)] = e.what();
         }
     }
+    for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = false;
     throwFirstError();
-
-    // The initial structures' geometry is not needed: every plant is tessellated afresh when
-    // grown, one at a time per worker.
-    for (int i = 0; i < n; ++i)
-        forEachObjectID(workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_->plant(first + unsigned(i)),
-                        [](ObjectID& o) { o = kNoObject; });
-    for (CanopyWorker& w : workers) w.ctx.clear();
 
     // Grow them together.
     std::vector<collision::GrowthSlot> slots;

@@ -88,6 +88,9 @@ struct PlantArchitecture::Impl {
     /// Set while plants grow together in many short steps (collision avoidance): shoot types
     /// cannot change meanwhile, so the memos stay valid from one step to the next.
     bool memosPinned = false;
+    /// Set while a canopy's plants are built only to be grown together (collision
+    /// avoidance): their initial geometry would be thrown away, so updateGeometry skips it.
+    bool geometryDeferred = false;
     void clearCallMemos() {
         if (memosPinned) return;
         prototypeKeys.clear();

@@ -234,6 +234,7 @@ bool PlantArchitecture::hasFloralPrototype(const std::string& name) const {
 // ---- geometry --------------------------------------------------------------------------
 
 void PlantArchitecture::updateGeometry(unsigned plantID) {
+    if (impl_->geometryDeferred) return;
     tessellatePlant(*impl_, *context_, impl_->plant(plantID));
     // An edit outside growth: the soft collision scene reads the plant again at the next
     // call. (Without soft avoidance canopy workers share the scene: nothing is written.)
