@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstring>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 #include "collision/collision_world.h"
 
 namespace plantarch::collision {
@@ -152,7 +156,11 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
         const Float4 r = radius + w;
         const Int4 in = (dx * dx + dy * dy + dz * dz <= r * r) &
                         (dx * facing.x + dy * facing.y + dz * facing.z + w + behind >= 0.0f);
+#if defined(__SSE__)
+        return unsigned(_mm_movemask_ps(reinterpret_cast<__m128>(in)));
+#else
         return unsigned((in[0] & 1) | (in[1] & 2) | (in[2] & 4) | (in[3] & 8));
+#endif
     };
     const unsigned ignoredOwner = ignore ? ignore->plant + 1 : 0u;  // owner 0: no plant
     const std::uint64_t ignoredTags[2] = {ignore ? ignore->organs[0] : 0, ignore ? ignore->organs[1] : 0};
