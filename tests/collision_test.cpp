@@ -372,6 +372,39 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
     EXPECT_LE(differ, cells / 10000 + 2);  // rays grazing an edge may go either way
 }
 
+// A leaf quad much larger than the look-ahead, close in front of the tip: its edges all lie
+// beyond reach, but its middle does not, whichever of its two triangles lies straight ahead
+// and whichever way it winds.
+TEST(Collision, ConeSeesLargeQuadsCloseAhead) {
+    for (int variant = 0; variant < 8; ++variant) {
+        const float flip = variant & 1 ? -1.0f : 1.0f;  // straight ahead: the first or second
+        const bool reverse = variant & 2;              // winding
+        const float z = variant & 4 ? 0.05f : -0.05f;  // above or below the tip, facing it
+        vec3 corner[4] = {{-0.3f, -0.7f, z}, {0.7f, -0.7f, z}, {0.7f, 0.3f, z}, {-0.3f, 0.3f, z}};
+        for (vec3& c : corner) c.x *= flip, c.y *= flip;
+        if (reverse) std::swap(corner[1], corner[3]);
+        collision::TriangleSoup quad = {corner[0], corner[1], corner[2], corner[0], corner[2], corner[3]};
+        const collision::OrganTag tag = collision::organTag(0, 0);
+        Context ctx;
+        collision::World world;
+        world.setSoft(SoftCollisionOptions{}, ctx);
+        world.reservePlants({1});
+        world.setPlantProxies(1, std::move(quad), {tag, tag});
+        world.commit();
+        PerceptionCone cone;
+        cone.halfAngle = 60.0f;
+        cone.lookAhead = 0.1f;
+        cone.rays = 256;
+        const vec3 axis(0.0f, 0.0f, z > 0.0f ? 1.0f : -1.0f);
+        Rng r1(variant, 1), r2(variant, 1);
+        collision::ConeSample fast, traced;
+        collision::sampleCone(world, vec3(0.0f), axis, cone, r1, 1e-4f, collision::Ignore{}, fast);
+        collision::sampleCone(world, vec3(0.0f), axis, cone, r2, 1e-4f, collision::Ignore{}, traced, true);
+        EXPECT_GT(traced.hits, 10) << variant;
+        EXPECT_EQ(fast.blocked, traced.blocked) << variant;
+    }
+}
+
 TEST(Collision, ConeKernelChoice) {
     EXPECT_TRUE(collision::coneKernelAvailable(collision::ConeKernel::kPortable));
     collision::setConeKernel(collision::ConeKernel::kPortable);
