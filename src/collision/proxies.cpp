@@ -224,9 +224,9 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
     OrganPlacer placer(impl, plant);
     OutlineLookup outlineOf(proxyCache(impl), memo);
-    tags.resize(out.size() / 3);  // out and tags are written in step, growing together
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
+    memo.runs.clear();
     bool changed = visit == 1;  // a new memo: the scene may hold anything for the plant
     if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
     for (const Shoot& s : plant.shoots) {
@@ -293,21 +293,24 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     changed = changed || !sameBits(start, e.start);
                 }
                 e.start = start;
-                const std::size_t c = e.corners;
-                if (out.size() < n + c) {
-                    out.resize(std::max(2 * out.size(), n + c));
-                    tags.resize(out.size() / 3);
-                }
-                vec3* o = out.data() + n;
-                const vec3* local = m.local.data() + e.first;
-                for (std::size_t i = 0; i < c; ++i) o[i] = local[i] + start;
-                std::fill_n(tags.data() + n / 3, c / 3, organTag(s.id, k));
-                n += c;
+                memo.runs.push_back({s.id, k, e.first, e.corners, start});
+                n += e.corners;
             }
         }
     }
+    // The proxies in place, written once all are counted (storage kept: the caller's buffers
+    // are reused, and growing them as they fill would zero what is written over).
     out.resize(n);
     tags.resize(n / 3);
+    vec3* o = out.data();
+    OrganTag* tag = tags.data();
+    for (const PlantProxyMemo::Run& r : memo.runs) {
+        const vec3* local = memo.shoots[r.shoot].local.data() + r.first;
+        for (std::size_t i = 0; i < r.corners; ++i) o[i] = local[i] + r.start;
+        std::fill_n(tag, r.corners / 3, organTag(r.shoot, r.node));
+        o += r.corners;
+        tag += r.corners / 3;
+    }
     if (visited != memo.visited) changed = true;  // petioles gone
     memo.visited = visited;
     memo.reads += visited;
