@@ -31,6 +31,17 @@ inline std::int64_t cellIndex(float v, float inverse) {
     return t - (float(t) > c ? 1 : 0);
 }
 
+// Makes `v` hold n elements whose values are all about to be written: storage too small is
+// replaced, not copied.
+template <class T>
+void resizeOver(std::vector<T>& v, std::size_t n) {
+    if (v.capacity() < n) {
+        v.clear();
+        v.reserve(n + n / 4);
+    }
+    v.resize(n);
+}
+
 }  // namespace
 
 void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres,
@@ -70,7 +81,6 @@ void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
 void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     cell_ = std::max(cell, kMinCell);
     inverse_ = 1.0f / cell_;
-    maxRadius_ = 0.0f;
     large_.clear();
     largeSpheres_.clear();
     std::size_t total = 0;
@@ -81,43 +91,78 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
     start_.assign(buckets + 1, 0);
-    // Whether triangle t of a source starts a quad.
-    auto quadAt = [](const Source& s, std::size_t t) {
-        return t + 1 < s.keys->size() && (*s.keys)[t + 1] == kSecond;
-    };
-    // Counting sort by bucket; large quads aside.
-    for (const Source& s : sources)
-        for (std::size_t t = 0; t < s.keys->size(); ++t) {
-            const std::uint64_t key = (*s.keys)[t];
+    // Counting sort by bucket; large quads aside. (A triangle starts a quad when the next is
+    // marked as its second.)
+    float maxRadius = 0.0f;
+    std::uint32_t* count = start_.data() + 1;
+    for (const Source& s : sources) {
+        const std::uint64_t* keys = s.keys->data();
+        const glm::vec4* spheres = s.spheres->data();
+        const std::size_t size = s.keys->size();
+        for (std::size_t t = 0; t < size; ++t) {
+            const std::uint64_t key = keys[t];
             if (key == kSecond) continue;
             if (key == kLarge) {
-                large_.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
-                largeSpheres_.push_back((*s.spheres)[t]);
+                const bool quad = t + 1 < size && keys[t + 1] == kSecond;
+                large_.push_back({s.soup->data() + 3 * t, s.owner, quad, s.tags ? (*s.tags)[t] : 0});
+                largeSpheres_.push_back(spheres[t]);
                 continue;
             }
-            maxRadius_ = std::max(maxRadius_, (*s.spheres)[t].w);
-            ++start_[bucketOf(key) + 1];
+            maxRadius = std::max(maxRadius, spheres[t].w);
+            ++count[bucketOf(key)];
         }
-    for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
-    const std::size_t n = start_[buckets];
-    small_.resize(n);
-    corners_.resize(4 * n);
-    keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
-    for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
-    fill_.assign(start_.begin(), start_.end() - 1);
-    for (const Source& s : sources)  // stable: sources' order within each bucket
-        for (std::size_t t = 0; t < s.keys->size(); ++t) {
-            const std::uint64_t key = (*s.keys)[t];
+    }
+    maxRadius_ = maxRadius;
+    // Bucket b: [start_[b], start_[b + 1]); fill_[b] where its next triangle goes.
+    resizeOver(fill_, buckets);
+    std::uint32_t* fill = fill_.data();
+    std::uint32_t sum = 0;
+    for (std::size_t b = 0; b < buckets; ++b) {
+        fill[b] = sum;
+        sum += count[b];
+        count[b] = sum;
+    }
+    const std::size_t n = sum;
+    resizeOver(small_, n);
+    resizeOver(corners_, 4 * n);
+    // Padded with a key no cell has and far-away spheres (so tests go four at a time).
+    resizeOver(keys_, n + 4);
+    std::fill_n(keys_.data() + n, 4, kLarge);
+    for (int r = 0; r < 4; ++r) {
+        resizeOver(sphereRows_[r], n + 4);
+        std::fill_n(sphereRows_[r].data() + n, 4, r < 3 ? 1e30f : 0.0f);
+    }
+    SoftTriangle* small = small_.data();
+    vec3* corners = corners_.data();
+    std::uint64_t* sortedKeys = keys_.data();
+    float* rows[4] = {sphereRows_[0].data(), sphereRows_[1].data(), sphereRows_[2].data(),
+                      sphereRows_[3].data()};
+    for (const Source& s : sources) {  // stable: sources' order within each bucket
+        const std::uint64_t* keys = s.keys->data();
+        const glm::vec4* spheres = s.spheres->data();
+        const std::uint64_t* tags = s.tags ? s.tags->data() : nullptr;
+        const vec3* soup = s.soup->data();
+        const std::size_t size = s.keys->size();
+        for (std::size_t t = 0; t < size; ++t) {
+            const std::uint64_t key = keys[t];
             if (key == kLarge || key == kSecond) continue;
-            const std::uint32_t at = fill_[bucketOf(key)]++;
-            const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
-            small_[at] = q;
-            vec3* corners = corners_.data() + 4 * std::size_t(at);
-            std::copy_n(q.corners, 3, corners);
-            corners[3] = q.last();
-            keys_[at] = key;
-            for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
+            const std::uint32_t at = fill[bucketOf(key)]++;
+            const vec3* p = soup + 3 * t;
+            const bool quad = t + 1 < size && keys[t + 1] == kSecond;
+            small[at] = {p, s.owner, quad, tags ? tags[t] : 0};
+            vec3* c = corners + 4 * std::size_t(at);
+            c[0] = p[0];
+            c[1] = p[1];
+            c[2] = p[2];
+            c[3] = quad ? p[5] : p[2];
+            sortedKeys[at] = key;
+            const glm::vec4 sphere = spheres[t];
+            rows[0][at] = sphere.x;
+            rows[1][at] = sphere.y;
+            rows[2][at] = sphere.z;
+            rows[3][at] = sphere.w;
         }
+    }
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,
