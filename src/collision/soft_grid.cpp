@@ -6,6 +6,10 @@
 #include <cmath>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "collision/collision_world.h"
 
 namespace plantarch::collision {
@@ -50,13 +54,53 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
     spheres.resize(n);
     for (std::size_t t = 0; t < n; ++t) {
         const vec3* p = soup.data() + 3 * t;
+        // The centre, c = (a + b + c + d) / 4 for a quad, (a + b + c) / 3 for a triangle, and
+        // the squared distances of the corners from it, max(|a - c|^2, ..., |d - c|^2).
+#if defined(__SSE2__)
+        // The same operations in the same order as below, a corner's three coordinates (and
+        // the four corners' distances) at once.
+        auto load = [](const vec3& v) {  // (x, y, z, 0), reading nothing past v
+            return _mm_movelh_ps(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&v))),
+                                 _mm_load_ss(&v.z));
+        };
+        const __m128 a = load(p[0]), b = load(p[1]), c3 = load(p[2]);
+        // (Lane by lane ==, as vec3's: -0 equals 0, NaN nothing.)
+        const bool quad =
+            t + 1 < n &&
+            (_mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(load(p[3]), a), _mm_cmpeq_ps(load(p[4]), c3))) & 7) == 7 &&
+            (!tags || (*tags)[t] == (*tags)[t + 1]);
+        const __m128 d3 = quad ? load(p[5]) : c3;
+        const __m128 sum = _mm_add_ps(_mm_add_ps(a, b), c3);
+        const __m128 centre = quad ? _mm_mul_ps(_mm_add_ps(sum, d3), _mm_set1_ps(0.25f))
+                                   : _mm_mul_ps(sum, _mm_set1_ps(1.0f / 3.0f));
+        __m128 ea = _mm_sub_ps(a, centre), eb = _mm_sub_ps(b, centre);
+        __m128 ec = _mm_sub_ps(c3, centre), ed = _mm_sub_ps(d3, centre);
+        ea = _mm_mul_ps(ea, ea);
+        eb = _mm_mul_ps(eb, eb);
+        ec = _mm_mul_ps(ec, ec);
+        ed = _mm_mul_ps(ed, ed);
+        _MM_TRANSPOSE4_PS(ea, eb, ec, ed);  // ea: the x terms of the four corners, eb y, ec z
+        const __m128 d2 = _mm_add_ps(_mm_add_ps(ea, eb), ec);
+        // std::max's r < x ? x : r, which is _mm_max_ss(x, r) (NaN and ties alike).
+        __m128 r2 = d2;
+        r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 1), r2);
+        r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 2), r2);
+        r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 3), r2);
+        const float radius = _mm_cvtss_f32(
+            _mm_add_ss(_mm_mul_ss(_mm_sqrt_ss(r2), _mm_set_ss(1.0001f)), _mm_set_ss(1e-7f)));
+        alignas(16) float out[4];
+        _mm_store_ps(out, centre);
+        const vec3 c(out[0], out[1], out[2]);
+#else
         const bool quad = t + 1 < n && p[3] == p[0] && p[4] == p[2] && (!tags || (*tags)[t] == (*tags)[t + 1]);
-        const vec3 d = quad ? p[5] : p[2];
+        const vec3& d = quad ? p[5] : p[2];
         const vec3 c = quad ? (p[0] + p[1] + p[2] + d) * 0.25f : (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
         const float r2 = std::max({glm::dot(p[0] - c, p[0] - c), glm::dot(p[1] - c, p[1] - c),
                                    glm::dot(p[2] - c, p[2] - c), glm::dot(d - c, d - c)});
+        const float radius = std::sqrt(r2) * 1.0001f + 1e-7f;
+#endif
         // A hair more than the farthest corner, so rounding never drops a touching triangle.
-        spheres[t] = glm::vec4(c, std::sqrt(r2) * 1.0001f + 1e-7f);
+        spheres[t] = glm::vec4(c, radius);
         if (quad) spheres[++t] = glm::vec4(c, -1.0f);
     }
 }
@@ -68,14 +112,43 @@ bool SoftGrid::ignored(const SoftTriangle& t, const Ignore* ignore) {
 
 void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
                         std::vector<std::uint64_t>& keys) {
-    const float inverse = 1.0f / std::max(cell, kMinCell);
+    const float size = std::max(cell, kMinCell), inverse = 1.0f / size;
     keys.resize(spheres.size());
-    for (std::size_t t = 0; t < spheres.size(); ++t)
-        keys[t] = spheres[t].w < 0.0f ? kSecond
-                  : spheres[t].w > std::max(cell, kMinCell)
-                      ? kLarge
-                      : pack(cellIndex(spheres[t].x, inverse), cellIndex(spheres[t].y, inverse),
-                             cellIndex(spheres[t].z, inverse));
+    const glm::vec4* sphere = spheres.data();
+    std::uint64_t* key = keys.data();
+#if defined(__SSE2__)
+    // cellIndex of x, y and z at once (the same comparisons, truncation and step down; the
+    // indices fit 32 bits once clamped).
+    const __m128 scale = _mm_set1_ps(inverse), lo = _mm_set1_ps(float(-kBias)),
+                 hi = _mm_set1_ps(float(kBias - 1));
+    const __m128i bias = _mm_set1_epi32(std::int32_t(kBias)), mask = _mm_set1_epi32(std::int32_t(kMask));
+#endif
+    for (std::size_t t = 0; t < spheres.size(); ++t) {
+        const float w = sphere[t].w;
+        if (w < 0.0f) {
+            key[t] = kSecond;
+            continue;
+        }
+        if (w > size) {
+            key[t] = kLarge;
+            continue;
+        }
+#if defined(__SSE2__)
+        const __m128 x = _mm_mul_ps(_mm_loadu_ps(&sphere[t].x), scale);
+        const __m128 below = _mm_cmple_ps(x, hi), above = _mm_cmpge_ps(x, lo);
+        __m128 c = _mm_or_ps(_mm_and_ps(below, x), _mm_andnot_ps(below, hi));
+        c = _mm_or_ps(_mm_and_ps(above, c), _mm_andnot_ps(above, lo));
+        __m128i i = _mm_cvttps_epi32(c);
+        i = _mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), c)));  // -1: down
+        i = _mm_and_si128(_mm_add_epi32(i, bias), mask);
+        key[t] = std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(i))) |
+                 std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(i, 1)))) << 21 |
+                 std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(i, 2)))) << 42;
+#else
+        key[t] = pack(cellIndex(sphere[t].x, inverse), cellIndex(sphere[t].y, inverse),
+                      cellIndex(sphere[t].z, inverse));
+#endif
+    }
 }
 
 void SoftGrid::build(const std::vector<Source>& sources, float cell) {
