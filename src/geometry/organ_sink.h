@@ -125,4 +125,16 @@ private:
     std::unique_ptr<State> state_;
 };
 
+namespace geometry {
+/// Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along unit
+/// `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`, from
+/// trigOf-style sines of its pitch, yaw and roll) and scaled by `scale`; `offset` is the
+/// prototype's leaf_offset. The frame: x along the tangent, z as near world up as it can be
+/// (else toward `side`), y = z x x. A lateral leaflet (t.leaflet != 0) first points x across
+/// the rachis on its side (+y when t.leaflet < 0, else -y), swung toward the tip by t.swing.
+/// Then t.turn: pitch lifts x toward z, yaw turns x toward y, roll turns y toward z.
+mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
+                   vec3 offset);
+}  // namespace geometry
+
 }  // namespace plantarch
