@@ -168,6 +168,7 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                         pt.curvature = -pt.curvature - 50.0f;
                         break;
                     default:
+                        pt.clearance = {glm::normalize(vec3(0.3f, -1.0f, 0.2f)), 12.0f};
                         break;
                 }
                 for (LeafOrgan& leaf : pt.leaves) {
@@ -175,6 +176,9 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                     leaf.roll = -leaf.roll;
                     leaf.yaw += 1.0f;
                 }
+                // Leaves moved along the petiole: some to where the one before them sits.
+                for (std::size_t i = 1; i < pt.leaves.size(); ++i)
+                    pt.leaves[i].position = i % 2 ? pt.leaves[i - 1].position : 0.5f * pt.leaves[i].position;
             }
     Shoot& longest =
         *std::max_element(plant.shoots.begin(), plant.shoots.end(),
@@ -182,7 +186,31 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     ASSERT_GE(longest.phytomers.size(), 3u);
     Internode& in = longest.phytomers[1].internode;
     in.direction = glm::normalize(in.direction + vec3(0.1f, 0.0f, 0.0f));
+    // The axes a petiole's lean is taken from turned behind the kept lean.
+    Internode& turnedAxes = longest.phytomers[2].internode;
+    turnedAxes.guide = glm::normalize(turnedAxes.guide + vec3(0.0f, 0.2f, 0.0f));
+    Internode& rolled = longest.phytomers[0].internode;
+    rolled.rollReference = glm::normalize(rolled.rollReference + vec3(0.2f, 0.1f, 0.0f));
     expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    // Only the clearance turns' angles, their axes, the internodes' guides or their directions
+    // changed, one at a time.
+    for (int what = 0; what < 4; ++what) {
+        int turns = 0;
+        for (Shoot& s : plant.shoots)
+            for (Phytomer& ph : s.phytomers) {
+                Internode& axes = ph.internode;
+                if (what == 2) axes.guide = glm::normalize(axes.guide + vec3(0.1f, -0.2f, 0.05f));
+                if (what == 3) axes.direction = glm::normalize(axes.direction + vec3(-0.05f, 0.1f, 0.0f));
+                for (Petiole& pt : ph.petioles) {
+                    if (pt.clearance.angle == 0.0f) continue;
+                    ++turns;
+                    if (what == 0) pt.clearance.angle += 5.0f;
+                    if (what == 1) pt.clearance.axis = glm::normalize(pt.clearance.axis + vec3(0.0f, 0.0f, 0.3f));
+                }
+            }
+        ASSERT_GT(turns, 3);
+        expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    }
     // One kept angle per leaf, or an error.
     {
         OrganPlacer placer(impl, plant);

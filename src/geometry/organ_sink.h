@@ -77,6 +77,12 @@ struct PetioleTrig {
     float azimuth = 0.0f, pitch = 0.0f;
     SinCos azimuthTrig, pitchTrig;
     bool set = false;
+    // The petiole's lean and initial direction for these sines, its internode's axes and its
+    // clearance turn as last seen (frameSet false: none kept).
+    vec3 axis{0.0f}, guide{0.0f}, rollReference{0.0f};
+    OrganTurn clearance;
+    vec3 side{0.0f}, dir{0.0f};
+    bool frameSet = false;
     // The petiole's curve for its last direction and curvature sign.
     vec3 direction{0.0f};
     bool bendsUp = false, curveSet = false;

@@ -568,10 +568,24 @@ struct Tessellator {
             trig.azimuthTrig = sinCosDeg(pt.azimuth);
             trig.pitchTrig = sinCosDeg(pt.pitch);
             trig.set = true;
+            trig.frameSet = false;
         }
-        const auto [petioleSide, dir, start] =
-            petioleFrame(s, ph, node, pt, trig.azimuthTrig, trig.pitchTrig);
-        side = petioleSide;
+        const Internode& in = ph.internode;
+        if (!trig.frameSet || !sameBits(trig.axis, in.direction) || !sameBits(trig.guide, in.guide) ||
+            !sameBits(trig.rollReference, in.rollReference) ||
+            !sameBits(trig.clearance.axis, pt.clearance.axis) ||
+            !sameBits(trig.clearance.angle, pt.clearance.angle)) {
+            const PetioleFrame f = petioleFrame(s, ph, node, pt, trig.azimuthTrig, trig.pitchTrig);
+            trig.axis = in.direction;
+            trig.guide = in.guide;
+            trig.rollReference = in.rollReference;
+            trig.clearance = pt.clearance;
+            trig.side = f.side;
+            trig.dir = f.dir;
+            trig.frameSet = true;
+        }
+        side = trig.side;
+        const vec3 dir = trig.dir, start = startOn(s, node, side);
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
         const bool bendsUp = pt.curvature >= 0.0f;
@@ -591,6 +605,11 @@ struct Tessellator {
                          .value = std::to_string(leafTrig.size()),
                          .validRange = std::to_string(pt.leaves.size())});
         out.resize(pt.leaves.size());
+        // Where the last leaf sits on the petiole (a compound leaf's leaflets mostly share a
+        // place): alongPath of that position.
+        float position = 0.0f;
+        std::pair<vec3, vec3> place;
+        bool placed = false;
         for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
             const LeafOrgan& leaf = pt.leaves[i];
             if (leaf.removed) {
@@ -601,7 +620,12 @@ struct Tessellator {
             if (!t.set || t.leaflet != leaf.leafletIndex || !sameBits(t.pitch, leaf.pitch) ||
                 !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll))
                 t = trigOf(leaf);
-            const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
+            if (!placed || !sameBits(position, leaf.position)) {
+                place = alongPath(petiolePath, petioleMeasure, leaf.position);
+                position = leaf.position;
+                placed = true;
+            }
+            const auto& [origin, tangent] = place;
             const float scale = leaf.scale * ph.leafFraction;
             out[i].transform =
                 geometry::leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
