@@ -48,6 +48,48 @@ void resizeOver(std::vector<T>& v, std::size_t n) {
 
 }  // namespace
 
+#if defined(__SSE2__)
+namespace {
+
+// The sphere of the triangle at p, or of the quad it starts with the next when `pairs` (the
+// next is of the same organ) and their corners make one (see boundingSpheres); returns
+// whether they do. glm's operations in glm's order, a corner's three coordinates (and the
+// four corners' distances) at once; `load` reads a corner as (x, y, z, anything).
+template <class Load>
+inline bool sphereOf(const vec3* p, bool pairs, Load load, glm::vec4& sphere) {
+    const __m128 a = load(p[0]), b = load(p[1]), c = load(p[2]);
+    // (Lane by lane ==, as vec3's: -0 equals 0, NaN nothing.)
+    const bool quad =
+        pairs && (_mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(load(p[3]), a), _mm_cmpeq_ps(load(p[4]), c))) & 7) == 7;
+    const __m128 d = quad ? load(p[5]) : c;
+    const __m128 sum = _mm_add_ps(_mm_add_ps(a, b), c);
+    const __m128 centre = quad ? _mm_mul_ps(_mm_add_ps(sum, d), _mm_set1_ps(0.25f))
+                               : _mm_mul_ps(sum, _mm_set1_ps(1.0f / 3.0f));
+    __m128 ea = _mm_sub_ps(a, centre), eb = _mm_sub_ps(b, centre);
+    __m128 ec = _mm_sub_ps(c, centre), ed = _mm_sub_ps(d, centre);
+    ea = _mm_mul_ps(ea, ea);
+    eb = _mm_mul_ps(eb, eb);
+    ec = _mm_mul_ps(ec, ec);
+    ed = _mm_mul_ps(ed, ed);
+    _MM_TRANSPOSE4_PS(ea, eb, ec, ed);  // ea: the x terms of the four corners, eb y, ec z
+    const __m128 d2 = _mm_add_ps(_mm_add_ps(ea, eb), ec);
+    // std::max's r < x ? x : r, which is _mm_max_ss(x, r) (NaN and ties alike).
+    __m128 r2 = d2;
+    r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 1), r2);
+    r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 2), r2);
+    r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 3), r2);
+    // A hair more than the farthest corner, so rounding never drops a touching triangle.
+    const __m128 radius =
+        _mm_add_ss(_mm_mul_ss(_mm_sqrt_ss(r2), _mm_set_ss(1.0001f)), _mm_set_ss(1e-7f));
+    // (centre.x, centre.y, centre.z, radius)
+    const __m128 zr = _mm_shuffle_ps(centre, radius, _MM_SHUFFLE(0, 0, 2, 2));
+    _mm_storeu_ps(&sphere.x, _mm_shuffle_ps(centre, zr, _MM_SHUFFLE(2, 0, 1, 0)));
+    return quad;
+}
+
+}  // namespace
+#endif
+
 void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres,
                      const std::vector<std::uint64_t>* tags) {
     const std::size_t n = soup.size() / 3;
@@ -56,52 +98,33 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
         const vec3* p = soup.data() + 3 * t;
         // The centre, c = (a + b + c + d) / 4 for a quad, (a + b + c) / 3 for a triangle, and
         // the squared distances of the corners from it, max(|a - c|^2, ..., |d - c|^2).
+        const bool pairs = t + 1 < n && (!tags || (*tags)[t] == (*tags)[t + 1]);
 #if defined(__SSE2__)
-        // The same operations in the same order as below, a corner's three coordinates (and
-        // the four corners' distances) at once.
-        auto load = [](const vec3& v) {  // (x, y, z, 0), reading nothing past v
-            return _mm_movelh_ps(_mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&v))),
-                                 _mm_load_ss(&v.z));
-        };
-        const __m128 a = load(p[0]), b = load(p[1]), c3 = load(p[2]);
-        // (Lane by lane ==, as vec3's: -0 equals 0, NaN nothing.)
+        // Four floats read at a time where a float follows the corner (all six corners of a
+        // pair but the last pair's), else three.
         const bool quad =
-            t + 1 < n &&
-            (_mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(load(p[3]), a), _mm_cmpeq_ps(load(p[4]), c3))) & 7) == 7 &&
-            (!tags || (*tags)[t] == (*tags)[t + 1]);
-        const __m128 d3 = quad ? load(p[5]) : c3;
-        const __m128 sum = _mm_add_ps(_mm_add_ps(a, b), c3);
-        const __m128 centre = quad ? _mm_mul_ps(_mm_add_ps(sum, d3), _mm_set1_ps(0.25f))
-                                   : _mm_mul_ps(sum, _mm_set1_ps(1.0f / 3.0f));
-        __m128 ea = _mm_sub_ps(a, centre), eb = _mm_sub_ps(b, centre);
-        __m128 ec = _mm_sub_ps(c3, centre), ed = _mm_sub_ps(d3, centre);
-        ea = _mm_mul_ps(ea, ea);
-        eb = _mm_mul_ps(eb, eb);
-        ec = _mm_mul_ps(ec, ec);
-        ed = _mm_mul_ps(ed, ed);
-        _MM_TRANSPOSE4_PS(ea, eb, ec, ed);  // ea: the x terms of the four corners, eb y, ec z
-        const __m128 d2 = _mm_add_ps(_mm_add_ps(ea, eb), ec);
-        // std::max's r < x ? x : r, which is _mm_max_ss(x, r) (NaN and ties alike).
-        __m128 r2 = d2;
-        r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 1), r2);
-        r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 2), r2);
-        r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 3), r2);
-        const float radius = _mm_cvtss_f32(
-            _mm_add_ss(_mm_mul_ss(_mm_sqrt_ss(r2), _mm_set_ss(1.0001f)), _mm_set_ss(1e-7f)));
-        alignas(16) float out[4];
-        _mm_store_ps(out, centre);
-        const vec3 c(out[0], out[1], out[2]);
+            t + 2 < n ? sphereOf(p, pairs, [](const vec3& v) { return _mm_loadu_ps(&v.x); }, spheres[t])
+                      : sphereOf(p, pairs,
+                                 [](const vec3& v) {
+                                     return _mm_movelh_ps(
+                                         _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&v))),
+                                         _mm_load_ss(&v.z));
+                                 },
+                                 spheres[t]);
+        if (quad) {
+            spheres[t + 1] = glm::vec4(vec3(spheres[t]), -1.0f);
+            ++t;
+        }
 #else
-        const bool quad = t + 1 < n && p[3] == p[0] && p[4] == p[2] && (!tags || (*tags)[t] == (*tags)[t + 1]);
+        const bool quad = pairs && p[3] == p[0] && p[4] == p[2];
         const vec3& d = quad ? p[5] : p[2];
         const vec3 c = quad ? (p[0] + p[1] + p[2] + d) * 0.25f : (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
         const float r2 = std::max({glm::dot(p[0] - c, p[0] - c), glm::dot(p[1] - c, p[1] - c),
                                    glm::dot(p[2] - c, p[2] - c), glm::dot(d - c, d - c)});
-        const float radius = std::sqrt(r2) * 1.0001f + 1e-7f;
-#endif
         // A hair more than the farthest corner, so rounding never drops a touching triangle.
-        spheres[t] = glm::vec4(c, radius);
+        spheres[t] = glm::vec4(c, std::sqrt(r2) * 1.0001f + 1e-7f);
         if (quad) spheres[++t] = glm::vec4(c, -1.0f);
+#endif
     }
 }
 
