@@ -198,8 +198,18 @@ void moveBy(const vec3* local, std::size_t n, vec3 start, vec3* out) {
         _mm_storeu_ps(to + 4, _mm_add_ps(_mm_loadu_ps(in + 4), s1));
         _mm_storeu_ps(to + 8, _mm_add_ps(_mm_loadu_ps(in + 8), s2));
     }
-#endif
+    if (i + 2 <= n) {  // two more (six floats: four, then two)
+        const float* in = &local[i].x;
+        float* to = &out[i].x;
+        _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(in), s0));
+        const __m128 yz = _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(in + 4)));
+        _mm_store_sd(reinterpret_cast<double*>(to + 4), _mm_castps_pd(_mm_add_ps(yz, s1)));
+        i += 2;
+    }
+    if (i < n) out[i] = local[i] + start;
+#else
     for (; i < n; ++i) out[i] = local[i] + start;
+#endif
 }
 
 // Drops from `data` what no petiole uses once it is as much as they use (and more than
