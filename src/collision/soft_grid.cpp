@@ -107,7 +107,7 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
                       : sphereOf(p, pairs,
                                  [](const vec3& v) {
                                      return _mm_movelh_ps(
-                                         _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&v))),
+                                         _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v))),
                                          _mm_load_ss(&v.z));
                                  },
                                  spheres[t]);
