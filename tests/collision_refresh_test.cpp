@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <map>
 #include <tuple>
@@ -167,6 +168,7 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                         pt.curvature = -pt.curvature - 50.0f;
                         break;
                     default:
+                        pt.clearance = {glm::normalize(vec3(0.3f, -1.0f, 0.2f)), 12.0f};
                         break;
                 }
                 for (LeafOrgan& leaf : pt.leaves) {
@@ -174,6 +176,9 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                     leaf.roll = -leaf.roll;
                     leaf.yaw += 1.0f;
                 }
+                // Leaves moved along the petiole: some to where the one before them sits.
+                for (std::size_t i = 1; i < pt.leaves.size(); ++i)
+                    pt.leaves[i].position = i % 2 ? pt.leaves[i - 1].position : 0.5f * pt.leaves[i].position;
             }
     Shoot& longest =
         *std::max_element(plant.shoots.begin(), plant.shoots.end(),
@@ -181,7 +186,31 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     ASSERT_GE(longest.phytomers.size(), 3u);
     Internode& in = longest.phytomers[1].internode;
     in.direction = glm::normalize(in.direction + vec3(0.1f, 0.0f, 0.0f));
+    // The axes a petiole's lean is taken from turned behind the kept lean.
+    Internode& turnedAxes = longest.phytomers[2].internode;
+    turnedAxes.guide = glm::normalize(turnedAxes.guide + vec3(0.0f, 0.2f, 0.0f));
+    Internode& rolled = longest.phytomers[0].internode;
+    rolled.rollReference = glm::normalize(rolled.rollReference + vec3(0.2f, 0.1f, 0.0f));
     expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    // Only the clearance turns' angles, their axes, the internodes' guides or their directions
+    // changed, one at a time.
+    for (int what = 0; what < 4; ++what) {
+        int turns = 0;
+        for (Shoot& s : plant.shoots)
+            for (Phytomer& ph : s.phytomers) {
+                Internode& axes = ph.internode;
+                if (what == 2) axes.guide = glm::normalize(axes.guide + vec3(0.1f, -0.2f, 0.05f));
+                if (what == 3) axes.direction = glm::normalize(axes.direction + vec3(-0.05f, 0.1f, 0.0f));
+                for (Petiole& pt : ph.petioles) {
+                    if (pt.clearance.angle == 0.0f) continue;
+                    ++turns;
+                    if (what == 0) pt.clearance.angle += 5.0f;
+                    if (what == 1) pt.clearance.axis = glm::normalize(pt.clearance.axis + vec3(0.0f, 0.0f, 0.3f));
+                }
+            }
+        ASSERT_GT(turns, 3);
+        expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    }
     // One kept angle per leaf, or an error.
     {
         OrganPlacer placer(impl, plant);
@@ -351,4 +380,66 @@ TEST(CollisionRefresh, PrototypesAreLookedUpAgainAfterTheCachesAreCleared) {
     arch.advanceTime(2.0);
     EXPECT_EQ(collision::worldOf(implOf(arch)).calls, calls + 1);
     expectSceneMatchesLeaves(arch);
+}
+
+// Leaf placement (the proxies' and the meshes') is glm's vec3 arithmetic, to the bit: the
+// frame upright along the tangent (toward the petiole's side where the tangent stands
+// vertical), a lateral leaflet swung across the rachis, then pitch, yaw and roll, the offset
+// and the scale. Random angles, tangents near and at vertical, both leaflet sides.
+TEST(CollisionRefresh, LeafTransformIsPlainVectorArithmetic) {
+    Rng rng(31, 5);
+    const vec3 up(0.0f, 0.0f, 1.0f);
+    auto bits = [](const mat4& m) {
+        std::array<std::uint32_t, 16> b;
+        std::memcpy(b.data(), &m[0][0], sizeof b);
+        return b;
+    };
+    auto sc = [](float degrees) {
+        const float a = degrees * (3.14159265358979f / 180.0f);
+        return SinCos{std::cos(a), std::sin(a)};
+    };
+    int leaflets = 0, fallbacks = 0;
+    for (int i = 0; i < 4000; ++i) {
+        vec3 tangent(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f));
+        if (i % 9 == 0) tangent = vec3(0.0f, 0.0f, i % 2 ? 1.0f : -1.0f);  // vertical
+        if (i % 9 == 1) tangent = vec3(1e-6f, 0.0f, 1.0f);
+        tangent = glm::normalize(tangent);
+        const vec3 side = glm::normalize(vec3(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.1f));
+        const vec3 origin(rng.uniform(-2.0f, 2.0f), rng.uniform(-2.0f, 2.0f), rng.uniform(0.0f, 3.0f));
+        const vec3 offset(rng.uniform(-0.01f, 0.01f), rng.uniform(-0.01f, 0.01f), rng.uniform(-0.01f, 0.01f));
+        const float scale = rng.uniform(0.001f, 0.2f);
+        LeafTrig t;
+        t.leaflet = int(rng.uniform(0.0f, 3.0f)) - 1;
+        t.swing = sc(rng.uniform(0.0f, 90.0f));
+        t.turn = {sc(rng.uniform(-90.0f, 90.0f)), sc(rng.uniform(-60.0f, 60.0f)), sc(rng.uniform(-45.0f, 45.0f))};
+        const mat4 got = geometry::leafTransform(origin, tangent, side, t, scale, offset);
+
+        vec3 x = glm::normalize(tangent);
+        vec3 z = up - glm::dot(up, x) * x;
+        if (glm::length(z) < 1e-4f) {
+            z = side - glm::dot(side, x) * x;
+            ++fallbacks;
+        }
+        ASSERT_GE(glm::length(z), 1e-6f);
+        z = glm::normalize(z);
+        vec3 y = glm::cross(z, x);
+        if (t.leaflet != 0) {
+            x = glm::normalize(t.swing.s * x + t.swing.c * (t.leaflet < 0 ? 1.0f : -1.0f) * y);
+            y = glm::cross(z, x);
+            ++leaflets;
+        }
+        const SinCos p = t.turn.pitch, w = t.turn.yaw, r = t.turn.roll;
+        const vec3 x1 = p.c * x + p.s * z, z1 = -p.s * x + p.c * z;
+        const vec3 x2 = w.c * x1 + w.s * y, y2 = -w.s * x1 + w.c * y;
+        const vec3 y3 = r.c * y2 + r.s * z1, z3 = -r.s * y2 + r.c * z1;
+        const vec3 o = offset * scale;
+        mat4 want(1.0f);
+        want[0] = glm::vec4(x2 * scale, 0.0f);
+        want[1] = glm::vec4(y3 * scale, 0.0f);
+        want[2] = glm::vec4(z3 * scale, 0.0f);
+        want[3] = glm::vec4(origin + x2 * o.x + y3 * o.y + z3 * o.z, 1.0f);
+        ASSERT_EQ(bits(got), bits(want)) << "case " << i;
+    }
+    EXPECT_GT(leaflets, 2000);
+    EXPECT_GT(fallbacks, 400);
 }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <tuple>
@@ -293,6 +294,104 @@ TEST(Collision, SoftSceneKeepsLeafOutlinesAsQuads) {
     collision::boundingSpheres(soup, spheres, &tags);
     EXPECT_GT(spheres[1].w, 0.0f);
     for (const vec3& p : {a, b, c}) EXPECT_LE(glm::length(p - vec3(spheres[0])), spheres[0].w);
+}
+
+// The spheres and cells of the soft scene are, to the bit, the plain formulas: a quad's centre
+// ((a + b + c) + d) / 4, a triangle's (a + b + c) / 3, the radius the largest squared corner
+// distance's root, times 1.0001, plus 1e-7; the cell floor(centre / cell), clamped to the
+// grid's 2^21 cells a side and packed 21 bits a coordinate. Corners on cell borders, on both
+// sides of 0, far outside the grid and NaN included.
+TEST(Collision, SoftSceneSpheresAndCellsAreThePlainFormulas) {
+    Rng rng(7, 3);
+    const float cell = 0.05f;
+    collision::TriangleSoup soup;
+    std::vector<std::uint64_t> tags;
+    auto corner = [&](int kind) {
+        switch (kind) {
+            case 0: return vec3(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f), rng.uniform(-0.1f, 0.6f));
+            case 1: return vec3(cell * float(int(rng.uniform(-9.0f, 9.0f))), -0.0f, 2 * cell);  // borders
+            case 2: return vec3(rng.uniform(-1e6f, 1e6f), 3e5f, -2e5f);  // beyond the grid
+            default: return vec3(std::nanf(""), 0.1f, 0.2f);
+        }
+    };
+    for (int i = 0; i < 3000; ++i) {
+        const int kind = i % 50 == 49 ? 3 : i % 10 == 9 ? 2 : i % 5 == 4 ? 1 : 0;
+        const vec3 a = corner(kind), b = a + vec3(rng.uniform(-0.02f, 0.02f), 0.01f, 0.0f),
+                   c = a + vec3(0.0f, rng.uniform(-0.03f, 0.03f), 0.02f), d = corner(0);
+        const std::uint64_t tag = std::uint64_t(i / 3);
+        soup.insert(soup.end(), {a, b, c});
+        tags.push_back(tag);
+        if (i % 3 != 2) {  // mostly quads: (a, b, c), (a, c, d); sometimes split between organs
+            soup.insert(soup.end(), {i % 7 == 0 ? vec3(-0.0f, a.y, a.z) : a, c, d});
+            tags.push_back(i % 11 == 0 ? tag + 1000 : tag);
+        }
+    }
+    std::vector<glm::vec4> spheres;
+    std::vector<std::uint64_t> keys;
+    collision::boundingSpheres(soup, spheres, &tags);
+    collision::SoftGrid::cellKeys(spheres, cell, keys);
+    ASSERT_EQ(spheres.size(), tags.size());
+    ASSERT_EQ(keys.size(), tags.size());
+    auto bits = [](float v) {
+        std::uint32_t u;
+        std::memcpy(&u, &v, sizeof u);
+        return u;
+    };
+    auto sameBits = [&](glm::vec4 u, glm::vec4 v) {
+        return bits(u.x) == bits(v.x) && bits(u.y) == bits(v.y) && bits(u.z) == bits(v.z) &&
+               bits(u.w) == bits(v.w);
+    };
+    const std::size_t n = tags.size();
+    std::size_t quads = 0, large = 0, nan = 0;
+    std::uint64_t secondKey = 0, largeKey = 0;
+    for (std::size_t t = 0; t < n; ++t) {
+        const vec3* p = soup.data() + 3 * t;
+        const bool quad = t + 1 < n && p[3].x == p[0].x && p[3].y == p[0].y && p[3].z == p[0].z &&
+                          p[4].x == p[2].x && p[4].y == p[2].y && p[4].z == p[2].z && tags[t] == tags[t + 1];
+        const vec3 d = quad ? p[5] : p[2];
+        vec3 centre;
+        for (int k = 0; k < 3; ++k)
+            centre[k] = quad ? (((p[0][k] + p[1][k]) + p[2][k]) + d[k]) * 0.25f
+                             : ((p[0][k] + p[1][k]) + p[2][k]) * (1.0f / 3.0f);
+        float r2 = 0.0f;
+        bool first = true;
+        for (const vec3& q : {p[0], p[1], p[2], d}) {
+            const vec3 e = q - centre;
+            const float d2 = (e.x * e.x + e.y * e.y) + e.z * e.z;
+            if (first || r2 < d2) r2 = d2;
+            first = false;
+        }
+        const glm::vec4 want(centre, std::sqrt(r2) * 1.0001f + 1e-7f);
+        ASSERT_TRUE(sameBits(spheres[t], want)) << "triangle " << t;
+        if (std::isnan(want.x)) ++nan;
+        if (want.w > cell) {
+            if (large++ == 0) largeKey = keys[t];
+            EXPECT_EQ(keys[t], largeKey) << "triangle " << t;
+        } else {
+            std::uint64_t key = 0;
+            for (int k = 0; k < 3; ++k) {
+                const float x = centre[k] * (1.0f / cell);
+                const float c = x >= -1048576.0f ? std::min(x, 1048575.0f) : -1048576.0f;
+                key |= std::uint64_t(std::int64_t(std::floor(c)) + 1048576) << (21 * k);
+            }
+            EXPECT_EQ(keys[t], key) << "triangle " << t;
+        }
+        if (quad) {
+            ++quads;
+            ++t;
+            ASSERT_TRUE(sameBits(spheres[t], glm::vec4(centre, -1.0f))) << "triangle " << t;
+            if (quads == 1) secondKey = keys[t];
+            EXPECT_EQ(keys[t], secondKey) << "triangle " << t;
+        }
+    }
+    EXPECT_GT(quads, 1500u);
+    EXPECT_GT(large, 50u);
+    EXPECT_GT(nan, 10u);
+    EXPECT_NE(secondKey, largeKey);
+    for (std::size_t t = 0; t < n; ++t)
+        if (spheres[t].w >= 0.0f && !(spheres[t].w > cell)) {
+            EXPECT_TRUE(keys[t] != secondKey && keys[t] != largeKey) << "triangle " << t;
+        }
 }
 
 // The cone rays tested against nearby triangles and quads (pairs of triangles (a, b, c),

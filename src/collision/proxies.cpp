@@ -167,14 +167,49 @@ void placeOutline(const mat4& xf, const TriangleSoup& outline, vec3 start, vec3*
                                                           _mm_mul_ps(c1, _mm_set1_ps(p.y))),
                                                _mm_add_ps(_mm_mul_ps(c2, _mm_set1_ps(p.z)), c3)),
                                     s);
-        alignas(16) float v[4];
-        _mm_store_ps(v, r);
-        *out++ = vec3(v[0], v[1], v[2]);
+        if (&p + 1 != outline.data() + outline.size()) {
+            _mm_storeu_ps(&out->x, r);  // its fourth lane goes where the next point will
+        } else {
+            alignas(16) float v[4];
+            _mm_store_ps(v, r);
+            *out = vec3(v[0], v[1], v[2]);
+        }
+        ++out;
     }
 #else
     for (const vec3& p : outline)
         *out++ =
             (vec3(xf[0]) * p.x + vec3(xf[1]) * p.y) + (vec3(xf[2]) * p.z + vec3(xf[3])) - start;
+#endif
+}
+
+// out[i] = local[i] + start for i < n (four points, twelve floats, at a time where SSE is at
+// hand: the same additions).
+void moveBy(const vec3* local, std::size_t n, vec3 start, vec3* out) {
+    std::size_t i = 0;
+#if defined(__SSE2__)
+    const __m128 s0 = _mm_setr_ps(start.x, start.y, start.z, start.x);
+    const __m128 s1 = _mm_setr_ps(start.y, start.z, start.x, start.y);
+    const __m128 s2 = _mm_setr_ps(start.z, start.x, start.y, start.z);
+    for (; i + 4 <= n; i += 4) {
+        const float* in = &local[i].x;
+        float* to = &out[i].x;
+        _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(in), s0));
+        _mm_storeu_ps(to + 4, _mm_add_ps(_mm_loadu_ps(in + 4), s1));
+        _mm_storeu_ps(to + 8, _mm_add_ps(_mm_loadu_ps(in + 8), s2));
+    }
+    if (i + 2 <= n) {  // two more (six floats: four, then two)
+        const float* in = &local[i].x;
+        float* to = &out[i].x;
+        _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(in), s0));
+        // (Eight bytes at a time through the unaligned 64-bit moves: floats are only 4-aligned.)
+        const __m128 yz = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(in + 4)));
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(to + 4), _mm_castps_si128(_mm_add_ps(yz, s1)));
+        i += 2;
+    }
+    if (i < n) out[i] = local[i] + start;
+#else
+    for (; i < n; ++i) out[i] = local[i] + start;
 #endif
 }
 
@@ -224,9 +259,9 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
     OrganPlacer placer(impl, plant);
     OutlineLookup outlineOf(proxyCache(impl), memo);
-    tags.resize(out.size() / 3);  // out and tags are written in step, growing together
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
+    memo.runs.clear();
     bool changed = visit == 1;  // a new memo: the scene may hold anything for the plant
     if (memo.shoots.size() < plant.shoots.size()) memo.shoots.resize(plant.shoots.size());
     for (const Shoot& s : plant.shoots) {
@@ -293,21 +328,23 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     changed = changed || !sameBits(start, e.start);
                 }
                 e.start = start;
-                const std::size_t c = e.corners;
-                if (out.size() < n + c) {
-                    out.resize(std::max(2 * out.size(), n + c));
-                    tags.resize(out.size() / 3);
-                }
-                vec3* o = out.data() + n;
-                const vec3* local = m.local.data() + e.first;
-                for (std::size_t i = 0; i < c; ++i) o[i] = local[i] + start;
-                std::fill_n(tags.data() + n / 3, c / 3, organTag(s.id, k));
-                n += c;
+                memo.runs.push_back({s.id, k, e.first, e.corners, start});
+                n += e.corners;
             }
         }
     }
+    // The proxies in place, written once all are counted (storage kept: the caller's buffers
+    // are reused, and growing them as they fill would zero what is written over).
     out.resize(n);
     tags.resize(n / 3);
+    vec3* o = out.data();
+    OrganTag* tag = tags.data();
+    for (const PlantProxyMemo::Run& r : memo.runs) {
+        moveBy(memo.shoots[r.shoot].local.data() + r.first, r.corners, r.start, o);
+        std::fill_n(tag, r.corners / 3, organTag(r.shoot, r.node));
+        o += r.corners;
+        tag += r.corners / 3;
+    }
     if (visited != memo.visited) changed = true;  // petioles gone
     memo.visited = visited;
     memo.reads += visited;

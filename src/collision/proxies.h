@@ -72,6 +72,12 @@ struct PlantProxyMemo {
     bool pending = false;               ///< prepared proxies not installed (growth failed)
     std::vector<LeafPlacement> leaves;  ///< scratch: one petiole's leaves
     std::vector<const TriangleSoup*> leafOutlines;  ///< scratch: their outlines (null: fallen)
+    /// Scratch: the petioles read, in order, with their proxies' place and their start.
+    struct Run {
+        std::uint32_t shoot, node, first, corners;
+        vec3 start;
+    };
+    std::vector<Run> runs;
 };
 
 /// The proxies of a plant's organs of the kinds in `organs`, with their organ tags. Leaves

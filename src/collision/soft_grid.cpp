@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstring>
 
-#if defined(__SSE__)
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#elif defined(__SSE__)
 #include <xmmintrin.h>
 #endif
 
@@ -35,7 +37,60 @@ inline std::int64_t cellIndex(float v, float inverse) {
     return t - (float(t) > c ? 1 : 0);
 }
 
+// Makes `v` hold n elements whose values are all about to be written: storage too small is
+// replaced, not copied.
+template <class T>
+void resizeOver(std::vector<T>& v, std::size_t n) {
+    if (v.capacity() < n) {
+        v.clear();
+        v.reserve(n + n / 4);
+    }
+    v.resize(n);
+}
+
 }  // namespace
+
+#if defined(__SSE2__)
+namespace {
+
+// The sphere of the triangle at p, or of the quad it starts with the next when `pairs` (the
+// next is of the same organ) and their corners make one (see boundingSpheres); returns
+// whether they do. glm's operations in glm's order, a corner's three coordinates (and the
+// four corners' distances) at once; `load` reads a corner as (x, y, z, anything).
+template <class Load>
+inline bool sphereOf(const vec3* p, bool pairs, Load load, glm::vec4& sphere) {
+    const __m128 a = load(p[0]), b = load(p[1]), c = load(p[2]);
+    // (Lane by lane ==, as vec3's: -0 equals 0, NaN nothing.)
+    const bool quad =
+        pairs && (_mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(load(p[3]), a), _mm_cmpeq_ps(load(p[4]), c))) & 7) == 7;
+    const __m128 d = quad ? load(p[5]) : c;
+    const __m128 sum = _mm_add_ps(_mm_add_ps(a, b), c);
+    const __m128 centre = quad ? _mm_mul_ps(_mm_add_ps(sum, d), _mm_set1_ps(0.25f))
+                               : _mm_mul_ps(sum, _mm_set1_ps(1.0f / 3.0f));
+    __m128 ea = _mm_sub_ps(a, centre), eb = _mm_sub_ps(b, centre);
+    __m128 ec = _mm_sub_ps(c, centre), ed = _mm_sub_ps(d, centre);
+    ea = _mm_mul_ps(ea, ea);
+    eb = _mm_mul_ps(eb, eb);
+    ec = _mm_mul_ps(ec, ec);
+    ed = _mm_mul_ps(ed, ed);
+    _MM_TRANSPOSE4_PS(ea, eb, ec, ed);  // ea: the x terms of the four corners, eb y, ec z
+    const __m128 d2 = _mm_add_ps(_mm_add_ps(ea, eb), ec);
+    // std::max's r < x ? x : r, which is _mm_max_ss(x, r) (NaN and ties alike).
+    __m128 r2 = d2;
+    r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 1), r2);
+    r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 2), r2);
+    r2 = _mm_max_ss(_mm_shuffle_ps(d2, d2, 3), r2);
+    // A hair more than the farthest corner, so rounding never drops a touching triangle.
+    const __m128 radius =
+        _mm_add_ss(_mm_mul_ss(_mm_sqrt_ss(r2), _mm_set_ss(1.0001f)), _mm_set_ss(1e-7f));
+    // (centre.x, centre.y, centre.z, radius)
+    const __m128 zr = _mm_shuffle_ps(centre, radius, _MM_SHUFFLE(0, 0, 2, 2));
+    _mm_storeu_ps(&sphere.x, _mm_shuffle_ps(centre, zr, _MM_SHUFFLE(2, 0, 1, 0)));
+    return quad;
+}
+
+}  // namespace
+#endif
 
 void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& spheres,
                      const std::vector<std::uint64_t>* tags) {
@@ -43,14 +98,35 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
     spheres.resize(n);
     for (std::size_t t = 0; t < n; ++t) {
         const vec3* p = soup.data() + 3 * t;
-        const bool quad = t + 1 < n && p[3] == p[0] && p[4] == p[2] && (!tags || (*tags)[t] == (*tags)[t + 1]);
-        const vec3 d = quad ? p[5] : p[2];
+        // The centre, c = (a + b + c + d) / 4 for a quad, (a + b + c) / 3 for a triangle, and
+        // the squared distances of the corners from it, max(|a - c|^2, ..., |d - c|^2).
+        const bool pairs = t + 1 < n && (!tags || (*tags)[t] == (*tags)[t + 1]);
+#if defined(__SSE2__)
+        // Four floats read at a time where a float follows the corner (all six corners of a
+        // pair but the last pair's), else three.
+        const bool quad =
+            t + 2 < n ? sphereOf(p, pairs, [](const vec3& v) { return _mm_loadu_ps(&v.x); }, spheres[t])
+                      : sphereOf(p, pairs,
+                                 [](const vec3& v) {
+                                     return _mm_movelh_ps(
+                                         _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v))),
+                                         _mm_load_ss(&v.z));
+                                 },
+                                 spheres[t]);
+        if (quad) {
+            spheres[t + 1] = glm::vec4(vec3(spheres[t]), -1.0f);
+            ++t;
+        }
+#else
+        const bool quad = pairs && p[3] == p[0] && p[4] == p[2];
+        const vec3& d = quad ? p[5] : p[2];
         const vec3 c = quad ? (p[0] + p[1] + p[2] + d) * 0.25f : (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
         const float r2 = std::max({glm::dot(p[0] - c, p[0] - c), glm::dot(p[1] - c, p[1] - c),
                                    glm::dot(p[2] - c, p[2] - c), glm::dot(d - c, d - c)});
         // A hair more than the farthest corner, so rounding never drops a touching triangle.
         spheres[t] = glm::vec4(c, std::sqrt(r2) * 1.0001f + 1e-7f);
         if (quad) spheres[++t] = glm::vec4(c, -1.0f);
+#endif
     }
 }
 
@@ -61,20 +137,48 @@ bool SoftGrid::ignored(const SoftTriangle& t, const Ignore* ignore) {
 
 void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
                         std::vector<std::uint64_t>& keys) {
-    const float inverse = 1.0f / std::max(cell, kMinCell);
+    const float size = std::max(cell, kMinCell), inverse = 1.0f / size;
     keys.resize(spheres.size());
-    for (std::size_t t = 0; t < spheres.size(); ++t)
-        keys[t] = spheres[t].w < 0.0f ? kSecond
-                  : spheres[t].w > std::max(cell, kMinCell)
-                      ? kLarge
-                      : pack(cellIndex(spheres[t].x, inverse), cellIndex(spheres[t].y, inverse),
-                             cellIndex(spheres[t].z, inverse));
+    const glm::vec4* sphere = spheres.data();
+    std::uint64_t* key = keys.data();
+#if defined(__SSE2__)
+    // cellIndex of x, y and z at once (the same comparisons, truncation and step down; the
+    // indices fit 32 bits once clamped).
+    const __m128 scale = _mm_set1_ps(inverse), lo = _mm_set1_ps(float(-kBias)),
+                 hi = _mm_set1_ps(float(kBias - 1));
+    const __m128i bias = _mm_set1_epi32(std::int32_t(kBias)), mask = _mm_set1_epi32(std::int32_t(kMask));
+#endif
+    for (std::size_t t = 0; t < spheres.size(); ++t) {
+        const float w = sphere[t].w;
+        if (w < 0.0f) {
+            key[t] = kSecond;
+            continue;
+        }
+        if (w > size) {
+            key[t] = kLarge;
+            continue;
+        }
+#if defined(__SSE2__)
+        const __m128 x = _mm_mul_ps(_mm_loadu_ps(&sphere[t].x), scale);
+        const __m128 below = _mm_cmple_ps(x, hi), above = _mm_cmpge_ps(x, lo);
+        __m128 c = _mm_or_ps(_mm_and_ps(below, x), _mm_andnot_ps(below, hi));
+        c = _mm_or_ps(_mm_and_ps(above, c), _mm_andnot_ps(above, lo));
+        __m128i i = _mm_cvttps_epi32(c);
+        i = _mm_add_epi32(i, _mm_castps_si128(_mm_cmpgt_ps(_mm_cvtepi32_ps(i), c)));  // -1: down
+        i = _mm_and_si128(_mm_add_epi32(i, bias), mask);
+        key[t] = std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(i))) |
+                 std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(i, 1)))) << 21 |
+                 std::uint64_t(std::uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(i, 2)))) << 42;
+#else
+        key[t] = pack(cellIndex(sphere[t].x, inverse), cellIndex(sphere[t].y, inverse),
+                      cellIndex(sphere[t].z, inverse));
+#endif
+    }
 }
 
 void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     cell_ = std::max(cell, kMinCell);
     inverse_ = 1.0f / cell_;
-    maxRadius_ = 0.0f;
     large_.clear();
     largeSpheres_.clear();
     std::size_t total = 0;
@@ -85,43 +189,78 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
     start_.assign(buckets + 1, 0);
-    // Whether triangle t of a source starts a quad.
-    auto quadAt = [](const Source& s, std::size_t t) {
-        return t + 1 < s.keys->size() && (*s.keys)[t + 1] == kSecond;
-    };
-    // Counting sort by bucket; large quads aside.
-    for (const Source& s : sources)
-        for (std::size_t t = 0; t < s.keys->size(); ++t) {
-            const std::uint64_t key = (*s.keys)[t];
+    // Counting sort by bucket; large quads aside. (A triangle starts a quad when the next is
+    // marked as its second.)
+    float maxRadius = 0.0f;
+    std::uint32_t* count = start_.data() + 1;
+    for (const Source& s : sources) {
+        const std::uint64_t* keys = s.keys->data();
+        const glm::vec4* spheres = s.spheres->data();
+        const std::size_t size = s.keys->size();
+        for (std::size_t t = 0; t < size; ++t) {
+            const std::uint64_t key = keys[t];
             if (key == kSecond) continue;
             if (key == kLarge) {
-                large_.push_back({s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0});
-                largeSpheres_.push_back((*s.spheres)[t]);
+                const bool quad = t + 1 < size && keys[t + 1] == kSecond;
+                large_.push_back({s.soup->data() + 3 * t, s.owner, quad, s.tags ? (*s.tags)[t] : 0});
+                largeSpheres_.push_back(spheres[t]);
                 continue;
             }
-            maxRadius_ = std::max(maxRadius_, (*s.spheres)[t].w);
-            ++start_[bucketOf(key) + 1];
+            maxRadius = std::max(maxRadius, spheres[t].w);
+            ++count[bucketOf(key)];
         }
-    for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
-    const std::size_t n = start_[buckets];
-    small_.resize(n);
-    corners_.resize(4 * n);
-    keys_.assign(n + 4, kLarge);  // padded with a key no cell has (so tests go four at a time)
-    for (int r = 0; r < 4; ++r) sphereRows_[r].assign(n + 4, r < 3 ? 1e30f : 0.0f);
-    fill_.assign(start_.begin(), start_.end() - 1);
-    for (const Source& s : sources)  // stable: sources' order within each bucket
-        for (std::size_t t = 0; t < s.keys->size(); ++t) {
-            const std::uint64_t key = (*s.keys)[t];
+    }
+    maxRadius_ = maxRadius;
+    // Bucket b: [start_[b], start_[b + 1]); fill_[b] where its next triangle goes.
+    resizeOver(fill_, buckets);
+    std::uint32_t* fill = fill_.data();
+    std::uint32_t sum = 0;
+    for (std::size_t b = 0; b < buckets; ++b) {
+        fill[b] = sum;
+        sum += count[b];
+        count[b] = sum;
+    }
+    const std::size_t n = sum;
+    resizeOver(small_, n);
+    resizeOver(corners_, 4 * n);
+    // Padded with a key no cell has and far-away spheres (so tests go four at a time).
+    resizeOver(keys_, n + 4);
+    std::fill_n(keys_.data() + n, 4, kLarge);
+    for (int r = 0; r < 4; ++r) {
+        resizeOver(sphereRows_[r], n + 4);
+        std::fill_n(sphereRows_[r].data() + n, 4, r < 3 ? 1e30f : 0.0f);
+    }
+    SoftTriangle* small = small_.data();
+    vec3* corners = corners_.data();
+    std::uint64_t* sortedKeys = keys_.data();
+    float* rows[4] = {sphereRows_[0].data(), sphereRows_[1].data(), sphereRows_[2].data(),
+                      sphereRows_[3].data()};
+    for (const Source& s : sources) {  // stable: sources' order within each bucket
+        const std::uint64_t* keys = s.keys->data();
+        const glm::vec4* spheres = s.spheres->data();
+        const std::uint64_t* tags = s.tags ? s.tags->data() : nullptr;
+        const vec3* soup = s.soup->data();
+        const std::size_t size = s.keys->size();
+        for (std::size_t t = 0; t < size; ++t) {
+            const std::uint64_t key = keys[t];
             if (key == kLarge || key == kSecond) continue;
-            const std::uint32_t at = fill_[bucketOf(key)]++;
-            const SoftTriangle q{s.soup->data() + 3 * t, s.owner, quadAt(s, t), s.tags ? (*s.tags)[t] : 0};
-            small_[at] = q;
-            vec3* corners = corners_.data() + 4 * std::size_t(at);
-            std::copy_n(q.corners, 3, corners);
-            corners[3] = q.last();
-            keys_[at] = key;
-            for (int r = 0; r < 4; ++r) sphereRows_[r][at] = (*s.spheres)[t][r];
+            const std::uint32_t at = fill[bucketOf(key)]++;
+            const vec3* p = soup + 3 * t;
+            const bool quad = t + 1 < size && keys[t + 1] == kSecond;
+            small[at] = {p, s.owner, quad, tags ? tags[t] : 0};
+            vec3* c = corners + 4 * std::size_t(at);
+            c[0] = p[0];
+            c[1] = p[1];
+            c[2] = p[2];
+            c[3] = quad ? p[5] : p[2];
+            sortedKeys[at] = key;
+            const glm::vec4 sphere = spheres[t];
+            rows[0][at] = sphere.x;
+            rows[1][at] = sphere.y;
+            rows[2][at] = sphere.z;
+            rows[3][at] = sphere.w;
         }
+    }
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,

@@ -77,6 +77,12 @@ struct PetioleTrig {
     float azimuth = 0.0f, pitch = 0.0f;
     SinCos azimuthTrig, pitchTrig;
     bool set = false;
+    // The petiole's lean and initial direction for these sines, its internode's axes and its
+    // clearance turn as last seen (frameSet false: none kept).
+    vec3 axis{0.0f}, guide{0.0f}, rollReference{0.0f};
+    OrganTurn clearance;
+    vec3 side{0.0f}, dir{0.0f};
+    bool frameSet = false;
     // The petiole's curve for its last direction and curvature sign.
     vec3 direction{0.0f};
     bool bendsUp = false, curveSet = false;
@@ -124,5 +130,17 @@ public:
 private:
     std::unique_ptr<State> state_;
 };
+
+namespace geometry {
+/// Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along unit
+/// `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`, from
+/// trigOf-style sines of its pitch, yaw and roll) and scaled by `scale`; `offset` is the
+/// prototype's leaf_offset. The frame: x along the tangent, z as near world up as it can be
+/// (else toward `side`), y = z x x. A lateral leaflet (t.leaflet != 0) first points x across
+/// the rachis on its side (+y when t.leaflet < 0, else -y), swung toward the tip by t.swing.
+/// Then t.turn: pitch lifts x toward z, yaw turns x toward y, roll turns y toward z.
+mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
+                   vec3 offset);
+}  // namespace geometry
 
 }  // namespace plantarch

@@ -8,6 +8,10 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "geometry/organ_sink.h"
 #include "geometry/tube.h"
 #include "model/architecture_impl.h"
@@ -130,11 +134,81 @@ LeafTrig trigOf(const LeafOrgan& leaf) {
     return t;
 }
 
-// Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along
-// `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`) and
-// scaled by `scale`; `offset` is the prototype's leaf_offset.
-mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
-                   vec3 offset) {
+#if defined(__SSE2__)
+// glm's vec3 arithmetic on (x, y, z, 0) in one register: every lane the same operations in the
+// same order as glm's, so the results are the same to the bit (leaves are placed by the
+// hundred thousand: a canopy's collision proxies place them again at every refresh).
+namespace lanes {
+
+using V = __m128;
+inline V load(vec3 v) { return _mm_setr_ps(v.x, v.y, v.z, 0.0f); }
+inline V splat(float s) { return _mm_set1_ps(s); }
+inline V add(V a, V b) { return _mm_add_ps(a, b); }
+inline V sub(V a, V b) { return _mm_sub_ps(a, b); }
+inline V mul(V a, V b) { return _mm_mul_ps(a, b); }
+// glm::dot: (a.x b.x + a.y b.y) + a.z b.z, in lane 0.
+inline V dot(V a, V b) {
+    const V p = _mm_mul_ps(a, b);
+    return _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
+}
+inline float length(V v) { return _mm_cvtss_f32(_mm_sqrt_ss(dot(v, v))); }
+// glm::normalize: v * (1 / sqrt(dot(v, v))).
+inline V normalize(V v) {
+    const V inverse = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(dot(v, v)));
+    return _mm_mul_ps(v, _mm_shuffle_ps(inverse, inverse, 0));
+}
+// glm::cross: (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y).
+inline V cross(V a, V b) {
+    const V a1 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 0, 2, 1)), a2 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 1, 0, 2));
+    const V b1 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 0, 2, 1)), b2 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 1, 0, 2));
+    return _mm_sub_ps(_mm_mul_ps(a1, b2), _mm_mul_ps(b1, a2));
+}
+// s a + t b.
+inline V mix(float s, V a, float t, V b) { return add(mul(splat(s), a), mul(splat(t), b)); }
+
+}  // namespace lanes
+#endif
+
+}  // namespace
+
+mat4 geometry::leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
+                             vec3 offset) {
+#if defined(__SSE2__)
+    // uprightFrame, the lateral leaflet's swing, rotated and placement below, lane by lane.
+    using namespace lanes;
+    const V x = normalize(load(tangent)), up = load(kUp);
+    V z = sub(up, mul(_mm_shuffle_ps(dot(up, x), dot(up, x), 0), x));
+    if (length(z) < 1e-4f) {
+        const V fallback = load(side), along = dot(fallback, x);
+        z = sub(fallback, mul(_mm_shuffle_ps(along, along, 0), x));
+    }
+    if (length(z) < 1e-6f) {
+        alignas(16) float v[4];
+        _mm_store_ps(v, x);
+        z = load(geometry::anyPerpendicular(vec3(v[0], v[1], v[2])));
+    }
+    V fz = normalize(z), fx = x, fy = cross(fz, x);
+    if (t.leaflet != 0) {
+        const float sideSign = t.leaflet < 0 ? 1.0f : -1.0f;
+        fx = normalize(mix(t.swing.s, x, t.swing.c * sideSign, fy));
+        fy = cross(fz, fx);
+    }
+    const SinCos p = t.turn.pitch, w = t.turn.yaw, r = t.turn.roll;
+    const V x1 = mix(p.c, fx, p.s, fz), z1 = mix(-p.s, fx, p.c, fz);
+    const V x2 = mix(w.c, x1, w.s, fy), y2 = mix(-w.s, x1, w.c, fy);
+    const V y3 = mix(r.c, y2, r.s, z1), z3 = mix(-r.s, y2, r.c, z1);
+    offset *= scale;
+    const V base = add(add(add(load(origin), mul(x2, splat(offset.x))), mul(y3, splat(offset.y))),
+                       mul(z3, splat(offset.z)));
+    const V xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    const V size = splat(scale);
+    mat4 m;
+    _mm_storeu_ps(&m[0][0], _mm_and_ps(mul(x2, size), xyz));
+    _mm_storeu_ps(&m[1][0], _mm_and_ps(mul(y3, size), xyz));
+    _mm_storeu_ps(&m[2][0], _mm_and_ps(mul(z3, size), xyz));
+    _mm_storeu_ps(&m[3][0], _mm_or_ps(_mm_and_ps(base, xyz), _mm_setr_ps(0.0f, 0.0f, 0.0f, 1.0f)));
+    return m;
+#else
     OrganFrame f = uprightFrame(tangent, side);
     if (t.leaflet != 0) {
         // Lateral leaflet: perpendicular to the rachis on its side (left +y, right -y),
@@ -151,7 +225,10 @@ mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, floa
     offset *= scale;
     const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
     return placement(f, base, scale);
+#endif
 }
+
+namespace {
 
 // Which prototype a leaf uses: its parameters' prototype, the leaflet whose outline it takes,
 // its variant.
@@ -475,7 +552,7 @@ struct Tessellator {
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const float scale = leaf.scale * ph.leafFraction;
         const mat4 xf =
-            leafTransform(origin, tangent, side, trigOf(leaf), scale, lp.prototype.leaf_offset);
+            geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale, lp.prototype.leaf_offset);
         sink->writeParts(leaf.objects, impl.leafPrototype(lp, leaf), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
@@ -491,10 +568,24 @@ struct Tessellator {
             trig.azimuthTrig = sinCosDeg(pt.azimuth);
             trig.pitchTrig = sinCosDeg(pt.pitch);
             trig.set = true;
+            trig.frameSet = false;
         }
-        const auto [petioleSide, dir, start] =
-            petioleFrame(s, ph, node, pt, trig.azimuthTrig, trig.pitchTrig);
-        side = petioleSide;
+        const Internode& in = ph.internode;
+        if (!trig.frameSet || !sameBits(trig.axis, in.direction) || !sameBits(trig.guide, in.guide) ||
+            !sameBits(trig.rollReference, in.rollReference) ||
+            !sameBits(trig.clearance.axis, pt.clearance.axis) ||
+            !sameBits(trig.clearance.angle, pt.clearance.angle)) {
+            const PetioleFrame f = petioleFrame(s, ph, node, pt, trig.azimuthTrig, trig.pitchTrig);
+            trig.axis = in.direction;
+            trig.guide = in.guide;
+            trig.rollReference = in.rollReference;
+            trig.clearance = pt.clearance;
+            trig.side = f.side;
+            trig.dir = f.dir;
+            trig.frameSet = true;
+        }
+        side = trig.side;
+        const vec3 dir = trig.dir, start = startOn(s, node, side);
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
         const bool bendsUp = pt.curvature >= 0.0f;
@@ -514,6 +605,11 @@ struct Tessellator {
                          .value = std::to_string(leafTrig.size()),
                          .validRange = std::to_string(pt.leaves.size())});
         out.resize(pt.leaves.size());
+        // Where the last leaf sits on the petiole (a compound leaf's leaflets mostly share a
+        // place): alongPath of that position.
+        float position = 0.0f;
+        std::pair<vec3, vec3> place;
+        bool placed = false;
         for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
             const LeafOrgan& leaf = pt.leaves[i];
             if (leaf.removed) {
@@ -524,10 +620,15 @@ struct Tessellator {
             if (!t.set || t.leaflet != leaf.leafletIndex || !sameBits(t.pitch, leaf.pitch) ||
                 !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll))
                 t = trigOf(leaf);
-            const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
+            if (!placed || !sameBits(position, leaf.position)) {
+                place = alongPath(petiolePath, petioleMeasure, leaf.position);
+                position = leaf.position;
+                placed = true;
+            }
+            const auto& [origin, tangent] = place;
             const float scale = leaf.scale * ph.leafFraction;
             out[i].transform =
-                leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
+                geometry::leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
             if (!t.prototype || trig.epoch == 0 || t.epoch != trig.epoch || t.parameters != &lp ||
                 t.variant != leaf.variant || t.leafID != leaf.leafID) {
                 t.prototype = &leafPrototype(lp, leaf);
