@@ -170,9 +170,10 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     }
 
     // Together: build every plant's initial structure in a worker (its geometry is not needed:
-    // every plant is tessellated afresh when grown).
+    // every plant is tessellated afresh when grown), plant i on thread i % threads, where it
+    // grows (collision::growTogether) and is tessellated.
     for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
     for (int i = 0; i < n; ++i) {
         const int t = omp_get_thread_num();
         PlantArchitecture& w = *workers[std::size_t(t)].arch;
