@@ -504,6 +504,60 @@ TEST(Collision, ConeSeesLargeQuadsCloseAhead) {
     }
 }
 
+// The grid built on several threads is the one built on one: every query gathers the same
+// quads in the same order.
+TEST(Collision, SoftGridIsTheSameForAnyThreadCount) {
+    Rng rng(21, 4);
+    Context ctx;
+    collision::World world;
+    world.setSoft(SoftCollisionOptions{}, ctx);
+    std::vector<unsigned> ids;
+    for (unsigned p = 0; p < 7; ++p) ids.push_back(p);
+    world.reservePlants(ids);
+    for (unsigned p : ids) {
+        collision::TriangleSoup soup;
+        std::vector<collision::OrganTag> tags;
+        const unsigned quads = 50 + 40 * p;
+        for (unsigned q = 0; q < quads; ++q) {
+            const float size = q % 37 == 0 ? 0.8f : 0.03f;  // a few larger than a cell
+            const vec3 c(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f), rng.uniform(0.0f, 0.5f));
+            vec3 k[4];
+            for (vec3& v : k) v = c + size * vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+            const collision::OrganTag tag = collision::organTag(q % 5, q);
+            soup.insert(soup.end(), {k[0], k[1], k[2]});
+            tags.push_back(tag);
+            if (q % 3) {  // most make quads
+                soup.insert(soup.end(), {k[0], k[2], k[3]});
+                tags.push_back(tag);
+            }
+        }
+        world.setPlantProxies(p, std::move(soup), std::move(tags));
+    }
+    auto queries = [&] {
+        std::vector<float> out;
+        Rng r(3, 3);
+        collision::TriangleBatch batch;
+        for (int i = 0; i < 300; ++i) {
+            const vec3 centre(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f), r.uniform(-0.1f, 0.6f));
+            world.softTrianglesNear(centre, 0.1f, nullptr, batch);
+            out.push_back(float(batch.size()));
+            for (std::size_t t = 0; t < batch.size(); ++t)
+                for (int c = 0; c < 4; ++c) {
+                    const vec3 v = batch.corner(t, c);
+                    out.insert(out.end(), {v.x, v.y, v.z});
+                }
+        }
+        return out;
+    };
+    world.commit(1);
+    const std::vector<float> one = queries();
+    EXPECT_GT(one.size(), 3000u);
+    for (int threads : {2, 3, 8}) {
+        world.commit(threads);
+        EXPECT_EQ(queries(), one) << threads << " threads";
+    }
+}
+
 TEST(Collision, ConeKernelChoice) {
     EXPECT_TRUE(collision::coneKernelAvailable(collision::ConeKernel::kPortable));
     collision::setConeKernel(collision::ConeKernel::kPortable);

@@ -178,7 +178,7 @@ void World::removePlant(unsigned plantID) {
 // Cells about as large as the look-ahead: a query visits a few cells a side.
 float World::gridCell() const { return soft_ ? std::max(soft_->cone.lookAhead, 0.005f) : 0.1f; }
 
-void World::commit() {
+void World::commit(int threads) {
     const float cell = gridCell();
     SoftGrid::cellKeys(softStaticSpheres_, cell, softStaticKeys_);
     std::vector<SoftGrid::Source> sources;
@@ -190,7 +190,7 @@ void World::commit() {
         }
         sources.push_back({&slot->triangles, &slot->spheres, &slot->keys, &slot->tags, id + 1});
     }
-    grid_.build(sources, cell);
+    grid_.build(sources, cell, threads);
 }
 
 std::uint64_t World::plantTriangles() const {

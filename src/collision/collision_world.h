@@ -102,8 +102,9 @@ public:
     /// The plant's proxies in the scene (null when it has none).
     const PlantProxies* plantProxies(unsigned plantID) const;
     bool hasPlant(unsigned plantID) const { return plants_.count(plantID) > 0; }
-    /// Rebuilds the soft scene's grid after plant changes (single-threaded).
-    void commit();
+    /// Rebuilds the soft scene's grid after plant changes, on up to `threads` threads (the
+    /// same grid for any number).
+    void commit(int threads = 1);
     std::uint64_t plantTriangles() const;
 
     // ---- collision clock ----------------------------------------------------------------

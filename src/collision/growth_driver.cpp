@@ -101,7 +101,7 @@ struct PrepareClock {
 // Makes the prepared proxies of these plants the scene's and rebuilds its grid. `prepared`:
 // the seconds the preparation took (thread time over the number of threads).
 void install(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which,
-             double prepared) {
+             double prepared, int threads) {
     const auto start = std::chrono::steady_clock::now();
     for (std::size_t i : which) {
         const unsigned id = slots[i].plant->id;
@@ -110,7 +110,7 @@ void install(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
         memo.pending = false;
         world.stale.erase(id);
     }
-    world.commit();
+    world.commit(threads);
     AtomicStats& st = world.stats();
     st.sceneRefreshes.fetch_add(1, std::memory_order_relaxed);
     const double seconds =
@@ -134,7 +134,8 @@ void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
         prepare(world, organs, *slots[which[k]].plant, impl);
     });
     install(world, slots, which,
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+            threadsFor(which.size(), impls));
 }
 
 }  // namespace
@@ -199,7 +200,8 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         if (reaches)
             install(world, slots, all,
                     double(prepareClock.nanoseconds.load()) * 1e-9 /
-                        double(threadsFor(slots.size(), impls)));
+                        double(threadsFor(slots.size(), impls)),
+                    threadsFor(slots.size(), impls));
         if (progress) progress("growing", std::min(1.0, done / days));
     }
 }

@@ -2,9 +2,12 @@
 
 #include "collision/soft_grid.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <exception>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -176,7 +179,7 @@ void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
     }
 }
 
-void SoftGrid::build(const std::vector<Source>& sources, float cell) {
+void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads) {
     cell_ = std::max(cell, kMinCell);
     inverse_ = 1.0f / cell_;
     large_.clear();
@@ -188,38 +191,81 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     while ((std::size_t(1) << bits) < total && bits < 30) ++bits;
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
-    start_.assign(buckets + 1, 0);
-    // Counting sort by bucket; large quads aside. (A triangle starts a quad when the next is
-    // marked as its second.)
-    float maxRadius = 0.0f;
-    std::uint32_t* count = start_.data() + 1;
-    for (const Source& s : sources) {
-        const std::uint64_t* keys = s.keys->data();
-        const glm::vec4* spheres = s.spheres->data();
-        const std::size_t size = s.keys->size();
-        for (std::size_t t = 0; t < size; ++t) {
-            const std::uint64_t key = keys[t];
-            if (key == kSecond) continue;
-            if (key == kLarge) {
-                const bool quad = t + 1 < size && keys[t + 1] == kSecond;
-                large_.push_back({s.soup->data() + 3 * t, s.owner, quad, s.tags ? (*s.tags)[t] : 0});
-                largeSpheres_.push_back(spheres[t]);
-                continue;
+    // A counting sort by bucket, stable in the sources' order: the sources are cut into as many
+    // runs as threads, of about equal triangle counts; each thread counts its run's
+    // triangles per bucket, the bucket starts and each run's place within each bucket follow,
+    // and each thread copies its run's triangles into place. Any number of threads makes the
+    // same grid. Large quads go aside.
+    const int runs = std::max(1, std::min<int>(threads, int(sources.size())));
+    std::vector<std::size_t> cut(std::size_t(runs) + 1, sources.size());
+    cut[0] = 0;
+    for (std::size_t i = 0, seen = 0, r = 1; i < sources.size() && r < std::size_t(runs); ++i) {
+        seen += sources[i].spheres->size();
+        while (r < std::size_t(runs) && seen * std::size_t(runs) >= r * total) cut[r++] = i + 1;
+    }
+    counts_.resize(std::size_t(runs));
+    struct Aside {
+        std::vector<SoftTriangle> quads;
+        std::vector<glm::vec4> spheres;
+        float maxRadius = 0.0f;
+    };
+    std::vector<Aside> aside(static_cast<std::size_t>(runs));
+    for (auto& c : counts_) resizeOver(c, buckets);
+    auto forRuns = [&](auto&& f) {
+        std::vector<std::exception_ptr> errors(static_cast<std::size_t>(runs));
+#pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1 && !omp_in_parallel())
+        for (int r = 0; r < runs; ++r) {
+            try {
+                f(std::size_t(r));
+            } catch (...) {
+                errors[std::size_t(r)] = std::current_exception();
             }
-            maxRadius = std::max(maxRadius, spheres[t].w);
-            ++count[bucketOf(key)];
         }
+        for (const auto& e : errors)
+            if (e) std::rethrow_exception(e);
+    };
+    forRuns([&](std::size_t r) {  // count (a triangle starts a quad when the next is its second)
+        std::uint32_t* count = counts_[r].data();
+        std::fill_n(count, buckets, 0u);
+        Aside& mine = aside[r];
+        for (std::size_t i = cut[r]; i < cut[r + 1]; ++i) {
+            const Source& s = sources[i];
+            const std::uint64_t* keys = s.keys->data();
+            const glm::vec4* spheres = s.spheres->data();
+            const std::size_t size = s.keys->size();
+            for (std::size_t t = 0; t < size; ++t) {
+                const std::uint64_t key = keys[t];
+                if (key == kSecond) continue;
+                if (key == kLarge) {
+                    const bool quad = t + 1 < size && keys[t + 1] == kSecond;
+                    mine.quads.push_back({s.soup->data() + 3 * t, s.owner, quad, s.tags ? (*s.tags)[t] : 0});
+                    mine.spheres.push_back(spheres[t]);
+                    continue;
+                }
+                mine.maxRadius = std::max(mine.maxRadius, spheres[t].w);
+                ++count[bucketOf(key)];
+            }
+        }
+    });
+    // Bucket b: [start_[b], start_[b + 1]); run r's triangles of it from counts_[r][b] on.
+    float maxRadius = 0.0f;
+    for (Aside& mine : aside) {
+        large_.insert(large_.end(), mine.quads.begin(), mine.quads.end());
+        largeSpheres_.insert(largeSpheres_.end(), mine.spheres.begin(), mine.spheres.end());
+        maxRadius = std::max(maxRadius, mine.maxRadius);
     }
     maxRadius_ = maxRadius;
-    // Bucket b: [start_[b], start_[b + 1]); fill_[b] where its next triangle goes.
-    resizeOver(fill_, buckets);
-    std::uint32_t* fill = fill_.data();
+    resizeOver(start_, buckets + 1);
     std::uint32_t sum = 0;
     for (std::size_t b = 0; b < buckets; ++b) {
-        fill[b] = sum;
-        sum += count[b];
-        count[b] = sum;
+        start_[b] = sum;
+        for (auto& c : counts_) {
+            const std::uint32_t n = c[b];
+            c[b] = sum;
+            sum += n;
+        }
     }
+    start_[buckets] = sum;
     const std::size_t n = sum;
     resizeOver(small_, n);
     resizeOver(corners_, 4 * n);
@@ -235,32 +281,36 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell) {
     std::uint64_t* sortedKeys = keys_.data();
     float* rows[4] = {sphereRows_[0].data(), sphereRows_[1].data(), sphereRows_[2].data(),
                       sphereRows_[3].data()};
-    for (const Source& s : sources) {  // stable: sources' order within each bucket
-        const std::uint64_t* keys = s.keys->data();
-        const glm::vec4* spheres = s.spheres->data();
-        const std::uint64_t* tags = s.tags ? s.tags->data() : nullptr;
-        const vec3* soup = s.soup->data();
-        const std::size_t size = s.keys->size();
-        for (std::size_t t = 0; t < size; ++t) {
-            const std::uint64_t key = keys[t];
-            if (key == kLarge || key == kSecond) continue;
-            const std::uint32_t at = fill[bucketOf(key)]++;
-            const vec3* p = soup + 3 * t;
-            const bool quad = t + 1 < size && keys[t + 1] == kSecond;
-            small[at] = {p, s.owner, quad, tags ? tags[t] : 0};
-            vec3* c = corners + 4 * std::size_t(at);
-            c[0] = p[0];
-            c[1] = p[1];
-            c[2] = p[2];
-            c[3] = quad ? p[5] : p[2];
-            sortedKeys[at] = key;
-            const glm::vec4 sphere = spheres[t];
-            rows[0][at] = sphere.x;
-            rows[1][at] = sphere.y;
-            rows[2][at] = sphere.z;
-            rows[3][at] = sphere.w;
+    forRuns([&](std::size_t r) {  // copy into place
+        std::uint32_t* fill = counts_[r].data();
+        for (std::size_t i = cut[r]; i < cut[r + 1]; ++i) {
+            const Source& s = sources[i];
+            const std::uint64_t* keys = s.keys->data();
+            const glm::vec4* spheres = s.spheres->data();
+            const std::uint64_t* tags = s.tags ? s.tags->data() : nullptr;
+            const vec3* soup = s.soup->data();
+            const std::size_t size = s.keys->size();
+            for (std::size_t t = 0; t < size; ++t) {
+                const std::uint64_t key = keys[t];
+                if (key == kLarge || key == kSecond) continue;
+                const std::uint32_t at = fill[bucketOf(key)]++;
+                const vec3* p = soup + 3 * t;
+                const bool quad = t + 1 < size && keys[t + 1] == kSecond;
+                small[at] = {p, s.owner, quad, tags ? tags[t] : 0};
+                vec3* c = corners + 4 * std::size_t(at);
+                c[0] = p[0];
+                c[1] = p[1];
+                c[2] = p[2];
+                c[3] = quad ? p[5] : p[2];
+                sortedKeys[at] = key;
+                const glm::vec4 sphere = spheres[t];
+                rows[0][at] = sphere.x;
+                rows[1][at] = sphere.y;
+                rows[2][at] = sphere.z;
+                rows[3][at] = sphere.w;
+            }
         }
-    }
+    });
 }
 
 void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBatch& out,

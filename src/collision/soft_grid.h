@@ -94,8 +94,9 @@ public:
     /// that keeps them out of the grid).
     static void cellKeys(const std::vector<glm::vec4>& spheres, float cell,
                          std::vector<std::uint64_t>& keys);
-    /// Rebuilds the grid over `sources` with cells of `cell` metres.
-    void build(const std::vector<Source>& sources, float cell);
+    /// Rebuilds the grid over `sources` with cells of `cell` metres, on up to `threads`
+    /// threads (the same grid for any number).
+    void build(const std::vector<Source>& sources, float cell, int threads = 1);
     /// Appends to `out` the triangles whose bounding spheres come within `radius` of
     /// `centre`, except the organs in `ignore` and, given `front` (unit), those whose spheres
     /// lie wholly behind the plane through `centre` facing it; in a fixed order.
@@ -126,7 +127,7 @@ private:
     float cell_ = 1.0f, inverse_ = 1.0f, maxRadius_ = 0.0f;
     int shift_ = 63;
     std::vector<std::uint32_t> start_;      ///< bucket b: [start_[b], start_[b + 1])
-    std::vector<std::uint32_t> fill_;       ///< scratch of build
+    std::vector<std::vector<std::uint32_t>> counts_;  ///< scratch of build: per run and bucket
     std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order), padded
     /// Bounding spheres of the small triangles (bucket order): centres' x, y, z and radii in
     /// rows of their own, padded with four far-away spheres (so tests go four at a time).
