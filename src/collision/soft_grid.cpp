@@ -256,16 +256,28 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads
     }
     maxRadius_ = maxRadius;
     resizeOver(start_, buckets + 1);
+    std::uint32_t* start = start_.data();
     std::uint32_t sum = 0;
-    for (std::size_t b = 0; b < buckets; ++b) {
-        start_[b] = sum;
-        for (auto& c : counts_) {
-            const std::uint32_t n = c[b];
-            c[b] = sum;
-            sum += n;
+    if (runs == 1) {
+        std::uint32_t* count = counts_[0].data();
+        for (std::size_t b = 0; b < buckets; ++b) {
+            start[b] = sum;
+            sum += count[b];
+            count[b] = start[b];
+        }
+    } else {
+        std::vector<std::uint32_t*> count;
+        for (auto& c : counts_) count.push_back(c.data());
+        for (std::size_t b = 0; b < buckets; ++b) {
+            start[b] = sum;
+            for (std::uint32_t* c : count) {
+                const std::uint32_t n = c[b];
+                c[b] = sum;
+                sum += n;
+            }
         }
     }
-    start_[buckets] = sum;
+    start[buckets] = sum;
     const std::size_t n = sum;
     resizeOver(small_, n);
     resizeOver(corners_, 4 * n);
