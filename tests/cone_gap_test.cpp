@@ -101,7 +101,7 @@ bool sameBits(const std::optional<vec3>& a, const std::optional<vec3>& b) {
 TEST(ConeGap, MatchesAFloodFillOfTheOpenCells) {
     Rng rng(5, 8);
     int compared = 0, found = 0;
-    for (unsigned rays : {12u, 64u, 256u, 300u, 1000u}) {
+    for (unsigned rays : {12u, 64u, 256u, 300u, 1000u, 1024u, 4096u, 5000u}) {
         for (float halfAngle : {30.0f, 80.0f, 150.0f}) {
             const auto patterns = collision::conePatterns(rays, halfAngle);
             for (int trial = 0; trial < 60; ++trial) {
