@@ -186,9 +186,12 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads
     largeSpheres_.clear();
     std::size_t total = 0;
     for (const Source& s : sources) total += s.spheres->size();
-    // Buckets: a power of two, at least as many as triangles.
+    // Buckets: a power of two, at least a quarter as many as triangles (a cell in use holds
+    // several quads, so buckets still outnumber such cells), which keeps the bucket arrays that
+    // every build counts and sums small: the 10 x 10 bean canopy's grid builds cost 77 -> 66 M
+    // instructions, its queries 1 M more.
     int bits = 6;
-    while ((std::size_t(1) << bits) < total && bits < 30) ++bits;
+    while ((std::size_t(1) << bits) < total / 4 && bits < 30) ++bits;
     shift_ = 64 - bits;
     const std::size_t buckets = std::size_t(1) << bits;
     // A counting sort by bucket, stable in the sources' order: the sources are cut into as many
