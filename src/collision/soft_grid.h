@@ -4,9 +4,9 @@
 //
 // Two consecutive triangles (a, b, c) and (a, c, d) of one organ, as a leaf's outline is
 // made, are kept as one quad (a, b, c, d); a lone triangle is a quad whose last two corners
-// are the same. Quads are binned by the centre of their bounding sphere in cells about as
-// large as the look-ahead distance; a query visits the cells near its sphere and keeps the triangles whose
-// bounding spheres reach it. Triangles larger than a cell (walls, the ground) are kept in a
+// are the same. Quads are binned by the centre of their bounding sphere in cells somewhat
+// larger than the look-ahead distance (World::gridCell); a query visits the cells near its
+// sphere and keeps the triangles whose bounding spheres reach it. Triangles larger than a cell (walls, the ground) are kept in a
 // list every query scans. The grid is rebuilt from the plants' proxies at each refresh by a
 // counting sort, which costs less than keeping a tree up to date for plants that all grow.
 
