@@ -227,26 +227,23 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
     for (int i = 0; i < rings; ++i) {
         const std::uint32_t* row = blocked + i * sectors;
         const std::size_t from = pieces.size();
-        if (sectors <= 64) {
-            // The ring's open cells as bits, its runs of ones taken lowest first: adding a
-            // run's lowest bit carries through the run and clears it (no branch per cell).
+        // The ring's open cells as bits, 64 sectors at a time, runs of ones taken lowest first:
+        // adding a run's lowest bit carries through the run and clears it (no branch per
+        // cell). A run that reaches the next 64 sectors goes on there.
+        for (int base = 0; base < sectors; base += 64) {
+            const int width = std::min(64, sectors - base);
             std::uint64_t open = 0;
-            for (int j = 0; j < sectors; ++j) open |= std::uint64_t(row[j] == 0) << j;
+            for (int j = 0; j < width; ++j) open |= std::uint64_t(row[base + j] == 0) << j;
             while (open) {
                 const std::uint64_t rest = open & (open + (open & (~open + 1)));
                 const std::uint64_t run = open ^ rest;
-                pieces.push_back({__builtin_ctzll(run), 63 - __builtin_clzll(run), -1});
+                const int first = base + __builtin_ctzll(run);
+                const int last = base + 63 - __builtin_clzll(run);
+                if (first == base && pieces.size() > from && pieces.back().last == first - 1)
+                    pieces.back().last = last;
+                else
+                    pieces.push_back({first, last, -1});
                 open = rest;
-            }
-        } else {
-            for (int j = 0; j < sectors;) {
-                if (row[j]) {
-                    ++j;
-                    continue;
-                }
-                const int first = j;
-                while (j < sectors && !row[j]) ++j;
-                pieces.push_back({first, j - 1, -1});
             }
         }
         Piece* ring = pieces.data() + from;

@@ -6,9 +6,10 @@
 // made, are kept as one quad (a, b, c, d); a lone triangle is a quad whose last two corners
 // are the same. Quads are binned by the centre of their bounding sphere in cells somewhat
 // larger than the look-ahead distance (World::gridCell); a query visits the cells near its
-// sphere and keeps the triangles whose bounding spheres reach it. Triangles larger than a cell (walls, the ground) are kept in a
-// list every query scans. The grid is rebuilt from the plants' proxies at each refresh by a
-// counting sort, which costs less than keeping a tree up to date for plants that all grow.
+// sphere and keeps the triangles whose bounding spheres reach it. Triangles larger than a
+// cell (walls, the ground) are kept in a list every query scans. The grid is rebuilt from the
+// plants' proxies at each refresh by a counting sort, which costs less than keeping a tree up
+// to date for plants that all grow.
 
 #include <cstdint>
 #include <vector>
