@@ -4,10 +4,10 @@
 
 #include <array>
 #include <map>
-#include <unordered_map>
 #include <memory>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Species.h"

@@ -444,9 +444,7 @@ PlantArchitecture::PlantArchitecture(Context* context)
 
 PlantArchitecture::~PlantArchitecture() = default;
 
-PlantArchitecture::Impl& implOf(PlantArchitecture& arch) {
-    return *arch.impl_;
-}
+PlantArchitecture::Impl& implOf(PlantArchitecture& arch) { return *arch.impl_; }
 
 void PlantArchitecture::setSeed(std::uint64_t seed) { seed_ = seed; }
 
