@@ -18,6 +18,8 @@
 
 #if defined(__x86_64__)
 #include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
 #elif defined(__SSE__)
 #include <xmmintrin.h>
 #endif
@@ -190,8 +192,31 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
         }
     }
     out.blocked.resize(std::size_t(patterns->cells()));
-    for (std::uint32_t b : out.blocked) out.hits += int(b);
+    // (A local sum: the flags could alias out.hits, which kept the loop from going four wide.)
+    unsigned hits = 0;
+    for (std::uint32_t b : out.blocked) hits += b;
+    out.hits = int(hits);
 }
+
+namespace {
+
+// Bit j set when flag j of the n (at most 64) is 0: four flags at a time where SSE2 is at hand.
+std::uint64_t openBits(const std::uint32_t* flags, int n) {
+    std::uint64_t open = 0;
+    int j = 0;
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    for (; j + 4 <= n; j += 4) {
+        const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(flags + j));
+        const int four = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, zero)));
+        open |= std::uint64_t(unsigned(four)) << j;
+    }
+#endif
+    for (; j < n; ++j) open |= std::uint64_t(flags[j] == 0) << j;
+    return open;
+}
+
+}  // namespace
 
 std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
     const int rings = sample.rings, sectors = sample.sectors, n = rings * sectors;
@@ -232,9 +257,7 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
         // cell). A run that reaches the next 64 sectors goes on there.
         for (int base = 0; base < sectors; base += 64) {
             const int width = std::min(64, sectors - base);
-            std::uint64_t open = 0;
-            for (int j = 0; j < width; ++j) open |= std::uint64_t(row[base + j] == 0) << j;
-            while (open) {
+            for (std::uint64_t open = openBits(row + base, width); open;) {
                 const std::uint64_t rest = open & (open + (open & (~open + 1)));
                 const std::uint64_t run = open ^ rest;
                 const int first = base + __builtin_ctzll(run);
