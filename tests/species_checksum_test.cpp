@@ -1,0 +1,256 @@
+// Every library species at its youngest, usual and oldest recommended ages (seeds 42 and 7)
+// keeps its geometry to the byte: a
+// checksum of each plant's organ geometry (positions, UVs, triangles, materials and organ
+// labels, organ by organ in state order) against the value recorded when the species' rules
+// moved from C++ into the species files. A change to growth, tessellation or a species file
+// that alters a library plant fails here; update a value only for a change made on purpose,
+// and say in the commit which species changed and why.
+
+#include <gtest/gtest.h>
+
+#include <cinttypes>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <string>
+
+#include "plant_geometry_bytes.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+
+namespace {
+
+// FNV-1a, 64 bits: a checksum that any reader can recompute from the bytes.
+std::uint64_t fnv1a(const std::string& bytes) {
+    std::uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : bytes) {
+        h ^= c;
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+std::string hex(std::uint64_t v) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016" PRIx64, v);
+    return text;
+}
+
+const std::map<std::string, std::string> kExpected = {
+    {"almond@120/42", "6b70632e023a0d7c"},
+    {"almond@120/7", "e42faa4538665cf8"},
+    {"almond@630/42", "751b19f2b536d08a"},
+    {"almond@630/7", "3ae73e12c50a0076"},
+    {"almond@1000/42", "6e0f3bef868ea817"},
+    {"almond@1000/7", "36d46653f3c8a217"},
+    {"almond_aldrich@120/42", "8d6e265cc9347995"},
+    {"almond_aldrich@120/7", "2c0f23b06fb90f37"},
+    {"almond_aldrich@630/42", "acf6bc86f2c11525"},
+    {"almond_aldrich@630/7", "056319a4a9046a0d"},
+    {"almond_aldrich@1000/42", "6617423fea323b04"},
+    {"almond_aldrich@1000/7", "745b69b78771b3a2"},
+    {"almond_wood_colony@120/42", "0657d9e1bcb1b1ca"},
+    {"almond_wood_colony@120/7", "66d6a7fd4009560a"},
+    {"almond_wood_colony@630/42", "7b0066b4cc8d1e00"},
+    {"almond_wood_colony@630/7", "0c84dbe31a3ce761"},
+    {"almond_wood_colony@1000/42", "a4f9829fab934645"},
+    {"almond_wood_colony@1000/7", "adcc2903c800f9b5"},
+    {"apple@200/42", "1f7924216e7e2540"},
+    {"apple@200/7", "6061bf54de1dade6"},
+    {"apple@630/42", "e4d81131111863bf"},
+    {"apple@630/7", "dd7e50bf14d42d11"},
+    {"apple@1400/42", "bef996d0a55cc69c"},
+    {"apple@1400/7", "2acfa66098850fca"},
+    {"apple_fruitingwall@200/42", "6f886d50cf0f628d"},
+    {"apple_fruitingwall@200/7", "083278f83b35df1b"},
+    {"apple_fruitingwall@630/42", "7f3b6012e4536dd1"},
+    {"apple_fruitingwall@630/7", "18c9bb212b2f8c12"},
+    {"apple_fruitingwall@720/42", "7f3b6012e4536dd1"},
+    {"apple_fruitingwall@720/7", "18c9bb212b2f8c12"},
+    {"asparagus@5/42", "16752f8e2d76a8ea"},
+    {"asparagus@5/7", "cfc4c8226df53285"},
+    {"asparagus@20/42", "8566ca0ad67b1e21"},
+    {"asparagus@20/7", "642949db2298824d"},
+    {"asparagus@20/42", "8566ca0ad67b1e21"},
+    {"asparagus@20/7", "642949db2298824d"},
+    {"bean@10/42", "df595a1ae6f08a52"},
+    {"bean@10/7", "fc43fd889c185127"},
+    {"bean@45/42", "4f9b499652f24fc3"},
+    {"bean@45/7", "eb4e1afad0f0160d"},
+    {"bean@100/42", "76973b1bde41b0f7"},
+    {"bean@100/7", "006f60c19d80cf34"},
+    {"bindweed@10/42", "35271e142ffbe9d3"},
+    {"bindweed@10/7", "76c9c20705a7ea49"},
+    {"bindweed@50/42", "115606453c94c167"},
+    {"bindweed@50/7", "f29bb6eac419bcee"},
+    {"bindweed@50/42", "115606453c94c167"},
+    {"bindweed@50/7", "f29bb6eac419bcee"},
+    {"bougainvillea@30/42", "176454193e776f53"},
+    {"bougainvillea@30/7", "c985238ac6d295ba"},
+    {"bougainvillea@180/42", "a074b1e06a7b99ff"},
+    {"bougainvillea@180/7", "52caf5cccb008e25"},
+    {"bougainvillea@365/42", "d9439f8bb72bd990"},
+    {"bougainvillea@365/7", "ab20bd0a8e47d5d0"},
+    {"butterlettuce@10/42", "c4442dbae323714f"},
+    {"butterlettuce@10/7", "6ddbd373dd98c521"},
+    {"butterlettuce@50/42", "8e3e061ee412925b"},
+    {"butterlettuce@50/7", "5ae7e134468526b9"},
+    {"butterlettuce@70/42", "928417d77b9086e0"},
+    {"butterlettuce@70/7", "f57789348421d7ad"},
+    {"capsicum@10/42", "c07224343a5fd53c"},
+    {"capsicum@10/7", "56e7361067df8f3e"},
+    {"capsicum@50/42", "6f0d463143c192fb"},
+    {"capsicum@50/7", "4d14bb11e3e45f35"},
+    {"capsicum@150/42", "5d90bb36a2114c33"},
+    {"capsicum@150/7", "b11cab31e1f339a9"},
+    {"cheeseweed@10/42", "f4a94e6985a052bb"},
+    {"cheeseweed@10/7", "179683d12c27fffe"},
+    {"cheeseweed@40/42", "dbbd38ddf5eb3b81"},
+    {"cheeseweed@40/7", "8d9d1d5b8b9e49d6"},
+    {"cheeseweed@40/42", "dbbd38ddf5eb3b81"},
+    {"cheeseweed@40/7", "8d9d1d5b8b9e49d6"},
+    {"cherrytomato@10/42", "a02c0db45920352b"},
+    {"cherrytomato@10/7", "cfcfae05936caacd"},
+    {"cherrytomato@50/42", "1f9cfda170984f0b"},
+    {"cherrytomato@50/7", "e7151ddd7b3db194"},
+    {"cherrytomato@175/42", "acc113223db663f2"},
+    {"cherrytomato@175/7", "0efc8a85ee9bcf72"},
+    {"cowpea@10/42", "8aed3d6461b6819b"},
+    {"cowpea@10/7", "09249d3ab61c9c96"},
+    {"cowpea@50/42", "22782d4cea8a5b17"},
+    {"cowpea@50/7", "097cbced5a2f878c"},
+    {"cowpea@100/42", "a7bf83bd315d695a"},
+    {"cowpea@100/7", "7d63036e6f1ed0bb"},
+    {"easternredbud@200/42", "db8bd0fa720ed0c7"},
+    {"easternredbud@200/7", "1a717abebedc0a94"},
+    {"easternredbud@630/42", "0eee4d0a935b2e1a"},
+    {"easternredbud@630/7", "08e8ca65e4db3e83"},
+    {"easternredbud@1400/42", "810fd47da5a2e892"},
+    {"easternredbud@1400/7", "788a45a8b2f834a6"},
+    {"grapevine_VSP@180/42", "6f54d4c4b29edcc4"},
+    {"grapevine_VSP@180/7", "0be4f1bf599f1435"},
+    {"grapevine_VSP@270/42", "b98f884e062ba5f9"},
+    {"grapevine_VSP@270/7", "460afc30efa81c9e"},
+    {"grapevine_VSP@360/42", "7c19b8d244c67d6e"},
+    {"grapevine_VSP@360/7", "c6235a4a714eae01"},
+    {"grapevine_Wye@180/42", "dc60abf5d995f9bc"},
+    {"grapevine_Wye@180/7", "e247bd5458da6e33"},
+    {"grapevine_Wye@270/42", "b8682103cad3ae20"},
+    {"grapevine_Wye@270/7", "9828307d3fecbc5f"},
+    {"grapevine_Wye@360/42", "0433c37a09738b36"},
+    {"grapevine_Wye@360/7", "9b1e74de7f33f1e8"},
+    {"groundcherryweed@10/42", "c6d6bf4f5664c439"},
+    {"groundcherryweed@10/7", "db19b6fab823c6fb"},
+    {"groundcherryweed@50/42", "fcf14aebe28215e7"},
+    {"groundcherryweed@50/7", "37105c6b8a5b9d17"},
+    {"groundcherryweed@80/42", "c94f3918448a131c"},
+    {"groundcherryweed@80/7", "cbaef6eb0baca65a"},
+    {"maize@10/42", "46664ce56590a6c7"},
+    {"maize@10/7", "c478639f9624b469"},
+    {"maize@50/42", "4f54fe641ce27b31"},
+    {"maize@50/7", "af1ed17b31c84b92"},
+    {"maize@120/42", "4f54fe641ce27b31"},
+    {"maize@120/7", "af1ed17b31c84b92"},
+    {"olive@200/42", "cdd6bd97a66407dc"},
+    {"olive@200/7", "b6119351f62a9cfa"},
+    {"olive@630/42", "03d6a64e0a0b8482"},
+    {"olive@630/7", "e72b769316fd5528"},
+    {"olive@1400/42", "ac23a36eb8fbc78e"},
+    {"olive@1400/7", "2b22eb195f2c35f9"},
+    {"pistachio@200/42", "16920f06bef52629"},
+    {"pistachio@200/7", "f9997b85f02c71d6"},
+    {"pistachio@630/42", "cd26224b531ec447"},
+    {"pistachio@630/7", "b00547fbf8cc8dc1"},
+    {"pistachio@1000/42", "c0e2e71828e09bd1"},
+    {"pistachio@1000/7", "59461b2738d536d8"},
+    {"puncturevine@10/42", "61b9dd677442969e"},
+    {"puncturevine@10/7", "47ba3951391510bc"},
+    {"puncturevine@45/42", "4cfd16648560a670"},
+    {"puncturevine@45/7", "51c2e2a2a46b2370"},
+    {"puncturevine@45/42", "4cfd16648560a670"},
+    {"puncturevine@45/7", "51c2e2a2a46b2370"},
+    {"rice@10/42", "7fc1f59a7636fe58"},
+    {"rice@10/7", "e7389d6f60be583c"},
+    {"rice@50/42", "8a915787f718bbe9"},
+    {"rice@50/7", "9236f23ee6d26296"},
+    {"rice@120/42", "28bfcf3814d81352"},
+    {"rice@120/7", "149e47f06704c851"},
+    {"sorghum@10/42", "3bc35df062111a3e"},
+    {"sorghum@10/7", "863f4d89b4852b60"},
+    {"sorghum@50/42", "5652b675d0b259df"},
+    {"sorghum@50/7", "3b9791a1eedf54ab"},
+    {"sorghum@120/42", "5652b675d0b259df"},
+    {"sorghum@120/7", "3b9791a1eedf54ab"},
+    {"soybean@10/42", "ad04ba0f15111ce7"},
+    {"soybean@10/7", "6ad98a36df3607b5"},
+    {"soybean@50/42", "7d9411d6a4b427df"},
+    {"soybean@50/7", "072c0b3ffdb92ecf"},
+    {"soybean@100/42", "2d112a7dece2b7f2"},
+    {"soybean@100/7", "87ec7873b88df053"},
+    {"strawberry@10/42", "cfa55dba6a5c6199"},
+    {"strawberry@10/7", "0cf8f809e63b95fe"},
+    {"strawberry@50/42", "a7b9501a066a1fd7"},
+    {"strawberry@50/7", "deb0517d2b592804"},
+    {"strawberry@120/42", "7e7077d05bd8f377"},
+    {"strawberry@120/7", "3b36c2382aabc21e"},
+    {"sugarbeet@10/42", "18ef900c7ce98c6e"},
+    {"sugarbeet@10/7", "8a68010e171c3ed0"},
+    {"sugarbeet@50/42", "7b84c6e421cc983f"},
+    {"sugarbeet@50/7", "d3cfe46df198feb2"},
+    {"sugarbeet@150/42", "fd0dc95cb98ec132"},
+    {"sugarbeet@150/7", "65de20eca0933399"},
+    {"tomato@10/42", "e6ad2550c45dd4e5"},
+    {"tomato@10/7", "f0a73cd443812b3b"},
+    {"tomato@50/42", "4219a5a3236f37a4"},
+    {"tomato@50/7", "0d224c32a3f9be03"},
+    {"tomato@120/42", "c72cf088cedd667f"},
+    {"tomato@120/7", "8dfb65cfdd9b9123"},
+    {"walnut@200/42", "13c28a6ba59428c2"},
+    {"walnut@200/7", "8ef2b62ed1232de2"},
+    {"walnut@630/42", "03def5a500a93a9d"},
+    {"walnut@630/7", "b7714b387e7f9f0f"},
+    {"walnut@1000/42", "d4863d96cb097822"},
+    {"walnut@1000/7", "c9d9993e51c3eb19"},
+    {"wheat@10/42", "67e4009dcdb89d10"},
+    {"wheat@10/7", "915a201cfabd8673"},
+    {"wheat@50/42", "12e5c620fb4a44b4"},
+    {"wheat@50/7", "f394e12c9757138c"},
+    {"wheat@120/42", "12e5c620fb4a44b4"},
+    {"wheat@120/7", "f394e12c9757138c"},
+};
+
+}  // namespace
+
+TEST(SpeciesChecksum, EveryLibraryPlantAtThreeAgesAndTwoSeedsIsUnchanged) {
+    const std::vector<std::string> names = listSpecies();
+    std::size_t checked = 0;
+    for (const std::string& name : names) {
+        const SpeciesModel model = loadSpecies(name);
+        const std::set<float> ages = {model.recommendedAgeMin, model.recommendedAge,
+                                      model.recommendedAgeMax};
+        for (float age : ages)
+            for (std::uint64_t seed : {42u, 7u}) {
+                const std::string key =
+                    name + "@" + std::to_string(int(age)) + "/" + std::to_string(seed);
+                SCOPED_TRACE(key);
+                ++checked;
+                Context ctx;
+                PlantArchitecture arch(&ctx);
+                arch.setSeed(seed);
+                arch.loadPlantModelFromLibrary(name);
+                const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+                const std::string sum = hex(fnv1a(plantarch::testing::organBytes(arch, {p})));
+                const auto expected = kExpected.find(key);
+                if (expected == kExpected.end()) {
+                    ADD_FAILURE() << "no recorded checksum: {\"" << key << "\", \"" << sum
+                                  << "\"},";
+                    continue;
+                }
+                EXPECT_EQ(sum, expected->second) << "{\"" << key << "\", \"" << sum << "\"},";
+            }
+    }
+    EXPECT_EQ(checked, kExpected.size()) << "a species or one of its ages was added or removed";
+}
