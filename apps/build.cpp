@@ -2,10 +2,10 @@
 // Builds one plant of a library species (or a species file) grown to an age, writes it in
 // every format asked for, and prints a one-paragraph summary (or JSON with --stats).
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -25,7 +25,9 @@ struct BuildArgs {
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
-    app.description("Build one plant of a species grown to an age and write it (OBJ, PLY, PNG, plant XML or string)");
+    app.description(
+        "Build one plant of a species grown to an age and write it (OBJ, PLY, PNG, plant XML or "
+        "string)");
     auto a = std::make_shared<BuildArgs>();
     app.add_option("species", a->species, "Library species name or species file (.xml)")
         ->required();
@@ -33,7 +35,8 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         ->required()
         ->check(daysValidator("age"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
-    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
+        ->required();
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
@@ -55,12 +58,16 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         } else {
             std::string outs;
             for (const std::string& o : a->outputs) outs += (outs.empty() ? "" : ", ") + o;
-            std::printf("%s", fmt::format(
-                "{} at {} days (seed {}): {} shoots, {} leaves (leaflets counted), {:.4f} m^2 "
-                "one-sided leaf area, {:.3f} m tall, {} triangles in {} objects; written to {}.\n",
-                arch.getCurrentPlantModel(), a->age, global.seed, arch.getShootCount(plant),
-                arch.getPlantLeafCount(plant), arch.getPlantLeafArea(plant),
-                arch.getPlantHeight(plant), ctx.triangleCount(), ctx.objectCount(), outs).c_str());
+            std::printf(
+                "%s",
+                fmt::format(
+                    "{} at {} days (seed {}): {} shoots, {} leaves (leaflets counted), {:.4f} m^2 "
+                    "one-sided leaf area, {:.3f} m tall, {} triangles in {} objects; written to "
+                    "{}.\n",
+                    arch.getCurrentPlantModel(), a->age, global.seed, arch.getShootCount(plant),
+                    arch.getPlantLeafCount(plant), arch.getPlantLeafArea(plant),
+                    arch.getPlantHeight(plant), ctx.triangleCount(), ctx.objectCount(), outs)
+                    .c_str());
         }
         return 0;
     };

@@ -2,10 +2,10 @@
 //                 [-D name=value ...] -o FILE [--stats]
 // Builds a grid canopy of a species, in parallel, and writes it (OBJ, PLY or PNG).
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -45,13 +45,16 @@ struct CanopyArgs {
 std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.description("Build a grid canopy of a species grown to an age and write it");
     auto a = std::make_shared<CanopyArgs>();
-    app.add_option("species", a->species, "Library species name or species file (.xml)")->required();
+    app.add_option("species", a->species, "Library species name or species file (.xml)")
+        ->required();
     app.add_option("--count", a->count, "Plants along x and y, e.g. 10x10");
     app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
     app.add_option("--age", a->age, "Plant age in days")->required();
-    app.add_option("--germination", a->germination, "Probability each position has a plant (0 to 1)");
+    app.add_option("--germination", a->germination,
+                   "Probability each position has a plant (0 to 1)");
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
-    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())->required();
+    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
+        ->required();
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
@@ -66,10 +69,9 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.setSeed(global.seed);
         arch.loadPlantModelFromLibrary(a->species);
         applyCollisionOptions(a->collision, arch, ctx);
-        const auto plants = arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy),
-                                                             glm::ivec2(nx, ny), a->age,
-                                                             a->germination,
-                                                             parseDefines(a->defines));
+        const auto plants =
+            arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), a->age,
+                                             a->germination, parseDefines(a->defines));
         for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
         if (a->stats) {
             for (unsigned p : plants)
@@ -86,7 +88,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
                                       "{} leaves, {:.3f} m^2 leaf area, {} triangles.\n",
                                       arch.getCurrentPlantModel(), plants.size(), nx, ny, a->age,
                                       global.seed, leaves, area, ctx.triangleCount())
-                                .c_str());
+                              .c_str());
         return 0;
     };
 }

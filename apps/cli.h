@@ -3,13 +3,12 @@
 // terminal output helpers. Each subcommand lives in its own file and registers itself with
 // PLANTARCH_REGISTER_COMMAND, so adding one never touches main.cpp.
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "plantarch/Context.h"
 #include "plantarch/PlantArchitecture.h"
@@ -19,12 +18,12 @@ namespace plantarch::cli {
 
 /// Options every subcommand sees.
 struct GlobalOptions {
-    int verbose = 0;             ///< -v count
-    std::uint64_t seed = 42;     ///< --seed
-    int threads = 0;             ///< --threads (0 = all cores)
-    int imageWidth = 1024;       ///< size of PNG outputs (--image-size on build and canopy)
+    int verbose = 0;          ///< -v count
+    std::uint64_t seed = 42;  ///< --seed
+    int threads = 0;          ///< --threads (0 = all cores)
+    int imageWidth = 1024;    ///< size of PNG outputs (--image-size on build and canopy)
     int imageHeight = 768;
-    int stringDigits = 4;        ///< significant digits of plant strings (--digits)
+    int stringDigits = 4;  ///< significant digits of plant strings (--digits)
 };
 
 /// Adds --image-size WxH (PNG output size) to a subcommand, stored in `global`.
@@ -43,8 +42,10 @@ struct CommandRegistrar {
     explicit CommandRegistrar(Command c) { commandRegistry().push_back(std::move(c)); }
 };
 
-#define PLANTARCH_REGISTER_COMMAND(ident, name, order, setupFn) \
-    static ::plantarch::cli::CommandRegistrar ident##_registrar{{name, order, setupFn}}
+#define PLANTARCH_REGISTER_COMMAND(ident, name, order, setupFn)   \
+    static ::plantarch::cli::CommandRegistrar ident##_registrar { \
+        { name, order, setupFn }                                  \
+    }
 
 /// Message on stderr when -v was given.
 void info(const GlobalOptions& g, const std::string& message);

@@ -19,7 +19,8 @@ namespace {
 std::vector<double> numbers(const std::string& text, std::size_t count, const char* option,
                             const char* form) {
     const std::string expected =
-        count == 1 ? "expected a number" : "expected " + std::to_string(count) + " numbers separated by commas";
+        count == 1 ? "expected a number"
+                   : "expected " + std::to_string(count) + " numbers separated by commas";
     std::vector<double> out;
     std::stringstream ss(text);
     for (std::string part; std::getline(ss, part, ',');) {
@@ -62,20 +63,23 @@ std::vector<vec3> readPoints(const std::string& path) {
                 ok = false;
                 break;
             }
-            while (used < part.size() && std::isspace(static_cast<unsigned char>(part[used]))) ++used;
+            while (used < part.size() && std::isspace(static_cast<unsigned char>(part[used])))
+                ++used;
             if (used != part.size() || !std::isfinite(v.back())) ok = false;
         }
         if (!ok && points.empty() && number == 1) continue;  // a header such as "x,y,z"
         if (!ok || v.size() != 3)
-            throw Error("expected three numbers x,y,z (m)",
-                        {.file = path, .line = number, .parameter = "--attraction-points",
-                         .value = line.substr(0, 60), .validRange = "e.g. 0.5,0,1.2"});
+            throw Error("expected three numbers x,y,z (m)", {.file = path,
+                                                             .line = number,
+                                                             .parameter = "--attraction-points",
+                                                             .value = line.substr(0, 60),
+                                                             .validRange = "e.g. 0.5,0,1.2"});
         points.push_back(vec3(float(v[0]), float(v[1]), float(v[2])));
     }
     if (points.empty())
-        throw Error("attraction point file holds no points", {.file = path,
-                                                              .parameter = "--attraction-points",
-                                                              .validRange = "lines of x,y,z"});
+        throw Error(
+            "attraction point file holds no points",
+            {.file = path, .parameter = "--attraction-points", .validRange = "lines of x,y,z"});
     return points;
 }
 
@@ -92,8 +96,9 @@ void addCollisionOptions(CLI::App& app, CollisionArgs& a) {
                    "of the output scene");
     app.add_option("--avoid-distance", a.avoidDistance,
                    "Distance (m) at which shoots start turning away from obstacles; default 0.2");
-    app.add_flag("--fruit-adjustment", a.fruitAdjustment,
-                 "Turn fruit out of obstacles about their attachment (fruit resting on the ground)");
+    app.add_flag(
+        "--fruit-adjustment", a.fruitAdjustment,
+        "Turn fruit out of obstacles about their attachment (fruit resting on the ground)");
     app.add_option("--attraction-points", a.attractionPoints,
                    "CSV file of x,y,z points (m) that shoots grow toward (trellis wires)");
     app.add_option("--attraction-cone", a.attractionCone,
@@ -105,8 +110,10 @@ void checkCollisionOptions(const CollisionArgs& a) {
     if (!a.cone.empty() && !a.soft)
         throw Error("--cone sets the soft avoidance cone: add --soft-collision",
                     {.parameter = "--cone", .value = a.cone});
-    if (!a.cone.empty()) numbers(a.cone, 4, "--cone", "half-angle,look-ahead,rays,inertia e.g. 80,0.1,256,0.4");
-    if (!a.avoidDistance.empty()) numbers(a.avoidDistance, 1, "--avoid-distance", "a distance in m, e.g. 0.2");
+    if (!a.cone.empty())
+        numbers(a.cone, 4, "--cone", "half-angle,look-ahead,rays,inertia e.g. 80,0.1,256,0.4");
+    if (!a.avoidDistance.empty())
+        numbers(a.avoidDistance, 1, "--avoid-distance", "a distance in m, e.g. 0.2");
     if (!a.avoidDistance.empty() && a.obstacles.empty())
         throw Error("--avoid-distance applies to obstacles: add --obstacle FILE.obj",
                     {.parameter = "--avoid-distance"});
@@ -117,9 +124,11 @@ void checkCollisionOptions(const CollisionArgs& a) {
         throw Error("--attraction-cone applies to attraction points: add --attraction-points",
                     {.parameter = "--attraction-cone", .value = a.attractionCone});
     if (!a.attractionCone.empty())
-        numbers(a.attractionCone, 3, "--attraction-cone", "half-angle,look-ahead,inertia e.g. 80,0.1,0.4");
+        numbers(a.attractionCone, 3, "--attraction-cone",
+                "half-angle,look-ahead,inertia e.g. 80,0.1,0.4");
     for (const std::string& f : a.obstacles)
-        if (!std::ifstream(f)) throw Error("cannot open obstacle file", {.file = f, .parameter = "--obstacle"});
+        if (!std::ifstream(f))
+            throw Error("cannot open obstacle file", {.file = f, .parameter = "--obstacle"});
     if (!a.attractionPoints.empty() && !std::ifstream(a.attractionPoints))
         throw Error("cannot open attraction point file",
                     {.file = a.attractionPoints, .parameter = "--attraction-points"});
@@ -129,9 +138,11 @@ void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Cont
     checkCollisionOptions(a);
     // Range errors of the library name its parameters; say which option set them.
     auto prefixed = [](const Error& e, const std::string& option) {
-        return Error(e.message(), {.file = e.file(), .line = e.line(),
+        return Error(e.message(), {.file = e.file(),
+                                   .line = e.line(),
                                    .parameter = option + " (" + e.parameter() + ")",
-                                   .value = e.value(), .validRange = e.validRange()});
+                                   .value = e.value(),
+                                   .validRange = e.validRange()});
     };
     std::vector<ObjectID> obstacles;
     for (const std::string& f : a.obstacles) {
@@ -157,7 +168,8 @@ void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Cont
             const auto v = numbers(a.cone, 4, "--cone", "");
             if (!(v[2] >= 8 && v[2] <= 16384 && v[2] == std::floor(v[2])))
                 throw Error("ray count out of range",
-                            {.parameter = "--cone (ray_count)", .value = a.cone,
+                            {.parameter = "--cone (ray_count)",
+                             .value = a.cone,
                              .validRange = "a whole number from 8 to 16384"});
             o.cone = PerceptionCone{float(v[0]), float(v[1]), unsigned(v[2]), float(v[3])};
         }

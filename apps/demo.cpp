@@ -2,10 +2,10 @@
 // stem, an alternate branch with compound leaves, an opposite decussate branch, flowers and
 // fruit) and writes it as OBJ and PNG with a one-paragraph summary.
 
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -121,8 +121,7 @@ std::function<int()> setupDemo(CLI::App& app, GlobalOptions& global) {
     return [out, &global]() {
         std::error_code ec;
         std::filesystem::create_directories(*out, ec);
-        if (ec)
-            throw Error("cannot create output directory: " + ec.message(), {.file = *out});
+        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = *out});
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -133,14 +132,13 @@ std::function<int()> setupDemo(CLI::App& app, GlobalOptions& global) {
         writeSceneFile(ctx, obj, global);
         writeSceneFile(ctx, png, global);
         std::printf(
-            "%s",
-            fmt::format("Demo plant (seed {}): {} shoots, {} leaves (leaflets counted), "
-                        "{:.3f} m^2 one-sided leaf area, {:.3f} m tall, {} objects and {} "
-                        "triangles; written to {} and {}.\n",
-                        global.seed, arch.getShootCount(plant), arch.getPlantLeafCount(plant),
-                        arch.getPlantLeafArea(plant), arch.getPlantHeight(plant),
-                        ctx.objectCount(), ctx.triangleCount(), obj, png)
-                .c_str());
+            "%s", fmt::format("Demo plant (seed {}): {} shoots, {} leaves (leaflets counted), "
+                              "{:.3f} m^2 one-sided leaf area, {:.3f} m tall, {} objects and {} "
+                              "triangles; written to {} and {}.\n",
+                              global.seed, arch.getShootCount(plant), arch.getPlantLeafCount(plant),
+                              arch.getPlantLeafArea(plant), arch.getPlantHeight(plant),
+                              ctx.objectCount(), ctx.triangleCount(), obj, png)
+                      .c_str());
         return 0;
     };
 }

@@ -1,14 +1,13 @@
 // plantarch: the command-line front end. Exit status: 0 success, 2 bad input (one line on
 // stderr naming what was wrong), 1 internal error.
 
-#include <algorithm>
-#include <cstdio>
-#include <exception>
-
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <exception>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -30,7 +29,8 @@ ProgressCallback terminalProgress() {
         if (seconds < 1.0 && fraction < 1.0) return;
         const int width = 30, filled = int(fraction * width + 0.5);
         std::fprintf(stderr, "\r%-10.*s [%.*s%*s] %3d%%", int(stage.size()), stage.data(), filled,
-                     "##############################", width - filled, "", int(fraction * 100 + 0.5));
+                     "##############################", width - filled, "",
+                     int(fraction * 100 + 0.5));
         if (fraction >= 1.0) std::fprintf(stderr, "\r%*s\r", width + 20, "");
         std::fflush(stderr);
     };

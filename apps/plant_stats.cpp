@@ -1,10 +1,10 @@
 // Helpers shared by the commands that build and grow plants: days, -D build parameters and
 // the --stats JSON of one plant.
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -47,7 +47,7 @@ std::map<std::string, float> parseDefines(const std::vector<std::string>& define
 }
 
 std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, unsigned plant,
-                      std::uint64_t seed) {
+                           std::uint64_t seed) {
     const PlantInstance& p = arch.plant(plant);
     std::size_t flowers = 0, fruit = 0;
     for (const Shoot& s : p.shoots) {
@@ -63,7 +63,8 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
         for (const FloralBud& fb : s.terminalFloralBuds) count(fb);
     }
     std::size_t triangles = 0;
-    for (ObjectID id : arch.getAllPlantObjectIDs(plant)) triangles += ctx.objectPrimitives(id).count;
+    for (ObjectID id : arch.getAllPlantObjectIDs(plant))
+        triangles += ctx.objectPrimitives(id).count;
     return fmt::format(
         "{{\"species\": \"{}\", \"plant\": {}, \"age\": {}, \"seed\": {}, \"height\": {:.4f}, "
         "\"leaves\": {}, \"leaf_area\": {:.5f}, \"shoots\": {}, \"flowers\": {}, \"fruit\": {}, "

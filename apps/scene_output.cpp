@@ -56,19 +56,20 @@ void prepareSceneOutputs(const std::vector<std::string>& paths) {
 
 void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
     app.add_option_function<std::string>(
-           "--image-size",
-           [&global](const std::string& text) {
-               int w = 0, h = 0;
-               char x = 0, extra = 0;
-               if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
-                   w < 16 || h < 16 || w > 16384 || h > 16384)
-                   throw Error("image size is WIDTHxHEIGHT in pixels",
-                               {.parameter = "--image-size", .value = text,
-                                .validRange = "16x16 to 16384x16384"});
-               global.imageWidth = w;
-               global.imageHeight = h;
-           },
-           "PNG output size, WIDTHxHEIGHT (default 1024x768)");
+        "--image-size",
+        [&global](const std::string& text) {
+            int w = 0, h = 0;
+            char x = 0, extra = 0;
+            if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' ||
+                w < 16 || h < 16 || w > 16384 || h > 16384)
+                throw Error("image size is WIDTHxHEIGHT in pixels",
+                            {.parameter = "--image-size",
+                             .value = text,
+                             .validRange = "16x16 to 16384x16384"});
+            global.imageWidth = w;
+            global.imageHeight = h;
+        },
+        "PNG output size, WIDTHxHEIGHT (default 1024x768)");
 }
 
 }  // namespace plantarch::cli

@@ -97,4 +97,7 @@ static void BM_SoftSceneRefreshUnchanged(benchmark::State& state) {
     }
     reportCollision(state, arch.getCollisionStats());
 }
-BENCHMARK(BM_SoftSceneRefreshUnchanged)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
+BENCHMARK(BM_SoftSceneRefreshUnchanged)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(5);

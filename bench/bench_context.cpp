@@ -31,9 +31,9 @@ static void BM_ContextAdd10MTriangles(benchmark::State& state) {
         state.counters["bytes_per_triangle_ctx"] =
             double(ctx.memoryBytes()) / double(ctx.triangleCount());
     }
-    state.counters["triangles_per_s"] = benchmark::Counter(
-        double(objects * leaf.triangleCount()) * double(state.iterations()),
-        benchmark::Counter::kIsRate);
+    state.counters["triangles_per_s"] =
+        benchmark::Counter(double(objects * leaf.triangleCount()) * double(state.iterations()),
+                           benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ContextAdd10MTriangles)->Unit(benchmark::kMillisecond)->Iterations(3);
 

@@ -65,16 +65,22 @@ void growIn(benchmark::State& state, int calls) {
     state.counters["phytomers"] = double(phytomers);
     state.counters["shoots"] = double(shoots);
     state.counters["triangles"] = double(triangles);
-    state.counters["us_per_phytomer"] = benchmark::Counter(
-        double(phytomers) * double(state.iterations()),
-        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["us_per_phytomer"] =
+        benchmark::Counter(double(phytomers) * double(state.iterations()),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace
 
-static void BM_Grow60Days_OneCall(benchmark::State& s) { growIn(s, 1); }
-static void BM_Grow60Days_DailyCalls(benchmark::State& s) { growIn(s, 60); }
-static void BM_Grow60Days_TenthDayCalls(benchmark::State& s) { growIn(s, 600); }
+static void BM_Grow60Days_OneCall(benchmark::State& s) {
+    growIn(s, 1);
+}
+static void BM_Grow60Days_DailyCalls(benchmark::State& s) {
+    growIn(s, 60);
+}
+static void BM_Grow60Days_TenthDayCalls(benchmark::State& s) {
+    growIn(s, 600);
+}
 BENCHMARK(BM_Grow60Days_OneCall)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Grow60Days_DailyCalls)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Grow60Days_TenthDayCalls)->Unit(benchmark::kMillisecond)->Iterations(1);

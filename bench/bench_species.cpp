@@ -6,6 +6,7 @@
 //   build/plantarch_bench --benchmark_filter=Species/ --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true   (one line)
 
+#include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,8 +14,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-
-#include <benchmark/benchmark.h>
 
 #include "bench_util.h"
 #include "plantarch/PlantArchitecture.h"
@@ -43,8 +42,8 @@ double statusBytes(const char* field) {
 }
 
 // Peak extra memory of one build, in MiB, measured in a child process: its peak resident
-// size is reset (clear_refs 5) after the heap left by earlier builds is trimmed, then the build's peak over the starting size is reported
-// through a pipe. -1 if anything fails.
+// size is reset (clear_refs 5) after the heap left by earlier builds is trimmed, then the build's
+// peak over the starting size is reported through a pipe. -1 if anything fails.
 double peakMiB(const std::string& name, float age) {
     int fds[2];
     if (pipe(fds) != 0) return -1.0;

@@ -1,9 +1,10 @@
 #pragma once
 // Helpers shared by the benchmarks: resident memory and synthetic leaf-like meshes.
 
+#include <unistd.h>
+
 #include <cstddef>
 #include <cstdio>
-#include <unistd.h>
 
 #include "plantarch/Mesh.h"
 

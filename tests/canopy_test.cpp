@@ -1,7 +1,6 @@
 // Canopies: grid and scattered layouts, germination, and the same bytes for any thread count.
 
 #include <gtest/gtest.h>
-
 #include <omp.h>
 
 #include <cmath>
@@ -51,7 +50,8 @@ TEST(Canopy, GridPositionsAndPlantIDs) {
     EXPECT_EQ(arch.getPlantBasePosition(5), vec3(1.5f, 2.125f, 0.0f));
     for (unsigned id : ids) {
         EXPECT_GT(arch.getPlantLeafCount(id), 0u);
-        for (ObjectID o : arch.getAllPlantObjectIDs(id)) EXPECT_EQ(ctx.objectDataInt(o, "plantID"), int(id));
+        for (ObjectID o : arch.getAllPlantObjectIDs(id))
+            EXPECT_EQ(ctx.objectDataInt(o, "plantID"), int(id));
     }
     // Every object in the Context belongs to exactly one plant's organs.
     EXPECT_EQ(arch.getAllObjectIDs().size(), ctx.objectCount());
@@ -77,9 +77,11 @@ TEST(Canopy, GerminationRate) {
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
     const int n = 30 * 30;
-    const auto ids = arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.1f, 0.1f}, {30, 30}, 0.0f, 0.7f);
+    const auto ids =
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.1f, 0.1f}, {30, 30}, 0.0f, 0.7f);
     EXPECT_NEAR(double(ids.size()), 0.7 * n, 5.0 * std::sqrt(n * 0.7 * 0.3));
-    EXPECT_TRUE(arch.buildPlantCanopyFromLibrary({5, 0, 0}, {0.1f, 0.1f}, {4, 4}, 0.0f, 0.0f).empty());
+    EXPECT_TRUE(
+        arch.buildPlantCanopyFromLibrary({5, 0, 0}, {0.1f, 0.1f}, {4, 4}, 0.0f, 0.0f).empty());
 }
 
 TEST(Canopy, ScatteredPlantsStayInTheirRectangle) {
@@ -100,7 +102,8 @@ TEST(Canopy, BadArgumentsAreErrors) {
     PlantArchitecture arch(&ctx);
     EXPECT_THROW(arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.3f, 0.3f}, {2, 2}, 10.0f), Error);
     arch.loadPlantModelFromLibrary("bean");
-    EXPECT_THROW(arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.3f, 0.3f}, {2, 2}, 10.0f, 1.5f), Error);
+    EXPECT_THROW(arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.3f, 0.3f}, {2, 2}, 10.0f, 1.5f),
+                 Error);
     EXPECT_THROW(arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.3f, 0.3f}, {0, 2}, 10.0f), Error);
     EXPECT_THROW(arch.buildPlantCanopyFromLibrary({0, 0, 0}, {-0.3f, 0.3f}, {2, 2}, 10.0f), Error);
     EXPECT_THROW(arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.3f, 0.3f}, {2, 2}, -1.0f), Error);

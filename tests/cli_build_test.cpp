@@ -2,13 +2,13 @@
 
 #include <gtest/gtest.h>
 
-#include "cli_run.h"
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+
+#include "cli_run.h"
 
 namespace {
 
@@ -21,7 +21,9 @@ std::string tmp(const std::string& name) {
     return (dir / name).string();
 }
 
-int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+int lines(const std::string& s) {
+    return int(std::count(s.begin(), s.end(), '\n'));
+}
 
 }  // namespace
 
@@ -42,9 +44,9 @@ TEST(CliBuild, StatsIsOneJSONObjectAndSeedsDiffer) {
     ASSERT_EQ(a.status, 0) << a.out;
     EXPECT_EQ(lines(a.out), 1);
     EXPECT_EQ(a.out.front(), '{');
-    for (const char* key : {"\"species\": \"bean\"", "\"age\": 25", "\"seed\": 3", "\"height\"",
-                            "\"leaves\"", "\"leaf_area\"", "\"shoots\"", "\"flowers\"", "\"fruit\"",
-                            "\"triangles\""})
+    for (const char* key :
+         {"\"species\": \"bean\"", "\"age\": 25", "\"seed\": 3", "\"height\"", "\"leaves\"",
+          "\"leaf_area\"", "\"shoots\"", "\"flowers\"", "\"fruit\"", "\"triangles\""})
         EXPECT_NE(a.out.find(key), std::string::npos) << key;
     EXPECT_EQ(a.out, b.out);  // same seed, same plant
     EXPECT_NE(a.out, c.out);
@@ -55,8 +57,7 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
          {"build nosuch --age 10 -o /tmp/x.obj", "build bean --age -3 -o /tmp/x.obj",
           "build bean --age 10 -o /tmp/x.stl", "build bean --age 10 -D foo -o /tmp/x.obj",
           "build bean --age 10 -D trunk_height=1 -o /tmp/x.obj", "build bean -o /tmp/x.obj",
-          "build bean --age 10 -o /tmp/x.png --image-size 32",
-          "nosuchcommand"}) {
+          "build bean --age 10 -o /tmp/x.png --image-size 32", "nosuchcommand"}) {
         const CliResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << ": " << r.out;
         EXPECT_EQ(lines(r.out), 1) << args << ": " << r.out;
@@ -84,26 +85,30 @@ TEST(CliBuild, VersionAndHelp) {
 
 TEST(CliBuild, CanopyCommand) {
     const std::string dir = tmp("canopy");
-    const CliResult r = run("canopy bean --count 3x2 --spacing 0.3x0.4 --age 15 -o " + dir +
-                            "/c.ply --stats");
+    const CliResult r =
+        run("canopy bean --count 3x2 --spacing 0.3x0.4 --age 15 -o " + dir + "/c.ply --stats");
     ASSERT_EQ(r.status, 0) << r.out;
     // One JSON object per plant, in plant order.
     EXPECT_EQ(lines(r.out), 6) << r.out;
     for (int p = 0; p < 6; ++p)
-        EXPECT_NE(r.out.find("\"plant\": " + std::to_string(p) + ", \"age\": 15"), std::string::npos)
+        EXPECT_NE(r.out.find("\"plant\": " + std::to_string(p) + ", \"age\": 15"),
+                  std::string::npos)
             << r.out;
     EXPECT_TRUE(std::filesystem::exists(dir + "/c.ply"));
     // Build parameters reach every plant of a canopy, and are checked.
-    const CliResult trees = run("canopy almond --count 2x1 --spacing 3x3 --age 0 -D trunk_height=1.2 -o " +
-                                dir + "/a.obj --stats");
+    const CliResult trees =
+        run("canopy almond --count 2x1 --spacing 3x3 --age 0 -D trunk_height=1.2 -o " + dir +
+            "/a.obj --stats");
     ASSERT_EQ(trees.status, 0) << trees.out;
     EXPECT_EQ(lines(trees.out), 2) << trees.out;
-    const CliResult bad = run("canopy almond --count 2x1 --age 0 -D trunk_height=9 -o " + dir + "/a.obj");
+    const CliResult bad =
+        run("canopy almond --count 2x1 --age 0 -D trunk_height=9 -o " + dir + "/a.obj");
     EXPECT_EQ(bad.status, 2) << bad.out;
     EXPECT_NE(bad.out.find("trunk_height"), std::string::npos) << bad.out;
-    for (const std::string args : {"canopy bean --count 3 --age 5 -o /tmp/c.ply",
-                                   "canopy bean --count 2x2 --spacing 0x1 --age 5 -o /tmp/c.ply",
-                                   "canopy bean --count 2x2 --germination 2 --age 5 -o /tmp/c.ply"}) {
+    for (const std::string args :
+         {"canopy bean --count 3 --age 5 -o /tmp/c.ply",
+          "canopy bean --count 2x2 --spacing 0x1 --age 5 -o /tmp/c.ply",
+          "canopy bean --count 2x2 --germination 2 --age 5 -o /tmp/c.ply"}) {
         const CliResult bad = run(args);
         EXPECT_EQ(bad.status, 2) << args << ": " << bad.out;
         EXPECT_EQ(lines(bad.out), 1) << args << ": " << bad.out;

@@ -3,8 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include "cli_run.h"
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
 #include "plantarch/Export.h"
 
 using namespace plantarch;
@@ -48,7 +47,8 @@ const char* kWall = "v 0.12 -1 0\nv 0.12 1 0\nv 0.12 1 1.5\nv 0.12 -1 1.5\nf 1 2
 TEST(CliCollision, ObstacleIsWrittenAndNeverCrossed) {
     const std::string wall = write("wall.obj", kWall);
     const std::string out = dir() + "/wall_bean.obj";
-    const CliResult r = run("build bean --age 45 --obstacle " + wall + " --avoid-distance 0.2 -o " + out);
+    const CliResult r =
+        run("build bean --age 45 --obstacle " + wall + " --avoid-distance 0.2 -o " + out);
     ASSERT_EQ(r.status, 0) << r.out;
     Context ctx;
     readOBJ(ctx, out);
@@ -70,15 +70,18 @@ TEST(CliCollision, ObstacleIsWrittenAndNeverCrossed) {
 TEST(CliCollision, SoftCanopyIsTheSameForOneAndTwoThreads) {
     const std::string a = dir() + "/soft1.ply", b = dir() + "/soft2.ply", c = dir() + "/hard.ply";
     const std::string args = " canopy bean --count 2x2 --spacing 0.15x0.15 --age 25 ";
-    ASSERT_EQ(run("--threads 1" + args + "--soft-collision --cone 70,0.12,128,0.3 -o " + a).status, 0);
-    ASSERT_EQ(run("--threads 2" + args + "--soft-collision --cone 70,0.12,128,0.3 -o " + b).status, 0);
+    ASSERT_EQ(run("--threads 1" + args + "--soft-collision --cone 70,0.12,128,0.3 -o " + a).status,
+              0);
+    ASSERT_EQ(run("--threads 2" + args + "--soft-collision --cone 70,0.12,128,0.3 -o " + b).status,
+              0);
     ASSERT_EQ(run("--threads 2" + args + "-o " + c).status, 0);
     EXPECT_EQ(bytes(a), bytes(b));
     EXPECT_NE(bytes(a), bytes(c));  // and avoidance changed the plants
 }
 
 TEST(CliCollision, AttractionPointsFromACsvFile) {
-    const std::string points = write("points.csv", "x,y,z  # header\n0.3,0,0.3\n0.3,0,0.35\n\n0.3,0,0.4\n");
+    const std::string points =
+        write("points.csv", "x,y,z  # header\n0.3,0,0.3\n0.3,0,0.35\n\n0.3,0,0.4\n");
     const std::string out = dir() + "/attracted.ply";
     const CliResult r = run("build bean --age 30 --attraction-points " + points +
                             " --attraction-cone 80,0.3,0.2 -o " + out);
@@ -100,8 +103,10 @@ TEST(CliCollision, BadValuesAndFilesAreOneLineErrors) {
         {"build bean --age 10 --soft-collision --cone 80,-1,256,0.4" + o, "look_ahead_distance"},
         {"build bean --age 10 --soft-collision --cone 80,0.1,3,0.4" + o, "8 to 16384"},
         {"build bean --age 10 --soft-collision --cone 80,0.1,256,2" + o, "inertia"},
-        {"build bean --age 10 --obstacle " + dir() + "/missing.obj" + o, "cannot open obstacle file"},
-        {"build bean --age 10 --obstacle " + wall + " --avoid-distance -0.2" + o, "avoidance_distance"},
+        {"build bean --age 10 --obstacle " + dir() + "/missing.obj" + o,
+         "cannot open obstacle file"},
+        {"build bean --age 10 --obstacle " + wall + " --avoid-distance -0.2" + o,
+         "avoidance_distance"},
         {"build bean --age 10 --obstacle " + wall + " --avoid-distance x" + o, "expected a number"},
         {"build bean --age 10 --avoid-distance 0.2" + o, "add --obstacle"},
         {"build bean --age 10 --fruit-adjustment" + o, "add --obstacle"},

@@ -3,13 +3,12 @@
 
 #include <gtest/gtest.h>
 
-#include "cli_run.h"
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "cli_run.h"
 #include "plant_geometry_bytes.h"
 
 namespace {

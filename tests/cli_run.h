@@ -1,10 +1,11 @@
 #pragma once
 // Runs the plantarch command line as a user does, for the CLI tests.
 
+#include <sys/wait.h>
+
 #include <array>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace cli {
 
@@ -20,7 +21,8 @@ inline Result run(const std::string& args) {
     std::string out;
     std::array<char, 4096> buf{};
     if (pipe)
-        while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
+        while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe))
+            out.append(buf.data(), n);
     const int status = pipe ? pclose(pipe) : -1;
     return {status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }

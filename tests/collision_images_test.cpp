@@ -18,7 +18,9 @@ using namespace plantarch::test;
 
 namespace {
 
-bool writing() { return std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr; }
+bool writing() {
+    return std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr;
+}
 
 std::string docsPath(const std::string& name) {
     return std::string(PLANTARCH_SOURCE_DIR) + "/docs/images/" + name;
@@ -56,14 +58,16 @@ TEST(CollisionImages, BeanBesideAWall) {
     for (bool avoid : {false, true}) {
         Context ctx;
         PlantArchitecture arch(&ctx);
-        const ObjectID wall = addBox(ctx, {0.12f, -0.45f, 0.0f}, {0.135f, 0.45f, 0.75f},
-                                     vec3(0.78f, 0.74f, 0.68f));
+        const ObjectID wall =
+            addBox(ctx, {0.12f, -0.45f, 0.0f}, {0.135f, 0.45f, 0.75f}, vec3(0.78f, 0.74f, 0.68f));
         arch.loadPlantModelFromLibrary("bean");
         if (avoid) arch.enableSolidObstacleAvoidance({wall}, 0.2f);
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 50.0f);
         const float maxX = extreme(ctx, arch, p, 0, true);
-        if (avoid) EXPECT_LE(maxX, 0.12f);
-        else EXPECT_GT(maxX, 0.2f);
+        if (avoid)
+            EXPECT_LE(maxX, 0.12f);
+        else
+            EXPECT_GT(maxX, 0.2f);
         RenderOptions o = options(560, 640);
         o.camera.eye = {0.12f, -1.35f, 1.15f};
         o.camera.target = {0.06f, 0.0f, 0.25f};
@@ -82,7 +86,8 @@ TEST(CollisionImages, VinesOnATrellisWire) {
         arch.loadPlantModelFromLibrary(speciesFile("vine_picture", vine(wire, 28)));
         for (int i = 0; i < 3; ++i) {
             const float x = 1.2f * float(i);
-            addBox(ctx, {x - 0.06f, -0.02f, 0.0f}, {x - 0.02f, 0.02f, 0.62f}, vec3(0.45f, 0.33f, 0.2f));
+            addBox(ctx, {x - 0.06f, -0.02f, 0.0f}, {x - 0.02f, 0.02f, 0.62f},
+                   vec3(0.45f, 0.33f, 0.2f));
             arch.buildPlantInstanceFromLibrary({x, 0, 0}, 40.0f);
         }
         // The wire itself, 2 mm thick, along the row at its height (0.5 m).
@@ -97,8 +102,8 @@ TEST(CollisionImages, VinesOnATrellisWire) {
         Image out(frames[0].width, frames[0].height * 2 + 8);
         std::fill(out.rgb.begin(), out.rgb.end(), 255);
         std::memcpy(out.rgb.data(), frames[0].rgb.data(), frames[0].rgb.size());
-        std::memcpy(&out.rgb[std::size_t(frames[0].height + 8) * out.width * 3], frames[1].rgb.data(),
-                    frames[1].rgb.size());
+        std::memcpy(&out.rgb[std::size_t(frames[0].height + 8) * out.width * 3],
+                    frames[1].rgb.data(), frames[1].rgb.size());
         writePNG(out, docsPath("collision-trellis.png"));
     }
 }

@@ -178,7 +178,8 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                 }
                 // Leaves moved along the petiole: some to where the one before them sits.
                 for (std::size_t i = 1; i < pt.leaves.size(); ++i)
-                    pt.leaves[i].position = i % 2 ? pt.leaves[i - 1].position : 0.5f * pt.leaves[i].position;
+                    pt.leaves[i].position =
+                        i % 2 ? pt.leaves[i - 1].position : 0.5f * pt.leaves[i].position;
             }
     Shoot& longest =
         *std::max_element(plant.shoots.begin(), plant.shoots.end(),
@@ -200,12 +201,15 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
             for (Phytomer& ph : s.phytomers) {
                 Internode& axes = ph.internode;
                 if (what == 2) axes.guide = glm::normalize(axes.guide + vec3(0.1f, -0.2f, 0.05f));
-                if (what == 3) axes.direction = glm::normalize(axes.direction + vec3(-0.05f, 0.1f, 0.0f));
+                if (what == 3)
+                    axes.direction = glm::normalize(axes.direction + vec3(-0.05f, 0.1f, 0.0f));
                 for (Petiole& pt : ph.petioles) {
                     if (pt.clearance.angle == 0.0f) continue;
                     ++turns;
                     if (what == 0) pt.clearance.angle += 5.0f;
-                    if (what == 1) pt.clearance.axis = glm::normalize(pt.clearance.axis + vec3(0.0f, 0.0f, 0.3f));
+                    if (what == 1)
+                        pt.clearance.axis =
+                            glm::normalize(pt.clearance.axis + vec3(0.0f, 0.0f, 0.3f));
                 }
             }
         ASSERT_GT(turns, 3);
@@ -374,9 +378,8 @@ TEST(CollisionRefresh, PrototypesAreLookedUpAgainAfterTheCachesAreCleared) {
     arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 12.0f);
     arch.advanceTime(1.0);
     const std::uint64_t calls = collision::worldOf(implOf(arch)).calls;
-    arch.registerLeafPrototype("unused_test_leaf", [](const LeafPrototype&, Rng&, int) {
-        return OrganPrototype{};
-    });
+    arch.registerLeafPrototype("unused_test_leaf",
+                               [](const LeafPrototype&, Rng&, int) { return OrganPrototype{}; });
     arch.advanceTime(2.0);
     EXPECT_EQ(collision::worldOf(implOf(arch)).calls, calls + 1);
     expectSceneMatchesLeaves(arch);
@@ -404,14 +407,18 @@ TEST(CollisionRefresh, LeafTransformIsPlainVectorArithmetic) {
         if (i % 9 == 0) tangent = vec3(0.0f, 0.0f, i % 2 ? 1.0f : -1.0f);  // vertical
         if (i % 9 == 1) tangent = vec3(1e-6f, 0.0f, 1.0f);
         tangent = glm::normalize(tangent);
-        const vec3 side = glm::normalize(vec3(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.1f));
-        const vec3 origin(rng.uniform(-2.0f, 2.0f), rng.uniform(-2.0f, 2.0f), rng.uniform(0.0f, 3.0f));
-        const vec3 offset(rng.uniform(-0.01f, 0.01f), rng.uniform(-0.01f, 0.01f), rng.uniform(-0.01f, 0.01f));
+        const vec3 side =
+            glm::normalize(vec3(rng.uniform(-1.0f, 1.0f), rng.uniform(-1.0f, 1.0f), 0.1f));
+        const vec3 origin(rng.uniform(-2.0f, 2.0f), rng.uniform(-2.0f, 2.0f),
+                          rng.uniform(0.0f, 3.0f));
+        const vec3 offset(rng.uniform(-0.01f, 0.01f), rng.uniform(-0.01f, 0.01f),
+                          rng.uniform(-0.01f, 0.01f));
         const float scale = rng.uniform(0.001f, 0.2f);
         LeafTrig t;
         t.leaflet = int(rng.uniform(0.0f, 3.0f)) - 1;
         t.swing = sc(rng.uniform(0.0f, 90.0f));
-        t.turn = {sc(rng.uniform(-90.0f, 90.0f)), sc(rng.uniform(-60.0f, 60.0f)), sc(rng.uniform(-45.0f, 45.0f))};
+        t.turn = {sc(rng.uniform(-90.0f, 90.0f)), sc(rng.uniform(-60.0f, 60.0f)),
+                  sc(rng.uniform(-45.0f, 45.0f))};
         const mat4 got = geometry::leafTransform(origin, tangent, side, t, scale, offset);
 
         vec3 x = glm::normalize(tangent);

@@ -17,7 +17,8 @@ namespace plantarch::test {
 inline ObjectID addBox(Context& ctx, vec3 lo, vec3 hi, vec3 color = vec3(0.7f)) {
     Mesh m;
     for (int i = 0; i < 8; ++i)
-        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+        m.positions.push_back(
+            {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
     m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
                  2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
     return ctx.addObject(m, Material{color, "", "obstacle"});
@@ -28,7 +29,8 @@ inline float extreme(const Context& ctx, const PlantArchitecture& arch, unsigned
                      bool max) {
     float v = max ? -1e30f : 1e30f;
     for (ObjectID o : arch.getAllPlantObjectIDs(plant))
-        for (const vec3& p : ctx.object(o).positions) v = max ? std::max(v, p[axis]) : std::min(v, p[axis]);
+        for (const vec3& p : ctx.object(o).positions)
+            v = max ? std::max(v, p[axis]) : std::min(v, p[axis]);
     return v;
 }
 

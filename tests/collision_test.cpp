@@ -1,26 +1,25 @@
 // Collision avoidance and attraction points, checked on the geometry they produce.
 
 #include <gtest/gtest.h>
-
 #include <omp.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <tuple>
-#include <fstream>
-#include <unistd.h>
 
 #include "collision/collision_world.h"
 #include "collision/cone.h"
 #include "collision/intersections.h"
 #include "collision/steering.h"
+#include "collision_scenes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
-#include "collision_scenes.h"
 
 using namespace plantarch;
 
@@ -55,10 +54,11 @@ TEST(Collision, ShootsFollowAnAttractionWire) {
             reached = reached || d < 0.03f;
             if (reached) worst = std::max(worst, d);
         }
-        std::printf("wire %d: %u nodes, tip (%.3f %.3f %.3f) %.4f m from the wire, worst after "
-                    "reaching %.4f, attracted %llu\n",
-                    wire, nodes, tip.x, tip.y, tip.z, toSegment(tip, a, b), worst,
-                    (unsigned long long)arch.getCollisionStats().attracted);
+        std::printf(
+            "wire %d: %u nodes, tip (%.3f %.3f %.3f) %.4f m from the wire, worst after "
+            "reaching %.4f, attracted %llu\n",
+            wire, nodes, tip.x, tip.y, tip.z, toSegment(tip, a, b), worst,
+            (unsigned long long)arch.getCollisionStats().attracted);
         if (wire) {
             EXPECT_EQ(arch.getAttractionPoints(p).size(), 60u);
             EXPECT_LT(toSegment(tip, a, b), 0.03f);
@@ -80,9 +80,10 @@ TEST(Collision, WallIsNeverCrossed) {
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, age);
         const float maxX = extreme(ctx, arch, p, 0, true);
         const CollisionStats st = arch.getCollisionStats();
-        std::printf("age %.0f: max x %.4f, steered %llu of %llu, turned %llu unresolved %llu\n", age,
-                    maxX, (unsigned long long)st.solidSteered, (unsigned long long)st.solidCones,
-                    (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
+        std::printf("age %.0f: max x %.4f, steered %llu of %llu, turned %llu unresolved %llu\n",
+                    age, maxX, (unsigned long long)st.solidSteered,
+                    (unsigned long long)st.solidCones, (unsigned long long)st.organsTurned,
+                    (unsigned long long)st.organsUnresolved);
         EXPECT_LE(maxX, 0.1f);
         Context free;
         PlantArchitecture a2(&free);
@@ -126,13 +127,16 @@ TEST(Collision, StrawberryFruitStayAboveTheGround) {
         for (ObjectID o : arch.getPlantFruitObjectIDs(p))
             for (const vec3& v : ctx.object(o).positions) lowest = std::min(lowest, v.z);
         const CollisionStats st = arch.getCollisionStats();
-        std::printf("adjust %d: %zu fruit objects, lowest fruit vertex %.4f, turned %llu, "
-                    "unresolved %llu\n",
-                    adjust, arch.getPlantFruitObjectIDs(p).size(), lowest,
-                    (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
+        std::printf(
+            "adjust %d: %zu fruit objects, lowest fruit vertex %.4f, turned %llu, "
+            "unresolved %llu\n",
+            adjust, arch.getPlantFruitObjectIDs(p).size(), lowest,
+            (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
         ASSERT_GT(arch.getPlantFruitObjectIDs(p).size(), 3u);
-        if (adjust) EXPECT_GE(lowest, -1e-4f);
-        else EXPECT_LT(lowest, -0.01f);  // without adjustment some hang into the ground
+        if (adjust)
+            EXPECT_GE(lowest, -1e-4f);
+        else
+            EXPECT_LT(lowest, -0.01f);  // without adjustment some hang into the ground
     }
 }
 
@@ -170,14 +174,16 @@ TEST(Collision, SoftAvoidanceReducesCrossingLeaves) {
         if (soft) arch.enableSoftCollisionAvoidance();
         arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {4, 4}, 35.0f);
         const std::vector<ObjectID> l = leaves(arch);
-        crossings[soft] = collision::countIntersectingPairs(ctx, l, collision::petioleGroups(ctx, l));
+        crossings[soft] =
+            collision::countIntersectingPairs(ctx, l, collision::petioleGroups(ctx, l));
         const CollisionStats st = arch.getCollisionStats();
-        std::printf("soft %d: %zu leaves, %zu crossing pairs; cones %llu steered %llu rays %llu "
-                    "refreshes %llu rebuilt %llu kept %llu tris %llu\n",
-                    soft, l.size(), crossings[soft], (unsigned long long)st.softCones,
-                    (unsigned long long)st.softSteered, (unsigned long long)st.softRays,
-                    (unsigned long long)st.sceneRefreshes, (unsigned long long)st.plantsRebuilt,
-                    (unsigned long long)st.plantsUnchanged, (unsigned long long)st.sceneTriangles);
+        std::printf(
+            "soft %d: %zu leaves, %zu crossing pairs; cones %llu steered %llu rays %llu "
+            "refreshes %llu rebuilt %llu kept %llu tris %llu\n",
+            soft, l.size(), crossings[soft], (unsigned long long)st.softCones,
+            (unsigned long long)st.softSteered, (unsigned long long)st.softRays,
+            (unsigned long long)st.sceneRefreshes, (unsigned long long)st.plantsRebuilt,
+            (unsigned long long)st.plantsUnchanged, (unsigned long long)st.sceneTriangles);
     }
     EXPECT_LT(crossings[1], crossings[0]);
 }
@@ -285,8 +291,7 @@ TEST(Collision, SoftSceneKeepsLeafOutlinesAsQuads) {
     ASSERT_EQ(spheres.size(), 4u);
     EXPECT_GT(spheres[0].w, 0.0f);
     EXPECT_LT(spheres[1].w, 0.0f);  // the quad's second triangle
-    for (const vec3& p : {a, b, c, d})
-        EXPECT_LE(glm::length(p - vec3(spheres[0])), spheres[0].w);
+    for (const vec3& p : {a, b, c, d}) EXPECT_LE(glm::length(p - vec3(spheres[0])), spheres[0].w);
     EXPECT_GT(spheres[2].w, 0.0f);  // (e, a, b) then (a, b, c): no shared corners in place
     EXPECT_GT(spheres[3].w, 0.0f);
     // The same pair from two organs is two triangles.
@@ -308,10 +313,16 @@ TEST(Collision, SoftSceneSpheresAndCellsAreThePlainFormulas) {
     std::vector<std::uint64_t> tags;
     auto corner = [&](int kind) {
         switch (kind) {
-            case 0: return vec3(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f), rng.uniform(-0.1f, 0.6f));
-            case 1: return vec3(cell * float(int(rng.uniform(-9.0f, 9.0f))), -0.0f, 2 * cell);  // borders
-            case 2: return vec3(rng.uniform(-1e6f, 1e6f), 3e5f, -2e5f);  // beyond the grid
-            default: return vec3(std::nanf(""), 0.1f, 0.2f);
+            case 0:
+                return vec3(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f),
+                            rng.uniform(-0.1f, 0.6f));
+            case 1:
+                return vec3(cell * float(int(rng.uniform(-9.0f, 9.0f))), -0.0f,
+                            2 * cell);  // borders
+            case 2:
+                return vec3(rng.uniform(-1e6f, 1e6f), 3e5f, -2e5f);  // beyond the grid
+            default:
+                return vec3(std::nanf(""), 0.1f, 0.2f);
         }
     };
     for (int i = 0; i < 3000; ++i) {
@@ -347,7 +358,8 @@ TEST(Collision, SoftSceneSpheresAndCellsAreThePlainFormulas) {
     for (std::size_t t = 0; t < n; ++t) {
         const vec3* p = soup.data() + 3 * t;
         const bool quad = t + 1 < n && p[3].x == p[0].x && p[3].y == p[0].y && p[3].z == p[0].z &&
-                          p[4].x == p[2].x && p[4].y == p[2].y && p[4].z == p[2].z && tags[t] == tags[t + 1];
+                          p[4].x == p[2].x && p[4].y == p[2].y && p[4].z == p[2].z &&
+                          tags[t] == tags[t + 1];
         const vec3 d = quad ? p[5] : p[2];
         vec3 centre;
         for (int k = 0; k < 3; ++k)
@@ -404,10 +416,12 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
     collision::TriangleSoup plant;
     std::vector<collision::OrganTag> tags;
     for (int i = 0; i < 600; ++i) {
-        const vec3 c(rng.uniform(-0.15f, 0.15f), rng.uniform(-0.15f, 0.15f), rng.uniform(0.0f, 0.3f));
+        const vec3 c(rng.uniform(-0.15f, 0.15f), rng.uniform(-0.15f, 0.15f),
+                     rng.uniform(0.0f, 0.3f));
         vec3 p[4];
-        for (vec3& q : p) q = c + vec3(rng.uniform(-0.03f, 0.03f), rng.uniform(-0.03f, 0.03f),
-                                       rng.uniform(-0.03f, 0.03f));
+        for (vec3& q : p)
+            q = c + vec3(rng.uniform(-0.03f, 0.03f), rng.uniform(-0.03f, 0.03f),
+                         rng.uniform(-0.03f, 0.03f));
         const bool quad = i % 4 >= 2;
         if (i % 2) {
             Mesh m;
@@ -434,8 +448,10 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
     world.commit();
     std::size_t cells = 0, differ = 0, blocked = 0;
     for (int c = 0; c < 500; ++c) {
-        const vec3 apex(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f), rng.uniform(0.0f, 0.3f));
-        const vec3 axis = glm::normalize(vec3(rng.normal(0, 1), rng.normal(0, 1), rng.normal(0, 1)));
+        const vec3 apex(rng.uniform(-0.1f, 0.1f), rng.uniform(-0.1f, 0.1f),
+                        rng.uniform(0.0f, 0.3f));
+        const vec3 axis =
+            glm::normalize(vec3(rng.normal(0, 1), rng.normal(0, 1), rng.normal(0, 1)));
         PerceptionCone cone;
         cone.halfAngle = rng.uniform(10.0f, 170.0f);
         cone.lookAhead = rng.uniform(0.02f, 0.2f);
@@ -477,12 +493,13 @@ TEST(Collision, ConeSamplingMatchesRayTracing) {
 TEST(Collision, ConeSeesLargeQuadsCloseAhead) {
     for (int variant = 0; variant < 8; ++variant) {
         const float flip = variant & 1 ? -1.0f : 1.0f;  // straight ahead: the first or second
-        const bool reverse = variant & 2;              // winding
-        const float z = variant & 4 ? 0.05f : -0.05f;  // above or below the tip, facing it
+        const bool reverse = variant & 2;               // winding
+        const float z = variant & 4 ? 0.05f : -0.05f;   // above or below the tip, facing it
         vec3 corner[4] = {{-0.3f, -0.7f, z}, {0.7f, -0.7f, z}, {0.7f, 0.3f, z}, {-0.3f, 0.3f, z}};
         for (vec3& c : corner) c.x *= flip, c.y *= flip;
         if (reverse) std::swap(corner[1], corner[3]);
-        collision::TriangleSoup quad = {corner[0], corner[1], corner[2], corner[0], corner[2], corner[3]};
+        collision::TriangleSoup quad = {corner[0], corner[1], corner[2],
+                                        corner[0], corner[2], corner[3]};
         const collision::OrganTag tag = collision::organTag(0, 0);
         Context ctx;
         collision::World world;
@@ -498,7 +515,8 @@ TEST(Collision, ConeSeesLargeQuadsCloseAhead) {
         Rng r1(variant, 1), r2(variant, 1);
         collision::ConeSample fast, traced;
         collision::sampleCone(world, vec3(0.0f), axis, cone, r1, 1e-4f, collision::Ignore{}, fast);
-        collision::sampleCone(world, vec3(0.0f), axis, cone, r2, 1e-4f, collision::Ignore{}, traced, true);
+        collision::sampleCone(world, vec3(0.0f), axis, cone, r2, 1e-4f, collision::Ignore{}, traced,
+                              true);
         EXPECT_GT(traced.hits, 10) << variant;
         EXPECT_EQ(fast.blocked, traced.blocked) << variant;
     }
@@ -520,9 +538,11 @@ TEST(Collision, SoftGridIsTheSameForAnyThreadCount) {
         const unsigned quads = 50 + 40 * p;
         for (unsigned q = 0; q < quads; ++q) {
             const float size = q % 37 == 0 ? 0.8f : 0.03f;  // a few larger than a cell
-            const vec3 c(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f), rng.uniform(0.0f, 0.5f));
+            const vec3 c(rng.uniform(-0.4f, 0.4f), rng.uniform(-0.4f, 0.4f),
+                         rng.uniform(0.0f, 0.5f));
             vec3 k[4];
-            for (vec3& v : k) v = c + size * vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+            for (vec3& v : k)
+                v = c + size * vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
             const collision::OrganTag tag = collision::organTag(q % 5, q);
             soup.insert(soup.end(), {k[0], k[1], k[2]});
             tags.push_back(tag);
@@ -538,7 +558,8 @@ TEST(Collision, SoftGridIsTheSameForAnyThreadCount) {
         Rng r(3, 3);
         collision::TriangleBatch batch;
         for (int i = 0; i < 300; ++i) {
-            const vec3 centre(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f), r.uniform(-0.1f, 0.6f));
+            const vec3 centre(r.uniform(-0.5f, 0.5f), r.uniform(-0.5f, 0.5f),
+                              r.uniform(-0.1f, 0.6f));
             world.softTrianglesNear(centre, 0.1f, nullptr, batch);
             out.push_back(float(batch.size()));
             for (std::size_t t = 0; t < batch.size(); ++t)
@@ -606,7 +627,8 @@ TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
     EXPECT_EQ(again.attraction->shootTypes, std::vector<std::string>{"cane"});
     EXPECT_FALSE(readSpeciesString(vine(false), "plain.xml").attraction);
     // Evaluated with the build parameters, relative to the plant's base.
-    const AttractionPoints p = speciesAttractionPoints(m, 1, 0, vec3(1, 2, 0), {{"wire_height", 0.8f}});
+    const AttractionPoints p =
+        speciesAttractionPoints(m, 1, 0, vec3(1, 2, 0), {{"wire_height", 0.8f}});
     ASSERT_EQ(p.points.size(), 60u);
     EXPECT_EQ(p.points.front(), vec3(1.02f, 2, 0.8f));
     EXPECT_NEAR(p.points.back().x, 2.2f, 1e-6f);
@@ -616,14 +638,16 @@ TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary(speciesFile("vine_hook", vine(true)));
     arch.enableAttractionPoints({vec3(0, 0, 5)});
-    const unsigned plant = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 1.0f, {{"wire_length", 2}});
+    const unsigned plant =
+        arch.buildPlantInstanceFromLibrary({0, 0, 0}, 1.0f, {{"wire_length", 2}});
     EXPECT_EQ(arch.getAttractionPoints(plant).size(), 100u);
     arch.disableAttractionPoints(plant);  // now it follows the global ones
     EXPECT_EQ(arch.getAttractionPoints(plant), std::vector<vec3>{vec3(0, 0, 5)});
 }
 
 TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
-    const std::string wire = "<wire from=\"0.02, 0, wire_height\" to=\"wire_length, 0, wire_height\" spacing=\"0.02\"/>";
+    const std::string wire =
+        "<wire from=\"0.02, 0, wire_height\" to=\"wire_length, 0, wire_height\" spacing=\"0.02\"/>";
     struct Case {
         std::string from, to, expected;
         int line;
@@ -648,7 +672,8 @@ TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
     for (const auto& [from, to, expected, line] :
          {std::tuple{std::string("spacing=\"0.02\""), std::string("spacing=\"0\""),
                      std::string("attraction_points.wire[1].spacing = 0"), 51},
-          std::tuple{std::string("half_angle=\"70\""), std::string("half_angle=\"wire_height * 400\""),
+          std::tuple{std::string("half_angle=\"70\""),
+                     std::string("half_angle=\"wire_height * 400\""),
                      std::string("attraction_points.half_angle = 200"), 50}}) {
         const SpeciesModel m = readSpeciesString(replaced(vine(true), from, to), "late.xml");
         const Error e = errorOf([&] { speciesAttractionPoints(m, 1, 0, vec3(0)); });
@@ -676,7 +701,8 @@ TEST(CollisionApi, OptionsAreValidated) {
     EXPECT_EQ(softError({80, 0.1f, 256, -0.1f}).parameter(), "inertia");
     EXPECT_EQ(softError({80, 0.1f, 256, 0.4f}, 0.0).parameter(), "update_interval");
     EXPECT_EQ(softError({80, 0.1f, 256, std::nanf("")}).parameter(), "inertia");
-    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({}, 0.2f); }).parameter(), "obstacle_IDs");
+    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({}, 0.2f); }).parameter(),
+              "obstacle_IDs");
     const Error missing = errorOf([&] { arch.enableSolidObstacleAvoidance({42}, 0.2f); });
     EXPECT_EQ(missing.parameter(), "obstacle_IDs");
     EXPECT_EQ(missing.value(), "42");
@@ -685,9 +711,11 @@ TEST(CollisionApi, OptionsAreValidated) {
               "avoidance_distance");
     EXPECT_EQ(errorOf([&] { arch.enableAttractionPoints({vec3(0, 0, NAN)}); }).parameter(),
               "attraction_points[0]");
-    EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints({vec3(0)}); }).parameter(), "attraction_points");
-    EXPECT_EQ(errorOf([&] { arch.setCollisionRelevantOrgans(true, true, false, false, false); })
-                  .validRange(),
+    EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints({vec3(0)}); }).parameter(),
+              "attraction_points");
+    EXPECT_EQ(errorOf([&] {
+                  arch.setCollisionRelevantOrgans(true, true, false, false, false);
+              }).validRange(),
               "call enableSoftCollisionAvoidance first");
     // A failed call changes nothing: no collision work is done.
     EXPECT_EQ(arch.getCollisionStats().softCones, 0u);
@@ -780,7 +808,8 @@ TEST(Collision, ObstaclesKeepPriorityOverAttraction) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.loadPlantModelFromLibrary("bean");
-        if (wall) arch.enableSolidObstacleAvoidance({addBox(ctx, {0.15f, -1, 0}, {0.17f, 1, 2})}, 0.2f);
+        if (wall)
+            arch.enableSolidObstacleAvoidance({addBox(ctx, {0.15f, -1, 0}, {0.17f, 1, 2})}, 0.2f);
         arch.enableAttractionPoints(lure, 80, 0.3f, 0.2f);
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 45.0f);
         reach[wall] = extreme(ctx, arch, p, 0, true);
@@ -813,7 +842,8 @@ TEST(Collision, AllOrganKindsAndSteeredSideOrgansAreDeterministic) {
         EXPECT_GT(st.softSteered, 100u);
         // More cones than internodes: petioles and peduncles look too.
         std::size_t internodes = 0;
-        for (unsigned p : arch.getAllPlantIDs()) internodes += arch.getPlantInternodeObjectIDs(p).size();
+        for (unsigned p : arch.getAllPlantIDs())
+            internodes += arch.getPlantInternodeObjectIDs(p).size();
         EXPECT_GT(st.softCones, internodes);
         return fingerprint(ctx);
     };
@@ -841,7 +871,8 @@ struct WireScene {
         arch.addBaseStemShoot(id, 1, rotation, 0.002f, 0.02f, 1.0f, 1.0f, 0.0f, "stem");
         if (points) {
             AttractionPoints a;
-            for (int k = 0; k <= 40; ++k) a.points.push_back({-0.4f + 0.02f * float(k), 0.0f, wireZ});
+            for (int k = 0; k <= 40; ++k)
+                a.points.push_back({-0.4f + 0.02f * float(k), 0.0f, wireZ});
             a.halfAngle = 60.0f;
             a.lookAhead = 0.2f;
             a.inertia = 0.3f;

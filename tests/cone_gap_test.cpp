@@ -79,7 +79,8 @@ std::optional<vec3> floodFillGap(const collision::ConeSample& s, float halfAngle
         if (!(len > 1e-6f)) continue;
         const vec3 centre = sum[std::size_t(g)] / len;
         const float angle = std::acos(std::clamp(centre.z, -1.0f, 1.0f));
-        const float score = float(size[std::size_t(g)]) / float(n) * (1.0f - 0.5f * angle / halfRad);
+        const float score =
+            float(size[std::size_t(g)]) / float(n) * (1.0f - 0.5f * angle / halfRad);
         if (score > bestScore) {
             bestScore = score;
             best = centre;

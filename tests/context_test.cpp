@@ -1,8 +1,9 @@
+#include "plantarch/Context.h"
+
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "plantarch/Context.h"
 #include "plantarch/Error.h"
 
 using namespace plantarch;

@@ -14,7 +14,9 @@ using namespace plantarch;
 
 namespace {
 
-bool writing() { return std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr; }
+bool writing() {
+    return std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr;
+}
 
 std::string docsPath(const std::string& name) {
     return std::string(PLANTARCH_SOURCE_DIR) + "/docs/images/" + name;

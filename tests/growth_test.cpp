@@ -69,7 +69,9 @@ ShootParameters branchingParent(Garden& g, int maxNodes, float breakProbability,
 
 std::vector<vec3> allPositions(const Context& ctx) {
     std::vector<vec3> out;
-    ctx.forEachObject([&](const ObjectView& v) { out.insert(out.end(), v.positions.begin(), v.positions.end()); });
+    ctx.forEachObject([&](const ObjectView& v) {
+        out.insert(out.end(), v.positions.begin(), v.positions.end());
+    });
     return out;
 }
 
@@ -156,8 +158,8 @@ TEST(Growth, InsertionAnglesIncreaseDownTheShoot) {
     g.arch.advanceTime(0.0f);
     for (const Shoot& sh : g.state(p).shoots)
         if (sh.parent == 0) {
-            EXPECT_NEAR(sh.insertionAngle, std::min(90.0f, 20.0f + 15.0f * float(5 - sh.parentNode)),
-                        1e-4f);
+            EXPECT_NEAR(sh.insertionAngle,
+                        std::min(90.0f, 20.0f + 15.0f * float(5 - sh.parentNode)), 1e-4f);
         }
 }
 
@@ -426,7 +428,7 @@ TEST(Growth, TwoSeasonsOfAPerennial) {
     const unsigned p = perennial(g, false);
     g.arch.advanceTime(9.0f);
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 1u);  // dormant until day 10
-    g.arch.advanceTime(30.0f);                       // day 39: season 1, 5 new nodes at most
+    g.arch.advanceTime(30.0f);                      // day 39: season 1, 5 new nodes at most
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 6u);
     EXPECT_GT(g.arch.getPlantLeafCount(p), 0u);
     g.arch.advanceTime(1.0f);  // day 40: senescence, leaves fall
@@ -545,10 +547,13 @@ TEST(Growth, StepSizeInvariance) {
             std::size_t shoots, leaves, flowers, fruit, objects, triangles;
             std::vector<vec3> positions;
         };
-        return Result{g->arch.getShootCount(p), g->arch.getPlantLeafCount(p),
+        return Result{g->arch.getShootCount(p),
+                      g->arch.getPlantLeafCount(p),
                       g->arch.getPlantFlowerObjectIDs(p).size(),
-                      g->arch.getPlantFruitObjectIDs(p).size(), g->ctx.objectCount(),
-                      g->ctx.triangleCount(), allPositions(g->ctx)};
+                      g->arch.getPlantFruitObjectIDs(p).size(),
+                      g->ctx.objectCount(),
+                      g->ctx.triangleCount(),
+                      allPositions(g->ctx)};
     };
     const auto once = grow({60.0f});
     EXPECT_GT(once.shoots, 3u);
@@ -575,7 +580,8 @@ TEST(Growth, StepSizeInvariance) {
         std::sort(a.begin(), a.end(), less);
         std::sort(b.begin(), b.end(), less);
         double worst = 0.0;
-        for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(glm::length(a[i] - b[i])));
+        for (std::size_t i = 0; i < a.size(); ++i)
+            worst = std::max(worst, double(glm::length(a[i] - b[i])));
         EXPECT_LT(worst, 1e-5) << steps.size() << " steps";
     }
 }

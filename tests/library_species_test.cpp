@@ -29,7 +29,8 @@ TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
             bool finite = true;
             ctx.forEachObject([&](const ObjectView& v) {
                 for (const vec3& q : v.positions)
-                    finite = finite && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+                    finite =
+                        finite && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
             });
             EXPECT_TRUE(finite);
             const float height = arch.getPlantHeight(p);

@@ -86,7 +86,8 @@ TEST(OBJPrototype, PlantsUseOBJFruitAndLeaves) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     ShootParameters s;
-    s.phytomer_parameters.inflorescence.fruit_prototype_function = fruitOBJ("plantfruit", 3.0f, 1.0f);
+    s.phytomer_parameters.inflorescence.fruit_prototype_function =
+        fruitOBJ("plantfruit", 3.0f, 1.0f);
     s.phytomer_parameters.inflorescence.normalize_OBJ_model = true;
     s.phytomer_parameters.inflorescence.fruit_prototype_scale = 0.04f;
     s.phytomer_parameters.leaf.prototype.OBJ_model_file = fruitOBJ("leafmodel", 1.0f, 0.0f);

@@ -15,10 +15,13 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 
-float degrees(float radians) { return radians * 180.0f / kPi; }
+float degrees(float radians) {
+    return radians * 180.0f / kPi;
+}
 
 float angleBetween(vec3 a, vec3 b) {
-    return degrees(std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0f, 1.0f)));
+    return degrees(
+        std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0f, 1.0f)));
 }
 
 // Azimuth (degrees, 0..360) of a horizontal direction.
@@ -242,7 +245,8 @@ TEST(PlantModel, ScaleFractionsShrinkOrgans) {
     PlantArchitecture arch(&ctx);
     arch.defineShootType("main", p);
     const unsigned plant = arch.addPlantInstance({1, 2, 0}, 0);
-    const unsigned s = arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.05f, 0.5f, 0.25f, 0.0f, "main");
+    const unsigned s =
+        arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.05f, 0.5f, 0.25f, 0.0f, "main");
     EXPECT_NEAR(arch.getPlantStemHeight(plant), 2 * 0.025f, 1e-5f);
     const float fullArea = float(0.04 * 0.04) * 2;  // upper bound check below uses ratios
     (void)fullArea;
@@ -525,6 +529,7 @@ TEST(PlantModel, LeavesShareAFewShapeVariantsOrAreAllUnique) {
         return areas.size();
     };
     EXPECT_EQ(distinctShapes(1), 1u);
-    EXPECT_EQ(distinctShapes(3), 3u);  // 20 leaves over 3 variants: all used (deterministic for the fixed seed)
+    EXPECT_EQ(distinctShapes(3),
+              3u);  // 20 leaves over 3 variants: all used (deterministic for the fixed seed)
     EXPECT_EQ(distinctShapes(0), 20u);
 }

@@ -691,7 +691,8 @@ TEST(PlantStructureXML, BadAttractionPointsGiveOneClearError) {
          at + "shoot_types = trifoliate,unifoliate: a shoot type label is letters, digits, '_' "
               "or '-' (valid: shoot type labels separated by spaces)"},
         {"<point>0.12 0 0.1<", "<point>0.12 0<", at + "point = 0.12 0: expected three numbers"},
-        {"<point>0.12 0 0.1<", "<point>0.12 nan 0.1<", at + "point = 0.12 nan 0.1: expected three numbers"},
+        {"<point>0.12 0 0.1<", "<point>0.12 nan 0.1<",
+         at + "point = 0.12 nan 0.1: expected three numbers"},
         {"<point>0.12 0 0.1<", "<point>0.12 0 2e6<",
          at + "point = 0.12 0 2e6: out of range (valid: -1000000 to 1000000)"},
         {"<inertia>0.3</inertia>", "<inertia>0.3</inertia><inertia>0.3</inertia>",
@@ -704,17 +705,16 @@ TEST(PlantStructureXML, BadAttractionPointsGiveOneClearError) {
         SCOPED_TRACE(to);
         const std::string damaged = replaced(good, from, to);
         const std::string e = readError(damaged);
-        EXPECT_EQ(e.rfind("plants.xml:" + std::to_string(lineOf(damaged, to)) + ": ", 0), 0u)
-            << e;
+        EXPECT_EQ(e.rfind("plants.xml:" + std::to_string(lineOf(damaged, to)) + ": ", 0), 0u) << e;
         EXPECT_NE(e.find(message), std::string::npos) << e;
         EXPECT_EQ(e.find('\n'), std::string::npos);
     }
     const std::string misspelt =
         replaced(replaced(good, "<half_angle>", "<half_angel>"), "</half_angle>", "</half_angel>");
     const std::string e = readError(misspelt);
-    EXPECT_EQ(e.rfind("plants.xml:" + std::to_string(lineOf(misspelt, "<half_angel>")) + ": " +
-                          at + "half_angel: unknown element <half_angel> in <attraction_points>, "
-                               "did you mean <half_angle>?",
+    EXPECT_EQ(e.rfind("plants.xml:" + std::to_string(lineOf(misspelt, "<half_angel>")) + ": " + at +
+                          "half_angel: unknown element <half_angel> in <attraction_points>, "
+                          "did you mean <half_angle>?",
                       0),
               0u)
         << e;
@@ -739,7 +739,8 @@ TEST(PlantStructureXML, TrellisPlantsFollowTheirWiresAfterReading) {
         a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.3f, 0.1f, 0.0f), c.age, c.parameters);
         const std::string text = a.arch.getPlantStructureXML({a.id});
         std::size_t points = 0;
-        for (auto at = text.find("<point>"); at != std::string::npos; at = text.find("<point>", at + 1))
+        for (auto at = text.find("<point>"); at != std::string::npos;
+             at = text.find("<point>", at + 1))
             ++points;
         EXPECT_EQ(points, c.points);
 
@@ -755,8 +756,8 @@ TEST(PlantStructureXML, TrellisPlantsFollowTheirWiresAfterReading) {
         EXPECT_GT(b.getCollisionStats().attracted, 50u);
         EXPECT_EQ(b.getCollisionStats().attracted, a.arch.getCollisionStats().attracted);
         EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a.arch, {a.id})), "");
-        EXPECT_EQ(
-            firstDifference(b.getPlantStructureXML({q}), a.arch.getPlantStructureXML({a.id})), "");
+        EXPECT_EQ(firstDifference(b.getPlantStructureXML({q}), a.arch.getPlantStructureXML({a.id})),
+                  "");
         // Read without its wires, the plant grows otherwise.
         EXPECT_NE(firstDifference(organBytes(bare, {r}), organBytes(a.arch, {a.id})), "");
     }

@@ -5,8 +5,9 @@
 // a wrong transform (off by a factor, a wrong exponent, a biased range reduction) fails while
 // a correct one passes with any seed. Seeds are fixed, so the tests are also deterministic.
 
+#include "plantarch/Random.h"
+
 #include <gtest/gtest.h>
-#include <pcg_random.hpp>
 
 #include <algorithm>
 #include <array>
@@ -17,13 +18,13 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <pcg_random.hpp>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "plantarch/Error.h"
-#include "plantarch/Random.h"
 
 namespace {
 
@@ -212,8 +213,8 @@ TEST(RngTest, ForPlantDiffersAcrossPlants) {
     std::vector<std::vector<std::uint32_t>> sequences;
     for (std::uint64_t plant = 0; plant < kPlants; ++plant) {
         sequences.push_back(firstOutputs(Rng::forPlant(2024, plant), 200));
-        starts.insert(std::vector<std::uint32_t>(sequences.back().begin(),
-                                                 sequences.back().begin() + 4));
+        starts.insert(
+            std::vector<std::uint32_t>(sequences.back().begin(), sequences.back().begin() + 4));
     }
     EXPECT_EQ(starts.size(), static_cast<std::size_t>(kPlants));
     for (std::size_t i = 0; i + 1 < sequences.size(); ++i)
@@ -584,10 +585,9 @@ TEST(RandomFloatTest, WeibullOfAZeroUniformIsZero) {
 
 TEST(RandomFloatTest, EveryKindConsumesAFixedNumberOfDraws) {
     // Draws per sample: uniform 1 (24-bit float), normal 4 (two 53-bit uniforms), Weibull 2.
-    const std::vector<std::pair<RandomFloat, int>> cases = {
-        {RandomFloat::uniform(0.0f, 1.0f), 1},
-        {RandomFloat::normal(0.0f, 1.0f), 4},
-        {RandomFloat::weibull(2.0f, 1.0f), 2}};
+    const std::vector<std::pair<RandomFloat, int>> cases = {{RandomFloat::uniform(0.0f, 1.0f), 1},
+                                                            {RandomFloat::normal(0.0f, 1.0f), 4},
+                                                            {RandomFloat::weibull(2.0f, 1.0f), 2}};
     for (const auto& [p, draws] : cases) {
         Rng rng(37, 0), twin(37, 0);
         p.sample(rng);
@@ -680,8 +680,8 @@ TEST(RandomFloatTest, FactoriesRejectBadArguments) {
                 "finite numbers");
     expectError([] { RandomFloat::normal(0.0f, kNaN); }, notFinite, "normal(0, nan)",
                 "finite numbers");
-    expectError([] { RandomFloat::weibull(0.0f, 1.0f); }, "shape must be positive",
-                "weibull(0, 1)", "shape > 0");
+    expectError([] { RandomFloat::weibull(0.0f, 1.0f); }, "shape must be positive", "weibull(0, 1)",
+                "shape > 0");
     expectError([] { RandomFloat::weibull(-2.0f, 1.0f); }, "shape must be positive",
                 "weibull(-2, 1)", "shape > 0");
     expectError([] { RandomFloat::weibull(1.5f, 0.0f); }, "scale must be positive",
@@ -778,10 +778,14 @@ TEST(RandomIntTest, DiscreteDrawsOnlyListedValuesEvenly) {
     int twos = 0, fives = 0, elevens = 0;
     for (int i = 0; i < kSamples; ++i) {
         const int v = n.sample(rng);
-        if (v == 2) ++twos;
-        else if (v == 5) ++fives;
-        else if (v == 11) ++elevens;
-        else FAIL() << "unlisted value " << v;
+        if (v == 2)
+            ++twos;
+        else if (v == 5)
+            ++fives;
+        else if (v == 11)
+            ++elevens;
+        else
+            FAIL() << "unlisted value " << v;
     }
     for (int c : {twos, fives, elevens}) expectFrequency(c, kSamples, 1.0 / 3.0);
 }

@@ -50,11 +50,11 @@ bool flowered(const FloralBud& b) {
 
 // Height of the base of internode `k` of shoot `s` above the plant's base.
 float nodeBaseHeight(const Grown& g, unsigned s, unsigned k) {
-    const vec3 base = k == 0 ? (g.shoot(s).parent < 0
-                                    ? g.plant().base
-                                    : g.arch.getNodePosition(g.id, unsigned(g.shoot(s).parent),
-                                                             unsigned(g.shoot(s).parentNode)))
-                             : g.arch.getNodePosition(g.id, s, k - 1);
+    const vec3 base =
+        k == 0 ? (g.shoot(s).parent < 0 ? g.plant().base
+                                        : g.arch.getNodePosition(g.id, unsigned(g.shoot(s).parent),
+                                                                 unsigned(g.shoot(s).parentNode)))
+               : g.arch.getNodePosition(g.id, s, k - 1);
     return base.z - g.plant().base.z;
 }
 
@@ -253,8 +253,10 @@ TEST(SpeciesHerbsMaize, LeavesTaperAtTheBaseAndTheTop) {
     const int n = main.maxNodes;
     for (int k = 0; k < n; ++k) {
         float s = 1.0f;
-        if (k <= 5) s = std::min(1.0f, 0.7f + 0.3f * float(k) / 5.0f);
-        else if (k >= n - 5) s = std::min(1.0f, 0.65f + 0.35f * float(n - k) / 3.0f);
+        if (k <= 5)
+            s = std::min(1.0f, 0.7f + 0.3f * float(k) / 5.0f);
+        else if (k >= n - 5)
+            s = std::min(1.0f, 0.65f + 0.35f * float(n - k) / 3.0f);
         EXPECT_NEAR(tipLeaf(main.phytomers[std::size_t(k)]).scale, 0.6f * s, kTol) << "node " << k;
     }
     // The culm's internodes are the seedling's 0.08 m (the base stem sets its shoot's length),
@@ -359,7 +361,8 @@ TEST(SpeciesHerbsAll, LoadWithTheirRulesAndRejectBuildParameters) {
         arch.loadPlantModelFromLibrary(name);
         const std::vector<std::string> labels = arch.listShootTypeLabels();
         ASSERT_FALSE(labels.empty());
-        EXPECT_EQ(arch.getCurrentShootParameters(labels.front()).phytomer_parameters.phytomer_creation_function,
+        EXPECT_EQ(arch.getCurrentShootParameters(labels.front())
+                      .phytomer_parameters.phytomer_creation_function,
                   rule);
         EXPECT_THROW(arch.buildPlantInstanceFromLibrary(vec3(0.0f), 10, {{"trunk_height", 1.0f}}),
                      Error);
@@ -367,8 +370,9 @@ TEST(SpeciesHerbsAll, LoadWithTheirRulesAndRejectBuildParameters) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("cherrytomato");
-    EXPECT_EQ(arch.getCurrentShootParameters("mainstem").phytomer_parameters.phytomer_callback_function,
-              "cherrytomato_pruning");
+    EXPECT_EQ(
+        arch.getCurrentShootParameters("mainstem").phytomer_parameters.phytomer_callback_function,
+        "cherrytomato_pruning");
 }
 
 // ---- the model features these rules use ---------------------------------------------------
@@ -474,13 +478,12 @@ TEST(SpeciesHerbsModel, CallbacksSeeTheNodePositionsOfTheDay) {
     auto run = [](bool daily) {
         Bed b;
         auto seen = std::make_shared<std::map<unsigned, vec3>>();
-        b.arch.registerPhytomerCallbackFunction("record", [seen](PhytomerCallbackContext& c) {
-            (*seen)[c.nodeIndex] = c.nodeBase;
-        });
+        b.arch.registerPhytomerCallbackFunction(
+            "record", [seen](PhytomerCallbackContext& c) { (*seen)[c.nodeIndex] = c.nodeBase; });
         ShootParameters main = floweringShoot();
         main.phytomer_parameters.phytomer_callback_function = "record";
         main.phytomer_parameters.internode.pitch = 15.0f;  // a zig-zag stem
-        main.elongation_rate_max = 0.05f;                   // still elongating on day 10
+        main.elongation_rate_max = 0.05f;                  // still elongating on day 10
         const unsigned id = b.plant(main);
         if (daily)
             for (int d = 0; d < 10; ++d) b.arch.advanceTime(id, 1);

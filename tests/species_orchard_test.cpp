@@ -97,8 +97,10 @@ TEST(SpeciesOrchard, OliveFlowersOnlyOnTheEightDistalNodesAfterEachWinterBegins)
         for (const Shoot& s : after.plant().shoots) {
             const std::size_t n = s.phytomers.size();
             for (std::size_t k = 0; k < n; ++k) {
-                if (k + 8 < n) EXPECT_FALSE(liveFloralBud(s.phytomers[k])) << s.type << " node " << k;
-                else liveTop += liveFloralBud(s.phytomers[k]) ? 1 : 0;
+                if (k + 8 < n)
+                    EXPECT_FALSE(liveFloralBud(s.phytomers[k])) << s.type << " node " << k;
+                else
+                    liveTop += liveFloralBud(s.phytomers[k]) ? 1 : 0;
             }
         }
         EXPECT_GT(liveTop, 10u);  // the distal 8 nodes keep theirs
@@ -202,8 +204,8 @@ TEST(SpeciesOrchard, AppleBuildParametersMoveAndTurnTheScaffolds) {
         EXPECT_NEAR(s->insertionAngle, 40.0f, 5.8f);
         EXPECT_TRUE(s->phytomers[0].petioles[0].leaves[0].removed);  // a dormant tree is bare
     }
-    const Grown tall = grow("apple", 0.0f, {{"trunk_height", 1.6f}, {"num_scaffolds", 6},
-                                            {"scaffold_angle", 65}});
+    const Grown tall =
+        grow("apple", 0.0f, {{"trunk_height", 1.6f}, {"num_scaffolds", 6}, {"scaffold_angle", 65}});
     EXPECT_EQ(tall.plant().shoots[0].phytomers.size(), 40u);
     ASSERT_EQ(scaffolds(tall).size(), 6u);
     for (const Shoot* s : scaffolds(tall)) {
@@ -332,11 +334,12 @@ TEST(SpeciesOrchard, FruitingWallLateralsAreLaidOnTheirWiresByTheAttractionPoint
         ++laterals;
         EXPECT_EQ(s.phytomers.size(), 20u);
         worst = std::max(worst, toNearestWire(wires, tipOf(g, s)));
-        worstFree = std::max(worstFree, toNearestWire(wires, tipOf(free, free.plant().shoots[s.id])));
+        worstFree =
+            std::max(worstFree, toNearestWire(wires, tipOf(free, free.plant().shoots[s.id])));
     }
     EXPECT_EQ(laterals, 8u);
-    EXPECT_LT(worst, 0.04f);       // every lateral ends on its wire's line
-    EXPECT_GT(worstFree, 0.08f);   // without the points some do not
+    EXPECT_LT(worst, 0.04f);      // every lateral ends on its wire's line
+    EXPECT_GT(worstFree, 0.08f);  // without the points some do not
     EXPECT_GT(g.arch->getCollisionStats().attracted, 500u);
 }
 
@@ -384,20 +387,20 @@ TEST(SpeciesOrchard, WyeWiresFollowTheBuildParameters) {
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("grapevine_Wye");
     const unsigned id = arch.buildPlantInstanceFromLibrary(
-        vec3(5, 1, 0), 0.0f, {{"cordon_spacing", 1.0f}, {"vine_spacing", 2.8f},
-                              {"catch_wire_height", 3.0f}});
+        vec3(5, 1, 0), 0.0f,
+        {{"cordon_spacing", 1.0f}, {"vine_spacing", 2.8f}, {"catch_wire_height", 3.0f}});
     const std::vector<vec3> pts = arch.getAttractionPoints(id);
     ASSERT_EQ(pts.size(), 48u);
     const vec3 base(5, 1, 0);
     auto near = [](vec3 a, vec3 b) { return glm::length(a - b) < 1e-5f; };
-    EXPECT_TRUE(near(pts[0], base + vec3(-1.4f, -0.5f, 2.65f)));    // fruiting wire, -y
+    EXPECT_TRUE(near(pts[0], base + vec3(-1.4f, -0.5f, 2.65f)));  // fruiting wire, -y
     EXPECT_TRUE(near(pts[7], base + vec3(1.4f, -0.5f, 2.65f)));
     EXPECT_TRUE(near(pts[8], base + vec3(-1.4f, 0.5f, 2.65f)));     // fruiting wire, +y
     EXPECT_TRUE(near(pts[16], base + vec3(-1.4f, -0.65f, 2.65f)));  // first catch wires
     EXPECT_TRUE(near(pts[24], base + vec3(-1.4f, 0.65f, 2.65f)));
-    EXPECT_TRUE(near(pts[32], base + vec3(-1.4f, -0.85f, 3.0f)));   // second catch wires
+    EXPECT_TRUE(near(pts[32], base + vec3(-1.4f, -0.85f, 3.0f)));  // second catch wires
     EXPECT_TRUE(near(pts[47], base + vec3(1.4f, 0.85f, 3.0f)));
-    EXPECT_TRUE(near(pts[1], base + vec3(-1.0f, -0.5f, 2.65f)));    // 8 points, 0.4 m apart
+    EXPECT_TRUE(near(pts[1], base + vec3(-1.0f, -0.5f, 2.65f)));  // 8 points, 0.4 m apart
 }
 
 // ---- eastern redbud ----------------------------------------------------------------------
@@ -524,8 +527,10 @@ TEST(SpeciesOrchard, VSPCanesFollowVineSpacingAndTheTrunkItsHeight) {
         float reach = 0.0f;
         for (const Shoot& s : g.plant().shoots)
             if (s.type == "grapevine_cane")
-                reach = std::max(reach, std::abs(g.arch->getNodePosition(
-                                            g.id, s.id, unsigned(s.phytomers.size() - 1)).x));
+                reach = std::max(
+                    reach,
+                    std::abs(
+                        g.arch->getNodePosition(g.id, s.id, unsigned(s.phytomers.size() - 1)).x));
         return reach;
     };
     const Grown standard = grow("grapevine_VSP", 0.0f);
@@ -536,9 +541,12 @@ TEST(SpeciesOrchard, VSPCanesFollowVineSpacingAndTheTrunkItsHeight) {
     EXPECT_NEAR(caneReach(standard), 1.2f, 0.1f);
     EXPECT_NEAR(standard.arch->getNodePosition(standard.id, 0, 0).z, 0.1f, 0.01f);
     // Canes lie along the row, one each way, buds on top.
-    EXPECT_LT(p.shoots[1].phytomers[0].internode.guide.x * p.shoots[2].phytomers[0].internode.guide.x, 0.0f);
+    EXPECT_LT(
+        p.shoots[1].phytomers[0].internode.guide.x * p.shoots[2].phytomers[0].internode.guide.x,
+        0.0f);
 
-    const Grown wide = grow("grapevine_VSP", 0.0f, {{"vine_spacing", 4.0f}, {"trunk_height", 0.75f}});
+    const Grown wide =
+        grow("grapevine_VSP", 0.0f, {{"vine_spacing", 4.0f}, {"trunk_height", 0.75f}});
     EXPECT_EQ(wide.plant().shoots[1].phytomers.size(), 13u);  // floor(2 / 0.15)
     EXPECT_NEAR(caneReach(wide), 1.95f, 0.1f);
     const unsigned top = unsigned(wide.plant().shoots[0].phytomers.size() - 1);
@@ -553,7 +561,9 @@ TEST(SpeciesOrchard, VSPCanesFollowVineSpacingAndTheTrunkItsHeight) {
     for (const Shoot& s : grown.plant().shoots)
         if (s.parent == 1 || s.parent == 2) {
             ++fromCanes;
-            upright += grown.arch->getNodePosition(grown.id, s.id, unsigned(s.phytomers.size() - 1)).z > 0.8f;
+            upright +=
+                grown.arch->getNodePosition(grown.id, s.id, unsigned(s.phytomers.size() - 1)).z >
+                0.8f;
         }
     EXPECT_GT(fromCanes, 10u);
     EXPECT_GT(upright, fromCanes / 2);
@@ -582,8 +592,9 @@ TEST(SpeciesOrchard, WyeArmsFollowCordonSpacingAndCordonsVineSpacing) {
             EXPECT_LT(std::abs(s.phytomers[0].internode.guide.z), 0.05f);  // horizontal
             EXPECT_GT(std::abs(s.phytomers[0].internode.guide.x), 0.99f);  // along the row
         }
-    const Grown wide = grow("grapevine_Wye", 0.0f, {{"cordon_spacing", 1.2f}, {"vine_spacing", 3.0f},
-                                                    {"trunk_height", 0.5f}});
+    const Grown wide =
+        grow("grapevine_Wye", 0.0f,
+             {{"cordon_spacing", 1.2f}, {"vine_spacing", 3.0f}, {"trunk_height", 0.5f}});
     EXPECT_NEAR(heads(wide).first, 0.6f, 0.06f);
     EXPECT_NEAR(heads(wide).second, 13 * 0.11f, 0.05f);
     const unsigned top = unsigned(wide.plant().shoots[0].phytomers.size() - 1);

@@ -152,7 +152,8 @@ TEST(SpeciesBean, LoadsWithTheReferenceNumbers) {
     EXPECT_EQ(tri.phytomer_parameters.inflorescence.flower_prototype_function,
               "papilionaceous_flower");
     EXPECT_EQ(tri.phytomer_parameters.inflorescence.fruit_prototype_function, "legume_pod");
-    EXPECT_EQ(tri.phytomer_parameters.inflorescence.fruit_prototype_parameters.at("seed_count"), 6.0f);
+    EXPECT_EQ(tri.phytomer_parameters.inflorescence.fruit_prototype_parameters.at("seed_count"),
+              6.0f);
     EXPECT_EQ(bean.phenology.time_to_flower_initiation, 40.0f);
     EXPECT_EQ(bean.phenology.max_age, 365.0f);
     ASSERT_EQ(bean.build.size(), 2u);
@@ -630,9 +631,14 @@ TEST(SpeciesReader, DamagedFilesGiveCleanErrors) {
             const auto at = std::size_t(rng.uniformInt(0, int(damaged.size()) - 1));
             const char c = alphabet[std::size_t(rng.uniformInt(0, int(alphabet.size()) - 1))];
             switch (rng.uniformInt(0, 2)) {
-                case 0: damaged.erase(at, std::size_t(rng.uniformInt(1, 8))); break;
-                case 1: damaged.insert(at, 1, c); break;
-                default: damaged[at] = c;
+                case 0:
+                    damaged.erase(at, std::size_t(rng.uniformInt(1, 8)));
+                    break;
+                case 1:
+                    damaged.insert(at, 1, c);
+                    break;
+                default:
+                    damaged[at] = c;
             }
         }
         try {
@@ -789,8 +795,8 @@ TEST(SpeciesBuild, StepFlagsStripLeavesBudsAndApex) {
     EXPECT_FALSE(branch.phytomers[0].petioles[0].leaves[0].removed);
     b.arch->advanceTime(40.0);
     const PlantInstance& grown = b.arch->plant(b.plant);
-    EXPECT_EQ(grown.shoots[0].phytomers.size(), 3u);      // headed: no new trunk nodes
-    EXPECT_GT(grown.shoots[1].phytomers.size(), 1u);      // the branch grows on
+    EXPECT_EQ(grown.shoots[0].phytomers.size(), 3u);  // headed: no new trunk nodes
+    EXPECT_GT(grown.shoots[1].phytomers.size(), 1u);  // the branch grows on
     for (const Shoot& s : grown.shoots) EXPECT_TRUE(s.parent != 0 || s.parentNode == 2);
     // The flags are written back by the writer and must be true or false.
     std::ostringstream out;

@@ -56,7 +56,9 @@ std::vector<const Shoot*> shootsOfType(const PlantInstance& p, const std::string
     return out;
 }
 
-bool flowered(const FloralBud& b) { return b.state == BudState::Broken; }
+bool flowered(const FloralBud& b) {
+    return b.state == BudState::Broken;
+}
 
 // Phytomers of a shoot made in the season that began at `begin` (plant age) and ended before
 // `end`.
@@ -208,8 +210,9 @@ TEST(SpeciesTreesAlmond, BuildParameterErrors) {
     const Error angle = errorOf([] { grow("almond", 0.0f, {{"scaffold_angle", 10}}); });
     EXPECT_EQ(angle.parameter(), "scaffold_angle");
     // A 9 cm trunk has 3 nodes: it cannot hold 8 scaffolds one node apart.
-    const Error crowded = errorOf(
-        [] { grow("almond", 0.0f, {{"trunk_height", 0.1f}, {"num_scaffolds", 8}}); });
+    const Error crowded = errorOf([] {
+        grow("almond", 0.0f, {{"trunk_height", 0.1f}, {"num_scaffolds", 8}});
+    });
     EXPECT_NE(crowded.parameter().find(".node"), std::string::npos) << crowded.what();
     EXPECT_NE(crowded.file().find("almond.xml"), std::string::npos);
 }
@@ -222,8 +225,8 @@ TEST(SpeciesTreesAlmondVariants, FixedLayoutsOfTheReferenceAreTheDefaults) {
         unsigned trunkNodes, scaffolds;
         float pitchMin, pitchMax;
     };
-    for (const Layout& l : {Layout{"almond_aldrich", 19, 4, 5, 35},
-                            Layout{"almond_wood_colony", 14, 5, 45, 60}}) {
+    for (const Layout& l :
+         {Layout{"almond_aldrich", 19, 4, 5, 35}, Layout{"almond_wood_colony", 14, 5, 45, 60}}) {
         SCOPED_TRACE(l.species);
         std::set<std::size_t> nodeCounts;
         for (std::uint64_t seed = 1; seed <= 6; ++seed) {
@@ -293,13 +296,17 @@ TEST(SpeciesTreesWalnut, FirstFourNodesOfEveryShootAreBlind) {
             for (unsigned k = 0; k < s.phytomers.size(); ++k)
                 for (const Petiole& pt : s.phytomers[k].petioles) {
                     for (const VegetativeBud& b : pt.vegetativeBuds) {
-                        if (k < 4) EXPECT_EQ(b.state, BudState::Dead) << s.id << " node " << k;
-                        else branchesOut += b.state == BudState::Broken;
+                        if (k < 4)
+                            EXPECT_EQ(b.state, BudState::Dead) << s.id << " node " << k;
+                        else
+                            branchesOut += b.state == BudState::Broken;
                         if (k >= 4) readyBudsOut += b.state == BudState::Dormant;
                     }
                     for (const FloralBud& b : pt.floralBuds) {
-                        if (k < 4) EXPECT_FALSE(flowered(b)) << s.id << " node " << k;
-                        else flowersOut += flowered(b);
+                        if (k < 4)
+                            EXPECT_FALSE(flowered(b)) << s.id << " node " << k;
+                        else
+                            flowersOut += flowered(b);
                     }
                 }
             for (unsigned c : s.children) EXPECT_GE(p.shoots[c].parentNode, 4);
@@ -418,7 +425,8 @@ TEST(SpeciesTreesPistachio, WinterMakesFloralBudsOfOlderNodesReadyAgain) {
     t.arch->advanceTime(230.0);  // day 630: the old buds flowered again
     int again = 0;
     for (const Key& key : fruited)
-        again += flowered(t.plant().shoots[key.shoot].phytomers[key.node].petioles[0].floralBuds[key.bud]);
+        again += flowered(
+            t.plant().shoots[key.shoot].phytomers[key.node].petioles[0].floralBuds[key.bud]);
     // Each bud flowers with probability 0.35: about a third of them.
     EXPECT_GT(again, int(fruited.size()) / 8);
     EXPECT_LT(again, int(fruited.size()) * 3 / 4);

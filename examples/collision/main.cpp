@@ -12,7 +12,8 @@ using namespace plantarch;
 ObjectID addBox(Context& context, vec3 lo, vec3 hi) {
     Mesh m;
     for (int i = 0; i < 8; ++i)
-        m.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+        m.positions.push_back(
+            {(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
     m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
                  2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
     return context.addObject(m, Material{{0.8f, 0.8f, 0.8f}});
@@ -57,7 +58,8 @@ int main() {
     cane.phytomer_parameters.leaf.prototype_scale = 0.06f;
     vine.defineShootType("cane", cane);
     const unsigned plant = vine.addPlantInstance(vec3(0), 0);
-    const unsigned trunk = vine.addBaseStemShoot(plant, 10, AxisRotation{}, 0.005f, 0.05f, 1, 1, 0, "cane");
+    const unsigned trunk =
+        vine.addBaseStemShoot(plant, 10, AxisRotation{}, 0.005f, 0.05f, 1, 1, 0, "cane");
     vine.removeShootApex(plant, trunk);
     const unsigned arm = vine.appendShoot(plant, trunk, 1, AxisRotation{90, 0, 0}, 0.003f, 0.04f,
                                           0.1f, 0.1f, 0, "cane");

@@ -39,10 +39,10 @@ struct CollisionOrgans {
 /// collisions (that would need a costly global iteration).
 struct SoftCollisionOptions {
     PerceptionCone cone;
-    bool steerInternodes = true;   ///< steer new internodes (the shoot axis)
-    bool steerPetioles = false;    ///< steer new petioles (and so their leaves)
-    bool steerPeduncles = false;   ///< steer new peduncles (and so their flowers and fruit)
-    CollisionOrgans obstacles;     ///< plant organs that are obstacles (leaves by default)
+    bool steerInternodes = true;  ///< steer new internodes (the shoot axis)
+    bool steerPetioles = false;   ///< steer new petioles (and so their leaves)
+    bool steerPeduncles = false;  ///< steer new peduncles (and so their flowers and fruit)
+    CollisionOrgans obstacles;    ///< plant organs that are obstacles (leaves by default)
     /// Context objects (not plant organs) that are obstacles too: ground, walls, a house...
     std::vector<ObjectID> objects;
     /// Days between refreshes of the collision scene (plants see each other as they stood at
@@ -53,26 +53,26 @@ struct SoftCollisionOptions {
 
 /// Solid obstacles: growth never enters them.
 struct SolidObstacleOptions {
-    std::vector<ObjectID> obstacles;   ///< Context objects that are solid
-    float avoidanceDistance = 0.2f;    ///< m: obstacles nearer than this turn growth, (0, 100]
+    std::vector<ObjectID> obstacles;  ///< Context objects that are solid
+    float avoidanceDistance = 0.2f;   ///< m: obstacles nearer than this turn growth, (0, 100]
     /// Turns fruit about their attachment point until their bounds clear every obstacle, then
     /// back toward it in small steps while still clear (strawberries resting on the ground).
     bool fruitAdjustment = false;
     /// Turns petioles with their leaves, and peduncles with their flowers, out of obstacles
     /// the same way, so no leaf or flower reaches through a wall.
     bool organClearance = true;
-    float coneHalfAngle = 60.0f;       ///< degrees, (0, 180)
-    unsigned rays = 64;                ///< rays per cone, 8 to 16384
+    float coneHalfAngle = 60.0f;  ///< degrees, (0, 180)
+    unsigned rays = 64;           ///< rays per cone, 8 to 16384
 };
 
 /// Attraction points: shoots grow toward the nearest point they see (e.g. along a wire).
 /// A plant's own points are part of its state (PlantInstance::attraction): they are saved in
 /// its plant structure file and travel with it.
 struct AttractionPoints {
-    std::vector<vec3> points;   ///< world positions, m
-    float halfAngle = 80.0f;    ///< degrees, (0, 180)
-    float lookAhead = 0.1f;     ///< m, (0, 100]
-    float inertia = 0.4f;       ///< 0 to 1
+    std::vector<vec3> points;  ///< world positions, m
+    float halfAngle = 80.0f;   ///< degrees, (0, 180)
+    float lookAhead = 0.1f;    ///< m, (0, 100]
+    float inertia = 0.4f;      ///< 0 to 1
     /// Shoot types that are attracted (empty: all).
     std::vector<std::string> shootTypes;
     bool operator==(const AttractionPoints&) const = default;
@@ -81,23 +81,23 @@ struct AttractionPoints {
 /// Counts of the work collision avoidance did (since it was enabled or the counts were reset).
 /// Everything but the seconds is the same for any thread count.
 struct CollisionStats {
-    std::uint64_t softCones = 0;        ///< perception cones cast for soft avoidance
+    std::uint64_t softCones = 0;  ///< perception cones cast for soft avoidance
     std::uint64_t softRays = 0;
-    std::uint64_t softSteered = 0;      ///< cones that found an obstacle and turned growth
+    std::uint64_t softSteered = 0;  ///< cones that found an obstacle and turned growth
     std::uint64_t solidCones = 0;
-    std::uint64_t solidSteered = 0;     ///< internodes turned by a solid obstacle
+    std::uint64_t solidSteered = 0;  ///< internodes turned by a solid obstacle
     std::uint64_t attractionQueries = 0;
-    std::uint64_t attracted = 0;        ///< internodes turned toward an attraction point
-    std::uint64_t organsTurned = 0;     ///< petioles, peduncles and fruit turned out of obstacles
-    std::uint64_t organsUnresolved = 0; ///< ... that no turn could clear (left as grown)
-    std::uint64_t sceneRefreshes = 0;   ///< refreshes of the collision scene
-    std::uint64_t plantsRebuilt = 0;    ///< plants whose proxies changed at refreshes (re-binned)
-    std::uint64_t plantsUnchanged = 0;  ///< plants whose geometry had not changed (kept)
-    std::uint64_t sceneTriangles = 0;   ///< plant proxy triangles in the scene now
-    double refreshSeconds = 0.0;        ///< time of refreshes: preparing the plants' proxies
-                                        ///< (thread time over the threads) and installing
-                                        ///< them (wall time); varies run to run
-    double coneSeconds = 0.0;           ///< thread time in soft avoidance cones (varies)
+    std::uint64_t attracted = 0;         ///< internodes turned toward an attraction point
+    std::uint64_t organsTurned = 0;      ///< petioles, peduncles and fruit turned out of obstacles
+    std::uint64_t organsUnresolved = 0;  ///< ... that no turn could clear (left as grown)
+    std::uint64_t sceneRefreshes = 0;    ///< refreshes of the collision scene
+    std::uint64_t plantsRebuilt = 0;     ///< plants whose proxies changed at refreshes (re-binned)
+    std::uint64_t plantsUnchanged = 0;   ///< plants whose geometry had not changed (kept)
+    std::uint64_t sceneTriangles = 0;    ///< plant proxy triangles in the scene now
+    double refreshSeconds = 0.0;         ///< time of refreshes: preparing the plants' proxies
+                                         ///< (thread time over the threads) and installing
+                                         ///< them (wall time); varies run to run
+    double coneSeconds = 0.0;            ///< thread time in soft avoidance cones (varies)
 };
 
 }  // namespace plantarch

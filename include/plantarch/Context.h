@@ -51,7 +51,7 @@ struct PrimitiveRange {
 struct ObjectView {
     ObjectID id = 0;
     std::span<const vec3> positions;
-    std::span<const vec2> uvs;  ///< empty when the object has no UVs
+    std::span<const vec2> uvs;               ///< empty when the object has no UVs
     std::span<const std::uint32_t> indices;  ///< into positions (object-local)
     MaterialID material = 0;
     PrimitiveRange primitives;

@@ -3,11 +3,10 @@
 // an axis-aligned box. Conventions: z up, metres.
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <limits>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace plantarch {
 

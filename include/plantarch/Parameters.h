@@ -39,15 +39,15 @@ struct LeafPrototype {
     std::map<int, std::string> leaf_texture_file;
 
     // Outline (procedural leaves).
-    std::string shape = "elliptic";  ///< outline family, see docs/organs.md
-    RandomFloat leaf_aspect_ratio = 1.0f;   ///< width / length
-    RandomFloat widest_point = 0.5f;        ///< position of the widest point, fraction of length
-    RandomFloat tip_angle = 60.0f;          ///< included angle at the tip, degrees
-    RandomFloat base_angle = 90.0f;         ///< included angle at the base, degrees
-    RandomInt lobes = 0;                    ///< number of lobes (palmate/pinnate families)
-    RandomFloat lobe_depth = 0.0f;          ///< lobe sinus depth, fraction of half-width
-    RandomInt serrations = 0;               ///< teeth along each margin
-    RandomFloat serration_depth = 0.0f;     ///< tooth depth, fraction of length
+    std::string shape = "elliptic";        ///< outline family, see docs/organs.md
+    RandomFloat leaf_aspect_ratio = 1.0f;  ///< width / length
+    RandomFloat widest_point = 0.5f;       ///< position of the widest point, fraction of length
+    RandomFloat tip_angle = 60.0f;         ///< included angle at the tip, degrees
+    RandomFloat base_angle = 90.0f;        ///< included angle at the base, degrees
+    RandomInt lobes = 0;                   ///< number of lobes (palmate/pinnate families)
+    RandomFloat lobe_depth = 0.0f;         ///< lobe sinus depth, fraction of half-width
+    RandomInt serrations = 0;              ///< teeth along each margin
+    RandomFloat serration_depth = 0.0f;    ///< tooth depth, fraction of length
     /// Width of a truncate base (grass blades), fraction of the maximum width (0: pointed)
     RandomFloat base_width = 0.0f;
     /// Depth of the basal sinus of notched shapes (cordate, reniform, sagittate, hastate,
@@ -55,7 +55,7 @@ struct LeafPrototype {
     RandomFloat sinus_depth = 0.15f;
 
     // Deformations.
-    RandomFloat midrib_fold_fraction = 0.0f;    ///< fold about the midrib (0 flat, 1 closed)
+    RandomFloat midrib_fold_fraction = 0.0f;  ///< fold about the midrib (0 flat, 1 closed)
     /// Curvature along the midrib: the tip rises by about this fraction of the length (- droops)
     RandomFloat longitudinal_curvature = 0.0f;
     /// Curvature across the blade (+ cups up): the margin at the widest point moves by 1/16 of
@@ -69,13 +69,13 @@ struct LeafPrototype {
     RandomFloat wave_period = 0.0f;
     /// Amplitude of the marginal waves, fraction of the local blade width
     RandomFloat wave_amplitude = 0.0f;
-    RandomFloat leaf_buckle_length = 0.0f;      ///< where the blade buckles, fraction of length
-    RandomFloat leaf_buckle_angle = 0.0f;       ///< buckle angle, degrees (+ bends the tip down)
-    vec3 leaf_offset{0.0f};                     ///< shift of the blade from the petiole tip
-    unsigned subdivisions = 1;                  ///< mesh resolution (rows along the midrib)
+    RandomFloat leaf_buckle_length = 0.0f;  ///< where the blade buckles, fraction of length
+    RandomFloat leaf_buckle_angle = 0.0f;   ///< buckle angle, degrees (+ bends the tip down)
+    vec3 leaf_offset{0.0f};                 ///< shift of the blade from the petiole tip
+    unsigned subdivisions = 1;              ///< mesh resolution (rows along the midrib)
     /// Distinct shape variants per prototype, reused by transform; 0 = every leaf unique.
     unsigned unique_prototypes = 1;
-    bool build_petiolule = false;  ///< add a short stalk between leaflet and rachis
+    bool build_petiolule = false;     ///< add a short stalk between leaflet and rachis
     vec3 color{0.18f, 0.42f, 0.12f};  ///< upper-side colour (procedural leaves)
 };
 
@@ -93,11 +93,11 @@ struct InternodeParameters {
 
 struct PetioleParameters {
     unsigned petioles_per_internode = 1;
-    RandomFloat pitch = 90.0f;      ///< angle from the internode axis, degrees
-    RandomFloat radius = 0.001f;    ///< m
-    RandomFloat length = 0.05f;     ///< m
-    RandomFloat curvature = 0.0f;   ///< degrees per m (+ curves up toward vertical)
-    RandomFloat taper = 0.0f;       ///< tip radius / base radius
+    RandomFloat pitch = 90.0f;     ///< angle from the internode axis, degrees
+    RandomFloat radius = 0.001f;   ///< m
+    RandomFloat length = 0.05f;    ///< m
+    RandomFloat curvature = 0.0f;  ///< degrees per m (+ curves up toward vertical)
+    RandomFloat taper = 0.0f;      ///< tip radius / base radius
     vec3 color = kForestGreen;
     unsigned length_segments = 1;
     unsigned radial_subdivisions = 7;
@@ -115,11 +115,11 @@ struct LeafParameters {
 };
 
 struct PeduncleParameters {
-    RandomFloat length = 0.05f;     ///< m
-    RandomFloat radius = 0.001f;    ///< m
-    RandomFloat pitch = 0.0f;       ///< from the internode axis, degrees
-    RandomFloat roll = 0.0f;        ///< about its own axis, degrees
-    RandomFloat curvature = 0.0f;   ///< degrees per m
+    RandomFloat length = 0.05f;    ///< m
+    RandomFloat radius = 0.001f;   ///< m
+    RandomFloat pitch = 0.0f;      ///< from the internode axis, degrees
+    RandomFloat roll = 0.0f;       ///< about its own axis, degrees
+    RandomFloat curvature = 0.0f;  ///< degrees per m
     vec3 color = kForestGreen;
     unsigned length_segments = 3;
     unsigned radial_subdivisions = 7;
@@ -127,23 +127,23 @@ struct PeduncleParameters {
 
 struct InflorescenceParameters {
     RandomInt flowers_per_peduncle = 1;
-    RandomFloat flower_offset = 0.0f;   ///< spacing along the peduncle, fraction of its length
+    RandomFloat flower_offset = 0.0f;  ///< spacing along the peduncle, fraction of its length
     /// "alternate" (successive flowers on opposite sides) or "opposite" (in pairs).
     std::string flower_arrangement = "alternate";
-    RandomFloat pitch = 0.0f;           ///< flower/fruit axis from the peduncle axis, degrees
-    RandomFloat roll = 0.0f;            ///< about the flower/fruit axis, degrees
+    RandomFloat pitch = 0.0f;  ///< flower/fruit axis from the peduncle axis, degrees
+    RandomFloat roll = 0.0f;   ///< about the flower/fruit axis, degrees
     RandomFloat flower_prototype_scale = 0.0075f;  ///< m
     std::string flower_prototype_function;         ///< registered prototype name
     /// Shape parameters of the flower prototype family (names and ranges per family).
     std::map<std::string, float> flower_prototype_parameters;
-    vec3 flower_color{0.95f, 0.95f, 0.95f};        ///< main (petal) colour
-    unsigned flower_subdivisions = 8;              ///< flower mesh resolution
-    RandomFloat fruit_prototype_scale = 0.0075f;   ///< m
-    std::string fruit_prototype_function;          ///< registered prototype name
+    vec3 flower_color{0.95f, 0.95f, 0.95f};       ///< main (petal) colour
+    unsigned flower_subdivisions = 8;             ///< flower mesh resolution
+    RandomFloat fruit_prototype_scale = 0.0075f;  ///< m
+    std::string fruit_prototype_function;         ///< registered prototype name
     /// Shape parameters of the fruit prototype family (names and ranges per family).
     std::map<std::string, float> fruit_prototype_parameters;
-    vec3 fruit_color{0.75f, 0.12f, 0.08f};         ///< main fruit colour
-    unsigned fruit_subdivisions = 12;              ///< fruit mesh resolution
+    vec3 fruit_color{0.75f, 0.12f, 0.08f};  ///< main fruit colour
+    unsigned fruit_subdivisions = 12;       ///< fruit mesh resolution
     /// How far fruit turn toward the ground as they grow (0 none, 1 hang vertically).
     RandomFloat fruit_gravity_factor_fraction = 0.0f;
     unsigned unique_prototypes = 1;
@@ -181,9 +181,9 @@ struct ShootParameters {
     RandomFloat tortuosity = 0.0f;                   ///< degrees per sqrt(m)
 
     // Growth.
-    RandomFloat phyllochron_min = 2.0f;          ///< days per node
-    RandomFloat elongation_rate_max = 0.2f;      ///< m per m of final length per day
-    RandomFloat girth_area_factor = 0.0f;        ///< cm^2 per m^2 downstream leaf area
+    RandomFloat phyllochron_min = 2.0f;            ///< days per node
+    RandomFloat elongation_rate_max = 0.2f;        ///< m per m of final length per day
+    RandomFloat girth_area_factor = 0.0f;          ///< cm^2 per m^2 downstream leaf area
     RandomFloat vegetative_bud_break_time = 5.0f;  ///< days
     RandomFloat vegetative_bud_break_probability_min = 0.0f;
     RandomFloat vegetative_bud_break_probability_max = 1.0f;

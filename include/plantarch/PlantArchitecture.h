@@ -17,9 +17,9 @@
 #include "plantarch/Collision.h"
 #include "plantarch/Context.h"
 #include "plantarch/Parameters.h"
-#include "plantarch/Progress.h"
 #include "plantarch/PlantState.h"
 #include "plantarch/PlantStructureIO.h"
+#include "plantarch/Progress.h"
 
 namespace plantarch {
 
@@ -53,10 +53,10 @@ struct PhytomerCreationContext {
     PlantInstance& plant;
     Shoot& shoot;
     Phytomer& phytomer;
-    unsigned nodeIndex;        ///< index of the new phytomer on its shoot
-    int parentNodeIndex;       ///< node of the parent shoot this shoot grows from (-1: none)
-    int shootMaxNodes;         ///< the shoot's realized max_nodes
-    double plantAge;           ///< days
+    unsigned nodeIndex;   ///< index of the new phytomer on its shoot
+    int parentNodeIndex;  ///< node of the parent shoot this shoot grows from (-1: none)
+    int shootMaxNodes;    ///< the shoot's realized max_nodes
+    double plantAge;      ///< days
 };
 using PhytomerCreationFunction = std::function<void(PhytomerCreationContext&)>;
 
@@ -67,7 +67,7 @@ struct PhytomerCallbackContext {
     Shoot& shoot;
     Phytomer& phytomer;
     unsigned nodeIndex;
-    double plantAge;           ///< days
+    double plantAge;  ///< days
     /// World position of the base of the phytomer's internode at this age (organs elongated
     /// to their size on this day); its height above the plant is nodeBase.z - plant.base.z.
     vec3 nodeBase{0.0f};
@@ -76,14 +76,14 @@ using PhytomerCallbackFunction = std::function<void(PhytomerCallbackContext&)>;
 
 /// Where and how a new shoot starts (the options of addBaseStemShoot and friends).
 struct ShootSpec {
-    unsigned phytomers = 1;               ///< number of phytomers to create now
-    AxisRotation baseRotation;            ///< degrees
-    float internodeRadius = 0.001f;       ///< m
-    float internodeLengthMax = 0.02f;     ///< full internode length, m
-    float internodeLengthScale = 1.0f;    ///< current / full internode length, (0, 1]
-    float leafScale = 1.0f;               ///< current / full petiole and leaf size, (0, 1]
-    float radiusTaper = 0.0f;             ///< tip radius reduction along the shoot, [0, 1]
-    std::string shootType;                ///< label given to defineShootType
+    unsigned phytomers = 1;             ///< number of phytomers to create now
+    AxisRotation baseRotation;          ///< degrees
+    float internodeRadius = 0.001f;     ///< m
+    float internodeLengthMax = 0.02f;   ///< full internode length, m
+    float internodeLengthScale = 1.0f;  ///< current / full internode length, (0, 1]
+    float leafScale = 1.0f;             ///< current / full petiole and leaf size, (0, 1]
+    float radiusTaper = 0.0f;           ///< tip radius reduction along the shoot, [0, 1]
+    std::string shootType;              ///< label given to defineShootType
 };
 
 class PlantArchitecture {
@@ -120,8 +120,9 @@ public:
     /// Builds a plant of the loaded species at `base_position`, grown to `age` days. Build
     /// parameters (trunk height, scaffolds...) override the species' defaults and are checked
     /// against their ranges.
-    unsigned buildPlantInstanceFromLibrary(const vec3& base_position, float age,
-                                           const std::map<std::string, float>& build_parameters = {});
+    unsigned buildPlantInstanceFromLibrary(
+        const vec3& base_position, float age,
+        const std::map<std::string, float>& build_parameters = {});
     /// A canopy of the loaded species on a grid of `plant_count` (x, y) plants `plant_spacing`
     /// apart (m), centred on `canopy_center`. Each position germinates with probability
     /// `germination_rate`. Plants are grown in parallel (OpenMP), each from its own random
@@ -155,7 +156,8 @@ public:
     unsigned addBaseStemShoot(unsigned plantID, const ShootSpec& spec);
     unsigned addBaseStemShoot(unsigned plantID, unsigned current_node_number,
                               const AxisRotation& base_rotation, float internode_radius,
-                              float internode_length_max, float internode_length_scale_factor_fraction,
+                              float internode_length_max,
+                              float internode_length_scale_factor_fraction,
                               float leaf_scale_factor_fraction, float radius_taper,
                               const std::string& shoot_type_label);
     /// A shoot continuing from the tip of `parentShootID` (same axis, rotated by the spec).
@@ -241,14 +243,14 @@ public:
     /// Attraction points for every plant that has none of its own: a growing tip that sees
     /// one in its cone turns toward the nearest. Solid obstacles keep priority.
     void enableAttractionPoints(const std::vector<vec3>& attraction_points,
-                                float view_half_angle_deg = 80.0f,
-                                float look_ahead_distance = 0.1f, float inertia = 0.4f);
+                                float view_half_angle_deg = 80.0f, float look_ahead_distance = 0.1f,
+                                float inertia = 0.4f);
     void enableAttractionPoints(const AttractionPoints& points);
     /// A plant's own attraction points (library plants on trellises set theirs when built);
     /// they replace the global ones for this plant.
     void enableAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points,
-                                float view_half_angle_deg = 80.0f,
-                                float look_ahead_distance = 0.1f, float inertia = 0.4f);
+                                float view_half_angle_deg = 80.0f, float look_ahead_distance = 0.1f,
+                                float inertia = 0.4f);
     void enableAttractionPoints(unsigned plantID, const AttractionPoints& points);
     /// Replaces or extends the points, keeping the cone (attraction points must be enabled).
     void updateAttractionPoints(const std::vector<vec3>& attraction_points);
@@ -338,8 +340,8 @@ public:
     /// file, line, element path and value; nothing is added then.
     std::vector<unsigned> readPlantStructureXML(const std::string& filename,
                                                 const PlantStructureReadOptions& options = {});
-    std::vector<unsigned> readPlantStructureXMLString(const std::string& xml,
-                                                      const PlantStructureReadOptions& options = {});
+    std::vector<unsigned> readPlantStructureXMLString(
+        const std::string& xml, const PlantStructureReadOptions& options = {});
     /// A compact one-line text of the plant's visible structure (shoots, internodes,
     /// petioles, leaves, flowers and fruit with their current sizes and angles), for machine
     /// learning. Its grammar is in docs/plant-xml.md.

@@ -52,20 +52,20 @@ struct VegetativeBud {
     BudState state = BudState::Dormant;
     /// Plant age at which the bud breaks (or fails to); negative: waiting for dormancy to end.
     double breakTime = -1.0;
-    int childShoot = -1;      ///< shoot grown from this bud, -1 if none
-    std::string shootType;    ///< type the bud will grow into (chosen when it breaks)
+    int childShoot = -1;    ///< shoot grown from this bud, -1 if none
+    std::string shootType;  ///< type the bud will grow into (chosen when it breaks)
 };
 
 struct FlowerOrgan {
-    float position = 1.0f;    ///< along the peduncle from its base, fraction of its length
-    float azimuth = 0.0f;     ///< side of the peduncle, degrees
-    float pitch = 0.0f;       ///< from the peduncle axis, degrees
-    float roll = 0.0f;        ///< about its own axis, degrees
-    float flowerScale = 0.0f; ///< flower length, m
-    float fruitScale = 0.0f;  ///< full-grown fruit length, m
+    float position = 1.0f;     ///< along the peduncle from its base, fraction of its length
+    float azimuth = 0.0f;      ///< side of the peduncle, degrees
+    float pitch = 0.0f;        ///< from the peduncle axis, degrees
+    float roll = 0.0f;         ///< about its own axis, degrees
+    float flowerScale = 0.0f;  ///< flower length, m
+    float fruitScale = 0.0f;   ///< full-grown fruit length, m
     float gravityFactor = 0.0f;
-    unsigned variant = 0;     ///< prototype variant
-    OrganTurn clearance;      ///< fruit adjustment (solid obstacles), after gravity
+    unsigned variant = 0;           ///< prototype variant
+    OrganTurn clearance;            ///< fruit adjustment (solid obstacles), after gravity
     std::vector<ObjectID> objects;  ///< one per prototype part
 };
 
@@ -74,14 +74,14 @@ struct FloralBud {
     /// At stage Bud: Dormant waits to flower with flower_bud_break_probability; Active (set by
     /// a rule function) flowers without that draw; Dead never flowers.
     BudState state = BudState::Dormant;
-    bool terminal = false;    ///< at the shoot tip (else axillary)
+    bool terminal = false;  ///< at the shoot tip (else axillary)
     /// Shoot type whose phytomer template (peduncle, inflorescence) realizes and draws this
     /// bud; empty: the type that made its phytomer (terminal buds: the shoot's type). Rule
     /// functions set it to give some nodes other flowers or fruit (maize ears).
     std::string parametersLabel;
-    float fruitAge = 0.0f;    ///< days since fruit set
-    float fruitGrowth = 1.0f; ///< current fruit size / full-grown size
-    double stageTime = 0.0;   ///< plant age when the current stage began
+    float fruitAge = 0.0f;     ///< days since fruit set
+    float fruitGrowth = 1.0f;  ///< current fruit size / full-grown size
+    double stageTime = 0.0;    ///< plant age when the current stage began
     /// Plant age of the next stage change; negative: none pending (or waiting for dormancy).
     double nextTime = -1.0;
     // Peduncle, realized when the bud breaks.
@@ -96,28 +96,28 @@ struct FloralBud {
 };
 
 struct LeafOrgan {
-    int leafletIndex = 0;     ///< 0 tip, negative left, positive right (pairs from the tip)
-    float position = 1.0f;    ///< along the petiole from its base, fraction of its length
-    float scale = 0.0f;       ///< full-grown length, m
+    int leafletIndex = 0;   ///< 0 tip, negative left, positive right (pairs from the tip)
+    float position = 1.0f;  ///< along the petiole from its base, fraction of its length
+    float scale = 0.0f;     ///< full-grown length, m
     float pitch = 0.0f;
     float yaw = 0.0f;
     float roll = 0.0f;
-    unsigned variant = 0;     ///< prototype variant
-    int leafID = -1;          ///< unique within the plant
-    float age = 0.0f;         ///< days
-    double birth = 0.0;       ///< plant age when it appeared
+    unsigned variant = 0;  ///< prototype variant
+    int leafID = -1;       ///< unique within the plant
+    float age = 0.0f;      ///< days
+    double birth = 0.0;    ///< plant age when it appeared
     bool removed = false;
     std::vector<ObjectID> objects;
 };
 
 struct Petiole {
-    float azimuth = 0.0f;     ///< about the internode axis from its roll reference, degrees
-    float pitch = 0.0f;       ///< from the internode axis, degrees
-    float length = 0.0f;      ///< full-grown length, m
-    float radius = 0.0f;      ///< base radius, m
-    float curvature = 0.0f;   ///< degrees per m
+    float azimuth = 0.0f;    ///< about the internode axis from its roll reference, degrees
+    float pitch = 0.0f;      ///< from the internode axis, degrees
+    float length = 0.0f;     ///< full-grown length, m
+    float radius = 0.0f;     ///< base radius, m
+    float curvature = 0.0f;  ///< degrees per m
     float taper = 0.0f;
-    OrganTurn clearance;      ///< petiole and leaves turned out of solid obstacles
+    OrganTurn clearance;  ///< petiole and leaves turned out of solid obstacles
     std::vector<LeafOrgan> leaves;
     std::vector<VegetativeBud> vegetativeBuds;
     std::vector<FloralBud> floralBuds;
@@ -125,40 +125,40 @@ struct Petiole {
 };
 
 struct Internode {
-    vec3 direction{0, 0, 1};  ///< axis of this internode (after zig-zag pitch)
-    vec3 guide{0, 0, 1};      ///< shoot axis here (curvature, random walk, steering applied)
-    vec3 rollReference{1, 0, 0};  ///< unit, perpendicular to guide: azimuth 0 of the petioles
-    float length = 0.0f;      ///< full-grown length, m
-    float radius = 0.0f;      ///< current radius, m
-    float pitch = 0.0f;       ///< realized zig-zag pitch, degrees
+    vec3 direction{0, 0, 1};         ///< axis of this internode (after zig-zag pitch)
+    vec3 guide{0, 0, 1};             ///< shoot axis here (curvature, random walk, steering applied)
+    vec3 rollReference{1, 0, 0};     ///< unit, perpendicular to guide: azimuth 0 of the petioles
+    float length = 0.0f;             ///< full-grown length, m
+    float radius = 0.0f;             ///< current radius, m
+    float pitch = 0.0f;              ///< realized zig-zag pitch, degrees
     float phyllotacticAngle = 0.0f;  ///< realized roll from the previous phytomer, degrees
-    float azimuth = 0.0f;     ///< accumulated phyllotactic roll, degrees
+    float azimuth = 0.0f;            ///< accumulated phyllotactic roll, degrees
     float gravitropicTurn = 0.0f;    ///< zenith change from gravitropism, degrees
-    float walkZenith = 0.0f;  ///< random-walk zenith perturbation, degrees
-    float walkYaw = 0.0f;     ///< random-walk yaw perturbation, degrees
+    float walkZenith = 0.0f;         ///< random-walk zenith perturbation, degrees
+    float walkYaw = 0.0f;            ///< random-walk yaw perturbation, degrees
     ObjectID object = kNoObject;
 };
 
 struct Phytomer {
     Internode internode;
     std::vector<Petiole> petioles;
-    float age = 0.0f;               ///< days
-    double birth = 0.0;             ///< plant age when it was created
-    float internodeFraction = 1.0f; ///< current internode length / full length
-    float leafFraction = 1.0f;      ///< current petiole and leaf size / full size
+    float age = 0.0f;                 ///< days
+    double birth = 0.0;               ///< plant age when it was created
+    float internodeFraction = 1.0f;   ///< current internode length / full length
+    float leafFraction = 1.0f;        ///< current petiole and leaf size / full size
     float internodeFraction0 = 1.0f;  ///< internode fraction at creation
     float leafFraction0 = 1.0f;       ///< petiole and leaf fraction at creation
-    float radiusInitial = 0.0f;     ///< internode radius at creation (girth never goes below)
-    std::string parametersLabel;    ///< shoot type whose phytomer template built it
+    float radiusInitial = 0.0f;       ///< internode radius at creation (girth never goes below)
+    std::string parametersLabel;      ///< shoot type whose phytomer template built it
 };
 
 struct Shoot {
     unsigned id = 0;
     std::string type;
-    int parent = -1;          ///< parent shoot ID, -1 for the base stem
-    int parentNode = -1;      ///< node index on the parent
-    int parentPetiole = 0;    ///< petiole index on that node
-    unsigned rank = 0;        ///< 0 base stem, 1 its children, ...
+    int parent = -1;        ///< parent shoot ID, -1 for the base stem
+    int parentNode = -1;    ///< node index on the parent
+    int parentPetiole = 0;  ///< petiole index on that node
+    unsigned rank = 0;      ///< 0 base stem, 1 its children, ...
     AxisRotation baseRotation;
     float insertionAngle = 0.0f;  ///< realized angle from the parent axis, degrees
     float radiusTaper = 0.0f;
@@ -178,16 +178,16 @@ struct Shoot {
     int nodesThisSeason = 0;
     /// Plant age at which the apical bud makes its next phytomer; negative: not scheduled.
     double nextPhytomerTime = -1.0;
-    bool flowering = false;   ///< determinate shoots stop growing once flowering
+    bool flowering = false;  ///< determinate shoots stop growing once flowering
     bool removed = false;
 };
 
 struct PlantInstance {
     unsigned id = 0;
-    std::string name;         ///< species or user label (object data plant_name)
+    std::string name;  ///< species or user label (object data plant_name)
     vec3 base{0.0f};
-    double age = 0.0;         ///< days
-    std::vector<Shoot> shoots;  ///< indexed by shoot ID
+    double age = 0.0;                                   ///< days
+    std::vector<Shoot> shoots;                          ///< indexed by shoot ID
     std::map<std::string, ShootParameters> shootTypes;  ///< the plant's own copy
     PhenologyParameters phenology;
     Rng rng;

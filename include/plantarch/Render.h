@@ -48,8 +48,8 @@
 #include <vector>
 
 #include "plantarch/Context.h"
-#include "plantarch/Progress.h"
 #include "plantarch/Mesh.h"
+#include "plantarch/Progress.h"
 
 namespace plantarch {
 

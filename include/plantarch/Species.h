@@ -28,15 +28,15 @@ struct BuildParameter {
 /// "uniform(0, 360)"); they are evaluated when a plant is built.
 struct BuildStep {
     enum class Kind { BaseStem, Append, Child } kind = Kind::BaseStem;
-    std::string id;            ///< name later steps use to refer to the shoots it makes
-    std::string parent;        ///< id of the parent step (Append, Child)
+    std::string id;      ///< name later steps use to refer to the shoots it makes
+    std::string parent;  ///< id of the parent step (Append, Child)
     std::string shootType;
-    std::string nodes = "1";   ///< phytomers to create
-    std::string parentNode = "0";  ///< Child: node on the parent
-    std::string petiole = "0";     ///< Child: petiole on that node
+    std::string nodes = "1";                         ///< phytomers to create
+    std::string parentNode = "0";                    ///< Child: node on the parent
+    std::string petiole = "0";                       ///< Child: petiole on that node
     std::string pitch = "0", yaw = "0", roll = "0";  ///< degrees
-    std::string radius;        ///< internode radius, m (empty: the type's radius_initial)
-    std::string internodeLength;  ///< full internode length, m (empty: type's maximum)
+    std::string radius;                ///< internode radius, m (empty: the type's radius_initial)
+    std::string internodeLength;       ///< full internode length, m (empty: type's maximum)
     std::string internodeScale = "1";  ///< current / full internode length
     std::string leafScale = "1";       ///< current / full leaf size
     std::string taper = "0";
@@ -51,7 +51,7 @@ struct BuildStep {
     std::string vegetativeBuds = "true";
     std::string floralBuds = "true";
     std::string apex = "true";
-    int line = 0;              ///< line in the species file, for errors
+    int line = 0;  ///< line in the species file, for errors
 };
 
 /// Attraction points every plant of the species gets when built (trellis wires, a post):
@@ -59,7 +59,7 @@ struct BuildStep {
 /// A vector is three expressions separated by commas, e.g. "0, -cordon_length, wire_height".
 struct SpeciesAttraction {
     struct Wire {
-        std::string from, to;       ///< end points
+        std::string from, to;          ///< end points
         std::string spacing = "0.05";  ///< distance between points along the wire, m
         int line = 0;
     };
@@ -69,24 +69,24 @@ struct SpeciesAttraction {
     };
     std::vector<Wire> wires;
     std::vector<Point> points;
-    std::string halfAngle = "80";   ///< perception cone half-angle, degrees
-    std::string lookAhead = "0.1";  ///< m
-    std::string inertia = "0.4";    ///< 0 to 1
+    std::string halfAngle = "80";         ///< perception cone half-angle, degrees
+    std::string lookAhead = "0.1";        ///< m
+    std::string inertia = "0.4";          ///< 0 to 1
     std::vector<std::string> shootTypes;  ///< attracted shoot types (empty: all)
     int line = 0;
 };
 
 struct SpeciesModel {
-    std::string name;          ///< library name, e.g. "bean"
+    std::string name;  ///< library name, e.g. "bean"
     std::string commonName;
     std::string latinName;
-    std::string plantType;     ///< herbaceous, weed or tree
+    std::string plantType;  ///< herbaceous, weed or tree
     std::string description;
-    std::string sourceFile;    ///< file it was read from
+    std::string sourceFile;  ///< file it was read from
     float recommendedAgeMin = 0.0f;
     float recommendedAgeMax = 0.0f;
     float recommendedAge = 0.0f;
-    float maxHeight = 0.0f;    ///< plausible bounds used by tests, m (0: unchecked)
+    float maxHeight = 0.0f;  ///< plausible bounds used by tests, m (0: unchecked)
     std::map<std::string, ShootParameters> shootTypes;
     PhenologyParameters phenology;
     std::vector<BuildParameter> buildParameters;

@@ -14,11 +14,11 @@ namespace plantarch::collision {
 
 /// What a growing tip asks the attraction points.
 struct TipQuery {
-    vec3 apex{0.0f};        ///< where the new internode starts, m
+    vec3 apex{0.0f};                   ///< where the new internode starts, m
     vec3 direction{0.0f, 0.0f, 1.0f};  ///< the way it would grow (unit)
-    vec3 shootBase{0.0f};   ///< where the tip's shoot starts, m
-    float minDistance = 0;  ///< points nearer than this are passed by, m
-    float reach = 0;        ///< a wire this near is reached (one internode), m
+    vec3 shootBase{0.0f};              ///< where the tip's shoot starts, m
+    float minDistance = 0;             ///< points nearer than this are passed by, m
+    float reach = 0;                   ///< a wire this near is reached (one internode), m
 };
 
 /// A spatial index of AttractionPoints, derived from them (rebuilt when they change).

@@ -143,10 +143,12 @@ private:
         fb.peduncleClearance = OrganTurn{};
         for (FlowerOrgan& fl : fb.flowers) fl.clearance = OrganTurn{};
         const bool fruit = fb.stage == FloralStage::Fruit;
-        const bool flower = fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen;
+        const bool flower =
+            fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen;
         if (!fruit && !flower) return;
         float organ = 0.0f;
-        for (const FlowerOrgan& fl : fb.flowers) organ = std::max({organ, fl.flowerScale, fl.fruitScale});
+        for (const FlowerOrgan& fl : fb.flowers)
+            organ = std::max({organ, fl.flowerScale, fl.fruitScale});
         const float reach = fb.peduncleLength + 1.5f * organ + fb.peduncleRadius + 0.01f;
         if (!near(top, reach)) return;
         auto place = [&] { placer().floralBud(sink_, s.id, k, j, b, terminal); };

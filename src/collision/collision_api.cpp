@@ -22,8 +22,7 @@ std::string num(double v) {
     return s;
 }
 
-void checkRange(const char* name, double v, double lo, double hi, bool openLow,
-                const char* range) {
+void checkRange(const char* name, double v, double lo, double hi, bool openLow, const char* range) {
     const bool ok = std::isfinite(v) && (openLow ? v > lo : v >= lo) && v <= hi;
     if (!ok)
         throw Error("collision option out of range",
@@ -45,14 +44,15 @@ void checkRays(const char* name, unsigned n) {
 void checkObjects(const Context& ctx, const std::vector<ObjectID>& ids, const char* name) {
     for (ObjectID id : ids)
         if (!ctx.doesObjectExist(id))
-            throw Error("no such object in the Context",
-                        {.parameter = name, .value = std::to_string(id),
-                         .validRange = "IDs of existing objects"});
+            throw Error("no such object in the Context", {.parameter = name,
+                                                          .value = std::to_string(id),
+                                                          .validRange = "IDs of existing objects"});
 }
 
 void checkPoints(const std::vector<vec3>& points) {
     for (std::size_t i = 0; i < points.size(); ++i)
-        if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) || !std::isfinite(points[i].z))
+        if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y) ||
+            !std::isfinite(points[i].z))
             throw Error("attraction point is not finite",
                         {.parameter = "attraction_points[" + std::to_string(i) + "]",
                          .validRange = "finite coordinates in m"});
@@ -66,7 +66,8 @@ void checkShootTypes(const std::vector<std::string>& types) {
         });
         if (!label)
             throw Error("attraction shoot type is not a shoot type label",
-                        {.parameter = "shoot_types", .value = t,
+                        {.parameter = "shoot_types",
+                         .value = t,
                          .validRange = "letters, digits, '_' or '-'"});
     }
 }
@@ -173,9 +174,9 @@ namespace {
 AttractionPoints current(const std::shared_ptr<const collision::AttractionIndex>& index,
                          const std::string& which) {
     if (!index)
-        throw Error("attraction points are not enabled" + which,
-                    {.parameter = "attraction_points",
-                     .validRange = "call enableAttractionPoints first"});
+        throw Error(
+            "attraction points are not enabled" + which,
+            {.parameter = "attraction_points", .validRange = "call enableAttractionPoints first"});
     return index->options();
 }
 
@@ -190,7 +191,8 @@ AttractionPoints ownPoints(const PlantInstance& plant) {
 }  // namespace
 
 void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) {
-    AttractionPoints a = current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
+    AttractionPoints a =
+        current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
     a.points = points;
     enableAttractionPoints(a);
 }
@@ -202,7 +204,8 @@ void PlantArchitecture::updateAttractionPoints(unsigned plantID, const std::vect
 }
 
 void PlantArchitecture::appendAttractionPoints(const std::vector<vec3>& points) {
-    AttractionPoints a = current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
+    AttractionPoints a =
+        current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
     a.points.insert(a.points.end(), points.begin(), points.end());
     enableAttractionPoints(a);
 }
@@ -226,8 +229,7 @@ std::vector<vec3> PlantArchitecture::getAttractionPoints(unsigned plantID) const
     const PlantInstance& plant = impl_->plant(plantID);
     if (plant.attraction) return plant.attraction->points;
     const collision::World* w = impl_->collision.get();
-    return w && w->globalAttraction ? w->globalAttraction->options().points
-                                    : std::vector<vec3>{};
+    return w && w->globalAttraction ? w->globalAttraction->options().points : std::vector<vec3>{};
 }
 
 CollisionStats PlantArchitecture::getCollisionStats() const {

@@ -2,9 +2,6 @@
 
 #include "collision/collision_world.h"
 
-#include "collision/cone.h"
-#include "collision/proxies.h"
-
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -13,6 +10,9 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "collision/cone.h"
+#include "collision/proxies.h"
 
 namespace plantarch::collision {
 
@@ -30,8 +30,8 @@ RTCGeometry triangleGeometry(RTCDevice device, const TriangleSoup& soup) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_LOW);
     const std::size_t n = soup.size();
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n / 3));
     for (std::size_t i = 0; i < n; ++i) {
@@ -87,7 +87,6 @@ World::World() : rtc_(std::make_unique<Embree>()) {
 
 World::~World() = default;
 
-
 void World::setSoft(std::optional<SoftCollisionOptions> options, const Context& ctx) {
     soft_ = std::move(options);
     memos.clear();  // the organ kinds may differ
@@ -131,8 +130,8 @@ bool World::setPlantProxies(unsigned plantID, TriangleSoup&& triangles,
                             std::vector<OrganTag>&& tags) {
     PlantSlot& slot = *plants_.at(plantID);
     if (slot.set && slot.triangles.size() == triangles.size() && slot.tags == tags &&
-        (triangles.empty() ||
-         std::memcmp(slot.triangles.data(), triangles.data(), triangles.size() * sizeof(vec3)) == 0)) {
+        (triangles.empty() || std::memcmp(slot.triangles.data(), triangles.data(),
+                                          triangles.size() * sizeof(vec3)) == 0)) {
         stats_.plantsUnchanged.fetch_add(1, std::memory_order_relaxed);
         return false;
     }
@@ -296,8 +295,8 @@ vec3 closestOnTriangle(vec3 p, vec3 a, vec3 b, vec3 c) {
 
 }  // namespace
 
-void World::softTrianglesNear(vec3 center, float radius, const Ignore* ignore,
-                              TriangleBatch& out, const vec3* front) const {
+void World::softTrianglesNear(vec3 center, float radius, const Ignore* ignore, TriangleBatch& out,
+                              const vec3* front) const {
     out.clear();
     grid_.near(center, radius, ignore, out, front);
 }
@@ -340,7 +339,9 @@ std::optional<SolidHit> World::closestSolid(vec3 p, float radius) const {
 
 CollisionStats World::snapshotStats() const {
     CollisionStats s;
-    auto get = [](const std::atomic<std::uint64_t>& a) { return a.load(std::memory_order_relaxed); };
+    auto get = [](const std::atomic<std::uint64_t>& a) {
+        return a.load(std::memory_order_relaxed);
+    };
     s.softCones = get(stats_.softCones);
     s.softRays = get(stats_.softRays);
     s.softSteered = get(stats_.softSteered);

@@ -55,15 +55,15 @@ struct Ignore {
 /// Counters shared by all threads (relaxed atomics; totals do not depend on the order).
 struct AtomicStats {
     std::atomic<std::uint64_t> softCones{0}, softRays{0}, softSteered{0}, solidCones{0},
-        solidSteered{0}, attractionQueries{0}, attracted{0}, organsTurned{0},
-        organsUnresolved{0}, sceneRefreshes{0}, plantsRebuilt{0}, plantsUnchanged{0};
+        solidSteered{0}, attractionQueries{0}, attracted{0}, organsTurned{0}, organsUnresolved{0},
+        sceneRefreshes{0}, plantsRebuilt{0}, plantsUnchanged{0};
     std::atomic<double> refreshSeconds{0.0};
     std::atomic<std::int64_t> coneNanoseconds{0};
 };
 
 struct SolidHit {
     float distance = 0.0f;
-    vec3 normal{0.0f};   ///< unit, facing the ray's origin
+    vec3 normal{0.0f};  ///< unit, facing the ray's origin
     vec3 point{0.0f};
 };
 

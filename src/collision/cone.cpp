@@ -25,8 +25,8 @@
 #endif
 
 #include "collision/collision_world.h"
-#include "plantarch/Error.h"
 #include "geometry/tube.h"
+#include "plantarch/Error.h"
 
 namespace plantarch::collision {
 
@@ -104,7 +104,8 @@ ConePatterns::ConePatterns(unsigned rays, float halfAngleDegrees) : halfAngle(ha
                 const float phi = 2.0f * kPi * (float(j) + rng.uniform01()) / float(sectors);
                 const float cosT = 1.0f - u * oneMinusCos;
                 const float sinT = std::sqrt(std::max(0.0f, 1.0f - cosT * cosT));
-                const vec3 v = glm::normalize(vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
+                const vec3 v =
+                    glm::normalize(vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
                 const std::size_t k = std::size_t(i * sectors + j);
                 px[k] = v.x;
                 py[k] = v.y;
@@ -180,8 +181,16 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
             out.blocked[std::size_t(k)] =
                 world.softOccluded(apex, out.direction(k), tnear, cone.lookAhead, &ignore);
     } else {
-        const Frame f{apex, out.e1, out.e2, axis, patterns->cosHalf, patterns->sinHalf,
-                      tnear, cone.lookAhead, patterns->rings, patterns->sectors};
+        const Frame f{apex,
+                      out.e1,
+                      out.e2,
+                      axis,
+                      patterns->cosHalf,
+                      patterns->sinHalf,
+                      tnear,
+                      cone.lookAhead,
+                      patterns->rings,
+                      patterns->sectors};
 #if defined(PLANTARCH_CONE_WIDE)
         if (coneKernel() == ConeKernel::kWide) {
             wide::castRays(near, f, out.x, out.y, out.z, out.blocked.data());
@@ -299,8 +308,10 @@ std::optional<vec3> bestGap(const ConeSample& sample, float halfAngleDegrees) {
                 ++p;
             } else {
                 unite(p->run, below->run);
-                if (p->last < below->last) ++p;
-                else ++below;
+                if (p->last < below->last)
+                    ++p;
+                else
+                    ++below;
             }
         }
     }

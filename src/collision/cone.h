@@ -34,7 +34,9 @@ public:
     int cells() const { return rings * sectors; }
     /// Each array holds cells() rays and four zeros past them (so rays go four at a time).
     int stride() const { return cells() + 4; }
-    const float* x(int set) const { return xyz_.data() + std::size_t(set) * 3 * std::size_t(stride()); }
+    const float* x(int set) const {
+        return xyz_.data() + std::size_t(set) * 3 * std::size_t(stride());
+    }
     const float* y(int set) const { return x(set) + stride(); }
     const float* z(int set) const { return x(set) + 2 * stride(); }
 
@@ -48,10 +50,10 @@ std::shared_ptr<const ConePatterns> conePatterns(unsigned rays, float halfAngleD
 /// A cone's frame and which of its cells are blocked.
 struct ConeSample {
     int rings = 1, sectors = 1;
-    bool cast = false;                 ///< false: nothing within reach, no ray was cast
+    bool cast = false;                             ///< false: nothing within reach, no ray was cast
     vec3 e1{1, 0, 0}, e2{0, 1, 0}, axis{0, 0, 1};  ///< the rolled frame (world)
     std::shared_ptr<const ConePatterns> patterns;  ///< keeps the ray set alive
-    const float* x = nullptr;          ///< the ray set used, in the frame
+    const float* x = nullptr;                      ///< the ray set used, in the frame
     const float* y = nullptr;
     const float* z = nullptr;
     std::vector<std::uint32_t> blocked;  ///< per cell, 0 or 1

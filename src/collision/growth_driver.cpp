@@ -45,7 +45,8 @@ template <class F>
 void forEach(std::size_t n, const std::vector<Impl*>& impls, F&& f) {
     std::vector<std::exception_ptr> errors(n);
     const int threads = threadsFor(n, impls);
-#pragma omp parallel for schedule(static, 1) num_threads(threads) if (threads > 1 && !omp_in_parallel())
+#pragma omp parallel for schedule(static, 1) \
+    num_threads(threads) if (threads > 1 && !omp_in_parallel())
     for (int i = 0; i < int(n); ++i) {
         try {
             f(std::size_t(i), *impls[std::size_t(omp_get_thread_num())]);

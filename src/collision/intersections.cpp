@@ -65,8 +65,9 @@ std::size_t countIntersectingPairs(const Context& ctx, const std::vector<ObjectI
     }
     std::vector<std::size_t> order(items.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return items[a].box.min.x < items[b].box.min.x; });
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return items[a].box.min.x < items[b].box.min.x;
+    });
     std::size_t count = 0;
     for (std::size_t a = 0; a < order.size(); ++a) {
         const Item& A = items[order[a]];

@@ -110,7 +110,8 @@ PlantProxyMemo::Key petioleKey(const Phytomer& ph, const Petiole& pt) {
         key[k++] = v->y;
         key[k++] = v->z;
     }
-    for (float v : {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle, ph.leafFraction})
+    for (float v :
+         {pt.pitch, pt.azimuth, pt.length, pt.curvature, pt.clearance.angle, ph.leafFraction})
         key[k++] = v;
     // Which leaves have fallen: one bit each (leaf i and i + 32 share a bit: a change to both
     // at once between two refreshes is as good as impossible, and only costs a stale proxy).
@@ -140,7 +141,8 @@ public:
     const TriangleSoup& operator()(const OrganPrototype& proto) {
         // A multiplicative hash: prototypes are aligned, their low bits all alike.
         const std::size_t slot = std::size_t(
-            (std::uint64_t(reinterpret_cast<std::uintptr_t>(&proto)) * 0x9e3779b97f4a7c15ULL) >> 59);
+            (std::uint64_t(reinterpret_cast<std::uintptr_t>(&proto)) * 0x9e3779b97f4a7c15ULL) >>
+            59);
         auto& [p, outline] = table_[slot];
         if (p != &proto) {
             p = &proto;
@@ -203,7 +205,8 @@ void moveBy(const vec3* local, std::size_t n, vec3 start, vec3* out) {
         float* to = &out[i].x;
         _mm_storeu_ps(to, _mm_add_ps(_mm_loadu_ps(in), s0));
         // (Eight bytes at a time through the unaligned 64-bit moves: floats are only 4-aligned.)
-        const __m128 yz = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(in + 4)));
+        const __m128 yz =
+            _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(in + 4)));
         _mm_storel_epi64(reinterpret_cast<__m128i*>(to + 4), _mm_castps_si128(_mm_add_ps(yz, s1)));
         i += 2;
     }
@@ -303,7 +306,8 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
                     memo.leafOutlines.resize(memo.leaves.size());
                     for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
                         const OrganPrototype* proto = memo.leaves[i].prototype;
-                        memo.leafOutlines[i] = proto ? &outlineOf(*proto) : nullptr;  // null: fallen
+                        memo.leafOutlines[i] =
+                            proto ? &outlineOf(*proto) : nullptr;  // null: fallen
                         if (proto) corners += std::uint32_t(memo.leafOutlines[i]->size());
                     }
                     if (corners != e.corners) {  // room for its proxies
@@ -369,13 +373,19 @@ bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant,
 
 bool ProxySink::wants(OrganKind kind) const {
     switch (kind) {
-        case OrganKind::Internode: return organs_.internodes;
-        case OrganKind::Petiole: return organs_.petioles;
-        case OrganKind::Leaf: return organs_.leaves;
-        case OrganKind::Peduncle: return organs_.petioles;
+        case OrganKind::Internode:
+            return organs_.internodes;
+        case OrganKind::Petiole:
+            return organs_.petioles;
+        case OrganKind::Leaf:
+            return organs_.leaves;
+        case OrganKind::Peduncle:
+            return organs_.petioles;
         case OrganKind::FlowerClosed:
-        case OrganKind::FlowerOpen: return organs_.flowers;
-        case OrganKind::Fruit: return organs_.fruit;
+        case OrganKind::FlowerOpen:
+            return organs_.flowers;
+        case OrganKind::Fruit:
+            return organs_.fruit;
     }
     return false;
 }

@@ -58,7 +58,7 @@ struct PlantProxyMemo {
         TriangleSoup local;  ///< leaf proxies relative to their petiole's start
         std::size_t unusedCorners = 0, unusedLeaves = 0;  ///< left behind in local, leafTrig
     };
-    std::vector<Shoot> shoots;                ///< by shoot ID
+    std::vector<Shoot> shoots;  ///< by shoot ID
     /// Set before each build: pointers to prototypes and their outlines are kept from one
     /// build to the next only within one epoch (World::calls), never with 0.
     std::uint64_t epoch = 0;
@@ -139,7 +139,6 @@ private:
 /// surfaces count as clear.
 bool boxTriangleOverlap(const OrientedBox& box, vec3 a, vec3 b, vec3 c, float tolerance);
 /// Whether two triangles cross by more than `tolerance`.
-bool triangleTriangleOverlap(const std::array<vec3, 3>& t, vec3 a, vec3 b, vec3 c,
-                             float tolerance);
+bool triangleTriangleOverlap(const std::array<vec3, 3>& t, vec3 a, vec3 b, vec3 c, float tolerance);
 
 }  // namespace plantarch::collision

@@ -65,7 +65,9 @@ inline bool sphereOf(const vec3* p, bool pairs, Load load, glm::vec4& sphere) {
     const __m128 a = load(p[0]), b = load(p[1]), c = load(p[2]);
     // (Lane by lane ==, as vec3's: -0 equals 0, NaN nothing.)
     const bool quad =
-        pairs && (_mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(load(p[3]), a), _mm_cmpeq_ps(load(p[4]), c))) & 7) == 7;
+        pairs &&
+        (_mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(load(p[3]), a), _mm_cmpeq_ps(load(p[4]), c))) &
+         7) == 7;
     const __m128 d = quad ? load(p[5]) : c;
     const __m128 sum = _mm_add_ps(_mm_add_ps(a, b), c);
     const __m128 centre = quad ? _mm_mul_ps(_mm_add_ps(sum, d), _mm_set1_ps(0.25f))
@@ -108,14 +110,16 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
         // Four floats read at a time where a float follows the corner (all six corners of a
         // pair but the last pair's), else three.
         const bool quad =
-            t + 2 < n ? sphereOf(p, pairs, [](const vec3& v) { return _mm_loadu_ps(&v.x); }, spheres[t])
-                      : sphereOf(p, pairs,
-                                 [](const vec3& v) {
-                                     return _mm_movelh_ps(
-                                         _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&v))),
-                                         _mm_load_ss(&v.z));
-                                 },
-                                 spheres[t]);
+            t + 2 < n ? sphereOf(
+                            p, pairs, [](const vec3& v) { return _mm_loadu_ps(&v.x); }, spheres[t])
+                      : sphereOf(
+                            p, pairs,
+                            [](const vec3& v) {
+                                return _mm_movelh_ps(_mm_castsi128_ps(_mm_loadl_epi64(
+                                                         reinterpret_cast<const __m128i*>(&v))),
+                                                     _mm_load_ss(&v.z));
+                            },
+                            spheres[t]);
         if (quad) {
             spheres[t + 1] = glm::vec4(vec3(spheres[t]), -1.0f);
             ++t;
@@ -123,7 +127,8 @@ void boundingSpheres(const std::vector<vec3>& soup, std::vector<glm::vec4>& sphe
 #else
         const bool quad = pairs && p[3] == p[0] && p[4] == p[2];
         const vec3& d = quad ? p[5] : p[2];
-        const vec3 c = quad ? (p[0] + p[1] + p[2] + d) * 0.25f : (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
+        const vec3 c =
+            quad ? (p[0] + p[1] + p[2] + d) * 0.25f : (p[0] + p[1] + p[2]) * (1.0f / 3.0f);
         const float r2 = std::max({glm::dot(p[0] - c, p[0] - c), glm::dot(p[1] - c, p[1] - c),
                                    glm::dot(p[2] - c, p[2] - c), glm::dot(d - c, d - c)});
         // A hair more than the farthest corner, so rounding never drops a touching triangle.
@@ -149,7 +154,8 @@ void SoftGrid::cellKeys(const std::vector<glm::vec4>& spheres, float cell,
     // indices fit 32 bits once clamped).
     const __m128 scale = _mm_set1_ps(inverse), lo = _mm_set1_ps(float(-kBias)),
                  hi = _mm_set1_ps(float(kBias - 1));
-    const __m128i bias = _mm_set1_epi32(std::int32_t(kBias)), mask = _mm_set1_epi32(std::int32_t(kMask));
+    const __m128i bias = _mm_set1_epi32(std::int32_t(kBias)),
+                  mask = _mm_set1_epi32(std::int32_t(kMask));
 #endif
     for (std::size_t t = 0; t < spheres.size(); ++t) {
         const float w = sphere[t].w;
@@ -241,7 +247,8 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads
                 if (key == kSecond) continue;
                 if (key == kLarge) {
                     const bool quad = t + 1 < size && keys[t + 1] == kSecond;
-                    mine.quads.push_back({s.soup->data() + 3 * t, s.owner, quad, s.tags ? (*s.tags)[t] : 0});
+                    mine.quads.push_back(
+                        {s.soup->data() + 3 * t, s.owner, quad, s.tags ? (*s.tags)[t] : 0});
                     mine.spheres.push_back(spheres[t]);
                     continue;
                 }
@@ -355,7 +362,8 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
         return v;
     };
     auto test4 = [&](std::uint32_t i) {
-        const Float4 dx = load(sphereRows_[0], i) - centre.x, dy = load(sphereRows_[1], i) - centre.y,
+        const Float4 dx = load(sphereRows_[0], i) - centre.x,
+                     dy = load(sphereRows_[1], i) - centre.y,
                      dz = load(sphereRows_[2], i) - centre.z, w = load(sphereRows_[3], i);
         const Float4 r = radius + w;
         const Int4 in = (dx * dx + dy * dy + dz * dz <= r * r) &
@@ -367,20 +375,26 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
 #endif
     };
     const unsigned ignoredOwner = ignore ? ignore->plant + 1 : 0u;  // owner 0: no plant
-    const std::uint64_t ignoredTags[2] = {ignore ? ignore->organs[0] : 0, ignore ? ignore->organs[1] : 0};
+    const std::uint64_t ignoredTags[2] = {ignore ? ignore->organs[0] : 0,
+                                          ignore ? ignore->organs[1] : 0};
     // (A margin of a thousandth of a cell covers rounding at cell borders.)
     const float reach = radius + maxRadius_ + 1e-3f * cell_;
-    const std::int64_t x0 = cellIndex(centre.x - reach, inverse_), x1 = cellIndex(centre.x + reach, inverse_);
-    const std::int64_t y0 = cellIndex(centre.y - reach, inverse_), y1 = cellIndex(centre.y + reach, inverse_);
-    const std::int64_t z0 = cellIndex(centre.z - reach, inverse_), z1 = cellIndex(centre.z + reach, inverse_);
+    const std::int64_t x0 = cellIndex(centre.x - reach, inverse_),
+                       x1 = cellIndex(centre.x + reach, inverse_);
+    const std::int64_t y0 = cellIndex(centre.y - reach, inverse_),
+                       y1 = cellIndex(centre.y + reach, inverse_);
+    const std::int64_t z0 = cellIndex(centre.z - reach, inverse_),
+                       z1 = cellIndex(centre.z + reach, inverse_);
     const float reach2 = reach * reach;
     // A cell is wholly behind the plane when its farthest point in front of it, plus the
     // largest sphere, still lies behind.
     const float halfCell = 0.5f * cell_;
     const float cellFront =
-        halfCell * (std::abs(facing.x) + std::abs(facing.y) + std::abs(facing.z)) + reach - radius + behind;
+        halfCell * (std::abs(facing.x) + std::abs(facing.y) + std::abs(facing.z)) + reach - radius +
+        behind;
     for (std::int64_t x = x0; x <= x1; ++x) {
-        const float dx = std::max({0.0f, float(x) * cell_ - centre.x, centre.x - float(x + 1) * cell_});
+        const float dx =
+            std::max({0.0f, float(x) * cell_ - centre.x, centre.x - float(x + 1) * cell_});
         const float fx = (float(x) * cell_ + halfCell - centre.x) * facing.x;
         for (std::int64_t y = y0; y <= y1; ++y) {
             const float dy =
@@ -397,15 +411,17 @@ void SoftGrid::near(vec3 centre, float radius, const Ignore* ignore, TriangleBat
                 const std::size_t b = bucketOf(key);
                 // A bucket may also hold other cells (hashing): their keys differ.
                 for (std::uint32_t i = start_[b], end = start_[b + 1]; i < end; i += 4) {
-                    const unsigned same = unsigned(keys_[i] == key) | unsigned(keys_[i + 1] == key) << 1 |
-                                          unsigned(keys_[i + 2] == key) << 2 | unsigned(keys_[i + 3] == key) << 3;
+                    const unsigned same =
+                        unsigned(keys_[i] == key) | unsigned(keys_[i + 1] == key) << 1 |
+                        unsigned(keys_[i + 2] == key) << 2 | unsigned(keys_[i + 3] == key) << 3;
                     if (!same) continue;
                     unsigned hits = test4(i) & same;
                     if (end - i < 4) hits &= (1u << (end - i)) - 1u;
                     for (; hits; hits &= hits - 1) {
                         const std::uint32_t k = i + std::uint32_t(__builtin_ctz(hits));
                         const SoftTriangle& t = small_[k];
-                        if (t.owner != ignoredOwner || (t.tag != ignoredTags[0] && t.tag != ignoredTags[1]))
+                        if (t.owner != ignoredOwner ||
+                            (t.tag != ignoredTags[0] && t.tag != ignoredTags[1]))
                             out.push(corners_.data() + 4 * std::size_t(k));
                     }
                 }

@@ -59,7 +59,9 @@ public:
     bool empty() const { return size_ == 0; }
     std::size_t blocks() const { return (size_ + 3) / 4; }
     /// Row `row` (corner row / 3, coordinate row % 3) of block `b`: four floats.
-    const float* row(std::size_t b, int row) const { return data_.data() + b * kFloatsPerBlock + 4 * row; }
+    const float* row(std::size_t b, int row) const {
+        return data_.data() + b * kFloatsPerBlock + 4 * row;
+    }
     /// Corner `c` (0 to 3) of quad `t`.
     vec3 corner(std::size_t t, int c) const {
         const float* r = row(t / 4, 3 * c);
@@ -123,18 +125,20 @@ private:
     static constexpr std::uint64_t kLarge = ~std::uint64_t(0);
     static constexpr std::uint64_t kSecond = ~std::uint64_t(0) - 1;  ///< a quad's second triangle
     static bool ignored(const SoftTriangle& t, const Ignore* ignore);
-    std::size_t bucketOf(std::uint64_t key) const { return std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_); }
+    std::size_t bucketOf(std::uint64_t key) const {
+        return std::size_t((key * 0x9e3779b97f4a7c15ULL) >> shift_);
+    }
 
     float cell_ = 1.0f, inverse_ = 1.0f, maxRadius_ = 0.0f;
     int shift_ = 63;
-    std::vector<std::uint32_t> start_;      ///< bucket b: [start_[b], start_[b + 1])
+    std::vector<std::uint32_t> start_;                ///< bucket b: [start_[b], start_[b + 1])
     std::vector<std::vector<std::uint32_t>> counts_;  ///< scratch of build: per run and bucket
-    std::vector<std::uint64_t> keys_;       ///< cell key per small triangle (bucket order), padded
+    std::vector<std::uint64_t> keys_;  ///< cell key per small triangle (bucket order), padded
     /// Bounding spheres of the small triangles (bucket order): centres' x, y, z and radii in
     /// rows of their own, padded with four far-away spheres (so tests go four at a time).
     std::vector<float> sphereRows_[4];
-    std::vector<SoftTriangle> small_;       ///< bucket order
-    std::vector<vec3> corners_;             ///< of small_, four each, in bucket order (locality)
+    std::vector<SoftTriangle> small_;  ///< bucket order
+    std::vector<vec3> corners_;        ///< of small_, four each, in bucket order (locality)
     std::vector<glm::vec4> largeSpheres_;
     std::vector<SoftTriangle> large_;
 };

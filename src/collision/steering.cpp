@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "collision/attraction.h"
-#include "collision/cone.h"
 #include "collision/collision_world.h"
+#include "collision/cone.h"
 #include "geometry/tube.h"
 
 namespace plantarch::collision {
@@ -24,7 +24,12 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kDeg = kPi / 180.0f;
 
-enum ConeKind : unsigned { kConeInternode = 1, kConePetiole = 2, kConePeduncle = 3, kConeSolid = 4 };
+enum ConeKind : unsigned {
+    kConeInternode = 1,
+    kConePetiole = 2,
+    kConePeduncle = 3,
+    kConeSolid = 4
+};
 
 vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
     const float a = azimuth * kDeg;
@@ -98,10 +103,10 @@ std::optional<vec3> softTarget(const World& world, vec3 apex, vec3 axis, const P
         AtomicStats& st;
         std::chrono::steady_clock::time_point started;
         ~Timer() {
-            st.coneNanoseconds.fetch_add(
-                std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - started)
-                    .count(),
-                std::memory_order_relaxed);
+            st.coneNanoseconds.fetch_add(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                             std::chrono::steady_clock::now() - started)
+                                             .count(),
+                                         std::memory_order_relaxed);
         }
     } timer{st, started};
     sampleCone(world, apex, axis, cone, rng, tnear, ignore, sample);
@@ -144,8 +149,8 @@ vec3 solidSteer(const World& world, vec3 apex, vec3 g, vec3 fallback, Rng& rng) 
     if (!hit || glm::dot(g, hit->normal) >= 0.0f) return g;
     const vec3 t = tangential(g, hit->normal, fallback);
     const float nearest = 0.25f * o.avoidanceDistance;
-    const float w = std::clamp((o.avoidanceDistance - hit->distance) / (o.avoidanceDistance - nearest),
-                               0.0f, 1.0f);
+    const float w = std::clamp(
+        (o.avoidanceDistance - hit->distance) / (o.avoidanceDistance - nearest), 0.0f, 1.0f);
     world.stats().solidSteered.fetch_add(1, std::memory_order_relaxed);
     if (w >= 1.0f) return t;
     const vec3 v = glm::mix(g, t, w);
@@ -175,7 +180,9 @@ vec3 sideDirection(const Internode& in, float pitch, float azimuth, vec3* sideOu
     return glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
 }
 
-bool softSteers(const Steering* s) { return s && s->world && s->world->soft(); }
+bool softSteers(const Steering* s) {
+    return s && s->world && s->world->soft();
+}
 
 // A growing tip does not see the young organs it grows out of: those of the node it starts
 // from (and of the node its shoot grows from).
@@ -203,9 +210,10 @@ vec3 nodePosition(const PlantInstance& plant, unsigned shootID, std::size_t inte
     const std::size_t n = std::min(internodes, s.phytomers.size());
     for (std::size_t i = 0; i < n; ++i) {
         const Phytomer& ph = s.phytomers[i];
-        const float f = mature ? 1.0f
-                               : float(std::min(1.0, ph.internodeFraction0 +
-                                                          s.elongationRate * std::max(0.0, now - ph.birth)));
+        const float f =
+            mature ? 1.0f
+                   : float(std::min(1.0, ph.internodeFraction0 +
+                                             s.elongationRate * std::max(0.0, now - ph.birth)));
         p += ph.internode.direction * ph.internode.length * f;
     }
     return p;
@@ -250,7 +258,8 @@ void steerShootAxis(PlantArchitecture::Impl& impl, const PlantInstance& plant, c
     in.guide = g;
     // Carry the roll reference along with the smallest rotation (no twist).
     vec3 ref = in.rollReference - glm::dot(in.rollReference, g) * g;
-    in.rollReference = glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(g);
+    in.rollReference =
+        glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(g);
 }
 
 void keepInternodeClear(PlantArchitecture::Impl& impl, const PlantInstance& plant,
@@ -258,8 +267,7 @@ void keepInternodeClear(PlantArchitecture::Impl& impl, const PlantInstance& plan
     const Steering* st = impl.steering;
     if (!st || !st->world || !st->world->hasSolid()) return;
     const World& world = *st->world;
-    const vec3 apex =
-        nodePosition(plant, shoot.id, shoot.phytomers.size(), plant.age, true);
+    const vec3 apex = nodePosition(plant, shoot.id, shoot.phytomers.size(), plant.age, true);
     // The mature internode and its radius, with a millimetre to spare.
     const float reach = in.length + 2.0f * in.radius + 1e-3f;
     for (int attempt = 0; attempt < 4; ++attempt) {
@@ -296,8 +304,9 @@ void steerPeduncle(PlantArchitecture::Impl& impl, const PlantInstance& plant, co
     const SoftCollisionOptions& o = *st->world->soft();
     const unsigned k = terminal ? unsigned(shoot.phytomers.size() - 1) : node;
     const Internode& in = shoot.phytomers[k].internode;
-    const float base = terminal ? in.azimuth + 360.0f * float(bud) / float(shoot.terminalFloralBuds.size())
-                                : shoot.phytomers[k].petioles[petiole].azimuth;
+    const float base =
+        terminal ? in.azimuth + 360.0f * float(bud) / float(shoot.terminalFloralBuds.size())
+                 : shoot.phytomers[k].petioles[petiole].azimuth;
     const vec3 dir = sideDirection(in, fb.pedunclePitch, base + fb.peduncleRoll);
     const vec3 top = nodePosition(plant, shoot.id, k + 1, plant.age, false);
     Rng rng = coneRng(st->seed, plant.id, shoot.id, k, kConePeduncle,

@@ -24,8 +24,8 @@ struct Ignore;
 
 /// Position of node `internodes` of a shoot (0: its base) at plant age `now`; with `mature`,
 /// as if every internode had reached its full length.
-vec3 nodePosition(const PlantInstance& plant, unsigned shootID, std::size_t internodes,
-                  double now, bool mature);
+vec3 nodePosition(const PlantInstance& plant, unsigned shootID, std::size_t internodes, double now,
+                  bool mature);
 
 /// Turns a new internode of `shoot` (its guide and roll reference set, not yet pushed onto
 /// the shoot) by attraction points, soft avoidance and solid obstacles. `lengthMax`: its full

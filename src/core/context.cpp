@@ -43,18 +43,26 @@ struct PrimitiveColumn {
     std::unordered_map<PrimitiveID, DataValue> values;
 };
 
-DataType typeOf(const DataValue& v) { return static_cast<DataType>(v.index()); }
+DataType typeOf(const DataValue& v) {
+    return static_cast<DataType>(v.index());
+}
 
-std::string objectText(ObjectID id) { return std::to_string(id); }
+std::string objectText(ObjectID id) {
+    return std::to_string(id);
+}
 
 }  // namespace
 
 const char* dataTypeName(DataType type) {
     switch (type) {
-        case DataType::Int: return "int";
-        case DataType::Float: return "float";
-        case DataType::String: return "string";
-        case DataType::Vec3: return "vec3";
+        case DataType::Int:
+            return "int";
+        case DataType::Float:
+            return "float";
+        case DataType::String:
+            return "string";
+        case DataType::Vec3:
+            return "vec3";
     }
     return "?";
 }
@@ -92,7 +100,8 @@ struct Context::Impl {
     void checkMaterial(MaterialID m) const {
         if (m >= materials.size())
             throw Error("no such material",
-                        {.parameter = "materialID", .value = std::to_string(m),
+                        {.parameter = "materialID",
+                         .value = std::to_string(m),
                          .validRange = "0 to " + std::to_string(materials.size() - 1)});
     }
 
@@ -157,8 +166,7 @@ struct Context::Impl {
             indices.resize(indices.size() + ni);
         }
         std::copy(pos.begin(), pos.end(), positions.begin() + r.firstVertex);
-        if (!uv.empty())
-            std::copy(uv.begin(), uv.end(), uvs.begin() + r.firstVertex);
+        if (!uv.empty()) std::copy(uv.begin(), uv.end(), uvs.begin() + r.firstVertex);
         std::copy(idx.begin(), idx.end(), indices.begin() + r.firstIndex);
         r.vertexCount = nv;
         r.indexCount = ni;
@@ -218,7 +226,8 @@ struct Context::Impl {
         } else if (it->second.type != type) {
             throw Error(std::string("object data label already holds ") +
                             dataTypeName(it->second.type) + " values",
-                        {.parameter = std::string(label), .value = dataTypeName(type),
+                        {.parameter = std::string(label),
+                         .value = dataTypeName(type),
                          .validRange = dataTypeName(it->second.type)});
         }
         return it->second;
@@ -254,7 +263,9 @@ const Material& Context::material(MaterialID id) const {
     return impl_->materials[id];
 }
 
-std::size_t Context::materialCount() const { return impl_->materials.size(); }
+std::size_t Context::materialCount() const {
+    return impl_->materials.size();
+}
 
 // ---- objects ---------------------------------------------------------------------------
 
@@ -319,7 +330,8 @@ ObjectID Context::copyObject(ObjectID id) {
                                 d.positions.begin() + src.firstVertex + src.vertexCount);
     std::vector<vec2> uv;
     if (src.hasUVs)
-        uv.assign(d.uvs.begin() + src.firstVertex, d.uvs.begin() + src.firstVertex + src.vertexCount);
+        uv.assign(d.uvs.begin() + src.firstVertex,
+                  d.uvs.begin() + src.firstVertex + src.vertexCount);
     const std::vector<std::uint32_t> idx(d.indices.begin() + src.firstIndex,
                                          d.indices.begin() + src.firstIndex + src.indexCount);
     const ObjectID copy = addObject(pos, uv, idx, src.material);
@@ -398,10 +410,18 @@ std::vector<ObjectID> Context::objectIDs() const {
     return ids;
 }
 
-std::size_t Context::objectCount() const { return impl_->liveObjects; }
-std::size_t Context::triangleCount() const { return impl_->liveTriangles; }
-std::size_t Context::vertexCount() const { return impl_->liveVertices; }
-ObjectID Context::objectIDLimit() const { return static_cast<ObjectID>(impl_->objects.size()); }
+std::size_t Context::objectCount() const {
+    return impl_->liveObjects;
+}
+std::size_t Context::triangleCount() const {
+    return impl_->liveTriangles;
+}
+std::size_t Context::vertexCount() const {
+    return impl_->liveVertices;
+}
+ObjectID Context::objectIDLimit() const {
+    return static_cast<ObjectID>(impl_->objects.size());
+}
 
 ObjectView Context::object(ObjectID id) const {
     const Impl& d = *impl_;
@@ -513,10 +533,14 @@ std::optional<DataValue> Context::objectData(ObjectID id, std::string_view label
     const Column& col = it->second;
     if (id >= col.present.size() || !col.present[id]) return std::nullopt;
     switch (col.type) {
-        case DataType::Int: return DataValue(col.ints[id]);
-        case DataType::String: return DataValue(d.strings[col.ints[id]]);
-        case DataType::Float: return DataValue(col.floats[id]);
-        case DataType::Vec3: return DataValue(col.vecs[id]);
+        case DataType::Int:
+            return DataValue(col.ints[id]);
+        case DataType::String:
+            return DataValue(d.strings[col.ints[id]]);
+        case DataType::Float:
+            return DataValue(col.floats[id]);
+        case DataType::Vec3:
+            return DataValue(col.vecs[id]);
     }
     return std::nullopt;
 }
@@ -533,12 +557,12 @@ void Context::clearObjectData(ObjectID id, std::string_view label) {
 
 namespace {
 template <class T>
-std::optional<T> typedData(const Context& ctx, ObjectID id, std::string_view label,
-                           DataType want) {
+std::optional<T> typedData(const Context& ctx, ObjectID id, std::string_view label, DataType want) {
     auto type = ctx.objectDataType(label);
     if (type && *type != want)
         throw Error(std::string("object data label holds ") + dataTypeName(*type) + " values",
-                    {.parameter = std::string(label), .value = dataTypeName(want),
+                    {.parameter = std::string(label),
+                     .value = dataTypeName(want),
                      .validRange = dataTypeName(*type)});
     auto v = ctx.objectData(id, label);
     if (!v) return std::nullopt;
@@ -583,7 +607,8 @@ void Context::setPrimitiveData(PrimitiveID id, std::string_view label, DataValue
     } else if (it->second.type != typeOf(value)) {
         throw Error(std::string("primitive data label already holds ") +
                         dataTypeName(it->second.type) + " values",
-                    {.parameter = std::string(label), .value = dataTypeName(typeOf(value)),
+                    {.parameter = std::string(label),
+                     .value = dataTypeName(typeOf(value)),
                      .validRange = dataTypeName(it->second.type)});
     }
     it->second.values[id] = std::move(value);
@@ -606,18 +631,21 @@ std::vector<std::string> Context::primitiveDataLabels() const {
 
 // ---- housekeeping ----------------------------------------------------------------------
 
-void Context::clear() { impl_ = std::make_unique<Impl>(); }
+void Context::clear() {
+    impl_ = std::make_unique<Impl>();
+}
 
-void Context::compact() { impl_->compact(); }
+void Context::compact() {
+    impl_->compact();
+}
 
 std::size_t Context::memoryBytes() const {
     const Impl& d = *impl_;
     std::size_t bytes = sizeof(Impl);
-    bytes += d.positions.capacity() * sizeof(vec3) + d.uvs.capacity() * sizeof(vec2) +
-             d.indices.capacity() * sizeof(std::uint32_t) +
-             d.objects.capacity() * sizeof(ObjectRecord) +
-             d.primitiveOwner.capacity() * sizeof(ObjectID) +
-             d.materials.capacity() * sizeof(Material);
+    bytes +=
+        d.positions.capacity() * sizeof(vec3) + d.uvs.capacity() * sizeof(vec2) +
+        d.indices.capacity() * sizeof(std::uint32_t) + d.objects.capacity() * sizeof(ObjectRecord) +
+        d.primitiveOwner.capacity() * sizeof(ObjectID) + d.materials.capacity() * sizeof(Material);
     for (const auto& [label, col] : d.columns)
         bytes += label.capacity() + col.ints.capacity() * 4 + col.floats.capacity() * 4 +
                  col.vecs.capacity() * sizeof(vec3) + col.present.capacity();

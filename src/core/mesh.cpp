@@ -1,8 +1,9 @@
+#include "plantarch/Mesh.h"
+
 #include <cmath>
 #include <string>
 
 #include "plantarch/Error.h"
-#include "plantarch/Mesh.h"
 
 namespace plantarch {
 
@@ -37,14 +38,16 @@ void Mesh::validate() const {
                     {.parameter = "mesh.indices", .value = std::to_string(indices.size())});
     if (!uvs.empty() && uvs.size() != positions.size())
         throw Error("UV count must equal position count",
-                    {.parameter = "mesh.uvs", .value = std::to_string(uvs.size()),
+                    {.parameter = "mesh.uvs",
+                     .value = std::to_string(uvs.size()),
                      .validRange = "0 or " + std::to_string(positions.size())});
     for (std::size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= positions.size())
-            throw Error("vertex index out of range",
-                        {.parameter = "mesh.indices[" + std::to_string(i) + "]",
-                         .value = std::to_string(indices[i]),
-                         .validRange = "0 to " + std::to_string(positions.size()) + " (exclusive)"});
+            throw Error(
+                "vertex index out of range",
+                {.parameter = "mesh.indices[" + std::to_string(i) + "]",
+                 .value = std::to_string(indices[i]),
+                 .validRange = "0 to " + std::to_string(positions.size()) + " (exclusive)"});
     for (std::size_t i = 0; i < positions.size(); ++i) {
         const vec3& p = positions[i];
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))

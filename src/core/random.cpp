@@ -218,73 +218,73 @@ RandomFloat RandomFloat::weibull(float shape, float scale) {
 
 float RandomFloat::sample(Rng& rng) const {
     switch (kind_) {
-    case Kind::Constant:
-        return a_;
-    case Kind::Uniform:
-        // Rng::uniform returns a_ exactly when a_ == b_, still consuming its one draw.
-        return rng.uniform(a_, b_);
-    case Kind::Normal:
-        return rng.normal(a_, b_);
-    case Kind::Weibull: {
-        // Inversion of F(x) = 1 - exp(-(x / scale)^shape); 1 - u lies in (0, 1].
-        const double u = rng.uniform01d();
-        const double e = -std::log(1.0 - u);
-        return static_cast<float>(static_cast<double>(b_) * std::pow(e, 1.0 / a_));
-    }
+        case Kind::Constant:
+            return a_;
+        case Kind::Uniform:
+            // Rng::uniform returns a_ exactly when a_ == b_, still consuming its one draw.
+            return rng.uniform(a_, b_);
+        case Kind::Normal:
+            return rng.normal(a_, b_);
+        case Kind::Weibull: {
+            // Inversion of F(x) = 1 - exp(-(x / scale)^shape); 1 - u lies in (0, 1].
+            const double u = rng.uniform01d();
+            const double e = -std::log(1.0 - u);
+            return static_cast<float>(static_cast<double>(b_) * std::pow(e, 1.0 / a_));
+        }
     }
     return a_;
 }
 
 float RandomFloat::mean() const {
     switch (kind_) {
-    case Kind::Constant:
-    case Kind::Normal:
-        return a_;
-    case Kind::Uniform:
-        return static_cast<float>((static_cast<double>(a_) + b_) / 2.0);
-    case Kind::Weibull:
-        return static_cast<float>(b_ * std::tgamma(1.0 + 1.0 / a_));
+        case Kind::Constant:
+        case Kind::Normal:
+            return a_;
+        case Kind::Uniform:
+            return static_cast<float>((static_cast<double>(a_) + b_) / 2.0);
+        case Kind::Weibull:
+            return static_cast<float>(b_ * std::tgamma(1.0 + 1.0 / a_));
     }
     return a_;
 }
 
 float RandomFloat::lowerBound() const {
     switch (kind_) {
-    case Kind::Constant:
-    case Kind::Uniform:
-        return a_;
-    case Kind::Normal:
-        return b_ == 0.0f ? a_ : -std::numeric_limits<float>::infinity();
-    case Kind::Weibull:
-        return 0.0f;
+        case Kind::Constant:
+        case Kind::Uniform:
+            return a_;
+        case Kind::Normal:
+            return b_ == 0.0f ? a_ : -std::numeric_limits<float>::infinity();
+        case Kind::Weibull:
+            return 0.0f;
     }
     return a_;
 }
 
 float RandomFloat::upperBound() const {
     switch (kind_) {
-    case Kind::Constant:
-        return a_;
-    case Kind::Uniform:
-        return b_;
-    case Kind::Normal:
-        return b_ == 0.0f ? a_ : std::numeric_limits<float>::infinity();
-    case Kind::Weibull:
-        return std::numeric_limits<float>::infinity();
+        case Kind::Constant:
+            return a_;
+        case Kind::Uniform:
+            return b_;
+        case Kind::Normal:
+            return b_ == 0.0f ? a_ : std::numeric_limits<float>::infinity();
+        case Kind::Weibull:
+            return std::numeric_limits<float>::infinity();
     }
     return a_;
 }
 
 std::string RandomFloat::describe() const {
     switch (kind_) {
-    case Kind::Constant:
-        return formatFloat(a_);
-    case Kind::Uniform:
-        return call("uniform", a_, b_);
-    case Kind::Normal:
-        return call("normal", a_, b_);
-    case Kind::Weibull:
-        return call("weibull", a_, b_);
+        case Kind::Constant:
+            return formatFloat(a_);
+        case Kind::Uniform:
+            return call("uniform", a_, b_);
+        case Kind::Normal:
+            return call("normal", a_, b_);
+        case Kind::Weibull:
+            return call("weibull", a_, b_);
     }
     return formatFloat(a_);
 }
@@ -314,53 +314,57 @@ RandomInt RandomInt::discrete(std::vector<int> values) {
     return result;
 }
 
-int RandomInt::min() const { return lo_; }
+int RandomInt::min() const {
+    return lo_;
+}
 
-int RandomInt::max() const { return hi_; }
+int RandomInt::max() const {
+    return hi_;
+}
 
 int RandomInt::sample(Rng& rng) const {
     switch (kind_) {
-    case Kind::Constant:
-        return lo_;
-    case Kind::Uniform:
-        return rng.uniformInt(lo_, hi_);
-    case Kind::Discrete: {
-        const auto last = static_cast<std::int32_t>(values_.size() - 1);
-        return values_[static_cast<std::size_t>(rng.uniformInt(0, last))];
-    }
+        case Kind::Constant:
+            return lo_;
+        case Kind::Uniform:
+            return rng.uniformInt(lo_, hi_);
+        case Kind::Discrete: {
+            const auto last = static_cast<std::int32_t>(values_.size() - 1);
+            return values_[static_cast<std::size_t>(rng.uniformInt(0, last))];
+        }
     }
     return lo_;
 }
 
 float RandomInt::mean() const {
     switch (kind_) {
-    case Kind::Constant:
-        return static_cast<float>(lo_);
-    case Kind::Uniform:
-        return static_cast<float>((static_cast<double>(lo_) + hi_) / 2.0);
-    case Kind::Discrete: {
-        double sum = 0.0;
-        for (int v : values_) sum += v;
-        return static_cast<float>(sum / static_cast<double>(values_.size()));
-    }
+        case Kind::Constant:
+            return static_cast<float>(lo_);
+        case Kind::Uniform:
+            return static_cast<float>((static_cast<double>(lo_) + hi_) / 2.0);
+        case Kind::Discrete: {
+            double sum = 0.0;
+            for (int v : values_) sum += v;
+            return static_cast<float>(sum / static_cast<double>(values_.size()));
+        }
     }
     return static_cast<float>(lo_);
 }
 
 std::string RandomInt::describe() const {
     switch (kind_) {
-    case Kind::Constant:
-        return std::to_string(lo_);
-    case Kind::Uniform:
-        return call("uniform", lo_, hi_);
-    case Kind::Discrete: {
-        std::string out = "discrete(";
-        for (std::size_t i = 0; i < values_.size(); ++i) {
-            if (i > 0) out += ", ";
-            out += std::to_string(values_[i]);
+        case Kind::Constant:
+            return std::to_string(lo_);
+        case Kind::Uniform:
+            return call("uniform", lo_, hi_);
+        case Kind::Discrete: {
+            std::string out = "discrete(";
+            for (std::size_t i = 0; i < values_.size(); ++i) {
+                if (i > 0) out += ", ";
+                out += std::to_string(values_[i]);
+            }
+            return out + ")";
         }
-        return out + ")";
-    }
     }
     return std::to_string(lo_);
 }

@@ -50,8 +50,8 @@ Mesh revolve(Profile r, unsigned rings, unsigned sides) {
 }
 
 OrganPrototype builtinFruit(const FloralPrototypeRequest& req, Rng&) {
-    Mesh m = revolve([](float t) { return 0.45f * std::sqrt(std::max(0.0f, t * (1.0f - t))) * 2.0f; },
-                     12, 12);
+    Mesh m = revolve(
+        [](float t) { return 0.45f * std::sqrt(std::max(0.0f, t * (1.0f - t))) * 2.0f; }, 12, 12);
     return {{std::move(m), Material{req.color, "", "fruit"}}};
 }
 
@@ -59,7 +59,8 @@ OrganPrototype builtinFlower(const FloralPrototypeRequest& req, Rng&) {
     const bool open = req.open;
     OrganPrototype proto;
     if (!open) {
-        Mesh bud = revolve([](float t) { return 0.3f * std::sin(kPi * t) * (1.0f - 0.4f * t); }, 8, 8);
+        Mesh bud =
+            revolve([](float t) { return 0.3f * std::sin(kPi * t) * (1.0f - 0.4f * t); }, 8, 8);
         proto.push_back({std::move(bud), Material{{0.92f, 0.92f, 0.80f}, "", "flower_bud"}});
         return proto;
     }
@@ -72,8 +73,8 @@ OrganPrototype builtinFlower(const FloralPrototypeRequest& req, Rng&) {
         const float t = kPi * float(k) / float(seg);
         petal.positions.push_back({0.5f - 0.5f * std::cos(t), 0.22f * std::sin(t), 0.0f});
     }
-    for (unsigned k = 1; k < seg; ++k) petal.positions.push_back({petal.positions[k + 1].x,
-                                                                  -petal.positions[k + 1].y, 0.0f});
+    for (unsigned k = 1; k < seg; ++k)
+        petal.positions.push_back({petal.positions[k + 1].x, -petal.positions[k + 1].y, 0.0f});
     // Fan: centre 0, upper edge 1..seg+1, lower edge seg+2.. (mirrors of 2..seg).
     for (unsigned k = 1; k <= seg; ++k) petal.indices.insert(petal.indices.end(), {0, k, k + 1});
     const std::uint32_t lower = seg + 2;

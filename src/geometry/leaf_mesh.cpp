@@ -309,8 +309,8 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
         // leaf does not carry hundreds of margin vertices into every copy.
         LeafOutlineParams params = leaf.outline;
         const double rowSpacing = 1.0 / std::max(1u, leaf.subdivisions);
-        params.tolerance = float(std::clamp(0.05 * rowSpacing * rowSpacing * 4.0,
-                                            double(params.tolerance), 0.01));
+        params.tolerance =
+            float(std::clamp(0.05 * rowSpacing * rowSpacing * 4.0, double(params.tolerance), 0.01));
         const std::vector<vec2> outline = leafOutline(params);
         attach = outline.front();
         mesh = meshLeafOutline(outline, options);

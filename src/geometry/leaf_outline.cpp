@@ -739,15 +739,15 @@ std::vector<vec2> computeLeafOutline(const LeafOutlineParams& params) {
 // Outlines are a pure function of their parameters and palmate ones cost milliseconds, while
 // a plant asks for the same outline once per leaf variant and a canopy once per worker: a
 // small process-wide memo, shared by all threads, keeps one computation per parameter set.
-using OutlineKey = std::tuple<int, float, float, float, float, float, float, int, float, int,
-                              float, float>;
+using OutlineKey =
+    std::tuple<int, float, float, float, float, float, float, int, float, int, float, float>;
 
 static_assert(sizeof(LeafOutlineParams) == 12 * 4, "a new outline parameter must join OutlineKey");
 
 OutlineKey outlineKey(const LeafOutlineParams& p) {
-    return {int(p.shape),  p.aspect_ratio, p.widest_point, p.tip_angle,
-            p.base_angle,  p.base_width,   p.sinus_depth,  p.lobes,
-            p.lobe_depth,  p.serrations,   p.serration_depth, p.tolerance};
+    return {int(p.shape), p.aspect_ratio, p.widest_point,    p.tip_angle,
+            p.base_angle, p.base_width,   p.sinus_depth,     p.lobes,
+            p.lobe_depth, p.serrations,   p.serration_depth, p.tolerance};
 }
 
 }  // namespace

@@ -1,9 +1,8 @@
-#include "plantarch/OrganPrototypes.h"
-
 #include <cmath>
 
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OrganPrototypes.h"
 
 namespace plantarch {
 
@@ -44,10 +43,12 @@ OrganPrototype loadOBJPrototype(const std::string& path, bool normalize) {
         const float s = 1.0f / length;
         xf = mat4(s, 0, 0, 0, 0, s, 0, 0, 0, 0, s, 0, -base.x * s, -base.y * s, -base.z * s, 1);
     } else if (std::abs(box.min.x) > 0.01f || std::abs(box.max.x - 1.0f) > 0.01f) {
-        throw Error("OBJ prototype does not follow the convention (length 1 along +x from the "
-                    "origin); set normalize_OBJ_model to fit it",
-                    {.file = path, .value = "x from " + num(box.min.x) + " to " + num(box.max.x),
-                     .validRange = "x from 0 to 1 (within 0.01)"});
+        throw Error(
+            "OBJ prototype does not follow the convention (length 1 along +x from the "
+            "origin); set normalize_OBJ_model to fit it",
+            {.file = path,
+             .value = "x from " + num(box.min.x) + " to " + num(box.max.x),
+             .validRange = "x from 0 to 1 (within 0.01)"});
     }
     OrganPrototype proto;
     for (ObjectID id : ids) {

@@ -141,17 +141,29 @@ LeafTrig trigOf(const LeafOrgan& leaf) {
 namespace lanes {
 
 using V = __m128;
-inline V load(vec3 v) { return _mm_setr_ps(v.x, v.y, v.z, 0.0f); }
-inline V splat(float s) { return _mm_set1_ps(s); }
-inline V add(V a, V b) { return _mm_add_ps(a, b); }
-inline V sub(V a, V b) { return _mm_sub_ps(a, b); }
-inline V mul(V a, V b) { return _mm_mul_ps(a, b); }
+inline V load(vec3 v) {
+    return _mm_setr_ps(v.x, v.y, v.z, 0.0f);
+}
+inline V splat(float s) {
+    return _mm_set1_ps(s);
+}
+inline V add(V a, V b) {
+    return _mm_add_ps(a, b);
+}
+inline V sub(V a, V b) {
+    return _mm_sub_ps(a, b);
+}
+inline V mul(V a, V b) {
+    return _mm_mul_ps(a, b);
+}
 // glm::dot: (a.x b.x + a.y b.y) + a.z b.z, in lane 0.
 inline V dot(V a, V b) {
     const V p = _mm_mul_ps(a, b);
     return _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
 }
-inline float length(V v) { return _mm_cvtss_f32(_mm_sqrt_ss(dot(v, v))); }
+inline float length(V v) {
+    return _mm_cvtss_f32(_mm_sqrt_ss(dot(v, v)));
+}
 // glm::normalize: v * (1 / sqrt(dot(v, v))).
 inline V normalize(V v) {
     const V inverse = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(dot(v, v)));
@@ -159,12 +171,16 @@ inline V normalize(V v) {
 }
 // glm::cross: (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y).
 inline V cross(V a, V b) {
-    const V a1 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 0, 2, 1)), a2 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 1, 0, 2));
-    const V b1 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 0, 2, 1)), b2 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 1, 0, 2));
+    const V a1 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 0, 2, 1)),
+            a2 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 1, 0, 2));
+    const V b1 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 0, 2, 1)),
+            b2 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 1, 0, 2));
     return _mm_sub_ps(_mm_mul_ps(a1, b2), _mm_mul_ps(b1, a2));
 }
 // s a + t b.
-inline V mix(float s, V a, float t, V b) { return add(mul(splat(s), a), mul(splat(t), b)); }
+inline V mix(float s, V a, float t, V b) {
+    return add(mul(splat(s), a), mul(splat(t), b));
+}
 
 }  // namespace lanes
 #endif
@@ -282,7 +298,8 @@ public:
         }
         ctx_.setObjectData(object, "organ", std::string(organName(l.kind)));
         ctx_.setObjectData(object, "age", l.age);
-        ctx_.setObjectData(object, "phenology_stage", std::string(phenologyStageName(plant_.stage)));
+        ctx_.setObjectData(object, "phenology_stage",
+                           std::string(phenologyStageName(plant_.stage)));
     }
 
     // Places every part of a prototype; extra old objects are deleted.
@@ -346,7 +363,8 @@ std::string describePrototype(const LeafPrototype& p) {
         s += r->describe() + ";";
     s += p.lobes.describe() + ";" + p.serrations.describe() + ";" + std::to_string(p.subdivisions) +
          ";" + std::to_string(p.build_petiolule) + ";";
-    for (int i = 0; i < 3; ++i) s += std::to_string(p.color[i]) + "," + std::to_string(p.leaf_offset[i]) + ";";
+    for (int i = 0; i < 3; ++i)
+        s += std::to_string(p.color[i]) + "," + std::to_string(p.leaf_offset[i]) + ";";
     return s;
 }
 
@@ -385,7 +403,8 @@ std::vector<vec3> nodesFrom(const Shoot& s, vec3 base) {
 
 // Where a shoot starts on its parent's nodes.
 vec3 baseOn(const Shoot& s, const std::vector<vec3>& parentNodes) {
-    return parentNodes[std::min<std::size_t>(std::size_t(s.parentNode) + 1, parentNodes.size() - 1)];
+    return parentNodes[std::min<std::size_t>(std::size_t(s.parentNode) + 1,
+                                             parentNodes.size() - 1)];
 }
 
 }  // namespace
@@ -427,8 +446,8 @@ struct Tessellator {
         for (std::vector<vec3>& n : nodes) n.clear();
         for (const Shoot& s : plant.shoots) {
             if (s.removed) continue;
-            const bool parentDone = s.parent >= 0 && unsigned(s.parent) < s.id &&
-                                    !nodes[unsigned(s.parent)].empty();
+            const bool parentDone =
+                s.parent >= 0 && unsigned(s.parent) < s.id && !nodes[unsigned(s.parent)].empty();
             if (parentDone)
                 nodesFrom(s, baseOn(s, nodes[unsigned(s.parent)]), nodes[s.id]);
             else
@@ -438,7 +457,8 @@ struct Tessellator {
 
     // Flower and fruit prototypes, one per (function, request, variant), cached.
     const OrganPrototype& floralPrototype(const std::string& fn, unsigned variant,
-                                          const FloralPrototypeRequest& request, bool normalizeOBJ) {
+                                          const FloralPrototypeRequest& request,
+                                          bool normalizeOBJ) {
         const std::string key = variantKey(fn, describeFloral(request), 0, variant) +
                                 (normalizeOBJ ? "|normalized" : "");
         if (auto hit = impl.cache.find(key)) return *hit;
@@ -458,9 +478,8 @@ struct Tessellator {
         std::vector<vec3> line;
         std::vector<float> radii;
         for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
-            const float rNext = i + 1 < s.phytomers.size()
-                                    ? s.phytomers[i + 1].internode.radius
-                                    : s.phytomers[i].internode.radius;
+            const float rNext = i + 1 < s.phytomers.size() ? s.phytomers[i + 1].internode.radius
+                                                           : s.phytomers[i].internode.radius;
             for (unsigned k = 0; k < segs; ++k) {
                 const float f = float(k) / float(segs);
                 line.push_back(glm::mix(pts[i], pts[i + 1], f));
@@ -478,9 +497,9 @@ struct Tessellator {
         const Material mat{ip.color, ip.image_texture, ""};
         for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
             Phytomer& ph = s.phytomers[i];
-            const Mesh m = geometry::tubeMesh(rings, i * segs, (i + 1) * segs, ip.radial_subdivisions);
-            sink->write(ph.internode.object, m, mat,
-                         {OrganKind::Internode, &s, int(i), ph.age});
+            const Mesh m =
+                geometry::tubeMesh(rings, i * segs, (i + 1) * segs, ip.radial_subdivisions);
+            sink->write(ph.internode.object, m, mat, {OrganKind::Internode, &s, int(i), ph.age});
         }
     }
 
@@ -488,7 +507,8 @@ struct Tessellator {
     struct PetioleFrame {
         vec3 side, dir, start;
     };
-    PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node, const Petiole& pt) const {
+    PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node,
+                              const Petiole& pt) const {
         return petioleFrame(s, ph, node, pt, sinCosDeg(pt.azimuth), sinCosDeg(pt.pitch));
     }
     // The same with the sines of the petiole's azimuth and pitch given.
@@ -517,9 +537,9 @@ struct Tessellator {
         std::vector<vec3>& path = petiolePath;
         geometry::curvedPath(start, dir, std::max(length, 1e-6f), pt.curvature, kUp, segs, path);
         // A petiole falls with its leaves (leaf fall, senescence, pruning).
-        const bool bare = !pt.leaves.empty() &&
-                          std::all_of(pt.leaves.begin(), pt.leaves.end(),
-                                      [](const LeafOrgan& l) { return l.removed; });
+        const bool bare =
+            !pt.leaves.empty() && std::all_of(pt.leaves.begin(), pt.leaves.end(),
+                                              [](const LeafOrgan& l) { return l.removed; });
         if (!sink->wants(OrganKind::Petiole)) {
         } else if (!bare && length > 1e-5f && pt.radius > 0.0f) {
             std::vector<float> radii;
@@ -529,8 +549,8 @@ struct Tessellator {
             for (unsigned k = 0; k <= segs; ++k)
                 radii.push_back(r0 * (1.0f - (1.0f - tip) * float(k) / float(segs)));
             const auto rings = geometry::tubeRings(path, radii, in.direction);
-            const Mesh m = geometry::tubeMesh(rings, 0, rings.size() - 1,
-                                              pp.petiole.radial_subdivisions);
+            const Mesh m =
+                geometry::tubeMesh(rings, 0, rings.size() - 1, pp.petiole.radial_subdivisions);
             sink->write(pt.object, m, Material{pp.petiole.color, "", ""},
                         {OrganKind::Petiole, &s, node, ph.age});
         } else {
@@ -551,8 +571,8 @@ struct Tessellator {
         }
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const float scale = leaf.scale * ph.leafFraction;
-        const mat4 xf =
-            geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale, lp.prototype.leaf_offset);
+        const mat4 xf = geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale,
+                                                lp.prototype.leaf_offset);
         sink->writeParts(leaf.objects, impl.leafPrototype(lp, leaf), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
@@ -571,8 +591,8 @@ struct Tessellator {
             trig.frameSet = false;
         }
         const Internode& in = ph.internode;
-        if (!trig.frameSet || !sameBits(trig.axis, in.direction) || !sameBits(trig.guide, in.guide) ||
-            !sameBits(trig.rollReference, in.rollReference) ||
+        if (!trig.frameSet || !sameBits(trig.axis, in.direction) ||
+            !sameBits(trig.guide, in.guide) || !sameBits(trig.rollReference, in.rollReference) ||
             !sameBits(trig.clearance.axis, pt.clearance.axis) ||
             !sameBits(trig.clearance.angle, pt.clearance.angle)) {
             const PetioleFrame f = petioleFrame(s, ph, node, pt, trig.azimuthTrig, trig.pitchTrig);
@@ -722,10 +742,10 @@ struct Tessellator {
             sink->wants(OrganKind::Peduncle)) {
             const std::vector<float> radii(path.size(), fb.peduncleRadius);
             const auto rings = geometry::tubeRings(path, radii, axis);
-            sink->write(fb.peduncleObject,
-                        geometry::tubeMesh(rings, 0, rings.size() - 1,
-                                           pp.peduncle.radial_subdivisions),
-                        Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
+            sink->write(
+                fb.peduncleObject,
+                geometry::tubeMesh(rings, 0, rings.size() - 1, pp.peduncle.radial_subdivisions),
+                Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
         }
         const InflorescenceParameters& inf = pp.inflorescence;
         const bool fruit = fb.stage == FloralStage::Fruit;
@@ -733,13 +753,15 @@ struct Tessellator {
         const OrganKind kind =
             fruit ? OrganKind::Fruit : (open ? OrganKind::FlowerOpen : OrganKind::FlowerClosed);
         if (!sink->wants(kind)) return;
-        const std::string& fn = fruit ? inf.fruit_prototype_function : inf.flower_prototype_function;
+        const std::string& fn =
+            fruit ? inf.fruit_prototype_function : inf.flower_prototype_function;
         const std::string name = fn.empty() ? (fruit ? "builtin_fruit" : "builtin_flower") : fn;
         const float maturity = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
         FloralPrototypeRequest request;
         request.fruit = fruit;
         request.open = open;
-        request.parameters = fruit ? inf.fruit_prototype_parameters : inf.flower_prototype_parameters;
+        request.parameters =
+            fruit ? inf.fruit_prototype_parameters : inf.flower_prototype_parameters;
         request.color = fruit ? inf.fruit_color : inf.flower_color;
         request.subdivisions = fruit ? inf.fruit_subdivisions : inf.flower_subdivisions;
         peduncleMeasure.measure(path);
@@ -752,7 +774,8 @@ struct Tessellator {
             const float pitch = fl.pitch * kDeg;
             vec3 axis = glm::normalize(std::cos(pitch) * f.x + std::sin(pitch) * flSide);
             if (fruit && fl.gravityFactor > 0.0f) {
-                axis = glm::normalize(glm::mix(axis, -kUp, std::clamp(fl.gravityFactor * maturity, 0.0f, 0.999f)));
+                axis = glm::normalize(
+                    glm::mix(axis, -kUp, std::clamp(fl.gravityFactor * maturity, 0.0f, 0.999f)));
             }
             axis = turned(axis, fl.clearance);
             OrganFrame of = uprightFrame(axis, f.z);
@@ -787,7 +810,7 @@ struct Tessellator {
 }  // namespace
 
 const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameters& lp,
-                                                              const LeafOrgan& leaf) {
+                                                             const LeafOrgan& leaf) {
     const LeafPrototype& proto = lp.prototype;
     const unsigned variants = proto.unique_prototypes;
     const PrototypeSlot slot = prototypeSlot(lp, leaf);
@@ -874,7 +897,9 @@ OrganPlacer::OrganPlacer(PlantArchitecture::Impl& impl, PlantInstance& plant)
     state_->tessellator.computeNodes();
 }
 
-OrganPlacer::~OrganPlacer() { placerStorage().swap(state_->tessellator); }
+OrganPlacer::~OrganPlacer() {
+    placerStorage().swap(state_->tessellator);
+}
 
 void OrganPlacer::petiole(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole) {
     Tessellator& t = state_->tessellator;

@@ -48,8 +48,10 @@ std::vector<Ring> tubeRings(std::span<const vec3> points, std::span<const float>
     float arc = 0.0f;
     for (std::size_t i = 0; i < n; ++i) {
         vec3 t;
-        if (i == 0) t = segment[0];
-        else if (i == n - 1) t = segment[n - 2];
+        if (i == 0)
+            t = segment[0];
+        else if (i == n - 1)
+            t = segment[n - 2];
         else {
             t = segment[i - 1] + segment[i];
             t = glm::length(t) > 1e-6f ? glm::normalize(t) : segment[i];
@@ -74,8 +76,7 @@ Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last, 
     const std::size_t count = last - first + 1;
     m.positions.reserve(count * (sides + 1));
     m.uvs.reserve(count * (sides + 1));
-    const float circumference =
-        std::max(2.0f * kPi * std::max(rings[first].radius, 1e-5f), 1e-5f);
+    const float circumference = std::max(2.0f * kPi * std::max(rings[first].radius, 1e-5f), 1e-5f);
     for (std::size_t r = first; r <= last; ++r) {
         const Ring& ring = rings[r];
         const vec3 binormal = glm::cross(ring.tangent, ring.normal);

@@ -26,8 +26,7 @@ std::vector<Ring> tubeRings(std::span<const vec3> points, std::span<const float>
 
 /// The tube between rings[first] and rings[last] (inclusive), `sides` vertices per ring.
 /// UVs: u around the circumference (0..1), v = arc length / circumference at the start.
-Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last,
-              unsigned sides);
+Mesh tubeMesh(std::span<const Ring> rings, std::size_t first, std::size_t last, unsigned sides);
 
 /// A centre line of `segments` equal steps starting at `start` heading along `direction`,
 /// turning by `curvature` degrees per metre toward `bendToward` (a unit vector; negative

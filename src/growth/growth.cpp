@@ -256,12 +256,13 @@ struct Grower {
         ShootSpec spec;
         spec.phytomers = 1;
         spec.shootType = childType;
-        spec.internodeRadius = std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
+        spec.internodeRadius =
+            std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
         spec.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
         spec.internodeLengthScale = 0.01f;
         spec.leafScale = 0.01f;
-        const unsigned id = createShoot(impl, plant, spec, StartMode::Child, int(e.shoot), e.node,
-                                        e.petiole);
+        const unsigned id =
+            createShoot(impl, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
         enqueueShoot(plant.shoots[id]);
     }
 
@@ -286,7 +287,8 @@ struct Grower {
             case FloralStage::Bud: {
                 if (!waiting(fb) || !growingSeason()) return;
                 const bool forced = fb.state == BudState::Active;
-                if (!forced && !plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
+                if (!forced &&
+                    !plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
                     fb.state = BudState::Dead;
                     fb.stage = FloralStage::Removed;
                     return;
@@ -296,18 +298,20 @@ struct Grower {
                 for (FlowerOrgan& fl : fb.flowers) removeObjects(fl.objects);
                 realizeInflorescence(plant, fb, pp);
                 if (impl.steering)
-                    collision::steerPeduncle(impl, plant, s, e.node, e.petiole, e.index,
-                                             e.terminal, fb);
+                    collision::steerPeduncle(impl, plant, s, e.node, e.petiole, e.index, e.terminal,
+                                             fb);
                 fb.state = BudState::Broken;
                 s.flowering = true;
-                if (plant.stage == PhenologyStage::Vegetative) plant.stage = PhenologyStage::Reproductive;
+                if (plant.stage == PhenologyStage::Vegetative)
+                    plant.stage = PhenologyStage::Reproductive;
                 if (ph.time_to_flower_initiation < 0.0f && ph.time_to_flower_opening < 0.0f) {
                     setFruit(fb, t, now);  // no flower stages: the bud sets fruit directly
                 } else if (ph.time_to_flower_initiation >= 0.0f) {
                     fb.stage = FloralStage::FlowerClosed;
                     fb.nextTime = next(ph.time_to_flower_opening >= 0.0f ? ph.time_to_flower_opening
                                                                          : ph.time_to_fruit_set);
-                    if (ph.time_to_flower_opening < 0.0f && fb.nextTime >= 0.0) fb.state = BudState::Active;
+                    if (ph.time_to_flower_opening < 0.0f && fb.nextTime >= 0.0)
+                        fb.state = BudState::Active;
                 } else {
                     fb.stage = FloralStage::FlowerOpen;
                     fb.nextTime = next(ph.time_to_fruit_set);
@@ -336,8 +340,10 @@ struct Grower {
         const float p = t.fruit_set_probability.sample(plant.rng);
         std::vector<FlowerOrgan> set;
         for (FlowerOrgan& fl : fb.flowers) {
-            if (plant.rng.chance(p)) set.push_back(fl);
-            else removeObjects(fl.objects);
+            if (plant.rng.chance(p))
+                set.push_back(fl);
+            else
+                removeObjects(fl.objects);
         }
         fb.flowers = std::move(set);
         fb.stage = fb.flowers.empty() ? FloralStage::Removed : FloralStage::Fruit;
@@ -448,8 +454,8 @@ struct Grower {
             if (s.removed) continue;
             positions.clear();
             for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-                const std::string& name =
-                    typeOf(s.phytomers[k].parametersLabel).phytomer_parameters.phytomer_callback_function;
+                const std::string& name = typeOf(s.phytomers[k].parametersLabel)
+                                              .phytomer_parameters.phytomer_callback_function;
                 if (name.empty()) continue;
                 auto fn = impl.callbackFunctions.find(name);
                 if (fn == impl.callbackFunctions.end())
@@ -498,15 +504,18 @@ struct Grower {
     public:
         using Table = PlantArchitecture::Impl::LeafAreaTable;
         ShootAreas(PlantArchitecture::Impl& impl, const LeafParameters& lp)
-            : impl_(impl), lp_(lp), variants_(lp.prototype.unique_prototypes),
+            : impl_(impl),
+              lp_(lp),
+              variants_(lp.prototype.unique_prototypes),
               table_(variants_ > 0 && variants_ <= Table::kVariants
                          ? &impl.leafAreaTables[&lp.prototype]
                          : nullptr) {}
         double operator()(const LeafOrgan& l) {
             if (!table_ || l.leafletIndex < -Table::kLeaflets || l.leafletIndex > Table::kLeaflets)
                 return impl_.leafPrototypeArea(lp_, l);
-            const std::size_t slot = std::size_t(l.leafletIndex + Table::kLeaflets) * Table::kVariants +
-                                     l.variant % variants_;
+            const std::size_t slot =
+                std::size_t(l.leafletIndex + Table::kLeaflets) * Table::kVariants +
+                l.variant % variants_;
             if (!table_->set[slot]) {
                 table_->area[slot] = impl_.leafPrototypeArea(lp_, l);
                 table_->set[slot] = true;
@@ -574,15 +583,28 @@ struct Grower {
             if (e.kind == kLeafFall || e.kind == kSenescence || e.kind == kDaily)
                 updateContinuous(e.time);
             switch (e.kind) {
-                case kDormancyBreak: onDormancyBreak(e.time); break;
-                case kSenescence: onSenescence(e.time); break;
-                case kDaily: onDaily(e.time); break;
-                case kPhytomer: onPhytomer(plant.shoots[e.shoot], e.time); break;
-                case kBudBreak: onBudBreak(e); break;
-                case kFloral: onFloral(e, e.time); break;
+                case kDormancyBreak:
+                    onDormancyBreak(e.time);
+                    break;
+                case kSenescence:
+                    onSenescence(e.time);
+                    break;
+                case kDaily:
+                    onDaily(e.time);
+                    break;
+                case kPhytomer:
+                    onPhytomer(plant.shoots[e.shoot], e.time);
+                    break;
+                case kBudBreak:
+                    onBudBreak(e);
+                    break;
+                case kFloral:
+                    onFloral(e, e.time);
+                    break;
                 case kLeafFall: {
                     updateGirth();
-                    LeafOrgan& l = plant.shoots[e.shoot].phytomers[e.node].petioles[e.petiole].leaves[e.index];
+                    LeafOrgan& l =
+                        plant.shoots[e.shoot].phytomers[e.node].petioles[e.petiole].leaves[e.index];
                     l.removed = true;
                     break;
                 }
@@ -599,22 +621,28 @@ struct Grower {
     // have been pruned, removed or rescheduled since it was queued).
     bool valid(const Event& e) {
         switch (e.kind) {
-            case kDormancyBreak: return plant.nextDormancyBreak == e.time;
-            case kSenescence: return plant.senescenceTime == e.time;
-            case kDaily: return true;
-            default: break;
+            case kDormancyBreak:
+                return plant.nextDormancyBreak == e.time;
+            case kSenescence:
+                return plant.senescenceTime == e.time;
+            case kDaily:
+                return true;
+            default:
+                break;
         }
         if (e.shoot >= plant.shoots.size() || plant.shoots[e.shoot].removed) return false;
         Shoot& s = plant.shoots[e.shoot];
         if (e.kind == kPhytomer) return s.nextPhytomerTime == e.time;
-        if (e.terminal) return e.index < s.terminalFloralBuds.size() &&
-                               s.terminalFloralBuds[e.index].nextTime == e.time;
+        if (e.terminal)
+            return e.index < s.terminalFloralBuds.size() &&
+                   s.terminalFloralBuds[e.index].nextTime == e.time;
         if (e.node >= s.phytomers.size() || e.petiole >= s.phytomers[e.node].petioles.size())
             return false;
         Petiole& pt = s.phytomers[e.node].petioles[e.petiole];
         switch (e.kind) {
             case kBudBreak:
-                return e.index < pt.vegetativeBuds.size() && pt.vegetativeBuds[e.index].breakTime == e.time;
+                return e.index < pt.vegetativeBuds.size() &&
+                       pt.vegetativeBuds[e.index].breakTime == e.time;
             case kFloral:
                 return e.index < pt.floralBuds.size() && pt.floralBuds[e.index].nextTime == e.time;
             case kLeafFall:
@@ -678,7 +706,9 @@ void growPlant(PlantArchitecture::Impl& impl, PlantInstance& plant, double days,
 
 // ---- public API ------------------------------------------------------------------------
 
-void PlantArchitecture::advanceTime(double days) { advanceTime(getAllPlantIDs(), days); }
+void PlantArchitecture::advanceTime(double days) {
+    advanceTime(getAllPlantIDs(), days);
+}
 
 void PlantArchitecture::advanceTime(unsigned plantID, double days) {
     advanceTime(std::vector<unsigned>{plantID}, days);
@@ -714,10 +744,11 @@ void PlantArchitecture::setPlantPhenologicalThresholds(unsigned plantID,
     PlantInstance& p = impl_->plant(plantID);
     p.phenology = t;
     if (p.dormancyBreakTime < 0.0)
-        p.nextDormancyBreak = t.time_to_dormancy_break < 0.0f ? -1.0 : p.age + t.time_to_dormancy_break;
+        p.nextDormancyBreak =
+            t.time_to_dormancy_break < 0.0f ? -1.0 : p.age + t.time_to_dormancy_break;
     else
-        p.senescenceTime = t.time_to_senescence < 0.0f ? -1.0
-                                                       : p.dormancyBreakTime + t.time_to_senescence;
+        p.senescenceTime =
+            t.time_to_senescence < 0.0f ? -1.0 : p.dormancyBreakTime + t.time_to_senescence;
 }
 
 void PlantArchitecture::setDefaultPhenology(const PhenologyParameters& t) {
@@ -747,10 +778,14 @@ void PlantArchitecture::registerPhytomerCallbackFunction(const std::string& name
 
 const char* phenologyStageName(PhenologyStage s) {
     switch (s) {
-        case PhenologyStage::Dormant: return "dormant";
-        case PhenologyStage::Vegetative: return "vegetative";
-        case PhenologyStage::Reproductive: return "reproductive";
-        case PhenologyStage::Senescent: return "senescent";
+        case PhenologyStage::Dormant:
+            return "dormant";
+        case PhenologyStage::Vegetative:
+            return "vegetative";
+        case PhenologyStage::Reproductive:
+            return "reproductive";
+        case PhenologyStage::Senescent:
+            return "senescent";
     }
     return "unknown";
 }

@@ -140,8 +140,7 @@ void describeState(S& p, V& v) {
     v.legacy("leaflet_scale");  // the listing's value; each leaf here carries its own scale
     v.field({"petiole_taper", -kBig, kBig, "tip radius / base radius"}, p.taper);
     v.field({"petiole_azimuth", -kBig, kBig, "about the internode axis, degrees"}, p.azimuth);
-    v.field({"clearance_axis", -1, 1, "turn out of solid obstacles: world axis",
-             Check::UnitVector},
+    v.field({"clearance_axis", -1, 1, "turn out of solid obstacles: world axis", Check::UnitVector},
             p.clearance.axis);
     v.field({"clearance_angle", -kBig, kBig, "turn out of solid obstacles, degrees (0: none)"},
             p.clearance.angle);
@@ -229,11 +228,9 @@ requires SameAs<S, AttractionPoints>
 void describeState(S& a, V& v) {
     v.field({"half_angle", 0, 180, "perception cone half-angle, degrees", Check::Exclusive},
             a.halfAngle);
-    v.field({"look_ahead", 0, 100, "perception cone length, m", Check::ExclusiveMin},
-            a.lookAhead);
+    v.field({"look_ahead", 0, 100, "perception cone length, m", Check::ExclusiveMin}, a.lookAhead);
     v.field({"inertia", 0, 1, "0: turns fully toward the point, 1: unchanged"}, a.inertia);
-    v.field({"shoot_types", 0, 0, "attracted shoot types (none: all)", Check::Label},
-            a.shootTypes);
+    v.field({"shoot_types", 0, 0, "attracted shoot types (none: all)", Check::Label}, a.shootTypes);
     v.values({"point", -kBig, kBig, "an attraction point, world position, m"}, a.points);
 }
 

@@ -513,10 +513,11 @@ private:
     }
 
     void checkRange(const state::FieldInfo& f, xml_node e, double v, std::string_view text) {
-        const bool openMin = f.check == state::Check::ExclusiveMin ||
-                             f.check == state::Check::Exclusive;
+        const bool openMin =
+            f.check == state::Check::ExclusiveMin || f.check == state::Check::Exclusive;
         const bool openMax = f.check == state::Check::Exclusive;
-        const bool inside = (openMin ? v > f.min : v >= f.min) && (openMax ? v < f.max : v <= f.max);
+        const bool inside =
+            (openMin ? v > f.min : v >= f.min) && (openMax ? v < f.max : v <= f.max);
         if (inside) return;
         const std::string range =
             !openMin ? rangeText(f.min, f.max)
@@ -527,14 +528,18 @@ private:
     }  // parameters: validate() afterwards
 
     template <class Info, class T>
-        requires std::is_same_v<T, float> || std::is_same_v<T, double> ||
-                 std::is_same_v<T, int> || std::is_same_v<T, unsigned>
+    requires std::is_same_v<T, float> || std::is_same_v<T, double> || std::is_same_v<T, int> ||
+        std::is_same_v<T, unsigned>
     void readValue(const Info& f, xml_node e, T& m) {
         const std::string_view s = valueOf(e, f.name);
-        if constexpr (std::is_same_v<T, float>) m = convert(e, f.name, s, text::parseFloat);
-        else if constexpr (std::is_same_v<T, double>) m = convert(e, f.name, s, parseDouble);
-        else if constexpr (std::is_same_v<T, int>) m = convert(e, f.name, s, text::parseInt);
-        else m = convert(e, f.name, s, text::parseUnsigned);
+        if constexpr (std::is_same_v<T, float>)
+            m = convert(e, f.name, s, text::parseFloat);
+        else if constexpr (std::is_same_v<T, double>)
+            m = convert(e, f.name, s, parseDouble);
+        else if constexpr (std::is_same_v<T, int>)
+            m = convert(e, f.name, s, text::parseInt);
+        else
+            m = convert(e, f.name, s, text::parseUnsigned);
         checkRange(f, e, m, s);
     }
     template <class Info>

@@ -15,7 +15,6 @@ namespace plantarch::plant_io {
 
 namespace {
 
-
 void appendNumber(std::string& out, float v) {
     char buf[48];
     // Shortest round-trip text (plain notation unless an exponent is much shorter).

@@ -7,11 +7,11 @@
 // every plant's objects into the caller's Context in plant order and object order, giving the
 // same IDs and bytes whatever the thread count.
 
-#include <cmath>
-#include <algorithm>
-#include <memory>
-
 #include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
 
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
@@ -48,12 +48,12 @@ void forEachObjectID(PlantInstance& p, F&& f) {
 
 void checkCanopyArguments(float age, float germination) {
     if (!(age >= 0.0f) || !std::isfinite(age))
-        throw Error("invalid plant age", {.parameter = "age", .value = std::to_string(age),
-                                          .validRange = ">= 0 days"});
+        throw Error("invalid plant age",
+                    {.parameter = "age", .value = std::to_string(age), .validRange = ">= 0 days"});
     if (!(germination >= 0.0f && germination <= 1.0f))
-        throw Error("germination rate out of range",
-                    {.parameter = "germination_rate", .value = std::to_string(germination),
-                     .validRange = "0 to 1"});
+        throw Error("germination rate out of range", {.parameter = "germination_rate",
+                                                      .value = std::to_string(germination),
+                                                      .validRange = "0 to 1"});
 }
 
 struct CanopyWorker {
@@ -79,10 +79,12 @@ void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant, Imp
         const ObjectView v = from.object(o);
         auto m = materials.find(v.material);
         if (m == materials.end())
-            m = materials.emplace(v.material, context_->addMaterial(from.material(v.material))).first;
+            m = materials.emplace(v.material, context_->addMaterial(from.material(v.material)))
+                    .first;
         const ObjectID copy = context_->addObject(v.positions, v.uvs, v.indices, m->second);
         for (const std::string& label : labels)
-            if (auto value = from.objectData(o, label)) context_->setObjectData(copy, label, *value);
+            if (auto value = from.objectData(o, label))
+                context_->setObjectData(copy, label, *value);
         remap[o] = copy;
     }
     forEachObjectID(plant, [&](ObjectID& o) {
@@ -136,8 +138,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     auto throwFirstError = [&] {
         for (int i = 0; i < n; ++i)
             if (!errors[std::size_t(i)].empty())
-                throw Error("building canopy plant " + std::to_string(i) + " failed: " +
-                            errors[std::size_t(i)]);
+                throw Error("building canopy plant " + std::to_string(i) +
+                            " failed: " + errors[std::size_t(i)]);
     };
     std::vector<unsigned> ids;
     if (!together) {
@@ -233,8 +235,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
 }
 
 std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(
-    const vec3& center, const vec2& spacing, const glm::ivec2& count, float age,
-    float germination, const std::map<std::string, float>& buildParameters) {
+    const vec3& center, const vec2& spacing, const glm::ivec2& count, float age, float germination,
+    const std::map<std::string, float>& buildParameters) {
     checkCanopyArguments(age, germination);
     if (count.x < 1 || count.y < 1 || std::int64_t(count.x) * count.y > 1000000)
         throw Error("plant count out of range",
@@ -270,8 +272,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(
                                                  .validRange = "1 to 1000000"});
     if (!(extent.x >= 0.0f && extent.y >= 0.0f) || !std::isfinite(extent.x) ||
         !std::isfinite(extent.y))
-        throw Error("canopy extent must not be negative", {.parameter = "canopy_extent",
-                                                           .validRange = ">= 0 m in x and y"});
+        throw Error("canopy extent must not be negative",
+                    {.parameter = "canopy_extent", .validRange = ">= 0 m in x and y"});
     Rng scene(seed_, kCanopyStream);
     std::vector<vec3> positions;
     for (unsigned k = 0; k < count; ++k) {

@@ -21,13 +21,16 @@ void PlantArchitecture::loadPlantModelFromLibrary(const std::string& nameOrPath)
     impl_->species = std::move(model);
 }
 
-std::vector<std::string> PlantArchitecture::getAvailablePlantModels() const { return listSpecies(); }
+std::vector<std::string> PlantArchitecture::getAvailablePlantModels() const {
+    return listSpecies();
+}
 
 std::string PlantArchitecture::getCurrentPlantModel() const {
     return impl_->species ? impl_->species->name : std::string();
 }
 
-std::vector<std::string> PlantArchitecture::listShootTypeLabels(const std::string& nameOrPath) const {
+std::vector<std::string> PlantArchitecture::listShootTypeLabels(
+    const std::string& nameOrPath) const {
     std::vector<std::string> labels;
     for (const auto& [label, p] : loadSpecies(nameOrPath).shootTypes) labels.push_back(label);
     return labels;
@@ -39,8 +42,8 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
         throw Error("no species loaded: call loadPlantModelFromLibrary first",
                     {.parameter = "species", .validRange = "one of the library species"});
     if (!(age >= 0.0f) || !std::isfinite(age))
-        throw Error("invalid plant age", {.parameter = "age", .value = std::to_string(age),
-                                          .validRange = ">= 0 days"});
+        throw Error("invalid plant age",
+                    {.parameter = "age", .value = std::to_string(age), .validRange = ">= 0 days"});
     resolveBuildParameters(*impl_->species, build_parameters);  // range errors before any change
     const unsigned id = buildPlantStructure(base_position, build_parameters);
     try {
@@ -52,16 +55,16 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
     return id;
 }
 
-unsigned PlantArchitecture::buildPlantStructure(const vec3& base_position,
-                                                const std::map<std::string, float>& build_parameters) {
+unsigned PlantArchitecture::buildPlantStructure(
+    const vec3& base_position, const std::map<std::string, float>& build_parameters) {
     const SpeciesModel& model = *impl_->species;
     const unsigned id = addPlantInstance(base_position, 0.0f);
     try {
         impl_->plant(id).name = model.name;
         buildInitialStructure(*this, id, model, build_parameters);
         if (model.attraction)
-            enableAttractionPoints(id, speciesAttractionPoints(model, seed(), id, base_position,
-                                                               build_parameters));
+            enableAttractionPoints(
+                id, speciesAttractionPoints(model, seed(), id, base_position, build_parameters));
     } catch (...) {
         deletePlantInstance(id);
         throw;

@@ -184,7 +184,8 @@ private:
                     break;
             }
             if (step.leaves == "false") arch_.removeShootLeaves(plantID_, id);
-            if (step.vegetativeBuds == "false") arch_.removeShootAxillaryVegetativeBuds(plantID_, id);
+            if (step.vegetativeBuds == "false")
+                arch_.removeShootAxillaryVegetativeBuds(plantID_, id);
             if (step.floralBuds == "false") arch_.removeShootFloralBuds(plantID_, id);
             if (step.apex == "false") arch_.removeShootApex(plantID_, id);
             return id;
@@ -233,8 +234,10 @@ public:
         const std::vector<std::string> parts = species_xml::splitVector(text);
         if (parts.size() != 3)
             throw Error("expected three expressions x, y, z separated by commas",
-                        {.file = species_.sourceFile, .line = line,
-                         .parameter = "attraction_points." + parameter, .value = text,
+                        {.file = species_.sourceFile,
+                         .line = line,
+                         .parameter = "attraction_points." + parameter,
+                         .value = text,
                          .validRange = "e.g. \"0, 0, wire_height\""});
         return {float(number(line, parameter, parts[0])), float(number(line, parameter, parts[1])),
                 float(number(line, parameter, parts[2]))};
@@ -263,9 +266,11 @@ AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint6
     out.inertia = float(ev.number(a.line, "inertia", a.inertia));
     out.shootTypes = a.shootTypes;
     auto outOfRange = [&](const char* what, double v, const char* range) {
-        throw Error("out of range", {.file = species.sourceFile, .line = a.line,
+        throw Error("out of range", {.file = species.sourceFile,
+                                     .line = a.line,
                                      .parameter = std::string("attraction_points.") + what,
-                                     .value = text::formatDouble(v), .validRange = range});
+                                     .value = text::formatDouble(v),
+                                     .validRange = range});
     };
     if (!(out.halfAngle > 0.0f && out.halfAngle < 180.0f))
         outOfRange("half_angle", out.halfAngle, "> 0 and < 180 degrees");
@@ -281,7 +286,8 @@ AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint6
         const double length = glm::length(to - from);
         if (!(spacing > 0.0) || length / spacing > 1e6)
             throw Error("wire point spacing out of range",
-                        {.file = species.sourceFile, .line = wire.line,
+                        {.file = species.sourceFile,
+                         .line = wire.line,
                          .parameter = "attraction_points." + path + ".spacing",
                          .value = text::formatDouble(spacing),
                          .validRange = "> 0 m and at most 1e6 points per wire"});

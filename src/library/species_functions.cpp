@@ -1,9 +1,10 @@
 // Named per-phytomer functions used by the library species, registered in every
 // PlantArchitecture. Species files refer to them by name.
 
+#include "library/species_functions.h"
+
 #include <algorithm>
 
-#include "library/species_functions.h"
 #include "model/architecture_impl.h"
 
 namespace plantarch {
@@ -31,8 +32,10 @@ namespace {
 // Early leaves are smaller (60 % at emergence, full size by day 8) and the main stem's
 // first internodes shorter (20 % at emergence, full length by day 10).
 void legumePhytomer(PhytomerCreationContext& c) {
-    if (c.nodeIndex > 5 || c.shoot.rank > 1) killVegetativeBuds(c.phytomer);
-    else killFloralBuds(c.phytomer);
+    if (c.nodeIndex > 5 || c.shoot.rank > 1)
+        killVegetativeBuds(c.phytomer);
+    else
+        killFloralBuds(c.phytomer);
     const float leafScale = std::min(1.0f, 0.6f + 0.4f * float(c.plantAge) / 8.0f);
     for (Petiole& p : c.phytomer.petioles)
         for (LeafOrgan& l : p.leaves) l.scale *= leafScale;

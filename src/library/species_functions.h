@@ -14,10 +14,10 @@ void killVegetativeBuds(Phytomer& ph);
 /// Marks the unopened floral buds of a phytomer dead (no flowers from this node).
 void killFloralBuds(Phytomer& ph);
 
-void registerLegumes(PlantArchitecture& arch);     // species_functions.cpp
-void registerTrees(PlantArchitecture& arch);       // species_functions_trees.cpp
-void registerOrchard(PlantArchitecture& arch);     // species_functions_orchard.cpp
-void registerHerbs(PlantArchitecture& arch);       // species_functions_herbs.cpp
+void registerLegumes(PlantArchitecture& arch);  // species_functions.cpp
+void registerTrees(PlantArchitecture& arch);    // species_functions_trees.cpp
+void registerOrchard(PlantArchitecture& arch);  // species_functions_orchard.cpp
+void registerHerbs(PlantArchitecture& arch);    // species_functions_herbs.cpp
 
 }  // namespace species_functions
 }  // namespace plantarch

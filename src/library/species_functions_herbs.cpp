@@ -106,7 +106,8 @@ void maizePhytomer(PhytomerCreationContext& c) {
     }
     if (!c.plant.shootTypes.count(kMaizeEarType))
         throw Error("maize_phytomer needs a shoot type for the ears",
-                    {.parameter = "shoot_type_label", .value = kMaizeEarType,
+                    {.parameter = "shoot_type_label",
+                     .value = kMaizeEarType,
                      .validRange = "a shoot type labelled 'ear' in the species"});
     for (Petiole& p : c.phytomer.petioles)
         for (FloralBud& b : p.floralBuds)

@@ -11,7 +11,9 @@ namespace plantarch::species_functions {
 
 namespace {
 
-bool dormant(const PlantInstance& plant) { return plant.stage == PhenologyStage::Dormant; }
+bool dormant(const PlantInstance& plant) {
+    return plant.stage == PhenologyStage::Dormant;
+}
 
 // Olive (callback): while the tree is dormant, the floral buds of every node more than 8
 // below the shoot's tip are removed, so only the ~8 most distal nodes of each shoot flower
@@ -55,8 +57,10 @@ void redbudPhytomerCallback(PhytomerCallbackContext& c) {
     const int n = int(c.shoot.phytomers.size());
     const int distal = c.plant.rng.uniformInt(2, 4);
     for (int k = 0; k < n; ++k) {
-        if (k < n - distal) killVegetativeBuds(c.shoot.phytomers[std::size_t(k)]);
-        else killFloralBuds(c.shoot.phytomers[std::size_t(k)]);
+        if (k < n - distal)
+            killVegetativeBuds(c.shoot.phytomers[std::size_t(k)]);
+        else
+            killFloralBuds(c.shoot.phytomers[std::size_t(k)]);
     }
 }
 

@@ -321,9 +321,10 @@ void readGroup(const XmlSource& src, Lines& lines, xml_node e, const std::string
 
 // ---- the species file -------------------------------------------------------------------
 
-const std::vector<std::string> kTopLevel = {
-    "name",       "common_name", "latin_name",       "plant_type", "description", "recommended_age",
-    "max_height", "phenology",   "build_parameters", "shoot_type", "build", "attraction_points"};
+const std::vector<std::string> kTopLevel = {"name",       "common_name", "latin_name",
+                                            "plant_type", "description", "recommended_age",
+                                            "max_height", "phenology",   "build_parameters",
+                                            "shoot_type", "build",       "attraction_points"};
 
 class SpeciesReader {
 public:
@@ -549,8 +550,8 @@ private:
         checkChildren(src_, e, path, {"wire", "point"}, {"wire", "point"});
         std::vector<std::string> names;
         for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
-        auto expression = [&](xml_node n, const std::string& at, const char* attribute,
-                              bool vector, bool required, std::string& out) {
+        auto expression = [&](xml_node n, const std::string& at, const char* attribute, bool vector,
+                              bool required, std::string& out) {
             pugi::xml_attribute a = n.attribute(attribute);
             if (!a) {
                 if (required) requiredAttribute(src_, n, at, attribute);
@@ -561,8 +562,8 @@ private:
             const std::vector<std::string> parts =
                 vector ? species_xml::splitVector(value) : std::vector<std::string>{value};
             if (parts.size() != 3 && vector)
-                src_.fail(n, where, "expected three expressions x, y, z separated by commas",
-                          value, "e.g. \"0, 0, wire_height\"");
+                src_.fail(n, where, "expected three expressions x, y, z separated by commas", value,
+                          "e.g. \"0, 0, wire_height\"");
             for (const std::string& part : parts) {
                 try {
                     expr::check(part, names);

@@ -14,7 +14,6 @@ namespace plantarch {
 
 namespace {
 
-
 // Text safe inside <!-- -->: no "--" and no trailing '-'.
 std::string commentText(std::string s) {
     for (std::size_t i = 0; (i = s.find("--", i)) != std::string::npos;) s.replace(i, 2, "- ");
@@ -146,10 +145,11 @@ private:
         for (const auto& [key, value] : m) {
             w_.indent(depth_ + 1);
             auto& o = w_.out();
-            o << "<" << spell.element << " " << spell.keyAttribute << "=\"" << text::xmlEscaped(keyText(key))
-              << "\"";
+            o << "<" << spell.element << " " << spell.keyAttribute << "=\""
+              << text::xmlEscaped(keyText(key)) << "\"";
             if (spell.valueAttribute)
-                o << " " << spell.valueAttribute << "=\"" << text::xmlEscaped(valueText(value)) << "\"/>\n";
+                o << " " << spell.valueAttribute << "=\"" << text::xmlEscaped(valueText(value))
+                  << "\"/>\n";
             else
                 o << ">" << text::xmlEscaped(valueText(value)) << "</" << spell.element << ">\n";
         }
@@ -169,9 +169,9 @@ void writeBuildParameters(Writer& w, const SpeciesModel& m) {
     for (const BuildParameter& p : m.buildParameters) {
         w.indent(2);
         auto& o = w.out();
-        o << "<parameter name=\"" << text::xmlEscaped(p.name) << "\" default=\"" << text::formatFloat(p.value)
-          << "\" min=\"" << text::formatFloat(p.min) << "\" max=\"" << text::formatFloat(p.max)
-          << "\"";
+        o << "<parameter name=\"" << text::xmlEscaped(p.name) << "\" default=\""
+          << text::formatFloat(p.value) << "\" min=\"" << text::formatFloat(p.min) << "\" max=\""
+          << text::formatFloat(p.max) << "\"";
         if (!p.unit.empty()) o << " unit=\"" << text::xmlEscaped(p.unit) << "\"";
         if (!p.doc.empty()) o << " doc=\"" << text::xmlEscaped(p.doc) << "\"";
         o << "/>\n";
@@ -212,8 +212,9 @@ void writeAttraction(Writer& w, const SpeciesAttraction& a) {
     o << "\n";
     for (const SpeciesAttraction::Wire& wire : a.wires) {
         w.indent(2);
-        o << "<wire from=\"" << text::xmlEscaped(wire.from) << "\" to=\"" << text::xmlEscaped(wire.to)
-          << "\" spacing=\"" << text::xmlEscaped(wire.spacing) << "\"/>\n";
+        o << "<wire from=\"" << text::xmlEscaped(wire.from) << "\" to=\""
+          << text::xmlEscaped(wire.to) << "\" spacing=\"" << text::xmlEscaped(wire.spacing)
+          << "\"/>\n";
     }
     for (const SpeciesAttraction::Point& p : a.points) {
         w.indent(2);

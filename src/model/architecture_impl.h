@@ -65,12 +65,14 @@ struct PlantArchitecture::Impl {
     /// Cache keys of leaf prototypes by address, valid during one grow or tessellate call
     /// (shoot types do not change within one); cleared at the start of each.
     std::map<const LeafPrototype*, std::string> prototypeKeys;
-    using LeafKey = std::tuple<const LeafPrototype*, int, unsigned>;  ///< prototype, leaflet, variant
+    using LeafKey =
+        std::tuple<const LeafPrototype*, int, unsigned>;  ///< prototype, leaflet, variant
     struct LeafKeyHash {
         std::size_t operator()(const LeafKey& k) const {
-            const std::uint64_t h = std::uint64_t(reinterpret_cast<std::uintptr_t>(std::get<0>(k))) ^
-                                    (std::uint64_t(std::uint32_t(std::get<1>(k))) << 32) ^
-                                    (std::uint64_t(std::get<2>(k)) * 0x9e3779b97f4a7c15ULL);
+            const std::uint64_t h =
+                std::uint64_t(reinterpret_cast<std::uintptr_t>(std::get<0>(k))) ^
+                (std::uint64_t(std::uint32_t(std::get<1>(k))) << 32) ^
+                (std::uint64_t(std::get<2>(k)) * 0x9e3779b97f4a7c15ULL);
             return std::size_t(h ^ (h >> 29));
         }
     };

@@ -51,7 +51,8 @@ void PlantArchitecture::pruneBranch(unsigned plantID, unsigned shootID, unsigned
     Shoot& s = impl_->shoot(p, shootID);
     if (node >= s.phytomers.size())
         throw Error("node out of range",
-                    {.parameter = "node", .value = std::to_string(node),
+                    {.parameter = "node",
+                     .value = std::to_string(node),
                      .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
     // Shoots growing from the removed nodes (or from the tip, for appended shoots) go too.
     std::function<void(unsigned)> removeShoot = [&](unsigned id) {
@@ -66,8 +67,10 @@ void PlantArchitecture::pruneBranch(unsigned plantID, unsigned shootID, unsigned
     std::vector<unsigned> keep;
     for (unsigned child : s.children) {
         const Shoot& c = p.shoots[child];
-        if (c.parentNode >= int(node)) removeShoot(child);
-        else keep.push_back(child);
+        if (c.parentNode >= int(node))
+            removeShoot(child);
+        else
+            keep.push_back(child);
     }
     s.children = keep;
     for (std::size_t i = node; i < s.phytomers.size(); ++i)
@@ -179,16 +182,19 @@ unsigned PlantArchitecture::addFloralBud(unsigned plantID, unsigned shootID, uns
     Shoot& s = impl_->shoot(p, shootID);
     if (node >= s.phytomers.size())
         throw Error("node out of range",
-                    {.parameter = "node", .value = std::to_string(node),
+                    {.parameter = "node",
+                     .value = std::to_string(node),
                      .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
     Phytomer& ph = s.phytomers[node];
     if (petioleIndex >= ph.petioles.size())
         throw Error("petiole index out of range",
-                    {.parameter = "petiole_index", .value = std::to_string(petioleIndex),
+                    {.parameter = "petiole_index",
+                     .value = std::to_string(petioleIndex),
                      .validRange = "0 to " + std::to_string(ph.petioles.size()) + " (exclusive)"});
     if (stage == FloralStage::Bud || stage == FloralStage::Removed)
         throw Error("a hand-added floral bud must be a flower or fruit",
-                    {.parameter = "stage", .value = floralStageName(stage),
+                    {.parameter = "stage",
+                     .value = floralStageName(stage),
                      .validRange = "flower_closed, flower_open, fruit"});
     const ShootParameters& type = impl_->shootTypeFor(p, ph.parametersLabel);
     const PhytomerParameters& pp = type.phytomer_parameters;
@@ -207,7 +213,8 @@ unsigned PlantArchitecture::addFloralBud(unsigned plantID, unsigned shootID, uns
 
 void PlantArchitecture::registerLeafPrototype(const std::string& name, LeafPrototypeFunction fn) {
     if (name.empty() || !fn)
-        throw Error("a leaf prototype needs a name and a function", {.parameter = "name", .value = name});
+        throw Error("a leaf prototype needs a name and a function",
+                    {.parameter = "name", .value = name});
     impl_->leafPrototypes[name] = std::move(fn);
     impl_->cache.clear();
     impl_->proxies.reset();
@@ -257,7 +264,9 @@ vec3 PlantArchitecture::getPlantBasePosition(unsigned plantID) const {
     return impl_->plant(plantID).base;
 }
 
-float PlantArchitecture::getPlantAge(unsigned plantID) const { return impl_->plant(plantID).age; }
+float PlantArchitecture::getPlantAge(unsigned plantID) const {
+    return impl_->plant(plantID).age;
+}
 
 float PlantArchitecture::getPlantHeight(unsigned plantID) const {
     const PlantInstance& p = impl_->plant(plantID);
@@ -394,7 +403,8 @@ unsigned PlantArchitecture::getShootRank(unsigned plantID, unsigned shootID) con
     return impl_->shoot(p, shootID).rank;
 }
 
-std::vector<unsigned> PlantArchitecture::getShootChildren(unsigned plantID, unsigned shootID) const {
+std::vector<unsigned> PlantArchitecture::getShootChildren(unsigned plantID,
+                                                          unsigned shootID) const {
     const PlantInstance& p = impl_->plant(plantID);
     return impl_->shoot(p, shootID).children;
 }
@@ -435,7 +445,8 @@ vec3 PlantArchitecture::getNodePosition(unsigned plantID, unsigned shootID, unsi
     const Shoot& s = impl_->shoot(p, shootID);
     if (node >= s.phytomers.size())
         throw Error("node out of range",
-                    {.parameter = "node", .value = std::to_string(node),
+                    {.parameter = "node",
+                     .value = std::to_string(node),
                      .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
     return shootNodePositions(p, shootID)[node + 1];
 }

@@ -32,7 +32,7 @@ template <class T, class U>
 concept SameAs = std::is_same_v<std::remove_const_t<T>, U>;
 
 template <class S, class V>
-    requires SameAs<S, LeafPrototype>
+requires SameAs<S, LeafPrototype>
 void describeParameters(S& p, V& v) {
     v.field({"prototype_function", "", 0, 0,
              "Registered leaf prototype function; 'procedural' builds the outline below"},
@@ -60,8 +60,7 @@ void describeParameters(S& p, V& v) {
     v.field({"lobe_depth", "", 0, 0.95, "Depth of the sinuses, fraction of the half-width"},
             p.lobe_depth);
     v.field({"serrations", "", 0, 200, "Teeth along each margin"}, p.serrations);
-    v.field({"serration_depth", "", 0, 0.2, "Tooth depth, fraction of length"},
-            p.serration_depth);
+    v.field({"serration_depth", "", 0, 0.2, "Tooth depth, fraction of length"}, p.serration_depth);
     v.field({"base_width", "", 0, 0.95,
              "Width of a truncate base, fraction of the maximum width (0: pointed base)"},
             p.base_width);
@@ -71,9 +70,9 @@ void describeParameters(S& p, V& v) {
             p.sinus_depth);
     v.field({"midrib_fold_fraction", "", -1, 1, "Fold about the midrib (0 flat, 1 closed)"},
             p.midrib_fold_fraction);
-    v.field({"longitudinal_curvature", "", -2, 2,
-             "Curvature along the midrib; positive lifts the tip"},
-            p.longitudinal_curvature);
+    v.field(
+        {"longitudinal_curvature", "", -2, 2, "Curvature along the midrib; positive lifts the tip"},
+        p.longitudinal_curvature);
     v.field({"lateral_curvature", "", -5, 5, "Curvature across the blade; positive cups it"},
             p.lateral_curvature);
     v.field({"petiole_roll", "degrees", -180, 180,
@@ -87,9 +86,9 @@ void describeParameters(S& p, V& v) {
             p.wave_amplitude);
     v.field({"leaf_buckle_length", "", 0, 1, "Where the blade buckles, fraction of length"},
             p.leaf_buckle_length);
-    v.field({"leaf_buckle_angle", "degrees", -180, 180,
-             "Buckle angle; positive bends the tip down"},
-            p.leaf_buckle_angle);
+    v.field(
+        {"leaf_buckle_angle", "degrees", -180, 180, "Buckle angle; positive bends the tip down"},
+        p.leaf_buckle_angle);
     v.field({"leaf_offset", "", -kInf, kInf, "Shift of the blade from the petiole tip, leaf units"},
             p.leaf_offset);
     v.field({"subdivisions", "", 1, 200, "Mesh resolution (rows along the midrib)"},
@@ -103,7 +102,7 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, InternodeParameters>
+requires SameAs<S, InternodeParameters>
 void describeParameters(S& p, V& v) {
     v.field({"pitch", "degrees", -180, 180,
              "Zig-zag angle of the internode from the shoot axis, away from its petiole"},
@@ -119,12 +118,11 @@ void describeParameters(S& p, V& v) {
     v.field({"color", "", 0, 1, "RGB colour"}, p.color);
     v.field({"image_texture", "", 0, 0, "Bark/stem image texture"}, p.image_texture);
     v.field({"length_segments", "", 1, 100, "Tube segments per internode"}, p.length_segments);
-    v.field({"radial_subdivisions", "", 3, 100, "Vertices around the tube"},
-            p.radial_subdivisions);
+    v.field({"radial_subdivisions", "", 3, 100, "Vertices around the tube"}, p.radial_subdivisions);
 }
 
 template <class S, class V>
-    requires SameAs<S, PetioleParameters>
+requires SameAs<S, PetioleParameters>
 void describeParameters(S& p, V& v) {
     v.field({"petioles_per_internode", "", 0, 20, "Petioles at each node (2 = opposite)"},
             p.petioles_per_internode);
@@ -138,12 +136,11 @@ void describeParameters(S& p, V& v) {
     v.field({"taper", "", 0, 1, "Tip radius / base radius"}, p.taper);
     v.field({"color", "", 0, 1, "RGB colour"}, p.color);
     v.field({"length_segments", "", 1, 100, "Tube segments"}, p.length_segments);
-    v.field({"radial_subdivisions", "", 3, 100, "Vertices around the tube"},
-            p.radial_subdivisions);
+    v.field({"radial_subdivisions", "", 3, 100, "Vertices around the tube"}, p.radial_subdivisions);
 }
 
 template <class S, class V>
-    requires SameAs<S, LeafParameters>
+requires SameAs<S, LeafParameters>
 void describeParameters(S& p, V& v) {
     v.field({"leaves_per_petiole", "", 1, 99, "Leaves per petiole; more than 1 is compound"},
             p.leaves_per_petiole);
@@ -160,22 +157,20 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, PeduncleParameters>
+requires SameAs<S, PeduncleParameters>
 void describeParameters(S& p, V& v) {
     v.field({"length", "m", 0, 10, "Length"}, p.length);
     v.field({"radius", "m", 0, 1, "Radius"}, p.radius);
     v.field({"pitch", "degrees", -180, 180, "Angle from the internode axis"}, p.pitch);
     v.field({"roll", "degrees", -360, 360, "Rotation about its own axis"}, p.roll);
-    v.field({"curvature", "degrees/m", -100000, 100000, "Curvature per unit length"},
-            p.curvature);
+    v.field({"curvature", "degrees/m", -100000, 100000, "Curvature per unit length"}, p.curvature);
     v.field({"color", "", 0, 1, "RGB colour"}, p.color);
     v.field({"length_segments", "", 1, 100, "Tube segments"}, p.length_segments);
-    v.field({"radial_subdivisions", "", 3, 100, "Vertices around the tube"},
-            p.radial_subdivisions);
+    v.field({"radial_subdivisions", "", 3, 100, "Vertices around the tube"}, p.radial_subdivisions);
 }
 
 template <class S, class V>
-    requires SameAs<S, InflorescenceParameters>
+requires SameAs<S, InflorescenceParameters>
 void describeParameters(S& p, V& v) {
     v.field({"flowers_per_peduncle", "", 1, 200, "Flowers (potential fruit) per peduncle"},
             p.flowers_per_peduncle);
@@ -187,8 +182,7 @@ void describeParameters(S& p, V& v) {
     v.field({"pitch", "degrees", -180, 180, "Flower/fruit axis from the peduncle axis"}, p.pitch);
     v.field({"roll", "degrees", -360, 360, "Rotation about the flower/fruit axis"}, p.roll);
     v.field({"flower_prototype_scale", "m", 0, 10, "Flower length"}, p.flower_prototype_scale);
-    v.field({"flower_prototype_function", "", 0, 0,
-             "Registered flower prototype, or an .obj file"},
+    v.field({"flower_prototype_function", "", 0, 0, "Registered flower prototype, or an .obj file"},
             p.flower_prototype_function);
     v.field({"flower_prototype_parameters", "", -1e6, 1e6,
              "Shape parameters of the flower prototype family"},
@@ -215,7 +209,7 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, PhytomerParameters>
+requires SameAs<S, PhytomerParameters>
 void describeParameters(S& p, V& v) {
     v.group("internode", p.internode, [&](auto& sub) { describeParameters(p.internode, sub); });
     v.group("petiole", p.petiole, [&](auto& sub) { describeParameters(p.petiole, sub); });
@@ -232,7 +226,7 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, ShootParameters>
+requires SameAs<S, ShootParameters>
 void describeParameters(S& p, V& v) {
     v.field({"max_nodes", "", 1, 100000, "Maximum phytomers on the shoot"}, p.max_nodes);
     v.field({"max_nodes_per_season", "", 1, 100000, "Maximum phytomers added in one season"},
@@ -261,9 +255,9 @@ void describeParameters(S& p, V& v) {
             p.tortuosity);
     v.field({"phyllochron_min", "days", 0.001, 10000, "Days between successive phytomers"},
             p.phyllochron_min);
-    v.field({"elongation_rate_max", "1/day", 0, 100,
-             "Elongation per day as a fraction of full length"},
-            p.elongation_rate_max);
+    v.field(
+        {"elongation_rate_max", "1/day", 0, 100, "Elongation per day as a fraction of full length"},
+        p.elongation_rate_max);
     v.field({"girth_area_factor", "cm^2/m^2", 0, 100000,
              "Internode cross-section per downstream leaf area (0 locks the radius)"},
             p.girth_area_factor);
@@ -299,7 +293,7 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
-    requires SameAs<S, PhenologyParameters>
+requires SameAs<S, PhenologyParameters>
 void describeParameters(S& p, V& v) {
     v.field({"time_to_dormancy_break", "days", -1, 100000,
              "Dormancy (and each winter) until buds break; negative disables"},
@@ -313,8 +307,7 @@ void describeParameters(S& p, V& v) {
     v.field({"time_to_fruit_set", "days", -1, 100000,
              "Previous enabled stage until flowers set fruit; negative disables fruit"},
             p.time_to_fruit_set);
-    v.field({"time_to_fruit_maturity", "days", -1, 100000,
-             "Fruit set until fruit reach full size"},
+    v.field({"time_to_fruit_maturity", "days", -1, 100000, "Fruit set until fruit reach full size"},
             p.time_to_fruit_maturity);
     v.field({"time_to_senescence", "days", -1, 100000,
              "Dormancy break until the season ends (leaves dropped unless evergreen)"},

@@ -34,10 +34,12 @@ struct Validator {
     }
     [[noreturn]] void fail(const params::FieldInfo& f, const std::string& value,
                            const std::string& why, std::string range = "") const {
-        throw Error(why, {.parameter = at(f), .value = value,
+        throw Error(why, {.parameter = at(f),
+                          .value = value,
                           .validRange = range.empty() ? rangeText(f) : range});
     }
-    void checkNumber(const params::FieldInfo& f, double lo, double hi, const std::string& text) const {
+    void checkNumber(const params::FieldInfo& f, double lo, double hi,
+                     const std::string& text) const {
         if (!std::isfinite(lo) && lo != -params::kInf) fail(f, text, "not a number");
         if (lo < f.min || hi > f.max) fail(f, text, "out of range");
     }
@@ -89,7 +91,8 @@ struct Validator {
             for (const auto& [key, value] : types)
                 if (!std::isfinite(value) || value < f.min || value > f.max)
                     throw Error("out of range", {.parameter = at(f) + "." + key,
-                                                 .value = number(value), .validRange = rangeText(f)});
+                                                 .value = number(value),
+                                                 .validRange = rangeText(f)});
             return;
         }
         if (types.empty()) return;
@@ -97,7 +100,8 @@ struct Validator {
         for (const auto& [label, prob] : types) {
             if (!(prob >= 0.0f && prob <= 1.0f))
                 throw Error("child shoot type probability out of range",
-                            {.parameter = at(f) + "." + label, .value = number(prob),
+                            {.parameter = at(f) + "." + label,
+                             .value = number(prob),
                              .validRange = "0 to 1"});
             sum += prob;
         }
@@ -128,11 +132,11 @@ void validate(const ShootParameters& p, const std::string& prefix) {
     params::describeParameters(p, v);
     auto at = [&](const char* name) { return prefix.empty() ? name : prefix + "." + name; };
     if (p.internode_length_min.lowerBound() > p.internode_length_max.upperBound())
-        throw Error("internode_length_min exceeds internode_length_max",
-                    {.parameter = at("internode_length_min"),
-                     .value = p.internode_length_min.describe(),
-                     .validRange = "<= internode_length_max (" +
-                                   p.internode_length_max.describe() + ")"});
+        throw Error(
+            "internode_length_min exceeds internode_length_max",
+            {.parameter = at("internode_length_min"),
+             .value = p.internode_length_min.describe(),
+             .validRange = "<= internode_length_max (" + p.internode_length_max.describe() + ")"});
     if (p.vegetative_bud_break_probability_min.lowerBound() >
         p.vegetative_bud_break_probability_max.upperBound())
         throw Error("vegetative_bud_break_probability_min exceeds the maximum",
@@ -161,34 +165,50 @@ void ShootParameters::defineChildShootTypes(const std::vector<std::string>& labe
 
 const char* organName(OrganKind kind) {
     switch (kind) {
-        case OrganKind::Internode: return "internode";
-        case OrganKind::Petiole: return "petiole";
-        case OrganKind::Leaf: return "leaf";
-        case OrganKind::Peduncle: return "peduncle";
-        case OrganKind::FlowerClosed: return "flower_closed";
-        case OrganKind::FlowerOpen: return "flower_open";
-        case OrganKind::Fruit: return "fruit";
+        case OrganKind::Internode:
+            return "internode";
+        case OrganKind::Petiole:
+            return "petiole";
+        case OrganKind::Leaf:
+            return "leaf";
+        case OrganKind::Peduncle:
+            return "peduncle";
+        case OrganKind::FlowerClosed:
+            return "flower_closed";
+        case OrganKind::FlowerOpen:
+            return "flower_open";
+        case OrganKind::Fruit:
+            return "fruit";
     }
     return "unknown";
 }
 
 const char* budStateName(BudState s) {
     switch (s) {
-        case BudState::Dormant: return "dormant";
-        case BudState::Active: return "active";
-        case BudState::Broken: return "broken";
-        case BudState::Dead: return "dead";
+        case BudState::Dormant:
+            return "dormant";
+        case BudState::Active:
+            return "active";
+        case BudState::Broken:
+            return "broken";
+        case BudState::Dead:
+            return "dead";
     }
     return "unknown";
 }
 
 const char* floralStageName(FloralStage s) {
     switch (s) {
-        case FloralStage::Bud: return "bud";
-        case FloralStage::FlowerClosed: return "flower_closed";
-        case FloralStage::FlowerOpen: return "flower_open";
-        case FloralStage::Fruit: return "fruit";
-        case FloralStage::Removed: return "removed";
+        case FloralStage::Bud:
+            return "bud";
+        case FloralStage::FlowerClosed:
+            return "flower_closed";
+        case FloralStage::FlowerOpen:
+            return "flower_open";
+        case FloralStage::Fruit:
+            return "fruit";
+        case FloralStage::Removed:
+            return "removed";
     }
     return "unknown";
 }

@@ -4,17 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <utility>
 
-#include <filesystem>
-
+#include "collision/collision_world.h"
 #include "collision/steering.h"
 #include "geometry/tube.h"
-#include "collision/collision_world.h"
 #include "model/architecture_impl.h"
+#include "plantarch/Error.h"
 #include "plantarch/OrganLibrary.h"
 #include "plantarch/OrganPrototypes.h"
-#include "plantarch/Error.h"
 
 namespace plantarch {
 
@@ -56,7 +55,8 @@ Frame orient(const Frame& parent, float pitch, float yaw, float roll) {
 
 void checkSpec(const ShootSpec& s) {
     auto bad = [](const char* name, float v, const char* range) {
-        throw Error("invalid shoot argument", {.parameter = name, .value = str(v), .validRange = range});
+        throw Error("invalid shoot argument",
+                    {.parameter = name, .value = str(v), .validRange = range});
     };
     if (s.phytomers < 1)
         throw Error("a shoot needs at least one phytomer",
@@ -104,8 +104,8 @@ const PlantInstance& PlantArchitecture::Impl::plant(unsigned id) const {
         std::string range = plants.empty() ? "no plants exist"
                                            : std::to_string(plants.begin()->first) + " to " +
                                                  std::to_string(plants.rbegin()->first);
-        throw Error("no such plant", {.parameter = "plantID", .value = std::to_string(id),
-                                      .validRange = range});
+        throw Error("no such plant",
+                    {.parameter = "plantID", .value = std::to_string(id), .validRange = range});
     }
     return it->second;
 }
@@ -116,11 +116,12 @@ Shoot& PlantArchitecture::Impl::shoot(PlantInstance& p, unsigned id) {
 
 const Shoot& PlantArchitecture::Impl::shoot(const PlantInstance& p, unsigned id) const {
     if (id >= p.shoots.size() || p.shoots[id].removed)
-        throw Error("no such shoot on plant " + std::to_string(p.id),
-                    {.parameter = "shootID", .value = std::to_string(id),
-                     .validRange = p.shoots.empty()
-                                       ? "the plant has no shoots"
-                                       : "0 to " + std::to_string(p.shoots.size() - 1)});
+        throw Error(
+            "no such shoot on plant " + std::to_string(p.id),
+            {.parameter = "shootID",
+             .value = std::to_string(id),
+             .validRange = p.shoots.empty() ? "the plant has no shoots"
+                                            : "0 to " + std::to_string(p.shoots.size() - 1)});
     return p.shoots[id];
 }
 
@@ -132,9 +133,10 @@ const ShootParameters& PlantArchitecture::Impl::shootTypeFor(PlantInstance& p,
     if (global == shootTypes.end()) {
         std::string known;
         for (const auto& [name, params] : shootTypes) known += (known.empty() ? "" : ", ") + name;
-        throw Error("unknown shoot type", {.parameter = "shoot_type_label", .value = label,
-                                           .validRange = known.empty() ? "no shoot types defined"
-                                                                       : "one of: " + known});
+        throw Error("unknown shoot type",
+                    {.parameter = "shoot_type_label",
+                     .value = label,
+                     .validRange = known.empty() ? "no shoot types defined" : "one of: " + known});
     }
     return p.shootTypes.emplace(label, global->second).first->second;
 }
@@ -149,9 +151,10 @@ void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
     };
     auto checkFile = [&](const std::string& file, const std::string& field) {
         if (!std::filesystem::is_regular_file(file))
-            throw Error("OBJ model file not found",
-                        {.file = file, .parameter = label + ".phytomer." + field, .value = file,
-                         .validRange = "an existing .obj file"});
+            throw Error("OBJ model file not found", {.file = file,
+                                                     .parameter = label + ".phytomer." + field,
+                                                     .value = file,
+                                                     .validRange = "an existing .obj file"});
     };
     if (!ph.leaf.prototype.OBJ_model_file.empty())
         checkFile(ph.leaf.prototype.OBJ_model_file, "leaf.prototype.OBJ_model_file");
@@ -159,34 +162,39 @@ void PlantArchitecture::Impl::checkFunctions(const ShootParameters& params,
     if (!leafPrototypes.count(leafFn))
         throw Error("unknown leaf prototype function",
                     {.parameter = label + ".phytomer.leaf.prototype.prototype_function",
-                     .value = leafFn, .validRange = list(leafPrototypes)});
+                     .value = leafFn,
+                     .validRange = list(leafPrototypes)});
     if (!ph.phytomer_creation_function.empty() &&
         !creationFunctions.count(ph.phytomer_creation_function))
         throw Error("unknown phytomer creation function",
                     {.parameter = label + ".phytomer.phytomer_creation_function",
-                     .value = ph.phytomer_creation_function, .validRange = list(creationFunctions)});
+                     .value = ph.phytomer_creation_function,
+                     .validRange = list(creationFunctions)});
     if (!ph.phytomer_callback_function.empty() &&
         !callbackFunctions.count(ph.phytomer_callback_function))
         throw Error("unknown phytomer callback function",
                     {.parameter = label + ".phytomer.phytomer_callback_function",
-                     .value = ph.phytomer_callback_function, .validRange = list(callbackFunctions)});
+                     .value = ph.phytomer_callback_function,
+                     .validRange = list(callbackFunctions)});
     for (const auto& [field, name] :
          {std::pair{"flower_prototype_function", ph.inflorescence.flower_prototype_function},
           std::pair{"fruit_prototype_function", ph.inflorescence.fruit_prototype_function}})
-        if (isOBJPrototypeName(name)) checkFile(name, std::string("inflorescence.") + field);
+        if (isOBJPrototypeName(name))
+            checkFile(name, std::string("inflorescence.") + field);
         else if (isFloralFamily(name)) {
             const bool fruit = std::string(field).rfind("fruit", 0) == 0;
             try {
-                validateFloralParameters(name, fruit ? ph.inflorescence.fruit_prototype_parameters
-                                                     : ph.inflorescence.flower_prototype_parameters);
+                validateFloralParameters(name, fruit
+                                                   ? ph.inflorescence.fruit_prototype_parameters
+                                                   : ph.inflorescence.flower_prototype_parameters);
             } catch (const Error& e) {
                 throw e.withParameterPrefix(label + ".phytomer.inflorescence." +
                                             (fruit ? "fruit" : "flower") + "_prototype_parameters");
             }
-        }
-        else if (!name.empty() && !floralPrototypes.count(name))
+        } else if (!name.empty() && !floralPrototypes.count(name))
             throw Error("unknown flower/fruit prototype function",
-                        {.parameter = label + ".phytomer.inflorescence." + field, .value = name,
+                        {.parameter = label + ".phytomer.inflorescence." + field,
+                         .value = name,
                          .validRange = list(floralPrototypes)});
 }
 
@@ -280,8 +288,8 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
         in.guide = glm::normalize(g);
         // Carry the roll reference along with the smallest rotation (no twist).
         vec3 ref = prev.rollReference - glm::dot(prev.rollReference, in.guide) * in.guide;
-        in.rollReference = glm::length(ref) > 1e-6f ? glm::normalize(ref)
-                                                   : geometry::anyPerpendicular(in.guide);
+        in.rollReference =
+            glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(in.guide);
     }
     // Collision avoidance and attraction points turn the axis of internodes made by growth.
     if (impl.steering) collision::steerShootAxis(impl, plant, shoot, in, lengthMax);
@@ -306,8 +314,10 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
             collision::steerPetiole(impl, plant, shoot, in, internodeFraction, j, pt);
         addLeaves(plant, pt, pp.leaf);
         for (LeafOrgan& l : pt.leaves) l.birth = plant.age;
-        pt.vegetativeBuds.resize(std::max(0, pp.internode.max_vegetative_buds_per_petiole.sample(plant.rng)));
-        pt.floralBuds.resize(std::max(0, pp.internode.max_floral_buds_per_petiole.sample(plant.rng)));
+        pt.vegetativeBuds.resize(
+            std::max(0, pp.internode.max_vegetative_buds_per_petiole.sample(plant.rng)));
+        pt.floralBuds.resize(
+            std::max(0, pp.internode.max_floral_buds_per_petiole.sample(plant.rng)));
         ph.petioles.push_back(std::move(pt));
     }
     shoot.phytomers.push_back(std::move(ph));
@@ -317,9 +327,13 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
             throw Error("unknown phytomer creation function",
                         {.parameter = shoot.type + ".phytomer.phytomer_creation_function",
                          .value = pp.phytomer_creation_function});
-        PhytomerCreationContext c{plant, shoot, shoot.phytomers.back(),
-                                  unsigned(shoot.phytomers.size() - 1), shoot.parentNode,
-                                  shoot.maxNodes, plant.age};
+        PhytomerCreationContext c{plant,
+                                  shoot,
+                                  shoot.phytomers.back(),
+                                  unsigned(shoot.phytomers.size() - 1),
+                                  shoot.parentNode,
+                                  shoot.maxNodes,
+                                  plant.age};
         fn->second(c);
     }
 }
@@ -373,15 +387,18 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
         } else {
             if (parentNode >= parent.phytomers.size())
                 throw Error("parent node out of range",
-                            {.parameter = "parent_node_index", .value = std::to_string(parentNode),
+                            {.parameter = "parent_node_index",
+                             .value = std::to_string(parentNode),
                              .validRange = "0 to " + std::to_string(parent.phytomers.size() - 1)});
             Phytomer& node = parent.phytomers[parentNode];
             if (parentPetiole >= node.petioles.size())
-                throw Error("petiole index out of range",
-                            {.parameter = "petiole_index", .value = std::to_string(parentPetiole),
-                             .validRange = node.petioles.empty()
-                                               ? "the node has no petioles"
-                                               : "0 to " + std::to_string(node.petioles.size() - 1)});
+                throw Error(
+                    "petiole index out of range",
+                    {.parameter = "petiole_index",
+                     .value = std::to_string(parentPetiole),
+                     .validRange = node.petioles.empty()
+                                       ? "the node has no petioles"
+                                       : "0 to " + std::to_string(node.petioles.size() - 1)});
             const ShootParameters& parentType = impl.shootTypeFor(plant, parent.type);
             const int fromTip = int(parent.phytomers.size()) - 1 - int(parentNode);
             const float tipAngle = parentType.insertion_angle_tip.sample(plant.rng);
@@ -424,8 +441,7 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
         const float radius =
             spec.internodeRadius * (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
         createPhytomer(impl, plant, shoot, type.phytomer_parameters, std::max(radius, 1e-6f),
-                       spec.internodeLengthMax, spec.internodeLengthScale, spec.leafScale,
-                       &start);
+                       spec.internodeLengthMax, spec.internodeLengthScale, spec.leafScale, &start);
     }
     Shoot& created = plant.shoots.back();  // the creation function cannot add shoots
     created.internodeLengthMax = spec.internodeLengthMax;
@@ -444,9 +460,13 @@ PlantArchitecture::PlantArchitecture(Context* context)
 
 PlantArchitecture::~PlantArchitecture() = default;
 
-PlantArchitecture::Impl& implOf(PlantArchitecture& arch) { return *arch.impl_; }
+PlantArchitecture::Impl& implOf(PlantArchitecture& arch) {
+    return *arch.impl_;
+}
 
-void PlantArchitecture::setSeed(std::uint64_t seed) { seed_ = seed; }
+void PlantArchitecture::setSeed(std::uint64_t seed) {
+    seed_ = seed;
+}
 
 void PlantArchitecture::defineShootType(const std::string& label, const ShootParameters& params) {
     if (label.empty())
@@ -480,8 +500,9 @@ unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float cu
         !std::isfinite(base_position.z))
         throw Error("plant base position must be finite", {.parameter = "base_position"});
     if (!(current_age >= 0.0f && std::isfinite(current_age)))
-        throw Error("invalid plant age", {.parameter = "current_age", .value = str(current_age),
-                                          .validRange = ">= 0 days"});
+        throw Error(
+            "invalid plant age",
+            {.parameter = "current_age", .value = str(current_age), .validRange = ">= 0 days"});
     PlantInstance p;
     p.id = impl_->nextPlantID++;
     p.base = base_position;
@@ -517,8 +538,8 @@ unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, unsigned nodes,
                                              const AxisRotation& rot, float radius, float lengthMax,
                                              float lengthScale, float leafScale, float taper,
                                              const std::string& type) {
-    return addBaseStemShoot(plantID,
-                            specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+    return addBaseStemShoot(
+        plantID, specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
 }
 
 unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID,
@@ -536,9 +557,11 @@ unsigned PlantArchitecture::appendShoot(unsigned plantID, int parentShootID, uns
                                         const std::string& type) {
     if (parentShootID < 0)
         throw Error("no such shoot", {.parameter = "parent_shoot_ID",
-                                      .value = std::to_string(parentShootID), .validRange = ">= 0"});
-    return appendShoot(plantID, unsigned(parentShootID),
-                       specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+                                      .value = std::to_string(parentShootID),
+                                      .validRange = ">= 0"});
+    return appendShoot(
+        plantID, unsigned(parentShootID),
+        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
 }
 
 unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShootID,
@@ -559,10 +582,11 @@ unsigned PlantArchitecture::addChildShoot(unsigned plantID, int parentShootID, u
                                           unsigned petioleIndex) {
     if (parentShootID < 0)
         throw Error("no such shoot", {.parameter = "parent_shoot_ID",
-                                      .value = std::to_string(parentShootID), .validRange = ">= 0"});
-    return addChildShoot(plantID, unsigned(parentShootID), parentNode,
-                         specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type),
-                         petioleIndex);
+                                      .value = std::to_string(parentShootID),
+                                      .validRange = ">= 0"});
+    return addChildShoot(
+        plantID, unsigned(parentShootID), parentNode,
+        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type), petioleIndex);
 }
 
 unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned shootID,
