@@ -10,6 +10,23 @@
 
 using namespace plantarch;
 
+// Every library species is pure data: its rules are node rules, no named C++ function.
+TEST(LibrarySpecies, EverySpeciesIsPureData) {
+    std::size_t withRules = 0;
+    for (const std::string& name : listSpecies()) {
+        SCOPED_TRACE(name);
+        const SpeciesModel model = loadSpecies(name);
+        bool rules = false;
+        for (const auto& [label, type] : model.shootTypes) {
+            EXPECT_EQ(type.phytomer_parameters.phytomer_creation_function, "") << label;
+            EXPECT_EQ(type.phytomer_parameters.phytomer_callback_function, "") << label;
+            rules = rules || !type.phytomer_parameters.node_rules.empty();
+        }
+        withRules += rules ? 1 : 0;
+    }
+    EXPECT_EQ(withRules, 22u);  // the species whose growth needs a node rule
+}
+
 TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
     const std::vector<std::string> names = listSpecies();
     ASSERT_FALSE(names.empty());

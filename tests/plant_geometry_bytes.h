@@ -53,7 +53,9 @@ inline std::string organBytes(const PlantArchitecture& arch, const std::vector<u
                 return;
             }
             const ObjectView v = ctx.object(o);
-            out += "|" + ctx.objectDataString(o, "organ").value_or("?") + ":";
+            out += '|';
+            out += ctx.objectDataString(o, "organ").value_or("?");
+            out += ':';
             bytes(v.positions.data(), v.positions.size_bytes());
             bytes(v.uvs.data(), v.uvs.size_bytes());
             bytes(v.indices.data(), v.indices.size_bytes());

@@ -349,30 +349,33 @@ TEST(SpeciesHerbsButterLettuce, OuterLeavesDroopInnerLeavesStandUp) {
 // ---- every crop: no build parameters -------------------------------------------------------
 
 TEST(SpeciesHerbsAll, LoadWithTheirRulesAndRejectBuildParameters) {
-    const std::map<std::string, std::string> rules{
-        {"tomato", "tomato_phytomer"},       {"cherrytomato", "cherrytomato_phytomer"},
-        {"capsicum", "capsicum_phytomer"},   {"maize", "maize_phytomer"},
-        {"sorghum", "sorghum_phytomer"},     {"wheat", "wheat_phytomer"},
-        {"asparagus", "asparagus_phytomer"}, {"butterlettuce", "butterlettuce_phytomer"}};
-    for (const auto& [name, rule] : rules) {
+    // Rules per crop: creation rules on the first shoot type, and cherry tomato's daily pruning.
+    const std::map<std::string, std::size_t> rules{
+        {"tomato", 4},  {"cherrytomato", 5}, {"capsicum", 4},  {"maize", 5},
+        {"sorghum", 2}, {"wheat", 1},        {"asparagus", 1}, {"butterlettuce", 1}};
+    for (const auto& [name, count] : rules) {
         SCOPED_TRACE(name);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.loadPlantModelFromLibrary(name);
         const std::vector<std::string> labels = arch.listShootTypeLabels();
         ASSERT_FALSE(labels.empty());
-        EXPECT_EQ(arch.getCurrentShootParameters(labels.front())
-                      .phytomer_parameters.phytomer_creation_function,
-                  rule);
+        const PhytomerParameters& pp =
+            arch.getCurrentShootParameters(labels.front()).phytomer_parameters;
+        EXPECT_EQ(pp.node_rules.size(), count);
+        EXPECT_EQ(pp.phytomer_creation_function, "");
         EXPECT_THROW(arch.buildPlantInstanceFromLibrary(vec3(0.0f), 10, {{"trunk_height", 1.0f}}),
                      Error);
     }
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("cherrytomato");
-    EXPECT_EQ(
-        arch.getCurrentShootParameters("mainstem").phytomer_parameters.phytomer_callback_function,
-        "cherrytomato_pruning");
+    const NodeRule& pruning =
+        arch.getCurrentShootParameters("mainstem").phytomer_parameters.node_rules.back();
+    EXPECT_EQ(pruning.when, "daily");
+    EXPECT_EQ(pruning.age_min, 101.0f);
+    EXPECT_EQ(pruning.height_below, 1.0f);
+    EXPECT_TRUE(pruning.remove_leaves);
 }
 
 // ---- the model features these rules use ---------------------------------------------------

@@ -1,4 +1,4 @@
-// The legumes of the library (bean, soybean, cowpea): where they branch (legume_phytomer)
+// The legumes of the library (bean, soybean, cowpea): where they branch (node rules)
 // and how much, against the reference plants (species/bean.xml: ref bean of about 386
 // leaflets at 50 days, a bush; the ref soybean and cowpea pictures at 50 days, bushy plants),
 // and the soybean's footprint against its reference picture.

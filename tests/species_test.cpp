@@ -189,7 +189,7 @@ TEST(SpeciesBean, BuildsTheSeedling) {
     EXPECT_GT(p.shoots[0].phytomers[0].internode.guide.z, std::cos(9.01f * 3.14159265f / 180));
     // The appended shoot takes the trifoliate type's radius and internode length.
     EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].internode.radius, 0.001f);
-    // legume_phytomer shortens main-stem internodes made at emergence to 20 % of 0.025 m.
+    // The node rules shorten main-stem internodes made at emergence to 20 % of 0.025 m.
     EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].internode.length, 0.025f * 0.2f);
     EXPECT_FLOAT_EQ(p.shoots[1].phytomers[0].leafFraction, 0.1f);
     EXPECT_GT(ctx.objectCount(), 0u);

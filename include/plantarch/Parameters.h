@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "plantarch/Formula.h"
 #include "plantarch/Mesh.h"
 #include "plantarch/Random.h"
 
@@ -152,6 +153,54 @@ struct InflorescenceParameters {
     bool normalize_OBJ_model = false;
 };
 
+/// A node rule: when all its conditions hold for a phytomer, its actions change that phytomer
+/// (buds, leaves, sizes, angles). Species files list them under <node_rules>; the fields, their
+/// units, ranges and meaning are declared in src/model/parameter_table.h and described with
+/// examples in docs/species-format.md ("Node rules"). A condition left at its default always
+/// holds; an action left at its default does nothing.
+struct NodeRule {
+    std::string when = "creation";  ///< creation, daily or winter
+
+    // Conditions.
+    int rank_min = 0;
+    int rank_max = kNoLimit;
+    int node_min = 0;
+    int node_max = kNoLimit;
+    int nodes_from_tip_min = 0;
+    int nodes_from_tip_max = kNoLimit;
+    int nodes_before_last_min = 0;
+    int nodes_before_last_max = kNoLimit;
+    float age_min = 0.0f;
+    float age_max = 1e9f;
+    float height_below = 1e9f;
+    float internode_length_below = 1e9f;
+    bool only_when_dormant = false;
+
+    // Actions, in this order.
+    bool remove_vegetative_buds = false;
+    bool remove_floral_buds = false;
+    bool remove_leaves = false;
+    bool renew_floral_buds = false;
+    std::string flowering_shoot_type;
+    Formula leaf_scale;
+    Formula internode_scale;
+    Formula petiole_pitch_change;
+    Formula leaf_pitch_change;
+    int max_nodes_per_season = kNoLimit;
+    RandomInt distal_vegetative_nodes = 0;
+
+    static constexpr int kNoLimit = 1000000;
+    /// The variables of the rule formulas, in the order they are evaluated with: age (plant
+    /// age, days), node (index on the shoot from its base), rank (of the shoot), max_nodes
+    /// (the shoot's realized count), nodes_from_tip (0 at the shoot's current tip).
+    static const std::vector<std::string>& formulaVariables();
+    /// A rule formula: `text` compiled with formulaVariables() (no random draws). Throws
+    /// plantarch::Error for bad syntax or an unknown name.
+    static Formula formula(std::string_view text);
+
+    bool operator==(const NodeRule&) const = default;
+};
+
 struct PhytomerParameters {
     InternodeParameters internode;
     PetioleParameters petiole;
@@ -162,6 +211,8 @@ struct PhytomerParameters {
     std::string phytomer_creation_function;
     /// Registered function called for every phytomer at every time step (empty: none).
     std::string phytomer_callback_function;
+    /// Rules applied to every phytomer of this type, in order (see NodeRule).
+    std::vector<NodeRule> node_rules;
 };
 
 struct ShootParameters {

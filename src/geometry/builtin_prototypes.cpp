@@ -2,7 +2,9 @@
 // and simple flower and fruit shapes used when a species names none. All follow the
 // prototype convention: unit length along +x, base at the origin, +z up.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "model/architecture_impl.h"
 #include "plantarch/LeafShapes.h"
@@ -105,6 +107,38 @@ OrganPrototype builtinFlower(const FloralPrototypeRequest& req, Rng&) {
     return proto;
 }
 
+// A slender three-sided spine tapering from its base to a point (cladodes, needles), in
+// prototype units (length 1 along +x from the origin). Its base diameter is the prototype's
+// leaf_aspect_ratio and `subdivisions` sets the segments along it (at most 8): 9 to 51
+// triangles, where a flat needle outline meshed to its true shape takes about 150.
+OrganPrototype taperedSpine(const LeafPrototype& p, Rng& rng, int) {
+    constexpr int kSides = 3;
+    const float radius = 0.5f * p.leaf_aspect_ratio.sample(rng);
+    const int segments = int(std::clamp(p.subdivisions, 1u, 8u));
+    Mesh m;
+    for (int k = 0; k < segments; ++k) {  // rings at x = k / segments, tapering linearly
+        const float x = float(k) / float(segments), r = radius * (1.0f - x);
+        for (int j = 0; j < kSides; ++j) {
+            const float a = 2.0f * kPi * float(j) / float(kSides);
+            m.positions.push_back({x, r * std::cos(a), r * std::sin(a)});
+        }
+    }
+    const auto tip = std::uint32_t(m.positions.size());
+    m.positions.push_back({1.0f, 0.0f, 0.0f});
+    auto ring = [](int k, int j) { return std::uint32_t(k * kSides + (j % kSides)); };
+    for (int k = 0; k < segments; ++k)
+        for (int j = 0; j < kSides; ++j) {
+            if (k + 1 < segments) {
+                m.indices.insert(m.indices.end(), {ring(k, j), ring(k, j + 1), ring(k + 1, j + 1)});
+                m.indices.insert(m.indices.end(), {ring(k, j), ring(k + 1, j + 1), ring(k + 1, j)});
+            } else {
+                m.indices.insert(m.indices.end(), {ring(k, j), ring(k, j + 1), tip});
+            }
+        }
+    m.indices.insert(m.indices.end(), {ring(0, 0), ring(0, 2), ring(0, 1)});  // the base
+    return OrganPrototype{{std::move(m), Material{p.color, "", "leaf"}}};
+}
+
 }  // namespace
 
 void registerBuiltinPrototypes(PlantArchitecture& arch) {
@@ -114,6 +148,7 @@ void registerBuiltinPrototypes(PlantArchitecture& arch) {
         return OrganPrototype{{buildLeafPrototype(p, rng, leaflet),
                                Material{p.color, leafTextureFile(p, leaflet), "leaf"}}};
     });
+    arch.registerLeafPrototype("tapered_spine", taperedSpine);
     registerOrganLibrary(arch);
     arch.registerFloralPrototype("builtin_fruit", builtinFruit);
     arch.registerFloralPrototype("builtin_flower", builtinFlower);

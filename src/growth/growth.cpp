@@ -19,6 +19,7 @@
 #include "collision/growth_driver.h"
 #include "collision/steering.h"
 #include "model/architecture_impl.h"
+#include "model/node_rules.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -165,7 +166,7 @@ struct Grower {
     bool usesCallbacks() {
         for (const auto& [label, t] : plant.shootTypes)
             if (!t.phytomer_parameters.phytomer_callback_function.empty()) return true;
-        return false;
+        return rules::hasDailyRules(plant.shootTypes);
     }
 
     // Sets the stored times of a phytomer's buds (new phytomers and new seasons).
@@ -453,17 +454,23 @@ struct Grower {
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
             positions.clear();
+            auto nodeBases = [&]() -> const std::vector<vec3>& {
+                if (positions.empty()) positions = shootNodePositions(plant, s.id);
+                return positions;
+            };
             for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-                const std::string& name = typeOf(s.phytomers[k].parametersLabel)
-                                              .phytomer_parameters.phytomer_callback_function;
+                const PhytomerParameters& pp =
+                    typeOf(s.phytomers[k].parametersLabel).phytomer_parameters;
+                if (!pp.node_rules.empty())
+                    rules::applyDaily(plant, s, k, pp, now, [&] { return nodeBases()[k]; });
+                const std::string& name = pp.phytomer_callback_function;
                 if (name.empty()) continue;
                 auto fn = impl.callbackFunctions.find(name);
                 if (fn == impl.callbackFunctions.end())
                     throw Error("unknown phytomer callback function",
                                 {.parameter = s.type + ".phytomer.phytomer_callback_function",
                                  .value = name});
-                if (positions.empty()) positions = shootNodePositions(plant, s.id);
-                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now, positions[k]};
+                PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now, nodeBases()[k]};
                 fn->second(c);
             }
         }

@@ -196,6 +196,10 @@ struct MissingVisitor {
     }
     template <class T>
     void list(const char*, std::vector<T>&, bool = false) {}
+    template <class E, class Fn>
+    void list(const char* name, const char*, std::vector<E>& items, Fn&&) {
+        r.missing(name, &items);
+    }
     template <class T>
     void values(const state::FieldInfo&, std::vector<T>&) {}
     template <class T>
@@ -313,6 +317,37 @@ public:
             r_.path.pop_back();
             ++i;
         }
+    }
+
+    // Parameter table list: <name><item>...</item>...</name>.
+    template <class E, class Fn>
+    void list(const char* name, const char* item, std::vector<E>& items, Fn&& visit) {
+        names_.push_back(name);
+        Kid* k = take(name);
+        if (!k) {
+            r_.missing(name, &items);
+            return;
+        }
+        r_.path.emplace_back(name, -1);
+        ElementReader holder(r_, k->node);
+        std::size_t count = 0;
+        for (const Kid& c : holder.kids_)
+            if (std::strcmp(c.node.name(), item) == 0) ++count;
+        items.assign(count, E{});  // at most the elements present: bounded by the input
+        std::size_t i = 0;
+        holder.names_.push_back(item);
+        for (Kid& c : holder.kids_) {
+            if (std::strcmp(c.node.name(), item) != 0) continue;
+            c.used = true;
+            r_.path.emplace_back(item, int(i));
+            ElementReader sub(r_, c.node);
+            visit(items[i], sub);
+            sub.finish();
+            r_.path.pop_back();
+            ++i;
+        }
+        holder.finish();
+        r_.path.pop_back();
     }
 
     // Every <name> child is one value of the list (none: an empty list).
@@ -565,6 +600,10 @@ private:
         const vec3 v = convert(e, f.name, s, text::parseVec3);
         for (int i = 0; i < 3; ++i) checkRange(f, e, v[i], s);
         m = {v.x, v.y, v.z};
+    }
+    void readValue(const params::FieldInfo& f, xml_node e, Formula& m) {
+        const std::string_view s = valueOf(e, f.name);
+        m = s.empty() ? Formula() : convert(e, f.name, s, NodeRule::formula);
     }
     template <class Info>
     void readValue(const Info& f, xml_node e, std::string& m) {

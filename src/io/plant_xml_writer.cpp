@@ -114,11 +114,28 @@ public:
             f, m, [](std::string& o, const std::string& k) { text::appendXmlEscaped(o, k); },
             [](std::string& o, float v) { appendNumber(o, v); });
     }
+    void field(const params::FieldInfo& f, const Formula& v) { put(f, v.text()); }
     template <class G, class Fn>
     void group(const char* name, const G&, Fn&& visit) {
         x_.open(name);
         ParameterWriter sub(x_.out(), x_.depth() + 1);
         visit(sub);
+        x_.close(name);
+    }
+    template <class E, class Fn>
+    void list(const char* name, const char* item, const std::vector<E>& items, Fn&& visit) {
+        if (items.empty()) {
+            x_.element(name, [](std::string&) {});
+            return;
+        }
+        x_.open(name);
+        XmlOut inner(x_.out(), x_.depth() + 1);
+        for (const E& element : items) {
+            inner.open(item);
+            ParameterWriter sub(x_.out(), x_.depth() + 2);
+            visit(element, sub);
+            inner.close(item);
+        }
         x_.close(name);
     }
 

@@ -185,6 +185,10 @@ struct NameCollector {
     void group(const char* name, G&, Fn&&) {
         names.emplace_back(name);
     }
+    template <class E, class Fn>
+    void list(const char* name, const char*, std::vector<E>&, Fn&&) {
+        names.emplace_back(name);
+    }
 };
 
 class FieldReader;
@@ -218,6 +222,25 @@ public:
         readGroup(src_, lines_, e, path, {}, visit);
     }
 
+    // A list of groups: <name><item>...</item>...</name>, replacing the inherited list whole.
+    template <class E, class Fn>
+    void list(const char* name, const char* item, std::vector<E>& items, Fn&& visit) {
+        xml_node e = node_.child(name);
+        if (!e) return;
+        const std::string path = joinPath(path_, name);
+        lines_[path] = src_.line(e);
+        checkAttributes(src_, e, path, {});
+        checkChildren(src_, e, path, {item}, {item});
+        items.clear();
+        for (xml_node c : e.children(item)) {
+            const std::string at = path + "[" + std::to_string(items.size() + 1) + "]";
+            lines_[at] = src_.line(c);
+            E element{};
+            readGroup(src_, lines_, c, at, {}, [&](auto& v) { visit(element, v); });
+            items.push_back(std::move(element));
+        }
+    }
+
 private:
     std::string scalar(xml_node e, const std::string& path) {
         checkAttributes(src_, e, path, {});
@@ -244,6 +267,10 @@ private:
     }
     void read(const params::FieldInfo&, xml_node e, const std::string& path, vec3& m) {
         m = convert(src_, e, path, scalar(e, path), text::parseVec3);
+    }
+    void read(const params::FieldInfo&, xml_node e, const std::string& path, Formula& m) {
+        const std::string s = scalar(e, path);
+        m = s.empty() ? Formula() : convert(src_, e, path, s, NodeRule::formula);
     }
     void read(const params::FieldInfo& f, xml_node e, const std::string& path, std::string& m) {
         m = scalar(e, path);

@@ -105,11 +105,29 @@ public:
             [](float v) { return text::formatFloat(v); });
     }
 
+    void field(const params::FieldInfo& f, const Formula& v) {
+        w_.element(depth_, f.name, v.text(), join(f.unit, f.doc));
+    }
     template <class G, class Fn>
     void group(const char* name, const G&, Fn&& visit) {
         w_.open(depth_, name);
         FieldWriter sub(w_, depth_ + 1);
         visit(sub);
+        w_.close(depth_, name);
+    }
+    template <class E, class Fn>
+    void list(const char* name, const char* item, const std::vector<E>& items, Fn&& visit) {
+        if (items.empty()) {
+            w_.element(depth_, name, "");
+            return;
+        }
+        w_.open(depth_, name);
+        for (const E& element : items) {
+            w_.open(depth_ + 1, item);
+            FieldWriter sub(w_, depth_ + 2);
+            visit(element, sub);
+            w_.close(depth_ + 1, item);
+        }
         w_.close(depth_, name);
     }
 

@@ -133,9 +133,6 @@ void realizeInflorescence(PlantInstance& plant, FloralBud& bud, const PhytomerPa
 /// Starts a newly created shoot's clock: its apical bud, its axillary buds.
 void scheduleNewShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot);
 
-// Named functions of the library species (library/species_functions.cpp).
-void registerSpeciesFunctions(PlantArchitecture& arch);
-
 // Builtin organ prototypes (geometry/builtin_prototypes.cpp).
 void registerBuiltinPrototypes(PlantArchitecture& arch);
 

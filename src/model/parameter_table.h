@@ -4,6 +4,9 @@
 // describeParameters(params, visitor) calls the visitor once per field, in file order:
 //   visitor.field(info, member)            for every leaf field
 //   visitor.group(name, member, callback)  for every nested group (callback visits it)
+//   visitor.list(name, item, vector, callback)
+//                                          for a list of groups (callback(element, visitor)
+//                                          visits one element)
 // with `member` a (const or not) reference to the struct member. Validation, the species
 // file reader and writer, `plantarch info` and the Python binding are all visitors, so a
 // field added here is read, written, checked and documented everywhere at once.
@@ -209,6 +212,85 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
+requires SameAs<S, NodeRule>
+void describeParameters(S& p, V& v) {
+    constexpr double kMany = NodeRule::kNoLimit;
+    v.field({"when", "", 0, 0,
+             "When the rule runs: as the phytomer is made, at every whole day of plant age, or "
+             "on the first whole day of each dormant period",
+             "creation|daily|winter"},
+            p.when);
+    v.field({"rank_min", "", 0, kMany, "Applies to shoots of at least this rank (0: base stem)"},
+            p.rank_min);
+    v.field({"rank_max", "", 0, kMany, "Applies to shoots of at most this rank"}, p.rank_max);
+    v.field({"node_min", "", 0, kMany, "Applies from this node up (0: the shoot's first node)"},
+            p.node_min);
+    v.field({"node_max", "", 0, kMany, "Applies up to this node"}, p.node_max);
+    v.field({"nodes_from_tip_min", "", 0, kMany,
+             "Applies to nodes at least this many nodes below the shoot's current tip (0: the "
+             "tip node)"},
+            p.nodes_from_tip_min);
+    v.field({"nodes_from_tip_max", "", 0, kMany,
+             "Applies to nodes at most this many nodes below the shoot's current tip"},
+            p.nodes_from_tip_max);
+    v.field({"nodes_before_last_min", "", 0, kMany,
+             "Applies to nodes at least this many nodes before the shoot's last node (its "
+             "realized max_nodes; 0: the last node)"},
+            p.nodes_before_last_min);
+    v.field({"nodes_before_last_max", "", 0, kMany,
+             "Applies to nodes at most this many nodes before the shoot's last node"},
+            p.nodes_before_last_max);
+    v.field({"age_min", "days", 0, 1e9, "Applies from this plant age on"}, p.age_min);
+    v.field({"age_max", "days", 0, 1e9, "Applies up to this plant age"}, p.age_max);
+    v.field({"height_below", "m", -1e9, 1e9,
+             "Daily and winter rules: applies to nodes whose base is lower than this above the "
+             "plant's base"},
+            p.height_below);
+    v.field({"internode_length_below", "m", 0, 1e9,
+             "Applies to phytomers whose full internode length is shorter than this (spurs)"},
+            p.internode_length_below);
+    v.field({"only_when_dormant", "", 0, 1, "Applies only while the plant is dormant"},
+            p.only_when_dormant);
+    v.field({"remove_vegetative_buds", "", 0, 1,
+             "Kills the node's dormant axillary vegetative buds (no branch from it)"},
+            p.remove_vegetative_buds);
+    v.field({"remove_floral_buds", "", 0, 1,
+             "Removes the node's unopened floral buds (no flowers from it)"},
+            p.remove_floral_buds);
+    v.field({"remove_leaves", "", 0, 1,
+             "Removes the node's leaves with their petioles; the node keeps its buds"},
+            p.remove_leaves);
+    v.field({"renew_floral_buds", "", 0, 1,
+             "Makes every floral bud of the node that flowered, fruited or failed an unopened "
+             "dormant bud again, so it can flower in the next season"},
+            p.renew_floral_buds);
+    v.field({"flowering_shoot_type", "", 0, 0,
+             "Makes the node's unopened dormant floral buds flower, with their inflorescence "
+             "from this shoot type of the species (empty: none)"},
+            p.flowering_shoot_type);
+    v.field({"leaf_scale", "", 0, 0,
+             "Formula multiplying the size of the node's leaves (variables: age, node, rank, "
+             "max_nodes, nodes_from_tip)"},
+            p.leaf_scale);
+    v.field({"internode_scale", "", 0, 0,
+             "Formula multiplying the node's full internode length (variables as leaf_scale)"},
+            p.internode_scale);
+    v.field({"petiole_pitch_change", "degrees", 0, 0,
+             "Formula added to the pitch of the node's petioles (variables as leaf_scale)"},
+            p.petiole_pitch_change);
+    v.field({"leaf_pitch_change", "degrees", 0, 0,
+             "Formula added to the pitch of the node's leaves (variables as leaf_scale)"},
+            p.leaf_pitch_change);
+    v.field({"max_nodes_per_season", "", 1, kMany,
+             "Caps the shoot's realized max_nodes_per_season at this count"},
+            p.max_nodes_per_season);
+    v.field({"distal_vegetative_nodes", "", 0, 10000,
+             "Applies to the node's whole shoot: its N most distal nodes (N drawn each time) lose "
+             "their floral buds and the nodes below lose their vegetative buds (0: none)"},
+            p.distal_vegetative_nodes);
+}
+
+template <class S, class V>
 requires SameAs<S, PhytomerParameters>
 void describeParameters(S& p, V& v) {
     v.group("internode", p.internode, [&](auto& sub) { describeParameters(p.internode, sub); });
@@ -223,6 +305,8 @@ void describeParameters(S& p, V& v) {
     v.field({"phytomer_callback_function", "", 0, 0,
              "Registered function called for every phytomer at every time step"},
             p.phytomer_callback_function);
+    v.list("node_rules", "rule", p.node_rules,
+           [&](auto& rule, auto& sub) { describeParameters(rule, sub); });
 }
 
 template <class S, class V>

@@ -108,10 +108,19 @@ struct Validator {
         if (std::abs(sum - 1.0) > 1e-4)
             fail(f, number(sum), "child shoot type probabilities must sum to 1", "sum of 1");
     }
+    void field(const params::FieldInfo&, const Formula&) const {}  // checked when parsed
     template <class G, class Fn>
     void group(const char* name, const G&, Fn&& visit) const {
         Validator sub{path.empty() ? name : path + "." + name};
         visit(sub);
+    }
+    template <class E, class Fn>
+    void list(const char* name, const char*, const std::vector<E>& items, Fn&& visit) const {
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            Validator sub{(path.empty() ? std::string(name) : path + "." + name) + "[" +
+                          std::to_string(i + 1) + "]"};
+            visit(items[i], sub);
+        }
     }
 };
 

@@ -11,6 +11,7 @@
 #include "collision/steering.h"
 #include "geometry/tube.h"
 #include "model/architecture_impl.h"
+#include "model/node_rules.h"
 #include "plantarch/Error.h"
 #include "plantarch/OrganLibrary.h"
 #include "plantarch/OrganPrototypes.h"
@@ -321,6 +322,7 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
         ph.petioles.push_back(std::move(pt));
     }
     shoot.phytomers.push_back(std::move(ph));
+    rules::applyAtCreation(plant, shoot, pp);
     if (!pp.phytomer_creation_function.empty()) {
         auto fn = impl.creationFunctions.find(pp.phytomer_creation_function);
         if (fn == impl.creationFunctions.end())
@@ -455,7 +457,6 @@ PlantArchitecture::PlantArchitecture(Context* context)
     : context_(context), impl_(std::make_unique<Impl>()) {
     if (!context) throw Error("PlantArchitecture needs a Context", {.parameter = "context"});
     registerBuiltinPrototypes(*this);
-    registerSpeciesFunctions(*this);
 }
 
 PlantArchitecture::~PlantArchitecture() = default;

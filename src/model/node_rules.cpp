@@ -1,0 +1,206 @@
+// Node rules: conditions on a phytomer's place, its shoot and the plant's age and season, and
+// the actions that change the phytomer when they hold (see node_rules.h).
+
+#include "model/node_rules.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+const std::vector<std::string>& NodeRule::formulaVariables() {
+    static const std::vector<std::string> names = {"age", "node", "rank", "max_nodes",
+                                                   "nodes_from_tip"};
+    return names;
+}
+
+Formula NodeRule::formula(std::string_view text) {
+    return Formula(text, formulaVariables(), false);
+}
+
+namespace rules {
+
+void killVegetativeBuds(Phytomer& ph) {
+    for (Petiole& p : ph.petioles)
+        for (VegetativeBud& b : p.vegetativeBuds)
+            if (b.state == BudState::Dormant) b.state = BudState::Dead;
+}
+
+void killFloralBuds(Phytomer& ph) {
+    for (Petiole& p : ph.petioles)
+        for (FloralBud& b : p.floralBuds)
+            if (b.stage == FloralStage::Bud) {
+                b.state = BudState::Dead;
+                b.stage = FloralStage::Removed;
+            }
+}
+
+namespace {
+
+enum class When { Creation, Daily, Winter };
+
+When whenOf(const NodeRule& r) {
+    if (r.when == "creation") return When::Creation;
+    if (r.when == "daily") return When::Daily;
+    if (r.when == "winter") return When::Winter;
+    throw Error("unknown node rule time", {.parameter = "node_rules.when",
+                                           .value = r.when,
+                                           .validRange = "one of: creation, daily, winter"});
+}
+
+// The first whole day of plant age in the current dormant period: the day after the plant was
+// made for its first winter (no daily rule runs on the day it is made), else the first whole
+// day at or after the season's end.
+bool firstDayOfWinter(const PlantInstance& plant, double age) {
+    if (plant.stage != PhenologyStage::Dormant || plant.nextDormancyBreak < 0.0) return false;
+    const double start = plant.nextDormancyBreak - double(plant.phenology.time_to_dormancy_break);
+    const double day = plant.season == 0 ? std::floor(start) + 1.0 : std::ceil(start - 1e-9);
+    return std::abs(age - day) < 1e-6;
+}
+
+// Where a rule is asked about a phytomer.
+struct Place {
+    PlantInstance& plant;
+    Shoot& shoot;
+    unsigned node;
+    double age;
+    const std::function<vec3()>* nodeBase;  ///< null at creation
+};
+
+bool holds(const NodeRule& r, const Place& at) {
+    const int rank = int(at.shoot.rank);
+    const int node = int(at.node);
+    const int fromTip = int(at.shoot.phytomers.size()) - 1 - node;
+    const int beforeLast = at.shoot.maxNodes - 1 - node;
+    if (rank < r.rank_min || rank > r.rank_max) return false;
+    if (node < r.node_min || node > r.node_max) return false;
+    if (fromTip < r.nodes_from_tip_min || fromTip > r.nodes_from_tip_max) return false;
+    if (beforeLast < r.nodes_before_last_min || beforeLast > r.nodes_before_last_max) return false;
+    if (at.age < double(r.age_min) || at.age > double(r.age_max)) return false;
+    if (r.only_when_dormant && at.plant.stage != PhenologyStage::Dormant) return false;
+    const Phytomer& ph = at.shoot.phytomers[at.node];
+    if (!(ph.internode.length < r.internode_length_below)) return false;
+    if (r.height_below < 1e9f && at.nodeBase) {
+        const float height = (*at.nodeBase)().z - at.plant.base.z;
+        if (!(height < r.height_below)) return false;
+    }
+    return true;
+}
+
+float value(const Formula& f, const Place& at) {
+    const std::array<float, 5> v = {float(at.age), float(at.node), float(at.shoot.rank),
+                                    float(at.shoot.maxNodes),
+                                    float(int(at.shoot.phytomers.size()) - 1 - int(at.node))};
+    return f.evaluateFloat(v);
+}
+
+void removeLeaves(Phytomer& ph) {
+    for (Petiole& p : ph.petioles) {
+        for (LeafOrgan& l : p.leaves) l.removed = true;
+        p.length = 0.0f;
+        p.radius = 0.0f;
+    }
+}
+
+// Every floral bud that flowered, fruited or failed becomes an unopened dormant bud again; its
+// time is set when dormancy breaks, and its old inflorescence goes when it next flowers.
+void renewFloralBuds(Phytomer& ph) {
+    for (Petiole& p : ph.petioles)
+        for (FloralBud& b : p.floralBuds) {
+            if (b.stage == FloralStage::Bud && b.state == BudState::Dormant) continue;
+            b.stage = FloralStage::Bud;
+            b.state = BudState::Dormant;
+            b.nextTime = -1.0;
+            b.fruitAge = 0.0f;
+            b.fruitGrowth = 1.0f;
+        }
+}
+
+void floweringFrom(const std::string& type, Place& at, Phytomer& ph) {
+    if (!at.plant.shootTypes.count(type))
+        throw Error("a node rule names a shoot type the plant does not have",
+                    {.parameter = at.shoot.type + ".phytomer.node_rules.flowering_shoot_type",
+                     .value = type,
+                     .validRange = "a shoot type of the species"});
+    for (Petiole& p : ph.petioles)
+        for (FloralBud& b : p.floralBuds)
+            if (b.stage == FloralStage::Bud && b.state == BudState::Dormant) {
+                b.state = BudState::Active;
+                b.parametersLabel = type;
+            }
+}
+
+// The shoot's N most distal nodes lose their floral buds, the nodes below their vegetative
+// buds (N drawn from the plant's stream).
+void splitShoot(const RandomInt& distal, Place& at) {
+    std::vector<Phytomer>& nodes = at.shoot.phytomers;
+    const int n = int(nodes.size());
+    const int tip = distal.sample(at.plant.rng);
+    for (int k = 0; k < n; ++k) {
+        if (k < n - tip)
+            killVegetativeBuds(nodes[std::size_t(k)]);
+        else
+            killFloralBuds(nodes[std::size_t(k)]);
+    }
+}
+
+void act(const NodeRule& r, Place& at) {
+    Phytomer& ph = at.shoot.phytomers[at.node];
+    if (r.remove_vegetative_buds) killVegetativeBuds(ph);
+    if (r.remove_floral_buds) killFloralBuds(ph);
+    if (r.remove_leaves) removeLeaves(ph);
+    if (r.renew_floral_buds) renewFloralBuds(ph);
+    if (!r.flowering_shoot_type.empty()) floweringFrom(r.flowering_shoot_type, at, ph);
+    if (!r.leaf_scale.empty()) {
+        const float s = value(r.leaf_scale, at);
+        for (Petiole& p : ph.petioles)
+            for (LeafOrgan& l : p.leaves) l.scale *= s;
+    }
+    if (!r.internode_scale.empty()) ph.internode.length *= value(r.internode_scale, at);
+    if (!r.petiole_pitch_change.empty()) {
+        const float d = value(r.petiole_pitch_change, at);
+        for (Petiole& p : ph.petioles) p.pitch += d;
+    }
+    if (!r.leaf_pitch_change.empty()) {
+        const float d = value(r.leaf_pitch_change, at);
+        for (Petiole& p : ph.petioles)
+            for (LeafOrgan& l : p.leaves) l.pitch += d;
+    }
+    if (r.max_nodes_per_season < NodeRule::kNoLimit)
+        at.shoot.maxNodesPerSeason = std::min(at.shoot.maxNodesPerSeason, r.max_nodes_per_season);
+    if (!(r.distal_vegetative_nodes.isConstant() && r.distal_vegetative_nodes.min() == 0))
+        splitShoot(r.distal_vegetative_nodes, at);
+}
+
+}  // namespace
+
+void applyAtCreation(PlantInstance& plant, Shoot& shoot, const PhytomerParameters& pp) {
+    if (pp.node_rules.empty()) return;
+    Place at{plant, shoot, unsigned(shoot.phytomers.size() - 1), plant.age, nullptr};
+    for (const NodeRule& r : pp.node_rules)
+        if (whenOf(r) == When::Creation && holds(r, at)) act(r, at);
+}
+
+bool hasDailyRules(const std::map<std::string, ShootParameters>& types) {
+    for (const auto& [label, t] : types)
+        for (const NodeRule& r : t.phytomer_parameters.node_rules)
+            if (whenOf(r) != When::Creation) return true;
+    return false;
+}
+
+void applyDaily(PlantInstance& plant, Shoot& shoot, unsigned node, const PhytomerParameters& pp,
+                double age, const std::function<vec3()>& nodeBase) {
+    Place at{plant, shoot, node, age, &nodeBase};
+    for (const NodeRule& r : pp.node_rules) {
+        const When when = whenOf(r);
+        if (when == When::Creation) continue;
+        if (when == When::Winter && !firstDayOfWinter(plant, age)) continue;
+        if (holds(r, at)) act(r, at);
+    }
+}
+
+}  // namespace rules
+}  // namespace plantarch
