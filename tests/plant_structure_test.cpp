@@ -230,7 +230,7 @@ TEST(PlantStructureXML, HandBuiltPlantWithItsOwnShootTypeNeedsNothingPreloaded) 
     ShootParameters sp;
     sp.phytomer_parameters.leaf.leaves_per_petiole = 5;
     sp.phytomer_parameters.leaf.leaflet_offset = 0.2f;
-    sp.phytomer_parameters.leaf.prototype.shape = "lanceolate";
+    sp.phytomer_parameters.leaf.prototype.shape = LeafShape::Lanceolate;
     sp.phytomer_parameters.internode.phyllotactic_angle = RandomFloat::normal(137.5f, 10.0f);
     sp.child_shoot_types = {{"mine", 1.0f}};
     sp.max_nodes = 12;

@@ -352,8 +352,8 @@ std::string variantKey(const std::string& fn, const std::string& params, int lea
 
 // A compact description of a leaf prototype for the cache key.
 std::string describePrototype(const LeafPrototype& p) {
-    std::string s = p.prototype_function + ";" + p.shape + ";" + p.OBJ_model_file +
-                    (p.normalize_OBJ_model ? "|normalized;" : ";");
+    std::string s = p.prototype_function + ";" + std::to_string(int(p.shape)) + ";" +
+                    p.OBJ_model_file + (p.normalize_OBJ_model ? "|normalized;" : ";");
     for (const auto& [i, f] : p.leaf_texture_file) s += std::to_string(i) + "=" + f + ",";
     for (const RandomFloat* r :
          {&p.leaf_aspect_ratio, &p.widest_point, &p.tip_angle, &p.base_angle, &p.lobe_depth,
