@@ -641,7 +641,7 @@ TEST(LeafPrototypeBuild, BoundingBoxRunsFromZeroToOne) {
     for (LeafShape s : allLeafShapes()) {
         LeafPrototype proto;
         const LeafOutlineParams p = leafShapePreset(s);
-        proto.shape = std::string(leafShapeName(s));
+        proto.shape = s;
         proto.leaf_aspect_ratio = p.aspect_ratio;
         proto.widest_point = p.widest_point;
         proto.tip_angle = p.tip_angle;
@@ -653,7 +653,7 @@ TEST(LeafPrototypeBuild, BoundingBoxRunsFromZeroToOne) {
         proto.wave_period = 0.3f;
         proto.wave_amplitude = 0.05f;
         proto.subdivisions = 6;
-        SCOPED_TRACE(proto.shape);
+        SCOPED_TRACE(std::string(leafShapeName(s)));
         const Mesh m = buildLeafPrototype(proto, rng);
         ASSERT_NO_THROW(m.validate());
         const AABB box = bounds(m);

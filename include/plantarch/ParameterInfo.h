@@ -63,7 +63,8 @@ std::vector<ParameterInfo> parameterInfo(const ShootParameters& shoot);
 /// Every field of <phenology>.
 std::vector<ParameterInfo> parameterInfo(const PhenologyParameters& phenology);
 
-/// "number or distribution", "true or false", ...: what a person types for a field of `kind`.
+/// "random number", "true or false", ...: the kind of value, as docs/species-format.md names
+/// them (its section *Values* shows how each is written).
 const char* parameterKindText(ParameterKind kind);
 
 }  // namespace plantarch

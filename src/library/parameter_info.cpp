@@ -144,11 +144,11 @@ const char* parameterKindText(ParameterKind kind) {
         case ParameterKind::Number:
             return "number";
         case ParameterKind::RandomNumber:
-            return "number or distribution";
+            return "random number";
         case ParameterKind::WholeNumber:
             return "whole number";
         case ParameterKind::RandomWholeNumber:
-            return "whole number or distribution";
+            return "random whole number";
         case ParameterKind::Flag:
             return "true or false";
         case ParameterKind::Triple:
@@ -156,11 +156,11 @@ const char* parameterKindText(ParameterKind kind) {
         case ParameterKind::Text:
             return "text";
         case ParameterKind::Choice:
-            return "one of the values listed";
+            return "one of the values";
         case ParameterKind::NumberMap:
-            return "entries: name and number";
+            return "entries";
         case ParameterKind::TextMap:
-            return "entries: index and text";
+            return "entries";
     }
     return "";
 }
