@@ -16,7 +16,9 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "plantarch/Error.h"
 #include "plantarch/ParameterInfo.h"
+#include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
 
@@ -183,6 +185,40 @@ TEST(ParameterTable, ChoiceNamesRoundTrip) {
     EXPECT_EQ(params::choiceNamed<FlowerArrangement>("opposite"), FlowerArrangement::Opposite);
     EXPECT_FALSE(params::choiceNamed<FlowerArrangement>("Opposite").has_value());
     EXPECT_EQ(params::choiceName(static_cast<FlowerArrangement>(9)), nullptr);
+}
+
+// A species file with one enum-like value and one build-step flag set as given.
+std::string speciesWith(const std::string& arrangement, const std::string& apex) {
+    return "<plantarch_species format=\"1\"><name>t</name><shoot_type label=\"stem\"><phytomer>"
+           "<inflorescence><flower_arrangement>" +
+           arrangement +
+           "</flower_arrangement></inflorescence></phytomer></shoot_type><build>"
+           "<base_stem type=\"stem\" apex=\"" +
+           apex + "\"/></build></plantarch_species>";
+}
+
+TEST(ParameterTable, ChoicesAndFlagsAreTypedWhenRead) {
+    const SpeciesModel m = readSpeciesString(speciesWith("opposite", "false"), "t.xml");
+    EXPECT_EQ(m.shootTypes.at("stem").phytomer_parameters.inflorescence.flower_arrangement,
+              FlowerArrangement::Opposite);
+    EXPECT_FALSE(m.build.at(0).apex);
+    EXPECT_TRUE(m.build.at(0).leaves);
+    // Written back by name, read back the same.
+    const std::string text = writeSpeciesString(m);
+    EXPECT_NE(text.find("<flower_arrangement>opposite</flower_arrangement>"), std::string::npos);
+    EXPECT_NE(text.find("apex=\"false\""), std::string::npos);
+    EXPECT_EQ(writeSpeciesString(readSpeciesString(text, "back.xml")), text);
+
+    // The valid names in the error are the table's.
+    try {
+        readSpeciesString(speciesWith("oposite", "true"), "t.xml");
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.parameter(), "stem.phytomer.inflorescence.flower_arrangement");
+        EXPECT_EQ(e.validRange(), "one of: alternate, opposite");
+        EXPECT_NE(std::string(e.what()).find("did you mean 'opposite'"), std::string::npos);
+    }
+    EXPECT_THROW(readSpeciesString(speciesWith("alternate", "no"), "t.xml"), Error);
 }
 
 // ---- what front ends see -----------------------------------------------------------------
