@@ -31,7 +31,7 @@ ShootParameters demoShootTypes(PlantArchitecture& arch) {
     sp.petiole.length_segments = 5;
     sp.leaf.prototype_scale = RandomFloat::uniform(0.08f, 0.1f);
     sp.leaf.pitch = RandomFloat::uniform(-10, 10);
-    sp.leaf.prototype.shape = "ovate";
+    sp.leaf.prototype.shape = LeafShape::Ovate;
     sp.leaf.prototype.leaf_aspect_ratio = 0.55f;
     sp.leaf.prototype.serrations = 14;
     sp.leaf.prototype.serration_depth = 0.015f;
@@ -64,7 +64,7 @@ ShootParameters demoShootTypes(PlantArchitecture& arch) {
     ap.leaf.leaflet_scale = 0.8f;
     ap.leaf.yaw = 15.0f;
     ap.leaf.prototype_scale = RandomFloat::uniform(0.05f, 0.06f);
-    ap.leaf.prototype.shape = "elliptic";
+    ap.leaf.prototype.shape = LeafShape::Elliptic;
     ap.leaf.prototype.leaf_aspect_ratio = 0.5f;
     alternate.gravitropic_curvature = 150.0f;
     arch.defineShootType("alternate", alternate);
@@ -76,7 +76,7 @@ ShootParameters demoShootTypes(PlantArchitecture& arch) {
     op.internode.pitch = 0.0f;
     op.petiole.length = 0.025f;
     op.leaf.prototype_scale = RandomFloat::uniform(0.06f, 0.07f);
-    op.leaf.prototype.shape = "lanceolate";
+    op.leaf.prototype.shape = LeafShape::Lanceolate;
     op.leaf.prototype.leaf_aspect_ratio = 0.25f;
     opposite.gravitropic_curvature = 200.0f;
     arch.defineShootType("opposite", opposite);

@@ -1,15 +1,22 @@
-// plantarch info: a readable summary of a species (names, shoot types with their key
-// parameters, phenology, build parameters, initial structure), or with --xml the complete
-// species file with every value, which reads back to the same species.
+// plantarch info: a readable summary of a species (names, the parameters of each shoot type
+// that differ from the defaults, phenology, build parameters, initial structure), with --xml
+// the complete species file with every value, which reads back to the same species. With
+// --parameters (or --parameters-markdown, the page docs/parameters.md) it lists every
+// parameter a species file can set. Every parameter name, unit, range and description comes
+// from the library's parameter table (plantarch/ParameterInfo.h).
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/ParameterInfo.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch::cli {
@@ -18,15 +25,10 @@ namespace {
 struct InfoArgs {
     std::string species;
     bool xml = false;
+    bool all = false;
+    bool parameters = false;
+    bool markdown = false;
 };
-
-std::string rgb(const vec3& c) {
-    return fmt::format("{} {} {}", c.x, c.y, c.z);
-}
-
-std::string orNone(const std::string& s) {
-    return s.empty() ? "-" : s;
-}
 
 // Splits text into lines of at most `width` characters, each starting with `indent`.
 std::string wrap(const std::string& text, std::size_t width, const std::string& indent) {
@@ -47,62 +49,51 @@ std::string wrap(const std::string& text, std::size_t width, const std::string& 
     return out;
 }
 
-void printShootType(const std::string& label, const ShootParameters& s) {
-    const PhytomerParameters& p = s.phytomer_parameters;
-    std::string children;
-    for (const auto& [type, probability] : s.child_shoot_types)
-        children += fmt::format("{}{} {}", children.empty() ? "" : ", ", type, probability);
-    std::printf("  %s\n", label.c_str());
-    std::printf(
-        "    nodes: max %s (%s per season), phyllochron %s days, internode length "
-        "%s m (min %s, change %s m per node)\n",
-        s.max_nodes.describe().c_str(), s.max_nodes_per_season.describe().c_str(),
-        s.phyllochron_min.describe().c_str(), s.internode_length_max.describe().c_str(),
-        s.internode_length_min.describe().c_str(),
-        s.internode_length_decay_rate.describe().c_str());
-    std::printf(
-        "    growth: elongation %s per day, gravitropic curvature %s deg/m, tortuosity %s, "
-        "girth factor %s cm2/m2, %s growth\n",
-        s.elongation_rate_max.describe().c_str(), s.gravitropic_curvature.describe().c_str(),
-        s.tortuosity.describe().c_str(), s.girth_area_factor.describe().c_str(),
-        s.determinate_shoot_growth ? "determinate" : "indeterminate");
-    std::printf(
-        "    branching: insertion angle %s deg, bud break probability %s to %s "
-        "after %s days, child types: %s\n",
-        s.insertion_angle_tip.describe().c_str(),
-        s.vegetative_bud_break_probability_min.describe().c_str(),
-        s.vegetative_bud_break_probability_max.describe().c_str(),
-        s.vegetative_bud_break_time.describe().c_str(),
-        children.empty() ? "same type" : children.c_str());
-    std::printf(
-        "    phytomer: internode pitch %s deg, phyllotactic angle %s deg, radius %s m; "
-        "%u petiole%s of %s m at %s deg\n",
-        p.internode.pitch.describe().c_str(), p.internode.phyllotactic_angle.describe().c_str(),
-        p.internode.radius_initial.describe().c_str(), p.petiole.petioles_per_internode,
-        p.petiole.petioles_per_internode == 1 ? "" : "s", p.petiole.length.describe().c_str(),
-        p.petiole.pitch.describe().c_str());
-    const LeafPrototype& leaf = p.leaf.prototype;
-    std::printf("    leaves: %s per petiole, length %s m, %s outline (aspect %s)%s\n",
-                p.leaf.leaves_per_petiole.describe().c_str(),
-                p.leaf.prototype_scale.describe().c_str(), leaf.shape.c_str(),
-                leaf.leaf_aspect_ratio.describe().c_str(),
-                leaf.OBJ_model_file.empty() ? "" : (", OBJ " + leaf.OBJ_model_file).c_str());
-    const InflorescenceParameters& f = p.inflorescence;
-    std::printf(
-        "    flowers: %s per peduncle, bud break probability %s, fruit set %s; "
-        "flower %s (%s), fruit %s m (%s)\n",
-        f.flowers_per_peduncle.describe().c_str(),
-        s.flower_bud_break_probability.describe().c_str(),
-        s.fruit_set_probability.describe().c_str(), orNone(f.flower_prototype_function).c_str(),
-        rgb(f.flower_color).c_str(), f.fruit_prototype_scale.describe().c_str(),
-        rgb(f.fruit_color).c_str());
-    if (!p.phytomer_creation_function.empty() || !p.phytomer_callback_function.empty())
-        std::printf("    functions: creation %s, callback %s\n",
-                    orNone(p.phytomer_creation_function).c_str(),
-                    orNone(p.phytomer_callback_function).c_str());
+// "20 degrees", "uniform(0.1, 0.2) m", "-" for an empty text or map.
+std::string valueWithUnit(const ParameterInfo& p) {
+    if (p.value.empty()) return "-";
+    return p.unit.empty() ? p.value : p.value + " " + p.unit;
 }
 
-void printSummary(const SpeciesModel& m) {
+// The group a field is in: its path without the last part ("" at the top).
+std::string groupOf(const ParameterInfo& p) {
+    const std::size_t dot = p.path.rfind('.');
+    return dot == std::string::npos ? "" : p.path.substr(0, dot);
+}
+
+// One aligned line per parameter, name then value and unit, under a heading per group
+// ("phytomer.leaf:") as a species file nests them.
+void printRows(const std::vector<const ParameterInfo*>& rows, const std::string& indent) {
+    auto label = [](const ParameterInfo& p) { return (groupOf(p).empty() ? "" : "  ") + p.name; };
+    std::size_t width = 0;
+    for (const ParameterInfo* p : rows) width = std::max(width, label(*p).size());
+    std::string group;
+    for (const ParameterInfo* p : rows) {
+        if (groupOf(*p) != group) {
+            group = groupOf(*p);
+            std::printf("%s%s:\n", indent.c_str(), group.c_str());
+        }
+        std::printf(
+            "%s\n",
+            fmt::format("{}{:<{}}  {}", indent, label(*p), width, valueWithUnit(*p)).c_str());
+    }
+}
+
+void printShootType(const std::string& label, const ShootParameters& s, bool all) {
+    const std::vector<ParameterInfo> fields = parameterInfo(s);
+    const std::vector<ParameterInfo> defaults = parameterInfo(ShootParameters{});
+    std::vector<const ParameterInfo*> rows;
+    for (std::size_t i = 0; i < fields.size(); ++i)
+        if (all || fields[i].value != defaults[i].value) rows.push_back(&fields[i]);
+    if (all)
+        std::printf("  %s (%zu parameters)\n", label.c_str(), fields.size());
+    else
+        std::printf("  %s (%zu of %zu parameters set; the others at their defaults)\n",
+                    label.c_str(), rows.size(), fields.size());
+    printRows(rows, "    ");
+}
+
+void printSummary(const SpeciesModel& m, bool all) {
     std::string title = m.name;
     if (!m.commonName.empty()) title += ": " + m.commonName;
     if (!m.latinName.empty()) title += " (" + m.latinName + ")";
@@ -116,21 +107,15 @@ void printSummary(const SpeciesModel& m) {
                 fmt::format("{}", m.recommendedAgeMax).c_str());
     if (m.maxHeight > 0.0f)
         std::printf("; height up to %s m", fmt::format("{}", m.maxHeight).c_str());
-    std::printf("\n\nshoot types (%zu):\n", m.shootTypes.size());
-    for (const auto& [label, params] : m.shootTypes) printShootType(label, params);
+    std::printf("\n\nshoot types (%zu)%s:\n", m.shootTypes.size(),
+                all ? "" : "; --all lists every parameter");
+    for (const auto& [label, params] : m.shootTypes) printShootType(label, params, all);
 
-    const PhenologyParameters& ph = m.phenology;
-    std::printf(
-        "\nphenology (days): dormancy break %s, flower initiation %s, flower opening %s, "
-        "fruit set %s, fruit maturity %s, senescence %s, leaf lifespan %s, max age %s%s\n",
-        fmt::format("{}", ph.time_to_dormancy_break).c_str(),
-        fmt::format("{}", ph.time_to_flower_initiation).c_str(),
-        fmt::format("{}", ph.time_to_flower_opening).c_str(),
-        fmt::format("{}", ph.time_to_fruit_set).c_str(),
-        fmt::format("{}", ph.time_to_fruit_maturity).c_str(),
-        fmt::format("{}", ph.time_to_senescence).c_str(),
-        fmt::format("{}", ph.max_leaf_lifespan).c_str(), fmt::format("{}", ph.max_age).c_str(),
-        ph.evergreen ? ", evergreen" : "");
+    std::printf("\nphenology:\n");
+    const std::vector<ParameterInfo> phenology = parameterInfo(m.phenology);
+    std::vector<const ParameterInfo*> rows;
+    for (const ParameterInfo& p : phenology) rows.push_back(&p);
+    printRows(rows, "  ");
 
     if (m.buildParameters.empty()) {
         std::printf("\nbuild parameters: none\n");
@@ -160,13 +145,121 @@ void printSummary(const SpeciesModel& m) {
     }
 }
 
+// ---- the parameter list -------------------------------------------------------------------
+
+struct Section {
+    const char* title;
+    const char* element;
+    std::vector<ParameterInfo> fields;  // values: the defaults
+};
+
+std::vector<Section> sections() {
+    return {{"Shoot type", "<shoot_type label=\"...\">", parameterInfo(ShootParameters{})},
+            {"Phenology", "<phenology>", parameterInfo(PhenologyParameters{})}};
+}
+
+// The description, with how one entry of a map is written (in `quote` marks).
+std::string describe(const ParameterInfo& p, const std::string& quote = "") {
+    if (p.entry.empty()) return p.doc;
+    return p.doc + ". One entry each: " + quote + p.entry + quote;
+}
+
+void printParameters() {
+    for (const Section& s : sections()) {
+        std::printf("%s parameters (%s):\n", s.title, s.element);
+        for (const ParameterInfo& p : s.fields) {
+            std::string line = p.path + ": " + parameterKindText(p.kind);
+            if (!p.unit.empty()) line += ", " + p.unit;
+            if (p.hasRange()) line += ", " + p.rangeText();
+            line += ", default " + (p.value.empty() ? std::string("empty") : p.value);
+            std::printf("  %s\n%s", line.c_str(), wrap(describe(p), 88, "      ").c_str());
+            for (const ParameterChoice& c : p.choices)
+                std::printf("%s", wrap(c.name + ": " + c.doc, 88, "        ").c_str());
+        }
+        std::printf("\n");
+    }
+}
+
+// A table cell: no line breaks, '|' escaped.
+std::string cell(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '|')
+            out += "\\|";
+        else
+            out += c == '\n' ? ' ' : c;
+    }
+    return out;
+}
+
+std::string code(const std::string& text) {
+    return text.empty() ? "" : "`" + cell(text) + "`";
+}
+
+void printMarkdown() {
+    std::printf(
+        "# Species parameters\n\n"
+        "<!-- Generated by `plantarch info --parameters-markdown` from the parameter table;\n"
+        "     change the table, then regenerate. A test fails when this page differs. -->\n\n"
+        "Every field a species file can set: its element inside `<shoot_type>` or\n"
+        "`<phenology>`, the kind of value it holds, its unit, valid range, default and meaning.\n"
+        "This is the list the species reader accepts, the writer writes, validation checks and\n"
+        "`plantarch info` prints. How each kind of value is written, and the rest of the file\n"
+        "format, is in [species-format.md](species-format.md#values). Units: metres, degrees,\n"
+        "days. A range bounds every value a distribution can take (a normal distribution's mean\n"
+        "plus and minus three standard deviations).\n");
+    for (const Section& s : sections()) {
+        std::printf("\n## %s: `%s`\n", s.title, s.element);
+        std::string group = "-";
+        std::vector<const ParameterInfo*> choiceFields;
+        auto flushChoices = [&] {
+            for (const ParameterInfo* p : choiceFields) {
+                std::printf("\nValues of `%s`:\n\n| Value | Meaning |\n|---|---|\n",
+                            p->path.c_str());
+                for (const ParameterChoice& c : p->choices)
+                    std::printf("| `%s` | %s |\n", c.name.c_str(), cell(c.doc).c_str());
+            }
+            choiceFields.clear();
+        };
+        for (const ParameterInfo& p : s.fields) {
+            if (groupOf(p) != group) {
+                flushChoices();
+                group = groupOf(p);
+                if (!group.empty()) std::printf("\n### `%s`\n", group.c_str());
+                std::printf(
+                    "\n| Field | Kind | Unit | Range | Default | Description |\n"
+                    "|---|---|---|---|---|---|\n");
+            }
+            std::string doc = describe(p, "`");
+            if (!p.choices.empty()) {
+                doc += " (values below)";
+                choiceFields.push_back(&p);
+            }
+            std::printf("| `%s` | %s | %s | %s | %s | %s |\n", p.name.c_str(),
+                        parameterKindText(p.kind), cell(p.unit).c_str(),
+                        cell(p.rangeText()).c_str(), code(p.value).c_str(), cell(doc).c_str());
+        }
+        flushChoices();
+    }
+}
+
 int run(const InfoArgs& a) {
+    if (a.parameters || a.markdown) {
+        if (a.markdown)
+            printMarkdown();
+        else
+            printParameters();
+        return 0;
+    }
+    if (a.species.empty())
+        throw Error("plantarch info needs a SPECIES (or --parameters)",
+                    {.parameter = "SPECIES", .validRange = "see 'plantarch list'"});
     const SpeciesModel species = loadSpecies(a.species);
     if (a.xml) {
         writeSpecies(species, std::cout);
         std::cout.flush();
     } else {
-        printSummary(species);
+        printSummary(species, a.all);
     }
     return 0;
 }
@@ -174,10 +267,16 @@ int run(const InfoArgs& a) {
 std::function<int()> setup(CLI::App& app, GlobalOptions&) {
     app.description("Describe a species: shoot types, phenology, build parameters");
     auto args = std::make_shared<InfoArgs>();
-    app.add_option("SPECIES", args->species, "Library name (see 'plantarch list') or species file")
-        ->required();
+    app.add_option("SPECIES", args->species, "Library name (see 'plantarch list') or species file");
     app.add_flag("--xml", args->xml,
                  "Print the complete species file (every value), which reads back identically");
+    app.add_flag("--all", args->all,
+                 "List every parameter of each shoot type, not only those set differently "
+                 "from the defaults");
+    app.add_flag("--parameters", args->parameters,
+                 "List every parameter a species file can set: unit, range, default, meaning");
+    app.add_flag("--parameters-markdown", args->markdown,
+                 "The same list as the Markdown page docs/parameters.md");
     return [args] { return run(*args); };
 }
 

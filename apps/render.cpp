@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -59,12 +60,19 @@ vec3 parseVec3(const std::string& text, const char* option) {
     return v;
 }
 
+// The values of --label and the modes they select.
+constexpr std::pair<const char*, RenderMode> kLabelModes[] = {{"organ", RenderMode::LabelOrgan},
+                                                              {"object", RenderMode::LabelObject}};
+
 RenderMode parseMode(const std::string& label) {
     if (label.empty()) return RenderMode::Shaded;
-    if (label == "organ") return RenderMode::LabelOrgan;
-    if (label == "object") return RenderMode::LabelObject;
+    std::string valid;
+    for (const auto& [name, mode] : kLabelModes) {
+        if (label == name) return mode;
+        valid += (valid.empty() ? "" : ", ") + std::string(name);
+    }
     throw Error("unknown label mode",
-                {.parameter = "--label", .value = label, .validRange = "organ, object"});
+                {.parameter = "--label", .value = label, .validRange = valid});
 }
 
 /// OBJ files written by plantarch name each group obj<ID>_<organ>; restore the organ label

@@ -54,7 +54,7 @@ ShootParameters timelapseShoot() {
     p.leaf.yaw = 15.0f;
     p.leaf.pitch = RandomFloat::normal(0, 12);
     p.leaf.prototype_scale = RandomFloat::uniform(0.07f, 0.09f);
-    p.leaf.prototype.shape = "ovate";
+    p.leaf.prototype.shape = LeafShape::Ovate;
     p.leaf.prototype.leaf_aspect_ratio = 0.7f;
     p.leaf.prototype.midrib_fold_fraction = 0.2f;
     p.leaf.prototype.lateral_curvature = -0.8f;

@@ -300,7 +300,8 @@ TEST(LeafOutline, UnknownShapeNameListsValidNames) {
         EXPECT_EQ(e.value(), "heart");
         EXPECT_NE(e.validRange().find("cordate"), std::string::npos);
     }
-    EXPECT_EQ(leafShapeFromName("palmately_lobed"), LeafShape::Palmate);
+    // One set of names: the table's (an old alias is not among them).
+    EXPECT_THROW(leafShapeFromName("palmately_lobed"), Error);
     for (LeafShape s : allLeafShapes()) EXPECT_EQ(leafShapeFromName(leafShapeName(s)), s);
 }
 
@@ -577,7 +578,7 @@ TEST(LeafDeform, NormalizationKeepsTheUnitBoundingBox) {
 
 LeafPrototype maizeLike() {
     LeafPrototype proto;
-    proto.shape = "linear";
+    proto.shape = LeafShape::Linear;
     proto.leaf_aspect_ratio = 0.1f;
     proto.widest_point = 0.4f;
     proto.tip_angle = 12.0f;
@@ -618,7 +619,7 @@ TEST(LeafPrototypeBuild, DrawsEveryRandomFieldOnceWhateverTheShape) {
     proto.lobes = RandomInt::uniform(3, 5);
     Rng first(9), second(9);
     const RealizedLeafShape r1 = realizeLeafShape(proto, first);
-    proto.shape = "palmate";
+    proto.shape = LeafShape::Palmate;
     realizeLeafShape(proto, second);
     EXPECT_EQ(first, second);  // same number of draws
     EXPECT_GE(r1.outline.widest_point, 0.3f);
@@ -631,7 +632,7 @@ TEST(LeafPrototypeBuild, DrawsEveryRandomFieldOnceWhateverTheShape) {
     // Out-of-range draws are clamped.
     proto.leaf_aspect_ratio = RandomFloat::normal(-5.0f, 0.1f);
     EXPECT_GE(realizeLeafShape(proto, first).outline.aspect_ratio, 0.01f);
-    proto.shape = "pinnate-ish";
+    proto.shape = static_cast<LeafShape>(99);  // not a declared family
     EXPECT_THROW(realizeLeafShape(proto, first), Error);
 }
 
@@ -640,7 +641,7 @@ TEST(LeafPrototypeBuild, BoundingBoxRunsFromZeroToOne) {
     for (LeafShape s : allLeafShapes()) {
         LeafPrototype proto;
         const LeafOutlineParams p = leafShapePreset(s);
-        proto.shape = std::string(leafShapeName(s));
+        proto.shape = s;
         proto.leaf_aspect_ratio = p.aspect_ratio;
         proto.widest_point = p.widest_point;
         proto.tip_angle = p.tip_angle;
@@ -652,7 +653,7 @@ TEST(LeafPrototypeBuild, BoundingBoxRunsFromZeroToOne) {
         proto.wave_period = 0.3f;
         proto.wave_amplitude = 0.05f;
         proto.subdivisions = 6;
-        SCOPED_TRACE(proto.shape);
+        SCOPED_TRACE(std::string(leafShapeName(s)));
         const Mesh m = buildLeafPrototype(proto, rng);
         ASSERT_NO_THROW(m.validate());
         const AABB box = bounds(m);
@@ -665,7 +666,7 @@ TEST(LeafPrototypeBuild, MeasuredAspectRatioEqualsTheParameter) {
     Rng rng(1);
     for (float aspect : {0.06f, 0.25f, 0.6f, 1.0f}) {
         LeafPrototype proto;
-        proto.shape = "elliptic";
+        proto.shape = LeafShape::Elliptic;
         proto.leaf_aspect_ratio = aspect;
         const Mesh m = buildLeafPrototype(proto, rng);
         const AABB box = bounds(m);
@@ -676,7 +677,7 @@ TEST(LeafPrototypeBuild, MeasuredAspectRatioEqualsTheParameter) {
 TEST(LeafPrototypeBuild, PetioluleAndOffset) {
     Rng rng(3);
     LeafPrototype proto;
-    proto.shape = "ovate";
+    proto.shape = LeafShape::Ovate;
     proto.leaf_aspect_ratio = 0.6f;
     const Mesh plain = buildLeafPrototype(proto, rng);
     proto.build_petiolule = true;

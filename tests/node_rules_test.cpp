@@ -312,7 +312,7 @@ TEST(NodeRules, InheritedListsAreReplacedWholeOrRemoved) {
     EXPECT_EQ(rules("a")[1].leaf_scale.text(), "0.5");
     EXPECT_EQ(rules("b"), rules("a"));
     ASSERT_EQ(rules("c").size(), 1u);
-    EXPECT_EQ(rules("c")[0].when, "daily");
+    EXPECT_EQ(rules("c")[0].when, NodeRuleTime::Daily);
     EXPECT_TRUE(rules("d").empty());
     // Written out and read back: the same rules.
     const SpeciesModel back = readSpeciesString(writeSpeciesString(m), "again.xml");

@@ -458,7 +458,7 @@ TEST(PlantModel, InvalidInputGivesClearErrors) {
     }
     EXPECT_THROW(p.defineChildShootTypes({"a"}, {1.2f}), Error);
     p = straightShoot();
-    p.phytomer_parameters.inflorescence.flower_arrangement = "spiral";
+    p.phytomer_parameters.inflorescence.flower_arrangement = static_cast<FlowerArrangement>(7);
     EXPECT_THROW(arch.defineShootType("main", p), Error);
     p = straightShoot();
     p.phytomer_parameters.inflorescence.fruit_prototype_function = "NoSuchFruit";

@@ -180,7 +180,7 @@ TEST(PlantString, PhytomerOfAnotherShootTypeKeepsItsType) {
     PlantArchitecture arch(&ctx);
     ShootParameters plain, varied;
     varied.phytomer_parameters.leaf.prototype.unique_prototypes = 4;
-    varied.phytomer_parameters.leaf.prototype.shape = "cordate";
+    varied.phytomer_parameters.leaf.prototype.shape = LeafShape::Cordate;
     arch.defineShootType("plain", plain);
     arch.defineShootType("varied", varied);
     const unsigned p = arch.addPlantInstance(vec3(0.0f), 1.0f);

@@ -230,7 +230,7 @@ TEST(PlantStructureXML, HandBuiltPlantWithItsOwnShootTypeNeedsNothingPreloaded) 
     ShootParameters sp;
     sp.phytomer_parameters.leaf.leaves_per_petiole = 5;
     sp.phytomer_parameters.leaf.leaflet_offset = 0.2f;
-    sp.phytomer_parameters.leaf.prototype.shape = "lanceolate";
+    sp.phytomer_parameters.leaf.prototype.shape = LeafShape::Lanceolate;
     sp.phytomer_parameters.internode.phyllotactic_angle = RandomFloat::normal(137.5f, 10.0f);
     sp.child_shoot_types = {{"mine", 1.0f}};
     sp.max_nodes = 12;
@@ -476,10 +476,18 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
     // Embedded parameters are validated like species files.
     d = damage("<max_nodes>25</max_nodes>", "<max_nodes>-3</max_nodes>");
     expectError(d, "<max_nodes>-3", "max_nodes = -3: out of range");
-    d = damage("<phytomer_creation_function>", "<phytomer_creation_function>no_such_function");
+    d = damage("<phytomer_creation_function/>",
+               "<phytomer_creation_function>no_such_function</phytomer_creation_function>");
     const std::string e = readError(d);
     EXPECT_NE(e.find("unknown phytomer creation function"), std::string::npos) << e;
     EXPECT_EQ(e.rfind("plants.xml: ", 0), 0u) << e;
+    // And so are the node rules they carry.
+    d = damage("<when>creation</when>", "<when>weekly</when>");
+    expectError(d, "<when>weekly", "node_rules.rule[0].when = weekly: unknown value");
+    d = damage("<leaf_scale>min(1, 0.6 + 0.4 * age / 8)</leaf_scale>",
+               "<leaf_scale>min(1, 0.6 + 0.4 * ages / 8)</leaf_scale>");
+    expectError(d, "<leaf_scale>min(1, 0.6 + 0.4 * ages",
+                "bad expression: unknown name 'ages' at column 20, did you mean 'age'?");
 }
 
 namespace {

@@ -372,7 +372,7 @@ TEST(SpeciesHerbsAll, LoadWithTheirRulesAndRejectBuildParameters) {
     arch.loadPlantModelFromLibrary("cherrytomato");
     const NodeRule& pruning =
         arch.getCurrentShootParameters("mainstem").phytomer_parameters.node_rules.back();
-    EXPECT_EQ(pruning.when, "daily");
+    EXPECT_EQ(pruning.when, NodeRuleTime::Daily);
     EXPECT_EQ(pruning.age_min, 101.0f);
     EXPECT_EQ(pruning.height_below, 1.0f);
     EXPECT_TRUE(pruning.remove_leaves);

@@ -146,8 +146,8 @@ TEST(SpeciesBean, LoadsWithTheReferenceNumbers) {
     EXPECT_EQ(tri.phytomer_parameters.internode.color, vec3(0.2f, 0.25f, 0.05f));
     // Inherited from the trifoliate type, which the unifoliate one does not override.
     EXPECT_EQ(uni.phytomer_parameters.peduncle.curvature, RandomFloat::uniform(-500, 500));
-    EXPECT_EQ(uni.phytomer_parameters.leaf.prototype.shape, "cordate");
-    EXPECT_EQ(tri.phytomer_parameters.leaf.prototype.shape, "ovate");
+    EXPECT_EQ(uni.phytomer_parameters.leaf.prototype.shape, LeafShape::Cordate);
+    EXPECT_EQ(tri.phytomer_parameters.leaf.prototype.shape, LeafShape::Ovate);
     EXPECT_EQ(uni.child_shoot_types, (std::map<std::string, float>{{"trifoliate", 1.0f}}));
     EXPECT_EQ(tri.phytomer_parameters.inflorescence.flower_prototype_function,
               "papilionaceous_flower");
@@ -773,8 +773,8 @@ TEST(SpeciesBuild, StepFlagsStripLeavesBudsAndApex) {
                   "vegetative_buds=\"false\" floral_buds=\"false\" apex=\"false\"/>"
                   "<child parent=\"stem\" node=\"2\" type=\"main\" nodes=\"1\"/>"}}),
         "trunk.xml");
-    EXPECT_EQ(m.build[0].leaves, "false");
-    EXPECT_EQ(m.build[1].apex, "true");
+    EXPECT_FALSE(m.build[0].leaves);
+    EXPECT_TRUE(m.build[1].apex);
     Built b = buildFrom(m);
     const PlantInstance& p = b.arch->plant(b.plant);
     const Shoot& trunk = p.shoots[0];
@@ -807,7 +807,7 @@ TEST(SpeciesBuild, StepFlagsStripLeavesBudsAndApex) {
                           "bad.xml");
     });
     EXPECT_EQ(bad.parameter(), "build.stem.apex");
-    EXPECT_EQ(bad.validRange(), "true or false");
+    EXPECT_EQ(bad.validRange(), "true, false");
 }
 
 TEST(SpeciesBuild, BuildTimeErrorsPointAtTheStep) {

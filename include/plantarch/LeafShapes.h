@@ -27,35 +27,15 @@ namespace plantarch {
 
 // ---- outline families ----------------------------------------------------------------
 
-/// Outline families (the `shape` field of LeafPrototype, in lower case: "elliptic",
-/// "palmate", ...). A family fixes the form of the margin;
-/// the numbers (aspect ratio, widest point, angles, lobes, teeth) come from the parameters.
-/// leafShapePreset() gives typical numbers for each family.
-enum class LeafShape {
-    Elliptic,      ///< widest at the middle, both ends tapered alike (walnut, pistachio)
-    Ovate,         ///< egg-shaped, widest below the middle (apple, bean leaflets, soybean)
-    Obovate,       ///< widest above the middle, tapering to the base (lettuce, strawberry)
-    Lanceolate,    ///< narrow, widest below the middle, long acute tip (almond, olive)
-    Oblanceolate,  ///< narrow, widest above the middle
-    Linear,        ///< grass blade: long, nearly parallel-sided, pointed tip (maize, rice)
-    Needle,        ///< very narrow flat needle or cladode, pointed at both ends (asparagus)
-    Spatulate,     ///< spoon-shaped: rounded end on a long narrow base
-    Oblong,        ///< parallel sides, rounded ends (sugar beet, puncturevine leaflets)
-    Orbicular,     ///< nearly round
-    Deltoid,       ///< triangular: broad truncate base, straight sides to the tip
-    Cordate,       ///< heart-shaped: notched base with rounded basal lobes (redbud)
-    Reniform,      ///< kidney-shaped: wider than long, notched base, rounded tip
-    Sagittate,     ///< arrow-shaped: pointed basal lobes pointing back (bindweed)
-    Hastate,       ///< halberd-shaped: pointed basal lobes spreading sideways
-    Palmate,       ///< palmately lobed: notched base, lobes radiating from the petiole (grape)
-};
+// LeafShape (the outline families) is declared in plantarch/Parameters.h; the name and
+// description of each are in the parameter table (docs/parameters.md).
 
 /// Every family, in declaration order.
 const std::vector<LeafShape>& allLeafShapes();
 /// Lower-case name used in parameter files ("palmate").
 std::string_view leafShapeName(LeafShape shape);
-/// The family named `name` ("palmately_lobed" is accepted for "palmate"); throws
-/// plantarch::Error listing the valid names.
+/// The family named `name` exactly as files spell it; throws plantarch::Error listing the
+/// valid names.
 LeafShape leafShapeFromName(std::string_view name);
 
 /// Realized (non-random) outline parameters. Lengths are fractions of the leaf length,

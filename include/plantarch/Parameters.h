@@ -1,13 +1,12 @@
 #pragma once
 // Species parameters: the phytomer template (internode, petiole, leaf, peduncle,
-// inflorescence) and the shoot type that embeds it.
+// inflorescence), the shoot type that embeds it, and the plant's phenology.
 //
 // Field names follow the model specification so that programs written against it compile
 // unchanged (`params.phytomer_parameters.internode.pitch = 5.0;`). Units: metres, degrees,
-// days; curvature in degrees per metre; girth_area_factor in cm^2 per m^2 of downstream leaf
-// area. Every field is declared once, with its unit, valid range and description, in
-// src/model/parameter_table.h; that table drives validation, species files, `plantarch info`
-// and the Python binding.
+// days. The unit, valid range, meaning and valid values of every field are declared once, in
+// src/model/parameter_table.h, and listed in docs/parameters.md (or by
+// `plantarch info --parameters`); comments here do not repeat them.
 //
 // Random parameters (RandomFloat, RandomInt) are realized once per organ when the organ is
 // created, and the realized value is stored on the organ.
@@ -25,65 +24,72 @@ namespace plantarch {
 /// RGB colour of "forest green", the default colour of stems and petioles.
 inline constexpr vec3 kForestGreen{0.133f, 0.545f, 0.133f};
 
+/// Outline family of a procedural leaf (LeafPrototype::shape). Names in files, and what each
+/// family looks like: the parameter table (docs/parameters.md); leafShapePreset() in
+/// plantarch/LeafShapes.h gives typical numbers for each.
+enum class LeafShape {
+    Elliptic,
+    Ovate,
+    Obovate,
+    Lanceolate,
+    Oblanceolate,
+    Linear,
+    Needle,
+    Spatulate,
+    Oblong,
+    Orbicular,
+    Deltoid,
+    Cordate,
+    Reniform,
+    Sagittate,
+    Hastate,
+    Palmate,
+};
+
+/// Sides of successive flowers along a peduncle (InflorescenceParameters::flower_arrangement).
+enum class FlowerArrangement { Alternate, Opposite };
+
 /// How a leaf prototype is built. The outline is a procedural shape family (or a traced
 /// PNG), meshed to its true outline, then deformed by the fold/curvature/wave/buckle fields.
 struct LeafPrototype {
-    /// Name of a registered leaf prototype function; "procedural" uses the outline below.
     std::string prototype_function = "procedural";
-    /// OBJ file used instead of the procedural outline when not empty.
     std::string OBJ_model_file;
-    /// Scale and move an OBJ model to the prototype convention (length 1 along +x, base at
-    /// the origin); false: a model that does not already follow it is an error.
     bool normalize_OBJ_model = false;
-    /// Image per leaflet index (0 tip, negative left, positive right): its alpha channel
-    /// gives the outline and its colours the texture. Empty: procedural outline and colour.
     std::map<int, std::string> leaf_texture_file;
 
     // Outline (procedural leaves).
-    std::string shape = "elliptic";        ///< outline family, see docs/organs.md
-    RandomFloat leaf_aspect_ratio = 1.0f;  ///< width / length
-    RandomFloat widest_point = 0.5f;       ///< position of the widest point, fraction of length
-    RandomFloat tip_angle = 60.0f;         ///< included angle at the tip, degrees
-    RandomFloat base_angle = 90.0f;        ///< included angle at the base, degrees
-    RandomInt lobes = 0;                   ///< number of lobes (palmate/pinnate families)
-    RandomFloat lobe_depth = 0.0f;         ///< lobe sinus depth, fraction of half-width
-    RandomInt serrations = 0;              ///< teeth along each margin
-    RandomFloat serration_depth = 0.0f;    ///< tooth depth, fraction of length
-    /// Width of a truncate base (grass blades), fraction of the maximum width (0: pointed)
+    LeafShape shape = LeafShape::Elliptic;
+    RandomFloat leaf_aspect_ratio = 1.0f;
+    RandomFloat widest_point = 0.5f;
+    RandomFloat tip_angle = 60.0f;
+    RandomFloat base_angle = 90.0f;
+    RandomInt lobes = 0;
+    RandomFloat lobe_depth = 0.0f;
+    RandomInt serrations = 0;
+    RandomFloat serration_depth = 0.0f;
     RandomFloat base_width = 0.0f;
-    /// Depth of the basal sinus of notched shapes (cordate, reniform, sagittate, hastate,
-    /// palmately lobed), fraction of length: the petiole attaches at (sinus_depth, 0)
     RandomFloat sinus_depth = 0.15f;
 
     // Deformations.
-    RandomFloat midrib_fold_fraction = 0.0f;  ///< fold about the midrib (0 flat, 1 closed)
-    /// Curvature along the midrib: the tip rises by about this fraction of the length (- droops)
+    RandomFloat midrib_fold_fraction = 0.0f;
     RandomFloat longitudinal_curvature = 0.0f;
-    /// Curvature across the blade (+ cups up): the margin at the widest point moves by 1/16 of
-    /// this, in leaf lengths
     RandomFloat lateral_curvature = 0.0f;
-    /// Curl of the blade's base about the midrib (both halves rise), degrees, fading over the
-    /// basal 10-15 % of the blade
     RandomFloat petiole_roll = 0.0f;
-    /// Distance between sign changes of the marginal waves (half a wavelength, as in the
-    /// reference), fraction of length
     RandomFloat wave_period = 0.0f;
-    /// Amplitude of the marginal waves, fraction of the local blade width
     RandomFloat wave_amplitude = 0.0f;
-    RandomFloat leaf_buckle_length = 0.0f;  ///< where the blade buckles, fraction of length
-    RandomFloat leaf_buckle_angle = 0.0f;   ///< buckle angle, degrees (+ bends the tip down)
-    vec3 leaf_offset{0.0f};                 ///< shift of the blade from the petiole tip
-    unsigned subdivisions = 1;              ///< mesh resolution (rows along the midrib)
-    /// Distinct shape variants per prototype, reused by transform; 0 = every leaf unique.
+    RandomFloat leaf_buckle_length = 0.0f;
+    RandomFloat leaf_buckle_angle = 0.0f;
+    vec3 leaf_offset{0.0f};
+    unsigned subdivisions = 1;
     unsigned unique_prototypes = 1;
-    bool build_petiolule = false;     ///< add a short stalk between leaflet and rachis
-    vec3 color{0.18f, 0.42f, 0.12f};  ///< upper-side colour (procedural leaves)
+    bool build_petiolule = false;
+    vec3 color{0.18f, 0.42f, 0.12f};
 };
 
 struct InternodeParameters {
-    RandomFloat pitch = 20.0f;  ///< zig-zag angle of an internode from the shoot axis, degrees
-    RandomFloat phyllotactic_angle = 137.5f;  ///< roll between successive phytomers, degrees
-    RandomFloat radius_initial = 0.001f;      ///< radius when created, m
+    RandomFloat pitch = 20.0f;
+    RandomFloat phyllotactic_angle = 137.5f;
+    RandomFloat radius_initial = 0.001f;
     RandomInt max_vegetative_buds_per_petiole = 1;
     RandomInt max_floral_buds_per_petiole = 1;
     vec3 color = kForestGreen;
@@ -94,33 +100,33 @@ struct InternodeParameters {
 
 struct PetioleParameters {
     unsigned petioles_per_internode = 1;
-    RandomFloat pitch = 90.0f;     ///< angle from the internode axis, degrees
-    RandomFloat radius = 0.001f;   ///< m
-    RandomFloat length = 0.05f;    ///< m
-    RandomFloat curvature = 0.0f;  ///< degrees per m (+ curves up toward vertical)
-    RandomFloat taper = 0.0f;      ///< tip radius / base radius
+    RandomFloat pitch = 90.0f;
+    RandomFloat radius = 0.001f;
+    RandomFloat length = 0.05f;
+    RandomFloat curvature = 0.0f;
+    RandomFloat taper = 0.0f;
     vec3 color = kForestGreen;
     unsigned length_segments = 1;
     unsigned radial_subdivisions = 7;
 };
 
 struct LeafParameters {
-    RandomInt leaves_per_petiole = 1;     ///< > 1 makes a compound leaf
-    RandomFloat pitch = 0.0f;             ///< from the petiole axis, degrees (+ raises the tip)
-    RandomFloat yaw = 0.0f;               ///< about the leaf normal, degrees
-    RandomFloat roll = 0.0f;              ///< about the midrib, degrees
-    RandomFloat leaflet_offset = 0.0f;    ///< spacing of leaflet pairs, fraction of petiole
-    RandomFloat leaflet_scale = 1.0f;     ///< size of each pair relative to the one above
-    RandomFloat prototype_scale = 0.05f;  ///< leaf length, m
+    RandomInt leaves_per_petiole = 1;
+    RandomFloat pitch = 0.0f;
+    RandomFloat yaw = 0.0f;
+    RandomFloat roll = 0.0f;
+    RandomFloat leaflet_offset = 0.0f;
+    RandomFloat leaflet_scale = 1.0f;
+    RandomFloat prototype_scale = 0.05f;
     LeafPrototype prototype;
 };
 
 struct PeduncleParameters {
-    RandomFloat length = 0.05f;    ///< m
-    RandomFloat radius = 0.001f;   ///< m
-    RandomFloat pitch = 0.0f;      ///< from the internode axis, degrees
-    RandomFloat roll = 0.0f;       ///< about its own axis, degrees
-    RandomFloat curvature = 0.0f;  ///< degrees per m
+    RandomFloat length = 0.05f;
+    RandomFloat radius = 0.001f;
+    RandomFloat pitch = 0.0f;
+    RandomFloat roll = 0.0f;
+    RandomFloat curvature = 0.0f;
     vec3 color = kForestGreen;
     unsigned length_segments = 3;
     unsigned radial_subdivisions = 7;
@@ -128,28 +134,22 @@ struct PeduncleParameters {
 
 struct InflorescenceParameters {
     RandomInt flowers_per_peduncle = 1;
-    RandomFloat flower_offset = 0.0f;  ///< spacing along the peduncle, fraction of its length
-    /// "alternate" (successive flowers on opposite sides) or "opposite" (in pairs).
-    std::string flower_arrangement = "alternate";
-    RandomFloat pitch = 0.0f;  ///< flower/fruit axis from the peduncle axis, degrees
-    RandomFloat roll = 0.0f;   ///< about the flower/fruit axis, degrees
-    RandomFloat flower_prototype_scale = 0.0075f;  ///< m
-    std::string flower_prototype_function;         ///< registered prototype name
-    /// Shape parameters of the flower prototype family (names and ranges per family).
+    RandomFloat flower_offset = 0.0f;
+    FlowerArrangement flower_arrangement = FlowerArrangement::Alternate;
+    RandomFloat pitch = 0.0f;
+    RandomFloat roll = 0.0f;
+    RandomFloat flower_prototype_scale = 0.0075f;
+    std::string flower_prototype_function;
     std::map<std::string, float> flower_prototype_parameters;
-    vec3 flower_color{0.95f, 0.95f, 0.95f};       ///< main (petal) colour
-    unsigned flower_subdivisions = 8;             ///< flower mesh resolution
-    RandomFloat fruit_prototype_scale = 0.0075f;  ///< m
-    std::string fruit_prototype_function;         ///< registered prototype name
-    /// Shape parameters of the fruit prototype family (names and ranges per family).
+    vec3 flower_color{0.95f, 0.95f, 0.95f};
+    unsigned flower_subdivisions = 8;
+    RandomFloat fruit_prototype_scale = 0.0075f;
+    std::string fruit_prototype_function;
     std::map<std::string, float> fruit_prototype_parameters;
-    vec3 fruit_color{0.75f, 0.12f, 0.08f};  ///< main fruit colour
-    unsigned fruit_subdivisions = 12;       ///< fruit mesh resolution
-    /// How far fruit turn toward the ground as they grow (0 none, 1 hang vertically).
+    vec3 fruit_color{0.75f, 0.12f, 0.08f};
+    unsigned fruit_subdivisions = 12;
     RandomFloat fruit_gravity_factor_fraction = 0.0f;
     unsigned unique_prototypes = 1;
-    /// Scale and move OBJ flower/fruit models (a prototype function naming a .obj file) to
-    /// the prototype convention; false: a model that does not follow it is an error.
     bool normalize_OBJ_model = false;
 };
 
@@ -158,8 +158,11 @@ struct InflorescenceParameters {
 /// units, ranges and meaning are declared in src/model/parameter_table.h and described with
 /// examples in docs/species-format.md ("Node rules"). A condition left at its default always
 /// holds; an action left at its default does nothing.
+/// When a node rule runs: as a phytomer is made, daily, or at the start of each winter.
+enum class NodeRuleTime { Creation, Daily, Winter };
+
 struct NodeRule {
-    std::string when = "creation";  ///< creation, daily or winter
+    NodeRuleTime when = NodeRuleTime::Creation;
 
     // Conditions.
     int rank_min = 0;
@@ -207,9 +210,7 @@ struct PhytomerParameters {
     LeafParameters leaf;
     PeduncleParameters peduncle;
     InflorescenceParameters inflorescence;
-    /// Registered function called once per new phytomer (empty: none).
     std::string phytomer_creation_function;
-    /// Registered function called for every phytomer at every time step (empty: none).
     std::string phytomer_callback_function;
     /// Rules applied to every phytomer of this type, in order (see NodeRule).
     std::vector<NodeRule> node_rules;
@@ -221,24 +222,24 @@ struct ShootParameters {
     // Geometry.
     RandomInt max_nodes = 10;
     RandomInt max_nodes_per_season = 9999;
-    RandomFloat insertion_angle_tip = 20.0f;         ///< degrees
-    RandomFloat insertion_angle_decay_rate = 0.0f;   ///< degrees per node
-    RandomFloat internode_length_max = 0.02f;        ///< m
-    RandomFloat internode_length_min = 0.002f;       ///< m
-    RandomFloat internode_length_decay_rate = 0.0f;  ///< m per node
-    RandomFloat base_roll = 0.0f;                    ///< degrees
-    RandomFloat base_yaw = 0.0f;                     ///< degrees
-    RandomFloat gravitropic_curvature = 0.0f;        ///< degrees per m
-    RandomFloat tortuosity = 0.0f;                   ///< degrees per sqrt(m)
+    RandomFloat insertion_angle_tip = 20.0f;
+    RandomFloat insertion_angle_decay_rate = 0.0f;
+    RandomFloat internode_length_max = 0.02f;
+    RandomFloat internode_length_min = 0.002f;
+    RandomFloat internode_length_decay_rate = 0.0f;
+    RandomFloat base_roll = 0.0f;
+    RandomFloat base_yaw = 0.0f;
+    RandomFloat gravitropic_curvature = 0.0f;
+    RandomFloat tortuosity = 0.0f;
 
     // Growth.
-    RandomFloat phyllochron_min = 2.0f;            ///< days per node
-    RandomFloat elongation_rate_max = 0.2f;        ///< m per m of final length per day
-    RandomFloat girth_area_factor = 0.0f;          ///< cm^2 per m^2 downstream leaf area
-    RandomFloat vegetative_bud_break_time = 5.0f;  ///< days
+    RandomFloat phyllochron_min = 2.0f;
+    RandomFloat elongation_rate_max = 0.2f;
+    RandomFloat girth_area_factor = 0.0f;
+    RandomFloat vegetative_bud_break_time = 5.0f;
     RandomFloat vegetative_bud_break_probability_min = 0.0f;
     RandomFloat vegetative_bud_break_probability_max = 1.0f;
-    RandomFloat vegetative_bud_break_probability_decay_rate = -0.5f;  ///< per node
+    RandomFloat vegetative_bud_break_probability_decay_rate = -0.5f;
     RandomInt max_terminal_floral_buds = 0;
     RandomFloat flower_bud_break_probability = 0.0f;
     RandomFloat fruit_set_probability = 0.0f;
@@ -246,11 +247,10 @@ struct ShootParameters {
     bool growth_requires_dormancy = false;
     bool determinate_shoot_growth = true;
 
-    /// Shoot types of child shoots with their probabilities (in [0,1], summing to 1).
-    /// Empty: children are of the same type as this shoot.
     std::map<std::string, float> child_shoot_types;
 
-    /// Adds a child type. Probabilities are checked when the shoot type is defined.
+    /// Sets child_shoot_types from parallel lists; throws plantarch::Error when the lists differ
+    /// in length or the probabilities are not each in [0, 1] summing to 1.
     void defineChildShootTypes(const std::vector<std::string>& labels,
                                const std::vector<float>& probabilities);
 };
@@ -258,15 +258,15 @@ struct ShootParameters {
 /// Timing of a plant's phenological stages, days. A negative threshold disables that
 /// transition (the next one is timed from the previous enabled one).
 struct PhenologyParameters {
-    float time_to_dormancy_break = 0.0f;      ///< dormancy (also winter length) to bud break
-    float time_to_flower_initiation = -1.0f;  ///< dormancy break to closed flowers
-    float time_to_flower_opening = -1.0f;     ///< flower initiation to open flowers
-    float time_to_fruit_set = -1.0f;          ///< previous stage to fruit
-    float time_to_fruit_maturity = -1.0f;     ///< fruit set to full-size fruit
-    float time_to_senescence = -1.0f;         ///< dormancy break to senescence (season end)
-    float max_leaf_lifespan = 1e6f;           ///< leaves older than this are shed
-    bool evergreen = false;                   ///< keep leaves through dormancy
-    float max_age = 999.0f;                   ///< the plant stops developing at this age
+    float time_to_dormancy_break = 0.0f;
+    float time_to_flower_initiation = -1.0f;
+    float time_to_flower_opening = -1.0f;
+    float time_to_fruit_set = -1.0f;
+    float time_to_fruit_maturity = -1.0f;
+    float time_to_senescence = -1.0f;
+    float max_leaf_lifespan = 1e6f;
+    bool evergreen = false;
+    float max_age = 999.0f;
 };
 
 /// Checks every field against its declared range (and child probabilities: each in [0,1],

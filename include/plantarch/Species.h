@@ -44,13 +44,13 @@ struct BuildStep {
     /// the parent step made several shoots, the step runs once per parent shoot and
     /// "parent_i" is that shoot's copy index.
     std::string repeat = "1";
-    /// What the new shoot keeps ("true" or "false"): its leaves (false: leaves and petioles
-    /// removed, bare nodes), its axillary vegetative and floral buds, its apical bud (false:
-    /// the shoot never grows longer).
-    std::string leaves = "true";
-    std::string vegetativeBuds = "true";
-    std::string floralBuds = "true";
-    std::string apex = "true";
+    /// What the new shoot keeps: its leaves (false: leaves and petioles removed, bare nodes),
+    /// its axillary vegetative and floral buds, its apical bud (false: the shoot never grows
+    /// longer).
+    bool leaves = true;
+    bool vegetativeBuds = true;
+    bool floralBuds = true;
+    bool apex = true;
     int line = 0;  ///< line in the species file, for errors
 };
 

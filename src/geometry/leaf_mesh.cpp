@@ -261,7 +261,8 @@ std::string leafTextureFile(const LeafPrototype& proto, int leafletIndex) {
 RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int leafletIndex) {
     RealizedLeafShape r;
     LeafOutlineParams& o = r.outline;
-    o.shape = leafShapeFromName(proto.shape);
+    leafShapeName(proto.shape);  // throws for a value that is not a declared family
+    o.shape = proto.shape;
     o.aspect_ratio = clampedDraw(proto.leaf_aspect_ratio, rng, 0.01f, 4.0f);
     o.widest_point = clampedDraw(proto.widest_point, rng, 0.05f, 0.95f);
     o.tip_angle = clampedDraw(proto.tip_angle, rng, 1.0f, 180.0f);

@@ -26,6 +26,7 @@
 #include <tuple>
 
 #include "geometry/polygon_mesh.h"
+#include "model/parameter_table.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
 
@@ -558,69 +559,40 @@ std::vector<dvec2> mirrorHalf(const std::vector<dvec2>& half) {
     return full;
 }
 
+std::string validShapeNames() {
+    std::string valid;
+    for (const std::string& name : params::choiceNames<LeafShape>())
+        valid += (valid.empty() ? "" : ", ") + name;
+    return valid;
+}
+
 }  // namespace
 
 // ---- names and presets -------------------------------------------------------------------
 
 const std::vector<LeafShape>& allLeafShapes() {
-    static const std::vector<LeafShape> shapes = {
-        LeafShape::Elliptic,     LeafShape::Ovate,     LeafShape::Obovate, LeafShape::Lanceolate,
-        LeafShape::Oblanceolate, LeafShape::Linear,    LeafShape::Needle,  LeafShape::Spatulate,
-        LeafShape::Oblong,       LeafShape::Orbicular, LeafShape::Deltoid, LeafShape::Cordate,
-        LeafShape::Reniform,     LeafShape::Sagittate, LeafShape::Hastate, LeafShape::Palmate};
+    static const std::vector<LeafShape> shapes = [] {
+        std::vector<LeafShape> all;
+        for (const auto& c : params::kChoices<LeafShape>) all.push_back(c.value);
+        return all;
+    }();
     return shapes;
 }
 
 std::string_view leafShapeName(LeafShape shape) {
-    switch (shape) {
-        case LeafShape::Elliptic:
-            return "elliptic";
-        case LeafShape::Ovate:
-            return "ovate";
-        case LeafShape::Obovate:
-            return "obovate";
-        case LeafShape::Lanceolate:
-            return "lanceolate";
-        case LeafShape::Oblanceolate:
-            return "oblanceolate";
-        case LeafShape::Linear:
-            return "linear";
-        case LeafShape::Needle:
-            return "needle";
-        case LeafShape::Spatulate:
-            return "spatulate";
-        case LeafShape::Oblong:
-            return "oblong";
-        case LeafShape::Orbicular:
-            return "orbicular";
-        case LeafShape::Deltoid:
-            return "deltoid";
-        case LeafShape::Cordate:
-            return "cordate";
-        case LeafShape::Reniform:
-            return "reniform";
-        case LeafShape::Sagittate:
-            return "sagittate";
-        case LeafShape::Hastate:
-            return "hastate";
-        case LeafShape::Palmate:
-            return "palmate";
-    }
-    return "elliptic";
+    const char* name = params::choiceName(shape);
+    if (!name)
+        throw Error("not a leaf shape", {.parameter = "shape",
+                                         .value = std::to_string(int(shape)),
+                                         .validRange = "one of: " + validShapeNames()});
+    return name;
 }
 
 LeafShape leafShapeFromName(std::string_view name) {
-    for (LeafShape s : allLeafShapes())
-        if (leafShapeName(s) == name) return s;
-    if (name == "palmately_lobed") return LeafShape::Palmate;
-    std::string valid;
-    for (LeafShape s : allLeafShapes()) {
-        if (!valid.empty()) valid += ", ";
-        valid += leafShapeName(s);
-    }
-    throw Error(
-        "unknown leaf shape",
-        {.parameter = "shape", .value = std::string(name), .validRange = "one of: " + valid});
+    if (const auto shape = params::choiceNamed<LeafShape>(name)) return *shape;
+    throw Error("unknown leaf shape", {.parameter = "shape",
+                                       .value = std::string(name),
+                                       .validRange = "one of: " + validShapeNames()});
 }
 
 LeafOutlineParams leafShapePreset(LeafShape shape) {

@@ -16,6 +16,7 @@
 #include "geometry/tube.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
+#include "plantarch/LeafShapes.h"
 #include "plantarch/OrganPrototypes.h"
 
 namespace plantarch {
@@ -350,10 +351,11 @@ std::string variantKey(const std::string& fn, const std::string& params, int lea
     return fn + "|" + params + "|" + std::to_string(leaflet) + "|" + std::to_string(variant);
 }
 
-// A compact description of a leaf prototype for the cache key.
+// A compact description of a leaf prototype for the cache key (which also seeds the shape
+// variants: the text must stay as it is for the same plants).
 std::string describePrototype(const LeafPrototype& p) {
-    std::string s = p.prototype_function + ";" + p.shape + ";" + p.OBJ_model_file +
-                    (p.normalize_OBJ_model ? "|normalized;" : ";");
+    std::string s = p.prototype_function + ";" + std::string(leafShapeName(p.shape)) + ";" +
+                    p.OBJ_model_file + (p.normalize_OBJ_model ? "|normalized;" : ";");
     for (const auto& [i, f] : p.leaf_texture_file) s += std::to_string(i) + "=" + f + ",";
     for (const RandomFloat* r :
          {&p.leaf_aspect_ratio, &p.widest_point, &p.tip_angle, &p.base_angle, &p.lobe_depth,

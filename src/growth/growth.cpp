@@ -671,7 +671,7 @@ void realizeInflorescence(PlantInstance& p, FloralBud& fb, const PhytomerParamet
     const InflorescenceParameters& inf = pp.inflorescence;
     const int count = std::max(1, inf.flowers_per_peduncle.sample(p.rng));
     const float offset = inf.flower_offset.sample(p.rng);
-    const bool opposite = inf.flower_arrangement == "opposite";
+    const bool opposite = inf.flower_arrangement == FlowerArrangement::Opposite;
     fb.flowers.clear();
     for (int i = 0; i < count; ++i) {
         FlowerOrgan fl;

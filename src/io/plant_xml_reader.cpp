@@ -19,7 +19,6 @@
 
 #include "io/plant_state_table.h"
 #include "io/plant_structure.h"
-#include "library/species_xml.h"
 #include "library/value_text.h"
 #include "library/xml_source.h"
 #include "plantarch/Error.h"
@@ -132,6 +131,17 @@ Enum parseEnum(std::string_view raw, int count, NameOf&& nameOf) {
                 {.value = std::string(s), .validRange = "one of: " + text::joinNames(names)});
 }
 
+// The value of an enum-like parameter, by the names the parameter table declares.
+template <params::ChoiceType E>
+E parseChoice(std::string_view raw) {
+    const std::string_view s = text::trim(raw);
+    if (const auto value = params::choiceNamed<E>(s)) return *value;
+    const std::vector<std::string> names = params::choiceNames<E>();
+    const std::string near = text::closestMatch(s, names);
+    throw Error("unknown value" + (near.empty() ? std::string() : ", did you mean '" + near + "'?"),
+                {.value = std::string(s), .validRange = "one of: " + text::joinNames(names)});
+}
+
 // Labels: letters, digits, '_' and '-'.
 bool isLabel(std::string_view s) {
     return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
@@ -197,8 +207,8 @@ struct MissingVisitor {
     template <class T>
     void list(const char*, std::vector<T>&, bool = false) {}
     template <class E, class Fn>
-    void list(const char* name, const char*, std::vector<E>& items, Fn&&) {
-        r.missing(name, &items);
+    void list(const params::FieldInfo& f, const char*, std::vector<E>& items, Fn&&) {
+        r.missing(f.name, &items);
     }
     template <class T>
     void values(const state::FieldInfo&, std::vector<T>&) {}
@@ -321,7 +331,8 @@ public:
 
     // Parameter table list: <name><item>...</item>...</name>.
     template <class E, class Fn>
-    void list(const char* name, const char* item, std::vector<E>& items, Fn&& visit) {
+    void list(const params::FieldInfo& f, const char* item, std::vector<E>& items, Fn&& visit) {
+        const char* name = f.name;
         names_.push_back(name);
         Kid* k = take(name);
         if (!k) {
@@ -653,6 +664,10 @@ private:
     void readValue(const state::FieldInfo& f, xml_node e, Rng& m) {
         m = convert(e, f.name, valueOf(e, f.name), parseRng);
     }
+    template <params::ChoiceType E>
+    void readValue(const params::FieldInfo& f, xml_node e, E& m) {
+        m = convert(e, f.name, valueOf(e, f.name), parseChoice<E>);
+    }
     void readValue(const params::FieldInfo& f, xml_node e, RandomFloat& m) {
         m = convert(e, f.name, valueOf(e, f.name), text::parseRandomFloat);
     }
@@ -660,12 +675,12 @@ private:
         m = convert(e, f.name, valueOf(e, f.name), text::parseRandomInt);
     }
 
-    // Map parameters: one child element per entry (species_xml::mapSpelling).
+    // Map parameters: one child element per entry, spelled as the table declares (f.entries).
     template <class Key, class Value, class ParseKey, class ParseValue>
     void readMap(const params::FieldInfo& f, xml_node e, std::map<Key, Value>& m,
                  ParseKey&& parseKey, ParseValue&& parseValue) {
         const std::string path = r_.pathTo(f.name);
-        const auto spell = species_xml::mapSpelling(f.name, std::is_same_v<Key, int>);
+        const params::MapEntries& spell = f.entries;
         if (e.first_attribute())
             r_.doc.fail(e, path + "." + e.first_attribute().name(),
                         std::string("<") + e.name() + "> takes no attributes");
@@ -680,27 +695,24 @@ private:
                             std::string("unknown element <") + c.name() + "> in <" + f.name + ">",
                             "", std::string("<") + spell.element + ">");
             for (pugi::xml_attribute a = c.first_attribute(); a; a = a.next_attribute()) {
-                const bool known =
-                    std::strcmp(a.name(), spell.keyAttribute) == 0 ||
-                    (spell.valueAttribute && std::strcmp(a.name(), spell.valueAttribute) == 0);
+                const bool known = std::strcmp(a.name(), spell.key) == 0 ||
+                                   (spell.value && std::strcmp(a.name(), spell.value) == 0);
                 if (!known)
                     r_.doc.fail(c, path + "." + a.name(),
                                 std::string("unknown attribute '") + a.name() + "'", a.value());
             }
-            pugi::xml_attribute keyAttr = c.attribute(spell.keyAttribute);
+            pugi::xml_attribute keyAttr = c.attribute(spell.key);
             if (!keyAttr)
-                r_.doc.fail(c, path,
-                            std::string("missing required attribute '") + spell.keyAttribute + "'");
+                r_.doc.fail(c, path, std::string("missing required attribute '") + spell.key + "'");
             const std::string keyText(text::trim(keyAttr.value()));
             const std::string entry = path + "." + keyText;
             const Key key = convert(c, entry, keyText, parseKey);
             std::string_view valueText;
-            if (spell.valueAttribute) {
-                pugi::xml_attribute v = c.attribute(spell.valueAttribute);
+            if (spell.value) {
+                pugi::xml_attribute v = c.attribute(spell.value);
                 if (!v)
-                    r_.doc.fail(
-                        c, entry,
-                        std::string("missing required attribute '") + spell.valueAttribute + "'");
+                    r_.doc.fail(c, entry,
+                                std::string("missing required attribute '") + spell.value + "'");
                 if (c.first_child())
                     r_.doc.fail(c, entry, std::string("<") + spell.element + "> takes no content");
                 valueText = text::trim(v.value());
@@ -712,8 +724,7 @@ private:
             }
             const Value value = convert(c, entry, valueText, parseValue);
             if (!m.emplace(key, value).second)
-                r_.doc.fail(c, entry,
-                            "duplicate " + std::string(spell.keyAttribute) + " '" + keyText + "'");
+                r_.doc.fail(c, entry, "duplicate " + std::string(spell.key) + " '" + keyText + "'");
         }
     }
     void readValue(const params::FieldInfo& f, xml_node e, std::map<int, std::string>& m) {

@@ -7,7 +7,6 @@
 
 #include "io/plant_state_table.h"
 #include "io/plant_structure.h"
-#include "library/species_xml.h"
 #include "library/value_text.h"
 #include "model/parameter_table.h"
 
@@ -104,6 +103,10 @@ public:
     void field(const params::FieldInfo& f, const bool& v) { put(f, text::formatBool(v)); }
     void field(const params::FieldInfo& f, const vec3& v) { put(f, text::formatVec3(v)); }
     void field(const params::FieldInfo& f, const std::string& v) { put(f, v); }
+    template <params::ChoiceType E>
+    void field(const params::FieldInfo& f, const E& v) {
+        put(f, params::choiceName(v));
+    }
     void field(const params::FieldInfo& f, const std::map<int, std::string>& m) {
         writeMap(
             f, m, [](std::string& o, int k) { appendInteger(o, k); },
@@ -123,7 +126,9 @@ public:
         x_.close(name);
     }
     template <class E, class Fn>
-    void list(const char* name, const char* item, const std::vector<E>& items, Fn&& visit) {
+    void list(const params::FieldInfo& f, const char* item, const std::vector<E>& items,
+              Fn&& visit) {
+        const char* name = f.name;
         if (items.empty()) {
             x_.element(name, [](std::string&) {});
             return;
@@ -146,8 +151,7 @@ private:
 
     template <class M, class KeyText, class ValueText>
     void writeMap(const params::FieldInfo& f, const M& m, KeyText&& key, ValueText&& value) {
-        const auto spell =
-            species_xml::mapSpelling(f.name, std::is_same_v<typename M::key_type, int>);
+        const params::MapEntries& spell = f.entries;
         if (m.empty()) {
             x_.element(f.name, [](std::string&) {});
             return;
@@ -159,13 +163,13 @@ private:
             o += '<';
             o += spell.element;
             o += ' ';
-            o += spell.keyAttribute;
+            o += spell.key;
             o += "=\"";
             key(o, k);
             o += '"';
-            if (spell.valueAttribute) {
+            if (spell.value) {
                 o += ' ';
-                o += spell.valueAttribute;
+                o += spell.value;
                 o += "=\"";
                 value(o, v);
                 o += "\"/>\n";

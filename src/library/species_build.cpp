@@ -183,11 +183,10 @@ private:
                     id = arch_.addChildShoot(plantID_, unsigned(parent), node, spec, petiole);
                     break;
             }
-            if (step.leaves == "false") arch_.removeShootLeaves(plantID_, id);
-            if (step.vegetativeBuds == "false")
-                arch_.removeShootAxillaryVegetativeBuds(plantID_, id);
-            if (step.floralBuds == "false") arch_.removeShootFloralBuds(plantID_, id);
-            if (step.apex == "false") arch_.removeShootApex(plantID_, id);
+            if (!step.leaves) arch_.removeShootLeaves(plantID_, id);
+            if (!step.vegetativeBuds) arch_.removeShootAxillaryVegetativeBuds(plantID_, id);
+            if (!step.floralBuds) arch_.removeShootFloralBuds(plantID_, id);
+            if (!step.apex) arch_.removeShootApex(plantID_, id);
             return id;
         } catch (const Error& e) {
             const std::string attribute = attributeFor(e.parameter());

@@ -186,8 +186,8 @@ struct NameCollector {
         names.emplace_back(name);
     }
     template <class E, class Fn>
-    void list(const char* name, const char*, std::vector<E>&, Fn&&) {
-        names.emplace_back(name);
+    void list(const params::FieldInfo& f, const char*, std::vector<E>&, Fn&&) {
+        names.emplace_back(f.name);
     }
 };
 
@@ -224,10 +224,10 @@ public:
 
     // A list of groups: <name><item>...</item>...</name>, replacing the inherited list whole.
     template <class E, class Fn>
-    void list(const char* name, const char* item, std::vector<E>& items, Fn&& visit) {
-        xml_node e = node_.child(name);
+    void list(const params::FieldInfo& f, const char* item, std::vector<E>& items, Fn&& visit) {
+        xml_node e = node_.child(f.name);
         if (!e) return;
-        const std::string path = joinPath(path_, name);
+        const std::string path = joinPath(path_, f.name);
         lines_[path] = src_.line(e);
         checkAttributes(src_, e, path, {});
         checkChildren(src_, e, path, {item}, {item});
@@ -272,44 +272,48 @@ private:
         const std::string s = scalar(e, path);
         m = s.empty() ? Formula() : convert(src_, e, path, s, NodeRule::formula);
     }
-    void read(const params::FieldInfo& f, xml_node e, const std::string& path, std::string& m) {
+    void read(const params::FieldInfo&, xml_node e, const std::string& path, std::string& m) {
         m = scalar(e, path);
-        if (!f.choices) return;
-        std::vector<std::string> choices;
-        std::stringstream ss{std::string(f.choices)};
-        for (std::string c; std::getline(ss, c, '|');) choices.push_back(c);
-        if (!contains(choices, m))
-            src_.fail(e, path, unknownMessage("value", m, choices), m, validList(choices));
+    }
+    template <params::ChoiceType E>
+    void read(const params::FieldInfo&, xml_node e, const std::string& path, E& m) {
+        const std::string name = scalar(e, path);
+        if (const auto value = params::choiceNamed<E>(name)) {
+            m = *value;
+            return;
+        }
+        const std::vector<std::string> valid = params::choiceNames<E>();
+        src_.fail(e, path, unknownMessage("value", name, valid), name, validList(valid));
     }
 
-    // Map fields: one child element per entry (see species_xml::mapSpelling).
+    // Map fields: one child element per entry, spelled as the table declares (f.entries).
     template <class Key, class Value, class ParseKey, class ParseValue>
     void readMap(const params::FieldInfo& f, xml_node e, const std::string& path,
                  std::map<Key, Value>& m, ParseKey&& parseKey, ParseValue&& parseValue) {
-        const auto spell = species_xml::mapSpelling(f.name, std::is_same_v<Key, int>);
+        const params::MapEntries& spell = f.entries;
         checkAttributes(src_, e, path, {});
         checkChildren(src_, e, path, {spell.element}, {spell.element});
-        std::vector<std::string> attributes = {spell.keyAttribute};
-        if (spell.valueAttribute) attributes.push_back(spell.valueAttribute);
+        std::vector<std::string> attributes = {spell.key};
+        if (spell.value) attributes.push_back(spell.value);
         m.clear();
         for (xml_node c : e.children(spell.element)) {
             checkAttributes(src_, c, path, attributes);
-            const std::string keyText = requiredAttribute(src_, c, path, spell.keyAttribute);
+            const std::string keyText = requiredAttribute(src_, c, path, spell.key);
             const Key key = convert(src_, c, path + "." + keyText, keyText, parseKey);
             const std::string entry = path + "." + keyText;
             std::string valueString;
-            if (spell.valueAttribute) {
+            if (spell.value) {
                 if (c.first_child())
                     src_.fail(c, entry, std::string("<") + spell.element + "> takes no content");
-                valueString = requiredAttribute(src_, c, entry, spell.valueAttribute);
+                valueString = requiredAttribute(src_, c, entry, spell.value);
             } else {
                 valueString = valueText(src_, c, entry);
             }
             const Value value = convert(src_, c, entry, valueString, parseValue);
             if (!m.emplace(key, value).second)
                 src_.fail(c, entry,
-                          "duplicate " + std::string(spell.keyAttribute) + " '" + keyText +
-                              "' in <" + f.name + ">");
+                          "duplicate " + std::string(spell.key) + " '" + keyText + "' in <" +
+                              f.name + ">");
             lines_[entry] = src_.line(c);
         }
     }
@@ -553,8 +557,8 @@ private:
 
     void readBuild(xml_node build) {
         checkAttributes(src_, build, "build", {});
-        checkChildren(src_, build, "build", {"base_stem", "append", "child"},
-                      {"base_stem", "append", "child"});
+        checkChildren(src_, build, "build", species_xml::buildStepElements(),
+                      species_xml::buildStepElements());
         std::vector<std::string> names;
         for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
         names.push_back("i");
@@ -651,40 +655,43 @@ private:
                        std::vector<std::string>& ids) {
         const std::string kind = e.name();
         BuildStep step;
-        step.kind = kind == "append"  ? BuildStep::Kind::Append
-                    : kind == "child" ? BuildStep::Kind::Child
-                                      : BuildStep::Kind::BaseStem;
+        step.kind = species_xml::buildStepKind(kind).value();  // checkChildren allowed only these
         step.line = src_.line(e);
         const std::string id(text::trim(e.attribute("id").value()));
         const std::string path =
             "build." + (id.empty() ? kind + "[" + std::to_string(index) + "]" : id);
-        const auto& attributes = species_xml::buildStepAttributes(kind);
-        checkAttributes(src_, e, path, attributes);
+        const auto& attributes = species_xml::buildStepAttributes(step.kind);
+        std::vector<std::string> attributeNames;
+        for (const species_xml::StepAttribute& a : attributes) attributeNames.push_back(a.name);
+        checkAttributes(src_, e, path, attributeNames);
         checkChildren(src_, e, path, {});
         if (step.kind == BuildStep::Kind::BaseStem && index != 1)
             src_.fail(e, path, "<base_stem> must be the first and only base stem step");
         if (step.kind != BuildStep::Kind::BaseStem && index == 1)
             src_.fail(e, path, "the first build step must be a <base_stem>");
 
-        for (const std::string& name : attributes) {
-            pugi::xml_attribute a = e.attribute(name.c_str());
+        for (const species_xml::StepAttribute& attribute : attributes) {
+            pugi::xml_attribute a = e.attribute(attribute.name);
             if (!a) continue;
             const std::string value = collapseSpaces(a.value());
-            const std::string at = path + "." + name;
-            if (species_xml::isFlagAttribute(name)) {
-                if (value != "true" && value != "false")
-                    src_.fail(e, at, "expected true or false", value, "true or false");
-            } else if (species_xml::isNameAttribute(name)) {
-                if (!isLabel(value))
-                    src_.fail(e, at, "expected a name of letters, digits, '_' or '-'", value);
-            } else {
-                try {
-                    expr::check(value, names);
-                } catch (const Error& err) {
-                    src_.relocate(err, e, at);
-                }
+            const std::string at = path + "." + attribute.name;
+            switch (attribute.value) {
+                case species_xml::StepValue::Flag:
+                    step.*attribute.flag = convert(src_, e, at, value, text::parseBool);
+                    continue;
+                case species_xml::StepValue::Name:
+                    if (!isLabel(value))
+                        src_.fail(e, at, "expected a name of letters, digits, '_' or '-'", value);
+                    break;
+                case species_xml::StepValue::Expression:
+                    try {
+                        expr::check(value, names);
+                    } catch (const Error& err) {
+                        src_.relocate(err, e, at);
+                    }
+                    break;
             }
-            step.*species_xml::buildStepMember(name) = value;
+            step.*attribute.text = value;
         }
 
         step.shootType = requiredAttribute(src_, e, path, "type");

@@ -86,14 +86,14 @@ public:
     void field(const params::FieldInfo& f, const bool& v) { put(f, text::formatBool(v), false); }
     void field(const params::FieldInfo& f, const vec3& v) { put(f, text::formatVec3(v)); }
     void field(const params::FieldInfo& f, const std::string& v) {
-        std::string note;
-        if (f.choices) {
-            note = std::string("one of: ") + f.choices;
-            for (char& c : note)
-                if (c == '|') c = ',';
-            note = replaceAll(note, ",", ", ");
-        }
-        w_.element(depth_, f.name, v, join(note, f.doc));
+        w_.element(depth_, f.name, v, f.doc);
+    }
+    template <params::ChoiceType E>
+    void field(const params::FieldInfo& f, const E& v) {
+        std::string names;
+        for (const std::string& name : params::choiceNames<E>())
+            names += (names.empty() ? "" : ", ") + name;
+        w_.element(depth_, f.name, params::choiceName(v), join("one of: " + names, f.doc));
     }
     void field(const params::FieldInfo& f, const std::map<int, std::string>& m) {
         writeMap(
@@ -116,12 +116,14 @@ public:
         w_.close(depth_, name);
     }
     template <class E, class Fn>
-    void list(const char* name, const char* item, const std::vector<E>& items, Fn&& visit) {
+    void list(const params::FieldInfo& f, const char* item, const std::vector<E>& items,
+              Fn&& visit) {
+        const char* name = f.name;
         if (items.empty()) {
-            w_.element(depth_, name, "");
+            w_.element(depth_, name, "", f.doc);
             return;
         }
-        w_.open(depth_, name);
+        w_.open(depth_, name, f.doc);
         for (const E& element : items) {
             w_.open(depth_ + 1, item);
             FieldWriter sub(w_, depth_ + 2);
@@ -132,11 +134,6 @@ public:
     }
 
 private:
-    static std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
-        for (std::size_t i = 0; (i = s.find(from, i)) != std::string::npos; i += to.size())
-            s.replace(i, from.size(), to);
-        return s;
-    }
     static std::string join(const std::string& a, const std::string& b) {
         if (a.empty()) return b;
         if (b.empty()) return a;
@@ -153,8 +150,7 @@ private:
     template <class M, class KeyText, class ValueText>
     void writeMap(const params::FieldInfo& f, const M& m, KeyText&& keyText,
                   ValueText&& valueText) {
-        const auto spell =
-            species_xml::mapSpelling(f.name, std::is_same_v<typename M::key_type, int>);
+        const params::MapEntries& spell = f.entries;
         if (m.empty()) {
             w_.element(depth_, f.name, "", f.doc);
             return;
@@ -163,11 +159,10 @@ private:
         for (const auto& [key, value] : m) {
             w_.indent(depth_ + 1);
             auto& o = w_.out();
-            o << "<" << spell.element << " " << spell.keyAttribute << "=\""
-              << text::xmlEscaped(keyText(key)) << "\"";
-            if (spell.valueAttribute)
-                o << " " << spell.valueAttribute << "=\"" << text::xmlEscaped(valueText(value))
-                  << "\"/>\n";
+            o << "<" << spell.element << " " << spell.key << "=\"" << text::xmlEscaped(keyText(key))
+              << "\"";
+            if (spell.value)
+                o << " " << spell.value << "=\"" << text::xmlEscaped(valueText(value)) << "\"/>\n";
             else
                 o << ">" << text::xmlEscaped(valueText(value)) << "</" << spell.element << ">\n";
         }
@@ -204,11 +199,11 @@ void writeBuild(Writer& w, const SpeciesModel& m) {
         w.indent(2);
         auto& o = w.out();
         o << "<" << kind;
-        for (const std::string& name : species_xml::buildStepAttributes(kind)) {
-            const std::string& value = step.*species_xml::buildStepMember(name);
+        for (const species_xml::StepAttribute& a : species_xml::buildStepAttributes(step.kind)) {
+            const std::string value = a.flag ? text::formatBool(step.*a.flag) : step.*a.text;
             // An empty id, radius or internode_length means "none" or "the type's value".
             if (value.empty()) continue;
-            o << " " << name << "=\"" << text::xmlEscaped(value) << "\"";
+            o << " " << a.name << "=\"" << text::xmlEscaped(value) << "\"";
         }
         o << "/>\n";
     }

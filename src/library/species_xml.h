@@ -1,8 +1,10 @@
 #pragma once
 // Pieces shared by the species reader and writer: the element names of the file format and
-// how the table's map fields are spelled in XML.
+// the attributes of the build steps.
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plantarch/Species.h"
@@ -18,56 +20,78 @@ inline const std::vector<std::string>& plantTypes() {
     return types;
 }
 
-/// How a map field is written: one child element per entry, with the key in an attribute
-/// and the value in another attribute (valueAttribute set) or as the element's text.
-struct MapSpelling {
-    const char* element;
-    const char* keyAttribute;
-    const char* valueAttribute;  ///< nullptr: the value is the element text
+/// What the value of a build step attribute is.
+enum class StepValue {
+    Name,        ///< a step id or shoot type label
+    Expression,  ///< an expression over the build parameters
+    Flag,        ///< true or false
 };
 
-/// Spelling of the table's map fields, by field name: child_shoot_types as
-/// <type label="..." probability="..."/>, leaf_texture_file as <image leaflet="-1">f.png</image>,
-/// other name->number maps as <param name="...">5</param>, other index->text maps as
-/// <entry index="...">text</entry>.
-inline MapSpelling mapSpelling(const std::string& field, bool integerKeys) {
-    if (field == "child_shoot_types") return {"type", "label", "probability"};
-    if (field == "leaf_texture_file") return {"image", "leaflet", nullptr};
-    if (integerKeys) return {"entry", "index", nullptr};
-    return {"param", "name", nullptr};
+/// One attribute of the build steps: its name, what its value is, the BuildStep member
+/// holding it (`text` for names and expressions, `flag` for flags) and the step kinds that
+/// take it.
+struct StepAttribute {
+    const char* name;
+    StepValue value;
+    std::string BuildStep::*text;
+    bool BuildStep::*flag;
+    bool base, append, child;
+};
+
+/// Every build step attribute, in the order they are written.
+inline const std::vector<StepAttribute>& allStepAttributes() {
+    using B = BuildStep;
+    constexpr auto N = StepValue::Name;
+    constexpr auto X = StepValue::Expression;
+    constexpr auto F = StepValue::Flag;
+    static const std::vector<StepAttribute> all = {
+        {"id", N, &B::id, nullptr, true, true, true},
+        {"parent", N, &B::parent, nullptr, false, true, true},
+        {"node", X, &B::parentNode, nullptr, false, false, true},
+        {"petiole", X, &B::petiole, nullptr, false, false, true},
+        {"repeat", X, &B::repeat, nullptr, false, false, true},
+        {"type", N, &B::shootType, nullptr, true, true, true},
+        {"nodes", X, &B::nodes, nullptr, true, true, true},
+        {"pitch", X, &B::pitch, nullptr, true, true, true},
+        {"yaw", X, &B::yaw, nullptr, true, true, true},
+        {"roll", X, &B::roll, nullptr, true, true, true},
+        {"radius", X, &B::radius, nullptr, true, true, true},
+        {"internode_length", X, &B::internodeLength, nullptr, true, true, true},
+        {"internode_scale", X, &B::internodeScale, nullptr, true, true, true},
+        {"leaf_scale", X, &B::leafScale, nullptr, true, true, true},
+        {"taper", X, &B::taper, nullptr, true, true, true},
+        {"leaves", F, nullptr, &B::leaves, true, true, true},
+        {"vegetative_buds", F, nullptr, &B::vegetativeBuds, true, true, true},
+        {"floral_buds", F, nullptr, &B::floralBuds, true, true, true},
+        {"apex", F, nullptr, &B::apex, true, true, true},
+    };
+    return all;
 }
 
-/// Attributes of the build steps, in the order they are written.
-inline const std::vector<std::string>& buildStepAttributes(const std::string& kind) {
-    static const std::vector<std::string> base = {"id",
-                                                  "type",
-                                                  "nodes",
-                                                  "pitch",
-                                                  "yaw",
-                                                  "roll",
-                                                  "radius",
-                                                  "internode_length",
-                                                  "internode_scale",
-                                                  "leaf_scale",
-                                                  "taper",
-                                                  "leaves",
-                                                  "vegetative_buds",
-                                                  "floral_buds",
-                                                  "apex"};
-    static const std::vector<std::string> append = [] {
-        std::vector<std::string> a = {"id", "parent"};
-        a.insert(a.end(), base.begin() + 1, base.end());
-        return a;
-    }();
-    static const std::vector<std::string> child = [] {
-        std::vector<std::string> a = {"id", "parent", "node", "petiole", "repeat"};
-        a.insert(a.end(), base.begin() + 1, base.end());
-        return a;
-    }();
-    if (kind == "append") return append;
-    if (kind == "child") return child;
+/// The attributes a step of `kind` takes, in the order they are written.
+inline const std::vector<StepAttribute>& buildStepAttributes(BuildStep::Kind kind) {
+    auto of = [](bool StepAttribute::*takes) {
+        std::vector<StepAttribute> out;
+        for (const StepAttribute& a : allStepAttributes())
+            if (a.*takes) out.push_back(a);
+        return out;
+    };
+    static const std::vector<StepAttribute> base = of(&StepAttribute::base);
+    static const std::vector<StepAttribute> append = of(&StepAttribute::append);
+    static const std::vector<StepAttribute> child = of(&StepAttribute::child);
+    switch (kind) {
+        case BuildStep::Kind::Append:
+            return append;
+        case BuildStep::Kind::Child:
+            return child;
+        case BuildStep::Kind::BaseStem:
+            break;
+    }
     return base;
 }
+
+inline constexpr BuildStep::Kind kBuildStepKinds[] = {
+    BuildStep::Kind::BaseStem, BuildStep::Kind::Append, BuildStep::Kind::Child};
 
 /// Element name of a build step kind.
 inline const char* buildStepElement(BuildStep::Kind kind) {
@@ -82,34 +106,18 @@ inline const char* buildStepElement(BuildStep::Kind kind) {
     return "base_stem";
 }
 
-/// The BuildStep member an attribute is stored in.
-inline std::string BuildStep::*buildStepMember(const std::string& attribute) {
-    if (attribute == "id") return &BuildStep::id;
-    if (attribute == "parent") return &BuildStep::parent;
-    if (attribute == "type") return &BuildStep::shootType;
-    if (attribute == "nodes") return &BuildStep::nodes;
-    if (attribute == "node") return &BuildStep::parentNode;
-    if (attribute == "petiole") return &BuildStep::petiole;
-    if (attribute == "repeat") return &BuildStep::repeat;
-    if (attribute == "pitch") return &BuildStep::pitch;
-    if (attribute == "yaw") return &BuildStep::yaw;
-    if (attribute == "roll") return &BuildStep::roll;
-    if (attribute == "radius") return &BuildStep::radius;
-    if (attribute == "internode_length") return &BuildStep::internodeLength;
-    if (attribute == "internode_scale") return &BuildStep::internodeScale;
-    if (attribute == "leaf_scale") return &BuildStep::leafScale;
-    if (attribute == "taper") return &BuildStep::taper;
-    if (attribute == "leaves") return &BuildStep::leaves;
-    if (attribute == "vegetative_buds") return &BuildStep::vegetativeBuds;
-    if (attribute == "floral_buds") return &BuildStep::floralBuds;
-    if (attribute == "apex") return &BuildStep::apex;
-    return nullptr;
+/// The element names of the build step kinds.
+inline std::vector<std::string> buildStepElements() {
+    std::vector<std::string> names;
+    for (BuildStep::Kind kind : kBuildStepKinds) names.emplace_back(buildStepElement(kind));
+    return names;
 }
 
-/// Attributes whose value is true or false rather than an expression.
-inline bool isFlagAttribute(const std::string& attribute) {
-    return attribute == "leaves" || attribute == "vegetative_buds" || attribute == "floral_buds" ||
-           attribute == "apex";
+/// The kind of a build step element; nullopt for a name that is none.
+inline std::optional<BuildStep::Kind> buildStepKind(std::string_view element) {
+    for (BuildStep::Kind kind : kBuildStepKinds)
+        if (element == buildStepElement(kind)) return kind;
+    return std::nullopt;
 }
 
 /// The parts of a vector of expressions "x, y, z": split at the commas outside parentheses
@@ -132,11 +140,6 @@ inline std::vector<std::string> splitVector(const std::string& text) {
         p = a == std::string::npos ? std::string() : p.substr(a, b - a + 1);
     }
     return parts;
-}
-
-/// Attributes whose value is a name rather than an expression.
-inline bool isNameAttribute(const std::string& attribute) {
-    return attribute == "id" || attribute == "parent" || attribute == "type";
 }
 
 }  // namespace plantarch::species_xml

@@ -40,17 +40,6 @@ void killFloralBuds(Phytomer& ph) {
 
 namespace {
 
-enum class When { Creation, Daily, Winter };
-
-When whenOf(const NodeRule& r) {
-    if (r.when == "creation") return When::Creation;
-    if (r.when == "daily") return When::Daily;
-    if (r.when == "winter") return When::Winter;
-    throw Error("unknown node rule time", {.parameter = "node_rules.when",
-                                           .value = r.when,
-                                           .validRange = "one of: creation, daily, winter"});
-}
-
 // The first whole day of plant age in the current dormant period: the day after the plant was
 // made for its first winter (no daily rule runs on the day it is made), else the first whole
 // day at or after the season's end.
@@ -181,13 +170,13 @@ void applyAtCreation(PlantInstance& plant, Shoot& shoot, const PhytomerParameter
     if (pp.node_rules.empty()) return;
     Place at{plant, shoot, unsigned(shoot.phytomers.size() - 1), plant.age, nullptr};
     for (const NodeRule& r : pp.node_rules)
-        if (whenOf(r) == When::Creation && holds(r, at)) act(r, at);
+        if (r.when == NodeRuleTime::Creation && holds(r, at)) act(r, at);
 }
 
 bool hasDailyRules(const std::map<std::string, ShootParameters>& types) {
     for (const auto& [label, t] : types)
         for (const NodeRule& r : t.phytomer_parameters.node_rules)
-            if (whenOf(r) != When::Creation) return true;
+            if (r.when != NodeRuleTime::Creation) return true;
     return false;
 }
 
@@ -195,9 +184,8 @@ void applyDaily(PlantInstance& plant, Shoot& shoot, unsigned node, const Phytome
                 double age, const std::function<vec3()>& nodeBase) {
     Place at{plant, shoot, node, age, &nodeBase};
     for (const NodeRule& r : pp.node_rules) {
-        const When when = whenOf(r);
-        if (when == When::Creation) continue;
-        if (when == When::Winter && !firstDayOfWinter(plant, age)) continue;
+        if (r.when == NodeRuleTime::Creation) continue;
+        if (r.when == NodeRuleTime::Winter && !firstDayOfWinter(plant, age)) continue;
         if (holds(r, at)) act(r, at);
     }
 }

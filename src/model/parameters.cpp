@@ -2,7 +2,8 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "model/parameter_table.h"
 #include "plantarch/Error.h"
@@ -74,20 +75,18 @@ struct Validator {
             if (!std::isfinite(v[i]) || v[i] < f.min || v[i] > f.max)
                 fail(f, number(v.x) + " " + number(v.y) + " " + number(v.z), "out of range");
     }
-    void field(const params::FieldInfo& f, const std::string& v) const {
-        if (!f.choices) return;
-        std::string choices = f.choices;
-        std::stringstream ss(choices);
-        for (std::string c; std::getline(ss, c, '|');)
-            if (c == v) return;
-        std::string nice = choices;
-        for (char& ch : nice)
-            if (ch == '|') ch = ',';
-        fail(f, v, "unknown value", "one of: " + nice);
+    void field(const params::FieldInfo&, const std::string&) const {}
+    template <params::ChoiceType E>
+    void field(const params::FieldInfo& f, const E& v) const {
+        if (params::choiceName(v)) return;
+        std::string valid;
+        for (const std::string& name : params::choiceNames<E>())
+            valid += (valid.empty() ? "" : ", ") + name;
+        fail(f, std::to_string(int(v)), "not a declared value", "one of: " + valid);
     }
     void field(const params::FieldInfo&, const std::map<int, std::string>&) const {}
     void field(const params::FieldInfo& f, const std::map<std::string, float>& types) const {
-        if (std::string(f.name) != "child_shoot_types") {
+        if (!f.probabilities) {
             for (const auto& [key, value] : types)
                 if (!std::isfinite(value) || value < f.min || value > f.max)
                     throw Error("out of range", {.parameter = at(f) + "." + key,
@@ -98,15 +97,14 @@ struct Validator {
         if (types.empty()) return;
         double sum = 0.0;
         for (const auto& [label, prob] : types) {
-            if (!(prob >= 0.0f && prob <= 1.0f))
-                throw Error("child shoot type probability out of range",
-                            {.parameter = at(f) + "." + label,
-                             .value = number(prob),
-                             .validRange = "0 to 1"});
+            if (!(prob >= f.min && prob <= f.max))
+                throw Error("probability out of range", {.parameter = at(f) + "." + label,
+                                                         .value = number(prob),
+                                                         .validRange = rangeText(f)});
             sum += prob;
         }
         if (std::abs(sum - 1.0) > 1e-4)
-            fail(f, number(sum), "child shoot type probabilities must sum to 1", "sum of 1");
+            fail(f, number(sum), "probabilities must sum to 1", "sum of 1");
     }
     void field(const params::FieldInfo&, const Formula&) const {}  // checked when parsed
     template <class G, class Fn>
@@ -115,13 +113,26 @@ struct Validator {
         visit(sub);
     }
     template <class E, class Fn>
-    void list(const char* name, const char*, const std::vector<E>& items, Fn&& visit) const {
+    void list(const params::FieldInfo& f, const char*, const std::vector<E>& items,
+              Fn&& visit) const {
         for (std::size_t i = 0; i < items.size(); ++i) {
-            Validator sub{(path.empty() ? std::string(name) : path + "." + name) + "[" +
+            Validator sub{(path.empty() ? std::string(f.name) : path + "." + f.name) + "[" +
                           std::to_string(i + 1) + "]"};
             visit(items[i], sub);
         }
     }
+};
+
+// Validates the probability maps of a shoot's own level only, as declared in the table
+// (defineChildShootTypes checks child_shoot_types with it).
+struct ChildTypesOnly {
+    template <class T>
+    void field(const params::FieldInfo& f, const T& member) const {
+        if constexpr (std::is_same_v<T, std::map<std::string, float>>)
+            if (f.probabilities) Validator{}.field(f, member);
+    }
+    template <class G, class Fn>
+    void group(const char*, const G&, Fn&&) const {}
 };
 
 }  // namespace
@@ -167,8 +178,8 @@ void ShootParameters::defineChildShootTypes(const std::vector<std::string>& labe
     for (std::size_t i = 0; i < labels.size(); ++i) types[labels[i]] = probabilities[i];
     ShootParameters probe;
     probe.child_shoot_types = types;
-    Validator v{};
-    v.field({"child_shoot_types", "", 0, 1, ""}, probe.child_shoot_types);
+    ChildTypesOnly check;
+    params::describeParameters(std::as_const(probe), check);
     child_shoot_types = std::move(types);
 }
 
