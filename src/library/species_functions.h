@@ -20,4 +20,8 @@ void registerOrchard(PlantArchitecture& arch);  // species_functions_orchard.cpp
 void registerHerbs(PlantArchitecture& arch);    // species_functions_herbs.cpp
 
 }  // namespace species_functions
+
+/// Registers every group's functions with `arch` (species_functions.cpp).
+void registerSpeciesFunctions(PlantArchitecture& arch);
+
 }  // namespace plantarch
