@@ -192,10 +192,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     std::vector<collision::GrowthSlot> slots;
     std::vector<collision::Worker> growers;
     for (CanopyWorker& w : workers) {
-        Impl& wi = *w.arch->impl_;
-        wi.collision.world = impl_->collision.world;
-        growers.push_back(
-            {wi.store, wi.functions, wi.prototypes, collision::proxyCache(wi.collision)});
+        w.arch->impl_->collision.world = impl_->collision.world;
+        growers.push_back(w.arch->impl_->worker());
     }
     for (int i = 0; i < n; ++i) {
         Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;

@@ -28,6 +28,10 @@ struct PlantArchitecture::Impl {
 
     /// What growing by hand uses: no steering (only growth steers what it makes).
     GrowthContext growth() { return {store, functions, prototypes, nullptr}; }
+    /// This thread's worker for growth with collision avoidance (steered per plant).
+    collision::Worker worker() {
+        return {store, functions, prototypes, collision::proxyCache(collision)};
+    }
 
     Impl() = default;
     Impl(const Impl&) = delete;  // prototypes refers to functions

@@ -23,10 +23,8 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
                     {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
     for (unsigned id : plantIDs) impl_->store.plant(id);  // all exist, or nothing happens
     if (collision::collisionActive(impl_->collision, impl_->store)) {
-        collision::advanceWithCollision(impl_->collision, impl_->store,
-                                        {impl_->store, impl_->functions, impl_->prototypes,
-                                         collision::proxyCache(impl_->collision)},
-                                        *context_, {plantIDs, days, seed_, impl_->progress});
+        collision::advanceWithCollision(impl_->collision, impl_->store, impl_->worker(), *context_,
+                                        {plantIDs, days, seed_, impl_->progress});
         return;
     }
     std::size_t done = 0;

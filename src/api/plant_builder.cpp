@@ -31,6 +31,8 @@ ShootSpec specFrom(unsigned nodes, const AxisRotation& rot, float radius, float 
 
 }  // namespace
 
+// ---- shoot type checks -------------------------------------------------------------------
+
 void checkFunctions(const FunctionRegistry& functions, const ShootParameters& params,
                     const std::string& label) {
     const auto& ph = params.phytomer_parameters;
@@ -88,7 +90,7 @@ void checkFunctions(const FunctionRegistry& functions, const ShootParameters& pa
                          .validRange = list(functions.floralPrototypes)});
 }
 
-// ---- public API ------------------------------------------------------------------------
+// ---- construction, shoot types, plants and shoots --------------------------------------
 
 PlantArchitecture::PlantArchitecture(Context* context)
     : context_(context), impl_(std::make_unique<Impl>()) {
