@@ -15,84 +15,18 @@
 #include <memory>
 #include <tuple>
 
-#include "collision/collision_state.h"
+#include "architecture_parts.h"
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
 #include "collision/proxies.h"
 #include "geometry/organ_sink.h"
-#include "growth/growth.h"
 #include "plantarch/Error.h"
-#include "plantarch/LeafShapes.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
+using plantarch::testing::Parts;
 
 namespace {
-
-// The parts of a PlantArchitecture around copies of some of its plants and its shoot types.
-// The registry holds the procedural leaf prototype only (built with the public LeafShapes
-// API, as a user's function would be) and no phytomer functions: the copies' shoot types
-// name none.
-struct Parts {
-    PlantStore store;
-    FunctionRegistry functions;
-    PrototypeCache prototypes{functions};
-    collision::CollisionState collision;
-    std::uint64_t seed;
-
-    Parts(const PlantArchitecture& arch, const std::vector<unsigned>& ids) : seed(arch.seed()) {
-        functions.leafPrototypes["procedural"] = [](const LeafPrototype& p, Rng& rng, int leaflet) {
-            return OrganPrototype{{buildLeafPrototype(p, rng, leaflet),
-                                   Material{p.color, leafTextureFile(p, leaflet), "leaf"}}};
-        };
-        auto withoutFunctions = [](std::map<std::string, ShootParameters>& types) {
-            for (auto& [label, t] : types) {
-                t.phytomer_parameters.phytomer_creation_function.clear();
-                t.phytomer_parameters.phytomer_callback_function.clear();
-            }
-        };
-        store.shootTypes = arch.getCurrentShootParameters();
-        withoutFunctions(store.shootTypes);
-        for (unsigned id : ids) {
-            PlantInstance copy = arch.plant(id);
-            withoutFunctions(copy.shootTypes);
-            store.plants.emplace(id, std::move(copy));
-        }
-        store.nextPlantID = ids.empty() ? 0 : ids.back() + 1;
-    }
-
-    PlantInstance& plant(unsigned id) { return store.plant(id); }
-    collision::Worker worker() {
-        return {store, functions, prototypes, collision::proxyCache(collision)};
-    }
-    collision::World& world() { return collision::worldOf(collision); }
-
-    // Soft avoidance with the default options (leaves are the obstacles).
-    void enableSoftAvoidance() { world().setSoft(SoftCollisionOptions{}, emptyContext); }
-
-    // Grows every plant by `days` with collision avoidance, on two threads as a canopy grows
-    // (the second with caches of its own).
-    void advance(double days) {
-        std::vector<collision::GrowthSlot> slots;
-        for (auto& [id, p] : store.plants) slots.push_back({&p, nullptr, {}});
-        collision::WorkerCaches helper(prototypes);
-        collision::growTogether(world(), slots, days, seed, {worker(), helper.worker(store)});
-    }
-
-    // Grows one plant by `days` without collision avoidance.
-    void grow(unsigned id, double days) {
-        std::vector<ObjectID> deletes;
-        growPlant(GrowthContext{store, functions, prototypes, nullptr}, plant(id), days, deletes);
-    }
-
-    // The prototype caches dropped, as registering a prototype function does.
-    void dropPrototypes() {
-        prototypes.clear();
-        collision.proxies.reset();
-    }
-
-    Context emptyContext;  // no obstacle objects
-};
 
 // Every leaf tessellation places: its prototype and transform, in tessellation order.
 struct PlacedLeaf {
