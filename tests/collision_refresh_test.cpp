@@ -1,6 +1,10 @@
 // The soft collision scene's refresh: leaf proxies placed by the tessellator's own formulas
 // (OrganPlacer::leaves), kept per petiole while nothing that shapes them changed, and plants
 // known unchanged without comparing their proxies.
+//
+// The tests compose the internal parts (plant store, function registry, prototype cache,
+// collision state) the way the PlantArchitecture facade does, around copies of plants a
+// PlantArchitecture built, so they can read and change the plants and the scene directly.
 
 #include <gtest/gtest.h>
 
@@ -8,21 +12,21 @@
 #include <array>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <tuple>
 
+#include "architecture_parts.h"
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
 #include "collision/proxies.h"
 #include "geometry/organ_sink.h"
-#include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
+using plantarch::testing::Parts;
 
 namespace {
-
-using Impl = PlantArchitecture::Impl;
 
 // Every leaf tessellation places: its prototype and transform, in tessellation order.
 struct PlacedLeaf {
@@ -41,9 +45,9 @@ public:
     }
 };
 
-std::vector<PlacedLeaf> tessellatedLeaves(Impl& impl, PlantInstance& plant) {
+std::vector<PlacedLeaf> tessellatedLeaves(Parts& parts, PlantInstance& plant) {
     LeafCapture sink;
-    tessellatePlant(impl, sink, plant);
+    tessellatePlant(parts.store, parts.prototypes, sink, plant);
     return sink.leaves;
 }
 
@@ -55,10 +59,10 @@ struct KeptTrig {
 
 // The same leaves by OrganPlacer::leaves, with the sines kept in `trigs` from call to call.
 // Checks on the way that the start it returns is petioleStart's and petioleStartOn's.
-std::vector<PlacedLeaf> placerLeaves(Impl& impl, PlantInstance& plant,
+std::vector<PlacedLeaf> placerLeaves(Parts& parts, PlantInstance& plant,
                                      std::map<PetioleID, KeptTrig>& trigs) {
     std::vector<PlacedLeaf> out;
-    OrganPlacer placer(impl, plant);
+    OrganPlacer placer(parts.store, parts.prototypes, plant);
     std::vector<LeafPlacement> leaves;
     for (const Shoot& s : plant.shoots) {
         if (s.removed) continue;
@@ -93,26 +97,25 @@ void expectSameLeaves(const std::vector<PlacedLeaf>& a, const std::vector<Placed
 }
 
 // The leaf proxies of a plant placed afresh by the tessellator.
-collision::TriangleSoup freshProxies(Impl& impl, PlantInstance& plant,
+collision::TriangleSoup freshProxies(Parts& parts, PlantInstance& plant,
                                      std::vector<collision::OrganTag>& tags) {
     collision::TriangleSoup soup;
     CollisionOrgans leaves;  // leaves only (the default)
-    collision::ProxySink sink(collision::proxyCache(impl), leaves, soup, tags);
-    tessellatePlant(impl, sink, plant);
+    collision::ProxySink sink(collision::proxyCache(parts.collision), leaves, soup, tags);
+    tessellatePlant(parts.store, parts.prototypes, sink, plant);
     return soup;
 }
 
 // The scene's proxies of every plant are where the tessellator puts the leaves now (to
 // rounding: kept proxies are moved with their petiole's start), with the same tags, and the
 // spheres and cells the grid bins them by are those of these triangles.
-void expectSceneMatchesLeaves(PlantArchitecture& arch) {
-    Impl& impl = implOf(arch);
-    const collision::World& world = collision::worldOf(impl);
-    for (unsigned id : arch.getAllPlantIDs()) {
+void expectSceneMatchesLeaves(Parts& parts) {
+    const collision::World& world = parts.world();
+    for (const auto& [id, plant] : parts.store.plants) {
         const collision::PlantProxies* p = world.plantProxies(id);
         ASSERT_NE(p, nullptr) << id;
         std::vector<collision::OrganTag> tags;
-        const collision::TriangleSoup fresh = freshProxies(impl, impl.plant(id), tags);
+        const collision::TriangleSoup fresh = freshProxies(parts, parts.plant(id), tags);
         ASSERT_EQ(p->triangles.size(), fresh.size()) << id;
         EXPECT_EQ(p->tags, tags) << id;
         float worst = 0.0f;
@@ -140,19 +143,17 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
     const unsigned id = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 25.0f);
-    Impl& impl = implOf(arch);
+    Parts parts(arch, {id});
+    PlantInstance& plant = parts.plant(id);
     std::map<PetioleID, KeptTrig> trigs;
-    expectSameLeaves(placerLeaves(impl, impl.plant(id), trigs),
-                     tessellatedLeaves(impl, impl.plant(id)));
+    expectSameLeaves(placerLeaves(parts, plant, trigs), tessellatedLeaves(parts, plant));
     ASSERT_GT(trigs.size(), 10u);
 
     // Grown: lengths and leaf sizes change, the kept sines still hold.
-    arch.advanceTime(4.0);
-    expectSameLeaves(placerLeaves(impl, impl.plant(id), trigs),
-                     tessellatedLeaves(impl, impl.plant(id)));
+    parts.grow(id, 4.0);
+    expectSameLeaves(placerLeaves(parts, plant, trigs), tessellatedLeaves(parts, plant));
 
     // Angles changed behind the kept sines: they are taken again.
-    PlantInstance& plant = impl.plant(id);
     int changed = 0;
     for (Shoot& s : plant.shoots)
         for (Phytomer& ph : s.phytomers)
@@ -192,7 +193,7 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     turnedAxes.guide = glm::normalize(turnedAxes.guide + vec3(0.0f, 0.2f, 0.0f));
     Internode& rolled = longest.phytomers[0].internode;
     rolled.rollReference = glm::normalize(rolled.rollReference + vec3(0.2f, 0.1f, 0.0f));
-    expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+    expectSameLeaves(placerLeaves(parts, plant, trigs), tessellatedLeaves(parts, plant));
     // Only the clearance turns' angles, their axes, the internodes' guides or their directions
     // changed, one at a time.
     for (int what = 0; what < 4; ++what) {
@@ -213,11 +214,11 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
                 }
             }
         ASSERT_GT(turns, 3);
-        expectSameLeaves(placerLeaves(impl, plant, trigs), tessellatedLeaves(impl, plant));
+        expectSameLeaves(placerLeaves(parts, plant, trigs), tessellatedLeaves(parts, plant));
     }
     // One kept angle per leaf, or an error.
     {
-        OrganPlacer placer(impl, plant);
+        OrganPlacer placer(parts.store, parts.prototypes, plant);
         KeptTrig& kept = trigs.begin()->second;
         const auto [s, k, j] = trigs.begin()->first;
         std::vector<LeafTrig> fewer(kept.leaves.size() - 1);
@@ -227,7 +228,7 @@ TEST(CollisionRefresh, LeafPlacementsAreTheTessellators) {
     }
     // And fresh sines give the same.
     std::map<PetioleID, KeptTrig> fresh;
-    expectSameLeaves(placerLeaves(impl, plant, fresh), tessellatedLeaves(impl, plant));
+    expectSameLeaves(placerLeaves(parts, plant, fresh), tessellatedLeaves(parts, plant));
 }
 
 // A canopy grown day by day with soft avoidance: after every refresh each plant's proxies are
@@ -237,16 +238,19 @@ TEST(CollisionRefresh, ProxiesFollowTheLeavesAcrossRefreshes) {
     PlantArchitecture arch(&ctx);
     arch.setSeed(5);
     arch.loadPlantModelFromLibrary("bean");
-    arch.enableSoftCollisionAvoidance();
-    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 8.0f);
-    expectSceneMatchesLeaves(arch);
+    const std::vector<unsigned> ids =
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 8.0f);
+    Parts parts(arch, ids);
+    parts.enableSoftAvoidance();
+    parts.advance(0.0);  // the plants enter the scene
+    expectSceneMatchesLeaves(parts);
     for (int day = 0; day < 20; ++day) {
-        arch.advanceTime(1.0);
-        expectSceneMatchesLeaves(arch);
+        parts.advance(1.0);
+        expectSceneMatchesLeaves(parts);
     }
     // Both ways were taken: petioles placed again and petioles kept.
     std::uint64_t placed = 0, read = 0;
-    for (const auto& [id, memo] : collision::worldOf(implOf(arch)).memos) {
+    for (const auto& [id, memo] : parts.world().memos) {
         placed += memo->placements;
         read += memo->reads;
     }
@@ -255,7 +259,7 @@ TEST(CollisionRefresh, ProxiesFollowTheLeavesAcrossRefreshes) {
 }
 
 // Plants that did not change keep their proxies (not even compared); an edited plant gets
-// proxies of its new state.
+// proxies of its new state. Through the facade: its edits mark the plant for a rebuild.
 TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
     Context ctx;
     PlantArchitecture arch(&ctx);
@@ -263,9 +267,6 @@ TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
     arch.enableSoftCollisionAvoidance();
     const std::vector<unsigned> ids =
         arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.2f, 0.2f}, {3, 1}, 20.0f);
-    const collision::World& world = collision::worldOf(implOf(arch));
-    std::vector<const vec3*> data;
-    for (unsigned id : ids) data.push_back(world.plantProxies(id)->triangles.data());
 
     const CollisionStats before = arch.getCollisionStats();
     for (unsigned id : ids) arch.updateGeometry(id);  // read again at the next call
@@ -273,8 +274,6 @@ TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
     CollisionStats after = arch.getCollisionStats();
     EXPECT_EQ(after.plantsUnchanged - before.plantsUnchanged, ids.size());
     EXPECT_EQ(after.plantsRebuilt, before.plantsRebuilt);
-    for (std::size_t i = 0; i < ids.size(); ++i)
-        EXPECT_EQ(world.plantProxies(ids[i])->triangles.data(), data[i]);  // untouched
 
     // Leaves removed from one plant, a branch pruned on another.
     auto longest = [&](unsigned plant) {
@@ -283,7 +282,6 @@ TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
             if (arch.getShootNodeCount(plant, s) > arch.getShootNodeCount(plant, best)) best = s;
         return best;
     };
-    const std::size_t full = world.plantProxies(ids[0])->triangles.size();
     arch.removeShootLeaves(ids[0], longest(ids[0]));
     ASSERT_GE(arch.getShootNodeCount(ids[1], longest(ids[1])), 4u);
     arch.pruneBranch(ids[1], longest(ids[1]), 2);
@@ -291,10 +289,43 @@ TEST(CollisionRefresh, UnchangedPlantsAreKeptEditedOnesRebuilt) {
     const CollisionStats edited = arch.getCollisionStats();
     EXPECT_EQ(edited.plantsRebuilt - after.plantsRebuilt, 2u);
     EXPECT_EQ(edited.plantsUnchanged, after.plantsUnchanged);  // the third is not read again
+}
+
+// The same in the scene itself: unchanged plants keep the very same proxies; an edited one
+// gets fewer, where its leaves now are, and stays there as the plants grow on.
+TEST(CollisionRefresh, EditedPlantsGetProxiesOfTheirNewState) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const std::vector<unsigned> ids =
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.2f, 0.2f}, {3, 1}, 20.0f);
+    Parts parts(arch, ids);
+    parts.enableSoftAvoidance();
+    parts.advance(0.0);
+    const collision::World& world = parts.world();
+    std::vector<const vec3*> data;
+    for (unsigned id : ids) data.push_back(world.plantProxies(id)->triangles.data());
+    for (unsigned id : ids) parts.world().stale[id] = true;  // read again at the next call
+    parts.advance(0.0);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        EXPECT_EQ(world.plantProxies(ids[i])->triangles.data(), data[i]);  // untouched
+
+    // The leaves of the first plant's longest shoot removed.
+    PlantInstance& edited = parts.plant(ids[0]);
+    Shoot& longest =
+        *std::max_element(edited.shoots.begin(), edited.shoots.end(),
+                          [](auto& a, auto& b) { return a.phytomers.size() < b.phytomers.size(); });
+    for (Phytomer& ph : longest.phytomers)
+        for (Petiole& pt : ph.petioles)
+            for (LeafOrgan& l : pt.leaves) l.removed = true;
+    const std::size_t full = world.plantProxies(ids[0])->triangles.size();
+    parts.world().stale[ids[0]] = true;
+    parts.advance(0.0);
     EXPECT_LT(world.plantProxies(ids[0])->triangles.size(), full);
-    expectSceneMatchesLeaves(arch);
-    arch.advanceTime(2.0);
-    expectSceneMatchesLeaves(arch);
+    EXPECT_EQ(world.plantProxies(ids[2])->triangles.data(), data[2]);
+    expectSceneMatchesLeaves(parts);
+    parts.advance(2.0);
+    expectSceneMatchesLeaves(parts);
 }
 
 // buildProxies tells whether a plant's proxies may have changed since its last call: not when
@@ -304,15 +335,16 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
     const unsigned id = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 25.0f);
-    Impl& impl = implOf(arch);
-    PlantInstance& plant = impl.plant(id);
+    Parts parts(arch, {id});
+    PlantInstance& plant = parts.plant(id);
+    const collision::Worker worker = parts.worker();
     collision::PlantProxyMemo memo;
     collision::TriangleSoup soup;
     std::vector<collision::OrganTag> tags;
     const CollisionOrgans leaves;
     auto expectFresh = [&] {
         std::vector<collision::OrganTag> freshTags;
-        const collision::TriangleSoup fresh = freshProxies(impl, plant, freshTags);
+        const collision::TriangleSoup fresh = freshProxies(parts, plant, freshTags);
         ASSERT_EQ(soup.size(), fresh.size());
         EXPECT_EQ(tags, freshTags);
         float worst = 0.0f;
@@ -320,20 +352,20 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
             worst = std::max(worst, glm::length(soup[i] - fresh[i]));
         EXPECT_LT(worst, 1e-6f);
     };
-    EXPECT_TRUE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    EXPECT_TRUE(collision::buildProxies(worker, plant, leaves, memo, soup, tags));
     expectFresh();
     const std::uint64_t placed = memo.placements;
     EXPECT_EQ(placed, memo.reads);
-    EXPECT_FALSE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    EXPECT_FALSE(collision::buildProxies(worker, plant, leaves, memo, soup, tags));
     expectFresh();
 
     // The stems thicken: every petiole's start moves, none is placed again.
     for (Shoot& s : plant.shoots)
         for (Phytomer& ph : s.phytomers) ph.internode.radius *= 1.5f;
-    EXPECT_TRUE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    EXPECT_TRUE(collision::buildProxies(worker, plant, leaves, memo, soup, tags));
     expectFresh();
     EXPECT_EQ(memo.placements, placed);
-    EXPECT_FALSE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+    EXPECT_FALSE(collision::buildProxies(worker, plant, leaves, memo, soup, tags));
 
     // A leaf falls: its petiole is placed again, with one leaf fewer.
     const std::size_t before = soup.size();
@@ -342,7 +374,7 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
             for (Petiole& pt : ph.petioles)
                 if (!pt.leaves.empty() && memo.placements == placed) {
                     pt.leaves.back().removed = true;
-                    EXPECT_TRUE(collision::buildProxies(impl, plant, leaves, memo, soup, tags));
+                    EXPECT_TRUE(collision::buildProxies(worker, plant, leaves, memo, soup, tags));
                 }
     EXPECT_EQ(memo.placements, placed + 1);
     EXPECT_LT(soup.size(), before);
@@ -358,7 +390,7 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
                                                  [](const LeafOrgan& l) { return !l.removed; });
                     if (standing != pt.leaves.rend()) standing->removed = true;
                 }
-        EXPECT_EQ(collision::buildProxies(impl, plant, leaves, memo, soup, tags), round < 3);
+        EXPECT_EQ(collision::buildProxies(worker, plant, leaves, memo, soup, tags), round < 3);
         expectFresh();
     }
     EXPECT_TRUE(soup.empty());
@@ -367,22 +399,24 @@ TEST(CollisionRefresh, BuildProxiesKnowsWhatChanged) {
     EXPECT_LT(kept, before / 2);  // taken back
 }
 
-// Prototypes and their outlines are kept by pointer within one growth call only: registering
-// a prototype between calls drops every cached prototype, and the next call looks them up
-// again (built anew from the same keys, so the same shapes) instead of reading freed ones.
+// Prototypes and their outlines are kept by pointer within one growth call only: dropping the
+// prototype caches between calls (as registering a prototype function does) makes the next
+// call look them up again (built anew from the same keys, so the same shapes) instead of
+// reading freed ones.
 TEST(CollisionRefresh, PrototypesAreLookedUpAgainAfterTheCachesAreCleared) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
-    arch.enableSoftCollisionAvoidance();
-    arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 12.0f);
-    arch.advanceTime(1.0);
-    const std::uint64_t calls = collision::worldOf(implOf(arch)).calls;
-    arch.registerLeafPrototype("unused_test_leaf",
-                               [](const LeafPrototype&, Rng&, int) { return OrganPrototype{}; });
-    arch.advanceTime(2.0);
-    EXPECT_EQ(collision::worldOf(implOf(arch)).calls, calls + 1);
-    expectSceneMatchesLeaves(arch);
+    const std::vector<unsigned> ids =
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.15f, 0.15f}, {2, 2}, 12.0f);
+    Parts parts(arch, ids);
+    parts.enableSoftAvoidance();
+    parts.advance(1.0);
+    const std::uint64_t calls = parts.world().calls;
+    parts.dropPrototypes();
+    parts.advance(2.0);
+    EXPECT_EQ(parts.world().calls, calls + 1);
+    expectSceneMatchesLeaves(parts);
 }
 
 // Leaf placement (the proxies' and the meshes') is glm's vec3 arithmetic, to the bit: the

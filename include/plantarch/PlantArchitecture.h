@@ -357,11 +357,9 @@ public:
     /// call it after editing state through other means).
     void updateGeometry(unsigned plantID);
 
-    struct Impl;  ///< internal; public so the implementation files can share it
-    /// The internal state, for the library's own tests (src/model/architecture_impl.h).
-    friend Impl& implOf(PlantArchitecture& arch);
-
 private:
+    struct Impl;  ///< the state behind the facade (src/api/facade_impl.h)
+
     /// A plant of the loaded species with its initial structure (and its own attraction
     /// points), not grown.
     unsigned buildPlantStructure(const vec3& base_position,

@@ -14,6 +14,7 @@
 
 #include "collision/collision_world.h"
 #include "collision/proxies.h"
+#include "geometry/tessellate.h"
 #include "geometry/tube.h"
 
 namespace plantarch::collision {
@@ -25,8 +26,8 @@ constexpr float kTolerance = 1e-5f;
 
 class Clearer {
 public:
-    Clearer(PlantArchitecture::Impl& impl, const World& world, PlantInstance& plant)
-        : impl_(impl), world_(world), plant_(plant), sink_(proxyCache(impl)) {
+    Clearer(const Worker& worker, const World& world, PlantInstance& plant)
+        : worker_(worker), world_(world), plant_(plant), sink_(worker.proxies) {
         nodes_.resize(plant.shoots.size());
         for (const Shoot& s : plant.shoots)
             if (!s.removed) nodes_[s.id] = shootNodePositions(plant, s.id);
@@ -54,7 +55,8 @@ public:
 
 private:
     OrganPlacer& placer() {
-        if (!placer_) placer_ = std::make_unique<OrganPlacer>(impl_, plant_);
+        if (!placer_)
+            placer_ = std::make_unique<OrganPlacer>(worker_.store, worker_.prototypes, plant_);
         return *placer_;
     }
 
@@ -163,7 +165,7 @@ private:
         }
     }
 
-    PlantArchitecture::Impl& impl_;
+    const Worker& worker_;
     const World& world_;
     PlantInstance& plant_;
     ShapeSink sink_;
@@ -174,11 +176,11 @@ private:
 
 }  // namespace
 
-void clearOrgans(PlantArchitecture::Impl& impl, const World& world, PlantInstance& plant) {
+void clearOrgans(const Worker& worker, const World& world, PlantInstance& plant) {
     if (!world.solid() || !world.hasSolid()) return;
     const SolidObstacleOptions& o = *world.solid();
     if (!o.organClearance && !o.fruitAdjustment) return;
-    Clearer(impl, world, plant).run();
+    Clearer(worker, world, plant).run();
 }
 
 }  // namespace plantarch::collision

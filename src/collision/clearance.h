@@ -1,7 +1,7 @@
 #pragma once
 // Turning side organs out of solid obstacles (see clearance.cpp).
 
-#include "model/architecture_impl.h"
+#include "collision/collision_state.h"
 
 namespace plantarch::collision {
 
@@ -9,6 +9,6 @@ class World;
 
 /// Sets the clearance turns of the plant's petioles, peduncles and (with fruit adjustment)
 /// fruit from its current shape; organs clear of every obstacle get no turn.
-void clearOrgans(PlantArchitecture::Impl& impl, const World& world, PlantInstance& plant);
+void clearOrgans(const Worker& worker, const World& world, PlantInstance& plant);
 
 }  // namespace plantarch::collision

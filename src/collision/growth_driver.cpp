@@ -23,33 +23,33 @@
 #include "collision/collision_world.h"
 #include "collision/proxies.h"
 #include "collision/steering.h"
+#include "geometry/tessellate.h"
+#include "growth/growth.h"
 
 namespace plantarch::collision {
 
 namespace {
 
-using Impl = PlantArchitecture::Impl;
-
 // Threads that forEach runs n tasks on.
-int threadsFor(std::size_t n, const std::vector<Impl*>& impls) {
-    return std::max(1, std::min(int(impls.size()), int(n)));
+int threadsFor(std::size_t n, const std::vector<Worker>& workers) {
+    return std::max(1, std::min(int(workers.size()), int(n)));
 }
 
-// Runs f(index, impl) for every index, on up to impls.size() threads (one impl per thread);
+// Runs f(index, worker) for every index, on up to workers.size() threads (one worker each);
 // rethrows the error of the lowest index once all have run. Index i always runs on thread
 // i % threads (the canopy builds plant i there too): a plant's memory is then allocated and
 // freed by one thread. Plants handed to whichever thread was free made threads free each
 // other's memory as shoots grew, and wait for the allocator's lock of the other thread's
 // arena: some 700 sleeps per canopy and a fifth of the soft canopy's time.
 template <class F>
-void forEach(std::size_t n, const std::vector<Impl*>& impls, F&& f) {
+void forEach(std::size_t n, const std::vector<Worker>& workers, F&& f) {
     std::vector<std::exception_ptr> errors(n);
-    const int threads = threadsFor(n, impls);
+    const int threads = threadsFor(n, workers);
 #pragma omp parallel for schedule(static, 1) \
     num_threads(threads) if (threads > 1 && !omp_in_parallel())
     for (int i = 0; i < int(n); ++i) {
         try {
-            f(std::size_t(i), *impls[std::size_t(omp_get_thread_num())]);
+            f(std::size_t(i), workers[std::size_t(omp_get_thread_num())]);
         } catch (...) {
             errors[std::size_t(i)] = std::current_exception();
         }
@@ -58,29 +58,27 @@ void forEach(std::size_t n, const std::vector<Impl*>& impls, F&& f) {
         if (e) std::rethrow_exception(e);
 }
 
-// Grows one plant with its steering set on the thread's Impl, then clears its side organs.
-void growOne(const World& world, GrowthSlot& slot, Impl& impl, double days, std::uint64_t seed) {
-    Steering steering{&world, slot.attraction, seed};
-    struct Reset {
-        Impl& impl;
-        ~Reset() { impl.steering = nullptr; }
-    } reset{impl};
-    impl.steering = &steering;
-    growPlant(impl, *slot.plant, days, slot.deletes);
-    clearOrgans(impl, world, *slot.plant);
+// Grows one plant steered by the scene and its attraction points, then clears its side organs.
+void growOne(const World& world, GrowthSlot& slot, const Worker& w, double days,
+             std::uint64_t seed) {
+    SceneSteering steering(&world, slot.attraction, seed);
+    growPlant(GrowthContext{w.store, w.functions, w.prototypes, &steering}, *slot.plant, days,
+              slot.deletes);
+    clearOrgans(w, world, *slot.plant);
 }
 
 // Makes a plant's proxies for the next install into its memo, with their spheres and grid
 // cells, and notes whether they changed. Touches nothing the scene's queries read, so it runs
 // on the thread that grew the plant, while other plants still grow (their state is at hand).
-void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& plant, Impl& impl) {
+void prepare(const World& world, const CollisionOrgans& organs, PlantInstance& plant,
+             const Worker& w) {
     PlantProxyMemo& memo = *world.memos.at(plant.id);
     PlantProxies& next = memo.next;
     memo.epoch = world.calls;
     // Changes are told from the memo's last proxies: if those never reached the scene (another
     // plant's growth failed before the install), these must.
     memo.nextChanged =
-        buildProxies(impl, plant, organs, memo, next.triangles, next.tags) || memo.pending;
+        buildProxies(w, plant, organs, memo, next.triangles, next.tags) || memo.pending;
     memo.pending = true;
     if (memo.nextChanged) world.index(next);
 }
@@ -126,49 +124,50 @@ void reserve(World& world, std::vector<GrowthSlot>& slots, const std::vector<std
 }
 
 void refresh(World& world, std::vector<GrowthSlot>& slots, const std::vector<std::size_t>& which,
-             const std::vector<Impl*>& impls) {
+             const std::vector<Worker>& workers) {
     if (!world.soft() || which.empty()) return;
     const auto start = std::chrono::steady_clock::now();
     reserve(world, slots, which);
     const CollisionOrgans organs = world.soft()->obstacles;
-    forEach(which.size(), impls, [&](std::size_t k, Impl& impl) {
-        prepare(world, organs, *slots[which[k]].plant, impl);
+    forEach(which.size(), workers, [&](std::size_t k, const Worker& w) {
+        prepare(world, organs, *slots[which[k]].plant, w);
     });
     install(world, slots, which,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-            threadsFor(which.size(), impls));
+            threadsFor(which.size(), workers));
 }
 
 }  // namespace
 
-void refreshPlants(World& world, std::vector<GrowthSlot>& slots, const std::vector<Impl*>& impls) {
+void refreshPlants(World& world, std::vector<GrowthSlot>& slots,
+                   const std::vector<Worker>& workers) {
     ++world.calls;
     std::vector<std::size_t> all(slots.size());
     for (std::size_t i = 0; i < slots.size(); ++i) all[i] = i;
-    refresh(world, slots, all, impls);
+    refresh(world, slots, all, workers);
 }
 
 void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std::uint64_t seed,
-                  const std::vector<Impl*>& impls, const ProgressCallback& progress) {
+                  const std::vector<Worker>& workers, const ProgressCallback& progress) {
     if (!world.soft()) {
-        forEach(slots.size(), impls,
-                [&](std::size_t i, Impl& impl) { growOne(world, slots[i], impl, days, seed); });
+        forEach(slots.size(), workers,
+                [&](std::size_t i, const Worker& w) { growOne(world, slots[i], w, days, seed); });
         if (progress) progress("growing", 1.0);
         return;
     }
     // Memos of prototype keys and areas last for the whole call (shoot types cannot change).
     struct Pin {
-        const std::vector<Impl*>& impls;
-        explicit Pin(const std::vector<Impl*>& i) : impls(i) {
-            for (Impl* impl : impls) {
-                impl->clearCallMemos();
-                impl->memosPinned = true;
+        const std::vector<Worker>& workers;
+        explicit Pin(const std::vector<Worker>& w) : workers(w) {
+            for (const Worker& worker : workers) {
+                worker.prototypes.clearCallMemos();
+                worker.prototypes.memosPinned = true;
             }
         }
         ~Pin() {
-            for (Impl* impl : impls) impl->memosPinned = false;
+            for (const Worker& worker : workers) worker.prototypes.memosPinned = false;
         }
-    } pin(impls);
+    } pin(workers);
     ++world.calls;
     // Plants new to the scene, or edited since it was refreshed, are seen from now on.
     std::vector<std::size_t> fresh, all;
@@ -177,7 +176,7 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         const unsigned id = slots[i].plant->id;
         if (!world.hasPlant(id) || world.stale.count(id)) fresh.push_back(i);
     }
-    refresh(world, slots, fresh, impls);
+    refresh(world, slots, fresh, workers);
     reserve(world, slots, all);
     const CollisionOrgans organs = world.soft()->obstacles;
 
@@ -192,78 +191,71 @@ void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std
         // prepared by the thread that grew it, right after (the scene itself is left as it
         // stood for the plants still growing), and installed once all have grown.
         PrepareClock prepareClock;
-        forEach(slots.size(), impls, [&](std::size_t i, Impl& impl) {
-            growOne(world, slots[i], impl, step, seed);
-            if (reaches) prepareClock.time([&] { prepare(world, organs, *slots[i].plant, impl); });
+        forEach(slots.size(), workers, [&](std::size_t i, const Worker& w) {
+            growOne(world, slots[i], w, step, seed);
+            if (reaches) prepareClock.time([&] { prepare(world, organs, *slots[i].plant, w); });
         });
         world.clock = reaches ? next : clock + step;
         done += step;
         if (reaches)
             install(world, slots, all,
                     double(prepareClock.nanoseconds.load()) * 1e-9 /
-                        double(threadsFor(slots.size(), impls)),
-                    threadsFor(slots.size(), impls));
+                        double(threadsFor(slots.size(), workers)),
+                    threadsFor(slots.size(), workers));
         if (progress) progress("growing", std::min(1.0, done / days));
     }
 }
 
-std::unique_ptr<Impl> workerImpl(const Impl& impl) {
-    auto w = std::make_unique<Impl>();
-    w->shootTypes = impl.shootTypes;
-    w->leafPrototypes = impl.leafPrototypes;
-    w->floralPrototypes = impl.floralPrototypes;
-    w->creationFunctions = impl.creationFunctions;
-    w->callbackFunctions = impl.callbackFunctions;
-    w->cache = impl.cache;  // shared immutable prototypes
-    w->defaultPhenology = impl.defaultPhenology;
-    w->species = impl.species;
-    w->collision = impl.collision;
-    return w;
-}
+WorkerCaches::WorkerCaches(const PrototypeCache& shared)
+    : prototypes_(shared.share()), proxies_(std::make_unique<ProxyCache>()) {}
 
-const AttractionIndex* attractionFor(Impl& impl, unsigned plantID) {
-    const PlantInstance& plant = impl.plant(plantID);
+WorkerCaches::~WorkerCaches() = default;
+
+const AttractionIndex* attractionFor(CollisionState& state, const PlantInstance& plant) {
     if (!plant.attraction) {
-        impl.attractionIndexes.erase(plantID);
-        return impl.collision ? impl.collision->globalAttraction.get() : nullptr;
+        state.attractionIndexes.erase(plant.id);
+        return state.world ? state.world->globalAttraction.get() : nullptr;
     }
     // The index is derived from the plant's points: rebuilt when they changed.
-    std::shared_ptr<const AttractionIndex>& index = impl.attractionIndexes[plantID];
+    std::shared_ptr<const AttractionIndex>& index = state.attractionIndexes[plant.id];
     if (!index || index->options() != *plant.attraction)
         index = std::make_shared<const AttractionIndex>(*plant.attraction);
     return index.get();
 }
 
-bool collisionActive(const Impl& impl) {
-    for (const auto& [id, plant] : impl.plants)
+bool collisionActive(const CollisionState& state, const PlantStore& store) {
+    for (const auto& [id, plant] : store.plants)
         if (plant.attraction) return true;
-    const World* w = impl.collision.get();
+    const World* w = state.world.get();
     return w && (w->soft() || w->solid() || w->globalAttraction);
 }
 
-World& worldOf(Impl& impl) {
-    if (!impl.collision) impl.collision = std::make_shared<World>();
-    return *impl.collision;
+World& worldOf(CollisionState& state) {
+    if (!state.world) state.world = std::make_shared<World>();
+    return *state.world;
 }
 
-void advanceWithCollision(Impl& impl, Context& ctx, std::uint64_t seed,
-                          const std::vector<unsigned>& plantIDs, double days) {
-    World& world = worldOf(impl);
+void advanceWithCollision(CollisionState& state, PlantStore& store, const Worker& main,
+                          Context& ctx, const GrowthRequest& request) {
+    World& world = worldOf(state);
     std::vector<GrowthSlot> slots;
-    for (unsigned id : plantIDs) slots.push_back({&impl.plant(id), attractionFor(impl, id), {}});
+    for (unsigned id : request.plantIDs) {
+        PlantInstance& plant = store.plant(id);
+        slots.push_back({&plant, attractionFor(state, plant), {}});
+    }
     // Helpers for the other threads when plants grow together (they share nothing mutable).
-    std::vector<std::unique_ptr<Impl>> helpers;
-    std::vector<Impl*> impls{&impl};
+    std::vector<std::unique_ptr<WorkerCaches>> helpers;
+    std::vector<Worker> workers{main};
     const int threads = omp_in_parallel() ? 1 : omp_get_max_threads();
     for (int t = 1; t < std::min(threads, int(slots.size())); ++t) {
-        helpers.push_back(workerImpl(impl));
-        impls.push_back(helpers.back().get());
+        helpers.push_back(std::make_unique<WorkerCaches>(main.prototypes));
+        workers.push_back(helpers.back()->worker(store));
     }
-    growTogether(world, slots, days, seed, impls, impl.progress);
+    growTogether(world, slots, request.days, request.seed, workers, request.progress);
     for (GrowthSlot& slot : slots) {
         for (ObjectID o : slot.deletes)
             if (ctx.doesObjectExist(o)) ctx.deleteObject(o);
-        tessellatePlant(impl, ctx, *slot.plant);
+        tessellatePlant(store, main.prototypes, ctx, *slot.plant);
     }
 }
 

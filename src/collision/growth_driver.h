@@ -2,15 +2,12 @@
 // Growing plants while they perceive each other (see growth_driver.cpp).
 
 #include <cstdint>
-#include <memory>
 #include <vector>
 
-#include "model/architecture_impl.h"
+#include "collision/collision_state.h"
+#include "plantarch/Progress.h"
 
 namespace plantarch::collision {
-
-class World;
-class AttractionIndex;
 
 /// One plant to grow: its state, its attraction points (its own or the global ones, may be
 /// null) and, after growth, the object IDs of organs that fell off.
@@ -20,36 +17,29 @@ struct GrowthSlot {
     std::vector<ObjectID> deletes;
 };
 
-/// Grows the plants by `days` with collision avoidance. Thread t grows with threadImpls[t]
-/// (its prototype caches); with soft avoidance the plants advance together, the collision
-/// scene refreshed at every whole update interval of the world's clock. Results do not
-/// depend on the number of threads. Errors from growth are rethrown after all threads stop.
+/// Grows the plants by `days` with collision avoidance. Thread t grows with workers[t] (its
+/// caches); with soft avoidance the plants advance together, the collision scene refreshed
+/// at every whole update interval of the world's clock. Results do not depend on the number
+/// of threads. Errors from growth are rethrown after all threads stop.
 void growTogether(World& world, std::vector<GrowthSlot>& slots, double days, std::uint64_t seed,
-                  const std::vector<PlantArchitecture::Impl*>& threadImpls,
-                  const ProgressCallback& progress = {});
+                  const std::vector<Worker>& workers, const ProgressCallback& progress = {});
 
 /// Rebuilds the collision proxies of these plants now (single plant edits, new plants).
 void refreshPlants(World& world, std::vector<GrowthSlot>& slots,
-                   const std::vector<PlantArchitecture::Impl*>& threadImpls);
+                   const std::vector<Worker>& workers);
 
-/// A worker copy of `impl` for growing on another thread: same shoot types, species,
-/// functions and prototypes (shared, immutable), its own caches; no plants.
-std::unique_ptr<PlantArchitecture::Impl> workerImpl(const PlantArchitecture::Impl& impl);
+/// One advanceTime call: the plants, the days, the scene seed, progress (may be empty).
+struct GrowthRequest {
+    const std::vector<unsigned>& plantIDs;
+    double days;
+    std::uint64_t seed;
+    const ProgressCallback& progress;
+};
 
-/// The attraction points a plant steers by: its own (PlantInstance::attraction, indexed on
-/// first use and again whenever they change), else the global ones, else null. The pointer
-/// stays valid until the next call for this plant.
-const AttractionIndex* attractionFor(PlantArchitecture::Impl& impl, unsigned plantID);
-
-/// Whether any collision feature is on.
-bool collisionActive(const PlantArchitecture::Impl& impl);
-
-/// advanceTime with collision avoidance on: grows the plants (on several threads when soft
-/// avoidance makes them grow together), deletes fallen organs and regenerates the geometry.
-void advanceWithCollision(PlantArchitecture::Impl& impl, Context& ctx, std::uint64_t seed,
-                          const std::vector<unsigned>& plantIDs, double days);
-
-/// The collision world of `impl`, made on first use.
-World& worldOf(PlantArchitecture::Impl& impl);
+/// advanceTime with collision avoidance on: grows the plants of `store` (on several threads
+/// when soft avoidance makes them grow together; `main` is the calling thread's worker),
+/// deletes fallen organs from `ctx` and regenerates the plants' geometry.
+void advanceWithCollision(CollisionState& state, PlantStore& store, const Worker& main,
+                          Context& ctx, const GrowthRequest& request);
 
 }  // namespace plantarch::collision

@@ -91,9 +91,9 @@ const PrototypeShape& ProxyCache::shape(const OrganPrototype& proto) {
     return shapes_.emplace(&proto, std::move(s)).first->second;
 }
 
-ProxyCache& proxyCache(PlantArchitecture::Impl& impl) {
-    if (!impl.proxies) impl.proxies = std::make_shared<ProxyCache>();
-    return *impl.proxies;
+ProxyCache& proxyCache(CollisionState& state) {
+    if (!state.proxies) state.proxies = std::make_shared<ProxyCache>();
+    return *state.proxies;
 }
 
 // ---- proxies ---------------------------------------------------------------------------
@@ -258,10 +258,10 @@ void truncate(PlantProxyMemo::Shoot& m, std::size_t node) {
 // The leaf proxies of a plant: each petiole's leaves placed again where anything that shapes
 // them changed (OrganPlacer::leaves, the tessellator's own formulas), else moved with the
 // petiole's start. `out` and `tags` are overwritten (their storage reused).
-bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, PlantProxyMemo& memo,
+bool buildLeafProxies(const Worker& worker, PlantInstance& plant, PlantProxyMemo& memo,
                       TriangleSoup& out, std::vector<OrganTag>& tags) {
-    OrganPlacer placer(impl, plant);
-    OutlineLookup outlineOf(proxyCache(impl), memo);
+    OrganPlacer placer(worker.store, worker.prototypes, plant);
+    OutlineLookup outlineOf(worker.proxies, memo);
     const std::uint32_t visit = ++memo.visit;
     std::size_t visited = 0, n = 0;
     memo.runs.clear();
@@ -357,16 +357,15 @@ bool buildLeafProxies(PlantArchitecture::Impl& impl, PlantInstance& plant, Plant
 
 }  // namespace
 
-bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant,
-                  const CollisionOrgans& organs, PlantProxyMemo& memo, TriangleSoup& out,
-                  std::vector<OrganTag>& tags) {
+bool buildProxies(const Worker& worker, PlantInstance& plant, const CollisionOrgans& organs,
+                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags) {
     if (organs.leaves && !organs.internodes && !organs.petioles && !organs.flowers && !organs.fruit)
-        return buildLeafProxies(impl, plant, memo, out, tags);
+        return buildLeafProxies(worker, plant, memo, out, tags);
     out.clear();
     tags.clear();
     if (organs.internodes || organs.petioles || organs.flowers || organs.fruit) {
-        ProxySink sink(proxyCache(impl), organs, out, tags);
-        tessellatePlant(impl, sink, plant);
+        ProxySink sink(worker.proxies, organs, out, tags);
+        tessellatePlant(worker.store, worker.prototypes, sink, plant);
     }
     return true;
 }

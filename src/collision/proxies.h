@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "collision/collision_state.h"
 #include "collision/collision_world.h"
 #include "geometry/organ_sink.h"
 
@@ -27,9 +28,6 @@ public:
 private:
     std::map<const OrganPrototype*, PrototypeShape> shapes_;
 };
-
-/// The cache of `impl` (made on first use).
-ProxyCache& proxyCache(PlantArchitecture::Impl& impl);
 
 /// Leaf proxies of a plant's petioles kept between refreshes, relative to each petiole's
 /// start: reused while nothing that shapes the petiole and its leaves has changed (a grown
@@ -84,9 +82,8 @@ struct PlantProxyMemo {
 /// alone go through `memo`; other kinds are placed afresh every time. Returns false when
 /// the proxies are known to equal those `memo` gave at the last refresh, true when they may
 /// differ.
-bool buildProxies(PlantArchitecture::Impl& impl, PlantInstance& plant,
-                  const CollisionOrgans& organs, PlantProxyMemo& memo, TriangleSoup& out,
-                  std::vector<OrganTag>& tags);
+bool buildProxies(const Worker& worker, PlantInstance& plant, const CollisionOrgans& organs,
+                  PlantProxyMemo& memo, TriangleSoup& out, std::vector<OrganTag>& tags);
 
 /// Collects proxies of the organ kinds that are obstacles.
 class ProxySink final : public OrganSink {

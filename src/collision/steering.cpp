@@ -180,8 +180,8 @@ vec3 sideDirection(const Internode& in, float pitch, float azimuth, vec3* sideOu
     return glm::normalize(std::cos(p) * in.direction + std::sin(p) * side);
 }
 
-bool softSteers(const Steering* s) {
-    return s && s->world && s->world->soft();
+bool softSteers(const World* world) {
+    return world && world->soft();
 }
 
 // A growing tip does not see the young organs it grows out of: those of the node it starts
@@ -219,39 +219,36 @@ vec3 nodePosition(const PlantInstance& plant, unsigned shootID, std::size_t inte
     return p;
 }
 
-void steerShootAxis(PlantArchitecture::Impl& impl, const PlantInstance& plant, const Shoot& shoot,
-                    Internode& in, float lengthMax) {
-    const Steering* st = impl.steering;
-    if (!st) return;
-    const World* world = st->world;
+void SceneSteering::steerShootAxis(const PlantInstance& plant, const Shoot& shoot, Internode& in,
+                                   float lengthMax) {
     const unsigned node = unsigned(shoot.phytomers.size());
     vec3 g = in.guide;
     bool attracted = false;
-    if (st->attraction && st->attraction->attracts(shoot.type)) {
+    if (attraction && attraction->attracts(shoot.type)) {
         const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, true);
-        const AttractionPoints& o = st->attraction->options();
+        const AttractionPoints& o = attraction->options();
         if (world) world->stats().attractionQueries.fetch_add(1, std::memory_order_relaxed);
         // Points nearer than half an internode are passed by anyway (and have no direction);
         // a wire within one internode is followed (attraction.h).
         const TipQuery tip{apex, g, nodePosition(plant, shoot.id, 0, plant.age, true),
                            std::max(1e-4f, 0.5f * lengthMax), lengthMax};
-        if (auto p = st->attraction->target(tip)) {
+        if (auto p = attraction->target(tip)) {
             g = blend(g, glm::normalize(*p - apex), o.inertia);
             attracted = true;
             if (world) world->stats().attracted.fetch_add(1, std::memory_order_relaxed);
         }
     }
-    if (!attracted && softSteers(st) && world->soft()->steerInternodes) {
+    if (!attracted && softSteers(world) && world->soft()->steerInternodes) {
         const SoftCollisionOptions& o = *world->soft();
         const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, false);
-        Rng rng = coneRng(st->seed, plant.id, shoot.id, node, kConeInternode, 0);
+        Rng rng = coneRng(seed, plant.id, shoot.id, node, kConeInternode, 0);
         const Ignore ignore = ownNode(plant, shoot, int(node) - 1, true);
         if (auto t = softTarget(*world, apex, g, o.cone, rng, 2.0f * in.radius + 1e-4f, ignore))
             g = blend(g, *t, o.cone.inertia);
     }
     if (world && world->hasSolid()) {
         const vec3 apex = nodePosition(plant, shoot.id, node, plant.age, true);
-        Rng rng = coneRng(st->seed, plant.id, shoot.id, node, kConeSolid, 0);
+        Rng rng = coneRng(seed, plant.id, shoot.id, node, kConeSolid, 0);
         g = solidSteer(*world, apex, g, in.rollReference, rng);
     }
     if (g == in.guide) return;
@@ -262,46 +259,42 @@ void steerShootAxis(PlantArchitecture::Impl& impl, const PlantInstance& plant, c
         glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(g);
 }
 
-void keepInternodeClear(PlantArchitecture::Impl& impl, const PlantInstance& plant,
-                        const Shoot& shoot, Internode& in) {
-    const Steering* st = impl.steering;
-    if (!st || !st->world || !st->world->hasSolid()) return;
-    const World& world = *st->world;
+void SceneSteering::keepInternodeClear(const PlantInstance& plant, const Shoot& shoot,
+                                       Internode& in) {
+    if (!world || !world->hasSolid()) return;
     const vec3 apex = nodePosition(plant, shoot.id, shoot.phytomers.size(), plant.age, true);
     // The mature internode and its radius, with a millimetre to spare.
     const float reach = in.length + 2.0f * in.radius + 1e-3f;
     for (int attempt = 0; attempt < 4; ++attempt) {
-        const auto hit = world.solidHit(apex, in.direction, 1e-5f, reach);
+        const auto hit = world->solidHit(apex, in.direction, 1e-5f, reach);
         if (!hit) return;
         in.direction = tangential(in.direction, hit->normal, in.rollReference);
         if (attempt == 3) in.direction = hit->normal;  // cornered: grow away
     }
 }
 
-void steerPetiole(PlantArchitecture::Impl& impl, const PlantInstance& plant, const Shoot& shoot,
-                  const Internode& in, float internodeFraction, unsigned petioleIndex,
-                  Petiole& pt) {
-    const Steering* st = impl.steering;
-    if (!softSteers(st) || !st->world->soft()->steerPetioles) return;
-    const SoftCollisionOptions& o = *st->world->soft();
+void SceneSteering::steerPetiole(const PlantInstance& plant, const Shoot& shoot,
+                                 const Internode& in, float internodeFraction,
+                                 unsigned petioleIndex, Petiole& pt) {
+    if (!softSteers(world) || !world->soft()->steerPetioles) return;
+    const SoftCollisionOptions& o = *world->soft();
     const unsigned node = unsigned(shoot.phytomers.size());
     vec3 side;
     const vec3 dir = sideDirection(in, pt.pitch, pt.azimuth, &side);
     const vec3 top = nodePosition(plant, shoot.id, node, plant.age, false) +
                      in.direction * in.length * internodeFraction;
     const vec3 start = top + side * in.radius * 0.5f;
-    Rng rng = coneRng(st->seed, plant.id, shoot.id, node, kConePetiole, petioleIndex);
+    Rng rng = coneRng(seed, plant.id, shoot.id, node, kConePetiole, petioleIndex);
     Ignore ignore = ownNode(plant, shoot, int(node), false);
     if (node > 0) ignore.organs[1] = organTag(shoot.id, node - 1);
-    if (auto t = softTarget(*st->world, start, dir, o.cone, rng, 2.0f * pt.radius + 1e-4f, ignore))
+    if (auto t = softTarget(*world, start, dir, o.cone, rng, 2.0f * pt.radius + 1e-4f, ignore))
         toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), pt.pitch, pt.azimuth);
 }
 
-void steerPeduncle(PlantArchitecture::Impl& impl, const PlantInstance& plant, const Shoot& shoot,
-                   unsigned node, unsigned petiole, unsigned bud, bool terminal, FloralBud& fb) {
-    const Steering* st = impl.steering;
-    if (!softSteers(st) || !st->world->soft()->steerPeduncles || shoot.phytomers.empty()) return;
-    const SoftCollisionOptions& o = *st->world->soft();
+void SceneSteering::steerPeduncle(const PlantInstance& plant, const Shoot& shoot, unsigned node,
+                                  unsigned petiole, unsigned bud, bool terminal, FloralBud& fb) {
+    if (!softSteers(world) || !world->soft()->steerPeduncles || shoot.phytomers.empty()) return;
+    const SoftCollisionOptions& o = *world->soft();
     const unsigned k = terminal ? unsigned(shoot.phytomers.size() - 1) : node;
     const Internode& in = shoot.phytomers[k].internode;
     const float base =
@@ -309,11 +302,11 @@ void steerPeduncle(PlantArchitecture::Impl& impl, const PlantInstance& plant, co
                  : shoot.phytomers[k].petioles[petiole].azimuth;
     const vec3 dir = sideDirection(in, fb.pedunclePitch, base + fb.peduncleRoll);
     const vec3 top = nodePosition(plant, shoot.id, k + 1, plant.age, false);
-    Rng rng = coneRng(st->seed, plant.id, shoot.id, k, kConePeduncle,
+    Rng rng = coneRng(seed, plant.id, shoot.id, k, kConePeduncle,
                       (terminal ? 0x10000u : 0u) + petiole * 256u + bud);
     const Ignore ignore = ownNode(plant, shoot, int(k), false);
-    if (auto t = softTarget(*st->world, top, dir, o.cone, rng, 2.0f * fb.peduncleRadius + 1e-4f,
-                            ignore)) {
+    if (auto t =
+            softTarget(*world, top, dir, o.cone, rng, 2.0f * fb.peduncleRadius + 1e-4f, ignore)) {
         float azimuth = base + fb.peduncleRoll;
         toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), fb.pedunclePitch, azimuth);
         fb.peduncleRoll = azimuth - base;

@@ -2,13 +2,15 @@
 // and simple flower and fruit shapes used when a species names none. All follow the
 // prototype convention: unit length along +x, base at the origin, +z up.
 
+#include "geometry/builtin_prototypes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include "model/architecture_impl.h"
 #include "plantarch/LeafShapes.h"
 #include "plantarch/OrganLibrary.h"
+#include "plantarch/PlantArchitecture.h"
 
 namespace plantarch {
 

@@ -7,8 +7,9 @@
 #include <span>
 #include <vector>
 
+#include "geometry/prototype_cache.h"
 #include "geometry/tube.h"
-#include "model/architecture_impl.h"
+#include "model/plant_store.h"
 
 namespace plantarch {
 
@@ -37,8 +38,11 @@ public:
     virtual void removeAll(std::vector<ObjectID>& objects) { (void)objects; }
 };
 
-/// Places every organ of the plant into `sink` (the plant's state as it stands).
-void tessellatePlant(PlantArchitecture::Impl& impl, OrganSink& sink, PlantInstance& plant);
+/// Places every organ of the plant into `sink` (the plant's state as it stands), with the
+/// shoot types of `store` (for types the plant holds no copy of) and the prototypes of
+/// `prototypes`.
+void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, OrganSink& sink,
+                     PlantInstance& plant);
 
 /// Cosine and sine of an angle.
 struct SinCos {
@@ -100,7 +104,7 @@ struct LeafPlacement {
 /// computed once when it is made: the plant's shape must not change while it is used.
 class OrganPlacer {
 public:
-    OrganPlacer(PlantArchitecture::Impl& impl, PlantInstance& plant);
+    OrganPlacer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant);
     ~OrganPlacer();
     OrganPlacer(const OrganPlacer&) = delete;
     OrganPlacer& operator=(const OrganPlacer&) = delete;

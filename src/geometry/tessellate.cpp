@@ -13,8 +13,8 @@
 #endif
 
 #include "geometry/organ_sink.h"
+#include "geometry/tessellate.h"
 #include "geometry/tube.h"
-#include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
 #include "plantarch/OrganPrototypes.h"
@@ -429,7 +429,8 @@ std::vector<vec3> shootNodePositions(const PlantInstance& plant, unsigned shootI
 namespace {
 
 struct Tessellator {
-    PlantArchitecture::Impl& impl;
+    const PlantStore& store;
+    PrototypeCache& prototypes;
     PlantInstance& plant;
     OrganSink* sink = nullptr;
     std::vector<std::vector<vec3>> nodes;  // per shoot
@@ -463,19 +464,19 @@ struct Tessellator {
                                           bool normalizeOBJ) {
         const std::string key = variantKey(fn, describeFloral(request), 0, variant) +
                                 (normalizeOBJ ? "|normalized" : "");
-        if (auto hit = impl.cache.find(key)) return *hit;
+        if (auto hit = prototypes.find(key)) return *hit;
         Rng rng(hashKey(key), 7);
         auto built = std::make_shared<OrganPrototype>(
             isOBJPrototypeName(fn) ? loadOBJPrototype(fn, normalizeOBJ)
-                                   : impl.floralPrototypes.at(fn)(request, rng));
-        impl.cache.insert(key, built);
+                                   : prototypes.functions().floralPrototypes.at(fn)(request, rng));
+        prototypes.insert(key, built);
         return *built;
     }
 
     void internodes(Shoot& s) {
         if (!sink->wants(OrganKind::Internode)) return;
         const std::vector<vec3>& pts = nodes[s.id];
-        const ShootParameters& type = impl.shootTypeFor(plant, s.type);
+        const ShootParameters& type = store.shootTypeFor(plant, s.type);
         const unsigned segs = std::max(1u, type.phytomer_parameters.internode.length_segments);
         std::vector<vec3> line;
         std::vector<float> radii;
@@ -575,7 +576,7 @@ struct Tessellator {
         const float scale = leaf.scale * ph.leafFraction;
         const mat4 xf = geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale,
                                                 lp.prototype.leaf_offset);
-        sink->writeParts(leaf.objects, impl.leafPrototype(lp, leaf), xf,
+        sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
@@ -668,13 +669,13 @@ struct Tessellator {
     // phytomers mostly share one).
     const PhytomerParameters& phytomerParameters(const Phytomer& ph) {
         if (!lastParameters || ph.parametersLabel != lastLabel) {
-            lastParameters = &impl.shootTypeFor(plant, ph.parametersLabel).phytomer_parameters;
+            lastParameters = &store.shootTypeFor(plant, ph.parametersLabel).phytomer_parameters;
             lastLabel = ph.parametersLabel;
         }
         return *lastParameters;
     }
 
-    // impl.leafPrototype with the last few answers at hand (a plant's leaves share a few).
+    // prototypes.leafPrototype with the last few answers at hand (a plant's leaves share a few).
     const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf) {
         const PrototypeSlot slot = prototypeSlot(lp, leaf);
         // A multiplicative hash: the parameters are aligned, their low bits all alike.
@@ -686,7 +687,7 @@ struct Tessellator {
         auto& [key, shape] = recentPrototypes[h];
         if (!shape || !(key == slot)) {
             key = slot;
-            shape = &impl.leafPrototype(lp, leaf);
+            shape = &prototypes.leafPrototype(lp, leaf);
         }
         return *shape;
     }
@@ -695,7 +696,7 @@ struct Tessellator {
     const PhytomerParameters& budParameters(const FloralBud& fb, const PhytomerParameters& pp) {
         return fb.parametersLabel.empty()
                    ? pp
-                   : impl.shootTypeFor(plant, fb.parametersLabel).phytomer_parameters;
+                   : store.shootTypeFor(plant, fb.parametersLabel).phytomer_parameters;
     }
 
     void floral(Shoot& s, Phytomer& ph, int node, Petiole& pt, FloralBud& fb,
@@ -797,36 +798,36 @@ struct Tessellator {
             internodes(s);
             for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
                 Phytomer& ph = s.phytomers[i];
-                const ShootParameters& type = impl.shootTypeFor(plant, ph.parametersLabel);
+                const ShootParameters& type = store.shootTypeFor(plant, ph.parametersLabel);
                 const PhytomerParameters& pp = type.phytomer_parameters;
                 for (Petiole& pt : ph.petioles) {
                     petiole(s, ph, int(i), pt, pp);
                     for (FloralBud& fb : pt.floralBuds) floral(s, ph, int(i), pt, fb, pp);
                 }
             }
-            terminal(s, impl.shootTypeFor(plant, s.type).phytomer_parameters);
+            terminal(s, store.shootTypeFor(plant, s.type).phytomer_parameters);
         }
     }
 };
 
 }  // namespace
 
-const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameters& lp,
-                                                             const LeafOrgan& leaf) {
+const OrganPrototype& PrototypeCache::leafPrototype(const LeafParameters& lp,
+                                                    const LeafOrgan& leaf) {
     const LeafPrototype& proto = lp.prototype;
     const unsigned variants = proto.unique_prototypes;
     const PrototypeSlot slot = prototypeSlot(lp, leaf);
     const int leaflet = slot.leaflet;
     const unsigned variant = slot.variant;
-    const auto fast = prototypeMemo.find(std::make_tuple(&proto, leaflet, variant));
-    if (fast != prototypeMemo.end()) return *fast->second;
-    auto memo = prototypeKeys.find(&proto);
-    if (memo == prototypeKeys.end())
-        memo = prototypeKeys.emplace(&proto, describePrototype(proto)).first;
+    const auto fast = prototypeMemo_.find(std::make_tuple(&proto, leaflet, variant));
+    if (fast != prototypeMemo_.end()) return *fast->second;
+    auto memo = prototypeKeys_.find(&proto);
+    if (memo == prototypeKeys_.end())
+        memo = prototypeKeys_.emplace(&proto, describePrototype(proto)).first;
     const std::string key = variantKey(proto.prototype_function, memo->second, leaflet, variant) +
                             (variants == 0 ? "|unique" : "");
-    if (auto hit = cache.find(key)) {
-        prototypeMemo.emplace(std::make_tuple(&proto, leaflet, variant), hit.get());
+    if (auto hit = find(key)) {
+        prototypeMemo_.emplace(std::make_tuple(&proto, leaflet, variant), hit.get());
         return *hit;
     }
     // Variants are seeded from their key, not the plant's stream, so plants sharing a
@@ -834,34 +835,36 @@ const OrganPrototype& PlantArchitecture::Impl::leafPrototype(const LeafParameter
     Rng rng(hashKey(key), 7);
     auto built = std::make_shared<OrganPrototype>(
         proto.OBJ_model_file.empty()
-            ? leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
+            ? functions_->leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
             : loadOBJPrototype(proto.OBJ_model_file, proto.normalize_OBJ_model));
-    cache.insert(key, built);
-    prototypeMemo.emplace(std::make_tuple(&proto, leaflet, variant), built.get());
+    insert(key, built);
+    prototypeMemo_.emplace(std::make_tuple(&proto, leaflet, variant), built.get());
     return *built;
 }
 
-double PlantArchitecture::Impl::leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf) {
+double PrototypeCache::leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf) {
     const unsigned variants = lp.prototype.unique_prototypes;
     const unsigned variant = variants == 0 ? unsigned(leaf.leafID) : leaf.variant % variants;
     const auto key = std::make_tuple(&lp.prototype, leaf.leafletIndex, variant);
-    auto it = prototypeAreas.find(key);
-    if (it != prototypeAreas.end()) return it->second;
+    auto it = prototypeAreas_.find(key);
+    if (it != prototypeAreas_.end()) return it->second;
     double area = 0.0;
     for (const PrototypePart& part : leafPrototype(lp, leaf)) area += part.mesh.area();
-    prototypeAreas.emplace(key, area);
+    prototypeAreas_.emplace(key, area);
     return area;
 }
 
-void tessellatePlant(PlantArchitecture::Impl& impl, OrganSink& sink, PlantInstance& plant) {
-    impl.clearCallMemos();
-    Tessellator t{impl, plant, &sink, {}};
+void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, OrganSink& sink,
+                     PlantInstance& plant) {
+    prototypes.clearCallMemos();
+    Tessellator t{store, prototypes, plant, &sink, {}};
     t.run();
 }
 
-void tessellatePlant(PlantArchitecture::Impl& impl, Context& ctx, PlantInstance& plant) {
+void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, Context& ctx,
+                     PlantInstance& plant) {
     ContextSink sink(ctx, plant);
-    tessellatePlant(impl, sink, plant);
+    tessellatePlant(store, prototypes, sink, plant);
 }
 
 // ---- single organs -----------------------------------------------------------------------
@@ -892,9 +895,9 @@ PlacerStorage& placerStorage() {
 
 }  // namespace
 
-OrganPlacer::OrganPlacer(PlantArchitecture::Impl& impl, PlantInstance& plant)
-    : state_(std::make_unique<State>(State{Tessellator{impl, plant, nullptr, {}}})) {
-    impl.clearCallMemos();
+OrganPlacer::OrganPlacer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant)
+    : state_(std::make_unique<State>(State{Tessellator{store, prototypes, plant, nullptr, {}}})) {
+    prototypes.clearCallMemos();
     placerStorage().swap(state_->tessellator);
     state_->tessellator.computeNodes();
 }
@@ -909,7 +912,7 @@ void OrganPlacer::petiole(OrganSink& sink, unsigned shoot, unsigned node, unsign
     Shoot& s = t.plant.shoots[shoot];
     Phytomer& ph = s.phytomers[node];
     const PhytomerParameters& pp =
-        t.impl.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
+        t.store.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
     t.petiole(s, ph, int(node), ph.petioles[petiole], pp);
 }
 
@@ -939,12 +942,12 @@ void OrganPlacer::floralBud(OrganSink& sink, unsigned shoot, unsigned node, unsi
     t.sink = &sink;
     Shoot& s = t.plant.shoots[shoot];
     if (terminal) {
-        t.terminalBud(s, t.impl.shootTypeFor(t.plant, s.type).phytomer_parameters, bud);
+        t.terminalBud(s, t.store.shootTypeFor(t.plant, s.type).phytomer_parameters, bud);
         return;
     }
     Phytomer& ph = s.phytomers[node];
     const PhytomerParameters& pp =
-        t.impl.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
+        t.store.shootTypeFor(t.plant, ph.parametersLabel).phytomer_parameters;
     Petiole& pt = ph.petioles[petiole];
     t.floral(s, ph, int(node), pt, pt.floralBuds[bud], pp);
 }

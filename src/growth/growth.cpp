@@ -8,6 +8,8 @@
 // and draws the same random numbers. Elongation, fruit growth and ages are closed-form
 // functions of age, evaluated at the end of each call.
 
+#include "growth/growth.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,9 +18,7 @@
 #include <queue>
 #include <tuple>
 
-#include "collision/growth_driver.h"
-#include "collision/steering.h"
-#include "model/architecture_impl.h"
+#include "geometry/tessellate.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
 
@@ -88,7 +88,7 @@ std::string chooseChildType(const ShootParameters& parentType, const std::string
 }
 
 struct Grower {
-    PlantArchitecture::Impl& impl;
+    const GrowthContext& growth;
     PlantInstance& plant;
     std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue;
 
@@ -97,7 +97,8 @@ struct Grower {
     std::map<std::string, const ShootParameters*, std::less<>> types;
     const ShootParameters& typeOf(const std::string& label) {
         auto it = types.find(label);
-        if (it == types.end()) it = types.emplace(label, &impl.shootTypeFor(plant, label)).first;
+        if (it == types.end())
+            it = types.emplace(label, &growth.store.shootTypeFor(plant, label)).first;
         return *it->second;
     }
     std::vector<double> girthTotals, girthNodes;  // reused by updateGirth
@@ -208,7 +209,7 @@ struct Grower {
         }
         const PhytomerParameters& pp = t.phytomer_parameters;
         const float radius = pp.internode.radius_initial.sample(plant.rng);
-        createPhytomer(impl, plant, s, pp, radius, s.internodeLengthMax, 0.01f, 0.01f, nullptr);
+        createPhytomer(growth, plant, s, pp, radius, s.internodeLengthMax, 0.01f, 0.01f, nullptr);
         s.nodesThisSeason++;
         scheduleBuds(s, s.phytomers.back());
         enqueuePhytomer(s, unsigned(s.phytomers.size() - 1));
@@ -263,7 +264,7 @@ struct Grower {
         spec.internodeLengthScale = 0.01f;
         spec.leafScale = 0.01f;
         const unsigned id =
-            createShoot(impl, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
+            createShoot(growth, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
         enqueueShoot(plant.shoots[id]);
     }
 
@@ -298,9 +299,9 @@ struct Grower {
                 // previous inflorescence when no geometry update ran in between.
                 for (FlowerOrgan& fl : fb.flowers) removeObjects(fl.objects);
                 realizeInflorescence(plant, fb, pp);
-                if (impl.steering)
-                    collision::steerPeduncle(impl, plant, s, e.node, e.petiole, e.index, e.terminal,
-                                             fb);
+                if (growth.steering)
+                    growth.steering->steerPeduncle(plant, s, e.node, e.petiole, e.index, e.terminal,
+                                                   fb);
                 fb.state = BudState::Broken;
                 s.flowering = true;
                 if (plant.stage == PhenologyStage::Vegetative)
@@ -465,13 +466,9 @@ struct Grower {
                     rules::applyDaily(plant, s, k, pp, now, [&] { return nodeBases()[k]; });
                 const std::string& name = pp.phytomer_callback_function;
                 if (name.empty()) continue;
-                auto fn = impl.callbackFunctions.find(name);
-                if (fn == impl.callbackFunctions.end())
-                    throw Error("unknown phytomer callback function",
-                                {.parameter = s.type + ".phytomer.phytomer_callback_function",
-                                 .value = name});
+                const PhytomerCallbackFunction& fn = growth.functions.callback(name, s.type);
                 PhytomerCallbackContext c{plant, s, s.phytomers[k], k, now, nodeBases()[k]};
-                fn->second(c);
+                fn(c);
             }
         }
         push(now + 1.0, kDaily, 0);
@@ -504,34 +501,35 @@ struct Grower {
         fb.fruitGrowth = maturity > 0.0f ? std::min(1.0f, fb.fruitAge / maturity) : 1.0f;
     }
 
-    // The prototype areas of one shoot's leaves (Impl::leafPrototypeArea) from the Impl's
-    // table of its prototype: girth is updated at every growth step, and a shoot's leaves
-    // share a few prototypes (a prototype per leaf, unique_prototypes = 0, goes to the memo).
+    // The prototype areas of one shoot's leaves (PrototypeCache::leafPrototypeArea) from the
+    // cache's table of its prototype: girth is updated at every growth step, and a shoot's
+    // leaves share a few prototypes (a prototype per leaf, unique_prototypes = 0, goes to the
+    // memo).
     class ShootAreas {
     public:
-        using Table = PlantArchitecture::Impl::LeafAreaTable;
-        ShootAreas(PlantArchitecture::Impl& impl, const LeafParameters& lp)
-            : impl_(impl),
+        using Table = PrototypeCache::LeafAreaTable;
+        ShootAreas(PrototypeCache& prototypes, const LeafParameters& lp)
+            : prototypes_(prototypes),
               lp_(lp),
               variants_(lp.prototype.unique_prototypes),
               table_(variants_ > 0 && variants_ <= Table::kVariants
-                         ? &impl.leafAreaTables[&lp.prototype]
+                         ? &prototypes.leafAreaTable(&lp.prototype)
                          : nullptr) {}
         double operator()(const LeafOrgan& l) {
             if (!table_ || l.leafletIndex < -Table::kLeaflets || l.leafletIndex > Table::kLeaflets)
-                return impl_.leafPrototypeArea(lp_, l);
+                return prototypes_.leafPrototypeArea(lp_, l);
             const std::size_t slot =
                 std::size_t(l.leafletIndex + Table::kLeaflets) * Table::kVariants +
                 l.variant % variants_;
             if (!table_->set[slot]) {
-                table_->area[slot] = impl_.leafPrototypeArea(lp_, l);
+                table_->area[slot] = prototypes_.leafPrototypeArea(lp_, l);
                 table_->set[slot] = true;
             }
             return table_->area[slot];
         }
 
     private:
-        PlantArchitecture::Impl& impl_;
+        PrototypeCache& prototypes_;
         const LeafParameters& lp_;
         const unsigned variants_;
         Table* table_;
@@ -548,7 +546,7 @@ struct Grower {
             std::vector<double>& atNode = girthNodes;
             atNode.assign(s.phytomers.size(), 0.0);
             const LeafParameters& lp = typeOf(s.type).phytomer_parameters.leaf;
-            ShootAreas areas(impl, lp);
+            ShootAreas areas(growth.prototypes, lp);
             for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
                 Phytomer& ph = s.phytomers[k];
                 for (Petiole& pt : ph.petioles)
@@ -689,98 +687,26 @@ void realizeInflorescence(PlantInstance& p, FloralBud& fb, const PhytomerParamet
     }
 }
 
-void scheduleNewShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& shoot) {
-    Grower g{impl, plant, {}, {}, {}, {}};
-    const ShootParameters& t = g.typeOf(shoot.type);
+void scheduleNewShoot(const GrowthContext& growth, PlantInstance& plant, Shoot& shoot) {
+    Grower grower{growth, plant, {}, {}, {}, {}};
+    const ShootParameters& t = grower.typeOf(shoot.type);
     shoot.nodesThisSeason = int(shoot.phytomers.size());
-    if (shoot.nextPhytomerTime < 0.0 && g.growingSeason() && g.canGrow(shoot, t))
+    if (shoot.nextPhytomerTime < 0.0 && grower.growingSeason() && grower.canGrow(shoot, t))
         shoot.nextPhytomerTime = plant.age + shoot.phyllochron;
-    for (Phytomer& ph : shoot.phytomers) g.scheduleBuds(shoot, ph);
+    for (Phytomer& ph : shoot.phytomers) grower.scheduleBuds(shoot, ph);
 }
 
-void growPlant(PlantArchitecture::Impl& impl, PlantInstance& plant, double days,
+void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
                std::vector<ObjectID>& deletes) {
     double target = plant.age + days;
     // Snap to a 1/1024-day grid when within float rounding of it, so steps such as 0.1f x 10
     // or 19.9f + 0.1f land exactly on the day an event is due.
     const double grid = std::nearbyint(target * 1024.0) / 1024.0;
     if (std::abs(target - grid) < 1e-5) target = grid;
-    impl.clearCallMemos();
-    Grower g{impl, plant, {}, {}, {}, {}};
-    g.run(target);
-    deletes.insert(deletes.end(), g.pendingDeletes.begin(), g.pendingDeletes.end());
-}
-
-// ---- public API ------------------------------------------------------------------------
-
-void PlantArchitecture::advanceTime(double days) {
-    advanceTime(getAllPlantIDs(), days);
-}
-
-void PlantArchitecture::advanceTime(unsigned plantID, double days) {
-    advanceTime(std::vector<unsigned>{plantID}, days);
-}
-
-void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, double days) {
-    if (!(days >= 0.0) || !std::isfinite(days))
-        throw Error("time step must be a finite number of days >= 0",
-                    {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
-    for (unsigned id : plantIDs) impl_->plant(id);  // all exist, or nothing happens
-    if (collision::collisionActive(*impl_)) {
-        collision::advanceWithCollision(*impl_, *context_, seed_, plantIDs, days);
-        return;
-    }
-    std::size_t done = 0;
-    for (unsigned id : plantIDs) {
-        std::vector<ObjectID> deletes;
-        growPlant(*impl_, impl_->plant(id), days, deletes);
-        for (ObjectID o : deletes)
-            if (context_->doesObjectExist(o)) context_->deleteObject(o);
-        updateGeometry(id);
-        if (impl_->progress) impl_->progress("growing", double(++done) / double(plantIDs.size()));
-    }
-}
-
-void PlantArchitecture::setProgressCallback(ProgressCallback callback) {
-    impl_->progress = std::move(callback);
-}
-
-void PlantArchitecture::setPlantPhenologicalThresholds(unsigned plantID,
-                                                       const PhenologyParameters& t) {
-    validate(t, "phenology");
-    PlantInstance& p = impl_->plant(plantID);
-    p.phenology = t;
-    if (p.dormancyBreakTime < 0.0)
-        p.nextDormancyBreak =
-            t.time_to_dormancy_break < 0.0f ? -1.0 : p.age + t.time_to_dormancy_break;
-    else
-        p.senescenceTime =
-            t.time_to_senescence < 0.0f ? -1.0 : p.dormancyBreakTime + t.time_to_senescence;
-}
-
-void PlantArchitecture::setDefaultPhenology(const PhenologyParameters& t) {
-    validate(t, "phenology");
-    impl_->defaultPhenology = t;
-}
-
-PhenologyStage PlantArchitecture::getPhenologyStage(unsigned plantID) const {
-    return impl_->plant(plantID).stage;
-}
-
-void PlantArchitecture::registerPhytomerCreationFunction(const std::string& name,
-                                                         PhytomerCreationFunction fn) {
-    if (name.empty() || !fn)
-        throw Error("a phytomer creation function needs a name and a function",
-                    {.parameter = "name", .value = name});
-    impl_->creationFunctions[name] = std::move(fn);
-}
-
-void PlantArchitecture::registerPhytomerCallbackFunction(const std::string& name,
-                                                         PhytomerCallbackFunction fn) {
-    if (name.empty() || !fn)
-        throw Error("a phytomer callback function needs a name and a function",
-                    {.parameter = "name", .value = name});
-    impl_->callbackFunctions[name] = std::move(fn);
+    growth.prototypes.clearCallMemos();
+    Grower grower{growth, plant, {}, {}, {}, {}};
+    grower.run(target);
+    deletes.insert(deletes.end(), grower.pendingDeletes.begin(), grower.pendingDeletes.end());
 }
 
 const char* phenologyStageName(PhenologyStage s) {

@@ -13,9 +13,10 @@
 #include <cmath>
 #include <memory>
 
+#include "api/facade_impl.h"
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
-#include "model/architecture_impl.h"
+#include "geometry/tessellate.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -91,10 +92,10 @@ void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant, Imp
         if (o != kNoObject) o = remap.at(o);
     });
     const unsigned id = plant.id;
-    owner.plants.erase(id);
-    owner.attractionIndexes.erase(id);
-    impl_->plants.emplace(id, std::move(plant));  // with its own attraction points
-    impl_->attractionIndexes.erase(id);
+    owner.store.plants.erase(id);
+    owner.collision.attractionIndexes.erase(id);
+    impl_->store.plants.emplace(id, std::move(plant));  // with its own attraction points
+    impl_->collision.attractionIndexes.erase(id);
 }
 
 // With soft collision avoidance the plants must see each other while they grow, so they are
@@ -111,10 +112,10 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         throw Error("no species loaded: call loadPlantModelFromLibrary first",
                     {.parameter = "species", .validRange = "one of the library species"});
     resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
-    const bool together = impl_->collision && impl_->collision->soft();
+    const bool together = impl_->collision.world && impl_->collision.world->soft();
     // Plants with attraction points of their own count their work in this scene's stats.
-    if (impl_->species->attraction) collision::worldOf(*impl_);
-    const unsigned first = impl_->nextPlantID;
+    if (impl_->species->attraction) collision::worldOf(impl_->collision);
+    const unsigned first = impl_->store.nextPlantID;
     const int n = int(positions.size());
     const int threads = std::max(1, std::min(omp_get_max_threads(), n));
 
@@ -123,14 +124,11 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         w.arch = std::make_unique<PlantArchitecture>(&w.ctx);
         w.arch->seed_ = seed_;
         Impl& wi = *w.arch->impl_;
-        wi.shootTypes = impl_->shootTypes;
+        wi.store.shootTypes = impl_->store.shootTypes;
         wi.species = impl_->species;
-        wi.defaultPhenology = impl_->defaultPhenology;
-        wi.leafPrototypes = impl_->leafPrototypes;
-        wi.floralPrototypes = impl_->floralPrototypes;
-        wi.creationFunctions = impl_->creationFunctions;
-        wi.callbackFunctions = impl_->callbackFunctions;
-        if (!together) wi.collision = impl_->collision;
+        wi.store.defaultPhenology = impl_->store.defaultPhenology;
+        wi.functions = impl_->functions;
+        if (!together) wi.collision.world = impl_->collision.world;
     }
 
     std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
@@ -150,7 +148,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             PlantArchitecture& w = *worker.arch;
             const unsigned id = first + unsigned(i);
             try {
-                w.impl_->nextPlantID = id;  // the plant's ID picks its stream
+                w.impl_->store.nextPlantID = id;  // the plant's ID picks its stream
                 w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
             } catch (const std::exception& e) {
                 errors[std::size_t(i)] = e.what();
@@ -159,15 +157,15 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             {
                 if (!errors[std::size_t(i)].empty()) failed = true;
                 if (!failed) {
-                    mergePlant(worker.ctx, std::move(w.impl_->plant(id)), *w.impl_);
+                    mergePlant(worker.ctx, std::move(w.impl_->store.plant(id)), *w.impl_);
                     ids.push_back(id);
                 }
-                w.impl_->plants.erase(id);
+                w.impl_->store.plants.erase(id);
                 worker.ctx.clear();
             }
         }
         throwFirstError();
-        impl_->nextPlantID = first + unsigned(n);
+        impl_->store.nextPlantID = first + unsigned(n);
         return ids;
     }
 
@@ -180,7 +178,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         const int t = omp_get_thread_num();
         PlantArchitecture& w = *workers[std::size_t(t)].arch;
         try {
-            w.impl_->nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
+            w.impl_->store.nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
             w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
             builtBy[std::size_t(i)] = t;
         } catch (const std::exception& e) {
@@ -192,17 +190,17 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
 
     // Grow them together.
     std::vector<collision::GrowthSlot> slots;
-    std::vector<Impl*> impls;
+    std::vector<collision::Worker> growers;
     for (CanopyWorker& w : workers) {
-        w.arch->impl_->collision = impl_->collision;
-        impls.push_back(w.arch->impl_.get());
+        w.arch->impl_->collision.world = impl_->collision.world;
+        growers.push_back(w.arch->impl_->worker());
     }
     for (int i = 0; i < n; ++i) {
         Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
-        const unsigned id = first + unsigned(i);
-        slots.push_back({&owner.plant(id), collision::attractionFor(owner, id), {}});
+        PlantInstance& plant = owner.store.plant(first + unsigned(i));
+        slots.push_back({&plant, collision::attractionFor(owner.collision, plant), {}});
     }
-    collision::growTogether(*impl_->collision, slots, age, seed_, impls, impl_->progress);
+    collision::growTogether(*impl_->collision.world, slots, age, seed_, growers, impl_->progress);
 
     // Each worker tessellates its own plants; they are merged in plant order as they come (as
     // without avoidance), each worker's Context emptied after each merge.
@@ -215,7 +213,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
         const unsigned id = first + unsigned(i);
         try {
-            tessellatePlant(*w.arch->impl_, w.ctx, *slots[std::size_t(i)].plant);
+            tessellatePlant(w.arch->impl_->store, w.arch->impl_->prototypes, w.ctx,
+                            *slots[std::size_t(i)].plant);
         } catch (const std::exception& e) {
             errors[std::size_t(i)] = e.what();
         }
@@ -223,14 +222,14 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         {
             if (!errors[std::size_t(i)].empty()) failed = true;
             if (!failed) {
-                mergePlant(w.ctx, std::move(owner.plant(id)), owner);
+                mergePlant(w.ctx, std::move(owner.store.plant(id)), owner);
                 ids.push_back(id);
             }
             w.ctx.clear();
         }
     }
     throwFirstError();
-    impl_->nextPlantID = first + unsigned(n);
+    impl_->store.nextPlantID = first + unsigned(n);
     return ids;
 }
 

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <string>
 
+#include "api/facade_impl.h"
 #include "collision/attraction.h"
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
-#include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -90,34 +90,34 @@ void PlantArchitecture::enableSoftCollisionAvoidance(const SoftCollisionOptions&
     checkRange("update_interval", o.updateInterval, 1.0 / 1024.0, 365.0, false,
                "1/1024 to 365 days");
     checkObjects(*context_, o.objects, "obstacle_objects");
-    collision::World& w = collision::worldOf(*impl_);
+    collision::World& w = collision::worldOf(impl_->collision);
     const bool wasOn = w.soft().has_value();
     w.setSoft(o, *context_);
     if (!wasOn) w.clock = 0.0;
     // Plants are (re)read at the next growth call: obstacle kinds may have changed.
-    for (const auto& [id, plant] : impl_->plants) w.stale[id] = true;
+    for (const auto& [id, plant] : impl_->store.plants) w.stale[id] = true;
 }
 
 void PlantArchitecture::enableSoftCollisionAvoidance(float halfAngle, float lookAhead,
                                                      unsigned rays, float inertia) {
-    SoftCollisionOptions o = impl_->collision && impl_->collision->soft()
-                                 ? *impl_->collision->soft()
+    SoftCollisionOptions o = impl_->collision.world && impl_->collision.world->soft()
+                                 ? *impl_->collision.world->soft()
                                  : SoftCollisionOptions{};
     o.cone = PerceptionCone{halfAngle, lookAhead, rays, inertia};
     enableSoftCollisionAvoidance(o);
 }
 
 void PlantArchitecture::disableSoftCollisionAvoidance() {
-    if (impl_->collision) impl_->collision->setSoft(std::nullopt, *context_);
+    if (impl_->collision.world) impl_->collision.world->setSoft(std::nullopt, *context_);
 }
 
 void PlantArchitecture::setCollisionRelevantOrgans(bool internodes, bool leaves, bool petioles,
                                                    bool flowers, bool fruit) {
-    if (!impl_->collision || !impl_->collision->soft())
+    if (!impl_->collision.world || !impl_->collision.world->soft())
         throw Error("soft collision avoidance is not enabled",
                     {.parameter = "setCollisionRelevantOrgans",
                      .validRange = "call enableSoftCollisionAvoidance first"});
-    SoftCollisionOptions o = *impl_->collision->soft();
+    SoftCollisionOptions o = *impl_->collision.world->soft();
     o.obstacles = CollisionOrgans{internodes, leaves, petioles, flowers, fruit};
     enableSoftCollisionAvoidance(o);
 }
@@ -139,12 +139,12 @@ void PlantArchitecture::enableSolidObstacleAvoidance(const SolidObstacleOptions&
     checkRange("avoidance_distance", o.avoidanceDistance, 0.0, 100.0, true, "> 0 and <= 100 m");
     checkAngle("view_half_angle_deg", o.coneHalfAngle);
     checkRays("ray_count", o.rays);
-    collision::World& w = collision::worldOf(*impl_);
+    collision::World& w = collision::worldOf(impl_->collision);
     w.setSolid(o, *context_);
 }
 
 void PlantArchitecture::disableSolidObstacleAvoidance() {
-    if (impl_->collision) impl_->collision->setSolid(std::nullopt, *context_);
+    if (impl_->collision.world) impl_->collision.world->setSolid(std::nullopt, *context_);
 }
 
 void PlantArchitecture::enableAttractionPoints(const std::vector<vec3>& points, float halfAngle,
@@ -154,7 +154,8 @@ void PlantArchitecture::enableAttractionPoints(const std::vector<vec3>& points, 
 
 void PlantArchitecture::enableAttractionPoints(const AttractionPoints& a) {
     validate(a);
-    collision::worldOf(*impl_).globalAttraction = std::make_shared<collision::AttractionIndex>(a);
+    collision::worldOf(impl_->collision).globalAttraction =
+        std::make_shared<collision::AttractionIndex>(a);
 }
 
 void PlantArchitecture::enableAttractionPoints(unsigned plantID, const std::vector<vec3>& points,
@@ -164,7 +165,7 @@ void PlantArchitecture::enableAttractionPoints(unsigned plantID, const std::vect
 
 // A plant's own points are its state (saved with it); the index is built when it grows.
 void PlantArchitecture::enableAttractionPoints(unsigned plantID, const AttractionPoints& a) {
-    PlantInstance& plant = impl_->plant(plantID);
+    PlantInstance& plant = impl_->store.plant(plantID);
     validate(a);
     plant.attraction = a;
 }
@@ -192,52 +193,52 @@ AttractionPoints ownPoints(const PlantInstance& plant) {
 
 void PlantArchitecture::updateAttractionPoints(const std::vector<vec3>& points) {
     AttractionPoints a =
-        current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
+        current(impl_->collision.world ? impl_->collision.world->globalAttraction : nullptr, "");
     a.points = points;
     enableAttractionPoints(a);
 }
 
 void PlantArchitecture::updateAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
-    AttractionPoints a = ownPoints(impl_->plant(plantID));
+    AttractionPoints a = ownPoints(impl_->store.plant(plantID));
     a.points = points;
     enableAttractionPoints(plantID, a);
 }
 
 void PlantArchitecture::appendAttractionPoints(const std::vector<vec3>& points) {
     AttractionPoints a =
-        current(impl_->collision ? impl_->collision->globalAttraction : nullptr, "");
+        current(impl_->collision.world ? impl_->collision.world->globalAttraction : nullptr, "");
     a.points.insert(a.points.end(), points.begin(), points.end());
     enableAttractionPoints(a);
 }
 
 void PlantArchitecture::appendAttractionPoints(unsigned plantID, const std::vector<vec3>& points) {
-    AttractionPoints a = ownPoints(impl_->plant(plantID));
+    AttractionPoints a = ownPoints(impl_->store.plant(plantID));
     a.points.insert(a.points.end(), points.begin(), points.end());
     enableAttractionPoints(plantID, a);
 }
 
 void PlantArchitecture::disableAttractionPoints() {
-    if (impl_->collision) impl_->collision->globalAttraction.reset();
+    if (impl_->collision.world) impl_->collision.world->globalAttraction.reset();
 }
 
 void PlantArchitecture::disableAttractionPoints(unsigned plantID) {
-    impl_->plant(plantID).attraction.reset();
-    impl_->attractionIndexes.erase(plantID);
+    impl_->store.plant(plantID).attraction.reset();
+    impl_->collision.attractionIndexes.erase(plantID);
 }
 
 std::vector<vec3> PlantArchitecture::getAttractionPoints(unsigned plantID) const {
-    const PlantInstance& plant = impl_->plant(plantID);
+    const PlantInstance& plant = impl_->store.plant(plantID);
     if (plant.attraction) return plant.attraction->points;
-    const collision::World* w = impl_->collision.get();
+    const collision::World* w = impl_->collision.world.get();
     return w && w->globalAttraction ? w->globalAttraction->options().points : std::vector<vec3>{};
 }
 
 CollisionStats PlantArchitecture::getCollisionStats() const {
-    return impl_->collision ? impl_->collision->snapshotStats() : CollisionStats{};
+    return impl_->collision.world ? impl_->collision.world->snapshotStats() : CollisionStats{};
 }
 
 void PlantArchitecture::resetCollisionStats() {
-    if (impl_->collision) impl_->collision->resetStats();
+    if (impl_->collision.world) impl_->collision.world->resetStats();
 }
 
 }  // namespace plantarch

@@ -4,28 +4,28 @@
 #include <set>
 #include <sstream>
 
-#include "io/atomic_file.h"
+#include "api/facade_impl.h"
+#include "core/atomic_file.h"
 #include "io/plant_structure.h"
-#include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
 
 namespace {
 
-plant_io::Defaults defaultsOf(const PlantArchitecture::Impl& impl, std::uint64_t seed) {
+plant_io::Defaults defaultsOf(const PlantStore& store, std::uint64_t seed) {
     plant_io::Defaults d;
-    d.shootTypes = &impl.shootTypes;
-    d.phenology = impl.defaultPhenology;
+    d.shootTypes = &store.shootTypes;
+    d.phenology = store.defaultPhenology;
     d.seed = seed;
-    d.firstPlantID = impl.nextPlantID;
+    d.firstPlantID = store.nextPlantID;
     return d;
 }
 
 // Shoot types a plant may still ask the PlantArchitecture for (child types defined after the
 // plant was made) are added to what is written, so the file needs nothing else.
-std::map<std::string, ShootParameters> typesToWrite(const PlantArchitecture::Impl& impl,
-                                                    const PlantInstance& p, bool& changed) {
+std::map<std::string, ShootParameters> typesToWrite(const PlantStore& store, const PlantInstance& p,
+                                                    bool& changed) {
     std::map<std::string, ShootParameters> types = p.shootTypes;
     std::vector<std::string> pending;
     for (const auto& [label, t] : types) pending.push_back(label);
@@ -35,8 +35,8 @@ std::map<std::string, ShootParameters> typesToWrite(const PlantArchitecture::Imp
         const std::string label = pending.back();
         pending.pop_back();
         if (!types.count(label)) {
-            auto global = impl.shootTypes.find(label);
-            if (global == impl.shootTypes.end()) continue;
+            auto global = store.shootTypes.find(label);
+            if (global == store.shootTypes.end()) continue;
             types.emplace(label, global->second);
             changed = true;
         }
@@ -53,9 +53,9 @@ std::string PlantArchitecture::getPlantStructureXML(const std::vector<unsigned>&
     copies.reserve(plantIDs.size());
     std::vector<const PlantInstance*> plants;
     for (unsigned id : plantIDs) {
-        const PlantInstance& p = impl_->plant(id);
+        const PlantInstance& p = impl_->store.plant(id);
         bool changed = false;
-        auto types = typesToWrite(*impl_, p, changed);
+        auto types = typesToWrite(impl_->store, p, changed);
         if (changed) {
             copies.push_back(p);
             copies.back().shootTypes = std::move(types);
@@ -84,13 +84,13 @@ namespace {
 
 // Adds plants read from a file: every named function must be registered; then each plant
 // gets the next ID and its geometry. Nothing is added when any check fails.
-std::vector<unsigned> adopt(PlantArchitecture& arch, PlantArchitecture::Impl& impl,
-                            plant_io::ReadResult&& read, const std::string& file,
-                            const PlantStructureReadOptions& options) {
+std::vector<unsigned> adopt(PlantArchitecture& arch, PlantStore& store,
+                            const FunctionRegistry& functions, plant_io::ReadResult&& read,
+                            const std::string& file, const PlantStructureReadOptions& options) {
     for (std::size_t k = 0; k < read.plants.size(); ++k)
         for (const auto& [label, params] : read.plants[k].shootTypes) {
             try {
-                impl.checkFunctions(params, label);
+                checkFunctions(functions, params, label);
             } catch (const Error& e) {
                 throw e.withParameterPrefix("plant_instance[" + std::to_string(k) + "].shoot_type")
                     .withFile(file);
@@ -99,9 +99,9 @@ std::vector<unsigned> adopt(PlantArchitecture& arch, PlantArchitecture::Impl& im
     std::vector<unsigned> ids;
     try {
         for (PlantInstance& p : read.plants) {
-            const unsigned id = impl.nextPlantID++;
+            const unsigned id = store.nextPlantID++;
             p.id = id;
-            impl.plants.emplace(id, std::move(p));
+            store.plants.emplace(id, std::move(p));
             ids.push_back(id);
             arch.updateGeometry(id);
         }
@@ -118,8 +118,10 @@ std::vector<unsigned> adopt(PlantArchitecture& arch, PlantArchitecture::Impl& im
 
 std::vector<unsigned> PlantArchitecture::readPlantStructureXMLString(
     const std::string& xml, const PlantStructureReadOptions& options) {
-    auto read = plant_io::readPlantsXML(xml, options.nameForErrors, defaultsOf(*impl_, seed_));
-    return adopt(*this, *impl_, std::move(read), options.nameForErrors, options);
+    auto read =
+        plant_io::readPlantsXML(xml, options.nameForErrors, defaultsOf(impl_->store, seed_));
+    return adopt(*this, impl_->store, impl_->functions, std::move(read), options.nameForErrors,
+                 options);
 }
 
 std::vector<unsigned> PlantArchitecture::readPlantStructureXML(
@@ -129,8 +131,8 @@ std::vector<unsigned> PlantArchitecture::readPlantStructureXML(
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) throw Error("cannot read plant structure file", {.file = filename});
-    auto read = plant_io::readPlantsXML(text.str(), filename, defaultsOf(*impl_, seed_));
-    return adopt(*this, *impl_, std::move(read), filename, options);
+    auto read = plant_io::readPlantsXML(text.str(), filename, defaultsOf(impl_->store, seed_));
+    return adopt(*this, impl_->store, impl_->functions, std::move(read), filename, options);
 }
 
 std::string PlantArchitecture::getPlantString(unsigned plantID,
@@ -140,13 +142,13 @@ std::string PlantArchitecture::getPlantString(unsigned plantID,
                     {.parameter = "significantDigits",
                      .value = std::to_string(options.significantDigits),
                      .validRange = "1 to 6, or 0 for exact values"});
-    return plant_io::writePlantString(impl_->plant(plantID), options.significantDigits);
+    return plant_io::writePlantString(impl_->store.plant(plantID), options.significantDigits);
 }
 
 unsigned PlantArchitecture::generatePlantFromString(const std::string& plantString,
                                                     const PlantStructureReadOptions& options) {
-    auto read = plant_io::readPlantString(plantString, defaultsOf(*impl_, seed_));
-    return adopt(*this, *impl_, std::move(read), "", options).front();
+    auto read = plant_io::readPlantString(plantString, defaultsOf(impl_->store, seed_));
+    return adopt(*this, impl_->store, impl_->functions, std::move(read), "", options).front();
 }
 
 }  // namespace plantarch

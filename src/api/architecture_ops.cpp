@@ -4,8 +4,10 @@
 #include <cmath>
 #include <functional>
 
+#include "api/facade_impl.h"
 #include "collision/collision_world.h"
-#include "model/architecture_impl.h"
+#include "geometry/tessellate.h"
+#include "growth/growth.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -47,8 +49,8 @@ void collect(std::vector<ObjectID>& out, ObjectID id) {
 // ---- removal ---------------------------------------------------------------------------
 
 void PlantArchitecture::pruneBranch(unsigned plantID, unsigned shootID, unsigned node) {
-    PlantInstance& p = impl_->plant(plantID);
-    Shoot& s = impl_->shoot(p, shootID);
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
     if (node >= s.phytomers.size())
         throw Error("node out of range",
                     {.parameter = "node",
@@ -94,7 +96,7 @@ void PlantArchitecture::pruneBranch(unsigned plantID, unsigned shootID, unsigned
 }
 
 void PlantArchitecture::removePlantLeaves(unsigned plantID) {
-    PlantInstance& p = impl_->plant(plantID);
+    PlantInstance& p = impl_->store.plant(plantID);
     forEachPhytomer(p, [](Shoot&, Phytomer& ph) {
         for (Petiole& pt : ph.petioles)
             for (LeafOrgan& l : pt.leaves) l.removed = true;
@@ -103,8 +105,8 @@ void PlantArchitecture::removePlantLeaves(unsigned plantID) {
 }
 
 void PlantArchitecture::removeShootLeaves(unsigned plantID, unsigned shootID) {
-    PlantInstance& p = impl_->plant(plantID);
-    Shoot& s = impl_->shoot(p, shootID);
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
     for (Phytomer& ph : s.phytomers)
         for (Petiole& pt : ph.petioles) {
             for (LeafOrgan& l : pt.leaves) l.removed = true;
@@ -121,8 +123,8 @@ void PlantArchitecture::removeShootVegetativeBuds(unsigned plantID, unsigned sho
 }
 
 void PlantArchitecture::removeShootAxillaryVegetativeBuds(unsigned plantID, unsigned shootID) {
-    PlantInstance& p = impl_->plant(plantID);
-    Shoot& s = impl_->shoot(p, shootID);
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
     for (Phytomer& ph : s.phytomers)
         for (Petiole& pt : ph.petioles)
             for (VegetativeBud& b : pt.vegetativeBuds)
@@ -130,15 +132,15 @@ void PlantArchitecture::removeShootAxillaryVegetativeBuds(unsigned plantID, unsi
 }
 
 void PlantArchitecture::removeShootApex(unsigned plantID, unsigned shootID) {
-    PlantInstance& p = impl_->plant(plantID);
-    Shoot& s = impl_->shoot(p, shootID);
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
     s.apicalBud.state = BudState::Dead;
     s.nextPhytomerTime = -1.0;
 }
 
 void PlantArchitecture::removeShootFloralBuds(unsigned plantID, unsigned shootID) {
-    PlantInstance& p = impl_->plant(plantID);
-    Shoot& s = impl_->shoot(p, shootID);
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
     auto kill = [](FloralBud& fb) {
         if (fb.stage == FloralStage::Bud) {
             fb.state = BudState::Dead;
@@ -152,7 +154,7 @@ void PlantArchitecture::removeShootFloralBuds(unsigned plantID, unsigned shootID
 }
 
 void PlantArchitecture::removePlantFlowers(unsigned plantID) {
-    PlantInstance& p = impl_->plant(plantID);
+    PlantInstance& p = impl_->store.plant(plantID);
     forEachFloralBud(p, [](FloralBud& fb) {
         if (fb.stage != FloralStage::Bud && fb.stage != FloralStage::Removed) {
             fb.stage = FloralStage::Removed;
@@ -163,7 +165,7 @@ void PlantArchitecture::removePlantFlowers(unsigned plantID) {
 }
 
 unsigned PlantArchitecture::harvestPlant(unsigned plantID) {
-    PlantInstance& p = impl_->plant(plantID);
+    PlantInstance& p = impl_->store.plant(plantID);
     unsigned fruit = 0;
     forEachFloralBud(p, [&](FloralBud& fb) {
         if (fb.stage == FloralStage::Fruit) {
@@ -178,8 +180,8 @@ unsigned PlantArchitecture::harvestPlant(unsigned plantID) {
 
 unsigned PlantArchitecture::addFloralBud(unsigned plantID, unsigned shootID, unsigned node,
                                          FloralStage stage, unsigned petioleIndex) {
-    PlantInstance& p = impl_->plant(plantID);
-    Shoot& s = impl_->shoot(p, shootID);
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
     if (node >= s.phytomers.size())
         throw Error("node out of range",
                     {.parameter = "node",
@@ -196,7 +198,7 @@ unsigned PlantArchitecture::addFloralBud(unsigned plantID, unsigned shootID, uns
                     {.parameter = "stage",
                      .value = floralStageName(stage),
                      .validRange = "flower_closed, flower_open, fruit"});
-    const ShootParameters& type = impl_->shootTypeFor(p, ph.parametersLabel);
+    const ShootParameters& type = impl_->store.shootTypeFor(p, ph.parametersLabel);
     const PhytomerParameters& pp = type.phytomer_parameters;
     FloralBud fb;
     fb.stage = stage;
@@ -215,9 +217,9 @@ void PlantArchitecture::registerLeafPrototype(const std::string& name, LeafProto
     if (name.empty() || !fn)
         throw Error("a leaf prototype needs a name and a function",
                     {.parameter = "name", .value = name});
-    impl_->leafPrototypes[name] = std::move(fn);
-    impl_->cache.clear();
-    impl_->proxies.reset();
+    impl_->functions.leafPrototypes[name] = std::move(fn);
+    impl_->prototypes.clear();
+    impl_->collision.proxies.reset();
 }
 
 void PlantArchitecture::registerFloralPrototype(const std::string& name,
@@ -225,51 +227,52 @@ void PlantArchitecture::registerFloralPrototype(const std::string& name,
     if (name.empty() || !fn)
         throw Error("a flower/fruit prototype needs a name and a function",
                     {.parameter = "name", .value = name});
-    impl_->floralPrototypes[name] = std::move(fn);
-    impl_->cache.clear();
-    impl_->proxies.reset();
+    impl_->functions.floralPrototypes[name] = std::move(fn);
+    impl_->prototypes.clear();
+    impl_->collision.proxies.reset();
 }
 
 bool PlantArchitecture::hasLeafPrototype(const std::string& name) const {
-    return impl_->leafPrototypes.count(name) > 0;
+    return impl_->functions.leafPrototypes.count(name) > 0;
 }
 
 bool PlantArchitecture::hasFloralPrototype(const std::string& name) const {
-    return impl_->floralPrototypes.count(name) > 0;
+    return impl_->functions.floralPrototypes.count(name) > 0;
 }
 
 // ---- geometry --------------------------------------------------------------------------
 
 void PlantArchitecture::updateGeometry(unsigned plantID) {
     if (impl_->geometryDeferred) return;
-    tessellatePlant(*impl_, *context_, impl_->plant(plantID));
+    tessellatePlant(impl_->store, impl_->prototypes, *context_, impl_->store.plant(plantID));
     // An edit outside growth: the soft collision scene reads the plant again at the next
     // call. (Without soft avoidance canopy workers share the scene: nothing is written.)
-    if (impl_->collision && impl_->collision->soft()) impl_->collision->stale[plantID] = true;
+    collision::World* world = impl_->collision.world.get();
+    if (world && world->soft()) world->stale[plantID] = true;
 }
 
 // ---- queries ---------------------------------------------------------------------------
 
 std::vector<unsigned> PlantArchitecture::getAllPlantIDs() const {
     std::vector<unsigned> ids;
-    for (const auto& [id, p] : impl_->plants) ids.push_back(id);
+    for (const auto& [id, p] : impl_->store.plants) ids.push_back(id);
     return ids;
 }
 
 const PlantInstance& PlantArchitecture::plant(unsigned plantID) const {
-    return impl_->plant(plantID);
+    return impl_->store.plant(plantID);
 }
 
 vec3 PlantArchitecture::getPlantBasePosition(unsigned plantID) const {
-    return impl_->plant(plantID).base;
+    return impl_->store.plant(plantID).base;
 }
 
 float PlantArchitecture::getPlantAge(unsigned plantID) const {
-    return impl_->plant(plantID).age;
+    return impl_->store.plant(plantID).age;
 }
 
 float PlantArchitecture::getPlantHeight(unsigned plantID) const {
-    const PlantInstance& p = impl_->plant(plantID);
+    const PlantInstance& p = impl_->store.plant(plantID);
     float top = p.base.z;
     for (ObjectID id : getAllPlantObjectIDs(plantID))
         top = std::max(top, context_->objectBoundingBox(id).max.z);
@@ -277,7 +280,7 @@ float PlantArchitecture::getPlantHeight(unsigned plantID) const {
 }
 
 float PlantArchitecture::getPlantStemHeight(unsigned plantID) const {
-    const PlantInstance& p = impl_->plant(plantID);
+    const PlantInstance& p = impl_->store.plant(plantID);
     if (p.shoots.empty() || p.shoots[0].removed) return 0.0f;
     // Follow appended shoots: they continue the stem.
     unsigned id = 0;
@@ -295,7 +298,7 @@ float PlantArchitecture::getPlantStemHeight(unsigned plantID) const {
 
 unsigned PlantArchitecture::getPlantLeafCount(unsigned plantID) const {
     unsigned n = 0;
-    forEachPhytomer(impl_->plant(plantID), [&](const Shoot&, const Phytomer& ph) {
+    forEachPhytomer(impl_->store.plant(plantID), [&](const Shoot&, const Phytomer& ph) {
         for (const Petiole& pt : ph.petioles)
             for (const LeafOrgan& l : pt.leaves) n += l.removed ? 0 : 1;
     });
@@ -310,14 +313,14 @@ float PlantArchitecture::getPlantLeafArea(unsigned plantID) const {
 
 std::vector<ObjectID> PlantArchitecture::getPlantInternodeObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    forEachPhytomer(impl_->plant(plantID),
+    forEachPhytomer(impl_->store.plant(plantID),
                     [&](const Shoot&, const Phytomer& ph) { collect(ids, ph.internode.object); });
     return ids;
 }
 
 std::vector<ObjectID> PlantArchitecture::getPlantPetioleObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    forEachPhytomer(impl_->plant(plantID), [&](const Shoot&, const Phytomer& ph) {
+    forEachPhytomer(impl_->store.plant(plantID), [&](const Shoot&, const Phytomer& ph) {
         for (const Petiole& pt : ph.petioles) collect(ids, pt.object);
     });
     return ids;
@@ -325,7 +328,7 @@ std::vector<ObjectID> PlantArchitecture::getPlantPetioleObjectIDs(unsigned plant
 
 std::vector<ObjectID> PlantArchitecture::getPlantLeafObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    forEachPhytomer(impl_->plant(plantID), [&](const Shoot&, const Phytomer& ph) {
+    forEachPhytomer(impl_->store.plant(plantID), [&](const Shoot&, const Phytomer& ph) {
         for (const Petiole& pt : ph.petioles)
             for (const LeafOrgan& l : pt.leaves)
                 for (ObjectID id : l.objects) collect(ids, id);
@@ -335,7 +338,7 @@ std::vector<ObjectID> PlantArchitecture::getPlantLeafObjectIDs(unsigned plantID)
 
 std::vector<ObjectID> PlantArchitecture::getPlantPeduncleObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    forEachFloralBud(impl_->plant(plantID), [&](const FloralBud& fb) {
+    forEachFloralBud(impl_->store.plant(plantID), [&](const FloralBud& fb) {
         if (fb.stage != FloralStage::Bud && fb.stage != FloralStage::Removed)
             collect(ids, fb.peduncleObject);
     });
@@ -344,7 +347,7 @@ std::vector<ObjectID> PlantArchitecture::getPlantPeduncleObjectIDs(unsigned plan
 
 std::vector<ObjectID> PlantArchitecture::getPlantFlowerObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    forEachFloralBud(impl_->plant(plantID), [&](const FloralBud& fb) {
+    forEachFloralBud(impl_->store.plant(plantID), [&](const FloralBud& fb) {
         if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
             for (const FlowerOrgan& fl : fb.flowers)
                 for (ObjectID id : fl.objects) collect(ids, id);
@@ -354,7 +357,7 @@ std::vector<ObjectID> PlantArchitecture::getPlantFlowerObjectIDs(unsigned plantI
 
 std::vector<ObjectID> PlantArchitecture::getPlantFruitObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    forEachFloralBud(impl_->plant(plantID), [&](const FloralBud& fb) {
+    forEachFloralBud(impl_->store.plant(plantID), [&](const FloralBud& fb) {
         if (fb.stage == FloralStage::Fruit)
             for (const FlowerOrgan& fl : fb.flowers)
                 for (ObjectID id : fl.objects) collect(ids, id);
@@ -374,7 +377,7 @@ std::vector<ObjectID> PlantArchitecture::getAllPlantObjectIDs(unsigned plantID) 
 
 std::vector<ObjectID> PlantArchitecture::getAllObjectIDs() const {
     std::vector<ObjectID> ids;
-    for (const auto& [id, p] : impl_->plants) {
+    for (const auto& [id, p] : impl_->store.plants) {
         auto part = getAllPlantObjectIDs(id);
         ids.insert(ids.end(), part.begin(), part.end());
     }
@@ -384,35 +387,35 @@ std::vector<ObjectID> PlantArchitecture::getAllObjectIDs() const {
 
 unsigned PlantArchitecture::getShootCount(unsigned plantID) const {
     unsigned n = 0;
-    for (const Shoot& s : impl_->plant(plantID).shoots) n += s.removed ? 0 : 1;
+    for (const Shoot& s : impl_->store.plant(plantID).shoots) n += s.removed ? 0 : 1;
     return n;
 }
 
 unsigned PlantArchitecture::getShootNodeCount(unsigned plantID, unsigned shootID) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    return unsigned(impl_->shoot(p, shootID).phytomers.size());
+    const PlantInstance& p = impl_->store.plant(plantID);
+    return unsigned(PlantStore::shoot(p, shootID).phytomers.size());
 }
 
 int PlantArchitecture::getShootParent(unsigned plantID, unsigned shootID) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    return impl_->shoot(p, shootID).parent;
+    const PlantInstance& p = impl_->store.plant(plantID);
+    return PlantStore::shoot(p, shootID).parent;
 }
 
 unsigned PlantArchitecture::getShootRank(unsigned plantID, unsigned shootID) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    return impl_->shoot(p, shootID).rank;
+    const PlantInstance& p = impl_->store.plant(plantID);
+    return PlantStore::shoot(p, shootID).rank;
 }
 
 std::vector<unsigned> PlantArchitecture::getShootChildren(unsigned plantID,
                                                           unsigned shootID) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    return impl_->shoot(p, shootID).children;
+    const PlantInstance& p = impl_->store.plant(plantID);
+    return PlantStore::shoot(p, shootID).children;
 }
 
 std::vector<unsigned> PlantArchitecture::getShootDescendants(unsigned plantID,
                                                              unsigned shootID) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    std::vector<unsigned> out, stack = impl_->shoot(p, shootID).children;
+    const PlantInstance& p = impl_->store.plant(plantID);
+    std::vector<unsigned> out, stack = PlantStore::shoot(p, shootID).children;
     while (!stack.empty()) {
         const unsigned id = stack.back();
         stack.pop_back();
@@ -425,15 +428,15 @@ std::vector<unsigned> PlantArchitecture::getShootDescendants(unsigned plantID,
 
 std::vector<unsigned> PlantArchitecture::getTerminalShoots(unsigned plantID) const {
     std::vector<unsigned> out;
-    for (const Shoot& s : impl_->plant(plantID).shoots)
+    for (const Shoot& s : impl_->store.plant(plantID).shoots)
         if (!s.removed && s.children.empty()) out.push_back(s.id);
     return out;
 }
 
 std::vector<unsigned> PlantArchitecture::getShootPathToRoot(unsigned plantID,
                                                             unsigned shootID) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    impl_->shoot(p, shootID);
+    const PlantInstance& p = impl_->store.plant(plantID);
+    PlantStore::shoot(p, shootID);
     std::vector<unsigned> path;
     for (int id = int(shootID); id >= 0; id = p.shoots[unsigned(id)].parent)
         path.push_back(unsigned(id));
@@ -441,8 +444,8 @@ std::vector<unsigned> PlantArchitecture::getShootPathToRoot(unsigned plantID,
 }
 
 vec3 PlantArchitecture::getNodePosition(unsigned plantID, unsigned shootID, unsigned node) const {
-    const PlantInstance& p = impl_->plant(plantID);
-    const Shoot& s = impl_->shoot(p, shootID);
+    const PlantInstance& p = impl_->store.plant(plantID);
+    const Shoot& s = PlantStore::shoot(p, shootID);
     if (node >= s.phytomers.size())
         throw Error("node out of range",
                     {.parameter = "node",

@@ -1,7 +1,7 @@
 // PlantArchitecture's species-library methods: loading a species, building plants from it,
 // and reading or changing the current shoot parameters.
 
-#include "model/architecture_impl.h"
+#include "api/facade_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -12,12 +12,12 @@ void PlantArchitecture::loadPlantModelFromLibrary(const std::string& nameOrPath)
     // Validate everything before replacing anything: a failed load leaves the old model.
     for (const auto& [label, params] : model->shootTypes) {
         validate(params, label);
-        impl_->checkFunctions(params, label);
+        checkFunctions(impl_->functions, params, label);
     }
     validate(model->phenology, "phenology");
-    impl_->shootTypes.clear();
+    impl_->store.shootTypes.clear();
     defineSpeciesShootTypes(*this, *model);
-    impl_->defaultPhenology = model->phenology;
+    impl_->store.defaultPhenology = model->phenology;
     impl_->species = std::move(model);
 }
 
@@ -60,7 +60,7 @@ unsigned PlantArchitecture::buildPlantStructure(
     const SpeciesModel& model = *impl_->species;
     const unsigned id = addPlantInstance(base_position, 0.0f);
     try {
-        impl_->plant(id).name = model.name;
+        impl_->store.plant(id).name = model.name;
         buildInitialStructure(*this, id, model, build_parameters);
         if (model.attraction)
             enableAttractionPoints(
@@ -77,7 +77,7 @@ ShootParameters PlantArchitecture::getCurrentShootParameters(const std::string& 
 }
 
 std::map<std::string, ShootParameters> PlantArchitecture::getCurrentShootParameters() const {
-    return impl_->shootTypes;
+    return impl_->store.shootTypes;
 }
 
 void PlantArchitecture::updateCurrentShootParameters(const std::string& label,
@@ -91,9 +91,9 @@ void PlantArchitecture::updateCurrentShootParameters(
     for (const auto& [label, p] : params) {
         shootType(label);
         validate(p, label);
-        impl_->checkFunctions(p, label);
+        checkFunctions(impl_->functions, p, label);
     }
-    for (const auto& [label, p] : params) impl_->shootTypes[label] = p;
+    for (const auto& [label, p] : params) impl_->store.shootTypes[label] = p;
 }
 
 }  // namespace plantarch

@@ -1,0 +1,83 @@
+// PlantArchitecture: growth over time, phenology, progress and the phytomer functions.
+
+#include <cmath>
+
+#include "api/facade_impl.h"
+#include "collision/growth_driver.h"
+#include "growth/growth.h"
+#include "plantarch/Error.h"
+
+namespace plantarch {
+
+void PlantArchitecture::advanceTime(double days) {
+    advanceTime(getAllPlantIDs(), days);
+}
+
+void PlantArchitecture::advanceTime(unsigned plantID, double days) {
+    advanceTime(std::vector<unsigned>{plantID}, days);
+}
+
+void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, double days) {
+    if (!(days >= 0.0) || !std::isfinite(days))
+        throw Error("time step must be a finite number of days >= 0",
+                    {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
+    for (unsigned id : plantIDs) impl_->store.plant(id);  // all exist, or nothing happens
+    if (collision::collisionActive(impl_->collision, impl_->store)) {
+        collision::advanceWithCollision(impl_->collision, impl_->store, impl_->worker(), *context_,
+                                        {plantIDs, days, seed_, impl_->progress});
+        return;
+    }
+    std::size_t done = 0;
+    for (unsigned id : plantIDs) {
+        std::vector<ObjectID> deletes;
+        growPlant(impl_->growth(), impl_->store.plant(id), days, deletes);
+        for (ObjectID o : deletes)
+            if (context_->doesObjectExist(o)) context_->deleteObject(o);
+        updateGeometry(id);
+        if (impl_->progress) impl_->progress("growing", double(++done) / double(plantIDs.size()));
+    }
+}
+
+void PlantArchitecture::setProgressCallback(ProgressCallback callback) {
+    impl_->progress = std::move(callback);
+}
+
+void PlantArchitecture::setPlantPhenologicalThresholds(unsigned plantID,
+                                                       const PhenologyParameters& t) {
+    validate(t, "phenology");
+    PlantInstance& p = impl_->store.plant(plantID);
+    p.phenology = t;
+    if (p.dormancyBreakTime < 0.0)
+        p.nextDormancyBreak =
+            t.time_to_dormancy_break < 0.0f ? -1.0 : p.age + t.time_to_dormancy_break;
+    else
+        p.senescenceTime =
+            t.time_to_senescence < 0.0f ? -1.0 : p.dormancyBreakTime + t.time_to_senescence;
+}
+
+void PlantArchitecture::setDefaultPhenology(const PhenologyParameters& t) {
+    validate(t, "phenology");
+    impl_->store.defaultPhenology = t;
+}
+
+PhenologyStage PlantArchitecture::getPhenologyStage(unsigned plantID) const {
+    return impl_->store.plant(plantID).stage;
+}
+
+void PlantArchitecture::registerPhytomerCreationFunction(const std::string& name,
+                                                         PhytomerCreationFunction fn) {
+    if (name.empty() || !fn)
+        throw Error("a phytomer creation function needs a name and a function",
+                    {.parameter = "name", .value = name});
+    impl_->functions.creationFunctions[name] = std::move(fn);
+}
+
+void PlantArchitecture::registerPhytomerCallbackFunction(const std::string& name,
+                                                         PhytomerCallbackFunction fn) {
+    if (name.empty() || !fn)
+        throw Error("a phytomer callback function needs a name and a function",
+                    {.parameter = "name", .value = name});
+    impl_->functions.callbackFunctions[name] = std::move(fn);
+}
+
+}  // namespace plantarch

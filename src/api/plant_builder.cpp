@@ -1,0 +1,250 @@
+// PlantArchitecture: construction, shoot types, plants and shoots built by hand.
+
+#include <cmath>
+#include <filesystem>
+
+#include "api/facade_impl.h"
+#include "collision/collision_world.h"
+#include "geometry/builtin_prototypes.h"
+#include "geometry/tessellate.h"
+#include "growth/growth.h"
+#include "plantarch/Error.h"
+#include "plantarch/OrganLibrary.h"
+#include "plantarch/OrganPrototypes.h"
+
+namespace plantarch {
+
+namespace {
+
+std::string str(float v) {
+    std::string s = std::to_string(v);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+}
+
+ShootSpec specFrom(unsigned nodes, const AxisRotation& rot, float radius, float lengthMax,
+                   float lengthScale, float leafScale, float taper, const std::string& type) {
+    return ShootSpec{nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type};
+}
+
+}  // namespace
+
+// ---- shoot type checks -------------------------------------------------------------------
+
+void checkFunctions(const FunctionRegistry& functions, const ShootParameters& params,
+                    const std::string& label) {
+    const auto& ph = params.phytomer_parameters;
+    auto list = [](const auto& registry) {
+        std::string names;
+        for (const auto& [name, fn] : registry) names += (names.empty() ? "" : ", ") + name;
+        return "one of: " + names;
+    };
+    auto checkFile = [&](const std::string& file, const std::string& field) {
+        if (!std::filesystem::is_regular_file(file))
+            throw Error("OBJ model file not found", {.file = file,
+                                                     .parameter = label + ".phytomer." + field,
+                                                     .value = file,
+                                                     .validRange = "an existing .obj file"});
+    };
+    if (!ph.leaf.prototype.OBJ_model_file.empty())
+        checkFile(ph.leaf.prototype.OBJ_model_file, "leaf.prototype.OBJ_model_file");
+    const std::string& leafFn = ph.leaf.prototype.prototype_function;
+    if (!functions.leafPrototypes.count(leafFn))
+        throw Error("unknown leaf prototype function",
+                    {.parameter = label + ".phytomer.leaf.prototype.prototype_function",
+                     .value = leafFn,
+                     .validRange = list(functions.leafPrototypes)});
+    if (!ph.phytomer_creation_function.empty() &&
+        !functions.creationFunctions.count(ph.phytomer_creation_function))
+        throw Error("unknown phytomer creation function",
+                    {.parameter = label + ".phytomer.phytomer_creation_function",
+                     .value = ph.phytomer_creation_function,
+                     .validRange = list(functions.creationFunctions)});
+    if (!ph.phytomer_callback_function.empty() &&
+        !functions.callbackFunctions.count(ph.phytomer_callback_function))
+        throw Error("unknown phytomer callback function",
+                    {.parameter = label + ".phytomer.phytomer_callback_function",
+                     .value = ph.phytomer_callback_function,
+                     .validRange = list(functions.callbackFunctions)});
+    for (const auto& [field, name] :
+         {std::pair{"flower_prototype_function", ph.inflorescence.flower_prototype_function},
+          std::pair{"fruit_prototype_function", ph.inflorescence.fruit_prototype_function}})
+        if (isOBJPrototypeName(name))
+            checkFile(name, std::string("inflorescence.") + field);
+        else if (isFloralFamily(name)) {
+            const bool fruit = std::string(field).rfind("fruit", 0) == 0;
+            try {
+                validateFloralParameters(name, fruit
+                                                   ? ph.inflorescence.fruit_prototype_parameters
+                                                   : ph.inflorescence.flower_prototype_parameters);
+            } catch (const Error& e) {
+                throw e.withParameterPrefix(label + ".phytomer.inflorescence." +
+                                            (fruit ? "fruit" : "flower") + "_prototype_parameters");
+            }
+        } else if (!name.empty() && !functions.floralPrototypes.count(name))
+            throw Error("unknown flower/fruit prototype function",
+                        {.parameter = label + ".phytomer.inflorescence." + field,
+                         .value = name,
+                         .validRange = list(functions.floralPrototypes)});
+}
+
+// ---- construction, shoot types, plants and shoots --------------------------------------
+
+PlantArchitecture::PlantArchitecture(Context* context)
+    : context_(context), impl_(std::make_unique<Impl>()) {
+    if (!context) throw Error("PlantArchitecture needs a Context", {.parameter = "context"});
+    registerBuiltinPrototypes(*this);
+}
+
+PlantArchitecture::~PlantArchitecture() = default;
+
+void PlantArchitecture::setSeed(std::uint64_t seed) {
+    seed_ = seed;
+}
+
+void PlantArchitecture::defineShootType(const std::string& label, const ShootParameters& params) {
+    if (label.empty())
+        throw Error("shoot type label must not be empty", {.parameter = "shoot_type_label"});
+    validate(params, label);
+    checkFunctions(impl_->functions, params, label);
+    impl_->store.shootTypes[label] = params;
+}
+
+const ShootParameters& PlantArchitecture::shootType(const std::string& label) const {
+    auto it = impl_->store.shootTypes.find(label);
+    if (it == impl_->store.shootTypes.end())
+        throw Error("unknown shoot type", {.parameter = "shoot_type_label", .value = label});
+    return it->second;
+}
+
+std::vector<std::string> PlantArchitecture::listShootTypeLabels() const {
+    std::vector<std::string> labels;
+    for (const auto& [label, p] : impl_->store.shootTypes) labels.push_back(label);
+    return labels;
+}
+
+std::vector<std::string> PlantArchitecture::listShootTypeLabels(unsigned plantID) const {
+    std::vector<std::string> labels;
+    for (const auto& [label, p] : impl_->store.plant(plantID).shootTypes) labels.push_back(label);
+    return labels;
+}
+
+unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float current_age) {
+    if (!std::isfinite(base_position.x) || !std::isfinite(base_position.y) ||
+        !std::isfinite(base_position.z))
+        throw Error("plant base position must be finite", {.parameter = "base_position"});
+    if (!(current_age >= 0.0f && std::isfinite(current_age)))
+        throw Error(
+            "invalid plant age",
+            {.parameter = "current_age", .value = str(current_age), .validRange = ">= 0 days"});
+    PlantInstance p;
+    p.id = impl_->store.nextPlantID++;
+    p.base = base_position;
+    p.age = current_age;
+    p.rng = Rng::forPlant(seed_, p.id);
+    p.shootTypes = impl_->store.shootTypes;
+    p.phenology = impl_->store.defaultPhenology;
+    p.nextDormancyBreak = p.phenology.time_to_dormancy_break < 0.0f
+                              ? -1.0
+                              : p.age + p.phenology.time_to_dormancy_break;
+    return impl_->store.plants.emplace(p.id, std::move(p)).first->first;
+}
+
+void PlantArchitecture::deletePlantInstance(unsigned plantID) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    for (Shoot& s : p.shoots) deleteShootObjects(*context_, s);
+    impl_->store.plants.erase(plantID);
+    impl_->collision.attractionIndexes.erase(plantID);
+    if (impl_->collision.world) impl_->collision.world->removePlant(plantID);
+}
+
+unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, const ShootSpec& spec) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    if (!p.shoots.empty())
+        throw Error("the plant already has a base stem",
+                    {.parameter = "plantID", .value = std::to_string(plantID)});
+    const unsigned id = createShoot(impl_->growth(), p, spec, StartMode::Base, -1, 0, 0);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, unsigned nodes,
+                                             const AxisRotation& rot, float radius, float lengthMax,
+                                             float lengthScale, float leafScale, float taper,
+                                             const std::string& type) {
+    return addBaseStemShoot(
+        plantID, specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+}
+
+unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID,
+                                        const ShootSpec& spec) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    PlantStore::shoot(p, parentShootID);
+    const unsigned id =
+        createShoot(impl_->growth(), p, spec, StartMode::Append, int(parentShootID), 0, 0);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::appendShoot(unsigned plantID, int parentShootID, unsigned nodes,
+                                        const AxisRotation& rot, float radius, float lengthMax,
+                                        float lengthScale, float leafScale, float taper,
+                                        const std::string& type) {
+    if (parentShootID < 0)
+        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
+                                      .value = std::to_string(parentShootID),
+                                      .validRange = ">= 0"});
+    return appendShoot(
+        plantID, unsigned(parentShootID),
+        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+}
+
+unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShootID,
+                                          unsigned parentNode, const ShootSpec& spec,
+                                          unsigned petioleIndex) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    PlantStore::shoot(p, parentShootID);
+    const unsigned id = createShoot(impl_->growth(), p, spec, StartMode::Child, int(parentShootID),
+                                    parentNode, petioleIndex);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::addChildShoot(unsigned plantID, int parentShootID, unsigned parentNode,
+                                          unsigned nodes, const AxisRotation& rot, float radius,
+                                          float lengthMax, float lengthScale, float leafScale,
+                                          float taper, const std::string& type,
+                                          unsigned petioleIndex) {
+    if (parentShootID < 0)
+        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
+                                      .value = std::to_string(parentShootID),
+                                      .validRange = ">= 0"});
+    return addChildShoot(
+        plantID, unsigned(parentShootID), parentNode,
+        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type), petioleIndex);
+}
+
+unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned shootID,
+                                                  const PhytomerParameters& pp, float radius,
+                                                  float lengthMax, float lengthScale,
+                                                  float leafScale) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    Shoot& s = PlantStore::shoot(p, shootID);
+    ShootSpec spec;
+    spec.internodeRadius = radius;
+    spec.internodeLengthMax = lengthMax;
+    spec.internodeLengthScale = lengthScale;
+    spec.leafScale = leafScale;
+    checkShootSpec(spec);
+    validate(pp, "phytomer_parameters");
+    ShootParameters probe = impl_->store.shootTypeFor(p, s.type);
+    probe.phytomer_parameters = pp;
+    checkFunctions(impl_->functions, probe, s.type);
+    createPhytomer(impl_->growth(), p, s, pp, radius, lengthMax, lengthScale, leafScale, nullptr);
+    scheduleNewShoot(impl_->growth(), p, s);
+    updateGeometry(plantID);
+    return unsigned(s.phytomers.size());
+}
+
+}  // namespace plantarch

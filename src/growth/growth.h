@@ -1,0 +1,46 @@
+#pragma once
+// Growth: making shoots and phytomers as state (shoot_builder.cpp) and advancing a plant in
+// time (growth.cpp). Geometry is not touched: the caller tessellates afterwards.
+
+#include <vector>
+
+#include "geometry/prototype_cache.h"
+#include "growth/steering.h"
+#include "model/function_registry.h"
+#include "model/plant_store.h"
+
+namespace plantarch {
+
+/// What growing a plant uses besides the plant: the shoot types and functions (read only,
+/// so threads growing different plants may share them), a prototype cache of the thread's
+/// own (girth reads leaf areas), and the steering of new organs (none: unsteered).
+struct GrowthContext {
+    const PlantStore& store;
+    const FunctionRegistry& functions;
+    PrototypeCache& prototypes;
+    Steering* steering = nullptr;
+};
+
+/// How a new shoot starts: the plant's base stem, continuing a shoot's tip, or from an axil.
+enum class StartMode { Base, Append, Child };
+
+/// Throws if a shoot's start options are out of range (naming the option and its range).
+void checkShootSpec(const ShootSpec& spec);
+
+/// Creates a shoot (and its first spec.phytomers phytomers) as state; no geometry.
+unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const ShootSpec& spec,
+                     StartMode mode, int parentID, unsigned parentNode, unsigned parentPetiole);
+/// Appends one phytomer to a shoot as state (calls the creation function when named).
+void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& shoot,
+                    const PhytomerParameters& pp, float radius, float lengthMax,
+                    float internodeFraction, float leafFraction, const Internode* start);
+
+/// Grows one plant by `days`; object IDs of organs that fell off are added to `deletes`.
+void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
+               std::vector<ObjectID>& deletes);
+/// Draws a floral bud's peduncle and flowers from the phytomer parameters.
+void realizeInflorescence(PlantInstance& plant, FloralBud& bud, const PhytomerParameters& pp);
+/// Starts a newly created shoot's clock: its apical bud, its axillary buds.
+void scheduleNewShoot(const GrowthContext& growth, PlantInstance& plant, Shoot& shoot);
+
+}  // namespace plantarch

@@ -1,0 +1,27 @@
+#pragma once
+// The named functions shoot types refer to: organ prototype builders and per-phytomer rules.
+// A PlantArchitecture owns one; threads growing plants read it and never change it.
+
+#include <map>
+#include <string>
+
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch {
+
+struct FunctionRegistry {
+    std::map<std::string, LeafPrototypeFunction> leafPrototypes;
+    std::map<std::string, FloralPrototypeFunction> floralPrototypes;
+    std::map<std::string, PhytomerCreationFunction> creationFunctions;
+    std::map<std::string, PhytomerCallbackFunction> callbackFunctions;
+
+    /// The creation function `name` that shoot type `shootType` names; throws if none is
+    /// registered under that name.
+    const PhytomerCreationFunction& creation(const std::string& name,
+                                             const std::string& shootType) const;
+    /// The same for a phytomer callback function.
+    const PhytomerCallbackFunction& callback(const std::string& name,
+                                             const std::string& shootType) const;
+};
+
+}  // namespace plantarch

@@ -1,0 +1,36 @@
+#pragma once
+// The plants of one PlantArchitecture by ID, and the shoot types and phenology that plants
+// added from now on start from.
+
+#include <map>
+#include <string>
+
+#include "plantarch/Parameters.h"
+#include "plantarch/PlantState.h"
+
+namespace plantarch {
+
+class PlantStore {
+public:
+    /// The shoot types by label. A plant takes a copy when it is added, and copies a type it
+    /// does not hold yet from here on first use (shootTypeFor).
+    std::map<std::string, ShootParameters> shootTypes;
+    /// The phenological thresholds given to plants added from now on.
+    PhenologyParameters defaultPhenology;
+    std::map<unsigned, PlantInstance> plants;
+    /// The ID the next plant gets (IDs are never reused).
+    unsigned nextPlantID = 0;
+
+    /// The plant with this ID; throws naming the valid IDs.
+    PlantInstance& plant(unsigned id);
+    const PlantInstance& plant(unsigned id) const;
+    /// A shoot of `p` that exists (not removed); throws naming the valid IDs.
+    static Shoot& shoot(PlantInstance& p, unsigned shootID);
+    static const Shoot& shoot(const PlantInstance& p, unsigned shootID);
+    /// The plant's copy of a shoot type, taken from this table on first use; throws naming
+    /// the known labels. Only the plant changes, so threads growing different plants may
+    /// call it at once.
+    const ShootParameters& shootTypeFor(PlantInstance& p, const std::string& label) const;
+};
+
+}  // namespace plantarch
