@@ -656,7 +656,7 @@ TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
         {"0.02, 0, wire_height\" to", "0.02, 0\" to", "three expressions", 51},
         {"0.02, 0, wire_height\" to", "0.02, 0, wire_heigth\" to", "wire_heigth", 51},
         {"<wire from", "<wire form", "unknown attribute 'form'", 51},
-        {"<wire from", "<wires from", "unknown element 'wires'", 51},
+        {"<wire from", "<wires from", "unknown element <wires> in <attraction_points>", 51},
         {"shoot_types=\"cane\"", "shoot_types=\"cane stem\"", "unknown shoot type 'stem'", 50},
         {wire, "", "needs at least one <wire> or <point>", 50},
         {" to=\"wire_length, 0, wire_height\"", "", "missing required attribute 'to'", 51},

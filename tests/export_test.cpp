@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/export_common.h"
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"

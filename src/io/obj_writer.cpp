@@ -9,7 +9,7 @@
 #include <system_error>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"

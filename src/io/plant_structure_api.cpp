@@ -4,7 +4,7 @@
 #include <set>
 #include <sstream>
 
-#include "io/atomic_file.h"
+#include "core/atomic_file.h"
 #include "io/plant_structure.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"

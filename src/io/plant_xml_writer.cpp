@@ -5,10 +5,10 @@
 #include <charconv>
 #include <optional>
 
+#include "core/value_text.h"
 #include "io/plant_state_table.h"
 #include "io/plant_structure.h"
 #include "library/species_xml.h"
-#include "library/value_text.h"
 #include "model/parameter_table.h"
 
 namespace plantarch::plant_io {

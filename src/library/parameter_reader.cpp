@@ -1,0 +1,114 @@
+// Parameter table fields read from XML elements (parameter_reader.h).
+
+#include "library/parameter_reader.h"
+
+#include <type_traits>
+
+#include "core/value_text.h"
+#include "library/species_xml.h"
+#include "plantarch/Error.h"
+
+namespace plantarch::species_xml {
+
+namespace {
+
+// "a|b|c" -> {"a", "b", "c"}
+std::vector<std::string> choicesOf(std::string_view list) {
+    std::vector<std::string> out;
+    for (std::size_t start = 0;;) {
+        const std::size_t bar = list.find('|', start);
+        out.emplace_back(list.substr(start, bar - start));
+        if (bar == std::string_view::npos) return out;
+        start = bar + 1;
+    }
+}
+
+std::string copyText(std::string_view s) {
+    return std::string(s);
+}
+
+std::string nameKey(std::string_view s) {
+    if (!text::isLabel(s))
+        throw Error("expected a name of letters, digits, '_' or '-'",
+                    {.value = std::string(s), .validRange = "a non-empty name"});
+    return std::string(s);
+}
+
+// <field><entry key="k" [value="v"]>[v]</entry>...</field>
+template <class Key, class Value, class ParseKey, class ParseValue>
+void readMap(const xml::Element& e, const params::FieldInfo& f, std::map<Key, Value>& m,
+             EntryLines* lines, ParseKey&& parseKey, ParseValue&& parseValue) {
+    const MapSpelling spell = mapSpelling(f.name, std::is_same_v<Key, int>);
+    e.checkAttributes({});
+    xml::Children children(e);
+    const std::vector<pugi::xml_node> entries = children.takeAll(spell.element);
+    children.finish();
+    const std::string path = e.path();
+    m.clear();
+    for (pugi::xml_node c : entries) {
+        const xml::Element item(e.document(), c, path);
+        if (spell.valueAttribute)
+            item.checkAttributes({spell.keyAttribute, spell.valueAttribute});
+        else
+            item.checkAttributes({spell.keyAttribute});
+        const std::string keyText = item.requiredAttribute(spell.keyAttribute);
+        const xml::Element entry(e.document(), c, path + "." + keyText);
+        const Key key = entry.convert(keyText, parseKey);
+        std::string valueText;
+        if (spell.valueAttribute) {
+            if (c.first_child())
+                entry.fail(std::string("<") + spell.element + "> takes no content");
+            valueText = entry.requiredAttribute(spell.valueAttribute);
+        } else {
+            valueText = entry.content();
+        }
+        const Value value = entry.convert(valueText, parseValue);
+        if (!m.emplace(key, value).second)
+            entry.fail("duplicate " + std::string(spell.keyAttribute) + " '" + keyText + "' in <" +
+                       f.name + ">");
+        if (lines) (*lines)[entry.path()] = entry.line();
+    }
+}
+
+}  // namespace
+
+void readParameter(const xml::Element& e, const params::FieldInfo&, RandomFloat& m, EntryLines*) {
+    m = e.parse(text::parseRandomFloat);
+}
+void readParameter(const xml::Element& e, const params::FieldInfo&, RandomInt& m, EntryLines*) {
+    m = e.parse(text::parseRandomInt);
+}
+void readParameter(const xml::Element& e, const params::FieldInfo&, float& m, EntryLines*) {
+    m = e.parse(text::parseFloat);
+}
+void readParameter(const xml::Element& e, const params::FieldInfo&, unsigned& m, EntryLines*) {
+    m = e.parse(text::parseUnsigned);
+}
+void readParameter(const xml::Element& e, const params::FieldInfo&, int& m, EntryLines*) {
+    m = e.parse(text::parseInt);
+}
+void readParameter(const xml::Element& e, const params::FieldInfo&, bool& m, EntryLines*) {
+    m = e.parse(text::parseBool);
+}
+void readParameter(const xml::Element& e, const params::FieldInfo&, vec3& m, EntryLines*) {
+    m = e.parse(text::parseVec3);
+}
+
+void readParameter(const xml::Element& e, const params::FieldInfo& f, std::string& m, EntryLines*) {
+    m = e.text();
+    if (!f.choices) return;
+    const std::vector<std::string> choices = choicesOf(f.choices);
+    e.convert(m, [&](std::string_view s) { return text::parseChoice(s, choices); });
+}
+
+void readParameter(const xml::Element& e, const params::FieldInfo& f, std::map<int, std::string>& m,
+                   EntryLines* lines) {
+    readMap(e, f, m, lines, text::parseInt, copyText);
+}
+
+void readParameter(const xml::Element& e, const params::FieldInfo& f,
+                   std::map<std::string, float>& m, EntryLines* lines) {
+    readMap(e, f, m, lines, nameKey, text::parseFloat);
+}
+
+}  // namespace plantarch::species_xml

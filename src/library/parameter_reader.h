@@ -1,0 +1,43 @@
+#pragma once
+// One field of the parameter table (model/parameter_table.h) read from the element that holds
+// it. Species files and plant structure files spell parameters alike: a value as the
+// element's text (the forms of core/value_text.h), a text field with choices as one of them,
+// a map as one child element per entry (species_xml::mapSpelling). Errors name the element's
+// line and path.
+
+#include <map>
+#include <string>
+
+#include "core/xml_reader.h"
+#include "model/parameter_table.h"
+
+namespace plantarch::species_xml {
+
+/// Lines of the map entries read, by parameter path ("main.child_shoot_types.lateral"), for
+/// errors found after reading. Optional in every call below.
+using EntryLines = std::map<std::string, int>;
+
+void readParameter(const xml::Element& e, const params::FieldInfo& f, RandomFloat& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, RandomInt& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, float& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, unsigned& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, int& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, bool& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, vec3& m,
+                   EntryLines* lines = nullptr);
+/// A field with choices ("a|b|c") must hold one of them.
+void readParameter(const xml::Element& e, const params::FieldInfo& f, std::string& m,
+                   EntryLines* lines = nullptr);
+void readParameter(const xml::Element& e, const params::FieldInfo& f, std::map<int, std::string>& m,
+                   EntryLines* lines = nullptr);
+/// Keys are names: letters, digits, '_' and '-'.
+void readParameter(const xml::Element& e, const params::FieldInfo& f,
+                   std::map<std::string, float>& m, EntryLines* lines = nullptr);
+
+}  // namespace plantarch::species_xml
