@@ -73,21 +73,15 @@ bool splitCall(std::string_view s, Call& call) {
     return true;
 }
 
-float floatArg(const Call& c, std::size_t i, std::string_view whole) {
-    float v = 0.0f;
+// Argument i of a distribution: a number (whole for the integer distributions).
+template <class T>
+T numberArg(const Call& c, std::size_t i, std::string_view whole) {
+    constexpr bool real = std::is_floating_point_v<T>;
+    T v = 0;
     if (!readNumber(c.args[i], v))
-        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) +
-                 " is not a number ('" + std::string(c.args[i]) + "')",
-             whole, kFloatForms);
-    return v;
-}
-
-int intArg(const Call& c, std::size_t i, std::string_view whole) {
-    int v = 0;
-    if (!readNumber(c.args[i], v))
-        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) +
-                 " is not a whole number ('" + std::string(c.args[i]) + "')",
-             whole, kIntForms);
+        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) + " is not a " +
+                 (real ? "number" : "whole number") + " ('" + std::string(c.args[i]) + "')",
+             whole, real ? kFloatForms : kIntForms);
     return v;
 }
 
@@ -192,15 +186,15 @@ RandomFloat parseRandomFloat(std::string_view raw) {
     if (s.empty() || !splitCall(s, c)) fail("expected a number or a distribution", s, kFloatForms);
     if (c.name == "uniform") {
         requireArgs(c, 2, "min, max", s);
-        return RandomFloat::uniform(floatArg(c, 0, s), floatArg(c, 1, s));
+        return RandomFloat::uniform(numberArg<float>(c, 0, s), numberArg<float>(c, 1, s));
     }
     if (c.name == "normal") {
         requireArgs(c, 2, "mean, stddev", s);
-        return RandomFloat::normal(floatArg(c, 0, s), floatArg(c, 1, s));
+        return RandomFloat::normal(numberArg<float>(c, 0, s), numberArg<float>(c, 1, s));
     }
     if (c.name == "weibull") {
         requireArgs(c, 2, "shape, scale", s);
-        return RandomFloat::weibull(floatArg(c, 0, s), floatArg(c, 1, s));
+        return RandomFloat::weibull(numberArg<float>(c, 0, s), numberArg<float>(c, 1, s));
     }
     const std::string near = closestMatch(c.name, {"uniform", "normal", "weibull"});
     fail("unknown distribution '" + std::string(c.name) + "'" +
@@ -217,12 +211,12 @@ RandomInt parseRandomInt(std::string_view raw) {
         fail("expected a whole number or a distribution", s, kIntForms);
     if (c.name == "uniform") {
         requireArgs(c, 2, "min, max", s);
-        return RandomInt::uniform(intArg(c, 0, s), intArg(c, 1, s));
+        return RandomInt::uniform(numberArg<int>(c, 0, s), numberArg<int>(c, 1, s));
     }
     if (c.name == "discrete") {
         if (c.args.empty()) fail("discrete needs at least one value", s, kIntForms);
         std::vector<int> values;
-        for (std::size_t i = 0; i < c.args.size(); ++i) values.push_back(intArg(c, i, s));
+        for (std::size_t i = 0; i < c.args.size(); ++i) values.push_back(numberArg<int>(c, i, s));
         return RandomInt::discrete(std::move(values));
     }
     const std::string near = closestMatch(c.name, {"uniform", "discrete"});

@@ -43,6 +43,24 @@ vec3 parseVec3(std::string_view s);
 RandomFloat parseRandomFloat(std::string_view s);
 RandomInt parseRandomInt(std::string_view s);
 
+/// The parsers above by the type they return, for code generic over the type: parse<T>(s).
+struct Parsers {
+    static void read(std::string_view s, float& m) { m = parseFloat(s); }
+    static void read(std::string_view s, double& m) { m = parseDouble(s); }
+    static void read(std::string_view s, int& m) { m = parseInt(s); }
+    static void read(std::string_view s, unsigned& m) { m = parseUnsigned(s); }
+    static void read(std::string_view s, bool& m) { m = parseBool(s); }
+    static void read(std::string_view s, vec3& m) { m = parseVec3(s); }
+    static void read(std::string_view s, RandomFloat& m) { m = parseRandomFloat(s); }
+    static void read(std::string_view s, RandomInt& m) { m = parseRandomInt(s); }
+};
+template <class T>
+T parse(std::string_view s) {
+    T v{};
+    Parsers::read(s, v);
+    return v;
+}
+
 /// Shortest text that reads back to exactly the same value, in plain notation unless that is
 /// more than two characters longer than with an exponent ("0.0001", "1000000", "1e-09").
 std::string formatFloat(float v);

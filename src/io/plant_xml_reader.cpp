@@ -337,14 +337,7 @@ private:
         std::is_same_v<T, unsigned>
     static void readValue(const state::FieldInfo& f, const Element& e, T& m) {
         const std::string s = e.text();
-        if constexpr (std::is_same_v<T, float>)
-            m = e.convert(s, text::parseFloat);
-        else if constexpr (std::is_same_v<T, double>)
-            m = e.convert(s, text::parseDouble);
-        else if constexpr (std::is_same_v<T, int>)
-            m = e.convert(s, text::parseInt);
-        else
-            m = e.convert(s, text::parseUnsigned);
+        m = e.convert(s, text::parse<T>);
         checkRange(f, e, m, s);
     }
     static void readValue(const state::FieldInfo&, const Element& e, bool& m) {

@@ -72,28 +72,6 @@ void readMap(const xml::Element& e, const params::FieldInfo& f, std::map<Key, Va
 
 }  // namespace
 
-void readParameter(const xml::Element& e, const params::FieldInfo&, RandomFloat& m, EntryLines*) {
-    m = e.parse(text::parseRandomFloat);
-}
-void readParameter(const xml::Element& e, const params::FieldInfo&, RandomInt& m, EntryLines*) {
-    m = e.parse(text::parseRandomInt);
-}
-void readParameter(const xml::Element& e, const params::FieldInfo&, float& m, EntryLines*) {
-    m = e.parse(text::parseFloat);
-}
-void readParameter(const xml::Element& e, const params::FieldInfo&, unsigned& m, EntryLines*) {
-    m = e.parse(text::parseUnsigned);
-}
-void readParameter(const xml::Element& e, const params::FieldInfo&, int& m, EntryLines*) {
-    m = e.parse(text::parseInt);
-}
-void readParameter(const xml::Element& e, const params::FieldInfo&, bool& m, EntryLines*) {
-    m = e.parse(text::parseBool);
-}
-void readParameter(const xml::Element& e, const params::FieldInfo&, vec3& m, EntryLines*) {
-    m = e.parse(text::parseVec3);
-}
-
 void readParameter(const xml::Element& e, const params::FieldInfo& f, std::string& m, EntryLines*) {
     m = e.text();
     if (!f.choices) return;

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "core/value_text.h"
 #include "core/xml_reader.h"
 #include "model/parameter_table.h"
 
@@ -17,26 +18,18 @@ namespace plantarch::species_xml {
 /// errors found after reading. Optional in every call below.
 using EntryLines = std::map<std::string, int>;
 
-void readParameter(const xml::Element& e, const params::FieldInfo& f, RandomFloat& m,
-                   EntryLines* lines = nullptr);
-void readParameter(const xml::Element& e, const params::FieldInfo& f, RandomInt& m,
-                   EntryLines* lines = nullptr);
-void readParameter(const xml::Element& e, const params::FieldInfo& f, float& m,
-                   EntryLines* lines = nullptr);
-void readParameter(const xml::Element& e, const params::FieldInfo& f, unsigned& m,
-                   EntryLines* lines = nullptr);
-void readParameter(const xml::Element& e, const params::FieldInfo& f, int& m,
-                   EntryLines* lines = nullptr);
-void readParameter(const xml::Element& e, const params::FieldInfo& f, bool& m,
-                   EntryLines* lines = nullptr);
-void readParameter(const xml::Element& e, const params::FieldInfo& f, vec3& m,
-                   EntryLines* lines = nullptr);
-/// A field with choices ("a|b|c") must hold one of them.
+/// A number, flag, vector or distribution: the element's text.
+template <class T>
+void readParameter(const xml::Element& e, const params::FieldInfo&, T& m, EntryLines* = nullptr) {
+    m = e.parse(text::parse<T>);
+}
+/// Text; a field with choices ("a|b|c") must hold one of them.
 void readParameter(const xml::Element& e, const params::FieldInfo& f, std::string& m,
                    EntryLines* lines = nullptr);
+/// Maps: one child element per entry. Keys of name -> number maps are names (letters,
+/// digits, '_' and '-').
 void readParameter(const xml::Element& e, const params::FieldInfo& f, std::map<int, std::string>& m,
                    EntryLines* lines = nullptr);
-/// Keys are names: letters, digits, '_' and '-'.
 void readParameter(const xml::Element& e, const params::FieldInfo& f,
                    std::map<std::string, float>& m, EntryLines* lines = nullptr);
 

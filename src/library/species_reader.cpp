@@ -110,10 +110,17 @@ void readGroup(const Element& e, Lines& lines, Names attributes, Visit&& visit) 
 // ---- the species file -------------------------------------------------------------------
 
 // The top-level elements, each at most once but <shoot_type>.
+const std::vector<std::string> kTopLevel = {"name",       "common_name", "latin_name",
+                                            "plant_type", "description", "recommended_age",
+                                            "max_height", "phenology",   "build_parameters",
+                                            "shoot_type", "build",       "attraction_points"};
+
 struct TopLevel {
-    xml_node name, commonName, latinName, plantType, description, recommendedAge, maxHeight,
-        phenology, buildParameters, build, attraction;
+    std::map<std::string_view, xml_node> once;  // every name of kTopLevel but shoot_type
     std::vector<xml_node> shootTypes;
+
+    // Null when absent.
+    xml_node operator[](std::string_view name) const { return once.at(name); }
 };
 
 class SpeciesReader {
@@ -129,33 +136,27 @@ public:
         const TopLevel top = topLevel(root);
 
         readNames(root, top);
-        if (top.phenology) readPhenology(top.phenology);
-        if (top.buildParameters) readBuildParameters(top.buildParameters);
+        if (top["phenology"]) readPhenology(top["phenology"]);
+        if (top["build_parameters"]) readBuildParameters(top["build_parameters"]);
         for (xml_node e : top.shootTypes) readShootType(e);
         if (m_.shootTypes.empty())
             root.failAt("shoot_type", "a species needs at least one <shoot_type>");
         checkChildTypes();
-        if (!top.build) root.failAt("build", "missing required element <build>");
-        readBuild(top.build);
-        if (top.attraction) readAttraction(top.attraction);
+        if (!top["build"]) root.failAt("build", "missing required element <build>");
+        readBuild(top["build"]);
+        if (top["attraction_points"]) readAttraction(top["attraction_points"]);
     }
 
 private:
     static TopLevel topLevel(const Element& root) {
         Children c(root);
         TopLevel t;
-        t.name = c.take("name");
-        t.commonName = c.take("common_name");
-        t.latinName = c.take("latin_name");
-        t.plantType = c.take("plant_type");
-        t.description = c.take("description");
-        t.recommendedAge = c.take("recommended_age");
-        t.maxHeight = c.take("max_height");
-        t.phenology = c.take("phenology");
-        t.buildParameters = c.take("build_parameters");
-        t.shootTypes = c.takeAll("shoot_type");
-        t.build = c.take("build");
-        t.attraction = c.take("attraction_points");
+        for (const std::string& name : kTopLevel) {
+            if (name == "shoot_type")
+                t.shootTypes = c.takeAll(name);
+            else
+                t.once[name] = c.take(name);
+        }
         c.finish();
         return t;
     }
@@ -167,26 +168,27 @@ private:
     }
 
     void readNames(const Element& root, const TopLevel& top) {
-        if (!top.name) root.failAt("name", "missing required element <name>");
-        m_.name = textOf(top.name, "name");
+        if (!top["name"]) root.failAt("name", "missing required element <name>");
+        m_.name = textOf(top["name"], "name");
         if (!text::isLabel(m_.name))
-            doc_.fail(top.name, "name", "a species name is letters, digits, '_' or '-'", m_.name);
-        if (top.commonName)
-            m_.commonName = text::collapseSpaces(textOf(top.commonName, "common_name"));
-        if (top.latinName) m_.latinName = text::collapseSpaces(textOf(top.latinName, "latin_name"));
-        if (top.description)
-            m_.description = text::collapseSpaces(textOf(top.description, "description"));
-        if (top.plantType) {
-            m_.plantType = textOf(top.plantType, "plant_type");
+            doc_.fail(top["name"], "name", "a species name is letters, digits, '_' or '-'",
+                      m_.name);
+        using Text = std::pair<const char*, std::string SpeciesModel::*>;
+        for (const auto& [name, member] : {Text{"common_name", &SpeciesModel::commonName},
+                                           Text{"latin_name", &SpeciesModel::latinName},
+                                           Text{"description", &SpeciesModel::description}})
+            if (const xml_node e = top[name]) m_.*member = text::collapseSpaces(textOf(e, name));
+        if (top["plant_type"]) {
+            m_.plantType = textOf(top["plant_type"], "plant_type");
             const auto& types = species_xml::plantTypes();
             if (!contains(types, m_.plantType))
-                doc_.fail(top.plantType, "plant_type",
+                doc_.fail(top["plant_type"], "plant_type",
                           text::unknownMessage("plant type", m_.plantType, types), m_.plantType,
                           text::oneOf(types));
         }
-        if (top.recommendedAge) readRecommendedAge(top.recommendedAge);
-        if (top.maxHeight) {
-            const Element e(doc_, top.maxHeight, "max_height");
+        if (top["recommended_age"]) readRecommendedAge(top["recommended_age"]);
+        if (top["max_height"]) {
+            const Element e(doc_, top["max_height"], "max_height");
             m_.lines[e.path()] = e.line();
             m_.maxHeight = e.parse(text::parseFloat);
             if (m_.maxHeight < 0.0f)
