@@ -8,7 +8,8 @@
 //             (unknown ones are errors, with the closest valid name) and the value it holds.
 //   Children  the child elements of an element, taken by name; finish() reports any child
 //             that was not expected (unknown, with the closest valid name and the list of
-//             valid ones) or a second one of a name expected once (with the first one's line).
+//             valid ones) or a second one of a name expected once (with the line of the one
+//             that was read).
 //
 // Every check throws plantarch::Error: "file:line: path = value: message (valid: range)".
 
@@ -157,7 +158,9 @@ class Children {
 public:
     explicit Children(const Element& parent);
 
-    /// The first child called `name` not taken yet, or a null node; `name` is allowed once.
+    /// A child called `name` not taken yet, or a null node; `name` is allowed once. The
+    /// search starts after the last child taken and wraps around (children usually come in
+    /// the order they are taken in).
     pugi::xml_node take(std::string_view name);
     /// Every child called `name`, in file order; `name` is allowed any number of times.
     std::vector<pugi::xml_node> takeAll(std::string_view name);
@@ -168,7 +171,8 @@ public:
     std::vector<pugi::xml_node> elements() const;
 
     /// Throws for the first child that was neither taken nor allowed ("unknown element"),
-    /// or is a second one of a name allowed once ("duplicate element").
+    /// or is a second one of a name allowed once ("duplicate element", reported at the one
+    /// that was not read).
     void finish() const;
 
 private:
