@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <tuple>
 
 #include "collision/collision_world.h"
@@ -17,6 +16,7 @@
 #include "collision/intersections.h"
 #include "collision/steering.h"
 #include "collision_scenes.h"
+#include "error_of.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
@@ -597,19 +597,7 @@ TEST(Collision, ConeKernelChoice) {
 
 // ---- the species file hook ------------------------------------------------------------
 
-namespace {
-
-Error errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no error";
-    return Error("none");
-}
-
-}  // namespace
+using plantarch::testing::errorOf;
 
 TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
     const SpeciesModel m = readSpeciesString(vine(true), "vine.xml");

@@ -15,29 +15,19 @@
 #include <sstream>
 
 #include "core/value_text.h"
+#include "error_of.h"
 #include "library/expression.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
+using plantarch::testing::errorOf;
 
 namespace {
 
 const std::string kSourceDir = PLANTARCH_SOURCE_DIR;
 const std::string kBeanPath = kSourceDir + "/species/bean.xml";
-
-// The error a call throws, or a failure when it throws none.
-template <class Fn>
-Error errorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no plantarch::Error was thrown";
-    return Error("none");
-}
 
 // A small valid species. Each @MARK@ sits at the end of a line, so a corpus case can insert
 // one line of XML there without moving the lines below it.

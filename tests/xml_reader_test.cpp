@@ -10,26 +10,17 @@
 #include <sstream>
 
 #include "core/value_text.h"
+#include "error_of.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
+using plantarch::testing::errorOf;
 
 namespace {
 
 const xml::DocumentKind kKind{"test file", "top", "other_top"};
-
-template <class Fn>
-Error errorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no plantarch::Error was thrown";
-    return Error("none");
-}
 
 Error documentError(const std::string& text) {
     return errorOf([&] { xml::Document doc(text, "t.xml", kKind); });
@@ -40,14 +31,6 @@ std::string readText(const std::string& path) {
     std::stringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-// `s` with the first `from` replaced by `to`.
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    const auto at = s.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    if (at != std::string::npos) s.replace(at, from.size(), to);
-    return s;
 }
 
 }  // namespace
@@ -134,13 +117,12 @@ TEST(XmlElement, AttributesAndValuesAreStrictAndNamePathAndLine) {
 }
 
 TEST(XmlChildren, UnknownAndDuplicateChildrenAreReportedOnce) {
-    const std::string text =
-        "<top>\n"
-        "  <pitch>1</pitch>\n"
-        "  <roll>2</roll>\n"
-        "  <pitch>3</pitch>\n"
-        "  <wire/><wire/>\n"
-        "</top>";
+    const std::string text = R"(<top>
+  <pitch>1</pitch>
+  <roll>2</roll>
+  <pitch>3</pitch>
+  <wire/><wire/>
+</top>)";
     const xml::Document doc(text, "t.xml", kKind);
     const xml::Element top(doc, doc.root(), "");
 
@@ -244,9 +226,14 @@ TEST(XmlReaders, SpeciesAndPlantFilesWordMistakesAlike) {
     const unsigned id = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 10.0f);
     const std::string plants = arch.getPlantStructureXML({id});
 
-    auto misspelt = [](const std::string& xml, const std::string& element) {
-        return replaced(replaced(xml, "<" + element + ">", "<" + element + "z>"),
-                        "</" + element + ">", "</" + element + "z>");
+    // The first <element> and </element> spelt with a 'z' at the end.
+    auto misspelt = [](std::string xml, const std::string& element) {
+        for (const std::string& tag : {"<" + element + ">", "</" + element + ">"}) {
+            const auto at = xml.find(tag);
+            EXPECT_NE(at, std::string::npos) << tag;
+            if (at != std::string::npos) xml.insert(at + tag.size() - 1, "z");
+        }
+        return xml;
     };
     auto plantError = [](const std::string& xml) {
         Context c;
