@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <tuple>
 
 #include "collision/collision_world.h"
@@ -17,6 +16,7 @@
 #include "collision/intersections.h"
 #include "collision/steering.h"
 #include "collision_scenes.h"
+#include "error_of.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
@@ -597,19 +597,7 @@ TEST(Collision, ConeKernelChoice) {
 
 // ---- the species file hook ------------------------------------------------------------
 
-namespace {
-
-Error errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no error";
-    return Error("none");
-}
-
-}  // namespace
+using plantarch::testing::errorOf;
 
 TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
     const SpeciesModel m = readSpeciesString(vine(true), "vine.xml");
@@ -656,7 +644,7 @@ TEST(CollisionSpecies, BadAttractionDeclarationsNameTheirLine) {
         {"0.02, 0, wire_height\" to", "0.02, 0\" to", "three expressions", 51},
         {"0.02, 0, wire_height\" to", "0.02, 0, wire_heigth\" to", "wire_heigth", 51},
         {"<wire from", "<wire form", "unknown attribute 'form'", 51},
-        {"<wire from", "<wires from", "unknown element 'wires'", 51},
+        {"<wire from", "<wires from", "unknown element <wires> in <attraction_points>", 51},
         {"shoot_types=\"cane\"", "shoot_types=\"cane stem\"", "unknown shoot type 'stem'", 50},
         {wire, "", "needs at least one <wire> or <point>", 50},
         {" to=\"wire_length, 0, wire_height\"", "", "missing required attribute 'to'", 51},

@@ -338,7 +338,9 @@ TEST(NodeRules, BadRulesGiveOneLineWithFileLineAndValidValues) {
     EXPECT_NE(unknown.find("rules.xml:12: stem.phytomer.node_rules[1].node_maxx"),
               std::string::npos)
         << unknown;
-    EXPECT_NE(unknown.find("did you mean 'node_max'"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("unknown element <node_maxx> in <rule>, did you mean <node_max>?"),
+              std::string::npos)
+        << unknown;
     const std::string range = readError(
         "<node_rules><rule><max_nodes_per_season>0</max_nodes_per_season></rule>"
         "</node_rules>");

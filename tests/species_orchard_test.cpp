@@ -11,11 +11,13 @@
 #include <set>
 #include <string>
 
+#include "error_of.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
+using plantarch::testing::errorOf;
 
 namespace {
 
@@ -32,17 +34,6 @@ Grown grow(const std::string& species, float age, const std::map<std::string, fl
     g.arch->loadPlantModelFromLibrary(species);
     g.id = g.arch->buildPlantInstanceFromLibrary(vec3(0.0f), age, params);
     return g;
-}
-
-template <class Fn>
-Error errorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no plantarch::Error was thrown";
-    return Error("none");
 }
 
 bool liveFloralBud(const Phytomer& ph) {

@@ -14,30 +14,20 @@
 #include <memory>
 #include <sstream>
 
+#include "core/value_text.h"
+#include "error_of.h"
 #include "library/expression.h"
-#include "library/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
+using plantarch::testing::errorOf;
 
 namespace {
 
 const std::string kSourceDir = PLANTARCH_SOURCE_DIR;
 const std::string kBeanPath = kSourceDir + "/species/bean.xml";
-
-// The error a call throws, or a failure when it throws none.
-template <class Fn>
-Error errorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no plantarch::Error was thrown";
-    return Error("none");
-}
 
 // A small valid species. Each @MARK@ sits at the end of a line, so a corpus case can insert
 // one line of XML there without moving the lines below it.
@@ -315,23 +305,23 @@ std::vector<BrokenCase> brokenCorpus() {
         {"unknown top level",
          species({{"<name>mini</name>", "<name>mini</name><nmae/>"}}),
          3,
-         {"nmae", "did you mean 'name'", "shoot_type", "build_parameters"}},
+         {"nmae", "did you mean <name>", "shoot_type", "build_parameters"}},
         {"unknown phenology key",
          species({{"@PHENOLOGY@", "<max_ag>3</max_ag>"}}),
          6,
-         {"phenology.max_ag", "did you mean 'max_age'", "time_to_fruit_set"}},
+         {"phenology.max_ag", "did you mean <max_age>", "time_to_fruit_set"}},
         {"unknown shoot key",
          species({{"@SHOOT@", "<max_node>3</max_node>"}}),
          12,
-         {"main.max_node", "did you mean 'max_nodes'", "phyllochron_min"}},
+         {"main.max_node", "did you mean <max_nodes>", "phyllochron_min"}},
         {"unknown phytomer group",
          species({{"<petiole>", "<petiol>"}, {"</petiole>", "</petiol>"}}),
          17,
-         {"main.phytomer.petiol", "did you mean 'petiole'", "internode", "inflorescence"}},
+         {"main.phytomer.petiol", "did you mean <petiole>", "internode", "inflorescence"}},
         {"misspelt petiole key",
          species({{"@PETIOLE@", "<pitchh>3</pitchh>"}}),
          18,
-         {"main.phytomer.petiole.pitchh", "did you mean 'pitch'", "petioles_per_internode",
+         {"main.phytomer.petiole.pitchh", "did you mean <pitch>", "petioles_per_internode",
           "radial_subdivisions"}},
         {"unknown key, nothing close",
          species({{"@PETIOLE@", "<zzzzzzzz>3</zzzzzzzz>"}}),
@@ -340,7 +330,7 @@ std::vector<BrokenCase> brokenCorpus() {
         {"unknown prototype key",
          species({{"@PROTOTYPE@", "<shap>ovate</shap>"}}),
          22,
-         {"main.phytomer.leaf.prototype.shap", "did you mean 'shape'", "leaf_aspect_ratio"}},
+         {"main.phytomer.leaf.prototype.shap", "did you mean <shape>", "leaf_aspect_ratio"}},
         {"unknown attribute on a value",
          species({{"<pitch>30</pitch>", "<pitch unit=\"deg\">30</pitch>"}}),
          18,

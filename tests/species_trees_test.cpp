@@ -12,25 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "error_of.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
+using plantarch::testing::errorOf;
 
 namespace {
-
-// The error a call throws, or a failure when it throws none.
-template <class Fn>
-Error errorOf(Fn&& fn) {
-    try {
-        fn();
-    } catch (const Error& e) {
-        return e;
-    }
-    ADD_FAILURE() << "no plantarch::Error was thrown";
-    return Error("none");
-}
 
 // One library plant in its own scene.
 struct Tree {

@@ -9,6 +9,7 @@
 #include "collision/attraction.h"
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -61,10 +62,7 @@ void checkPoints(const std::vector<vec3>& points) {
 // Shoot types are labels (as plant structure files spell them, separated by spaces).
 void checkShootTypes(const std::vector<std::string>& types) {
     for (const std::string& t : types) {
-        const bool label = !t.empty() && std::all_of(t.begin(), t.end(), [](char c) {
-            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-        });
-        if (!label)
+        if (!text::isLabel(t))
             throw Error("attraction shoot type is not a shoot type label",
                         {.parameter = "shoot_types",
                          .value = t,

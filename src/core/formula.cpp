@@ -10,7 +10,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "library/value_text.h"
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {

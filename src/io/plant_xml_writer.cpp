@@ -5,9 +5,9 @@
 #include <charconv>
 #include <optional>
 
+#include "core/value_text.h"
 #include "io/plant_state_table.h"
 #include "io/plant_structure.h"
-#include "library/value_text.h"
 #include "model/parameter_table.h"
 
 namespace plantarch::plant_io {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "library/value_text.h"
+#include "core/value_text.h"
 #include "model/parameter_table.h"
 #include "plantarch/ParameterInfo.h"
 

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "core/value_text.h"
 #include "library/expression.h"
 #include "library/species_xml.h"
-#include "library/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"

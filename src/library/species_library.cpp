@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "library/value_text.h"
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
 

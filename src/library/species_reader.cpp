@@ -1,4 +1,5 @@
-// Strict reader of species files (docs/species-format.md).
+// Strict reader of species files (docs/species-format.md), on the XML reader layer
+// (core/xml_reader.h).
 //
 // The shoot type and phenology elements are read by a visitor of the parameter declaration
 // table (model/parameter_table.h): the names an element may contain are the names the table
@@ -9,14 +10,13 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
-#include <pugixml.hpp>
-#include <set>
 #include <sstream>
 
+#include "core/value_text.h"
+#include "core/xml_reader.h"
 #include "library/expression.h"
+#include "library/parameter_reader.h"
 #include "library/species_xml.h"
-#include "library/value_text.h"
-#include "library/xml_source.h"
 #include "model/parameter_table.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
@@ -26,29 +26,13 @@ namespace plantarch {
 namespace {
 
 using pugi::xml_node;
+using xml::Children;
+using xml::Element;
 using Lines = std::map<std::string, int>;
-
-std::string joinPath(const std::string& a, const std::string& b) {
-    return a.empty() ? b : a + "." + b;
-}
-
-bool isElement(xml_node n) {
-    return n.type() == pugi::node_element;
-}
-bool isText(xml_node n) {
-    return n.type() == pugi::node_pcdata || n.type() == pugi::node_cdata;
-}
+using Names = std::initializer_list<std::string_view>;
 
 bool contains(const std::vector<std::string>& list, const std::string& s) {
     return std::find(list.begin(), list.end(), s) != list.end();
-}
-
-// Labels, ids and names: letters, digits, '_' and '-' (no '.', which separates path parts).
-bool isLabel(const std::string& s) {
-    if (s.empty()) return false;
-    return std::all_of(s.begin(), s.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-    });
 }
 
 bool isIdentifier(const std::string& s) {
@@ -56,21 +40,6 @@ bool isIdentifier(const std::string& s) {
     return std::all_of(s.begin(), s.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
     });
-}
-
-std::string collapseSpaces(std::string_view s) {
-    std::string out;
-    bool space = false;
-    for (char c : text::trim(s)) {
-        if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
-            space = true;
-            continue;
-        }
-        if (space) out += ' ';
-        space = false;
-        out += c;
-    }
-    return out;
 }
 
 // An error about `path` found after reading (range validation): put it at the line of the
@@ -87,431 +56,257 @@ Error locate(const Error& e, const std::string& file, const Lines& lines, int fa
     return e.withFile(file, fallbackLine);
 }
 
-// "unknown element 'pitchh' of <petiole>, did you mean 'pitch'?"
-std::string unknownMessage(const char* what, const std::string& name,
-                           const std::vector<std::string>& valid, const std::string& where = "") {
-    const std::string near = text::closestMatch(name, valid);
-    return std::string("unknown ") + what + " '" + name + "'" + where +
-           (near.empty() ? "" : ", did you mean '" + near + "'?");
-}
-
-std::string validList(const std::vector<std::string>& valid) {
-    return valid.empty() ? "none" : "one of: " + text::joinNames(valid);
-}
-
-// ---- structure checks -----------------------------------------------------------------
-
-void checkAttributes(const XmlSource& src, xml_node e, const std::string& path,
-                     const std::vector<std::string>& allowed) {
-    std::set<std::string> seen;
-    for (pugi::xml_attribute a : e.attributes()) {
-        const std::string name = a.name();
-        if (!contains(allowed, name))
-            src.fail(
-                e, joinPath(path, name),
-                unknownMessage("attribute", name, allowed, std::string(" of <") + e.name() + ">"),
-                a.value(), allowed.empty() ? "no attributes" : validList(allowed));
-        if (!seen.insert(name).second)
-            src.fail(e, joinPath(path, name), "duplicate attribute '" + name + "'", a.value());
-    }
-}
-
-std::string requiredAttribute(const XmlSource& src, xml_node e, const std::string& path,
-                              const char* name) {
-    pugi::xml_attribute a = e.attribute(name);
-    if (!a)
-        src.fail(e, joinPath(path, name),
-                 std::string("missing required attribute '") + name + "' of <" + e.name() + ">");
-    return std::string(text::trim(a.value()));
-}
-
-// Children must be elements named in `allowed`, each at most once unless in `repeatable`.
-void checkChildren(const XmlSource& src, xml_node e, const std::string& path,
-                   const std::vector<std::string>& allowed,
-                   const std::vector<std::string>& repeatable = {}) {
-    std::map<std::string, xml_node> seen;
-    for (xml_node c : e.children()) {
-        if (isText(c))
-            src.fail(c, path,
-                     std::string("unexpected text inside <") + e.name() + ">, expected elements",
-                     collapseSpaces(c.value()).substr(0, 40));
-        if (!isElement(c)) continue;
-        const std::string name = c.name();
-        if (!contains(allowed, name))
-            src.fail(c, joinPath(path, name), unknownMessage("element", name, allowed), "",
-                     validList(allowed));
-        auto [it, fresh] = seen.emplace(name, c);
-        if (!fresh && !contains(repeatable, name))
-            src.fail(c, joinPath(path, name),
-                     "duplicate element <" + name + "> (first at line " +
-                         std::to_string(src.line(it->second)) + ")");
-    }
-}
-
-// The text of an element that holds a value: no child elements, surrounding space trimmed.
-std::string valueText(const XmlSource& src, xml_node e, const std::string& path) {
-    std::string out;
-    for (xml_node c : e.children()) {
-        if (isText(c))
-            out += c.value();
-        else if (isElement(c))
-            src.fail(c, path,
-                     std::string("<") + e.name() + "> holds a value, not elements (found <" +
-                         c.name() + ">)");
-    }
-    return std::string(text::trim(out));
-}
-
-template <class Parse>
-auto convert(const XmlSource& src, xml_node e, const std::string& path, const std::string& text,
-             Parse&& parse) {
-    try {
-        return parse(text);
-    } catch (const Error& err) {
-        src.relocate(err, e, path);
-    }
+// An element that holds attributes only.
+void checkNoChildren(const Element& e) {
+    Children(e).finish();
 }
 
 // ---- the table visitor ------------------------------------------------------------------
 
-// Names declared at one level of the table.
-struct NameCollector {
-    std::vector<std::string> names;
-    template <class T>
-    void field(const params::FieldInfo& f, T&) {
-        names.emplace_back(f.name);
-    }
-    template <class G, class Fn>
-    void group(const char* name, G&, Fn&&) {
-        names.emplace_back(name);
-    }
-    template <class E, class Fn>
-    void list(const params::FieldInfo& f, const char*, std::vector<E>&, Fn&&) {
-        names.emplace_back(f.name);
-    }
-};
-
-class FieldReader;
-
 // Reads a group element (shoot type, phenology, phytomer, leaf, ...) through `visit`, which
 // runs describeParameters on the struct being filled with the visitor it is given.
 template <class Visit>
-void readGroup(const XmlSource& src, Lines& lines, xml_node e, const std::string& path,
-               const std::vector<std::string>& attributes, Visit&& visit);
+void readGroup(const Element& e, Lines& lines, Names attributes, Visit&& visit);
 
+// Each name the table declares at one level takes its value from the child of that name.
 class FieldReader {
 public:
-    FieldReader(const XmlSource& src, Lines& lines, xml_node node, std::string path)
-        : src_(src), lines_(lines), node_(node), path_(std::move(path)) {}
+    FieldReader(const Element& e, Lines& lines) : e_(e), children_(e), lines_(lines) {}
 
     template <class T>
     void field(const params::FieldInfo& f, T& member) {
-        xml_node e = node_.child(f.name);
-        if (!e) return;
-        const std::string path = joinPath(path_, f.name);
-        lines_[path] = src_.line(e);
-        read(f, e, path, member);
+        const xml_node n = children_.take(f.name);
+        if (!n) return;
+        const Element value(e_, n, f.name);
+        lines_[value.path()] = value.line();
+        species_xml::readParameter(value, f, member, &lines_);
     }
 
     template <class G, class Fn>
     void group(const char* name, G&, Fn&& visit) {
-        xml_node e = node_.child(name);
-        if (!e) return;
-        const std::string path = joinPath(path_, name);
-        lines_[path] = src_.line(e);
-        readGroup(src_, lines_, e, path, {}, visit);
+        const xml_node n = children_.take(name);
+        if (!n) return;
+        const Element sub(e_, n, name);
+        lines_[sub.path()] = sub.line();
+        readGroup(sub, lines_, {}, visit);
     }
 
-    // A list of groups: <name><item>...</item>...</name>, replacing the inherited list whole.
+    // A list of structs: <name><item>...</item>...</name>, replacing an inherited list whole.
     template <class E, class Fn>
     void list(const params::FieldInfo& f, const char* item, std::vector<E>& items, Fn&& visit) {
-        xml_node e = node_.child(f.name);
-        if (!e) return;
-        const std::string path = joinPath(path_, f.name);
-        lines_[path] = src_.line(e);
-        checkAttributes(src_, e, path, {});
-        checkChildren(src_, e, path, {item}, {item});
+        const xml_node n = children_.take(f.name);
+        if (!n) return;
+        const Element holder(e_, n, f.name);
+        lines_[holder.path()] = holder.line();
+        holder.checkAttributes({});
+        Children children(holder);
+        children.allow(item, true);
+        children.finish();
         items.clear();
-        for (xml_node c : e.children(item)) {
-            const std::string at = path + "[" + std::to_string(items.size() + 1) + "]";
-            lines_[at] = src_.line(c);
+        for (xml_node c : children.elements()) {
+            const Element one(holder.document(), c,
+                              holder.path() + "[" + std::to_string(items.size() + 1) + "]");
+            lines_[one.path()] = one.line();
             E element{};
-            readGroup(src_, lines_, c, at, {}, [&](auto& v) { visit(element, v); });
+            readGroup(one, lines_, {}, [&](auto& v) { visit(element, v); });
             items.push_back(std::move(element));
         }
     }
 
+    void finish() const { children_.finish(); }
+
 private:
-    std::string scalar(xml_node e, const std::string& path) {
-        checkAttributes(src_, e, path, {});
-        return valueText(src_, e, path);
-    }
-
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, RandomFloat& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseRandomFloat);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, RandomInt& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseRandomInt);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, float& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseFloat);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, unsigned& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseUnsigned);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, int& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseInt);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, bool& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseBool);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, vec3& m) {
-        m = convert(src_, e, path, scalar(e, path), text::parseVec3);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, Formula& m) {
-        const std::string s = scalar(e, path);
-        m = s.empty() ? Formula() : convert(src_, e, path, s, NodeRule::formula);
-    }
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, std::string& m) {
-        m = scalar(e, path);
-    }
-    template <params::ChoiceType E>
-    void read(const params::FieldInfo&, xml_node e, const std::string& path, E& m) {
-        const std::string name = scalar(e, path);
-        if (const auto value = params::choiceNamed<E>(name)) {
-            m = *value;
-            return;
-        }
-        const std::vector<std::string> valid = params::choiceNames<E>();
-        src_.fail(e, path, unknownMessage("value", name, valid), name, validList(valid));
-    }
-
-    // Map fields: one child element per entry, spelled as the table declares (f.entries).
-    template <class Key, class Value, class ParseKey, class ParseValue>
-    void readMap(const params::FieldInfo& f, xml_node e, const std::string& path,
-                 std::map<Key, Value>& m, ParseKey&& parseKey, ParseValue&& parseValue) {
-        const params::MapEntries& spell = f.entries;
-        checkAttributes(src_, e, path, {});
-        checkChildren(src_, e, path, {spell.element}, {spell.element});
-        std::vector<std::string> attributes = {spell.key};
-        if (spell.value) attributes.push_back(spell.value);
-        m.clear();
-        for (xml_node c : e.children(spell.element)) {
-            checkAttributes(src_, c, path, attributes);
-            const std::string keyText = requiredAttribute(src_, c, path, spell.key);
-            const Key key = convert(src_, c, path + "." + keyText, keyText, parseKey);
-            const std::string entry = path + "." + keyText;
-            std::string valueString;
-            if (spell.value) {
-                if (c.first_child())
-                    src_.fail(c, entry, std::string("<") + spell.element + "> takes no content");
-                valueString = requiredAttribute(src_, c, entry, spell.value);
-            } else {
-                valueString = valueText(src_, c, entry);
-            }
-            const Value value = convert(src_, c, entry, valueString, parseValue);
-            if (!m.emplace(key, value).second)
-                src_.fail(c, entry,
-                          "duplicate " + std::string(spell.key) + " '" + keyText + "' in <" +
-                              f.name + ">");
-            lines_[entry] = src_.line(c);
-        }
-    }
-
-    void read(const params::FieldInfo& f, xml_node e, const std::string& path,
-              std::map<int, std::string>& m) {
-        readMap(f, e, path, m, text::parseInt, [](const std::string& s) { return s; });
-    }
-    void read(const params::FieldInfo& f, xml_node e, const std::string& path,
-              std::map<std::string, float>& m) {
-        auto key = [](const std::string& s) {
-            if (!isLabel(s))
-                throw Error("expected a name of letters, digits, '_' or '-'",
-                            {.value = s, .validRange = "a non-empty name"});
-            return s;
-        };
-        readMap(f, e, path, m, key, text::parseFloat);
-    }
-
-    const XmlSource& src_;
+    const Element& e_;
+    Children children_;
     Lines& lines_;
-    xml_node node_;
-    std::string path_;
 };
 
 template <class Visit>
-void readGroup(const XmlSource& src, Lines& lines, xml_node e, const std::string& path,
-               const std::vector<std::string>& attributes, Visit&& visit) {
-    NameCollector names;
-    visit(names);
-    checkAttributes(src, e, path, attributes);
-    checkChildren(src, e, path, names.names);
-    FieldReader reader(src, lines, e, path);
+void readGroup(const Element& e, Lines& lines, Names attributes, Visit&& visit) {
+    e.checkAttributes(attributes);
+    FieldReader reader(e, lines);
     visit(reader);
+    reader.finish();
 }
 
 // ---- the species file -------------------------------------------------------------------
 
+// The top-level elements, each at most once but <shoot_type>.
 const std::vector<std::string> kTopLevel = {"name",       "common_name", "latin_name",
                                             "plant_type", "description", "recommended_age",
                                             "max_height", "phenology",   "build_parameters",
                                             "shoot_type", "build",       "attraction_points"};
 
+struct TopLevel {
+    std::map<std::string_view, xml_node> once;  // every name of kTopLevel but shoot_type
+    std::vector<xml_node> shootTypes;
+
+    // Null when absent.
+    xml_node operator[](std::string_view name) const { return once.at(name); }
+};
+
 class SpeciesReader {
 public:
-    SpeciesReader(const XmlSource& src, SpeciesModel& model) : src_(src), m_(model) {}
+    SpeciesReader(const xml::Document& doc, SpeciesModel& model) : doc_(doc), m_(model) {}
 
-    void read(xml_node root) {
-        checkAttributes(src_, root, "", {"format"});
-        const std::string format = requiredAttribute(src_, root, "", "format");
+    void read(const Element& root) {
+        root.checkAttributes({"format"});
+        const std::string format = root.requiredAttribute("format");
         if (format != species_xml::kFormatVersion)
-            src_.fail(root, "format", "unsupported species file format", format,
-                      species_xml::kFormatVersion);
-        checkChildren(src_, root, "", kTopLevel, {"shoot_type"});
+            root.failAt("format", "unsupported species file format", format,
+                        species_xml::kFormatVersion);
+        const TopLevel top = topLevel(root);
 
-        readNames(root);
-        if (xml_node e = root.child("phenology")) readPhenology(e);
-        if (xml_node e = root.child("build_parameters")) readBuildParameters(e);
-        for (xml_node e : root.children("shoot_type")) readShootType(e);
+        readNames(root, top);
+        if (top["phenology"]) readPhenology(top["phenology"]);
+        if (top["build_parameters"]) readBuildParameters(top["build_parameters"]);
+        for (xml_node e : top.shootTypes) readShootType(e);
         if (m_.shootTypes.empty())
-            src_.fail(root, "shoot_type", "a species needs at least one <shoot_type>");
+            root.failAt("shoot_type", "a species needs at least one <shoot_type>");
         checkChildTypes();
-        xml_node build = root.child("build");
-        if (!build) src_.fail(root, "build", "missing required element <build>");
-        readBuild(build);
-        if (xml_node e = root.child("attraction_points")) readAttraction(e);
+        if (!top["build"]) root.failAt("build", "missing required element <build>");
+        readBuild(top["build"]);
+        if (top["attraction_points"]) readAttraction(top["attraction_points"]);
     }
 
 private:
-    std::string textOf(xml_node e, const std::string& path) {
-        checkAttributes(src_, e, path, {});
-        m_.lines[path] = src_.line(e);
-        return valueText(src_, e, path);
+    static TopLevel topLevel(const Element& root) {
+        Children c(root);
+        TopLevel t;
+        for (const std::string& name : kTopLevel) {
+            if (name == "shoot_type")
+                t.shootTypes = c.takeAll(name);
+            else
+                t.once[name] = c.take(name);
+        }
+        c.finish();
+        return t;
     }
 
-    void readNames(xml_node root) {
-        xml_node name = root.child("name");
-        if (!name) src_.fail(root, "name", "missing required element <name>");
-        m_.name = textOf(name, "name");
-        if (!isLabel(m_.name))
-            src_.fail(name, "name", "a species name is letters, digits, '_' or '-'", m_.name);
-        if (xml_node e = root.child("common_name"))
-            m_.commonName = collapseSpaces(textOf(e, "common_name"));
-        if (xml_node e = root.child("latin_name"))
-            m_.latinName = collapseSpaces(textOf(e, "latin_name"));
-        if (xml_node e = root.child("description"))
-            m_.description = collapseSpaces(textOf(e, "description"));
-        if (xml_node e = root.child("plant_type")) {
-            m_.plantType = textOf(e, "plant_type");
+    // The text of a top-level value, its line recorded.
+    std::string textOf(xml_node e, const std::string& path) {
+        m_.lines[path] = doc_.line(e);
+        return Element(doc_, e, path).text();
+    }
+
+    void readNames(const Element& root, const TopLevel& top) {
+        if (!top["name"]) root.failAt("name", "missing required element <name>");
+        m_.name = textOf(top["name"], "name");
+        if (!text::isLabel(m_.name))
+            doc_.fail(top["name"], "name", "a species name is letters, digits, '_' or '-'",
+                      m_.name);
+        using Text = std::pair<const char*, std::string SpeciesModel::*>;
+        for (const auto& [name, member] : {Text{"common_name", &SpeciesModel::commonName},
+                                           Text{"latin_name", &SpeciesModel::latinName},
+                                           Text{"description", &SpeciesModel::description}})
+            if (const xml_node e = top[name]) m_.*member = text::collapseSpaces(textOf(e, name));
+        if (top["plant_type"]) {
+            m_.plantType = textOf(top["plant_type"], "plant_type");
             const auto& types = species_xml::plantTypes();
             if (!contains(types, m_.plantType))
-                src_.fail(e, "plant_type", unknownMessage("plant type", m_.plantType, types),
-                          m_.plantType, validList(types));
+                doc_.fail(top["plant_type"], "plant_type",
+                          text::unknownMessage("plant type", m_.plantType, types), m_.plantType,
+                          text::oneOf(types));
         }
-        if (xml_node e = root.child("recommended_age")) readRecommendedAge(e);
-        if (xml_node e = root.child("max_height")) {
-            m_.maxHeight =
-                convert(src_, e, "max_height", textOf(e, "max_height"), text::parseFloat);
+        if (top["recommended_age"]) readRecommendedAge(top["recommended_age"]);
+        if (top["max_height"]) {
+            const Element e(doc_, top["max_height"], "max_height");
+            m_.lines[e.path()] = e.line();
+            m_.maxHeight = e.parse(text::parseFloat);
             if (m_.maxHeight < 0.0f)
-                src_.fail(e, "max_height", "out of range", text::formatFloat(m_.maxHeight),
-                          ">= 0 m");
+                e.fail("out of range", text::formatFloat(m_.maxHeight), ">= 0 m");
         }
     }
 
-    float floatAttribute(xml_node e, const std::string& path, const char* name) {
-        const std::string at = joinPath(path, name);
-        return convert(src_, e, at, requiredAttribute(src_, e, path, name), text::parseFloat);
-    }
-
-    void readRecommendedAge(xml_node e) {
-        const std::string path = "recommended_age";
-        checkAttributes(src_, e, path, {"min", "max", "default"});
-        checkChildren(src_, e, path, {});
-        m_.lines[path] = src_.line(e);
-        m_.recommendedAgeMin = floatAttribute(e, path, "min");
-        m_.recommendedAgeMax = floatAttribute(e, path, "max");
-        m_.recommendedAge = floatAttribute(e, path, "default");
+    void readRecommendedAge(xml_node node) {
+        const Element e(doc_, node, "recommended_age");
+        e.checkAttributes({"min", "max", "default"});
+        checkNoChildren(e);
+        m_.lines[e.path()] = e.line();
+        m_.recommendedAgeMin = e.parseAttribute("min", text::parseFloat);
+        m_.recommendedAgeMax = e.parseAttribute("max", text::parseFloat);
+        m_.recommendedAge = e.parseAttribute("default", text::parseFloat);
+        const std::string range = text::formatFloat(m_.recommendedAgeMin) + " to " +
+                                  text::formatFloat(m_.recommendedAgeMax);
         if (m_.recommendedAgeMin < 0.0f || m_.recommendedAgeMax < m_.recommendedAgeMin)
-            src_.fail(e, path + ".max", "recommended age range is empty or negative",
-                      text::formatFloat(m_.recommendedAgeMin) + " to " +
-                          text::formatFloat(m_.recommendedAgeMax),
-                      "0 <= min <= max days");
+            e.failAt("max", "recommended age range is empty or negative", range,
+                     "0 <= min <= max days");
         if (m_.recommendedAge < m_.recommendedAgeMin || m_.recommendedAge > m_.recommendedAgeMax)
-            src_.fail(e, path + ".default", "out of range", text::formatFloat(m_.recommendedAge),
-                      text::formatFloat(m_.recommendedAgeMin) + " to " +
-                          text::formatFloat(m_.recommendedAgeMax) + " days");
+            e.failAt("default", "out of range", text::formatFloat(m_.recommendedAge),
+                     range + " days");
     }
 
-    void readPhenology(xml_node e) {
-        m_.lines["phenology"] = src_.line(e);
-        readGroup(src_, m_.lines, e, "phenology", {},
-                  [&](auto& v) { params::describeParameters(m_.phenology, v); });
+    void readPhenology(xml_node node) {
+        const Element e(doc_, node, "phenology");
+        m_.lines[e.path()] = e.line();
+        readGroup(e, m_.lines, {}, [&](auto& v) { params::describeParameters(m_.phenology, v); });
         try {
             validate(m_.phenology, "phenology");
         } catch (const Error& err) {
-            throw locate(err, src_.file(), m_.lines, src_.line(e));
+            throw locate(err, doc_.file(), m_.lines, e.line());
         }
     }
 
-    void readBuildParameters(xml_node e) {
-        checkAttributes(src_, e, "build_parameters", {});
-        checkChildren(src_, e, "build_parameters", {"parameter"}, {"parameter"});
-        for (xml_node p : e.children("parameter")) {
-            const std::string base = "build_parameters";
-            checkAttributes(src_, p, base, {"name", "default", "min", "max", "unit", "doc"});
-            checkChildren(src_, p, base, {});
+    void readBuildParameters(xml_node node) {
+        const Element list(doc_, node, "build_parameters");
+        list.checkAttributes({});
+        Children children(list);
+        const std::vector<xml_node> parameters = children.takeAll("parameter");
+        children.finish();
+        for (xml_node p : parameters) {
+            const Element item(doc_, p, list.path());
+            item.checkAttributes({"name", "default", "min", "max", "unit", "doc"});
+            checkNoChildren(item);
             BuildParameter bp;
-            bp.name = requiredAttribute(src_, p, base, "name");
-            const std::string path = joinPath(base, bp.name);
+            bp.name = item.requiredAttribute("name");
+            const Element e(doc_, p, item.pathTo(bp.name));
             if (!isIdentifier(bp.name))
-                src_.fail(p, path,
-                          "a build parameter name is a letter or '_' followed by "
-                          "letters, digits or '_'",
-                          bp.name);
+                e.fail(
+                    "a build parameter name is a letter or '_' followed by letters, digits or "
+                    "'_'",
+                    bp.name);
             if (contains(expr::reservedNames(), bp.name) || bp.name == "i" || bp.name == "parent_i")
-                src_.fail(p, path, "reserved name, choose another", bp.name);
+                e.fail("reserved name, choose another", bp.name);
             for (const BuildParameter& other : m_.buildParameters)
                 if (other.name == bp.name)
-                    src_.fail(p, path,
-                              "duplicate build parameter '" + bp.name + "' (first at line " +
-                                  std::to_string(m_.lines[path]) + ")");
-            bp.value = floatAttribute(p, path, "default");
-            bp.min = floatAttribute(p, path, "min");
-            bp.max = floatAttribute(p, path, "max");
-            bp.unit = std::string(text::trim(p.attribute("unit").value()));
-            bp.doc = collapseSpaces(p.attribute("doc").value());
+                    e.fail("duplicate build parameter '" + bp.name + "' (first at line " +
+                           std::to_string(m_.lines[e.path()]) + ")");
+            bp.value = e.parseAttribute("default", text::parseFloat);
+            bp.min = e.parseAttribute("min", text::parseFloat);
+            bp.max = e.parseAttribute("max", text::parseFloat);
+            bp.unit = e.attribute("unit");
+            bp.doc = text::collapseSpaces(p.attribute("doc").value());
             if (bp.min > bp.max)
-                src_.fail(p, path + ".min", "min exceeds max", text::formatFloat(bp.min),
-                          "<= max (" + text::formatFloat(bp.max) + ")");
+                e.failAt("min", "min exceeds max", text::formatFloat(bp.min),
+                         "<= max (" + text::formatFloat(bp.max) + ")");
             if (bp.value < bp.min || bp.value > bp.max)
-                src_.fail(p, path + ".default", "default out of range", text::formatFloat(bp.value),
-                          text::formatFloat(bp.min) + " to " + text::formatFloat(bp.max));
-            m_.lines[path] = src_.line(p);
+                e.failAt("default", "default out of range", text::formatFloat(bp.value),
+                         text::formatFloat(bp.min) + " to " + text::formatFloat(bp.max));
+            m_.lines[e.path()] = e.line();
             m_.buildParameters.push_back(bp);
         }
     }
 
-    void readShootType(xml_node e) {
-        const std::string label = requiredAttribute(src_, e, "shoot_type", "label");
-        if (!isLabel(label))
-            src_.fail(e, "shoot_type.label",
+    void readShootType(xml_node node) {
+        const std::string label = Element(doc_, node, "shoot_type").requiredAttribute("label");
+        if (!text::isLabel(label))
+            doc_.fail(node, "shoot_type.label",
                       "a shoot type label is letters, digits, '_' or '-' (no spaces or dots)",
                       label);
+        const Element e(doc_, node, label);
         if (m_.shootTypes.count(label))
-            src_.fail(e, label,
-                      "duplicate shoot type '" + label + "' (first at line " +
-                          std::to_string(m_.lines[label]) + ")");
+            e.fail("duplicate shoot type '" + label + "' (first at line " +
+                   std::to_string(m_.lines[label]) + ")");
         ShootParameters params;
-        if (pugi::xml_attribute base = e.attribute("inherits")) {
-            const std::string from(text::trim(base.value()));
+        if (e.hasAttribute("inherits")) {
+            const std::string from = e.attribute("inherits");
             auto it = m_.shootTypes.find(from);
             if (it == m_.shootTypes.end()) {
-                std::vector<std::string> known;
-                for (const auto& [l, p] : m_.shootTypes) known.push_back(l);
-                src_.fail(e, label + ".inherits",
-                          unknownMessage("shoot type", from, known) +
-                              " (a type can only inherit from one defined above it)",
-                          from, validList(known));
+                const std::vector<std::string> known = shootTypeLabels();
+                e.failAt("inherits",
+                         text::unknownMessage("shoot type", from, known) +
+                             " (a type can only inherit from one defined above it)",
+                         from, text::oneOf(known));
             }
             params = it->second;
             // Inherited values keep pointing at the lines they were read from.
@@ -522,13 +317,13 @@ private:
                     copied.emplace_back(label + "." + path.substr(prefix.size()), line);
             for (const auto& [path, line] : copied) m_.lines[path] = line;
         }
-        m_.lines[label] = src_.line(e);
-        readGroup(src_, m_.lines, e, label, {"label", "inherits"},
+        m_.lines[label] = e.line();
+        readGroup(e, m_.lines, {"label", "inherits"},
                   [&](auto& v) { params::describeParameters(params, v); });
         try {
             validate(params, label);
         } catch (const Error& err) {
-            throw locate(err, src_.file(), m_.lines, src_.line(e));
+            throw locate(err, doc_.file(), m_.lines, e.line());
         }
         m_.shootTypes.emplace(label, std::move(params));
         order_.push_back(label);
@@ -546,177 +341,176 @@ private:
             for (const auto& [child, probability] : m_.shootTypes.at(label).child_shoot_types)
                 if (!m_.shootTypes.count(child)) {
                     const std::string path = label + ".child_shoot_types." + child;
-                    throw Error(unknownMessage("shoot type", child, labels),
-                                {.file = src_.file(),
+                    throw Error(text::unknownMessage("shoot type", child, labels),
+                                {.file = doc_.file(),
                                  .line = m_.lines[path],
                                  .parameter = path,
                                  .value = child,
-                                 .validRange = validList(labels)});
+                                 .validRange = text::oneOf(labels)});
                 }
     }
 
-    void readBuild(xml_node build) {
-        checkAttributes(src_, build, "build", {});
-        checkChildren(src_, build, "build", species_xml::buildStepElements(),
-                      species_xml::buildStepElements());
+    void readBuild(xml_node node) {
+        const Element build(doc_, node, "build");
+        build.checkAttributes({});
+        Children children(build);
+        for (const std::string& kind : species_xml::buildStepElements())
+            children.allow(kind.c_str(), true);
+        children.finish();
         std::vector<std::string> names;
         for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
         names.push_back("i");
         names.push_back("parent_i");
         std::vector<std::string> ids;
         int index = 0;
-        for (xml_node e : build.children()) {
-            if (!isElement(e)) continue;
-            ++index;
-            m_.build.push_back(readStep(e, index, names, ids));
+        for (xml_node e : children.elements()) m_.build.push_back(readStep(e, ++index, names, ids));
+        if (m_.build.empty()) build.fail("<build> needs a <base_stem> step");
+    }
+
+    // An expression attribute (a vector of three when `vector`): checked against the build
+    // parameters `names`, returned as written (white space collapsed); "" when absent.
+    std::string expressionAttribute(const Element& e, const char* attribute, bool vector,
+                                    bool required, const std::vector<std::string>& names) {
+        if (!e.hasAttribute(attribute)) {
+            if (required) e.requiredAttribute(attribute);
+            return "";
         }
-        if (m_.build.empty()) src_.fail(build, "build", "<build> needs a <base_stem> step");
+        const std::string value = text::collapseSpaces(e.node().attribute(attribute).value());
+        const Element at(e, e.node(), attribute);
+        const std::vector<std::string> parts =
+            vector ? species_xml::splitVector(value) : std::vector<std::string>{value};
+        if (parts.size() != 3 && vector)
+            at.fail("expected three expressions x, y, z separated by commas", value,
+                    "e.g. \"0, 0, wire_height\"");
+        for (const std::string& part : parts)
+            at.convert(part, [&](std::string_view p) {
+                expr::check(std::string(p), names);
+                return 0;
+            });
+        return value;
     }
 
     // <attraction_points half_angle look_ahead inertia shoot_types> with <wire from to
     // spacing/> and <point at/> children; numbers are expressions over the build parameters.
-    void readAttraction(xml_node e) {
-        const std::string path = "attraction_points";
-        checkAttributes(src_, e, path, {"half_angle", "look_ahead", "inertia", "shoot_types"});
-        checkChildren(src_, e, path, {"wire", "point"}, {"wire", "point"});
+    void readAttraction(xml_node node) {
+        const Element e(doc_, node, "attraction_points");
+        e.checkAttributes({"half_angle", "look_ahead", "inertia", "shoot_types"});
+        Children children(e);
+        children.allow("wire", true);
+        children.allow("point", true);
+        children.finish();
         std::vector<std::string> names;
         for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
-        auto expression = [&](xml_node n, const std::string& at, const char* attribute, bool vector,
-                              bool required, std::string& out) {
-            pugi::xml_attribute a = n.attribute(attribute);
-            if (!a) {
-                if (required) requiredAttribute(src_, n, at, attribute);
-                return;
-            }
-            const std::string value = collapseSpaces(a.value());
-            const std::string where = at + "." + attribute;
-            const std::vector<std::string> parts =
-                vector ? species_xml::splitVector(value) : std::vector<std::string>{value};
-            if (parts.size() != 3 && vector)
-                src_.fail(n, where, "expected three expressions x, y, z separated by commas", value,
-                          "e.g. \"0, 0, wire_height\"");
-            for (const std::string& part : parts) {
-                try {
-                    expr::check(part, names);
-                } catch (const Error& err) {
-                    src_.relocate(err, n, where);
-                }
-            }
-            out = value;
-        };
         SpeciesAttraction a;
-        a.line = src_.line(e);
-        m_.lines[path] = a.line;
-        expression(e, path, "half_angle", false, false, a.halfAngle);
-        expression(e, path, "look_ahead", false, false, a.lookAhead);
-        expression(e, path, "inertia", false, false, a.inertia);
-        if (pugi::xml_attribute t = e.attribute("shoot_types")) {
-            std::string list = t.value();
+        a.line = e.line();
+        m_.lines[e.path()] = a.line;
+        a.halfAngle = expressionAttribute(e, "half_angle", false, false, names);
+        a.lookAhead = expressionAttribute(e, "look_ahead", false, false, names);
+        a.inertia = expressionAttribute(e, "inertia", false, false, names);
+        if (e.hasAttribute("shoot_types")) {
+            std::string list = e.attribute("shoot_types");
             std::replace(list.begin(), list.end(), ',', ' ');
             std::stringstream ss(list);
             const std::vector<std::string> labels = shootTypeLabels();
             for (std::string label; ss >> label;) {
                 if (!m_.shootTypes.count(label))
-                    src_.fail(e, path + ".shoot_types", unknownMessage("shoot type", label, labels),
-                              label, validList(labels));
+                    e.failAt("shoot_types", text::unknownMessage("shoot type", label, labels),
+                             label, text::oneOf(labels));
                 a.shootTypes.push_back(label);
             }
         }
         int wires = 0, points = 0;
-        for (xml_node c : e.children()) {
-            if (!isElement(c)) continue;
-            const std::string kind = c.name();
-            if (kind == "wire") {
-                const std::string at = path + ".wire[" + std::to_string(++wires) + "]";
-                checkAttributes(src_, c, at, {"from", "to", "spacing"});
-                checkChildren(src_, c, at, {});
+        for (xml_node c : children.elements()) {
+            const bool wire = std::string_view(c.name()) == "wire";
+            const int index = wire ? ++wires : ++points;
+            const Element item(doc_, c, e.pathTo(c.name()) + "[" + std::to_string(index) + "]");
+            if (wire) {
+                item.checkAttributes({"from", "to", "spacing"});
+                checkNoChildren(item);
                 SpeciesAttraction::Wire w;
-                w.line = src_.line(c);
-                expression(c, at, "from", true, true, w.from);
-                expression(c, at, "to", true, true, w.to);
-                expression(c, at, "spacing", false, false, w.spacing);
+                w.line = item.line();
+                w.from = expressionAttribute(item, "from", true, true, names);
+                w.to = expressionAttribute(item, "to", true, true, names);
+                w.spacing = expressionAttribute(item, "spacing", false, false, names);
                 a.wires.push_back(w);
             } else {
-                const std::string at = path + ".point[" + std::to_string(++points) + "]";
-                checkAttributes(src_, c, at, {"at"});
-                checkChildren(src_, c, at, {});
+                item.checkAttributes({"at"});
+                checkNoChildren(item);
                 SpeciesAttraction::Point p;
-                p.line = src_.line(c);
-                expression(c, at, "at", true, true, p.at);
+                p.line = item.line();
+                p.at = expressionAttribute(item, "at", true, true, names);
                 a.points.push_back(p);
             }
         }
         if (a.wires.empty() && a.points.empty())
-            src_.fail(e, path, "<attraction_points> needs at least one <wire> or <point>");
+            e.fail("<attraction_points> needs at least one <wire> or <point>");
         m_.attraction = std::move(a);
     }
 
-    BuildStep readStep(xml_node e, int index, const std::vector<std::string>& names,
+    BuildStep readStep(xml_node node, int index, const std::vector<std::string>& names,
                        std::vector<std::string>& ids) {
-        const std::string kind = e.name();
+        const std::string kind = node.name();
         BuildStep step;
-        step.kind = species_xml::buildStepKind(kind).value();  // checkChildren allowed only these
-        step.line = src_.line(e);
-        const std::string id(text::trim(e.attribute("id").value()));
-        const std::string path =
-            "build." + (id.empty() ? kind + "[" + std::to_string(index) + "]" : id);
+        step.kind = species_xml::buildStepKind(kind).value();  // <build> allowed only these
+        step.line = doc_.line(node);
+        const std::string id(text::trim(node.attribute("id").value()));
+        const Element e(doc_, node,
+                        "build." + (id.empty() ? kind + "[" + std::to_string(index) + "]" : id));
         const auto& attributes = species_xml::buildStepAttributes(step.kind);
         std::vector<std::string> attributeNames;
         for (const species_xml::StepAttribute& a : attributes) attributeNames.push_back(a.name);
-        checkAttributes(src_, e, path, attributeNames);
-        checkChildren(src_, e, path, {});
+        e.checkAttributes(attributeNames);
+        checkNoChildren(e);
         if (step.kind == BuildStep::Kind::BaseStem && index != 1)
-            src_.fail(e, path, "<base_stem> must be the first and only base stem step");
+            e.fail("<base_stem> must be the first and only base stem step");
         if (step.kind != BuildStep::Kind::BaseStem && index == 1)
-            src_.fail(e, path, "the first build step must be a <base_stem>");
+            e.fail("the first build step must be a <base_stem>");
 
         for (const species_xml::StepAttribute& attribute : attributes) {
-            pugi::xml_attribute a = e.attribute(attribute.name);
-            if (!a) continue;
-            const std::string value = collapseSpaces(a.value());
-            const std::string at = path + "." + attribute.name;
+            if (!e.hasAttribute(attribute.name)) continue;
+            const std::string value = text::collapseSpaces(node.attribute(attribute.name).value());
+            const Element at(e, node, attribute.name);
             switch (attribute.value) {
                 case species_xml::StepValue::Flag:
-                    step.*attribute.flag = convert(src_, e, at, value, text::parseBool);
+                    step.*attribute.flag = at.convert(value, text::parseBool);
                     continue;
                 case species_xml::StepValue::Name:
-                    if (!isLabel(value))
-                        src_.fail(e, at, "expected a name of letters, digits, '_' or '-'", value);
+                    if (!text::isLabel(value))
+                        at.fail("expected a name of letters, digits, '_' or '-'", value);
                     break;
                 case species_xml::StepValue::Expression:
-                    try {
-                        expr::check(value, names);
-                    } catch (const Error& err) {
-                        src_.relocate(err, e, at);
-                    }
+                    at.convert(value, [&](std::string_view v) {
+                        expr::check(std::string(v), names);
+                        return 0;
+                    });
                     break;
             }
             step.*attribute.text = value;
         }
 
-        step.shootType = requiredAttribute(src_, e, path, "type");
+        step.shootType = e.requiredAttribute("type");
         const std::vector<std::string> labels = shootTypeLabels();
         if (!m_.shootTypes.count(step.shootType))
-            src_.fail(e, path + ".type", unknownMessage("shoot type", step.shootType, labels),
-                      step.shootType, validList(labels));
+            e.failAt("type", text::unknownMessage("shoot type", step.shootType, labels),
+                     step.shootType, text::oneOf(labels));
         if (step.kind != BuildStep::Kind::BaseStem) {
-            requiredAttribute(src_, e, path, "parent");
+            e.requiredAttribute("parent");
             if (!contains(ids, step.parent))
-                src_.fail(e, path + ".parent",
-                          unknownMessage("parent step", step.parent, ids) +
-                              " (the parent must be the id of an earlier step)",
-                          step.parent, ids.empty() ? "no step ids defined above" : validList(ids));
+                e.failAt("parent",
+                         text::unknownMessage("parent step", step.parent, ids) +
+                             " (the parent must be the id of an earlier step)",
+                         step.parent, ids.empty() ? "no step ids defined above" : text::oneOf(ids));
         }
-        if (step.kind == BuildStep::Kind::Child) requiredAttribute(src_, e, path, "node");
+        if (step.kind == BuildStep::Kind::Child) e.requiredAttribute("node");
         if (!id.empty()) {
-            if (contains(ids, id)) src_.fail(e, path + ".id", "duplicate step id '" + id + "'", id);
+            if (contains(ids, id)) e.failAt("id", "duplicate step id '" + id + "'", id);
             ids.push_back(id);
         }
-        m_.lines[path] = step.line;
+        m_.lines[e.path()] = step.line;
         return step;
     }
 
-    const XmlSource& src_;
+    const xml::Document& doc_;
     SpeciesModel& m_;
     std::vector<std::string> order_;  // shoot type labels in file order
 };
@@ -724,37 +518,10 @@ private:
 }  // namespace
 
 SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameForErrors) {
-    XmlSource src(xml, nameForErrors);
-    if (text::trim(xml).empty())
-        throw Error("empty file, expected a <plantarch_species> document",
-                    {.file = nameForErrors, .line = 1});
-    pugi::xml_document doc;
-    const pugi::xml_parse_result result =
-        doc.load_buffer(xml.data(), xml.size(), pugi::parse_default, pugi::encoding_utf8);
-    if (!result) {
-        if (result.status == pugi::status_no_document_element)
-            throw Error("not an XML file: no root element, expected <plantarch_species>",
-                        {.file = nameForErrors, .line = 1});
-        std::string message = std::string("malformed XML: ") + result.description();
-        const std::size_t end = xml.find_last_not_of(" \t\r\n");
-        if (result.offset >= std::ptrdiff_t(end)) message += " (the file ends too early)";
-        throw Error(message, {.file = nameForErrors, .line = src.lineAt(result.offset)});
-    }
-    xml_node root;
-    for (xml_node n : doc.children()) {
-        if (!isElement(n)) continue;
-        if (root)
-            src.fail(n, "",
-                     std::string("a second root element <") + n.name() + "> after <" + root.name() +
-                         ">");
-        root = n;
-    }
-    if (std::string(root.name()) != species_xml::kRoot)
-        src.fail(root, "", std::string("not a species file: root element <") + root.name() + ">",
-                 "", std::string("<") + species_xml::kRoot + ">");
+    const xml::Document doc(xml, nameForErrors, {"species file", species_xml::kRoot});
     SpeciesModel model;
     model.sourceFile = nameForErrors;
-    SpeciesReader(src, model).read(root);
+    SpeciesReader(doc, model).read(Element(doc, doc.root(), ""));
     return model;
 }
 

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/value_text.h"
 #include "library/species_xml.h"
-#include "library/value_text.h"
 #include "model/parameter_table.h"
 #include "plantarch/SpeciesIO.h"
 

@@ -1,11 +1,13 @@
 // Text forms of parameter values: strict parsers and shortest round-trip formatting.
 
-#include "library/value_text.h"
+#include "core/value_text.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "plantarch/Error.h"
 
@@ -27,20 +29,23 @@ bool isSpace(char c) {
     return c == ' ' || c == '\t' || c == '\n' || c == '\r';
 }
 
-// A number at the start of `s`; returns false when `s` is not exactly one finite number.
-bool readFloat(std::string_view s, float& out) {
+// The one number reader: std::from_chars (locale-independent, exact) over the whole text.
+template <class T>
+bool readWhole(std::string_view s, T& out) {
     if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
     if (s.empty()) return false;
     const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
     if (r.ec != std::errc() || r.ptr != s.data() + s.size()) return false;
-    return std::isfinite(out);
+    if constexpr (std::is_floating_point_v<T>) return std::isfinite(out);
+    return true;
 }
 
-bool readInt(std::string_view s, int& out) {
-    if (s.size() > 1 && s[0] == '+' && s[1] != '-') s.remove_prefix(1);
-    if (s.empty()) return false;
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), out);
-    return r.ec == std::errc() && r.ptr == s.data() + s.size();
+template <class T>
+T parseReal(std::string_view raw) {
+    const std::string_view s = trim(raw);
+    T v = 0;
+    if (!readWhole(s, v)) fail("expected a number", s, "a finite number");
+    return v;
 }
 
 // "name(a, b, ...)" split into its name and trimmed arguments.
@@ -68,21 +73,15 @@ bool splitCall(std::string_view s, Call& call) {
     return true;
 }
 
-float floatArg(const Call& c, std::size_t i, std::string_view whole) {
-    float v = 0.0f;
-    if (!readFloat(c.args[i], v))
-        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) +
-                 " is not a number ('" + std::string(c.args[i]) + "')",
-             whole, kFloatForms);
-    return v;
-}
-
-int intArg(const Call& c, std::size_t i, std::string_view whole) {
-    int v = 0;
-    if (!readInt(c.args[i], v))
-        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) +
-                 " is not a whole number ('" + std::string(c.args[i]) + "')",
-             whole, kIntForms);
+// Argument i of a distribution: a number (whole for the integer distributions).
+template <class T>
+T numberArg(const Call& c, std::size_t i, std::string_view whole) {
+    constexpr bool real = std::is_floating_point_v<T>;
+    T v = 0;
+    if (!readNumber(c.args[i], v))
+        fail("argument " + std::to_string(i + 1) + " of " + std::string(c.name) + " is not a " +
+                 (real ? "number" : "whole number") + " ('" + std::string(c.args[i]) + "')",
+             whole, real ? kFloatForms : kIntForms);
     return v;
 }
 
@@ -101,26 +100,56 @@ std::string_view trim(std::string_view s) {
     return s;
 }
 
+std::string collapseSpaces(std::string_view s) {
+    std::string out;
+    bool space = false;
+    for (char c : trim(s)) {
+        if (isSpace(c)) {
+            space = true;
+            continue;
+        }
+        if (space) out += ' ';
+        space = false;
+        out += c;
+    }
+    return out;
+}
+
+bool readNumber(std::string_view s, float& out) {
+    return readWhole(s, out);
+}
+bool readNumber(std::string_view s, double& out) {
+    return readWhole(s, out);
+}
+bool readNumber(std::string_view s, int& out) {
+    return readWhole(s, out);
+}
+bool readNumber(std::string_view s, unsigned& out) {
+    return readWhole(s, out);
+}
+bool readNumber(std::string_view s, std::uint64_t& out) {
+    return readWhole(s, out);
+}
+
 float parseFloat(std::string_view raw) {
-    const std::string_view s = trim(raw);
-    float v = 0.0f;
-    if (!readFloat(s, v)) fail("expected a number", s, "a finite number");
-    return v;
+    return parseReal<float>(raw);
+}
+
+double parseDouble(std::string_view raw) {
+    return parseReal<double>(raw);
 }
 
 int parseInt(std::string_view raw) {
     const std::string_view s = trim(raw);
     int v = 0;
-    if (!readInt(s, v)) fail("expected a whole number", s, "a whole number");
+    if (!readNumber(s, v)) fail("expected a whole number", s, "a whole number");
     return v;
 }
 
 unsigned parseUnsigned(std::string_view raw) {
     const std::string_view s = trim(raw);
     unsigned v = 0;
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
-        fail("expected a whole number >= 0", s, "a whole number >= 0");
+    if (!readNumber(s, v)) fail("expected a whole number >= 0", s, "a whole number >= 0");
     return v;
 }
 
@@ -144,7 +173,7 @@ vec3 parseVec3(std::string_view raw) {
     }
     vec3 v{0.0f};
     bool ok = parts.size() == 3;
-    for (std::size_t k = 0; ok && k < 3; ++k) ok = readFloat(parts[k], v[int(k)]);
+    for (std::size_t k = 0; ok && k < 3; ++k) ok = readNumber(parts[k], v[int(k)]);
     if (!ok) fail("expected three numbers", s, "three numbers such as '0.2 0.25 0.05'");
     return v;
 }
@@ -152,20 +181,20 @@ vec3 parseVec3(std::string_view raw) {
 RandomFloat parseRandomFloat(std::string_view raw) {
     const std::string_view s = trim(raw);
     float constant = 0.0f;
-    if (readFloat(s, constant)) return RandomFloat(constant);
+    if (readNumber(s, constant)) return RandomFloat(constant);
     Call c;
     if (s.empty() || !splitCall(s, c)) fail("expected a number or a distribution", s, kFloatForms);
     if (c.name == "uniform") {
         requireArgs(c, 2, "min, max", s);
-        return RandomFloat::uniform(floatArg(c, 0, s), floatArg(c, 1, s));
+        return RandomFloat::uniform(numberArg<float>(c, 0, s), numberArg<float>(c, 1, s));
     }
     if (c.name == "normal") {
         requireArgs(c, 2, "mean, stddev", s);
-        return RandomFloat::normal(floatArg(c, 0, s), floatArg(c, 1, s));
+        return RandomFloat::normal(numberArg<float>(c, 0, s), numberArg<float>(c, 1, s));
     }
     if (c.name == "weibull") {
         requireArgs(c, 2, "shape, scale", s);
-        return RandomFloat::weibull(floatArg(c, 0, s), floatArg(c, 1, s));
+        return RandomFloat::weibull(numberArg<float>(c, 0, s), numberArg<float>(c, 1, s));
     }
     const std::string near = closestMatch(c.name, {"uniform", "normal", "weibull"});
     fail("unknown distribution '" + std::string(c.name) + "'" +
@@ -176,18 +205,18 @@ RandomFloat parseRandomFloat(std::string_view raw) {
 RandomInt parseRandomInt(std::string_view raw) {
     const std::string_view s = trim(raw);
     int constant = 0;
-    if (readInt(s, constant)) return RandomInt(constant);
+    if (readNumber(s, constant)) return RandomInt(constant);
     Call c;
     if (s.empty() || !splitCall(s, c))
         fail("expected a whole number or a distribution", s, kIntForms);
     if (c.name == "uniform") {
         requireArgs(c, 2, "min, max", s);
-        return RandomInt::uniform(intArg(c, 0, s), intArg(c, 1, s));
+        return RandomInt::uniform(numberArg<int>(c, 0, s), numberArg<int>(c, 1, s));
     }
     if (c.name == "discrete") {
         if (c.args.empty()) fail("discrete needs at least one value", s, kIntForms);
         std::vector<int> values;
-        for (std::size_t i = 0; i < c.args.size(); ++i) values.push_back(intArg(c, i, s));
+        for (std::size_t i = 0; i < c.args.size(); ++i) values.push_back(numberArg<int>(c, i, s));
         return RandomInt::discrete(std::move(values));
     }
     const std::string near = closestMatch(c.name, {"uniform", "discrete"});
@@ -281,6 +310,32 @@ std::string joinNames(const std::vector<std::string>& names) {
         out += n;
     }
     return out;
+}
+
+std::string oneOf(const std::vector<std::string>& names) {
+    return names.empty() ? "none" : "one of: " + joinNames(names);
+}
+
+std::string unknownMessage(std::string_view what, std::string_view name,
+                           const std::vector<std::string>& candidates, std::string_view where) {
+    const std::string near = closestMatch(name, candidates);
+    std::string out = "unknown ";
+    out.append(what).append(" '").append(name).append("'").append(where);
+    if (!near.empty()) out += ", did you mean '" + near + "'?";
+    return out;
+}
+
+bool isLabel(std::string_view s) {
+    return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+    });
+}
+
+std::size_t parseChoice(std::string_view raw, const std::vector<std::string>& choices) {
+    const std::string_view s = trim(raw);
+    for (std::size_t i = 0; i < choices.size(); ++i)
+        if (s == choices[i]) return i;
+    fail(unknownMessage("value", s, choices), s, oneOf(choices));
 }
 
 void appendXmlEscaped(std::string& out, std::string_view s) {

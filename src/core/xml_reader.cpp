@@ -1,0 +1,248 @@
+// Strict XML reading: documents, elements, attributes and children (xml_reader.h).
+
+#include "core/xml_reader.h"
+
+#include <algorithm>
+#include <set>
+
+#include "core/value_text.h"
+
+namespace plantarch::xml {
+
+namespace {
+
+std::string excerpt(std::string_view text) {
+    return text::collapseSpaces(text).substr(0, 40);
+}
+
+}  // namespace
+
+// ---- Document ------------------------------------------------------------------------------
+
+Document::Document(std::string_view text, std::string file, const DocumentKind& kind)
+    : text_(text), file_(std::move(file)) {
+    const std::string expected = std::string("<") + kind.root + ">";
+    if (text::trim(text).empty())
+        throw Error("empty file, expected a " + expected + " document", {.file = file_, .line = 1});
+    const pugi::xml_parse_result parsed =
+        doc_.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+    if (!parsed) {
+        if (parsed.status == pugi::status_no_document_element)
+            throw Error("not an XML file: no root element, expected " + expected,
+                        {.file = file_, .line = 1});
+        std::string message = std::string("malformed XML: ") + parsed.description();
+        const std::size_t end = text.find_last_not_of(" \t\r\n");
+        if (parsed.offset >= std::ptrdiff_t(end)) message += " (the file ends too early)";
+        throw Error(message, {.file = file_, .line = lineAt(parsed.offset)});
+    }
+    for (pugi::xml_node n : doc_.children()) {
+        if (isText(n) && !text::trim(n.value()).empty())
+            fail(n, "", "text outside the root element", excerpt(n.value()));
+        if (!isElement(n)) continue;
+        if (root_)
+            fail(n, "",
+                 std::string("a second root element <") + n.name() + "> after <" + root_.name() +
+                     ">");
+        root_ = n;
+    }
+    const std::string_view name = root_.name();
+    if (name != kind.root && !(kind.otherRoot && name == kind.otherRoot))
+        fail(root_, "",
+             std::string("not a ") + kind.description + ": root element <" + root_.name() + ">", "",
+             expected);
+}
+
+int Document::lineAt(std::ptrdiff_t offset) const {
+    if (offset < 0) return 1;
+    if (lineStarts_.empty()) {
+        lineStarts_.push_back(0);
+        for (std::size_t i = 0; i < text_.size(); ++i)
+            if (text_[i] == '\n') lineStarts_.push_back(std::ptrdiff_t(i + 1));
+    }
+    const auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
+    return int(it - lineStarts_.begin());
+}
+
+void Document::fail(pugi::xml_node n, const std::string& path, const std::string& message,
+                    std::string value, std::string validRange) const {
+    throw Error(message, {.file = file_,
+                          .line = line(n),
+                          .parameter = path,
+                          .value = std::move(value),
+                          .validRange = std::move(validRange)});
+}
+
+void Document::relocate(const Error& e, pugi::xml_node n, const std::string& path) const {
+    ErrorContext c = e.context();
+    c.file = file_;
+    c.line = line(n);
+    if (!path.empty()) c.parameter = path;
+    throw Error(e.message(), c);
+}
+
+// ---- Element -------------------------------------------------------------------------------
+
+std::string Element::path() const {
+    if (!parent_) return path_;
+    std::string out = parent_->pathTo(part_);
+    if (index_ >= 0) out.append("[").append(std::to_string(index_)).append("]");
+    return out;
+}
+
+std::string Element::pathTo(std::string_view part) const {
+    std::string out = path();
+    if (!out.empty()) out += '.';
+    out += part;
+    return out;
+}
+
+void Element::fail(const std::string& message, std::string value, std::string validRange) const {
+    doc_->fail(node_, path(), message, std::move(value), std::move(validRange));
+}
+
+void Element::failAt(std::string_view part, const std::string& message, std::string value,
+                     std::string validRange) const {
+    doc_->fail(node_, pathTo(part), message, std::move(value), std::move(validRange));
+}
+
+void Element::checkAttributeNames(const std::vector<std::string>& allowed) const {
+    std::set<std::string_view> seen;
+    for (pugi::xml_attribute a : node_.attributes()) {
+        const std::string name = a.name();
+        if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+            failAt(name,
+                   text::unknownMessage("attribute", name, allowed,
+                                        std::string(" of <") + node_.name() + ">"),
+                   a.value(), allowed.empty() ? "no attributes" : text::oneOf(allowed));
+        if (!seen.insert(a.name()).second)
+            failAt(name, "duplicate attribute '" + name + "'", a.value());
+    }
+}
+
+std::string Element::attribute(const char* name) const {
+    return std::string(text::trim(node_.attribute(name).value()));
+}
+
+std::string Element::requiredAttribute(const char* name, std::string validRange) const {
+    const pugi::xml_attribute a = node_.attribute(name);
+    if (!a)
+        failAt(name,
+               std::string("missing required attribute '") + name + "' of <" + node_.name() + ">",
+               "", std::move(validRange));
+    return std::string(text::trim(a.value()));
+}
+
+std::string Element::text() const {
+    checkAttributes({});
+    return content();
+}
+
+std::string Element::content() const {
+    const pugi::xml_node first = node_.first_child();
+    if (first && isText(first) && !first.next_sibling())
+        return std::string(text::trim(first.value()));
+    std::string out;
+    for (pugi::xml_node c : node_.children()) {
+        if (isText(c))
+            out += c.value();
+        else if (isElement(c))
+            doc_->fail(c, path(),
+                       std::string("<") + node_.name() + "> holds a value, not elements (found <" +
+                           c.name() + ">)");
+    }
+    return std::string(text::trim(out));
+}
+
+// ---- Children ------------------------------------------------------------------------------
+
+Children::Children(const Element& parent) : parent_(parent) {
+    for (pugi::xml_node c : parent.node().children()) {
+        if (isElement(c))
+            kids_.push_back({c, false});
+        else if (isText(c) && !text::trim(c.value()).empty())
+            parent.document().fail(
+                c, parent.path(),
+                std::string("unexpected text inside <") + parent.name() + ">, expected elements",
+                excerpt(c.value()));
+    }
+}
+
+pugi::xml_node Children::take(std::string_view name) {
+    names_.push_back({name, false});
+    // Children usually come in the order they are taken: search on from the last one.
+    const std::size_t n = kids_.size();
+    for (std::size_t j = 0; j < n; ++j) {
+        Kid& k = kids_[(cursor_ + j) % n];
+        if (!k.taken && name == k.node.name()) {
+            k.taken = true;
+            cursor_ = (cursor_ + j + 1) % n;
+            return k.node;
+        }
+    }
+    return {};
+}
+
+std::vector<pugi::xml_node> Children::takeAll(std::string_view name) {
+    names_.push_back({name, true});
+    std::vector<pugi::xml_node> out;
+    for (Kid& k : kids_)
+        if (name == k.node.name()) {
+            k.taken = true;
+            out.push_back(k.node);
+        }
+    return out;
+}
+
+void Children::allow(std::string_view name, bool repeatable) {
+    names_.push_back({name, repeatable});
+}
+
+std::vector<pugi::xml_node> Children::elements() const {
+    std::vector<pugi::xml_node> out;
+    out.reserve(kids_.size());
+    for (const Kid& k : kids_) out.push_back(k.node);
+    return out;
+}
+
+const Children::Name* Children::declared(std::string_view name) const {
+    for (const Name& n : names_)
+        if (n.name == name) return &n;
+    return nullptr;
+}
+
+void Children::finish() const {
+    // A child taken is expected; every problem is among those that were not.
+    for (const Kid& k : kids_) {
+        if (k.taken) continue;
+        const std::string_view name = k.node.name();
+        if (const Name* n = declared(name)) {
+            if (n->repeatable) continue;
+            // A second one: reported where it stands, with the line of the one that was
+            // read (the first in file order when none was taken).
+            const Kid* first = nullptr;
+            for (const Kid& o : kids_)
+                if (name == o.node.name() && (o.taken || !first)) {
+                    first = &o;
+                    if (o.taken) break;
+                }
+            if (first != &k)
+                parent_.document().fail(
+                    k.node, parent_.pathTo(name),
+                    "duplicate element <" + std::string(name) + "> (first at line " +
+                        std::to_string(parent_.document().line(first->node)) + ")");
+            continue;
+        }
+        std::vector<std::string> valid;
+        for (const Name& d : names_)
+            if (std::find(valid.begin(), valid.end(), d.name) == valid.end())
+                valid.emplace_back(d.name);
+        const std::string near = text::closestMatch(name, valid);
+        parent_.document().fail(k.node, parent_.pathTo(name),
+                                "unknown element <" + std::string(name) + "> in <" +
+                                    parent_.name() + ">" +
+                                    (near.empty() ? "" : ", did you mean <" + near + ">?"),
+                                "", text::oneOf(valid));
+    }
+}
+
+}  // namespace plantarch::xml
