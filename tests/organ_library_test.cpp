@@ -771,7 +771,10 @@ std::string familyPage() {
           "axis from its attachment point (+z up) and is scaled by the species' "
           "`prototype_scale` (m). The first part is coloured by `flower_color` / `fruit_color`; "
           "`subdivisions` sets the mesh resolution. Lengths are fractions of the organ's length "
-          "unless a description says otherwise.\n\n"
+          "unless a description says otherwise. Each family's picture shows the flowers (closed "
+          "and open) and fruit that the library species draw with it, with the values of their "
+          "species files listed under it (drawn at a resolution of at least 10), then variants "
+          "that show what its parameters do.\n\n"
           "![all families](images/organs-flowers-fruit.png)\n\n";
     for (const FloralFamilyInfo& f : floralFamilies()) {
         md << "## " << f.name << " (" << (f.fruit ? "fruit" : "flower") << ")\n\n"
