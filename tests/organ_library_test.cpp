@@ -27,6 +27,7 @@
 #include "plantarch/OrganLibrary.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
+#include "plantarch/SpeciesIO.h"
 
 namespace {
 
@@ -220,9 +221,9 @@ TEST(OrganLibrary, FamilyTableIsWellFormed) {
     }
     for (const char* expected :
          {"petal_flower", "papilionaceous_flower", "funnel_flower", "bract_flower", "legume_pod",
-          "berry", "grape_cluster", "pepper", "strawberry", "almond", "walnut", "pistachio_cluster",
-          "apple", "olive", "wheat_spike", "rice_panicle", "sorghum_panicle", "maize_tassel",
-          "maize_ear"})
+          "berry", "berry_cluster", "hollow_berry", "accessory_fruit", "flat_hull", "round_hull",
+          "drupe_cluster", "pome", "drupe", "spike", "nodding_panicle", "compact_panicle", "tassel",
+          "husked_ear"})
         EXPECT_TRUE(names.count(expected)) << expected;
 }
 
@@ -278,7 +279,7 @@ TEST(OrganLibrary, OutOfRangeValueNamesTheRange) {
 
 TEST(OrganLibrary, FamilyFunctionsThrowForBadParameters) {
     EXPECT_THROW(build("berry", {{"aspect", 100}}), Error);
-    EXPECT_THROW(build("wheat_spike", {{"awns", 1}}), Error);
+    EXPECT_THROW(build("spike", {{"awns", 1}}), Error);
 }
 
 // A plant whose fruit come from the library: the registered function is used by the plant
@@ -369,7 +370,7 @@ TEST(OrganLibrary, SameStreamGivesSameBytes) {
                 << f.name;
     // Random packing does depend on the stream.
     EXPECT_FALSE(
-        sameBytes(build("grape_cluster", {}, true, 6, 1), build("grape_cluster", {}, true, 6, 2)));
+        sameBytes(build("berry_cluster", {}, true, 6, 1), build("berry_cluster", {}, true, 6, 2)));
 }
 
 TEST(OrganLibrary, MainColourComesFromTheRequest) {
@@ -389,27 +390,27 @@ TEST(OrganLibrary, SolidPartsAreWatertight) {
         {"berry", {}},
         {"berry", {{"ribs", 6}, {"rib_depth", 0.1f}}},
         {"berry", {{"husk", 1}}},
-        {"grape_cluster", {}},
-        {"pepper", {}},
-        {"pepper", {{"blockiness", 0}, {"aspect", 4}, {"tip_curl", 40}}},
-        {"strawberry", {}},
-        {"apple", {}},
-        {"olive", {}},
-        {"walnut", {}},
-        {"almond", {}},
-        {"almond", {{"split", 0.7f}}},
+        {"berry_cluster", {}},
+        {"hollow_berry", {}},
+        {"hollow_berry", {{"blockiness", 0}, {"aspect", 4}, {"tip_curl", 40}}},
+        {"accessory_fruit", {}},
+        {"pome", {}},
+        {"drupe", {}},
+        {"round_hull", {}},
+        {"flat_hull", {}},
+        {"flat_hull", {{"split", 0.7f}}},
         {"legume_pod", {}},
         {"legume_pod", {{"seed_count", 8}, {"curvature", 90}}},
-        {"pistachio_cluster", {}},
+        {"drupe_cluster", {}},
     };
     for (const auto& [family, params] : cases)
         for (unsigned s : {3u, 10u}) {
             const OrganPrototype p = build(family, params, true, s);
             EXPECT_TRUE(closedManifold(p.front().mesh)) << family << " s=" << s;
         }
-    EXPECT_TRUE(closedManifold(part(build("almond", {{"split", 0.7f}}), "shell")->mesh));
-    EXPECT_TRUE(closedManifold(part(build("maize_ear"), "cob")->mesh));
-    EXPECT_TRUE(closedManifold(part(build("strawberry"), "achenes")->mesh));
+    EXPECT_TRUE(closedManifold(part(build("flat_hull", {{"split", 0.7f}}), "shell")->mesh));
+    EXPECT_TRUE(closedManifold(part(build("husked_ear"), "cob")->mesh));
+    EXPECT_TRUE(closedManifold(part(build("accessory_fruit"), "achenes")->mesh));
 }
 
 // ---- parameter effects ----------------------------------------------------------------------
@@ -473,20 +474,19 @@ TEST(OrganLibrary, PodSeedBumpsMatchSeedCount) {
 
 TEST(OrganLibrary, ClustersHaveTheRequestedCounts) {
     for (int n : {1, 12, 60}) {
-        const OrganPrototype g = build("grape_cluster", {{"berry_count", float(n)}}, true, 4);
+        const OrganPrototype g = build("berry_cluster", {{"berry_count", float(n)}}, true, 4);
         EXPECT_EQ(components(g.front().mesh), std::size_t(n));
-        const OrganPrototype p = build("pistachio_cluster", {{"drupe_count", float(n)}}, true, 4);
+        const OrganPrototype p = build("drupe_cluster", {{"drupe_count", float(n)}}, true, 4);
         EXPECT_EQ(components(p.front().mesh), std::size_t(n));
     }
-    const OrganPrototype w =
-        build("wheat_spike", {{"spikelet_count", 10}, {"florets", 3}}, true, 4);
+    const OrganPrototype w = build("spike", {{"spikelet_count", 10}, {"florets", 3}}, true, 4);
     EXPECT_EQ(components(w.front().mesh), 30u);
-    EXPECT_EQ(part(build("wheat_spike", {{"awn_length", 0}}), "awns"), nullptr);
-    EXPECT_NE(part(build("wheat_spike", {{"awn_length", 0.5f}}), "awns"), nullptr);
+    EXPECT_EQ(part(build("spike", {{"awn_length", 0}}), "awns"), nullptr);
+    EXPECT_NE(part(build("spike", {{"awn_length", 0.5f}}), "awns"), nullptr);
     const OrganPrototype r =
-        build("rice_panicle", {{"branch_count", 6}, {"grains_per_branch", 5}}, true, 4);
+        build("nodding_panicle", {{"branch_count", 6}, {"grains_per_branch", 5}}, true, 4);
     EXPECT_EQ(components(r.front().mesh), 30u);
-    const OrganPrototype t = build("strawberry", {{"achene_count", 50}}, true, 4);
+    const OrganPrototype t = build("accessory_fruit", {{"achene_count", 50}}, true, 4);
     EXPECT_EQ(components(part(t, "achenes")->mesh), 50u);
 }
 
@@ -497,8 +497,8 @@ TEST(OrganLibrary, FruitAspectShowsInTheBoundingBox) {
         const vec3 e = bounds(p.front().mesh).extent();
         EXPECT_NEAR(e.x / e.y, aspect, 0.05f * aspect);
     }
-    const vec3 olive = bounds(build("olive", {{"aspect", 1.6f}}).front().mesh).extent();
-    EXPECT_NEAR(olive.x / olive.y, 1.6f, 0.1f);
+    const vec3 drupe = bounds(build("drupe", {{"aspect", 1.6f}}).front().mesh).extent();
+    EXPECT_NEAR(drupe.x / drupe.y, 1.6f, 0.1f);
 }
 
 TEST(OrganLibrary, OptionalPartsAppearWhenAsked) {
@@ -508,32 +508,105 @@ TEST(OrganLibrary, OptionalPartsAppearWhenAsked) {
     // The lantern encloses the berry.
     const AABB berry = bounds(husked.front().mesh), husk = bounds(part(husked, "husk")->mesh);
     EXPECT_GT(husk.extent().y, berry.extent().y);
-    EXPECT_EQ(part(build("almond"), "shell"), nullptr);
-    EXPECT_NE(part(build("almond", {{"split", 0.5f}}), "shell"), nullptr);
+    EXPECT_EQ(part(build("flat_hull"), "shell"), nullptr);
+    EXPECT_NE(part(build("flat_hull", {{"split", 0.5f}}), "shell"), nullptr);
     EXPECT_EQ(part(build("legume_pod", {{"hairs", 0}}), "hairs"), nullptr);
     EXPECT_NE(part(build("legume_pod", {{"hairs", 1}}), "hairs"), nullptr);
-    EXPECT_EQ(part(build("maize_ear", {{"silk_length", 0}}), "silk"), nullptr);
+    EXPECT_EQ(part(build("husked_ear", {{"silk_length", 0}}), "silk"), nullptr);
 }
 
-// ---- presets --------------------------------------------------------------------------------
+// ---- the library species' flowers and fruit -----------------------------------------------
 
-TEST(OrganLibrary, PresetsUseValidParameters) {
-    const auto& presets = floralPresets();
-    ASSERT_GE(presets.size(), 20u);
-    std::set<std::string> names;
-    for (const FloralPreset& p : presets) {
-        SCOPED_TRACE(p.name);
-        EXPECT_TRUE(names.insert(p.name).second);
-        EXPECT_NO_THROW(validateFloralParameters(p.family, p.parameters));
-        EXPECT_EQ(floralFamily(p.family).fruit, p.fruit);
-        EXPECT_GT(p.prototypeScale, 0.0f);
-        EXPECT_FALSE(p.species.empty());
-        EXPECT_EQ(&floralPreset(p.name), &p);
-        FloralPrototypeRequest req{p.fruit, true, p.parameters, p.color, p.subdivisions};
-        Rng rng(4);
-        expectConvention(buildFloralPrototype(p.family, req, rng), p.name);
+// A flower or fruit as a library species file draws it with a family of this library. The
+// species files are the one source of these numbers; the gallery and the family reference
+// page show them as the files give them.
+struct SpeciesOrgan {
+    std::string family;
+    bool fruit = false;              ///< the species' fruit (else its flower)
+    FloralPrototypeRequest request;  ///< the file's parameters, colour and subdivisions (open)
+    std::string scale;               ///< the file's prototype_scale, m, as a distribution
+    std::vector<std::string> species;
+};
+
+bool sameOrgan(const SpeciesOrgan& a, const SpeciesOrgan& b) {
+    return a.family == b.family && a.fruit == b.fruit &&
+           a.request.parameters == b.request.parameters && a.request.color == b.request.color &&
+           a.request.subdivisions == b.request.subdivisions && a.scale == b.scale;
+}
+
+// Every distinct flower and fruit of the species files in species/ that names a family of
+// this library, in file order. One drawn alike by several shoot types or species is listed
+// once, with every species that draws it.
+const std::vector<SpeciesOrgan>& speciesOrgans() {
+    static const std::vector<SpeciesOrgan> organs = [] {
+        std::vector<fs::path> files;
+        for (const auto& e : fs::directory_iterator(fs::path(PLANTARCH_SOURCE_DIR) / "species"))
+            if (e.path().extension() == ".xml") files.push_back(e.path());
+        std::sort(files.begin(), files.end());
+        std::vector<SpeciesOrgan> all;
+        for (const fs::path& file : files) {
+            const SpeciesModel species = readSpeciesFile(file.string());
+            for (const auto& [label, type] : species.shootTypes) {
+                const InflorescenceParameters& inf = type.phytomer_parameters.inflorescence;
+                auto add = [&](bool fruit, const std::string& family,
+                               const std::map<std::string, float>& parameters, vec3 color,
+                               unsigned subdivisions, const RandomFloat& scale) {
+                    if (!isFloralFamily(family)) return;
+                    SpeciesOrgan o;
+                    o.family = family;
+                    o.fruit = fruit;
+                    o.request.fruit = fruit;
+                    o.request.parameters = parameters;
+                    o.request.color = color;
+                    o.request.subdivisions = subdivisions;
+                    o.scale = scale.describe();
+                    o.species.push_back(species.name);
+                    auto same = std::find_if(all.begin(), all.end(), [&](const SpeciesOrgan& x) {
+                        return sameOrgan(x, o);
+                    });
+                    if (same == all.end())
+                        all.push_back(o);
+                    else if (same->species.back() != species.name)
+                        same->species.push_back(species.name);
+                };
+                add(false, inf.flower_prototype_function, inf.flower_prototype_parameters,
+                    inf.flower_color, inf.flower_subdivisions, inf.flower_prototype_scale);
+                add(true, inf.fruit_prototype_function, inf.fruit_prototype_parameters,
+                    inf.fruit_color, inf.fruit_subdivisions, inf.fruit_prototype_scale);
+            }
+        }
+        return all;
+    }();
+    return organs;
+}
+
+std::string speciesList(const SpeciesOrgan& o) {
+    std::string s;
+    for (const std::string& name : o.species) s += (s.empty() ? "" : ", ") + name;
+    return s;
+}
+
+// Each flower and fruit the library species draw from a family builds a prototype that
+// follows the convention, open and (for flowers) closed, at the species' own resolution,
+// with the species' colour on its main part.
+TEST(OrganLibrary, SpeciesFlowersAndFruitFollowTheConvention) {
+    const std::vector<SpeciesOrgan>& organs = speciesOrgans();
+    ASSERT_GE(organs.size(), 20u);
+    std::set<std::string> families;
+    for (const SpeciesOrgan& o : organs) {
+        const std::string what = o.family + " of " + speciesList(o);
+        families.insert(o.family);
+        for (bool open : {true, false}) {
+            if (o.fruit && !open) continue;
+            FloralPrototypeRequest req = o.request;
+            req.open = open;
+            Rng rng(4);
+            const OrganPrototype p = buildFloralPrototype(o.family, req, rng);
+            expectConvention(p, what + (open ? " open" : " closed"));
+            EXPECT_EQ(p.front().material.color, o.request.color) << what;
+        }
     }
-    EXPECT_THROW(floralPreset("no_such_preset"), Error);
+    EXPECT_GE(families.size(), 15u) << "most families are drawn by some library species";
 }
 
 // ---- gallery --------------------------------------------------------------------------------
@@ -548,10 +621,10 @@ Pose poseFor(const FloralFamilyInfo& f) {
     const vec3 faceCamera = glm::normalize(vec3(0.0f, -0.55f, 0.85f));
     const vec3 hang = glm::normalize(vec3(0.0f, 0.15f, -1.0f));
     static const std::map<std::string, Pose> poses = {
-        {"legume_pod", {{1, 0, 0}, {0, 0, 1}}},    {"maize_ear", {{1, 0, 0}, {0, 0, 1}}},
-        {"almond", {{1, 0, 0}, {0, 0, 1}}},        {"wheat_spike", {{0, 0, 1}, {0, -1, 0}}},
-        {"rice_panicle", {{0, 0, 1}, {1, 0, 0}}},  {"sorghum_panicle", {{0, 0, 1}, {0, -1, 0}}},
-        {"maize_tassel", {{0, 0, 1}, {0, -1, 0}}}, {"catkin", {hang, {1, 0, 0}}},
+        {"legume_pod", {{1, 0, 0}, {0, 0, 1}}},      {"husked_ear", {{1, 0, 0}, {0, 0, 1}}},
+        {"flat_hull", {{1, 0, 0}, {0, 0, 1}}},       {"spike", {{0, 0, 1}, {0, -1, 0}}},
+        {"nodding_panicle", {{0, 0, 1}, {1, 0, 0}}}, {"compact_panicle", {{0, 0, 1}, {0, -1, 0}}},
+        {"tassel", {{0, 0, 1}, {0, -1, 0}}},         {"catkin", {hang, {1, 0, 0}}},
     };
     const auto it = poses.find(f.name);
     if (it != poses.end()) return it->second;
@@ -575,7 +648,7 @@ struct GalleryItem {
     int group;  ///< a bud and its open flower share a scale
 };
 
-// Variants shown besides the presets, to show what the parameters do.
+// Variants shown besides the species' organs, to show what the parameters do.
 struct Variant {
     std::string family, label;
     std::map<std::string, float> parameters;
@@ -585,9 +658,9 @@ struct Variant {
 
 const std::vector<Variant>& galleryVariants() {
     static const std::vector<Variant> v = {
-        {"almond", "almond split", {{"split", 0.7f}}, {0.46f, 0.54f, 0.34f}},
-        {"pepper",
-         "chili",
+        {"flat_hull", "hull split", {{"split", 0.7f}}, {0.46f, 0.54f, 0.34f}},
+        {"hollow_berry",
+         "horn",
          {{"blockiness", 0.05f},
           {"aspect", 4.5f},
           {"lobes", 3},
@@ -595,10 +668,10 @@ const std::vector<Variant>& galleryVariants() {
           {"tip_curl", 35},
           {"stem_length", 0.4f}},
          {0.22f, 0.45f, 0.12f}},
-        {"maize_ear", "maize ear peeled", {{"husk_cover", 0.1f}}, {0.70f, 0.72f, 0.45f}},
-        {"maize_tassel", "maize tassel before anthesis", {}, {0.55f, 0.62f, 0.32f}, false},
+        {"husked_ear", "ear peeled", {{"husk_cover", 0.1f}}, {0.70f, 0.72f, 0.45f}},
+        {"tassel", "tassel before anthesis", {}, {0.55f, 0.62f, 0.32f}, false},
         {"berry",
-         "grape berry",
+         "single berry",
          {{"aspect", 1.1f}, {"sepal_count", 0}, {"stem_length", 0.3f}},
          {0.45f, 0.62f, 0.25f}},
     };
@@ -614,17 +687,19 @@ std::vector<GalleryItem> galleryItems(const FloralFamilyInfo& f) {
         Rng rng(11);
         items.push_back({label, buildFloralPrototype(f.name, req, rng), group});
     };
-    int presets = 0;
-    for (const FloralPreset& p : floralPresets()) {
-        if (p.family != f.name) continue;
-        const unsigned s = std::max(p.subdivisions, 10u);
-        // Flowers: the bud next to the open flower (for the first few presets).
-        if (!f.fruit && presets < 4) add(p.name + " closed", p.parameters, p.color, false, s);
-        add(p.name, p.parameters, p.color, true, s);
-        ++presets;
+    int shown = 0;
+    for (const SpeciesOrgan& o : speciesOrgans()) {
+        if (o.family != f.name) continue;
+        const unsigned s = std::max(o.request.subdivisions, 10u);
+        const std::string label = speciesList(o);
+        // Flowers: the bud next to the open flower (for the first few species).
+        if (!f.fruit && shown < 4)
+            add(label + " closed", o.request.parameters, o.request.color, false, s);
+        add(label, o.request.parameters, o.request.color, true, s);
+        ++shown;
         ++group;
     }
-    if (presets == 0) {
+    if (shown == 0) {
         if (!f.fruit) add(f.name + " closed", {}, f.defaultColor, false, 12);
         add(f.name, {}, f.defaultColor, true, 12);
         ++group;
@@ -682,7 +757,7 @@ Image renderFamily(const FloralFamilyInfo& f, int width, int height) {
     return render(ctx, o);
 }
 
-// The family reference page, generated from the family table and the presets.
+// The family reference page, generated from the family table and the species files.
 std::string familyPage() {
     std::ostringstream md;
     md << "# Flower and fruit prototypes\n\n"
@@ -696,7 +771,10 @@ std::string familyPage() {
           "axis from its attachment point (+z up) and is scaled by the species' "
           "`prototype_scale` (m). The first part is coloured by `flower_color` / `fruit_color`; "
           "`subdivisions` sets the mesh resolution. Lengths are fractions of the organ's length "
-          "unless a description says otherwise.\n\n"
+          "unless a description says otherwise. Each family's picture shows the flowers (closed "
+          "and open) and fruit that the library species draw with it, with the values of their "
+          "species files listed under it (drawn at a resolution of at least 10), then variants "
+          "that show what its parameters do.\n\n"
           "![all families](images/organs-flowers-fruit.png)\n\n";
     for (const FloralFamilyInfo& f : floralFamilies()) {
         md << "## " << f.name << " (" << (f.fruit ? "fruit" : "flower") << ")\n\n"
@@ -709,16 +787,15 @@ std::string familyPage() {
             md << "| `" << p.name << "` | " << p.defaultValue << " | " << p.min << " to " << p.max
                << (p.integer ? " (whole)" : "") << " | " << p.doc << " |\n";
         bool header = false;
-        for (const FloralPreset& p : floralPresets()) {
-            if (p.family != f.name) continue;
-            if (!header) md << "\nPresets (`floralPreset(name)`):\n\n";
+        for (const SpeciesOrgan& o : speciesOrgans()) {
+            if (o.family != f.name) continue;
+            if (!header) md << "\nDrawn by the library species (from their species files):\n\n";
             header = true;
-            md << "- `" << p.name << "` (" << (p.fruit ? "fruit" : "flower") << ", colour "
-               << p.color.r << " " << p.color.g << " " << p.color.b << ", subdivisions "
-               << p.subdivisions << ", scale " << p.prototypeScale << " m, species:";
-            for (const std::string& sp : p.species) md << " " << sp;
-            md << ")";
-            for (const auto& [k, v] : p.parameters) md << " " << k << "=" << v;
+            md << "- " << speciesList(o) << " (" << (o.fruit ? "fruit" : "flower") << "): colour "
+               << o.request.color.r << " " << o.request.color.g << " " << o.request.color.b
+               << ", subdivisions " << o.request.subdivisions << ", prototype_scale " << o.scale
+               << " m";
+            for (const auto& [k, v] : o.request.parameters) md << ", " << k << "=" << v;
             md << "\n";
         }
         md << "\n";

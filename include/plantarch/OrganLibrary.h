@@ -6,7 +6,7 @@
 // to x = 1 exactly, +z is up. The plant model scales it by the species' prototype_scale
 // (metres per unit of organ length) and places it.
 //
-// A family is one kind of organ (a petal flower, a legume pod, a wheat spike...) whose shape
+// A family is one kind of organ (a petal flower, a legume pod, a spike...) whose shape
 // comes from a few named parameters (the `flower_prototype_parameters` and
 // `fruit_prototype_parameters` of a species). Each family declares its parameters once, with
 // a default, a valid range and a one-line description; that table (floralFamilies()) validates
@@ -19,7 +19,7 @@
 // `subdivisions` is the mesh resolution (values below 2 act as 2): every family's triangle
 // count grows with it. A family builds its own kind of organ whatever request.fruit says.
 // Flower families build an open flower or a closed bud (FloralPrototypeRequest::open); fruit
-// families ignore `open` except where documented (the maize tassel sheds pollen when open).
+// families ignore `open` except where documented (a tassel sheds pollen when open).
 // A bud is normalised to unit length like the open flower, so both take the same
 // prototype_scale: the bud is as long along its axis as the open flower is deep.
 // Random variation (berry packing, small petal irregularities) is drawn from the Rng passed
@@ -83,24 +83,5 @@ OrganPrototype buildFloralPrototype(std::string_view family, const FloralPrototy
 
 /// Registers every family with `arch` under its name (floralFamilies()[i].name).
 void registerOrganLibrary(PlantArchitecture& arch);
-
-/// A family with the parameters and colour that reproduce one species' flower or fruit.
-struct FloralPreset {
-    std::string name;    ///< e.g. "tomato_flower", "bean_pod"
-    std::string family;  ///< a floralFamilies() name
-    bool fruit = false;  ///< used as a fruit (else a flower)
-    std::map<std::string, float> parameters;
-    vec3 color{1.0f};                  ///< main colour
-    unsigned subdivisions = 8;         ///< suggested resolution
-    float prototypeScale = 0.05f;      ///< suggested prototype_scale: organ length along x, m
-    std::vector<std::string> species;  ///< reference species models that use it
-};
-
-/// Presets for the flowers and fruit of the reference species, used by the gallery and as a
-/// starting point for species files.
-const std::vector<FloralPreset>& floralPresets();
-
-/// The preset named `name`; throws plantarch::Error listing the preset names.
-const FloralPreset& floralPreset(std::string_view name);
 
 }  // namespace plantarch

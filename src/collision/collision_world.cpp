@@ -176,8 +176,8 @@ void World::removePlant(unsigned plantID) {
 
 // Cells one and a half times the look-ahead: a query visits a few cells a side. (Its reach
 // adds the largest leaf's sphere to the look-ahead, so smaller cells mean many more visits;
-// of 0.7, 1, 1.5, 2 and 3 look-aheads the bean canopy's queries cost least with 1.5: 119 M
-// instructions against 133 M with 1.)
+// of 0.7, 1, 1.5, 2 and 3 look-aheads, the queries of the soft-avoidance benchmark canopy
+// (bench/bench_collision.cpp) cost least with 1.5: 119 M instructions against 133 M with 1.)
 float World::gridCell() const {
     return soft_ ? std::max(1.5f * soft_->cone.lookAhead, 0.005f) : 0.1f;
 }

@@ -194,8 +194,8 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads
     for (const Source& s : sources) total += s.spheres->size();
     // Buckets: a power of two, at least a quarter as many as triangles (a cell in use holds
     // several quads, so buckets still outnumber such cells), which keeps the bucket arrays that
-    // every build counts and sums small: the 10 x 10 bean canopy's grid builds cost 77 -> 66 M
-    // instructions, its queries 1 M more.
+    // every build counts and sums small: on the soft-avoidance benchmark canopy the grid builds
+    // take 66 M instructions (77 M with at least one bucket per triangle), the queries 1 M more.
     int bits = 6;
     while ((std::size_t(1) << bits) < total / 4 && bits < 30) ++bits;
     shift_ = 64 - bits;

@@ -1,5 +1,5 @@
-// Cereal head families of the organ library: wheat spikes, rice panicles, sorghum panicles,
-// maize tassels and maize ears.
+// Grass inflorescence families of the organ library: two-rowed spikes, nodding and compact
+// panicles, tassels and husked ears.
 //
 // Frame: the head's axis is +x from the top of its stalk at the origin; heads that nod or
 // have drooping branches bend toward -z (the panicles) or back toward the stalk (the tassel's
@@ -39,14 +39,14 @@ vec3 perpendicular(vec3 d) {
     return glm::normalize(glm::cross(d, std::abs(d.z) < 0.9f ? kZ : kY));
 }
 
-// ---- wheat_spike --------------------------------------------------------------------------------
+// ---- spike --------------------------------------------------------------------------------------
 
-FloralFamilyInfo wheatInfo() {
+FloralFamilyInfo spikeInfo() {
     FloralFamilyInfo f;
-    f.name = "wheat_spike";
+    f.name = "spike";
     f.fruit = true;
     f.description =
-        "Wheat spike (ear): spikelets set alternately in two rows along a straight rachis, "
+        "Two-rowed spike (ear): spikelets set alternately in two rows along a straight rachis, "
         "each a fan of florets (grains in their glumes), with optional long awns.";
     f.defaultColor = {0.50f, 0.58f, 0.26f};
     f.parts = {"spikelets", "awns", "rachis"};
@@ -61,7 +61,7 @@ FloralFamilyInfo wheatInfo() {
     return f;
 }
 
-OrganPrototype buildWheat(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
+OrganPrototype buildSpike(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("spikelets", req.color);
@@ -99,14 +99,14 @@ OrganPrototype buildWheat(const FloralPrototypeRequest& req, const Params& p, Rn
     return parts.finish();
 }
 
-// ---- rice_panicle -------------------------------------------------------------------------------
+// ---- nodding_panicle ----------------------------------------------------------------------------
 
-FloralFamilyInfo riceInfo() {
+FloralFamilyInfo noddingPanicleInfo() {
     FloralFamilyInfo f;
-    f.name = "rice_panicle";
+    f.name = "nodding_panicle";
     f.fruit = true;
     f.description =
-        "Rice panicle: a nodding main axis with primary branches spiralling from it, each "
+        "Nodding panicle: a drooping main axis with primary branches spiralling from it, each "
         "arching down and carrying ribbed, pointed grains on short pedicels.";
     f.defaultColor = {0.80f, 0.68f, 0.36f};
     f.parts = {"grains", "branches"};
@@ -122,7 +122,7 @@ FloralFamilyInfo riceInfo() {
     return f;
 }
 
-OrganPrototype buildRice(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
+OrganPrototype buildNoddingPanicle(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("grains", req.color);
@@ -162,14 +162,14 @@ OrganPrototype buildRice(const FloralPrototypeRequest& req, const Params& p, Rng
     return parts.finish();
 }
 
-// ---- sorghum_panicle ----------------------------------------------------------------------------
+// ---- compact_panicle ----------------------------------------------------------------------------
 
-FloralFamilyInfo sorghumInfo() {
+FloralFamilyInfo compactPanicleInfo() {
     FloralFamilyInfo f;
-    f.name = "sorghum_panicle";
+    f.name = "compact_panicle";
     f.fruit = true;
     f.description =
-        "Sorghum head: a compact, upright oval panicle, broadest below the middle, covered in "
+        "Compact panicle (head): an upright oval panicle, broadest below the middle, covered in "
         "round grains that point outward and up from a dark core.";
     f.defaultColor = {0.58f, 0.33f, 0.20f};
     f.parts = {"grains", "core"};
@@ -183,7 +183,7 @@ FloralFamilyInfo sorghumInfo() {
     return f;
 }
 
-OrganPrototype buildSorghum(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
+OrganPrototype buildCompactPanicle(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("grains", req.color);
@@ -219,16 +219,16 @@ OrganPrototype buildSorghum(const FloralPrototypeRequest& req, const Params& p, 
     return parts.finish();
 }
 
-// ---- maize_tassel -------------------------------------------------------------------------------
+// ---- tassel -------------------------------------------------------------------------------------
 
 FloralFamilyInfo tasselInfo() {
     FloralFamilyInfo f;
-    f.name = "maize_tassel";
+    f.name = "tassel";
     f.fruit = true;
     f.description =
-        "Maize tassel: an upright central spike with slender branches from its lower part "
-        "that spread and arch down, all set with paired spikelets; open (shedding pollen) it "
-        "hangs out yellow anthers, closed its branches stay close to the spike.";
+        "Tassel (male panicle): an upright central spike with slender branches from its lower "
+        "part that spread and arch down, all set with paired spikelets; open (shedding pollen) "
+        "it hangs out yellow anthers, closed its branches stay close to the spike.";
     f.defaultColor = {0.72f, 0.64f, 0.38f};
     f.parts = {"spikelets", "axes", "anthers"};
     auto& t = f.parameters;
@@ -297,16 +297,16 @@ OrganPrototype buildTassel(const FloralPrototypeRequest& req, const Params& p, R
     return parts.finish();
 }
 
-// ---- maize_ear ----------------------------------------------------------------------------------
+// ---- husked_ear ---------------------------------------------------------------------------------
 
-FloralFamilyInfo earInfo() {
+FloralFamilyInfo huskedEarInfo() {
     FloralFamilyInfo f;
-    f.name = "maize_ear";
+    f.name = "husked_ear";
     f.fruit = true;
     f.description =
-        "Maize ear: a tapering cylindrical cob set with rows of kernels, wrapped in green husk "
-        "leaves that close to a point over its tip, with a tuft of silk; the husks can be "
-        "peeled back to show the kernels.";
+        "Husked ear (female spike): a tapering cylindrical cob set with rows of kernels, "
+        "wrapped in green husk leaves that close to a point over its tip, with a tuft of silk; "
+        "the husks can be peeled back to show the kernels.";
     f.defaultColor = {0.45f, 0.60f, 0.28f};
     f.parts = {"husk", "cob", "silk", "shank"};
     auto& t = f.parameters;
@@ -374,7 +374,7 @@ Mesh huskLeaf(const EarShape& ear, float az, float span, float layer, float open
     });
 }
 
-OrganPrototype buildEar(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
+OrganPrototype buildHuskedEar(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("husk", req.color);
@@ -416,11 +416,11 @@ OrganPrototype buildEar(const FloralPrototypeRequest& req, const Params& p, Rng&
 }  // namespace
 
 std::vector<Family> cerealFamilies() {
-    return {{wheatInfo(), buildWheat},
-            {riceInfo(), buildRice},
-            {sorghumInfo(), buildSorghum},
+    return {{spikeInfo(), buildSpike},
+            {noddingPanicleInfo(), buildNoddingPanicle},
+            {compactPanicleInfo(), buildCompactPanicle},
             {tasselInfo(), buildTassel},
-            {earInfo(), buildEar}};
+            {huskedEarInfo(), buildHuskedEar}};
 }
 
 }  // namespace plantarch::organs

@@ -1,9 +1,9 @@
 // Flower families of the organ library: radial petal flowers, papilionaceous (pea) flowers,
-// funnel (trumpet) flowers and bract flowers (bougainvillea). Each builds an open flower or
-// a closed bud.
+// funnel (trumpet) flowers, bract flowers and catkins. Each builds an open flower or a closed
+// bud.
 //
 // Frame: the flower's axis is +x from the top of its stalk at the origin; a short pedicel
-// stub and the receptacle come first, so petals that bend back (tomato) stay at x > 0.
+// stub and the receptacle come first, so petals that bend back (reflexed) stay at x > 0.
 
 #include <algorithm>
 #include <cmath>
@@ -35,10 +35,9 @@ FloralFamilyInfo petalFlowerInfo() {
     f.fruit = false;
     f.description =
         "Radial flower: a ring of petals around a centre of stamens or an anther cone, with "
-        "optional sepals. Rosaceous (almond, apple, cherry, strawberry: 5 round white/pink "
-        "petals, many stamens), star-shaped reflexed (tomato, ground cherry), small yellow "
-        "(puncturevine) or white star (capsicum) flowers. Closed: a bud of folded petals "
-        "clasped by the sepals.";
+        "optional sepals: rose-like (5 round white or pink petals, many stamens), star-shaped "
+        "with reflexed petals around an anther cone, small and yellow, or a white star. "
+        "Closed: a bud of folded petals clasped by the sepals.";
     f.defaultColor = {0.97f, 0.95f, 0.92f};
     f.parts = {"petals", "flower_centre", "sepals"};
     auto& t = f.parameters;
@@ -70,7 +69,7 @@ FloralFamilyInfo petalFlowerInfo() {
     t.push_back(whole("stamen_count", 20, 0, 80, "Free stamens around the centre"));
     t.push_back(real("stamen_length", 0.16f, 0.02f, 1.0f, "Stamen length, same units"));
     t.push_back(real("anther_cone", 0.0f, 0.0f, 1.5f,
-                     "Length of a cone of fused anthers on the axis (tomato), 0 = none"));
+                     "Length of a cone of fused anthers on the axis, 0 = none"));
     addColor(t, "centre", {0.96f, 0.80f, 0.18f}, "Centre (stamens, anther cone)");
     t.push_back(real("irregularity", 0.04f, 0.0f, 0.3f,
                      "Random variation of petal size and spacing (drawn from the stream)"));
@@ -201,9 +200,9 @@ FloralFamilyInfo papilionaceousInfo() {
     f.name = "papilionaceous_flower";
     f.fruit = false;
     f.description =
-        "Pea flower (bean, cowpea, soybean, redbud): an upright banner petal, two wings at the "
-        "sides and a boat-shaped keel that curves up (coils in bean), in a green bell-shaped "
-        "calyx with five teeth. Closed: a flattened, upcurved pointed bud in the calyx.";
+        "Pea flower: an upright banner petal, two wings at the sides and a boat-shaped keel "
+        "that curves up (or coils), in a green bell-shaped calyx with five teeth. Closed: a "
+        "flattened, upcurved pointed bud in the calyx.";
     f.defaultColor = {0.96f, 0.95f, 0.92f};
     f.parts = {"petals", "calyx"};
     auto& t = f.parameters;
@@ -216,8 +215,9 @@ FloralFamilyInfo papilionaceousInfo() {
     t.push_back(real("wing_width", 0.55f, 0.1f, 1.5f, "Wing width / wing length"));
     t.push_back(real("wing_angle", 20.0f, 0.0f, 80.0f, "Wings' spread from the axis, degrees"));
     t.push_back(real("keel_length", 0.45f, 0.1f, 1.5f, "Keel length, same units"));
-    t.push_back(real("keel_curl", 70.0f, 0.0f, 330.0f,
-                     "Upward turn of the keel from base to tip, degrees (bean coils: 250)"));
+    t.push_back(
+        real("keel_curl", 70.0f, 0.0f, 330.0f,
+             "Upward turn of the keel from base to tip, degrees (above 180 the keel coils)"));
     t.push_back(real("calyx_length", 0.2f, 0.05f, 0.6f, "Calyx tube length, same units"));
     t.push_back(real("bud_length", 0.65f, 0.2f, 2.0f, "Closed bud length beyond the calyx"));
     return f;
@@ -304,10 +304,10 @@ FloralFamilyInfo funnelInfo() {
     f.name = "funnel_flower";
     f.fruit = false;
     f.description =
-        "Funnel or trumpet flower (bindweed): a fused corolla widening from a narrow tube to a "
-        "broad shallow-lobed, pleated mouth, its throat in a second colour, on a small green "
-        "calyx. Also a campanulate-rotate corolla (ground cherry) with a short tube. Closed: "
-        "a slender bud furled in a spiral.";
+        "Funnel or trumpet flower: a fused corolla widening from a narrow tube to a broad "
+        "shallow-lobed, pleated mouth, its throat in a second colour, on a small green calyx. "
+        "Also a campanulate-rotate corolla with a short tube. Closed: a slender bud furled in "
+        "a spiral.";
     f.defaultColor = {0.98f, 0.97f, 0.96f};
     f.parts = {"corolla", "throat", "calyx"};
     auto& t = f.parameters;
@@ -406,9 +406,9 @@ FloralFamilyInfo bractInfo() {
     f.name = "bract_flower";
     f.fruit = false;
     f.description =
-        "Bract flower (bougainvillea): three (or more) broad papery coloured bracts joined at "
-        "the base, each carrying a slender tubular floret along its midrib that opens into a "
-        "small white star. Closed: the bracts clasped into a pointed, three-sided bud.";
+        "Bract flower: three (or more) broad papery coloured bracts joined at the base, each "
+        "carrying a slender tubular floret along its midrib that opens into a small white "
+        "star. Closed: the bracts clasped into a pointed, three-sided bud.";
     f.defaultColor = {0.78f, 0.14f, 0.50f};
     f.parts = {"bracts", "florets", "stalk"};
     auto& t = f.parameters;
@@ -496,9 +496,9 @@ FloralFamilyInfo catkinInfo() {
     f.name = "catkin";
     f.fruit = false;
     f.description =
-        "Catkin (walnut, pistachio male flowers): a slender pendulous spike densely covered "
-        "in small overlapping scale-like flowers. Closed: a straight, stouter cone of "
-        "scales (the dormant catkin bud).";
+        "Catkin (male flowers): a slender pendulous spike densely covered in small "
+        "overlapping scale-like flowers. Closed: a straight, stouter cone of scales (the "
+        "dormant catkin bud).";
     f.defaultColor = {0.62f, 0.64f, 0.30f};
     f.parts = {"flowers", "axis"};
     auto& t = f.parameters;

@@ -1,5 +1,5 @@
-// Fleshy fruit families of the organ library: berries (tomato, cherry tomato, grape, ground
-// cherry with its husk), grape clusters, peppers, strawberries and apples.
+// Fleshy fruit families of the organ library: berries (smooth or ribbed, bare or in a husk),
+// berry clusters, hollow berries, accessory fruit with achenes on the surface, and pomes.
 //
 // Frame: the fruit hangs from its stem, which starts at the origin and runs along +x into
 // the fruit; the blossom end is at x = 1. Sizes are fractions of the fruit's diameter before
@@ -24,9 +24,9 @@ FloralFamilyInfo berryInfo() {
     f.name = "berry";
     f.fruit = true;
     f.description =
-        "Round fleshy fruit on a short stem under a star of sepals: tomato (oblate, ribbed), "
-        "cherry tomato (round), a single grape, or a ground cherry inside its papery, "
-        "five-angled lantern husk.";
+        "Round fleshy fruit on a short stem under a star of sepals: oblate and ribbed, round "
+        "and smooth, or elongated, bare or inside an inflated, papery, five-angled lantern "
+        "husk (the enlarged calyx).";
     f.defaultColor = {0.85f, 0.14f, 0.07f};
     f.parts = {"fruit", "calyx", "husk"};
     auto& t = f.parameters;
@@ -106,15 +106,16 @@ OrganPrototype buildBerry(const FloralPrototypeRequest& req, const Params& p, Rn
     return parts.finish();
 }
 
-// ---- grape_cluster ------------------------------------------------------------------------------
+// ---- berry_cluster ------------------------------------------------------------------------------
 
-FloralFamilyInfo grapeInfo() {
+FloralFamilyInfo berryClusterInfo() {
     FloralFamilyInfo f;
-    f.name = "grape_cluster";
+    f.name = "berry_cluster";
     f.fruit = true;
     f.description =
-        "Grape bunch: round berries on short pedicels packed around a rachis into a cone "
-        "that tapers from broad shoulders to the tip. The packing is random (from the stream).";
+        "Berry cluster (bunch): round berries on short pedicels packed around a rachis into a "
+        "cone that tapers from broad shoulders to the tip. The packing is random (from the "
+        "stream).";
     f.defaultColor = {0.24f, 0.18f, 0.34f};
     f.parts = {"berries", "rachis"};
     auto& t = f.parameters;
@@ -183,7 +184,7 @@ std::vector<Berry> packBerries(const Params& p, Rng& rng) {
     return placed;
 }
 
-OrganPrototype buildGrapeCluster(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
+OrganPrototype buildBerryCluster(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("berries", req.color);
@@ -212,21 +213,21 @@ OrganPrototype buildGrapeCluster(const FloralPrototypeRequest& req, const Params
     return parts.finish();
 }
 
-// ---- pepper -------------------------------------------------------------------------------------
+// ---- hollow_berry -------------------------------------------------------------------------------
 
-FloralFamilyInfo pepperInfo() {
+FloralFamilyInfo hollowBerryInfo() {
     FloralFamilyInfo f;
-    f.name = "pepper";
+    f.name = "hollow_berry";
     f.fruit = true;
     f.description =
-        "Capsicum pepper hanging from a thick curved stem in a green calyx cap: a blocky bell "
-        "with three or four lobes at its base, or an elongated, tapering (and hooked) chili.";
+        "Hollow berry hanging from a thick curved stem in a green calyx cap: a blocky bell "
+        "with three or four lobes at its base, or an elongated, tapering (and hooked) horn.";
     f.defaultColor = {0.78f, 0.10f, 0.07f};
     f.parts = {"fruit", "calyx"};
     auto& t = f.parameters;
     t.push_back(real("aspect", 1.1f, 0.5f, 8.0f, "Fruit length / diameter"));
-    t.push_back(real("blockiness", 0.85f, 0.0f, 1.0f,
-                     "0 = tapering to a point (chili, horn) .. 1 = blocky bell"));
+    t.push_back(
+        real("blockiness", 0.85f, 0.0f, 1.0f, "0 = tapering to a point (horn) .. 1 = blocky bell"));
     t.push_back(whole("lobes", 4, 0, 6, "Lobes around the fruit (0 = round)"));
     t.push_back(real("lobe_depth", 0.1f, 0.0f, 0.4f, "Depth of the lobes, fraction of radius"));
     t.push_back(real("tip_curl", 0.0f, -90.0f, 90.0f,
@@ -236,7 +237,7 @@ FloralFamilyInfo pepperInfo() {
     return f;
 }
 
-vec3 pepperPoint(const Params& p, float xb, float u, float th) {
+vec3 hollowBerryPoint(const Params& p, float xb, float u, float th) {
     const float block = p("blockiness"), length = p("aspect"), lobeDepth = p("lobe_depth");
     const int lobes = p.count("lobes");
     const float tau = std::abs(2.0f * u - 1.0f);
@@ -260,15 +261,16 @@ vec3 pepperPoint(const Params& p, float xb, float u, float th) {
     return pt;
 }
 
-OrganPrototype buildPepper(const FloralPrototypeRequest& req, const Params& p, Rng&) {
+OrganPrototype buildHollowBerry(const FloralPrototypeRequest& req, const Params& p, Rng&) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("fruit", req.color);
     parts.declare("calyx", {0.20f, 0.38f, 0.12f});
     const float stem = p("stem_length");
     const float xb = stem * 0.75f;
-    parts.add("fruit", closedBody(resolution(s, 2.0f, 6), resolution(s, 3.0f, 8),
-                                  [&](float u, float th) { return pepperPoint(p, xb, u, th); }));
+    parts.add("fruit",
+              closedBody(resolution(s, 2.0f, 6), resolution(s, 3.0f, 8),
+                         [&](float u, float th) { return hollowBerryPoint(p, xb, u, th); }));
     // Stem: thick, bending slightly, ending in the cavity.
     const float cavity = xb + 0.05f + 0.1f * p("blockiness");
     const std::vector<vec3> path = arcPath({0, 0, 0}, kX, {0, 0, 1}, cavity + 0.02f, 25.0f, 4);
@@ -289,14 +291,14 @@ OrganPrototype buildPepper(const FloralPrototypeRequest& req, const Params& p, R
     return parts.finish();
 }
 
-// ---- strawberry ---------------------------------------------------------------------------------
+// ---- accessory_fruit ----------------------------------------------------------------------------
 
-FloralFamilyInfo strawberryInfo() {
+FloralFamilyInfo accessoryFruitInfo() {
     FloralFamilyInfo f;
-    f.name = "strawberry";
+    f.name = "accessory_fruit";
     f.fruit = true;
     f.description =
-        "Strawberry: a red cone rounded at the shoulders, its surface dimpled around small "
+        "Accessory fruit: a red cone rounded at the shoulders, its surface dimpled around small "
         "yellow achenes (seeds), under a spreading star of green sepals on a thin stem.";
     f.defaultColor = {0.82f, 0.08f, 0.10f};
     f.parts = {"fruit", "achenes", "calyx"};
@@ -318,7 +320,7 @@ FloralFamilyInfo strawberryInfo() {
 }
 
 // Radius profile (diameter 1) at fraction u from the calyx to the tip.
-float strawberryRadius(const Params& p, float u) {
+float accessoryFruitRadius(const Params& p, float u) {
     const float w = p("shoulder");
     if (u <= w) return 0.5f * ppow(std::sin(0.5f * kPi * u / w), 0.55f);
     return 0.5f * ppow(std::cos(0.5f * kPi * (u - w) / (1.0f - w)), p("tip"));
@@ -338,7 +340,7 @@ std::vector<Achene> placeAchenes(const Params& p) {
     for (int i = 1; i <= 128; ++i) {
         const float a = u0 + (u1 - u0) * float(i - 1) / 128.0f,
                     b = u0 + (u1 - u0) * float(i) / 128.0f;
-        const float ra = strawberryRadius(p, a), rb = strawberryRadius(p, b);
+        const float ra = accessoryFruitRadius(p, a), rb = accessoryFruitRadius(p, b);
         cdf[i] = cdf[i - 1] + 0.5f * (ra + rb) * std::hypot(length * (b - a), rb - ra);
     }
     std::vector<Achene> out;
@@ -353,7 +355,7 @@ std::vector<Achene> placeAchenes(const Params& p) {
     return out;
 }
 
-OrganPrototype buildStrawberry(const FloralPrototypeRequest& req, const Params& p, Rng&) {
+OrganPrototype buildAccessoryFruit(const FloralPrototypeRequest& req, const Params& p, Rng&) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("fruit", req.color);
@@ -367,7 +369,7 @@ OrganPrototype buildStrawberry(const FloralPrototypeRequest& req, const Params& 
         std::sqrt(2.3f * length / float(std::max<std::size_t>(achenes.size(), 1)));
     const float sigma = 0.35f * spacing;
     auto surface = [&](float u, float th, bool pitted) {
-        float r = strawberryRadius(p, u);
+        float r = accessoryFruitRadius(p, u);
         if (pitted && depth > 0.0f)
             for (const Achene& a : achenes) {
                 const float du = (u - a.u) * length;
@@ -402,14 +404,14 @@ OrganPrototype buildStrawberry(const FloralPrototypeRequest& req, const Params& 
     return parts.finish();
 }
 
-// ---- apple --------------------------------------------------------------------------------------
+// ---- pome ---------------------------------------------------------------------------------------
 
-FloralFamilyInfo appleInfo() {
+FloralFamilyInfo pomeInfo() {
     FloralFamilyInfo f;
-    f.name = "apple";
+    f.name = "pome";
     f.fruit = true;
     f.description =
-        "Apple (pome): a round fruit with a deep stem cavity holding a thin woody stem, a "
+        "Pome: a round fruit with a deep stem cavity holding a thin woody stem, a "
         "calyx basin with dried sepals at the far end, slight taper and ribbing.";
     f.defaultColor = {0.74f, 0.13f, 0.10f};
     f.parts = {"fruit", "stem", "calyx"};
@@ -425,7 +427,7 @@ FloralFamilyInfo appleInfo() {
     return f;
 }
 
-vec3 applePoint(const Params& p, float u, float th) {
+vec3 pomePoint(const Params& p, float u, float th) {
     const float length = p("aspect"), taper = p("taper");
     const int ribs = p.count("ribs");
     const float phi = kPi * u;
@@ -441,7 +443,7 @@ vec3 applePoint(const Params& p, float u, float th) {
     return vec3(x, 0, 0) + r * radialDir(th);
 }
 
-OrganPrototype buildApple(const FloralPrototypeRequest& req, const Params& p, Rng&) {
+OrganPrototype buildPome(const FloralPrototypeRequest& req, const Params& p, Rng&) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("fruit", req.color);
@@ -450,17 +452,17 @@ OrganPrototype buildApple(const FloralPrototypeRequest& req, const Params& p, Rn
     // Shift so the shoulders (smallest x of the body) sit at x = stem_length.
     float shoulder = 1e9f;
     for (int i = 0; i <= 200; ++i)
-        shoulder = std::min(shoulder, applePoint(p, float(i) / 200.0f, 0).x);
+        shoulder = std::min(shoulder, pomePoint(p, float(i) / 200.0f, 0).x);
     const vec3 shift{p("stem_length") + 0.005f - shoulder, 0, 0};
     Mesh body = closedBody(resolution(s, 2.0f, 6), resolution(s, 2.0f, 8),
-                           [&](float u, float th) { return shift + applePoint(p, u, th); });
+                           [&](float u, float th) { return shift + pomePoint(p, u, th); });
     parts.add("fruit", body);
-    const vec3 cavity = shift + applePoint(p, 0, 0);
+    const vec3 cavity = shift + pomePoint(p, 0, 0);
     const std::vector<vec3> stemPath =
         arcPath({0, 0, 0}, kX, {0, 0.5f, 1}, cavity.x + 0.01f, 15.0f, 3);
     parts.add("stem", tube(stemPath, std::vector<float>{0.018f, 0.016f, 0.017f, 0.022f},
                            resolution(s, 0.5f, 3)));
-    const vec3 basin = shift + applePoint(p, 1, 0);
+    const vec3 basin = shift + pomePoint(p, 1, 0);
     parts.add("calyx", sepalStar(5, basin.x - 0.008f, 0.01f, 0.07f, 0.035f, 35.0f, 70.0f, 0.0f,
                                  resolution(s, 0.25f, 1), 1));
     return parts.finish();
@@ -470,10 +472,10 @@ OrganPrototype buildApple(const FloralPrototypeRequest& req, const Params& p, Rn
 
 std::vector<Family> fruitFamilies() {
     return {{berryInfo(), buildBerry},
-            {grapeInfo(), buildGrapeCluster},
-            {pepperInfo(), buildPepper},
-            {strawberryInfo(), buildStrawberry},
-            {appleInfo(), buildApple}};
+            {berryClusterInfo(), buildBerryCluster},
+            {hollowBerryInfo(), buildHollowBerry},
+            {accessoryFruitInfo(), buildAccessoryFruit},
+            {pomeInfo(), buildPome}};
 }
 
 }  // namespace plantarch::organs

@@ -1,5 +1,5 @@
-// Pod and drupe families of the organ library: legume pods (bean, cowpea, soybean, redbud),
-// almond hulls (closed or split), walnut hulls, olives and pistachio clusters.
+// Pod and drupe families of the organ library: legume pods, flattened hulls (closed or split),
+// round hulls, single drupes and drupe clusters.
 //
 // Frame: the organ hangs from its stalk, which starts at the origin and runs along +x; the
 // sutures of pods and hulls are at the top (+z) and bottom, their flat faces face +-y.
@@ -26,8 +26,8 @@ FloralFamilyInfo podInfo() {
     f.description =
         "Legume pod: a long, laterally flattened pod on a short stalk with a small calyx, "
         "bulging over each seed and ending in a thin beak; curved upward like a sickle, "
-        "optionally hairy. Bean (long, green), cowpea (very long and thin), soybean (short, "
-        "hairy), redbud (flat, thin, lens-shaped section).";
+        "optionally hairy: long and green, very long and thin, short and hairy, or flat and "
+        "thin with a lens-shaped section.";
     f.defaultColor = {0.45f, 0.60f, 0.24f};
     f.parts = {"pod", "calyx", "hairs"};
     auto& t = f.parameters;
@@ -45,7 +45,8 @@ FloralFamilyInfo podInfo() {
     t.push_back(real("stalk_length", 0.05f, 0.0f, 0.3f, "Stalk length / pod length"));
     t.push_back(real("section_lens", 0.0f, 0.0f, 1.0f,
                      "Cross-section: 0 oval, 1 lens with sharp sutures (flat pods)"));
-    t.push_back(real("hairs", 0.0f, 0.0f, 1.0f, "Density of short appressed hairs (soybean 1)"));
+    t.push_back(
+        real("hairs", 0.0f, 0.0f, 1.0f, "Density of short appressed hairs (1 = densely hairy)"));
     addColor(t, "hair", {0.74f, 0.62f, 0.42f}, "Hair");
     return f;
 }
@@ -117,17 +118,16 @@ OrganPrototype buildPod(const FloralPrototypeRequest& req, const Params& p, Rng&
     return parts.finish();
 }
 
-// ---- almond
-// ---------------------------------------------------------------------------------------
+// ---- flat_hull ----------------------------------------------------------------------------------
 
-FloralFamilyInfo almondInfo() {
+FloralFamilyInfo flatHullInfo() {
     FloralFamilyInfo f;
-    f.name = "almond";
+    f.name = "flat_hull";
     f.fruit = true;
     f.description =
-        "Almond fruit: a flattened, pointed, velvety grey-green hull with a groove along its "
-        "ventral suture; when split, the two halves of the hull gape open along the suture "
-        "and show the pitted brown shell inside.";
+        "Flattened hull: a pointed, velvety grey-green hull, flat from side to side, with a "
+        "groove along its ventral suture; when split, the two halves of the hull gape open "
+        "along the suture and show the pitted brown shell inside.";
     f.defaultColor = {0.46f, 0.54f, 0.34f};
     f.parts = {"hull", "shell", "stem"};
     auto& t = f.parameters;
@@ -144,7 +144,8 @@ FloralFamilyInfo almondInfo() {
     return f;
 }
 
-// Point of an almond-like drupe surface: u from stem to tip, theta around (pi/2 = top).
+// Point of a pointed, possibly asymmetric drupe surface: u from stem to tip, theta around
+// (pi/2 = top).
 vec3 drupePoint(float x0, float length, float ry, float rz, float tip, float asym, float u,
                 float th) {
     const float round = 0.5f * (1.0f - std::cos(kPi * u));
@@ -155,7 +156,7 @@ vec3 drupePoint(float x0, float length, float ry, float rz, float tip, float asy
             zc + rz * env * std::sin(th) * (1.0f + asym * std::sin(th))};
 }
 
-OrganPrototype buildAlmond(const FloralPrototypeRequest& req, const Params& p, Rng&) {
+OrganPrototype buildFlatHull(const FloralPrototypeRequest& req, const Params& p, Rng&) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("hull", req.color);
@@ -210,15 +211,14 @@ OrganPrototype buildAlmond(const FloralPrototypeRequest& req, const Params& p, R
     return parts.finish();
 }
 
-// ---- walnut
-// ---------------------------------------------------------------------------------------
+// ---- round_hull ---------------------------------------------------------------------------------
 
-FloralFamilyInfo walnutInfo() {
+FloralFamilyInfo roundHullInfo() {
     FloralFamilyInfo f;
-    f.name = "walnut";
+    f.name = "round_hull";
     f.fruit = true;
     f.description =
-        "Walnut fruit: a nearly round, smooth green hull, slightly longer than wide, with a "
+        "Round hull: a nearly round, smooth green hull, slightly longer than wide, with a "
         "small point at its far end, on a short stout stem.";
     f.defaultColor = {0.42f, 0.53f, 0.22f};
     f.parts = {"hull", "stem"};
@@ -229,7 +229,7 @@ FloralFamilyInfo walnutInfo() {
     return f;
 }
 
-OrganPrototype buildWalnut(const FloralPrototypeRequest& req, const Params& p, Rng&) {
+OrganPrototype buildRoundHull(const FloralPrototypeRequest& req, const Params& p, Rng&) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("hull", req.color);
@@ -250,16 +250,15 @@ OrganPrototype buildWalnut(const FloralPrototypeRequest& req, const Params& p, R
     return parts.finish();
 }
 
-// ---- olive
-// ----------------------------------------------------------------------------------------
+// ---- drupe --------------------------------------------------------------------------------------
 
-FloralFamilyInfo oliveInfo() {
+FloralFamilyInfo drupeInfo() {
     FloralFamilyInfo f;
-    f.name = "olive";
+    f.name = "drupe";
     f.fruit = true;
     f.description =
-        "Olive: a smooth ellipsoidal drupe, slightly asymmetric and a little pointed at the "
-        "far end, on a thin stem. Green when unripe, purple-black when ripe.";
+        "Drupe: a smooth ellipsoidal stone fruit, slightly asymmetric and a little pointed at "
+        "the far end, on a thin stem. Green when unripe, purple-black when ripe.";
     f.defaultColor = {0.55f, 0.62f, 0.24f};
     f.parts = {"fruit", "stem"};
     auto& t = f.parameters;
@@ -270,7 +269,7 @@ FloralFamilyInfo oliveInfo() {
     return f;
 }
 
-OrganPrototype buildOlive(const FloralPrototypeRequest& req, const Params& p, Rng&) {
+OrganPrototype buildDrupe(const FloralPrototypeRequest& req, const Params& p, Rng&) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("fruit", req.color);
@@ -284,14 +283,14 @@ OrganPrototype buildOlive(const FloralPrototypeRequest& req, const Params& p, Rn
     return parts.finish();
 }
 
-// ---- pistachio_cluster --------------------------------------------------------------------------
+// ---- drupe_cluster ------------------------------------------------------------------------------
 
-FloralFamilyInfo pistachioInfo() {
+FloralFamilyInfo drupeClusterInfo() {
     FloralFamilyInfo f;
-    f.name = "pistachio_cluster";
+    f.name = "drupe_cluster";
     f.fruit = true;
     f.description =
-        "Pistachio cluster: small elongated drupes with rosy-ivory hulls on short stalks, "
+        "Drupe cluster: small elongated drupes with rosy-ivory hulls on short stalks, "
         "hanging from the side branches of a drooping panicle.";
     f.defaultColor = {0.86f, 0.64f, 0.56f};
     f.parts = {"drupes", "rachis"};
@@ -304,7 +303,7 @@ FloralFamilyInfo pistachioInfo() {
     return f;
 }
 
-OrganPrototype buildPistachio(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
+OrganPrototype buildDrupeCluster(const FloralPrototypeRequest& req, const Params& p, Rng& rng) {
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("drupes", req.color);
@@ -358,10 +357,10 @@ OrganPrototype buildPistachio(const FloralPrototypeRequest& req, const Params& p
 
 std::vector<Family> podAndDrupeFamilies() {
     return {{podInfo(), buildPod},
-            {almondInfo(), buildAlmond},
-            {walnutInfo(), buildWalnut},
-            {oliveInfo(), buildOlive},
-            {pistachioInfo(), buildPistachio}};
+            {flatHullInfo(), buildFlatHull},
+            {roundHullInfo(), buildRoundHull},
+            {drupeInfo(), buildDrupe},
+            {drupeClusterInfo(), buildDrupeCluster}};
 }
 
 }  // namespace plantarch::organs

@@ -77,28 +77,23 @@ template <class E>
 concept ChoiceType = std::is_enum_v<E> && !kChoices<E>.empty();
 
 inline constexpr Choice<LeafShape> kLeafShapes[] = {
-    {LeafShape::Elliptic, "elliptic",
-     "Widest at the middle, both ends tapered alike (walnut, pistachio)"},
-    {LeafShape::Ovate, "ovate", "Egg-shaped, widest below the middle (apple, bean leaflets)"},
-    {LeafShape::Obovate, "obovate", "Widest above the middle, tapering to the base (lettuce)"},
-    {LeafShape::Lanceolate, "lanceolate",
-     "Narrow, widest below the middle, long acute tip (almond, olive)"},
+    {LeafShape::Elliptic, "elliptic", "Widest at the middle, both ends tapered alike"},
+    {LeafShape::Ovate, "ovate", "Egg-shaped, widest below the middle"},
+    {LeafShape::Obovate, "obovate", "Widest above the middle, tapering to the base"},
+    {LeafShape::Lanceolate, "lanceolate", "Narrow, widest below the middle, long acute tip"},
     {LeafShape::Oblanceolate, "oblanceolate", "Narrow, widest above the middle"},
-    {LeafShape::Linear, "linear",
-     "Grass blade: long, nearly parallel-sided, pointed tip (maize, rice)"},
-    {LeafShape::Needle, "needle",
-     "Very narrow flat needle or cladode, pointed at both ends (asparagus)"},
+    {LeafShape::Linear, "linear", "Grass blade: long, nearly parallel-sided, pointed tip"},
+    {LeafShape::Needle, "needle", "Very narrow flat needle or cladode, pointed at both ends"},
     {LeafShape::Spatulate, "spatulate", "Spoon-shaped: rounded end on a long narrow base"},
-    {LeafShape::Oblong, "oblong", "Parallel sides, rounded ends (sugar beet)"},
+    {LeafShape::Oblong, "oblong", "Parallel sides, rounded ends"},
     {LeafShape::Orbicular, "orbicular", "Nearly round"},
     {LeafShape::Deltoid, "deltoid", "Triangular: broad truncate base, straight sides to the tip"},
-    {LeafShape::Cordate, "cordate", "Heart-shaped: notched base with rounded basal lobes (redbud)"},
+    {LeafShape::Cordate, "cordate", "Heart-shaped: notched base with rounded basal lobes"},
     {LeafShape::Reniform, "reniform", "Kidney-shaped: wider than long, notched base, round tip"},
-    {LeafShape::Sagittate, "sagittate",
-     "Arrow-shaped: pointed basal lobes pointing back (bindweed)"},
+    {LeafShape::Sagittate, "sagittate", "Arrow-shaped: pointed basal lobes pointing back"},
     {LeafShape::Hastate, "hastate", "Halberd-shaped: pointed basal lobes spreading sideways"},
     {LeafShape::Palmate, "palmate",
-     "Palmately lobed: notched base, lobes radiating from the petiole (grape)"},
+     "Palmately lobed: notched base, lobes radiating from the petiole"},
 };
 template <>
 inline constexpr std::span<const Choice<LeafShape>> kChoices<LeafShape> = kLeafShapes;
