@@ -256,11 +256,11 @@ struct Grower {
         ShootSpec spec;
         spec.phytomers = 1;
         spec.shootType = childType;
-        spec.internodeRadius =
+        spec.size.internodeRadius =
             std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
-        spec.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
-        spec.internodeLengthScale = 0.01f;
-        spec.leafScale = 0.01f;
+        spec.size.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
+        spec.size.internodeLengthScale = 0.01f;
+        spec.size.leafScale = 0.01f;
         const unsigned id =
             createShoot(impl, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
         enqueueShoot(plant.shoots[id]);

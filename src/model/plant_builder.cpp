@@ -53,32 +53,32 @@ Frame orient(const Frame& parent, float pitch, float yaw, float roll) {
     return f;
 }
 
+void invalid(const char* name, float v, const char* range) {
+    throw Error("invalid shoot argument",
+                {.parameter = name, .value = str(v), .validRange = range});
+}
+
+void checkSize(const PhytomerSize& s) {
+    if (!(s.internodeRadius > 0.0f && s.internodeRadius <= 10.0f))
+        invalid("internode_radius", s.internodeRadius, "> 0 and <= 10 m");
+    if (!(s.internodeLengthMax >= 0.0f && s.internodeLengthMax <= 100.0f))
+        invalid("internode_length_max", s.internodeLengthMax, "0 to 100 m");
+    if (!(s.internodeLengthScale > 0.0f && s.internodeLengthScale <= 1.0f))
+        invalid("internode_length_scale_factor_fraction", s.internodeLengthScale, "> 0 and <= 1");
+    if (!(s.leafScale > 0.0f && s.leafScale <= 1.0f))
+        invalid("leaf_scale_factor_fraction", s.leafScale, "> 0 and <= 1");
+}
+
 void checkSpec(const ShootSpec& s) {
-    auto bad = [](const char* name, float v, const char* range) {
-        throw Error("invalid shoot argument",
-                    {.parameter = name, .value = str(v), .validRange = range});
-    };
     if (s.phytomers < 1)
         throw Error("a shoot needs at least one phytomer",
                     {.parameter = "current_node_number", .value = "0", .validRange = ">= 1"});
-    if (s.phytomers > 100000) bad("current_node_number", float(s.phytomers), "1 to 100000");
-    if (!(s.internodeRadius > 0.0f && s.internodeRadius <= 10.0f))
-        bad("internode_radius", s.internodeRadius, "> 0 and <= 10 m");
-    if (!(s.internodeLengthMax >= 0.0f && s.internodeLengthMax <= 100.0f))
-        bad("internode_length_max", s.internodeLengthMax, "0 to 100 m");
-    if (!(s.internodeLengthScale > 0.0f && s.internodeLengthScale <= 1.0f))
-        bad("internode_length_scale_factor_fraction", s.internodeLengthScale, "> 0 and <= 1");
-    if (!(s.leafScale > 0.0f && s.leafScale <= 1.0f))
-        bad("leaf_scale_factor_fraction", s.leafScale, "> 0 and <= 1");
+    if (s.phytomers > 100000) invalid("current_node_number", float(s.phytomers), "1 to 100000");
+    checkSize(s.size);
     if (!(s.radiusTaper >= 0.0f && s.radiusTaper <= 1.0f))
-        bad("radius_taper", s.radiusTaper, "0 to 1");
+        invalid("radius_taper", s.radiusTaper, "0 to 1");
     for (float a : {s.baseRotation.pitch, s.baseRotation.yaw, s.baseRotation.roll})
-        if (!std::isfinite(a)) bad("base_rotation", a, "finite angles in degrees");
-}
-
-ShootSpec specFrom(unsigned nodes, const AxisRotation& rot, float radius, float lengthMax,
-                   float lengthScale, float leafScale, float taper, const std::string& type) {
-    return ShootSpec{nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type};
+        if (!std::isfinite(a)) invalid("base_rotation", a, "finite angles in degrees");
 }
 
 }  // namespace
@@ -438,13 +438,14 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
     Shoot& shoot = plant.shoots.back();
     if (parentID >= 0) plant.shoots[unsigned(parentID)].children.push_back(shoot.id);
     for (unsigned k = 0; k < spec.phytomers; ++k) {
-        const float radius =
-            spec.internodeRadius * (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
+        const float radius = spec.size.internodeRadius *
+                             (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
         createPhytomer(impl, plant, shoot, type.phytomer_parameters, std::max(radius, 1e-6f),
-                       spec.internodeLengthMax, spec.internodeLengthScale, spec.leafScale, &start);
+                       spec.size.internodeLengthMax, spec.size.internodeLengthScale,
+                       spec.size.leafScale, &start);
     }
     Shoot& created = plant.shoots.back();  // the creation function cannot add shoots
-    created.internodeLengthMax = spec.internodeLengthMax;
+    created.internodeLengthMax = spec.size.internodeLengthMax;
     scheduleNewShoot(impl, plant, created);
     return created.id;
 }
@@ -534,14 +535,6 @@ unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, const ShootSpec& 
     return id;
 }
 
-unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, unsigned nodes,
-                                             const AxisRotation& rot, float radius, float lengthMax,
-                                             float lengthScale, float leafScale, float taper,
-                                             const std::string& type) {
-    return addBaseStemShoot(
-        plantID, specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
-}
-
 unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID,
                                         const ShootSpec& spec) {
     PlantInstance& p = impl_->plant(plantID);
@@ -549,19 +542,6 @@ unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID
     const unsigned id = createShoot(*impl_, p, spec, StartMode::Append, int(parentShootID), 0, 0);
     updateGeometry(plantID);
     return id;
-}
-
-unsigned PlantArchitecture::appendShoot(unsigned plantID, int parentShootID, unsigned nodes,
-                                        const AxisRotation& rot, float radius, float lengthMax,
-                                        float lengthScale, float leafScale, float taper,
-                                        const std::string& type) {
-    if (parentShootID < 0)
-        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
-                                      .value = std::to_string(parentShootID),
-                                      .validRange = ">= 0"});
-    return appendShoot(
-        plantID, unsigned(parentShootID),
-        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
 }
 
 unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShootID,
@@ -575,37 +555,18 @@ unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShoot
     return id;
 }
 
-unsigned PlantArchitecture::addChildShoot(unsigned plantID, int parentShootID, unsigned parentNode,
-                                          unsigned nodes, const AxisRotation& rot, float radius,
-                                          float lengthMax, float lengthScale, float leafScale,
-                                          float taper, const std::string& type,
-                                          unsigned petioleIndex) {
-    if (parentShootID < 0)
-        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
-                                      .value = std::to_string(parentShootID),
-                                      .validRange = ">= 0"});
-    return addChildShoot(
-        plantID, unsigned(parentShootID), parentNode,
-        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type), petioleIndex);
-}
-
 unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned shootID,
-                                                  const PhytomerParameters& pp, float radius,
-                                                  float lengthMax, float lengthScale,
-                                                  float leafScale) {
+                                                  const PhytomerParameters& pp,
+                                                  const PhytomerSize& size) {
     PlantInstance& p = impl_->plant(plantID);
     Shoot& s = impl_->shoot(p, shootID);
-    ShootSpec spec;
-    spec.internodeRadius = radius;
-    spec.internodeLengthMax = lengthMax;
-    spec.internodeLengthScale = lengthScale;
-    spec.leafScale = leafScale;
-    checkSpec(spec);
+    checkSize(size);
     validate(pp, "phytomer_parameters");
     ShootParameters probe = impl_->shootTypeFor(p, s.type);
     probe.phytomer_parameters = pp;
     impl_->checkFunctions(probe, s.type);
-    createPhytomer(*impl_, p, s, pp, radius, lengthMax, lengthScale, leafScale, nullptr);
+    createPhytomer(*impl_, p, s, pp, size.internodeRadius, size.internodeLengthMax,
+                   size.internodeLengthScale, size.leafScale, nullptr);
     scheduleNewShoot(*impl_, p, s);
     updateGeometry(plantID);
     return unsigned(s.phytomers.size());
