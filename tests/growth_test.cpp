@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "plantarch/Error.h"
@@ -11,8 +12,6 @@
 using namespace plantarch;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979;
 
 // Vertical, deterministic shoot: phyllochron 2 days, no branching, no flowers.
 ShootParameters growingShoot() {
@@ -181,11 +180,11 @@ TEST(Growth, GravitropismFollowsTheEquation) {
     // Zenith of the shoot axis: dz = -s (1 - cos z) L C with s = 1 below horizontal, else 0.5.
     double zenith = 90.0;
     for (std::size_t k = 1; k < sh.phytomers.size(); ++k) {
-        const double c = std::cos(zenith * kPi / 180.0);
+        const double c = std::cos(zenith * std::numbers::pi / 180.0);
         const double sfac = zenith > 90.0 ? 1.0 : 0.5;
         zenith -= sfac * (1.0 - c) * 0.03 * 300.0;
         const vec3 guide = sh.phytomers[k].internode.guide;
-        const double measured = std::acos(double(guide.z)) * 180.0 / kPi;
+        const double measured = std::acos(double(guide.z)) * 180.0 / std::numbers::pi;
         EXPECT_NEAR(measured, zenith, 1e-2) << "node " << k;
     }
     EXPECT_LT(zenith, 70.0);  // it did bend up
@@ -238,7 +237,7 @@ TEST(Growth, GirthFollowsDownstreamLeafArea) {
         for (std::size_t j = k; j < sh.phytomers.size(); ++j)
             for (const Petiole& pt : sh.phytomers[j].petioles)
                 for (const LeafOrgan& l : pt.leaves) area += g.ctx.objectArea(l.objects[0]);
-        const double r = std::sqrt(50.0 * area * 1e-4 / kPi);
+        const double r = std::sqrt(50.0 * area * 1e-4 / std::numbers::pi);
         EXPECT_NEAR(sh.phytomers[k].internode.radius, std::max(r, 0.002), 1e-6) << "node " << k;
     }
     EXPECT_GT(sh.phytomers[0].internode.radius, sh.phytomers[5].internode.radius);

@@ -7,18 +7,13 @@
 #include <cmath>
 #include <set>
 
+#include "core/math.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
-
-float degrees(float radians) {
-    return radians * 180.0f / kPi;
-}
 
 float angleBetween(vec3 a, vec3 b) {
     return degrees(

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/math.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
@@ -67,8 +68,6 @@ int nodesBornIn(const Shoot& s, double begin, double end) {
     for (const Phytomer& ph : s.phytomers) n += ph.birth >= begin && ph.birth < end;
     return n;
 }
-
-constexpr float kDeg = 3.14159265358979f / 180.0f;
 
 // Objects of the plant's flowers, closed and open.
 std::size_t flowerObjectCount(const PlantArchitecture& arch, unsigned plantID) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/math.h"
 #include "model/architecture_impl.h"
 #include "plantarch/LeafShapes.h"
 #include "plantarch/OrganLibrary.h"
@@ -11,8 +12,6 @@
 namespace plantarch {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 // A closed surface of revolution about +x from x=0 to x=1 with radius profile r(t).
 template <class Profile>

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "core/math.h"
 #include "geometry/tube.h"
 #include "model/architecture_impl.h"
 
@@ -39,11 +40,6 @@ public:
 
 /// Places every organ of the plant into `sink` (the plant's state as it stands).
 void tessellatePlant(PlantArchitecture::Impl& impl, OrganSink& sink, PlantInstance& plant);
-
-/// Cosine and sine of an angle.
-struct SinCos {
-    float c = 1.0f, s = 0.0f;
-};
 
 /// The sines and cosines of an organ's pitch, yaw and roll.
 struct TurnTrig {

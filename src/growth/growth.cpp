@@ -18,14 +18,13 @@
 
 #include "collision/growth_driver.h"
 #include "collision/steering.h"
+#include "core/math.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 enum EventKind : int {
     kDormancyBreak = 0,

@@ -9,7 +9,7 @@
 
 #include "collision/collision_world.h"
 #include "collision/steering.h"
-#include "geometry/tube.h"
+#include "core/math.h"
 #include "model/architecture_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/OrganLibrary.h"
@@ -19,38 +19,11 @@ namespace plantarch {
 
 namespace {
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
-
 std::string str(float v) {
     std::string s = std::to_string(v);
     s.erase(s.find_last_not_of('0') + 1);
     if (!s.empty() && s.back() == '.') s.pop_back();
     return s;
-}
-
-// Unit direction at `azimuth` degrees about `axis` from `reference` (both unit, orthogonal).
-vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
-    const float a = azimuth * kDeg;
-    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
-}
-
-// Orientation of a shoot start relative to a parent frame (axis, reference): yaw turns the
-// tilt direction about the parent axis, pitch tilts away from the axis, roll turns the new
-// reference about the new axis.
-struct Frame {
-    vec3 axis;
-    vec3 reference;
-};
-
-Frame orient(const Frame& parent, float pitch, float yaw, float roll) {
-    const vec3 tiltDir = azimuthDirection(parent.axis, parent.reference, yaw);
-    const float p = pitch * kDeg;
-    Frame f;
-    f.axis = glm::normalize(std::cos(p) * parent.axis + std::sin(p) * tiltDir);
-    vec3 ref = -std::sin(p) * parent.axis + std::cos(p) * tiltDir;
-    ref = glm::normalize(ref - glm::dot(ref, f.axis) * f.axis);
-    f.reference = geometry::rotateAbout(ref, f.axis, roll * kDeg);
-    return f;
 }
 
 void invalid(const char* name, float v, const char* range) {
@@ -282,14 +255,14 @@ void createPhytomer(PlantArchitecture::Impl& impl, PlantInstance& plant, Shoot& 
                                   ? glm::normalize(glm::cross(vec3(0, 0, 1), horizontal))
                                   : glm::normalize(glm::cross(g, prev.rollReference));
         const float zenith = std::acos(cosZ);
-        const float newZenith = std::clamp(zenith + zenithChange * kDeg, 0.0f, 3.14159265f);
-        g = geometry::rotateAbout(g, tiltAxis, newZenith - zenith);
-        g = geometry::rotateAbout(g, vec3(0, 0, 1), (in.walkYaw - prev.walkYaw) * kDeg);
+        const float newZenith = std::clamp(zenith + zenithChange * kDeg, 0.0f, kPi);
+        g = rotateAbout(g, tiltAxis, newZenith - zenith);
+        g = rotateAbout(g, vec3(0, 0, 1), (in.walkYaw - prev.walkYaw) * kDeg);
         in.guide = glm::normalize(g);
         // Carry the roll reference along with the smallest rotation (no twist).
         vec3 ref = prev.rollReference - glm::dot(prev.rollReference, in.guide) * in.guide;
         in.rollReference =
-            glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(in.guide);
+            glm::length(ref) > 1e-6f ? glm::normalize(ref) : anyPerpendicular(in.guide);
     }
     // Collision avoidance and attraction points turn the axis of internodes made by growth.
     if (impl.steering) collision::steerShootAxis(impl, plant, shoot, in, lengthMax);
@@ -371,7 +344,7 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
     Internode start;  // frame of the first phytomer
     const AxisRotation& r = spec.baseRotation;
     if (mode == StartMode::Base) {
-        const Frame f = orient({vec3(0, 0, 1), vec3(1, 0, 0)}, r.pitch, r.yaw, r.roll);
+        const AxisFrame f = turnedFrame({vec3(0, 0, 1), vec3(1, 0, 0)}, r.pitch, r.yaw, r.roll);
         start.guide = f.axis;
         start.rollReference = f.reference;
     } else {
@@ -379,7 +352,7 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
         s.rank = parent.rank + (mode == StartMode::Child ? 1 : 0);
         if (mode == StartMode::Append) {
             const Internode& tip = parent.phytomers.back().internode;
-            const Frame f = orient({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
+            const AxisFrame f = turnedFrame({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
             start.guide = f.axis;
             start.rollReference = f.reference;
             s.parentNode = int(parent.phytomers.size()) - 1;
@@ -410,16 +383,12 @@ unsigned createShoot(PlantArchitecture::Impl& impl, PlantInstance& plant, const 
             const float roll = type.base_roll.sample(plant.rng) + r.roll;
             const Internode& pin = node.internode;
             const vec3 axis = pin.direction;
-            vec3 budSide = azimuthDirection(pin.guide, pin.rollReference,
-                                            node.petioles[parentPetiole].azimuth);
-            budSide = glm::normalize(budSide - glm::dot(budSide, axis) * axis);
-            budSide = geometry::rotateAbout(budSide, axis, yaw * kDeg);
-            const float a = s.insertionAngle * kDeg;
-            start.guide = glm::normalize(std::cos(a) * axis + std::sin(a) * budSide);
+            const vec3 budSide = azimuthDirection(pin.guide, pin.rollReference,
+                                                  node.petioles[parentPetiole].azimuth);
             // By default the first petiole points along the parent's axis.
-            vec3 ref = axis - glm::dot(axis, start.guide) * start.guide;
-            ref = glm::length(ref) > 1e-6f ? glm::normalize(ref) : budSide;
-            start.rollReference = geometry::rotateAbout(ref, start.guide, roll * kDeg);
+            const AxisFrame f = lateralFrame(axis, budSide, s.insertionAngle, yaw, roll);
+            start.guide = f.axis;
+            start.rollReference = f.reference;
             s.parentNode = int(parentNode);
             s.parentPetiole = int(parentPetiole);
             // The axillary bud the shoot grows from has broken.
