@@ -88,16 +88,16 @@ unsigned buildDemoPlant(PlantArchitecture& arch, const vec3& base) {
     const unsigned plant = arch.addPlantInstance(base, 40.0f);
     ShootSpec stem;
     stem.phytomers = 9;
-    stem.internodeRadius = 0.005f;
-    stem.internodeLengthMax = 0.06f;
+    stem.size.internodeRadius = 0.005f;
+    stem.size.internodeLengthMax = 0.06f;
     stem.radiusTaper = 0.6f;
     stem.shootType = "spiral";
     arch.addBaseStemShoot(plant, stem);
 
     ShootSpec branch;
     branch.phytomers = 5;
-    branch.internodeRadius = 0.003f;
-    branch.internodeLengthMax = 0.045f;
+    branch.size.internodeRadius = 0.003f;
+    branch.size.internodeLengthMax = 0.045f;
     branch.radiusTaper = 0.5f;
     branch.shootType = "alternate";
     arch.addChildShoot(plant, 0u, 2u, branch);

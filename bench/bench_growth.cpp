@@ -55,7 +55,7 @@ void growIn(benchmark::State& state, int calls) {
         arch.setDefaultPhenology(ph);
         arch.defineShootType("main", branchingShoot());
         const unsigned p = arch.addPlantInstance(vec3(0.0f), 0.0f);
-        arch.addBaseStemShoot(p, 1, {}, 0.002f, 0.03f, 0.01f, 0.01f, 0, "main");
+        arch.addBaseStemShoot(p, {1, {}, {0.002f, 0.03f, 0.01f, 0.01f}, 0, "main"});
         for (int i = 0; i < calls; ++i) arch.advanceTime(60.0 / calls);
         phytomers = 0;
         for (const Shoot& s : arch.plant(p).shoots) phytomers += s.phytomers.size();

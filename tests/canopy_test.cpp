@@ -4,6 +4,9 @@
 #include <omp.h>
 
 #include <cmath>
+#include <functional>
+#include <set>
+#include <utility>
 
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -12,6 +15,16 @@
 using namespace plantarch;
 
 namespace {
+
+Error errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e;
+    }
+    ADD_FAILURE() << "expected a plantarch::Error";
+    return Error("none");
+}
 
 // Every object's ID, labels and vertex bytes, in ID order.
 std::string fingerprint(const Context& ctx) {
@@ -88,13 +101,57 @@ TEST(Canopy, ScatteredPlantsStayInTheirRectangle) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
-    const auto ids = arch.buildPlantCanopyFromLibrary({10, -4, 0}, vec2(2.0f, 1.0f), 25u, 5.0f);
+    CanopyOptions o;
+    o.layout = CanopyOptions::Layout::Scatter;
+    o.center = {10, -4, 0};
+    o.extent = {2.0f, 1.0f};
+    o.plants = 25;
+    const auto ids = arch.buildPlantCanopyFromLibrary(o, 5.0f);
     ASSERT_EQ(ids.size(), 25u);
+    std::set<std::pair<float, float>> distinct;
     for (unsigned id : ids) {
         const vec3 b = arch.getPlantBasePosition(id);
         EXPECT_LE(std::abs(b.x - 10.0f), 1.0f);
         EXPECT_LE(std::abs(b.y + 4.0f), 0.5f);
+        distinct.insert({b.x, b.y});
     }
+    EXPECT_EQ(distinct.size(), 25u);
+    o.plants = 0;
+    EXPECT_EQ(errorOf([&] { arch.buildPlantCanopyFromLibrary(o, 5.0f); }).parameter(),
+              "plant_count");
+    o.plants = 4;
+    o.extent = {-1.0f, 1.0f};
+    EXPECT_EQ(errorOf([&] { arch.buildPlantCanopyFromLibrary(o, 5.0f); }).parameter(),
+              "canopy_extent");
+    EXPECT_EQ(arch.getAllPlantIDs().size(), 25u);  // failed calls add nothing
+}
+
+TEST(Canopy, GridOptionsAreTheSpecificationsForm) {
+    // The positional form is CanopyOptions' grid: the same positions, plants and geometry.
+    auto build = [](bool options, std::size_t& plants) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(5);
+        arch.loadPlantModelFromLibrary("bean");
+        if (options) {
+            CanopyOptions o;
+            o.center = {1, 2, 0};
+            o.spacing = {0.5f, 0.25f};
+            o.count = {3, 2};
+            o.germinationRate = 0.6f;
+            plants = arch.buildPlantCanopyFromLibrary(o, 12.0f).size();
+        } else {
+            plants = arch.buildPlantCanopyFromLibrary({1, 2, 0}, {0.5f, 0.25f}, {3, 2}, 12.0f, 0.6f)
+                         .size();
+        }
+        return fingerprint(ctx);
+    };
+    std::size_t gridPlants = 0, specPlants = 0;
+    const std::string grid = build(true, gridPlants);
+    EXPECT_EQ(build(false, specPlants), grid);
+    EXPECT_EQ(gridPlants, specPlants);
+    EXPECT_GT(gridPlants, 0u);
+    EXPECT_LT(gridPlants, 6u);  // some positions did not germinate
 }
 
 TEST(Canopy, BadArgumentsAreErrors) {

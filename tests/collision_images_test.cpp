@@ -61,7 +61,8 @@ TEST(CollisionImages, BeanBesideAWall) {
         const ObjectID wall =
             addBox(ctx, {0.12f, -0.45f, 0.0f}, {0.135f, 0.45f, 0.75f}, vec3(0.78f, 0.74f, 0.68f));
         arch.loadPlantModelFromLibrary("bean");
-        if (avoid) arch.enableSolidObstacleAvoidance({wall}, 0.2f);
+        if (avoid)
+            arch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = 0.2f});
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 50.0f);
         const float maxX = extreme(ctx, arch, p, 0, true);
         if (avoid)
@@ -138,7 +139,7 @@ TEST(CollisionImages, FruitingWallOnItsWires) {
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 0.0f);
         if (!points) arch.disableAttractionPoints(p);
         arch.advanceTime(630.0);
-        const std::vector<ObjectID> wood = arch.getPlantInternodeObjectIDs(p);
+        const std::vector<ObjectID> wood = arch.getPlantObjectIDs(p, OrganKind::Internode);
         for (ObjectID o : arch.getAllPlantObjectIDs(p))
             if (std::find(wood.begin(), wood.end(), o) == wood.end()) ctx.deleteObject(o);
         for (float z : {0.75f, 1.6f, 2.25f, 2.8f})

@@ -76,7 +76,7 @@ TEST(Collision, WallIsNeverCrossed) {
         PlantArchitecture arch(&ctx);
         const ObjectID wall = addBox(ctx, {0.1f, -2, -1}, {0.3f, 2, 3});
         arch.loadPlantModelFromLibrary("bean");
-        arch.enableSolidObstacleAvoidance({wall}, 0.2f);
+        arch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = 0.2f});
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, age);
         const float maxX = extreme(ctx, arch, p, 0, true);
         const CollisionStats st = arch.getCollisionStats();
@@ -98,7 +98,7 @@ TEST(Collision, CeilingIsNeverCrossed) {
     PlantArchitecture arch(&ctx);
     const ObjectID ceiling = addBox(ctx, {-2, -2, 0.25f}, {2, 2, 0.3f});
     arch.loadPlantModelFromLibrary("bean");
-    arch.enableSolidObstacleAvoidance({ceiling}, 0.2f);
+    arch.enableSolidObstacleAvoidance({.obstacles = {ceiling}, .avoidanceDistance = 0.2f});
     const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 60.0f);
     const float top = extreme(ctx, arch, p, 2, true);
     EXPECT_LE(top, 0.25f);
@@ -121,18 +121,19 @@ TEST(Collision, StrawberryFruitStayAboveTheGround) {
         crown.phytomer_parameters.peduncle.length = 0.3f;
         crown.phytomer_parameters.peduncle.curvature = -400.0f;
         arch.updateCurrentShootParameters("mainstem", crown);
-        arch.enableSolidObstacleAvoidance({ground}, 0.1f, adjust);
+        arch.enableSolidObstacleAvoidance(
+            {.obstacles = {ground}, .avoidanceDistance = 0.1f, .fruitAdjustment = adjust});
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 90.0f);
         float lowest = 1e30f;
-        for (ObjectID o : arch.getPlantFruitObjectIDs(p))
+        for (ObjectID o : arch.getPlantObjectIDs(p, OrganKind::Fruit))
             for (const vec3& v : ctx.object(o).positions) lowest = std::min(lowest, v.z);
         const CollisionStats st = arch.getCollisionStats();
         std::printf(
             "adjust %d: %zu fruit objects, lowest fruit vertex %.4f, turned %llu, "
             "unresolved %llu\n",
-            adjust, arch.getPlantFruitObjectIDs(p).size(), lowest,
+            adjust, arch.getPlantObjectIDs(p, OrganKind::Fruit).size(), lowest,
             (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
-        ASSERT_GT(arch.getPlantFruitObjectIDs(p).size(), 3u);
+        ASSERT_GT(arch.getPlantObjectIDs(p, OrganKind::Fruit).size(), 3u);
         if (adjust)
             EXPECT_GE(lowest, -1e-4f);
         else
@@ -145,7 +146,7 @@ namespace {
 std::vector<ObjectID> leaves(const PlantArchitecture& arch) {
     std::vector<ObjectID> out;
     for (unsigned p : arch.getAllPlantIDs())
-        for (ObjectID o : arch.getPlantLeafObjectIDs(p)) out.push_back(o);
+        for (ObjectID o : arch.getPlantObjectIDs(p, OrganKind::Leaf)) out.push_back(o);
     return out;
 }
 
@@ -266,8 +267,12 @@ TEST(Collision, DistantObstaclesChangeNothing) {
         arch.loadPlantModelFromLibrary("bean");
         if (obstacles) {
             const ObjectID wall = addBox(ctx, {5, -1, 0}, {5.1f, 1, 2});
-            arch.enableSolidObstacleAvoidance({wall}, 0.2f, true);
-            arch.enableAttractionPoints({vec3(-5, 0, 1)}, 60.0f, 0.2f, 0.3f);
+            arch.enableSolidObstacleAvoidance(
+                {.obstacles = {wall}, .avoidanceDistance = 0.2f, .fruitAdjustment = true});
+            arch.enableAttractionPoints({.points = {vec3(-5, 0, 1)},
+                                         .halfAngle = 60.0f,
+                                         .lookAhead = 0.2f,
+                                         .inertia = 0.3f});
         }
         arch.buildPlantInstanceFromLibrary({0, 0, 0}, 50.0f);
         std::string out;
@@ -625,7 +630,7 @@ TEST(CollisionSpecies, AttractionPointsAreReadWrittenAndBuilt) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary(speciesFile("vine_hook", vine(true)));
-    arch.enableAttractionPoints({vec3(0, 0, 5)});
+    arch.enableAttractionPoints({.points = {vec3(0, 0, 5)}});
     const unsigned plant =
         arch.buildPlantInstanceFromLibrary({0, 0, 0}, 1.0f, {{"wire_length", 2}});
     EXPECT_EQ(arch.getAttractionPoints(plant).size(), 100u);
@@ -689,20 +694,27 @@ TEST(CollisionApi, OptionsAreValidated) {
     EXPECT_EQ(softError({80, 0.1f, 256, -0.1f}).parameter(), "inertia");
     EXPECT_EQ(softError({80, 0.1f, 256, 0.4f}, 0.0).parameter(), "update_interval");
     EXPECT_EQ(softError({80, 0.1f, 256, std::nanf("")}).parameter(), "inertia");
-    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({}, 0.2f); }).parameter(),
+    EXPECT_EQ(errorOf([&] {
+                  arch.enableSolidObstacleAvoidance({.obstacles = {}, .avoidanceDistance = 0.2f});
+              }).parameter(),
               "obstacle_IDs");
-    const Error missing = errorOf([&] { arch.enableSolidObstacleAvoidance({42}, 0.2f); });
+    const Error missing = errorOf(
+        [&] { arch.enableSolidObstacleAvoidance({.obstacles = {42}, .avoidanceDistance = 0.2f}); });
     EXPECT_EQ(missing.parameter(), "obstacle_IDs");
     EXPECT_EQ(missing.value(), "42");
     const ObjectID wall = addBox(ctx, {1, 0, 0}, {2, 1, 1});
-    EXPECT_EQ(errorOf([&] { arch.enableSolidObstacleAvoidance({wall}, -1.0f); }).parameter(),
-              "avoidance_distance");
-    EXPECT_EQ(errorOf([&] { arch.enableAttractionPoints({vec3(0, 0, NAN)}); }).parameter(),
-              "attraction_points[0]");
+    EXPECT_EQ(
+        errorOf([&] {
+            arch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = -1.0f});
+        }).parameter(),
+        "avoidance_distance");
+    EXPECT_EQ(
+        errorOf([&] { arch.enableAttractionPoints({.points = {vec3(0, 0, NAN)}}); }).parameter(),
+        "attraction_points[0]");
     EXPECT_EQ(errorOf([&] { arch.updateAttractionPoints({vec3(0)}); }).parameter(),
               "attraction_points");
     EXPECT_EQ(errorOf([&] {
-                  arch.setCollisionRelevantOrgans(true, true, false, false, false);
+                  arch.setCollisionRelevantOrgans({true, true, false, false, false});
               }).validRange(),
               "call enableSoftCollisionAvoidance first");
     // A failed call changes nothing: no collision work is done.
@@ -715,10 +727,11 @@ TEST(CollisionApi, AttractionPointsUpdateAppendDisable) {
     const unsigned a = arch.addPlantInstance({0, 0, 0}, 0);
     const unsigned b = arch.addPlantInstance({1, 0, 0}, 0);
     EXPECT_TRUE(arch.getAttractionPoints(a).empty());
-    arch.enableAttractionPoints({vec3(0, 0, 1)}, 60, 0.3f, 0.5f);
+    arch.enableAttractionPoints(
+        {.points = {vec3(0, 0, 1)}, .halfAngle = 60, .lookAhead = 0.3f, .inertia = 0.5f});
     arch.appendAttractionPoints({vec3(0, 0, 2)});
     EXPECT_EQ(arch.getAttractionPoints(a), (std::vector<vec3>{vec3(0, 0, 1), vec3(0, 0, 2)}));
-    arch.enableAttractionPoints(b, {vec3(1, 0, 1)});
+    arch.enableAttractionPoints(b, {.points = {vec3(1, 0, 1)}});
     arch.appendAttractionPoints(b, {vec3(1, 0, 3)});
     EXPECT_EQ(arch.getAttractionPoints(b), (std::vector<vec3>{vec3(1, 0, 1), vec3(1, 0, 3)}));
     arch.updateAttractionPoints(b, {vec3(1, 1, 1)});
@@ -749,7 +762,7 @@ TEST(Collision, CanopiesWithObstaclesAndOwnAttractionPointsAreDeterministic) {
         PlantArchitecture arch(&ctx);
         const ObjectID wall = addBox(ctx, {-2, 0.3f, 0}, {2, 0.32f, 2});
         arch.loadPlantModelFromLibrary(speciesFile("vine_rows", vine(true, 20)));
-        arch.enableSolidObstacleAvoidance({wall}, 0.15f);
+        arch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = 0.15f});
         const auto ids = arch.buildPlantCanopyFromLibrary({0, 0, 0}, {1.5f, 0.4f}, {2, 2}, 25.0f);
         omp_set_num_threads(before);
         EXPECT_EQ(ids.size(), 4u);
@@ -797,8 +810,11 @@ TEST(Collision, ObstaclesKeepPriorityOverAttraction) {
         PlantArchitecture arch(&ctx);
         arch.loadPlantModelFromLibrary("bean");
         if (wall)
-            arch.enableSolidObstacleAvoidance({addBox(ctx, {0.15f, -1, 0}, {0.17f, 1, 2})}, 0.2f);
-        arch.enableAttractionPoints(lure, 80, 0.3f, 0.2f);
+            arch.enableSolidObstacleAvoidance(
+                {.obstacles = {addBox(ctx, {0.15f, -1, 0}, {0.17f, 1, 2})},
+                 .avoidanceDistance = 0.2f});
+        arch.enableAttractionPoints(
+            {.points = lure, .halfAngle = 80, .lookAhead = 0.3f, .inertia = 0.2f});
         const unsigned p = arch.buildPlantInstanceFromLibrary({0, 0, 0}, 45.0f);
         reach[wall] = extreme(ctx, arch, p, 0, true);
         EXPECT_GT(arch.getCollisionStats().attracted, 10u);
@@ -831,7 +847,7 @@ TEST(Collision, AllOrganKindsAndSteeredSideOrgansAreDeterministic) {
         // More cones than internodes: petioles and peduncles look too.
         std::size_t internodes = 0;
         for (unsigned p : arch.getAllPlantIDs())
-            internodes += arch.getPlantInternodeObjectIDs(p).size();
+            internodes += arch.getPlantObjectIDs(p, OrganKind::Internode).size();
         EXPECT_GT(st.softCones, internodes);
         return fingerprint(ctx);
     };
@@ -856,7 +872,7 @@ struct WireScene {
         sp.phytomer_parameters.internode.pitch = 0.0f;
         arch.defineShootType("stem", sp);
         id = arch.addPlantInstance(base, 0.0f);
-        arch.addBaseStemShoot(id, 1, rotation, 0.002f, 0.02f, 1.0f, 1.0f, 0.0f, "stem");
+        arch.addBaseStemShoot(id, {1, rotation, {0.002f, 0.02f, 1.0f, 1.0f}, 0.0f, "stem"});
         if (points) {
             AttractionPoints a;
             for (int k = 0; k <= 40; ++k)

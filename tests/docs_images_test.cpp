@@ -99,7 +99,7 @@ TEST(DocsImages, GrowthTimeLapse) {
     arch.setDefaultPhenology(ph);
     arch.defineShootType("main", timelapseShoot());
     const unsigned p = arch.addPlantInstance(vec3(0.0f), 0.0f);
-    arch.addBaseStemShoot(p, 1, {}, 0.0015f, 0.035f, 0.05f, 0.05f, 0.0f, "main");
+    arch.addBaseStemShoot(p, {1, {}, {0.0015f, 0.035f, 0.05f, 0.05f}, 0.0f, "main"});
     RenderOptions o;
     o.width = writing() ? 480 : 96;
     o.height = writing() ? 600 : 120;
@@ -116,7 +116,7 @@ TEST(DocsImages, GrowthTimeLapse) {
         lastHeight = arch.getPlantHeight(p);
         frames.push_back(render(ctx, o));
     }
-    EXPECT_GT(arch.getPlantFruitObjectIDs(p).size(), 0u);
+    EXPECT_GT(arch.getPlantObjectIDs(p, OrganKind::Fruit).size(), 0u);
     const Image out = strip(frames);
     EXPECT_NE(frames[0].rgb, frames[3].rgb);
     if (writing()) writePNG(out, docsPath("growth-timelapse.png"));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "plantarch/Error.h"
@@ -11,8 +12,6 @@
 using namespace plantarch;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979;
 
 // Vertical, deterministic shoot: phyllochron 2 days, no branching, no flowers.
 ShootParameters growingShoot() {
@@ -42,10 +41,10 @@ struct Garden {
         ShootSpec spec;
         spec.phytomers = nodes;
         spec.baseRotation.pitch = pitch;
-        spec.internodeRadius = 0.002f;
-        spec.internodeLengthMax = 0.03f;
-        spec.internodeLengthScale = lengthScale;
-        spec.leafScale = lengthScale;
+        spec.size.internodeRadius = 0.002f;
+        spec.size.internodeLengthMax = 0.03f;
+        spec.size.internodeLengthScale = lengthScale;
+        spec.size.leafScale = lengthScale;
         spec.shootType = "main";
         arch.addBaseStemShoot(id, spec);
         return id;
@@ -73,6 +72,12 @@ std::vector<vec3> allPositions(const Context& ctx) {
         out.insert(out.end(), v.positions.begin(), v.positions.end());
     });
     return out;
+}
+
+// Objects of the plant's flowers, closed and open.
+std::size_t flowerObjectCount(const PlantArchitecture& arch, unsigned plantID) {
+    return arch.getPlantObjectIDs(plantID, OrganKind::FlowerClosed).size() +
+           arch.getPlantObjectIDs(plantID, OrganKind::FlowerOpen).size();
 }
 
 }  // namespace
@@ -175,11 +180,11 @@ TEST(Growth, GravitropismFollowsTheEquation) {
     // Zenith of the shoot axis: dz = -s (1 - cos z) L C with s = 1 below horizontal, else 0.5.
     double zenith = 90.0;
     for (std::size_t k = 1; k < sh.phytomers.size(); ++k) {
-        const double c = std::cos(zenith * kPi / 180.0);
+        const double c = std::cos(zenith * std::numbers::pi / 180.0);
         const double sfac = zenith > 90.0 ? 1.0 : 0.5;
         zenith -= sfac * (1.0 - c) * 0.03 * 300.0;
         const vec3 guide = sh.phytomers[k].internode.guide;
-        const double measured = std::acos(double(guide.z)) * 180.0 / kPi;
+        const double measured = std::acos(double(guide.z)) * 180.0 / std::numbers::pi;
         EXPECT_NEAR(measured, zenith, 1e-2) << "node " << k;
     }
     EXPECT_LT(zenith, 70.0);  // it did bend up
@@ -195,7 +200,7 @@ TEST(Growth, RandomWalkHasZeroMeanAndTheEquationsVariance) {
     std::vector<double> zen, yaw;
     for (int i = 0; i < plants; ++i) {
         const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
-        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+        g.arch.addBaseStemShoot(id, {1, {}, {0.002f, 0.03f, 1, 1}, 0, "main"});
     }
     g.arch.advanceTime(20.0f);
     for (unsigned id : g.arch.getAllPlantIDs()) {
@@ -232,7 +237,7 @@ TEST(Growth, GirthFollowsDownstreamLeafArea) {
         for (std::size_t j = k; j < sh.phytomers.size(); ++j)
             for (const Petiole& pt : sh.phytomers[j].petioles)
                 for (const LeafOrgan& l : pt.leaves) area += g.ctx.objectArea(l.objects[0]);
-        const double r = std::sqrt(50.0 * area * 1e-4 / kPi);
+        const double r = std::sqrt(50.0 * area * 1e-4 / std::numbers::pi);
         EXPECT_NEAR(sh.phytomers[k].internode.radius, std::max(r, 0.002), 1e-6) << "node " << k;
     }
     EXPECT_GT(sh.phytomers[0].internode.radius, sh.phytomers[5].internode.radius);
@@ -259,7 +264,7 @@ TEST(Growth, BudBreakFractionMatchesProbability) {
     const int n = 2000;
     for (int i = 0; i < n; ++i) {
         const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
-        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+        g.arch.addBaseStemShoot(id, {1, {}, {0.002f, 0.03f, 1, 1}, 0, "main"});
     }
     g.arch.advanceTime(2.9f);  // not yet: buds break after 3 days
     int broken = 0;
@@ -282,7 +287,7 @@ std::vector<int> basitonicBranchesPerNode(bool needsWinter) {
     const int n = 1500;
     for (int i = 0; i < n; ++i) {
         const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
-        g.arch.addBaseStemShoot(id, 6, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+        g.arch.addBaseStemShoot(id, {6, {}, {0.002f, 0.03f, 1, 1}, 0, "main"});
     }
     g.arch.advanceTime(0.0f);
     std::vector<int> perNode(6, 0);
@@ -325,7 +330,7 @@ TEST(Growth, BudBreakProbabilityWithoutWinterCountsFromTheTipWhenTheBudBreaks) {
     const int n = 1500;
     for (int i = 0; i < n; ++i) {
         const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
-        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+        g.arch.addBaseStemShoot(id, {1, {}, {0.002f, 0.03f, 1, 1}, 0, "main"});
     }
     g.arch.advanceTime(10.0f);
     std::vector<int> perNode(6, 0);
@@ -356,28 +361,29 @@ TEST(Growth, PhenologyStagesOnTheirDays) {
     ph.time_to_fruit_maturity = 10;
     g.arch.setDefaultPhenology(ph);
     const unsigned p = g.plant(s);
-    auto count = [&](std::vector<ObjectID> (PlantArchitecture::*f)(unsigned) const) {
-        return (g.arch.*f)(p).size();
-    };
+    auto count = [&](OrganKind kind) { return g.arch.getPlantObjectIDs(p, kind).size(); };
     g.arch.advanceTime(4.9f);
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 1u);
     g.arch.advanceTime(0.1f);  // day 5: dormancy breaks
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Vegetative);
     g.arch.advanceTime(19.9f);  // day 24.9
-    EXPECT_EQ(count(&PlantArchitecture::getPlantFlowerObjectIDs), 0u);
+    EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
     g.arch.advanceTime(0.1f);  // day 25: closed flowers
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Reproductive);
-    EXPECT_GT(count(&PlantArchitecture::getPlantFlowerObjectIDs), 0u);
-    for (ObjectID id : g.arch.getPlantFlowerObjectIDs(p))
+    EXPECT_GT(count(OrganKind::FlowerClosed), 0u);
+    EXPECT_EQ(count(OrganKind::FlowerOpen), 0u);
+    for (ObjectID id : g.arch.getPlantObjectIDs(p, OrganKind::FlowerClosed))
         EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_closed");
     g.arch.advanceTime(4.0f);  // day 29: open
-    for (ObjectID id : g.arch.getPlantFlowerObjectIDs(p))
+    EXPECT_EQ(count(OrganKind::FlowerClosed), 0u);
+    EXPECT_GT(count(OrganKind::FlowerOpen), 0u);
+    for (ObjectID id : g.arch.getPlantObjectIDs(p, OrganKind::FlowerOpen))
         EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_open");
     g.arch.advanceTime(5.9f);
-    EXPECT_EQ(count(&PlantArchitecture::getPlantFruitObjectIDs), 0u);
+    EXPECT_EQ(count(OrganKind::Fruit), 0u);
     g.arch.advanceTime(0.1f);  // day 35: fruit
-    EXPECT_GT(count(&PlantArchitecture::getPlantFruitObjectIDs), 0u);
+    EXPECT_GT(count(OrganKind::Fruit), 0u);
     // Fruit grow to full size over the maturity time.
     const FloralBud* bud = nullptr;
     for (const Phytomer& phy : g.state(p).shoots[0].phytomers)
@@ -434,7 +440,7 @@ TEST(Growth, TwoSeasonsOfAPerennial) {
     g.arch.advanceTime(1.0f);  // day 40: senescence, leaves fall
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
     EXPECT_EQ(g.arch.getPlantLeafCount(p), 0u);
-    EXPECT_TRUE(g.arch.getPlantLeafObjectIDs(p).empty());
+    EXPECT_TRUE(g.arch.getPlantObjectIDs(p, OrganKind::Leaf).empty());
     g.arch.advanceTime(9.0f);  // day 49: still winter
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 6u);
     g.arch.advanceTime(11.0f);  // day 60: season 2 began on day 50
@@ -547,13 +553,11 @@ TEST(Growth, StepSizeInvariance) {
             std::size_t shoots, leaves, flowers, fruit, objects, triangles;
             std::vector<vec3> positions;
         };
-        return Result{g->arch.getShootCount(p),
-                      g->arch.getPlantLeafCount(p),
-                      g->arch.getPlantFlowerObjectIDs(p).size(),
-                      g->arch.getPlantFruitObjectIDs(p).size(),
-                      g->ctx.objectCount(),
-                      g->ctx.triangleCount(),
-                      allPositions(g->ctx)};
+        return Result{
+            g->arch.getShootCount(p),      g->arch.getPlantLeafCount(p),
+            flowerObjectCount(g->arch, p), g->arch.getPlantObjectIDs(p, OrganKind::Fruit).size(),
+            g->ctx.objectCount(),          g->ctx.triangleCount(),
+            allPositions(g->ctx)};
     };
     const auto once = grow({60.0f});
     EXPECT_GT(once.shoots, 3u);
@@ -602,7 +606,7 @@ TEST(Growth, ProgressCallbackReportsEachPlant) {
     g.arch.defineShootType("main", growingShoot());
     for (int i = 0; i < 4; ++i) {
         const unsigned id = g.arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
-        g.arch.addBaseStemShoot(id, 1, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+        g.arch.addBaseStemShoot(id, {1, {}, {0.002f, 0.03f, 1, 1}, 0, "main"});
     }
     std::vector<double> fractions;
     g.arch.setProgressCallback([&](std::string_view stage, double f) {
@@ -628,9 +632,9 @@ TEST(Growth, WithNoFlowerStagesFruitFollowDormancyBreak) {
     g.arch.setDefaultPhenology(ph);
     const unsigned p = g.plant(s);
     g.arch.advanceTime(11.9);
-    EXPECT_TRUE(g.arch.getPlantFruitObjectIDs(p).empty());
-    EXPECT_TRUE(g.arch.getPlantFlowerObjectIDs(p).empty());
+    EXPECT_TRUE(g.arch.getPlantObjectIDs(p, OrganKind::Fruit).empty());
+    EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
     g.arch.advanceTime(0.1);  // day 12: fruit, never a flower
-    EXPECT_FALSE(g.arch.getPlantFruitObjectIDs(p).empty());
-    EXPECT_TRUE(g.arch.getPlantFlowerObjectIDs(p).empty());
+    EXPECT_FALSE(g.arch.getPlantObjectIDs(p, OrganKind::Fruit).empty());
+    EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
 }

@@ -36,7 +36,6 @@ namespace {
 
 using namespace plantarch;
 using glm::dvec2;
-constexpr double kPi = std::numbers::pi;
 
 // ---- geometry helpers ----------------------------------------------------------------------
 
@@ -111,7 +110,8 @@ double smallestAngleDegrees(const Mesh& m, std::size_t t) {
     for (int k = 0; k < 3; ++k) {
         const glm::dvec3 e = glm::normalize(p[(k + 1) % 3] - p[k]);
         const glm::dvec3 f = glm::normalize(p[(k + 2) % 3] - p[k]);
-        smallest = std::min(smallest, std::acos(std::clamp(glm::dot(e, f), -1.0, 1.0)) * 180 / kPi);
+        smallest = std::min(
+            smallest, std::acos(std::clamp(glm::dot(e, f), -1.0, 1.0)) * 180 / std::numbers::pi);
     }
     return smallest;
 }
@@ -427,8 +427,8 @@ TEST(LeafDeform, FoldRaisesTheMarginsAndKeepsTheMidrib) {
             EXPECT_GT(b.z, 0.0f);
         }
         // Each half turns rigidly about the midrib by 0.4 * 90 degrees.
-        EXPECT_NEAR(b.z, std::abs(f.y) * std::sin(0.2 * kPi), 1e-5);
-        EXPECT_NEAR(std::abs(b.y), std::abs(f.y) * std::cos(0.2 * kPi), 1e-5);
+        EXPECT_NEAR(b.z, std::abs(f.y) * std::sin(0.2 * std::numbers::pi), 1e-5);
+        EXPECT_NEAR(std::abs(b.y), std::abs(f.y) * std::cos(0.2 * std::numbers::pi), 1e-5);
         marginZ = std::max(marginZ, b.z);
     }
     EXPECT_GT(marginZ, 0.05f);
@@ -481,9 +481,10 @@ TEST(LeafDeform, BuckleBendsDownAtTheGivenFraction) {
             // Beyond the crease the midrib descends at the buckle angle.
             const float slope =
                 (midrib[i].second - midrib[i - 1].second) / (midrib[i].first - midrib[i - 1].first);
-            EXPECT_NEAR(slope, -std::sin(float(kPi) / 4.0f), 0.02f);
+            EXPECT_NEAR(slope, -std::sin(float(std::numbers::pi) / 4.0f), 0.02f);
         }
-    EXPECT_NEAR(midrib.back().second, -(1.0f - at) * std::sin(float(kPi) / 4.0f), 0.03f);
+    EXPECT_NEAR(midrib.back().second, -(1.0f - at) * std::sin(float(std::numbers::pi) / 4.0f),
+                0.03f);
 }
 
 TEST(LeafDeform, LateralCurvatureCupsTheBlade) {
@@ -539,7 +540,7 @@ TEST(LeafDeform, WavesAlternateAlongTheMarginWithTheGivenPeriod) {
     // The lower margin is in antiphase.
     for (std::size_t i = 0; i < flat.positions.size(); ++i) {
         const vec3 f = flat.positions[i];
-        const float phase = std::sin(float(kPi) * f.x / period);
+        const float phase = std::sin(float(std::numbers::pi) * f.x / period);
         if (std::abs(f.y) > 0.02f && std::abs(phase) > 0.3f) {
             EXPECT_GT(bent.positions[i].z * (f.y > 0 ? -1.0f : 1.0f) * phase, 0.0f);
         }
@@ -739,7 +740,7 @@ TEST_F(LeafImage, TracedEllipseHasTheEllipsesArea) {
     EXPECT_TRUE(isSimplePolygon(poly));
     EXPECT_GT(shoelace(poly), 0.0);
     // Prototype units: the opaque width (2a pixels) is the unit length.
-    const double expected = kPi * a * b / (2.0 * a * 2.0 * a);
+    const double expected = std::numbers::pi * a * b / (2.0 * a * 2.0 * a);
     EXPECT_NEAR(shoelace(poly), expected, 0.02 * expected);
     float lo = 1e9f, hi = -1e9f, top = -1e9f, bottom = 1e9f;
     for (vec2 p : poly) {
@@ -779,8 +780,8 @@ TEST_F(LeafImage, LeafBuiltFromAnImageFollowsItsAlpha) {
                      dy = ((1.0 - uv.y) * 300.0 - 150.0) / 90.0;
         EXPECT_LE(dx * dx + dy * dy, 1.03);
     }
-    EXPECT_NEAR(m.area(), kPi * 140.0 * 90.0 / (280.0 * 280.0),
-                0.03 * kPi * 140 * 90 / (280.0 * 280.0));
+    EXPECT_NEAR(m.area(), std::numbers::pi * 140.0 * 90.0 / (280.0 * 280.0),
+                0.03 * std::numbers::pi * 140 * 90 / (280.0 * 280.0));
 }
 
 TEST_F(LeafImage, ErrorsNameTheFile) {

@@ -57,7 +57,9 @@ TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
             EXPECT_GE(height, lastHeight - 0.05f * maxHeight);  // plants do not shrink much
             lastHeight = height;
             if (age >= model.recommendedAge) {
-                EXPECT_GT(arch.getPlantLeafCount(p) + arch.getPlantFruitObjectIDs(p).size(), 0u);
+                EXPECT_GT(
+                    arch.getPlantLeafCount(p) + arch.getPlantObjectIDs(p, OrganKind::Fruit).size(),
+                    0u);
             }
             // Every object is labelled as the plant's organ.
             for (ObjectID id : arch.getAllPlantObjectIDs(p))

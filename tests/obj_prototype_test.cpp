@@ -93,14 +93,14 @@ TEST(OBJPrototype, PlantsUseOBJFruitAndLeaves) {
     s.phytomer_parameters.leaf.prototype.OBJ_model_file = fruitOBJ("leafmodel", 1.0f, 0.0f);
     arch.defineShootType("main", s);
     const unsigned p = arch.addPlantInstance({0, 0, 0}, 0);
-    arch.addBaseStemShoot(p, 2, {}, 0.002f, 0.03f, 1, 1, 0, "main");
+    arch.addBaseStemShoot(p, {2, {}, {0.002f, 0.03f, 1, 1}, 0, "main"});
     arch.addFloralBud(p, 0, 1, FloralStage::Fruit);
-    const auto fruit = arch.getPlantFruitObjectIDs(p);
+    const auto fruit = arch.getPlantObjectIDs(p, OrganKind::Fruit);
     ASSERT_EQ(fruit.size(), 2u);  // body and stalk of one fruit
     AABB box;
     for (ObjectID id : fruit) box.add(ctx.objectBoundingBox(id));
     EXPECT_NEAR(std::max({box.extent().x, box.extent().y, box.extent().z}), 0.04f, 0.01f);
-    EXPECT_EQ(arch.getPlantLeafObjectIDs(p).size(), 4u);  // two leaves, two parts each
+    EXPECT_EQ(arch.getPlantObjectIDs(p, OrganKind::Leaf).size(), 4u);  // two leaves, two parts each
     // A missing model is caught when the shoot type is defined.
     ShootParameters bad = s;
     bad.phytomer_parameters.leaf.prototype.OBJ_model_file = "/nonexistent/leaf.obj";

@@ -309,7 +309,7 @@ struct LibraryPlant {
 TEST(OrganLibrary, PlantModelBuildsLibraryFruit) {
     LibraryPlant good({{"sepal_count", 0}, {"stem_length", 0}});
     EXPECT_EQ(good.arch.addFloralBud(good.plant, 0, 0, FloralStage::Fruit), 1u);
-    const std::vector<ObjectID> fruit = good.arch.getPlantFruitObjectIDs(good.plant);
+    const std::vector<ObjectID> fruit = good.arch.getPlantObjectIDs(good.plant, OrganKind::Fruit);
     ASSERT_FALSE(fruit.empty());
     AABB box;
     for (ObjectID id : fruit) box.add(good.ctx.objectBoundingBox(id));

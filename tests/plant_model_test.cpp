@@ -3,21 +3,17 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
+#include "core/math.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
-
-float degrees(float radians) {
-    return radians * 180.0f / kPi;
-}
 
 float angleBetween(vec3 a, vec3 b) {
     return degrees(
@@ -62,8 +58,8 @@ struct Fixture {
         plant = arch.addPlantInstance({0, 0, 0}, 10);
         ShootSpec spec;
         spec.phytomers = nodes;
-        spec.internodeRadius = 0.003f;
-        spec.internodeLengthMax = 0.04f;
+        spec.size.internodeRadius = 0.003f;
+        spec.size.internodeLengthMax = 0.04f;
         spec.shootType = "main";
         arch.addBaseStemShoot(plant, spec);
     }
@@ -188,8 +184,8 @@ TEST(PlantModel, InsertionAngleOfAChildShoot) {
         Fixture f(p, 3);
         ShootSpec child;
         child.phytomers = 2;
-        child.internodeRadius = 0.002f;
-        child.internodeLengthMax = 0.03f;
+        child.size.internodeRadius = 0.002f;
+        child.size.internodeLengthMax = 0.03f;
         child.shootType = "main";
         const unsigned c = f.arch.addChildShoot(f.plant, 0u, 2u, child);
         const vec3 start = f.arch.getNodePosition(f.plant, 0, 2);
@@ -208,8 +204,8 @@ TEST(PlantModel, InsertionAngleDecaysDownTheShootAndIsCappedAt90) {
     p.insertion_angle_decay_rate = 25.0f;
     Fixture f(p, 5);
     ShootSpec child;
-    child.internodeRadius = 0.002f;
-    child.internodeLengthMax = 0.03f;
+    child.size.internodeRadius = 0.002f;
+    child.size.internodeLengthMax = 0.03f;
     child.shootType = "main";
     // Node 4 is the tip (30), node 3 one below (55), node 0 four below (capped at 90).
     for (auto [node, expected] : {std::pair{4u, 30.0f}, {3u, 55.0f}, {0u, 90.0f}}) {
@@ -246,7 +242,7 @@ TEST(PlantModel, ScaleFractionsShrinkOrgans) {
     arch.defineShootType("main", p);
     const unsigned plant = arch.addPlantInstance({1, 2, 0}, 0);
     const unsigned s =
-        arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.05f, 0.5f, 0.25f, 0.0f, "main");
+        arch.addBaseStemShoot(plant, {2, {}, {0.002f, 0.05f, 0.5f, 0.25f}, 0.0f, "main"});
     EXPECT_NEAR(arch.getPlantStemHeight(plant), 2 * 0.025f, 1e-5f);
     const float fullArea = float(0.04 * 0.04) * 2;  // upper bound check below uses ratios
     (void)fullArea;
@@ -267,8 +263,8 @@ TEST(PlantModel, LeafAreaIsPrototypeAreaTimesScaleSquared) {
     PlantArchitecture arch(&ctx);
     arch.defineShootType("main", p);
     const unsigned plant = arch.addPlantInstance({0, 0, 0}, 0);
-    arch.addBaseStemShoot(plant, 1, {}, 0.002f, 0.04f, 1, 1, 0, "main");
-    const double oneLeaf = ctx.objectArea(arch.getPlantLeafObjectIDs(plant)[0]);
+    arch.addBaseStemShoot(plant, {1, {}, {0.002f, 0.04f, 1, 1}, 0, "main"});
+    const double oneLeaf = ctx.objectArea(arch.getPlantObjectIDs(plant, OrganKind::Leaf)[0]);
     const double prototypeArea = oneLeaf / (0.08 * 0.08);
     EXPECT_GT(prototypeArea, 0.1);  // a leaf of aspect 0.5 covers part of its 1 x 0.5 box
     EXPECT_LT(prototypeArea, 0.5);
@@ -340,8 +336,8 @@ TEST(PlantModel, ObjectIDsAreStableAcrossRegeneration) {
     EXPECT_EQ(f.arch.getAllPlantObjectIDs(f.plant), before);
     EXPECT_EQ(f.ctx.triangleCount(), triangles);
     // Adding a phytomer keeps every existing organ's object.
-    f.arch.appendPhytomerToShoot(f.plant, 0, f.arch.shootType("main").phytomer_parameters, 0.003f,
-                                 0.04f, 1.0f, 1.0f);
+    f.arch.appendPhytomerToShoot(f.plant, 0, f.arch.shootType("main").phytomer_parameters,
+                                 {0.003f, 0.04f, 1.0f, 1.0f});
     const auto after = f.arch.getAllPlantObjectIDs(f.plant);
     for (ObjectID id : before) EXPECT_TRUE(std::count(after.begin(), after.end(), id)) << id;
     EXPECT_GT(after.size(), before.size());
@@ -368,7 +364,32 @@ TEST(PlantModel, ObjectsCarrySegmentationLabels) {
     EXPECT_EQ(organs["leaf"], 2);
     EXPECT_EQ(organs["peduncle"], 1);
     EXPECT_GE(organs["flower_open"], 1);
-    EXPECT_EQ(f.arch.getPlantFlowerObjectIDs(f.plant).size(), size_t(organs["flower_open"]));
+    EXPECT_EQ(f.arch.getPlantObjectIDs(f.plant, OrganKind::FlowerOpen).size(),
+              size_t(organs["flower_open"]));
+}
+
+TEST(PlantModel, ObjectQueryByOrganKindPartitionsThePlantsObjects) {
+    Fixture f(straightShoot(), 4);
+    f.arch.addFloralBud(f.plant, 0, 0, FloralStage::Fruit);
+    f.arch.addFloralBud(f.plant, 0, 1, FloralStage::FlowerOpen);
+    f.arch.addFloralBud(f.plant, 0, 2, FloralStage::FlowerClosed);
+    const OrganKind kinds[] = {OrganKind::Internode, OrganKind::Petiole,      OrganKind::Leaf,
+                               OrganKind::Peduncle,  OrganKind::FlowerClosed, OrganKind::FlowerOpen,
+                               OrganKind::Fruit};
+    std::vector<ObjectID> all;
+    for (OrganKind kind : kinds) {
+        const std::vector<ObjectID> ids = f.arch.getPlantObjectIDs(f.plant, kind);
+        EXPECT_FALSE(ids.empty()) << organName(kind);
+        for (ObjectID id : ids) EXPECT_EQ(f.ctx.objectDataString(id, "organ"), organName(kind));
+        all.insert(all.end(), ids.begin(), ids.end());
+    }
+    EXPECT_EQ(f.arch.getPlantObjectIDs(f.plant, OrganKind::Internode).size(), 4u);
+    EXPECT_EQ(f.arch.getPlantObjectIDs(f.plant, OrganKind::Peduncle).size(), 3u);
+    std::sort(all.begin(), all.end());
+    EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());  // no object twice
+    EXPECT_EQ(all, f.arch.getAllPlantObjectIDs(f.plant));
+    EXPECT_EQ(all.size(), f.ctx.objectCount());
+    EXPECT_THROW(f.arch.getPlantObjectIDs(f.plant + 1, OrganKind::Leaf), Error);
 }
 
 TEST(PlantModel, FlowersTurnIntoFruitAndHarvestRemovesThem) {
@@ -378,19 +399,19 @@ TEST(PlantModel, FlowersTurnIntoFruitAndHarvestRemovesThem) {
     p.phytomer_parameters.inflorescence.fruit_prototype_scale = 0.03f;
     Fixture f(p, 2);
     EXPECT_EQ(f.arch.addFloralBud(f.plant, 0, 0, FloralStage::Fruit), 3u);
-    EXPECT_FALSE(f.arch.getPlantFruitObjectIDs(f.plant).empty());
-    for (ObjectID id : f.arch.getPlantFruitObjectIDs(f.plant))
+    EXPECT_FALSE(f.arch.getPlantObjectIDs(f.plant, OrganKind::Fruit).empty());
+    for (ObjectID id : f.arch.getPlantObjectIDs(f.plant, OrganKind::Fruit))
         EXPECT_EQ(f.ctx.objectDataString(id, "organ"), "fruit");
     EXPECT_EQ(f.arch.harvestPlant(f.plant), 3u);
-    EXPECT_TRUE(f.arch.getPlantFruitObjectIDs(f.plant).empty());
+    EXPECT_TRUE(f.arch.getPlantObjectIDs(f.plant, OrganKind::Fruit).empty());
 }
 
 TEST(PlantModel, PruneBranchRemovesNodesAndDescendants) {
     Fixture f(straightShoot(), 5);
     ShootSpec child;
     child.phytomers = 2;
-    child.internodeRadius = 0.002f;
-    child.internodeLengthMax = 0.03f;
+    child.size.internodeRadius = 0.002f;
+    child.size.internodeLengthMax = 0.03f;
     child.shootType = "main";
     const unsigned low = f.arch.addChildShoot(f.plant, 0u, 1u, child);
     const unsigned high = f.arch.addChildShoot(f.plant, 0u, 3u, child);
@@ -413,8 +434,8 @@ TEST(PlantModel, AppendShootContinuesFromTheTip) {
     Fixture f(straightShoot(), 2);
     ShootSpec spec;
     spec.phytomers = 2;
-    spec.internodeRadius = 0.002f;
-    spec.internodeLengthMax = 0.02f;
+    spec.size.internodeRadius = 0.002f;
+    spec.size.internodeLengthMax = 0.02f;
     spec.shootType = "main";
     const unsigned s = f.arch.appendShoot(f.plant, 0u, spec);
     EXPECT_EQ(f.arch.getShootRank(f.plant, s), 0u);
@@ -467,26 +488,26 @@ TEST(PlantModel, InvalidInputGivesClearErrors) {
     arch.defineShootType("main", straightShoot());
     const unsigned plant = arch.addPlantInstance({0, 0, 0}, 0);
     try {
-        arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.04f, 1, 1, 0, "mian");
+        arch.addBaseStemShoot(plant, {2, {}, {0.002f, 0.04f, 1, 1}, 0, "mian"});
         FAIL();
     } catch (const Error& e) {
         EXPECT_EQ(e.parameter(), "shoot_type_label");
         EXPECT_EQ(e.value(), "mian");
         EXPECT_EQ(e.validRange(), "one of: main");
     }
-    EXPECT_THROW(arch.addBaseStemShoot(plant, 2, {}, -0.002f, 0.04f, 1, 1, 0, "main"), Error);
-    EXPECT_THROW(arch.addBaseStemShoot(plant, 0, {}, 0.002f, 0.04f, 1, 1, 0, "main"), Error);
-    EXPECT_THROW(arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.04f, 1.5f, 1, 0, "main"), Error);
-    arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.04f, 1, 1, 0, "main");
-    EXPECT_THROW(arch.addBaseStemShoot(plant, 2, {}, 0.002f, 0.04f, 1, 1, 0, "main"), Error);
+    EXPECT_THROW(arch.addBaseStemShoot(plant, {2, {}, {-0.002f, 0.04f, 1, 1}, 0, "main"}), Error);
+    EXPECT_THROW(arch.addBaseStemShoot(plant, {0, {}, {0.002f, 0.04f, 1, 1}, 0, "main"}), Error);
+    EXPECT_THROW(arch.addBaseStemShoot(plant, {2, {}, {0.002f, 0.04f, 1.5f, 1}, 0, "main"}), Error);
+    arch.addBaseStemShoot(plant, {2, {}, {0.002f, 0.04f, 1, 1}, 0, "main"});
+    EXPECT_THROW(arch.addBaseStemShoot(plant, {2, {}, {0.002f, 0.04f, 1, 1}, 0, "main"}), Error);
     try {
-        arch.addChildShoot(plant, 0, 5, 1, {}, 0.002f, 0.02f, 1, 1, 0, "main");
+        arch.addChildShoot(plant, 0, 5, {1, {}, {0.002f, 0.02f, 1, 1}, 0, "main"});
         FAIL();
     } catch (const Error& e) {
         EXPECT_EQ(e.parameter(), "parent_node_index");
         EXPECT_EQ(e.validRange(), "0 to 1");
     }
-    EXPECT_THROW(arch.addChildShoot(plant, 7, 0, 1, {}, 0.002f, 0.02f, 1, 1, 0, "main"), Error);
+    EXPECT_THROW(arch.addChildShoot(plant, 7, 0, {1, {}, {0.002f, 0.02f, 1, 1}, 0, "main"}), Error);
     EXPECT_THROW(arch.addPlantInstance({0, 0, 0}, -1.0f), Error);
     EXPECT_THROW(arch.getPlantHeight(99), Error);
     EXPECT_THROW(arch.pruneBranch(plant, 0, 9), Error);
@@ -503,7 +524,7 @@ TEST(PlantModel, SameSeedSameGeometry) {
         arch.setSeed(seed);
         arch.defineShootType("main", p);
         const unsigned plant = arch.addPlantInstance({0, 0, 0}, 0);
-        arch.addBaseStemShoot(plant, 6, {}, 0.002f, 0.04f, 1, 1, 0, "main");
+        arch.addBaseStemShoot(plant, {6, {}, {0.002f, 0.04f, 1, 1}, 0, "main"});
         std::vector<vec3> all;
         ctx.forEachObject([&](const ObjectView& v) {
             all.insert(all.end(), v.positions.begin(), v.positions.end());

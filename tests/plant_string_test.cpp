@@ -73,7 +73,7 @@ TEST(PlantString, HandBuiltPlantGivesTheDocumentedString) {
     sp.phytomer_parameters.internode.max_floral_buds_per_petiole = 0;
     arch.defineShootType("stem", sp);
     const unsigned p = arch.addPlantInstance(vec3(0.5f, 0, 0), 10.0f);
-    arch.addBaseStemShoot(p, 2, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "stem");
+    arch.addBaseStemShoot(p, {2, {}, {0.002f, 0.03f, 1.0f, 1.0f}, 0.0f, "stem"});
     EXPECT_EQ(arch.getPlantString(p),
               "@(0.5,0,0,10)Sstem(1,0,0){"
               "I(0.03,0.002,0,0,0,0,1)[P(0.04,0.001,45,0,0)L0(0.06,10,0,0,1,0)]"
@@ -169,7 +169,7 @@ TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {
         "@(0,0,0,5)Sother(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)]}",
         o);
     EXPECT_EQ(warning, "plant string: shoot type other: plantarch's default parameters");
-    EXPECT_EQ(arch.getPlantLeafObjectIDs(p).size(), 1u);
+    EXPECT_EQ(arch.getPlantObjectIDs(p, OrganKind::Leaf).size(), 1u);
 }
 
 // Fuzz finding: a phytomer built by another shoot type than its shoot's (possible in a file)
@@ -184,7 +184,7 @@ TEST(PlantString, PhytomerOfAnotherShootTypeKeepsItsType) {
     arch.defineShootType("plain", plain);
     arch.defineShootType("varied", varied);
     const unsigned p = arch.addPlantInstance(vec3(0.0f), 1.0f);
-    arch.addBaseStemShoot(p, 2, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "plain");
+    arch.addBaseStemShoot(p, {2, {}, {0.002f, 0.03f, 1.0f, 1.0f}, 0.0f, "plain"});
     std::string xml = arch.getPlantStructureXML({p});
     const std::string from = "<parameters_label>plain</parameters_label>";
     xml.replace(xml.rfind(from), from.size(), "<parameters_label>varied</parameters_label>");

@@ -236,8 +236,8 @@ TEST(PlantStructureXML, HandBuiltPlantWithItsOwnShootTypeNeedsNothingPreloaded) 
     sp.max_nodes = 12;
     a.defineShootType("mine", sp);
     const unsigned p = a.addPlantInstance(vec3(1, 2, 0), 3.0f);
-    a.addBaseStemShoot(p, 4, {5, 10, 0}, 0.002f, 0.1f, 1.0f, 1.0f, 0.2f, "mine");
-    a.addChildShoot(p, 0, 2, ShootSpec{2, {}, 0.001f, 0.05f, 1.0f, 1.0f, 0.0f, "mine"});
+    a.addBaseStemShoot(p, {4, {5, 10, 0}, {0.002f, 0.1f, 1.0f, 1.0f}, 0.2f, "mine"});
+    a.addChildShoot(p, 0, 2, ShootSpec{2, {}, {0.001f, 0.05f, 1.0f, 1.0f}, 0.0f, "mine"});
     a.advanceTime(12.0);
     const std::string text = a.getPlantStructureXML({p});
     // Numbers in their shortest round-trip form.
@@ -280,7 +280,7 @@ TEST(PlantStructureXML, PrunedAndHarvestedPlantsRoundTrip) {
         if (!a.plant(p).shoots[s].removed) {
             EXPECT_EQ(b.getShootChildren(q, s), a.getShootChildren(p, s));
         }
-    EXPECT_EQ(b.getPlantFruitObjectIDs(q).size(), 0u);
+    EXPECT_EQ(b.getPlantObjectIDs(q, OrganKind::Fruit).size(), 0u);
     EXPECT_GE(harvested, 0u);
     EXPECT_EQ(firstDifference(organBytes(b, {q}), organBytes(a, {p})), "");
     a.advanceTime(15.0);
@@ -322,9 +322,9 @@ TEST(PlantStructureXML, SpecificationListingLoadsWithDefaultsAndAWarning) {
     EXPECT_EQ(ph.petioles[0].leaves.at(0).scale, 0.0084f);
     EXPECT_EQ(ph.petioles[0].leaves[0].roll, -15.0f);
     // Drawn: one internode, one petiole, one leaf; the stem tilts by the base pitch.
-    EXPECT_EQ(arch.getPlantInternodeObjectIDs(id).size(), 1u);
-    EXPECT_EQ(arch.getPlantPetioleObjectIDs(id).size(), 1u);
-    EXPECT_EQ(arch.getPlantLeafObjectIDs(id).size(), 1u);
+    EXPECT_EQ(arch.getPlantObjectIDs(id, OrganKind::Internode).size(), 1u);
+    EXPECT_EQ(arch.getPlantObjectIDs(id, OrganKind::Petiole).size(), 1u);
+    EXPECT_EQ(arch.getPlantObjectIDs(id, OrganKind::Leaf).size(), 1u);
     const vec3 tip = arch.getNodePosition(id, 0, 0);
     EXPECT_NEAR(glm::length(tip), 0.0063f, 1e-6f);
     EXPECT_NEAR(std::acos(tip.z / glm::length(tip)) * 180.0 / 3.14159265, 7.79857, 1e-3);
@@ -350,7 +350,7 @@ TEST(PlantStructureXML, ListingWithoutASpeciesUsesDefaultParameters) {
     EXPECT_NE(warning.find("shoot type unifoliate: plantarch's default parameters"),
               std::string::npos)
         << warning;
-    EXPECT_EQ(arch.getPlantLeafObjectIDs(ids[0]).size(), 1u);
+    EXPECT_EQ(arch.getPlantObjectIDs(ids[0], OrganKind::Leaf).size(), 1u);
 }
 
 namespace {
@@ -553,7 +553,7 @@ TEST(PlantStructureXML, ChildTypeDefinedAfterThePlantIsWritten) {
     main.max_nodes = 6;
     a.defineShootType("main", main);
     const unsigned p = a.addPlantInstance(vec3(0.0f), 0.0f);
-    a.addBaseStemShoot(p, 1, {}, 0.002f, 0.03f, 1.0f, 1.0f, 0.0f, "main");
+    a.addBaseStemShoot(p, {1, {}, {0.002f, 0.03f, 1.0f, 1.0f}, 0.0f, "main"});
     ShootParameters side;
     side.max_nodes = 3;
     a.defineShootType("side", side);

@@ -10,11 +10,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
+#include "core/math.h"
 #include "plantarch/Context.h"
 
 namespace plantarch::test {
-
-inline constexpr float kPi = 3.14159265358979f;
 
 /// Axis-aligned box (12 triangles, 8 shared corners).
 inline Mesh boxMesh(vec3 lo, vec3 hi) {

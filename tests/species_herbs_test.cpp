@@ -84,7 +84,7 @@ TEST(SpeciesHerbsTomato, NoFlowersLowOnTheStemNorOnHighOrderShoots) {
             }
         }
         EXPECT_TRUE(rank2) << "the 80-day tomato should have shoots of rank 2";
-        EXPECT_GT(g->arch.getPlantFruitObjectIDs(g->id).size(), 0u);
+        EXPECT_GT(g->arch.getPlantObjectIDs(g->id, OrganKind::Fruit).size(), 0u);
     }
 }
 
@@ -144,8 +144,8 @@ TEST(SpeciesHerbsCherryTomato, LeavesBelowOneMetreAreStrippedFromDay101) {
     EXPECT_GT(kept, 3u);
     // Stripped leaves and petioles are not drawn.
     const std::size_t leaves = g->arch.getPlantLeafCount(g->id);
-    EXPECT_EQ(g->arch.getPlantLeafObjectIDs(g->id).size(), leaves);
-    for (ObjectID o : g->arch.getPlantPetioleObjectIDs(g->id)) {
+    EXPECT_EQ(g->arch.getPlantObjectIDs(g->id, OrganKind::Leaf).size(), leaves);
+    for (ObjectID o : g->arch.getPlantObjectIDs(g->id, OrganKind::Petiole)) {
         const Shoot& s = g->shoot(unsigned(g->data(o, "shootID")));
         EXPECT_GT(s.phytomers.at(std::size_t(g->data(o, "node"))).petioles[0].length, 0.0f);
     }
@@ -242,7 +242,8 @@ TEST(SpeciesHerbsMaize, EarsAtNodesNineToElevenAndATasselAtTheTip) {
         EXPECT_FLOAT_EQ(tassel.flowers.at(0).fruitScale, 0.25f);
         // Drawn: fruit only at nodes 9, 10, 11 (ears) and 16 (the tassel).
         std::set<int> nodes;
-        for (ObjectID o : g->arch.getPlantFruitObjectIDs(g->id)) nodes.insert(g->data(o, "node"));
+        for (ObjectID o : g->arch.getPlantObjectIDs(g->id, OrganKind::Fruit))
+            nodes.insert(g->data(o, "node"));
         EXPECT_EQ(nodes, (std::set<int>{9, 10, 11, 16}));
     }
 }
@@ -282,7 +283,7 @@ TEST(SpeciesHerbsSorghum, FlagLeafStandsMoreUpright) {
             const float s = std::min(1.0f, 0.7f + 0.3f * float(k) / 5.0f);
             EXPECT_NEAR(tipLeaf(main.phytomers[k]).scale, 0.6f * s, kTol);
         }
-        EXPECT_EQ(g->arch.getPlantFruitObjectIDs(g->id).empty(), false);  // the head
+        EXPECT_EQ(g->arch.getPlantObjectIDs(g->id, OrganKind::Fruit).empty(), false);  // the head
     }
 }
 
@@ -323,7 +324,7 @@ TEST(SpeciesHerbsAsparagus, FirstThreeNodesMakeNoBranchAndSmallCladodes) {
 
 TEST(SpeciesHerbsAsparagus, CladodesAreSlenderSpines) {
     const auto g = grow("asparagus", 20);
-    const std::vector<ObjectID> leaves = g->arch.getPlantLeafObjectIDs(g->id);
+    const std::vector<ObjectID> leaves = g->arch.getPlantObjectIDs(g->id, OrganKind::Leaf);
     ASSERT_EQ(leaves.size(), g->arch.getPlantLeafCount(g->id));
     for (ObjectID o : leaves) {
         const ObjectView v = g->ctx.object(o);
@@ -407,7 +408,7 @@ struct Bed {
         ph.time_to_flower_opening = 2.0f;  // open flowers 2 days after dormancy break
         arch.setDefaultPhenology(ph);
         const unsigned id = arch.addPlantInstance(vec3(0.0f), 0.0f);
-        arch.addBaseStemShoot(id, 1, AxisRotation{}, 0.002f, 0.03f, 0.01f, 0.01f, 0.0f, "main");
+        arch.addBaseStemShoot(id, {1, AxisRotation{}, {0.002f, 0.03f, 0.01f, 0.01f}, 0.0f, "main"});
         return id;
     }
 };
@@ -445,7 +446,7 @@ TEST(SpeciesHerbsModel, ForcedFloralBudsFlowerDrawnFromTheirOwnType) {
         }
     }
     // The one flower drawn is the big type's: 5 cm.
-    const std::vector<ObjectID> flowers = b.arch.getPlantFlowerObjectIDs(id);
+    const std::vector<ObjectID> flowers = b.arch.getPlantObjectIDs(id, OrganKind::FlowerOpen);
     ASSERT_FALSE(flowers.empty());
     AABB box;
     for (ObjectID o : flowers) {

@@ -114,7 +114,7 @@ TEST(SpeciesOrchard, OliveFruitGrowsNearTheShootTips) {
             }
     }
     EXPECT_GT(fruitingNodes, 5u);
-    EXPECT_GT(g.arch->getPlantFruitObjectIDs(g.id).size(), 20u);
+    EXPECT_GT(g.arch->getPlantObjectIDs(g.id, OrganKind::Fruit).size(), 20u);
 }
 
 TEST(SpeciesOrchard, OliveIsBuiltAsAHeadedTrunkWithFourScaffolds) {
@@ -509,7 +509,7 @@ TEST(SpeciesOrchard, GrapevineBunchesAtTheShootBaseAndBlindLaterals) {
         EXPECT_GT(rankOne, 10u);
         EXPECT_GT(laterals, 0u);
         EXPECT_GT(bunchNodes, 0u);
-        EXPECT_GT(g.arch->getPlantFruitObjectIDs(g.id).size(), 0u);
+        EXPECT_GT(g.arch->getPlantObjectIDs(g.id, OrganKind::Fruit).size(), 0u);
     }
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/math.h"
 #include "error_of.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -58,7 +59,11 @@ int nodesBornIn(const Shoot& s, double begin, double end) {
     return n;
 }
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
+// Objects of the plant's flowers, closed and open.
+std::size_t flowerObjectCount(const PlantArchitecture& arch, unsigned plantID) {
+    return arch.getPlantObjectIDs(plantID, OrganKind::FlowerClosed).size() +
+           arch.getPlantObjectIDs(plantID, OrganKind::FlowerOpen).size();
+}
 
 }  // namespace
 
@@ -71,10 +76,10 @@ TEST(SpeciesTreesAlmond, ASpurGrowsSevenNodesASeasonALongShootTwenty) {
     const unsigned scaffold = shootsOfType(t.plant(), "scaffold").at(0)->id;
     ShootSpec spec;
     spec.shootType = "proleptic";
-    spec.internodeRadius = 0.002f;
-    spec.internodeLengthMax = 0.005f;
+    spec.size.internodeRadius = 0.002f;
+    spec.size.internodeLengthMax = 0.005f;
     const unsigned spur = t.arch->addChildShoot(t.id, scaffold, 1, spec);
-    spec.internodeLengthMax = 0.02f;
+    spec.size.internodeLengthMax = 0.02f;
     const unsigned shoot = t.arch->addChildShoot(t.id, scaffold, 3, spec);
     EXPECT_EQ(t.plant().shoots[spur].maxNodesPerSeason, 7);
     EXPECT_EQ(t.plant().shoots[shoot].maxNodesPerSeason, 20);  // the type's value
@@ -129,8 +134,8 @@ TEST(SpeciesTreesAlmond, RepresentativeAgeIsMidSecondSeasonWithFruit) {
     Tree t = grow("almond", 630.0f);
     EXPECT_EQ(t.arch->getPhenologyStage(t.id), PhenologyStage::Reproductive);
     EXPECT_EQ(t.plant().season, 2);
-    EXPECT_TRUE(t.arch->getPlantFlowerObjectIDs(t.id).empty());
-    EXPECT_FALSE(t.arch->getPlantFruitObjectIDs(t.id).empty());
+    EXPECT_EQ(flowerObjectCount(*t.arch, t.id), 0u);
+    EXPECT_FALSE(t.arch->getPlantObjectIDs(t.id, OrganKind::Fruit).empty());
     const unsigned leaves = t.arch->getPlantLeafCount(t.id);
     // ref: 462 leaves, 28 shoots at this age; the same order here.
     EXPECT_GT(leaves, 230u);
@@ -313,14 +318,14 @@ TEST(SpeciesTreesWalnut, PhenologyAtTheRepresentativeAge) {
     Tree t = grow("walnut", 630.0f);
     EXPECT_EQ(t.arch->getPhenologyStage(t.id), PhenologyStage::Reproductive);
     EXPECT_EQ(t.plant().season, 2);
-    EXPECT_TRUE(t.arch->getPlantFlowerObjectIDs(t.id).empty());
-    EXPECT_FALSE(t.arch->getPlantFruitObjectIDs(t.id).empty());
+    EXPECT_EQ(flowerObjectCount(*t.arch, t.id), 0u);
+    EXPECT_FALSE(t.arch->getPlantObjectIDs(t.id, OrganKind::Fruit).empty());
     Tree spring = grow("walnut", 535.0f);
-    EXPECT_FALSE(spring.arch->getPlantFlowerObjectIDs(spring.id).empty());
+    EXPECT_GT(flowerObjectCount(*spring.arch, spring.id), 0u);
     Tree winter = grow("walnut", 400.0f);
     EXPECT_EQ(winter.arch->getPhenologyStage(winter.id), PhenologyStage::Dormant);
     EXPECT_EQ(winter.arch->getPlantLeafCount(winter.id), 0u);
-    EXPECT_TRUE(winter.arch->getPlantPetioleObjectIDs(winter.id).empty());
+    EXPECT_TRUE(winter.arch->getPlantObjectIDs(winter.id, OrganKind::Petiole).empty());
     // In leaf, exactly the petioles that still hold leaflets are drawn.
     std::size_t leafy = 0;
     for (const Shoot& s : t.plant().shoots)
@@ -332,7 +337,7 @@ TEST(SpeciesTreesWalnut, PhenologyAtTheRepresentativeAge) {
                         break;
                     }
     EXPECT_GT(leafy, 0u);
-    EXPECT_EQ(t.arch->getPlantPetioleObjectIDs(t.id).size(), leafy);
+    EXPECT_EQ(t.arch->getPlantObjectIDs(t.id, OrganKind::Petiole).size(), leafy);
 }
 
 TEST(SpeciesTreesWalnut, BuildParameters) {

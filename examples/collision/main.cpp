@@ -25,7 +25,7 @@ int main() {
     PlantArchitecture plantarch(&context);
     const ObjectID wall = addBox(context, {0.12f, -1, 0}, {0.15f, 1, 1.5f});
     plantarch.loadPlantModelFromLibrary("bean");
-    plantarch.enableSolidObstacleAvoidance({wall}, /*avoidance_distance*/ 0.2f);
+    plantarch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = 0.2f});
     const unsigned bean = plantarch.buildPlantInstanceFromLibrary(vec3(0, 0, 0), 50);
     float maxX = -1;
     for (ObjectID o : plantarch.getAllPlantObjectIDs(bean))
@@ -37,8 +37,8 @@ int main() {
     Context field;
     PlantArchitecture canopy(&field);
     canopy.loadPlantModelFromLibrary("bean");
-    canopy.enableSoftCollisionAvoidance(/*half-angle*/ 80, /*look-ahead*/ 0.1f, /*rays*/ 256,
-                                        /*inertia*/ 0.4f);
+    canopy.enableSoftCollisionAvoidance(
+        {.cone = {.halfAngle = 80, .lookAhead = 0.1f, .rays = 256, .inertia = 0.4f}});
     canopy.buildPlantCanopyFromLibrary(vec3(0), vec2(0.2f, 0.2f), glm::ivec2(3, 3), 30);
     const CollisionStats stats = canopy.getCollisionStats();
     std::printf("canopy: %llu of %llu new internodes turned toward open space\n",
@@ -58,15 +58,23 @@ int main() {
     cane.phytomer_parameters.leaf.prototype_scale = 0.06f;
     vine.defineShootType("cane", cane);
     const unsigned plant = vine.addPlantInstance(vec3(0), 0);
-    const unsigned trunk =
-        vine.addBaseStemShoot(plant, 10, AxisRotation{}, 0.005f, 0.05f, 1, 1, 0, "cane");
+    const unsigned trunk = vine.addBaseStemShoot(
+        plant, {.phytomers = 10,
+                .size = {.internodeRadius = 0.005f, .internodeLengthMax = 0.05f},
+                .shootType = "cane"});
     vine.removeShootApex(plant, trunk);
-    const unsigned arm = vine.appendShoot(plant, trunk, 1, AxisRotation{90, 0, 0}, 0.003f, 0.04f,
-                                          0.1f, 0.1f, 0, "cane");
+    const unsigned arm = vine.appendShoot(plant, trunk,
+                                          {.phytomers = 1,
+                                           .baseRotation = {.pitch = 90},
+                                           .size = {.internodeRadius = 0.003f,
+                                                    .internodeLengthMax = 0.04f,
+                                                    .internodeLengthScale = 0.1f,
+                                                    .leafScale = 0.1f},
+                                           .shootType = "cane"});
     std::vector<vec3> wire;
     for (int i = 0; i <= 60; ++i) wire.push_back(vec3(0.02f * float(i), 0, 0.5f));
-    vine.enableAttractionPoints(plant, wire, /*half-angle*/ 70, /*look-ahead*/ 0.25f,
-                                /*inertia*/ 0.3f);
+    vine.enableAttractionPoints(
+        plant, {.points = wire, .halfAngle = 70, .lookAhead = 0.25f, .inertia = 0.3f});
     vine.advanceTime(plant, 25);
     const vec3 tip = vine.getNodePosition(plant, arm, vine.getShootNodeCount(plant, arm) - 1);
     std::printf("cane tip at (%.2f, %.2f, %.2f) m; the wire runs along y = 0, z = 0.5\n", tip.x,

@@ -26,13 +26,13 @@ struct PerceptionCone {
     float inertia = 0.4f;     ///< 0 turns fully to the target, 1 leaves growth unchanged
 };
 
-/// Which plant organs are obstacles in the collision scene.
+/// Which plant organs are obstacles in the collision scene (each kind added costs rays).
 struct CollisionOrgans {
-    bool internodes = false;
-    bool leaves = true;
-    bool petioles = false;
-    bool flowers = false;
-    bool fruit = false;
+    bool internodes = false;  ///< stem tubes
+    bool leaves = true;       ///< leaf blades (as light proxies)
+    bool petioles = false;    ///< petiole and peduncle tubes
+    bool flowers = false;     ///< closed and open flowers
+    bool fruit = false;       ///< fruit
 };
 
 /// Soft collision avoidance: growth tends toward open space. It does not strictly prevent

@@ -74,35 +74,74 @@ struct PhytomerCallbackContext {
 };
 using PhytomerCallbackFunction = std::function<void(PhytomerCallbackContext&)>;
 
-/// Where and how a new shoot starts (the options of addBaseStemShoot and friends).
-struct ShootSpec {
-    unsigned phytomers = 1;             ///< number of phytomers to create now
-    AxisRotation baseRotation;          ///< degrees
-    float internodeRadius = 0.001f;     ///< m
-    float internodeLengthMax = 0.02f;   ///< full internode length, m
+/// Size of the phytomers a manual-building call makes. Errors name the specification's
+/// argument names, given in brackets.
+struct PhytomerSize {
+    float internodeRadius = 0.001f;     ///< m, (0, 10] (internode_radius)
+    float internodeLengthMax = 0.02f;   ///< full-grown internode length, m, [0, 100]
+                                        ///< (internode_length_max)
     float internodeLengthScale = 1.0f;  ///< current / full internode length, (0, 1]
+                                        ///< (internode_length_scale_factor_fraction)
     float leafScale = 1.0f;             ///< current / full petiole and leaf size, (0, 1]
-    float radiusTaper = 0.0f;           ///< tip radius reduction along the shoot, [0, 1]
-    std::string shootType;              ///< label given to defineShootType
+                                        ///< (leaf_scale_factor_fraction)
+};
+
+/// Where and how a new shoot starts: the options of addBaseStemShoot, appendShoot and
+/// addChildShoot. Errors name the specification's argument names, given in brackets.
+struct ShootSpec {
+    unsigned phytomers = 1;     ///< phytomers to create now, 1 to 100000 (current_node_number)
+    AxisRotation baseRotation;  ///< degrees (base_rotation)
+    PhytomerSize size;          ///< size of the phytomers created
+    float radiusTaper = 0.0f;   ///< tip radius reduction along the shoot, [0, 1] (radius_taper)
+    std::string shootType;      ///< label given to defineShootType (shoot_type_label)
+};
+
+/// How buildPlantCanopyFromLibrary places plants: on a grid (the specification's form) or
+/// scattered at random over a rectangle. Errors name the specification's argument names,
+/// given in brackets.
+struct CanopyOptions {
+    enum class Layout {
+        Grid,     ///< `count` plants along x and y, `spacing` apart
+        Scatter,  ///< `plants` positions drawn uniformly over `extent`
+    };
+    Layout layout = Layout::Grid;
+    vec3 center{0.0f};  ///< centre of the canopy, m (canopy_center)
+    /// Grid: distance between neighbours along x and y, m, > 0 (plant_spacing).
+    vec2 spacing{0.3f};
+    /// Grid: plants along x and y, each >= 1, at most 10^6 in all (plant_count).
+    glm::ivec2 count{1};
+    /// Scatter: size of the rectangle along x and y, m, >= 0 (canopy_extent).
+    vec2 extent{1.0f};
+    unsigned plants = 1;  ///< Scatter: positions drawn, 1 to 10^6 (plant_count)
+    /// Probability that a position gets a plant, [0, 1] (germination_rate).
+    float germinationRate = 1.0f;
+    /// Build parameters overriding the species' defaults, checked against their ranges
+    /// (build_parameters).
+    std::map<std::string, float> buildParameters;
 };
 
 class PlantArchitecture {
 public:
+    /// Plants are built into `context` (not owned; it must outlive this object).
     explicit PlantArchitecture(Context* context);
     ~PlantArchitecture();
     PlantArchitecture(const PlantArchitecture&) = delete;
     PlantArchitecture& operator=(const PlantArchitecture&) = delete;
 
+    /// The Context the plants' geometry lives in.
     Context& context() { return *context_; }
 
-    /// Seed of the scene: plant i draws from Rng::forPlant(seed, i).
+    /// Seed of the scene (42 by default): plant i draws from Rng::forPlant(seed, i). It
+    /// applies to plants added afterwards.
     void setSeed(std::uint64_t seed);
     std::uint64_t seed() const { return seed_; }
 
     // ---- shoot types ---------------------------------------------------------------
     /// Defines (or replaces) a shoot type for plants added from now on. Validated.
     void defineShootType(const std::string& label, const ShootParameters& params);
+    /// A defined shoot type (an unknown label is an Error).
     const ShootParameters& shootType(const std::string& label) const;
+    /// The labels of the defined shoot types, sorted.
     std::vector<std::string> listShootTypeLabels() const;
     /// The shoot types of one plant (its own copy).
     std::vector<std::string> listShootTypeLabels(unsigned plantID) const;
@@ -123,70 +162,55 @@ public:
     unsigned buildPlantInstanceFromLibrary(
         const vec3& base_position, float age,
         const std::map<std::string, float>& build_parameters = {});
-    /// A canopy of the loaded species on a grid of `plant_count` (x, y) plants `plant_spacing`
-    /// apart (m), centred on `canopy_center`. Each position germinates with probability
-    /// `germination_rate`. Plants are grown in parallel (OpenMP), each from its own random
-    /// stream, and added to the Context in a fixed order: the same seed gives the same bytes
-    /// for any thread count. Returns the IDs of the plants made.
+    /// A canopy of the loaded species grown to `age` days, laid out as `options` say. Each
+    /// position gets a plant with probability options.germinationRate (one draw per
+    /// position from the scene's stream). Plants are grown in parallel (OpenMP), each from
+    /// its own random stream, and added to the Context in a fixed order: the same seed gives
+    /// the same bytes for any thread count. Returns the IDs of the plants made.
+    std::vector<unsigned> buildPlantCanopyFromLibrary(const CanopyOptions& options, float age);
+    /// The specification's form: a grid of `plant_count` (x, y) plants `plant_spacing` apart
+    /// (m), centred on `canopy_center` (CanopyOptions::Layout::Grid).
     std::vector<unsigned> buildPlantCanopyFromLibrary(
         const vec3& canopy_center, const vec2& plant_spacing, const glm::ivec2& plant_count,
         float age, float germination_rate = 1.0f,
         const std::map<std::string, float>& build_parameters = {});
-    /// A canopy of `plant_count` plants scattered uniformly at random over a rectangle of
-    /// `canopy_extent` (x, y) metres centred on `canopy_center`.
-    std::vector<unsigned> buildPlantCanopyFromLibrary(
-        const vec3& canopy_center, const vec2& canopy_extent, unsigned plant_count, float age,
-        float germination_rate = 1.0f, const std::map<std::string, float>& build_parameters = {});
 
-    /// Current parameters of one shoot type, or of all of them.
+    /// Current parameters of one shoot type.
     ShootParameters getCurrentShootParameters(const std::string& shoot_type_label) const;
+    /// Current parameters of every shoot type, by label.
     std::map<std::string, ShootParameters> getCurrentShootParameters() const;
     /// Replaces a shoot type's parameters (every field; validated). Plants built afterwards
     /// use them; existing plants keep their own copy.
     void updateCurrentShootParameters(const std::string& shoot_type_label,
                                       const ShootParameters& params);
+    /// The same for several shoot types at once (all validated before any is replaced).
     void updateCurrentShootParameters(const std::map<std::string, ShootParameters>& params);
 
     // ---- manual building -----------------------------------------------------------
     /// A new plant with no shoots, its base at `base_position`, `current_age` days old.
     unsigned addPlantInstance(const vec3& base_position, float current_age);
+    /// Removes a plant and its objects from the Context.
     void deletePlantInstance(unsigned plantID);
 
-    /// The base stem of a plant. Returns the shoot ID (0).
+    /// The base stem of a plant (which must have no shoots yet). Returns its shoot ID (0).
     unsigned addBaseStemShoot(unsigned plantID, const ShootSpec& spec);
-    unsigned addBaseStemShoot(unsigned plantID, unsigned current_node_number,
-                              const AxisRotation& base_rotation, float internode_radius,
-                              float internode_length_max,
-                              float internode_length_scale_factor_fraction,
-                              float leaf_scale_factor_fraction, float radius_taper,
-                              const std::string& shoot_type_label);
-    /// A shoot continuing from the tip of `parentShootID` (same axis, rotated by the spec).
+    /// A shoot continuing from the tip of `parentShootID` (same axis, rotated by the spec;
+    /// same rank). Returns its shoot ID.
     unsigned appendShoot(unsigned plantID, unsigned parentShootID, const ShootSpec& spec);
-    unsigned appendShoot(unsigned plantID, int parent_shoot_ID, unsigned current_node_number,
-                         const AxisRotation& base_rotation, float internode_radius,
-                         float internode_length_max, float internode_length_scale_factor_fraction,
-                         float leaf_scale_factor_fraction, float radius_taper,
-                         const std::string& shoot_type_label);
     /// A lateral shoot from the axil of petiole `petioleIndex` at node `parentNode`. The
     /// insertion angle comes from the parent type's insertion_angle_tip and decay rate,
-    /// measured from the tip; spec.baseRotation.pitch is added to it.
+    /// measured from the tip; spec.baseRotation.pitch is added to it. Returns its shoot ID.
     unsigned addChildShoot(unsigned plantID, unsigned parentShootID, unsigned parentNode,
                            const ShootSpec& spec, unsigned petioleIndex = 0);
-    unsigned addChildShoot(unsigned plantID, int parent_shoot_ID, unsigned parent_node_index,
-                           unsigned current_node_number, const AxisRotation& shoot_base_rotation,
-                           float internode_radius, float internode_length_max,
-                           float internode_length_scale_factor_fraction,
-                           float leaf_scale_factor_fraction, float radius_taper,
-                           const std::string& shoot_type_label, unsigned petiole_index = 0);
-    /// One more phytomer at the tip of a shoot, built from `phytomer_parameters`.
+    /// One more phytomer at the tip of a shoot, built from `phytomer_parameters` at `size`.
+    /// Returns the shoot's phytomer count.
     unsigned appendPhytomerToShoot(unsigned plantID, unsigned shootID,
                                    const PhytomerParameters& phytomer_parameters,
-                                   float internode_radius, float internode_length_max,
-                                   float internode_length_scale_factor_fraction,
-                                   float leaf_scale_factor_fraction);
+                                   const PhytomerSize& size = {});
 
     /// Removes the shoot's phytomers from `node` on, and every shoot growing from them.
     void pruneBranch(unsigned plantID, unsigned shootID, unsigned node);
+    /// Removes every leaf of the plant (petioles stay).
     void removePlantLeaves(unsigned plantID);
     /// Removes the leaves of a shoot together with their petioles (bare nodes that keep their
     /// buds), as on a trained trunk.
@@ -197,6 +221,7 @@ public:
     void removeShootAxillaryVegetativeBuds(unsigned plantID, unsigned shootID);
     /// Kills the apical bud: the shoot makes no more phytomers (a headed or topped shoot).
     void removeShootApex(unsigned plantID, unsigned shootID);
+    /// Removes the floral buds of a shoot that have not flowered yet (flowers and fruit stay).
     void removeShootFloralBuds(unsigned plantID, unsigned shootID);
     /// Removes flowers (open and closed) and fruit, keeping peduncles.
     void removePlantFlowers(unsigned plantID);
@@ -215,7 +240,9 @@ public:
     /// on, new organs are steered as they are made; with soft avoidance the plants grow
     /// together (in parallel) in steps of the collision scene's update interval.
     void advanceTime(double days);
+    /// Grows one plant by `days`.
     void advanceTime(unsigned plantID, double days);
+    /// Grows the given plants by `days` (together, as advanceTime(days) grows them all).
     void advanceTime(const std::vector<unsigned>& plantIDs, double days);
 
     // ---- collision avoidance and attraction points (docs/collision.md) ------------------
@@ -224,45 +251,40 @@ public:
     /// the given obstacle objects. With it on, plants grow together in steps of the update
     /// interval so that each sees its neighbours. Options are validated.
     void enableSoftCollisionAvoidance(const SoftCollisionOptions& options = {});
-    /// The same with the cone given: half-angle (degrees), look-ahead distance (m), number
-    /// of rays, inertia (0: turn fully to the gap, 1: unchanged).
-    void enableSoftCollisionAvoidance(float view_half_angle_deg, float look_ahead_distance,
-                                      unsigned ray_count, float inertia);
+    /// Turns soft avoidance off (growth is no longer steered by plant organs).
     void disableSoftCollisionAvoidance();
-    /// Which plant organs are obstacles for soft avoidance (leaves only by default).
-    void setCollisionRelevantOrgans(bool internodes, bool leaves, bool petioles, bool flowers,
-                                    bool fruit);
+    /// Which plant organs are obstacles for soft avoidance (SoftCollisionOptions::obstacles;
+    /// leaves only by default). Soft avoidance must be enabled.
+    void setCollisionRelevantOrgans(const CollisionOrgans& organs);
     /// Solid obstacles: Context objects growth never enters. Growth within
-    /// `avoidance_distance` (m) of one turns along its surface; with `fruit_adjustment`, fruit
-    /// crossing one are turned out of it about their attachment point.
-    void enableSolidObstacleAvoidance(const std::vector<ObjectID>& obstacle_IDs,
-                                      float avoidance_distance = 0.2f,
-                                      bool fruit_adjustment = false);
+    /// options.avoidanceDistance of one turns along its surface; with fruitAdjustment, fruit
+    /// crossing one are turned out of it about their attachment point. Options are validated.
     void enableSolidObstacleAvoidance(const SolidObstacleOptions& options);
+    /// Forgets the solid obstacles.
     void disableSolidObstacleAvoidance();
     /// Attraction points for every plant that has none of its own: a growing tip that sees
     /// one in its cone turns toward the nearest. Solid obstacles keep priority.
-    void enableAttractionPoints(const std::vector<vec3>& attraction_points,
-                                float view_half_angle_deg = 80.0f, float look_ahead_distance = 0.1f,
-                                float inertia = 0.4f);
     void enableAttractionPoints(const AttractionPoints& points);
     /// A plant's own attraction points (library plants on trellises set theirs when built);
     /// they replace the global ones for this plant.
-    void enableAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points,
-                                float view_half_angle_deg = 80.0f, float look_ahead_distance = 0.1f,
-                                float inertia = 0.4f);
     void enableAttractionPoints(unsigned plantID, const AttractionPoints& points);
-    /// Replaces or extends the points, keeping the cone (attraction points must be enabled).
+    /// Replaces the global points, keeping their cone (they must be enabled).
     void updateAttractionPoints(const std::vector<vec3>& attraction_points);
+    /// Replaces a plant's own points, keeping their cone (they must be enabled).
     void updateAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points);
+    /// Adds points to the global ones (they must be enabled).
     void appendAttractionPoints(const std::vector<vec3>& attraction_points);
+    /// Adds points to a plant's own ones (they must be enabled).
     void appendAttractionPoints(unsigned plantID, const std::vector<vec3>& attraction_points);
+    /// Removes the global points (plants with their own keep them).
     void disableAttractionPoints();
+    /// Removes a plant's own points: it follows the global ones again, if any.
     void disableAttractionPoints(unsigned plantID);
     /// The attraction points a plant steers by (its own, else the global ones; empty: none).
     std::vector<vec3> getAttractionPoints(unsigned plantID) const;
     /// Work done by collision avoidance since it was enabled or the counts were reset.
     CollisionStats getCollisionStats() const;
+    /// Sets the counts of getCollisionStats to zero.
     void resetCollisionStats();
 
     /// Receives progress of advanceTime over the plants ("growing", 0..1); may be empty.
@@ -272,6 +294,7 @@ public:
     void setPlantPhenologicalThresholds(unsigned plantID, const PhenologyParameters& thresholds);
     /// Thresholds given to plants added from now on.
     void setDefaultPhenology(const PhenologyParameters& thresholds);
+    /// Where the plant is in its yearly cycle now.
     PhenologyStage getPhenologyStage(unsigned plantID) const;
 
     /// Named functions that shoot types refer to (phytomer_creation_function,
@@ -280,36 +303,50 @@ public:
     void registerPhytomerCallbackFunction(const std::string& name, PhytomerCallbackFunction fn);
 
     // ---- organ prototypes ----------------------------------------------------------
+    /// Named prototype builders that shoot types refer to (leaf_prototype_function,
+    /// flower_prototype_function, fruit_prototype_function). Registering a name again
+    /// replaces it (prototypes already built are made again).
     void registerLeafPrototype(const std::string& name, LeafPrototypeFunction fn);
     void registerFloralPrototype(const std::string& name, FloralPrototypeFunction fn);
+    /// Whether a prototype builder of that name is registered.
     bool hasLeafPrototype(const std::string& name) const;
     bool hasFloralPrototype(const std::string& name) const;
 
-    // ---- queries -------------------------------------------------------------------
+    // ---- queries (an unknown plant or shoot ID is an Error) ---------------------------
+    /// IDs of every plant, in increasing order.
     std::vector<unsigned> getAllPlantIDs() const;
+    /// The plant's whole state (PlantState.h), read-only.
     const PlantInstance& plant(unsigned plantID) const;
+    /// Where the plant's base stands, m.
     vec3 getPlantBasePosition(unsigned plantID) const;
+    /// Age of the plant, days.
     float getPlantAge(unsigned plantID) const;
     /// Top of the plant's geometry above its base, m.
     float getPlantHeight(unsigned plantID) const;
     /// Height of the tip of the base stem above the plant base, m.
     float getPlantStemHeight(unsigned plantID) const;
+    /// Leaves (leaflets of compound leaves counted one by one) the plant has now.
     unsigned getPlantLeafCount(unsigned plantID) const;
     /// One-sided area of all leaves, m^2.
     float getPlantLeafArea(unsigned plantID) const;
-    std::vector<ObjectID> getPlantInternodeObjectIDs(unsigned plantID) const;
-    std::vector<ObjectID> getPlantPetioleObjectIDs(unsigned plantID) const;
-    std::vector<ObjectID> getPlantLeafObjectIDs(unsigned plantID) const;
-    std::vector<ObjectID> getPlantPeduncleObjectIDs(unsigned plantID) const;
-    std::vector<ObjectID> getPlantFlowerObjectIDs(unsigned plantID) const;
-    std::vector<ObjectID> getPlantFruitObjectIDs(unsigned plantID) const;
+    /// Context objects of the plant's organs of one kind (the kind its objects' "organ" data
+    /// names), shoot by shoot from the base. A leaf or flower may have several (one per
+    /// prototype part).
+    std::vector<ObjectID> getPlantObjectIDs(unsigned plantID, OrganKind kind) const;
+    /// Context objects of every organ of the plant, in increasing ID order.
     std::vector<ObjectID> getAllPlantObjectIDs(unsigned plantID) const;
+    /// Context objects of every plant, in increasing ID order.
     std::vector<ObjectID> getAllObjectIDs() const;
 
+    /// Shoots the plant has now (pruned ones not counted).
     unsigned getShootCount(unsigned plantID) const;
+    /// Phytomers (nodes) of a shoot.
     unsigned getShootNodeCount(unsigned plantID, unsigned shootID) const;
+    /// The shoot a shoot grows from; -1 for the base stem.
     int getShootParent(unsigned plantID, unsigned shootID) const;
+    /// 0 for the base stem (and shoots appended to it), parent's rank + 1 for a child shoot.
     unsigned getShootRank(unsigned plantID, unsigned shootID) const;
+    /// Shoots growing directly from this one, in the order they were made.
     std::vector<unsigned> getShootChildren(unsigned plantID, unsigned shootID) const;
     /// Every shoot growing from this one, at any depth, in increasing ID order.
     std::vector<unsigned> getShootDescendants(unsigned plantID, unsigned shootID) const;
@@ -328,6 +365,7 @@ public:
     /// it gives the same plants: the same geometry now and the same growth later. Written
     /// through a temporary file (never half a file). Several plants (a canopy) share one file.
     void writePlantStructureXML(unsigned plantID, const std::string& filename) const;
+    /// The same for several plants in one file.
     void writePlantStructureXML(const std::vector<unsigned>& plantIDs,
                                 const std::string& filename) const;
     /// The document writePlantStructureXML writes, as a string.
@@ -340,6 +378,7 @@ public:
     /// file, line, element path and value; nothing is added then.
     std::vector<unsigned> readPlantStructureXML(const std::string& filename,
                                                 const PlantStructureReadOptions& options = {});
+    /// The same from a document in a string (options.nameForErrors stands for the file).
     std::vector<unsigned> readPlantStructureXMLString(
         const std::string& xml, const PlantStructureReadOptions& options = {});
     /// A compact one-line text of the plant's visible structure (shoots, internodes,

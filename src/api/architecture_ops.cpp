@@ -307,70 +307,62 @@ unsigned PlantArchitecture::getPlantLeafCount(unsigned plantID) const {
 
 float PlantArchitecture::getPlantLeafArea(unsigned plantID) const {
     double area = 0.0;
-    for (ObjectID id : getPlantLeafObjectIDs(plantID)) area += context_->objectArea(id);
+    for (ObjectID id : getPlantObjectIDs(plantID, OrganKind::Leaf))
+        area += context_->objectArea(id);
     return float(area);
 }
 
-std::vector<ObjectID> PlantArchitecture::getPlantInternodeObjectIDs(unsigned plantID) const {
+std::vector<ObjectID> PlantArchitecture::getPlantObjectIDs(unsigned plantID, OrganKind kind) const {
+    const PlantInstance& p = impl_->store.plant(plantID);
     std::vector<ObjectID> ids;
-    forEachPhytomer(impl_->store.plant(plantID),
-                    [&](const Shoot&, const Phytomer& ph) { collect(ids, ph.internode.object); });
-    return ids;
-}
-
-std::vector<ObjectID> PlantArchitecture::getPlantPetioleObjectIDs(unsigned plantID) const {
-    std::vector<ObjectID> ids;
-    forEachPhytomer(impl_->store.plant(plantID), [&](const Shoot&, const Phytomer& ph) {
-        for (const Petiole& pt : ph.petioles) collect(ids, pt.object);
-    });
-    return ids;
-}
-
-std::vector<ObjectID> PlantArchitecture::getPlantLeafObjectIDs(unsigned plantID) const {
-    std::vector<ObjectID> ids;
-    forEachPhytomer(impl_->store.plant(plantID), [&](const Shoot&, const Phytomer& ph) {
-        for (const Petiole& pt : ph.petioles)
-            for (const LeafOrgan& l : pt.leaves)
-                for (ObjectID id : l.objects) collect(ids, id);
-    });
-    return ids;
-}
-
-std::vector<ObjectID> PlantArchitecture::getPlantPeduncleObjectIDs(unsigned plantID) const {
-    std::vector<ObjectID> ids;
-    forEachFloralBud(impl_->store.plant(plantID), [&](const FloralBud& fb) {
-        if (fb.stage != FloralStage::Bud && fb.stage != FloralStage::Removed)
-            collect(ids, fb.peduncleObject);
-    });
-    return ids;
-}
-
-std::vector<ObjectID> PlantArchitecture::getPlantFlowerObjectIDs(unsigned plantID) const {
-    std::vector<ObjectID> ids;
-    forEachFloralBud(impl_->store.plant(plantID), [&](const FloralBud& fb) {
-        if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
-            for (const FlowerOrgan& fl : fb.flowers)
-                for (ObjectID id : fl.objects) collect(ids, id);
-    });
-    return ids;
-}
-
-std::vector<ObjectID> PlantArchitecture::getPlantFruitObjectIDs(unsigned plantID) const {
-    std::vector<ObjectID> ids;
-    forEachFloralBud(impl_->store.plant(plantID), [&](const FloralBud& fb) {
-        if (fb.stage == FloralStage::Fruit)
-            for (const FlowerOrgan& fl : fb.flowers)
-                for (ObjectID id : fl.objects) collect(ids, id);
-    });
+    switch (kind) {
+        case OrganKind::Internode:
+            forEachPhytomer(
+                p, [&](const Shoot&, const Phytomer& ph) { collect(ids, ph.internode.object); });
+            break;
+        case OrganKind::Petiole:
+            forEachPhytomer(p, [&](const Shoot&, const Phytomer& ph) {
+                for (const Petiole& pt : ph.petioles) collect(ids, pt.object);
+            });
+            break;
+        case OrganKind::Leaf:
+            forEachPhytomer(p, [&](const Shoot&, const Phytomer& ph) {
+                for (const Petiole& pt : ph.petioles)
+                    for (const LeafOrgan& l : pt.leaves)
+                        for (ObjectID id : l.objects) collect(ids, id);
+            });
+            break;
+        case OrganKind::Peduncle:
+            forEachFloralBud(p, [&](const FloralBud& fb) {
+                if (fb.stage != FloralStage::Bud && fb.stage != FloralStage::Removed)
+                    collect(ids, fb.peduncleObject);
+            });
+            break;
+        case OrganKind::FlowerClosed:
+        case OrganKind::FlowerOpen:
+        case OrganKind::Fruit: {
+            const FloralStage stage = kind == OrganKind::FlowerClosed ? FloralStage::FlowerClosed
+                                      : kind == OrganKind::FlowerOpen ? FloralStage::FlowerOpen
+                                                                      : FloralStage::Fruit;
+            forEachFloralBud(p, [&](const FloralBud& fb) {
+                if (fb.stage == stage)
+                    for (const FlowerOrgan& fl : fb.flowers)
+                        for (ObjectID id : fl.objects) collect(ids, id);
+            });
+            break;
+        }
+    }
     return ids;
 }
 
 std::vector<ObjectID> PlantArchitecture::getAllPlantObjectIDs(unsigned plantID) const {
     std::vector<ObjectID> ids;
-    for (auto part : {getPlantInternodeObjectIDs(plantID), getPlantPetioleObjectIDs(plantID),
-                      getPlantLeafObjectIDs(plantID), getPlantPeduncleObjectIDs(plantID),
-                      getPlantFlowerObjectIDs(plantID), getPlantFruitObjectIDs(plantID)})
+    for (OrganKind kind :
+         {OrganKind::Internode, OrganKind::Petiole, OrganKind::Leaf, OrganKind::Peduncle,
+          OrganKind::FlowerClosed, OrganKind::FlowerOpen, OrganKind::Fruit}) {
+        const std::vector<ObjectID> part = getPlantObjectIDs(plantID, kind);
         ids.insert(ids.end(), part.begin(), part.end());
+    }
     std::sort(ids.begin(), ids.end());
     return ids;
 }

@@ -233,54 +233,62 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     return ids;
 }
 
-std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(
-    const vec3& center, const vec2& spacing, const glm::ivec2& count, float age, float germination,
-    const std::map<std::string, float>& buildParameters) {
-    checkCanopyArguments(age, germination);
-    if (count.x < 1 || count.y < 1 || std::int64_t(count.x) * count.y > 1000000)
-        throw Error("plant count out of range",
-                    {.parameter = "plant_count",
-                     .value = std::to_string(count.x) + " x " + std::to_string(count.y),
-                     .validRange = "at least 1 x 1, at most 1,000,000 plants"});
-    if (!(spacing.x > 0.0f && spacing.y > 0.0f) || !std::isfinite(spacing.x) ||
-        !std::isfinite(spacing.y))
-        throw Error("plant spacing must be positive",
-                    {.parameter = "plant_spacing",
-                     .value = std::to_string(spacing.x) + " x " + std::to_string(spacing.y),
-                     .validRange = "> 0 m in x and y"});
+std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(const CanopyOptions& o,
+                                                                     float age) {
+    checkCanopyArguments(age, o.germinationRate);
     Rng scene(seed_, kCanopyStream);
     std::vector<vec3> positions;
-    for (int j = 0; j < count.y; ++j)
-        for (int i = 0; i < count.x; ++i) {
-            const bool germinates = scene.chance(germination);  // one draw per position
-            if (!germinates) continue;
-            positions.push_back(center + vec3((float(i) - 0.5f * float(count.x - 1)) * spacing.x,
-                                              (float(j) - 0.5f * float(count.y - 1)) * spacing.y,
-                                              0.0f));
+    if (o.layout == CanopyOptions::Layout::Grid) {
+        const glm::ivec2 count = o.count;
+        const vec2 spacing = o.spacing;
+        if (count.x < 1 || count.y < 1 || std::int64_t(count.x) * count.y > 1000000)
+            throw Error("plant count out of range",
+                        {.parameter = "plant_count",
+                         .value = std::to_string(count.x) + " x " + std::to_string(count.y),
+                         .validRange = "at least 1 x 1, at most 1,000,000 plants"});
+        if (!(spacing.x > 0.0f && spacing.y > 0.0f) || !std::isfinite(spacing.x) ||
+            !std::isfinite(spacing.y))
+            throw Error("plant spacing must be positive",
+                        {.parameter = "plant_spacing",
+                         .value = std::to_string(spacing.x) + " x " + std::to_string(spacing.y),
+                         .validRange = "> 0 m in x and y"});
+        for (int j = 0; j < count.y; ++j)
+            for (int i = 0; i < count.x; ++i) {
+                const bool germinates = scene.chance(o.germinationRate);  // one draw per position
+                if (!germinates) continue;
+                positions.push_back(o.center +
+                                    vec3((float(i) - 0.5f * float(count.x - 1)) * spacing.x,
+                                         (float(j) - 0.5f * float(count.y - 1)) * spacing.y, 0.0f));
+            }
+    } else {
+        if (o.plants < 1 || o.plants > 1000000)
+            throw Error("plant count out of range", {.parameter = "plant_count",
+                                                     .value = std::to_string(o.plants),
+                                                     .validRange = "1 to 1000000"});
+        const vec2 extent = o.extent;
+        if (!(extent.x >= 0.0f && extent.y >= 0.0f) || !std::isfinite(extent.x) ||
+            !std::isfinite(extent.y))
+            throw Error("canopy extent must not be negative",
+                        {.parameter = "canopy_extent", .validRange = ">= 0 m in x and y"});
+        for (unsigned k = 0; k < o.plants; ++k) {
+            const float x = (scene.uniform01() - 0.5f) * extent.x;
+            const float y = (scene.uniform01() - 0.5f) * extent.y;
+            if (scene.chance(o.germinationRate)) positions.push_back(o.center + vec3(x, y, 0.0f));
         }
-    return buildPlantsAt(positions, age, buildParameters);
+    }
+    return buildPlantsAt(positions, age, o.buildParameters);
 }
 
 std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(
-    const vec3& center, const vec2& extent, unsigned count, float age, float germination,
+    const vec3& center, const vec2& spacing, const glm::ivec2& count, float age, float germination,
     const std::map<std::string, float>& buildParameters) {
-    checkCanopyArguments(age, germination);
-    if (count < 1 || count > 1000000)
-        throw Error("plant count out of range", {.parameter = "plant_count",
-                                                 .value = std::to_string(count),
-                                                 .validRange = "1 to 1000000"});
-    if (!(extent.x >= 0.0f && extent.y >= 0.0f) || !std::isfinite(extent.x) ||
-        !std::isfinite(extent.y))
-        throw Error("canopy extent must not be negative",
-                    {.parameter = "canopy_extent", .validRange = ">= 0 m in x and y"});
-    Rng scene(seed_, kCanopyStream);
-    std::vector<vec3> positions;
-    for (unsigned k = 0; k < count; ++k) {
-        const float x = (scene.uniform01() - 0.5f) * extent.x;
-        const float y = (scene.uniform01() - 0.5f) * extent.y;
-        if (scene.chance(germination)) positions.push_back(center + vec3(x, y, 0.0f));
-    }
-    return buildPlantsAt(positions, age, buildParameters);
+    CanopyOptions o;
+    o.center = center;
+    o.spacing = spacing;
+    o.count = count;
+    o.germinationRate = germination;
+    o.buildParameters = buildParameters;
+    return buildPlantCanopyFromLibrary(o, age);
 }
 
 }  // namespace plantarch

@@ -96,37 +96,18 @@ void PlantArchitecture::enableSoftCollisionAvoidance(const SoftCollisionOptions&
     for (const auto& [id, plant] : impl_->store.plants) w.stale[id] = true;
 }
 
-void PlantArchitecture::enableSoftCollisionAvoidance(float halfAngle, float lookAhead,
-                                                     unsigned rays, float inertia) {
-    SoftCollisionOptions o = impl_->collision.world && impl_->collision.world->soft()
-                                 ? *impl_->collision.world->soft()
-                                 : SoftCollisionOptions{};
-    o.cone = PerceptionCone{halfAngle, lookAhead, rays, inertia};
-    enableSoftCollisionAvoidance(o);
-}
-
 void PlantArchitecture::disableSoftCollisionAvoidance() {
     if (impl_->collision.world) impl_->collision.world->setSoft(std::nullopt, *context_);
 }
 
-void PlantArchitecture::setCollisionRelevantOrgans(bool internodes, bool leaves, bool petioles,
-                                                   bool flowers, bool fruit) {
+void PlantArchitecture::setCollisionRelevantOrgans(const CollisionOrgans& organs) {
     if (!impl_->collision.world || !impl_->collision.world->soft())
         throw Error("soft collision avoidance is not enabled",
                     {.parameter = "setCollisionRelevantOrgans",
                      .validRange = "call enableSoftCollisionAvoidance first"});
     SoftCollisionOptions o = *impl_->collision.world->soft();
-    o.obstacles = CollisionOrgans{internodes, leaves, petioles, flowers, fruit};
+    o.obstacles = organs;
     enableSoftCollisionAvoidance(o);
-}
-
-void PlantArchitecture::enableSolidObstacleAvoidance(const std::vector<ObjectID>& ids,
-                                                     float distance, bool fruitAdjustment) {
-    SolidObstacleOptions o;
-    o.obstacles = ids;
-    o.avoidanceDistance = distance;
-    o.fruitAdjustment = fruitAdjustment;
-    enableSolidObstacleAvoidance(o);
 }
 
 void PlantArchitecture::enableSolidObstacleAvoidance(const SolidObstacleOptions& o) {
@@ -145,20 +126,10 @@ void PlantArchitecture::disableSolidObstacleAvoidance() {
     if (impl_->collision.world) impl_->collision.world->setSolid(std::nullopt, *context_);
 }
 
-void PlantArchitecture::enableAttractionPoints(const std::vector<vec3>& points, float halfAngle,
-                                               float lookAhead, float inertia) {
-    enableAttractionPoints(AttractionPoints{points, halfAngle, lookAhead, inertia, {}});
-}
-
 void PlantArchitecture::enableAttractionPoints(const AttractionPoints& a) {
     validate(a);
     collision::worldOf(impl_->collision).globalAttraction =
         std::make_shared<collision::AttractionIndex>(a);
-}
-
-void PlantArchitecture::enableAttractionPoints(unsigned plantID, const std::vector<vec3>& points,
-                                               float halfAngle, float lookAhead, float inertia) {
-    enableAttractionPoints(plantID, AttractionPoints{points, halfAngle, lookAhead, inertia, {}});
 }
 
 // A plant's own points are its state (saved with it); the index is built when it grows.

@@ -23,11 +23,6 @@ std::string str(float v) {
     return s;
 }
 
-ShootSpec specFrom(unsigned nodes, const AxisRotation& rot, float radius, float lengthMax,
-                   float lengthScale, float leafScale, float taper, const std::string& type) {
-    return ShootSpec{nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type};
-}
-
 }  // namespace
 
 // ---- shoot type checks -------------------------------------------------------------------
@@ -169,14 +164,6 @@ unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, const ShootSpec& 
     return id;
 }
 
-unsigned PlantArchitecture::addBaseStemShoot(unsigned plantID, unsigned nodes,
-                                             const AxisRotation& rot, float radius, float lengthMax,
-                                             float lengthScale, float leafScale, float taper,
-                                             const std::string& type) {
-    return addBaseStemShoot(
-        plantID, specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
-}
-
 unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID,
                                         const ShootSpec& spec) {
     PlantInstance& p = impl_->store.plant(plantID);
@@ -185,19 +172,6 @@ unsigned PlantArchitecture::appendShoot(unsigned plantID, unsigned parentShootID
         createShoot(impl_->growth(), p, spec, StartMode::Append, int(parentShootID), 0, 0);
     updateGeometry(plantID);
     return id;
-}
-
-unsigned PlantArchitecture::appendShoot(unsigned plantID, int parentShootID, unsigned nodes,
-                                        const AxisRotation& rot, float radius, float lengthMax,
-                                        float lengthScale, float leafScale, float taper,
-                                        const std::string& type) {
-    if (parentShootID < 0)
-        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
-                                      .value = std::to_string(parentShootID),
-                                      .validRange = ">= 0"});
-    return appendShoot(
-        plantID, unsigned(parentShootID),
-        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
 }
 
 unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShootID,
@@ -211,37 +185,18 @@ unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShoot
     return id;
 }
 
-unsigned PlantArchitecture::addChildShoot(unsigned plantID, int parentShootID, unsigned parentNode,
-                                          unsigned nodes, const AxisRotation& rot, float radius,
-                                          float lengthMax, float lengthScale, float leafScale,
-                                          float taper, const std::string& type,
-                                          unsigned petioleIndex) {
-    if (parentShootID < 0)
-        throw Error("no such shoot", {.parameter = "parent_shoot_ID",
-                                      .value = std::to_string(parentShootID),
-                                      .validRange = ">= 0"});
-    return addChildShoot(
-        plantID, unsigned(parentShootID), parentNode,
-        specFrom(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type), petioleIndex);
-}
-
 unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned shootID,
-                                                  const PhytomerParameters& pp, float radius,
-                                                  float lengthMax, float lengthScale,
-                                                  float leafScale) {
+                                                  const PhytomerParameters& pp,
+                                                  const PhytomerSize& size) {
     PlantInstance& p = impl_->store.plant(plantID);
     Shoot& s = PlantStore::shoot(p, shootID);
-    ShootSpec spec;
-    spec.internodeRadius = radius;
-    spec.internodeLengthMax = lengthMax;
-    spec.internodeLengthScale = lengthScale;
-    spec.leafScale = leafScale;
-    checkShootSpec(spec);
+    checkPhytomerSize(size);
     validate(pp, "phytomer_parameters");
     ShootParameters probe = impl_->store.shootTypeFor(p, s.type);
     probe.phytomer_parameters = pp;
     checkFunctions(impl_->functions, probe, s.type);
-    createPhytomer(impl_->growth(), p, s, pp, radius, lengthMax, lengthScale, leafScale, nullptr);
+    createPhytomer(impl_->growth(), p, s, pp, size.internodeRadius, size.internodeLengthMax,
+                   size.internodeLengthScale, size.leafScale, nullptr);
     scheduleNewShoot(impl_->growth(), p, s);
     updateGeometry(plantID);
     return unsigned(s.phytomers.size());

@@ -5,13 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math.h"
+
 namespace plantarch::collision {
-
-namespace {
-
-constexpr float kDeg = 3.14159265358979f / 180.0f;
-
-}  // namespace
 
 AttractionIndex::AttractionIndex(AttractionPoints points) : options_(std::move(points)) {
     cell_ = std::max(options_.lookAhead, 1e-3f);

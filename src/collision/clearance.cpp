@@ -14,6 +14,7 @@
 
 #include "collision/collision_world.h"
 #include "collision/proxies.h"
+#include "core/math.h"
 #include "geometry/tessellate.h"
 #include "geometry/tube.h"
 
@@ -109,7 +110,7 @@ private:
         const auto contact = world_.closestSolid(attachment, 1e3f);
         const vec3 n = contact ? contact->normal : vec3(0, 0, 1);
         vec3 axis = glm::cross(out, n);
-        axis = glm::length(axis) > 1e-4f ? glm::normalize(axis) : geometry::anyPerpendicular(n);
+        axis = glm::length(axis) > 1e-4f ? glm::normalize(axis) : anyPerpendicular(n);
         AtomicStats& st = world_.stats();
         turn.axis = axis;
         for (int angle = 10; angle <= 180; angle += 10) {

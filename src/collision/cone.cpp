@@ -25,15 +25,12 @@
 #endif
 
 #include "collision/collision_world.h"
-#include "geometry/tube.h"
+#include "core/math.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::collision {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
-constexpr float kDeg = kPi / 180.0f;
 
 // Rings and sectors of a cone of `rays` rays: about four sectors per ring per ring.
 void gridOf(unsigned rays, int& rings, int& sectors) {
@@ -159,7 +156,7 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
     out.x = patterns->x(set);
     out.y = patterns->y(set);
     out.z = patterns->z(set);
-    const vec3 e1 = geometry::anyPerpendicular(axis);
+    const vec3 e1 = anyPerpendicular(axis);
     const vec3 e2 = glm::cross(axis, e1);
     const float cr = std::cos(roll), sr = std::sin(roll);
     out.axis = axis;

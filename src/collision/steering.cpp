@@ -15,14 +15,11 @@
 #include "collision/attraction.h"
 #include "collision/collision_world.h"
 #include "collision/cone.h"
-#include "geometry/tube.h"
+#include "core/math.h"
 
 namespace plantarch::collision {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
-constexpr float kDeg = kPi / 180.0f;
 
 enum ConeKind : unsigned {
     kConeInternode = 1,
@@ -30,11 +27,6 @@ enum ConeKind : unsigned {
     kConePeduncle = 3,
     kConeSolid = 4
 };
-
-vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
-    const float a = azimuth * kDeg;
-    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
-}
 
 std::uint64_t splitmix(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ULL;
@@ -72,7 +64,7 @@ struct ConeGrid {
 struct ConeRays {
     std::vector<vec3> dirs;
     void make(const ConeGrid& g, vec3 axis, float halfAngle, Rng& rng) {
-        const vec3 e1 = geometry::anyPerpendicular(axis);
+        const vec3 e1 = anyPerpendicular(axis);
         const vec3 e2 = glm::cross(axis, e1);
         const float oneMinusCos = 1.0f - std::cos(halfAngle * kDeg);
         dirs.resize(std::size_t(g.size()));
@@ -137,7 +129,7 @@ std::optional<SolidHit> nearestSolid(const World& world, vec3 apex, vec3 axis,
 vec3 tangential(vec3 v, vec3 n, vec3 fallback) {
     vec3 t = v - glm::dot(v, n) * n;
     if (glm::length(t) < 1e-3f) t = fallback - glm::dot(fallback, n) * n;
-    if (glm::length(t) < 1e-6f) t = geometry::anyPerpendicular(n);
+    if (glm::length(t) < 1e-6f) t = anyPerpendicular(n);
     return glm::normalize(t);
 }
 
@@ -255,8 +247,7 @@ void SceneSteering::steerShootAxis(const PlantInstance& plant, const Shoot& shoo
     in.guide = g;
     // Carry the roll reference along with the smallest rotation (no twist).
     vec3 ref = in.rollReference - glm::dot(in.rollReference, g) * g;
-    in.rollReference =
-        glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(g);
+    in.rollReference = glm::length(ref) > 1e-6f ? glm::normalize(ref) : anyPerpendicular(g);
 }
 
 void SceneSteering::keepInternodeClear(const PlantInstance& plant, const Shoot& shoot,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/math.h"
 #include "plantarch/LeafShapes.h"
 #include "plantarch/OrganLibrary.h"
 #include "plantarch/PlantArchitecture.h"
@@ -15,8 +16,6 @@
 namespace plantarch {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 // A closed surface of revolution about +x from x=0 to x=1 with radius profile r(t).
 template <class Profile>

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/math.h"
 #include "geometry/polygon_mesh.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
@@ -14,7 +15,6 @@ namespace plantarch {
 namespace {
 
 using glm::dvec2;
-constexpr double kPi = std::numbers::pi;
 constexpr unsigned kMinRows = 4;
 constexpr double kPetioluleLength = 0.08;  // of the blade length, as in the reference (0.07)
 
@@ -113,7 +113,7 @@ class Midrib {
 public:
     Midrib(const LeafDeformation& d, double xLo, double xHi)
         : curvature_(d.longitudinal_curvature),
-          buckle_(d.leaf_buckle_length > 0 ? d.leaf_buckle_angle * kPi / 180.0 : 0.0),
+          buckle_(d.leaf_buckle_length > 0 ? radians(double(d.leaf_buckle_angle)) : 0.0),
           buckleAt_(d.leaf_buckle_length),
           lo_(xLo),
           step_(std::max(xHi - xLo, 1e-6) / kSteps) {
@@ -170,7 +170,7 @@ Mesh petiolule(double length, double radius) {
         const double t = double(i) / rings;
         const double r = radius * (1.0 - 0.35 * t);
         for (unsigned k = 0; k < sides; ++k) {
-            const double a = 2.0 * kPi * k / sides;
+            const double a = 2.0 * std::numbers::pi * k / sides;
             m.positions.emplace_back(float(t * length), float(r * std::cos(a)),
                                      float(r * std::sin(a)));
             m.uvs.emplace_back(0.02f, 0.5f);
@@ -225,8 +225,9 @@ void deformLeafMesh(Mesh& mesh, const LeafDeformation& d) {
         yMax = std::max(yMax, std::abs(p.y));
     }
     const double width = d.blade_width > 0 ? d.blade_width : 2.0 * yMax;
-    const double foldBase = std::clamp(double(d.midrib_fold_fraction), -1.0, 1.0) * 0.5 * kPi;
-    const double roll = d.petiole_roll * kPi / 180.0;
+    const double foldBase =
+        std::clamp(double(d.midrib_fold_fraction), -1.0, 1.0) * 0.5 * std::numbers::pi;
+    const double roll = radians(double(d.petiole_roll));
     const bool waves = d.wave_period > 1e-6f && d.wave_amplitude != 0.0f;
     const Midrib midrib(d, xLo, xHi);
 
@@ -237,7 +238,8 @@ void deformLeafMesh(Mesh& mesh, const LeafDeformation& d) {
         double z = v.z + d.lateral_curvature * (y / width) * (y / width) / 4.0;
         if (waves)
             z += d.wave_amplitude * 2.0 * across *
-                 std::sin(kPi * x / d.wave_period + (side > 0 ? kPi : 0.0));
+                 std::sin(std::numbers::pi * x / d.wave_period +
+                          (side > 0 ? std::numbers::pi : 0.0));
         const double fold = foldBase + roll * std::exp(-std::max(x, 0.0) / 0.05);
         const double a = across * std::cos(fold) - z * std::sin(fold);
         const double b = across * std::sin(fold) + z * std::cos(fold);

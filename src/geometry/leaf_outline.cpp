@@ -25,6 +25,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/math.h"
 #include "geometry/polygon_mesh.h"
 #include "model/parameter_table.h"
 #include "plantarch/Error.h"
@@ -35,12 +36,8 @@ namespace plantarch {
 namespace {
 
 using glm::dvec2;
-constexpr double kPi = std::numbers::pi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double radians(double degrees) {
-    return degrees * kPi / 180.0;
-}
 double smoothstep(double e0, double e1, double x) {
     const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
@@ -168,9 +165,10 @@ std::vector<dvec2> simpleHalf(const LeafOutlineParams& p, const FamilyForm& f) {
 std::vector<dvec2> notchedHalf(double sinus, double widest, const LeafOutlineParams& p,
                                const FamilyForm& f) {
     const double halfWidth = 0.5 * p.aspect_ratio;
-    const double beta = 0.5 * radians(p.base_angle);  // 92 to 178 degrees
+    const double beta = 0.5 * radians(double(p.base_angle));  // 92 to 178 degrees
     const dvec2 s(sinus, 0.0), w(widest, halfWidth);
-    const double yB = halfWidth * (0.15 + 0.45 * (kPi - beta) / (0.5 * kPi));
+    const double yB =
+        halfWidth * (0.15 + 0.45 * (std::numbers::pi - beta) / (0.5 * std::numbers::pi));
     const dvec2 back(0.0, yB);
     const dvec2 dir(std::cos(beta), std::sin(beta));
     // Handles keep both coordinates monotone on the way to the back of the lobe.
@@ -301,9 +299,9 @@ std::vector<dvec2> palmateLobes(const std::vector<dvec2>& half, int lateral, dou
     // The rays tabulated once: lobes differ only in length, so they scale this table.
     constexpr int kRays = 512;
     std::vector<double> unitRadius(kRays + 1, 0.0);
-    for (int k = 0; k < kRays; ++k) unitRadius[k] = castRay(0.5 * kPi * k / kRays);
+    for (int k = 0; k < kRays; ++k) unitRadius[k] = castRay(0.5 * std::numbers::pi * k / kRays);
     auto lobeRadius = [&](double length, double phi) {
-        const double f = std::abs(phi) / (0.5 * kPi) * kRays;
+        const double f = std::abs(phi) / (0.5 * std::numbers::pi) * kRays;
         if (f >= kRays) return 0.0;
         const int k = int(f);
         return length * (unitRadius[k] + (unitRadius[k + 1] - unitRadius[k]) * (f - k));

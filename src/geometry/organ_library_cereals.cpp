@@ -82,7 +82,7 @@ OrganPrototype buildSpike(const FloralPrototypeRequest& req, const Params& p, Rn
         const float size = ls * (1.0f - 0.35f * smooth(0.6f, 1.0f, float(k) / float(n)));
         for (int j = 0; j < florets; ++j) {
             const float spread = (float(j) - 0.5f * float(florets - 1)) * 20.0f * kDeg;
-            const vec3 fdir = rotateVec(dir, fanAxis, spread + 0.03f * rng.uniform(-1.0f, 1.0f));
+            const vec3 fdir = rotateAbout(dir, fanAxis, spread + 0.03f * rng.uniform(-1.0f, 1.0f));
             const float fl = size * (1.0f - 0.12f * std::abs(float(j) - 0.5f * float(florets - 1)));
             parts.add("spikelets",
                       grain(base, fdir, kZ, fl, 0.42f * size, 0.3f * size, 0.7f, rows, sides));
@@ -369,7 +369,7 @@ Mesh huskLeaf(const EarShape& ear, float az, float span, float layer, float open
         const float a = az + v * 0.5f * span * (1.0f - 0.3f * u);
         vec3 q = vec3(ear.x0 + reach * u, 0, 0) + radius * radialDir(a);
         if (open > 0.0f)
-            q = base + rotateVec(q - base, hinge, -open * 100.0f * kDeg * smooth(0.0f, 0.6f, u));
+            q = base + rotateAbout(q - base, hinge, -open * 100.0f * kDeg * smooth(0.0f, 0.6f, u));
         return q;
     });
 }

@@ -12,12 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "core/math.h"
 #include "plantarch/OrganLibrary.h"
 
 namespace plantarch::organs {
-
-inline constexpr float kPi = 3.14159265358979f;
-inline constexpr float kDeg = kPi / 180.0f;
 
 // ---- family table -----------------------------------------------------------------------
 
@@ -169,9 +167,6 @@ float petalHalfWidth(const PetalSpec& spec, float u);
 inline vec3 radialDir(float a) {
     return {0.0f, std::cos(a), std::sin(a)};
 }
-
-/// Rotates `v` about the unit `axis` by `angle` radians (right-hand rule).
-vec3 rotateVec(vec3 v, vec3 axis, float angle);
 
 /// pow of the non-negative part of x (sin(pi) is slightly negative in floats).
 inline float ppow(float x, float e) {

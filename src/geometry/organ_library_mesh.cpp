@@ -8,11 +8,6 @@
 
 namespace plantarch::organs {
 
-vec3 rotateVec(vec3 v, vec3 axis, float angle) {
-    const float c = std::cos(angle), s = std::sin(angle);
-    return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0f - c);
-}
-
 float smooth(float a, float b, float x) {
     const float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
     return t * t * (3.0f - 2.0f * t);
@@ -207,7 +202,7 @@ std::vector<vec3> arcPath(vec3 start, vec3 direction, vec3 toward, float length,
     const float step = length / float(segments);
     for (unsigned k = 0; k < segments; ++k) {
         const float angle = bendDeg * kDeg * (float(k) + 0.5f) / float(segments);
-        const vec3 h = glm::length(axis) > 0.0f ? rotateVec(d, axis, angle) : d;
+        const vec3 h = glm::length(axis) > 0.0f ? rotateAbout(d, axis, angle) : d;
         pts.push_back(pts.back() + step * h);
     }
     return pts;
@@ -251,8 +246,8 @@ Mesh petalMesh(const PetalSpec& s, vec3 origin, vec3 axis, vec3 radial, unsigned
         auto [dir, inner] = heading(u);
         vec3 side = across;
         if (s.twistDeg != 0.0f) {
-            side = rotateVec(side, dir, s.twistDeg * kDeg * u);
-            inner = rotateVec(inner, dir, s.twistDeg * kDeg * u);
+            side = rotateAbout(side, dir, s.twistDeg * kDeg * u);
+            inner = rotateAbout(inner, dir, s.twistDeg * kDeg * u);
         }
         const float v = i == rows ? 0.0f : -1.0f + 2.0f * float(j) / float(cols);
         const float half = s.width * petalHalfWidth(s, u);

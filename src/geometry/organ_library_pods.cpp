@@ -197,7 +197,7 @@ OrganPrototype buildFlatHull(const FloralPrototypeRequest& req, const Params& p,
         if (signedVolume(valve) < 0.0) flipWinding(valve);
         const vec3 hinge{0, 0, -rz * (1.0f + asym)};
         const float angle = -float(side) * split * 80.0f * kDeg;
-        for (vec3& v : valve.positions) v = hinge + rotateVec(v - hinge, kX, angle);
+        for (vec3& v : valve.positions) v = hinge + rotateAbout(v - hinge, kX, angle);
         parts.add("hull", valve);
     }
     parts.add("shell", closedBody(rows, sides, [&](float u, float th) {

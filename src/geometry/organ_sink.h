@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "core/math.h"
 #include "geometry/prototype_cache.h"
 #include "geometry/tube.h"
 #include "model/plant_store.h"
@@ -43,11 +44,6 @@ public:
 /// `prototypes`.
 void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, OrganSink& sink,
                      PlantInstance& plant);
-
-/// Cosine and sine of an angle.
-struct SinCos {
-    float c = 1.0f, s = 0.0f;
-};
 
 /// The sines and cosines of an organ's pitch, yaw and roll.
 struct TurnTrig {

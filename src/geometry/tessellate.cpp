@@ -12,6 +12,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "core/math.h"
 #include "geometry/organ_sink.h"
 #include "geometry/tessellate.h"
 #include "geometry/tube.h"
@@ -23,23 +24,10 @@ namespace plantarch {
 
 namespace {
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
 const vec3 kUp{0.0f, 0.0f, 1.0f};
 
-// Every angle goes through here, so a sine kept by a caller (OrganPlacer::leaves) is the one
-// tessellation computes.
-SinCos sinCosDeg(float degrees) {
-    const float a = degrees * kDeg;
-    return {std::cos(a), std::sin(a)};
-}
-
-vec3 azimuthDirection(vec3 axis, vec3 reference, SinCos a) {
-    return a.c * reference + a.s * glm::cross(axis, reference);
-}
-
-vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
-    return azimuthDirection(axis, reference, sinCosDeg(azimuth));
-}
+// Every angle goes through sinCosDeg (core/math.h), so a sine kept by a caller
+// (OrganPlacer::leaves) is the one tessellation computes.
 
 // The segment lengths of a polyline and their sum, measured once for all the organs placed
 // along it.
@@ -85,7 +73,7 @@ struct OrganFrame {
     f.x = glm::normalize(axis);
     vec3 z = kUp - glm::dot(kUp, f.x) * f.x;
     if (glm::length(z) < 1e-4f) z = fallbackUp - glm::dot(fallbackUp, f.x) * f.x;
-    if (glm::length(z) < 1e-6f) z = geometry::anyPerpendicular(f.x);
+    if (glm::length(z) < 1e-6f) z = anyPerpendicular(f.x);
     f.z = glm::normalize(z);
     f.y = glm::cross(f.z, f.x);
     return f;
@@ -202,7 +190,7 @@ mat4 geometry::leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTri
     if (length(z) < 1e-6f) {
         alignas(16) float v[4];
         _mm_store_ps(v, x);
-        z = load(geometry::anyPerpendicular(vec3(v[0], v[1], v[2])));
+        z = load(anyPerpendicular(vec3(v[0], v[1], v[2])));
     }
     V fz = normalize(z), fx = x, fy = cross(fz, x);
     if (t.leaflet != 0) {
@@ -343,7 +331,7 @@ void deleteAll(Context& ctx, std::vector<ObjectID>& ids) {
 
 // Turns a direction by an organ's clearance turn (none when its angle is 0).
 vec3 turned(vec3 v, const OrganTurn& t) {
-    return t.angle == 0.0f ? v : glm::normalize(geometry::rotateAbout(v, t.axis, t.angle * kDeg));
+    return t.angle == 0.0f ? v : glm::normalize(rotateAbout(v, t.axis, t.angle * kDeg));
 }
 
 std::string variantKey(const std::string& fn, const std::string& params, int leaflet,

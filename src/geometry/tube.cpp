@@ -2,25 +2,14 @@
 
 #include <cmath>
 
+#include "core/math.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::geometry {
 
 namespace {
-constexpr float kPi = 3.14159265358979f;
 constexpr float kEps = 1e-12f;
 }  // namespace
-
-vec3 anyPerpendicular(vec3 v) {
-    const vec3 helper = std::abs(v.z) < 0.9f ? vec3(0, 0, 1) : vec3(1, 0, 0);
-    return glm::normalize(glm::cross(helper, v));
-}
-
-vec3 rotateAbout(vec3 v, vec3 axis, float angle) {
-    // Rodrigues' rotation formula.
-    const float c = std::cos(angle), s = std::sin(angle);
-    return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0f - c);
-}
 
 // Rotates `v` by the smallest rotation that takes unit `from` onto unit `to`.
 static vec3 transport(vec3 v, vec3 from, vec3 to) {

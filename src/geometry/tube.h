@@ -52,10 +52,4 @@ CurveBasis curveBasis(vec3 direction, vec3 target);
 void curvedPath(vec3 start, const CurveBasis& basis, float length, float curvature,
                 unsigned segments, std::vector<vec3>& out);
 
-/// A unit vector perpendicular to `v` (any, but deterministic).
-vec3 anyPerpendicular(vec3 v);
-
-/// Rotates `v` about the unit `axis` by `angle` radians (right-hand rule).
-vec3 rotateAbout(vec3 v, vec3 axis, float angle);
-
 }  // namespace plantarch::geometry

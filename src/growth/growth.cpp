@@ -18,6 +18,7 @@
 #include <queue>
 #include <tuple>
 
+#include "core/math.h"
 #include "geometry/tessellate.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
@@ -25,8 +26,6 @@
 namespace plantarch {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 enum EventKind : int {
     kDormancyBreak = 0,
@@ -258,11 +257,11 @@ struct Grower {
         ShootSpec spec;
         spec.phytomers = 1;
         spec.shootType = childType;
-        spec.internodeRadius =
+        spec.size.internodeRadius =
             std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
-        spec.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
-        spec.internodeLengthScale = 0.01f;
-        spec.leafScale = 0.01f;
+        spec.size.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
+        spec.size.internodeLengthScale = 0.01f;
+        spec.size.leafScale = 0.01f;
         const unsigned id =
             createShoot(growth, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
         enqueueShoot(plant.shoots[id]);

@@ -26,6 +26,8 @@ enum class StartMode { Base, Append, Child };
 
 /// Throws if a shoot's start options are out of range (naming the option and its range).
 void checkShootSpec(const ShootSpec& spec);
+/// Checks the sizes of phytomers made by hand (radius, full length, fractions).
+void checkPhytomerSize(const PhytomerSize& size);
 
 /// Creates a shoot (and its first spec.phytomers phytomers) as state; no geometry.
 unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const ShootSpec& spec,

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/tube.h"
+#include "core/math.h"
 #include "growth/growth.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
@@ -15,8 +15,6 @@ namespace plantarch {
 
 namespace {
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
-
 std::string str(float v) {
     std::string s = std::to_string(v);
     s.erase(s.find_last_not_of('0') + 1);
@@ -24,54 +22,34 @@ std::string str(float v) {
     return s;
 }
 
-// Unit direction at `azimuth` degrees about `axis` from `reference` (both unit, orthogonal).
-vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
-    const float a = azimuth * kDeg;
-    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
-}
-
-// Orientation of a shoot start relative to a parent frame (axis, reference): yaw turns the
-// tilt direction about the parent axis, pitch tilts away from the axis, roll turns the new
-// reference about the new axis.
-struct Frame {
-    vec3 axis;
-    vec3 reference;
-};
-
-Frame orient(const Frame& parent, float pitch, float yaw, float roll) {
-    const vec3 tiltDir = azimuthDirection(parent.axis, parent.reference, yaw);
-    const float p = pitch * kDeg;
-    Frame f;
-    f.axis = glm::normalize(std::cos(p) * parent.axis + std::sin(p) * tiltDir);
-    vec3 ref = -std::sin(p) * parent.axis + std::cos(p) * tiltDir;
-    ref = glm::normalize(ref - glm::dot(ref, f.axis) * f.axis);
-    f.reference = geometry::rotateAbout(ref, f.axis, roll * kDeg);
-    return f;
+void invalid(const char* name, float v, const char* range) {
+    throw Error("invalid shoot argument",
+                {.parameter = name, .value = str(v), .validRange = range});
 }
 
 }  // namespace
 
+void checkPhytomerSize(const PhytomerSize& s) {
+    if (!(s.internodeRadius > 0.0f && s.internodeRadius <= 10.0f))
+        invalid("internode_radius", s.internodeRadius, "> 0 and <= 10 m");
+    if (!(s.internodeLengthMax >= 0.0f && s.internodeLengthMax <= 100.0f))
+        invalid("internode_length_max", s.internodeLengthMax, "0 to 100 m");
+    if (!(s.internodeLengthScale > 0.0f && s.internodeLengthScale <= 1.0f))
+        invalid("internode_length_scale_factor_fraction", s.internodeLengthScale, "> 0 and <= 1");
+    if (!(s.leafScale > 0.0f && s.leafScale <= 1.0f))
+        invalid("leaf_scale_factor_fraction", s.leafScale, "> 0 and <= 1");
+}
+
 void checkShootSpec(const ShootSpec& s) {
-    auto bad = [](const char* name, float v, const char* range) {
-        throw Error("invalid shoot argument",
-                    {.parameter = name, .value = str(v), .validRange = range});
-    };
     if (s.phytomers < 1)
         throw Error("a shoot needs at least one phytomer",
                     {.parameter = "current_node_number", .value = "0", .validRange = ">= 1"});
-    if (s.phytomers > 100000) bad("current_node_number", float(s.phytomers), "1 to 100000");
-    if (!(s.internodeRadius > 0.0f && s.internodeRadius <= 10.0f))
-        bad("internode_radius", s.internodeRadius, "> 0 and <= 10 m");
-    if (!(s.internodeLengthMax >= 0.0f && s.internodeLengthMax <= 100.0f))
-        bad("internode_length_max", s.internodeLengthMax, "0 to 100 m");
-    if (!(s.internodeLengthScale > 0.0f && s.internodeLengthScale <= 1.0f))
-        bad("internode_length_scale_factor_fraction", s.internodeLengthScale, "> 0 and <= 1");
-    if (!(s.leafScale > 0.0f && s.leafScale <= 1.0f))
-        bad("leaf_scale_factor_fraction", s.leafScale, "> 0 and <= 1");
+    if (s.phytomers > 100000) invalid("current_node_number", float(s.phytomers), "1 to 100000");
+    checkPhytomerSize(s.size);
     if (!(s.radiusTaper >= 0.0f && s.radiusTaper <= 1.0f))
-        bad("radius_taper", s.radiusTaper, "0 to 1");
+        invalid("radius_taper", s.radiusTaper, "0 to 1");
     for (float a : {s.baseRotation.pitch, s.baseRotation.yaw, s.baseRotation.roll})
-        if (!std::isfinite(a)) bad("base_rotation", a, "finite angles in degrees");
+        if (!std::isfinite(a)) invalid("base_rotation", a, "finite angles in degrees");
 }
 
 // ---- phytomer creation -----------------------------------------------------------------
@@ -158,14 +136,14 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
                                   ? glm::normalize(glm::cross(vec3(0, 0, 1), horizontal))
                                   : glm::normalize(glm::cross(g, prev.rollReference));
         const float zenith = std::acos(cosZ);
-        const float newZenith = std::clamp(zenith + zenithChange * kDeg, 0.0f, 3.14159265f);
-        g = geometry::rotateAbout(g, tiltAxis, newZenith - zenith);
-        g = geometry::rotateAbout(g, vec3(0, 0, 1), (in.walkYaw - prev.walkYaw) * kDeg);
+        const float newZenith = std::clamp(zenith + zenithChange * kDeg, 0.0f, kPi);
+        g = rotateAbout(g, tiltAxis, newZenith - zenith);
+        g = rotateAbout(g, vec3(0, 0, 1), (in.walkYaw - prev.walkYaw) * kDeg);
         in.guide = glm::normalize(g);
         // Carry the roll reference along with the smallest rotation (no twist).
         vec3 ref = prev.rollReference - glm::dot(prev.rollReference, in.guide) * in.guide;
         in.rollReference =
-            glm::length(ref) > 1e-6f ? glm::normalize(ref) : geometry::anyPerpendicular(in.guide);
+            glm::length(ref) > 1e-6f ? glm::normalize(ref) : anyPerpendicular(in.guide);
     }
     // Steering (collision avoidance, attraction points) turns internodes made by growth.
     if (growth.steering) growth.steering->steerShootAxis(plant, shoot, in, lengthMax);
@@ -245,7 +223,7 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
     Internode start;  // frame of the first phytomer
     const AxisRotation& r = spec.baseRotation;
     if (mode == StartMode::Base) {
-        const Frame f = orient({vec3(0, 0, 1), vec3(1, 0, 0)}, r.pitch, r.yaw, r.roll);
+        const AxisFrame f = turnedFrame({vec3(0, 0, 1), vec3(1, 0, 0)}, r.pitch, r.yaw, r.roll);
         start.guide = f.axis;
         start.rollReference = f.reference;
     } else {
@@ -253,7 +231,7 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
         s.rank = parent.rank + (mode == StartMode::Child ? 1 : 0);
         if (mode == StartMode::Append) {
             const Internode& tip = parent.phytomers.back().internode;
-            const Frame f = orient({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
+            const AxisFrame f = turnedFrame({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
             start.guide = f.axis;
             start.rollReference = f.reference;
             s.parentNode = int(parent.phytomers.size()) - 1;
@@ -284,16 +262,12 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
             const float roll = type.base_roll.sample(plant.rng) + r.roll;
             const Internode& pin = node.internode;
             const vec3 axis = pin.direction;
-            vec3 budSide = azimuthDirection(pin.guide, pin.rollReference,
-                                            node.petioles[parentPetiole].azimuth);
-            budSide = glm::normalize(budSide - glm::dot(budSide, axis) * axis);
-            budSide = geometry::rotateAbout(budSide, axis, yaw * kDeg);
-            const float a = s.insertionAngle * kDeg;
-            start.guide = glm::normalize(std::cos(a) * axis + std::sin(a) * budSide);
+            const vec3 budSide = azimuthDirection(pin.guide, pin.rollReference,
+                                                  node.petioles[parentPetiole].azimuth);
             // By default the first petiole points along the parent's axis.
-            vec3 ref = axis - glm::dot(axis, start.guide) * start.guide;
-            ref = glm::length(ref) > 1e-6f ? glm::normalize(ref) : budSide;
-            start.rollReference = geometry::rotateAbout(ref, start.guide, roll * kDeg);
+            const AxisFrame f = lateralFrame(axis, budSide, s.insertionAngle, yaw, roll);
+            start.guide = f.axis;
+            start.rollReference = f.reference;
             s.parentNode = int(parentNode);
             s.parentPetiole = int(parentPetiole);
             // The axillary bud the shoot grows from has broken.
@@ -312,13 +286,14 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
     Shoot& shoot = plant.shoots.back();
     if (parentID >= 0) plant.shoots[unsigned(parentID)].children.push_back(shoot.id);
     for (unsigned k = 0; k < spec.phytomers; ++k) {
-        const float radius =
-            spec.internodeRadius * (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
+        const float radius = spec.size.internodeRadius *
+                             (1.0f - spec.radiusTaper * float(k) / float(spec.phytomers));
         createPhytomer(growth, plant, shoot, type.phytomer_parameters, std::max(radius, 1e-6f),
-                       spec.internodeLengthMax, spec.internodeLengthScale, spec.leafScale, &start);
+                       spec.size.internodeLengthMax, spec.size.internodeLengthScale,
+                       spec.size.leafScale, &start);
     }
     Shoot& created = plant.shoots.back();  // the creation function cannot add shoots
-    created.internodeLengthMax = spec.internodeLengthMax;
+    created.internodeLengthMax = spec.size.internodeLengthMax;
     scheduleNewShoot(growth, plant, created);
     return created.id;
 }

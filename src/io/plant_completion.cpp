@@ -11,7 +11,7 @@
 #include <cmath>
 #include <set>
 
-#include "geometry/tube.h"
+#include "core/math.h"
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
 
@@ -19,34 +19,9 @@ namespace plantarch::plant_io {
 
 namespace {
 
-constexpr float kDeg = 3.14159265358979f / 180.0f;
-
-vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuth) {
-    const float a = azimuth * kDeg;
-    return std::cos(a) * reference + std::sin(a) * glm::cross(axis, reference);
-}
-
-vec3 unitOr(vec3 v, vec3 fallback) {
-    const float l = glm::length(v);
-    return l > 1e-6f && std::isfinite(l) ? v / l : fallback;
-}
-
-struct Frame {
-    vec3 axis;
-    vec3 reference;
-};
-
-// Pitch away from the parent axis toward the yaw direction, then roll about the new axis
-// (the convention of PlantArchitecture's shoot starts).
-Frame orient(const Frame& parent, const AxisRotation& r) {
-    const vec3 tiltDir = azimuthDirection(parent.axis, parent.reference, r.yaw);
-    const float p = r.pitch * kDeg;
-    Frame f;
-    f.axis = unitOr(std::cos(p) * parent.axis + std::sin(p) * tiltDir, parent.axis);
-    vec3 ref = -std::sin(p) * parent.axis + std::cos(p) * tiltDir;
-    ref = unitOr(ref - glm::dot(ref, f.axis) * f.axis, geometry::anyPerpendicular(f.axis));
-    f.reference = geometry::rotateAbout(ref, f.axis, r.roll * kDeg);
-    return f;
+// A shoot start turned from `parent` by its base rotation, as PlantArchitecture makes it.
+AxisFrame orient(const AxisFrame& parent, const AxisRotation& r) {
+    return turnedFrame(parent, r.pitch, r.yaw, r.roll);
 }
 
 class Completer {
@@ -129,8 +104,8 @@ private:
     }
 
     // Frame of the first phytomer of shoot `s` (index i), as the builder makes it.
-    Frame startFrame(const Shoot& s, std::size_t i) const {
-        const Frame upright{vec3(0, 0, 1), vec3(1, 0, 0)};
+    AxisFrame startFrame(const Shoot& s, std::size_t i) const {
+        const AxisFrame upright{vec3(0, 0, 1), vec3(1, 0, 0)};
         if (s.parent < 0 || std::size_t(s.parent) >= i) return orient(upright, s.baseRotation);
         const Shoot& parent = p_.shoots[std::size_t(s.parent)];
         if (parent.phytomers.empty()) return orient(upright, s.baseRotation);
@@ -146,17 +121,9 @@ private:
         const float az = std::size_t(s.parentPetiole) < ph.petioles.size()
                              ? ph.petioles[std::size_t(s.parentPetiole)].azimuth
                              : in.azimuth;
-        const vec3 axis = in.direction;
-        vec3 side = azimuthDirection(in.guide, in.rollReference, az);
-        side = unitOr(side - glm::dot(side, axis) * axis, geometry::anyPerpendicular(axis));
-        side = geometry::rotateAbout(side, axis, s.baseRotation.yaw * kDeg);
-        const float angle =
-            (m_.missing(&s.insertionAngle) ? s.baseRotation.pitch : s.insertionAngle) * kDeg;
-        Frame f;
-        f.axis = unitOr(std::cos(angle) * axis + std::sin(angle) * side, axis);
-        const vec3 ref = unitOr(axis - glm::dot(axis, f.axis) * f.axis, side);
-        f.reference = geometry::rotateAbout(ref, f.axis, s.baseRotation.roll * kDeg);
-        return f;
+        const vec3 side = azimuthDirection(in.guide, in.rollReference, az);
+        const float angle = m_.missing(&s.insertionAngle) ? s.baseRotation.pitch : s.insertionAngle;
+        return lateralFrame(in.direction, side, angle, s.baseRotation.yaw, s.baseRotation.roll);
     }
 
     void shoot(Shoot& s, std::size_t i) {
@@ -172,7 +139,7 @@ private:
         if (t) realized(s, *t);
         if (m_.missing(&s.apicalBud.state)) s.apicalBud.state = BudState::Active;
         if (m_.missing(&s.nodesThisSeason)) s.nodesThisSeason = int(s.phytomers.size());
-        const Frame start = startFrame(s, i);
+        const AxisFrame start = startFrame(s, i);
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) phytomer(s, k, start);
         for (FloralBud& fb : s.terminalFloralBuds) {
             if (m_.missing(&fb.terminal)) fb.terminal = true;
@@ -180,7 +147,7 @@ private:
         }
     }
 
-    void phytomer(Shoot& s, std::size_t k, const Frame& start) {
+    void phytomer(Shoot& s, std::size_t k, const AxisFrame& start) {
         Phytomer& ph = s.phytomers[k];
         if (m_.missing(&ph.parametersLabel)) ph.parametersLabel = s.type;
         if (m_.missing(&ph.birth)) ph.birth = 0.0;
@@ -198,7 +165,7 @@ private:
                 // Carried along the axis with the smallest rotation (no twist).
                 const vec3 r =
                     prev->rollReference - glm::dot(prev->rollReference, in.guide) * in.guide;
-                in.rollReference = unitOr(r, geometry::anyPerpendicular(in.guide));
+                in.rollReference = unitOr(r, anyPerpendicular(in.guide));
             }
         }
         if (m_.missing(&in.direction)) {

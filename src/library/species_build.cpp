@@ -161,14 +161,15 @@ private:
         spec.baseRotation.pitch = real(step, path, "pitch", step.pitch);
         spec.baseRotation.yaw = real(step, path, "yaw", step.yaw);
         spec.baseRotation.roll = real(step, path, "roll", step.roll);
-        spec.internodeRadius = step.radius.empty()
-                                   ? type.phytomer_parameters.internode.radius_initial.sample(rng_)
-                                   : real(step, path, "radius", step.radius);
-        spec.internodeLengthMax = step.internodeLength.empty()
-                                      ? type.internode_length_max.sample(rng_)
-                                      : real(step, path, "internode_length", step.internodeLength);
-        spec.internodeLengthScale = real(step, path, "internode_scale", step.internodeScale);
-        spec.leafScale = real(step, path, "leaf_scale", step.leafScale);
+        spec.size.internodeRadius =
+            step.radius.empty() ? type.phytomer_parameters.internode.radius_initial.sample(rng_)
+                                : real(step, path, "radius", step.radius);
+        spec.size.internodeLengthMax =
+            step.internodeLength.empty()
+                ? type.internode_length_max.sample(rng_)
+                : real(step, path, "internode_length", step.internodeLength);
+        spec.size.internodeLengthScale = real(step, path, "internode_scale", step.internodeScale);
+        spec.size.leafScale = real(step, path, "leaf_scale", step.leafScale);
         spec.radiusTaper = real(step, path, "taper", step.taper);
         try {
             unsigned id = 0;

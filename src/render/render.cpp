@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "core/math.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
 
@@ -21,10 +22,11 @@ struct RenderScene::Impl {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-float radians(float deg) {
+// Angles of the render options in radians, rounded as (deg * pi) / 180 (radians() of
+// core/math.h multiplies by a rounded pi / 180): the renderer's images keep their bytes.
+float optionRadians(float deg) {
     return deg * kPi / 180.0f;
 }
 
@@ -113,14 +115,14 @@ AABB framedBox(const AABB& bounds) {
 /// points are all visible vertices (the eight box corners for an empty scene), so the plant
 /// itself, not its bounding box, fills the frame.
 CameraFrame autoFrame(const SceneData& data, const Camera& cam, float aspect) {
-    const float az = radians(cam.azimuthDeg), el = radians(cam.elevationDeg);
+    const float az = optionRadians(cam.azimuthDeg), el = optionRadians(cam.elevationDeg);
     const vec3 toEye(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
     const vec3 forward = -toEye;
     const vec3 worldUp(0.0f, 0.0f, 1.0f);
     const vec3 right = glm::normalize(glm::cross(forward, worldUp));
     const vec3 up = glm::cross(right, forward);
     const float scale = 1.0f - cam.margin;
-    const float ty = std::tan(radians(cam.fovDeg) * 0.5f) * scale;
+    const float ty = std::tan(optionRadians(cam.fovDeg) * 0.5f) * scale;
     const float tx = ty * aspect;
     const AABB box = framedBox(data.bounds);
     const vec3 c = box.center();
@@ -452,7 +454,7 @@ Image RenderScene::render(const RenderOptions& o) const {
     vec3 up = glm::length(cam.up) > 0.0f ? glm::normalize(cam.up) : vec3(0, 0, 1);
     if (glm::length(glm::cross(s.forward, up)) < 1e-4f)
         up = std::abs(s.forward.y) < 0.9f ? vec3(0, 1, 0) : vec3(1, 0, 0);
-    const float tanHalf = std::tan(radians(cam.fovDeg) * 0.5f);
+    const float tanHalf = std::tan(optionRadians(cam.fovDeg) * 0.5f);
     const float aspect = float(o.width) / float(o.height);
     s.right = glm::normalize(glm::cross(s.forward, up)) * tanHalf * aspect;
     s.up = glm::normalize(glm::cross(glm::normalize(s.right), s.forward)) * tanHalf;
@@ -463,7 +465,7 @@ Image RenderScene::render(const RenderOptions& o) const {
     s.fogEnd = 40.0f * radius;
     s.groundAlbedo = render_detail::srgbToLinear(glm::clamp(o.groundColor, vec3(0.0f), vec3(1.0f)));
     s.sun = glm::normalize(o.sunDirection);
-    s.sunCosMax = std::cos(radians(o.sunAngularRadiusDeg));
+    s.sunCosMax = std::cos(optionRadians(o.sunAngularRadiusDeg));
     s.sunIntensity = o.sunIntensity;
     s.zenith = render_detail::srgbToLinear(glm::clamp(o.skyZenithColor, vec3(0.0f), vec3(1.0f)));
     s.horizon = render_detail::srgbToLinear(glm::clamp(o.skyHorizonColor, vec3(0.0f), vec3(1.0f)));
