@@ -14,6 +14,15 @@ namespace plantarch {
 
 namespace {
 
+// A node index of shoot `s`, or an error naming the valid range.
+void checkNode(const Shoot& s, unsigned node) {
+    if (node >= s.phytomers.size())
+        throw Error("node out of range",
+                    {.parameter = "node",
+                     .value = std::to_string(node),
+                     .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
+}
+
 template <class F>
 void forEachPhytomer(PlantInstance& p, F&& f) {
     for (Shoot& s : p.shoots)
@@ -51,11 +60,7 @@ void collect(std::vector<ObjectID>& out, ObjectID id) {
 void PlantArchitecture::pruneBranch(unsigned plantID, unsigned shootID, unsigned node) {
     PlantInstance& p = impl_->store.plant(plantID);
     Shoot& s = PlantStore::shoot(p, shootID);
-    if (node >= s.phytomers.size())
-        throw Error("node out of range",
-                    {.parameter = "node",
-                     .value = std::to_string(node),
-                     .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
+    checkNode(s, node);
     // Shoots growing from the removed nodes (or from the tip, for appended shoots) go too.
     std::function<void(unsigned)> removeShoot = [&](unsigned id) {
         Shoot& victim = p.shoots[id];
@@ -182,11 +187,7 @@ unsigned PlantArchitecture::addFloralBud(unsigned plantID, unsigned shootID, uns
                                          FloralStage stage, unsigned petioleIndex) {
     PlantInstance& p = impl_->store.plant(plantID);
     Shoot& s = PlantStore::shoot(p, shootID);
-    if (node >= s.phytomers.size())
-        throw Error("node out of range",
-                    {.parameter = "node",
-                     .value = std::to_string(node),
-                     .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
+    checkNode(s, node);
     Phytomer& ph = s.phytomers[node];
     if (petioleIndex >= ph.petioles.size())
         throw Error("petiole index out of range",
@@ -438,11 +439,7 @@ std::vector<unsigned> PlantArchitecture::getShootPathToRoot(unsigned plantID,
 vec3 PlantArchitecture::getNodePosition(unsigned plantID, unsigned shootID, unsigned node) const {
     const PlantInstance& p = impl_->store.plant(plantID);
     const Shoot& s = PlantStore::shoot(p, shootID);
-    if (node >= s.phytomers.size())
-        throw Error("node out of range",
-                    {.parameter = "node",
-                     .value = std::to_string(node),
-                     .validRange = "0 to " + std::to_string(s.phytomers.size() - 1)});
+    checkNode(s, node);
     return shootNodePositions(p, shootID)[node + 1];
 }
 

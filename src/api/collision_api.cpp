@@ -16,24 +16,18 @@ namespace plantarch {
 
 namespace {
 
-std::string num(double v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-}
-
 void checkRange(const char* name, double v, double lo, double hi, bool openLow, const char* range) {
     const bool ok = std::isfinite(v) && (openLow ? v > lo : v >= lo) && v <= hi;
     if (!ok)
         throw Error("collision option out of range",
-                    {.parameter = name, .value = num(v), .validRange = range});
+                    {.parameter = name, .value = text::formatDouble(v), .validRange = range});
 }
 
 void checkAngle(const char* name, float v) {
     if (!(std::isfinite(v) && v > 0.0f && v < 180.0f))
-        throw Error("collision option out of range",
-                    {.parameter = name, .value = num(v), .validRange = "> 0 and < 180 degrees"});
+        throw Error("collision option out of range", {.parameter = name,
+                                                      .value = text::formatDouble(v),
+                                                      .validRange = "> 0 and < 180 degrees"});
 }
 
 void checkRays(const char* name, unsigned n) {

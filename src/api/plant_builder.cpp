@@ -5,6 +5,7 @@
 
 #include "api/facade_impl.h"
 #include "collision/collision_world.h"
+#include "core/value_text.h"
 #include "geometry/builtin_prototypes.h"
 #include "geometry/tessellate.h"
 #include "growth/growth.h"
@@ -13,17 +14,6 @@
 #include "plantarch/OrganPrototypes.h"
 
 namespace plantarch {
-
-namespace {
-
-std::string str(float v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-}
-
-}  // namespace
 
 // ---- shoot type checks -------------------------------------------------------------------
 
@@ -130,9 +120,9 @@ unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float cu
         !std::isfinite(base_position.z))
         throw Error("plant base position must be finite", {.parameter = "base_position"});
     if (!(current_age >= 0.0f && std::isfinite(current_age)))
-        throw Error(
-            "invalid plant age",
-            {.parameter = "current_age", .value = str(current_age), .validRange = ">= 0 days"});
+        throw Error("invalid plant age", {.parameter = "current_age",
+                                          .value = text::formatFloat(current_age),
+                                          .validRange = ">= 0 days"});
     PlantInstance p;
     p.id = impl_->store.nextPlantID++;
     p.base = base_position;

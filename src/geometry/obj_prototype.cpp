@@ -1,21 +1,11 @@
 #include <cmath>
 
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OrganPrototypes.h"
 
 namespace plantarch {
-
-namespace {
-
-std::string num(float v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-}
-
-}  // namespace
 
 bool isOBJPrototypeName(const std::string& name) {
     return name.size() > 4 && name.compare(name.size() - 4, 4, ".obj") == 0;
@@ -28,8 +18,9 @@ OrganPrototype loadOBJPrototype(const std::string& path, bool normalize) {
     for (ObjectID id : ids) box.add(ctx.objectBoundingBox(id));
     const float length = box.extent().x;
     if (!(length > 0.0f))
-        throw Error("OBJ prototype has no extent along +x (the organ axis)",
-                    {.file = path, .value = "length " + num(length), .validRange = "> 0"});
+        throw Error(
+            "OBJ prototype has no extent along +x (the organ axis)",
+            {.file = path, .value = "length " + text::formatFloat(length), .validRange = "> 0"});
     mat4 xf(1.0f);
     if (normalize) {
         // Base (smallest x) to the origin, centred on the axis there, unit length.
@@ -47,7 +38,8 @@ OrganPrototype loadOBJPrototype(const std::string& path, bool normalize) {
             "OBJ prototype does not follow the convention (length 1 along +x from the "
             "origin); set normalize_OBJ_model to fit it",
             {.file = path,
-             .value = "x from " + num(box.min.x) + " to " + num(box.max.x),
+             .value =
+                 "x from " + text::formatFloat(box.min.x) + " to " + text::formatFloat(box.max.x),
              .validRange = "x from 0 to 1 (within 0.01)"});
     }
     OrganPrototype proto;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "core/value_text.h"
 #include "growth/growth.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
@@ -15,16 +16,9 @@ namespace plantarch {
 
 namespace {
 
-std::string str(float v) {
-    std::string s = std::to_string(v);
-    s.erase(s.find_last_not_of('0') + 1);
-    if (!s.empty() && s.back() == '.') s.pop_back();
-    return s;
-}
-
 void invalid(const char* name, float v, const char* range) {
     throw Error("invalid shoot argument",
-                {.parameter = name, .value = str(v), .validRange = range});
+                {.parameter = name, .value = text::formatFloat(v), .validRange = range});
 }
 
 }  // namespace
