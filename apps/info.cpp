@@ -73,6 +73,19 @@ void printRows(const std::vector<const ParameterInfo*>& rows, const std::string&
             group = groupOf(*p);
             std::printf("%s%s:\n", indent.c_str(), group.c_str());
         }
+        if (p->kind == ParameterKind::List && !p->value.empty()) {
+            // One numbered line per element: "1. rank_max 1, node_max 5, ...".
+            std::printf("%s%s:\n", indent.c_str(), label(*p).c_str());
+            std::size_t start = 0, n = 0;
+            while (start <= p->value.size()) {
+                std::size_t end = p->value.find("; ", start);
+                if (end == std::string::npos) end = p->value.size();
+                std::printf("%s    %zu. %s\n", indent.c_str(), ++n,
+                            p->value.substr(start, end - start).c_str());
+                start = end + 2;
+            }
+            continue;
+        }
         std::printf(
             "%s\n",
             fmt::format("{}{:<{}}  {}", indent, label(*p), width, valueWithUnit(*p)).c_str());

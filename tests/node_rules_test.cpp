@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_run.h"
 #include "plantarch/Error.h"
 #include "plantarch/Formula.h"
 #include "plantarch/PlantArchitecture.h"
@@ -37,9 +38,26 @@ std::string documentedExample() {
     const std::string text = doc.str();
     const std::size_t section = text.find("## Node rules");
     EXPECT_NE(section, std::string::npos);
-    const std::size_t start = text.find("```xml\n", section);
+    const std::size_t start = text.find("```xml\n<?xml", section);
     const std::size_t end = text.find("```\n", start + 7);
     return text.substr(start + 7, end - start - 7);
+}
+
+// The <node_rules> snippets of the same section, in order.
+std::vector<std::string> documentedSnippets() {
+    std::ifstream in(kSourceDir + "/docs/species-format.md");
+    std::stringstream doc;
+    doc << in.rdbuf();
+    const std::string text = doc.str();
+    const std::size_t section = text.find("## Node rules");
+    const std::size_t next = text.find("\n## ", section + 1);
+    std::vector<std::string> out;
+    for (std::size_t at = text.find("```xml\n<node_rules>", section);
+         at != std::string::npos && at < next; at = text.find("```xml\n<node_rules>", at + 1)) {
+        const std::size_t end = text.find("```\n", at + 7);
+        out.push_back(text.substr(at + 7, end - at - 7));
+    }
+    return out;
 }
 
 // A stem of `nodes` nodes, one leaf each (0.1 m), no branches, with the given rules.
@@ -163,6 +181,22 @@ TEST(NodeRules, TheDocumentedExampleBuildsWhatItSays) {
     EXPECT_EQ(full.arch->getPlantLeafCount(full.plant), 10u);
     EXPECT_NEAR(g.arch->getPlantLeafArea(g.plant) / full.arch->getPlantLeafArea(full.plant), 0.455,
                 1e-4);
+}
+
+TEST(NodeRules, EveryDocumentedSnippetReadsAndBuilds) {
+    const std::vector<std::string> snippets = documentedSnippets();
+    ASSERT_EQ(snippets.size(), 6u);
+    for (const std::string& rules : snippets) {
+        SCOPED_TRACE(rules);
+        // The ears of the grass example come from a shoot type of their own.
+        std::string xml = stemSpecies(rules, 14);
+        xml.replace(xml.find("  <build>"), 0,
+                    "  <shoot_type label=\"ear\"><max_nodes>1</max_nodes></shoot_type>\n");
+        const SpeciesModel m = readSpeciesString(xml, "snippet.xml");
+        EXPECT_FALSE(m.shootTypes.at("stem").phytomer_parameters.node_rules.empty());
+        const Grown g = grow(xml, 120);
+        EXPECT_GT(g.ctx->triangleCount(), 0u);
+    }
 }
 
 // ---- conditions and actions -------------------------------------------------------------
@@ -368,4 +402,17 @@ TEST(NodeRules, APlantStructureFileKeepsTheRulesAndGrowsOnTheSame) {
     arch.advanceTime(back, 12);
     EXPECT_EQ(arch.getPlantStructureXML({back}), g.arch->getPlantStructureXML({g.plant}));
     EXPECT_EQ(arch.getPlantLeafCount(back), 4u);  // 10 nodes, the 6 lowest stripped
+}
+
+TEST(NodeRules, InfoListsASpeciesRulesOnePerLine) {
+    const cli::Result r = cli::run("info bean");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("      node_rules:\n"
+                         "        1. rank_max 1, node_max 5, remove_floral_buds true\n"
+                         "        2. node_min 6, remove_vegetative_buds true\n"
+                         "        3. rank_min 2, remove_vegetative_buds true\n"
+                         "        4. leaf_scale min(1, 0.6 + 0.4 * age / 8)\n"
+                         "        5. rank_max 0, internode_scale min(1, 0.2 + 0.8 * age / 10)\n"),
+              std::string::npos)
+        << r.out;
 }
