@@ -383,6 +383,19 @@ TEST(NodeRules, BadRulesGiveOneLineWithFileLineAndValidValues) {
               "(valid: 1 to 1e+06)");
     EXPECT_NE(readError("<node_rules><other/></node_rules>").find("rules.xml:12"),
               std::string::npos);
+    // Checks across a rule's fields.
+    EXPECT_EQ(readError("<node_rules><rule><node_min>5</node_min><node_max>2</node_max></rule>"
+                        "</node_rules>"),
+              "rules.xml:12: stem.phytomer.node_rules[1].node_min = 5: the rule can never hold: "
+              "node_min exceeds node_max (valid: at most node_max = 2)");
+    EXPECT_EQ(readError("<node_rules><rule><height_below>1</height_below></rule></node_rules>"),
+              "rules.xml:12: stem.phytomer.node_rules[1].height_below = 1: height_below needs a "
+              "daily or winter rule (a node has no height as it is made) (valid: "
+              "<when>daily</when> or <when>winter</when>)");
+    EXPECT_EQ(readError("<node_rules><rule><flowering_shoot_type>an ear</flowering_shoot_type>"
+                        "</rule></node_rules>"),
+              "rules.xml:12: stem.phytomer.node_rules[1].flowering_shoot_type = an ear: a shoot "
+              "type label is letters, digits, '_' or '-' (valid: a shoot type label)");
 }
 
 TEST(NodeRules, APlantStructureFileKeepsTheRulesAndGrowsOnTheSame) {

@@ -2,9 +2,11 @@
 
 #include <charconv>
 #include <cmath>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
+#include "core/value_text.h"
 #include "model/parameter_table.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantState.h"
@@ -119,8 +121,42 @@ struct Validator {
             Validator sub{(path.empty() ? std::string(f.name) : path + "." + f.name) + "[" +
                           std::to_string(i + 1) + "]"};
             visit(items[i], sub);
+            sub.whole(items[i]);
         }
     }
+
+    // Checks across the fields of one node rule: ranges that can hold, conditions that apply
+    // at the rule's time, a shoot type label that can name one.
+    void whole(const NodeRule& r) const {
+        auto fail = [&](const char* field, const std::string& value, const std::string& why,
+                        const std::string& range) {
+            throw Error(why,
+                        {.parameter = path + "." + field, .value = value, .validRange = range});
+        };
+        using Range = std::tuple<const char*, const char*, int, int>;
+        for (const auto& [lo, hi, a, b] : {Range{"rank_min", "rank_max", r.rank_min, r.rank_max},
+                                           Range{"node_min", "node_max", r.node_min, r.node_max},
+                                           Range{"nodes_from_tip_min", "nodes_from_tip_max",
+                                                 r.nodes_from_tip_min, r.nodes_from_tip_max},
+                                           Range{"nodes_before_last_min", "nodes_before_last_max",
+                                                 r.nodes_before_last_min, r.nodes_before_last_max}})
+            if (a > b)
+                fail(lo, std::to_string(a),
+                     std::string("the rule can never hold: ") + lo + " exceeds " + hi,
+                     std::string("at most ") + hi + " = " + std::to_string(b));
+        if (r.age_min > r.age_max)
+            fail("age_min", number(r.age_min), "the rule can never hold: age_min exceeds age_max",
+                 "at most age_max = " + number(r.age_max));
+        if (r.when == NodeRuleTime::Creation && r.height_below < 1e9f)
+            fail("height_below", number(r.height_below),
+                 "height_below needs a daily or winter rule (a node has no height as it is made)",
+                 "<when>daily</when> or <when>winter</when>");
+        if (!r.flowering_shoot_type.empty() && !text::isLabel(r.flowering_shoot_type))
+            fail("flowering_shoot_type", r.flowering_shoot_type,
+                 "a shoot type label is letters, digits, '_' or '-'", "a shoot type label");
+    }
+    template <class E>
+    void whole(const E&) const {}
 };
 
 // Validates the probability maps of a shoot's own level only, as declared in the table
