@@ -353,9 +353,10 @@ private:
     void readBuild(xml_node node) {
         const Element build(doc_, node, "build");
         build.checkAttributes({});
+        // Children keeps the names it allows as views: they must outlive it.
+        const std::vector<std::string> kinds = species_xml::buildStepElements();
         Children children(build);
-        for (const std::string& kind : species_xml::buildStepElements())
-            children.allow(kind.c_str(), true);
+        for (const std::string& kind : kinds) children.allow(kind, true);
         children.finish();
         std::vector<std::string> names;
         for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
