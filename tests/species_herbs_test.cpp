@@ -361,7 +361,7 @@ TEST(SpeciesHerbsAll, LoadWithTheirRulesAndRejectBuildParameters) {
         arch.loadPlantModelFromLibrary(name);
         const std::vector<std::string> labels = arch.listShootTypeLabels();
         ASSERT_FALSE(labels.empty());
-        const PhytomerParameters& pp =
+        const PhytomerParameters pp =
             arch.getCurrentShootParameters(labels.front()).phytomer_parameters;
         EXPECT_EQ(pp.node_rules.size(), count);
         EXPECT_EQ(pp.phytomer_creation_function, "");
@@ -371,7 +371,7 @@ TEST(SpeciesHerbsAll, LoadWithTheirRulesAndRejectBuildParameters) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("cherrytomato");
-    const NodeRule& pruning =
+    const NodeRule pruning =
         arch.getCurrentShootParameters("mainstem").phytomer_parameters.node_rules.back();
     EXPECT_EQ(pruning.when, NodeRuleTime::Daily);
     EXPECT_EQ(pruning.age_min, 101.0f);
