@@ -12,7 +12,7 @@ page=docs/gallery.md
   echo
   echo "Every species of the library at its recommended age (seed 42), made by"
   echo "\`bash scripts/make-gallery.sh\`. Statistics from \`plantarch build --stats\`; leaves"
-  echo "count leaflets. Compare with the reference pictures in \`../shared/reference/renders/\`."
+  echo "count leaflets."
   echo
   echo "| species | age (d) | height (m) | leaves | shoots | flowers | fruit | triangles |"
   echo "|---|---:|---:|---:|---:|---:|---:|---:|"
