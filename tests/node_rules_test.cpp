@@ -138,6 +138,13 @@ TEST(NodeRuleFormula, FloatEvaluationIsTheCppFloatExpressionToTheBit) {
         const float got = g.evaluateFloat(std::vector<float>{0, float(node), 0, 13, 0});
         EXPECT_EQ(std::memcmp(&got, &expected, sizeof got), 0) << node;
     }
+    // A literal beyond float's range is not silently zero in float precision.
+    EXPECT_NE(
+        errorOf([] {
+            NodeRule::formula("1e39 * node").evaluateFloat(std::vector<float>{0, 1, 0, 10, 0});
+        }).find("result is not a finite number"),
+        std::string::npos);
+    EXPECT_EQ(Formula("1e39 * 2", {}).evaluate(std::vector<double>{}), 2e39);
     // Double precision keeps double literals: 0.1 * 3 is not the float product.
     EXPECT_EQ(Formula("0.1 * 3", {}).evaluate(std::vector<double>{}), 0.1 * 3);
 }

@@ -201,7 +201,10 @@ private:
         const char* end = text_.data() + text_.size();
         const auto r = std::from_chars(begin, end, op.number);
         if (r.ec != std::errc()) failHere("malformed number");
-        std::from_chars(begin, r.ptr, op.numberF);  // the same digits, rounded once to float
+        // The same digits rounded once to float; beyond float's range, infinity (an error when
+        // a float evaluation reaches the result).
+        if (std::from_chars(begin, r.ptr, op.numberF).ec != std::errc())
+            op.numberF = float(op.number);
         pos_ += std::size_t(r.ptr - begin);
         emit(op, 1);
     }
