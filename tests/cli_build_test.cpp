@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_run.h"
 
@@ -53,15 +55,39 @@ TEST(CliBuild, StatsIsOneJSONObjectAndSeedsDiffer) {
 }
 
 TEST(CliBuild, BadInputIsOneLineAndStatus2) {
-    for (const std::string args :
-         {"build nosuch --age 10 -o /tmp/x.obj", "build bean --age -3 -o /tmp/x.obj",
-          "build bean --age 10 -o /tmp/x.stl", "build bean --age 10 -D foo -o /tmp/x.obj",
-          "build bean --age 10 -D trunk_height=1 -o /tmp/x.obj", "build bean -o /tmp/x.obj",
-          "build bean --age 10 -o /tmp/x.png --image-size 32", "nosuchcommand"}) {
+    // Each bad input: exit status 2 and exactly this one line, naming the parameter, the
+    // value and the valid range.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"build nosuch --age 10 -o /tmp/x.obj",
+         "plantarch: species = nosuch: unknown species (valid: one of: almond, almond_aldrich, "
+         "almond_wood_colony, apple, apple_fruitingwall, asparagus, bean, bindweed, "
+         "bougainvillea, butterlettuce, capsicum, cheeseweed, cherrytomato, cowpea, "
+         "easternredbud, grapevine_VSP, grapevine_Wye, groundcherryweed, maize, olive, "
+         "pistachio, puncturevine, rice, sorghum, soybean, strawberry, sugarbeet, tomato, "
+         "walnut, wheat)\n"},
+        {"build bean --age -3 -o /tmp/x.obj",
+         "plantarch: --age: age = -3: not a number of days (valid: 0 to 100000)\n"},
+        {"build bean --age 10 -o /tmp/x.stl",
+         "plantarch: /tmp/x.stl: '.stl': unknown output format (valid: .obj, .ply, .png, .xml, "
+         ".txt)\n"},
+        {"build bean --age 10 -D foo -o /tmp/x.obj",
+         "plantarch: -D = foo: a build parameter is written name=value (valid: name=value)\n"},
+        {"build bean --age 10 -D trunk_height=1 -o /tmp/x.obj",
+         "plantarch: trunk_height = 1: unknown build parameter of species 'bean' (valid: the "
+         "species has no build parameters)\n"},
+        {"build bean -o /tmp/x.obj", "plantarch: --age is required\n"},
+        {"build bean --age 10 -o /tmp/x.png --image-size 32",
+         "plantarch: --image-size = 32: image size is WIDTHxHEIGHT in pixels (valid: 16x16 to "
+         "16384x16384)\n"},
+    };
+    for (const auto& [args, message] : cases) {
         const CliResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << ": " << r.out;
-        EXPECT_EQ(lines(r.out), 1) << args << ": " << r.out;
+        EXPECT_EQ(r.out, message) << args;
     }
+    const CliResult unknown = run("nosuchcommand");
+    EXPECT_EQ(unknown.status, 2) << unknown.out;
+    EXPECT_EQ(lines(unknown.out), 1) << unknown.out;
 }
 
 TEST(CliBuild, DemoWritesObjAndPng) {
