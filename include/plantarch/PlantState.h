@@ -75,6 +75,9 @@ struct FloralBud {
     /// a rule function) flowers without that draw; Dead never flowers.
     BudState state = BudState::Dormant;
     bool terminal = false;  ///< at the shoot tip (else axillary)
+    /// Terminal buds: the bud's place around the shoot tip, degrees from the last internode's
+    /// azimuth (the n buds of a shoot stand 360 / n apart, dead ones keeping their place).
+    float terminalAzimuth = 0.0f;
     /// Shoot type whose phytomer template (peduncle, inflorescence) realizes and draws this
     /// bud; empty: the type that made its phytomer (terminal buds: the shoot's type). Rule
     /// functions set it to give some nodes other flowers or fruit (maize ears).

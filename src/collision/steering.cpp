@@ -289,8 +289,7 @@ void SceneSteering::steerPeduncle(const PlantInstance& plant, const Shoot& shoot
     const unsigned k = terminal ? unsigned(shoot.phytomers.size() - 1) : node;
     const Internode& in = shoot.phytomers[k].internode;
     const float base =
-        terminal ? in.azimuth + 360.0f * float(bud) / float(shoot.terminalFloralBuds.size())
-                 : shoot.phytomers[k].petioles[petiole].azimuth;
+        terminal ? in.azimuth + fb.terminalAzimuth : shoot.phytomers[k].petioles[petiole].azimuth;
     const vec3 dir = sideDirection(in, fb.pedunclePitch, base + fb.peduncleRoll);
     const vec3 top = nodePosition(plant, shoot.id, k + 1, plant.age, false);
     Rng rng = coneRng(seed, plant.id, shoot.id, k, kConePeduncle,

@@ -705,9 +705,8 @@ struct Tessellator {
         if (s.phytomers.empty()) return;
         Phytomer& ph = s.phytomers.back();
         const Internode& in = ph.internode;
-        const std::size_t n = s.terminalFloralBuds.size();
         FloralBud& fb = s.terminalFloralBuds[i];
-        const float az = in.azimuth + 360.0f * float(i) / float(n) + fb.peduncleRoll;
+        const float az = in.azimuth + fb.terminalAzimuth + fb.peduncleRoll;
         vec3 side = azimuthDirection(in.guide, in.rollReference, az);
         side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
         inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, budParameters(fb, pp),

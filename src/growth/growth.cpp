@@ -229,6 +229,7 @@ struct Grower {
             for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i) {
                 FloralBud& fb = s.terminalFloralBuds[i];
                 fb.terminal = true;
+                fb.terminalAzimuth = 360.0f * float(i) / float(s.terminalFloralBuds.size());
                 if (!t.flowers_require_dormancy && flowering >= 0.0) {
                     fb.nextTime = std::max(flowering, plant.age);
                     push(fb.nextTime, kFloral, s.id, 0, 0, i, true);

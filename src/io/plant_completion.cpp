@@ -141,8 +141,12 @@ private:
         if (m_.missing(&s.nodesThisSeason)) s.nodesThisSeason = int(s.phytomers.size());
         const AxisFrame start = startFrame(s, i);
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) phytomer(s, k, start);
-        for (FloralBud& fb : s.terminalFloralBuds) {
+        const std::size_t n = s.terminalFloralBuds.size();
+        for (std::size_t b = 0; b < n; ++b) {
+            FloralBud& fb = s.terminalFloralBuds[b];
             if (m_.missing(&fb.terminal)) fb.terminal = true;
+            // Evenly around the tip, as growth places them.
+            if (m_.missing(&fb.terminalAzimuth)) fb.terminalAzimuth = 360.0f * float(b) / float(n);
             floral(fb);
         }
     }

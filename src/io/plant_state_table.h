@@ -89,6 +89,10 @@ void describeState(S& b, V& v) {
     v.field({"stage", 0, 0, "bud, flower_closed, flower_open, fruit or removed"}, b.stage);
     v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
     v.field({"terminal", 0, 1, "at the shoot tip (else axillary)"}, b.terminal);
+    v.field(
+        {"terminal_azimuth", -360, 360,
+         "terminal buds: place around the shoot tip, degrees from its last internode's azimuth"},
+        b.terminalAzimuth);
     v.field({"parameters_label", 0, 0,
              "shoot type whose template makes and draws it (empty: its phytomer's)",
              Check::LabelOrEmpty},

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
@@ -95,7 +96,7 @@ private:
         numbers({r.x, r.y, r.z});
         out_ += "){";
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) node(s, k, depth);
-        for (const FloralBud& fb : s.terminalFloralBuds) floral(fb);
+        for (const FloralBud& fb : s.terminalFloralBuds) floral(fb, true);
         for (unsigned c : s.children) {
             if (drawn(c) && p_.shoots[c].rank == s.rank)
                 shoot(c, depth + 1);  // appended at the tip
@@ -116,7 +117,11 @@ private:
             const Petiole& pt = ph.petioles[j];
             const float f = ph.leafFraction;
             out_ += "[P(";
-            numbers({pt.length * f, pt.radius * f, pt.pitch, pt.curvature, pt.taper});
+            // A petiole whose leaves have all fallen is not drawn: it is written with length 0.
+            const bool bare =
+                !pt.leaves.empty() && std::all_of(pt.leaves.begin(), pt.leaves.end(),
+                                                  [](const LeafOrgan& l) { return l.removed; });
+            numbers({bare ? 0.0f : pt.length * f, pt.radius * f, pt.pitch, pt.curvature, pt.taper});
             out_ += ')';
             for (const LeafOrgan& l : pt.leaves) {
                 if (l.removed) continue;
@@ -128,7 +133,7 @@ private:
                 out_ += std::to_string(l.variant);
                 out_ += ')';
             }
-            for (const FloralBud& fb : pt.floralBuds) floral(fb);
+            for (const FloralBud& fb : pt.floralBuds) floral(fb, false);
             for (unsigned c : s.children) {
                 const Shoot& child = p_.shoots[c];
                 if (drawn(c) && child.rank != s.rank && child.parentNode == int(k) &&
@@ -139,7 +144,8 @@ private:
         }
     }
 
-    void floral(const FloralBud& fb) {
+    // Terminal buds also give their place around the shoot tip (dead buds keep theirs).
+    void floral(const FloralBud& fb, bool terminal) {
         const char letter = stageLetter(fb.stage);
         if (!letter) return;  // buds and removed organs are not drawn
         out_ += 'F';
@@ -147,6 +153,10 @@ private:
         out_ += '(';
         numbers({fb.peduncleLength, fb.peduncleRadius, fb.pedunclePitch, fb.peduncleRoll,
                  fb.peduncleCurvature});
+        if (terminal) {
+            out_ += ',';
+            numbers({fb.terminalAzimuth});
+        }
         out_ += ')';
         const bool fruit = fb.stage == FloralStage::Fruit;
         const float m = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
@@ -308,7 +318,7 @@ private:
         p_.shoots[id].phytomers.front().internode.rollReference =
             direction(roll[0], roll[1], roll[2]);
         while (peek() == 'F') {
-            FloralBud fb = floral();
+            FloralBud fb = floral(true);
             fb.terminal = true;
             p_.shoots[id].terminalFloralBuds.push_back(std::move(fb));
         }
@@ -342,7 +352,7 @@ private:
             pt.curvature = q[3];
             pt.taper = q[4];
             while (peek() == 'L') pt.leaves.push_back(leaf());
-            while (peek() == 'F') pt.floralBuds.push_back(floral());
+            while (peek() == 'F') pt.floralBuds.push_back(floral(false));
             p_.shoots[shootID].phytomers[std::size_t(node)].petioles.push_back(std::move(pt));
             while (peek() == 'S') shoot(int(shootID), node, petiole, false, depth + 1);
             expect(']');
@@ -378,7 +388,8 @@ private:
         return l;
     }
 
-    FloralBud floral() {
+    // A terminal bud may give its place around the tip as a sixth number.
+    FloralBud floral(bool terminal) {
         expect('F');
         FloralBud fb;
         const char letter = pos_ < s_.size() ? s_[pos_] : '\0';
@@ -391,12 +402,20 @@ private:
         else
             fail("expected a flower stage letter", "c (closed flower), o (open flower), f (fruit)");
         ++pos_;
-        const auto v = tuple<5>();
+        expect('(');
+        const auto v = numbersThen<4>();
         fb.peduncleLength = v[0];
         fb.peduncleRadius = v[1];
         fb.pedunclePitch = v[2];
         fb.peduncleRoll = v[3];
-        fb.peduncleCurvature = v[4];
+        fb.peduncleCurvature = number<float>();
+        // Not given (a string written before terminal places were): NaN until completed.
+        if (terminal) fb.terminalAzimuth = std::numeric_limits<float>::quiet_NaN();
+        if (terminal && peek() == ',') {
+            expect(',');
+            fb.terminalAzimuth = number<float>();
+        }
+        expect(')');
         const bool fruit = fb.stage == FloralStage::Fruit;
         while (peek() == 'f') {
             ++pos_;
@@ -459,7 +478,10 @@ void notePresent(PlantInstance& p, Presence& m) {
                 for (FloralBud& fb : pt.floralBuds) floral(fb);
             }
         }
-        for (FloralBud& fb : s.terminalFloralBuds) floral(fb);
+        for (FloralBud& fb : s.terminalFloralBuds) {
+            floral(fb);
+            if (!std::isnan(fb.terminalAzimuth)) m.note(&fb.terminalAzimuth);
+        }
     }
 }
 
