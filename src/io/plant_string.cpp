@@ -150,6 +150,7 @@ private:
         if (!letter) return;  // buds and removed organs are not drawn
         out_ += 'F';
         out_ += letter;
+        out_ += fb.parametersLabel;  // drawn from another shoot type's template (an ear)
         out_ += '(';
         numbers({fb.peduncleLength, fb.peduncleRadius, fb.pedunclePitch, fb.peduncleRoll,
                  fb.peduncleCurvature});
@@ -402,6 +403,7 @@ private:
         else
             fail("expected a flower stage letter", "c (closed flower), o (open flower), f (fruit)");
         ++pos_;
+        fb.parametersLabel = label(false);
         expect('(');
         const auto v = numbersThen<4>();
         fb.peduncleLength = v[0];
@@ -450,9 +452,10 @@ void notePresent(PlantInstance& p, Presence& m) {
             m.note(v);
         auto floral = [&](FloralBud& fb) {
             for (const void* v : {(const void*)&fb.stage, (const void*)&fb.terminal,
-                                  (const void*)&fb.peduncleLength, (const void*)&fb.peduncleRadius,
-                                  (const void*)&fb.pedunclePitch, (const void*)&fb.peduncleRoll,
-                                  (const void*)&fb.peduncleCurvature, (const void*)&fb.fruitGrowth})
+                                  (const void*)&fb.parametersLabel, (const void*)&fb.peduncleLength,
+                                  (const void*)&fb.peduncleRadius, (const void*)&fb.pedunclePitch,
+                                  (const void*)&fb.peduncleRoll, (const void*)&fb.peduncleCurvature,
+                                  (const void*)&fb.fruitGrowth})
                 m.note(v);
         };
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
