@@ -4,24 +4,30 @@
 
 namespace plantarch {
 
+namespace {
+
+// The function registered as `name` in `registry`, or an error naming the shoot type's field.
+template <class Map>
+const typename Map::mapped_type& lookUp(const Map& registry, const std::string& name,
+                                        const std::string& shootType, const char* kind) {
+    auto fn = registry.find(name);
+    if (fn == registry.end())
+        throw Error(
+            std::string("unknown phytomer ") + kind + " function",
+            {.parameter = shootType + ".phytomer.phytomer_" + kind + "_function", .value = name});
+    return fn->second;
+}
+
+}  // namespace
+
 const PhytomerCreationFunction& FunctionRegistry::creation(const std::string& name,
                                                            const std::string& shootType) const {
-    auto fn = creationFunctions.find(name);
-    if (fn == creationFunctions.end())
-        throw Error(
-            "unknown phytomer creation function",
-            {.parameter = shootType + ".phytomer.phytomer_creation_function", .value = name});
-    return fn->second;
+    return lookUp(creationFunctions, name, shootType, "creation");
 }
 
 const PhytomerCallbackFunction& FunctionRegistry::callback(const std::string& name,
                                                            const std::string& shootType) const {
-    auto fn = callbackFunctions.find(name);
-    if (fn == callbackFunctions.end())
-        throw Error(
-            "unknown phytomer callback function",
-            {.parameter = shootType + ".phytomer.phytomer_callback_function", .value = name});
-    return fn->second;
+    return lookUp(callbackFunctions, name, shootType, "callback");
 }
 
 }  // namespace plantarch
