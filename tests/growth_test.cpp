@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -168,26 +169,58 @@ TEST(Growth, InsertionAnglesIncreaseDownTheShoot) {
         }
 }
 
-TEST(Growth, GravitropismFollowsTheEquation) {
+namespace {
+
+// The specification's curvature: each new internode turns its zenith angle by
+// -s (1 - cos z) L C degrees, z from the vertical, s = 1 when the tip points below the
+// horizontal and 0.5 otherwise; the zenith stays within 0 to 180 degrees.
+void expectGravitropism(float startZenith, float curvature) {
+    SCOPED_TRACE("start " + std::to_string(startZenith) + " curvature " +
+                 std::to_string(curvature));
     ShootParameters s = growingShoot();
-    s.gravitropic_curvature = 300.0f;  // degrees per metre
+    s.gravitropic_curvature = curvature;  // degrees per metre
     s.max_nodes = 15;
     Garden g;
-    const unsigned p = g.plant(s, 1, 90.0f);  // starts horizontal
+    const unsigned p = g.plant(s, 1, startZenith);
     g.arch.advanceTime(28.0f);
     const Shoot& sh = g.state(p).shoots[0];
     ASSERT_EQ(sh.phytomers.size(), 15u);
-    // Zenith of the shoot axis: dz = -s (1 - cos z) L C with s = 1 below horizontal, else 0.5.
-    double zenith = 90.0;
+    const double deg = std::numbers::pi / 180.0;
+    double zenith = startZenith;
+    EXPECT_NEAR(std::acos(double(sh.phytomers[0].internode.guide.z)) / deg, zenith, 1e-3);
     for (std::size_t k = 1; k < sh.phytomers.size(); ++k) {
-        const double c = std::cos(zenith * std::numbers::pi / 180.0);
-        const double sfac = zenith > 90.0 ? 1.0 : 0.5;
-        zenith -= sfac * (1.0 - c) * 0.03 * 300.0;
-        const vec3 guide = sh.phytomers[k].internode.guide;
-        const double measured = std::acos(double(guide.z)) * 180.0 / std::numbers::pi;
+        const double sfac = zenith > 90.0 + 1e-3 ? 1.0 : 0.5;
+        zenith -= sfac * (1.0 - std::cos(zenith * deg)) * 0.03 * curvature;
+        zenith = std::clamp(zenith, 0.0, 180.0);
+        const double measured = std::acos(double(sh.phytomers[k].internode.guide.z)) / deg;
         EXPECT_NEAR(measured, zenith, 1e-2) << "node " << k;
     }
-    EXPECT_LT(zenith, 70.0);  // it did bend up
+}
+
+}  // namespace
+
+TEST(Growth, GravitropismFollowsTheEquationFromEveryStart) {
+    expectGravitropism(90.0f, 300.0f);   // horizontal: s = 0.5 from the first node
+    expectGravitropism(150.0f, 300.0f);  // below the horizontal: s = 1 until it rises past it
+    expectGravitropism(175.0f, 100.0f);  // almost straight down
+    expectGravitropism(30.0f, -300.0f);  // negative curvature bends it down, past the horizontal
+}
+
+// The numbers of the equation, worked by hand: from 150 degrees with 300 degrees per metre and
+// 3 cm internodes, the first turn is 1 * (1 + cos 30) * 0.03 * 300 = 16.79 degrees (it would be
+// half that if the tip were taken as pointing up).
+TEST(Growth, GravitropismBelowTheHorizontalTurnsAtFullRate) {
+    ShootParameters s = growingShoot();
+    s.gravitropic_curvature = 300.0f;
+    s.max_nodes = 2;
+    Garden g;
+    const unsigned p = g.plant(s, 1, 150.0f);
+    g.arch.advanceTime(10.0f);
+    const Shoot& sh = g.state(p).shoots[0];
+    ASSERT_EQ(sh.phytomers.size(), 2u);
+    EXPECT_NEAR(sh.phytomers[1].internode.gravitropicTurn, 16.79f, 0.01f);
+    const float zenith = std::acos(sh.phytomers[1].internode.guide.z) * 180.0f / 3.14159265f;
+    EXPECT_NEAR(zenith, 150.0f - 16.79f, 0.01f);
 }
 
 TEST(Growth, RandomWalkHasZeroMeanAndTheEquationsVariance) {

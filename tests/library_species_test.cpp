@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "plantarch/PlantArchitecture.h"
@@ -66,4 +67,45 @@ TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
                 EXPECT_EQ(ctx.objectDataString(id, "plant_name"), name);
         }
     }
+}
+
+// Every library plant's shoots curve as the specification's gravitropism says: between two
+// internodes the zenith angle changes by -s (1 - cos z) L C plus the random walk's change
+// (z of the previous internode from the vertical, s = 1 below the horizontal and 0.5 above,
+// L the new internode's full length, C the shoot's curvature), clamped to 0-180 degrees.
+// (L is the length before a node rule rescales the internode; the difference is far below
+// the 0.05 degrees allowed.)
+TEST(LibrarySpecies, ShootsCurveAsGravitropismSays) {
+    const double deg = 3.14159265358979323846 / 180.0;
+    std::size_t curvedSpecies = 0;
+    for (const std::string& name : listSpecies()) {
+        SCOPED_TRACE(name);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary(name);
+        const unsigned p =
+            arch.buildPlantInstanceFromLibrary(vec3(0.0f), loadSpecies(name).recommendedAge);
+        // Attraction points (trellis wires) steer shoots on purpose; those plants are checked
+        // by the collision tests instead.
+        if (!arch.getAttractionPoints(p).empty()) continue;
+        std::size_t turned = 0;
+        for (const Shoot& s : arch.plant(p).shoots) {
+            if (s.removed) continue;
+            for (std::size_t k = 1; k < s.phytomers.size(); ++k) {
+                const Internode& a = s.phytomers[k - 1].internode;
+                const Internode& b = s.phytomers[k].internode;
+                const double za = std::acos(std::clamp(double(a.guide.z), -1.0, 1.0)) / deg;
+                const double zb = std::acos(std::clamp(double(b.guide.z), -1.0, 1.0)) / deg;
+                const double sfac = za > 90.0 + 1e-3 ? 1.0 : 0.5;
+                const double turn = sfac * (1.0 - std::cos(za * deg)) * double(b.length) *
+                                    double(s.gravitropicCurvature);
+                const double expected =
+                    std::clamp(za - turn + double(b.walkZenith - a.walkZenith), 0.0, 180.0);
+                EXPECT_NEAR(zb, expected, 0.05) << "shoot " << s.id << " node " << k;
+                turned += std::abs(turn) > 0.1 ? 1 : 0;
+            }
+        }
+        curvedSpecies += turned > 0 ? 1 : 0;
+    }
+    EXPECT_GE(curvedSpecies, 20u);  // most species' shoots bend toward the vertical
 }
