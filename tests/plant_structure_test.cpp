@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include "collision_scenes.h"
 #include "io/plant_state_table.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
@@ -778,5 +779,77 @@ TEST(PlantStructureXML, TrellisPlantsFollowTheirWiresAfterReading) {
                   "");
         // Read without its wires, the plant grows otherwise.
         EXPECT_NE(firstDifference(organBytes(bare, {r}), organBytes(a.arch, {a.id})), "");
+    }
+}
+
+namespace {
+
+// How many of a plant's organs solid obstacles turned (petioles, peduncles, fruit).
+std::size_t clearanceTurns(const PlantInstance& p) {
+    std::size_t n = 0;
+    for (const Shoot& s : p.shoots)
+        for (const Phytomer& ph : s.phytomers)
+            for (const Petiole& pt : ph.petioles) {
+                n += pt.clearance.angle != 0.0f ? 1 : 0;
+                for (const FloralBud& fb : pt.floralBuds) {
+                    n += fb.peduncleClearance.angle != 0.0f ? 1 : 0;
+                    for (const FlowerOrgan& f : fb.flowers) n += f.clearance.angle != 0.0f ? 1 : 0;
+                }
+            }
+    return n;
+}
+
+}  // namespace
+
+// A plant grown against solid obstacles keeps the turns that took its organs out of them: read
+// into a Context without the obstacles, it draws the same geometry, and grown on beside the
+// same obstacles it stays the original. A strawberry whose fruit rest on the ground (fruit
+// adjustment) and a bean against a wall (petioles and peduncles turned out of it).
+TEST(PlantStructureXML, ObstacleTurnsTravelWithThePlant) {
+    struct Case {
+        std::string species;
+        vec3 lo, hi;
+        bool fruitAdjustment;
+        float age;
+        bool longStalks;  // fruit stalks long and arched enough for ripe fruit to reach the soil
+    };
+    const std::vector<Case> cases = {
+        {"strawberry", {-2, -2, -0.1f}, {2, 2, 0.0f}, true, 90.0f, true},
+        {"bean", {0.1f, -2, -1}, {0.3f, 2, 3}, false, 45.0f, false}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.species);
+        Built a;
+        const ObjectID obstacle = plantarch::test::addBox(a.ctx, c.lo, c.hi);
+        a.arch.setSeed(4);
+        a.arch.loadPlantModelFromLibrary(c.species);
+        if (c.longStalks) {
+            ShootParameters crown = a.arch.getCurrentShootParameters("mainstem");
+            crown.phytomer_parameters.peduncle.length = 0.3f;
+            crown.phytomer_parameters.peduncle.curvature = -400.0f;
+            a.arch.updateCurrentShootParameters("mainstem", crown);
+        }
+        const SolidObstacleOptions solid{.obstacles = {obstacle},
+                                         .avoidanceDistance = 0.1f,
+                                         .fruitAdjustment = c.fruitAdjustment};
+        a.arch.enableSolidObstacleAvoidance(solid);
+        a.id = a.arch.buildPlantInstanceFromLibrary(vec3(0.0f), c.age);
+        ASSERT_GT(clearanceTurns(a.arch.plant(a.id)), 2u) << "the obstacle turned nothing";
+        const std::string text = a.arch.getPlantStructureXML({a.id});
+
+        Context ctx;
+        PlantArchitecture b(&ctx);
+        const unsigned id = b.readPlantStructureXMLString(text).at(0);
+        EXPECT_EQ(clearanceTurns(b.plant(id)), clearanceTurns(a.arch.plant(a.id)));
+        EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
+        EXPECT_EQ(firstDifference(b.getPlantStructureXML({id}), text), "");
+
+        // Beside the same obstacle, both grow on alike.
+        const ObjectID again = plantarch::test::addBox(ctx, c.lo, c.hi);
+        SolidObstacleOptions solidB = solid;
+        solidB.obstacles = {again};
+        b.enableSolidObstacleAvoidance(solidB);
+        a.arch.advanceTime(10.0);
+        b.advanceTime(10.0);
+        EXPECT_EQ(firstDifference(organBytes(b, {id}), organBytes(a.arch, {a.id})), "");
     }
 }
