@@ -932,3 +932,47 @@ TEST(Collision, ShootsGrowFreelyAwayFromTheWireTheyStartOn) {
     EXPECT_GT(tip.x, 0.75f);
     EXPECT_LT(std::hypot(tip.y, tip.z - 0.3f), 0.005f);  // on the wire's line, 0.4 m past its end
 }
+
+// Soft avoidance of the side organs alone (shoot axes left to grow freely): steering the
+// petioles leaves fewer leaves crossing each other, steering the peduncles fewer flowers and
+// fruit crossing leaves, than the same canopy grown without.
+TEST(Collision, SteeredPetiolesAndPedunclesCrossLess) {
+    struct Counts {
+        std::size_t leaves = 0, floral = 0;
+    };
+    auto grow = [](unsigned seed, bool petioles, bool peduncles) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(seed);
+        arch.loadPlantModelFromLibrary("bean");
+        SoftCollisionOptions o;
+        o.steerInternodes = false;
+        o.steerPetioles = petioles;
+        o.steerPeduncles = peduncles;
+        o.obstacles = CollisionOrgans{true, true, true, true, true};
+        arch.enableSoftCollisionAvoidance(o);
+        arch.buildPlantCanopyFromLibrary({0, 0, 0}, {0.12f, 0.12f}, {2, 2}, 45.0f);
+        Counts c;
+        const std::vector<ObjectID> l = leaves(arch);
+        c.leaves = collision::countIntersectingPairs(ctx, l, collision::petioleGroups(ctx, l));
+        std::vector<ObjectID> all = l;
+        for (unsigned p : arch.getAllPlantIDs())
+            for (OrganKind k : {OrganKind::FlowerClosed, OrganKind::FlowerOpen, OrganKind::Fruit})
+                for (ObjectID id : arch.getPlantObjectIDs(p, k)) all.push_back(id);
+        c.floral = collision::countIntersectingPairs(ctx, all, collision::petioleGroups(ctx, all)) -
+                   c.leaves;
+        std::printf("petioles %d peduncles %d: %zu objects, leaf pairs %zu, floral pairs %zu\n",
+                    petioles, peduncles, all.size(), c.leaves, c.floral);
+        return c;
+    };
+    // Seeds 1 to 5 were seen to cut crossings by 13-29 % (petioles) and 6-15 % (peduncles);
+    // at least 5 % fewer for each seed tried here.
+    for (unsigned seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        const Counts none = grow(seed, false, false), pet = grow(seed, true, false),
+                     ped = grow(seed, false, true);
+        EXPECT_LT(double(pet.leaves), 0.95 * double(none.leaves));
+        EXPECT_LT(double(ped.floral), 0.95 * double(none.floral));
+        EXPECT_EQ(ped.leaves, none.leaves);  // peduncles steered leave the leaves alone
+    }
+}
