@@ -89,7 +89,23 @@ TEST(CollisionImages, VinesOnATrellisWire) {
             const float x = 1.2f * float(i);
             addBox(ctx, {x - 0.06f, -0.02f, 0.0f}, {x - 0.02f, 0.02f, 0.62f},
                    vec3(0.45f, 0.33f, 0.2f));
-            arch.buildPlantInstanceFromLibrary({x, 0, 0}, 40.0f);
+            const unsigned p = arch.buildPlantInstanceFromLibrary({x, 0, 0}, 40.0f);
+            // The picture shows what it claims: with the wire each cane (shoot 1) runs along
+            // it, 0.5 m up from x + 0.02 on, and reaches well along the row; without, the
+            // cane's tip rises away from where the wire would be.
+            const unsigned cane = 1, nodes = arch.getShootNodeCount(p, cane);
+            ASSERT_GT(nodes, 10u);
+            const vec3 tip = arch.getNodePosition(p, cane, nodes - 1);
+            if (wire) {
+                for (unsigned k = 0; k < nodes; ++k) {
+                    const vec3 q = arch.getNodePosition(p, cane, k);
+                    EXPECT_NEAR(q.z, 0.5f, 0.04f) << "vine " << i << " node " << k;
+                    EXPECT_NEAR(q.y, 0.0f, 0.04f) << "vine " << i << " node " << k;
+                }
+                EXPECT_GT(tip.x - x, 0.6f) << "vine " << i;
+            } else {
+                EXPECT_GT(tip.z, 0.65f) << "vine " << i;
+            }
         }
         // The wire itself, 2 mm thick, along the row at its height (0.5 m).
         addBox(ctx, {-0.04f, -0.001f, 0.499f}, {3.6f, 0.001f, 0.501f}, vec3(0.3f));
@@ -99,6 +115,7 @@ TEST(CollisionImages, VinesOnATrellisWire) {
         o.camera.fovDeg = 23.0f;
         frames.push_back(render(ctx, o));
     }
+    EXPECT_NE(frames[0].rgb, frames[1].rgb);
     if (writing()) {  // one above the other: without, then with the wire's attraction points
         Image out(frames[0].width, frames[0].height * 2 + 8);
         std::fill(out.rgb.begin(), out.rgb.end(), 255);

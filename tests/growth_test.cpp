@@ -430,22 +430,27 @@ TEST(Growth, PhenologyStagesOnTheirDays) {
     EXPECT_FLOAT_EQ(bud->fruitGrowth, 1.0f);
 }
 
+// A determinate shoot stops at flowering, an indeterminate one grows on. With a node every
+// 2 days from day 0 and flowers opening on day 10: nodes on days 0, 2, 4, 6 and 8 (the
+// flowering on day 10 comes before that day's node), so 5; without determinacy a node every 2
+// days to day 30 (the end of the step included), so 16.
 TEST(Growth, DeterminateShootStopsAtFlowering) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 50;
-    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
-    s.flower_bud_break_probability = 1.0f;
-    s.determinate_shoot_growth = true;
-    Garden g;
-    PhenologyParameters ph;
-    ph.time_to_flower_opening = 10;  // no closed stage: open flowers on day 10
-    g.arch.setDefaultPhenology(ph);
-    const unsigned p = g.plant(s);
-    g.arch.advanceTime(30.0f);
-    // Phytomers at days 2..10 (the one on day 10 comes after flowering is decided? no: the
-    // flower event sorts first at equal times), so growth stops at day 10.
-    EXPECT_LE(g.arch.getShootNodeCount(p, 0), 6u);
-    EXPECT_TRUE(g.state(p).shoots[0].flowering);
+    for (bool determinate : {true, false}) {
+        SCOPED_TRACE(determinate ? "determinate" : "indeterminate");
+        ShootParameters s = growingShoot();
+        s.max_nodes = 50;
+        s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+        s.flower_bud_break_probability = 1.0f;
+        s.determinate_shoot_growth = determinate;
+        Garden g;
+        PhenologyParameters ph;
+        ph.time_to_flower_opening = 10;  // no closed stage: open flowers on day 10
+        g.arch.setDefaultPhenology(ph);
+        const unsigned p = g.plant(s);
+        g.arch.advanceTime(30.0f);
+        EXPECT_EQ(g.arch.getShootNodeCount(p, 0), determinate ? 5u : 16u);
+        EXPECT_TRUE(g.state(p).shoots[0].flowering);
+    }
 }
 
 namespace {

@@ -2,9 +2,12 @@
 // generated geometry.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <set>
 
 #include "core/math.h"
@@ -253,23 +256,43 @@ TEST(PlantModel, ScaleFractionsShrinkOrgans) {
     EXPECT_EQ(arch.getPlantBasePosition(plant), vec3(1, 2, 0));
 }
 
+// A leaf's area is its prototype's area times its scale squared, with areas known without
+// the code: an OBJ leaf that is a 1 x 0.5 rectangle (area 0.5) at scale 0.08 covers
+// 0.5 * 0.08^2 = 0.0032 m^2; an elliptic procedural leaf of aspect 0.5 is convex and fills
+// its 1 x 0.5 box from tip to base and side to side, so it covers more than the rhombus through
+// those four points (0.25) and less than the box (0.5).
 TEST(PlantModel, LeafAreaIsPrototypeAreaTimesScaleSquared) {
-    ShootParameters p = straightShoot();
-    p.phytomer_parameters.leaf.prototype.leaf_aspect_ratio = 0.5f;
-    p.phytomer_parameters.leaf.prototype_scale = 0.08f;
-    Fixture f(p, 3);
-    // The prototype itself, at unit length.
-    Context ctx;
-    PlantArchitecture arch(&ctx);
-    arch.defineShootType("main", p);
-    const unsigned plant = arch.addPlantInstance({0, 0, 0}, 0);
-    arch.addBaseStemShoot(plant, {1, {}, {0.002f, 0.04f, 1, 1}, 0, "main"});
-    const double oneLeaf = ctx.objectArea(arch.getPlantObjectIDs(plant, OrganKind::Leaf)[0]);
-    const double prototypeArea = oneLeaf / (0.08 * 0.08);
-    EXPECT_GT(prototypeArea, 0.1);  // a leaf of aspect 0.5 covers part of its 1 x 0.5 box
-    EXPECT_LT(prototypeArea, 0.5);
-    EXPECT_NEAR(f.arch.getPlantLeafArea(f.plant), 3 * prototypeArea * 0.08 * 0.08, 1e-6);
-    EXPECT_EQ(f.arch.getPlantLeafCount(f.plant), 3u);
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("plantarch_leafarea_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string obj = (dir / "rectangle.obj").string();
+    std::ofstream(obj) << "v 0 -0.25 0\nv 1 -0.25 0\nv 1 0.25 0\nv 0 0.25 0\nf 1 2 3\nf 1 3 4\n";
+    for (bool fromOBJ : {true, false}) {
+        SCOPED_TRACE(fromOBJ ? "OBJ rectangle" : "elliptic outline");
+        ShootParameters p = straightShoot();
+        p.phytomer_parameters.leaf.prototype_scale = 0.08f;
+        if (fromOBJ) {
+            p.phytomer_parameters.leaf.prototype.OBJ_model_file = obj;
+        } else {
+            p.phytomer_parameters.leaf.prototype.shape = LeafShape::Elliptic;
+            p.phytomer_parameters.leaf.prototype.leaf_aspect_ratio = 0.5f;
+        }
+        Fixture f(p, 3);
+        ASSERT_EQ(f.arch.getPlantLeafCount(f.plant), 3u);
+        const double area = f.arch.getPlantLeafArea(f.plant), scale2 = 3 * 0.08 * 0.08;
+        if (fromOBJ) {
+            EXPECT_NEAR(area, 0.5 * scale2, 1e-6 * scale2);
+        } else {
+            EXPECT_GT(area, 0.25 * scale2);
+            EXPECT_LT(area, 0.5 * scale2);
+        }
+        // The query is the sum of the leaf objects' areas.
+        double sum = 0.0;
+        for (ObjectID id : f.arch.getPlantObjectIDs(f.plant, OrganKind::Leaf))
+            sum += f.ctx.objectArea(id);
+        EXPECT_NEAR(f.arch.getPlantLeafArea(f.plant), sum, 1e-9);
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(PlantModel, CompoundLeafOddCountTipLeafletAndPairs) {
