@@ -33,7 +33,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
         ->required()
-        ->check(daysValidator("age"));
+        ->check(daysCheck("--age"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();

@@ -49,9 +49,12 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--count", a->count, "Plants along x and y, e.g. 10x10");
     app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
-    app.add_option("--age", a->age, "Plant age in days")->required();
+    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
+        ->required()
+        ->check(daysCheck("--age"));
     app.add_option("--germination", a->germination,
-                   "Probability each position has a plant (0 to 1)");
+                   "Probability each position has a plant (0 to 1)")
+        ->check(numberCheck("--germination", "a probability", 0.0, 1.0, false, "0 to 1"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();

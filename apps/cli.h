@@ -65,8 +65,13 @@ void prepareSceneOutputs(const std::vector<std::string>& paths);
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();
 
-/// Checks an option holding a number of days, 0 to 100000 ("age = x: not a number of days").
-std::function<std::string(const std::string&)> daysValidator(const std::string& name);
+/// A CLI11 check of a numeric option, run on its text before conversion, so every bad value
+/// gets one message: "--age = -3: not a number of days (valid: 0 to 100000)". `what` names
+/// the kind of number, `whole` rejects fractions, `range` is shown as the valid range.
+CLI::Validator numberCheck(const std::string& option, const std::string& what, double lo, double hi,
+                           bool whole, const std::string& range);
+/// numberCheck for a number of days, 0 to 100000.
+CLI::Validator daysCheck(const std::string& option);
 
 /// Build parameters given as -D name=value (each a finite number), by name.
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines);

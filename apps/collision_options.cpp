@@ -108,21 +108,26 @@ void addCollisionOptions(CLI::App& app, CollisionArgs& a) {
 
 void checkCollisionOptions(const CollisionArgs& a) {
     if (!a.cone.empty() && !a.soft)
-        throw Error("--cone sets the soft avoidance cone: add --soft-collision",
-                    {.parameter = "--cone", .value = a.cone});
+        throw Error(
+            "the soft avoidance cone applies only with soft avoidance",
+            {.parameter = "--cone", .value = a.cone, .validRange = "with --soft-collision"});
     if (!a.cone.empty())
         numbers(a.cone, 4, "--cone", "half-angle,look-ahead,rays,inertia e.g. 80,0.1,256,0.4");
     if (!a.avoidDistance.empty())
         numbers(a.avoidDistance, 1, "--avoid-distance", "a distance in m, e.g. 0.2");
     if (!a.avoidDistance.empty() && a.obstacles.empty())
-        throw Error("--avoid-distance applies to obstacles: add --obstacle FILE.obj",
-                    {.parameter = "--avoid-distance"});
+        throw Error("the avoidance distance applies only to obstacles",
+                    {.parameter = "--avoid-distance",
+                     .value = a.avoidDistance,
+                     .validRange = "with --obstacle FILE.obj"});
     if (a.fruitAdjustment && a.obstacles.empty())
-        throw Error("--fruit-adjustment applies to obstacles: add --obstacle FILE.obj",
-                    {.parameter = "--fruit-adjustment"});
+        throw Error("fruit adjustment applies only to obstacles",
+                    {.parameter = "--fruit-adjustment", .validRange = "with --obstacle FILE.obj"});
     if (!a.attractionCone.empty() && a.attractionPoints.empty())
-        throw Error("--attraction-cone applies to attraction points: add --attraction-points",
-                    {.parameter = "--attraction-cone", .value = a.attractionCone});
+        throw Error("the attraction cone applies only with attraction points",
+                    {.parameter = "--attraction-cone",
+                     .value = a.attractionCone,
+                     .validRange = "with --attraction-points FILE.csv"});
     if (!a.attractionCone.empty())
         numbers(a.attractionCone, 3, "--attraction-cone",
                 "half-angle,look-ahead,inertia e.g. 80,0.1,0.4");

@@ -28,7 +28,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--days", a->days, "Days to grow (0 to 100000)")
         ->required()
-        ->check(daysValidator("days"));
+        ->check(daysCheck("--days"));
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     app.add_option("--species", a->species,

@@ -40,6 +40,74 @@ void info(const GlobalOptions& g, const std::string& message) {
     if (g.verbose > 0) std::fprintf(stderr, "%s\n", message.c_str());
 }
 
+namespace {
+
+// Letters to change, add or drop to turn a into b.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// The one line printed for a command line CLI11 rejects: our own checks' messages as they
+// are (without CLI11's "--option: " in front), a mistyped command with the nearest name, an
+// unexpected argument with where to look.
+std::string parseErrorLine(const CLI::App& app, int argc, char** argv, const CLI::ParseError& e) {
+    std::string text = e.what();
+    if (dynamic_cast<const CLI::ValidationError*>(&e)) {
+        const auto colon = text.find(": ");
+        if (colon != std::string::npos &&
+            text.compare(colon + 2, colon, text, 0, colon) == 0)  // "--x: --x = ..."
+            return text.substr(colon + 2);
+        return text;
+    }
+    std::vector<std::string> names;
+    const CLI::App* chosen = nullptr;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+        names.push_back(sub->get_name());
+        if (sub->parsed()) chosen = sub;
+    }
+    std::string valid;
+    for (const std::string& n : names) valid += (valid.empty() ? "" : ", ") + n;
+    // The first word of the command line no subcommand took.
+    std::vector<std::string> left = app.remaining(true);
+    auto isLeft = [&](const std::string& a) {
+        return std::find(left.begin(), left.end(), a) != left.end();
+    };
+    std::string first;
+    for (int i = 1; i < argc && first.empty(); ++i)
+        if (isLeft(argv[i])) first = argv[i];
+    if (!chosen) {
+        if (first.empty() || first[0] == '-')
+            return "a command is required (valid: " + valid + "; see plantarch --help)";
+        std::string nearest;
+        std::size_t best = 3;  // suggest only names within two edits
+        for (const std::string& n : names)
+            if (const std::size_t d = editDistance(first, n); d < best) {
+                best = d;
+                nearest = n;
+            }
+        return "'" + first + "' is not a command" +
+               (nearest.empty() ? "" : ", did you mean '" + nearest + "'?") + " (valid: " + valid +
+               ")";
+    }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !first.empty())
+        return chosen->get_name() + ": unexpected argument '" + first +
+               "' (valid: the arguments in 'plantarch " + chosen->get_name() + " --help')";
+    return text;
+}
+
+}  // namespace
+
 }  // namespace plantarch::cli
 
 int main(int argc, char** argv) {
@@ -48,11 +116,23 @@ int main(int argc, char** argv) {
                  "plantarch"};
     app.set_version_flag("--version", std::string("plantarch ") + PLANTARCH_VERSION_STRING);
     app.require_subcommand(1);
+    app.fallthrough();  // global options may also follow the subcommand
     GlobalOptions global;
     app.add_flag("-v,--verbose", global.verbose, "Report progress and details on stderr");
-    app.add_option("--seed", global.seed, "Random seed of the scene (same seed, same output)");
+    app.add_option("--seed", global.seed, "Random seed of the scene (same seed, same output)")
+        ->check(numberCheck("--seed", "a seed", 0.0, 18446744073709551615.0, true,
+                            "a whole number from 0 to 18446744073709551615"))
+        ->check(CLI::Validator(
+            [](std::string& t) {  // doubles cannot tell 2^64 - 1 from 2^64: check the digits
+                return t.size() < 20 || (t.size() == 20 && t <= "18446744073709551615")
+                           ? std::string()
+                           : "--seed = " + t + ": not a seed (valid: a whole number from 0 " +
+                                 "to 18446744073709551615)";
+            },
+            ""));
     app.add_option("--threads", global.threads, "Worker threads (0 = all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(numberCheck("--threads", "a thread count", 0, 1024, true,
+                            "0 to 1024, 0 for every core"));
 
     auto& registry = commandRegistry();
     std::sort(registry.begin(), registry.end(),
@@ -72,7 +152,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "plantarch: %s\n", e.what());
+        std::fprintf(stderr, "plantarch: %s\n", parseErrorLine(app, argc, argv, e).c_str());
         return 2;
     } catch (const plantarch::Error& e) {  // thrown by an option's own check
         std::fprintf(stderr, "plantarch: %s\n", e.what());

@@ -122,17 +122,11 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
 }
 
 void addStringDigitsOption(CLI::App& app, GlobalOptions& global) {
-    app.add_option_function<int>(
-        "--digits",
-        [&global](int digits) {
-            if (digits < 0 || digits > 6)
-                throw Error("significant digits of plant strings out of range",
-                            {.parameter = "--digits",
-                             .value = std::to_string(digits),
-                             .validRange = "1 to 6, or 0 for exact values"});
-            global.stringDigits = digits;
-        },
-        "Significant digits of plant strings in .txt outputs (1 to 6, 0 exact; default 4)");
+    app.add_option("--digits", global.stringDigits,
+                   "Significant digits of plant strings in .txt outputs (1 to 6, 0 exact; "
+                   "default 4)")
+        ->check(
+            numberCheck("--digits", "a digit count", 0, 6, true, "1 to 6, or 0 for exact values"));
 }
 
 }  // namespace plantarch::cli

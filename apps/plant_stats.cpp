@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <map>
 
@@ -12,15 +13,23 @@
 
 namespace plantarch::cli {
 
-std::function<std::string(const std::string&)> daysValidator(const std::string& name) {
-    return [name](const std::string& text) -> std::string {
-        try {
-            const double v = std::stod(text);
-            if (v >= 0.0 && v <= 100000.0) return "";
-        } catch (const std::exception&) {
-        }
-        return name + " = " + text + ": not a number of days (valid: 0 to 100000)";
-    };
+CLI::Validator numberCheck(const std::string& option, const std::string& what, double lo, double hi,
+                           bool whole, const std::string& range) {
+    return CLI::Validator(
+        [=](std::string& text) -> std::string {
+            double v = 0.0;
+            const char* end = text.data() + text.size();
+            const auto [used, ec] = std::from_chars(text.data(), end, v);
+            if (ec == std::errc() && used == end && std::isfinite(v) && v >= lo && v <= hi &&
+                (!whole || v == std::floor(v)))
+                return "";
+            return option + " = " + text + ": not " + what + " (valid: " + range + ")";
+        },
+        range);
+}
+
+CLI::Validator daysCheck(const std::string& option) {
+    return numberCheck(option, "a number of days", 0.0, 100000.0, false, "0 to 100000");
 }
 
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines) {

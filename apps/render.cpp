@@ -140,21 +140,21 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.add_option("input", args->input, "OBJ file to render")->required();
     app.add_option("-o,--output", args->output, "PNG file to write")->required();
     app.add_option("--width", args->width, "Image width in pixels")
-        ->check(CLI::Range(1, 16384))
+        ->check(numberCheck("--width", "a width in pixels", 1, 16384, true, "1 to 16384"))
         ->capture_default_str();
     app.add_option("--height", args->height, "Image height in pixels")
-        ->check(CLI::Range(1, 16384))
+        ->check(numberCheck("--height", "a height in pixels", 1, 16384, true, "1 to 16384"))
         ->capture_default_str();
     app.add_option("--eye", args->eye, "Camera position x,y,z in metres (default: auto-framed)");
     app.add_option("--target", args->target,
                    "Point looked at x,y,z (default: centre of the scene; needs --eye)");
     app.add_option("--fov", args->fov, "Vertical field of view in degrees (default 35)")
-        ->check(CLI::Range(0.01, 170.0));
+        ->check(numberCheck("--fov", "a field of view", 0.01, 170.0, false, "0.01 to 170 degrees"));
     app.add_option("--label", args->label,
                    "Segmentation mask instead of a shaded image: organ or object");
     app.add_flag("--no-ground", args->noGround, "Leave out the ground plane");
     app.add_option("--samples", args->samples, "Camera rays per pixel (default 4)")
-        ->check(CLI::Range(1, 1024));
+        ->check(numberCheck("--samples", "a ray count", 1, 1024, true, "1 to 1024"));
     return [args, &global] { return run(*args, global); };
 }
 

@@ -80,23 +80,34 @@ TEST(CliPlantFiles, ConvertsBetweenFormats) {
         EXPECT_GT(std::filesystem::file_size(d + "/" + f), 100u) << f;
 }
 
+// Each bad input of convert, grow and the plant outputs: exit status 2 and exactly this line.
 TEST(CliPlantFiles, BadInputsExitWithOneLine) {
     const std::string d = dir("errors");
     ASSERT_EQ(run("build bean --age 10 -o " + d + "/b.xml -o " + d + "/b.obj").status, 0);
-    CliResult r = run("convert " + d + "/b.obj " + d + "/x.xml");
-    EXPECT_EQ(r.status, 2);
-    EXPECT_NE(r.out.find("an OBJ file holds geometry only"), std::string::npos) << r.out;
-    r = run("convert " + d + "/b.xml " + d + "/x.gltf");
-    EXPECT_EQ(r.status, 2);
-    EXPECT_NE(r.out.find("unknown output format"), std::string::npos) << r.out;
-    r = run("convert " + d + "/missing.xml " + d + "/x.obj");
-    EXPECT_EQ(r.status, 2);
-    EXPECT_NE(r.out.find("cannot open plant structure file"), std::string::npos) << r.out;
-    r = run("grow " + d + "/b.xml --days -3 -o " + d + "/x.xml");
-    EXPECT_EQ(r.status, 2);
-    r = run("build bean --age 10 --digits 9 -o " + d + "/b.txt");
-    EXPECT_EQ(r.status, 2);
-    EXPECT_NE(r.out.find("--digits = 9"), std::string::npos) << r.out;
-    for (const CliResult& e : {r})
-        EXPECT_EQ(std::count(e.out.begin(), e.out.end(), '\n'), 1) << e.out;
+    const std::pair<std::string, std::string> cases[] = {
+        {"convert " + d + "/b.obj " + d + "/x.xml",
+         d + "/x.xml: '.xml': an OBJ file holds geometry only, not the plant structure (valid: "
+             ".obj, .ply, .png)"},
+        {"convert " + d + "/b.xml " + d + "/x.gltf",
+         d + "/x.gltf: '.gltf': unknown output format (valid: .obj, .ply, .png, .xml, .txt)"},
+        {"convert " + d + "/missing.xml " + d + "/x.obj",
+         d + "/missing.xml: cannot open plant structure file"},
+        {"convert " + d + "/b.xml", "output is required"},
+        {"grow " + d + "/b.xml --days -3 -o " + d + "/x.xml",
+         "--days = -3: not a number of days (valid: 0 to 100000)"},
+        {"grow " + d + "/b.xml --days 3d -o " + d + "/x.xml",
+         "--days = 3d: not a number of days (valid: 0 to 100000)"},
+        {"grow " + d + "/b.xml -o " + d + "/x.xml", "--days is required"},
+        {"grow " + d + "/missing.xml --days 3 -o " + d + "/x.xml",
+         d + "/missing.xml: cannot open plant structure file"},
+        {"build bean --age 10 --digits 9 -o " + d + "/x.txt",
+         "--digits = 9: not a digit count (valid: 1 to 6, or 0 for exact values)"},
+    };
+    for (const auto& [args, expected] : cases) {
+        const CliResult r = run(args);
+        EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
+        EXPECT_EQ(r.out, "plantarch: " + expected + "\n") << args;
+        for (const char* name : {"/x.xml", "/x.obj", "/x.txt", "/x.gltf"})
+            EXPECT_FALSE(std::filesystem::exists(d + name)) << args << ": " << name;
+    }
 }

@@ -100,12 +100,20 @@ inline std::string replaced(std::string s, const std::string& from, const std::s
     return s;
 }
 
-// Writes a species file into the temporary folder and returns its path.
+// Writes a species file into this process's temporary folder, removed when the tests end,
+// and returns its path.
 inline std::string speciesFile(const std::string& name, const std::string& text) {
-    const std::string path =
-        (std::filesystem::temp_directory_path() /
-         ("plantarch_collision_" + std::to_string(::getpid()) + "_" + name + ".xml"))
-            .string();
+    struct Folder {
+        std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("plantarch_collision_" + std::to_string(::getpid()));
+        Folder() { std::filesystem::create_directories(path); }
+        ~Folder() {
+            std::error_code ignored;
+            std::filesystem::remove_all(path, ignored);
+        }
+    };
+    static const Folder folder;
+    const std::string path = (folder.path / (name + ".xml")).string();
     std::ofstream(path, std::ios::binary) << text;
     return path;
 }

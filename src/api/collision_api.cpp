@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "api/facade_impl.h"
 #include "collision/attraction.h"
@@ -16,17 +17,24 @@ namespace plantarch {
 
 namespace {
 
-void checkRange(const char* name, double v, double lo, double hi, bool openLow, const char* range) {
-    const bool ok = std::isfinite(v) && (openLow ? v > lo : v >= lo) && v <= hi;
-    if (!ok)
+// A value is reported as it was given: a float option in its shortest float form (0.2, not
+// the double nearest the float 0.2).
+template <typename T>
+void checkRange(const char* name, T v, double lo, double hi, bool openLow, const char* range) {
+    const double d = v;
+    const bool ok = std::isfinite(d) && (openLow ? d > lo : d >= lo) && d <= hi;
+    if (!ok) {
+        const std::string shown =
+            std::is_same_v<T, float> ? text::formatFloat(float(v)) : text::formatDouble(d);
         throw Error("collision option out of range",
-                    {.parameter = name, .value = text::formatDouble(v), .validRange = range});
+                    {.parameter = name, .value = shown, .validRange = range});
+    }
 }
 
 void checkAngle(const char* name, float v) {
     if (!(std::isfinite(v) && v > 0.0f && v < 180.0f))
         throw Error("collision option out of range", {.parameter = name,
-                                                      .value = text::formatDouble(v),
+                                                      .value = text::formatFloat(v),
                                                       .validRange = "> 0 and < 180 degrees"});
 }
 
