@@ -1,10 +1,12 @@
 // Every species file in the library: it loads, and a plant built at the youngest, usual and
-// oldest recommended ages is sane (finite, non-empty geometry; height and leaves plausible).
+// oldest recommended ages (seeds 42, 1 and 2) is sane (finite, non-empty geometry; height and
+// leaves plausible).
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
@@ -28,7 +30,7 @@ TEST(LibrarySpecies, EverySpeciesIsPureData) {
     EXPECT_EQ(withRules, 22u);  // the species whose growth needs a node rule
 }
 
-TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
+TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAgesAndSeeds) {
     const std::vector<std::string> names = listSpecies();
     ASSERT_FALSE(names.empty());
     for (const std::string& name : names) {
@@ -36,35 +38,41 @@ TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAges) {
         const SpeciesModel model = loadSpecies(name);
         EXPECT_EQ(model.name, name);
         EXPECT_GT(model.recommendedAge, 0.0f);
-        float lastHeight = -1.0f;
-        for (float age : {model.recommendedAgeMin, model.recommendedAge, model.recommendedAgeMax}) {
-            SCOPED_TRACE("age " + std::to_string(age));
-            Context ctx;
-            PlantArchitecture arch(&ctx);
-            arch.loadPlantModelFromLibrary(name);
-            const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
-            ASSERT_GT(ctx.triangleCount(), 0u);
-            bool finite = true;
-            ctx.forEachObject([&](const ObjectView& v) {
-                for (const vec3& q : v.positions)
-                    finite =
-                        finite && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
-            });
-            EXPECT_TRUE(finite);
-            const float height = arch.getPlantHeight(p);
-            EXPECT_GT(height, 0.0f);
-            const float maxHeight = model.maxHeight > 0.0f ? model.maxHeight : 10.0f;
-            EXPECT_LE(height, maxHeight);
-            EXPECT_GE(height, lastHeight - 0.05f * maxHeight);  // plants do not shrink much
-            lastHeight = height;
-            if (age >= model.recommendedAge) {
-                EXPECT_GT(
-                    arch.getPlantLeafCount(p) + arch.getPlantObjectIDs(p, OrganKind::Fruit).size(),
-                    0u);
+        for (std::uint64_t seed : {42, 1, 2}) {
+            float lastStem = -1.0f;
+            for (float age :
+                 {model.recommendedAgeMin, model.recommendedAge, model.recommendedAgeMax}) {
+                SCOPED_TRACE("age " + std::to_string(age) + " seed " + std::to_string(seed));
+                Context ctx;
+                PlantArchitecture arch(&ctx);
+                arch.setSeed(seed);
+                arch.loadPlantModelFromLibrary(name);
+                const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+                ASSERT_GT(ctx.triangleCount(), 0u);
+                bool finite = true;
+                ctx.forEachObject([&](const ObjectView& v) {
+                    for (const vec3& q : v.positions)
+                        finite = finite && std::isfinite(q.x) && std::isfinite(q.y) &&
+                                 std::isfinite(q.z);
+                });
+                EXPECT_TRUE(finite);
+                const float height = arch.getPlantHeight(p);
+                EXPECT_GT(height, 0.0f);
+                const float maxHeight = model.maxHeight > 0.0f ? model.maxHeight : 10.0f;
+                EXPECT_LE(height, maxHeight);
+                // Stems do not shrink (the whole plant may: fruit weigh their stalks down).
+                const float stem = arch.getPlantStemHeight(p);
+                EXPECT_GE(stem, lastStem - 0.05f * maxHeight);
+                lastStem = stem;
+                if (age >= model.recommendedAge) {
+                    EXPECT_GT(arch.getPlantLeafCount(p) +
+                                  arch.getPlantObjectIDs(p, OrganKind::Fruit).size(),
+                              0u);
+                }
+                // Every object is labelled as the plant's organ.
+                for (ObjectID id : arch.getAllPlantObjectIDs(p))
+                    EXPECT_EQ(ctx.objectDataString(id, "plant_name"), name);
             }
-            // Every object is labelled as the plant's organ.
-            for (ObjectID id : arch.getAllPlantObjectIDs(p))
-                EXPECT_EQ(ctx.objectDataString(id, "plant_name"), name);
         }
     }
 }
