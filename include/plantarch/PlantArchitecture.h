@@ -99,6 +99,12 @@ struct ShootSpec {
 /// How buildPlantCanopyFromLibrary places plants: on a grid (the specification's form) or
 /// scattered at random over a rectangle. Errors name the specification's argument names,
 /// given in brackets.
+///
+/// Grid position (i, j), 0 <= i < count.x along x and 0 <= j < count.y along y, is
+/// center + ((i - (count.x - 1) / 2) spacing.x, (j - (count.y - 1) / 2) spacing.y, 0).
+/// Positions are taken row by row, i fastest (i = 0..count.x - 1 for j = 0, then for j = 1,
+/// ...), and plants are numbered in that order; a position that does not germinate is
+/// skipped.
 struct CanopyOptions {
     enum class Layout {
         Grid,     ///< `count` plants along x and y, `spacing` apart
