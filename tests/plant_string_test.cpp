@@ -218,6 +218,29 @@ TEST(PlantString, MalformedStringsGiveOneClearError) {
     EXPECT_THROW(arch.getPlantString(p, PlantStringOptions{-1}), Error);
 }
 
+// The tagged groups of exact strings: read into the state they give, and checked.
+TEST(PlantString, ExactGroupsAreReadAndChecked) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const std::string head = "@(0,0,0,5)Sunifoliate(1,0,0){";
+    // An elongating internode: full length and fraction grown.
+    const unsigned p = arch.generatePlantFromString(head + "I(0.01,0.001,0,0,0,0,1)e(0.04,0.25)}");
+    const Phytomer& ph = arch.plant(p).shoots[0].phytomers[0];
+    EXPECT_EQ(ph.internode.length, 0.04f);
+    EXPECT_EQ(ph.internodeFraction, 0.25f);
+    EXPECT_EQ(arch.getNodePosition(p, 0, 0), vec3(0.0f, 0.0f, 0.04f * 0.25f));
+    PlantStringOptions exact;
+    exact.significantDigits = 0;
+    EXPECT_EQ(arch.getPlantString(p, exact), head + "I(0.01,0.001,0,0,0,0,1)e(0.04,0.25)}");
+    EXPECT_EQ(arch.getPlantString(p), head + "I(0.01,0.001,0,0,0,0,1)}");  // 4 digits: none
+    EXPECT_NE(stringError(head + "I(0.02,0.001,0,0,0,0,1)e(0.04,0.25)}")
+                  .find("full length times the fraction grown"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)e(0.04)}").find("expected ','"),
+              std::string::npos);
+}
+
 TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {
     Context ctx;
     PlantArchitecture arch(&ctx);

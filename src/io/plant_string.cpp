@@ -110,9 +110,10 @@ private:
         out_ += 'I';
         if (ph.parametersLabel != s.type) out_ += ph.parametersLabel;  // built by another type
         out_ += '(';
-        numbers({in.length * ph.internodeFraction, in.radius, in.pitch, in.azimuth, in.guide.x,
-                 in.guide.y, in.guide.z});
+        const float current = in.length * ph.internodeFraction;
+        numbers({current, in.radius, in.pitch, in.azimuth, in.guide.x, in.guide.y, in.guide.z});
         out_ += ')';
+        if (digits_ == 0) exactInternode(ph);
         for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
             const Petiole& pt = ph.petioles[j];
             const float f = ph.leafFraction;
@@ -141,6 +142,19 @@ private:
                     shoot(c, depth + 1);
             }
             out_ += ']';
+        }
+    }
+
+    // What an exact string adds to an internode: the values the reader would not derive to
+    // the bit. An internode still elongating gives its full length and the fraction grown
+    // (its nodes lie at direction x full length x fraction, which differs in the last bit
+    // from direction x current length).
+    void exactInternode(const Phytomer& ph) {
+        const Internode& in = ph.internode;
+        if (ph.internodeFraction != 1.0f) {
+            out_ += "e(";
+            numbers({in.length, ph.internodeFraction});
+            out_ += ')';
         }
     }
 
@@ -339,6 +353,7 @@ private:
         ph.internode.pitch = v[2];
         ph.internode.azimuth = v[3];
         ph.internode.guide = direction(v[4], v[5], v[6]);
+        exactInternode(ph);
         p_.shoots[shootID].phytomers.push_back(std::move(ph));
         const int node = int(p_.shoots[shootID].phytomers.size()) - 1;
         int petiole = 0;
@@ -358,6 +373,24 @@ private:
             while (peek() == 'S') shoot(int(shootID), node, petiole, false, depth + 1);
             expect(']');
             ++petiole;
+        }
+    }
+
+    // The values an exact string adds to an internode (StringWriter::exactInternode).
+    void exactInternode(Phytomer& ph) {
+        if (peek() == 'e') {
+            const std::size_t at = pos_;
+            ++pos_;
+            const auto v = tuple<2>();
+            if (v[0] * v[1] != ph.internode.length) {
+                pos_ = at;
+                fail(
+                    "an elongating internode's length must be its full length times the "
+                    "fraction grown",
+                    "e(full length, fraction) with full length x fraction = the length given");
+            }
+            ph.internode.length = v[0];
+            ph.internodeFraction = v[1];
         }
     }
 
