@@ -239,6 +239,20 @@ TEST(PlantString, ExactGroupsAreReadAndChecked) {
               std::string::npos);
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)e(0.04)}").find("expected ','"),
               std::string::npos);
+    // A roll reference other than the one carried from the internode before.
+    const std::string rolled = head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,1,0)}";
+    const unsigned q = arch.generatePlantFromString(rolled);
+    EXPECT_EQ(arch.plant(q).shoots[0].phytomers[1].internode.rollReference, vec3(0, 1, 0));
+    EXPECT_EQ(arch.getPlantString(q, exact), rolled);
+    const unsigned carried = arch.generatePlantFromString(
+        head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(1,0,0)}");
+    EXPECT_EQ(arch.getPlantString(carried, exact),
+              head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)}");
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)r(0,1,0)}").find("first internode"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,0,0)}")
+                  .find("length close to 1"),
+              std::string::npos);
 }
 
 TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {

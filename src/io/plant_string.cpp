@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -25,6 +27,14 @@ bool isLabelChar(char c) {
 
 bool isLabel(const std::string& s) {
     return !s.empty() && std::all_of(s.begin(), s.end(), isLabelChar);
+}
+
+// Whether two values are the same to the bit (-0 and 0 differ: their sines do).
+bool sameBits(float a, float b) {
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+}
+bool sameBits(vec3 a, vec3 b) {
+    return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z);
 }
 
 char stageLetter(FloralStage s) {
@@ -113,7 +123,7 @@ private:
         const float current = in.length * ph.internodeFraction;
         numbers({current, in.radius, in.pitch, in.azimuth, in.guide.x, in.guide.y, in.guide.z});
         out_ += ')';
-        if (digits_ == 0) exactInternode(ph);
+        if (digits_ == 0) exactInternode(s, k);
         for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
             const Petiole& pt = ph.petioles[j];
             const float f = ph.leafFraction;
@@ -148,12 +158,22 @@ private:
     // What an exact string adds to an internode: the values the reader would not derive to
     // the bit. An internode still elongating gives its full length and the fraction grown
     // (its nodes lie at direction x full length x fraction, which differs in the last bit
-    // from direction x current length).
-    void exactInternode(const Phytomer& ph) {
+    // from direction x current length). An internode whose shoot axis was steered (attraction
+    // points, obstacles) gives its roll reference, which steering carried in two turns where
+    // the reader carries it in one.
+    void exactInternode(const Shoot& s, std::size_t k) {
+        const Phytomer& ph = s.phytomers[k];
         const Internode& in = ph.internode;
         if (ph.internodeFraction != 1.0f) {
             out_ += "e(";
             numbers({in.length, ph.internodeFraction});
+            out_ += ')';
+        }
+        if (k > 0 &&
+            !sameBits(in.rollReference,
+                      carriedRollReference(s.phytomers[k - 1].internode.rollReference, in.guide))) {
+            out_ += "r(";
+            numbers({in.rollReference.x, in.rollReference.y, in.rollReference.z});
             out_ += ')';
         }
     }
@@ -353,7 +373,7 @@ private:
         ph.internode.pitch = v[2];
         ph.internode.azimuth = v[3];
         ph.internode.guide = direction(v[4], v[5], v[6]);
-        exactInternode(ph);
+        exactInternode(ph, p_.shoots[shootID].phytomers.empty());
         p_.shoots[shootID].phytomers.push_back(std::move(ph));
         const int node = int(p_.shoots[shootID].phytomers.size()) - 1;
         int petiole = 0;
@@ -377,7 +397,7 @@ private:
     }
 
     // The values an exact string adds to an internode (StringWriter::exactInternode).
-    void exactInternode(Phytomer& ph) {
+    void exactInternode(Phytomer& ph, bool first) {
         if (peek() == 'e') {
             const std::size_t at = pos_;
             ++pos_;
@@ -391,6 +411,17 @@ private:
             }
             ph.internode.length = v[0];
             ph.internodeFraction = v[1];
+        }
+        if (peek() == 'r') {
+            if (first)
+                fail("a shoot's first internode has the shoot's roll reference",
+                     "r(...) after a later internode");
+            ++pos_;
+            const auto v = tuple<3>();
+            ph.internode.rollReference = direction(v[0], v[1], v[2]);
+        } else if (!first) {
+            // Not given: NaN until completed (carried from the internode before).
+            ph.internode.rollReference = vec3(std::numeric_limits<float>::quiet_NaN());
         }
     }
 
@@ -499,7 +530,7 @@ void notePresent(PlantInstance& p, Presence& m) {
                   (const void*)&ph.leafFraction, (const void*)&in.length, (const void*)&in.radius,
                   (const void*)&in.pitch, (const void*)&in.azimuth, (const void*)&in.guide})
                 m.note(v);
-            if (k == 0) m.note(&in.rollReference);
+            if (k == 0 || !std::isnan(in.rollReference.x)) m.note(&in.rollReference);
             for (Petiole& pt : ph.petioles) {
                 for (const void* v :
                      {(const void*)&pt.length, (const void*)&pt.radius, (const void*)&pt.pitch,
