@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "collision_scenes.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -183,6 +184,52 @@ INSTANTIATE_TEST_SUITE_P(PlantString, ExactPlantString, ::testing::ValuesIn(list
                              return info.param;
                          });
 
+namespace {
+
+// The exact string of plant `p` reads back to the same geometry and height, and gives the same
+// string again; returns the string.
+std::string expectExactRoundTrip(PlantArchitecture& arch, unsigned p) {
+    PlantStringOptions exact;
+    exact.significantDigits = 0;
+    const std::string text = arch.getPlantString(p, exact);
+    const unsigned q = arch.generatePlantFromString(text);
+    EXPECT_EQ(firstDifference(arch.getPlantString(q, exact), text), "");
+    EXPECT_TRUE(drawnObjects(arch, p) == drawnObjects(arch, q)) << "the geometry differs";
+    EXPECT_EQ(arch.getPlantHeight(q), arch.getPlantHeight(p));
+    arch.deletePlantInstance(q);
+    return text;
+}
+
+}  // namespace
+
+// Plants that collision avoidance steered keep their shape in exact strings too: petiole
+// azimuths steered by soft avoidance. Each case must also write the group it is about (else it
+// tests nothing).
+TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
+    using plantarch::test::addBox;
+    for (std::uint64_t seed : {1, 2, 3}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        auto contains = [](const std::string& text, const char* group) {
+            return text.find(group) != std::string::npos;
+        };
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("tomato");
+            SoftCollisionOptions soft;
+            soft.steerPetioles = true;
+            soft.steerPeduncles = true;
+            arch.enableSoftCollisionAvoidance(soft);
+            const unsigned a = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 1.0f);
+            const unsigned b = arch.buildPlantInstanceFromLibrary(vec3(0.15f, 0, 0), 1.0f);
+            arch.advanceTime(70.0);
+            for (unsigned p : {a, b})
+                EXPECT_TRUE(contains(expectExactRoundTrip(arch, p), ")a(")) << "tomatoes";
+        }
+    }
+}
+
 TEST(PlantString, MalformedStringsGiveOneClearError) {
     const std::string good =
         "@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,"
@@ -258,6 +305,20 @@ TEST(PlantString, ExactGroupsAreReadAndChecked) {
               std::string::npos);
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,0,0)}")
                   .find("length close to 1"),
+              std::string::npos);
+    // A petiole azimuth other than the even spread.
+    const std::string turned = head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(90)]}";
+    const unsigned t = arch.generatePlantFromString(turned);
+    EXPECT_EQ(arch.plant(t).shoots[0].phytomers[0].petioles[0].azimuth, 90.0f);
+    EXPECT_EQ(arch.getPlantString(t, exact), turned);
+    // Values the reader derives anyway are not written again; other digits write no groups.
+    const unsigned plain =
+        arch.generatePlantFromString(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(0)]}");
+    EXPECT_EQ(arch.getPlantString(plain, exact),
+              head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)]}");
+    EXPECT_EQ(arch.getPlantString(t).find(")a("), std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(x)]}")
+                  .find("expected a number"),
               std::string::npos);
 }
 

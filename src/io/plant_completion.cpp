@@ -170,7 +170,7 @@ private:
         const std::size_t n = ph.petioles.size();
         for (std::size_t j = 0; j < n; ++j) {
             Petiole& pt = ph.petioles[j];
-            if (m_.missing(&pt.azimuth)) pt.azimuth = in.azimuth + 360.0f * float(j) / float(n);
+            if (m_.missing(&pt.azimuth)) pt.azimuth = petioleAzimuth(in.azimuth, j, n);
             if (m_.missing(&pt.taper) && t) pt.taper = t->phytomer_parameters.petiole.taper.mean();
             leaves(ph, pt, t);
             for (FloralBud& fb : pt.floralBuds) floral(fb);
@@ -226,6 +226,10 @@ vec3 internodeDirection(const Internode& in) {
     const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
     const float p = in.pitch * kDeg;
     return unitOr(std::cos(p) * in.guide - std::sin(p) * side, in.guide);
+}
+
+float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n) {
+    return internodeAzimuth + 360.0f * float(j) / float(n);
 }
 
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,

@@ -51,6 +51,8 @@ char stageLetter(FloralStage s) {
 }
 
 constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
+// A value a string may leave out, until completion fills it.
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // ---- writing -------------------------------------------------------------------------
 
@@ -134,6 +136,13 @@ private:
                                                   [](const LeafOrgan& l) { return l.removed; });
             numbers({bare ? 0.0f : pt.length * f, pt.radius * f, pt.pitch, pt.curvature, pt.taper});
             out_ += ')';
+            // Exact strings: an azimuth steered away from the even spread.
+            if (digits_ == 0 &&
+                !sameBits(pt.azimuth, petioleAzimuth(in.azimuth, j, ph.petioles.size()))) {
+                out_ += "a(";
+                number(pt.azimuth);
+                out_ += ')';
+            }
             for (const LeafOrgan& l : pt.leaves) {
                 if (l.removed) continue;
                 out_ += 'L';
@@ -387,6 +396,11 @@ private:
             pt.pitch = q[2];
             pt.curvature = q[3];
             pt.taper = q[4];
+            pt.azimuth = kNaN;  // not given: NaN until completed (spread evenly)
+            if (peek() == 'a') {
+                ++pos_;
+                pt.azimuth = tuple<1>()[0];
+            }
             while (peek() == 'L') pt.leaves.push_back(leaf());
             while (peek() == 'F') pt.floralBuds.push_back(floral(false));
             p_.shoots[shootID].phytomers[std::size_t(node)].petioles.push_back(std::move(pt));
@@ -421,7 +435,7 @@ private:
             ph.internode.rollReference = direction(v[0], v[1], v[2]);
         } else if (!first) {
             // Not given: NaN until completed (carried from the internode before).
-            ph.internode.rollReference = vec3(std::numeric_limits<float>::quiet_NaN());
+            ph.internode.rollReference = vec3(kNaN);
         }
     }
 
@@ -476,7 +490,7 @@ private:
         fb.peduncleRoll = v[3];
         fb.peduncleCurvature = number<float>();
         // Not given (a string written before terminal places were): NaN until completed.
-        if (terminal) fb.terminalAzimuth = std::numeric_limits<float>::quiet_NaN();
+        if (terminal) fb.terminalAzimuth = kNaN;
         if (terminal && peek() == ',') {
             expect(',');
             fb.terminalAzimuth = number<float>();
@@ -536,6 +550,7 @@ void notePresent(PlantInstance& p, Presence& m) {
                      {(const void*)&pt.length, (const void*)&pt.radius, (const void*)&pt.pitch,
                       (const void*)&pt.curvature, (const void*)&pt.taper})
                     m.note(v);
+                if (!std::isnan(pt.azimuth)) m.note(&pt.azimuth);
                 for (LeafOrgan& l : pt.leaves)
                     for (const void* v :
                          {(const void*)&l.leafletIndex, (const void*)&l.scale,
