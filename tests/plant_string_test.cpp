@@ -202,9 +202,10 @@ std::string expectExactRoundTrip(PlantArchitecture& arch, unsigned p) {
 
 }  // namespace
 
-// Plants that collision avoidance steered keep their shape in exact strings too: petiole
-// azimuths steered by soft avoidance. Each case must also write the group it is about (else it
-// tests nothing).
+// Plants that collision avoidance steered keep their shape in exact strings too: roll
+// references and petioles turned clear of a wall, fruit and stalks turned out of the ground,
+// petiole azimuths steered by soft avoidance. Each case must also write the group it is about
+// (else it tests nothing).
 TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
     using plantarch::test::addBox;
     for (std::uint64_t seed : {1, 2, 3}) {
@@ -212,6 +213,34 @@ TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
         auto contains = [](const std::string& text, const char* group) {
             return text.find(group) != std::string::npos;
         };
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("bean");
+            const ObjectID wall = addBox(ctx, {0.1f, -1, 0}, {0.2f, 1, 1});
+            arch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = 0.2f});
+            const std::string s =
+                expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f));
+            EXPECT_TRUE(contains(s, ")r(") && contains(s, ")c(")) << "bean by a wall";
+        }
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("strawberry");
+            // Stalks long and arched enough for ripe fruit to reach the soil.
+            ShootParameters crown = arch.getCurrentShootParameters("mainstem");
+            crown.phytomer_parameters.peduncle.length = 0.3f;
+            crown.phytomer_parameters.peduncle.curvature = -400.0f;
+            arch.updateCurrentShootParameters("mainstem", crown);
+            const ObjectID ground = addBox(ctx, {-1, -1, -0.1f}, {1, 1, 0.0f});
+            arch.enableSolidObstacleAvoidance(
+                {.obstacles = {ground}, .avoidanceDistance = 0.1f, .fruitAdjustment = true});
+            const std::string s =
+                expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 90.0f));
+            EXPECT_TRUE(contains(s, ")c(")) << "strawberry on the ground";
+        }
         {
             Context ctx;
             PlantArchitecture arch(&ctx);
@@ -306,19 +335,31 @@ TEST(PlantString, ExactGroupsAreReadAndChecked) {
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,0,0)}")
                   .find("length close to 1"),
               std::string::npos);
-    // A petiole azimuth other than the even spread.
-    const std::string turned = head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(90)]}";
+    // A petiole azimuth and turns out of obstacles.
+    const std::string turned = head +
+                               "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(90)c(0,"
+                               "0,1,30)L0(0.05,0,0,0,1,0)Ff(0.01,0.001,0,0,0)c(1,0,0,-20)f(1,0,0,"
+                               "0,0.01,0,0)c(0,1,0,45)]}";
     const unsigned t = arch.generatePlantFromString(turned);
-    EXPECT_EQ(arch.plant(t).shoots[0].phytomers[0].petioles[0].azimuth, 90.0f);
+    const Phytomer& tp = arch.plant(t).shoots[0].phytomers[0];
+    EXPECT_EQ(tp.petioles[0].azimuth, 90.0f);
+    EXPECT_EQ(tp.petioles[0].clearance, (OrganTurn{vec3(0, 0, 1), 30.0f}));
+    EXPECT_EQ(tp.petioles[0].floralBuds.at(0).peduncleClearance,
+              (OrganTurn{vec3(1, 0, 0), -20.0f}));
+    EXPECT_EQ(tp.petioles[0].floralBuds[0].flowers.at(0).clearance,
+              (OrganTurn{vec3(0, 1, 0), 45.0f}));
     EXPECT_EQ(arch.getPlantString(t, exact), turned);
     // Values the reader derives anyway are not written again; other digits write no groups.
-    const unsigned plain =
-        arch.generatePlantFromString(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(0)]}");
+    const unsigned plain = arch.generatePlantFromString(
+        head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(0)c(0,0,1,0)]}");
     EXPECT_EQ(arch.getPlantString(plain, exact),
               head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)]}");
-    EXPECT_EQ(arch.getPlantString(t).find(")a("), std::string::npos);
-    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(x)]}")
-                  .find("expected a number"),
+    EXPECT_EQ(arch.getPlantString(t).find(")c("), std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,0,30)]}")
+                  .find("length close to 1"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,1)]}")
+                  .find("expected ','"),
               std::string::npos);
 }
 

@@ -136,13 +136,14 @@ private:
                                                   [](const LeafOrgan& l) { return l.removed; });
             numbers({bare ? 0.0f : pt.length * f, pt.radius * f, pt.pitch, pt.curvature, pt.taper});
             out_ += ')';
-            // Exact strings: an azimuth steered away from the even spread.
+            // Exact strings: an azimuth steered away from the even spread, a clearance turn.
             if (digits_ == 0 &&
                 !sameBits(pt.azimuth, petioleAzimuth(in.azimuth, j, ph.petioles.size()))) {
                 out_ += "a(";
                 number(pt.azimuth);
                 out_ += ')';
             }
+            clearance(pt.clearance);
             for (const LeafOrgan& l : pt.leaves) {
                 if (l.removed) continue;
                 out_ += 'L';
@@ -187,6 +188,14 @@ private:
         }
     }
 
+    // A turn out of solid obstacles (exact strings; none: nothing written).
+    void clearance(const OrganTurn& t) {
+        if (digits_ != 0 || t.angle == 0.0f) return;
+        out_ += "c(";
+        numbers({t.axis.x, t.axis.y, t.axis.z, t.angle});
+        out_ += ')';
+    }
+
     // Terminal buds also give their place around the shoot tip (dead buds keep theirs).
     void floral(const FloralBud& fb, bool terminal) {
         const char letter = stageLetter(fb.stage);
@@ -202,6 +211,7 @@ private:
             numbers({fb.terminalAzimuth});
         }
         out_ += ')';
+        clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         const float m = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
         for (const FlowerOrgan& fl : fb.flowers) {
@@ -211,6 +221,7 @@ private:
             out_ += ',';
             out_ += std::to_string(fl.variant);
             out_ += ')';
+            clearance(fl.clearance);
         }
     }
 
@@ -401,6 +412,7 @@ private:
                 ++pos_;
                 pt.azimuth = tuple<1>()[0];
             }
+            clearance(pt.clearance);
             while (peek() == 'L') pt.leaves.push_back(leaf());
             while (peek() == 'F') pt.floralBuds.push_back(floral(false));
             p_.shoots[shootID].phytomers[std::size_t(node)].petioles.push_back(std::move(pt));
@@ -437,6 +449,15 @@ private:
             // Not given: NaN until completed (carried from the internode before).
             ph.internode.rollReference = vec3(kNaN);
         }
+    }
+
+    // A turn out of solid obstacles, if one follows: "c(" axis "," angle ")".
+    void clearance(OrganTurn& t) {
+        if (peek() != 'c') return;
+        ++pos_;
+        const auto v = tuple<4>();
+        t.axis = direction(v[0], v[1], v[2]);
+        t.angle = v[3];
     }
 
     LeafOrgan leaf() {
@@ -496,6 +517,7 @@ private:
             fb.terminalAzimuth = number<float>();
         }
         expect(')');
+        clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         while (peek() == 'f') {
             ++pos_;
@@ -509,6 +531,7 @@ private:
             fl.roll = q[3];
             (fruit ? fl.fruitScale : fl.flowerScale) = q[4];
             fl.gravityFactor = q[5];
+            clearance(fl.clearance);
             fb.flowers.push_back(fl);
         }
         return fb;
