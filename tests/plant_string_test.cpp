@@ -203,9 +203,9 @@ std::string expectExactRoundTrip(PlantArchitecture& arch, unsigned p) {
 }  // namespace
 
 // Plants that collision avoidance steered keep their shape in exact strings too: roll
-// references and petioles turned clear of a wall, fruit and stalks turned out of the ground,
-// petiole azimuths steered by soft avoidance. Each case must also write the group it is about
-// (else it tests nothing).
+// references and petioles turned clear of a wall, internode axes turned along a ceiling seen
+// late, fruit and stalks turned out of the ground, petiole azimuths steered by soft avoidance.
+// Each case must also write the group it is about (else it tests nothing).
 TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
     using plantarch::test::addBox;
     for (std::uint64_t seed : {1, 2, 3}) {
@@ -223,6 +223,18 @@ TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
             const std::string s =
                 expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f));
             EXPECT_TRUE(contains(s, ")r(") && contains(s, ")c(")) << "bean by a wall";
+        }
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("bean");
+            const ObjectID ceiling = addBox(ctx, {-1, -1, 0.15f}, {1, 1, 0.4f});
+            arch.enableSolidObstacleAvoidance(
+                {.obstacles = {ceiling}, .avoidanceDistance = 0.002f});
+            const std::string s =
+                expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 60.0f));
+            EXPECT_TRUE(contains(s, ")d(")) << "bean under a ceiling";
         }
         {
             Context ctx;
@@ -335,13 +347,14 @@ TEST(PlantString, ExactGroupsAreReadAndChecked) {
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,0,0)}")
                   .find("length close to 1"),
               std::string::npos);
-    // A petiole azimuth and turns out of obstacles.
+    // An internode axis, a petiole azimuth and turns out of obstacles.
     const std::string turned = head +
-                               "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(90)c(0,"
+                               "I(0.01,0.001,0,0,0,0,1)d(0,0.6,0.8)[P(0.02,0.001,40,0,0)a(90)c(0,"
                                "0,1,30)L0(0.05,0,0,0,1,0)Ff(0.01,0.001,0,0,0)c(1,0,0,-20)f(1,0,0,"
                                "0,0.01,0,0)c(0,1,0,45)]}";
     const unsigned t = arch.generatePlantFromString(turned);
     const Phytomer& tp = arch.plant(t).shoots[0].phytomers[0];
+    EXPECT_EQ(tp.internode.direction, vec3(0.0f, 0.6f, 0.8f));
     EXPECT_EQ(tp.petioles[0].azimuth, 90.0f);
     EXPECT_EQ(tp.petioles[0].clearance, (OrganTurn{vec3(0, 0, 1), 30.0f}));
     EXPECT_EQ(tp.petioles[0].floralBuds.at(0).peduncleClearance,
@@ -351,15 +364,21 @@ TEST(PlantString, ExactGroupsAreReadAndChecked) {
     EXPECT_EQ(arch.getPlantString(t, exact), turned);
     // Values the reader derives anyway are not written again; other digits write no groups.
     const unsigned plain = arch.generatePlantFromString(
-        head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)a(0)c(0,0,1,0)]}");
+        head + "I(0.01,0.001,0,0,0,0,1)d(0,0,1)[P(0.02,0.001,40,0,0)a(0)c(0,0,1,0)]}");
     EXPECT_EQ(arch.getPlantString(plain, exact),
               head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)]}");
-    EXPECT_EQ(arch.getPlantString(t).find(")c("), std::string::npos);
+    EXPECT_EQ(arch.getPlantString(t), head +
+                                          "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,"
+                                          "0,1,0)Ff(0.01,0.001,0,0,0)f(1,0,0,0,0.01,0,0)]}");
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,0,30)]}")
                   .find("length close to 1"),
               std::string::npos);
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,1)]}")
                   .find("expected ','"),
+              std::string::npos);
+    // Out of the grammar's order: a roll reference after the axis.
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)d(0,0,1)r(0,1,0)}")
+                  .find("expected '}'"),
               std::string::npos);
 }
 

@@ -170,7 +170,7 @@ private:
     // (its nodes lie at direction x full length x fraction, which differs in the last bit
     // from direction x current length). An internode whose shoot axis was steered (attraction
     // points, obstacles) gives its roll reference, which steering carried in two turns where
-    // the reader carries it in one.
+    // the reader carries it in one; one turned along a solid obstacle gives its axis.
     void exactInternode(const Shoot& s, std::size_t k) {
         const Phytomer& ph = s.phytomers[k];
         const Internode& in = ph.internode;
@@ -184,6 +184,11 @@ private:
                       carriedRollReference(s.phytomers[k - 1].internode.rollReference, in.guide))) {
             out_ += "r(";
             numbers({in.rollReference.x, in.rollReference.y, in.rollReference.z});
+            out_ += ')';
+        }
+        if (!sameBits(in.direction, internodeDirection(in))) {
+            out_ += "d(";
+            numbers({in.direction.x, in.direction.y, in.direction.z});
             out_ += ')';
         }
     }
@@ -449,6 +454,13 @@ private:
             // Not given: NaN until completed (carried from the internode before).
             ph.internode.rollReference = vec3(kNaN);
         }
+        // Not given: NaN until completed (from the shoot axis, pitch and azimuth).
+        ph.internode.direction = vec3(kNaN);
+        if (peek() == 'd') {
+            ++pos_;
+            const auto v = tuple<3>();
+            ph.internode.direction = direction(v[0], v[1], v[2]);
+        }
     }
 
     // A turn out of solid obstacles, if one follows: "c(" axis "," angle ")".
@@ -568,6 +580,7 @@ void notePresent(PlantInstance& p, Presence& m) {
                   (const void*)&in.pitch, (const void*)&in.azimuth, (const void*)&in.guide})
                 m.note(v);
             if (k == 0 || !std::isnan(in.rollReference.x)) m.note(&in.rollReference);
+            if (!std::isnan(in.direction.x)) m.note(&in.direction);
             for (Petiole& pt : ph.petioles) {
                 for (const void* v :
                      {(const void*)&pt.length, (const void*)&pt.radius, (const void*)&pt.pitch,
