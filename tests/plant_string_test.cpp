@@ -271,6 +271,27 @@ TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
     }
 }
 
+// A shoot type with unique_prototypes 0 draws every leaf in a shape of its own, chosen by the
+// leaf's ID: exact strings give those IDs (the reader numbers leaves shoot by shoot, growth
+// numbered them as they grew).
+TEST(PlantString, ExactStringsKeepLeavesOfTheirOwnShape) {
+    for (std::uint64_t seed : {1, 2, 3}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(seed);
+        arch.loadPlantModelFromLibrary("bean");
+        for (const std::string& label : arch.listShootTypeLabels()) {
+            ShootParameters t = arch.getCurrentShootParameters(label);
+            t.phytomer_parameters.leaf.prototype.unique_prototypes = 0;
+            arch.updateCurrentShootParameters(label, t);
+        }
+        const std::string s =
+            expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f));
+        EXPECT_NE(s.find(")i("), std::string::npos);
+    }
+}
+
 TEST(PlantString, MalformedStringsGiveOneClearError) {
     const std::string good =
         "@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,"
@@ -375,6 +396,22 @@ TEST(PlantString, ExactGroupsAreReadAndChecked) {
               std::string::npos);
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,1)]}")
                   .find("expected ','"),
+              std::string::npos);
+    // Leaf IDs: given ones kept, the others numbered above them; each ID once.
+    const unsigned ids = arch.generatePlantFromString(
+        head +
+        "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)i(7)L0(0.05,0,0,0,"
+        "1,0)]}");
+    const Petiole& idPetiole = arch.plant(ids).shoots[0].phytomers[0].petioles[0];
+    EXPECT_EQ(idPetiole.leaves[0].leafID, 7);
+    EXPECT_EQ(idPetiole.leaves[1].leafID, 8);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)i("
+                                 "7)L0(0.05,0,0,0,1,0)i(7)]}")
+                  .find("a leaf ID given twice"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)i("
+                                 "-1)]}")
+                  .find("expected a leaf ID"),
               std::string::npos);
     // Out of the grammar's order: a roll reference after the axis.
     EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)d(0,0,1)r(0,1,0)}")

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <set>
 
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
@@ -51,6 +52,7 @@ char stageLetter(FloralStage s) {
 }
 
 constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
+constexpr int kMaxLeafID = 1 << 30;
 // A value a string may leave out, until completion fills it.
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -144,6 +146,7 @@ private:
                 out_ += ')';
             }
             clearance(pt.clearance);
+            const bool ownShapes = digits_ == 0 && ownLeafShapes(ph);
             for (const LeafOrgan& l : pt.leaves) {
                 if (l.removed) continue;
                 out_ += 'L';
@@ -153,6 +156,7 @@ private:
                 out_ += ',';
                 out_ += std::to_string(l.variant);
                 out_ += ')';
+                if (ownShapes) out_ += "i(" + std::to_string(l.leafID) + ')';
             }
             for (const FloralBud& fb : pt.floralBuds) floral(fb, false);
             for (unsigned c : s.children) {
@@ -191,6 +195,14 @@ private:
             numbers({in.direction.x, in.direction.y, in.direction.z});
             out_ += ')';
         }
+    }
+
+    // Whether the leaves of a phytomer each have their own shape, drawn from their leaf ID (a
+    // shoot type with unique_prototypes 0).
+    bool ownLeafShapes(const Phytomer& ph) const {
+        const auto t = p_.shootTypes.find(ph.parametersLabel);
+        return t != p_.shootTypes.end() &&
+               t->second.phytomer_parameters.leaf.prototype.unique_prototypes == 0;
     }
 
     // A turn out of solid obstacles (exact strings; none: nothing written).
@@ -497,7 +509,29 @@ private:
         l.yaw = v[2];
         l.roll = v[3];
         l.position = v[4];
+        if (peek() == 'i') l.leafID = leafID();
         return l;
+    }
+
+    // "i(" id ")": a leaf's ID, a whole number unique within the plant.
+    int leafID() {
+        ++pos_;
+        expect('(');
+        skipSpace();
+        const std::size_t start = pos_;
+        while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9') ++pos_;
+        int id = -1;
+        const auto r = std::from_chars(s_.data() + start, s_.data() + pos_, id);
+        if (pos_ == start || r.ec != std::errc() || id > kMaxLeafID) {
+            pos_ = start;
+            fail("expected a leaf ID", "a whole number from 0 to " + std::to_string(kMaxLeafID));
+        }
+        if (!leafIDs_.insert(id).second) {
+            pos_ = start;
+            fail("a leaf ID given twice", "IDs unique within the plant");
+        }
+        expect(')');
+        return id;
     }
 
     // A terminal bud may give its place around the tip as a sixth number.
@@ -552,6 +586,7 @@ private:
     std::string_view s_;
     std::size_t pos_ = 0;
     PlantInstance p_;
+    std::set<int> leafIDs_;  // given so far
 };
 
 // The members a plant string gives; everything else is completed.
@@ -587,12 +622,14 @@ void notePresent(PlantInstance& p, Presence& m) {
                       (const void*)&pt.curvature, (const void*)&pt.taper})
                     m.note(v);
                 if (!std::isnan(pt.azimuth)) m.note(&pt.azimuth);
-                for (LeafOrgan& l : pt.leaves)
+                for (LeafOrgan& l : pt.leaves) {
                     for (const void* v :
                          {(const void*)&l.leafletIndex, (const void*)&l.scale,
                           (const void*)&l.pitch, (const void*)&l.yaw, (const void*)&l.roll,
                           (const void*)&l.position, (const void*)&l.variant})
                         m.note(v);
+                    if (l.leafID >= 0) m.note(&l.leafID);  // given (else -1)
+                }
                 for (FloralBud& fb : pt.floralBuds) floral(fb);
             }
         }
