@@ -156,7 +156,7 @@ private:
                 out_ += ',';
                 out_ += std::to_string(l.variant);
                 out_ += ')';
-                if (ownShapes) out_ += "i(" + std::to_string(l.leafID) + ')';
+                if (ownShapes && l.leafID >= 0) out_ += "i(" + std::to_string(l.leafID) + ')';
             }
             for (const FloralBud& fb : pt.floralBuds) floral(fb, false);
             for (unsigned c : s.children) {
