@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "collision_scenes.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -145,19 +146,20 @@ std::vector<std::string> drawnObjects(PlantArchitecture& arch, unsigned plant) {
 
 }  // namespace
 
-// A plant string written exactly (digits 0) and read back draws the same geometry to the bit,
-// seeds 1 to 10 (and 46). The walnut, at three ages: its shoots carry dead terminal buds and
-// bare petioles, which a string leaves out; they must not move or add any organ (seed 46 at
-// 1000 days once came back 21 mm shorter, its fruit turned to another place around the tip).
-// The maize at its oldest age: its ears are drawn from another shoot type than the stem's,
-// which the string must say.
-TEST(PlantString, ExactStringsGiveTheSameGeometryOverTenSeeds) {
-    const SpeciesModel walnut = loadSpecies("walnut"), maize = loadSpecies("maize");
-    const std::vector<std::pair<std::string, float>> cases = {{"walnut", walnut.recommendedAgeMin},
-                                                              {"walnut", walnut.recommendedAge},
-                                                              {"walnut", walnut.recommendedAgeMax},
-                                                              {"maize", maize.recommendedAgeMax}};
-    for (const auto& [species, age] : cases)
+// A plant string written exactly (digits 0) and read back draws the same geometry to the bit
+// (every object's organ, vertices, UVs, triangles and colour) and has the same height, and
+// writes the same string again: every library species, at its youngest, picture and oldest
+// ages, seeds 1 to 10 and 46. What the string must say for that: the nodes of internodes still
+// elongating (young plants), roll references turned by trellis wires (apple_fruitingwall,
+// grapevine_Wye), dead terminal buds and bare petioles left out without moving the organs next
+// to them (walnut, seed 46 at 1000 days once came back 21 mm shorter), ears drawn from another
+// shoot type than the stem's (maize). One test per species, so ctest runs them in parallel.
+class ExactPlantString : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ExactPlantString, GivesTheSameGeometryAtThreeAgesOverElevenSeeds) {
+    const std::string& species = GetParam();
+    const SpeciesModel model = loadSpecies(species);
+    for (float age : {model.recommendedAgeMin, model.recommendedAge, model.recommendedAgeMax})
         for (std::uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 46}) {
             SCOPED_TRACE(species + " age " + std::to_string(age) + " seed " + std::to_string(seed));
             Context ctx;
@@ -169,12 +171,125 @@ TEST(PlantString, ExactStringsGiveTheSameGeometryOverTenSeeds) {
             exact.significantDigits = 0;
             const std::string text = arch.getPlantString(p, exact);
             const unsigned q = arch.generatePlantFromString(text);
-            EXPECT_EQ(arch.getPlantString(q, exact), text);
+            EXPECT_EQ(firstDifference(arch.getPlantString(q, exact), text), "");
             const std::vector<std::string> a = drawnObjects(arch, p), b = drawnObjects(arch, q);
             EXPECT_EQ(a.size(), b.size());
             EXPECT_TRUE(a == b) << "the geometry differs";
             EXPECT_EQ(arch.getPlantHeight(q), arch.getPlantHeight(p));
         }
+}
+
+INSTANTIATE_TEST_SUITE_P(PlantString, ExactPlantString, ::testing::ValuesIn(listSpecies()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                             return info.param;
+                         });
+
+namespace {
+
+// The exact string of plant `p` reads back to the same geometry and height, and gives the same
+// string again; returns the string.
+std::string expectExactRoundTrip(PlantArchitecture& arch, unsigned p) {
+    PlantStringOptions exact;
+    exact.significantDigits = 0;
+    const std::string text = arch.getPlantString(p, exact);
+    const unsigned q = arch.generatePlantFromString(text);
+    EXPECT_EQ(firstDifference(arch.getPlantString(q, exact), text), "");
+    EXPECT_TRUE(drawnObjects(arch, p) == drawnObjects(arch, q)) << "the geometry differs";
+    EXPECT_EQ(arch.getPlantHeight(q), arch.getPlantHeight(p));
+    arch.deletePlantInstance(q);
+    return text;
+}
+
+}  // namespace
+
+// Plants that collision avoidance steered keep their shape in exact strings too: roll
+// references and petioles turned clear of a wall, internode axes turned along a ceiling seen
+// late, fruit and stalks turned out of the ground, petiole azimuths steered by soft avoidance.
+// Each case must also write the group it is about (else it tests nothing).
+TEST(PlantString, ExactStringsOfSteeredPlantsGiveTheSameGeometry) {
+    using plantarch::test::addBox;
+    for (std::uint64_t seed : {1, 2, 3}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        auto contains = [](const std::string& text, const char* group) {
+            return text.find(group) != std::string::npos;
+        };
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("bean");
+            const ObjectID wall = addBox(ctx, {0.1f, -1, 0}, {0.2f, 1, 1});
+            arch.enableSolidObstacleAvoidance({.obstacles = {wall}, .avoidanceDistance = 0.2f});
+            const std::string s =
+                expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f));
+            EXPECT_TRUE(contains(s, ")r(") && contains(s, ")c(")) << "bean by a wall";
+        }
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("bean");
+            const ObjectID ceiling = addBox(ctx, {-1, -1, 0.15f}, {1, 1, 0.4f});
+            arch.enableSolidObstacleAvoidance(
+                {.obstacles = {ceiling}, .avoidanceDistance = 0.002f});
+            const std::string s =
+                expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 60.0f));
+            EXPECT_TRUE(contains(s, ")d(")) << "bean under a ceiling";
+        }
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("strawberry");
+            // Stalks long and arched enough for ripe fruit to reach the soil.
+            ShootParameters crown = arch.getCurrentShootParameters("mainstem");
+            crown.phytomer_parameters.peduncle.length = 0.3f;
+            crown.phytomer_parameters.peduncle.curvature = -400.0f;
+            arch.updateCurrentShootParameters("mainstem", crown);
+            const ObjectID ground = addBox(ctx, {-1, -1, -0.1f}, {1, 1, 0.0f});
+            arch.enableSolidObstacleAvoidance(
+                {.obstacles = {ground}, .avoidanceDistance = 0.1f, .fruitAdjustment = true});
+            const std::string s =
+                expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 90.0f));
+            EXPECT_TRUE(contains(s, ")c(")) << "strawberry on the ground";
+        }
+        {
+            Context ctx;
+            PlantArchitecture arch(&ctx);
+            arch.setSeed(seed);
+            arch.loadPlantModelFromLibrary("tomato");
+            SoftCollisionOptions soft;
+            soft.steerPetioles = true;
+            soft.steerPeduncles = true;
+            arch.enableSoftCollisionAvoidance(soft);
+            const unsigned a = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 1.0f);
+            const unsigned b = arch.buildPlantInstanceFromLibrary(vec3(0.15f, 0, 0), 1.0f);
+            arch.advanceTime(70.0);
+            for (unsigned p : {a, b})
+                EXPECT_TRUE(contains(expectExactRoundTrip(arch, p), ")a(")) << "tomatoes";
+        }
+    }
+}
+
+// A shoot type with unique_prototypes 0 draws every leaf in a shape of its own, chosen by the
+// leaf's ID: exact strings give those IDs (the reader numbers leaves shoot by shoot, growth
+// numbered them as they grew).
+TEST(PlantString, ExactStringsKeepLeavesOfTheirOwnShape) {
+    for (std::uint64_t seed : {1, 2, 3}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(seed);
+        arch.loadPlantModelFromLibrary("bean");
+        for (const std::string& label : arch.listShootTypeLabels()) {
+            ShootParameters t = arch.getCurrentShootParameters(label);
+            t.phytomer_parameters.leaf.prototype.unique_prototypes = 0;
+            arch.updateCurrentShootParameters(label, t);
+        }
+        const std::string s =
+            expectExactRoundTrip(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f));
+        EXPECT_NE(s.find(")i("), std::string::npos);
+    }
 }
 
 TEST(PlantString, MalformedStringsGiveOneClearError) {
@@ -216,6 +331,92 @@ TEST(PlantString, MalformedStringsGiveOneClearError) {
     const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 10.0f);
     EXPECT_THROW(arch.getPlantString(p, PlantStringOptions{7}), Error);
     EXPECT_THROW(arch.getPlantString(p, PlantStringOptions{-1}), Error);
+}
+
+// The tagged groups of exact strings: read into the state they give, and checked.
+TEST(PlantString, ExactGroupsAreReadAndChecked) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const std::string head = "@(0,0,0,5)Sunifoliate(1,0,0){";
+    // An elongating internode: full length and fraction grown.
+    const unsigned p = arch.generatePlantFromString(head + "I(0.01,0.001,0,0,0,0,1)e(0.04,0.25)}");
+    const Phytomer& ph = arch.plant(p).shoots[0].phytomers[0];
+    EXPECT_EQ(ph.internode.length, 0.04f);
+    EXPECT_EQ(ph.internodeFraction, 0.25f);
+    EXPECT_EQ(arch.getNodePosition(p, 0, 0), vec3(0.0f, 0.0f, 0.04f * 0.25f));
+    PlantStringOptions exact;
+    exact.significantDigits = 0;
+    EXPECT_EQ(arch.getPlantString(p, exact), head + "I(0.01,0.001,0,0,0,0,1)e(0.04,0.25)}");
+    EXPECT_EQ(arch.getPlantString(p), head + "I(0.01,0.001,0,0,0,0,1)}");  // 4 digits: none
+    EXPECT_NE(stringError(head + "I(0.02,0.001,0,0,0,0,1)e(0.04,0.25)}")
+                  .find("full length times the fraction grown"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)e(0.04)}").find("expected ','"),
+              std::string::npos);
+    // A roll reference other than the one carried from the internode before.
+    const std::string rolled = head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,1,0)}";
+    const unsigned q = arch.generatePlantFromString(rolled);
+    EXPECT_EQ(arch.plant(q).shoots[0].phytomers[1].internode.rollReference, vec3(0, 1, 0));
+    EXPECT_EQ(arch.getPlantString(q, exact), rolled);
+    const unsigned carried = arch.generatePlantFromString(
+        head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(1,0,0)}");
+    EXPECT_EQ(arch.getPlantString(carried, exact),
+              head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)}");
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)r(0,1,0)}").find("first internode"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)r(0,0,0)}")
+                  .find("length close to 1"),
+              std::string::npos);
+    // An internode axis, a petiole azimuth and turns out of obstacles.
+    const std::string turned = head +
+                               "I(0.01,0.001,0,0,0,0,1)d(0,0.6,0.8)[P(0.02,0.001,40,0,0)a(90)c(0,"
+                               "0,1,30)L0(0.05,0,0,0,1,0)Ff(0.01,0.001,0,0,0)c(1,0,0,-20)f(1,0,0,"
+                               "0,0.01,0,0)c(0,1,0,45)]}";
+    const unsigned t = arch.generatePlantFromString(turned);
+    const Phytomer& tp = arch.plant(t).shoots[0].phytomers[0];
+    EXPECT_EQ(tp.internode.direction, vec3(0.0f, 0.6f, 0.8f));
+    EXPECT_EQ(tp.petioles[0].azimuth, 90.0f);
+    EXPECT_EQ(tp.petioles[0].clearance, (OrganTurn{vec3(0, 0, 1), 30.0f}));
+    EXPECT_EQ(tp.petioles[0].floralBuds.at(0).peduncleClearance,
+              (OrganTurn{vec3(1, 0, 0), -20.0f}));
+    EXPECT_EQ(tp.petioles[0].floralBuds[0].flowers.at(0).clearance,
+              (OrganTurn{vec3(0, 1, 0), 45.0f}));
+    EXPECT_EQ(arch.getPlantString(t, exact), turned);
+    // Values the reader derives anyway are not written again; other digits write no groups.
+    const unsigned plain = arch.generatePlantFromString(
+        head + "I(0.01,0.001,0,0,0,0,1)d(0,0,1)[P(0.02,0.001,40,0,0)a(0)c(0,0,1,0)]}");
+    EXPECT_EQ(arch.getPlantString(plain, exact),
+              head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)]}");
+    EXPECT_EQ(arch.getPlantString(t), head +
+                                          "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,"
+                                          "0,1,0)Ff(0.01,0.001,0,0,0)f(1,0,0,0,0.01,0,0)]}");
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,0,30)]}")
+                  .find("length close to 1"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)c(0,0,1)]}")
+                  .find("expected ','"),
+              std::string::npos);
+    // Leaf IDs: given ones kept, the others numbered above them; each ID once.
+    const unsigned ids = arch.generatePlantFromString(
+        head +
+        "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)i(7)L0(0.05,0,0,0,"
+        "1,0)]}");
+    const Petiole& idPetiole = arch.plant(ids).shoots[0].phytomers[0].petioles[0];
+    EXPECT_EQ(idPetiole.leaves[0].leafID, 7);
+    EXPECT_EQ(idPetiole.leaves[1].leafID, 8);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)i("
+                                 "7)L0(0.05,0,0,0,1,0)i(7)]}")
+                  .find("a leaf ID given twice"),
+              std::string::npos);
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)[P(0.02,0.001,40,0,0)L0(0.05,0,0,0,1,0)i("
+                                 "-1)]}")
+                  .find("expected a leaf ID"),
+              std::string::npos);
+    // Out of the grammar's order: a roll reference after the axis.
+    EXPECT_NE(stringError(head + "I(0.01,0.001,0,0,0,0,1)I(0.01,0.001,0,0,0,0,1)d(0,0,1)r(0,1,0)}")
+                  .find("expected '}'"),
+              std::string::npos);
 }
 
 TEST(PlantString, UnknownShootTypeUsesDefaultParametersWithAWarning) {

@@ -162,26 +162,15 @@ private:
         if (m_.missing(&in.azimuth))
             in.azimuth = prev ? std::fmod(prev->azimuth + in.phyllotacticAngle, 360.0f) : 0.0f;
         if (m_.missing(&in.guide)) in.guide = prev ? prev->guide : start.axis;
-        if (m_.missing(&in.rollReference)) {
-            if (!prev) {
-                in.rollReference = start.reference;
-            } else {
-                // Carried along the axis with the smallest rotation (no twist).
-                const vec3 r =
-                    prev->rollReference - glm::dot(prev->rollReference, in.guide) * in.guide;
-                in.rollReference = unitOr(r, anyPerpendicular(in.guide));
-            }
-        }
-        if (m_.missing(&in.direction)) {
-            const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
-            const float p = in.pitch * kDeg;
-            in.direction = unitOr(std::cos(p) * in.guide - std::sin(p) * side, in.guide);
-        }
+        if (m_.missing(&in.rollReference))
+            in.rollReference =
+                prev ? carriedRollReference(prev->rollReference, in.guide) : start.reference;
+        if (m_.missing(&in.direction)) in.direction = internodeDirection(in);
         const ShootParameters* t = typeOf(ph.parametersLabel);
         const std::size_t n = ph.petioles.size();
         for (std::size_t j = 0; j < n; ++j) {
             Petiole& pt = ph.petioles[j];
-            if (m_.missing(&pt.azimuth)) pt.azimuth = in.azimuth + 360.0f * float(j) / float(n);
+            if (m_.missing(&pt.azimuth)) pt.azimuth = petioleAzimuth(in.azimuth, j, n);
             if (m_.missing(&pt.taper) && t) pt.taper = t->phytomer_parameters.petiole.taper.mean();
             leaves(ph, pt, t);
             for (FloralBud& fb : pt.floralBuds) floral(fb);
@@ -228,6 +217,20 @@ private:
 }
 
 }  // namespace
+
+vec3 carriedRollReference(vec3 previous, vec3 guide) {
+    return unitOr(previous - glm::dot(previous, guide) * guide, anyPerpendicular(guide));
+}
+
+vec3 internodeDirection(const Internode& in) {
+    const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
+    const float p = in.pitch * kDeg;
+    return unitOr(std::cos(p) * in.guide - std::sin(p) * side, in.guide);
+}
+
+float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n) {
+    return internodeAzimuth + 360.0f * float(j) / float(n);
+}
 
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
                    unsigned plantID, std::vector<std::string>& notes, const std::string& where) {

@@ -6,10 +6,13 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
+#include <set>
 
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
@@ -27,6 +30,14 @@ bool isLabel(const std::string& s) {
     return !s.empty() && std::all_of(s.begin(), s.end(), isLabelChar);
 }
 
+// Whether two values are the same to the bit (-0 and 0 differ: their sines do).
+bool sameBits(float a, float b) {
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+}
+bool sameBits(vec3 a, vec3 b) {
+    return sameBits(a.x, b.x) && sameBits(a.y, b.y) && sameBits(a.z, b.z);
+}
+
 char stageLetter(FloralStage s) {
     switch (s) {
         case FloralStage::FlowerClosed:
@@ -41,6 +52,9 @@ char stageLetter(FloralStage s) {
 }
 
 constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
+constexpr int kMaxLeafID = 1 << 30;
+// A value a string may leave out, until completion fills it.
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // ---- writing -------------------------------------------------------------------------
 
@@ -110,9 +124,10 @@ private:
         out_ += 'I';
         if (ph.parametersLabel != s.type) out_ += ph.parametersLabel;  // built by another type
         out_ += '(';
-        numbers({in.length * ph.internodeFraction, in.radius, in.pitch, in.azimuth, in.guide.x,
-                 in.guide.y, in.guide.z});
+        const float current = in.length * ph.internodeFraction;
+        numbers({current, in.radius, in.pitch, in.azimuth, in.guide.x, in.guide.y, in.guide.z});
         out_ += ')';
+        if (digits_ == 0) exactInternode(s, k);
         for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
             const Petiole& pt = ph.petioles[j];
             const float f = ph.leafFraction;
@@ -123,6 +138,15 @@ private:
                                                   [](const LeafOrgan& l) { return l.removed; });
             numbers({bare ? 0.0f : pt.length * f, pt.radius * f, pt.pitch, pt.curvature, pt.taper});
             out_ += ')';
+            // Exact strings: an azimuth steered away from the even spread, a clearance turn.
+            if (digits_ == 0 &&
+                !sameBits(pt.azimuth, petioleAzimuth(in.azimuth, j, ph.petioles.size()))) {
+                out_ += "a(";
+                number(pt.azimuth);
+                out_ += ')';
+            }
+            clearance(pt.clearance);
+            const bool ownShapes = digits_ == 0 && ownLeafShapes(ph);
             for (const LeafOrgan& l : pt.leaves) {
                 if (l.removed) continue;
                 out_ += 'L';
@@ -132,6 +156,7 @@ private:
                 out_ += ',';
                 out_ += std::to_string(l.variant);
                 out_ += ')';
+                if (ownShapes && l.leafID >= 0) out_ += "i(" + std::to_string(l.leafID) + ')';
             }
             for (const FloralBud& fb : pt.floralBuds) floral(fb, false);
             for (unsigned c : s.children) {
@@ -142,6 +167,50 @@ private:
             }
             out_ += ']';
         }
+    }
+
+    // What an exact string adds to an internode: the values the reader would not derive to
+    // the bit. An internode still elongating gives its full length and the fraction grown
+    // (its nodes lie at direction x full length x fraction, which differs in the last bit
+    // from direction x current length). An internode whose shoot axis was steered (attraction
+    // points, obstacles) gives its roll reference, which steering carried in two turns where
+    // the reader carries it in one; one turned along a solid obstacle gives its axis.
+    void exactInternode(const Shoot& s, std::size_t k) {
+        const Phytomer& ph = s.phytomers[k];
+        const Internode& in = ph.internode;
+        if (ph.internodeFraction != 1.0f) {
+            out_ += "e(";
+            numbers({in.length, ph.internodeFraction});
+            out_ += ')';
+        }
+        if (k > 0 &&
+            !sameBits(in.rollReference,
+                      carriedRollReference(s.phytomers[k - 1].internode.rollReference, in.guide))) {
+            out_ += "r(";
+            numbers({in.rollReference.x, in.rollReference.y, in.rollReference.z});
+            out_ += ')';
+        }
+        if (!sameBits(in.direction, internodeDirection(in))) {
+            out_ += "d(";
+            numbers({in.direction.x, in.direction.y, in.direction.z});
+            out_ += ')';
+        }
+    }
+
+    // Whether the leaves of a phytomer each have their own shape, drawn from their leaf ID (a
+    // shoot type with unique_prototypes 0).
+    bool ownLeafShapes(const Phytomer& ph) const {
+        const auto t = p_.shootTypes.find(ph.parametersLabel);
+        return t != p_.shootTypes.end() &&
+               t->second.phytomer_parameters.leaf.prototype.unique_prototypes == 0;
+    }
+
+    // A turn out of solid obstacles (exact strings; none: nothing written).
+    void clearance(const OrganTurn& t) {
+        if (digits_ != 0 || t.angle == 0.0f) return;
+        out_ += "c(";
+        numbers({t.axis.x, t.axis.y, t.axis.z, t.angle});
+        out_ += ')';
     }
 
     // Terminal buds also give their place around the shoot tip (dead buds keep theirs).
@@ -159,6 +228,7 @@ private:
             numbers({fb.terminalAzimuth});
         }
         out_ += ')';
+        clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         const float m = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
         for (const FlowerOrgan& fl : fb.flowers) {
@@ -168,6 +238,7 @@ private:
             out_ += ',';
             out_ += std::to_string(fl.variant);
             out_ += ')';
+            clearance(fl.clearance);
         }
     }
 
@@ -339,6 +410,7 @@ private:
         ph.internode.pitch = v[2];
         ph.internode.azimuth = v[3];
         ph.internode.guide = direction(v[4], v[5], v[6]);
+        exactInternode(ph, p_.shoots[shootID].phytomers.empty());
         p_.shoots[shootID].phytomers.push_back(std::move(ph));
         const int node = int(p_.shoots[shootID].phytomers.size()) - 1;
         int petiole = 0;
@@ -352,6 +424,12 @@ private:
             pt.pitch = q[2];
             pt.curvature = q[3];
             pt.taper = q[4];
+            pt.azimuth = kNaN;  // not given: NaN until completed (spread evenly)
+            if (peek() == 'a') {
+                ++pos_;
+                pt.azimuth = tuple<1>()[0];
+            }
+            clearance(pt.clearance);
             while (peek() == 'L') pt.leaves.push_back(leaf());
             while (peek() == 'F') pt.floralBuds.push_back(floral(false));
             p_.shoots[shootID].phytomers[std::size_t(node)].petioles.push_back(std::move(pt));
@@ -359,6 +437,51 @@ private:
             expect(']');
             ++petiole;
         }
+    }
+
+    // The values an exact string adds to an internode (StringWriter::exactInternode).
+    void exactInternode(Phytomer& ph, bool first) {
+        if (peek() == 'e') {
+            const std::size_t at = pos_;
+            ++pos_;
+            const auto v = tuple<2>();
+            if (v[0] * v[1] != ph.internode.length) {
+                pos_ = at;
+                fail(
+                    "an elongating internode's length must be its full length times the "
+                    "fraction grown",
+                    "e(full length, fraction) with full length x fraction = the length given");
+            }
+            ph.internode.length = v[0];
+            ph.internodeFraction = v[1];
+        }
+        if (peek() == 'r') {
+            if (first)
+                fail("a shoot's first internode has the shoot's roll reference",
+                     "r(...) after a later internode");
+            ++pos_;
+            const auto v = tuple<3>();
+            ph.internode.rollReference = direction(v[0], v[1], v[2]);
+        } else if (!first) {
+            // Not given: NaN until completed (carried from the internode before).
+            ph.internode.rollReference = vec3(kNaN);
+        }
+        // Not given: NaN until completed (from the shoot axis, pitch and azimuth).
+        ph.internode.direction = vec3(kNaN);
+        if (peek() == 'd') {
+            ++pos_;
+            const auto v = tuple<3>();
+            ph.internode.direction = direction(v[0], v[1], v[2]);
+        }
+    }
+
+    // A turn out of solid obstacles, if one follows: "c(" axis "," angle ")".
+    void clearance(OrganTurn& t) {
+        if (peek() != 'c') return;
+        ++pos_;
+        const auto v = tuple<4>();
+        t.axis = direction(v[0], v[1], v[2]);
+        t.angle = v[3];
     }
 
     LeafOrgan leaf() {
@@ -386,7 +509,29 @@ private:
         l.yaw = v[2];
         l.roll = v[3];
         l.position = v[4];
+        if (peek() == 'i') l.leafID = leafID();
         return l;
+    }
+
+    // "i(" id ")": a leaf's ID, a whole number unique within the plant.
+    int leafID() {
+        ++pos_;
+        expect('(');
+        skipSpace();
+        const std::size_t start = pos_;
+        while (pos_ < s_.size() && s_[pos_] >= '0' && s_[pos_] <= '9') ++pos_;
+        int id = -1;
+        const auto r = std::from_chars(s_.data() + start, s_.data() + pos_, id);
+        if (pos_ == start || r.ec != std::errc() || id > kMaxLeafID) {
+            pos_ = start;
+            fail("expected a leaf ID", "a whole number from 0 to " + std::to_string(kMaxLeafID));
+        }
+        if (!leafIDs_.insert(id).second) {
+            pos_ = start;
+            fail("a leaf ID given twice", "IDs unique within the plant");
+        }
+        expect(')');
+        return id;
     }
 
     // A terminal bud may give its place around the tip as a sixth number.
@@ -412,12 +557,13 @@ private:
         fb.peduncleRoll = v[3];
         fb.peduncleCurvature = number<float>();
         // Not given (a string written before terminal places were): NaN until completed.
-        if (terminal) fb.terminalAzimuth = std::numeric_limits<float>::quiet_NaN();
+        if (terminal) fb.terminalAzimuth = kNaN;
         if (terminal && peek() == ',') {
             expect(',');
             fb.terminalAzimuth = number<float>();
         }
         expect(')');
+        clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         while (peek() == 'f') {
             ++pos_;
@@ -431,6 +577,7 @@ private:
             fl.roll = q[3];
             (fruit ? fl.fruitScale : fl.flowerScale) = q[4];
             fl.gravityFactor = q[5];
+            clearance(fl.clearance);
             fb.flowers.push_back(fl);
         }
         return fb;
@@ -439,6 +586,7 @@ private:
     std::string_view s_;
     std::size_t pos_ = 0;
     PlantInstance p_;
+    std::set<int> leafIDs_;  // given so far
 };
 
 // The members a plant string gives; everything else is completed.
@@ -466,18 +614,22 @@ void notePresent(PlantInstance& p, Presence& m) {
                   (const void*)&ph.leafFraction, (const void*)&in.length, (const void*)&in.radius,
                   (const void*)&in.pitch, (const void*)&in.azimuth, (const void*)&in.guide})
                 m.note(v);
-            if (k == 0) m.note(&in.rollReference);
+            if (k == 0 || !std::isnan(in.rollReference.x)) m.note(&in.rollReference);
+            if (!std::isnan(in.direction.x)) m.note(&in.direction);
             for (Petiole& pt : ph.petioles) {
                 for (const void* v :
                      {(const void*)&pt.length, (const void*)&pt.radius, (const void*)&pt.pitch,
                       (const void*)&pt.curvature, (const void*)&pt.taper})
                     m.note(v);
-                for (LeafOrgan& l : pt.leaves)
+                if (!std::isnan(pt.azimuth)) m.note(&pt.azimuth);
+                for (LeafOrgan& l : pt.leaves) {
                     for (const void* v :
                          {(const void*)&l.leafletIndex, (const void*)&l.scale,
                           (const void*)&l.pitch, (const void*)&l.yaw, (const void*)&l.roll,
                           (const void*)&l.position, (const void*)&l.variant})
                         m.note(v);
+                    if (l.leafID >= 0) m.note(&l.leafID);  // given (else -1)
+                }
                 for (FloralBud& fb : pt.floralBuds) floral(fb);
             }
         }

@@ -67,6 +67,16 @@ struct ReadResult {
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
                    unsigned plantID, std::vector<std::string>& notes, const std::string& where);
 
+/// What completion derives for an internode after one with roll reference `previous`: that
+/// reference carried to the shoot axis `guide` with the smallest rotation (no twist), as
+/// growth carries it ...
+vec3 carriedRollReference(vec3 previous, vec3 guide);
+/// ... the internode's axis from its shoot axis, roll reference, azimuth and zig-zag pitch ...
+vec3 internodeDirection(const Internode& in);
+/// ... and the azimuth of petiole `j` of the `n` at a node of azimuth `internodeAzimuth`:
+/// spread evenly.
+float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n);
+
 /// Throws plantarch::Error (parameter path such as "plant_instance[0].shoot[3].parent_shoot_ID")
 /// when the plant is inconsistent; derives Shoot::children.
 void checkPlant(PlantInstance& plant, const std::string& where);
