@@ -1,0 +1,167 @@
+// Every library species against the reference system's plants at its picture age: the means
+// over seeds 1 to 3 of plantarch's height, one-sided leaf area, leaf count, widths along x
+// and y, flowers and fruit, compared with the reference's means over its seeds 1 to 5
+// (tests/data/reference_stats.tsv).
+//
+// Bands: height, leaf area and leaf count within 25 %; widths within 35 % (a crown's width
+// hangs on a few long shoots); flowers and fruit none where the reference has none, else
+// within 40 % (they come in few, discrete events). A species outside a band fails; a
+// departure made on purpose is listed in kDepartures with its reason and its own expected
+// value, and nothing else is exempt.
+//
+// A fidelity target not yet met by every species, so ctest leaves it out for now (see
+// docs/testing.md); run it with plantarch_tests --gtest_filter='FidelityStats.*'. It prints
+// the whole table of ratios either way.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesIO.h"
+
+using namespace plantarch;
+
+namespace {
+
+const char* const kQuantities[] = {"height",  "leaf_area", "leaf_count", "width_x",
+                                   "width_y", "flowers",   "fruit"};
+
+struct Reference {
+    float age = 0.0f;
+    std::map<std::string, double> mean;
+};
+
+std::map<std::string, Reference> readReference() {
+    const std::string path = std::string(PLANTARCH_SOURCE_DIR) + "/tests/data/reference_stats.tsv";
+    std::ifstream in(path);
+    EXPECT_TRUE(in) << "cannot read " << path;
+    std::map<std::string, Reference> out;
+    std::string line;
+    bool header = true;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (header) {
+            header = false;
+            continue;
+        }
+        std::istringstream cells(line);
+        std::string species, quantity;
+        float age = 0.0f;
+        double mean = 0.0, lo = 0.0, hi = 0.0;
+        cells >> species >> age >> quantity >> mean >> lo >> hi;
+        EXPECT_TRUE(cells) << path << ": bad line '" << line << "'";
+        out[species].age = age;
+        out[species].mean[quantity] = mean;
+    }
+    return out;
+}
+
+// A departure on purpose: plantarch's own expected mean for one quantity of one species.
+struct Departure {
+    const char* species;
+    const char* quantity;
+    double expected;
+    const char* reason;
+};
+const std::vector<Departure> kDepartures = {};
+
+double band(const std::string& quantity) {
+    if (quantity == "width_x" || quantity == "width_y") return 0.35;
+    if (quantity == "flowers" || quantity == "fruit") return 0.40;
+    return 0.25;
+}
+
+std::map<std::string, double> measure(const std::string& species, float age, std::uint64_t seed) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(seed);
+    arch.loadPlantModelFromLibrary(species);
+    const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), age);
+    std::map<std::string, double> m;
+    m["height"] = arch.getPlantHeight(p);
+    m["leaf_area"] = arch.getPlantLeafArea(p);
+    m["leaf_count"] = arch.getPlantLeafCount(p);
+    vec3 lo(1e30f), hi(-1e30f);
+    for (ObjectID id : arch.getAllPlantObjectIDs(p))
+        for (const vec3& q : ctx.object(id).positions) {
+            lo = glm::min(lo, q);
+            hi = glm::max(hi, q);
+        }
+    m["width_x"] = hi.x - lo.x;
+    m["width_y"] = hi.y - lo.y;
+    double flowers = 0, fruit = 0;
+    auto count = [&](const FloralBud& fb) {
+        if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
+            flowers += double(fb.flowers.size());
+        if (fb.stage == FloralStage::Fruit) fruit += double(fb.flowers.size());
+    };
+    for (const Shoot& s : arch.plant(p).shoots) {
+        if (s.removed) continue;
+        for (const Phytomer& ph : s.phytomers)
+            for (const Petiole& pt : ph.petioles)
+                for (const FloralBud& fb : pt.floralBuds) count(fb);
+        for (const FloralBud& fb : s.terminalFloralBuds) count(fb);
+    }
+    m["flowers"] = flowers;
+    m["fruit"] = fruit;
+    return m;
+}
+
+}  // namespace
+
+TEST(FidelityStats, EverySpeciesWithinItsBandsAtItsPictureAge) {
+    const std::map<std::string, Reference> reference = readReference();
+    ASSERT_EQ(reference.size(), listSpecies().size());
+    std::string table =
+        "\nspecies              age   height  leaf_area leaf_count width_x width_y "
+        "flowers   fruit";
+    std::size_t outside = 0;
+    for (const auto& [species, ref] : reference) {
+        SCOPED_TRACE(species);
+        std::map<std::string, double> ours;
+        for (std::uint64_t seed = 1; seed <= 3; ++seed)
+            for (const auto& [q, v] : measure(species, ref.age, seed)) ours[q] += v / 3.0;
+        char row[256];
+        std::snprintf(row, sizeof row, "\n%-18s %6.0f", species.c_str(), double(ref.age));
+        table += row;
+        for (const char* q : kQuantities) {
+            double expected = ref.mean.at(q);
+            const char* reason = nullptr;
+            for (const Departure& d : kDepartures)
+                if (species == d.species && std::string(q) == d.quantity) {
+                    expected = d.expected;
+                    reason = d.reason;
+                }
+            const double got = ours[q];
+            bool ok;
+            if (expected == 0.0) {
+                ok = got == 0.0;
+                if (ok)
+                    std::snprintf(row, sizeof row, " %8s", "0");
+                else
+                    std::snprintf(row, sizeof row, "  %+6ld*", std::lround(got));
+            } else {
+                const double ratio = got / expected;
+                ok = std::abs(ratio - 1.0) <= band(q);
+                std::snprintf(row, sizeof row, " %7.2f%c", ratio, ok ? ' ' : '*');
+            }
+            table += row;
+            if (!ok) ++outside;
+            EXPECT_TRUE(ok) << q << ": plantarch " << got << ", expected " << expected
+                            << (reason ? std::string(" (") + reason + ")" : std::string())
+                            << ", band " << band(q) * 100 << " %";
+        }
+    }
+    std::printf(
+        "%s\n(ratio plantarch / reference; * outside its band; for a quantity the "
+        "reference has none of, 0 or plantarch's count)\n%zu outside\n",
+        table.c_str(), outside);
+}
