@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -94,6 +95,10 @@ void writePNG(const Image& image, const std::string& path) {
 }
 
 Image readImage(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("is a folder, not an image file", {.file = path});
+    if (!std::ifstream(path)) throw Error("cannot open image file", {.file = path});
     int w = 0, h = 0, channels = 0;
     std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
     if (!data) {

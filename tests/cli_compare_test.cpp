@@ -1,0 +1,89 @@
+// plantarch compare as a user runs it: the two views side by side at one scale with their
+// 10 cm bars, a reference picture above, and one-line errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "cli_run.h"
+#include "plantarch/Render.h"
+
+using namespace plantarch;
+
+namespace {
+
+std::string dir() {
+    const auto d = std::filesystem::temp_directory_path() / "plantarch-cli-compare";
+    std::filesystem::create_directories(d);
+    return d.string();
+}
+
+// Length in pixels of the dark horizontal run starting at (x, y).
+int darkRun(const Image& im, int x, int y) {
+    int n = 0;
+    while (x + n < im.width && im.pixel(x + n, y)[0] < 60) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST(CliCompare, TwoViewsAtOneScaleWithTenCentimetreBars) {
+    const std::string out = dir() + "/bean.png";
+    const cli::Result r = cli::run("--seed 1 compare bean --age 30 --panel-size 200 -o " + out);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto at = r.out.find("pixels per metre");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const double scale = std::stod(r.out.substr(r.out.rfind(';', at) + 2));
+    const Image im = readImage(out);
+    EXPECT_EQ(im.width, 2 * 200 + 2);
+    EXPECT_EQ(im.height, 200);
+    // Each panel's bar, at its bottom left, is 10 cm at the printed scale (within a pixel).
+    for (int panel : {0, 1}) {
+        const int x0 = panel * 202 + 30, y0 = 200 - 25;
+        EXPECT_NEAR(darkRun(im, x0, y0), 0.1 * scale + 1, 1.5) << "panel " << panel;
+    }
+    // The plant fills the larger view to 90 %: some plant pixels, mostly white elsewhere.
+    std::size_t white = 0, plant = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < 200; ++x) {
+            const auto p = im.pixel(x, y);
+            white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+            plant += p[1] > p[0] + 10;  // green
+        }
+    EXPECT_GT(plant, 2000u);
+    EXPECT_GT(white, 20000u);
+}
+
+TEST(CliCompare, AReferencePictureGoesAbove) {
+    const std::string d = dir();
+    Image ref(300, 120);
+    std::fill(ref.rgb.begin(), ref.rgb.end(), std::uint8_t(7));
+    writePNG(ref, d + "/ref.png");
+    const cli::Result r = cli::run("compare bean --age 20 --panel-size 100 --reference " + d +
+                                   "/ref.png -o " + d + "/pair.png");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const Image im = readImage(d + "/pair.png");
+    EXPECT_EQ(im.width, 300);
+    EXPECT_EQ(im.height, 120 + 2 + 100);
+    EXPECT_EQ(im.pixel(299, 119), (std::array<std::uint8_t, 3>{7, 7, 7}));
+}
+
+TEST(CliCompare, BadInputsAreOneLine) {
+    const std::string d = dir();
+    const std::pair<std::string, std::string> cases[] = {
+        {"compare bean --age 20 -o " + d + "/x.obj",
+         "-o = " + d + "/x.obj: the comparison is a picture (valid: a .png file)"},
+        {"compare bean --age 20 --reference " + d + "/none.png -o " + d + "/x.png",
+         d + "/none.png: cannot open image file"},
+        {"compare bean --age 20 --panel-size 10 -o " + d + "/x.png",
+         "--panel-size = 10: not a panel size (valid: 64 to 4096)"},
+    };
+    for (const auto& [args, expected] : cases) {
+        const cli::Result r = cli::run(args);
+        EXPECT_EQ(r.status, 2) << args;
+        EXPECT_EQ(r.out, "plantarch: " + expected + "\n") << args;
+        EXPECT_FALSE(std::filesystem::exists(d + "/x.png")) << args;
+    }
+}
