@@ -539,7 +539,7 @@ TEST(SpeciesOrchard, VSPCanesFollowVineSpacingAndTheTrunkItsHeight) {
                 reach = std::max(
                     reach,
                     std::abs(
-                        g.arch->getNodePosition(g.id, s.id, unsigned(s.phytomers.size() - 1)).x));
+                        g.arch->getNodePosition(g.id, s.id, unsigned(s.phytomers.size() - 1)).y));
         return reach;
     };
     const Grown standard = grow("grapevine_VSP", 0.0f);
@@ -549,10 +549,12 @@ TEST(SpeciesOrchard, VSPCanesFollowVineSpacingAndTheTrunkItsHeight) {
     EXPECT_EQ(p.shoots[1].apicalBud.state, BudState::Dead);
     EXPECT_NEAR(caneReach(standard), 1.2f, 0.1f);
     EXPECT_NEAR(standard.arch->getNodePosition(standard.id, 0, 0).z, 0.1f, 0.01f);
-    // Canes lie along the row, one each way, buds on top.
+    // Canes lie along the row (y, as the reference's), one each way, buds on top.
     EXPECT_LT(
-        p.shoots[1].phytomers[0].internode.guide.x * p.shoots[2].phytomers[0].internode.guide.x,
+        p.shoots[1].phytomers[0].internode.guide.y * p.shoots[2].phytomers[0].internode.guide.y,
         0.0f);
+    for (int cane : {1, 2})
+        EXPECT_LT(std::abs(p.shoots[cane].phytomers[0].internode.guide.x), 0.1f);
 
     const Grown wide =
         grow("grapevine_VSP", 0.0f, {{"vine_spacing", 4.0f}, {"trunk_height", 0.75f}});
