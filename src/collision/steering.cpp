@@ -271,7 +271,7 @@ void SceneSteering::steerPetiole(const PlantInstance& plant, const Shoot& shoot,
     const SoftCollisionOptions& o = *world->soft();
     const unsigned node = unsigned(shoot.phytomers.size());
     vec3 side;
-    const vec3 dir = sideDirection(in, pt.pitch, pt.azimuth, &side);
+    const vec3 dir = sideDirection(in, std::abs(pt.pitch), pt.azimuth, &side);
     const vec3 top = nodePosition(plant, shoot.id, node, plant.age, false) +
                      in.direction * in.length * internodeFraction;
     const vec3 start = top + side * in.radius * 0.5f;

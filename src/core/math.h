@@ -69,6 +69,15 @@ inline vec3 azimuthDirection(vec3 axis, vec3 reference, float azimuthDeg) {
     return azimuthDirection(axis, reference, sinCosDeg(azimuthDeg));
 }
 
+/// The direction of an internode whose zig-zag pitch is `pitchDeg` (its angle from the previous
+/// internode) on a shoot axis `guide` (unit, with its roll `reference`): half the pitch off the
+/// axis, toward the internode's own petiole at `azimuthDeg`.
+inline vec3 internodeLean(vec3 guide, vec3 reference, float azimuthDeg, float pitchDeg) {
+    const vec3 side = azimuthDirection(guide, reference, azimuthDeg);
+    const SinCos half = sinCosDeg(0.5f * pitchDeg);
+    return unitOr(half.c * guide + half.s * side, guide);
+}
+
 /// An axis and the direction about it where azimuth 0 lies (unit, perpendicular): the frame a
 /// shoot starts in (its guide and roll reference).
 struct AxisFrame {

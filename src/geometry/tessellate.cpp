@@ -113,10 +113,12 @@ LeafTrig trigOf(const LeafOrgan& leaf) {
     t.leaflet = leaf.leafletIndex;
     t.set = true;
     if (leaf.leafletIndex != 0) {
-        // Lateral leaflets are swung by yaw before they turn; their roll is mirrored.
-        const float sideSign = leaf.leafletIndex < 0 ? 1.0f : -1.0f;
+        // Lateral leaflets are swung by yaw before they turn. Roll turns a leaflet about its
+        // midrib so that a positive angle lifts its edge toward the petiole tip: the right-hand
+        // turn about a right leaflet's midrib, mirrored on the left, so pairs stay symmetric.
+        const float rollSign = leaf.leafletIndex < 0 ? -1.0f : 1.0f;
         t.swing = sinCosDeg(leaf.yaw);
-        t.turn = {sinCosDeg(leaf.pitch), sinCosDeg(0.0f), sinCosDeg(leaf.roll * sideSign)};
+        t.turn = {sinCosDeg(leaf.pitch), sinCosDeg(0.0f), sinCosDeg(leaf.roll * rollSign)};
     } else {
         t.turn = {sinCosDeg(leaf.pitch), sinCosDeg(leaf.yaw), sinCosDeg(leaf.roll)};
     }
@@ -500,9 +502,11 @@ struct Tessellator {
     };
     PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node,
                               const Petiole& pt) const {
-        return petioleFrame(s, ph, node, pt, sinCosDeg(pt.azimuth), sinCosDeg(pt.pitch));
+        return petioleFrame(s, ph, node, pt, sinCosDeg(pt.azimuth), sinCosDeg(std::abs(pt.pitch)));
     }
-    // The same with the sines of the petiole's azimuth and pitch given.
+    // The same with the sines of the petiole's azimuth and pitch given. The pitch is the angle
+    // between the internode axis and the petiole's base, on the side of its azimuth (where its
+    // axillary buds are) whatever its sign.
     PetioleFrame petioleFrame(const Shoot& s, const Phytomer& ph, int node, const Petiole& pt,
                               SinCos azimuth, SinCos pitch) const {
         const Internode& in = ph.internode;
@@ -526,7 +530,8 @@ struct Tessellator {
         const float length = pt.length * ph.leafFraction;
         const unsigned segs = std::max(1u, pp.petiole.length_segments);
         std::vector<vec3>& path = petiolePath;
-        geometry::curvedPath(start, dir, std::max(length, 1e-6f), pt.curvature, kUp, segs, path);
+        geometry::curvedPath(start, dir, std::max(length, 1e-6f),
+                             petioleBendRate(pt, ph.leafFraction), kUp, segs, path);
         // A petiole falls with its leaves (leaf fall, senescence, pruning).
         const bool bare =
             !pt.leaves.empty() && std::all_of(pt.leaves.begin(), pt.leaves.end(),
@@ -577,7 +582,7 @@ struct Tessellator {
             trig.azimuth = pt.azimuth;
             trig.pitch = pt.pitch;
             trig.azimuthTrig = sinCosDeg(pt.azimuth);
-            trig.pitchTrig = sinCosDeg(pt.pitch);
+            trig.pitchTrig = sinCosDeg(std::abs(pt.pitch));
             trig.set = true;
             trig.frameSet = false;
         }
@@ -606,8 +611,8 @@ struct Tessellator {
             trig.bendsUp = bendsUp;
             trig.curveSet = true;
         }
-        geometry::curvedPath(start, trig.curve, std::max(length, 1e-6f), pt.curvature, segs,
-                             petiolePath);
+        geometry::curvedPath(start, trig.curve, std::max(length, 1e-6f),
+                             petioleBendRate(pt, ph.leafFraction), segs, petiolePath);
         petioleMeasure.measure(petiolePath);
         const LeafParameters& lp = pp.leaf;
         if (leafTrig.size() != pt.leaves.size())

@@ -141,10 +141,12 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
     }
     // Steering (collision avoidance, attraction points) turns internodes made by growth.
     if (growth.steering) growth.steering->steerShootAxis(plant, shoot, in, lengthMax);
+    // Zig-zag: the pitch is the angle from the previous internode. Each internode leans half
+    // of it off the shoot axis, toward the side of its own petiole (away from the previous
+    // phytomer's, for alternate leaves), so two successive internodes of an alternate shoot
+    // meet at the pitch and each petiole stands on the outer side of its node's bend.
     in.pitch = pp.internode.pitch.sample(plant.rng);
-    const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
-    const float p = in.pitch * kDeg;
-    in.direction = glm::normalize(std::cos(p) * in.guide - std::sin(p) * side);
+    in.direction = internodeLean(in.guide, in.rollReference, in.azimuth, in.pitch);
     in.length = lengthMax;
     in.radius = radius;
     if (growth.steering) growth.steering->keepInternodeClear(plant, shoot, in);

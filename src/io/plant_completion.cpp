@@ -223,9 +223,7 @@ vec3 carriedRollReference(vec3 previous, vec3 guide) {
 }
 
 vec3 internodeDirection(const Internode& in) {
-    const vec3 side = azimuthDirection(in.guide, in.rollReference, in.azimuth);
-    const float p = in.pitch * kDeg;
-    return unitOr(std::cos(p) * in.guide - std::sin(p) * side, in.guide);
+    return internodeLean(in.guide, in.rollReference, in.azimuth, in.pitch);
 }
 
 float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n) {

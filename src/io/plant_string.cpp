@@ -14,6 +14,7 @@
 #include <limits>
 #include <set>
 
+#include "geometry/tessellate.h"
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
 
@@ -136,7 +137,9 @@ private:
             const bool bare =
                 !pt.leaves.empty() && std::all_of(pt.leaves.begin(), pt.leaves.end(),
                                                   [](const LeafOrgan& l) { return l.removed; });
-            numbers({bare ? 0.0f : pt.length * f, pt.radius * f, pt.pitch, pt.curvature, pt.taper});
+            // Its length and bend rate now (a growing petiole keeps its full-grown bend).
+            numbers({bare ? 0.0f : pt.length * f, pt.radius * f, pt.pitch, petioleBendRate(pt, f),
+                     pt.taper});
             out_ += ')';
             // Exact strings: an azimuth steered away from the even spread, a clearance turn.
             if (digits_ == 0 &&

@@ -231,7 +231,7 @@ template <class S, class V>
 requires SameAs<S, InternodeParameters>
 void describeParameters(S& p, V& v) {
     v.field({"pitch", "degrees", -180, 180,
-             "Zig-zag angle of the internode from the shoot axis, away from its petiole"},
+             "Zig-zag angle from the previous internode; each leans half of it toward its petiole"},
             p.pitch);
     v.field({"phyllotactic_angle", "degrees", -360, 360,
              "Roll between the petioles of successive phytomers"},
@@ -253,12 +253,14 @@ requires SameAs<S, PetioleParameters>
 void describeParameters(S& p, V& v) {
     v.field({"petioles_per_internode", "", 0, 20, "Petioles at each node (2 = opposite)"},
             p.petioles_per_internode);
-    v.field({"pitch", "degrees", -180, 180, "Angle of the petiole base from the internode axis"},
-            p.pitch);
+    v.field(
+        {"pitch", "degrees", -180, 180,
+         "Angle of the petiole base from the internode axis, toward its own side (sign ignored)"},
+        p.pitch);
     v.field({"radius", "m", 0, 1, "Radius at the base"}, p.radius);
     v.field({"length", "m", 0, 10, "Length"}, p.length);
     v.field({"curvature", "degrees/m", -100000, 100000,
-             "Curvature per unit length; positive curves up toward vertical"},
+             "Bend per metre of full length; positive curves up toward vertical, negative down"},
             p.curvature);
     v.field({"taper", "", 0, 1, "Tip radius / base radius"}, p.taper);
     v.field({"color", "", 0, 1, "RGB colour"}, p.color);
@@ -274,7 +276,10 @@ void describeParameters(S& p, V& v) {
     v.field({"pitch", "degrees", -180, 180, "Leaf axis from the petiole axis; positive lifts"},
             p.pitch);
     v.field({"yaw", "degrees", -180, 180, "Rotation about the leaf normal at its base"}, p.yaw);
-    v.field({"roll", "degrees", -180, 180, "Rotation about the midrib"}, p.roll);
+    v.field({"roll", "degrees", -180, 180,
+             "Rotation about the midrib; lateral leaflets mirrored, positive lifts the edge toward "
+             "the petiole tip"},
+            p.roll);
     v.field({"leaflet_offset", "", 0, 1, "Spacing of leaflet pairs, fraction of the petiole"},
             p.leaflet_offset);
     v.field({"leaflet_scale", "", 0, 10, "Size of each leaflet pair relative to the pair above"},
