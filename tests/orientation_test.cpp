@@ -55,8 +55,11 @@ struct Plant {
     unsigned id = 0;
     unsigned sides = 0;
 
-    explicit Plant(const ShootParameters& p, unsigned nodes = 3, float leafScale = 1.0f)
+    // `setup` runs before the shoot type is defined (to register prototype functions).
+    explicit Plant(const ShootParameters& p, unsigned nodes = 3, float leafScale = 1.0f,
+                   void (*setup)(PlantArchitecture&) = nullptr)
         : sides(p.phytomer_parameters.petiole.radial_subdivisions) {
+        if (setup) setup(arch);
         arch.defineShootType("main", p);
         id = arch.addPlantInstance({0, 0, 0}, 10);
         ShootSpec spec;
@@ -210,5 +213,54 @@ TEST(Orientation, LateralLeafletRollLiftsTheEdgeTowardThePetioleTip) {
             const float lean = degrees(std::atan2(-glm::dot(n, tipward), n.z));
             EXPECT_NEAR(lean, leaf.leafletIndex == 0 ? 0.0f : roll, 0.5f);
         }
+    }
+}
+
+// A peduncle with pitch 40 leaves the vertical internode at 40 degrees on its petiole's side
+// (in the petiole's axil). Its roll 90 turns its flower a quarter turn about the peduncle's
+// own axis: the flower (pitch 60 from the peduncle) then leans to the peduncle's side,
+// square to the vertical plane the peduncle stands in, instead of in that plane.
+TEST(Orientation, PeduncleLeavesOnItsPetiolesSideAndItsRollTurnsTheFlowers) {
+    for (float roll : {0.0f, 90.0f}) {
+        SCOPED_TRACE("roll " + std::to_string(roll));
+        ShootParameters p = plainShoot();
+        p.phytomer_parameters.petiole.length_segments = 1;
+        PeduncleParameters& pd = p.phytomer_parameters.peduncle;
+        pd.length = 0.1f;
+        pd.pitch = 40.0f;
+        pd.roll = roll;
+        pd.length_segments = 1;
+        pd.radial_subdivisions = 8;
+        InflorescenceParameters& inf = p.phytomer_parameters.inflorescence;
+        inf.pitch = 60.0f;
+        inf.flower_prototype_scale = 0.02f;
+        inf.flower_prototype_function = "needle";
+        // A flower that is a needle along its own axis, from its base at the origin to x = 1.
+        Plant f(p, 2, 1.0f, [](PlantArchitecture& arch) {
+            arch.registerFloralPrototype("needle", [](const FloralPrototypeRequest&, Rng&) {
+                Mesh m;
+                m.positions = {vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 0.05f, 0.0f)};
+                m.indices = {0, 1, 2};
+                return OrganPrototype{{m, Material{}}};
+            });
+        });
+        ASSERT_EQ(f.arch.addFloralBud(f.id, 0, 0, FloralStage::FlowerOpen), 1u);
+        const FloralBud& fb = f.phytomer(0).petioles[0].floralBuds.back();  // the one added
+        const auto tube = f.ctx.object(fb.peduncleObject);
+        vec3 first(0.0f), last(0.0f);
+        for (unsigned k = 0; k < 8; ++k) {
+            first += tube.positions[k];
+            last += tube.positions[9 + k];
+        }
+        const vec3 peduncle = glm::normalize(last - first);
+        EXPECT_NEAR(angleBetween(peduncle, kUp), 40.0f, 0.1f);
+        EXPECT_GT(glm::dot(horizontal(peduncle), horizontal(f.petioleBase(0))), 0.9999f);
+        const auto needle = f.ctx.object(fb.flowers[0].objects[0]);
+        const vec3 flower = glm::normalize(needle.positions[1] - needle.positions[0]);
+        EXPECT_NEAR(angleBetween(flower, peduncle), 60.0f, 0.1f);
+        // Square to the peduncle's vertical plane: how far the flower leans out of it.
+        const vec3 across = glm::normalize(glm::cross(kUp, peduncle));
+        EXPECT_NEAR(degrees(std::asin(std::abs(glm::dot(flower, across)))),
+                    roll == 0.0f ? 0.0f : 60.0f, 0.1f);
     }
 }

@@ -90,9 +90,12 @@ struct FloralBud {
     // Peduncle, realized when the bud breaks.
     float peduncleLength = 0.0f;
     float peduncleRadius = 0.0f;
-    float pedunclePitch = 0.0f;
-    float peduncleRoll = 0.0f;
+    float pedunclePitch = 0.0f;  ///< from the internode axis, toward its petiole's side, degrees
+    float peduncleRoll = 0.0f;   ///< the flowers turned about the peduncle's own axis, degrees
     float peduncleCurvature = 0.0f;
+    /// The peduncle's side turned about the stem from its petiole's, degrees (0 unless soft
+    /// collision avoidance steered it).
+    float peduncleAzimuth = 0.0f;
     OrganTurn peduncleClearance;  ///< peduncle and flowers turned out of solid obstacles
     ObjectID peduncleObject = kNoObject;
     std::vector<FlowerOrgan> flowers;

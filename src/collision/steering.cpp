@@ -290,16 +290,16 @@ void SceneSteering::steerPeduncle(const PlantInstance& plant, const Shoot& shoot
     const Internode& in = shoot.phytomers[k].internode;
     const float base =
         terminal ? in.azimuth + fb.terminalAzimuth : shoot.phytomers[k].petioles[petiole].azimuth;
-    const vec3 dir = sideDirection(in, fb.pedunclePitch, base + fb.peduncleRoll);
+    const vec3 dir = sideDirection(in, fb.pedunclePitch, base + fb.peduncleAzimuth);
     const vec3 top = nodePosition(plant, shoot.id, k + 1, plant.age, false);
     Rng rng = coneRng(seed, plant.id, shoot.id, k, kConePeduncle,
                       (terminal ? 0x10000u : 0u) + petiole * 256u + bud);
     const Ignore ignore = ownNode(plant, shoot, int(k), false);
     if (auto t =
             softTarget(*world, top, dir, o.cone, rng, 2.0f * fb.peduncleRadius + 1e-4f, ignore)) {
-        float azimuth = base + fb.peduncleRoll;
+        float azimuth = base + fb.peduncleAzimuth;
         toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), fb.pedunclePitch, azimuth);
-        fb.peduncleRoll = azimuth - base;
+        fb.peduncleAzimuth = azimuth - base;
     }
 }
 

@@ -695,7 +695,9 @@ struct Tessellator {
     void floral(Shoot& s, Phytomer& ph, int node, Petiole& pt, FloralBud& fb,
                 const PhytomerParameters& pp) {
         const Internode& in = ph.internode;
-        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth + fb.peduncleRoll);
+        // The peduncle leaves the stem on its petiole's side (in the axil); its roll turns the
+        // flowers about its own axis.
+        vec3 side = azimuthDirection(in.guide, in.rollReference, pt.azimuth + fb.peduncleAzimuth);
         side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
         inflorescence(s, ph, node, fb, budParameters(fb, pp), nodes[s.id][std::size_t(node) + 1],
                       in.direction, side);
@@ -711,7 +713,7 @@ struct Tessellator {
         Phytomer& ph = s.phytomers.back();
         const Internode& in = ph.internode;
         FloralBud& fb = s.terminalFloralBuds[i];
-        const float az = in.azimuth + fb.terminalAzimuth + fb.peduncleRoll;
+        const float az = in.azimuth + fb.terminalAzimuth + fb.peduncleAzimuth;
         vec3 side = azimuthDirection(in.guide, in.rollReference, az);
         side = glm::normalize(side - glm::dot(side, in.direction) * in.direction);
         inflorescence(s, ph, int(s.phytomers.size()) - 1, fb, budParameters(fb, pp),
@@ -763,8 +765,9 @@ struct Tessellator {
         for (FlowerOrgan& fl : fb.flowers) {
             auto [origin, tangent] = alongPath(path, peduncleMeasure, fl.position);
             OrganFrame f = uprightFrame(tangent, side);
-            // Flowers stand on alternating sides of the peduncle (azimuth about its axis).
-            const float az = fl.azimuth * kDeg;
+            // Flowers stand on alternating sides of the peduncle (azimuth about its axis), all
+            // turned by the peduncle's roll.
+            const float az = (fl.azimuth + fb.peduncleRoll) * kDeg;
             const vec3 flSide = std::cos(az) * f.z + std::sin(az) * f.y;
             const float pitch = fl.pitch * kDeg;
             vec3 axis = glm::normalize(std::cos(pitch) * f.x + std::sin(pitch) * flSide);

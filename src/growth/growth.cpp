@@ -666,6 +666,7 @@ void realizeInflorescence(PlantInstance& p, FloralBud& fb, const PhytomerParamet
     fb.pedunclePitch = pp.peduncle.pitch.sample(p.rng);
     fb.peduncleRoll = pp.peduncle.roll.sample(p.rng);
     fb.peduncleCurvature = pp.peduncle.curvature.sample(p.rng);
+    fb.peduncleAzimuth = 0.0f;  // on its petiole's side until steered
     const InflorescenceParameters& inf = pp.inflorescence;
     const int count = std::max(1, inf.flowers_per_peduncle.sample(p.rng));
     const float offset = inf.flower_offset.sample(p.rng);

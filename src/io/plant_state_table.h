@@ -108,6 +108,9 @@ void describeState(S& b, V& v) {
         p.field({"peduncle_pitch", -kBig, kBig, "degrees"}, b.pedunclePitch);
         p.field({"peduncle_roll", -kBig, kBig, "degrees"}, b.peduncleRoll);
         p.field({"peduncle_curvature", -kBig, kBig, "degrees per m"}, b.peduncleCurvature);
+        p.field({"peduncle_azimuth", -kBig, kBig,
+                 "its side turned about the stem from its petiole's, degrees (0: not steered)"},
+                b.peduncleAzimuth);
         p.field({"peduncle_clearance_axis", -1, 1, "turn out of solid obstacles: world axis",
                  Check::UnitVector},
                 b.peduncleClearance.axis);

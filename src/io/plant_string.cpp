@@ -231,6 +231,12 @@ private:
             numbers({fb.terminalAzimuth});
         }
         out_ += ')';
+        // Exact strings: a peduncle's side that soft collision avoidance turned.
+        if (digits_ == 0 && fb.peduncleAzimuth != 0.0f) {
+            out_ += "a(";
+            number(fb.peduncleAzimuth);
+            out_ += ')';
+        }
         clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         const float m = fruit ? std::clamp(fb.fruitGrowth, 0.0f, 1.0f) : 1.0f;
@@ -566,6 +572,10 @@ private:
             fb.terminalAzimuth = number<float>();
         }
         expect(')');
+        if (peek() == 'a') {
+            ++pos_;
+            fb.peduncleAzimuth = tuple<1>()[0];
+        }
         clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         while (peek() == 'f') {

@@ -293,8 +293,11 @@ requires SameAs<S, PeduncleParameters>
 void describeParameters(S& p, V& v) {
     v.field({"length", "m", 0, 10, "Length"}, p.length);
     v.field({"radius", "m", 0, 1, "Radius"}, p.radius);
-    v.field({"pitch", "degrees", -180, 180, "Angle from the internode axis"}, p.pitch);
-    v.field({"roll", "degrees", -360, 360, "Rotation about its own axis"}, p.roll);
+    v.field({"pitch", "degrees", -180, 180, "Angle from the internode axis, on its petiole's side"},
+            p.pitch);
+    v.field(
+        {"roll", "degrees", -360, 360, "Rotation about its own axis: turns its flowers around it"},
+        p.roll);
     v.field({"curvature", "degrees/m", -100000, 100000, "Curvature per unit length"}, p.curvature);
     v.field({"color", "", 0, 1, "RGB colour"}, p.color);
     v.field({"length_segments", "", 1, 100, "Tube segments"}, p.length_segments);
