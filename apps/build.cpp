@@ -16,6 +16,7 @@ namespace plantarch::cli {
 namespace {
 
 struct BuildArgs {
+    bool noTrellis = false;
     std::string species;
     float age = -1.0f;
     std::vector<std::string> defines;
@@ -35,6 +36,8 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         ->required()
         ->check(daysCheck("--age"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
+    app.add_flag("--no-trellis", a->noTrellis,
+                 "Leave out the species' trellis (posts and wires drawn with trellis species)");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     addImageSizeOption(app, global);
@@ -49,6 +52,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.setSeed(global.seed);
         arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
+        arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant =
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));

@@ -22,6 +22,7 @@ namespace plantarch::cli {
 namespace {
 
 struct CompareArgs {
+    bool noTrellis = false;
     std::string species;
     float age = -1.0f;
     std::vector<std::string> defines;
@@ -175,6 +176,7 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     PlantArchitecture arch(&ctx);
     arch.setSeed(global.seed);
     arch.loadPlantModelFromLibrary(a.species);
+    arch.setTrellisGeometry(!a.noTrellis);
     const unsigned plant =
         arch.buildPlantInstanceFromLibrary(vec3(0.0f), a.age, parseDefines(a.defines));
     const RenderScene scene(ctx);
@@ -223,6 +225,8 @@ std::function<int()> setupCompare(CLI::App& app, GlobalOptions& global) {
         ->required()
         ->check(daysCheck("--age"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
+    app.add_flag("--no-trellis", a->noTrellis,
+                 "Leave out the species' trellis (posts and wires drawn with trellis species)");
     app.add_option("--reference", a->reference,
                    "Picture to show above (any PNG; one made in the same framing compares best)");
     app.add_option("--panel-size", a->panelSize, "Size of each square view in pixels")

@@ -181,6 +181,15 @@ public:
         float age, float germination_rate = 1.0f,
         const std::map<std::string, float>& build_parameters = {});
 
+    /// Whether plants built from the library get their species' trellis (<trellis>: posts
+    /// and wires as Context objects with object data organ = "trellis" and trellis_part =
+    /// "post" or "wire"; on by default). They are scene, not plant: the plant's queries,
+    /// statistics and files leave them out; deleting the plant deletes them.
+    void setTrellisGeometry(bool on);
+    bool getTrellisGeometry() const;
+    /// The trellis objects made with a plant (empty: its species has none, or it was off).
+    std::vector<ObjectID> getPlantTrellisObjectIDs(unsigned plantID) const;
+
     /// Current parameters of one shoot type.
     ShootParameters getCurrentShootParameters(const std::string& shoot_type_label) const;
     /// Current parameters of every shoot type, by label.
@@ -412,6 +421,9 @@ private:
     std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
                                         const std::map<std::string, float>& build_parameters);
     void mergePlant(const Context& from, PlantInstance plant, Impl& owner);
+    /// Adds the loaded species' trellis for a plant built at `base` (when on and declared).
+    void addTrellis(unsigned plantID, const vec3& base,
+                    const std::map<std::string, float>& build_parameters);
 
     Context* context_;
     std::uint64_t seed_ = 42;
