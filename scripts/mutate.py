@@ -203,34 +203,54 @@ def git(tree, *args):
 
 
 class Scratch:
-    """A clone of HEAD in `root`/tree with its build in `root`/build.
+    """A clone of HEAD in `root`/tree, built in `root`/tree/build.
 
-    The clone shares the repository's objects (git clone --shared) and registers nothing in
-    the repository. ccache's base directory is `root`, so a later run in the same --build-dir
-    finds every object file again."""
+    The build sits inside the copy as in a checkout: the programs find the species library
+    next to their folder. The clone shares the repository's objects (git clone --shared) and
+    registers nothing in the repository. ccache's base directory is `root`, so compiler
+    command lines name files relative to the build folder, as in a checkout's build/, and a
+    later run in the same --build-dir finds every object file again."""
 
     def __init__(self, root, keep_build, jobs, exclude, log_dir):
         self.root = root
         self.tree = root / "tree"
-        self.build = root / "build"
+        self.build = self.tree / "build"
         self.keep_build = keep_build
         self.jobs = jobs
         self.exclude = exclude
         self.log_dir = log_dir
         self.env = dict(os.environ, CCACHE_BASEDIR=str(root), OMP_NUM_THREADS=str(jobs))
 
+    def empty_tree(self):
+        """Removes the copy's files, all but a kept build."""
+        if not self.tree.exists():
+            return
+        for child in self.tree.iterdir():
+            if self.keep_build and child.name == "build":
+                continue
+            if child.is_dir() and not child.is_symlink():
+                shutil.rmtree(child)
+            else:
+                child.unlink()
+
     def create(self):
-        if self.tree.exists():  # left by a run that was killed
-            shutil.rmtree(self.tree)
+        self.empty_tree()  # a run that was killed may have left its files
         sha = git(REPO, "rev-parse", "HEAD").strip()
+        clone = self.root / "clone"
+        shutil.rmtree(clone, ignore_errors=True)
         subprocess.run(["git", "clone", "--quiet", "--shared", "--no-checkout", str(REPO),
-                        str(self.tree)], check=True)
-        git(self.tree, "checkout", "--quiet", "--detach", sha)
+                        str(clone)], check=True)
+        self.tree.mkdir(exist_ok=True)
+        os.rename(clone / ".git", self.tree / ".git")  # the tree may hold a kept build/
+        shutil.rmtree(clone)
+        git(self.tree, "checkout", "--quiet", "--force", "--detach", sha)
         return sha
 
     def remove(self):
-        shutil.rmtree(self.tree, ignore_errors=True)
-        if not self.keep_build:
+        if self.keep_build:
+            self.empty_tree()
+            shutil.rmtree(self.root / "clone", ignore_errors=True)
+        else:
             shutil.rmtree(self.root, ignore_errors=True)
 
     def log(self, name, text):
@@ -253,16 +273,50 @@ class Scratch:
         self.log(f"{name}.build", out)
         return status == 0, out, seconds
 
-    def test(self, name, timeout, stop_on_failure=True):
+    def ctest(self, name, timeout, stop_on_failure=True, include=None, exclude=None):
         cmd = ["nice", "ctest", "--test-dir", str(self.build), "-j", str(self.jobs),
-               "--timeout", str(int(timeout))]
+               "--timeout", str(max(1, int(timeout)))]
         if stop_on_failure:
             cmd.append("--stop-on-failure")
-        if self.exclude:
-            cmd += ["-E", self.exclude]
+        if include:
+            cmd += ["-R", include]
+        excludes = "|".join(e for e in (self.exclude, exclude) if e)
+        if excludes:
+            cmd += ["-E", excludes]
         status, out, seconds, timed_out = run(cmd, env=self.env, timeout=timeout + 120)
-        self.log(f"{name}.test", out)
+        self.log(name, out)
         return status, out, seconds, timed_out
+
+    def slow_tests(self, seconds):
+        """Tests whose average time in earlier runs is at least `seconds` (ctest's cost data)."""
+        costs = self.build / "Testing" / "Temporary" / "CTestCostData.txt"
+        slow = []
+        if seconds > 0 and costs.exists():
+            for line in costs.read_text().splitlines():
+                if line.strip() == "---":
+                    break
+                parts = line.split()
+                if len(parts) == 3 and float(parts[2]) >= seconds:
+                    slow.append(parts[0])
+        return slow
+
+    def test(self, name, timeout, slow_seconds):
+        """Runs the suite until the first failure, quick tests first.
+
+        ctest starts the slowest tests first; a mutation that a quick test catches would wait
+        for them. So the tests that took `slow_seconds` or more before run in a second round,
+        only when every quick test passed."""
+        slow = self.slow_tests(slow_seconds)
+        if not slow:
+            return self.ctest(f"{name}.test", timeout)
+        names = "^(" + "|".join(re.sub(r"([][.*+?^$()|\\])", r"\\\1", n) for n in slow) + ")$"
+        status, out, seconds, timed_out = self.ctest(f"{name}.test", timeout, exclude=names)
+        if status != 0 or timed_out:
+            return status, out, seconds, timed_out
+        status2, out2, seconds2, timed_out2 = self.ctest(f"{name}.slow-tests",
+                                                         max(1.0, timeout - seconds),
+                                                         include=names)
+        return status2, out + out2, seconds + seconds2, timed_out2
 
     def clean(self):
         r = subprocess.run(["git", "-C", str(self.tree), "diff", "--quiet"])
@@ -300,7 +354,7 @@ def first_error(build_output):
 # ---- the run -----------------------------------------------------------------------------
 
 
-def mutate_one(scratch, m, timeout, build_only=False):
+def mutate_one(scratch, m, timeout, slow_seconds, build_only=False):
     r = Result(m)
     path = scratch.tree / m.file
     original = path.read_bytes()
@@ -315,7 +369,7 @@ def mutate_one(scratch, m, timeout, build_only=False):
         if build_only:
             r.status = "builds"
             return r
-        status, out, r.test_seconds, timed_out = scratch.test(m.id, timeout)
+        status, out, r.test_seconds, timed_out = scratch.test(m.id, timeout, slow_seconds)
         if timed_out:
             r.status, r.test = "caught", "(whole run timed out)"
         elif status == 0:
@@ -402,8 +456,8 @@ def run_mutations(args, mutations):
         print(f"built in {seconds:.0f} s", flush=True)
         timeout = args.timeout
         if not args.skip_baseline and not args.build_only:
-            status, out, seconds, timed_out = scratch.test("baseline", timeout or 3600,
-                                                           stop_on_failure=False)
+            status, out, seconds, timed_out = scratch.ctest("baseline.test", timeout or 3600,
+                                                            stop_on_failure=False)
             if status != 0 or timed_out:
                 raise RuntimeError(f"the unmutated suite fails ({first_failure(out) or 'timeout'})"
                                    f": fix that first\n" + tail(out))
@@ -412,7 +466,7 @@ def run_mutations(args, mutations):
         timeout = timeout or 3600.0
         for i, m in enumerate(mutations):
             print(f"[{i + 1}/{len(mutations)}] {m.id}: {m.simulates}", flush=True)
-            results[i] = mutate_one(scratch, m, timeout, args.build_only)
+            results[i] = mutate_one(scratch, m, timeout, args.slow, args.build_only)
             r = results[i]
             print(f"    {r.status} {r.test} (build {r.build_seconds:.0f} s, tests "
                   f"{r.test_seconds:.0f} s)", flush=True)
@@ -444,6 +498,9 @@ def main():
     parser.add_argument("--exclude", default="^format$", metavar="REGEX",
                         help="ctest -E: tests not run (default '^format$': edits need not be "
                              "clang-format clean)")
+    parser.add_argument("--slow", type=float, default=5.0, metavar="SECONDS",
+                        help="tests that took this long before run after all quicker ones "
+                             "passed (default 5; 0: one ctest run)")
     parser.add_argument("--skip-baseline", action="store_true",
                         help="do not run the unmutated suite first")
     parser.add_argument("--build-only", action="store_true",
