@@ -11,7 +11,7 @@ test, and puts the file back. A mutation is
   build-failed  the edit does not compile: an error in the list, not a catch.
 
     /usr/bin/python3 scripts/mutate.py --list            # check every mutation applies
-    /usr/bin/python3 scripts/mutate.py                   # run them all (hours)
+    /usr/bin/python3 scripts/mutate.py                   # all of them: an hour or more
     /usr/bin/python3 scripts/mutate.py --only ID,ID --markdown results.md
 
 Run by hand; not part of ctest. See docs/testing.md, "Mutation testing".
@@ -393,7 +393,7 @@ def print_table(results):
     print(f"{'ID':30} {'area':10} {'result':13} {'build s':>8} {'test s':>8}  first failing test")
     for r in results:
         print(f"{r.mutation.id:30} {r.mutation.area:10} {r.status:13} {r.build_seconds:8.0f} "
-              f"{r.test_seconds:8.0f}  {r.test}")
+              f"{r.test_seconds:8.0f}  {r.test}{''.join(f' ({n})' for n in r.notes)}")
     counts = {s: sum(r.status == s for r in results)
               for s in STATUSES}
     print(", ".join(f"{n} {s}" for s, n in counts.items() if n))
@@ -444,6 +444,7 @@ def run_mutations(args, mutations):
     scratch = Scratch(root, keep, args.jobs, args.exclude, log_dir)
     results = [Result(m) for m in mutations]
     sha = ""
+    interrupted = False
     try:
         sha = scratch.create()
         print(f"scratch copy of {sha[:12]} in {scratch.tree}", flush=True)
@@ -471,6 +472,7 @@ def run_mutations(args, mutations):
             print(f"    {r.status} {r.test} (build {r.build_seconds:.0f} s, tests "
                   f"{r.test_seconds:.0f} s)", flush=True)
     except KeyboardInterrupt:
+        interrupted = True
         print("\ninterrupted: removing the scratch copy", file=sys.stderr)
     finally:
         scratch.remove()
@@ -478,6 +480,8 @@ def run_mutations(args, mutations):
     if args.markdown:
         write_markdown(args.markdown, results, sha, command, started, (time.monotonic() - t0) / 60)
         print(f"wrote {args.markdown}")
+    if interrupted:
+        return 130
     return 1 if any(r.status == "build-failed" for r in results) else 0
 
 
