@@ -61,10 +61,14 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
     std::size_t flowers = 0, fruit = 0;
     for (const Shoot& s : p.shoots) {
         if (s.removed) continue;
+        // Flowers and fruit of zero size (a fruit at the moment it sets) are not counted: they
+        // have no geometry yet (PlantState.h).
         auto count = [&](const FloralBud& fb) {
-            if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
-                flowers += fb.flowers.size();
-            if (fb.stage == FloralStage::Fruit) fruit += fb.flowers.size();
+            const bool flower =
+                fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen;
+            if (!flower && fb.stage != FloralStage::Fruit) return;
+            for (const FlowerOrgan& fl : fb.flowers)
+                if (hasSize(currentFloralSize(fb, fl))) ++(flower ? flowers : fruit);
         };
         for (const Phytomer& ph : s.phytomers)
             for (const Petiole& pt : ph.petioles)

@@ -415,8 +415,9 @@ TEST(Growth, PhenologyStagesOnTheirDays) {
         EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_open");
     g.arch.advanceTime(5.9f);
     EXPECT_EQ(count(OrganKind::Fruit), 0u);
-    g.arch.advanceTime(0.1f);  // day 35: fruit
-    EXPECT_GT(count(OrganKind::Fruit), 0u);
+    g.arch.advanceTime(0.1f);  // day 35: fruit, of size 0 (no geometry yet)
+    EXPECT_EQ(count(OrganKind::FlowerOpen), 0u);
+    EXPECT_EQ(count(OrganKind::Fruit), 0u);
     // Fruit grow to full size over the maturity time.
     const FloralBud* bud = nullptr;
     for (const Phytomer& phy : g.state(p).shoots[0].phytomers)
@@ -426,6 +427,7 @@ TEST(Growth, PhenologyStagesOnTheirDays) {
     EXPECT_FLOAT_EQ(bud->fruitGrowth, 0.0f);
     g.arch.advanceTime(5.0f);
     EXPECT_NEAR(bud->fruitGrowth, 0.5f, 1e-6f);
+    EXPECT_GT(count(OrganKind::Fruit), 0u);
     g.arch.advanceTime(10.0f);
     EXPECT_FLOAT_EQ(bud->fruitGrowth, 1.0f);
 }
@@ -672,7 +674,14 @@ TEST(Growth, WithNoFlowerStagesFruitFollowDormancyBreak) {
     g.arch.advanceTime(11.9);
     EXPECT_TRUE(g.arch.getPlantObjectIDs(p, OrganKind::Fruit).empty());
     EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
-    g.arch.advanceTime(0.1);  // day 12: fruit, never a flower
+    g.arch.advanceTime(0.1);  // day 12: fruit (of size 0, no geometry yet), never a flower
+    bool fruit = false;
+    for (const Phytomer& phy : g.state(p).shoots[0].phytomers)
+        for (const FloralBud& fb : phy.petioles[0].floralBuds)
+            fruit = fruit || fb.stage == FloralStage::Fruit;
+    EXPECT_TRUE(fruit);
+    EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
+    g.arch.advanceTime(0.1);
     EXPECT_FALSE(g.arch.getPlantObjectIDs(p, OrganKind::Fruit).empty());
     EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
 }

@@ -240,7 +240,8 @@ public:
     void removeShootFloralBuds(unsigned plantID, unsigned shootID);
     /// Removes flowers (open and closed) and fruit, keeping peduncles.
     void removePlantFlowers(unsigned plantID);
-    /// Harvest: removes all fruit and returns how many there were.
+    /// Harvest: removes all fruit and returns how many there were (fruit of zero size, just
+    /// set, included).
     unsigned harvestPlant(unsigned plantID);
 
     /// Adds a flowering bud at a node with the given stage (for hand-built plants; growth
@@ -340,13 +341,15 @@ public:
     float getPlantHeight(unsigned plantID) const;
     /// Height of the tip of the base stem above the plant base, m.
     float getPlantStemHeight(unsigned plantID) const;
-    /// Leaves (leaflets of compound leaves counted one by one) the plant has now.
+    /// Leaves (leaflets of compound leaves counted one by one) the plant has now. A leaf of
+    /// zero size (currentLeafSize 0, e.g. a stand-in of prototype_scale 0) is not counted: it
+    /// has no geometry (PlantState.h, "organ sizes").
     unsigned getPlantLeafCount(unsigned plantID) const;
     /// One-sided area of all leaves, m^2.
     float getPlantLeafArea(unsigned plantID) const;
     /// Context objects of the plant's organs of one kind (the kind its objects' "organ" data
     /// names), shoot by shoot from the base. A leaf or flower may have several (one per
-    /// prototype part).
+    /// prototype part); an organ of zero size (a fruit at the moment it sets) has none.
     std::vector<ObjectID> getPlantObjectIDs(unsigned plantID, OrganKind kind) const;
     /// Context objects of every organ of the plant, in increasing ID order.
     std::vector<ObjectID> getAllPlantObjectIDs(unsigned plantID) const;

@@ -279,7 +279,9 @@ void describeParameters(S& p, V& v) {
             p.leaflet_offset);
     v.field({"leaflet_scale", "", 0, 10, "Size of each leaflet pair relative to the pair above"},
             p.leaflet_scale);
-    v.field({"prototype_scale", "m", 0, 10, "Leaf length"}, p.prototype_scale);
+    v.field({"prototype_scale", "m", 0, 10,
+             "Leaf length along the blade (the midrib's length, however the blade curls)"},
+            p.prototype_scale);
     v.group("prototype", p.prototype, [&](auto& sub) { describeParameters(p.prototype, sub); });
 }
 
