@@ -976,3 +976,32 @@ TEST(Collision, SteeredPetiolesAndPedunclesCrossLess) {
         EXPECT_EQ(ped.leaves, none.leaves);  // peduncles steered leave the leaves alone
     }
 }
+
+// Solid obstacles seen late: a straight stem of 5 cm internodes grows up under a ceiling at
+// 0.335 m with an avoidance distance of 5 mm, so the steering cone does not see the ceiling
+// from the node at 0.30 m, 3.5 cm below it, and the new internode must itself be kept clear
+// along its whole length (5 cm): no vertex of the stem reaches into the ceiling, and the stem
+// still grows on, along it.
+TEST(Collision, InternodesStayClearAlongTheirWholeLength) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const ObjectID ceiling = addBox(ctx, {-2, -2, 0.335f}, {2, 2, 0.4f});
+    ShootParameters sp;
+    sp.max_nodes = 20;
+    sp.internode_length_max = 0.05f;
+    sp.phyllochron_min = 1.0f;
+    sp.gravitropic_curvature = 0.0f;
+    sp.tortuosity = 0.0f;
+    sp.phytomer_parameters.internode.pitch = 0.0f;
+    sp.phytomer_parameters.leaf.prototype_scale = 0.0f;
+    arch.defineShootType("stem", sp);
+    arch.enableSolidObstacleAvoidance({.obstacles = {ceiling}, .avoidanceDistance = 0.005f});
+    const unsigned p = arch.addPlantInstance({0, 0, 0}, 0.0f);
+    arch.addBaseStemShoot(p, {1, {}, {0.004f, 0.05f, 1.0f, 1.0f}, 0.0f, "stem"});
+    arch.advanceTime(20.0);
+    float top = -1.0f;
+    for (ObjectID o : arch.getPlantObjectIDs(p, OrganKind::Internode))
+        for (const vec3& v : ctx.object(o).positions) top = std::max(top, v.z);
+    EXPECT_GT(arch.getShootNodeCount(p, 0), 10u);  // it grew on, turned along the ceiling
+    EXPECT_LE(top, 0.335f + 1e-4f);
+}
