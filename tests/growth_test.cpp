@@ -155,18 +155,36 @@ TEST(Growth, ConstantChildInternodeLengthWithoutDecay) {
     for (float l : childLengths(0.0f)) EXPECT_NEAR(l, 0.05f, 1e-6f);
 }
 
-TEST(Growth, InsertionAnglesIncreaseDownTheShoot) {
+TEST(Growth, ShootsFromBudsTakeTheirOwnTypesInsertionAngle) {
+    // The parent type's angle (95: flat) must not apply; the child type's does: 30 at the
+    // parent's tip and 20 more per node below it, at most 90 (specification, child shoot
+    // insertion angle). The parent's 6 nodes all stand when the buds break at age 0, so node
+    // k lies 5 - k nodes below the tip: 30, 50, 70, then 90 from node 2 down.
     Garden g;
     ShootParameters s = branchingParent(g, 6, 1.0f, 0.0f);
-    s.insertion_angle_tip = 20.0f;
-    s.insertion_angle_decay_rate = 15.0f;
+    s.insertion_angle_tip = 95.0f;
+    s.insertion_angle_decay_rate = 0.0f;
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    child.insertion_angle_tip = 30.0f;
+    child.insertion_angle_decay_rate = 20.0f;
+    g.arch.defineShootType("child", child);
     const unsigned p = g.plant(s, 6);
     g.arch.advanceTime(0.0f);
-    for (const Shoot& sh : g.state(p).shoots)
-        if (sh.parent == 0) {
-            EXPECT_NEAR(sh.insertionAngle,
-                        std::min(90.0f, 20.0f + 15.0f * float(5 - sh.parentNode)), 1e-4f);
-        }
+    const float expected[] = {90.0f, 90.0f, 90.0f, 70.0f, 50.0f, 30.0f};
+    unsigned children = 0;
+    for (const Shoot& sh : g.state(p).shoots) {
+        if (sh.parent != 0) continue;
+        ++children;
+        const float want = expected[sh.parentNode];
+        EXPECT_NEAR(sh.insertionAngle, want, 1e-4f) << "node " << sh.parentNode;
+        // The parent stands vertical, so the child's first internode leaves at that zenith.
+        const vec3 axis = sh.phytomers[0].internode.guide;
+        EXPECT_NEAR(std::acos(std::clamp(axis.z, -1.0f, 1.0f)) * 180.0f / std::numbers::pi_v<float>,
+                    want, 1e-3f)
+            << "node " << sh.parentNode;
+    }
+    EXPECT_EQ(children, 6u);
 }
 
 namespace {

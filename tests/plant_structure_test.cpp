@@ -459,6 +459,10 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
     expectError(d, "reproductiv<", "did you mean 'reproductive'?");
     d = setFirst("direction", "0 0.5 0.5");
     expectError(d, ">0 0.5 0.5<", "not a unit vector");
+    d = setFirst("direction", "0 0 2");
+    expectError(d, ">0 0 2<", "not a unit vector");
+    // A normalized direction may pass 1 by a rounding; its length is still 1.
+    EXPECT_EQ(readError(setFirst("direction", "1.8239518e-08 -1.0000001 -3.972412e-08")), "");
     d = setFirst("random_generator", "12 4");
     expectError(d, ">12 4<", "increment");
     d = setFirst("random_generator", "12");

@@ -264,7 +264,7 @@ struct Grower {
         spec.size.internodeLengthScale = 0.01f;
         spec.size.leafScale = 0.01f;
         const unsigned id =
-            createShoot(growth, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
+            createShoot(growth, plant, spec, StartMode::Bud, int(e.shoot), e.node, e.petiole);
         enqueueShoot(plant.shoots[id]);
     }
 
