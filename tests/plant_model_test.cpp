@@ -198,7 +198,9 @@ TEST(PlantModel, AChildShootPlacedByHandStartsAtTheGivenPitch) {
         EXPECT_NEAR(angleBetween(first - start, vec3(0, 0, 1)), angle, 0.5f);
         EXPECT_NEAR(f.arch.plant(f.plant).shoots[c].insertionAngle, angle, 1e-4f);
         // The child leaves on the side of the petiole it grows from.
-        if (angle > 0.0f) EXPECT_GT(glm::dot(vec3(first - start), f.petioleDirection(2, 0)), 0.0f);
+        if (angle > 0.0f) {
+            EXPECT_GT(glm::dot(vec3(first - start), f.petioleDirection(2, 0)), 0.0f);
+        }
         EXPECT_EQ(f.arch.getShootRank(f.plant, c), 1u);
         EXPECT_EQ(f.arch.getShootParent(f.plant, c), 0);
     }
