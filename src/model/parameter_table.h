@@ -519,10 +519,11 @@ void describeParameters(S& p, V& v) {
              "Dormancy (and each winter) until buds break; negative disables"},
             p.time_to_dormancy_break);
     v.field({"time_to_flower_initiation", "days", -1, 100000,
-             "Dormancy break until closed flowers appear; negative skips closed flowers"},
+             "A floral bud's start (made, or dormancy break) until it shows a closed flower; "
+             "negative skips closed flowers"},
             p.time_to_flower_initiation);
     v.field({"time_to_flower_opening", "days", -1, 100000,
-             "Flower initiation (or dormancy break) until flowers open; negative disables"},
+             "Flower initiation (or the bud's start) until flowers open; negative disables"},
             p.time_to_flower_opening);
     v.field({"time_to_fruit_set", "days", -1, 100000,
              "Previous enabled stage until flowers set fruit; negative disables fruit"},
