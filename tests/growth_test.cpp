@@ -591,6 +591,68 @@ TEST(Growth, TwoSeasonsOfAPerennial) {
     EXPECT_EQ(g.arch.getPlantLeafCount(p), 5u);
 }
 
+// A bud that needs no winter breaks vegetative_bud_break_time after it is made (the
+// specification's bud break); one made while the plant is dormant, whose time passes in the
+// winter, breaks as dormancy ends. Three nodes built on day 0, dormancy breaking on day 20:
+// with a break time of 5 days the three buds break on day 20, with 30 days on day 30.
+TEST(Growth, BudsMadeWhileDormantBreakWhenTheirTimeHasCome) {
+    for (float breakTime : {5.0f, 30.0f}) {
+        SCOPED_TRACE("break time " + std::to_string(breakTime));
+        Garden g;
+        ShootParameters s = branchingParent(g, 3, 1.0f, breakTime);
+        PhenologyParameters ph;
+        ph.time_to_dormancy_break = 20;
+        g.arch.setDefaultPhenology(ph);
+        const unsigned p = g.plant(s, 3);
+        const double day = std::max(20.0, double(breakTime));
+        g.arch.advanceTime(float(day) - 0.1f);
+        EXPECT_EQ(g.arch.getShootCount(p), 1u);
+        g.arch.advanceTime(0.1f);
+        EXPECT_EQ(g.arch.getShootCount(p), 4u);
+        EXPECT_EQ(g.arch.getPlantLeafCount(p), 6u);  // the parent's 3 and a leaf per child
+    }
+}
+
+// A perennial's buds still waiting when the season ends break as the next season begins
+// (their vegetative_bud_break_time since they were made has passed), and the new shoots
+// carry the season's leaves. Dormancy breaks on day 10, the season ends on day 40 and the
+// next begins on day 50. The parent's node 0 (built on day 0) and the nodes made on days 12,
+// 14, 16, 18 and 20 (5 a season) have buds breaking 25 days after they are made: node 0 on
+// day 25 (its time counts from day 0), the next two on days 37 and 39, the last three
+// (days 41, 43, 45) as season 2 begins on day 50.
+TEST(Growth, APerennialsWaitingBudsGrowLeafyShootsInTheNextSeason) {
+    Garden g;
+    ShootParameters s = branchingParent(g, 40, 1.0f, 25.0f);
+    s.max_nodes_per_season = 5;
+    PhenologyParameters ph;
+    ph.time_to_dormancy_break = 10;
+    ph.time_to_senescence = 30;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(24.9f);
+    EXPECT_EQ(g.arch.getShootCount(p), 1u);
+    g.arch.advanceTime(0.1f);  // day 25
+    EXPECT_EQ(g.arch.getShootCount(p), 2u);
+    g.arch.advanceTime(14.5f);  // day 39.5
+    EXPECT_EQ(g.arch.getShootCount(p), 4u);
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 6u + 3u);
+    g.arch.advanceTime(10.4f);  // day 49.9: winter, bare
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
+    EXPECT_EQ(g.arch.getShootCount(p), 4u);
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 0u);
+    g.arch.advanceTime(1.1f);  // day 51: season 2
+    EXPECT_EQ(g.state(p).season, 2);
+    EXPECT_EQ(g.arch.getShootCount(p), 7u);
+    // The leaves of season 2 so far: one on each new shoot (the parent's next node comes on
+    // day 52).
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 3u);
+    for (const Shoot& sh : g.state(p).shoots)
+        if (sh.parent == 0 && sh.parentNode >= 3) {
+            EXPECT_DOUBLE_EQ(sh.phytomers[0].birth, 50.0) << "node " << sh.parentNode;
+            EXPECT_FALSE(sh.phytomers[0].petioles[0].leaves[0].removed);
+        }
+}
+
 TEST(Growth, EvergreenKeepsItsLeavesThroughDormancy) {
     Garden g;
     const unsigned p = perennial(g, true);

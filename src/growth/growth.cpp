@@ -410,7 +410,14 @@ struct Grower {
                                 bud.state = BudState::Dead;
                                 continue;
                             }
-                            bud.breakTime = now + t.vegetative_bud_break_time.sample(plant.rng);
+                            // A bud needing a winter breaks vegetative_bud_break_time after
+                            // dormancy ends; any other breaks that long after it was made, or
+                            // now if that time passed while the plant was dormant (a bud made
+                            // in winter, or one still waiting when the last season ended).
+                            const double wait = t.vegetative_bud_break_time.sample(plant.rng);
+                            bud.breakTime = t.growth_requires_dormancy
+                                                ? now + wait
+                                                : std::max(now, s.phytomers[k].birth + wait);
                             push(bud.breakTime, kBudBreak, s.id, k, j, b);
                         }
                     }
