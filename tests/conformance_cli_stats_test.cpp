@@ -103,7 +103,7 @@ TEST(ConformanceCliStats, BuildPrintsTheLibrarysNumbers) {
         std::map<std::string, float> defines;
     };
     // a bean with flowers and fruit, at a fractional age; a tree with a build parameter
-    const std::vector<Case> cases = {{"bean", 54.5f, 7, {}},
+    const std::vector<Case> cases = {{"bean", 70.5f, 7, {}},
                                      {"almond", 630.0f, 3, {{"num_scaffolds", 3.0f}}}};
     for (const Case& c : cases) {
         std::ostringstream args;

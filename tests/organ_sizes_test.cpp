@@ -146,9 +146,9 @@ TEST(OrganSizes, AFruitThatSetsHasNoGeometryUntilItGrows) {
     Context ctxA;
     PlantArchitecture a(&ctxA);
     a.loadPlantModelFromLibrary("bean");
-    const unsigned built = a.buildPlantInstanceFromLibrary(vec3(0.0f), 70.0f);
-    const std::string xml = withFruitJustSet(a.getPlantStructureXML({built}), "70");
-    ASSERT_FALSE(xml.empty()) << "bean at 70 days has no fruit";
+    const unsigned built = a.buildPlantInstanceFromLibrary(vec3(0.0f), 90.0f);
+    const std::string xml = withFruitJustSet(a.getPlantStructureXML({built}), "90");
+    ASSERT_FALSE(xml.empty()) << "bean at 90 days has no fruit";
 
     Context ctx;
     PlantArchitecture b(&ctx);

@@ -212,9 +212,11 @@ public:
     /// A shoot continuing from the tip of `parentShootID` (same axis, rotated by the spec;
     /// same rank). Returns its shoot ID.
     unsigned appendShoot(unsigned plantID, unsigned parentShootID, const ShootSpec& spec);
-    /// A lateral shoot from the axil of petiole `petioleIndex` at node `parentNode`. The
-    /// insertion angle comes from the parent type's insertion_angle_tip and decay rate,
-    /// measured from the tip; spec.baseRotation.pitch is added to it. Returns its shoot ID.
+    /// A lateral shoot from the axil of petiole `petioleIndex` at node `parentNode`, starting
+    /// spec.baseRotation.pitch degrees from the parent's axis (its type's base_yaw and
+    /// base_roll are added to the spec's yaw and roll). The type's insertion_angle_tip and
+    /// decay rate apply to shoots that grow from buds as the plant grows, not to shoots
+    /// placed by hand. Returns its shoot ID.
     unsigned addChildShoot(unsigned plantID, unsigned parentShootID, unsigned parentNode,
                            const ShootSpec& spec, unsigned petioleIndex = 0);
     /// One more phytomer at the tip of a shoot, built from `phytomer_parameters` at `size`.
