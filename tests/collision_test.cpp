@@ -965,22 +965,22 @@ TEST(Collision, SteeredPetiolesAndPedunclesCrossLess) {
                     petioles, peduncles, all.size(), c.leaves, c.floral);
         return c;
     };
-    // At 60 days (the beans' first flowers open from about day 57) seeds 1 to 3 were seen to
-    // cut leaf crossings by 16-20 % (petioles) and floral crossings by 1-13 % (peduncles, 5 %
-    // over the three): at least 5 % fewer leaf crossings for each seed, fewer floral crossings
-    // for each and at least 3 % fewer over the three.
+    // At 60 days (the beans' first flowers open from about day 57) steering petioles was seen
+    // to cut leaf crossings by 10-22 % for each of seeds 1 to 6; floral crossings are few
+    // (30-100 pairs a canopy), so peduncle steering is judged over the six together (seen:
+    // 11 % fewer, per seed from 5 % more to 40 % fewer): at least 5 % fewer leaf crossings for
+    // each seed, at least 5 % fewer floral crossings over the six.
     std::size_t floralNone = 0, floralSteered = 0;
-    for (unsigned seed : {1u, 2u, 3u}) {
+    for (unsigned seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
         SCOPED_TRACE("seed " + std::to_string(seed));
         const Counts none = grow(seed, false, false), pet = grow(seed, true, false),
                      ped = grow(seed, false, true);
         EXPECT_LT(double(pet.leaves), 0.95 * double(none.leaves));
-        EXPECT_LT(ped.floral, none.floral);
         EXPECT_EQ(ped.leaves, none.leaves);  // peduncles steered leave the leaves alone
         floralNone += none.floral;
         floralSteered += ped.floral;
     }
-    EXPECT_LT(double(floralSteered), 0.97 * double(floralNone));
+    EXPECT_LT(double(floralSteered), 0.95 * double(floralNone));
 }
 
 // Solid obstacles seen late: a straight stem of 5 cm internodes grows up under a ceiling at
