@@ -30,14 +30,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         "Build one plant of a species grown to an age and write it (OBJ, PLY, PNG, plant XML or "
         "string)");
     auto a = std::make_shared<BuildArgs>();
-    app.add_option("species", a->species, "Library species name or species file (.xml)")
-        ->required();
-    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--age"));
-    app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
-    app.add_flag("--no-trellis", a->noTrellis,
-                 "Leave out the species' trellis (posts and wires drawn with trellis species)");
+    addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     addImageSizeOption(app, global);

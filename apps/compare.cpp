@@ -219,14 +219,7 @@ std::function<int()> setupCompare(CLI::App& app, GlobalOptions& global) {
         "Draw a plant in a fixed framing (side and oblique views, same scale, 10 cm bar), "
         "optionally below a reference picture");
     auto a = std::make_shared<CompareArgs>();
-    app.add_option("species", a->species, "Library species name or species file (.xml)")
-        ->required();
-    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--age"));
-    app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
-    app.add_flag("--no-trellis", a->noTrellis,
-                 "Leave out the species' trellis (posts and wires drawn with trellis species)");
+    addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
     app.add_option("--reference", a->reference,
                    "Picture to show above (any PNG; one made in the same framing compares best)");
     app.add_option("--panel-size", a->panelSize, "Size of each square view in pixels")
