@@ -16,6 +16,7 @@ namespace plantarch::cli {
 namespace {
 
 struct BuildArgs {
+    bool noTrellis = false;
     std::string species;
     float age = -1.0f;
     std::vector<std::string> defines;
@@ -29,12 +30,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         "Build one plant of a species grown to an age and write it (OBJ, PLY, PNG, plant XML or "
         "string)");
     auto a = std::make_shared<BuildArgs>();
-    app.add_option("species", a->species, "Library species name or species file (.xml)")
-        ->required();
-    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--age"));
-    app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
+    addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     addImageSizeOption(app, global);
@@ -49,6 +45,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.setSeed(global.seed);
         arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
+        arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant =
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));

@@ -34,6 +34,7 @@ std::pair<T, T> parsePair(const std::string& text, const char* option) {
 }
 
 struct CanopyArgs {
+    bool noTrellis = false;
     std::string species, count = "10x10", spacing = "0.3x0.3";
     float age = -1.0f, germination = 1.0f;
     std::vector<std::string> defines;
@@ -56,6 +57,8 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
                    "Probability each position has a plant (0 to 1)")
         ->check(numberCheck("--germination", "a probability", 0.0, 1.0, false, "0 to 1"));
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
+    app.add_flag("--no-trellis", a->noTrellis,
+                 "Leave out the species' trellis (posts and wires drawn with trellis species)");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     addImageSizeOption(app, global);
@@ -71,6 +74,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.loadPlantModelFromLibrary(a->species);
+        arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const auto plants =
             arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), a->age,

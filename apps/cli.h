@@ -73,6 +73,11 @@ CLI::Validator numberCheck(const std::string& option, const std::string& what, d
 /// numberCheck for a number of days, 0 to 100000.
 CLI::Validator daysCheck(const std::string& option);
 
+/// The plant a command builds: SPECIES (library name or species file), --age (required),
+/// -D name=value build parameters and --no-trellis.
+void addPlantOptions(CLI::App& app, std::string& species, float& age,
+                     std::vector<std::string>& defines, bool& noTrellis);
+
 /// Build parameters given as -D name=value (each a finite number), by name.
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines);
 

@@ -22,6 +22,7 @@ namespace plantarch::cli {
 namespace {
 
 struct CompareArgs {
+    bool noTrellis = false;
     std::string species;
     float age = -1.0f;
     std::vector<std::string> defines;
@@ -175,6 +176,7 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     PlantArchitecture arch(&ctx);
     arch.setSeed(global.seed);
     arch.loadPlantModelFromLibrary(a.species);
+    arch.setTrellisGeometry(!a.noTrellis);
     const unsigned plant =
         arch.buildPlantInstanceFromLibrary(vec3(0.0f), a.age, parseDefines(a.defines));
     const RenderScene scene(ctx);
@@ -217,12 +219,7 @@ std::function<int()> setupCompare(CLI::App& app, GlobalOptions& global) {
         "Draw a plant in a fixed framing (side and oblique views, same scale, 10 cm bar), "
         "optionally below a reference picture");
     auto a = std::make_shared<CompareArgs>();
-    app.add_option("species", a->species, "Library species name or species file (.xml)")
-        ->required();
-    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--age"));
-    app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
+    addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
     app.add_option("--reference", a->reference,
                    "Picture to show above (any PNG; one made in the same framing compares best)");
     app.add_option("--panel-size", a->panelSize, "Size of each square view in pixels")

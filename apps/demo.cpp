@@ -99,13 +99,18 @@ unsigned buildDemoPlant(PlantArchitecture& arch, const vec3& base) {
     branch.size.internodeRadius = 0.003f;
     branch.size.internodeLengthMax = 0.045f;
     branch.radiusTaper = 0.5f;
+    // Branches placed by hand start at the pitch given: the types' insertion angle (40 at the
+    // tip, 5 more per node below it) on the 9-node stem.
     branch.shootType = "alternate";
+    branch.baseRotation.pitch = 70.0f;
     arch.addChildShoot(plant, 0u, 2u, branch);
     branch.shootType = "opposite";
     branch.phytomers = 4;
+    branch.baseRotation.pitch = 60.0f;
     arch.addChildShoot(plant, 0u, 4u, branch);
     branch.shootType = "alternate";
     branch.phytomers = 3;
+    branch.baseRotation.pitch = 50.0f;
     arch.addChildShoot(plant, 0u, 6u, branch);
 
     arch.addFloralBud(plant, 0, 7, FloralStage::FlowerOpen);

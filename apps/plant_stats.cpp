@@ -32,6 +32,17 @@ CLI::Validator daysCheck(const std::string& option) {
     return numberCheck(option, "a number of days", 0.0, 100000.0, false, "0 to 100000");
 }
 
+void addPlantOptions(CLI::App& app, std::string& species, float& age,
+                     std::vector<std::string>& defines, bool& noTrellis) {
+    app.add_option("species", species, "Library species name or species file (.xml)")->required();
+    app.add_option("--age", age, "Plant age in days (0 to 100000)")
+        ->required()
+        ->check(daysCheck("--age"));
+    app.add_option("-D", defines, "Build parameter override, name=value (repeatable)");
+    app.add_flag("--no-trellis", noTrellis,
+                 "Leave out the species' trellis (posts and wires drawn with trellis species)");
+}
+
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines) {
     std::map<std::string, float> out;
     for (const std::string& d : defines) {
@@ -61,10 +72,14 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
     std::size_t flowers = 0, fruit = 0;
     for (const Shoot& s : p.shoots) {
         if (s.removed) continue;
+        // Flowers and fruit of zero size (a fruit at the moment it sets) are not counted: they
+        // have no geometry yet (PlantState.h).
         auto count = [&](const FloralBud& fb) {
-            if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
-                flowers += fb.flowers.size();
-            if (fb.stage == FloralStage::Fruit) fruit += fb.flowers.size();
+            const bool flower =
+                fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen;
+            if (!flower && fb.stage != FloralStage::Fruit) return;
+            for (const FlowerOrgan& fl : fb.flowers)
+                if (hasSize(currentFloralSize(fb, fl))) ++(flower ? flowers : fruit);
         };
         for (const Phytomer& ph : s.phytomers)
             for (const Petiole& pt : ph.petioles)

@@ -99,13 +99,13 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         // Commands.
         {"bulid bean --age 10",
          "plantarch: 'bulid' is not a command, did you mean 'build'? (valid: demo, build, "
-         "canopy, convert, grow, render, list, info, validate)\n"},
+         "canopy, convert, grow, render, compare, list, info, validate)\n"},
         {"nosuchcommand",
          "plantarch: 'nosuchcommand' is not a command (valid: demo, build, canopy, convert, "
-         "grow, render, list, info, validate)\n"},
+         "grow, render, compare, list, info, validate)\n"},
         {"",
          "plantarch: a command is required (valid: demo, build, canopy, convert, grow, "
-         "render, list, info, validate; see plantarch --help)\n"},
+         "render, compare, list, info, validate; see plantarch --help)\n"},
         // Canopies.
         {"canopy bean --count 0x2 --age 10 -o /tmp/x.ply",
          "plantarch: --count = 0x2: expected two positive numbers joined by 'x' (valid: e.g. "

@@ -674,6 +674,9 @@ TEST_F(ExportTest, ReadObjMalformedFilesAreErrorsAndLeaveContextUnchanged) {
         {"nofaces.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"},
         {"empty.obj", ""},
         {"text.obj", "this is not\nan OBJ file at all\n"},
+        {"nan.obj", "v 0 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\n"},
+        {"inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -inf\nf 1 2 3\n"},
+        {"word.obj", "v 0 0 0\nv 1 0 0\nv 0 1x 0\nf 1 2 3\n"},
     };
     for (const auto& [name, text] : cases) {
         writeText(dir_ / name, text);
@@ -690,6 +693,14 @@ TEST_F(ExportTest, ReadObjMalformedFilesAreErrorsAndLeaveContextUnchanged) {
             }
             if (name == "nofaces.obj") {
                 EXPECT_TRUE(contains(e.what(), "no faces")) << e.what();
+            }
+            if (name == "nan.obj") {
+                EXPECT_EQ(e.line(), 2) << e.what();
+            }
+            if (name == "nan.obj" || name == "inf.obj" || name == "word.obj") {
+                EXPECT_TRUE(contains(e.what(), "vertex coordinate is not a finite number"))
+                    << e.what();
+                EXPECT_EQ(e.validRange(), "finite numbers");
             }
         }
         EXPECT_EQ(c.objectCount(), 1u) << name;

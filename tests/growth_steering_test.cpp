@@ -87,13 +87,14 @@ TEST(GrowthSteering, EveryNewInternodeAndPetioleIsOfferedOnce) {
     Parts parts(bean.arch, {bean.id});
     const Counts before = countOf(parts.plant(bean.id));
     Recorder steering(false);
-    parts.grow(bean.id, 30.0, &steering);
+    parts.grow(bean.id, 50.0, &steering);
     const Counts after = countOf(parts.plant(bean.id));
     ASSERT_GT(after.phytomers, before.phytomers + 20);
     EXPECT_EQ(steering.axes, after.phytomers - before.phytomers);
     EXPECT_EQ(steering.clearances, after.phytomers - before.phytomers);
     EXPECT_EQ(steering.petioles, after.petioles - before.petioles);
-    // Peduncles are offered as their buds break (the bean flowers within these 30 days).
+    // Peduncles are offered as their buds break (the bean's first buds, made from about day
+    // 12, flower 40 days later: within these 50 days).
     EXPECT_GT(steering.peduncles, 0u);
     EXPECT_LE(steering.peduncles, after.floralBuds);
     EXPECT_EQ(steering.odd, 0u);

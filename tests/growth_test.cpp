@@ -155,18 +155,36 @@ TEST(Growth, ConstantChildInternodeLengthWithoutDecay) {
     for (float l : childLengths(0.0f)) EXPECT_NEAR(l, 0.05f, 1e-6f);
 }
 
-TEST(Growth, InsertionAnglesIncreaseDownTheShoot) {
+TEST(Growth, ShootsFromBudsTakeTheirOwnTypesInsertionAngle) {
+    // The parent type's angle (95: flat) must not apply; the child type's does: 30 at the
+    // parent's tip and 20 more per node below it, at most 90 (specification, child shoot
+    // insertion angle). The parent's 6 nodes all stand when the buds break at age 0, so node
+    // k lies 5 - k nodes below the tip: 30, 50, 70, then 90 from node 2 down.
     Garden g;
     ShootParameters s = branchingParent(g, 6, 1.0f, 0.0f);
-    s.insertion_angle_tip = 20.0f;
-    s.insertion_angle_decay_rate = 15.0f;
+    s.insertion_angle_tip = 95.0f;
+    s.insertion_angle_decay_rate = 0.0f;
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    child.insertion_angle_tip = 30.0f;
+    child.insertion_angle_decay_rate = 20.0f;
+    g.arch.defineShootType("child", child);
     const unsigned p = g.plant(s, 6);
     g.arch.advanceTime(0.0f);
-    for (const Shoot& sh : g.state(p).shoots)
-        if (sh.parent == 0) {
-            EXPECT_NEAR(sh.insertionAngle,
-                        std::min(90.0f, 20.0f + 15.0f * float(5 - sh.parentNode)), 1e-4f);
-        }
+    const float expected[] = {90.0f, 90.0f, 90.0f, 70.0f, 50.0f, 30.0f};
+    unsigned children = 0;
+    for (const Shoot& sh : g.state(p).shoots) {
+        if (sh.parent != 0) continue;
+        ++children;
+        const float want = expected[sh.parentNode];
+        EXPECT_NEAR(sh.insertionAngle, want, 1e-4f) << "node " << sh.parentNode;
+        // The parent stands vertical, so the child's first internode leaves at that zenith.
+        const vec3 axis = sh.phytomers[0].internode.guide;
+        EXPECT_NEAR(std::acos(std::clamp(axis.z, -1.0f, 1.0f)) * 180.0f / std::numbers::pi_v<float>,
+                    want, 1e-3f)
+            << "node " << sh.parentNode;
+    }
+    EXPECT_EQ(children, 6u);
 }
 
 namespace {
@@ -378,9 +396,52 @@ TEST(Growth, BudBreakProbabilityWithoutWinterCountsFromTheTipWhenTheBudBreaks) {
             << "node " << k;
 }
 
+namespace {
+struct Stages {
+    unsigned buds = 0, closed = 0, open = 0, fruit = 0;
+    bool operator==(const Stages&) const = default;
+};
+// The plant's axillary floral buds by stage (one flower per peduncle).
+Stages stagesOf(const PlantInstance& plant) {
+    Stages n;
+    for (const Shoot& sh : plant.shoots)
+        for (const Phytomer& ph : sh.phytomers)
+            for (const Petiole& pt : ph.petioles)
+                for (const FloralBud& fb : pt.floralBuds) switch (fb.stage) {
+                        case FloralStage::Bud:
+                            ++n.buds;
+                            break;
+                        case FloralStage::FlowerClosed:
+                            ++n.closed;
+                            break;
+                        case FloralStage::FlowerOpen:
+                            ++n.open;
+                            break;
+                        case FloralStage::Fruit:
+                            ++n.fruit;
+                            break;
+                        default:
+                            break;
+                    }
+    return n;
+}
+std::ostream& operator<<(std::ostream& o, const Stages& n) {
+    return o << n.buds << " buds, " << n.closed << " closed, " << n.open << " open, " << n.fruit
+             << " fruit";
+}
+}  // namespace
+
+// Each floral bud keeps its own clock (specification, phenological transitions and
+// reproductive growth): closed time_to_flower_initiation after its clock starts, open
+// time_to_flower_opening later, fruit time_to_fruit_set after that. The clock of a bud made
+// while the plant is dormant starts at dormancy break, that of a bud made in the season when
+// it is made. Dormancy breaks on day 5; node 0 was built dormant on day 0, nodes 1 to 3 are
+// made on days 7, 9 and 11 (phyllochron 2 after dormancy break). With initiation 20, opening
+// 4 and fruit set 6: closed on days 25, 27, 29, 31; open on 29, 31, 33, 35; fruit on 35, 37,
+// 39, 41.
 TEST(Growth, PhenologyStagesOnTheirDays) {
     ShootParameters s = growingShoot();
-    s.max_nodes = 4;  // nodes on days 0, 7, 9, 11: every bud exists before flowering
+    s.max_nodes = 4;
     s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
     s.flower_bud_break_probability = 1.0f;
     s.fruit_set_probability = 1.0f;
@@ -395,39 +456,81 @@ TEST(Growth, PhenologyStagesOnTheirDays) {
     g.arch.setDefaultPhenology(ph);
     const unsigned p = g.plant(s);
     auto count = [&](OrganKind kind) { return g.arch.getPlantObjectIDs(p, kind).size(); };
-    g.arch.advanceTime(4.9f);
+    auto at = [&](double day) {
+        g.arch.advanceTime(float(day - g.arch.getPlantAge(p)));
+        return stagesOf(g.state(p));
+    };
+    EXPECT_EQ(at(4.9), (Stages{1, 0, 0, 0}));
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 1u);
-    g.arch.advanceTime(0.1f);  // day 5: dormancy breaks
+    at(5.0);  // dormancy breaks
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Vegetative);
-    g.arch.advanceTime(19.9f);  // day 24.9
+    EXPECT_EQ(at(24.9), (Stages{4, 0, 0, 0}));
     EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
-    g.arch.advanceTime(0.1f);  // day 25: closed flowers
+    EXPECT_EQ(at(25.0), (Stages{3, 1, 0, 0}));
     EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Reproductive);
     EXPECT_GT(count(OrganKind::FlowerClosed), 0u);
     EXPECT_EQ(count(OrganKind::FlowerOpen), 0u);
     for (ObjectID id : g.arch.getPlantObjectIDs(p, OrganKind::FlowerClosed))
         EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_closed");
-    g.arch.advanceTime(4.0f);  // day 29: open
-    EXPECT_EQ(count(OrganKind::FlowerClosed), 0u);
-    EXPECT_GT(count(OrganKind::FlowerOpen), 0u);
+    EXPECT_EQ(at(28.9), (Stages{2, 2, 0, 0}));
+    EXPECT_EQ(at(29.0), (Stages{1, 2, 1, 0}));
     for (ObjectID id : g.arch.getPlantObjectIDs(p, OrganKind::FlowerOpen))
         EXPECT_EQ(g.ctx.objectDataString(id, "organ"), "flower_open");
-    g.arch.advanceTime(5.9f);
+    EXPECT_EQ(at(34.9), (Stages{0, 1, 3, 0}));
     EXPECT_EQ(count(OrganKind::Fruit), 0u);
-    g.arch.advanceTime(0.1f);  // day 35: fruit
-    EXPECT_GT(count(OrganKind::Fruit), 0u);
+    EXPECT_EQ(at(35.0), (Stages{0, 0, 3, 1}));
+    EXPECT_EQ(count(OrganKind::Fruit), 0u);  // just set: of size 0, no geometry yet
     // Fruit grow to full size over the maturity time.
-    const FloralBud* bud = nullptr;
-    for (const Phytomer& phy : g.state(p).shoots[0].phytomers)
-        for (const FloralBud& fb : phy.petioles[0].floralBuds)
-            if (fb.stage == FloralStage::Fruit && !bud) bud = &fb;
-    ASSERT_NE(bud, nullptr);
-    EXPECT_FLOAT_EQ(bud->fruitGrowth, 0.0f);
-    g.arch.advanceTime(5.0f);
-    EXPECT_NEAR(bud->fruitGrowth, 0.5f, 1e-6f);
-    g.arch.advanceTime(10.0f);
-    EXPECT_FLOAT_EQ(bud->fruitGrowth, 1.0f);
+    const FloralBud& bud = g.state(p).shoots[0].phytomers[0].petioles[0].floralBuds[0];
+    EXPECT_EQ(bud.stage, FloralStage::Fruit);
+    EXPECT_FLOAT_EQ(bud.fruitGrowth, 0.0f);
+    at(40.0);
+    EXPECT_NEAR(bud.fruitGrowth, 0.5f, 1e-6f);
+    EXPECT_GT(count(OrganKind::Fruit), 0u);
+    EXPECT_EQ(at(41.0), (Stages{0, 0, 0, 4}));
+    at(50.0);
+    EXPECT_FLOAT_EQ(bud.fruitGrowth, 1.0f);
+}
+
+// A plant built by hand with 5 nodes on day 0 grows a node every 2 days; dormancy breaks at
+// once. Every bud's clock starts when its node is made, so node k (made on day 2 (k - 4) for
+// k >= 5, on day 0 below) opens 12 days after (initiation off) and sets fruit 8 days after
+// that: the first open flowers on day 12 (the five built nodes), the first fruit on day 20,
+// and a node made on day 30 opens on day 42, not as soon as it is made.
+TEST(Growth, EachFloralBudFlowersOnItsOwnClock) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 40;
+    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+    s.flower_bud_break_probability = 1.0f;
+    s.fruit_set_probability = 1.0f;
+    s.determinate_shoot_growth = false;
+    Garden g;
+    PhenologyParameters ph;
+    ph.time_to_flower_initiation = -1;
+    ph.time_to_flower_opening = 12;
+    ph.time_to_fruit_set = 8;
+    ph.time_to_fruit_maturity = 10;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s, 5);
+    auto at = [&](double day) {
+        g.arch.advanceTime(float(day - g.arch.getPlantAge(p)));
+        return stagesOf(g.state(p));
+    };
+    // Day 11.9: nodes 0-4 (day 0) and 5-9 (days 2-10) are buds.
+    EXPECT_EQ(at(11.9), (Stages{10, 0, 0, 0}));
+    // Day 12: the five built nodes open; node 10 is made.
+    EXPECT_EQ(at(12.0), (Stages{6, 0, 5, 0}));
+    // Day 19.9: nodes 11-13 made on days 14-18; nodes 5-7 (days 2-6) open on days 14-18.
+    EXPECT_EQ(at(19.9), (Stages{6, 0, 8, 0}));
+    // Day 20: the built nodes set fruit, node 8 (day 8) opens; nodes 9-14 (days 10-20) wait.
+    EXPECT_EQ(at(20.0), (Stages{6, 0, 4, 5}));
+    // Day 41.9: nodes made on days 0-28 have opened (day 28 + 12 = 40 <= 41.9); those made on
+    // days 30-40 (nodes 19-24) are still buds; fruit on the nodes made on days 0-20.
+    const Stages day41 = at(41.9);
+    EXPECT_EQ(day41.buds, 6u) << day41;
+    EXPECT_EQ(day41.fruit, 5u + 10u) << day41;
+    EXPECT_EQ(day41.open, 4u) << day41;
 }
 
 // A determinate shoot stops at flowering, an indeterminate one grows on. With a node every
@@ -487,6 +590,68 @@ TEST(Growth, TwoSeasonsOfAPerennial) {
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 11u);  // 5 more
     EXPECT_GT(g.arch.getPlantLeafCount(p), 0u);      // new leaves only
     EXPECT_EQ(g.arch.getPlantLeafCount(p), 5u);
+}
+
+// A bud that needs no winter breaks vegetative_bud_break_time after it is made (the
+// specification's bud break); one made while the plant is dormant, whose time passes in the
+// winter, breaks as dormancy ends. Three nodes built on day 0, dormancy breaking on day 20:
+// with a break time of 5 days the three buds break on day 20, with 30 days on day 30.
+TEST(Growth, BudsMadeWhileDormantBreakWhenTheirTimeHasCome) {
+    for (float breakTime : {5.0f, 30.0f}) {
+        SCOPED_TRACE("break time " + std::to_string(breakTime));
+        Garden g;
+        ShootParameters s = branchingParent(g, 3, 1.0f, breakTime);
+        PhenologyParameters ph;
+        ph.time_to_dormancy_break = 20;
+        g.arch.setDefaultPhenology(ph);
+        const unsigned p = g.plant(s, 3);
+        const double day = std::max(20.0, double(breakTime));
+        g.arch.advanceTime(float(day) - 0.1f);
+        EXPECT_EQ(g.arch.getShootCount(p), 1u);
+        g.arch.advanceTime(0.1f);
+        EXPECT_EQ(g.arch.getShootCount(p), 4u);
+        EXPECT_EQ(g.arch.getPlantLeafCount(p), 6u);  // the parent's 3 and a leaf per child
+    }
+}
+
+// A perennial's buds still waiting when the season ends break as the next season begins
+// (their vegetative_bud_break_time since they were made has passed), and the new shoots
+// carry the season's leaves. Dormancy breaks on day 10, the season ends on day 40 and the
+// next begins on day 50. The parent's node 0 (built on day 0) and the nodes made on days 12,
+// 14, 16, 18 and 20 (5 a season) have buds breaking 25 days after they are made: node 0 on
+// day 25 (its time counts from day 0), the next two on days 37 and 39, the last three
+// (days 41, 43, 45) as season 2 begins on day 50.
+TEST(Growth, APerennialsWaitingBudsGrowLeafyShootsInTheNextSeason) {
+    Garden g;
+    ShootParameters s = branchingParent(g, 40, 1.0f, 25.0f);
+    s.max_nodes_per_season = 5;
+    PhenologyParameters ph;
+    ph.time_to_dormancy_break = 10;
+    ph.time_to_senescence = 30;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(24.9f);
+    EXPECT_EQ(g.arch.getShootCount(p), 1u);
+    g.arch.advanceTime(0.1f);  // day 25
+    EXPECT_EQ(g.arch.getShootCount(p), 2u);
+    g.arch.advanceTime(14.5f);  // day 39.5
+    EXPECT_EQ(g.arch.getShootCount(p), 4u);
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 6u + 3u);
+    g.arch.advanceTime(10.4f);  // day 49.9: winter, bare
+    EXPECT_EQ(g.arch.getPhenologyStage(p), PhenologyStage::Dormant);
+    EXPECT_EQ(g.arch.getShootCount(p), 4u);
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 0u);
+    g.arch.advanceTime(1.1f);  // day 51: season 2
+    EXPECT_EQ(g.state(p).season, 2);
+    EXPECT_EQ(g.arch.getShootCount(p), 7u);
+    // The leaves of season 2 so far: one on each new shoot (the parent's next node comes on
+    // day 52).
+    EXPECT_EQ(g.arch.getPlantLeafCount(p), 3u);
+    for (const Shoot& sh : g.state(p).shoots)
+        if (sh.parent == 0 && sh.parentNode >= 3) {
+            EXPECT_DOUBLE_EQ(sh.phytomers[0].birth, 50.0) << "node " << sh.parentNode;
+            EXPECT_FALSE(sh.phytomers[0].petioles[0].leaves[0].removed);
+        }
 }
 
 TEST(Growth, EvergreenKeepsItsLeavesThroughDormancy) {
@@ -672,7 +837,14 @@ TEST(Growth, WithNoFlowerStagesFruitFollowDormancyBreak) {
     g.arch.advanceTime(11.9);
     EXPECT_TRUE(g.arch.getPlantObjectIDs(p, OrganKind::Fruit).empty());
     EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
-    g.arch.advanceTime(0.1);  // day 12: fruit, never a flower
+    g.arch.advanceTime(0.1);  // day 12: fruit (of size 0, no geometry yet), never a flower
+    bool fruit = false;
+    for (const Phytomer& phy : g.state(p).shoots[0].phytomers)
+        for (const FloralBud& fb : phy.petioles[0].floralBuds)
+            fruit = fruit || fb.stage == FloralStage::Fruit;
+    EXPECT_TRUE(fruit);
+    EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
+    g.arch.advanceTime(0.1);
     EXPECT_FALSE(g.arch.getPlantObjectIDs(p, OrganKind::Fruit).empty());
     EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
 }

@@ -562,17 +562,44 @@ TEST(LeafDeform, PetioleRollCurlsOnlyTheBase) {
     }
 }
 
-TEST(LeafDeform, NormalizationKeepsTheUnitBoundingBox) {
-    const Deformed r = deform(LeafShape::Linear, {.midrib_fold_fraction = 0.3f,
-                                                  .longitudinal_curvature = -0.4f,
-                                                  .lateral_curvature = -0.3f,
-                                                  .wave_period = 0.1f,
-                                                  .wave_amplitude = 0.1f,
-                                                  .leaf_buckle_length = 0.5f,
-                                                  .leaf_buckle_angle = 45.0f});
+// The length of the bent midrib: the vertices on the flat blade's midrib (y = z = 0: not a
+// petiolule's), in the order of their flat x.
+double midribLength(const Mesh& flat, const Mesh& bent) {
+    std::vector<std::pair<float, vec3>> midrib;
+    for (std::size_t i = 0; i < flat.positions.size(); ++i)
+        if (std::abs(flat.positions[i].y) < 1e-7f && std::abs(flat.positions[i].z) < 1e-7f)
+            midrib.emplace_back(flat.positions[i].x, bent.positions[i]);
+    std::sort(midrib.begin(), midrib.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    double length = 0.0;
+    for (std::size_t i = 1; i < midrib.size(); ++i)
+        length += glm::length(glm::dvec3(midrib[i].second) - glm::dvec3(midrib[i - 1].second));
+    return length;
+}
+
+// Normalization makes the blade's length along the midrib 1, whatever the bending did to its
+// projection: a curled grass blade keeps its base at the origin and its midrib 1 long, and
+// its projection on x is shorter.
+TEST(LeafDeform, NormalizationGivesTheMidribUnitLength) {
+    const LeafDeformation grass{.midrib_fold_fraction = 0.3f,
+                                .longitudinal_curvature = -0.4f,
+                                .lateral_curvature = -0.3f,
+                                .wave_period = 0.1f,
+                                .wave_amplitude = 0.1f,
+                                .leaf_buckle_length = 0.5f,
+                                .leaf_buckle_angle = 45.0f};
+    const Deformed r = deform(LeafShape::Linear, grass, 50);
+    EXPECT_NEAR(midribLength(r.flat, r.bent), 1.0, 0.01);
     const AABB box = bounds(r.bent);
-    EXPECT_NEAR(box.min.x, 0.0f, 1e-5f);
-    EXPECT_NEAR(box.max.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(box.min.x, 0.0f, 1e-3f);
+    EXPECT_LT(box.max.x, 0.95f);  // the projection is not stretched back to 1
+    // Unbent (fold, cupping and waves only), the blade spans x in [0, 1] as the flat one does.
+    LeafDeformation unbent = grass;
+    unbent.longitudinal_curvature = 0.0f;
+    unbent.leaf_buckle_length = 0.0f;
+    const AABB straight = bounds(deform(LeafShape::Linear, unbent, 50).bent);
+    EXPECT_EQ(straight.min.x, 0.0f);
+    EXPECT_EQ(straight.max.x, 1.0f);
 }
 
 // ---- building from a LeafPrototype ---------------------------------------------------------
@@ -595,6 +622,92 @@ LeafPrototype maizeLike() {
     proto.petiole_roll = 30.0f;
     proto.subdivisions = 50;
     return proto;
+}
+
+// A realized shape with only some of its deformations.
+RealizedLeafShape withDeformation(const RealizedLeafShape& r, const LeafDeformation& d) {
+    RealizedLeafShape out = r;
+    out.deformation = d;
+    out.deformation.blade_width = r.deformation.blade_width;
+    return out;
+}
+
+// The area the deformations give a flat blade mesh of unit length, from the surface they
+// describe (LeafShapes.h): cupping and waves lift the blade to z(x, y) = lateral_curvature
+// (y / w)^2 / 4 + wave_amplitude 2 |y| sin(pi x / wave_period + phase); the fold f turns each
+// half about the midrib, putting a point at height b = |y| sin f + z cos f over it; the midrib
+// bends at curvature kappa(x) = d/dx (4 c x^3 - buckle smoothstep), keeping its length. With
+// the midrib's tangent T and normal N, d/dx = (1 - kappa b) T + z_x (...) and
+// d/dy = (...) of length sqrt(1 + z_y^2), so the area element is
+// sqrt((1 - kappa b)^2 (1 + z_y^2) + z_x^2). Summed over the flat triangles at their centroids;
+// the petiole roll (a twist of the basal 5 %) is left out.
+double deformedArea(const Mesh& flat, const LeafDeformation& d) {
+    const double w = d.blade_width, pi = std::numbers::pi;
+    const bool waves = d.wave_period > 0.0f && d.wave_amplitude != 0.0f;
+    const double k = waves ? pi / d.wave_period : 0.0;
+    const double fold = d.midrib_fold_fraction * 0.5 * pi;
+    const double buckle = d.leaf_buckle_length > 0.0f ? d.leaf_buckle_angle * pi / 180.0 : 0.0;
+    constexpr double ramp = 0.025;  // half-length of the buckle's crease
+    double area = 0.0;
+    for (std::size_t t = 0; t < flat.indices.size(); t += 3) {
+        const glm::dvec3 a = flat.positions[flat.indices[t]],
+                         b = flat.positions[flat.indices[t + 1]],
+                         c = flat.positions[flat.indices[t + 2]];
+        const glm::dvec3 m = (a + b + c) / 3.0;
+        const double side = m.y < 0 ? -1.0 : 1.0, phase = side > 0 ? pi : 0.0;
+        double z = d.lateral_curvature * (m.y / w) * (m.y / w) / 4.0;
+        double zy = d.lateral_curvature * m.y / (2.0 * w * w), zx = 0.0;
+        if (waves) {
+            z += 2.0 * d.wave_amplitude * std::abs(m.y) * std::sin(k * m.x + phase);
+            zy += 2.0 * d.wave_amplitude * side * std::sin(k * m.x + phase);
+            zx = 2.0 * d.wave_amplitude * std::abs(m.y) * k * std::cos(k * m.x + phase);
+        }
+        const double height = std::abs(m.y) * std::sin(fold) + z * std::cos(fold);
+        const double s = std::clamp((m.x - (d.leaf_buckle_length - ramp)) / (2.0 * ramp), 0.0, 1.0);
+        const double kappa = 12.0 * d.longitudinal_curvature * std::max(m.x, 0.0) * m.x -
+                             buckle * 6.0 * s * (1.0 - s) / (2.0 * ramp);
+        const double stretch = 1.0 - kappa * height;
+        area += 0.5 * glm::length(glm::cross(b - a, c - a)) *
+                std::sqrt(stretch * stretch * (1.0 + zy * zy) + zx * zx);
+    }
+    return area;
+}
+
+// A leaf's scale is its length along the blade: curled, buckled and wavy grass blades and a
+// curved, folded dicot leaf have a midrib of length 1 (within the 1 % its chords may lose),
+// and their area is the flat blade's up to the stretching the curl itself makes: bent on a
+// flat cross-section, the blade keeps its area (0.5 %: chords of the bend); with every
+// deformation, its area is deformedArea() (1 %: centroid sampling, chords, the petiole roll).
+// Normalizing the projected length to 1 instead made such blades 1.2 to 1.9 times too large.
+TEST(LeafPrototypeBuild, CurledBladesKeepTheirLengthAndTheAreaTheirCurlGives) {
+    LeafPrototype wavy = maizeLike();  // fold, cupping and waves, no bend
+    wavy.longitudinal_curvature = 0.0f;
+    wavy.leaf_buckle_length = 0.0f;
+    LeafPrototype dicot;  // a curved, folded dicot leaf
+    dicot.shape = LeafShape::Elliptic;
+    dicot.leaf_aspect_ratio = 0.5f;
+    dicot.midrib_fold_fraction = 0.2f;
+    dicot.longitudinal_curvature = 0.4f;
+    dicot.subdivisions = 20;
+    const std::vector<std::pair<std::string, LeafPrototype>> blades = {
+        {"maize-like", maizeLike()}, {"wavy", wavy}, {"dicot", dicot}};
+    Rng rng(11);
+    for (const auto& [name, proto] : blades)
+        for (int draw = 0; draw < 3; ++draw) {
+            SCOPED_TRACE(name + ", draw " + std::to_string(draw));
+            const RealizedLeafShape shape = realizeLeafShape(proto, rng);
+            const LeafDeformation& d = shape.deformation;
+            const Mesh bent = buildLeafMesh(shape),
+                       flat = buildLeafMesh(withDeformation(shape, {}));
+            EXPECT_NEAR(midribLength(flat, bent), 1.0, 0.01);
+            const Mesh bentOnly = buildLeafMesh(
+                withDeformation(shape, {.longitudinal_curvature = d.longitudinal_curvature,
+                                        .leaf_buckle_length = d.leaf_buckle_length,
+                                        .leaf_buckle_angle = d.leaf_buckle_angle}));
+            EXPECT_NEAR(bentOnly.area() / flat.area(), 1.0, 0.005);
+            EXPECT_NEAR(bent.area() / deformedArea(flat, d), 1.0, 0.01)
+                << "flat " << flat.area() << ", bent " << bent.area();
+        }
 }
 
 TEST(LeafPrototypeBuild, SameStreamSameBytes) {
@@ -637,29 +750,50 @@ TEST(LeafPrototypeBuild, DrawsEveryRandomFieldOnceWhateverTheShape) {
     EXPECT_THROW(realizeLeafShape(proto, first), Error);
 }
 
-TEST(LeafPrototypeBuild, BoundingBoxRunsFromZeroToOne) {
+// Every family: unbent, the prototype spans x in [0, 1]; bent up or down, its midrib keeps the
+// length it has in the flat blade (from the base, or the sinus of a notched outline, to the
+// tip) and the base stays at the origin.
+TEST(LeafPrototypeBuild, EveryFamilySpansUnitLengthAlongTheBlade) {
     Rng rng(5);
     for (LeafShape s : allLeafShapes()) {
-        LeafPrototype proto;
-        const LeafOutlineParams p = leafShapePreset(s);
-        proto.shape = s;
-        proto.leaf_aspect_ratio = p.aspect_ratio;
-        proto.widest_point = p.widest_point;
-        proto.tip_angle = p.tip_angle;
-        proto.base_angle = p.base_angle;
-        proto.sinus_depth = p.sinus_depth;
-        proto.midrib_fold_fraction = 0.2f;
-        proto.longitudinal_curvature = RandomFloat::uniform(-0.4f, 0.4f);
-        proto.lateral_curvature = -0.3f;
-        proto.wave_period = 0.3f;
-        proto.wave_amplitude = 0.05f;
-        proto.subdivisions = 6;
-        SCOPED_TRACE(std::string(leafShapeName(s)));
-        const Mesh m = buildLeafPrototype(proto, rng);
-        ASSERT_NO_THROW(m.validate());
-        const AABB box = bounds(m);
-        EXPECT_NEAR(box.min.x, 0.0f, 1e-5f);
-        EXPECT_NEAR(box.max.x, 1.0f, 1e-5f);
+        for (float curvature : {0.0f, 0.4f, -0.4f}) {
+            LeafPrototype proto;
+            const LeafOutlineParams p = leafShapePreset(s);
+            proto.shape = s;
+            proto.leaf_aspect_ratio = p.aspect_ratio;
+            proto.widest_point = p.widest_point;
+            proto.tip_angle = p.tip_angle;
+            proto.base_angle = p.base_angle;
+            proto.sinus_depth = p.sinus_depth;
+            proto.midrib_fold_fraction = 0.2f;
+            proto.longitudinal_curvature = curvature;
+            proto.lateral_curvature = -0.3f;
+            proto.wave_period = 0.3f;
+            proto.wave_amplitude = 0.05f;
+            proto.subdivisions = 6;
+            SCOPED_TRACE(std::string(leafShapeName(s)) + ", curvature " +
+                         std::to_string(curvature));
+            const RealizedLeafShape shape = realizeLeafShape(proto, rng);
+            RealizedLeafShape unbent = shape;
+            unbent.deformation = {};
+            const Mesh m = buildLeafMesh(shape), flat = buildLeafMesh(unbent);
+            ASSERT_NO_THROW(m.validate());
+            ASSERT_EQ(m.positions.size(), flat.positions.size());
+            const AABB box = bounds(m), flatBox = bounds(flat);
+            EXPECT_NEAR(flatBox.min.x, 0.0f, 1e-5f);
+            EXPECT_NEAR(flatBox.max.x, 1.0f, 1e-5f);
+            if (curvature == 0.0f) {
+                EXPECT_NEAR(box.min.x, 0.0f, 1e-5f);
+                EXPECT_NEAR(box.max.x, 1.0f, 1e-5f);
+            } else {
+                EXPECT_NEAR(box.min.x, 0.0f, 0.01f);
+                EXPECT_LT(box.max.x, 1.0f);
+            }
+            AABB flatMidrib;
+            for (const vec3& v : flat.positions)
+                if (std::abs(v.y) < 1e-7f) flatMidrib.add(v);
+            EXPECT_NEAR(midribLength(flat, m), flatMidrib.max.x - flatMidrib.min.x, 0.01);
+        }
     }
 }
 

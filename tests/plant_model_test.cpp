@@ -180,28 +180,33 @@ TEST(PlantModel, LeafPitchIsMeasuredFromThePetioleAxis) {
     }
 }
 
-TEST(PlantModel, InsertionAngleOfAChildShoot) {
-    for (float angle : {20.0f, 45.0f, 70.0f}) {
+TEST(PlantModel, AChildShootPlacedByHandStartsAtTheGivenPitch) {
+    // The type's insertion angle (35 at the tip) belongs to shoots growing from buds; a shoot
+    // placed by hand starts at spec.baseRotation.pitch from the parent's axis.
+    for (float angle : {0.0f, 20.0f, 45.0f, 70.0f}) {
         ShootParameters p = straightShoot();
-        p.insertion_angle_tip = angle;
         Fixture f(p, 3);
         ShootSpec child;
         child.phytomers = 2;
         child.size.internodeRadius = 0.002f;
         child.size.internodeLengthMax = 0.03f;
         child.shootType = "main";
+        child.baseRotation.pitch = angle;
         const unsigned c = f.arch.addChildShoot(f.plant, 0u, 2u, child);
         const vec3 start = f.arch.getNodePosition(f.plant, 0, 2);
         const vec3 first = f.arch.getNodePosition(f.plant, c, 0);
         EXPECT_NEAR(angleBetween(first - start, vec3(0, 0, 1)), angle, 0.5f);
+        EXPECT_NEAR(f.arch.plant(f.plant).shoots[c].insertionAngle, angle, 1e-4f);
         // The child leaves on the side of the petiole it grows from.
-        EXPECT_GT(glm::dot(vec3(first - start), f.petioleDirection(2, 0)), 0.0f);
+        if (angle > 0.0f) {
+            EXPECT_GT(glm::dot(vec3(first - start), f.petioleDirection(2, 0)), 0.0f);
+        }
         EXPECT_EQ(f.arch.getShootRank(f.plant, c), 1u);
         EXPECT_EQ(f.arch.getShootParent(f.plant, c), 0);
     }
 }
 
-TEST(PlantModel, InsertionAngleDecaysDownTheShootAndIsCappedAt90) {
+TEST(PlantModel, AChildShootPlacedByHandIgnoresTheInsertionAngleDecay) {
     ShootParameters p = straightShoot();
     p.insertion_angle_tip = 30.0f;
     p.insertion_angle_decay_rate = 25.0f;
@@ -210,10 +215,10 @@ TEST(PlantModel, InsertionAngleDecaysDownTheShootAndIsCappedAt90) {
     child.size.internodeRadius = 0.002f;
     child.size.internodeLengthMax = 0.03f;
     child.shootType = "main";
-    // Node 4 is the tip (30), node 3 one below (55), node 0 four below (capped at 90).
-    for (auto [node, expected] : {std::pair{4u, 30.0f}, {3u, 55.0f}, {0u, 90.0f}}) {
+    child.baseRotation.pitch = 40.0f;
+    for (unsigned node : {4u, 3u, 0u}) {
         const unsigned c = f.arch.addChildShoot(f.plant, 0u, node, child);
-        EXPECT_NEAR(f.arch.plant(f.plant).shoots[c].insertionAngle, expected, 1e-4f);
+        EXPECT_NEAR(f.arch.plant(f.plant).shoots[c].insertionAngle, 40.0f, 1e-4f);
     }
 }
 

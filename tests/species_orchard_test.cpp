@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <set>
@@ -29,8 +30,10 @@ struct Grown {
 };
 
 // A library plant built and grown to `age` days (seed 42).
-Grown grow(const std::string& species, float age, const std::map<std::string, float>& params = {}) {
+Grown grow(const std::string& species, float age, const std::map<std::string, float>& params = {},
+           std::uint64_t seed = 0) {
     Grown g;
+    if (seed != 0) g.arch->setSeed(seed);
     g.arch->loadPlantModelFromLibrary(species);
     g.id = g.arch->buildPlantInstanceFromLibrary(vec3(0.0f), age, params);
     return g;
@@ -312,8 +315,8 @@ vec3 tipOf(const Grown& g, const Shoot& s) {
 // The plant of `species` built and grown to `age` days with its attraction points, or with
 // them disabled once built.
 Grown growTrained(const std::string& species, float age, bool points,
-                  const std::map<std::string, float>& params = {}) {
-    Grown g = grow(species, 0.0f, params);
+                  const std::map<std::string, float>& params = {}, std::uint64_t seed = 0) {
+    Grown g = grow(species, 0.0f, params, seed);
     if (!points) g.arch->disableAttractionPoints(g.id);
     g.arch->advanceTime(age);
     return g;
@@ -355,39 +358,46 @@ TEST(SpeciesOrchard, FruitingWallLateralsAreLaidOnTheirWiresByTheAttractionPoint
 // With the wires within the shoots' reach, shoots that come to a wire are laid along it
 // instead of crossing it; without the points none ends on a wire.
 TEST(SpeciesOrchard, WyeShootsAreCaughtByLowWires) {
+    // Over seeds 1 to 3 (one vine's count moves with its draws): seen 41 % caught.
     const std::map<std::string, float> low{{"catch_wire_height", 1.2f}};
-    const Grown g = growTrained("grapevine_Wye", 270.0f, true, low);
-    const Grown free = growTrained("grapevine_Wye", 270.0f, false, low);
-    const std::vector<WireLine> wires = wiresOf(g.plant());
-    ASSERT_EQ(wires.size(), 6u);
-    EXPECT_EQ(g.plant().attraction->points.size(), 48u);
-    unsigned caught = 0, caughtFree = 0, shoots = 0, crossed = 0;
-    for (const Shoot& s : g.plant().shoots) {
-        if (s.type != "grapevine_shoot") continue;
-        ++shoots;
-        caught += toNearestWire(wires, tipOf(g, s)) < 0.03f;
-        const Shoot& f = free.plant().shoots.at(s.id);
-        if (f.type == "grapevine_shoot" && !f.phytomers.empty())
-            caughtFree += toNearestWire(wires, tipOf(free, f)) < 0.03f;
-        // A shoot that came within 3 cm of a wire does not leave it by more than 10 cm
-        // (except past its end, |x| > 0.9 m). Shoots born on a wire grow away freely.
-        const Shoot& parent = g.plant().shoots[unsigned(s.parent)];
-        if (toNearestWire(wires, g.arch->getNodePosition(g.id, parent.id, unsigned(s.parentNode))) <
-            0.1f)
-            continue;
-        bool reached = false;
-        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-            const vec3 q = g.arch->getNodePosition(g.id, s.id, k);
-            const float d = toNearestWire(wires, q);
-            if (std::abs(q.x) > 0.9f) break;
-            crossed += reached && d > 0.1f;
-            reached = reached || d < 0.03f;
+    unsigned caughtAll = 0, shootsAll = 0;
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        SCOPED_TRACE("seed " + std::to_string(seed));
+        const Grown g = growTrained("grapevine_Wye", 270.0f, true, low, seed);
+        const Grown free = growTrained("grapevine_Wye", 270.0f, false, low, seed);
+        const std::vector<WireLine> wires = wiresOf(g.plant());
+        ASSERT_EQ(wires.size(), 6u);
+        EXPECT_EQ(g.plant().attraction->points.size(), 48u);
+        unsigned caught = 0, caughtFree = 0, shoots = 0, crossed = 0;
+        for (const Shoot& s : g.plant().shoots) {
+            if (s.type != "grapevine_shoot") continue;
+            ++shoots;
+            caught += toNearestWire(wires, tipOf(g, s)) < 0.03f;
+            const Shoot& f = free.plant().shoots.at(s.id);
+            if (f.type == "grapevine_shoot" && !f.phytomers.empty())
+                caughtFree += toNearestWire(wires, tipOf(free, f)) < 0.03f;
+            // A shoot that came within 3 cm of a wire does not leave it by more than 10 cm
+            // (except past its end, |x| > 0.9 m). Shoots born on a wire grow away freely.
+            const Shoot& parent = g.plant().shoots[unsigned(s.parent)];
+            if (toNearestWire(
+                    wires, g.arch->getNodePosition(g.id, parent.id, unsigned(s.parentNode))) < 0.1f)
+                continue;
+            bool reached = false;
+            for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+                const vec3 q = g.arch->getNodePosition(g.id, s.id, k);
+                const float d = toNearestWire(wires, q);
+                if (std::abs(q.x) > 0.9f) break;
+                crossed += reached && d > 0.1f;
+                reached = reached || d < 0.03f;
+            }
         }
+        EXPECT_GT(shoots, 30u);
+        EXPECT_LE(caughtFree, 1u);
+        EXPECT_EQ(crossed, 0u);
+        caughtAll += caught;
+        shootsAll += shoots;
     }
-    EXPECT_GT(shoots, 30u);
-    EXPECT_GE(caught, shoots / 3);
-    EXPECT_LE(caughtFree, 1u);
-    EXPECT_EQ(crossed, 0u);
+    EXPECT_GE(caughtAll, shootsAll / 3);
 }
 
 // The wires follow the build parameters, relative to the plant's base.

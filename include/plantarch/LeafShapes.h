@@ -8,7 +8,9 @@
 // point has half-width leaf_aspect_ratio / 2. For the families with a notched base (cordate,
 // reniform, sagittate, hastate, palmate) the basal lobes reach back to x = 0 and the
 // petiole attaches in the sinus at (sinus_depth, 0); species then set `leaf_offset` to
-// (-sinus_depth, 0, 0) to put the sinus on the petiole tip.
+// (-sinus_depth, 0, 0) to put the sinus on the petiole tip. Bending a blade (longitudinal
+// curvature, buckle) keeps its length along the midrib: the prototype's unit length is its
+// length along the blade, and a bent blade's projection on x is shorter than 1.
 //
 // The pieces can be used alone: leafOutline() gives the polygon, meshLeafOutline() a flat
 // triangle mesh of it, deformLeafMesh() bends it; buildLeafPrototype() does everything from
@@ -152,8 +154,7 @@ struct LeafDeformation {
     /// Width used to normalize the cross-section of the lateral curvature (the blade's
     /// leaf_aspect_ratio); <= 0 takes the mesh's extent in y.
     float blade_width = 0.0f;
-    /// Rescale so the bounding box runs from x = 0 to x = 1 after bending (see
-    /// deformLeafMesh()).
+    /// Rescale so the blade's length along the midrib is 1 (see deformLeafMesh()).
     bool normalize_length = true;
 };
 
@@ -174,9 +175,11 @@ struct LeafDeformation {
 ///    stretching), minus leaf_buckle_angle degrees ramped in over x = leaf_buckle_length
 ///    +- 0.025 (a crease that bends the rest of the blade down). Cross-sections keep their
 ///    shape and stay perpendicular to the midrib.
-///  - normalization: bending shortens the blade's projection; when normalize_length is set
-///    the mesh is scaled uniformly about the origin and shifted so x spans [0, 1] again, as
-///    every prototype does (prototype_scale is then the projected length of the bent leaf).
+///  - normalization: when normalize_length is set the mesh is scaled uniformly about the
+///    origin and shifted in x so that the flat blade's extent in x (taken before bending)
+///    becomes [0, 1]. Bending keeps lengths along the midrib, so the blade's length along it
+///    is 1 however it curls (a leaf's prototype_scale is its length along the blade, the arc
+///    length of the midrib); a bent blade's projection on x is shorter than 1.
 void deformLeafMesh(Mesh& mesh, const LeafDeformation& deformation);
 
 // ---- building from a LeafPrototype -------------------------------------------------------
@@ -205,10 +208,11 @@ std::string leafTextureFile(const LeafPrototype& proto, int leafletIndex = 0);
 RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int leafletIndex = 0);
 
 /// Builds the blade: outline (procedural, or traced from texture_file), mesh, deformation,
-/// normalization to x in [0, 1], optional petiolule, then leaf_offset. With a petiolule the
-/// blade is moved forward by 0.08 and a short tapered stalk fills x in [0, 0.1] before the
-/// whole leaf is normalized to x in [0, 1]. UVs map the texture image (traced leaves) or the
-/// blade's bounding box (procedural leaves) as meshLeafOutline() describes.
+/// normalization to unit length along the blade (x in [0, 1] while flat), optional
+/// petiolule, then leaf_offset. With a petiolule the blade is moved forward by 0.08 and a
+/// short tapered stalk fills x in [0, 0.1] before the whole leaf is normalized to unit length
+/// along it (the flat leaf on its stalk spanning x in [0, 1]). UVs map the texture image (traced
+/// leaves) or the blade's bounding box (procedural leaves) as meshLeafOutline() describes.
 Mesh buildLeafMesh(const RealizedLeafShape& leaf);
 
 /// realizeLeafShape() then buildLeafMesh(). The same stream state gives the same bytes.

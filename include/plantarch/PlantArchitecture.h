@@ -181,6 +181,15 @@ public:
         float age, float germination_rate = 1.0f,
         const std::map<std::string, float>& build_parameters = {});
 
+    /// Whether plants built from the library get their species' trellis (<trellis>: posts
+    /// and wires as Context objects with object data organ = "trellis" and trellis_part =
+    /// "post" or "wire"; on by default). They are scene, not plant: the plant's queries,
+    /// statistics and files leave them out; deleting the plant deletes them.
+    void setTrellisGeometry(bool on);
+    bool getTrellisGeometry() const;
+    /// The trellis objects made with a plant (empty: its species has none, or it was off).
+    std::vector<ObjectID> getPlantTrellisObjectIDs(unsigned plantID) const;
+
     /// Current parameters of one shoot type.
     ShootParameters getCurrentShootParameters(const std::string& shoot_type_label) const;
     /// Current parameters of every shoot type, by label.
@@ -203,9 +212,11 @@ public:
     /// A shoot continuing from the tip of `parentShootID` (same axis, rotated by the spec;
     /// same rank). Returns its shoot ID.
     unsigned appendShoot(unsigned plantID, unsigned parentShootID, const ShootSpec& spec);
-    /// A lateral shoot from the axil of petiole `petioleIndex` at node `parentNode`. The
-    /// insertion angle comes from the parent type's insertion_angle_tip and decay rate,
-    /// measured from the tip; spec.baseRotation.pitch is added to it. Returns its shoot ID.
+    /// A lateral shoot from the axil of petiole `petioleIndex` at node `parentNode`, starting
+    /// spec.baseRotation.pitch degrees from the parent's axis (its type's base_yaw and
+    /// base_roll are added to the spec's yaw and roll). The type's insertion_angle_tip and
+    /// decay rate apply to shoots that grow from buds as the plant grows, not to shoots
+    /// placed by hand. Returns its shoot ID.
     unsigned addChildShoot(unsigned plantID, unsigned parentShootID, unsigned parentNode,
                            const ShootSpec& spec, unsigned petioleIndex = 0);
     /// One more phytomer at the tip of a shoot, built from `phytomer_parameters` at `size`.
@@ -231,7 +242,8 @@ public:
     void removeShootFloralBuds(unsigned plantID, unsigned shootID);
     /// Removes flowers (open and closed) and fruit, keeping peduncles.
     void removePlantFlowers(unsigned plantID);
-    /// Harvest: removes all fruit and returns how many there were.
+    /// Harvest: removes all fruit and returns how many there were (fruit of zero size, just
+    /// set, included).
     unsigned harvestPlant(unsigned plantID);
 
     /// Adds a flowering bud at a node with the given stage (for hand-built plants; growth
@@ -331,13 +343,15 @@ public:
     float getPlantHeight(unsigned plantID) const;
     /// Height of the tip of the base stem above the plant base, m.
     float getPlantStemHeight(unsigned plantID) const;
-    /// Leaves (leaflets of compound leaves counted one by one) the plant has now.
+    /// Leaves (leaflets of compound leaves counted one by one) the plant has now. A leaf of
+    /// zero size (currentLeafSize 0, e.g. a stand-in of prototype_scale 0) is not counted: it
+    /// has no geometry (PlantState.h, "organ sizes").
     unsigned getPlantLeafCount(unsigned plantID) const;
     /// One-sided area of all leaves, m^2.
     float getPlantLeafArea(unsigned plantID) const;
     /// Context objects of the plant's organs of one kind (the kind its objects' "organ" data
     /// names), shoot by shoot from the base. A leaf or flower may have several (one per
-    /// prototype part).
+    /// prototype part); an organ of zero size (a fruit at the moment it sets) has none.
     std::vector<ObjectID> getPlantObjectIDs(unsigned plantID, OrganKind kind) const;
     /// Context objects of every organ of the plant, in increasing ID order.
     std::vector<ObjectID> getAllPlantObjectIDs(unsigned plantID) const;
@@ -412,6 +426,9 @@ private:
     std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
                                         const std::map<std::string, float>& build_parameters);
     void mergePlant(const Context& from, PlantInstance plant, Impl& owner);
+    /// Adds the loaded species' trellis for a plant built at `base` (when on and declared).
+    void addTrellis(unsigned plantID, const vec3& base,
+                    const std::map<std::string, float>& build_parameters);
 
     Context* context_;
     std::uint64_t seed_ = 42;

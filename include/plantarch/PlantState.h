@@ -3,6 +3,7 @@
 // geometry is a pure function of it (see PlantArchitecture). All directions are unit
 // vectors in world coordinates (z up); angles are degrees; lengths metres; times days.
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -187,6 +188,29 @@ struct Shoot {
     bool flowering = false;  ///< determinate shoots stop growing once flowering
     bool removed = false;
 };
+
+// ---- organ sizes ------------------------------------------------------------------------
+// An organ's size now, m. An organ of size 0 (a fruit at the moment it sets, a leaf whose
+// full-grown scale is 0) has no geometry: tessellation gives it no Context object and no
+// triangles until it starts to grow, so the object queries (getPlantObjectIDs, leaf area,
+// exports) do not see it, and the counting queries (getPlantLeafCount, the flower and fruit
+// counts of `plantarch build --stats`) leave it out too. It keeps its place in the state
+// (plant XML, plant strings and further growth are as for any organ).
+
+/// A leaf's current length along the blade: its full-grown scale times its phytomer's leaf
+/// fraction.
+inline float currentLeafSize(const Phytomer& ph, const LeafOrgan& leaf) {
+    return leaf.scale * ph.leafFraction;
+}
+/// A flower's length, or a fruit's current length (its full-grown length times fruitGrowth).
+inline float currentFloralSize(const FloralBud& fb, const FlowerOrgan& fl) {
+    return fb.stage == FloralStage::Fruit ? fl.fruitScale * std::clamp(fb.fruitGrowth, 0.0f, 1.0f)
+                                          : fl.flowerScale;
+}
+/// Whether an organ of that current size (m) has geometry.
+inline bool hasSize(float size) {
+    return size > 0.0f;
+}
 
 struct PlantInstance {
     unsigned id = 0;

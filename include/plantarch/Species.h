@@ -76,6 +76,26 @@ struct SpeciesAttraction {
     int line = 0;
 };
 
+/// A trellis drawn with the plant (<trellis>): posts and wires as Context objects labelled
+/// "trellis", made when a plant is built from the library. Every number is an expression
+/// over the build parameters; positions are relative to the plant's base (m).
+struct SpeciesTrellis {
+    struct Post {
+        std::string at;               ///< "x, y": the foot of the post, on the ground
+        std::string height;           ///< m
+        std::string radius = "0.04";  ///< m
+        int line = 0;
+    };
+    struct Wire {
+        std::string from, to;          ///< end points "x, y, z"
+        std::string radius = "0.002";  ///< m
+        int line = 0;
+    };
+    std::vector<Post> posts;
+    std::vector<Wire> wires;
+    int line = 0;
+};
+
 struct SpeciesModel {
     std::string name;  ///< library name, e.g. "bean"
     std::string commonName;
@@ -93,6 +113,8 @@ struct SpeciesModel {
     std::vector<BuildStep> build;
     /// The plant's own attraction points (<attraction_points>), if the species declares any.
     std::optional<SpeciesAttraction> attraction;
+    /// The trellis drawn with each plant (<trellis>), if the species declares one.
+    std::optional<SpeciesTrellis> trellis;
     /// Line in sourceFile of each value read, by parameter path ("trifoliate.max_nodes",
     /// "phenology.max_age"), so later errors about a value can point at it. Empty for a
     /// model made in code.

@@ -94,4 +94,18 @@ AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint6
                                          unsigned plantID, const vec3& base,
                                          const std::map<std::string, float>& overrides = {});
 
+/// One post or wire of a species' trellis, meshed (a closed tube) in world coordinates.
+struct TrellisPart {
+    enum class Kind { Post, Wire };
+    Kind kind = Kind::Post;
+    Mesh mesh;
+};
+
+/// The trellis of a plant of the species at `base` (its <trellis> evaluated with the build
+/// parameters). Random expressions draw from Rng::forPlant(seed, 5 * 2^60 + plantID). Errors
+/// name the file, line and parameter. The species must declare a trellis.
+std::vector<TrellisPart> speciesTrellis(const SpeciesModel& species, std::uint64_t seed,
+                                        unsigned plantID, const vec3& base,
+                                        const std::map<std::string, float>& overrides = {});
+
 }  // namespace plantarch

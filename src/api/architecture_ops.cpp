@@ -301,7 +301,8 @@ unsigned PlantArchitecture::getPlantLeafCount(unsigned plantID) const {
     unsigned n = 0;
     forEachPhytomer(impl_->store.plant(plantID), [&](const Shoot&, const Phytomer& ph) {
         for (const Petiole& pt : ph.petioles)
-            for (const LeafOrgan& l : pt.leaves) n += l.removed ? 0 : 1;
+            for (const LeafOrgan& l : pt.leaves)
+                n += !l.removed && hasSize(currentLeafSize(ph, l)) ? 1 : 0;
     });
     return n;
 }

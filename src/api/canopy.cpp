@@ -112,6 +112,9 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         throw Error("no species loaded: call loadPlantModelFromLibrary first",
                     {.parameter = "species", .validRange = "one of the library species"});
     resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
+    if (impl_->trellisGeometry && impl_->species->trellis)     // and the trellis's
+        speciesTrellis(*impl_->species, seed_, impl_->store.nextPlantID, vec3(0.0f),
+                       buildParameters);
     const bool together = impl_->collision.world && impl_->collision.world->soft();
     // Plants with attraction points of their own count their work in this scene's stats.
     if (impl_->species->attraction) collision::worldOf(impl_->collision);
@@ -128,6 +131,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.species = impl_->species;
         wi.store.defaultPhenology = impl_->store.defaultPhenology;
         wi.functions = impl_->functions;
+        wi.trellisGeometry = false;  // trellises are added in the caller's Context below
         if (!together) wi.collision.world = impl_->collision.world;
     }
 
@@ -166,6 +170,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         }
         throwFirstError();
         impl_->store.nextPlantID = first + unsigned(n);
+        for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
         return ids;
     }
 
@@ -230,6 +235,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     }
     throwFirstError();
     impl_->store.nextPlantID = first + unsigned(n);
+    for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
     return ids;
 }
 

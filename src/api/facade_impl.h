@@ -25,6 +25,8 @@ struct PlantArchitecture::Impl {
     /// Set while a canopy's plants are built only to be grown together (collision
     /// avoidance): their initial geometry would be thrown away, so updateGeometry skips it.
     bool geometryDeferred = false;
+    bool trellisGeometry = true;                        ///< setTrellisGeometry
+    std::map<unsigned, std::vector<ObjectID>> trellis;  ///< trellis objects by plant
 
     /// What growing by hand uses: no steering (only growth steers what it makes).
     GrowthContext growth() { return {store, functions, prototypes, nullptr}; }

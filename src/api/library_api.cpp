@@ -45,14 +45,51 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
         throw Error("invalid plant age",
                     {.parameter = "age", .value = std::to_string(age), .validRange = ">= 0 days"});
     resolveBuildParameters(*impl_->species, build_parameters);  // range errors before any change
+    if (impl_->trellisGeometry && impl_->species->trellis)      // and the trellis's
+        speciesTrellis(*impl_->species, seed(), impl_->store.nextPlantID, base_position,
+                       build_parameters);
     const unsigned id = buildPlantStructure(base_position, build_parameters);
     try {
         advanceTime(id, age);
+        addTrellis(id, base_position, build_parameters);
     } catch (...) {
         deletePlantInstance(id);
         throw;
     }
     return id;
+}
+
+void PlantArchitecture::setTrellisGeometry(bool on) {
+    impl_->trellisGeometry = on;
+}
+
+bool PlantArchitecture::getTrellisGeometry() const {
+    return impl_->trellisGeometry;
+}
+
+std::vector<ObjectID> PlantArchitecture::getPlantTrellisObjectIDs(unsigned plantID) const {
+    impl_->store.plant(plantID);  // an unknown plant is an error
+    const auto t = impl_->trellis.find(plantID);
+    return t == impl_->trellis.end() ? std::vector<ObjectID>{} : t->second;
+}
+
+void PlantArchitecture::addTrellis(unsigned plantID, const vec3& base,
+                                   const std::map<std::string, float>& build_parameters) {
+    if (!impl_->trellisGeometry || !impl_->species || !impl_->species->trellis) return;
+    const SpeciesModel& model = *impl_->species;
+    const std::vector<TrellisPart> parts =
+        speciesTrellis(model, seed(), plantID, base, build_parameters);
+    std::vector<ObjectID>& ids = impl_->trellis[plantID];
+    for (const TrellisPart& part : parts) {
+        const bool post = part.kind == TrellisPart::Kind::Post;
+        const Material m{post ? vec3(0.45f, 0.33f, 0.2f) : vec3(0.3f, 0.3f, 0.32f), "", "trellis"};
+        const ObjectID id = context_->addObject(part.mesh, m);
+        context_->setObjectData(id, "organ", std::string("trellis"));
+        context_->setObjectData(id, "trellis_part", std::string(post ? "post" : "wire"));
+        context_->setObjectData(id, "plantID", std::int32_t(plantID));
+        context_->setObjectData(id, "plant_name", model.name);
+        ids.push_back(id);
+    }
 }
 
 unsigned PlantArchitecture::buildPlantStructure(

@@ -140,6 +140,11 @@ void PlantArchitecture::deletePlantInstance(unsigned plantID) {
     PlantInstance& p = impl_->store.plant(plantID);
     for (Shoot& s : p.shoots) deleteShootObjects(*context_, s);
     impl_->store.plants.erase(plantID);
+    if (const auto t = impl_->trellis.find(plantID); t != impl_->trellis.end()) {
+        for (ObjectID id : t->second)
+            if (context_->doesObjectExist(id)) context_->deleteObject(id);
+        impl_->trellis.erase(t);
+    }
     impl_->collision.attractionIndexes.erase(plantID);
     if (impl_->collision.world) impl_->collision.world->removePlant(plantID);
 }

@@ -307,7 +307,7 @@ bool buildLeafProxies(const Worker& worker, PlantInstance& plant, PlantProxyMemo
                     for (std::size_t i = 0; i < memo.leaves.size(); ++i) {
                         const OrganPrototype* proto = memo.leaves[i].prototype;
                         memo.leafOutlines[i] =
-                            proto ? &outlineOf(*proto) : nullptr;  // null: fallen
+                            proto ? &outlineOf(*proto) : nullptr;  // null: fallen or of zero size
                         if (proto) corners += std::uint32_t(memo.leafOutlines[i]->size());
                     }
                     if (corners != e.corners) {  // room for its proxies

@@ -276,8 +276,9 @@ void SceneSteering::steerPetiole(const PlantInstance& plant, const Shoot& shoot,
                      in.direction * in.length * internodeFraction;
     const vec3 start = top + side * in.radius * 0.5f;
     Rng rng = coneRng(seed, plant.id, shoot.id, node, kConePetiole, petioleIndex);
+    // The new phytomer is not in the scene yet; the leaf of the node below is (it is the one a
+    // new leaf most often grows into), so it is seen.
     Ignore ignore = ownNode(plant, shoot, int(node), false);
-    if (node > 0) ignore.organs[1] = organTag(shoot.id, node - 1);
     if (auto t = softTarget(*world, start, dir, o.cone, rng, 2.0f * pt.radius + 1e-4f, ignore))
         toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), pt.pitch, pt.azimuth);
 }
@@ -294,9 +295,14 @@ void SceneSteering::steerPeduncle(const PlantInstance& plant, const Shoot& shoot
     const vec3 top = nodePosition(plant, shoot.id, k + 1, plant.age, false);
     Rng rng = coneRng(seed, plant.id, shoot.id, k, kConePeduncle,
                       (terminal ? 0x10000u : 0u) + petiole * 256u + bud);
-    const Ignore ignore = ownNode(plant, shoot, int(k), false);
+    // A peduncle stands in its petiole's axil, and what its flowers cross is most often that
+    // petiole's own leaf: nothing of the node is ignored, and the cone starts just clear of the
+    // stem instead.
+    Ignore ignore;
+    ignore.plant = plant.id;
+    const vec3 start = top + dir * (2.0f * in.radius);
     if (auto t =
-            softTarget(*world, top, dir, o.cone, rng, 2.0f * fb.peduncleRadius + 1e-4f, ignore)) {
+            softTarget(*world, start, dir, o.cone, rng, 2.0f * fb.peduncleRadius + 1e-4f, ignore)) {
         float azimuth = base + fb.peduncleAzimuth;
         toPitchAzimuth(in, blend(dir, *t, o.cone.inertia), fb.pedunclePitch, azimuth);
         fb.peduncleAzimuth = azimuth - base;

@@ -154,13 +154,25 @@ private:
     std::vector<dvec2> table_;
 };
 
-void normalizeExtent(Mesh& mesh) {
+// The extent in x of a mesh's vertices.
+struct ExtentX {
+    float lo = 0.0f, hi = 0.0f;
+};
+
+ExtentX extentX(const std::vector<vec3>& positions) {
     AABB box;
-    for (const vec3& p : mesh.positions) box.add(p);
-    const float length = box.max.x - box.min.x;
+    for (const vec3& p : positions) box.add(p);
+    return {box.min.x, box.max.x};
+}
+
+// Scales uniformly about the origin and shifts in x so that `e` becomes [0, 1]. Given the
+// extent of a flat blade, this makes its length along the blade 1 whatever the bending did to
+// its projection.
+void normalizeLength(Mesh& mesh, ExtentX e) {
+    const float length = e.hi - e.lo;
     if (!(length > 1e-6f)) return;
     const float scale = 1.0f / length;
-    for (vec3& p : mesh.positions) p = vec3(p.x - box.min.x, p.y, p.z) * scale;
+    for (vec3& p : mesh.positions) p = vec3(p.x - e.lo, p.y, p.z) * scale;
 }
 
 Mesh petiolule(double length, double radius) {
@@ -230,6 +242,7 @@ void deformLeafMesh(Mesh& mesh, const LeafDeformation& d) {
     const double roll = radians(double(d.petiole_roll));
     const bool waves = d.wave_period > 1e-6f && d.wave_amplitude != 0.0f;
     const Midrib midrib(d, xLo, xHi);
+    const ExtentX flat = extentX(mesh.positions);
 
     for (vec3& v : mesh.positions) {
         const double x = v.x, y = v.y;
@@ -249,7 +262,7 @@ void deformLeafMesh(Mesh& mesh, const LeafDeformation& d) {
         const dvec2 normal(-std::sin(theta), std::cos(theta));  // in the (x, z) plane
         v = vec3(float(m.x + b * normal.x), float(side * a), float(m.y + b * normal.y));
     }
-    if (d.normalize_length) normalizeExtent(mesh);
+    if (d.normalize_length) normalizeLength(mesh, flat);
 }
 
 // ---- from a LeafPrototype ----------------------------------------------------------------
@@ -326,6 +339,13 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
     // triangle uses.
     mesh.positions.emplace_back(attach.x, attach.y, 0.0f);
     mesh.uvs.emplace_back(0.0f, 0.5f);
+    // The flat blade, normalized as deformLeafMesh normalizes the bent one: on its stalk it
+    // gives a stalked leaf's length (below).
+    Mesh flat;
+    if (leaf.build_petiolule) {
+        flat.positions = mesh.positions;
+        normalizeLength(flat, extentX(flat.positions));
+    }
     deformation.normalize_length = true;
     deformLeafMesh(mesh, deformation);
     const vec3 attached = mesh.positions.back();
@@ -333,11 +353,17 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
     mesh.uvs.pop_back();
 
     if (leaf.build_petiolule) {
-        // The stalk runs along +x from the origin into the attachment point.
+        // The stalk runs along +x from the origin into the attachment point. The leaf's length
+        // along it is that of the flat blade on its stalk, whatever the bending.
+        const Mesh stalk = petiolule(kPetioluleLength + 0.01, 0.012);
         for (vec3& p : mesh.positions) p += vec3(float(kPetioluleLength), 0.0f, 0.0f) - attached;
-        Mesh stalk = petiolule(kPetioluleLength + 0.01, 0.012);
+        const vec3 flatAttached = flat.positions.back();
+        flat.positions.pop_back();
+        for (vec3& p : flat.positions)
+            p += vec3(float(kPetioluleLength), 0.0f, 0.0f) - flatAttached;
+        flat.positions.insert(flat.positions.end(), stalk.positions.begin(), stalk.positions.end());
         mesh.append(stalk);
-        normalizeExtent(mesh);
+        normalizeLength(mesh, extentX(flat.positions));
     }
     for (vec3& p : mesh.positions) p += leaf.leaf_offset;
     return mesh;

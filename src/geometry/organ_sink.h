@@ -34,7 +34,7 @@ public:
     /// One organ made of the parts of a prototype placed by `transform` (leaves, flowers, fruit).
     virtual void writeParts(std::vector<ObjectID>& objects, const OrganPrototype& prototype,
                             const mat4& transform, const OrganLabels& labels) = 0;
-    /// An organ that has no geometry now (fallen, not yet visible, zero length).
+    /// An organ that has no geometry now (fallen, not yet visible, of zero size).
     virtual void remove(ObjectID& object) { (void)object; }
     virtual void removeAll(std::vector<ObjectID>& objects) { (void)objects; }
 };
@@ -89,8 +89,8 @@ struct PetioleTrig {
     geometry::CurveBasis curve;
 };
 
-/// One leaf of a petiole as tessellation places it: its prototype (null: fallen) and the
-/// transform of the prototype's coordinates to the world.
+/// One leaf of a petiole as tessellation places it: its prototype (null: fallen, or of zero size)
+/// and the transform of the prototype's coordinates to the world.
 struct LeafPlacement {
     const OrganPrototype* prototype = nullptr;
     mat4 transform{1.0f};

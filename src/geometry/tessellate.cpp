@@ -490,6 +490,12 @@ struct Tessellator {
         const Material mat{ip.color, ip.image_texture, ""};
         for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
             Phytomer& ph = s.phytomers[i];
+            // An internode of zero length or radius is a line or a point: no geometry.
+            if (!hasSize(ph.internode.length * ph.internodeFraction) ||
+                !hasSize(ph.internode.radius)) {
+                sink->remove(ph.internode.object);
+                continue;
+            }
             const Mesh m =
                 geometry::tubeMesh(rings, i * segs, (i + 1) * segs, ip.radial_subdivisions);
             sink->write(ph.internode.object, m, mat, {OrganKind::Internode, &s, int(i), ph.age});
@@ -561,12 +567,12 @@ struct Tessellator {
     // A leaf along petiolePath (measured).
     void placeLeaf(Shoot& s, Phytomer& ph, int node, vec3 side, LeafOrgan& leaf,
                    const LeafParameters& lp) {
-        if (leaf.removed) {
+        const float scale = currentLeafSize(ph, leaf);
+        if (leaf.removed || !hasSize(scale)) {  // fallen, or not grown (see PlantState.h)
             sink->removeAll(leaf.objects);
             return;
         }
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
-        const float scale = leaf.scale * ph.leafFraction;
         const mat4 xf = geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale,
                                                 lp.prototype.leaf_offset);
         sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf), xf,
@@ -628,7 +634,8 @@ struct Tessellator {
         bool placed = false;
         for (std::size_t i = 0; i < pt.leaves.size(); ++i) {
             const LeafOrgan& leaf = pt.leaves[i];
-            if (leaf.removed) {
+            const float scale = currentLeafSize(ph, leaf);
+            if (leaf.removed || !hasSize(scale)) {  // as placeLeaf: no geometry
                 out[i].prototype = nullptr;
                 continue;
             }
@@ -642,7 +649,6 @@ struct Tessellator {
                 placed = true;
             }
             const auto& [origin, tangent] = place;
-            const float scale = leaf.scale * ph.leafFraction;
             out[i].transform =
                 geometry::leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
             if (!t.prototype || trig.epoch == 0 || t.epoch != trig.epoch || t.parameters != &lp ||
@@ -743,6 +749,8 @@ struct Tessellator {
                 fb.peduncleObject,
                 geometry::tubeMesh(rings, 0, rings.size() - 1, pp.peduncle.radial_subdivisions),
                 Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
+        } else if (sink->wants(OrganKind::Peduncle)) {
+            sink->remove(fb.peduncleObject);
         }
         const InflorescenceParameters& inf = pp.inflorescence;
         const bool fruit = fb.stage == FloralStage::Fruit;
@@ -763,6 +771,11 @@ struct Tessellator {
         request.subdivisions = fruit ? inf.fruit_subdivisions : inf.flower_subdivisions;
         peduncleMeasure.measure(path);
         for (FlowerOrgan& fl : fb.flowers) {
+            const float scale = currentFloralSize(fb, fl);
+            if (!hasSize(scale)) {  // a fruit at the moment it sets (see PlantState.h)
+                sink->removeAll(fl.objects);
+                continue;
+            }
             auto [origin, tangent] = alongPath(path, peduncleMeasure, fl.position);
             OrganFrame f = uprightFrame(tangent, side);
             // Flowers stand on alternating sides of the peduncle (azimuth about its axis), all
@@ -778,7 +791,6 @@ struct Tessellator {
             axis = turned(axis, fl.clearance);
             OrganFrame of = uprightFrame(axis, f.z);
             of = rotated(of, 0.0f, 0.0f, fl.roll);
-            const float scale = fruit ? fl.fruitScale * maturity : fl.flowerScale;
             const OrganPrototype& shape =
                 floralPrototype(name, fl.variant, request, inf.normalize_OBJ_model);
             sink->writeParts(fl.objects, shape, placement(of, origin, scale),

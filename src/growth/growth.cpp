@@ -108,16 +108,25 @@ struct Grower {
 
     // ---- scheduling --------------------------------------------------------------------
 
-    double floweringTime() const {
-        if (plant.dormancyBreakTime < 0.0) return -1.0;
+    // Days from a floral bud's start to its first stage: closed flowers after
+    // time_to_flower_initiation, or open ones after time_to_flower_opening when initiation is
+    // off, or fruit after time_to_fruit_set when both are off; negative: it never flowers.
+    double firstFloralDelay() const {
         const PhenologyParameters& ph = plant.phenology;
-        if (ph.time_to_flower_initiation >= 0.0f)
-            return plant.dormancyBreakTime + ph.time_to_flower_initiation;
-        if (ph.time_to_flower_opening >= 0.0f)
-            return plant.dormancyBreakTime + ph.time_to_flower_opening;
-        // No flower stages at all: fruit follow dormancy break by time_to_fruit_set.
-        if (ph.time_to_fruit_set >= 0.0f) return plant.dormancyBreakTime + ph.time_to_fruit_set;
+        if (ph.time_to_flower_initiation >= 0.0f) return ph.time_to_flower_initiation;
+        if (ph.time_to_flower_opening >= 0.0f) return ph.time_to_flower_opening;
+        if (ph.time_to_fruit_set >= 0.0f) return ph.time_to_fruit_set;
         return -1.0;
+    }
+
+    // When a floral bud whose clock starts at `start` reaches its first stage. Each bud keeps
+    // its own clock, as a vegetative bud does: it starts when the bud is made in a growing
+    // season, or when dormancy breaks for a bud made or kept through a winter (or one that
+    // needs a winter). Before the plant's first dormancy break no clock runs.
+    double floweringTime(double start) const {
+        const double delay = firstFloralDelay();
+        if (plant.dormancyBreakTime < 0.0 || delay < 0.0) return -1.0;
+        return std::max(start, plant.dormancyBreakTime) + delay;
     }
 
     // Events after the end of the current run are not queued: the run would stop before
@@ -172,7 +181,7 @@ struct Grower {
     // Sets the stored times of a phytomer's buds (new phytomers and new seasons).
     void scheduleBuds(Shoot& s, Phytomer& ph) {
         const ShootParameters& t = typeOf(s.type);
-        const double flowering = floweringTime();
+        const double flowering = floweringTime(plant.age);
         for (Petiole& pt : ph.petioles) {
             for (VegetativeBud& b : pt.vegetativeBuds)
                 if (b.state == BudState::Dormant && b.breakTime < 0.0 && growingSeason() &&
@@ -181,7 +190,7 @@ struct Grower {
             for (FloralBud& fb : pt.floralBuds)
                 if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
                     flowering >= 0.0 && !t.flowers_require_dormancy)
-                    fb.nextTime = std::max(flowering, plant.age);
+                    fb.nextTime = flowering;
         }
     }
 
@@ -225,13 +234,13 @@ struct Grower {
         const int n = t.max_terminal_floral_buds.sample(plant.rng);
         if (s.terminalFloralBuds.empty() && n > 0 && !s.phytomers.empty()) {
             s.terminalFloralBuds.resize(std::size_t(n));
-            const double flowering = floweringTime();
+            const double flowering = floweringTime(plant.age);
             for (unsigned i = 0; i < s.terminalFloralBuds.size(); ++i) {
                 FloralBud& fb = s.terminalFloralBuds[i];
                 fb.terminal = true;
                 fb.terminalAzimuth = 360.0f * float(i) / float(s.terminalFloralBuds.size());
                 if (!t.flowers_require_dormancy && flowering >= 0.0) {
-                    fb.nextTime = std::max(flowering, plant.age);
+                    fb.nextTime = flowering;
                     push(fb.nextTime, kFloral, s.id, 0, 0, i, true);
                 }
             }
@@ -264,7 +273,7 @@ struct Grower {
         spec.size.internodeLengthScale = 0.01f;
         spec.size.leafScale = 0.01f;
         const unsigned id =
-            createShoot(growth, plant, spec, StartMode::Child, int(e.shoot), e.node, e.petiole);
+            createShoot(growth, plant, spec, StartMode::Bud, int(e.shoot), e.node, e.petiole);
         enqueueShoot(plant.shoots[id]);
     }
 
@@ -368,8 +377,8 @@ struct Grower {
         const float senesce = plant.phenology.time_to_senescence;
         plant.senescenceTime = senesce >= 0.0f ? now + senesce : -1.0;
         push(plant.senescenceTime, kSenescence, 0);
-        const double flowering = floweringTime();
-        // A dormant floral bud still waiting flowers this season.
+        const double flowering = floweringTime(now);
+        // A dormant floral bud still waiting flowers this season, its clock starting now.
         auto awaken = [&](FloralBud& fb, unsigned shoot, unsigned node, unsigned petiole,
                           unsigned index, bool terminal) {
             if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
@@ -401,7 +410,14 @@ struct Grower {
                                 bud.state = BudState::Dead;
                                 continue;
                             }
-                            bud.breakTime = now + t.vegetative_bud_break_time.sample(plant.rng);
+                            // A bud needing a winter breaks vegetative_bud_break_time after
+                            // dormancy ends; any other breaks that long after it was made, or
+                            // now if that time passed while the plant was dormant (a bud made
+                            // in winter, or one still waiting when the last season ended).
+                            const double wait = t.vegetative_bud_break_time.sample(plant.rng);
+                            bud.breakTime = t.growth_requires_dormancy
+                                                ? now + wait
+                                                : std::max(now, s.phytomers[k].birth + wait);
                             push(bud.breakTime, kBudBreak, s.id, k, j, b);
                         }
                     }

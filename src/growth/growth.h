@@ -21,8 +21,10 @@ struct GrowthContext {
     Steering* steering = nullptr;
 };
 
-/// How a new shoot starts: the plant's base stem, continuing a shoot's tip, or from an axil.
-enum class StartMode { Base, Append, Child };
+/// How a new shoot starts: the plant's base stem, continuing a shoot's tip, from an axil by
+/// hand (at the pitch its spec gives), or from an axillary bud breaking as the plant grows (at
+/// its own type's insertion angle for the bud's place below the parent's tip).
+enum class StartMode { Base, Append, Child, Bud };
 
 /// Throws if a shoot's start options are out of range (naming the option and its range).
 void checkShootSpec(const ShootSpec& spec);

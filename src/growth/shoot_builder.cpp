@@ -224,7 +224,7 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
         start.rollReference = f.reference;
     } else {
         Shoot& parent = PlantStore::shoot(plant, unsigned(parentID));
-        s.rank = parent.rank + (mode == StartMode::Child ? 1 : 0);
+        s.rank = parent.rank + (mode == StartMode::Append ? 0 : 1);
         if (mode == StartMode::Append) {
             const Internode& tip = parent.phytomers.back().internode;
             const AxisFrame f = turnedFrame({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
@@ -247,12 +247,16 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
                      .validRange = node.petioles.empty()
                                        ? "the node has no petioles"
                                        : "0 to " + std::to_string(node.petioles.size() - 1)});
-            const ShootParameters& parentType = growth.store.shootTypeFor(plant, parent.type);
-            const int fromTip = int(parent.phytomers.size()) - 1 - int(parentNode);
-            const float tipAngle = parentType.insertion_angle_tip.sample(plant.rng);
-            const float decay = parentType.insertion_angle_decay_rate.sample(plant.rng);
-            // The angle grows by the decay rate per node down from the tip, up to 90 degrees.
-            const float insertion = std::min(90.0f, tipAngle + decay * float(fromTip));
+            // A shoot growing from a bud takes its own type's insertion angle, which grows by
+            // the decay rate per node down from the parent's tip (its most distal node as the
+            // bud breaks), up to 90 degrees. A shoot placed by hand starts at the pitch given.
+            float insertion = 0.0f;
+            if (mode == StartMode::Bud) {
+                const int fromTip = int(parent.phytomers.size()) - 1 - int(parentNode);
+                const float tipAngle = type.insertion_angle_tip.sample(plant.rng);
+                const float decay = type.insertion_angle_decay_rate.sample(plant.rng);
+                insertion = std::min(90.0f, tipAngle + decay * float(fromTip));
+            }
             s.insertionAngle = insertion + r.pitch;
             const float yaw = type.base_yaw.sample(plant.rng) + r.yaw;
             const float roll = type.base_roll.sample(plant.rng) + r.roll;

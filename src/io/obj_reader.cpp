@@ -3,8 +3,11 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -138,6 +141,33 @@ private:
 
 }  // namespace
 
+// Every vertex line ("v x y z") holds finite numbers: the OBJ parser reads a word such as
+// "nan" as 0, so the text itself is checked, naming the line and the word.
+void checkVertexNumbers(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+        std::size_t at = 1;
+        for (int k = 0; k < 3; ++k) {
+            at = line.find_first_not_of(" \t\r", at);
+            if (at == std::string::npos) break;  // too few numbers: the parser's own error
+            const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+            const std::string word = line.substr(at, end - at);
+            float v = 0.0f;
+            const auto [next, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
+            if (ec != std::errc() || next != word.data() + word.size() || !std::isfinite(v))
+                throw Error("vertex coordinate is not a finite number",
+                            {.file = path,
+                             .line = number,
+                             .parameter = "v",
+                             .value = word,
+                             .validRange = "finite numbers"});
+            at = end;
+        }
+    }
+}
+
 std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                               const ObjReadOptions& options) {
     if (options.storeShapeNames) {
@@ -159,6 +189,7 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         throw Error("cannot read OBJ: " + (why.empty() ? std::string("unknown error") : why),
                     {.file = path});
     }
+    checkVertexNumbers(path);
     if (options.onWarning)
         for (const std::string& w : warnings) options.onWarning(w);
 

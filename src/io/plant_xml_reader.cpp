@@ -367,7 +367,10 @@ private:
     static void readValue(const state::FieldInfo& f, const Element& e, vec3& m) {
         const std::string s = e.text();
         m = e.convert(s, text::parseVec3);
-        for (int i = 0; i < 3; ++i) checkRange(f, e, m[i], s);
+        // A direction's components may pass 1 by a rounding (-1.0000001 after normalizing):
+        // its length, within 1e-3 of 1, bounds them instead.
+        if (f.check != state::Check::UnitVector)
+            for (int i = 0; i < 3; ++i) checkRange(f, e, m[i], s);
         const double length = std::sqrt(double(m.x) * m.x + double(m.y) * m.y + double(m.z) * m.z);
         if (f.check == state::Check::UnitVector && std::abs(length - 1.0) > 1e-3)
             e.fail("not a unit vector (length " + number(length) + ")", s,

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "core/math.h"
 #include "core/value_text.h"
+#include "geometry/tube.h"
 #include "library/expression.h"
 #include "library/species_xml.h"
 #include "plantarch/Error.h"
@@ -209,12 +211,13 @@ private:
     std::vector<unsigned> created_;
 };
 
-// Evaluates the expressions of <attraction_points> with the build parameters.
-class AttractionEvaluator {
+// Evaluates the expressions of a species element (<attraction_points>, <trellis>) with the
+// build parameters; errors name the element and the attribute.
+class ElementEvaluator {
 public:
-    AttractionEvaluator(const SpeciesModel& s, const std::map<std::string, float>& parameters,
-                        Rng rng)
-        : species_(s), rng_(rng) {
+    ElementEvaluator(const SpeciesModel& s, std::string element,
+                     const std::map<std::string, float>& parameters, Rng rng)
+        : species_(s), element_(std::move(element)), rng_(rng) {
         for (const auto& [name, value] : parameters) variables_[name] = value;
     }
 
@@ -225,7 +228,7 @@ public:
             ErrorContext c = e.context();
             c.file = species_.sourceFile;
             c.line = line;
-            c.parameter = "attraction_points." + parameter;
+            c.parameter = element_ + "." + parameter;
             throw Error(e.message(), c);
         }
     }
@@ -236,15 +239,29 @@ public:
             throw Error("expected three expressions x, y, z separated by commas",
                         {.file = species_.sourceFile,
                          .line = line,
-                         .parameter = "attraction_points." + parameter,
+                         .parameter = element_ + "." + parameter,
                          .value = text,
                          .validRange = "e.g. \"0, 0, wire_height\""});
         return {float(number(line, parameter, parts[0])), float(number(line, parameter, parts[1])),
                 float(number(line, parameter, parts[2]))};
     }
 
+    // A length: finite and within (0, max] m.
+    float length(int line, const std::string& parameter, const std::string& text, double max) {
+        const double v = number(line, parameter, text);
+        if (!(v > 0.0 && v <= max))
+            throw Error("out of range",
+                        {.file = species_.sourceFile,
+                         .line = line,
+                         .parameter = element_ + "." + parameter,
+                         .value = text::formatDouble(v),
+                         .validRange = "> 0 and <= " + text::formatDouble(max) + " m"});
+        return float(v);
+    }
+
 private:
     const SpeciesModel& species_;
+    std::string element_;
     Rng rng_;
     std::map<std::string, double> variables_;
 };
@@ -258,8 +275,8 @@ AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint6
         throw Error("species declares no attraction points",
                     {.file = species.sourceFile, .parameter = "attraction_points"});
     const SpeciesAttraction& a = *species.attraction;
-    AttractionEvaluator ev(species, resolveBuildParameters(species, overrides),
-                           Rng::forPlant(seed, 3 * (std::uint64_t(1) << 61) + plantID));
+    ElementEvaluator ev(species, "attraction_points", resolveBuildParameters(species, overrides),
+                        Rng::forPlant(seed, 3 * (std::uint64_t(1) << 61) + plantID));
     AttractionPoints out;
     out.halfAngle = float(ev.number(a.line, "half_angle", a.halfAngle));
     out.lookAhead = float(ev.number(a.line, "look_ahead", a.lookAhead));
@@ -299,6 +316,51 @@ AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint6
         out.points.push_back(base + ev.vector(a.points[p].line,
                                               "point[" + std::to_string(p + 1) + "].at",
                                               a.points[p].at));
+    return out;
+}
+
+std::vector<TrellisPart> speciesTrellis(const SpeciesModel& species, std::uint64_t seed,
+                                        unsigned plantID, const vec3& base,
+                                        const std::map<std::string, float>& overrides) {
+    if (!species.trellis)
+        throw Error("species declares no trellis",
+                    {.file = species.sourceFile, .parameter = "trellis"});
+    const SpeciesTrellis& t = *species.trellis;
+    ElementEvaluator ev(species, "trellis", resolveBuildParameters(species, overrides),
+                        Rng::forPlant(seed, 5 * (std::uint64_t(1) << 60) + plantID));
+    auto tube = [](vec3 a, vec3 b, float radius, unsigned sides) {
+        const std::vector<vec3> points = {a, b};
+        const std::vector<float> radii = {radius, radius};
+        const std::vector<geometry::Ring> rings =
+            geometry::tubeRings(points, radii, anyPerpendicular(glm::normalize(b - a)));
+        return geometry::tubeMesh(rings, 0, rings.size() - 1, sides);
+    };
+    std::vector<TrellisPart> out;
+    for (std::size_t i = 0; i < t.posts.size(); ++i) {
+        const SpeciesTrellis::Post& p = t.posts[i];
+        const std::string path = "post[" + std::to_string(i + 1) + "]";
+        const std::vector<std::string> xy = species_xml::splitVector(p.at);
+        const vec3 foot = base + vec3(float(ev.number(p.line, path + ".at", xy.at(0))),
+                                      float(ev.number(p.line, path + ".at", xy.at(1))), 0.0f);
+        const float height = ev.length(p.line, path + ".height", p.height, 100.0);
+        const float radius = ev.length(p.line, path + ".radius", p.radius, 1.0);
+        out.push_back({TrellisPart::Kind::Post, tube(foot, foot + vec3(0, 0, height), radius, 12)});
+    }
+    for (std::size_t i = 0; i < t.wires.size(); ++i) {
+        const SpeciesTrellis::Wire& w = t.wires[i];
+        const std::string path = "wire[" + std::to_string(i + 1) + "]";
+        const vec3 from = base + ev.vector(w.line, path + ".from", w.from);
+        const vec3 to = base + ev.vector(w.line, path + ".to", w.to);
+        const float radius = ev.length(w.line, path + ".radius", w.radius, 1.0);
+        if (!(glm::length(to - from) > 1e-4f))
+            throw Error("a wire needs two different ends",
+                        {.file = species.sourceFile,
+                         .line = w.line,
+                         .parameter = "trellis." + path,
+                         .value = w.from + " to " + w.to,
+                         .validRange = "ends at least 0.1 mm apart"});
+        out.push_back({TrellisPart::Kind::Wire, tube(from, to, radius, 6)});
+    }
     return out;
 }
 

@@ -135,7 +135,8 @@ void readGroup(const Element& e, Lines& lines, Names attributes, Visit&& visit) 
 const std::vector<std::string> kTopLevel = {"name",       "common_name", "latin_name",
                                             "plant_type", "description", "recommended_age",
                                             "max_height", "phenology",   "build_parameters",
-                                            "shoot_type", "build",       "attraction_points"};
+                                            "shoot_type", "build",       "attraction_points",
+                                            "trellis"};
 
 struct TopLevel {
     std::map<std::string_view, xml_node> once;  // every name of kTopLevel but shoot_type
@@ -167,6 +168,7 @@ public:
         if (!top["build"]) root.failAt("build", "missing required element <build>");
         readBuild(top["build"]);
         if (top["attraction_points"]) readAttraction(top["attraction_points"]);
+        if (top["trellis"]) readTrellis(top["trellis"]);
     }
 
 private:
@@ -446,6 +448,61 @@ private:
         if (a.wires.empty() && a.points.empty())
             e.fail("<attraction_points> needs at least one <wire> or <point>");
         m_.attraction = std::move(a);
+    }
+
+    // <trellis> with <post at height radius/> and <wire from to radius/> children; numbers
+    // are expressions over the build parameters.
+    void readTrellis(xml_node node) {
+        const Element e(doc_, node, "trellis");
+        e.checkAttributes({});
+        Children children(e);
+        children.allow("post", true);
+        children.allow("wire", true);
+        children.finish();
+        std::vector<std::string> names;
+        for (const BuildParameter& p : m_.buildParameters) names.push_back(p.name);
+        SpeciesTrellis t;
+        t.line = e.line();
+        m_.lines[e.path()] = t.line;
+        int posts = 0, wires = 0;
+        for (xml_node c : children.elements()) {
+            const bool wire = std::string_view(c.name()) == "wire";
+            const int index = wire ? ++wires : ++posts;
+            const Element item(doc_, c, e.pathTo(c.name()) + "[" + std::to_string(index) + "]");
+            checkNoChildren(item);
+            if (wire) {
+                item.checkAttributes({"from", "to", "radius"});
+                SpeciesTrellis::Wire w;
+                w.line = item.line();
+                w.from = expressionAttribute(item, "from", true, true, names);
+                w.to = expressionAttribute(item, "to", true, true, names);
+                if (item.hasAttribute("radius"))
+                    w.radius = expressionAttribute(item, "radius", false, false, names);
+                t.wires.push_back(w);
+            } else {
+                item.checkAttributes({"at", "height", "radius"});
+                SpeciesTrellis::Post p;
+                p.line = item.line();
+                item.requiredAttribute("at");
+                p.at = text::collapseSpaces(item.node().attribute("at").value());
+                const Element at(item, item.node(), "at");
+                if (species_xml::splitVector(p.at).size() != 2)
+                    at.fail("expected two expressions x, y separated by commas", p.at,
+                            "e.g. \"0, -vine_spacing / 2\"");
+                for (const std::string& part : species_xml::splitVector(p.at))
+                    at.convert(part, [&](std::string_view q) {
+                        expr::check(std::string(q), names);
+                        return 0;
+                    });
+                p.height = expressionAttribute(item, "height", false, true, names);
+                if (item.hasAttribute("radius"))
+                    p.radius = expressionAttribute(item, "radius", false, false, names);
+                t.posts.push_back(p);
+            }
+        }
+        if (t.posts.empty() && t.wires.empty())
+            e.fail("<trellis> needs at least one <post> or <wire>");
+        m_.trellis = std::move(t);
     }
 
     BuildStep readStep(xml_node node, int index, const std::vector<std::string>& names,

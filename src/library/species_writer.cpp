@@ -236,6 +236,26 @@ void writeAttraction(Writer& w, const SpeciesAttraction& a) {
     w.close(1, "attraction_points");
 }
 
+void writeTrellis(Writer& w, const SpeciesTrellis& t) {
+    auto& o = w.out();
+    w.indent(1);
+    o << "<trellis>";
+    w.comment("relative to the plant base; m");
+    o << "\n";
+    for (const SpeciesTrellis::Post& p : t.posts) {
+        w.indent(2);
+        o << "<post at=\"" << text::xmlEscaped(p.at) << "\" height=\"" << text::xmlEscaped(p.height)
+          << "\" radius=\"" << text::xmlEscaped(p.radius) << "\"/>\n";
+    }
+    for (const SpeciesTrellis::Wire& wire : t.wires) {
+        w.indent(2);
+        o << "<wire from=\"" << text::xmlEscaped(wire.from) << "\" to=\""
+          << text::xmlEscaped(wire.to) << "\" radius=\"" << text::xmlEscaped(wire.radius)
+          << "\"/>\n";
+    }
+    w.close(1, "trellis");
+}
+
 }  // namespace
 
 void writeSpecies(const SpeciesModel& m, std::ostream& out, const SpeciesWriteOptions& options) {
@@ -276,6 +296,7 @@ void writeSpecies(const SpeciesModel& m, std::ostream& out, const SpeciesWriteOp
 
     writeBuild(w, m);
     if (m.attraction) writeAttraction(w, *m.attraction);
+    if (m.trellis) writeTrellis(w, *m.trellis);
     out << "</" << species_xml::kRoot << ">\n";
 }
 

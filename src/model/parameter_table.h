@@ -284,7 +284,9 @@ void describeParameters(S& p, V& v) {
             p.leaflet_offset);
     v.field({"leaflet_scale", "", 0, 10, "Size of each leaflet pair relative to the pair above"},
             p.leaflet_scale);
-    v.field({"prototype_scale", "m", 0, 10, "Leaf length"}, p.prototype_scale);
+    v.field({"prototype_scale", "m", 0, 10,
+             "Leaf length along the blade (the midrib's length, however the blade curls)"},
+            p.prototype_scale);
     v.group("prototype", p.prototype, [&](auto& sub) { describeParameters(p.prototype, sub); });
 }
 
@@ -454,10 +456,11 @@ void describeParameters(S& p, V& v) {
     v.field({"max_nodes_per_season", "", 1, 100000, "Maximum phytomers added in one season"},
             p.max_nodes_per_season);
     v.field({"insertion_angle_tip", "degrees", 0, 180,
-             "Angle of a child shoot from this shoot at its tip"},
+             "Angle of this shoot from its parent when it grows from a bud at the parent's tip"},
             p.insertion_angle_tip);
     v.field({"insertion_angle_decay_rate", "degrees/node", -180, 180,
-             "Increase of the insertion angle per node down from the tip (capped at 90)"},
+             "Increase of this shoot's insertion angle per node of its bud below the parent's "
+             "tip (capped at 90)"},
             p.insertion_angle_decay_rate);
     v.field({"internode_length_max", "m", 0, 10, "Full internode length (at base or tip)"},
             p.internode_length_max);
@@ -526,10 +529,11 @@ void describeParameters(S& p, V& v) {
              "Dormancy (and each winter) until buds break; negative disables"},
             p.time_to_dormancy_break);
     v.field({"time_to_flower_initiation", "days", -1, 100000,
-             "Dormancy break until closed flowers appear; negative skips closed flowers"},
+             "A floral bud's start (made, or dormancy break) until it shows a closed flower; "
+             "negative skips closed flowers"},
             p.time_to_flower_initiation);
     v.field({"time_to_flower_opening", "days", -1, 100000,
-             "Flower initiation (or dormancy break) until flowers open; negative disables"},
+             "Flower initiation (or the bud's start) until flowers open; negative disables"},
             p.time_to_flower_opening);
     v.field({"time_to_fruit_set", "days", -1, 100000,
              "Previous enabled stage until flowers set fruit; negative disables fruit"},
