@@ -14,13 +14,12 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
+#include "reference_table.h"
 
 using namespace plantarch;
 
@@ -34,24 +33,12 @@ struct ReferencePlant {
 };
 
 std::vector<ReferencePlant> readReference() {
-    const std::string path =
-        std::string(PLANTARCH_SOURCE_DIR) + "/tests/data/reference_leaf_size.tsv";
-    std::ifstream in(path);
-    EXPECT_TRUE(in) << "cannot read " << path;
     std::vector<ReferencePlant> out;
-    std::string line;
-    bool header = true;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        if (header) {
-            header = false;
-            continue;
-        }
-        std::istringstream cells(line);
-        ReferencePlant p;
-        cells >> p.species >> p.age >> p.leafArea >> p.leafCount;
-        EXPECT_TRUE(cells && p.leafCount > 0) << path << ": bad line '" << line << "'";
-        out.push_back(p);
+    for (const auto& row : test::readReferenceTable("reference_leaf_size.tsv")) {
+        EXPECT_EQ(row.size(), 4u) << "reference_leaf_size.tsv: a row of " << row.size() << " cells";
+        if (row.size() != 4) continue;
+        out.push_back({row[0], std::stof(row[1]), std::stod(row[2]), std::stod(row[3])});
+        EXPECT_GT(out.back().leafCount, 0.0) << "reference_leaf_size.tsv: " << row[0];
     }
     return out;
 }

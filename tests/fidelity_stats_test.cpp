@@ -18,14 +18,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
+#include "reference_table.h"
 
 using namespace plantarch;
 
@@ -40,26 +39,12 @@ struct Reference {
 };
 
 std::map<std::string, Reference> readReference() {
-    const std::string path = std::string(PLANTARCH_SOURCE_DIR) + "/tests/data/reference_stats.tsv";
-    std::ifstream in(path);
-    EXPECT_TRUE(in) << "cannot read " << path;
     std::map<std::string, Reference> out;
-    std::string line;
-    bool header = true;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        if (header) {
-            header = false;
-            continue;
-        }
-        std::istringstream cells(line);
-        std::string species, quantity;
-        float age = 0.0f;
-        double mean = 0.0, lo = 0.0, hi = 0.0;
-        cells >> species >> age >> quantity >> mean >> lo >> hi;
-        EXPECT_TRUE(cells) << path << ": bad line '" << line << "'";
-        out[species].age = age;
-        out[species].mean[quantity] = mean;
+    for (const auto& row : test::readReferenceTable("reference_stats.tsv")) {
+        EXPECT_EQ(row.size(), 6u) << "reference_stats.tsv: a row of " << row.size() << " cells";
+        if (row.size() != 6) continue;
+        out[row[0]].age = std::stof(row[1]);
+        out[row[0]].mean[row[2]] = std::stod(row[3]);
     }
     return out;
 }
