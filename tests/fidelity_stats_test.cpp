@@ -63,6 +63,10 @@ const std::vector<Departure> kDepartures = {
     // fills 0.89 of the height and 0.71 of its bounding box: 1.7153 m2 x 0.5 x 0.633.
     {"olive", "leaf_area", 0.543,
      "one side of the blade only, without the tile's transparent corners (species/olive.xml)"},
+    // The sugar beet's leaves follow a 137.5 degree spiral (the reference's own parameter), so
+    // its rosette is as wide along y as along x; the reference's lies in one plane along x.
+    {"sugarbeet", "width_y", 0.6105,
+     "a spiral rosette, as wide along y as the reference's is along x (species/sugarbeet.xml)"},
 };
 
 double band(const std::string& quantity) {
