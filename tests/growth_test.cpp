@@ -367,12 +367,12 @@ TEST(Growth, BudBreakProbabilityIsTheMinimumWithoutWinterWhenBasitonic) {
         EXPECT_NEAR(perNode[std::size_t(k)], n * 0.1, 5 * std::sqrt(n * 0.1 * 0.9)) << "node " << k;
 }
 
-TEST(Growth, BudBreakProbabilityWithoutWinterCountsFromTheTipWhenTheBudBreaks) {
-    // Acrotonic (decay 0.25 per node below the tip, minimum 0.1), no winter: a new node every
-    // day up to 6, buds breaking 2.5 days after they form. Bud k is sorted when it breaks, the
-    // tip then min(2, 5 - k) nodes above it: 0.5 at nodes 0 to 3, 0.75 at node 4, 1 at node
-    // 5. (Sorted as it forms it would sit at the tip, 1 everywhere; against the final 6-node
-    // shoot it would be 0.1, 0.1, 0.25, 0.5, 0.75, 1.)
+TEST(Growth, BudBreakProbabilityWithoutWinterIsTheMaximumAtTheFirstNodeOnly) {
+    // Acrotonic (decay 0.25 per node below the tip, minimum 0.1, maximum 1), no winter: a new
+    // node every day up to 6, buds breaking 2.5 days after they form. The first bud formed at
+    // the tip of a one-node shoot: 1; every later bud the minimum, 0.1. (Counted from the tip
+    // when it breaks it would be 0.5, 0.5, 0.5, 0.5, 0.75, 1; against the final 6-node shoot
+    // 0.1, 0.1, 0.25, 0.5, 0.75, 1.)
     Garden g;
     ShootParameters s = branchingParent(g, 6, 0.1f, 2.5f);
     s.phyllochron_min = 1.0f;
@@ -390,7 +390,7 @@ TEST(Growth, BudBreakProbabilityWithoutWinterCountsFromTheTipWhenTheBudBreaks) {
         for (const Shoot& sh : g.state(id).shoots)
             if (sh.parent == 0) perNode[std::size_t(sh.parentNode)]++;
     }
-    const double p[] = {0.5, 0.5, 0.5, 0.5, 0.75, 1.0};
+    const double p[] = {1.0, 0.1, 0.1, 0.1, 0.1, 0.1};
     for (int k = 0; k < 6; ++k)
         EXPECT_NEAR(perNode[std::size_t(k)], n * p[k], 5 * std::sqrt(n * p[k] * (1 - p[k])) + 1e-9)
             << "node " << k;

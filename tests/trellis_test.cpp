@@ -37,9 +37,11 @@ std::vector<ObjectID> parts(const Context& ctx, const std::vector<ObjectID>& ids
 
 }  // namespace
 
-// The Wye vine with its defaults (vine_spacing 1.8, cordon_spacing 0.6, catch_wire_height 2.1):
-// one post at x = 0.9 up to 2.1 - 0.95 = 1.15 m, two arms and six wires along the row from
-// x = -0.9 to 0.9; the fruiting wires at y = -/+0.3, z = 1.75 (docs: the species file).
+// The Wye vine with its defaults (vine_spacing 1.8, cordon_spacing 0.6, catch_wire_height 2.1,
+// trunk_height 0.165): one post at x = 0.9 up to 2.1 - 0.95 = 1.15 m, two arms and six wires
+// along the row from x = -0.9 to 0.9 (the fruiting wires at y = -/+0.3, z = 1.75), and a
+// cross-arm carrying two cordon wires at y = -/+0.3, z = 0.165 + 0.3 - 0.025 = 0.44, on which
+// the cordons rest (docs: the species file).
 TEST(Trellis, WyePostsAndWiresStandWhereTheSpeciesFileSays) {
     Context ctx;
     PlantArchitecture arch(&ctx);
@@ -47,7 +49,7 @@ TEST(Trellis, WyePostsAndWiresStandWhereTheSpeciesFileSays) {
     const vec3 base(2.0f, 1.0f, 0.0f);
     const unsigned p = arch.buildPlantInstanceFromLibrary(base, 100.0f);
     const std::vector<ObjectID> t = arch.getPlantTrellisObjectIDs(p);
-    ASSERT_EQ(t.size(), 9u);
+    ASSERT_EQ(t.size(), 12u);
     for (ObjectID id : t) {
         EXPECT_EQ(ctx.objectDataString(id, "organ"), "trellis");
         EXPECT_EQ(ctx.objectDataInt(id, "plantID"), int(p));
@@ -55,7 +57,7 @@ TEST(Trellis, WyePostsAndWiresStandWhereTheSpeciesFileSays) {
     }
     const std::vector<ObjectID> posts = parts(ctx, t, "post"), wires = parts(ctx, t, "wire");
     ASSERT_EQ(posts.size(), 1u);
-    ASSERT_EQ(wires.size(), 8u);
+    ASSERT_EQ(wires.size(), 11u);
     const AABB post = boxOf(ctx, posts[0]);
     EXPECT_NEAR(post.center().x, base.x + 0.9f, 1e-4f);
     EXPECT_NEAR(post.center().y, base.y, 1e-4f);
@@ -75,6 +77,30 @@ TEST(Trellis, WyePostsAndWiresStandWhereTheSpeciesFileSays) {
         }
     }
     EXPECT_EQ(fruiting, 2);
+    // The cordon wires, and every node of the four cordons within 5 cm above one of them (the
+    // arms' pitch varies by 3 degrees, the cordons' height with it).
+    std::vector<AABB> cordonWires;
+    for (ObjectID id : wires) {
+        const AABB w = boxOf(ctx, id);
+        if (std::abs(w.center().z - 0.44f) < 1e-3f && w.extent().x > 1.7f) cordonWires.push_back(w);
+    }
+    ASSERT_EQ(cordonWires.size(), 2u);
+    unsigned cordonNodes = 0;
+    for (const Shoot& s : arch.plant(p).shoots) {
+        if (s.type != "grapevine_cordon") continue;
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            const vec3 n = arch.getNodePosition(p, s.id, k);
+            bool resting = false;
+            for (const AABB& w : cordonWires)
+                resting = resting ||
+                          (std::abs(n.y - w.center().y) < 0.03f && n.z > w.max.z - 1e-3f &&
+                           n.z < w.max.z + 0.05f && n.x > w.min.x - 0.03f && n.x < w.max.x + 0.03f);
+            EXPECT_TRUE(resting) << "cordon " << s.id << " node " << k << " at " << n.x << " "
+                                 << n.y << " " << n.z;
+            ++cordonNodes;
+        }
+    }
+    EXPECT_EQ(cordonNodes, 4u * 8u);
     // Build parameters move it: a higher catch wire lifts the top wires.
     Context ctx2;
     PlantArchitecture arch2(&ctx2);
@@ -150,7 +176,7 @@ TEST(Trellis, SpeciesFilesReadWriteAndCheckIt) {
     const SpeciesModel wye = loadSpecies("grapevine_Wye");
     ASSERT_TRUE(wye.trellis);
     EXPECT_EQ(wye.trellis->posts.size(), 1u);
-    EXPECT_EQ(wye.trellis->wires.size(), 8u);
+    EXPECT_EQ(wye.trellis->wires.size(), 11u);
     const SpeciesModel again = readSpeciesString(writeSpeciesString(wye), "wye");
     ASSERT_TRUE(again.trellis);
     EXPECT_EQ(writeSpeciesString(again), writeSpeciesString(wye));

@@ -47,15 +47,18 @@ struct Event {
     bool operator>(const Event& o) const { return key() > o.key(); }
 };
 
-// Probability that an axillary bud at node `k` of a shoot with `n` nodes breaks. A positive
-// decay rate makes it highest at the tip (dropping by the rate per node below it). A
-// negative one makes it highest at the base of shoots that grew from buds sorted after a
-// winter (`afterWinter`); shoots that grow on without a winter take the minimum there. Never
-// below the minimum; with no decay the minimum applies all along the shoot.
+// Probability that an axillary bud at node `k` of a shoot with `n` nodes breaks. Buds sorted
+// after a winter (`afterWinter`) lie on a finished shoot: a positive decay rate makes the
+// probability highest at its tip (dropping by the rate per node below it), a negative one
+// highest at its base. On a shoot that grows on without a winter, a positive decay gives the
+// shoot's first bud the maximum (it forms at the tip of a one-node shoot) and every later bud,
+// formed as the shoot grows on, the minimum; a negative decay gives the minimum everywhere.
+// Never below the minimum; with no decay the minimum applies all along the shoot.
 float budBreakProbability(const ShootParameters& t, Rng& rng, int k, int n, bool afterWinter) {
     const float pmin = t.vegetative_bud_break_probability_min.sample(rng);
     const float pmax = t.vegetative_bud_break_probability_max.sample(rng);
     const float decay = t.vegetative_bud_break_probability_decay_rate.sample(rng);
+    if (decay > 0.0f && !afterWinter) return k == 0 ? std::max(pmin, pmax) : pmin;
     if (decay > 0.0f) return std::max(pmin, pmax - decay * float(n - 1 - k));
     if (decay < 0.0f && afterWinter) return std::max(pmin, pmax + decay * float(k));
     return pmin;
@@ -199,6 +202,15 @@ struct Grower {
         return fb.state == BudState::Dormant || fb.state == BudState::Active;
     }
 
+    // A determinate shoot that flowers makes no more shoots: its axillary vegetative buds
+    // still waiting die (its apex stops with `flowering`, see canGrow).
+    static void endVegetativeGrowth(Shoot& s) {
+        for (Phytomer& ph : s.phytomers)
+            for (Petiole& pt : ph.petioles)
+                for (VegetativeBud& b : pt.vegetativeBuds)
+                    if (b.state == BudState::Dormant) b.state = BudState::Dead;
+    }
+
     bool canGrow(const Shoot& s, const ShootParameters& t) const {
         return s.apicalBud.state == BudState::Active && int(s.phytomers.size()) < s.maxNodes &&
                s.nodesThisSeason < s.maxNodesPerSeason &&
@@ -312,6 +324,7 @@ struct Grower {
                     growth.steering->steerPeduncle(plant, s, e.node, e.petiole, e.index, e.terminal,
                                                    fb);
                 fb.state = BudState::Broken;
+                if (t.determinate_shoot_growth && !s.flowering) endVegetativeGrowth(s);
                 s.flowering = true;
                 if (plant.stage == PhenologyStage::Vegetative)
                     plant.stage = PhenologyStage::Reproductive;
