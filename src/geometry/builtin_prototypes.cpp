@@ -108,28 +108,32 @@ OrganPrototype builtinFlower(const FloralPrototypeRequest& req, Rng&) {
     return proto;
 }
 
-// A slender three-sided spine tapering from its base to a point (cladodes, needles), in
-// prototype units (length 1 along +x from the origin). Its base diameter is the prototype's
-// leaf_aspect_ratio and `subdivisions` sets the segments along it (at most 8): 9 to 51
-// triangles, where a flat needle outline meshed to its true shape takes about 150.
+// A slender needle (cladodes, conifer needles), in prototype units (length 1 along +x from
+// the origin): a three-sided prism of diameter leaf_aspect_ratio that closes to a point over
+// its last 5 %. Its faces are as wide in all as the round tube of that diameter is around
+// (a perimeter of pi x diameter), so its surface is the tube's, the leaf area a needle counts.
+// `subdivisions` sets the segments along the prism (at most 8): 10 to 52 triangles, where a
+// flat needle outline meshed to its true shape takes about 150.
 OrganPrototype taperedSpine(const LeafPrototype& p, Rng& rng, int) {
     constexpr int kSides = 3;
-    const float radius = 0.5f * p.leaf_aspect_ratio.sample(rng);
+    constexpr float kPoint = 0.95f;  // where the point begins
+    // An equilateral triangle of circumradius R has perimeter 3 sqrt(3) R.
+    const float radius = kPi * p.leaf_aspect_ratio.sample(rng) / (3.0f * std::sqrt(3.0f));
     const int segments = int(std::clamp(p.subdivisions, 1u, 8u));
     Mesh m;
-    for (int k = 0; k < segments; ++k) {  // rings at x = k / segments, tapering linearly
-        const float x = float(k) / float(segments), r = radius * (1.0f - x);
+    for (int k = 0; k <= segments; ++k) {  // rings from the base to where the point begins
+        const float x = kPoint * float(k) / float(segments);
         for (int j = 0; j < kSides; ++j) {
             const float a = 2.0f * kPi * float(j) / float(kSides);
-            m.positions.push_back({x, r * std::cos(a), r * std::sin(a)});
+            m.positions.push_back({x, radius * std::cos(a), radius * std::sin(a)});
         }
     }
     const auto tip = std::uint32_t(m.positions.size());
     m.positions.push_back({1.0f, 0.0f, 0.0f});
     auto ring = [](int k, int j) { return std::uint32_t(k * kSides + (j % kSides)); };
-    for (int k = 0; k < segments; ++k)
+    for (int k = 0; k <= segments; ++k)
         for (int j = 0; j < kSides; ++j) {
-            if (k + 1 < segments) {
+            if (k < segments) {
                 m.indices.insert(m.indices.end(), {ring(k, j), ring(k, j + 1), ring(k + 1, j + 1)});
                 m.indices.insert(m.indices.end(), {ring(k, j), ring(k + 1, j + 1), ring(k + 1, j)});
             } else {
