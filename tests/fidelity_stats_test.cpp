@@ -65,6 +65,9 @@ const std::vector<Departure> kDepartures = {
      "one side of the blade only, without the tile's transparent corners (species/olive.xml)"},
     // The sugar beet's leaves follow a 137.5 degree spiral (the reference's own parameter), so
     // its rosette is as wide along y as along x; the reference's lies in one plane along x.
+    // The reference counts its maize tassel as 7 fruit (one mesh per tassel branch) besides the
+    // 3 ears; here the tassel is one organ, a whole branched tassel (species/maize.xml): 4.
+    {"maize", "fruit", 4.0, "the tassel one organ, not 7 branch meshes (species/maize.xml)"},
     {"sugarbeet", "width_y", 0.6105,
      "a spiral rosette, as wide along y as the reference's is along x (species/sugarbeet.xml)"},
 };
