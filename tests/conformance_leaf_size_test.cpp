@@ -9,8 +9,9 @@
 // picture age moves the mean by up to about 15 % more. A leaf 1.35 times the reference's (or
 // under 0.65 times) is a size a user sees.
 //
-// A fidelity target not yet met by every species, so ctest leaves it out for now (see
-// docs/testing.md); run it with plantarch_tests --gtest_filter='ConformanceLeafSize.*'.
+// One departure on purpose: the olive, whose reference leaf area counts both faces of each
+// leaf and their transparent corners; its expected leaf is that share of the reference's
+// (test::kOliveOneSidedShare, species/olive.xml).
 
 #include <gtest/gtest.h>
 
@@ -60,11 +61,12 @@ TEST(ConformanceLeafSize, MeanLeafAreaWithin35PercentOfTheReference) {
             count += arch.getPlantLeafCount(p);
         }
         ASSERT_GT(count, 0.0) << ref.species << " has no leaves at " << ref.age << " days";
-        const double ratio = (area / count) / (ref.leafArea / ref.leafCount);
+        const double share = ref.species == "olive" ? test::kOliveOneSidedShare : 1.0;
+        const double ratio = (area / count) / (share * ref.leafArea / ref.leafCount);
         std::ostringstream line;
         line.precision(3);
         line << "\n  " << ref.species << " at " << ref.age << " days: " << (area / count) * 1e4
-             << " cm^2 a leaf, reference " << (ref.leafArea / ref.leafCount) * 1e4
+             << " cm^2 a leaf, expected " << (share * ref.leafArea / ref.leafCount) * 1e4
              << " cm^2, ratio " << ratio;
         report += line.str();
         if (ratio < 1.0 - kBand || ratio > 1.0 + kBand) outside += line.str();

@@ -57,14 +57,8 @@ struct Departure {
     const char* reason;
 };
 const std::vector<Departure> kDepartures = {
-    // The reference builds each olive leaf of two back-to-back tiles (upper and lower face),
-    // 0.2 leaf lengths wide, and counts both faces and their transparent corners: 0.4 leaf
-    // lengths squared a leaf. The one-sided blade is one face, and of that tile the leaf
-    // fills 0.89 of the height and 0.71 of its bounding box: 1.7153 m2 x 0.5 x 0.633.
-    {"olive", "leaf_area", 0.543,
+    {"olive", "leaf_area", 1.7153 * test::kOliveOneSidedShare,
      "one side of the blade only, without the tile's transparent corners (species/olive.xml)"},
-    // The sugar beet's leaves follow a 137.5 degree spiral (the reference's own parameter), so
-    // its rosette is as wide along y as along x; the reference's lies in one plane along x.
     // The reference counts its maize tassel as 7 fruit (one mesh per tassel branch) besides the
     // 3 ears; here the tassel is one organ, a whole branched tassel (species/maize.xml): 4.
     {"maize", "fruit", 4.0, "the tassel one organ, not 7 branch meshes (species/maize.xml)"},
