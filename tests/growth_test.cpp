@@ -120,15 +120,22 @@ TEST(Growth, InternodeElongatesLinearlyToFullLength) {
 }
 
 namespace {
-// A parent with `nodes` nodes whose every axillary bud breaks at once, so child internode
-// lengths can be read off along the parent.
+// A parent of 8 nodes whose every axillary bud breaks at once, so child internode lengths can
+// be read off along the parent. The lengths and their decay are the child type's own; the
+// parent's (0.2 m, no decay) must play no part.
 std::vector<float> childLengths(float decay) {
     Garden g;
     ShootParameters s = branchingParent(g, 8, 1.0f, 0.0f);
     s.phyllochron_min = 1.0f;
-    s.internode_length_max = 0.05f;
-    s.internode_length_min = 0.01f;
-    s.internode_length_decay_rate = decay;
+    s.internode_length_max = 0.2f;
+    s.internode_length_min = 0.2f;
+    s.internode_length_decay_rate = 0.0f;
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    child.internode_length_max = 0.05f;
+    child.internode_length_min = 0.01f;
+    child.internode_length_decay_rate = decay;
+    g.arch.defineShootType("child", child);
     const unsigned p = g.plant(s, 8);  // all 8 nodes exist before the buds break
     g.arch.advanceTime(0.0f);
     std::vector<float> lengths(8, -1.0f);

@@ -64,12 +64,13 @@ float budBreakProbability(const ShootParameters& t, Rng& rng, int k, int n, bool
     return pmin;
 }
 
-// Full internode length of a child shoot growing from node `k` of a parent with `n` nodes:
-// basitonic (decay < 0) is longest at the parent's base, acrotonic (decay > 0) at its tip.
-float childInternodeLength(const ShootParameters& parentType, Rng& rng, int k, int n) {
-    const float lmax = parentType.internode_length_max.sample(rng);
-    const float lmin = parentType.internode_length_min.sample(rng);
-    const float decay = parentType.internode_length_decay_rate.sample(rng);
+// Full internode length of a child shoot of type `childType` growing from node `k` of a
+// parent with `n` nodes, from the child type's own lengths: basitonic (decay < 0) is longest
+// at the parent's base, acrotonic (decay > 0) at its tip.
+float childInternodeLength(const ShootParameters& childType, Rng& rng, int k, int n) {
+    const float lmax = childType.internode_length_max.sample(rng);
+    const float lmin = childType.internode_length_min.sample(rng);
+    const float decay = childType.internode_length_decay_rate.sample(rng);
     if (decay < 0.0f) return std::max(lmin, lmax + decay * float(k));
     if (decay > 0.0f) return std::max(lmin, lmax - decay * float(n - 1 - k));
     return lmax;
@@ -281,7 +282,7 @@ struct Grower {
         spec.shootType = childType;
         spec.size.internodeRadius =
             std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
-        spec.size.internodeLengthMax = childInternodeLength(t, plant.rng, int(e.node), n);
+        spec.size.internodeLengthMax = childInternodeLength(ct, plant.rng, int(e.node), n);
         spec.size.internodeLengthScale = 0.01f;
         spec.size.leafScale = 0.01f;
         const unsigned id =

@@ -467,7 +467,8 @@ void describeParameters(S& p, V& v) {
     v.field({"internode_length_min", "m", 0, 10, "Smallest full internode length"},
             p.internode_length_min);
     v.field({"internode_length_decay_rate", "m/node", -10, 10,
-             "Change of full internode length per node (<0 basitonic, >0 acrotonic)"},
+             "Change of a shoot's full internode length per node of the bud it grew from, along "
+             "its parent (<0 basitonic, >0 acrotonic)"},
             p.internode_length_decay_rate);
     v.field({"base_roll", "degrees", -360, 360, "Roll of the shoot about its own axis"},
             p.base_roll);
