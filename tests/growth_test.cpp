@@ -563,6 +563,32 @@ TEST(Growth, DeterminateShootStopsAtFlowering) {
     }
 }
 
+// A determinate shoot turns reproductive when its first floral bud comes due, even if that bud
+// fails to flower: it stops (5 nodes, as above) and its vegetative buds still waiting die, so
+// no branch grows from the buds that would have broken on day 12 and after. Indeterminate, it
+// grows on and every bud of nodes 0 to 9 (made by day 18, breaking 12 days later) branches.
+TEST(Growth, DeterminateShootEndsAsItsFirstFloralBudComesDueEvenIfItFails) {
+    for (bool determinate : {true, false}) {
+        SCOPED_TRACE(determinate ? "determinate" : "indeterminate");
+        Garden g;
+        ShootParameters s = branchingParent(g, 50, 1.0f, 12.0f);
+        s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+        s.flower_bud_break_probability = 0.0f;  // every floral bud fails
+        s.determinate_shoot_growth = determinate;
+        PhenologyParameters ph;
+        ph.time_to_flower_opening = 10;
+        g.arch.setDefaultPhenology(ph);
+        const unsigned p = g.plant(s);
+        g.arch.advanceTime(30.0f);
+        const PlantInstance& plant = g.state(p);
+        EXPECT_EQ(plant.shoots[0].phytomers.size(), determinate ? 5u : 16u);
+        EXPECT_EQ(flowerObjectCount(g.arch, p), 0u);
+        std::size_t branches = 0;
+        for (const Shoot& sh : plant.shoots) branches += sh.parent == 0 ? 1u : 0u;
+        EXPECT_EQ(branches, determinate ? 0u : 10u);
+    }
+}
+
 namespace {
 unsigned perennial(Garden& g, bool evergreen) {
     ShootParameters s = growingShoot();

@@ -203,8 +203,8 @@ struct Grower {
         return fb.state == BudState::Dormant || fb.state == BudState::Active;
     }
 
-    // A determinate shoot that flowers makes no more shoots: its axillary vegetative buds
-    // still waiting die (its apex stops with `flowering`, see canGrow).
+    // A determinate shoot that turns reproductive makes no more shoots: its axillary
+    // vegetative buds still waiting die (its apex stops with `flowering`, see canGrow).
     static void endVegetativeGrowth(Shoot& s) {
         for (Phytomer& ph : s.phytomers)
             for (Petiole& pt : ph.petioles)
@@ -310,6 +310,13 @@ struct Grower {
         switch (fb.stage) {
             case FloralStage::Bud: {
                 if (!waiting(fb) || !growingSeason()) return;
+                // A determinate shoot turns reproductive as its first floral bud comes due,
+                // whether or not that bud flowers: it grows no more, and its waiting vegetative
+                // buds die.
+                if (t.determinate_shoot_growth && !s.flowering) {
+                    endVegetativeGrowth(s);
+                    s.flowering = true;
+                }
                 const bool forced = fb.state == BudState::Active;
                 if (!forced &&
                     !plant.rng.chance(t.flower_bud_break_probability.sample(plant.rng))) {
@@ -325,7 +332,6 @@ struct Grower {
                     growth.steering->steerPeduncle(plant, s, e.node, e.petiole, e.index, e.terminal,
                                                    fb);
                 fb.state = BudState::Broken;
-                if (t.determinate_shoot_growth && !s.flowering) endVegetativeGrowth(s);
                 s.flowering = true;
                 if (plant.stage == PhenologyStage::Vegetative)
                     plant.stage = PhenologyStage::Reproductive;

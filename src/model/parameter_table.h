@@ -509,8 +509,10 @@ void describeParameters(S& p, V& v) {
             p.flowers_require_dormancy);
     v.field({"growth_requires_dormancy", "", 0, 1, "Vegetative buds break only after dormancy"},
             p.growth_requires_dormancy);
-    v.field({"determinate_shoot_growth", "", 0, 1, "Shoot stops growing when it flowers"},
-            p.determinate_shoot_growth);
+    v.field(
+        {"determinate_shoot_growth", "", 0, 1,
+         "Shoot stops growing, and makes no more branches, once its first floral bud comes due"},
+        p.determinate_shoot_growth);
     v.field({"child_shoot_types",
              "",
              0,
