@@ -67,6 +67,17 @@ ShootParameters branchingParent(Garden& g, int maxNodes, float breakProbability,
     return s;
 }
 
+// A growing shoot of `maxNodes` nodes whose every node has one floral bud that flowers and
+// sets fruit.
+ShootParameters floweringShoot(int maxNodes) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = maxNodes;
+    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
+    s.flower_bud_break_probability = 1.0f;
+    s.fruit_set_probability = 1.0f;
+    return s;
+}
+
 std::vector<vec3> allPositions(const Context& ctx) {
     std::vector<vec3> out;
     ctx.forEachObject([&](const ObjectView& v) {
@@ -447,11 +458,7 @@ std::ostream& operator<<(std::ostream& o, const Stages& n) {
 // 4 and fruit set 6: closed on days 25, 27, 29, 31; open on 29, 31, 33, 35; fruit on 35, 37,
 // 39, 41.
 TEST(Growth, PhenologyStagesOnTheirDays) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 4;
-    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
-    s.flower_bud_break_probability = 1.0f;
-    s.fruit_set_probability = 1.0f;
+    ShootParameters s = floweringShoot(4);
     s.determinate_shoot_growth = false;
     Garden g;
     PhenologyParameters ph;
@@ -506,11 +513,7 @@ TEST(Growth, PhenologyStagesOnTheirDays) {
 // that: the first open flowers on day 12 (the five built nodes), the first fruit on day 20,
 // and a node made on day 30 opens on day 42, not as soon as it is made.
 TEST(Growth, EachFloralBudFlowersOnItsOwnClock) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 40;
-    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
-    s.flower_bud_break_probability = 1.0f;
-    s.fruit_set_probability = 1.0f;
+    ShootParameters s = floweringShoot(40);
     s.determinate_shoot_growth = false;
     Garden g;
     PhenologyParameters ph;
@@ -854,11 +857,7 @@ TEST(Growth, ProgressCallbackReportsEachPlant) {
 }
 
 TEST(Growth, WithNoFlowerStagesFruitFollowDormancyBreak) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 3;
-    s.phytomer_parameters.internode.max_floral_buds_per_petiole = 1;
-    s.flower_bud_break_probability = 1.0f;
-    s.fruit_set_probability = 1.0f;
+    ShootParameters s = floweringShoot(3);
     Garden g;
     PhenologyParameters ph;
     ph.time_to_flower_initiation = -1;
