@@ -189,6 +189,8 @@ Image render(const Context& context, const RenderOptions& options = {});
 /// Writes `image` as a PNG, atomically (temporary file in the same folder, then rename).
 /// Throws plantarch::Error naming the path when it cannot be written.
 void writePNG(const Image& image, const std::string& path);
+/// The PNG file writePNG would write, as bytes (for notebooks and web front ends).
+std::string encodePNG(const Image& image);
 /// Reads a PNG (or any format stb_image knows) as 8-bit RGB. Throws plantarch::Error.
 Image readImage(const std::string& path);
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/value_text.h"
+#include "model/field_check.h"
 #include "model/parameter_table.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantState.h"
@@ -172,6 +173,43 @@ struct ChildTypesOnly {
 };
 
 }  // namespace
+
+namespace params {
+
+#define PLANTARCH_CHECK_FIELD(T)                                                   \
+    void checkField(const FieldInfo& f, const std::string& path, const T& value) { \
+        Validator{path}.field(f, value);                                           \
+    }
+PLANTARCH_CHECK_FIELD(RandomFloat)
+PLANTARCH_CHECK_FIELD(RandomInt)
+PLANTARCH_CHECK_FIELD(float)
+PLANTARCH_CHECK_FIELD(unsigned)
+PLANTARCH_CHECK_FIELD(int)
+PLANTARCH_CHECK_FIELD(bool)
+PLANTARCH_CHECK_FIELD(vec3)
+PLANTARCH_CHECK_FIELD(std::string)
+PLANTARCH_CHECK_FIELD(LeafShape)
+PLANTARCH_CHECK_FIELD(FlowerArrangement)
+PLANTARCH_CHECK_FIELD(NodeRuleTime)
+PLANTARCH_CHECK_FIELD(Formula)
+#undef PLANTARCH_CHECK_FIELD
+
+void checkField(const FieldInfo& f, const std::string& path,
+                const std::map<int, std::string>& value) {
+    Validator{path}.field(f, value);
+}
+
+void checkField(const FieldInfo& f, const std::string& path,
+                const std::map<std::string, float>& value) {
+    Validator{path}.field(f, value);
+}
+
+void checkField(const FieldInfo& f, const std::string& path, const std::vector<NodeRule>& value) {
+    Validator{path}.list(f, "rule", value,
+                         [](const NodeRule& rule, auto& sub) { describeParameters(rule, sub); });
+}
+
+}  // namespace params
 
 void validate(const PhytomerParameters& p, const std::string& prefix) {
     Validator v{prefix};

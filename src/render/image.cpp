@@ -82,7 +82,9 @@ void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t
 
 }  // namespace
 
-void writePNG(const Image& image, const std::string& path) {
+namespace {
+
+std::vector<std::uint8_t> pngBytes(const Image& image, const std::string& path) {
     if (image.width <= 0 || image.height <= 0 ||
         image.rgb.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
         throw Error("image has no pixels or a wrong buffer size", {.file = path});
@@ -91,7 +93,18 @@ void writePNG(const Image& image, const std::string& path) {
     const int ok = stbi_write_png_to_func(appendBytes, &bytes, image.width, image.height, 3,
                                           image.rgb.data(), image.width * 3);
     if (!ok) throw Error("PNG encoding failed", {.file = path});
-    writeFileAtomically(path, bytes);
+    return bytes;
+}
+
+}  // namespace
+
+void writePNG(const Image& image, const std::string& path) {
+    writeFileAtomically(path, pngBytes(image, path));
+}
+
+std::string encodePNG(const Image& image) {
+    const std::vector<std::uint8_t> bytes = pngBytes(image, "");
+    return std::string(bytes.begin(), bytes.end());
 }
 
 Image readImage(const std::string& path) {

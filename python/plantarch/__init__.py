@@ -1,0 +1,137 @@
+"""plantarch: builds and grows 3D plants (crops, weeds, vines, orchard trees) from a
+phytomer-based parameter model.
+
+    import plantarch
+    context = plantarch.Context()
+    arch = plantarch.PlantArchitecture(context)
+    arch.loadPlantModelFromLibrary("bean")
+    plant = arch.buildPlantInstanceFromLibrary(plantarch.vec3(0, 0, 0), age=30)
+    mesh = arch.getMeshArrays(plant)          # numpy views: vertices, triangles, labels
+
+Names follow the model specification (and plantarch's C++ API). Errors are plantarch.Error
+(a ValueError) with one line naming the parameter, value and valid range. See docs/python.md.
+"""
+
+from typing import NamedTuple
+
+
+class vec3(NamedTuple):
+    """A point or direction, metres (z up). Any sequence of three numbers is accepted too."""
+
+    x: float
+    y: float
+    z: float
+
+
+class vec2(NamedTuple):
+    """A pair of numbers (spacings, extents). Any sequence of two numbers is accepted too."""
+
+    x: float
+    y: float
+
+
+def make_int2(x: int, y: int):
+    """A pair of whole numbers (plant counts), as the specification writes it."""
+    return (int(x), int(y))
+
+
+from ._plantarch import *  # noqa: E402,F401,F403
+from ._plantarch import (  # noqa: E402
+    Context,
+    PlantArchitecture,
+    Error,
+    render as _render,
+    encodePNG,
+    __version__,
+)
+from ._plantarch import ORGAN_LABELS  # noqa: E402,F401
+
+make_vec3 = vec3
+make_vec2 = vec2
+
+
+def render(scene, width=640, height=480, mode="shaded", **options):
+    """Renders a Context, a PlantArchitecture or a Plant as a height x width x 3 uint8 array.
+
+    mode: "shaded", "organ" (one label colour per organ kind) or "object" (one colour per
+    object). Other options: azimuth, elevation, fov (degrees), samples_per_pixel, ground, seed.
+    """
+    if isinstance(scene, Plant):
+        return scene.render(width=width, height=height, mode=mode, **options)
+    if isinstance(scene, PlantArchitecture):
+        scene = scene.getContext()
+    return _render(scene, width=width, height=height, mode=mode, **options)
+
+
+class Plant:
+    """One plant of a PlantArchitecture, as a value a notebook can show (_repr_png_)."""
+
+    def __init__(self, architecture, plantID):
+        self.architecture = architecture
+        self.plantID = int(plantID)
+
+    def statistics(self):
+        """Height, leaf area, leaf count, shoots and triangles, as a dict."""
+        a, p = self.architecture, self.plantID
+        mesh = a.getMeshArrays(p, normals=False)
+        return {
+            "plantID": p,
+            "age": a.getPlantAge(p),
+            "height": a.getPlantHeight(p),
+            "leaf_area": a.getPlantLeafArea(p),
+            "leaf_count": a.getPlantLeafCount(p),
+            "shoots": a.getShootCount(p),
+            "triangles": int(len(mesh["triangles"])),
+        }
+
+    to_dict = statistics
+
+    def shoot_tree(self):
+        """The shoots as a list of dicts (id, type, parent, parent_node, rank, nodes, children)."""
+        state = self.architecture.plant(self.plantID)
+        return [
+            {
+                "id": s.id,
+                "type": s.type,
+                "parent": s.parent,
+                "parent_node": s.parentNode,
+                "rank": s.rank,
+                "nodes": len(s.phytomers),
+                "children": list(s.children),
+            }
+            for s in state.shoots
+            if not s.removed
+        ]
+
+    def render(self, width=480, height=480, mode="shaded", **options):
+        """This plant alone, rendered as an image array."""
+        context = Context()
+        scratch = PlantArchitecture(context)
+        scratch.readPlantStructureXMLString(
+            self.architecture.getPlantStructureXML([self.plantID])
+        )
+        return _render(context, width=width, height=height, mode=mode, **options)
+
+    def _repr_png_(self):
+        return encodePNG(self.render())
+
+    def __repr__(self):
+        s = self.statistics()
+        return (
+            f"<plantarch.Plant {s['plantID']}: {s['age']:g} days, {s['height']:.3f} m tall, "
+            f"{s['leaf_count']} leaves, {s['shoots']} shoots, {s['triangles']} triangles>"
+        )
+
+
+def _context_png(self):
+    return encodePNG(_render(self, width=480, height=480))
+
+
+def _architecture_png(self):
+    return encodePNG(_render(self.getContext(), width=480, height=480))
+
+
+Context._repr_png_ = _context_png
+PlantArchitecture._repr_png_ = _architecture_png
+PlantArchitecture.getPlant = lambda self, plantID: Plant(self, plantID)
+PlantArchitecture.getPlant.__doc__ = "The plant as a plantarch.Plant (statistics, shoot tree, picture)."

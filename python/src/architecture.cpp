@@ -1,0 +1,518 @@
+// PlantArchitecture: the species library, manual building, growth, phenology, pruning,
+// collision avoidance, queries and plant structure files. Long calls release the GIL; Python
+// rule functions and the progress callback take it back when they are called.
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bindings.h"
+#include "callbacks.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::python {
+
+namespace {
+
+using Release = py::call_guard<py::gil_scoped_release>;
+
+ShootSpec shootSpec(unsigned nodes, const AxisRotation& rotation, float radius, float lengthMax,
+                    float lengthScale, float leafScale, float taper, const std::string& type) {
+    ShootSpec spec;
+    spec.phytomers = nodes;
+    spec.baseRotation = rotation;
+    spec.size = {radius, lengthMax, lengthScale, leafScale};
+    spec.radiusTaper = taper;
+    spec.shootType = type;
+    return spec;
+}
+
+std::vector<vec3> points(const py::object& value) {
+    std::vector<vec3> out;
+    for (py::handle p : value) out.push_back(toVec3(p, "attraction_points"));
+    return out;
+}
+
+py::dict statsDict(const CollisionStats& s) {
+    py::dict d;
+    d["softCones"] = s.softCones;
+    d["softRays"] = s.softRays;
+    d["softSteered"] = s.softSteered;
+    d["solidCones"] = s.solidCones;
+    d["solidSteered"] = s.solidSteered;
+    d["attractionQueries"] = s.attractionQueries;
+    d["attracted"] = s.attracted;
+    d["organsTurned"] = s.organsTurned;
+    d["organsUnresolved"] = s.organsUnresolved;
+    d["sceneRefreshes"] = s.sceneRefreshes;
+    d["sceneTriangles"] = s.sceneTriangles;
+    return d;
+}
+
+CollisionOrgans organs(bool internodes, bool leaves, bool petioles, bool flowers, bool fruit) {
+    return {internodes, leaves, petioles, flowers, fruit};
+}
+
+PlantStructureReadOptions readOptions(py::object warnings) {
+    PlantStructureReadOptions o;
+    if (!warnings.is_none()) {
+        auto list = std::make_shared<py::object>(warnings);
+        o.onWarning = [list](const std::string& w) {
+            py::gil_scoped_acquire gil;
+            (*list).attr("append")(w);
+        };
+    }
+    return o;
+}
+
+void bindLibrary(py::class_<PlantArchitecture>& c) {
+    c.def("loadPlantModelFromLibrary", &PlantArchitecture::loadPlantModelFromLibrary,
+          py::arg("plant_label"),
+          "Loads a species by library name ('bean') or file path: its shoot types replace the "
+          "current ones and its phenology becomes the default.")
+        .def("getAvailablePlantModels", &PlantArchitecture::getAvailablePlantModels,
+             "Names of the species in the library, sorted.")
+        .def("getCurrentPlantModel", &PlantArchitecture::getCurrentPlantModel)
+        .def(
+            "buildPlantInstanceFromLibrary",
+            [](PlantArchitecture& a, vec3 base, float age, std::map<std::string, float> bp) {
+                return interruptible(
+                    [&] { return a.buildPlantInstanceFromLibrary(base, age, bp); });
+            },
+            py::arg("base_position"), py::arg("age"),
+            py::arg("build_parameters") = std::map<std::string, float>{},
+            "Builds a plant of the loaded species at base_position, grown to `age` days; build "
+            "parameters (trunk height, scaffolds ...) override the species' defaults. Returns "
+            "its plant ID.")
+        .def(
+            "buildPlantCanopyFromLibrary",
+            [](PlantArchitecture& a, vec3 center, vec2 spacing, std::pair<int, int> count,
+               float age, float germination, std::map<std::string, float> bp) {
+                return interruptible([&] {
+                    return a.buildPlantCanopyFromLibrary(center, spacing,
+                                                         glm::ivec2(count.first, count.second), age,
+                                                         germination, bp);
+                });
+            },
+            py::arg("canopy_center"), py::arg("plant_spacing"), py::arg("plant_count"),
+            py::arg("age"), py::arg("germination_rate") = 1.0f,
+            py::arg("build_parameters") = std::map<std::string, float>{},
+            "A grid of plant_count (x, y) plants plant_spacing (x, y) m apart centred on "
+            "canopy_center, grown to `age` days (in parallel; the same seed gives the same "
+            "plants for any thread count). Returns the plant IDs.")
+        .def(
+            "buildPlantCanopyScatteredFromLibrary",
+            [](PlantArchitecture& a, vec3 center, vec2 extent, unsigned plants, float age,
+               float germination, std::map<std::string, float> bp) {
+                CanopyOptions o;
+                o.layout = CanopyOptions::Layout::Scatter;
+                o.center = center;
+                o.extent = extent;
+                o.plants = plants;
+                o.germinationRate = germination;
+                o.buildParameters = std::move(bp);
+                return interruptible([&] { return a.buildPlantCanopyFromLibrary(o, age); });
+            },
+            py::arg("canopy_center"), py::arg("canopy_extent"), py::arg("plant_count"),
+            py::arg("age"), py::arg("germination_rate") = 1.0f,
+            py::arg("build_parameters") = std::map<std::string, float>{},
+            "plant_count plants scattered at random over a canopy_extent (x, y) rectangle "
+            "(buildPlantCanopyFromLibrary with CanopyOptions.Layout.Scatter).")
+        .def("setTrellisGeometry", &PlantArchitecture::setTrellisGeometry, py::arg("on"))
+        .def("getTrellisGeometry", &PlantArchitecture::getTrellisGeometry)
+        .def("getPlantTrellisObjectIDs", &PlantArchitecture::getPlantTrellisObjectIDs,
+             py::arg("plantID"));
+}
+
+void bindShootTypes(py::class_<PlantArchitecture>& c) {
+    c.def("defineShootType", &PlantArchitecture::defineShootType, py::arg("shoot_type_label"),
+          py::arg("shoot_params"), "Defines (or replaces) a shoot type (validated).")
+        .def("getShootType", &PlantArchitecture::shootType, py::arg("shoot_type_label"),
+             "A copy of a defined shoot type's parameters.")
+        .def("listShootTypeLabels",
+             py::overload_cast<>(&PlantArchitecture::listShootTypeLabels, py::const_),
+             "Labels of the defined shoot types, sorted.")
+        .def("listShootTypeLabels",
+             py::overload_cast<unsigned>(&PlantArchitecture::listShootTypeLabels, py::const_),
+             py::arg("plantID"), "The shoot types of one plant.")
+        .def("listShootTypeLabels",
+             py::overload_cast<const std::string&>(&PlantArchitecture::listShootTypeLabels,
+                                                   py::const_),
+             py::arg("plant_label"), "The shoot types of a library species, without loading it.")
+        .def("getCurrentShootParameters",
+             py::overload_cast<const std::string&>(&PlantArchitecture::getCurrentShootParameters,
+                                                   py::const_),
+             py::arg("shoot_type_label"), "A copy of one shoot type's parameters.")
+        .def("getCurrentShootParameters",
+             py::overload_cast<>(&PlantArchitecture::getCurrentShootParameters, py::const_),
+             "Copies of every shoot type's parameters, by label.")
+        .def("updateCurrentShootParameters",
+             py::overload_cast<const std::string&, const ShootParameters&>(
+                 &PlantArchitecture::updateCurrentShootParameters),
+             py::arg("shoot_type_label"), py::arg("params"),
+             "Replaces a shoot type's parameters (validated); named rules are kept as named.")
+        .def("updateCurrentShootParameters",
+             py::overload_cast<const std::map<std::string, ShootParameters>&>(
+                 &PlantArchitecture::updateCurrentShootParameters),
+             py::arg("params"), "The same for several shoot types at once.");
+}
+
+void bindManual(py::class_<PlantArchitecture>& c) {
+    c.def("addPlantInstance", &PlantArchitecture::addPlantInstance, py::arg("base_position"),
+          py::arg("current_age"), "A new plant with no shoots; returns its ID.")
+        .def("deletePlantInstance", &PlantArchitecture::deletePlantInstance, py::arg("plantID"))
+        .def(
+            "addBaseStemShoot",
+            [](PlantArchitecture& a, unsigned plant, unsigned nodes, AxisRotation rot, float radius,
+               float lengthMax, float lengthScale, float leafScale, float taper,
+               const std::string& type) {
+                return a.addBaseStemShoot(plant, shootSpec(nodes, rot, radius, lengthMax,
+                                                           lengthScale, leafScale, taper, type));
+            },
+            py::arg("plantID"), py::arg("current_node_number"),
+            py::arg("base_rotation") = AxisRotation{}, py::arg("internode_radius") = 0.001f,
+            py::arg("internode_length_max") = 0.02f,
+            py::arg("internode_length_scale_factor_fraction") = 1.0f,
+            py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
+            py::arg("shoot_type_label"), "The plant's base stem; returns its shoot ID (0).")
+        .def(
+            "appendShoot",
+            [](PlantArchitecture& a, unsigned plant, unsigned parent, unsigned nodes,
+               AxisRotation rot, float radius, float lengthMax, float lengthScale, float leafScale,
+               float taper, const std::string& type) {
+                return a.appendShoot(
+                    plant, parent,
+                    shootSpec(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+            },
+            py::arg("plantID"), py::arg("parent_shoot_ID"), py::arg("current_node_number"),
+            py::arg("base_rotation") = AxisRotation{}, py::arg("internode_radius") = 0.001f,
+            py::arg("internode_length_max") = 0.02f,
+            py::arg("internode_length_scale_factor_fraction") = 1.0f,
+            py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
+            py::arg("shoot_type_label"),
+            "A shoot continuing from the tip of parent_shoot_ID; returns its shoot ID.")
+        .def(
+            "addChildShoot",
+            [](PlantArchitecture& a, unsigned plant, unsigned parent, unsigned node, unsigned nodes,
+               AxisRotation rot, float radius, float lengthMax, float lengthScale, float leafScale,
+               float taper, const std::string& type, unsigned petiole) {
+                return a.addChildShoot(
+                    plant, parent, node,
+                    shootSpec(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type),
+                    petiole);
+            },
+            py::arg("plantID"), py::arg("parent_shoot_ID"), py::arg("parent_node_index"),
+            py::arg("current_node_number"), py::arg("shoot_base_rotation") = AxisRotation{},
+            py::arg("internode_radius") = 0.001f, py::arg("internode_length_max") = 0.02f,
+            py::arg("internode_length_scale_factor_fraction") = 1.0f,
+            py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
+            py::arg("shoot_type_label"), py::arg("petiole_index") = 0,
+            "A lateral shoot from the axil of a petiole at parent_node_index; returns its ID.")
+        .def(
+            "appendPhytomerToShoot",
+            [](PlantArchitecture& a, unsigned plant, unsigned shoot, const PhytomerParameters& pp,
+               float radius, float lengthMax, float lengthScale, float leafScale) {
+                return a.appendPhytomerToShoot(plant, shoot, pp,
+                                               {radius, lengthMax, lengthScale, leafScale});
+            },
+            py::arg("plantID"), py::arg("shootID"), py::arg("phytomer_parameters"),
+            py::arg("internode_radius") = 0.001f, py::arg("internode_length_max") = 0.02f,
+            py::arg("internode_length_scale_factor_fraction") = 1.0f,
+            py::arg("leaf_scale_factor_fraction") = 1.0f,
+            "One more phytomer at the tip of a shoot; returns the shoot's phytomer count.")
+        .def("addFloralBud", &PlantArchitecture::addFloralBud, py::arg("plantID"),
+             py::arg("shootID"), py::arg("node"), py::arg("stage"), py::arg("petiole_index") = 0)
+        .def("pruneBranch", &PlantArchitecture::pruneBranch, py::arg("plantID"), py::arg("shootID"),
+             py::arg("node_index"),
+             "Removes the shoot's phytomers from node_index on, and every shoot on them.")
+        .def("removePlantLeaves", &PlantArchitecture::removePlantLeaves, py::arg("plantID"))
+        .def("removeShootLeaves", &PlantArchitecture::removeShootLeaves, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("removeShootVegetativeBuds", &PlantArchitecture::removeShootVegetativeBuds,
+             py::arg("plantID"), py::arg("shootID"))
+        .def("removeShootAxillaryVegetativeBuds",
+             &PlantArchitecture::removeShootAxillaryVegetativeBuds, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("removeShootApex", &PlantArchitecture::removeShootApex, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("removeShootFloralBuds", &PlantArchitecture::removeShootFloralBuds, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("removePlantFlowers", &PlantArchitecture::removePlantFlowers, py::arg("plantID"))
+        .def("harvestPlant", &PlantArchitecture::harvestPlant, py::arg("plantID"),
+             "Removes all fruit; returns how many there were.")
+        .def("updateGeometry", &PlantArchitecture::updateGeometry, py::arg("plantID"));
+}
+
+void bindGrowth(py::class_<PlantArchitecture>& c) {
+    c.def(
+         "advanceTime",
+         [](PlantArchitecture& a, double days) { interruptible([&] { a.advanceTime(days); }); },
+         py::arg("time_step_days"),
+         "Grows every plant by time_step_days (any split of the time gives the same plants).")
+        .def(
+            "advanceTime",
+            [](PlantArchitecture& a, unsigned plant, double days) {
+                interruptible([&] { a.advanceTime(plant, days); });
+            },
+            py::arg("plantID"), py::arg("time_step_days"), "Grows one plant.")
+        .def(
+            "advanceTime",
+            [](PlantArchitecture& a, std::vector<unsigned> plants, double days) {
+                interruptible([&] { a.advanceTime(plants, days); });
+            },
+            py::arg("plantIDs"), py::arg("time_step_days"), "Grows the given plants together.")
+        .def(
+            "setProgressCallback",
+            [](PlantArchitecture& a, py::object fn) { setUserProgress(a, fn); },
+            py::arg("callback"),
+            "callback(stage: str, fraction: float) is told how long calls progress (None: "
+            "none). Ctrl-C stops a long call between plants with KeyboardInterrupt.")
+        .def("setPlantPhenologicalThresholds", &PlantArchitecture::setPlantPhenologicalThresholds,
+             py::arg("plantID"), py::arg("thresholds"))
+        .def(
+            "setPlantPhenologicalThresholds",
+            [](PlantArchitecture& a, unsigned plant, float dormancyBreak, float initiation,
+               float opening, float fruitSet, float maturity, float senescence, float lifespan,
+               bool evergreen, py::object maxAge) {
+                PhenologyParameters t = a.plant(plant).phenology;
+                t.time_to_dormancy_break = dormancyBreak;
+                t.time_to_flower_initiation = initiation;
+                t.time_to_flower_opening = opening;
+                t.time_to_fruit_set = fruitSet;
+                t.time_to_fruit_maturity = maturity;
+                t.time_to_senescence = senescence;
+                t.max_leaf_lifespan = lifespan;
+                t.evergreen = evergreen;
+                if (!maxAge.is_none()) t.max_age = maxAge.cast<float>();
+                a.setPlantPhenologicalThresholds(plant, t);
+            },
+            py::arg("plantID"), py::arg("time_to_dormancy_break"),
+            py::arg("time_to_flower_initiation"), py::arg("time_to_flower_opening"),
+            py::arg("time_to_fruit_set"), py::arg("time_to_fruit_maturity"),
+            py::arg("time_to_senescence"), py::arg("max_leaf_lifespan") = 1e6f,
+            py::arg("is_evergreen") = false, py::arg("max_age") = py::none(),
+            "The specification's form, days (negative disables a stage).")
+        .def(
+            "getPlantPhenologicalThresholds",
+            [](const PlantArchitecture& a, unsigned plant) { return a.plant(plant).phenology; },
+            py::arg("plantID"), "A copy of the plant's thresholds.")
+        .def(
+            "setPlantMaximumAge",
+            [](PlantArchitecture& a, unsigned plant, float maxAge) {
+                PhenologyParameters t = a.plant(plant).phenology;
+                t.max_age = maxAge;
+                a.setPlantPhenologicalThresholds(plant, t);
+            },
+            py::arg("plantID"), py::arg("max_age"), "The plant stops developing at max_age days.")
+        .def("setDefaultPhenology", &PlantArchitecture::setDefaultPhenology, py::arg("thresholds"))
+        .def("getPhenologyStage", &PlantArchitecture::getPhenologyStage, py::arg("plantID"))
+        .def(
+            "registerPhytomerCreationFunction",
+            [](PlantArchitecture& a, const std::string& name, py::function fn) {
+                a.registerPhytomerCreationFunction(name, creationFunction(name, fn));
+            },
+            py::arg("name"), py::arg("function"),
+            "fn(ctx: PhytomerCreationContext) runs for every new phytomer of shoot types whose "
+            "phytomer_creation_function names it (in species files too).")
+        .def(
+            "registerPhytomerCallbackFunction",
+            [](PlantArchitecture& a, const std::string& name, py::function fn) {
+                a.registerPhytomerCallbackFunction(name, callbackFunction(name, fn));
+            },
+            py::arg("name"), py::arg("function"),
+            "fn(ctx: PhytomerCallbackContext) runs for every phytomer at every whole day of "
+            "plant age, for shoot types whose phytomer_callback_function names it.")
+        .def("hasLeafPrototype", &PlantArchitecture::hasLeafPrototype, py::arg("name"))
+        .def("hasFloralPrototype", &PlantArchitecture::hasFloralPrototype, py::arg("name"));
+}
+
+void bindCollision(py::class_<PlantArchitecture>& c) {
+    c.def(
+         "enableSoftCollisionAvoidance",
+         [](PlantArchitecture& a, float halfAngle, float lookAhead, unsigned rays, float inertia,
+            bool internodes, bool petioles, bool peduncles, std::vector<ObjectID> objects,
+            double interval) {
+             SoftCollisionOptions o;
+             o.cone = {halfAngle, lookAhead, rays, inertia};
+             o.steerInternodes = internodes;
+             o.steerPetioles = petioles;
+             o.steerPeduncles = peduncles;
+             o.objects = std::move(objects);
+             o.updateInterval = interval;
+             a.enableSoftCollisionAvoidance(o);
+         },
+         py::arg("cone_half_angle") = 80.0f, py::arg("look_ahead") = 0.1f, py::arg("rays") = 256u,
+         py::arg("inertia") = 0.4f, py::arg("steer_internodes") = true,
+         py::arg("steer_petioles") = false, py::arg("steer_peduncles") = false,
+         py::arg("obstacle_objects") = std::vector<ObjectID>{}, py::arg("update_interval") = 1.0,
+         "Soft avoidance: new organs turn toward open space among plant organs and obstacles.")
+        .def("disableSoftCollisionAvoidance", &PlantArchitecture::disableSoftCollisionAvoidance)
+        .def(
+            "setCollisionRelevantOrgans",
+            [](PlantArchitecture& a, bool internodes, bool leaves, bool petioles, bool flowers,
+               bool fruit) {
+                a.setCollisionRelevantOrgans(organs(internodes, leaves, petioles, flowers, fruit));
+            },
+            py::arg("include_internodes") = false, py::arg("include_leaves") = true,
+            py::arg("include_petioles") = false, py::arg("include_flowers") = false,
+            py::arg("include_fruit") = false)
+        .def(
+            "enableSolidObstacleAvoidance",
+            [](PlantArchitecture& a, std::vector<ObjectID> obstacles, float distance,
+               bool fruitAdjustment, bool clearance) {
+                SolidObstacleOptions o;
+                o.obstacles = std::move(obstacles);
+                o.avoidanceDistance = distance;
+                o.fruitAdjustment = fruitAdjustment;
+                o.organClearance = clearance;
+                a.enableSolidObstacleAvoidance(o);
+            },
+            py::arg("obstacle_objectIDs"), py::arg("avoidance_distance") = 0.2f,
+            py::arg("enable_fruit_adjustment") = false, py::arg("organ_clearance") = true,
+            "Solid obstacles growth never enters (the ground, walls ...).")
+        .def("disableSolidObstacleAvoidance", &PlantArchitecture::disableSolidObstacleAvoidance)
+        .def(
+            "enableAttractionPoints",
+            [](PlantArchitecture& a, py::object pts, float halfAngle, float lookAhead,
+               float inertia, std::vector<std::string> types, std::optional<unsigned> plant) {
+                AttractionPoints ap{points(pts), halfAngle, lookAhead, inertia, std::move(types)};
+                if (plant)
+                    a.enableAttractionPoints(*plant, ap);
+                else
+                    a.enableAttractionPoints(ap);
+            },
+            py::arg("attraction_points"), py::arg("view_half_angle_deg") = 80.0f,
+            py::arg("look_ahead_distance") = 0.1f, py::arg("attraction_weight") = 0.4f,
+            py::arg("shoot_types") = std::vector<std::string>{}, py::arg("plantID") = py::none(),
+            "Growing tips turn toward the nearest point in their cone (for every plant, or one).")
+        .def(
+            "updateAttractionPoints",
+            [](PlantArchitecture& a, py::object pts, std::optional<unsigned> plant) {
+                plant ? a.updateAttractionPoints(*plant, points(pts))
+                      : a.updateAttractionPoints(points(pts));
+            },
+            py::arg("attraction_points"), py::arg("plantID") = py::none())
+        .def(
+            "appendAttractionPoints",
+            [](PlantArchitecture& a, py::object pts, std::optional<unsigned> plant) {
+                plant ? a.appendAttractionPoints(*plant, points(pts))
+                      : a.appendAttractionPoints(points(pts));
+            },
+            py::arg("attraction_points"), py::arg("plantID") = py::none())
+        .def(
+            "disableAttractionPoints",
+            [](PlantArchitecture& a, std::optional<unsigned> plant) {
+                plant ? a.disableAttractionPoints(*plant) : a.disableAttractionPoints();
+            },
+            py::arg("plantID") = py::none())
+        .def("getAttractionPoints", &PlantArchitecture::getAttractionPoints, py::arg("plantID"))
+        .def(
+            "getCollisionStats",
+            [](const PlantArchitecture& a) { return statsDict(a.getCollisionStats()); },
+            "Counts of the work collision avoidance did, as a dict.")
+        .def("resetCollisionStats", &PlantArchitecture::resetCollisionStats);
+}
+
+void bindQueries(py::class_<PlantArchitecture>& c) {
+    c.def("getAllPlantIDs", &PlantArchitecture::getAllPlantIDs)
+        .def("plant", &PlantArchitecture::plant, py::arg("plantID"),
+             py::return_value_policy::reference_internal,
+             "The plant's whole state (read-only view; valid until the plant changes).")
+        .def("getPlantBasePosition", &PlantArchitecture::getPlantBasePosition, py::arg("plantID"))
+        .def("getPlantAge", &PlantArchitecture::getPlantAge, py::arg("plantID"))
+        .def("getPlantHeight", &PlantArchitecture::getPlantHeight, py::arg("plantID"))
+        .def("getPlantStemHeight", &PlantArchitecture::getPlantStemHeight, py::arg("plantID"))
+        .def("getPlantLeafCount", &PlantArchitecture::getPlantLeafCount, py::arg("plantID"))
+        .def("getPlantLeafArea", &PlantArchitecture::getPlantLeafArea, py::arg("plantID"))
+        .def("getPlantObjectIDs", &PlantArchitecture::getPlantObjectIDs, py::arg("plantID"),
+             py::arg("organ"))
+        .def("getAllPlantObjectIDs", &PlantArchitecture::getAllPlantObjectIDs, py::arg("plantID"))
+        .def("getAllObjectIDs", &PlantArchitecture::getAllObjectIDs)
+        .def("getShootCount", &PlantArchitecture::getShootCount, py::arg("plantID"))
+        .def("getShootNodeCount", &PlantArchitecture::getShootNodeCount, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("getShootParent", &PlantArchitecture::getShootParent, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("getShootRank", &PlantArchitecture::getShootRank, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("getShootChildren", &PlantArchitecture::getShootChildren, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("getShootDescendants", &PlantArchitecture::getShootDescendants, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("getTerminalShoots", &PlantArchitecture::getTerminalShoots, py::arg("plantID"))
+        .def("getShootPathToRoot", &PlantArchitecture::getShootPathToRoot, py::arg("plantID"),
+             py::arg("shootID"))
+        .def("getNodePosition", &PlantArchitecture::getNodePosition, py::arg("plantID"),
+             py::arg("shootID"), py::arg("node_index"));
+}
+
+void bindFiles(py::class_<PlantArchitecture>& c) {
+    c.def(
+         "writePlantStructureXML",
+         [](const PlantArchitecture& a, py::object plants, const std::string& file) {
+             const std::vector<unsigned> ids = py::isinstance<py::int_>(plants)
+                                                   ? std::vector<unsigned>{plants.cast<unsigned>()}
+                                                   : plants.cast<std::vector<unsigned>>();
+             py::gil_scoped_release release;
+             a.writePlantStructureXML(ids, file);
+         },
+         py::arg("plantID"), py::arg("filename"),
+         "Writes one plant (an ID) or several (a list) as a plant structure XML file.")
+        .def("getPlantStructureXML", &PlantArchitecture::getPlantStructureXML, py::arg("plantIDs"))
+        .def(
+            "readPlantStructureXML",
+            [](PlantArchitecture& a, const std::string& file, py::object warnings) {
+                return a.readPlantStructureXML(file, readOptions(warnings));
+            },
+            py::arg("filename"), py::arg("warnings") = py::none(),
+            "Adds the plants of a file; returns their IDs. `warnings`: a list that receives one "
+            "line per plant whose file left values out.")
+        .def(
+            "readPlantStructureXMLString",
+            [](PlantArchitecture& a, const std::string& xml, py::object warnings) {
+                return a.readPlantStructureXMLString(xml, readOptions(warnings));
+            },
+            py::arg("xml"), py::arg("warnings") = py::none())
+        .def(
+            "getPlantString",
+            [](const PlantArchitecture& a, unsigned plant, int digits) {
+                return a.getPlantString(plant, {digits});
+            },
+            py::arg("plantID"), py::arg("significant_digits") = 4,
+            "A one-line text of the plant's visible structure.")
+        .def(
+            "generatePlantFromString",
+            [](PlantArchitecture& a, const std::string& s) { return a.generatePlantFromString(s); },
+            py::arg("plant_string"), "Adds the plant a plant string describes; returns its ID.");
+}
+
+}  // namespace
+
+void bindArchitecture(py::module_& m) {
+    py::class_<PlantArchitecture> c(
+        m, "PlantArchitecture",
+        "Builds plants from shoot types and keeps their geometry in a Context. Method names "
+        "follow the model specification.");
+    c.def(py::init([](Context* context) {
+              auto a = std::make_unique<PlantArchitecture>(context);
+              setUserProgress(*a, py::none());  // watches for Ctrl-C
+              return a;
+          }),
+          py::arg("context"), py::keep_alive<1, 2>(),
+          "Plants are built into `context` (kept alive as long as this object).")
+        .def("getContext", &PlantArchitecture::context, py::return_value_policy::reference_internal)
+        .def("setSeed", &PlantArchitecture::setSeed, py::arg("seed"),
+             "Seed of the scene (42 by default), for plants added afterwards.")
+        .def("getSeed", &PlantArchitecture::seed);
+    bindLibrary(c);
+    bindShootTypes(c);
+    bindManual(c);
+    bindGrowth(c);
+    bindCollision(c);
+    bindQueries(c);
+    bindFiles(c);
+}
+
+}  // namespace plantarch::python

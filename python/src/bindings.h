@@ -1,0 +1,51 @@
+#pragma once
+// Shared pieces of the Python module: conversions of the library's small value types and the
+// functions that bind each part of the library (one file per part).
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "plantarch/Context.h"
+#include "plantarch/Error.h"
+#include "plantarch/Mesh.h"
+
+namespace py = pybind11;
+
+namespace plantarch::python {
+
+/// A vec3 from any sequence of three numbers (plantarch.vec3, tuple, list, numpy array).
+/// Throws plantarch::Error naming `what` otherwise.
+vec3 toVec3(py::handle value, const char* what);
+/// A vec2 from any sequence of two numbers.
+vec2 toVec2(py::handle value, const char* what);
+
+void bindValues(py::module_& m);        // values.cpp: vec3, vec2, AxisRotation, errors
+void bindParameters(py::module_& m);    // parameters.cpp: the parameter table's structs
+void bindState(py::module_& m);         // state.cpp: plant state (shoots, phytomers, organs)
+void bindContext(py::module_& m);       // context.cpp: Context, Mesh, Material
+void bindGeometry(py::module_& m);      // geometry.cpp: numpy views of the mesh
+void bindArchitecture(py::module_& m);  // architecture.cpp: PlantArchitecture
+void bindOutput(py::module_& m);        // output.cpp: exporters, renderer, species files
+
+}  // namespace plantarch::python
+
+namespace pybind11::detail {
+
+/// glm vectors cross as plantarch.vec3 / vec2 objects and are read from any sequence of
+/// numbers of the right length.
+template <>
+struct type_caster<glm::vec3> {
+    PYBIND11_TYPE_CASTER(glm::vec3, const_name("vec3"));
+    bool load(handle src, bool);
+    static handle cast(const glm::vec3& v, return_value_policy, handle);
+};
+template <>
+struct type_caster<glm::vec2> {
+    PYBIND11_TYPE_CASTER(glm::vec2, const_name("vec2"));
+    bool load(handle src, bool);
+    static handle cast(const glm::vec2& v, return_value_policy, handle);
+};
+
+}  // namespace pybind11::detail

@@ -1,0 +1,89 @@
+// Python functions called from C++ (see callbacks.h).
+
+#include "callbacks.h"
+
+#include <string_view>
+#include <thread>
+
+namespace plantarch::python {
+
+namespace {
+
+std::thread::id mainThread;
+
+// A Python object that is released with the GIL held, whichever thread drops it last.
+std::shared_ptr<py::object> held(const py::object& o) {
+    return std::shared_ptr<py::object>(new py::object(o), [](py::object* p) {
+        py::gil_scoped_acquire gil;
+        delete p;
+    });
+}
+
+std::string describe(py::error_already_set& e) {
+    return e.what();  // computed here, with the GIL held
+}
+
+}  // namespace
+
+PythonError::PythonError(py::error_already_set&& e)
+    : Error(describe(e)),
+      original_(new py::error_already_set(std::move(e)), [](py::error_already_set* p) {
+          py::gil_scoped_acquire gil;
+          delete p;
+      }) {}
+
+void PythonError::restore() const {
+    original_->restore();
+}
+
+PhytomerCreationFunction creationFunction(const std::string& name, const py::function& fn) {
+    auto f = held(fn);
+    return [f, name](PhytomerCreationContext& c) {
+        py::gil_scoped_acquire gil;
+        try {
+            (*f)(py::cast(&c, py::return_value_policy::reference));
+        } catch (py::error_already_set& e) {
+            throw PythonError(std::move(e));
+        }
+    };
+}
+
+PhytomerCallbackFunction callbackFunction(const std::string& name, const py::function& fn) {
+    auto f = held(fn);
+    return [f, name](PhytomerCallbackContext& c) {
+        py::gil_scoped_acquire gil;
+        try {
+            (*f)(py::cast(&c, py::return_value_policy::reference));
+        } catch (py::error_already_set& e) {
+            throw PythonError(std::move(e));
+        }
+    };
+}
+
+void setUserProgress(PlantArchitecture& arch, const py::object& fn) {
+    std::shared_ptr<py::object> user = fn.is_none() ? nullptr : held(fn);
+    arch.setProgressCallback([user](std::string_view stage, double fraction) {
+        const bool onMain = std::this_thread::get_id() == mainThread;
+        if (!onMain && !user) return;
+        py::gil_scoped_acquire gil;
+        try {
+            if (onMain && PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (user) (*user)(std::string(stage), fraction);
+        } catch (py::error_already_set& e) {
+            throw PythonError(std::move(e));
+        }
+    });
+}
+
+void bindCallbacks(py::module_&) {
+    mainThread = std::this_thread::get_id();
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const PythonError& e) {
+            e.restore();
+        }
+    });
+}
+
+}  // namespace plantarch::python

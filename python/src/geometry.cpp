@@ -1,0 +1,182 @@
+// Geometry as numpy arrays without a second copy: the triangles of the chosen objects are
+// gathered once into one C++ buffer, and every array is a view of it kept alive by a capsule
+// that owns the buffer.
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bindings.h"
+#include "io/export_common.h"
+#include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::python {
+
+namespace {
+
+// The gathered mesh. Triangle indices are global (into vertices).
+struct MeshBuffer {
+    std::vector<float> vertices;           // N x 3
+    std::vector<float> normals;            // N x 3
+    std::vector<float> uvs;                // N x 2 (0, 0 where an object has none)
+    std::vector<std::uint32_t> triangles;  // M x 3
+    std::vector<std::int32_t> plantID;     // M (-1: not a plant organ)
+    std::vector<std::uint32_t> objectID;   // M
+    std::vector<std::uint8_t> organ;       // M, index into plantarch.ORGAN_LABELS
+    bool anyUVs = false;
+};
+
+std::uint8_t organCode(const std::string& organ) {
+    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
+        if (organ == kOrganLabels[i]) return std::uint8_t(i);
+    if (organ == "trellis") return std::uint8_t(9);  // obstacle
+    return 0;                                        // unlabelled
+}
+
+std::unique_ptr<MeshBuffer> gather(const Context& ctx, const std::vector<ObjectID>& ids,
+                                   bool normals) {
+    auto buf = std::make_unique<MeshBuffer>();
+    std::size_t nv = 0, nt = 0;
+    for (ObjectID id : ids) {
+        const ObjectView o = ctx.object(id);
+        nv += o.positions.size();
+        nt += o.triangleCount();
+        buf->anyUVs = buf->anyUVs || !o.uvs.empty();
+    }
+    buf->vertices.resize(3 * nv);
+    if (normals) buf->normals.resize(3 * nv);
+    if (buf->anyUVs) buf->uvs.assign(2 * nv, 0.0f);
+    buf->triangles.resize(3 * nt);
+    buf->plantID.resize(nt);
+    buf->objectID.resize(nt);
+    buf->organ.resize(nt);
+    const bool hasPlant = ctx.objectDataType("plantID") == DataType::Int;
+    const bool hasOrgan = ctx.objectDataType("organ") == DataType::String;
+    std::size_t v0 = 0, t0 = 0;
+    std::vector<vec3> smooth;
+    for (ObjectID id : ids) {
+        const ObjectView o = ctx.object(id);
+        std::copy_n(&o.positions.data()->x, 3 * o.positions.size(), &buf->vertices[3 * v0]);
+        if (!o.uvs.empty()) std::copy_n(&o.uvs.data()->x, 2 * o.uvs.size(), &buf->uvs[2 * v0]);
+        if (normals) {
+            io::smoothNormals(o, smooth);
+            std::copy_n(&smooth.data()->x, 3 * smooth.size(), &buf->normals[3 * v0]);
+        }
+        for (std::size_t k = 0; k < o.indices.size(); ++k)
+            buf->triangles[3 * t0 + k] = std::uint32_t(v0 + o.indices[k]);
+        const std::size_t n = o.triangleCount();
+        const std::int32_t plant = hasPlant ? ctx.objectDataInt(id, "plantID").value_or(-1) : -1;
+        const std::uint8_t organ =
+            hasOrgan ? organCode(ctx.objectDataString(id, "organ").value_or("")) : 0;
+        std::fill_n(&buf->plantID[t0], n, plant);
+        std::fill_n(&buf->objectID[t0], n, id);
+        std::fill_n(&buf->organ[t0], n, organ);
+        v0 += o.positions.size();
+        t0 += n;
+    }
+    return buf;
+}
+
+template <class T>
+py::array view(std::vector<T>& data, std::size_t columns, py::handle owner) {
+    const std::size_t rows = columns ? data.size() / columns : data.size();
+    if (columns == 0) return py::array_t<T>({rows}, {sizeof(T)}, data.data(), owner);
+    return py::array_t<T>({rows, columns}, {columns * sizeof(T), sizeof(T)}, data.data(), owner);
+}
+
+py::dict asArrays(std::unique_ptr<MeshBuffer> buf) {
+    MeshBuffer* raw = buf.release();
+    py::capsule owner(raw, [](void* p) { delete static_cast<MeshBuffer*>(p); });
+    py::dict out;
+    out["vertices"] = view(raw->vertices, 3, owner);
+    out["triangles"] = view(raw->triangles, 3, owner);
+    out["plant_id"] = view(raw->plantID, 0, owner);
+    out["object_id"] = view(raw->objectID, 0, owner);
+    out["organ"] = view(raw->organ, 0, owner);
+    out["normals"] = raw->normals.empty() ? py::object(py::none()) : view(raw->normals, 3, owner);
+    out["uvs"] = raw->anyUVs ? view(raw->uvs, 2, owner) : py::object(py::none());
+    return out;
+}
+
+const char* kMeshDoc =
+    "as a dict of numpy arrays that view one C++ buffer (no second copy; the arrays keep it "
+    "alive): vertices (N x 3 float32, m), triangles (M x 3 uint32 into vertices), plant_id (M "
+    "int32, -1 for objects of no plant), object_id (M uint32), organ (M uint8, an index into "
+    "plantarch.ORGAN_LABELS), normals (N x 3 float32, smooth per object; None with "
+    "normals=False) and uvs (N x 2 float32, 0 where an object has none; None when no object "
+    "has UVs).";
+
+}  // namespace
+
+void bindGeometry(py::module_& m) {
+    py::list labels;
+    for (std::string_view l : kOrganLabels) labels.append(py::str(std::string(l)));
+    m.attr("ORGAN_LABELS") = py::tuple(labels);
+
+    py::class_<Context> ctx = py::reinterpret_borrow<py::class_<Context>>(m.attr("Context"));
+    ctx.def(
+        "getMeshArrays",
+        [](const Context& c, py::object objectIDs, bool includeHidden, bool normals) {
+            std::vector<ObjectID> ids;
+            if (objectIDs.is_none()) {
+                ids = io::exportedObjects(c, includeHidden);
+            } else {
+                ids = objectIDs.cast<std::vector<ObjectID>>();
+                for (ObjectID id : ids)
+                    if (!c.doesObjectExist(id))
+                        throw Error("no such object",
+                                    {.parameter = "objectIDs", .value = std::to_string(id)});
+            }
+            std::unique_ptr<MeshBuffer> buf;
+            {
+                py::gil_scoped_release release;
+                buf = gather(c, ids, normals);
+            }
+            return asArrays(std::move(buf));
+        },
+        py::arg("objectIDs") = py::none(), py::arg("includeHidden") = false,
+        py::arg("normals") = true,
+        (std::string("The geometry of the given objects (all visible ones by default), ") +
+         kMeshDoc)
+            .c_str());
+
+    py::class_<PlantArchitecture> arch =
+        py::reinterpret_borrow<py::class_<PlantArchitecture>>(m.attr("PlantArchitecture"));
+    arch.def(
+        "getMeshArrays",
+        [](PlantArchitecture& a, py::object plantIDs, bool normals) {
+            std::vector<unsigned> plants;
+            if (plantIDs.is_none())
+                plants = a.getAllPlantIDs();
+            else if (py::isinstance<py::int_>(plantIDs))
+                plants = {plantIDs.cast<unsigned>()};
+            else
+                plants = plantIDs.cast<std::vector<unsigned>>();
+            std::vector<ObjectID> ids;
+            for (unsigned p : plants) {
+                const std::vector<ObjectID> own = a.getAllPlantObjectIDs(p);
+                ids.insert(ids.end(), own.begin(), own.end());
+            }
+            std::sort(ids.begin(), ids.end());
+            std::vector<ObjectID> shown;
+            for (ObjectID id : ids)
+                if (!a.context().isObjectHidden(id)) shown.push_back(id);
+            std::unique_ptr<MeshBuffer> buf;
+            {
+                py::gil_scoped_release release;
+                buf = gather(a.context(), shown, normals);
+            }
+            return asArrays(std::move(buf));
+        },
+        py::arg("plantIDs") = py::none(), py::arg("normals") = true,
+        (std::string("The geometry of a plant (an ID), some plants (a list) or all of them "
+                     "(None), ") +
+         kMeshDoc)
+            .c_str());
+}
+
+}  // namespace plantarch::python

@@ -1,0 +1,118 @@
+// Exporters (OBJ, PLY, plant label table), the renderer (images as numpy arrays) and the
+// species library directory.
+
+#include <cstring>
+#include <string>
+
+#include "bindings.h"
+#include "plantarch/Export.h"
+#include "plantarch/Render.h"
+#include "plantarch/SpeciesIO.h"
+
+namespace plantarch::python {
+
+namespace {
+
+py::array_t<std::uint8_t> imageArray(Image&& image) {
+    auto* owned = new Image(std::move(image));
+    py::capsule owner(owned, [](void* p) { delete static_cast<Image*>(p); });
+    return py::array_t<std::uint8_t>(
+        {std::size_t(owned->height), std::size_t(owned->width), std::size_t(3)},
+        {std::size_t(owned->width) * 3, std::size_t(3), std::size_t(1)}, owned->rgb.data(), owner);
+}
+
+Image imageFrom(const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
+    if (a.ndim() != 3 || a.shape(2) != 3)
+        throw Error("wrong array shape",
+                    {.parameter = "image", .validRange = "height x width x 3 uint8"});
+    Image image(int(a.shape(1)), int(a.shape(0)));
+    std::memcpy(image.rgb.data(), a.data(), image.rgb.size());
+    return image;
+}
+
+RenderMode modeNamed(const std::string& mode) {
+    if (mode == "shaded") return RenderMode::Shaded;
+    if (mode == "organ") return RenderMode::LabelOrgan;
+    if (mode == "object") return RenderMode::LabelObject;
+    throw Error(
+        "unknown render mode",
+        {.parameter = "mode", .value = mode, .validRange = "one of: shaded, organ, object"});
+}
+
+}  // namespace
+
+void bindOutput(py::module_& m) {
+    m.def(
+        "writeOBJ",
+        [](const Context& c, const std::string& path, bool includeHidden, bool normals, bool uvs,
+           bool materials, bool splitPerObject) {
+            py::gil_scoped_release release;
+            writeOBJ(c, path, {includeHidden, normals, uvs, materials, splitPerObject});
+        },
+        py::arg("context"), py::arg("filename"), py::arg("include_hidden") = false,
+        py::arg("normals") = true, py::arg("uvs") = true, py::arg("materials") = true,
+        py::arg("split_per_object") = false,
+        "Writes the Context as OBJ (+ MTL) with one group per object, atomically.");
+    m.def(
+        "writePLY",
+        [](const Context& c, const std::string& path, bool ascii, bool includeHidden,
+           bool normals) {
+            py::gil_scoped_release release;
+            writePLY(
+                c, path,
+                {ascii ? PlyFormat::Ascii : PlyFormat::BinaryLittleEndian, includeHidden, normals});
+        },
+        py::arg("context"), py::arg("filename"), py::arg("ascii") = false,
+        py::arg("include_hidden") = false, py::arg("normals") = false,
+        "Writes the Context as PLY with per-face plant, object and organ labels, atomically.");
+    m.def(
+        "readOBJ", [](Context& c, const std::string& path) { return readOBJ(c, path); },
+        py::arg("context"), py::arg("filename"),
+        "Adds the objects of an OBJ file (obstacles, ground); returns their IDs.");
+    m.def(
+        "render",
+        [](const Context& c, int width, int height, const std::string& mode, float azimuth,
+           float elevation, float fov, int samples, bool ground, std::uint64_t seed) {
+            RenderOptions o;
+            o.width = width;
+            o.height = height;
+            o.mode = modeNamed(mode);
+            o.camera.azimuthDeg = azimuth;
+            o.camera.elevationDeg = elevation;
+            o.camera.fovDeg = fov;
+            o.samplesPerPixel = samples;
+            o.groundPlane = ground;
+            o.seed = seed;
+            Image image;
+            {
+                py::gil_scoped_release release;
+                image = render(c, o);
+            }
+            return imageArray(std::move(image));
+        },
+        py::arg("context"), py::arg("width") = 640, py::arg("height") = 480,
+        py::arg("mode") = "shaded", py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f,
+        py::arg("fov") = 35.0f, py::arg("samples_per_pixel") = 4, py::arg("ground") = true,
+        py::arg("seed") = 0,
+        "Renders the Context, framed automatically, as a height x width x 3 uint8 array. mode: "
+        "'shaded', 'organ' (label colours per organ) or 'object' (one colour per object ID).");
+    m.def(
+        "writePNG",
+        [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a,
+           const std::string& path) { writePNG(imageFrom(a), path); },
+        py::arg("image"), py::arg("filename"), "Writes an image array as PNG, atomically.");
+    m.def(
+        "encodePNG",
+        [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
+            return py::bytes(encodePNG(imageFrom(a)));
+        },
+        py::arg("image"), "An image array as PNG bytes.");
+    m.def(
+        "readImage", [](const std::string& path) { return imageArray(readImage(path)); },
+        py::arg("filename"), "Reads a PNG (or JPEG ...) as a height x width x 3 uint8 array.");
+    m.def("speciesLibraryDirectory", &speciesLibraryDirectory,
+          "The folder the species library is read from.");
+    m.def("listSpecies", &listSpecies, "Names of the library species, sorted.");
+}
+
+}  // namespace plantarch::python
