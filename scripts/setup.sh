@@ -44,3 +44,16 @@ type=Release
 [ "$sanitize" = ON ] && type=RelWithDebInfo
 cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DPLANTARCH_SANITIZE="$sanitize" >/dev/null
 cmake --build "$dir" --parallel "$(nproc)" >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log" >&2; exit 1; }
+
+# The Python module: a .pth file in /usr/bin/python3's site directory (the user's own when
+# that is not writable) puts build/python on its path, so `import plantarch` works from any
+# directory without PYTHONPATH.
+if [ "$sanitize" = OFF ] && [ -d "$dir/python/plantarch" ]; then
+  site=$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')
+  if ! mkdir -p "$site" 2>/dev/null || [ ! -w "$site" ]; then
+    site=$(/usr/bin/python3 -m site --user-site)
+    mkdir -p "$site"
+  fi
+  echo "$PWD/$dir/python" >"$site/plantarch.pth.tmp"
+  mv "$site/plantarch.pth.tmp" "$site/plantarch.pth"
+fi

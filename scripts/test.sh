@@ -21,6 +21,13 @@ for a in "$@"; do [ "$a" = --sanitize ] && dir=build-asan; done
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 ctest --test-dir "$dir" --output-on-failure --timeout 600 -j "$(nproc)"
-if [ -d python/tests ] && ls "$dir"/python/plantarch*.so >/dev/null 2>&1; then
-  PYTHONPATH="$PWD/$dir/python" /usr/bin/python3 -m pytest -q python/tests
+# The Python module's tests, through the installed module (setup.sh's .pth file) in a plain
+# build, and with the sanitizer runtimes preloaded into the interpreter in a sanitized one.
+if [ "$dir" = build ]; then
+  (cd /tmp && /usr/bin/python3 -c "import plantarch") || { echo "test: the Python module does not import" >&2; exit 1; }
+  /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
+else
+  PYTHONPATH="$PWD/$dir/python" ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+    LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
 fi

@@ -74,7 +74,8 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
           "current ones and its phenology becomes the default.")
         .def("getAvailablePlantModels", &PlantArchitecture::getAvailablePlantModels,
              "Names of the species in the library, sorted.")
-        .def("getCurrentPlantModel", &PlantArchitecture::getCurrentPlantModel)
+        .def("getCurrentPlantModel", &PlantArchitecture::getCurrentPlantModel,
+             "Name of the loaded species ('' when none).")
         .def(
             "buildPlantInstanceFromLibrary",
             [](PlantArchitecture& a, vec3 base, float age, std::map<std::string, float> bp) {
@@ -120,10 +121,12 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
             py::arg("build_parameters") = std::map<std::string, float>{},
             "plant_count plants scattered at random over a canopy_extent (x, y) rectangle "
             "(buildPlantCanopyFromLibrary with CanopyOptions.Layout.Scatter).")
-        .def("setTrellisGeometry", &PlantArchitecture::setTrellisGeometry, py::arg("on"))
-        .def("getTrellisGeometry", &PlantArchitecture::getTrellisGeometry)
+        .def("setTrellisGeometry", &PlantArchitecture::setTrellisGeometry, py::arg("on"),
+             "Whether library plants get their species' trellis (on by default).")
+        .def("getTrellisGeometry", &PlantArchitecture::getTrellisGeometry,
+             "Whether library plants get their species' trellis (posts and wires).")
         .def("getPlantTrellisObjectIDs", &PlantArchitecture::getPlantTrellisObjectIDs,
-             py::arg("plantID"));
+             py::arg("plantID"), "The trellis objects (posts and wires) made with a plant.");
 }
 
 void bindShootTypes(py::class_<PlantArchitecture>& c) {
@@ -162,7 +165,8 @@ void bindShootTypes(py::class_<PlantArchitecture>& c) {
 void bindManual(py::class_<PlantArchitecture>& c) {
     c.def("addPlantInstance", &PlantArchitecture::addPlantInstance, py::arg("base_position"),
           py::arg("current_age"), "A new plant with no shoots; returns its ID.")
-        .def("deletePlantInstance", &PlantArchitecture::deletePlantInstance, py::arg("plantID"))
+        .def("deletePlantInstance", &PlantArchitecture::deletePlantInstance, py::arg("plantID"),
+             "Removes a plant and its objects from the Context.")
         .def(
             "addBaseStemShoot",
             [](PlantArchitecture& a, unsigned plant, unsigned nodes, AxisRotation rot, float radius,
@@ -223,26 +227,35 @@ void bindManual(py::class_<PlantArchitecture>& c) {
             py::arg("leaf_scale_factor_fraction") = 1.0f,
             "One more phytomer at the tip of a shoot; returns the shoot's phytomer count.")
         .def("addFloralBud", &PlantArchitecture::addFloralBud, py::arg("plantID"),
-             py::arg("shootID"), py::arg("node"), py::arg("stage"), py::arg("petiole_index") = 0)
+             py::arg("shootID"), py::arg("node"), py::arg("stage"), py::arg("petiole_index") = 0,
+             "Adds a floral bud at a node with the given FloralStage (hand-built plants); returns "
+             "the flowers on its peduncle.")
         .def("pruneBranch", &PlantArchitecture::pruneBranch, py::arg("plantID"), py::arg("shootID"),
              py::arg("node_index"),
              "Removes the shoot's phytomers from node_index on, and every shoot on them.")
-        .def("removePlantLeaves", &PlantArchitecture::removePlantLeaves, py::arg("plantID"))
+        .def("removePlantLeaves", &PlantArchitecture::removePlantLeaves, py::arg("plantID"),
+             "Removes every leaf of the plant (petioles stay).")
         .def("removeShootLeaves", &PlantArchitecture::removeShootLeaves, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"),
+             "Removes the leaves of a shoot with their petioles (bare nodes keep their buds).")
         .def("removeShootVegetativeBuds", &PlantArchitecture::removeShootVegetativeBuds,
-             py::arg("plantID"), py::arg("shootID"))
+             py::arg("plantID"), py::arg("shootID"),
+             "Removes every vegetative bud (apical and axillary): the shoot stops growing and "
+             "branching.")
         .def("removeShootAxillaryVegetativeBuds",
              &PlantArchitecture::removeShootAxillaryVegetativeBuds, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"),
+             "Removes the axillary vegetative buds; the shoot keeps growing from its tip.")
         .def("removeShootApex", &PlantArchitecture::removeShootApex, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"), "Kills the apical bud: the shoot makes no more phytomers.")
         .def("removeShootFloralBuds", &PlantArchitecture::removeShootFloralBuds, py::arg("plantID"),
-             py::arg("shootID"))
-        .def("removePlantFlowers", &PlantArchitecture::removePlantFlowers, py::arg("plantID"))
+             py::arg("shootID"), "Removes the floral buds of a shoot that have not flowered yet.")
+        .def("removePlantFlowers", &PlantArchitecture::removePlantFlowers, py::arg("plantID"),
+             "Removes flowers (open and closed) and fruit, keeping peduncles.")
         .def("harvestPlant", &PlantArchitecture::harvestPlant, py::arg("plantID"),
              "Removes all fruit; returns how many there were.")
-        .def("updateGeometry", &PlantArchitecture::updateGeometry, py::arg("plantID"));
+        .def("updateGeometry", &PlantArchitecture::updateGeometry, py::arg("plantID"),
+             "Regenerates the plant's geometry from its state.");
 }
 
 void bindGrowth(py::class_<PlantArchitecture>& c) {
@@ -270,7 +283,8 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             "callback(stage: str, fraction: float) is told how long calls progress (None: "
             "none). Ctrl-C stops a long call between plants with KeyboardInterrupt.")
         .def("setPlantPhenologicalThresholds", &PlantArchitecture::setPlantPhenologicalThresholds,
-             py::arg("plantID"), py::arg("thresholds"))
+             py::arg("plantID"), py::arg("thresholds"),
+             "Sets a plant's phenological thresholds (a PhenologyParameters; validated).")
         .def(
             "setPlantPhenologicalThresholds",
             [](PlantArchitecture& a, unsigned plant, float dormancyBreak, float initiation,
@@ -306,8 +320,10 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
                 a.setPlantPhenologicalThresholds(plant, t);
             },
             py::arg("plantID"), py::arg("max_age"), "The plant stops developing at max_age days.")
-        .def("setDefaultPhenology", &PlantArchitecture::setDefaultPhenology, py::arg("thresholds"))
-        .def("getPhenologyStage", &PlantArchitecture::getPhenologyStage, py::arg("plantID"))
+        .def("setDefaultPhenology", &PlantArchitecture::setDefaultPhenology, py::arg("thresholds"),
+             "Thresholds given to plants added from now on (a PhenologyParameters).")
+        .def("getPhenologyStage", &PlantArchitecture::getPhenologyStage, py::arg("plantID"),
+             "Where the plant is in its yearly cycle now (a PhenologyStage).")
         .def(
             "registerPhytomerCreationFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
@@ -324,8 +340,10 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             py::arg("name"), py::arg("function"),
             "fn(ctx: PhytomerCallbackContext) runs for every phytomer at every whole day of "
             "plant age, for shoot types whose phytomer_callback_function names it.")
-        .def("hasLeafPrototype", &PlantArchitecture::hasLeafPrototype, py::arg("name"))
-        .def("hasFloralPrototype", &PlantArchitecture::hasFloralPrototype, py::arg("name"));
+        .def("hasLeafPrototype", &PlantArchitecture::hasLeafPrototype, py::arg("name"),
+             "Whether a leaf prototype builder of that name is registered.")
+        .def("hasFloralPrototype", &PlantArchitecture::hasFloralPrototype, py::arg("name"),
+             "Whether a flower or fruit prototype builder of that name is registered.");
 }
 
 void bindCollision(py::class_<PlantArchitecture>& c) {
@@ -348,7 +366,8 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
          py::arg("steer_petioles") = false, py::arg("steer_peduncles") = false,
          py::arg("obstacle_objects") = std::vector<ObjectID>{}, py::arg("update_interval") = 1.0,
          "Soft avoidance: new organs turn toward open space among plant organs and obstacles.")
-        .def("disableSoftCollisionAvoidance", &PlantArchitecture::disableSoftCollisionAvoidance)
+        .def("disableSoftCollisionAvoidance", &PlantArchitecture::disableSoftCollisionAvoidance,
+             "Turns soft collision avoidance off.")
         .def(
             "setCollisionRelevantOrgans",
             [](PlantArchitecture& a, bool internodes, bool leaves, bool petioles, bool flowers,
@@ -357,7 +376,8 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
             },
             py::arg("include_internodes") = false, py::arg("include_leaves") = true,
             py::arg("include_petioles") = false, py::arg("include_flowers") = false,
-            py::arg("include_fruit") = false)
+            py::arg("include_fruit") = false,
+            "Which plant organs are obstacles for soft avoidance (leaves only by default).")
         .def(
             "enableSolidObstacleAvoidance",
             [](PlantArchitecture& a, std::vector<ObjectID> obstacles, float distance,
@@ -372,7 +392,8 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
             py::arg("obstacle_objectIDs"), py::arg("avoidance_distance") = 0.2f,
             py::arg("enable_fruit_adjustment") = false, py::arg("organ_clearance") = true,
             "Solid obstacles growth never enters (the ground, walls ...).")
-        .def("disableSolidObstacleAvoidance", &PlantArchitecture::disableSolidObstacleAvoidance)
+        .def("disableSolidObstacleAvoidance", &PlantArchitecture::disableSolidObstacleAvoidance,
+             "Forgets the solid obstacles.")
         .def(
             "enableAttractionPoints",
             [](PlantArchitecture& a, py::object pts, float halfAngle, float lookAhead,
@@ -393,59 +414,81 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
                 plant ? a.updateAttractionPoints(*plant, points(pts))
                       : a.updateAttractionPoints(points(pts));
             },
-            py::arg("attraction_points"), py::arg("plantID") = py::none())
+            py::arg("attraction_points"), py::arg("plantID") = py::none(),
+            "Replaces the global attraction points, or one plant's own, keeping their cone.")
         .def(
             "appendAttractionPoints",
             [](PlantArchitecture& a, py::object pts, std::optional<unsigned> plant) {
                 plant ? a.appendAttractionPoints(*plant, points(pts))
                       : a.appendAttractionPoints(points(pts));
             },
-            py::arg("attraction_points"), py::arg("plantID") = py::none())
+            py::arg("attraction_points"), py::arg("plantID") = py::none(),
+            "Adds points to the global attraction points, or to one plant's own.")
         .def(
             "disableAttractionPoints",
             [](PlantArchitecture& a, std::optional<unsigned> plant) {
                 plant ? a.disableAttractionPoints(*plant) : a.disableAttractionPoints();
             },
-            py::arg("plantID") = py::none())
-        .def("getAttractionPoints", &PlantArchitecture::getAttractionPoints, py::arg("plantID"))
+            py::arg("plantID") = py::none(),
+            "Removes the global attraction points, or one plant's own (it follows the global ones "
+            "again).")
+        .def("getAttractionPoints", &PlantArchitecture::getAttractionPoints, py::arg("plantID"),
+             "The attraction points a plant steers by (its own, else the global ones).")
         .def(
             "getCollisionStats",
             [](const PlantArchitecture& a) { return statsDict(a.getCollisionStats()); },
             "Counts of the work collision avoidance did, as a dict.")
-        .def("resetCollisionStats", &PlantArchitecture::resetCollisionStats);
+        .def("resetCollisionStats", &PlantArchitecture::resetCollisionStats,
+             "Sets the counts of getCollisionStats to zero.");
 }
 
 void bindQueries(py::class_<PlantArchitecture>& c) {
-    c.def("getAllPlantIDs", &PlantArchitecture::getAllPlantIDs)
+    c.def("getAllPlantIDs", &PlantArchitecture::getAllPlantIDs,
+          "IDs of every plant, in increasing order.")
         .def("plant", &PlantArchitecture::plant, py::arg("plantID"),
              py::return_value_policy::reference_internal,
              "The plant's whole state (read-only view; valid until the plant changes).")
-        .def("getPlantBasePosition", &PlantArchitecture::getPlantBasePosition, py::arg("plantID"))
-        .def("getPlantAge", &PlantArchitecture::getPlantAge, py::arg("plantID"))
-        .def("getPlantHeight", &PlantArchitecture::getPlantHeight, py::arg("plantID"))
-        .def("getPlantStemHeight", &PlantArchitecture::getPlantStemHeight, py::arg("plantID"))
-        .def("getPlantLeafCount", &PlantArchitecture::getPlantLeafCount, py::arg("plantID"))
-        .def("getPlantLeafArea", &PlantArchitecture::getPlantLeafArea, py::arg("plantID"))
-        .def("getPlantObjectIDs", &PlantArchitecture::getPlantObjectIDs, py::arg("plantID"),
-             py::arg("organ"))
-        .def("getAllPlantObjectIDs", &PlantArchitecture::getAllPlantObjectIDs, py::arg("plantID"))
-        .def("getAllObjectIDs", &PlantArchitecture::getAllObjectIDs)
-        .def("getShootCount", &PlantArchitecture::getShootCount, py::arg("plantID"))
+        .def("getPlantBasePosition", &PlantArchitecture::getPlantBasePosition, py::arg("plantID"),
+             "Where the plant's base stands, m.")
+        .def("getPlantAge", &PlantArchitecture::getPlantAge, py::arg("plantID"),
+             "Age of the plant, days.")
+        .def("getPlantHeight", &PlantArchitecture::getPlantHeight, py::arg("plantID"),
+             "Top of the plant's geometry above its base, m.")
+        .def("getPlantStemHeight", &PlantArchitecture::getPlantStemHeight, py::arg("plantID"),
+             "Height of the tip of the base stem above the plant base, m.")
+        .def("getPlantLeafCount", &PlantArchitecture::getPlantLeafCount, py::arg("plantID"),
+             "Leaves (leaflets counted one by one) the plant has now.")
+        .def("getPlantLeafArea", &PlantArchitecture::getPlantLeafArea, py::arg("plantID"),
+             "One-sided area of all leaves, m^2.")
+        .def(
+            "getPlantObjectIDs", &PlantArchitecture::getPlantObjectIDs, py::arg("plantID"),
+            py::arg("organ"),
+            "Context objects of the plant's organs of one OrganKind, shoot by shoot from the base.")
+        .def("getAllPlantObjectIDs", &PlantArchitecture::getAllPlantObjectIDs, py::arg("plantID"),
+             "Context objects of every organ of the plant, in increasing ID order.")
+        .def("getAllObjectIDs", &PlantArchitecture::getAllObjectIDs,
+             "Context objects of every plant, in increasing ID order.")
+        .def("getShootCount", &PlantArchitecture::getShootCount, py::arg("plantID"),
+             "Shoots the plant has now (pruned ones not counted).")
         .def("getShootNodeCount", &PlantArchitecture::getShootNodeCount, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"), "Phytomers (nodes) of a shoot.")
         .def("getShootParent", &PlantArchitecture::getShootParent, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"), "The shoot a shoot grows from; -1 for the base stem.")
         .def("getShootRank", &PlantArchitecture::getShootRank, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"), "0 for the base stem, the parent's rank + 1 for a child shoot.")
         .def("getShootChildren", &PlantArchitecture::getShootChildren, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"),
+             "Shoots growing directly from this one, in the order they were made.")
         .def("getShootDescendants", &PlantArchitecture::getShootDescendants, py::arg("plantID"),
-             py::arg("shootID"))
-        .def("getTerminalShoots", &PlantArchitecture::getTerminalShoots, py::arg("plantID"))
+             py::arg("shootID"),
+             "Every shoot growing from this one, at any depth, in increasing ID order.")
+        .def("getTerminalShoots", &PlantArchitecture::getTerminalShoots, py::arg("plantID"),
+             "Shoots with no children.")
         .def("getShootPathToRoot", &PlantArchitecture::getShootPathToRoot, py::arg("plantID"),
-             py::arg("shootID"))
+             py::arg("shootID"), "Shoot IDs from this shoot down to the base stem (inclusive).")
         .def("getNodePosition", &PlantArchitecture::getNodePosition, py::arg("plantID"),
-             py::arg("shootID"), py::arg("node_index"));
+             py::arg("shootID"), py::arg("node_index"),
+             "World position of a node (the tip of internode node_index), m.");
 }
 
 void bindFiles(py::class_<PlantArchitecture>& c) {
@@ -460,7 +503,8 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
          },
          py::arg("plantID"), py::arg("filename"),
          "Writes one plant (an ID) or several (a list) as a plant structure XML file.")
-        .def("getPlantStructureXML", &PlantArchitecture::getPlantStructureXML, py::arg("plantIDs"))
+        .def("getPlantStructureXML", &PlantArchitecture::getPlantStructureXML, py::arg("plantIDs"),
+             "The plant structure XML document of the given plants, as a string.")
         .def(
             "readPlantStructureXML",
             [](PlantArchitecture& a, const std::string& file, py::object warnings) {
@@ -474,7 +518,8 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
             [](PlantArchitecture& a, const std::string& xml, py::object warnings) {
                 return a.readPlantStructureXMLString(xml, readOptions(warnings));
             },
-            py::arg("xml"), py::arg("warnings") = py::none())
+            py::arg("xml"), py::arg("warnings") = py::none(),
+            "Adds the plants of a plant structure document in a string; returns their IDs.")
         .def(
             "getPlantString",
             [](const PlantArchitecture& a, unsigned plant, int digits) {
@@ -502,10 +547,11 @@ void bindArchitecture(py::module_& m) {
           }),
           py::arg("context"), py::keep_alive<1, 2>(),
           "Plants are built into `context` (kept alive as long as this object).")
-        .def("getContext", &PlantArchitecture::context, py::return_value_policy::reference_internal)
+        .def("getContext", &PlantArchitecture::context, py::return_value_policy::reference_internal,
+             "The Context the plants' geometry lives in.")
         .def("setSeed", &PlantArchitecture::setSeed, py::arg("seed"),
              "Seed of the scene (42 by default), for plants added afterwards.")
-        .def("getSeed", &PlantArchitecture::seed);
+        .def("getSeed", &PlantArchitecture::seed, "Seed of the scene.");
     bindLibrary(c);
     bindShootTypes(c);
     bindManual(c);

@@ -19,14 +19,26 @@ std::shared_ptr<py::object> held(const py::object& o) {
     });
 }
 
+// "KeyError: 'my rule failed'": the exception's type and text on one line (computed here,
+// with the GIL held).
 std::string describe(py::error_already_set& e) {
-    return e.what();  // computed here, with the GIL held
+    std::string text;
+    try {
+        text = py::str(e.type().attr("__name__")).cast<std::string>();
+        const std::string value = py::str(e.value()).cast<std::string>();
+        if (!value.empty()) text += ": " + value;
+    } catch (const py::error_already_set&) {
+        text = "Python exception";
+    }
+    for (char& c : text)
+        if (c == '\n') c = ' ';
+    return text;
 }
 
 }  // namespace
 
 PythonError::PythonError(py::error_already_set&& e)
-    : Error(describe(e)),
+    : std::runtime_error(describe(e)),
       original_(new py::error_already_set(std::move(e)), [](py::error_already_set* p) {
           py::gil_scoped_acquire gil;
           delete p;

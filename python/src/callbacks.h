@@ -3,6 +3,7 @@
 // Ctrl-C during long calls.
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 
@@ -14,7 +15,7 @@ namespace plantarch::python {
 /// A Python exception raised inside a function C++ called: its one-line text for C++ (a
 /// canopy build reports it for its plant), and the exception itself, raised again when it
 /// reaches the interpreter.
-class PythonError : public Error {
+class PythonError : public std::runtime_error {
 public:
     explicit PythonError(py::error_already_set&& e);
     /// Raises the original exception in the interpreter (the GIL must be held).

@@ -36,15 +36,17 @@ constexpr const char* tableName() {
     return "";
 }
 
+// Whole numbers as integers ("100000", not "1e+05"), others in their shortest exact form.
 std::string number(double v) {
     char buf[32];
+    if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
     const auto r = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
 }
 
 std::string rangeOf(const pp::FieldInfo& f) {
     if (f.min == 0 && f.max == 0) return "";
-    if (f.min == -pp::kInf && f.max == pp::kInf) return "any finite number";
+    if (f.min == -pp::kInf && f.max == pp::kInf) return "any number";
     if (f.max == pp::kInf) return ">= " + number(f.min);
     if (f.min == -pp::kInf) return "<= " + number(f.max);
     return number(f.min) + " to " + number(f.max);
@@ -561,6 +563,32 @@ void bindParameters(py::module_& m) {
             "Checks every field and the fields against each other (raises plantarch.Error).");
     bindStruct<PhenologyParameters>(m, "PhenologyParameters",
                                     "Timing of a plant's phenological stages, days.");
+
+    auto infoList = [](const std::vector<ParameterInfo>& infos) {
+        py::list out;
+        for (const ParameterInfo& i : infos) {
+            py::dict d;
+            d["path"] = i.path;
+            d["name"] = i.name;
+            d["unit"] = i.unit;
+            d["doc"] = i.doc;
+            d["kind"] = parameterKindText(i.kind);
+            d["range"] = i.rangeText();
+            d["value"] = i.value;
+            out.append(d);
+        }
+        return out;
+    };
+    m.def(
+        "parameterInfo",
+        [infoList](const ShootParameters& s) { return infoList(parameterInfo(s)); },
+        py::arg("params"),
+        "Every field of a shoot type as dicts (path, name, unit, doc, kind, range, value as a "
+        "species file writes it), in file order.");
+    m.def(
+        "parameterInfo",
+        [infoList](const PhenologyParameters& s) { return infoList(parameterInfo(s)); },
+        py::arg("params"), "Every field of the phenology, as above.");
 }
 
 }  // namespace plantarch::python

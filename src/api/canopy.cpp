@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <memory>
 
 #include "api/facade_impl.h"
@@ -144,6 +145,13 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                             " failed: " + errors[std::size_t(i)]);
     };
     std::vector<unsigned> ids;
+    // A failed build (or a progress callback that throws: the caller stopping it) leaves the
+    // Context as it was: the plants merged so far are deleted again.
+    std::exception_ptr stopped;
+    auto undo = [&] {
+        for (unsigned id : ids) deletePlantInstance(id);
+        if (stopped) std::rethrow_exception(stopped);
+    };
     if (!together) {
         bool failed = false;
 #pragma omp parallel for ordered schedule(dynamic, 1) num_threads(threads)
@@ -166,9 +174,22 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                 }
                 w.impl_->store.plants.erase(id);
                 worker.ctx.clear();
+                // Progress is told on the calling thread only (OpenMP's thread 0).
+                if (!failed && impl_->progress && omp_get_thread_num() == 0) {
+                    try {
+                        impl_->progress("building", double(ids.size()) / double(n));
+                    } catch (...) {
+                        stopped = std::current_exception();
+                        failed = true;
+                    }
+                }
             }
         }
-        throwFirstError();
+        if (stopped || failed) {
+            undo();
+            throwFirstError();
+        }
+        if (impl_->progress) impl_->progress("building", 1.0);
         impl_->store.nextPlantID = first + unsigned(n);
         for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
         return ids;
@@ -233,7 +254,10 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             w.ctx.clear();
         }
     }
-    throwFirstError();
+    if (failed) {
+        undo();
+        throwFirstError();
+    }
     impl_->store.nextPlantID = first + unsigned(n);
     for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
     return ids;

@@ -613,7 +613,13 @@ struct Grower {
     }
 
     void run(double target) {
-        const double stop = std::min(target, std::max(plant.age, double(plant.phenology.max_age)));
+        const double maxAge = plant.phenology.max_age;
+        if (plant.age > maxAge) {  // frozen as it stood at max_age: only its age goes on
+            plant.age = target;
+            plant.stage = PhenologyStage::Senescent;
+            return;
+        }
+        const double stop = std::min(target, std::max(plant.age, maxAge));
         horizon = stop;
         enqueueAll(plant.age);
         while (!queue.empty() && queue.top().time <= stop) {

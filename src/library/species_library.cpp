@@ -20,13 +20,17 @@ fs::path executableDirectory() {
     return ec ? fs::path() : exe.parent_path();
 }
 
-// The species/ folder of the source tree this file was compiled from. __FILE__ is the
-// absolute path of this source (src/library/species_library.cpp) when the build system
-// passes absolute paths, as CMake does; a relative one is not trusted.
+// The species/ folder of the source tree this file was compiled from: the build system
+// names it (CMake passes PLANTARCH_SOURCE_SPECIES_DIR); otherwise __FILE__ gives it when it is
+// absolute (a relative one is not trusted).
 fs::path sourceTreeSpecies() {
+#ifdef PLANTARCH_SOURCE_SPECIES_DIR
+    return fs::path(PLANTARCH_SOURCE_SPECIES_DIR);
+#else
     const fs::path self(__FILE__);
     if (!self.is_absolute()) return {};
     return self.parent_path().parent_path().parent_path() / "species";
+#endif
 }
 
 bool isDirectory(const fs::path& p) {

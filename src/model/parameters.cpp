@@ -16,9 +16,11 @@ namespace plantarch {
 
 namespace {
 
+// Whole numbers as integers ("100000", not "1e+05"), others in their shortest exact form.
 std::string number(double v) {
     char buf[32];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
     return std::string(buf, r.ptr);
 }
 

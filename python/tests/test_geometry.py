@@ -1,0 +1,84 @@
+"""Geometry as numpy arrays that view the C++ buffer."""
+
+import resource
+
+import numpy as np
+
+import plantarch
+
+
+def test_arrays_view_one_buffer_and_agree_with_the_context(arch):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 40)
+    m = arch.getMeshArrays(p)
+    ctx = arch.getContext()
+    assert m["vertices"].dtype == np.float32 and m["vertices"].shape[1] == 3
+    assert m["triangles"].dtype == np.uint32 and m["triangles"].shape == (ctx.getTriangleCount(), 3)
+    for name in ("vertices", "triangles", "plant_id", "object_id", "organ", "normals"):
+        a = m[name]
+        assert not a.flags.owndata, name
+        assert isinstance(a.base, type(m["vertices"].base)), name  # the capsule owning the buffer
+    assert m["triangles"].max() < len(m["vertices"])
+    assert set(np.unique(m["plant_id"])) == {p}
+    # Organ codes name the organ of each triangle's object.
+    for oid in np.unique(m["object_id"])[:50]:
+        organ = ctx.getObjectData(int(oid), "organ")
+        codes = np.unique(m["organ"][m["object_id"] == oid])
+        assert [plantarch.ORGAN_LABELS[c] for c in codes] == [organ]
+    # Leaf area from the arrays equals the plant's leaf area.
+    leaf = m["organ"] == plantarch.ORGAN_LABELS.index("leaf")
+    v = m["vertices"].astype(np.float64)[m["triangles"][leaf]]
+    area = 0.5 * np.linalg.norm(np.cross(v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), axis=1).sum()
+    assert abs(area - arch.getPlantLeafArea(p)) < 1e-4 * area
+    normals = np.linalg.norm(m["normals"], axis=1)
+    assert np.allclose(normals, 1, atol=1e-4)
+
+
+def test_arrays_outlive_the_architecture():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    m = a.getMeshArrays()
+    total = float(m["vertices"].sum())
+    del a
+    import gc
+    gc.collect()
+    assert float(m["vertices"].sum()) == total
+
+
+def test_subsets_of_plants_and_objects(arch):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    q = arch.buildPlantInstanceFromLibrary((1, 0, 0), 20)
+    both = arch.getMeshArrays([p, q], normals=False)
+    one = arch.getMeshArrays(q, normals=False)
+    assert both["normals"] is None
+    assert len(both["triangles"]) == len(one["triangles"]) + len(arch.getMeshArrays(p)["triangles"])
+    ctx = arch.getContext()
+    leaves = arch.getPlantObjectIDs(q, plantarch.OrganKind.leaf)
+    sub = ctx.getMeshArrays(leaves)
+    assert set(np.unique(sub["object_id"])) == set(leaves)
+
+
+def rss_bytes():
+    """Resident memory now (not the peak)."""
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * resource.getpagesize()
+
+
+def test_a_five_million_triangle_canopy_reaches_numpy_without_a_second_copy():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (15, 10), 45)
+    ctx = a.getContext()
+    triangles = ctx.getTriangleCount()
+    assert triangles >= 5_000_000
+    vertices = ctx.getVertexCount()
+    # One copy: the buffer the arrays view (positions, normals, UVs, indices, labels).
+    one_copy = vertices * (12 + 12 + 8) + triangles * (12 + 4 + 4 + 1)
+    before = rss_bytes()
+    m = a.getMeshArrays()
+    grown = rss_bytes() - before
+    assert len(m["triangles"]) == triangles
+    assert 0.5 * one_copy < grown < 1.5 * one_copy, (grown, one_copy)
+    # The arrays point into that buffer: their data addresses lie inside the capsule's block.
+    addr = m["vertices"].__array_interface__["data"][0]
+    assert addr == m["vertices"].ctypes.data and not m["vertices"].flags.owndata

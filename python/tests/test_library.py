@@ -1,0 +1,182 @@
+"""The species library, growth, queries, pruning and phenology from Python."""
+
+import subprocess
+
+import pytest
+
+import plantarch
+from conftest import cli
+
+
+LISTING = '''
+from plantarch import Context, PlantArchitecture, vec3
+
+# Define the Helios Context (main model database)
+context = Context()
+
+# Define an instance of the plant architecture model
+plantarchitecture= PlantArchitecture(context)
+
+# Load an existing set of shoot parameters from the library
+# Alternatively, we could manually define a fresh set ourselves
+plantarchitecture.loadPlantModelFromLibrary("bean")
+
+# Add the plant with its base at the origin
+plantID = plantarchitecture.addPlantInstance(base_position=vec3(0,0,0), current_age=15)
+'''
+
+
+def test_the_specifications_listing_runs_and_builds_a_plant():
+    scope = {}
+    exec(LISTING, scope)
+    arch, plant = scope["plantarchitecture"], scope["plantID"]
+    assert arch.getAllPlantIDs() == [plant]
+    assert arch.getPlantAge(plant) == 15
+    # The listing's plant has no shoots yet; the library builds the same species on.
+    shoot = arch.addBaseStemShoot(plant, 3, shoot_type_label="trifoliate")
+    assert shoot == 0 and arch.getShootNodeCount(plant, 0) == 3
+    arch.advanceTime(plant, 10)
+    assert arch.getPlantLeafCount(plant) > 0
+
+
+def test_library_plant_queries(arch):
+    assert "bean" in arch.getAvailablePlantModels()
+    assert arch.getCurrentPlantModel() == "bean"
+    p = arch.buildPlantInstanceFromLibrary(plantarch.vec3(1, 2, 0), age=40)
+    assert arch.getPlantBasePosition(p) == plantarch.vec3(1, 2, 0)
+    assert 0.2 < arch.getPlantHeight(p) < 1.5
+    assert arch.getPlantLeafArea(p) > 0.05
+    shoots = arch.getShootCount(p)
+    assert shoots > 1
+    tree = arch.getPlant(p).shoot_tree()
+    assert len(tree) == shoots
+    for s in tree[1:]:
+        assert s["parent"] >= 0
+        assert s["id"] in arch.getShootChildren(p, s["parent"])
+        assert arch.getShootPathToRoot(p, s["id"])[-1] == 0
+    leaves = arch.getPlantObjectIDs(p, plantarch.OrganKind.leaf)
+    ctx = arch.getContext()
+    assert leaves and all(ctx.getObjectData(o, "organ") == "leaf" for o in leaves)
+    assert all(ctx.getObjectData(o, "plantID") == p for o in leaves)
+    stats = arch.getPlant(p).statistics()
+    assert stats["triangles"] == ctx.getTriangleCount()
+
+
+def test_canopy_builds_and_same_seed_gives_same_plants():
+    def canopy(seed):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.setSeed(seed)
+        a.loadPlantModelFromLibrary("bean")
+        ids = a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.4), (3, 2), 20)
+        return a, ids
+
+    a, ids = canopy(7)
+    assert len(ids) == 6
+    xs = sorted({round(a.getPlantBasePosition(i).x, 3) for i in ids})
+    assert xs == [-0.3, 0.0, 0.3]
+    b, _ = canopy(7)
+    c, _ = canopy(8)
+    strings = lambda arch: [arch.getPlantString(i) for i in arch.getAllPlantIDs()]
+    assert strings(a) == strings(b)
+    assert strings(a) != strings(c)
+
+
+def test_advance_time_all_one_and_subset(arch):
+    p = [arch.buildPlantInstanceFromLibrary((x, 0, 0), 10) for x in range(3)]
+    arch.advanceTime(5)
+    assert [arch.getPlantAge(i) for i in p] == [15, 15, 15]
+    arch.advanceTime(p[0], 5)
+    arch.advanceTime([p[1], p[2]], 2)
+    assert [arch.getPlantAge(i) for i in p] == [20, 17, 17]
+
+
+def test_step_size_does_not_change_the_plant():
+    def grown(steps):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.loadPlantModelFromLibrary("bean")
+        p = a.buildPlantInstanceFromLibrary((0, 0, 0), 0)
+        for days in steps:
+            a.advanceTime(p, days)
+        return a.getPlantString(p, 0)
+
+    assert grown([30]) == grown([1] * 30) == grown([10.5, 19.5])
+
+
+def test_pruning_and_harvest(arch):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 60)
+    stem = max(range(arch.getShootCount(p)), key=lambda s: arch.getShootNodeCount(p, s))
+    before = arch.getShootNodeCount(p, stem)
+    assert before > 4
+    shoots = arch.getShootCount(p)
+    arch.pruneBranch(p, stem, 2)
+    assert arch.getShootNodeCount(p, stem) == 2
+    assert arch.getShootCount(p) <= shoots
+    arch.removeShootApex(p, stem)
+    arch.advanceTime(p, 10)
+    assert arch.getShootNodeCount(p, stem) == 2
+    fruit = len(arch.getPlantObjectIDs(p, plantarch.OrganKind.fruit))
+    harvested = arch.harvestPlant(p)
+    assert harvested >= fruit
+    assert arch.getPlantObjectIDs(p, plantarch.OrganKind.fruit) == []
+    arch.removePlantLeaves(p)
+    assert arch.getPlantLeafCount(p) == 0
+
+
+def test_phenology_max_age_and_dormancy(arch):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 10)
+    arch.setPlantMaximumAge(p, 20)
+    arch.advanceTime(p, 30)
+    structure = lambda: arch.getPlantString(p).split(")", 1)[1]  # without the age header
+    frozen = structure()
+    arch.advanceTime(p, 30)
+    assert structure() == frozen  # stopped developing at 20 days
+    assert arch.getPlantPhenologicalThresholds(p).max_age == 20
+    q = arch.buildPlantInstanceFromLibrary((1, 0, 0), 0)
+    arch.setPlantPhenologicalThresholds(q, time_to_dormancy_break=5, time_to_flower_initiation=-1,
+                                        time_to_flower_opening=-1, time_to_fruit_set=-1,
+                                        time_to_fruit_maturity=-1, time_to_senescence=-1)
+    t = arch.getPlantPhenologicalThresholds(q)
+    assert t.time_to_dormancy_break == 5 and t.time_to_flower_opening == -1
+    with pytest.raises(plantarch.Error, match="max_age"):
+        arch.setPlantMaximumAge(q, -3)
+    assert arch.getPhenologyStage(q) in list(plantarch.PhenologyStage.__members__.values())
+
+
+def test_plant_structure_xml_and_strings_round_trip(arch, tmp):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    path = tmp / "plant.xml"
+    arch.writePlantStructureXML(p, str(path))
+    other = plantarch.PlantArchitecture(plantarch.Context())
+    warnings = []
+    (q,) = other.readPlantStructureXML(str(path), warnings=warnings)
+    assert warnings == []
+    assert other.getPlantString(q) == arch.getPlantString(p)
+    s = arch.getPlantString(p, significant_digits=4)
+    r = arch.generatePlantFromString(s)
+    assert arch.getPlantString(r, significant_digits=4) == s
+
+
+def test_collision_avoidance_and_attraction_points(arch):
+    arch.enableSoftCollisionAvoidance(cone_half_angle=60, rays=64)
+    arch.enableAttractionPoints([(0, 0, 1.0), (0.1, 0, 1.0)], view_half_angle_deg=70)
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    stats = arch.getCollisionStats()
+    assert stats["softCones"] > 0 and stats["attractionQueries"] > 0
+    got = arch.getAttractionPoints(p)
+    assert [tuple(round(c, 6) for c in v) for v in got] == [(0, 0, 1), (0.1, 0, 1)]
+    assert all(isinstance(v, plantarch.vec3) for v in got)
+    arch.disableAttractionPoints()
+    arch.disableSoftCollisionAvoidance()
+    with pytest.raises(plantarch.Error, match="half"):
+        arch.enableSoftCollisionAvoidance(cone_half_angle=500)
+
+
+def test_ply_from_python_is_the_bytes_the_cli_writes(tmp):
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.setSeed(3)
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    plantarch.writePLY(a.getContext(), str(tmp / "py.ply"))
+    subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "30", "-o",
+                    str(tmp / "cli.ply")], check=True, capture_output=True)
+    assert (tmp / "py.ply").read_bytes() == (tmp / "cli.ply").read_bytes()

@@ -1,0 +1,139 @@
+"""Python functions as rules, the progress callback, Ctrl-C, and errors."""
+
+import os
+import signal
+import threading
+
+import pytest
+
+import plantarch
+
+
+def species_with_rule(tmp_path, name):
+    """The bean's file with its trifoliate phytomers naming a creation function."""
+    text = open(plantarch.speciesLibraryDirectory() + "/bean.xml").read()
+    marker = '<shoot_type label="trifoliate"'
+    head, tail = text.split(marker, 1)
+    body, rest = tail.split("</shoot_type>", 1)
+    body = body.replace("</phytomer>", f"<phytomer_creation_function>{name}</phytomer_creation_function></phytomer>", 1)
+    path = tmp_path / "bean_rule.xml"
+    path.write_text(head + marker + body + "</shoot_type>" + rest)
+    return str(path)
+
+
+def test_a_python_creation_rule_named_in_a_species_file_changes_the_plant(tmp_path):
+    seen = []
+
+    def no_branches(ctx):
+        seen.append((ctx.nodeIndex, ctx.rank))
+        ctx.phytomer.killVegetativeBuds()
+
+    plain = plantarch.PlantArchitecture(plantarch.Context())
+    plain.loadPlantModelFromLibrary("bean")
+    p = plain.buildPlantInstanceFromLibrary((0, 0, 0), 40)
+
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.registerPhytomerCreationFunction("no_branches", no_branches)
+    a.loadPlantModelFromLibrary(species_with_rule(tmp_path, "no_branches"))
+    q = a.buildPlantInstanceFromLibrary((0, 0, 0), 40)
+    assert seen, "the rule was never called"
+    assert plain.getShootCount(p) > 2
+    # Trifoliate shoots make no branches: only the base stem's own shoots remain.
+    assert a.getShootCount(q) < plain.getShootCount(p)
+    assert all(s["rank"] <= 1 for s in a.getPlant(q).shoot_tree())
+
+
+def test_a_python_rule_that_scales_leaves(tmp_path):
+    def half(ctx):
+        ctx.phytomer.scaleLeaves(0.5)
+
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.registerPhytomerCreationFunction("half", half)
+    a.loadPlantModelFromLibrary(species_with_rule(tmp_path, "half"))
+    small = a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    b = plantarch.PlantArchitecture(plantarch.Context())
+    b.registerPhytomerCreationFunction("half", lambda ctx: None)
+    b.loadPlantModelFromLibrary(species_with_rule(tmp_path, "half"))
+    full = b.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    assert a.getPlantLeafArea(small) < 0.6 * b.getPlantLeafArea(full)
+
+
+def test_a_python_callback_runs_daily(tmp_path):
+    days = set()
+    text = open(species_with_rule(tmp_path, "x")).read().replace(
+        "phytomer_creation_function>x<", "phytomer_callback_function>daily<")
+    text = text.replace("</phytomer_creation_function>", "</phytomer_callback_function>")
+    path = tmp_path / "bean_daily.xml"
+    path.write_text(text)
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.registerPhytomerCallbackFunction("daily", lambda ctx: days.add(int(ctx.plantAge)))
+    a.loadPlantModelFromLibrary(str(path))
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    assert len(days) >= 15
+
+
+def test_an_exception_in_a_rule_reaches_python_as_itself(tmp_path):
+    def broken(ctx):
+        raise KeyError("my rule failed")
+
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.registerPhytomerCreationFunction("broken", broken)
+    a.loadPlantModelFromLibrary(species_with_rule(tmp_path, "broken"))
+    with pytest.raises(KeyError, match="my rule failed"):
+        a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    # In a canopy the plant's failure is reported with its number, and nothing is left behind.
+    with pytest.raises(plantarch.Error, match="building canopy plant 0 failed: KeyError"):
+        a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (2, 2), 30)
+    assert a.getContext().getObjectCount() == 0
+
+
+def test_progress_callback_and_stopping_a_canopy():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    seen = []
+    a.setProgressCallback(lambda stage, fraction: seen.append((stage, fraction)))
+    a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (4, 4), 20)
+    assert seen[-1] == ("building", 1.0)
+    assert [f for _, f in seen] == sorted(f for _, f in seen)
+
+    def stop(stage, fraction):
+        if fraction > 0.2:
+            raise RuntimeError("enough")
+
+    objects = a.getContext().getObjectCount()
+    a.setProgressCallback(stop)
+    with pytest.raises(RuntimeError, match="enough"):
+        a.buildPlantCanopyFromLibrary((5, 0, 0), (0.3, 0.3), (4, 4), 20)
+    assert a.getContext().getObjectCount() == objects  # all or nothing
+    a.setProgressCallback(None)
+    assert len(a.buildPlantCanopyFromLibrary((5, 0, 0), (0.3, 0.3), (2, 2), 20)) == 4
+
+
+def test_ctrl_c_stops_a_long_canopy_build_cleanly():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (40, 40), 50)
+    finally:
+        timer.cancel()
+    assert a.getContext().getObjectCount() == 0
+    assert a.getAllPlantIDs() == []
+
+
+def test_errors_are_plantarch_errors_with_one_line():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    with pytest.raises(plantarch.Error) as e:
+        a.loadPlantModelFromLibrary("no_such_plant")
+    assert "\n" not in str(e.value) and "no_such_plant" in str(e.value)
+    with pytest.raises(plantarch.Error, match="plantID"):
+        a.getPlantHeight(12)
+    a.loadPlantModelFromLibrary("bean")
+    with pytest.raises(plantarch.Error, match="plantarch.Error|age|range"):
+        a.buildPlantInstanceFromLibrary((0, 0, 0), -5)
+    with pytest.raises(plantarch.Error, match="not three numbers"):
+        a.enableAttractionPoints([(0, 0)])
+    with pytest.raises(TypeError):
+        a.setSeed(-1)
