@@ -19,7 +19,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;

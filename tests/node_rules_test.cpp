@@ -387,7 +387,7 @@ TEST(NodeRules, BadRulesGiveOneLineWithFileLineAndValidValues) {
         "</node_rules>");
     EXPECT_EQ(range,
               "rules.xml:12: stem.phytomer.node_rules[1].max_nodes_per_season = 0: out of range "
-              "(valid: 1 to 1e+06)");
+              "(valid: 1 to 1000000)");
     EXPECT_NE(readError("<node_rules><other/></node_rules>").find("rules.xml:12"),
               std::string::npos);
     // Checks across a rule's fields.

@@ -2,7 +2,7 @@
 // parameter struct (and of each nested struct) is declared exactly once, with a sound
 // declaration; the generated docs page and `plantarch info` follow the table.
 
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 
 #include <gtest/gtest.h>
 

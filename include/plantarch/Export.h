@@ -134,4 +134,9 @@ std::vector<std::string> organLabelTable(const Context& context, bool includeHid
 /// index can address.
 void writePLY(const Context& context, const std::string& path, const PlyOptions& options = {});
 
+/// Smooth per-vertex normals of one object (as the OBJ and PLY writers write them): the
+/// area-weighted sum of the normals of the triangles around each vertex, normalized; (0, 0, 1)
+/// where that sum vanishes. `normals` is resized to the object's vertex count.
+void smoothNormals(const ObjectView& object, std::vector<vec3>& normals);
+
 }  // namespace plantarch

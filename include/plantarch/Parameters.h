@@ -5,7 +5,7 @@
 // Field names follow the model specification so that programs written against it compile
 // unchanged (`params.phytomer_parameters.internode.pitch = 5.0;`). Units: metres, degrees,
 // days. The unit, valid range, meaning and valid values of every field are declared once, in
-// src/model/parameter_table.h, and listed in docs/parameters.md (or by
+// include/plantarch/ParameterTable.h, and listed in docs/parameters.md (or by
 // `plantarch info --parameters`); comments here do not repeat them.
 //
 // Random parameters (RandomFloat, RandomInt) are realized once per organ when the organ is
@@ -155,7 +155,7 @@ struct InflorescenceParameters {
 
 /// A node rule: when all its conditions hold for a phytomer, its actions change that phytomer
 /// (buds, leaves, sizes, angles). Species files list them under <node_rules>; the fields, their
-/// units, ranges and meaning are declared in src/model/parameter_table.h and described with
+/// units, ranges and meaning are declared in include/plantarch/ParameterTable.h and described with
 /// examples in docs/species-format.md ("Node rules"). A condition left at its default always
 /// holds; an action left at its default does nothing.
 /// When a node rule runs: as a phytomer is made, daily, or at the start of each winter.

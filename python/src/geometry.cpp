@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "bindings.h"
-#include "io/export_common.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 
@@ -63,7 +62,7 @@ std::unique_ptr<MeshBuffer> gather(const Context& ctx, const std::vector<ObjectI
         std::copy_n(&o.positions.data()->x, 3 * o.positions.size(), &buf->vertices[3 * v0]);
         if (!o.uvs.empty()) std::copy_n(&o.uvs.data()->x, 2 * o.uvs.size(), &buf->uvs[2 * v0]);
         if (normals) {
-            io::smoothNormals(o, smooth);
+            smoothNormals(o, smooth);
             std::copy_n(&smooth.data()->x, 3 * smooth.size(), &buf->normals[3 * v0]);
         }
         for (std::size_t k = 0; k < o.indices.size(); ++k)
@@ -123,7 +122,8 @@ void bindGeometry(py::module_& m) {
         [](const Context& c, py::object objectIDs, bool includeHidden, bool normals) {
             std::vector<ObjectID> ids;
             if (objectIDs.is_none()) {
-                ids = io::exportedObjects(c, includeHidden);
+                for (ObjectID id : c.objectIDs())
+                    if (includeHidden || !c.isObjectHidden(id)) ids.push_back(id);
             } else {
                 ids = objectIDs.cast<std::vector<ObjectID>>();
                 for (ObjectID id : ids)

@@ -1,7 +1,7 @@
 // The species parameter structs as Python classes whose attributes come from the one
-// parameter table (src/model/parameter_table.h): names, docs, units and valid ranges are read
-// from it, and every assignment is checked against it at once, with the message a species
-// file would get for the same value.
+// parameter table (include/plantarch/ParameterTable.h): names, docs, units and valid ranges are
+// read from it, and every assignment is checked against it at once, with the message a species file
+// would get for the same value.
 
 #include <charconv>
 #include <cmath>
@@ -10,9 +10,9 @@
 #include <utility>
 
 #include "bindings.h"
-#include "model/field_check.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterCheck.h"
 #include "plantarch/ParameterInfo.h"
+#include "plantarch/ParameterTable.h"
 
 namespace plantarch::python {
 

@@ -27,7 +27,7 @@
 
 #include "core/math.h"
 #include "geometry/polygon_mesh.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
 

@@ -12,6 +12,23 @@ std::vector<ObjectID> exportedObjects(const Context& context, bool includeHidden
     return ids;
 }
 
+void requireDataType(const Context& context, std::string_view label, DataType expected,
+                     const std::string& file) {
+    const std::optional<DataType> type = context.objectDataType(label);
+    if (type && *type != expected)
+        throw Error(std::string("object data has type ") + dataTypeName(*type) +
+                        ", exporters need " + dataTypeName(expected),
+                    {.file = file, .parameter = std::string(label)});
+}
+
+std::string organOf(const Context& context, ObjectID id) {
+    return context.objectDataString(id, "organ").value_or(std::string());
+}
+
+}  // namespace plantarch::io
+
+namespace plantarch {
+
 void smoothNormals(const ObjectView& object, std::vector<vec3>& normals) {
     const auto& p = object.positions;
     normals.assign(p.size(), vec3(0.0f));
@@ -30,17 +47,4 @@ void smoothNormals(const ObjectView& object, std::vector<vec3>& normals) {
     }
 }
 
-void requireDataType(const Context& context, std::string_view label, DataType expected,
-                     const std::string& file) {
-    const std::optional<DataType> type = context.objectDataType(label);
-    if (type && *type != expected)
-        throw Error(std::string("object data has type ") + dataTypeName(*type) +
-                        ", exporters need " + dataTypeName(expected),
-                    {.file = file, .parameter = std::string(label)});
-}
-
-std::string organOf(const Context& context, ObjectID id) {
-    return context.objectDataString(id, "organ").value_or(std::string());
-}
-
-}  // namespace plantarch::io
+}  // namespace plantarch

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "plantarch/Context.h"
+#include "plantarch/Export.h"
 
 namespace plantarch::io {
 
@@ -66,9 +67,8 @@ inline char* writeText(char* out, std::string_view text) {
 /// The objects a writer exports, in increasing ID order.
 std::vector<ObjectID> exportedObjects(const Context& context, bool includeHidden);
 
-/// Smooth per-vertex normals of one object: the area-weighted sum of the normals of the
-/// triangles around each vertex, normalized; (0, 0, 1) where that sum vanishes.
-void smoothNormals(const ObjectView& object, std::vector<vec3>& normals);
+/// Smooth per-vertex normals (declared in plantarch/Export.h).
+using plantarch::smoothNormals;
 
 /// Throws Error (naming `file`) when object data `label` exists with a type other than
 /// `expected`, so writers can then use the typed getters without surprises.

@@ -10,7 +10,7 @@
 //   v.optional(name, optional)   a nested element that may be absent (then: none, and no
 //                                missing-value warning); its content is the type's table
 //   v.parameters(name, member)   species parameters, read and written through the parameter
-//                                table (model/parameter_table.h)
+//                                table (plantarch/ParameterTable.h)
 //   v.legacy(name)               an element of the specification's listing that plantarch
 //                                accepts on reading and never writes
 // The XML writer, the XML reader (with its range checks and missing-value report) are
@@ -20,7 +20,7 @@
 // Object IDs are not state of the plant (they belong to one Context) and are not listed;
 // Shoot::children is derived from the parents on reading.
 
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/PlantState.h"
 
 namespace plantarch::state {

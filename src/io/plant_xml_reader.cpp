@@ -2,7 +2,7 @@
 // (core/xml_reader.h).
 //
 // One engine reads both tables: the plant state table (io/plant_state_table.h) and the
-// species parameter table (model/parameter_table.h). At each element it visits the table
+// species parameter table (plantarch/ParameterTable.h). At each element it visits the table
 // of the object being filled; every declared name takes its value from the child element of
 // that name, every child must be declared (else "unknown element ..., did you mean ...") and
 // appear once. State values are range checked as they are read; parameters are read as

@@ -8,7 +8,7 @@
 #include "core/value_text.h"
 #include "io/plant_state_table.h"
 #include "io/plant_structure.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 
 namespace plantarch::plant_io {
 

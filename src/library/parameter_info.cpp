@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/value_text.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/ParameterInfo.h"
 
 namespace plantarch {

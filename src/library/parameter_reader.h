@@ -1,5 +1,5 @@
 #pragma once
-// One field of the parameter table (model/parameter_table.h) read from the element that holds
+// One field of the parameter table (plantarch/ParameterTable.h) read from the element that holds
 // it. Species files and plant structure files spell parameters alike: a value as the
 // element's text (the forms of core/value_text.h), an enum-like field by the name of one of
 // its declared choices, a formula as its text, a map as one child element per entry (spelled
@@ -10,7 +10,7 @@
 
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 
 namespace plantarch::species_xml {
 

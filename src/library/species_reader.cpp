@@ -2,7 +2,7 @@
 // (core/xml_reader.h).
 //
 // The shoot type and phenology elements are read by a visitor of the parameter declaration
-// table (model/parameter_table.h): the names an element may contain are the names the table
+// table (plantarch/ParameterTable.h): the names an element may contain are the names the table
 // declares at that level, so a field added to the table is readable at once and nothing here
 // lists parameter names. Every value read records its line, so the range validation that
 // runs afterwards (validate() of parameters.cpp) can point at the offending element.
@@ -17,7 +17,7 @@
 #include "library/expression.h"
 #include "library/parameter_reader.h"
 #include "library/species_xml.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
 

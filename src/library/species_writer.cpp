@@ -7,7 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/value_text.h"
 #include "library/species_xml.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch {

@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "core/value_text.h"
-#include "model/field_check.h"
-#include "model/parameter_table.h"
+#include "plantarch/ParameterCheck.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantState.h"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "model/parameter_table.h"
+#include "plantarch/ParameterTable.h"
 
 namespace plantarch::params {
 
