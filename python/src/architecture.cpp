@@ -327,7 +327,7 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         .def(
             "registerPhytomerCreationFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
-                a.registerPhytomerCreationFunction(name, creationFunction(name, fn));
+                a.registerPhytomerCreationFunction(name, creationFunction(fn));
             },
             py::arg("name"), py::arg("function"),
             "fn(ctx: PhytomerCreationContext) runs for every new phytomer of shoot types whose "
@@ -335,7 +335,7 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         .def(
             "registerPhytomerCallbackFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
-                a.registerPhytomerCallbackFunction(name, callbackFunction(name, fn));
+                a.registerPhytomerCallbackFunction(name, callbackFunction(fn));
             },
             py::arg("name"), py::arg("function"),
             "fn(ctx: PhytomerCallbackContext) runs for every phytomer at every whole day of "

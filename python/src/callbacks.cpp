@@ -48,9 +48,13 @@ void PythonError::restore() const {
     original_->restore();
 }
 
-PhytomerCreationFunction creationFunction(const std::string& name, const py::function& fn) {
+namespace {
+
+// A C++ rule that calls the Python function with the context it is given, the GIL held.
+template <class Context>
+std::function<void(Context&)> pythonRule(const py::function& fn) {
     auto f = held(fn);
-    return [f, name](PhytomerCreationContext& c) {
+    return [f](Context& c) {
         py::gil_scoped_acquire gil;
         try {
             (*f)(py::cast(&c, py::return_value_policy::reference));
@@ -60,16 +64,14 @@ PhytomerCreationFunction creationFunction(const std::string& name, const py::fun
     };
 }
 
-PhytomerCallbackFunction callbackFunction(const std::string& name, const py::function& fn) {
-    auto f = held(fn);
-    return [f, name](PhytomerCallbackContext& c) {
-        py::gil_scoped_acquire gil;
-        try {
-            (*f)(py::cast(&c, py::return_value_policy::reference));
-        } catch (py::error_already_set& e) {
-            throw PythonError(std::move(e));
-        }
-    };
+}  // namespace
+
+PhytomerCreationFunction creationFunction(const py::function& fn) {
+    return pythonRule<PhytomerCreationContext>(fn);
+}
+
+PhytomerCallbackFunction callbackFunction(const py::function& fn) {
+    return pythonRule<PhytomerCallbackContext>(fn);
 }
 
 void setUserProgress(PlantArchitecture& arch, const py::object& fn) {

@@ -26,8 +26,8 @@ private:
 };
 
 /// A phytomer creation or callback function that calls `fn` with the GIL held.
-PhytomerCreationFunction creationFunction(const std::string& name, const py::function& fn);
-PhytomerCallbackFunction callbackFunction(const std::string& name, const py::function& fn);
+PhytomerCreationFunction creationFunction(const py::function& fn);
+PhytomerCallbackFunction callbackFunction(const py::function& fn);
 
 /// Installs the progress callback of `arch`: it calls `fn` (None: no user callback) and, on
 /// the interpreter's main thread, checks for Ctrl-C, stopping the call with KeyboardInterrupt.

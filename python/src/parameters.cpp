@@ -3,7 +3,6 @@
 // read from it, and every assignment is checked against it at once, with the message a species file
 // would get for the same value.
 
-#include <charconv>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -36,20 +35,13 @@ constexpr const char* tableName() {
     return "";
 }
 
-// Whole numbers as integers ("100000", not "1e+05"), others in their shortest exact form.
-std::string number(double v) {
-    char buf[32];
-    if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
-}
-
+// The range for people, as `plantarch info` and the docs give it ("" without one).
 std::string rangeOf(const pp::FieldInfo& f) {
     if (f.min == 0 && f.max == 0) return "";
-    if (f.min == -pp::kInf && f.max == pp::kInf) return "any number";
-    if (f.max == pp::kInf) return ">= " + number(f.min);
-    if (f.min == -pp::kInf) return "<= " + number(f.max);
-    return number(f.min) + " to " + number(f.max);
+    ParameterInfo info;
+    info.min = f.min;
+    info.max = f.max;
+    return info.rangeText();
 }
 
 std::string shown(py::handle value) {

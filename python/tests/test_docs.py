@@ -35,3 +35,9 @@ def test_the_install_check_of_the_guide_runs_from_another_directory(tmp_path):
     out = subprocess.run(command, shell=True, cwd=tmp_path, env=env, capture_output=True,
                          text=True, check=True).stdout
     assert out.strip()
+
+
+def test_the_readme_python_example_runs():
+    readme = DOC.parents[1] / "README.md"
+    block = re.findall(r"## From Python.*?```python\n(.*?)```", readme.read_text(), re.S)[0]
+    exec(compile(block, str(readme), "exec"), {})

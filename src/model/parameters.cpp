@@ -7,21 +7,17 @@
 #include <utility>
 
 #include "core/value_text.h"
+#include "plantarch/Error.h"
 #include "plantarch/ParameterCheck.h"
 #include "plantarch/ParameterTable.h"
-#include "plantarch/Error.h"
 #include "plantarch/PlantState.h"
 
 namespace plantarch {
 
 namespace {
 
-// Whole numbers as integers ("100000", not "1e+05"), others in their shortest exact form.
 std::string number(double v) {
-    char buf[32];
-    if (v == std::floor(v) && std::abs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-    const auto r = std::to_chars(buf, buf + sizeof buf, v);
-    return std::string(buf, r.ptr);
+    return text::formatDouble(v);
 }
 
 std::string rangeText(const params::FieldInfo& f) {
