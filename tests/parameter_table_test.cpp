@@ -2,8 +2,6 @@
 // parameter struct (and of each nested struct) is declared exactly once, with a sound
 // declaration; the generated docs page and `plantarch info` follow the table.
 
-#include "plantarch/ParameterTable.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +16,7 @@
 #include "cli_run.h"
 #include "plantarch/Error.h"
 #include "plantarch/ParameterInfo.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;

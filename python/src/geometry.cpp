@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,74 +18,99 @@ namespace plantarch::python {
 
 namespace {
 
-// The gathered mesh. Triangle indices are global (into vertices).
+// The gathered mesh. Triangle indices are global (into vertices). Arrays are left
+// uninitialized when made, so that their pages are first touched by the threads that fill
+// them.
 struct MeshBuffer {
-    std::vector<float> vertices;           // N x 3
-    std::vector<float> normals;            // N x 3
-    std::vector<float> uvs;                // N x 2 (0, 0 where an object has none)
-    std::vector<std::uint32_t> triangles;  // M x 3
-    std::vector<std::int32_t> plantID;     // M (-1: not a plant organ)
-    std::vector<std::uint32_t> objectID;   // M
-    std::vector<std::uint8_t> organ;       // M, index into plantarch.ORGAN_LABELS
-    bool anyUVs = false;
+    template <class T>
+    struct Array {
+        std::unique_ptr<T[]> data;
+        std::size_t size = 0;
+        void make(std::size_t n) {
+            data.reset(new T[n]);
+            size = n;
+        }
+    };
+    Array<float> vertices;           // N x 3
+    Array<float> normals;            // N x 3 (empty without normals)
+    Array<float> uvs;                // N x 2, 0 where an object has none (empty: no UVs)
+    Array<std::uint32_t> triangles;  // M x 3
+    Array<std::int32_t> plantID;     // M (-1: not a plant organ)
+    Array<std::uint32_t> objectID;   // M
+    Array<std::uint8_t> organ;       // M, index into plantarch.ORGAN_LABELS
 };
 
-std::uint8_t organCode(const std::string& organ) {
+std::uint8_t organCode(const std::optional<std::string>& organ) {
+    if (!organ) return 0;  // unlabelled
     for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
-        if (organ == kOrganLabels[i]) return std::uint8_t(i);
-    if (organ == "trellis") return std::uint8_t(9);  // obstacle
-    return 0;                                        // unlabelled
+        if (*organ == kOrganLabels[i]) return std::uint8_t(i);
+    if (*organ == "trellis") return std::uint8_t(9);  // obstacle
+    return 0;
 }
 
 std::unique_ptr<MeshBuffer> gather(const Context& ctx, const std::vector<ObjectID>& ids,
                                    bool normals) {
     auto buf = std::make_unique<MeshBuffer>();
-    std::size_t nv = 0, nt = 0;
-    for (ObjectID id : ids) {
-        const ObjectView o = ctx.object(id);
-        nv += o.positions.size();
-        nt += o.triangleCount();
-        buf->anyUVs = buf->anyUVs || !o.uvs.empty();
+    // Where each object's vertices and triangles go.
+    std::vector<std::size_t> firstVertex(ids.size() + 1, 0), firstTriangle(ids.size() + 1, 0);
+    bool anyUVs = false;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const ObjectView o = ctx.object(ids[i]);
+        firstVertex[i + 1] = firstVertex[i] + o.positions.size();
+        firstTriangle[i + 1] = firstTriangle[i] + o.triangleCount();
+        anyUVs = anyUVs || !o.uvs.empty();
     }
-    buf->vertices.resize(3 * nv);
-    if (normals) buf->normals.resize(3 * nv);
-    if (buf->anyUVs) buf->uvs.assign(2 * nv, 0.0f);
-    buf->triangles.resize(3 * nt);
-    buf->plantID.resize(nt);
-    buf->objectID.resize(nt);
-    buf->organ.resize(nt);
+    const std::size_t nv = firstVertex.back(), nt = firstTriangle.back();
+    buf->vertices.make(3 * nv);
+    if (normals) buf->normals.make(3 * nv);
+    if (anyUVs) buf->uvs.make(2 * nv);
+    buf->triangles.make(3 * nt);
+    buf->plantID.make(nt);
+    buf->objectID.make(nt);
+    buf->organ.make(nt);
     const bool hasPlant = ctx.objectDataType("plantID") == DataType::Int;
     const bool hasOrgan = ctx.objectDataType("organ") == DataType::String;
-    std::size_t v0 = 0, t0 = 0;
-    std::vector<vec3> smooth;
-    for (ObjectID id : ids) {
-        const ObjectView o = ctx.object(id);
-        std::copy_n(&o.positions.data()->x, 3 * o.positions.size(), &buf->vertices[3 * v0]);
-        if (!o.uvs.empty()) std::copy_n(&o.uvs.data()->x, 2 * o.uvs.size(), &buf->uvs[2 * v0]);
-        if (normals) {
-            smoothNormals(o, smooth);
-            std::copy_n(&smooth.data()->x, 3 * smooth.size(), &buf->normals[3 * v0]);
+    const std::ptrdiff_t n = std::ptrdiff_t(ids.size());
+#pragma omp parallel
+    {
+        std::vector<vec3> smooth;
+#pragma omp for schedule(dynamic, 64)
+        for (std::ptrdiff_t i = 0; i < n; ++i) {
+            const ObjectID id = ids[std::size_t(i)];
+            const ObjectView o = ctx.object(id);
+            const std::size_t v0 = firstVertex[std::size_t(i)], t0 = firstTriangle[std::size_t(i)];
+            std::copy_n(&o.positions.data()->x, 3 * o.positions.size(),
+                        &buf->vertices.data[3 * v0]);
+            if (anyUVs) {
+                if (o.uvs.empty())
+                    std::fill_n(&buf->uvs.data[2 * v0], 2 * o.positions.size(), 0.0f);
+                else
+                    std::copy_n(&o.uvs.data()->x, 2 * o.uvs.size(), &buf->uvs.data[2 * v0]);
+            }
+            if (normals) {
+                smoothNormals(o, smooth);
+                std::copy_n(&smooth.data()->x, 3 * smooth.size(), &buf->normals.data[3 * v0]);
+            }
+            std::uint32_t* tri = &buf->triangles.data[3 * t0];
+            for (std::size_t k = 0; k < o.indices.size(); ++k)
+                tri[k] = std::uint32_t(v0 + o.indices[k]);
+            const std::size_t count = o.triangleCount();
+            const std::int32_t plant =
+                hasPlant ? ctx.objectDataInt(id, "plantID").value_or(-1) : -1;
+            const std::uint8_t organ = hasOrgan ? organCode(ctx.objectDataString(id, "organ")) : 0;
+            std::fill_n(&buf->plantID.data[t0], count, plant);
+            std::fill_n(&buf->objectID.data[t0], count, id);
+            std::fill_n(&buf->organ.data[t0], count, organ);
         }
-        for (std::size_t k = 0; k < o.indices.size(); ++k)
-            buf->triangles[3 * t0 + k] = std::uint32_t(v0 + o.indices[k]);
-        const std::size_t n = o.triangleCount();
-        const std::int32_t plant = hasPlant ? ctx.objectDataInt(id, "plantID").value_or(-1) : -1;
-        const std::uint8_t organ =
-            hasOrgan ? organCode(ctx.objectDataString(id, "organ").value_or("")) : 0;
-        std::fill_n(&buf->plantID[t0], n, plant);
-        std::fill_n(&buf->objectID[t0], n, id);
-        std::fill_n(&buf->organ[t0], n, organ);
-        v0 += o.positions.size();
-        t0 += n;
     }
     return buf;
 }
 
 template <class T>
-py::array view(std::vector<T>& data, std::size_t columns, py::handle owner) {
-    const std::size_t rows = columns ? data.size() / columns : data.size();
-    if (columns == 0) return py::array_t<T>({rows}, {sizeof(T)}, data.data(), owner);
-    return py::array_t<T>({rows, columns}, {columns * sizeof(T), sizeof(T)}, data.data(), owner);
+py::array view(MeshBuffer::Array<T>& a, std::size_t columns, py::handle owner) {
+    if (columns == 0) return py::array_t<T>({a.size}, {sizeof(T)}, a.data.get(), owner);
+    return py::array_t<T>({a.size / columns, columns}, {columns * sizeof(T), sizeof(T)},
+                          a.data.get(), owner);
 }
 
 py::dict asArrays(std::unique_ptr<MeshBuffer> buf) {
@@ -96,8 +122,8 @@ py::dict asArrays(std::unique_ptr<MeshBuffer> buf) {
     out["plant_id"] = view(raw->plantID, 0, owner);
     out["object_id"] = view(raw->objectID, 0, owner);
     out["organ"] = view(raw->organ, 0, owner);
-    out["normals"] = raw->normals.empty() ? py::object(py::none()) : view(raw->normals, 3, owner);
-    out["uvs"] = raw->anyUVs ? view(raw->uvs, 2, owner) : py::object(py::none());
+    out["normals"] = raw->normals.data ? view(raw->normals, 3, owner) : py::object(py::none());
+    out["uvs"] = raw->uvs.data ? view(raw->uvs, 2, owner) : py::object(py::none());
     return out;
 }
 

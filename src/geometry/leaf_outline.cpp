@@ -27,9 +27,9 @@
 
 #include "core/math.h"
 #include "geometry/polygon_mesh.h"
-#include "plantarch/ParameterTable.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
+#include "plantarch/ParameterTable.h"
 
 namespace plantarch {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/value_text.h"
-#include "plantarch/ParameterTable.h"
 #include "plantarch/ParameterInfo.h"
+#include "plantarch/ParameterTable.h"
 
 namespace plantarch {
 

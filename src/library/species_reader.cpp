@@ -17,8 +17,8 @@
 #include "library/expression.h"
 #include "library/parameter_reader.h"
 #include "library/species_xml.h"
-#include "plantarch/ParameterTable.h"
 #include "plantarch/Error.h"
+#include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch {
