@@ -340,6 +340,24 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             py::arg("name"), py::arg("function"),
             "fn(ctx: PhytomerCallbackContext) runs for every phytomer at every whole day of "
             "plant age, for shoot types whose phytomer_callback_function names it.")
+        .def(
+            "registerLeafPrototype",
+            [](PlantArchitecture& a, const std::string& name, py::function fn) {
+                a.registerLeafPrototype(name, leafPrototypeFunction(fn));
+            },
+            py::arg("name"), py::arg("function"),
+            "fn(params: LeafPrototype, leafletIndex: int) returns the leaf in prototype units "
+            "(length 1 along +x, base at the origin, +z up) as a Mesh or a list of (Mesh, "
+            "Material); shoot types name it in leaf.prototype.prototype_function.")
+        .def(
+            "registerFloralPrototype",
+            [](PlantArchitecture& a, const std::string& name, py::function fn) {
+                a.registerFloralPrototype(name, floralPrototypeFunction(fn));
+            },
+            py::arg("name"), py::arg("function"),
+            "fn(request: FloralPrototypeRequest) returns a flower or fruit (length 1 along +x) "
+            "as a Mesh or a list of (Mesh, Material); named in flower_prototype_function or "
+            "fruit_prototype_function.")
         .def("hasLeafPrototype", &PlantArchitecture::hasLeafPrototype, py::arg("name"),
              "Whether a leaf prototype builder of that name is registered.")
         .def("hasFloralPrototype", &PlantArchitecture::hasFloralPrototype, py::arg("name"),
@@ -508,7 +526,9 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
         .def(
             "readPlantStructureXML",
             [](PlantArchitecture& a, const std::string& file, py::object warnings) {
-                return a.readPlantStructureXML(file, readOptions(warnings));
+                const PlantStructureReadOptions options = readOptions(warnings);
+                py::gil_scoped_release release;
+                return a.readPlantStructureXML(file, options);
             },
             py::arg("filename"), py::arg("warnings") = py::none(),
             "Adds the plants of a file; returns their IDs. `warnings`: a list that receives one "

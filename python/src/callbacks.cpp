@@ -74,6 +74,49 @@ PhytomerCallbackFunction callbackFunction(const py::function& fn) {
     return pythonRule<PhytomerCallbackContext>(fn);
 }
 
+namespace {
+
+OrganPrototype prototypeFrom(py::handle result) {
+    if (py::isinstance<Mesh>(result)) return {PrototypePart{result.cast<Mesh>(), Material{}}};
+    OrganPrototype parts;
+    try {
+        for (py::handle part : result) {
+            auto pair = part.cast<std::pair<Mesh, Material>>();
+            parts.push_back({std::move(pair.first), std::move(pair.second)});
+        }
+    } catch (const std::exception&) {  // not iterable, or parts of the wrong kind
+        throw Error("a prototype function must return a Mesh or a list of (Mesh, Material)",
+                    {.parameter = "prototype function", .value = std::string(py::repr(result))});
+    }
+    return parts;
+}
+
+}  // namespace
+
+LeafPrototypeFunction leafPrototypeFunction(const py::function& fn) {
+    auto f = held(fn);
+    return [f](const LeafPrototype& params, Rng&, int leafletIndex) {
+        py::gil_scoped_acquire gil;
+        try {
+            return prototypeFrom((*f)(params, leafletIndex));
+        } catch (py::error_already_set& e) {
+            throw PythonError(std::move(e));
+        }
+    };
+}
+
+FloralPrototypeFunction floralPrototypeFunction(const py::function& fn) {
+    auto f = held(fn);
+    return [f](const FloralPrototypeRequest& request, Rng&) {
+        py::gil_scoped_acquire gil;
+        try {
+            return prototypeFrom((*f)(request));
+        } catch (py::error_already_set& e) {
+            throw PythonError(std::move(e));
+        }
+    };
+}
+
 void setUserProgress(PlantArchitecture& arch, const py::object& fn) {
     std::shared_ptr<py::object> user = fn.is_none() ? nullptr : held(fn);
     arch.setProgressCallback([user](std::string_view stage, double fraction) {

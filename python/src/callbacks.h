@@ -29,6 +29,11 @@ private:
 PhytomerCreationFunction creationFunction(const py::function& fn);
 PhytomerCallbackFunction callbackFunction(const py::function& fn);
 
+/// Organ prototype builders that call `fn` with the GIL held. The function returns a Mesh, or
+/// a list of (Mesh, Material) parts.
+LeafPrototypeFunction leafPrototypeFunction(const py::function& fn);
+FloralPrototypeFunction floralPrototypeFunction(const py::function& fn);
+
 /// Installs the progress callback of `arch`: it calls `fn` (None: no user callback) and, on
 /// the interpreter's main thread, checks for Ctrl-C, stopping the call with KeyboardInterrupt.
 void setUserProgress(PlantArchitecture& arch, const py::object& fn);

@@ -155,6 +155,15 @@ void bindState(py::module_& m) {
         .def_readonly("stage", &PlantInstance::stage)
         .def_readonly("season", &PlantInstance::season);
 
+    py::class_<FloralPrototypeRequest>(m, "FloralPrototypeRequest",
+                                       "What a flower or fruit prototype function is asked for.")
+        .def_readonly("fruit", &FloralPrototypeRequest::fruit, "a fruit (else a flower)")
+        .def_readonly("open", &FloralPrototypeRequest::open, "for flowers: open (else closed)")
+        .def_readonly("parameters", &FloralPrototypeRequest::parameters,
+                      "the species' shape parameters of the family")
+        .def_readonly("color", &FloralPrototypeRequest::color)
+        .def_readonly("subdivisions", &FloralPrototypeRequest::subdivisions);
+
     py::class_<PhytomerCreationContext>(
         m, "PhytomerCreationContext",
         "What a phytomer creation function sees: the new phytomer (change it: kill buds, scale "

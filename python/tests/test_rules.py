@@ -137,3 +137,33 @@ def test_errors_are_plantarch_errors_with_one_line():
         a.enableAttractionPoints([(0, 0)])
     with pytest.raises(TypeError):
         a.setSeed(-1)
+
+
+def test_a_leaf_prototype_written_in_python(arch):
+    import numpy as np
+
+    calls = []
+
+    def square_leaf(params, leaflet):
+        calls.append(leaflet)
+        positions = np.array([[0, -0.2, 0], [1, -0.2, 0], [1, 0.2, 0], [0, 0.2, 0]], np.float32)
+        mesh = plantarch.Mesh(positions, np.array([[0, 1, 2], [0, 2, 3]], np.uint32))
+        return [(mesh, plantarch.Material(color=(0.1, 0.5, 0.1)))]
+
+    arch.registerLeafPrototype("square", square_leaf)
+    assert arch.hasLeafPrototype("square")
+    for label in arch.listShootTypeLabels():
+        p = arch.getCurrentShootParameters(label)
+        p.phytomer_parameters.leaf.prototype.prototype_function = "square"
+        arch.updateCurrentShootParameters(label, p)
+    plant = arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    assert calls
+    leaves = arch.getPlantObjectIDs(plant, plantarch.OrganKind.leaf)
+    ctx = arch.getContext()
+    assert leaves and all(ctx.getObjectMesh(o).triangleCount() == 2 for o in leaves)
+    arch.registerLeafPrototype("broken", lambda params, leaflet: 42)
+    p = arch.getCurrentShootParameters("trifoliate")
+    p.phytomer_parameters.leaf.prototype.prototype_function = "broken"
+    arch.updateCurrentShootParameters("trifoliate", p)
+    with pytest.raises(plantarch.Error, match="must return a Mesh"):
+        arch.buildPlantInstanceFromLibrary((1, 0, 0), 30)
