@@ -571,6 +571,11 @@ void bindArchitecture(py::module_& m) {
              "The Context the plants' geometry lives in.")
         .def("setSeed", &PlantArchitecture::setSeed, py::arg("seed"),
              "Seed of the scene (42 by default), for plants added afterwards.")
+        .def("context", &PlantArchitecture::context, py::return_value_policy::reference_internal,
+             "The Context the plants' geometry lives in (the same as getContext).")
+        .def("seed", &PlantArchitecture::seed, "Seed of the scene (the same as getSeed).")
+        .def("shootType", &PlantArchitecture::shootType, py::arg("shoot_type_label"),
+             "A copy of a defined shoot type's parameters (the same as getShootType).")
         .def("getSeed", &PlantArchitecture::seed, "Seed of the scene.");
     bindLibrary(c);
     bindShootTypes(c);

@@ -169,7 +169,72 @@ void bindContext(py::module_& m) {
             "Sets int, float, text or vec3 data (a label keeps one type).")
         .def("listObjectDataLabels", &Context::objectDataLabels)
         .def("clear", &Context::clear, "Removes every object and material.")
-        .def("memoryBytes", &Context::memoryBytes);
+        .def("memoryBytes", &Context::memoryBytes, "Bytes held by the Context's storage.")
+        // The C++ names (the get... names above are those the specification's users know).
+        .def("objectIDs", &Context::objectIDs, "Live objects, in increasing ID order.")
+        .def("objectCount", &Context::objectCount, "Live objects.")
+        .def("triangleCount", &Context::triangleCount, "Triangles of the live objects.")
+        .def("vertexCount", &Context::vertexCount, "Vertices of the live objects.")
+        .def("objectIDLimit", &Context::objectIDLimit, "One past the largest object ID issued.")
+        .def("objectMesh", &Context::objectMesh, py::arg("objectID"), "A copy of its mesh.")
+        .def("setObjectMesh", &Context::setObjectMesh, py::arg("objectID"), py::arg("mesh"),
+             "Replaces the object's geometry, keeping its ID, material and data.")
+        .def("objectArea", &Context::objectArea, py::arg("objectID"), "m^2")
+        .def("material", &Context::material, py::arg("materialID"), "A material by ID.")
+        .def("materialCount", &Context::materialCount)
+        .def("objectMaterial", &Context::objectMaterial, py::arg("objectID"),
+             "The object's material ID.")
+        .def("setObjectMaterial", &Context::setObjectMaterial, py::arg("objectID"),
+             py::arg("materialID"))
+        .def(
+            "deleteObjects", [](Context& c, std::vector<ObjectID> ids) { c.deleteObjects(ids); },
+            py::arg("objectIDs"), "Removes several objects.")
+        .def("hasObjectData", &Context::hasObjectData, py::arg("objectID"), py::arg("label"))
+        .def("clearObjectData", &Context::clearObjectData, py::arg("objectID"), py::arg("label"))
+        .def(
+            "objectData",
+            [](const Context& c, ObjectID id, const std::string& label) {
+                return dataValue(c.objectData(id, label));
+            },
+            py::arg("objectID"), py::arg("label"), "The value, or None when unset.")
+        .def("objectDataLabels", &Context::objectDataLabels, "Labels used by any object, sorted.")
+        .def(
+            "objectDataType",
+            [](const Context& c, const std::string& label) -> py::object {
+                const auto t = c.objectDataType(label);
+                return t ? py::object(py::str(dataTypeName(*t))) : py::object(py::none());
+            },
+            py::arg("label"), "'int', 'float', 'string' or 'vec3'; None when never used.")
+        .def(
+            "objectPrimitives",
+            [](const Context& c, ObjectID id) {
+                const PrimitiveRange r = c.objectPrimitives(id);
+                return py::make_tuple(r.first, r.count);
+            },
+            py::arg("objectID"), "(first primitive ID, count) of the object's triangles.")
+        .def("primitiveObject", &Context::primitiveObject, py::arg("primitiveID"))
+        .def("doesPrimitiveExist", &Context::doesPrimitiveExist, py::arg("primitiveID"))
+        .def(
+            "primitiveVertices",
+            [](const Context& c, PrimitiveID id) {
+                const auto v = c.primitiveVertices(id);
+                return py::make_tuple(py::cast(v[0]), py::cast(v[1]), py::cast(v[2]));
+            },
+            py::arg("primitiveID"), "The three corners, world coordinates.")
+        .def(
+            "setPrimitiveData",
+            [](Context& c, PrimitiveID id, const std::string& label, py::handle value) {
+                c.setPrimitiveData(id, label, toDataValue(value));
+            },
+            py::arg("primitiveID"), py::arg("label"), py::arg("value"))
+        .def(
+            "primitiveData",
+            [](const Context& c, PrimitiveID id, const std::string& label) {
+                return dataValue(c.primitiveData(id, label));
+            },
+            py::arg("primitiveID"), py::arg("label"))
+        .def("primitiveDataLabels", &Context::primitiveDataLabels)
+        .def("compact", &Context::compact, "Packs the storage after deletions (IDs kept).");
 }
 
 }  // namespace plantarch::python

@@ -3,6 +3,7 @@
 import resource
 
 import numpy as np
+import pytest
 
 import plantarch
 
@@ -82,3 +83,27 @@ def test_a_five_million_triangle_canopy_reaches_numpy_without_a_second_copy():
     # The arrays point into that buffer: their data addresses lie inside the capsule's block.
     addr = m["vertices"].__array_interface__["data"][0]
     assert addr == m["vertices"].ctypes.data and not m["vertices"].flags.owndata
+
+
+def test_context_from_python(tmp_path):
+    ctx = plantarch.Context()
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], np.float32)
+    tris = np.array([[0, 1, 2], [0, 2, 3]], np.uint32)
+    wall = ctx.addObject(square, tris, material=plantarch.Material(color=(0.5, 0.5, 0.5)))
+    assert ctx.objectCount() == ctx.getObjectCount() == 1
+    assert ctx.triangleCount() == 2 and ctx.objectArea(wall) == 1.0
+    ctx.setObjectData(wall, "organ", "obstacle")
+    assert ctx.objectData(wall, "organ") == "obstacle" and ctx.objectDataType("organ") == "string"
+    first, count = ctx.objectPrimitives(wall)
+    assert count == 2 and ctx.primitiveObject(first) == wall
+    ctx.transformObject(wall, np.diag([2, 2, 2, 1]).astype(np.float32))
+    assert ctx.objectArea(wall) == 4.0
+    m = ctx.getMeshArrays()
+    assert m["organ"].tolist() == [plantarch.ORGAN_LABELS.index("obstacle")] * 2
+    with pytest.raises(plantarch.Error, match="vertex index out of range"):
+        ctx.addObject(square, np.array([[0, 1, 7]], np.uint32))
+    with pytest.raises(plantarch.Error, match="no such object"):
+        ctx.objectArea(99)
+    plantarch.writeOBJ(ctx, str(tmp_path / "wall.obj"))
+    other = plantarch.Context()
+    assert len(plantarch.readOBJ(other, str(tmp_path / "wall.obj"))) == 1
