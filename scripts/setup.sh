@@ -10,7 +10,7 @@ PACKAGES=(
   libglm-dev libpugixml-dev libembree-dev libstb-dev libtinyobjloader-dev
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpcg-cpp-dev
   libomp-dev libgtest-dev libgmock-dev libbenchmark-dev libclang-rt-14-dev
-  pybind11-dev python3 python3-dev python3-numpy python3-pytest
+  pybind11-dev python3 python3-dev python3-numpy
 )
 
 missing=()

@@ -66,7 +66,7 @@ void bindContext(py::module_& m) {
              py::arg("color"), py::arg("texture") = "", py::arg("name") = "")
         .def_readwrite("color", &Material::color, "RGB, 0 to 1")
         .def_readwrite("texture", &Material::texture, "image file path; empty for a colour")
-        .def_readwrite("name", &Material::name)
+        .def_readwrite("name", &Material::name, "name used by exporters (generated when empty)")
         .def("__eq__", [](const Material& a, const Material& b) { return a == b; });
 
     py::class_<Mesh>(m, "Mesh", "An indexed triangle mesh (arrays are copies).")
@@ -75,14 +75,16 @@ void bindContext(py::module_& m) {
              py::arg("uvs") = py::none(),
              "From an n x 3 array of positions, an m x 3 array of vertex indices and optional "
              "n x 2 UVs (validated).")
-        .def_property_readonly("positions",
-                               [](const Mesh& mesh) {
-                                   return floatRows(&mesh.positions.data()->x,
-                                                    mesh.positions.size(), 3);
-                               })
+        .def_property_readonly(
+            "positions",
+            [](const Mesh& mesh) {
+                return floatRows(&mesh.positions.data()->x, mesh.positions.size(), 3);
+            },
+            "n x 3 float32 positions (a copy)")
         .def_property_readonly(
             "uvs",
-            [](const Mesh& mesh) { return floatRows(&mesh.uvs.data()->x, mesh.uvs.size(), 2); })
+            [](const Mesh& mesh) { return floatRows(&mesh.uvs.data()->x, mesh.uvs.size(), 2); },
+            "n x 2 float32 UVs (a copy; empty without UVs)")
         .def_property_readonly(
             "triangles",
             [](const Mesh& mesh) {
@@ -90,9 +92,10 @@ void bindContext(py::module_& m) {
                 if (!mesh.indices.empty())
                     std::memcpy(out.mutable_data(), mesh.indices.data(), mesh.indices.size() * 4);
                 return out;
-            })
-        .def("triangleCount", &Mesh::triangleCount)
-        .def("vertexCount", &Mesh::vertexCount)
+            },
+            "m x 3 uint32 vertex indices (a copy)")
+        .def("triangleCount", &Mesh::triangleCount, "Triangles of the mesh.")
+        .def("vertexCount", &Mesh::vertexCount, "Vertices of the mesh.")
         .def("area", &Mesh::area, "Sum of triangle areas, m^2.");
 
     py::class_<Context>(m, "Context",
@@ -100,7 +103,8 @@ void bindContext(py::module_& m) {
                         "with a material and labelled data (plantID, organ, shootID, rank, "
                         "age, leafID ...).")
         .def(py::init<>())
-        .def("addMaterial", &Context::addMaterial, py::arg("material"))
+        .def("addMaterial", &Context::addMaterial, py::arg("material"),
+             "Adds a material (or finds an equal one); returns its ID.")
         .def(
             "addObject",
             [](Context& c, const FloatRows& positions, const IndexRows& triangles, py::object uvs,
@@ -111,20 +115,27 @@ void bindContext(py::module_& m) {
             py::arg("positions"), py::arg("triangles"), py::arg("uvs") = py::none(),
             py::arg("material") = py::none(),
             "Adds an object (e.g. an obstacle) from numpy arrays; returns its ID.")
-        .def("copyObject", &Context::copyObject, py::arg("objectID"))
-        .def("deleteObject", &Context::deleteObject, py::arg("objectID"))
-        .def("setObjectHidden", &Context::setObjectHidden, py::arg("objectID"), py::arg("hidden"))
-        .def("isObjectHidden", &Context::isObjectHidden, py::arg("objectID"))
-        .def("doesObjectExist", &Context::doesObjectExist, py::arg("objectID"))
+        .def("copyObject", &Context::copyObject, py::arg("objectID"),
+             "A new object with the same geometry, material and data; returns its ID.")
+        .def("deleteObject", &Context::deleteObject, py::arg("objectID"),
+             "Removes an object, its triangles and data.")
+        .def("setObjectHidden", &Context::setObjectHidden, py::arg("objectID"), py::arg("hidden"),
+             "Hides or shows an object (exporters and the renderer leave hidden ones out).")
+        .def("isObjectHidden", &Context::isObjectHidden, py::arg("objectID"),
+             "Whether the object is hidden.")
+        .def("doesObjectExist", &Context::doesObjectExist, py::arg("objectID"),
+             "Whether an object of that ID is alive.")
         .def("getAllObjectIDs", &Context::objectIDs, "Live objects, in increasing ID order.")
-        .def("getObjectCount", &Context::objectCount)
-        .def("getTriangleCount", &Context::triangleCount)
-        .def("getVertexCount", &Context::vertexCount)
+        .def("getObjectCount", &Context::objectCount, "Live objects (the same as objectCount).")
+        .def("getTriangleCount", &Context::triangleCount,
+             "Triangles of the live objects (the same as triangleCount).")
+        .def("getVertexCount", &Context::vertexCount,
+             "Vertices of the live objects (the same as vertexCount).")
         .def("getObjectMesh", &Context::objectMesh, py::arg("objectID"), "A copy of its mesh.")
         .def(
             "getObjectMaterial",
             [](const Context& c, ObjectID id) { return c.material(c.objectMaterial(id)); },
-            py::arg("objectID"))
+            py::arg("objectID"), "The object's Material.")
         .def("getObjectArea", &Context::objectArea, py::arg("objectID"), "m^2")
         .def(
             "getObjectBoundingBox",
@@ -167,7 +178,8 @@ void bindContext(py::module_& m) {
             },
             py::arg("objectID"), py::arg("label"), py::arg("value"),
             "Sets int, float, text or vec3 data (a label keeps one type).")
-        .def("listObjectDataLabels", &Context::objectDataLabels)
+        .def("listObjectDataLabels", &Context::objectDataLabels,
+             "Labels used by any object, sorted (the same as objectDataLabels).")
         .def("clear", &Context::clear, "Removes every object and material.")
         .def("memoryBytes", &Context::memoryBytes, "Bytes held by the Context's storage.")
         // The C++ names (the get... names above are those the specification's users know).
@@ -181,16 +193,18 @@ void bindContext(py::module_& m) {
              "Replaces the object's geometry, keeping its ID, material and data.")
         .def("objectArea", &Context::objectArea, py::arg("objectID"), "m^2")
         .def("material", &Context::material, py::arg("materialID"), "A material by ID.")
-        .def("materialCount", &Context::materialCount)
+        .def("materialCount", &Context::materialCount, "Materials in the Context.")
         .def("objectMaterial", &Context::objectMaterial, py::arg("objectID"),
              "The object's material ID.")
         .def("setObjectMaterial", &Context::setObjectMaterial, py::arg("objectID"),
-             py::arg("materialID"))
+             py::arg("materialID"), "Gives the object another material (by ID).")
         .def(
             "deleteObjects", [](Context& c, std::vector<ObjectID> ids) { c.deleteObjects(ids); },
             py::arg("objectIDs"), "Removes several objects.")
-        .def("hasObjectData", &Context::hasObjectData, py::arg("objectID"), py::arg("label"))
-        .def("clearObjectData", &Context::clearObjectData, py::arg("objectID"), py::arg("label"))
+        .def("hasObjectData", &Context::hasObjectData, py::arg("objectID"), py::arg("label"),
+             "Whether the object has data under that label.")
+        .def("clearObjectData", &Context::clearObjectData, py::arg("objectID"), py::arg("label"),
+             "Removes the object's data under that label.")
         .def(
             "objectData",
             [](const Context& c, ObjectID id, const std::string& label) {
@@ -212,8 +226,10 @@ void bindContext(py::module_& m) {
                 return py::make_tuple(r.first, r.count);
             },
             py::arg("objectID"), "(first primitive ID, count) of the object's triangles.")
-        .def("primitiveObject", &Context::primitiveObject, py::arg("primitiveID"))
-        .def("doesPrimitiveExist", &Context::doesPrimitiveExist, py::arg("primitiveID"))
+        .def("primitiveObject", &Context::primitiveObject, py::arg("primitiveID"),
+             "The object a triangle (primitive) belongs to.")
+        .def("doesPrimitiveExist", &Context::doesPrimitiveExist, py::arg("primitiveID"),
+             "Whether a triangle of that ID is alive.")
         .def(
             "primitiveVertices",
             [](const Context& c, PrimitiveID id) {
@@ -226,14 +242,16 @@ void bindContext(py::module_& m) {
             [](Context& c, PrimitiveID id, const std::string& label, py::handle value) {
                 c.setPrimitiveData(id, label, toDataValue(value));
             },
-            py::arg("primitiveID"), py::arg("label"), py::arg("value"))
+            py::arg("primitiveID"), py::arg("label"), py::arg("value"),
+            "Sets data on one triangle (int, float, text or vec3).")
         .def(
             "primitiveData",
             [](const Context& c, PrimitiveID id, const std::string& label) {
                 return dataValue(c.primitiveData(id, label));
             },
-            py::arg("primitiveID"), py::arg("label"))
-        .def("primitiveDataLabels", &Context::primitiveDataLabels)
+            py::arg("primitiveID"), py::arg("label"), "A triangle's data, or None when unset.")
+        .def("primitiveDataLabels", &Context::primitiveDataLabels,
+             "Labels used by any triangle, sorted.")
         .def("compact", &Context::compact, "Packs the storage after deletions (IDs kept).");
 }
 

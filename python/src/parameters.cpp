@@ -507,11 +507,11 @@ void bindParameters(py::module_& m) {
                 return "?";
             },
             "'constant', 'uniform' or 'discrete'")
-        .def_property_readonly("min", &RandomInt::min)
-        .def_property_readonly("max", &RandomInt::max)
+        .def_property_readonly("min", &RandomInt::min, "Smallest value a draw can take.")
+        .def_property_readonly("max", &RandomInt::max, "Largest value a draw can take.")
         .def_property_readonly("values", &RandomInt::values, "The values of discrete(...).")
-        .def("mean", &RandomInt::mean)
-        .def("describe", &RandomInt::describe)
+        .def("mean", &RandomInt::mean, "The distribution's mean.")
+        .def("describe", &RandomInt::describe, "As a species file writes it: 'uniform(1, 4)'.")
         .def("__str__", &RandomInt::describe)
         .def("__repr__", [](const RandomInt& r) { return "plantarch." + r.describe(); })
         .def("__eq__", [](const RandomInt& a, const RandomInt& b) { return a == b; })

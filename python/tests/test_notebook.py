@@ -1,6 +1,7 @@
 """Pictures for notebooks, images as arrays, and the type stubs."""
 
 import ast
+import inspect
 import re
 import pathlib
 
@@ -44,12 +45,22 @@ def test_type_stubs_ship_with_the_module_and_cover_it():
     assert (stub.parent / "py.typed").exists()
 
 
-def test_every_public_function_has_help_text():
-    for name in dir(plantarch.PlantArchitecture):
+def test_every_public_function_method_and_attribute_has_help_text():
+    module = plantarch._plantarch
+    missing = []
+    for name, obj in vars(module).items():
         if name.startswith("_"):
             continue
-        doc = getattr(plantarch.PlantArchitecture, name).__doc__ or ""
-        signature = re.compile(r"^(\d+\. )?" + name + r"\(")
-        lines = [l for l in doc.splitlines()
-                 if l.strip() and not signature.match(l.strip()) and l.strip() != "Overloaded function."]
-        assert lines, f"PlantArchitecture.{name} has no help text"
+        members = vars(obj).items() if inspect.isclass(obj) else [(name, obj)]
+        for attr, value in members:
+            if attr.startswith("_") or not (callable(value) or isinstance(value, property)):
+                continue
+            if inspect.isclass(obj) and hasattr(obj, "__members__") and attr in ("name", "value"):
+                continue  # enum basics
+            signature = re.compile(r"^(\d+\. )?" + attr + r"\(")
+            doc = getattr(value, "__doc__", None) or ""
+            text = [l for l in doc.splitlines() if l.strip() and not signature.match(l.strip())
+                    and l.strip() != "Overloaded function."]
+            if not text:
+                missing.append(f"{name}.{attr}" if inspect.isclass(obj) else name)
+    assert missing == []
