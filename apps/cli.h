@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "plantarch/Context.h"
+#include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Progress.h"
 
@@ -50,9 +51,13 @@ struct CommandRegistrar {
 /// Message on stderr when -v was given.
 void info(const GlobalOptions& g, const std::string& message);
 
-/// Writes `ctx` to `path`, format from the extension (.obj, .ply, .png). Used by every
-/// subcommand that produces geometry. Throws plantarch::Error on an unknown extension.
-void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g);
+/// Writes `ctx` to `path`, format from the extension (.obj, .ply, .glb, .gltf, .png). Used by
+/// every subcommand that produces geometry; `plants` names and places the plants in glTF
+/// files. Throws plantarch::Error on an unknown extension.
+void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
+                    const std::vector<GltfPlant>& plants = {});
+/// The plants of `arch` as glTF files describe them (species, base, age, the scene's seed).
+std::vector<GltfPlant> gltfPlants(const PlantArchitecture& arch);
 
 /// A progress bar on stderr for work that takes over a second; empty (no output at all)
 /// when stderr is not a terminal, so scripts and logs stay clean.

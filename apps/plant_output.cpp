@@ -54,7 +54,7 @@ void preparePlantOutputs(const std::vector<std::string>& paths) {
     for (const std::string& out : paths) {
         const std::string ext = extensionOf(out);
         if (ext != ".xml" && ext != ".txt") {
-            if (ext != ".obj" && ext != ".ply" && ext != ".png")
+            if (ext != ".obj" && ext != ".ply" && ext != ".glb" && ext != ".gltf" && ext != ".png")
                 throw Error("unknown output format",
                             {.file = out, .value = ext, .validRange = plantFileExtensions()});
             scenes.push_back(out);
@@ -80,7 +80,7 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
         for (unsigned id : plants) text += arch.getPlantString(id, o) + "\n";
         writeWhole(path, text);
     } else {
-        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g);
+        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, gltfPlants(arch));
         return;
     }
     info(g, "wrote " + path);

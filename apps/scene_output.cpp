@@ -10,15 +10,33 @@
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
 
 namespace plantarch::cli {
 
-std::string sceneFileExtensions() {
-    return ".obj, .ply, .png";
+namespace {
+
+bool isSceneExtension(const std::string& ext) {
+    return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".png";
 }
 
-void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g) {
+}  // namespace
+
+std::string sceneFileExtensions() {
+    return ".obj, .ply, .glb, .gltf, .png";
+}
+
+std::vector<GltfPlant> gltfPlants(const PlantArchitecture& arch) {
+    std::vector<GltfPlant> plants;
+    for (unsigned id : arch.getAllPlantIDs())
+        plants.push_back({std::int32_t(id), arch.plant(id).name, arch.getPlantBasePosition(id),
+                          arch.plant(id).age, arch.seed()});
+    return plants;
+}
+
+void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
+                    const std::vector<GltfPlant>& plants) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
@@ -26,6 +44,10 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         writeOBJ(ctx, path);
     } else if (ext == ".ply") {
         writePLY(ctx, path);
+    } else if (ext == ".glb" || ext == ".gltf") {
+        GltfOptions o;
+        o.plants = plants;
+        writeGLTF(ctx, path, o);
     } else if (ext == ".png") {
         RenderOptions o;
         o.width = g.imageWidth;
@@ -43,8 +65,9 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
 
 void prepareSceneOutputs(const std::vector<std::string>& paths) {
     for (const std::string& out : paths) {
-        const std::string ext = std::filesystem::path(out).extension().string();
-        if (ext != ".obj" && ext != ".ply" && ext != ".png")
+        std::string ext = std::filesystem::path(out).extension().string();
+        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (!isSceneExtension(ext))
             throw Error("unknown output format",
                         {.file = out, .value = ext, .validRange = sceneFileExtensions()});
         const auto dir = std::filesystem::path(out).parent_path();

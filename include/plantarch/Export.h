@@ -17,6 +17,7 @@
 //   "plantID"  (int)    PLY per-face plant_id (-1 when absent)
 
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -133,6 +134,36 @@ std::vector<std::string> organLabelTable(const Context& context, bool includeHid
 /// "plantID" data have the wrong type, or when the scene has more vertices than an int
 /// index can address.
 void writePLY(const Context& context, const std::string& path, const PlyOptions& options = {});
+
+/// A plant as a glTF file names it: its node is called "<species>_<id>", placed at its base,
+/// with the species, age and seed in the node's extras.
+struct GltfPlant {
+    std::int32_t id = 0;
+    std::string species;
+    vec3 base{0.0f};
+    double age = 0.0;
+    std::uint64_t seed = 0;
+};
+
+struct GltfOptions {
+    bool includeHidden = false;
+    bool normals = true;   ///< smooth per-vertex normals (NORMAL)
+    bool uvs = true;       ///< TEXCOORD_0 for primitives whose objects all have UVs
+    bool textures = true;  ///< embed the image of every material that has one
+    /// Labels: _PLANT_ID, _OBJECT_ID, _ORGAN and _FEATURE_ID_0 vertex attributes (floats),
+    /// EXT_mesh_features feature IDs and an EXT_structural_metadata property table with the
+    /// plant, object, organ, leaf, shoot, rank and age of every object (docs/formats.md).
+    bool labels = true;
+    /// Plants to name and place (from the PlantArchitecture: getPlantBasePosition, ...); a
+    /// plant not listed gets a node named "plant_<id>" at the origin.
+    std::vector<GltfPlant> plants;
+};
+
+/// Writes the Context as glTF 2.0: a .glb file (binary) or a .gltf file (JSON with the buffer
+/// embedded as base64), atomically. One node per plant (and one for the objects of no plant),
+/// one mesh per organ kind under it, one primitive per material; z up in plantarch becomes y
+/// up in glTF by a rotation of the root node. Throws plantarch::Error naming the file.
+void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options = {});
 
 /// Smooth per-vertex normals of one object (as the OBJ and PLY writers write them): the
 /// area-weighted sum of the normals of the triangles around each vertex, normalized; (0, 0, 1)

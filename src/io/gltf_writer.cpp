@@ -1,0 +1,568 @@
+// glTF 2.0 writer (.glb binary, .gltf with the buffer embedded) with labels a receiving tool
+// reads: per-vertex _PLANT_ID, _OBJECT_ID and _ORGAN attributes, EXT_mesh_features feature
+// IDs that index an EXT_structural_metadata property table (plant, object, organ, leaf,
+// shoot, rank and age of every object), and node extras with each plant's species, age and
+// seed.
+//
+// Layout: a node per plant (its base as the translation, vertices relative to it) and one for
+// the objects of no plant (trellis, obstacles, ground); under each, one mesh per organ kind,
+// with one primitive per material. Few large meshes load fast (a viewer pays per draw call,
+// not per triangle), and the organ kind is what a user toggles. Every array has its own
+// buffer view, 8-byte aligned, written in order after the JSON, so the binary is streamed
+// from the Context without building it whole (the .gltf form encodes it in base64).
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "io/export_common.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+
+namespace plantarch {
+
+namespace {
+
+using json = nlohmann::json;
+
+static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
+
+constexpr int kFloat = 5126, kUInt = 5125;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+
+// What one exported object contributes, and where.
+struct ObjectRecord {
+    ObjectID id;
+    std::int32_t plant;
+    std::uint8_t organ;
+    std::int32_t leaf, shoot, rank;
+    float age;
+    MaterialID material;
+    bool uvs;
+};
+
+// One primitive: the objects of one (node, organ kind, material).
+struct Primitive {
+    std::size_t node;
+    std::uint8_t organ;
+    MaterialID material;
+    std::vector<std::size_t> objects;  // indices into the records
+    std::size_t vertices = 0, triangles = 0;
+    bool uvs = true;
+};
+
+struct Node {
+    std::int32_t plant;  // -1: the objects of no plant
+    vec3 base{0.0f};
+};
+
+std::uint8_t organCode(const std::string& organ) {
+    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
+        if (organ == kOrganLabels[i]) return std::uint8_t(i);
+    if (organ == "trellis") return std::uint8_t(9);  // drawn as an obstacle
+    return 0;
+}
+
+float linear(float srgb) {
+    const float c = std::clamp(srgb, 0.0f, 1.0f);
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+std::size_t align8(std::size_t n) {
+    return (n + 7) & ~std::size_t(7);
+}
+
+std::string lowerExtension(const std::string& path) {
+    const std::size_t dot = path.find_last_of('.');
+    const std::size_t slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot read texture image", {.file = path});
+    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+}
+
+// The byte blocks of the binary buffer, in order; each is produced when written.
+class Buffer {
+public:
+    /// Reserves a block of `bytes` and returns its view index.
+    int add(json& views, std::size_t bytes, int target) {
+        json v = {{"buffer", 0}, {"byteOffset", size_}, {"byteLength", bytes}};
+        if (target) v["target"] = target;
+        views.push_back(std::move(v));
+        sizes_.push_back(bytes);
+        size_ = align8(size_ + bytes);
+        return int(views.size()) - 1;
+    }
+    std::size_t size() const { return size_; }
+    std::size_t viewSize(int view) const { return sizes_[std::size_t(view)]; }
+
+private:
+    std::size_t size_ = 0;
+    std::vector<std::size_t> sizes_;
+};
+
+// Writes bytes to a .glb file or collects them for a .gltf's base64.
+class Sink {
+public:
+    Sink(io::AtomicFile* file, std::string* bytes) : file_(file), bytes_(bytes) {}
+    void write(const void* data, std::size_t n) {
+        if (file_)
+            file_->write(data, n);
+        else
+            bytes_->append(static_cast<const char*>(data), n);
+        written_ += n;
+    }
+    void pad() {
+        static const char zeros[8] = {};
+        write(zeros, align8(written_) - written_);
+    }
+
+private:
+    io::AtomicFile* file_;
+    std::string* bytes_;
+    std::size_t written_ = 0;
+};
+
+std::string base64(const std::string& bytes) {
+    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((bytes.size() + 2) / 3 * 4);
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16 |
+                                std::uint32_t(std::uint8_t(bytes[i + 1])) << 8 |
+                                std::uint8_t(bytes[i + 2]);
+        out += table[v >> 18];
+        out += table[(v >> 12) & 63];
+        out += table[(v >> 6) & 63];
+        out += table[v & 63];
+    }
+    if (i < bytes.size()) {
+        std::uint32_t v = std::uint32_t(std::uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) v |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
+        out += table[v >> 18];
+        out += table[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+struct Scene {
+    std::vector<ObjectRecord> records;
+    std::vector<Node> nodes;
+    std::vector<Primitive> primitives;
+    std::vector<MaterialID> materials;  // glTF material index -> Context material
+    std::vector<std::string> images;    // texture files, in glTF image order
+};
+
+Scene collect(const Context& ctx, const GltfOptions& options) {
+    Scene s;
+    const std::vector<ObjectID> ids = io::exportedObjects(ctx, options.includeHidden);
+    auto intData = [&](ObjectID id, const char* label) -> std::int32_t {
+        return ctx.objectDataType(label) == DataType::Int
+                   ? ctx.objectDataInt(id, label).value_or(-1)
+                   : -1;
+    };
+    const bool ageFloat = ctx.objectDataType("age") == DataType::Float;
+    std::map<std::int32_t, std::size_t> nodeOf;
+    for (const GltfPlant& p : options.plants) {
+        nodeOf.emplace(p.id, s.nodes.size());
+        s.nodes.push_back({p.id, p.base});
+    }
+    for (ObjectID id : ids) {
+        const ObjectView o = ctx.object(id);
+        ObjectRecord r{id,
+                       intData(id, "plantID"),
+                       organCode(io::organOf(ctx, id)),
+                       intData(id, "leafID"),
+                       intData(id, "shootID"),
+                       intData(id, "rank"),
+                       ageFloat ? ctx.objectDataFloat(id, "age").value_or(-1.0f) : -1.0f,
+                       o.material,
+                       !o.uvs.empty()};
+        if (!nodeOf.count(r.plant)) {
+            nodeOf.emplace(r.plant, s.nodes.size());
+            s.nodes.push_back({r.plant, vec3(0.0f)});
+        }
+        s.records.push_back(r);
+    }
+    // Plants in ID order, the objects of no plant last.
+    std::vector<std::size_t> order(s.nodes.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        const auto key = [&](std::size_t i) {
+            return std::make_pair(s.nodes[i].plant < 0, s.nodes[i].plant);
+        };
+        return key(a) < key(b);
+    });
+    std::vector<Node> sorted;
+    for (std::size_t i : order) sorted.push_back(s.nodes[i]);
+    s.nodes = std::move(sorted);
+    nodeOf.clear();
+    for (std::size_t i = 0; i < s.nodes.size(); ++i) nodeOf[s.nodes[i].plant] = i;
+
+    std::map<std::tuple<std::size_t, std::uint8_t, MaterialID>, std::size_t> primitiveOf;
+    std::map<MaterialID, std::size_t> materialIndex;
+    for (std::size_t i = 0; i < s.records.size(); ++i) {
+        const ObjectRecord& r = s.records[i];
+        const auto key = std::make_tuple(nodeOf[r.plant], r.organ, r.material);
+        auto [it, fresh] = primitiveOf.emplace(key, 0);
+        if (fresh) {
+            it->second = s.primitives.size();
+            s.primitives.push_back({nodeOf[r.plant], r.organ, r.material, {}});
+            if (!materialIndex.count(r.material)) {
+                materialIndex.emplace(r.material, s.materials.size());
+                s.materials.push_back(r.material);
+            }
+        }
+        Primitive& p = s.primitives[it->second];
+        p.objects.push_back(i);
+        const ObjectView o = ctx.object(r.id);
+        p.vertices += o.positions.size();
+        p.triangles += o.triangleCount();
+        p.uvs = p.uvs && r.uvs && options.uvs;
+    }
+    std::stable_sort(s.primitives.begin(), s.primitives.end(),
+                     [](const Primitive& a, const Primitive& b) {
+                         return std::tie(a.node, a.organ) < std::tie(b.node, b.organ);
+                     });
+    return s;
+}
+
+json schema() {
+    json values = json::array();
+    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
+        values.push_back({{"name", std::string(kOrganLabels[i])}, {"value", i}});
+    auto scalar = [](const char* type, const char* description) {
+        return json{{"type", "SCALAR"}, {"componentType", type}, {"description", description}};
+    };
+    return {{"id", "plantarch"},
+            {"enums", {{"organ_kind", {{"valueType", "UINT8"}, {"values", values}}}}},
+            {"classes",
+             {{"organ",
+               {{"description", "One organ object: a leaf, an internode, a flower ..."},
+                {"properties",
+                 {{"plant", scalar("INT32", "plant ID (-1: not a plant organ)")},
+                  {"object", scalar("UINT32", "object ID")},
+                  {"organ",
+                   {{"type", "ENUM"}, {"enumType", "organ_kind"}, {"description", "organ kind"}}},
+                  {"leaf", scalar("INT32", "leaf ID within the plant (-1: not a leaf)")},
+                  {"shoot", scalar("INT32", "shoot ID within the plant (-1: none)")},
+                  {"rank", scalar("INT32", "shoot rank, 0 for the base stem (-1: none)")},
+                  {"age", scalar("FLOAT32", "organ age, days (-1: unknown)")}}}}}}}};
+}
+
+json accessor(int view, int componentType, std::size_t count, const char* type) {
+    return {
+        {"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
+}
+
+// The JSON document and the buffer's layout.
+json document(const Context& ctx, const Scene& s, const GltfOptions& options, Buffer& buffer) {
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "plantarch"}};
+    json views = json::array(), accessors = json::array(), meshes = json::array();
+    json nodes = json::array(), materials = json::array();
+    json textures = json::array(), images = json::array();
+    std::map<std::string, int> imageIndex;
+
+    for (MaterialID m : s.materials) {
+        const Material& mat = ctx.material(m);
+        json pbr = {{"baseColorFactor",
+                     {linear(mat.color.x), linear(mat.color.y), linear(mat.color.z), 1.0}},
+                    {"metallicFactor", 0.0},
+                    {"roughnessFactor", 0.9}};
+        if (!mat.texture.empty() && options.textures) {
+            auto [it, fresh] = imageIndex.emplace(mat.texture, int(images.size()));
+            if (fresh) {
+                const std::string ext = lowerExtension(mat.texture);
+                const std::size_t bytes = readBytes(mat.texture).size();
+                images.push_back({{"bufferView", buffer.add(views, bytes, 0)},
+                                  {"mimeType", ext == ".png" ? "image/png" : "image/jpeg"}});
+                textures.push_back({{"source", it->second}});
+            }
+            pbr["baseColorTexture"] = {{"index", it->second}};
+            pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
+        }
+        json material = {{"pbrMetallicRoughness", pbr}, {"doubleSided", true}};
+        if (!mat.name.empty()) material["name"] = mat.name;
+        if (!mat.texture.empty() && options.textures) material["alphaMode"] = "MASK";
+        materials.push_back(std::move(material));
+    }
+
+    std::map<MaterialID, std::size_t> materialIndex;
+    for (std::size_t i = 0; i < s.materials.size(); ++i) materialIndex[s.materials[i]] = i;
+    std::vector<json> nodeMeshes(s.nodes.size());
+    std::map<std::pair<std::size_t, std::uint8_t>, int> meshOf;
+    const std::size_t features = s.records.size();
+    for (const Primitive& p : s.primitives) {
+        const Node& node = s.nodes[p.node];
+        vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (std::size_t i : p.objects)
+            for (const vec3& v : ctx.object(s.records[i].id).positions) {
+                lo = glm::min(lo, v - node.base);
+                hi = glm::max(hi, v - node.base);
+            }
+        json attributes;
+        auto vertexView = [&](std::size_t bytesPerVertex) {
+            return buffer.add(views, p.vertices * bytesPerVertex, kArrayBuffer);
+        };
+        int view = vertexView(12);
+        json position = accessor(view, kFloat, p.vertices, "VEC3");
+        position["min"] = {lo.x, lo.y, lo.z};
+        position["max"] = {hi.x, hi.y, hi.z};
+        accessors.push_back(position);
+        attributes["POSITION"] = accessors.size() - 1;
+        if (options.normals) {
+            accessors.push_back(accessor(vertexView(12), kFloat, p.vertices, "VEC3"));
+            attributes["NORMAL"] = accessors.size() - 1;
+        }
+        if (p.uvs) {
+            accessors.push_back(accessor(vertexView(8), kFloat, p.vertices, "VEC2"));
+            attributes["TEXCOORD_0"] = accessors.size() - 1;
+        }
+        json extensions;
+        if (options.labels) {
+            for (const char* name : {"_PLANT_ID", "_OBJECT_ID", "_ORGAN", "_FEATURE_ID_0"}) {
+                accessors.push_back(accessor(vertexView(4), kFloat, p.vertices, "SCALAR"));
+                attributes[name] = accessors.size() - 1;
+            }
+            extensions["EXT_mesh_features"] = {
+                {"featureIds",
+                 {{{"featureCount", p.objects.size()}, {"attribute", 0}, {"propertyTable", 0}}}}};
+        }
+        const int indexView = buffer.add(views, p.triangles * 12, kElementArrayBuffer);
+        accessors.push_back(accessor(indexView, kUInt, p.triangles * 3, "SCALAR"));
+        json primitive = {{"attributes", attributes},
+                          {"indices", accessors.size() - 1},
+                          {"material", materialIndex[p.material]},
+                          {"mode", 4}};
+        if (!extensions.empty()) primitive["extensions"] = extensions;
+        const auto key = std::make_pair(p.node, p.organ);
+        auto [it, fresh] = meshOf.emplace(key, int(meshes.size()));
+        if (fresh) {
+            meshes.push_back(
+                {{"name", std::string(kOrganLabels[p.organ])}, {"primitives", json::array()}});
+            nodeMeshes[p.node].push_back(it->second);
+        }
+        meshes[std::size_t(it->second)]["primitives"].push_back(std::move(primitive));
+    }
+
+    // One child node per mesh under each plant's node.
+    json roots = json::array();
+    std::map<std::int32_t, const GltfPlant*> plantInfo;
+    for (const GltfPlant& p : options.plants) plantInfo[p.id] = &p;
+    for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+        const Node& node = s.nodes[n];
+        json children = json::array();
+        for (const json& mesh : nodeMeshes[n]) {
+            nodes.push_back({{"mesh", mesh}, {"name", meshes[mesh.get<std::size_t>()]["name"]}});
+            children.push_back(nodes.size() - 1);
+        }
+        json parent;
+        if (node.plant >= 0) {
+            const auto it = plantInfo.find(node.plant);
+            const std::string species = it != plantInfo.end() ? it->second->species : "";
+            parent["name"] =
+                (species.empty() ? "plant" : species) + "_" + std::to_string(node.plant);
+            json extras = {{"plantID", node.plant}};
+            if (it != plantInfo.end()) {
+                extras["species"] = species;
+                extras["age"] = it->second->age;
+                extras["seed"] = it->second->seed;
+            }
+            parent["extras"] = extras;
+            if (node.base != vec3(0.0f))
+                parent["translation"] = {node.base.x, node.base.y, node.base.z};
+        } else {
+            parent["name"] = "scene";
+        }
+        if (!children.empty()) parent["children"] = children;
+        nodes.push_back(std::move(parent));
+        roots.push_back(nodes.size() - 1);
+    }
+
+    if (options.labels) {
+        json properties;
+        const std::pair<const char*, std::size_t> columns[] = {
+            {"plant", 4}, {"object", 4}, {"organ", 1}, {"leaf", 4},
+            {"shoot", 4}, {"rank", 4},   {"age", 4}};
+        for (const auto& [name, bytes] : columns)
+            properties[name] = {{"values", buffer.add(views, features * bytes, 0)}};
+        doc["extensions"]["EXT_structural_metadata"] = {
+            {"schema", schema()},
+            {"propertyTables",
+             {{{"class", "organ"}, {"count", features}, {"properties", properties}}}}};
+        doc["extensionsUsed"] = {"EXT_mesh_features", "EXT_structural_metadata"};
+    }
+
+    doc["scene"] = 0;
+    // z up in plantarch, y up in glTF: the root turns the scene about x by -90 degrees.
+    json world = {{"name", "plantarch"},
+                  {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}},
+                  {"children", roots}};
+    nodes.push_back(world);
+    doc["scenes"] = {{{"nodes", {nodes.size() - 1}}}};
+    doc["nodes"] = nodes;
+    if (!meshes.empty()) doc["meshes"] = meshes;
+    if (!materials.empty()) doc["materials"] = materials;
+    if (!accessors.empty()) doc["accessors"] = accessors;
+    if (!views.empty()) doc["bufferViews"] = views;
+    if (!images.empty()) {
+        doc["images"] = images;
+        doc["textures"] = textures;
+        doc["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
+        for (json& t : doc["textures"]) t["sampler"] = 0;
+    }
+    if (buffer.size()) doc["buffers"] = {{{"byteLength", buffer.size()}}};
+    return doc;
+}
+
+// The binary buffer, view by view in the order document() laid them out.
+void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options, Sink& out) {
+    for (const std::string& image : s.images) {
+        const std::vector<std::uint8_t> bytes = readBytes(image);
+        out.write(bytes.data(), bytes.size());
+        out.pad();
+    }
+    std::vector<vec3> normals;
+    std::vector<float> column;
+    std::vector<std::uint32_t> indices;
+    for (const Primitive& p : s.primitives) {
+        const vec3 base = s.nodes[p.node].base;
+        std::vector<vec3> block;
+        block.reserve(p.vertices);
+        for (std::size_t i : p.objects)
+            for (const vec3& v : ctx.object(s.records[i].id).positions) block.push_back(v - base);
+        out.write(block.data(), block.size() * sizeof(vec3));
+        out.pad();
+        if (options.normals) {
+            block.clear();
+            for (std::size_t i : p.objects) {
+                smoothNormals(ctx.object(s.records[i].id), normals);
+                block.insert(block.end(), normals.begin(), normals.end());
+            }
+            out.write(block.data(), block.size() * sizeof(vec3));
+            out.pad();
+        }
+        if (p.uvs) {
+            std::vector<vec2> uvs;
+            uvs.reserve(p.vertices);
+            for (std::size_t i : p.objects) {
+                const auto span = ctx.object(s.records[i].id).uvs;
+                uvs.insert(uvs.end(), span.begin(), span.end());
+            }
+            out.write(uvs.data(), uvs.size() * sizeof(vec2));
+            out.pad();
+        }
+        if (options.labels) {
+            auto perVertex = [&](auto value) {
+                column.clear();
+                for (std::size_t i : p.objects)
+                    column.insert(column.end(), ctx.object(s.records[i].id).positions.size(),
+                                  float(value(i)));
+                out.write(column.data(), column.size() * sizeof(float));
+                out.pad();
+            };
+            perVertex([&](std::size_t i) { return s.records[i].plant; });
+            perVertex([&](std::size_t i) { return s.records[i].id; });
+            perVertex([&](std::size_t i) { return s.records[i].organ; });
+            perVertex([&](std::size_t i) { return i; });  // the feature: the table row
+        }
+        indices.clear();
+        std::uint32_t first = 0;
+        for (std::size_t i : p.objects) {
+            const ObjectView o = ctx.object(s.records[i].id);
+            for (std::uint32_t k : o.indices) indices.push_back(first + k);
+            first += std::uint32_t(o.positions.size());
+        }
+        out.write(indices.data(), indices.size() * sizeof(std::uint32_t));
+        out.pad();
+    }
+    if (options.labels) {
+        auto columnOf = [&](auto get, auto type) {
+            std::vector<decltype(type)> values;
+            values.reserve(s.records.size());
+            for (const ObjectRecord& r : s.records) values.push_back(decltype(type)(get(r)));
+            out.write(values.data(), values.size() * sizeof(decltype(type)));
+            out.pad();
+        };
+        columnOf([](const ObjectRecord& r) { return r.plant; }, std::int32_t{});
+        columnOf([](const ObjectRecord& r) { return r.id; }, std::uint32_t{});
+        columnOf([](const ObjectRecord& r) { return r.organ; }, std::uint8_t{});
+        columnOf([](const ObjectRecord& r) { return r.leaf; }, std::int32_t{});
+        columnOf([](const ObjectRecord& r) { return r.shoot; }, std::int32_t{});
+        columnOf([](const ObjectRecord& r) { return r.rank; }, std::int32_t{});
+        columnOf([](const ObjectRecord& r) { return r.age; }, float{});
+    }
+}
+
+}  // namespace
+
+void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options) {
+    const std::string ext = lowerExtension(path);
+    if (ext != ".glb" && ext != ".gltf")
+        throw Error("a glTF file ends in .glb (binary) or .gltf (text)",
+                    {.file = path, .value = ext, .validRange = ".glb, .gltf"});
+    Scene scene = collect(context, options);
+    for (MaterialID m : scene.materials) {
+        const Material& mat = context.material(m);
+        if (!mat.texture.empty() && options.textures &&
+            std::find(scene.images.begin(), scene.images.end(), mat.texture) == scene.images.end())
+            scene.images.push_back(mat.texture);
+    }
+    Buffer buffer;
+    json doc = document(context, scene, options, buffer);
+    if (scene.records.size() >= (std::size_t(1) << 24))
+        throw Error("too many objects for float labels in glTF",
+                    {.file = path,
+                     .value = std::to_string(scene.records.size()),
+                     .validRange = "fewer than 16777216 objects"});
+    io::AtomicFile file(path);
+    if (ext == ".gltf") {
+        std::string bytes;
+        Sink sink(nullptr, &bytes);
+        writeBinary(context, scene, options, sink);
+        if (!bytes.empty())
+            doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bytes);
+        file.write(doc.dump());
+        file.commit();
+        return;
+    }
+    std::string text = doc.dump();
+    text.append((4 - text.size() % 4) % 4, ' ');
+    const std::uint32_t binLength = std::uint32_t(buffer.size());
+    const std::uint32_t total =
+        12 + 8 + std::uint32_t(text.size()) + (binLength ? 8 + binLength : 0);
+    const std::uint32_t header[3] = {0x46546C67u, 2u, total};  // "glTF", version 2
+    file.write(header, sizeof header);
+    const std::uint32_t jsonChunk[2] = {std::uint32_t(text.size()), 0x4E4F534Au};  // "JSON"
+    file.write(jsonChunk, sizeof jsonChunk);
+    file.write(text);
+    if (binLength) {
+        const std::uint32_t binChunk[2] = {binLength, 0x004E4942u};  // "BIN"
+        file.write(binChunk, sizeof binChunk);
+        Sink sink(&file, nullptr);
+        writeBinary(context, scene, options, sink);
+    }
+    file.commit();
+}
+
+}  // namespace plantarch

@@ -1,0 +1,310 @@
+// glTF writer: the binary and text forms read back as the scene they were written from
+// (triangles, positions relative to each plant's node, labels per vertex and in the property
+// table), the same bytes every time, and the errors it gives.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "plantarch/Context.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/Render.h"
+
+using namespace plantarch;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+std::string readAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A .glb file taken apart: its JSON and its binary chunk.
+struct Glb {
+    json doc;
+    std::string bin;
+};
+
+Glb parseGlb(const std::string& bytes) {
+    std::uint32_t header[3], chunk[2];
+    EXPECT_GE(bytes.size(), 20u);
+    std::memcpy(header, bytes.data(), 12);
+    EXPECT_EQ(header[0], 0x46546C67u);  // "glTF"
+    EXPECT_EQ(header[1], 2u);
+    EXPECT_EQ(header[2], bytes.size());
+    std::memcpy(chunk, bytes.data() + 12, 8);
+    EXPECT_EQ(chunk[1], 0x4E4F534Au);  // "JSON"
+    EXPECT_EQ(chunk[0] % 4, 0u);
+    Glb g;
+    g.doc = json::parse(bytes.substr(20, chunk[0]));
+    const std::size_t binAt = 20 + chunk[0];
+    std::memcpy(chunk, bytes.data() + binAt, 8);
+    EXPECT_EQ(chunk[1], 0x004E4942u);  // "BIN"
+    g.bin = bytes.substr(binAt + 8, chunk[0]);
+    return g;
+}
+
+template <class T>
+std::vector<T> accessorValues(const Glb& g, int accessorIndex) {
+    const json& a = g.doc["accessors"][accessorIndex];
+    const json& v = g.doc["bufferViews"][a["bufferView"].get<int>()];
+    const std::size_t components = a["type"] == "VEC3" ? 3 : a["type"] == "VEC2" ? 2 : 1;
+    std::vector<T> out(a["count"].get<std::size_t>() * components);
+    std::memcpy(out.data(), g.bin.data() + v["byteOffset"].get<std::size_t>(),
+                out.size() * sizeof(T));
+    return out;
+}
+
+template <class T>
+std::vector<T> viewValues(const Glb& g, int view, std::size_t count) {
+    const json& v = g.doc["bufferViews"][view];
+    std::vector<T> out(count);
+    std::memcpy(out.data(), g.bin.data() + v["byteOffset"].get<std::size_t>(), count * sizeof(T));
+    return out;
+}
+
+struct Scene {
+    Context ctx;
+    PlantArchitecture arch{&ctx};
+    std::vector<GltfPlant> plants;
+
+    explicit Scene(const char* species, int count = 2) {
+        arch.setSeed(5);
+        arch.loadPlantModelFromLibrary(species);
+        for (int i = 0; i < count; ++i) {
+            const unsigned id =
+                arch.buildPlantInstanceFromLibrary(vec3(0.5f * float(i), 0.2f, 0.0f), 30);
+            plants.push_back({std::int32_t(id), species, arch.getPlantBasePosition(id),
+                              arch.getPlantAge(id), 5});
+        }
+    }
+};
+
+fs::path tempPath(const std::string& name) {
+    return fs::temp_directory_path() /
+           ("plantarch_gltf_" + std::to_string(::getpid()) + "_" + name);
+}
+
+}  // namespace
+
+TEST(Gltf, GlbHoldsEveryTriangleWithItsLabelsAndPlantNodes) {
+    Scene s("bean");
+    GltfOptions o;
+    o.plants = s.plants;
+    const fs::path path = tempPath("bean.glb");
+    writeGLTF(s.ctx, path.string(), o);
+    const Glb g = parseGlb(readAll(path.string()));
+    fs::remove(path);
+
+    // Plant nodes: named, placed at the base, with extras.
+    std::map<int, json> plantNodes;
+    for (const json& n : g.doc["nodes"])
+        if (n.contains("extras")) plantNodes[n["extras"]["plantID"].get<int>()] = n;
+    ASSERT_EQ(plantNodes.size(), 2u);
+    for (const GltfPlant& p : s.plants) {
+        const json& n = plantNodes.at(p.id);
+        EXPECT_EQ(n["name"], "bean_" + std::to_string(p.id));
+        EXPECT_EQ(n["extras"]["species"], "bean");
+        EXPECT_EQ(n["extras"]["seed"], 5);
+        EXPECT_DOUBLE_EQ(n["extras"]["age"].get<double>(), 30.0);
+        if (p.base != vec3(0.0f)) {
+            EXPECT_FLOAT_EQ(n["translation"][0].get<float>(), p.base.x);
+            EXPECT_FLOAT_EQ(n["translation"][1].get<float>(), p.base.y);
+        }
+    }
+
+    // Every triangle once; per-vertex labels name each vertex's object, plant and organ; the
+    // feature IDs index property table rows that say the same.
+    const json& table = g.doc["extensions"]["EXT_structural_metadata"]["propertyTables"][0];
+    const std::size_t rows = table["count"];
+    EXPECT_EQ(rows, s.ctx.objectCount());
+    const auto tableObject =
+        viewValues<std::uint32_t>(g, table["properties"]["object"]["values"], rows);
+    const auto tablePlant =
+        viewValues<std::int32_t>(g, table["properties"]["plant"]["values"], rows);
+    const auto tableOrgan =
+        viewValues<std::uint8_t>(g, table["properties"]["organ"]["values"], rows);
+    const auto tableLeaf = viewValues<std::int32_t>(g, table["properties"]["leaf"]["values"], rows);
+    std::set<std::uint32_t> tableIDs(tableObject.begin(), tableObject.end());
+    EXPECT_EQ(tableIDs.size(), rows);
+    for (std::size_t r = 0; r < rows; ++r) {
+        const ObjectID id = tableObject[r];
+        ASSERT_TRUE(s.ctx.doesObjectExist(id));
+        EXPECT_EQ(tablePlant[r], s.ctx.objectDataInt(id, "plantID").value_or(-1));
+        EXPECT_EQ(std::string(kOrganLabels[tableOrgan[r]]),
+                  s.ctx.objectDataString(id, "organ").value());
+        EXPECT_EQ(tableLeaf[r], s.ctx.objectDataInt(id, "leafID").value_or(-1));
+    }
+    std::size_t triangles = 0;
+    std::map<ObjectID, std::size_t> verticesOf;
+    for (const json& mesh : g.doc["meshes"])
+        for (const json& prim : mesh["primitives"]) {
+            const json& at = prim["attributes"];
+            const auto indices = accessorValues<std::uint32_t>(g, prim["indices"]);
+            const auto object = accessorValues<float>(g, at["_OBJECT_ID"]);
+            const auto plant = accessorValues<float>(g, at["_PLANT_ID"]);
+            const auto organ = accessorValues<float>(g, at["_ORGAN"]);
+            const auto feature = accessorValues<float>(g, at["_FEATURE_ID_0"]);
+            const auto normal = accessorValues<float>(g, at["NORMAL"]);
+            triangles += indices.size() / 3;
+            for (std::uint32_t i : indices) ASSERT_LT(i, object.size());
+            for (std::size_t v = 0; v < object.size(); ++v) {
+                const ObjectID id = ObjectID(object[v]);
+                ++verticesOf[id];
+                EXPECT_EQ(int(plant[v]), s.ctx.objectDataInt(id, "plantID").value());
+                EXPECT_EQ(std::string(kOrganLabels[std::size_t(organ[v])]), mesh["name"]);
+                EXPECT_EQ(tableObject[std::size_t(feature[v])], id);
+                const float len = std::sqrt(normal[3 * v] * normal[3 * v] +
+                                            normal[3 * v + 1] * normal[3 * v + 1] +
+                                            normal[3 * v + 2] * normal[3 * v + 2]);
+                EXPECT_NEAR(len, 1.0f, 1e-4f);
+            }
+            EXPECT_EQ(prim["extensions"]["EXT_mesh_features"]["featureIds"][0]["propertyTable"], 0);
+        }
+    EXPECT_EQ(triangles, s.ctx.triangleCount());
+    for (const auto& [id, n] : verticesOf) EXPECT_EQ(n, s.ctx.object(id).positions.size());
+    EXPECT_EQ(verticesOf.size(), s.ctx.objectCount());
+}
+
+TEST(Gltf, PositionsAreRelativeToThePlantNodeAndTheRootTurnsZUpToYUp) {
+    Scene s("bean", 1);
+    s.plants[0].base = s.arch.getPlantBasePosition(0);
+    ASSERT_NE(s.plants[0].base, vec3(0.0f));
+    GltfOptions o;
+    o.plants = s.plants;
+    const fs::path path = tempPath("one.glb");
+    writeGLTF(s.ctx, path.string(), o);
+    const Glb g = parseGlb(readAll(path.string()));
+    fs::remove(path);
+    const json& root = g.doc["nodes"][g.doc["scenes"][0]["nodes"][0].get<int>()];
+    EXPECT_NEAR(root["rotation"][0].get<double>(), -std::sqrt(0.5), 1e-6);
+    EXPECT_NEAR(root["rotation"][3].get<double>(), std::sqrt(0.5), 1e-6);
+    // The leaf vertices plus the node's translation are the Context's positions.
+    const ObjectID leaf = s.arch.getPlantObjectIDs(0, OrganKind::Leaf).front();
+    std::size_t found = 0;
+    for (const json& mesh : g.doc["meshes"])
+        for (const json& prim : mesh["primitives"]) {
+            const auto object = accessorValues<float>(g, prim["attributes"]["_OBJECT_ID"]);
+            const auto pos = accessorValues<float>(g, prim["attributes"]["POSITION"]);
+            std::size_t k = 0;
+            for (std::size_t v = 0; v < object.size(); ++v) {
+                if (ObjectID(object[v]) != leaf) continue;
+                const vec3 world =
+                    vec3(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]) + s.plants[0].base;
+                const vec3 expected = s.ctx.object(leaf).positions[k++];
+                EXPECT_NEAR(world.x, expected.x, 1e-5f);
+                EXPECT_NEAR(world.y, expected.y, 1e-5f);
+                EXPECT_NEAR(world.z, expected.z, 1e-5f);
+            }
+            found += k;
+        }
+    EXPECT_EQ(found, s.ctx.object(leaf).positions.size());
+}
+
+TEST(Gltf, TextFormEmbedsTheSameBufferAndBothAreDeterministic) {
+    Scene s("strawberry", 1);
+    GltfOptions o;
+    o.plants = s.plants;
+    const fs::path glb = tempPath("s.glb"), glb2 = tempPath("s2.glb"), text = tempPath("s.gltf");
+    writeGLTF(s.ctx, glb.string(), o);
+    writeGLTF(s.ctx, glb2.string(), o);
+    writeGLTF(s.ctx, text.string(), o);
+    const std::string a = readAll(glb.string()), b = readAll(glb2.string());
+    EXPECT_EQ(a, b);
+    const Glb g = parseGlb(a);
+    const json t = json::parse(readAll(text.string()));
+    const std::string uri = t["buffers"][0]["uri"];
+    const std::string prefix = "data:application/octet-stream;base64,";
+    ASSERT_EQ(uri.rfind(prefix, 0), 0u);
+    // Decode the base64 and compare with the binary chunk.
+    std::string decoded;
+    int bits = 0, value = 0;
+    for (char c : uri.substr(prefix.size())) {
+        const std::string alphabet =
+            "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        const auto at = alphabet.find(c);
+        if (at == std::string::npos) break;
+        value = (value << 6) | int(at);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            decoded += char((value >> bits) & 0xff);
+        }
+    }
+    EXPECT_EQ(decoded, g.bin);
+    json withoutUri = t;
+    withoutUri["buffers"][0].erase("uri");
+    EXPECT_EQ(withoutUri, g.doc);
+    for (const auto& p : {glb, glb2, text}) fs::remove(p);
+}
+
+TEST(Gltf, ObjectsOfNoPlantGoUnderTheSceneNode) {
+    Context ctx;
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.indices = {0, 1, 2};
+    const ObjectID id = ctx.addObject(m, Material{vec3(0.5f), "", "wall"});
+    ctx.setObjectData(id, "organ", std::string("obstacle"));
+    const fs::path path = tempPath("wall.glb");
+    writeGLTF(ctx, path.string());
+    const Glb g = parseGlb(readAll(path.string()));
+    fs::remove(path);
+    bool scene = false;
+    for (const json& n : g.doc["nodes"]) scene = scene || n.value("name", "") == "scene";
+    EXPECT_TRUE(scene);
+    EXPECT_EQ(g.doc["meshes"][0]["name"], "obstacle");
+    EXPECT_EQ(g.doc["materials"][0]["name"], "wall");
+    EXPECT_TRUE(g.doc["materials"][0]["doubleSided"].get<bool>());
+}
+
+TEST(Gltf, BadPathsAreOneLineErrorsAndLeaveNothing) {
+    Context ctx;
+    try {
+        writeGLTF(ctx, tempPath("x.gltb").string());
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("valid: .glb, .gltf"), std::string::npos);
+    }
+    const fs::path missing = fs::temp_directory_path() / "plantarch_no_such_dir" / "a.glb";
+    EXPECT_THROW(writeGLTF(ctx, missing.string()), Error);
+    EXPECT_FALSE(fs::exists(missing));
+}
+
+TEST(Gltf, TexturedMaterialsCarryTheirImage) {
+    const fs::path png = tempPath("bark.png");
+    Image image(4, 2);
+    for (std::size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = std::uint8_t(i * 7);
+    writePNG(image, png.string());
+    Context ctx;
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    m.indices = {0, 1, 2};
+    ctx.addObject(m, Material{vec3(1.0f), png.string(), "bark"});
+    const fs::path path = tempPath("textured.glb");
+    writeGLTF(ctx, path.string());
+    const Glb g = parseGlb(readAll(path.string()));
+    fs::remove(path);
+    ASSERT_EQ(g.doc["images"].size(), 1u);
+    EXPECT_EQ(g.doc["images"][0]["mimeType"], "image/png");
+    const json& view = g.doc["bufferViews"][g.doc["images"][0]["bufferView"].get<int>()];
+    const std::string embedded =
+        g.bin.substr(view["byteOffset"].get<std::size_t>(), view["byteLength"].get<std::size_t>());
+    EXPECT_EQ(embedded, readAll(png.string()));
+    EXPECT_EQ(g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
+    EXPECT_TRUE(g.doc["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0"));
+    fs::remove(png);
+}
