@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -65,6 +66,30 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("ascii") = false,
         py::arg("include_hidden") = false, py::arg("normals") = false,
         "Writes the Context as PLY with per-face plant, object and organ labels, atomically.");
+    m.def(
+        "writeGLTF",
+        [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
+           bool normals, bool uvs, bool labels) {
+            GltfOptions o;
+            o.includeHidden = includeHidden;
+            o.normals = normals;
+            o.uvs = uvs;
+            o.labels = labels;
+            if (!architecture.is_none()) {
+                const auto& a = architecture.cast<const PlantArchitecture&>();
+                for (unsigned id : a.getAllPlantIDs())
+                    o.plants.push_back({std::int32_t(id), a.plant(id).name,
+                                        a.getPlantBasePosition(id), a.plant(id).age, a.seed()});
+            }
+            py::gil_scoped_release release;
+            writeGLTF(c, path, o);
+        },
+        py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
+        py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
+        py::arg("labels") = true,
+        "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
+        "plant (named, placed and described from `architecture` when given), a mesh per organ "
+        "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata.");
     m.def(
         "readOBJ", [](Context& c, const std::string& path) { return readOBJ(c, path); },
         py::arg("context"), py::arg("filename"),

@@ -107,3 +107,24 @@ def test_context_from_python(tmp_path):
     plantarch.writeOBJ(ctx, str(tmp_path / "wall.obj"))
     other = plantarch.Context()
     assert len(plantarch.readOBJ(other, str(tmp_path / "wall.obj"))) == 1
+
+
+def test_gltf_from_python(arch, tmp_path):
+    import json
+    import struct
+
+    p = arch.buildPlantInstanceFromLibrary((1, 2, 0), 30)
+    path = tmp_path / "bean.glb"
+    plantarch.writeGLTF(arch.getContext(), str(path), architecture=arch)
+    data = path.read_bytes()
+    magic, version, length = struct.unpack_from("<III", data)
+    assert (magic, version, length) == (0x46546C67, 2, len(data))
+    size, kind = struct.unpack_from("<II", data, 12)
+    doc = json.loads(data[20:20 + size])
+    plant_nodes = [n for n in doc["nodes"] if "extras" in n]
+    assert plant_nodes[0]["extras"] == {"plantID": p, "species": "bean", "age": 30.0,
+                                        "seed": arch.getSeed()}
+    assert plant_nodes[0]["translation"] == [1.0, 2.0, 0.0]
+    assert "EXT_structural_metadata" in doc["extensionsUsed"]
+    with pytest.raises(plantarch.Error, match="valid: .glb, .gltf"):
+        plantarch.writeGLTF(arch.getContext(), str(tmp_path / "bean.gltx"))
