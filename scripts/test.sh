@@ -5,8 +5,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh "$@"
-# What only the tests need: the format check's clang-format, pytest for the Python tests.
-test_packages=(clang-format python3-pytest)
+# What only the tests need: the format check's clang-format, pytest for the Python tests,
+# Blender to import the glTF files.
+test_packages=(clang-format python3-pytest blender)
 missing=()
 for p in "${test_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

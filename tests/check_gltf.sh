@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Writes glTF files of library plants with the plantarch command (a bean as .glb and .gltf,
-# a canopy, a trellis vine with its posts and wires, an almond with a bark texture) and checks
-# each with the Khronos glTF validator: no errors and no warnings.
+# a canopy, a trellis vine with its posts and wires, an almond, and the examples of
+# docs/formats.md) and checks each with the Khronos glTF validator: no errors, no warnings.
 # Usage: check_gltf.sh PROJECT_DIR PLANTARCH_BINARY. Exits 1 on any problem, 2 when node or
 # the validator (tests/js, installed by scripts/test.sh) is missing.
 set -euo pipefail
 root=${1:?usage: check_gltf.sh PROJECT_DIR PLANTARCH_BINARY}
-cli=${2:?usage: check_gltf.sh PROJECT_DIR PLANTARCH_BINARY}
+cli=$(realpath "${2:?usage: check_gltf.sh PROJECT_DIR PLANTARCH_BINARY}")
 command -v node > /dev/null || { echo "check_gltf: node is not installed (scripts/test.sh installs it)" >&2; exit 2; }
 [ -d "$root/tests/js/node_modules/gltf-validator" ] ||
     { echo "check_gltf: the glTF validator is not installed (run: npm ci --prefix tests/js)" >&2; exit 2; }
@@ -16,7 +16,12 @@ trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 canopy bean --count 2x2 --age 30 -o "$out/canopy.glb" > /dev/null
 "$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" > /dev/null
 "$cli" --seed 3 build almond --age 400 -o "$out/almond.glb" > /dev/null
-report=$(node "$root/tests/js/validate_gltf.mjs" "$out"/*.glb "$out"/*.gltf) || { echo "$report"; exit 1; }
+# The examples of docs/formats.md, run as written (build/plantarch is the binary under test).
+mkdir -p "$out/doc"
+awk '/^```sh$/{on=1; next} /^```$/{on=0} on' "$root/docs/formats.md" |
+    sed "s|build/plantarch|$cli|" | (cd "$out/doc" && bash -euo pipefail) > /dev/null
+report=$(node "$root/tests/js/validate_gltf.mjs" "$out"/*.glb "$out"/*.gltf "$out"/doc/out/*) ||
+    { echo "$report"; exit 1; }
 echo "$report" | grep -q '"warnings":[1-9]' && { echo "$report"; exit 1; }
 echo "$report" | sed 's/"messages".*//'
-echo "check_gltf: 5 files, no errors or warnings"
+echo "check_gltf: $(echo "$report" | wc -l) files, no errors or warnings"

@@ -41,3 +41,16 @@ def test_the_readme_python_example_runs():
     readme = DOC.parents[1] / "README.md"
     block = re.findall(r"## From Python.*?```python\n(.*?)```", readme.read_text(), re.S)[0]
     exec(compile(block, str(readme), "exec"), {})
+
+
+def test_the_formats_guide_python_block_runs(tmp_path):
+    doc = DOC.parent / "formats.md"
+    blocks = re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
+    assert blocks
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        for block in blocks:
+            exec(compile(block, str(doc), "exec"), {})
+    finally:
+        os.chdir(cwd)

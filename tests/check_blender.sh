@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Imports glTF files of library plants (a bean as .glb and .gltf, a trellis vine with its
+# posts and wires) into Blender with its own importer, headless, and checks that Blender holds
+# the same number of triangles as the file's scene. Usage: check_blender.sh PLANTARCH_BINARY.
+# Exits 1 on a mismatch, 2 when Blender is missing (scripts/test.sh installs it).
+set -euo pipefail
+cli=$(realpath "${1:?usage: check_blender.sh PLANTARCH_BINARY}")
+here=$(dirname "$(realpath "$0")")
+command -v blender > /dev/null || { echo "check_blender: blender is not installed (scripts/test.sh installs it)" >&2; exit 2; }
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+status=0
+check() {  # check FILE TRIANGLES
+    local line
+    line=$(cd "$out" && blender -b --factory-startup --python "$here/blender/import_gltf.py" -- "$1" 2>&1 |
+           grep '^PLANTARCH ' | head -1 | cut -d' ' -f2-) || true
+    local got
+    got=$(echo "$line" | sed -n 's/.*"triangles": \([0-9]*\).*/\1/p')
+    if [ "$got" != "$2" ]; then
+        echo "check_blender: $1: Blender holds ${got:-no} triangles, the file's scene $2 ($line)"
+        status=1
+    else
+        echo "check_blender: $(basename "$1"): $got triangles, as written"
+    fi
+}
+triangles() {  # the triangle count the build printed
+    sed -n 's/.* \([0-9][0-9]*\) triangles in .*/\1/p'
+}
+n=$("$cli" --seed 3 build bean --age 40 -o "$out/bean.glb" -o "$out/bean.gltf" | triangles)
+check "$out/bean.glb" "$n"
+check "$out/bean.gltf" "$n"
+"$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" -o "$out/vine.ply" > /dev/null
+# The vine's file holds its trellis too: count the PLY's faces (every object in the scene).
+faces=$(sed -n 's/^element face \([0-9]*\)$/\1/p' < <(head -c 4096 "$out/vine.ply" | tr -d '\r'))
+check "$out/vine.glb" "$faces"
+exit "$status"
