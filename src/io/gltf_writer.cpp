@@ -117,9 +117,12 @@ private:
     std::vector<std::size_t> sizes_;
 };
 
-// Writes bytes to a .glb file or collects them for a .gltf's base64.
+// Writes bytes to a .glb file or collects them for a .gltf's base64. Blocks are filled in
+// place (reserve, then commit), so each byte is copied once on its way to the file.
 class Sink {
 public:
+    static constexpr std::size_t kBlock = io::AtomicFile::kMaxReserve;
+
     Sink(io::AtomicFile* file, std::string* bytes) : file_(file), bytes_(bytes) {}
     void write(const void* data, std::size_t n) {
         if (file_)
@@ -128,9 +131,31 @@ public:
             bytes_->append(static_cast<const char*>(data), n);
         written_ += n;
     }
+    /// Room for n <= kBlock bytes, to be filled and then handed back with commit(n).
+    char* reserve(std::size_t n) {
+        if (file_) return file_->reserve(n);
+        bytes_->resize(written_ + n);
+        return bytes_->data() + written_;
+    }
+    void commit(std::size_t n) {
+        if (file_) file_->advance(file_->reserve(n) + n);
+        written_ += n;
+    }
     void pad() {
         static const char zeros[8] = {};
         write(zeros, align8(written_) - written_);
+    }
+
+    /// Writes `count` elements of `size` bytes, made by fill(destination, first, n) in
+    /// blocks of n elements.
+    template <class Fill>
+    void elements(std::size_t count, std::size_t size, Fill&& fill) {
+        const std::size_t perBlock = kBlock / size;
+        for (std::size_t first = 0; first < count; first += perBlock) {
+            const std::size_t n = std::min(perBlock, count - first);
+            fill(reserve(n * size), first, n);
+            commit(n * size);
+        }
     }
 
 private:
@@ -175,10 +200,11 @@ struct Scene {
 Scene collect(const Context& ctx, const GltfOptions& options) {
     Scene s;
     const std::vector<ObjectID> ids = io::exportedObjects(ctx, options.includeHidden);
-    auto intData = [&](ObjectID id, const char* label) -> std::int32_t {
-        return ctx.objectDataType(label) == DataType::Int
-                   ? ctx.objectDataInt(id, label).value_or(-1)
-                   : -1;
+    const char* intLabels[4] = {"plantID", "leafID", "shootID", "rank"};
+    bool hasInt[4];
+    for (int k = 0; k < 4; ++k) hasInt[k] = ctx.objectDataType(intLabels[k]) == DataType::Int;
+    auto intData = [&](ObjectID id, int which) -> std::int32_t {
+        return hasInt[which] ? ctx.objectDataInt(id, intLabels[which]).value_or(-1) : -1;
     };
     const bool ageFloat = ctx.objectDataType("age") == DataType::Float;
     std::map<std::int32_t, std::size_t> nodeOf;
@@ -189,11 +215,11 @@ Scene collect(const Context& ctx, const GltfOptions& options) {
     for (ObjectID id : ids) {
         const ObjectView o = ctx.object(id);
         ObjectRecord r{id,
-                       intData(id, "plantID"),
+                       intData(id, 0),
                        organCode(io::organOf(ctx, id)),
-                       intData(id, "leafID"),
-                       intData(id, "shootID"),
-                       intData(id, "rank"),
+                       intData(id, 1),
+                       intData(id, 2),
+                       intData(id, 3),
                        ageFloat ? ctx.objectDataFloat(id, "age").value_or(-1.0f) : -1.0f,
                        o.material,
                        !o.uvs.empty()};
@@ -435,50 +461,74 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
     return doc;
 }
 
-// The binary buffer, view by view in the order document() laid them out.
+// The binary buffer, view by view in the order document() laid them out; each view is
+// streamed object by object straight from the Context.
 void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options, Sink& out) {
     for (const std::string& image : s.images) {
         const std::vector<std::uint8_t> bytes = readBytes(image);
         out.write(bytes.data(), bytes.size());
         out.pad();
     }
+    // Normals of every object first, on all threads (each object's own slice).
     std::vector<vec3> normals;
-    std::vector<float> column;
-    std::vector<std::uint32_t> indices;
+    std::vector<std::size_t> normalAt(s.records.size() + 1, 0);
+    if (options.normals) {
+        for (std::size_t i = 0; i < s.records.size(); ++i)
+            normalAt[i + 1] = normalAt[i] + ctx.object(s.records[i].id).positions.size();
+        normals.resize(normalAt.back());
+        const std::ptrdiff_t n = std::ptrdiff_t(s.records.size());
+#pragma omp parallel
+        {
+            std::vector<vec3> one;
+#pragma omp for schedule(dynamic, 64)
+            for (std::ptrdiff_t i = 0; i < n; ++i) {
+                smoothNormals(ctx.object(s.records[std::size_t(i)].id), one);
+                std::copy(one.begin(), one.end(),
+                          normals.begin() + std::ptrdiff_t(normalAt[std::size_t(i)]));
+            }
+        }
+    }
     for (const Primitive& p : s.primitives) {
         const vec3 base = s.nodes[p.node].base;
-        std::vector<vec3> block;
-        block.reserve(p.vertices);
-        for (std::size_t i : p.objects)
-            for (const vec3& v : ctx.object(s.records[i].id).positions) block.push_back(v - base);
-        out.write(block.data(), block.size() * sizeof(vec3));
+        auto eachObject = [&](auto&& f) {
+            for (std::size_t i : p.objects) f(i, ctx.object(s.records[i].id));
+        };
+        eachObject([&](std::size_t, const ObjectView& o) {
+            if (base == vec3(0.0f)) {
+                out.write(o.positions.data(), o.positions.size_bytes());
+                return;
+            }
+            out.elements(o.positions.size(), sizeof(vec3),
+                         [&](char* dst, std::size_t first, std::size_t n) {
+                             for (std::size_t k = 0; k < n; ++k) {
+                                 const vec3 v = o.positions[first + k] - base;
+                                 std::memcpy(dst + k * sizeof(vec3), &v, sizeof(vec3));
+                             }
+                         });
+        });
         out.pad();
         if (options.normals) {
-            block.clear();
-            for (std::size_t i : p.objects) {
-                smoothNormals(ctx.object(s.records[i].id), normals);
-                block.insert(block.end(), normals.begin(), normals.end());
-            }
-            out.write(block.data(), block.size() * sizeof(vec3));
+            eachObject([&](std::size_t i, const ObjectView& o) {
+                out.write(normals.data() + normalAt[i], o.positions.size() * sizeof(vec3));
+            });
             out.pad();
         }
         if (p.uvs) {
-            std::vector<vec2> uvs;
-            uvs.reserve(p.vertices);
-            for (std::size_t i : p.objects) {
-                const auto span = ctx.object(s.records[i].id).uvs;
-                uvs.insert(uvs.end(), span.begin(), span.end());
-            }
-            out.write(uvs.data(), uvs.size() * sizeof(vec2));
+            eachObject([&](std::size_t, const ObjectView& o) {
+                out.write(o.uvs.data(), o.uvs.size_bytes());
+            });
             out.pad();
         }
         if (options.labels) {
             auto perVertex = [&](auto value) {
-                column.clear();
-                for (std::size_t i : p.objects)
-                    column.insert(column.end(), ctx.object(s.records[i].id).positions.size(),
-                                  float(value(i)));
-                out.write(column.data(), column.size() * sizeof(float));
+                eachObject([&](std::size_t i, const ObjectView& o) {
+                    const float v = float(value(i));
+                    out.elements(o.positions.size(), sizeof(float),
+                                 [&](char* dst, std::size_t, std::size_t n) {
+                                     for (std::size_t k = 0; k < n; ++k)
+                                         std::memcpy(dst + 4 * k, &v, 4);
+                                 });
+                });
                 out.pad();
             };
             perVertex([&](std::size_t i) { return s.records[i].plant; });
@@ -486,22 +536,29 @@ void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options,
             perVertex([&](std::size_t i) { return s.records[i].organ; });
             perVertex([&](std::size_t i) { return i; });  // the feature: the table row
         }
-        indices.clear();
         std::uint32_t first = 0;
-        for (std::size_t i : p.objects) {
-            const ObjectView o = ctx.object(s.records[i].id);
-            for (std::uint32_t k : o.indices) indices.push_back(first + k);
+        eachObject([&](std::size_t, const ObjectView& o) {
+            out.elements(o.indices.size(), sizeof(std::uint32_t),
+                         [&](char* dst, std::size_t at, std::size_t n) {
+                             for (std::size_t k = 0; k < n; ++k) {
+                                 const std::uint32_t v = first + o.indices[at + k];
+                                 std::memcpy(dst + 4 * k, &v, 4);
+                             }
+                         });
             first += std::uint32_t(o.positions.size());
-        }
-        out.write(indices.data(), indices.size() * sizeof(std::uint32_t));
+        });
         out.pad();
     }
     if (options.labels) {
         auto columnOf = [&](auto get, auto type) {
-            std::vector<decltype(type)> values;
-            values.reserve(s.records.size());
-            for (const ObjectRecord& r : s.records) values.push_back(decltype(type)(get(r)));
-            out.write(values.data(), values.size() * sizeof(decltype(type)));
+            using T = decltype(type);
+            out.elements(s.records.size(), sizeof(T),
+                         [&](char* dst, std::size_t at, std::size_t n) {
+                             for (std::size_t k = 0; k < n; ++k) {
+                                 const T v = T(get(s.records[at + k]));
+                                 std::memcpy(dst + k * sizeof(T), &v, sizeof(T));
+                             }
+                         });
             out.pad();
         };
         columnOf([](const ObjectRecord& r) { return r.plant; }, std::int32_t{});
