@@ -87,9 +87,10 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
     const std::pair<std::string, std::string> cases[] = {
         {"convert " + d + "/b.obj " + d + "/x.xml",
          d + "/x.xml: '.xml': an OBJ file holds geometry only, not the plant structure (valid: "
-             ".obj, .ply, .png)"},
-        {"convert " + d + "/b.xml " + d + "/x.gltf",
-         d + "/x.gltf: '.gltf': unknown output format (valid: .obj, .ply, .png, .xml, .txt)"},
+             ".obj, .ply, .glb, .gltf, .png)"},
+        {"convert " + d + "/b.xml " + d + "/x.usdz",
+         d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .png, "
+             ".xml, .txt)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
          d + "/missing.xml: cannot open plant structure file"},
         {"convert " + d + "/b.xml", "output is required"},
@@ -107,7 +108,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
         const CliResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
         EXPECT_EQ(r.out, "plantarch: " + expected + "\n") << args;
-        for (const char* name : {"/x.xml", "/x.obj", "/x.txt", "/x.gltf"})
+        for (const char* name : {"/x.xml", "/x.obj", "/x.txt", "/x.usdz"})
             EXPECT_FALSE(std::filesystem::exists(d + name)) << args << ": " << name;
     }
 }
