@@ -1,6 +1,7 @@
 // plantarch grow IN.xml --days N -o OUT [-o OUT ...]
 // Continues the growth of saved plants: reads a plant structure file, grows every plant in
-// it by N days and writes the result (.xml to save it again, or .txt, .obj, .ply, .glb, .gltf, .png).
+// it by N days and writes the result (.xml to save it again, or .txt, .obj, .ply, .glb, .gltf,
+// .png).
 
 #include <fmt/format.h>
 

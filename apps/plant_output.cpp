@@ -54,7 +54,8 @@ void preparePlantOutputs(const std::vector<std::string>& paths) {
     for (const std::string& out : paths) {
         const std::string ext = extensionOf(out);
         if (ext != ".xml" && ext != ".txt") {
-            if (ext != ".obj" && ext != ".ply" && ext != ".glb" && ext != ".gltf" && ext != ".png")
+            if (ext != ".obj" && ext != ".ply" && ext != ".glb" && ext != ".gltf" &&
+                ext != ".usda" && ext != ".png")
                 throw Error("unknown output format",
                             {.file = out, .value = ext, .validRange = plantFileExtensions()});
             scenes.push_back(out);

@@ -18,13 +18,14 @@ namespace plantarch::cli {
 namespace {
 
 bool isSceneExtension(const std::string& ext) {
-    return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".png";
+    return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".usda" ||
+           ext == ".png";
 }
 
 }  // namespace
 
 std::string sceneFileExtensions() {
-    return ".obj, .ply, .glb, .gltf, .png";
+    return ".obj, .ply, .glb, .gltf, .usda, .png";
 }
 
 std::vector<GltfPlant> gltfPlants(const PlantArchitecture& arch) {
@@ -48,6 +49,10 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         GltfOptions o;
         o.plants = plants;
         writeGLTF(ctx, path, o);
+    } else if (ext == ".usda") {
+        UsdOptions o;
+        o.plants = plants;
+        writeUSDA(ctx, path, o);
     } else if (ext == ".png") {
         RenderOptions o;
         o.width = g.imageWidth;

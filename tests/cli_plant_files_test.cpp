@@ -87,9 +87,10 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
     const std::pair<std::string, std::string> cases[] = {
         {"convert " + d + "/b.obj " + d + "/x.xml",
          d + "/x.xml: '.xml': an OBJ file holds geometry only, not the plant structure (valid: "
-             ".obj, .ply, .glb, .gltf, .png)"},
+             ".obj, .ply, .glb, .gltf, .usda, .png)"},
         {"convert " + d + "/b.xml " + d + "/x.usdz",
-         d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .png, "
+         d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
+             ".png, "
              ".xml, .txt)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
          d + "/missing.xml: cannot open plant structure file"},

@@ -165,6 +165,21 @@ struct GltfOptions {
 /// up in glTF by a rotation of the root node. Throws plantarch::Error naming the file.
 void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options = {});
 
+struct UsdOptions {
+    bool includeHidden = false;
+    bool normals = true;  ///< primvars:normals (vertex interpolation)
+    bool uvs = true;      ///< primvars:st for meshes whose objects all have UVs
+    /// Plants to name and place, as for glTF.
+    std::vector<GltfPlant> plants;
+};
+
+/// Writes the Context as a USD text file (.usda), atomically: upAxis Z, metersPerUnit 1, an
+/// Xform per plant (translated to its base; plantID, species, age, seed in customData) and a
+/// Mesh per organ kind under it, with primvars normals and st, per-face (uniform) primvars
+/// displayColor, organ, plantID and objectID, and the organ kind as a semantic class label
+/// (SemanticsLabelsAPI). Throws plantarch::Error naming the file.
+void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options = {});
+
 /// Smooth per-vertex normals of one object (as the OBJ and PLY writers write them): the
 /// area-weighted sum of the normals of the triangles around each vertex, normalized; (0, 0, 1)
 /// where that sum vanishes. `normals` is resized to the object's vertex count.

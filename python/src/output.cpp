@@ -31,6 +31,14 @@ Image imageFrom(const py::array_t<std::uint8_t, py::array::c_style | py::array::
     return image;
 }
 
+std::vector<GltfPlant> plantsOf(const PlantArchitecture& a) {
+    std::vector<GltfPlant> plants;
+    for (unsigned id : a.getAllPlantIDs())
+        plants.push_back({std::int32_t(id), a.plant(id).name, a.getPlantBasePosition(id),
+                          a.plant(id).age, a.seed()});
+    return plants;
+}
+
 RenderMode modeNamed(const std::string& mode) {
     if (mode == "shaded") return RenderMode::Shaded;
     if (mode == "organ") return RenderMode::LabelOrgan;
@@ -75,12 +83,8 @@ void bindOutput(py::module_& m) {
             o.normals = normals;
             o.uvs = uvs;
             o.labels = labels;
-            if (!architecture.is_none()) {
-                const auto& a = architecture.cast<const PlantArchitecture&>();
-                for (unsigned id : a.getAllPlantIDs())
-                    o.plants.push_back({std::int32_t(id), a.plant(id).name,
-                                        a.getPlantBasePosition(id), a.plant(id).age, a.seed()});
-            }
+            if (!architecture.is_none())
+                o.plants = plantsOf(architecture.cast<const PlantArchitecture&>());
             py::gil_scoped_release release;
             writeGLTF(c, path, o);
         },
@@ -90,6 +94,24 @@ void bindOutput(py::module_& m) {
         "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
         "plant (named, placed and described from `architecture` when given), a mesh per organ "
         "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata.");
+    m.def(
+        "writeUSDA",
+        [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
+           bool normals, bool uvs) {
+            UsdOptions o;
+            o.includeHidden = includeHidden;
+            o.normals = normals;
+            o.uvs = uvs;
+            if (!architecture.is_none())
+                o.plants = plantsOf(architecture.cast<const PlantArchitecture&>());
+            py::gil_scoped_release release;
+            writeUSDA(c, path, o);
+        },
+        py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
+        py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
+        "Writes the Context as USD text (.usda), atomically: an Xform per plant (placed and "
+        "described from `architecture` when given), a Mesh per organ kind with normals, UVs, "
+        "per-face organ/plantID/objectID primvars and semantic class labels.");
     m.def(
         "readOBJ", [](Context& c, const std::string& path) { return readOBJ(c, path); },
         py::arg("context"), py::arg("filename"),

@@ -1,0 +1,221 @@
+// USD text (.usda) writer: z up, metres, an Xform per plant (placed at its base, species, age
+// and seed in customData), and under it a Mesh per organ kind with normals, UVs, display
+// colours and per-face labels (organ, plant, object) as uniform primvars, plus semantic labels
+// (SemanticsLabelsAPI, class = the organ kind) that Omniverse and Isaac Sim read.
+
+#include <cctype>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "io/export_common.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+
+namespace plantarch {
+
+namespace {
+
+// Prim names are identifiers: letters, digits and '_', not starting with a digit.
+std::string primName(const std::string& text) {
+    std::string out;
+    for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
+    if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "_" + out;
+    return out;
+}
+
+std::string quoted(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += (c == '\n' ? ' ' : c);
+    }
+    return out + "\"";
+}
+
+// Numbers into the file's buffer, shortest exact text.
+class Text {
+public:
+    explicit Text(io::AtomicFile& file) : file_(file) {}
+    Text& operator<<(std::string_view s) {
+        file_.write(s);
+        return *this;
+    }
+    Text& number(float v) {
+        char* p = file_.reserve(io::kMaxFloatChars);
+        file_.advance(io::writeFloat(p, v));
+        return *this;
+    }
+    Text& integer(std::int64_t v) {
+        char* p = file_.reserve(24);
+        file_.advance(io::writeInt(p, v));
+        return *this;
+    }
+    Text& tuple(const float* v, int n) {
+        file_.write("(");
+        for (int i = 0; i < n; ++i) {
+            if (i) file_.write(", ");
+            number(v[i]);
+        }
+        file_.write(")");
+        return *this;
+    }
+
+private:
+    io::AtomicFile& file_;
+};
+
+struct Group {  // the objects of one plant and organ kind
+    std::vector<ObjectID> objects;
+    std::size_t vertices = 0, triangles = 0;
+    bool uvs = true;
+};
+
+}  // namespace
+
+void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
+    const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);
+    const bool hasPlant = context.objectDataType("plantID") == DataType::Int;
+    // plant -> organ -> objects; plants in ID order, the objects of no plant (-1) last.
+    std::map<std::int32_t, std::map<std::string, Group>> plants;
+    for (ObjectID id : ids) {
+        const std::int32_t plant =
+            hasPlant ? context.objectDataInt(id, "plantID").value_or(-1) : -1;
+        std::string organ = io::organOf(context, id);
+        if (organ.empty()) organ = "unlabelled";
+        Group& g = plants[plant][organ];
+        const ObjectView o = context.object(id);
+        g.objects.push_back(id);
+        g.vertices += o.positions.size();
+        g.triangles += o.triangleCount();
+        g.uvs = g.uvs && !o.uvs.empty();
+    }
+    std::map<std::int32_t, const GltfPlant*> info;
+    for (const GltfPlant& p : options.plants) info[p.id] = &p;
+
+    io::AtomicFile file(path);
+    Text out(file);
+    out << "#usda 1.0\n(\n    defaultPrim = \"plantarch\"\n    doc = \"plantarch scene\"\n"
+           "    metersPerUnit = 1\n    upAxis = \"Z\"\n)\n\ndef Xform \"plantarch\"\n{\n";
+    auto writePlant =
+        [&](std::int32_t plant, const std::map<std::string, Group>& organs) {
+            const auto it = info.find(plant);
+            const vec3 base = it != info.end() ? it->second->base : vec3(0.0f);
+            std::string name = "scene";
+            if (plant >= 0)
+                name =
+                    primName((it != info.end() && !it->second->species.empty() ? it->second->species
+                                                                               : "plant") +
+                             "_" + std::to_string(plant));
+            out << "    def Xform " << quoted(name) << " (\n        customData = {\n";
+            if (plant >= 0) {
+                out << "            int plantID = ";
+                out.integer(plant) << "\n";
+                if (it != info.end()) {
+                    out << "            string species = " << quoted(it->second->species) << "\n";
+                    out << "            double age = ";
+                    out.number(float(it->second->age)) << "\n";
+                    out << "            uint64 seed = ";
+                    out.integer(std::int64_t(it->second->seed)) << "\n";
+                }
+            }
+            out << "        }\n    )\n    {\n";
+            if (base != vec3(0.0f)) {
+                out << "        double3 xformOp:translate = ";
+                out.tuple(&base.x, 3)
+                    << "\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
+            }
+            std::vector<vec3> normals;
+            for (const auto& [organ, g] : organs) {
+                out << "\n        def Mesh " << quoted(primName(organ))
+                    << " (\n            prepend apiSchemas = [\"SemanticsLabelsAPI:class\"]\n      "
+                       "  )\n"
+                       "        {\n            uniform token subdivisionScheme = \"none\"\n"
+                       "            uniform bool doubleSided = 1\n";
+                out << "            token[] semantics:labels:class = [" << quoted(organ) << "]\n";
+                out << "            int[] faceVertexCounts = [";
+                for (std::size_t t = 0; t < g.triangles; ++t) out << (t ? ", 3" : "3");
+                out << "]\n            int[] faceVertexIndices = [";
+                std::size_t first = 0;
+                bool comma = false;
+                for (ObjectID id : g.objects) {
+                    const ObjectView o = context.object(id);
+                    for (std::uint32_t k : o.indices) {
+                        if (comma) out << ", ";
+                        out.integer(std::int64_t(first + k));
+                        comma = true;
+                    }
+                    first += o.positions.size();
+                }
+                out << "]\n            point3f[] points = [";
+                comma = false;
+                for (ObjectID id : g.objects)
+                    for (const vec3& v : context.object(id).positions) {
+                        const vec3 local = v - base;
+                        if (comma) out << ", ";
+                        out.tuple(&local.x, 3);
+                        comma = true;
+                    }
+                out << "]\n";
+                if (options.normals) {
+                    out << "            normal3f[] primvars:normals = [";
+                    comma = false;
+                    for (ObjectID id : g.objects) {
+                        smoothNormals(context.object(id), normals);
+                        for (const vec3& n : normals) {
+                            if (comma) out << ", ";
+                            out.tuple(&n.x, 3);
+                            comma = true;
+                        }
+                    }
+                    out << "] (\n                interpolation = \"vertex\"\n            )\n";
+                }
+                if (g.uvs && options.uvs) {
+                    out << "            texCoord2f[] primvars:st = [";
+                    comma = false;
+                    for (ObjectID id : g.objects)
+                        for (const vec2& uv : context.object(id).uvs) {
+                            if (comma) out << ", ";
+                            out.tuple(&uv.x, 2);
+                            comma = true;
+                        }
+                    out << "] (\n                interpolation = \"vertex\"\n            )\n";
+                }
+                // Per face: display colour (the organ's material) and the labels.
+                auto perFace = [&](const char* type, const char* name, auto write) {
+                    out << "            " << type << " primvars:" << name << " = [";
+                    bool sep = false;
+                    for (ObjectID id : g.objects) {
+                        const std::size_t n = context.object(id).triangleCount();
+                        for (std::size_t t = 0; t < n; ++t) {
+                            if (sep) out << ", ";
+                            write(id);
+                            sep = true;
+                        }
+                    }
+                    out << "] (\n                interpolation = \"uniform\"\n            )\n";
+                };
+                perFace("color3f[]", "displayColor", [&](ObjectID id) {
+                    const vec3 c = context.material(context.objectMaterial(id)).color;
+                    out.tuple(&c.x, 3);
+                });
+                std::int64_t code = 0;  // the index in kOrganLabels (trellis parts are obstacles)
+                for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
+                    if (organ == kOrganLabels[i]) code = std::int64_t(i);
+                if (organ == "trellis") code = 9;
+                perFace("int[]", "organ", [&](ObjectID) { out.integer(code); });
+                perFace("int[]", "plantID", [&](ObjectID) { out.integer(plant); });
+                perFace("int[]", "objectID", [&](ObjectID id) { out.integer(std::int64_t(id)); });
+                out << "        }\n";
+            }
+            out << "    }\n";
+        };
+    for (const auto& [plant, organs] : plants)
+        if (plant >= 0) writePlant(plant, organs);
+    if (plants.count(-1)) writePlant(-1, plants.at(-1));
+    out << "}\n";
+    file.commit();
+}
+
+}  // namespace plantarch
