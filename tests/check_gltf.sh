@@ -20,7 +20,7 @@ trap 'rm -rf "$out"' EXIT
 mkdir -p "$out/doc"
 awk '/^```sh$/{on=1; next} /^```$/{on=0} on' "$root/docs/formats.md" |
     sed "s|build/plantarch|$cli|" | (cd "$out/doc" && bash -euo pipefail) > /dev/null
-report=$(node "$root/tests/js/validate_gltf.mjs" "$out"/*.glb "$out"/*.gltf "$out"/doc/out/*) ||
+report=$(node "$root/tests/js/validate_gltf.mjs" "$out"/*.glb "$out"/*.gltf "$out"/doc/out/*.gl*) ||
     { echo "$report"; exit 1; }
 echo "$report" | grep -q '"warnings":[1-9]' && { echo "$report"; exit 1; }
 echo "$report" | sed 's/"messages".*//'
