@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Loads glTF files of library plants (a bean as .glb and .gltf, a trellis vine) with three.js's
+# GLTFLoader in headless Chromium and checks that three.js holds the file's triangles and sees
+# the label attributes (_PLANT_ID, _OBJECT_ID, _ORGAN). Usage: check_three.sh PROJECT_DIR
+# PLANTARCH_BINARY. Exits 1 on a mismatch, 2 when node, Chromium or the npm packages are
+# missing (scripts/test.sh installs them).
+set -euo pipefail
+root=${1:?usage: check_three.sh PROJECT_DIR PLANTARCH_BINARY}
+cli=$(realpath "${2:?usage: check_three.sh PROJECT_DIR PLANTARCH_BINARY}")
+command -v node > /dev/null || { echo "check_three: node is not installed" >&2; exit 2; }
+[ -x /usr/bin/chromium ] || { echo "check_three: chromium is not installed (scripts/test.sh installs it)" >&2; exit 2; }
+[ -d "$root/tests/js/node_modules/three" ] && [ -d "$root/tests/js/node_modules/puppeteer-core" ] ||
+    { echo "check_three: three.js or puppeteer-core missing (run: npm ci --prefix tests/js)" >&2; exit 2; }
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+triangles() { sed -n 's/.* \([0-9][0-9]*\) triangles in .*/\1/p'; }
+bean=$("$cli" --seed 3 build bean --age 40 -o "$out/bean.glb" -o "$out/bean.gltf" | triangles)
+"$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" -o "$out/vine.ply" > /dev/null
+vine=$(head -c 4096 "$out/vine.ply" | tr -d '\r' | sed -n 's/^element face \([0-9]*\)$/\1/p')
+report=$(node "$root/tests/js/three_load.mjs" "$out/bean.glb" "$out/bean.gltf" "$out/vine.glb") ||
+    { echo "$report"; exit 1; }
+status=0
+while read -r expected line; do
+    got=$(echo "$line" | sed -n 's/.*"triangles":\([0-9]*\).*/\1/p')
+    if [ "$got" != "$expected" ]; then
+        echo "check_three: three.js holds ${got:-no} triangles, the file $expected: $line"
+        status=1
+    fi
+    for a in _plant_id _object_id _organ _feature_id_0 normal; do
+        echo "$line" | grep -q "\"$a\"" || { echo "check_three: no $a attribute: $line"; status=1; }
+    done
+done < <(paste -d' ' <(printf '%s\n' "$bean" "$bean" "$vine") <(echo "$report"))
+[ "$status" -eq 0 ] && echo "check_three: 3 files load in three.js with their triangles and labels"
+exit "$status"

@@ -1,0 +1,83 @@
+// Loads glTF files with three.js's GLTFLoader in headless Chromium (Debian's, driven by
+// puppeteer-core) and prints one JSON line per file: triangles, meshes, and the vertex
+// attributes three.js sees (the labels _PLANT_ID, _OBJECT_ID, _ORGAN among them).
+// Usage: node three_load.mjs FILE...   (CHROMIUM overrides /usr/bin/chromium)
+import http from 'node:http';
+import { readFile } from 'node:fs/promises';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import puppeteer from 'puppeteer-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const files = process.argv.slice(2);
+const page = `<!doctype html><script type="importmap">
+{"imports": {"three": "/node_modules/three/build/three.module.js",
+             "three/addons/": "/node_modules/three/examples/jsm/"}}</script>
+<script type="module">
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+window.loadFile = (url) => new Promise((resolve, reject) => {
+  new GLTFLoader().load(url, (gltf) => {
+    let triangles = 0, meshes = 0; const attributes = new Set();
+    gltf.scene.traverse((o) => {
+      if (!o.isMesh) return;
+      meshes++;
+      const g = o.geometry;
+      triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
+      Object.keys(g.attributes).forEach((a) => attributes.add(a));
+    });
+    resolve({ triangles, meshes, attributes: [...attributes].sort() });
+  }, undefined, (e) => reject(String(e)));
+});
+window.ready = true;
+</script>`;
+
+// Serves the page, three.js from node_modules, and the files under /file/<index>.
+const server = http.createServer(async (req, res) => {
+  try {
+    if (req.url === '/') {
+      res.writeHead(200, { 'content-type': 'text/html' });
+      return res.end(page);
+    }
+    if (req.url.startsWith('/file/')) {
+      const bytes = await readFile(files[Number(req.url.slice(6))]);
+      res.writeHead(200, { 'content-type': 'application/octet-stream' });
+      return res.end(bytes);
+    }
+    if (req.url.startsWith('/node_modules/')) {
+      const bytes = await readFile(path.join(here, decodeURIComponent(req.url)));
+      res.writeHead(200, { 'content-type': 'text/javascript' });
+      return res.end(bytes);
+    }
+    res.writeHead(404);
+    res.end();
+  } catch (e) {
+    res.writeHead(500);
+    res.end(String(e));
+  }
+});
+await new Promise((r) => server.listen(0, '127.0.0.1', r));
+const { port } = server.address();
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  args: ['--no-sandbox', '--disable-gpu'],
+});
+let failed = false;
+try {
+  const tab = await browser.newPage();
+  await tab.goto(`http://127.0.0.1:${port}/`);
+  await tab.waitForFunction('window.ready === true');
+  for (let i = 0; i < files.length; i++) {
+    try {
+      const result = await tab.evaluate((u) => window.loadFile(u), `/file/${i}`);
+      console.log(JSON.stringify({ file: files[i], ...result }));
+    } catch (e) {
+      failed = true;
+      console.log(JSON.stringify({ file: files[i], error: String(e) }));
+    }
+  }
+} finally {
+  await browser.close();
+  server.close();
+}
+process.exit(failed ? 1 : 0);
