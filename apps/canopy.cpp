@@ -1,6 +1,7 @@
 // plantarch canopy SPECIES --count NxM --spacing DXxDY --age D [--germination G]
 //                 [-D name=value ...] -o FILE [--stats]
-// Builds a grid canopy of a species, in parallel, and writes it (OBJ, PLY or PNG).
+// Builds a grid canopy of a species, in parallel, and writes it (any scene or plant format),
+// whole or one file per plant (--separate).
 
 #include <fmt/format.h>
 
@@ -40,6 +41,7 @@ struct CanopyArgs {
     std::vector<std::string> defines;
     std::vector<std::string> outputs;
     bool stats = false;
+    bool separate = false, plantOrigin = false;
     CollisionArgs collision;
 };
 
@@ -64,11 +66,20 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
+    app.add_flag("--separate", a->separate,
+                 "One file per plant for each output (field.glb -> field_0007.glb ...) and one "
+                 "index, field_index.json, of plant IDs, files, positions, species and seed");
+    app.add_flag(
+        "--plant-origin", a->plantOrigin,
+        "With --separate: each plant moved to its own origin (default: scene coordinates)");
     addCollisionOptions(app, a->collision);
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
         preparePlantOutputs(a->outputs);
+        if (a->plantOrigin && !a->separate)
+            throw Error("--plant-origin places the plants of separate files",
+                        {.parameter = "--plant-origin", .validRange = "with --separate"});
         checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);
@@ -79,7 +90,10 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         const auto plants =
             arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), a->age,
                                              a->germination, parseDefines(a->defines));
-        for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+        if (a->separate)
+            writeSeparatePlantOutputs(arch, plants, a->outputs, a->plantOrigin, global);
+        else
+            for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
         if (a->stats) {
             for (unsigned p : plants)
                 std::printf("%s\n", plantStatsJSON(arch, ctx, p, global.seed).c_str());

@@ -96,6 +96,16 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
 /// The extensions writePlantOutput accepts: the scene formats, .xml (plant structure file)
 /// and .txt (plant strings, one per line).
 std::string plantFileExtensions();
+/// `path` with the plant's ID before the extension: field.glb -> field_0007.glb.
+std::string separateFileName(const std::string& path, unsigned plant);
+/// One file per plant for each output path (separateFileName), each in scene coordinates or,
+/// with `ownOrigin`, moved so that the plant's base is at the origin; and one index,
+/// <stem of the first output>_index.json, of the plants' IDs, files, positions, species, ages
+/// and seed.
+void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
+                               const std::vector<std::string>& paths, bool ownOrigin,
+                               const GlobalOptions& g);
+
 /// prepareSceneOutputs for commands that have plants: .xml and .txt are accepted too.
 void preparePlantOutputs(const std::vector<std::string>& paths);
 /// Writes `plants` of `arch` to `path`: a plant structure file (.xml), plant strings

@@ -1,6 +1,7 @@
 // Plant outputs and inputs shared by the commands that make or read plants: plant structure
 // files (.xml), plant strings (.txt) and, through writeSceneFile, the scene formats.
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -85,6 +86,81 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
         return;
     }
     info(g, "wrote " + path);
+}
+
+namespace {
+
+// One plant's objects (and its trellis) copied into `to`, with their materials and data,
+// moved by `shift`.
+void copyPlant(const PlantArchitecture& arch, unsigned plant, Context& to, const vec3& shift) {
+    const Context& from = const_cast<PlantArchitecture&>(arch).context();
+    std::vector<ObjectID> ids = arch.getAllPlantObjectIDs(plant);
+    const std::vector<ObjectID> trellis = arch.getPlantTrellisObjectIDs(plant);
+    ids.insert(ids.end(), trellis.begin(), trellis.end());
+    const std::vector<std::string> labels = from.objectDataLabels();
+    for (ObjectID id : ids) {
+        if (from.isObjectHidden(id)) continue;
+        Mesh mesh = from.objectMesh(id);
+        for (vec3& v : mesh.positions) v += shift;
+        const ObjectID copy = to.addObject(mesh, from.material(from.objectMaterial(id)));
+        for (const std::string& label : labels)
+            if (auto value = from.objectData(id, label)) to.setObjectData(copy, label, *value);
+    }
+}
+
+std::string jsonText(const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out + "\"";
+}
+
+}  // namespace
+
+std::string separateFileName(const std::string& path, unsigned plant) {
+    const std::filesystem::path p(path);
+    char id[16];
+    std::snprintf(id, sizeof id, "_%04u", plant);
+    return (p.parent_path() / (p.stem().string() + id + p.extension().string())).string();
+}
+
+void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
+                               const std::vector<std::string>& paths, bool ownOrigin,
+                               const GlobalOptions& g) {
+    std::string index = "{\n  \"species\": " + jsonText(arch.getCurrentPlantModel()) +
+                        ",\n  \"seed\": " + std::to_string(arch.seed()) +
+                        ",\n  \"coordinates\": " + (ownOrigin ? "\"plant\"" : "\"scene\"") +
+                        ",\n  \"plants\": [";
+    for (std::size_t i = 0; i < plants.size(); ++i) {
+        const unsigned id = plants[i];
+        const vec3 base = arch.getPlantBasePosition(id);
+        std::string files;
+        for (const std::string& path : paths) {
+            const std::string file = separateFileName(path, id);
+            const std::string ext = extensionOf(path);
+            if (ext == ".xml" || ext == ".txt") {
+                writePlantOutput(arch, {id}, file, g);
+            } else {
+                Context one;
+                copyPlant(arch, id, one, ownOrigin ? -base : vec3(0.0f));
+                GltfPlant described{std::int32_t(id), arch.plant(id).name,
+                                    ownOrigin ? vec3(0.0f) : base, arch.plant(id).age, arch.seed()};
+                writeSceneFile(one, file, g, {described});
+            }
+            files += (files.empty() ? "" : ", ") +
+                     jsonText(std::filesystem::path(file).filename().string());
+        }
+        index += fmt::format(
+            "{}\n    {{\"plantID\": {}, \"files\": [{}], \"position\": [{}, {}, {}], "
+            "\"species\": {}, \"age\": {}, \"seed\": {}}}",
+            i ? "," : "", id, files, base.x, base.y, base.z, jsonText(arch.plant(id).name),
+            arch.plant(id).age, arch.seed());
+    }
+    index += "\n  ]\n}\n";
+    const std::filesystem::path p(paths.front());
+    writeWhole((p.parent_path() / (p.stem().string() + "_index.json")).string(), index);
 }
 
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,

@@ -1,0 +1,61 @@
+"""`plantarch canopy --separate`: one file per plant and an index."""
+
+import json
+import re
+import struct
+import subprocess
+
+from conftest import cli
+
+
+def glb_json(path):
+    data = path.read_bytes()
+    size = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + size])
+
+
+def test_separate_files_hold_every_plant_once_with_an_index(tmp_path):
+    run = subprocess.run([cli(), "--seed", "4", "canopy", "bean", "--count", "3x2", "--age", "25",
+                          "--separate", "-o", str(tmp_path / "field.ply"),
+                          "-o", str(tmp_path / "field.glb")], check=True, capture_output=True,
+                         text=True)
+    total = int(re.search(r"(\d+) triangles", run.stdout).group(1))
+    index = json.loads((tmp_path / "field_index.json").read_text())
+    assert index["species"] == "bean" and index["seed"] == 4 and index["coordinates"] == "scene"
+    assert [p["plantID"] for p in index["plants"]] == list(range(6))
+    faces = 0
+    for p in index["plants"]:
+        assert p["files"] == [f"field_{p['plantID']:04d}.ply", f"field_{p['plantID']:04d}.glb"]
+        ply = tmp_path / p["files"][0]
+        assert ply.name == f"field_{p['plantID']:04d}.ply"
+        header = ply.read_bytes()[:4096].decode("latin-1")
+        faces += int(header.split("element face ")[1].split()[0])
+        doc = glb_json(tmp_path / p["files"][1])
+        (node,) = [n for n in doc["nodes"] if "extras" in n]
+        assert node["extras"]["plantID"] == p["plantID"]
+        assert all(abs(a - b) < 1e-6 for a, b in zip(node["translation"], p["position"]))
+    assert faces == total
+
+
+def test_plant_origin_moves_each_plant_to_the_origin(tmp_path):
+    subprocess.run([cli(), "--seed", "4", "canopy", "bean", "--count", "2x1", "--age", "25",
+                    "--separate", "--plant-origin", "-o", str(tmp_path / "f.glb")], check=True,
+                   capture_output=True)
+    index = json.loads((tmp_path / "f_index.json").read_text())
+    assert index["coordinates"] == "plant"
+    for p in index["plants"]:
+        doc = glb_json(tmp_path / p["files"][0])
+        (node,) = [n for n in doc["nodes"] if "extras" in n]
+        assert "translation" not in node  # the plant stands at the origin
+        stem = next(m for m in doc["meshes"] if m["name"] == "internode")
+        lo = doc["accessors"][stem["primitives"][0]["attributes"]["POSITION"]]["min"]
+        assert abs(lo[0]) < 0.2 and abs(lo[1]) < 0.2  # near the origin, not at +-0.15 m
+
+
+def test_plant_origin_without_separate_is_an_error(tmp_path):
+    r = subprocess.run([cli(), "canopy", "bean", "--count", "1x1", "--age", "5", "--plant-origin",
+                        "-o", str(tmp_path / "f.glb")], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert r.stderr.strip() == ("plantarch: --plant-origin: --plant-origin places the plants of "
+                                "separate files (valid: with --separate)")
+    assert not (tmp_path / "f.glb").exists()
