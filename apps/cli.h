@@ -24,7 +24,8 @@ struct GlobalOptions {
     int threads = 0;          ///< --threads (0 = all cores)
     int imageWidth = 1024;    ///< size of PNG outputs (--image-size on build and canopy)
     int imageHeight = 768;
-    int stringDigits = 4;  ///< significant digits of plant strings (--digits)
+    int stringDigits = 4;    ///< significant digits of plant strings (--digits)
+    std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
 };
 
 /// Adds --image-size WxH (PNG output size) to a subcommand, stored in `global`.
@@ -56,8 +57,6 @@ void info(const GlobalOptions& g, const std::string& message);
 /// files. Throws plantarch::Error on an unknown extension.
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
                     const std::vector<GltfPlant>& plants = {});
-/// The plants of `arch` as glTF files describe them (species, base, age, the scene's seed).
-std::vector<GltfPlant> gltfPlants(const PlantArchitecture& arch);
 
 /// A progress bar on stderr for work that takes over a second; empty (no output at all)
 /// when stderr is not a terminal, so scripts and logs stay clean.

@@ -133,6 +133,11 @@ int main(int argc, char** argv) {
     app.add_option("--threads", global.threads, "Worker threads (0 = all cores)")
         ->check(numberCheck("--threads", "a thread count", 0, 1024, true,
                             "0 to 1024, 0 for every core"));
+    app.add_option("--points", global.points,
+                   "PLY outputs as point clouds: N points drawn uniformly by area, each with a "
+                   "normal and its plant, object and organ labels (0: triangles)")
+        ->check(numberCheck("--points", "a point count", 0, 2147483648.0, true,
+                            "0 to 2147483648, 0 for the triangles"));
 
     auto& registry = commandRegistry();
     std::sort(registry.begin(), registry.end(),

@@ -11,6 +11,7 @@
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::cli {
@@ -82,7 +83,7 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
         for (unsigned id : plants) text += arch.getPlantString(id, o) + "\n";
         writeWhole(path, text);
     } else {
-        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, gltfPlants(arch));
+        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, exportPlants(arch));
         return;
     }
     info(g, "wrote " + path);

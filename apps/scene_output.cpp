@@ -10,7 +10,6 @@
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
-#include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
 
 namespace plantarch::cli {
@@ -28,14 +27,6 @@ std::string sceneFileExtensions() {
     return ".obj, .ply, .glb, .gltf, .usda, .png";
 }
 
-std::vector<GltfPlant> gltfPlants(const PlantArchitecture& arch) {
-    std::vector<GltfPlant> plants;
-    for (unsigned id : arch.getAllPlantIDs())
-        plants.push_back({std::int32_t(id), arch.plant(id).name, arch.getPlantBasePosition(id),
-                          arch.plant(id).age, arch.seed()});
-    return plants;
-}
-
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
                     const std::vector<GltfPlant>& plants) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -43,6 +34,8 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
                    [](unsigned char c) { return char(std::tolower(c)); });
     if (ext == ".obj") {
         writeOBJ(ctx, path);
+    } else if (ext == ".ply" && g.points > 0) {
+        writePointCloudPLY(samplePoints(ctx, {.points = g.points, .seed = g.seed}), path);
     } else if (ext == ".ply") {
         writePLY(ctx, path);
     } else if (ext == ".glb" || ext == ".gltf") {

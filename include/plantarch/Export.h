@@ -180,6 +180,31 @@ struct UsdOptions {
 /// (SemanticsLabelsAPI). Throws plantarch::Error naming the file.
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options = {});
 
+/// How samplePoints draws a point cloud.
+struct PointSampleOptions {
+    std::size_t points = 100000;  ///< points to draw, 1 to 2^31
+    std::uint64_t seed = 0;       ///< same seed, same points
+    bool includeHidden = false;
+};
+
+/// A labelled point cloud: parallel arrays, one entry per point.
+struct PointCloud {
+    std::vector<vec3> positions;        ///< m
+    std::vector<vec3> normals;          ///< unit normal of the triangle the point lies on
+    std::vector<std::int32_t> plantID;  ///< -1 for objects of no plant
+    std::vector<ObjectID> objectID;
+    std::vector<std::uint8_t> organ;  ///< index into kOrganLabels
+};
+
+/// Points drawn uniformly by area over the (visible) triangles of the Context, each with its
+/// face normal and its object's labels. Deterministic for a seed. Throws plantarch::Error for
+/// a point count out of range or a scene with no surface.
+PointCloud samplePoints(const Context& context, const PointSampleOptions& options = {});
+
+/// Writes a point cloud as a binary PLY of vertices (x y z nx ny nz plant_id object_id organ,
+/// the organ table in the header's comments), atomically.
+void writePointCloudPLY(const PointCloud& cloud, const std::string& path);
+
 /// Smooth per-vertex normals of one object (as the OBJ and PLY writers write them): the
 /// area-weighted sum of the normals of the triangles around each vertex, normalized; (0, 0, 1)
 /// where that sum vanishes. `normals` is resized to the object's vertex count.

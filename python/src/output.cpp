@@ -6,6 +6,7 @@
 
 #include "bindings.h"
 #include "plantarch/Export.h"
+#include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
 #include "plantarch/SpeciesIO.h"
@@ -29,14 +30,6 @@ Image imageFrom(const py::array_t<std::uint8_t, py::array::c_style | py::array::
     Image image(int(a.shape(1)), int(a.shape(0)));
     std::memcpy(image.rgb.data(), a.data(), image.rgb.size());
     return image;
-}
-
-std::vector<GltfPlant> plantsOf(const PlantArchitecture& a) {
-    std::vector<GltfPlant> plants;
-    for (unsigned id : a.getAllPlantIDs())
-        plants.push_back({std::int32_t(id), a.plant(id).name, a.getPlantBasePosition(id),
-                          a.plant(id).age, a.seed()});
-    return plants;
 }
 
 RenderMode modeNamed(const std::string& mode) {
@@ -84,7 +77,7 @@ void bindOutput(py::module_& m) {
             o.uvs = uvs;
             o.labels = labels;
             if (!architecture.is_none())
-                o.plants = plantsOf(architecture.cast<const PlantArchitecture&>());
+                o.plants = exportPlants(architecture.cast<const PlantArchitecture&>());
             py::gil_scoped_release release;
             writeGLTF(c, path, o);
         },
@@ -103,7 +96,7 @@ void bindOutput(py::module_& m) {
             o.normals = normals;
             o.uvs = uvs;
             if (!architecture.is_none())
-                o.plants = plantsOf(architecture.cast<const PlantArchitecture&>());
+                o.plants = exportPlants(architecture.cast<const PlantArchitecture&>());
             py::gil_scoped_release release;
             writeUSDA(c, path, o);
         },
@@ -112,6 +105,40 @@ void bindOutput(py::module_& m) {
         "Writes the Context as USD text (.usda), atomically: an Xform per plant (placed and "
         "described from `architecture` when given), a Mesh per organ kind with normals, UVs, "
         "per-face organ/plantID/objectID primvars and semantic class labels.");
+    m.def(
+        "samplePoints",
+        [](const Context& c, std::size_t points, std::uint64_t seed, bool includeHidden) {
+            PointCloud cloud;
+            {
+                py::gil_scoped_release release;
+                cloud = samplePoints(c, {points, seed, includeHidden});
+            }
+            auto* owned = new PointCloud(std::move(cloud));
+            py::capsule owner(owned, [](void* p) { delete static_cast<PointCloud*>(p); });
+            const std::size_t n = owned->positions.size();
+            py::dict out;
+            out["positions"] = py::array_t<float>({n, std::size_t(3)}, {12, 4},
+                                                  &owned->positions.data()->x, owner);
+            out["normals"] =
+                py::array_t<float>({n, std::size_t(3)}, {12, 4}, &owned->normals.data()->x, owner);
+            out["plant_id"] = py::array_t<std::int32_t>({n}, {4}, owned->plantID.data(), owner);
+            out["object_id"] = py::array_t<std::uint32_t>({n}, {4}, owned->objectID.data(), owner);
+            out["organ"] = py::array_t<std::uint8_t>({n}, {1}, owned->organ.data(), owner);
+            return out;
+        },
+        py::arg("context"), py::arg("points") = 100000, py::arg("seed") = 0,
+        py::arg("include_hidden") = false,
+        "A labelled point cloud: `points` points drawn uniformly by area over the visible "
+        "triangles, as numpy arrays positions (N x 3), normals (N x 3), plant_id, object_id and "
+        "organ (an index into ORGAN_LABELS). Same seed, same points; numpy.savez writes them.");
+    m.def(
+        "writePointCloudPLY",
+        [](const Context& c, const std::string& path, std::size_t points, std::uint64_t seed) {
+            py::gil_scoped_release release;
+            writePointCloudPLY(samplePoints(c, {points, seed, false}), path);
+        },
+        py::arg("context"), py::arg("filename"), py::arg("points") = 100000, py::arg("seed") = 0,
+        "Samples a labelled point cloud and writes it as a binary PLY of vertices.");
     m.def(
         "readOBJ", [](Context& c, const std::string& path) { return readOBJ(c, path); },
         py::arg("context"), py::arg("filename"),

@@ -59,3 +59,18 @@ def test_plant_origin_without_separate_is_an_error(tmp_path):
     assert r.stderr.strip() == ("plantarch: --plant-origin: --plant-origin places the plants of "
                                 "separate files (valid: with --separate)")
     assert not (tmp_path / "f.glb").exists()
+
+
+def test_points_option_writes_a_labelled_point_cloud(tmp_path):
+    path = tmp_path / "points.ply"
+    subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "30", "--points", "1234",
+                    "-o", str(path)], check=True, capture_output=True)
+    data = path.read_bytes()
+    header = data[:data.index(b"end_header\n")].decode()
+    assert "element vertex 1234" in header and "element face" not in header
+    body = len(data) - data.index(b"end_header\n") - len(b"end_header\n")
+    assert body == 1234 * 33
+    bad = subprocess.run([cli(), "build", "bean", "--age", "5", "--points", "-4", "-o",
+                          str(tmp_path / "x.ply")], capture_output=True, text=True)
+    assert bad.returncode == 2 and "--points" in bad.stderr and "\n" == bad.stderr[-1]
+    assert bad.stderr.count("\n") == 1

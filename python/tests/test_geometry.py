@@ -128,3 +128,19 @@ def test_gltf_from_python(arch, tmp_path):
     assert "EXT_structural_metadata" in doc["extensionsUsed"]
     with pytest.raises(plantarch.Error, match="valid: .glb, .gltf"):
         plantarch.writeGLTF(arch.getContext(), str(tmp_path / "bean.gltx"))
+
+
+def test_labelled_point_cloud(arch, tmp_path):
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    cloud = plantarch.samplePoints(arch.getContext(), points=5000, seed=2)
+    assert cloud["positions"].shape == (5000, 3) and cloud["normals"].shape == (5000, 3)
+    assert not cloud["positions"].flags.owndata
+    organs = set(np.asarray(plantarch.ORGAN_LABELS)[cloud["organ"]])
+    assert {"leaf", "internode"} <= organs
+    again = plantarch.samplePoints(arch.getContext(), points=5000, seed=2)
+    assert (again["positions"] == cloud["positions"]).all()
+    np.savez(tmp_path / "cloud.npz", **cloud)
+    loaded = np.load(tmp_path / "cloud.npz")
+    assert (loaded["object_id"] == cloud["object_id"]).all()
+    with pytest.raises(plantarch.Error, match="points"):
+        plantarch.samplePoints(plantarch.Context(), points=10)
