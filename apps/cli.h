@@ -95,6 +95,9 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
 /// The extensions writePlantOutput accepts: the scene formats, .xml (plant structure file)
 /// and .txt (plant strings, one per line).
 std::string plantFileExtensions();
+/// Writes `text` through a temporary file renamed into place (never half a file).
+void writeWholeFile(const std::string& path, const std::string& text);
+
 /// `path` with the plant's ID before the extension: field.glb -> field_0007.glb.
 std::string separateFileName(const std::string& path, unsigned plant);
 /// One file per plant for each output path (separateFileName), each in scene coordinates or,

@@ -24,8 +24,9 @@ std::string extensionOf(const std::string& path) {
     return ext;
 }
 
-// Writes through a temporary file renamed into place, so a failure never leaves half a file.
-void writeWhole(const std::string& path, const std::string& text) {
+}  // namespace
+
+void writeWholeFile(const std::string& path, const std::string& text) {
     const std::string temp = path + ".tmp-" + std::to_string(::getpid());
     {
         std::ofstream out(temp, std::ios::binary);
@@ -44,8 +45,6 @@ void writeWhole(const std::string& path, const std::string& text) {
         throw Error("cannot write: " + ec.message(), {.file = path});
     }
 }
-
-}  // namespace
 
 std::string plantFileExtensions() {
     return sceneFileExtensions() + ", .xml, .txt";
@@ -81,7 +80,7 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
         o.significantDigits = g.stringDigits;
         std::string text;
         for (unsigned id : plants) text += arch.getPlantString(id, o) + "\n";
-        writeWhole(path, text);
+        writeWholeFile(path, text);
     } else {
         writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, exportPlants(arch));
         return;
@@ -161,7 +160,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
     }
     index += "\n  ]\n}\n";
     const std::filesystem::path p(paths.front());
-    writeWhole((p.parent_path() / (p.stem().string() + "_index.json")).string(), index);
+    writeWholeFile((p.parent_path() / (p.stem().string() + "_index.json")).string(), index);
 }
 
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,

@@ -29,6 +29,7 @@ struct RenderArgs {
     std::string eye, target;
     float fov = 0.0f;  // 0: the renderer's default
     std::string label;
+    std::string coco;
     bool noGround = false;
     int samples = 0;  // 0: the renderer's default
 };
@@ -99,6 +100,9 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto outDir = std::filesystem::path(a.output).parent_path();
     if (!outDir.empty() && !std::filesystem::is_directory(outDir))
         throw Error("cannot write: no such directory", {.file = a.output});
+    const auto cocoDir = std::filesystem::path(a.coco).parent_path();
+    if (!a.coco.empty() && !cocoDir.empty() && !std::filesystem::is_directory(cocoDir))
+        throw Error("cannot write: no such directory", {.file = a.coco});
     RenderOptions o;
     o.width = a.width;
     o.height = a.height;
@@ -127,6 +131,15 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     const Image image = scene.render(o);
     const auto rendered = std::chrono::steady_clock::now();
     writePNG(image, a.output);
+    if (!a.coco.empty()) {
+        RenderOptions mask = o;
+        mask.mode = RenderMode::LabelObject;
+        const Image objects = o.mode == RenderMode::LabelObject ? image : scene.render(mask);
+        const std::string text =
+            cocoAnnotations(ctx, objects, std::filesystem::path(a.output).filename().string());
+        writeWholeFile(a.coco, text);
+        info(g, "wrote " + a.coco);
+    }
     using seconds = std::chrono::duration<double>;
     info(g,
          fmt::format("wrote {} ({}x{}): read and BVH {:.3f} s, rays {:.3f} s", a.output, o.width,
@@ -152,6 +165,9 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
         ->check(numberCheck("--fov", "a field of view", 0.01, 170.0, false, "0.01 to 170 degrees"));
     app.add_option("--label", args->label,
                    "Segmentation mask instead of a shaded image: organ or object");
+    app.add_option("--coco", args->coco,
+                   "Also write COCO-style JSON of the objects in view (categories: organ kinds; "
+                   "masks as RLE; bounding boxes in pixels)");
     app.add_flag("--no-ground", args->noGround, "Leave out the ground plane");
     app.add_option("--samples", args->samples, "Camera rays per pixel (default 4)")
         ->check(numberCheck("--samples", "a ray count", 1, 1024, true, "1 to 1024"));

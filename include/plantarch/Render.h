@@ -189,6 +189,14 @@ Image render(const Context& context, const RenderOptions& options = {});
 /// Writes `image` as a PNG, atomically (temporary file in the same folder, then rename).
 /// Throws plantarch::Error naming the path when it cannot be written.
 void writePNG(const Image& image, const std::string& path);
+/// COCO-style instance annotations (JSON text) of an object label mask rendered from
+/// `context` (RenderMode::LabelObject): one image named `imageFile`, the organ kinds as
+/// categories (ids 1 to 9, as kOrganLabels), and one annotation per object seen with its
+/// category, object_id, plant_id, pixel area, bounding box [x, y, width, height] and mask as
+/// uncompressed RLE (column-major). Throws plantarch::Error for an empty mask.
+std::string cocoAnnotations(const Context& context, const Image& objectMask,
+                            const std::string& imageFile);
+
 /// The PNG file writePNG would write, as bytes (for notebooks and web front ends).
 std::string encodePNG(const Image& image);
 /// Reads a PNG (or any format stb_image knows) as 8-bit RGB. Throws plantarch::Error.
