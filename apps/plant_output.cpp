@@ -47,14 +47,14 @@ void writeWholeFile(const std::string& path, const std::string& text) {
 }
 
 std::string plantFileExtensions() {
-    return sceneFileExtensions() + ", .xml, .txt";
+    return sceneFileExtensions() + ", .xml, .txt, .csv";
 }
 
 void preparePlantOutputs(const std::vector<std::string>& paths) {
     std::vector<std::string> scenes;
     for (const std::string& out : paths) {
         const std::string ext = extensionOf(out);
-        if (ext != ".xml" && ext != ".txt") {
+        if (ext != ".xml" && ext != ".txt" && ext != ".csv") {
             if (ext != ".obj" && ext != ".ply" && ext != ".glb" && ext != ".gltf" &&
                 ext != ".usda" && ext != ".png")
                 throw Error("unknown output format",
@@ -75,6 +75,8 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
     const std::string ext = extensionOf(path);
     if (ext == ".xml") {
         arch.writePlantStructureXML(plants, path);
+    } else if (ext == ".csv") {
+        writeQSM(arch, plants, path);
     } else if (ext == ".txt") {
         PlantStringOptions o;
         o.significantDigits = g.stringDigits;
@@ -140,7 +142,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
         for (const std::string& path : paths) {
             const std::string file = separateFileName(path, id);
             const std::string ext = extensionOf(path);
-            if (ext == ".xml" || ext == ".txt") {
+            if (ext == ".xml" || ext == ".txt" || ext == ".csv") {
                 writePlantOutput(arch, {id}, file, g);
             } else {
                 Context one;
