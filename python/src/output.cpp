@@ -140,6 +140,17 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("points") = 100000, py::arg("seed") = 0,
         "Samples a labelled point cloud and writes it as a binary PLY of vertices.");
     m.def(
+        "writeQSM",
+        [](const PlantArchitecture& a, const std::string& path, py::object plantIDs) {
+            const std::vector<unsigned> plants =
+                plantIDs.is_none() ? a.getAllPlantIDs() : plantIDs.cast<std::vector<unsigned>>();
+            py::gil_scoped_release release;
+            writeQSM(a, plants, path);
+        },
+        py::arg("architecture"), py::arg("filename"), py::arg("plantIDs") = py::none(),
+        "Writes the plants' internodes (all plants by default) as QSM cylinders, CSV: id, "
+        "parent, plant, start, axis, length, radius, branch, branch order, position, type.");
+    m.def(
         "readOBJ", [](Context& c, const std::string& path) { return readOBJ(c, path); },
         py::arg("context"), py::arg("filename"),
         "Adds the objects of an OBJ file (obstacles, ground); returns their IDs.");

@@ -144,3 +144,13 @@ def test_labelled_point_cloud(arch, tmp_path):
     assert (loaded["object_id"] == cloud["object_id"]).all()
     with pytest.raises(plantarch.Error, match="points"):
         plantarch.samplePoints(plantarch.Context(), points=10)
+
+
+def test_qsm_cylinders_from_python(arch, tmp_path):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    path = tmp_path / "bean.csv"
+    plantarch.writeQSM(arch, str(path))
+    rows = [l.split(",") for l in path.read_text().splitlines() if l and not l.startswith("#")]
+    assert rows[0][:3] == ["id", "parent", "plant"]
+    internodes = sum(arch.getShootNodeCount(p, s) for s in range(arch.getShootCount(p)))
+    assert len(rows) - 1 == internodes
