@@ -15,6 +15,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -265,6 +266,12 @@ Scene collect(const Context& ctx, const GltfOptions& options) {
         p.triangles += o.triangleCount();
         p.uvs = p.uvs && r.uvs && options.uvs;
     }
+    for (MaterialID m : s.materials) {  // the texture images, in material order
+        const Material& mat = ctx.material(m);
+        if (!mat.texture.empty() && options.textures &&
+            std::find(s.images.begin(), s.images.end(), mat.texture) == s.images.end())
+            s.images.push_back(mat.texture);
+    }
     std::stable_sort(s.primitives.begin(), s.primitives.end(),
                      [](const Primitive& a, const Primitive& b) {
                          return std::tie(a.node, a.organ) < std::tie(b.node, b.organ);
@@ -307,8 +314,15 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
     json views = json::array(), accessors = json::array(), meshes = json::array();
     json nodes = json::array(), materials = json::array();
     json textures = json::array(), images = json::array();
-    std::map<std::string, int> imageIndex;
-
+    for (const std::string& image : s.images) {  // sized here, read when written
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(image, ec);
+        if (ec) throw Error("cannot read texture image: " + ec.message(), {.file = image});
+        const std::string ext = lowerExtension(image);
+        images.push_back({{"bufferView", buffer.add(views, std::size_t(bytes), 0)},
+                          {"mimeType", ext == ".png" ? "image/png" : "image/jpeg"}});
+        textures.push_back({{"source", images.size() - 1}});
+    }
     for (MaterialID m : s.materials) {
         const Material& mat = ctx.material(m);
         json pbr = {{"baseColorFactor",
@@ -316,15 +330,8 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
                     {"metallicFactor", 0.0},
                     {"roughnessFactor", 0.9}};
         if (!mat.texture.empty() && options.textures) {
-            auto [it, fresh] = imageIndex.emplace(mat.texture, int(images.size()));
-            if (fresh) {
-                const std::string ext = lowerExtension(mat.texture);
-                const std::size_t bytes = readBytes(mat.texture).size();
-                images.push_back({{"bufferView", buffer.add(views, bytes, 0)},
-                                  {"mimeType", ext == ".png" ? "image/png" : "image/jpeg"}});
-                textures.push_back({{"source", it->second}});
-            }
-            pbr["baseColorTexture"] = {{"index", it->second}};
+            const auto at = std::find(s.images.begin(), s.images.end(), mat.texture);
+            pbr["baseColorTexture"] = {{"index", at - s.images.begin()}};
             pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
         }
         json material = {{"pbrMetallicRoughness", pbr}, {"doubleSided", true}};
@@ -579,19 +586,13 @@ void writeGLTF(const Context& context, const std::string& path, const GltfOption
         throw Error("a glTF file ends in .glb (binary) or .gltf (text)",
                     {.file = path, .value = ext, .validRange = ".glb, .gltf"});
     Scene scene = collect(context, options);
-    for (MaterialID m : scene.materials) {
-        const Material& mat = context.material(m);
-        if (!mat.texture.empty() && options.textures &&
-            std::find(scene.images.begin(), scene.images.end(), mat.texture) == scene.images.end())
-            scene.images.push_back(mat.texture);
-    }
-    Buffer buffer;
-    json doc = document(context, scene, options, buffer);
     if (scene.records.size() >= (std::size_t(1) << 24))
         throw Error("too many objects for float labels in glTF",
                     {.file = path,
                      .value = std::to_string(scene.records.size()),
                      .validRange = "fewer than 16777216 objects"});
+    Buffer buffer;
+    json doc = document(context, scene, options, buffer);
     io::AtomicFile file(path);
     if (ext == ".gltf") {
         std::string bytes;
