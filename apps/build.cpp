@@ -1,6 +1,8 @@
 // plantarch build SPECIES --age D [-D name=value ...] -o FILE [-o FILE ...] [--stats]
+// plantarch build SPECIES --frames START:END[:STEP] -o growth.glb|.usda
 // Builds one plant of a library species (or a species file) grown to an age, writes it in
-// every format asked for, and prints a one-paragraph summary (or JSON with --stats).
+// every format asked for, and prints a one-paragraph summary (or JSON with --stats); with
+// --frames, grows it from germination and writes the growth as an animation.
 
 #include <fmt/format.h>
 
@@ -23,6 +25,7 @@ struct BuildArgs {
     std::vector<std::string> outputs;
     bool stats = false;
     CollisionArgs collision;
+    AnimationArgs animation;
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
@@ -31,6 +34,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         "string)");
     auto a = std::make_shared<BuildArgs>();
     addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
+    addAnimationOptions(app, a->animation, "of age");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     addImageSizeOption(app, global);
@@ -38,7 +42,12 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
     return [a, &global]() {
-        preparePlantOutputs(a->outputs);
+        const std::optional<GrowthFrames> frames = parseFrames(a->animation);
+        requireAgeOrFrames(a->age, frames.has_value());
+        if (frames)
+            prepareAnimationOutputs(a->outputs);
+        else
+            preparePlantOutputs(a->outputs);
         checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);
@@ -47,9 +56,12 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
-        const unsigned plant =
-            arch.buildPlantInstanceFromLibrary(vec3(0.0f), a->age, parseDefines(a->defines));
-        for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
+        const unsigned plant = arch.buildPlantInstanceFromLibrary(
+            vec3(0.0f), frames ? 0.0f : a->age, parseDefines(a->defines));
+        if (frames)
+            writeGrowthAnimation(arch, {plant}, *frames, a->outputs, {a->animation.rate});
+        else
+            for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
         if (a->stats) {
             std::printf("%s\n", plantStatsJSON(arch, ctx, plant, global.seed).c_str());
         } else {
@@ -61,7 +73,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
                     "{} at {} days (seed {}): {} shoots, {} leaves (leaflets counted), {:.4f} m^2 "
                     "one-sided leaf area, {:.3f} m tall, {} triangles in {} objects; written to "
                     "{}.\n",
-                    arch.getCurrentPlantModel(), a->age, global.seed, arch.getShootCount(plant),
+                    arch.getCurrentPlantModel(), arch.plant(plant).age, global.seed, arch.getShootCount(plant),
                     arch.getPlantLeafCount(plant), arch.getPlantLeafArea(plant),
                     arch.getPlantHeight(plant), ctx.triangleCount(), ctx.objectCount(), outs)
                     .c_str());

@@ -43,6 +43,7 @@ struct CanopyArgs {
     bool stats = false;
     bool separate = false, plantOrigin = false;
     CollisionArgs collision;
+    AnimationArgs animation;
 };
 
 std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
@@ -52,9 +53,8 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--count", a->count, "Plants along x and y, e.g. 10x10");
     app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
-    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--age"));
+    app.add_option("--age", a->age, "Plant age in days (0 to 100000)")->check(daysCheck("--age"));
+    addAnimationOptions(app, a->animation, "of age");
     app.add_option("--germination", a->germination,
                    "Probability each position has a plant (0 to 1)")
         ->check(numberCheck("--germination", "a probability", 0.0, 1.0, false, "0 to 1"));
@@ -76,7 +76,15 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
-        preparePlantOutputs(a->outputs);
+        const std::optional<GrowthFrames> frames = parseFrames(a->animation);
+        requireAgeOrFrames(a->age, frames.has_value());
+        if (frames && a->separate)
+            throw Error("--separate writes still files, one per plant: not with --frames",
+                        {.parameter = "--separate", .validRange = "without --frames"});
+        if (frames)
+            prepareAnimationOutputs(a->outputs);
+        else
+            preparePlantOutputs(a->outputs);
         if (a->plantOrigin && !a->separate)
             throw Error("--plant-origin places the plants of separate files",
                         {.parameter = "--plant-origin", .validRange = "with --separate"});
@@ -88,9 +96,12 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const auto plants =
-            arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), a->age,
+            arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny),
+                                             frames ? 0.0f : a->age,
                                              a->germination, parseDefines(a->defines));
-        if (a->separate)
+        if (frames)
+            writeGrowthAnimation(arch, plants, *frames, a->outputs, {a->animation.rate});
+        else if (a->separate)
             writeSeparatePlantOutputs(arch, plants, a->outputs, a->plantOrigin, global);
         else
             for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
@@ -107,7 +118,8 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         }
         std::printf("%s", fmt::format("{} canopy: {} plants of {}x{} positions, {} days (seed {}): "
                                       "{} leaves, {:.3f} m^2 leaf area, {} triangles.\n",
-                                      arch.getCurrentPlantModel(), plants.size(), nx, ny, a->age,
+                                      arch.getCurrentPlantModel(), plants.size(), nx, ny,
+                                      frames ? float(frames->end) : a->age,
                                       global.seed, leaves, area, ctx.triangleCount())
                               .c_str());
         return 0;

@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "plantarch/Context.h"
 #include "plantarch/Export.h"
+#include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Progress.h"
 
@@ -77,10 +79,10 @@ CLI::Validator numberCheck(const std::string& option, const std::string& what, d
 /// numberCheck for a number of days, 0 to 100000.
 CLI::Validator daysCheck(const std::string& option);
 
-/// The plant a command builds: SPECIES (library name or species file), --age (required),
-/// -D name=value build parameters and --no-trellis.
-void addPlantOptions(CLI::App& app, std::string& species, float& age,
-                     std::vector<std::string>& defines, bool& noTrellis);
+/// The plant a command builds: SPECIES (library name or species file), --age, -D name=value
+/// build parameters and --no-trellis. Returns --age, for the caller to require.
+CLI::Option* addPlantOptions(CLI::App& app, std::string& species, float& age,
+                             std::vector<std::string>& defines, bool& noTrellis);
 
 /// Build parameters given as -D name=value (each a finite number), by name.
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines);
@@ -121,6 +123,21 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                                      const std::string& species);
 /// Adds --digits (significant digits of plant strings) to a subcommand.
 void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
+
+/// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
+/// (animation_options.cpp).
+struct AnimationArgs {
+    std::string frames;
+    double rate = 24.0;
+};
+/// Adds --frames and --frame-rate; `counted` says what the days count ("of age").
+void addAnimationOptions(CLI::App& app, AnimationArgs& args, const std::string& counted);
+/// The frames asked for, none without --frames; throws plantarch::Error for a bad value.
+std::optional<GrowthFrames> parseFrames(const AnimationArgs& args);
+/// Throws unless exactly one of --age (age >= 0) and --frames was given.
+void requireAgeOrFrames(float age, bool frames);
+/// Checks that every output is an animation format (.glb, .gltf, .usda), before any work.
+void prepareAnimationOutputs(const std::vector<std::string>& paths);
 
 /// Collision avoidance options of `build` and `canopy` (collision_options.cpp).
 struct CollisionArgs {

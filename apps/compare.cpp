@@ -219,7 +219,7 @@ std::function<int()> setupCompare(CLI::App& app, GlobalOptions& global) {
         "Draw a plant in a fixed framing (side and oblique views, same scale, 10 cm bar), "
         "optionally below a reference picture");
     auto a = std::make_shared<CompareArgs>();
-    addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
+    addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis)->required();
     app.add_option("--reference", a->reference,
                    "Picture to show above (any PNG; one made in the same framing compares best)");
     app.add_option("--panel-size", a->panelSize, "Size of each square view in pixels")

@@ -1,4 +1,5 @@
 // plantarch grow IN.xml --days N -o OUT [-o OUT ...]
+// plantarch grow IN.xml --frames START:END[:STEP] -o growth.glb|.usda
 // Continues the growth of saved plants: reads a plant structure file, grows every plant in
 // it by N days and writes the result (.xml to save it again, or .txt, .obj, .ply, .glb, .gltf,
 // .png).
@@ -20,6 +21,7 @@ struct GrowArgs {
     std::string input, species;
     double days = -1.0;
     std::vector<std::string> outputs;
+    AnimationArgs animation;
 };
 
 std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
@@ -27,9 +29,8 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     auto a = std::make_shared<GrowArgs>();
     app.add_option("input", a->input, "Plant structure file (.xml) or plant strings (.txt)")
         ->required();
-    app.add_option("--days", a->days, "Days to grow (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--days"));
+    app.add_option("--days", a->days, "Days to grow (0 to 100000)")->check(daysCheck("--days"));
+    addAnimationOptions(app, a->animation, "of growth from the file's state");
     app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
         ->required();
     app.add_option("--species", a->species,
@@ -37,18 +38,33 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     return [a, &global]() {
-        preparePlantOutputs(a->outputs);
+        const std::optional<GrowthFrames> frames = parseFrames(a->animation);
+        if (frames && a->days >= 0.0)
+            throw Error("--frames gives the days of the frames: leave out --days",
+                        {.parameter = "--days", .validRange = "not with --frames"});
+        if (!frames && a->days < 0.0)
+            throw Error("--days is required (or --frames for a growth animation)",
+                        {.parameter = "--days", .validRange = "0 to 100000 days"});
+        if (frames)
+            prepareAnimationOutputs(a->outputs);
+        else
+            preparePlantOutputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.setProgressCallback(terminalProgress());
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
-        arch.advanceTime(plants, a->days);
-        for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+        if (frames) {
+            writeGrowthAnimation(arch, plants, *frames, a->outputs, {a->animation.rate});
+        } else {
+            arch.advanceTime(plants, a->days);
+            for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+        }
         std::size_t leaves = 0;
         for (unsigned p : plants) leaves += arch.getPlantLeafCount(p);
         std::printf("%s", fmt::format("{} plant(s) grown {} days: {} leaves, {} triangles.\n",
-                                      plants.size(), a->days, leaves, ctx.triangleCount())
+                                      plants.size(),
+                                      frames ? frames->end : a->days, leaves, ctx.triangleCount())
                               .c_str());
         return 0;
     };

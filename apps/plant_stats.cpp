@@ -32,15 +32,15 @@ CLI::Validator daysCheck(const std::string& option) {
     return numberCheck(option, "a number of days", 0.0, 100000.0, false, "0 to 100000");
 }
 
-void addPlantOptions(CLI::App& app, std::string& species, float& age,
-                     std::vector<std::string>& defines, bool& noTrellis) {
+CLI::Option* addPlantOptions(CLI::App& app, std::string& species, float& age,
+                             std::vector<std::string>& defines, bool& noTrellis) {
     app.add_option("species", species, "Library species name or species file (.xml)")->required();
-    app.add_option("--age", age, "Plant age in days (0 to 100000)")
-        ->required()
-        ->check(daysCheck("--age"));
+    CLI::Option* ageOption =
+        app.add_option("--age", age, "Plant age in days (0 to 100000)")->check(daysCheck("--age"));
     app.add_option("-D", defines, "Build parameter override, name=value (repeatable)");
     app.add_flag("--no-trellis", noTrellis,
                  "Leave out the species' trellis (posts and wires drawn with trellis species)");
+    return ageOption;
 }
 
 std::map<std::string, float> parseDefines(const std::vector<std::string>& defines) {

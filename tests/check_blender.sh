@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Imports glTF files of library plants (a bean as .glb and .gltf, a trellis vine with its
 # posts and wires) into Blender with its own importer, headless, and checks that Blender holds
-# the same number of triangles as the file's scene. Usage: check_blender.sh PLANTARCH_BINARY.
+# the same number of triangles as the file's scene, and plays a growth animation. Usage: check_blender.sh PLANTARCH_BINARY.
 # Exits 1 on a mismatch, 2 when Blender is missing (scripts/test.sh installs it).
 set -euo pipefail
 cli=$(realpath "${1:?usage: check_blender.sh PLANTARCH_BINARY}")
@@ -33,4 +33,19 @@ check "$out/bean.gltf" "$n"
 # The vine's file holds its trellis too: count the PLY's faces (every object in the scene).
 faces=$(sed -n 's/^element face \([0-9]*\)$/\1/p' < <(head -c 4096 "$out/vine.ply" | tr -d '\r'))
 check "$out/vine.glb" "$faces"
+# A growth animation: at each frame Blender shows the plant built at that frame's age.
+"$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" > /dev/null
+expected=""
+for age in 0 10 20; do
+    expected+="${expected:+, }$("$cli" --seed 3 build bean --age "$age" -o "$out/age.ply" | triangles)"
+done
+line=$(cd "$out" && blender -b --factory-startup --python "$here/blender/import_gltf.py" -- "$out/growth.glb" 2>&1 |
+       grep '^PLANTARCH ' | head -1 | cut -d' ' -f2-) || true
+frames=$(echo "$line" | sed -n 's/.*"frames": \(\[[0-9, ]*\]\).*/\1/p')
+if [ "$frames" != "[$expected]" ]; then
+    echo "check_blender: growth.glb: Blender shows ${frames:-nothing} frame by frame, the plants at its ages [$expected] ($line)"
+    status=1
+else
+    echo "check_blender: growth.glb plays in Blender, frame by frame: $frames triangles"
+fi
 exit "$status"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Writes glTF files of library plants with the plantarch command (a bean as .glb and .gltf,
-# a canopy, a trellis vine with its posts and wires, an almond, and the examples of
-# docs/formats.md) and checks each with the Khronos glTF validator: no errors, no warnings.
+# a canopy, a trellis vine with its posts and wires, an almond, a growth animation, and the
+# examples of docs/formats.md) and checks each with the Khronos glTF validator: no errors, no warnings.
 # Usage: check_gltf.sh PROJECT_DIR PLANTARCH_BINARY. Exits 1 on any problem, 2 when node or
 # the validator (tests/js, installed by scripts/test.sh) is missing.
 set -euo pipefail
@@ -16,6 +16,7 @@ trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 canopy bean --count 2x2 --age 30 -o "$out/canopy.glb" > /dev/null
 "$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" > /dev/null
 "$cli" --seed 3 build almond --age 400 -o "$out/almond.glb" > /dev/null
+"$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" -o "$out/growth.gltf" > /dev/null
 # The examples of docs/formats.md, run as written (build/plantarch is the binary under test).
 mkdir -p "$out/doc"
 awk '/^```sh$/{on=1; next} /^```$/{on=0} on' "$root/docs/formats.md" |

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Loads glTF files of library plants (a bean as .glb and .gltf, a trellis vine) with three.js's
 # GLTFLoader in headless Chromium and checks that three.js holds the file's triangles and sees
-# the label attributes (_PLANT_ID, _OBJECT_ID, _ORGAN). Usage: check_three.sh PROJECT_DIR
+# the label attributes (_PLANT_ID, _OBJECT_ID, _ORGAN), and plays a growth animation.
+# Usage: check_three.sh PROJECT_DIR
 # PLANTARCH_BINARY. Exits 1 on a mismatch, 2 when node, Chromium or the npm packages are
 # missing (scripts/test.sh installs them).
 set -euo pipefail
@@ -30,5 +31,21 @@ while read -r expected line; do
         echo "$line" | grep -q "\"$a\"" || { echo "check_three: no $a attribute: $line"; status=1; }
     done
 done < <(paste -d' ' <(printf '%s\n' "$bean" "$bean" "$vine") <(echo "$report"))
-[ "$status" -eq 0 ] && echo "check_three: 3 files load in three.js with their triangles and labels"
+# A growth animation played by three.js's AnimationMixer shows, at each frame's time, the
+# triangles of the plant built at that frame's age.
+"$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" > /dev/null
+expected=""
+for age in 0 10 20; do
+    expected+="${expected:+,}$("$cli" --seed 3 build bean --age "$age" -o "$out/age.ply" | triangles)"
+done
+expected="[$expected]"
+line=$(node "$root/tests/js/three_load.mjs" "$out/growth.glb") || { echo "$line"; exit 1; }
+frames=$(echo "$line" | sed -n 's/.*"frames":\(\[[0-9,]*\]\).*/\1/p')
+if [ "$frames" != "$expected" ]; then
+    echo "check_three: the growth animation shows ${frames:-nothing}, the plants at its ages $expected: $line"
+    status=1
+else
+    echo "check_three: growth.glb plays in three.js, frame by frame: $frames triangles"
+fi
+[ "$status" -eq 0 ] && echo "check_three: 4 files load in three.js with their triangles and labels"
 exit "$status"

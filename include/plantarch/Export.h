@@ -180,6 +180,35 @@ struct UsdOptions {
 /// (SemanticsLabelsAPI). Throws plantarch::Error naming the file.
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options = {});
 
+/// One frame of an animation: the geometry of the scene at one time, and its plants.
+struct AnimationFrame {
+    const Context* context = nullptr;  ///< must outlive the write
+    double day = 0.0;                  ///< the frame's time, days (increasing from frame to frame)
+    std::vector<GltfPlant> plants;     ///< as GltfOptions::plants, at this frame
+};
+
+/// How an animation plays: `framesPerSecond` frames a second, one frame shown at a time.
+struct AnimationOptions {
+    double framesPerSecond = 24.0;  ///< 0.001 to 1000
+};
+
+/// Writes frames as one animated glTF (.glb or .gltf): under the root, a node per frame
+/// ("day_<day>", extras {"day": ...}) holding that frame's plant nodes as writeGLTF lays
+/// them out, and an animation "growth" that shows frame i alone from i / framesPerSecond
+/// seconds on (each frame node's scale keyed 1 or 0 with STEP interpolation, which every
+/// glTF viewer plays). The property table holds the objects of every frame. Throws
+/// plantarch::Error naming the file for no frames, times not increasing or a bad rate.
+void writeGLTF(const std::vector<AnimationFrame>& frames, const std::string& path,
+               const GltfOptions& options = {}, const AnimationOptions& animation = {});
+
+/// Writes frames as one animated USD text file: an Xform per frame ("day_<day>", its day in
+/// customData) holding that frame's plant Xforms as writeUSDA lays them out, its visibility
+/// keyed so that frame i alone is shown at time code i (startTimeCode 0, endTimeCode the last
+/// frame's index, timeCodesPerSecond = framesPerSecond). Throws plantarch::Error as the glTF
+/// form does.
+void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& path,
+               const UsdOptions& options = {}, const AnimationOptions& animation = {});
+
 /// How samplePoints draws a point cloud.
 struct PointSampleOptions {
     std::size_t points = 100000;  ///< points to draw, 1 to 2^31

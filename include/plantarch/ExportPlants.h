@@ -21,4 +21,29 @@ std::vector<GltfPlant> exportPlants(const PlantArchitecture& arch);
 void writeQSM(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
               const std::string& path);
 
+/// The frames of a growth animation: one every `step` days of growth from `start` to `end`
+/// (inclusive, within a millionth of a step), counted from the plants' state when recording
+/// starts. At most kMaxAnimationFrames frames.
+struct GrowthFrames {
+    double start = 0.0;
+    double end = 0.0;
+    double step = 1.0;
+};
+inline constexpr std::size_t kMaxAnimationFrames = 10000;
+
+/// The frame days of `frames` (start, start + step, ...); throws plantarch::Error naming
+/// `parameter` for a negative or non-finite start, an end before the start, a step that is
+/// not positive, or more than kMaxAnimationFrames frames.
+std::vector<double> growthFrameDays(const GrowthFrames& frames,
+                                    const std::string& parameter = "frames");
+
+/// Grows `plants` of `arch` from frame to frame and writes the scene as it stands at each
+/// frame (every object of the Context) into each of `paths` as one animation: .glb or .gltf
+/// (writeGLTF of frames) or .usda (writeUSDA of frames); a frame's day is its days of growth.
+/// Every path is checked before any growth; each file is written atomically. The plants are
+/// left grown to the last frame. Throws plantarch::Error naming the file or parameter.
+void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& plants,
+                          const GrowthFrames& frames, const std::vector<std::string>& paths,
+                          const AnimationOptions& animation = {});
+
 }  // namespace plantarch

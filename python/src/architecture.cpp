@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "callbacks.h"
+#include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::python {
@@ -276,6 +277,20 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
                 interruptible([&] { a.advanceTime(plants, days); });
             },
             py::arg("plantIDs"), py::arg("time_step_days"), "Grows the given plants together.")
+        .def(
+            "writeGrowthAnimation",
+            [](PlantArchitecture& a, std::vector<unsigned> plants, double start, double end,
+               double step, std::vector<std::string> filenames, double frameRate) {
+                interruptible([&] {
+                    writeGrowthAnimation(a, plants, {start, end, step}, filenames, {frameRate});
+                });
+            },
+            py::arg("plantIDs"), py::arg("start"), py::arg("end"), py::arg("step"),
+            py::arg("filenames"), py::arg("frame_rate") = 24.0,
+            "Grows the plants from frame to frame (a frame every `step` days of growth from "
+            "`start` to `end`) and writes the scene at each frame into every file (.glb, .gltf "
+            "or .usda) as one animation that shows frame i alone at i / frame_rate seconds. "
+            "The plants are left grown to the last frame.")
         .def(
             "setProgressCallback",
             [](PlantArchitecture& a, py::object fn) { setUserProgress(a, fn); },

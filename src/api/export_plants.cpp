@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/atomic_file.h"
+#include "core/value_text.h"
 #include "geometry/tessellate.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
@@ -78,6 +79,64 @@ void writeQSM(const PlantArchitecture& arch, const std::vector<unsigned>& plants
         }
     }
     out.commit();
+}
+
+std::vector<double> growthFrameDays(const GrowthFrames& f, const std::string& parameter) {
+    const auto bad = [&](const std::string& what, double value, const std::string& range) {
+        return Error(what, {.parameter = parameter,
+                            .value = text::formatDouble(value),
+                            .validRange = range});
+    };
+    if (!std::isfinite(f.start) || f.start < 0.0 || f.start > 100000.0)
+        throw bad("first frame out of range", f.start, "0 to 100000 days");
+    if (!std::isfinite(f.end) || f.end < f.start || f.end > 100000.0)
+        throw bad("last frame out of range", f.end,
+                  text::formatDouble(f.start) + " to 100000 days");
+    if (!std::isfinite(f.step) || !(f.step > 0.0))
+        throw bad("frame step must be positive", f.step, "more than 0 days");
+    const double count = std::floor((f.end - f.start) / f.step + 1e-6) + 1.0;
+    if (count > double(kMaxAnimationFrames))
+        throw bad("too many frames (" + text::formatDouble(count) + ")", f.step,
+                  "a step giving at most " + std::to_string(kMaxAnimationFrames) + " frames");
+    std::vector<double> days;
+    for (std::size_t i = 0; i < std::size_t(count); ++i)
+        days.push_back(std::min(f.end, f.start + double(i) * f.step));
+    return days;
+}
+
+void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& plants,
+                          const GrowthFrames& frames, const std::vector<std::string>& paths,
+                          const AnimationOptions& animation) {
+    const std::vector<double> days = growthFrameDays(frames);
+    for (const std::string& path : paths) {
+        const std::string ext = io::lowerExtension(path);
+        if (ext != ".glb" && ext != ".gltf" && ext != ".usda")
+            throw Error("an animation is written as .glb, .gltf or .usda",
+                        {.file = path, .value = ext, .validRange = ".glb, .gltf, .usda"});
+    }
+    // Checked before the growth, so a bad rate costs nothing.
+    const Context probe;
+    io::checkAnimation({AnimationFrame{&probe, 0.0, {}}}, animation,
+                       paths.empty() ? std::string() : paths.front());
+    std::vector<Context> scenes;
+    std::vector<AnimationFrame> recorded;
+    scenes.reserve(days.size());
+    double grown = 0.0;
+    for (double day : days) {
+        if (day > grown) arch.advanceTime(plants, day - grown);
+        grown = day;
+        scenes.push_back(arch.context());
+        recorded.push_back({&scenes.back(), day, exportPlants(arch)});
+    }
+    for (const std::string& path : paths) {
+        if (io::lowerExtension(path) == ".usda") {
+            UsdOptions o;
+            writeUSDA(recorded, path, o, animation);
+        } else {
+            GltfOptions o;
+            writeGLTF(recorded, path, o, animation);
+        }
+    }
 }
 
 }  // namespace plantarch

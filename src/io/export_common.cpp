@@ -1,7 +1,9 @@
 #include "io/export_common.h"
 
+#include <cctype>
 #include <cmath>
 
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::io {
@@ -19,6 +21,38 @@ void requireDataType(const Context& context, std::string_view label, DataType ex
         throw Error(std::string("object data has type ") + dataTypeName(*type) +
                         ", exporters need " + dataTypeName(expected),
                     {.file = file, .parameter = std::string(label)});
+}
+
+void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOptions& animation,
+                    const std::string& file) {
+    if (frames.empty()) throw Error("an animation needs at least one frame", {.file = file});
+    const double rate = animation.framesPerSecond;
+    if (!(rate >= 0.001 && rate <= 1000.0))
+        throw Error("frame rate out of range", {.file = file,
+                                                .parameter = "framesPerSecond",
+                                                .value = text::formatDouble(rate),
+                                                .validRange = "0.001 to 1000"});
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        if (!frames[i].context)
+            throw Error("animation frame " + std::to_string(i) + " has no Context", {.file = file});
+        const double day = frames[i].day;
+        if (!std::isfinite(day) || (i > 0 && !(day > frames[i - 1].day)))
+            throw Error("animation frame days must be finite and increasing",
+                        {.file = file,
+                         .parameter = "frame " + std::to_string(i) + " day",
+                         .value = text::formatDouble(day),
+                         .validRange = i > 0 ? "more than " + text::formatDouble(frames[i - 1].day)
+                                             : "a finite number"});
+    }
+}
+
+std::string lowerExtension(const std::string& path) {
+    const std::size_t dot = path.find_last_of('.');
+    const std::size_t slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
 }
 
 std::string organOf(const Context& context, ObjectID id) {

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/value_text.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -47,7 +48,8 @@ struct ObjectRecord {
     std::uint8_t organ;
     std::int32_t leaf, shoot, rank;
     float age;
-    MaterialID material;
+    std::size_t material;  // index into Scene::materials
+    std::uint32_t frame;
     bool uvs;
 };
 
@@ -55,15 +57,17 @@ struct ObjectRecord {
 struct Primitive {
     std::size_t node;
     std::uint8_t organ;
-    MaterialID material;
+    std::size_t material;
     std::vector<std::size_t> objects;  // indices into the records
     std::size_t vertices = 0, triangles = 0;
     bool uvs = true;
 };
 
 struct Node {
+    std::size_t frame;
     std::int32_t plant;  // -1: the objects of no plant
     vec3 base{0.0f};
+    std::optional<GltfPlant> info;  // species, age and seed, when given
 };
 
 std::uint8_t organCode(const std::string& organ) {
@@ -80,15 +84,6 @@ float linear(float srgb) {
 
 std::size_t align8(std::size_t n) {
     return (n + 7) & ~std::size_t(7);
-}
-
-std::string lowerExtension(const std::string& path) {
-    const std::size_t dot = path.find_last_of('.');
-    const std::size_t slash = path.find_last_of('/');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
 }
 
 std::vector<std::uint8_t> readBytes(const std::string& path) {
@@ -191,15 +186,24 @@ std::string base64(const std::string& bytes) {
 }
 
 struct Scene {
+    std::vector<const Context*> frames;
+    std::vector<double> days;  // the frames' times
+    bool animated = false;
+    double framesPerSecond = 24.0;
     std::vector<ObjectRecord> records;
     std::vector<Node> nodes;
     std::vector<Primitive> primitives;
-    std::vector<MaterialID> materials;  // glTF material index -> Context material
-    std::vector<std::string> images;    // texture files, in glTF image order
+    std::vector<Material> materials;  // in glTF material order
+    std::vector<std::string> images;  // texture files, in glTF image order
+
+    ObjectView object(const ObjectRecord& r) const { return frames[r.frame]->object(r.id); }
+    ObjectView object(std::size_t record) const { return object(records[record]); }
 };
 
-Scene collect(const Context& ctx, const GltfOptions& options) {
-    Scene s;
+// The records and nodes of one frame's Context.
+void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& plants,
+                  const GltfOptions& options) {
+    const Context& ctx = *s.frames[frame];
     const std::vector<ObjectID> ids = io::exportedObjects(ctx, options.includeHidden);
     const char* intLabels[4] = {"plantID", "leafID", "shootID", "rank"};
     bool hasInt[4];
@@ -208,13 +212,22 @@ Scene collect(const Context& ctx, const GltfOptions& options) {
         return hasInt[which] ? ctx.objectDataInt(id, intLabels[which]).value_or(-1) : -1;
     };
     const bool ageFloat = ctx.objectDataType("age") == DataType::Float;
+    const std::size_t firstNode = s.nodes.size();
     std::map<std::int32_t, std::size_t> nodeOf;
-    for (const GltfPlant& p : options.plants) {
+    for (const GltfPlant& p : plants) {
         nodeOf.emplace(p.id, s.nodes.size());
-        s.nodes.push_back({p.id, p.base});
+        s.nodes.push_back({frame, p.id, p.base, p});
     }
+    std::map<MaterialID, std::size_t> materialOf;
     for (ObjectID id : ids) {
         const ObjectView o = ctx.object(id);
+        auto [m, fresh] = materialOf.emplace(o.material, 0);
+        if (fresh) {
+            const Material& mat = ctx.material(o.material);
+            const auto at = std::find(s.materials.begin(), s.materials.end(), mat);
+            m->second = std::size_t(at - s.materials.begin());
+            if (at == s.materials.end()) s.materials.push_back(mat);
+        }
         ObjectRecord r{id,
                        intData(id, 0),
                        organCode(io::organOf(ctx, id)),
@@ -222,56 +235,54 @@ Scene collect(const Context& ctx, const GltfOptions& options) {
                        intData(id, 2),
                        intData(id, 3),
                        ageFloat ? ctx.objectDataFloat(id, "age").value_or(-1.0f) : -1.0f,
-                       o.material,
+                       m->second,
+                       frame,
                        !o.uvs.empty()};
         if (!nodeOf.count(r.plant)) {
             nodeOf.emplace(r.plant, s.nodes.size());
-            s.nodes.push_back({r.plant, vec3(0.0f)});
+            s.nodes.push_back({frame, r.plant, vec3(0.0f), std::nullopt});
         }
         s.records.push_back(r);
     }
     // Plants in ID order, the objects of no plant last.
-    std::vector<std::size_t> order(s.nodes.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        const auto key = [&](std::size_t i) {
-            return std::make_pair(s.nodes[i].plant < 0, s.nodes[i].plant);
-        };
-        return key(a) < key(b);
-    });
-    std::vector<Node> sorted;
-    for (std::size_t i : order) sorted.push_back(s.nodes[i]);
-    s.nodes = std::move(sorted);
-    nodeOf.clear();
-    for (std::size_t i = 0; i < s.nodes.size(); ++i) nodeOf[s.nodes[i].plant] = i;
+    std::stable_sort(s.nodes.begin() + std::ptrdiff_t(firstNode), s.nodes.end(),
+                     [](const Node& a, const Node& b) {
+                         return std::make_pair(a.plant < 0, a.plant) <
+                                std::make_pair(b.plant < 0, b.plant);
+                     });
+}
 
-    std::map<std::tuple<std::size_t, std::uint8_t, MaterialID>, std::size_t> primitiveOf;
-    std::map<MaterialID, std::size_t> materialIndex;
+Scene collect(const std::vector<AnimationFrame>& frames, const GltfOptions& options) {
+    Scene s;
+    for (std::uint32_t f = 0; f < frames.size(); ++f) {
+        s.frames.push_back(frames[f].context);
+        s.days.push_back(frames[f].day);
+        collectFrame(s, f, frames[f].plants, options);
+    }
+    std::map<std::pair<std::size_t, std::int32_t>, std::size_t> nodeOf;
+    for (std::size_t i = 0; i < s.nodes.size(); ++i)
+        nodeOf[{s.nodes[i].frame, s.nodes[i].plant}] = i;
+
+    std::map<std::tuple<std::size_t, std::uint8_t, std::size_t>, std::size_t> primitiveOf;
     for (std::size_t i = 0; i < s.records.size(); ++i) {
         const ObjectRecord& r = s.records[i];
-        const auto key = std::make_tuple(nodeOf[r.plant], r.organ, r.material);
-        auto [it, fresh] = primitiveOf.emplace(key, 0);
+        const std::size_t node = nodeOf[{r.frame, r.plant}];
+        auto [it, fresh] = primitiveOf.emplace(std::make_tuple(node, r.organ, r.material), 0);
         if (fresh) {
             it->second = s.primitives.size();
-            s.primitives.push_back({nodeOf[r.plant], r.organ, r.material, {}});
-            if (!materialIndex.count(r.material)) {
-                materialIndex.emplace(r.material, s.materials.size());
-                s.materials.push_back(r.material);
-            }
+            s.primitives.push_back({node, r.organ, r.material, {}});
         }
         Primitive& p = s.primitives[it->second];
         p.objects.push_back(i);
-        const ObjectView o = ctx.object(r.id);
+        const ObjectView o = s.object(r);
         p.vertices += o.positions.size();
         p.triangles += o.triangleCount();
         p.uvs = p.uvs && r.uvs && options.uvs;
     }
-    for (MaterialID m : s.materials) {  // the texture images, in material order
-        const Material& mat = ctx.material(m);
+    for (const Material& mat : s.materials)  // the texture images, in material order
         if (!mat.texture.empty() && options.textures &&
             std::find(s.images.begin(), s.images.end(), mat.texture) == s.images.end())
             s.images.push_back(mat.texture);
-    }
     std::stable_sort(s.primitives.begin(), s.primitives.end(),
                      [](const Primitive& a, const Primitive& b) {
                          return std::tie(a.node, a.organ) < std::tie(b.node, b.organ);
@@ -302,13 +313,36 @@ json schema() {
                   {"age", scalar("FLOAT32", "organ age, days (-1: unknown)")}}}}}}}};
 }
 
+std::string frameName(double day) {
+    std::string text = text::formatDouble(day);
+    for (char& c : text)
+        if (c == '.') c = '_';
+    return "day_" + text;
+}
+
+// The keys of frame f's scale: 0 (hidden) or 1 (shown), held from each time to the next.
+// Frame f is shown from f / rate seconds to (f + 1) / rate; the last frame stays shown.
+struct FrameKey {
+    float time, scale;
+};
+std::vector<FrameKey> frameKeys(const Scene& s, std::size_t f) {
+    const std::size_t n = s.frames.size();
+    const auto time = [&](std::size_t i) { return float(double(i) / s.framesPerSecond); };
+    std::vector<FrameKey> keys;
+    if (f > 0) keys.push_back({0.0f, 0.0f});
+    keys.push_back({time(f), 1.0f});
+    if (f + 1 < n) keys.push_back({time(f + 1), 0.0f});
+    keys.push_back({time(n), f + 1 == n ? 1.0f : 0.0f});
+    return keys;
+}
+
 json accessor(int view, int componentType, std::size_t count, const char* type) {
     return {
         {"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
 }
 
 // The JSON document and the buffer's layout.
-json document(const Context& ctx, const Scene& s, const GltfOptions& options, Buffer& buffer) {
+json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     json doc;
     doc["asset"] = {{"version", "2.0"}, {"generator", "plantarch"}};
     json views = json::array(), accessors = json::array(), meshes = json::array();
@@ -318,13 +352,12 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         std::error_code ec;
         const auto bytes = std::filesystem::file_size(image, ec);
         if (ec) throw Error("cannot read texture image: " + ec.message(), {.file = image});
-        const std::string ext = lowerExtension(image);
+        const std::string ext = io::lowerExtension(image);
         images.push_back({{"bufferView", buffer.add(views, std::size_t(bytes), 0)},
                           {"mimeType", ext == ".png" ? "image/png" : "image/jpeg"}});
         textures.push_back({{"source", images.size() - 1}});
     }
-    for (MaterialID m : s.materials) {
-        const Material& mat = ctx.material(m);
+    for (const Material& mat : s.materials) {
         json pbr = {{"baseColorFactor",
                      {linear(mat.color.x), linear(mat.color.y), linear(mat.color.z), 1.0}},
                     {"metallicFactor", 0.0},
@@ -340,8 +373,6 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         materials.push_back(std::move(material));
     }
 
-    std::map<MaterialID, std::size_t> materialIndex;
-    for (std::size_t i = 0; i < s.materials.size(); ++i) materialIndex[s.materials[i]] = i;
     std::vector<json> nodeMeshes(s.nodes.size());
     std::map<std::pair<std::size_t, std::uint8_t>, int> meshOf;
     const std::size_t features = s.records.size();
@@ -349,7 +380,7 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         const Node& node = s.nodes[p.node];
         vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
         for (std::size_t i : p.objects)
-            for (const vec3& v : ctx.object(s.records[i].id).positions) {
+            for (const vec3& v : s.object(i).positions) {
                 lo = glm::min(lo, v - node.base);
                 hi = glm::max(hi, v - node.base);
             }
@@ -385,7 +416,7 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         accessors.push_back(accessor(indexView, kUInt, p.triangles * 3, "SCALAR"));
         json primitive = {{"attributes", attributes},
                           {"indices", accessors.size() - 1},
-                          {"material", materialIndex[p.material]},
+                          {"material", p.material},
                           {"mode", 4}};
         if (!extensions.empty()) primitive["extensions"] = extensions;
         const auto key = std::make_pair(p.node, p.organ);
@@ -398,10 +429,10 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         meshes[std::size_t(it->second)]["primitives"].push_back(std::move(primitive));
     }
 
-    // One child node per mesh under each plant's node.
+    // One child node per mesh under each plant's node; with frames, the plants of each frame
+    // under the frame's node.
     json roots = json::array();
-    std::map<std::int32_t, const GltfPlant*> plantInfo;
-    for (const GltfPlant& p : options.plants) plantInfo[p.id] = &p;
+    std::vector<json> frameChildren(s.frames.size(), json::array());
     for (std::size_t n = 0; n < s.nodes.size(); ++n) {
         const Node& node = s.nodes[n];
         json children = json::array();
@@ -411,15 +442,14 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         }
         json parent;
         if (node.plant >= 0) {
-            const auto it = plantInfo.find(node.plant);
-            const std::string species = it != plantInfo.end() ? it->second->species : "";
+            const std::string species = node.info ? node.info->species : "";
             parent["name"] =
                 (species.empty() ? "plant" : species) + "_" + std::to_string(node.plant);
             json extras = {{"plantID", node.plant}};
-            if (it != plantInfo.end()) {
+            if (node.info) {
                 extras["species"] = species;
-                extras["age"] = it->second->age;
-                extras["seed"] = it->second->seed;
+                extras["age"] = node.info->age;
+                extras["seed"] = node.info->seed;
             }
             parent["extras"] = extras;
             if (node.base != vec3(0.0f))
@@ -429,7 +459,34 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
         }
         if (!children.empty()) parent["children"] = children;
         nodes.push_back(std::move(parent));
-        roots.push_back(nodes.size() - 1);
+        frameChildren[node.frame].push_back(nodes.size() - 1);
+    }
+    json animation;
+    if (!s.animated) {
+        roots = frameChildren.front();
+    } else {
+        json channels = json::array(), samplers = json::array();
+        for (std::size_t f = 0; f < s.frames.size(); ++f) {
+            json frame = {{"name", frameName(s.days[f])}, {"extras", {{"day", s.days[f]}}}};
+            if (!frameChildren[f].empty()) frame["children"] = frameChildren[f];
+            const std::vector<FrameKey> keys = frameKeys(s, f);
+            if (keys.back().scale == 0.0f) frame["scale"] = {0.0, 0.0, 0.0};
+            nodes.push_back(std::move(frame));
+            roots.push_back(nodes.size() - 1);
+            json input = accessor(buffer.add(views, keys.size() * 4, 0), kFloat, keys.size(),
+                                  "SCALAR");
+            input["min"] = {keys.front().time};
+            input["max"] = {keys.back().time};
+            accessors.push_back(std::move(input));
+            accessors.push_back(
+                accessor(buffer.add(views, keys.size() * 12, 0), kFloat, keys.size(), "VEC3"));
+            samplers.push_back({{"input", accessors.size() - 2},
+                                {"output", accessors.size() - 1},
+                                {"interpolation", "STEP"}});
+            channels.push_back(
+                {{"sampler", f}, {"target", {{"node", nodes.size() - 1}, {"path", "scale"}}}});
+        }
+        animation = {{"name", "growth"}, {"channels", channels}, {"samplers", samplers}};
     }
 
     if (options.labels) {
@@ -454,6 +511,7 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
     nodes.push_back(world);
     doc["scenes"] = {{{"nodes", {nodes.size() - 1}}}};
     doc["nodes"] = nodes;
+    if (!animation.empty()) doc["animations"] = {animation};
     if (!meshes.empty()) doc["meshes"] = meshes;
     if (!materials.empty()) doc["materials"] = materials;
     if (!accessors.empty()) doc["accessors"] = accessors;
@@ -470,7 +528,7 @@ json document(const Context& ctx, const Scene& s, const GltfOptions& options, Bu
 
 // The binary buffer, view by view in the order document() laid them out; each view is
 // streamed object by object straight from the Context.
-void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options, Sink& out) {
+void writeBinary(const Scene& s, const GltfOptions& options, Sink& out) {
     for (const std::string& image : s.images) {
         const std::vector<std::uint8_t> bytes = readBytes(image);
         out.write(bytes.data(), bytes.size());
@@ -481,7 +539,7 @@ void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options,
     std::vector<std::size_t> normalAt(s.records.size() + 1, 0);
     if (options.normals) {
         for (std::size_t i = 0; i < s.records.size(); ++i)
-            normalAt[i + 1] = normalAt[i] + ctx.object(s.records[i].id).positions.size();
+            normalAt[i + 1] = normalAt[i] + s.object(i).positions.size();
         normals.resize(normalAt.back());
         const std::ptrdiff_t n = std::ptrdiff_t(s.records.size());
 #pragma omp parallel
@@ -489,7 +547,7 @@ void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options,
             std::vector<vec3> one;
 #pragma omp for schedule(dynamic, 64)
             for (std::ptrdiff_t i = 0; i < n; ++i) {
-                smoothNormals(ctx.object(s.records[std::size_t(i)].id), one);
+                smoothNormals(s.object(std::size_t(i)), one);
                 std::copy(one.begin(), one.end(),
                           normals.begin() + std::ptrdiff_t(normalAt[std::size_t(i)]));
             }
@@ -498,7 +556,7 @@ void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options,
     for (const Primitive& p : s.primitives) {
         const vec3 base = s.nodes[p.node].base;
         auto eachObject = [&](auto&& f) {
-            for (std::size_t i : p.objects) f(i, ctx.object(s.records[i].id));
+            for (std::size_t i : p.objects) f(i, s.object(i));
         };
         eachObject([&](std::size_t, const ObjectView& o) {
             if (base == vec3(0.0f)) {
@@ -556,6 +614,18 @@ void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options,
         });
         out.pad();
     }
+    if (s.animated) {  // the frames' keys, laid out with the nodes
+        for (std::size_t f = 0; f < s.frames.size(); ++f) {
+            const std::vector<FrameKey> keys = frameKeys(s, f);
+            for (const FrameKey& k : keys) out.write(&k.time, 4);
+            out.pad();
+            for (const FrameKey& k : keys) {
+                const float scale[3] = {k.scale, k.scale, k.scale};
+                out.write(scale, sizeof scale);
+            }
+            out.pad();
+        }
+    }
     if (options.labels) {
         auto columnOf = [&](auto get, auto type) {
             using T = decltype(type);
@@ -580,24 +650,21 @@ void writeBinary(const Context& ctx, const Scene& s, const GltfOptions& options,
 
 }  // namespace
 
-void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options) {
-    const std::string ext = lowerExtension(path);
-    if (ext != ".glb" && ext != ".gltf")
-        throw Error("a glTF file ends in .glb (binary) or .gltf (text)",
-                    {.file = path, .value = ext, .validRange = ".glb, .gltf"});
-    Scene scene = collect(context, options);
+namespace {
+
+void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     if (scene.records.size() >= (std::size_t(1) << 24))
         throw Error("too many objects for float labels in glTF",
                     {.file = path,
                      .value = std::to_string(scene.records.size()),
                      .validRange = "fewer than 16777216 objects"});
     Buffer buffer;
-    json doc = document(context, scene, options, buffer);
+    json doc = document(scene, options, buffer);
     io::AtomicFile file(path);
-    if (ext == ".gltf") {
+    if (io::lowerExtension(path) == ".gltf") {
         std::string bytes;
         Sink sink(nullptr, &bytes);
-        writeBinary(context, scene, options, sink);
+        writeBinary(scene, options, sink);
         if (!bytes.empty())
             doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bytes);
         file.write(doc.dump());
@@ -618,9 +685,34 @@ void writeGLTF(const Context& context, const std::string& path, const GltfOption
         const std::uint32_t binChunk[2] = {binLength, 0x004E4942u};  // "BIN"
         file.write(binChunk, sizeof binChunk);
         Sink sink(&file, nullptr);
-        writeBinary(context, scene, options, sink);
+        writeBinary(scene, options, sink);
     }
     file.commit();
+}
+
+void checkExtension(const std::string& path) {
+    const std::string ext = io::lowerExtension(path);
+    if (ext != ".glb" && ext != ".gltf")
+        throw Error("a glTF file ends in .glb (binary) or .gltf (text)",
+                    {.file = path, .value = ext, .validRange = ".glb, .gltf"});
+}
+
+}  // namespace
+
+void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options) {
+    checkExtension(path);
+    Scene scene = collect({AnimationFrame{&context, 0.0, options.plants}}, options);
+    write(scene, path, options);
+}
+
+void writeGLTF(const std::vector<AnimationFrame>& frames, const std::string& path,
+               const GltfOptions& options, const AnimationOptions& animation) {
+    checkExtension(path);
+    io::checkAnimation(frames, animation, path);
+    Scene scene = collect(frames, options);
+    scene.animated = true;
+    scene.framesPerSecond = animation.framesPerSecond;
+    write(scene, path, options);
 }
 
 }  // namespace plantarch

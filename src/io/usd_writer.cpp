@@ -3,12 +3,14 @@
 // colours and per-face labels (organ, plant, object) as uniform primvars, plus semantic labels
 // (SemanticsLabelsAPI, class = the organ kind) that Omniverse and Isaac Sim read.
 
+#include <algorithm>
 #include <cctype>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/value_text.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -38,16 +40,34 @@ std::string quoted(const std::string& text) {
 class Text {
 public:
     explicit Text(io::AtomicFile& file) : file_(file) {}
+    /// Text written at the start of each line from now on (the nesting of a frame's prims);
+    /// called at the start of a line.
+    void indent(std::string_view prefix) {
+        indent_ = prefix;
+        lineStart_ = true;
+    }
     Text& operator<<(std::string_view s) {
-        file_.write(s);
+        if (indent_.empty()) {
+            file_.write(s);
+            return *this;
+        }
+        for (std::size_t at = 0; at < s.size();) {
+            const std::size_t end = std::min(s.find('\n', at), s.size() - 1);
+            lineStart();
+            file_.write(s.substr(at, end + 1 - at));
+            lineStart_ = s[end] == '\n';
+            at = end + 1;
+        }
         return *this;
     }
     Text& number(float v) {
+        lineStart();
         char* p = file_.reserve(io::kMaxFloatChars);
         file_.advance(io::writeFloat(p, v));
         return *this;
     }
     Text& integer(std::int64_t v) {
+        lineStart();
         char* p = file_.reserve(24);
         file_.advance(io::writeInt(p, v));
         return *this;
@@ -63,7 +83,14 @@ public:
     }
 
 private:
+    void lineStart() {
+        if (lineStart_ && !indent_.empty()) file_.write(indent_);
+        lineStart_ = false;
+    }
+
     io::AtomicFile& file_;
+    std::string indent_;
+    bool lineStart_ = false;
 };
 
 struct Group {  // the objects of one plant and organ kind
@@ -72,9 +99,9 @@ struct Group {  // the objects of one plant and organ kind
     bool uvs = true;
 };
 
-}  // namespace
-
-void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
+// The Xforms of one scene's plants (and one for the objects of no plant).
+void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>& plantInfo,
+                const UsdOptions& options) {
     const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);
     const bool hasPlant = context.objectDataType("plantID") == DataType::Int;
     // plant -> organ -> objects; plants in ID order, the objects of no plant (-1) last.
@@ -92,12 +119,7 @@ void writeUSDA(const Context& context, const std::string& path, const UsdOptions
         g.uvs = g.uvs && !o.uvs.empty();
     }
     std::map<std::int32_t, const GltfPlant*> info;
-    for (const GltfPlant& p : options.plants) info[p.id] = &p;
-
-    io::AtomicFile file(path);
-    Text out(file);
-    out << "#usda 1.0\n(\n    defaultPrim = \"plantarch\"\n    doc = \"plantarch scene\"\n"
-           "    metersPerUnit = 1\n    upAxis = \"Z\"\n)\n\ndef Xform \"plantarch\"\n{\n";
+    for (const GltfPlant& p : plantInfo) info[p.id] = &p;
     auto writePlant =
         [&](std::int32_t plant, const std::map<std::string, Group>& organs) {
             const auto it = info.find(plant);
@@ -214,6 +236,54 @@ void writeUSDA(const Context& context, const std::string& path, const UsdOptions
     for (const auto& [plant, organs] : plants)
         if (plant >= 0) writePlant(plant, organs);
     if (plants.count(-1)) writePlant(-1, plants.at(-1));
+}
+
+const char* kHeader =
+    "#usda 1.0\n(\n    defaultPrim = \"plantarch\"\n    doc = \"plantarch scene\"\n"
+    "    metersPerUnit = 1\n    upAxis = \"Z\"\n";
+
+}  // namespace
+
+void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
+    io::AtomicFile file(path);
+    Text out(file);
+    out << kHeader << ")\n\ndef Xform \"plantarch\"\n{\n";
+    writeScene(out, context, options.plants, options);
+    out << "}\n";
+    file.commit();
+}
+
+void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& path,
+               const UsdOptions& options, const AnimationOptions& animation) {
+    io::checkAnimation(frames, animation, path);
+    io::AtomicFile file(path);
+    Text out(file);
+    out << kHeader << "    startTimeCode = 0\n    endTimeCode = ";
+    out.integer(std::int64_t(frames.size() - 1)) << "\n    timeCodesPerSecond = ";
+    out.number(float(animation.framesPerSecond)) << "\n)\n\ndef Xform \"plantarch\"\n{\n";
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        std::string name = "day_" + text::formatDouble(frames[f].day);
+        for (char& c : name)
+            if (c == '.' || c == '-') c = '_';
+        out << (f ? "\n" : "") << "    def Xform " << quoted(name)
+            << " (\n        customData = {\n            double day = "
+            << text::formatDouble(frames[f].day) << "\n        }\n    )\n    {\n";
+        // Shown at time code f alone: hidden before (held from the first sample back) and
+        // after; token values are held, never interpolated.
+        out << "        token visibility.timeSamples = {\n";
+        if (f > 0) out << "            0: \"invisible\",\n";
+        out << "            ";
+        out.integer(std::int64_t(f)) << ": \"inherited\",\n";
+        if (f + 1 < frames.size()) {
+            out << "            ";
+            out.integer(std::int64_t(f + 1)) << ": \"invisible\",\n";
+        }
+        out << "        }\n";
+        out.indent("    ");
+        writeScene(out, *frames[f].context, frames[f].plants, options);
+        out.indent("");
+        out << "    }\n";
+    }
     out << "}\n";
     file.commit();
 }

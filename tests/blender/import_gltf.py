@@ -1,6 +1,7 @@
 """Run by Blender (blender -b --factory-startup --python import_gltf.py -- FILE): imports a
 glTF file with Blender's own importer and prints one JSON line with what it holds: triangles,
-mesh objects, and the names of the mesh attributes (labels show up as attributes)."""
+mesh objects, the names of the mesh attributes (labels show up as attributes) and, for an
+animated file, the triangles shown at each frame."""
 
 import json
 import sys
@@ -26,5 +27,28 @@ for obj in bpy.data.objects:
     mesh = obj.data
     triangles += sum(len(p.vertices) - 2 for p in mesh.polygons)
     attributes.update(a.name for a in mesh.attributes)
-print("PLANTARCH " + json.dumps({"triangles": triangles, "meshes": meshes,
-                                 "attributes": sorted(attributes)}))
+report = {"triangles": triangles, "meshes": meshes, "attributes": sorted(attributes)}
+
+
+def shown_triangles():
+    """Triangles of the meshes drawn now: world scale not zero."""
+    bpy.context.view_layer.update()
+    n = 0
+    for obj in bpy.data.objects:
+        if obj.type == "MESH" and abs(obj.matrix_world.determinant()) > 0:
+            n += sum(len(p.vertices) - 2 for p in obj.data.polygons)
+    return n
+
+
+# An animation as Blender plays it: the triangles shown at each key of its actions (the last
+# key ends the animation and is no frame of its own).
+keys = sorted({k.co[0] for action in bpy.data.actions for curve in action.fcurves
+               for k in curve.keyframe_points})
+if keys:
+    frames = []
+    for key in keys[:-1]:
+        whole = int(key // 1)
+        bpy.context.scene.frame_set(whole, subframe=key - whole)
+        frames.append(shown_triangles())
+    report["frames"] = frames
+print("PLANTARCH " + json.dumps(report))

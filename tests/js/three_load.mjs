@@ -1,6 +1,8 @@
 // Loads glTF files with three.js's GLTFLoader in headless Chromium (Debian's, driven by
-// puppeteer-core) and prints one JSON line per file: triangles, meshes, and the vertex
-// attributes three.js sees (the labels _PLANT_ID, _OBJECT_ID, _ORGAN among them).
+// puppeteer-core) and prints one JSON line per file: triangles, meshes, the vertex
+// attributes three.js sees (the labels _PLANT_ID, _OBJECT_ID, _ORGAN among them) and, for an
+// animated file, the triangles shown at each key time of its first animation played by an
+// AnimationMixer.
 // Usage: node three_load.mjs FILE...   (CHROMIUM overrides /usr/bin/chromium)
 import http from 'node:http';
 import { readFile } from 'node:fs/promises';
@@ -14,18 +16,43 @@ const page = `<!doctype html><script type="importmap">
 {"imports": {"three": "/node_modules/three/build/three.module.js",
              "three/addons/": "/node_modules/three/examples/jsm/"}}</script>
 <script type="module">
+import { AnimationMixer } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+const count = (g) => (g.index ? g.index.count : g.attributes.position.count) / 3;
+// Triangles of the meshes a viewer draws: visible, with a world scale that is not zero.
+function shownTriangles(scene) {
+  scene.updateMatrixWorld(true);
+  let n = 0;
+  scene.traverseVisible((o) => {
+    if (o.isMesh && Math.abs(o.matrixWorld.determinant()) > 0) n += count(o.geometry);
+  });
+  return n;
+}
 window.loadFile = (url) => new Promise((resolve, reject) => {
   new GLTFLoader().load(url, (gltf) => {
     let triangles = 0, meshes = 0; const attributes = new Set();
     gltf.scene.traverse((o) => {
       if (!o.isMesh) return;
       meshes++;
-      const g = o.geometry;
-      triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
-      Object.keys(g.attributes).forEach((a) => attributes.add(a));
+      triangles += count(o.geometry);
+      Object.keys(o.geometry.attributes).forEach((a) => attributes.add(a));
     });
-    resolve({ triangles, meshes, attributes: [...attributes].sort() });
+    const result = { triangles, meshes, attributes: [...attributes].sort() };
+    // An animation played as a viewer plays it: the triangles shown at each key time.
+    if (gltf.animations.length) {
+      const clip = gltf.animations[0];
+      const times = [...new Set(clip.tracks.flatMap((t) => [...t.times]))].sort((a, b) => a - b);
+      const mixer = new AnimationMixer(gltf.scene);
+      mixer.clipAction(clip).play();
+      result.animation = clip.name;
+      result.tracks = clip.tracks.length;
+      // The last key ends the clip (where a looping player starts over): not a frame.
+      result.frames = times.slice(0, -1).map((t) => {
+        mixer.setTime(t);
+        return shownTriangles(gltf.scene);
+      });
+    }
+    resolve(result);
   }, undefined, (e) => reject(String(e)));
 });
 window.ready = true;
