@@ -64,3 +64,31 @@ def test_usda_from_python_places_the_plant(arch, tmp_path):
     first = ctx.getMeshArrays(arch.getPlantObjectIDs(p, plantarch.OrganKind.leaf))["vertices"][0]
     x, y, z = leaf.attributes["points"]["value"][0]
     assert abs(x + 1 - first[0]) < 1e-6 and abs(y + 2 - first[1]) < 1e-6 and abs(z - first[2]) < 1e-6
+
+
+def test_growth_animation_shows_one_frame_per_time_code(arch, tmp_path):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 0)
+    path = tmp_path / "growth.usda"
+    arch.writeGrowthAnimation([p], 0, 20, 10, [str(path)], frame_rate=12)
+    assert arch.getPlantAge(p) == 20  # left at the last frame
+    layer, (root,) = usda.read(path)
+    assert layer["startTimeCode"] == 0 and layer["endTimeCode"] == 2
+    assert layer["timeCodesPerSecond"] == 12 and layer["upAxis"] == "Z"
+    assert [f.name for f in root.children] == ["day_0", "day_10", "day_20"]
+    for i, frame in enumerate(root.children):
+        assert frame.metadata["customData"]["day"] == 10 * i
+        samples = frame.attributes["visibility.timeSamples"]["value"]
+        # USD holds a token from its sample on, and the first sample before it.
+        def shown(code):
+            held = [t for t in sorted(samples) if t <= code] or [min(samples)]
+            return samples[held[-1]] == "inherited"
+        assert [shown(c) for c in (0, 1, 2)] == [c == i for c in (0, 1, 2)]
+        (plant,) = frame.children
+        assert plant.metadata["customData"]["age"] == 10 * i
+        triangles = sum(len(m.attributes["faceVertexCounts"]["value"]) for m in plant.children)
+        # Each frame is the plant as built at that age in a scene of its own.
+        other = plantarch.PlantArchitecture(plantarch.Context())
+        other.setSeed(arch.seed())
+        other.loadPlantModelFromLibrary("bean")
+        other.buildPlantInstanceFromLibrary((0, 0, 0), 10 * i)
+        assert triangles == other.getContext().getTriangleCount()

@@ -1,5 +1,6 @@
 """A reader for the subset of USD's text format (.usda) plantarch writes: prims with
-metadata, attributes with values, arrays, tuples, dictionaries and attribute metadata. It
+metadata, attributes with values or time samples, arrays, tuples, dictionaries and attribute
+metadata. It
 returns plain Python data so the tests can check structure, counts and labels."""
 
 import re
@@ -66,6 +67,18 @@ class Reader:
         self.take("}")
         return d
 
+    def time_samples(self):
+        """{ time: value, ... } as a dict from time code to value."""
+        samples = {}
+        self.take("{")
+        while self.peek() != "}":
+            time = float(self.take())
+            samples[time] = self.value()
+            if self.peek() == ",":
+                self.take()
+        self.take("}")
+        return samples
+
     def metadata(self):
         m = {}
         self.take("(")
@@ -98,7 +111,8 @@ class Reader:
             attr = {"type": kind, "value": None, "metadata": {}}
             if self.peek() == "=":
                 self.take()
-                attr["value"] = self.value()
+                attr["value"] = self.time_samples() if name.endswith(".timeSamples") \
+                    else self.value()
             if self.peek() == "(":
                 attr["metadata"] = self.metadata()
             p.attributes[name] = attr
