@@ -66,12 +66,13 @@ constexpr std::pair<const char*, RenderMode> kLabelModes[] = {{"organ", RenderMo
                                                               {"object", RenderMode::LabelObject}};
 
 RenderMode parseMode(const std::string& label) {
-    if (label.empty()) return RenderMode::Shaded;
+    if (label.empty() || label == "depth") return RenderMode::Shaded;
     std::string valid;
     for (const auto& [name, mode] : kLabelModes) {
         if (label == name) return mode;
         valid += (valid.empty() ? "" : ", ") + std::string(name);
     }
+    valid += ", depth";
     throw Error("unknown label mode",
                 {.parameter = "--label", .value = label, .validRange = valid});
 }
@@ -103,6 +104,13 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto cocoDir = std::filesystem::path(a.coco).parent_path();
     if (!a.coco.empty() && !cocoDir.empty() && !std::filesystem::is_directory(cocoDir))
         throw Error("cannot write: no such directory", {.file = a.coco});
+    std::string ext = std::filesystem::path(a.output).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const bool depth = a.label == "depth";
+    if (ext != ".png" && !(depth && ext == ".npy"))
+        throw Error(depth ? "a depth image is written as .npy (distances) or .png (a picture)"
+                          : "render writes a PNG picture",
+                    {.file = a.output, .value = ext, .validRange = depth ? ".npy, .png" : ".png"});
     RenderOptions o;
     o.width = a.width;
     o.height = a.height;
@@ -128,9 +136,18 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     RenderScene scene(ctx, o.scene);
     if (!o.camera.autoFrame && !hasTarget) o.camera.target = scene.bounds().center();
     const auto built = std::chrono::steady_clock::now();
-    const Image image = scene.render(o);
+    Image image;
+    if (depth) {
+        const DepthImage distances = scene.renderDepth(o);
+        if (ext == ".npy")
+            writeDepthNPY(distances, a.output);
+        else
+            image = depthPicture(distances);
+    } else {
+        image = scene.render(o);
+    }
     const auto rendered = std::chrono::steady_clock::now();
-    writePNG(image, a.output);
+    if (!image.rgb.empty()) writePNG(image, a.output);
     if (!a.coco.empty()) {
         RenderOptions mask = o;
         mask.mode = RenderMode::LabelObject;
@@ -151,7 +168,9 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.description("Render an OBJ file to a PNG (shaded preview or segmentation mask)");
     auto args = std::make_shared<RenderArgs>();
     app.add_option("input", args->input, "OBJ file to render")->required();
-    app.add_option("-o,--output", args->output, "PNG file to write")->required();
+    app.add_option("-o,--output", args->output,
+                   "PNG file to write (with --label depth: .npy distances or a .png picture)")
+        ->required();
     app.add_option("--width", args->width, "Image width in pixels")
         ->check(numberCheck("--width", "a width in pixels", 1, 16384, true, "1 to 16384"))
         ->capture_default_str();
@@ -164,7 +183,8 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.add_option("--fov", args->fov, "Vertical field of view in degrees (default 35)")
         ->check(numberCheck("--fov", "a field of view", 0.01, 170.0, false, "0.01 to 170 degrees"));
     app.add_option("--label", args->label,
-                   "Segmentation mask instead of a shaded image: organ or object");
+                   "Label image instead of a shaded one: organ (a colour per organ kind), object "
+                   "(an instance mask, a colour per object) or depth (metres along the view axis)");
     app.add_option("--coco", args->coco,
                    "Also write COCO-style JSON of the objects in view (categories: organ kinds; "
                    "masks as RLE; bounding boxes in pixels)");

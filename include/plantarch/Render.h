@@ -68,6 +68,17 @@ struct Image {
     }
 };
 
+/// What a depth camera sees: per pixel (rows top to bottom) the distance from the eye along
+/// the view axis to the first surface hit through the pixel's centre, in metres; 0 where the
+/// ray hits nothing. The ground plane counts as a surface when RenderOptions::groundPlane.
+struct DepthImage {
+    int width = 0;
+    int height = 0;
+    std::vector<float> depth;  ///< width * height values
+
+    float at(int x, int y) const { return depth[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+};
+
 /// A pinhole camera. With autoFrame the eye and target are computed from the scene's bounding
 /// box (visible objects): the camera looks from (azimuthDeg, elevationDeg) and stands as close
 /// as it can while the whole box fits in the frame with `margin` to spare on each side.
@@ -171,6 +182,9 @@ public:
 
     /// Renders with OpenMP over rows. Throws plantarch::Error on invalid options.
     Image render(const RenderOptions& options) const;
+    /// The depth image of the same camera (one ray per pixel centre; mode, samples and lights
+    /// do not matter). Throws plantarch::Error on invalid options.
+    DepthImage renderDepth(const RenderOptions& options) const;
     /// The camera render() would use with these options.
     CameraFrame camera(const RenderOptions& options) const;
 
@@ -185,6 +199,16 @@ private:
 
 /// One-shot: builds a RenderScene from `context` with options.scene and renders it.
 Image render(const Context& context, const RenderOptions& options = {});
+
+/// One-shot depth image: builds a RenderScene from `context` and calls renderDepth.
+DepthImage renderDepth(const Context& context, const RenderOptions& options = {});
+
+/// Writes a depth image as a NumPy .npy file (float32, shape (height, width), metres; 0 where
+/// nothing was hit), atomically, for numpy.load.
+void writeDepthNPY(const DepthImage& depth, const std::string& path);
+/// A depth image as a picture: grey from white (nearest surface) to dark grey (farthest),
+/// black where nothing was hit. For looking at; the .npy holds the distances.
+Image depthPicture(const DepthImage& depth);
 
 /// Writes `image` as a PNG, atomically (temporary file in the same folder, then rename).
 /// Throws plantarch::Error naming the path when it cannot be written.

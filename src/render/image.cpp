@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -105,6 +106,46 @@ void writePNG(const Image& image, const std::string& path) {
 std::string encodePNG(const Image& image) {
     const std::vector<std::uint8_t> bytes = pngBytes(image, "");
     return std::string(bytes.begin(), bytes.end());
+}
+
+void writeDepthNPY(const DepthImage& depth, const std::string& path) {
+    if (depth.width <= 0 || depth.height <= 0 ||
+        depth.depth.size() != std::size_t(depth.width) * std::size_t(depth.height))
+        throw Error("depth image has no pixels or a wrong buffer size", {.file = path});
+    // NPY 1.0: magic, version, header length, then a Python dict padded with spaces to a
+    // multiple of 64 bytes (counting the 10 bytes before it) and ended by a newline.
+    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
+                         std::to_string(depth.height) + ", " + std::to_string(depth.width) +
+                         "), }";
+    header.append(63 - (10 + header.size()) % 64, ' ');
+    header += '\n';
+    const std::size_t dataBytes = depth.depth.size() * sizeof(float);
+    std::vector<std::uint8_t> bytes(10 + header.size() + dataBytes);
+    const std::uint8_t magic[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0,
+                                    std::uint8_t(header.size() & 0xFF),
+                                    std::uint8_t(header.size() >> 8)};
+    std::memcpy(bytes.data(), magic, sizeof magic);
+    std::memcpy(bytes.data() + 10, header.data(), header.size());
+    std::memcpy(bytes.data() + 10 + header.size(), depth.depth.data(), dataBytes);
+    writeFileAtomically(path, bytes);
+}
+
+Image depthPicture(const DepthImage& depth) {
+    float lo = std::numeric_limits<float>::max(), hi = 0.0f;
+    for (float d : depth.depth)
+        if (d > 0.0f) {
+            lo = std::min(lo, d);
+            hi = std::max(hi, d);
+        }
+    Image image(depth.width, depth.height);
+    const float span = hi > lo ? hi - lo : 1.0f;
+    for (std::size_t i = 0; i < depth.depth.size(); ++i) {
+        const float d = depth.depth[i];
+        if (!(d > 0.0f)) continue;
+        const auto grey = std::uint8_t(std::lround(255.0f - 195.0f * (d - lo) / span));
+        image.rgb[3 * i] = image.rgb[3 * i + 1] = image.rgb[3 * i + 2] = grey;
+    }
+    return image;
 }
 
 Image readImage(const std::string& path) {

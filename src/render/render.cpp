@@ -411,36 +411,7 @@ std::array<std::uint8_t, 3> labelColor(const Setup& s, const Hit& hit, RenderMod
     return organLabelColors()[obj.organ].rgb;
 }
 
-}  // namespace
-
-// ---- RenderScene -------------------------------------------------------------------------
-
-RenderScene::RenderScene(const Context& context, const RenderSceneOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-    render_detail::buildScene(impl_->data, context, options);
-}
-
-RenderScene::~RenderScene() = default;
-RenderScene::RenderScene(RenderScene&&) noexcept = default;
-RenderScene& RenderScene::operator=(RenderScene&&) noexcept = default;
-
-const AABB& RenderScene::bounds() const {
-    return impl_->data.bounds;
-}
-std::size_t RenderScene::triangleCount() const {
-    return impl_->data.triangles;
-}
-
-CameraFrame RenderScene::camera(const RenderOptions& o) const {
-    validate(o);
-    const float aspect = float(o.width) / float(o.height);
-    if (o.camera.autoFrame) return autoFrame(impl_->data, o.camera, aspect);
-    return {o.camera.eye, o.camera.target, o.camera.up, o.camera.fovDeg};
-}
-
-Image RenderScene::render(const RenderOptions& o) const {
-    const CameraFrame cam = camera(o);  // validates
-    const SceneData& data = impl_->data;
+Setup makeSetup(const SceneData& data, const RenderOptions& o, const CameraFrame& cam) {
     const AABB box = framedBox(data.bounds);
     const float radius = std::max(0.5f * glm::length(box.extent()), 1e-3f);
 
@@ -481,7 +452,38 @@ Image RenderScene::render(const RenderOptions& o) const {
     s.groundRadiance = s.groundAlbedo * (s.sunIntensity * std::max(0.0f, s.sun.z) +
                                          s.skyIntensity * glm::mix(s.horizon, s.zenith, 0.6f));
     s.seed = o.seed;
+    return s;
+}
 
+}  // namespace
+
+// ---- RenderScene -------------------------------------------------------------------------
+
+RenderScene::RenderScene(const Context& context, const RenderSceneOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+    render_detail::buildScene(impl_->data, context, options);
+}
+
+RenderScene::~RenderScene() = default;
+RenderScene::RenderScene(RenderScene&&) noexcept = default;
+RenderScene& RenderScene::operator=(RenderScene&&) noexcept = default;
+
+const AABB& RenderScene::bounds() const {
+    return impl_->data.bounds;
+}
+std::size_t RenderScene::triangleCount() const {
+    return impl_->data.triangles;
+}
+
+CameraFrame RenderScene::camera(const RenderOptions& o) const {
+    validate(o);
+    const float aspect = float(o.width) / float(o.height);
+    if (o.camera.autoFrame) return autoFrame(impl_->data, o.camera, aspect);
+    return {o.camera.eye, o.camera.target, o.camera.up, o.camera.fovDeg};
+}
+
+Image RenderScene::render(const RenderOptions& o) const {
+    const Setup s = makeSetup(impl_->data, o, camera(o));  // camera() validates
     Image image(o.width, o.height);
     const bool label = o.mode != RenderMode::Shaded;
     const int grid = std::max(1, int(std::sqrt(float(s.spp))));
@@ -532,6 +534,35 @@ Image RenderScene::render(const RenderOptions& o) const {
         if (o.progress) o.progress("rendering", double(y1) / double(s.height));
     }
     return image;
+}
+
+DepthImage RenderScene::renderDepth(const RenderOptions& o) const {
+    const Setup s = makeSetup(impl_->data, o, camera(o));
+    DepthImage depth;
+    depth.width = o.width;
+    depth.height = o.height;
+    depth.depth.assign(std::size_t(o.width) * std::size_t(o.height), 0.0f);
+    const vec3 axis = glm::normalize(s.forward);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int y = 0; y < s.height; ++y) {
+        RTCIntersectContext ictx;
+        rtcInitIntersectContext(&ictx);
+        for (int x = 0; x < s.width; ++x) {
+            const float sx = 2.0f * (float(x) + 0.5f) / float(s.width) - 1.0f;
+            const float sy = 1.0f - 2.0f * (float(y) + 0.5f) / float(s.height);
+            const vec3 dir = glm::normalize(s.forward + sx * s.right + sy * s.up);
+            const Hit hit = intersect(s, ictx, s.eye, dir);
+            if (hit.found)
+                depth.depth[std::size_t(y) * std::size_t(s.width) + std::size_t(x)] =
+                    hit.t * glm::dot(dir, axis);
+        }
+    }
+    return depth;
+}
+
+DepthImage renderDepth(const Context& context, const RenderOptions& options) {
+    validate(options);
+    return RenderScene(context, options.scene).renderDepth(options);
 }
 
 Image render(const Context& context, const RenderOptions& options) {
