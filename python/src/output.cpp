@@ -182,6 +182,37 @@ void bindOutput(py::module_& m) {
         "Renders the Context, framed automatically, as a height x width x 3 uint8 array. mode: "
         "'shaded', 'organ' (label colours per organ) or 'object' (one colour per object ID).");
     m.def(
+        "renderDepth",
+        [](const Context& c, int width, int height, float azimuth, float elevation, float fov,
+           bool ground) {
+            RenderOptions o;
+            o.width = width;
+            o.height = height;
+            o.camera.azimuthDeg = azimuth;
+            o.camera.elevationDeg = elevation;
+            o.camera.fovDeg = fov;
+            o.groundPlane = ground;
+            auto* owned = new DepthImage;
+            {
+                py::gil_scoped_release release;
+                try {
+                    *owned = renderDepth(c, o);
+                } catch (...) {
+                    delete owned;
+                    throw;
+                }
+            }
+            py::capsule owner(owned, [](void* p) { delete static_cast<DepthImage*>(p); });
+            return py::array_t<float>({std::size_t(owned->height), std::size_t(owned->width)},
+                                      {std::size_t(owned->width) * sizeof(float), sizeof(float)},
+                                      owned->depth.data(), owner);
+        },
+        py::arg("context"), py::arg("width") = 640, py::arg("height") = 480,
+        py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f, py::arg("fov") = 35.0f,
+        py::arg("ground") = true,
+        "The depth image of the camera render() would use: a height x width float32 array of "
+        "distances along the view axis in metres, 0 where nothing is hit.");
+    m.def(
         "writePNG",
         [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a,
            const std::string& path) { writePNG(imageFrom(a), path); },

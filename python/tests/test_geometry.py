@@ -154,3 +154,16 @@ def test_qsm_cylinders_from_python(arch, tmp_path):
     assert rows[0][:3] == ["id", "parent", "plant"]
     internodes = sum(arch.getShootNodeCount(p, s) for s in range(arch.getShootCount(p)))
     assert len(rows) - 1 == internodes
+
+
+def test_depth_image_agrees_with_the_object_mask(arch):
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    ctx = arch.getContext()
+    depth = plantarch.renderDepth(ctx, width=96, height=72, ground=False)
+    mask = plantarch.render(ctx, width=96, height=72, mode="object", ground=False)
+    assert depth.shape == (72, 96) and depth.dtype == np.float32
+    seen = mask.any(axis=2)
+    # The same rays: every pixel that sees an object has a distance, and no other pixel.
+    assert ((depth > 0) == seen).all()
+    assert seen.sum() > 500
+    assert 0.05 < depth[depth > 0].min() < depth.max() < 10
