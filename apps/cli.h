@@ -30,6 +30,9 @@ struct GlobalOptions {
     std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
 };
 
+/// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
+vec3 parseVec3(const std::string& text, const char* option);
+
 /// Adds --image-size WxH (PNG output size) to a subcommand, stored in `global`.
 void addImageSizeOption(CLI::App& app, GlobalOptions& global);
 

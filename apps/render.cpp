@@ -34,33 +34,6 @@ struct RenderArgs {
     int samples = 0;  // 0: the renderer's default
 };
 
-/// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
-vec3 parseVec3(const std::string& text, const char* option) {
-    vec3 v(0.0f);
-    const char* p = text.data();
-    const char* end = text.data() + text.size();
-    for (int i = 0; i < 3; ++i) {
-        while (p < end && *p == ' ') ++p;
-        const auto [next, ec] = std::from_chars(p, end, v[i]);
-        if (ec != std::errc() || !std::isfinite(v[i]))
-            throw Error("not a vector",
-                        {.parameter = option, .value = text, .validRange = "three numbers x,y,z"});
-        p = next;
-        while (p < end && *p == ' ') ++p;
-        if (i < 2) {
-            if (p == end || *p != ',')
-                throw Error(
-                    "not a vector",
-                    {.parameter = option, .value = text, .validRange = "three numbers x,y,z"});
-            ++p;
-        }
-    }
-    if (p != end)
-        throw Error("not a vector",
-                    {.parameter = option, .value = text, .validRange = "three numbers x,y,z"});
-    return v;
-}
-
 // The values of --label and the modes they select.
 constexpr std::pair<const char*, RenderMode> kLabelModes[] = {{"organ", RenderMode::LabelOrgan},
                                                               {"object", RenderMode::LabelObject}};

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -73,6 +75,32 @@ void prepareSceneOutputs(const std::vector<std::string>& paths) {
         if (!dir.empty()) std::filesystem::create_directories(dir, ec);
         if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
     }
+}
+
+vec3 parseVec3(const std::string& text, const char* option) {
+    vec3 v(0.0f);
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    for (int i = 0; i < 3; ++i) {
+        while (p < end && *p == ' ') ++p;
+        const auto [next, ec] = std::from_chars(p, end, v[i]);
+        if (ec != std::errc() || !std::isfinite(v[i]))
+            throw Error("not a vector",
+                        {.parameter = option, .value = text, .validRange = "three numbers x,y,z"});
+        p = next;
+        while (p < end && *p == ' ') ++p;
+        if (i < 2) {
+            if (p == end || *p != ',')
+                throw Error(
+                    "not a vector",
+                    {.parameter = option, .value = text, .validRange = "three numbers x,y,z"});
+            ++p;
+        }
+    }
+    if (p != end)
+        throw Error("not a vector",
+                    {.parameter = option, .value = text, .validRange = "three numbers x,y,z"});
+    return v;
 }
 
 void addImageSizeOption(CLI::App& app, GlobalOptions& global) {

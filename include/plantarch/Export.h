@@ -223,6 +223,10 @@ struct PointCloud {
     std::vector<std::int32_t> plantID;  ///< -1 for objects of no plant
     std::vector<ObjectID> objectID;
     std::vector<std::uint8_t> organ;  ///< index into kOrganLabels
+    /// Scans only (empty for surface samples): distance from the scanner to the point (m,
+    /// with the scan's range noise) and the index of the scanner that saw it.
+    std::vector<float> range;
+    std::vector<std::uint16_t> scanner;
 };
 
 /// Points drawn uniformly by area over the (visible) triangles of the Context, each with its
@@ -231,8 +235,15 @@ struct PointCloud {
 PointCloud samplePoints(const Context& context, const PointSampleOptions& options = {});
 
 /// Writes a point cloud as a binary PLY of vertices (x y z nx ny nz plant_id object_id organ,
-/// the organ table in the header's comments), atomically.
+/// and range scanner for a scan; the organ table in the header's comments), atomically.
+/// Throws plantarch::Error naming the file when the arrays differ in length.
 void writePointCloudPLY(const PointCloud& cloud, const std::string& path);
+
+/// Writes a point cloud as a NumPy .npz archive (numpy.load), atomically: arrays positions
+/// (N x 3 float32), normals (N x 3 float32), plant_id (int32), object_id (uint32), organ
+/// (uint8), organ_labels (the names of kOrganLabels), and for a scan range (float32) and
+/// scanner (uint16). Throws plantarch::Error as writePointCloudPLY does.
+void writePointCloudNPZ(const PointCloud& cloud, const std::string& path);
 
 /// Smooth per-vertex normals of one object (as the OBJ and PLY writers write them): the
 /// area-weighted sum of the normals of the triangles around each vertex, normalized; (0, 0, 1)

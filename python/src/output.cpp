@@ -9,6 +9,7 @@
 #include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
+#include "plantarch/Scan.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch::python {
@@ -21,6 +22,26 @@ py::array_t<std::uint8_t> imageArray(Image&& image) {
     return py::array_t<std::uint8_t>(
         {std::size_t(owned->height), std::size_t(owned->width), std::size_t(3)},
         {std::size_t(owned->width) * 3, std::size_t(3), std::size_t(1)}, owned->rgb.data(), owner);
+}
+
+/// A point cloud as numpy arrays viewing one owned copy.
+py::dict cloudArrays(PointCloud&& cloud) {
+    auto* owned = new PointCloud(std::move(cloud));
+    py::capsule owner(owned, [](void* p) { delete static_cast<PointCloud*>(p); });
+    const std::size_t n = owned->positions.size();
+    py::dict out;
+    out["positions"] =
+        py::array_t<float>({n, std::size_t(3)}, {12, 4}, &owned->positions.data()->x, owner);
+    out["normals"] =
+        py::array_t<float>({n, std::size_t(3)}, {12, 4}, &owned->normals.data()->x, owner);
+    out["plant_id"] = py::array_t<std::int32_t>({n}, {4}, owned->plantID.data(), owner);
+    out["object_id"] = py::array_t<std::uint32_t>({n}, {4}, owned->objectID.data(), owner);
+    out["organ"] = py::array_t<std::uint8_t>({n}, {1}, owned->organ.data(), owner);
+    if (!owned->range.empty()) {
+        out["range"] = py::array_t<float>({n}, {4}, owned->range.data(), owner);
+        out["scanner"] = py::array_t<std::uint16_t>({n}, {2}, owned->scanner.data(), owner);
+    }
+    return out;
 }
 
 Image imageFrom(const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
@@ -113,24 +134,40 @@ void bindOutput(py::module_& m) {
                 py::gil_scoped_release release;
                 cloud = samplePoints(c, {points, seed, includeHidden});
             }
-            auto* owned = new PointCloud(std::move(cloud));
-            py::capsule owner(owned, [](void* p) { delete static_cast<PointCloud*>(p); });
-            const std::size_t n = owned->positions.size();
-            py::dict out;
-            out["positions"] = py::array_t<float>({n, std::size_t(3)}, {12, 4},
-                                                  &owned->positions.data()->x, owner);
-            out["normals"] =
-                py::array_t<float>({n, std::size_t(3)}, {12, 4}, &owned->normals.data()->x, owner);
-            out["plant_id"] = py::array_t<std::int32_t>({n}, {4}, owned->plantID.data(), owner);
-            out["object_id"] = py::array_t<std::uint32_t>({n}, {4}, owned->objectID.data(), owner);
-            out["organ"] = py::array_t<std::uint8_t>({n}, {1}, owned->organ.data(), owner);
-            return out;
+            return cloudArrays(std::move(cloud));
         },
         py::arg("context"), py::arg("points") = 100000, py::arg("seed") = 0,
         py::arg("include_hidden") = false,
         "A labelled point cloud: `points` points drawn uniformly by area over the visible "
         "triangles, as numpy arrays positions (N x 3), normals (N x 3), plant_id, object_id and "
         "organ (an index into ORGAN_LABELS). Same seed, same points; numpy.savez writes them.");
+    m.def(
+        "scan",
+        [](const Context& c, const std::vector<vec3>& scanners, float resolution,
+           std::pair<float, float> zenith, std::pair<float, float> azimuth, float noise,
+           float maxRange, std::uint64_t seed) {
+            ScanOptions o;
+            for (const vec3& at : scanners)
+                o.scanners.push_back({at, zenith.first, zenith.second, azimuth.first,
+                                      azimuth.second, resolution});
+            o.rangeNoise = noise;
+            o.maxRange = maxRange;
+            o.seed = seed;
+            PointCloud cloud;
+            {
+                py::gil_scoped_release release;
+                cloud = scan(c, o);
+            }
+            return cloudArrays(std::move(cloud));
+        },
+        py::arg("context"), py::arg("scanners"), py::arg("resolution") = 0.1f,
+        py::arg("zenith") = std::pair<float, float>(30.0f, 150.0f),
+        py::arg("azimuth") = std::pair<float, float>(0.0f, 360.0f), py::arg("noise") = 0.0f,
+        py::arg("max_range") = 100.0f, py::arg("seed") = 0,
+        "A simulated terrestrial LiDAR scan: rays from each scanner position (x, y, z) every "
+        "`resolution` degrees over the zenith (from straight up) and azimuth (from +x) ranges; "
+        "the first hit of each, as numpy arrays positions, normals (toward the scanner), "
+        "plant_id, object_id, organ, range (m, with Gaussian noise of sd `noise`) and scanner.");
     m.def(
         "writePointCloudPLY",
         [](const Context& c, const std::string& path, std::size_t points, std::uint64_t seed) {

@@ -1,11 +1,13 @@
 """Geometry as numpy arrays that view the C++ buffer."""
 
 import resource
+import subprocess
 
 import numpy as np
 import pytest
 
 import plantarch
+from conftest import cli
 
 
 def test_arrays_view_one_buffer_and_agree_with_the_context(arch):
@@ -167,3 +169,30 @@ def test_depth_image_agrees_with_the_object_mask(arch):
     assert ((depth > 0) == seen).all()
     assert seen.sum() > 500
     assert 0.05 < depth[depth > 0].min() < depth.max() < 10
+
+
+def test_scan_from_python_and_the_command_line_npz(arch, tmp_path):
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    ctx = arch.getContext()
+    scanners = [(0.8, 0, 0.4), (-0.8, 0.2, 0.4)]
+    cloud = plantarch.scan(ctx, scanners, resolution=0.5, noise=0.0)
+    n = len(cloud["positions"])
+    assert n > 500 and cloud["range"].shape == (n,) and set(cloud["scanner"]) == {0, 1}
+    origins = np.array(scanners, dtype=np.float32)[cloud["scanner"]]
+    distances = np.linalg.norm(cloud["positions"] - origins, axis=1)
+    assert np.allclose(distances, cloud["range"], atol=1e-5)
+    assert set(cloud["organ"]) <= set(range(len(plantarch.ORGAN_LABELS)))
+    # The command line scans the same plant from its file into an .npz numpy reads.
+    xml, npz = tmp_path / "bean.xml", tmp_path / "scan.npz"
+    arch.writePlantStructureXML(arch.getAllPlantIDs(), str(xml))
+    subprocess.run([cli(), "scan", str(xml), "--scanner", "0.8,0,0.4", "--scanner",
+                    "-0.8,0.2,0.4", "--resolution", "0.5", "-o", str(npz)], check=True,
+                   capture_output=True)
+    saved = np.load(npz)
+    assert saved["positions"].shape == (n, 3)
+    # The same geometry (object IDs are given anew when a file is read).
+    assert np.array_equal(saved["range"], cloud["range"])
+    assert np.array_equal(saved["organ"], cloud["organ"])
+    assert [s.decode() for s in saved["organ_labels"]] == list(plantarch.ORGAN_LABELS)
+    with pytest.raises(ValueError, match="resolution of scanner 0 = 20: out of range"):
+        plantarch.scan(ctx, scanners, resolution=20)

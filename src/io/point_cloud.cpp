@@ -2,7 +2,10 @@
 // the face's normal and its object's plant, object and organ labels, written as a binary PLY
 // of vertices only. Deterministic: one random stream from the seed, one pass.
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -90,18 +93,36 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
     return cloud;
 }
 
+namespace {
+
+// Every array holds one entry per point (range and scanner: none or all).
+bool scanned(const PointCloud& cloud, const std::string& path) {
+    const std::size_t n = cloud.positions.size();
+    const bool scan = !cloud.range.empty() || !cloud.scanner.empty();
+    if (cloud.normals.size() != n || cloud.plantID.size() != n || cloud.objectID.size() != n ||
+        cloud.organ.size() != n || (scan && (cloud.range.size() != n || cloud.scanner.size() != n)))
+        throw Error("the point cloud's arrays differ in length", {.file = path});
+    return scan;
+}
+
+}  // namespace
+
 void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
+    const bool scan = scanned(cloud, path);
     io::AtomicFile out(path);
     std::string h = "ply\nformat binary_little_endian 1.0\n";
-    h += "comment plantarch point cloud: per point plant_id (-1: none), object_id, organ label\n";
+    h += "comment plantarch point cloud: per point plant_id (-1: none), object_id, organ label";
+    h += scan ? ", range (m) and scanner index\n" : "\n";
     for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
         h += "comment organ_label " + std::to_string(i) + " " + std::string(kOrganLabels[i]) + "\n";
     h += "element vertex " + std::to_string(cloud.positions.size()) + "\n";
     h += "property float x\nproperty float y\nproperty float z\n";
     h += "property float nx\nproperty float ny\nproperty float nz\n";
-    h += "property int plant_id\nproperty uint object_id\nproperty uchar organ\nend_header\n";
+    h += "property int plant_id\nproperty uint object_id\nproperty uchar organ\n";
+    if (scan) h += "property float range\nproperty ushort scanner\n";
+    h += "end_header\n";
     out.write(h);
-    constexpr std::size_t kBytes = 6 * 4 + 4 + 4 + 1;
+    const std::size_t kBytes = 6 * 4 + 4 + 4 + 1 + (scan ? 6 : 0);
     for (std::size_t first = 0; first < cloud.positions.size();) {
         const std::size_t n =
             std::min(io::AtomicFile::kMaxReserve / kBytes, cloud.positions.size() - first);
@@ -112,11 +133,176 @@ void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
             std::memcpy(p + 24, &cloud.plantID[i], 4);
             std::memcpy(p + 28, &cloud.objectID[i], 4);
             p[32] = char(cloud.organ[i]);
+            if (scan) {
+                std::memcpy(p + 33, &cloud.range[i], 4);
+                std::memcpy(p + 37, &cloud.scanner[i], 2);
+            }
             p += kBytes;
         }
         out.advance(p);
         first += n;
     }
+    out.commit();
+}
+
+namespace {
+
+std::uint32_t crc32(const std::string& bytes) {
+    static const auto table = [] {
+        std::array<std::uint32_t, 256> t{};
+        for (std::uint32_t i = 0; i < 256; ++i) {
+            std::uint32_t c = i;
+            for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+            t[i] = c;
+        }
+        return t;
+    }();
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (unsigned char b : bytes) c = table[(c ^ b) & 0xFF] ^ (c >> 8);
+    return c ^ 0xFFFFFFFFu;
+}
+
+// One .npy file: NPY 1.0 header (padded to 64 bytes) and the array's bytes.
+std::string npy(const std::string& descr, const std::string& shape, const void* data,
+                std::size_t bytes) {
+    std::string header =
+        fmt::format("{{'descr': '{}', 'fortran_order': False, 'shape': {}, }}", descr, shape);
+    header.append(63 - (10 + header.size()) % 64, ' ');
+    header += '\n';
+    std::string out = "\x93NUMPY";
+    out += char(1);
+    out += char(0);
+    out += char(header.size() & 0xFF);
+    out += char(header.size() >> 8);
+    out += header;
+    out.append(static_cast<const char*>(data), bytes);
+    return out;
+}
+
+void put16(std::string& s, std::uint32_t v) {
+    s += char(v & 0xFF);
+    s += char((v >> 8) & 0xFF);
+}
+void put32(std::string& s, std::uint32_t v) {
+    put16(s, v & 0xFFFF);
+    put16(s, v >> 16);
+}
+
+}  // namespace
+
+void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
+    const bool scan = scanned(cloud, path);
+    const std::size_t n = cloud.positions.size();
+    const std::string rows = fmt::format("({},)", n), rows3 = fmt::format("({}, 3)", n);
+    std::vector<std::pair<std::string, std::string>> arrays = {
+        {"positions", npy("<f4", rows3, cloud.positions.data(), n * 12)},
+        {"normals", npy("<f4", rows3, cloud.normals.data(), n * 12)},
+        {"plant_id", npy("<i4", rows, cloud.plantID.data(), n * 4)},
+        {"object_id", npy("<u4", rows, cloud.objectID.data(), n * 4)},
+        {"organ", npy("|u1", rows, cloud.organ.data(), n)},
+    };
+    std::size_t longest = 0;
+    for (std::string_view name : kOrganLabels) longest = std::max(longest, name.size());
+    std::string names;
+    for (std::string_view name : kOrganLabels) {
+        names += name;
+        names.append(longest - name.size(), '\0');
+    }
+    arrays.push_back({"organ_labels", npy(fmt::format("|S{}", longest),
+                                          fmt::format("({},)", kOrganLabels.size()), names.data(),
+                                          names.size())});
+    if (scan) {
+        arrays.push_back({"range", npy("<f4", rows, cloud.range.data(), n * 4)});
+        arrays.push_back({"scanner", npy("<u2", rows, cloud.scanner.data(), n * 2)});
+    }
+    // A zip archive of the .npy files, stored (numpy's savez writes the same), with ZIP64
+    // sizes so clouds past 4 GB are fine.
+    io::AtomicFile out(path);
+    std::string directory;
+    std::uint64_t offset = 0;
+    for (const auto& [name, data] : arrays) {
+        const std::string file = name + ".npy";
+        const std::uint32_t crc = crc32(data);
+        std::string extra;  // ZIP64: sizes and offset
+        put16(extra, 1);
+        put16(extra, 24);
+        for (std::uint64_t v : {std::uint64_t(data.size()), std::uint64_t(data.size()), offset}) {
+            put32(extra, std::uint32_t(v & 0xFFFFFFFFu));
+            put32(extra, std::uint32_t(v >> 32));
+        }
+        std::string local;
+        put32(local, 0x04034b50u);
+        put16(local, 45);  // version needed: ZIP64
+        put16(local, 0);   // flags
+        put16(local, 0);   // stored
+        put16(local, 0);   // time
+        put16(local, 0x21);  // date: 1980-01-01
+        put32(local, crc);
+        put32(local, 0xFFFFFFFFu);
+        put32(local, 0xFFFFFFFFu);
+        put16(local, std::uint32_t(file.size()));
+        put16(local, 20);
+        local += file;
+        put16(local, 1);  // ZIP64 extra: the two sizes
+        put16(local, 16);
+        for (int k = 0; k < 2; ++k) {
+            put32(local, std::uint32_t(data.size() & 0xFFFFFFFFu));
+            put32(local, std::uint32_t(std::uint64_t(data.size()) >> 32));
+        }
+        out.write(local);
+        out.write(data);
+        std::string entry;
+        put32(entry, 0x02014b50u);
+        put16(entry, 45);
+        put16(entry, 45);
+        put16(entry, 0);
+        put16(entry, 0);
+        put16(entry, 0);
+        put16(entry, 0x21);
+        put32(entry, crc);
+        put32(entry, 0xFFFFFFFFu);
+        put32(entry, 0xFFFFFFFFu);
+        put16(entry, std::uint32_t(file.size()));
+        put16(entry, std::uint32_t(extra.size()));
+        put16(entry, 0);  // comment
+        put16(entry, 0);  // disk
+        put16(entry, 0);  // internal attributes
+        put32(entry, 0);  // external attributes
+        put32(entry, 0xFFFFFFFFu);  // offset: in the ZIP64 extra
+        entry += file;
+        entry += extra;
+        directory += entry;
+        offset += local.size() + data.size();
+    }
+    const std::uint64_t directoryAt = offset, count = arrays.size();
+    std::string end;
+    put32(end, 0x06064b50u);  // ZIP64 end of central directory
+    put32(end, 44);
+    put32(end, 0);
+    put16(end, 45);
+    put16(end, 45);
+    put32(end, 0);
+    put32(end, 0);
+    for (std::uint64_t v : {count, count, std::uint64_t(directory.size()), directoryAt}) {
+        put32(end, std::uint32_t(v & 0xFFFFFFFFu));
+        put32(end, std::uint32_t(v >> 32));
+    }
+    put32(end, 0x07064b50u);  // its locator
+    put32(end, 0);
+    const std::uint64_t endAt = directoryAt + directory.size();
+    put32(end, std::uint32_t(endAt & 0xFFFFFFFFu));
+    put32(end, std::uint32_t(endAt >> 32));
+    put32(end, 1);
+    put32(end, 0x06054b50u);  // the classic end record, pointing at ZIP64
+    put16(end, 0xFFFF);
+    put16(end, 0xFFFF);
+    put16(end, 0xFFFF);
+    put16(end, 0xFFFF);
+    put32(end, 0xFFFFFFFFu);
+    put32(end, 0xFFFFFFFFu);
+    put16(end, 0);
+    out.write(directory);
+    out.write(end);
     out.commit();
 }
 

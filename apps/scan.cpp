@@ -1,0 +1,152 @@
+// plantarch scan INPUT --scanner x,y,z [--scanner ...] [--resolution DEG] [--zenith A:B]
+//                 [--azimuth A:B] [--noise M] [--max-range M] -o scan.ply|scan.npz
+// A simulated terrestrial LiDAR scan of plants (a plant structure file or plant strings) or of
+// any OBJ scene: the first hit of every ray, labelled, with its range and scanner.
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/Scan.h"
+
+namespace plantarch::cli {
+
+namespace {
+
+struct ScanArgs {
+    std::string input, species;
+    std::vector<std::string> scanners, outputs;
+    float resolution = 0.1f;
+    std::string zenith = "30:150", azimuth = "0:360";
+    float noise = 0.0f, maxRange = 100.0f;
+};
+
+// "A:B", two finite numbers.
+std::pair<float, float> parseSpan(const std::string& text, const char* option) {
+    const auto colon = text.find(':');
+    try {
+        if (colon != std::string::npos) {
+            std::size_t a = 0, b = 0;
+            const float first = std::stof(text.substr(0, colon), &a);
+            const float second = std::stof(text.substr(colon + 1), &b);
+            if (a == colon && b == text.size() - colon - 1 && std::isfinite(first) &&
+                std::isfinite(second))
+                return {first, second};
+        }
+    } catch (const std::exception&) {
+    }
+    throw Error("expected two angles in degrees joined by ':'",
+                {.parameter = option, .value = text, .validRange = "e.g. 30:150"});
+}
+
+std::string extensionOf(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+int run(const ScanArgs& a, const GlobalOptions& g) {
+    ScanOptions o;
+    const auto [zenithMin, zenithMax] = parseSpan(a.zenith, "--zenith");
+    const auto [azimuthMin, azimuthMax] = parseSpan(a.azimuth, "--azimuth");
+    for (const std::string& text : a.scanners) {
+        Scanner s;
+        s.origin = parseVec3(text, "--scanner");
+        s.resolution = a.resolution;
+        s.zenithMin = zenithMin;
+        s.zenithMax = zenithMax;
+        s.azimuthMin = azimuthMin;
+        s.azimuthMax = azimuthMax;
+        o.scanners.push_back(s);
+    }
+    o.rangeNoise = a.noise;
+    o.maxRange = a.maxRange;
+    o.seed = g.seed;
+    o.progress = terminalProgress();
+    for (const std::string& out : a.outputs) {
+        const std::string ext = extensionOf(out);
+        if (ext != ".ply" && ext != ".npz")
+            throw Error("a scan is written as .ply or .npz",
+                        {.file = out, .value = ext, .validRange = ".ply, .npz"});
+    }
+    for (const std::string& out : a.outputs) {
+        const auto dir = std::filesystem::path(out).parent_path();
+        std::error_code ec;
+        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
+    }
+    // An empty scene scans to no points: check the options before reading the input.
+    {
+        Context empty;
+        ScanOptions probe = o;
+        probe.progress = {};
+        scan(empty, probe);
+    }
+
+    Context ctx;
+    std::unique_ptr<PlantArchitecture> arch;  // holds the plants while they are scanned
+    if (extensionOf(a.input) == ".obj") {
+        readOBJ(ctx, a.input);
+    } else {
+        arch = std::make_unique<PlantArchitecture>(&ctx);
+        arch->setSeed(g.seed);
+        readPlantInput(*arch, a.input, a.species);
+    }
+    const PointCloud points = scan(ctx, o);
+    for (const std::string& out : a.outputs) {
+        if (extensionOf(out) == ".npz")
+            writePointCloudNPZ(points, out);
+        else
+            writePointCloudPLY(points, out);
+    }
+    std::printf("%s", fmt::format("{} points from {} scanner(s) of {} rays each, {} triangles in "
+                                  "the scene; written to {}.\n",
+                                  points.positions.size(), o.scanners.size(),
+                                  scanRayCount(o.scanners.front()), ctx.triangleCount(),
+                                  fmt::join(a.outputs, ", "))
+                          .c_str());
+    return 0;
+}
+
+std::function<int()> setupScan(CLI::App& app, GlobalOptions& global) {
+    app.description(
+        "Simulate a terrestrial LiDAR scan: first hits of rays from each scanner, labelled");
+    auto a = std::make_shared<ScanArgs>();
+    app.add_option("input", a->input,
+                   "Plants (.xml plant structure file, .txt plant strings) or any .obj scene")
+        ->required();
+    app.add_option("--scanner", a->scanners, "Scanner position x,y,z in metres (repeatable)")
+        ->required();
+    app.add_option("--resolution", a->resolution,
+                   "Degrees between neighbouring rays, both ways (default 0.1)")
+        ->check(numberCheck("--resolution", "an angle", 0.001, 10.0, false, "0.001 to 10 degrees"));
+    app.add_option("--zenith", a->zenith,
+                   "Zenith angles swept, MIN:MAX degrees from straight up (default 30:150)");
+    app.add_option("--azimuth", a->azimuth,
+                   "Azimuths swept, MIN:MAX degrees from +x toward +y (default 0:360)");
+    app.add_option("--noise", a->noise, "Gaussian range noise, standard deviation in m (default 0)")
+        ->check(numberCheck("--noise", "a distance", 0.0, 1.0, false, "0 to 1 m"));
+    app.add_option("--max-range", a->maxRange, "Farthest hit returned, m (default 100)")
+        ->check(numberCheck("--max-range", "a distance", 1e-6, 10000.0, false,
+                            "more than 0, up to 10000 m"));
+    app.add_option("-o,--output", a->outputs,
+                   "Point cloud file(s): .ply (binary, per point labels, range, scanner) or .npz")
+        ->required();
+    app.add_option("--species", a->species,
+                   "Species giving the shoot types of plant strings (.txt input)");
+    return [a, &global] { return run(*a, global); };
+}
+
+}  // namespace
+
+PLANTARCH_REGISTER_COMMAND(scan, "scan", 52, setupScan);
+
+}  // namespace plantarch::cli
