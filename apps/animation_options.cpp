@@ -49,11 +49,8 @@ std::optional<GrowthFrames> parseFrames(const AnimationArgs& args) {
 
 void requireAgeOrFrames(float age, bool frames) {
     if (frames && age >= 0.0f)
-        throw Error("--frames gives the ages of the frames: leave out --age",
-                    {.parameter = "--age", .validRange = "not with --frames"});
-    if (!frames && age < 0.0f)
-        throw Error("--age is required (or --frames for a growth animation)",
-                    {.parameter = "--age", .validRange = "0 to 100000 days"});
+        throw Error("--age and --frames both given: --frames gives the ages of the frames");
+    if (!frames && age < 0.0f) throw Error("--age is required (or --frames for a growth animation)");
 }
 
 void prepareAnimationOutputs(const std::vector<std::string>& paths) {

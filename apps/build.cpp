@@ -47,7 +47,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         if (frames)
             prepareAnimationOutputs(a->outputs);
         else
-            preparePlantOutputs(a->outputs);
+            preparePlantOutputs(a->outputs, global.points);
         checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);

@@ -84,7 +84,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         if (frames)
             prepareAnimationOutputs(a->outputs);
         else
-            preparePlantOutputs(a->outputs);
+            preparePlantOutputs(a->outputs, global.points);
         if (a->plantOrigin && !a->separate)
             throw Error("--plant-origin places the plants of separate files",
                         {.parameter = "--plant-origin", .validRange = "with --separate"});

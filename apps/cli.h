@@ -69,8 +69,11 @@ ProgressCallback terminalProgress();
 
 /// Checks every output's format before any work is done and creates missing directories;
 /// throws plantarch::Error naming the first bad path.
-void prepareSceneOutputs(const std::vector<std::string>& paths);
+/// `points` is --points: .npz outputs (point clouds) need it.
+void prepareSceneOutputs(const std::vector<std::string>& paths, std::size_t points = 0);
 
+/// Whether writeSceneFile writes this extension (lower case, with its dot).
+bool isSceneExtension(const std::string& ext);
 /// The extensions writeSceneFile accepts, for help text and errors.
 std::string sceneFileExtensions();
 
@@ -114,7 +117,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
                                const GlobalOptions& g);
 
 /// prepareSceneOutputs for commands that have plants: .xml and .txt are accepted too.
-void preparePlantOutputs(const std::vector<std::string>& paths);
+void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t points = 0);
 /// Writes `plants` of `arch` to `path`: a plant structure file (.xml), plant strings
 /// (.txt), or the whole scene through writeSceneFile.
 void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,

@@ -31,7 +31,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     return [a, &global]() {
-        preparePlantOutputs({a->output});
+        preparePlantOutputs({a->output}, global.points);
         std::string in = std::filesystem::path(a->input).extension().string();
         for (char& c : in) c = char(std::tolower(static_cast<unsigned char>(c)));
         Context ctx;

@@ -40,15 +40,13 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     return [a, &global]() {
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         if (frames && a->days >= 0.0)
-            throw Error("--frames gives the days of the frames: leave out --days",
-                        {.parameter = "--days", .validRange = "not with --frames"});
+            throw Error("--days and --frames both given: --frames gives the days of the frames");
         if (!frames && a->days < 0.0)
-            throw Error("--days is required (or --frames for a growth animation)",
-                        {.parameter = "--days", .validRange = "0 to 100000 days"});
+            throw Error("--days is required (or --frames for a growth animation)");
         if (frames)
             prepareAnimationOutputs(a->outputs);
         else
-            preparePlantOutputs(a->outputs);
+            preparePlantOutputs(a->outputs, global.points);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);

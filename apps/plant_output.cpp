@@ -50,13 +50,12 @@ std::string plantFileExtensions() {
     return sceneFileExtensions() + ", .xml, .txt, .csv";
 }
 
-void preparePlantOutputs(const std::vector<std::string>& paths) {
+void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t points) {
     std::vector<std::string> scenes;
     for (const std::string& out : paths) {
         const std::string ext = extensionOf(out);
         if (ext != ".xml" && ext != ".txt" && ext != ".csv") {
-            if (ext != ".obj" && ext != ".ply" && ext != ".glb" && ext != ".gltf" &&
-                ext != ".usda" && ext != ".png")
+            if (!isSceneExtension(ext))
                 throw Error("unknown output format",
                             {.file = out, .value = ext, .validRange = plantFileExtensions()});
             scenes.push_back(out);
@@ -67,7 +66,7 @@ void preparePlantOutputs(const std::vector<std::string>& paths) {
         if (!dir.empty()) std::filesystem::create_directories(dir, ec);
         if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
     }
-    prepareSceneOutputs(scenes);
+    prepareSceneOutputs(scenes, points);
 }
 
 void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,

@@ -16,17 +16,13 @@
 
 namespace plantarch::cli {
 
-namespace {
-
 bool isSceneExtension(const std::string& ext) {
     return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".usda" ||
-           ext == ".png";
+           ext == ".png" || ext == ".npz";
 }
 
-}  // namespace
-
 std::string sceneFileExtensions() {
-    return ".obj, .ply, .glb, .gltf, .usda, .png";
+    return ".obj, .ply, .glb, .gltf, .usda, .png, .npz";
 }
 
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
@@ -40,6 +36,8 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         writePointCloudPLY(samplePoints(ctx, {.points = g.points, .seed = g.seed}), path);
     } else if (ext == ".ply") {
         writePLY(ctx, path);
+    } else if (ext == ".npz" && g.points > 0) {
+        writePointCloudNPZ(samplePoints(ctx, {.points = g.points, .seed = g.seed}), path);
     } else if (ext == ".glb" || ext == ".gltf") {
         GltfOptions o;
         o.plants = plants;
@@ -63,13 +61,16 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
     info(g, "wrote " + path);
 }
 
-void prepareSceneOutputs(const std::vector<std::string>& paths) {
+void prepareSceneOutputs(const std::vector<std::string>& paths, std::size_t points) {
     for (const std::string& out : paths) {
         std::string ext = std::filesystem::path(out).extension().string();
         for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
         if (!isSceneExtension(ext))
             throw Error("unknown output format",
                         {.file = out, .value = ext, .validRange = sceneFileExtensions()});
+        if (ext == ".npz" && points == 0)
+            throw Error("an .npz output is a point cloud: give --points N",
+                        {.file = out, .parameter = "--points", .validRange = "1 to 2147483648"});
         const auto dir = std::filesystem::path(out).parent_path();
         std::error_code ec;
         if (!dir.empty()) std::filesystem::create_directories(dir, ec);

@@ -293,11 +293,9 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
         {"build bean --frames 0:x -o " + out,
          "--frames = 0:x: expected START:END or START:END:STEP, in days (valid: e.g. 0:60:1)"},
         {"build bean --age 30 --frames 0:60 -o " + out,
-         "--age: --frames gives the ages of the frames: leave out --age (valid: not with "
-         "--frames)"},
+         "--age and --frames both given: --frames gives the ages of the frames"},
         {"build bean -o " + out,
-         "--age: --age is required (or --frames for a growth animation) (valid: 0 to 100000 "
-         "days)"},
+         "--age is required (or --frames for a growth animation)"},
         {"build bean --frames 0:60 -o " + (dir / "bad.obj").string(),
          (dir / "bad.obj").string() +
              ": '.obj': --frames writes an animation: outputs are .glb, .gltf or .usda (valid: "
@@ -306,8 +304,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
          "--separate: --separate writes still files, one per plant: not with --frames (valid: "
          "without --frames)"},
         {"grow " + xml + " -o " + out,
-         "--days: --days is required (or --frames for a growth animation) (valid: 0 to 100000 "
-         "days)"},
+         "--days is required (or --frames for a growth animation)"},
         {"build bean --frames 0:10 --frame-rate 0 -o " + out,
          "--frame-rate = 0: not a frame rate (valid: 0.001 to 1000)"},
     };

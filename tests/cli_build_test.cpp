@@ -69,13 +69,13 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
          "plantarch: --age = -3: not a number of days (valid: 0 to 100000)\n"},
         {"build bean --age 10 -o /tmp/x.stl",
          "plantarch: /tmp/x.stl: '.stl': unknown output format (valid: .obj, .ply, .glb, .gltf, "
-         ".usda, .png, .xml, .txt, .csv)\n"},
+         ".usda, .png, .npz, .xml, .txt, .csv)\n"},
         {"build bean --age 10 -D foo -o /tmp/x.obj",
          "plantarch: -D = foo: a build parameter is written name=value (valid: name=value)\n"},
         {"build bean --age 10 -D trunk_height=1 -o /tmp/x.obj",
          "plantarch: trunk_height = 1: unknown build parameter of species 'bean' (valid: the "
          "species has no build parameters)\n"},
-        {"build bean -o /tmp/x.obj", "plantarch: --age is required\n"},
+        {"build bean -o /tmp/x.obj", "plantarch: --age is required (or --frames for a growth animation)\n"},
         {"build bean --age 10 -o /tmp/x.png --image-size 32",
          "plantarch: --image-size = 32: image size is WIDTHxHEIGHT in pixels (valid: 16x16 to "
          "16384x16384)\n"},
@@ -99,13 +99,13 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         // Commands.
         {"bulid bean --age 10",
          "plantarch: 'bulid' is not a command, did you mean 'build'? (valid: demo, build, "
-         "canopy, convert, grow, render, compare, list, info, validate)\n"},
+         "canopy, convert, grow, render, scan, compare, list, info, validate)\n"},
         {"nosuchcommand",
          "plantarch: 'nosuchcommand' is not a command (valid: demo, build, canopy, convert, "
-         "grow, render, compare, list, info, validate)\n"},
+         "grow, render, scan, compare, list, info, validate)\n"},
         {"",
          "plantarch: a command is required (valid: demo, build, canopy, convert, grow, "
-         "render, compare, list, info, validate; see plantarch --help)\n"},
+         "render, scan, compare, list, info, validate; see plantarch --help)\n"},
         // Canopies.
         {"canopy bean --count 0x2 --age 10 -o /tmp/x.ply",
          "plantarch: --count = 0x2: expected two positive numbers joined by 'x' (valid: e.g. "

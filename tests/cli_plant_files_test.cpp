@@ -87,11 +87,11 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
     const std::pair<std::string, std::string> cases[] = {
         {"convert " + d + "/b.obj " + d + "/x.xml",
          d + "/x.xml: '.xml': an OBJ file holds geometry only, not the plant structure (valid: "
-             ".obj, .ply, .glb, .gltf, .usda, .png)"},
+             ".obj, .ply, .glb, .gltf, .usda, .png, .npz)"},
         {"convert " + d + "/b.xml " + d + "/x.usdz",
          d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
              ".png, "
-             ".xml, .txt, .csv)"},
+             ".npz, .xml, .txt, .csv)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
          d + "/missing.xml: cannot open plant structure file"},
         {"convert " + d + "/b.xml", "output is required"},
@@ -99,7 +99,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
          "--days = -3: not a number of days (valid: 0 to 100000)"},
         {"grow " + d + "/b.xml --days 3d -o " + d + "/x.xml",
          "--days = 3d: not a number of days (valid: 0 to 100000)"},
-        {"grow " + d + "/b.xml -o " + d + "/x.xml", "--days is required"},
+        {"grow " + d + "/b.xml -o " + d + "/x.xml", "--days is required (or --frames for a growth animation)"},
         {"grow " + d + "/missing.xml --days 3 -o " + d + "/x.xml",
          d + "/missing.xml: cannot open plant structure file"},
         {"build bean --age 10 --digits 9 -o " + d + "/x.txt",

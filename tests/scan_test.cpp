@@ -255,3 +255,21 @@ TEST(Scan, CommandScansPlantFilesAndObjScenes) {
     EXPECT_FALSE(fs::exists(dir / "x.obj"));
     fs::remove_all(dir);
 }
+
+TEST(Scan, SurfaceSamplesAsNpzFromTheCommandLine) {
+    const fs::path dir = fs::temp_directory_path() / ("npz_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    const std::string npz = (dir / "points.npz").string();
+    cli::Result r = cli::run("--points 500 build bean --age 20 -o " + npz);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const std::string bytes = readAll(npz);
+    EXPECT_NE(bytes.find("'shape': (500, 3)"), std::string::npos);
+    EXPECT_EQ(bytes.find("range.npy"), std::string::npos);  // samples have no range
+    r = cli::run("build bean --age 20 -o " + (dir / "none.npz").string());
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "plantarch: " + (dir / "none.npz").string() +
+                         ": --points: an .npz output is a point cloud: give --points N (valid: 1 "
+                         "to 2147483648)\n");
+    EXPECT_FALSE(fs::exists(dir / "none.npz"));
+    fs::remove_all(dir);
+}
