@@ -13,7 +13,8 @@ namespace plantarch::cli {
 void addAnimationOptions(CLI::App& app, AnimationArgs& args, const std::string& counted) {
     app.add_option("--frames", args.frames,
                    "Write a growth animation: a frame every STEP days from START to END " +
-                       counted + ", e.g. 0:60:1 (STEP 1 when left out); outputs .glb, .gltf, .usda");
+                       counted +
+                       ", e.g. 0:60:1 (STEP 1 when left out); outputs .glb, .gltf, .usda");
     app.add_option("--frame-rate", args.rate, "Frames a second of the animation (default 24)")
         ->check(numberCheck("--frame-rate", "a frame rate", 0.001, 1000.0, false, "0.001 to 1000"));
 }
@@ -28,7 +29,8 @@ std::optional<GrowthFrames> parseFrames(const AnimationArgs& args) {
     std::size_t at = 0;
     while (true) {
         const std::size_t colon = args.frames.find(':', at);
-        const std::string part = args.frames.substr(at, colon == std::string::npos ? colon : colon - at);
+        const std::string part =
+            args.frames.substr(at, colon == std::string::npos ? colon : colon - at);
         std::size_t used = 0;
         double value = 0.0;
         try {
@@ -50,7 +52,8 @@ std::optional<GrowthFrames> parseFrames(const AnimationArgs& args) {
 void requireAgeOrFrames(float age, bool frames) {
     if (frames && age >= 0.0f)
         throw Error("--age and --frames both given: --frames gives the ages of the frames");
-    if (!frames && age < 0.0f) throw Error("--age is required (or --frames for a growth animation)");
+    if (!frames && age < 0.0f)
+        throw Error("--age is required (or --frames for a growth animation)");
 }
 
 void prepareAnimationOutputs(const std::vector<std::string>& paths) {

@@ -73,9 +73,10 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
                     "{} at {} days (seed {}): {} shoots, {} leaves (leaflets counted), {:.4f} m^2 "
                     "one-sided leaf area, {:.3f} m tall, {} triangles in {} objects; written to "
                     "{}.\n",
-                    arch.getCurrentPlantModel(), arch.plant(plant).age, global.seed, arch.getShootCount(plant),
-                    arch.getPlantLeafCount(plant), arch.getPlantLeafArea(plant),
-                    arch.getPlantHeight(plant), ctx.triangleCount(), ctx.objectCount(), outs)
+                    arch.getCurrentPlantModel(), arch.plant(plant).age, global.seed,
+                    arch.getShootCount(plant), arch.getPlantLeafCount(plant),
+                    arch.getPlantLeafArea(plant), arch.getPlantHeight(plant), ctx.triangleCount(),
+                    ctx.objectCount(), outs)
                     .c_str());
         }
         return 0;

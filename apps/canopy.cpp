@@ -95,10 +95,9 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
-        const auto plants =
-            arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny),
-                                             frames ? 0.0f : a->age,
-                                             a->germination, parseDefines(a->defines));
+        const auto plants = arch.buildPlantCanopyFromLibrary(
+            vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), frames ? 0.0f : a->age, a->germination,
+            parseDefines(a->defines));
         if (frames)
             writeGrowthAnimation(arch, plants, *frames, a->outputs, {a->animation.rate});
         else if (a->separate)
@@ -119,8 +118,8 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         std::printf("%s", fmt::format("{} canopy: {} plants of {}x{} positions, {} days (seed {}): "
                                       "{} leaves, {:.3f} m^2 leaf area, {} triangles.\n",
                                       arch.getCurrentPlantModel(), plants.size(), nx, ny,
-                                      frames ? float(frames->end) : a->age,
-                                      global.seed, leaves, area, ctx.triangleCount())
+                                      frames ? float(frames->end) : a->age, global.seed, leaves,
+                                      area, ctx.triangleCount())
                               .c_str());
         return 0;
     };

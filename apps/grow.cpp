@@ -61,8 +61,8 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         std::size_t leaves = 0;
         for (unsigned p : plants) leaves += arch.getPlantLeafCount(p);
         std::printf("%s", fmt::format("{} plant(s) grown {} days: {} leaves, {} triangles.\n",
-                                      plants.size(),
-                                      frames ? frames->end : a->days, leaves, ctx.triangleCount())
+                                      plants.size(), frames ? frames->end : a->days, leaves,
+                                      ctx.triangleCount())
                               .c_str());
         return 0;
     };

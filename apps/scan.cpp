@@ -3,6 +3,8 @@
 // A simulated terrestrial LiDAR scan of plants (a plant structure file or plant strings) or of
 // any OBJ scene: the first hit of every ray, labelled, with its range and scanner.
 
+#include "plantarch/Scan.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -15,7 +17,6 @@
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
-#include "plantarch/Scan.h"
 
 namespace plantarch::cli {
 

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -69,8 +69,8 @@ std::size_t trianglesUnder(const Glb& g, std::size_t node) {
     std::size_t total = 0;
     if (n.contains("mesh"))
         for (const json& p : g.doc["meshes"][n["mesh"].get<std::size_t>()]["primitives"])
-            total += g.doc["accessors"][p["indices"].get<std::size_t>()]["count"].get<std::size_t>() /
-                     3;
+            total +=
+                g.doc["accessors"][p["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
     if (n.contains("children"))
         for (const json& c : n["children"]) total += trianglesUnder(g, c.get<std::size_t>());
     return total;
@@ -114,15 +114,22 @@ TEST(Animation, FrameDaysFromStartToEndByStep) {
     EXPECT_EQ(growthFrameDays({5, 5, 1}), (std::vector<double>{5}));
     EXPECT_EQ(growthFrameDays({0, 9999, 1}).size(), kMaxAnimationFrames);
 
-    EXPECT_EQ(std::string(errorOf([] { growthFrameDays({0, 60, 0}, "--frames"); }).what()),
+    EXPECT_EQ(std::string(errorOf([] {
+                              growthFrameDays({0, 60, 0}, "--frames");
+                          }).what()),
               "--frames = 0: frame step must be positive (valid: more than 0 days)");
-    EXPECT_EQ(std::string(errorOf([] { growthFrameDays({20, 10, 1}, "--frames"); }).what()),
+    EXPECT_EQ(std::string(errorOf([] {
+                              growthFrameDays({20, 10, 1}, "--frames");
+                          }).what()),
               "--frames = 10: last frame out of range (valid: 20 to 100000 days)");
-    EXPECT_EQ(std::string(errorOf([] { growthFrameDays({-1, 10, 1}, "--frames"); }).what()),
+    EXPECT_EQ(std::string(errorOf([] {
+                              growthFrameDays({-1, 10, 1}, "--frames");
+                          }).what()),
               "--frames = -1: first frame out of range (valid: 0 to 100000 days)");
-    EXPECT_EQ(
-        std::string(errorOf([] { growthFrameDays({0, 100000, 1}, "--frames"); }).what()),
-        "--frames = 1: too many frames (100001) (valid: a step giving at most 10000 frames)");
+    EXPECT_EQ(std::string(errorOf([] {
+                              growthFrameDays({0, 100000, 1}, "--frames");
+                          }).what()),
+              "--frames = 1: too many frames (100001) (valid: a step giving at most 10000 frames)");
 }
 
 TEST(Animation, GlbShowsEachFrameAloneAndEachFrameIsThePlantAtItsDay) {
@@ -175,8 +182,9 @@ TEST(Animation, GlbShowsEachFrameAloneAndEachFrameIsThePlantAtItsDay) {
         for (float t : {float(i) / 2.0f, (float(i) + 0.9f) / 2.0f})
             for (std::size_t f = 0; f < 3; ++f) {
                 const json& channel = animation["channels"][f];
-                EXPECT_EQ(scaleAt(g, animation["samplers"][channel["sampler"].get<std::size_t>()], t),
-                          std::size_t(i) == f ? 1.0f : 0.0f)
+                EXPECT_EQ(
+                    scaleAt(g, animation["samplers"][channel["sampler"].get<std::size_t>()], t),
+                    std::size_t(i) == f ? 1.0f : 0.0f)
                     << "frame " << f << " at " << t << " s";
             }
 
@@ -217,9 +225,9 @@ TEST(Animation, UsdFramesAreKeyedByVisibilityAtTheirTimeCodes) {
         ASSERT_NE(at, std::string::npos) << name;
         const std::size_t next = f < 2 ? text.find("def Xform \"day_", at + 1) : text.size();
         const std::string frame = text.substr(at, next - at);
-        EXPECT_NE(frame.find("token visibility.timeSamples = {\n" + std::string(keys[f]) +
-                             "        }\n"),
-                  std::string::npos)
+        EXPECT_NE(
+            frame.find("token visibility.timeSamples = {\n" + std::string(keys[f]) + "        }\n"),
+            std::string::npos)
             << frame.substr(0, 400);
         // The frame's plant, nested one level deeper, and its triangles.
         EXPECT_NE(frame.find("\n        def Xform \"bean_" + std::to_string(plant) + "\""),
@@ -245,9 +253,12 @@ TEST(Animation, BadFramesAndPathsAreOneLineErrors) {
     EXPECT_EQ(std::string(errorOf([&] {
                               writeGLTF({{&a, 5.0, {}}, {&b, 5.0, {}}}, file);
                           }).what()),
-              file + ": frame 1 day = 5: animation frame days must be finite and increasing "
-                     "(valid: more than 5)");
-    EXPECT_EQ(std::string(errorOf([&] { writeUSDA({{&a, 0.0, {}}}, file, {}, {0.0}); }).what()),
+              file +
+                  ": frame 1 day = 5: animation frame days must be finite and increasing "
+                  "(valid: more than 5)");
+    EXPECT_EQ(std::string(errorOf([&] {
+                              writeUSDA({{&a, 0.0, {}}}, file, {}, {0.0});
+                          }).what()),
               file + ": framesPerSecond = 0: frame rate out of range (valid: 0.001 to 1000)");
     Context ctx;
     PlantArchitecture arch(&ctx);
@@ -257,8 +268,9 @@ TEST(Animation, BadFramesAndPathsAreOneLineErrors) {
     EXPECT_EQ(std::string(errorOf([&] {
                               writeGrowthAnimation(arch, {plant}, {0, 10, 1}, {obj});
                           }).what()),
-              obj + ": '.obj': an animation is written as .glb, .gltf or .usda (valid: .glb, .gltf, "
-                    ".usda)");
+              obj +
+                  ": '.obj': an animation is written as .glb, .gltf or .usda (valid: .glb, .gltf, "
+                  ".usda)");
     EXPECT_DOUBLE_EQ(arch.getPlantAge(plant), 5.0);  // checked before any growth
     EXPECT_FALSE(fs::exists(file));
     EXPECT_FALSE(fs::exists(obj));
@@ -294,8 +306,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
          "--frames = 0:x: expected START:END or START:END:STEP, in days (valid: e.g. 0:60:1)"},
         {"build bean --age 30 --frames 0:60 -o " + out,
          "--age and --frames both given: --frames gives the ages of the frames"},
-        {"build bean -o " + out,
-         "--age is required (or --frames for a growth animation)"},
+        {"build bean -o " + out, "--age is required (or --frames for a growth animation)"},
         {"build bean --frames 0:60 -o " + (dir / "bad.obj").string(),
          (dir / "bad.obj").string() +
              ": '.obj': --frames writes an animation: outputs are .glb, .gltf or .usda (valid: "
@@ -303,8 +314,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
         {"canopy bean --frames 0:10 --separate -o " + out,
          "--separate: --separate writes still files, one per plant: not with --frames (valid: "
          "without --frames)"},
-        {"grow " + xml + " -o " + out,
-         "--days is required (or --frames for a growth animation)"},
+        {"grow " + xml + " -o " + out, "--days is required (or --frames for a growth animation)"},
         {"build bean --frames 0:10 --frame-rate 0 -o " + out,
          "--frame-rate = 0: not a frame rate (valid: 0.001 to 1000)"},
     };

@@ -75,7 +75,8 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         {"build bean --age 10 -D trunk_height=1 -o /tmp/x.obj",
          "plantarch: trunk_height = 1: unknown build parameter of species 'bean' (valid: the "
          "species has no build parameters)\n"},
-        {"build bean -o /tmp/x.obj", "plantarch: --age is required (or --frames for a growth animation)\n"},
+        {"build bean -o /tmp/x.obj",
+         "plantarch: --age is required (or --frames for a growth animation)\n"},
         {"build bean --age 10 -o /tmp/x.png --image-size 32",
          "plantarch: --image-size = 32: image size is WIDTHxHEIGHT in pixels (valid: 16x16 to "
          "16384x16384)\n"},

@@ -84,12 +84,14 @@ TEST(Depth, NpyFileIsWhatNumpyReadsAndThePictureIsGreyByDistance) {
     addSquare(ctx, 0.5f, 0.25f);
     addSquare(ctx, 0.2f, 1.0f);
     const DepthImage d = renderDepth(ctx, lookingDown(2.0f));
-    const fs::path path = fs::temp_directory_path() / ("depth_" + std::to_string(::getpid()) + ".npy");
+    const fs::path path =
+        fs::temp_directory_path() / ("depth_" + std::to_string(::getpid()) + ".npy");
     writeDepthNPY(d, path.string());
     const std::string bytes = readAll(path);
     fs::remove(path);
     ASSERT_EQ(bytes.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
-    const std::size_t headerLength = std::uint8_t(bytes[8]) | std::size_t(std::uint8_t(bytes[9])) << 8;
+    const std::size_t headerLength = std::uint8_t(bytes[8]) | std::size_t(std::uint8_t(bytes[9]))
+                                                                  << 8;
     EXPECT_EQ((10 + headerLength) % 64, 0u);
     const std::string header = bytes.substr(10, headerLength);
     EXPECT_EQ(header.rfind("{'descr': '<f4', 'fortran_order': False, 'shape': (48, 64), }", 0), 0u)

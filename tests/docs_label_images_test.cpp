@@ -47,8 +47,10 @@ Context splats(const PointCloud& cloud, const vec3& eye, float size) {
         const vec3 up = glm::cross(side, view);
         Mesh& m = meshes[cloud.organ[i]];
         const auto first = std::uint32_t(m.positions.size());
-        m.positions.insert(m.positions.end(), {p - side - up, p + side - up, p + side + up, p - side + up});
-        m.indices.insert(m.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+        m.positions.insert(m.positions.end(),
+                           {p - side - up, p + side - up, p + side + up, p - side + up});
+        m.indices.insert(m.indices.end(),
+                         {first, first + 1, first + 2, first, first + 2, first + 3});
     }
     Context ctx;
     for (std::size_t k = 0; k < meshes.size(); ++k) {

@@ -176,16 +176,18 @@ TEST(Scan, PlyAndNpzFilesHoldEveryPoint) {
 
     PointCloud broken = c;
     broken.scanner.pop_back();
-    EXPECT_EQ(std::string(errorOf([&] { writePointCloudNPZ(broken, (dir / "b.npz").string()); })
-                              .what()),
-              (dir / "b.npz").string() + ": the point cloud's arrays differ in length");
+    EXPECT_EQ(
+        std::string(errorOf([&] { writePointCloudNPZ(broken, (dir / "b.npz").string()); }).what()),
+        (dir / "b.npz").string() + ": the point cloud's arrays differ in length");
     EXPECT_FALSE(fs::exists(dir / "b.npz"));
     fs::remove_all(dir);
 }
 
 TEST(Scan, BadOptionsAreOneLineErrors) {
     Context ctx;
-    auto message = [&](ScanOptions o) { return std::string(errorOf([&] { scan(ctx, o); }).what()); };
+    auto message = [&](ScanOptions o) {
+        return std::string(errorOf([&] { scan(ctx, o); }).what());
+    };
     EXPECT_EQ(message({}), "scanners = 0: a scan needs 1 to 65535 scanners");
     ScanOptions o = downward();
     o.scanners[0].resolution = 0.0f;
@@ -236,7 +238,8 @@ TEST(Scan, CommandScansPlantFilesAndObjScenes) {
         {"scan " + xml + " --scanner 1,2 -o " + (dir / "x.ply").string(),
          "--scanner = 1,2: not a vector (valid: three numbers x,y,z)"},
         {"scan " + xml + " --scanner 1,0,0 -o " + (dir / "x.obj").string(),
-         (dir / "x.obj").string() + ": '.obj': a scan is written as .ply or .npz (valid: .ply, .npz)"},
+         (dir / "x.obj").string() +
+             ": '.obj': a scan is written as .ply or .npz (valid: .ply, .npz)"},
         {"scan " + xml + " --scanner 1,0,0 --zenith 30 -o " + (dir / "x.ply").string(),
          "--zenith = 30: expected two angles in degrees joined by ':' (valid: e.g. 30:150)"},
         {"scan " + xml + " --scanner 1,0,0 --zenith 100:50 -o " + (dir / "x.ply").string(),

@@ -76,7 +76,9 @@ struct DepthImage {
     int height = 0;
     std::vector<float> depth;  ///< width * height values
 
-    float at(int x, int y) const { return depth[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    float at(int x, int y) const {
+        return depth[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    }
 };
 
 /// A pinhole camera. With autoFrame the eye and target are computed from the scene's bounding

@@ -38,12 +38,12 @@ struct ScanOptions {
 /// How many rays a scanner casts (rows of zenith angles times columns of azimuths).
 std::uint64_t scanRayCount(const Scanner& scanner);
 
-/// Casts every scanner's rays into the visible (not hidden) objects of `context` and returns the first
-/// hits, scanner by scanner, row by row (zenith), column by column (azimuth): position (with
+/// Casts every scanner's rays into the visible (not hidden) objects of `context` and returns the
+/// first hits, scanner by scanner, row by row (zenith), column by column (azimuth): position (with
 /// the range noise applied along the ray), the hit triangle's normal turned toward the
 /// scanner, plant, object and organ labels, range and scanner index. Throws plantarch::Error
-/// naming the option for no scanner (or more than 65535), an angle, resolution, noise or range out of range, or
-/// more than 2^31 rays in all.
+/// naming the option for no scanner (or more than 65535), an angle, resolution, noise or range out
+/// of range, or more than 2^31 rays in all.
 PointCloud scan(const Context& context, const ScanOptions& options);
 
 }  // namespace plantarch

@@ -148,8 +148,8 @@ void bindOutput(py::module_& m) {
            float maxRange, std::uint64_t seed) {
             ScanOptions o;
             for (const vec3& at : scanners)
-                o.scanners.push_back({at, zenith.first, zenith.second, azimuth.first,
-                                      azimuth.second, resolution});
+                o.scanners.push_back(
+                    {at, zenith.first, zenith.second, azimuth.first, azimuth.second, resolution});
             o.rangeNoise = noise;
             o.maxRange = maxRange;
             o.seed = seed;

@@ -83,9 +83,9 @@ void writeQSM(const PlantArchitecture& arch, const std::vector<unsigned>& plants
 
 std::vector<double> growthFrameDays(const GrowthFrames& f, const std::string& parameter) {
     const auto bad = [&](const std::string& what, double value, const std::string& range) {
-        return Error(what, {.parameter = parameter,
-                            .value = text::formatDouble(value),
-                            .validRange = range});
+        return Error(
+            what,
+            {.parameter = parameter, .value = text::formatDouble(value), .validRange = range});
     };
     if (!std::isfinite(f.start) || f.start < 0.0 || f.start > 100000.0)
         throw bad("first frame out of range", f.start, "0 to 100000 days");

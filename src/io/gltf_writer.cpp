@@ -473,8 +473,8 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
             if (keys.back().scale == 0.0f) frame["scale"] = {0.0, 0.0, 0.0};
             nodes.push_back(std::move(frame));
             roots.push_back(nodes.size() - 1);
-            json input = accessor(buffer.add(views, keys.size() * 4, 0), kFloat, keys.size(),
-                                  "SCALAR");
+            json input =
+                accessor(buffer.add(views, keys.size() * 4, 0), kFloat, keys.size(), "SCALAR");
             input["min"] = {keys.front().time};
             input["max"] = {keys.back().time};
             accessors.push_back(std::move(input));

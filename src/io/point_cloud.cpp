@@ -208,9 +208,9 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
         names += name;
         names.append(longest - name.size(), '\0');
     }
-    arrays.push_back({"organ_labels", npy(fmt::format("|S{}", longest),
-                                          fmt::format("({},)", kOrganLabels.size()), names.data(),
-                                          names.size())});
+    arrays.push_back({"organ_labels",
+                      npy(fmt::format("|S{}", longest), fmt::format("({},)", kOrganLabels.size()),
+                          names.data(), names.size())});
     if (scan) {
         arrays.push_back({"range", npy("<f4", rows, cloud.range.data(), n * 4)});
         arrays.push_back({"scanner", npy("<u2", rows, cloud.scanner.data(), n * 2)});
@@ -232,10 +232,10 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
         }
         std::string local;
         put32(local, 0x04034b50u);
-        put16(local, 45);  // version needed: ZIP64
-        put16(local, 0);   // flags
-        put16(local, 0);   // stored
-        put16(local, 0);   // time
+        put16(local, 45);    // version needed: ZIP64
+        put16(local, 0);     // flags
+        put16(local, 0);     // stored
+        put16(local, 0);     // time
         put16(local, 0x21);  // date: 1980-01-01
         put32(local, crc);
         put32(local, 0xFFFFFFFFu);
@@ -264,10 +264,10 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
         put32(entry, 0xFFFFFFFFu);
         put16(entry, std::uint32_t(file.size()));
         put16(entry, std::uint32_t(extra.size()));
-        put16(entry, 0);  // comment
-        put16(entry, 0);  // disk
-        put16(entry, 0);  // internal attributes
-        put32(entry, 0);  // external attributes
+        put16(entry, 0);            // comment
+        put16(entry, 0);            // disk
+        put16(entry, 0);            // internal attributes
+        put32(entry, 0);            // external attributes
         put32(entry, 0xFFFFFFFFu);  // offset: in the ZIP64 extra
         entry += file;
         entry += extra;

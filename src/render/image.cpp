@@ -115,13 +115,19 @@ void writeDepthNPY(const DepthImage& depth, const std::string& path) {
     // NPY 1.0: magic, version, header length, then a Python dict padded with spaces to a
     // multiple of 64 bytes (counting the 10 bytes before it) and ended by a newline.
     std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                         std::to_string(depth.height) + ", " + std::to_string(depth.width) +
-                         "), }";
+                         std::to_string(depth.height) + ", " + std::to_string(depth.width) + "), }";
     header.append(63 - (10 + header.size()) % 64, ' ');
     header += '\n';
     const std::size_t dataBytes = depth.depth.size() * sizeof(float);
     std::vector<std::uint8_t> bytes(10 + header.size() + dataBytes);
-    const std::uint8_t magic[10] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0,
+    const std::uint8_t magic[10] = {0x93,
+                                    'N',
+                                    'U',
+                                    'M',
+                                    'P',
+                                    'Y',
+                                    1,
+                                    0,
                                     std::uint8_t(header.size() & 0xFF),
                                     std::uint8_t(header.size() >> 8)};
     std::memcpy(bytes.data(), magic, sizeof magic);

@@ -164,8 +164,9 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
                     float range = rh.ray.tfar;
                     if (options.rangeNoise > 0.0f) {
                         // Box-Muller from the ray's own stream.
-                        render_detail::PixelSampler rng(options.seed ^ (0x9E3779B97F4A7C15ULL * (si + 1)),
-                                                        std::uint64_t(r) * g.columns + c);
+                        render_detail::PixelSampler rng(
+                            options.seed ^ (0x9E3779B97F4A7C15ULL * (si + 1)),
+                            std::uint64_t(r) * g.columns + c);
                         const float u1 = std::max(rng.next(), 0x1p-24f), u2 = rng.next();
                         range += options.rangeNoise * std::sqrt(-2.0f * std::log(u1)) *
                                  std::cos(2.0f * std::numbers::pi_v<float> * u2);
