@@ -79,6 +79,14 @@ const std::vector<Departure> kDepartures = {
     {"cherrytomato", "width_y", 0.7303, kTurned},
     {"soybean", "width_x", 0.7655, kTurned},
     {"soybean", "width_y", 0.7655, kTurned},
+    // The reference sets fruit only where a fruit prototype is given, and gives ground cherry
+    // none: its flowers stay closed for good. Here a closed flower sets fruit after
+    // time_to_fruit_set (20 days, with probability 0.5), as the species' phenology says, so
+    // the earliest flowers (initiated from day 20) have set about one fruit by day 50 (the
+    // mean over seeds 1 to 20 is 0.95).
+    {"groundcherryweed", "fruit", 1.0,
+     "closed flowers set fruit after time_to_fruit_set; the reference, without a fruit "
+     "prototype, sets none (species/groundcherryweed.xml)"},
     {"sugarbeet", "width_y", 0.6105,
      "a spiral rosette, as wide along y as the reference's is along x (species/sugarbeet.xml)"},
 };
