@@ -88,15 +88,27 @@ TEST(PointCloud, PlyOfVerticesWithLabels) {
     EXPECT_NE(header.find("property uchar organ"), std::string::npos);
     EXPECT_NE(header.find("comment organ_label 3 leaf"), std::string::npos);
     const std::size_t body = end + std::strlen("end_header\n");
-    ASSERT_EQ(bytes.size() - body, 500u * 33u);
+    EXPECT_NE(header.find("property int leaf_id\nproperty int shoot_id\nproperty int rank\n"
+                          "property float age\n"),
+              std::string::npos);
+    ASSERT_EQ(bytes.size() - body, 500u * 49u);
     for (std::size_t i = 0; i < 500; ++i) {
-        float x;
+        float x, age;
         std::uint32_t object;
-        std::memcpy(&x, bytes.data() + body + 33 * i, 4);
-        std::memcpy(&object, bytes.data() + body + 33 * i + 28, 4);
+        std::int32_t leaf, rank;
+        const char* at = bytes.data() + body + 49 * i;
+        std::memcpy(&x, at, 4);
+        std::memcpy(&object, at + 28, 4);
+        std::memcpy(&leaf, at + 33, 4);
+        std::memcpy(&rank, at + 41, 4);
+        std::memcpy(&age, at + 45, 4);
         EXPECT_EQ(x, cloud.positions[i].x);
         EXPECT_EQ(object, cloud.objectID[i]);
-        EXPECT_EQ(std::uint8_t(bytes[body + 33 * i + 32]), cloud.organ[i]);
+        EXPECT_EQ(std::uint8_t(at[32]), cloud.organ[i]);
+        // The labels are the object's own.
+        EXPECT_EQ(leaf, b.ctx.objectDataInt(object, "leafID").value_or(-1));
+        EXPECT_EQ(rank, b.ctx.objectDataInt(object, "rank").value_or(-1));
+        EXPECT_EQ(age, b.ctx.objectDataFloat(object, "age").value_or(-1.0f));
     }
 }
 

@@ -156,20 +156,22 @@ TEST(Scan, PlyAndNpzFilesHoldEveryPoint) {
               std::string::npos);
     EXPECT_NE(ply.find("property float range\nproperty ushort scanner\nend_header"),
               std::string::npos);
-    ASSERT_EQ(ply.size() - end, c.positions.size() * 39);
+    ASSERT_EQ(ply.size() - end, c.positions.size() * 55);
     float range = 0.0f;
-    std::memcpy(&range, ply.data() + end + 33, 4);
+    std::memcpy(&range, ply.data() + end + 49, 4);
     EXPECT_EQ(range, c.range[0]);
 
     writePointCloudNPZ(c, (dir / "s.npz").string());
     const std::string npz = readAll(dir / "s.npz");
     EXPECT_EQ(npz.substr(0, 4), std::string("PK\x03\x04", 4));
     for (const char* name : {"positions.npy", "normals.npy", "plant_id.npy", "object_id.npy",
-                             "organ.npy", "organ_labels.npy", "range.npy", "scanner.npy"})
+                             "organ.npy", "leaf_id.npy", "shoot_id.npy", "rank.npy", "age.npy",
+                             "organ_labels.npy", "range.npy", "scanner.npy"})
         EXPECT_NE(npz.find(name), std::string::npos) << name;
     // The ranges, as stored.
     const std::size_t at = npz.find("'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                                    std::to_string(c.positions.size()) + ",), }");
+                                        std::to_string(c.positions.size()) + ",), }",
+                                    npz.find("range.npy"));
     ASSERT_NE(at, std::string::npos);
     const std::size_t data = npz.find('\n', at) + 1;
     EXPECT_EQ(std::memcmp(npz.data() + data, c.range.data(), c.range.size() * 4), 0);

@@ -176,7 +176,8 @@ struct UsdOptions {
 /// Writes the Context as a USD text file (.usda), atomically: upAxis Z, metersPerUnit 1, an
 /// Xform per plant (translated to its base; plantID, species, age, seed in customData) and a
 /// Mesh per organ kind under it, with primvars normals and st, per-face (uniform) primvars
-/// displayColor, organ, plantID and objectID, and the organ kind as a semantic class label
+/// displayColor, organ, plantID, objectID, leafID, shootID, rank and age, and the organ kind
+/// as a semantic class label
 /// (SemanticsLabelsAPI). Throws plantarch::Error naming the file.
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options = {});
 
@@ -222,7 +223,11 @@ struct PointCloud {
     std::vector<vec3> normals;          ///< unit normal of the triangle the point lies on
     std::vector<std::int32_t> plantID;  ///< -1 for objects of no plant
     std::vector<ObjectID> objectID;
-    std::vector<std::uint8_t> organ;  ///< index into kOrganLabels
+    std::vector<std::uint8_t> organ;    ///< index into kOrganLabels
+    std::vector<std::int32_t> leafID;   ///< leaf within its plant (-1: not a leaf)
+    std::vector<std::int32_t> shootID;  ///< shoot within its plant (-1: none)
+    std::vector<std::int32_t> rank;     ///< shoot rank, 0 for the base stem (-1: none)
+    std::vector<float> age;             ///< organ age, days (-1: unknown)
     /// Scans only (empty for surface samples): distance from the scanner to the point (m,
     /// with the scan's range noise) and the index of the scanner that saw it.
     std::vector<float> range;
@@ -234,14 +239,16 @@ struct PointCloud {
 /// a point count out of range or a scene with no surface.
 PointCloud samplePoints(const Context& context, const PointSampleOptions& options = {});
 
-/// Writes a point cloud as a binary PLY of vertices (x y z nx ny nz plant_id object_id organ,
-/// and range scanner for a scan; the organ table in the header's comments), atomically.
+/// Writes a point cloud as a binary PLY of vertices (x y z nx ny nz plant_id object_id organ
+/// leaf_id shoot_id rank age, and range scanner for a scan; the organ table in the header's
+/// comments), atomically.
 /// Throws plantarch::Error naming the file when the arrays differ in length.
 void writePointCloudPLY(const PointCloud& cloud, const std::string& path);
 
 /// Writes a point cloud as a NumPy .npz archive (numpy.load), atomically: arrays positions
 /// (N x 3 float32), normals (N x 3 float32), plant_id (int32), object_id (uint32), organ
-/// (uint8), organ_labels (the names of kOrganLabels), and for a scan range (float32) and
+/// (uint8), leaf_id, shoot_id, rank (int32), age (float32), organ_labels (the names of
+/// kOrganLabels), and for a scan range (float32) and
 /// scanner (uint16). Throws plantarch::Error as writePointCloudPLY does.
 void writePointCloudNPZ(const PointCloud& cloud, const std::string& path);
 

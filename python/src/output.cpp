@@ -37,6 +37,10 @@ py::dict cloudArrays(PointCloud&& cloud) {
     out["plant_id"] = py::array_t<std::int32_t>({n}, {4}, owned->plantID.data(), owner);
     out["object_id"] = py::array_t<std::uint32_t>({n}, {4}, owned->objectID.data(), owner);
     out["organ"] = py::array_t<std::uint8_t>({n}, {1}, owned->organ.data(), owner);
+    out["leaf_id"] = py::array_t<std::int32_t>({n}, {4}, owned->leafID.data(), owner);
+    out["shoot_id"] = py::array_t<std::int32_t>({n}, {4}, owned->shootID.data(), owner);
+    out["rank"] = py::array_t<std::int32_t>({n}, {4}, owned->rank.data(), owner);
+    out["age"] = py::array_t<float>({n}, {4}, owned->age.data(), owner);
     if (!owned->range.empty()) {
         out["range"] = py::array_t<float>({n}, {4}, owned->range.data(), owner);
         out["scanner"] = py::array_t<std::uint16_t>({n}, {2}, owned->scanner.data(), owner);

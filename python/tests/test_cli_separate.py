@@ -5,6 +5,8 @@ import re
 import struct
 import subprocess
 
+import numpy as np
+
 from conftest import cli
 
 
@@ -69,7 +71,16 @@ def test_points_option_writes_a_labelled_point_cloud(tmp_path):
     header = data[:data.index(b"end_header\n")].decode()
     assert "element vertex 1234" in header and "element face" not in header
     body = len(data) - data.index(b"end_header\n") - len(b"end_header\n")
-    assert body == 1234 * 33
+    assert body == 1234 * 49  # 6 floats, plant, object, organ, leaf, shoot, rank, age
+    # The same points as numpy arrays in an .npz, labels included.
+    npz = tmp_path / "points.npz"
+    subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "30", "--points", "1234",
+                    "-o", str(npz)], check=True, capture_output=True)
+    arrays = np.load(npz)
+    assert arrays["positions"].shape == (1234, 3)
+    leaves = arrays["organ"] == 3
+    assert (arrays["leaf_id"][leaves] >= 0).all() and (arrays["leaf_id"][~leaves] == -1).all()
+    assert (arrays["rank"] >= 0).all() and (arrays["age"] >= 0).all()
     bad = subprocess.run([cli(), "build", "bean", "--age", "5", "--points", "-4", "-o",
                           str(tmp_path / "x.ply")], capture_output=True, text=True)
     assert bad.returncode == 2 and "--points" in bad.stderr and "\n" == bad.stderr[-1]

@@ -36,7 +36,8 @@ def test_usda_of_a_canopy_has_a_prim_per_plant_and_organ_with_its_labels(tmp_pat
             assert max(indices) < len(points)
             assert len(a["primvars:normals"]["value"]) == len(points)
             assert a["primvars:normals"]["metadata"]["interpolation"] == "vertex"
-            for label in ("organ", "plantID", "objectID", "displayColor"):
+            for label in ("organ", "plantID", "objectID", "leafID", "shootID", "rank", "age",
+                          "displayColor"):
                 primvar = a["primvars:" + label]
                 assert primvar["metadata"]["interpolation"] == "uniform"
                 assert len(primvar["value"]) == len(counts)
@@ -46,6 +47,10 @@ def test_usda_of_a_canopy_has_a_prim_per_plant_and_organ_with_its_labels(tmp_pat
             assert a["semantics:labels:class"]["value"] == [mesh.name]
             assert mesh.metadata["apiSchemas"] == ["SemanticsLabelsAPI:class"]
             assert set(a["primvars:plantID"]["value"]) == {data["plantID"]}
+            leaf_ids = set(a["primvars:leafID"]["value"])
+            assert (min(leaf_ids) >= 0) == (mesh.name == "leaf"), mesh.name
+            assert min(a["primvars:rank"]["value"]) >= 0
+            assert 0 <= min(a["primvars:age"]["value"]) <= max(a["primvars:age"]["value"]) <= 30
             faces += len(counts)
     assert faces == faces_in_ply
 

@@ -55,6 +55,32 @@ std::string lowerExtension(const std::string& path) {
     return ext;
 }
 
+std::uint8_t organCode(std::string_view organ) {
+    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
+        if (organ == kOrganLabels[i]) return std::uint8_t(i);
+    return organ == "trellis" ? std::uint8_t(9) : std::uint8_t(0);
+}
+
+namespace {
+constexpr const char* kIntLabels[4] = {"plantID", "leafID", "shootID", "rank"};
+}
+
+LabelReader::LabelReader(const Context& context) : context_(context) {
+    for (int k = 0; k < 4; ++k) hasInt_[k] = context.objectDataType(kIntLabels[k]) == DataType::Int;
+    hasAge_ = context.objectDataType("age") == DataType::Float;
+    hasOrgan_ = context.objectDataType("organ") == DataType::String;
+}
+
+ObjectLabels LabelReader::operator()(ObjectID id) const {
+    ObjectLabels l;
+    std::int32_t* ints[4] = {&l.plant, &l.leaf, &l.shoot, &l.rank};
+    for (int k = 0; k < 4; ++k)
+        if (hasInt_[k]) *ints[k] = context_.objectDataInt(id, kIntLabels[k]).value_or(-1);
+    if (hasAge_) l.age = context_.objectDataFloat(id, "age").value_or(-1.0f);
+    if (hasOrgan_) l.organ = organCode(context_.objectDataString(id, "organ").value_or(""));
+    return l;
+}
+
 std::string organOf(const Context& context, ObjectID id) {
     return context.objectDataString(id, "organ").value_or(std::string());
 }

@@ -83,6 +83,40 @@ void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOp
 /// The extension of a file name in lower case, with its dot (".glb"); empty when none.
 std::string lowerExtension(const std::string& path);
 
+/// The index in kOrganLabels of an organ name (trellis parts are obstacles); 0 for others.
+std::uint8_t organCode(std::string_view organ);
+
+/// An object's labels as exporters write them: -1 (age: -1) where the data is absent.
+struct ObjectLabels {
+    std::int32_t plant = -1, leaf = -1, shoot = -1, rank = -1;
+    float age = -1.0f;
+    std::uint8_t organ = 0;
+};
+
+/// Reads objects' labels from their data (plantID, leafID, shootID, rank, age, organ); data of
+/// another type than plantarch writes counts as absent.
+class LabelReader {
+public:
+    explicit LabelReader(const Context& context);
+    ObjectLabels operator()(ObjectID id) const;
+
+private:
+    const Context& context_;
+    bool hasInt_[4];
+    bool hasAge_, hasOrgan_;
+};
+
+/// Appends one point's object and labels to the label arrays of a point cloud.
+inline void appendLabels(PointCloud& cloud, ObjectID id, const ObjectLabels& l) {
+    cloud.plantID.push_back(l.plant);
+    cloud.objectID.push_back(id);
+    cloud.organ.push_back(l.organ);
+    cloud.leafID.push_back(l.leaf);
+    cloud.shootID.push_back(l.shoot);
+    cloud.rank.push_back(l.rank);
+    cloud.age.push_back(l.age);
+}
+
 /// "organ" data of an object, empty when absent.
 std::string organOf(const Context& context, ObjectID id);
 

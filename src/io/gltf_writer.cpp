@@ -70,13 +70,6 @@ struct Node {
     std::optional<GltfPlant> info;  // species, age and seed, when given
 };
 
-std::uint8_t organCode(const std::string& organ) {
-    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
-        if (organ == kOrganLabels[i]) return std::uint8_t(i);
-    if (organ == "trellis") return std::uint8_t(9);  // drawn as an obstacle
-    return 0;
-}
-
 float linear(float srgb) {
     const float c = std::clamp(srgb, 0.0f, 1.0f);
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
@@ -205,13 +198,7 @@ void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& p
                   const GltfOptions& options) {
     const Context& ctx = *s.frames[frame];
     const std::vector<ObjectID> ids = io::exportedObjects(ctx, options.includeHidden);
-    const char* intLabels[4] = {"plantID", "leafID", "shootID", "rank"};
-    bool hasInt[4];
-    for (int k = 0; k < 4; ++k) hasInt[k] = ctx.objectDataType(intLabels[k]) == DataType::Int;
-    auto intData = [&](ObjectID id, int which) -> std::int32_t {
-        return hasInt[which] ? ctx.objectDataInt(id, intLabels[which]).value_or(-1) : -1;
-    };
-    const bool ageFloat = ctx.objectDataType("age") == DataType::Float;
+    const io::LabelReader labelsOf(ctx);
     const std::size_t firstNode = s.nodes.size();
     std::map<std::int32_t, std::size_t> nodeOf;
     for (const GltfPlant& p : plants) {
@@ -228,16 +215,9 @@ void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& p
             m->second = std::size_t(at - s.materials.begin());
             if (at == s.materials.end()) s.materials.push_back(mat);
         }
-        ObjectRecord r{id,
-                       intData(id, 0),
-                       organCode(io::organOf(ctx, id)),
-                       intData(id, 1),
-                       intData(id, 2),
-                       intData(id, 3),
-                       ageFloat ? ctx.objectDataFloat(id, "age").value_or(-1.0f) : -1.0f,
-                       m->second,
-                       frame,
-                       !o.uvs.empty()};
+        const io::ObjectLabels l = labelsOf(id);
+        ObjectRecord r{id,     l.plant, l.organ,   l.leaf, l.shoot,
+                       l.rank, l.age,   m->second, frame,  !o.uvs.empty()};
         if (!nodeOf.count(r.plant)) {
             nodeOf.emplace(r.plant, s.nodes.size());
             s.nodes.push_back({frame, r.plant, vec3(0.0f), std::nullopt});

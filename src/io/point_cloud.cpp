@@ -19,16 +19,6 @@
 
 namespace plantarch {
 
-namespace {
-
-std::uint8_t organCode(const std::string& organ) {
-    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
-        if (organ == kOrganLabels[i]) return std::uint8_t(i);
-    return organ == "trellis" ? std::uint8_t(9) : std::uint8_t(0);
-}
-
-}  // namespace
-
 PointCloud samplePoints(const Context& context, const PointSampleOptions& options) {
     if (options.points == 0 || options.points > (std::size_t(1) << 31))
         throw Error("the number of points is out of range",
@@ -59,19 +49,17 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
     if (triangles.empty())
         throw Error("there is no surface to sample (no visible triangle has an area)",
                     {.parameter = "points"});
-    const bool hasPlant = context.objectDataType("plantID") == DataType::Int;
-    std::vector<std::int32_t> plantOf(ids.size());
-    std::vector<std::uint8_t> organOf(ids.size());
-    for (std::size_t k = 0; k < ids.size(); ++k) {
-        plantOf[k] = hasPlant ? context.objectDataInt(ids[k], "plantID").value_or(-1) : -1;
-        organOf[k] = organCode(io::organOf(context, ids[k]));
-    }
+    const io::LabelReader labelsOf(context);
+    std::vector<io::ObjectLabels> labels(ids.size());
+    for (std::size_t k = 0; k < ids.size(); ++k) labels[k] = labelsOf(ids[k]);
     PointCloud cloud;
     cloud.positions.resize(options.points);
     cloud.normals.resize(options.points);
-    cloud.plantID.resize(options.points);
-    cloud.objectID.resize(options.points);
-    cloud.organ.resize(options.points);
+    for (auto* v : {&cloud.plantID, &cloud.leafID, &cloud.shootID, &cloud.rank})
+        v->reserve(options.points);
+    cloud.objectID.reserve(options.points);
+    cloud.organ.reserve(options.points);
+    cloud.age.reserve(options.points);
     Rng rng(options.seed, 0x5eed);
     for (std::size_t i = 0; i < options.points; ++i) {
         const double u = rng.uniform01d() * total;
@@ -86,9 +74,7 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
         const float r1 = std::sqrt(rng.uniform01()), r2 = rng.uniform01();
         cloud.positions[i] = (1.0f - r1) * a + r1 * (1.0f - r2) * b + r1 * r2 * c;
         cloud.normals[i] = glm::normalize(glm::cross(b - a, c - a));
-        cloud.plantID[i] = plantOf[tri.object];
-        cloud.objectID[i] = ids[tri.object];
-        cloud.organ[i] = organOf[tri.object];
+        io::appendLabels(cloud, ids[tri.object], labels[tri.object]);
     }
     return cloud;
 }
@@ -100,7 +86,9 @@ bool scanned(const PointCloud& cloud, const std::string& path) {
     const std::size_t n = cloud.positions.size();
     const bool scan = !cloud.range.empty() || !cloud.scanner.empty();
     if (cloud.normals.size() != n || cloud.plantID.size() != n || cloud.objectID.size() != n ||
-        cloud.organ.size() != n || (scan && (cloud.range.size() != n || cloud.scanner.size() != n)))
+        cloud.organ.size() != n || cloud.leafID.size() != n || cloud.shootID.size() != n ||
+        cloud.rank.size() != n || cloud.age.size() != n ||
+        (scan && (cloud.range.size() != n || cloud.scanner.size() != n)))
         throw Error("the point cloud's arrays differ in length", {.file = path});
     return scan;
 }
@@ -111,7 +99,8 @@ void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
     const bool scan = scanned(cloud, path);
     io::AtomicFile out(path);
     std::string h = "ply\nformat binary_little_endian 1.0\n";
-    h += "comment plantarch point cloud: per point plant_id (-1: none), object_id, organ label";
+    h += "comment plantarch point cloud: per point plant_id (-1: none), object_id, organ label, "
+         "leaf_id, shoot_id, rank (-1: none), age (days; -1: unknown)";
     h += scan ? ", range (m) and scanner index\n" : "\n";
     for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
         h += "comment organ_label " + std::to_string(i) + " " + std::string(kOrganLabels[i]) + "\n";
@@ -119,10 +108,11 @@ void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
     h += "property float x\nproperty float y\nproperty float z\n";
     h += "property float nx\nproperty float ny\nproperty float nz\n";
     h += "property int plant_id\nproperty uint object_id\nproperty uchar organ\n";
+    h += "property int leaf_id\nproperty int shoot_id\nproperty int rank\nproperty float age\n";
     if (scan) h += "property float range\nproperty ushort scanner\n";
     h += "end_header\n";
     out.write(h);
-    const std::size_t kBytes = 6 * 4 + 4 + 4 + 1 + (scan ? 6 : 0);
+    const std::size_t kBytes = 6 * 4 + 4 + 4 + 1 + 16 + (scan ? 6 : 0);
     for (std::size_t first = 0; first < cloud.positions.size();) {
         const std::size_t n =
             std::min(io::AtomicFile::kMaxReserve / kBytes, cloud.positions.size() - first);
@@ -133,9 +123,13 @@ void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
             std::memcpy(p + 24, &cloud.plantID[i], 4);
             std::memcpy(p + 28, &cloud.objectID[i], 4);
             p[32] = char(cloud.organ[i]);
+            std::memcpy(p + 33, &cloud.leafID[i], 4);
+            std::memcpy(p + 37, &cloud.shootID[i], 4);
+            std::memcpy(p + 41, &cloud.rank[i], 4);
+            std::memcpy(p + 45, &cloud.age[i], 4);
             if (scan) {
-                std::memcpy(p + 33, &cloud.range[i], 4);
-                std::memcpy(p + 37, &cloud.scanner[i], 2);
+                std::memcpy(p + 49, &cloud.range[i], 4);
+                std::memcpy(p + 53, &cloud.scanner[i], 2);
             }
             p += kBytes;
         }
@@ -200,6 +194,10 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
         {"plant_id", npy("<i4", rows, cloud.plantID.data(), n * 4)},
         {"object_id", npy("<u4", rows, cloud.objectID.data(), n * 4)},
         {"organ", npy("|u1", rows, cloud.organ.data(), n)},
+        {"leaf_id", npy("<i4", rows, cloud.leafID.data(), n * 4)},
+        {"shoot_id", npy("<i4", rows, cloud.shootID.data(), n * 4)},
+        {"rank", npy("<i4", rows, cloud.rank.data(), n * 4)},
+        {"age", npy("<f4", rows, cloud.age.data(), n * 4)},
     };
     std::size_t longest = 0;
     for (std::string_view name : kOrganLabels) longest = std::max(longest, name.size());

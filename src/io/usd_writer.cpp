@@ -118,6 +118,7 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
         g.triangles += o.triangleCount();
         g.uvs = g.uvs && !o.uvs.empty();
     }
+    const io::LabelReader labelsOf(context);
     std::map<std::int32_t, const GltfPlant*> info;
     for (const GltfPlant& p : plantInfo) info[p.id] = &p;
     auto writePlant =
@@ -229,6 +230,10 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
                 perFace("int[]", "organ", [&](ObjectID) { out.integer(code); });
                 perFace("int[]", "plantID", [&](ObjectID) { out.integer(plant); });
                 perFace("int[]", "objectID", [&](ObjectID id) { out.integer(std::int64_t(id)); });
+                perFace("int[]", "leafID", [&](ObjectID id) { out.integer(labelsOf(id).leaf); });
+                perFace("int[]", "shootID", [&](ObjectID id) { out.integer(labelsOf(id).shoot); });
+                perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
+                perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
                 out << "        }\n";
             }
             out << "    }\n";

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/value_text.h"
+#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
 
@@ -84,12 +85,6 @@ void check(const ScanOptions& o) {
         throw badOption("maximum range", o.maxRange, "more than 0, up to 10000 m");
 }
 
-std::uint8_t organCode(const std::string& organ) {
-    for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
-        if (organ == kOrganLabels[i]) return std::uint8_t(i);
-    return organ == "trellis" ? std::uint8_t(9) : std::uint8_t(0);
-}
-
 // One row's hits.
 struct Row {
     std::vector<vec3> positions, normals;
@@ -111,14 +106,9 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
     sceneOptions.smoothNormals = false;
     render_detail::buildScene(data, context, sceneOptions);
     // Labels of every object slot.
-    const bool hasPlant = context.objectDataType("plantID") == DataType::Int;
-    std::vector<std::int32_t> plantOf(data.objects.size());
-    std::vector<std::uint8_t> organOf(data.objects.size());
-    for (std::size_t k = 0; k < data.objects.size(); ++k) {
-        const ObjectID id = data.objects[k].id;
-        plantOf[k] = hasPlant ? context.objectDataInt(id, "plantID").value_or(-1) : -1;
-        organOf[k] = organCode(context.objectDataString(id, "organ").value_or(""));
-    }
+    const io::LabelReader labelsOf(context);
+    std::vector<io::ObjectLabels> labels(data.objects.size());
+    for (std::size_t k = 0; k < data.objects.size(); ++k) labels[k] = labelsOf(data.objects[k].id);
 
     PointCloud cloud;
     std::uint64_t totalRows = 0, rowsDone = 0;
@@ -186,9 +176,7 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
                 const std::uint32_t slot = row.slots[i];
                 cloud.positions.push_back(row.positions[i]);
                 cloud.normals.push_back(row.normals[i]);
-                cloud.plantID.push_back(plantOf[slot]);
-                cloud.objectID.push_back(data.objects[slot].id);
-                cloud.organ.push_back(organOf[slot]);
+                io::appendLabels(cloud, data.objects[slot].id, labels[slot]);
                 cloud.range.push_back(row.ranges[i]);
                 cloud.scanner.push_back(std::uint16_t(si));
             }
