@@ -63,29 +63,29 @@ void runExport(benchmark::State& state, const std::string& path, Write&& write) 
 }
 
 void BM_ExportOBJ(benchmark::State& state) {
-    runExport(state, "/tmp/plantarch_bench_export.obj",
+    runExport(state, bench::outputPath("plantarch_bench_export.obj"),
               [](const Context& c, const std::string& p) { writeOBJ(c, p); });
 }
 
 void BM_ExportOBJNoNormals(benchmark::State& state) {
-    runExport(state, "/tmp/plantarch_bench_export_nonormals.obj",
+    runExport(state, bench::outputPath("plantarch_bench_export_nonormals.obj"),
               [](const Context& c, const std::string& p) { writeOBJ(c, p, {.normals = false}); });
 }
 
 void BM_ExportPLYBinary(benchmark::State& state) {
-    runExport(state, "/tmp/plantarch_bench_export.ply",
+    runExport(state, bench::outputPath("plantarch_bench_export.ply"),
               [](const Context& c, const std::string& p) { writePLY(c, p); });
 }
 
 void BM_ExportPLYAscii(benchmark::State& state) {
-    runExport(state, "/tmp/plantarch_bench_export_ascii.ply",
+    runExport(state, bench::outputPath("plantarch_bench_export_ascii.ply"),
               [](const Context& c, const std::string& p) {
                   writePLY(c, p, {.format = PlyFormat::Ascii});
               });
 }
 
 void BM_ExportGLB(benchmark::State& state) {
-    runExport(state, "/tmp/plantarch_bench_export.glb",
+    runExport(state, bench::outputPath("plantarch_bench_export.glb"),
               [](const Context& c, const std::string& p) { writeGLTF(c, p); });
 }
 
@@ -103,7 +103,7 @@ void BM_ExportGLBBeanCanopy(benchmark::State& state) {
     GltfOptions o;
     for (unsigned id : arch.getAllPlantIDs())
         o.plants.push_back({std::int32_t(id), "bean", arch.getPlantBasePosition(id), 45.0, 42});
-    const std::string path = "/tmp/plantarch_bench_canopy.glb";
+    const std::string path = bench::outputPath("plantarch_bench_canopy.glb");
     std::uintmax_t bytes = 0;
     for (auto _ : state) {
         writeGLTF(ctx, path, o);

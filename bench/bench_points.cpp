@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_util.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Scan.h"
@@ -57,11 +58,11 @@ void runWrite(benchmark::State& state, const std::string& path, Write&& write) {
 }
 
 void BM_WritePointsPLY(benchmark::State& state) {
-    runWrite(state, "/tmp/plantarch_bench_points.ply", writePointCloudPLY);
+    runWrite(state, bench::outputPath("plantarch_bench_points.ply"), writePointCloudPLY);
 }
 
 void BM_WritePointsNPZ(benchmark::State& state) {
-    runWrite(state, "/tmp/plantarch_bench_points.npz", writePointCloudNPZ);
+    runWrite(state, bench::outputPath("plantarch_bench_points.npz"), writePointCloudNPZ);
 }
 
 // Two scanners beside the canopy at 0.05 degrees over zenith 40..140 and a full turn: 14.4 M

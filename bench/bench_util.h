@@ -5,10 +5,19 @@
 
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include "plantarch/Mesh.h"
 
 namespace plantarch::bench {
+
+/// Where the file benchmarks write: $PLANTARCH_BENCH_DIR, or /tmp. Point it at a tmpfs
+/// (/dev/shm) to time the writers without the disk.
+inline std::string outputPath(const std::string& name) {
+    const char* dir = std::getenv("PLANTARCH_BENCH_DIR");
+    return std::string(dir && *dir ? dir : "/tmp") + "/" + name;
+}
 
 /// Registers one benchmark per library species (bench_species.cpp).
 void registerSpeciesBenchmarks();
