@@ -35,15 +35,19 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     auto a = std::make_shared<BuildArgs>();
     addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
     addAnimationOptions(app, a->animation, "of age");
-    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
-        ->required();
+    app.add_option("-o,--output", a->outputs,
+                   "Output file(s): " + plantFileExtensions() + " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
     return [a, &global]() {
+        if (a->outputs.empty() && !a->stats)
+            throw Error("--output is required (or --stats for the statistics alone)");
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         requireAgeOrFrames(a->age, frames.has_value());
+        if (frames && a->outputs.empty())
+            throw Error("--frames writes an animation: give -o FILE.glb, .gltf or .usda");
         if (frames)
             prepareAnimationOutputs(a->outputs);
         else

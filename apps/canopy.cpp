@@ -61,8 +61,8 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("-D", a->defines, "Build parameter override, name=value (repeatable)");
     app.add_flag("--no-trellis", a->noTrellis,
                  "Leave out the species' trellis (posts and wires drawn with trellis species)");
-    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
-        ->required();
+    app.add_option("-o,--output", a->outputs,
+                   "Output file(s): " + plantFileExtensions() + " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
@@ -76,11 +76,17 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
+        if (a->outputs.empty() && !a->stats)
+            throw Error("--output is required (or --stats for the statistics alone)");
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         requireAgeOrFrames(a->age, frames.has_value());
+        if (a->separate && a->outputs.empty())
+            throw Error("--separate writes files: give -o FILE", {.parameter = "--separate"});
         if (frames && a->separate)
             throw Error("--separate writes still files, one per plant: not with --frames",
                         {.parameter = "--separate", .validRange = "without --frames"});
+        if (frames && a->outputs.empty())
+            throw Error("--frames writes an animation: give -o FILE.glb, .gltf or .usda");
         if (frames)
             prepareAnimationOutputs(a->outputs);
         else

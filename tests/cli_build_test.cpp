@@ -54,6 +54,19 @@ TEST(CliBuild, StatsIsOneJSONObjectAndSeedsDiffer) {
     EXPECT_NE(a.out, c.out);
 }
 
+TEST(CliBuild, StatsAloneWritesNoFile) {
+    const CliResult b = run("--seed 3 build bean --age 10 --stats");
+    ASSERT_EQ(b.status, 0) << b.out;
+    EXPECT_EQ(lines(b.out), 1);
+    EXPECT_EQ(b.out.rfind("{\"species\": \"bean\"", 0), 0u) << b.out;
+    // The same statistics as a build that also writes a file, options after the command too.
+    const CliResult w = run("build bean --age 10 --seed 3 --stats -o " + tmp("stats") + "/b.ply");
+    EXPECT_EQ(b.out, w.out);
+    const CliResult c = run("canopy bean --count 2x2 --age 10 --stats");
+    ASSERT_EQ(c.status, 0) << c.out;
+    EXPECT_EQ(lines(c.out), 4);
+}
+
 TEST(CliBuild, BadInputIsOneLineAndStatus2) {
     // Each bad input: exit status 2 and exactly this one line, naming the parameter, the
     // value and the valid range.
@@ -77,6 +90,12 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
          "species has no build parameters)\n"},
         {"build bean -o /tmp/x.obj",
          "plantarch: --age is required (or --frames for a growth animation)\n"},
+        {"build bean --age 5",
+         "plantarch: --output is required (or --stats for the statistics alone)\n"},
+        {"canopy bean --age 5 --separate --stats",
+         "plantarch: --separate: --separate writes files: give -o FILE\n"},
+        {"build bean --frames 0:5 --stats",
+         "plantarch: --frames writes an animation: give -o FILE.glb, .gltf or .usda\n"},
         {"build bean --age 10 -o /tmp/x.png --image-size 32",
          "plantarch: --image-size = 32: image size is WIDTHxHEIGHT in pixels (valid: 16x16 to "
          "16384x16384)\n"},
