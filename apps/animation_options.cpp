@@ -49,6 +49,23 @@ std::optional<GrowthFrames> parseFrames(const AnimationArgs& args) {
     return frames;
 }
 
+std::optional<GrowthFrames> prepareGrowthOutputs(const std::vector<std::string>& outputs,
+                                                 bool stats, float age,
+                                                 const AnimationArgs& animation,
+                                                 std::size_t points) {
+    if (outputs.empty() && !stats)
+        throw Error("--output is required (or --stats for the statistics alone)");
+    const std::optional<GrowthFrames> frames = parseFrames(animation);
+    requireAgeOrFrames(age, frames.has_value());
+    if (frames && outputs.empty())
+        throw Error("--frames writes an animation: give -o FILE.glb, .gltf or .usda");
+    if (frames)
+        prepareAnimationOutputs(outputs);
+    else
+        preparePlantOutputs(outputs, points);
+    return frames;
+}
+
 void requireAgeOrFrames(float age, bool frames) {
     if (frames && age >= 0.0f)
         throw Error("--age and --frames both given: --frames gives the ages of the frames");

@@ -42,16 +42,8 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
     return [a, &global]() {
-        if (a->outputs.empty() && !a->stats)
-            throw Error("--output is required (or --stats for the statistics alone)");
-        const std::optional<GrowthFrames> frames = parseFrames(a->animation);
-        requireAgeOrFrames(a->age, frames.has_value());
-        if (frames && a->outputs.empty())
-            throw Error("--frames writes an animation: give -o FILE.glb, .gltf or .usda");
-        if (frames)
-            prepareAnimationOutputs(a->outputs);
-        else
-            preparePlantOutputs(a->outputs, global.points);
+        const std::optional<GrowthFrames> frames =
+            prepareGrowthOutputs(a->outputs, a->stats, a->age, a->animation, global.points);
         checkCollisionOptions(a->collision);
         Context ctx;
         PlantArchitecture arch(&ctx);

@@ -76,21 +76,13 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
-        if (a->outputs.empty() && !a->stats)
-            throw Error("--output is required (or --stats for the statistics alone)");
-        const std::optional<GrowthFrames> frames = parseFrames(a->animation);
-        requireAgeOrFrames(a->age, frames.has_value());
         if (a->separate && a->outputs.empty())
             throw Error("--separate writes files: give -o FILE", {.parameter = "--separate"});
-        if (frames && a->separate)
+        if (a->separate && !a->animation.frames.empty())
             throw Error("--separate writes still files, one per plant: not with --frames",
                         {.parameter = "--separate", .validRange = "without --frames"});
-        if (frames && a->outputs.empty())
-            throw Error("--frames writes an animation: give -o FILE.glb, .gltf or .usda");
-        if (frames)
-            prepareAnimationOutputs(a->outputs);
-        else
-            preparePlantOutputs(a->outputs, global.points);
+        const std::optional<GrowthFrames> frames =
+            prepareGrowthOutputs(a->outputs, a->stats, a->age, a->animation, global.points);
         if (a->plantOrigin && !a->separate)
             throw Error("--plant-origin places the plants of separate files",
                         {.parameter = "--plant-origin", .validRange = "with --separate"});

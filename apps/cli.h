@@ -142,6 +142,13 @@ void addAnimationOptions(CLI::App& app, AnimationArgs& args, const std::string& 
 std::optional<GrowthFrames> parseFrames(const AnimationArgs& args);
 /// Throws unless exactly one of --age (age >= 0) and --frames was given.
 void requireAgeOrFrames(float age, bool frames);
+/// The checks `build` and `canopy` make of their outputs before any work: an output unless
+/// --stats, exactly one of --age and --frames, and each output's format (an animation format
+/// with --frames); missing folders are made. Returns the frames asked for, if any.
+std::optional<GrowthFrames> prepareGrowthOutputs(const std::vector<std::string>& outputs,
+                                                 bool stats, float age,
+                                                 const AnimationArgs& animation,
+                                                 std::size_t points);
 /// Checks that every output is an animation format (.glb, .gltf, .usda), before any work.
 void prepareAnimationOutputs(const std::vector<std::string>& paths);
 

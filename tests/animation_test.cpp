@@ -15,6 +15,7 @@
 
 #include "cli_run.h"
 #include "error_of.h"
+#include "glb_reader.h"
 #include "plantarch/Export.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
@@ -22,45 +23,17 @@
 using namespace plantarch;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using plantarch::testing::accessorValues;
 using plantarch::testing::errorOf;
+using plantarch::testing::Glb;
+using plantarch::testing::parseGlb;
+using plantarch::testing::readAll;
 
 namespace {
-
-std::string readAll(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
 
 fs::path tempPath(const std::string& name) {
     return fs::temp_directory_path() /
            ("plantarch_animation_" + std::to_string(::getpid()) + "_" + name);
-}
-
-struct Glb {
-    json doc;
-    std::string bin;
-};
-
-Glb parseGlb(const std::string& bytes) {
-    std::uint32_t chunk[2];
-    std::memcpy(chunk, bytes.data() + 12, 8);
-    Glb g;
-    g.doc = json::parse(bytes.substr(20, chunk[0]));
-    const std::size_t binAt = 20 + chunk[0];
-    std::memcpy(chunk, bytes.data() + binAt, 8);
-    g.bin = bytes.substr(binAt + 8, chunk[0]);
-    return g;
-}
-
-template <class T>
-std::vector<T> accessorValues(const Glb& g, int accessorIndex) {
-    const json& a = g.doc["accessors"][accessorIndex];
-    const json& v = g.doc["bufferViews"][a["bufferView"].get<int>()];
-    const std::size_t components = a["type"] == "VEC3" ? 3 : 1;
-    std::vector<T> out(a["count"].get<std::size_t>() * components);
-    std::memcpy(out.data(), g.bin.data() + v["byteOffset"].get<std::size_t>(),
-                out.size() * sizeof(T));
-    return out;
 }
 
 // Triangles under a node, through its children.
@@ -141,7 +114,7 @@ TEST(Animation, GlbShowsEachFrameAloneAndEachFrameIsThePlantAtItsDay) {
     const fs::path path = tempPath("growth.glb");
     writeGrowthAnimation(arch, {plant}, {10, 30, 10}, {path.string()}, {2.0});
     EXPECT_DOUBLE_EQ(arch.getPlantAge(plant), 30.0);  // left grown to the last frame
-    const Glb g = parseGlb(readAll(path));
+    const Glb g = parseGlb(readAll(path.string()));
 
     // The root holds the frames, in order, named by day.
     const json& nodes = g.doc["nodes"];
@@ -196,7 +169,7 @@ TEST(Animation, GlbShowsEachFrameAloneAndEachFrameIsThePlantAtItsDay) {
     const unsigned plant2 = arch2.buildPlantInstanceFromLibrary(vec3(0.0f), 0.0f);
     const fs::path again = tempPath("again.glb");
     writeGrowthAnimation(arch2, {plant2}, {10, 30, 10}, {again.string()}, {2.0});
-    EXPECT_EQ(readAll(path), readAll(again));
+    EXPECT_EQ(readAll(path.string()), readAll(again.string()));
     fs::remove(path);
     fs::remove(again);
 }
@@ -209,7 +182,7 @@ TEST(Animation, UsdFramesAreKeyedByVisibilityAtTheirTimeCodes) {
     const unsigned plant = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 0.0f);
     const fs::path path = tempPath("growth.usda");
     writeGrowthAnimation(arch, {plant}, {10, 30, 10}, {path.string()}, {12.0});
-    const std::string text = readAll(path);
+    const std::string text = readAll(path.string());
     fs::remove(path);
     EXPECT_NE(text.find("startTimeCode = 0\n    endTimeCode = 2\n    timeCodesPerSecond = 12\n"),
               std::string::npos);

@@ -2,6 +2,8 @@
 // PLANTARCH_WRITE_DOCS_IMAGES=1 they are written full size into docs/images/; otherwise the
 // same scenes are built and rendered small as a check that the pipeline runs.
 
+#include "docs_images.h"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -15,23 +17,14 @@ using namespace plantarch;
 namespace {
 
 bool writing() {
-    return std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr;
+    return plantarch::testing::writingDocsImages();
 }
 
 std::string docsPath(const std::string& name) {
-    return std::string(PLANTARCH_SOURCE_DIR) + "/docs/images/" + name;
+    return plantarch::testing::docsImagePath(name);
 }
 
-// Places images side by side.
-Image strip(const std::vector<Image>& frames) {
-    Image out(frames.front().width * int(frames.size()), frames.front().height);
-    for (std::size_t f = 0; f < frames.size(); ++f)
-        for (int y = 0; y < out.height; ++y)
-            std::memcpy(&out.rgb[(std::size_t(y) * out.width + f * frames[f].width) * 3],
-                        &frames[f].rgb[std::size_t(y) * frames[f].width * 3],
-                        std::size_t(frames[f].width) * 3);
-    return out;
-}
+using plantarch::testing::strip;
 
 ShootParameters timelapseShoot() {
     ShootParameters s;

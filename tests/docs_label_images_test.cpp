@@ -9,6 +9,7 @@
 #include <cstring>
 #include <set>
 
+#include "docs_images.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
@@ -19,22 +20,14 @@ using namespace plantarch;
 namespace {
 
 bool writing() {
-    return std::getenv("PLANTARCH_WRITE_DOCS_IMAGES") != nullptr;
+    return plantarch::testing::writingDocsImages();
 }
 
 std::string docsPath(const std::string& name) {
-    return std::string(PLANTARCH_SOURCE_DIR) + "/docs/images/" + name;
+    return plantarch::testing::docsImagePath(name);
 }
 
-Image strip(const std::vector<Image>& panels) {
-    Image out(panels.front().width * int(panels.size()), panels.front().height);
-    for (std::size_t f = 0; f < panels.size(); ++f)
-        for (int y = 0; y < out.height; ++y)
-            std::memcpy(&out.rgb[(std::size_t(y) * out.width + f * panels[f].width) * 3],
-                        &panels[f].rgb[std::size_t(y) * panels[f].width * 3],
-                        std::size_t(panels[f].width) * 3);
-    return out;
-}
+using plantarch::testing::strip;
 
 // Points as small squares facing the eye, one object per organ kind carrying its label, so
 // the renderer's organ mode draws them in the organ colours.

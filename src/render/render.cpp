@@ -225,22 +225,7 @@ struct Hit {
 };
 
 Hit intersect(const Setup& s, RTCIntersectContext& ictx, const vec3& org, const vec3& dir) {
-    RTCRayHit rh;
-    rh.ray.org_x = org.x;
-    rh.ray.org_y = org.y;
-    rh.ray.org_z = org.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = dir.x;
-    rh.ray.dir_y = dir.y;
-    rh.ray.dir_z = dir.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = kInf;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = render_detail::rayHit(org, dir, kInf);
     if (s.scene->triangles > 0) rtcIntersect1(s.rtc, &ictx, &rh);
     Hit hit;
     if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {

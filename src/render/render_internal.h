@@ -89,6 +89,27 @@ struct SceneData {
 
 void buildScene(SceneData& data, const Context& context, const RenderSceneOptions& options);
 
+/// A ray from `origin` along `direction` up to `tfar`, with no hit yet, for rtcIntersect1.
+inline RTCRayHit rayHit(const vec3& origin, const vec3& direction, float tfar) {
+    RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.dir_x = direction.x;
+    rh.ray.dir_y = direction.y;
+    rh.ray.dir_z = direction.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
 // ---- sampling ----------------------------------------------------------------------------
 
 /// A small counter-based random stream: the same (seed, pixel) gives the same numbers on any

@@ -133,22 +133,7 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
                     const double azimuth = (azimuth0 + double(c) * step) * toRad;
                     const vec3 dir(float(sz * std::cos(azimuth)), float(sz * std::sin(azimuth)),
                                    float(cz));
-                    RTCRayHit rh;
-                    rh.ray.org_x = s.origin.x;
-                    rh.ray.org_y = s.origin.y;
-                    rh.ray.org_z = s.origin.z;
-                    rh.ray.tnear = 0.0f;
-                    rh.ray.dir_x = dir.x;
-                    rh.ray.dir_y = dir.y;
-                    rh.ray.dir_z = dir.z;
-                    rh.ray.time = 0.0f;
-                    rh.ray.tfar = options.maxRange;
-                    rh.ray.mask = 0xFFFFFFFFu;
-                    rh.ray.id = 0;
-                    rh.ray.flags = 0;
-                    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-                    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                    RTCRayHit rh = render_detail::rayHit(s.origin, dir, options.maxRange);
                     rtcIntersect1(data.scene, &ictx, &rh);
                     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
                     float range = rh.ray.tfar;
