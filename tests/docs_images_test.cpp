@@ -16,15 +16,9 @@ using namespace plantarch;
 
 namespace {
 
-bool writing() {
-    return plantarch::testing::writingDocsImages();
-}
-
-std::string docsPath(const std::string& name) {
-    return plantarch::testing::docsImagePath(name);
-}
-
 using plantarch::testing::strip;
+const auto writing = plantarch::testing::writingDocsImages;
+const auto docsPath = plantarch::testing::docsImagePath;
 
 ShootParameters timelapseShoot() {
     ShootParameters s;

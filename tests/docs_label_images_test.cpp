@@ -19,15 +19,9 @@ using namespace plantarch;
 
 namespace {
 
-bool writing() {
-    return plantarch::testing::writingDocsImages();
-}
-
-std::string docsPath(const std::string& name) {
-    return plantarch::testing::docsImagePath(name);
-}
-
 using plantarch::testing::strip;
+const auto writing = plantarch::testing::writingDocsImages;
+const auto docsPath = plantarch::testing::docsImagePath;
 
 // Points as small squares facing the eye, one object per organ kind carrying its label, so
 // the renderer's organ mode draws them in the organ colours.
