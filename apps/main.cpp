@@ -146,6 +146,12 @@ int main(int argc, char** argv) {
     for (auto& cmd : registry) {
         CLI::App* sub = app.add_subcommand(cmd.name);
         runners.emplace_back(sub, cmd.setup(*sub, global));
+        // A repeatable option (-o, --scanner, -D) takes one value each time it is given, so
+        // `-o a.ply bean` leaves `bean` to the positional argument.
+        for (CLI::Option* option : sub->get_options())
+            if (option->get_expected_max() > 1 && option->nonpositional())
+                option->expected(1)->allow_extra_args(false)->multi_option_policy(
+                    CLI::MultiOptionPolicy::TakeAll);
     }
 
     try {

@@ -67,6 +67,16 @@ TEST(CliBuild, StatsAloneWritesNoFile) {
     EXPECT_EQ(lines(c.out), 4);
 }
 
+TEST(CliBuild, RepeatedOptionsTakeOneValueEach) {
+    // -o before the species: the species is still the positional argument.
+    const std::string dir = tmp("order");
+    const CliResult r =
+        run("build -o " + dir + "/a.ply bean --age 3 -o " + dir + "/a.obj --seed 2");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/a.ply"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/a.obj"));
+}
+
 TEST(CliBuild, BadInputIsOneLineAndStatus2) {
     // Each bad input: exit status 2 and exactly this one line, naming the parameter, the
     // value and the valid range.
