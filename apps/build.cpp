@@ -67,12 +67,16 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
                 "%s",
                 fmt::format(
                     "{} at {} days (seed {}): {} shoots, {} leaves (leaflets counted), {:.4f} m^2 "
-                    "one-sided leaf area, {:.3f} m tall, {} triangles in {} objects; written to "
-                    "{}.\n",
+                    "one-sided leaf area, {:.3f} m tall, {} triangles in {} objects; {}written "
+                    "to {}.\n",
                     arch.getCurrentPlantModel(), arch.plant(plant).age, global.seed,
                     arch.getShootCount(plant), arch.getPlantLeafCount(plant),
                     arch.getPlantLeafArea(plant), arch.getPlantHeight(plant), ctx.triangleCount(),
-                    ctx.objectCount(), outs)
+                    ctx.objectCount(),
+                    frames ? fmt::format("its growth in {} frames from {} days ",
+                                         growthFrameDays(*frames).size(), frames->start)
+                           : std::string(),
+                    outs)
                     .c_str());
         }
         return 0;

@@ -256,6 +256,9 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
     cli::Result r = cli::run("--seed 3 build bean --frames 0:20:5 -o " + glb + " -o " + usda);
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(r.out.find("bean at 20 days (seed 3)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("; its growth in 5 frames from 0 days written to " + glb),
+              std::string::npos)
+        << r.out;
     const Glb g = parseGlb(readAll(glb));
     EXPECT_EQ(g.doc["animations"][0]["channels"].size(), 5u);
     EXPECT_NE(readAll(usda).find("def Xform \"day_15\""), std::string::npos);
