@@ -34,9 +34,9 @@ ctest --test-dir "$dir" --output-on-failure --timeout 600 -j "$(nproc)"
 # build, and with the sanitizer runtimes preloaded into the interpreter in a sanitized one.
 if [ "$dir" = build ]; then
   (cd /tmp && /usr/bin/python3 -c "import plantarch") || { echo "test: the Python module does not import" >&2; exit 1; }
-  /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
+  PLANTARCH_CLI="$PWD/$dir/plantarch" /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
 else
-  PYTHONPATH="$PWD/$dir/python" ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+  PLANTARCH_CLI="$PWD/$dir/plantarch" PYTHONPATH="$PWD/$dir/python" ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
     LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)" \
     /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
 fi
