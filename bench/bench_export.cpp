@@ -92,14 +92,8 @@ void BM_ExportGLB(benchmark::State& state) {
 // A real canopy: 150 library beans at 45 days (about 5 million triangles), with the plant
 // nodes named and placed.
 void BM_ExportGLBBeanCanopy(benchmark::State& state) {
-    static Context ctx;
-    static PlantArchitecture arch(&ctx);
-    static const bool built = [] {
-        arch.loadPlantModelFromLibrary("bean");
-        arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f), glm::ivec2(15, 10), 45.0f);
-        return true;
-    }();
-    (void)built;
+    PlantArchitecture& arch = bench::beanCanopy(15, 10);
+    const Context& ctx = arch.context();
     GltfOptions o;
     for (unsigned id : arch.getAllPlantIDs())
         o.plants.push_back({std::int32_t(id), "bean", arch.getPlantBasePosition(id), 45.0, 42});

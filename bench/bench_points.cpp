@@ -17,15 +17,7 @@ namespace {
 
 // A 5 x 5 bean canopy at 45 days (about 0.9 million triangles).
 const Context& canopy() {
-    static Context ctx;
-    static PlantArchitecture arch(&ctx);
-    static const bool built = [] {
-        arch.loadPlantModelFromLibrary("bean");
-        arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f), glm::ivec2(5, 5), 45.0f);
-        return true;
-    }();
-    (void)built;
-    return ctx;
+    return bench::beanCanopy(5, 5).context();
 }
 
 const PointCloud& million() {

@@ -6,9 +6,13 @@
 #include <cstddef>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "plantarch/Mesh.h"
+#include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::bench {
 
@@ -17,6 +21,23 @@ namespace plantarch::bench {
 inline std::string outputPath(const std::string& name) {
     const char* dir = std::getenv("PLANTARCH_BENCH_DIR");
     return std::string(dir && *dir ? dir : "/tmp") + "/" + name;
+}
+
+/// A scene of library beans at 45 days, nx x ny at 0.3 m spacing; each size is built once per
+/// process and kept.
+inline PlantArchitecture& beanCanopy(int nx, int ny) {
+    struct Scene {
+        Context ctx;
+        PlantArchitecture arch{&ctx};
+    };
+    static std::map<std::pair<int, int>, std::unique_ptr<Scene>> built;
+    std::unique_ptr<Scene>& s = built[{nx, ny}];
+    if (!s) {
+        s = std::make_unique<Scene>();
+        s->arch.loadPlantModelFromLibrary("bean");
+        s->arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f), glm::ivec2(nx, ny), 45.0f);
+    }
+    return s->arch;
 }
 
 /// Registers one benchmark per library species (bench_species.cpp).
