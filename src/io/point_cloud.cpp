@@ -55,11 +55,7 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
     PointCloud cloud;
     cloud.positions.resize(options.points);
     cloud.normals.resize(options.points);
-    for (auto* v : {&cloud.plantID, &cloud.leafID, &cloud.shootID, &cloud.rank})
-        v->reserve(options.points);
-    cloud.objectID.reserve(options.points);
-    cloud.organ.reserve(options.points);
-    cloud.age.reserve(options.points);
+    std::vector<std::uint32_t> objectOf(options.points);  // index into ids
     Rng rng(options.seed, 0x5eed);
     for (std::size_t i = 0; i < options.points; ++i) {
         const double u = rng.uniform01d() * total;
@@ -74,7 +70,26 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
         const float r1 = std::sqrt(rng.uniform01()), r2 = rng.uniform01();
         cloud.positions[i] = (1.0f - r1) * a + r1 * (1.0f - r2) * b + r1 * r2 * c;
         cloud.normals[i] = glm::normalize(glm::cross(b - a, c - a));
-        io::appendLabels(cloud, ids[tri.object], labels[tri.object]);
+        objectOf[i] = std::uint32_t(tri.object);
+    }
+    // The labels of each point's object, filled in one pass per array.
+    const std::size_t n = options.points;
+    cloud.plantID.resize(n);
+    cloud.objectID.resize(n);
+    cloud.organ.resize(n);
+    cloud.leafID.resize(n);
+    cloud.shootID.resize(n);
+    cloud.rank.resize(n);
+    cloud.age.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const io::ObjectLabels& l = labels[objectOf[i]];
+        cloud.plantID[i] = l.plant;
+        cloud.objectID[i] = ids[objectOf[i]];
+        cloud.organ[i] = l.organ;
+        cloud.leafID[i] = l.leaf;
+        cloud.shootID[i] = l.shoot;
+        cloud.rank[i] = l.rank;
+        cloud.age[i] = l.age;
     }
     return cloud;
 }
