@@ -4,6 +4,7 @@ import json
 import re
 import struct
 import subprocess
+import zipfile
 
 import numpy as np
 
@@ -76,6 +77,7 @@ def test_points_option_writes_a_labelled_point_cloud(tmp_path):
     npz = tmp_path / "points.npz"
     subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "30", "--points", "1234",
                     "-o", str(npz)], check=True, capture_output=True)
+    assert zipfile.ZipFile(npz).testzip() is None  # every array's CRC-32 holds
     arrays = np.load(npz)
     assert arrays["positions"].shape == (1234, 3)
     leaves = arrays["organ"] == 3
