@@ -75,8 +75,7 @@ void requireAgeOrFrames(float age, bool frames) {
 
 void prepareAnimationOutputs(const std::vector<std::string>& paths) {
     for (const std::string& out : paths) {
-        std::string ext = std::filesystem::path(out).extension().string();
-        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+        const std::string ext = lowerExtension(out);
         if (ext != ".glb" && ext != ".gltf" && ext != ".usda")
             throw Error("--frames writes an animation: outputs are .glb, .gltf or .usda",
                         {.file = out, .value = ext, .validRange = ".glb, .gltf, .usda"});

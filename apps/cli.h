@@ -72,6 +72,12 @@ ProgressCallback terminalProgress();
 /// `points` is --points: .npz outputs (point clouds) need it.
 void prepareSceneOutputs(const std::vector<std::string>& paths, std::size_t points = 0);
 
+/// A path's extension in lower case, with its dot (".obj"); empty when it has none.
+std::string lowerExtension(const std::string& path);
+/// Creates the missing folders of each output path; throws plantarch::Error naming the first
+/// that cannot be made.
+void createOutputFolders(const std::vector<std::string>& paths);
+
 /// Whether writeSceneFile writes this extension (lower case, with its dot).
 bool isSceneExtension(const std::string& ext);
 /// The extensions writeSceneFile accepts, for help text and errors.

@@ -16,16 +16,6 @@
 
 namespace plantarch::cli {
 
-namespace {
-
-std::string extensionOf(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-}  // namespace
-
 void writeWholeFile(const std::string& path, const std::string& text) {
     const std::string temp = path + ".tmp-" + std::to_string(::getpid());
     {
@@ -53,25 +43,21 @@ std::string plantFileExtensions() {
 void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t points) {
     std::vector<std::string> scenes;
     for (const std::string& out : paths) {
-        const std::string ext = extensionOf(out);
+        const std::string ext = lowerExtension(out);
         if (ext != ".xml" && ext != ".txt" && ext != ".csv") {
             if (!isSceneExtension(ext))
                 throw Error("unknown output format",
                             {.file = out, .value = ext, .validRange = plantFileExtensions()});
             scenes.push_back(out);
-            continue;
         }
-        const auto dir = std::filesystem::path(out).parent_path();
-        std::error_code ec;
-        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
     }
     prepareSceneOutputs(scenes, points);
+    createOutputFolders(paths);
 }
 
 void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
                       const std::string& path, const GlobalOptions& g) {
-    const std::string ext = extensionOf(path);
+    const std::string ext = lowerExtension(path);
     if (ext == ".xml") {
         arch.writePlantStructureXML(plants, path);
     } else if (ext == ".csv") {
@@ -140,7 +126,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
         std::string files;
         for (const std::string& path : paths) {
             const std::string file = separateFileName(path, id);
-            const std::string ext = extensionOf(path);
+            const std::string ext = lowerExtension(path);
             if (ext == ".xml" || ext == ".txt" || ext == ".csv") {
                 writePlantOutput(arch, {id}, file, g);
             } else {
@@ -166,7 +152,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
 
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
                                      const std::string& species) {
-    const std::string ext = extensionOf(path);
+    const std::string ext = lowerExtension(path);
     PlantStructureReadOptions o;
     o.onWarning = [](const std::string& w) {
         std::fprintf(stderr, "plantarch: warning: %s\n", w.c_str());

@@ -77,8 +77,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto cocoDir = std::filesystem::path(a.coco).parent_path();
     if (!a.coco.empty() && !cocoDir.empty() && !std::filesystem::is_directory(cocoDir))
         throw Error("cannot write: no such directory", {.file = a.coco});
-    std::string ext = std::filesystem::path(a.output).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(a.output);
     const bool depth = a.label == "depth";
     if (ext != ".png" && !(depth && ext == ".npy"))
         throw Error(depth ? "a depth image is written as .npy (distances) or .png (a picture)"

@@ -48,12 +48,6 @@ std::pair<float, float> parseSpan(const std::string& text, const char* option) {
                 {.parameter = option, .value = text, .validRange = "e.g. 30:150"});
 }
 
-std::string extensionOf(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 int run(const ScanArgs& a, const GlobalOptions& g) {
     ScanOptions o;
     const auto [zenithMin, zenithMax] = parseSpan(a.zenith, "--zenith");
@@ -73,28 +67,17 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
     o.seed = g.seed;
     o.progress = terminalProgress();
     for (const std::string& out : a.outputs) {
-        const std::string ext = extensionOf(out);
+        const std::string ext = lowerExtension(out);
         if (ext != ".ply" && ext != ".npz")
             throw Error("a scan is written as .ply or .npz",
                         {.file = out, .value = ext, .validRange = ".ply, .npz"});
     }
-    for (const std::string& out : a.outputs) {
-        const auto dir = std::filesystem::path(out).parent_path();
-        std::error_code ec;
-        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
-    }
-    // An empty scene scans to no points: check the options before reading the input.
-    {
-        Context empty;
-        ScanOptions probe = o;
-        probe.progress = {};
-        scan(empty, probe);
-    }
+    checkScanOptions(o);  // before the input is read
+    createOutputFolders(a.outputs);
 
     Context ctx;
     std::unique_ptr<PlantArchitecture> arch;  // holds the plants while they are scanned
-    if (extensionOf(a.input) == ".obj") {
+    if (lowerExtension(a.input) == ".obj") {
         readOBJ(ctx, a.input);
     } else {
         arch = std::make_unique<PlantArchitecture>(&ctx);
@@ -103,7 +86,7 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
     }
     const PointCloud points = scan(ctx, o);
     for (const std::string& out : a.outputs) {
-        if (extensionOf(out) == ".npz")
+        if (lowerExtension(out) == ".npz")
             writePointCloudNPZ(points, out);
         else
             writePointCloudPLY(points, out);

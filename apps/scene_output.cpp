@@ -16,6 +16,21 @@
 
 namespace plantarch::cli {
 
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+void createOutputFolders(const std::vector<std::string>& paths) {
+    for (const std::string& out : paths) {
+        const auto dir = std::filesystem::path(out).parent_path();
+        std::error_code ec;
+        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
+    }
+}
+
 bool isSceneExtension(const std::string& ext) {
     return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".usda" ||
            ext == ".png" || ext == ".npz";
@@ -27,9 +42,7 @@ std::string sceneFileExtensions() {
 
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
                     const std::vector<GltfPlant>& plants) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = lowerExtension(path);
     if (ext == ".obj") {
         writeOBJ(ctx, path);
     } else if (ext == ".ply" && g.points > 0) {
@@ -63,19 +76,15 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
 
 void prepareSceneOutputs(const std::vector<std::string>& paths, std::size_t points) {
     for (const std::string& out : paths) {
-        std::string ext = std::filesystem::path(out).extension().string();
-        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+        const std::string ext = lowerExtension(out);
         if (!isSceneExtension(ext))
             throw Error("unknown output format",
                         {.file = out, .value = ext, .validRange = sceneFileExtensions()});
         if (ext == ".npz" && points == 0)
             throw Error("an .npz output is a point cloud: give --points N",
                         {.file = out, .parameter = "--points", .validRange = "1 to 2147483648"});
-        const auto dir = std::filesystem::path(out).parent_path();
-        std::error_code ec;
-        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
     }
+    createOutputFolders(paths);
 }
 
 vec3 parseVec3(const std::string& text, const char* option) {

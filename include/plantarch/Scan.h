@@ -35,6 +35,10 @@ struct ScanOptions {
     ProgressCallback progress;
 };
 
+/// Throws what scan() throws for these options (no scanner, an angle, resolution, noise or
+/// range out of range, too many rays), without casting a ray.
+void checkScanOptions(const ScanOptions& options);
+
 /// How many rays a scanner casts (rows of zenith angles times columns of azimuths).
 std::uint64_t scanRayCount(const Scanner& scanner);
 

@@ -115,9 +115,7 @@ void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& 
                         {.file = path, .value = ext, .validRange = ".glb, .gltf, .usda"});
     }
     // Checked before the growth, so a bad rate costs nothing.
-    const Context probe;
-    io::checkAnimation({AnimationFrame{&probe, 0.0, {}}}, animation,
-                       paths.empty() ? std::string() : paths.front());
+    io::checkFrameRate(animation, paths.empty() ? std::string() : paths.front());
     std::vector<Context> scenes;
     std::vector<AnimationFrame> recorded;
     scenes.reserve(days.size());

@@ -23,15 +23,19 @@ void requireDataType(const Context& context, std::string_view label, DataType ex
                     {.file = file, .parameter = std::string(label)});
 }
 
-void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOptions& animation,
-                    const std::string& file) {
-    if (frames.empty()) throw Error("an animation needs at least one frame", {.file = file});
+void checkFrameRate(const AnimationOptions& animation, const std::string& file) {
     const double rate = animation.framesPerSecond;
     if (!(rate >= 0.001 && rate <= 1000.0))
         throw Error("frame rate out of range", {.file = file,
                                                 .parameter = "framesPerSecond",
                                                 .value = text::formatDouble(rate),
                                                 .validRange = "0.001 to 1000"});
+}
+
+void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOptions& animation,
+                    const std::string& file) {
+    if (frames.empty()) throw Error("an animation needs at least one frame", {.file = file});
+    checkFrameRate(animation, file);
     for (std::size_t i = 0; i < frames.size(); ++i) {
         if (!frames[i].context)
             throw Error("animation frame " + std::to_string(i) + " has no Context", {.file = file});

@@ -75,6 +75,8 @@ using plantarch::smoothNormals;
 void requireDataType(const Context& context, std::string_view label, DataType expected,
                      const std::string& file);
 
+/// Throws Error (naming `file`) unless the frame rate is 0.001 to 1000.
+void checkFrameRate(const AnimationOptions& animation, const std::string& file);
 /// Throws Error (naming `file`) unless there is at least one frame, every frame has a
 /// Context, days are finite and increasing, and the frame rate is 0.001 to 1000.
 void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOptions& animation,

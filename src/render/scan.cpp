@@ -50,7 +50,9 @@ Error badOption(const std::string& option, double value, const std::string& rang
                  {.parameter = option, .value = text::formatDouble(value), .validRange = range});
 }
 
-void check(const ScanOptions& o) {
+}  // namespace
+
+void checkScanOptions(const ScanOptions& o) {
     if (o.scanners.empty() || o.scanners.size() > 65535)
         throw Error("a scan needs 1 to 65535 scanners",
                     {.parameter = "scanners", .value = std::to_string(o.scanners.size())});
@@ -85,6 +87,8 @@ void check(const ScanOptions& o) {
         throw badOption("maximum range", o.maxRange, "more than 0, up to 10000 m");
 }
 
+namespace {
+
 // One row's hits.
 struct Row {
     std::vector<vec3> positions, normals;
@@ -100,7 +104,7 @@ std::uint64_t scanRayCount(const Scanner& scanner) {
 }
 
 PointCloud scan(const Context& context, const ScanOptions& options) {
-    check(options);
+    checkScanOptions(options);
     render_detail::SceneData data;
     RenderSceneOptions sceneOptions;
     sceneOptions.smoothNormals = false;
