@@ -3,6 +3,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_util.h"
 #include "collision/cone.h"
 #include "plantarch/PlantArchitecture.h"
 
@@ -29,8 +30,10 @@ void reportCollision(benchmark::State& state, const CollisionStats& st) {
 // The 10 x 10 bean canopy at 40 days (0.3 m grid) with soft collision avoidance: cone 80
 // degrees, 0.1 m, inertia 0.4, leaves as obstacles, and the number of rays and the scene's
 // update interval (tenths of a day) given as arguments (defaults: 256 rays, every day), and
-// the cone kernel (1: the widest the processor runs, the default; 0: the portable one).
+// the cone kernel (1: the widest the processor runs, the default; 0: the portable one), and
+// the thread count (0: all cores).
 static void BM_BeanCanopy10x10At40DaysSoftAvoidance(benchmark::State& state) {
+    const plantarch::bench::ThreadCount threads(int(state.range(3)));
     CollisionStats st;
     std::size_t triangles = 0;
     SoftCollisionOptions options;
@@ -56,11 +59,12 @@ static void BM_BeanCanopy10x10At40DaysSoftAvoidance(benchmark::State& state) {
     state.counters["triangles"] = double(triangles);
 }
 BENCHMARK(BM_BeanCanopy10x10At40DaysSoftAvoidance)
-    ->ArgNames({"rays", "interval_tenths", "kernel"})
-    ->Args({256, 10, 1})
-    ->Args({64, 10, 1})
-    ->Args({256, 20, 1})
-    ->Args({256, 10, 0})
+    ->ArgNames({"rays", "interval_tenths", "kernel", "threads"})
+    ->Args({256, 10, 1, 1})
+    ->Args({256, 10, 1, 2})
+    ->Args({64, 10, 1, 0})
+    ->Args({256, 20, 1, 0})
+    ->Args({256, 10, 0, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

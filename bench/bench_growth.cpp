@@ -102,8 +102,10 @@ static void BM_LibraryBean50Days(benchmark::State& state) {
 }
 BENCHMARK(BM_LibraryBean50Days)->Unit(benchmark::kMillisecond);
 
-// A 10 x 10 canopy of library beans at 40 days, grown in parallel on all cores.
+// A 10 x 10 canopy of library beans at 40 days, grown on the given number of threads (0:
+// all cores), so one run gives the ratio of one thread to two.
 static void BM_BeanCanopy10x10At40Days(benchmark::State& state) {
+    const plantarch::bench::ThreadCount threads(int(state.range(0)));
     std::size_t triangles = 0;
     for (auto _ : state) {
         const std::size_t before = plantarch::bench::residentBytes();
@@ -117,4 +119,9 @@ static void BM_BeanCanopy10x10At40Days(benchmark::State& state) {
     }
     state.counters["triangles"] = double(triangles);
 }
-BENCHMARK(BM_BeanCanopy10x10At40Days)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_BeanCanopy10x10At40Days)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();

@@ -1,6 +1,8 @@
 #pragma once
-// Helpers shared by the benchmarks: resident memory and synthetic leaf-like meshes.
+// Helpers shared by the benchmarks: resident memory, thread counts and synthetic leaf-like
+// meshes.
 
+#include <omp.h>
 #include <unistd.h>
 
 #include <cstddef>
@@ -18,6 +20,20 @@ namespace plantarch::bench {
 
 /// Where the file benchmarks write: $PLANTARCH_BENCH_DIR, or /tmp. Point it at a tmpfs
 /// (/dev/shm) to time the writers without the disk.
+// Runs the enclosing scope on `threads` OpenMP threads (0: as many as the machine has).
+class ThreadCount {
+public:
+    explicit ThreadCount(int threads) : saved_(omp_get_max_threads()) {
+        if (threads > 0) omp_set_num_threads(threads);
+    }
+    ~ThreadCount() { omp_set_num_threads(saved_); }
+    ThreadCount(const ThreadCount&) = delete;
+    ThreadCount& operator=(const ThreadCount&) = delete;
+
+private:
+    int saved_;
+};
+
 inline std::string outputPath(const std::string& name) {
     const char* dir = std::getenv("PLANTARCH_BENCH_DIR");
     return std::string(dir && *dir ? dir : "/tmp") + "/" + name;

@@ -17,7 +17,7 @@ shift
 for b in "$@"; do
     [ -x "$b" ] || { echo "$0: $b: not an executable benchmark binary" >&2; exit 2; }
 done
-filter='BM_BeanCanopy10x10At40Days/real_time|SoftAvoidance/rays:256/interval_tenths:10(/kernel:1)?/real_time'
+filter='BM_BeanCanopy10x10At40Days(/threads:2)?/real_time|SoftAvoidance/rays:256/interval_tenths:10(/kernel:1)?(/threads:2)?/real_time'
 results=$(mktemp)
 trap 'rm -f "$results"' EXIT
 for r in $(seq 1 "$rounds"); do

@@ -60,6 +60,14 @@ struct ObjectView {
     std::size_t triangleCount() const { return indices.size() / 3; }
 };
 
+class Context;
+
+/// Objects of one Context to copy with Context::appendObjects.
+struct ObjectSource {
+    const Context* context = nullptr;
+    std::span<const ObjectID> objects;  ///< live objects of *context, copied in this order
+};
+
 class Context {
 public:
     Context();
@@ -94,6 +102,15 @@ public:
     /// Removes the object, its primitives and their data. Unknown IDs are an error.
     void deleteObject(ObjectID id);
     void deleteObjects(std::span<const ObjectID> ids);
+    /// Copies objects of other Contexts in one step: each object gets the next object ID, in
+    /// order (the sources in turn, each source's objects in the order given), with its
+    /// geometry, material (added here unless an equal one is present), hidden flag, object
+    /// data and primitive data. The geometry is not validated again (the source Context did
+    /// that), the pools grow once, and the copy runs on all threads, with the same result
+    /// for any thread count. All or nothing: an unknown object, a source that is this
+    /// Context, or a label holding another type here throws before anything is added.
+    /// Returns the new IDs in the order of the copied objects.
+    std::vector<ObjectID> appendObjects(std::span<const ObjectSource> sources);
 
     bool doesObjectExist(ObjectID id) const;
     bool doesPrimitiveExist(PrimitiveID id) const;
@@ -146,8 +163,12 @@ public:
     std::vector<std::string> primitiveDataLabels() const;
 
     // ---- housekeeping --------------------------------------------------------------
-    /// Removes every object and material (IDs restart at 0).
-    void clear();
+    /// Removes every object and material (IDs restart at 0). With releaseMemory false the
+    /// pools keep their capacity, for a Context filled again with as much.
+    void clear(bool releaseMemory = true);
+    /// Makes room for this many more objects, vertices and triangles, so that adding them
+    /// grows no pool (a hint: adding more is fine).
+    void reserve(std::size_t objects, std::size_t vertices, std::size_t triangles);
     /// Packs the pools after deletions. Called automatically when over half is unused;
     /// never changes IDs.
     void compact();

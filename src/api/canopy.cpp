@@ -65,47 +65,84 @@ struct CanopyWorker {
 
 }  // namespace
 
-// Copies a plant grown in another Context into this one (objects in ascending ID order, so
-// IDs follow plant order) and takes over its state (its own attraction points included), with
-// the object IDs remapped.
-void PlantArchitecture::mergePlant(const Context& from, PlantInstance plant, Impl& owner) {
+// A plant grown (and tessellated) in a worker: its objects, in ascending ID order, are in
+// `context`; its state is in `owner`'s store.
+struct PlantArchitecture::GrownPlant {
+    unsigned id = 0;
+    const Context* context = nullptr;
+    Impl* owner = nullptr;
+    std::vector<ObjectID> objects;
+};
+
+// Copies the objects of grown plants into this Context in one appendObjects call (plant
+// order, each plant's objects in ID order, so IDs follow plant order) and takes over their
+// state (their own attraction points included), with the object IDs remapped.
+void PlantArchitecture::adoptPlants(std::span<GrownPlant> plants) {
+    std::vector<ObjectSource> sources;
+    std::vector<std::size_t> firstCopy;  // where each plant's objects start among the copies
+    sources.reserve(plants.size());
+    std::size_t copied = 0;
+    for (GrownPlant& g : plants) {
+        sources.push_back({g.context, g.objects});
+        firstCopy.push_back(copied);
+        copied += g.objects.size();
+    }
+    const std::vector<ObjectID> copies = context_->appendObjects(sources);
+    const long count = long(plants.size());
+#pragma omp parallel for schedule(dynamic, 4) if (count > 8)
+    for (long k = 0; k < count; ++k) {
+        GrownPlant& g = plants[std::size_t(k)];
+        const ObjectID* base = copies.data() + firstCopy[std::size_t(k)];
+        forEachObjectID(g.owner->store.plant(g.id), [&](ObjectID& o) {
+            if (o == kNoObject) return;
+            const auto at = std::lower_bound(g.objects.begin(), g.objects.end(), o);
+            o = base[at - g.objects.begin()];
+        });
+    }
+    for (GrownPlant& g : plants) {
+        PlantInstance plant = std::move(g.owner->store.plant(g.id));
+        g.owner->store.plants.erase(g.id);
+        g.owner->collision.attractionIndexes.erase(g.id);
+        impl_->store.plants.emplace(g.id, std::move(plant));  // with its own attraction points
+        impl_->collision.attractionIndexes.erase(g.id);
+    }
+}
+
+namespace {
+
+// Plants are grown in batches, each plant into a Context of its own (so every plant is
+// tessellated into an empty Context, whichever thread grows it), then copied into the scene
+// together. A batch holds at most about this many triangles twice (and at least two plants
+// per thread).
+constexpr double kBatchTriangles = 4.0e6;
+
+std::vector<ObjectID> plantObjects(PlantInstance& plant) {
     std::vector<ObjectID> objects;
     forEachObjectID(plant, [&](ObjectID& o) {
         if (o != kNoObject) objects.push_back(o);
     });
     std::sort(objects.begin(), objects.end());
-    const std::vector<std::string> labels = from.objectDataLabels();
-    std::map<MaterialID, MaterialID> materials;
-    std::map<ObjectID, ObjectID> remap;
-    for (ObjectID o : objects) {
-        const ObjectView v = from.object(o);
-        auto m = materials.find(v.material);
-        if (m == materials.end())
-            m = materials.emplace(v.material, context_->addMaterial(from.material(v.material)))
-                    .first;
-        const ObjectID copy = context_->addObject(v.positions, v.uvs, v.indices, m->second);
-        for (const std::string& label : labels)
-            if (auto value = from.objectData(o, label))
-                context_->setObjectData(copy, label, *value);
-        remap[o] = copy;
-    }
-    forEachObjectID(plant, [&](ObjectID& o) {
-        if (o != kNoObject) o = remap.at(o);
-    });
-    const unsigned id = plant.id;
-    owner.store.plants.erase(id);
-    owner.collision.attractionIndexes.erase(id);
-    impl_->store.plants.emplace(id, std::move(plant));  // with its own attraction points
-    impl_->collision.attractionIndexes.erase(id);
+    return objects;
 }
+
+// The next batch's size from the triangles per plant seen so far.
+int nextBatchSize(int threads, std::size_t triangles, int plants, int left) {
+    const int least = 2 * threads;
+    int size = 4 * threads;
+    if (plants > 0) {
+        const double each = std::max(1.0, double(triangles) / double(plants));
+        size = int(std::clamp(kBatchTriangles / each, double(least), 64.0 * threads));
+    }
+    return std::max(1, std::min(size, left));
+}
+
+}  // namespace
 
 // With soft collision avoidance the plants must see each other while they grow, so they are
 // first built (initial structure only) by the workers, then grown together by
 // collision::growTogether (each step on all threads, every plant seeing the scene as it stood
-// at the step's start), then tessellated by their workers and merged in plant order.
-// Without it, each plant is merged into the caller's Context as soon as it is grown, in plant
-// order (an ordered region), and its worker's Context emptied: the merge of one plant
-// overlaps the growth of the next ones, and at most one plant per thread is held twice.
+// at the step's start), then tessellated in batches and copied into the scene in plant order.
+// Without it, each batch of plants is grown and tessellated on all threads and copied in.
 std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     const std::vector<vec3>& positions, float age,
     const std::map<std::string, float>& buildParameters) {
@@ -138,58 +175,99 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
 
     std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
     std::vector<std::string> errors(static_cast<std::size_t>(n));
-    auto throwFirstError = [&] {
-        for (int i = 0; i < n; ++i)
-            if (!errors[std::size_t(i)].empty())
-                throw Error("building canopy plant " + std::to_string(i) +
-                            " failed: " + errors[std::size_t(i)]);
+    auto firstError = [&](int from, int to) {
+        for (int i = from; i < to; ++i)
+            if (!errors[std::size_t(i)].empty()) return i;
+        return -1;
+    };
+    auto failWith = [&](int i) {
+        throw Error("building canopy plant " + std::to_string(i) +
+                    " failed: " + errors[std::size_t(i)]);
     };
     std::vector<unsigned> ids;
     // A failed build (or a progress callback that throws: the caller stopping it) leaves the
-    // Context as it was: the plants merged so far are deleted again.
-    std::exception_ptr stopped;
+    // Context as it was: the plants copied so far are deleted again.
     auto undo = [&] {
         for (unsigned id : ids) deletePlantInstance(id);
-        if (stopped) std::rethrow_exception(stopped);
     };
-    if (!together) {
-        bool failed = false;
-#pragma omp parallel for ordered schedule(dynamic, 1) num_threads(threads)
-        for (int i = 0; i < n; ++i) {
-            CanopyWorker& worker = workers[std::size_t(omp_get_thread_num())];
-            PlantArchitecture& w = *worker.arch;
-            const unsigned id = first + unsigned(i);
+
+    std::vector<Context> slots;  // one per plant of a batch, kept (with capacity) for the next
+    std::size_t trianglesSeen = 0;
+    // Runs make(i, thread, slot) for every plant in batches on all threads, then copies each
+    // batch into the scene; `ownerOf(i)` holds plant i's state.
+    auto inBatches = [&](auto&& make, auto&& ownerOf, const char* stage) {
+        for (int start = 0; start < n;) {
+            const int size = nextBatchSize(threads, trianglesSeen, start, n - start);
+            const int end = start + size;
+            if (slots.size() < std::size_t(size)) slots.resize(std::size_t(size));
+            std::vector<GrownPlant> grown(static_cast<std::size_t>(size));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+            for (int i = start; i < end; ++i) {
+                const int t = omp_get_thread_num();
+                Context& slot = slots[std::size_t(i - start)];
+                try {
+                    make(i, t, slot);
+                    Impl& owner = ownerOf(i);
+                    const unsigned id = first + unsigned(i);
+                    grown[std::size_t(i - start)] = {id, &slot, &owner,
+                                                     plantObjects(owner.store.plant(id))};
+                } catch (const std::exception& e) {
+                    errors[std::size_t(i)] = e.what();
+                }
+            }
+            if (int bad = firstError(start, end); bad >= 0) {
+                undo();
+                failWith(bad);
+            }
+            for (int i = start; i < end; ++i)
+                trianglesSeen += slots[std::size_t(i - start)].triangleCount();
+            if (start == 0 && end < n) {  // room for the rest, from this batch's plants
+                std::size_t objects = 0, vertices = 0, triangles = 0;
+                for (int i = start; i < end; ++i) {
+                    const Context& slot = slots[std::size_t(i - start)];
+                    objects += slot.objectCount();
+                    vertices += slot.vertexCount();
+                    triangles += slot.triangleCount();
+                }
+                const double scale = 1.05 * double(n) / double(end);
+                context_->reserve(std::size_t(double(objects) * scale),
+                                  std::size_t(double(vertices) * scale),
+                                  std::size_t(double(triangles) * scale));
+            }
             try {
-                w.impl_->store.nextPlantID = id;  // the plant's ID picks its stream
+                adoptPlants(grown);
+            } catch (...) {
+                undo();
+                throw;
+            }
+            for (int i = start; i < end; ++i) ids.push_back(first + unsigned(i));
+            for (int i = start; i < end; ++i) slots[std::size_t(i - start)].clear(false);
+            start = end;
+            if (impl_->progress) {
+                try {
+                    impl_->progress(stage, double(start) / double(n));
+                } catch (...) {
+                    undo();
+                    throw;
+                }
+            }
+        }
+    };
+
+    if (!together) {
+        inBatches(
+            [&](int i, int t, Context& slot) {
+                PlantArchitecture& w = *workers[std::size_t(t)].arch;
+                w.context_ = &slot;  // the plant is tessellated into its own Context
+                w.impl_->store.nextPlantID = first + unsigned(i);  // its ID picks its stream
                 w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
-            } catch (const std::exception& e) {
-                errors[std::size_t(i)] = e.what();
-            }
-#pragma omp ordered
-            {
-                if (!errors[std::size_t(i)].empty()) failed = true;
-                if (!failed) {
-                    mergePlant(worker.ctx, std::move(w.impl_->store.plant(id)), *w.impl_);
-                    ids.push_back(id);
-                }
-                w.impl_->store.plants.erase(id);
-                worker.ctx.clear();
-                // Progress is told on the calling thread only (OpenMP's thread 0).
-                if (!failed && impl_->progress && omp_get_thread_num() == 0) {
-                    try {
-                        impl_->progress("building", double(ids.size()) / double(n));
-                    } catch (...) {
-                        stopped = std::current_exception();
-                        failed = true;
-                    }
-                }
-            }
-        }
-        if (stopped || failed) {
-            undo();
-            throwFirstError();
-        }
-        if (impl_->progress) impl_->progress("building", 1.0);
+                builtBy[std::size_t(i)] = t;
+            },
+            [&](int i) -> Impl& {
+                return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
+            },
+            "building");
+        for (CanopyWorker& w : workers) w.arch->context_ = &w.ctx;
         impl_->store.nextPlantID = first + unsigned(n);
         for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
         return ids;
@@ -197,7 +275,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
 
     // Together: build every plant's initial structure in a worker (its geometry is not needed:
     // every plant is tessellated afresh when grown), plant i on thread i % threads, where it
-    // grows (collision::growTogether) and is tessellated.
+    // grows (collision::growTogether).
     for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
 #pragma omp parallel for schedule(static, 1) num_threads(threads)
     for (int i = 0; i < n; ++i) {
@@ -212,10 +290,10 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         }
     }
     for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = false;
-    throwFirstError();
+    if (int bad = firstError(0, n); bad >= 0) failWith(bad);
 
     // Grow them together.
-    std::vector<collision::GrowthSlot> slots;
+    std::vector<collision::GrowthSlot> growth;
     std::vector<collision::Worker> growers;
     for (CanopyWorker& w : workers) {
         w.arch->impl_->collision.world = impl_->collision.world;
@@ -224,40 +302,19 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     for (int i = 0; i < n; ++i) {
         Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
         PlantInstance& plant = owner.store.plant(first + unsigned(i));
-        slots.push_back({&plant, collision::attractionFor(owner.collision, plant), {}});
+        growth.push_back({&plant, collision::attractionFor(owner.collision, plant), {}});
     }
-    collision::growTogether(*impl_->collision.world, slots, age, seed_, growers, impl_->progress);
+    collision::growTogether(*impl_->collision.world, growth, age, seed_, growers, impl_->progress);
 
-    // Each worker tessellates its own plants; they are merged in plant order as they come (as
-    // without avoidance), each worker's Context emptied after each merge.
-    bool failed = false;
-#pragma omp parallel for ordered schedule(static, 1) num_threads(threads)
-    for (int i = 0; i < n; ++i) {
-        // The thread's own worker tessellates (whoever built the plant); the plant's owner's
-        // maps are only touched in the ordered region.
-        CanopyWorker& w = workers[std::size_t(omp_get_thread_num())];
-        Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
-        const unsigned id = first + unsigned(i);
-        try {
-            tessellatePlant(w.arch->impl_->store, w.arch->impl_->prototypes, w.ctx,
-                            *slots[std::size_t(i)].plant);
-        } catch (const std::exception& e) {
-            errors[std::size_t(i)] = e.what();
-        }
-#pragma omp ordered
-        {
-            if (!errors[std::size_t(i)].empty()) failed = true;
-            if (!failed) {
-                mergePlant(w.ctx, std::move(owner.store.plant(id)), owner);
-                ids.push_back(id);
-            }
-            w.ctx.clear();
-        }
-    }
-    if (failed) {
-        undo();
-        throwFirstError();
-    }
+    // Tessellated in batches by whichever thread is free (the plant's state is only read), each
+    // into its own Context, and copied in.
+    inBatches(
+        [&](int i, int t, Context& slot) {
+            Impl& w = *workers[std::size_t(t)].arch->impl_;
+            tessellatePlant(w.store, w.prototypes, slot, *growth[std::size_t(i)].plant);
+        },
+        [&](int i) -> Impl& { return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_; },
+        "tessellating");
     impl_->store.nextPlantID = first + unsigned(n);
     for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
     return ids;

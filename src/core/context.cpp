@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "core/pool_allocator.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -16,6 +17,10 @@ namespace plantarch {
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
+
+// Pools whose writers fill every element they add are grown without zeroing first.
+template <class T>
+using WrittenPool = std::vector<T, core::PoolAllocator<T, true>>;
 
 struct ObjectRecord {
     std::uint32_t firstVertex = 0;
@@ -68,12 +73,13 @@ const char* dataTypeName(DataType type) {
 }
 
 struct Context::Impl {
-    std::vector<vec3> positions;
-    std::vector<vec2> uvs;  // parallel to positions once any object has UVs, else empty
+    WrittenPool<vec3> positions;
+    WrittenPool<vec2> uvs;  // parallel to positions once any object has UVs (else empty);
+                            // zeros for objects without UVs
     bool uvsEnabled = false;
-    std::vector<std::uint32_t> indices;
+    WrittenPool<std::uint32_t> indices;
     std::vector<ObjectRecord> objects;
-    std::vector<ObjectID> primitiveOwner;  // PrimitiveID -> ObjectID or kNone
+    WrittenPool<ObjectID> primitiveOwner;  // PrimitiveID -> ObjectID or kNone
     std::vector<Material> materials;
     std::map<std::string, Column, std::less<>> columns;
     std::map<std::string, PrimitiveColumn, std::less<>> primitiveColumns;
@@ -153,7 +159,7 @@ struct Context::Impl {
         const auto ni = static_cast<std::uint32_t>(idx.size());
         if (!uv.empty() && !uvsEnabled) {
             uvsEnabled = true;
-            uvs.resize(positions.size());
+            uvs.resize(positions.size(), vec2(0.0f));
         }
         const bool fits = r.alive && nv <= r.vertexCount && ni <= r.indexCount;
         if (!fits) {
@@ -166,7 +172,10 @@ struct Context::Impl {
             indices.resize(indices.size() + ni);
         }
         std::copy(pos.begin(), pos.end(), positions.begin() + r.firstVertex);
-        if (!uv.empty()) std::copy(uv.begin(), uv.end(), uvs.begin() + r.firstVertex);
+        if (!uv.empty())
+            std::copy(uv.begin(), uv.end(), uvs.begin() + r.firstVertex);
+        else if (uvsEnabled)
+            std::fill_n(uvs.begin() + r.firstVertex, nv, vec2(0.0f));
         std::copy(idx.begin(), idx.end(), indices.begin() + r.firstIndex);
         r.vertexCount = nv;
         r.indexCount = ni;
@@ -185,9 +194,9 @@ struct Context::Impl {
     }
 
     void compact() {
-        std::vector<vec3> newPos;
-        std::vector<vec2> newUV;
-        std::vector<std::uint32_t> newIdx;
+        WrittenPool<vec3> newPos;
+        WrittenPool<vec2> newUV;
+        WrittenPool<std::uint32_t> newIdx;
         newPos.reserve(liveVertices);
         newIdx.reserve(liveIndices);
         const bool anyUV = uvsEnabled;
@@ -392,6 +401,207 @@ void Context::deleteObjects(std::span<const ObjectID> ids) {
     for (ObjectID id : ids) impl_->record(id, "deleteObjects");  // all-or-nothing
     for (ObjectID id : ids)
         if (doesObjectExist(id)) deleteObject(id);
+}
+
+// ---- bulk append -----------------------------------------------------------------------
+
+std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sources) {
+    // Where one source's objects go, and how its materials, labels and strings map here.
+    struct AppendPlan {
+        const Impl* from = nullptr;
+        std::span<const ObjectID> objects;
+        ObjectID firstObject = 0;
+        std::uint32_t firstVertex = 0;
+        std::uint32_t firstIndex = 0;
+        PrimitiveID firstPrimitive = 0;
+        std::vector<MaterialID> materials;                       // source material -> here
+        std::vector<std::int32_t> strings;                       // source string -> here
+        std::vector<std::pair<const Column*, Column*>> columns;  // (source, here)
+    };
+    Impl& d = *impl_;
+    // Checks first, so that nothing changes when one fails.
+    std::size_t objects = 0, vertices = 0, indices = 0;
+    bool anyUVs = false;
+    for (const ObjectSource& s : sources) {
+        if (!s.context)
+            throw Error("appendObjects: a source without a Context", {.parameter = "context"});
+        if (s.context == this)
+            throw Error("appendObjects: a Context cannot append its own objects",
+                        {.parameter = "context", .validRange = "another Context"});
+        const Impl& f = *s.context->impl_;
+        for (ObjectID o : s.objects) {
+            const ObjectRecord& r = f.record(o, "appendObjects");
+            vertices += r.vertexCount;
+            indices += r.indexCount;
+            anyUVs = anyUVs || r.hasUVs;
+        }
+        objects += s.objects.size();
+        for (const auto& [label, col] : f.columns) {
+            auto it = d.columns.find(label);
+            if (it != d.columns.end() && it->second.type != col.type)
+                throw Error(std::string("object data label already holds ") +
+                                dataTypeName(it->second.type) + " values",
+                            {.parameter = label,
+                             .value = dataTypeName(col.type),
+                             .validRange = dataTypeName(it->second.type)});
+        }
+        for (const auto& [label, col] : f.primitiveColumns) {
+            auto it = d.primitiveColumns.find(label);
+            if (it != d.primitiveColumns.end() && it->second.type != col.type)
+                throw Error(std::string("primitive data label already holds ") +
+                                dataTypeName(it->second.type) + " values",
+                            {.parameter = label,
+                             .value = dataTypeName(col.type),
+                             .validRange = dataTypeName(it->second.type)});
+        }
+    }
+    if (d.objects.size() + objects >= kNone - 1) throw Error("object ID space exhausted");
+    if (d.positions.size() + vertices >= kNone || d.indices.size() + indices >= kNone)
+        throw Error("Context is full (more than 4 billion vertices or indices)");
+    if (d.primitiveOwner.size() + indices / 3 >= kNone)
+        throw Error("primitive ID space exhausted (4 billion triangles ever created)");
+
+    // Plan (one thread): offsets, materials, labels, strings; the pools grow once.
+    std::vector<AppendPlan> plans(sources.size());
+    std::size_t nextObject = d.objects.size(), nextVertex = d.positions.size();
+    std::size_t nextIndex = d.indices.size(), nextPrimitive = d.primitiveOwner.size();
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        const Impl& f = *sources[i].context->impl_;
+        AppendPlan& p = plans[i];
+        p.from = &f;
+        p.objects = sources[i].objects;
+        p.firstObject = static_cast<ObjectID>(nextObject);
+        p.firstVertex = static_cast<std::uint32_t>(nextVertex);
+        p.firstIndex = static_cast<std::uint32_t>(nextIndex);
+        p.firstPrimitive = static_cast<PrimitiveID>(nextPrimitive);
+        p.materials.assign(f.materials.size(), kNone);
+        for (ObjectID o : p.objects) {
+            const ObjectRecord& r = f.objects[o];
+            if (p.materials[r.material] == kNone)
+                p.materials[r.material] = addMaterial(f.materials[r.material]);
+            nextVertex += r.vertexCount;
+            nextIndex += r.indexCount;
+            nextPrimitive += r.indexCount / 3;
+        }
+        nextObject += p.objects.size();
+        bool strings = false;
+        for (const auto& [label, col] : f.columns) {
+            p.columns.emplace_back(&col, &d.columnFor(label, col.type));
+            strings = strings || col.type == DataType::String;
+        }
+        if (strings)
+            for (const std::string& text : f.strings) p.strings.push_back(d.intern(text));
+    }
+    if (anyUVs && !d.uvsEnabled) {
+        d.uvsEnabled = true;
+        d.uvs.reserve(d.positions.capacity());
+        d.uvs.resize(d.positions.size(), vec2(0.0f));
+    }
+    d.positions.resize(nextVertex);
+    if (d.uvsEnabled) d.uvs.resize(nextVertex);
+    d.indices.resize(nextIndex);
+    d.objects.resize(nextObject);
+    d.primitiveOwner.resize(nextPrimitive);
+    for (auto& [label, col] : d.columns) {
+        bool touched = false;
+        for (const AppendPlan& p : plans)
+            for (const auto& [from, to] : p.columns) touched = touched || to == &col;
+        if (!touched) continue;
+        col.present.resize(nextObject, 0);
+        switch (col.type) {
+            case DataType::Int:
+            case DataType::String:
+                col.ints.resize(nextObject);
+                break;
+            case DataType::Float:
+                col.floats.resize(nextObject);
+                break;
+            case DataType::Vec3:
+                col.vecs.resize(nextObject);
+                break;
+        }
+    }
+
+    // Copy (all threads; each source writes its own ranges).
+    const long count = static_cast<long>(plans.size());
+#pragma omp parallel for schedule(dynamic, 1) if (vertices > 65536 && count > 1)
+    for (long i = 0; i < count; ++i) {
+        const AppendPlan& p = plans[std::size_t(i)];
+        const Impl& f = *p.from;
+        ObjectID id = p.firstObject;
+        std::uint32_t v = p.firstVertex, x = p.firstIndex;
+        PrimitiveID prim = p.firstPrimitive;
+        for (ObjectID o : p.objects) {
+            const ObjectRecord& r = f.objects[o];
+            std::copy_n(f.positions.begin() + r.firstVertex, r.vertexCount,
+                        d.positions.begin() + v);
+            if (r.hasUVs)
+                std::copy_n(f.uvs.begin() + r.firstVertex, r.vertexCount, d.uvs.begin() + v);
+            else if (d.uvsEnabled)
+                std::fill_n(d.uvs.begin() + v, r.vertexCount, vec2(0.0f));
+            std::copy_n(f.indices.begin() + r.firstIndex, r.indexCount, d.indices.begin() + x);
+            ObjectRecord& n = d.objects[id];
+            n = r;
+            n.firstVertex = v;
+            n.firstIndex = x;
+            n.firstPrimitive = prim;
+            n.material = p.materials[r.material];
+            std::fill_n(d.primitiveOwner.begin() + prim, r.indexCount / 3, id);
+            for (const auto& [fromColumn, toColumn] : p.columns) {
+                const Column& a = *fromColumn;
+                Column& b = *toColumn;
+                if (o >= a.present.size() || !a.present[o]) continue;
+                b.present[id] = 1;
+                switch (a.type) {
+                    case DataType::Int:
+                        b.ints[id] = a.ints[o];
+                        break;
+                    case DataType::String:
+                        b.ints[id] = p.strings[std::size_t(a.ints[o])];
+                        break;
+                    case DataType::Float:
+                        b.floats[id] = a.floats[o];
+                        break;
+                    case DataType::Vec3:
+                        b.vecs[id] = a.vecs[o];
+                        break;
+                }
+            }
+            v += r.vertexCount;
+            x += r.indexCount;
+            prim += r.indexCount / 3;
+            ++id;
+        }
+    }
+
+    // Primitive data (rare: plants carry none), one thread.
+    for (const AppendPlan& p : plans)
+        for (const auto& [label, col] : p.from->primitiveColumns) {
+            if (col.values.empty()) continue;
+            auto it = d.primitiveColumns.find(label);
+            if (it == d.primitiveColumns.end()) {
+                it = d.primitiveColumns.emplace(label, PrimitiveColumn{}).first;
+                it->second.type = col.type;
+            }
+            ObjectID id = p.firstObject;
+            for (ObjectID o : p.objects) {
+                const ObjectRecord& r = p.from->objects[o];
+                const PrimitiveID to = d.objects[id++].firstPrimitive;
+                for (std::uint32_t t = 0; t < r.indexCount / 3; ++t)
+                    if (auto v = col.values.find(r.firstPrimitive + t); v != col.values.end())
+                        it->second.values[to + t] = v->second;
+            }
+        }
+
+    d.liveObjects += objects;
+    d.liveVertices += vertices;
+    d.liveIndices += indices;
+    d.liveTriangles += indices / 3;
+    std::vector<ObjectID> ids(objects);
+    std::size_t k = 0;
+    for (const AppendPlan& p : plans)
+        for (std::size_t j = 0; j < p.objects.size(); ++j) ids[k++] = p.firstObject + ObjectID(j);
+    return ids;
 }
 
 bool Context::doesObjectExist(ObjectID id) const {
@@ -631,8 +841,34 @@ std::vector<std::string> Context::primitiveDataLabels() const {
 
 // ---- housekeeping ----------------------------------------------------------------------
 
-void Context::clear() {
-    impl_ = std::make_unique<Impl>();
+void Context::clear(bool releaseMemory) {
+    if (releaseMemory) {
+        impl_ = std::make_unique<Impl>();
+        return;
+    }
+    Impl& d = *impl_;
+    d.positions.clear();
+    d.uvs.clear();
+    d.uvsEnabled = false;
+    d.indices.clear();
+    d.objects.clear();
+    d.primitiveOwner.clear();
+    d.materials.resize(1);
+    d.materials[0] = Material{};
+    d.columns.clear();
+    d.primitiveColumns.clear();
+    d.strings.clear();
+    d.stringIndex.clear();
+    d.liveObjects = d.liveTriangles = d.liveVertices = d.liveIndices = 0;
+}
+
+void Context::reserve(std::size_t objects, std::size_t vertices, std::size_t triangles) {
+    Impl& d = *impl_;
+    d.objects.reserve(d.objects.size() + objects);
+    d.positions.reserve(d.positions.size() + vertices);
+    if (d.uvsEnabled) d.uvs.reserve(d.uvs.size() + vertices);
+    d.indices.reserve(d.indices.size() + 3 * triangles);
+    d.primitiveOwner.reserve(d.primitiveOwner.size() + triangles);
 }
 
 void Context::compact() {
