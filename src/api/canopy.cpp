@@ -257,8 +257,14 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     if (!together) {
         inBatches(
             [&](int i, int t, Context& slot) {
-                PlantArchitecture& w = *workers[std::size_t(t)].arch;
-                w.context_ = &slot;  // the plant is tessellated into its own Context
+                CanopyWorker& worker = workers[std::size_t(t)];
+                PlantArchitecture& w = *worker.arch;
+                struct Rebind {  // the plant is tessellated into its own Context
+                    PlantArchitecture& arch;
+                    Context* home;
+                    ~Rebind() { arch.context_ = home; }
+                } rebind{w, &worker.ctx};
+                w.context_ = &slot;
                 w.impl_->store.nextPlantID = first + unsigned(i);  // its ID picks its stream
                 w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
                 builtBy[std::size_t(i)] = t;
@@ -267,7 +273,6 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                 return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
             },
             "building");
-        for (CanopyWorker& w : workers) w.arch->context_ = &w.ctx;
         impl_->store.nextPlantID = first + unsigned(n);
         for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
         return ids;

@@ -405,6 +405,24 @@ void Context::deleteObjects(std::span<const ObjectID> ids) {
 
 // ---- bulk append -----------------------------------------------------------------------
 
+namespace {
+
+// Throws unless every label of `from` holds the same type in `to` (or is new there).
+template <class Columns>
+void checkLabelTypes(const Columns& from, const Columns& to, const char* kind) {
+    for (const auto& [label, col] : from) {
+        auto it = to.find(label);
+        if (it != to.end() && it->second.type != col.type)
+            throw Error(std::string(kind) + " data label already holds " +
+                            dataTypeName(it->second.type) + " values",
+                        {.parameter = label,
+                         .value = dataTypeName(col.type),
+                         .validRange = dataTypeName(it->second.type)});
+    }
+}
+
+}  // namespace
+
 std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sources) {
     // Where one source's objects go, and how its materials, labels and strings map here.
     struct AppendPlan {
@@ -436,24 +454,8 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
             anyUVs = anyUVs || r.hasUVs;
         }
         objects += s.objects.size();
-        for (const auto& [label, col] : f.columns) {
-            auto it = d.columns.find(label);
-            if (it != d.columns.end() && it->second.type != col.type)
-                throw Error(std::string("object data label already holds ") +
-                                dataTypeName(it->second.type) + " values",
-                            {.parameter = label,
-                             .value = dataTypeName(col.type),
-                             .validRange = dataTypeName(it->second.type)});
-        }
-        for (const auto& [label, col] : f.primitiveColumns) {
-            auto it = d.primitiveColumns.find(label);
-            if (it != d.primitiveColumns.end() && it->second.type != col.type)
-                throw Error(std::string("primitive data label already holds ") +
-                                dataTypeName(it->second.type) + " values",
-                            {.parameter = label,
-                             .value = dataTypeName(col.type),
-                             .validRange = dataTypeName(it->second.type)});
-        }
+        checkLabelTypes(f.columns, d.columns, "object");
+        checkLabelTypes(f.primitiveColumns, d.primitiveColumns, "primitive");
     }
     if (d.objects.size() + objects >= kNone - 1) throw Error("object ID space exhausted");
     if (d.positions.size() + vertices >= kNone || d.indices.size() + indices >= kNone)
