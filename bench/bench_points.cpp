@@ -38,7 +38,7 @@ void runWrite(benchmark::State& state, const std::string& path, Write&& write) {
     const PointCloud& cloud = million();
     std::uintmax_t bytes = 0;
     for (auto _ : state) {
-        write(cloud, path);
+        write(cloud, path, {});
         state.PauseTiming();
         bytes = std::filesystem::file_size(path);
         state.ResumeTiming();

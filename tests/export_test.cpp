@@ -5,6 +5,7 @@
 #include "plantarch/Export.h"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -359,6 +360,51 @@ TEST_F(ExportTest, ObjSplitPerObjectWritesOneFilePerObject) {
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(back.material(back.objectMaterial(ids[0])).color[c],
                         s.ctx.material(s.ctx.objectMaterial(id)).color[c], 1e-6f);
+    }
+}
+
+// The OBJ body is formatted in chunks of objects on all threads and written in order: the
+// file must not depend on the thread count, and the vertex and UV numbers must run on across
+// chunks (objects with and without UVs mixed, so the two numberings differ).
+TEST_F(ExportTest, ObjSameBytesOnAnyThreadCountAndNumbersRunAcrossChunks) {
+    Context c;
+    const MaterialID green = c.addMaterial({.color = {0.2f, 0.6f, 0.1f}, .name = "leaf"});
+    for (int i = 0; i < 700; ++i) {  // some 400,000 lines: several chunks
+        Mesh m = grid(12, 8, i % 3 != 0, 0.05f + 0.001f * float(i));
+        for (vec3& v : m.positions) v += vec3(0.37f * float(i % 17), 0.11f * float(i), 0.0f);
+        const ObjectID id = c.addObject(m, green);
+        if (i % 5) c.setObjectData(id, "organ", std::string(i % 2 ? "leaf" : "petiole"));
+    }
+    const int threads = omp_get_max_threads();
+    for (const ObjOptions& options : {ObjOptions{}, ObjOptions{.normals = false}}) {
+        std::string first;
+        for (int n : {1, 2, 3}) {
+            omp_set_num_threads(n);
+            fs::create_directories(dir_ / std::to_string(n));  // the same names: same mtllib
+            const fs::path file = dir_ / std::to_string(n) / "t.obj";
+            writeOBJ(c, file.string(), options);
+            const std::string bytes = readBytes(file);
+            if (n == 1)
+                first = bytes;
+            else
+                EXPECT_TRUE(bytes == first) << n << " threads, normals " << options.normals;
+        }
+        omp_set_num_threads(threads);
+
+        Context back;
+        const std::vector<ObjectID> ids = readOBJ(back, (dir_ / "2" / "t.obj").string());
+        ASSERT_EQ(ids.size(), c.objectCount());
+        for (std::size_t k = 0; k < ids.size(); ++k) {
+            const ObjectView a = c.object(ObjectID(k)), b = back.object(ids[k]);
+            ASSERT_EQ(b.triangleCount(), a.triangleCount()) << k;
+            ASSERT_EQ(b.uvs.empty(), a.uvs.empty()) << k;
+            for (std::size_t i = 0; i < a.indices.size(); ++i) {
+                EXPECT_EQ(b.positions[b.indices[i]], a.positions[a.indices[i]]) << k;
+                if (!a.uvs.empty()) {
+                    EXPECT_EQ(b.uvs[b.indices[i]], a.uvs[a.indices[i]]) << k;
+                }
+            }
+        }
     }
 }
 

@@ -25,6 +25,7 @@
 
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
+#include "plantarch/Progress.h"
 
 namespace plantarch {
 
@@ -48,6 +49,8 @@ struct ObjOptions {
     /// first and all are renamed into place together at the end; files already in the
     /// directory are left alone.
     bool splitPerObject = false;
+    /// Receives ("writing OBJ", fraction) while the file is written; may be empty.
+    ProgressCallback progress;
 };
 
 /// Writes the visible objects of `context` as a Wavefront OBJ file and, next to it, a
@@ -74,6 +77,9 @@ struct ObjReadOptions {
     /// Receives tinyobjloader's warnings (for example a .mtl that was not found, which is
     /// not an error: the objects get the default material). Ignored when empty.
     std::function<void(const std::string& message)> onWarning;
+    /// Receives ("reading OBJ", fraction) while the file is read; may be empty. The parse
+    /// itself is one step, so the fraction moves in a few large steps.
+    ProgressCallback progress;
 };
 
 /// Reads a Wavefront OBJ file (with its .mtl materials) into `context` and returns the IDs
@@ -105,6 +111,8 @@ struct PlyOptions {
     bool includeHidden = false;
     /// Add per-vertex smooth normals (`nx ny nz`, computed as for OBJ).
     bool normals = false;
+    /// Receives ("writing PLY", fraction) while the file is written; may be empty.
+    ProgressCallback progress;
 };
 
 /// Integer organ labels written by writePLY, index = label. Objects without "organ" data
@@ -157,6 +165,8 @@ struct GltfOptions {
     /// Plants to name and place (from the PlantArchitecture: getPlantBasePosition, ...); a
     /// plant not listed gets a node named "plant_<id>" at the origin.
     std::vector<GltfPlant> plants;
+    /// Receives ("writing glTF", fraction) while the file is written; may be empty.
+    ProgressCallback progress;
 };
 
 /// Writes the Context as glTF 2.0: a .glb file (binary) or a .gltf file (JSON with the buffer
@@ -171,6 +181,8 @@ struct UsdOptions {
     bool uvs = true;      ///< primvars:st for meshes whose objects all have UVs
     /// Plants to name and place, as for glTF.
     std::vector<GltfPlant> plants;
+    /// Receives ("writing USD", fraction) while the file is written; may be empty.
+    ProgressCallback progress;
 };
 
 /// Writes the Context as a USD text file (.usda), atomically: upAxis Z, metersPerUnit 1, an
@@ -191,6 +203,10 @@ struct AnimationFrame {
 /// How an animation plays: `framesPerSecond` frames a second, one frame shown at a time.
 struct AnimationOptions {
     double framesPerSecond = 24.0;  ///< 0.001 to 1000
+    /// writeGrowthAnimation's progress (may be empty): ("growing", fraction) over the frames,
+    /// then each file's writing ("writing glTF", "writing USD"). The animated writeGLTF and
+    /// writeUSDA report through their GltfOptions and UsdOptions instead.
+    ProgressCallback progress;
 };
 
 /// Writes frames as one animated glTF (.glb or .gltf): under the root, a node per frame
@@ -215,6 +231,8 @@ struct PointSampleOptions {
     std::size_t points = 100000;  ///< points to draw, 1 to 2^31
     std::uint64_t seed = 0;       ///< same seed, same points
     bool includeHidden = false;
+    /// Receives ("sampling points", fraction) while the points are drawn; may be empty.
+    ProgressCallback progress;
 };
 
 /// A labelled point cloud: parallel arrays, one entry per point.
@@ -243,14 +261,18 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
 /// leaf_id shoot_id rank age, and range scanner for a scan; the organ table in the header's
 /// comments), atomically.
 /// Throws plantarch::Error naming the file when the arrays differ in length.
-void writePointCloudPLY(const PointCloud& cloud, const std::string& path);
+/// `progress` (may be empty) receives ("writing PLY", fraction).
+void writePointCloudPLY(const PointCloud& cloud, const std::string& path,
+                        const ProgressCallback& progress = {});
 
 /// Writes a point cloud as a NumPy .npz archive (numpy.load), atomically: arrays positions
 /// (N x 3 float32), normals (N x 3 float32), plant_id (int32), object_id (uint32), organ
 /// (uint8), leaf_id, shoot_id, rank (int32), age (float32), organ_labels (the names of
 /// kOrganLabels), and for a scan range (float32) and
-/// scanner (uint16). Throws plantarch::Error as writePointCloudPLY does.
-void writePointCloudNPZ(const PointCloud& cloud, const std::string& path);
+/// scanner (uint16). Throws plantarch::Error as writePointCloudPLY does. `progress` (may be
+/// empty) receives ("writing NPZ", fraction).
+void writePointCloudNPZ(const PointCloud& cloud, const std::string& path,
+                        const ProgressCallback& progress = {});
 
 /// Smooth per-vertex normals of one object (as the OBJ and PLY writers write them): the
 /// area-weighted sum of the normals of the triangles around each vertex, normalized; (0, 0, 1)

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/atomic_file.h"
+#include "core/progress_steps.h"
 #include "core/value_text.h"
 #include "geometry/tessellate.h"
 #include "io/export_common.h"
@@ -120,18 +121,23 @@ void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& 
     std::vector<AnimationFrame> recorded;
     scenes.reserve(days.size());
     double grown = 0.0;
+    ProgressSteps steps(animation.progress, "growing", double(days.size()));
     for (double day : days) {
         if (day > grown) arch.advanceTime(plants, day - grown);
         grown = day;
         scenes.push_back(arch.context());
         recorded.push_back({&scenes.back(), day, exportPlants(arch)});
+        steps.at(double(recorded.size()));
     }
+    steps.finish();
     for (const std::string& path : paths) {
         if (io::lowerExtension(path) == ".usda") {
             UsdOptions o;
+            o.progress = animation.progress;
             writeUSDA(recorded, path, o, animation);
         } else {
             GltfOptions o;
+            o.progress = animation.progress;
             writeGLTF(recorded, path, o, animation);
         }
     }

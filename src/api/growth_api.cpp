@@ -1,9 +1,12 @@
 // PlantArchitecture: growth over time, phenology, progress and the phytomer functions.
 
 #include <cmath>
+#include <exception>
+#include <functional>
 
 #include "api/facade_impl.h"
 #include "collision/growth_driver.h"
+#include "core/progress_steps.h"
 #include "growth/growth.h"
 #include "plantarch/Error.h"
 
@@ -27,15 +30,31 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
                                         {plantIDs, days, seed_, impl_->progress});
         return;
     }
+    // Progress within a plant too (a tree over years takes seconds), counting its growth as
+    // 0.9 of it and its geometry as the rest. A callback that throws stops the job once the
+    // plant it interrupted is whole again.
+    ProgressSteps steps(impl_->progress, "growing", double(plantIDs.size()));
+    std::exception_ptr stopped;
     std::size_t done = 0;
+    const std::function<void(double)> onDay = [&](double fraction) {
+        if (stopped) return;
+        try {
+            steps.at(double(done) + 0.9 * fraction);
+        } catch (...) {
+            stopped = std::current_exception();
+        }
+    };
     for (unsigned id : plantIDs) {
         std::vector<ObjectID> deletes;
-        growPlant(impl_->growth(), impl_->store.plant(id), days, deletes);
+        growPlant(impl_->growth(), impl_->store.plant(id), days, deletes,
+                  steps.active() ? onDay : std::function<void(double)>());
         for (ObjectID o : deletes)
             if (context_->doesObjectExist(o)) context_->deleteObject(o);
         updateGeometry(id);
-        if (impl_->progress) impl_->progress("growing", double(++done) / double(plantIDs.size()));
+        if (stopped) std::rethrow_exception(stopped);
+        steps.at(double(++done));
     }
+    steps.finish();
 }
 
 void PlantArchitecture::setProgressCallback(ProgressCallback callback) {

@@ -105,6 +105,9 @@ struct Grower {
         return *it->second;
     }
     std::vector<double> girthTotals, girthNodes;  // reused by updateGirth
+    // Called at most once a day of growth with the fraction of the call's days done (before
+    // that day's first event); may be null.
+    const std::function<void(double)>* onDay = nullptr;
     bool growingSeason() const {
         return plant.stage == PhenologyStage::Vegetative ||
                plant.stage == PhenologyStage::Reproductive;
@@ -620,12 +623,18 @@ struct Grower {
             return;
         }
         const double stop = std::min(target, std::max(plant.age, maxAge));
+        const double start = plant.age;
+        double nextReport = std::floor(start) + 1.0;
         horizon = stop;
         enqueueAll(plant.age);
         while (!queue.empty() && queue.top().time <= stop) {
             const Event e = queue.top();
             queue.pop();
             if (!valid(e)) continue;
+            if (e.time >= nextReport && onDay && *onDay) {  // at most once a day
+                (*onDay)((e.time - start) / (stop - start));
+                nextReport = std::floor(e.time) + 1.0;
+            }
             plant.age = e.time;
             if (e.kind == kLeafFall || e.kind == kSenescence || e.kind == kDaily)
                 updateContinuous(e.time);
@@ -740,7 +749,7 @@ void scheduleNewShoot(const GrowthContext& growth, PlantInstance& plant, Shoot& 
 }
 
 void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
-               std::vector<ObjectID>& deletes) {
+               std::vector<ObjectID>& deletes, const std::function<void(double)>& onDay) {
     double target = plant.age + days;
     // Snap to a 1/1024-day grid when within float rounding of it, so steps such as 0.1f x 10
     // or 19.9f + 0.1f land exactly on the day an event is due.
@@ -748,6 +757,7 @@ void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
     if (std::abs(target - grid) < 1e-5) target = grid;
     growth.prototypes.clearCallMemos();
     Grower grower{growth, plant, {}, {}, {}, {}};
+    grower.onDay = &onDay;
     grower.run(target);
     deletes.insert(deletes.end(), grower.pendingDeletes.begin(), grower.pendingDeletes.end());
 }

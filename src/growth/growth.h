@@ -2,6 +2,7 @@
 // Growth: making shoots and phytomers as state (shoot_builder.cpp) and advancing a plant in
 // time (growth.cpp). Geometry is not touched: the caller tessellates afterwards.
 
+#include <functional>
 #include <vector>
 
 #include "geometry/prototype_cache.h"
@@ -40,8 +41,10 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
                     float internodeFraction, float leafFraction, const Internode* start);
 
 /// Grows one plant by `days`; object IDs of organs that fell off are added to `deletes`.
+/// `onDay` (may be empty) is called after each day with the fraction of `days` done (0 to 1);
+/// it must not throw.
 void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
-               std::vector<ObjectID>& deletes);
+               std::vector<ObjectID>& deletes, const std::function<void(double)>& onDay = {});
 /// Draws a floral bud's peduncle and flowers from the phytomer parameters.
 void realizeInflorescence(PlantInstance& plant, FloralBud& bud, const PhytomerParameters& pp);
 /// Starts a newly created shoot's clock: its apical bud, its axillary buds.

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/progress_steps.h"
 #include "core/value_text.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
@@ -112,13 +113,15 @@ class Sink {
 public:
     static constexpr std::size_t kBlock = io::AtomicFile::kMaxReserve;
 
-    Sink(io::AtomicFile* file, std::string* bytes) : file_(file), bytes_(bytes) {}
+    Sink(io::AtomicFile* file, std::string* bytes, ProgressSteps& steps)
+        : file_(file), bytes_(bytes), steps_(steps) {}
     void write(const void* data, std::size_t n) {
         if (file_)
             file_->write(data, n);
         else
             bytes_->append(static_cast<const char*>(data), n);
         written_ += n;
+        steps_.at(double(written_));
     }
     /// Room for n <= kBlock bytes, to be filled and then handed back with commit(n).
     char* reserve(std::size_t n) {
@@ -129,6 +132,7 @@ public:
     void commit(std::size_t n) {
         if (file_) file_->advance(file_->reserve(n) + n);
         written_ += n;
+        steps_.at(double(written_));
     }
     void pad() {
         static const char zeros[8] = {};
@@ -150,6 +154,7 @@ public:
 private:
     io::AtomicFile* file_;
     std::string* bytes_;
+    ProgressSteps& steps_;  // by bytes of the buffer
     std::size_t written_ = 0;
 };
 
@@ -641,14 +646,16 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     Buffer buffer;
     json doc = document(scene, options, buffer);
     io::AtomicFile file(path);
+    ProgressSteps steps(options.progress, "writing glTF", double(buffer.size()));
     if (io::lowerExtension(path) == ".gltf") {
         std::string bytes;
-        Sink sink(nullptr, &bytes);
+        Sink sink(nullptr, &bytes, steps);
         writeBinary(scene, options, sink);
         if (!bytes.empty())
             doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bytes);
         file.write(doc.dump());
         file.commit();
+        steps.finish();
         return;
     }
     std::string text = doc.dump();
@@ -664,10 +671,11 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     if (binLength) {
         const std::uint32_t binChunk[2] = {binLength, 0x004E4942u};  // "BIN"
         file.write(binChunk, sizeof binChunk);
-        Sink sink(&file, nullptr);
+        Sink sink(&file, nullptr, steps);
         writeBinary(scene, options, sink);
     }
     file.commit();
+    steps.finish();
 }
 
 void checkExtension(const std::string& path) {

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/progress_steps.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 
@@ -182,6 +183,8 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     config.vertex_color = false;
     config.mtl_search_path = options.mtlSearchPath;
     tinyobj::ObjReader reader;
+    // Progress as fractions of the whole read: the parse (one call) is about half of it.
+    ProgressSteps steps(options.progress, "reading OBJ", 1.0);
     const bool ok = reader.ParseFromFile(path, config);
     const std::vector<std::string> warnings = warningLines(reader.Warning());
     if (!ok) {
@@ -189,13 +192,16 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         throw Error("cannot read OBJ: " + (why.empty() ? std::string("unknown error") : why),
                     {.file = path});
     }
+    steps.at(0.5);
     checkVertexNumbers(path);
+    steps.at(0.7);
     if (options.onWarning)
         for (const std::string& w : warnings) options.onWarning(w);
 
     const std::string warningText = joined(warnings);
     ObjConverter converter(reader.GetAttrib(), path, warningText);
     std::vector<PendingObject> objects = converter.convert(reader.GetShapes());
+    steps.at(0.8);
     if (objects.empty()) {
         std::string message = "OBJ file has no faces";
         if (!warningText.empty()) message += " (tinyobjloader: " + warningText + ")";
@@ -222,7 +228,9 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         const ObjectID id = context.addObject(o.mesh, known ? materialIDs[o.material] : plain);
         if (options.storeShapeNames && !o.name->empty()) context.setObjectData(id, "name", *o.name);
         ids.push_back(id);
+        steps.at(0.8 + 0.2 * double(ids.size()) / double(objects.size()));
     }
+    steps.finish();
     return ids;
 }
 

@@ -1,8 +1,16 @@
-// Wavefront OBJ + MTL writer. Numbers are formatted straight into the AtomicFile's buffer
-// (one reserve() per line), which is what makes several hundred MB/s possible.
+// Wavefront OBJ + MTL writer. The body is cut into chunks of consecutive objects (by line
+// count, so the cut never depends on the thread count); each thread formats whole chunks
+// into its own buffer (one reserve() per line, numbers by std::to_chars) and writes them to
+// the file in order, so the bytes are the same on one thread or many.
 
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -10,6 +18,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/progress_steps.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -23,6 +32,8 @@ namespace {
 // Room for one OBJ line: a face with three v/vt/vn triples of 20-digit numbers, or a
 // vertex with three floats.
 constexpr std::size_t kLineBytes = 256;
+// Lines of OBJ text formatted together by one thread (a few MB).
+constexpr std::uint64_t kChunkLines = std::uint64_t(1) << 16;
 // A split export writes many small files; a smaller buffer each is plenty.
 constexpr std::size_t kSplitBufferBytes = std::size_t(256) << 10;
 constexpr const char* kSplitMaterialFile = "materials.mtl";
@@ -101,15 +112,47 @@ void writeMTL(io::AtomicFile& out, const Context& context, const std::vector<std
     }
 }
 
-// Writes the objects' geometry, numbering vertices across the whole file.
+// A growing in-memory text buffer with AtomicFile's reserve/advance/write interface: one
+// chunk of the OBJ body is formatted into it by one thread, then written out in order.
+class TextChunk {
+public:
+    char* reserve(std::size_t size) {
+        if (capacity_ - used_ < size) grow(size);
+        return buffer_.get() + used_;
+    }
+    void advance(const char* end) { used_ = static_cast<std::size_t>(end - buffer_.get()); }
+    void write(std::string_view text) {
+        std::memcpy(reserve(text.size()), text.data(), text.size());
+        used_ += text.size();
+    }
+    void clear() { used_ = 0; }
+    const char* data() const { return buffer_.get(); }
+    std::size_t size() const { return used_; }
+
+private:
+    void grow(std::size_t size) {
+        const std::size_t capacity = std::max(2 * capacity_, used_ + size + (std::size_t(1) << 20));
+        auto bigger = std::make_unique_for_overwrite<char[]>(capacity);
+        if (used_) std::memcpy(bigger.get(), buffer_.get(), used_);
+        buffer_ = std::move(bigger);
+        capacity_ = capacity;
+    }
+
+    std::unique_ptr<char[]> buffer_;
+    std::size_t capacity_ = 0;
+    std::size_t used_ = 0;
+};
+
+// Writes objects' geometry; `vertexBase` and `uvBase` count the vertices and UVs written
+// before the object in the same file.
 class ObjBodyWriter {
 public:
     ObjBodyWriter(const Context& context, const ObjOptions& options)
         : context_(context), options_(options) {}
 
-    void restartNumbering() { vertexBase_ = uvBase_ = 0; }
-
-    void writeObject(io::AtomicFile& out, ObjectID id, const std::string* materialName) {
+    template <class Out>
+    void writeObject(Out& out, ObjectID id, const std::string* materialName,
+                     std::uint64_t vertexBase, std::uint64_t uvBase) {
         const ObjectView o = context_.object(id);
         const std::string name = objectName(context_, id);
         out.write("o " + name + "\ng " + name + "\n");
@@ -150,9 +193,12 @@ public:
                 out.advance(p);
             }
         }
-        writeFaces(out, o, uvs);
-        vertexBase_ += o.positions.size();
-        if (uvs) uvBase_ += o.uvs.size();
+        writeFaces(out, o, uvs, vertexBase + 1, uvBase + 1);
+    }
+
+    /// The vertices and UVs an object adds to the file's numbering.
+    std::pair<std::uint64_t, std::uint64_t> counts(const ObjectView& o) const {
+        return {o.positions.size(), options_.uvs ? o.uvs.size() : 0};
     }
 
 private:
@@ -168,8 +214,9 @@ private:
         return p;
     }
 
-    void writeFaces(io::AtomicFile& out, const ObjectView& o, bool uvs) {
-        const std::uint64_t vBase = vertexBase_ + 1, tBase = uvBase_ + 1;
+    template <class Out>
+    void writeFaces(Out& out, const ObjectView& o, bool uvs, std::uint64_t vBase,
+                    std::uint64_t tBase) {
         const bool normals = options_.normals;
         const bool sameUVIndex = uvs && vBase == tBase;  // then "a/a/a": format a once
         const auto& idx = o.indices;
@@ -208,10 +255,96 @@ private:
 
     const Context& context_;
     const ObjOptions& options_;
-    std::uint64_t vertexBase_ = 0;
-    std::uint64_t uvBase_ = 0;
     std::vector<vec3> normals_;
 };
+
+// A run of consecutive objects formatted together, with the numbering they start at.
+struct Chunk {
+    std::size_t first = 0, last = 0;  // into the exported IDs, last exclusive
+    std::uint64_t vertexBase = 0, uvBase = 0;
+};
+
+// Splits `ids` into chunks of about kChunkLines lines each. Depends only on the geometry, so
+// the file's bytes do not depend on the thread count.
+std::vector<Chunk> chunksOf(const Context& context, const std::vector<ObjectID>& ids,
+                            const ObjBodyWriter& body, bool normals) {
+    std::vector<Chunk> chunks;
+    Chunk chunk;
+    std::uint64_t vertices = 0, uvs = 0, lines = 0;
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const ObjectView o = context.object(ids[i]);
+        const auto [v, t] = body.counts(o);
+        vertices += v;
+        uvs += t;
+        lines += v * (normals ? 2 : 1) + t + o.triangleCount() + 3;
+        if (lines >= kChunkLines || i + 1 == ids.size()) {
+            chunk.last = i + 1;
+            chunks.push_back(chunk);
+            chunk = {i + 1, i + 1, vertices, uvs};
+            lines = 0;
+        }
+    }
+    return chunks;
+}
+
+// The objects' geometry into `out`: chunks formatted on all threads, each written in order
+// by whichever thread formatted it once the one before is written. Progress goes out from
+// the calling thread only (thread 0 of the team), after each of its chunks.
+void writeBody(io::AtomicFile& out, const Context& context, const ObjOptions& options,
+               const std::vector<ObjectID>& ids, const std::vector<std::string>& names) {
+    const std::vector<Chunk> chunks =
+        chunksOf(context, ids, ObjBodyWriter(context, options), options.normals);
+    const std::ptrdiff_t n = std::ptrdiff_t(chunks.size());
+    const int threads =
+        int(std::min<std::ptrdiff_t>(omp_get_max_threads(), std::max<std::ptrdiff_t>(n, 1)));
+    ProgressSteps steps(options.progress, "writing OBJ", double(n));
+    std::exception_ptr failure;
+    std::atomic<bool> failed{false};
+    auto fail = [&] {
+#pragma omp critical(plantarch_obj_failure)
+        if (!failure) failure = std::current_exception();
+        failed.store(true, std::memory_order_relaxed);
+    };
+#pragma omp parallel num_threads(threads)
+    {
+        ObjBodyWriter body(context, options);
+        TextChunk text;
+#pragma omp for ordered schedule(static, 1)
+        for (std::ptrdiff_t c = 0; c < n; ++c) {
+            const Chunk& chunk = chunks[std::size_t(c)];
+            if (!failed.load(std::memory_order_relaxed)) {
+                try {
+                    text.clear();
+                    std::uint64_t vertexBase = chunk.vertexBase, uvBase = chunk.uvBase;
+                    for (std::size_t i = chunk.first; i < chunk.last; ++i) {
+                        const ObjectID id = ids[i];
+                        body.writeObject(
+                            text, id,
+                            options.materials ? &names[context.objectMaterial(id)] : nullptr,
+                            vertexBase, uvBase);
+                        const auto [v, t] = body.counts(context.object(id));
+                        vertexBase += v;
+                        uvBase += t;
+                    }
+                } catch (...) {
+                    fail();
+                }
+            }
+#pragma omp ordered
+            {
+                if (!failed.load(std::memory_order_relaxed)) {
+                    try {
+                        out.write(text.data(), text.size());
+                        if (omp_get_thread_num() == 0) steps.at(double(c + 1));
+                    } catch (...) {
+                        fail();
+                    }
+                }
+            }
+        }
+    }
+    if (failure) std::rethrow_exception(failure);
+}
 
 void writeHeader(io::AtomicFile& out, const Context& context, const std::vector<ObjectID>& ids,
                  const std::string& mtlFile) {
@@ -238,15 +371,19 @@ void writeSplit(const Context& context, const std::string& dir, const ObjOptions
     }
     ObjBodyWriter body(context, options);
     const std::string mtlFile = options.materials ? kSplitMaterialFile : "";
-    for (ObjectID id : ids) {
+    ProgressSteps steps(options.progress, "writing OBJ", double(ids.size()));
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const ObjectID id = ids[i];
         files.emplace_back((root / (objectName(context, id) + ".obj")).string(), kSplitBufferBytes);
         io::AtomicFile& out = files.back();
         writeHeader(out, context, {id}, mtlFile);
-        body.restartNumbering();
-        body.writeObject(out, id, options.materials ? &names[context.objectMaterial(id)] : nullptr);
+        body.writeObject(out, id, options.materials ? &names[context.objectMaterial(id)] : nullptr,
+                         0, 0);
         out.finish();
+        steps.at(double(i + 1));
     }
     for (io::AtomicFile& f : files) f.commit();
+    steps.finish();
 }
 
 }  // namespace
@@ -272,12 +409,11 @@ void writeOBJ(const Context& context, const std::string& path, const ObjOptions&
         mtl->finish();
     }
     writeHeader(obj, context, ids, options.materials ? mtlPath.filename().string() : "");
-    ObjBodyWriter body(context, options);
-    for (ObjectID id : ids)
-        body.writeObject(obj, id, options.materials ? &names[context.objectMaterial(id)] : nullptr);
+    writeBody(obj, context, options, ids, names);
     obj.finish();
     if (mtl) mtl->commit();
     obj.commit();
+    if (options.progress) options.progress("writing OBJ", 1.0);
 }
 
 }  // namespace plantarch

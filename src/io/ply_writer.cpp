@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/progress_steps.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -210,12 +211,15 @@ void writePLY(const Context& context, const std::string& path, const PlyOptions&
     writeHeader(out, options, labels, vertices, faces);
     const bool binary = options.format == PlyFormat::BinaryLittleEndian;
     std::vector<vec3> normals;
+    ProgressSteps steps(options.progress, "writing PLY", double(vertices + faces));
+    double done = 0.0;
     for (ObjectID id : ids) {
         const ObjectView o = context.object(id);
         if (binary)
             writeBinaryVertices(out, o, options, normals);
         else
             writeAsciiVertices(out, o, options, normals);
+        steps.at(done += double(o.positions.size()));
     }
     std::int32_t base = 0;
     for (std::size_t i = 0; i < ids.size(); ++i) {
@@ -225,8 +229,10 @@ void writePLY(const Context& context, const std::string& path, const PlyOptions&
         else
             writeAsciiFaces(out, o, base, labels.perObject[i]);
         base += static_cast<std::int32_t>(o.positions.size());
+        steps.at(done += double(o.triangleCount()));
     }
     out.commit();
+    steps.finish();
 }
 
 }  // namespace plantarch

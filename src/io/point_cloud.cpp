@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/progress_steps.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -57,7 +58,9 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
     cloud.normals.resize(options.points);
     std::vector<std::uint32_t> objectOf(options.points);  // index into ids
     Rng rng(options.seed, 0x5eed);
+    ProgressSteps steps(options.progress, "sampling points", double(options.points));
     for (std::size_t i = 0; i < options.points; ++i) {
+        if ((i & 0xFFFF) == 0) steps.at(double(i));
         const double u = rng.uniform01d() * total;
         const std::size_t at = std::size_t(
             std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
@@ -91,6 +94,7 @@ PointCloud samplePoints(const Context& context, const PointSampleOptions& option
         cloud.rank[i] = l.rank;
         cloud.age[i] = l.age;
     }
+    steps.finish();
     return cloud;
 }
 
@@ -110,7 +114,8 @@ bool scanned(const PointCloud& cloud, const std::string& path) {
 
 }  // namespace
 
-void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
+void writePointCloudPLY(const PointCloud& cloud, const std::string& path,
+                        const ProgressCallback& progress) {
     const bool scan = scanned(cloud, path);
     io::AtomicFile out(path);
     std::string h = "ply\nformat binary_little_endian 1.0\n";
@@ -128,7 +133,9 @@ void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
     h += "end_header\n";
     out.write(h);
     const std::size_t kBytes = 6 * 4 + 4 + 4 + 1 + 16 + (scan ? 6 : 0);
+    ProgressSteps steps(progress, "writing PLY", double(cloud.positions.size()));
     for (std::size_t first = 0; first < cloud.positions.size();) {
+        steps.at(double(first));
         const std::size_t n =
             std::min(io::AtomicFile::kMaxReserve / kBytes, cloud.positions.size() - first);
         char* p = out.reserve(n * kBytes);
@@ -152,6 +159,7 @@ void writePointCloudPLY(const PointCloud& cloud, const std::string& path) {
         first += n;
     }
     out.commit();
+    steps.finish();
 }
 
 namespace {
@@ -215,7 +223,8 @@ void put32(std::string& s, std::uint32_t v) {
 
 }  // namespace
 
-void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
+void writePointCloudNPZ(const PointCloud& cloud, const std::string& path,
+                        const ProgressCallback& progress) {
     const bool scan = scanned(cloud, path);
     const std::size_t n = cloud.positions.size();
     const std::string rows = fmt::format("({},)", n), rows3 = fmt::format("({}, 3)", n);
@@ -249,6 +258,9 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
     io::AtomicFile out(path);
     std::string directory;
     std::uint64_t offset = 0;
+    double bytes = 0.0, done = 0.0;
+    for (const auto& array : arrays) bytes += double(array.second.size());
+    ProgressSteps steps(progress, "writing NPZ", bytes);
     for (const auto& [name, data] : arrays) {
         const std::string file = name + ".npy";
         const std::uint32_t crc = crc32(data);
@@ -302,6 +314,7 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
         entry += extra;
         directory += entry;
         offset += local.size() + data.size();
+        steps.at(done += double(data.size()));
     }
     const std::uint64_t directoryAt = offset, count = arrays.size();
     std::string end;
@@ -333,6 +346,7 @@ void writePointCloudNPZ(const PointCloud& cloud, const std::string& path) {
     out.write(directory);
     out.write(end);
     out.commit();
+    steps.finish();
 }
 
 }  // namespace plantarch

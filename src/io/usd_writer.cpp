@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/progress_steps.h"
 #include "core/value_text.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
@@ -100,8 +101,9 @@ struct Group {  // the objects of one plant and organ kind
 };
 
 // The Xforms of one scene's plants (and one for the objects of no plant).
+// Progress: `done` grows by the triangles of each mesh written.
 void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>& plantInfo,
-                const UsdOptions& options) {
+                const UsdOptions& options, ProgressSteps& steps, double& done) {
     const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);
     const bool hasPlant = context.objectDataType("plantID") == DataType::Int;
     // plant -> organ -> objects; plants in ID order, the objects of no plant (-1) last.
@@ -235,6 +237,7 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
                 perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
                 perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
                 out << "        }\n";
+                steps.at(done += double(g.triangles));
             }
             out << "    }\n";
         };
@@ -252,10 +255,13 @@ const char* kHeader =
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
     io::AtomicFile file(path);
     Text out(file);
+    ProgressSteps steps(options.progress, "writing USD", double(context.triangleCount()));
+    double done = 0.0;
     out << kHeader << ")\n\ndef Xform \"plantarch\"\n{\n";
-    writeScene(out, context, options.plants, options);
+    writeScene(out, context, options.plants, options, steps, done);
     out << "}\n";
     file.commit();
+    steps.finish();
 }
 
 void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& path,
@@ -263,6 +269,9 @@ void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& pat
     io::checkAnimation(frames, animation, path);
     io::AtomicFile file(path);
     Text out(file);
+    double triangles = 0.0, done = 0.0;
+    for (const AnimationFrame& frame : frames) triangles += double(frame.context->triangleCount());
+    ProgressSteps steps(options.progress, "writing USD", triangles);
     out << kHeader << "    startTimeCode = 0\n    endTimeCode = ";
     out.integer(std::int64_t(frames.size() - 1)) << "\n    timeCodesPerSecond = ";
     out.number(float(animation.framesPerSecond)) << "\n)\n\ndef Xform \"plantarch\"\n{\n";
@@ -285,12 +294,13 @@ void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& pat
         }
         out << "        }\n";
         out.indent("    ");
-        writeScene(out, *frames[f].context, frames[f].plants, options);
+        writeScene(out, *frames[f].context, frames[f].plants, options, steps, done);
         out.indent("");
         out << "    }\n";
     }
     out << "}\n";
     file.commit();
+    steps.finish();
 }
 
 }  // namespace plantarch

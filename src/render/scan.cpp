@@ -125,9 +125,13 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
         const double step = decimal(s.resolution), zenith0 = decimal(s.zenithMin),
                      azimuth0 = decimal(s.azimuthMin);
         const std::int64_t nrows = std::int64_t(g.rows);
-        if (data.triangles > 0) {
+        // Rows in bands, so progress goes out from the calling thread between parallel loops;
+        // the bands do not change any point.
+        const std::int64_t band = 64;
+        for (std::int64_t r0 = 0; data.triangles > 0 && r0 < nrows; r0 += band) {
+            const std::int64_t r1 = std::min(nrows, r0 + band);
 #pragma omp parallel for schedule(dynamic, 1)
-            for (std::int64_t r = 0; r < nrows; ++r) {
+            for (std::int64_t r = r0; r < r1; ++r) {
                 RTCIntersectContext ictx;
                 rtcInitIntersectContext(&ictx);
                 const double zenith = (zenith0 + double(r) * step) * toRad;
@@ -159,6 +163,9 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
                     row.ranges.push_back(range);
                 }
             }
+            if (options.progress && r1 < nrows)
+                options.progress("scanning",
+                                 double(rowsDone + std::uint64_t(r1)) / double(totalRows));
         }
         for (const Row& row : rows) {
             for (std::size_t i = 0; i < row.positions.size(); ++i) {
