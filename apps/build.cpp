@@ -54,10 +54,13 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant = arch.buildPlantInstanceFromLibrary(
             vec3(0.0f), frames ? 0.0f : a->age, parseDefines(a->defines));
-        if (frames)
-            writeGrowthAnimation(arch, {plant}, *frames, a->outputs, {a->animation.rate});
-        else
+        if (frames) {
+            arch.setProgressCallback({});  // one bar over the frames instead of one per frame
+            writeGrowthAnimation(arch, {plant}, *frames, a->outputs,
+                                 {a->animation.rate, terminalProgress()});
+        } else {
             for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
+        }
         if (a->stats) {
             std::printf("%s\n", plantStatsJSON(arch, ctx, plant, global.seed).c_str());
         } else {

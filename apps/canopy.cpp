@@ -90,15 +90,18 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const auto plants = arch.buildPlantCanopyFromLibrary(
             vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), frames ? 0.0f : a->age, a->germination,
             parseDefines(a->defines));
-        if (frames)
-            writeGrowthAnimation(arch, plants, *frames, a->outputs, {a->animation.rate});
-        else if (a->separate)
+        if (frames) {
+            arch.setProgressCallback({});  // one bar over the frames instead of one per frame
+            writeGrowthAnimation(arch, plants, *frames, a->outputs,
+                                 {a->animation.rate, terminalProgress()});
+        } else if (a->separate)
             writeSeparatePlantOutputs(arch, plants, a->outputs, a->plantOrigin, global);
         else
             for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);

@@ -59,13 +59,24 @@ void info(const GlobalOptions& g, const std::string& message);
 
 /// Writes `ctx` to `path`, format from the extension (.obj, .ply, .glb, .gltf, .png). Used by
 /// every subcommand that produces geometry; `plants` names and places the plants in glTF
-/// files. Throws plantarch::Error on an unknown extension.
+/// files. Shows the writer's progress (terminalProgress) unless `showProgress` is false.
+/// Throws plantarch::Error on an unknown extension.
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
-                    const std::vector<GltfPlant>& plants = {});
+                    const std::vector<GltfPlant>& plants = {}, bool showProgress = true);
 
-/// A progress bar on stderr for work that takes over a second; empty (no output at all)
-/// when stderr is not a terminal, so scripts and logs stay clean.
+/// --progress: when the bar of terminalProgress() is drawn.
+enum class ProgressMode {
+    Auto,    ///< when stderr is a terminal, once the command has run for a second
+    Always,  ///< at once, even when stderr is not a terminal
+    Never,
+};
+void setProgressMode(ProgressMode mode);
+/// The progress bar on stderr (one line, redrawn in place, wiped when its stage ends), as
+/// --progress says; empty (no output at all) when it is off, so scripts and logs stay clean.
+/// Never writes to stdout.
 ProgressCallback terminalProgress();
+/// Wipes the bar if one is on screen (before a message on stderr).
+void clearProgress();
 
 /// Checks every output's format before any work is done and creates missing directories;
 /// throws plantarch::Error naming the first bad path.

@@ -120,7 +120,16 @@ void scaleBar(Image& im, float pixelsPerMetre) {
     line(im, {x0 + length, y0 - 5}, {x0 + length, y0 + 5}, black);
 }
 
-Image renderPanel(const RenderScene& scene, const Panel& panel) {
+// The four renders of the two panels, one "rendering" bar: render k (0 to 3) is its k-th
+// quarter.
+ProgressCallback quarter(const ProgressCallback& progress, int k) {
+    if (!progress) return {};
+    return [&progress, k](std::string_view stage, double f) { progress(stage, (k + f) / 4.0); };
+}
+
+// `part` 0 or 1: the panel's place in the bar.
+Image renderPanel(const RenderScene& scene, const Panel& panel, const ProgressCallback& progress,
+                  int part) {
     RenderOptions o;
     o.width = o.height = panel.size;
     o.camera.autoFrame = false;
@@ -131,11 +140,13 @@ Image renderPanel(const RenderScene& scene, const Panel& panel) {
     o.groundPlane = false;
     o.skyZenithColor = o.skyHorizonColor = vec3(1.0f);
     o.samplesPerPixel = 16;
+    o.progress = quarter(progress, 2 * part);
     Image image = scene.render(o);
     // White wherever no ray meets the plant (the renderer's background darkens below the
     // horizon).
     o.mode = RenderMode::LabelObject;
     o.samplesPerPixel = 1;
+    o.progress = quarter(progress, 2 * part + 1);
     const Image mask = scene.render(o);
     for (std::size_t i = 0; i < mask.rgb.size(); i += 3)
         if (mask.rgb[i] == 0 && mask.rgb[i + 1] == 0 && mask.rgb[i + 2] == 0)
@@ -175,6 +186,8 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.setSeed(global.seed);
+    const ProgressCallback progress = terminalProgress();
+    arch.setProgressCallback(progress);
     arch.loadPlantModelFromLibrary(a.species);
     arch.setTrellisGeometry(!a.noTrellis);
     const unsigned plant =
@@ -191,7 +204,8 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
         scale = std::min(scale, 0.9f * float(size) / std::max(e.x, e.y));
     }
     const Panel sidePanel(side, lo, hi, scale, size), obliquePanel(oblique, lo, hi, scale, size);
-    Image left = renderPanel(scene, sidePanel), right = renderPanel(scene, obliquePanel);
+    Image left = renderPanel(scene, sidePanel, progress, 0);
+    Image right = renderPanel(scene, obliquePanel, progress, 1);
     const std::array<std::uint8_t, 3> grey{128, 128, 128};
     // Ground: the line z = 0 across the side view; the footprint (plant's xy box + 10 %) at
     // z = 0 in the oblique view.

@@ -43,7 +43,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
             if (out == ".xml" || out == ".txt")
                 throw Error("an OBJ file holds geometry only, not the plant structure",
                             {.file = a->output, .value = out, .validRange = sceneFileExtensions()});
-            readOBJ(ctx, a->input);
+            readOBJ(ctx, a->input, {.progress = terminalProgress()});
             writeSceneFile(ctx, a->output, global);
             return 0;
         }

@@ -53,7 +53,9 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         arch.setProgressCallback(terminalProgress());
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
         if (frames) {
-            writeGrowthAnimation(arch, plants, *frames, a->outputs, {a->animation.rate});
+            arch.setProgressCallback({});  // one bar over the frames instead of one per frame
+            writeGrowthAnimation(arch, plants, *frames, a->outputs,
+                                 {a->animation.rate, terminalProgress()});
         } else {
             arch.advanceTime(plants, a->days);
             for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);

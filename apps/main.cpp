@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -20,24 +21,71 @@ std::vector<Command>& commandRegistry() {
     return registry;
 }
 
-ProgressCallback terminalProgress() {
-    if (!isatty(STDERR_FILENO)) return {};
-    const auto start = std::chrono::steady_clock::now();
-    return [start](std::string_view stage, double fraction) {
+namespace {
+
+// The one progress bar of the process: at most one line on stderr, redrawn in place and
+// wiped when its stage ends, before a message and before exit.
+struct ProgressBar {
+    ProgressMode mode = ProgressMode::Auto;
+    bool enabled = false;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    std::string stage;
+    int shown = -1;  // per cent on screen, -1 when nothing is drawn
+
+    void draw(std::string_view name, double fraction) {
+        fraction = std::clamp(fraction, 0.0, 1.0);
+        if (fraction >= 1.0) {
+            clear();
+            return;
+        }
+        // A job that ends within a second shows nothing (unless --progress always).
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (seconds < 1.0 && fraction < 1.0) return;
-        const int width = 30, filled = int(fraction * width + 0.5);
-        std::fprintf(stderr, "\r%-10.*s [%.*s%*s] %3d%%", int(stage.size()), stage.data(), filled,
-                     "##############################", width - filled, "",
-                     int(fraction * 100 + 0.5));
-        if (fraction >= 1.0) std::fprintf(stderr, "\r%*s\r", width + 20, "");
+        if (mode == ProgressMode::Auto && seconds < 1.0) return;
+        const int percent = int(fraction * 100.0);
+        if (percent == shown && name == stage) return;
+        stage = name;
+        shown = percent;
+        const int width = 30, filled = int(fraction * width);
+        std::fprintf(stderr, "\r%-15.*s [%.*s%*s] %3d%%", int(name.size()), name.data(), filled,
+                     "##############################", width - filled, "", percent);
         std::fflush(stderr);
-    };
+    }
+    void clear() {
+        if (shown < 0) return;
+        std::fprintf(stderr, "\r%*s\r", 15 + 2 + 30 + 6, "");
+        std::fflush(stderr);
+        shown = -1;
+    }
+};
+
+ProgressBar& progressBar() {
+    static ProgressBar bar;
+    return bar;
+}
+
+}  // namespace
+
+void setProgressMode(ProgressMode mode) {
+    ProgressBar& bar = progressBar();
+    bar.mode = mode;
+    bar.enabled =
+        mode == ProgressMode::Always || (mode == ProgressMode::Auto && isatty(STDERR_FILENO) != 0);
+}
+
+ProgressCallback terminalProgress() {
+    if (!progressBar().enabled) return {};
+    return [](std::string_view stage, double fraction) { progressBar().draw(stage, fraction); };
+}
+
+void clearProgress() {
+    progressBar().clear();
 }
 
 void info(const GlobalOptions& g, const std::string& message) {
-    if (g.verbose > 0) std::fprintf(stderr, "%s\n", message.c_str());
+    if (g.verbose == 0) return;
+    clearProgress();
+    std::fprintf(stderr, "%s\n", message.c_str());
 }
 
 namespace {
@@ -130,6 +178,24 @@ int main(int argc, char** argv) {
                                  "to 18446744073709551615)";
             },
             ""));
+    app.add_option_function<std::string>(
+           "--progress",
+           [](const std::string& text) {
+               if (text == "auto")
+                   setProgressMode(ProgressMode::Auto);
+               else if (text == "always")
+                   setProgressMode(ProgressMode::Always);
+               else if (text == "never")
+                   setProgressMode(ProgressMode::Never);
+               else
+                   throw plantarch::Error("not a progress mode",
+                                          {.parameter = "--progress",
+                                           .value = text,
+                                           .validRange = "auto, always, never"});
+           },
+           "Progress bar on stderr for jobs over a second: auto (when stderr is a terminal, "
+           "the default), always (at once, even when stderr is not a terminal) or never")
+        ->type_name("MODE");
     app.add_option("--threads", global.threads, "Worker threads (0 = all cores)")
         ->check(numberCheck("--threads", "a thread count", 0, 1024, true,
                             "0 to 1024, 0 for every core"));
@@ -139,6 +205,7 @@ int main(int argc, char** argv) {
         ->check(numberCheck("--points", "a point count", 0, 2147483648.0, true,
                             "0 to 2147483648, 0 for the triangles"));
 
+    setProgressMode(ProgressMode::Auto);
     auto& registry = commandRegistry();
     std::sort(registry.begin(), registry.end(),
               [](const Command& a, const Command& b) { return a.order < b.order; });
@@ -163,6 +230,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
+        clearProgress();
         std::fprintf(stderr, "plantarch: %s\n", parseErrorLine(app, argc, argv, e).c_str());
         return 2;
     } catch (const plantarch::Error& e) {  // thrown by an option's own check
@@ -173,11 +241,17 @@ int main(int argc, char** argv) {
     if (global.threads > 0) omp_set_num_threads(global.threads);
     try {
         for (auto& [sub, run] : runners)
-            if (sub->parsed()) return run();
+            if (sub->parsed()) {
+                const int status = run();
+                clearProgress();
+                return status;
+            }
     } catch (const plantarch::Error& e) {
+        clearProgress();
         std::fprintf(stderr, "plantarch: %s\n", e.what());
         return 2;
     } catch (const std::exception& e) {
+        clearProgress();
         std::fprintf(stderr, "plantarch: internal error: %s\n", e.what());
         return 1;
     }

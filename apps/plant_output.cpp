@@ -120,7 +120,10 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
                         ",\n  \"seed\": " + std::to_string(arch.seed()) +
                         ",\n  \"coordinates\": " + (ownOrigin ? "\"plant\"" : "\"scene\"") +
                         ",\n  \"plants\": [";
+    // One bar over the plants; each file's own writing is too short to show.
+    const ProgressCallback progress = terminalProgress();
     for (std::size_t i = 0; i < plants.size(); ++i) {
+        if (progress) progress("writing files", double(i) / double(plants.size()));
         const unsigned id = plants[i];
         const vec3 base = arch.getPlantBasePosition(id);
         std::string files;
@@ -134,7 +137,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
                 copyPlant(arch, id, one, ownOrigin ? -base : vec3(0.0f));
                 GltfPlant described{std::int32_t(id), arch.plant(id).name,
                                     ownOrigin ? vec3(0.0f) : base, arch.plant(id).age, arch.seed()};
-                writeSceneFile(one, file, g, {described});
+                writeSceneFile(one, file, g, {described}, false);
             }
             files += (files.empty() ? "" : ", ") +
                      jsonText(std::filesystem::path(file).filename().string());
@@ -145,6 +148,7 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
             i ? "," : "", id, files, base.x, base.y, base.z, jsonText(arch.plant(id).name),
             arch.plant(id).age, arch.seed());
     }
+    if (progress) progress("writing files", 1.0);
     index += "\n  ]\n}\n";
     const std::filesystem::path p(paths.front());
     writeWholeFile((p.parent_path() / (p.stem().string() + "_index.json")).string(), index);
@@ -155,6 +159,7 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
     const std::string ext = lowerExtension(path);
     PlantStructureReadOptions o;
     o.onWarning = [](const std::string& w) {
+        clearProgress();
         std::fprintf(stderr, "plantarch: warning: %s\n", w.c_str());
     };
     if (ext == ".xml") {

@@ -89,6 +89,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     o.groundPlane = !a.noGround;
     o.mode = parseMode(a.label);
     o.seed = g.seed;
+    o.progress = terminalProgress();
     if (a.samples > 0) o.samplesPerPixel = a.samples;
     if (a.fov > 0.0f) o.camera.fovDeg = a.fov;
     if (!a.eye.empty()) {
@@ -101,7 +102,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
         throw Error("--target needs --eye", {.parameter = "--target", .value = a.target});
 
     Context ctx;
-    const std::vector<ObjectID> ids = readOBJ(ctx, a.input);
+    const std::vector<ObjectID> ids = readOBJ(ctx, a.input, {.progress = terminalProgress()});
     organsFromNames(ctx, ids);
     info(g, fmt::format("read {}: {} objects, {} triangles", a.input, ctx.objectCount(),
                         ctx.triangleCount()));

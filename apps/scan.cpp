@@ -78,7 +78,7 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
     Context ctx;
     std::unique_ptr<PlantArchitecture> arch;  // holds the plants while they are scanned
     if (lowerExtension(a.input) == ".obj") {
-        readOBJ(ctx, a.input);
+        readOBJ(ctx, a.input, {.progress = terminalProgress()});
     } else {
         arch = std::make_unique<PlantArchitecture>(&ctx);
         arch->setSeed(g.seed);
@@ -87,9 +87,9 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
     const PointCloud points = scan(ctx, o);
     for (const std::string& out : a.outputs) {
         if (lowerExtension(out) == ".npz")
-            writePointCloudNPZ(points, out);
+            writePointCloudNPZ(points, out, terminalProgress());
         else
-            writePointCloudPLY(points, out);
+            writePointCloudPLY(points, out, terminalProgress());
     }
     std::printf("%s", fmt::format("{} points from {} scanner(s) of {} rays each, {} triangles in "
                                   "the scene; written to {}.\n",

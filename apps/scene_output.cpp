@@ -41,29 +41,35 @@ std::string sceneFileExtensions() {
 }
 
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
-                    const std::vector<GltfPlant>& plants) {
+                    const std::vector<GltfPlant>& plants, bool showProgress) {
     const std::string ext = lowerExtension(path);
+    const ProgressCallback progress = showProgress ? terminalProgress() : ProgressCallback();
+    auto points = [&] {
+        return samplePoints(ctx, {.points = g.points, .seed = g.seed, .progress = progress});
+    };
     if (ext == ".obj") {
-        writeOBJ(ctx, path);
+        writeOBJ(ctx, path, {.progress = progress});
     } else if (ext == ".ply" && g.points > 0) {
-        writePointCloudPLY(samplePoints(ctx, {.points = g.points, .seed = g.seed}), path);
+        writePointCloudPLY(points(), path, progress);
     } else if (ext == ".ply") {
-        writePLY(ctx, path);
+        writePLY(ctx, path, {.progress = progress});
     } else if (ext == ".npz" && g.points > 0) {
-        writePointCloudNPZ(samplePoints(ctx, {.points = g.points, .seed = g.seed}), path);
+        writePointCloudNPZ(points(), path, progress);
     } else if (ext == ".glb" || ext == ".gltf") {
         GltfOptions o;
         o.plants = plants;
+        o.progress = progress;
         writeGLTF(ctx, path, o);
     } else if (ext == ".usda") {
         UsdOptions o;
         o.plants = plants;
+        o.progress = progress;
         writeUSDA(ctx, path, o);
     } else if (ext == ".png") {
         RenderOptions o;
         o.width = g.imageWidth;
         o.height = g.imageHeight;
-        o.progress = terminalProgress();
+        o.progress = progress;
         o.seed = g.seed;
         writePNG(render(ctx, o), path);
     } else {
