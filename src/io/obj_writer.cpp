@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <set>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -287,58 +289,106 @@ std::vector<Chunk> chunksOf(const Context& context, const std::vector<ObjectID>&
     return chunks;
 }
 
-// The objects' geometry into `out`: chunks formatted on all threads, each written in order
-// by whichever thread formatted it once the one before is written. Progress goes out from
-// the calling thread only (thread 0 of the team), after each of its chunks.
+// Waits for `done()`: yields at first, then sleeps in short naps (a writer bound by a slow
+// disk leaves the formatting threads idle for long).
+template <class Done>
+void waitFor(Done&& done) {
+    for (int spins = 0; !done(); ++spins) {
+        if (spins < 256)
+            std::this_thread::yield();
+        else
+            std::this_thread::sleep_for(std::chrono::microseconds(50));
+    }
+}
+
+// The objects' geometry into `out`. Chunks are claimed in order by whichever thread is free
+// and formatted into a ring of buffers (chunk c into slot c % slots, once chunk c - slots is
+// written); the calling thread writes them in chunk order, formatting chunks itself while
+// the next one is not ready, and reports progress. So a thread held up (a busy machine)
+// never stalls the others, and the bytes do not depend on the thread count.
 void writeBody(io::AtomicFile& out, const Context& context, const ObjOptions& options,
                const std::vector<ObjectID>& ids, const std::vector<std::string>& names) {
     const std::vector<Chunk> chunks =
         chunksOf(context, ids, ObjBodyWriter(context, options), options.normals);
     const std::ptrdiff_t n = std::ptrdiff_t(chunks.size());
     const int threads =
-        int(std::min<std::ptrdiff_t>(omp_get_max_threads(), std::max<std::ptrdiff_t>(n, 1)));
-    ProgressSteps steps(options.progress, "writing OBJ", double(n));
-    std::exception_ptr failure;
+        int(std::clamp<std::ptrdiff_t>(omp_get_max_threads(), 1, std::max<std::ptrdiff_t>(n, 1)));
+    const std::ptrdiff_t slots = 2 * threads;
+    std::vector<TextChunk> buffers(static_cast<std::size_t>(slots));
+    std::vector<std::atomic<std::ptrdiff_t>> ready(static_cast<std::size_t>(slots));  // chunk + 1
+    for (auto& r : ready) r.store(0, std::memory_order_relaxed);
+    std::atomic<std::ptrdiff_t> claimed{0}, written{0};
     std::atomic<bool> failed{false};
+    std::exception_ptr failure;
     auto fail = [&] {
 #pragma omp critical(plantarch_obj_failure)
         if (!failure) failure = std::current_exception();
-        failed.store(true, std::memory_order_relaxed);
+        failed.store(true, std::memory_order_release);
     };
+    auto slotFree = [&](std::ptrdiff_t c) {
+        return written.load(std::memory_order_acquire) > c - slots ||
+               failed.load(std::memory_order_acquire);
+    };
+    // Formats chunk c into its slot (free) and marks it ready.
+    auto format = [&](ObjBodyWriter& body, std::ptrdiff_t c) {
+        const Chunk& chunk = chunks[std::size_t(c)];
+        TextChunk& text = buffers[std::size_t(c % slots)];
+        try {
+            text.clear();
+            std::uint64_t vertexBase = chunk.vertexBase, uvBase = chunk.uvBase;
+            for (std::size_t i = chunk.first; i < chunk.last; ++i) {
+                const ObjectID id = ids[i];
+                body.writeObject(text, id,
+                                 options.materials ? &names[context.objectMaterial(id)] : nullptr,
+                                 vertexBase, uvBase);
+                const auto [v, t] = body.counts(context.object(id));
+                vertexBase += v;
+                uvBase += t;
+            }
+        } catch (...) {
+            fail();
+        }
+        ready[std::size_t(c % slots)].store(c + 1, std::memory_order_release);
+    };
+    ProgressSteps steps(options.progress, "writing OBJ", double(n));
 #pragma omp parallel num_threads(threads)
     {
         ObjBodyWriter body(context, options);
-        TextChunk text;
-#pragma omp for ordered schedule(static, 1)
-        for (std::ptrdiff_t c = 0; c < n; ++c) {
-            const Chunk& chunk = chunks[std::size_t(c)];
-            if (!failed.load(std::memory_order_relaxed)) {
-                try {
-                    text.clear();
-                    std::uint64_t vertexBase = chunk.vertexBase, uvBase = chunk.uvBase;
-                    for (std::size_t i = chunk.first; i < chunk.last; ++i) {
-                        const ObjectID id = ids[i];
-                        body.writeObject(
-                            text, id,
-                            options.materials ? &names[context.objectMaterial(id)] : nullptr,
-                            vertexBase, uvBase);
-                        const auto [v, t] = body.counts(context.object(id));
-                        vertexBase += v;
-                        uvBase += t;
+        if (omp_get_thread_num() != 0) {
+            for (;;) {
+                const std::ptrdiff_t c = claimed.fetch_add(1, std::memory_order_relaxed);
+                if (c >= n) break;
+                waitFor([&] { return slotFree(c); });
+                if (failed.load(std::memory_order_acquire)) break;
+                format(body, c);
+            }
+        } else {
+            std::ptrdiff_t mine = -1;  // a chunk this thread claimed whose slot is not yet free
+            for (std::ptrdiff_t w = 0; w < n && !failed.load(std::memory_order_acquire); ++w) {
+                std::atomic<std::ptrdiff_t>& next = ready[std::size_t(w % slots)];
+                for (int spins = 0; next.load(std::memory_order_acquire) != w + 1;) {
+                    if (failed.load(std::memory_order_acquire)) break;
+                    if (mine < 0 && claimed.load(std::memory_order_relaxed) < n) {
+                        const std::ptrdiff_t c = claimed.fetch_add(1, std::memory_order_relaxed);
+                        if (c < n) mine = c;
                     }
+                    if (mine >= 0 && slotFree(mine)) {
+                        format(body, mine);
+                        mine = -1;
+                    } else if (++spins < 256) {
+                        std::this_thread::yield();
+                    } else {
+                        std::this_thread::sleep_for(std::chrono::microseconds(50));
+                    }
+                }
+                if (failed.load(std::memory_order_acquire)) break;
+                try {
+                    const TextChunk& text = buffers[std::size_t(w % slots)];
+                    out.write(text.data(), text.size());
+                    written.store(w + 1, std::memory_order_release);
+                    steps.at(double(w + 1));
                 } catch (...) {
                     fail();
-                }
-            }
-#pragma omp ordered
-            {
-                if (!failed.load(std::memory_order_relaxed)) {
-                    try {
-                        out.write(text.data(), text.size());
-                        if (omp_get_thread_num() == 0) steps.at(double(c + 1));
-                    } catch (...) {
-                        fail();
-                    }
                 }
             }
         }
