@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <system_error>
 #include <thread>
@@ -167,18 +168,7 @@ public:
             out.advance(p);
         }
         const bool uvs = options_.uvs && !o.uvs.empty();
-        if (uvs)
-            for (const vec2& t : o.uvs) {
-                char* p = out.reserve(kLineBytes);
-                *p++ = 'v';
-                *p++ = 't';
-                *p++ = ' ';
-                p = io::writeFloat(p, t.x);
-                *p++ = ' ';
-                p = io::writeFloat(p, t.y);
-                *p++ = '\n';
-                out.advance(p);
-            }
+        if (uvs) out.write(uvText(o.uvs));
         if (options_.normals) {
             io::smoothNormals(o, normals_);
             for (const vec3& n : normals_) {
@@ -204,6 +194,29 @@ public:
     }
 
 private:
+    // The "vt" lines of `uvs`. Leaves made from one prototype share their UVs, so the text
+    // of the last UVs formatted is kept and reused when the next object's are the same.
+    std::string_view uvText(std::span<const vec2> uvs) {
+        if (uvs.size() == lastUVs_.size() &&
+            std::memcmp(uvs.data(), lastUVs_.data(), uvs.size_bytes()) == 0)
+            return {uvText_.data(), uvTextSize_};
+        lastUVs_.assign(uvs.begin(), uvs.end());
+        const std::size_t lineBytes = 2 * io::kMaxFloatChars + 5;  // "vt x y\n"
+        if (uvText_.size() < uvs.size() * lineBytes) uvText_.resize(uvs.size() * lineBytes);
+        char* p = uvText_.data();
+        for (const vec2& t : uvs) {
+            *p++ = 'v';
+            *p++ = 't';
+            *p++ = ' ';
+            p = io::writeFloat(p, t.x);
+            *p++ = ' ';
+            p = io::writeFloat(p, t.y);
+            *p++ = '\n';
+        }
+        uvTextSize_ = static_cast<std::size_t>(p - uvText_.data());
+        return {uvText_.data(), uvTextSize_};
+    }
+
     // " x y z\n"
     static char* vec3Text(char* p, const vec3& v) {
         *p++ = ' ';
@@ -258,6 +271,9 @@ private:
     const Context& context_;
     const ObjOptions& options_;
     std::vector<vec3> normals_;
+    std::vector<vec2> lastUVs_;
+    std::vector<char> uvText_;
+    std::size_t uvTextSize_ = 0;
 };
 
 // A run of consecutive objects formatted together, with the numbering they start at.
