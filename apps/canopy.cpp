@@ -90,6 +90,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setMeshDetail(global.meshDetail);
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);

@@ -28,6 +28,7 @@ struct GlobalOptions {
     int imageHeight = 768;
     int stringDigits = 4;    ///< significant digits of plant strings (--digits)
     std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
+    float meshDetail = 1.0f;  ///< --mesh-detail: factor on every organ's mesh resolution
 };
 
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.

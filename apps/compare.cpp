@@ -175,6 +175,7 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.setSeed(global.seed);
+    arch.setMeshDetail(global.meshDetail);
     arch.loadPlantModelFromLibrary(a.species);
     arch.setTrellisGeometry(!a.noTrellis);
     const unsigned plant =

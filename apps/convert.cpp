@@ -37,6 +37,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setMeshDetail(global.meshDetail);
         if (in == ".obj") {
             std::string out = std::filesystem::path(a->output).extension().string();
             for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));

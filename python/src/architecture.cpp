@@ -126,6 +126,12 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
              "Whether library plants get their species' trellis (on by default).")
         .def("getTrellisGeometry", &PlantArchitecture::getTrellisGeometry,
              "Whether library plants get their species' trellis (posts and wires).")
+        .def("setMeshDetail", &PlantArchitecture::setMeshDetail, py::arg("detail"),
+             "Mesh resolution of every organ as a factor on its species' own (0.1 to 4, default "
+             "1); geometry only, the plants grow the same. Redraws the plants there are.",
+             Release())
+        .def("getMeshDetail", &PlantArchitecture::getMeshDetail,
+             "The factor on every organ's mesh resolution (setMeshDetail).")
         .def("getPlantTrellisObjectIDs", &PlantArchitecture::getPlantTrellisObjectIDs,
              py::arg("plantID"), "The trellis objects (posts and wires) made with a plant.");
 }

@@ -2,6 +2,7 @@
 // and reading or changing the current shoot parameters.
 
 #include "api/facade_impl.h"
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -65,6 +66,20 @@ void PlantArchitecture::setTrellisGeometry(bool on) {
 
 bool PlantArchitecture::getTrellisGeometry() const {
     return impl_->trellisGeometry;
+}
+
+void PlantArchitecture::setMeshDetail(float detail) {
+    if (!(detail >= kMinMeshDetail && detail <= kMaxMeshDetail))
+        throw Error(
+            "out of range",
+            {.parameter = "mesh_detail", .value = text::formatFloat(detail), .validRange = "0.1 to 4"});
+    if (detail == impl_->store.meshDetail) return;
+    impl_->store.meshDetail = detail;
+    for (const auto& [id, plant] : impl_->store.plants) updateGeometry(id);
+}
+
+float PlantArchitecture::getMeshDetail() const {
+    return impl_->store.meshDetail;
 }
 
 std::vector<ObjectID> PlantArchitecture::getPlantTrellisObjectIDs(unsigned plantID) const {
