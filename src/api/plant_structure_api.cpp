@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
+#include "plantarch/HeliosPlantXML.h"
 
 namespace plantarch {
 
@@ -149,6 +150,27 @@ unsigned PlantArchitecture::generatePlantFromString(const std::string& plantStri
                                                     const PlantStructureReadOptions& options) {
     auto read = plant_io::readPlantString(plantString, defaultsOf(impl_->store, seed_));
     return adopt(*this, impl_->store, impl_->functions, std::move(read), "", options).front();
+}
+
+}  // namespace plantarch
+
+namespace plantarch {
+
+std::string getHeliosPlantStructureXML(const PlantArchitecture& arch,
+                                       const std::vector<unsigned>& plantIDs) {
+    std::vector<const PlantInstance*> plants;
+    plants.reserve(plantIDs.size());
+    for (unsigned id : plantIDs) plants.push_back(&arch.plant(id));
+    return plant_io::writeHeliosPlants(plants);
+}
+
+void writeHeliosPlantStructureXML(const PlantArchitecture& arch,
+                                  const std::vector<unsigned>& plantIDs,
+                                  const std::string& filename) {
+    const std::string text = getHeliosPlantStructureXML(arch, plantIDs);
+    io::AtomicFile file(filename);
+    file.write(text);
+    file.commit();
 }
 
 }  // namespace plantarch

@@ -13,10 +13,15 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 #include "plantarch/PlantState.h"
+
+namespace plantarch::xml {
+class Document;
+}
 
 namespace plantarch::plant_io {
 
@@ -42,10 +47,23 @@ public:
     /// True when nothing was absent (a complete file): completion has nothing to do.
     bool complete() const { return !recordsPresent_ && set_.empty(); }
 
+    /// How far the input turns an internode's shoot axis from the one before, degrees:
+    /// toward vertical, then about the vertical (`<helios>` files' perturbations).
+    struct Turn {
+        float up = 0.0f;
+        float yaw = 0.0f;
+    };
+    void setTurn(const Internode* in, Turn t) { turns_[in] = t; }
+    const Turn* turn(const Internode* in) const {
+        auto it = turns_.find(in);
+        return it == turns_.end() ? nullptr : &it->second;
+    }
+
 private:
     explicit Presence(bool recordsPresent) : recordsPresent_(recordsPresent) {}
     bool recordsPresent_;
     std::unordered_set<const void*> set_;
+    std::unordered_map<const Internode*, Turn> turns_;
 };
 
 /// What the PlantArchitecture provides for values an input leaves out.
@@ -90,6 +108,13 @@ std::string writePlantsXML(const std::vector<const PlantInstance*>& plants);
 /// form). Throws plantarch::Error naming `fileName`, the line, the element path and the value.
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults);
+
+/// Reads a document whose root is `<helios>`: the specification's listing and the files
+/// of the reference system (helios_xml.cpp).
+ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileName,
+                            const Defaults& defaults);
+/// The plants as a `<helios>` document in the reference system's layout.
+std::string writeHeliosPlants(const std::vector<const PlantInstance*>& plants);
 
 // ---- plant strings -------------------------------------------------------------------
 

@@ -457,6 +457,8 @@ void checkFormat(const Element& root) {
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults) {
     const xml::Document doc(xml, fileName, {"plant structure file", kRoot, kListingRoot});
+    if (std::string_view(doc.root().name()) == kListingRoot)
+        return readHeliosPlants(doc, fileName, defaults);
     const Element root(doc, doc.root(), "");
     checkFormat(root);
     Children children(root);
