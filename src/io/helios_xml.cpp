@@ -284,7 +284,9 @@ private:
         });
         optionalChild(kids, e, "internode_length_max", [&](const Element& c) {
             lengthMax = number(c, 0.0, kLength);
-            if (hasLength && length > lengthMax)
+            // (within 1e-4: the reference system prints 6 digits of a length measured
+            // along its segments)
+            if (hasLength && length > lengthMax * (1.0f + 1e-4f))
                 c.fail("shorter than <internode_length> (" + text::formatFloat(length) + ")",
                        c.text(), "at least the internode's current length");
         });
@@ -521,10 +523,14 @@ private:
             angle("flower_roll", &fl.roll);
             angle("flower_azimuth", &fl.azimuth);
             optionalChild(fk, fe, "flower_base_scale", [&](const Element& c) {
-                const float v = number(c, 0.0, kLength);
-                (fb.stage == FloralStage::Fruit ? fl.fruitScale : fl.flowerScale) = v;
+                float& scale = fb.stage == FloralStage::Fruit ? fl.fruitScale : fl.flowerScale;
+                scale = number(c, 0.0, kLength);
+                note(&scale);
             });
             fk.finish();
+            for (const void* v : {(const void*)&fl.position, (const void*)&fl.azimuth,
+                                  (const void*)&fl.pitch, (const void*)&fl.roll})
+                note(v);
         }
     }
 
@@ -625,6 +631,33 @@ private:
         return it == p.shootTypes.end() ? nullptr : &it->second;
     }
 
+    // A branch's rotation as the layout has it: the angle its first internode's shoot axis
+    // leaves the parent internode at, the turn of that side about the parent axis from its
+    // petiole's side, and the roll of its reference (growth also draws the type's base yaw
+    // and roll, which the state holds only in these directions).
+    static AxisRotation baseRotationOf(const PlantInstance& p, const Shoot& s) {
+        if (s.parent < 0 || s.phytomers.empty()) return s.baseRotation;
+        const AxisRotation plain{s.insertionAngle, s.baseRotation.yaw, s.baseRotation.roll};
+        const Shoot& parent = p.shoots[std::size_t(s.parent)];
+        if (s.parentNode < 0 || std::size_t(s.parentNode) >= parent.phytomers.size()) return plain;
+        const Phytomer& node = parent.phytomers[std::size_t(s.parentNode)];
+        if (std::size_t(s.parentPetiole) >= node.petioles.size()) return plain;
+        const Internode& pin = node.internode;
+        const vec3 a = pin.direction;
+        const vec3 bud = azimuthDirection(pin.guide, pin.rollReference,
+                                          node.petioles[std::size_t(s.parentPetiole)].azimuth);
+        const vec3 side0 = unitOr(bud - glm::dot(bud, a) * a, anyPerpendicular(a));
+        const Internode& first = s.phytomers.front().internode;
+        const vec3 g = first.guide;
+        const vec3 side = unitOr(g - glm::dot(g, a) * a, side0);
+        const vec3 ref = unitOr(a - glm::dot(a, g) * g, side);
+        auto signedAngle = [](vec3 from, vec3 to, vec3 about) {
+            return std::atan2(glm::dot(glm::cross(from, to), about), glm::dot(from, to)) / kDeg;
+        };
+        return {std::acos(std::clamp(glm::dot(g, a), -1.0f, 1.0f)) / kDeg,
+                signedAngle(side0, side, a), signedAngle(ref, first.rollReference, g)};
+    }
+
     void shoot(const PlantInstance& p, const Shoot& s, const std::vector<int>& newID) {
         out_ += "\t\t<shoot ID=\"" + std::to_string(newID[s.id]) + "\">\n";
         line(3, "shoot_type_label", s.type);
@@ -632,9 +665,8 @@ private:
              std::to_string(s.parent < 0 ? -1 : newID[std::size_t(s.parent)]));
         line(3, "parent_node_index", std::to_string(s.parentNode));
         line(3, "parent_petiole_index", std::to_string(s.parentPetiole));
-        line(3, "base_rotation",
-             num(s.baseRotation.pitch) + " " + num(s.baseRotation.yaw) + " " +
-                 num(s.baseRotation.roll));
+        const AxisRotation r = baseRotationOf(p, s);
+        line(3, "base_rotation", num(r.pitch) + " " + num(r.yaw) + " " + num(r.roll));
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) phytomer(p, s, k);
         out_ += "\t\t</shoot>\n";
     }
