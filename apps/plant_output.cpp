@@ -15,6 +15,7 @@
 #include "plantarch/ExportPlants.h"
 #include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantStructureWrite.h"
 
 namespace plantarch::cli {
 
@@ -77,7 +78,9 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
     if (ext == ".xml" && isHeliosPath(path)) {
         writeHeliosPlantStructureXML(arch, plants, path);
     } else if (ext == ".xml") {
-        arch.writePlantStructureXML(plants, path);
+        PlantStructureWriteOptions o;
+        o.objectIDs = g.objectIDs;
+        writePlantStructureXML(arch, plants, path, o);
     } else if (ext == ".csv") {
         writeQSM(arch, plants, path);
     } else if (ext == ".txt") {
@@ -215,6 +218,16 @@ void addStringDigitsOption(CLI::App& app, GlobalOptions& global) {
                    "default 4)")
         ->check(
             numberCheck("--digits", "a digit count", 0, 6, true, "1 to 6, or 0 for exact values"));
+}
+
+}  // namespace plantarch::cli
+
+namespace plantarch::cli {
+
+void addObjectIDsOption(CLI::App& app, GlobalOptions& global) {
+    app.add_flag("--object-ids", global.objectIDs,
+                 "Plant structure .xml outputs also hold each organ's object IDs: reading such "
+                 "a file gives its objects the same IDs, so exports match the original's");
 }
 
 }  // namespace plantarch::cli

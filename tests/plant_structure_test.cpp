@@ -530,6 +530,10 @@ struct StateNames {
         names.emplace_back(f.name);
     }
     void legacy(const char* name) { names.emplace_back(name); }
+    template <class T>
+    void objects(const char* name, T&) {
+        names.emplace_back(name);
+    }
     template <class Fn>
     void group(const char* name, Fn&& fn) {
         names.emplace_back(name);

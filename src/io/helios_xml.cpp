@@ -133,6 +133,8 @@ struct MissingReport {
         if (given.missing(&member)) add(f.name);
     }
     void legacy(const char*) {}
+    template <class T>
+    void objects(const char*, T&) {}
     template <class Fn>
     void group(const char* name, Fn&& fn) {
         kinds.push_back(name);

@@ -101,8 +101,9 @@ void checkPlant(PlantInstance& plant, const std::string& where);
 
 // ---- XML ---------------------------------------------------------------------------
 
-/// A complete plant structure document holding `plants`, numbers in shortest round-trip form.
-std::string writePlantsXML(const std::vector<const PlantInstance*>& plants);
+/// A complete plant structure document holding `plants`, numbers in shortest round-trip form;
+/// with `objectIDs`, each organ's Context object IDs too.
+std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs = false);
 
 /// Reads a plant structure document (the complete form or the specification's listing
 /// form). Throws plantarch::Error naming `fileName`, the line, the element path and the value.
@@ -115,6 +116,30 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
                             const Defaults& defaults);
 /// The plants as a `<helios>` document in the reference system's layout.
 std::string writeHeliosPlants(const std::vector<const PlantInstance*>& plants);
+
+// ---- object IDs ----------------------------------------------------------------------
+
+/// Calls f(ObjectID&) or f(std::vector<ObjectID>&) for every object member of the plant's
+/// organs, in a fixed order (shoots, phytomers: internode, petioles with their leaves and
+/// floral buds; then the shoot's terminal buds).
+template <class F>
+void forEachObjectMember(PlantInstance& p, F&& f) {
+    auto floral = [&](FloralBud& fb) {
+        f(fb.peduncleObject);
+        for (FlowerOrgan& fl : fb.flowers) f(fl.objects);
+    };
+    for (Shoot& s : p.shoots) {
+        for (Phytomer& ph : s.phytomers) {
+            f(ph.internode.object);
+            for (Petiole& pt : ph.petioles) {
+                f(pt.object);
+                for (LeafOrgan& l : pt.leaves) f(l.objects);
+                for (FloralBud& fb : pt.floralBuds) floral(fb);
+            }
+        }
+        for (FloralBud& fb : s.terminalFloralBuds) floral(fb);
+    }
+}
 
 // ---- plant strings -------------------------------------------------------------------
 
