@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <type_traits>
 
 #include "api/facade_impl.h"
@@ -53,7 +55,8 @@ std::map<std::string, ShootParameters> typesToWrite(
 
 // The document of the plants: each with the shoot types it may still ask for.
 std::string structureXML(const std::map<std::string, ShootParameters>& global,
-                         const std::vector<const PlantInstance*>& source, bool objectIDs) {
+                         const std::vector<const PlantInstance*>& source, bool objectIDs,
+                         const std::vector<std::vector<unsigned>>* materialIDs = nullptr) {
     std::vector<PlantInstance> copies;
     copies.reserve(source.size());
     std::vector<const PlantInstance*> plants;
@@ -68,7 +71,7 @@ std::string structureXML(const std::map<std::string, ShootParameters>& global,
             plants.push_back(p);
         }
     }
-    return plant_io::writePlantsXML(plants, objectIDs);
+    return plant_io::writePlantsXML(plants, objectIDs, materialIDs);
 }
 
 }  // namespace
@@ -132,6 +135,39 @@ void clearObjectIDs(const std::vector<PlantInstance*>& plants) {
 // At most this many unused IDs are made below the restored ones (each costs a record).
 constexpr ObjectID kMaxUnusedIDs = 1u << 20;
 
+// Gives the scratch Context's materials the IDs the file recorded (each plant's materials in
+// the order its objects first use them), when those IDs are free in `ctx`: the IDs skipped
+// get unused placeholder materials (exports write only the materials objects use). Else the
+// materials get the next IDs, in the order the objects are copied.
+void restoreMaterialIDs(Context& ctx, const Context& scratch,
+                        const std::vector<std::tuple<ObjectID, ObjectID, std::size_t>>& pairs,
+                        const std::vector<std::vector<unsigned>>& materialIDs) {
+    std::map<unsigned, MaterialID> wanted;  // recorded material ID -> scratch material
+    std::map<MaterialID, unsigned> given;   // scratch material -> recorded ID
+    std::vector<std::vector<MaterialID>> order(materialIDs.size());
+    for (const auto& [recordedID, scratchID, k] : pairs) {
+        if (k >= materialIDs.size()) return;
+        const MaterialID m = scratch.objectMaterial(scratchID);
+        auto& o = order[k];
+        if (std::find(o.begin(), o.end(), m) != o.end()) continue;
+        o.push_back(m);
+        if (o.size() > materialIDs[k].size()) return;
+        const unsigned r = materialIDs[k][o.size() - 1];
+        if ((given.count(m) && given[m] != r) || (wanted.count(r) && wanted[r] != m)) return;
+        given[m] = r;
+        wanted[r] = m;
+    }
+    if (wanted.empty() || wanted.begin()->first < ctx.materialCount()) return;
+    for (const auto& [r, m] : wanted) {
+        while (ctx.materialCount() < r) {
+            Material unused;
+            unused.name = "unused_" + std::to_string(ctx.materialCount());
+            ctx.addMaterial(unused);
+        }
+        if (ctx.addMaterial(scratch.material(m)) != r) return;
+    }
+}
+
 // Makes the plants' objects with the IDs their file recorded: when every recorded ID is free
 // (above every ID `ctx` has issued: a Context never issues an ID twice), they leave fewer
 // than kMaxUnusedIDs unused below them, and the plants' organs still have the objects the
@@ -140,7 +176,8 @@ constexpr ObjectID kMaxUnusedIDs = 1u << 20;
 // Returns false, with no object made and no ID set, when the IDs cannot be restored.
 bool restoreObjectIDs(Context& ctx, const PlantStore& store, PrototypeCache& prototypes,
                       const std::vector<PlantInstance*>& plants,
-                      const std::vector<RecordedIDs>& recorded) {
+                      const std::vector<RecordedIDs>& recorded,
+                      const std::vector<std::vector<unsigned>>& materialIDs) {
     std::vector<ObjectID> all;
     for (const RecordedIDs& r : recorded)
         for (const auto& ids : r) all.insert(all.end(), ids.begin(), ids.end());
@@ -151,7 +188,7 @@ bool restoreObjectIDs(Context& ctx, const PlantStore& store, PrototypeCache& pro
         all.back() - limit - (all.size() - 1) >= kMaxUnusedIDs)
         return false;
     Context scratch;
-    std::vector<std::pair<ObjectID, ObjectID>> pairs;  // recorded ID, scratch ID
+    std::vector<std::tuple<ObjectID, ObjectID, std::size_t>> pairs;  // recorded, scratch, plant
     bool same = true;
     try {
         for (std::size_t k = 0; k < plants.size(); ++k) {
@@ -163,7 +200,7 @@ bool restoreObjectIDs(Context& ctx, const PlantStore& store, PrototypeCache& pro
                     same = false;
                 } else {
                     for (std::size_t j = 0; j < now.size(); ++j)
-                        pairs.emplace_back(recorded[k][i][j], now[j]);
+                        pairs.emplace_back(recorded[k][i][j], now[j], k);
                 }
                 ++i;
             });
@@ -176,14 +213,15 @@ bool restoreObjectIDs(Context& ctx, const PlantStore& store, PrototypeCache& pro
     clearObjectIDs(plants);
     if (!same) return false;
     std::sort(pairs.begin(), pairs.end());
+    restoreMaterialIDs(ctx, scratch, pairs, materialIDs);
     for (std::size_t a = 0; a < pairs.size();) {
         std::vector<ObjectID> unused;
-        while (ctx.objectIDLimit() < pairs[a].first) unused.push_back(ctx.addObject(Mesh{}));
+        while (ctx.objectIDLimit() < std::get<0>(pairs[a])) unused.push_back(ctx.addObject(Mesh{}));
         ctx.deleteObjects(unused);
         std::size_t b = a + 1;
-        while (b < pairs.size() && pairs[b].first == pairs[b - 1].first + 1) ++b;
+        while (b < pairs.size() && std::get<0>(pairs[b]) == std::get<0>(pairs[b - 1]) + 1) ++b;
         std::vector<ObjectID> from;
-        for (std::size_t i = a; i < b; ++i) from.push_back(pairs[i].second);
+        for (std::size_t i = a; i < b; ++i) from.push_back(std::get<1>(pairs[i]));
         const ObjectSource source{&scratch, from};
         ctx.appendObjects({&source, 1});
         a = b;
@@ -222,7 +260,8 @@ std::vector<unsigned> adopt(PlantArchitecture& arch, PlantStore& store,
             added.push_back(&store.plants.emplace(id, std::move(p)).first->second);
             ids.push_back(id);
         }
-        if (!geometryDeferred) restoreObjectIDs(arch.context(), store, prototypes, added, recorded);
+        if (!geometryDeferred)
+            restoreObjectIDs(arch.context(), store, prototypes, added, recorded, read.materialIDs);
         for (unsigned id : ids) arch.updateGeometry(id);
     } catch (...) {
         for (unsigned id : ids) arch.deletePlantInstance(id);
@@ -303,7 +342,25 @@ std::string getPlantStructureXML(const PlantArchitecture& arch,
                                  const PlantStructureWriteOptions& options) {
     std::vector<const PlantInstance*> plants;
     for (unsigned id : plantIDs) plants.push_back(&arch.plant(id));
-    return structureXML(arch.getCurrentShootParameters(), plants, options.objectIDs);
+    // Each plant's materials, in the order its objects (by ID) first use them.
+    const Context& ctx = const_cast<PlantArchitecture&>(arch).context();
+    std::vector<std::vector<unsigned>> materials;
+    if (options.objectIDs)
+        for (const PlantInstance* p : plants) {
+            std::vector<ObjectID> objects;
+            plant_io::forEachObjectMember(*p, [&](const auto& m) {
+                for (ObjectID o : idsOf(m))
+                    if (ctx.doesObjectExist(o)) objects.push_back(o);
+            });
+            std::sort(objects.begin(), objects.end());
+            std::vector<unsigned> used;
+            for (ObjectID o : objects) {
+                const MaterialID m = ctx.objectMaterial(o);
+                if (std::find(used.begin(), used.end(), m) == used.end()) used.push_back(m);
+            }
+            materials.push_back(std::move(used));
+        }
+    return structureXML(arch.getCurrentShootParameters(), plants, options.objectIDs, &materials);
 }
 
 void writePlantStructureXML(const PlantArchitecture& arch, const std::vector<unsigned>& plantIDs,

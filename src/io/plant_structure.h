@@ -78,6 +78,8 @@ struct Defaults {
 struct ReadResult {
     std::vector<PlantInstance> plants;
     std::vector<std::string> warnings;
+    /// Per plant: the Context material IDs its file gives (`<material_IDs>`), or none.
+    std::vector<std::vector<unsigned>> materialIDs;
 };
 
 /// Fills the values `presence` reports missing; `notes` receives what was taken from where
@@ -103,7 +105,10 @@ void checkPlant(PlantInstance& plant, const std::string& where);
 
 /// A complete plant structure document holding `plants`, numbers in shortest round-trip form;
 /// with `objectIDs`, each organ's Context object IDs too.
-std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs = false);
+/// `materialIDs` (with objectIDs; one list per plant) are the Context material IDs of the
+/// plant's objects, distinct, in the order of the objects' IDs.
+std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs = false,
+                           const std::vector<std::vector<unsigned>>* materialIDs = nullptr);
 
 /// Reads a plant structure document (the complete form or the specification's listing
 /// form). Throws plantarch::Error naming `fileName`, the line, the element path and the value.
@@ -122,22 +127,22 @@ std::string writeHeliosPlants(const std::vector<const PlantInstance*>& plants);
 /// Calls f(ObjectID&) or f(std::vector<ObjectID>&) for every object member of the plant's
 /// organs, in a fixed order (shoots, phytomers: internode, petioles with their leaves and
 /// floral buds; then the shoot's terminal buds).
-template <class F>
-void forEachObjectMember(PlantInstance& p, F&& f) {
-    auto floral = [&](FloralBud& fb) {
+template <class Plant, class F>
+void forEachObjectMember(Plant& p, F&& f) {
+    auto floral = [&](auto& fb) {
         f(fb.peduncleObject);
-        for (FlowerOrgan& fl : fb.flowers) f(fl.objects);
+        for (auto& fl : fb.flowers) f(fl.objects);
     };
-    for (Shoot& s : p.shoots) {
-        for (Phytomer& ph : s.phytomers) {
+    for (auto& s : p.shoots) {
+        for (auto& ph : s.phytomers) {
             f(ph.internode.object);
-            for (Petiole& pt : ph.petioles) {
+            for (auto& pt : ph.petioles) {
                 f(pt.object);
-                for (LeafOrgan& l : pt.leaves) f(l.objects);
-                for (FloralBud& fb : pt.floralBuds) floral(fb);
+                for (auto& l : pt.leaves) f(l.objects);
+                for (auto& fb : pt.floralBuds) floral(fb);
             }
         }
-        for (FloralBud& fb : s.terminalFloralBuds) floral(fb);
+        for (auto& fb : s.terminalFloralBuds) floral(fb);
     }
 }
 

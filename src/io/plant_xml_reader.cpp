@@ -327,6 +327,27 @@ public:
         }
     }
 
+    // The plant's optional <material_IDs> (whole numbers separated by spaces).
+    std::vector<unsigned> materialIDs() {
+        std::vector<unsigned> ids;
+        const xml_node n = children_.take("material_IDs");
+        if (!n) return ids;
+        const Element e(e_, n, "material_IDs");
+        const std::string s = e.text();
+        std::size_t at = 0;
+        while (at < s.size()) {
+            const std::size_t start = s.find_first_not_of(" \t\r\n", at);
+            if (start == std::string::npos) break;
+            std::size_t end = s.find_first_of(" \t\r\n", start);
+            if (end == std::string::npos) end = s.size();
+            ids.push_back(e.convert(s.substr(start, end - start),
+                                    [](std::string_view v) { return objectID(v); }));
+            if (ids.size() > 100000) e.fail("too many material IDs", "", "at most 100000");
+            at = end;
+        }
+        return ids;
+    }
+
     // Every child element must have been taken: else it is unknown or a duplicate.
     void finish() const { children_.finish(); }
 
@@ -512,6 +533,7 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
         PlantReader reader;
         ElementReader top(reader, e, kID);
         state::describeState(plant, top);
+        result.materialIDs.push_back(top.materialIDs());
         top.finish();
         std::vector<std::string> notes;
         try {

@@ -335,7 +335,8 @@ private:
 
 }  // namespace
 
-std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs) {
+std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs,
+                           const std::vector<std::vector<unsigned>>* materialIDs) {
     std::string out;
     out.reserve(std::size_t(1) << 16);
     out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
@@ -344,12 +345,21 @@ std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool
     out += "<";
     out += kRoot;
     out.append(" format=\"").append(std::to_string(kFormatVersion)).append("\">\n");
-    for (const PlantInstance* p : plants) {
+    for (std::size_t k = 0; k < plants.size(); ++k) {
+        const PlantInstance* p = plants[k];
         out += "  <plant_instance ID=\"";
         appendInteger(out, p->id);
         out += "\">\n";
         StateWriter w(out, 2, objectIDs);
         state::describeState(*p, w);
+        if (objectIDs && materialIDs && k < materialIDs->size() && !(*materialIDs)[k].empty()) {
+            out += "    <material_IDs>";
+            for (std::size_t i = 0; i < (*materialIDs)[k].size(); ++i) {
+                if (i) out += ' ';
+                appendInteger(out, (*materialIDs)[k][i]);
+            }
+            out += "</material_IDs>\n";
+        }
         out += "  </plant_instance>\n";
     }
     out += "</";
