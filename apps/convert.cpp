@@ -30,6 +30,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
                    "defaults of listing-form .xml files");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
+    addObjectIDsOption(app, global);
     return [a, &global]() {
         preparePlantOutputs({a->output}, global.points);
         std::string in = std::filesystem::path(a->input).extension().string();

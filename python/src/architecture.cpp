@@ -11,6 +11,7 @@
 #include "bindings.h"
 #include "callbacks.h"
 #include "plantarch/ExportPlants.h"
+#include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::python {
@@ -544,6 +545,25 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
          "Writes one plant (an ID) or several (a list) as a plant structure XML file.")
         .def("getPlantStructureXML", &PlantArchitecture::getPlantStructureXML, py::arg("plantIDs"),
              "The plant structure XML document of the given plants, as a string.")
+        .def(
+            "writeHeliosPlantStructureXML",
+            [](const PlantArchitecture& a, py::object plants, const std::string& file) {
+                const std::vector<unsigned> ids =
+                    py::isinstance<py::int_>(plants)
+                        ? std::vector<unsigned>{plants.cast<unsigned>()}
+                        : plants.cast<std::vector<unsigned>>();
+                py::gil_scoped_release release;
+                writeHeliosPlantStructureXML(a, ids, file);
+            },
+            py::arg("plantID"), py::arg("filename"),
+            "Writes one plant (an ID) or several (a list) as a <helios> plant structure file, "
+            "the reference system's layout (docs/plant-xml.md).")
+        .def(
+            "getHeliosPlantStructureXML",
+            [](const PlantArchitecture& a, const std::vector<unsigned>& ids) {
+                return getHeliosPlantStructureXML(a, ids);
+            },
+            py::arg("plantIDs"), "The <helios> plant structure document of the given plants.")
         .def(
             "readPlantStructureXML",
             [](PlantArchitecture& a, const std::string& file, py::object warnings) {
