@@ -140,3 +140,29 @@ TEST(ObjectIDs, CommandLineRoundTripGivesTheSameOBJ) {
     EXPECT_EQ(fileBytes(a + "2.xml").find("object_ID"), std::string::npos);
     fs::remove_all(d);
 }
+
+// A plant built in one call (and a canopy) is drawn once, at its age, so its objects are made
+// in organ order, as reading its file makes them: a default file, without IDs, gives the same
+// exports too.
+TEST(ObjectIDs, PlantsBuiltInOneCallNeedNoIDsInTheirFile) {
+    for (const char* species : {"bean", "almond"}) {
+        SCOPED_TRACE(species);
+        const fs::path dir = folder(std::string("default_") + species);
+        Context a;
+        PlantArchitecture archA(&a);
+        archA.loadPlantModelFromLibrary(species);
+        std::vector<unsigned> ids = {archA.buildPlantInstanceFromLibrary(vec3(0.0f), 120.0f)};
+        for (unsigned id : archA.buildPlantCanopyFromLibrary(vec3(3.0f, 0, 0), vec2(1.0f),
+                                                             glm::ivec2(2, 2), 90.0f))
+            ids.push_back(id);
+        const std::string text = archA.getPlantStructureXML(ids);
+        EXPECT_EQ(text.find("<object_ID>"), std::string::npos);
+        Context b;
+        PlantArchitecture archB(&b);
+        ASSERT_EQ(archB.readPlantStructureXMLString(text), ids);
+        const std::string original = exports(a, dir / "a");
+        EXPECT_GT(original.size(), 10000u);
+        EXPECT_EQ(firstDifference(exports(b, dir / "b"), original), "");
+        fs::remove_all(dir);
+    }
+}
