@@ -39,6 +39,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
                    "Output file(s): " + plantFileExtensions() + " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
+    addObjectIDsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
     return [a, &global]() {
@@ -48,6 +49,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);

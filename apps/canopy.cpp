@@ -65,6 +65,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
                    "Output file(s): " + plantFileExtensions() + " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
+    addObjectIDsOption(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
     app.add_flag("--separate", a->separate,
                  "One file per plant for each output (field.glb -> field_0007.glb ...) and one "
@@ -91,6 +92,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.setProgressCallback(terminalProgress());
+        arch.setMeshDetail(global.meshDetail);
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);

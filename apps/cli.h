@@ -28,6 +28,8 @@ struct GlobalOptions {
     int imageHeight = 768;
     int stringDigits = 4;    ///< significant digits of plant strings (--digits)
     std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
+    float meshDetail = 1.0f;  ///< --mesh-detail: factor on every organ's mesh resolution
+    bool objectIDs = false;   ///< --object-ids: .xml outputs carry each organ's object IDs
 };
 
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
@@ -146,6 +148,8 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                                      const std::string& species);
 /// Adds --digits (significant digits of plant strings) to a subcommand.
 void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
+/// Adds --object-ids (plant structure .xml outputs carry each organ's object IDs).
+void addObjectIDsOption(CLI::App& app, GlobalOptions& global);
 
 /// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
 /// (animation_options.cpp).

@@ -188,6 +188,7 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     arch.setSeed(global.seed);
     const ProgressCallback progress = terminalProgress();
     arch.setProgressCallback(progress);
+    arch.setMeshDetail(global.meshDetail);
     arch.loadPlantModelFromLibrary(a.species);
     arch.setTrellisGeometry(!a.noTrellis);
     const unsigned plant =

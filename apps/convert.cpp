@@ -30,6 +30,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
                    "defaults of listing-form .xml files");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
+    addObjectIDsOption(app, global);
     return [a, &global]() {
         preparePlantOutputs({a->output}, global.points);
         std::string in = std::filesystem::path(a->input).extension().string();
@@ -37,6 +38,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setMeshDetail(global.meshDetail);
         if (in == ".obj") {
             std::string out = std::filesystem::path(a->output).extension().string();
             for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));

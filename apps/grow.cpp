@@ -37,6 +37,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
                    "Species giving the shoot types of plant strings (.txt input)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
+    addObjectIDsOption(app, global);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         if (frames && a->days >= 0.0)
@@ -50,6 +51,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
         if (frames) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +13,9 @@
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/ExportPlants.h"
+#include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantStructureWrite.h"
 
 namespace plantarch::cli {
 
@@ -37,8 +40,22 @@ void writeWholeFile(const std::string& path, const std::string& text) {
 }
 
 std::string plantFileExtensions() {
-    return sceneFileExtensions() + ", .xml, .txt, .csv";
+    return sceneFileExtensions() + ", .xml, .helios.xml, .txt, .csv";
 }
+
+namespace {
+
+// A `<helios>` plant structure file (the reference system's layout): name ends .helios.xml.
+bool isHeliosPath(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    constexpr std::string_view suffix = ".helios.xml";
+    if (name.size() <= suffix.size()) return false;
+    std::string tail = name.substr(name.size() - suffix.size());
+    for (char& c : tail) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return tail == suffix;
+}
+
+}  // namespace
 
 void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t points) {
     std::vector<std::string> scenes;
@@ -58,8 +75,12 @@ void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t poin
 void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
                       const std::string& path, const GlobalOptions& g) {
     const std::string ext = lowerExtension(path);
-    if (ext == ".xml") {
-        arch.writePlantStructureXML(plants, path);
+    if (ext == ".xml" && isHeliosPath(path)) {
+        writeHeliosPlantStructureXML(arch, plants, path);
+    } else if (ext == ".xml") {
+        PlantStructureWriteOptions o;
+        o.objectIDs = g.objectIDs;
+        writePlantStructureXML(arch, plants, path, o);
     } else if (ext == ".csv") {
         writeQSM(arch, plants, path);
     } else if (ext == ".txt") {
@@ -110,7 +131,13 @@ std::string separateFileName(const std::string& path, unsigned plant) {
     const std::filesystem::path p(path);
     char id[16];
     std::snprintf(id, sizeof id, "_%04u", plant);
-    return (p.parent_path() / (p.stem().string() + id + p.extension().string())).string();
+    // field.helios.xml -> field_0007.helios.xml: the double suffix stays whole.
+    std::string stem = p.stem().string(), ext = p.extension().string();
+    if (isHeliosPath(path)) {
+        ext = stem.substr(stem.size() - 7) + ext;
+        stem.resize(stem.size() - 7);
+    }
+    return (p.parent_path() / (stem + id + ext)).string();
 }
 
 void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
@@ -196,6 +223,16 @@ void addStringDigitsOption(CLI::App& app, GlobalOptions& global) {
                    "default 4)")
         ->check(
             numberCheck("--digits", "a digit count", 0, 6, true, "1 to 6, or 0 for exact values"));
+}
+
+}  // namespace plantarch::cli
+
+namespace plantarch::cli {
+
+void addObjectIDsOption(CLI::App& app, GlobalOptions& global) {
+    app.add_flag("--object-ids", global.objectIDs,
+                 "Plant structure .xml outputs also hold each organ's object IDs: reading such "
+                 "a file gives its objects the same IDs, so exports match the original's");
 }
 
 }  // namespace plantarch::cli

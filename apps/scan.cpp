@@ -82,6 +82,7 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
     } else {
         arch = std::make_unique<PlantArchitecture>(&ctx);
         arch->setSeed(g.seed);
+        arch->setMeshDetail(g.meshDetail);
         readPlantInput(*arch, a.input, a.species);
     }
     const PointCloud points = scan(ctx, o);

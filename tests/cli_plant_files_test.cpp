@@ -91,7 +91,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
         {"convert " + d + "/b.xml " + d + "/x.usdz",
          d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
              ".png, "
-             ".npz, .xml, .txt, .csv)"},
+             ".npz, .xml, .helios.xml, .txt, .csv)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
          d + "/missing.xml: cannot open plant structure file"},
         {"convert " + d + "/b.xml", "output is required"},

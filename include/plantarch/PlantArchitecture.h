@@ -187,6 +187,15 @@ public:
     /// statistics and files leave them out; deleting the plant deletes them.
     void setTrellisGeometry(bool on);
     bool getTrellisGeometry() const;
+
+    /// How finely organs are meshed, as a factor on each organ's own resolution in its
+    /// species file (leaf `subdivisions`, `flower_subdivisions`, `fruit_subdivisions`, the
+    /// `radial_subdivisions` of internodes, petioles and peduncles): 0.1 to 4, default 1.
+    /// Coarser meshes for large scenes, finer ones for close-ups. Geometry only: plants grow
+    /// the same at any detail (their leaf areas, girths and every state value are unchanged).
+    /// Redraws the plants there are; throws naming the range for a value outside it.
+    void setMeshDetail(float detail);
+    float getMeshDetail() const;
     /// The trellis objects made with a plant (empty: its species has none, or it was off).
     std::vector<ObjectID> getPlantTrellisObjectIDs(unsigned plantID) const;
 

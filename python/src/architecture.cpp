@@ -11,6 +11,7 @@
 #include "bindings.h"
 #include "callbacks.h"
 #include "plantarch/ExportPlants.h"
+#include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::python {
@@ -126,6 +127,12 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
              "Whether library plants get their species' trellis (on by default).")
         .def("getTrellisGeometry", &PlantArchitecture::getTrellisGeometry,
              "Whether library plants get their species' trellis (posts and wires).")
+        .def("setMeshDetail", &PlantArchitecture::setMeshDetail, py::arg("detail"),
+             "Mesh resolution of every organ as a factor on its species' own (0.1 to 4, default "
+             "1); geometry only, the plants grow the same. Redraws the plants there are.",
+             Release())
+        .def("getMeshDetail", &PlantArchitecture::getMeshDetail,
+             "The factor on every organ's mesh resolution (setMeshDetail).")
         .def("getPlantTrellisObjectIDs", &PlantArchitecture::getPlantTrellisObjectIDs,
              py::arg("plantID"), "The trellis objects (posts and wires) made with a plant.");
 }
@@ -538,6 +545,25 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
          "Writes one plant (an ID) or several (a list) as a plant structure XML file.")
         .def("getPlantStructureXML", &PlantArchitecture::getPlantStructureXML, py::arg("plantIDs"),
              "The plant structure XML document of the given plants, as a string.")
+        .def(
+            "writeHeliosPlantStructureXML",
+            [](const PlantArchitecture& a, py::object plants, const std::string& file) {
+                const std::vector<unsigned> ids =
+                    py::isinstance<py::int_>(plants)
+                        ? std::vector<unsigned>{plants.cast<unsigned>()}
+                        : plants.cast<std::vector<unsigned>>();
+                py::gil_scoped_release release;
+                writeHeliosPlantStructureXML(a, ids, file);
+            },
+            py::arg("plantID"), py::arg("filename"),
+            "Writes one plant (an ID) or several (a list) as a <helios> plant structure file, "
+            "the reference system's layout (docs/plant-xml.md).")
+        .def(
+            "getHeliosPlantStructureXML",
+            [](const PlantArchitecture& a, const std::vector<unsigned>& ids) {
+                return getHeliosPlantStructureXML(a, ids);
+            },
+            py::arg("plantIDs"), "The <helios> plant structure document of the given plants.")
         .def(
             "readPlantStructureXML",
             [](PlantArchitecture& a, const std::string& file, py::object warnings) {

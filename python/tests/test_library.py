@@ -156,6 +156,22 @@ def test_plant_structure_xml_and_strings_round_trip(arch, tmp):
     assert arch.getPlantString(r, significant_digits=4) == s
 
 
+def test_helios_files_are_written_and_read_back(arch, tmp):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 45)
+    path = tmp / "plant.helios.xml"
+    arch.writeHeliosPlantStructureXML(p, str(path))
+    text = path.read_text()
+    assert "<helios>" in text and "<internode_phyllotactic_angle>" in text
+    assert arch.getHeliosPlantStructureXML([p]) == text
+    other = plantarch.PlantArchitecture(plantarch.Context())
+    other.loadPlantModelFromLibrary("bean")
+    warnings = []
+    (q,) = other.readPlantStructureXML(str(path), warnings=warnings)
+    assert len(warnings) == 1
+    assert other.getShootCount(q) == arch.getShootCount(p)
+    assert other.getHeliosPlantStructureXML([q]).count("<leaf>") == text.count("<leaf>")
+
+
 def test_collision_avoidance_and_attraction_points(arch):
     arch.enableSoftCollisionAvoidance(cone_half_angle=60, rays=64)
     arch.enableAttractionPoints([(0, 0, 1.0), (0.1, 0, 1.0)], view_half_angle_deg=70)

@@ -219,6 +219,7 @@ void PlantArchitecture::registerLeafPrototype(const std::string& name, LeafProto
         throw Error("a leaf prototype needs a name and a function",
                     {.parameter = "name", .value = name});
     impl_->functions.leafPrototypes[name] = std::move(fn);
+    impl_->functions.userLeafPrototypes.insert(name);
     impl_->prototypes.clear();
     impl_->collision.proxies.reset();
 }
@@ -229,6 +230,7 @@ void PlantArchitecture::registerFloralPrototype(const std::string& name,
         throw Error("a flower/fruit prototype needs a name and a function",
                     {.parameter = "name", .value = name});
     impl_->functions.floralPrototypes[name] = std::move(fn);
+    impl_->functions.userFloralPrototypes.insert(name);
     impl_->prototypes.clear();
     impl_->collision.proxies.reset();
 }

@@ -2,6 +2,7 @@
 // and reading or changing the current shoot parameters.
 
 #include "api/facade_impl.h"
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -48,7 +49,19 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
     if (impl_->trellisGeometry && impl_->species->trellis)      // and the trellis's
         speciesTrellis(*impl_->species, seed(), impl_->store.nextPlantID, base_position,
                        build_parameters);
-    const unsigned id = buildPlantStructure(base_position, build_parameters);
+    // The plant is drawn once, when grown to its age: its objects are then made in the order
+    // of its organs, as reading its file back makes them (and the seedling's geometry, which
+    // growing would replace at once, is never made).
+    unsigned id;
+    {
+        struct Defer {
+            bool& flag;
+            bool was;
+            ~Defer() { flag = was; }
+        } defer{impl_->geometryDeferred, impl_->geometryDeferred};
+        impl_->geometryDeferred = true;
+        id = buildPlantStructure(base_position, build_parameters);
+    }
     try {
         advanceTime(id, age);
         addTrellis(id, base_position, build_parameters);
@@ -65,6 +78,20 @@ void PlantArchitecture::setTrellisGeometry(bool on) {
 
 bool PlantArchitecture::getTrellisGeometry() const {
     return impl_->trellisGeometry;
+}
+
+void PlantArchitecture::setMeshDetail(float detail) {
+    if (!(detail >= kMinMeshDetail && detail <= kMaxMeshDetail))
+        throw Error("out of range", {.parameter = "mesh_detail",
+                                     .value = text::formatFloat(detail),
+                                     .validRange = "0.1 to 4"});
+    if (detail == impl_->store.meshDetail) return;
+    impl_->store.meshDetail = detail;
+    for (const auto& [id, plant] : impl_->store.plants) updateGeometry(id);
+}
+
+float PlantArchitecture::getMeshDetail() const {
+    return impl_->store.meshDetail;
 }
 
 std::vector<ObjectID> PlantArchitecture::getPlantTrellisObjectIDs(unsigned plantID) const {

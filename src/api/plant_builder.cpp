@@ -80,6 +80,10 @@ PlantArchitecture::PlantArchitecture(Context* context)
     : context_(context), impl_(std::make_unique<Impl>()) {
     if (!context) throw Error("PlantArchitecture needs a Context", {.parameter = "context"});
     registerBuiltinPrototypes(*this);
+    // The library's own functions: the same in every PlantArchitecture, so their shapes are
+    // shared by all of them (PrototypeCache).
+    impl_->functions.userLeafPrototypes.clear();
+    impl_->functions.userFloralPrototypes.clear();
 }
 
 PlantArchitecture::~PlantArchitecture() = default;

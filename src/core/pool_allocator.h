@@ -4,38 +4,36 @@
 // A canopy's pools run to hundreds of megabytes, written once and read many times. Blocks of
 // 4 MiB and more are aligned to 2 MiB and offered to the kernel for transparent huge pages
 // (where the system has them, in "madvise" mode or "always"), which makes first touching
-// them several times cheaper than in 4 KiB pages. With `Uninitialised`, growing a vector
-// leaves new elements unset (the pools' writers fill every element they add), so a pool is
-// written once instead of zeroed first.
+// them several times cheaper than in 4 KiB pages. Freed blocks are kept, up to a bound, for
+// the next Context: first touching a fresh page is the largest single cost of building a
+// small plant. With `Uninitialised`, growing a vector leaves new elements unset (the pools'
+// writers fill every element they add), so a pool is written once instead of zeroed first.
 
 #include <cstddef>
-#include <cstdlib>
 #include <new>
 #include <type_traits>
 #include <utility>
-
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 
 namespace plantarch::core {
 
 inline constexpr std::size_t kHugePage = std::size_t(2) << 20;
 inline constexpr std::size_t kHugeBlock = std::size_t(4) << 20;
 
-inline void* allocatePool(std::size_t bytes) {
-    if (bytes < kHugeBlock) {
-        if (void* p = std::malloc(bytes == 0 ? 1 : bytes)) return p;
-        throw std::bad_alloc();
-    }
-    const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    void* p = std::aligned_alloc(kHugePage, rounded);
-    if (!p) throw std::bad_alloc();
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    madvise(p, rounded, MADV_HUGEPAGE);  // advice only: no huge pages is no error
-#endif
-    return p;
-}
+/// Pool blocks of at least this many bytes are rounded up to a power of two and kept for
+/// reuse when freed (pool_allocator.cpp): building one plant after another, each into a new
+/// Context, then finds its pools' pages already mapped instead of faulting in fresh ones.
+inline constexpr std::size_t kRecycledBlock = std::size_t(64) << 10;
+
+/// A block of at least `bytes` (a power of two from kRecycledBlock up; 4 MiB and more aligned
+/// to 2 MiB and offered for huge pages). Throws std::bad_alloc.
+void* allocatePool(std::size_t bytes);
+/// Returns a block from allocatePool(bytes), which may keep it for the next request of its
+/// size.
+void freePool(void* p, std::size_t bytes) noexcept;
+/// Frees every kept block (a test's or a memory-tight caller's way to give pages back).
+void releaseRecycledPools() noexcept;
+/// Bytes in blocks kept for reuse.
+std::size_t recycledPoolBytes() noexcept;
 
 template <class T, bool Uninitialised = false>
 struct PoolAllocator {
@@ -53,7 +51,7 @@ struct PoolAllocator {
         if (n > std::size_t(-1) / sizeof(T)) throw std::bad_alloc();
         return static_cast<T*>(allocatePool(n * sizeof(T)));
     }
-    void deallocate(T* p, std::size_t) noexcept { std::free(p); }
+    void deallocate(T* p, std::size_t n) noexcept { freePool(p, n * sizeof(T)); }
 
     // Value-initialisation (vector::resize(n)) left undone for trivial types when asked.
     template <class U>

@@ -2,6 +2,11 @@
 // Organ prototypes built once per (function, parameters, leaflet, variant) and placed by
 // transform, so a canopy does not rebuild a leaf mesh per leaf; and memos that find a leaf's
 // prototype without building its key, valid during one growth or tessellation call.
+//
+// Shapes made by the library's own prototype functions depend on nothing but their key, so
+// they are also kept process-wide: the next PlantArchitecture (a new one per plant, per
+// request or per notebook cell) finds them built. Shapes of functions the user registered, and
+// of OBJ models read from files, stay with their own cache.
 
 #include <array>
 #include <cstdint>
@@ -26,15 +31,29 @@ public:
     const FunctionRegistry& functions() const { return *functions_; }
 
     // ---- prototypes by key ---------------------------------------------------------
-    std::shared_ptr<const OrganPrototype> find(const std::string& key) const;
-    void insert(const std::string& key, std::shared_ptr<const OrganPrototype> proto);
+    /// Who may reuse a prototype: this cache only, or every cache in the process (a shape
+    /// made by a library function from its key alone).
+    enum class Scope { Own, Process };
+    /// The prototype of `key`, from this cache or, for Scope::Process, the process's.
+    std::shared_ptr<const OrganPrototype> find(const std::string& key, Scope scope = Scope::Own);
+    void insert(const std::string& key, std::shared_ptr<const OrganPrototype> proto,
+                Scope scope = Scope::Own);
+    /// The scope of shapes made by leaf (or flower/fruit) prototype function `name`.
+    Scope leafScope(const std::string& name) const {
+        return functions_->userLeafPrototypes.count(name) ? Scope::Own : Scope::Process;
+    }
+    Scope floralScope(const std::string& name) const {
+        return functions_->userFloralPrototypes.count(name) ? Scope::Own : Scope::Process;
+    }
     std::size_t size() const { return entries_.size(); }
     /// Drops every prototype (a prototype function was registered again).
     void clear() { entries_.clear(); }
 
     // ---- leaves ----------------------------------------------------------------------
-    /// The prototype a leaf uses (built and cached on first use; tessellate.cpp).
-    const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf);
+    /// The prototype a leaf uses (built and cached on first use; tessellate.cpp), at a mesh
+    /// detail (PlantArchitecture::setMeshDetail; growth always asks at 1).
+    const OrganPrototype& leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf,
+                                        float detail = 1.0f);
     /// One-sided area of a leaf prototype at unit scale (cached).
     double leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf);
 
@@ -67,6 +86,10 @@ public:
     bool memosPinned = false;
 
 private:
+    /// The prototype of `proto`'s leaflet and variant, whose parameters `description` gives.
+    const OrganPrototype& buildLeafPrototype(const LeafPrototype& proto, int leaflet,
+                                             unsigned variant, const std::string& description);
+
     using LeafKey =
         std::tuple<const LeafPrototype*, int, unsigned>;  ///< prototype, leaflet, variant
     struct LeafKeyHash {

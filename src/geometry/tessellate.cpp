@@ -454,14 +454,19 @@ struct Tessellator {
                                           bool normalizeOBJ) {
         const std::string key = variantKey(fn, describeFloral(request), 0, variant) +
                                 (normalizeOBJ ? "|normalized" : "");
-        if (auto hit = prototypes.find(key)) return *hit;
+        const PrototypeCache::Scope scope =
+            isOBJPrototypeName(fn) ? PrototypeCache::Scope::Own : prototypes.floralScope(fn);
+        if (auto hit = prototypes.find(key, scope)) return *hit;
         Rng rng(hashKey(key), 7);
         auto built = std::make_shared<OrganPrototype>(
             isOBJPrototypeName(fn) ? loadOBJPrototype(fn, normalizeOBJ)
                                    : prototypes.functions().floralPrototypes.at(fn)(request, rng));
-        prototypes.insert(key, built);
+        prototypes.insert(key, built, scope);
         return *built;
     }
+
+    // The sides of a tube of `radial` sides at the mesh detail.
+    unsigned sides(unsigned radial) const { return detailed(radial, store.meshDetail, 3); }
 
     void internodes(Shoot& s) {
         if (!sink->wants(OrganKind::Internode)) return;
@@ -497,7 +502,7 @@ struct Tessellator {
                 continue;
             }
             const Mesh m =
-                geometry::tubeMesh(rings, i * segs, (i + 1) * segs, ip.radial_subdivisions);
+                geometry::tubeMesh(rings, i * segs, (i + 1) * segs, sides(ip.radial_subdivisions));
             sink->write(ph.internode.object, m, mat, {OrganKind::Internode, &s, int(i), ph.age});
         }
     }
@@ -551,8 +556,8 @@ struct Tessellator {
             for (unsigned k = 0; k <= segs; ++k)
                 radii.push_back(r0 * (1.0f - (1.0f - tip) * float(k) / float(segs)));
             const auto rings = geometry::tubeRings(path, radii, in.direction);
-            const Mesh m =
-                geometry::tubeMesh(rings, 0, rings.size() - 1, pp.petiole.radial_subdivisions);
+            const Mesh m = geometry::tubeMesh(rings, 0, rings.size() - 1,
+                                              sides(pp.petiole.radial_subdivisions));
             sink->write(pt.object, m, Material{pp.petiole.color, "", ""},
                         {OrganKind::Petiole, &s, node, ph.age});
         } else {
@@ -575,7 +580,7 @@ struct Tessellator {
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const mat4 xf = geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale,
                                                 lp.prototype.leaf_offset);
-        sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf), xf,
+        sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf, store.meshDetail), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
@@ -745,10 +750,11 @@ struct Tessellator {
             sink->wants(OrganKind::Peduncle)) {
             const std::vector<float> radii(path.size(), fb.peduncleRadius);
             const auto rings = geometry::tubeRings(path, radii, axis);
-            sink->write(
-                fb.peduncleObject,
-                geometry::tubeMesh(rings, 0, rings.size() - 1, pp.peduncle.radial_subdivisions),
-                Material{pp.peduncle.color, "", ""}, {OrganKind::Peduncle, &s, node, ph.age});
+            sink->write(fb.peduncleObject,
+                        geometry::tubeMesh(rings, 0, rings.size() - 1,
+                                           sides(pp.peduncle.radial_subdivisions)),
+                        Material{pp.peduncle.color, "", ""},
+                        {OrganKind::Peduncle, &s, node, ph.age});
         } else if (sink->wants(OrganKind::Peduncle)) {
             sink->remove(fb.peduncleObject);
         }
@@ -768,7 +774,8 @@ struct Tessellator {
         request.parameters =
             fruit ? inf.fruit_prototype_parameters : inf.flower_prototype_parameters;
         request.color = fruit ? inf.fruit_color : inf.flower_color;
-        request.subdivisions = fruit ? inf.fruit_subdivisions : inf.flower_subdivisions;
+        request.subdivisions =
+            detailed(fruit ? inf.fruit_subdivisions : inf.flower_subdivisions, store.meshDetail, 2);
         peduncleMeasure.measure(path);
         for (FlowerOrgan& fl : fb.flowers) {
             const float scale = currentFloralSize(fb, fl);
@@ -819,24 +826,41 @@ struct Tessellator {
 
 }  // namespace
 
-const OrganPrototype& PrototypeCache::leafPrototype(const LeafParameters& lp,
-                                                    const LeafOrgan& leaf) {
-    const LeafPrototype& proto = lp.prototype;
-    const unsigned variants = proto.unique_prototypes;
+const OrganPrototype& PrototypeCache::leafPrototype(const LeafParameters& lp, const LeafOrgan& leaf,
+                                                    float detail) {
     const PrototypeSlot slot = prototypeSlot(lp, leaf);
-    const int leaflet = slot.leaflet;
-    const unsigned variant = slot.variant;
-    const auto fast = prototypeMemo_.find(std::make_tuple(&proto, leaflet, variant));
+    if (detail != 1.0f) {
+        // A coarser or finer copy of the parameters, cached by its own key (the memos below
+        // are for the species' own resolution).
+        LeafPrototype scaled = lp.prototype;
+        scaled.subdivisions = detailed(lp.prototype.subdivisions, detail, 1);
+        if (scaled.subdivisions != lp.prototype.subdivisions)
+            return buildLeafPrototype(scaled, slot.leaflet, slot.variant,
+                                      describePrototype(scaled));
+    }
+    const LeafPrototype& proto = lp.prototype;
+    const auto memoKey = std::make_tuple(&proto, slot.leaflet, slot.variant);
+    const auto fast = prototypeMemo_.find(memoKey);
     if (fast != prototypeMemo_.end()) return *fast->second;
     auto memo = prototypeKeys_.find(&proto);
     if (memo == prototypeKeys_.end())
         memo = prototypeKeys_.emplace(&proto, describePrototype(proto)).first;
-    const std::string key = variantKey(proto.prototype_function, memo->second, leaflet, variant) +
-                            (variants == 0 ? "|unique" : "");
-    if (auto hit = find(key)) {
-        prototypeMemo_.emplace(std::make_tuple(&proto, leaflet, variant), hit.get());
-        return *hit;
-    }
+    const OrganPrototype& built =
+        buildLeafPrototype(proto, slot.leaflet, slot.variant, memo->second);
+    prototypeMemo_.emplace(memoKey, &built);
+    return built;
+}
+
+const OrganPrototype& PrototypeCache::buildLeafPrototype(const LeafPrototype& proto, int leaflet,
+                                                         unsigned variant,
+                                                         const std::string& description) {
+    const std::string key = variantKey(proto.prototype_function, description, leaflet, variant) +
+                            (proto.unique_prototypes == 0 ? "|unique" : "");
+    // A traced leaf image or an OBJ model is read from a file that may change: their shapes
+    // stay with this cache.
+    const bool fromFile = !proto.OBJ_model_file.empty() || !proto.leaf_texture_file.empty();
+    const Scope scope = fromFile ? Scope::Own : leafScope(proto.prototype_function);
+    if (auto hit = find(key, scope)) return *hit;
     // Variants are seeded from their key, not the plant's stream, so plants sharing a
     // prototype see the same shapes and building one never shifts a plant's random numbers.
     Rng rng(hashKey(key), 7);
@@ -844,8 +868,7 @@ const OrganPrototype& PrototypeCache::leafPrototype(const LeafParameters& lp,
         proto.OBJ_model_file.empty()
             ? functions_->leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
             : loadOBJPrototype(proto.OBJ_model_file, proto.normalize_OBJ_model));
-    insert(key, built);
-    prototypeMemo_.emplace(std::make_tuple(&proto, leaflet, variant), built.get());
+    insert(key, built, scope);
     return *built;
 }
 

@@ -11,13 +11,16 @@
 //                                missing-value warning); its content is the type's table
 //   v.parameters(name, member)   species parameters, read and written through the parameter
 //                                table (plantarch/ParameterTable.h)
-//   v.legacy(name)               an element of the specification's listing that plantarch
-//                                accepts on reading and never writes
+//   v.legacy(name)               an element plantarch accepts on reading and never writes
+//   v.objects(name, member)      the organ's Context object ID (ObjectID) or IDs (a vector),
+//                                written only on request (writePlantsXML's objectIDs); absent
+//                                on reading: none, and nothing is missing
 // The XML writer, the XML reader (with its range checks and missing-value report) are
 // visitors, so a new state field is one line here: it is then written, read back, range
 // checked, and reported as missing (default used) in older files.
 //
-// Object IDs are not state of the plant (they belong to one Context) and are not listed;
+// Object IDs belong to one Context: files carry them only when asked to, and reading gives
+// them back only where the target Context has them free (PlantArchitecture's reading).
 // Shoot::children is derived from the parents on reading.
 
 #include "plantarch/ParameterTable.h"
@@ -81,6 +84,7 @@ void describeState(S& f, V& v) {
             f.clearance.axis);
     v.field({"clearance_angle", -kBig, kBig, "fruit adjustment, degrees (0: none)"},
             f.clearance.angle);
+    v.objects("object_IDs", f.objects);
 }
 
 template <class S, class V>
@@ -117,6 +121,7 @@ void describeState(S& b, V& v) {
         p.field({"peduncle_clearance_angle", -kBig, kBig,
                  "turn out of solid obstacles, degrees (0: none)"},
                 b.peduncleClearance.angle);
+        p.objects("peduncle_object_ID", b.peduncleObject);
         p.list("flower", b.flowers);
     });
 }
@@ -135,6 +140,7 @@ void describeState(S& l, V& v) {
     v.field({"age", -kTime, kTime, "days"}, l.age);
     v.field({"birth", -kTime, kTime, "plant age when it appeared, days"}, l.birth);
     v.field({"removed", 0, 1, "shed or removed"}, l.removed);
+    v.objects("object_IDs", l.objects);
 }
 
 template <class S, class V>
@@ -151,6 +157,7 @@ void describeState(S& p, V& v) {
             p.clearance.axis);
     v.field({"clearance_angle", -kBig, kBig, "turn out of solid obstacles, degrees (0: none)"},
             p.clearance.angle);
+    v.objects("object_ID", p.object);
     v.list("leaf", p.leaves);
     v.list("vegetative_bud", p.vegetativeBuds);
     v.list("floral_bud", p.floralBuds);
@@ -173,6 +180,7 @@ void describeState(S& in, V& v) {
     v.field({"gravitropic_turn", -kBig, kBig, "degrees"}, in.gravitropicTurn);
     v.field({"walk_zenith", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkZenith);
     v.field({"walk_yaw", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkYaw);
+    v.objects("object_ID", in.object);
 }
 
 template <class S, class V>

@@ -13,10 +13,15 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 #include "plantarch/PlantState.h"
+
+namespace plantarch::xml {
+class Document;
+}
 
 namespace plantarch::plant_io {
 
@@ -42,10 +47,23 @@ public:
     /// True when nothing was absent (a complete file): completion has nothing to do.
     bool complete() const { return !recordsPresent_ && set_.empty(); }
 
+    /// How far the input turns an internode's shoot axis from the one before, degrees:
+    /// toward vertical, then about the vertical (`<helios>` files' perturbations).
+    struct Turn {
+        float up = 0.0f;
+        float yaw = 0.0f;
+    };
+    void setTurn(const Internode* in, Turn t) { turns_[in] = t; }
+    const Turn* turn(const Internode* in) const {
+        auto it = turns_.find(in);
+        return it == turns_.end() ? nullptr : &it->second;
+    }
+
 private:
     explicit Presence(bool recordsPresent) : recordsPresent_(recordsPresent) {}
     bool recordsPresent_;
     std::unordered_set<const void*> set_;
+    std::unordered_map<const Internode*, Turn> turns_;
 };
 
 /// What the PlantArchitecture provides for values an input leaves out.
@@ -60,6 +78,8 @@ struct Defaults {
 struct ReadResult {
     std::vector<PlantInstance> plants;
     std::vector<std::string> warnings;
+    /// Per plant: the Context material IDs its file gives (`<material_IDs>`), or none.
+    std::vector<std::vector<unsigned>> materialIDs;
 };
 
 /// Fills the values `presence` reports missing; `notes` receives what was taken from where
@@ -83,13 +103,48 @@ void checkPlant(PlantInstance& plant, const std::string& where);
 
 // ---- XML ---------------------------------------------------------------------------
 
-/// A complete plant structure document holding `plants`, numbers in shortest round-trip form.
-std::string writePlantsXML(const std::vector<const PlantInstance*>& plants);
+/// A complete plant structure document holding `plants`, numbers in shortest round-trip form;
+/// with `objectIDs`, each organ's Context object IDs too.
+/// `materialIDs` (with objectIDs; one list per plant) are the Context material IDs of the
+/// plant's objects, distinct, in the order of the objects' IDs.
+std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs = false,
+                           const std::vector<std::vector<unsigned>>* materialIDs = nullptr);
 
 /// Reads a plant structure document (the complete form or the specification's listing
 /// form). Throws plantarch::Error naming `fileName`, the line, the element path and the value.
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults);
+
+/// Reads a document whose root is `<helios>`: the specification's listing and the files
+/// of the reference system (helios_xml.cpp).
+ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileName,
+                            const Defaults& defaults);
+/// The plants as a `<helios>` document in the reference system's layout.
+std::string writeHeliosPlants(const std::vector<const PlantInstance*>& plants);
+
+// ---- object IDs ----------------------------------------------------------------------
+
+/// Calls f(ObjectID&) or f(std::vector<ObjectID>&) for every object member of the plant's
+/// organs, in a fixed order (shoots, phytomers: internode, petioles with their leaves and
+/// floral buds; then the shoot's terminal buds).
+template <class Plant, class F>
+void forEachObjectMember(Plant& p, F&& f) {
+    auto floral = [&](auto& fb) {
+        f(fb.peduncleObject);
+        for (auto& fl : fb.flowers) f(fl.objects);
+    };
+    for (auto& s : p.shoots) {
+        for (auto& ph : s.phytomers) {
+            f(ph.internode.object);
+            for (auto& pt : ph.petioles) {
+                f(pt.object);
+                for (auto& l : pt.leaves) f(l.objects);
+                for (auto& fb : pt.floralBuds) floral(fb);
+            }
+        }
+        for (auto& fb : s.terminalFloralBuds) floral(fb);
+    }
+}
 
 // ---- plant strings -------------------------------------------------------------------
 

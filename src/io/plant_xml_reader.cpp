@@ -98,6 +98,14 @@ Rng parseRng(std::string_view raw) {
     return Rng::fromState(state, increment);
 }
 
+ObjectID objectID(std::string_view raw) {
+    unsigned v = 0;
+    const std::string_view s = text::trim(raw);
+    if (!text::readNumber(s, v) || v > (1u << 30))
+        throw Error("expected an object ID", {.value = std::string(s), .validRange = "0 to 2^30"});
+    return v;
+}
+
 template <class Enum, class NameOf>
 Enum parseEnum(std::string_view raw, int count, NameOf&& nameOf) {
     const std::string_view s = text::trim(raw);
@@ -141,6 +149,8 @@ struct MissingVisitor {
         r.missing(f.name, &member);
     }
     void legacy(const char*) {}
+    template <class T>
+    void objects(const char*, T&) {}
     template <class Fn>
     void group(const char* name, Fn&& fn) {
         r.kinds.push_back(name);
@@ -183,6 +193,32 @@ public:
     // An element of the listing that carries nothing plantarch keeps: a number, checked.
     void legacy(const char* name) {
         if (const xml_node n = children_.take(name)) Element(e_, n, name).parse(text::parseFloat);
+    }
+
+    // Object IDs: optional, absent means none (no missing-value report).
+    void objects(const char* name, ObjectID& id) {
+        id = kNoObject;
+        if (const xml_node n = children_.take(name))
+            id = Element(e_, n, name).parse([](std::string_view s) { return objectID(s); });
+    }
+    void objects(const char* name, std::vector<ObjectID>& ids) {
+        ids.clear();
+        const xml_node n = children_.take(name);
+        if (!n) return;
+        const Element e(e_, n, name);
+        const std::string s = e.text();
+        std::size_t at = 0;
+        while (at < s.size() && ids.size() < 1000) {
+            const std::size_t start = s.find_first_not_of(" \t\r\n", at);
+            if (start == std::string::npos) break;
+            std::size_t end = s.find_first_of(" \t\r\n", start);
+            if (end == std::string::npos) end = s.size();
+            ids.push_back(e.convert(s.substr(start, end - start),
+                                    [](std::string_view v) { return objectID(v); }));
+            at = end;
+        }
+        if (at < s.size() && s.find_first_not_of(" \t\r\n", at) != std::string::npos)
+            e.fail("too many object IDs", s, "at most 1000");
     }
 
     // State table group: fn(visitor) visits the nested element's content.
@@ -289,6 +325,27 @@ public:
             validated(e, [&] { validate(params); });
             types.emplace(label, std::move(params));
         }
+    }
+
+    // The plant's optional <material_IDs> (whole numbers separated by spaces).
+    std::vector<unsigned> materialIDs() {
+        std::vector<unsigned> ids;
+        const xml_node n = children_.take("material_IDs");
+        if (!n) return ids;
+        const Element e(e_, n, "material_IDs");
+        const std::string s = e.text();
+        std::size_t at = 0;
+        while (at < s.size()) {
+            const std::size_t start = s.find_first_not_of(" \t\r\n", at);
+            if (start == std::string::npos) break;
+            std::size_t end = s.find_first_of(" \t\r\n", start);
+            if (end == std::string::npos) end = s.size();
+            ids.push_back(e.convert(s.substr(start, end - start),
+                                    [](std::string_view v) { return objectID(v); }));
+            if (ids.size() > 100000) e.fail("too many material IDs", "", "at most 100000");
+            at = end;
+        }
+        return ids;
     }
 
     // Every child element must have been taken: else it is unknown or a duplicate.
@@ -457,6 +514,8 @@ void checkFormat(const Element& root) {
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults) {
     const xml::Document doc(xml, fileName, {"plant structure file", kRoot, kListingRoot});
+    if (std::string_view(doc.root().name()) == kListingRoot)
+        return readHeliosPlants(doc, fileName, defaults);
     const Element root(doc, doc.root(), "");
     checkFormat(root);
     Children children(root);
@@ -474,6 +533,7 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
         PlantReader reader;
         ElementReader top(reader, e, kID);
         state::describeState(plant, top);
+        result.materialIDs.push_back(top.materialIDs());
         top.finish();
         std::vector<std::string> notes;
         try {

@@ -190,7 +190,8 @@ private:
 // Visitor of the state table.
 class StateWriter {
 public:
-    StateWriter(std::string& out, int depth) : x_(out, depth) {}
+    StateWriter(std::string& out, int depth, bool objectIDs)
+        : x_(out, depth), objectIDs_(objectIDs) {}
 
     void field(const state::FieldInfo& f, const float& v) {
         x_.element(f.name, [&](std::string& o) { appendNumber(o, v); });
@@ -239,6 +240,20 @@ public:
 
     void legacy(const char*) {}
 
+    void objects(const char* name, const ObjectID& id) {
+        if (!objectIDs_ || id == kNoObject) return;
+        x_.element(name, [&](std::string& o) { appendInteger(o, id); });
+    }
+    void objects(const char* name, const std::vector<ObjectID>& ids) {
+        if (!objectIDs_ || ids.empty()) return;
+        x_.element(name, [&](std::string& o) {
+            for (std::size_t i = 0; i < ids.size(); ++i) {
+                if (i) o += ' ';
+                appendInteger(o, ids[i]);
+            }
+        });
+    }
+
     void values(const state::FieldInfo& f, const std::vector<vec3>& items) {
         for (const vec3& v : items) triple(f.name, v.x, v.y, v.z);
     }
@@ -247,7 +262,7 @@ public:
     void optional(const char* name, const std::optional<T>& item) {
         if (!item) return;
         x_.open(name);
-        StateWriter sub(x_.out(), x_.depth() + 1);
+        StateWriter sub(x_.out(), x_.depth() + 1, objectIDs_);
         state::describeState(*item, sub);
         x_.close(name);
     }
@@ -255,7 +270,7 @@ public:
     template <class Fn>
     void group(const char* name, Fn&& visit) {
         x_.open(name);
-        StateWriter sub(x_.out(), x_.depth() + 1);
+        StateWriter sub(x_.out(), x_.depth() + 1, objectIDs_);
         visit(sub);
         x_.close(name);
     }
@@ -273,7 +288,7 @@ public:
                 o += '"';
             }
             o += ">\n";
-            StateWriter sub(o, x_.depth() + 1);
+            StateWriter sub(o, x_.depth() + 1, objectIDs_);
             state::describeState(items[i], sub);
             x_.close(name);
         }
@@ -315,11 +330,13 @@ private:
     }
 
     XmlOut x_;
+    bool objectIDs_;
 };
 
 }  // namespace
 
-std::string writePlantsXML(const std::vector<const PlantInstance*>& plants) {
+std::string writePlantsXML(const std::vector<const PlantInstance*>& plants, bool objectIDs,
+                           const std::vector<std::vector<unsigned>>* materialIDs) {
     std::string out;
     out.reserve(std::size_t(1) << 16);
     out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
@@ -328,12 +345,21 @@ std::string writePlantsXML(const std::vector<const PlantInstance*>& plants) {
     out += "<";
     out += kRoot;
     out.append(" format=\"").append(std::to_string(kFormatVersion)).append("\">\n");
-    for (const PlantInstance* p : plants) {
+    for (std::size_t k = 0; k < plants.size(); ++k) {
+        const PlantInstance* p = plants[k];
         out += "  <plant_instance ID=\"";
         appendInteger(out, p->id);
         out += "\">\n";
-        StateWriter w(out, 2);
+        StateWriter w(out, 2, objectIDs);
         state::describeState(*p, w);
+        if (objectIDs && materialIDs && k < materialIDs->size() && !(*materialIDs)[k].empty()) {
+            out += "    <material_IDs>";
+            for (std::size_t i = 0; i < (*materialIDs)[k].size(); ++i) {
+                if (i) out += ' ';
+                appendInteger(out, (*materialIDs)[k][i]);
+            }
+            out += "</material_IDs>\n";
+        }
         out += "  </plant_instance>\n";
     }
     out += "</";

@@ -3,6 +3,7 @@
 // A PlantArchitecture owns one; threads growing plants read it and never change it.
 
 #include <map>
+#include <set>
 #include <string>
 
 #include "plantarch/PlantArchitecture.h"
@@ -14,6 +15,9 @@ struct FunctionRegistry {
     std::map<std::string, FloralPrototypeFunction> floralPrototypes;
     std::map<std::string, PhytomerCreationFunction> creationFunctions;
     std::map<std::string, PhytomerCallbackFunction> callbackFunctions;
+    /// Prototype functions registered by the user (over the library's or beside them): their
+    /// shapes are this registry's own, never shared with other PlantArchitectures.
+    std::set<std::string> userLeafPrototypes, userFloralPrototypes;
 
     /// The creation function `name` that shoot type `shootType` names; throws if none is
     /// registered under that name.

@@ -10,6 +10,16 @@
 
 namespace plantarch {
 
+/// The range of PlantArchitecture::setMeshDetail.
+inline constexpr float kMinMeshDetail = 0.1f, kMaxMeshDetail = 4.0f;
+
+/// A resolution of `n` at mesh detail `detail`, never below `floor`: exactly `n` at detail 1.
+inline unsigned detailed(unsigned n, float detail, unsigned floor) {
+    if (detail == 1.0f) return n;
+    const float scaled = float(n) * detail + 0.5f;
+    return scaled < float(floor) ? floor : unsigned(scaled);
+}
+
 class PlantStore {
 public:
     /// The shoot types by label. A plant takes a copy when it is added, and copies a type it
@@ -20,6 +30,8 @@ public:
     std::map<unsigned, PlantInstance> plants;
     /// The ID the next plant gets (IDs are never reused).
     unsigned nextPlantID = 0;
+    /// The factor on every organ's mesh resolution (setMeshDetail).
+    float meshDetail = 1.0f;
 
     /// The plant with this ID; throws naming the valid IDs.
     PlantInstance& plant(unsigned id);
