@@ -540,16 +540,6 @@ private:
     Presence& given_;
 };
 
-std::string reportOf(const std::map<std::string, int>& counts) {
-    std::string out;
-    for (const auto& [path, n] : counts) {
-        if (!out.empty()) out += ", ";
-        out += path;
-        if (n > 1) out += " (" + std::to_string(n) + ")";
-    }
-    return out;
-}
-
 }  // namespace
 
 ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileName,
@@ -581,7 +571,7 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
         }
         if (!missing.empty() || !notes.empty()) {
             std::string w = fileName + ": plant_instance " + std::to_string(index) +
-                            ": values missing, defaults used: " + reportOf(missing);
+                            ": values missing, defaults used: " + missingReport(missing);
             for (const std::string& n : notes) w += "; " + n;
             result.warnings.push_back(std::move(w));
         }

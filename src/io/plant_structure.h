@@ -101,6 +101,10 @@ float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n);
 /// when the plant is inconsistent; derives Shoot::children.
 void checkPlant(PlantInstance& plant, const std::string& where);
 
+/// The values a file left out, for the one warning per plant: "path, path (3), ..." from the
+/// count of each missing path (plant_xml_reader.cpp).
+std::string missingReport(const std::map<std::string, int>& counts);
+
 // ---- XML ---------------------------------------------------------------------------
 
 /// A complete plant structure document holding `plants`, numbers in shortest round-trip form;

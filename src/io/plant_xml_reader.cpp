@@ -485,16 +485,6 @@ private:
     Children children_;
 };
 
-std::string missingReport(const std::map<std::string, int>& counts) {
-    std::string out;
-    for (const auto& [path, n] : counts) {
-        if (!out.empty()) out += ", ";
-        out += path;
-        if (n > 1) out += " (" + std::to_string(n) + ")";
-    }
-    return out;
-}
-
 void checkFormat(const Element& root) {
     if (std::string_view(root.name()) == kListingRoot) return root.checkAttributes({});
     root.checkAttributes({"format"});
@@ -510,6 +500,16 @@ void checkFormat(const Element& root) {
 }
 
 }  // namespace
+
+std::string missingReport(const std::map<std::string, int>& counts) {
+    std::string out;
+    for (const auto& [path, n] : counts) {
+        if (!out.empty()) out += ", ";
+        out += path;
+        if (n > 1) out += " (" + std::to_string(n) + ")";
+    }
+    return out;
+}
 
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults) {
