@@ -203,22 +203,27 @@ public:
     }
     void objects(const char* name, std::vector<ObjectID>& ids) {
         ids.clear();
-        const xml_node n = children_.take(name);
-        if (!n) return;
-        const Element e(e_, n, name);
+        if (const xml_node n = children_.take(name))
+            ids = idList(Element(e_, n, name), 1000, "object IDs");
+    }
+
+    // Whole numbers separated by white space, at most `most` of them.
+    static std::vector<unsigned> idList(const Element& e, std::size_t most, const char* what) {
+        std::vector<unsigned> ids;
         const std::string s = e.text();
         std::size_t at = 0;
-        while (at < s.size() && ids.size() < 1000) {
+        while (at < s.size()) {
             const std::size_t start = s.find_first_not_of(" \t\r\n", at);
             if (start == std::string::npos) break;
+            if (ids.size() == most)
+                e.fail(std::string("too many ") + what, s, "at most " + std::to_string(most));
             std::size_t end = s.find_first_of(" \t\r\n", start);
             if (end == std::string::npos) end = s.size();
             ids.push_back(e.convert(s.substr(start, end - start),
                                     [](std::string_view v) { return objectID(v); }));
             at = end;
         }
-        if (at < s.size() && s.find_first_not_of(" \t\r\n", at) != std::string::npos)
-            e.fail("too many object IDs", s, "at most 1000");
+        return ids;
     }
 
     // State table group: fn(visitor) visits the nested element's content.
@@ -329,23 +334,9 @@ public:
 
     // The plant's optional <material_IDs> (whole numbers separated by spaces).
     std::vector<unsigned> materialIDs() {
-        std::vector<unsigned> ids;
         const xml_node n = children_.take("material_IDs");
-        if (!n) return ids;
-        const Element e(e_, n, "material_IDs");
-        const std::string s = e.text();
-        std::size_t at = 0;
-        while (at < s.size()) {
-            const std::size_t start = s.find_first_not_of(" \t\r\n", at);
-            if (start == std::string::npos) break;
-            std::size_t end = s.find_first_of(" \t\r\n", start);
-            if (end == std::string::npos) end = s.size();
-            ids.push_back(e.convert(s.substr(start, end - start),
-                                    [](std::string_view v) { return objectID(v); }));
-            if (ids.size() > 100000) e.fail("too many material IDs", "", "at most 100000");
-            at = end;
-        }
-        return ids;
+        if (!n) return {};
+        return idList(Element(e_, n, "material_IDs"), 100000, "material IDs");
     }
 
     // Every child element must have been taken: else it is unknown or a duplicate.
