@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 
 #include "plantarch/Error.h"
 
@@ -186,6 +187,79 @@ TEST(Context, ObjectDataTypesAreEnforced) {
         EXPECT_EQ(e.parameter(), "plantID");
         EXPECT_EQ(e.validRange(), "int");
     }
+}
+
+TEST(Context, DataColumnsSetAsLabelsDo) {
+    Context ctx;
+    const ObjectID a = ctx.addObject(quad());
+    const ObjectID b = ctx.addObject(quad());
+    const DataColumn organ = ctx.dataColumn("organ", DataType::String);
+    const DataColumn plant = ctx.dataColumn("plantID", DataType::Int);
+    EXPECT_EQ(ctx.objectDataLabels(), (std::vector<std::string>{"organ", "plantID"}));
+    ctx.setObjectData(a, organ, std::string("leaf"));
+    ctx.setObjectData(b, organ, std::string("leaf"));
+    ctx.setObjectData(b, organ, std::string("petiole"));
+    ctx.setObjectData(a, plant, 7);
+    EXPECT_EQ(ctx.objectDataString(a, "organ"), "leaf");
+    EXPECT_EQ(ctx.objectDataString(b, "organ"), "petiole");
+    EXPECT_EQ(ctx.objectDataInt(a, "plantID"), 7);
+    EXPECT_FALSE(ctx.hasObjectData(b, "plantID"));
+    // The same column by name; a value of another type, a column of no Context, a label
+    // holding another type: errors.
+    EXPECT_EQ(ctx.dataColumn("organ", DataType::String).index, organ.index);
+    EXPECT_THROW(ctx.setObjectData(a, organ, 3), Error);
+    EXPECT_THROW(ctx.setObjectData(a, DataColumn{99, DataType::Int}, 3), Error);
+    EXPECT_THROW(ctx.dataColumn("organ", DataType::Float), Error);
+    EXPECT_THROW(ctx.dataColumn("", DataType::Float), Error);
+    EXPECT_THROW(ctx.setObjectData(77, plant, 1), Error);
+    // A copy's columns are its own.
+    Context copy = ctx;
+    copy.setObjectData(b, plant, 9);
+    copy.setObjectData(a, organ, std::string("fruit"));
+    EXPECT_EQ(copy.objectDataInt(b, "plantID"), 9);
+    EXPECT_EQ(copy.objectDataString(a, "organ"), "fruit");
+    EXPECT_FALSE(ctx.hasObjectData(b, "plantID"));
+    EXPECT_EQ(ctx.objectDataString(a, "organ"), "leaf");
+    // The string set last is remembered per column, not across a new object's value.
+    const ObjectID c = ctx.addObject(quad());
+    ctx.setObjectData(c, organ, std::string("leaf"));
+    EXPECT_EQ(ctx.objectDataString(c, "organ"), "leaf");
+}
+
+TEST(Context, PlacedMeshesEqualTransformedCopies) {
+    const mat4 xf = glm::rotate(glm::translate(mat4(1.0f), vec3(0.3f, -2.0f, 1.5f)), 0.7f,
+                                glm::normalize(vec3(1.0f, 2.0f, 3.0f))) *
+                    glm::scale(mat4(1.0f), vec3(0.2f));
+    Context placed, copied;
+    const Mesh m = grid(3, 2);
+    Mesh moved = m;
+    moved.transform(xf);
+    const ObjectID a = placed.addObject(m, xf);
+    const ObjectID b = copied.addObject(moved);
+    ASSERT_EQ(a, b);
+    EXPECT_EQ(placed.objectMesh(a).positions, copied.objectMesh(b).positions);
+    EXPECT_EQ(placed.objectMesh(a).indices, copied.objectMesh(b).indices);
+    // Replacing keeps the ID; the placed mesh equals the transformed copy to the bit.
+    Mesh q = quad(2.0f, true);
+    placed.setObjectMesh(a, q, xf);
+    q.transform(xf);
+    copied.setObjectMesh(b, q);
+    EXPECT_EQ(placed.objectMesh(a).positions, copied.objectMesh(b).positions);
+    EXPECT_EQ(placed.objectMesh(a).uvs, copied.objectMesh(b).uvs);
+    // Checked as any mesh: bad indices, non-finite input, and a transform that overflows.
+    Mesh bad = quad();
+    bad.indices[2] = 4;
+    EXPECT_THROW(placed.addObject(bad, xf), Error);
+    EXPECT_THROW(placed.setObjectMesh(a, bad, xf), Error);
+    bad = quad();
+    bad.positions[1].y = std::numeric_limits<float>::infinity();
+    EXPECT_THROW(placed.addObject(bad, xf), Error);
+    EXPECT_THROW(placed.addObject(quad(), glm::scale(mat4(1.0f), vec3(1e38f)) * 10.0f), Error);
+    mat4 nan = xf;
+    nan[3][0] = std::nanf("");
+    EXPECT_THROW(placed.addObject(quad(), nan), Error);
+    EXPECT_EQ(placed.objectCount(), 1u);
+    EXPECT_EQ(placed.triangleCount(), 2u);
 }
 
 TEST(Context, PrimitiveData) {

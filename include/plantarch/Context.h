@@ -62,6 +62,14 @@ struct ObjectView {
 
 class Context;
 
+/// An object-data label looked up once (Context::dataColumn), for setting it on many objects
+/// without finding the label by name each time. Valid in the Context that made it and in
+/// copies of that Context, until clear().
+struct DataColumn {
+    std::uint32_t index = 0;
+    DataType type = DataType::Int;
+};
+
 /// Objects of one Context to copy with Context::appendObjects.
 struct ObjectSource {
     const Context* context = nullptr;
@@ -90,8 +98,13 @@ public:
     /// Adds an object from raw arrays (uvs may be empty).
     ObjectID addObject(std::span<const vec3> positions, std::span<const vec2> uvs,
                        std::span<const std::uint32_t> indices, MaterialID material = 0);
+    /// Adds `mesh` placed by `transform` (its positions transformed as points), checked as
+    /// addObject(mesh) checks a mesh, without copying the mesh first.
+    ObjectID addObject(const Mesh& mesh, const mat4& transform, MaterialID material = 0);
     /// Replaces the object's geometry, keeping its ID, material and data.
     void setObjectMesh(ObjectID id, const Mesh& mesh);
+    /// Replaces the object's geometry with `mesh` placed by `transform`.
+    void setObjectMesh(ObjectID id, const Mesh& mesh, const mat4& transform);
     void setObjectMaterial(ObjectID id, MaterialID material);
     /// A new object with the same geometry, material and object data.
     ObjectID copyObject(ObjectID id);
@@ -146,6 +159,11 @@ public:
 
     // ---- labelled data -------------------------------------------------------------
     void setObjectData(ObjectID id, std::string_view label, DataValue value);
+    /// The column of `label`, made for `type` values if the label is new (an Error when it
+    /// holds another type). A new label is listed by objectDataLabels() from then on.
+    DataColumn dataColumn(std::string_view label, DataType type);
+    /// As setObjectData by label; the value must have the column's type.
+    void setObjectData(ObjectID id, DataColumn column, const DataValue& value);
     std::optional<DataValue> objectData(ObjectID id, std::string_view label) const;
     bool hasObjectData(ObjectID id, std::string_view label) const;
     void clearObjectData(ObjectID id, std::string_view label);

@@ -189,7 +189,8 @@ void bindContext(py::module_& m) {
         .def("vertexCount", &Context::vertexCount, "Vertices of the live objects.")
         .def("objectIDLimit", &Context::objectIDLimit, "One past the largest object ID issued.")
         .def("objectMesh", &Context::objectMesh, py::arg("objectID"), "A copy of its mesh.")
-        .def("setObjectMesh", &Context::setObjectMesh, py::arg("objectID"), py::arg("mesh"),
+        .def("setObjectMesh", py::overload_cast<ObjectID, const Mesh&>(&Context::setObjectMesh),
+             py::arg("objectID"), py::arg("mesh"),
              "Replaces the object's geometry, keeping its ID, material and data.")
         .def("objectArea", &Context::objectArea, py::arg("objectID"), "m^2")
         .def("material", &Context::material, py::arg("materialID"), "A material by ID.")

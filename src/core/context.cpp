@@ -4,6 +4,7 @@
 #include "plantarch/Context.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -37,6 +38,11 @@ struct ObjectRecord {
 // One object-data label: values indexed by object ID, with a presence flag.
 struct Column {
     DataType type = DataType::Int;
+    std::uint32_t index = 0;  // position in Impl::columnByIndex (a DataColumn's index)
+    // The last string set and its string-table index, so that setting the same string on
+    // object after object skips the table's hash look-up.
+    std::string lastString;
+    std::int32_t lastStringIndex = -1;
     std::vector<std::int32_t> ints;  // Int values, or string-table indices for String
     std::vector<float> floats;
     std::vector<vec3> vecs;
@@ -82,6 +88,7 @@ struct Context::Impl {
     WrittenPool<ObjectID> primitiveOwner;  // PrimitiveID -> ObjectID or kNone
     std::vector<Material> materials;
     std::map<std::string, Column, std::less<>> columns;
+    std::vector<Column*> columnByIndex;  // DataColumn::index -> column (map nodes stay put)
     std::map<std::string, PrimitiveColumn, std::less<>> primitiveColumns;
     std::vector<std::string> strings;
     std::unordered_map<std::string, std::int32_t> stringIndex;
@@ -111,28 +118,72 @@ struct Context::Impl {
                          .validRange = "0 to " + std::to_string(materials.size() - 1)});
     }
 
-    static void checkGeometry(std::span<const vec3> pos, std::span<const vec2> uv,
-                              std::span<const std::uint32_t> idx) {
-        Mesh probe;  // reuse Mesh::validate's messages without copying large arrays twice
-        if (idx.size() % 3 != 0 || (!uv.empty() && uv.size() != pos.size())) {
+    // The index count, UV count and index range of a mesh of `vertices` vertices.
+    static void checkStructure(std::size_t vertices, std::size_t uvCount,
+                               std::span<const std::uint32_t> idx) {
+        if (idx.size() % 3 != 0 || (uvCount != 0 && uvCount != vertices)) {
+            Mesh probe;  // reuse Mesh::validate's messages
             probe.indices.assign(idx.begin(), idx.end());
-            probe.positions.resize(pos.size());
-            probe.uvs.resize(uv.size());
+            probe.positions.resize(vertices);
+            probe.uvs.resize(uvCount);
             probe.validate();
         }
-        for (std::size_t i = 0; i < idx.size(); ++i)
-            if (idx[i] >= pos.size())
-                throw Error("vertex index out of range",
-                            {.parameter = "mesh.indices[" + std::to_string(i) + "]",
-                             .value = std::to_string(idx[i]),
-                             .validRange = "0 to " + std::to_string(pos.size()) + " (exclusive)"});
-        for (std::size_t i = 0; i < pos.size(); ++i)
-            if (!std::isfinite(pos[i].x) || !std::isfinite(pos[i].y) || !std::isfinite(pos[i].z))
-                throw Error("vertex position is not finite",
-                            {.parameter = "mesh.positions[" + std::to_string(i) + "]",
-                             .validRange = "finite coordinates"});
-        if (pos.size() >= kNone || idx.size() >= kNone)
-            throw Error("mesh too large", {.value = std::to_string(pos.size()) + " vertices"});
+        std::uint32_t largest = 0;
+        for (std::uint32_t i : idx) largest = std::max(largest, i);
+        if (!idx.empty() && largest >= vertices)
+            for (std::size_t i = 0; i < idx.size(); ++i)
+                if (idx[i] >= vertices)
+                    throw Error(
+                        "vertex index out of range",
+                        {.parameter = "mesh.indices[" + std::to_string(i) + "]",
+                         .value = std::to_string(idx[i]),
+                         .validRange = "0 to " + std::to_string(vertices) + " (exclusive)"});
+    }
+
+    // Throws unless every coordinate is finite; returns the largest magnitude. (A float's
+    // magnitude orders as its bits without the sign; infinity and NaN are the largest.)
+    static float checkFinite(std::span<const vec3> pos) {
+        static_assert(sizeof(vec3) == 3 * sizeof(float));
+        const auto* bits = reinterpret_cast<const std::uint32_t*>(pos.data());
+        std::uint32_t largest = 0;
+        for (std::size_t i = 0; i < 3 * pos.size(); ++i)
+            largest = std::max(largest, bits[i] & 0x7fffffffu);
+        if (largest >= 0x7f800000u)
+            for (std::size_t i = 0; i < pos.size(); ++i)
+                if (!std::isfinite(pos[i].x) || !std::isfinite(pos[i].y) ||
+                    !std::isfinite(pos[i].z))
+                    throw Error("vertex position is not finite",
+                                {.parameter = "mesh.positions[" + std::to_string(i) + "]",
+                                 .validRange = "finite coordinates"});
+        return std::bit_cast<float>(largest);
+    }
+
+    static void checkSize(std::size_t vertices, std::size_t indices) {
+        if (vertices >= kNone || indices >= kNone)
+            throw Error("mesh too large", {.value = std::to_string(vertices) + " vertices"});
+    }
+
+    static void checkGeometry(std::span<const vec3> pos, std::span<const vec2> uv,
+                              std::span<const std::uint32_t> idx) {
+        checkStructure(pos.size(), uv.size(), idx);
+        checkFinite(pos);
+        checkSize(pos.size(), idx.size());
+    }
+
+    // Checks a mesh to be placed by `xf`; false when the placed positions might not be finite
+    // (the caller then places a copy and checks that).
+    static bool checkPlaced(const Mesh& mesh, const mat4& xf) {
+        checkStructure(mesh.positions.size(), mesh.uvs.size(), mesh.indices);
+        const float largest = checkFinite(mesh.positions);
+        checkSize(mesh.positions.size(), mesh.indices.size());
+        float entries = 0.0f;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) {
+                if (!std::isfinite(xf[c][r])) return false;
+                entries = std::max(entries, std::abs(xf[c][r]));
+            }
+        // Each placed coordinate is a sum of four products, none above largest x entries.
+        return double(std::max(largest, 1.0f)) * double(entries) * 4.0 < 1e37;
     }
 
     PrimitiveID allocatePrimitives(ObjectID owner, std::uint32_t count) {
@@ -154,7 +205,7 @@ struct Context::Impl {
     // Writes geometry into the pools: in place when it fits the object's current ranges,
     // else at the end of the pools (the old ranges become garbage until compact()).
     void storeGeometry(ObjectRecord& r, std::span<const vec3> pos, std::span<const vec2> uv,
-                       std::span<const std::uint32_t> idx) {
+                       std::span<const std::uint32_t> idx, const mat4* xf = nullptr) {
         const auto nv = static_cast<std::uint32_t>(pos.size());
         const auto ni = static_cast<std::uint32_t>(idx.size());
         if (!uv.empty() && !uvsEnabled) {
@@ -171,7 +222,13 @@ struct Context::Impl {
             if (uvsEnabled) uvs.resize(positions.size());
             indices.resize(indices.size() + ni);
         }
-        std::copy(pos.begin(), pos.end(), positions.begin() + r.firstVertex);
+        if (xf) {
+            auto out = positions.begin() + r.firstVertex;
+            for (std::size_t i = 0; i < pos.size(); ++i)
+                out[i] = vec3(*xf * glm::vec4(pos[i], 1.0f));
+        } else {
+            std::copy(pos.begin(), pos.end(), positions.begin() + r.firstVertex);
+        }
         if (!uv.empty())
             std::copy(uv.begin(), uv.end(), uvs.begin() + r.firstVertex);
         else if (uvsEnabled)
@@ -232,6 +289,8 @@ struct Context::Impl {
             if (label.empty()) throw Error("data label must not be empty", {.parameter = "label"});
             it = columns.emplace(std::string(label), Column{}).first;
             it->second.type = type;
+            it->second.index = static_cast<std::uint32_t>(columnByIndex.size());
+            columnByIndex.push_back(&it->second);
         } else if (it->second.type != type) {
             throw Error(std::string("object data label already holds ") +
                             dataTypeName(it->second.type) + " values",
@@ -242,6 +301,80 @@ struct Context::Impl {
         return it->second;
     }
 
+    // After a copy, the column pointers must point into this Impl's own map.
+    void relinkColumns() {
+        for (auto& [label, col] : columns) columnByIndex[col.index] = &col;
+    }
+
+    // Sets one value in a column whose type the caller has checked.
+    void setValue(Column& col, ObjectID id, const DataValue& value) {
+        if (col.present.size() <= id) col.present.resize(objects.size(), 0);
+        col.present[id] = 1;
+        const std::size_t n = col.present.size();
+        switch (col.type) {
+            case DataType::Int:
+                if (col.ints.size() < n) col.ints.resize(n);
+                col.ints[id] = std::get<std::int32_t>(value);
+                break;
+            case DataType::String: {
+                if (col.ints.size() < n) col.ints.resize(n);
+                const std::string& text = std::get<std::string>(value);
+                if (col.lastStringIndex < 0 || text != col.lastString) {
+                    col.lastStringIndex = intern(text);
+                    col.lastString = text;
+                }
+                col.ints[id] = col.lastStringIndex;
+                break;
+            }
+            case DataType::Float:
+                if (col.floats.size() < n) col.floats.resize(n);
+                col.floats[id] = std::get<float>(value);
+                break;
+            case DataType::Vec3:
+                if (col.vecs.size() < n) col.vecs.resize(n);
+                col.vecs[id] = std::get<vec3>(value);
+                break;
+        }
+    }
+
+    // Adds an object from checked geometry, placed by *xf when given.
+    ObjectID addChecked(std::span<const vec3> pos, std::span<const vec2> uv,
+                        std::span<const std::uint32_t> idx, MaterialID material, const mat4* xf) {
+        checkMaterial(material);
+        if (objects.size() >= kNone - 1) throw Error("object ID space exhausted");
+        const auto id = static_cast<ObjectID>(objects.size());
+        ObjectRecord r;
+        storeGeometry(r, pos, uv, idx, xf);
+        r.alive = true;
+        r.material = material;
+        r.firstPrimitive = allocatePrimitives(id, static_cast<std::uint32_t>(idx.size() / 3));
+        objects.push_back(r);
+        ++liveObjects;
+        liveTriangles += idx.size() / 3;
+        liveVertices += pos.size();
+        liveIndices += idx.size();
+        return id;
+    }
+
+    // Replaces a live object's geometry with checked geometry, placed by *xf when given.
+    void replaceChecked(ObjectID id, const Mesh& mesh, const mat4* xf) {
+        ObjectRecord& r = objects[id];
+        const std::uint32_t oldTris = r.indexCount / 3;
+        const auto newTris = static_cast<std::uint32_t>(mesh.triangleCount());
+        liveTriangles += newTris;
+        liveTriangles -= oldTris;
+        liveVertices += mesh.positions.size();
+        liveVertices -= r.vertexCount;
+        liveIndices += mesh.indices.size();
+        liveIndices -= r.indexCount;
+        if (newTris != oldTris) {
+            releasePrimitives(r);
+            r.firstPrimitive = allocatePrimitives(id, newTris);
+        }
+        storeGeometry(r, mesh.positions, mesh.uvs, mesh.indices, xf);
+        maybeCompact();
+    }
+
     void eraseObjectData(ObjectID id) {
         for (auto& [label, col] : columns)
             if (id < col.present.size()) col.present[id] = 0;
@@ -250,9 +383,14 @@ struct Context::Impl {
 
 Context::Context() : impl_(std::make_unique<Impl>()) {}
 Context::~Context() = default;
-Context::Context(const Context& o) : impl_(std::make_unique<Impl>(*o.impl_)) {}
+Context::Context(const Context& o) : impl_(std::make_unique<Impl>(*o.impl_)) {
+    impl_->relinkColumns();
+}
 Context& Context::operator=(const Context& o) {
-    if (this != &o) impl_ = std::make_unique<Impl>(*o.impl_);
+    if (this != &o) {
+        impl_ = std::make_unique<Impl>(*o.impl_);
+        impl_->relinkColumns();
+    }
     return *this;
 }
 Context::Context(Context&&) noexcept = default;
@@ -288,42 +426,33 @@ ObjectID Context::addObject(const Mesh& mesh, const Material& material) {
 
 ObjectID Context::addObject(std::span<const vec3> positions, std::span<const vec2> uvs,
                             std::span<const std::uint32_t> indices, MaterialID material) {
-    Impl& d = *impl_;
     Impl::checkGeometry(positions, uvs, indices);
-    d.checkMaterial(material);
-    if (d.objects.size() >= kNone - 1) throw Error("object ID space exhausted");
-    const auto id = static_cast<ObjectID>(d.objects.size());
-    ObjectRecord r;
-    d.storeGeometry(r, positions, uvs, indices);
-    r.alive = true;
-    r.material = material;
-    r.firstPrimitive = d.allocatePrimitives(id, static_cast<std::uint32_t>(indices.size() / 3));
-    d.objects.push_back(r);
-    ++d.liveObjects;
-    d.liveTriangles += indices.size() / 3;
-    d.liveVertices += positions.size();
-    d.liveIndices += indices.size();
-    return id;
+    return impl_->addChecked(positions, uvs, indices, material, nullptr);
+}
+
+ObjectID Context::addObject(const Mesh& mesh, const mat4& transform, MaterialID material) {
+    if (!Impl::checkPlaced(mesh, transform)) {
+        Mesh placed = mesh;
+        placed.transform(transform);
+        return addObject(placed, material);
+    }
+    return impl_->addChecked(mesh.positions, mesh.uvs, mesh.indices, material, &transform);
 }
 
 void Context::setObjectMesh(ObjectID id, const Mesh& mesh) {
-    Impl& d = *impl_;
-    ObjectRecord& r = d.record(id, "setObjectMesh");
+    impl_->record(id, "setObjectMesh");
     Impl::checkGeometry(mesh.positions, mesh.uvs, mesh.indices);
-    const std::uint32_t oldTris = r.indexCount / 3;
-    const auto newTris = static_cast<std::uint32_t>(mesh.triangleCount());
-    d.liveTriangles += newTris;
-    d.liveTriangles -= oldTris;
-    d.liveVertices += mesh.positions.size();
-    d.liveVertices -= r.vertexCount;
-    d.liveIndices += mesh.indices.size();
-    d.liveIndices -= r.indexCount;
-    if (newTris != oldTris) {
-        d.releasePrimitives(r);
-        r.firstPrimitive = d.allocatePrimitives(id, newTris);
+    impl_->replaceChecked(id, mesh, nullptr);
+}
+
+void Context::setObjectMesh(ObjectID id, const Mesh& mesh, const mat4& transform) {
+    impl_->record(id, "setObjectMesh");
+    if (!Impl::checkPlaced(mesh, transform)) {
+        Mesh placed = mesh;
+        placed.transform(transform);
+        return setObjectMesh(id, placed);
     }
-    d.storeGeometry(r, mesh.positions, mesh.uvs, mesh.indices);
-    d.maybeCompact();
+    impl_->replaceChecked(id, mesh, &transform);
 }
 
 void Context::setObjectMaterial(ObjectID id, MaterialID material) {
@@ -713,28 +842,29 @@ double Context::objectArea(ObjectID id) const {
 void Context::setObjectData(ObjectID id, std::string_view label, DataValue value) {
     Impl& d = *impl_;
     d.record(id, "setObjectData");
-    Column& col = d.columnFor(label, typeOf(value));
-    if (col.present.size() <= id) col.present.resize(d.objects.size(), 0);
-    col.present[id] = 1;
-    const std::size_t n = col.present.size();
-    switch (col.type) {
-        case DataType::Int:
-            col.ints.resize(n);
-            col.ints[id] = std::get<std::int32_t>(value);
-            break;
-        case DataType::String:
-            col.ints.resize(n);
-            col.ints[id] = d.intern(std::get<std::string>(value));
-            break;
-        case DataType::Float:
-            col.floats.resize(n);
-            col.floats[id] = std::get<float>(value);
-            break;
-        case DataType::Vec3:
-            col.vecs.resize(n);
-            col.vecs[id] = std::get<vec3>(value);
-            break;
-    }
+    d.setValue(d.columnFor(label, typeOf(value)), id, value);
+}
+
+DataColumn Context::dataColumn(std::string_view label, DataType type) {
+    const Column& col = impl_->columnFor(label, type);
+    return DataColumn{col.index, col.type};
+}
+
+void Context::setObjectData(ObjectID id, DataColumn column, const DataValue& value) {
+    Impl& d = *impl_;
+    d.record(id, "setObjectData");
+    if (column.index >= d.columnByIndex.size())
+        throw Error("setObjectData: no such data column in this Context",
+                    {.parameter = "column",
+                     .value = std::to_string(column.index),
+                     .validRange = "a column of this Context (Context::dataColumn)"});
+    Column& col = *d.columnByIndex[column.index];
+    if (col.type != typeOf(value))
+        throw Error("object data column holds " + std::string(dataTypeName(col.type)) + " values",
+                    {.parameter = "column",
+                     .value = dataTypeName(typeOf(value)),
+                     .validRange = dataTypeName(col.type)});
+    d.setValue(col, id, value);
 }
 
 std::optional<DataValue> Context::objectData(ObjectID id, std::string_view label) const {
@@ -858,6 +988,7 @@ void Context::clear(bool releaseMemory) {
     d.materials.resize(1);
     d.materials[0] = Material{};
     d.columns.clear();
+    d.columnByIndex.clear();
     d.primitiveColumns.clear();
     d.strings.clear();
     d.stringIndex.clear();

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <optional>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -269,28 +270,21 @@ bool sameBits(vec3 a, vec3 b) {
 // Writes organs into the Context, reusing their objects.
 class ContextSink final : public OrganSink {
 public:
-    ContextSink(Context& ctx, const PlantInstance& plant) : ctx_(ctx), plant_(plant) {}
+    ContextSink(Context& ctx, const PlantInstance& plant)
+        : ctx_(ctx),
+          plant_(plant),
+          plantID_(int(plant.id)),
+          plantName_(plant.name),
+          stage_(std::string(phenologyStageName(plant.stage))) {
+        for (std::size_t k = 0; k < organNames_.size(); ++k)
+            organNames_[k] = std::string(organName(OrganKind(k)));
+    }
 
     bool wants(OrganKind) const override { return true; }
 
     void write(ObjectID& object, const Mesh& mesh, const Material& material,
                const OrganLabels& l) override {
-        if (object != kNoObject && ctx_.doesObjectExist(object)) {
-            ctx_.setObjectMesh(object, mesh);
-            ctx_.setObjectMaterial(object, ctx_.addMaterial(material));
-        } else {
-            object = ctx_.addObject(mesh, ctx_.addMaterial(material));
-            ctx_.setObjectData(object, "plantID", int(plant_.id));
-            ctx_.setObjectData(object, "plant_name", plant_.name);
-            ctx_.setObjectData(object, "shootID", int(l.shoot->id));
-            ctx_.setObjectData(object, "rank", int(l.shoot->rank));
-            ctx_.setObjectData(object, "node", l.node);
-            if (l.leafID >= 0) ctx_.setObjectData(object, "leafID", l.leafID);
-        }
-        ctx_.setObjectData(object, "organ", std::string(organName(l.kind)));
-        ctx_.setObjectData(object, "age", l.age);
-        ctx_.setObjectData(object, "phenology_stage",
-                           std::string(phenologyStageName(plant_.stage)));
+        place(object, mesh, nullptr, material, l);
     }
 
     // Places every part of a prototype; extra old objects are deleted.
@@ -299,11 +293,8 @@ public:
         for (std::size_t i = proto.size(); i < objects.size(); ++i)
             if (ctx_.doesObjectExist(objects[i])) ctx_.deleteObject(objects[i]);
         objects.resize(proto.size(), kNoObject);
-        for (std::size_t i = 0; i < proto.size(); ++i) {
-            Mesh m = proto[i].mesh;
-            m.transform(xf);
-            write(objects[i], m, proto[i].material, l);
-        }
+        for (std::size_t i = 0; i < proto.size(); ++i)
+            place(objects[i], proto[i].mesh, &xf, proto[i].material, l);
     }
 
     void remove(ObjectID& id) override {
@@ -317,8 +308,49 @@ public:
     }
 
 private:
+    // The labels every organ object carries, each column found on first use (a label is
+    // listed by the Context only once an object carries it).
+    enum Label { kPlantID, kPlantName, kShootID, kRank, kNode, kLeafID, kOrgan, kAge, kStage };
+    static constexpr const char* kLabelNames[] = {"plantID", "plant_name", "shootID",
+                                                  "rank",    "node",       "leafID",
+                                                  "organ",   "age",        "phenology_stage"};
+
+    void set(ObjectID object, Label label, const DataValue& value) {
+        std::optional<DataColumn>& column = columns_[label];
+        if (!column) column = ctx_.dataColumn(kLabelNames[label], DataType(value.index()));
+        ctx_.setObjectData(object, *column, value);
+    }
+
+    // Writes an organ's mesh (placed by *xf when given) into its object, or a new one.
+    void place(ObjectID& object, const Mesh& mesh, const mat4* xf, const Material& material,
+               const OrganLabels& l) {
+        const MaterialID m = ctx_.addMaterial(material);
+        if (object != kNoObject && ctx_.doesObjectExist(object)) {
+            if (xf)
+                ctx_.setObjectMesh(object, mesh, *xf);
+            else
+                ctx_.setObjectMesh(object, mesh);
+            ctx_.setObjectMaterial(object, m);
+        } else {
+            object = xf ? ctx_.addObject(mesh, *xf, m) : ctx_.addObject(mesh, m);
+            set(object, kPlantID, plantID_);
+            set(object, kPlantName, plantName_);
+            set(object, kShootID, int(l.shoot->id));
+            set(object, kRank, int(l.shoot->rank));
+            set(object, kNode, l.node);
+            if (l.leafID >= 0) set(object, kLeafID, l.leafID);
+        }
+        set(object, kOrgan, organNames_[std::size_t(l.kind)]);
+        set(object, kAge, l.age);
+        set(object, kStage, stage_);
+    }
+
     Context& ctx_;
     const PlantInstance& plant_;
+    std::array<std::optional<DataColumn>, 9> columns_;
+    // Values every object of the plant shares, made once.
+    const DataValue plantID_, plantName_, stage_;
+    std::array<DataValue, std::size_t(OrganKind::Fruit) + 1> organNames_;
 };
 
 void deleteIf(Context& ctx, ObjectID& id) {
