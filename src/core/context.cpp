@@ -90,8 +90,19 @@ struct Context::Impl {
     std::size_t liveTriangles = 0;
     std::size_t liveVertices = 0;
     std::size_t liveIndices = 0;
+    std::size_t triangleLimit = 0;  // 0: none
 
     Impl() { materials.push_back(Material{}); }
+
+    // Throws if `added` more (and `removed` fewer) live triangles would pass the limit.
+    void checkTriangleLimit(std::size_t added, std::size_t removed = 0) const {
+        if (triangleLimit == 0 || added <= removed) return;
+        const std::size_t total = liveTriangles - removed + added;
+        if (total > triangleLimit)
+            throw TriangleBudgetError("the scene", total, triangleLimit,
+                                      "adding " + std::to_string(added - removed) + " to " +
+                                          std::to_string(liveTriangles));
+    }
 
     const ObjectRecord& record(ObjectID id, const char* what) const {
         if (id >= objects.size() || !objects[id].alive)
@@ -291,6 +302,7 @@ ObjectID Context::addObject(std::span<const vec3> positions, std::span<const vec
     Impl& d = *impl_;
     Impl::checkGeometry(positions, uvs, indices);
     d.checkMaterial(material);
+    d.checkTriangleLimit(indices.size() / 3);
     if (d.objects.size() >= kNone - 1) throw Error("object ID space exhausted");
     const auto id = static_cast<ObjectID>(d.objects.size());
     ObjectRecord r;
@@ -312,6 +324,7 @@ void Context::setObjectMesh(ObjectID id, const Mesh& mesh) {
     Impl::checkGeometry(mesh.positions, mesh.uvs, mesh.indices);
     const std::uint32_t oldTris = r.indexCount / 3;
     const auto newTris = static_cast<std::uint32_t>(mesh.triangleCount());
+    d.checkTriangleLimit(newTris, oldTris);
     d.liveTriangles += newTris;
     d.liveTriangles -= oldTris;
     d.liveVertices += mesh.positions.size();
@@ -462,6 +475,7 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
         throw Error("Context is full (more than 4 billion vertices or indices)");
     if (d.primitiveOwner.size() + indices / 3 >= kNone)
         throw Error("primitive ID space exhausted (4 billion triangles ever created)");
+    d.checkTriangleLimit(indices / 3);
 
     // Plan (one thread): offsets, materials, labels, strings; the pools grow once.
     std::vector<AppendPlan> plans(sources.size());
@@ -524,7 +538,8 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
         }
     }
 
-    // Copy (all threads; each source writes its own ranges).
+    // Copy (all threads; each source writes its own ranges). Nothing in the loop throws (it
+    // copies into pools sized above), so no exception can leave the parallel region.
     const long count = static_cast<long>(plans.size());
 #pragma omp parallel for schedule(dynamic, 1) if (vertices > 65536 && count > 1)
     for (long i = 0; i < count; ++i) {
@@ -845,7 +860,9 @@ std::vector<std::string> Context::primitiveDataLabels() const {
 
 void Context::clear(bool releaseMemory) {
     if (releaseMemory) {
+        const std::size_t limit = impl_->triangleLimit;  // a setting, not content
         impl_ = std::make_unique<Impl>();
+        impl_->triangleLimit = limit;
         return;
     }
     Impl& d = *impl_;
@@ -875,6 +892,14 @@ void Context::reserve(std::size_t objects, std::size_t vertices, std::size_t tri
 
 void Context::compact() {
     impl_->compact();
+}
+
+void Context::setTriangleLimit(std::size_t limit) {
+    impl_->triangleLimit = limit;
+}
+
+std::size_t Context::triangleLimit() const {
+    return impl_->triangleLimit;
 }
 
 std::size_t Context::memoryBytes() const {
