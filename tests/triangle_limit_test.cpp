@@ -57,8 +57,8 @@ TEST(TriangleLimit, ContextRefusesGeometryPastTheLimit) {
     EXPECT_THROW(ctx.setObjectMesh(a, big), TriangleBudgetError);
     EXPECT_EQ(ctx.objectPrimitives(a).count, 2u);
     Context other;
-    const ObjectID o = other.addObject(big);
-    const ObjectSource source{&other, std::vector<ObjectID>{o}};
+    const std::vector<ObjectID> objects{other.addObject(big)};
+    const ObjectSource source{&other, objects};
     EXPECT_THROW(ctx.appendObjects({&source, 1}), TriangleBudgetError);
     EXPECT_EQ(ctx.triangleCount(), 4u);
     ctx.setTriangleLimit(0);  // no limit
