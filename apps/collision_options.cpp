@@ -75,11 +75,12 @@ std::vector<vec3> readPoints(const std::string& path) {
         }
         if (!anyNumber && number == 1) continue;  // a header such as "x,y,z"
         if (!ok || v.size() != 3)
-            throw Error("expected three finite numbers x,y,z (m)", {.file = path,
-                                                             .line = number,
-                                                             .parameter = "--attraction-points",
-                                                             .value = line.substr(0, 60),
-                                                             .validRange = "e.g. 0.5,0,1.2"});
+            throw Error("expected three finite numbers x,y,z (m)",
+                        {.file = path,
+                         .line = number,
+                         .parameter = "--attraction-points",
+                         .value = line.substr(0, 60),
+                         .validRange = "e.g. 0.5,0,1.2"});
         points.push_back(vec3(float(v[0]), float(v[1]), float(v[2])));
     }
     if (points.empty())

@@ -53,7 +53,8 @@ int run(const std::string& file, const GlobalOptions& g) {
 }
 
 std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
-    app.description("Check a species file strictly (exit 0 if valid; 2 and one line per error if not)");
+    app.description(
+        "Check a species file strictly (exit 0 if valid; 2 and one line per error if not)");
     auto file = std::make_shared<std::string>();
     app.add_option("FILE", *file, "Species file, or the name of a library species")->required();
     return [file, &global] { return run(*file, global); };

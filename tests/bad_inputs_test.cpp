@@ -28,12 +28,12 @@ struct Case {
     std::string name;
     std::string args;
     int status = -1;
-    std::vector<std::string> stderrHas;  // substrings, each must appear
+    std::vector<std::string> stderrHas;      // substrings, each must appear
     std::vector<std::string> stderrMatches;  // ECMAScript regexes, each must match somewhere
     std::vector<std::string> stdoutHas;
-    int lines = 1;                       // lines on stderr
-    std::vector<std::string> env;        // NAME=VALUE, {dir} is the scratch folder
-    std::vector<std::string> problems;   // errors in case.txt itself
+    int lines = 1;                      // lines on stderr
+    std::vector<std::string> env;       // NAME=VALUE, {dir} is the scratch folder
+    std::vector<std::string> problems;  // errors in case.txt itself
 };
 
 std::string trim(const std::string& s) {
@@ -145,7 +145,8 @@ TEST_P(BadInputs, ExitStatusAndMessage) {
     const std::set<std::string> before = filesUnder(work);
 
     std::string env;
-    for (const std::string& e : c.env) env.append("'").append(replaceAll(e, "{dir}", work.string())).append("' ");
+    for (const std::string& e : c.env)
+        env.append("'").append(replaceAll(e, "{dir}", work.string())).append("' ");
     const fs::path out = work.parent_path() / (c.name + ".stdout");
     const fs::path err = work.parent_path() / (c.name + ".stderr");
     std::string command = "cd '";

@@ -161,9 +161,8 @@ TEST(TriangleLimit, ACanopyWithinTheLimitIsTheSameAsWithout) {
     PlantArchitecture again(&tight);
     again.loadPlantModelFromLibrary("bean");
     again.setTriangleLimit(free - 1);
-    EXPECT_THROW(
-        again.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f), glm::ivec2(3, 3), 30.0f),
-        TriangleBudgetError);
+    EXPECT_THROW(again.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f), glm::ivec2(3, 3), 30.0f),
+                 TriangleBudgetError);
     EXPECT_EQ(tight.triangleCount(), 0u);
     EXPECT_TRUE(again.getAllPlantIDs().empty());
 }

@@ -3,9 +3,9 @@
 // that owns the buffer.
 
 #include <algorithm>
-#include <exception>
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
@@ -72,7 +72,7 @@ std::unique_ptr<MeshBuffer> gather(const Context& ctx, const std::vector<ObjectI
     const bool hasPlant = ctx.objectDataType("plantID") == DataType::Int;
     const bool hasOrgan = ctx.objectDataType("organ") == DataType::String;
     const std::ptrdiff_t n = std::ptrdiff_t(ids.size());
-std::exception_ptr failure;
+    std::exception_ptr failure;
 #pragma omp parallel
     {
         std::vector<vec3> smooth;
@@ -81,7 +81,8 @@ std::exception_ptr failure;
             try {
                 const ObjectID id = ids[std::size_t(i)];
                 const ObjectView o = ctx.object(id);
-                const std::size_t v0 = firstVertex[std::size_t(i)], t0 = firstTriangle[std::size_t(i)];
+                const std::size_t v0 = firstVertex[std::size_t(i)],
+                                  t0 = firstTriangle[std::size_t(i)];
                 std::copy_n(&o.positions.data()->x, 3 * o.positions.size(),
                             &buf->vertices.data[3 * v0]);
                 if (anyUVs) {
@@ -100,7 +101,8 @@ std::exception_ptr failure;
                 const std::size_t count = o.triangleCount();
                 const std::int32_t plant =
                     hasPlant ? ctx.objectDataInt(id, "plantID").value_or(-1) : -1;
-                const std::uint8_t organ = hasOrgan ? organCode(ctx.objectDataString(id, "organ")) : 0;
+                const std::uint8_t organ =
+                    hasOrgan ? organCode(ctx.objectDataString(id, "organ")) : 0;
                 std::fill_n(&buf->plantID.data[t0], count, plant);
                 std::fill_n(&buf->objectID.data[t0], count, id);
                 std::fill_n(&buf->organ.data[t0], count, organ);

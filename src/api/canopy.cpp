@@ -203,12 +203,11 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         const double each = double(triangles) / double(built);
         const double total = double(context_->triangleCount()) + each * double(n);
         if (total > double(limit))
-            throw TriangleBudgetError(
-                "a canopy of " + std::to_string(n) + " plants", std::size_t(std::ceil(total)),
-                limit,
-                "about " + std::to_string(std::size_t(std::lround(each))) +
-                    " each, the mean of its first " + std::to_string(built) +
-                    (built == 1 ? " plant" : " plants"));
+            throw TriangleBudgetError("a canopy of " + std::to_string(n) + " plants",
+                                      std::size_t(std::ceil(total)), limit,
+                                      "about " + std::to_string(std::size_t(std::lround(each))) +
+                                          " each, the mean of its first " + std::to_string(built) +
+                                          (built == 1 ? " plant" : " plants"));
     };
     std::vector<unsigned> ids;
     // A failed build (or a progress callback that throws: the caller stopping it) leaves the

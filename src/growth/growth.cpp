@@ -688,9 +688,9 @@ struct Grower {
         phytomers = 0;
         for (const Shoot& s : plant.shoots) {
             if (s.removed) continue;
-            const unsigned sides = detailed(
-                typeOf(s.type).phytomer_parameters.internode.radial_subdivisions,
-                growth.store.meshDetail, 3);
+            const unsigned sides =
+                detailed(typeOf(s.type).phytomer_parameters.internode.radial_subdivisions,
+                         growth.store.meshDetail, 3);
             phytomers += s.phytomers.size();
             for (const Phytomer& ph : s.phytomers) {
                 n += 2 * std::size_t(sides);
@@ -716,12 +716,11 @@ struct Grower {
             const std::size_t least = g.leastTriangles(phytomers);
             checkEvery = std::max<std::size_t>(256, phytomers / 4);
             if (least > limit)
-                throw TriangleBudgetError(
-                    "plant " + std::to_string(g.plant.id) + " grown to " +
-                        text::formatFloat(float(g.plant.age)) + " days",
-                    least, limit,
-                    "at least: 2 per internode side and 2 per leaf of its " +
-                        std::to_string(phytomers) + " phytomers");
+                throw TriangleBudgetError("plant " + std::to_string(g.plant.id) + " grown to " +
+                                              text::formatFloat(float(g.plant.age)) + " days",
+                                          least, limit,
+                                          "at least: 2 per internode side and 2 per leaf of its " +
+                                              std::to_string(phytomers) + " phytomers");
         }
     } budget;
 

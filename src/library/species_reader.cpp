@@ -14,12 +14,12 @@
 #include <sstream>
 
 #include "core/value_text.h"
-#include "plantarch/ParameterCheck.h"
 #include "core/xml_reader.h"
 #include "library/expression.h"
 #include "library/parameter_reader.h"
 #include "library/species_xml.h"
 #include "plantarch/Error.h"
+#include "plantarch/ParameterCheck.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -226,10 +226,10 @@ public:
         // Each section on its own: when collecting, an error in one does not stop the next.
         attempt([&] { readNames(root, top); });
         if (top["phenology"]) attempt([&] { readPhenology(top["phenology"]); });
-        if (top["build_parameters"])
-            attempt([&] { readBuildParameters(top["build_parameters"]); });
+        if (top["build_parameters"]) attempt([&] { readBuildParameters(top["build_parameters"]); });
         bool typesRead = true;  // every shoot type defined: the checks that name them can run
-        for (xml_node e : top.shootTypes) typesRead = attempt([&] { readShootType(e); }) && typesRead;
+        for (xml_node e : top.shootTypes)
+            typesRead = attempt([&] { readShootType(e); }) && typesRead;
         if (m_.shootTypes.empty())
             root.failAt("shoot_type", "a species needs at least one <shoot_type>");
         if (!typesRead) return;

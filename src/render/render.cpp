@@ -485,7 +485,8 @@ Image RenderScene::render(const RenderOptions& o) const {
                 RTCIntersectContext ictx;
                 rtcInitIntersectContext(&ictx);
                 for (int x = 0; x < s.width; ++x) {
-                    const std::size_t pixel = std::size_t(y) * std::size_t(s.width) + std::size_t(x);
+                    const std::size_t pixel =
+                        std::size_t(y) * std::size_t(s.width) + std::size_t(x);
                     std::uint8_t* out = &image.rgb[pixel * 3];
                     auto direction = [&](float px, float py) {
                         const float sx = 2.0f * px / float(s.width) - 1.0f;
