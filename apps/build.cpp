@@ -49,6 +49,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
         arch.loadPlantModelFromLibrary(a->species);

@@ -91,6 +91,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setTriangleLimit(global.maxTriangles);
         arch.setProgressCallback(terminalProgress());
         arch.setMeshDetail(global.meshDetail);
         arch.loadPlantModelFromLibrary(a->species);

@@ -30,6 +30,9 @@ struct GlobalOptions {
     std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
     float meshDetail = 1.0f;  ///< --mesh-detail: factor on every organ's mesh resolution
     bool objectIDs = false;   ///< --object-ids: .xml outputs carry each organ's object IDs
+    /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
+    /// it) with one line; 0 for no limit. Default: PlantArchitecture::defaultTriangleLimit().
+    std::size_t maxTriangles = PlantArchitecture::defaultTriangleLimit();
 };
 
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.

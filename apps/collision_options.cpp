@@ -42,7 +42,8 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const ch
 }
 
 // Points of a CSV file: one "x,y,z" per line (m); blank lines, '#' comments and a header line
-// of names are skipped.
+// of names (the first line, none of its fields a number) are skipped. A field that reads as
+// a number but is not finite ("nan", "inf") is an error, on the first line too.
 std::vector<vec3> readPoints(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw Error("cannot open attraction point file", {.file = path});
@@ -54,26 +55,32 @@ std::vector<vec3> readPoints(const std::string& path) {
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         std::stringstream ss(line);
         std::vector<double> v;
-        bool ok = true;
+        bool ok = true, anyNumber = false;
         for (std::string part; std::getline(ss, part, ',');) {
             std::size_t used = 0;
             try {
                 v.push_back(std::stod(part, &used));
+                anyNumber = true;
+            } catch (const std::out_of_range&) {  // 1e999: a number, but not a finite one
+                ok = false;
+                anyNumber = true;
+                break;
             } catch (const std::exception&) {
                 ok = false;
-                break;
+                continue;
             }
             while (used < part.size() && std::isspace(static_cast<unsigned char>(part[used])))
                 ++used;
             if (used != part.size() || !std::isfinite(v.back())) ok = false;
         }
-        if (!ok && points.empty() && number == 1) continue;  // a header such as "x,y,z"
+        if (!anyNumber && number == 1) continue;  // a header such as "x,y,z"
         if (!ok || v.size() != 3)
-            throw Error("expected three numbers x,y,z (m)", {.file = path,
-                                                             .line = number,
-                                                             .parameter = "--attraction-points",
-                                                             .value = line.substr(0, 60),
-                                                             .validRange = "e.g. 0.5,0,1.2"});
+            throw Error("expected three finite numbers x,y,z (m)",
+                        {.file = path,
+                         .line = number,
+                         .parameter = "--attraction-points",
+                         .value = line.substr(0, 60),
+                         .validRange = "e.g. 0.5,0,1.2"});
         points.push_back(vec3(float(v[0]), float(v[1]), float(v[2])));
     }
     if (points.empty())

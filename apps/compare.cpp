@@ -186,6 +186,7 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.setSeed(global.seed);
+    arch.setTriangleLimit(global.maxTriangles);
     const ProgressCallback progress = terminalProgress();
     arch.setProgressCallback(progress);
     arch.setMeshDetail(global.meshDetail);

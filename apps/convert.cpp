@@ -38,6 +38,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         if (in == ".obj") {
             std::string out = std::filesystem::path(a->output).extension().string();

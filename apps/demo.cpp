@@ -130,6 +130,7 @@ std::function<int()> setupDemo(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         demoShootTypes(arch);
         const unsigned plant = buildDemoPlant(arch, {0, 0, 0});

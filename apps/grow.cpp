@@ -51,6 +51,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
+        arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);

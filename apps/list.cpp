@@ -1,4 +1,6 @@
-// plantarch list: the species of the library, one per line with common and latin names.
+// plantarch list: the species of the library, one per line with common and latin names. A
+// species file that does not read is left out with one line on stderr naming the file and
+// its error; the others are listed and the status is 2.
 
 #include <fmt/format.h>
 
@@ -26,9 +28,11 @@ int run(const GlobalOptions& g) {
                 title += (title.empty() ? "" : " ") + ("(" + s.latinName + ")");
             std::printf("%s\n", fmt::format("{:<{}}  {}", name, width, title).c_str());
         } catch (const Error& e) {
-            // One broken file does not hide the others; the status says something was wrong.
-            std::printf("%s\n",
-                        fmt::format("{:<{}}  (invalid: {})", name, width, e.what()).c_str());
+            // One broken file does not hide the others: they are listed on stdout, each
+            // broken one is one line on stderr (its file, line and error), and the status
+            // says something was wrong.
+            std::fflush(stdout);
+            std::fprintf(stderr, "plantarch: skipped species '%s': %s\n", name.c_str(), e.what());
             status = 2;
         }
     }

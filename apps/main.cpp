@@ -8,10 +8,12 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/PlantArchitecture.h"
 #include "plantarch/Version.h"
 
 namespace plantarch::cli {
@@ -106,6 +108,31 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
     return row[b.size()];
 }
 
+// The name of `names` nearest to `word` within two edits, or "" when none is.
+std::string nearestName(const std::string& word, const std::vector<std::string>& names) {
+    std::string nearest;
+    std::size_t best = 3;
+    for (const std::string& n : names)
+        if (const std::size_t d = editDistance(word, n); d < best) {
+            best = d;
+            nearest = n;
+        }
+    return nearest;
+}
+
+// The long and short option names a command (and the global options) take: "--age", "-o".
+std::vector<std::string> optionNames(const CLI::App& app, const CLI::App* chosen) {
+    std::vector<std::string> names;
+    for (const CLI::App* a : {&app, chosen}) {
+        if (!a) continue;
+        for (const CLI::Option* o : a->get_options()) {
+            for (const std::string& l : o->get_lnames()) names.push_back("--" + l);
+            for (const std::string& n : o->get_snames()) names.push_back("-" + n);
+        }
+    }
+    return names;
+}
+
 // The one line printed for a command line CLI11 rejects: our own checks' messages as they
 // are (without CLI11's "--option: " in front), a mistyped command with the nearest name, an
 // unexpected argument with where to look.
@@ -137,20 +164,22 @@ std::string parseErrorLine(const CLI::App& app, int argc, char** argv, const CLI
     if (!chosen) {
         if (first.empty() || first[0] == '-')
             return "a command is required (valid: " + valid + "; see plantarch --help)";
-        std::string nearest;
-        std::size_t best = 3;  // suggest only names within two edits
-        for (const std::string& n : names)
-            if (const std::size_t d = editDistance(first, n); d < best) {
-                best = d;
-                nearest = n;
-            }
+        const std::string nearest = nearestName(first, names);
         return "'" + first + "' is not a command" +
                (nearest.empty() ? "" : ", did you mean '" + nearest + "'?") + " (valid: " + valid +
                ")";
     }
-    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !first.empty())
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && !first.empty()) {
+        if (first.size() > 1 && first[0] == '-') {  // a mistyped option
+            const std::string option = first.substr(0, first.find('='));
+            const std::string nearest = nearestName(option, optionNames(app, chosen));
+            return chosen->get_name() + ": unknown option '" + option + "'" +
+                   (nearest.empty() ? "" : ", did you mean '" + nearest + "'?") +
+                   " (valid: the options in 'plantarch " + chosen->get_name() + " --help')";
+        }
         return chosen->get_name() + ": unexpected argument '" + first +
                "' (valid: the arguments in 'plantarch " + chosen->get_name() + " --help')";
+    }
     return text;
 }
 
@@ -205,6 +234,17 @@ int main(int argc, char** argv) {
         ->check(numberCheck("--points", "a point count", 0, 2147483648.0, true,
                             "0 to 2147483648, 0 for the triangles"));
 
+    app.add_option("--max-triangles", global.maxTriangles,
+                   "Largest job in triangles: a build or canopy that needs more is refused "
+                   "before it is grown (a canopy's estimate: its first plants' mean times the "
+                   "plant count) or stopped as soon as it passes the limit; 0 for no limit. "
+                   "Default: half the physical memory at " +
+                       std::to_string(plantarch::PlantArchitecture::kBytesPerTriangle) +
+                       " bytes a triangle, " + std::to_string(global.maxTriangles) +
+                       " on this machine")
+        ->check(numberCheck("--max-triangles", "a triangle count", 0.0, 4294967295.0, true,
+                            "0 to 4294967295, 0 for no limit"));
+
     app.add_option("--mesh-detail", global.meshDetail,
                    "Mesh resolution of every organ, as a factor on its species' own (leaf "
                    "subdivisions, flower and fruit subdivisions, tube sides): 0.1 to 4, default 1; "
@@ -252,10 +292,21 @@ int main(int argc, char** argv) {
                 clearProgress();
                 return status;
             }
+    } catch (const plantarch::TriangleBudgetError& e) {
+        clearProgress();
+        std::fprintf(stderr, "plantarch: %s (--max-triangles)\n", e.what());
+        return 2;
     } catch (const plantarch::Error& e) {
         clearProgress();
         std::fprintf(stderr, "plantarch: %s\n", e.what());
         return 2;
+    } catch (const std::bad_alloc&) {
+        clearProgress();
+        std::fprintf(stderr,
+                     "plantarch: out of memory (lower --max-triangles, now %zu, to be told "
+                     "before the work starts)\n",
+                     global.maxTriangles);
+        return 1;
     } catch (const std::exception& e) {
         clearProgress();
         std::fprintf(stderr, "plantarch: internal error: %s\n", e.what());

@@ -202,6 +202,9 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                      .parameter = "--species",
                      .validRange = "a library species or species file"});
     arch.loadPlantModelFromLibrary(species);
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("a folder, not a file of plant strings", {.file = path});
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open plant string file", {.file = path});
     std::vector<unsigned> ids;
@@ -214,6 +217,9 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
             throw e.withFile(path, number);
         }
     }
+    if (ids.empty())
+        throw Error("the file holds no plant strings",
+                    {.file = path, .validRange = "one plant string per line"});
     return ids;
 }
 

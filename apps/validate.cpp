@@ -1,18 +1,41 @@
 // plantarch validate: reads a species file strictly, defines its shoot types and builds its
-// initial structure once, and prints one line: "FILE: ok (N shoot types)" or the first error.
+// initial structure once, and prints one line: "FILE: ok (N shoot types)". A file with errors
+// gets one line on stderr per error (each bad value, unknown element or value out of range;
+// reading stops only where the file cannot be read further, such as malformed XML).
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "cli.h"
+#include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch::cli {
 namespace {
 
+// Every error of the file, one line each on stderr; returns how many there were.
+std::size_t reportErrors(const std::string& file) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    std::string path = file;
+    if (!fs::exists(file, ec)) {
+        const fs::path library = fs::path(speciesLibraryDirectory()) / (file + ".xml");
+        if (!fs::is_regular_file(library, ec)) {
+            loadSpecies(file);  // throws: unknown species, with the nearest name
+            return 0;
+        }
+        path = library.string();
+    }
+    const std::vector<Error> errors = checkSpeciesFile(path);
+    for (const Error& e : errors) std::fprintf(stderr, "plantarch: %s\n", e.what());
+    return errors.size();
+}
+
 int run(const std::string& file, const GlobalOptions& g) {
+    if (reportErrors(file) > 0) return 2;
     const SpeciesModel species = loadSpecies(file);
     // Reading checks the file itself; a trial build also checks what only a
     // PlantArchitecture knows (registered prototype functions) and the build steps' values.
@@ -30,7 +53,8 @@ int run(const std::string& file, const GlobalOptions& g) {
 }
 
 std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
-    app.description("Check a species file strictly (exit 0 if valid, 2 with the first error)");
+    app.description(
+        "Check a species file strictly (exit 0 if valid; 2 and one line per error if not)");
     auto file = std::make_shared<std::string>();
     app.add_option("FILE", *file, "Species file, or the name of a library species")->required();
     return [file, &global] { return run(*file, global); };

@@ -112,7 +112,13 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         {"build bean --age 10abc -o /tmp/x.obj",
          "plantarch: --age = 10abc: not a number of days (valid: 0 to 100000)\n"},
         {"build bean --age 10 --bogus -o /tmp/x.obj",
-         "plantarch: build: unexpected argument '--bogus' (valid: the arguments in 'plantarch "
+         "plantarch: build: unknown option '--bogus' (valid: the options in 'plantarch build "
+         "--help')\n"},
+        {"build bean --age 10 --stat",
+         "plantarch: build: unknown option '--stat', did you mean '--stats'? (valid: the options "
+         "in 'plantarch build --help')\n"},
+        {"build bean tomato --age 10 -o /tmp/x.obj",
+         "plantarch: build: unexpected argument 'tomato' (valid: the arguments in 'plantarch "
          "build --help')\n"},
         // Global options, before or after the command.
         {"--seed -1 build bean --age 10 -o /tmp/x.obj",

@@ -130,8 +130,9 @@ TEST(CliCollision, BadValuesAndFilesAreOneLineErrors) {
          "--fruit-adjustment: fruit adjustment applies only to obstacles (valid: with "
          "--obstacle FILE.obj)"},
         {"build bean --age 10 --attraction-points " + bad + o,
-         bad + ":2: --attraction-points = 1,2: expected three numbers x,y,z (m) (valid: e.g. "
-               "0.5,0,1.2)"},
+         bad +
+             ":2: --attraction-points = 1,2: expected three finite numbers x,y,z (m) (valid: e.g. "
+             "0.5,0,1.2)"},
         {"build bean --age 10 --attraction-points " + empty + o,
          empty + ": --attraction-points: attraction point file holds no points (valid: lines "
                  "of x,y,z)"},

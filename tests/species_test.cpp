@@ -938,6 +938,32 @@ TEST(SpeciesLibrary, TheDocumentedExampleReadsAndBuilds) {
     EXPECT_EQ(buildFrom(m, {{"scaffolds", 6}, {"trunk_height", 0.3f}}).shoots.size(), 13u);
 }
 
+TEST(SpeciesReader, CheckFindsEveryIndependentError) {
+    EXPECT_TRUE(checkSpeciesString(species(), "ok.xml").empty());
+    // Three bad values and an unknown element in three groups: four errors, by line.
+    const std::string xml = species({{"<max_age>100</max_age>", "<max_age>-5</max_age>"},
+                                     {"<max_nodes>5</max_nodes>", "<max_nodes>five</max_nodes>"},
+                                     {"@SHOOT@", "<tortuosityy>1</tortuosityy>"},
+                                     {"<pitch>30</pitch>", "<pitch>400</pitch>"}});
+    const std::vector<Error> errors = checkSpeciesString(xml, "bad.xml");
+    ASSERT_EQ(errors.size(), 4u);
+    EXPECT_EQ(errors[0].line(), 6);
+    EXPECT_EQ(errors[0].parameter(), "phenology.max_age");
+    EXPECT_EQ(errors[1].line(), 12);
+    EXPECT_EQ(errors[1].parameter(), "main.max_nodes");
+    EXPECT_EQ(errors[2].line(), 12);
+    EXPECT_NE(errors[2].message().find("unknown element <tortuosityy>"), std::string::npos);
+    EXPECT_EQ(errors[3].line(), 18);
+    EXPECT_EQ(errors[3].parameter(), "main.phytomer.petiole.pitch");
+    // The first of them is the one readSpeciesString throws.
+    EXPECT_EQ(std::string(errorOf([&] { readSpeciesString(xml, "bad.xml"); }).what()),
+              std::string(errors[0].what()));
+    // Malformed XML ends the list.
+    const std::vector<Error> cut = checkSpeciesString(xml.substr(0, 200), "cut.xml");
+    ASSERT_EQ(cut.size(), 1u);
+    EXPECT_NE(cut[0].message().find("malformed XML"), std::string::npos);
+}
+
 // ---- command line -----------------------------------------------------------------------
 
 TEST(SpeciesCli, ValidateOkAndBroken) {

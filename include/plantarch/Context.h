@@ -190,6 +190,13 @@ public:
     /// Packs the pools after deletions. Called automatically when over half is unused;
     /// never changes IDs.
     void compact();
+    /// At most this many live triangles (0, the default: no limit). Adding geometry past it
+    /// throws TriangleBudgetError and changes nothing, so a job too large for the machine
+    /// stops with a message instead of running out of memory. Lowering it below the triangles
+    /// already held is allowed (later additions throw).
+    void setTriangleLimit(std::size_t limit);
+    std::size_t triangleLimit() const;
+
     /// Bytes held by the Context's storage (capacity, not just size).
     std::size_t memoryBytes() const;
 

@@ -6,6 +6,7 @@
 // these into a single line such as
 //   species/bean.xml:42: trifoliate.phytomer.petiole.pitch = 200: out of range (valid: -180 to 180)
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -41,6 +42,26 @@ public:
 private:
     std::string message_;
     ErrorContext context_;
+};
+
+/// A job stopped (or refused) because it needs more triangles than the triangle limit allows
+/// (Context::setTriangleLimit, PlantArchitecture::setTriangleLimit; the CLI's
+/// --max-triangles). Thrown before the work when it can be estimated (a canopy), else as soon
+/// as the limit is passed (while growing or tessellating); the scene is left as it was.
+class TriangleBudgetError : public Error {
+public:
+    /// `what` names the job ("canopy of 400 plants"); the message adds the estimate and limit.
+    TriangleBudgetError(const std::string& what, std::size_t estimate, std::size_t limit,
+                        const std::string& how = "");
+
+    /// The triangles the job needs (or would have reached), as estimated.
+    std::size_t estimate() const noexcept { return estimate_; }
+    /// The limit it was held to.
+    std::size_t limit() const noexcept { return limit_; }
+
+private:
+    std::size_t estimate_;
+    std::size_t limit_;
 };
 
 /// Formats the one-line description used as what().

@@ -196,6 +196,20 @@ public:
     /// Redraws the plants there are; throws naming the range for a value outside it.
     void setMeshDetail(float detail);
     float getMeshDetail() const;
+    /// At most this many triangles in the Context (0, the default: no limit; it sets
+    /// Context::setTriangleLimit). A canopy whose estimate passes it is refused before it is
+    /// grown: its first plants (as many as there are threads) are grown and the estimate is
+    /// their mean triangle count times the number of plants, plus the Context's triangles.
+    /// A plant whose organs need more (at least 2 triangles per internode side and 2 per leaf)
+    /// stops growing at once. Either throws TriangleBudgetError naming the estimate and the
+    /// limit, and the scene is left as it was.
+    void setTriangleLimit(std::size_t limit);
+    std::size_t getTriangleLimit() const;
+    /// A limit that fits the machine: half its physical memory at kBytesPerTriangle each
+    /// (the peak of building and writing a scene; the CLI's default --max-triangles).
+    static std::size_t defaultTriangleLimit();
+    static constexpr std::size_t kBytesPerTriangle = 100;
+
     /// The trellis objects made with a plant (empty: its species has none, or it was off).
     std::vector<ObjectID> getPlantTrellisObjectIDs(unsigned plantID) const;
 

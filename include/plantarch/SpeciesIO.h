@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "plantarch/Collision.h"
+#include "plantarch/Error.h"
 #include "plantarch/Species.h"
 
 namespace plantarch {
@@ -29,6 +30,12 @@ SpeciesModel readSpeciesFile(const std::string& path);
 /// Reads a species from XML text; `nameForErrors` stands for the file in error messages and
 /// becomes the model's sourceFile.
 SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameForErrors);
+/// Every error of a species file rather than the first: a bad or out-of-range value, an
+/// unknown element, each one line with its file and line (sorted by line); an error after
+/// which the file cannot be read further (malformed XML) ends the list. Empty: the file
+/// reads (readSpeciesFile then succeeds).
+std::vector<Error> checkSpeciesFile(const std::string& path);
+std::vector<Error> checkSpeciesString(const std::string& xml, const std::string& nameForErrors);
 
 struct SpeciesWriteOptions {
     /// Put each field's unit, valid range and description in an XML comment after it.

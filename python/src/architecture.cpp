@@ -133,6 +133,16 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
              Release())
         .def("getMeshDetail", &PlantArchitecture::getMeshDetail,
              "The factor on every organ's mesh resolution (setMeshDetail).")
+        .def("setTriangleLimit", &PlantArchitecture::setTriangleLimit, py::arg("limit"),
+             "At most this many triangles in the Context (0: no limit). A canopy whose estimate "
+             "(its first plants' mean times the plant count) passes it is refused before it is "
+             "grown, a plant that passes it stops growing: TriangleBudgetError, and the scene "
+             "is left as it was.")
+        .def("getTriangleLimit", &PlantArchitecture::getTriangleLimit,
+             "The triangle limit (0: none).")
+        .def_static("defaultTriangleLimit", &PlantArchitecture::defaultTriangleLimit,
+                    "A limit that fits this machine: half its physical memory at 100 bytes a "
+                    "triangle (the command line's default --max-triangles).")
         .def("getPlantTrellisObjectIDs", &PlantArchitecture::getPlantTrellisObjectIDs,
              py::arg("plantID"), "The trellis objects (posts and wires) made with a plant.");
 }

@@ -182,6 +182,10 @@ void bindContext(py::module_& m) {
              "Labels used by any object, sorted (the same as objectDataLabels).")
         .def("clear", &Context::clear, "Removes every object and material.")
         .def("memoryBytes", &Context::memoryBytes, "Bytes held by the Context's storage.")
+        .def("setTriangleLimit", &Context::setTriangleLimit, py::arg("limit"),
+             "At most this many live triangles (0: no limit); adding past it raises "
+             "TriangleBudgetError and changes nothing.")
+        .def("triangleLimit", &Context::triangleLimit, "The triangle limit (0: none).")
         // The C++ names (the get... names above are those the specification's users know).
         .def("objectIDs", &Context::objectIDs, "Live objects, in increasing ID order.")
         .def("objectCount", &Context::objectCount, "Live objects.")

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
@@ -71,38 +72,47 @@ std::unique_ptr<MeshBuffer> gather(const Context& ctx, const std::vector<ObjectI
     const bool hasPlant = ctx.objectDataType("plantID") == DataType::Int;
     const bool hasOrgan = ctx.objectDataType("organ") == DataType::String;
     const std::ptrdiff_t n = std::ptrdiff_t(ids.size());
+    std::exception_ptr failure;
 #pragma omp parallel
     {
         std::vector<vec3> smooth;
 #pragma omp for schedule(dynamic, 64)
         for (std::ptrdiff_t i = 0; i < n; ++i) {
-            const ObjectID id = ids[std::size_t(i)];
-            const ObjectView o = ctx.object(id);
-            const std::size_t v0 = firstVertex[std::size_t(i)], t0 = firstTriangle[std::size_t(i)];
-            std::copy_n(&o.positions.data()->x, 3 * o.positions.size(),
-                        &buf->vertices.data[3 * v0]);
-            if (anyUVs) {
-                if (o.uvs.empty())
-                    std::fill_n(&buf->uvs.data[2 * v0], 2 * o.positions.size(), 0.0f);
-                else
-                    std::copy_n(&o.uvs.data()->x, 2 * o.uvs.size(), &buf->uvs.data[2 * v0]);
+            try {
+                const ObjectID id = ids[std::size_t(i)];
+                const ObjectView o = ctx.object(id);
+                const std::size_t v0 = firstVertex[std::size_t(i)],
+                                  t0 = firstTriangle[std::size_t(i)];
+                std::copy_n(&o.positions.data()->x, 3 * o.positions.size(),
+                            &buf->vertices.data[3 * v0]);
+                if (anyUVs) {
+                    if (o.uvs.empty())
+                        std::fill_n(&buf->uvs.data[2 * v0], 2 * o.positions.size(), 0.0f);
+                    else
+                        std::copy_n(&o.uvs.data()->x, 2 * o.uvs.size(), &buf->uvs.data[2 * v0]);
+                }
+                if (normals) {
+                    smoothNormals(o, smooth);
+                    std::copy_n(&smooth.data()->x, 3 * smooth.size(), &buf->normals.data[3 * v0]);
+                }
+                std::uint32_t* tri = &buf->triangles.data[3 * t0];
+                for (std::size_t k = 0; k < o.indices.size(); ++k)
+                    tri[k] = std::uint32_t(v0 + o.indices[k]);
+                const std::size_t count = o.triangleCount();
+                const std::int32_t plant =
+                    hasPlant ? ctx.objectDataInt(id, "plantID").value_or(-1) : -1;
+                const std::uint8_t organ =
+                    hasOrgan ? organCode(ctx.objectDataString(id, "organ")) : 0;
+                std::fill_n(&buf->plantID.data[t0], count, plant);
+                std::fill_n(&buf->objectID.data[t0], count, id);
+                std::fill_n(&buf->organ.data[t0], count, organ);
+            } catch (...) {  // an exception must not leave the parallel region
+#pragma omp critical(plantarch_mesh_arrays_error)
+                if (!failure) failure = std::current_exception();
             }
-            if (normals) {
-                smoothNormals(o, smooth);
-                std::copy_n(&smooth.data()->x, 3 * smooth.size(), &buf->normals.data[3 * v0]);
-            }
-            std::uint32_t* tri = &buf->triangles.data[3 * t0];
-            for (std::size_t k = 0; k < o.indices.size(); ++k)
-                tri[k] = std::uint32_t(v0 + o.indices[k]);
-            const std::size_t count = o.triangleCount();
-            const std::int32_t plant =
-                hasPlant ? ctx.objectDataInt(id, "plantID").value_or(-1) : -1;
-            const std::uint8_t organ = hasOrgan ? organCode(ctx.objectDataString(id, "organ")) : 0;
-            std::fill_n(&buf->plantID.data[t0], count, plant);
-            std::fill_n(&buf->objectID.data[t0], count, id);
-            std::fill_n(&buf->organ.data[t0], count, organ);
         }
     }
+    if (failure) std::rethrow_exception(failure);
     return buf;
 }
 

@@ -74,9 +74,26 @@ void bindValues(py::module_& m) {
     error.doc() =
         "Bad input or failed I/O, with one line naming the file, line, parameter, value and "
         "valid range. Attributes: file, line, parameter, value, valid_range.";
+    // TriangleBudgetError, a plantarch.Error with the estimate and the limit.
+    static py::exception<TriangleBudgetError>& budget =
+        *new py::exception<TriangleBudgetError>(m, "TriangleBudgetError", error.ptr());
+    budget.doc() =
+        "A job that needs more triangles than the triangle limit (setTriangleLimit) allows, "
+        "refused before it starts or stopped as it passes the limit. Attributes: those of "
+        "Error, and estimate and limit (triangles).";
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const TriangleBudgetError& e) {
+            py::object instance = py::handle(budget.ptr())(py::str(e.what()));
+            instance.attr("file") = e.file();
+            instance.attr("line") = e.line();
+            instance.attr("parameter") = e.parameter();
+            instance.attr("value") = e.value();
+            instance.attr("valid_range") = e.validRange();
+            instance.attr("estimate") = e.estimate();
+            instance.attr("limit") = e.limit();
+            PyErr_SetObject(budget.ptr(), instance.ptr());
         } catch (const Error& e) {
             py::object instance = py::handle(error.ptr())(py::str(e.what()));
             instance.attr("file") = e.file();

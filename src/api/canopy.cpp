@@ -17,6 +17,7 @@
 #include "api/facade_impl.h"
 #include "collision/collision_world.h"
 #include "collision/growth_driver.h"
+#include "core/parallel.h"
 #include "geometry/tessellate.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
@@ -89,16 +90,19 @@ void PlantArchitecture::adoptPlants(std::span<GrownPlant> plants) {
     }
     const std::vector<ObjectID> copies = context_->appendObjects(sources);
     const long count = long(plants.size());
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 4) if (count > 8)
-    for (long k = 0; k < count; ++k) {
-        GrownPlant& g = plants[std::size_t(k)];
-        const ObjectID* base = copies.data() + firstCopy[std::size_t(k)];
-        forEachObjectID(g.owner->store.plant(g.id), [&](ObjectID& o) {
-            if (o == kNoObject) return;
-            const auto at = std::lower_bound(g.objects.begin(), g.objects.end(), o);
-            o = base[at - g.objects.begin()];
+    for (long k = 0; k < count; ++k)
+        errors.run(k, [&] {
+            GrownPlant& g = plants[std::size_t(k)];
+            const ObjectID* base = copies.data() + firstCopy[std::size_t(k)];
+            forEachObjectID(g.owner->store.plant(g.id), [&](ObjectID& o) {
+                if (o == kNoObject) return;
+                const auto at = std::lower_bound(g.objects.begin(), g.objects.end(), o);
+                o = base[at - g.objects.begin()];
+            });
         });
-    }
+    errors.rethrow();
     for (GrownPlant& g : plants) {
         PlantInstance plant = std::move(g.owner->store.plant(g.id));
         g.owner->store.plants.erase(g.id);
@@ -125,10 +129,12 @@ std::vector<ObjectID> plantObjects(PlantInstance& plant) {
     return objects;
 }
 
-// The next batch's size from the triangles per plant seen so far.
-int nextBatchSize(int threads, std::size_t triangles, int plants, int left) {
+// The next batch's size from the triangles per plant seen so far. With a triangle limit the
+// first batch is one plant per thread: the canopy's estimate, made from it, comes as soon as
+// one plant is grown.
+int nextBatchSize(int threads, std::size_t triangles, int plants, int left, bool limited) {
     const int least = 2 * threads;
-    int size = 4 * threads;
+    int size = plants == 0 && limited ? threads : 4 * threads;
     if (plants > 0) {
         const double each = std::max(1.0, double(triangles) / double(plants));
         size = int(std::clamp(kBatchTriangles / each, double(least), 64.0 * threads));
@@ -154,6 +160,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         speciesTrellis(*impl_->species, seed_, impl_->store.nextPlantID, vec3(0.0f),
                        buildParameters);
     const bool together = impl_->collision.world && impl_->collision.world->soft();
+    const std::size_t limit = context_->triangleLimit();
+    impl_->store.triangleLimit = limit;
     // Plants with attraction points of their own count their work in this scene's stats.
     if (impl_->species->attraction) collision::worldOf(impl_->collision);
     const unsigned first = impl_->store.nextPlantID;
@@ -168,21 +176,38 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.store.shootTypes = impl_->store.shootTypes;
         wi.species = impl_->species;
         wi.store.defaultPhenology = impl_->store.defaultPhenology;
+        wi.store.meshDetail = impl_->store.meshDetail;
+        wi.store.triangleLimit = limit;
         wi.functions = impl_->functions;
         wi.trellisGeometry = false;  // trellises are added in the caller's Context below
         if (!together) wi.collision.world = impl_->collision.world;
     }
 
     std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
-    std::vector<std::string> errors(static_cast<std::size_t>(n));
-    auto firstError = [&](int from, int to) {
-        for (int i = from; i < to; ++i)
-            if (!errors[std::size_t(i)].empty()) return i;
-        return -1;
+    // A plant's failure names the plant; a triangle limit passed keeps its own type.
+    auto failed = [&](ParallelErrors& errors, int i0) {
+        if (!errors.failed()) return;
+        const int i = i0 + int(errors.index());
+        try {
+            errors.rethrow();
+        } catch (const TriangleBudgetError&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw Error("building canopy plant " + std::to_string(i) + " failed: " + e.what());
+        }
     };
-    auto failWith = [&](int i) {
-        throw Error("building canopy plant " + std::to_string(i) +
-                    " failed: " + errors[std::size_t(i)]);
+    // The canopy's triangles from the first `built` plants' (`triangles`), refused before
+    // any more are grown when over the limit.
+    auto checkEstimate = [&](std::size_t triangles, int built) {
+        if (limit == 0 || built <= 0 || built >= n) return;
+        const double each = double(triangles) / double(built);
+        const double total = double(context_->triangleCount()) + each * double(n);
+        if (total > double(limit))
+            throw TriangleBudgetError("a canopy of " + std::to_string(n) + " plants",
+                                      std::size_t(std::ceil(total)), limit,
+                                      "about " + std::to_string(std::size_t(std::lround(each))) +
+                                          " each, the mean of its first " + std::to_string(built) +
+                                          (built == 1 ? " plant" : " plants"));
     };
     std::vector<unsigned> ids;
     // A failed build (or a progress callback that throws: the caller stopping it) leaves the
@@ -197,30 +222,32 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     // batch into the scene; `ownerOf(i)` holds plant i's state.
     auto inBatches = [&](auto&& make, auto&& ownerOf, const char* stage) {
         for (int start = 0; start < n;) {
-            const int size = nextBatchSize(threads, trianglesSeen, start, n - start);
+            const int size = nextBatchSize(threads, trianglesSeen, start, n - start, limit > 0);
             const int end = start + size;
             if (slots.size() < std::size_t(size)) slots.resize(std::size_t(size));
+            for (Context& slot : slots) slot.setTriangleLimit(limit);
             std::vector<GrownPlant> grown(static_cast<std::size_t>(size));
+            ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-            for (int i = start; i < end; ++i) {
-                const int t = omp_get_thread_num();
-                Context& slot = slots[std::size_t(i - start)];
-                try {
+            for (int i = start; i < end; ++i)
+                errors.run(i - start, [&] {
+                    const int t = omp_get_thread_num();
+                    Context& slot = slots[std::size_t(i - start)];
                     make(i, t, slot);
                     Impl& owner = ownerOf(i);
                     const unsigned id = first + unsigned(i);
                     grown[std::size_t(i - start)] = {id, &slot, &owner,
                                                      plantObjects(owner.store.plant(id))};
-                } catch (const std::exception& e) {
-                    errors[std::size_t(i)] = e.what();
-                }
-            }
-            if (int bad = firstError(start, end); bad >= 0) {
+                });
+            try {
+                failed(errors, start);
+            } catch (...) {
                 undo();
-                failWith(bad);
+                throw;
             }
             for (int i = start; i < end; ++i)
                 trianglesSeen += slots[std::size_t(i - start)].triangleCount();
+            if (start == 0) checkEstimate(trianglesSeen, end);
             if (start == 0 && end < n) {  // room for the rest, from this batch's plants
                 std::size_t objects = 0, vertices = 0, triangles = 0;
                 for (int i = start; i < end; ++i) {
@@ -281,21 +308,39 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     // Together: build every plant's initial structure in a worker (its geometry is not needed:
     // every plant is tessellated afresh when grown), plant i on thread i % threads, where it
     // grows (collision::growTogether).
-    for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (int i = 0; i < n; ++i) {
-        const int t = omp_get_thread_num();
-        PlantArchitecture& w = *workers[std::size_t(t)].arch;
+    // With a limit, the estimate comes first: plant 0 grown alone, without collision
+    // avoidance, in a Context of its own (the plants' sizes differ little with avoidance).
+    if (limit > 0 && n > 1) {
+        Context probe;
+        probe.setTriangleLimit(limit);
+        PlantArchitecture& w = *workers[0].arch;
+        w.context_ = &probe;
+        w.impl_->store.nextPlantID = first;
+        std::size_t triangles = 0;
         try {
+            const unsigned id = w.buildPlantInstanceFromLibrary(positions[0], age, buildParameters);
+            triangles = probe.triangleCount();
+            w.deletePlantInstance(id);
+        } catch (...) {
+            w.context_ = &workers[0].ctx;
+            throw;
+        }
+        w.context_ = &workers[0].ctx;
+        checkEstimate(triangles, 1);
+    }
+    for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
+    ParallelErrors structureErrors;
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+    for (int i = 0; i < n; ++i)
+        structureErrors.run(i, [&] {
+            const int t = omp_get_thread_num();
+            PlantArchitecture& w = *workers[std::size_t(t)].arch;
             w.impl_->store.nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
             w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
             builtBy[std::size_t(i)] = t;
-        } catch (const std::exception& e) {
-            errors[std::size_t(i)] = e.what();
-        }
-    }
+        });
     for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = false;
-    if (int bad = firstError(0, n); bad >= 0) failWith(bad);
+    failed(structureErrors, 0);
 
     // Grow them together.
     std::vector<collision::GrowthSlot> growth;

@@ -24,7 +24,8 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
     if (!(days >= 0.0) || !std::isfinite(days))
         throw Error("time step must be a finite number of days >= 0",
                     {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
-    for (unsigned id : plantIDs) impl_->store.plant(id);  // all exist, or nothing happens
+    for (unsigned id : plantIDs) impl_->store.plant(id);     // all exist, or nothing happens
+    impl_->store.triangleLimit = context_->triangleLimit();  // growth stops past it
     if (collision::collisionActive(impl_->collision, impl_->store)) {
         collision::advanceWithCollision(impl_->collision, impl_->store, impl_->worker(), *context_,
                                         {plantIDs, days, seed_, impl_->progress});

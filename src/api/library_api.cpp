@@ -1,6 +1,8 @@
 // PlantArchitecture's species-library methods: loading a species, building plants from it,
 // and reading or changing the current shoot parameters.
 
+#include <unistd.h>
+
 #include "api/facade_impl.h"
 #include "core/value_text.h"
 #include "plantarch/Error.h"
@@ -70,6 +72,21 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
         throw;
     }
     return id;
+}
+
+void PlantArchitecture::setTriangleLimit(std::size_t limit) {
+    context_->setTriangleLimit(limit);
+    impl_->store.triangleLimit = limit;
+}
+
+std::size_t PlantArchitecture::getTriangleLimit() const {
+    return context_->triangleLimit();
+}
+
+std::size_t PlantArchitecture::defaultTriangleLimit() {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || pageSize <= 0) return 0;  // unknown: no limit
+    return std::size_t(pages) / 2 * std::size_t(pageSize) / kBytesPerTriangle;
 }
 
 void PlantArchitecture::setTrellisGeometry(bool on) {

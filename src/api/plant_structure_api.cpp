@@ -1,6 +1,7 @@
 // PlantArchitecture's plant structure methods: XML files and plant strings.
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -284,6 +285,9 @@ std::vector<unsigned> PlantArchitecture::readPlantStructureXMLString(
 
 std::vector<unsigned> PlantArchitecture::readPlantStructureXML(
     const std::string& filename, const PlantStructureReadOptions& options) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(filename, ec))
+        throw Error("a folder, not a plant structure file", {.file = filename});
     std::ifstream in(filename, std::ios::binary);
     if (!in) throw Error("cannot open plant structure file", {.file = filename});
     std::ostringstream text;

@@ -23,6 +23,7 @@
 #include "collision/collision_world.h"
 #include "collision/proxies.h"
 #include "collision/steering.h"
+#include "core/parallel.h"
 #include "geometry/tessellate.h"
 #include "growth/growth.h"
 
@@ -43,19 +44,13 @@ int threadsFor(std::size_t n, const std::vector<Worker>& workers) {
 // arena: some 700 sleeps per canopy and a fifth of the soft canopy's time.
 template <class F>
 void forEach(std::size_t n, const std::vector<Worker>& workers, F&& f) {
-    std::vector<std::exception_ptr> errors(n);
+    ParallelErrors errors;
     const int threads = threadsFor(n, workers);
 #pragma omp parallel for schedule(static, 1) \
     num_threads(threads) if (threads > 1 && !omp_in_parallel())
-    for (int i = 0; i < int(n); ++i) {
-        try {
-            f(std::size_t(i), workers[std::size_t(omp_get_thread_num())]);
-        } catch (...) {
-            errors[std::size_t(i)] = std::current_exception();
-        }
-    }
-    for (const auto& e : errors)
-        if (e) std::rethrow_exception(e);
+    for (int i = 0; i < int(n); ++i)
+        errors.run(i, [&] { f(std::size_t(i), workers[std::size_t(omp_get_thread_num())]); });
+    errors.rethrow();
 }
 
 // Grows one plant steered by the scene and its attraction points, then clears its side organs.

@@ -16,6 +16,7 @@
 #endif
 
 #include "collision/collision_world.h"
+#include "core/parallel.h"
 
 namespace plantarch::collision {
 
@@ -221,17 +222,10 @@ void SoftGrid::build(const std::vector<Source>& sources, float cell, int threads
     std::vector<Aside> aside(static_cast<std::size_t>(runs));
     for (auto& c : counts_) resizeOver(c, buckets);
     auto forRuns = [&](auto&& f) {
-        std::vector<std::exception_ptr> errors(static_cast<std::size_t>(runs));
+        ParallelErrors errors;
 #pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1 && !omp_in_parallel())
-        for (int r = 0; r < runs; ++r) {
-            try {
-                f(std::size_t(r));
-            } catch (...) {
-                errors[std::size_t(r)] = std::current_exception();
-            }
-        }
-        for (const auto& e : errors)
-            if (e) std::rethrow_exception(e);
+        for (int r = 0; r < runs; ++r) errors.run(r, [&] { f(std::size_t(r)); });
+        errors.rethrow();
     };
     forRuns([&](std::size_t r) {  // count (a triangle starts a quad when the next is its second)
         std::uint32_t* count = counts_[r].data();

@@ -97,8 +97,19 @@ struct Context::Impl {
     std::size_t liveTriangles = 0;
     std::size_t liveVertices = 0;
     std::size_t liveIndices = 0;
+    std::size_t triangleLimit = 0;  // 0: none
 
     Impl() { materials.push_back(Material{}); }
+
+    // Throws if `added` more (and `removed` fewer) live triangles would pass the limit.
+    void checkTriangleLimit(std::size_t added, std::size_t removed = 0) const {
+        if (triangleLimit == 0 || added <= removed) return;
+        const std::size_t total = liveTriangles - removed + added;
+        if (total > triangleLimit)
+            throw TriangleBudgetError("the scene", total, triangleLimit,
+                                      "adding " + std::to_string(added - removed) + " to " +
+                                          std::to_string(liveTriangles));
+    }
 
     const ObjectRecord& record(ObjectID id, const char* what) const {
         if (id >= objects.size() || !objects[id].alive)
@@ -341,6 +352,7 @@ struct Context::Impl {
     ObjectID addChecked(std::span<const vec3> pos, std::span<const vec2> uv,
                         std::span<const std::uint32_t> idx, MaterialID material, const mat4* xf) {
         checkMaterial(material);
+        checkTriangleLimit(idx.size() / 3);
         if (objects.size() >= kNone - 1) throw Error("object ID space exhausted");
         const auto id = static_cast<ObjectID>(objects.size());
         ObjectRecord r;
@@ -361,6 +373,7 @@ struct Context::Impl {
         ObjectRecord& r = objects[id];
         const std::uint32_t oldTris = r.indexCount / 3;
         const auto newTris = static_cast<std::uint32_t>(mesh.triangleCount());
+        checkTriangleLimit(newTris, oldTris);
         liveTriangles += newTris;
         liveTriangles -= oldTris;
         liveVertices += mesh.positions.size();
@@ -591,6 +604,7 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
         throw Error("Context is full (more than 4 billion vertices or indices)");
     if (d.primitiveOwner.size() + indices / 3 >= kNone)
         throw Error("primitive ID space exhausted (4 billion triangles ever created)");
+    d.checkTriangleLimit(indices / 3);
 
     // Plan (one thread): offsets, materials, labels, strings; the pools grow once.
     std::vector<AppendPlan> plans(sources.size());
@@ -653,7 +667,8 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
         }
     }
 
-    // Copy (all threads; each source writes its own ranges).
+    // Copy (all threads; each source writes its own ranges). Nothing in the loop throws (it
+    // copies into pools sized above), so no exception can leave the parallel region.
     const long count = static_cast<long>(plans.size());
 #pragma omp parallel for schedule(dynamic, 1) if (vertices > 65536 && count > 1)
     for (long i = 0; i < count; ++i) {
@@ -975,7 +990,9 @@ std::vector<std::string> Context::primitiveDataLabels() const {
 
 void Context::clear(bool releaseMemory) {
     if (releaseMemory) {
+        const std::size_t limit = impl_->triangleLimit;  // a setting, not content
         impl_ = std::make_unique<Impl>();
+        impl_->triangleLimit = limit;
         return;
     }
     Impl& d = *impl_;
@@ -1006,6 +1023,14 @@ void Context::reserve(std::size_t objects, std::size_t vertices, std::size_t tri
 
 void Context::compact() {
     impl_->compact();
+}
+
+void Context::setTriangleLimit(std::size_t limit) {
+    impl_->triangleLimit = limit;
+}
+
+std::size_t Context::triangleLimit() const {
+    return impl_->triangleLimit;
 }
 
 std::size_t Context::memoryBytes() const {

@@ -43,4 +43,19 @@ Error Error::withParameterPrefix(const std::string& prefix) const {
     return Error(message_, c);
 }
 
+namespace {
+
+std::string budgetMessage(const std::string& what, std::size_t estimate, std::size_t limit,
+                          const std::string& how) {
+    return what + " needs about " + std::to_string(estimate) + " triangles" +
+           (how.empty() ? "" : " (" + how + ")") + ", over the triangle limit of " +
+           std::to_string(limit);
+}
+
+}  // namespace
+
+TriangleBudgetError::TriangleBudgetError(const std::string& what, std::size_t estimate,
+                                         std::size_t limit, const std::string& how)
+    : Error(budgetMessage(what, estimate, limit, how)), estimate_(estimate), limit_(limit) {}
+
 }  // namespace plantarch

@@ -19,6 +19,7 @@
 #include <tuple>
 
 #include "core/math.h"
+#include "core/value_text.h"
 #include "geometry/tessellate.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
@@ -650,9 +651,11 @@ struct Grower {
                     break;
                 case kPhytomer:
                     onPhytomer(plant.shoots[e.shoot], e.time);
+                    budget.grew(*this);
                     break;
                 case kBudBreak:
                     onBudBreak(e);
+                    budget.grew(*this);
                     break;
                 case kFloral:
                     onFloral(e, e.time);
@@ -669,9 +672,57 @@ struct Grower {
         plant.age = std::max(plant.age, stop);
         updateContinuous(plant.age);
         updateGirth();
+        budget.check(*this);
         plant.age = target;
         if (target > plant.phenology.max_age) plant.stage = PhenologyStage::Senescent;
     }
+
+    // ---- the triangle limit --------------------------------------------------------------
+
+    // The fewest triangles the plant's organs need once drawn: each internode's tube side
+    // (two triangles a side) and two per leaf. It never exceeds what tessellation makes, so
+    // a plant within the limit is never stopped; a runaway plant stops here, long before
+    // its geometry is made. Also counts the phytomers (for TriangleBudget's schedule).
+    std::size_t leastTriangles(std::size_t& phytomers) {
+        std::size_t n = 0;
+        phytomers = 0;
+        for (const Shoot& s : plant.shoots) {
+            if (s.removed) continue;
+            const unsigned sides =
+                detailed(typeOf(s.type).phytomer_parameters.internode.radial_subdivisions,
+                         growth.store.meshDetail, 3);
+            phytomers += s.phytomers.size();
+            for (const Phytomer& ph : s.phytomers) {
+                n += 2 * std::size_t(sides);
+                for (const Petiole& pt : ph.petioles)
+                    for (const LeafOrgan& l : pt.leaves) n += l.removed ? 0 : 2;
+            }
+        }
+        return n;
+    }
+
+    // Checks leastTriangles against the store's limit after every so many new phytomers and
+    // shoots (a quarter of the plant's phytomers, at least 256): linear time overall.
+    struct TriangleBudget {
+        std::size_t sinceCheck = 0, checkEvery = 256;
+        void grew(Grower& g) {
+            if (g.growth.store.triangleLimit != 0 && ++sinceCheck >= checkEvery) check(g);
+        }
+        void check(Grower& g) {
+            const std::size_t limit = g.growth.store.triangleLimit;
+            if (limit == 0) return;
+            sinceCheck = 0;
+            std::size_t phytomers = 0;
+            const std::size_t least = g.leastTriangles(phytomers);
+            checkEvery = std::max<std::size_t>(256, phytomers / 4);
+            if (least > limit)
+                throw TriangleBudgetError("plant " + std::to_string(g.plant.id) + " grown to " +
+                                              text::formatFloat(float(g.plant.age)) + " days",
+                                          least, limit,
+                                          "at least: 2 per internode side and 2 per leaf of its " +
+                                              std::to_string(phytomers) + " phytomers");
+        }
+    } budget;
 
     // An event is current only if the time stored on its organ still says so (organs may
     // have been pruned, removed or rescheduled since it was queued).

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/parallel.h"
 #include "core/progress_steps.h"
 #include "core/value_text.h"
 #include "io/export_common.h"
@@ -527,16 +528,19 @@ void writeBinary(const Scene& s, const GltfOptions& options, Sink& out) {
             normalAt[i + 1] = normalAt[i] + s.object(i).positions.size();
         normals.resize(normalAt.back());
         const std::ptrdiff_t n = std::ptrdiff_t(s.records.size());
+        ParallelErrors errors;
 #pragma omp parallel
         {
             std::vector<vec3> one;
 #pragma omp for schedule(dynamic, 64)
-            for (std::ptrdiff_t i = 0; i < n; ++i) {
-                smoothNormals(s.object(std::size_t(i)), one);
-                std::copy(one.begin(), one.end(),
-                          normals.begin() + std::ptrdiff_t(normalAt[std::size_t(i)]));
-            }
+            for (std::ptrdiff_t i = 0; i < n; ++i)
+                errors.run(i, [&] {
+                    smoothNormals(s.object(std::size_t(i)), one);
+                    std::copy(one.begin(), one.end(),
+                              normals.begin() + std::ptrdiff_t(normalAt[std::size_t(i)]));
+                });
         }
+        errors.rethrow();
     }
     for (const Primitive& p : s.primitives) {
         const vec3 base = s.nodes[p.node].base;

@@ -178,6 +178,9 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                             ", readOBJ stores shape names as string",
                         {.file = path, .parameter = "name"});
     }
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("a folder, not an OBJ file", {.file = path});
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;

@@ -8,6 +8,7 @@
 // runs afterwards (validate() of parameters.cpp) can point at the offending element.
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -18,6 +19,7 @@
 #include "library/parameter_reader.h"
 #include "library/species_xml.h"
 #include "plantarch/Error.h"
+#include "plantarch/ParameterCheck.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -56,6 +58,67 @@ Error locate(const Error& e, const std::string& file, const Lines& lines, int fa
     return e.withFile(file, fallbackLine);
 }
 
+// Errors kept while checking a file whole (checkSpeciesString): an error that leaves the rest
+// of the file readable (a bad value, an unknown element, a value out of range) is kept here
+// and reading goes on; null when reading stops at the first error (readSpeciesString).
+thread_local std::vector<Error>* tCollected = nullptr;
+
+// Keeps `e` when collecting, else throws it.
+void keepOrThrow(const Error& e) {
+    if (!tCollected) throw e;
+    tCollected->push_back(e);
+}
+
+// Runs f(); when collecting, an Error it throws is kept instead. Returns whether f finished.
+template <class F>
+bool attempt(F&& f) {
+    if (!tCollected) {
+        f();
+        return true;
+    }
+    try {
+        f();
+        return true;
+    } catch (const Error& e) {
+        tCollected->push_back(e);
+        return false;
+    }
+}
+
+// Range checks of every field of a struct on its own (params::checkField), keeping each
+// error, so one bad value does not hide the next. `where` places an error at its line.
+template <class Where>
+class FieldChecker {
+public:
+    FieldChecker(std::string path, Where& where) : path_(std::move(path)), where_(where) {}
+
+    template <class T>
+    void field(const params::FieldInfo& f, const T& member) {
+        try {
+            params::checkField(f, path_, member);
+        } catch (const Error& e) {
+            ++found;
+            keepOrThrow(where_(e));
+        }
+    }
+    template <class G, class Fn>
+    void group(const char* name, const G&, Fn&& visit) {
+        FieldChecker sub(path_.empty() ? name : path_ + "." + name, where_);
+        visit(sub);
+        found += sub.found;
+    }
+    template <class E, class Fn>
+    void list(const params::FieldInfo& f, const char*, const std::vector<E>& items, Fn&&) {
+        field(f, items);
+    }
+
+    int found = 0;
+
+private:
+    std::string path_;
+    Where& where_;
+};
+
 // An element that holds attributes only.
 void checkNoChildren(const Element& e) {
     Children(e).finish();
@@ -79,7 +142,7 @@ public:
         if (!n) return;
         const Element value(e_, n, f.name);
         lines_[value.path()] = value.line();
-        species_xml::readParameter(value, f, member, &lines_);
+        attempt([&] { species_xml::readParameter(value, f, member, &lines_); });
     }
 
     template <class G, class Fn>
@@ -113,7 +176,9 @@ public:
         }
     }
 
-    void finish() const { children_.finish(); }
+    void finish() const {
+        attempt([&] { children_.finish(); });
+    }
 
 private:
     const Element& e_;
@@ -158,17 +223,21 @@ public:
                         species_xml::kFormatVersion);
         const TopLevel top = topLevel(root);
 
-        readNames(root, top);
-        if (top["phenology"]) readPhenology(top["phenology"]);
-        if (top["build_parameters"]) readBuildParameters(top["build_parameters"]);
-        for (xml_node e : top.shootTypes) readShootType(e);
+        // Each section on its own: when collecting, an error in one does not stop the next.
+        attempt([&] { readNames(root, top); });
+        if (top["phenology"]) attempt([&] { readPhenology(top["phenology"]); });
+        if (top["build_parameters"]) attempt([&] { readBuildParameters(top["build_parameters"]); });
+        bool typesRead = true;  // every shoot type defined: the checks that name them can run
+        for (xml_node e : top.shootTypes)
+            typesRead = attempt([&] { readShootType(e); }) && typesRead;
         if (m_.shootTypes.empty())
             root.failAt("shoot_type", "a species needs at least one <shoot_type>");
-        checkChildTypes();
+        if (!typesRead) return;
+        attempt([&] { checkChildTypes(); });
         if (!top["build"]) root.failAt("build", "missing required element <build>");
-        readBuild(top["build"]);
-        if (top["attraction_points"]) readAttraction(top["attraction_points"]);
-        if (top["trellis"]) readTrellis(top["trellis"]);
+        attempt([&] { readBuild(top["build"]); });
+        if (top["attraction_points"]) attempt([&] { readAttraction(top["attraction_points"]); });
+        if (top["trellis"]) attempt([&] { readTrellis(top["trellis"]); });
     }
 
 private:
@@ -242,11 +311,7 @@ private:
         const Element e(doc_, node, "phenology");
         m_.lines[e.path()] = e.line();
         readGroup(e, m_.lines, {}, [&](auto& v) { params::describeParameters(m_.phenology, v); });
-        try {
-            validate(m_.phenology, "phenology");
-        } catch (const Error& err) {
-            throw locate(err, doc_.file(), m_.lines, e.line());
-        }
+        checkValues(m_.phenology, "phenology", e.line());
     }
 
     void readBuildParameters(xml_node node) {
@@ -322,13 +387,26 @@ private:
         m_.lines[label] = e.line();
         readGroup(e, m_.lines, {"label", "inherits"},
                   [&](auto& v) { params::describeParameters(params, v); });
-        try {
-            validate(params, label);
-        } catch (const Error& err) {
-            throw locate(err, doc_.file(), m_.lines, e.line());
-        }
+        checkValues(params, label, e.line());
         m_.shootTypes.emplace(label, std::move(params));
         order_.push_back(label);
+    }
+
+    // validate(), placed at the lines of the values; when collecting, every field out of range
+    // first (each one line), then the checks across fields if the fields were in range.
+    template <class P>
+    void checkValues(const P& params, const std::string& path, int line) {
+        auto where = [&](const Error& err) { return locate(err, doc_.file(), m_.lines, line); };
+        if (tCollected) {
+            FieldChecker checker(path, where);
+            params::describeParameters(params, checker);
+            if (checker.found > 0) return;
+        }
+        try {
+            validate(params, path);
+        } catch (const Error& err) {
+            keepOrThrow(where(err));
+        }
     }
 
     std::vector<std::string> shootTypeLabels() const {
@@ -583,7 +661,42 @@ SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameFo
     return model;
 }
 
+std::vector<Error> checkSpeciesString(const std::string& xml, const std::string& nameForErrors) {
+    std::vector<Error> errors;
+    struct Collecting {
+        std::vector<Error>* before = tCollected;
+        ~Collecting() { tCollected = before; }
+    } collecting;
+    tCollected = &errors;
+    try {
+        const xml::Document doc(xml, nameForErrors, {"species file", species_xml::kRoot});
+        SpeciesModel model;
+        model.sourceFile = nameForErrors;
+        SpeciesReader(doc, model).read(Element(doc, doc.root(), ""));
+    } catch (const Error& e) {  // an error after which nothing more can be read
+        errors.push_back(e);
+    }
+    std::stable_sort(errors.begin(), errors.end(),
+                     [](const Error& a, const Error& b) { return a.line() < b.line(); });
+    return errors;
+}
+
+std::vector<Error> checkSpeciesFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        return {Error("a folder, not a species file", {.file = path})};
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return {Error("cannot open species file", {.file = path})};
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) return {Error("cannot read species file", {.file = path})};
+    return checkSpeciesString(text.str(), path);
+}
+
 SpeciesModel readSpeciesFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("a folder, not a species file", {.file = path});
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open species file", {.file = path});
     std::ostringstream text;

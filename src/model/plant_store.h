@@ -32,6 +32,9 @@ public:
     unsigned nextPlantID = 0;
     /// The factor on every organ's mesh resolution (setMeshDetail).
     float meshDetail = 1.0f;
+    /// Growth stops with TriangleBudgetError once a plant's organs need more triangles than
+    /// this (0: no limit; PlantArchitecture::setTriangleLimit).
+    std::size_t triangleLimit = 0;
 
     /// The plant with this ID; throws naming the valid IDs.
     PlantInstance& plant(unsigned id);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/math.h"
+#include "core/parallel.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
 
@@ -477,45 +478,50 @@ Image RenderScene::render(const RenderOptions& o) const {
     const int band = std::max(1, std::min(s.height, 64));
     for (int y0 = 0; y0 < s.height; y0 += band) {
         const int y1 = std::min(s.height, y0 + band);
+        ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
         for (int y = y0; y < y1; ++y) {
-            RTCIntersectContext ictx;
-            rtcInitIntersectContext(&ictx);
-            for (int x = 0; x < s.width; ++x) {
-                const std::size_t pixel = std::size_t(y) * std::size_t(s.width) + std::size_t(x);
-                std::uint8_t* out = &image.rgb[pixel * 3];
-                auto direction = [&](float px, float py) {
-                    const float sx = 2.0f * px / float(s.width) - 1.0f;
-                    const float sy = 1.0f - 2.0f * py / float(s.height);
-                    return glm::normalize(s.forward + sx * s.right + sy * s.up);
-                };
-                if (label) {
-                    const vec3 dir = direction(float(x) + 0.5f, float(y) + 0.5f);
-                    const auto c = labelColor(s, intersect(s, ictx, s.eye, dir), o.mode);
-                    out[0] = c[0];
-                    out[1] = c[1];
-                    out[2] = c[2];
-                    continue;
-                }
-                PixelSampler rng(s.seed, pixel);
-                SampleIndex si{0, vec2(rng.next(), rng.next()), vec2(rng.next(), rng.next())};
-                vec3 sum(0.0f);
-                for (int i = 0; i < s.spp; ++i) {
-                    // Stratified on a grid x grid pattern; samples beyond it are uniform.
-                    float jx = rng.next(), jy = rng.next();
-                    if (i < grid * grid) {
-                        jx = (float(i % grid) + jx) / float(grid);
-                        jy = (float(i / grid) + jy) / float(grid);
+            errors.run(y, [&] {
+                RTCIntersectContext ictx;
+                rtcInitIntersectContext(&ictx);
+                for (int x = 0; x < s.width; ++x) {
+                    const std::size_t pixel =
+                        std::size_t(y) * std::size_t(s.width) + std::size_t(x);
+                    std::uint8_t* out = &image.rgb[pixel * 3];
+                    auto direction = [&](float px, float py) {
+                        const float sx = 2.0f * px / float(s.width) - 1.0f;
+                        const float sy = 1.0f - 2.0f * py / float(s.height);
+                        return glm::normalize(s.forward + sx * s.right + sy * s.up);
+                    };
+                    if (label) {
+                        const vec3 dir = direction(float(x) + 0.5f, float(y) + 0.5f);
+                        const auto c = labelColor(s, intersect(s, ictx, s.eye, dir), o.mode);
+                        out[0] = c[0];
+                        out[1] = c[1];
+                        out[2] = c[2];
+                        continue;
                     }
-                    si.index = i;
-                    sum += traceCamera(s, ictx, direction(float(x) + jx, float(y) + jy), si);
+                    PixelSampler rng(s.seed, pixel);
+                    SampleIndex si{0, vec2(rng.next(), rng.next()), vec2(rng.next(), rng.next())};
+                    vec3 sum(0.0f);
+                    for (int i = 0; i < s.spp; ++i) {
+                        // Stratified on a grid x grid pattern; samples beyond it are uniform.
+                        float jx = rng.next(), jy = rng.next();
+                        if (i < grid * grid) {
+                            jx = (float(i % grid) + jx) / float(grid);
+                            jy = (float(i / grid) + jy) / float(grid);
+                        }
+                        si.index = i;
+                        sum += traceCamera(s, ictx, direction(float(x) + jx, float(y) + jy), si);
+                    }
+                    const vec3 c = sum * (s.exposure / float(s.spp));
+                    out[0] = render_detail::linearToSrgbByte(c.x);
+                    out[1] = render_detail::linearToSrgbByte(c.y);
+                    out[2] = render_detail::linearToSrgbByte(c.z);
                 }
-                const vec3 c = sum * (s.exposure / float(s.spp));
-                out[0] = render_detail::linearToSrgbByte(c.x);
-                out[1] = render_detail::linearToSrgbByte(c.y);
-                out[2] = render_detail::linearToSrgbByte(c.z);
-            }
+            });
         }
+        errors.rethrow();
         if (o.progress) o.progress("rendering", double(y1) / double(s.height));
     }
     return image;
@@ -528,20 +534,24 @@ DepthImage RenderScene::renderDepth(const RenderOptions& o) const {
     depth.height = o.height;
     depth.depth.assign(std::size_t(o.width) * std::size_t(o.height), 0.0f);
     const vec3 axis = glm::normalize(s.forward);
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int y = 0; y < s.height; ++y) {
-        RTCIntersectContext ictx;
-        rtcInitIntersectContext(&ictx);
-        for (int x = 0; x < s.width; ++x) {
-            const float sx = 2.0f * (float(x) + 0.5f) / float(s.width) - 1.0f;
-            const float sy = 1.0f - 2.0f * (float(y) + 0.5f) / float(s.height);
-            const vec3 dir = glm::normalize(s.forward + sx * s.right + sy * s.up);
-            const Hit hit = intersect(s, ictx, s.eye, dir);
-            if (hit.found)
-                depth.depth[std::size_t(y) * std::size_t(s.width) + std::size_t(x)] =
-                    hit.t * glm::dot(dir, axis);
-        }
+        errors.run(y, [&] {
+            RTCIntersectContext ictx;
+            rtcInitIntersectContext(&ictx);
+            for (int x = 0; x < s.width; ++x) {
+                const float sx = 2.0f * (float(x) + 0.5f) / float(s.width) - 1.0f;
+                const float sy = 1.0f - 2.0f * (float(y) + 0.5f) / float(s.height);
+                const vec3 dir = glm::normalize(s.forward + sx * s.right + sy * s.up);
+                const Hit hit = intersect(s, ictx, s.eye, dir);
+                if (hit.found)
+                    depth.depth[std::size_t(y) * std::size_t(s.width) + std::size_t(x)] =
+                        hit.t * glm::dot(dir, axis);
+            }
+        });
     }
+    errors.rethrow();
     return depth;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/value_text.h"
 #include "io/export_common.h"
 #include "plantarch/Error.h"
@@ -130,39 +131,43 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
         const std::int64_t band = 64;
         for (std::int64_t r0 = 0; data.triangles > 0 && r0 < nrows; r0 += band) {
             const std::int64_t r1 = std::min(nrows, r0 + band);
+            ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
             for (std::int64_t r = r0; r < r1; ++r) {
-                RTCIntersectContext ictx;
-                rtcInitIntersectContext(&ictx);
-                const double zenith = (zenith0 + double(r) * step) * toRad;
-                const double sz = std::sin(zenith), cz = std::cos(zenith);
-                Row& row = rows[std::size_t(r)];
-                for (std::uint64_t c = 0; c < g.columns; ++c) {
-                    const double azimuth = (azimuth0 + double(c) * step) * toRad;
-                    const vec3 dir(float(sz * std::cos(azimuth)), float(sz * std::sin(azimuth)),
-                                   float(cz));
-                    RTCRayHit rh = render_detail::rayHit(s.origin, dir, options.maxRange);
-                    rtcIntersect1(data.scene, &ictx, &rh);
-                    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-                    float range = rh.ray.tfar;
-                    if (options.rangeNoise > 0.0f) {
-                        // Box-Muller from the ray's own stream.
-                        render_detail::PixelSampler rng(
-                            options.seed ^ (0x9E3779B97F4A7C15ULL * (si + 1)),
-                            std::uint64_t(r) * g.columns + c);
-                        const float u1 = std::max(rng.next(), 0x1p-24f), u2 = rng.next();
-                        range += options.rangeNoise * std::sqrt(-2.0f * std::log(u1)) *
-                                 std::cos(2.0f * std::numbers::pi_v<float> * u2);
+                errors.run(r, [&] {
+                    RTCIntersectContext ictx;
+                    rtcInitIntersectContext(&ictx);
+                    const double zenith = (zenith0 + double(r) * step) * toRad;
+                    const double sz = std::sin(zenith), cz = std::cos(zenith);
+                    Row& row = rows[std::size_t(r)];
+                    for (std::uint64_t c = 0; c < g.columns; ++c) {
+                        const double azimuth = (azimuth0 + double(c) * step) * toRad;
+                        const vec3 dir(float(sz * std::cos(azimuth)), float(sz * std::sin(azimuth)),
+                                       float(cz));
+                        RTCRayHit rh = render_detail::rayHit(s.origin, dir, options.maxRange);
+                        rtcIntersect1(data.scene, &ictx, &rh);
+                        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+                        float range = rh.ray.tfar;
+                        if (options.rangeNoise > 0.0f) {
+                            // Box-Muller from the ray's own stream.
+                            render_detail::PixelSampler rng(
+                                options.seed ^ (0x9E3779B97F4A7C15ULL * (si + 1)),
+                                std::uint64_t(r) * g.columns + c);
+                            const float u1 = std::max(rng.next(), 0x1p-24f), u2 = rng.next();
+                            range += options.rangeNoise * std::sqrt(-2.0f * std::log(u1)) *
+                                     std::cos(2.0f * std::numbers::pi_v<float> * u2);
+                        }
+                        vec3 n = glm::normalize(vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+                        if (glm::dot(n, dir) > 0.0f) n = -n;
+                        const render_detail::GeometryData& geom = data.geometries[rh.hit.geomID];
+                        row.positions.push_back(s.origin + range * dir);
+                        row.normals.push_back(n);
+                        row.slots.push_back(geom.triangleObject[rh.hit.primID]);
+                        row.ranges.push_back(range);
                     }
-                    vec3 n = glm::normalize(vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-                    if (glm::dot(n, dir) > 0.0f) n = -n;
-                    const render_detail::GeometryData& geom = data.geometries[rh.hit.geomID];
-                    row.positions.push_back(s.origin + range * dir);
-                    row.normals.push_back(n);
-                    row.slots.push_back(geom.triangleObject[rh.hit.primID]);
-                    row.ranges.push_back(range);
-                }
+                });
             }
+            errors.rethrow();
             if (options.progress && r1 < nrows)
                 options.progress("scanning",
                                  double(rowsDone + std::uint64_t(r1)) / double(totalRows));

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/parallel.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
 
@@ -161,43 +162,47 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
 
     // ---- fill, one object per iteration (objects are independent) -------------------------
     const std::ptrdiff_t n = std::ptrdiff_t(placements.size());
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::ptrdiff_t i = 0; i < n; ++i) {
-        const Placement& p = placements[std::size_t(i)];
-        const ObjectView view = ctx.object(p.id);
-        GeometryData& g = data.geometries[p.geometry];
-        float* pos = positions[p.geometry] + 3 * p.firstVertex;
-        for (std::size_t v = 0; v < view.positions.size(); ++v) {
-            pos[3 * v] = view.positions[v].x;
-            pos[3 * v + 1] = view.positions[v].y;
-            pos[3 * v + 2] = view.positions[v].z;
-        }
-        std::uint32_t* idx = indices[p.geometry] + 3 * p.firstTriangle;
-        const auto base = std::uint32_t(p.firstVertex);
-        for (std::size_t j = 0; j < view.indices.size(); ++j) idx[j] = base + view.indices[j];
-        std::fill_n(g.triangleObject.begin() + std::ptrdiff_t(p.firstTriangle),
-                    view.triangleCount(), p.slot);
-        if (!g.uvs.empty() && !view.uvs.empty())
-            std::copy(view.uvs.begin(), view.uvs.end(),
-                      g.uvs.begin() + std::ptrdiff_t(p.firstVertex));
-        if (!g.normals.empty()) {
-            // Area-weighted face normals summed at shared vertices.
-            vec3* normal = g.normals.data() + p.firstVertex;
-            for (std::size_t t = 0; t + 2 < view.indices.size(); t += 3) {
-                const std::uint32_t a = view.indices[t], b = view.indices[t + 1],
-                                    c = view.indices[t + 2];
-                const vec3 face = glm::cross(view.positions[b] - view.positions[a],
-                                             view.positions[c] - view.positions[a]);
-                normal[a] += face;
-                normal[b] += face;
-                normal[c] += face;
-            }
+        errors.run(i, [&] {
+            const Placement& p = placements[std::size_t(i)];
+            const ObjectView view = ctx.object(p.id);
+            GeometryData& g = data.geometries[p.geometry];
+            float* pos = positions[p.geometry] + 3 * p.firstVertex;
             for (std::size_t v = 0; v < view.positions.size(); ++v) {
-                const float len = glm::length(normal[v]);
-                normal[v] = len > 0.0f ? normal[v] / len : vec3(0.0f);
+                pos[3 * v] = view.positions[v].x;
+                pos[3 * v + 1] = view.positions[v].y;
+                pos[3 * v + 2] = view.positions[v].z;
             }
-        }
+            std::uint32_t* idx = indices[p.geometry] + 3 * p.firstTriangle;
+            const auto base = std::uint32_t(p.firstVertex);
+            for (std::size_t j = 0; j < view.indices.size(); ++j) idx[j] = base + view.indices[j];
+            std::fill_n(g.triangleObject.begin() + std::ptrdiff_t(p.firstTriangle),
+                        view.triangleCount(), p.slot);
+            if (!g.uvs.empty() && !view.uvs.empty())
+                std::copy(view.uvs.begin(), view.uvs.end(),
+                          g.uvs.begin() + std::ptrdiff_t(p.firstVertex));
+            if (!g.normals.empty()) {
+                // Area-weighted face normals summed at shared vertices.
+                vec3* normal = g.normals.data() + p.firstVertex;
+                for (std::size_t t = 0; t + 2 < view.indices.size(); t += 3) {
+                    const std::uint32_t a = view.indices[t], b = view.indices[t + 1],
+                                        c = view.indices[t + 2];
+                    const vec3 face = glm::cross(view.positions[b] - view.positions[a],
+                                                 view.positions[c] - view.positions[a]);
+                    normal[a] += face;
+                    normal[b] += face;
+                    normal[c] += face;
+                }
+                for (std::size_t v = 0; v < view.positions.size(); ++v) {
+                    const float len = glm::length(normal[v]);
+                    normal[v] = len > 0.0f ? normal[v] / len : vec3(0.0f);
+                }
+            }
+        });
     }
+    errors.rethrow();
 
     for (int k = 0; k < 2; ++k) {
         GeometryData& g = data.geometries[k];
