@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/value_text.h"
 #include "core/xml_reader.h"
 #include "library/expression.h"
@@ -584,12 +585,7 @@ SpeciesModel readSpeciesString(const std::string& xml, const std::string& nameFo
 }
 
 SpeciesModel readSpeciesFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot open species file", {.file = path});
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error("cannot read species file", {.file = path});
-    return readSpeciesString(text.str(), path);
+    return readSpeciesString(io::readWholeFile(path, "species file"), path);
 }
 
 }  // namespace plantarch
