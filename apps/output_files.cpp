@@ -64,9 +64,10 @@ std::string outputExtensions(unsigned uses) {
 void requireOutputFormat(const std::string& path, unsigned uses, const std::string& what) {
     if (outputFormat(path, uses)) return;
     const std::string ext = lowerExtension(path);
-    throw Error(what, {.file = path,
-                       .value = ext.empty() ? "no extension" : ext,
-                       .validRange = outputExtensions(uses)});
+    if (ext.empty())
+        throw Error(what + ": the name has no extension",
+                    {.file = path, .validRange = outputExtensions(uses)});
+    throw Error(what, {.file = path, .value = ext, .validRange = outputExtensions(uses)});
 }
 
 // ---- CommandOutputs ------------------------------------------------------------------------

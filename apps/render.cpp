@@ -72,8 +72,8 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     requireInputFile(a.input, "OBJ file");
     const bool depth = a.label == "depth";
     requireOutputFormat(a.output, depth ? kDepthOutput : kPictureOutput,
-                        depth ? "a depth image is written as distances (.npy) or a picture"
-                              : "render writes a picture");
+                        depth ? "a depth image is written as .npy (distances) or .png (a picture)"
+                              : "render writes a PNG picture");
     const std::string ext = lowerExtension(a.output);
     RenderOptions o;
     o.width = a.width;
