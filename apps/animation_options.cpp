@@ -58,11 +58,12 @@ std::optional<GrowthFrames> prepareGrowthOutputs(const std::vector<std::string>&
     const std::optional<GrowthFrames> frames = parseFrames(animation);
     requireAgeOrFrames(age, frames.has_value());
     if (frames && outputs.empty())
-        throw Error("--frames writes an animation: give -o FILE.glb, .gltf or .usda");
+        throw Error("--frames writes an animation: give -o FILE (" +
+                    outputExtensions(kAnimationOutput) + ")");
     if (frames)
-        prepareAnimationOutputs(outputs);
+        checkAnimationOutputs(outputs);
     else
-        preparePlantOutputs(outputs, points);
+        checkSceneOutputs(outputs, points, true);
     return frames;
 }
 
@@ -73,14 +74,9 @@ void requireAgeOrFrames(float age, bool frames) {
         throw Error("--age is required (or --frames for a growth animation)");
 }
 
-void prepareAnimationOutputs(const std::vector<std::string>& paths) {
-    for (const std::string& out : paths) {
-        const std::string ext = lowerExtension(out);
-        if (ext != ".glb" && ext != ".gltf" && ext != ".usda")
-            throw Error("--frames writes an animation: outputs are .glb, .gltf or .usda",
-                        {.file = out, .value = ext, .validRange = ".glb, .gltf, .usda"});
-    }
-    prepareSceneOutputs(paths);
+void checkAnimationOutputs(const std::vector<std::string>& paths) {
+    for (const std::string& out : paths)
+        requireOutputFormat(out, kAnimationOutput, "--frames writes an animation");
 }
 
 }  // namespace plantarch::cli

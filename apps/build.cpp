@@ -36,7 +36,8 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
     addAnimationOptions(app, a->animation, "of age");
     app.add_option("-o,--output", a->outputs,
-                   "Output file(s): " + plantFileExtensions() + " (none with --stats)");
+                   "Output file(s): " + outputExtensions(kSceneOutput | kPlantOutput) +
+                       " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     addObjectIDsOption(app, global);
@@ -46,6 +47,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         const std::optional<GrowthFrames> frames =
             prepareGrowthOutputs(a->outputs, a->stats, a->age, a->animation, global.points);
         checkCollisionOptions(a->collision);
+        CommandOutputs outputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -64,6 +66,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         } else {
             for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
         }
+        outputs.commit();
         if (a->stats) {
             std::printf("%s\n", plantStatsJSON(arch, ctx, plant, global.seed).c_str());
         } else {

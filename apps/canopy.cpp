@@ -62,7 +62,8 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_flag("--no-trellis", a->noTrellis,
                  "Leave out the species' trellis (posts and wires drawn with trellis species)");
     app.add_option("-o,--output", a->outputs,
-                   "Output file(s): " + plantFileExtensions() + " (none with --stats)");
+                   "Output file(s): " + outputExtensions(kSceneOutput | kPlantOutput) +
+                       " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     addObjectIDsOption(app, global);
@@ -88,6 +89,11 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
             throw Error("--plant-origin places the plants of separate files",
                         {.parameter = "--plant-origin", .validRange = "with --separate"});
         checkCollisionOptions(a->collision);
+        // Separate files get their names once the plants are known: their folder is checked
+        // through the index's name.
+        CommandOutputs outputs(a->separate
+                                   ? std::vector<std::string>{separateIndexName(a->outputs.front())}
+                                   : a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -108,6 +114,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
             writeSeparatePlantOutputs(arch, plants, a->outputs, a->plantOrigin, global);
         else
             for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+        outputs.commit();
         if (a->stats) {
             for (unsigned p : plants)
                 std::printf("%s\n", plantStatsJSON(arch, ctx, p, global.seed).c_str());

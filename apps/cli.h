@@ -5,15 +5,19 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plantarch/Context.h"
 #include "plantarch/Export.h"
 #include "plantarch/ExportPlants.h"
+#include "plantarch/OutputFiles.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Progress.h"
 
@@ -83,21 +87,66 @@ ProgressCallback terminalProgress();
 /// Wipes the bar if one is on screen (before a message on stderr).
 void clearProgress();
 
-/// Checks every output's format before any work is done and creates missing directories;
-/// throws plantarch::Error naming the first bad path.
-/// `points` is --points: .npz outputs (point clouds) need it.
-void prepareSceneOutputs(const std::vector<std::string>& paths, std::size_t points = 0);
+// ---- output files (output_files.cpp) ------------------------------------------------------
+
+/// What a command may write into a file; each format declares the uses it serves.
+enum OutputUse : unsigned {
+    kSceneOutput = 1,      ///< a scene, through writeSceneFile
+    kPlantOutput = 2,      ///< plants as plants (structure, strings, cylinders): writePlantOutput
+    kAnimationOutput = 4,  ///< a growth animation (--frames)
+    kPictureOutput = 8,    ///< a picture (render, compare)
+    kScanOutput = 16,      ///< a labelled point cloud (scan)
+    kDepthOutput = 32,     ///< a depth image (render --label depth)
+};
+/// One file format a command writes.
+struct OutputFormat {
+    std::string_view extension;    ///< lower case, with its dot: ".obj", ".helios.xml"
+    std::string_view description;  ///< for help texts
+    unsigned uses;                 ///< OutputUse bits
+};
+/// Every output format, in the order they are listed to users.
+std::span<const OutputFormat> outputFormats();
+/// The format of `path` (its name's ending, in any case) among those serving one of `uses`;
+/// null when none.
+const OutputFormat* outputFormat(const std::string& path, unsigned uses);
+/// The extensions of the formats serving one of `uses`, for help texts and errors.
+std::string outputExtensions(unsigned uses);
+/// Throws plantarch::Error "`what`" naming the path, its extension and the valid extensions
+/// unless `path` has a format serving one of `uses`.
+void requireOutputFormat(const std::string& path, unsigned uses, const std::string& what);
 
 /// A path's extension in lower case, with its dot (".obj"); empty when it has none.
 std::string lowerExtension(const std::string& path);
-/// Creates the missing folders of each output path; throws plantarch::Error naming the first
-/// that cannot be made.
-void createOutputFolders(const std::vector<std::string>& paths);
 
-/// Whether writeSceneFile writes this extension (lower case, with its dot).
-bool isSceneExtension(const std::string& ext);
-/// The extensions writeSceneFile accepts, for help text and errors.
-std::string sceneFileExtensions();
+/// The files one command writes. Made before any work: it creates the missing folders of each
+/// path and checks that each can be written (checkOutputPath: not a directory, a folder that
+/// takes new files; an .obj's .mtl not a directory), then opens an OutputSet, so that every
+/// file written afterwards is held back. commit() puts them all in place together. Destroyed
+/// without commit() (the command failed), it discards them: no target is created or replaced,
+/// and the folders it made are removed again.
+class CommandOutputs {
+public:
+    explicit CommandOutputs(const std::vector<std::string>& paths);
+    ~CommandOutputs();
+    CommandOutputs(const CommandOutputs&) = delete;
+    CommandOutputs& operator=(const CommandOutputs&) = delete;
+    /// One more file, checked in the same way (an index, annotations).
+    void add(const std::string& path);
+    void commit();
+
+private:
+    void makeFolders(const std::string& path);
+    void removeMadeFolders();
+    std::vector<std::filesystem::path> madeFolders_;
+    std::optional<OutputSet> set_;
+    bool committed_ = false;
+};
+
+/// Checks each output's format (a scene format, or .xml, .txt, .csv too with `plants`) before
+/// any work; `points` is --points: .npz outputs (point clouds) need it. Throws
+/// plantarch::Error naming the first bad path.
+void checkSceneOutputs(const std::vector<std::string>& paths, std::size_t points = 0,
+                       bool plants = false);
 
 /// A CLI11 check of a numeric option, run on its text before conversion, so every bad value
 /// gets one message: "--age = -3: not a number of days (valid: 0 to 100000)". `what` names
@@ -122,14 +171,13 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
 
 // ---- plant outputs (plant_output.cpp) ---------------------------------------------------
 
-/// The extensions writePlantOutput accepts: the scene formats, .xml (plant structure file)
-/// and .txt (plant strings, one per line).
-std::string plantFileExtensions();
-/// Writes `text` through a temporary file renamed into place (never half a file).
+/// Writes `text` as one file, whole or not at all (held back by an open OutputSet).
 void writeWholeFile(const std::string& path, const std::string& text);
 
 /// `path` with the plant's ID before the extension: field.glb -> field_0007.glb.
 std::string separateFileName(const std::string& path, unsigned plant);
+/// The index of separate files: <stem of `path`>_index.json beside it.
+std::string separateIndexName(const std::string& path);
 /// One file per plant for each output path (separateFileName), each in scene coordinates or,
 /// with `ownOrigin`, moved so that the plant's base is at the origin; and one index,
 /// <stem of the first output>_index.json, of the plants' IDs, files, positions, species, ages
@@ -138,12 +186,14 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
                                const std::vector<std::string>& paths, bool ownOrigin,
                                const GlobalOptions& g);
 
-/// prepareSceneOutputs for commands that have plants: .xml and .txt are accepted too.
-void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t points = 0);
 /// Writes `plants` of `arch` to `path`: a plant structure file (.xml), plant strings
 /// (.txt), or the whole scene through writeSceneFile.
 void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
                       const std::string& path, const GlobalOptions& g);
+/// Throws plantarch::Error naming `path` (and `option`, if given) unless it is a file that
+/// opens: "is a directory, not a <what>" or "cannot open <what>".
+void requireInputFile(const std::string& path, const std::string& what,
+                      const std::string& option = "");
 /// Reads plants from a plant structure file (.xml; its warnings go to stderr) or a file of
 /// plant strings (.txt, whose shoot types come from `species`, required then). Returns
 /// the plants' IDs.
@@ -168,13 +218,13 @@ std::optional<GrowthFrames> parseFrames(const AnimationArgs& args);
 void requireAgeOrFrames(float age, bool frames);
 /// The checks `build` and `canopy` make of their outputs before any work: an output unless
 /// --stats, exactly one of --age and --frames, and each output's format (an animation format
-/// with --frames); missing folders are made. Returns the frames asked for, if any.
+/// with --frames). Returns the frames asked for, if any.
 std::optional<GrowthFrames> prepareGrowthOutputs(const std::vector<std::string>& outputs,
                                                  bool stats, float age,
                                                  const AnimationArgs& animation,
                                                  std::size_t points);
 /// Checks that every output is an animation format (.glb, .gltf, .usda), before any work.
-void prepareAnimationOutputs(const std::vector<std::string>& paths);
+void checkAnimationOutputs(const std::vector<std::string>& paths);
 
 /// Collision avoidance options of `build` and `canopy` (collision_options.cpp).
 struct CollisionArgs {

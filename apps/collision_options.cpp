@@ -138,12 +138,9 @@ void checkCollisionOptions(const CollisionArgs& a) {
     if (!a.attractionCone.empty())
         numbers(a.attractionCone, 3, "--attraction-cone",
                 "half-angle,look-ahead,inertia e.g. 80,0.1,0.4");
-    for (const std::string& f : a.obstacles)
-        if (!std::ifstream(f))
-            throw Error("cannot open obstacle file", {.file = f, .parameter = "--obstacle"});
-    if (!a.attractionPoints.empty() && !std::ifstream(a.attractionPoints))
-        throw Error("cannot open attraction point file",
-                    {.file = a.attractionPoints, .parameter = "--attraction-points"});
+    for (const std::string& f : a.obstacles) requireInputFile(f, "obstacle file", "--obstacle");
+    if (!a.attractionPoints.empty())
+        requireInputFile(a.attractionPoints, "attraction point file", "--attraction-points");
 }
 
 void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Context& ctx) {

@@ -178,11 +178,10 @@ Image join(const std::vector<Image>& parts, bool across) {
 }
 
 int run(const CompareArgs& a, const GlobalOptions& global) {
-    if (!a.output.ends_with(".png"))
-        throw Error("the comparison is a picture",
-                    {.parameter = "-o", .value = a.output, .validRange = "a .png file"});
+    requireOutputFormat(a.output, kPictureOutput, "the comparison is a picture");
     Image reference;
     if (!a.reference.empty()) reference = readImage(a.reference);  // before any work
+    CommandOutputs outputs({a.output});
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.setSeed(global.seed);
@@ -221,6 +220,7 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     scaleBar(right, scale);
     Image ours = join({left, right}, true);
     writePNG(reference.width > 0 ? join({reference, ours}, false) : ours, a.output);
+    outputs.commit();
     std::printf("%s",
                 fmt::format("{} at {} days (seed {}): height {:.2f} m, {} triangles; "
                             "{:.0f} pixels per metre; written to {}.\n",

@@ -24,7 +24,9 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
         ".obj, .ply and .png");
     auto a = std::make_shared<ConvertArgs>();
     app.add_option("input", a->input, "Plant file (.xml or .txt) or geometry (.obj)")->required();
-    app.add_option("output", a->output, "Output file: " + plantFileExtensions())->required();
+    app.add_option("output", a->output,
+                   "Output file: " + outputExtensions(kSceneOutput | kPlantOutput))
+        ->required();
     app.add_option("--species", a->species,
                    "Species giving the shoot types of plant strings (.txt input) and the "
                    "defaults of listing-form .xml files");
@@ -32,27 +34,27 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
     addStringDigitsOption(app, global);
     addObjectIDsOption(app, global);
     return [a, &global]() {
-        preparePlantOutputs({a->output}, global.points);
-        std::string in = std::filesystem::path(a->input).extension().string();
-        for (char& c : in) c = char(std::tolower(static_cast<unsigned char>(c)));
+        checkSceneOutputs({a->output}, global.points, true);
+        const std::string in = lowerExtension(a->input);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
         arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         if (in == ".obj") {
-            std::string out = std::filesystem::path(a->output).extension().string();
-            for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
-            if (out == ".xml" || out == ".txt")
-                throw Error("an OBJ file holds geometry only, not the plant structure",
-                            {.file = a->output, .value = out, .validRange = sceneFileExtensions()});
+            requireOutputFormat(a->output, kSceneOutput,
+                                "an OBJ file holds geometry only, not the plant structure");
+            CommandOutputs outputs({a->output});
             readOBJ(ctx, a->input, {.progress = terminalProgress()});
             writeSceneFile(ctx, a->output, global);
+            outputs.commit();
             return 0;
         }
+        CommandOutputs outputs({a->output});
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
         info(global, "read " + std::to_string(plants.size()) + " plant(s) from " + a->input);
         writePlantOutput(arch, plants, a->output, global);
+        outputs.commit();
         return 0;
     };
 }

@@ -124,9 +124,9 @@ std::function<int()> setupDemo(CLI::App& app, GlobalOptions& global) {
     auto out = std::make_shared<std::string>("out");
     app.add_option("-o,--output", *out, "Output directory (created if missing)");
     return [out, &global]() {
-        std::error_code ec;
-        std::filesystem::create_directories(*out, ec);
-        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = *out});
+        const std::string obj = (std::filesystem::path(*out) / "demo.obj").string();
+        const std::string png = (std::filesystem::path(*out) / "demo.png").string();
+        CommandOutputs outputs({obj, png});
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -134,10 +134,9 @@ std::function<int()> setupDemo(CLI::App& app, GlobalOptions& global) {
         arch.setMeshDetail(global.meshDetail);
         demoShootTypes(arch);
         const unsigned plant = buildDemoPlant(arch, {0, 0, 0});
-        const std::string obj = (std::filesystem::path(*out) / "demo.obj").string();
-        const std::string png = (std::filesystem::path(*out) / "demo.png").string();
         writeSceneFile(ctx, obj, global);
         writeSceneFile(ctx, png, global);
+        outputs.commit();
         std::printf(
             "%s", fmt::format("Demo plant (seed {}): {} shoots, {} leaves (leaflets counted), "
                               "{:.3f} m^2 one-sided leaf area, {:.3f} m tall, {} objects and {} "

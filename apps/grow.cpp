@@ -31,7 +31,8 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--days", a->days, "Days to grow (0 to 100000)")->check(daysCheck("--days"));
     addAnimationOptions(app, a->animation, "of growth from the file's state");
-    app.add_option("-o,--output", a->outputs, "Output file(s): " + plantFileExtensions())
+    app.add_option("-o,--output", a->outputs,
+                   "Output file(s): " + outputExtensions(kSceneOutput | kPlantOutput))
         ->required();
     app.add_option("--species", a->species,
                    "Species giving the shoot types of plant strings (.txt input)");
@@ -45,9 +46,10 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         if (!frames && a->days < 0.0)
             throw Error("--days is required (or --frames for a growth animation)");
         if (frames)
-            prepareAnimationOutputs(a->outputs);
+            checkAnimationOutputs(a->outputs);
         else
-            preparePlantOutputs(a->outputs, global.points);
+            checkSceneOutputs(a->outputs, global.points, true);
+        CommandOutputs outputs(a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -63,6 +65,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
             arch.advanceTime(plants, a->days);
             for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
         }
+        outputs.commit();
         std::size_t leaves = 0;
         for (unsigned p : plants) leaves += arch.getPlantLeafCount(p);
         std::printf("%s", fmt::format("{} plant(s) grown {} days: {} leaves, {} triangles.\n",

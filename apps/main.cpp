@@ -252,6 +252,7 @@ int main(int argc, char** argv) {
         ->check(numberCheck("--mesh-detail", "a mesh detail", 0.1, 4.0, false, "0.1 to 4"));
 
     setProgressMode(ProgressMode::Auto);
+    plantarch::removeTemporaryFilesOnSignal();  // named temporaries go on SIGINT and SIGTERM
     auto& registry = commandRegistry();
     std::sort(registry.begin(), registry.end(),
               [](const Command& a, const Command& b) { return a.order < b.order; });

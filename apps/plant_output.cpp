@@ -20,27 +20,7 @@
 namespace plantarch::cli {
 
 void writeWholeFile(const std::string& path, const std::string& text) {
-    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
-    {
-        std::ofstream out(temp, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(temp, ec);
-            throw Error("cannot write", {.file = path});
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        throw Error("cannot write: " + ec.message(), {.file = path});
-    }
-}
-
-std::string plantFileExtensions() {
-    return sceneFileExtensions() + ", .xml, .helios.xml, .txt, .csv";
+    writeFileAtomically(path, text);
 }
 
 namespace {
@@ -56,21 +36,6 @@ bool isHeliosPath(const std::string& path) {
 }
 
 }  // namespace
-
-void preparePlantOutputs(const std::vector<std::string>& paths, std::size_t points) {
-    std::vector<std::string> scenes;
-    for (const std::string& out : paths) {
-        const std::string ext = lowerExtension(out);
-        if (ext != ".xml" && ext != ".txt" && ext != ".csv") {
-            if (!isSceneExtension(ext))
-                throw Error("unknown output format",
-                            {.file = out, .value = ext, .validRange = plantFileExtensions()});
-            scenes.push_back(out);
-        }
-    }
-    prepareSceneOutputs(scenes, points);
-    createOutputFolders(paths);
-}
 
 void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
                       const std::string& path, const GlobalOptions& g) {
@@ -140,6 +105,11 @@ std::string separateFileName(const std::string& path, unsigned plant) {
     return (p.parent_path() / (stem + id + ext)).string();
 }
 
+std::string separateIndexName(const std::string& path) {
+    const std::filesystem::path p(path);
+    return (p.parent_path() / (p.stem().string() + "_index.json")).string();
+}
+
 void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
                                const std::vector<std::string>& paths, bool ownOrigin,
                                const GlobalOptions& g) {
@@ -177,8 +147,18 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
     }
     if (progress) progress("writing files", 1.0);
     index += "\n  ]\n}\n";
-    const std::filesystem::path p(paths.front());
-    writeWholeFile((p.parent_path() / (p.stem().string() + "_index.json")).string(), index);
+    writeWholeFile(separateIndexName(paths.front()), index);
+}
+
+void requireInputFile(const std::string& path, const std::string& what, const std::string& option) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        const bool vowel = std::string_view("aeiouAEIOU").find(what.at(0)) != std::string::npos;
+        throw Error("is a directory, not " + std::string(vowel ? "an " : "a ") + what,
+                    {.file = path, .parameter = option});
+    }
+    if (!std::ifstream(path))
+        throw Error("cannot open " + what, {.file = path, .parameter = option});
 }
 
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
@@ -201,6 +181,7 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                     {.file = path,
                      .parameter = "--species",
                      .validRange = "a library species or species file"});
+    requireInputFile(path, "plant string file");
     arch.loadPlantModelFromLibrary(species);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))

@@ -69,20 +69,12 @@ void organsFromNames(Context& ctx, const std::vector<ObjectID>& ids) {
 
 int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto start = std::chrono::steady_clock::now();
-    if (!std::filesystem::is_regular_file(a.input)) throw Error("no such file", {.file = a.input});
-    // Fail before the costly part when the PNG could not be written anyway.
-    const auto outDir = std::filesystem::path(a.output).parent_path();
-    if (!outDir.empty() && !std::filesystem::is_directory(outDir))
-        throw Error("cannot write: no such directory", {.file = a.output});
-    const auto cocoDir = std::filesystem::path(a.coco).parent_path();
-    if (!a.coco.empty() && !cocoDir.empty() && !std::filesystem::is_directory(cocoDir))
-        throw Error("cannot write: no such directory", {.file = a.coco});
-    const std::string ext = lowerExtension(a.output);
+    requireInputFile(a.input, "OBJ file");
     const bool depth = a.label == "depth";
-    if (ext != ".png" && !(depth && ext == ".npy"))
-        throw Error(depth ? "a depth image is written as .npy (distances) or .png (a picture)"
-                          : "render writes a PNG picture",
-                    {.file = a.output, .value = ext, .validRange = depth ? ".npy, .png" : ".png"});
+    requireOutputFormat(a.output, depth ? kDepthOutput : kPictureOutput,
+                        depth ? "a depth image is written as .npy (distances) or .png (a picture)"
+                              : "render writes a PNG picture");
+    const std::string ext = lowerExtension(a.output);
     RenderOptions o;
     o.width = a.width;
     o.height = a.height;
@@ -101,6 +93,9 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     if (hasTarget && a.eye.empty())
         throw Error("--target needs --eye", {.parameter = "--target", .value = a.target});
 
+    // Fail before the costly part when an output could not be written anyway.
+    CommandOutputs outputs({a.output});
+    if (!a.coco.empty()) outputs.add(a.coco);
     Context ctx;
     const std::vector<ObjectID> ids = readOBJ(ctx, a.input, {.progress = terminalProgress()});
     organsFromNames(ctx, ids);
@@ -130,6 +125,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
         writeWholeFile(a.coco, text);
         info(g, "wrote " + a.coco);
     }
+    outputs.commit();
     using seconds = std::chrono::duration<double>;
     info(g,
          fmt::format("wrote {} ({}x{}): read and BVH {:.3f} s, rays {:.3f} s", a.output, o.width,

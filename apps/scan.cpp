@@ -66,14 +66,10 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
     o.maxRange = a.maxRange;
     o.seed = g.seed;
     o.progress = terminalProgress();
-    for (const std::string& out : a.outputs) {
-        const std::string ext = lowerExtension(out);
-        if (ext != ".ply" && ext != ".npz")
-            throw Error("a scan is written as .ply or .npz",
-                        {.file = out, .value = ext, .validRange = ".ply, .npz"});
-    }
+    for (const std::string& out : a.outputs)
+        requireOutputFormat(out, kScanOutput, "a scan is written as a point cloud");
     checkScanOptions(o);  // before the input is read
-    createOutputFolders(a.outputs);
+    CommandOutputs outputs(a.outputs);
 
     Context ctx;
     std::unique_ptr<PlantArchitecture> arch;  // holds the plants while they are scanned
@@ -92,6 +88,7 @@ int run(const ScanArgs& a, const GlobalOptions& g) {
         else
             writePointCloudPLY(points, out, terminalProgress());
     }
+    outputs.commit();
     std::printf("%s", fmt::format("{} points from {} scanner(s) of {} rays each, {} triangles in "
                                   "the scene; written to {}.\n",
                                   points.positions.size(), o.scanners.size(),

@@ -16,30 +16,6 @@
 
 namespace plantarch::cli {
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
-void createOutputFolders(const std::vector<std::string>& paths) {
-    for (const std::string& out : paths) {
-        const auto dir = std::filesystem::path(out).parent_path();
-        std::error_code ec;
-        if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-        if (ec) throw Error("cannot create output directory: " + ec.message(), {.file = out});
-    }
-}
-
-bool isSceneExtension(const std::string& ext) {
-    return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".usda" ||
-           ext == ".png" || ext == ".npz";
-}
-
-std::string sceneFileExtensions() {
-    return ".obj, .ply, .glb, .gltf, .usda, .png, .npz";
-}
-
 void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
                     const std::vector<GltfPlant>& plants, bool showProgress) {
     const std::string ext = lowerExtension(path);
@@ -73,24 +49,21 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         o.seed = g.seed;
         writePNG(render(ctx, o), path);
     } else {
-        throw Error(
-            "unknown output format",
-            {.file = path, .value = ext.empty() ? path : ext, .validRange = sceneFileExtensions()});
+        requireOutputFormat(path, kSceneOutput, "unknown output format");
+        throw Error("an .npz output is a point cloud: give --points N",
+                    {.file = path, .parameter = "--points", .validRange = "1 to 2147483648"});
     }
     info(g, "wrote " + path);
 }
 
-void prepareSceneOutputs(const std::vector<std::string>& paths, std::size_t points) {
+void checkSceneOutputs(const std::vector<std::string>& paths, std::size_t points, bool plants) {
     for (const std::string& out : paths) {
-        const std::string ext = lowerExtension(out);
-        if (!isSceneExtension(ext))
-            throw Error("unknown output format",
-                        {.file = out, .value = ext, .validRange = sceneFileExtensions()});
-        if (ext == ".npz" && points == 0)
+        requireOutputFormat(out, kSceneOutput | (plants ? kPlantOutput : 0u),
+                            "unknown output format");
+        if (lowerExtension(out) == ".npz" && points == 0)
             throw Error("an .npz output is a point cloud: give --points N",
                         {.file = out, .parameter = "--points", .validRange = "1 to 2147483648"});
     }
-    createOutputFolders(paths);
 }
 
 vec3 parseVec3(const std::string& text, const char* option) {

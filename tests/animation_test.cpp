@@ -285,8 +285,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
         {"build bean -o " + out, "--age is required (or --frames for a growth animation)"},
         {"build bean --frames 0:60 -o " + (dir / "bad.obj").string(),
          (dir / "bad.obj").string() +
-             ": '.obj': --frames writes an animation: outputs are .glb, .gltf or .usda (valid: "
-             ".glb, .gltf, .usda)"},
+             ": '.obj': --frames writes an animation (valid: .glb, .gltf, .usda)"},
         {"canopy bean --frames 0:10 --separate -o " + out,
          "--separate: --separate writes still files, one per plant: not with --frames (valid: "
          "without --frames)"},

@@ -105,7 +105,7 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         {"canopy bean --age 5 --separate --stats",
          "plantarch: --separate: --separate writes files: give -o FILE\n"},
         {"build bean --frames 0:5 --stats",
-         "plantarch: --frames writes an animation: give -o FILE.glb, .gltf or .usda\n"},
+         "plantarch: --frames writes an animation: give -o FILE (.glb, .gltf, .usda)\n"},
         {"build bean --age 10 -o /tmp/x.png --image-size 32",
          "plantarch: --image-size = 32: image size is WIDTHxHEIGHT in pixels (valid: 16x16 to "
          "16384x16384)\n"},

@@ -74,7 +74,7 @@ TEST(CliCompare, BadInputsAreOneLine) {
     const std::string d = dir();
     const std::pair<std::string, std::string> cases[] = {
         {"compare bean --age 20 -o " + d + "/x.obj",
-         "-o = " + d + "/x.obj: the comparison is a picture (valid: a .png file)"},
+         d + "/x.obj: '.obj': the comparison is a picture (valid: .png)"},
         {"compare bean --age 20 --reference " + d + "/none.png -o " + d + "/x.png",
          d + "/none.png: cannot open image file"},
         {"compare bean --age 20 --panel-size 10 -o " + d + "/x.png",

@@ -124,7 +124,7 @@ TEST(Depth, RenderCommandWritesDistancesOrAPicture) {
         {"render " + obj + " --label depth -o " + (dir / "d.obj").string(),
          (dir / "d.obj").string() +
              ": '.obj': a depth image is written as .npy (distances) or .png (a picture) "
-             "(valid: .npy, .png)"},
+             "(valid: .png, .npy)"},
         {"render " + obj + " -o " + (dir / "x.npy").string(),
          (dir / "x.npy").string() + ": '.npy': render writes a PNG picture (valid: .png)"},
         {"render " + obj + " --label height -o " + (dir / "x.png").string(),

@@ -661,8 +661,8 @@ TEST_F(ExportTest, FailedWriteLeavesExistingFileUntouchedAndNoTemporaries) {
 TEST_F(ExportTest, AtomicFileWritesBuffersAndCleansUp) {
     const std::string path = (dir_ / "f.bin").string();
     {
-        io::AtomicFile f(path, 16);  // tiny buffer: every path through write() is taken
-        EXPECT_TRUE(f.temporaryPath().starts_with(path + ".tmp-"));
+        io::AtomicFile f(path, 16);        // tiny buffer: every path through write() is taken
+        EXPECT_EQ(f.temporaryPath(), "");  // unnamed: nothing in the folder while writing
         f.write("hello ");
         const std::string large(100000, 'x');
         f.write(large);
@@ -671,6 +671,8 @@ TEST_F(ExportTest, AtomicFileWritesBuffersAndCleansUp) {
         f.advance(p + 3);
         EXPECT_EQ(f.size(), 6u + large.size() + 3u);
         EXPECT_FALSE(fs::exists(path));  // nothing visible before commit
+        f.finish();
+        EXPECT_EQ(filesIn(dir_), std::vector<std::string>{});
         f.commit();
     }
     EXPECT_EQ(readBytes(path), "hello " + std::string(100000, 'x') + "end");
@@ -683,13 +685,19 @@ TEST_F(ExportTest, AtomicFileWritesBuffersAndCleansUp) {
     EXPECT_EQ(filesIn(dir_), std::vector<std::string>{"f.bin"});
     {
         // A stale temporary with the next name (left by a killed process) is stepped over.
+        ::setenv("PLANTARCH_NAMED_TEMPORARIES", "1", 1);
         io::AtomicFile probe(path);
+        ::unsetenv("PLANTARCH_NAMED_TEMPORARIES");
+        ASSERT_TRUE(probe.temporaryPath().starts_with(path + ".tmp-"));
         const std::string used = probe.temporaryPath();
         const std::string counter = used.substr(used.rfind('-') + 1);
         const std::string next =
             used.substr(0, used.rfind('-') + 1) + std::to_string(std::stoul(counter) + 1);
         writeText(next, "stale");
+        ::setenv("PLANTARCH_NAMED_TEMPORARIES", "1", 1);
         io::AtomicFile f(path);
+        ::unsetenv("PLANTARCH_NAMED_TEMPORARIES");
+        EXPECT_NE(f.temporaryPath(), "");
         EXPECT_NE(f.temporaryPath(), next);
         f.write("fresh");
         f.commit();

@@ -529,7 +529,10 @@ TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
         {"render " + in + out + " --eye 1,2", "--eye"},
         {"render " + in + out + " --eye 1,2,3 --target a,b,c", "--target"},
         {"render " + in + out + " --label leaves", "--label"},
-        {"render " + in + " -o \"" + (dir / "no" / "dir" / "x.png").string() + "\"", "x.png"},
+        {"render " + in + " -o /proc/x.png", "/proc/x.png: cannot write in folder /proc"},
+        {"render " + in + " -o \"" + (dir / "out.obj").string() + "\"",
+         "out.obj: '.obj': render writes a PNG picture (valid: .png)"},
+        {"render \"" + dir.path().string() + "\"" + out, "is a directory, not an OBJ file"},
     };
     for (const auto& [args, mentions] : cases) {
         const auto r = runCli(args, dir.path());
@@ -538,6 +541,7 @@ TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
         EXPECT_NE(r.stderrText.find(mentions), std::string::npos) << r.stderrText;
     }
     EXPECT_FALSE(fs::exists(dir / "out.png"));
+    EXPECT_FALSE(fs::exists(dir / "out.obj"));
 }
 
 // ---- docs images -----------------------------------------------------------------------------

@@ -241,7 +241,7 @@ TEST(Scan, CommandScansPlantFilesAndObjScenes) {
          "--scanner = 1,2: not a vector (valid: three numbers x,y,z)"},
         {"scan " + xml + " --scanner 1,0,0 -o " + (dir / "x.obj").string(),
          (dir / "x.obj").string() +
-             ": '.obj': a scan is written as .ply or .npz (valid: .ply, .npz)"},
+             ": '.obj': a scan is written as a point cloud (valid: .ply, .npz)"},
         {"scan " + xml + " --scanner 1,0,0 --zenith 30 -o " + (dir / "x.ply").string(),
          "--zenith = 30: expected two angles in degrees joined by ':' (valid: e.g. 30:150)"},
         {"scan " + xml + " --scanner 1,0,0 --zenith 100:50 -o " + (dir / "x.ply").string(),

@@ -17,6 +17,11 @@ public:
         const char* base = std::getenv("TMPDIR");
         path_ = std::filesystem::path(base && *base ? base : "/tmp") /
                 ("plantarch-tests-" + std::to_string(::getpid()));
+    }
+    // Made in SetUp, not in the constructor: listing the tests (--gtest_list_tests, run by
+    // CMake's test discovery after every build) constructs the environment but runs neither
+    // SetUp nor TearDown, and would leave an empty folder behind each time.
+    void SetUp() override {
         std::filesystem::create_directories(path_);
         ::setenv("TMPDIR", path_.c_str(), 1);
     }
@@ -38,4 +43,15 @@ TemporaryFolder* const folder =
 TEST(TemporaryFolder, TestsWriteIntoTheirOwnFolder) {
     EXPECT_EQ(std::filesystem::temp_directory_path(), folder->path());
     EXPECT_TRUE(std::filesystem::is_directory(folder->path()));
+}
+
+// Listing the tests (what CMake's test discovery does) leaves no folder behind.
+TEST(TemporaryFolder, ListingTheTestsLeavesNothing) {
+    const std::filesystem::path parent = folder->path() / "listing";
+    std::filesystem::create_directories(parent);
+    const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+    const std::string cmd = "TMPDIR='" + parent.string() + "' '" + self +
+                            "' --gtest_list_tests --gtest_filter=TemporaryFolder.* > /dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    EXPECT_TRUE(std::filesystem::is_empty(parent));
 }

@@ -11,6 +11,7 @@
 
 #include "api/facade_impl.h"
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "geometry/tessellate.h"
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
@@ -285,15 +286,8 @@ std::vector<unsigned> PlantArchitecture::readPlantStructureXMLString(
 
 std::vector<unsigned> PlantArchitecture::readPlantStructureXML(
     const std::string& filename, const PlantStructureReadOptions& options) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(filename, ec))
-        throw Error("a folder, not a plant structure file", {.file = filename});
-    std::ifstream in(filename, std::ios::binary);
-    if (!in) throw Error("cannot open plant structure file", {.file = filename});
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error("cannot read plant structure file", {.file = filename});
-    auto read = plant_io::readPlantsXML(text.str(), filename, defaultsOf(impl_->store, seed_));
+    auto read = plant_io::readPlantsXML(io::readWholeFile(filename, "plant structure file"),
+                                        filename, defaultsOf(impl_->store, seed_));
     return adopt(*this, impl_->store, impl_->functions, impl_->prototypes, impl_->geometryDeferred,
                  std::move(read), filename, options);
 }

@@ -1,10 +1,18 @@
 #pragma once
 // AtomicFile: writes a file so that it appears whole or not at all.
 //
-// Bytes go into `<path>.tmp-<pid>-<counter>` in the target's directory (so the final rename
-// stays on one filesystem) through a large in-memory buffer. commit() flushes, closes and
-// renames the temporary over the target. If the AtomicFile is destroyed without commit()
-// (an exception on the way), the temporary is removed and the target is untouched.
+// Bytes go through a large in-memory buffer into a temporary file in the target's folder (so
+// the final rename stays on one filesystem). On Linux the temporary has no name (O_TMPFILE):
+// if the process dies, even by SIGKILL, the kernel frees it and nothing is left in the
+// folder. It gets a name, `<path>.tmp-<pid>-<n>`, only when it is put in place: linked under
+// that name and at once renamed over the target (link() cannot replace a file, rename() can).
+// Where the filesystem has no unnamed files (or PLANTARCH_NAMED_TEMPORARIES=1 is set, for
+// tests), the temporary is named from the start; named temporaries are registered so that
+// SIGINT and SIGTERM remove them (temporary_files.h).
+//
+// commit() puts the file in place, or, while an OutputSet is open, hands it to the set, which
+// puts all its files in place together (OutputFiles.h). If the AtomicFile is destroyed
+// uncommitted (an exception on the way), the temporary goes and the target is untouched.
 //
 // Durability: no fsync. An interrupted process or a failed write never leaves a partial
 // target; surviving a power cut right after commit() is left to the filesystem.
@@ -26,7 +34,8 @@ public:
     /// The longest reserve() a caller may ask for.
     static constexpr std::size_t kMaxReserve = 4096;
 
-    /// Creates the temporary file; throws Error when it cannot be created.
+    /// Creates the temporary file; throws Error when it cannot be created or `path` is a
+    /// directory.
     explicit AtomicFile(std::string path, std::size_t bufferBytes = kDefaultBufferBytes);
     ~AtomicFile();
     AtomicFile(AtomicFile&& other) noexcept;
@@ -46,31 +55,53 @@ public:
     /// Marks the bytes up to `end` (inside the last reserve()) as written.
     void advance(const char* end) { used_ = static_cast<std::size_t>(end - buffer_.get()); }
 
-    /// Flushes and closes the temporary file, releasing the buffer; the file is not yet in
-    /// place. Lets a caller finish several files before committing them all.
+    /// Flushes the file and releases the buffer; the file is complete but not yet in place.
+    /// Lets a caller finish several files before committing them all. An unnamed temporary
+    /// keeps its descriptor open (it would vanish when closed) unless the process already
+    /// holds many such: it is then named now, as a registered named temporary.
     void finish();
-    /// finish() if needed, then renames the temporary over the target.
+    /// finish() if needed, then puts the file in place, or hands it to the open OutputSet.
     void commit();
 
     const std::string& path() const { return path_; }
+    /// The temporary's name; empty while it has none (an unnamed temporary).
     const std::string& temporaryPath() const { return temp_; }
     /// Bytes written so far (flushed or buffered).
     std::size_t size() const { return flushed_ + used_; }
+
+    // ---- for OutputSet (output_set.cpp) ----
+    /// Gives a finished unnamed temporary its name in the target's folder (registered for
+    /// removal on SIGINT/SIGTERM); a named one is left as it is.
+    void nameTemporary();
+    /// Renames the named temporary over the target. Throws Error naming the target.
+    void place();
 
 private:
     void makeRoom(std::size_t size);
     void flushBuffer();
     void writeAll(const char* data, std::size_t size);
+    void openNamed();
+    void closeDescriptor();
     [[noreturn]] void fail(const std::string& what, int err) const;
 
     std::string path_;
-    std::string temp_;
+    std::string temp_;  ///< the temporary's name; empty while it has none
     int fd_ = -1;
+    int slot_ = -1;      ///< registration of temp_ for removal on signals
+    bool held_ = false;  ///< an unnamed file whose open descriptor is counted as held
+    bool finished_ = false;
     std::unique_ptr<char[]> buffer_;
     std::size_t capacity_ = 0;
     std::size_t used_ = 0;
     std::size_t flushed_ = 0;
     bool committed_ = false;
 };
+
+/// Hands a committed file to the OutputSet open in this process, if any; true when it took
+/// it (output_set.cpp).
+bool holdInOpenOutputSet(AtomicFile& file);
+
+/// Writes `bytes` to `path` through an AtomicFile.
+void writeWholeFile(const std::string& path, std::string_view bytes);
 
 }  // namespace plantarch::io

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/input_file.h"
 #include "core/progress_steps.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -171,6 +172,7 @@ void checkVertexNumbers(const std::string& path) {
 
 std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                               const ObjReadOptions& options) {
+    io::rejectDirectory(path, "OBJ file");
     if (options.storeShapeNames) {
         const auto type = context.objectDataType("name");
         if (type && *type != DataType::String)

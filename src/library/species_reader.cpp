@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/value_text.h"
 #include "core/xml_reader.h"
 #include "library/expression.h"
@@ -694,15 +695,7 @@ std::vector<Error> checkSpeciesFile(const std::string& path) {
 }
 
 SpeciesModel readSpeciesFile(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error("a folder, not a species file", {.file = path});
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot open species file", {.file = path});
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error("cannot read species file", {.file = path});
-    return readSpeciesString(text.str(), path);
+    return readSpeciesString(io::readWholeFile(path, "species file"), path);
 }
 
 }  // namespace plantarch

@@ -16,6 +16,7 @@
 #include <system_error>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "plantarch/Error.h"
 #include "plantarch/Render.h"
 #include "render/render_internal.h"
@@ -49,42 +50,6 @@ void appendBytes(void* context, void* data, int size) {
     out->insert(out->end(), bytes, bytes + size);
 }
 
-std::string systemMessage(int err) {
-    return std::generic_category().message(err);
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so a
-/// reader never sees a partial file.
-void writeFileAtomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-    namespace fs = std::filesystem;
-    static std::atomic<unsigned> counter{0};
-    const fs::path target(path);
-    const fs::path temp =
-        target.parent_path() / (target.filename().string() + ".tmp" + std::to_string(::getpid()) +
-                                "_" + std::to_string(counter.fetch_add(1)));
-    std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (!f) throw Error("cannot write: " + systemMessage(errno), {.file = path});
-    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    const int writeErr = errno;
-    const bool closed = std::fclose(f) == 0;
-    if (!written || !closed) {
-        std::error_code ignore;
-        fs::remove(temp, ignore);
-        throw Error("cannot write: " + systemMessage(written ? errno : writeErr), {.file = path});
-    }
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec) {
-        std::error_code ignore;
-        fs::remove(temp, ignore);
-        throw Error("cannot write: " + ec.message(), {.file = path});
-    }
-}
-
-}  // namespace
-
-namespace {
-
 std::vector<std::uint8_t> pngBytes(const Image& image, const std::string& path) {
     if (image.width <= 0 || image.height <= 0 ||
         image.rgb.size() != std::size_t(image.width) * std::size_t(image.height) * 3)
@@ -100,7 +65,8 @@ std::vector<std::uint8_t> pngBytes(const Image& image, const std::string& path) 
 }  // namespace
 
 void writePNG(const Image& image, const std::string& path) {
-    writeFileAtomically(path, pngBytes(image, path));
+    const std::vector<std::uint8_t> bytes = pngBytes(image, path);
+    io::writeWholeFile(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 std::string encodePNG(const Image& image) {
@@ -133,7 +99,7 @@ void writeDepthNPY(const DepthImage& depth, const std::string& path) {
     std::memcpy(bytes.data(), magic, sizeof magic);
     std::memcpy(bytes.data() + 10, header.data(), header.size());
     std::memcpy(bytes.data() + 10 + header.size(), depth.depth.data(), dataBytes);
-    writeFileAtomically(path, bytes);
+    io::writeWholeFile(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 Image depthPicture(const DepthImage& depth) {
@@ -157,7 +123,7 @@ Image depthPicture(const DepthImage& depth) {
 Image readImage(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error("is a folder, not an image file", {.file = path});
+        throw Error("is a directory, not an image file", {.file = path});
     if (!std::ifstream(path)) throw Error("cannot open image file", {.file = path});
     int w = 0, h = 0, channels = 0;
     std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 3);

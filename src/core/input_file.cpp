@@ -1,0 +1,34 @@
+#include "core/input_file.h"
+
+#include <sys/stat.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "plantarch/Error.h"
+
+namespace plantarch::io {
+
+std::string withArticle(std::string_view what) {
+    const bool vowel =
+        !what.empty() && std::string_view("aeiouAEIOU").find(what[0]) != std::string_view::npos;
+    return (vowel ? "an " : "a ") + std::string(what);
+}
+
+void rejectDirectory(const std::string& path, std::string_view what) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+        throw Error("is a directory, not " + withArticle(what), {.file = path});
+}
+
+std::string readWholeFile(const std::string& path, std::string_view what) {
+    rejectDirectory(path, what);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot open " + std::string(what), {.file = path});
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw Error("cannot read " + std::string(what), {.file = path});
+    return text.str();
+}
+
+}  // namespace plantarch::io

@@ -1,0 +1,163 @@
+// OutputSet and checkOutputPath (include/plantarch/OutputFiles.h): files held back until the
+// set commits, all together; nothing when it is discarded; paths checked before any work.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plantarch/Error.h"
+#include "plantarch/OutputFiles.h"
+
+namespace fs = std::filesystem;
+using plantarch::Error;
+
+namespace {
+
+class OutputSetTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("plantarch-output-set-" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+    std::string at(const std::string& name) const { return (dir_ / name).string(); }
+    std::vector<std::string> names() const {
+        std::vector<std::string> all;
+        for (const auto& e : fs::directory_iterator(dir_)) all.push_back(e.path().filename());
+        std::sort(all.begin(), all.end());
+        return all;
+    }
+    static std::string bytes(const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    fs::path dir_;
+};
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_F(OutputSetTest, FilesAppearTogetherAtCommit) {
+    plantarch::writeFileAtomically(at("a.txt"), "old a");
+    {
+        plantarch::OutputSet set;
+        plantarch::writeFileAtomically(at("a.txt"), "new a");
+        plantarch::writeFileAtomically(at("b.txt"), "b");
+        EXPECT_EQ(set.size(), 2u);
+        EXPECT_EQ(names(), std::vector<std::string>{"a.txt"});  // nothing named yet
+        EXPECT_EQ(bytes(at("a.txt")), "old a");
+        set.commit();
+        EXPECT_EQ(names(), (std::vector<std::string>{"a.txt", "b.txt"}));
+        plantarch::writeFileAtomically(at("c.txt"), "c");  // after commit: in place at once
+        EXPECT_EQ(bytes(at("c.txt")), "c");
+    }
+    EXPECT_EQ(bytes(at("a.txt")), "new a");
+}
+
+TEST_F(OutputSetTest, ADiscardedSetLeavesEveryTargetAsItWas) {
+    plantarch::writeFileAtomically(at("a.txt"), "old a");
+    {
+        plantarch::OutputSet set;
+        plantarch::writeFileAtomically(at("a.txt"), "new a");
+        plantarch::writeFileAtomically(at("b.txt"), "b");
+    }
+    EXPECT_EQ(names(), std::vector<std::string>{"a.txt"});
+    EXPECT_EQ(bytes(at("a.txt")), "old a");
+}
+
+TEST_F(OutputSetTest, OneSetAtATime) {
+    plantarch::OutputSet set;
+    EXPECT_EQ(errorOf([] { plantarch::OutputSet second; }),
+              "an output set is already open: commit or discard it first");
+}
+
+TEST_F(OutputSetTest, ATargetThatBecameADirectoryReplacesNothing) {
+    plantarch::writeFileAtomically(at("a.txt"), "old a");
+    plantarch::OutputSet set;
+    plantarch::writeFileAtomically(at("a.txt"), "new a");
+    plantarch::writeFileAtomically(at("d"), "d");
+    fs::create_directory(at("d"));  // made after the file was written
+    EXPECT_EQ(errorOf([&] { set.commit(); }),
+              at("d") + ": cannot replace file: is a directory, not a file");
+    EXPECT_EQ(bytes(at("a.txt")), "old a");
+    EXPECT_EQ(names(), (std::vector<std::string>{"a.txt", "d"}));
+}
+
+// More files than the process keeps descriptors for: the later ones are named temporaries,
+// still put in place together, and none is left when the set is discarded.
+TEST_F(OutputSetTest, ManyFilesBeyondTheDescriptorsKept) {
+    for (bool commit : {false, true}) {
+        {
+            plantarch::OutputSet set;
+            for (int i = 0; i < 400; ++i) {
+                const std::string number = std::to_string(i);
+                plantarch::writeFileAtomically(at(std::string(1, 'f').append(number)), number);
+            }
+            EXPECT_GT(names().size(), 0u);  // the named ones are visible as temporaries
+            for (const std::string& n : names()) EXPECT_NE(n.find(".tmp-"), std::string::npos);
+            if (commit) set.commit();
+        }
+        if (!commit) {
+            EXPECT_EQ(names(), std::vector<std::string>{});
+        }
+    }
+    EXPECT_EQ(names().size(), 400u);
+    EXPECT_EQ(bytes(at("f399")), "399");
+}
+
+TEST_F(OutputSetTest, CheckOutputPathSaysWhy) {
+    fs::create_directory(at("d.obj"));
+    EXPECT_EQ(errorOf([&] { plantarch::checkOutputPath(at("d.obj")); }),
+              at("d.obj") + ": cannot write: is a directory, not a file");
+    EXPECT_NE(errorOf([&] {
+                  plantarch::checkOutputPath(at("none/x.obj"));
+              }).find("x.obj: cannot write: no folder " + at("none")),
+              std::string::npos);
+    EXPECT_EQ(errorOf([] { plantarch::checkOutputPath("/proc/x.obj"); }),
+              "/proc/x.obj: cannot write in folder /proc: it does not take new files");
+    EXPECT_EQ(errorOf([&] { plantarch::checkOutputPath(at("ok.obj")); }), "");
+    EXPECT_EQ(names(), std::vector<std::string>{"d.obj"});  // the check leaves nothing
+}
+
+// Without unnamed files (the fallback), writing works the same and a discarded file leaves
+// nothing either.
+TEST_F(OutputSetTest, NamedTemporariesWorkTheSame) {
+    ::setenv("PLANTARCH_NAMED_TEMPORARIES", "1", 1);
+    {
+        plantarch::OutputSet set;
+        plantarch::writeFileAtomically(at("a.txt"), "a");
+        EXPECT_EQ(names().size(), 1u);
+        EXPECT_NE(names()[0].find("a.txt.tmp-"), std::string::npos);
+        set.commit();
+    }
+    {
+        plantarch::OutputSet set;
+        plantarch::writeFileAtomically(at("b.txt"), "b");
+    }
+    ::unsetenv("PLANTARCH_NAMED_TEMPORARIES");
+    EXPECT_EQ(names(), std::vector<std::string>{"a.txt"});
+}
