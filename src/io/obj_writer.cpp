@@ -23,6 +23,7 @@
 #include "core/atomic_file.h"
 #include "core/progress_steps.h"
 #include "io/export_common.h"
+#include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 
@@ -52,9 +53,14 @@ std::string sanitizeName(std::string_view text) {
     return out;
 }
 
+// obj<ID>[_plant<P>][_<organ>]: unique per object, and it tells plants and organs apart in
+// tools that show only names.
 std::string objectName(const Context& context, ObjectID id) {
     std::string name = "obj";  // (not "obj" + ...: GCC 12 warns falsely, -Wrestrict)
     name += std::to_string(id);
+    if (context.objectDataType("plantID") == DataType::Int)
+        if (const auto plant = context.objectDataInt(id, "plantID"))
+            name.append("_plant").append(std::to_string(*plant));
     const std::string organ = io::organOf(context, id);
     if (!organ.empty()) name.append("_").append(sanitizeName(organ));
     return name;
@@ -151,15 +157,18 @@ private:
 class ObjBodyWriter {
 public:
     ObjBodyWriter(const Context& context, const ObjOptions& options)
-        : context_(context), options_(options) {}
+        : context_(context), options_(options), labels_(context) {}
 
     template <class Out>
     void writeObject(Out& out, ObjectID id, const std::string* materialName,
                      std::uint64_t vertexBase, std::uint64_t uvBase) {
         const ObjectView o = context_.object(id);
+        // The object's name, its label comment (io/obj_labels.h) and its material.
         const std::string name = objectName(context_, id);
-        out.write("o " + name + "\ng " + name + "\n");
-        if (materialName) out.write("usemtl " + *materialName + "\n");
+        head_.assign("o ").append(name).append("\ng ").append(name).append("\n");
+        labels_.append(head_, id);
+        if (materialName) head_.append("usemtl ").append(*materialName).append("\n");
+        out.write(head_);
 
         for (const vec3& v : o.positions) {
             char* p = out.reserve(kLineBytes);
@@ -270,6 +279,8 @@ private:
 
     const Context& context_;
     const ObjOptions& options_;
+    io::ObjLabelWriter labels_;
+    std::string head_;
     std::vector<vec3> normals_;
     std::vector<vec2> lastUVs_;
     std::vector<char> uvText_;
@@ -294,7 +305,7 @@ std::vector<Chunk> chunksOf(const Context& context, const std::vector<ObjectID>&
         const auto [v, t] = body.counts(o);
         vertices += v;
         uvs += t;
-        lines += v * (normals ? 2 : 1) + t + o.triangleCount() + 3;
+        lines += v * (normals ? 2 : 1) + t + o.triangleCount() + 4;
         if (lines >= kChunkLines || i + 1 == ids.size()) {
             chunk.last = i + 1;
             chunks.push_back(chunk);
