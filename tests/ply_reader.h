@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -120,20 +121,23 @@ inline PlyData readPlyFile(const std::string& path) {
         EXPECT_EQ(p, end) << path << ": trailing bytes";
     } else {
         std::istringstream body(bytes.substr(pos));
-        auto number = [&] {
+        // A float property's text is read as a float (as a binary file would hold it).
+        auto number = [&](const std::string& type = "int") {
             std::string word;
             body >> word;
-            return std::strtod(word.c_str(), nullptr);
+            return type == "float" ? double(std::strtof(word.c_str(), nullptr))
+                                   : std::strtod(word.c_str(), nullptr);
         };
         for (std::size_t v = 0; v < vertexCount; ++v)
-            for (const auto& prop : ply.vertexProperties) ply.vertex[prop.name][v] = number();
+            for (const auto& prop : ply.vertexProperties)
+                ply.vertex[prop.name][v] = number(prop.type);
         for (std::size_t f = 0; f < faceCount; ++f)
             for (const auto& prop : ply.faceProperties) {
                 if (prop.type == "list") {
                     EXPECT_EQ(number(), 3.0);
                     for (int& i : ply.faces[f]) i = int(number());
                 } else {
-                    ply.face[prop.name][f] = number();
+                    ply.face[prop.name][f] = number(prop.type);
                 }
             }
         std::string rest;
