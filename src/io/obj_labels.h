@@ -1,9 +1,9 @@
 #pragma once
-// The label comment of OBJ files (docs/formats.md, "OBJ labels"): one line per object, after
-// its `o` and `g` lines,
+// The label comment of OBJ files (docs/formats.md, "Labels across formats"): one line per
+// object (wrapped here), after its `o` and `g` lines,
 //
-//   # plantarch labels object=42 plant=3 plant_name=bean organ=leaf shoot=1 rank=1 node=4 leaf=7
-//   age=12.5
+//   # plantarch labels object=42 plant=3 plant_name=my%20plant organ=leaf shoot=1 rank=1 node=4
+//   leaf=7 age=12.5
 //
 // holding the labels the other exporters write (plant, organ, shoot, rank, node, leaf, age)
 // and the object's ID. Keys whose data the object lacks are left out; text values are
