@@ -231,7 +231,7 @@ struct UsdOptions {
 /// Writes the Context as a USD text file (.usda), atomically: upAxis Z, metersPerUnit 1, an
 /// Xform per plant (translated to its base; plantID, species, age, seed in customData) and a
 /// Mesh per organ kind under it, with primvars normals and st, per-face (uniform) primvars
-/// displayColor, organ, plantID, objectID, leafID, shootID, rank and age, and the organ kind
+/// displayColor, organ, plantID, objectID, leafID, shootID, rank, node and age, and the organ kind
 /// as a semantic class label
 /// (SemanticsLabelsAPI). Throws plantarch::Error naming the file.
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options = {});
