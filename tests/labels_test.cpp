@@ -346,3 +346,26 @@ TEST(Labels, BadPlyOptionsAreRejected) {
     EXPECT_NE(r.out.find("binary, ascii"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists("/tmp/plantarch_labels_x.ply"));
 }
+
+TEST(Labels, ObstacleFromAPlantExportIsNoPlant) {
+    // A plant's OBJ used as an obstacle: its labels are not read, so its faces belong to no
+    // plant and the plant grown beside it is the only plant 0.
+    const fs::path d = folder("obstacle");
+    const std::string wall = (d / "old.obj").string(), out = (d / "scene.ply").string();
+    auto r = cli::run("build bean --age 10 -o " + wall);
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = cli::run("build bean --age 10 --obstacle " + wall + " -o " + out);
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto ply = readPlyFile(out);
+    std::size_t obstacleFaces = 0;
+    for (std::size_t f = 0; f < ply.faces.size(); ++f) {
+        const bool obstacle = ply.face.at("organ")[f] == 9;  // kOrganLabels: obstacle
+        obstacleFaces += obstacle;
+        if (obstacle) {
+            EXPECT_EQ(ply.face.at("plant_id")[f], -1);
+            EXPECT_EQ(ply.face.at("leaf_id")[f], -1);
+        }
+    }
+    EXPECT_GT(obstacleFaces, 100u);
+    fs::remove_all(d);
+}

@@ -1,9 +1,12 @@
 #include "io/obj_labels.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
+#include <vector>
 
 #include "plantarch/Error.h"
 
