@@ -48,10 +48,10 @@ struct ObjOptions {
     /// Write the .mtl material library, `mtllib` and one `usemtl` per object.
     bool materials = true;
     /// One OBJ file per object instead of one for the scene. `path` then names a directory
-    /// (created when missing, with its parents) that receives `obj<ID>[_<organ>].obj` for
-    /// each object and one shared `materials.mtl`. Every file is written to a temporary
-    /// first and all are renamed into place together at the end; files already in the
-    /// directory are left alone.
+    /// (created when missing, with its parents) that receives `obj<ID>[_plant<P>][_<organ>].obj`
+    /// for each object and one shared `materials.mtl`. Every file is written to a temporary first
+    /// and all are renamed into place together at the end; files already in the directory are left
+    /// alone.
     bool splitPerObject = false;
     /// Receives ("writing OBJ", fraction) while the file is written; may be empty.
     ProgressCallback progress;
