@@ -40,7 +40,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
                        " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
-    addObjectIDsOption(app, global);
+    addLabelOptions(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
     return [a, &global]() {

@@ -66,7 +66,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
                        " (none with --stats)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
-    addObjectIDsOption(app, global);
+    addLabelOptions(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object per plant with its statistics");
     app.add_flag("--separate", a->separate,
                  "One file per plant for each output (field.glb -> field_0007.glb ...) and one "

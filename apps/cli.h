@@ -33,7 +33,9 @@ struct GlobalOptions {
     int stringDigits = 4;    ///< significant digits of plant strings (--digits)
     std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
     float meshDetail = 1.0f;  ///< --mesh-detail: factor on every organ's mesh resolution
-    bool objectIDs = false;   ///< --object-ids: .xml outputs carry each organ's object IDs
+    bool objectIDs = false;   ///< --object-ids: object IDs in .xml, object tables by meshes
+    PlyColor plyColor = PlyColor::None;                   ///< --ply-color
+    PlyFormat plyFormat = PlyFormat::BinaryLittleEndian;  ///< --ply-format
     /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
     /// it) with one line; 0 for no limit. Default: PlantArchitecture::defaultTriangleLimit().
     std::size_t maxTriangles = PlantArchitecture::defaultTriangleLimit();
@@ -201,8 +203,16 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                                      const std::string& species);
 /// Adds --digits (significant digits of plant strings) to a subcommand.
 void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
-/// Adds --object-ids (plant structure .xml outputs carry each organ's object IDs).
-void addObjectIDsOption(CLI::App& app, GlobalOptions& global);
+// ---- label options (label_options.cpp) ---------------------------------------------------
+
+/// Adds --object-ids (.xml outputs carry each organ's object IDs; each mesh output gets an
+/// object table), --ply-color and --ply-format.
+void addLabelOptions(CLI::App& app, GlobalOptions& global);
+/// Whether an output of this path holds object IDs (.obj, .ply, .glb, .gltf, .usda, .npz),
+/// and so gets an object table with --object-ids.
+bool hasObjectIDs(const std::string& path);
+/// The object table next to a mesh: field.obj -> field.objects.json.
+std::string objectTablePath(const std::string& path);
 
 /// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
 /// (animation_options.cpp).

@@ -155,7 +155,8 @@ void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Cont
     };
     std::vector<ObjectID> obstacles;
     for (const std::string& f : a.obstacles) {
-        const std::vector<ObjectID> ids = readOBJ(ctx, f);
+        // An obstacle is no plant, whatever labels its file carries (a plant's OBJ export).
+        const std::vector<ObjectID> ids = readOBJ(ctx, f, {.labels = false});
         for (ObjectID id : ids) ctx.setObjectData(id, "organ", std::string("obstacle"));
         obstacles.insert(obstacles.end(), ids.begin(), ids.end());
     }

@@ -1,7 +1,7 @@
 // plantarch convert IN OUT
 // Converts between plant structure files (.xml), plant strings (.txt) and geometry (.obj,
-// .ply, .png): a plant file can become any of them; an OBJ file (geometry only) can become
-// .ply or .png.
+// .ply, .glb, ...): a plant file can become any of them; an OBJ file (geometry only) can
+// become any geometry format, keeping the labels plantarch wrote into it.
 
 #include <filesystem>
 
@@ -9,6 +9,7 @@
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantStructureWrite.h"
 
 namespace plantarch::cli {
 
@@ -32,7 +33,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
                    "defaults of listing-form .xml files");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
-    addObjectIDsOption(app, global);
+    addLabelOptions(app, global);
     return [a, &global]() {
         checkSceneOutputs({a->output}, global.points, true);
         const std::string in = lowerExtension(a->input);
@@ -45,8 +46,14 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
             requireOutputFormat(a->output, kSceneOutput,
                                 "an OBJ file holds geometry only, not the plant structure");
             CommandOutputs outputs({a->output});
+            // The labels of a plantarch OBJ (its label comments) and its object IDs come
+            // along into every format that holds labels.
             readOBJ(ctx, a->input, {.progress = terminalProgress()});
             writeSceneFile(ctx, a->output, global);
+            if (global.objectIDs && hasObjectIDs(a->output)) {
+                writeObjectTableJSON(ctx, objectTablePath(a->output));
+                info(global, "wrote " + objectTablePath(a->output));
+            }
             outputs.commit();
             return 0;
         }

@@ -38,7 +38,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
                    "Species giving the shoot types of plant strings (.txt input)");
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
-    addObjectIDsOption(app, global);
+    addLabelOptions(app, global);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         if (frames && a->days >= 0.0)

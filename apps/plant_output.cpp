@@ -56,6 +56,10 @@ void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>
         writeWholeFile(path, text);
     } else {
         writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, exportPlants(arch));
+        if (g.objectIDs && hasObjectIDs(path)) {
+            writeObjectTableJSON(arch, plants, objectTablePath(path));
+            info(g, "wrote " + objectTablePath(path));
+        }
         return;
     }
     info(g, "wrote " + path);
@@ -210,16 +214,6 @@ void addStringDigitsOption(CLI::App& app, GlobalOptions& global) {
                    "default 4)")
         ->check(
             numberCheck("--digits", "a digit count", 0, 6, true, "1 to 6, or 0 for exact values"));
-}
-
-}  // namespace plantarch::cli
-
-namespace plantarch::cli {
-
-void addObjectIDsOption(CLI::App& app, GlobalOptions& global) {
-    app.add_flag("--object-ids", global.objectIDs,
-                 "Plant structure .xml outputs also hold each organ's object IDs: reading such "
-                 "a file gives its objects the same IDs, so exports match the original's");
 }
 
 }  // namespace plantarch::cli

@@ -50,8 +50,10 @@ RenderMode parseMode(const std::string& label) {
                 {.parameter = "--label", .value = label, .validRange = valid});
 }
 
-/// OBJ files written by plantarch name each group obj<ID>_<organ>; restore the organ label
-/// from that name when the object has none, so `--label organ` works on our own exports.
+/// OBJ files written by plantarch name each group obj<ID>[_plant<P>]_<organ> (and carry the
+/// organ in their label comments too, which readOBJ reads); restore the organ label from that
+/// name when the object has none, so `--label organ` works on exports whose comments were
+/// lost (and on those of earlier versions, named obj<ID>_<organ>).
 void organsFromNames(Context& ctx, const std::vector<ObjectID>& ids) {
     if (ctx.objectDataType("name") != DataType::String) return;
     const auto organType = ctx.objectDataType("organ");
@@ -63,6 +65,13 @@ void organsFromNames(Context& ctx, const std::vector<ObjectID>& ids) {
         std::size_t i = 3;
         while (i < name->size() && std::isdigit(static_cast<unsigned char>((*name)[i]))) ++i;
         if (i == 3 || i + 1 >= name->size() || (*name)[i] != '_') continue;
+        if (name->compare(i, 6, "_plant") == 0) {  // skip _plant<P>, P may be negative
+            std::size_t j = i + 6;
+            if (j < name->size() && (*name)[j] == '-') ++j;
+            const std::size_t digits = j;
+            while (j < name->size() && std::isdigit(static_cast<unsigned char>((*name)[j]))) ++j;
+            if (j > digits && j + 1 < name->size() && (*name)[j] == '_') i = j;
+        }
         ctx.setObjectData(id, "organ", name->substr(i + 1));
     }
 }

@@ -28,7 +28,7 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
     } else if (ext == ".ply" && g.points > 0) {
         writePointCloudPLY(points(), path, progress);
     } else if (ext == ".ply") {
-        writePLY(ctx, path, {.progress = progress});
+        writePLY(ctx, path, {.format = g.plyFormat, .color = g.plyColor, .progress = progress});
     } else if (ext == ".npz" && g.points > 0) {
         writePointCloudNPZ(points(), path, progress);
     } else if (ext == ".glb" || ext == ".gltf") {

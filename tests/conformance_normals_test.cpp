@@ -19,6 +19,7 @@
 
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
+#include "ply_reader.h"
 
 using namespace plantarch;
 
@@ -42,70 +43,29 @@ std::string tempPath(const std::string& name) {
 // ---- readers -------------------------------------------------------------------------------
 
 MeshFile readPLY(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    EXPECT_TRUE(in) << path;
-    MeshFile m;
-    std::string line, format;
-    std::size_t vertices = 0, faces = 0;
+    const plantarch::testing::PlyData ply = plantarch::testing::readPlyFile(path);
     std::vector<std::string> vertexProperties;
-    bool inVertex = false;
-    while (std::getline(in, line)) {
-        std::istringstream words(line);
-        std::string word;
-        words >> word;
-        if (word == "format") words >> format;
-        if (word == "element") {
-            std::string what;
-            words >> what;
-            inVertex = what == "vertex";
-            (inVertex ? vertices : faces) = 0;
-            words >> (inVertex ? vertices : faces);
-        }
-        if (word == "property" && inVertex) {
-            std::string type, name;
-            words >> type >> name;
-            EXPECT_EQ(type, "float");
-            vertexProperties.push_back(name);
-        }
-        if (word == "end_header") break;
+    for (const auto& p : ply.vertexProperties) {
+        EXPECT_EQ(p.type, "float");
+        vertexProperties.push_back(p.name);
     }
     const std::vector<std::string> expected = {"x", "y", "z", "nx", "ny", "nz"};
     EXPECT_EQ(vertexProperties, expected) << path;
+    MeshFile m;
+    if (vertexProperties != expected) return m;
+    const std::size_t vertices = ply.vertex.at("x").size();
     m.positions.resize(vertices);
     m.normals.resize(vertices);
-    m.faces.reserve(3 * faces);
-    if (format == "ascii") {
-        for (std::size_t i = 0; i < vertices; ++i) {
-            vec3 p;  // written to round-trip as floats
-            in >> p.x >> p.y >> p.z >> m.normals[i].x >> m.normals[i].y >> m.normals[i].z;
-            m.positions[i] = dvec3(p);
-        }
-        for (std::size_t f = 0; f < faces; ++f) {
-            int count = 0, plant = 0, object = 0, organ = 0;
-            std::uint32_t a = 0, b = 0, c = 0;
-            in >> count >> a >> b >> c >> plant >> object >> organ;
-            EXPECT_EQ(count, 3);
-            m.faces.insert(m.faces.end(), {a, b, c});
-        }
-    } else {
-        EXPECT_EQ(format, "binary_little_endian");
-        for (std::size_t i = 0; i < vertices; ++i) {
-            float v[6];
-            in.read(reinterpret_cast<char*>(v), sizeof v);
-            m.positions[i] = dvec3(v[0], v[1], v[2]);
-            m.normals[i] = dvec3(v[3], v[4], v[5]);
-        }
-        for (std::size_t f = 0; f < faces; ++f) {
-            unsigned char count = 0;
-            std::int32_t record[6];
-            in.read(reinterpret_cast<char*>(&count), 1);
-            in.read(reinterpret_cast<char*>(record), sizeof record);
-            EXPECT_EQ(count, 3);
-            m.faces.insert(m.faces.end(), {std::uint32_t(record[0]), std::uint32_t(record[1]),
-                                           std::uint32_t(record[2])});
-        }
+    for (std::size_t i = 0; i < vertices; ++i) {
+        // Written to round-trip as floats: the doubles read are those floats.
+        m.positions[i] = dvec3(ply.vertex.at("x")[i], ply.vertex.at("y")[i], ply.vertex.at("z")[i]);
+        m.normals[i] =
+            dvec3(ply.vertex.at("nx")[i], ply.vertex.at("ny")[i], ply.vertex.at("nz")[i]);
     }
-    EXPECT_TRUE(in) << path << ": shorter than its header says";
+    m.faces.reserve(3 * ply.faces.size());
+    for (const auto& f : ply.faces)
+        m.faces.insert(m.faces.end(),
+                       {std::uint32_t(f[0]), std::uint32_t(f[1]), std::uint32_t(f[2])});
     return m;
 }
 

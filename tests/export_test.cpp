@@ -24,6 +24,7 @@
 #include "io/export_common.h"
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
+#include "ply_reader.h"
 
 using namespace plantarch;
 namespace fs = std::filesystem;
@@ -113,7 +114,7 @@ protected:
     fs::path dir_;
 };
 
-// ---- a small PLY reader (binary little-endian and ASCII) --------------------------------
+// ---- PLY files as the tests look at them (tests/ply_reader.h) ----------------------------
 
 struct Ply {
     bool binary = false;
@@ -125,79 +126,29 @@ struct Ply {
 };
 
 Ply readPLY(const fs::path& path) {
-    const std::string bytes = readBytes(path);
+    const plantarch::testing::PlyData data = plantarch::testing::readPlyFile(path.string());
     Ply ply;
-    std::size_t pos = 0, vertexCount = 0, faceCount = 0;
-    auto nextLine = [&] {
-        const std::size_t end = bytes.find('\n', pos);
-        EXPECT_NE(end, std::string::npos);
-        std::string line = bytes.substr(pos, end - pos);
-        pos = end + 1;
-        return line;
+    ply.binary = data.binary;
+    ply.comments = data.comments;
+    ply.faces = data.faces;
+    for (const auto& p : data.vertexProperties) {
+        EXPECT_EQ(p.type, "float");
+        ply.vertexProperties.push_back(p.name);
+    }
+    const std::size_t n = ply.vertexProperties.size();
+    const std::size_t count = n ? data.vertex.at(ply.vertexProperties[0]).size() : 0;
+    ply.vertices.resize(count * n);
+    for (std::size_t v = 0; v < count; ++v)
+        for (std::size_t k = 0; k < n; ++k)
+            ply.vertices[v * n + k] = float(data.vertex.at(ply.vertexProperties[k])[v]);
+    auto column = [&](const char* name, std::vector<int>& out) {
+        EXPECT_TRUE(data.face.count(name)) << name;
+        if (data.face.count(name))
+            for (double x : data.face.at(name)) out.push_back(int(x));
     };
-    EXPECT_EQ(nextLine(), "ply");
-    for (std::string line = nextLine(); line != "end_header"; line = nextLine()) {
-        std::istringstream words(line);
-        std::string key;
-        words >> key;
-        if (key == "format") {
-            std::string format;
-            words >> format;
-            ply.binary = format == "binary_little_endian";
-            EXPECT_TRUE(ply.binary || format == "ascii") << format;
-        } else if (key == "comment") {
-            ply.comments.push_back(line.substr(8));
-        } else if (key == "element") {
-            std::string name;
-            std::size_t n = 0;
-            words >> name >> n;
-            (name == "vertex" ? vertexCount : faceCount) = n;
-        } else if (key == "property" && faceCount == 0) {
-            std::string type, name;
-            words >> type >> name;
-            EXPECT_EQ(type, "float");
-            ply.vertexProperties.push_back(name);
-        }
-        if (pos >= bytes.size()) break;
-    }
-    const std::size_t nprop = ply.vertexProperties.size();
-    ply.vertices.resize(vertexCount * nprop);
-    ply.faces.resize(faceCount);
-    ply.plant.resize(faceCount);
-    ply.object.resize(faceCount);
-    ply.organ.resize(faceCount);
-    if (ply.binary) {
-        const std::size_t expected = vertexCount * nprop * 4 + faceCount * 25;
-        EXPECT_EQ(bytes.size() - pos, expected);
-        if (bytes.size() - pos != expected) return ply;
-        std::memcpy(ply.vertices.data(), bytes.data() + pos, vertexCount * nprop * 4);
-        const char* p = bytes.data() + pos + vertexCount * nprop * 4;
-        for (std::size_t f = 0; f < faceCount; ++f, p += 25) {
-            EXPECT_EQ(p[0], 3);
-            int v[6];
-            std::memcpy(v, p + 1, sizeof(v));
-            ply.faces[f] = {v[0], v[1], v[2]};
-            ply.plant[f] = v[3];
-            ply.object[f] = v[4];
-            ply.organ[f] = v[5];
-        }
-    } else {
-        std::istringstream body(bytes.substr(pos));
-        for (float& x : ply.vertices) {
-            std::string word;
-            body >> word;
-            x = std::strtof(word.c_str(), nullptr);
-        }
-        for (std::size_t f = 0; f < faceCount; ++f) {
-            int n = 0;
-            body >> n >> ply.faces[f][0] >> ply.faces[f][1] >> ply.faces[f][2] >> ply.plant[f] >>
-                ply.object[f] >> ply.organ[f];
-            EXPECT_EQ(n, 3);
-        }
-        std::string rest;
-        body >> rest;
-        EXPECT_TRUE(rest.empty()) << "trailing data: " << rest;
-    }
+    column("plant_id", ply.plant);
+    column("object_id", ply.object);
+    column("organ", ply.organ);
     return ply;
 }
 
@@ -239,7 +190,7 @@ TEST_F(ExportTest, ObjRoundTripKeepsPositionsTrianglesColoursAndUVs) {
                       fs::absolute(mb.texture).lexically_normal());
         }
     }
-    EXPECT_EQ(back.objectDataString(ids[0], "name"), "obj0_leaf");
+    EXPECT_EQ(back.objectDataString(ids[0], "name"), "obj0_plant0_leaf");
     EXPECT_EQ(back.objectDataString(ids[3], "name"), "obj4_weird_organ");
     EXPECT_EQ(back.material(back.object(ids[0]).material).name, "leaf_green");
 }
@@ -256,7 +207,7 @@ TEST_F(ExportTest, ObjTextLayoutForOneQuad) {
     EXPECT_EQ(readBytes(dir_ / "quad.obj"),
               "# plantarch OBJ: 1 objects, 2 triangles\n"
               "mtllib quad.mtl\n"
-              "o obj0_leaf\ng obj0_leaf\nusemtl m\n"
+              "o obj0_leaf\ng obj0_leaf\n# plantarch labels object=0 organ=leaf\nusemtl m\n"
               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
               "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
               "vn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\n"
@@ -269,7 +220,7 @@ TEST_F(ExportTest, ObjTextLayoutForOneQuad) {
              {.normals = false, .uvs = false, .materials = false});
     EXPECT_EQ(readBytes(dir_ / "plain.obj"),
               "# plantarch OBJ: 1 objects, 2 triangles\n"
-              "o obj0_leaf\ng obj0_leaf\n"
+              "o obj0_leaf\ng obj0_leaf\n# plantarch labels object=0 organ=leaf\n"
               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
               "f 1 2 3\nf 1 3 4\n");
     EXPECT_FALSE(fs::exists(dir_ / "plain.mtl"));
@@ -301,7 +252,7 @@ TEST_F(ExportTest, ObjHiddenObjectsOnlyWhenAsked) {
     writeOBJ(s.ctx, path, {.includeHidden = true});
     Context back;
     EXPECT_EQ(readOBJ(back, path).size(), 6u);
-    EXPECT_TRUE(contains(readBytes(path), "o obj2_fruit\n"));
+    EXPECT_TRUE(contains(readBytes(path), "o obj2_plant1_fruit\n"));
 }
 
 TEST_F(ExportTest, ObjNormalsAreAreaWeighted) {
@@ -344,9 +295,9 @@ TEST_F(ExportTest, ObjSplitPerObjectWritesOneFilePerObject) {
     buildScene(s);
     const fs::path out = dir_ / "parts" / "plant";  // created with its parent
     writeOBJ(s.ctx, out.string(), {.splitPerObject = true});
-    EXPECT_EQ(filesIn(out),
-              (std::vector<std::string>{"materials.mtl", "obj0_leaf.obj", "obj1_petiole.obj",
-                                        "obj3.obj", "obj4_weird_organ.obj", "obj5_aardvark.obj"}));
+    EXPECT_EQ(filesIn(out), (std::vector<std::string>{
+                                "materials.mtl", "obj0_plant0_leaf.obj", "obj1_plant1_petiole.obj",
+                                "obj3.obj", "obj4_weird_organ.obj", "obj5_plant7_aardvark.obj"}));
     const std::vector<ObjectID> visible = {s.leaf, s.textured, s.bare, s.odd1, s.odd2};
     const std::vector<std::string> files = filesIn(out);
     for (std::size_t i = 0; i < visible.size(); ++i) {
@@ -488,7 +439,9 @@ TEST_F(ExportTest, PlyBinaryHasLabelsAndCoordinates) {
     EXPECT_TRUE(contains(header,
                          "property list uchar int vertex_indices\n"
                          "property int plant_id\nproperty int object_id\n"
-                         "property int organ\nend_header\n"));
+                         "property int organ\nproperty int leaf_id\nproperty int shoot_id\n"
+                         "property int rank\nproperty int node\nproperty float age\n"
+                         "end_header\n"));
 }
 
 TEST_F(ExportTest, PlyAsciiMatchesBinary) {

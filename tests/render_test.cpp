@@ -475,11 +475,13 @@ CommandResult runCli(const std::string& args, const fs::path& dir) {
     return r;
 }
 
-/// A box "internode" under a quad "leaf", with group names as plantarch's OBJ writer makes them.
+/// A box "internode" under a quad "leaf", with group names as plantarch's OBJ writer makes them
+/// (obj<ID>_plant<P>_<organ>, and obj<ID>_<organ> for an object of no plant), without the
+/// label comments.
 void writeSmallObj(const fs::path& path) {
     std::ofstream out(path);
     out << "# two organs\n"
-           "g obj0_internode\n"
+           "g obj0_plant2_internode\n"
            "v -0.05 -0.05 0\nv 0.05 -0.05 0\nv 0.05 0.05 0\nv -0.05 0.05 0\n"
            "v -0.05 -0.05 0.6\nv 0.05 -0.05 0.6\nv 0.05 0.05 0.6\nv -0.05 0.05 0.6\n"
            "f 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 5 6 7 8\n"
@@ -513,7 +515,7 @@ TEST(RenderCli, LabelMaskAndExplicitCamera) {
                               " --eye 2,-2,1.5 --target 0,0,0.4 --fov 40",
                           dir.path());
     ASSERT_EQ(r.status, 0) << r.stderrText;
-    // Organ labels come back from the group names obj<ID>_<organ>.
+    // Organ labels come back from the group names obj<ID>[_plant<P>]_<organ>.
     const std::set<RGB> expected = {
         {0, 0, 0}, organLabelColor("leaf"), organLabelColor("internode")};
     EXPECT_EQ(colours(readImage(png.string())), expected);

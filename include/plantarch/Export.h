@@ -12,13 +12,17 @@
 // that reads back to the same float (std::to_chars), so they round-trip exactly; normals
 // in text formats are written with 6 decimals (ample for unit vectors, and much faster).
 //
-// Object data read by the writers:
-//   "organ"    (string) organ kind: OBJ group names, PLY per-face organ label
-//   "plantID"  (int)    PLY per-face plant_id (-1 when absent)
+// Object data read by the writers (the labels; -1 or absent where an object has none):
+//   "organ"      (string) organ kind: OBJ group names and label comments, PLY per-face organ
+//   "plantID"    (int)    plant: OBJ names and comments, PLY per-face plant_id
+//   "shootID", "rank", "node", "leafID" (int), "age" (float, days), "plant_name" (string):
+//                         OBJ label comments, PLY per-face properties (not plant_name),
+//                         glTF and USD labels
 
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,10 +48,10 @@ struct ObjOptions {
     /// Write the .mtl material library, `mtllib` and one `usemtl` per object.
     bool materials = true;
     /// One OBJ file per object instead of one for the scene. `path` then names a directory
-    /// (created when missing, with its parents) that receives `obj<ID>[_<organ>].obj` for
-    /// each object and one shared `materials.mtl`. Every file is written to a temporary
-    /// first and all are renamed into place together at the end; files already in the
-    /// directory are left alone.
+    /// (created when missing, with its parents) that receives `obj<ID>[_plant<P>][_<organ>].obj`
+    /// for each object and one shared `materials.mtl`. Every file is written to a temporary first
+    /// and all are renamed into place together at the end; files already in the directory are left
+    /// alone.
     bool splitPerObject = false;
     /// Receives ("writing OBJ", fraction) while the file is written; may be empty.
     ProgressCallback progress;
@@ -56,9 +60,13 @@ struct ObjOptions {
 /// Writes the visible objects of `context` as a Wavefront OBJ file and, next to it, a
 /// material library with the same stem (`scene.obj` -> `scene.mtl`).
 ///
-/// Layout: per object an `o` and a `g` line named `obj<ID>` or `obj<ID>_<organ>` (from the
-/// object's "organ" string data, characters other than letters, digits, `-`, `_` and `.`
-/// replaced by `_`), a `usemtl` line, its `v` (and `vt`, `vn`, one per vertex) lines and
+/// Layout: per object an `o` and a `g` line named `obj<ID>[_plant<P>][_<organ>]` (P from the
+/// object's "plantID" int data, the organ from its "organ" string data with characters other
+/// than letters, digits, `-`, `_` and `.` replaced by `_`), a label comment
+///   # plantarch labels object=<ID> plant=<P> plant_name=<name> organ=<organ> shoot=<S>
+///     rank=<R> node=<N> leaf=<L> age=<days>
+/// (one line; keys of data the object lacks left out, text percent-encoded; docs/formats.md,
+/// "OBJ labels"), a `usemtl` line, its `v` (and `vt`, `vn`, one per vertex) lines and
 /// its faces `f v/vt/vn`. Materials are named after Material::name or `material<ID>`;
 /// the .mtl holds `Kd` (the colour) and `map_Kd` (the texture; a relative texture path
 /// is rewritten relative to the .mtl's directory so viewers find it).
@@ -74,6 +82,13 @@ struct ObjReadOptions {
     std::string mtlSearchPath;
     /// Store each shape's name (from `o` / `g`) as object string data "name".
     bool storeShapeNames = true;
+    /// Read the plantarch label comments (`# plantarch labels ...`, see writeOBJ) into object
+    /// data: "plantID", "plant_name", "organ", "shootID", "rank", "node", "leafID" and "age",
+    /// as the writers read them. When every object has a recorded `object=` ID, the IDs
+    /// increase through the file and all are free in the Context (at or above every ID it
+    /// has issued, as in a fresh Context, with fewer than about a million unused IDs below
+    /// them), the objects get exactly those IDs; otherwise new IDs in file order.
+    bool labels = true;
     /// Receives tinyobjloader's warnings (for example a .mtl that was not found, which is
     /// not an error: the objects get the default material). Ignored when empty.
     std::function<void(const std::string& message)> onWarning;
@@ -85,7 +100,8 @@ struct ObjReadOptions {
 /// Reads a Wavefront OBJ file (with its .mtl materials) into `context` and returns the IDs
 /// of the objects added, in file order.
 ///
-/// One object per run of faces of one shape (`o` / `g`) with the same material. Polygons
+/// One object per run of faces of one shape (`o` / `g`) with the same material, labelled from
+/// the plantarch label comments (ObjReadOptions::labels). Polygons
 /// are triangulated (fan); UVs are kept when present; normals in the file are ignored.
 /// Each object's material takes the colour (`Kd`), texture path (`map_Kd`, resolved so it
 /// can be opened from the working directory) and name of its .mtl material; faces without
@@ -104,6 +120,18 @@ enum class PlyFormat {
     Ascii,               ///< `format ascii 1.0`: human-readable
 };
 
+/// Vertex colours of a PLY mesh (`uchar red green blue`), one colour per object.
+enum class PlyColor {
+    None,      ///< no colour properties
+    Organ,     ///< the organ's label colour (organLabelColors(); trellis as obstacle)
+    Plant,     ///< a colour per plant ID: hues spaced by the golden angle; grey for no plant
+    Material,  ///< the object's material colour (Material::color, 0..1 as 0..255)
+};
+/// "none", "organ", "plant", "material".
+const char* plyColorName(PlyColor color);
+/// The PlyColor of a name of plyColorName; nullopt for another text.
+std::optional<PlyColor> plyColorFromName(std::string_view name);
+
 /// Options of writePLY.
 struct PlyOptions {
     PlyFormat format = PlyFormat::BinaryLittleEndian;
@@ -111,6 +139,8 @@ struct PlyOptions {
     bool includeHidden = false;
     /// Add per-vertex smooth normals (`nx ny nz`, computed as for OBJ).
     bool normals = false;
+    /// Add per-vertex colours (`red green blue`, after the normals) coding a label.
+    PlyColor color = PlyColor::None;
     /// Receives ("writing PLY", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -122,6 +152,16 @@ inline constexpr std::array<std::string_view, 10> kOrganLabels = {
     "unlabelled",    "internode",   "petiole", "leaf",   "peduncle",
     "flower_closed", "flower_open", "fruit",   "ground", "obstacle"};
 
+/// An organ's colour in label images (plantarch/Render.h) and colour-coded PLY files.
+struct OrganLabelColor {
+    std::string_view organ;
+    std::array<std::uint8_t, 3> rgb;
+};
+/// The organ label colour table (listed in plantarch/Render.h), in table order.
+const std::vector<OrganLabelColor>& organLabelColors();
+/// Colour of an organ name; unknown names give the "other" colour (white).
+std::array<std::uint8_t, 3> organLabelColor(std::string_view organ);
+
 /// The organ label table writePLY would use for `context`: kOrganLabels followed by the
 /// other organ strings of the exported objects in sorted order. Entry i names label i.
 std::vector<std::string> organLabelTable(const Context& context, bool includeHidden = false);
@@ -129,12 +169,15 @@ std::vector<std::string> organLabelTable(const Context& context, bool includeHid
 /// Writes the visible objects of `context` as a PLY mesh, ready to use as segmentation
 /// ground truth:
 ///
-///   element vertex N: float x, y, z (and nx, ny, nz with PlyOptions::normals)
+///   element vertex N: float x, y, z (and nx, ny, nz with PlyOptions::normals; uchar red,
+///                     green, blue with PlyOptions::color)
 ///   element face M:   list uchar int vertex_indices, int plant_id, int object_id,
-///                     int organ
+///                     int organ, int leaf_id, int shoot_id, int rank, int node, float age
 ///
-/// plant_id is the object's "plantID" int data (-1 when absent), object_id its object ID,
-/// organ its label (see kOrganLabels). The header lists the label names as lines
+/// plant_id is the object's "plantID" int data, object_id its object ID, organ its label (see
+/// kOrganLabels), leaf_id, shoot_id, rank and node its "leafID", "shootID", "rank" and "node"
+/// int data (-1 when absent), age its "age" float data (days, -1 when absent); ASCII and
+/// binary files hold the same properties. The header lists the label names as lines
 /// `comment organ_label <int> <name>`. Vertices of each object are written in order, so
 /// objects never share vertices.
 ///
@@ -160,7 +203,7 @@ struct GltfOptions {
     bool textures = true;  ///< embed the image of every material that has one
     /// Labels: _PLANT_ID, _OBJECT_ID, _ORGAN and _FEATURE_ID_0 vertex attributes (floats),
     /// EXT_mesh_features feature IDs and an EXT_structural_metadata property table with the
-    /// plant, object, organ, leaf, shoot, rank and age of every object (docs/formats.md).
+    /// plant, object, organ, leaf, shoot, rank, node and age of every object (docs/formats.md).
     bool labels = true;
     /// Plants to name and place (from the PlantArchitecture: getPlantBasePosition, ...); a
     /// plant not listed gets a node named "plant_<id>" at the origin.
@@ -188,7 +231,7 @@ struct UsdOptions {
 /// Writes the Context as a USD text file (.usda), atomically: upAxis Z, metersPerUnit 1, an
 /// Xform per plant (translated to its base; plantID, species, age, seed in customData) and a
 /// Mesh per organ kind under it, with primvars normals and st, per-face (uniform) primvars
-/// displayColor, organ, plantID, objectID, leafID, shootID, rank and age, and the organ kind
+/// displayColor, organ, plantID, objectID, leafID, shootID, rank, node and age, and the organ kind
 /// as a semantic class label
 /// (SemanticsLabelsAPI). Throws plantarch::Error naming the file.
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options = {});

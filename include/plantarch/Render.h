@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "plantarch/Context.h"
+#include "plantarch/Export.h"
 #include "plantarch/Mesh.h"
 #include "plantarch/Progress.h"
 
@@ -150,14 +151,8 @@ struct RenderOptions {
     ProgressCallback progress;
 };
 
-/// The organ label colour table (see the header comment), in table order.
-struct OrganLabelColor {
-    std::string_view organ;
-    std::array<std::uint8_t, 3> rgb;
-};
-const std::vector<OrganLabelColor>& organLabelColors();
-/// Colour of an organ name in LabelOrgan mode; unknown names give the "other" colour (white).
-std::array<std::uint8_t, 3> organLabelColor(std::string_view organ);
+// The organ label colour table (see the header comment): organLabelColors() and
+// organLabelColor() in plantarch/Export.h, shared with the PLY writer's colours.
 /// Colour of an object in LabelObject mode: a bijection of (id + 1) onto the 24-bit colours.
 std::array<std::uint8_t, 3> objectLabelColor(ObjectID id);
 /// Inverse of objectLabelColor; nullopt for black (background).

@@ -82,16 +82,23 @@ void bindOutput(py::module_& m) {
         "Writes the Context as OBJ (+ MTL) with one group per object, atomically.");
     m.def(
         "writePLY",
-        [](const Context& c, const std::string& path, bool ascii, bool includeHidden,
-           bool normals) {
+        [](const Context& c, const std::string& path, bool ascii, bool includeHidden, bool normals,
+           const std::string& color) {
+            const std::optional<PlyColor> mode = plyColorFromName(color);
+            if (!mode)
+                throw Error("unknown PLY colour", {.parameter = "color",
+                                                   .value = color,
+                                                   .validRange = "none, organ, plant, material"});
             py::gil_scoped_release release;
-            writePLY(
-                c, path,
-                {ascii ? PlyFormat::Ascii : PlyFormat::BinaryLittleEndian, includeHidden, normals});
+            writePLY(c, path,
+                     {ascii ? PlyFormat::Ascii : PlyFormat::BinaryLittleEndian, includeHidden,
+                      normals, *mode});
         },
         py::arg("context"), py::arg("filename"), py::arg("ascii") = false,
-        py::arg("include_hidden") = false, py::arg("normals") = false,
-        "Writes the Context as PLY with per-face plant, object and organ labels, atomically.");
+        py::arg("include_hidden") = false, py::arg("normals") = false, py::arg("color") = "none",
+        "Writes the Context as PLY with per-face labels (plant, object, organ, leaf, shoot, "
+        "rank, node, age) and, with color 'organ', 'plant' or 'material', vertex colours, "
+        "atomically.");
     m.def(
         "writeGLTF",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,

@@ -196,3 +196,21 @@ def test_ply_from_python_is_the_bytes_the_cli_writes(tmp):
     subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "30", "-o",
                     str(tmp / "cli.ply")], check=True, capture_output=True)
     assert (tmp / "py.ply").read_bytes() == (tmp / "cli.ply").read_bytes()
+
+
+def test_ply_colours_and_labels_from_python_match_the_cli(tmp):
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.setSeed(3)
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    plantarch.writePLY(a.getContext(), str(tmp / "py.ply"), ascii=True, color="organ")
+    subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "20", "--ply-color", "organ",
+                    "--ply-format", "ascii", "-o", str(tmp / "cli.ply")],
+                   check=True, capture_output=True)
+    data = (tmp / "py.ply").read_bytes()
+    assert data == (tmp / "cli.ply").read_bytes()
+    header = data[:data.index(b"end_header")].decode()
+    assert "property uchar red" in header and "property int node" in header
+    with pytest.raises(plantarch.Error, match="none, organ, plant, material"):
+        plantarch.writePLY(a.getContext(), str(tmp / "bad.ply"), color="leafy")
+    assert not (tmp / "bad.ply").exists()

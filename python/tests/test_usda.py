@@ -36,8 +36,8 @@ def test_usda_of_a_canopy_has_a_prim_per_plant_and_organ_with_its_labels(tmp_pat
             assert max(indices) < len(points)
             assert len(a["primvars:normals"]["value"]) == len(points)
             assert a["primvars:normals"]["metadata"]["interpolation"] == "vertex"
-            for label in ("organ", "plantID", "objectID", "leafID", "shootID", "rank", "age",
-                          "displayColor"):
+            for label in ("organ", "plantID", "objectID", "leafID", "shootID", "rank", "node",
+                          "age", "displayColor"):
                 primvar = a["primvars:" + label]
                 assert primvar["metadata"]["interpolation"] == "uniform"
                 assert len(primvar["value"]) == len(counts)

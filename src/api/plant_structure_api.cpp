@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/input_file.h"
 #include "geometry/tessellate.h"
+#include "io/object_table.h"
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/HeliosPlantXML.h"
@@ -365,6 +366,34 @@ void writePlantStructureXML(const PlantArchitecture& arch, const std::vector<uns
                             const std::string& filename,
                             const PlantStructureWriteOptions& options) {
     const std::string text = getPlantStructureXML(arch, plantIDs, options);
+    io::AtomicFile file(filename);
+    file.write(text);
+    file.commit();
+}
+
+std::string getObjectTableJSON(const PlantArchitecture& arch, const std::vector<unsigned>& plantIDs,
+                               const ObjectTableOptions& options) {
+    std::vector<const PlantInstance*> plants;
+    for (unsigned id : plantIDs) plants.push_back(&arch.plant(id));
+    return io::objectTableJSON(const_cast<PlantArchitecture&>(arch).context(), plants,
+                               options.includeHidden);
+}
+
+std::string getObjectTableJSON(const Context& context, const ObjectTableOptions& options) {
+    return io::objectTableJSON(context, {}, options.includeHidden);
+}
+
+void writeObjectTableJSON(const PlantArchitecture& arch, const std::vector<unsigned>& plantIDs,
+                          const std::string& filename, const ObjectTableOptions& options) {
+    const std::string text = getObjectTableJSON(arch, plantIDs, options);
+    io::AtomicFile file(filename);
+    file.write(text);
+    file.commit();
+}
+
+void writeObjectTableJSON(const Context& context, const std::string& filename,
+                          const ObjectTableOptions& options) {
+    const std::string text = getObjectTableJSON(context, options);
     io::AtomicFile file(filename);
     file.write(text);
     file.commit();

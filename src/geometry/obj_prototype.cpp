@@ -13,7 +13,8 @@ bool isOBJPrototypeName(const std::string& name) {
 
 OrganPrototype loadOBJPrototype(const std::string& path, bool normalize) {
     Context ctx;
-    const std::vector<ObjectID> ids = readOBJ(ctx, path);
+    // Only the geometry and materials make the prototype: no labels, no recorded IDs.
+    const std::vector<ObjectID> ids = readOBJ(ctx, path, {.labels = false});
     AABB box;
     for (ObjectID id : ids) box.add(ctx.objectBoundingBox(id));
     const float length = box.extent().x;

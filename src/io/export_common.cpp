@@ -66,19 +66,19 @@ std::uint8_t organCode(std::string_view organ) {
 }
 
 namespace {
-constexpr const char* kIntLabels[4] = {"plantID", "leafID", "shootID", "rank"};
+constexpr const char* kIntLabels[5] = {"plantID", "leafID", "shootID", "rank", "node"};
 }
 
 LabelReader::LabelReader(const Context& context) : context_(context) {
-    for (int k = 0; k < 4; ++k) hasInt_[k] = context.objectDataType(kIntLabels[k]) == DataType::Int;
+    for (int k = 0; k < 5; ++k) hasInt_[k] = context.objectDataType(kIntLabels[k]) == DataType::Int;
     hasAge_ = context.objectDataType("age") == DataType::Float;
     hasOrgan_ = context.objectDataType("organ") == DataType::String;
 }
 
 ObjectLabels LabelReader::operator()(ObjectID id) const {
     ObjectLabels l;
-    std::int32_t* ints[4] = {&l.plant, &l.leaf, &l.shoot, &l.rank};
-    for (int k = 0; k < 4; ++k)
+    std::int32_t* ints[5] = {&l.plant, &l.leaf, &l.shoot, &l.rank, &l.node};
+    for (int k = 0; k < 5; ++k)
         if (hasInt_[k]) *ints[k] = context_.objectDataInt(id, kIntLabels[k]).value_or(-1);
     if (hasAge_) l.age = context_.objectDataFloat(id, "age").value_or(-1.0f);
     if (hasOrgan_) l.organ = organCode(context_.objectDataString(id, "organ").value_or(""));
@@ -92,6 +92,23 @@ std::string organOf(const Context& context, ObjectID id) {
 }  // namespace plantarch::io
 
 namespace plantarch {
+
+const std::vector<OrganLabelColor>& organLabelColors() {
+    static const std::vector<OrganLabelColor> table = {
+        {"internode", {230, 25, 75}},      {"petiole", {245, 130, 48}},
+        {"leaf", {60, 180, 75}},           {"peduncle", {255, 225, 25}},
+        {"flower_closed", {240, 50, 230}}, {"flower_open", {145, 30, 180}},
+        {"fruit", {0, 130, 200}},          {"ground", {128, 128, 128}},
+        {"obstacle", {70, 240, 240}},
+    };
+    return table;
+}
+
+std::array<std::uint8_t, 3> organLabelColor(std::string_view organ) {
+    for (const auto& entry : organLabelColors())
+        if (entry.organ == organ) return entry.rgb;
+    return {255, 255, 255};
+}
 
 void smoothNormals(const ObjectView& object, std::vector<vec3>& normals) {
     const auto& p = object.positions;

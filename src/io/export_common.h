@@ -90,13 +90,13 @@ std::uint8_t organCode(std::string_view organ);
 
 /// An object's labels as exporters write them: -1 (age: -1) where the data is absent.
 struct ObjectLabels {
-    std::int32_t plant = -1, leaf = -1, shoot = -1, rank = -1;
+    std::int32_t plant = -1, leaf = -1, shoot = -1, rank = -1, node = -1;
     float age = -1.0f;
     std::uint8_t organ = 0;
 };
 
-/// Reads objects' labels from their data (plantID, leafID, shootID, rank, age, organ); data of
-/// another type than plantarch writes counts as absent.
+/// Reads objects' labels from their data (plantID, leafID, shootID, rank, node, age, organ);
+/// data of another type than plantarch writes counts as absent.
 class LabelReader {
 public:
     explicit LabelReader(const Context& context);
@@ -104,7 +104,7 @@ public:
 
 private:
     const Context& context_;
-    bool hasInt_[4];
+    bool hasInt_[5];
     bool hasAge_, hasOrgan_;
 };
 

@@ -1,7 +1,7 @@
 // glTF 2.0 writer (.glb binary, .gltf with the buffer embedded) with labels a receiving tool
 // reads: per-vertex _PLANT_ID, _OBJECT_ID and _ORGAN attributes, EXT_mesh_features feature
 // IDs that index an EXT_structural_metadata property table (plant, object, organ, leaf,
-// shoot, rank and age of every object), and node extras with each plant's species, age and
+// shoot, rank, node and age of every object), and node extras with each plant's species, age and
 // seed.
 //
 // Layout: a node per plant (its base as the translation, vertices relative to it) and one for
@@ -48,7 +48,7 @@ struct ObjectRecord {
     ObjectID id;
     std::int32_t plant;
     std::uint8_t organ;
-    std::int32_t leaf, shoot, rank;
+    std::int32_t leaf, shoot, rank, node;
     float age;
     std::size_t material;  // index into Scene::materials
     std::uint32_t frame;
@@ -222,8 +222,8 @@ void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& p
             if (at == s.materials.end()) s.materials.push_back(mat);
         }
         const io::ObjectLabels l = labelsOf(id);
-        ObjectRecord r{id,     l.plant, l.organ,   l.leaf, l.shoot,
-                       l.rank, l.age,   m->second, frame,  !o.uvs.empty()};
+        ObjectRecord r{id,     l.plant, l.organ,   l.leaf, l.shoot,       l.rank,
+                       l.node, l.age,   m->second, frame,  !o.uvs.empty()};
         if (!nodeOf.count(r.plant)) {
             nodeOf.emplace(r.plant, s.nodes.size());
             s.nodes.push_back({frame, r.plant, vec3(0.0f), std::nullopt});
@@ -296,6 +296,7 @@ json schema() {
                   {"leaf", scalar("INT32", "leaf ID within the plant (-1: not a leaf)")},
                   {"shoot", scalar("INT32", "shoot ID within the plant (-1: none)")},
                   {"rank", scalar("INT32", "shoot rank, 0 for the base stem (-1: none)")},
+                  {"node", scalar("INT32", "node (phytomer) index on the shoot (-1: none)")},
                   {"age", scalar("FLOAT32", "organ age, days (-1: unknown)")}}}}}}}};
 }
 
@@ -479,7 +480,7 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
         json properties;
         const std::pair<const char*, std::size_t> columns[] = {
             {"plant", 4}, {"object", 4}, {"organ", 1}, {"leaf", 4},
-            {"shoot", 4}, {"rank", 4},   {"age", 4}};
+            {"shoot", 4}, {"rank", 4},   {"node", 4},  {"age", 4}};
         for (const auto& [name, bytes] : columns)
             properties[name] = {{"values", buffer.add(views, features * bytes, 0)}};
         doc["extensions"]["EXT_structural_metadata"] = {
@@ -633,6 +634,7 @@ void writeBinary(const Scene& s, const GltfOptions& options, Sink& out) {
         columnOf([](const ObjectRecord& r) { return r.leaf; }, std::int32_t{});
         columnOf([](const ObjectRecord& r) { return r.shoot; }, std::int32_t{});
         columnOf([](const ObjectRecord& r) { return r.rank; }, std::int32_t{});
+        columnOf([](const ObjectRecord& r) { return r.node; }, std::int32_t{});
         columnOf([](const ObjectRecord& r) { return r.age; }, float{});
     }
 }

@@ -14,6 +14,7 @@
 
 #include "core/input_file.h"
 #include "core/progress_steps.h"
+#include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 
@@ -141,6 +142,55 @@ private:
     std::unordered_map<std::uint64_t, std::uint32_t> remap_;
 };
 
+// The label record of each object (null: none), read from the file's plantarch label
+// comments (io/obj_labels.h) unless options.labels is off. Checks that the Context's data
+// of those labels have the types the labels need, so nothing is added before an error.
+std::vector<const io::ObjLabelRecord*> labelsOf(
+    const Context& context, const std::string& path, const ObjReadOptions& options,
+    const std::vector<PendingObject>& objects,
+    std::unordered_map<std::string, io::ObjLabelRecord>& records) {
+    std::vector<const io::ObjLabelRecord*> labels(objects.size(), nullptr);
+    if (!options.labels) return labels;
+    records = io::readObjLabels(path);
+    if (records.empty()) return labels;
+    for (const io::ObjLabelData& d : io::kObjLabelData) {
+        const auto type = context.objectDataType(d.label);
+        if (type && *type != d.type)
+            throw Error(std::string("object data has type ") + dataTypeName(*type) +
+                            ", readOBJ stores labels of this name as " + dataTypeName(d.type),
+                        {.file = path, .parameter = d.label});
+    }
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        const auto it = records.find(*objects[i].name);
+        if (it != records.end()) labels[i] = &it->second;
+    }
+    return labels;
+}
+
+// Whether the objects can have the IDs their labels record: every object has one, they
+// increase in file order (so each names one object), all are free in `context` (at or above
+// every ID it has issued) and leave fewer than about a million unused IDs below them.
+bool recordedIDsFree(const Context& context, const std::vector<const io::ObjLabelRecord*>& labels) {
+    constexpr ObjectID kMaxUnusedIDs = 1u << 20;
+    ObjectID next = context.objectIDLimit();
+    std::uint64_t unused = 0;
+    for (const io::ObjLabelRecord* r : labels) {
+        if (!r || !r->object || *r->object < next) return false;
+        unused += *r->object - next;
+        if (unused >= kMaxUnusedIDs) return false;
+        next = *r->object + 1;
+    }
+    return !labels.empty();
+}
+
+// Issues and deletes the IDs below `id` that `context` has not issued, so that its next
+// object gets `id`.
+void skipIDsBelow(Context& context, ObjectID id) {
+    std::vector<ObjectID> unused;
+    while (context.objectIDLimit() < id) unused.push_back(context.addObject(Mesh{}));
+    context.deleteObjects(unused);
+}
+
 }  // namespace
 
 // Every vertex line ("v x y z") holds finite numbers: the OBJ parser reads a word such as
@@ -213,6 +263,11 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         throw Error(message, {.file = path});
     }
 
+    std::unordered_map<std::string, io::ObjLabelRecord> records;
+    const std::vector<const io::ObjLabelRecord*> labels =
+        labelsOf(context, path, options, objects, records);
+    const bool sameIDs = recordedIDsFree(context, labels);
+
     // Materials as the Context will hold them; added only now that the file is known good.
     const fs::path baseDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path()
                                                            : fs::path(options.mtlSearchPath);
@@ -228,10 +283,13 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
 
     std::vector<ObjectID> ids;
     ids.reserve(objects.size());
-    for (PendingObject& o : objects) {
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        const PendingObject& o = objects[i];
         const bool known = o.material >= 0 && std::size_t(o.material) < materialIDs.size();
+        if (sameIDs) skipIDsBelow(context, *labels[i]->object);
         const ObjectID id = context.addObject(o.mesh, known ? materialIDs[o.material] : plain);
         if (options.storeShapeNames && !o.name->empty()) context.setObjectData(id, "name", *o.name);
+        if (labels[i]) io::applyObjLabels(context, id, *labels[i]);
         ids.push_back(id);
         steps.at(0.8 + 0.2 * double(ids.size()) / double(objects.size()));
     }

@@ -23,6 +23,7 @@
 #include "core/atomic_file.h"
 #include "core/progress_steps.h"
 #include "io/export_common.h"
+#include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 
@@ -52,12 +53,21 @@ std::string sanitizeName(std::string_view text) {
     return out;
 }
 
-std::string objectName(const Context& context, ObjectID id) {
+// obj<ID>[_plant<P>][_<organ>]: unique per object, and it tells plants and organs apart in
+// tools that show only names. `plantIDs`: the Context's "plantID" data are ints.
+std::string objectName(const Context& context, ObjectID id, bool plantIDs) {
     std::string name = "obj";  // (not "obj" + ...: GCC 12 warns falsely, -Wrestrict)
     name += std::to_string(id);
+    if (plantIDs)
+        if (const auto plant = context.objectDataInt(id, "plantID"))
+            name.append("_plant").append(std::to_string(*plant));
     const std::string organ = io::organOf(context, id);
     if (!organ.empty()) name.append("_").append(sanitizeName(organ));
     return name;
+}
+
+bool hasPlantIDs(const Context& context) {
+    return context.objectDataType("plantID") == DataType::Int;
 }
 
 // Unique material names for the materials used by `ids` (empty string: unused).
@@ -151,15 +161,18 @@ private:
 class ObjBodyWriter {
 public:
     ObjBodyWriter(const Context& context, const ObjOptions& options)
-        : context_(context), options_(options) {}
+        : context_(context), options_(options), plantIDs_(hasPlantIDs(context)), labels_(context) {}
 
     template <class Out>
     void writeObject(Out& out, ObjectID id, const std::string* materialName,
                      std::uint64_t vertexBase, std::uint64_t uvBase) {
         const ObjectView o = context_.object(id);
-        const std::string name = objectName(context_, id);
-        out.write("o " + name + "\ng " + name + "\n");
-        if (materialName) out.write("usemtl " + *materialName + "\n");
+        // The object's name, its label comment (io/obj_labels.h) and its material.
+        const std::string name = objectName(context_, id, plantIDs_);
+        head_.assign("o ").append(name).append("\ng ").append(name).append("\n");
+        labels_.append(head_, id);
+        if (materialName) head_.append("usemtl ").append(*materialName).append("\n");
+        out.write(head_);
 
         for (const vec3& v : o.positions) {
             char* p = out.reserve(kLineBytes);
@@ -270,6 +283,9 @@ private:
 
     const Context& context_;
     const ObjOptions& options_;
+    bool plantIDs_;
+    io::ObjLabelWriter labels_;
+    std::string head_;
     std::vector<vec3> normals_;
     std::vector<vec2> lastUVs_;
     std::vector<char> uvText_;
@@ -294,7 +310,7 @@ std::vector<Chunk> chunksOf(const Context& context, const std::vector<ObjectID>&
         const auto [v, t] = body.counts(o);
         vertices += v;
         uvs += t;
-        lines += v * (normals ? 2 : 1) + t + o.triangleCount() + 3;
+        lines += v * (normals ? 2 : 1) + t + o.triangleCount() + 4;
         if (lines >= kChunkLines || i + 1 == ids.size()) {
             chunk.last = i + 1;
             chunks.push_back(chunk);
@@ -436,11 +452,13 @@ void writeSplit(const Context& context, const std::string& dir, const ObjOptions
         files.back().finish();
     }
     ObjBodyWriter body(context, options);
+    const bool plantIDs = hasPlantIDs(context);
     const std::string mtlFile = options.materials ? kSplitMaterialFile : "";
     ProgressSteps steps(options.progress, "writing OBJ", double(ids.size()));
     for (std::size_t i = 0; i < ids.size(); ++i) {
         const ObjectID id = ids[i];
-        files.emplace_back((root / (objectName(context, id) + ".obj")).string(), kSplitBufferBytes);
+        files.emplace_back((root / (objectName(context, id, plantIDs) + ".obj")).string(),
+                           kSplitBufferBytes);
         io::AtomicFile& out = files.back();
         writeHeader(out, context, {id}, mtlFile);
         body.writeObject(out, id, options.materials ? &names[context.objectMaterial(id)] : nullptr,

@@ -235,6 +235,7 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
                 perFace("int[]", "leafID", [&](ObjectID id) { out.integer(labelsOf(id).leaf); });
                 perFace("int[]", "shootID", [&](ObjectID id) { out.integer(labelsOf(id).shoot); });
                 perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
+                perFace("int[]", "node", [&](ObjectID id) { out.integer(labelsOf(id).node); });
                 perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
                 out << "        }\n";
                 steps.at(done += double(g.triangles));

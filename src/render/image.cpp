@@ -140,23 +140,6 @@ Image readImage(const std::string& path) {
 
 // ---- label colours -----------------------------------------------------------------------
 
-const std::vector<OrganLabelColor>& organLabelColors() {
-    static const std::vector<OrganLabelColor> table = {
-        {"internode", {230, 25, 75}},      {"petiole", {245, 130, 48}},
-        {"leaf", {60, 180, 75}},           {"peduncle", {255, 225, 25}},
-        {"flower_closed", {240, 50, 230}}, {"flower_open", {145, 30, 180}},
-        {"fruit", {0, 130, 200}},          {"ground", {128, 128, 128}},
-        {"obstacle", {70, 240, 240}},
-    };
-    return table;
-}
-
-std::array<std::uint8_t, 3> organLabelColor(std::string_view organ) {
-    for (const auto& entry : organLabelColors())
-        if (entry.organ == organ) return entry.rgb;
-    return {255, 255, 255};
-}
-
 // An invertible scramble of 24-bit integers (xorshift steps and odd multipliers modulo 2^24
 // are bijections that keep 0 at 0), so neighbouring IDs get visibly different colours.
 namespace {
