@@ -189,7 +189,7 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
     arch.loadPlantModelFromLibrary(species);
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error("a folder, not a file of plant strings", {.file = path});
+        throw Error("is a directory, not a file of plant strings", {.file = path});
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open plant string file", {.file = path});
     std::vector<unsigned> ids;

@@ -45,12 +45,21 @@ def test_the_readme_python_example_runs():
 
 def test_the_formats_guide_python_block_runs(tmp_path):
     doc = DOC.parent / "formats.md"
-    blocks = re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
+    text = doc.read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
     assert blocks
+    # The block reads the files the guide's canopy command writes: run that command first.
+    cli = os.environ.get("PLANTARCH_CLI", str(DOC.parents[1] / "build" / "plantarch"))
+    command = re.findall(r"^build/plantarch (canopy bean --count 2x1 .*)$", text, re.M)[0]
+    subprocess.run([cli] + command.split(), cwd=tmp_path, check=True)
     cwd = os.getcwd()
     os.chdir(tmp_path)
+    scope = {}
     try:
         for block in blocks:
-            exec(compile(block, str(doc), "exec"), {})
+            exec(compile(block, str(doc), "exec"), scope)
     finally:
         os.chdir(cwd)
+    faces = scope["f"]
+    assert sorted(set(faces["plant_id"].tolist())) == [0, 1]
+    assert set(faces["organ"].tolist()) >= {1, 3}  # internodes and leaves

@@ -232,7 +232,7 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     }
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        throw Error("a folder, not an OBJ file", {.file = path});
+        throw Error("is a directory, not an OBJ file", {.file = path});
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;

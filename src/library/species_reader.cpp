@@ -685,7 +685,7 @@ std::vector<Error> checkSpeciesString(const std::string& xml, const std::string&
 std::vector<Error> checkSpeciesFile(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
-        return {Error("a folder, not a species file", {.file = path})};
+        return {Error("is a directory, not a species file", {.file = path})};
     std::ifstream in(path, std::ios::binary);
     if (!in) return {Error("cannot open species file", {.file = path})};
     std::ostringstream text;
