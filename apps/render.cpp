@@ -91,6 +91,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     o.mode = parseMode(a.label);
     o.seed = g.seed;
     o.progress = terminalProgress();
+    o.scene.progress = o.progress;
     if (a.samples > 0) o.samplesPerPixel = a.samples;
     if (a.fov > 0.0f) o.camera.fovDeg = a.fov;
     if (!a.eye.empty()) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -206,6 +207,10 @@ TEST_F(Progress, ReadingSamplingRenderingAndScanningReport) {
     Recorder reading;
     readOBJ(read, path("s.obj"), {.progress = reading.callback()});
     expectProgress(reading.of("reading OBJ"), 3, "readOBJ");
+    // The parse itself (the first half) reports as the file is read, not only at its end.
+    const std::vector<double> read_ = reading.of("reading OBJ");
+    EXPECT_GE(std::count_if(read_.begin(), read_.end(), [](double f) { return f < 0.5; }), 3)
+        << "calls during the parse";
 
     Recorder sampling;
     samplePoints(beans(), {.points = 500000, .seed = 1, .progress = sampling.callback()});
@@ -217,8 +222,13 @@ TEST_F(Progress, ReadingSamplingRenderingAndScanningReport) {
     o.height = 200;  // bands of 64 rows: four calls
     o.samplesPerPixel = 1;
     o.progress = rendering.callback();
+    o.scene.progress = rendering.callback();
     render(beans(), o);
     expectProgress(rendering.of("rendering"), 2, "render");
+    // The scene (triangles copied, then the BVH) before the rows.
+    expectProgress(rendering.of("building scene"), 2, "scene build");
+    ASSERT_FALSE(rendering.calls.empty());
+    EXPECT_EQ(rendering.calls.front().stage, "building scene");
 
     Recorder scanning;
     ScanOptions s;

@@ -116,6 +116,10 @@ struct RenderSceneOptions {
     /// High is for many renders of one scene.
     enum class BvhQuality { Low, Medium, High };
     BvhQuality bvhQuality = BvhQuality::Medium;
+    /// Told how far the scene is built ("building scene", 0..1: copying the triangles, then
+    /// the BVH); may be empty. Called one call at a time, possibly from the BVH builder's
+    /// threads.
+    ProgressCallback progress;
 };
 
 struct RenderOptions {

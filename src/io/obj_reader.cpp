@@ -6,8 +6,12 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <istream>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -23,6 +27,32 @@ namespace plantarch {
 namespace fs = std::filesystem;
 
 namespace {
+
+// Reads a file in blocks for the OBJ parser, telling how many bytes it has read so far.
+class ProgressReadBuffer final : public std::streambuf {
+public:
+    ProgressReadBuffer(std::FILE* file, std::function<void(std::uintmax_t)> onRead)
+        : file_(file), onRead_(std::move(onRead)), block_(1 << 20) {}
+
+    bool failed() const { return std::ferror(file_) != 0; }
+
+protected:
+    int_type underflow() override {
+        if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+        const std::size_t n = std::fread(block_.data(), 1, block_.size(), file_);
+        if (n == 0) return traits_type::eof();
+        read_ += n;
+        onRead_(read_);
+        setg(block_.data(), block_.data(), block_.data() + n);
+        return traits_type::to_int_type(*gptr());
+    }
+
+private:
+    std::FILE* file_;
+    std::function<void(std::uintmax_t)> onRead_;
+    std::vector<char> block_;
+    std::uintmax_t read_ = 0;
+};
 
 std::string trimmed(const std::string& text) {
     const std::size_t first = text.find_first_not_of(" \t\r\n");
@@ -233,17 +263,32 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error("is a directory, not an OBJ file", {.file = path});
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    config.mtl_search_path = options.mtlSearchPath;
-    tinyobj::ObjReader reader;
-    // Progress as fractions of the whole read: the parse (one call) is about half of it.
+    // Progress as fractions of the whole read: the parse is about half of it, reported as
+    // the share of the file's bytes read.
     ProgressSteps steps(options.progress, "reading OBJ", 1.0);
-    const bool ok = reader.ParseFromFile(path, config);
-    const std::vector<std::string> warnings = warningLines(reader.Warning());
+    std::FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) throw Error("cannot open OBJ file", {.file = path});
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
+    const std::uintmax_t size = std::max<std::uintmax_t>(fs::file_size(path, ec), 1);
+    ProgressReadBuffer buffer(file, [&](std::uintmax_t read) {
+        steps.at(0.5 * double(std::min(read, size)) / double(size));
+    });
+    std::istream in(&buffer);
+    std::string mtlDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path().string()
+                                                       : options.mtlSearchPath;
+    if (!mtlDir.empty() && mtlDir.back() != '/') mtlDir += '/';
+    tinyobj::MaterialFileReader materialReader(mtlDir);
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> tinyMaterials;
+    std::string warning, error;
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &warning, &error, &in,
+                                     &materialReader, /*triangulate=*/true,
+                                     /*default_vcols_fallback=*/false);
+    if (buffer.failed()) throw Error("cannot read OBJ file", {.file = path});
+    const std::vector<std::string> warnings = warningLines(warning);
     if (!ok) {
-        const std::string why = trimmed(reader.Error());
+        const std::string why = trimmed(error);
         throw Error("cannot read OBJ: " + (why.empty() ? std::string("unknown error") : why),
                     {.file = path});
     }
@@ -254,8 +299,8 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         for (const std::string& w : warnings) options.onWarning(w);
 
     const std::string warningText = joined(warnings);
-    ObjConverter converter(reader.GetAttrib(), path, warningText);
-    std::vector<PendingObject> objects = converter.convert(reader.GetShapes());
+    ObjConverter converter(attrib, path, warningText);
+    std::vector<PendingObject> objects = converter.convert(shapes);
     steps.at(0.8);
     if (objects.empty()) {
         std::string message = "OBJ file has no faces";
@@ -271,7 +316,6 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     // Materials as the Context will hold them; added only now that the file is known good.
     const fs::path baseDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path()
                                                            : fs::path(options.mtlSearchPath);
-    const auto& tinyMaterials = reader.GetMaterials();
     std::vector<MaterialID> materialIDs(tinyMaterials.size());
     for (std::size_t i = 0; i < tinyMaterials.size(); ++i) {
         const tinyobj::material_t& m = tinyMaterials[i];

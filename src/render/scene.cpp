@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,6 +67,29 @@ SceneData::~SceneData() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
 }
+
+namespace {
+
+// Reports the BVH build's progress (Embree calls from its build threads) as the last 70 % of
+// building the scene, one call at a time and never backwards.
+struct BuildMonitor {
+    const ProgressCallback* progress;
+    std::mutex lock;
+    double last = 0.0;
+
+    static bool report(void* self, double done) {
+        auto& m = *static_cast<BuildMonitor*>(self);
+        const std::lock_guard<std::mutex> hold(m.lock);
+        const double fraction = 0.3 + 0.7 * std::clamp(done, 0.0, 1.0);
+        if (fraction >= m.last + 0.01 && fraction < 1.0) {
+            m.last = fraction;
+            (*m.progress)("building scene", fraction);
+        }
+        return true;  // never cancels the build
+    }
+};
+
+}  // namespace
 
 void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& options) {
     // ---- materials and textures --------------------------------------------------------
@@ -215,7 +239,13 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
         rtcCommitGeometry(g.geometry);
         rtcAttachGeometryByID(data.scene, g.geometry, unsigned(k));
     }
+    BuildMonitor monitor{&options.progress, {}, 0.3};
+    if (options.progress) {
+        options.progress("building scene", 0.3);
+        rtcSetSceneProgressMonitorFunction(data.scene, &BuildMonitor::report, &monitor);
+    }
     rtcCommitScene(data.scene);
+    if (options.progress) options.progress("building scene", 1.0);
     throwOnDeviceError(data.device, "BVH build");
 }
 
