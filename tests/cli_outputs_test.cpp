@@ -14,56 +14,21 @@
 #include <vector>
 
 #include "cli_run.h"
+#include "folder_test.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-class CliOutputs : public ::testing::Test {
+class CliOutputs : public FolderTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / (std::string("plantarch-cli-outputs-") + info->name());
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
-    std::string at(const std::string& name) const { return (dir_ / name).string(); }
-    // Every name in the folder, sorted (subfolders with a trailing '/').
-    std::vector<std::string> names() const {
-        std::vector<std::string> all;
-        for (const auto& e : fs::recursive_directory_iterator(dir_))
-            all.push_back(fs::relative(e.path(), dir_).string() + (e.is_directory() ? "/" : ""));
-        std::sort(all.begin(), all.end());
-        return all;
-    }
-    static std::string bytes(const std::string& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-    static void put(const std::string& path, const std::string& text) {
-        std::ofstream(path, std::ios::binary) << text;
-    }
-    fs::path dir_;
+    CliOutputs() : FolderTest("plantarch-cli-outputs-") {}
 };
 
 // `plantarch ARGS` run by sh after `prefix` (shell commands such as ulimit).
 cli::Result runAfter(const std::string& prefix, const std::string& args) {
-    const std::string cmd =
-        "sh -c '" + prefix + "; exec " + std::string(PLANTARCH_CLI) + " " + args + "' 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf{};
-    if (pipe)
-        while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe))
-            out.append(buf.data(), n);
-    const int status = pipe ? pclose(pipe) : -1;
-    return {status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+    return cli::runShell("sh -c '" + prefix + "; exec " + std::string(PLANTARCH_CLI) + " " + args +
+                         "' 2>&1");
 }
 
 int lines(const std::string& text) {

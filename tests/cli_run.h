@@ -14,9 +14,8 @@ struct Result {
     std::string out;  ///< stdout and stderr together
 };
 
-/// `plantarch ARGS`, with its output.
-inline Result run(const std::string& args) {
-    const std::string cmd = std::string(PLANTARCH_CLI) + " " + args + " 2>&1";
+/// A shell command line, with its output (give `2>&1` in it for stderr too).
+inline Result runShell(const std::string& cmd) {
     FILE* pipe = popen(cmd.c_str(), "r");
     std::string out;
     std::array<char, 4096> buf{};
@@ -25,6 +24,11 @@ inline Result run(const std::string& args) {
             out.append(buf.data(), n);
     const int status = pipe ? pclose(pipe) : -1;
     return {status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// `plantarch ARGS`, with its output.
+inline Result run(const std::string& args) {
+    return runShell(std::string(PLANTARCH_CLI) + " " + args + " 2>&1");
 }
 
 struct SplitResult {

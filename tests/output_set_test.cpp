@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "folder_test.h"
 #include "plantarch/Error.h"
 #include "plantarch/OutputFiles.h"
 
@@ -21,33 +22,9 @@ using plantarch::Error;
 
 namespace {
 
-class OutputSetTest : public ::testing::Test {
+class OutputSetTest : public FolderTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("plantarch-output-set-" +
-                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        std::error_code ignored;
-        fs::remove_all(dir_, ignored);
-    }
-    std::string at(const std::string& name) const { return (dir_ / name).string(); }
-    std::vector<std::string> names() const {
-        std::vector<std::string> all;
-        for (const auto& e : fs::directory_iterator(dir_)) all.push_back(e.path().filename());
-        std::sort(all.begin(), all.end());
-        return all;
-    }
-    static std::string bytes(const std::string& path) {
-        std::ifstream in(path, std::ios::binary);
-        std::ostringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-    fs::path dir_;
+    OutputSetTest() : FolderTest("plantarch-output-set-") {}
 };
 
 std::string errorOf(const std::function<void()>& f) {
@@ -104,7 +81,7 @@ TEST_F(OutputSetTest, ATargetThatBecameADirectoryReplacesNothing) {
     EXPECT_EQ(errorOf([&] { set.commit(); }),
               at("d") + ": cannot replace file: is a directory, not a file");
     EXPECT_EQ(bytes(at("a.txt")), "old a");
-    EXPECT_EQ(names(), (std::vector<std::string>{"a.txt", "d"}));
+    EXPECT_EQ(names(), (std::vector<std::string>{"a.txt", "d/"}));
 }
 
 // More files than the process keeps descriptors for: the later ones are named temporaries,
@@ -140,7 +117,7 @@ TEST_F(OutputSetTest, CheckOutputPathSaysWhy) {
     EXPECT_EQ(errorOf([] { plantarch::checkOutputPath("/proc/x.obj"); }),
               "/proc/x.obj: cannot write in folder /proc: it does not take new files");
     EXPECT_EQ(errorOf([&] { plantarch::checkOutputPath(at("ok.obj")); }), "");
-    EXPECT_EQ(names(), std::vector<std::string>{"d.obj"});  // the check leaves nothing
+    EXPECT_EQ(names(), std::vector<std::string>{"d.obj/"});  // the check leaves nothing
 }
 
 // Without unnamed files (the fallback), writing works the same and a discarded file leaves
