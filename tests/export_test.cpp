@@ -670,7 +670,8 @@ TEST_F(ExportTest, ReadObjMissingFileIsError) {
         FAIL() << "expected an Error";
     } catch (const Error& e) {
         EXPECT_EQ(e.file(), path);
-        EXPECT_TRUE(contains(e.what(), "cannot read OBJ: Cannot open file")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "cannot open OBJ file: No such file or directory"))
+            << e.what();
     }
 }
 

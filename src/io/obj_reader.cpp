@@ -4,9 +4,11 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -267,7 +269,8 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     // the share of the file's bytes read.
     ProgressSteps steps(options.progress, "reading OBJ", 1.0);
     std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (!file) throw Error("cannot open OBJ file", {.file = path});
+    if (!file)
+        throw Error(std::string("cannot open OBJ file: ") + std::strerror(errno), {.file = path});
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
     const std::uintmax_t size = std::max<std::uintmax_t>(fs::file_size(path, ec), 1);
     ProgressReadBuffer buffer(file, [&](std::uintmax_t read) {
