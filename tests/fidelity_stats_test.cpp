@@ -5,9 +5,10 @@
 //
 // Bands: height, leaf area and leaf count within 25 %; widths within 35 % (a crown's width
 // hangs on a few long shoots); flowers and fruit none where the reference has none, else
-// within 40 % (they come in few, discrete events). A species outside a band fails; a
-// departure made on purpose is listed in kDepartures with its reason and its own expected
-// value, and nothing else is exempt.
+// within 40 % (they come in few, discrete events; a count under ten on average is taken over
+// seeds 1 to 12, as three seeds of it vary by more than the band). A species outside a band fails;
+// a departure made on purpose is listed in kDepartures with its reason and its own expected value,
+// and nothing else is exempt.
 //
 // A fidelity target not yet met by every species, so ctest leaves it out for now (see
 // docs/testing.md); run it with plantarch_tests --gtest_filter='FidelityStats.*'. It prints
@@ -98,6 +99,9 @@ const std::vector<Departure> kDepartures = {
      "a spiral rosette, as wide along y as the reference's is along x (species/sugarbeet.xml)"},
 };
 
+constexpr double kFewEvents = 10.0;
+constexpr std::uint64_t kSeedsForFewEvents = 12;
+
 double band(const std::string& quantity) {
     if (quantity == "width_x" || quantity == "width_y") return 0.35;
     if (quantity == "flowers" || quantity == "fruit") return 0.40;
@@ -154,6 +158,18 @@ TEST(FidelityStats, EverySpeciesWithinItsBandsAtItsPictureAge) {
         std::map<std::string, double> ours;
         for (std::uint64_t seed = 1; seed <= 3; ++seed)
             for (const auto& [q, v] : measure(species, ref.age, seed)) ours[q] += v / 3.0;
+        // A few flowers or fruit (a mean under kFewEvents) come in so few discrete events that
+        // the mean of three seeds moves by a whole band from seed to seed (grapevine_VSP: 1 to
+        // 5 clusters, seeds 1 to 3 give 3.0 where 12 seeds give 2.5): those are held to the
+        // mean of seeds 1 to kSeedsForFewEvents.
+        for (const char* q : {"flowers", "fruit"}) {
+            const double expected = ref.mean.at(q);
+            if (expected == 0.0 || expected >= kFewEvents) continue;
+            double sum = 0.0;
+            for (std::uint64_t seed = 1; seed <= kSeedsForFewEvents; ++seed)
+                sum += measure(species, ref.age, seed).at(q);
+            ours[q] = sum / double(kSeedsForFewEvents);
+        }
         char row[256];
         std::snprintf(row, sizeof row, "\n%-18s %6.0f", species.c_str(), double(ref.age));
         table += row;
