@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (clang, AddressSanitizer + UndefinedBehaviorSanitizer, in
 # build-fuzz/) and runs one of them for a number of seconds on one core:
 #
-#   bash scripts/fuzz.sh plant_xml 600      # TARGET: plant_xml, plant_string or species
+#   bash scripts/fuzz.sh plant_xml 600      # TARGET: plant_xml, plant_string, species or obj
 #
 # The seeds in fuzz/corpus/TARGET/ (small, kept in the repository) start the run; inputs the
 # fuzzer finds interesting go to build-fuzz/corpus/TARGET/ (kept between runs, not
@@ -11,11 +11,11 @@
 # replay it with  build-fuzz/fuzz_TARGET FILE.
 set -euo pipefail
 
-usage="usage: scripts/fuzz.sh TARGET SECONDS   (TARGET: plant_xml, plant_string, species)"
+usage="usage: scripts/fuzz.sh TARGET SECONDS   (TARGET: plant_xml, plant_string, species, obj)"
 target=${1:?$usage}
 seconds=${2:?$usage}
 case "$target" in
-    plant_xml | species) max_len=16384 ;;
+    plant_xml | species | obj) max_len=16384 ;;
     plant_string) max_len=8192 ;;
     *) echo "$usage" >&2; exit 2 ;;
 esac

@@ -1,0 +1,85 @@
+// libFuzzer target: the OBJ reader (readOBJ, with plantarch's label comments). Any input must
+// either read or throw plantarch::Error and leave the Context empty; an OBJ that reads must
+// write an OBJ that reads back to the same objects, triangles and labels.
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <type_traits>
+#include <variant>
+
+#include "plantarch/Context.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+
+using namespace plantarch;
+
+namespace {
+
+// A file of this process's own on a memory file system when there is one.
+std::string scratch(const char* name) {
+    const char* dir = ::access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+    return std::string(dir) + "/plantarch-fuzz-obj-" + std::to_string(::getpid()) + "-" + name;
+}
+
+[[noreturn]] void fail(const std::string& why) {
+    std::fprintf(stderr, "fuzz_obj: %s\n", why.c_str());
+    std::abort();
+}
+
+// Objects, triangles and every object's labels, as text.
+std::string summary(const Context& ctx) {
+    std::string s = std::to_string(ctx.objectCount()) + " objects, " +
+                    std::to_string(ctx.triangleCount()) + " triangles\n";
+    for (ObjectID id : ctx.objectIDs())
+        for (const std::string& label : ctx.objectDataLabels())
+            if (auto v = ctx.objectData(id, label))
+                std::visit(
+                    [&](const auto& x) {
+                        using T = std::decay_t<decltype(x)>;
+                        s += label + "=";
+                        if constexpr (std::is_same_v<T, std::string>)
+                            s += x;
+                        else if constexpr (std::is_same_v<T, vec3>)
+                            s += std::to_string(x.x) + "," + std::to_string(x.y) + "," +
+                                 std::to_string(x.z);
+                        else
+                            s += std::to_string(x);
+                        s += ";";
+                    },
+                    *v);
+    return s;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static const std::string input = scratch("in.obj"), output = scratch("out.obj");
+    {
+        std::ofstream out(input, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data), std::streamsize(size));
+    }
+    Context ctx;
+    try {
+        readOBJ(ctx, input);
+    } catch (const Error&) {
+        if (ctx.objectCount() != 0) fail("a failed read left objects in the Context");
+        return 0;
+    }
+    try {
+        ObjOptions options;
+        options.materials = false;
+        writeOBJ(ctx, output, options);
+        Context again;
+        readOBJ(again, output);
+        if (summary(again) != summary(ctx)) fail("write -> read changed the objects or labels");
+    } catch (const Error& e) {
+        fail(std::string("a written OBJ does not read back: ") + e.what());
+    }
+    return 0;
+}
