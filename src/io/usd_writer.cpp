@@ -208,10 +208,11 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
                     out << "] (\n                interpolation = \"vertex\"\n            )\n";
                 }
                 // Per face: display colour (the organ's material) and the labels.
-                auto perFace = [&](const char* type, const char* name, auto write) {
+                auto perFace = [&, &objects = g.objects](const char* type, const char* name,
+                                                         auto write) {
                     out << "            " << type << " primvars:" << name << " = [";
                     bool sep = false;
-                    for (ObjectID id : g.objects) {
+                    for (ObjectID id : objects) {
                         const std::size_t n = context.object(id).triangleCount();
                         for (std::size_t t = 0; t < n; ++t) {
                             if (sep) out << ", ";
