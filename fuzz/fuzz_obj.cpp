@@ -77,7 +77,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         writeOBJ(ctx, output, options);
         Context again;
         readOBJ(again, output);
-        if (summary(again) != summary(ctx)) fail("write -> read changed the objects or labels");
+        if (summary(again) != summary(ctx))
+            fail("write -> read changed the objects or labels:\n" + summary(ctx) +
+                 "-- became --\n" + summary(again));
     } catch (const Error& e) {
         fail(std::string("a written OBJ does not read back: ") + e.what());
     }

@@ -133,6 +133,27 @@ TEST(Labels, ObjReadBackKeepsEveryLabelAndObjectID) {
     fs::remove_all(d);
 }
 
+// The names an OBJ gave its objects (the `name` label readOBJ stores) survive a write and a
+// read, though the writer names objects obj<ID>_...: the label comment carries them.
+TEST(Labels, ObjShapeNamesSurviveAWriteAndARead) {
+    const fs::path d = folder("names");
+    const std::string in = (d / "in.obj").string(), out = (d / "out.obj").string();
+    std::ofstream(in) << "o wall\nv -1 0 0\nv 1 0 0\nv 1 0 2\nv -1 0 2\nf 1 2 3 4\n"
+                         "g my ground\nv -5 -5 0\nv 5 -5 0\nv 0 5 0\nf -3 -2 -1\n";
+    Context a;
+    const std::vector<ObjectID> first = readOBJ(a, in);
+    ASSERT_EQ(first.size(), 2u);
+    EXPECT_EQ(a.objectDataString(first[0], "name"), "wall");
+    EXPECT_EQ(a.objectDataString(first[1], "name"), "my ground");
+    writeOBJ(a, out);
+    Context b;
+    const std::vector<ObjectID> second = readOBJ(b, out);
+    ASSERT_EQ(second.size(), 2u);
+    EXPECT_EQ(b.objectDataString(second[0], "name"), "wall");
+    EXPECT_EQ(b.objectDataString(second[1], "name"), "my ground");
+    fs::remove_all(d);
+}
+
 TEST(Labels, ObjBadLabelValueNamesFileLineAndKey) {
     const fs::path d = folder("bad");
     const std::string path = (d / "bad.obj").string();

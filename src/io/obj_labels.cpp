@@ -63,9 +63,10 @@ ObjLabelWriter::ObjLabelWriter(const Context& context) : context_(context) {
     hasAge_ = context.objectDataType("age") == DataType::Float;
     hasOrgan_ = context.objectDataType("organ") == DataType::String;
     hasPlantName_ = context.objectDataType("plant_name") == DataType::String;
+    hasName_ = context.objectDataType("name") == DataType::String;
 }
 
-void ObjLabelWriter::append(std::string& out, ObjectID id) const {
+void ObjLabelWriter::append(std::string& out, ObjectID id, std::string_view written) const {
     out += kObjLabelPrefix;
     appendKey(out, "object");
     appendNumber(out, id);
@@ -94,6 +95,11 @@ void ObjLabelWriter::append(std::string& out, ObjectID id) const {
         if (const auto age = context_.objectDataFloat(id, "age")) {
             appendKey(out, "age");
             appendNumber(out, *age);
+        }
+    if (hasName_)
+        if (const auto name = context_.objectDataString(id, "name"); name && *name != written) {
+            appendKey(out, "name");
+            appendEncoded(out, *name);
         }
     out += '\n';
 }
@@ -161,6 +167,8 @@ ObjLabelRecord parseObjLabelLine(std::string_view line, const std::string& path,
             text(r.organ);
         } else if (key == "plant_name") {
             text(r.plantName);
+        } else if (key == "name") {
+            text(r.name);
         }
     }
     return r;
@@ -238,6 +246,7 @@ void applyObjLabels(Context& context, ObjectID id, const ObjLabelRecord& r) {
     if (r.node) context.setObjectData(id, "node", *r.node);
     if (r.leaf) context.setObjectData(id, "leafID", *r.leaf);
     if (r.age) context.setObjectData(id, "age", *r.age);
+    if (r.name) context.setObjectData(id, "name", *r.name);
 }
 
 }  // namespace plantarch::io

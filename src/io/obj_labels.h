@@ -28,20 +28,21 @@ struct ObjLabelRecord {
     std::optional<ObjectID> object;
     std::optional<std::int32_t> plant, shoot, rank, node, leaf;
     std::optional<float> age;
-    std::optional<std::string> organ, plantName;
+    std::optional<std::string> organ, plantName, name;
 };
 
 /// Formats the label lines of objects. Reads the typed object data once per Context.
 class ObjLabelWriter {
 public:
     explicit ObjLabelWriter(const Context& context);
-    /// Appends the object's label line, with its newline, to `out`.
-    void append(std::string& out, ObjectID id) const;
+    /// Appends the object's label line, with its newline, to `out`. `written` is the name the
+    /// file gives the object: its "name" label is written (name=) only when it differs.
+    void append(std::string& out, ObjectID id, std::string_view written) const;
 
 private:
     const Context& context_;
     bool hasInt_[5];
-    bool hasAge_, hasOrgan_, hasPlantName_;
+    bool hasAge_, hasOrgan_, hasPlantName_, hasName_;
 };
 
 /// The object data labels readOBJ sets from the comments, with their types.

@@ -170,7 +170,7 @@ public:
         // The object's name, its label comment (io/obj_labels.h) and its material.
         const std::string name = objectName(context_, id, plantIDs_);
         head_.assign("o ").append(name).append("\ng ").append(name).append("\n");
-        labels_.append(head_, id);
+        labels_.append(head_, id, name);
         if (materialName) head_.append("usemtl ").append(*materialName).append("\n");
         out.write(head_);
 
