@@ -272,7 +272,6 @@ class ContextSink final : public OrganSink {
 public:
     ContextSink(Context& ctx, const PlantInstance& plant)
         : ctx_(ctx),
-          plant_(plant),
           plantID_(int(plant.id)),
           plantName_(plant.name),
           stage_(std::string(phenologyStageName(plant.stage))) {
@@ -346,7 +345,6 @@ private:
     }
 
     Context& ctx_;
-    const PlantInstance& plant_;
     std::array<std::optional<DataColumn>, 9> columns_;
     // Values every object of the plant shares, made once.
     const DataValue plantID_, plantName_, stage_;
