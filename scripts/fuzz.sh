@@ -3,6 +3,7 @@
 # build-fuzz/) and runs one of them for a number of seconds on one core:
 #
 #   bash scripts/fuzz.sh plant_xml 600      # TARGET: plant_xml, plant_string, species or obj
+#   bash scripts/fuzz.sh plant_xml 7200 10000000   # stop at 10 M executions or two hours
 #
 # The seeds in fuzz/corpus/TARGET/ (small, kept in the repository) start the run; inputs the
 # fuzzer finds interesting go to build-fuzz/corpus/TARGET/ (kept between runs, not
@@ -11,15 +12,16 @@
 # replay it with  build-fuzz/fuzz_TARGET FILE.
 set -euo pipefail
 
-usage="usage: scripts/fuzz.sh TARGET SECONDS   (TARGET: plant_xml, plant_string, species, obj)"
+usage="usage: scripts/fuzz.sh TARGET SECONDS [RUNS]   (TARGET: plant_xml, plant_string, species, obj)"
 target=${1:?$usage}
 seconds=${2:?$usage}
+runs=${3:--1}
 case "$target" in
     plant_xml | species | obj) max_len=16384 ;;
     plant_string) max_len=8192 ;;
     *) echo "$usage" >&2; exit 2 ;;
 esac
-[[ "$seconds" =~ ^[0-9]+$ ]] || { echo "$usage" >&2; exit 2; }
+[[ "$seconds" =~ ^[0-9]+$ && "$runs" =~ ^(-1|[0-9]+)$ ]] || { echo "$usage" >&2; exit 2; }
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${PLANTARCH_FUZZ_BUILD:-$root/build-fuzz}
@@ -35,5 +37,5 @@ corpus="$build/corpus/$target"
 artifacts="$build/artifacts/$target"
 mkdir -p "$corpus" "$artifacts"
 exec "$build/fuzz_$target" "$corpus" "$root/fuzz/corpus/$target" \
-    -dict="$root/fuzz/$target.dict" -max_total_time="$seconds" -max_len="$max_len" \
+    -dict="$root/fuzz/$target.dict" -max_total_time="$seconds" -runs="$runs" -max_len="$max_len" \
     -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$artifacts/" -print_final_stats=1

@@ -4,7 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 #include <type_traits>
 #include <vector>
 
@@ -214,12 +216,17 @@ std::unordered_map<std::string, ObjLabelRecord> readObjLabels(const std::string&
             labels.try_emplace(current, std::move(record));
         }
     };
-    // Blocks of 1 MB; only lines starting with 'o', 'g' or '#' are looked at closely.
-    std::vector<char> block(std::size_t(1) << 20);
+    // Blocks of up to 1 MB (no larger than the file, not cleared); only lines starting with
+    // 'o', 'g' or '#' are looked at closely.
+    std::error_code ec;
+    const std::uintmax_t fileSize = std::filesystem::file_size(path, ec);
+    const std::size_t blockSize = std::size_t(
+        std::clamp<std::uintmax_t>(ec ? 0 : fileSize + 1, 4096, std::uintmax_t(1) << 20));
+    const auto block = std::make_unique_for_overwrite<char[]>(blockSize);
     for (;;) {
-        const std::size_t n = std::fread(block.data(), 1, block.size(), file.get());
+        const std::size_t n = std::fread(block.get(), 1, blockSize, file.get());
         if (n == 0) break;
-        std::string_view data(block.data(), n);
+        std::string_view data(block.get(), n);
         std::size_t start = 0;
         for (std::size_t nl; (nl = data.find('\n', start)) != std::string_view::npos;
              start = nl + 1) {

@@ -33,26 +33,32 @@ namespace {
 // Reads a file in blocks for the OBJ parser, telling how many bytes it has read so far.
 class ProgressReadBuffer final : public std::streambuf {
 public:
-    ProgressReadBuffer(std::FILE* file, std::function<void(std::uintmax_t)> onRead)
-        : file_(file), onRead_(std::move(onRead)), block_(1 << 20) {}
+    // Blocks of `blockSize` bytes, not cleared before they are read into.
+    ProgressReadBuffer(std::FILE* file, std::size_t blockSize,
+                       std::function<void(std::uintmax_t)> onRead)
+        : file_(file),
+          onRead_(std::move(onRead)),
+          block_(std::make_unique_for_overwrite<char[]>(blockSize)),
+          blockSize_(blockSize) {}
 
     bool failed() const { return std::ferror(file_) != 0; }
 
 protected:
     int_type underflow() override {
         if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-        const std::size_t n = std::fread(block_.data(), 1, block_.size(), file_);
+        const std::size_t n = std::fread(block_.get(), 1, blockSize_, file_);
         if (n == 0) return traits_type::eof();
         read_ += n;
         onRead_(read_);
-        setg(block_.data(), block_.data(), block_.data() + n);
+        setg(block_.get(), block_.get(), block_.get() + n);
         return traits_type::to_int_type(*gptr());
     }
 
 private:
     std::FILE* file_;
     std::function<void(std::uintmax_t)> onRead_;
-    std::vector<char> block_;
+    std::unique_ptr<char[]> block_;
+    std::size_t blockSize_;
     std::uintmax_t read_ = 0;
 };
 
@@ -273,7 +279,10 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         throw Error(std::string("cannot open OBJ file: ") + std::strerror(errno), {.file = path});
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
     const std::uintmax_t size = std::max<std::uintmax_t>(fs::file_size(path, ec), 1);
-    ProgressReadBuffer buffer(file, [&](std::uintmax_t read) {
+    // Blocks of 1 MB, or of the whole file when it is smaller.
+    const std::size_t blockSize =
+        std::size_t(std::clamp<std::uintmax_t>(size + 1, 4096, std::uintmax_t(1) << 20));
+    ProgressReadBuffer buffer(file, blockSize, [&](std::uintmax_t read) {
         steps.at(0.5 * double(std::min(read, size)) / double(size));
     });
     std::istream in(&buffer);

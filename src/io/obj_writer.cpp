@@ -144,7 +144,8 @@ public:
 
 private:
     void grow(std::size_t size) {
-        const std::size_t capacity = std::max(2 * capacity_, used_ + size + (std::size_t(1) << 20));
+        const std::size_t capacity =
+            std::max(2 * capacity_, used_ + size + (std::size_t(64) << 10));
         auto bigger = std::make_unique_for_overwrite<char[]>(capacity);
         if (used_) std::memcpy(bigger.get(), buffer_.get(), used_);
         buffer_ = std::move(bigger);
@@ -480,7 +481,11 @@ void writeOBJ(const Context& context, const std::string& path, const ObjOptions&
         return;
     }
 
-    io::AtomicFile obj(path);  // first, so an unwritable place is reported for the OBJ
+    // A buffer for about the whole file when it is small (a small file needs no 4 MB); first,
+    // so an unwritable place is reported for the OBJ.
+    const std::size_t estimate = std::size_t(120) * context.triangleCount() + 512 * ids.size();
+    io::AtomicFile obj(
+        path, std::clamp(estimate, kSplitBufferBytes / 4, io::AtomicFile::kDefaultBufferBytes));
     std::optional<io::AtomicFile> mtl;
     std::vector<std::string> names;
     fs::path mtlPath;
