@@ -2,7 +2,9 @@
 // --obstacle FILE.obj [--avoid-distance] [--fruit-adjustment], --attraction-points FILE.csv
 // [--attraction-cone].
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -46,7 +48,9 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const ch
 // a number but is not finite ("nan", "inf") is an error, on the first line too.
 std::vector<vec3> readPoints(const std::string& path) {
     std::ifstream in(path);
-    if (!in) throw Error("cannot open attraction point file", {.file = path});
+    if (!in)
+        throw Error(std::string("cannot open attraction point file: ") + std::strerror(errno),
+                    {.file = path});
     std::vector<vec3> points;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -76,7 +76,7 @@ TEST(CliCompare, BadInputsAreOneLine) {
         {"compare bean --age 20 -o " + d + "/x.obj",
          d + "/x.obj: '.obj': the comparison is a picture (valid: .png)"},
         {"compare bean --age 20 --reference " + d + "/none.png -o " + d + "/x.png",
-         d + "/none.png: cannot open image file"},
+         d + "/none.png: cannot open image file: No such file or directory"},
         {"compare bean --age 20 --panel-size 10 -o " + d + "/x.png",
          "--panel-size = 10: not a panel size (valid: 64 to 4096)"},
     };
