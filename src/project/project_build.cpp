@@ -30,11 +30,12 @@ std::string fileOf(const Project& p) {
         throw;
     } catch (const Error& e) {
         if (!e.file().empty()) throw;
-        throw Error(e.message(),
-                    {.file = fileOf(p),
-                     .parameter = field + (e.parameter().empty() ? "" : " (" + e.parameter() + ")"),
-                     .value = e.value(),
-                     .validRange = e.validRange()});
+        // The library's own name for the value, unless the field says it already.
+        const bool named = e.parameter().empty() || field.ends_with("/" + e.parameter());
+        throw Error(e.message(), {.file = fileOf(p),
+                                  .parameter = field + (named ? "" : " (" + e.parameter() + ")"),
+                                  .value = e.value(),
+                                  .validRange = e.validRange()});
     }
 }
 
