@@ -264,6 +264,9 @@ TEST_F(BuilderServer, GrowsAnEarlierBuildOnToTheSamePlantsAsAFreshBuild) {
     const json r = waitFor(refused);
     EXPECT_EQ(r["state"], "failed");
     EXPECT_NE(r["error"].get<std::string>().find("only block ages"), std::string::npos);
+    EXPECT_EQ(client_->Get(("/api/builds/" + grown + "/scene.glb").c_str())->status, 200);
+    json younger = beans(2, 1, 21);
+    EXPECT_EQ(waitFor(build(younger, grown))["state"], "failed");
     EXPECT_EQ(post("/api/builds", {{"project", beans(2, 1, 30)}, {"from", "b99"}})->status, 404);
 }
 

@@ -206,6 +206,7 @@ void BuildQueue::run(const std::shared_ptr<Build>& b) {
                 earlier = it->second;
                 scene = earlier->scene;
             }
+            projectGrowth(earlier->project, b->project);  // refused: the earlier build stays
             std::unique_lock<std::shared_mutex> write(scene->lock);  // readers finish first
             {
                 std::lock_guard<std::mutex> lock(mutex_);

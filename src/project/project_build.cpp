@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
@@ -276,15 +277,14 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
     return built;
 }
 
-void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
-                 const BuiltProject& built, const ProjectBuildOptions& options) {
+std::vector<double> projectGrowth(const Project& earlier, const Project& later) {
     // Only the ages may differ.
     auto withoutAges = [](Project p) {
         for (ProjectBlock& b : p.blocks) b.age.reset();
         return p;
     };
     const Project a = withoutAges(earlier), b = withoutAges(later);
-    if (a.blocks.size() != b.blocks.size() || built.blockPlants.size() != b.blocks.size())
+    if (a.blocks.size() != b.blocks.size())
         throw Error("growing on needs the same blocks",
                     {.file = fileOf(later),
                      .parameter = "blocks",
@@ -315,10 +315,21 @@ void growProject(const Project& earlier, const Project& later, PlantArchitecture
             throw Error("earlier than the plants' age",
                         {.file = fileOf(later),
                          .parameter = "blocks/" + std::to_string(i) + "/age",
-                         .value = std::to_string(to),
-                         .validRange = ">= " + std::to_string(from) + " days (as built)"});
+                         .value = text::formatFloat(to),
+                         .validRange = ">= " + text::formatFloat(from) + " days (as built)"});
         days.push_back(double(to) - double(from));
     }
+    return days;
+}
+
+void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
+                 const BuiltProject& built, const ProjectBuildOptions& options) {
+    const std::vector<double> days = projectGrowth(earlier, later);
+    if (built.blockPlants.size() != days.size())
+        throw Error("growing on needs the plants of every block",
+                    {.file = fileOf(later),
+                     .parameter = "blocks",
+                     .validRange = std::to_string(days.size()) + " blocks, as built"});
     struct Reset {
         PlantArchitecture& arch;
         ~Reset() { arch.setProgressCallback({}); }
