@@ -191,7 +191,9 @@ TEST_F(BuilderServer, ChecksAndSavesAnEditedSpecies) {
     EXPECT_TRUE(listed);
     auto mine = body(client_->Get("/api/species/my_bean"));
     for (const json& p : mine["shoot_types"]["trifoliate"])
-        if (p["path"] == "phytomer.internode.pitch") EXPECT_EQ(p["value"], "uniform(10, 30)");
+        if (p["path"] == "phytomer.internode.pitch") {
+            EXPECT_EQ(p["value"], "uniform(10, 30)");
+        }
     const auto r = cli::run("build " + file + " --age 12 -o " + at("mine.obj"));
     EXPECT_EQ(r.status, 0) << r.out;
     // Usable by name in a project.
@@ -416,7 +418,8 @@ TEST_F(BuilderServer, ASavedProjectRunFromTheCommandLineGivesTheExportsBytes) {
     for (const char* format : {"glb", "ply", "obj", "xml"}) {
         auto r = post("/api/export", {{"build", id}, {"format", format}, {"name", "field"}});
         ASSERT_TRUE(r && r->status == 200) << r->body;
-        const std::string mine = at(std::string("cli.") + format);
+        // The same name: an OBJ names its .mtl.
+        const std::string mine = at(std::string("cli/field.") + format);
         const auto run = cli::run("project run " + at("out/projects/trial.json") + " -o " + mine);
         ASSERT_EQ(run.status, 0) << run.out;
         EXPECT_TRUE(bytes(mine) == bytes(at(std::string("out/field.") + format))) << format;

@@ -123,8 +123,9 @@ TEST_F(CliProject, TheBuilderServesUntilInterrupted) {
 }
 
 TEST_F(CliProject, TheBuilderWarnsWhenListeningBeyondThisMachine) {
-    const auto r = cli::runShell("timeout -s INT 2 " + std::string(PLANTARCH_CLI) +
-                                 " builder --port 0 --host 0.0.0.0 --output " + at("b") + " 2>&1");
+    const auto r =
+        cli::runShell("timeout --preserve-status -s INT 2 " + std::string(PLANTARCH_CLI) +
+                      " builder --port 0 --host 0.0.0.0 --output " + at("b") + " 2>&1");
     EXPECT_EQ(r.status, 0) << r.out;
     EXPECT_NE(r.out.find("plantarch: warning: --host 0.0.0.0: anyone who can reach this machine"),
               std::string::npos)

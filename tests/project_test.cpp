@@ -129,7 +129,7 @@ TEST(Project, EachBadValueIsOneLineNamingTheFieldTheValueAndTheRange) {
         {R"({"plantarch_project": 1, "seed": 1, "seed": 2})",
          "p.json: seed: a field given twice (valid: each field once per object)"},
         {"{\"plantarch_project\": 1,\n \"name\": }", "p.json:2: not a JSON document: "},
-        {"[1, 2]", "p.json: expected an object {...}"},
+        {"[1, 2]", "p.json: '[1,2]': expected an object {...}"},
     };
     for (const auto& [json, expected] : cases) {
         const std::string message = errorOfProject(json);

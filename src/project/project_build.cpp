@@ -86,9 +86,10 @@ void requireReadable(const Project& p, const std::string& path, const std::strin
     std::error_code ec;
     const std::string full = projectPath(p, path);
     if (std::filesystem::is_directory(full, ec))
-        throw Error("is a directory, not " + what, {.file = full, .parameter = field});
+        throw Error("is a directory, not " + what,
+                    {.file = fileOf(p), .parameter = field, .value = full});
     if (!std::ifstream(full))
-        throw Error("cannot open " + what, {.file = full, .parameter = field});
+        throw Error("cannot open " + what, {.file = fileOf(p), .parameter = field, .value = full});
 }
 
 ObjectID addGround(Context& ctx, const ProjectGround& g) {

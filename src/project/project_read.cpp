@@ -23,6 +23,10 @@ using json = nlohmann::json;
 
 // The value as a person reads it in an error: JSON text, cut short.
 std::string shown(const json& v) {
+    // A whole number written with a fraction or exponent (1e6) shown as a whole number.
+    if (v.is_number_float() && std::isfinite(v.get<double>()) &&
+        v.get<double>() == std::floor(v.get<double>()) && std::fabs(v.get<double>()) < 1e15)
+        return std::to_string(std::int64_t(v.get<double>()));
     std::string text = v.dump();
     if (text.size() > 60) text = text.substr(0, 57) + "...";
     return text;
