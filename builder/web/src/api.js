@@ -43,8 +43,9 @@ export const api = {
   sceneUrl: (id) => `/api/builds/${enc(id)}/scene.glb`,
   renderUrl: (id, w, h) => `/api/builds/${enc(id)}/render.png?w=${w}&h=${h}`,
   exportFiles: (body) => request('POST', '/api/export', body),
-  downloadUrl: ({ build, format, per_plant }) =>
-    `/api/export/download?build=${enc(build)}&format=${enc(format)}&per_plant=${per_plant ? 'true' : 'false'}`,
+  downloadUrl: ({ build, format, per_plant, name }) =>
+    `/api/export/download?build=${enc(build)}&format=${enc(format)}&per_plant=${per_plant ? 'true' : 'false'}&name=${enc(name || 'scene')}`,
+  config: () => request('GET', '/api/config'),
   saveProject: (name, project) => request('POST', '/api/projects/save', { name, project }),
   projects: () => request('GET', '/api/projects'),
   project: (name) => request('GET', `/api/projects/${enc(name)}`),

@@ -28,7 +28,7 @@ export class ExportPanel {
     folder.addEventListener('input', () => { this.folder = folder.value; });
     const name = h('input', { type: 'text', name: 'export-name', value: this.name });
     name.addEventListener('input', () => { this.name = name.value; });
-    this.result = h('div', { id: 'export-result', class: 'export-result' });
+    this.result ??= h('div', { id: 'export-result', class: 'export-result' });
     const build = this.app.shownBuild;
     render(this.container,
       h('section', { class: 'group' },
@@ -43,8 +43,9 @@ export class ExportPanel {
         h('button', { type: 'button', id: 'export-download', disabled: !build, onclick: () => this.download() }, 'Download')),
       h('section', { class: 'group' },
         h('h2', {}, 'Into the output folder'),
+        this.app.config?.output ? h('p', { class: 'hint' }, 'Output folder: ', h('code', {}, this.app.config.output)) : null,
         h('div', { class: 'grid2' },
-          field('Folder', folder, { title: "a folder under the builder's output folder (--output)" }),
+          field('Folder', folder, { title: `a folder under the output folder${this.app.config?.output ? ` (${this.app.config.output})` : ''}` }),
           field('File name', name, { title: 'without extension; one file per plant adds the plant number' })),
         h('button', { type: 'button', class: 'primary', id: 'export-write', disabled: !build, onclick: () => this.write() }, 'Write files'),
         this.result));
@@ -53,7 +54,7 @@ export class ExportPanel {
   download() {
     const build = this.app.shownBuild;
     if (!build) return;
-    const a = h('a', { href: api.downloadUrl({ build: build.id, format: this.format, per_plant: this.perPlant }), download: '' });
+    const a = h('a', { href: api.downloadUrl({ build: build.id, format: this.format, per_plant: this.perPlant, name: this.name.trim() }), download: '' });
     document.body.append(a);
     a.click();
     a.remove();

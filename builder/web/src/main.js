@@ -9,7 +9,7 @@ import { ScenePanel } from './scene_panel.js';
 import { EnvironmentPanel } from './environment_panel.js';
 import { SpeciesEditor } from './species_editor.js';
 import { ExportPanel } from './export_panel.js';
-import { h, render, select, toast, fmt, download } from './ui.js';
+import { h, render, select, toast, fmt, download, icon } from './ui.js';
 
 const POLL_MS = 200;
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
@@ -69,7 +69,7 @@ class App {
     this.buildError = h('div', { class: 'build-error', id: 'build-error', hidden: true });
     const auto = h('input', { type: 'checkbox', id: 'auto-build', checked: true });
     auto.addEventListener('change', () => { this.autoBuild = auto.checked; });
-    this.playButton = h('button', { type: 'button', class: 'icon play', id: 'play', title: 'Grow day by day', onclick: () => this.togglePlay() }, '▶');
+    this.playButton = h('button', { type: 'button', class: 'icon play', id: 'play', title: 'Grow day by day', onclick: () => this.togglePlay() }, icon('play'));
     this.ageSlider = h('input', { type: 'range', id: 'age-slider', min: 0, max: 100, step: 1, value: 40 });
     this.ageLabel = h('span', { class: 'age-label', id: 'age-label' }, '40 d');
     this.ageSlider.addEventListener('input', () => { this.ageLabel.textContent = `${this.ageSlider.value} d`; });
@@ -116,7 +116,7 @@ class App {
   async start() {
     this.showTab('scene');
     try {
-      await this.reloadSpecies();
+      [this.config] = await Promise.all([api.config().catch(() => null), this.reloadSpecies()]);
     } catch (e) {
       toast(e.message, 'error');
     }
@@ -168,6 +168,7 @@ class App {
     this.viewport.hidden = view !== '3d';
     this.preview.hidden = view !== 'preview';
     this.legend.hidden = view !== '3d' || !this.legend.childElementCount;
+    this.statsPanel.hidden = view !== '3d';
     if (view === 'preview') this.loadPreview();
   }
 
@@ -232,7 +233,15 @@ class App {
     this.setStatus('queued', from ? 'Growing…' : 'Queued…', 0);
     let status;
     try {
-      const { id } = await api.startBuild(project, from);
+      let id;
+      try {
+        ({ id } = await api.startBuild(project, from));
+      } catch (e) {
+        // The earlier build is gone (forgotten, or its plants grown on by another): build anew.
+        if (!from || ![404, 409, 410].includes(e.status)) throw e;
+        ({ id } = await api.startBuild(project));
+      }
+      if (from && this.shownBuild?.id === from) this.shownBuild.consumed = true;
       ticket.id = id;
       this.buildStatus.dataset.build = id;
       for (;;) {
@@ -270,7 +279,7 @@ class App {
       return false;
     }
     if (this.current !== ticket) return false;
-    this.shownBuild = { id: ticket.id, stats: status.stats, age: status.age ?? project.blocks[0]?.age, project, key: growthKey(project) };
+    this.shownBuild = { id: ticket.id, stats: status.stats, age: status.ages?.[0] ?? project.blocks[0]?.age, project, key: growthKey(project) };
     this.emptyState.hidden = true;
     this.renderStats();
     this.markStale();
@@ -369,7 +378,7 @@ class App {
     this.ageLabel.textContent = `${fmt(age, 1)} d`;
     const project = toProjectFile(this.project);
     const shown = this.shownBuild;
-    const grows = shown && shown.key === growthKey(project) &&
+    const grows = shown && !shown.consumed && shown.key === growthKey(project) &&
       project.blocks.every((b, i) => b.age >= shown.project.blocks[i].age);
     this.markStale();
     return this.build(grows ? { from: shown.id } : {});
@@ -381,7 +390,7 @@ class App {
       return;
     }
     this.playing = true;
-    this.playButton.textContent = '❚❚';
+    render(this.playButton, icon('pause'));
     this.playButton.title = 'Pause';
     try {
       while (this.playing && this.sceneAge() < Number(this.ageSlider.max)) {
@@ -391,7 +400,7 @@ class App {
       }
     } finally {
       this.playing = false;
-      this.playButton.textContent = '▶';
+      render(this.playButton, icon('play'));
       this.playButton.title = 'Grow day by day';
       this.syncSlider();
     }

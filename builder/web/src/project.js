@@ -33,7 +33,8 @@ export function defaultProject() {
   return {
     name: 'untitled',
     seed: 1,
-    ground: { enabled: true, size: [4, 4] },
+    mesh_detail: 1,
+    ground: { enabled: true, size: [4, 4], center: [0, 0] },
     soft_collision: { enabled: false, cone: [80, 0.1, 256, 0.4] },
     obstacles: { files: [], avoid_distance: 0.2, fruit_adjustment: false },
     attraction: { enabled: false, points: [], file: '', cone: [80, 0.1, 0.4] },
@@ -43,8 +44,8 @@ export function defaultProject() {
 
 /** The project file (JSON value) of the editor's project. */
 export function toProjectFile(p) {
-  const out = { plantarch_project: PROJECT_VERSION, name: p.name, seed: p.seed };
-  out.ground = p.ground.enabled ? { size: [...p.ground.size] } : null;
+  const out = { plantarch_project: PROJECT_VERSION, name: p.name, seed: p.seed, mesh_detail: p.mesh_detail };
+  out.ground = p.ground.enabled ? { size: [...p.ground.size], center: [...p.ground.center] } : null;
   out.soft_collision = { enabled: p.soft_collision.enabled, cone: [...p.soft_collision.cone] };
   out.obstacles = {
     files: [...p.obstacles.files],
@@ -90,7 +91,10 @@ export function fromProjectFile(json) {
   const p = defaultProject();
   if (typeof json.name === 'string') p.name = json.name;
   if (Number.isFinite(json.seed)) p.seed = json.seed;
-  p.ground = json.ground ? { enabled: true, size: [...(json.ground.size ?? [4, 4])] } : { enabled: false, size: [4, 4] };
+  if (Number.isFinite(json.mesh_detail)) p.mesh_detail = json.mesh_detail;
+  p.ground = json.ground
+    ? { enabled: true, size: [...(json.ground.size ?? [4, 4])], center: [...(json.ground.center ?? [0, 0])] }
+    : { enabled: false, size: [4, 4], center: [0, 0] };
   if (json.soft_collision) {
     p.soft_collision = { enabled: !!json.soft_collision.enabled, cone: [...(json.soft_collision.cone ?? p.soft_collision.cone)] };
   }

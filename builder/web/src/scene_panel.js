@@ -2,7 +2,7 @@
 // species, layout, counts, age, seed, build parameters and trellis.
 import { defaultBlock, duplicateBlock, blockName, positions } from './project.js';
 import { speciesPicker } from './species_picker.js';
-import { h, render, field, numberInput, vectorInput, select, checkbox, fmt } from './ui.js';
+import { h, render, field, numberInput, vectorInput, select, checkbox, fmt, icon } from './ui.js';
 
 export class ScenePanel {
   /** `app` gives project, species, speciesDetail(name) and edited(). */
@@ -35,9 +35,9 @@ export class ScenePanel {
       summary,
       h('span', { class: 'block-actions' },
         h('button', { type: 'button', class: 'icon', title: 'Duplicate block', dataset: { action: 'duplicate' },
-          onclick: (e) => { e.stopPropagation(); this.duplicate(i); } }, '⧉'),
+          onclick: (e) => { e.stopPropagation(); this.duplicate(i); } }, icon('copy')),
         h('button', { type: 'button', class: 'icon danger', title: 'Delete block', dataset: { action: 'delete' },
-          onclick: (e) => { e.stopPropagation(); this.remove(i); } }, '✕')));
+          onclick: (e) => { e.stopPropagation(); this.remove(i); } }, icon('trash'))));
     const card = h('div', { class: open ? 'block-card open' : 'block-card', dataset: { block: b.name } }, head);
     if (open) card.append(this.editor(b, () => { summary.textContent = this.summary(b); }));
     return card;

@@ -4,7 +4,7 @@
 // Weibull distribution. Changes are checked by the species reader on the server, whose
 // one-line message is shown as it is; a valid species can be saved under a new name.
 import { api } from './api.js';
-import { h, render, select, toast } from './ui.js';
+import { h, render, select, toast, icon } from './ui.js';
 
 const DISTRIBUTIONS = {
   'random number': [['constant', 'constant'], ['uniform', 'uniform'], ['normal', 'normal'], ['weibull', 'Weibull']],
@@ -35,7 +35,7 @@ function parameterControl(p, value, onChange) {
     box.addEventListener('change', () => onChange(box.checked ? 'true' : 'false'));
     return box;
   }
-  if (kind === 'one of the values' && p.choices?.length) {
+  if ((kind === 'one of the values' || kind === 'choice') && p.choices?.length) {
     return select(p.choices.map((c) => [c.name, c.name]), value, onChange, { name, title: p.choices.map((c) => `${c.name}: ${c.doc}`).join('\n') });
   }
   if (kind === 'number' || kind === 'whole number') {
@@ -179,11 +179,11 @@ export class SpeciesEditor {
   row(p) {
     const original = p.value ?? '';
     const current = this.changes.get(p.key) ?? original;
-    const range = p.range || (p.min !== undefined && p.max !== undefined && p.min !== p.max ? `${p.min} to ${p.max}` : '');
+    const range = p.range || (Number.isFinite(p.min) && Number.isFinite(p.max) && p.min !== p.max ? `${p.min} to ${p.max}` : '');
     const tip = [p.doc, p.kind ? `kind: ${p.kind}` : '', range ? `valid: ${range}` : '', p.unit ? `unit: ${p.unit}` : '',
       `species value: ${original === '' ? '(none)' : original}`].filter(Boolean).join('\n');
     const row = h('div', { class: 'param-row', dataset: { key: p.key, search: `${p.path ?? p.name} ${p.doc ?? ''}`.toLowerCase() } });
-    const reset = h('button', { type: 'button', class: 'icon reset', title: `Back to ${original}`, hidden: !this.changes.has(p.key) }, '↺');
+    const reset = h('button', { type: 'button', class: 'icon reset', title: `Back to ${original}`, hidden: !this.changes.has(p.key) }, icon('reset'));
     const onChange = (text) => {
       if (text === original) this.changes.delete(p.key);
       else this.changes.set(p.key, text);

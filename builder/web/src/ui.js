@@ -77,7 +77,7 @@ export function toast(message, kind = 'info') {
   if (!el) return;
   clearTimeout(toastTimer);
   render(el, h('span', {}, message),
-    h('button', { class: 'icon', title: 'Dismiss', onclick: () => el.classList.remove('shown') }, '×'));
+    h('button', { class: 'icon', title: 'Dismiss', onclick: () => el.classList.remove('shown') }, icon('close')));
   el.className = `toast shown ${kind}`;
   if (kind !== 'error') toastTimer = setTimeout(() => el.classList.remove('shown'), 4000);
 }
@@ -96,4 +96,25 @@ export function download(blob, name) {
   a.click();
   a.remove();
   setTimeout(() => URL.revokeObjectURL(url), 10000);
+}
+
+const ICONS = {
+  copy: 'M8 8h11v11H8zM5 16V5h11',
+  trash: 'M5 7h14M10 7V4h4v3M7 7l1 13h8l1-13',
+  play: 'M8 5l11 7-11 7z',
+  pause: 'M8 5v14M16 5v14',
+  reset: 'M4 12a8 8 0 1 0 3-6.2M4 4v4h4',
+  close: 'M6 6l12 12M18 6L6 18',
+};
+/** A small stroked SVG icon (no icon font: the page loads nothing from elsewhere). */
+export function icon(name) {
+  const ns = 'http://www.w3.org/2000/svg';
+  const svg = document.createElementNS(ns, 'svg');
+  svg.setAttribute('viewBox', '0 0 24 24');
+  svg.setAttribute('class', `svg-icon icon-${name}`);
+  svg.setAttribute('aria-hidden', 'true');
+  const path = document.createElementNS(ns, 'path');
+  path.setAttribute('d', ICONS[name]);
+  svg.append(path);
+  return svg;
 }
