@@ -408,6 +408,11 @@ class App {
 
   // ---- project files --------------------------------------------------------
 
+  /** The project file (JSON value) of what is being edited. */
+  projectFile() {
+    return toProjectFile(this.project);
+  }
+
   loadProject(project) {
     this.project = project;
     this.scenePanel.selected = 0;
