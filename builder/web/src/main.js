@@ -155,8 +155,23 @@ class App {
     if (id === 'export') this.exportPanel.render();
   }
 
+  selectedBlock() {
+    return this.project.blocks[Math.max(0, this.scenePanel.selected)] ?? null;
+  }
+
+  /** Gives the selected block a species (one just saved) and shows the block. */
+  useSpecies(name) {
+    const block = this.selectedBlock();
+    if (!block) return;
+    block.species = name;
+    block.parameters = {};
+    this.scenePanel.render();
+    this.showTab('scene');
+    this.edited();
+  }
+
   openSpeciesEditor() {
-    const block = this.project.blocks[Math.max(0, this.scenePanel.selected)];
+    const block = this.selectedBlock();
     const name = block?.species ?? this.species[0]?.name;
     if (name && this.speciesEditor.base !== name && !this.speciesEditor.changes.size) this.speciesEditor.open(name);
     else if (!this.speciesEditor.detail && name) this.speciesEditor.open(name);

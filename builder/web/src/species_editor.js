@@ -249,9 +249,15 @@ export class SpeciesEditor {
     }
     try {
       const result = await api.saveSpecies(body);
-      this.setStatus('saved', `Saved ${result.path}: blocks can use species '${body.name}'.`);
-      toast(`Saved species ${body.name} (${result.path})`);
+      const name = result.name ?? body.name;
       await this.app.reloadSpecies();
+      this.setStatus('saved', `Saved ${result.path}. `);
+      const block = this.app.selectedBlock();
+      if (block) {
+        this.status.append(h('button', { type: 'button', class: 'link', id: 'species-use', onclick: () => this.app.useSpecies(name) },
+          `Use ${name} in block ${block.name}`));
+      }
+      toast(`Saved species ${name} (${result.path})`);
     } catch (e) {
       this.setStatus('invalid', e.message);
     }

@@ -82,7 +82,7 @@ export function toast(message, kind = 'info') {
   if (kind !== 'error') toastTimer = setTimeout(() => el.classList.remove('shown'), 4000);
 }
 
-/** Formats a number with `digits` significant decimals, dropping trailing zeros. */
+/** Formats a number with at most `digits` decimals and thousands separators ('–' for none). */
 export function fmt(x, digits = 3) {
   if (x === undefined || x === null || !Number.isFinite(x)) return '–';
   return Number(x.toFixed(digits)).toLocaleString('en-US');
