@@ -82,7 +82,9 @@ struct Project {
     std::vector<ProjectBlock> blocks;
     /// The folder relative paths (species files, obstacles, attraction file) are taken from:
     /// the project file's folder when read from a file. Not written.
-    std::string folder;
+    std::string folder = ".";
+    /// The file the project was read from, named by errors ("" for "project"). Not written.
+    std::string file;
 };
 
 /// Reads a project file. Throws plantarch::Error naming the file and the field.
@@ -96,6 +98,15 @@ Project readProjectString(const std::string& json, const std::string& nameForErr
 std::string writeProjectString(const Project& project);
 /// Writes the project atomically (never half a file). Throws plantarch::Error naming the file.
 void writeProjectFile(const Project& project, const std::string& path);
+
+/// Everything buildProject checks before it builds, without building: each block's species
+/// loads, its build parameters are the species' and within their ranges, every file opens
+/// and reads. Throws plantarch::Error naming the file and the field ("blocks/1/species").
+void checkProject(const Project& project);
+
+/// A block's species as PlantArchitecture::loadPlantModelFromLibrary takes it: a library
+/// name as written, a species file (a path with '/' or ending in ".xml") through projectPath.
+std::string projectSpecies(const Project& project, const ProjectBlock& block);
 
 /// A project path (species file, obstacle, attraction file) as the build opens it: relative
 /// paths are taken from project.folder.
