@@ -11,6 +11,7 @@ PACKAGES=(
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpcg-cpp-dev
   libomp-dev libgtest-dev libgmock-dev libbenchmark-dev libclang-rt-14-dev
   pybind11-dev python3 python3-dev python3-numpy
+  libcpp-httplib-dev libzip-dev
 )
 
 missing=()

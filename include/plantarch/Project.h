@@ -147,6 +147,9 @@ BuiltProject buildProject(const Project& project, PlantArchitecture& arch,
 /// buildProject; a cancelled growth leaves the plants part grown.
 void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
                  const BuiltProject& built, const ProjectBuildOptions& options = {});
+/// The checks growProject makes before it grows anything: the days each block grows by, or a
+/// plantarch::Error naming the field that differs or the age that is earlier.
+std::vector<double> projectGrowth(const Project& earlier, const Project& later);
 
 /// Project statistics (the builder's panel; `plantarch project run --stats`).
 struct ProjectStats {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
@@ -30,11 +31,12 @@ std::string fileOf(const Project& p) {
         throw;
     } catch (const Error& e) {
         if (!e.file().empty()) throw;
-        throw Error(e.message(),
-                    {.file = fileOf(p),
-                     .parameter = field + (e.parameter().empty() ? "" : " (" + e.parameter() + ")"),
-                     .value = e.value(),
-                     .validRange = e.validRange()});
+        // The library's own name for the value, unless the field says it already.
+        const bool named = e.parameter().empty() || field.ends_with("/" + e.parameter());
+        throw Error(e.message(), {.file = fileOf(p),
+                                  .parameter = field + (named ? "" : " (" + e.parameter() + ")"),
+                                  .value = e.value(),
+                                  .validRange = e.validRange()});
     }
 }
 
@@ -275,15 +277,14 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
     return built;
 }
 
-void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
-                 const BuiltProject& built, const ProjectBuildOptions& options) {
+std::vector<double> projectGrowth(const Project& earlier, const Project& later) {
     // Only the ages may differ.
     auto withoutAges = [](Project p) {
         for (ProjectBlock& b : p.blocks) b.age.reset();
         return p;
     };
     const Project a = withoutAges(earlier), b = withoutAges(later);
-    if (a.blocks.size() != b.blocks.size() || built.blockPlants.size() != b.blocks.size())
+    if (a.blocks.size() != b.blocks.size())
         throw Error("growing on needs the same blocks",
                     {.file = fileOf(later),
                      .parameter = "blocks",
@@ -314,10 +315,21 @@ void growProject(const Project& earlier, const Project& later, PlantArchitecture
             throw Error("earlier than the plants' age",
                         {.file = fileOf(later),
                          .parameter = "blocks/" + std::to_string(i) + "/age",
-                         .value = std::to_string(to),
-                         .validRange = ">= " + std::to_string(from) + " days (as built)"});
+                         .value = text::formatFloat(to),
+                         .validRange = ">= " + text::formatFloat(from) + " days (as built)"});
         days.push_back(double(to) - double(from));
     }
+    return days;
+}
+
+void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
+                 const BuiltProject& built, const ProjectBuildOptions& options) {
+    const std::vector<double> days = projectGrowth(earlier, later);
+    if (built.blockPlants.size() != days.size())
+        throw Error("growing on needs the plants of every block",
+                    {.file = fileOf(later),
+                     .parameter = "blocks",
+                     .validRange = std::to_string(days.size()) + " blocks, as built"});
     struct Reset {
         PlantArchitecture& arch;
         ~Reset() { arch.setProgressCallback({}); }
