@@ -200,6 +200,9 @@ async function run() {
   await setValue(page, '#project-name', 'e2e_trial');
   await page.click('.block-card.open .species-button');
   await page.waitForSelector('.species-popup [data-species=bean]', { visible: true });
+  // The thumbnails of the first species, drawn by the server's renderer, have arrived.
+  await page.waitForFunction(() => [...document.querySelectorAll('.species-popup img')].slice(0, 7)
+    .every((img) => img.complete && img.naturalWidth > 0));
   await shot(page, 'species-picker');
   await page.click('.species-popup [data-species=bean]');
   await page.select('.block-card.open select[name=layout]', 'grid');
@@ -285,7 +288,10 @@ async function run() {
   assert.ok(playedStatus.from, 'a played day is grown from the day before');
   if (played.state !== 'done') await pageBuild(page, '');
   step(`play grows the scene day by day to ${age} days`);
+  await page.select('#color-mode', 'age');
+  await page.waitForSelector('#legend .ramp');
   await shot(page, 'growth');
+  await page.select('#color-mode', 'natural');
 
   // Export: the whole scene as GLB, one OBJ per plant, into folders under the output folder.
   const shownId = await page.$eval('#build-status', (s) => s.dataset.build);

@@ -34,7 +34,8 @@ export function defaultProject() {
     name: 'untitled',
     seed: 1,
     mesh_detail: 1,
-    ground: { enabled: true, size: [4, 4], center: [0, 0] },
+    // No ground, as `plantarch canopy`: the view draws a grid, the renderer its own floor.
+    ground: { enabled: false, size: [4, 4], center: [0, 0] },
     soft_collision: { enabled: false, cone: [80, 0.1, 256, 0.4] },
     obstacles: { files: [], avoid_distance: 0.2, fruit_adjustment: false },
     attraction: { enabled: false, points: [], file: '', cone: [80, 0.1, 0.4] },

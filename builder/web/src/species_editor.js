@@ -146,6 +146,9 @@ export class SpeciesEditor {
         group.hidden = ![...group.querySelectorAll('.param-row')].some((r) => !r.hidden);
         if (q || onlyChanged.checked) group.open = !group.hidden;
       }
+      for (const section of this.container.querySelectorAll('.param-section')) {
+        section.hidden = ![...section.querySelectorAll('.param-row')].some((r) => !r.hidden);
+      }
     };
     filter.addEventListener('input', applyFilter);
     onlyChanged.addEventListener('change', applyFilter);
@@ -166,7 +169,7 @@ export class SpeciesEditor {
     render(this.container,
       h('div', { class: 'species-head' },
         h('label', { class: 'field wide' }, h('span', { class: 'field-label' }, 'Species to edit'), speciesSelect),
-        h('p', { class: 'hint' }, h('em', {}, d.latin_name ?? ''), d.description ? ` — ${d.description}` : ''),
+        h('p', { class: 'hint', title: d.description ?? '' }, h('em', {}, d.latin_name ?? ''), d.description ? ` — ${d.description}` : ''),
         h('div', { class: 'filter-row' }, filter, h('label', { class: 'toggle' }, onlyChanged, 'changed only'))),
       h('div', { class: 'param-list' }, sections),
       h('div', { class: 'species-foot' },

@@ -20,6 +20,7 @@ export class Viewer {
     sun.position.set(3, 6, 4);
     this.scene.add(sun);
     this.grid = new THREE.GridHelper(10, 20, 0xb7c0c8, 0xd3d9de);
+    this.grid.position.y = -0.002;  // under a ground at z = 0, not through it
     this.scene.add(this.grid);
 
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 500);
@@ -83,15 +84,21 @@ export class Viewer {
     this.onLegend(null);
   }
 
-  /** Points the camera at the whole scene. */
+  /** Points the camera at the plants (the whole scene when it has none). */
   frame() {
     if (!this.model) return;
-    const box = new THREE.Box3().setFromObject(this.model);
+    // Plant nodes carry their plant ID in their extras; the ground and obstacles do not.
+    const box = new THREE.Box3();
+    this.model.updateMatrixWorld(true);
+    this.model.traverse((o) => {
+      if (o.userData?.plantID !== undefined) box.expandByObject(o);
+    });
+    if (box.isEmpty()) box.setFromObject(this.model);
     if (box.isEmpty()) return;
     const size = box.getSize(new THREE.Vector3());
     const center = box.getCenter(new THREE.Vector3());
     const radius = Math.max(size.length() / 2, 0.05);
-    const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 0.9;
+    const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 0.8;
     const direction = new THREE.Vector3(1, 0.65, 1.15).normalize();
     this.controls.target.copy(center);
     this.camera.position.copy(center).addScaledVector(direction, distance);

@@ -26,7 +26,10 @@ test('a grid block is written with count [x, y] and spacing, and nothing of othe
     name: 'A', species: 'bean', layout: 'grid', origin: [0, 0, 0], count: [3, 3], spacing: [0.3, 0.3],
     germination: 1, age: 40, trellis: true,
   });
-  assert.deepEqual(file.ground, { size: [4, 4], center: [0, 0] });
+  assert.equal(file.ground, null);
+  const withGround = defaultProject();
+  withGround.ground.enabled = true;
+  assert.deepEqual(toProjectFile(withGround).ground, { size: [4, 4], center: [0, 0] });
 });
 
 test('a scatter block is written with count as a number and its area; a single plant with neither', () => {
