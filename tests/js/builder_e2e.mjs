@@ -69,12 +69,9 @@ async function startServer() {
         const response = await fetch(`${base}/api/config`);
         if (response.ok) return base;
       } catch {
-        // not listening yet: wait for its next output or a short poll
+        // not listening yet
       }
-      await new Promise((resolve) => {
-        const timer = setTimeout(resolve, 50);
-        server.stdout.once('data', () => { clearTimeout(timer); resolve(); });
-      });
+      await new Promise((resolve) => setTimeout(resolve, 50));
     }
   })();
   return Promise.race([ready, exited]);
@@ -182,10 +179,13 @@ async function run() {
   browser = await puppeteer.launch({
     executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
     headless: true,
+    // Bounds for a hung server, not measures of speed: on a loaded machine a build or a
+    // render can take minutes, and a wait in the page is one protocol call.
+    protocolTimeout: 1800000,
     args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1440,900'],
   });
   const page = await browser.newPage();
-  page.setDefaultTimeout(600000);  // a bound for a hung build, not a measure of speed
+  page.setDefaultTimeout(1800000);
   await page.setViewport({ width: 1440, height: 900 });
   const pageErrors = [];
   page.on('pageerror', (e) => pageErrors.push(e.message));
@@ -357,7 +357,8 @@ async function run() {
   // Rendered preview from plantarch's renderer.
   await page.click('[data-tab=scene]');
   await page.click('#show-preview');
-  await page.waitForSelector('.preview[data-state=done]');
+  await page.waitForSelector('.preview[data-state=done], .preview[data-state=error]');
+  assert.equal(await page.$eval('.preview', (el) => el.dataset.state), 'done', 'the rendered preview loads');
   await shot(page, 'preview');
 
   // The API refuses paths outside the output folder and state changes from other sites.
