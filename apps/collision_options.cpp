@@ -2,10 +2,7 @@
 // --obstacle FILE.obj [--avoid-distance] [--fruit-adjustment], --attraction-points FILE.csv
 // [--attraction-cone].
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "cli.h"
@@ -41,57 +38,6 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const ch
     if (out.size() != count)
         throw Error(expected, {.parameter = option, .value = text, .validRange = form});
     return out;
-}
-
-// Points of a CSV file: one "x,y,z" per line (m); blank lines, '#' comments and a header line
-// of names (the first line, none of its fields a number) are skipped. A field that reads as
-// a number but is not finite ("nan", "inf") is an error, on the first line too.
-std::vector<vec3> readPoints(const std::string& path) {
-    std::ifstream in(path);
-    if (!in)
-        throw Error(std::string("cannot open attraction point file: ") + std::strerror(errno),
-                    {.file = path});
-    std::vector<vec3> points;
-    std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-        const auto hash = line.find('#');
-        if (hash != std::string::npos) line.resize(hash);
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        std::stringstream ss(line);
-        std::vector<double> v;
-        bool ok = true, anyNumber = false;
-        for (std::string part; std::getline(ss, part, ',');) {
-            std::size_t used = 0;
-            try {
-                v.push_back(std::stod(part, &used));
-                anyNumber = true;
-            } catch (const std::out_of_range&) {  // 1e999: a number, but not a finite one
-                ok = false;
-                anyNumber = true;
-                break;
-            } catch (const std::exception&) {
-                ok = false;
-                continue;
-            }
-            while (used < part.size() && std::isspace(static_cast<unsigned char>(part[used])))
-                ++used;
-            if (used != part.size() || !std::isfinite(v.back())) ok = false;
-        }
-        if (!anyNumber && number == 1) continue;  // a header such as "x,y,z"
-        if (!ok || v.size() != 3)
-            throw Error("expected three finite numbers x,y,z (m)",
-                        {.file = path,
-                         .line = number,
-                         .parameter = "--attraction-points",
-                         .value = line.substr(0, 60),
-                         .validRange = "e.g. 0.5,0,1.2"});
-        points.push_back(vec3(float(v[0]), float(v[1]), float(v[2])));
-    }
-    if (points.empty())
-        throw Error(
-            "attraction point file holds no points",
-            {.file = path, .parameter = "--attraction-points", .validRange = "lines of x,y,z"});
-    return points;
 }
 
 }  // namespace
@@ -159,9 +105,7 @@ void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Cont
     };
     std::vector<ObjectID> obstacles;
     for (const std::string& f : a.obstacles) {
-        // An obstacle is no plant, whatever labels its file carries (a plant's OBJ export).
-        const std::vector<ObjectID> ids = readOBJ(ctx, f, {.labels = false});
-        for (ObjectID id : ids) ctx.setObjectData(id, "organ", std::string("obstacle"));
+        const std::vector<ObjectID> ids = readObstacleOBJ(ctx, f);
         obstacles.insert(obstacles.end(), ids.begin(), ids.end());
     }
     if (!obstacles.empty()) {
@@ -195,7 +139,7 @@ void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Cont
     }
     if (!a.attractionPoints.empty()) {
         AttractionPoints p;
-        p.points = readPoints(a.attractionPoints);
+        p.points = readAttractionPointsCSV(a.attractionPoints, "--attraction-points");
         if (!a.attractionCone.empty()) {
             const auto v = numbers(a.attractionCone, 3, "--attraction-cone", "");
             p.halfAngle = float(v[0]);

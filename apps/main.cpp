@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -17,78 +16,6 @@
 #include "plantarch/Version.h"
 
 namespace plantarch::cli {
-
-std::vector<Command>& commandRegistry() {
-    static std::vector<Command> registry;
-    return registry;
-}
-
-namespace {
-
-// The one progress bar of the process: at most one line on stderr, redrawn in place and
-// wiped when its stage ends, before a message and before exit.
-struct ProgressBar {
-    ProgressMode mode = ProgressMode::Auto;
-    bool enabled = false;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-    std::string stage;
-    int shown = -1;  // per cent on screen, -1 when nothing is drawn
-
-    void draw(std::string_view name, double fraction) {
-        fraction = std::clamp(fraction, 0.0, 1.0);
-        if (fraction >= 1.0) {
-            clear();
-            return;
-        }
-        // A job that ends within a second shows nothing (unless --progress always).
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (mode == ProgressMode::Auto && seconds < 1.0) return;
-        const int percent = int(fraction * 100.0);
-        if (percent == shown && name == stage) return;
-        stage = name;
-        shown = percent;
-        const int width = 30, filled = int(fraction * width);
-        std::fprintf(stderr, "\r%-15.*s [%.*s%*s] %3d%%", int(name.size()), name.data(), filled,
-                     "##############################", width - filled, "", percent);
-        std::fflush(stderr);
-    }
-    void clear() {
-        if (shown < 0) return;
-        std::fprintf(stderr, "\r%*s\r", 15 + 2 + 30 + 6, "");
-        std::fflush(stderr);
-        shown = -1;
-    }
-};
-
-ProgressBar& progressBar() {
-    static ProgressBar bar;
-    return bar;
-}
-
-}  // namespace
-
-void setProgressMode(ProgressMode mode) {
-    ProgressBar& bar = progressBar();
-    bar.mode = mode;
-    bar.enabled =
-        mode == ProgressMode::Always || (mode == ProgressMode::Auto && isatty(STDERR_FILENO) != 0);
-}
-
-ProgressCallback terminalProgress() {
-    if (!progressBar().enabled) return {};
-    return [](std::string_view stage, double fraction) { progressBar().draw(stage, fraction); };
-}
-
-void clearProgress() {
-    progressBar().clear();
-}
-
-void info(const GlobalOptions& g, const std::string& message) {
-    if (g.verbose == 0) return;
-    clearProgress();
-    std::fprintf(stderr, "%s\n", message.c_str());
-}
 
 namespace {
 

@@ -119,10 +119,16 @@ std::string separateIndexName(const std::string& path) {
 void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
                                const std::vector<std::string>& paths, bool ownOrigin,
                                const GlobalOptions& g) {
-    std::string index = "{\n  \"species\": " + jsonText(arch.getCurrentPlantModel()) +
-                        ",\n  \"seed\": " + std::to_string(arch.seed()) +
-                        ",\n  \"coordinates\": " + (ownOrigin ? "\"plant\"" : "\"scene\"") +
-                        ",\n  \"plants\": [";
+    // The plants' species (several, in plant order, for a project of several blocks).
+    std::string species;
+    for (unsigned id : plants)
+        if (species.empty() ||
+            (", " + species + ",").find(", " + arch.plant(id).name + ",") == std::string::npos)
+            species += (species.empty() ? "" : ", ") + arch.plant(id).name;
+    if (plants.empty()) species = arch.getCurrentPlantModel();
+    std::string index =
+        "{\n  \"species\": " + jsonText(species) + ",\n  \"seed\": " + std::to_string(arch.seed()) +
+        ",\n  \"coordinates\": " + (ownOrigin ? "\"plant\"" : "\"scene\"") + ",\n  \"plants\": [";
     // One bar over the plants; each file's own writing is too short to show.
     const ProgressCallback progress = terminalProgress();
     for (std::size_t i = 0; i < plants.size(); ++i) {

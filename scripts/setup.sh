@@ -11,12 +11,17 @@ PACKAGES=(
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpcg-cpp-dev
   libomp-dev libgtest-dev libgmock-dev libbenchmark-dev libclang-rt-14-dev
   pybind11-dev python3 python3-dev python3-numpy
+  libcpp-httplib-dev libzip-dev
 )
 
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Node.js and npm bundle the builder's web front end (the machine's own when it has them).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
+fi
 if ((${#missing[@]})); then
   if [ "$(id -u)" -ne 0 ]; then
     echo "setup: missing packages (${missing[*]}); run as root or install them" >&2
@@ -25,6 +30,13 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq >/dev/null
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The web front end's npm packages (three.js, esbuild) at the versions its package-lock.json
+# pins, from the npm registry; again only when the lock file changed since the last install.
+web=builder/web
+if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+  npm ci --prefix "$web" --no-audit --no-fund --loglevel=error >/dev/null
 fi
 
 build=1

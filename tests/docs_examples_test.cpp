@@ -139,6 +139,34 @@ TEST(DocsExamples, ObstacleExamplesRun) {
     fs::remove_all(dir);
 }
 
+// The project examples run as written, from a folder where examples/ is the repository's.
+TEST(DocsExamples, ProjectExamplesRun) {
+    const fs::path dir = fs::temp_directory_path() / "plantarch-docs-project-examples";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "out");
+    fs::create_directory_symlink(kSource / "examples", dir / "examples");
+    int ran = 0;
+    for (const Example& e : examples()) {
+        // Those of shipped projects (docs/builder.md runs projects the builder saved).
+        if (e.words.size() < 4 || e.words[1] != "project" || e.words[3].rfind("examples/", 0) != 0)
+            continue;
+        std::string args;
+        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
+        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
+        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.page << ": " << e.line;
+        // One file per plant (--separate) is named for each plant; its index is not.
+        const bool separate = e.line.find("--separate") != std::string::npos;
+        for (const std::string& path : written(e)) {
+            fs::path p = dir / path;
+            if (separate) p = p.parent_path() / (p.stem().string() + "_index.json");
+            EXPECT_TRUE(fs::exists(p)) << e.page << ": " << path;
+        }
+        ++ran;
+    }
+    EXPECT_GE(ran, 5);
+    fs::remove_all(dir);
+}
+
 // docs/species-format.md's complete example is a sensible plant at its default age.
 TEST(DocsExamples, TheCompleteSpeciesExampleIsASensiblePlant) {
     const std::string doc = text(kSource / "docs" / "species-format.md");

@@ -78,6 +78,13 @@ struct AttractionPoints {
     bool operator==(const AttractionPoints&) const = default;
 };
 
+/// Reads attraction points from a CSV file: one "x,y,z" per line (m); blank lines, '#'
+/// comments and a header line of names (the first line, none of its fields a number) are
+/// skipped. A field that reads as a number but is not finite ("nan", "inf") is an error, on
+/// the first line too, as is a file without points. Errors name the file, the line and
+/// `parameter` (what named the file: "--attraction-points", "attraction/file").
+std::vector<vec3> readAttractionPointsCSV(const std::string& path, const std::string& parameter);
+
 /// Counts of the work collision avoidance did (since it was enabled or the counts were reset).
 /// Everything but the seconds is the same for any thread count.
 struct CollisionStats {

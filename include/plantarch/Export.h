@@ -112,6 +112,9 @@ struct ObjReadOptions {
 /// holds no faces. On error `context` is left unchanged.
 std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                               const ObjReadOptions& options = {});
+/// Reads an OBJ file as an obstacle: its geometry only (readOBJ without labels, whatever
+/// labels its file carries: an obstacle is no plant), each object with organ "obstacle".
+std::vector<ObjectID> readObstacleOBJ(Context& context, const std::string& path);
 
 // ---- PLY ---------------------------------------------------------------------------
 

@@ -136,11 +136,21 @@ public:
 
     /// The Context the plants' geometry lives in.
     Context& context() { return *context_; }
+    const Context& context() const { return *context_; }
 
     /// Seed of the scene (42 by default): plant i draws from Rng::forPlant(seed, i). It
     /// applies to plants added afterwards.
     void setSeed(std::uint64_t seed);
     std::uint64_t seed() const { return seed_; }
+    /// Numbers the random streams of the plants added from now on from 0: the next plant
+    /// added draws from Rng::forPlant(seed, 0), the one after from 1, ... (plant IDs go on as
+    /// before). By default a plant's streams are numbered by its ID. A canopy built after
+    /// other plants then grows as it would alone (without collision avoidance, whose cones
+    /// draw by plant ID): plantarch project files build each block so.
+    void restartPlantStreams();
+    /// The number of a plant's random streams (its ID minus the ID of the first plant added
+    /// after the last restartPlantStreams; its ID when never restarted).
+    unsigned plantStream(unsigned plantID) const;
 
     // ---- shoot types ---------------------------------------------------------------
     /// Defines (or replaces) a shoot type for plants added from now on. Validated.

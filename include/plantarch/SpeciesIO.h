@@ -51,6 +51,21 @@ std::string writeSpeciesString(const SpeciesModel& model, const SpeciesWriteOpti
 void writeSpeciesFile(const SpeciesModel& model, const std::string& path,
                       const SpeciesWriteOptions& options = {});
 
+/// `base` with `changes` applied, read back through the species reader so that every value
+/// gets the checks, and the messages, a species file gets. A change's key is
+///   shoot_types.LABEL.PATH   a field of a shoot type
+///   ("shoot_types.trifoliate.phytomer.leaf.pitch") phenology.PATH           a field of the
+///   phenology ("phenology.max_age") build_parameters.NAME    the default of a build parameter
+/// and its value is the text a species file holds there ("20", "uniform(10, 30)", "0.2 0.3
+/// 0.1", "true"). Fields that hold lists or maps (child shoot types, node rules...) are not
+/// edited this way. `name` (when not empty) becomes the species' name. Throws
+/// plantarch::Error naming the key (and the nearest valid one for an unknown key) or, for a
+/// bad value, the reader's own message with the key's parameter path (no file or line: the
+/// text read is made here).
+SpeciesModel editSpecies(const SpeciesModel& base,
+                         const std::map<std::string, std::string>& changes,
+                         const std::string& name = "");
+
 // ---- the species library ---------------------------------------------------------------
 
 /// The folder holding the library's species files, the first that exists of:
@@ -87,15 +102,16 @@ std::map<std::string, float> resolveBuildParameters(
 /// (defineSpeciesShootTypes). Returns the IDs of the shoots created, in creation order.
 ///
 /// Random expressions in the steps draw from their own stream,
-/// Rng::forPlant(arch.seed(), 2^62 + plantID): deterministic per (seed, plant) and
-/// independent of the plant's own stream, which the shoots created draw from as usual.
+/// Rng::forPlant(arch.seed(), 2^62 + arch.plantStream(plantID)): deterministic per (seed, plant)
+/// and independent of the plant's own stream, which the shoots created draw from as usual.
 std::vector<unsigned> buildInitialStructure(PlantArchitecture& arch, unsigned plantID,
                                             const SpeciesModel& species,
                                             const std::map<std::string, float>& overrides = {});
 
 /// The attraction points of a plant of the species at `base` (its <attraction_points>
 /// evaluated with the build parameters, wires sampled at their spacing). Random expressions
-/// draw from Rng::forPlant(seed, 3 * 2^61 + plantID). Errors name the file and line. The
+/// draw from Rng::forPlant(seed, 3 * 2^61 + plantID), plantID being the plant's stream number
+/// (PlantArchitecture::plantStream). Errors name the file and line. The
 /// species must declare attraction points.
 AttractionPoints speciesAttractionPoints(const SpeciesModel& species, std::uint64_t seed,
                                          unsigned plantID, const vec3& base,
@@ -109,7 +125,8 @@ struct TrellisPart {
 };
 
 /// The trellis of a plant of the species at `base` (its <trellis> evaluated with the build
-/// parameters). Random expressions draw from Rng::forPlant(seed, 5 * 2^60 + plantID). Errors
+/// parameters). Random expressions draw from Rng::forPlant(seed, 5 * 2^60 + plantID), plantID
+/// being the plant's stream number (PlantArchitecture::plantStream). Errors
 /// name the file, line and parameter. The species must declare a trellis.
 std::vector<TrellisPart> speciesTrellis(const SpeciesModel& species, std::uint64_t seed,
                                         unsigned plantID, const vec3& base,

@@ -2,7 +2,8 @@
 //
 // Each thread owns a worker (its own Context and PlantArchitecture with the same species,
 // functions and seed) so nothing is shared while plants grow. A plant's numbers depend only
-// on its ID (its random stream is Rng::forPlant(seed, ID)) and prototype variants are seeded
+// on its ID (its random stream is Rng::forPlant(seed, ID), the ID counted from the last
+// restartPlantStreams) and prototype variants are seeded
 // from their parameters, so which worker grows a plant does not matter. The merge then copies
 // every plant's objects into the caller's Context in plant order and object order, giving the
 // same IDs and bytes whatever the thread count.
@@ -10,6 +11,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -157,8 +159,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                     {.parameter = "species", .validRange = "one of the library species"});
     resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
     if (impl_->trellisGeometry && impl_->species->trellis)     // and the trellis's
-        speciesTrellis(*impl_->species, seed_, impl_->store.nextPlantID, vec3(0.0f),
-                       buildParameters);
+        speciesTrellis(*impl_->species, seed_, impl_->store.stream(impl_->store.nextPlantID),
+                       vec3(0.0f), buildParameters);
     const bool together = impl_->collision.world && impl_->collision.world->soft();
     const std::size_t limit = context_->triangleLimit();
     impl_->store.triangleLimit = limit;
@@ -177,6 +179,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.species = impl_->species;
         wi.store.defaultPhenology = impl_->store.defaultPhenology;
         wi.store.meshDetail = impl_->store.meshDetail;
+        wi.store.streamBase = impl_->store.streamBase;
         wi.store.triangleLimit = limit;
         wi.functions = impl_->functions;
         wi.trellisGeometry = false;  // trellises are added in the caller's Context below
@@ -217,6 +220,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     };
 
     std::vector<Context> slots;  // one per plant of a batch, kept (with capacity) for the next
+    int nextReport = 0;          // progress within a batch: at most about a hundred reports
     std::size_t trianglesSeen = 0;
     // Runs make(i, thread, slot) for every plant in batches on all threads, then copies each
     // batch into the scene; `ownerOf(i)` holds plant i's state.
@@ -228,8 +232,15 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             for (Context& slot : slots) slot.setTriangleLimit(limit);
             std::vector<GrownPlant> grown(static_cast<std::size_t>(size));
             ParallelErrors errors;
+            // Progress after each plant, reported by the calling thread (OpenMP's thread 0):
+            // a callback that throws stops the batch after the plants under way. The batch's
+            // last plant is reported with the batch, after it is copied in.
+            std::atomic<int> finished{0};
+            std::atomic<bool> stop{false};
+            std::exception_ptr stopped;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-            for (int i = start; i < end; ++i)
+            for (int i = start; i < end; ++i) {
+                if (stop.load(std::memory_order_relaxed)) continue;
                 errors.run(i - start, [&] {
                     const int t = omp_get_thread_num();
                     Context& slot = slots[std::size_t(i - start)];
@@ -239,6 +250,22 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                     grown[std::size_t(i - start)] = {id, &slot, &owner,
                                                      plantObjects(owner.store.plant(id))};
                 });
+                const int done = start + ++finished;
+                if (impl_->progress && omp_get_thread_num() == 0 && done < end && !stopped &&
+                    done >= nextReport) {
+                    nextReport = done + std::max(1, n / 100);
+                    try {
+                        impl_->progress(stage, double(done) / double(n));
+                    } catch (...) {
+                        stopped = std::current_exception();
+                        stop = true;
+                    }
+                }
+            }
+            if (stopped) {
+                undo();
+                std::rethrow_exception(stopped);
+            }
             try {
                 failed(errors, start);
             } catch (...) {

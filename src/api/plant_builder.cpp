@@ -92,6 +92,14 @@ void PlantArchitecture::setSeed(std::uint64_t seed) {
     seed_ = seed;
 }
 
+void PlantArchitecture::restartPlantStreams() {
+    impl_->store.streamBase = impl_->store.nextPlantID;
+}
+
+unsigned PlantArchitecture::plantStream(unsigned plantID) const {
+    return impl_->store.stream(plantID);
+}
+
 void PlantArchitecture::defineShootType(const std::string& label, const ShootParameters& params) {
     if (label.empty())
         throw Error("shoot type label must not be empty", {.parameter = "shoot_type_label"});
@@ -131,7 +139,7 @@ unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float cu
     p.id = impl_->store.nextPlantID++;
     p.base = base_position;
     p.age = current_age;
-    p.rng = Rng::forPlant(seed_, p.id);
+    p.rng = Rng::forPlant(seed_, impl_->store.stream(p.id));
     p.shootTypes = impl_->store.shootTypes;
     p.phenology = impl_->store.defaultPhenology;
     p.nextDormancyBreak = p.phenology.time_to_dormancy_break < 0.0f

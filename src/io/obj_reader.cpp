@@ -345,4 +345,11 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     return ids;
 }
 
+std::vector<ObjectID> readObstacleOBJ(Context& context, const std::string& path) {
+    const std::vector<ObjectID> ids = readOBJ(context, path, {.labels = false});
+    const DataColumn organ = context.dataColumn("organ", DataType::String);
+    for (ObjectID id : ids) context.setObjectData(id, organ, std::string("obstacle"));
+    return ids;
+}
+
 }  // namespace plantarch

@@ -60,7 +60,7 @@ public:
         : arch_(arch),
           plantID_(plantID),
           species_(species),
-          rng_(Rng::forPlant(arch.seed(), (std::uint64_t(1) << 62) + plantID)) {
+          rng_(Rng::forPlant(arch.seed(), (std::uint64_t(1) << 62) + arch.plantStream(plantID))) {
         for (const auto& [name, value] : parameters) variables_[name] = value;
         variables_["i"] = 0.0;
         variables_["parent_i"] = 0.0;

@@ -30,6 +30,11 @@ public:
     std::map<unsigned, PlantInstance> plants;
     /// The ID the next plant gets (IDs are never reused).
     unsigned nextPlantID = 0;
+    /// The ID of the first plant added since PlantArchitecture::restartPlantStreams (0 until
+    /// then): a plant's random streams are numbered from it (stream()).
+    unsigned streamBase = 0;
+    /// The number of the random streams of the plant with this ID (Rng::forPlant(seed, n)).
+    unsigned stream(unsigned id) const { return id - streamBase; }
     /// The factor on every organ's mesh resolution (setMeshDetail).
     float meshDetail = 1.0f;
     /// Growth stops with TriangleBudgetError once a plant's organs need more triangles than

@@ -1,0 +1,104 @@
+// plantarch builder [--port 8080] [--host 127.0.0.1] [--open] [--output DIR]
+// Starts the project builder: a local web app (embedded in this binary) and its JSON API
+// (builder/API.md), until Ctrl-C.
+
+#include <pthread.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <thread>
+
+#include "builder/server/server.h"
+#include "cli.h"
+#include "plantarch/Error.h"
+
+extern char** environ;
+
+namespace plantarch::cli {
+
+namespace {
+
+struct BuilderArgs {
+    int port = 8080;
+    std::string host = "127.0.0.1";
+    bool open = false;
+    std::string output = "builder-output";
+};
+
+// Opens `url` in the desktop's browser (xdg-open), without waiting for it.
+void openBrowser(const std::string& url) {
+    pid_t pid = 0;
+    const char* argv[] = {"xdg-open", url.c_str(), nullptr};
+    if (posix_spawnp(&pid, "xdg-open", nullptr, nullptr, const_cast<char**>(argv), environ) != 0) {
+        std::fprintf(stderr, "plantarch: note: could not start xdg-open; open %s yourself\n",
+                     url.c_str());
+        return;
+    }
+    std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();  // no zombie left
+}
+
+int runBuilder(const BuilderArgs& a, const GlobalOptions& global) {
+    // SIGINT and SIGTERM stop the server (its builds cancelled, its files whole): they are
+    // blocked in every thread and taken by one that waits for them.
+    sigset_t stopSignals;
+    sigemptyset(&stopSignals);
+    sigaddset(&stopSignals, SIGINT);
+    sigaddset(&stopSignals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+
+    builder::ServerOptions o;
+    o.host = a.host;
+    o.port = a.port;
+    o.output = a.output;
+    o.maxTriangles = global.maxTriangles;
+    builder::Server server(o);
+    const int port = server.bind();
+    const bool local = a.host == "127.0.0.1" || a.host == "localhost";
+    if (!local)
+        std::fprintf(stderr,
+                     "plantarch: warning: --host %s: anyone who can reach this machine on port %d "
+                     "can build scenes and write files under %s\n",
+                     a.host.c_str(), port, server.outputFolder().c_str());
+    const std::string url =
+        "http://" + std::string(local ? "127.0.0.1" : a.host) + ":" + std::to_string(port) + "/";
+    std::printf("plantarch builder: %s (output folder %s); Ctrl-C stops it\n", url.c_str(),
+                server.outputFolder().c_str());
+    std::fflush(stdout);
+    std::thread stopper([&] {
+        int signal = 0;
+        sigwait(&stopSignals, &signal);
+        server.stop();
+    });
+    if (a.open) openBrowser(url);
+    server.serve();
+    // serve() returned: a signal stopped it, or the listening socket failed; make sure the
+    // waiting thread ends too.
+    pthread_kill(stopper.native_handle(), SIGTERM);
+    stopper.join();
+    std::printf("plantarch builder: stopped\n");
+    return 0;
+}
+
+std::function<int()> setupBuilder(CLI::App& app, GlobalOptions& global) {
+    app.description(
+        "Start the project builder: a web app on this machine for building scenes of plants");
+    auto a = std::make_shared<BuilderArgs>();
+    app.add_option("--port", a->port, "Port to listen on (default 8080; 0: any free port)")
+        ->check(numberCheck("--port", "a port", 0, 65535, true, "0 to 65535"));
+    app.add_option("--host", a->host,
+                   "Address to listen on (default 127.0.0.1: this machine only; any other "
+                   "lets other machines in, with a warning)");
+    app.add_flag("--open", a->open, "Open the builder in the desktop's web browser");
+    app.add_option("--output", a->output,
+                   "The folder the builder writes exports, species and projects under (made if "
+                   "missing; default builder-output)");
+    return [a, &global]() { return runBuilder(*a, global); };
+}
+
+}  // namespace
+
+PLANTARCH_REGISTER_COMMAND(builder, "builder", 90, setupBuilder);
+
+}  // namespace plantarch::cli

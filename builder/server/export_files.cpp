@@ -1,0 +1,107 @@
+// A build's scene written with the command line's writers (writePlantOutput and
+// writeSeparatePlantOutputs, through CommandOutputs: checked paths, all files or none), and
+// zip archives of several files (libzip).
+
+#include "builder/server/export_files.h"
+
+#include <stdlib.h>
+#include <zip.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+
+namespace plantarch::builder {
+
+namespace {
+
+std::string readBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot read back a file just written", {.file = path.string()});
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+TemporaryFolder::TemporaryFolder() {
+    std::string pattern = (fs::temp_directory_path() / "plantarch-builder-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw Error("cannot make a temporary folder", {.file = pattern});
+    path_ = pattern;
+}
+
+TemporaryFolder::~TemporaryFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+}
+
+std::string exportExtension(const std::string& format) {
+    for (const char* f : {"obj", "ply", "glb", "gltf", "usda", "xml"})
+        if (format == f) return "." + format;
+    throw HttpError{400, "format = \"" + format.substr(0, 40) +
+                             "\": unknown export format (valid: obj, ply, glb, gltf, usda, xml)"};
+}
+
+std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
+                                      const fs::path& folder, const std::string& name,
+                                      const std::string& format, bool perPlant) {
+    const std::string ext = exportExtension(format);
+    const std::string path = (folder / (name + ext)).string();
+    const cli::GlobalOptions options;  // as `plantarch project run` without options
+    const PlantArchitecture& arch = *scene.arch;
+    const std::vector<unsigned> plants = scene.built.plants();
+    std::vector<fs::path> files;
+    auto withMaterials = [&](const std::string& file) {
+        files.push_back(file);
+        if (ext == ".obj") files.push_back(fs::path(file).replace_extension(".mtl"));
+    };
+    std::lock_guard<std::mutex> lock(server.files);
+    cli::CommandOutputs outputs(perPlant ? std::vector<std::string>{cli::separateIndexName(path)}
+                                         : std::vector<std::string>{path});
+    if (perPlant) {
+        cli::writeSeparatePlantOutputs(arch, plants, {path}, false, options);
+        for (unsigned id : plants) withMaterials(cli::separateFileName(path, id));
+        files.push_back(cli::separateIndexName(path));
+    } else {
+        cli::writePlantOutput(arch, plants, path, options);
+        withMaterials(path);
+    }
+    outputs.commit();
+    return files;
+}
+
+std::string sceneFileBytes(Server::Impl& server, const Scene& scene, const std::string& format) {
+    const TemporaryFolder temp;
+    const std::vector<fs::path> files =
+        writeSceneFiles(server, scene, temp.path(), "scene", format, false);
+    return readBytes(files.front());
+}
+
+std::string zipArchive(const std::vector<fs::path>& files, const fs::path& base) {
+    const TemporaryFolder temp;
+    const std::string archive = (temp.path() / "files.zip").string();
+    int error = 0;
+    zip_t* zip = zip_open(archive.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
+    if (!zip) throw Error("cannot make a zip archive (libzip error " + std::to_string(error) + ")");
+    for (const fs::path& f : files) {
+        const std::string name = f.lexically_relative(base).generic_string();
+        zip_source_t* source = zip_source_file(zip, f.c_str(), 0, -1);
+        if (!source || zip_file_add(zip, name.c_str(), source, ZIP_FL_ENC_UTF_8) < 0) {
+            if (source) zip_source_free(source);
+            const std::string why = zip_strerror(zip);
+            zip_discard(zip);
+            throw Error("cannot add a file to the zip archive: " + why, {.file = f.string()});
+        }
+    }
+    if (zip_close(zip) != 0) {
+        const std::string why = zip_strerror(zip);
+        zip_discard(zip);
+        throw Error("cannot write the zip archive: " + why);
+    }
+    return readBytes(archive);
+}
+
+}  // namespace plantarch::builder

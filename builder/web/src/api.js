@@ -1,0 +1,52 @@
+// The builder's JSON API (builder/API.md): one function per endpoint. A failed request throws
+// an Error whose message is the server's one-line error.
+
+export class ApiError extends Error {
+  constructor(message, status) {
+    super(message);
+    this.status = status;
+  }
+}
+
+async function request(method, url, body) {
+  const init = { method, headers: {} };
+  if (body !== undefined) {
+    init.headers['Content-Type'] = 'application/json';
+    init.body = JSON.stringify(body);
+  }
+  let response;
+  try {
+    response = await fetch(url, init);
+  } catch (e) {
+    throw new ApiError(`the builder's server does not answer (${e.message}): is plantarch builder still running?`, 0);
+  }
+  const type = response.headers.get('Content-Type') ?? '';
+  const data = type.includes('application/json') ? await response.json() : await response.text();
+  if (!response.ok) {
+    const message = typeof data === 'object' && data?.error ? data.error : `${method} ${url}: HTTP ${response.status}`;
+    throw new ApiError(message, response.status);
+  }
+  return data;
+}
+
+const enc = encodeURIComponent;
+
+export const api = {
+  species: () => request('GET', '/api/species'),
+  speciesDetail: (name) => request('GET', `/api/species/${enc(name)}`),
+  thumbnailUrl: (name) => `/api/species/${enc(name)}/thumbnail.png`,
+  checkSpecies: (body) => request('POST', '/api/species/check', body),
+  saveSpecies: (body) => request('POST', '/api/species/save', body),
+  startBuild: (project, from) => request('POST', '/api/builds', from ? { project, from } : { project }),
+  build: (id) => request('GET', `/api/builds/${enc(id)}`),
+  cancelBuild: (id) => request('DELETE', `/api/builds/${enc(id)}`),
+  sceneUrl: (id) => `/api/builds/${enc(id)}/scene.glb`,
+  renderUrl: (id, w, h) => `/api/builds/${enc(id)}/render.png?w=${w}&h=${h}`,
+  exportFiles: (body) => request('POST', '/api/export', body),
+  downloadUrl: ({ build, format, per_plant, name }) =>
+    `/api/export/download?build=${enc(build)}&format=${enc(format)}&per_plant=${per_plant ? 'true' : 'false'}&name=${enc(name || 'scene')}`,
+  config: () => request('GET', '/api/config'),
+  saveProject: (name, project) => request('POST', '/api/projects/save', { name, project }),
+  projects: () => request('GET', '/api/projects'),
+  project: (name) => request('GET', `/api/projects/${enc(name)}`),
+};

@@ -1,0 +1,150 @@
+// The project as the builder edits it, and its file form (builder/API.md, "project file",
+// version 1). The editor keeps every field of a block whatever its layout (switching layout
+// back and forth loses nothing); toProjectFile writes only the fields of the block's layout.
+
+export const PROJECT_VERSION = 1;
+
+export function defaultBlock(index = 0, species = 'bean') {
+  return {
+    name: blockName(index),
+    species,
+    layout: 'grid',
+    origin: [0, 0, 0],
+    count: [3, 3],        // grid: plants along x and y
+    spacing: [0.3, 0.3],  // grid: m
+    plants: 12,           // scatter: positions drawn
+    area: [1.5, 1.5],     // scatter: m
+    germination: 1,
+    age: 40,
+    seed: null,           // null: the project's seed
+    parameters: {},
+    trellis: true,
+  };
+}
+
+/** "A", "B", ... "Z", "AA", ... */
+export function blockName(index) {
+  let name = '';
+  for (let i = index + 1; i > 0; i = Math.floor((i - 1) / 26)) name = String.fromCharCode(65 + ((i - 1) % 26)) + name;
+  return name;
+}
+
+export function defaultProject() {
+  return {
+    name: 'untitled',
+    seed: 1,
+    mesh_detail: 1,
+    // No ground, as `plantarch canopy`: the view draws a grid, the renderer its own floor.
+    ground: { enabled: false, size: [4, 4], center: [0, 0] },
+    soft_collision: { enabled: false, cone: [80, 0.1, 256, 0.4] },
+    obstacles: { files: [], avoid_distance: 0.2, fruit_adjustment: false },
+    attraction: { enabled: false, points: [], file: '', cone: [80, 0.1, 0.4] },
+    blocks: [defaultBlock(0)],
+  };
+}
+
+/** The project file (JSON value) of the editor's project. */
+export function toProjectFile(p) {
+  const out = { plantarch_project: PROJECT_VERSION, name: p.name, seed: p.seed, mesh_detail: p.mesh_detail };
+  out.ground = p.ground.enabled ? { size: [...p.ground.size], center: [...p.ground.center] } : null;
+  out.soft_collision = { enabled: p.soft_collision.enabled, cone: [...p.soft_collision.cone] };
+  out.obstacles = {
+    files: [...p.obstacles.files],
+    avoid_distance: p.obstacles.avoid_distance,
+    fruit_adjustment: p.obstacles.fruit_adjustment,
+  };
+  out.attraction = {
+    enabled: p.attraction.enabled,
+    points: p.attraction.points.map((q) => [...q]),
+    file: p.attraction.file ? p.attraction.file : null,
+    cone: [...p.attraction.cone],
+  };
+  out.blocks = p.blocks.map(blockToFile);
+  return out;
+}
+
+function blockToFile(b) {
+  const out = { name: b.name, species: b.species, layout: b.layout, origin: [...b.origin] };
+  if (b.layout === 'grid') {
+    out.count = [...b.count];
+    out.spacing = [...b.spacing];
+  } else if (b.layout === 'scatter') {
+    out.area = [...b.area];
+    out.count = b.plants;
+  }
+  if (b.layout !== 'single') out.germination = b.germination;
+  out.age = b.age;
+  if (b.seed !== null && b.seed !== undefined) out.seed = b.seed;
+  if (Object.keys(b.parameters).length) out.parameters = { ...b.parameters };
+  out.trellis = b.trellis;
+  return out;
+}
+
+/**
+ * The editor's project from a project file's JSON value. Throws an Error naming the field for
+ * what the editor cannot hold; the server checks everything else when the project is built.
+ */
+export function fromProjectFile(json) {
+  if (typeof json !== 'object' || json === null || Array.isArray(json)) throw new Error('the project file is not a JSON object');
+  if (json.plantarch_project !== PROJECT_VERSION) {
+    throw new Error(`plantarch_project = ${JSON.stringify(json.plantarch_project)}: not a plantarch project file of version ${PROJECT_VERSION}`);
+  }
+  const p = defaultProject();
+  if (typeof json.name === 'string') p.name = json.name;
+  if (Number.isFinite(json.seed)) p.seed = json.seed;
+  if (Number.isFinite(json.mesh_detail)) p.mesh_detail = json.mesh_detail;
+  p.ground = json.ground
+    ? { enabled: true, size: [...(json.ground.size ?? [4, 4])], center: [...(json.ground.center ?? [0, 0])] }
+    : { enabled: false, size: [4, 4], center: [0, 0] };
+  if (json.soft_collision) {
+    p.soft_collision = { enabled: !!json.soft_collision.enabled, cone: [...(json.soft_collision.cone ?? p.soft_collision.cone)] };
+  }
+  if (json.obstacles) {
+    p.obstacles = {
+      files: [...(json.obstacles.files ?? [])],
+      avoid_distance: json.obstacles.avoid_distance ?? 0.2,
+      fruit_adjustment: !!json.obstacles.fruit_adjustment,
+    };
+  }
+  if (json.attraction) {
+    p.attraction = {
+      enabled: !!json.attraction.enabled,
+      points: (json.attraction.points ?? []).map((q) => [...q]),
+      file: json.attraction.file ?? '',
+      cone: [...(json.attraction.cone ?? p.attraction.cone)],
+    };
+  }
+  if (!Array.isArray(json.blocks)) throw new Error('blocks: missing (a list of blocks)');
+  p.blocks = json.blocks.map((b, i) => blockFromFile(b, i));
+  return p;
+}
+
+function blockFromFile(b, i) {
+  const block = defaultBlock(i, b.species);
+  for (const key of ['name', 'species', 'layout', 'germination', 'age', 'trellis']) {
+    if (b[key] !== undefined) block[key] = b[key];
+  }
+  if (Array.isArray(b.origin)) block.origin = [...b.origin];
+  if (b.seed !== undefined) block.seed = b.seed;
+  if (b.parameters) block.parameters = { ...b.parameters };
+  if (block.layout === 'grid') {
+    if (Array.isArray(b.count)) block.count = [...b.count];
+    if (Array.isArray(b.spacing)) block.spacing = [...b.spacing];
+  } else if (block.layout === 'scatter') {
+    if (Number.isFinite(b.count)) block.plants = b.count;
+    if (Array.isArray(b.area)) block.area = [...b.area];
+  }
+  return block;
+}
+
+/** A copy of block `b` named after `index` (Duplicate). */
+export function duplicateBlock(b, index) {
+  return { ...structuredClone(b), name: blockName(index) };
+}
+
+/** The number of plant positions of a block (before germination). */
+export function positions(b) {
+  if (b.layout === 'grid') return b.count[0] * b.count[1];
+  if (b.layout === 'scatter') return b.plants;
+  return 1;
+}

@@ -1,0 +1,366 @@
+// Building a project: ground, obstacles, collision avoidance and attraction points, then each
+// block of plants in order, into one PlantArchitecture and its Context.
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "core/value_text.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
+#include "plantarch/Project.h"
+#include "plantarch/SpeciesIO.h"
+#include "project/project_fields.h"
+
+namespace plantarch {
+
+namespace {
+
+std::string fileOf(const Project& p) {
+    return p.file.empty() ? "project" : p.file;
+}
+
+// An error of the library raised while handling `field`: it names the project file and the
+// field (the library's own parameter in brackets), unless it already names a file of its own
+// (a species file's error points into that file). A triangle budget keeps its type.
+[[noreturn]] void rethrowAt(const Project& p, const std::string& field) {
+    try {
+        throw;
+    } catch (const TriangleBudgetError&) {
+        throw;
+    } catch (const Error& e) {
+        if (!e.file().empty()) throw;
+        // The library's own name for the value, unless the field says it already.
+        const bool named = e.parameter().empty() || field.ends_with("/" + e.parameter());
+        throw Error(e.message(), {.file = fileOf(p),
+                                  .parameter = field + (named ? "" : " (" + e.parameter() + ")"),
+                                  .value = e.value(),
+                                  .validRange = e.validRange()});
+    }
+}
+
+bool isSpeciesPath(const std::string& species) {
+    return species.find('/') != std::string::npos ||
+           (species.size() > 4 && species.compare(species.size() - 4, 4, ".xml") == 0);
+}
+
+// The species of every block, loaded and its build parameters checked.
+std::vector<SpeciesModel> loadBlockSpecies(const Project& p) {
+    std::vector<SpeciesModel> models;
+    std::map<std::string, std::size_t> loaded;  // by species reference: each read once
+    for (std::size_t i = 0; i < p.blocks.size(); ++i) {
+        const ProjectBlock& b = p.blocks[i];
+        const std::string at = "blocks/" + std::to_string(i);
+        const std::string species = projectSpecies(p, b);
+        if (const auto it = loaded.find(species); it != loaded.end()) {
+            models.push_back(models[it->second]);
+        } else {
+            try {
+                models.push_back(loadSpecies(species));
+            } catch (const Error&) {
+                rethrowAt(p, at + "/species");
+            }
+            loaded.emplace(species, models.size() - 1);
+        }
+        for (const auto& [name, value] : b.parameters) {
+            try {
+                resolveBuildParameters(models.back(), {{name, value}});
+            } catch (const Error& e) {
+                throw Error(e.message(), {.file = fileOf(p),
+                                          .parameter = at + "/parameters/" + name,
+                                          .value = e.value(),
+                                          .validRange = e.validRange()});
+            }
+        }
+    }
+    return models;
+}
+
+float blockAge(const ProjectBlock& b, const SpeciesModel& model) {
+    return b.age ? *b.age : model.recommendedAge;
+}
+
+void requireReadable(const Project& p, const std::string& path, const std::string& field,
+                     const std::string& what) {
+    std::error_code ec;
+    const std::string full = projectPath(p, path);
+    if (std::filesystem::is_directory(full, ec))
+        throw Error("is a directory, not " + what,
+                    {.file = fileOf(p), .parameter = field, .value = full});
+    if (!std::ifstream(full))
+        throw Error("cannot open " + what, {.file = fileOf(p), .parameter = field, .value = full});
+}
+
+ObjectID addGround(Context& ctx, const ProjectGround& g) {
+    const vec2 h = 0.5f * g.size;
+    Mesh m;
+    m.positions = {vec3(g.center.x - h.x, g.center.y - h.y, 0.0f),
+                   vec3(g.center.x + h.x, g.center.y - h.y, 0.0f),
+                   vec3(g.center.x + h.x, g.center.y + h.y, 0.0f),
+                   vec3(g.center.x - h.x, g.center.y + h.y, 0.0f)};
+    m.uvs = {vec2(0.0f, 0.0f), vec2(1.0f, 0.0f), vec2(1.0f, 1.0f), vec2(0.0f, 1.0f)};
+    m.indices = {0, 1, 2, 0, 2, 3};
+    const ObjectID id = ctx.addObject(m, Material{vec3(0.42f, 0.38f, 0.33f), "", "ground"});
+    ctx.setObjectData(id, "organ", std::string("ground"));
+    return id;
+}
+
+// Every plant and object removed and collision avoidance off: the scene as it was.
+void clearScene(PlantArchitecture& arch) {
+    for (unsigned id : arch.getAllPlantIDs()) arch.deletePlantInstance(id);
+    Context& ctx = arch.context();
+    const std::vector<ObjectID> left = ctx.objectIDs();
+    ctx.deleteObjects(left);
+    arch.disableSoftCollisionAvoidance();
+    arch.disableSolidObstacleAvoidance();
+    arch.disableAttractionPoints();
+    arch.setProgressCallback({});
+}
+
+// Progress of one block, its stage named after it: "block A (2 of 3): growing".
+ProgressCallback blockProgress(const ProgressCallback& progress, const Project& p, std::size_t i) {
+    if (!progress) return {};
+    const std::string prefix = "block " + p.blocks[i].name + " (" + std::to_string(i + 1) + " of " +
+                               std::to_string(p.blocks.size()) + "): ";
+    return [progress, prefix](std::string_view stage, double fraction) {
+        progress(prefix + std::string(stage), fraction);
+    };
+}
+
+std::vector<unsigned> buildBlock(const Project& p, std::size_t i, float age,
+                                 PlantArchitecture& arch) {
+    const ProjectBlock& b = p.blocks[i];
+    const std::string at = "blocks/" + std::to_string(i);
+    try {
+        arch.loadPlantModelFromLibrary(projectSpecies(p, b));
+    } catch (const Error&) {
+        rethrowAt(p, at + "/species");
+    }
+    arch.setSeed(b.seed.value_or(p.seed));
+    arch.restartPlantStreams();
+    arch.setTrellisGeometry(b.trellis);
+    try {
+        if (b.layout == ProjectBlock::Layout::Single)
+            return {arch.buildPlantInstanceFromLibrary(b.origin, age, b.parameters)};
+        CanopyOptions o;
+        o.layout = b.layout == ProjectBlock::Layout::Grid ? CanopyOptions::Layout::Grid
+                                                          : CanopyOptions::Layout::Scatter;
+        o.center = b.origin;
+        o.spacing = b.spacing;
+        o.count = b.count;
+        o.extent = b.area;
+        o.plants = b.plants;
+        o.germinationRate = b.germination;
+        o.buildParameters = b.parameters;
+        return arch.buildPlantCanopyFromLibrary(o, age);
+    } catch (const Error&) {
+        rethrowAt(p, at);
+    }
+}
+
+// Ground, obstacles, avoidance and attraction points, as the project enables them.
+void buildSurroundings(const Project& p, PlantArchitecture& arch, BuiltProject& built) {
+    Context& ctx = arch.context();
+    if (p.ground) built.ground.push_back(addGround(ctx, *p.ground));
+    for (std::size_t i = 0; i < p.obstacleFiles.size(); ++i) {
+        try {
+            const auto ids = readObstacleOBJ(ctx, projectPath(p, p.obstacleFiles[i]));
+            built.obstacles.insert(built.obstacles.end(), ids.begin(), ids.end());
+        } catch (const Error&) {
+            rethrowAt(p, "obstacles/files/" + std::to_string(i));
+        }
+    }
+    try {
+        if (!built.obstacles.empty()) {
+            SolidObstacleOptions o;
+            o.obstacles = built.obstacles;
+            o.avoidanceDistance = p.avoidDistance;
+            o.fruitAdjustment = p.fruitAdjustment;
+            arch.enableSolidObstacleAvoidance(o);
+        }
+    } catch (const Error&) {
+        rethrowAt(p, "obstacles");
+    }
+    try {
+        if (p.softCollision) {
+            SoftCollisionOptions o;
+            o.cone = p.softCone;
+            arch.enableSoftCollisionAvoidance(o);
+        }
+    } catch (const Error&) {
+        rethrowAt(p, "soft_collision/cone");
+    }
+    if (p.attraction) {
+        AttractionPoints a;
+        a.points = p.attractionPoints;
+        if (!p.attractionFile.empty()) {
+            const auto more =
+                readAttractionPointsCSV(projectPath(p, p.attractionFile), "attraction/file");
+            a.points.insert(a.points.end(), more.begin(), more.end());
+        }
+        if (a.points.empty())
+            throw Error("attraction is enabled but there are no points",
+                        {.file = fileOf(p),
+                         .parameter = "attraction/enabled",
+                         .validRange = "points or a file of them, or false"});
+        a.halfAngle = p.attractionCone.halfAngle;
+        a.lookAhead = p.attractionCone.lookAhead;
+        a.inertia = p.attractionCone.inertia;
+        try {
+            arch.enableAttractionPoints(a);
+        } catch (const Error&) {
+            rethrowAt(p, "attraction/cone");
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<unsigned> BuiltProject::plants() const {
+    std::vector<unsigned> all;
+    for (const auto& block : blockPlants) all.insert(all.end(), block.begin(), block.end());
+    return all;
+}
+
+std::string projectPath(const Project& project, const std::string& path) {
+    const std::filesystem::path p(path);
+    if (path.empty() || p.is_absolute() || project.folder.empty() || project.folder == ".")
+        return path;
+    return (std::filesystem::path(project.folder) / p).string();
+}
+
+std::string projectSpecies(const Project& project, const ProjectBlock& block) {
+    return isSpeciesPath(block.species) ? projectPath(project, block.species) : block.species;
+}
+
+void checkProject(const Project& p) {
+    loadBlockSpecies(p);
+    for (std::size_t i = 0; i < p.obstacleFiles.size(); ++i) {
+        const std::string field = "obstacles/files/" + std::to_string(i);
+        requireReadable(p, p.obstacleFiles[i], field, "an obstacle file");
+        Context scratch;
+        try {
+            readObstacleOBJ(scratch, projectPath(p, p.obstacleFiles[i]));
+        } catch (const Error&) {
+            rethrowAt(p, field);
+        }
+    }
+    if (!p.attractionFile.empty()) {
+        requireReadable(p, p.attractionFile, "attraction/file", "an attraction point file");
+        readAttractionPointsCSV(projectPath(p, p.attractionFile), "attraction/file");
+    }
+}
+
+BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
+                          const ProjectBuildOptions& options) {
+    if (!arch.getAllPlantIDs().empty() || arch.context().objectCount() != 0)
+        throw Error("a project is built into an empty scene",
+                    {.file = fileOf(p),
+                     .validRange = "a PlantArchitecture and Context without "
+                                   "plants or objects"});
+    const std::vector<SpeciesModel> models = loadBlockSpecies(p);
+    BuiltProject built;
+    try {
+        arch.setTriangleLimit(options.maxTriangles);
+        arch.setMeshDetail(p.meshDetail);
+        buildSurroundings(p, arch, built);
+        for (std::size_t i = 0; i < p.blocks.size(); ++i) {
+            arch.setProgressCallback(blockProgress(options.progress, p, i));
+            built.blockPlants.push_back(buildBlock(p, i, blockAge(p.blocks[i], models[i]), arch));
+        }
+        arch.setProgressCallback({});
+        arch.setSeed(p.seed);
+    } catch (...) {
+        clearScene(arch);
+        throw;
+    }
+    return built;
+}
+
+std::vector<double> projectGrowth(const Project& earlier, const Project& later) {
+    // Only the ages may differ.
+    auto withoutAges = [](Project p) {
+        for (ProjectBlock& b : p.blocks) b.age.reset();
+        return p;
+    };
+    const Project a = withoutAges(earlier), b = withoutAges(later);
+    if (a.blocks.size() != b.blocks.size())
+        throw Error("growing on needs the same blocks",
+                    {.file = fileOf(later),
+                     .parameter = "blocks",
+                     .value = std::to_string(later.blocks.size()) + " blocks",
+                     .validRange = std::to_string(earlier.blocks.size()) + " blocks, as built"});
+    Project aTop = a, bTop = b;
+    aTop.blocks.clear();
+    bTop.blocks.clear();
+    if (writeProjectString(aTop) != writeProjectString(bTop))
+        throw Error("growing on changes only block ages",
+                    {.file = fileOf(later), .validRange = "the project as built, ages later"});
+    for (std::size_t i = 0; i < a.blocks.size(); ++i) {
+        Project x, y;
+        x.blocks = {a.blocks[i]};
+        y.blocks = {b.blocks[i]};
+        if (writeProjectString(x) != writeProjectString(y))
+            throw Error("growing on changes only block ages",
+                        {.file = fileOf(later),
+                         .parameter = "blocks/" + std::to_string(i),
+                         .validRange = "the block as built, its age later"});
+    }
+    const std::vector<SpeciesModel> models = loadBlockSpecies(later);
+    std::vector<double> days;
+    for (std::size_t i = 0; i < later.blocks.size(); ++i) {
+        const float from = blockAge(earlier.blocks[i], models[i]);
+        const float to = blockAge(later.blocks[i], models[i]);
+        if (!(to >= from))
+            throw Error("earlier than the plants' age",
+                        {.file = fileOf(later),
+                         .parameter = "blocks/" + std::to_string(i) + "/age",
+                         .value = text::formatFloat(to),
+                         .validRange = ">= " + text::formatFloat(from) + " days (as built)"});
+        days.push_back(double(to) - double(from));
+    }
+    return days;
+}
+
+void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
+                 const BuiltProject& built, const ProjectBuildOptions& options) {
+    const std::vector<double> days = projectGrowth(earlier, later);
+    if (built.blockPlants.size() != days.size())
+        throw Error("growing on needs the plants of every block",
+                    {.file = fileOf(later),
+                     .parameter = "blocks",
+                     .validRange = std::to_string(days.size()) + " blocks, as built"});
+    struct Reset {
+        PlantArchitecture& arch;
+        ~Reset() { arch.setProgressCallback({}); }
+    } reset{arch};
+    arch.setTriangleLimit(options.maxTriangles);
+    // Plants that grow by the same days grow together (with soft avoidance they see each
+    // other as they grow); otherwise block by block.
+    if (std::all_of(days.begin(), days.end(), [&](double d) { return d == days.front(); })) {
+        arch.setProgressCallback(options.progress);
+        if (!days.empty() && days.front() > 0.0) arch.advanceTime(built.plants(), days.front());
+        return;
+    }
+    for (std::size_t i = 0; i < days.size(); ++i) {
+        arch.setProgressCallback(blockProgress(options.progress, later, i));
+        if (days[i] > 0.0) arch.advanceTime(built.blockPlants[i], days[i]);
+    }
+}
+
+ProjectStats projectStats(const PlantArchitecture& arch, const BuiltProject& built) {
+    ProjectStats s;
+    const Context& ctx = arch.context();
+    s.triangles = ctx.triangleCount();
+    s.objects = ctx.objectCount();
+    for (unsigned id : built.plants()) {
+        ++s.plants;
+        s.height = std::max(s.height, arch.getPlantHeight(id));
+        s.leafArea += arch.getPlantLeafArea(id);
+        s.leafCount += arch.getPlantLeafCount(id);
+    }
+    return s;
+}
+
+}  // namespace plantarch

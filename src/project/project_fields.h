@@ -1,0 +1,127 @@
+#pragma once
+// The fields of a project file and their valid ranges, declared once for the reader, the
+// writer and the checks of a build.
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plantarch/Project.h"
+
+namespace plantarch {
+
+inline constexpr std::size_t kMaxBlocks = 1000;
+inline constexpr double kMaxBlockPlants = 1000000;
+inline constexpr std::size_t kMaxAttractionPoints = 1000000;
+inline constexpr std::size_t kMaxProjectBytes = 16u << 20;
+
+/// A number's valid range and how a person reads it.
+struct Range {
+    double lo, hi;
+    std::string text;
+    bool loOpen = false;  ///< lo itself excluded
+    bool whole = false;   ///< whole numbers only
+    bool hiOpen = false;  ///< hi itself excluded
+};
+
+inline Range anyNumber() {
+    return {-1e30, 1e30, "finite numbers"};
+}
+inline Range ageRange() {
+    return {0, 100000, "0 to 100000 days"};
+}
+inline Range germinationRange() {
+    return {0, 1, "0 to 1"};
+}
+inline Range spacingRange() {
+    return {0, 10000, "> 0 to 10000 m", true};
+}
+inline Range areaRange() {
+    return {0, 10000, "0 to 10000 m"};
+}
+inline Range groundSizeRange() {
+    return {0, 10000, "> 0 to 10000 m", true};
+}
+inline Range gridCountRange() {
+    return {1, 1000000, "whole numbers 1 to 1000000", false, true};
+}
+inline Range scatterCountRange() {
+    return {1, 1000000, "a whole number 1 to 1000000", false, true};
+}
+inline Range meshDetailRange() {
+    return {0.1, 4, "0.1 to 4"};
+}
+inline Range distanceRange() {
+    return {0, 100, "> 0 to 100 m", true};
+}
+inline std::vector<Range> softConeRanges() {
+    return {{0, 180, "half-angle > 0 and < 180 degrees", true, false, true},
+            {0, 100, "look-ahead > 0 to 100 m", true},
+            {8, 16384, "rays: a whole number 8 to 16384", false, true},
+            {0, 1, "inertia 0 to 1"}};
+}
+inline std::vector<Range> attractionConeRanges() {
+    return {{0, 180, "half-angle > 0 and < 180 degrees", true, false, true},
+            {0, 100, "look-ahead > 0 to 100 m", true},
+            {0, 1, "inertia 0 to 1"}};
+}
+
+inline std::vector<std::string> projectFields() {
+    return {"plantarch_project", "name",      "seed",       "mesh_detail", "ground",
+            "soft_collision",    "obstacles", "attraction", "blocks"};
+}
+
+inline std::vector<std::string> layoutNames() {
+    return {"grid", "scatter", "single"};
+}
+inline const char* layoutName(ProjectBlock::Layout layout) {
+    switch (layout) {
+        case ProjectBlock::Layout::Grid:
+            return "grid";
+        case ProjectBlock::Layout::Scatter:
+            return "scatter";
+        case ProjectBlock::Layout::Single:
+            return "single";
+    }
+    return "grid";
+}
+inline std::optional<ProjectBlock::Layout> layoutFromName(const std::string& name) {
+    if (name == "grid") return ProjectBlock::Layout::Grid;
+    if (name == "scatter") return ProjectBlock::Layout::Scatter;
+    if (name == "single") return ProjectBlock::Layout::Single;
+    return std::nullopt;
+}
+
+/// The fields of a block of this layout, in the order they are written.
+inline std::vector<std::string> blockFields(ProjectBlock::Layout layout) {
+    switch (layout) {
+        case ProjectBlock::Layout::Grid:
+            return {"name",        "species", "layout", "origin",     "count",  "spacing",
+                    "germination", "age",     "seed",   "parameters", "trellis"};
+        case ProjectBlock::Layout::Scatter:
+            return {"name",        "species", "layout", "origin",     "count",  "area",
+                    "germination", "age",     "seed",   "parameters", "trellis"};
+        case ProjectBlock::Layout::Single:
+            break;
+    }
+    return {"name", "species", "layout", "origin", "age", "seed", "parameters", "trellis"};
+}
+
+/// Fields of other layouts, with the layouts they belong to (for the error of a field that
+/// does not apply).
+inline std::map<std::string, std::string> blockFieldsElsewhere(ProjectBlock::Layout layout) {
+    std::map<std::string, std::string> out;
+    const std::vector<std::string> own = blockFields(layout);
+    for (const std::string& name : layoutNames()) {
+        const ProjectBlock::Layout other = *layoutFromName(name);
+        if (other == layout) continue;
+        for (const std::string& f : blockFields(other))
+            if (std::find(own.begin(), own.end(), f) == own.end())
+                out[f] += (out[f].empty() ? "with layout " : " or ") + name;
+    }
+    return out;
+}
+
+}  // namespace plantarch

@@ -1,0 +1,349 @@
+// Reading project files (JSON): every field checked, each error one line naming the file, the
+// field as a JSON pointer without its leading slash, the value and the valid range.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "core/value_text.h"
+#include "plantarch/Error.h"
+#include "plantarch/Project.h"
+#include "project/project_fields.h"
+
+namespace plantarch {
+
+namespace {
+
+using json = nlohmann::json;
+
+// The value as a person reads it in an error: JSON text, cut short.
+std::string shown(const json& v) {
+    // A whole number written with a fraction or exponent (1e6) shown as a whole number.
+    if (v.is_number_float() && std::isfinite(v.get<double>()) &&
+        v.get<double>() == std::floor(v.get<double>()) && std::fabs(v.get<double>()) < 1e15)
+        return std::to_string(std::int64_t(v.get<double>()));
+    std::string text = v.dump();
+    if (text.size() > 60) text = text.substr(0, 57) + "...";
+    return text;
+}
+
+class Reader {
+public:
+    explicit Reader(std::string file) : file_(std::move(file)) {}
+
+    [[noreturn]] void fail(const std::string& field, const std::string& message,
+                           const json* value = nullptr, const std::string& range = "") const {
+        throw Error(message, {.file = file_,
+                              .parameter = field,
+                              .value = value ? shown(*value) : "",
+                              .validRange = range});
+    }
+
+    // Checks that `j` is an object whose keys are all in `known`; a key valid elsewhere
+    // (`elsewhere`, with why) gets that reason, another the nearest known name.
+    void object(const json& j, const std::string& field, const std::vector<std::string>& known,
+                const std::map<std::string, std::string>& elsewhere = {},
+                const std::string& elsewhereMessage = "") const {
+        if (!j.is_object()) fail(field, "expected an object {...}", &j);
+        for (const auto& [key, value] : j.items()) {
+            if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+            const std::string at = join(field, key);
+            if (const auto e = elsewhere.find(key); e != elsewhere.end())
+                fail(at, elsewhereMessage, nullptr, e->second);
+            const std::string near = text::closestMatch(key, known);
+            fail(at, "unknown field" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
+                 nullptr, near.empty() ? text::oneOf(known) : "");
+        }
+    }
+
+    double number(const json& j, const std::string& field, double lo, double hi,
+                  const std::string& range, bool loOpen = false, bool whole = false,
+                  bool hiOpen = false) const {
+        if (!j.is_number())
+            fail(field, whole ? "expected a whole number" : "expected a number", &j, range);
+        const double v = j.get<double>();
+        if (!std::isfinite(v)) fail(field, "expected a finite number", &j, range);
+        if (whole && v != std::floor(v)) fail(field, "expected a whole number", &j, range);
+        if (v < lo || v > hi || (loOpen && v == lo) || (hiOpen && v == hi))
+            fail(field, "out of range", &j, range);
+        return v;
+    }
+    float number(const json& j, const std::string& field, const Range& r) const {
+        return float(number(j, field, r.lo, r.hi, r.text, r.loOpen, r.whole, r.hiOpen));
+    }
+    bool flag(const json& j, const std::string& field) const {
+        if (!j.is_boolean()) fail(field, "expected true or false", &j, "true, false");
+        return j.get<bool>();
+    }
+    std::string string(const json& j, const std::string& field) const {
+        if (!j.is_string()) fail(field, "expected a text in quotes", &j);
+        return j.get<std::string>();
+    }
+    std::uint64_t seed(const json& j, const std::string& field) const {
+        const char* range = "a whole number 0 to 18446744073709551615";
+        if (j.is_number_unsigned()) return j.get<std::uint64_t>();
+        if (j.is_number_integer() && j.get<std::int64_t>() >= 0) return j.get<std::uint64_t>();
+        if (j.is_number_float()) {
+            const double v = j.get<double>();
+            if (v >= 0 && v == std::floor(v) && v < 9007199254740992.0) return std::uint64_t(v);
+        }
+        fail(field, "expected a seed", &j, range);
+    }
+    // `n` numbers [a, b, ...], each in `r`.
+    std::vector<float> numbers(const json& j, const std::string& field, std::size_t n,
+                               const std::vector<Range>& ranges, const std::string& form) const {
+        if (!j.is_array() || j.size() != n)
+            fail(field, "expected " + std::to_string(n) + " numbers " + form, &j);
+        std::vector<float> out;
+        for (std::size_t i = 0; i < n; ++i)
+            out.push_back(number(j[i], join(field, std::to_string(i)), ranges[i]));
+        return out;
+    }
+    vec3 point(const json& j, const std::string& field) const {
+        const Range any = anyNumber();
+        const auto v = numbers(j, field, 3, {any, any, any}, "[x, y, z]");
+        return vec3(v[0], v[1], v[2]);
+    }
+    vec2 pair(const json& j, const std::string& field, const Range& r) const {
+        const auto v = numbers(j, field, 2, {r, r}, "[x, y]");
+        return vec2(v[0], v[1]);
+    }
+
+    static std::string join(const std::string& field, const std::string& key) {
+        return field.empty() ? key : field + "/" + key;
+    }
+    const std::string& file() const { return file_; }
+
+private:
+    std::string file_;
+};
+
+// Text -> JSON, with a duplicate key an error (a parser callback sees every key).
+json parseJSON(const std::string& text, const std::string& file) {
+    std::vector<std::set<std::string>> keys;
+    std::string duplicate;
+    const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
+        if (event == json::parse_event_t::object_start) keys.emplace_back();
+        if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+        if (event == json::parse_event_t::key && !keys.empty() && duplicate.empty() &&
+            !keys.back().insert(parsed.get<std::string>()).second)
+            duplicate = parsed.get<std::string>();
+        return true;
+    };
+    json j;
+    try {
+        j = json::parse(text, callback);
+    } catch (const json::parse_error& e) {
+        int line = 1;
+        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
+             ++i)
+            if (text[i] == '\n') ++line;
+        std::string why = e.what();
+        if (const auto colon = why.find(": "); colon != std::string::npos)
+            why = why.substr(colon + 2);  // past "[json.exception...] parse error at ...: "
+        throw Error("not a JSON document: " + why, {.file = file, .line = line});
+    }
+    if (!duplicate.empty())
+        throw Error(
+            "a field given twice",
+            {.file = file, .parameter = duplicate, .validRange = "each field once per object"});
+    return j;
+}
+
+void readGround(const Reader& r, const json& j, Project& p) {
+    if (j.is_null()) return;
+    r.object(j, "ground", {"size", "center"});
+    ProjectGround g;
+    if (j.contains("size")) g.size = r.pair(j["size"], "ground/size", groundSizeRange());
+    if (j.contains("center")) g.center = r.pair(j["center"], "ground/center", anyNumber());
+    p.ground = g;
+}
+
+void readSoft(const Reader& r, const json& j, Project& p) {
+    r.object(j, "soft_collision", {"enabled", "cone"});
+    if (j.contains("enabled")) p.softCollision = r.flag(j["enabled"], "soft_collision/enabled");
+    if (j.contains("cone")) {
+        const auto v = r.numbers(j["cone"], "soft_collision/cone", 4, softConeRanges(),
+                                 "[half-angle, look-ahead, rays, inertia]");
+        p.softCone = PerceptionCone{v[0], v[1], unsigned(v[2]), v[3]};
+    }
+}
+
+void readObstacles(const Reader& r, const json& j, Project& p) {
+    r.object(j, "obstacles", {"files", "avoid_distance", "fruit_adjustment"});
+    if (j.contains("files")) {
+        const json& files = j["files"];
+        if (!files.is_array())
+            r.fail("obstacles/files", "expected a list [\"file.obj\", ...]", &files);
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            const std::string field = "obstacles/files/" + std::to_string(i);
+            const std::string f = r.string(files[i], field);
+            if (f.empty()) r.fail(field, "empty file name", &files[i], "an OBJ file");
+            p.obstacleFiles.push_back(f);
+        }
+    }
+    if (j.contains("avoid_distance"))
+        p.avoidDistance =
+            r.number(j["avoid_distance"], "obstacles/avoid_distance", distanceRange());
+    if (j.contains("fruit_adjustment"))
+        p.fruitAdjustment = r.flag(j["fruit_adjustment"], "obstacles/fruit_adjustment");
+}
+
+void readAttraction(const Reader& r, const json& j, Project& p) {
+    r.object(j, "attraction", {"enabled", "points", "file", "cone"});
+    if (j.contains("enabled")) p.attraction = r.flag(j["enabled"], "attraction/enabled");
+    if (j.contains("points")) {
+        const json& points = j["points"];
+        if (!points.is_array())
+            r.fail("attraction/points", "expected a list of points [[x, y, z], ...]", &points);
+        if (points.size() > kMaxAttractionPoints)
+            r.fail("attraction/points", "too many points", nullptr,
+                   "at most " + std::to_string(kMaxAttractionPoints));
+        for (std::size_t i = 0; i < points.size(); ++i)
+            p.attractionPoints.push_back(
+                r.point(points[i], "attraction/points/" + std::to_string(i)));
+    }
+    if (j.contains("file") && !j["file"].is_null()) {
+        p.attractionFile = r.string(j["file"], "attraction/file");
+        if (p.attractionFile.empty())
+            r.fail("attraction/file", "empty file name", &j["file"], "a CSV file, or null");
+    }
+    if (j.contains("cone")) {
+        const auto v = r.numbers(j["cone"], "attraction/cone", 3, attractionConeRanges(),
+                                 "[half-angle, look-ahead, inertia]");
+        p.attractionCone.halfAngle = v[0];
+        p.attractionCone.lookAhead = v[1];
+        p.attractionCone.inertia = v[2];
+    }
+}
+
+ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, std::size_t index) {
+    if (!j.is_object()) r.fail(at, "expected a block {...}", &j);
+    ProjectBlock b;
+    b.name = "block " + std::to_string(index + 1);
+    const std::string layoutField = at + "/layout";
+    if (j.contains("layout")) {
+        const std::string layout = r.string(j["layout"], layoutField);
+        const auto found = layoutFromName(layout);
+        if (!found) {
+            const std::string near = text::closestMatch(layout, layoutNames());
+            r.fail(layoutField,
+                   "unknown layout" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
+                   &j["layout"], "grid, scatter, single");
+        }
+        b.layout = *found;
+    }
+    const std::string kind = layoutName(b.layout);
+    r.object(j, at, blockFields(b.layout), blockFieldsElsewhere(b.layout),
+             "does not apply to a " + kind + " block");
+    auto field = [&](const char* key) { return at + "/" + key; };
+    if (j.contains("name")) {
+        b.name = r.string(j["name"], field("name"));
+        if (b.name.empty()) r.fail(field("name"), "empty block name", &j["name"], "any text");
+    }
+    if (!j.contains("species"))
+        r.fail(field("species"), "missing", nullptr, "a species name or file");
+    b.species = r.string(j["species"], field("species"));
+    if (b.species.empty())
+        r.fail(field("species"), "empty species", &j["species"], "a species name or file");
+    if (j.contains("origin")) b.origin = r.point(j["origin"], field("origin"));
+    if (b.layout == ProjectBlock::Layout::Grid) {
+        if (j.contains("count")) {
+            const auto v = r.numbers(j["count"], field("count"), 2,
+                                     {gridCountRange(), gridCountRange()}, "[x, y]");
+            b.count = glm::ivec2(int(v[0]), int(v[1]));
+            if (double(b.count.x) * double(b.count.y) > kMaxBlockPlants)
+                r.fail(field("count"), "too many plants", &j["count"],
+                       "at most 1000000 plants in a block");
+        }
+        if (j.contains("spacing"))
+            b.spacing = r.pair(j["spacing"], field("spacing"), spacingRange());
+    }
+    if (b.layout == ProjectBlock::Layout::Scatter) {
+        if (j.contains("count"))
+            b.plants = unsigned(r.number(j["count"], field("count"), scatterCountRange()));
+        if (j.contains("area")) b.area = r.pair(j["area"], field("area"), areaRange());
+    }
+    if (j.contains("germination"))
+        b.germination = r.number(j["germination"], field("germination"), germinationRange());
+    if (j.contains("age")) b.age = r.number(j["age"], field("age"), ageRange());
+    if (j.contains("seed")) b.seed = r.seed(j["seed"], field("seed"));
+    if (j.contains("trellis")) b.trellis = r.flag(j["trellis"], field("trellis"));
+    if (j.contains("parameters")) {
+        const json& params = j["parameters"];
+        if (!params.is_object())
+            r.fail(field("parameters"), "expected an object {\"name\": value, ...}", &params);
+        for (const auto& [name, value] : params.items())
+            b.parameters[name] = r.number(value, field("parameters") + "/" + name, anyNumber());
+    }
+    return b;
+}
+
+}  // namespace
+
+Project readProjectString(const std::string& text, const std::string& nameForErrors,
+                          const std::string& folder) {
+    const std::string file = nameForErrors.empty() ? "project" : nameForErrors;
+    const Reader r(file);
+    const json j = parseJSON(text, file);
+    r.object(j, "", projectFields());
+    if (!j.contains("plantarch_project"))
+        throw Error("not a plantarch project: no \"plantarch_project\": 1",
+                    {.file = file, .parameter = "plantarch_project", .validRange = "1"});
+    const json& version = j["plantarch_project"];
+    if (!version.is_number_integer() || version.get<std::int64_t>() != kProjectVersion)
+        r.fail("plantarch_project", "unsupported project version", &version,
+               std::to_string(kProjectVersion));
+    Project p;
+    p.file = nameForErrors;
+    p.folder = folder.empty() ? "." : folder;
+    if (j.contains("name")) p.name = r.string(j["name"], "name");
+    if (j.contains("seed")) p.seed = r.seed(j["seed"], "seed");
+    if (j.contains("mesh_detail"))
+        p.meshDetail = r.number(j["mesh_detail"], "mesh_detail", meshDetailRange());
+    if (j.contains("ground")) readGround(r, j["ground"], p);
+    if (j.contains("soft_collision")) readSoft(r, j["soft_collision"], p);
+    if (j.contains("obstacles")) readObstacles(r, j["obstacles"], p);
+    if (j.contains("attraction")) readAttraction(r, j["attraction"], p);
+    if (j.contains("blocks")) {
+        const json& blocks = j["blocks"];
+        if (!blocks.is_array()) r.fail("blocks", "expected a list of blocks [{...}, ...]", &blocks);
+        if (blocks.size() > kMaxBlocks)
+            r.fail("blocks", "too many blocks", nullptr, "at most " + std::to_string(kMaxBlocks));
+        std::map<std::string, std::size_t> names;
+        for (std::size_t i = 0; i < blocks.size(); ++i) {
+            const std::string at = "blocks/" + std::to_string(i);
+            p.blocks.push_back(readBlock(r, blocks[i], at, i));
+            const auto [it, fresh] = names.emplace(p.blocks.back().name, i);
+            if (!fresh)
+                r.fail(at + "/name",
+                       "another block has this name (blocks/" + std::to_string(it->second) + ")",
+                       &blocks[i]["name"], "a name of its own");
+        }
+    }
+    return p;
+}
+
+Project readProjectFile(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw Error("is a directory, not a project file", {.file = path});
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot open project file", {.file = path});
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    const std::string text = ss.str();
+    if (text.size() > kMaxProjectBytes)
+        throw Error("project file too large", {.file = path,
+                                               .value = std::to_string(text.size()) + " bytes",
+                                               .validRange = "at most 16 MB"});
+    std::string folder = std::filesystem::path(path).parent_path().string();
+    return readProjectString(text, path, folder.empty() ? "." : folder);
+}
+
+}  // namespace plantarch

@@ -1,0 +1,93 @@
+// Writing project files: every field, numbers in their shortest form that reads back the same.
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/value_text.h"
+#include "plantarch/Error.h"
+#include "plantarch/OutputFiles.h"
+#include "plantarch/Project.h"
+#include "project/project_fields.h"
+
+namespace plantarch {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// A float as the shortest decimal that reads back to it (0.3, not 0.30000001192092896), and
+// whole values as integers.
+json num(float v) {
+    if (v == std::floor(v) && std::fabs(v) < 1e15f) return std::int64_t(v);
+    return std::stod(text::formatFloat(v));
+}
+
+json pair(const vec2& v) {
+    return json::array({num(v.x), num(v.y)});
+}
+
+json point(const vec3& v) {
+    return json::array({num(v.x), num(v.y), num(v.z)});
+}
+
+json block(const ProjectBlock& b) {
+    json j;
+    j["name"] = b.name;
+    j["species"] = b.species;
+    j["layout"] = layoutName(b.layout);
+    j["origin"] = point(b.origin);
+    if (b.layout == ProjectBlock::Layout::Grid) {
+        j["count"] = json::array({b.count.x, b.count.y});
+        j["spacing"] = pair(b.spacing);
+    }
+    if (b.layout == ProjectBlock::Layout::Scatter) {
+        j["count"] = b.plants;
+        j["area"] = pair(b.area);
+    }
+    if (b.layout != ProjectBlock::Layout::Single) j["germination"] = num(b.germination);
+    if (b.age) j["age"] = num(*b.age);
+    if (b.seed) j["seed"] = *b.seed;
+    json params = json::object();
+    for (const auto& [name, value] : b.parameters) params[name] = num(value);
+    j["parameters"] = params;
+    j["trellis"] = b.trellis;
+    return j;
+}
+
+}  // namespace
+
+std::string writeProjectString(const Project& p) {
+    json j;
+    j["plantarch_project"] = kProjectVersion;
+    j["name"] = p.name;
+    j["seed"] = p.seed;
+    j["mesh_detail"] = num(p.meshDetail);
+    j["ground"] = p.ground
+                      ? json{{"size", pair(p.ground->size)}, {"center", pair(p.ground->center)}}
+                      : json(nullptr);
+    j["soft_collision"] = {
+        {"enabled", p.softCollision},
+        {"cone", json::array({num(p.softCone.halfAngle), num(p.softCone.lookAhead), p.softCone.rays,
+                              num(p.softCone.inertia)})}};
+    j["obstacles"] = {{"files", p.obstacleFiles},
+                      {"avoid_distance", num(p.avoidDistance)},
+                      {"fruit_adjustment", p.fruitAdjustment}};
+    json points = json::array();
+    for (const vec3& v : p.attractionPoints) points.push_back(point(v));
+    j["attraction"] = {
+        {"enabled", p.attraction},
+        {"points", points},
+        {"file", p.attractionFile.empty() ? json(nullptr) : json(p.attractionFile)},
+        {"cone", json::array({num(p.attractionCone.halfAngle), num(p.attractionCone.lookAhead),
+                              num(p.attractionCone.inertia)})}};
+    json blocks = json::array();
+    for (const ProjectBlock& b : p.blocks) blocks.push_back(block(b));
+    j["blocks"] = blocks;
+    return j.dump(2) + "\n";
+}
+
+void writeProjectFile(const Project& project, const std::string& path) {
+    writeFileAtomically(path, writeProjectString(project));
+}
+
+}  // namespace plantarch

@@ -1,0 +1,452 @@
+// The project builder's server (builder/server/), started in-process on a free port and used
+// through cpp-httplib's client as the web page uses it: every endpoint's answers and errors,
+// the security checks (Host, Origin, body size, paths out of the output folder), cancelling,
+// growing on, and a saved project that `plantarch project run` reproduces byte for byte.
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "builder/server/server.h"
+#include "cli_run.h"
+#include "folder_test.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+class BuilderServer : public FolderTest {
+protected:
+    BuilderServer() : FolderTest("plantarch-builder-server-") {}
+
+    void SetUp() override {
+        FolderTest::SetUp();
+        start({});
+    }
+    void TearDown() override {
+        stop();
+        FolderTest::TearDown();
+    }
+
+    void start(plantarch::builder::ServerOptions o) {
+        o.port = 0;
+        o.output = at("out");
+        server_ = std::make_unique<plantarch::builder::Server>(o);
+        port_ = server_->bind();
+        thread_ = std::thread([this] { server_->serve(); });
+        client_ = std::make_unique<httplib::Client>("127.0.0.1", port_);
+        client_->set_read_timeout(120, 0);
+        for (int i = 0; i < 200 && !client_->Get("/api/config"); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    void stop() {
+        if (!server_) return;
+        server_->stop();
+        thread_.join();
+        server_.reset();
+    }
+
+    std::string origin() const { return "http://127.0.0.1:" + std::to_string(port_); }
+    httplib::Result post(const std::string& path, const json& body) {
+        return client_->Post(path.c_str(), {{"Origin", origin()}}, body.dump(), "application/json");
+    }
+    static json body(const httplib::Result& r) { return json::parse(r->body); }
+
+    // Polls a build until it is no longer queued or running.
+    json waitFor(const std::string& id) {
+        for (int i = 0; i < 6000; ++i) {
+            auto r = client_->Get(("/api/builds/" + id).c_str());
+            if (!r || r->status != 200) return json{{"state", "missing"}};
+            json j = body(r);
+            if (j["state"] != "queued" && j["state"] != "running") return j;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        return json{{"state", "timeout"}};
+    }
+    std::string build(const json& project, const std::string& from = "") {
+        json request = {{"project", project}};
+        if (!from.empty()) request["from"] = from;
+        auto r = post("/api/builds", request);
+        EXPECT_TRUE(r && r->status == 202) << (r ? r->body : "no answer");
+        return r && r->status == 202 ? body(r)["id"].get<std::string>() : "";
+    }
+
+    std::unique_ptr<plantarch::builder::Server> server_;
+    std::unique_ptr<httplib::Client> client_;
+    std::thread thread_;
+    int port_ = 0;
+};
+
+json beans(int nx, int ny, double age) {
+    return {{"plantarch_project", 1},
+            {"name", "beans"},
+            {"seed", 5},
+            {"blocks",
+             {{{"name", "A"},
+               {"species", "bean"},
+               {"count", {nx, ny}},
+               {"spacing", {0.3, 0.3}},
+               {"age", age}}}}};
+}
+
+}  // namespace
+
+TEST_F(BuilderServer, ServesThePageAndItsConfig) {
+    auto page = client_->Get("/");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 200);
+    EXPECT_EQ(page->get_header_value("Content-Type"), "text/html; charset=utf-8");
+    EXPECT_NE(page->body.find("<"), std::string::npos);
+    auto config = client_->Get("/api/config");
+    ASSERT_TRUE(config && config->status == 200);
+    EXPECT_EQ(body(config)["output"], fs::canonical(at("out")).string());
+    auto missing = client_->Get("/api/nothing");
+    ASSERT_TRUE(missing);
+    EXPECT_EQ(missing->status, 404);
+    EXPECT_NE(body(missing)["error"].get<std::string>().find("no such endpoint"),
+              std::string::npos);
+    EXPECT_EQ(client_->Get("/no-such-file.js")->status, 404);
+}
+
+TEST_F(BuilderServer, ListsSpeciesWithTheirParameters) {
+    auto list = client_->Get("/api/species");
+    ASSERT_TRUE(list && list->status == 200);
+    bool bean = false;
+    for (const json& s : body(list))
+        if (s["name"] == "bean") {
+            bean = true;
+            EXPECT_EQ(s["latin_name"], "Phaseolus vulgaris");
+            EXPECT_EQ(s["recommended_age"]["default"], 45);
+            EXPECT_EQ(s["user"], false);
+        }
+    EXPECT_TRUE(bean);
+    auto one = client_->Get("/api/species/bean");
+    ASSERT_TRUE(one && one->status == 200);
+    const json j = body(one);
+    ASSERT_TRUE(j["shoot_types"].contains("trifoliate"));
+    bool pitch = false;
+    for (const json& p : j["shoot_types"]["trifoliate"])
+        if (p["path"] == "phytomer.internode.pitch") {
+            pitch = true;
+            EXPECT_EQ(p["unit"], "degrees");
+            EXPECT_EQ(p["min"], -180);
+            EXPECT_EQ(p["range"], "-180 to 180");
+            EXPECT_EQ(p["value"], "20");
+        }
+    EXPECT_TRUE(pitch);
+    EXPECT_FALSE(j["phenology"].empty());
+    EXPECT_EQ(client_->Get("/api/species/nosuch")->status, 404);
+    EXPECT_EQ(client_->Get("/api/species/a.b")->status, 400);
+    auto apple = body(client_->Get("/api/species/apple"));
+    EXPECT_FALSE(apple["build_parameters"].empty());
+}
+
+TEST_F(BuilderServer, DrawsAThumbnail) {
+    auto png = client_->Get("/api/species/strawberry/thumbnail.png");
+    ASSERT_TRUE(png && png->status == 200);
+    EXPECT_EQ(png->get_header_value("Content-Type"), "image/png");
+    EXPECT_EQ(png->body.substr(1, 3), "PNG");
+    EXPECT_EQ(client_->Get("/api/species/strawberry/thumbnail.png")->body, png->body);
+}
+
+TEST_F(BuilderServer, ChecksAndSavesAnEditedSpecies) {
+    const json good = {{"base", "bean"},
+                       {"name", "my_bean"},
+                       {"changes",
+                        {{"shoot_types.trifoliate.phytomer.internode.pitch", "uniform(10, 30)"},
+                         {"phenology.max_age", "200"}}}};
+    auto ok = post("/api/species/check", good);
+    ASSERT_TRUE(ok);
+    EXPECT_EQ(ok->status, 200) << ok->body;
+    auto bad = post("/api/species/check",
+                    {{"base", "bean"},
+                     {"changes", {{"shoot_types.trifoliate.phytomer.internode.pitch", "200"}}}});
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->status, 400);
+    EXPECT_EQ(body(bad)["error"],
+              "trifoliate.phytomer.internode.pitch = 200: out of range (valid: "
+              "-180 to 180)");
+    auto typo = post(
+        "/api/species/check",
+        {{"base", "bean"}, {"changes", {{"shoot_types.trifoliate.phytomer.internode.ptch", "2"}}}});
+    EXPECT_EQ(typo->status, 400);
+    EXPECT_NE(body(typo)["error"].get<std::string>().find("did you mean"), std::string::npos);
+    auto word = post("/api/species/check",
+                     {{"base", "bean"}, {"changes", {{"phenology.max_age", "long"}}}});
+    EXPECT_EQ(word->status, 400) << word->body;
+
+    auto saved = post("/api/species/save", good);
+    ASSERT_TRUE(saved && saved->status == 200) << saved->body;
+    EXPECT_EQ(body(saved)["path"], "species/my_bean.xml");
+    const std::string file = at("out/species/my_bean.xml");
+    ASSERT_TRUE(fs::exists(file));
+    bool listed = false;
+    for (const json& s : body(client_->Get("/api/species")))
+        if (s["name"] == "my_bean") listed = s["user"] == true;
+    EXPECT_TRUE(listed);
+    auto mine = body(client_->Get("/api/species/my_bean"));
+    for (const json& p : mine["shoot_types"]["trifoliate"])
+        if (p["path"] == "phytomer.internode.pitch") {
+            EXPECT_EQ(p["value"], "uniform(10, 30)");
+        }
+    const auto r = cli::run("build " + file + " --age 12 -o " + at("mine.obj"));
+    EXPECT_EQ(r.status, 0) << r.out;
+    // Usable by name in a project.
+    json project = beans(1, 1, 12);
+    project["blocks"][0]["species"] = "my_bean";
+    EXPECT_EQ(waitFor(build(project))["state"], "done");
+
+    auto library = post("/api/species/save", {{"base", "bean"}, {"name", "bean"}});
+    EXPECT_EQ(library->status, 400);
+    auto badName = post("/api/species/save", {{"base", "bean"}, {"name", "../x"}});
+    EXPECT_EQ(badName->status, 400);
+    EXPECT_FALSE(fs::exists(at("out/x.xml")));
+}
+
+TEST_F(BuilderServer, BuildsAProjectAndServesItsScene) {
+    const std::string id = build(beans(2, 2, 20));
+    const json done = waitFor(id);
+    ASSERT_EQ(done["state"], "done") << done.dump();
+    EXPECT_EQ(done["stats"]["plants"], 4);
+    EXPECT_GT(done["stats"]["triangles"].get<int>(), 1000);
+    EXPECT_EQ(done["blocks"][0]["plants"].size(), 4u);
+    EXPECT_EQ(done["ages"][0], 20);
+    auto glb = client_->Get(("/api/builds/" + id + "/scene.glb").c_str());
+    ASSERT_TRUE(glb && glb->status == 200);
+    EXPECT_EQ(glb->body.substr(0, 4), "glTF");
+    EXPECT_NE(glb->body.find("\"plantID\""), std::string::npos);
+    auto png = client_->Get(("/api/builds/" + id + "/render.png?w=64&h=48").c_str());
+    ASSERT_TRUE(png && png->status == 200);
+    EXPECT_EQ(png->body.substr(1, 3), "PNG");
+    EXPECT_EQ(client_->Get(("/api/builds/" + id + "/render.png?w=5").c_str())->status, 400);
+    EXPECT_EQ(client_->Get("/api/builds/b999")->status, 404);
+    EXPECT_EQ(client_->Get("/api/builds/b999/scene.glb")->status, 404);
+
+    json bad = beans(2, 2, 20);
+    bad["blocks"][0]["count"] = {0, 2};
+    auto refused = post("/api/builds", {{"project", bad}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
+    EXPECT_EQ(body(refused)["error"],
+              "project: blocks/0/count/0 = 0: out of range (valid: whole "
+              "numbers 1 to 1000000)");
+    auto noProject = post("/api/builds", {{"projekt", bad}});
+    EXPECT_EQ(noProject->status, 400);
+    auto notJSON =
+        client_->Post("/api/builds", {{"Origin", origin()}}, "{nope", "application/json");
+    EXPECT_EQ(notJSON->status, 400);
+
+    // Forgotten on DELETE.
+    EXPECT_EQ(body(client_->Delete(("/api/builds/" + id).c_str(), {{"Origin", origin()}}))["state"],
+              "deleted");
+    EXPECT_EQ(client_->Get(("/api/builds/" + id).c_str())->status, 404);
+}
+
+TEST_F(BuilderServer, GrowsAnEarlierBuildOnToTheSamePlantsAsAFreshBuild) {
+    const std::string first = build(beans(2, 1, 20));
+    ASSERT_EQ(waitFor(first)["state"], "done");
+    const std::string grown = build(beans(2, 1, 27), first);
+    const json g = waitFor(grown);
+    ASSERT_EQ(g["state"], "done") << g.dump();
+    EXPECT_EQ(g["from"], first);
+    EXPECT_EQ(g["ages"][0], 27);
+    const json fresh = waitFor(build(beans(2, 1, 27)));
+    EXPECT_EQ(g["stats"]["leaf_count"], fresh["stats"]["leaf_count"]);
+    EXPECT_EQ(g["stats"]["triangles"], fresh["stats"]["triangles"]);
+    EXPECT_EQ(client_->Get(("/api/builds/" + first + "/scene.glb").c_str())->status, 410);
+    EXPECT_EQ(body(client_->Get(("/api/builds/" + first).c_str()))["taken_by"], grown);
+    // Only ages may change, and only forward.
+    json other = beans(3, 1, 30);
+    const std::string refused = build(other, grown);
+    const json r = waitFor(refused);
+    EXPECT_EQ(r["state"], "failed");
+    EXPECT_NE(r["error"].get<std::string>().find("only block ages"), std::string::npos);
+    EXPECT_EQ(client_->Get(("/api/builds/" + grown + "/scene.glb").c_str())->status, 200);
+    json younger = beans(2, 1, 21);
+    EXPECT_EQ(waitFor(build(younger, grown))["state"], "failed");
+    EXPECT_EQ(post("/api/builds", {{"project", beans(2, 1, 30)}, {"from", "b99"}})->status, 404);
+}
+
+TEST_F(BuilderServer, CancelsARunningBuildAndRefusesTooManyWaiting) {
+    const std::string big = build(beans(12, 12, 45));
+    const std::string queued = build(beans(1, 1, 10));
+    auto cancel = client_->Delete(("/api/builds/" + big).c_str(), {{"Origin", origin()}});
+    ASSERT_TRUE(cancel && cancel->status == 200);
+    EXPECT_EQ(body(cancel)["state"], "cancelled");
+    const json stopped = waitFor(big);
+    EXPECT_EQ(stopped["state"], "cancelled");
+    EXPECT_EQ(client_->Get(("/api/builds/" + big + "/scene.glb").c_str())->status, 409);
+    EXPECT_EQ(waitFor(queued)["state"], "done");
+
+    // Four may wait; a fifth is refused while one runs.
+    const std::string running = build(beans(12, 12, 45));
+    std::vector<std::string> waiting;
+    for (int i = 0; i < 4; ++i) waiting.push_back(build(beans(1, 1, 5)));
+    auto fifth = post("/api/builds", {{"project", beans(1, 1, 5)}});
+    ASSERT_TRUE(fifth);
+    EXPECT_EQ(fifth->status, 429);
+    for (const std::string& id : waiting)
+        client_->Delete(("/api/builds/" + id).c_str(), {{"Origin", origin()}});
+    client_->Delete(("/api/builds/" + running).c_str(), {{"Origin", origin()}});
+    EXPECT_EQ(waitFor(running)["state"], "cancelled");
+    for (const std::string& id : waiting) EXPECT_EQ(waitFor(id)["state"], "cancelled");
+}
+
+TEST_F(BuilderServer, RefusesRequestsFromOtherSites) {
+    const json request = {{"project", beans(1, 1, 5)}};
+    auto evil = client_->Post("/api/builds", {{"Origin", "http://evil.example"}}, request.dump(),
+                              "application/json");
+    ASSERT_TRUE(evil);
+    EXPECT_EQ(evil->status, 403);
+    EXPECT_NE(body(evil)["error"].get<std::string>().find("Origin"), std::string::npos);
+    auto otherPort = client_->Post("/api/builds", {{"Origin", "http://127.0.0.1:1"}},
+                                   request.dump(), "application/json");
+    EXPECT_EQ(otherPort->status, 403);
+    auto nullOrigin =
+        client_->Post("/api/builds", {{"Origin", "null"}}, request.dump(), "application/json");
+    EXPECT_EQ(nullOrigin->status, 403);
+    auto crossSite = client_->Post("/api/builds", {{"Sec-Fetch-Site", "cross-site"}},
+                                   request.dump(), "application/json");
+    EXPECT_EQ(crossSite->status, 403);
+    auto del = client_->Delete("/api/builds/b1", {{"Origin", "http://evil.example"}});
+    EXPECT_EQ(del->status, 403);
+    // DNS rebinding: another name for this address.
+    auto rebound = client_->Get("/api/config", {{"Host", "evil.example:" + std::to_string(port_)}});
+    ASSERT_TRUE(rebound);
+    EXPECT_EQ(rebound->status, 403);
+    // The page's own origin (either name) and tools that send none are served.
+    EXPECT_EQ(post("/api/builds", request)->status, 202);
+    auto localhost =
+        client_->Post("/api/builds", {{"Origin", "http://localhost:" + std::to_string(port_)}},
+                      request.dump(), "application/json");
+    EXPECT_EQ(localhost->status, 202);
+    EXPECT_EQ(client_->Post("/api/builds", request.dump(), "application/json")->status, 202);
+}
+
+TEST_F(BuilderServer, RefusesAnOversizedBody) {
+    const std::string big(5u << 20, ' ');
+    auto r = client_->Post("/api/builds", {{"Origin", origin()}}, big, "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 413);
+    EXPECT_NE(body(r)["error"].get<std::string>().find("too large"), std::string::npos);
+    EXPECT_EQ(client_->Get("/api/config")->status, 200);  // still serving
+}
+
+TEST_F(BuilderServer, ExportsOnlyUnderTheOutputFolder) {
+    const std::string id = build(beans(2, 1, 15));
+    ASSERT_EQ(waitFor(id)["state"], "done");
+    auto exported =
+        post("/api/export",
+             {{"build", id}, {"format", "obj"}, {"folder", "trial/day15"}, {"name", "field"}});
+    ASSERT_TRUE(exported && exported->status == 200) << exported->body;
+    EXPECT_EQ(body(exported)["files"], json({"trial/day15/field.obj", "trial/day15/field.mtl"}));
+    EXPECT_TRUE(fs::exists(at("out/trial/day15/field.obj")));
+    auto perPlant = post(
+        "/api/export",
+        {{"build", id}, {"format", "ply"}, {"per_plant", true}, {"folder", "pp"}, {"name", "p"}});
+    ASSERT_TRUE(perPlant && perPlant->status == 200) << perPlant->body;
+    EXPECT_EQ(body(perPlant)["files"], json({"pp/p_0000.ply", "pp/p_0001.ply", "pp/p_index.json"}));
+
+    fs::create_directories(at("outside"));
+    fs::create_directory_symlink(at("outside"), at("out/link"));
+    const std::vector<std::pair<json, int>> refused = {
+        {{{"build", id}, {"folder", "../escape"}}, 403},
+        {{{"build", id}, {"folder", "a/../../escape"}}, 403},
+        {{{"build", id}, {"folder", at("outside")}}, 403},
+        {{{"build", id}, {"folder", "link"}}, 403},
+        {{{"build", id}, {"folder", "link/deeper"}}, 403},
+        {{{"build", id}, {"name", "../x"}}, 403},
+        {{{"build", id}, {"name", "a b"}}, 400},
+        {{{"build", id}, {"format", "stl"}}, 400},
+        {{{"build", "b999"}}, 404},
+    };
+    for (const auto& [request, status] : refused) {
+        auto r = post("/api/export", request);
+        ASSERT_TRUE(r);
+        EXPECT_EQ(r->status, status) << request.dump() << " " << r->body;
+    }
+    EXPECT_TRUE(fs::is_empty(at("outside")));
+    EXPECT_FALSE(fs::exists(at("escape")));
+    EXPECT_FALSE(fs::exists(at("x.glb")));
+}
+
+TEST_F(BuilderServer, DownloadsOneFileOrAZip) {
+    const std::string id = build(beans(2, 1, 15));
+    ASSERT_EQ(waitFor(id)["state"], "done");
+    auto glb = client_->Get(("/api/export/download?build=" + id + "&format=glb").c_str());
+    ASSERT_TRUE(glb && glb->status == 200);
+    EXPECT_EQ(glb->body.substr(0, 4), "glTF");
+    EXPECT_NE(glb->get_header_value("Content-Disposition").find("scene.glb"), std::string::npos);
+    EXPECT_EQ(glb->body, client_->Get(("/api/builds/" + id + "/scene.glb").c_str())->body);
+    auto zip = client_->Get(
+        ("/api/export/download?build=" + id + "&format=obj&per_plant=true&name=f").c_str());
+    ASSERT_TRUE(zip && zip->status == 200) << zip->body;
+    EXPECT_EQ(zip->get_header_value("Content-Type"), "application/zip");
+    EXPECT_EQ(zip->body.substr(0, 2), "PK");
+    for (const char* name : {"f_0000.obj", "f_0000.mtl", "f_0001.obj", "f_index.json"})
+        EXPECT_NE(zip->body.find(name), std::string::npos) << name;
+    EXPECT_EQ(
+        client_->Get(("/api/export/download?build=" + id + "&per_plant=maybe").c_str())->status,
+        400);
+}
+
+TEST_F(BuilderServer, ASavedProjectRunFromTheCommandLineGivesTheExportsBytes) {
+    json project = beans(2, 2, 18);
+    project["ground"] = {{"size", {2, 2}}};
+    project["blocks"].push_back({{"name", "T"},
+                                 {"species", "tomato"},
+                                 {"layout", "single"},
+                                 {"origin", {1.5, 0, 0}},
+                                 {"age", 15},
+                                 {"seed", 4}});
+    auto saved = post("/api/projects/save", {{"name", "trial"}, {"project", project}});
+    ASSERT_TRUE(saved && saved->status == 200) << saved->body;
+    EXPECT_EQ(body(saved)["path"], "projects/trial.json");
+    EXPECT_EQ(body(client_->Get("/api/projects")), json({"trial"}));
+    const json loaded = body(client_->Get("/api/projects/trial"));
+    EXPECT_EQ(loaded["blocks"][1]["species"], "tomato");
+    EXPECT_EQ(client_->Get("/api/projects/nosuch")->status, 404);
+    EXPECT_EQ(post("/api/projects/save", {{"name", "../x"}, {"project", project}})->status, 400);
+
+    const std::string id = build(loaded);
+    ASSERT_EQ(waitFor(id)["state"], "done");
+    for (const char* format : {"glb", "ply", "obj", "xml"}) {
+        auto r = post("/api/export", {{"build", id}, {"format", format}, {"name", "field"}});
+        ASSERT_TRUE(r && r->status == 200) << r->body;
+        // The same name: an OBJ names its .mtl.
+        const std::string mine = at(std::string("cli/field.") + format);
+        const auto run = cli::run("project run " + at("out/projects/trial.json") + " -o " + mine);
+        ASSERT_EQ(run.status, 0) << run.out;
+        EXPECT_TRUE(bytes(mine) == bytes(at(std::string("out/field.") + format))) << format;
+    }
+    auto r = post("/api/export",
+                  {{"build", id}, {"format", "glb"}, {"name", "sep"}, {"per_plant", true}});
+    ASSERT_TRUE(r && r->status == 200);
+    const auto run = cli::run("project run " + at("out/projects/trial.json") + " --separate -o " +
+                              at("sep.glb"));
+    ASSERT_EQ(run.status, 0) << run.out;
+    EXPECT_TRUE(bytes(at("sep_0004.glb")) == bytes(at("out/sep_0004.glb")));
+    EXPECT_TRUE(bytes(at("sep_index.json")) == bytes(at("out/sep_index.json")));
+}
+
+TEST_F(BuilderServer, ASavedUserSpeciesIsWrittenAsAPathAndReadBackByName) {
+    ASSERT_EQ(post("/api/species/save", {{"base", "bean"}, {"name", "tall_bean"}})->status, 200);
+    json project = beans(1, 1, 10);
+    project["blocks"][0]["species"] = "tall_bean";
+    ASSERT_EQ(post("/api/projects/save", {{"name", "mine"}, {"project", project}})->status, 200);
+    const json file = json::parse(bytes(at("out/projects/mine.json")));
+    EXPECT_EQ(file["blocks"][0]["species"], "../species/tall_bean.xml");
+    EXPECT_EQ(body(client_->Get("/api/projects/mine"))["blocks"][0]["species"], "tall_bean");
+    const auto run = cli::run("project run " + at("out/projects/mine.json") + " --stats");
+    EXPECT_EQ(run.status, 0) << run.out;
+    // A species file outside the output folder is not read.
+    project["blocks"][0]["species"] = at("outside.xml");
+    EXPECT_EQ(post("/api/builds", {{"project", project}})->status, 403);
+    project["blocks"][0]["species"] = "../../x.xml";
+    EXPECT_EQ(post("/api/builds", {{"project", project}})->status, 403);
+}

@@ -1,0 +1,396 @@
+// End-to-end test of `plantarch builder` in a real browser: Debian's Chromium (headless,
+// driven by puppeteer-core) uses the page the way a person does, and every result the page
+// shows is checked against the server's JSON API and the files on disk.
+//
+//   node builder_e2e.mjs --cli PATH/plantarch [--screenshots DIR]
+//
+// Scenario: the page loads; block A becomes a 3x3 grid of bean at 40 days and is built; the
+// triangle count shown equals the API's (and the GLB's the view loaded); an invalid species
+// parameter shows the species reader's own message, and an invalid block field the server's;
+// the age slider grows the scene on (a build "from" the shown one, the same plants as built
+// at that age anew) and the play button grows it day by day; GLB and per-plant OBJ exports
+// are written and parse; the saved project, uploaded into the page, builds the same scene, and
+// its export is the file `plantarch project run` writes from the saved project, byte for byte;
+// the API refuses paths outside the output folder and requests from other sites. With --screenshots, pictures of
+// the page are written into DIR (docs/images for docs/builder.md). Waits are for states the
+// page or the server reports, never for a time. CHROMIUM overrides /usr/bin/chromium.
+import { spawn, execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, readdirSync } from 'node:fs';
+import net from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
+import assert from 'node:assert/strict';
+import puppeteer from 'puppeteer-core';
+
+function parseArgs(argv) {
+  const options = { cli: null, screenshots: null };
+  for (let i = 0; i < argv.length; i++) {
+    if (argv[i] === '--cli') options.cli = path.resolve(argv[++i]);
+    else if (argv[i] === '--screenshots') options.screenshots = path.resolve(argv[++i]);
+    else throw new Error(`builder_e2e: unknown argument '${argv[i]}' (valid: --cli PATH, --screenshots DIR)`);
+  }
+  if (!options.cli) throw new Error('builder_e2e: --cli PATH (the plantarch binary) is required');
+  return options;
+}
+
+const options = parseArgs(process.argv.slice(2));
+if (options.screenshots) mkdirSync(options.screenshots, { recursive: true });
+const tmp = mkdtempSync(path.join(os.tmpdir(), 'plantarch-builder-e2e-'));
+const output = path.join(tmp, 'out');
+let server = null;
+let browser = null;
+let serverLog = '';
+
+function step(name) {
+  console.log(`builder_e2e: ${name}`);
+}
+
+async function freePort() {
+  const probe = net.createServer();
+  await new Promise((resolve) => probe.listen(0, '127.0.0.1', resolve));
+  const { port } = probe.address();
+  await new Promise((resolve) => probe.close(resolve));
+  return port;
+}
+
+// Starts the builder and resolves with its address once its API answers; rejects when the
+// process ends first.
+async function startServer() {
+  const port = await freePort();
+  server = spawn(options.cli, ['builder', '--port', String(port), '--output', output], { stdio: ['ignore', 'pipe', 'pipe'] });
+  server.stdout.on('data', (d) => { serverLog += d; });
+  server.stderr.on('data', (d) => { serverLog += d; });
+  const exited = new Promise((_, reject) => server.on('exit', (code) =>
+    reject(new Error(`plantarch builder exited (${code}) before answering:\n${serverLog}`))));
+  const base = `http://127.0.0.1:${port}`;
+  const ready = (async () => {
+    for (;;) {
+      try {
+        const response = await fetch(`${base}/api/config`);
+        if (response.ok) return base;
+      } catch {
+        // not listening yet
+      }
+      await new Promise((resolve) => setTimeout(resolve, 50));
+    }
+  })();
+  return Promise.race([ready, exited]);
+}
+
+async function api(base, method, url, body, headers = {}) {
+  const init = { method, headers: { ...headers } };
+  if (body !== undefined) {
+    init.headers['Content-Type'] = 'application/json';
+    init.body = JSON.stringify(body);
+  }
+  const response = await fetch(`${base}${url}`, init);
+  const type = response.headers.get('Content-Type') ?? '';
+  const data = type.includes('json') ? await response.json() : Buffer.from(await response.arrayBuffer());
+  return { status: response.status, data };
+}
+
+// Polls a build through the API until it is no longer queued or running.
+async function apiBuildDone(base, id) {
+  for (;;) {
+    const { data } = await api(base, 'GET', `/api/builds/${id}`);
+    if (!['queued', 'running'].includes(data.state)) return data;
+    await new Promise((resolve) => setTimeout(resolve, 100));
+  }
+}
+
+// ---- the page ----------------------------------------------------------------
+
+async function shot(page, name) {
+  if (!options.screenshots) return;
+  // The view has drawn the scene it holds (two frames after the state the test waited for).
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  await page.screenshot({ path: path.join(options.screenshots, `builder-${name}.png`) });
+}
+
+async function setValue(page, selector, value) {
+  await page.waitForSelector(selector, { visible: true });
+  await page.$eval(selector, (el, v) => {
+    el.focus();
+    el.value = v;
+    el.dispatchEvent(new Event('input', { bubbles: true }));
+    el.dispatchEvent(new Event('change', { bubbles: true }));
+  }, String(value));
+}
+
+async function setChecked(page, selector, checked) {
+  await page.waitForSelector(selector, { visible: true });
+  await page.$eval(selector, (el, v) => { if (el.checked !== v) el.click(); }, checked);
+}
+
+// Waits for the page to finish a build other than `previous` (done or failed) and returns
+// {id, state, text}.
+async function pageBuild(page, previous) {
+  await page.waitForFunction((prev) => {
+    const s = document.getElementById('build-status');
+    return s.dataset.build && s.dataset.build !== prev && ['done', 'failed', 'cancelled'].includes(s.dataset.state);
+  }, {}, previous ?? '');
+  return page.$eval('#build-status', (s) => ({ id: s.dataset.build, state: s.dataset.state, text: s.textContent }));
+}
+
+async function shownNumber(page, id) {
+  const text = await page.$eval(`#${id}`, (el) => el.firstChild.textContent);
+  return Number(text.replace(/[^0-9.]/g, ''));
+}
+
+// ---- files -------------------------------------------------------------------
+
+// Triangles of a GLB: every triangle-list primitive of every mesh a node uses.
+function glbTriangles(bytes) {
+  assert.equal(bytes.readUInt32LE(0), 0x46546c67, 'GLB magic');
+  assert.equal(bytes.readUInt32LE(4), 2, 'GLB version');
+  assert.equal(bytes.readUInt32LE(8), bytes.length, 'GLB length');
+  const jsonLength = bytes.readUInt32LE(12);
+  assert.equal(bytes.readUInt32LE(16), 0x4e4f534a, 'GLB JSON chunk');
+  const doc = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+  let triangles = 0;
+  for (const node of doc.nodes ?? []) {
+    if (node.mesh === undefined) continue;
+    for (const p of doc.meshes[node.mesh].primitives) triangles += doc.accessors[p.indices].count / 3;
+  }
+  return triangles;
+}
+
+// Faces of an OBJ file, checking that every face's vertices exist.
+function objFaces(text) {
+  let vertices = 0, faces = 0;
+  for (const line of text.split('\n')) {
+    if (line.startsWith('v ')) vertices++;
+    else if (line.startsWith('f ')) {
+      faces++;
+      for (const corner of line.slice(2).trim().split(/\s+/)) {
+        const v = Number(corner.split('/')[0]);
+        assert.ok(v >= 1 && v <= vertices, `face vertex ${v} of ${vertices}`);
+      }
+    }
+  }
+  return faces;
+}
+
+// ---- the scenario --------------------------------------------------------------
+
+async function run() {
+  const base = await startServer();
+  step(`plantarch builder answers at ${base}`);
+  browser = await puppeteer.launch({
+    executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+    headless: true,
+    // Bounds for a hung server, not measures of speed: on a loaded machine a build or a
+    // render can take minutes, and a wait in the page is one protocol call.
+    protocolTimeout: 1800000,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--window-size=1440,900'],
+  });
+  const page = await browser.newPage();
+  page.setDefaultTimeout(1800000);
+  await page.setViewport({ width: 1440, height: 900 });
+  const pageErrors = [];
+  page.on('pageerror', (e) => pageErrors.push(e.message));
+  await page.goto(base);
+  await page.waitForSelector('body[data-ready=true]');
+  const first = await pageBuild(page, '');
+  step(`the page loads and builds its first scene (${first.id}: ${first.state})`);
+
+  // Block A: bean, a 3 x 3 grid, 40 days, built on request (the project named first, as the
+  // file saved at the end, so the page's export and the command line's share every field).
+  await setChecked(page, '#auto-build', false);
+  await setValue(page, '#project-name', 'e2e_trial');
+  await page.click('.block-card.open .species-button');
+  await page.waitForSelector('.species-popup [data-species=bean]', { visible: true });
+  // The thumbnails of the first species, drawn by the server's renderer, have arrived.
+  await page.waitForFunction(() => [...document.querySelectorAll('.species-popup img')].slice(0, 7)
+    .every((img) => img.complete && img.naturalWidth > 0));
+  await shot(page, 'species-picker');
+  await page.click('.species-popup [data-species=bean]');
+  await page.select('.block-card.open select[name=layout]', 'grid');
+  await setValue(page, '.block-card.open input[name=count-x]', 3);
+  await setValue(page, '.block-card.open input[name=count-y]', 3);
+  await setValue(page, '.block-card.open input[name=age]', 40);
+  await page.click('#build');
+  const built = await pageBuild(page, first.id);
+  assert.equal(built.state, 'done', `the build of 3x3 bean: ${built.text}`);
+  const status = (await api(base, 'GET', `/api/builds/${built.id}`)).data;
+  const shownTriangles = await shownNumber(page, 'stat-triangles');
+  assert.equal(shownTriangles, status.stats.triangles, 'triangles shown = the API\'s');
+  assert.equal(await shownNumber(page, 'stat-plants'), 9, 'plants shown');
+  assert.equal(status.stats.plants, 9, 'plants built');
+  const viewTriangles = await page.evaluate(() => window.plantarchBuilder.viewer.triangles);
+  assert.equal(viewTriangles, status.stats.triangles, 'triangles in the 3D view = the API\'s');
+  step(`3x3 bean at 40 days: the page shows ${shownTriangles} triangles, as the API and the view`);
+  await shot(page, 'scene');
+  await page.select('#color-mode', 'organ');
+  await page.waitForSelector('#legend .legend-row');
+  await shot(page, 'organs');
+  await page.select('#color-mode', 'natural');
+
+  // A species parameter out of its range: the species reader's message, as the server gives it.
+  const detail = (await api(base, 'GET', '/api/species/bean')).data;
+  const [label, params] = Object.entries(detail.shoot_types)[0];
+  const param = params.find((p) => p.path === 'internode_length_max');
+  assert.ok(param, `bean's shoot type ${label} has internode_length_max`);
+  const key = `shoot_types.${label}.internode_length_max`;
+  await page.click('[data-tab=species]');
+  await page.waitForSelector(`.param-row[data-key="${key}"]`);
+  await setValue(page, 'input[name=species-filter]', 'internode_length_max');
+  const random = param.kind.startsWith('random');
+  if (random) await page.select(`select[name="sp-${key}-kind"]`, 'constant');
+  await setValue(page, `input[name="sp-${key}${random ? '-0' : ''}"]`, '-5');
+  await page.waitForSelector('#species-status[data-state=invalid]');
+  const shownError = await page.$eval('#species-status', (el) => el.textContent);
+  const checked = await api(base, 'POST', '/api/species/check', { base: 'bean', name: 'my_bean', changes: { [key]: '-5' } });
+  assert.equal(checked.status, 400);
+  assert.equal(shownError, checked.data.error, 'the species error shown = the server\'s');
+  step(`an invalid species parameter shows: ${shownError}`);
+  await shot(page, 'species-editor');
+
+  // A block field out of its range: the build is refused with the project reader's line.
+  await page.click('[data-tab=scene]');
+  await setValue(page, '.block-card.open input[name=germination]', 2);
+  await page.click('#build');
+  await page.waitForSelector('#build-error:not([hidden])');
+  const buildError = await page.$eval('#build-error', (el) => el.textContent);
+  const refused = await api(base, 'POST', '/api/builds', { project: await page.evaluate(() => window.plantarchBuilder.projectFile()) });
+  assert.equal(refused.status, 400);
+  assert.ok(buildError.includes(refused.data.error), `the build error shown (${buildError}) holds the server's (${refused.data.error})`);
+  step(`an invalid block field shows: ${refused.data.error}`);
+  await setValue(page, '.block-card.open input[name=germination]', 1);
+  await page.click('#build');
+  const rebuilt = await pageBuild(page, built.id);
+  assert.equal(rebuilt.state, 'done');
+
+  // Growth: the slider grows the shown plants on; the result is the scene built at that age.
+  await setValue(page, '#age-slider', 45);
+  const grown = await pageBuild(page, rebuilt.id);
+  assert.equal(grown.state, 'done', grown.text);
+  const grownStatus = (await api(base, 'GET', `/api/builds/${grown.id}`)).data;
+  assert.equal(grownStatus.from, rebuilt.id, 'the slider grows the shown build on');
+  assert.deepEqual(grownStatus.ages, [45]);
+  assert.equal(await shownNumber(page, 'stat-triangles'), grownStatus.stats.triangles);
+  const project45 = await page.evaluate(() => window.plantarchBuilder.projectFile());
+  const fresh = (await api(base, 'POST', '/api/builds', { project: project45 })).data;
+  const freshStatus = await apiBuildDone(base, fresh.id);
+  assert.deepEqual(freshStatus.stats, grownStatus.stats, 'grown from 40 to 45 days = built at 45 days');
+  step(`the slider grows the scene to 45 days (${grown.id} from ${rebuilt.id}): ${grownStatus.stats.triangles} triangles, as built anew`);
+
+  // Play: day by day, each day grown from the one before.
+  await page.click('#play');
+  await page.waitForFunction(() => window.plantarchBuilder.sceneAge() >= 47);
+  await page.click('#play');
+  await page.waitForFunction(() => !window.plantarchBuilder.playing);
+  const played = await page.$eval('#build-status', (s) => ({ id: s.dataset.build, state: s.dataset.state }));
+  const playedStatus = await apiBuildDone(base, played.id);
+  const age = await page.evaluate(() => window.plantarchBuilder.sceneAge());
+  assert.ok(age >= 47, `played to ${age} days`);
+  assert.deepEqual(playedStatus.ages, [age]);
+  assert.ok(playedStatus.from, 'a played day is grown from the day before');
+  if (played.state !== 'done') await pageBuild(page, '');
+  step(`play grows the scene day by day to ${age} days`);
+  await page.select('#color-mode', 'age');
+  await page.waitForSelector('#legend .ramp');
+  await shot(page, 'growth');
+  await page.select('#color-mode', 'natural');
+
+  // Export: the whole scene as GLB, one OBJ per plant, into folders under the output folder.
+  const shownId = await page.$eval('#build-status', (s) => s.dataset.build);
+  const shownStatus = (await api(base, 'GET', `/api/builds/${shownId}`)).data;
+  await page.click('[data-tab=export]');
+  await page.select('select[name=export-format]', 'glb');
+  await setValue(page, 'input[name=export-folder]', 'e2e');
+  await setValue(page, 'input[name=export-name]', 'scene');
+  await page.click('#export-write');
+  await page.waitForSelector('#export-result[data-state=done]');
+  const glbPath = path.join(output, 'e2e', 'scene.glb');
+  assert.ok(existsSync(glbPath), 'e2e/scene.glb written');
+  const glb = readFileSync(glbPath);
+  assert.equal(glbTriangles(glb), shownStatus.stats.triangles, 'the exported GLB holds the scene\'s triangles');
+  const downloaded = await api(base, 'GET', `/api/export/download?build=${shownId}&format=glb&per_plant=false&name=scene`);
+  assert.equal(downloaded.status, 200);
+  assert.ok(downloaded.data.equals(glb), 'the download is the file written');
+  step(`GLB export: e2e/scene.glb, ${glbTriangles(glb)} triangles, the same bytes as the download`);
+  await page.select('select[name=export-format]', 'obj');
+  await setChecked(page, 'input[name=per-plant]', true);
+  await setValue(page, 'input[name=export-folder]', 'e2e/plants');
+  await setValue(page, 'input[name=export-name]', 'plant');
+  await page.$eval('#export-result', (el) => { el.dataset.state = ''; });
+  await page.click('#export-write');
+  await page.waitForSelector('#export-result[data-state=done]');
+  const objs = readdirSync(path.join(output, 'e2e', 'plants')).filter((f) => f.endsWith('.obj'));
+  assert.equal(objs.length, shownStatus.stats.plants, 'one OBJ per plant');
+  for (const f of objs) assert.ok(objFaces(readFileSync(path.join(output, 'e2e', 'plants', f), 'utf8')) > 0, `${f} has faces`);
+  step(`per-plant OBJ export: ${objs.length} files, each parses with faces`);
+  await shot(page, 'export');
+
+  // The project saved from the page and run from the command line; the same file uploaded
+  // into the page builds the same scene, whose export is the command line's file, byte for
+  // byte. (A scene grown with the slider holds the same triangles, but its organs are
+  // numbered in the order they grew, so its files list them in another order.)
+  await page.click('#project-save');
+  await page.waitForSelector('body[data-saved=e2e_trial]');
+  const saved = path.join(output, 'projects', 'e2e_trial.json');
+  assert.ok(existsSync(saved), 'projects/e2e_trial.json written');
+  const cliGlb = path.join(tmp, 'cli.glb');
+  execFileSync(options.cli, ['project', 'run', saved, '-o', cliGlb], { stdio: 'pipe' });
+  assert.equal(glbTriangles(readFileSync(cliGlb)), glbTriangles(glb), 'the command line\'s scene has the page\'s triangles');
+  const beforeUpload = await page.$eval('#build-status', (s) => s.dataset.build);
+  const [chooser] = await Promise.all([page.waitForFileChooser(), page.click('#project-upload-button')]);
+  await chooser.accept([saved]);
+  const uploaded = await pageBuild(page, beforeUpload);
+  assert.equal(uploaded.state, 'done');
+  const uploadedStatus = (await api(base, 'GET', `/api/builds/${uploaded.id}`)).data;
+  assert.equal(uploadedStatus.from, null, 'an uploaded project is built anew');
+  assert.deepEqual(uploadedStatus.stats, shownStatus.stats, 'the uploaded project builds the scene grown day by day');
+  await page.click('[data-tab=export]');
+  await page.select('select[name=export-format]', 'glb');
+  await setChecked(page, 'input[name=per-plant]', false);
+  await setValue(page, 'input[name=export-folder]', 'e2e/uploaded');
+  await setValue(page, 'input[name=export-name]', 'scene');
+  await page.$eval('#export-result', (el) => { el.dataset.state = ''; });
+  await page.click('#export-write');
+  await page.waitForSelector('#export-result[data-state=done]');
+  const pageGlb = readFileSync(path.join(output, 'e2e', 'uploaded', 'scene.glb'));
+  assert.ok(readFileSync(cliGlb).equals(pageGlb), '`plantarch project run` writes the bytes of the page\'s export');
+  step('the saved project, uploaded into the page and run by `plantarch project run`, gives the same GLB bytes');
+
+  // Rendered preview from plantarch's renderer.
+  await page.click('[data-tab=scene]');
+  await page.click('#show-preview');
+  await page.waitForSelector('.preview[data-state=done], .preview[data-state=error]');
+  assert.equal(await page.$eval('.preview', (el) => el.dataset.state), 'done', 'the rendered preview loads');
+  await shot(page, 'preview');
+
+  // The API refuses paths outside the output folder and state changes from other sites.
+  for (const folder of ['../outside', '/tmp/plantarch-e2e-outside', 'e2e/../../outside']) {
+    const r = await api(base, 'POST', '/api/export', { build: uploaded.id, format: 'glb', per_plant: false, folder, name: 'x' });
+    assert.equal(r.status, 403, `export into '${folder}': ${JSON.stringify(r.data)}`);
+  }
+  assert.ok(!existsSync(path.join(tmp, 'outside')) && !existsSync('/tmp/plantarch-e2e-outside'), 'nothing written outside');
+  const bad = await api(base, 'POST', '/api/projects/save', { name: '../escape', project: project45 });
+  assert.ok([400, 403].includes(bad.status), `a project named '../escape': ${bad.status}`);
+  assert.ok(!existsSync(path.join(tmp, 'escape.json')), 'no project written outside');
+  const foreign = await api(base, 'POST', '/api/builds', { project: project45 }, { Origin: 'http://evil.example' });
+  assert.equal(foreign.status, 403, 'a build requested by another site');
+  step('the API refuses paths outside the output folder (403) and requests from other sites');
+
+  assert.deepEqual(pageErrors, [], 'errors in the page');
+}
+
+let failed = false;
+try {
+  await run();
+  console.log('builder_e2e: every step passed');
+} catch (e) {
+  failed = true;
+  console.error(`builder_e2e: FAILED: ${e.message}`);
+  if (serverLog) console.error(`plantarch builder said:\n${serverLog.slice(-4000)}`);
+} finally {
+  await browser?.close();
+  if (server && server.exitCode === null) {
+    server.kill('SIGTERM');
+    await new Promise((resolve) => server.once('exit', resolve));
+  }
+  rmSync(tmp, { recursive: true, force: true });
+}
+process.exit(failed ? 1 : 0);
