@@ -618,11 +618,13 @@ void bindArchitecture(py::module_& m) {
           }),
           py::arg("context"), py::keep_alive<1, 2>(),
           "Plants are built into `context` (kept alive as long as this object).")
-        .def("getContext", &PlantArchitecture::context, py::return_value_policy::reference_internal,
+        .def("getContext", py::overload_cast<>(&PlantArchitecture::context),
+             py::return_value_policy::reference_internal,
              "The Context the plants' geometry lives in.")
         .def("setSeed", &PlantArchitecture::setSeed, py::arg("seed"),
              "Seed of the scene (42 by default), for plants added afterwards.")
-        .def("context", &PlantArchitecture::context, py::return_value_policy::reference_internal,
+        .def("context", py::overload_cast<>(&PlantArchitecture::context),
+             py::return_value_policy::reference_internal,
              "The Context the plants' geometry lives in (the same as getContext).")
         .def("seed", &PlantArchitecture::seed, "Seed of the scene (the same as getSeed).")
         .def("shootType", &PlantArchitecture::shootType, py::arg("shoot_type_label"),

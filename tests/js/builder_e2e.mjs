@@ -11,9 +11,10 @@
 // at that age anew) and the play button grows it day by day; GLB and per-plant OBJ exports
 // are written and parse; the saved project, uploaded into the page, builds the same scene, and
 // its export is the file `plantarch project run` writes from the saved project, byte for byte;
-// the API refuses paths outside the output folder and requests from other sites. With --screenshots, pictures of
-// the page are written into DIR (docs/images for docs/builder.md). Waits are for states the
-// page or the server reports, never for a time. CHROMIUM overrides /usr/bin/chromium.
+// Cancel stops a running build; the API refuses paths outside the output folder and requests
+// from other sites. With --screenshots, pictures of the page are written into DIR
+// (docs/images for docs/builder.md). Waits are for states the page or the server reports,
+// never for a time. CHROMIUM overrides /usr/bin/chromium.
 import { spawn, execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, readdirSync } from 'node:fs';
 import net from 'node:net';
@@ -360,6 +361,24 @@ async function run() {
   await page.waitForSelector('.preview[data-state=done], .preview[data-state=error]');
   assert.equal(await page.$eval('.preview', (el) => el.dataset.state), 'done', 'the rendered preview loads');
   await shot(page, 'preview');
+
+  // Cancel: a large build stopped while it runs; the page says so and the scene shown stays.
+  await page.click('#show-3d');
+  await setValue(page, '.block-card.open input[name=count-x]', 10);
+  await setValue(page, '.block-card.open input[name=count-y]', 10);
+  await setValue(page, '.block-card.open input[name=age]', 60);
+  const beforeCancel = await page.$eval('#build-status', (s) => s.dataset.build);
+  await page.click('#build');
+  await page.waitForFunction((prev) => {
+    const s = document.getElementById('build-status');
+    return s.dataset.build !== prev && s.dataset.state === 'running';
+  }, {}, beforeCancel);
+  await page.click('#cancel');
+  const cancelled = await pageBuild(page, beforeCancel);
+  assert.equal(cancelled.state, 'cancelled', `the cancelled build: ${cancelled.text}`);
+  assert.equal((await api(base, 'GET', `/api/builds/${cancelled.id}`)).data.state, 'cancelled');
+  assert.equal(await shownNumber(page, 'stat-plants'), 9, 'the scene shown before stays');
+  step(`Cancel stops a running build of 10x10 bean (${cancelled.id}: cancelled)`);
 
   // The API refuses paths outside the output folder and state changes from other sites.
   for (const folder of ['../outside', '/tmp/plantarch-e2e-outside', 'e2e/../../outside']) {

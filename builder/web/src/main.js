@@ -93,7 +93,7 @@ class App {
         h('section', { class: 'stage' },
           h('div', { class: 'stage-bar' },
             h('div', { class: 'segmented', role: 'tablist' },
-              h('button', { type: 'button', class: 'seg active', dataset: { view: '3d' }, onclick: () => this.showView('3d') }, '3D view'),
+              h('button', { type: 'button', class: 'seg active', dataset: { view: '3d' }, id: 'show-3d', onclick: () => this.showView('3d') }, '3D view'),
               h('button', { type: 'button', class: 'seg', dataset: { view: 'preview' }, id: 'show-preview', onclick: () => this.showView('preview') }, 'Rendered preview')),
             h('label', { class: 'inline' }, 'Colour by', this.colorSelect),
             h('button', { type: 'button', class: 'small', title: 'Frame the whole scene', onclick: () => this.viewer.frame() }, 'Frame')),
