@@ -162,7 +162,8 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         {"render /tmp/x.obj -o /tmp/x.png --fov 180",
          "plantarch: --fov = 180: not a field of view (valid: 0.01 to 170 degrees)\n"},
         {"validate /nonexistent/species.xml",
-         "plantarch: /nonexistent/species.xml: cannot open species file: No such file or directory\n"},
+         "plantarch: /nonexistent/species.xml: cannot open species file: No such file or "
+         "directory\n"},
     };
     for (const auto& [args, message] : cases) {
         const CliResult r = run(args);

@@ -137,7 +137,8 @@ TEST(CliCollision, BadValuesAndFilesAreOneLineErrors) {
          empty + ": --attraction-points: attraction point file holds no points (valid: lines "
                  "of x,y,z)"},
         {"build bean --age 10 --attraction-points " + d + "/none.csv" + o,
-         d + "/none.csv: --attraction-points: cannot open attraction point file: No such file or directory"},
+         d + "/none.csv: --attraction-points: cannot open attraction point file: No such file or "
+             "directory"},
         {"build bean --age 10 --attraction-points " + empty + " --attraction-cone 80,1" + o,
          "--attraction-cone = 80,1: expected 3 numbers separated by commas (valid: "
          "half-angle,look-ahead,inertia e.g. 80,0.1,0.4)"},
