@@ -114,6 +114,38 @@ TEST(Growth, MaxNodesStopsTheShoot) {
     EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 5u);
 }
 
+// max_nodes_per_season limits the nodes a shoot's apex adds in a season: the nodes it is
+// built with, or the one a shoot from a bud starts with, are not among them; a phytomer
+// appended by hand is. With 3 a season: a stem built with 2 nodes grows to 5; with one more
+// appended by hand on day 1 (its season began on day 0), to 5 as well; a shoot from a bud (1
+// node) to 4.
+TEST(Growth, MaxNodesPerSeasonCountsTheNodesTheApexAdds) {
+    ShootParameters s = growingShoot();
+    s.max_nodes_per_season = 3;
+    for (bool appended : {false, true}) {
+        Garden g;
+        const unsigned p = g.plant(s, 2);
+        g.arch.advanceTime(1.0f);
+        if (appended) {
+            PhytomerSize size;
+            size.internodeRadius = 0.002f;
+            size.internodeLengthMax = 0.03f;
+            g.arch.appendPhytomerToShoot(p, 0, s.phytomer_parameters, size);
+        }
+        g.arch.advanceTime(49.0f);
+        EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 5u) << (appended ? "appended" : "built");
+    }
+    Garden g;
+    ShootParameters parent = branchingParent(g, 1, 1.0f, 0.0f);
+    ShootParameters child = s;
+    g.arch.defineShootType("child", child);
+    const unsigned p = g.plant(parent);
+    g.arch.advanceTime(50.0f);
+    ASSERT_EQ(g.arch.getShootCount(p), 2u);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 0), 1u);
+    EXPECT_EQ(g.arch.getShootNodeCount(p, 1), 4u);
+}
+
 TEST(Growth, InternodeElongatesLinearlyToFullLength) {
     Garden g;
     const unsigned p = g.plant(growingShoot());
@@ -171,6 +203,27 @@ TEST(Growth, AcrotonicChildInternodesLengthenTowardTheTip) {
 
 TEST(Growth, ConstantChildInternodeLengthWithoutDecay) {
     for (float l : childLengths(0.0f)) EXPECT_NEAR(l, 0.05f, 1e-6f);
+}
+
+// A petiole stands at least 5 degrees off its stem, and those of a shoot's last node at 5
+// degrees: with petiole pitch uniform(-3, 3) and 60 on a shoot of 6 nodes, every petiole but the
+// last node's is at 5 or 60; the last node's at 5 either way.
+TEST(Growth, PetiolesStandAtLeastFiveDegreesOffTheStemAndTheLastNodesAtFive) {
+    for (float pitch : {0.0f, 60.0f}) {
+        ShootParameters s = growingShoot();
+        s.max_nodes = 6;
+        s.phytomer_parameters.petiole.pitch =
+            pitch == 0.0f ? RandomFloat::uniform(-3.0f, 3.0f) : RandomFloat(pitch);
+        Garden g;
+        const unsigned p = g.plant(s);
+        g.arch.advanceTime(20.0f);
+        const Shoot& sh = g.state(p).shoots[0];
+        ASSERT_EQ(sh.phytomers.size(), 6u);
+        for (std::size_t k = 0; k < 6; ++k)
+            EXPECT_FLOAT_EQ(sh.phytomers[k].petioles[0].pitch,
+                            k == 5 ? 5.0f : std::max(pitch, 5.0f))
+                << "node " << k;
+    }
 }
 
 TEST(Growth, ShootsFromBudsTakeTheirOwnTypesInsertionAngle) {

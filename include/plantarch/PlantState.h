@@ -182,6 +182,9 @@ struct Shoot {
     std::vector<FloralBud> terminalFloralBuds;
     std::vector<Phytomer> phytomers;
     std::vector<unsigned> children;
+    /// Phytomers the apex has added this season: max_nodes_per_season limits these. The nodes a
+    /// shoot starts with (the first node of a shoot from a bud, the nodes of a shoot built
+    /// whole) are not among them; a phytomer appended through the API is.
     int nodesThisSeason = 0;
     /// Plant age at which the apical bud makes its next phytomer; negative: not scheduled.
     double nextPhytomerTime = -1.0;

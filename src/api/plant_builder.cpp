@@ -204,6 +204,7 @@ unsigned PlantArchitecture::appendPhytomerToShoot(unsigned plantID, unsigned sho
     checkFunctions(impl_->functions, probe, s.type);
     createPhytomer(impl_->growth(), p, s, pp, size.internodeRadius, size.internodeLengthMax,
                    size.internodeLengthScale, size.leafScale, nullptr);
+    s.nodesThisSeason++;
     scheduleNewShoot(impl_->growth(), p, s);
     updateGeometry(plantID);
     return unsigned(s.phytomers.size());

@@ -793,7 +793,6 @@ void realizeInflorescence(PlantInstance& p, FloralBud& fb, const PhytomerParamet
 void scheduleNewShoot(const GrowthContext& growth, PlantInstance& plant, Shoot& shoot) {
     Grower grower{growth, plant, {}, {}, {}, {}};
     const ShootParameters& t = grower.typeOf(shoot.type);
-    shoot.nodesThisSeason = int(shoot.phytomers.size());
     if (shoot.nextPhytomerTime < 0.0 && grower.growingSeason() && grower.canGrow(shoot, t))
         shoot.nextPhytomerTime = plant.age + shoot.phyllochron;
     for (Phytomer& ph : shoot.phytomers) grower.scheduleBuds(shoot, ph);

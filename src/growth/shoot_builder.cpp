@@ -88,6 +88,9 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
     }
 }
 
+// Degrees off the stem: the least a petiole stands at, and the angle of a shoot's last node's.
+constexpr float kMinPetiolePitch = 5.0f;
+
 }  // namespace
 
 void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& shoot,
@@ -152,10 +155,15 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
     if (growth.steering) growth.steering->keepInternodeClear(plant, shoot, in);
 
     const unsigned petioles = pp.petiole.petioles_per_internode;
+    // A shoot's last node (its max_nodes-th) holds its petioles 5 degrees off the stem, nearly
+    // along it (a grass's flag leaf, a rosette's youngest leaf standing up); elsewhere a
+    // petiole stands at least 5 degrees off the stem.
+    const bool lastNode = int(shoot.phytomers.size()) + 1 == shoot.maxNodes;
     for (unsigned j = 0; j < petioles; ++j) {
         Petiole pt;
         pt.azimuth = in.azimuth + 360.0f * float(j) / float(petioles);
         pt.pitch = pp.petiole.pitch.sample(plant.rng);
+        if (lastNode || std::abs(pt.pitch) < kMinPetiolePitch) pt.pitch = kMinPetiolePitch;
         pt.radius = pp.petiole.radius.sample(plant.rng);
         pt.length = pp.petiole.length.sample(plant.rng);
         pt.curvature = pp.petiole.curvature.sample(plant.rng);
