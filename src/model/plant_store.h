@@ -30,6 +30,8 @@ public:
     std::map<unsigned, PlantInstance> plants;
     /// The ID the next plant gets (IDs are never reused).
     unsigned nextPlantID = 0;
+    /// Ground clearance of plants added from now on (setGroundClearance).
+    bool groundClearance = true;
     /// The factor on every organ's mesh resolution (setMeshDetail).
     float meshDetail = 1.0f;
     /// Growth stops with TriangleBudgetError once a plant's organs need more triangles than
