@@ -274,6 +274,13 @@ TEST(GroundClearance, PlantFilesKeepTheSettingAndTheTurns) {
     EXPECT_LT(lowest(read, ctx, q, kSideOrgans), -0.05f);
     read.advanceTime(0.0);
     EXPECT_GE(lowest(read, ctx, q, kSideOrgans), -1e-3f);
+    // Absent, the setting is the reading PlantArchitecture's (as for plant strings).
+    Context other;
+    PlantArchitecture off(&other);
+    off.setGroundClearance(false);
+    EXPECT_FALSE(off.getGroundClearance(off.readPlantStructureXMLString(xml, o).at(0)));
+    off.loadPlantModelFromLibrary("cowpea");
+    EXPECT_FALSE(off.getGroundClearance(off.generatePlantFromString(g.arch->getPlantString(0))));
 }
 
 // Stems are not turned, and a stem that meets the ground lies on it: no node of a library plant
