@@ -245,11 +245,15 @@ struct CollisionArgs {
     bool fruitAdjustment = false;        ///< --fruit-adjustment
     std::string attractionPoints;        ///< --attraction-points FILE.csv
     std::string attractionCone;          ///< --attraction-cone half-angle,look-ahead,inertia
+    bool noGroundClearance = false;      ///< --no-ground-clearance
 };
 void addCollisionOptions(CLI::App& app, CollisionArgs& args);
 /// Checks the options' forms and that their files open, before any work is done.
 void checkCollisionOptions(const CollisionArgs& args);
-/// Reads obstacles and points into `ctx` and enables what was asked for.
+/// The help text of --no-ground-clearance (build, canopy, grow).
+extern const char* const kNoGroundClearanceHelp;
+/// Reads obstacles and points into `ctx` and enables what was asked for (ground clearance
+/// turned off for the plants built afterwards with --no-ground-clearance).
 void applyCollisionOptions(const CollisionArgs& args, PlantArchitecture& arch, Context& ctx);
 
 }  // namespace plantarch::cli

@@ -1,6 +1,6 @@
 // Collision avoidance options shared by `build` and `canopy`: --soft-collision [--cone],
 // --obstacle FILE.obj [--avoid-distance] [--fruit-adjustment], --attraction-points FILE.csv
-// [--attraction-cone].
+// [--attraction-cone], --no-ground-clearance.
 
 #include <cmath>
 #include <sstream>
@@ -42,6 +42,10 @@ std::vector<double> numbers(const std::string& text, std::size_t count, const ch
 
 }  // namespace
 
+const char* const kNoGroundClearanceHelp =
+    "Let leaves, flowers and fruit go below the plant's base (by default they are turned "
+    "about their attachment to stay above it)";
+
 void addCollisionOptions(CLI::App& app, CollisionArgs& a) {
     app.add_flag("--soft-collision", a.soft,
                  "Soft collision avoidance: shoots grow toward open space among leaves");
@@ -61,6 +65,7 @@ void addCollisionOptions(CLI::App& app, CollisionArgs& a) {
     app.add_option("--attraction-cone", a.attractionCone,
                    "Attraction perception cone: half-angle (deg), look-ahead (m), inertia "
                    "(0-1); default 80,0.1,0.4");
+    app.add_flag("--no-ground-clearance", a.noGroundClearance, kNoGroundClearanceHelp);
 }
 
 void checkCollisionOptions(const CollisionArgs& a) {
@@ -95,6 +100,7 @@ void checkCollisionOptions(const CollisionArgs& a) {
 
 void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Context& ctx) {
     checkCollisionOptions(a);
+    if (a.noGroundClearance) arch.setGroundClearance(false);
     // Range errors of the library name its parameters; say which option set them.
     auto prefixed = [](const Error& e, const std::string& option) {
         return Error(e.message(), {.file = e.file(),

@@ -1,4 +1,4 @@
-// plantarch grow IN.xml --days N -o OUT [-o OUT ...]
+// plantarch grow IN.xml --days N -o OUT [-o OUT ...] [--no-ground-clearance]
 // plantarch grow IN.xml --frames START:END[:STEP] -o growth.glb|.usda
 // Continues the growth of saved plants: reads a plant structure file, grows every plant in
 // it by N days and writes the result (.xml to save it again, or .txt, .obj, .ply, .glb, .gltf,
@@ -22,6 +22,7 @@ struct GrowArgs {
     double days = -1.0;
     std::vector<std::string> outputs;
     AnimationArgs animation;
+    bool noGroundClearance = false;
 };
 
 std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
@@ -36,6 +37,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         ->required();
     app.add_option("--species", a->species,
                    "Species giving the shoot types of plant strings (.txt input)");
+    app.add_flag("--no-ground-clearance", a->noGroundClearance, kNoGroundClearanceHelp);
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     addLabelOptions(app, global);
@@ -57,6 +59,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
+        if (a->noGroundClearance) arch.setGroundClearance(false);
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, plants, *frames, a->outputs,

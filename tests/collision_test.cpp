@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <tuple>
+#include <utility>
 
 #include "collision/collision_world.h"
 #include "collision/cone.h"
@@ -111,9 +112,13 @@ TEST(Collision, CeilingIsNeverCrossed) {
 }
 
 TEST(Collision, StrawberryFruitStayAboveTheGround) {
-    for (bool adjust : {true, false}) {
+    // Fruit adjustment against a ground slab, with the plant's own ground clearance off; then
+    // with neither (fruit sink into the slab), then with ground clearance alone (the default).
+    for (const auto& [adjust, groundClearance] :
+         {std::pair{true, false}, std::pair{false, false}, std::pair{false, true}}) {
         Context ctx;
         PlantArchitecture arch(&ctx);
+        arch.setGroundClearance(groundClearance);
         const ObjectID ground = addBox(ctx, {-2, -2, -0.1f}, {2, 2, 0.0f});
         arch.setSeed(4);  // a plant with seven fruit
         arch.loadPlantModelFromLibrary("strawberry");
@@ -131,15 +136,15 @@ TEST(Collision, StrawberryFruitStayAboveTheGround) {
             for (const vec3& v : ctx.object(o).positions) lowest = std::min(lowest, v.z);
         const CollisionStats st = arch.getCollisionStats();
         std::printf(
-            "adjust %d: %zu fruit objects, lowest fruit vertex %.4f, turned %llu, "
-            "unresolved %llu\n",
-            adjust, arch.getPlantObjectIDs(p, OrganKind::Fruit).size(), lowest,
+            "adjust %d, ground clearance %d: %zu fruit objects, lowest fruit vertex %.4f, "
+            "turned %llu, unresolved %llu\n",
+            adjust, groundClearance, arch.getPlantObjectIDs(p, OrganKind::Fruit).size(), lowest,
             (unsigned long long)st.organsTurned, (unsigned long long)st.organsUnresolved);
         ASSERT_GT(arch.getPlantObjectIDs(p, OrganKind::Fruit).size(), 3u);
-        if (adjust)
+        if (adjust || groundClearance)
             EXPECT_GE(lowest, -1e-4f);
         else
-            EXPECT_LT(lowest, -0.01f);  // without adjustment some hang into the ground
+            EXPECT_LT(lowest, -0.01f);  // without either some hang into the ground
     }
 }
 

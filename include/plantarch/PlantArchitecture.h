@@ -296,6 +296,20 @@ public:
     /// Grows the given plants by `days` (together, as advanceTime(days) grows them all).
     void advanceTime(const std::vector<unsigned>& plantIDs, double days);
 
+    /// Ground clearance (docs/growth.md), on by default: no petiole with its leaves, peduncle
+    /// with its flowers or fruit of a plant goes below the plant's ground, the z of its base.
+    /// An organ that would is turned about its attachment point, as little as keeps it clear
+    /// (whole degrees); the turns are recomputed from the plant's shape at the end of every
+    /// growth step (PlantInstance::groundClearance, kept in plant structure files). Stems are
+    /// never turned. Sets it for every plant there is (their turns and geometry redone now)
+    /// and for the plants added from now on.
+    void setGroundClearance(bool on);
+    /// The setting plants added from now on get.
+    bool getGroundClearance() const;
+    /// The same for one plant.
+    void setGroundClearance(unsigned plantID, bool on);
+    bool getGroundClearance(unsigned plantID) const;
+
     // ---- collision avoidance and attraction points (docs/collision.md) ------------------
     /// Soft avoidance: new internodes (optionally petioles, peduncles) turn toward the
     /// largest open gap in their perception cone among plant organs (leaves by default) and

@@ -41,8 +41,9 @@ const char* budStateName(BudState state);
 const char* floralStageName(FloralStage stage);
 const char* phenologyStageName(PhenologyStage stage);
 
-/// A turn of an organ about its attachment point (world axis, degrees), set by solid obstacle
-/// avoidance to keep the organ out of obstacles; angle 0 means none.
+/// A turn of an organ about its attachment point (world axis, degrees), set at the end of each
+/// growth step to keep the organ above the ground (PlantInstance::groundClearance) and out of
+/// solid obstacles; angle 0 means none.
 struct OrganTurn {
     vec3 axis{0.0f, 0.0f, 1.0f};
     float angle = 0.0f;
@@ -66,7 +67,7 @@ struct FlowerOrgan {
     float fruitScale = 0.0f;   ///< full-grown fruit length, m
     float gravityFactor = 0.0f;
     unsigned variant = 0;           ///< prototype variant
-    OrganTurn clearance;            ///< fruit adjustment (solid obstacles), after gravity
+    OrganTurn clearance;            ///< out of the ground and solid obstacles, after gravity
     std::vector<ObjectID> objects;  ///< one per prototype part
 };
 
@@ -97,7 +98,7 @@ struct FloralBud {
     /// The peduncle's side turned about the stem from its petiole's, degrees (0 unless soft
     /// collision avoidance steered it).
     float peduncleAzimuth = 0.0f;
-    OrganTurn peduncleClearance;  ///< peduncle and flowers turned out of solid obstacles
+    OrganTurn peduncleClearance;  ///< peduncle and flowers turned out of ground, obstacles
     ObjectID peduncleObject = kNoObject;
     std::vector<FlowerOrgan> flowers;
 };
@@ -124,7 +125,7 @@ struct Petiole {
     float radius = 0.0f;     ///< base radius, m
     float curvature = 0.0f;  ///< degrees per m
     float taper = 0.0f;
-    OrganTurn clearance;  ///< petiole and leaves turned out of solid obstacles
+    OrganTurn clearance;  ///< petiole and leaves turned out of the ground and obstacles
     std::vector<LeafOrgan> leaves;
     std::vector<VegetativeBud> vegetativeBuds;
     std::vector<FloralBud> floralBuds;
@@ -231,6 +232,11 @@ struct PlantInstance {
     double nextDormancyBreak = 0.0;   ///< when dormancy breaks next; negative: never
     double senescenceTime = -1.0;     ///< when the current season ends; negative: never
     int season = 0;                   ///< growing seasons begun
+    /// Ground clearance: petioles with their leaves, peduncles with their flowers and fruit
+    /// are turned about their attachment point wherever they would go below base.z (turns
+    /// recomputed at the end of every growth step). On by default
+    /// (PlantArchitecture::setGroundClearance).
+    bool groundClearance = true;
     /// The plant's own attraction points (a trellis species' wires, or set with
     /// PlantArchitecture::enableAttractionPoints(plantID, ...)): it steers by these instead
     /// of the global ones. None: it follows the global points, if any.

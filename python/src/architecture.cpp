@@ -133,6 +133,21 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
              Release())
         .def("getMeshDetail", &PlantArchitecture::getMeshDetail,
              "The factor on every organ's mesh resolution (setMeshDetail).")
+        .def("setGroundClearance", py::overload_cast<bool>(&PlantArchitecture::setGroundClearance),
+             py::arg("on"),
+             "Ground clearance (on by default): leaves, flowers and fruit turned about their "
+             "attachment to stay above each plant's base. Sets it for every plant there is "
+             "(redrawn now) and for plants added from now on.",
+             Release())
+        .def("setGroundClearance",
+             py::overload_cast<unsigned, bool>(&PlantArchitecture::setGroundClearance),
+             py::arg("plant"), py::arg("on"), "Ground clearance of one plant.", Release())
+        .def("getGroundClearance",
+             py::overload_cast<>(&PlantArchitecture::getGroundClearance, py::const_),
+             "The ground clearance plants added from now on get.")
+        .def("getGroundClearance",
+             py::overload_cast<unsigned>(&PlantArchitecture::getGroundClearance, py::const_),
+             py::arg("plant"), "Whether one plant keeps its side organs above its base.")
         .def("setTriangleLimit", &PlantArchitecture::setTriangleLimit, py::arg("limit"),
              "At most this many triangles in the Context (0: no limit). A canopy whose estimate "
              "(its first plants' mean times the plant count) passes it is refused before it is "

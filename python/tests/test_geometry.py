@@ -196,3 +196,23 @@ def test_scan_from_python_and_the_command_line_npz(arch, tmp_path):
     assert [s.decode() for s in saved["organ_labels"]] == list(plantarch.ORGAN_LABELS)
     with pytest.raises(ValueError, match="resolution of scanner 0 = 20: out of range"):
         plantarch.scan(ctx, scanners, resolution=20)
+
+
+def test_ground_clearance_keeps_leaves_above_the_base():
+    def lowest_leaf(ground):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.setSeed(1)
+        a.setGroundClearance(ground)
+        a.loadPlantModelFromLibrary("cowpea")
+        p = a.buildPlantInstanceFromLibrary((0, 0, 0), 50)
+        assert a.getGroundClearance() == ground and a.getGroundClearance(p) == ground
+        m = a.getMeshArrays(p, normals=False)
+        leaf = m["organ"] == plantarch.ORGAN_LABELS.index("leaf")
+        z = m["vertices"][np.unique(m["triangles"][leaf])][:, 2].min()
+        if not ground:  # turned on for this plant alone, at once
+            a.setGroundClearance(p, True)
+            assert a.getGroundClearance(p) and not a.getGroundClearance()
+        return z
+
+    assert lowest_leaf(True) >= -1e-3
+    assert lowest_leaf(False) < -0.05

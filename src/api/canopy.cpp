@@ -180,6 +180,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.store.defaultPhenology = impl_->store.defaultPhenology;
         wi.store.meshDetail = impl_->store.meshDetail;
         wi.store.streamBase = impl_->store.streamBase;
+        wi.store.groundClearance = impl_->store.groundClearance;
         wi.store.triangleLimit = limit;
         wi.functions = impl_->functions;
         wi.trellisGeometry = false;  // trellises are added in the caller's Context below

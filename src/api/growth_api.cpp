@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "api/facade_impl.h"
+#include "collision/clearance.h"
 #include "collision/growth_driver.h"
 #include "core/progress_steps.h"
 #include "growth/growth.h"
@@ -56,6 +57,31 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
         steps.at(double(++done));
     }
     steps.finish();
+}
+
+void PlantArchitecture::setGroundClearance(bool on) {
+    impl_->store.groundClearance = on;
+    for (unsigned id : getAllPlantIDs()) setGroundClearance(id, on);
+}
+
+bool PlantArchitecture::getGroundClearance() const {
+    return impl_->store.groundClearance;
+}
+
+void PlantArchitecture::setGroundClearance(unsigned plantID, bool on) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    if (p.groundClearance == on) return;
+    p.groundClearance = on;
+    // The turns follow the setting now, as they would at the end of a growth step.
+    if (impl_->collision.world)
+        collision::clearOrgans(impl_->worker(), *impl_->collision.world, p);
+    else
+        clearSideOrgans(impl_->store, impl_->prototypes, p);
+    updateGeometry(plantID);
+}
+
+bool PlantArchitecture::getGroundClearance(unsigned plantID) const {
+    return impl_->store.plant(plantID).groundClearance;
 }
 
 void PlantArchitecture::setProgressCallback(ProgressCallback callback) {

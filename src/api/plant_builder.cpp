@@ -142,6 +142,7 @@ unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float cu
     p.rng = Rng::forPlant(seed_, impl_->store.stream(p.id));
     p.shootTypes = impl_->store.shootTypes;
     p.phenology = impl_->store.defaultPhenology;
+    p.groundClearance = impl_->store.groundClearance;
     p.nextDormancyBreak = p.phenology.time_to_dormancy_break < 0.0f
                               ? -1.0
                               : p.age + p.phenology.time_to_dormancy_break;

@@ -27,6 +27,7 @@ plant_io::Defaults defaultsOf(const PlantStore& store, std::uint64_t seed) {
     plant_io::Defaults d;
     d.shootTypes = &store.shootTypes;
     d.phenology = store.defaultPhenology;
+    d.groundClearance = store.groundClearance;
     d.seed = seed;
     d.firstPlantID = store.nextPlantID;
     return d;

@@ -53,13 +53,19 @@ void forEach(std::size_t n, const std::vector<Worker>& workers, F&& f) {
     errors.rethrow();
 }
 
-// Grows one plant steered by the scene and its attraction points, then clears its side organs.
+// Grows one plant steered by the scene and its attraction points; growth ends by turning its
+// side organs out of the solid obstacles and the ground.
 void growOne(const World& world, GrowthSlot& slot, const Worker& w, double days,
              std::uint64_t seed) {
     SceneSteering steering(&world, slot.attraction, seed);
-    growPlant(GrowthContext{w.store, w.functions, w.prototypes, &steering}, *slot.plant, days,
-              slot.deletes);
-    clearOrgans(w, world, *slot.plant);
+    SolidClearance solid(w, world);
+    OrganObstacle* const solids[] = {&solid};
+    ClearanceCounts counts;
+    GrowthContext growth{w.store, w.functions, w.prototypes, &steering};
+    if (solid.active()) growth.obstacles = solids;
+    growth.clearanceCounts = &counts;
+    growPlant(growth, *slot.plant, days, slot.deletes);
+    countClearance(world, counts);
 }
 
 // Makes a plant's proxies for the next install into its memo, with their spheres and grid

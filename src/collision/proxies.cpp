@@ -405,48 +405,6 @@ void ProxySink::writeParts(std::vector<ObjectID>&, const OrganPrototype& proto, 
     tags_.resize(out_.size() / 3, organTag(labels.shoot->id, unsigned(labels.node)));
 }
 
-// ---- trial shapes ----------------------------------------------------------------------
-
-void ShapeSink::setWanted(std::initializer_list<OrganKind> kinds) {
-    std::fill(std::begin(kinds_), std::end(kinds_), false);
-    for (OrganKind k : kinds) kinds_[int(k)] = true;
-}
-
-void ShapeSink::clear() {
-    triangles.clear();
-    boxes.clear();
-    bounds = AABB{};
-}
-
-void ShapeSink::write(ObjectID&, const Mesh& mesh, const Material&, const OrganLabels&) {
-    for (std::uint32_t i : mesh.indices) {
-        triangles.push_back(mesh.positions[i]);
-        bounds.add(mesh.positions[i]);
-    }
-}
-
-void ShapeSink::writeParts(std::vector<ObjectID>&, const OrganPrototype& proto, const mat4& xf,
-                           const OrganLabels&) {
-    const PrototypeShape& s = cache_.shape(proto);
-    if (s.bounds.empty()) return;
-    OrientedBox b;
-    const vec3 localCenter = s.bounds.center();
-    const vec3 localHalf = 0.5f * s.bounds.extent();
-    b.center = vec3(xf * glm::vec4(localCenter, 1.0f));
-    for (int i = 0; i < 3; ++i) {
-        const vec3 col = vec3(xf[i]);
-        const float len = glm::length(col);
-        b.axis[i] = len > 0.0f ? col / len : vec3(i == 0, i == 1, i == 2);
-        b.half[i] = localHalf[i] * len;
-    }
-    boxes.push_back(b);
-    for (int i = 0; i < 8; ++i) {
-        vec3 corner = b.center;
-        for (int k = 0; k < 3; ++k) corner += ((i >> k) & 1 ? 1.0f : -1.0f) * b.half[k] * b.axis[k];
-        bounds.add(corner);
-    }
-}
-
 // ---- overlap tests (separating axes) ---------------------------------------------------
 
 namespace {

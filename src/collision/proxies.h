@@ -1,7 +1,7 @@
 #pragma once
-// Light stand-ins of organs for the collision scene, and oriented boxes of organs for the
-// solid-obstacle clearance tests. Both come from the tessellator's placement code through an
-// OrganSink, so they sit exactly where the organs' meshes do.
+// Light stand-ins of organs for the collision scene, from the tessellator's placement code
+// through an OrganSink, so they sit exactly where the organs' meshes do; and the overlap tests
+// of the solid-obstacle clearance (clearance.cpp).
 
 #include <array>
 #include <map>
@@ -110,26 +110,6 @@ struct OrientedBox {
     vec3 center{0.0f};
     vec3 axis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     vec3 half{0.0f};
-};
-
-/// The geometry of organs placed on trial: tubes as triangles, prototype parts as boxes.
-class ShapeSink final : public OrganSink {
-public:
-    explicit ShapeSink(ProxyCache& cache) : cache_(cache) {}
-    bool wants(OrganKind kind) const override { return kinds_[int(kind)]; }
-    void setWanted(std::initializer_list<OrganKind> kinds);
-    void write(ObjectID&, const Mesh& mesh, const Material&, const OrganLabels&) override;
-    void writeParts(std::vector<ObjectID>&, const OrganPrototype& prototype, const mat4& transform,
-                    const OrganLabels& labels) override;
-    void clear();
-
-    TriangleSoup triangles;
-    std::vector<OrientedBox> boxes;
-    AABB bounds;  ///< around everything collected
-
-private:
-    ProxyCache& cache_;
-    bool kinds_[7] = {};
 };
 
 /// Whether the box and triangle (a, b, c) overlap by more than `tolerance` (m): touching

@@ -101,10 +101,17 @@ struct LeafPlacement {
 class OrganPlacer {
 public:
     OrganPlacer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant);
+    /// The same at mesh detail `detail` instead of the store's (1: each organ's own resolution,
+    /// at which growth decides what depends on shape, so that no state depends on the detail).
+    OrganPlacer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
+                float detail);
     ~OrganPlacer();
     OrganPlacer(const OrganPlacer&) = delete;
     OrganPlacer& operator=(const OrganPlacer&) = delete;
 
+    /// World positions of the nodes of a shoot: [0] its base, [i+1] the tip of internode i
+    /// (empty for a removed shoot).
+    const std::vector<vec3>& nodes(unsigned shoot) const;
     /// The petiole `petiole` of node `node` on shoot `shoot`, with its leaves.
     void petiole(OrganSink& sink, unsigned shoot, unsigned node, unsigned petiole);
     /// Where that petiole starts (its organs move with this point when the plant below grows).

@@ -460,6 +460,7 @@ struct Tessellator {
     std::array<std::pair<PrototypeSlot, const OrganPrototype*>, 32> recentPrototypes{};
     std::string lastLabel;
     const PhytomerParameters* lastParameters = nullptr;
+    float detail = store.meshDetail;  // factor on the organs' mesh resolution
 
     void computeNodes() {
         // Parents come before their children (a shoot grows from one made earlier), so each
@@ -496,7 +497,7 @@ struct Tessellator {
     }
 
     // The sides of a tube of `radial` sides at the mesh detail.
-    unsigned sides(unsigned radial) const { return detailed(radial, store.meshDetail, 3); }
+    unsigned sides(unsigned radial) const { return detailed(radial, detail, 3); }
 
     void internodes(Shoot& s) {
         if (!sink->wants(OrganKind::Internode)) return;
@@ -610,7 +611,7 @@ struct Tessellator {
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
         const mat4 xf = geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale,
                                                 lp.prototype.leaf_offset);
-        sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf, store.meshDetail), xf,
+        sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf, detail), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
 
@@ -805,7 +806,7 @@ struct Tessellator {
             fruit ? inf.fruit_prototype_parameters : inf.flower_prototype_parameters;
         request.color = fruit ? inf.fruit_color : inf.flower_color;
         request.subdivisions =
-            detailed(fruit ? inf.fruit_subdivisions : inf.flower_subdivisions, store.meshDetail, 2);
+            detailed(fruit ? inf.fruit_subdivisions : inf.flower_subdivisions, detail, 2);
         peduncleMeasure.measure(path);
         for (FlowerOrgan& fl : fb.flowers) {
             const float scale = currentFloralSize(fb, fl);
@@ -956,10 +957,19 @@ PlacerStorage& placerStorage() {
 }  // namespace
 
 OrganPlacer::OrganPlacer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant)
+    : OrganPlacer(store, prototypes, plant, store.meshDetail) {}
+
+OrganPlacer::OrganPlacer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
+                         float detail)
     : state_(std::make_unique<State>(State{Tessellator{store, prototypes, plant, nullptr, {}}})) {
+    state_->tessellator.detail = detail;
     prototypes.clearCallMemos();
     placerStorage().swap(state_->tessellator);
     state_->tessellator.computeNodes();
+}
+
+const std::vector<vec3>& OrganPlacer::nodes(unsigned shoot) const {
+    return state_->tessellator.nodes[shoot];
 }
 
 OrganPlacer::~OrganPlacer() {

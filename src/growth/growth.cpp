@@ -810,6 +810,8 @@ void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
     grower.onDay = &onDay;
     grower.run(target);
     deletes.insert(deletes.end(), grower.pendingDeletes.begin(), grower.pendingDeletes.end());
+    clearSideOrgans(growth.store, growth.prototypes, plant, growth.obstacles,
+                    growth.clearanceCounts);
 }
 
 const char* phenologyStageName(PhenologyStage s) {

@@ -3,9 +3,11 @@
 // time (growth.cpp). Geometry is not touched: the caller tessellates afterwards.
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "geometry/prototype_cache.h"
+#include "growth/organ_clearance.h"
 #include "growth/steering.h"
 #include "model/function_registry.h"
 #include "model/plant_store.h"
@@ -14,12 +16,16 @@ namespace plantarch {
 
 /// What growing a plant uses besides the plant: the shoot types and functions (read only,
 /// so threads growing different plants may share them), a prototype cache of the thread's
-/// own (girth reads leaf areas), and the steering of new organs (none: unsteered).
+/// own (girth reads leaf areas), the steering of new organs (none: unsteered), what side
+/// organs are kept out of besides the ground (solid obstacles; see clearSideOrgans) and where
+/// their turns are counted (may be null).
 struct GrowthContext {
     const PlantStore& store;
     const FunctionRegistry& functions;
     PrototypeCache& prototypes;
     Steering* steering = nullptr;
+    std::span<OrganObstacle* const> obstacles = {};
+    ClearanceCounts* clearanceCounts = nullptr;
 };
 
 /// How a new shoot starts: the plant's base stem, continuing a shoot's tip, from an axil by
@@ -40,7 +46,9 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
                     const PhytomerParameters& pp, float radius, float lengthMax,
                     float internodeFraction, float leafFraction, const Internode* start);
 
-/// Grows one plant by `days`; object IDs of organs that fell off are added to `deletes`.
+/// Grows one plant by `days`; object IDs of organs that fell off are added to `deletes`. Ends
+/// with the turns of its side organs set from its shape (clearSideOrgans, with the context's
+/// obstacles).
 /// `onDay` (may be empty) is called after each day with the fraction of `days` done (0 to 1);
 /// it must not throw.
 void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,

@@ -21,6 +21,39 @@ void invalid(const char* name, float v, const char* range) {
                 {.parameter = name, .value = text::formatFloat(v), .validRange = range});
 }
 
+// Where the tip of `shoot` will be once every internode below it is full grown.
+vec3 matureTip(const PlantInstance& plant, const Shoot& shoot) {
+    vec3 p(0.0f);
+    std::size_t nodes = shoot.phytomers.size();  // internodes of this shoot below the tip
+    for (const Shoot* s = &shoot;;) {
+        for (std::size_t i = 0; i < nodes; ++i)
+            p += s->phytomers[i].internode.direction * s->phytomers[i].internode.length;
+        if (s->parent < 0) break;
+        const Shoot& parent = plant.shoots[unsigned(s->parent)];
+        nodes = std::min(std::size_t(s->parentNode) + 1, parent.phytomers.size());
+        s = &parent;
+    }
+    return plant.base + p;
+}
+
+// Ground clearance of stems: a stem that meets its plant's ground lies on it. A new internode
+// heading down whose full-grown tip would come nearer the plant's ground (the z of its base)
+// than its radius is turned about its start, keeping its heading, until its tip rests on the
+// ground (its axis one radius above it). Decided once, from full-grown lengths and the radius
+// it is made with, so that the step size changes nothing.
+void keepAboveGround(const PlantInstance& plant, const Shoot& shoot, Internode& in) {
+    if (!plant.groundClearance || !(in.direction.z < 0.0f) || !(in.length > 0.0f)) return;
+    const float start = matureTip(plant, shoot).z;
+    const float rest = plant.base.z + in.radius;  // the axis of a stem lying on the ground
+    if (start + in.direction.z * in.length >= rest) return;
+    const float dz = std::clamp((rest - start) / in.length, -1.0f, 1.0f);
+    vec3 heading(in.direction.x, in.direction.y, 0.0f);
+    if (glm::length(heading) < 1e-6f) heading = vec3(in.guide.x, in.guide.y, 0.0f);
+    if (glm::length(heading) < 1e-6f) heading = vec3(in.rollReference.x, in.rollReference.y, 0.0f);
+    heading = unitOr(heading, vec3(1.0f, 0.0f, 0.0f));
+    in.direction = glm::normalize(heading * std::sqrt(1.0f - dz * dz) + vec3(0.0f, 0.0f, dz));
+}
+
 }  // namespace
 
 void checkPhytomerSize(const PhytomerSize& s) {
@@ -153,6 +186,7 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
     in.length = lengthMax;
     in.radius = radius;
     if (growth.steering) growth.steering->keepInternodeClear(plant, shoot, in);
+    keepAboveGround(plant, shoot, in);
 
     const unsigned petioles = pp.petiole.petioles_per_internode;
     // A shoot's last node (its max_nodes-th) holds its petioles 5 degrees off the stem, nearly

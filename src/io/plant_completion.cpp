@@ -33,6 +33,7 @@ public:
     void run(unsigned plantID) {
         if (m_.missing(&p_.rng)) p_.rng = Rng::forPlant(d_.seed, plantID);
         if (m_.missing(&p_.phenology)) p_.phenology = d_.phenology;
+        if (m_.missing(&p_.groundClearance)) p_.groundClearance = d_.groundClearance;
         if (m_.missing(&p_.nextDormancyBreak)) {
             const float wait = p_.phenology.time_to_dormancy_break;
             p_.nextDormancyBreak = wait < 0.0f ? -1.0 : p_.age + wait;

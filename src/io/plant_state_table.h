@@ -263,6 +263,8 @@ void describeState(S& p, V& v) {
     v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)"}, p.nextDormancyBreak);
     v.field({"senescence_time", -kTime, kTime, "days (negative: never)"}, p.senescenceTime);
     v.field({"season", 0, kCount, "growing seasons begun"}, p.season);
+    v.field({"ground_clearance", 0, 1, "side organs turned to stay above the base's z"},
+            p.groundClearance);
     v.optional("attraction_points", p.attraction);
     v.parameters("phenology", p.phenology);
     v.parameters("shoot_type", p.shootTypes);

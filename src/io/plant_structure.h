@@ -70,6 +70,7 @@ private:
 struct Defaults {
     const std::map<std::string, ShootParameters>* shootTypes = nullptr;  ///< current types
     PhenologyParameters phenology;
+    bool groundClearance = true;  ///< PlantInstance::groundClearance
     std::uint64_t seed = 0;
     unsigned firstPlantID = 0;  ///< ID the first plant read will get (its random stream)
 };

@@ -35,6 +35,8 @@ public:
     unsigned streamBase = 0;
     /// The number of the random streams of the plant with this ID (Rng::forPlant(seed, n)).
     unsigned stream(unsigned id) const { return id - streamBase; }
+    /// Ground clearance of plants added from now on (setGroundClearance).
+    bool groundClearance = true;
     /// The factor on every organ's mesh resolution (setMeshDetail).
     float meshDetail = 1.0f;
     /// Growth stops with TriangleBudgetError once a plant's organs need more triangles than
