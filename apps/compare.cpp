@@ -111,13 +111,34 @@ void line(Image& im, vec2 a, vec2 b, std::array<std::uint8_t, 3> c, int thicknes
     }
 }
 
-// A 10 cm bar with end ticks at the bottom left of a panel.
-void scaleBar(Image& im, float pixelsPerMetre) {
-    const std::array<std::uint8_t, 3> black{20, 20, 20};
+constexpr std::array<std::uint8_t, 3> kInk{20, 20, 20};
+
+// A 10 cm bar with end ticks at the bottom left of a panel, labelled above.
+void scaleBar(Image& im, float pixelsPerMetre, int textScale) {
     const float x0 = 30.0f, y0 = float(im.height) - 25.0f, length = 0.1f * pixelsPerMetre;
-    line(im, {x0, y0}, {x0 + length, y0}, black, 2);
-    line(im, {x0, y0 - 5}, {x0, y0 + 5}, black);
-    line(im, {x0 + length, y0 - 5}, {x0 + length, y0 + 5}, black);
+    line(im, {x0, y0}, {x0 + length, y0}, kInk, 2);
+    line(im, {x0, y0 - 5}, {x0, y0 + 5}, kInk);
+    line(im, {x0 + length, y0 - 5}, {x0 + length, y0 + 5}, kInk);
+    drawText(im, int(x0), int(y0) - 6 - 10 * textScale, "10 cm", textScale, kInk);
+}
+
+// Draws `text` at (x, y) at the largest scale up to `scale` that fits `width` pixels.
+void caption(Image& im, int x, int y, const std::string& text, int scale, int width,
+             std::array<std::uint8_t, 3> color) {
+    while (scale > 1 && textSize(text, scale)[0] > width) --scale;
+    drawText(im, x, y, text, scale, color);
+}
+
+// A white strip of `height` pixels above `image` holding one line of text.
+Image withTitle(const Image& image, const std::string& title, int height) {
+    Image out(image.width, image.height + height);
+    std::fill(out.rgb.begin(),
+              out.rgb.begin() + std::ptrdiff_t(std::size_t(image.width) * 3 * std::size_t(height)),
+              std::uint8_t(255));
+    std::copy(image.rgb.begin(), image.rgb.end(),
+              out.rgb.begin() + std::ptrdiff_t(std::size_t(image.width) * 3 * std::size_t(height)));
+    caption(out, 14, height / 2 - 10, title, 3, image.width - 28, kInk);
+    return out;
 }
 
 // The four renders of the two panels, one "rendering" bar: render k (0 to 3) is its k-th
@@ -216,9 +237,21 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     const vec3 fp[4] = {f0, {f1.x, f0.y, 0}, f1, {f0.x, f1.y, 0}};
     for (int i = 0; i < 4; ++i)
         line(right, obliquePanel.pixel(fp[i]), obliquePanel.pixel(fp[(i + 1) % 4]), grey);
-    scaleBar(left, scale);
-    scaleBar(right, scale);
-    Image ours = join({left, right}, true);
+    // Captions, and the bars' labels, at one scale: 2 where the longer caption fits.
+    const std::string sideText = "side view (looking along +y)";
+    const std::string obliqueText = "oblique (elevation 35, azimuth 45 deg)";
+    const int textScale = textSize(obliqueText, 2)[0] <= size - 28 ? 2 : 1;
+    const std::array<std::uint8_t, 3> grey70{70, 70, 70};
+    drawText(left, 14, 12, sideText, textScale, grey70);
+    drawText(right, 14, 12, obliqueText, textScale, grey70);
+    scaleBar(left, scale, textScale);
+    scaleBar(right, scale, textScale);
+    const Image ours = withTitle(
+        join({left, right}, true),
+        fmt::format("plantarch   {}   age {:g} d   height {:.2f} m   {} triangles   seed {}",
+                    arch.getCurrentPlantModel(), a.age, arch.getPlantHeight(plant),
+                    scene.triangleCount(), global.seed),
+        44);
     writePNG(reference.width > 0 ? join({reference, ours}, false) : ours, a.output);
     outputs.commit();
     std::printf("%s",

@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -168,7 +170,8 @@ void requireInputFile(const std::string& path, const std::string& what, const st
                     {.file = path, .parameter = option});
     }
     if (!std::ifstream(path))
-        throw Error("cannot open " + what, {.file = path, .parameter = option});
+        throw Error("cannot open " + what + ": " + std::strerror(errno),
+                    {.file = path, .parameter = option});
 }
 
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
@@ -197,7 +200,9 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
     if (std::filesystem::is_directory(path, ec))
         throw Error("is a directory, not a file of plant strings", {.file = path});
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot open plant string file", {.file = path});
+    if (!in)
+        throw Error(std::string("cannot open plant string file: ") + std::strerror(errno),
+                    {.file = path});
     std::vector<unsigned> ids;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -135,13 +135,14 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         // Commands.
         {"bulid bean --age 10",
          "plantarch: 'bulid' is not a command, did you mean 'build'? (valid: demo, build, "
-         "canopy, convert, grow, render, scan, compare, list, info, validate)\n"},
+         "canopy, convert, project, grow, render, scan, compare, list, info, validate, "
+         "builder)\n"},
         {"nosuchcommand",
          "plantarch: 'nosuchcommand' is not a command (valid: demo, build, canopy, convert, "
-         "grow, render, scan, compare, list, info, validate)\n"},
+         "project, grow, render, scan, compare, list, info, validate, builder)\n"},
         {"",
-         "plantarch: a command is required (valid: demo, build, canopy, convert, grow, "
-         "render, scan, compare, list, info, validate; see plantarch --help)\n"},
+         "plantarch: a command is required (valid: demo, build, canopy, convert, project, "
+         "grow, render, scan, compare, list, info, validate, builder; see plantarch --help)\n"},
         // Canopies.
         {"canopy bean --count 0x2 --age 10 -o /tmp/x.ply",
          "plantarch: --count = 0x2: expected two positive numbers joined by 'x' (valid: e.g. "
@@ -161,7 +162,7 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         {"render /tmp/x.obj -o /tmp/x.png --fov 180",
          "plantarch: --fov = 180: not a field of view (valid: 0.01 to 170 degrees)\n"},
         {"validate /nonexistent/species.xml",
-         "plantarch: /nonexistent/species.xml: cannot open species file\n"},
+         "plantarch: /nonexistent/species.xml: cannot open species file: No such file or directory\n"},
     };
     for (const auto& [args, message] : cases) {
         const CliResult r = run(args);

@@ -117,7 +117,7 @@ TEST(CliCollision, BadValuesAndFilesAreOneLineErrors) {
         {"build bean --age 10 --soft-collision --cone 80,0.1,256,2" + o,
          "--cone (inertia) = 2: collision option out of range (valid: 0 to 1)"},
         {"build bean --age 10 --obstacle " + d + "/missing.obj" + o,
-         d + "/missing.obj: --obstacle: cannot open obstacle file"},
+         d + "/missing.obj: --obstacle: cannot open obstacle file: No such file or directory"},
         {"build bean --age 10 --obstacle " + wall + " --avoid-distance -0.2" + o,
          "--avoid-distance (avoidance_distance) = -0.2: collision option out of range (valid: "
          "> 0 and <= 100 m)"},
@@ -137,7 +137,7 @@ TEST(CliCollision, BadValuesAndFilesAreOneLineErrors) {
          empty + ": --attraction-points: attraction point file holds no points (valid: lines "
                  "of x,y,z)"},
         {"build bean --age 10 --attraction-points " + d + "/none.csv" + o,
-         d + "/none.csv: --attraction-points: cannot open attraction point file"},
+         d + "/none.csv: --attraction-points: cannot open attraction point file: No such file or directory"},
         {"build bean --age 10 --attraction-points " + empty + " --attraction-cone 80,1" + o,
          "--attraction-cone = 80,1: expected 3 numbers separated by commas (valid: "
          "half-angle,look-ahead,inertia e.g. 80,0.1,0.4)"},

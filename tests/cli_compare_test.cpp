@@ -37,16 +37,22 @@ TEST(CliCompare, TwoViewsAtOneScaleWithTenCentimetreBars) {
     ASSERT_NE(at, std::string::npos) << r.out;
     const double scale = std::stod(r.out.substr(r.out.rfind(';', at) + 2));
     const Image im = readImage(out);
+    // A 44-pixel title strip (plantarch, species, age, height, triangles, seed) above the panels.
+    constexpr int kTitle = 44;
     EXPECT_EQ(im.width, 2 * 200 + 2);
-    EXPECT_EQ(im.height, 200);
+    EXPECT_EQ(im.height, kTitle + 200);
+    std::size_t ink = 0;
+    for (int y = 0; y < kTitle; ++y)
+        for (int x = 0; x < im.width; ++x) ink += im.pixel(x, y)[0] < 60;
+    EXPECT_GT(ink, 200u) << "the title is written";
     // Each panel's bar, at its bottom left, is 10 cm at the printed scale (within a pixel).
     for (int panel : {0, 1}) {
-        const int x0 = panel * 202 + 30, y0 = 200 - 25;
+        const int x0 = panel * 202 + 30, y0 = kTitle + 200 - 25;
         EXPECT_NEAR(darkRun(im, x0, y0), 0.1 * scale + 1, 1.5) << "panel " << panel;
     }
     // The plant fills the larger view to 90 %: some plant pixels, mostly white elsewhere.
     std::size_t white = 0, plant = 0;
-    for (int y = 0; y < im.height; ++y)
+    for (int y = kTitle; y < im.height; ++y)
         for (int x = 0; x < 200; ++x) {
             const auto p = im.pixel(x, y);
             white += p[0] == 255 && p[1] == 255 && p[2] == 255;
@@ -66,7 +72,7 @@ TEST(CliCompare, AReferencePictureGoesAbove) {
     ASSERT_EQ(r.status, 0) << r.out;
     const Image im = readImage(d + "/pair.png");
     EXPECT_EQ(im.width, 300);
-    EXPECT_EQ(im.height, 120 + 2 + 100);
+    EXPECT_EQ(im.height, 120 + 2 + 44 + 100);
     EXPECT_EQ(im.pixel(299, 119), (std::array<std::uint8_t, 3>{7, 7, 7}));
 }
 
@@ -76,7 +82,7 @@ TEST(CliCompare, BadInputsAreOneLine) {
         {"compare bean --age 20 -o " + d + "/x.obj",
          d + "/x.obj: '.obj': the comparison is a picture (valid: .png)"},
         {"compare bean --age 20 --reference " + d + "/none.png -o " + d + "/x.png",
-         d + "/none.png: cannot open image file"},
+         d + "/none.png: cannot open image file: No such file or directory"},
         {"compare bean --age 20 --panel-size 10 -o " + d + "/x.png",
          "--panel-size = 10: not a panel size (valid: 64 to 4096)"},
     };

@@ -93,7 +93,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
              ".png, "
              ".npz, .xml, .helios.xml, .txt, .csv)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
-         d + "/missing.xml: cannot open plant structure file"},
+         d + "/missing.xml: cannot open plant structure file: No such file or directory"},
         {"convert " + d + "/b.xml", "output is required"},
         {"grow " + d + "/b.xml --days -3 -o " + d + "/x.xml",
          "--days = -3: not a number of days (valid: 0 to 100000)"},
@@ -102,7 +102,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
         {"grow " + d + "/b.xml -o " + d + "/x.xml",
          "--days is required (or --frames for a growth animation)"},
         {"grow " + d + "/missing.xml --days 3 -o " + d + "/x.xml",
-         d + "/missing.xml: cannot open plant structure file"},
+         d + "/missing.xml: cannot open plant structure file: No such file or directory"},
         {"build bean --age 10 --digits 9 -o " + d + "/x.txt",
          "--digits = 9: not a digit count (valid: 1 to 6, or 0 for exact values)"},
     };

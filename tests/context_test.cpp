@@ -73,6 +73,23 @@ TEST(Context, IDsAreNeverReusedAfterDeletion) {
     EXPECT_THROW(ctx.primitiveObject(0), Error);
 }
 
+TEST(Context, SkippedObjectIDsAreIssuedButNeverLive) {
+    Context ctx;
+    const ObjectID first = ctx.addObject(quad());
+    ctx.skipObjectIDs(1000000);  // a million IDs at once, without a million objects
+    EXPECT_EQ(ctx.objectIDLimit(), 1000000u);
+    EXPECT_EQ(ctx.objectCount(), 1u);
+    EXPECT_FALSE(ctx.doesObjectExist(999999));
+    const ObjectID next = ctx.addObject(quad());
+    EXPECT_EQ(next, 1000000u);
+    EXPECT_EQ(ctx.objectIDs(), (std::vector<ObjectID>{first, next}));
+    ctx.skipObjectIDs(10);  // below the limit: nothing changes
+    EXPECT_EQ(ctx.objectIDLimit(), 1000001u);
+    ctx.setObjectData(next, "organ", std::string("leaf"));
+    EXPECT_EQ(ctx.objectDataString(next, "organ"), "leaf");
+    EXPECT_THROW(ctx.skipObjectIDs(0xffffffffu), Error);
+}
+
 TEST(Context, SetObjectMeshKeepsObjectIDAndPrimitiveIDsWhenCountUnchanged) {
     Context ctx;
     ObjectID a = ctx.addObject(quad(1.0f));

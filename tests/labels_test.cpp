@@ -154,6 +154,22 @@ TEST(Labels, ObjShapeNamesSurviveAWriteAndARead) {
     fs::remove_all(d);
 }
 
+// Found by fuzz_obj: a recorded ID far above the Context's issued a dummy object for every
+// ID below it (a million under AddressSanitizer took 13 s). The IDs are now skipped at once.
+TEST(Labels, ObjRecordedHighObjectIDIsKept) {
+    const fs::path d = folder("high");
+    const std::string path = (d / "high.obj").string();
+    std::ofstream(path) << "o a\n# plantarch labels object=900000 plant=2\n"
+                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    Context c;
+    const std::vector<ObjectID> ids = readOBJ(c, path);
+    EXPECT_EQ(ids, std::vector<ObjectID>{900000});
+    EXPECT_EQ(c.objectCount(), 1u);
+    EXPECT_EQ(c.objectIDs(), std::vector<ObjectID>{900000});
+    EXPECT_EQ(c.objectDataInt(900000, "plantID"), 2);
+    fs::remove_all(d);
+}
+
 TEST(Labels, ObjBadLabelValueNamesFileLineAndKey) {
     const fs::path d = folder("bad");
     const std::string path = (d / "bad.obj").string();

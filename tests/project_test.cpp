@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <stdexcept>
 
 #include "error_of.h"
@@ -220,13 +221,16 @@ TEST(Project, GrowingOnGivesThePlantsOfAFreshBuildAtTheLaterAge) {
 TEST(Project, AStoppedBuildLeavesNothing) {
     const Project p = parse(R"({"plantarch_project": 1, "ground": {"size": [2, 2]}, "blocks": [
       {"species": "bean", "count": [4, 4], "age": 30}]})");
-    for (int stopAt : {1, 3}) {
+    // Stopped at the first report, half way (plants copied in already) and at the last.
+    const std::vector<std::function<bool(double)>> stops = {[](double) { return true; },
+                                                            [](double f) { return f >= 0.5; },
+                                                            [](double f) { return f == 1.0; }};
+    for (const auto& stopHere : stops) {
         Context ctx;
         PlantArchitecture arch(&ctx);
-        int calls = 0;
         ProjectBuildOptions o;
-        o.progress = [&](std::string_view, double) {
-            if (++calls == stopAt) throw std::runtime_error("stop");
+        o.progress = [&](std::string_view, double f) {
+            if (stopHere(f)) throw std::runtime_error("stop");
         };
         EXPECT_THROW(buildProject(p, arch, o), std::runtime_error);
         EXPECT_EQ(ctx.objectCount(), 0u);

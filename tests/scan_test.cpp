@@ -249,7 +249,7 @@ TEST(Scan, CommandScansPlantFilesAndObjScenes) {
         {"scan " + xml + " --scanner 1,0,0 --noise 2 -o " + (dir / "x.ply").string(),
          "--noise = 2: not a distance (valid: 0 to 1 m)"},
         {"scan " + (dir / "none.xml").string() + " --scanner 1,0,0 -o " + (dir / "x.ply").string(),
-         (dir / "none.xml").string() + ": cannot open plant structure file"},
+         (dir / "none.xml").string() + ": cannot open plant structure file: No such file or directory"},
     };
     for (const auto& [line, message] : bad) {
         r = cli::run(line);

@@ -134,6 +134,11 @@ public:
     std::size_t vertexCount() const;
     /// One past the largest object ID ever issued (for sizing lookup tables).
     ObjectID objectIDLimit() const;
+    /// Moves objectIDLimit() up to `limit` (nothing when it is there already) as if objects
+    /// with the IDs below it had been added and deleted, so that the next object added gets
+    /// ID `limit` (a file's recorded IDs kept on reading). Throws Error when `limit` is
+    /// beyond the ID space.
+    void skipObjectIDs(ObjectID limit);
 
     ObjectView object(ObjectID id) const;
     PrimitiveRange objectPrimitives(ObjectID id) const;

@@ -227,4 +227,13 @@ std::string encodePNG(const Image& image);
 /// Reads a PNG (or any format stb_image knows) as 8-bit RGB. Throws plantarch::Error.
 Image readImage(const std::string& path);
 
+/// Draws one line of ASCII `text` onto `image` in a plain built-in font (captions, scale-bar
+/// labels), its top-left corner at pixel (x, y), each font unit `scale` pixels square (a
+/// capital letter is 7 units tall and about 5 wide). Pixels outside the image are skipped;
+/// characters outside printable ASCII are drawn as '?'.
+void drawText(Image& image, int x, int y, std::string_view text, int scale,
+              std::array<std::uint8_t, 3> color);
+/// The width and height in pixels that drawText covers for `text` at `scale`.
+std::array<int, 2> textSize(std::string_view text, int scale);
+
 }  // namespace plantarch

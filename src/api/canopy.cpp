@@ -233,7 +233,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             std::vector<GrownPlant> grown(static_cast<std::size_t>(size));
             ParallelErrors errors;
             // Progress after each plant, reported by the calling thread (OpenMP's thread 0):
-            // a callback that throws stops the batch after the plants under way.
+            // a callback that throws stops the batch after the plants under way. The batch's
+            // last plant is reported with the batch, after it is copied in.
             std::atomic<int> finished{0};
             std::atomic<bool> stop{false};
             std::exception_ptr stopped;
@@ -250,7 +251,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                                                      plantObjects(owner.store.plant(id))};
                 });
                 const int done = start + ++finished;
-                if (impl_->progress && omp_get_thread_num() == 0 && done < n && !stopped &&
+                if (impl_->progress && omp_get_thread_num() == 0 && done < end && !stopped &&
                     done >= nextReport) {
                     nextReport = done + std::max(1, n / 100);
                     try {

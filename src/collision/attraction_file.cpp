@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "plantarch/Collision.h"
 #include "plantarch/Error.h"
 
@@ -12,7 +13,7 @@ namespace plantarch {
 
 std::vector<vec3> readAttractionPointsCSV(const std::string& path, const std::string& parameter) {
     std::ifstream in(path);
-    if (!in) throw Error("cannot open attraction point file", {.file = path});
+    if (!in) throw Error(io::cannotOpen("attraction point file"), {.file = path});
     std::vector<vec3> points;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -779,6 +779,11 @@ ObjectID Context::objectIDLimit() const {
     return static_cast<ObjectID>(impl_->objects.size());
 }
 
+void Context::skipObjectIDs(ObjectID limit) {
+    if (limit >= kNone - 1) throw Error("object ID space exhausted");
+    if (limit > impl_->objects.size()) impl_->objects.resize(limit);  // records not alive
+}
+
 ObjectView Context::object(ObjectID id) const {
     const Impl& d = *impl_;
     const ObjectRecord& r = d.record(id, "object");

@@ -2,6 +2,8 @@
 
 #include <sys/stat.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -21,10 +23,17 @@ void rejectDirectory(const std::string& path, std::string_view what) {
         throw Error("is a directory, not " + withArticle(what), {.file = path});
 }
 
+std::string cannotOpen(std::string_view what) {
+    const int err = errno;
+    std::string text = "cannot open " + std::string(what);
+    if (err != 0) text += std::string(": ") + std::strerror(err);
+    return text;
+}
+
 std::string readWholeFile(const std::string& path, std::string_view what) {
     rejectDirectory(path, what);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot open " + std::string(what), {.file = path});
+    if (!in) throw Error(cannotOpen(what), {.file = path});
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) throw Error("cannot read " + std::string(what), {.file = path});

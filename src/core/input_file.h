@@ -13,6 +13,9 @@ std::string withArticle(std::string_view what);
 /// Throws plantarch::Error "is a directory, not a <what>" naming `path` when it is one.
 void rejectDirectory(const std::string& path, std::string_view what);
 
+/// "cannot open <what>: <the system's reason>", from errno as a failed open left it.
+std::string cannotOpen(std::string_view what);
+
 /// The whole content of the file at `path`. Throws plantarch::Error naming `path` when it is
 /// a directory, cannot be opened ("cannot open <what>") or read.
 std::string readWholeFile(const std::string& path, std::string_view what);

@@ -221,14 +221,6 @@ bool recordedIDsFree(const Context& context, const std::vector<const io::ObjLabe
     return !labels.empty();
 }
 
-// Issues and deletes the IDs below `id` that `context` has not issued, so that its next
-// object gets `id`.
-void skipIDsBelow(Context& context, ObjectID id) {
-    std::vector<ObjectID> unused;
-    while (context.objectIDLimit() < id) unused.push_back(context.addObject(Mesh{}));
-    context.deleteObjects(unused);
-}
-
 }  // namespace
 
 // Every vertex line ("v x y z") holds finite numbers: the OBJ parser reads a word such as
@@ -342,7 +334,7 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     for (std::size_t i = 0; i < objects.size(); ++i) {
         const PendingObject& o = objects[i];
         const bool known = o.material >= 0 && std::size_t(o.material) < materialIDs.size();
-        if (sameIDs) skipIDsBelow(context, *labels[i]->object);
+        if (sameIDs) context.skipObjectIDs(*labels[i]->object);
         const ObjectID id = context.addObject(o.mesh, known ? materialIDs[o.material] : plain);
         if (options.storeShapeNames && !o.name->empty()) context.setObjectData(id, "name", *o.name);
         if (labels[i]) io::applyObjLabels(context, id, *labels[i]);

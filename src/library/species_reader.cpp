@@ -687,7 +687,7 @@ std::vector<Error> checkSpeciesFile(const std::string& path) {
     if (std::filesystem::is_directory(path, ec))
         return {Error("is a directory, not a species file", {.file = path})};
     std::ifstream in(path, std::ios::binary);
-    if (!in) return {Error("cannot open species file", {.file = path})};
+    if (!in) return {Error(io::cannotOpen("species file"), {.file = path})};
     std::ostringstream text;
     text << in.rdbuf();
     if (in.bad()) return {Error("cannot read species file", {.file = path})};

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "plantarch/Error.h"
 #include "plantarch/Render.h"
 #include "render/render_internal.h"
@@ -124,7 +125,7 @@ Image readImage(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw Error("is a directory, not an image file", {.file = path});
-    if (!std::ifstream(path)) throw Error("cannot open image file", {.file = path});
+    if (!std::ifstream(path)) throw Error(io::cannotOpen("image file"), {.file = path});
     int w = 0, h = 0, channels = 0;
     std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
     if (!data) {
