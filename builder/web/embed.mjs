@@ -36,7 +36,8 @@ function literalLines(bytes) {
   for (const b of bytes) {
     if (b === 0x22) line += '\\"';
     else if (b === 0x5c) line += '\\\\';
-    else if (b === 0x3f) line += '\\?';  // no "??x" trigraph-like sequences for old compilers
+    else if (b === 0x3f)
+      line += '\\?'; // no "??x" trigraph-like sequences for old compilers
     else if (b >= 0x20 && b < 0x7f) line += String.fromCharCode(b);
     else line += '\\' + b.toString(8).padStart(3, '0');
     if (line.length >= 100) {
@@ -56,7 +57,10 @@ export async function writeAssetsCpp(dir, outFile) {
   const entries = [];
   for (const [i, rel] of files.entries()) {
     const type = contentTypes[path.extname(rel).toLowerCase()];
-    if (!type) throw new Error(`embed.mjs: ${rel}: no content type for '${path.extname(rel)}' (add it to embed.mjs)`);
+    if (!type)
+      throw new Error(
+        `embed.mjs: ${rel}: no content type for '${path.extname(rel)}' (add it to embed.mjs)`,
+      );
     const bytes = await readFile(path.join(dir, rel));
     body += `// ${rel}, ${bytes.length} bytes\nconstexpr char kFile${i}[] =\n    `;
     body += literalLines(bytes).join('\n    ') + ';\n\n';

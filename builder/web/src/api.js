@@ -18,12 +18,18 @@ async function request(method, url, body) {
   try {
     response = await fetch(url, init);
   } catch (e) {
-    throw new ApiError(`the builder's server does not answer (${e.message}): is plantarch builder still running?`, 0);
+    throw new ApiError(
+      `the builder's server does not answer (${e.message}): is plantarch builder still running?`,
+      0,
+    );
   }
   const type = response.headers.get('Content-Type') ?? '';
   const data = type.includes('application/json') ? await response.json() : await response.text();
   if (!response.ok) {
-    const message = typeof data === 'object' && data?.error ? data.error : `${method} ${url}: HTTP ${response.status}`;
+    const message =
+      typeof data === 'object' && data?.error
+        ? data.error
+        : `${method} ${url}: HTTP ${response.status}`;
     throw new ApiError(message, response.status);
   }
   return data;
@@ -37,7 +43,8 @@ export const api = {
   thumbnailUrl: (name) => `/api/species/${enc(name)}/thumbnail.png`,
   checkSpecies: (body) => request('POST', '/api/species/check', body),
   saveSpecies: (body) => request('POST', '/api/species/save', body),
-  startBuild: (project, from) => request('POST', '/api/builds', from ? { project, from } : { project }),
+  startBuild: (project, from) =>
+    request('POST', '/api/builds', from ? { project, from } : { project }),
   build: (id) => request('GET', `/api/builds/${enc(id)}`),
   cancelBuild: (id) => request('DELETE', `/api/builds/${enc(id)}`),
   sceneUrl: (id) => `/api/builds/${enc(id)}/scene.glb`,

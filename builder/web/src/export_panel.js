@@ -24,37 +24,120 @@ export class ExportPanel {
   }
 
   render() {
-    const folder = h('input', { type: 'text', name: 'export-folder', value: this.folder, placeholder: 'exports' });
-    folder.addEventListener('input', () => { this.folder = folder.value; });
+    const folder = h('input', {
+      type: 'text',
+      name: 'export-folder',
+      value: this.folder,
+      placeholder: 'exports',
+    });
+    folder.addEventListener('input', () => {
+      this.folder = folder.value;
+    });
     const name = h('input', { type: 'text', name: 'export-name', value: this.name });
-    name.addEventListener('input', () => { this.name = name.value; });
+    name.addEventListener('input', () => {
+      this.name = name.value;
+    });
     this.result ??= h('div', { id: 'export-result', class: 'export-result' });
     const build = this.app.shownBuild;
-    render(this.container,
-      h('section', { class: 'group' },
+    render(
+      this.container,
+      h(
+        'section',
+        { class: 'group' },
         h('h2', {}, 'Export'),
-        build ? h('p', { class: 'hint' }, `The scene shown: build ${build.id}, ${build.stats?.plants ?? 0} plants at ${build.age ?? '–'} days.`)
+        build
+          ? h(
+              'p',
+              { class: 'hint' },
+              `The scene shown: build ${build.id}, ${build.stats?.plants ?? 0} plants at ${build.age ?? '–'} days.`,
+            )
           : h('p', { class: 'hint' }, 'Build the scene first.'),
-        field('Format', select(FORMATS, this.format, (v) => { this.format = v; }, { name: 'export-format' }), { wide: true }),
-        h('label', { class: 'toggle' }, checkbox(this.perPlant, (v) => { this.perPlant = v; }, { name: 'per-plant' }), 'One file per plant')),
-      h('section', { class: 'group' },
+        field(
+          'Format',
+          select(
+            FORMATS,
+            this.format,
+            (v) => {
+              this.format = v;
+            },
+            { name: 'export-format' },
+          ),
+          { wide: true },
+        ),
+        h(
+          'label',
+          { class: 'toggle' },
+          checkbox(
+            this.perPlant,
+            (v) => {
+              this.perPlant = v;
+            },
+            { name: 'per-plant' },
+          ),
+          'One file per plant',
+        ),
+      ),
+      h(
+        'section',
+        { class: 'group' },
         h('h2', {}, 'Download'),
         h('p', { class: 'hint' }, 'Many files come as one zip.'),
-        h('button', { type: 'button', id: 'export-download', disabled: !build, onclick: () => this.download() }, 'Download')),
-      h('section', { class: 'group' },
+        h(
+          'button',
+          {
+            type: 'button',
+            id: 'export-download',
+            disabled: !build,
+            onclick: () => this.download(),
+          },
+          'Download',
+        ),
+      ),
+      h(
+        'section',
+        { class: 'group' },
         h('h2', {}, 'Into the output folder'),
-        this.app.config?.output ? h('p', { class: 'hint' }, 'Output folder: ', h('code', {}, this.app.config.output)) : null,
-        h('div', { class: 'grid2' },
-          field('Folder', folder, { title: `a folder under the output folder${this.app.config?.output ? ` (${this.app.config.output})` : ''}` }),
-          field('File name', name, { title: 'without extension; one file per plant adds the plant number' })),
-        h('button', { type: 'button', class: 'primary', id: 'export-write', disabled: !build, onclick: () => this.write() }, 'Write files'),
-        this.result));
+        this.app.config?.output
+          ? h('p', { class: 'hint' }, 'Output folder: ', h('code', {}, this.app.config.output))
+          : null,
+        h(
+          'div',
+          { class: 'grid2' },
+          field('Folder', folder, {
+            title: `a folder under the output folder${this.app.config?.output ? ` (${this.app.config.output})` : ''}`,
+          }),
+          field('File name', name, {
+            title: 'without extension; one file per plant adds the plant number',
+          }),
+        ),
+        h(
+          'button',
+          {
+            type: 'button',
+            class: 'primary',
+            id: 'export-write',
+            disabled: !build,
+            onclick: () => this.write(),
+          },
+          'Write files',
+        ),
+        this.result,
+      ),
+    );
   }
 
   download() {
     const build = this.app.shownBuild;
     if (!build) return;
-    const a = h('a', { href: api.downloadUrl({ build: build.id, format: this.format, per_plant: this.perPlant, name: this.name.trim() }), download: '' });
+    const a = h('a', {
+      href: api.downloadUrl({
+        build: build.id,
+        format: this.format,
+        per_plant: this.perPlant,
+        name: this.name.trim(),
+      }),
+      download: '',
+    });
     document.body.append(a);
     a.click();
     a.remove();
@@ -67,11 +150,22 @@ export class ExportPanel {
     render(this.result, h('p', { class: 'hint' }, 'Writing…'));
     try {
       const { files } = await api.exportFiles({
-        build: build.id, format: this.format, per_plant: this.perPlant, folder: this.folder.trim(), name: this.name.trim() || 'scene',
+        build: build.id,
+        format: this.format,
+        per_plant: this.perPlant,
+        folder: this.folder.trim(),
+        name: this.name.trim() || 'scene',
       });
       this.result.dataset.state = 'done';
-      render(this.result, h('p', {}, `Wrote ${files.length} file${files.length === 1 ? '' : 's'}:`),
-        h('ul', { class: 'file-list' }, files.map((f) => h('li', {}, h('code', {}, f)))));
+      render(
+        this.result,
+        h('p', {}, `Wrote ${files.length} file${files.length === 1 ? '' : 's'}:`),
+        h(
+          'ul',
+          { class: 'file-list' },
+          files.map((f) => h('li', {}, h('code', {}, f))),
+        ),
+      );
       toast(`Wrote ${files.length} file${files.length === 1 ? '' : 's'} under the output folder`);
     } catch (e) {
       this.result.dataset.state = 'error';

@@ -20,8 +20,14 @@ export const ORGAN_COLORS = {
 const NONE = [150, 150, 150];
 
 const COMPONENT_ARRAYS = {
-  INT8: Int8Array, UINT8: Uint8Array, INT16: Int16Array, UINT16: Uint16Array,
-  INT32: Int32Array, UINT32: Uint32Array, FLOAT32: Float32Array, FLOAT64: Float64Array,
+  INT8: Int8Array,
+  UINT8: Uint8Array,
+  INT16: Int16Array,
+  UINT16: Uint16Array,
+  INT32: Int32Array,
+  UINT32: Uint32Array,
+  FLOAT32: Float32Array,
+  FLOAT64: Float64Array,
 };
 
 /**
@@ -39,7 +45,10 @@ export async function readPropertyTable(gltf) {
   const columns = {};
   for (const [name, prop] of Object.entries(table.properties)) {
     const def = cls?.properties?.[name];
-    const type = def?.type === 'ENUM' ? ext.schema.enums[def.enumType].valueType ?? 'UINT16' : def?.componentType;
+    const type =
+      def?.type === 'ENUM'
+        ? (ext.schema.enums[def.enumType].valueType ?? 'UINT16')
+        : def?.componentType;
     const Array_ = COMPONENT_ARRAYS[type];
     if (!Array_) continue;
     const buffer = await gltf.parser.getDependency('bufferView', prop.values);
@@ -64,7 +73,13 @@ export function indexColor(i) {
 }
 
 // A perceptually even ramp (dark blue, teal, green, yellow) for ages.
-const RAMP = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+const RAMP = [
+  [68, 1, 84],
+  [59, 82, 139],
+  [33, 145, 140],
+  [94, 201, 98],
+  [253, 231, 37],
+];
 export function rampColor(t) {
   const x = Math.max(0, Math.min(1, t)) * (RAMP.length - 1);
   const i = Math.min(RAMP.length - 2, Math.floor(x));
@@ -92,38 +107,58 @@ export function colorScheme(mode, table) {
     const name = (row) => table.organNames[c.organ[row]] ?? 'unlabelled';
     return {
       color: (row) => ORGAN_COLORS[name(row)] ?? NONE,
-      legend: [...used].sort((a, b) => a - b).map((o) => ({
-        label: (table.organNames[o] ?? 'unlabelled').replace('_', ' '),
-        color: ORGAN_COLORS[table.organNames[o]] ?? NONE,
-      })),
+      legend: [...used]
+        .sort((a, b) => a - b)
+        .map((o) => ({
+          label: (table.organNames[o] ?? 'unlabelled').replace('_', ' '),
+          color: ORGAN_COLORS[table.organNames[o]] ?? NONE,
+        })),
     };
   }
   if (mode === 'plant') {
     const plants = [...new Set(c.plant)].filter((p) => p >= 0).sort((a, b) => a - b);
     return {
       color: (row) => indexColor(c.plant[row]),
-      legend: [{ label: `${plants.length} plants, one colour each`, color: indexColor(plants[0] ?? 0) },
-        { label: 'not a plant', color: NONE }],
+      legend: [
+        { label: `${plants.length} plants, one colour each`, color: indexColor(plants[0] ?? 0) },
+        { label: 'not a plant', color: NONE },
+      ],
     };
   }
   if (mode === 'leaf') {
     return {
       color: (row) => (c.leaf[row] < 0 ? NONE : indexColor(c.leaf[row] * 7919 + c.plant[row] * 31)),
-      legend: [{ label: 'one colour per leaf', color: indexColor(3) }, { label: 'not a leaf', color: NONE }],
+      legend: [
+        { label: 'one colour per leaf', color: indexColor(3) },
+        { label: 'not a leaf', color: NONE },
+      ],
     };
   }
   if (mode === 'rank') {
     const ranks = [...new Set(c.rank)].filter((r) => r >= 0).sort((a, b) => a - b);
     return {
       color: (row) => indexColor(c.rank[row]),
-      legend: [...ranks.map((r) => ({ label: r === 0 ? 'rank 0 (base stem)' : `rank ${r}`, color: indexColor(r) })),
-        { label: 'no shoot', color: NONE }],
+      legend: [
+        ...ranks.map((r) => ({
+          label: r === 0 ? 'rank 0 (base stem)' : `rank ${r}`,
+          color: indexColor(r),
+        })),
+        { label: 'no shoot', color: NONE },
+      ],
     };
   }
   // age
-  let min = Infinity, max = -Infinity;
-  for (const a of c.age) if (a >= 0) { min = Math.min(min, a); max = Math.max(max, a); }
-  if (!Number.isFinite(min)) { min = 0; max = 1; }
+  let min = Infinity,
+    max = -Infinity;
+  for (const a of c.age)
+    if (a >= 0) {
+      min = Math.min(min, a);
+      max = Math.max(max, a);
+    }
+  if (!Number.isFinite(min)) {
+    min = 0;
+    max = 1;
+  }
   const span = max - min || 1;
   return {
     color: (row) => (c.age[row] < 0 ? NONE : rampColor((c.age[row] - min) / span)),

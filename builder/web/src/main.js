@@ -17,7 +17,10 @@ const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 // The project without its ages: two projects with equal keys differ only by age, so the later
 // one can be grown from the earlier one's build ("from").
 function growthKey(projectFile) {
-  return JSON.stringify({ ...projectFile, blocks: projectFile.blocks.map(({ age, ...rest }) => rest) });
+  return JSON.stringify({
+    ...projectFile,
+    blocks: projectFile.blocks.map(({ age, ...rest }) => rest),
+  });
 }
 
 class App {
@@ -25,8 +28,8 @@ class App {
     this.project = defaultProject();
     this.species = [];
     this.details = new Map();
-    this.current = null;     // the build in progress: {id, state, ...}
-    this.shownBuild = null;  // the build in the view: {id, stats, age, key, project}
+    this.current = null; // the build in progress: {id, state, ...}
+    this.shownBuild = null; // the build in the view: {id, stats, age, key, project}
     this.autoBuild = true;
     this.playing = false;
     this.buildTimer = null;
@@ -34,10 +37,34 @@ class App {
   }
 
   layout(root) {
-    const tab = (id, label) => h('button', { type: 'button', class: 'tab', role: 'tab', dataset: { tab: id }, onclick: () => this.showTab(id) }, label);
-    this.nameInput = h('input', { type: 'text', id: 'project-name', value: this.project.name, title: 'Project name', spellcheck: false });
-    this.nameInput.addEventListener('change', () => { this.project.name = this.nameInput.value.trim() || 'untitled'; });
-    this.uploadInput = h('input', { type: 'file', accept: '.json,application/json', hidden: true, id: 'project-upload' });
+    const tab = (id, label) =>
+      h(
+        'button',
+        {
+          type: 'button',
+          class: 'tab',
+          role: 'tab',
+          dataset: { tab: id },
+          onclick: () => this.showTab(id),
+        },
+        label,
+      );
+    this.nameInput = h('input', {
+      type: 'text',
+      id: 'project-name',
+      value: this.project.name,
+      title: 'Project name',
+      spellcheck: false,
+    });
+    this.nameInput.addEventListener('change', () => {
+      this.project.name = this.nameInput.value.trim() || 'untitled';
+    });
+    this.uploadInput = h('input', {
+      type: 'file',
+      accept: '.json,application/json',
+      hidden: true,
+      id: 'project-upload',
+    });
     this.uploadInput.addEventListener('change', () => this.upload());
 
     this.panels = {
@@ -54,58 +81,234 @@ class App {
     this.viewport = h('div', { class: 'viewport', id: 'viewport' });
     this.legend = h('div', { class: 'legend', hidden: true, id: 'legend' });
     this.pickInfo = h('div', { class: 'pick-info', hidden: true });
-    this.emptyState = h('div', { class: 'empty-state' }, h('p', {}, 'Build the scene to see it here.'));
+    this.emptyState = h(
+      'div',
+      { class: 'empty-state' },
+      h('p', {}, 'Build the scene to see it here.'),
+    );
     this.statsPanel = h('div', { class: 'stats', id: 'stats' });
-    this.previewImg = h('img', { id: 'preview-image', alt: "the scene drawn by plantarch's renderer" });
-    this.preview = h('div', { class: 'preview', hidden: true }, this.previewImg, h('p', { class: 'preview-caption' }, "plantarch's own renderer"));
-    this.colorSelect = select(COLOR_MODES, 'natural', (m) => this.viewer.setMode(m), { id: 'color-mode', title: 'Colour by' });
+    this.previewImg = h('img', {
+      id: 'preview-image',
+      alt: "the scene drawn by plantarch's renderer",
+    });
+    this.preview = h(
+      'div',
+      { class: 'preview', hidden: true },
+      this.previewImg,
+      h('p', { class: 'preview-caption' }, "plantarch's own renderer"),
+    );
+    this.colorSelect = select(COLOR_MODES, 'natural', (m) => this.viewer.setMode(m), {
+      id: 'color-mode',
+      title: 'Colour by',
+    });
 
-    this.buildButton = h('button', { type: 'button', class: 'primary', id: 'build', onclick: () => this.build() }, 'Build');
-    this.cancelButton = h('button', { type: 'button', id: 'cancel', disabled: true, onclick: () => this.cancel() }, 'Cancel');
+    this.buildButton = h(
+      'button',
+      { type: 'button', class: 'primary', id: 'build', onclick: () => this.build() },
+      'Build',
+    );
+    this.cancelButton = h(
+      'button',
+      { type: 'button', id: 'cancel', disabled: true, onclick: () => this.cancel() },
+      'Cancel',
+    );
     this.progressBar = h('div', { class: 'progress-fill' });
     this.progressText = h('span', { class: 'progress-text' }, 'Ready');
-    this.buildStatus = h('div', { class: 'build-status', id: 'build-status', dataset: { state: 'idle' } },
-      h('div', { class: 'progress' }, this.progressBar), this.progressText);
+    this.buildStatus = h(
+      'div',
+      { class: 'build-status', id: 'build-status', dataset: { state: 'idle' } },
+      h('div', { class: 'progress' }, this.progressBar),
+      this.progressText,
+    );
     this.buildError = h('div', { class: 'build-error', id: 'build-error', hidden: true });
     const auto = h('input', { type: 'checkbox', id: 'auto-build', checked: true });
-    auto.addEventListener('change', () => { this.autoBuild = auto.checked; });
-    this.playButton = h('button', { type: 'button', class: 'icon play', id: 'play', title: 'Grow day by day', onclick: () => this.togglePlay() }, icon('play'));
-    this.ageSlider = h('input', { type: 'range', id: 'age-slider', min: 0, max: 100, step: 1, value: 40 });
+    auto.addEventListener('change', () => {
+      this.autoBuild = auto.checked;
+    });
+    this.playButton = h(
+      'button',
+      {
+        type: 'button',
+        class: 'icon play',
+        id: 'play',
+        title: 'Grow day by day',
+        onclick: () => this.togglePlay(),
+      },
+      icon('play'),
+    );
+    this.ageSlider = h('input', {
+      type: 'range',
+      id: 'age-slider',
+      min: 0,
+      max: 100,
+      step: 1,
+      value: 40,
+    });
     this.ageLabel = h('span', { class: 'age-label', id: 'age-label' }, '40 d');
-    this.ageSlider.addEventListener('input', () => { this.ageLabel.textContent = `${this.ageSlider.value} d`; });
+    this.ageSlider.addEventListener('input', () => {
+      this.ageLabel.textContent = `${this.ageSlider.value} d`;
+    });
     this.ageSlider.addEventListener('change', () => this.setSceneAge(Number(this.ageSlider.value)));
 
-    render(root,
-      h('header', { class: 'topbar' },
-        h('div', { class: 'brand' }, h('img', { src: '/favicon.svg', alt: '', width: 22, height: 22 }), h('span', {}, 'plantarch'), h('span', { class: 'brand-sub' }, 'builder')),
-        h('div', { class: 'project-controls' },
+    render(
+      root,
+      h(
+        'header',
+        { class: 'topbar' },
+        h(
+          'div',
+          { class: 'brand' },
+          h('img', { src: '/favicon.svg', alt: '', width: 22, height: 22 }),
+          h('span', {}, 'plantarch'),
+          h('span', { class: 'brand-sub' }, 'builder'),
+        ),
+        h(
+          'div',
+          { class: 'project-controls' },
           this.nameInput,
-          h('button', { type: 'button', onclick: () => this.newProject(), title: 'A new project with one block' }, 'New'),
-          h('button', { type: 'button', id: 'project-open', onclick: () => this.openDialog() }, 'Open…'),
-          h('button', { type: 'button', id: 'project-save', onclick: () => this.saveProject(), title: 'Save into projects/ under the output folder' }, 'Save'),
-          h('button', { type: 'button', id: 'project-download', onclick: () => this.downloadProject(), title: 'Download the project file (JSON)' }, 'Download'),
-          h('button', { type: 'button', id: 'project-upload-button', onclick: () => this.uploadInput.click(), title: 'Load a project file (JSON)' }, 'Upload'),
-          this.uploadInput)),
-      h('main', { class: 'layout' },
-        h('aside', { class: 'sidebar' },
-          h('nav', { class: 'tabs', role: 'tablist' }, tab('scene', 'Scene'), tab('environment', 'Environment'), tab('species', 'Species'), tab('export', 'Export')),
-          Object.values(this.panels)),
-        h('section', { class: 'stage' },
-          h('div', { class: 'stage-bar' },
-            h('div', { class: 'segmented', role: 'tablist' },
-              h('button', { type: 'button', class: 'seg active', dataset: { view: '3d' }, id: 'show-3d', onclick: () => this.showView('3d') }, '3D view'),
-              h('button', { type: 'button', class: 'seg', dataset: { view: 'preview' }, id: 'show-preview', onclick: () => this.showView('preview') }, 'Rendered preview')),
+          h(
+            'button',
+            {
+              type: 'button',
+              onclick: () => this.newProject(),
+              title: 'A new project with one block',
+            },
+            'New',
+          ),
+          h(
+            'button',
+            { type: 'button', id: 'project-open', onclick: () => this.openDialog() },
+            'Open…',
+          ),
+          h(
+            'button',
+            {
+              type: 'button',
+              id: 'project-save',
+              onclick: () => this.saveProject(),
+              title: 'Save into projects/ under the output folder',
+            },
+            'Save',
+          ),
+          h(
+            'button',
+            {
+              type: 'button',
+              id: 'project-download',
+              onclick: () => this.downloadProject(),
+              title: 'Download the project file (JSON)',
+            },
+            'Download',
+          ),
+          h(
+            'button',
+            {
+              type: 'button',
+              id: 'project-upload-button',
+              onclick: () => this.uploadInput.click(),
+              title: 'Load a project file (JSON)',
+            },
+            'Upload',
+          ),
+          this.uploadInput,
+        ),
+      ),
+      h(
+        'main',
+        { class: 'layout' },
+        h(
+          'aside',
+          { class: 'sidebar' },
+          h(
+            'nav',
+            { class: 'tabs', role: 'tablist' },
+            tab('scene', 'Scene'),
+            tab('environment', 'Environment'),
+            tab('species', 'Species'),
+            tab('export', 'Export'),
+          ),
+          Object.values(this.panels),
+        ),
+        h(
+          'section',
+          { class: 'stage' },
+          h(
+            'div',
+            { class: 'stage-bar' },
+            h(
+              'div',
+              { class: 'segmented', role: 'tablist' },
+              h(
+                'button',
+                {
+                  type: 'button',
+                  class: 'seg active',
+                  dataset: { view: '3d' },
+                  id: 'show-3d',
+                  onclick: () => this.showView('3d'),
+                },
+                '3D view',
+              ),
+              h(
+                'button',
+                {
+                  type: 'button',
+                  class: 'seg',
+                  dataset: { view: 'preview' },
+                  id: 'show-preview',
+                  onclick: () => this.showView('preview'),
+                },
+                'Rendered preview',
+              ),
+            ),
             h('label', { class: 'inline' }, 'Colour by', this.colorSelect),
-            h('button', { type: 'button', class: 'small', title: 'Frame the whole scene', onclick: () => this.viewer.frame() }, 'Frame')),
-          h('div', { class: 'stage-main' }, this.viewport, this.preview, this.emptyState, this.legend, this.pickInfo, this.statsPanel),
-          h('footer', { class: 'buildbar' },
-            h('div', { class: 'build-controls' }, this.buildButton, this.cancelButton,
-              h('label', { class: 'toggle', title: 'Build after each change' }, auto, 'Auto')),
+            h(
+              'button',
+              {
+                type: 'button',
+                class: 'small',
+                title: 'Frame the whole scene',
+                onclick: () => this.viewer.frame(),
+              },
+              'Frame',
+            ),
+          ),
+          h(
+            'div',
+            { class: 'stage-main' },
+            this.viewport,
+            this.preview,
+            this.emptyState,
+            this.legend,
+            this.pickInfo,
+            this.statsPanel,
+          ),
+          h(
+            'footer',
+            { class: 'buildbar' },
+            h(
+              'div',
+              { class: 'build-controls' },
+              this.buildButton,
+              this.cancelButton,
+              h('label', { class: 'toggle', title: 'Build after each change' }, auto, 'Auto'),
+            ),
             this.buildStatus,
-            h('div', { class: 'growth' }, this.playButton, h('span', { class: 'growth-label' }, 'Age'), this.ageSlider, this.ageLabel)),
-          this.buildError)),
+            h(
+              'div',
+              { class: 'growth' },
+              this.playButton,
+              h('span', { class: 'growth-label' }, 'Age'),
+              this.ageSlider,
+              this.ageLabel,
+            ),
+          ),
+          this.buildError,
+        ),
+      ),
       h('div', { id: 'toast', class: 'toast' }),
-      this.openDialogEl = h('dialog', { class: 'dialog', id: 'open-dialog' }));
+      (this.openDialogEl = h('dialog', { class: 'dialog', id: 'open-dialog' })),
+    );
 
     this.viewer = new Viewer(this.viewport);
     this.viewer.onLegend = (scheme) => this.showLegend(scheme);
@@ -150,7 +353,8 @@ class App {
   showTab(id) {
     this.tab = id;
     for (const [name, el] of Object.entries(this.panels)) el.hidden = name !== id;
-    for (const t of document.querySelectorAll('.tab')) t.classList.toggle('active', t.dataset.tab === id);
+    for (const t of document.querySelectorAll('.tab'))
+      t.classList.toggle('active', t.dataset.tab === id);
     if (id === 'species') this.openSpeciesEditor();
     if (id === 'export') this.exportPanel.render();
   }
@@ -173,12 +377,14 @@ class App {
   openSpeciesEditor() {
     const block = this.selectedBlock();
     const name = block?.species ?? this.species[0]?.name;
-    if (name && this.speciesEditor.base !== name && !this.speciesEditor.changes.size) this.speciesEditor.open(name);
+    if (name && this.speciesEditor.base !== name && !this.speciesEditor.changes.size)
+      this.speciesEditor.open(name);
     else if (!this.speciesEditor.detail && name) this.speciesEditor.open(name);
   }
 
   showView(view) {
-    for (const b of document.querySelectorAll('.seg')) b.classList.toggle('active', b.dataset.view === view);
+    for (const b of document.querySelectorAll('.seg'))
+      b.classList.toggle('active', b.dataset.view === view);
     this.view = view;
     this.viewport.hidden = view !== '3d';
     this.preview.hidden = view !== 'preview';
@@ -196,8 +402,12 @@ class App {
     if (this.previewImg.dataset.src === src) return;
     this.previewImg.dataset.src = src;
     this.preview.dataset.state = 'loading';
-    this.previewImg.onload = () => { this.preview.dataset.state = 'done'; };
-    this.previewImg.onerror = () => { this.preview.dataset.state = 'error'; };
+    this.previewImg.onload = () => {
+      this.preview.dataset.state = 'done';
+    };
+    this.previewImg.onerror = () => {
+      this.preview.dataset.state = 'error';
+    };
     this.previewImg.src = src;
   }
 
@@ -212,7 +422,9 @@ class App {
   }
 
   markStale() {
-    const stale = this.shownBuild && JSON.stringify(toProjectFile(this.project)) !== JSON.stringify(this.shownBuild.project);
+    const stale =
+      this.shownBuild &&
+      JSON.stringify(toProjectFile(this.project)) !== JSON.stringify(this.shownBuild.project);
     this.statsPanel.classList.toggle('stale', !!stale);
     this.syncSlider();
   }
@@ -220,7 +432,8 @@ class App {
   setStatus(state, text, progress) {
     this.buildStatus.dataset.state = state;
     this.progressText.textContent = text;
-    if (progress !== undefined) this.progressBar.style.width = `${Math.round(Math.max(0, Math.min(1, progress)) * 100)}%`;
+    if (progress !== undefined)
+      this.progressBar.style.width = `${Math.round(Math.max(0, Math.min(1, progress)) * 100)}%`;
     const busy = state === 'queued' || state === 'running' || state === 'loading';
     this.cancelButton.disabled = !busy;
     this.buildStatus.classList.toggle('busy', busy);
@@ -264,9 +477,16 @@ class App {
         status = await api.build(id);
         if (this.current !== ticket) return false;
         ticket.state = status.state;
-        if (status.state === 'done' || status.state === 'failed' || status.state === 'cancelled') break;
-        const stage = status.stage ? status.stage.charAt(0).toUpperCase() + status.stage.slice(1) : 'Queued';
-        this.setStatus(status.state, `${stage}… ${Math.round((status.progress ?? 0) * 100)}%`, status.progress ?? 0);
+        if (status.state === 'done' || status.state === 'failed' || status.state === 'cancelled')
+          break;
+        const stage = status.stage
+          ? status.stage.charAt(0).toUpperCase() + status.stage.slice(1)
+          : 'Queued';
+        this.setStatus(
+          status.state,
+          `${stage}… ${Math.round((status.progress ?? 0) * 100)}%`,
+          status.progress ?? 0,
+        );
         await sleep(POLL_MS);
       }
     } catch (e) {
@@ -294,7 +514,13 @@ class App {
       return false;
     }
     if (this.current !== ticket) return false;
-    this.shownBuild = { id: ticket.id, stats: status.stats, age: status.ages?.[0] ?? project.blocks[0]?.age, project, key: growthKey(project) };
+    this.shownBuild = {
+      id: ticket.id,
+      stats: status.stats,
+      age: status.ages?.[0] ?? project.blocks[0]?.age,
+      project,
+      key: growthKey(project),
+    };
     this.emptyState.hidden = true;
     this.renderStats();
     this.markStale();
@@ -316,18 +542,41 @@ class App {
 
   renderStats() {
     const s = this.shownBuild?.stats;
-    const row = (label, id, value, unit, raw) => h('div', { class: 'stat' },
-      h('dt', {}, label),
-      h('dd', { id, dataset: { value: raw ?? '' } }, value, unit ? h('span', { class: 'unit' }, unit) : null));
-    render(this.statsPanel,
-      h('h3', {}, 'Statistics', h('span', { class: 'stale-note', title: 'The project changed since this build' }, 'not built yet')),
-      h('dl', {},
+    const row = (label, id, value, unit, raw) =>
+      h(
+        'div',
+        { class: 'stat' },
+        h('dt', {}, label),
+        h(
+          'dd',
+          { id, dataset: { value: raw ?? '' } },
+          value,
+          unit ? h('span', { class: 'unit' }, unit) : null,
+        ),
+      );
+    render(
+      this.statsPanel,
+      h(
+        'h3',
+        {},
+        'Statistics',
+        h(
+          'span',
+          { class: 'stale-note', title: 'The project changed since this build' },
+          'not built yet',
+        ),
+      ),
+      h(
+        'dl',
+        {},
         row('Plants', 'stat-plants', s ? fmt(s.plants, 0) : '–', '', s?.plants),
         row('Triangles', 'stat-triangles', s ? fmt(s.triangles, 0) : '–', '', s?.triangles),
         row('Height', 'stat-height', s ? fmt(s.height, 3) : '–', 'm', s?.height),
         row('Leaf area', 'stat-leaf-area', s ? fmt(s.leaf_area, 3) : '–', 'm²', s?.leaf_area),
         row('Leaves', 'stat-leaf-count', s ? fmt(s.leaf_count, 0) : '–', '', s?.leaf_count),
-        row('Objects', 'stat-objects', s ? fmt(s.objects, 0) : '–', '', s?.objects)));
+        row('Objects', 'stat-objects', s ? fmt(s.objects, 0) : '–', '', s?.objects),
+      ),
+    );
   }
 
   showLegend(scheme) {
@@ -336,12 +585,25 @@ class App {
       this.legend.hidden = true;
       return;
     }
-    const swatch = (c) => h('span', { class: 'swatch', style: { background: `rgb(${c.map(Math.round).join(',')})` } });
+    const swatch = (c) =>
+      h('span', { class: 'swatch', style: { background: `rgb(${c.map(Math.round).join(',')})` } });
     if (scheme.ramp) {
-      render(this.legend, h('div', { class: 'ramp' }), h('div', { class: 'ramp-labels' },
-        h('span', {}, `${fmt(scheme.ramp.min, 1)} d`), h('span', {}, 'organ age'), h('span', {}, `${fmt(scheme.ramp.max, 1)} d`)));
+      render(
+        this.legend,
+        h('div', { class: 'ramp' }),
+        h(
+          'div',
+          { class: 'ramp-labels' },
+          h('span', {}, `${fmt(scheme.ramp.min, 1)} d`),
+          h('span', {}, 'organ age'),
+          h('span', {}, `${fmt(scheme.ramp.max, 1)} d`),
+        ),
+      );
     } else {
-      render(this.legend, scheme.legend.map((e) => h('div', { class: 'legend-row' }, swatch(e.color), e.label)));
+      render(
+        this.legend,
+        scheme.legend.map((e) => h('div', { class: 'legend-row' }, swatch(e.color), e.label)),
+      );
     }
     this.legend.hidden = this.view === 'preview';
   }
@@ -393,7 +655,10 @@ class App {
     this.ageLabel.textContent = `${fmt(age, 1)} d`;
     const project = toProjectFile(this.project);
     const shown = this.shownBuild;
-    const grows = shown && !shown.consumed && shown.key === growthKey(project) &&
+    const grows =
+      shown &&
+      !shown.consumed &&
+      shown.key === growthKey(project) &&
       project.blocks.every((b, i) => b.age >= shown.project.blocks[i].age);
     this.markStale();
     return this.build(grows ? { from: shown.id } : {});
@@ -459,7 +724,10 @@ class App {
 
   downloadProject() {
     const text = `${JSON.stringify(toProjectFile(this.project), null, 2)}\n`;
-    download(new Blob([text], { type: 'application/json' }), `${this.project.name || 'project'}.json`);
+    download(
+      new Blob([text], { type: 'application/json' }),
+      `${this.project.name || 'project'}.json`,
+    );
   }
 
   async upload() {
@@ -489,8 +757,12 @@ class App {
     try {
       names = await api.projects();
     } catch (e) {
-      render(dialog, h('h2', {}, 'Open a project'), h('p', { class: 'error-text' }, e.message),
-        h('button', { type: 'button', onclick: () => dialog.close() }, 'Close'));
+      render(
+        dialog,
+        h('h2', {}, 'Open a project'),
+        h('p', { class: 'error-text' }, e.message),
+        h('button', { type: 'button', onclick: () => dialog.close() }, 'Close'),
+      );
       return;
     }
     const open = async (name) => {
@@ -501,14 +773,40 @@ class App {
         toast(`${name}: ${e.message}`, 'error');
       }
     };
-    render(dialog, h('h2', {}, 'Open a project'),
-      names.length ? h('ul', { class: 'project-list' }, names.map((n) => h('li', {},
-        h('button', { type: 'button', class: 'link', dataset: { project: n }, onclick: () => open(n) }, n))))
+    render(
+      dialog,
+      h('h2', {}, 'Open a project'),
+      names.length
+        ? h(
+            'ul',
+            { class: 'project-list' },
+            names.map((n) =>
+              h(
+                'li',
+                {},
+                h(
+                  'button',
+                  {
+                    type: 'button',
+                    class: 'link',
+                    dataset: { project: n },
+                    onclick: () => open(n),
+                  },
+                  n,
+                ),
+              ),
+            ),
+          )
         : h('p', { class: 'hint' }, 'No saved projects in the output folder yet.'),
-      h('div', { class: 'dialog-actions' }, h('button', { type: 'button', onclick: () => dialog.close() }, 'Close')));
+      h(
+        'div',
+        { class: 'dialog-actions' },
+        h('button', { type: 'button', onclick: () => dialog.close() }, 'Close'),
+      ),
+    );
   }
 }
 
 const app = new App(document.getElementById('app'));
-window.plantarchBuilder = app;  // for the end-to-end tests and the curious
+window.plantarchBuilder = app; // for the end-to-end tests and the curious
 app.start().then(() => app.build());

@@ -10,13 +10,13 @@ export function defaultBlock(index = 0, species = 'bean') {
     species,
     layout: 'grid',
     origin: [0, 0, 0],
-    count: [3, 3],        // grid: plants along x and y
-    spacing: [0.3, 0.3],  // grid: m
-    plants: 12,           // scatter: positions drawn
-    area: [1.5, 1.5],     // scatter: m
+    count: [3, 3], // grid: plants along x and y
+    spacing: [0.3, 0.3], // grid: m
+    plants: 12, // scatter: positions drawn
+    area: [1.5, 1.5], // scatter: m
     germination: 1,
     age: 40,
-    seed: null,           // null: the project's seed
+    seed: null, // null: the project's seed
     parameters: {},
     trellis: true,
   };
@@ -25,7 +25,8 @@ export function defaultBlock(index = 0, species = 'bean') {
 /** "A", "B", ... "Z", "AA", ... */
 export function blockName(index) {
   let name = '';
-  for (let i = index + 1; i > 0; i = Math.floor((i - 1) / 26)) name = String.fromCharCode(65 + ((i - 1) % 26)) + name;
+  for (let i = index + 1; i > 0; i = Math.floor((i - 1) / 26))
+    name = String.fromCharCode(65 + ((i - 1) % 26)) + name;
   return name;
 }
 
@@ -45,7 +46,12 @@ export function defaultProject() {
 
 /** The project file (JSON value) of the editor's project. */
 export function toProjectFile(p) {
-  const out = { plantarch_project: PROJECT_VERSION, name: p.name, seed: p.seed, mesh_detail: p.mesh_detail };
+  const out = {
+    plantarch_project: PROJECT_VERSION,
+    name: p.name,
+    seed: p.seed,
+    mesh_detail: p.mesh_detail,
+  };
   out.ground = p.ground.enabled ? { size: [...p.ground.size], center: [...p.ground.center] } : null;
   out.soft_collision = { enabled: p.soft_collision.enabled, cone: [...p.soft_collision.cone] };
   out.obstacles = {
@@ -85,19 +91,29 @@ function blockToFile(b) {
  * what the editor cannot hold; the server checks everything else when the project is built.
  */
 export function fromProjectFile(json) {
-  if (typeof json !== 'object' || json === null || Array.isArray(json)) throw new Error('the project file is not a JSON object');
+  if (typeof json !== 'object' || json === null || Array.isArray(json))
+    throw new Error('the project file is not a JSON object');
   if (json.plantarch_project !== PROJECT_VERSION) {
-    throw new Error(`plantarch_project = ${JSON.stringify(json.plantarch_project)}: not a plantarch project file of version ${PROJECT_VERSION}`);
+    throw new Error(
+      `plantarch_project = ${JSON.stringify(json.plantarch_project)}: not a plantarch project file of version ${PROJECT_VERSION}`,
+    );
   }
   const p = defaultProject();
   if (typeof json.name === 'string') p.name = json.name;
   if (Number.isFinite(json.seed)) p.seed = json.seed;
   if (Number.isFinite(json.mesh_detail)) p.mesh_detail = json.mesh_detail;
   p.ground = json.ground
-    ? { enabled: true, size: [...(json.ground.size ?? [4, 4])], center: [...(json.ground.center ?? [0, 0])] }
+    ? {
+        enabled: true,
+        size: [...(json.ground.size ?? [4, 4])],
+        center: [...(json.ground.center ?? [0, 0])],
+      }
     : { enabled: false, size: [4, 4], center: [0, 0] };
   if (json.soft_collision) {
-    p.soft_collision = { enabled: !!json.soft_collision.enabled, cone: [...(json.soft_collision.cone ?? p.soft_collision.cone)] };
+    p.soft_collision = {
+      enabled: !!json.soft_collision.enabled,
+      cone: [...(json.soft_collision.cone ?? p.soft_collision.cone)],
+    };
   }
   if (json.obstacles) {
     p.obstacles = {

@@ -18,28 +18,86 @@ export class ScenePanel {
 
   render() {
     this.selected = Math.min(this.selected, this.blocks.length - 1);
-    render(this.container,
-      h('div', { class: 'panel-head' },
+    render(
+      this.container,
+      h(
+        'div',
+        { class: 'panel-head' },
         h('h2', {}, 'Blocks'),
-        h('button', { type: 'button', class: 'small', id: 'add-block', onclick: () => this.add() }, '+ Add block')),
-      h('div', { class: 'block-list' }, this.blocks.map((b, i) => this.card(b, i))),
-      this.blocks.length ? null : h('p', { class: 'hint' }, 'No blocks: add one to place plants.'));
+        h(
+          'button',
+          { type: 'button', class: 'small', id: 'add-block', onclick: () => this.add() },
+          '+ Add block',
+        ),
+      ),
+      h(
+        'div',
+        { class: 'block-list' },
+        this.blocks.map((b, i) => this.card(b, i)),
+      ),
+      this.blocks.length ? null : h('p', { class: 'hint' }, 'No blocks: add one to place plants.'),
+    );
   }
 
   card(b, i) {
     const open = i === this.selected;
     const summary = h('span', { class: 'block-summary' }, this.summary(b));
-    const head = h('div', { class: 'block-head', onclick: () => { this.selected = open ? -1 : i; this.render(); } },
+    const head = h(
+      'div',
+      {
+        class: 'block-head',
+        onclick: () => {
+          this.selected = open ? -1 : i;
+          this.render();
+        },
+      },
       h('span', { class: 'block-name' }, b.name),
       h('span', { class: 'block-species' }, this.speciesName(b.species)),
       summary,
-      h('span', { class: 'block-actions' },
-        h('button', { type: 'button', class: 'icon', title: 'Duplicate block', dataset: { action: 'duplicate' },
-          onclick: (e) => { e.stopPropagation(); this.duplicate(i); } }, icon('copy')),
-        h('button', { type: 'button', class: 'icon danger', title: 'Delete block', dataset: { action: 'delete' },
-          onclick: (e) => { e.stopPropagation(); this.remove(i); } }, icon('trash'))));
-    const card = h('div', { class: open ? 'block-card open' : 'block-card', dataset: { block: b.name } }, head);
-    if (open) card.append(this.editor(b, () => { summary.textContent = this.summary(b); }));
+      h(
+        'span',
+        { class: 'block-actions' },
+        h(
+          'button',
+          {
+            type: 'button',
+            class: 'icon',
+            title: 'Duplicate block',
+            dataset: { action: 'duplicate' },
+            onclick: (e) => {
+              e.stopPropagation();
+              this.duplicate(i);
+            },
+          },
+          icon('copy'),
+        ),
+        h(
+          'button',
+          {
+            type: 'button',
+            class: 'icon danger',
+            title: 'Delete block',
+            dataset: { action: 'delete' },
+            onclick: (e) => {
+              e.stopPropagation();
+              this.remove(i);
+            },
+          },
+          icon('trash'),
+        ),
+      ),
+    );
+    const card = h(
+      'div',
+      { class: open ? 'block-card open' : 'block-card', dataset: { block: b.name } },
+      head,
+    );
+    if (open)
+      card.append(
+        this.editor(b, () => {
+          summary.textContent = this.summary(b);
+        }),
+      );
     return card;
   }
 
@@ -49,8 +107,12 @@ export class ScenePanel {
   }
 
   summary(b) {
-    const layout = b.layout === 'grid' ? `${b.count[0]}×${b.count[1]} grid`
-      : b.layout === 'scatter' ? `${b.plants} scattered` : 'single plant';
+    const layout =
+      b.layout === 'grid'
+        ? `${b.count[0]}×${b.count[1]} grid`
+        : b.layout === 'scatter'
+          ? `${b.plants} scattered`
+          : 'single plant';
     return `${layout} · ${fmt(b.age, 1)} d`;
   }
 
@@ -60,51 +122,123 @@ export class ScenePanel {
       if (rerender) this.render();
       this.app.edited();
     };
-    const set = (key, rerender) => (v) => { b[key] = v; edited(rerender); };
+    const set = (key, rerender) => (v) => {
+      b[key] = v;
+      edited(rerender);
+    };
     const layoutFields = h('div', { class: 'grid2' });
     const fillLayout = () => {
       if (b.layout === 'grid') {
-        render(layoutFields,
-          field('Plants x, y', vectorInput(b.count, set('count'), { min: 1, integer: true, name: 'count' }), { wide: true }),
-          field('Spacing x, y', vectorInput(b.spacing, set('spacing'), { min: 0.001, step: 0.05, name: 'spacing' }), { unit: 'm', wide: true }));
+        render(
+          layoutFields,
+          field(
+            'Plants x, y',
+            vectorInput(b.count, set('count'), { min: 1, integer: true, name: 'count' }),
+            { wide: true },
+          ),
+          field(
+            'Spacing x, y',
+            vectorInput(b.spacing, set('spacing'), { min: 0.001, step: 0.05, name: 'spacing' }),
+            { unit: 'm', wide: true },
+          ),
+        );
       } else if (b.layout === 'scatter') {
-        render(layoutFields,
-          field('Plants', numberInput(b.plants, set('plants'), { min: 1, integer: true, name: 'plants' })),
-          field('Area x, y', vectorInput(b.area, set('area'), { min: 0, step: 0.1, name: 'area' }), { unit: 'm', wide: true }));
+        render(
+          layoutFields,
+          field(
+            'Plants',
+            numberInput(b.plants, set('plants'), { min: 1, integer: true, name: 'plants' }),
+          ),
+          field(
+            'Area x, y',
+            vectorInput(b.area, set('area'), { min: 0, step: 0.1, name: 'area' }),
+            { unit: 'm', wide: true },
+          ),
+        );
       } else {
         render(layoutFields);
       }
     };
     fillLayout();
     const recommended = this.app.species.find((s) => s.name === b.species)?.recommended_age;
-    const params = h('div', { class: 'build-params' }, h('p', { class: 'hint' }, 'Loading build parameters…'));
+    const params = h(
+      'div',
+      { class: 'build-params' },
+      h('p', { class: 'hint' }, 'Loading build parameters…'),
+    );
     this.fillParameters(b, params, edited);
-    return h('div', { class: 'block-editor' },
-      h('div', { class: 'grid2' },
+    return h(
+      'div',
+      { class: 'block-editor' },
+      h(
+        'div',
+        { class: 'grid2' },
         field('Name', this.nameInput(b, refresh)),
-        field('Layout', select([['grid', 'Grid'], ['scatter', 'Scatter'], ['single', 'Single plant']], b.layout,
-          (v) => { b.layout = v; fillLayout(); edited(); }, { name: 'layout' }))),
-      field('Species', speciesPicker(this.app.species, b.species, (name) => {
-        b.species = name;
-        b.parameters = {};
-        const rec = this.app.species.find((s) => s.name === name)?.recommended_age;
-        if (rec?.default !== undefined) b.age = rec.default;
-        edited(true);
-      }), { wide: true }),
-      field('Origin x, y, z', vectorInput(b.origin, set('origin'), { step: 0.1, name: 'origin' }), { unit: 'm', wide: true }),
+        field(
+          'Layout',
+          select(
+            [
+              ['grid', 'Grid'],
+              ['scatter', 'Scatter'],
+              ['single', 'Single plant'],
+            ],
+            b.layout,
+            (v) => {
+              b.layout = v;
+              fillLayout();
+              edited();
+            },
+            { name: 'layout' },
+          ),
+        ),
+      ),
+      field(
+        'Species',
+        speciesPicker(this.app.species, b.species, (name) => {
+          b.species = name;
+          b.parameters = {};
+          const rec = this.app.species.find((s) => s.name === name)?.recommended_age;
+          if (rec?.default !== undefined) b.age = rec.default;
+          edited(true);
+        }),
+        { wide: true },
+      ),
+      field('Origin x, y, z', vectorInput(b.origin, set('origin'), { step: 0.1, name: 'origin' }), {
+        unit: 'm',
+        wide: true,
+      }),
       layoutFields,
-      h('div', { class: 'grid2' },
+      h(
+        'div',
+        { class: 'grid2' },
         field('Age', numberInput(b.age, set('age'), { min: 0, step: 1, name: 'age' }), {
           unit: 'days',
-          title: recommended ? `recommended: ${recommended.min} to ${recommended.max} days` : undefined,
+          title: recommended
+            ? `recommended: ${recommended.min} to ${recommended.max} days`
+            : undefined,
         }),
-        b.layout === 'single' ? null : field('Germination', numberInput(b.germination, set('germination'),
-          { min: 0, max: 1, step: 0.05, name: 'germination' }), { title: 'probability that a position gets a plant, 0 to 1' }),
-        field('Seed', this.seedInput(b, edited), { title: "the block's random seed; empty: the project's" }),
-        field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }),
-          { title: "the species' trellis posts and wires, when it declares one" })),
+        b.layout === 'single'
+          ? null
+          : field(
+              'Germination',
+              numberInput(b.germination, set('germination'), {
+                min: 0,
+                max: 1,
+                step: 0.05,
+                name: 'germination',
+              }),
+              { title: 'probability that a position gets a plant, 0 to 1' },
+            ),
+        field('Seed', this.seedInput(b, edited), {
+          title: "the block's random seed; empty: the project's",
+        }),
+        field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }), {
+          title: "the species' trellis posts and wires, when it declares one",
+        }),
+      ),
       h('h3', {}, 'Build parameters'),
-      params);
+      params,
+    );
   }
 
   nameInput(b, refresh) {
@@ -124,7 +258,14 @@ export class ScenePanel {
   }
 
   seedInput(b, edited) {
-    const input = h('input', { type: 'number', min: 0, step: 1, value: b.seed ?? '', placeholder: `project's (${this.app.project.seed})`, name: 'seed' });
+    const input = h('input', {
+      type: 'number',
+      min: 0,
+      step: 1,
+      value: b.seed ?? '',
+      placeholder: `project's (${this.app.project.seed})`,
+      name: 'seed',
+    });
     input.addEventListener('change', () => {
       const v = parseInt(input.value, 10);
       b.seed = Number.isFinite(v) ? v : null;
@@ -146,20 +287,32 @@ export class ScenePanel {
       render(container, h('p', { class: 'hint' }, 'This species has no build parameters.'));
       return;
     }
-    render(container, h('div', { class: 'grid2' }, list.map((p) => {
-      const input = h('input', {
-        type: 'number', step: 'any', min: p.min, max: p.max, name: `param-${p.name}`,
-        value: b.parameters[p.name] ?? '', placeholder: String(p.value),
-      });
-      input.addEventListener('change', () => {
-        const v = parseFloat(input.value);
-        if (Number.isFinite(v)) b.parameters[p.name] = v;
-        else delete b.parameters[p.name];
-        edited();
-      });
-      const title = `${p.doc ?? ''}${p.doc ? '\n' : ''}valid: ${p.range ?? `${p.min} to ${p.max}`}; default ${p.value}`;
-      return field(p.name.replaceAll('_', ' '), input, { unit: p.unit, title });
-    })));
+    render(
+      container,
+      h(
+        'div',
+        { class: 'grid2' },
+        list.map((p) => {
+          const input = h('input', {
+            type: 'number',
+            step: 'any',
+            min: p.min,
+            max: p.max,
+            name: `param-${p.name}`,
+            value: b.parameters[p.name] ?? '',
+            placeholder: String(p.value),
+          });
+          input.addEventListener('change', () => {
+            const v = parseFloat(input.value);
+            if (Number.isFinite(v)) b.parameters[p.name] = v;
+            else delete b.parameters[p.name];
+            edited();
+          });
+          const title = `${p.doc ?? ''}${p.doc ? '\n' : ''}valid: ${p.range ?? `${p.min} to ${p.max}`}; default ${p.value}`;
+          return field(p.name.replaceAll('_', ' '), input, { unit: p.unit, title });
+        }),
+      ),
+    );
   }
 
   add() {
@@ -176,7 +329,11 @@ export class ScenePanel {
   duplicate(i) {
     const copy = duplicateBlock(this.blocks[i], 0);
     copy.name = this.freeName();
-    copy.origin = [copy.origin[0], copy.origin[1] + this.extent(this.blocks[i], 1) + 0.5, copy.origin[2]];
+    copy.origin = [
+      copy.origin[0],
+      copy.origin[1] + this.extent(this.blocks[i], 1) + 0.5,
+      copy.origin[2],
+    ];
     this.blocks.splice(i + 1, 0, copy);
     this.selected = i + 1;
     this.render();

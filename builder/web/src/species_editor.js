@@ -7,11 +7,23 @@ import { api } from './api.js';
 import { h, render, select, toast, icon } from './ui.js';
 
 const DISTRIBUTIONS = {
-  'random number': [['constant', 'constant'], ['uniform', 'uniform'], ['normal', 'normal'], ['weibull', 'Weibull']],
-  'random whole number': [['constant', 'constant'], ['uniform', 'uniform'], ['discrete', 'one of']],
+  'random number': [
+    ['constant', 'constant'],
+    ['uniform', 'uniform'],
+    ['normal', 'normal'],
+    ['weibull', 'Weibull'],
+  ],
+  'random whole number': [
+    ['constant', 'constant'],
+    ['uniform', 'uniform'],
+    ['discrete', 'one of'],
+  ],
 };
 const ARGUMENT_NAMES = {
-  constant: ['value'], uniform: ['min', 'max'], normal: ['mean', 'std. dev.'], weibull: ['shape', 'scale'],
+  constant: ['value'],
+  uniform: ['min', 'max'],
+  normal: ['mean', 'std. dev.'],
+  weibull: ['shape', 'scale'],
 };
 
 /** A random value's text split into its distribution and arguments: "uniform(1, 2)" -> {uniform, [1, 2]}. */
@@ -36,7 +48,12 @@ function parameterControl(p, value, onChange) {
     return box;
   }
   if ((kind === 'one of the values' || kind === 'choice') && p.choices?.length) {
-    return select(p.choices.map((c) => [c.name, c.name]), value, onChange, { name, title: p.choices.map((c) => `${c.name}: ${c.doc}`).join('\n') });
+    return select(
+      p.choices.map((c) => [c.name, c.name]),
+      value,
+      onChange,
+      { name, title: p.choices.map((c) => `${c.name}: ${c.doc}`).join('\n') },
+    );
   }
   if (kind === 'number' || kind === 'whole number') {
     const input = h('input', { type: 'text', inputmode: 'decimal', name, value, class: 'num' });
@@ -44,7 +61,12 @@ function parameterControl(p, value, onChange) {
     return input;
   }
   if (DISTRIBUTIONS[kind]) return randomControl(p, value, onChange, name);
-  const input = h('input', { type: 'text', name, value, class: kind === 'three numbers' ? 'triple' : 'text' });
+  const input = h('input', {
+    type: 'text',
+    name,
+    value,
+    class: kind === 'three numbers' ? 'triple' : 'text',
+  });
   input.addEventListener('change', () => onChange(input.value.trim()));
   return input;
 }
@@ -56,25 +78,60 @@ function randomControl(p, value, onChange, name) {
   const fill = () => {
     const names = ARGUMENT_NAMES[kind] ?? null;
     if (kind === 'discrete') {
-      const input = h('input', { type: 'text', name: `${name}-values`, value: args.join(', '), class: 'text', title: 'whole numbers, comma separated' });
-      input.addEventListener('change', () => { args = input.value.split(',').map((s) => s.trim()); emit(); });
+      const input = h('input', {
+        type: 'text',
+        name: `${name}-values`,
+        value: args.join(', '),
+        class: 'text',
+        title: 'whole numbers, comma separated',
+      });
+      input.addEventListener('change', () => {
+        args = input.value.split(',').map((s) => s.trim());
+        emit();
+      });
       render(inputs, input);
       return;
     }
-    render(inputs, names.map((n, i) => {
-      const input = h('input', { type: 'text', inputmode: 'decimal', name: `${name}-${i}`, value: args[i] ?? '', placeholder: n, title: n, class: 'num' });
-      input.addEventListener('change', () => { args[i] = input.value.trim(); emit(); });
-      return input;
-    }));
+    render(
+      inputs,
+      names.map((n, i) => {
+        const input = h('input', {
+          type: 'text',
+          inputmode: 'decimal',
+          name: `${name}-${i}`,
+          value: args[i] ?? '',
+          placeholder: n,
+          title: n,
+          class: 'num',
+        });
+        input.addEventListener('change', () => {
+          args[i] = input.value.trim();
+          emit();
+        });
+        return input;
+      }),
+    );
   };
-  const kindSelect = select(DISTRIBUTIONS[p.kind], kind, (k) => {
-    // A new distribution starts from the current value: a constant c gives uniform(c, c)...
-    const first = args[0] ?? '0';
-    kind = k;
-    args = k === 'constant' ? [first] : k === 'normal' ? [first, '0'] : k === 'weibull' ? ['1', first] : [first, args[1] ?? first];
-    fill();
-    emit();
-  }, { name: `${name}-kind`, class: 'dist' });
+  const kindSelect = select(
+    DISTRIBUTIONS[p.kind],
+    kind,
+    (k) => {
+      // A new distribution starts from the current value: a constant c gives uniform(c, c)...
+      const first = args[0] ?? '0';
+      kind = k;
+      args =
+        k === 'constant'
+          ? [first]
+          : k === 'normal'
+            ? [first, '0']
+            : k === 'weibull'
+              ? ['1', first]
+              : [first, args[1] ?? first];
+      fill();
+      emit();
+    },
+    { name: `${name}-kind`, class: 'dist' },
+  );
   fill();
   return h('span', { class: 'random' }, kindSelect, inputs);
 }
@@ -91,7 +148,7 @@ export class SpeciesEditor {
     this.container = container;
     this.base = null;
     this.detail = null;
-    this.changes = new Map();  // key ("shoot_types.LABEL.PATH", ...) -> value text
+    this.changes = new Map(); // key ("shoot_types.LABEL.PATH", ...) -> value text
     this.rows = [];
     this.checkTimer = null;
     this.checkSerial = 0;
@@ -114,11 +171,19 @@ export class SpeciesEditor {
   sections() {
     const d = this.detail;
     const out = [];
-    const withKey = (list, prefix) => (list ?? []).map((p) => ({ ...p, key: `${prefix}.${p.path ?? p.name}` }));
+    const withKey = (list, prefix) =>
+      (list ?? []).map((p) => ({ ...p, key: `${prefix}.${p.path ?? p.name}` }));
     if (d.build_parameters?.length) {
-      out.push({ title: 'Build parameters', groups: [{ title: '', params: withKey(d.build_parameters, 'build_parameters') }] });
+      out.push({
+        title: 'Build parameters',
+        groups: [{ title: '', params: withKey(d.build_parameters, 'build_parameters') }],
+      });
     }
-    if (d.phenology?.length) out.push({ title: 'Phenology', groups: [{ title: '', params: withKey(d.phenology, 'phenology') }] });
+    if (d.phenology?.length)
+      out.push({
+        title: 'Phenology',
+        groups: [{ title: '', params: withKey(d.phenology, 'phenology') }],
+      });
     for (const [label, list] of Object.entries(d.shoot_types ?? {})) {
       const groups = new Map();
       for (const p of withKey(list, `shoot_types.${label}`)) {
@@ -134,12 +199,18 @@ export class SpeciesEditor {
   render() {
     const d = this.detail;
     this.rows = [];
-    const filter = h('input', { type: 'search', placeholder: 'Filter parameters…', name: 'species-filter' });
+    const filter = h('input', {
+      type: 'search',
+      placeholder: 'Filter parameters…',
+      name: 'species-filter',
+    });
     const onlyChanged = h('input', { type: 'checkbox', name: 'only-changed' });
     const applyFilter = () => {
       const q = filter.value.trim().toLowerCase();
       for (const row of this.rows) {
-        const match = (!q || row.dataset.search.includes(q)) && (!onlyChanged.checked || this.changes.has(row.dataset.key));
+        const match =
+          (!q || row.dataset.search.includes(q)) &&
+          (!onlyChanged.checked || this.changes.has(row.dataset.key));
         row.hidden = !match;
       }
       for (const group of this.container.querySelectorAll('details.param-group')) {
@@ -153,40 +224,121 @@ export class SpeciesEditor {
     filter.addEventListener('input', applyFilter);
     onlyChanged.addEventListener('change', applyFilter);
 
-    const speciesSelect = select(this.app.species.map((s) => [s.name, `${s.common_name || s.name} (${s.name})`]), this.base,
-      (name) => this.open(name), { name: 'species-base' });
-    this.status = h('div', { id: 'species-status', class: 'species-status', dataset: { state: 'unchanged' } }, 'No changes.');
-    this.nameInput = h('input', { type: 'text', name: 'species-name', value: `my_${this.base}`, pattern: '[A-Za-z0-9_\\-]+' });
-    const saveButton = h('button', { type: 'button', class: 'primary', id: 'species-save', onclick: () => this.save() }, 'Save as new species');
+    const speciesSelect = select(
+      this.app.species.map((s) => [s.name, `${s.common_name || s.name} (${s.name})`]),
+      this.base,
+      (name) => this.open(name),
+      { name: 'species-base' },
+    );
+    this.status = h(
+      'div',
+      { id: 'species-status', class: 'species-status', dataset: { state: 'unchanged' } },
+      'No changes.',
+    );
+    this.nameInput = h('input', {
+      type: 'text',
+      name: 'species-name',
+      value: `my_${this.base}`,
+      pattern: '[A-Za-z0-9_\\-]+',
+    });
+    const saveButton = h(
+      'button',
+      { type: 'button', class: 'primary', id: 'species-save', onclick: () => this.save() },
+      'Save as new species',
+    );
 
-    const sections = this.sections().map((section, si) => h('section', { class: 'param-section' },
-      h('h3', {}, section.title),
-      section.groups.map((g, gi) => {
-        const rows = g.params.map((p) => this.row(p));
-        if (!g.title) return h('div', { class: 'param-rows' }, rows);
-        return h('details', { class: 'param-group', open: si === 0 && gi === 0 }, h('summary', {}, g.title, h('span', { class: 'count' }, String(rows.length))), rows);
-      })));
-    render(this.container,
-      h('div', { class: 'species-head' },
-        h('label', { class: 'field wide' }, h('span', { class: 'field-label' }, 'Species to edit'), speciesSelect),
-        h('p', { class: 'hint', title: d.description ?? '' }, h('em', {}, d.latin_name ?? ''), d.description ? ` — ${d.description}` : ''),
-        h('div', { class: 'filter-row' }, filter, h('label', { class: 'toggle' }, onlyChanged, 'changed only'))),
+    const sections = this.sections().map((section, si) =>
+      h(
+        'section',
+        { class: 'param-section' },
+        h('h3', {}, section.title),
+        section.groups.map((g, gi) => {
+          const rows = g.params.map((p) => this.row(p));
+          if (!g.title) return h('div', { class: 'param-rows' }, rows);
+          return h(
+            'details',
+            { class: 'param-group', open: si === 0 && gi === 0 },
+            h('summary', {}, g.title, h('span', { class: 'count' }, String(rows.length))),
+            rows,
+          );
+        }),
+      ),
+    );
+    render(
+      this.container,
+      h(
+        'div',
+        { class: 'species-head' },
+        h(
+          'label',
+          { class: 'field wide' },
+          h('span', { class: 'field-label' }, 'Species to edit'),
+          speciesSelect,
+        ),
+        h(
+          'p',
+          { class: 'hint', title: d.description ?? '' },
+          h('em', {}, d.latin_name ?? ''),
+          d.description ? ` — ${d.description}` : '',
+        ),
+        h(
+          'div',
+          { class: 'filter-row' },
+          filter,
+          h('label', { class: 'toggle' }, onlyChanged, 'changed only'),
+        ),
+      ),
       h('div', { class: 'param-list' }, sections),
-      h('div', { class: 'species-foot' },
+      h(
+        'div',
+        { class: 'species-foot' },
         this.status,
-        h('div', { class: 'save-row' },
-          h('label', { class: 'field' }, h('span', { class: 'field-label' }, 'New species name'), this.nameInput),
-          saveButton)));
+        h(
+          'div',
+          { class: 'save-row' },
+          h(
+            'label',
+            { class: 'field' },
+            h('span', { class: 'field-label' }, 'New species name'),
+            this.nameInput,
+          ),
+          saveButton,
+        ),
+      ),
+    );
   }
 
   row(p) {
     const original = p.value ?? '';
     const current = this.changes.get(p.key) ?? original;
-    const range = p.range || (Number.isFinite(p.min) && Number.isFinite(p.max) && p.min !== p.max ? `${p.min} to ${p.max}` : '');
-    const tip = [p.doc, p.kind ? `kind: ${p.kind}` : '', range ? `valid: ${range}` : '', p.unit ? `unit: ${p.unit}` : '',
-      `species value: ${original === '' ? '(none)' : original}`].filter(Boolean).join('\n');
-    const row = h('div', { class: 'param-row', dataset: { key: p.key, search: `${p.path ?? p.name} ${p.doc ?? ''}`.toLowerCase() } });
-    const reset = h('button', { type: 'button', class: 'icon reset', title: `Back to ${original}`, hidden: !this.changes.has(p.key) }, icon('reset'));
+    const range =
+      p.range ||
+      (Number.isFinite(p.min) && Number.isFinite(p.max) && p.min !== p.max
+        ? `${p.min} to ${p.max}`
+        : '');
+    const tip = [
+      p.doc,
+      p.kind ? `kind: ${p.kind}` : '',
+      range ? `valid: ${range}` : '',
+      p.unit ? `unit: ${p.unit}` : '',
+      `species value: ${original === '' ? '(none)' : original}`,
+    ]
+      .filter(Boolean)
+      .join('\n');
+    const row = h('div', {
+      class: 'param-row',
+      dataset: { key: p.key, search: `${p.path ?? p.name} ${p.doc ?? ''}`.toLowerCase() },
+    });
+    const reset = h(
+      'button',
+      {
+        type: 'button',
+        class: 'icon reset',
+        title: `Back to ${original}`,
+        hidden: !this.changes.has(p.key),
+      },
+      icon('reset'),
+    );
     const onChange = (text) => {
       if (text === original) this.changes.delete(p.key);
       else this.changes.set(p.key, text);
@@ -200,15 +352,26 @@ export class SpeciesEditor {
       render(control, parameterControl(p, original, onChange));
     });
     row.append(
-      h('span', { class: 'param-name', title: tip }, p.name.replaceAll('_', ' '), p.unit ? h('span', { class: 'unit' }, p.unit) : null),
-      control, reset);
+      h(
+        'span',
+        { class: 'param-name', title: tip },
+        p.name.replaceAll('_', ' '),
+        p.unit ? h('span', { class: 'unit' }, p.unit) : null,
+      ),
+      control,
+      reset,
+    );
     if (this.changes.has(p.key)) row.classList.add('changed');
     this.rows.push(row);
     return row;
   }
 
   body() {
-    return { base: this.base, name: this.nameInput?.value.trim() || `my_${this.base}`, changes: Object.fromEntries(this.changes) };
+    return {
+      base: this.base,
+      name: this.nameInput?.value.trim() || `my_${this.base}`,
+      changes: Object.fromEntries(this.changes),
+    };
   }
 
   setStatus(state, text) {
@@ -236,7 +399,11 @@ export class SpeciesEditor {
     const serial = ++this.checkSerial;
     try {
       await api.checkSpecies(this.body());
-      if (serial === this.checkSerial) this.setStatus('valid', `✓ ${this.changes.size} change${this.changes.size === 1 ? '' : 's'}, valid`);
+      if (serial === this.checkSerial)
+        this.setStatus(
+          'valid',
+          `✓ ${this.changes.size} change${this.changes.size === 1 ? '' : 's'}, valid`,
+        );
       return true;
     } catch (e) {
       if (serial === this.checkSerial) this.setStatus('invalid', e.message);
@@ -257,8 +424,18 @@ export class SpeciesEditor {
       this.setStatus('saved', `Saved ${result.path}. `);
       const block = this.app.selectedBlock();
       if (block) {
-        this.status.append(h('button', { type: 'button', class: 'link', id: 'species-use', onclick: () => this.app.useSpecies(name) },
-          `Use ${name} in block ${block.name}`));
+        this.status.append(
+          h(
+            'button',
+            {
+              type: 'button',
+              class: 'link',
+              id: 'species-use',
+              onclick: () => this.app.useSpecies(name),
+            },
+            `Use ${name} in block ${block.name}`,
+          ),
+        );
       }
       toast(`Saved species ${name} (${result.path})`);
     } catch (e) {

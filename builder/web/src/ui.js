@@ -5,7 +5,8 @@ export function h(tag, attrs = {}, ...children) {
   const el = document.createElement(tag);
   for (const [key, value] of Object.entries(attrs ?? {})) {
     if (value === undefined || value === null || value === false) continue;
-    if (key.startsWith('on') && typeof value === 'function') el.addEventListener(key.slice(2), value);
+    if (key.startsWith('on') && typeof value === 'function')
+      el.addEventListener(key.slice(2), value);
     else if (key === 'class') el.className = value;
     else if (key === 'dataset') Object.assign(el.dataset, value);
     else if (key === 'style' && typeof value === 'object') Object.assign(el.style, value);
@@ -32,15 +33,23 @@ export function render(el, ...children) {
 
 /** A form row: a label (with a tooltip) above or beside its control. */
 export function field(label, control, { title, unit, wide } = {}) {
-  return h('label', { class: wide ? 'field wide' : 'field', title },
+  return h(
+    'label',
+    { class: wide ? 'field wide' : 'field', title },
     h('span', { class: 'field-label' }, label, unit ? h('span', { class: 'unit' }, unit) : null),
-    control);
+    control,
+  );
 }
 
 /** A number input bound to a getter and a setter; `step` and bounds as in HTML. */
 export function numberInput(value, onChange, { min, max, step = 'any', name, integer } = {}) {
   const input = h('input', {
-    type: 'number', value: String(value ?? ''), min, max, step: integer ? 1 : step, name,
+    type: 'number',
+    value: String(value ?? ''),
+    min,
+    max,
+    step: integer ? 1 : step,
+    name,
   });
   input.addEventListener('change', () => {
     const v = integer ? parseInt(input.value, 10) : parseFloat(input.value);
@@ -52,14 +61,28 @@ export function numberInput(value, onChange, { min, max, step = 'any', name, int
 /** Two or three number inputs side by side (x, y[, z]). */
 export function vectorInput(values, onChange, options = {}) {
   const current = [...values];
-  return h('div', { class: 'vector' }, current.map((v, i) =>
-    numberInput(v, (x) => { current[i] = x; onChange([...current]); },
-      { ...options, name: options.name ? `${options.name}-${'xyz'[i]}` : undefined })));
+  return h(
+    'div',
+    { class: 'vector' },
+    current.map((v, i) =>
+      numberInput(
+        v,
+        (x) => {
+          current[i] = x;
+          onChange([...current]);
+        },
+        { ...options, name: options.name ? `${options.name}-${'xyz'[i]}` : undefined },
+      ),
+    ),
+  );
 }
 
 export function select(options, value, onChange, attrs = {}) {
-  const el = h('select', attrs, options.map(([v, text]) =>
-    h('option', { value: v, selected: v === value }, text)));
+  const el = h(
+    'select',
+    attrs,
+    options.map(([v, text]) => h('option', { value: v, selected: v === value }, text)),
+  );
   el.addEventListener('change', () => onChange(el.value));
   return el;
 }
@@ -76,8 +99,15 @@ export function toast(message, kind = 'info') {
   const el = document.getElementById('toast');
   if (!el) return;
   clearTimeout(toastTimer);
-  render(el, h('span', {}, message),
-    h('button', { class: 'icon', title: 'Dismiss', onclick: () => el.classList.remove('shown') }, icon('close')));
+  render(
+    el,
+    h('span', {}, message),
+    h(
+      'button',
+      { class: 'icon', title: 'Dismiss', onclick: () => el.classList.remove('shown') },
+      icon('close'),
+    ),
+  );
   el.className = `toast shown ${kind}`;
   if (kind !== 'error') toastTimer = setTimeout(() => el.classList.remove('shown'), 4000);
 }

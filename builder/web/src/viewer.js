@@ -20,7 +20,7 @@ export class Viewer {
     sun.position.set(3, 6, 4);
     this.scene.add(sun);
     this.grid = new THREE.GridHelper(10, 20, 0xb7c0c8, 0xd3d9de);
-    this.grid.position.y = -0.002;  // under a ground at z = 0, not through it
+    this.grid.position.y = -0.002; // under a ground at z = 0, not through it
     this.scene.add(this.grid);
 
     this.camera = new THREE.PerspectiveCamera(40, 1, 0.01, 500);
@@ -98,7 +98,7 @@ export class Viewer {
     const size = box.getSize(new THREE.Vector3());
     const center = box.getCenter(new THREE.Vector3());
     const radius = Math.max(size.length() / 2, 0.05);
-    const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2)) * 0.8;
+    const distance = (radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2))) * 0.8;
     const direction = new THREE.Vector3(1, 0.65, 1.15).normalize();
     this.controls.target.copy(center);
     this.camera.position.copy(center).addScaledVector(direction, distance);
@@ -117,13 +117,18 @@ export class Viewer {
   applyColors() {
     if (!this.model) return;
     if (this.mode === 'natural' || !this.table) {
-      this.model.traverse((o) => { if (o.isMesh) o.material = o.userData.naturalMaterial; });
+      this.model.traverse((o) => {
+        if (o.isMesh) o.material = o.userData.naturalMaterial;
+      });
       this.onLegend(null);
       return;
     }
     const scheme = colorScheme(this.mode, this.table);
     const material = new THREE.MeshStandardMaterial({
-      vertexColors: true, side: THREE.DoubleSide, roughness: 0.85, metalness: 0,
+      vertexColors: true,
+      side: THREE.DoubleSide,
+      roughness: 0.85,
+      metalness: 0,
     });
     const color = new THREE.Color();
     this.model.traverse((o) => {
@@ -154,8 +159,10 @@ export class Viewer {
   pick(clientX, clientY) {
     if (!this.model || !this.table) return null;
     const rect = this.renderer.domElement.getBoundingClientRect();
-    const pointer = new THREE.Vector2(((clientX - rect.left) / rect.width) * 2 - 1,
-      -((clientY - rect.top) / rect.height) * 2 + 1);
+    const pointer = new THREE.Vector2(
+      ((clientX - rect.left) / rect.width) * 2 - 1,
+      -((clientY - rect.top) / rect.height) * 2 + 1,
+    );
     const ray = new THREE.Raycaster();
     ray.setFromCamera(pointer, this.camera);
     const hit = ray.intersectObject(this.model, true)[0];
@@ -164,8 +171,11 @@ export class Viewer {
     const row = feature.getX(hit.face.a);
     const c = this.table.columns;
     return {
-      plant: c.plant?.[row], organ: this.table.organNames[c.organ?.[row]] ?? 'unlabelled',
-      leaf: c.leaf?.[row], rank: c.rank?.[row], age: c.age?.[row],
+      plant: c.plant?.[row],
+      organ: this.table.organNames[c.organ?.[row]] ?? 'unlabelled',
+      leaf: c.leaf?.[row],
+      rank: c.rank?.[row],
+      age: c.age?.[row],
     };
   }
 }

@@ -3,7 +3,13 @@
 // attraction points, and the label colours.
 import test from 'node:test';
 import assert from 'node:assert/strict';
-import { blockName, defaultBlock, defaultProject, fromProjectFile, toProjectFile } from '../src/project.js';
+import {
+  blockName,
+  defaultBlock,
+  defaultProject,
+  fromProjectFile,
+  toProjectFile,
+} from '../src/project.js';
 import { parseRandom, randomText } from '../src/species_editor.js';
 import { parsePoints } from '../src/environment_panel.js';
 import { colorScheme, ORGAN_COLORS } from '../src/labels.js';
@@ -13,7 +19,14 @@ function exampleProject() {
   const p = defaultProject();
   p.name = 'bean trial';
   p.blocks = [defaultBlock(0, 'bean'), defaultBlock(1, 'tomato'), defaultBlock(2, 'my_bean.xml')];
-  Object.assign(p.blocks[1], { layout: 'scatter', origin: [2, 0, 0], area: [1.5, 1.5], plants: 12, age: 30, seed: 7 });
+  Object.assign(p.blocks[1], {
+    layout: 'scatter',
+    origin: [2, 0, 0],
+    area: [1.5, 1.5],
+    plants: 12,
+    age: 30,
+    seed: 7,
+  });
   Object.assign(p.blocks[2], { layout: 'single', origin: [0, 2, 0], age: 20 });
   p.blocks[0].parameters = { trunk_height: 0.6 };
   return p;
@@ -23,8 +36,15 @@ test('a grid block is written with count [x, y] and spacing, and nothing of othe
   const file = toProjectFile(defaultProject());
   assert.equal(file.plantarch_project, 1);
   assert.deepEqual(file.blocks[0], {
-    name: 'A', species: 'bean', layout: 'grid', origin: [0, 0, 0], count: [3, 3], spacing: [0.3, 0.3],
-    germination: 1, age: 40, trellis: true,
+    name: 'A',
+    species: 'bean',
+    layout: 'grid',
+    origin: [0, 0, 0],
+    count: [3, 3],
+    spacing: [0.3, 0.3],
+    germination: 1,
+    age: 40,
+    trellis: true,
   });
   assert.equal(file.ground, null);
   const withGround = defaultProject();
@@ -38,7 +58,8 @@ test('a scatter block is written with count as a number and its area; a single p
   assert.deepEqual(scatter.area, [1.5, 1.5]);
   assert.equal(scatter.seed, 7);
   assert.ok(!('spacing' in scatter) && !('plants' in scatter));
-  for (const key of ['count', 'spacing', 'area', 'germination', 'parameters']) assert.ok(!(key in single), key);
+  for (const key of ['count', 'spacing', 'area', 'germination', 'parameters'])
+    assert.ok(!(key in single), key);
 });
 
 test('a project file read back writes the same file', () => {
@@ -50,13 +71,24 @@ test('a project file read back writes the same file', () => {
 
 test('a file of another format is refused naming the field', () => {
   assert.throws(() => fromProjectFile({ blocks: [] }), /plantarch_project/);
-  assert.throws(() => fromProjectFile({ plantarch_project: 2, blocks: [] }), /plantarch_project = 2/);
+  assert.throws(
+    () => fromProjectFile({ plantarch_project: 2, blocks: [] }),
+    /plantarch_project = 2/,
+  );
   assert.throws(() => fromProjectFile({ plantarch_project: 1 }), /blocks/);
   assert.throws(() => fromProjectFile([1]), /not a JSON object/);
 });
 
 test('block names run A to Z, then AA', () => {
-  assert.deepEqual([0, 1, 25, 26, 27, 701, 702].map(blockName), ['A', 'B', 'Z', 'AA', 'AB', 'ZZ', 'AAA']);
+  assert.deepEqual([0, 1, 25, 26, 27, 701, 702].map(blockName), [
+    'A',
+    'B',
+    'Z',
+    'AA',
+    'AB',
+    'ZZ',
+    'AAA',
+  ]);
 });
 
 test('random values split into a distribution and its arguments, and back', () => {
@@ -72,23 +104,32 @@ test('random values split into a distribution and its arguments, and back', () =
 });
 
 test('attraction points: three numbers a line; a bad line is named', () => {
-  assert.deepEqual(parsePoints('0 0 1.2\n\n0.5, 0, 1.2\n'), [[0, 0, 1.2], [0.5, 0, 1.2]]);
+  assert.deepEqual(parsePoints('0 0 1.2\n\n0.5, 0, 1.2\n'), [
+    [0, 0, 1.2],
+    [0.5, 0, 1.2],
+  ]);
   assert.throws(() => parsePoints('0 0 1\n1 2'), /line 2: '1 2'/);
   assert.throws(() => parsePoints('a b c'), /line 1/);
 });
 
-test('organ colours are the label images\' colours; ages run over the organs\' range', () => {
+test("organ colours are the label images' colours; ages run over the organs' range", () => {
   const table = {
     count: 3,
     organNames: ['unlabelled', 'internode', 'petiole', 'leaf'],
     columns: {
-      plant: Int32Array.from([0, 0, 1]), organ: Uint8Array.from([1, 3, 3]), leaf: Int32Array.from([-1, 0, 0]),
-      rank: Int32Array.from([0, 0, 1]), age: Float32Array.from([10, 4, -1]),
+      plant: Int32Array.from([0, 0, 1]),
+      organ: Uint8Array.from([1, 3, 3]),
+      leaf: Int32Array.from([-1, 0, 0]),
+      rank: Int32Array.from([0, 0, 1]),
+      age: Float32Array.from([10, 4, -1]),
     },
   };
   const organ = colorScheme('organ', table);
   assert.deepEqual(organ.color(1), ORGAN_COLORS.leaf);
-  assert.deepEqual(organ.legend.map((e) => e.label), ['internode', 'leaf']);
+  assert.deepEqual(
+    organ.legend.map((e) => e.label),
+    ['internode', 'leaf'],
+  );
   const age = colorScheme('age', table);
   assert.deepEqual(age.ramp, { min: 4, max: 10, unit: 'days' });
   assert.notDeepEqual(age.color(0), age.color(1));
@@ -97,5 +138,8 @@ test('organ colours are the label images\' colours; ages run over the organs\' r
   assert.deepEqual(colorScheme('leaf', table).color(0), [150, 150, 150], 'not a leaf: grey');
   const rank = colorScheme('rank', table);
   assert.notDeepEqual(rank.color(0), rank.color(2));
-  assert.deepEqual(rank.legend.map((e) => e.label), ['rank 0 (base stem)', 'rank 1', 'no shoot']);
+  assert.deepEqual(
+    rank.legend.map((e) => e.label),
+    ['rank 0 (base stem)', 'rank 1', 'no shoot'],
+  );
 });
