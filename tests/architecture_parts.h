@@ -17,9 +17,9 @@
 namespace plantarch::testing {
 
 // The parts of a PlantArchitecture around copies of some of its plants and its shoot types.
-// The registry holds the procedural leaf prototype only (built with the public LeafShapes
-// API, as a user's function would be) and no phytomer functions: the copies' shoot types
-// name none.
+// The registry holds the procedural leaf prototype (built with the public LeafShapes API,
+// as a user's function would be), a one-triangle flower and fruit, and no phytomer
+// functions: the copies' shoot types name none.
 struct Parts {
     PlantStore store;
     FunctionRegistry functions;
@@ -32,10 +32,21 @@ struct Parts {
             return OrganPrototype{{buildLeafPrototype(p, rng, leaflet),
                                    Material{p.color, leafTextureFile(p, leaflet), "leaf"}}};
         };
+        // Flowers and fruit: one triangle each, under the name a shoot type without a
+        // prototype function of its own falls back to.
+        for (const char* name : {"builtin_flower", "builtin_fruit"})
+            functions.floralPrototypes[name] = [](const FloralPrototypeRequest& r, Rng&) {
+                Mesh m;
+                m.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 0.3f, 0}};
+                m.indices = {0, 1, 2};
+                return OrganPrototype{{std::move(m), Material{r.color, "", "flower"}}};
+            };
         auto withoutFunctions = [](std::map<std::string, ShootParameters>& types) {
             for (auto& [label, t] : types) {
                 t.phytomer_parameters.phytomer_creation_function.clear();
                 t.phytomer_parameters.phytomer_callback_function.clear();
+                t.phytomer_parameters.inflorescence.flower_prototype_function.clear();
+                t.phytomer_parameters.inflorescence.fruit_prototype_function.clear();
             }
         };
         store.shootTypes = arch.getCurrentShootParameters();
