@@ -167,6 +167,16 @@ TEST(Labels, ObjRecordedHighObjectIDIsKept) {
     EXPECT_EQ(c.objectCount(), 1u);
     EXPECT_EQ(c.objectIDs(), std::vector<ObjectID>{900000});
     EXPECT_EQ(c.objectDataInt(900000, "plantID"), 2);
+
+    // Past the limit of unused IDs the objects are numbered afresh, labels kept.
+    ObjReadOptions few;
+    few.maxSkippedObjectIDs = 899999;
+    Context fresh;
+    EXPECT_EQ(readOBJ(fresh, path, few), std::vector<ObjectID>{0});
+    EXPECT_EQ(fresh.objectDataInt(0, "plantID"), 2);
+    few.maxSkippedObjectIDs = 900000;
+    Context kept;
+    EXPECT_EQ(readOBJ(kept, path, few), std::vector<ObjectID>{900000});
     fs::remove_all(d);
 }
 

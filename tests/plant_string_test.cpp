@@ -320,6 +320,10 @@ TEST(PlantString, MalformedStringsGiveOneClearError) {
     EXPECT_NE(
         stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(1e9,0.001,0,0,0,0,1)}").find("out of range"),
         std::string::npos);
+    // A plant's age may be as large as a plant structure file's plant_age (found by
+    // fuzz_plant_xml: a file's plant of 5.6e8 days wrote a string that did not read back).
+    EXPECT_EQ(stringError("@(0,0,0,2e9)"),
+              "plant string, character 9 = @(0,0,0,2e9): number out of range (valid: -1e9 to 1e9)");
     // Nesting deeper than 1000 shoots is refused (appended shoots nest in their parent).
     std::string deep = "@(0,0,0,5)";
     for (int i = 0; i < 1200; ++i) deep += "Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)";
@@ -334,6 +338,18 @@ TEST(PlantString, MalformedStringsGiveOneClearError) {
 }
 
 // The tagged groups of exact strings: read into the state they give, and checked.
+TEST(PlantString, AnAgeAsLargeAsAPlantFileAllowsRoundTrips) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned id =
+        arch.generatePlantFromString("@(0,0,0,5.5e8)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)}");
+    EXPECT_EQ(arch.getPlantAge(id), 5.5e8);
+    const std::string s = arch.getPlantString(id);
+    const unsigned again = arch.generatePlantFromString(s);
+    EXPECT_EQ(arch.getPlantString(again), s);
+}
+
 TEST(PlantString, ExactGroupsAreReadAndChecked) {
     Context ctx;
     PlantArchitecture arch(&ctx);

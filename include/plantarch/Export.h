@@ -86,9 +86,12 @@ struct ObjReadOptions {
     /// data: "plantID", "plant_name", "organ", "shootID", "rank", "node", "leafID" and "age",
     /// as the writers read them. When every object has a recorded `object=` ID, the IDs
     /// increase through the file and all are free in the Context (at or above every ID it
-    /// has issued, as in a fresh Context, with fewer than about a million unused IDs below
-    /// them), the objects get exactly those IDs; otherwise new IDs in file order.
+    /// has issued, as in a fresh Context, with fewer than `maxSkippedObjectIDs` unused IDs
+    /// below them), the objects get exactly those IDs; otherwise new IDs in file order.
     bool labels = true;
+    /// The most object IDs that keeping the recorded ones may leave unused (each costs the
+    /// Context a few dozen bytes); above it the objects are numbered afresh.
+    unsigned maxSkippedObjectIDs = 1u << 20;
     /// Receives tinyobjloader's warnings (for example a .mtl that was not found, which is
     /// not an error: the objects get the default material). Ignored when empty.
     std::function<void(const std::string& message)> onWarning;

@@ -207,15 +207,15 @@ std::vector<const io::ObjLabelRecord*> labelsOf(
 
 // Whether the objects can have the IDs their labels record: every object has one, they
 // increase in file order (so each names one object), all are free in `context` (at or above
-// every ID it has issued) and leave fewer than about a million unused IDs below them.
-bool recordedIDsFree(const Context& context, const std::vector<const io::ObjLabelRecord*>& labels) {
-    constexpr ObjectID kMaxUnusedIDs = 1u << 20;
+// every ID it has issued) and leave at most `maxUnused` unused IDs below them.
+bool recordedIDsFree(const Context& context, const std::vector<const io::ObjLabelRecord*>& labels,
+                     ObjectID maxUnused) {
     ObjectID next = context.objectIDLimit();
     std::uint64_t unused = 0;
     for (const io::ObjLabelRecord* r : labels) {
         if (!r || !r->object || *r->object < next) return false;
         unused += *r->object - next;
-        if (unused >= kMaxUnusedIDs) return false;
+        if (unused > maxUnused) return false;
         next = *r->object + 1;
     }
     return !labels.empty();
@@ -315,7 +315,7 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     std::unordered_map<std::string, io::ObjLabelRecord> records;
     const std::vector<const io::ObjLabelRecord*> labels =
         labelsOf(context, path, options, objects, records);
-    const bool sameIDs = recordedIDsFree(context, labels);
+    const bool sameIDs = recordedIDsFree(context, labels, options.maxSkippedObjectIDs);
 
     // Materials as the Context will hold them; added only now that the file is known good.
     const fs::path baseDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path()

@@ -54,6 +54,7 @@ char stageLetter(FloralStage s) {
 
 constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
 constexpr int kMaxLeafID = 1 << 30;
+constexpr double kMaxPlantAge = 1e9;  // days, as plant_age in plant structure files
 // A value a string may leave out, until completion fills it.
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -274,7 +275,7 @@ public:
         expect(',');
         p_.base.z = number<float>();
         expect(',');
-        p_.age = number<double>();
+        p_.age = number<double>(kMaxPlantAge);
         if (p_.age < 0.0) fail("negative plant age", "an age >= 0 days");
         expect(')');
         if (peek() == 'S') shoot(-1, 0, 0, false, 0);
@@ -317,8 +318,10 @@ private:
         return std::string(s_.substr(start, pos_ - start));
     }
 
+    // A number of at most `limit` in size (the plant's age may reach a plant structure
+    // file's plant_age limit, 1e9 days; everything else 1e6).
     template <class T>
-    T number() {
+    T number(double limit = 1e6) {
         skipSpace();
         const std::size_t start = pos_;
         while (pos_ < s_.size() && s_[pos_] != ',' && s_[pos_] != ')' && s_[pos_] != ' ') ++pos_;
@@ -330,9 +333,9 @@ private:
             pos_ = start;
             fail("expected a number", "a finite number such as 0.012 or -1.5e-3");
         }
-        if (std::abs(double(v)) > 1e6) {
+        if (std::abs(double(v)) > limit) {
             pos_ = start;
-            fail("number out of range", "-1e6 to 1e6");
+            fail("number out of range", limit == 1e6 ? "-1e6 to 1e6" : "-1e9 to 1e9");
         }
         return v;
     }
