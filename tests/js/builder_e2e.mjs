@@ -11,7 +11,7 @@
 // at that age anew) and the play button grows it day by day; GLB and per-plant OBJ exports
 // are written and parse; the saved project, uploaded into the page, builds the same scene, and
 // its export is the file `plantarch project run` writes from the saved project, byte for byte;
-// Cancel stops a running build; the API refuses paths outside the output folder and requests
+// Cancel takes a queued build out and the API stops a running one; the API refuses paths outside the output folder and requests
 // from other sites. With --screenshots, pictures of the page are written into DIR
 // (docs/images for docs/builder.md). Waits are for states the page or the server reports,
 // never for a time. CHROMIUM overrides /usr/bin/chromium.
@@ -133,6 +133,23 @@ async function pageBuild(page, previous) {
   return page.$eval('#build-status', (s) => ({ id: s.dataset.build, state: s.dataset.state, text: s.textContent }));
 }
 
+// Waits, in animation frames, for the 3D view to draw no frame for 60 of them in a row (at
+// most 1200); returns {settled, frames (drawn so far), waited}.
+async function viewSettles(page) {
+  return page.evaluate(() => new Promise((resolve) => {
+    const viewer = window.plantarchBuilder.viewer;
+    let last = viewer.frames, still = 0, waited = 0;
+    const tick = () => {
+      waited++;
+      if (viewer.frames === last) still++;
+      else [last, still] = [viewer.frames, 0];
+      if (still >= 60 || waited >= 1200) resolve({ settled: still >= 60, frames: viewer.frames, waited });
+      else requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }));
+}
+
 async function shownNumber(page, id) {
   const text = await page.$eval(`#${id}`, (el) => el.firstChild.textContent);
   return Number(text.replace(/[^0-9.]/g, ''));
@@ -221,6 +238,23 @@ async function run() {
   const viewTriangles = await page.evaluate(() => window.plantarchBuilder.viewer.triangles);
   assert.equal(viewTriangles, status.stats.triangles, 'triangles in the 3D view = the API\'s');
   step(`3x3 bean at 40 days: the page shows ${shownTriangles} triangles, as the API and the view`);
+
+  // The view draws on demand: nothing while idle, frames while the camera is dragged, then
+  // nothing again once its damping has settled.
+  const idle = await viewSettles(page);
+  assert.ok(idle.settled, `the idle view stops drawing (${idle.frames} frames after ${idle.waited} animation frames)`);
+  const canvas = await page.evaluate(() => {
+    const r = window.plantarchBuilder.viewer.renderer.domElement.getBoundingClientRect();
+    return { x: r.x + r.width / 2, y: r.y + r.height / 2 };
+  });
+  await page.mouse.move(canvas.x, canvas.y);
+  await page.mouse.down();
+  await page.mouse.move(canvas.x + 120, canvas.y + 30, { steps: 8 });
+  await page.mouse.up();
+  const dragged = await viewSettles(page);
+  assert.ok(dragged.frames > idle.frames, `dragging draws frames (${idle.frames} -> ${dragged.frames})`);
+  assert.ok(dragged.settled, 'the view stops drawing once the camera has settled');
+  step(`the view draws on demand: idle after ${idle.frames} frames, ${dragged.frames - idle.frames} frames for a drag`);
   await shot(page, 'scene');
   await page.select('#color-mode', 'organ');
   await page.waitForSelector('#legend .legend-row');
@@ -361,6 +395,31 @@ async function run() {
   await page.waitForSelector('.preview[data-state=done], .preview[data-state=error]');
   assert.equal(await page.$eval('.preview', (el) => el.dataset.state), 'done', 'the rendered preview loads');
   await shot(page, 'preview');
+
+  // Cancel: a build the page asks for waits in the server's queue behind a large one (builds
+  // run one at a time), and the Cancel button takes it out; the large one, still running
+  // then (else the test proves nothing and fails), is cancelled through the API.
+  const large = structuredClone(project45);
+  large.blocks = [{ ...large.blocks[0], count: [30, 30], age: 40 }];
+  delete large.blocks[0].seed;
+  const blocker = (await api(base, 'POST', '/api/builds', { project: large })).data;
+  assert.ok(blocker.id, `the large build is queued: ${JSON.stringify(blocker)}`);
+  const beforeCancel = await page.$eval('#build-status', (s) => s.dataset.build);
+  await page.click('#build');
+  await page.waitForFunction((prev) => {
+    const s = document.getElementById('build-status');
+    return s.dataset.build && s.dataset.build !== prev && s.dataset.state === 'queued';
+  }, {}, beforeCancel);
+  await page.click('#cancel');
+  const cancelled = await pageBuild(page, beforeCancel);
+  assert.equal(cancelled.state, 'cancelled', `the page's build after Cancel: ${cancelled.text}`);
+  assert.equal((await api(base, 'GET', `/api/builds/${cancelled.id}`)).data.state, 'cancelled');
+  const blockerState = (await api(base, 'GET', `/api/builds/${blocker.id}`)).data.state;
+  assert.ok(['queued', 'running'].includes(blockerState), `the large build was still under way (${blockerState})`);
+  const stopped = await api(base, 'DELETE', `/api/builds/${blocker.id}`);
+  assert.equal(stopped.data.state, 'cancelled', 'the large build, cancelled while it runs');
+  assert.equal((await apiBuildDone(base, blocker.id)).state, 'cancelled');
+  step(`Cancel takes the page's queued build ${cancelled.id} out; the running build ${blocker.id} stops through the API`);
 
   // The API refuses paths outside the output folder and state changes from other sites.
   for (const folder of ['../outside', '/tmp/plantarch-e2e-outside', 'e2e/../../outside']) {

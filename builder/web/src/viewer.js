@@ -35,11 +35,25 @@ export class Viewer {
     this.triangles = 0;
     this.onLegend = () => {};
 
+    // Frames are drawn on demand: when the camera moves (and while its damping settles),
+    // the scene changes or the canvas is resized; an idle view costs nothing.
+    this.frames = 0;
+    this.framePending = false;
+    this.controls.addEventListener('change', () => this.requestRender());
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
-    this.renderer.setAnimationLoop(() => {
+  }
+
+  /** Draws one frame at the next animation frame (once, however often it is asked). */
+  requestRender() {
+    if (this.framePending) return;
+    this.framePending = true;
+    requestAnimationFrame(() => {
+      this.framePending = false;
+      // update() moves a damped camera on and, while it still moves, fires 'change' again.
       this.controls.update();
       this.renderer.render(this.scene, this.camera);
+      this.frames++;
     });
   }
 
@@ -49,6 +63,7 @@ export class Viewer {
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.requestRender();
   }
 
   /** Loads a GLB (replacing the scene shown); frames the camera on the first load. */
@@ -71,6 +86,7 @@ export class Viewer {
     this.scene.add(this.model);
     this.applyColors();
     if (frame) this.frame();
+    this.requestRender();
     return { triangles: this.triangles };
   }
 
@@ -82,6 +98,7 @@ export class Viewer {
     this.table = null;
     this.triangles = 0;
     this.onLegend(null);
+    this.requestRender();
   }
 
   /** Points the camera at the plants (the whole scene when it has none). */
@@ -107,11 +124,13 @@ export class Viewer {
     this.camera.updateProjectionMatrix();
     const extent = Math.max(size.x, size.z, 1);
     this.grid.scale.setScalar(Math.ceil(extent * 1.5) / 10);
+    this.requestRender();
   }
 
   setMode(mode) {
     this.mode = mode;
     this.applyColors();
+    this.requestRender();
   }
 
   applyColors() {
