@@ -255,9 +255,19 @@ TEST_F(BuilderServer, GrowsAnEarlierBuildOnToTheSamePlantsAsAFreshBuild) {
     ASSERT_EQ(g["state"], "done") << g.dump();
     EXPECT_EQ(g["from"], first);
     EXPECT_EQ(g["ages"][0], 27);
-    const json fresh = waitFor(build(beans(2, 1, 27)));
+    const std::string freshID = build(beans(2, 1, 27));
+    const json fresh = waitFor(freshID);
     EXPECT_EQ(g["stats"]["leaf_count"], fresh["stats"]["leaf_count"]);
     EXPECT_EQ(g["stats"]["triangles"], fresh["stats"]["triangles"]);
+    // Its export is the fresh build's, byte for byte (the grown scene numbers its organs in
+    // the order they grew; an export writes the project built anew, made once and kept).
+    for (const std::string name : {"grown1", "fresh", "grown2"}) {
+        const std::string id = name[0] == 'g' ? grown : freshID;
+        auto r = post("/api/export", {{"build", id}, {"format", "glb"}, {"name", name}});
+        ASSERT_TRUE(r && r->status == 200) << r->body;
+    }
+    EXPECT_TRUE(bytes(at("out/grown1.glb")) == bytes(at("out/fresh.glb")));
+    EXPECT_TRUE(bytes(at("out/grown2.glb")) == bytes(at("out/fresh.glb")));
     EXPECT_EQ(client_->Get(("/api/builds/" + first + "/scene.glb").c_str())->status, 410);
     EXPECT_EQ(body(client_->Get(("/api/builds/" + first).c_str()))["taken_by"], grown);
     // Only ages may change, and only forward.

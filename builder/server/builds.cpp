@@ -104,6 +104,31 @@ std::variant<std::shared_ptr<Scene>, Refusal> BuildQueue::scene(const std::strin
     return b.scene;
 }
 
+std::variant<std::shared_ptr<Scene>, Refusal> BuildQueue::exportScene(const std::string& id) {
+    auto own = scene(id);
+    if (std::holds_alternative<Refusal>(own)) return own;
+    Project project;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const auto it = builds_.find(id);
+        if (it == builds_.end()) return Refusal{404, "no build " + id};
+        const Build& b = *it->second;
+        if (b.from.empty()) return own;
+        if (b.freshScene) return b.freshScene;
+        project = b.project;
+    }
+    // Built outside the lock (the queue goes on); two exports at once may both build it.
+    auto fresh = std::make_shared<Scene>();
+    try {
+        fresh->built = buildProject(project, *fresh->arch, {.maxTriangles = options_.maxTriangles});
+    } catch (const Error& e) {
+        return Refusal{500, std::string("building build ") + id + " anew for export: " + e.what()};
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (const auto it = builds_.find(id); it != builds_.end()) it->second->freshScene = fresh;
+    return fresh;
+}
+
 std::optional<bool> BuildQueue::cancel(const std::string& id) {
     std::lock_guard<std::mutex> lock(mutex_);
     const auto it = builds_.find(id);
@@ -213,6 +238,7 @@ void BuildQueue::run(const std::shared_ptr<Build>& b) {
                 earlier->takenBy = b->id;  // from now on its scene is this build's
                 earlier->glb.clear();
                 earlier->scene.reset();
+                earlier->freshScene.reset();
             }
             growProject(earlier->project, b->project, *scene->arch, scene->built, options);
         } else {

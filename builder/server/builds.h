@@ -51,6 +51,8 @@ struct Build {
     ProjectStats stats;
     std::vector<float> ages;  ///< each block's age as built
     std::string glb;          ///< scene.glb, made on first request
+    /// For a build grown on from another: its project built anew, for export (exportScene).
+    std::shared_ptr<Scene> freshScene;
 };
 
 /// Why a request for a build was refused, as an HTTP status and one line.
@@ -79,6 +81,12 @@ public:
     std::optional<Build> status(const std::string& id) const;
     /// The build's scene, or a refusal (404 unknown, 409 not done, 410 taken on by another).
     std::variant<std::shared_ptr<Scene>, Refusal> scene(const std::string& id) const;
+    /// The scene whose files an export writes: the build's own when it was built anew; for
+    /// a build grown on from another, the same project built anew (once, then kept), so that
+    /// its files are the bytes `plantarch project run` writes (the grown scene holds the same
+    /// plants, but numbers their organs in the order they grew). Refusals as scene()'s, or
+    /// 500 with the one-line error should the build anew fail.
+    std::variant<std::shared_ptr<Scene>, Refusal> exportScene(const std::string& id);
     /// Cancels a queued or running build (true), or forgets a finished one (false); nullopt
     /// for an unknown ID.
     std::optional<bool> cancel(const std::string& id);

@@ -12,8 +12,9 @@ namespace plantarch::builder {
 
 namespace {
 
+// The scene an export of build `id` writes (BuildQueue::exportScene).
 std::shared_ptr<Scene> sceneFor(BuildQueue& builds, const std::string& id) {
-    auto found = builds.scene(id);
+    auto found = builds.exportScene(id);
     if (const auto* r = std::get_if<Refusal>(&found)) throw HttpError{r->status, r->message};
     return std::get<std::shared_ptr<Scene>>(found);
 }
