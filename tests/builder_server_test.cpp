@@ -116,15 +116,21 @@ TEST_F(BuilderServer, ServesThePageAndItsConfig) {
 TEST_F(BuilderServer, ListsSpeciesWithTheirParameters) {
     auto list = client_->Get("/api/species");
     ASSERT_TRUE(list && list->status == 200);
-    bool bean = false;
-    for (const json& s : body(list))
+    bool bean = false, vine = false;
+    for (const json& s : body(list)) {
         if (s["name"] == "bean") {
             bean = true;
             EXPECT_EQ(s["latin_name"], "Phaseolus vulgaris");
             EXPECT_EQ(s["recommended_age"]["default"], 45);
             EXPECT_EQ(s["user"], false);
+            EXPECT_EQ(s["trellis"], false);
         }
-    EXPECT_TRUE(bean);
+        if (s["name"] == "grapevine_VSP") {
+            vine = true;
+            EXPECT_EQ(s["trellis"], true);
+        }
+    }
+    EXPECT_TRUE(bean && vine);
     auto one = client_->Get("/api/species/bean");
     ASSERT_TRUE(one && one->status == 200);
     const json j = body(one);

@@ -20,6 +20,7 @@ json summary(const SpeciesModel& m, bool user) {
             {"latin_name", m.latinName},
             {"plant_type", m.plantType},
             {"description", m.description},
+            {"trellis", m.trellis.has_value()},
             {"recommended_age",
              {{"min", m.recommendedAgeMin},
               {"max", m.recommendedAgeMax},

@@ -160,7 +160,8 @@ export class ScenePanel {
       }
     };
     fillLayout();
-    const recommended = this.app.species.find((s) => s.name === b.species)?.recommended_age;
+    const speciesInfo = this.app.species.find((s) => s.name === b.species);
+    const recommended = speciesInfo?.recommended_age;
     const params = h(
       'div',
       { class: 'build-params' },
@@ -232,9 +233,12 @@ export class ScenePanel {
         field('Seed', this.seedInput(b, edited), {
           title: "the block's random seed; empty: the project's",
         }),
-        field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }), {
-          title: "the species' trellis posts and wires, when it declares one",
-        }),
+        // Only a species that declares a trellis has one to draw.
+        speciesInfo?.trellis
+          ? field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }), {
+              title: "the species' trellis posts and wires",
+            })
+          : null,
       ),
       h('h3', {}, 'Build parameters'),
       params,
