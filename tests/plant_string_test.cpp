@@ -350,6 +350,23 @@ TEST(PlantString, AnAgeAsLargeAsAPlantFileAllowsRoundTrips) {
     EXPECT_EQ(arch.getPlantString(again), s);
 }
 
+// Found by fuzz_plant_xml: a young petiole's bend rate (its curvature over its growth
+// fraction; 988732 / 0.31 in the file found) passed the string's 1e6 limit on numbers.
+TEST(PlantString, AYoungPetiolesLargeBendRateRoundTrips) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned id = arch.generatePlantFromString(
+        "@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.001,0.0001,40,3.2e+06,0)]}");
+    const std::string s = arch.getPlantString(id);
+    EXPECT_NE(s.find("3.2e+06"), std::string::npos) << s;
+    EXPECT_EQ(arch.getPlantString(arch.generatePlantFromString(s)), s);
+    EXPECT_NE(stringError("@(0,0,0,5)Sunifoliate(1,0,0){I(0.01,0.001,0,0,0,0,1)[P(0.001,0.0001,40,"
+                          "1e39,0)]}")
+                  .find("expected a number"),
+              std::string::npos);
+}
+
 TEST(PlantString, ExactGroupsAreReadAndChecked) {
     Context ctx;
     PlantArchitecture arch(&ctx);

@@ -55,6 +55,7 @@ char stageLetter(FloralStage s) {
 constexpr int kMaxDepth = 1000;  // shoots nested in shoots (appended chains count too)
 constexpr int kMaxLeafID = 1 << 30;
 constexpr double kMaxPlantAge = 1e9;  // days, as plant_age in plant structure files
+constexpr double kMaxFloat = std::numeric_limits<float>::max();
 // A value a string may leave out, until completion fills it.
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -275,7 +276,7 @@ public:
         expect(',');
         p_.base.z = number<float>();
         expect(',');
-        p_.age = number<double>(kMaxPlantAge);
+        p_.age = number<double>(kMaxPlantAge, "-1e9 to 1e9");
         if (p_.age < 0.0) fail("negative plant age", "an age >= 0 days");
         expect(')');
         if (peek() == 'S') shoot(-1, 0, 0, false, 0);
@@ -319,9 +320,10 @@ private:
     }
 
     // A number of at most `limit` in size (the plant's age may reach a plant structure
-    // file's plant_age limit, 1e9 days; everything else 1e6).
+    // file's plant_age limit, 1e9 days; a petiole's bend rate any finite number; everything
+    // else 1e6).
     template <class T>
-    T number(double limit = 1e6) {
+    T number(double limit = 1e6, const char* range = "-1e6 to 1e6") {
         skipSpace();
         const std::size_t start = pos_;
         while (pos_ < s_.size() && s_[pos_] != ',' && s_[pos_] != ')' && s_[pos_] != ' ') ++pos_;
@@ -335,19 +337,19 @@ private:
         }
         if (std::abs(double(v)) > limit) {
             pos_ = start;
-            fail("number out of range", limit == 1e6 ? "-1e6 to 1e6" : "-1e9 to 1e9");
+            fail("number out of range", range);
         }
         return v;
     }
 
     // n numbers separated by commas, inside parentheses.
     template <std::size_t N>
-    std::array<float, N> tuple() {
+    std::array<float, N> tuple(std::size_t unbounded = N) {
         std::array<float, N> v{};
         expect('(');
         for (std::size_t i = 0; i < N; ++i) {
             if (i) expect(',');
-            v[i] = number<float>();
+            v[i] = i == unbounded ? number<float>(kMaxFloat, "a finite number") : number<float>();
         }
         expect(')');
         return v;
@@ -429,7 +431,9 @@ private:
         while (peek() == '[') {
             ++pos_;
             expect('P');
-            const auto q = tuple<5>();
+            // The bend rate (degrees per m) is the full-grown curvature over the petiole's
+            // growth fraction: any finite number (a young petiole's is large).
+            const auto q = tuple<5>(3);
             Petiole pt;
             pt.length = q[0];
             pt.radius = q[1];
