@@ -2,6 +2,7 @@
 // Starts the project builder: a local web app (embedded in this binary) and its JSON API
 // (builder/API.md), until Ctrl-C.
 
+#include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
@@ -27,16 +28,32 @@ struct BuilderArgs {
     std::string output = "builder-output";
 };
 
-// Opens `url` in the desktop's browser (xdg-open), without waiting for it.
+// Opens `url` in the desktop's browser (xdg-open), without waiting for it. xdg-open's own
+// output is dropped (on a machine without a browser it lists every one it tried); when it
+// fails, one line says so.
 void openBrowser(const std::string& url) {
+    posix_spawn_file_actions_t quiet;
+    posix_spawn_file_actions_init(&quiet);
+    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&quiet, 2, "/dev/null", O_WRONLY, 0);
     pid_t pid = 0;
     const char* argv[] = {"xdg-open", url.c_str(), nullptr};
-    if (posix_spawnp(&pid, "xdg-open", nullptr, nullptr, const_cast<char**>(argv), environ) != 0) {
+    const int spawned =
+        posix_spawnp(&pid, "xdg-open", &quiet, nullptr, const_cast<char**>(argv), environ);
+    posix_spawn_file_actions_destroy(&quiet);
+    if (spawned != 0) {
         std::fprintf(stderr, "plantarch: note: could not start xdg-open; open %s yourself\n",
                      url.c_str());
         return;
     }
-    std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();  // no zombie left
+    std::thread([pid, url] {  // no zombie left
+        int status = 0;
+        if (waitpid(pid, &status, 0) == pid && !(WIFEXITED(status) && WEXITSTATUS(status) == 0))
+            std::fprintf(stderr,
+                         "plantarch: note: xdg-open found no web browser; open %s yourself\n",
+                         url.c_str());
+    })
+        .detach();
 }
 
 int runBuilder(const BuilderArgs& a, const GlobalOptions& global) {

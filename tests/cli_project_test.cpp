@@ -10,6 +10,8 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "cli_run.h"
@@ -133,4 +135,33 @@ TEST_F(CliProject, TheBuilderWarnsWhenListeningBeyondThisMachine) {
     const auto port = cli::run("builder --port 70000");
     EXPECT_EQ(port.status, 2);
     EXPECT_NE(port.out.find("--port = 70000"), std::string::npos) << port.out;
+}
+
+// --open starts xdg-open with the page's address; its own output is dropped, and when it
+// fails (no browser) one line says to open the address by hand. A stand-in xdg-open on PATH.
+TEST_F(CliProject, TheBuilderOpensTheBrowserOrSaysWhy) {
+    const std::string bin = at("bin");
+    std::filesystem::create_directories(bin);
+    auto fakeOpener = [&](int exitCode) {
+        std::ofstream(bin + "/xdg-open")
+            << "#!/bin/sh\necho \"$1\" > " << at("opened.txt")
+            << "\necho 'xdg-open: no browser here' >&2\nexit " << exitCode << "\n";
+        std::filesystem::permissions(bin + "/xdg-open", std::filesystem::perms::owner_all);
+    };
+    const std::string command = "PATH=" + bin + ":$PATH timeout --preserve-status -s INT 2 " +
+                                std::string(PLANTARCH_CLI) + " builder --port 0 --open --output " +
+                                at("b") + " 2>&1";
+    fakeOpener(0);
+    auto r = cli::runShell(command);
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(bytes(at("opened.txt")).rfind("http://127.0.0.1:", 0), 0u) << bytes(at("opened.txt"));
+    EXPECT_EQ(r.out.find("no browser here"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("note:"), std::string::npos) << r.out;
+    fakeOpener(3);
+    r = cli::runShell(command);
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("plantarch: note: xdg-open found no web browser; open http://127.0.0.1:"),
+              std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("no browser here"), std::string::npos) << r.out;
 }
