@@ -5,9 +5,11 @@
 #   bash scripts/fuzz.sh plant_xml 600      # TARGET: plant_xml, plant_string, species or obj
 #   bash scripts/fuzz.sh plant_xml 7200 10000000   # stop at 10 M executions or two hours
 #
-# The seeds in fuzz/corpus/TARGET/ (small, kept in the repository) start the run; inputs the
-# fuzzer finds interesting go to build-fuzz/corpus/TARGET/ (kept between runs, not
-# committed). A crash, sanitizer report, timeout (10 s) or memory blow-up (2 GB) stops the
+# The corpus in fuzz/corpus/TARGET/ (hand-made seeds and the inputs of earlier runs that
+# reach code nothing else does; kept in the repository) starts the run; inputs the fuzzer
+# finds interesting go to build-fuzz/corpus/TARGET/ (kept between runs). After a long run,
+# keep the new ones that add coverage:
+#   build-fuzz/fuzz_TARGET -merge=1 -max_len=16384 fuzz/corpus/TARGET build-fuzz/corpus/TARGET A crash, sanitizer report, timeout (10 s) or memory blow-up (2 GB) stops the
 # run with a non-zero status and saves the input under build-fuzz/artifacts/TARGET/;
 # replay it with  build-fuzz/fuzz_TARGET FILE. PLANTARCH_FUZZ_TIMEOUT (seconds, default 10)
 # raises the timeout on a machine busy with other work, where a niced fuzzer's wall time
