@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
@@ -59,4 +62,22 @@ TEST(FuzzFindings, LineBreaksInPlantTextSurviveWriting) {
     const unsigned q = again.readPlantStructureXMLString(written).at(0);
     EXPECT_EQ(again.plant(q).name, "a\rb\nc\td");
     EXPECT_EQ(again.getPlantStructureXML({q}), written);
+}
+
+// species: formulas nested 4088 parentheses deep (the input as the fuzzer found it, kept in the
+// species corpus) overflowed the formula parser's stack under ASan. It is now refused.
+TEST(FuzzFindings, DeeplyNestedFormulaIsRefusedNotAStackOverflow) {
+    const std::string path = std::string(PLANTARCH_SOURCE_DIR) +
+                             "/fuzz/corpus/species/stack-overflow-nested-formula.xml";
+    std::ifstream in(path, std::ios::binary);
+    ASSERT_TRUE(in) << path;
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+        readSpeciesString(text.str(), "nested.xml");
+        FAIL() << "read a formula nested 4088 levels deep";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("nested deeper than 200 levels"), std::string::npos)
+            << e.what();
+    }
 }

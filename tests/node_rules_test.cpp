@@ -164,6 +164,36 @@ TEST(NodeRuleFormula, BadFormulasNameTheProblemAndTheColumn) {
               std::string::npos);
 }
 
+// fuzz_species: a formula nested thousands of parentheses deep overflowed the parser's stack.
+// Nesting is bounded: 200 levels read, 201 are one clear error, however the levels are made.
+TEST(NodeRuleFormula, NestingIsBoundedWithAClearError) {
+    const auto nested = [](const std::string& open, const std::string& close, int levels) {
+        std::string text;
+        for (int i = 0; i < levels; ++i) text += open;
+        text += "node";
+        for (int i = 0; i < levels; ++i) text += close;
+        return text;
+    };
+    // 199 parentheses and the sign of the innermost term: 200 levels.
+    EXPECT_EQ(
+        NodeRule::formula(nested("(", ")", 199)).evaluateFloat(std::vector<float>{0, 7, 0, 10, 0}),
+        7.0f);
+    for (const auto& [open, close] : std::vector<std::pair<std::string, std::string>>{
+             {"(", ")"}, {"-", ""}, {"abs(", ")"}, {"min(1, ", ")"}}) {
+        SCOPED_TRACE(open);
+        const std::string error = errorOf([&] { NodeRule::formula(nested(open, close, 5000)); });
+        EXPECT_NE(error.find("bad expression: nested deeper than 200 levels at column "),
+                  std::string::npos)
+            << error;
+        EXPECT_NE(error.find("(valid: at most 200 nested parentheses, calls and signs)"),
+                  std::string::npos)
+            << error;
+        // The 5000-level text is shown by its start and its length.
+        EXPECT_NE(error.find(" characters)': bad expression"), std::string::npos) << error;
+        EXPECT_LT(error.size(), 400u) << error;
+    }
+}
+
 // ---- the documented example: a species with rules is a file alone ------------------------
 
 TEST(NodeRules, TheDocumentedExampleBuildsWhatItSays) {

@@ -2,6 +2,22 @@
 
 namespace plantarch {
 
+namespace {
+
+// A value longer than this is shown by its start and its length, so that a hostile or
+// generated input cannot turn one error line into pages.
+constexpr std::size_t kMaxShownValue = 120;
+
+std::string shownValue(const std::string& value) {
+    if (value.size() <= kMaxShownValue) return value;
+    std::size_t cut = kMaxShownValue;
+    // Never cut a UTF-8 character in two: back off over continuation bytes.
+    while (cut > 0 && (static_cast<unsigned char>(value[cut]) & 0xC0) == 0x80) --cut;
+    return value.substr(0, cut) + "... (" + std::to_string(value.size()) + " characters)";
+}
+
+}  // namespace
+
 std::string formatError(const std::string& message, const ErrorContext& c) {
     std::string out;
     if (!c.file.empty()) {
@@ -11,10 +27,10 @@ std::string formatError(const std::string& message, const ErrorContext& c) {
     }
     if (!c.parameter.empty()) {
         out.append(c.parameter);
-        if (!c.value.empty()) out.append(" = ").append(c.value);
+        if (!c.value.empty()) out.append(" = ").append(shownValue(c.value));
         out.append(": ");
     } else if (!c.value.empty()) {
-        out.append("'").append(c.value).append("': ");
+        out.append("'").append(shownValue(c.value)).append("': ");
     }
     out.append(message);
     if (!c.validRange.empty()) out.append(" (valid: ").append(c.validRange).append(")");

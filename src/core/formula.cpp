@@ -170,7 +170,23 @@ private:
         }
     }
 
+    // Every nesting (a parenthesis, a call's argument, a sign) passes through unary(), so the
+    // depth counted here bounds the parser's recursion: a hostile text cannot exhaust the stack.
+    struct Nest {
+        Parser& p;
+        explicit Nest(Parser& parser) : p(parser) {
+            if (++p.nesting_ > kMaxNesting)
+                p.failHere("nested deeper than " + std::to_string(kMaxNesting) + " levels",
+                           "at most " + std::to_string(kMaxNesting) +
+                               " nested parentheses, calls and signs");
+        }
+        ~Nest() { --p.nesting_; }
+        Nest(const Nest&) = delete;
+        Nest& operator=(const Nest&) = delete;
+    };
+
     void unary() {
+        const Nest nest(*this);
         if (accept('-')) {
             unary();
             emit({.kind = Kind::Negate}, 0);
@@ -278,8 +294,10 @@ private:
     std::string_view text_;
     Program& out_;
     bool allowRandom_;
+    static constexpr int kMaxNesting = 200;
     std::size_t pos_ = 0;
     int stack_ = 0;
+    int nesting_ = 0;
 };
 
 template <class T>
