@@ -140,10 +140,19 @@ std::map<std::string, double> measure(const std::string& species, float age, std
     m["width_x"] = hi.x - lo.x;
     m["width_y"] = hi.y - lo.y;
     double flowers = 0, fruit = 0;
+    // The reference counts flower and fruit objects: an organ with geometry. A fruit the
+    // instant it sets has no size yet, so no geometry, and is not counted (strawberry's first
+    // flower opens on day 45 and sets on day 50 exactly; the reference's 2-day time step makes
+    // each 5-day stage 6 days, so its first fruit sets on day 52).
+    const auto drawn = [](const FloralBud& fb) {
+        double n = 0;
+        for (const FlowerOrgan& f : fb.flowers) n += f.objects.empty() ? 0.0 : 1.0;
+        return n;
+    };
     auto count = [&](const FloralBud& fb) {
         if (fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen)
-            flowers += double(fb.flowers.size());
-        if (fb.stage == FloralStage::Fruit) fruit += double(fb.flowers.size());
+            flowers += drawn(fb);
+        if (fb.stage == FloralStage::Fruit) fruit += drawn(fb);
     };
     for (const Shoot& s : arch.plant(p).shoots) {
         if (s.removed) continue;
