@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -78,6 +79,51 @@ TEST(FuzzFindings, DeeplyNestedFormulaIsRefusedNotAStackOverflow) {
         FAIL() << "read a formula nested 4088 levels deep";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("nested deeper than 200 levels"), std::string::npos)
+            << e.what();
+    }
+}
+
+// plant_xml: a leaf listed at 636350 m, 0.4 of its full size, was read as a full-grown leaf of
+// 1590875 m, and the file written from the plant held that size, over the 1e6 m any file may
+// hold, so it did not read back. The full-grown size is now checked as it is derived (the
+// petiole's length likewise).
+TEST(FuzzFindings, FullGrownSizeDerivedFromAFractionIsHeldToTheRange) {
+    const std::string path = std::string(PLANTARCH_SOURCE_DIR) +
+                             "/fuzz/corpus/plant_xml/leaf-full-size-beyond-range.xml";
+    std::ifstream in(path, std::ios::binary);
+    ASSERT_TRUE(in) << path;
+    std::stringstream text;
+    text << in.rdbuf();
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    try {
+        arch.readPlantStructureXMLString(text.str());
+        FAIL() << "read a leaf whose full-grown size is 1590875 m";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(
+                      "leaf[3].leaf_scale = 0.0063635e8: at current_leaf_scale_factor 0.4 it is a "
+                      "full-grown size of 1590875 m (valid: current size / "
+                      "current_leaf_scale_factor at most 1000000 m)"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_TRUE(arch.getAllPlantIDs().empty());
+    // The same for a petiole: 6e5 m long at 0.5 of its size.
+    std::string petiole = text.str();
+    const std::size_t at = petiole.find("<petiole_length>0.05315401</petiole_length>");
+    ASSERT_NE(at, std::string::npos);
+    petiole.replace(at, std::strlen("<petiole_length>0.05315401</petiole_length>"),
+                    "<petiole_length>600000</petiole_length>");
+    std::string leafFixed = petiole;
+    leafFixed.replace(leafFixed.find("0.0063635e8"), std::strlen("0.0063635e8"), "0.01");
+    try {
+        arch.readPlantStructureXMLString(leafFixed);
+        FAIL() << "read a petiole whose full-grown length is 1.5e6 m";
+    } catch (const Error& e) {
+        EXPECT_NE(
+            std::string(e.what()).find("petiole_length = 600000: at current_leaf_scale_factor "
+                                       "0.4 it is a full-grown size of 1500000 m"),
+            std::string::npos)
             << e.what();
     }
 }

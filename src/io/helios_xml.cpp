@@ -89,6 +89,22 @@ float sum(const std::vector<float>& v) {
     return float(s);
 }
 
+// The full-grown size of an organ listed at `current` size, `fraction` of its full size. It
+// is what the plant keeps and what a written file holds, so it is held to the same range as a
+// size given outright (a leaf 6e5 m long at 0.4 of its size would be written as 1.6e6 m, which
+// no file may hold).
+float fullGrown(const Element& c, float current, float fraction) {
+    if (fraction <= 0.0f) return 0.0f;
+    const float full = current / fraction;
+    if (!(double(full) <= kLength))
+        c.fail("at current_leaf_scale_factor " + text::formatFloat(fraction) +
+                   " it is a full-grown size of " + text::formatFloat(full) + " m",
+               c.text(),
+               "current size / current_leaf_scale_factor at most " + text::formatFloat(kLength) +
+                   " m");
+    return full;
+}
+
 // An element's child read by `read` when present (returns whether it was).
 template <class Read>
 bool optionalChild(Children& kids, const Element& parent, const char* name, Read&& read) {
@@ -334,8 +350,11 @@ private:
         e.checkAttributes({});
         Children kids(e);
         float length = 0.0f;
-        const bool hasLength = optionalChild(
-            kids, e, "petiole_length", [&](const Element& c) { length = number(c, 0.0, kLength); });
+        xml_node lengthNode;
+        const bool hasLength = optionalChild(kids, e, "petiole_length", [&](const Element& c) {
+            length = number(c, 0.0, kLength);
+            lengthNode = c.node();
+        });
         optionalChild(kids, e, "petiole_radius", [&](const Element& c) {
             pt.radius = number(c, 0.0, kLength);
             note(&pt.radius);
@@ -378,7 +397,7 @@ private:
             ++typeDefaults["leaflet_offset"];
         }
         if (hasLength) {
-            pt.length = fraction > 0.0f ? length / fraction : 0.0f;
+            pt.length = fullGrown(Element(e, lengthNode, "petiole_length"), length, fraction);
             note(&pt.length);
         }
         leaves(e, kids.takeAll("leaf"), pt, fraction, offset);
@@ -416,8 +435,7 @@ private:
             note(&l.position);
             Children kids(le);
             optionalChild(kids, le, "leaf_scale", [&](const Element& c) {
-                const float current = number(c, 0.0, kLength);
-                l.scale = fraction > 0.0f ? current / fraction : 0.0f;
+                l.scale = fullGrown(c, number(c, 0.0, kLength), fraction);
                 note(&l.scale);
             });
             auto angle = [&](const char* name, float& member) {
