@@ -13,6 +13,18 @@
 
 using namespace plantarch;
 
+namespace {
+
+// A file of the fuzz corpus (fuzz/corpus/...), or "" when it cannot be read.
+std::string corpusFile(const std::string& name) {
+    std::ifstream in(std::string(PLANTARCH_SOURCE_DIR) + "/fuzz/corpus/" + name, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+}  // namespace
+
 // plant_xml: a shoot type label with a space was accepted in a listing-form file, given
 // default parameters, and written as a <shoot_type label="..."> that the reader refuses.
 TEST(FuzzFindings, ShootTypeLabelWithASpaceIsRefused) {
@@ -68,14 +80,10 @@ TEST(FuzzFindings, LineBreaksInPlantTextSurviveWriting) {
 // species: formulas nested 4088 parentheses deep (the input as the fuzzer found it, kept in the
 // species corpus) overflowed the formula parser's stack under ASan. It is now refused.
 TEST(FuzzFindings, DeeplyNestedFormulaIsRefusedNotAStackOverflow) {
-    const std::string path = std::string(PLANTARCH_SOURCE_DIR) +
-                             "/fuzz/corpus/species/stack-overflow-nested-formula.xml";
-    std::ifstream in(path, std::ios::binary);
-    ASSERT_TRUE(in) << path;
-    std::stringstream text;
-    text << in.rdbuf();
+    const std::string text = corpusFile("species/stack-overflow-nested-formula.xml");
+    ASSERT_FALSE(text.empty()) << "species/stack-overflow-nested-formula.xml";
     try {
-        readSpeciesString(text.str(), "nested.xml");
+        readSpeciesString(text, "nested.xml");
         FAIL() << "read a formula nested 4088 levels deep";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("nested deeper than 200 levels"), std::string::npos)
@@ -88,16 +96,12 @@ TEST(FuzzFindings, DeeplyNestedFormulaIsRefusedNotAStackOverflow) {
 // hold, so it did not read back. The full-grown size is now checked as it is derived (the
 // petiole's length likewise).
 TEST(FuzzFindings, FullGrownSizeDerivedFromAFractionIsHeldToTheRange) {
-    const std::string path = std::string(PLANTARCH_SOURCE_DIR) +
-                             "/fuzz/corpus/plant_xml/leaf-full-size-beyond-range.xml";
-    std::ifstream in(path, std::ios::binary);
-    ASSERT_TRUE(in) << path;
-    std::stringstream text;
-    text << in.rdbuf();
+    const std::string text = corpusFile("plant_xml/leaf-full-size-beyond-range.xml");
+    ASSERT_FALSE(text.empty()) << "plant_xml/leaf-full-size-beyond-range.xml";
     Context ctx;
     PlantArchitecture arch(&ctx);
     try {
-        arch.readPlantStructureXMLString(text.str());
+        arch.readPlantStructureXMLString(text);
         FAIL() << "read a leaf whose full-grown size is 1590875 m";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find(
@@ -109,7 +113,7 @@ TEST(FuzzFindings, FullGrownSizeDerivedFromAFractionIsHeldToTheRange) {
     }
     EXPECT_TRUE(arch.getAllPlantIDs().empty());
     // The same for a petiole: 6e5 m long at 0.5 of its size.
-    std::string petiole = text.str();
+    std::string petiole = text;
     const std::size_t at = petiole.find("<petiole_length>0.05315401</petiole_length>");
     ASSERT_NE(at, std::string::npos);
     petiole.replace(at, std::strlen("<petiole_length>0.05315401</petiole_length>"),
