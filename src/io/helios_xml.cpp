@@ -350,8 +350,8 @@ private:
         e.checkAttributes({});
         Children kids(e);
         float length = 0.0f;
-        xml_node lengthNode;
-        const bool hasLength = optionalChild(kids, e, "petiole_length", [&](const Element& c) {
+        xml_node lengthNode;  // set when the petiole's length is given
+        optionalChild(kids, e, "petiole_length", [&](const Element& c) {
             length = number(c, 0.0, kLength);
             lengthNode = c.node();
         });
@@ -396,7 +396,7 @@ private:
             offset = type.phytomer_parameters.leaf.leaflet_offset.mean();
             ++typeDefaults["leaflet_offset"];
         }
-        if (hasLength) {
+        if (lengthNode) {
             pt.length = fullGrown(Element(e, lengthNode, "petiole_length"), length, fraction);
             note(&pt.length);
         }
