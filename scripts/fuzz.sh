@@ -9,16 +9,18 @@
 # reach code nothing else does; kept in the repository) starts the run; inputs the fuzzer
 # finds interesting go to build-fuzz/corpus/TARGET/ (kept between runs). After a long run,
 # keep the new ones that add coverage:
-#   build-fuzz/fuzz_TARGET -merge=1 -max_len=16384 fuzz/corpus/TARGET build-fuzz/corpus/TARGET A crash, sanitizer report, timeout (10 s) or memory blow-up (2 GB) stops the
-# run with a non-zero status and saves the input under build-fuzz/artifacts/TARGET/;
-# replay it with  build-fuzz/fuzz_TARGET FILE. PLANTARCH_FUZZ_TIMEOUT (seconds, default 10)
-# raises the timeout on a machine busy with other work, where a niced fuzzer's wall time
-# stretches. The allocator is not purged every second (libFuzzer's default): under ASan, with
-# a heap of hundreds of MB, the purges took a third of fuzz_obj's time. ASan records two frames
+#   build-fuzz/fuzz_TARGET -merge=1 -max_len=16384 fuzz/corpus/TARGET build-fuzz/corpus/TARGET
+# A crash, sanitizer report, timeout (10 s) or memory blow-up (2 GB) stops the run with a
+# non-zero status and saves the input under build-fuzz/artifacts/TARGET/; replay it with
+#   build-fuzz/fuzz_TARGET FILE
+# which shows the full stacks. PLANTARCH_FUZZ_TIMEOUT (seconds, default 10) raises the
+# timeout on a machine busy with other work, where a niced fuzzer's wall time stretches.
+#
+# Speed: the allocator is not purged every second (libFuzzer's default): under ASan, with a
+# heap of hundreds of MB, the purges took a third of fuzz_obj's time. ASan records two frames
 # of each allocation's stack, does not fill new allocations and keeps 16 MB of freed memory in
 # quarantine (set ASAN_OPTIONS to override): storing 30-frame stacks took 44 % of fuzz_obj's
-# time, filling and recycling a 256 MB quarantine another 15 %. A finding replayed with
-# build-fuzz/fuzz_TARGET FILE  shows the full stacks.
+# time, filling and recycling a 256 MB quarantine another 15 %.
 set -euo pipefail
 
 usage="usage: scripts/fuzz.sh TARGET SECONDS [RUNS]   (TARGET: plant_xml, plant_string, species, obj)"
