@@ -21,6 +21,7 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "geometry/tessellate.h"
+#include "growth/leaf_expansion.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
 
@@ -517,6 +518,7 @@ struct Grower {
     // ---- continuous state --------------------------------------------------------------
 
     void updateContinuous(double now) {
+        const double step = growthStep(plant);
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
             const float rate = s.elongationRate;
@@ -524,7 +526,10 @@ struct Grower {
                 const double age = std::max(0.0, now - ph.birth);
                 ph.age = float(age);
                 ph.internodeFraction = float(std::min(1.0, ph.internodeFraction0 + rate * age));
-                ph.leafFraction = float(std::min(1.0, ph.leafFraction0 + rate * age));
+                const RandomFloat& nominal =
+                    typeOf(ph.parametersLabel).phytomer_parameters.leaf.prototype_scale;
+                ph.leafFraction =
+                    leafFractionAt(ph.leafFraction0, rate, age, leafSizeRatio(ph, nominal), step);
                 for (Petiole& pt : ph.petioles) {
                     for (LeafOrgan& l : pt.leaves) l.age = float(std::max(0.0, now - l.birth));
                     for (FloralBud& fb : pt.floralBuds) updateFruit(fb, now);
