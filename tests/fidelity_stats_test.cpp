@@ -89,13 +89,6 @@ const std::vector<Departure> kDepartures = {
     {"groundcherryweed", "fruit", 1.0,
      "closed flowers set fruit after time_to_fruit_set; the reference, without a fruit "
      "prototype, sets none (species/groundcherryweed.xml)"},
-    // The reference's cladodes of each shoot's first 3 nodes stop growing at 14 % of full
-    // length where its rule sets 60 % (it divides a growing leaf's length by the species'
-    // full size, not the leaf's own); here they reach 60 %. Replaying the reference's rules
-    // both ways gives 1.167 times its leaf area (species/asparagus.xml): 0.0022 x 1.167.
-    {"asparagus", "leaf_area", 0.00257,
-     "the first 3 nodes' cladodes reach the 60 % their rule sets; the reference's stop at 14 % "
-     "(species/asparagus.xml)"},
     {"sugarbeet", "width_y", 0.6105,
      "a spiral rosette, as wide along y as the reference's is along x (species/sugarbeet.xml)"},
 };
