@@ -122,6 +122,9 @@ def test_ctrl_c_stops_a_long_canopy_build_cleanly():
             os.kill(os.getpid(), signal.SIGINT)
 
     a.setProgressCallback(progress)
+    # Python turns Ctrl-C into KeyboardInterrupt only if SIGINT was not ignored when it
+    # started; a background job of a non-interactive shell starts with it ignored.
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (40, 40), 50)
     except KeyboardInterrupt:
@@ -129,6 +132,8 @@ def test_ctrl_c_stops_a_long_canopy_build_cleanly():
     else:
         pytest.fail(f"no KeyboardInterrupt: interrupt sent at {sent}, {len(reports)} progress "
                     f"reports, first {reports[:4]}, last {reports[-4:]}")
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert sent  # the interrupt came during the build
     assert reports[-1][1] < 1  # and stopped it before its end
     assert a.getContext().getObjectCount() == 0
