@@ -74,22 +74,24 @@ TEST(LeafExpansion, SizeRatioIsTheTipLeafOverTheNominalSize) {
     side.scale = 0.03f;
     ph.petioles[0].leaves = {side, tip};
     // Constant nominal size: plain ratio. uniform(a, b): the mean of 1 / P is ln(b/a)/(b-a).
-    EXPECT_FLOAT_EQ(leafSizeRatio(ph, RandomFloat(0.12f)), 0.5f);
-    EXPECT_NEAR(leafSizeRatio(ph, RandomFloat::uniform(0.12f, 0.18f)), 0.06 * std::log(1.5) / 0.06,
-                1e-6);
+    EXPECT_FLOAT_EQ(leafSizeRatio(ph, nominalReciprocal(RandomFloat(0.12f))), 0.5f);
+    EXPECT_NEAR(leafSizeRatio(ph, nominalReciprocal(RandomFloat::uniform(0.12f, 0.18f))),
+                0.06 * std::log(1.5) / 0.06, 1e-6);
     // An even count has a pair at the tip.
     ph.petioles[0].leaves = {side};
-    EXPECT_FLOAT_EQ(leafSizeRatio(ph, RandomFloat(0.12f)), 0.25f);
+    EXPECT_FLOAT_EQ(leafSizeRatio(ph, nominalReciprocal(RandomFloat(0.12f))), 0.25f);
     // No leaf, a zero-size leaf or a nominal size that can be 0: linear growth.
     ph.petioles[0].leaves.clear();
-    EXPECT_FLOAT_EQ(leafSizeRatio(ph, RandomFloat(0.12f)), 1.0f);
+    EXPECT_FLOAT_EQ(leafSizeRatio(ph, nominalReciprocal(RandomFloat(0.12f))), 1.0f);
     tip.scale = 0.0f;
     ph.petioles[0].leaves = {tip};
-    EXPECT_FLOAT_EQ(leafSizeRatio(ph, RandomFloat(0.12f)), 1.0f);
+    EXPECT_FLOAT_EQ(leafSizeRatio(ph, nominalReciprocal(RandomFloat(0.12f))), 1.0f);
     tip.scale = 0.06f;
     ph.petioles[0].leaves = {tip};
-    EXPECT_FLOAT_EQ(leafSizeRatio(ph, RandomFloat::uniform(0.0f, 0.2f)), 1.0f);
-    EXPECT_FLOAT_EQ(leafSizeRatio(ph, RandomFloat(0.0f)), 1.0f);
+    EXPECT_FLOAT_EQ(leafSizeRatio(ph, nominalReciprocal(RandomFloat::uniform(0.0f, 0.2f))), 1.0f);
+    EXPECT_FLOAT_EQ(leafSizeRatio(ph, nominalReciprocal(RandomFloat(0.0f))), 1.0f);
+    // A normal draw: the reciprocal of its mean.
+    EXPECT_NEAR(nominalReciprocal(RandomFloat::normal(0.1f, 0.01f)), 10.0, 1e-5);
 }
 
 TEST(LeafExpansion, GrowthStepIsTheShortestPhyllochronOfThePlantsTypes) {

@@ -519,6 +519,8 @@ struct Grower {
 
     void updateContinuous(double now) {
         const double step = growthStep(plant);
+        const std::string* label = nullptr;  // the phytomer type whose `reciprocal` is held
+        double reciprocal = 0.0;
         for (Shoot& s : plant.shoots) {
             if (s.removed) continue;
             const float rate = s.elongationRate;
@@ -526,10 +528,18 @@ struct Grower {
                 const double age = std::max(0.0, now - ph.birth);
                 ph.age = float(age);
                 ph.internodeFraction = float(std::min(1.0, ph.internodeFraction0 + rate * age));
-                const RandomFloat& nominal =
-                    typeOf(ph.parametersLabel).phytomer_parameters.leaf.prototype_scale;
-                ph.leafFraction =
-                    leafFractionAt(ph.leafFraction0, rate, age, leafSizeRatio(ph, nominal), step);
+                if (ph.leafFraction0 >= 1.0f) {
+                    ph.leafFraction = 1.0f;
+                } else {
+                    // One type's nominal size serves its run of phytomers (usually the shoot).
+                    if (!label || *label != ph.parametersLabel) {
+                        label = &ph.parametersLabel;
+                        reciprocal = nominalReciprocal(
+                            typeOf(*label).phytomer_parameters.leaf.prototype_scale);
+                    }
+                    ph.leafFraction = leafFractionAt(ph.leafFraction0, rate, age,
+                                                     leafSizeRatio(ph, reciprocal), step);
+                }
                 for (Petiole& pt : ph.petioles) {
                     for (LeafOrgan& l : pt.leaves) l.age = float(std::max(0.0, now - l.birth));
                     for (FloralBud& fb : pt.floralBuds) updateFruit(fb, now);

@@ -5,11 +5,7 @@
 
 namespace plantarch {
 
-namespace {
-
-// Mean of 1 / P for a leaf size P drawn from `scale`; 0 where it is not defined (a size that
-// can be 0 or less).
-double meanReciprocal(const RandomFloat& scale) {
+double nominalReciprocal(const RandomFloat& scale) {
     const double a = scale.a(), b = scale.b();
     switch (scale.kind()) {
         case RandomFloat::Kind::Constant:
@@ -26,8 +22,6 @@ double meanReciprocal(const RandomFloat& scale) {
     return m > 0.0 ? 1.0 / m : 0.0;
 }
 
-}  // namespace
-
 double growthStep(const PlantInstance& plant) {
     double step = 0.0;
     for (const auto& [label, type] : plant.shootTypes) {
@@ -37,13 +31,12 @@ double growthStep(const PlantInstance& plant) {
     return step > 0.0 ? step : 1.0;
 }
 
-float leafSizeRatio(const Phytomer& ph, const RandomFloat& leafPrototypeScale) {
+float leafSizeRatio(const Phytomer& ph, double reciprocal) {
     if (ph.petioles.empty()) return 1.0f;
     // The tip leaflet (an even count has a pair at the tip, at full scale like a tip leaflet).
     const LeafOrgan* tip = nullptr;
     for (const LeafOrgan& l : ph.petioles.front().leaves)
         if (l.leafletIndex == 0 || (!tip && std::abs(l.leafletIndex) == 1)) tip = &l;
-    const double reciprocal = meanReciprocal(leafPrototypeScale);
     if (!tip || !(tip->scale > 0.0f) || !(reciprocal > 0.0)) return 1.0f;
     return float(double(tip->scale) * reciprocal);
 }

@@ -22,9 +22,14 @@ namespace plantarch {
 /// types it has made shoots of). 1 when it has none.
 double growthStep(const PlantInstance& plant);
 
-/// Full size of a phytomer's tip leaf (its first petiole's) over its type's nominal leaf size
-/// (`leafPrototypeScale`); 1 where either is not a positive size.
-float leafSizeRatio(const Phytomer& ph, const RandomFloat& leafPrototypeScale);
+/// 1 / a type's nominal leaf size: the mean of 1 / P for P drawn from its leaf
+/// `prototype_scale` (ln(b/a)/(b-a) for uniform(a, b); 1 / mean for a normal or Weibull
+/// draw); 0 where a size can be 0 or less.
+double nominalReciprocal(const RandomFloat& leafPrototypeScale);
+
+/// Full size of a phytomer's tip leaf (its first petiole's) times `reciprocal`
+/// (nominalReciprocal of its type); 1 where either is not positive.
+float leafSizeRatio(const Phytomer& ph, double reciprocal);
 
 /// A phytomer's leaf fraction `age` days after creation (at most 1), for fraction `f0` at
 /// creation, elongation rate `rate` per day, size ratio `ratio` (leafSizeRatio) and the
