@@ -45,8 +45,14 @@ TEST(OrganSizes, NoLibraryPlantHasATriangleOfZeroArea) {
     std::size_t plants = 0;
     for (const std::string& name : listSpecies()) {
         const SpeciesModel model = loadSpecies(name);
-        const std::set<float> ages = {model.recommendedAgeMin, model.recommendedAge,
-                                      model.recommendedAgeMax};
+        // The recommended range and the ages plants are compared at besides the picture age:
+        // a third, two thirds and one and a half times it (where the species lives that long).
+        std::set<float> ages = {model.recommendedAgeMin, model.recommendedAge,
+                                model.recommendedAgeMax};
+        for (float f : {1.0f / 3.0f, 2.0f / 3.0f, 1.5f}) {
+            const float age = std::round(model.recommendedAge * f);
+            if (age <= model.phenology.max_age) ages.insert(age);
+        }
         for (float age : ages)
             for (std::uint64_t seed = 1; seed <= 3; ++seed) {
                 Context ctx;
