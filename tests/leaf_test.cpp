@@ -15,6 +15,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plantarch/Error.h"
@@ -544,6 +545,75 @@ TEST(LeafDeform, WavesAlternateAlongTheMarginWithTheGivenPeriod) {
         if (std::abs(f.y) > 0.02f && std::abs(phase) > 0.3f) {
             EXPECT_GT(bent.positions[i].z * (f.y > 0 ? -1.0f : 1.0f) * phase, 0.0f);
         }
+    }
+}
+
+namespace {
+
+double surfaceArea(const Mesh& m) {
+    double a = 0.0;
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const glm::dvec3 p = m.positions[m.indices[t]], q = m.positions[m.indices[t + 1]],
+                         r = m.positions[m.indices[t + 2]];
+        a += 0.5 * glm::length(glm::cross(q - p, r - p));
+    }
+    return a;
+}
+
+}  // namespace
+
+// Pleats fold a round blade like a fan about the petiole's attachment (the sinus): ridges
+// along the midrib and every 360 / n degrees, the blade drawn in so that it keeps its area,
+// and every point its distance from the attachment.
+TEST(LeafDeform, PleatsFoldTheBladeAboutTheAttachmentAndKeepItsArea) {
+    LeafOutlineParams p = leafShapePreset(LeafShape::Reniform);
+    const std::vector<vec2> poly = leafOutline(p);
+    const Mesh flat = meshLeafOutline(poly, {.subdivisions = 60});
+    const int n = 7;
+    const float depth = 0.12f, centre = p.sinus_depth;
+    Mesh folded = flat;
+    deformLeafMesh(folded, {.pleats = n,
+                            .pleat_depth = depth,
+                            .pleat_center_x = centre,
+                            .blade_width = p.aspect_ratio,
+                            .normalize_length = false});
+    // The folded surface has the flat blade's area (the mesh's chords across the folds lose a
+    // little of it).
+    EXPECT_NEAR(surfaceArea(folded) / surfaceArea(flat), 1.0, 0.01);
+    double flatSpan = 0.0, foldedSpan = 0.0, ridge = 0.0;
+    int furrows = 0;
+    for (std::size_t i = 0; i < flat.positions.size(); ++i) {
+        const glm::dvec3 f(flat.positions[i]), g(folded.positions[i]);
+        const glm::dvec3 c(centre, 0.0, 0.0);
+        // Every point keeps its distance from the attachment.
+        EXPECT_NEAR(glm::length(g - c), glm::length(f - c), 1e-5);
+        flatSpan = std::max(flatSpan, std::abs(std::atan2(f.y, f.x - centre)));
+        foldedSpan = std::max(foldedSpan, std::abs(std::atan2(g.y, g.x - centre)));
+        // On the midrib beyond the attachment: a ridge, rising by depth / sqrt(1 + depth^2)
+        // of the distance.
+        if (f.y == 0.0 && f.x > centre + 0.1) {
+            EXPECT_NEAR(g.z / (f.x - centre), depth / std::sqrt(1.0 + depth * depth), 1e-5);
+            EXPECT_EQ(g.y, 0.0);
+            ridge = std::max(ridge, g.z);
+        }
+        // Half a pleat off the midrib: a furrow.
+        const double a = std::atan2(g.y, g.x - centre);
+        if (std::abs(std::abs(a) - std::numbers::pi / n) < 0.02 && glm::length(g - c) > 0.1) {
+            EXPECT_LT(g.z, 0.0) << "at angle " << a;
+            ++furrows;
+        }
+    }
+    EXPECT_GT(ridge, 0.05);
+    EXPECT_GT(furrows, 5);
+    // Drawn in: the folded blade spans a smaller angle about the attachment.
+    EXPECT_LT(foldedSpan, flatSpan - 0.2);
+    // No pleats, or pleats of no depth: the blade as it was.
+    for (const auto& [count, d] : {std::pair{0, depth}, std::pair{n, 0.0f}}) {
+        Mesh same = flat;
+        deformLeafMesh(same, {.pleats = count, .pleat_depth = d, .pleat_center_x = centre});
+        Mesh plain = flat;
+        deformLeafMesh(plain, {});
+        EXPECT_EQ(same.positions, plain.positions);
     }
 }
 

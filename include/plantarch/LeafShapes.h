@@ -151,6 +151,12 @@ struct LeafDeformation {
     float wave_amplitude = 0.0f;
     float leaf_buckle_length = 0.0f;
     float leaf_buckle_angle = 0.0f;
+    /// Radial pleats: their number, their height as a fraction of the distance from the
+    /// centre, and the centre's x on the midrib (the petiole's attachment: the sinus of a
+    /// notched blade, else the base).
+    int pleats = 0;
+    float pleat_depth = 0.0f;
+    float pleat_center_x = 0.0f;
     /// Width used to normalize the cross-section of the lateral curvature (the blade's
     /// leaf_aspect_ratio); <= 0 takes the mesh's extent in y.
     float blade_width = 0.0f;
@@ -159,6 +165,13 @@ struct LeafDeformation {
 };
 
 /// Bends a flat blade mesh (as meshLeafOutline() makes it) in place, in this order:
+///  - pleats (pleats > 0 and pleat_depth A != 0): about the centre (pleat_center_x, 0), a
+///    point at distance r and angle phi from the midrib moves to angle phi' and distance
+///    r' = r / sqrt(1 + (A cos(pleats phi'))^2) and rises by A r' cos(pleats phi'), where
+///    phi' solves phi = integral from 0 to phi' of sqrt(1 + (A pleats sin(pleats u))^2) du:
+///    each circle about the centre keeps its length along the folded surface and each ray
+///    its length, so the blade folds in (a pleated leaf spans a smaller angle) and keeps its
+///    area and its length along the midrib.
 ///  - lateral curvature: z += lateral_curvature * (y / w)^2 / 4, with w = blade width, so
 ///    the margin at the widest point moves by lateral_curvature / 16 leaf lengths (the
 ///    reference's magnitude, with a smooth parabolic cross-section); + cups the margins up.
@@ -203,7 +216,7 @@ std::string leafTextureFile(const LeafPrototype& proto, int leafletIndex = 0);
 /// leaf_aspect_ratio, widest_point, tip_angle, base_angle, base_width, sinus_depth, lobes,
 /// lobe_depth, serrations, serration_depth, midrib_fold_fraction, longitudinal_curvature,
 /// lateral_curvature, petiole_roll, wave_period, wave_amplitude, leaf_buckle_length,
-/// leaf_buckle_angle. Draws outside a parameter's range are clamped. Throws
+/// leaf_buckle_angle, pleats, pleat_depth. Draws outside a parameter's range are clamped. Throws
 /// plantarch::Error for an unknown `shape`.
 RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int leafletIndex = 0);
 

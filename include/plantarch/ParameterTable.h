@@ -213,6 +213,16 @@ void describeParameters(S& p, V& v) {
     v.field(
         {"leaf_buckle_angle", "degrees", -180, 180, "Buckle angle; positive bends the tip down"},
         p.leaf_buckle_angle);
+    v.field({"pleats", "", 0, 31,
+             "Radial folds of a plicate blade (a mallow's, a lady's mantle's): ridges along the "
+             "midrib and every 360 / pleats degrees around the petiole's attachment, furrows "
+             "between them (0: none)"},
+            p.pleats);
+    v.field({"pleat_depth", "", -0.5, 0.5,
+             "Height of the pleats: a ridge rises by this fraction of its distance from the "
+             "attachment (negative: furrows along the midrib); the blade folds in to keep its "
+             "area"},
+            p.pleat_depth);
     v.field({"leaf_offset", "", -kInf, kInf,
              "Shift of the blade from the petiole tip, in leaf lengths (notched shapes: "
              "(-sinus_depth, 0, 0) puts the sinus on the petiole tip)"},

@@ -79,6 +79,8 @@ struct LeafPrototype {
     RandomFloat wave_amplitude = 0.0f;
     RandomFloat leaf_buckle_length = 0.0f;
     RandomFloat leaf_buckle_angle = 0.0f;
+    RandomInt pleats = 0;
+    RandomFloat pleat_depth = 0.0f;
     vec3 leaf_offset{0.0f};
     unsigned subdivisions = 1;
     unsigned unique_prototypes = 1;

@@ -15,6 +15,7 @@ namespace plantarch {
 namespace {
 
 using glm::dvec2;
+using glm::dvec3;
 constexpr unsigned kMinRows = 4;
 constexpr double kPetioluleLength = 0.08;  // of the blade length, as in the reference (0.07)
 
@@ -154,6 +155,50 @@ private:
     std::vector<dvec2> table_;
 };
 
+// Radial pleats about a centre on the midrib (see deformLeafMesh()). The angle along the
+// folded surface, F(u) = integral from 0 to u of sqrt(1 + (A n sin(n t))^2) dt, is tabulated
+// over [0, pi] and inverted by interpolation: a flat angle phi goes to the angle u with
+// F(u) = phi, so that arcs about the centre keep their length once folded.
+class Pleats {
+public:
+    Pleats(int count, double depth) : n_(count), a_(depth) {
+        table_.assign(kSteps + 1, 0.0);
+        const double h = std::numbers::pi / kSteps;
+        auto slope = [&](double t) {
+            const double s = a_ * n_ * std::sin(n_ * t);
+            return std::sqrt(1.0 + s * s);
+        };
+        for (int i = 1; i <= kSteps; ++i)  // Simpson's rule on each step
+            table_[i] = table_[i - 1] +
+                        h / 6.0 * (slope((i - 1) * h) + 4.0 * slope((i - 0.5) * h) + slope(i * h));
+    }
+    bool active() const { return n_ > 0 && a_ != 0.0; }
+    /// The folded (x, y, z) of the flat point (x, y) about the centre (cx, 0).
+    dvec3 fold(double x, double y, double cx) const {
+        const double dx = x - cx, r = std::hypot(dx, y);
+        if (r == 0.0) return {x, y, 0.0};
+        const double phi = std::atan2(y, dx);
+        const double u = std::copysign(unfold(std::abs(phi)), phi);
+        const double c = a_ * std::cos(n_ * u);
+        const double r2 = r / std::sqrt(1.0 + c * c);
+        return {cx + r2 * std::cos(u), r2 * std::sin(u), c * r2};
+    }
+
+private:
+    // The angle u in [0, pi] with F(u) = phi (phi in [0, pi]; F(u) >= u, so u <= phi).
+    double unfold(double phi) const {
+        const auto it = std::upper_bound(table_.begin(), table_.end(), phi);
+        if (it == table_.end()) return std::numbers::pi;
+        const int i = int(it - table_.begin());  // table_[i - 1] <= phi < table_[i]
+        const double f = (phi - table_[i - 1]) / (table_[i] - table_[i - 1]);
+        return (i - 1 + f) * std::numbers::pi / kSteps;
+    }
+    static constexpr int kSteps = 2048;
+    int n_;
+    double a_;
+    std::vector<double> table_;
+};
+
 // The extent in x of a mesh's vertices.
 struct ExtentX {
     float lo = 0.0f, hi = 0.0f;
@@ -243,12 +288,19 @@ void deformLeafMesh(Mesh& mesh, const LeafDeformation& d) {
     const bool waves = d.wave_period > 1e-6f && d.wave_amplitude != 0.0f;
     const Midrib midrib(d, xLo, xHi);
     const ExtentX flat = extentX(mesh.positions);
+    const Pleats pleats(d.pleats, d.pleat_depth);
 
     for (vec3& v : mesh.positions) {
-        const double x = v.x, y = v.y;
+        double x = v.x, y = v.y, pleat = 0.0;
+        if (pleats.active()) {
+            const dvec3 f = pleats.fold(x, y, d.pleat_center_x);
+            x = f.x;
+            y = f.y;
+            pleat = f.z;
+        }
         const double side = y < 0 ? -1.0 : 1.0, across = std::abs(y);
         // Cross-section in the blade's own frame: (across, z).
-        double z = v.z + d.lateral_curvature * (y / width) * (y / width) / 4.0;
+        double z = v.z + pleat + d.lateral_curvature * (y / width) * (y / width) / 4.0;
         if (waves)
             z += d.wave_amplitude * 2.0 * across *
                  std::sin(std::numbers::pi * x / d.wave_period +
@@ -298,6 +350,13 @@ RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int lea
     d.wave_amplitude = clampedDraw(proto.wave_amplitude, rng, 0.0f, 0.5f);
     d.leaf_buckle_length = clampedDraw(proto.leaf_buckle_length, rng, 0.0f, 1.0f);
     d.leaf_buckle_angle = clampedDraw(proto.leaf_buckle_angle, rng, -180.0f, 180.0f);
+    d.pleats = std::clamp(proto.pleats.sample(rng), 0, 31);
+    d.pleat_depth = clampedDraw(proto.pleat_depth, rng, -0.5f, 0.5f);
+    // The petiole meets a notched blade in its sinus, any other at its base.
+    const bool notched = o.shape == LeafShape::Cordate || o.shape == LeafShape::Reniform ||
+                         o.shape == LeafShape::Sagittate || o.shape == LeafShape::Hastate ||
+                         o.shape == LeafShape::Palmate;
+    d.pleat_center_x = notched ? o.sinus_depth : 0.0f;
     d.blade_width = o.aspect_ratio;
 
     r.subdivisions = proto.subdivisions;

@@ -387,6 +387,10 @@ std::string describePrototype(const LeafPrototype& p) {
          ";" + std::to_string(p.build_petiolule) + ";";
     for (int i = 0; i < 3; ++i)
         s += std::to_string(p.color[i]) + "," + std::to_string(p.leaf_offset[i]) + ";";
+    // Pleats only where set, so the keys (and the variants they seed) of leaves without
+    // stay as they were.
+    if (p.pleats != RandomInt(0) || p.pleat_depth != RandomFloat(0.0f))
+        s += "pleats " + p.pleats.describe() + "," + p.pleat_depth.describe() + ";";
     return s;
 }
 
