@@ -617,6 +617,37 @@ TEST(LeafDeform, PleatsFoldTheBladeAboutTheAttachmentAndKeepItsArea) {
     }
 }
 
+// Any number and depth of pleats, on every family, with the other deformations drawn at
+// random: a finite mesh of the same triangles, none of them degenerate.
+TEST(LeafDeform, PleatsOfAnyDepthKeepTheMeshWellFormed) {
+    Rng rng(11);
+    for (int family = 0; family <= int(LeafShape::Palmate); ++family)
+        for (int trial = 0; trial < 12; ++trial) {
+            LeafPrototype proto;
+            proto.shape = LeafShape(family);
+            proto.pleats = trial < 6 ? rng.uniformInt(1, 31) : 31;
+            proto.pleat_depth = trial < 6 ? rng.uniform(-0.5f, 0.5f) : (trial % 2 ? 0.5f : -0.5f);
+            proto.lateral_curvature = rng.uniform(-1.0f, 1.0f);
+            proto.longitudinal_curvature = rng.uniform(-0.5f, 0.5f);
+            proto.subdivisions = 6;
+            Rng draw(std::uint64_t(family * 100 + trial));
+            const Mesh m = buildLeafMesh(realizeLeafShape(proto, draw));
+            SCOPED_TRACE(std::string(leafShapeName(proto.shape)) + " pleats " +
+                         proto.pleats.describe() + " depth " + proto.pleat_depth.describe());
+            ASSERT_FALSE(m.indices.empty());
+            for (const vec3& v : m.positions)
+                ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+            for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+                const glm::dvec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                                 c = m.positions[m.indices[t + 2]];
+                const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+                const double edge2 = std::max(
+                    {glm::dot(b - a, b - a), glm::dot(c - a, c - a), glm::dot(c - b, c - b)});
+                EXPECT_GT(area, 1e-4 * edge2) << "triangle " << t / 3;
+            }
+        }
+}
+
 TEST(LeafDeform, PetioleRollCurlsOnlyTheBase) {
     const Deformed r =
         deform(LeafShape::Oblong, {.petiole_roll = 60.0f, .normalize_length = false});
