@@ -390,6 +390,48 @@ TEST(LeafMesh, UVsMapTheBladeBoundingBox) {
     }
 }
 
+// Interior points given in the options replace the lattice: each one at least half a row's
+// spacing inside the outline is a vertex of the mesh (a pleated blade's creases).
+TEST(LeafMesh, InteriorPointsReplaceTheLattice) {
+    const std::vector<vec2> poly = leafOutline(leafShapePreset(LeafShape::Orbicular));
+    const Mesh lattice = meshLeafOutline(poly, {.subdivisions = 8});
+    std::vector<vec2> points;
+    // (A point of the symmetric mesh must also lie half a spacing from the midrib, which
+    // bounds the half that is meshed.)
+    for (int k = 2; k <= 6; ++k)
+        for (double r : {0.15, 0.25, 0.35}) {
+            const double a = k * std::numbers::pi / 8;
+            points.emplace_back(float(0.5 + r * std::cos(a)), float(r * std::sin(a)));
+        }
+    points.emplace_back(0.999f, 0.01f);  // too close to the outline: left out
+    const Mesh given = meshLeafOutline(poly, {.subdivisions = 8, .interior_points = points});
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+        const vec2 q = points[i];
+        const bool found = std::any_of(given.positions.begin(), given.positions.end(),
+                                       [&](const vec3& v) { return vec2(v) == q; });
+        EXPECT_TRUE(found) << "point " << i;
+        // The symmetric mesh mirrors the upper half: the point's mirror image too.
+        EXPECT_TRUE(std::any_of(given.positions.begin(), given.positions.end(),
+                                [&](const vec3& v) { return vec2(v) == vec2(q.x, -q.y); }));
+    }
+    EXPECT_FALSE(std::any_of(given.positions.begin(), given.positions.end(),
+                             [&](const vec3& v) { return vec2(v) == points.back(); }));
+    EXPECT_NE(given.positions.size(), lattice.positions.size());
+    EXPECT_NEAR(
+        shoelace(poly),
+        [&] {
+            double a = 0;
+            for (std::size_t t = 0; t + 2 < given.indices.size(); t += 3)
+                a += cross(dvec2(vec2(given.positions[given.indices[t + 1]]) -
+                                 vec2(given.positions[given.indices[t]])),
+                           dvec2(vec2(given.positions[given.indices[t + 2]]) -
+                                 vec2(given.positions[given.indices[t]]))) /
+                     2;
+            return a;
+        }(),
+        1e-4);
+}
+
 TEST(LeafMesh, RejectsBadPolygons) {
     EXPECT_THROW(meshLeafOutline({{0, 0}, {1, 0}}), Error);
     // A bow tie crosses itself.

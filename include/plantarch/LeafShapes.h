@@ -132,6 +132,10 @@ struct LeafMeshOptions {
     /// the fold is a clean crease. Needs an outline symmetric about y = 0 with a single base
     /// vertex on the axis (procedural outlines, as leafOutline() returns them).
     bool symmetric = true;
+    /// Interior vertices placed instead of the lattice (empty: the lattice); those closer
+    /// than half a row's spacing to the outline are left out. A pleated blade's vertices lie
+    /// on its ridges and furrows, so the folds show as creases (buildLeafMesh()).
+    std::vector<vec2> interior_points;
 };
 
 /// A flat mesh of `outline` (z = 0, upper side +z, counter-clockwise triangles seen from
@@ -165,13 +169,14 @@ struct LeafDeformation {
 };
 
 /// Bends a flat blade mesh (as meshLeafOutline() makes it) in place, in this order:
-///  - pleats (pleats > 0 and pleat_depth A != 0): about the centre (pleat_center_x, 0), a
-///    point at distance r and angle phi from the midrib moves to angle phi' and distance
-///    r' = r / sqrt(1 + (A cos(pleats phi'))^2) and rises by A r' cos(pleats phi'), where
-///    phi' solves phi = integral from 0 to phi' of sqrt(1 + (A pleats sin(pleats u))^2) du:
-///    each circle about the centre keeps its length along the folded surface and each ray
-///    its length, so the blade folds in (a pleated leaf spans a smaller angle) and keeps its
-///    area and its length along the midrib.
+///  - pleats (n = pleats > 0 and A = pleat_depth != 0): about the centre (pleat_center_x, 0)
+///    the blade folds into flat panels between straight creases, a ridge along the midrib
+///    and every 360 / n degrees, a furrow halfway between. A point at distance r and angle
+///    phi from the midrib moves to angle u = phi / g, g = sqrt(1 + (2 A n / pi)^2), and
+///    distance r' = r / sqrt(1 + c^2), and rises by c r', with c = A (2 / pi) asin(cos(n u))
+///    (A on a ridge, -A in a furrow): each ray keeps its length and each arc about the centre
+///    its length along the folds, so the blade draws in (it spans a smaller angle) and keeps
+///    its area to within 1 % and its length along the midrib.
 ///  - lateral curvature: z += lateral_curvature * (y / w)^2 / 4, with w = blade width, so
 ///    the margin at the widest point moves by lateral_curvature / 16 leaf lengths (the
 ///    reference's magnitude, with a smooth parabolic cross-section); + cups the margins up.

@@ -214,9 +214,9 @@ void describeParameters(S& p, V& v) {
         {"leaf_buckle_angle", "degrees", -180, 180, "Buckle angle; positive bends the tip down"},
         p.leaf_buckle_angle);
     v.field({"pleats", "", 0, 31,
-             "Radial folds of a plicate blade (a mallow's, a lady's mantle's): ridges along the "
-             "midrib and every 360 / pleats degrees around the petiole's attachment, furrows "
-             "between them (0: none)"},
+             "Radial folds of a plicate blade (a mallow's, a lady's mantle's): flat panels "
+             "between straight creases, ridges along the midrib and every 360 / pleats degrees "
+             "around the petiole's attachment, furrows halfway between (0: none)"},
             p.pleats);
     v.field({"pleat_depth", "", -0.5, 0.5,
              "Height of the pleats: a ridge rises by this fraction of its distance from the "

@@ -155,48 +155,51 @@ private:
     std::vector<dvec2> table_;
 };
 
-// Radial pleats about a centre on the midrib (see deformLeafMesh()). The angle along the
-// folded surface, F(u) = integral from 0 to u of sqrt(1 + (A n sin(n t))^2) dt, is tabulated
-// over [0, pi] and inverted by interpolation: a flat angle phi goes to the angle u with
-// F(u) = phi, so that arcs about the centre keep their length once folded.
+// Radial pleats about a centre on the midrib (see deformLeafMesh()): flat panels between
+// straight creases, a ridge on the midrib and every 2 pi / n about the centre, a furrow
+// halfway between. At folded angle u a point rises by A s(u) of its distance, s the triangle
+// wave (2 / pi) asin(cos(n u)) (1 on a ridge, -1 in a furrow); its slope across the panels,
+// 2 A n / pi, is the same everywhere, so arcs about the centre keep their length when the flat
+// angle phi folds to u = phi / g, g = sqrt(1 + (2 A n / pi)^2).
 class Pleats {
 public:
-    Pleats(int count, double depth) : n_(count), a_(depth) {
-        table_.assign(kSteps + 1, 0.0);
-        const double h = std::numbers::pi / kSteps;
-        auto slope = [&](double t) {
-            const double s = a_ * n_ * std::sin(n_ * t);
-            return std::sqrt(1.0 + s * s);
-        };
-        for (int i = 1; i <= kSteps; ++i)  // Simpson's rule on each step
-            table_[i] = table_[i - 1] +
-                        h / 6.0 * (slope((i - 1) * h) + 4.0 * slope((i - 0.5) * h) + slope(i * h));
-    }
+    Pleats(int count, double depth)
+        : n_(count),
+          a_(depth),
+          g_(std::sqrt(1.0 + std::pow(2.0 * depth * count / std::numbers::pi, 2.0))) {}
     bool active() const { return n_ > 0 && a_ != 0.0; }
+    /// The flat angle that folds to `u`.
+    double flatAngle(double u) const { return g_ * u; }
     /// The folded (x, y, z) of the flat point (x, y) about the centre (cx, 0).
     dvec3 fold(double x, double y, double cx) const {
         const double dx = x - cx, r = std::hypot(dx, y);
         if (r == 0.0) return {x, y, 0.0};
-        const double phi = std::atan2(y, dx);
-        const double u = std::copysign(unfold(std::abs(phi)), phi);
-        const double c = a_ * std::cos(n_ * u);
-        const double r2 = r / std::sqrt(1.0 + c * c);
+        const double u = std::atan2(y, dx) / g_;
+        const double c = a_ * 2.0 / std::numbers::pi * std::asin(std::cos(n_ * u));
+        const double r2 = r / std::sqrt(1.0 + c * c);  // each ray keeps its length
         return {cx + r2 * std::cos(u), r2 * std::sin(u), c * r2};
+    }
+    /// Vertices for a blade about (cx, 0) whose rows are `spacing` apart, out to `reach`: on
+    /// rings `spacing` apart, on every crease where neighbouring creases lie at least half a
+    /// spacing apart on the ring, and halfway between creases where they lie more than 1.6
+    /// spacings apart.
+    std::vector<vec2> vertices(double cx, double spacing, double reach) const {
+        const double step = std::numbers::pi / n_;  // ridge to furrow, in folded angle
+        const double gap = flatAngle(step);         // the same, flat
+        std::vector<vec2> out;
+        for (double r = spacing; r < reach; r += spacing)
+            for (int k = -2 * n_; k <= 2 * n_; ++k) {
+                const double phi = flatAngle(0.5 * k * step);
+                if (std::abs(phi) >= std::numbers::pi) continue;  // beyond the blade's back
+                if (k % 2 == 0 ? r * gap < 0.5 * spacing : r * gap <= 1.6 * spacing) continue;
+                out.emplace_back(float(cx + r * std::cos(phi)), float(r * std::sin(phi)));
+            }
+        return out;
     }
 
 private:
-    // The angle u in [0, pi] with F(u) = phi (phi in [0, pi]; F(u) >= u, so u <= phi).
-    double unfold(double phi) const {
-        const auto it = std::upper_bound(table_.begin(), table_.end(), phi);
-        if (it == table_.end()) return std::numbers::pi;
-        const int i = int(it - table_.begin());  // table_[i - 1] <= phi < table_[i]
-        const double f = (phi - table_[i - 1]) / (table_[i] - table_[i - 1]);
-        return (i - 1 + f) * std::numbers::pi / kSteps;
-    }
-    static constexpr int kSteps = 2048;
     int n_;
-    double a_;
-    std::vector<double> table_;
+    double a_, g_;
 };
 
 // The extent in x of a mesh's vertices.
@@ -259,13 +262,16 @@ Mesh meshLeafOutline(const std::vector<vec2>& outline, const LeafMeshOptions& op
 
     Mesh mesh;
     const std::vector<dvec2> half = options.symmetric ? upperHalf(poly) : std::vector<dvec2>{};
+    std::vector<dvec2> interior;
+    for (const vec2& q : options.interior_points)
+        if (half.empty() || q.y > 0.0f) interior.emplace_back(q);
     if (!half.empty()) {
-        const polygon::Triangulation tri = polygon::triangulate(half, spacing);
+        const polygon::Triangulation tri = polygon::triangulate(half, spacing, interior);
         appendPlanar(mesh, tri, false);
         appendPlanar(mesh, tri, true);
         weld(mesh);
     } else {
-        appendPlanar(mesh, polygon::triangulate(poly, spacing), false);
+        appendPlanar(mesh, polygon::triangulate(poly, spacing, interior), false);
     }
     setPlanarUVs(mesh);
     return mesh;
@@ -352,11 +358,6 @@ RealizedLeafShape realizeLeafShape(const LeafPrototype& proto, Rng& rng, int lea
     d.leaf_buckle_angle = clampedDraw(proto.leaf_buckle_angle, rng, -180.0f, 180.0f);
     d.pleats = std::clamp(proto.pleats.sample(rng), 0, 31);
     d.pleat_depth = clampedDraw(proto.pleat_depth, rng, -0.5f, 0.5f);
-    // The petiole meets a notched blade in its sinus, any other at its base.
-    const bool notched = o.shape == LeafShape::Cordate || o.shape == LeafShape::Reniform ||
-                         o.shape == LeafShape::Sagittate || o.shape == LeafShape::Hastate ||
-                         o.shape == LeafShape::Palmate;
-    d.pleat_center_x = notched ? o.sinus_depth : 0.0f;
     d.blade_width = o.aspect_ratio;
 
     r.subdivisions = proto.subdivisions;
@@ -388,6 +389,15 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
             float(std::clamp(0.05 * rowSpacing * rowSpacing * 4.0, double(params.tolerance), 0.01));
         const std::vector<vec2> outline = leafOutline(params);
         attach = outline.front();
+        deformation.pleat_center_x = attach.x;
+        const Pleats pleats(deformation.pleats, deformation.pleat_depth);
+        if (pleats.active()) {
+            double reach = 0.0;
+            for (const vec2& q : outline)
+                reach = std::max(reach, double(glm::length(q - vec2(attach.x, 0.0f))));
+            options.interior_points =
+                pleats.vertices(attach.x, 1.0 / std::max(leaf.subdivisions, kMinRows), reach);
+        }
         mesh = meshLeafOutline(outline, options);
         // Texture space is the blade's bounding box of width leaf_aspect_ratio.
         const float width = std::max(leaf.outline.aspect_ratio, 1e-6f);

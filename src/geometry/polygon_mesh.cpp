@@ -581,7 +581,8 @@ std::vector<dvec2> simplifyPolyline(const std::vector<dvec2>& line, double toler
     return out;
 }
 
-Triangulation triangulate(const std::vector<dvec2>& poly, double spacing) {
+Triangulation triangulate(const std::vector<dvec2>& poly, double spacing,
+                          const std::vector<dvec2>& interior) {
     if (poly.size() < 3) throw Error("polygon has fewer than 3 vertices");
     if (!(signedArea(poly) > 0)) throw Error("polygon is not counter-clockwise or has no area");
     Mesher mesher(poly);
@@ -603,15 +604,18 @@ Triangulation triangulate(const std::vector<dvec2>& poly, double spacing) {
         }
     }
 
+    const double h = spacing;
+    for (const dvec2& p : interior)
+        if (contains(poly, p) && boundaryDistance(poly, p) >= 0.5 * h) mesher.insert(p);
     // Interior lattice: rows at y = j * h * sqrt(3) / 2 (one on y = 0), odd rows offset.
     dvec2 lo(1e300), hi(-1e300);
     for (const dvec2& p : poly) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
     }
-    const double h = spacing, rowStep = h * std::sqrt(3.0) / 2.0;
+    const double rowStep = h * std::sqrt(3.0) / 2.0;
     const long jLo = long(std::floor(lo.y / rowStep)), jHi = long(std::ceil(hi.y / rowStep));
-    for (long j = jLo; j <= jHi; ++j) {
+    for (long j = jLo; j <= jHi && interior.empty(); ++j) {
         const double y = double(j) * rowStep;
         const double offset = (j % 2 != 0) ? 0.5 * h : 0.0;
         const long iLo = long(std::floor((lo.x - offset) / h)),

@@ -40,6 +40,9 @@ struct Triangulation {
 /// lattice has a row on y = 0, so a straight midrib there becomes a line of edges. The first
 /// poly.size() points are the polygon's vertices in order. Throws plantarch::Error when the
 /// polygon is degenerate (fewer than 3 vertices, zero area or not counter-clockwise).
-Triangulation triangulate(const std::vector<dvec2>& poly, double spacing);
+/// `interior`, when not empty, replaces the lattice: those of its points that lie at least
+/// spacing / 2 inside are inserted instead.
+Triangulation triangulate(const std::vector<dvec2>& poly, double spacing,
+                          const std::vector<dvec2>& interior = {});
 
 }  // namespace plantarch::polygon
