@@ -157,7 +157,7 @@ struct LeafDeformation {
     float leaf_buckle_angle = 0.0f;
     /// Radial pleats: their number, their height as a fraction of the distance from the
     /// centre, and the centre's x on the midrib (the petiole's attachment: the sinus of a
-    /// notched blade, else the base).
+    /// notched blade, else the base; buildLeafMesh() takes it from the outline).
     int pleats = 0;
     float pleat_depth = 0.0f;
     float pleat_center_x = 0.0f;

@@ -17,6 +17,11 @@ namespace {
 using glm::dvec2;
 using glm::dvec3;
 constexpr unsigned kMinRows = 4;
+
+// Spacing of a blade mesh's rows (fraction of the length) for `subdivisions` rows.
+double rowSpacing(unsigned subdivisions) {
+    return 1.0 / std::max(subdivisions, kMinRows);
+}
 constexpr double kPetioluleLength = 0.08;  // of the blade length, as in the reference (0.07)
 
 std::vector<dvec2> toDouble(const std::vector<vec2>& poly) {
@@ -258,7 +263,7 @@ Mesh meshLeafOutline(const std::vector<vec2>& outline, const LeafMeshOptions& op
     if (poly.size() < 3) throw Error("leaf outline has fewer than 3 vertices");
     if (polygon::signedArea(poly) < 0) std::reverse(poly.begin(), poly.end());
     if (!polygon::isSimple(poly)) throw Error("leaf outline is not a simple polygon");
-    const double spacing = 1.0 / std::max(options.subdivisions, kMinRows);
+    const double spacing = rowSpacing(options.subdivisions);
 
     Mesh mesh;
     const std::vector<dvec2> half = options.symmetric ? upperHalf(poly) : std::vector<dvec2>{};
@@ -384,9 +389,9 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
         // a twentieth of a row's spacing (never coarser than 1 % of the length), so a coarse
         // leaf does not carry hundreds of margin vertices into every copy.
         LeafOutlineParams params = leaf.outline;
-        const double rowSpacing = 1.0 / std::max(1u, leaf.subdivisions);
+        const double row = 1.0 / std::max(1u, leaf.subdivisions);
         params.tolerance =
-            float(std::clamp(0.05 * rowSpacing * rowSpacing * 4.0, double(params.tolerance), 0.01));
+            float(std::clamp(0.05 * row * row * 4.0, double(params.tolerance), 0.01));
         const std::vector<vec2> outline = leafOutline(params);
         attach = outline.front();
         deformation.pleat_center_x = attach.x;
@@ -396,7 +401,7 @@ Mesh buildLeafMesh(const RealizedLeafShape& leaf) {
             for (const vec2& q : outline)
                 reach = std::max(reach, double(glm::length(q - vec2(attach.x, 0.0f))));
             options.interior_points =
-                pleats.vertices(attach.x, 1.0 / std::max(leaf.subdivisions, kMinRows), reach);
+                pleats.vertices(attach.x, rowSpacing(leaf.subdivisions), reach);
         }
         mesh = meshLeafOutline(outline, options);
         // Texture space is the blade's bounding box of width leaf_aspect_ratio.

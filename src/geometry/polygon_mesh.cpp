@@ -604,28 +604,28 @@ Triangulation triangulate(const std::vector<dvec2>& poly, double spacing,
         }
     }
 
+    // Interior points: the ones given, else a lattice with rows at y = j * h * sqrt(3) / 2
+    // (one on y = 0), odd rows offset; each inserted where it lies at least h / 2 inside.
     const double h = spacing;
-    for (const dvec2& p : interior)
-        if (contains(poly, p) && boundaryDistance(poly, p) >= 0.5 * h) mesher.insert(p);
-    // Interior lattice: rows at y = j * h * sqrt(3) / 2 (one on y = 0), odd rows offset.
-    dvec2 lo(1e300), hi(-1e300);
-    for (const dvec2& p : poly) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    const double rowStep = h * std::sqrt(3.0) / 2.0;
-    const long jLo = long(std::floor(lo.y / rowStep)), jHi = long(std::ceil(hi.y / rowStep));
-    for (long j = jLo; j <= jHi && interior.empty(); ++j) {
-        const double y = double(j) * rowStep;
-        const double offset = (j % 2 != 0) ? 0.5 * h : 0.0;
-        const long iLo = long(std::floor((lo.x - offset) / h)),
-                   iHi = long(std::ceil((hi.x - offset) / h));
-        for (long i = iLo; i <= iHi; ++i) {
-            const dvec2 p(double(i) * h + offset, y);
-            if (!contains(poly, p) || boundaryDistance(poly, p) < 0.5 * h) continue;
-            mesher.insert(p);
+    std::vector<dvec2> lattice;
+    if (interior.empty()) {
+        dvec2 lo(1e300), hi(-1e300);
+        for (const dvec2& p : poly) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        const double rowStep = h * std::sqrt(3.0) / 2.0;
+        const long jLo = long(std::floor(lo.y / rowStep)), jHi = long(std::ceil(hi.y / rowStep));
+        for (long j = jLo; j <= jHi; ++j) {
+            const double offset = (j % 2 != 0) ? 0.5 * h : 0.0;
+            const long iLo = long(std::floor((lo.x - offset) / h)),
+                       iHi = long(std::ceil((hi.x - offset) / h));
+            for (long i = iLo; i <= iHi; ++i)
+                lattice.emplace_back(double(i) * h + offset, double(j) * rowStep);
         }
     }
+    for (const dvec2& p : interior.empty() ? lattice : interior)
+        if (contains(poly, p) && boundaryDistance(poly, p) >= 0.5 * h) mesher.insert(p);
     // Smallest angle 20 degrees where the outline allows it.
     double shortest = spacing;
     for (std::size_t i = 0, n = poly.size(); i < n; ++i)
