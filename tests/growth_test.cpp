@@ -743,6 +743,63 @@ TEST(Growth, APerennialsWaitingBudsGrowLeafyShootsInTheNextSeason) {
         }
 }
 
+// Buds that need a winter (proleptic shoots) break as the next season begins when their
+// vegetative_bud_break_time since they were made has passed, so the shoot they grow from
+// stands as it did through the winter: an acrotonic child's internode length and its insertion
+// angle count the bud's nodes below that shoot's tip. A bud made too late for that breaks when
+// its time comes. The plant is built dormant (its first winter) with node 0; season 1 runs from
+// day 10 to 40, season 2 from day 50; the parent makes nodes 1 to 14 on days 12, 14, ..., 38
+// (the one due on day 40 falls to the season's end); buds break 25 days after they are made.
+TEST(Growth, BudsNeedingAWinterBreakAsTheSeasonBeginsOnLastSeasonsShoot) {
+    Garden g;
+    ShootParameters s = branchingParent(g, 40, 1.0f, 25.0f);
+    s.growth_requires_dormancy = true;
+    s.max_nodes_per_season = 20;
+    ShootParameters child = growingShoot();
+    child.max_nodes = 1;
+    child.internode_length_max = 0.05f;
+    child.internode_length_min = 0.01f;
+    child.internode_length_decay_rate = 0.005f;
+    child.insertion_angle_tip = 30.0f;
+    child.insertion_angle_decay_rate = 2.0f;
+    g.arch.defineShootType("child", child);
+    PhenologyParameters ph;
+    ph.time_to_dormancy_break = 10;
+    ph.time_to_senescence = 30;
+    g.arch.setDefaultPhenology(ph);
+    const unsigned p = g.plant(s);
+    g.arch.advanceTime(49.9f);
+    // Only node 0's bud has broken (day 25): the dormancy it was built in was its winter.
+    EXPECT_EQ(g.arch.getShootCount(p), 2u);
+    ASSERT_EQ(g.state(p).shoots[0].phytomers.size(), 15u);
+    g.arch.advanceTime(0.2f);  // day 50.1
+    // The buds of nodes 1 to 7 (made on days 12 to 24) broke as season 2 began.
+    EXPECT_EQ(g.arch.getShootCount(p), 9u);
+    g.arch.advanceTime(16.0f);  // day 66.1: the rest, 25 days after their nodes were made
+    const PlantInstance& plant = g.state(p);
+    ASSERT_EQ(plant.shoots.size(), 16u);
+    const Shoot& parent = plant.shoots[0];
+    for (const Shoot& c : plant.shoots) {
+        if (c.parent != 0) continue;
+        const int k = c.parentNode;
+        SCOPED_TRACE("node " + std::to_string(k));
+        const double made = parent.phytomers[std::size_t(k)].birth;
+        const double broke = k == 0 ? 25.0 : std::max(50.0, made + 25.0);
+        EXPECT_DOUBLE_EQ(c.phytomers[0].birth, broke);
+        // The parent's tip when the bud broke: its most distal node made by then.
+        int tip = 0;
+        for (const Phytomer& node : parent.phytomers)
+            if (node.birth <= broke) ++tip;
+        const int fromTip = tip - 1 - k;
+        if (k >= 1 && k <= 7) {
+            EXPECT_EQ(fromTip, 14 - k);  // last season's tip, node 14
+        }
+        EXPECT_NEAR(c.phytomers[0].internode.length,
+                    std::max(0.01f, 0.05f - 0.005f * float(fromTip)), 1e-6f);
+        EXPECT_NEAR(c.insertionAngle, std::min(90.0f, 30.0f + 2.0f * float(fromTip)), 1e-4f);
+    }
+}
+
 TEST(Growth, EvergreenKeepsItsLeavesThroughDormancy) {
     Garden g;
     const unsigned p = perennial(g, true);

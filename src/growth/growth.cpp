@@ -435,14 +435,13 @@ struct Grower {
                                 bud.state = BudState::Dead;
                                 continue;
                             }
-                            // A bud needing a winter breaks vegetative_bud_break_time after
-                            // dormancy ends; any other breaks that long after it was made, or
-                            // now if that time passed while the plant was dormant (a bud made
-                            // in winter, or one still waiting when the last season ended).
+                            // A bud breaks vegetative_bud_break_time after it was made, or
+                            // now if that time passed while the plant was dormant: a bud that
+                            // needed a winter, one made in winter, or one still waiting when
+                            // the last season ended. So last season's buds break as the
+                            // season begins, on the shoot as it stood through the winter.
                             const double wait = t.vegetative_bud_break_time.sample(plant.rng);
-                            bud.breakTime = t.growth_requires_dormancy
-                                                ? now + wait
-                                                : std::max(now, s.phytomers[k].birth + wait);
+                            bud.breakTime = std::max(now, s.phytomers[k].birth + wait);
                             push(bud.breakTime, kBudBreak, s.id, k, j, b);
                         }
                     }
