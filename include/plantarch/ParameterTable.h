@@ -191,8 +191,8 @@ void describeParameters(S& p, V& v) {
     v.field({"midrib_fold_fraction", "", -1, 1, "Fold about the midrib (0 flat, 1 closed)"},
             p.midrib_fold_fraction);
     v.field({"longitudinal_curvature", "", -2, 2,
-             "Curvature along the midrib: the tip rises by about this fraction of the length "
-             "(negative: it droops)"},
+             "Curvature along the midrib, bending most toward the tip: the tip rises by about "
+             "twice this fraction of the length (negative: it droops)"},
             p.longitudinal_curvature);
     v.field({"lateral_curvature", "", -5, 5,
              "Curvature across the blade (positive cups it up): the margin at the widest point "

@@ -115,14 +115,21 @@ void setPlanarUVs(Mesh& mesh) {
 
 // The bent midrib: its angle to +x as a function of the flat x, integrated into a table of
 // (x, z) positions so that its length is unchanged.
+//
+// The bend has the shape of the reference's: its blade at flat x drops by c x^4 and is turned
+// down about the base by c x^4 radians more (c the longitudinal curvature), so the two add
+// and its tip ends near 2c below the base in a gentle bend. That curve is longer than the
+// flat blade (1.45 times at c = -0.45), so here it is followed at unchanged length: the angle
+// at a fraction of the blade's length is the reference curve's at the same fraction of its
+// length. A leaf's scale stays its length along the blade.
 class Midrib {
 public:
     Midrib(const LeafDeformation& d, double xLo, double xHi)
-        : curvature_(d.longitudinal_curvature),
-          buckle_(d.leaf_buckle_length > 0 ? radians(double(d.leaf_buckle_angle)) : 0.0),
+        : buckle_(d.leaf_buckle_length > 0 ? radians(double(d.leaf_buckle_angle)) : 0.0),
           buckleAt_(d.leaf_buckle_length),
           lo_(xLo),
           step_(std::max(xHi - xLo, 1e-6) / kSteps) {
+        bendTable(d.longitudinal_curvature);
         // Integrate from x = 0 both ways, so the base stays at the origin.
         table_.assign(kSteps + 1, dvec2(0.0));
         const int zero = int(std::clamp(std::round(-lo_ / step_), 0.0, double(kSteps)));
@@ -138,8 +145,7 @@ public:
     }
     /// Angle of the midrib to +x at flat x, radians (+ turns up).
     double angle(double x) const {
-        const double s = std::max(x, 0.0);
-        double a = 4.0 * curvature_ * s * s * s;
+        double a = bend(x);
         if (buckle_ != 0.0) {
             const double t = std::clamp((x - (buckleAt_ - kRamp)) / (2.0 * kRamp), 0.0, 1.0);
             a -= buckle_ * t * t * (3.0 - 2.0 * t);
@@ -155,8 +161,47 @@ public:
 
 private:
     static constexpr int kSteps = 4096;
+    static constexpr int kBendSteps = 512;
     static constexpr double kRamp = 0.025;  // half-length of the buckle crease
-    double curvature_, buckle_, buckleAt_, lo_, step_;
+
+    // bend_[j]: the reference curve's angle at the fraction j / kBendSteps of its length.
+    void bendTable(double c) {
+        if (c == 0.0) return;
+        // The reference curve (x cos t + z sin t, z cos t - x sin t), z = c x^4, t = -c x^4,
+        // finely sampled: its segments' angles at their arc-length midpoints.
+        constexpr int n = 4 * kBendSteps;
+        std::vector<double> at(n), ang(n);
+        dvec2 prev(0.0);
+        double length = 0.0;
+        for (int i = 1; i <= n; ++i) {
+            const double x = double(i) / n, z = c * x * x * x * x, t = -z;
+            const dvec2 q(x * std::cos(t) + z * std::sin(t), z * std::cos(t) - x * std::sin(t));
+            const dvec2 seg = q - prev;
+            const double l = glm::length(seg);
+            at[i - 1] = length + 0.5 * l;
+            ang[i - 1] = std::atan2(seg.y, seg.x);
+            length += l;
+            prev = q;
+        }
+        bend_.assign(kBendSteps + 1, 0.0);
+        int k = 0;
+        for (int j = 0; j <= kBendSteps; ++j) {
+            const double u = length * j / kBendSteps;
+            while (k + 1 < n - 1 && at[k + 1] < u) ++k;
+            const double f = std::clamp((u - at[k]) / (at[k + 1] - at[k]), 0.0, 1.0);
+            bend_[j] = ang[k] + f * (ang[k + 1] - ang[k]);
+        }
+    }
+    // The bend's angle at flat x (a fraction of the blade's length; beyond the tip, the tip's).
+    double bend(double x) const {
+        if (bend_.empty()) return 0.0;
+        const double f = std::clamp(x, 0.0, 1.0) * kBendSteps;
+        const int i = std::min(int(f), kBendSteps - 1);
+        return bend_[i] + (f - i) * (bend_[i + 1] - bend_[i]);
+    }
+
+    double buckle_, buckleAt_, lo_, step_;
+    std::vector<double> bend_;
     std::vector<dvec2> table_;
 };
 
