@@ -445,11 +445,11 @@ TEST(LeafMesh, RejectsBadPolygons) {
 
 // ---- deformations ----------------------------------------------------------------------
 
-// The reference's bent midrib for longitudinal curvature c, as arc length and tangent angle at
+// The bent midrib's curve for longitudinal curvature c, as arc length and tangent angle at
 // n + 1 points: the blade point at flat x drops by c x^4 and turns about the base by -c x^4
 // radians, P(x) = (x cos t + z sin t, z cos t - x sin t), z = c x^4, t = -z. Written with
 // the derivative of P (the library samples P itself), so the two are separate computations.
-struct ReferenceBend {
+struct BendCurve {
     std::vector<double> s, angle;  // arc length along P, tangent angle (radians)
     dvec2 tip;                     // P(1)
     double length() const { return s.back(); }
@@ -462,8 +462,8 @@ struct ReferenceBend {
         return angle[i - 1] + f * (angle[i] - angle[i - 1]);
     }
 };
-ReferenceBend referenceBend(double c, int n = 20000) {
-    ReferenceBend b;
+BendCurve bendCurve(double c, int n = 20000) {
+    BendCurve b;
     auto derivative = [c](double x) {
         const double z = c * x * x * x * x, dz = 4.0 * c * x * x * x, t = -z, dt = -dz;
         return dvec2(std::cos(t) - x * std::sin(t) * dt + dz * std::sin(t) + z * std::cos(t) * dt,
@@ -522,13 +522,13 @@ TEST(LeafDeform, LongitudinalCurvatureLiftsOrLowersTheTip) {
         SCOPED_TRACE(c);
         const Deformed r =
             deform(LeafShape::Lanceolate, {.longitudinal_curvature = c, .normalize_length = false});
-        const ReferenceBend bend = referenceBend(c);
+        const BendCurve bend = bendCurve(c);
         const dvec2 tip = bend.tip / bend.length();
         for (std::size_t i = 0; i < r.flat.positions.size(); ++i) {
             const vec3 f = r.flat.positions[i], b = r.bent.positions[i];
             if (std::abs(f.x - 1.0f) < 1e-6f && std::abs(f.y) < 1e-6f) {
-                // The tip ends where the reference's bent tip does, scaled to the blade's
-                // length (about 2c above the base: 0.47 for 0.3).
+                // The tip ends where the curve's does, scaled to the blade's length (about
+                // 2c above the base: 0.47 for 0.3).
                 EXPECT_GT(b.z * c, 0.0f);
                 EXPECT_NEAR(b.x, tip.x, 0.01f);
                 EXPECT_NEAR(b.z, tip.y, 0.01f);
@@ -824,7 +824,7 @@ RealizedLeafShape withDeformation(const RealizedLeafShape& r, const LeafDeformat
 // describe (LeafShapes.h): cupping and waves lift the blade to z(x, y) = lateral_curvature
 // (y / w)^2 / 4 + wave_amplitude 2 |y| sin(pi x / wave_period + phase); the fold f turns each
 // half about the midrib, putting a point at height b = |y| sin f + z cos f over it; the midrib
-// bends at curvature kappa(x) = d/dx (the reference bend's angle at x, referenceBend(), minus
+// bends at curvature kappa(x) = d/dx (the bend curve's angle at x, bendCurve(), minus
 // the buckle's smoothstep), keeping its length. With
 // the midrib's tangent T and normal N, d/dx = (1 - kappa b) T + z_x (...) and
 // d/dy = (...) of length sqrt(1 + z_y^2), so the area element is
@@ -837,8 +837,8 @@ double deformedArea(const Mesh& flat, const LeafDeformation& d) {
     const double fold = d.midrib_fold_fraction * 0.5 * pi;
     const double buckle = d.leaf_buckle_length > 0.0f ? d.leaf_buckle_angle * pi / 180.0 : 0.0;
     constexpr double ramp = 0.025;  // half-length of the buckle's crease
-    std::optional<ReferenceBend> bend;
-    if (d.longitudinal_curvature != 0.0f) bend = referenceBend(d.longitudinal_curvature, 4000);
+    std::optional<BendCurve> bend;
+    if (d.longitudinal_curvature != 0.0f) bend = bendCurve(d.longitudinal_curvature, 4000);
     double area = 0.0;
     for (std::size_t t = 0; t < flat.indices.size(); t += 3) {
         const glm::dvec3 a = flat.positions[flat.indices[t]],
@@ -855,7 +855,7 @@ double deformedArea(const Mesh& flat, const LeafDeformation& d) {
         }
         const double height = std::abs(m.y) * std::sin(fold) + z * std::cos(fold);
         const double s = std::clamp((m.x - (d.leaf_buckle_length - ramp)) / (2.0 * ramp), 0.0, 1.0);
-        // The midrib's curvature: the reference bend's turn per length (at unit length),
+        // The midrib's curvature: the bend curve's turn per length (at unit length),
         // then the buckle's.
         double bendRate = 0.0;
         if (bend && m.x > 0.0 && m.x < 1.0) {

@@ -188,14 +188,14 @@ struct LeafDeformation {
 ///    midrib_fold_fraction * 90 deg + petiole_roll * exp(-x / 0.05) deg, raising the margins
 ///    (fold 1 closes the blade; petiole_roll curls the basal 10-15 % of the blade).
 ///  - longitudinal curvature and buckle: the midrib becomes a curve of unchanged length with
-///    the shape of the reference's bend (its blade point at x dropped by c x^4 and turned about
-///    the base by c x^4 radians, c = longitudinal_curvature): at each fraction of the length
-///    the angle to +x is that curve's at the same fraction of its own length, so the bend
-///    gathers toward the tip and the tip rises by about 2c leaf lengths for small c (0.47 for
-///    0.3; the tip points straight down near c = -0.29). From it leaf_buckle_angle degrees
-///    are taken, ramped in over x = leaf_buckle_length +- 0.025 (a crease that bends the rest
-///    of the blade down). Cross-sections keep their shape and stay perpendicular to the
-///    midrib.
+///    the shape of the curve (x cos t + z sin t, z cos t - x sin t), z = c x^4, t = -c x^4,
+///    c = longitudinal_curvature (a droop of c x^4 and a turn of c x^4 radians about the
+///    base, which add): at each fraction of the blade's length the midrib's angle to +x is
+///    that curve's at the same fraction of its own length. The bend gathers toward the tip,
+///    which rises by about 2c leaf lengths for small c (0.47 for 0.3; it points straight
+///    down near c = -0.29). From it leaf_buckle_angle degrees are taken, ramped in over
+///    x = leaf_buckle_length +- 0.025 (a crease that bends the rest of the blade down).
+///    Cross-sections keep their shape and stay perpendicular to the midrib.
 ///  - normalization: when normalize_length is set the mesh is scaled uniformly about the
 ///    origin and shifted in x so that the flat blade's extent in x (taken before bending)
 ///    becomes [0, 1]. Bending keeps lengths along the midrib, so the blade's length along it

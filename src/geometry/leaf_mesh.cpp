@@ -116,12 +116,12 @@ void setPlanarUVs(Mesh& mesh) {
 // The bent midrib: its angle to +x as a function of the flat x, integrated into a table of
 // (x, z) positions so that its length is unchanged.
 //
-// The bend has the shape of the reference's: its blade at flat x drops by c x^4 and is turned
-// down about the base by c x^4 radians more (c the longitudinal curvature), so the two add
-// and its tip ends near 2c below the base in a gentle bend. That curve is longer than the
-// flat blade (1.45 times at c = -0.45), so here it is followed at unchanged length: the angle
-// at a fraction of the blade's length is the reference curve's at the same fraction of its
-// length. A leaf's scale stays its length along the blade.
+// The bend: the blade point at flat x drops by c x^4 and turns down about the base by c x^4
+// radians more (c the longitudinal curvature), so the two add and the tip ends near 2c below
+// the base in a bend that gathers toward it. That curve is longer than the flat blade (1.45
+// times at c = -0.45), so here it is followed at unchanged length: the angle at a fraction of
+// the blade's length is the curve's at the same fraction of its own length. A leaf's scale
+// stays its length along the blade.
 class Midrib {
 public:
     Midrib(const LeafDeformation& d, double xLo, double xHi)
@@ -164,10 +164,10 @@ private:
     static constexpr int kBendSteps = 512;
     static constexpr double kRamp = 0.025;  // half-length of the buckle crease
 
-    // bend_[j]: the reference curve's angle at the fraction j / kBendSteps of its length.
+    // bend_[j]: the curve's angle at the fraction j / kBendSteps of its length.
     void bendTable(double c) {
         if (c == 0.0) return;
-        // The reference curve (x cos t + z sin t, z cos t - x sin t), z = c x^4, t = -c x^4,
+        // The curve (x cos t + z sin t, z cos t - x sin t), z = c x^4, t = -c x^4,
         // finely sampled: its segments' angles at their arc-length midpoints.
         constexpr int n = 4 * kBendSteps;
         std::vector<double> at(n), ang(n);
