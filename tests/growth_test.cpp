@@ -646,15 +646,19 @@ TEST(Growth, DeterminateShootEndsAsItsFirstFloralBudComesDueEvenIfItFails) {
 }
 
 namespace {
-unsigned perennial(Garden& g, bool evergreen) {
-    ShootParameters s = growingShoot();
-    s.max_nodes = 40;
-    s.max_nodes_per_season = 5;
+// Seasons of 30 days after winters of 10: the first from day 10 to 40, the second from day 50.
+void tenDayWinters(Garden& g, bool evergreen = false) {
     PhenologyParameters ph;
     ph.time_to_dormancy_break = 10;
     ph.time_to_senescence = 30;
     ph.evergreen = evergreen;
     g.arch.setDefaultPhenology(ph);
+}
+unsigned perennial(Garden& g, bool evergreen) {
+    ShootParameters s = growingShoot();
+    s.max_nodes = 40;
+    s.max_nodes_per_season = 5;
+    tenDayWinters(g, evergreen);
     return g.plant(s);
 }
 }  // namespace
@@ -714,10 +718,7 @@ TEST(Growth, APerennialsWaitingBudsGrowLeafyShootsInTheNextSeason) {
     Garden g;
     ShootParameters s = branchingParent(g, 40, 1.0f, 25.0f);
     s.max_nodes_per_season = 5;
-    PhenologyParameters ph;
-    ph.time_to_dormancy_break = 10;
-    ph.time_to_senescence = 30;
-    g.arch.setDefaultPhenology(ph);
+    tenDayWinters(g);
     const unsigned p = g.plant(s);
     g.arch.advanceTime(24.9f);
     EXPECT_EQ(g.arch.getShootCount(p), 1u);
@@ -763,10 +764,7 @@ TEST(Growth, BudsNeedingAWinterBreakAsTheSeasonBeginsOnLastSeasonsShoot) {
     child.insertion_angle_tip = 30.0f;
     child.insertion_angle_decay_rate = 2.0f;
     g.arch.defineShootType("child", child);
-    PhenologyParameters ph;
-    ph.time_to_dormancy_break = 10;
-    ph.time_to_senescence = 30;
-    g.arch.setDefaultPhenology(ph);
+    tenDayWinters(g);
     const unsigned p = g.plant(s);
     g.arch.advanceTime(49.9f);
     // Only node 0's bud has broken (day 25): the dormancy it was built in was its winter.
