@@ -548,6 +548,28 @@ TEST(LeafDeform, LongitudinalCurvatureLiftsOrLowersTheTip) {
     }
 }
 
+// A blade curled past the vertical (the range's ends, +-2: the tip turns back behind the base)
+// follows the same curve without a kink where its direction passes straight back.
+TEST(LeafDeform, LongitudinalCurvatureCurlsPastTheVerticalSmoothly) {
+    for (float c : {2.0f, -2.0f, -1.2f}) {
+        SCOPED_TRACE(c);
+        const Deformed r = deform(LeafShape::Lanceolate,
+                                  {.longitudinal_curvature = c, .normalize_length = false}, 48);
+        const BendCurve bend = bendCurve(c);
+        const dvec2 tip = bend.tip / bend.length();
+        bool found = false;
+        for (std::size_t i = 0; i < r.flat.positions.size(); ++i) {
+            const vec3 f = r.flat.positions[i], b = r.bent.positions[i];
+            if (std::abs(f.x - 1.0f) < 1e-6f && std::abs(f.y) < 1e-6f) {
+                found = true;
+                EXPECT_NEAR(b.x, tip.x, 5e-4f);
+                EXPECT_NEAR(b.z, tip.y, 5e-4f);
+            }
+        }
+        EXPECT_TRUE(found);
+    }
+}
+
 TEST(LeafDeform, BuckleBendsDownAtTheGivenFraction) {
     const float at = 0.5f;
     const Deformed r = deform(

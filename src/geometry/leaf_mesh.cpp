@@ -180,6 +180,10 @@ private:
             const double l = glm::length(seg);
             at[i - 1] = length + 0.5 * l;
             ang[i - 1] = std::atan2(seg.y, seg.x);
+            // Unwrapped, so a blade curled past the vertical turns on without a jump.
+            if (i > 1)
+                ang[i - 1] -= 2.0 * std::numbers::pi *
+                              std::round((ang[i - 1] - ang[i - 2]) / (2.0 * std::numbers::pi));
             length += l;
             prev = q;
         }
