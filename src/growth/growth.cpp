@@ -187,6 +187,14 @@ struct Grower {
         return rules::hasDailyRules(plant.shootTypes);
     }
 
+    // When an axillary vegetative bud of `ph` breaks: vegetative_bud_break_time after it was
+    // made, or now if that time passed while the plant was dormant (a bud that needed a winter,
+    // one made in winter, or one still waiting when the last season ended). So last season's
+    // buds break as the season begins, on the shoot as it stood through the winter.
+    double budBreakTime(const ShootParameters& t, const Phytomer& ph, double now) {
+        return std::max(now, ph.birth + t.vegetative_bud_break_time.sample(plant.rng));
+    }
+
     // Sets the stored times of a phytomer's buds (new phytomers and new seasons).
     void scheduleBuds(Shoot& s, Phytomer& ph) {
         const ShootParameters& t = typeOf(s.type);
@@ -195,7 +203,7 @@ struct Grower {
             for (VegetativeBud& b : pt.vegetativeBuds)
                 if (b.state == BudState::Dormant && b.breakTime < 0.0 && growingSeason() &&
                     !t.growth_requires_dormancy)
-                    b.breakTime = plant.age + t.vegetative_bud_break_time.sample(plant.rng);
+                    b.breakTime = budBreakTime(t, ph, plant.age);
             for (FloralBud& fb : pt.floralBuds)
                 if (fb.stage == FloralStage::Bud && waiting(fb) && fb.nextTime < 0.0 &&
                     flowering >= 0.0 && !t.flowers_require_dormancy)
@@ -435,13 +443,7 @@ struct Grower {
                                 bud.state = BudState::Dead;
                                 continue;
                             }
-                            // A bud breaks vegetative_bud_break_time after it was made, or
-                            // now if that time passed while the plant was dormant: a bud that
-                            // needed a winter, one made in winter, or one still waiting when
-                            // the last season ended. So last season's buds break as the
-                            // season begins, on the shoot as it stood through the winter.
-                            const double wait = t.vegetative_bud_break_time.sample(plant.rng);
-                            bud.breakTime = std::max(now, s.phytomers[k].birth + wait);
+                            bud.breakTime = budBreakTime(t, s.phytomers[k], now);
                             push(bud.breakTime, kBudBreak, s.id, k, j, b);
                         }
                     }
