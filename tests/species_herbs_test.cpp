@@ -105,6 +105,34 @@ TEST(SpeciesHerbsTomato, EarlyLeavesAndInternodesStartSmaller) {
         }
 }
 
+// The branch count of the 50-day tomato is a binomial draw: the main stem makes a node every
+// 2 days, each node's bud breaks 30 days after it forms with probability 0.25, so the buds of
+// nodes 0 to 10 (made by day 20) are the only ones due by day 50, and a branch's own buds are
+// not due before day 62. Over 200 seeds: every branch is of rank 1 and grows from one of those
+// nodes, and the counts follow Binomial(11, 0.25): mean 2.75 within three standard errors
+// (0.10 for 200 plants), variance 2.06 within 30 %. (Seeds 1 to 3 alone branch 4, 6 and 4
+// times: a 3-plant mean that far above 2.75 turns up about once in 70 draws.)
+TEST(SpeciesHerbsTomato, BranchesAsItsBudRuleSaysOverManySeeds) {
+    constexpr int kSeeds = 200;
+    constexpr double n = 11.0, p = 0.25;
+    double sum = 0.0, sumSq = 0.0;
+    for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+        const auto g = grow("tomato", 50, seed);
+        int branches = 0;
+        for (const Shoot& s : g->plant().shoots) {
+            if (s.parent < 0) continue;
+            ++branches;
+            EXPECT_EQ(s.rank, 1u) << "seed " << seed << " shoot " << s.id;
+            EXPECT_LE(s.parentNode, 10) << "seed " << seed << " shoot " << s.id;
+        }
+        sum += branches;
+        sumSq += double(branches) * branches;
+    }
+    const double mean = sum / kSeeds, variance = sumSq / kSeeds - mean * mean;
+    EXPECT_NEAR(mean, n * p, 3.0 * std::sqrt(n * p * (1.0 - p) / kSeeds));
+    EXPECT_NEAR(variance, n * p * (1.0 - p), 0.3 * n * p * (1.0 - p));
+}
+
 // ---- cherry tomato -------------------------------------------------------------------------
 
 TEST(SpeciesHerbsCherryTomato, NoPruningBeforeDay101) {
