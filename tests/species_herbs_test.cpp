@@ -111,7 +111,7 @@ TEST(SpeciesHerbsTomato, EarlyLeavesAndInternodesStartSmaller) {
 // not due before day 62. Over 200 seeds: every branch is of rank 1 and grows from one of those
 // nodes, and the counts follow Binomial(11, 0.25): mean 2.75 within three standard errors
 // (0.10 for 200 plants), variance 2.06 within 30 %. (Seeds 1 to 3 alone branch 4, 6 and 4
-// times: a 3-plant mean that far above 2.75 turns up about once in 70 draws.)
+// times: a 3-plant mean that far above 2.75 turns up in 2.1 % of draws.)
 TEST(SpeciesHerbsTomato, BranchesAsItsBudRuleSaysOverManySeeds) {
     constexpr int kSeeds = 200;
     constexpr double n = 11.0, p = 0.25;
