@@ -207,6 +207,25 @@ TEST(SpeciesBean, LibraryFilesAreNamedAfterTheirSpecies) {
     for (const std::string& name : names) EXPECT_EQ(loadSpecies(name).name, name);
 }
 
+// The library's files are XML that any XML tool reads: no comment holds "--", which the XML
+// specification forbids there (plantarch's reader lets it pass; xmllint does not).
+TEST(SpeciesBean, LibraryFilesHoldNoDoubleHyphenInAComment) {
+    for (const auto& entry : std::filesystem::directory_iterator(kSourceDir + "/species")) {
+        if (entry.path().extension() != ".xml") continue;
+        std::ifstream in(entry.path());
+        const std::string text((std::istreambuf_iterator<char>(in)), {});
+        for (std::size_t open = text.find("<!--"); open != std::string::npos;
+             open = text.find("<!--", open + 4)) {
+            const std::size_t close = text.find("-->", open + 4);
+            ASSERT_NE(close, std::string::npos) << entry.path() << ": a comment never closed";
+            const std::string body = text.substr(open + 4, close - open - 4);
+            const auto line = 1 + std::count(text.begin(), text.begin() + open, '\n');
+            EXPECT_EQ(body.find("--"), std::string::npos)
+                << entry.path() << ":" << line << ": the comment starting here holds \"--\"";
+        }
+    }
+}
+
 // ---- round trips ------------------------------------------------------------------------
 
 TEST(SpeciesRoundTrip, BeanWritesAndReadsBackIdentically) {
