@@ -66,10 +66,11 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         } else {
             for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
         }
+        // Statistics are printed before the files are put in place, so that a failed write of
+        // them (checked by commit()) leaves no file either.
+        if (a->stats) std::printf("%s\n", plantStatsJSON(arch, ctx, plant, global.seed).c_str());
         outputs.commit();
-        if (a->stats) {
-            std::printf("%s\n", plantStatsJSON(arch, ctx, plant, global.seed).c_str());
-        } else {
+        if (!a->stats) {
             std::string outs;
             for (const std::string& o : a->outputs) outs += (outs.empty() ? "" : ", ") + o;
             std::printf(

@@ -114,12 +114,12 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
             writeSeparatePlantOutputs(arch, plants, a->outputs, a->plantOrigin, global);
         else
             for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
-        outputs.commit();
-        if (a->stats) {
+        // Statistics before the files go in place: commit() checks that they were written.
+        if (a->stats)
             for (unsigned p : plants)
                 std::printf("%s\n", plantStatsJSON(arch, ctx, p, global.seed).c_str());
-            return 0;
-        }
+        outputs.commit();
+        if (a->stats) return 0;
         std::size_t leaves = 0;
         double area = 0.0;
         for (unsigned p : plants) {

@@ -88,6 +88,9 @@ void setProgressMode(ProgressMode mode);
 ProgressCallback terminalProgress();
 /// Wipes the bar if one is on screen (before a message on stderr).
 void clearProgress();
+/// Flushes standard output; "" when everything printed so far was written, else the line
+/// "cannot write standard output: <reason>" (a full disk, a closed descriptor).
+std::string standardOutputFailure();
 
 // ---- output files (output_files.cpp) ------------------------------------------------------
 
@@ -126,21 +129,31 @@ std::string lowerExtension(const std::string& path);
 /// file written afterwards is held back. commit() puts them all in place together. Destroyed
 /// without commit() (the command failed), it discards them: no target is created or replaced,
 /// and the folders it made are removed again.
+///
+/// In a command (`endsProcess`, the default) commit() first flushes standard output, failing
+/// like any output when that write failed, and from then on holds SIGINT and SIGTERM back
+/// until the process exits: a command whose files are in place exits 0, never 130. The
+/// folders it made are removed on those signals too, until commit(). The builder's server
+/// passes false: it goes on serving after a commit.
 class CommandOutputs {
 public:
-    explicit CommandOutputs(const std::vector<std::string>& paths);
+    explicit CommandOutputs(const std::vector<std::string>& paths, bool endsProcess = true);
     ~CommandOutputs();
     CommandOutputs(const CommandOutputs&) = delete;
     CommandOutputs& operator=(const CommandOutputs&) = delete;
     /// One more file, checked in the same way (an index, annotations).
     void add(const std::string& path);
+    /// Throws plantarch::Error naming `input` (and `option`) when it is one of the outputs.
+    void requireNotAnInput(const std::string& input, const std::string& option = "");
     void commit();
 
 private:
     void makeFolders(const std::string& path);
     void removeMadeFolders();
-    std::vector<std::filesystem::path> madeFolders_;
+    std::vector<FolderMadeForOutputs> madeFolders_;  // outermost first
+    std::vector<std::filesystem::path> paths_;       // the outputs, as sameFileKey made them
     std::optional<OutputSet> set_;
+    bool endsProcess_ = true;
     bool committed_ = false;
 };
 

@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -72,6 +74,20 @@ std::string parseErrorLine(const CLI::App& app, int argc, char** argv, const CLI
             return text.substr(colon + 2);
         return text;
     }
+    if (dynamic_cast<const CLI::ArgumentMismatch*>(
+            &e)) {  // "--age: At Most 1 required but received 2"
+        const std::string marker = ": At Most 1 required but received ";
+        const auto at = text.find(marker);
+        if (at != std::string::npos)
+            return text.substr(0, at) + ": given " + text.substr(at + marker.size()) +
+                   " times (valid: once)";
+    }
+    if (dynamic_cast<const CLI::ConversionError*>(&e)) {  // "Could not convert: --x = v"
+        const std::string marker = "Could not convert: ";
+        if (text.rfind(marker, 0) == 0)
+            return text.substr(marker.size()) +
+                   ": not a value of this option (valid: see the option in --help)";
+    }
     std::vector<std::string> names;
     const CLI::App* chosen = nullptr;
     for (const CLI::App* sub : app.get_subcommands({})) {
@@ -108,6 +124,16 @@ std::string parseErrorLine(const CLI::App& app, int argc, char** argv, const CLI
                "' (valid: the arguments in 'plantarch " + chosen->get_name() + " --help')";
     }
     return text;
+}
+
+// Standard output is an output like any file: a write that failed (a full disk, a closed
+// pipe's EPIPE) makes the command fail with one line instead of exiting 0 with a short file.
+int checkedExit(int status) {
+    const std::string failure = standardOutputFailure();
+    if (failure.empty()) return status;
+    clearProgress();
+    std::fprintf(stderr, "plantarch: %s\n", failure.c_str());
+    return status == 0 ? 2 : status;
 }
 
 }  // namespace
@@ -198,11 +224,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
+        return checkedExit(app.exit(e));
     } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
+        return checkedExit(app.exit(e));
     } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
+        return checkedExit(app.exit(e));
     } catch (const CLI::ParseError& e) {
         clearProgress();
         std::fprintf(stderr, "plantarch: %s\n", parseErrorLine(app, argc, argv, e).c_str());
@@ -218,7 +244,7 @@ int main(int argc, char** argv) {
             if (sub->parsed()) {
                 const int status = run();
                 clearProgress();
-                return status;
+                return checkedExit(status);
             }
     } catch (const plantarch::TriangleBudgetError& e) {
         clearProgress();

@@ -1,8 +1,14 @@
 // The output formats of the plantarch command, declared once, and CommandOutputs: the files
 // of one command checked before any work and put in place together at its end.
 
+#include <pthread.h>
+#include <signal.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "cli.h"
@@ -72,7 +78,8 @@ void requireOutputFormat(const std::string& path, unsigned uses, const std::stri
 
 // ---- CommandOutputs ------------------------------------------------------------------------
 
-CommandOutputs::CommandOutputs(const std::vector<std::string>& paths) {
+CommandOutputs::CommandOutputs(const std::vector<std::string>& paths, bool endsProcess)
+    : endsProcess_(endsProcess) {
     try {
         for (const std::string& path : paths) add(path);
     } catch (...) {
@@ -88,10 +95,8 @@ CommandOutputs::~CommandOutputs() {
 }
 
 void CommandOutputs::removeMadeFolders() {
-    // Deepest first; remove() leaves a folder with anything in it alone.
-    std::error_code ignored;
-    for (auto it = madeFolders_.rbegin(); it != madeFolders_.rend(); ++it)
-        std::filesystem::remove(*it, ignored);
+    // Deepest first; a folder with anything in it stays.
+    for (auto it = madeFolders_.rbegin(); it != madeFolders_.rend(); ++it) it->remove();
     madeFolders_.clear();
 }
 
@@ -101,7 +106,8 @@ void CommandOutputs::makeFolders(const std::string& path) {
     if (folder.empty()) return;
     std::vector<fs::path> missing;  // innermost first
     std::error_code ec;
-    for (fs::path p = folder; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec));
+         p = p.parent_path()) {
         missing.push_back(p);
         if (p == p.parent_path()) break;
     }
@@ -109,11 +115,29 @@ void CommandOutputs::makeFolders(const std::string& path) {
         if (!fs::create_directory(*it, ec) && ec)
             throw Error("cannot create folder " + it->string() + ": " + ec.message(),
                         {.file = path});
-        madeFolders_.push_back(*it);
+        madeFolders_.emplace_back(it->string());
     }
 }
 
+namespace {
+
+// The same file as far as the names tell (a/../b.obj and b.obj), without touching the disk
+// for files that do not exist yet.
+std::filesystem::path sameFileKey(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+    if (ec) return std::filesystem::path(path).lexically_normal();
+    const std::filesystem::path full = std::filesystem::weakly_canonical(absolute, ec);
+    return ec ? absolute.lexically_normal() : full;
+}
+
+}  // namespace
+
 void CommandOutputs::add(const std::string& path) {
+    const std::filesystem::path key = sameFileKey(path);
+    for (const std::filesystem::path& seen : paths_)
+        if (seen == key)
+            throw Error("cannot write: the same file is named twice as an output", {.file = path});
     makeFolders(path);
     checkOutputPath(path);
     // An OBJ brings its material library along.
@@ -123,11 +147,32 @@ void CommandOutputs::add(const std::string& path) {
         if (std::filesystem::is_directory(mtl, ec))
             throw Error("cannot write its materials: " + mtl + " is a directory", {.file = path});
     }
+    paths_.push_back(key);
+}
+
+void CommandOutputs::requireNotAnInput(const std::string& input, const std::string& option) {
+    const std::filesystem::path key = sameFileKey(input);
+    for (const std::filesystem::path& seen : paths_)
+        if (seen == key)
+            throw Error("cannot write over an input of the same command",
+                        {.file = input, .parameter = option});
 }
 
 void CommandOutputs::commit() {
+    if (endsProcess_) {
+        if (const std::string failure = standardOutputFailure(); !failure.empty())
+            throw Error(failure);
+        // The command has succeeded from here: an interrupt now would leave its files in
+        // place and report failure, so SIGINT and SIGTERM wait (until the exit discards them).
+        sigset_t held;
+        sigemptyset(&held);
+        sigaddset(&held, SIGINT);
+        sigaddset(&held, SIGTERM);
+        pthread_sigmask(SIG_BLOCK, &held, nullptr);
+    }
     if (set_) set_->commit();
     committed_ = true;
+    for (FolderMadeForOutputs& f : madeFolders_) f.keep();
 }
 
 }  // namespace plantarch::cli

@@ -20,8 +20,14 @@ CLI::Validator numberCheck(const std::string& option, const std::string& what, d
             double v = 0.0;
             const char* end = text.data() + text.size();
             const auto [used, ec] = std::from_chars(text.data(), end, v);
+            // A whole number is written in digits: "1e1" and "2.0" convert to doubles but not
+            // to the integer the option holds.
+            const bool digits =
+                !text.empty() &&
+                text.find_first_not_of("0123456789", text[0] == '-' ? 1 : 0) == std::string::npos &&
+                text != "-";
             if (ec == std::errc() && used == end && std::isfinite(v) && v >= lo && v <= hi &&
-                (!whole || v == std::floor(v)))
+                (!whole || digits))
                 return "";
             return option + " = " + text + ": not " + what + " (valid: " + range + ")";
         },
@@ -51,17 +57,17 @@ std::map<std::string, float> parseDefines(const std::vector<std::string>& define
             throw Error("a build parameter is written name=value",
                         {.parameter = "-D", .value = d, .validRange = "name=value"});
         const std::string name = d.substr(0, eq), text = d.substr(eq + 1);
-        std::size_t used = 0;
+        // Decimal only (from_chars' general format): no hex, no "inf", no leading '+'.
         float value = 0.0f;
-        try {
-            value = std::stof(text, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used == 0 || used != text.size() || !std::isfinite(value))
-            throw Error("build parameter value is not a number",
-                        {.parameter = name, .value = text, .validRange = "a finite number"});
-        out[name] = value;
+        const char* end = text.data() + text.size();
+        const auto [used, ec] = std::from_chars(text.data(), end, value);
+        if (text.empty() || ec != std::errc() || used != end || !std::isfinite(value))
+            throw Error(
+                "build parameter value is not a number",
+                {.parameter = name, .value = text, .validRange = "a finite decimal number"});
+        if (!out.emplace(name, value).second)
+            throw Error("build parameter '" + name + "' is given twice",
+                        {.parameter = "-D", .value = d, .validRange = "each name once"});
     }
     return out;
 }

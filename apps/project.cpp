@@ -60,12 +60,11 @@ int runProject(const ProjectArgs& a, const GlobalOptions& global) {
         writeSeparatePlantOutputs(arch, plants, a.outputs, a.plantOrigin, global);
     else
         for (const std::string& out : a.outputs) writePlantOutput(arch, plants, out, global);
-    outputs.commit();
     const ProjectStats s = projectStats(arch, built);
-    if (a.stats) {
-        std::printf("%s\n", statsJSON(project, s).c_str());
-        return 0;
-    }
+    // Statistics before the files go in place: commit() checks that they were written.
+    if (a.stats) std::printf("%s\n", statsJSON(project, s).c_str());
+    outputs.commit();
+    if (a.stats) return 0;
     std::printf("%s",
                 fmt::format("project {}: {} blocks, {} plants, {} leaves, {:.3f} m^2 leaf "
                             "area, {} triangles.\n",

@@ -30,6 +30,7 @@ struct RenderArgs {
     float fov = 0.0f;  // 0: the renderer's default
     std::string label;
     std::string coco;
+    bool cocoGiven = false;  // --coco '' is refused, not taken for no --coco
     bool noGround = false;
     int samples = 0;  // 0: the renderer's default
 };
@@ -103,9 +104,33 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     if (hasTarget && a.eye.empty())
         throw Error("--target needs --eye", {.parameter = "--target", .value = a.target});
 
+    // A render's cost is its rays: refused before any work when the options ask for more
+    // than one render may cast.
+    const RenderOptions cast = depth ? cameraRaysOnly(o) : o;
+    if (const std::uint64_t rays = renderRayCount(cast); rays > kMaxRenderRays)
+        throw Error(
+            fmt::format("{} x {} pixels at {} samples{} are {} rays, too many for one render",
+                        o.width, o.height, cast.samplesPerPixel,
+                        o.mode == RenderMode::Shaded && !depth ? " with sun and sky rays" : "",
+                        rays),
+            {.parameter = "--samples",
+             .value = std::to_string(cast.samplesPerPixel),
+             .validRange = fmt::format("at most {} rays: lower --samples, --width or --height",
+                                       kMaxRenderRays)});
+
     // Fail before the costly part when an output could not be written anyway.
     CommandOutputs outputs({a.output});
-    if (!a.coco.empty()) outputs.add(a.coco);
+    if (a.cocoGiven) {
+        if (lowerExtension(a.coco) != ".json")
+            throw Error(a.coco.empty() ? "COCO annotations need a file name"
+                                       : "COCO annotations are written as JSON",
+                        {.file = a.coco,
+                         .parameter = "--coco",
+                         .value = lowerExtension(a.coco),
+                         .validRange = ".json"});
+        outputs.add(a.coco);
+    }
+    outputs.requireNotAnInput(a.input);
     Context ctx;
     const std::vector<ObjectID> ids = readOBJ(ctx, a.input, {.progress = terminalProgress()});
     organsFromNames(ctx, ids);
@@ -126,7 +151,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     }
     const auto rendered = std::chrono::steady_clock::now();
     if (!image.rgb.empty()) writePNG(image, a.output);
-    if (!a.coco.empty()) {
+    if (a.cocoGiven) {
         RenderOptions mask = o;
         mask.mode = RenderMode::LabelObject;
         const Image objects = o.mode == RenderMode::LabelObject ? image : scene.render(mask);
@@ -164,9 +189,14 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.add_option("--label", args->label,
                    "Label image instead of a shaded one: organ (a colour per organ kind), object "
                    "(an instance mask, a colour per object) or depth (metres along the view axis)");
-    app.add_option("--coco", args->coco,
-                   "Also write COCO-style JSON of the objects in view (categories: organ kinds; "
-                   "masks as RLE; bounding boxes in pixels)");
+    app.add_option_function<std::string>(
+        "--coco",
+        [args](const std::string& path) {
+            args->coco = path;
+            args->cocoGiven = true;
+        },
+        "Also write COCO-style JSON of the objects in view (categories: organ kinds; "
+        "masks as RLE; bounding boxes in pixels)");
     app.add_flag("--no-ground", args->noGround, "Leave out the ground plane");
     app.add_option("--samples", args->samples, "Camera rays per pixel (default 4)")
         ->check(numberCheck("--samples", "a ray count", 1, 1024, true, "1 to 1024"));

@@ -1,6 +1,8 @@
 // Writing a scene in the format its file extension names; shared by every subcommand that
 // produces geometry.
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -57,6 +59,17 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
 }
 
 void checkSceneOutputs(const std::vector<std::string>& paths, std::size_t points, bool plants) {
+    const bool sampled = std::any_of(paths.begin(), paths.end(), [](const std::string& p) {
+        const std::string ext = lowerExtension(p);
+        return ext == ".ply" || ext == ".npz";
+    });
+    if (sampled && points > maxSamplePoints())
+        throw Error(fmt::format("{} points need about {:.1f} GB, more than half of this "
+                                "machine's memory",
+                                points, double(points) * double(kBytesPerSamplePoint) / 1e9),
+                    {.parameter = "--points",
+                     .value = std::to_string(points),
+                     .validRange = fmt::format("0 to {} on this machine", maxSamplePoints())});
     for (const std::string& out : paths) {
         requireOutputFormat(out, kSceneOutput | (plants ? kPlantOutput : 0u),
                             "unknown output format");

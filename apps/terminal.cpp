@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "cli.h"
@@ -81,6 +83,17 @@ ProgressCallback terminalProgress() {
 
 void clearProgress() {
     progressBar().clear();
+}
+
+std::string standardOutputFailure() {
+    errno = 0;
+    if (std::fflush(stdout) == 0 && !std::ferror(stdout)) return "";
+    int err = errno;
+    // A write that failed earlier left its reason in an errno long overwritten: ask the
+    // output again with one byte (what it should have held is lost already).
+    if (err == 0 && ::write(STDOUT_FILENO, "\n", 1) < 0) err = errno;
+    return std::string("cannot write standard output") +
+           (err ? std::string(": ") + std::strerror(err) : std::string());
 }
 
 void info(const GlobalOptions& g, const std::string& message) {

@@ -60,7 +60,8 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
     };
     std::lock_guard<std::mutex> lock(server.files);
     cli::CommandOutputs outputs(perPlant ? std::vector<std::string>{cli::separateIndexName(path)}
-                                         : std::vector<std::string>{path});
+                                         : std::vector<std::string>{path},
+                                /*endsProcess=*/false);
     if (perPlant) {
         cli::writeSeparatePlantOutputs(arch, plants, {path}, false, options);
         for (unsigned id : plants) withMaterials(cli::separateFileName(path, id));

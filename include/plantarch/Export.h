@@ -301,9 +301,17 @@ struct PointCloud {
     std::vector<std::uint16_t> scanner;
 };
 
+/// Memory one sampled point takes while it is drawn and written (its arrays and its share of
+/// the writer's buffer), for the estimate of maxSamplePoints.
+inline constexpr std::size_t kBytesPerSamplePoint = 112;
+/// The most points samplePoints draws on this machine: half its physical memory at
+/// kBytesPerSamplePoint a point (2^31 at most; 2^31 when the memory is unknown).
+std::size_t maxSamplePoints();
+
 /// Points drawn uniformly by area over the (visible) triangles of the Context, each with its
 /// face normal and its object's labels. Deterministic for a seed. Throws plantarch::Error for
-/// a point count out of range or a scene with no surface.
+/// a point count out of range (above maxSamplePoints too, before any work) or a scene with no
+/// surface.
 PointCloud samplePoints(const Context& context, const PointSampleOptions& options = {});
 
 /// Writes a point cloud as a binary PLY of vertices (x y z nx ny nz plant_id object_id organ

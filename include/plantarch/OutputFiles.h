@@ -66,4 +66,29 @@ void writeFileAtomically(const std::string& path, std::string_view bytes);
 /// command, that do not handle these signals themselves.
 void removeTemporaryFilesOnSignal();
 
+/// A folder made for a job's outputs, which the job removes again when it fails. Until
+/// keep(), the handler of removeTemporaryFilesOnSignal() removes it too, after the
+/// temporaries in it, if it is empty by then; folders are removed in the reverse order of
+/// their marks, so mark a parent before the folders made inside it.
+class FolderMadeForOutputs {
+public:
+    explicit FolderMadeForOutputs(std::string path);
+    /// Forgets the mark (the folder stays as it is; remove() has not run).
+    ~FolderMadeForOutputs();
+    FolderMadeForOutputs(FolderMadeForOutputs&& other) noexcept;
+    FolderMadeForOutputs& operator=(FolderMadeForOutputs&&) = delete;
+    FolderMadeForOutputs(const FolderMadeForOutputs&) = delete;
+    FolderMadeForOutputs& operator=(const FolderMadeForOutputs&) = delete;
+    /// Removes the folder if it is empty and forgets it.
+    void remove();
+    /// Forgets it: the folder stays, whatever happens.
+    void keep();
+    const std::string& path() const noexcept { return path_; }
+
+private:
+    std::string path_;
+    int slot_ = -1;  // -1 also when every signal slot was taken
+    bool active_ = true;
+};
+
 }  // namespace plantarch

@@ -155,6 +155,16 @@ struct RenderOptions {
     ProgressCallback progress;
 };
 
+/// The rays a render casts: width x height x samplesPerPixel camera rays, each with its
+/// shadowSamples sun rays and aoSamples sky rays in the shaded mode (camera rays only in the
+/// label modes). A depth image casts the rays of cameraRaysOnly(options).
+std::uint64_t renderRayCount(const RenderOptions& options);
+/// The options with no sun or sky rays: what a depth image casts.
+RenderOptions cameraRaysOnly(const RenderOptions& options);
+/// The most rays one render may cast (2^32): a render is refused before any work when
+/// renderRayCount is larger, so that no option within its own range starts a job of hours.
+inline constexpr std::uint64_t kMaxRenderRays = std::uint64_t(1) << 32;
+
 // The organ label colour table (see the header comment): organLabelColors() and
 // organLabelColor() in plantarch/Export.h, shared with the PLY writer's colours.
 /// Colour of an object in LabelObject mode: a bijection of (id + 1) onto the 24-bit colours.

@@ -6,6 +6,7 @@
 
 #include <mutex>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -111,6 +112,30 @@ void writeFileAtomically(const std::string& path, std::string_view bytes) {
 
 void removeTemporaryFilesOnSignal() {
     io::installTemporaryFileCleanup();
+}
+
+FolderMadeForOutputs::FolderMadeForOutputs(std::string path)
+    : path_(std::move(path)), slot_(io::registerTemporaryFolder(path_.c_str())) {}
+
+FolderMadeForOutputs::~FolderMadeForOutputs() {
+    keep();
+}
+
+FolderMadeForOutputs::FolderMadeForOutputs(FolderMadeForOutputs&& other) noexcept
+    : path_(std::move(other.path_)),
+      slot_(std::exchange(other.slot_, -1)),
+      active_(std::exchange(other.active_, false)) {}
+
+void FolderMadeForOutputs::remove() {
+    if (!active_) return;
+    ::rmdir(path_.c_str());  // a folder with anything in it stays
+    keep();
+}
+
+void FolderMadeForOutputs::keep() {
+    io::unregisterTemporaryFolder(slot_);
+    slot_ = -1;
+    active_ = false;
 }
 
 namespace io {

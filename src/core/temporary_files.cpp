@@ -22,34 +22,63 @@ namespace {
 
 constexpr std::size_t kSlots = 4096;
 std::array<std::atomic<char*>, kSlots> slots{};
+constexpr std::size_t kFolderSlots = 256;
+std::array<std::atomic<char*>, kFolderSlots> folderSlots{};
 std::atomic<bool> cleaning{false};
 
 void removeAndReraise(int signal) {
     cleaning.store(true);
     for (std::atomic<char*>& slot : slots)
         if (const char* path = slot.load()) ::unlink(path);
+    // Folders after the files that were in them; a folder taken from the end of the array
+    // first, since one is registered after its parent (rmdir fails harmlessly on a folder
+    // that is not empty).
+    for (std::size_t i = kFolderSlots; i-- > 0;)
+        if (const char* path = folderSlots[i].load()) ::rmdir(path);
     // SA_RESETHAND put the default action back; the signal is blocked while this handler
     // runs and is delivered on return, ending the process as it would have without us.
     ::raise(signal);
 }
 
-}  // namespace
-
-int registerTemporary(const char* path) noexcept {
+// The first free slot, or with `ordered` the first after the last one taken, so that a folder
+// registered after its parent lies after it even when an earlier slot was freed meanwhile.
+template <std::size_t N>
+int takeSlot(std::array<std::atomic<char*>, N>& table, const char* path, bool ordered) noexcept {
     char* copy = ::strdup(path);
     if (!copy) return -1;
-    for (std::size_t i = 0; i < kSlots; ++i) {
+    std::size_t first = ordered ? N : 0;
+    while (first > 0 && table[first - 1].load() == nullptr) --first;
+    for (std::size_t i = first; i < N; ++i) {
         char* expected = nullptr;
-        if (slots[i].compare_exchange_strong(expected, copy)) return int(i);
+        if (table[i].compare_exchange_strong(expected, copy)) return int(i);
     }
     std::free(copy);
     return -1;
 }
 
-void unregisterTemporary(int slot) noexcept {
-    if (slot < 0 || std::size_t(slot) >= kSlots) return;
-    char* path = slots[std::size_t(slot)].exchange(nullptr);
+template <std::size_t N>
+void releaseSlot(std::array<std::atomic<char*>, N>& table, int slot) noexcept {
+    if (slot < 0 || std::size_t(slot) >= N) return;
+    char* path = table[std::size_t(slot)].exchange(nullptr);
     if (!cleaning.load()) std::free(path);
+}
+
+}  // namespace
+
+int registerTemporary(const char* path) noexcept {
+    return takeSlot(slots, path, false);
+}
+
+void unregisterTemporary(int slot) noexcept {
+    releaseSlot(slots, slot);
+}
+
+int registerTemporaryFolder(const char* path) noexcept {
+    return takeSlot(folderSlots, path, true);
+}
+
+void unregisterTemporaryFolder(int slot) noexcept {
+    releaseSlot(folderSlots, slot);
 }
 
 void installTemporaryFileCleanup() {

@@ -16,6 +16,12 @@ namespace plantarch::io {
 int registerTemporary(const char* path) noexcept;
 /// Forgets a registration (after the file was renamed or removed). -1 is ignored.
 void unregisterTemporary(int slot) noexcept;
+/// Registers a folder made for outputs (copied) for removal on SIGINT/SIGTERM, after every
+/// registered file: the handler removes it if it is empty by then, folders registered later
+/// (deeper ones, made after their parents) first. Returns its slot, or -1 when all are taken.
+int registerTemporaryFolder(const char* path) noexcept;
+/// Forgets a folder's registration (it was kept or removed). -1 is ignored.
+void unregisterTemporaryFolder(int slot) noexcept;
 /// Installs the handler on SIGINT and SIGTERM (idempotent). A program that has its own
 /// handlers for them should not call this.
 void installTemporaryFileCleanup();

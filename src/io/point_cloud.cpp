@@ -3,6 +3,7 @@
 // of vertices only. Deterministic: one random stream from the seed, one pass.
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -20,12 +21,27 @@
 
 namespace plantarch {
 
+std::size_t maxSamplePoints() {
+    constexpr std::size_t kMost = std::size_t(1) << 31;
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || pageSize <= 0) return kMost;
+    return std::min(kMost, std::size_t(pages) / 2 * std::size_t(pageSize) / kBytesPerSamplePoint);
+}
+
 PointCloud samplePoints(const Context& context, const PointSampleOptions& options) {
     if (options.points == 0 || options.points > (std::size_t(1) << 31))
         throw Error("the number of points is out of range",
                     {.parameter = "points",
                      .value = std::to_string(options.points),
                      .validRange = "1 to 2147483648"});
+    if (const std::size_t most = maxSamplePoints(); options.points > most)
+        throw Error(fmt::format("{} points need about {:.1f} GB, more than half of this "
+                                "machine's memory",
+                                options.points,
+                                double(options.points) * double(kBytesPerSamplePoint) / 1e9),
+                    {.parameter = "points",
+                     .value = std::to_string(options.points),
+                     .validRange = fmt::format("1 to {} on this machine", most)});
     const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);
     // Cumulative area over every triangle, in object then triangle order.
     struct Triangle {

@@ -72,9 +72,12 @@ std::vector<std::string> listSpecies() {
     fs::directory_iterator it(dir, ec);
     if (ec) throw Error("cannot list the species library: " + ec.message(), {.file = dir.string()});
     std::vector<std::string> names;
+    // Every .xml entry but folders: a dangling or looping link, a FIFO or a device named like
+    // a species is listed too, so that reading it reports what is wrong with it instead of
+    // the library leaving it out without a word.
     for (const fs::directory_entry& entry : it) {
         std::error_code fileEc;
-        if (entry.path().extension() == ".xml" && entry.is_regular_file(fileEc))
+        if (entry.path().extension() == ".xml" && !entry.is_directory(fileEc))
             names.push_back(entry.path().stem().string());
     }
     std::sort(names.begin(), names.end());
@@ -85,7 +88,8 @@ SpeciesModel loadSpecies(const std::string& nameOrPath) {
     if (looksLikePath(nameOrPath)) return readSpeciesFile(nameOrPath);
     const fs::path file = fs::path(speciesLibraryDirectory()) / (nameOrPath + ".xml");
     std::error_code ec;
-    if (fs::is_regular_file(file, ec)) return readSpeciesFile(file.string());
+    if (fs::exists(fs::symlink_status(file, ec)) && !fs::is_directory(file, ec))
+        return readSpeciesFile(file.string());  // names what is wrong when it is no file
     const std::vector<std::string> names = listSpecies();
     const std::string near = text::closestMatch(nameOrPath, names);
     throw Error("unknown species" + (near.empty() ? "" : ", did you mean '" + near + "'?"),

@@ -70,7 +70,36 @@ void validate(const RenderOptions& o) {
         throw Error("render option must not be the zero vector", {.parameter = "sunDirection"});
     if (!o.camera.autoFrame && glm::length(o.camera.target - o.camera.eye) <= 0.0f)
         throw Error("camera eye and target coincide", {.parameter = "camera.eye"});
+    if (const std::uint64_t rays = renderRayCount(o); rays > kMaxRenderRays)
+        throw Error(
+            fmt::format("a render of {} rays ({} x {} pixels, {} samples each{}) is too "
+                        "large",
+                        rays, o.width, o.height, o.samplesPerPixel,
+                        o.mode == RenderMode::Shaded ? ", with their sun and sky rays" : ""),
+            {.parameter = "samplesPerPixel",
+             .value = std::to_string(o.samplesPerPixel),
+             .validRange = fmt::format("at most {} rays in all", kMaxRenderRays)});
 }
+
+}  // namespace
+
+RenderOptions cameraRaysOnly(const RenderOptions& options) {
+    RenderOptions o = options;
+    o.shadowSamples = 0;
+    o.aoSamples = 0;
+    return o;
+}
+
+std::uint64_t renderRayCount(const RenderOptions& o) {
+    const std::uint64_t camera = std::uint64_t(std::max(o.width, 0)) *
+                                 std::uint64_t(std::max(o.height, 0)) *
+                                 std::uint64_t(std::max(o.samplesPerPixel, 0));
+    if (o.mode != RenderMode::Shaded) return camera;
+    return camera * (1 + std::uint64_t(std::max(o.shadowSamples, 0)) +
+                     std::uint64_t(std::max(o.aoSamples, 0)));
+}
+
+namespace {
 
 // ---- vectors ---------------------------------------------------------------------------
 
@@ -528,7 +557,7 @@ Image RenderScene::render(const RenderOptions& o) const {
 }
 
 DepthImage RenderScene::renderDepth(const RenderOptions& o) const {
-    const Setup s = makeSetup(impl_->data, o, camera(o));
+    const Setup s = makeSetup(impl_->data, o, camera(cameraRaysOnly(o)));
     DepthImage depth;
     depth.width = o.width;
     depth.height = o.height;
@@ -556,7 +585,7 @@ DepthImage RenderScene::renderDepth(const RenderOptions& o) const {
 }
 
 DepthImage renderDepth(const Context& context, const RenderOptions& options) {
-    validate(options);
+    validate(cameraRaysOnly(options));
     return RenderScene(context, options.scene).renderDepth(options);
 }
 
