@@ -365,7 +365,7 @@ std::vector<TrellisPart> speciesTrellis(const SpeciesModel& species, std::uint64
 }
 
 void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species) {
-    for (const auto& [label, params] : species.shootTypes) {
+    for (const auto& [label, params] : speciesShootTypes(species)) {
         try {
             arch.defineShootType(label, params);
         } catch (const Error& e) {
