@@ -30,7 +30,7 @@ std::pair<std::size_t, std::string_view> badCharacterReference(std::string_view 
     for (std::size_t at = 0; (at = text.find_first_of("<&", at)) != std::string_view::npos;) {
         const std::string_view rest = text.substr(at);
         if (rest.starts_with("<!--") || rest.starts_with("<![CDATA[")) {
-            const std::string_view end = rest[1] == '-' ? "-->" : "]]>";
+            const std::string_view end = rest[2] == '-' ? "-->" : "]]>";
             const std::size_t close = text.find(end, at + 4);
             if (close == std::string_view::npos) break;  // the parser reports it
             at = close + end.size();
@@ -78,8 +78,10 @@ Document::Document(std::string_view text, std::string file, const DocumentKind& 
              .line = lineAt(std::ptrdiff_t(at)),
              .value = std::string(reference),
              .validRange = "&#9;, &#10;, &#13; or &#32; and above"});
-    const pugi::xml_parse_result parsed =
-        doc_.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+    // As a fragment, so that text outside the root element is kept (and refused below)
+    // instead of dropped without a word.
+    const pugi::xml_parse_result parsed = doc_.load_buffer(
+        text.data(), text.size(), pugi::parse_default | pugi::parse_fragment, pugi::encoding_utf8);
     if (!parsed) {
         if (parsed.status == pugi::status_no_document_element)
             throw Error("not an XML file: no root element, expected " + expected,
@@ -90,8 +92,15 @@ Document::Document(std::string_view text, std::string file, const DocumentKind& 
         throw Error(message, {.file = file_, .line = lineAt(parsed.offset)});
     }
     for (pugi::xml_node n : doc_.children()) {
-        if (isText(n) && !text::trim(n.value()).empty())
-            fail(n, "", "text outside the root element", excerpt(n.value()));
+        if (isText(n) && !text::trim(n.value()).empty()) {
+            // At the line where the text itself starts, after the line break before it.
+            const std::string_view value = n.value();
+            const std::size_t skip = value.find_first_not_of(" \t\r\n");
+            throw Error("text outside the root element",
+                        {.file = file_,
+                         .line = lineAt(n.offset_debug() + std::ptrdiff_t(skip)),
+                         .value = excerpt(value)});
+        }
         if (!isElement(n)) continue;
         if (root_)
             fail(n, "",
@@ -99,6 +108,9 @@ Document::Document(std::string_view text, std::string file, const DocumentKind& 
                      ">");
         root_ = n;
     }
+    if (!root_)
+        throw Error("not an XML file: no root element, expected " + expected,
+                    {.file = file_, .line = 1});
     const std::string_view name = root_.name();
     if (name != kind.root && !(kind.otherRoot && name == kind.otherRoot))
         fail(root_, "",
