@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/image_file.h"
 #include "plantarch/Error.h"
 #include "plantarch/InputFiles.h"
 
@@ -169,6 +170,10 @@ void checkText(std::string_view start, const std::string& path, const InputKind&
     if (utf16)
         throw Error("is UTF-16 text; plantarch reads " + std::string(kind.what) +
                         "s as UTF-8 (save it as UTF-8)",
+                    {.file = path});
+    // A PNG or JPEG image renamed (signatures no text starts with) is named as such.
+    if (const std::string_view image = imageFormatName(start); image == "PNG" || image == "JPEG")
+        throw Error("is " + withArticle(image) + " image, not " + withArticle(kind.what),
                     {.file = path});
     const std::size_t nul = start.find('\0');
     if (nul != std::string_view::npos)
