@@ -91,6 +91,9 @@ Document::Document(std::string_view text, std::string file, const DocumentKind& 
         if (parsed.offset >= std::ptrdiff_t(end)) message += " (the file ends too early)";
         throw Error(message, {.file = file_, .line = lineAt(parsed.offset)});
     }
+    if (!doc_.find_child([](pugi::xml_node n) { return isElement(n); }))
+        throw Error("not an XML file: no root element, expected " + expected,
+                    {.file = file_, .line = 1});
     for (pugi::xml_node n : doc_.children()) {
         if (isText(n) && !text::trim(n.value()).empty()) {
             // At the line where the text itself starts, after the line break before it.
@@ -108,9 +111,6 @@ Document::Document(std::string_view text, std::string file, const DocumentKind& 
                      ">");
         root_ = n;
     }
-    if (!root_)
-        throw Error("not an XML file: no root element, expected " + expected,
-                    {.file = file_, .line = 1});
     const std::string_view name = root_.name();
     if (name != kind.root && !(kind.otherRoot && name == kind.otherRoot))
         fail(root_, "",

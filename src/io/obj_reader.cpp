@@ -68,18 +68,24 @@ private:
         const std::string_view data(block_.get(), n);
         if (read_ == 0) io::checkText(data.substr(0, 4096), file_.path(), io::kOBJFile);
         if (const std::size_t nul = data.find('\0'); nul != std::string_view::npos)
-            throw Error(
-                "binary data (a NUL byte), not an OBJ file",
-                {.file = file_.path(), .line = lines_ + 1 + lineCount(data.substr(0, nul))});
-        lines_ += lineCount(data);
+            throw Error("binary data (a NUL byte), not an OBJ file",
+                        {.file = file_.path(), .line = lineAt(read_ + nul)});
         read_ += n;
         onRead_(read_);
         setg(block_.get(), block_.get(), block_.get() + n);
         return traits_type::to_int_type(*gptr());
     }
 
-    static int lineCount(std::string_view data) {
-        return int(std::count(data.begin(), data.end(), '\n'));
+    // The line of byte `offset` of the file, read again (only to name a bad byte's line).
+    int lineAt(std::uintmax_t offset) const {
+        io::InputFile again(file_.path(), io::kOBJFile);
+        int line = 1;
+        std::uintmax_t at = 0;
+        io::forEachLine(again, [&](std::string_view l, int number) {
+            if (at <= offset) line = number;
+            at += l.size() + 1;
+        });
+        return line;
     }
 
     io::InputFile& file_;
@@ -87,7 +93,6 @@ private:
     std::unique_ptr<char[]> block_;
     std::size_t blockSize_;
     std::uintmax_t read_ = 0;
-    int lines_ = 0;
     std::exception_ptr error_;
     bool stopped_ = false;
 };
