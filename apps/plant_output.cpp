@@ -5,17 +5,16 @@
 #include <unistd.h>
 
 #include <cctype>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/HeliosPlantXML.h"
+#include "plantarch/InputFiles.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantStructureWrite.h"
 
@@ -163,15 +162,23 @@ void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<
 }
 
 void requireInputFile(const std::string& path, const std::string& what, const std::string& option) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-        const bool vowel = std::string_view("aeiouAEIOU").find(what.at(0)) != std::string::npos;
-        throw Error("is a directory, not " + std::string(vowel ? "an " : "a ") + what,
-                    {.file = path, .parameter = option});
+    // The kind, for its size limit, from what the command calls the file.
+    const auto kind = [&] {
+        if (what == "project file") return InputFileKind::Project;
+        if (what == "plant string file") return InputFileKind::PlantStrings;
+        if (what == "attraction point file") return InputFileKind::AttractionPoints;
+        if (what.find("OBJ") != std::string::npos || what == "obstacle file")
+            return InputFileKind::OBJ;
+        return InputFileKind::PlantStructure;
+    }();
+    try {
+        checkInputFile(path, kind, what);
+    } catch (const Error& e) {
+        if (option.empty()) throw;
+        ErrorContext c = e.context();
+        c.parameter = option;
+        throw Error(e.message(), c);
     }
-    if (!std::ifstream(path))
-        throw Error("cannot open " + what + ": " + std::strerror(errno),
-                    {.file = path, .parameter = option});
 }
 
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
@@ -196,13 +203,7 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
                      .validRange = "a library species or species file"});
     requireInputFile(path, "plant string file");
     arch.loadPlantModelFromLibrary(species);
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error("is a directory, not a file of plant strings", {.file = path});
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw Error(std::string("cannot open plant string file: ") + std::strerror(errno),
-                    {.file = path});
+    std::istringstream in(readInputFile(path, InputFileKind::PlantStrings));
     std::vector<unsigned> ids;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

@@ -1,7 +1,8 @@
 // plantarch validate: reads a species file strictly, defines its shoot types and builds its
 // initial structure once, and prints one line: "FILE: ok (N shoot types)". A file with errors
 // gets one line on stderr per error (each bad value, unknown element or value out of range;
-// reading stops only where the file cannot be read further, such as malformed XML).
+// reading stops only where the file cannot be read further, such as malformed XML); then each
+// file it names (textures, OBJ models) that is missing or not what it should be.
 
 #include <cstdio>
 #include <filesystem>
@@ -29,7 +30,9 @@ std::size_t reportErrors(const std::string& file) {
         }
         path = library.string();
     }
-    const std::vector<Error> errors = checkSpeciesFile(path);
+    std::vector<Error> errors = checkSpeciesFile(path);
+    // The files it names (textures, OBJ models), once the file itself reads.
+    if (errors.empty()) errors = checkSpeciesFiles(readSpeciesFile(path));
     for (const Error& e : errors) std::fprintf(stderr, "plantarch: %s\n", e.what());
     return errors.size();
 }

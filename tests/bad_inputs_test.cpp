@@ -150,7 +150,9 @@ TEST_P(BadInputs, ExitStatusAndMessage) {
     const fs::path out = work.parent_path() / (c.name + ".stdout");
     const fs::path err = work.parent_path() / (c.name + ".stderr");
     std::string command = "cd '";
-    command.append(work.string()).append("' && env ").append(env).append(PLANTARCH_CLI);
+    // A case that hangs (an input read forever) fails with status 124 instead of hanging.
+    command.append(work.string()).append("' && env ").append(env).append("timeout -k 10 300 ");
+    command.append(PLANTARCH_CLI);
     command.append(" ").append(c.args).append(" >'").append(out.string());
     command.append("' 2>'").append(err.string()).append("'");
     const int raw = std::system(command.c_str());

@@ -121,7 +121,8 @@ TEST(Project, EachBadValueIsOneLineNamingTheFieldTheValueAndTheRange) {
         {R"({"plantarch_project": 1, "attraction": {"enabled": "yes"}})",
          "p.json: attraction/enabled = \"yes\": expected true or false"},
         {R"({"plantarch_project": 1, "obstacles": {"files": ["missing.obj"]}})",
-         "p.json: obstacles/files/0 = missing.obj: cannot open an obstacle file"},
+         "p.json: obstacles/files/0 = missing.obj: cannot open obstacle file: No such file or "
+         "directory"},
         {R"({"plantarch_project": 1, "nmae": "x"})",
          "p.json: nmae: unknown field, did you mean 'name'?"},
         {R"({"plantarch_project": 3})",

@@ -83,11 +83,31 @@ std::vector<std::string> listSpecies();
 /// ".xml" is a path. An unknown name is an Error listing the available names.
 SpeciesModel loadSpecies(const std::string& nameOrPath);
 
+// ---- files a species names ---------------------------------------------------------------
+
+/// A file named in the species (a texture, an OBJ model) as it is opened: a relative path is
+/// relative to the folder of the species file (the model's sourceFile); an absolute one, or
+/// any path of a species that has no file, as written.
+std::string speciesFilePath(const SpeciesModel& species, const std::string& file);
+
+/// The species' shoot types as a PlantArchitecture uses them: every file they name (leaf
+/// textures and OBJ models, stem textures, flower and fruit .obj models) resolved by
+/// speciesFilePath. The model itself keeps the paths as written, so it writes back unchanged.
+std::map<std::string, ShootParameters> speciesShootTypes(const SpeciesModel& species);
+
+/// Every error of the files the species names (empty: all good), one per file, each naming
+/// the species file, the line, the parameter and the file: a texture must be a PNG or JPEG
+/// image (decoded, at most 16384 pixels a side, at most 256 MiB), an OBJ model a text file
+/// (at most 4 GiB); either a regular file (no directory, FIFO or device).
+/// PlantArchitecture::loadPlantModelFromLibrary and `plantarch validate` check them.
+std::vector<Error> checkSpeciesFiles(const SpeciesModel& species);
+
 // ---- building ----------------------------------------------------------------------------
 
 /// Defines every shoot type of the species in `arch` (PlantArchitecture::defineShootType), so
-/// plants added afterwards can use them. Errors (e.g. an unregistered prototype function)
-/// name the species file.
+/// plants added afterwards can use them, with the files they name resolved
+/// (speciesShootTypes). Errors (e.g. an unregistered prototype function) name the species
+/// file.
 void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species);
 
 /// The species' build parameters with `overrides` applied: every name must be a build

@@ -13,7 +13,8 @@ namespace plantarch {
 void PlantArchitecture::loadPlantModelFromLibrary(const std::string& nameOrPath) {
     auto model = std::make_shared<SpeciesModel>(loadSpecies(nameOrPath));
     // Validate everything before replacing anything: a failed load leaves the old model.
-    for (const auto& [label, params] : model->shootTypes) {
+    if (const std::vector<Error> bad = checkSpeciesFiles(*model); !bad.empty()) throw bad.front();
+    for (const auto& [label, params] : speciesShootTypes(*model)) {
         validate(params, label);
         checkFunctions(impl_->functions, params, label);
     }

@@ -288,8 +288,8 @@ std::vector<unsigned> PlantArchitecture::readPlantStructureXMLString(
 
 std::vector<unsigned> PlantArchitecture::readPlantStructureXML(
     const std::string& filename, const PlantStructureReadOptions& options) {
-    auto read = plant_io::readPlantsXML(io::readWholeFile(filename, "plant structure file"),
-                                        filename, defaultsOf(impl_->store, seed_));
+    auto read = plant_io::readPlantsXML(io::readWholeFile(filename, io::kPlantFile), filename,
+                                        defaultsOf(impl_->store, seed_));
     return adopt(*this, impl_->store, impl_->functions, impl_->prototypes, impl_->geometryDeferred,
                  std::move(read), filename, options);
 }

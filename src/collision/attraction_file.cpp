@@ -2,7 +2,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "core/input_file.h"
@@ -12,8 +11,7 @@
 namespace plantarch {
 
 std::vector<vec3> readAttractionPointsCSV(const std::string& path, const std::string& parameter) {
-    std::ifstream in(path);
-    if (!in) throw Error(io::cannotOpen("attraction point file"), {.file = path});
+    std::istringstream in(io::readWholeFile(path, io::kAttractionFile));
     std::vector<vec3> points;
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {

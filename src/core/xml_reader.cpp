@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <set>
+#include <utility>
 
+#include "core/input_file.h"
 #include "core/value_text.h"
 
 namespace plantarch::xml {
@@ -15,6 +17,47 @@ std::string excerpt(std::string_view text) {
     return text::collapseSpaces(text).substr(0, 40);
 }
 
+// Whether XML 1.0 allows the character `c` (its Char production).
+bool isXmlChar(unsigned long c) {
+    return c == 0x9 || c == 0xA || c == 0xD || (c >= 0x20 && c <= 0xD7FF) ||
+           (c >= 0xE000 && c <= 0xFFFD) || (c >= 0x10000 && c <= 0x10FFFF);
+}
+
+// The offset of the first character reference (&#...;) outside comments and CDATA that names
+// a character XML does not allow, such as &#0; (pugixml would decode it and cut the value
+// short there), with the reference; npos when there is none.
+std::pair<std::size_t, std::string_view> badCharacterReference(std::string_view text) {
+    for (std::size_t at = 0; (at = text.find_first_of("<&", at)) != std::string_view::npos;) {
+        const std::string_view rest = text.substr(at);
+        if (rest.starts_with("<!--") || rest.starts_with("<![CDATA[")) {
+            const std::string_view end = rest[2] == '-' ? "-->" : "]]>";
+            const std::size_t close = text.find(end, at + 4);
+            if (close == std::string_view::npos) break;  // the parser reports it
+            at = close + end.size();
+            continue;
+        }
+        ++at;
+        if (!rest.starts_with("&#")) continue;
+        const bool hex = rest.size() > 2 && (rest[2] == 'x' || rest[2] == 'X');
+        const std::size_t first = hex ? 3 : 2;
+        const std::size_t semicolon = rest.find(';', first);
+        if (semicolon == std::string_view::npos || semicolon > first + 12) continue;
+        unsigned long value = 0;
+        bool digits = semicolon > first;
+        for (std::size_t i = first; i < semicolon && digits; ++i) {
+            const char c = rest[i];
+            const int d = c >= '0' && c <= '9'          ? c - '0'
+                          : hex && c >= 'a' && c <= 'f' ? c - 'a' + 10
+                          : hex && c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                                        : -1;
+            digits = d >= 0;
+            value = std::min(value * (hex ? 16 : 10) + unsigned(d >= 0 ? d : 0), 0x110000ul);
+        }
+        if (digits && !isXmlChar(value)) return {at - 1, rest.substr(0, semicolon + 1)};
+    }
+    return {std::string_view::npos, {}};
+}
+
 }  // namespace
 
 // ---- Document ------------------------------------------------------------------------------
@@ -22,10 +65,23 @@ std::string excerpt(std::string_view text) {
 Document::Document(std::string_view text, std::string file, const DocumentKind& kind)
     : text_(text), file_(std::move(file)) {
     const std::string expected = std::string("<") + kind.root + ">";
+    // Not UTF-16 or binary: pugixml would stop at the first NUL byte, and read the rest as
+    // if it were not there.
+    io::checkText(text, file_, io::InputKind{kind.description, 0});
     if (text::trim(text).empty())
         throw Error("empty file, expected a " + expected + " document", {.file = file_, .line = 1});
-    const pugi::xml_parse_result parsed =
-        doc_.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+    if (const auto [at, reference] = badCharacterReference(text); at != std::string_view::npos)
+        throw Error(
+            "a character reference to a character XML does not allow (a NUL or control "
+            "character)",
+            {.file = file_,
+             .line = lineAt(std::ptrdiff_t(at)),
+             .value = std::string(reference),
+             .validRange = "&#9;, &#10;, &#13; or &#32; and above"});
+    // As a fragment, so that text outside the root element is kept (and refused below)
+    // instead of dropped without a word.
+    const pugi::xml_parse_result parsed = doc_.load_buffer(
+        text.data(), text.size(), pugi::parse_default | pugi::parse_fragment, pugi::encoding_utf8);
     if (!parsed) {
         if (parsed.status == pugi::status_no_document_element)
             throw Error("not an XML file: no root element, expected " + expected,
@@ -35,9 +91,19 @@ Document::Document(std::string_view text, std::string file, const DocumentKind& 
         if (parsed.offset >= std::ptrdiff_t(end)) message += " (the file ends too early)";
         throw Error(message, {.file = file_, .line = lineAt(parsed.offset)});
     }
+    if (!doc_.find_child([](pugi::xml_node n) { return isElement(n); }))
+        throw Error("not an XML file: no root element, expected " + expected,
+                    {.file = file_, .line = 1});
     for (pugi::xml_node n : doc_.children()) {
-        if (isText(n) && !text::trim(n.value()).empty())
-            fail(n, "", "text outside the root element", excerpt(n.value()));
+        if (isText(n) && !text::trim(n.value()).empty()) {
+            // At the line where the text itself starts, after the line break before it.
+            const std::string_view value = n.value();
+            const std::size_t skip = value.find_first_not_of(" \t\r\n");
+            throw Error("text outside the root element",
+                        {.file = file_,
+                         .line = lineAt(n.offset_debug() + std::ptrdiff_t(skip)),
+                         .value = excerpt(value)});
+        }
         if (!isElement(n)) continue;
         if (root_)
             fail(n, "",

@@ -12,25 +12,10 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/image_file.h"
 #include "geometry/polygon_mesh.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
-
-// stb_image with static linkage, private to this file (the renderer has its own copy).
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#endif
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#include <stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 namespace plantarch {
 
@@ -50,24 +35,18 @@ struct AlphaImage {
 };
 
 AlphaImage loadAlpha(const std::string& path) {
-    int w = 0, h = 0, channels = 0;
-    if (!stbi_info(path.c_str(), &w, &h, &channels))
-        throw Error(std::string("cannot read leaf image: ") + stbi_failure_reason(),
-                    {.file = path});
-    if (channels != 2 && channels != 4)
+    const io::DecodedImage image = io::readTextureFile(path);
+    if (image.fileChannels != 2 && image.fileChannels != 4)
         throw Error("leaf image has no alpha channel (its alpha gives the leaf outline)",
                     {.file = path});
-    unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
-    if (!data)
-        throw Error(std::string("cannot read leaf image: ") + stbi_failure_reason(),
-                    {.file = path});
+    const unsigned char* data = image.pixels.data();
+    const int w = image.width, h = image.height;
     AlphaImage img{w, h, std::vector<float>(std::size_t(w) * h)};
     std::size_t opaque = 0;
     for (std::size_t i = 0; i < img.alpha.size(); ++i) {
         img.alpha[i] = data[4 * i + 3] / 255.0f;
         if (img.alpha[i] >= kThreshold) ++opaque;
     }
-    stbi_image_free(data);
     if (opaque == 0) throw Error("leaf image is fully transparent: no outline", {.file = path});
     if (opaque == img.alpha.size())
         throw Error("leaf image is fully opaque: its alpha channel does not outline a leaf",

@@ -15,8 +15,6 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -25,6 +23,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/image_file.h"
 #include "core/parallel.h"
 #include "core/progress_steps.h"
 #include "core/value_text.h"
@@ -81,11 +80,16 @@ std::size_t align8(std::size_t n) {
     return (n + 7) & ~std::size_t(7);
 }
 
-std::vector<std::uint8_t> readBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read texture image", {.file = path});
-    return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)),
-                                     std::istreambuf_iterator<char>());
+// A texture image as embedded: the bytes of a file that decoded as a PNG or JPEG image.
+struct EmbeddedImage {
+    std::string bytes;
+    const char* mimeType;
+};
+
+EmbeddedImage embeddedImage(const std::string& path) {
+    io::DecodedImage image = io::readTextureFile(path);
+    return {std::move(image.bytes),
+            image.format == io::ImageFormat::PNG ? "image/png" : "image/jpeg"};
 }
 
 // The byte blocks of the binary buffer, in order; each is produced when written.
@@ -192,8 +196,9 @@ struct Scene {
     std::vector<ObjectRecord> records;
     std::vector<Node> nodes;
     std::vector<Primitive> primitives;
-    std::vector<Material> materials;  // in glTF material order
-    std::vector<std::string> images;  // texture files, in glTF image order
+    std::vector<Material> materials;       // in glTF material order
+    std::vector<std::string> images;       // texture files, in glTF image order
+    std::vector<EmbeddedImage> imageData;  // each decoded and checked, as embedded
 
     ObjectView object(const ObjectRecord& r) const { return frames[r.frame]->object(r.id); }
     ObjectView object(std::size_t record) const { return object(records[record]); }
@@ -269,6 +274,7 @@ Scene collect(const std::vector<AnimationFrame>& frames, const GltfOptions& opti
         if (!mat.texture.empty() && options.textures &&
             std::find(s.images.begin(), s.images.end(), mat.texture) == s.images.end())
             s.images.push_back(mat.texture);
+    for (const std::string& image : s.images) s.imageData.push_back(embeddedImage(image));
     std::stable_sort(s.primitives.begin(), s.primitives.end(),
                      [](const Primitive& a, const Primitive& b) {
                          return std::tie(a.node, a.organ) < std::tie(b.node, b.organ);
@@ -335,13 +341,9 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     json views = json::array(), accessors = json::array(), meshes = json::array();
     json nodes = json::array(), materials = json::array();
     json textures = json::array(), images = json::array();
-    for (const std::string& image : s.images) {  // sized here, read when written
-        std::error_code ec;
-        const auto bytes = std::filesystem::file_size(image, ec);
-        if (ec) throw Error("cannot read texture image: " + ec.message(), {.file = image});
-        const std::string ext = io::lowerExtension(image);
-        images.push_back({{"bufferView", buffer.add(views, std::size_t(bytes), 0)},
-                          {"mimeType", ext == ".png" ? "image/png" : "image/jpeg"}});
+    for (const EmbeddedImage& image : s.imageData) {
+        images.push_back({{"bufferView", buffer.add(views, image.bytes.size(), 0)},
+                          {"mimeType", image.mimeType}});
         textures.push_back({{"source", images.size() - 1}});
     }
     for (const Material& mat : s.materials) {
@@ -516,9 +518,8 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
 // The binary buffer, view by view in the order document() laid them out; each view is
 // streamed object by object straight from the Context.
 void writeBinary(const Scene& s, const GltfOptions& options, Sink& out) {
-    for (const std::string& image : s.images) {
-        const std::vector<std::uint8_t> bytes = readBytes(image);
-        out.write(bytes.data(), bytes.size());
+    for (const EmbeddedImage& image : s.imageData) {
+        out.write(image.bytes.data(), image.bytes.size());
         out.pad();
     }
     // Normals of every object first, on all threads (each object's own slice).

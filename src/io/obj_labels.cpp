@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/input_file.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::io {
@@ -198,13 +199,10 @@ std::string shapeName(std::string_view rest) {
 
 std::unordered_map<std::string, ObjLabelRecord> readObjLabels(const std::string& path) {
     std::unordered_map<std::string, ObjLabelRecord> labels;
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                               &std::fclose);
-    if (!file) return labels;  // the parser has read it; a vanished file has no labels
-    std::string current, carry;
-    int number = 0;
-    auto line = [&](std::string_view l) {
-        ++number;
+    std::string current;
+    // Only lines starting with 'o', 'g' or '#' are looked at closely.
+    InputFile file(path, kOBJFile);
+    forEachLine(file, [&](std::string_view l, int number) {
         const std::size_t first = l.find_first_not_of(" \t");
         if (first == std::string_view::npos) return;
         l.remove_prefix(first);
@@ -215,32 +213,7 @@ std::unordered_map<std::string, ObjLabelRecord> readObjLabels(const std::string&
             ObjLabelRecord record = parseObjLabelLine(l, path, number);
             labels.try_emplace(current, std::move(record));
         }
-    };
-    // Blocks of up to 1 MB (no larger than the file, not cleared); only lines starting with
-    // 'o', 'g' or '#' are looked at closely.
-    std::error_code ec;
-    const std::uintmax_t fileSize = std::filesystem::file_size(path, ec);
-    const std::size_t blockSize = std::size_t(
-        std::clamp<std::uintmax_t>(ec ? 0 : fileSize + 1, 4096, std::uintmax_t(1) << 20));
-    const auto block = std::make_unique_for_overwrite<char[]>(blockSize);
-    for (;;) {
-        const std::size_t n = std::fread(block.get(), 1, blockSize, file.get());
-        if (n == 0) break;
-        std::string_view data(block.get(), n);
-        std::size_t start = 0;
-        for (std::size_t nl; (nl = data.find('\n', start)) != std::string_view::npos;
-             start = nl + 1) {
-            if (!carry.empty()) {
-                carry.append(data.substr(start, nl - start));
-                line(carry);
-                carry.clear();
-            } else {
-                line(data.substr(start, nl - start));
-            }
-        }
-        carry.append(data.substr(start));
-    }
-    if (!carry.empty()) line(carry);
+    });
     return labels;
 }
 

@@ -4,16 +4,15 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <istream>
+#include <map>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -30,36 +29,72 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Reads a file in blocks for the OBJ parser, telling how many bytes it has read so far.
+// Reads a file in blocks for the OBJ parser, telling how many bytes it has read so far. The
+// first block is checked to be text (not UTF-16, not binary), and every block to hold no NUL
+// byte: the parser would stop at one silently.
 class ProgressReadBuffer final : public std::streambuf {
 public:
     // Blocks of `blockSize` bytes, not cleared before they are read into.
-    ProgressReadBuffer(std::FILE* file, std::size_t blockSize,
+    ProgressReadBuffer(io::InputFile& file, std::size_t blockSize,
                        std::function<void(std::uintmax_t)> onRead)
         : file_(file),
           onRead_(std::move(onRead)),
           block_(std::make_unique_for_overwrite<char[]>(blockSize)),
           blockSize_(blockSize) {}
 
-    bool failed() const { return std::ferror(file_) != 0; }
+    // Ends the stream at the next block: the parser sees the end of the file.
+    void stop() { stopped_ = true; }
+    // An error while reading ends the stream (the parser sees its end); thrown here after.
+    void rethrow() const {
+        if (error_) std::rethrow_exception(error_);
+    }
 
 protected:
     int_type underflow() override {
         if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-        const std::size_t n = std::fread(block_.get(), 1, blockSize_, file_);
+        if (stopped_) return traits_type::eof();
+        try {
+            return next();
+        } catch (...) {
+            error_ = std::current_exception();
+            return traits_type::eof();
+        }
+    }
+
+private:
+    int_type next() {
+        const std::size_t n = file_.read(block_.get(), blockSize_);
         if (n == 0) return traits_type::eof();
+        const std::string_view data(block_.get(), n);
+        if (read_ == 0) io::checkText(data.substr(0, 4096), file_.path(), io::kOBJFile);
+        if (const std::size_t nul = data.find('\0'); nul != std::string_view::npos)
+            throw Error("binary data (a NUL byte), not an OBJ file",
+                        {.file = file_.path(), .line = lineAt(read_ + nul)});
         read_ += n;
         onRead_(read_);
         setg(block_.get(), block_.get(), block_.get() + n);
         return traits_type::to_int_type(*gptr());
     }
 
-private:
-    std::FILE* file_;
+    // The line of byte `offset` of the file, read again (only to name a bad byte's line).
+    int lineAt(std::uintmax_t offset) const {
+        io::InputFile again(file_.path(), io::kOBJFile);
+        int line = 1;
+        std::uintmax_t at = 0;
+        io::forEachLine(again, [&](std::string_view l, int number) {
+            if (at <= offset) line = number;
+            at += l.size() + 1;
+        });
+        return line;
+    }
+
+    io::InputFile& file_;
     std::function<void(std::uintmax_t)> onRead_;
     std::unique_ptr<char[]> block_;
     std::size_t blockSize_;
     std::uintmax_t read_ = 0;
+    std::exception_ptr error_;
+    bool stopped_ = false;
 };
 
 std::string trimmed(const std::string& text) {
@@ -77,7 +112,9 @@ std::vector<std::string> warningLines(const std::string& text) {
         std::size_t end = text.find('\n', start);
         if (end == std::string::npos) end = text.size();
         std::string line = trimmed(text.substr(start, end - start));
-        if (!line.empty() && line != ".") lines.push_back(std::move(line));
+        // The material reader says which file was not found and what follows.
+        const bool repeated = line.rfind("Failed to load material file(s)", 0) == 0;
+        if (!line.empty() && line != "." && !repeated) lines.push_back(std::move(line));
         start = end + 1;
     }
     return lines;
@@ -97,6 +134,8 @@ std::string resolveTexture(const std::string& texture, const fs::path& baseDir) 
     return (baseDir / t).lexically_normal().generic_string();
 }
 
+std::optional<Error> badIndex(const std::string& path);
+
 // One object to be: a run of faces of one shape with one material.
 struct PendingObject {
     Mesh mesh;
@@ -106,9 +145,8 @@ struct PendingObject {
 
 class ObjConverter {
 public:
-    ObjConverter(const tinyobj::attrib_t& attrib, const std::string& path,
-                 const std::string& warnings)
-        : attrib_(attrib), path_(path), warnings_(warnings) {}
+    ObjConverter(const tinyobj::attrib_t& attrib, const std::string& path)
+        : attrib_(attrib), path_(path) {}
 
     // Splits every shape into runs of faces with the same material.
     std::vector<PendingObject> convert(const std::vector<tinyobj::shape_t>& shapes) {
@@ -137,10 +175,10 @@ public:
     }
 
 private:
+    // A bad index is named at its line; anything else as found here.
     [[noreturn]] void malformed(const std::string& what) const {
-        std::string message = "malformed OBJ: " + what;
-        if (!warnings_.empty()) message += " (tinyobjloader: " + warnings_ + ")";
-        throw Error(message, {.file = path_});
+        if (std::optional<Error> bad = badIndex(path_)) throw *bad;
+        throw Error("malformed OBJ: " + what, {.file = path_});
     }
 
     // The object-local vertex for one face corner, created on first use.
@@ -176,7 +214,6 @@ private:
 
     const tinyobj::attrib_t& attrib_;
     const std::string& path_;
-    const std::string& warnings_;
     std::unordered_map<std::uint64_t, std::uint32_t> remap_;
 };
 
@@ -226,16 +263,15 @@ bool recordedIDsFree(const Context& context, const std::vector<const io::ObjLabe
 // Every vertex line ("v x y z") holds finite numbers: the OBJ parser reads a word such as
 // "nan" as 0, so the text itself is checked, naming the line and the word.
 void checkVertexNumbers(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string line;
-    for (int number = 1; std::getline(in, line); ++number) {
-        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    io::InputFile file(path, io::kOBJFile);
+    io::forEachLine(file, [&](std::string_view line, int number) {
+        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) return;
         std::size_t at = 1;
         for (int k = 0; k < 3; ++k) {
             at = line.find_first_not_of(" \t\r", at);
-            if (at == std::string::npos) break;  // too few numbers: the parser's own error
+            if (at == std::string_view::npos) break;  // too few numbers: the parser's own error
             const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
-            const std::string word = line.substr(at, end - at);
+            const std::string_view word = line.substr(at, end - at);
             float v = 0.0f;
             const auto [next, ec] = std::from_chars(word.data(), word.data() + word.size(), v);
             if (ec != std::errc() || next != word.data() + word.size() || !std::isfinite(v))
@@ -243,16 +279,155 @@ void checkVertexNumbers(const std::string& path) {
                             {.file = path,
                              .line = number,
                              .parameter = "v",
-                             .value = word,
+                             .value = std::string(word),
                              .validRange = "finite numbers"});
             at = end;
         }
-    }
+    });
 }
+
+namespace {
+
+// The first index of a face (f), line (l) or point (p) line that tinyobjloader refuses or
+// that names a vertex or texture coordinate the file does not have, as an Error naming the
+// line; none when every index is good. Read only after the parser or the conversion found
+// a bad index, to say where it is.
+std::optional<Error> badIndex(const std::string& path) {
+    struct Counts {
+        long v = 0, vt = 0, vn = 0;
+    };
+    auto countLine = [](std::string_view l, Counts& c) {
+        if (l.size() < 2 || l[0] != 'v') return;
+        if (l[1] == ' ' || l[1] == '\t') ++c.v;
+        if (l.size() >= 3 && (l[2] == ' ' || l[2] == '\t')) {
+            if (l[1] == 't') ++c.vt;
+            if (l[1] == 'n') ++c.vn;
+        }
+    };
+    Counts total;
+    {
+        io::InputFile file(path, io::kOBJFile);
+        io::forEachLine(file, [&](std::string_view l, int) {
+            countLine(l.substr(std::min(l.find_first_not_of(" \t"), l.size())), total);
+        });
+    }
+    static const char* const kWhat[3] = {"vertex", "texture coordinate", "normal"};
+    std::optional<Error> found;
+    Counts now;
+    io::InputFile file(path, io::kOBJFile);
+    io::forEachLine(file, [&](std::string_view l, int number) {
+        if (found) return;
+        l.remove_prefix(std::min(l.find_first_not_of(" \t"), l.size()));
+        countLine(l, now);
+        if (l.size() < 2 || (l[0] != 'f' && l[0] != 'l' && l[0] != 'p') ||
+            (l[1] != ' ' && l[1] != '\t'))
+            return;
+        const std::string keyword(1, l[0]);
+        std::size_t at = 1;
+        while (!found && (at = l.find_first_not_of(" \t\r", at)) != std::string_view::npos) {
+            const std::size_t end = std::min(l.find_first_of(" \t\r", at), l.size());
+            const std::string_view word = l.substr(at, end - at);
+            at = end;
+            std::size_t part = 0, start = 0;
+            for (; part < 3 && start <= word.size(); ++part) {
+                const std::size_t slash = std::min(word.find('/', start), word.size());
+                const std::string_view text = word.substr(start, slash - start);
+                start = slash + 1;
+                if (text.empty() && part > 0) continue;  // "1//2": no texture coordinate
+                const long count = part == 0 ? total.v : part == 1 ? total.vt : total.vn;
+                const long before = part == 0 ? now.v : part == 1 ? now.vt : now.vn;
+                long index = 0;
+                const auto [next, ec] =
+                    std::from_chars(text.data(), text.data() + text.size(), index);
+                std::string message, valid;
+                if (ec != std::errc() || next != text.data() + text.size())
+                    message = std::string("not a ") + kWhat[part] + " index";
+                else if (index == 0)
+                    message = std::string(kWhat[part]) + " index 0: OBJ indices start at 1";
+                else if (part < 2 && index > count)
+                    message = std::string(kWhat[part]) + " index out of range";
+                else if (index < 0 && -index > before)
+                    message = std::string(kWhat[part]) + " index out of range (counted back from " +
+                              "this line)";
+                if (message.empty()) continue;
+                if (count == 0)
+                    valid = std::string("none: the file has no ") + kWhat[part] + "s above";
+                else
+                    valid = "1 to " + std::to_string(count) +
+                            (before > 0 ? ", or -" + std::to_string(before) + " to -1" : "");
+                found = Error(message, {.file = path,
+                                        .line = number,
+                                        .parameter = keyword,
+                                        .value = std::string(word),
+                                        .validRange = valid});
+                break;
+            }
+        }
+    });
+    return found;
+}
+
+// The .mtl files an OBJ names (mtllib), resolved from `dir` and read as input files. One that
+// does not exist is a warning (its objects get the default material); one that is no regular
+// file or is too large is kept as the error, and reading stops.
+class MaterialFiles final : public tinyobj::MaterialReader {
+public:
+    MaterialFiles(fs::path dir, std::function<void()> stop)
+        : dir_(std::move(dir)), stop_(std::move(stop)) {}
+
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* matMap, std::string* warn,
+                    std::string* err) override {
+        if (error_) return false;
+        const fs::path given(name);
+        const std::string path =
+            (given.is_absolute() ? given : dir_ / given).lexically_normal().string();
+        std::error_code ec;
+        if (!fs::exists(fs::symlink_status(path, ec))) {
+            if (warn) *warn += "material file " + path + " not found: default material used\n";
+            return false;
+        }
+        try {
+            const std::string text = io::readWholeFile(path, io::kMTLFile);
+            std::istringstream in(text);
+            tinyobj::LoadMtl(matMap, materials, &in, warn, err);
+            return true;
+        } catch (const Error& e) {
+            error_ = e;
+            name_ = name;
+            stop_();
+            return false;
+        }
+    }
+
+    // The error of an mtllib file, placed at the OBJ's mtllib line naming it.
+    void rethrow(const std::string& objPath) const {
+        if (!error_) return;
+        int line = 0;
+        io::InputFile file(objPath, io::kOBJFile);
+        io::forEachLine(file, [&](std::string_view l, int number) {
+            l.remove_prefix(std::min(l.find_first_not_of(" \t"), l.size()));
+            if (line == 0 && l.substr(0, 6) == "mtllib" && l.find(name_) != std::string_view::npos)
+                line = number;
+        });
+        throw Error(error_->message(), {.file = objPath,
+                                        .line = line,
+                                        .parameter = "mtllib",
+                                        .value = error_->file(),
+                                        .validRange = error_->validRange()});
+    }
+
+private:
+    fs::path dir_;
+    std::function<void()> stop_;
+    std::optional<Error> error_;
+    std::string name_;
+};
+
+}  // namespace
 
 std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                               const ObjReadOptions& options) {
-    io::rejectDirectory(path, "OBJ file");
     if (options.storeShapeNames) {
         const auto type = context.objectDataType("name");
         if (type && *type != DataType::String)
@@ -260,17 +435,11 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                             ", readOBJ stores shape names as string",
                         {.file = path, .parameter = "name"});
     }
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error("is a directory, not an OBJ file", {.file = path});
     // Progress as fractions of the whole read: the parse is about half of it, reported as
     // the share of the file's bytes read.
     ProgressSteps steps(options.progress, "reading OBJ", 1.0);
-    std::FILE* file = std::fopen(path.c_str(), "rb");
-    if (!file)
-        throw Error(std::string("cannot open OBJ file: ") + std::strerror(errno), {.file = path});
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> closer(file, &std::fclose);
-    const std::uintmax_t size = std::max<std::uintmax_t>(fs::file_size(path, ec), 1);
+    io::InputFile file(path, io::kOBJFile);
+    const std::uintmax_t size = std::max<std::uintmax_t>(file.size(), 1);
     // Blocks of 1 MB, or of the whole file when it is smaller.
     const std::size_t blockSize =
         std::size_t(std::clamp<std::uintmax_t>(size + 1, 4096, std::uintmax_t(1) << 20));
@@ -278,10 +447,9 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         steps.at(0.5 * double(std::min(read, size)) / double(size));
     });
     std::istream in(&buffer);
-    std::string mtlDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path().string()
-                                                       : options.mtlSearchPath;
-    if (!mtlDir.empty() && mtlDir.back() != '/') mtlDir += '/';
-    tinyobj::MaterialFileReader materialReader(mtlDir);
+    const fs::path baseDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path()
+                                                           : fs::path(options.mtlSearchPath);
+    MaterialFiles materialReader(baseDir, [&] { buffer.stop(); });
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> tinyMaterials;
@@ -289,21 +457,21 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     const bool ok = tinyobj::LoadObj(&attrib, &shapes, &tinyMaterials, &warning, &error, &in,
                                      &materialReader, /*triangulate=*/true,
                                      /*default_vcols_fallback=*/false);
-    if (buffer.failed()) throw Error("cannot read OBJ file", {.file = path});
-    const std::vector<std::string> warnings = warningLines(warning);
+    buffer.rethrow();
+    materialReader.rethrow(path);
     if (!ok) {
+        if (std::optional<Error> bad = badIndex(path)) throw *bad;
         const std::string why = trimmed(error);
         throw Error("cannot read OBJ: " + (why.empty() ? std::string("unknown error") : why),
                     {.file = path});
     }
+    const std::vector<std::string> warnings = warningLines(warning);
     steps.at(0.5);
     checkVertexNumbers(path);
     steps.at(0.7);
-    if (options.onWarning)
-        for (const std::string& w : warnings) options.onWarning(w);
 
     const std::string warningText = joined(warnings);
-    ObjConverter converter(attrib, path, warningText);
+    ObjConverter converter(attrib, path);
     std::vector<PendingObject> objects = converter.convert(shapes);
     steps.at(0.8);
     if (objects.empty()) {
@@ -311,6 +479,8 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
         if (!warningText.empty()) message += " (tinyobjloader: " + warningText + ")";
         throw Error(message, {.file = path});
     }
+    if (options.onWarning)
+        for (const std::string& w : warnings) options.onWarning(w);
 
     std::unordered_map<std::string, io::ObjLabelRecord> records;
     const std::vector<const io::ObjLabelRecord*> labels =
@@ -318,8 +488,6 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     const bool sameIDs = recordedIDsFree(context, labels, options.maxSkippedObjectIDs);
 
     // Materials as the Context will hold them; added only now that the file is known good.
-    const fs::path baseDir = options.mtlSearchPath.empty() ? fs::path(path).parent_path()
-                                                           : fs::path(options.mtlSearchPath);
     std::vector<MaterialID> materialIDs(tinyMaterials.size());
     for (std::size_t i = 0; i < tinyMaterials.size(); ++i) {
         const tinyobj::material_t& m = tinyMaterials[i];

@@ -194,10 +194,15 @@ private:
         } catch (const Error& e) {
             const std::string attribute = attributeFor(e.parameter());
             ErrorContext c = e.context();
+            // An error about another file (an OBJ model, a leaf image) keeps naming it.
+            std::string message = e.message();
+            if (!c.file.empty() && c.file != species_.sourceFile)
+                message =
+                    c.file + (c.line > 0 ? ":" + std::to_string(c.line) : "") + ": " + message;
             c.file = species_.sourceFile;
             c.line = step.line;
             c.parameter = attribute.empty() ? path : path + "." + attribute;
-            throw Error(e.message(), c);
+            throw Error(message, c);
         }
         return 0;
     }
@@ -365,7 +370,7 @@ std::vector<TrellisPart> speciesTrellis(const SpeciesModel& species, std::uint64
 }
 
 void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species) {
-    for (const auto& [label, params] : species.shootTypes) {
+    for (const auto& [label, params] : speciesShootTypes(species)) {
         try {
             arch.defineShootType(label, params);
         } catch (const Error& e) {

@@ -683,19 +683,17 @@ std::vector<Error> checkSpeciesString(const std::string& xml, const std::string&
 }
 
 std::vector<Error> checkSpeciesFile(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        return {Error("is a directory, not a species file", {.file = path})};
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return {Error(io::cannotOpen("species file"), {.file = path})};
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) return {Error("cannot read species file", {.file = path})};
-    return checkSpeciesString(text.str(), path);
+    std::string text;
+    try {
+        text = io::readWholeFile(path, io::kSpeciesFile);
+    } catch (const Error& e) {
+        return {e};
+    }
+    return checkSpeciesString(text, path);
 }
 
 SpeciesModel readSpeciesFile(const std::string& path) {
-    return readSpeciesString(io::readWholeFile(path, "species file"), path);
+    return readSpeciesString(io::readWholeFile(path, io::kSpeciesFile), path);
 }
 
 }  // namespace plantarch

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 
+#include "core/input_file.h"
 #include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
@@ -83,13 +83,16 @@ float blockAge(const ProjectBlock& b, const SpeciesModel& model) {
 
 void requireReadable(const Project& p, const std::string& path, const std::string& field,
                      const std::string& what) {
-    std::error_code ec;
     const std::string full = projectPath(p, path);
-    if (std::filesystem::is_directory(full, ec))
-        throw Error("is a directory, not " + what,
-                    {.file = fileOf(p), .parameter = field, .value = full});
-    if (!std::ifstream(full))
-        throw Error("cannot open " + what, {.file = fileOf(p), .parameter = field, .value = full});
+    // Without blocking on a FIFO or reading a device, within the size limit of its kind.
+    const io::InputKind kind = what.find("attraction") != std::string::npos
+                                   ? io::kAttractionFile
+                                   : io::kOBJFile.named("obstacle file");
+    try {
+        io::checkInputFile(full, kind);
+    } catch (const Error& e) {
+        throw Error(e.message(), {.file = fileOf(p), .parameter = field, .value = full});
+    }
 }
 
 ObjectID addGround(Context& ctx, const ProjectGround& g) {

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/input_file.h"
 #include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Project.h"
@@ -330,14 +331,7 @@ Project readProjectString(const std::string& text, const std::string& nameForErr
 }
 
 Project readProjectFile(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error("is a directory, not a project file", {.file = path});
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot open project file", {.file = path});
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    const std::string text = ss.str();
+    const std::string text = io::readWholeFile(path, io::kProjectFile);
     if (text.size() > kMaxProjectBytes)
         throw Error("project file too large", {.file = path,
                                                .value = std::to_string(text.size()) + " bytes",

@@ -9,21 +9,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "core/atomic_file.h"
-#include "core/input_file.h"
+#include "core/image_file.h"
 #include "plantarch/Error.h"
 #include "plantarch/Render.h"
 #include "render/render_internal.h"
 
-// stb is compiled here with static linkage so that another file of the library (or a user's
-// program) may include its own copy without duplicate symbols.
+// stb_image_write is compiled here with static linkage so that another file of the library (or
+// a user's program) may include its own copy without duplicate symbols; images are decoded by
+// core/image_file.cpp.
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -34,9 +33,6 @@
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb_image.h>
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
@@ -122,20 +118,9 @@ Image depthPicture(const DepthImage& depth) {
 }
 
 Image readImage(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw Error("is a directory, not an image file", {.file = path});
-    if (!std::ifstream(path)) throw Error(io::cannotOpen("image file"), {.file = path});
-    int w = 0, h = 0, channels = 0;
-    std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
-    if (!data) {
-        const char* why = stbi_failure_reason();
-        throw Error(std::string("cannot read image: ") + (why ? why : "unknown reason"),
-                    {.file = path});
-    }
-    Image image(w, h);
-    std::memcpy(image.rgb.data(), data, image.rgb.size());
-    stbi_image_free(data);
+    io::DecodedImage decoded = io::readImageFile(path, 3);
+    Image image(decoded.width, decoded.height);
+    image.rgb = std::move(decoded.pixels);
     return image;
 }
 
@@ -234,18 +219,11 @@ float srgbByteToLinear(std::uint8_t value) {
 // ---- textures --------------------------------------------------------------------------
 
 Texture loadTexture(const std::string& path) {
-    int w = 0, h = 0, channels = 0;
-    std::uint8_t* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
-    if (!data) {
-        const char* why = stbi_failure_reason();
-        throw Error(std::string("cannot read texture: ") + (why ? why : "unknown reason"),
-                    {.file = path});
-    }
+    io::DecodedImage decoded = io::readTextureFile(path);
     Texture t;
-    t.width = w;
-    t.height = h;
-    t.rgba.assign(data, data + std::size_t(w) * std::size_t(h) * 4);
-    stbi_image_free(data);
+    t.width = decoded.width;
+    t.height = decoded.height;
+    t.rgba = std::move(decoded.pixels);
     glm::dvec3 sum(0.0);
     std::size_t opaque = 0;
     for (std::size_t i = 0; i < t.rgba.size(); i += 4) {
