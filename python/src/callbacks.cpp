@@ -133,11 +133,15 @@ FloralPrototypeFunction floralPrototypeFunction(const py::function& fn,
     };
 }
 
+bool onMainThread() {
+    return std::this_thread::get_id() == mainThread;
+}
+
 void setUserProgress(PlantArchitecture& arch, const py::object& fn) {
     std::shared_ptr<py::object> user = fn.is_none() ? nullptr : held(fn);
     std::shared_ptr<CallLock> lock = callLockOf(arch.context());
     arch.setProgressCallback([user, lock](std::string_view stage, double fraction) {
-        const bool onMain = std::this_thread::get_id() == mainThread;
+        const bool onMain = onMainThread();
         if (!onMain && !user) return;
         py::gil_scoped_acquire gil;
         asCallback("progress callback", lock.get(), [&] {

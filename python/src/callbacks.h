@@ -65,6 +65,9 @@ FloralPrototypeFunction floralPrototypeFunction(const py::function& fn,
 /// the interpreter's main thread, checks for Ctrl-C, stopping the call with KeyboardInterrupt.
 void setUserProgress(PlantArchitecture& arch, const py::object& fn);
 
+/// Whether this is the interpreter's main thread (the one Python delivers Ctrl-C to).
+bool onMainThread();
+
 /// Runs f() with the GIL released (rule functions and progress take it back).
 template <class F>
 auto interruptible(F&& f) -> decltype(f()) {

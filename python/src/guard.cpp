@@ -10,6 +10,7 @@
 #include "guard.h"
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <condition_variable>
 #include <cstring>
@@ -106,7 +107,16 @@ private:
         }
         py::gil_scoped_release release;
         std::unique_lock<std::mutex> g(l.mutex);
-        l.freed.wait(g, [&] { return !l.busy; });
+        // On the main thread, Ctrl-C stops the wait (KeyboardInterrupt), as it stops a call.
+        while (!l.freed.wait_for(g, std::chrono::milliseconds(50), [&] { return !l.busy; })) {
+            if (!onMainThread()) continue;
+            g.unlock();
+            {
+                py::gil_scoped_acquire gil;
+                if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            }
+            g.lock();
+        }
         own(l, method, me);
     }
     static void own(CallLock& l, const std::string& method, std::thread::id me) {

@@ -3,10 +3,12 @@ first numpy call from two threads, and Python exceptions raised inside rules."""
 
 import gc
 import os
+import signal
 import subprocess
 import sys
 import textwrap
 import threading
+import time
 import traceback
 
 import pytest
@@ -148,6 +150,41 @@ def test_a_waiting_thread_lets_python_run():
 
     assert run_threads([lambda: a.advanceTime(40.0), waiter]) == []
     assert ticks[-1] == 1.0 and counts[0] > 0
+
+
+def test_ctrl_c_stops_a_wait_for_another_threads_call():
+    a = bean()
+    a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (2, 2), 5)
+    started, interrupted = threading.Event(), threading.Event()
+
+    def progress(stage, fraction):  # holds the growth until the main thread was interrupted
+        started.set()
+        deadline = time.monotonic() + 30
+        while not interrupted.is_set() and time.monotonic() < deadline:
+            time.sleep(0.01)
+
+    a.setProgressCallback(progress)
+    grower = threading.Thread(target=lambda: a.advanceTime(5.0), daemon=True)
+
+    def ctrl_c():
+        assert started.wait(60)
+        time.sleep(0.3)  # the main thread is waiting for the lock by now
+        os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    t0 = time.monotonic()
+    try:
+        grower.start()
+        threading.Thread(target=ctrl_c, daemon=True).start()
+        assert started.wait(60)
+        with pytest.raises(KeyboardInterrupt):
+            a.getContext().getObjectCount()
+    finally:
+        interrupted.set()
+        signal.signal(signal.SIGINT, previous)
+    assert time.monotonic() - t0 < 20  # not only once the growth was over (30 s)
+    grower.join(120)
+    assert not grower.is_alive() and a.getPlantAge(0) == 10
 
 
 # ---- re-entry --------------------------------------------------------------------------------
