@@ -132,6 +132,38 @@ def test_threads_building_into_one_architecture_each_get_their_plants():
     assert set(mesh["plant_id"].tolist()) == set(ids)
 
 
+def test_two_architectures_sharing_a_context_take_turns():
+    def pair(context):
+        archs = []
+        for seed in (1, 2):
+            a = plantarch.PlantArchitecture(context)
+            a.setSeed(seed)
+            a.loadPlantModelFromLibrary("bean")
+            a.buildPlantInstanceFromLibrary((seed, 0, 0), 5)
+            archs.append(a)
+        return archs
+
+    serial = pair(plantarch.Context())
+    for a in serial:
+        for _ in range(6):
+            a.advanceTime(2.0)
+    context = plantarch.Context()
+    archs = pair(context)
+    sizes = []
+
+    def grow(a):
+        return lambda: [a.advanceTime(2.0) for _ in range(6)]
+
+    def read():
+        for _ in range(20):
+            sizes.append(len(context.getMeshArrays()["triangles"]))
+
+    assert run_threads([grow(archs[0]), grow(archs[1]), read]) == []
+    assert len(sizes) == 20
+    for a, b in zip(archs, serial):
+        assert a.getPlantStructureXML(a.getAllPlantIDs()) == b.getPlantStructureXML(b.getAllPlantIDs())
+
+
 def test_a_waiting_thread_lets_python_run():
     a = bean()
     a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (3, 3), 5)
@@ -168,7 +200,7 @@ def test_ctrl_c_stops_a_wait_for_another_threads_call():
 
     def ctrl_c():
         assert started.wait(60)
-        time.sleep(0.3)  # the main thread is waiting for the lock by now
+        time.sleep(0.5)  # the main thread is waiting for the lock by now
         os.kill(os.getpid(), signal.SIGINT)
 
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
