@@ -260,6 +260,10 @@ pyd::function_record* recordOf(py::handle attribute) {
 }
 
 void wrap(py::handle attribute, const std::string& owner) {
+    if (PyObject_TypeCheck(attribute.ptr(), &PyProperty_Type)) {  // its getter and setter
+        for (const char* part : {"fget", "fset"}) wrap(attribute.attr(part), owner);
+        return;
+    }
     for (pyd::function_record* r = recordOf(attribute); r; r = r->next) {
         if (r->impl == guardedImpl) continue;
         originals[r] = {r->impl, owner + r->name};

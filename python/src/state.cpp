@@ -110,8 +110,9 @@ void bindState(py::module_& m) {
         .def_readonly("object", &Internode::object, "Context object of the internode tube");
     py::class_<Phytomer>(m, "Phytomer",
                          "A phytomer: internode, petioles with leaves and buds. Lists such as "
-                         "petioles are views: phytomer.petioles[0].vegetativeBuds[0].state = "
-                         "BudState.dead changes the plant.")
+                         "petioles are views of the phytomer: in a rule, "
+                         "ctx.phytomer.petioles[0].vegetativeBuds[0].state = BudState.dead "
+                         "changes the plant.")
         .def_readwrite("internode", &Phytomer::internode, "its internode")
         .def_property_readonly(
             "petioles", [](Phytomer& p) -> std::vector<Petiole>& { return p.petioles; },
@@ -170,7 +171,7 @@ void bindState(py::module_& m) {
         .def_readonly("children", &Shoot::children, "IDs of the shoots growing from it")
         .def_readonly("removed", &Shoot::removed, "pruned away");
     py::class_<PlantInstance>(m, "PlantInstance",
-                              "A plant's whole state (read it; change it "
+                              "A copy of a plant's whole state (read it; change the plant "
                               "through PlantArchitecture's methods).")
         .def_readonly("id", &PlantInstance::id, "plant ID")
         .def_readonly("name", &PlantInstance::name, "species or user label")
