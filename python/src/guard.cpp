@@ -54,8 +54,9 @@ thread_local int locksHeld = 0;
                     "Context");
     if (sameThread)
         throw Error(method + ": called while " + running +
-                    " is running on this thread (from a finalizer or signal handler?); calls on "
-                    "one Context and its PlantArchitectures do not nest");
+                    " is running on this thread (from Python code it ran: a finalizer, a signal "
+                    "handler, a conversion); calls on one Context and its PlantArchitectures do "
+                    "not nest");
     throw Error(method + ": called inside another plantarch call while " + running +
                 " runs on another thread; waiting here could deadlock");
 }
