@@ -64,9 +64,14 @@ def render(scene, width=640, height=480, mode="shaded", **options):
 
 
 class Plant:
-    """One plant of a PlantArchitecture, as a value a notebook can show (_repr_png_)."""
+    """One plant of a PlantArchitecture, as a value a notebook can show (_repr_png_).
+
+    It holds the PlantArchitecture and the plant's ID: once the plant is deleted, its methods
+    raise plantarch.Error (its repr says so).
+    """
 
     def __init__(self, architecture, plantID):
+        architecture.getPlantAge(plantID)  # plantarch.Error when there is no such plant
         self.architecture = architecture
         self.plantID = int(plantID)
 
@@ -116,7 +121,10 @@ class Plant:
         return encodePNG(self.render())
 
     def __repr__(self):
-        s = self.statistics()
+        try:
+            s = self.statistics()
+        except Error:
+            return f"<plantarch.Plant {self.plantID}: no longer in its PlantArchitecture>"
         return (
             f"<plantarch.Plant {s['plantID']}: {s['age']:g} days, {s['height']:.3f} m tall, "
             f"{s['leaf_count']} leaves, {s['shoots']} shoots, {s['triangles']} triangles>"

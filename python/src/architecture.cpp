@@ -63,6 +63,7 @@ PlantStructureReadOptions readOptions(py::object warnings) {
         auto list = std::make_shared<py::object>(warnings);
         o.onWarning = [list](const std::string& w) {
             py::gil_scoped_acquire gil;
+            CallbackScope scope("warnings list");
             (*list).attr("append")(w);
         };
     }
@@ -374,7 +375,8 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         .def(
             "registerPhytomerCreationFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
-                a.registerPhytomerCreationFunction(name, creationFunction(fn));
+                a.registerPhytomerCreationFunction(name,
+                                                   creationFunction(fn, callLockOf(a.context())));
             },
             py::arg("name"), py::arg("function"),
             "fn(ctx: PhytomerCreationContext) runs for every new phytomer of shoot types whose "
@@ -382,7 +384,8 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         .def(
             "registerPhytomerCallbackFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
-                a.registerPhytomerCallbackFunction(name, callbackFunction(fn));
+                a.registerPhytomerCallbackFunction(name,
+                                                   callbackFunction(fn, callLockOf(a.context())));
             },
             py::arg("name"), py::arg("function"),
             "fn(ctx: PhytomerCallbackContext) runs for every phytomer at every whole day of "
@@ -390,7 +393,7 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         .def(
             "registerLeafPrototype",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
-                a.registerLeafPrototype(name, leafPrototypeFunction(fn));
+                a.registerLeafPrototype(name, leafPrototypeFunction(fn, callLockOf(a.context())));
             },
             py::arg("name"), py::arg("function"),
             "fn(params: LeafPrototype, leafletIndex: int) returns the leaf in prototype units "
@@ -399,7 +402,8 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         .def(
             "registerFloralPrototype",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
-                a.registerFloralPrototype(name, floralPrototypeFunction(fn));
+                a.registerFloralPrototype(name,
+                                          floralPrototypeFunction(fn, callLockOf(a.context())));
             },
             py::arg("name"), py::arg("function"),
             "fn(request: FloralPrototypeRequest) returns a flower or fruit (length 1 along +x) "
@@ -510,9 +514,11 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
 void bindQueries(py::class_<PlantArchitecture>& c) {
     c.def("getAllPlantIDs", &PlantArchitecture::getAllPlantIDs,
           "IDs of every plant, in increasing order.")
-        .def("plant", &PlantArchitecture::plant, py::arg("plantID"),
-             py::return_value_policy::reference_internal,
-             "The plant's whole state (read-only view; valid until the plant changes).")
+        .def(
+            "plant", [](const PlantArchitecture& a, unsigned plant) { return a.plant(plant); },
+            py::arg("plantID"),
+            "A copy of the plant's whole state as it is now (read it; it stays valid whatever "
+            "happens to the plant).")
         .def("getPlantBasePosition", &PlantArchitecture::getPlantBasePosition, py::arg("plantID"),
              "Where the plant's base stands, m.")
         .def("getPlantAge", &PlantArchitecture::getPlantAge, py::arg("plantID"),
@@ -560,9 +566,7 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
     c.def(
          "writePlantStructureXML",
          [](const PlantArchitecture& a, py::object plants, const std::string& file) {
-             const std::vector<unsigned> ids = py::isinstance<py::int_>(plants)
-                                                   ? std::vector<unsigned>{plants.cast<unsigned>()}
-                                                   : plants.cast<std::vector<unsigned>>();
+             const std::vector<unsigned> ids = idList(plants, "plantID");
              py::gil_scoped_release release;
              a.writePlantStructureXML(ids, file);
          },
@@ -573,10 +577,7 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
         .def(
             "writeHeliosPlantStructureXML",
             [](const PlantArchitecture& a, py::object plants, const std::string& file) {
-                const std::vector<unsigned> ids =
-                    py::isinstance<py::int_>(plants)
-                        ? std::vector<unsigned>{plants.cast<unsigned>()}
-                        : plants.cast<std::vector<unsigned>>();
+                const std::vector<unsigned> ids = idList(plants, "plantID");
                 py::gil_scoped_release release;
                 writeHeliosPlantStructureXML(a, ids, file);
             },

@@ -20,6 +20,9 @@ namespace plantarch::python {
 vec3 toVec3(py::handle value, const char* what);
 /// A vec2 from any sequence of two numbers.
 vec2 toVec2(py::handle value, const char* what);
+/// IDs from one whole number or a sequence of them; anything else, or a number no ID can be
+/// (negative, past 2^32 - 1), throws plantarch::Error naming `what`.
+std::vector<unsigned> idList(py::handle value, const char* what);
 
 void bindValues(py::module_& m);        // values.cpp: vec3, vec2, AxisRotation, errors
 void bindParameters(py::module_& m);    // parameters.cpp: the parameter table's structs

@@ -50,28 +50,48 @@ void PythonError::restore() const {
 
 namespace {
 
-// A C++ rule that calls the Python function with the context it is given, the GIL held.
+// Runs `call` (the GIL held) as a callback of a call holding `lock`: a Python exception it
+// raises becomes a PythonError, remembered by the lock (see recordPythonError).
+template <class F>
+auto asCallback(const char* kind, CallLock* lock, F&& call) -> decltype(call()) {
+    CallbackScope scope(kind);
+    try {
+        return call();
+    } catch (py::error_already_set& e) {
+        PythonError error(std::move(e));
+        if (lock) recordPythonError(*lock, error);
+        throw error;
+    }
+}
+
+// A C++ rule that calls the Python function with a view of the context it is given, the GIL
+// held; the view's phytomer is written back when the function returns.
 template <class Context>
-std::function<void(Context&)> pythonRule(const py::function& fn) {
+std::function<void(Context&)> pythonRule(const py::function& fn, std::shared_ptr<CallLock> lock) {
     auto f = held(fn);
-    return [f](Context& c) {
+    return [f, lock](Context& c) {
         py::gil_scoped_acquire gil;
-        try {
-            (*f)(py::cast(&c, py::return_value_policy::reference));
-        } catch (py::error_already_set& e) {
-            throw PythonError(std::move(e));
-        }
+        asCallback("rule", lock.get(), [&] {
+            py::object view = py::cast(std::make_unique<RuleView<Context>>(c));
+            auto* v = view.cast<RuleView<Context>*>();
+            struct Expire {  // the view is dead once the rule returns, however it returns
+                RuleView<Context>* v;
+                ~Expire() { v->live = nullptr; }
+            } expire{v};
+            (*f)(view);
+            c.phytomer = v->phytomer;
+        });
     };
 }
 
 }  // namespace
 
-PhytomerCreationFunction creationFunction(const py::function& fn) {
-    return pythonRule<PhytomerCreationContext>(fn);
+PhytomerCreationFunction creationFunction(const py::function& fn, std::shared_ptr<CallLock> lock) {
+    return pythonRule<PhytomerCreationContext>(fn, std::move(lock));
 }
 
-PhytomerCallbackFunction callbackFunction(const py::function& fn) {
-    return pythonRule<PhytomerCallbackContext>(fn);
+PhytomerCallbackFunction callbackFunction(const py::function& fn, std::shared_ptr<CallLock> lock) {
+    return pythonRule<PhytomerCallbackContext>(fn, std::move(lock));
 }
 
 namespace {
@@ -93,42 +113,41 @@ OrganPrototype prototypeFrom(py::handle result) {
 
 }  // namespace
 
-LeafPrototypeFunction leafPrototypeFunction(const py::function& fn) {
+LeafPrototypeFunction leafPrototypeFunction(const py::function& fn,
+                                            std::shared_ptr<CallLock> lock) {
     auto f = held(fn);
-    return [f](const LeafPrototype& params, Rng&, int leafletIndex) {
+    return [f, lock](const LeafPrototype& params, Rng&, int leafletIndex) {
         py::gil_scoped_acquire gil;
-        try {
-            return prototypeFrom((*f)(params, leafletIndex));
-        } catch (py::error_already_set& e) {
-            throw PythonError(std::move(e));
-        }
+        return asCallback("prototype function", lock.get(),
+                          [&] { return prototypeFrom((*f)(params, leafletIndex)); });
     };
 }
 
-FloralPrototypeFunction floralPrototypeFunction(const py::function& fn) {
+FloralPrototypeFunction floralPrototypeFunction(const py::function& fn,
+                                                std::shared_ptr<CallLock> lock) {
     auto f = held(fn);
-    return [f](const FloralPrototypeRequest& request, Rng&) {
+    return [f, lock](const FloralPrototypeRequest& request, Rng&) {
         py::gil_scoped_acquire gil;
-        try {
-            return prototypeFrom((*f)(request));
-        } catch (py::error_already_set& e) {
-            throw PythonError(std::move(e));
-        }
+        return asCallback("prototype function", lock.get(),
+                          [&] { return prototypeFrom((*f)(request)); });
     };
+}
+
+bool onMainThread() {
+    return std::this_thread::get_id() == mainThread;
 }
 
 void setUserProgress(PlantArchitecture& arch, const py::object& fn) {
     std::shared_ptr<py::object> user = fn.is_none() ? nullptr : held(fn);
-    arch.setProgressCallback([user](std::string_view stage, double fraction) {
-        const bool onMain = std::this_thread::get_id() == mainThread;
+    std::shared_ptr<CallLock> lock = callLockOf(arch.context());
+    arch.setProgressCallback([user, lock](std::string_view stage, double fraction) {
+        const bool onMain = onMainThread();
         if (!onMain && !user) return;
         py::gil_scoped_acquire gil;
-        try {
+        asCallback("progress callback", lock.get(), [&] {
             if (onMain && PyErr_CheckSignals() != 0) throw py::error_already_set();
             if (user) (*user)(std::string(stage), fraction);
-        } catch (py::error_already_set& e) {
-            throw PythonError(std::move(e));
-        }
+        });
     });
 }
 

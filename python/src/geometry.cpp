@@ -161,7 +161,7 @@ void bindGeometry(py::module_& m) {
                 for (ObjectID id : c.objectIDs())
                     if (includeHidden || !c.isObjectHidden(id)) ids.push_back(id);
             } else {
-                ids = objectIDs.cast<std::vector<ObjectID>>();
+                ids = idList(objectIDs, "objectIDs");
                 for (ObjectID id : ids)
                     if (!c.doesObjectExist(id))
                         throw Error("no such object",
@@ -185,13 +185,8 @@ void bindGeometry(py::module_& m) {
     arch.def(
         "getMeshArrays",
         [](PlantArchitecture& a, py::object plantIDs, bool normals) {
-            std::vector<unsigned> plants;
-            if (plantIDs.is_none())
-                plants = a.getAllPlantIDs();
-            else if (py::isinstance<py::int_>(plantIDs))
-                plants = {plantIDs.cast<unsigned>()};
-            else
-                plants = plantIDs.cast<std::vector<unsigned>>();
+            const std::vector<unsigned> plants =
+                plantIDs.is_none() ? a.getAllPlantIDs() : idList(plantIDs, "plantIDs");
             std::vector<ObjectID> ids;
             for (unsigned p : plants) {
                 const std::vector<ObjectID> own = a.getAllPlantObjectIDs(p);

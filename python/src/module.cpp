@@ -3,11 +3,16 @@
 
 #include "bindings.h"
 #include "callbacks.h"
+#include "guard.h"
 #include "plantarch/Version.h"
 
 PYBIND11_MODULE(_plantarch, m) {
     using namespace plantarch::python;
     m.doc() = "plantarch: builds and grows 3D plants from a phytomer-based parameter model.";
+    // numpy's C API now, under the import lock: first set up by two threads at once, inside
+    // calls, pybind11's one-time initialiser would wait with the GIL held (a deadlock).
+    py::module_::import("numpy");
+    py::detail::npy_api::get();
     bindValues(m);  // first: the Error translator (PythonError's below is tried before it)
     bindCallbacks(m);
     bindParameters(m);
@@ -19,4 +24,5 @@ PYBIND11_MODULE(_plantarch, m) {
 #ifdef PLANTARCH_VERSION_STRING
     m.attr("__version__") = PLANTARCH_VERSION_STRING;
 #endif
+    guardFunctions(m);  // last: every function bound above
 }

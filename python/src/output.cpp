@@ -191,7 +191,7 @@ void bindOutput(py::module_& m) {
         "writeQSM",
         [](const PlantArchitecture& a, const std::string& path, py::object plantIDs) {
             const std::vector<unsigned> plants =
-                plantIDs.is_none() ? a.getAllPlantIDs() : plantIDs.cast<std::vector<unsigned>>();
+                plantIDs.is_none() ? a.getAllPlantIDs() : idList(plantIDs, "plantIDs");
             py::gil_scoped_release release;
             writeQSM(a, plants, path);
         },

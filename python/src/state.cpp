@@ -2,12 +2,21 @@
 // what PlantArchitecture.plant() shows. Fields keep their C++ names.
 
 #include "bindings.h"
+#include "callbacks.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantState.h"
 
 namespace plantarch::python {
 
 namespace {
+
+// A rule's shoot: copied on first use (the copy outlives the call).
+template <class View>
+Shoot& shootOf(View& v) {
+    const auto& live = v.context();  // raises after the call
+    if (!v.shoot) v.shoot = live.shoot;
+    return *v.shoot;
+}
 
 template <class E>
 void nameEnum(py::enum_<E>& e, std::initializer_list<E> values, const char* (*name)(E)) {
@@ -101,8 +110,9 @@ void bindState(py::module_& m) {
         .def_readonly("object", &Internode::object, "Context object of the internode tube");
     py::class_<Phytomer>(m, "Phytomer",
                          "A phytomer: internode, petioles with leaves and buds. Lists such as "
-                         "petioles are views: phytomer.petioles[0].vegetativeBuds[0].state = "
-                         "BudState.dead changes the plant.")
+                         "petioles are views of the phytomer: in a rule, "
+                         "ctx.phytomer.petioles[0].vegetativeBuds[0].state = BudState.dead "
+                         "changes the plant.")
         .def_readwrite("internode", &Phytomer::internode, "its internode")
         .def_property_readonly(
             "petioles", [](Phytomer& p) -> std::vector<Petiole>& { return p.petioles; },
@@ -161,7 +171,7 @@ void bindState(py::module_& m) {
         .def_readonly("children", &Shoot::children, "IDs of the shoots growing from it")
         .def_readonly("removed", &Shoot::removed, "pruned away");
     py::class_<PlantInstance>(m, "PlantInstance",
-                              "A plant's whole state (read it; change it "
+                              "A copy of a plant's whole state (read it; change the plant "
                               "through PlantArchitecture's methods).")
         .def_readonly("id", &PlantInstance::id, "plant ID")
         .def_readonly("name", &PlantInstance::name, "species or user label")
@@ -183,42 +193,63 @@ void bindState(py::module_& m) {
         .def_readonly("color", &FloralPrototypeRequest::color, "main colour from the species")
         .def_readonly("subdivisions", &FloralPrototypeRequest::subdivisions, "mesh resolution");
 
-    py::class_<PhytomerCreationContext>(
+    // Rules get views (callbacks.h): copies that stay valid, and accessors that raise once
+    // the rule has returned.
+    py::class_<CreationView>(
         m, "PhytomerCreationContext",
         "What a phytomer creation function sees: the new phytomer (change it: kill buds, scale "
-        "organs) and where it stands. Valid only during the call.")
+        "organs) and where it stands. Valid only during the call: its attributes raise "
+        "plantarch.Error after it.")
         .def_property_readonly(
-            "phytomer", [](PhytomerCreationContext& c) -> Phytomer& { return c.phytomer; },
-            py::return_value_policy::reference,
-            "the new phytomer (change it: kill buds, scale organs)")
+            "phytomer",
+            [](CreationView& v) -> Phytomer& {
+                v.context();
+                return v.phytomer;
+            },
+            py::return_value_policy::reference_internal,
+            "the new phytomer (change it: kill buds, scale organs); a copy written back to the "
+            "plant when the function returns")
+        .def_property_readonly("shoot", &shootOf<CreationView>,
+                               py::return_value_policy::reference_internal,
+                               "a copy of the shoot it is on, as the call began (read it)")
         .def_property_readonly(
-            "shoot", [](PhytomerCreationContext& c) -> Shoot& { return c.shoot; },
-            py::return_value_policy::reference, "the shoot it is on")
-        .def_readonly("nodeIndex", &PhytomerCreationContext::nodeIndex,
-                      "index of the new phytomer on its shoot")
-        .def_readonly("parentNodeIndex", &PhytomerCreationContext::parentNodeIndex,
-                      "node of the parent shoot this shoot grows from (-1: none)")
-        .def_readonly("shootMaxNodes", &PhytomerCreationContext::shootMaxNodes,
-                      "the shoot's realized max_nodes")
-        .def_readonly("plantAge", &PhytomerCreationContext::plantAge, "days")
+            "nodeIndex", [](const CreationView& v) { return v.context().nodeIndex; },
+            "index of the new phytomer on its shoot")
         .def_property_readonly(
-            "rank", [](PhytomerCreationContext& c) { return c.shoot.rank; },
+            "parentNodeIndex", [](const CreationView& v) { return v.context().parentNodeIndex; },
+            "node of the parent shoot this shoot grows from (-1: none)")
+        .def_property_readonly(
+            "shootMaxNodes", [](const CreationView& v) { return v.context().shootMaxNodes; },
+            "the shoot's realized max_nodes")
+        .def_property_readonly(
+            "plantAge", [](const CreationView& v) { return v.context().plantAge; }, "days")
+        .def_property_readonly(
+            "rank", [](const CreationView& v) { return v.context().shoot.rank; },
             "rank of its shoot (0: base stem)");
-    py::class_<PhytomerCallbackContext>(
+    py::class_<CallbackView>(
         m, "PhytomerCallbackContext",
         "What a phytomer callback sees, once per phytomer every whole day of plant age. Valid "
-        "only during the call.")
+        "only during the call: its attributes raise plantarch.Error after it.")
         .def_property_readonly(
-            "phytomer", [](PhytomerCallbackContext& c) -> Phytomer& { return c.phytomer; },
-            py::return_value_policy::reference, "the phytomer (change it)")
+            "phytomer",
+            [](CallbackView& v) -> Phytomer& {
+                v.context();
+                return v.phytomer;
+            },
+            py::return_value_policy::reference_internal,
+            "the phytomer (change it); a copy written back to the plant when the function "
+            "returns")
+        .def_property_readonly("shoot", &shootOf<CallbackView>,
+                               py::return_value_policy::reference_internal,
+                               "a copy of the shoot it is on, as the call began (read it)")
         .def_property_readonly(
-            "shoot", [](PhytomerCallbackContext& c) -> Shoot& { return c.shoot; },
-            py::return_value_policy::reference, "the shoot it is on")
-        .def_readonly("nodeIndex", &PhytomerCallbackContext::nodeIndex,
-                      "index of the phytomer on its shoot")
-        .def_readonly("plantAge", &PhytomerCallbackContext::plantAge, "days")
-        .def_readonly("nodeBase", &PhytomerCallbackContext::nodeBase,
-                      "world position of the base of its internode today, m");
+            "nodeIndex", [](const CallbackView& v) { return v.context().nodeIndex; },
+            "index of the phytomer on its shoot")
+        .def_property_readonly(
+            "plantAge", [](const CallbackView& v) { return v.context().plantAge; }, "days")
+        .def_property_readonly(
+            "nodeBase", [](const CallbackView& v) { return v.context().nodeBase; },
+            "world position of the base of its internode today, m");
 }
 
 }  // namespace plantarch::python

@@ -1,5 +1,6 @@
 // Small value types (vec3, vec2, AxisRotation) and the translation of plantarch::Error.
 
+#include <climits>
 #include <cmath>
 #include <string>
 
@@ -13,6 +14,20 @@ namespace {
 // The named tuples plantarch/__init__.py defines (looked up once, on first use).
 py::object pythonType(const char* name) {
     return py::module_::import("plantarch").attr(name);
+}
+
+// The type, looked up on first use. Not a function-local static: its initialisation would hold
+// a C++ lock across the import, which can let another thread run, and that thread would wait
+// for the lock with the GIL held (a deadlock). Under the GIL the worst race imports twice.
+py::object* vec3Type = nullptr;
+py::object* vec2Type = nullptr;
+
+py::handle cachedType(py::object*& slot, const char* name) {
+    if (!slot) {
+        py::object type = pythonType(name);
+        if (!slot) slot = new py::object(std::move(type));
+    }
+    return *slot;
 }
 
 template <int N>
@@ -65,6 +80,25 @@ vec2 toVec2(py::handle value, const char* what) {
         throw Error("not two numbers",
                     {.parameter = what, .value = shown(value), .validRange = "vec2(x, y)"});
     return {v[0], v[1]};
+}
+
+std::vector<unsigned> idList(py::handle value, const char* what) {
+    auto one = [&](py::handle v) {
+        if (PyLong_Check(v.ptr()) && !PyBool_Check(v.ptr())) {
+            int overflow = 0;
+            const long long x = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+            if (overflow == 0 && x >= 0 && x <= (long long)UINT_MAX) return unsigned(x);
+        }
+        throw Error("not an ID", {.parameter = what,
+                                  .value = shown(v),
+                                  .validRange = "a whole number from 0 to 4294967295"});
+    };
+    if (PyLong_Check(value.ptr())) return {one(value)};
+    if (py::isinstance<py::str>(value) || !PySequence_Check(value.ptr()))
+        throw Error("not an ID or a list of IDs", {.parameter = what, .value = shown(value)});
+    std::vector<unsigned> out;
+    for (py::handle v : value) out.push_back(one(v));
+    return out;
 }
 
 void bindValues(py::module_& m) {
@@ -146,8 +180,8 @@ bool type_caster<glm::vec3>::load(handle src, bool) {
 }
 
 handle type_caster<glm::vec3>::cast(const glm::vec3& v, return_value_policy, handle) {
-    static py::object* type = new py::object(plantarch::python::pythonType("vec3"));
-    return (*type)(v.x, v.y, v.z).release();
+    return plantarch::python::cachedType(plantarch::python::vec3Type, "vec3")(v.x, v.y, v.z)
+        .release();
 }
 
 bool type_caster<glm::vec2>::load(handle src, bool) {
@@ -158,8 +192,7 @@ bool type_caster<glm::vec2>::load(handle src, bool) {
 }
 
 handle type_caster<glm::vec2>::cast(const glm::vec2& v, return_value_policy, handle) {
-    static py::object* type = new py::object(plantarch::python::pythonType("vec2"));
-    return (*type)(v.x, v.y).release();
+    return plantarch::python::cachedType(plantarch::python::vec2Type, "vec2")(v.x, v.y).release();
 }
 
 }  // namespace pybind11::detail

@@ -80,9 +80,10 @@ def test_an_exception_in_a_rule_reaches_python_as_itself(tmp_path):
     a.loadPlantModelFromLibrary(species_with_rule(tmp_path, "broken"))
     with pytest.raises(KeyError, match="my rule failed"):
         a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
-    # In a canopy the plant's failure is reported with its number, and nothing is left behind.
-    with pytest.raises(plantarch.Error, match="building canopy plant 0 failed: KeyError"):
+    # In a canopy too, with the plant it stopped as a note, and nothing is left behind.
+    with pytest.raises(KeyError, match="my rule failed") as e:
         a.buildPlantCanopyFromLibrary((0, 0, 0), (0.3, 0.3), (2, 2), 30)
+    assert "plantarch: building canopy plant 0 failed: KeyError: 'my rule failed'" in e.value.__notes__
     assert a.getContext().getObjectCount() == 0
 
 
