@@ -8,7 +8,7 @@
 #include <tuple>
 
 #include "collision_scenes.h"
-#include "io/plant_state_table.h"
+#include "model/plant_state_table.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
