@@ -114,37 +114,49 @@ float value(const RuleFormula& f, const Place& at) {
     }
 }
 
+// The state fields rules change, as the state table declares them.
+struct RuleFields {
+    state::FieldInfo leafScale = state::fieldInfo<LeafOrgan>("leaf_scale");
+    state::FieldInfo internodeLength = state::fieldInfo<Internode>("internode_length");
+    state::FieldInfo petiolePitch = state::fieldInfo<Petiole>("petiole_pitch");
+    state::FieldInfo leafPitch = state::fieldInfo<LeafOrgan>("leaf_pitch");
+};
+
+const RuleFields& ruleFields() {
+    static const RuleFields fields;
+    return fields;
+}
+
 // What a rule's formula makes of a state field: `result` (computed in float, as the field
-// holds it) must lie in the field's declared range (model/plant_state_table.h), else the rule
-// is refused naming the formula's value and the range of the field; `exact` is the result in
-// double, for the message (a float result may have overflowed).
-template <class S>
-float checkedResult(const RuleFormula& f, const Place& at, const char* fieldName,
+// holds it) must lie in the field's declared range, else the rule is refused naming the
+// formula's value and the range of the field; `exact` is the result in double, for the
+// message (a float result may have overflowed).
+float checkedResult(const RuleFormula& f, const Place& at, const state::FieldInfo& field,
                     float formulaValue, float current, float result, double exact) {
-    static const state::FieldInfo info = state::fieldInfo<S>(fieldName);
-    if (state::inside(info, result)) return result;
-    throw Error("makes " + std::string(fieldName) + " " + text::formatDouble(exact) + " from " +
+    if (state::inside(field, result)) return result;
+    const std::string shown =
+        std::isfinite(result) ? text::formatFloat(result) : text::formatDouble(exact);
+    const std::string value = text::formatFloat(formulaValue);
+    throw Error("makes " + std::string(field.name) + " " + shown + " from " +
                     text::formatFloat(current) + ", out of its range, at " + placeText(at),
                 {.parameter = f.path,
-                 .value = text::formatFloat(formulaValue),
-                 .validRange = "results keeping " + std::string(fieldName) + " within " +
-                               state::rangeText(info)});
+                 .value = value == f.formula.text() ? value
+                                                    : value + " (from '" + f.formula.text() + "')",
+                 .validRange = "results keeping " + std::string(field.name) + " within " +
+                               state::rangeText(field)});
 }
 
 // A factor on a size: size x factor must stay in the size's range.
-template <class S>
-void scale(const RuleFormula& f, const Place& at, const char* fieldName, float factor,
+void scale(const RuleFormula& f, const Place& at, const state::FieldInfo& field, float factor,
            float& size) {
-    size = checkedResult<S>(f, at, fieldName, factor, size, size * factor,
-                            double(size) * double(factor));
+    size = checkedResult(f, at, field, factor, size, size * factor, double(size) * double(factor));
 }
 
 // A change of an angle: angle + change must stay in the angle's range.
-template <class S>
-void turn(const RuleFormula& f, const Place& at, const char* fieldName, float change,
+void turn(const RuleFormula& f, const Place& at, const state::FieldInfo& field, float change,
           float& angle) {
-    angle = checkedResult<S>(f, at, fieldName, change, angle, angle + change,
-                             double(angle) + double(change));
+    angle =
+        checkedResult(f, at, field, change, angle, angle + change, double(angle) + double(change));
 }
 
 void removeLeaves(Phytomer& ph) {
@@ -206,27 +218,28 @@ void act(const NodeRule& r, std::size_t index, Place& at) {
     if (r.renew_floral_buds) renewFloralBuds(ph);
     if (!r.flowering_shoot_type.empty()) floweringFrom(r.flowering_shoot_type, index, at, ph);
     // Each result is held to the range of the field it sets.
+    const RuleFields& fields = ruleFields();
     if (!r.leaf_scale.empty()) {
         const RuleFormula f = ruleFormula(r.leaf_scale, at, index, "leaf_scale");
         const float s = value(f, at);
         for (Petiole& p : ph.petioles)
-            for (LeafOrgan& l : p.leaves) scale<LeafOrgan>(f, at, "leaf_scale", s, l.scale);
+            for (LeafOrgan& l : p.leaves) scale(f, at, fields.leafScale, s, l.scale);
     }
     if (!r.internode_scale.empty()) {
         const RuleFormula f = ruleFormula(r.internode_scale, at, index, "internode_scale");
-        scale<Internode>(f, at, "internode_length", value(f, at), ph.internode.length);
+        scale(f, at, fields.internodeLength, value(f, at), ph.internode.length);
     }
     if (!r.petiole_pitch_change.empty()) {
         const RuleFormula f =
             ruleFormula(r.petiole_pitch_change, at, index, "petiole_pitch_change");
         const float d = value(f, at);
-        for (Petiole& p : ph.petioles) turn<Petiole>(f, at, "petiole_pitch", d, p.pitch);
+        for (Petiole& p : ph.petioles) turn(f, at, fields.petiolePitch, d, p.pitch);
     }
     if (!r.leaf_pitch_change.empty()) {
         const RuleFormula f = ruleFormula(r.leaf_pitch_change, at, index, "leaf_pitch_change");
         const float d = value(f, at);
         for (Petiole& p : ph.petioles)
-            for (LeafOrgan& l : p.leaves) turn<LeafOrgan>(f, at, "leaf_pitch", d, l.pitch);
+            for (LeafOrgan& l : p.leaves) turn(f, at, fields.leafPitch, d, l.pitch);
     }
     if (r.max_nodes_per_season < NodeRule::kNoLimit)
         at.shoot.maxNodesPerSeason = std::min(at.shoot.maxNodesPerSeason, r.max_nodes_per_season);
