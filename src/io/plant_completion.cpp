@@ -345,6 +345,8 @@ private:
     void check(const state::FieldInfo& f, const T& v) {
         if constexpr (std::is_same_v<T, bool>)
             return;
+        else if constexpr (std::is_same_v<T, float>)
+            number(f, double(v), text::formatFloat(v));
         else if constexpr (std::is_floating_point_v<T>)
             number(f, double(v), text::formatDouble(double(v)));
         else
