@@ -91,8 +91,8 @@ Branch branchOf(const PlantInstance& p) {
                                 .petioles[unsigned(s.parentPetiole)];
         for (std::size_t b = 0; b < pt.vegetativeBuds.size(); ++b)
             if (pt.vegetativeBuds[b].childShoot == int(s.id))
-                return {s.id, unsigned(s.parent), unsigned(s.parentNode),
-                        unsigned(s.parentPetiole), unsigned(b)};
+                return {s.id, unsigned(s.parent), unsigned(s.parentNode), unsigned(s.parentPetiole),
+                        unsigned(b)};
     }
     ADD_FAILURE() << "the bean has no branch grown from a bud";
     return {};
@@ -127,16 +127,16 @@ TEST(PlantChecks, ValidPlantsStillReadExactly) {
 
 TEST(PlantChecks, NegativeSizesAreRefusedInEveryFormat) {
     PlantInstance p = bean();
-    p.shoots[0].phytomers[1].petioles[0].leaves[0].scale = -0.0625f;
+    p.shoots[1].phytomers[0].petioles[0].leaves[0].scale = -0.0625f;
     const std::string xml = xmlOf(p);
     EXPECT_EQ(readError(xml),
               "plants.xml:" + std::to_string(lineAt(xml, xml.find("<leaf_scale>-0.0625"))) +
-                  ": plant_instance[0].shoot[0].phytomer[1].internode.petiole[0].leaf[0]."
-                  "leaf_scale = -0.0625: out of range (valid: 0 to 1e+06)");
+                  ": plant_instance[0].shoot[1].phytomer[0].internode.petiole[0].leaf[0]."
+                  "leaf_scale = -0.0625: out of range (valid: 0 to 1000000)");
     p = bean();
     p.shoots[0].phytomers[0].internode.radius = -0.001f;
     EXPECT_NE(readError(xmlOf(p)).find("internode.internode_radius = -0.001: out of range (valid: "
-                                       "0 to 1e+06)"),
+                                       "0 to 1000000)"),
               std::string::npos);
 
     // A plant string: placed at the character where the organ starts.
@@ -151,7 +151,7 @@ TEST(PlantChecks, NegativeSizesAreRefusedInEveryFormat) {
     EXPECT_EQ(e.find("plant string, character " + std::to_string(leaf + 1) + ": shoot[0]."), 0u)
         << e;
     EXPECT_NE(e.find(".leaf[0].leaf_scale = -"), std::string::npos) << e;
-    EXPECT_NE(e.find(": out of range (valid: 0 to 1e+06)"), std::string::npos) << e;
+    EXPECT_NE(e.find(": out of range (valid: 0 to 1000000)"), std::string::npos) << e;
     bad = s;
     bad.insert(s.find("I(") + 2, "-");
     EXPECT_NE(stringError(bad).find("internode.internode_length = -"), std::string::npos);
@@ -165,7 +165,7 @@ TEST(PlantChecks, NegativeSizesAreRefusedInEveryFormat) {
     EXPECT_EQ(readError(badHelios).find("plants.xml:" + std::to_string(lineAt(helios, taper)) +
                                         ": plant_instance[0].shoot[0].phytomer[0].internode."
                                         "petiole[0].petiole_taper = -0.5: out of range (valid: 0 "
-                                        "to 1e+06)"),
+                                        "to 1000000)"),
               0u)
         << readError(badHelios);
 }
@@ -178,8 +178,7 @@ TEST(PlantChecks, ReferencesBetweenShootsBudsAndLeavesMustHold) {
     PlantInstance p = bean();
     p.shoots[b.shoot].parentPetiole = 7;
     std::string xml = xmlOf(p);
-    const std::size_t petioles =
-        p.shoots[b.parent].phytomers[b.node].petioles.size();
+    const std::size_t petioles = p.shoots[b.parent].phytomers[b.node].petioles.size();
     EXPECT_EQ(readError(xml),
               "plants.xml:" + std::to_string(lineOf(xml, b.shoot, "parent_petiole_index")) +
                   ": plant_instance[0].shoot[" + std::to_string(b.shoot) +
@@ -200,28 +199,28 @@ TEST(PlantChecks, ReferencesBetweenShootsBudsAndLeavesMustHold) {
     auto& buds = p.shoots[b.parent].phytomers[b.node].petioles[b.petiole].vegetativeBuds;
     buds.insert(buds.begin() + b.bud + 1, buds[b.bud]);
     std::string e = readError(xmlOf(p));
-    EXPECT_NE(e.find("two buds claim shoot " + std::to_string(b.shoot) + " (the other: " + bud +
-                     ")"),
-              std::string::npos)
+    EXPECT_NE(
+        e.find("two buds claim shoot " + std::to_string(b.shoot) + " (the other: " + bud + ")"),
+        std::string::npos)
         << e;
 
     // A bud claiming a shoot that grows elsewhere.
     p = bean();
     p.shoots[0].apicalBud.childShoot = int(b.shoot);
     e = readError(xmlOf(p));
-    EXPECT_NE(e.find("plant_instance[0].shoot[0].apical_bud.child_shoot_ID = " +
-                     std::to_string(b.shoot) + ": shoot " + std::to_string(b.shoot) +
-                     " does not grow from this bud"),
-              std::string::npos)
+    EXPECT_NE(
+        e.find("plant_instance[0].shoot[0].apical_bud.child_shoot_ID = " + std::to_string(b.shoot) +
+               ": shoot " + std::to_string(b.shoot) + " does not grow from this bud"),
+        std::string::npos)
         << e;
 
     // Duplicate leaf IDs, and a next leaf ID that growth would hand out again.
     p = bean();
-    Petiole& pt = p.shoots[0].phytomers[1].petioles[0];
+    Petiole& pt = p.shoots[1].phytomers[0].petioles[0];
     pt.leaves[1].leafID = pt.leaves[0].leafID;
     xml = xmlOf(p);
     e = readError(xml);
-    EXPECT_NE(e.find("plant_instance[0].shoot[0].phytomer[1].internode.petiole[0].leaf[1].leaf_ID "
+    EXPECT_NE(e.find("plant_instance[0].shoot[1].phytomer[0].internode.petiole[0].leaf[1].leaf_ID "
                      "= " +
                      std::to_string(pt.leaves[0].leafID) + ": leaf ID given twice (also "),
               std::string::npos)
@@ -235,8 +234,8 @@ TEST(PlantChecks, ReferencesBetweenShootsBudsAndLeavesMustHold) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
-    const std::string helios = getHeliosPlantStructureXML(
-        arch, {arch.readPlantStructureXMLString(xmlOf(bean()))[0]});
+    const std::string helios =
+        getHeliosPlantStructureXML(arch, {arch.readPlantStructureXMLString(xmlOf(bean()))[0]});
     const std::size_t shoot = helios.find("<parent_shoot_ID>0</parent_shoot_ID>");
     ASSERT_NE(shoot, std::string::npos);
     const std::size_t at = helios.find("<parent_petiole_index>", shoot);

@@ -19,8 +19,8 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "model/plant_state_table.h"
 #include "io/plant_structure.h"
+#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {
@@ -410,8 +410,9 @@ private:
             note(&ph.leafFraction);
         });
         const float fraction = ph.leafFraction;
-        if (!optionalChild(kids, e, "petiole_taper",
-                           [&](const Element& c) { pt.taper = number(c, fields().petioleTaper); })) {
+        if (!optionalChild(kids, e, "petiole_taper", [&](const Element& c) {
+                pt.taper = number(c, fields().petioleTaper);
+            })) {
             pt.taper = type.phytomer_parameters.petiole.taper.mean();
             ++typeDefaults["petiole_taper"];
         }
@@ -429,7 +430,7 @@ private:
         }
         if (lengthNode) {
             pt.length = fullGrown(Element(e, lengthNode, "petiole_length"), length, fraction,
-                                 fields().petioleLength);
+                                  fields().petioleLength);
             note(&pt.length);
         }
         leaves(e, kids.takeAll("leaf"), pt, fraction, offset);
@@ -576,7 +577,8 @@ private:
             angle("flower_azimuth", &fl.azimuth);
             optionalChild(fk, fe, "flower_base_scale", [&](const Element& c) {
                 float& scale = fb.stage == FloralStage::Fruit ? fl.fruitScale : fl.flowerScale;
-                scale = number(c, fb.stage == FloralStage::Fruit ? fields().fruitScale : fields().flowerScale);
+                scale = number(
+                    c, fb.stage == FloralStage::Fruit ? fields().fruitScale : fields().flowerScale);
                 note(&scale);
             });
             fk.finish();

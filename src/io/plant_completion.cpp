@@ -353,8 +353,8 @@ private:
             number(f, double(v), std::to_string(v));
     }
     void check(const state::FieldInfo& f, const vec3& v) {
-        const std::string shown = text::formatFloat(v.x) + " " + text::formatFloat(v.y) + " " +
-                                  text::formatFloat(v.z);
+        const std::string shown =
+            text::formatFloat(v.x) + " " + text::formatFloat(v.y) + " " + text::formatFloat(v.z);
         for (int i = 0; i < 3; ++i) {
             if (!std::isfinite(v[i])) fail(f, shown, "not a finite number", state::rangeText(f));
             // A direction's components may pass 1 by a rounding: its reader checks its length.
@@ -401,9 +401,10 @@ void checkReferences(const PlantInstance& p, const std::string& where) {
             inconsistent(path, "shoot " + value + " does not grow from this bud", value,
                          "-1 or a shoot growing from this bud");
         if (!claimedBy[std::size_t(c)].empty())
-            inconsistent(path, "two buds claim shoot " + value + " (the other: " +
-                                   claimedBy[std::size_t(c)] + ")",
-                         value, "each shoot grows from at most one bud");
+            inconsistent(
+                path,
+                "two buds claim shoot " + value + " (the other: " + claimedBy[std::size_t(c)] + ")",
+                value, "each shoot grows from at most one bud");
         claimedBy[std::size_t(c)] = path;
     };
     std::map<int, std::string> leafIDs;

@@ -632,7 +632,7 @@ private:
     std::string_view s_;
     std::size_t pos_ = 0;
     PlantInstance p_;
-    std::set<int> leafIDs_;  // given so far
+    std::set<int> leafIDs_;                                   // given so far
     std::vector<std::pair<std::string, std::size_t>> marks_;  // in string order
 
 public:

@@ -19,9 +19,9 @@
 
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "model/plant_state_table.h"
 #include "io/plant_structure.h"
 #include "library/parameter_reader.h"
+#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {

@@ -83,8 +83,8 @@ bool holds(const NodeRule& r, const Place& at) {
 
 // Where a rule acts, for its errors: "node 3 of shoot 2 (a stem) at plant age 12 days".
 std::string placeText(const Place& at) {
-    return "node " + std::to_string(at.node) + " of shoot " + std::to_string(at.shoot.id) +
-           " (" + at.shoot.type + ") at plant age " + text::formatDouble(at.age) + " days";
+    return "node " + std::to_string(at.node) + " of shoot " + std::to_string(at.shoot.id) + " (" +
+           at.shoot.type + ") at plant age " + text::formatDouble(at.age) + " days";
 }
 
 // A rule's formula, with what its errors name: the parameter path of the formula as species
@@ -137,13 +137,13 @@ float checkedResult(const RuleFormula& f, const Place& at, const state::FieldInf
     const std::string shown =
         std::isfinite(result) ? text::formatFloat(result) : text::formatDouble(exact);
     const std::string value = text::formatFloat(formulaValue);
-    throw Error("makes " + std::string(field.name) + " " + shown + " from " +
-                    text::formatFloat(current) + ", out of its range, at " + placeText(at),
-                {.parameter = f.path,
-                 .value = value == f.formula.text() ? value
-                                                    : value + " (from '" + f.formula.text() + "')",
-                 .validRange = "results keeping " + std::string(field.name) + " within " +
-                               state::rangeText(field)});
+    throw Error(
+        "makes " + std::string(field.name) + " " + shown + " from " + text::formatFloat(current) +
+            ", out of its range, at " + placeText(at),
+        {.parameter = f.path,
+         .value = value == f.formula.text() ? value : value + " (from '" + f.formula.text() + "')",
+         .validRange =
+             "results keeping " + std::string(field.name) + " within " + state::rangeText(field)});
 }
 
 // A factor on a size: size x factor must stay in the size's range.

@@ -67,6 +67,9 @@ inline constexpr double kBig = 1e6;    ///< lengths (m), angles (degrees), rates
 inline constexpr double kTime = 1e9;   ///< plant ages, days (negative: not scheduled)
 inline constexpr double kCount = 1e9;  ///< counters and indices
 inline constexpr double kMaxLeafID = 1 << 30;
+/// Any finite float: a petiole's curvature read from a plant string is its bend rate now (the
+/// full-grown curvature over the fraction grown), which a young petiole has large.
+inline constexpr double kAnyFloat = 3.4028234663852886e38;
 
 template <class S, class V>
 requires SameAs<S, VegetativeBud>
@@ -161,7 +164,7 @@ void describeState(S& p, V& v) {
     v.field({"petiole_length", 0, kBig, "full-grown length, m"}, p.length);
     v.field({"petiole_radius", 0, kBig, "base radius, m"}, p.radius);
     v.field({"petiole_pitch", -kBig, kBig, "from the internode axis, degrees"}, p.pitch);
-    v.field({"petiole_curvature", -kBig, kBig, "degrees per m"}, p.curvature);
+    v.field({"petiole_curvature", -kAnyFloat, kAnyFloat, "degrees per m"}, p.curvature);
     v.legacy("leaflet_scale");  // the listing's value; each leaf here carries its own scale
     v.field({"petiole_taper", 0, kBig, "tip radius / base radius"}, p.taper);
     v.field({"petiole_azimuth", -kBig, kBig, "about the internode axis, degrees"}, p.azimuth);
@@ -202,8 +205,7 @@ void describeState(S& ph, V& v) {
     v.field({"birth", -kTime, kTime, "plant age when it was created, days"}, ph.birth);
     v.field({"internode_fraction", 0, kBig, "current / full internode length"},
             ph.internodeFraction);
-    v.field({"leaf_fraction", 0, kBig, "current / full petiole and leaf size"},
-            ph.leafFraction);
+    v.field({"leaf_fraction", 0, kBig, "current / full petiole and leaf size"}, ph.leafFraction);
     v.field({"internode_fraction_initial", 0, kBig, "at creation"}, ph.internodeFraction0);
     v.field({"leaf_fraction_initial", 0, kBig, "at creation"}, ph.leafFraction0);
     v.field({"radius_initial", 0, kBig, "internode radius at creation, m"}, ph.radiusInitial);
@@ -341,8 +343,7 @@ FieldInfo fieldInfo(std::string_view name) {
     S object;  // only its members' addresses are visited
     FieldFinder finder{name, std::nullopt};
     describeState(object, finder);
-    if (!finder.found)
-        throw std::logic_error("plant state table: no field " + std::string(name));
+    if (!finder.found) throw std::logic_error("plant state table: no field " + std::string(name));
     return *finder.found;
 }
 
