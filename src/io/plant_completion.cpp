@@ -378,65 +378,79 @@ private:
     std::string path_;
 };
 
+// Where an organ is in a plant: shoot, phytomer, petiole, item (bud or leaf); its path, made
+// only for an error.
+struct Place {
+    std::size_t shoot = 0, node = 0, petiole = 0, item = 0;
+    bool apical = false;  ///< the shoot's apical bud
+
+    std::string path(const std::string& where, const char* kind) const {
+        const std::string at = where + ".shoot[" + std::to_string(shoot) + "]";
+        if (apical) return at + ".apical_bud.child_shoot_ID";
+        return at + ".phytomer[" + std::to_string(node) + "].internode.petiole[" +
+               std::to_string(petiole) + "]." + kind + "[" + std::to_string(item) + "]." +
+               (std::string(kind) == "leaf" ? "leaf_ID" : "child_shoot_ID");
+    }
+};
+
 // References between shoots, buds and leaves: every bud's shoot grows from that bud, no two
 // buds claim one shoot, leaf IDs are unique and below the plant's next leaf ID.
 void checkReferences(const PlantInstance& p, const std::string& where) {
     const std::size_t n = p.shoots.size();
-    std::vector<std::string> claimedBy(n);
-    auto bud = [&](const VegetativeBud& b, std::size_t i, int node, int petiole,
-                   const std::string& path) {
+    std::vector<std::optional<Place>> claimedBy(n);
+    auto bud = [&](const VegetativeBud& b, const Place& at) {
         const int c = b.childShoot;
         if (c < 0) return;
         const std::string value = std::to_string(c);
+        const std::string path = at.path(where, "vegetative_bud");
         if (std::size_t(c) >= n)
             inconsistent(path, "no such shoot", value, "-1 to " + std::to_string(n - 1));
-        if (std::size_t(c) == i)
+        if (std::size_t(c) == at.shoot)
             inconsistent(path, "a bud's shoot cannot be the shoot the bud is on", value,
                          "-1 or a shoot growing from this bud");
         const Shoot& child = p.shoots[std::size_t(c)];
-        const bool here = child.parent == int(i) &&
-                          (node < 0 ? child.rank == p.shoots[i].rank
-                                    : child.parentNode == node && child.parentPetiole == petiole);
+        const bool here = child.parent == int(at.shoot) &&
+                          (at.apical ? child.rank == p.shoots[at.shoot].rank
+                                     : child.parentNode == int(at.node) &&
+                                           child.parentPetiole == int(at.petiole));
         if (!here)
             inconsistent(path, "shoot " + value + " does not grow from this bud", value,
                          "-1 or a shoot growing from this bud");
-        if (!claimedBy[std::size_t(c)].empty())
-            inconsistent(
-                path,
-                "two buds claim shoot " + value + " (the other: " + claimedBy[std::size_t(c)] + ")",
-                value, "each shoot grows from at most one bud");
-        claimedBy[std::size_t(c)] = path;
+        if (claimedBy[std::size_t(c)])
+            inconsistent(path,
+                         "two buds claim shoot " + value + " (the other: " +
+                             claimedBy[std::size_t(c)]->path(where, "vegetative_bud") + ")",
+                         value, "each shoot grows from at most one bud");
+        claimedBy[std::size_t(c)] = at;
     };
-    std::map<int, std::string> leafIDs;
+    std::map<int, Place> leafIDs;
     for (std::size_t i = 0; i < n; ++i) {
         const Shoot& s = p.shoots[i];
-        const std::string at = where + ".shoot[" + std::to_string(i) + "]";
-        bud(s.apicalBud, i, -1, 0, at + ".apical_bud.child_shoot_ID");
+        bud(s.apicalBud, {.shoot = i, .apical = true});
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
             const Phytomer& ph = s.phytomers[k];
             for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
                 const Petiole& pt = ph.petioles[j];
-                const std::string ptPath = at + ".phytomer[" + std::to_string(k) +
-                                           "].internode.petiole[" + std::to_string(j) + "]";
                 for (std::size_t b = 0; b < pt.vegetativeBuds.size(); ++b)
-                    bud(pt.vegetativeBuds[b], i, int(k), int(j),
-                        ptPath + ".vegetative_bud[" + std::to_string(b) + "].child_shoot_ID");
+                    bud(pt.vegetativeBuds[b], {i, k, j, b});
                 for (std::size_t l = 0; l < pt.leaves.size(); ++l) {
                     const int id = pt.leaves[l].leafID;
                     if (id < 0) continue;
-                    const std::string path = ptPath + ".leaf[" + std::to_string(l) + "].leaf_ID";
-                    const auto [it, fresh] = leafIDs.emplace(id, path);
+                    const Place at{i, k, j, l};
+                    const auto [it, fresh] = leafIDs.emplace(id, at);
                     if (!fresh)
-                        inconsistent(path, "leaf ID given twice (also " + it->second + ")",
-                                     std::to_string(id), "IDs unique within the plant");
+                        inconsistent(
+                            at.path(where, "leaf"),
+                            "leaf ID given twice (also " + it->second.path(where, "leaf") + ")",
+                            std::to_string(id), "IDs unique within the plant");
                 }
             }
         }
     }
     if (!leafIDs.empty() && p.nextLeafID <= leafIDs.rbegin()->first)
         inconsistent(where + ".next_leaf_ID",
-                     "not above every leaf ID (" + leafIDs.rbegin()->second + " is " +
-                         std::to_string(leafIDs.rbegin()->first) + ")",
+                     "not above every leaf ID (" + leafIDs.rbegin()->second.path(where, "leaf") +
+                         " is " + std::to_string(leafIDs.rbegin()->first) + ")",
                      std::to_string(p.nextLeafID),
                      "at least " + std::to_string(leafIDs.rbegin()->first + 1));
 }

@@ -91,14 +91,20 @@ std::string placeText(const Place& at) {
 // files give it ("stem.phytomer.node_rules[2].leaf_scale": the shoot type whose rules these
 // are, the rule counted from 1), whose line the species reader knows (the library layer
 // places the error there: species_build.cpp, library_api.cpp).
+// The path is made only for an error: daily rules run for every phytomer every day.
 struct RuleFormula {
     const Formula& formula;
-    std::string path;
+    const std::string& shootType;
+    std::size_t rule;
+    const char* field;
+
+    std::string path() const {
+        return shootType + ".phytomer.node_rules[" + std::to_string(rule + 1) + "]." + field;
+    }
 };
 
 RuleFormula ruleFormula(const Formula& f, const Place& at, std::size_t rule, const char* field) {
-    return {f, at.shoot.phytomers[at.node].parametersLabel + ".phytomer.node_rules[" +
-                   std::to_string(rule + 1) + "]." + field};
+    return {f, at.shoot.phytomers[at.node].parametersLabel, rule, field};
 }
 
 float value(const RuleFormula& f, const Place& at) {
@@ -109,7 +115,7 @@ float value(const RuleFormula& f, const Place& at) {
         return f.formula.evaluateFloat(v);
     } catch (const Error& e) {
         ErrorContext c = e.context();
-        if (c.parameter.empty()) c.parameter = f.path;
+        if (c.parameter.empty()) c.parameter = f.path();
         throw Error(e.message() + ", at " + placeText(at), c);
     }
 }
@@ -140,7 +146,7 @@ float checkedResult(const RuleFormula& f, const Place& at, const state::FieldInf
     throw Error(
         "makes " + std::string(field.name) + " " + shown + " from " + text::formatFloat(current) +
             ", out of its range, at " + placeText(at),
-        {.parameter = f.path,
+        {.parameter = f.path(),
          .value = value == f.formula.text() ? value : value + " (from '" + f.formula.text() + "')",
          .validRange =
              "results keeping " + std::string(field.name) + " within " + state::rangeText(field)});
