@@ -72,6 +72,36 @@ std::map<std::string, float> parseDefines(const std::vector<std::string>& define
     return out;
 }
 
+namespace {
+
+// A JSON string: quotes, backslashes and control characters escaped (a plant's name comes
+// from a file and may hold any of them).
+std::string jsonString(const std::string& s) {
+    std::string out = "\"";
+    for (const char c : s) {
+        if (c == '"' || c == '\\')
+            out += std::string("\\") + c;
+        else if (static_cast<unsigned char>(c) < 0x20)
+            out += fmt::format("\\u{:04x}", static_cast<unsigned>(static_cast<unsigned char>(c)));
+        else
+            out += c;
+    }
+    return out + "\"";
+}
+
+// A number of the statistics: JSON has no infinity or NaN, so such a value is refused rather
+// than written as text no JSON reader takes.
+double finite(const char* name, double v) {
+    if (!std::isfinite(v))
+        throw Error("the plant's statistic is not a finite number, so it has no JSON form",
+                    {.parameter = std::string("--stats ") + name,
+                     .value = fmt::format("{}", v),
+                     .validRange = "a finite number"});
+    return v;
+}
+
+}  // namespace
+
 std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, unsigned plant,
                            std::uint64_t seed) {
     const PlantInstance& p = arch.plant(plant);
@@ -96,11 +126,13 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
     for (ObjectID id : arch.getAllPlantObjectIDs(plant))
         triangles += ctx.objectPrimitives(id).count;
     return fmt::format(
-        "{{\"species\": \"{}\", \"plant\": {}, \"age\": {}, \"seed\": {}, \"height\": {:.4f}, "
+        "{{\"species\": {}, \"plant\": {}, \"age\": {}, \"seed\": {}, \"height\": {:.4f}, "
         "\"leaves\": {}, \"leaf_area\": {:.5f}, \"shoots\": {}, \"flowers\": {}, \"fruit\": {}, "
         "\"triangles\": {}}}",
-        p.name, plant, p.age, seed, arch.getPlantHeight(plant), arch.getPlantLeafCount(plant),
-        arch.getPlantLeafArea(plant), arch.getShootCount(plant), flowers, fruit, triangles);
+        jsonString(p.name), plant, finite("age", p.age), seed,
+        finite("height", arch.getPlantHeight(plant)), arch.getPlantLeafCount(plant),
+        finite("leaf_area", arch.getPlantLeafArea(plant)), arch.getShootCount(plant), flowers,
+        fruit, triangles);
 }
 
 }  // namespace plantarch::cli

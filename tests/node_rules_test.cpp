@@ -477,3 +477,68 @@ TEST(NodeRules, InfoListsASpeciesRulesOnePerLine) {
               std::string::npos)
         << r.out;
 }
+
+// A rule's result is held to the range of the state field it sets (model/plant_state_table.h):
+// a leaf 1e30 times its size, or a negative one, is refused at the formula's own line (a
+// rule running as a build step makes the node, or as the plant grows), naming the rule, the
+// formula's value, the range and where it ran; nothing is added.
+TEST(NodeRules, ResultsAreHeldToTheirFieldsRangesAtTheFormulasLine) {
+    auto buildError = [](const std::string& rules, float age) {
+        const std::string path = tempPath("range.xml");
+        std::ofstream(path) << stemSpecies(rules);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary(path);
+        const std::string e = errorOf([&] { arch.buildPlantInstanceFromLibrary(vec3(0.0f), age); });
+        std::filesystem::remove(path);
+        EXPECT_TRUE(arch.getAllPlantIDs().empty()) << "nothing is added";
+        EXPECT_EQ(e.find(path + ":12: stem.phytomer.node_rules[1]."), 0u) << e;
+        return e;
+    };
+    // At node 0, made by the build step (line 19): the formula's line all the same.
+    std::string e = buildError(
+        "<node_rules><rule><node_max>0</node_max>"
+        "<leaf_scale>1e30</leaf_scale></rule></node_rules>",
+        5.0f);
+    EXPECT_NE(e.find("leaf_scale = 1e+30 (from '1e30'): makes leaf_scale 1e+29 from 0.1, out of "
+                     "its range, at node 0 of shoot 0 (stem) at plant age 0 days (valid: "
+                     "results keeping leaf_scale within 0 to 1000000)"),
+              std::string::npos)
+        << e;
+    // As the plant grows.
+    e = buildError(
+        "<node_rules><rule><node_min>1</node_min>"
+        "<leaf_scale>-0.5</leaf_scale></rule></node_rules>",
+        5.0f);
+    EXPECT_NE(e.find("leaf_scale = -0.5: makes leaf_scale -0.05 from 0.1, out of its range, at "
+                     "node 1 of shoot 0 (stem) at plant age 1 days"),
+              std::string::npos)
+        << e;
+    e = buildError(
+        "<node_rules><rule><internode_scale>1e20 * (node + 1)</internode_scale></rule>"
+        "</node_rules>",
+        5.0f);
+    EXPECT_NE(e.find("internode_scale = 1e+20 (from '1e20 * (node + 1)'): makes "
+                     "internode_length 1e+19 from 0.1"),
+              std::string::npos)
+        << e;
+    EXPECT_NE(e.find("(valid: results keeping internode_length within 0 to 1000000)"),
+              std::string::npos)
+        << e;
+    e = buildError(
+        "<node_rules><rule><petiole_pitch_change>3e38 * node</petiole_pitch_change>"
+        "</rule></node_rules>",
+        5.0f);
+    EXPECT_NE(e.find("petiole_pitch_change = 3e+38 (from '3e38 * node'): makes "
+                     "petiole_pitch 3e+38 from 90"),
+              std::string::npos)
+        << e;
+    // A formula error: at its line, with where it ran.
+    e = buildError(
+        "<node_rules><rule><leaf_scale>1 + 1 / (node - 2)</leaf_scale></rule></node_rules>", 5.0f);
+    EXPECT_NE(
+        e.find("leaf_scale = 1 + 1 / (node - 2): bad expression: division by zero at column 9, "
+               "at node 2 of shoot 0 (stem) at plant age 2 days"),
+        std::string::npos)
+        << e;
+}

@@ -8,7 +8,7 @@
 #include <tuple>
 
 #include "collision_scenes.h"
-#include "io/plant_state_table.h"
+#include "model/plant_state_table.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -448,7 +448,9 @@ TEST(PlantStructureXML, MalformedInputGivesOneClearError) {
                 "plant_instance[0].shoot[0].phytomer[0].internode.internode_length = abc");
     expectError(d, ">abc<", "expected a number");
     d = setFirst("internode_length", "1e30");
-    expectError(d, ">1e30<", "out of range (valid: -1000000 to 1000000)");
+    expectError(d, ">1e30<", "out of range (valid: 0 to 1000000)");
+    d = setFirst("internode_length", "-0.01");  // lengths are never negative
+    expectError(d, ">-0.01<", "internode_length = -0.01: out of range (valid: 0 to 1000000)");
     d = setFirst("internode_length", "nan");
     expectError(d, ">nan<", "expected a number");
     d = setFirst("next_leaf_ID", "99999999999999");

@@ -10,6 +10,21 @@
 
 namespace plantarch {
 
+namespace {
+
+// A node rule's error while the plant grows (its parameter the rule's path, e.g.
+// "stem.phytomer.node_rules[2].leaf_scale") placed at the rule's own line in the species file;
+// rethrows any other error as it is.
+[[noreturn]] void rethrowAtRuleLine(const Error& e, const SpeciesModel& species) {
+    if (e.file().empty() && e.parameter().find(".node_rules[") != std::string::npos) {
+        const auto line = species.lines.find(e.parameter());
+        if (line != species.lines.end()) throw e.withFile(species.sourceFile, line->second);
+    }
+    throw;
+}
+
+}  // namespace
+
 void PlantArchitecture::loadPlantModelFromLibrary(const std::string& nameOrPath) {
     auto model = std::make_shared<SpeciesModel>(loadSpecies(nameOrPath));
     // Validate everything before replacing anything: a failed load leaves the old model.
@@ -68,6 +83,9 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
     try {
         advanceTime(id, age);
         addTrellis(id, base_position, build_parameters);
+    } catch (const Error& e) {
+        deletePlantInstance(id);
+        rethrowAtRuleLine(e, *impl_->species);
     } catch (...) {
         deletePlantInstance(id);
         throw;

@@ -19,8 +19,8 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "io/plant_state_table.h"
 #include "io/plant_structure.h"
+#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {
@@ -44,6 +44,37 @@ float number(const Element& e, double lo, double hi) {
     const float v = e.convert(s, text::parseFloat);
     if (!(v >= lo && v <= hi)) e.fail("out of range", s, rangeText(lo, hi));
     return v;
+}
+
+// A value of the state field `f` (model/plant_state_table.h): its declared range.
+float number(const Element& e, const state::FieldInfo& f) {
+    return number(e, f.min, f.max);
+}
+
+// The declarations of the state fields this reader fills, looked up once.
+struct Fields {
+    state::FieldInfo plantAge = state::fieldInfo<PlantInstance>("plant_age");
+    state::FieldInfo internodeLength = state::fieldInfo<Internode>("internode_length");
+    state::FieldInfo internodeRadius = state::fieldInfo<Internode>("internode_radius");
+    state::FieldInfo internodePitch = state::fieldInfo<Internode>("internode_pitch");
+    state::FieldInfo petioleLength = state::fieldInfo<Petiole>("petiole_length");
+    state::FieldInfo petioleRadius = state::fieldInfo<Petiole>("petiole_radius");
+    state::FieldInfo petiolePitch = state::fieldInfo<Petiole>("petiole_pitch");
+    state::FieldInfo petioleCurvature = state::fieldInfo<Petiole>("petiole_curvature");
+    state::FieldInfo petioleTaper = state::fieldInfo<Petiole>("petiole_taper");
+    state::FieldInfo leafScale = state::fieldInfo<LeafOrgan>("leaf_scale");
+    state::FieldInfo peduncleLength = state::fieldInfo<FloralBud>("peduncle_length");
+    state::FieldInfo peduncleRadius = state::fieldInfo<FloralBud>("peduncle_radius");
+    state::FieldInfo pedunclePitch = state::fieldInfo<FloralBud>("peduncle_pitch");
+    state::FieldInfo peduncleRoll = state::fieldInfo<FloralBud>("peduncle_roll");
+    state::FieldInfo peduncleCurvature = state::fieldInfo<FloralBud>("peduncle_curvature");
+    state::FieldInfo flowerScale = state::fieldInfo<FlowerOrgan>("flower_scale");
+    state::FieldInfo fruitScale = state::fieldInfo<FlowerOrgan>("fruit_scale");
+};
+
+const Fields& fields() {
+    static const Fields f;
+    return f;
 }
 
 int integer(const Element& e, int lo, int hi) {
@@ -93,15 +124,15 @@ float sum(const std::vector<float>& v) {
 // is what the plant keeps and what a written file holds, so it is held to the same range as a
 // size given outright (a leaf 6e5 m long at 0.4 of its size would be written as 1.6e6 m, which
 // no file may hold).
-float fullGrown(const Element& c, float current, float fraction) {
+float fullGrown(const Element& c, float current, float fraction, const state::FieldInfo& f) {
     if (fraction <= 0.0f) return 0.0f;
     const float full = current / fraction;
-    if (!(double(full) <= kLength))
+    if (!(double(full) <= f.max))
         c.fail("at current_leaf_scale_factor " + text::formatFloat(fraction) +
                    " it is a full-grown size of " + text::formatFloat(full) + " m",
                c.text(),
-               "current size / current_leaf_scale_factor at most " + text::formatFloat(kLength) +
-                   " m");
+               "current size / current_leaf_scale_factor at most " +
+                   text::formatFloat(float(f.max)) + " m");
     return full;
 }
 
@@ -187,7 +218,7 @@ public:
             given_.note(&p.base);
         });
         optionalChild(kids, e, "plant_age", [&](const Element& c) {
-            p.age = number(c, 0.0, 1e9);
+            p.age = number(c, fields().plantAge);
             given_.note(&p.age);
         });
         const std::vector<xml_node> shoots = kids.takeAll("shoot");
@@ -277,14 +308,14 @@ private:
         Children kids(e);
         float length = 0.0f, lengthMax = -1.0f;
         const bool hasLength = optionalChild(kids, e, "internode_length", [&](const Element& c) {
-            length = number(c, 0.0, kLength);
+            length = number(c, fields().internodeLength);
         });
         optionalChild(kids, e, "internode_radius", [&](const Element& c) {
-            in.radius = number(c, 0.0, kLength);
+            in.radius = number(c, fields().internodeRadius);
             note(&in.radius);
         });
         optionalChild(kids, e, "internode_pitch", [&](const Element& c) {
-            in.pitch = number(c, -kAngle, kAngle);
+            in.pitch = number(c, fields().internodePitch);
             note(&in.pitch);
         });
         // The listing names it phyllotactic_angle, the reference system's files
@@ -301,7 +332,7 @@ private:
             note(&in.phyllotacticAngle);
         });
         optionalChild(kids, e, "internode_length_max", [&](const Element& c) {
-            lengthMax = number(c, 0.0, kLength);
+            lengthMax = number(c, fields().internodeLength);
             // (within 1e-4: the reference system prints 6 digits of a length measured
             // along its segments)
             if (hasLength && length > lengthMax * (1.0f + 1e-4f))
@@ -352,19 +383,19 @@ private:
         float length = 0.0f;
         xml_node lengthNode;  // set when the petiole's length is given
         optionalChild(kids, e, "petiole_length", [&](const Element& c) {
-            length = number(c, 0.0, kLength);
+            length = number(c, fields().petioleLength);
             lengthNode = c.node();
         });
         optionalChild(kids, e, "petiole_radius", [&](const Element& c) {
-            pt.radius = number(c, 0.0, kLength);
+            pt.radius = number(c, fields().petioleRadius);
             note(&pt.radius);
         });
         optionalChild(kids, e, "petiole_pitch", [&](const Element& c) {
-            pt.pitch = number(c, -kAngle, kAngle);
+            pt.pitch = number(c, fields().petiolePitch);
             note(&pt.pitch);
         });
         optionalChild(kids, e, "petiole_curvature", [&](const Element& c) {
-            pt.curvature = number(c, -kAngle, kAngle);
+            pt.curvature = number(c, fields().petioleCurvature);
             note(&pt.curvature);
         });
         // Current size / full size of the petiole and its leaves: one per phytomer here.
@@ -379,8 +410,9 @@ private:
             note(&ph.leafFraction);
         });
         const float fraction = ph.leafFraction;
-        if (!optionalChild(kids, e, "petiole_taper",
-                           [&](const Element& c) { pt.taper = number(c, -kLength, kLength); })) {
+        if (!optionalChild(kids, e, "petiole_taper", [&](const Element& c) {
+                pt.taper = number(c, fields().petioleTaper);
+            })) {
             pt.taper = type.phytomer_parameters.petiole.taper.mean();
             ++typeDefaults["petiole_taper"];
         }
@@ -397,7 +429,8 @@ private:
             ++typeDefaults["leaflet_offset"];
         }
         if (lengthNode) {
-            pt.length = fullGrown(Element(e, lengthNode, "petiole_length"), length, fraction);
+            pt.length = fullGrown(Element(e, lengthNode, "petiole_length"), length, fraction,
+                                  fields().petioleLength);
             note(&pt.length);
         }
         leaves(e, kids.takeAll("leaf"), pt, fraction, offset);
@@ -435,7 +468,7 @@ private:
             note(&l.position);
             Children kids(le);
             optionalChild(kids, le, "leaf_scale", [&](const Element& c) {
-                l.scale = fullGrown(c, number(c, 0.0, kLength), fraction);
+                l.scale = fullGrown(c, number(c, fields().leafScale), fraction, fields().leafScale);
                 note(&l.scale);
             });
             auto angle = [&](const char* name, float& member) {
@@ -495,17 +528,17 @@ private:
     void peduncle(const Element& e, FloralBud& fb) {
         e.checkAttributes({});
         Children kids(e);
-        auto value = [&](const char* name, float& member, double lo, double hi) {
+        auto value = [&](const char* name, float& member, const state::FieldInfo& f) {
             optionalChild(kids, e, name, [&](const Element& c) {
-                member = number(c, lo, hi);
+                member = number(c, f);
                 note(&member);
             });
         };
-        value("length", fb.peduncleLength, 0.0, kLength);
-        value("radius", fb.peduncleRadius, 0.0, kLength);
-        value("pitch", fb.pedunclePitch, -kAngle, kAngle);
-        value("roll", fb.peduncleRoll, -kAngle, kAngle);
-        value("curvature", fb.peduncleCurvature, -kAngle, kAngle);
+        value("length", fb.peduncleLength, fields().peduncleLength);
+        value("radius", fb.peduncleRadius, fields().peduncleRadius);
+        value("pitch", fb.pedunclePitch, fields().pedunclePitch);
+        value("roll", fb.peduncleRoll, fields().peduncleRoll);
+        value("curvature", fb.peduncleCurvature, fields().peduncleCurvature);
         kids.finish();
     }
 
@@ -544,7 +577,8 @@ private:
             angle("flower_azimuth", &fl.azimuth);
             optionalChild(fk, fe, "flower_base_scale", [&](const Element& c) {
                 float& scale = fb.stage == FloralStage::Fruit ? fl.fruitScale : fl.flowerScale;
-                scale = number(c, 0.0, kLength);
+                scale = number(
+                    c, fb.stage == FloralStage::Fruit ? fields().fruitScale : fields().flowerScale);
                 note(&scale);
             });
             fk.finish();
@@ -585,7 +619,11 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
             completePlant(plant, given, defaults, defaults.firstPlantID + index, notes, where);
             checkPlant(plant, where);
         } catch (const Error& err) {
-            doc.relocate(err, plants[index], err.parameter());
+            // At the element the path names, as far as the file has it (a value completion
+            // derived belongs to the organ that lacked it).
+            std::string rel = err.parameter();
+            if (rel.compare(0, where.size() + 1, where + ".") == 0) rel.erase(0, where.size() + 1);
+            doc.relocate(err, locateElement(plants[index], rel), err.parameter());
         }
         if (!missing.empty() || !notes.empty()) {
             std::string w = fileName + ": plant_instance " + std::to_string(index) +

@@ -9,10 +9,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <set>
+#include <type_traits>
 
 #include "core/math.h"
+#include "core/value_text.h"
 #include "io/plant_structure.h"
+#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {
@@ -78,10 +83,52 @@ private:
                 p_.shootTypes.emplace(label, d_.shootTypes->at(label));
                 notes_.push_back("shoot type " + label + ": the PlantArchitecture's");
             } else {
-                p_.shootTypes.emplace(label, ShootParameters{});
-                notes_.push_back("shoot type " + label + ": plantarch's default parameters");
+                ShootParameters t;
+                const std::string variants = coverVariants(label, t.phytomer_parameters);
+                p_.shootTypes.emplace(label, std::move(t));
+                notes_.push_back("shoot type " + label + ": plantarch's default parameters" +
+                                 variants);
             }
         }
+    }
+
+    // The shape variants the input gives for organs of shoot type `label` (which the
+    // PlantArchitecture does not know): the default parameters get as many leaf and flower
+    // variants as the input names, so that every organ keeps its variant (a string written
+    // again is the same). Returns what changed, for the warning ("" when nothing did). A
+    // count beyond the parameter's range is left as it was: checkPlant then names the variant.
+    std::string coverVariants(const std::string& label, PhytomerParameters& pp) const {
+        unsigned leaves = 0, flowers = 0;  // highest variant + 1
+        auto floral = [&](const FloralBud& fb) {
+            for (const FlowerOrgan& fl : fb.flowers) flowers = std::max(flowers, fl.variant + 1);
+        };
+        for (const Shoot& s : p_.shoots) {
+            if (s.type == label)
+                for (const FloralBud& fb : s.terminalFloralBuds) floral(fb);
+            for (const Phytomer& ph : s.phytomers) {
+                const bool own = m_.missing(&ph.parametersLabel) || ph.parametersLabel.empty();
+                if ((own ? s.type : ph.parametersLabel) != label) continue;
+                for (const Petiole& pt : ph.petioles) {
+                    for (const LeafOrgan& l : pt.leaves) leaves = std::max(leaves, l.variant + 1);
+                    for (const FloralBud& fb : pt.floralBuds) floral(fb);
+                }
+            }
+        }
+        std::string out;
+        auto cover = [&](unsigned& count, unsigned needed, const char* what) {
+            if (needed <= count) return;
+            const unsigned was = count;
+            count = needed;
+            try {
+                validate(pp);  // the parameter table's range of the count
+                out += ", " + std::to_string(needed) + " " + what + " shape variants as given";
+            } catch (const Error&) {
+                count = was;
+            }
+        };
+        cover(pp.leaf.prototype.unique_prototypes, leaves, "leaf");
+        cover(pp.inflorescence.unique_prototypes, flowers, "flower");
+        return out;
     }
 
     const ShootParameters* typeOf(const std::string& label) const {
@@ -233,6 +280,181 @@ private:
     throw Error(message, {.parameter = path, .value = value, .validRange = range});
 }
 
+// Every value of a plant held to its declared range (model/plant_state_table.h), whichever
+// reader filled it: the shared check after reading. Paths are the plant structure file's
+// ("shoot[2].phytomer[0].internode.petiole[1].leaf[0].leaf_scale" below `where`).
+class ValueCheck {
+public:
+    explicit ValueCheck(std::string where) : path_(std::move(where)) {}
+
+    template <class T>
+    void field(const state::FieldInfo& f, T& member) {
+        check(f, member);
+    }
+    template <class T>
+    void field(const params::FieldInfo&, T&) {}  // parameters: validated as species are
+    void legacy(const char*) {}
+    template <class T>
+    void objects(const char*, T&) {}
+    template <class Fn>
+    void group(const char* name, Fn&& fn) {
+        const std::size_t size = push(name);
+        fn(*this);
+        path_.resize(size);
+    }
+    template <class T>
+    void list(const char* name, std::vector<T>& items, bool = false) {
+        for (std::size_t i = 0; i < items.size(); ++i) {
+            const std::size_t size = push(std::string(name) + "[" + std::to_string(i) + "]");
+            state::describeState(items[i], *this);
+            path_.resize(size);
+        }
+    }
+    template <class T>
+    void values(const state::FieldInfo& f, std::vector<T>& items) {
+        for (T& v : items) check(f, v);
+    }
+    template <class T>
+    void optional(const char* name, std::optional<T>& member) {
+        if (member) group(name, [&](auto& v) { state::describeState(*member, v); });
+    }
+    template <class P>
+    void parameters(const char*, P&) {}
+
+private:
+    std::size_t push(const std::string& name) {
+        const std::size_t size = path_.size();
+        if (!path_.empty()) path_ += '.';
+        path_ += name;
+        return size;
+    }
+
+    [[noreturn]] void fail(const state::FieldInfo& f, const std::string& value,
+                           const std::string& message, const std::string& range) {
+        push(f.name);
+        inconsistent(path_, message, value, range);
+    }
+
+    void number(const state::FieldInfo& f, double v, const std::string& shown) {
+        if (!std::isfinite(v)) fail(f, shown, "not a finite number", state::rangeText(f));
+        if (!state::inside(f, v)) fail(f, shown, "out of range", state::rangeText(f));
+    }
+
+    template <class T>
+    requires std::is_arithmetic_v<T>
+    void check(const state::FieldInfo& f, const T& v) {
+        if constexpr (std::is_same_v<T, bool>)
+            return;
+        else if constexpr (std::is_same_v<T, float>)
+            number(f, double(v), text::formatFloat(v));
+        else if constexpr (std::is_floating_point_v<T>)
+            number(f, double(v), text::formatDouble(double(v)));
+        else
+            number(f, double(v), std::to_string(v));
+    }
+    void check(const state::FieldInfo& f, const vec3& v) {
+        const std::string shown =
+            text::formatFloat(v.x) + " " + text::formatFloat(v.y) + " " + text::formatFloat(v.z);
+        for (int i = 0; i < 3; ++i) {
+            if (!std::isfinite(v[i])) fail(f, shown, "not a finite number", state::rangeText(f));
+            // A direction's components may pass 1 by a rounding: its reader checks its length.
+            if (f.check != state::Check::UnitVector && !state::inside(f, v[i]))
+                fail(f, shown, "out of range", state::rangeText(f));
+        }
+    }
+    void check(const state::FieldInfo& f, const AxisRotation& r) {
+        check(f, vec3(r.pitch, r.yaw, r.roll));
+    }
+    void check(const state::FieldInfo& f, const std::string& s) {
+        const bool optional = f.check == state::Check::LabelOrEmpty;
+        if ((f.check == state::Check::Label || optional) && !(optional && s.empty()) &&
+            !text::isLabel(s))
+            fail(f, s, "a shoot type label is letters, digits, '_' or '-'",
+                 optional ? "a label, or nothing" : "a label");
+    }
+    template <class T>
+    void check(const state::FieldInfo&, const T&) {}  // enumerations, generators, label lists
+
+    std::string path_;
+};
+
+// Where an organ is in a plant: shoot, phytomer, petiole, item (bud or leaf); its path, made
+// only for an error.
+struct Place {
+    std::size_t shoot = 0, node = 0, petiole = 0, item = 0;
+    bool apical = false;  ///< the shoot's apical bud
+
+    std::string path(const std::string& where, const char* kind) const {
+        const std::string at = where + ".shoot[" + std::to_string(shoot) + "]";
+        if (apical) return at + ".apical_bud.child_shoot_ID";
+        return at + ".phytomer[" + std::to_string(node) + "].internode.petiole[" +
+               std::to_string(petiole) + "]." + kind + "[" + std::to_string(item) + "]." +
+               (std::string(kind) == "leaf" ? "leaf_ID" : "child_shoot_ID");
+    }
+};
+
+// References between shoots, buds and leaves: every bud's shoot grows from that bud, no two
+// buds claim one shoot, leaf IDs are unique and below the plant's next leaf ID.
+void checkReferences(const PlantInstance& p, const std::string& where) {
+    const std::size_t n = p.shoots.size();
+    std::vector<std::optional<Place>> claimedBy(n);
+    auto bud = [&](const VegetativeBud& b, const Place& at) {
+        const int c = b.childShoot;
+        if (c < 0) return;
+        const std::string value = std::to_string(c);
+        const std::string path = at.path(where, "vegetative_bud");
+        if (std::size_t(c) >= n)
+            inconsistent(path, "no such shoot", value, "-1 to " + std::to_string(n - 1));
+        if (std::size_t(c) == at.shoot)
+            inconsistent(path, "a bud's shoot cannot be the shoot the bud is on", value,
+                         "-1 or a shoot growing from this bud");
+        const Shoot& child = p.shoots[std::size_t(c)];
+        const bool here = child.parent == int(at.shoot) &&
+                          (at.apical ? child.rank == p.shoots[at.shoot].rank
+                                     : child.parentNode == int(at.node) &&
+                                           child.parentPetiole == int(at.petiole));
+        if (!here)
+            inconsistent(path, "shoot " + value + " does not grow from this bud", value,
+                         "-1 or a shoot growing from this bud");
+        if (claimedBy[std::size_t(c)])
+            inconsistent(path,
+                         "two buds claim shoot " + value + " (the other: " +
+                             claimedBy[std::size_t(c)]->path(where, "vegetative_bud") + ")",
+                         value, "each shoot grows from at most one bud");
+        claimedBy[std::size_t(c)] = at;
+    };
+    std::map<int, Place> leafIDs;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Shoot& s = p.shoots[i];
+        bud(s.apicalBud, {.shoot = i, .apical = true});
+        for (std::size_t k = 0; k < s.phytomers.size(); ++k) {
+            const Phytomer& ph = s.phytomers[k];
+            for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
+                const Petiole& pt = ph.petioles[j];
+                for (std::size_t b = 0; b < pt.vegetativeBuds.size(); ++b)
+                    bud(pt.vegetativeBuds[b], {i, k, j, b});
+                for (std::size_t l = 0; l < pt.leaves.size(); ++l) {
+                    const int id = pt.leaves[l].leafID;
+                    if (id < 0) continue;
+                    const Place at{i, k, j, l};
+                    const auto [it, fresh] = leafIDs.emplace(id, at);
+                    if (!fresh)
+                        inconsistent(
+                            at.path(where, "leaf"),
+                            "leaf ID given twice (also " + it->second.path(where, "leaf") + ")",
+                            std::to_string(id), "IDs unique within the plant");
+                }
+            }
+        }
+    }
+    if (!leafIDs.empty() && p.nextLeafID <= leafIDs.rbegin()->first)
+        inconsistent(where + ".next_leaf_ID",
+                     "not above every leaf ID (" + leafIDs.rbegin()->second.path(where, "leaf") +
+                         " is " + std::to_string(leafIDs.rbegin()->first) + ")",
+                     std::to_string(p.nextLeafID),
+                     "at least " + std::to_string(leafIDs.rbegin()->first + 1));
+}
+
 }  // namespace
 
 vec3 carriedRollReference(vec3 previous, vec3 guide) {
@@ -340,10 +562,21 @@ void checkPlant(PlantInstance& p, const std::string& where) {
                          parent.phytomers.empty()
                              ? "the parent has no phytomers"
                              : "0 to " + std::to_string(parent.phytomers.size() - 1));
+        // A branch grows from a petiole's axil (a node without petioles: index 0, as a shoot
+        // appended at the tip has).
+        const std::size_t petioles = parent.phytomers[std::size_t(s.parentNode)].petioles.size();
+        if (std::size_t(s.parentPetiole) >= std::max<std::size_t>(petioles, 1))
+            inconsistent(at(i, "parent_petiole_index"), "no such petiole at the parent's node",
+                         std::to_string(s.parentPetiole),
+                         petioles == 0 ? "0 (the node has no petioles)"
+                                       : "0 to " + std::to_string(petioles - 1));
         parent.children.push_back(unsigned(i));
     }
     if (p.nextLeafID < 0)
         inconsistent(where + ".next_leaf_ID", "negative", std::to_string(p.nextLeafID), ">= 0");
+    ValueCheck values(where);
+    state::describeState(p, values);
+    checkReferences(p, where);
 }
 
 }  // namespace plantarch::plant_io

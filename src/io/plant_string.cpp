@@ -13,6 +13,9 @@
 #include <cstring>
 #include <limits>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "geometry/tessellate.h"
 #include "io/plant_structure.h"
@@ -385,8 +388,9 @@ private:
 
     void shoot(int parent, int node, int petiole, bool appended, int depth) {
         if (depth >= kMaxDepth) fail("shoots nested too deep", "at most 1000 levels");
-        expect('S');
         const unsigned id = unsigned(p_.shoots.size());
+        mark("shoot[" + std::to_string(id) + "]");
+        expect('S');
         {
             Shoot s;
             s.id = id;
@@ -404,6 +408,8 @@ private:
         p_.shoots[id].phytomers.front().internode.rollReference =
             direction(roll[0], roll[1], roll[2]);
         while (peek() == 'F') {
+            mark("shoot[" + std::to_string(id) + "].terminal_floral_bud[" +
+                 std::to_string(p_.shoots[id].terminalFloralBuds.size()) + "]");
             FloralBud fb = floral(true);
             fb.terminal = true;
             p_.shoots[id].terminalFloralBuds.push_back(std::move(fb));
@@ -414,6 +420,9 @@ private:
     }
 
     void internode(unsigned shootID, int depth) {
+        const std::string at = "shoot[" + std::to_string(shootID) + "].phytomer[" +
+                               std::to_string(p_.shoots[shootID].phytomers.size()) + "]";
+        mark(at);
         expect('I');
         Phytomer ph;
         ph.parametersLabel = label(false);
@@ -429,6 +438,8 @@ private:
         const int node = int(p_.shoots[shootID].phytomers.size()) - 1;
         int petiole = 0;
         while (peek() == '[') {
+            const std::string ptAt = at + ".internode.petiole[" + std::to_string(petiole) + "]";
+            mark(ptAt);
             ++pos_;
             expect('P');
             // The bend rate (degrees per m) is the full-grown curvature over the petiole's
@@ -446,8 +457,14 @@ private:
                 pt.azimuth = tuple<1>()[0];
             }
             clearance(pt.clearance);
-            while (peek() == 'L') pt.leaves.push_back(leaf());
-            while (peek() == 'F') pt.floralBuds.push_back(floral(false));
+            while (peek() == 'L') {
+                mark(ptAt + ".leaf[" + std::to_string(pt.leaves.size()) + "]");
+                pt.leaves.push_back(leaf());
+            }
+            while (peek() == 'F') {
+                mark(ptAt + ".floral_bud[" + std::to_string(pt.floralBuds.size()) + "]");
+                pt.floralBuds.push_back(floral(false));
+            }
             p_.shoots[shootID].phytomers[std::size_t(node)].petioles.push_back(std::move(pt));
             while (peek() == 'S') shoot(int(shootID), node, petiole, false, depth + 1);
             expect(']');
@@ -552,6 +569,7 @@ private:
 
     // A terminal bud may give its place around the tip as a sixth number.
     FloralBud floral(bool terminal) {
+        const std::string budAt = marks_.back().first;  // marked by the caller
         expect('F');
         FloralBud fb;
         const char letter = pos_ < s_.size() ? s_[pos_] : '\0';
@@ -586,6 +604,7 @@ private:
         clearance(fb.peduncleClearance);
         const bool fruit = fb.stage == FloralStage::Fruit;
         while (peek() == 'f') {
+            mark(budAt + ".peduncle.flower[" + std::to_string(fb.flowers.size()) + "]");
             ++pos_;
             expect('(');
             const auto q = numbersThen<6>();
@@ -603,10 +622,37 @@ private:
         return fb;
     }
 
+    // Where the organ at `path` ("shoot[1].phytomer[0].internode.petiole[0].leaf[2]", as
+    // plant structure files name it) starts in the string (at the next token).
+    void mark(std::string path) {
+        peek();
+        marks_.emplace_back(std::move(path), pos_);
+    }
+
     std::string_view s_;
     std::size_t pos_ = 0;
     PlantInstance p_;
-    std::set<int> leafIDs_;  // given so far
+    std::set<int> leafIDs_;                                   // given so far
+    std::vector<std::pair<std::string, std::size_t>> marks_;  // in string order
+
+public:
+    /// An error of the check after reading (a path below "plant string"), placed at the
+    /// character where the organ it names starts.
+    Error located(const Error& e) const {
+        const std::string prefix = "plant string.";
+        if (e.parameter().compare(0, prefix.size(), prefix) != 0) return e;
+        const std::string path = e.parameter().substr(prefix.size());
+        const std::pair<std::string, std::size_t>* best = nullptr;
+        for (const auto& m : marks_) {
+            const bool within = path.compare(0, m.first.size(), m.first) == 0 &&
+                                (path.size() == m.first.size() || path[m.first.size()] == '.');
+            if (within && (!best || m.first.size() > best->first.size())) best = &m;
+        }
+        if (!best) return e;
+        ErrorContext c = e.context();
+        c.parameter = "plant string, character " + std::to_string(best->second + 1) + ": " + path;
+        return Error(e.message(), c);
+    }
 };
 
 // The members a plant string gives; everything else is completed.
@@ -668,12 +714,17 @@ std::string writePlantString(const PlantInstance& plant, int significantDigits) 
 
 ReadResult readPlantString(const std::string& text, const Defaults& defaults) {
     ReadResult result;
-    PlantInstance plant = StringParser(text).run();
+    StringParser parser(text);
+    PlantInstance plant = parser.run();
     Presence present = Presence::recordingPresent();
     notePresent(plant, present);
     std::vector<std::string> notes;
-    completePlant(plant, present, defaults, defaults.firstPlantID, notes, "plant string");
-    checkPlant(plant, "plant string");
+    try {
+        completePlant(plant, present, defaults, defaults.firstPlantID, notes, "plant string");
+        checkPlant(plant, "plant string");
+    } catch (const Error& e) {
+        throw parser.located(e);
+    }
     for (const std::string& n : notes)
         if (n.find("default parameters") != std::string::npos)
             result.warnings.push_back("plant string: " + n);

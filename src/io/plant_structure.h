@@ -19,6 +19,10 @@
 
 #include "plantarch/PlantState.h"
 
+namespace pugi {
+class xml_node;
+}
+
 namespace plantarch::xml {
 class Document;
 }
@@ -98,9 +102,19 @@ vec3 internodeDirection(const Internode& in);
 /// spread evenly.
 float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n);
 
-/// Throws plantarch::Error (parameter path such as "plant_instance[0].shoot[3].parent_shoot_ID")
-/// when the plant is inconsistent; derives Shoot::children.
+/// The shared check of every plant read (plant structure file, `<helios>` file, plant string),
+/// after completion: every value in its declared range (model/plant_state_table.h) and
+/// finite; shoot references (parents listed before, existing nodes and petioles); buds whose
+/// shoot grows from them, no shoot claimed by two buds; unique leaf IDs below next_leaf_ID;
+/// known shoot types and shape variants. Throws plantarch::Error (parameter path such as
+/// "plant_instance[0].shoot[3].parent_shoot_ID", below `where`) at the first problem;
+/// derives Shoot::children.
 void checkPlant(PlantInstance& plant, const std::string& where);
+
+/// The element that `path` ("shoot[2].phytomer[0].internode.petiole[1]", "shoot_type[main]")
+/// names below `from`, as far as the path can be followed: where an error that checkPlant
+/// found is placed in the file (plant_xml_reader.cpp).
+pugi::xml_node locateElement(pugi::xml_node from, const std::string& path);
 
 /// The values a file left out, for the one warning per plant: "path, path (3), ..." from the
 /// count of each missing path (plant_xml_reader.cpp).

@@ -1,7 +1,7 @@
 // Reader of plant structure files (docs/plant-xml.md), on the XML reader layer
 // (core/xml_reader.h).
 //
-// One engine reads both tables: the plant state table (io/plant_state_table.h) and the
+// One engine reads both tables: the plant state table (model/plant_state_table.h) and the
 // species parameter table (plantarch/ParameterTable.h). At each element it visits the table
 // of the object being filled; every declared name takes its value from the child element of
 // that name, every child must be declared (else "unknown element ..., did you mean ...") and
@@ -19,9 +19,9 @@
 
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "io/plant_state_table.h"
 #include "io/plant_structure.h"
 #include "library/parameter_reader.h"
+#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {
@@ -40,15 +40,11 @@ std::string number(double v) {
     return text::formatDouble(v);
 }
 
-std::string rangeText(double lo, double hi) {
-    return number(lo) + " to " + number(hi);
-}
-
 // ---- the document ------------------------------------------------------------------------
 
-// The element a path such as "shoot[2].phytomer[0].internode.petiole[1]" names, starting at
-// `from` (as far as the path can be followed), for locating errors found after reading.
-xml_node resolve(xml_node from, const std::string& path) {
+}  // namespace
+
+xml_node locateElement(xml_node from, const std::string& path) {
     xml_node at = from;
     std::size_t start = 0;
     while (start < path.size()) {
@@ -81,6 +77,8 @@ xml_node resolve(xml_node from, const std::string& path) {
     }
     return at;
 }
+
+namespace {
 
 // ---- value parsing -------------------------------------------------------------------
 
@@ -365,7 +363,7 @@ private:
         try {
             check();
         } catch (const Error& err) {
-            e.document().relocate(err, resolve(e.node(), err.parameter()),
+            e.document().relocate(err, locateElement(e.node(), err.parameter()),
                                   e.pathTo(err.parameter()));
         }
     }
@@ -383,16 +381,7 @@ private:
 
     static void checkRange(const state::FieldInfo& f, const Element& e, double v,
                            std::string_view text) {
-        const bool openMin =
-            f.check == state::Check::ExclusiveMin || f.check == state::Check::Exclusive;
-        const bool openMax = f.check == state::Check::Exclusive;
-        const bool inside =
-            (openMin ? v > f.min : v >= f.min) && (openMax ? v < f.max : v <= f.max);
-        if (inside) return;
-        const std::string range =
-            !openMin ? rangeText(f.min, f.max)
-                     : "> " + number(f.min) + " and " + (openMax ? "< " : "<= ") + number(f.max);
-        e.fail("out of range", std::string(text), range);
+        if (!state::inside(f, v)) e.fail("out of range", std::string(text), state::rangeText(f));
     }
 
     // Parameters: as species files spell them.
@@ -535,7 +524,7 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
         } catch (const Error& err) {
             std::string rel = err.parameter();
             if (rel.compare(0, where.size() + 1, where + ".") == 0) rel.erase(0, where.size() + 1);
-            doc.relocate(err, resolve(node, rel), err.parameter());
+            doc.relocate(err, locateElement(node, rel), err.parameter());
         }
         if (!reader.missingCounts.empty()) {
             std::string w =

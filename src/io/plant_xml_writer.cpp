@@ -1,4 +1,4 @@
-// Writer of plant structure files: every field of the state table (io/plant_state_table.h)
+// Writer of plant structure files: every field of the state table (model/plant_state_table.h)
 // and of the parameter table, one element per value, numbers in their shortest round-trip
 // form, so reading the text back gives the same plant bit for bit.
 
@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "core/value_text.h"
-#include "io/plant_state_table.h"
+#include "model/plant_state_table.h"
 #include "io/plant_structure.h"
 #include "plantarch/ParameterTable.h"
 

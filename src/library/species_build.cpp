@@ -192,6 +192,13 @@ private:
             if (!step.apex) arch_.removeShootApex(plantID_, id);
             return id;
         } catch (const Error& e) {
+            // A node rule's error (its parameter the rule's path) is placed at the rule's own
+            // line, not at the step that made the node; an error naming its file keeps it.
+            const auto line = species_.lines.find(e.parameter());
+            if (e.file().empty() && e.parameter().find(".node_rules[") != std::string::npos &&
+                line != species_.lines.end())
+                throw e.withFile(species_.sourceFile, line->second);
+            if (!e.file().empty()) throw;
             const std::string attribute = attributeFor(e.parameter());
             ErrorContext c = e.context();
             // An error about another file (an OBJ model, a leaf image) keeps naming it.

@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 
+#include "core/value_text.h"
+#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -79,11 +81,88 @@ bool holds(const NodeRule& r, const Place& at) {
     return true;
 }
 
-float value(const Formula& f, const Place& at) {
+// Where a rule acts, for its errors: "node 3 of shoot 2 (a stem) at plant age 12 days".
+std::string placeText(const Place& at) {
+    return "node " + std::to_string(at.node) + " of shoot " + std::to_string(at.shoot.id) + " (" +
+           at.shoot.type + ") at plant age " + text::formatDouble(at.age) + " days";
+}
+
+// A rule's formula, with what its errors name: the parameter path of the formula as species
+// files give it ("stem.phytomer.node_rules[2].leaf_scale": the shoot type whose rules these
+// are, the rule counted from 1), whose line the species reader knows (the library layer
+// places the error there: species_build.cpp, library_api.cpp).
+// The path is made only for an error: daily rules run for every phytomer every day.
+struct RuleFormula {
+    const Formula& formula;
+    const std::string& shootType;
+    std::size_t rule;
+    const char* field;
+
+    std::string path() const {
+        return shootType + ".phytomer.node_rules[" + std::to_string(rule + 1) + "]." + field;
+    }
+};
+
+RuleFormula ruleFormula(const Formula& f, const Place& at, std::size_t rule, const char* field) {
+    return {f, at.shoot.phytomers[at.node].parametersLabel, rule, field};
+}
+
+float value(const RuleFormula& f, const Place& at) {
     const std::array<float, 5> v = {float(at.age), float(at.node), float(at.shoot.rank),
                                     float(at.shoot.maxNodes),
                                     float(int(at.shoot.phytomers.size()) - 1 - int(at.node))};
-    return f.evaluateFloat(v);
+    try {
+        return f.formula.evaluateFloat(v);
+    } catch (const Error& e) {
+        ErrorContext c = e.context();
+        if (c.parameter.empty()) c.parameter = f.path();
+        throw Error(e.message() + ", at " + placeText(at), c);
+    }
+}
+
+// The state fields rules change, as the state table declares them.
+struct RuleFields {
+    state::FieldInfo leafScale = state::fieldInfo<LeafOrgan>("leaf_scale");
+    state::FieldInfo internodeLength = state::fieldInfo<Internode>("internode_length");
+    state::FieldInfo petiolePitch = state::fieldInfo<Petiole>("petiole_pitch");
+    state::FieldInfo leafPitch = state::fieldInfo<LeafOrgan>("leaf_pitch");
+};
+
+const RuleFields& ruleFields() {
+    static const RuleFields fields;
+    return fields;
+}
+
+// What a rule's formula makes of a state field: `result` (computed in float, as the field
+// holds it) must lie in the field's declared range, else the rule is refused naming the
+// formula's value and the range of the field; `exact` is the result in double, for the
+// message (a float result may have overflowed).
+float checkedResult(const RuleFormula& f, const Place& at, const state::FieldInfo& field,
+                    float formulaValue, float current, float result, double exact) {
+    if (state::inside(field, result)) return result;
+    const std::string shown =
+        std::isfinite(result) ? text::formatFloat(result) : text::formatDouble(exact);
+    const std::string value = text::formatFloat(formulaValue);
+    throw Error(
+        "makes " + std::string(field.name) + " " + shown + " from " + text::formatFloat(current) +
+            ", out of its range, at " + placeText(at),
+        {.parameter = f.path(),
+         .value = value == f.formula.text() ? value : value + " (from '" + f.formula.text() + "')",
+         .validRange =
+             "results keeping " + std::string(field.name) + " within " + state::rangeText(field)});
+}
+
+// A factor on a size: size x factor must stay in the size's range.
+void scale(const RuleFormula& f, const Place& at, const state::FieldInfo& field, float factor,
+           float& size) {
+    size = checkedResult(f, at, field, factor, size, size * factor, double(size) * double(factor));
+}
+
+// A change of an angle: angle + change must stay in the angle's range.
+void turn(const RuleFormula& f, const Place& at, const state::FieldInfo& field, float change,
+          float& angle) {
+    angle =
+        checkedResult(f, at, field, change, angle, angle + change, double(angle) + double(change));
 }
 
 void removeLeaves(Phytomer& ph) {
@@ -108,10 +187,11 @@ void renewFloralBuds(Phytomer& ph) {
         }
 }
 
-void floweringFrom(const std::string& type, Place& at, Phytomer& ph) {
+void floweringFrom(const std::string& type, std::size_t rule, Place& at, Phytomer& ph) {
     if (!at.plant.shootTypes.count(type))
         throw Error("a node rule names a shoot type the plant does not have",
-                    {.parameter = at.shoot.type + ".phytomer.node_rules.flowering_shoot_type",
+                    {.parameter = ph.parametersLabel + ".phytomer.node_rules[" +
+                                  std::to_string(rule + 1) + "].flowering_shoot_type",
                      .value = type,
                      .validRange = "a shoot type of the species"});
     for (Petiole& p : ph.petioles)
@@ -136,27 +216,36 @@ void splitShoot(const RandomInt& distal, Place& at) {
     }
 }
 
-void act(const NodeRule& r, Place& at) {
+void act(const NodeRule& r, std::size_t index, Place& at) {
     Phytomer& ph = at.shoot.phytomers[at.node];
     if (r.remove_vegetative_buds) killVegetativeBuds(ph);
     if (r.remove_floral_buds) killFloralBuds(ph);
     if (r.remove_leaves) removeLeaves(ph);
     if (r.renew_floral_buds) renewFloralBuds(ph);
-    if (!r.flowering_shoot_type.empty()) floweringFrom(r.flowering_shoot_type, at, ph);
+    if (!r.flowering_shoot_type.empty()) floweringFrom(r.flowering_shoot_type, index, at, ph);
+    // Each result is held to the range of the field it sets.
+    const RuleFields& fields = ruleFields();
     if (!r.leaf_scale.empty()) {
-        const float s = value(r.leaf_scale, at);
+        const RuleFormula f = ruleFormula(r.leaf_scale, at, index, "leaf_scale");
+        const float s = value(f, at);
         for (Petiole& p : ph.petioles)
-            for (LeafOrgan& l : p.leaves) l.scale *= s;
+            for (LeafOrgan& l : p.leaves) scale(f, at, fields.leafScale, s, l.scale);
     }
-    if (!r.internode_scale.empty()) ph.internode.length *= value(r.internode_scale, at);
+    if (!r.internode_scale.empty()) {
+        const RuleFormula f = ruleFormula(r.internode_scale, at, index, "internode_scale");
+        scale(f, at, fields.internodeLength, value(f, at), ph.internode.length);
+    }
     if (!r.petiole_pitch_change.empty()) {
-        const float d = value(r.petiole_pitch_change, at);
-        for (Petiole& p : ph.petioles) p.pitch += d;
+        const RuleFormula f =
+            ruleFormula(r.petiole_pitch_change, at, index, "petiole_pitch_change");
+        const float d = value(f, at);
+        for (Petiole& p : ph.petioles) turn(f, at, fields.petiolePitch, d, p.pitch);
     }
     if (!r.leaf_pitch_change.empty()) {
-        const float d = value(r.leaf_pitch_change, at);
+        const RuleFormula f = ruleFormula(r.leaf_pitch_change, at, index, "leaf_pitch_change");
+        const float d = value(f, at);
         for (Petiole& p : ph.petioles)
-            for (LeafOrgan& l : p.leaves) l.pitch += d;
+            for (LeafOrgan& l : p.leaves) turn(f, at, fields.leafPitch, d, l.pitch);
     }
     if (r.max_nodes_per_season < NodeRule::kNoLimit)
         at.shoot.maxNodesPerSeason = std::min(at.shoot.maxNodesPerSeason, r.max_nodes_per_season);
@@ -169,8 +258,10 @@ void act(const NodeRule& r, Place& at) {
 void applyAtCreation(PlantInstance& plant, Shoot& shoot, const PhytomerParameters& pp) {
     if (pp.node_rules.empty()) return;
     Place at{plant, shoot, unsigned(shoot.phytomers.size() - 1), plant.age, nullptr};
-    for (const NodeRule& r : pp.node_rules)
-        if (r.when == NodeRuleTime::Creation && holds(r, at)) act(r, at);
+    for (std::size_t i = 0; i < pp.node_rules.size(); ++i) {
+        const NodeRule& r = pp.node_rules[i];
+        if (r.when == NodeRuleTime::Creation && holds(r, at)) act(r, i, at);
+    }
 }
 
 bool hasDailyRules(const std::map<std::string, ShootParameters>& types) {
@@ -183,10 +274,11 @@ bool hasDailyRules(const std::map<std::string, ShootParameters>& types) {
 void applyDaily(PlantInstance& plant, Shoot& shoot, unsigned node, const PhytomerParameters& pp,
                 double age, const std::function<vec3()>& nodeBase) {
     Place at{plant, shoot, node, age, &nodeBase};
-    for (const NodeRule& r : pp.node_rules) {
+    for (std::size_t i = 0; i < pp.node_rules.size(); ++i) {
+        const NodeRule& r = pp.node_rules[i];
         if (r.when == NodeRuleTime::Creation) continue;
         if (r.when == NodeRuleTime::Winter && !firstDayOfWinter(plant, age)) continue;
-        if (holds(r, at)) act(r, at);
+        if (holds(r, at)) act(r, i, at);
     }
 }
 

@@ -22,7 +22,19 @@
 // Object IDs belong to one Context: files carry them only when asked to, and reading gives
 // them back only where the target Context has them free (PlantArchitecture's reading).
 // Shoot::children is derived from the parents on reading.
+//
+// The ranges are also what every plant read must hold (plant_io::checkPlant, whatever the
+// input: plant structure file, plant string or `<helios>` file) and what node rules' results
+// are held to (model/node_rules.cpp): fieldInfo<S>("name") finds a field's declaration,
+// inside() and rangeText() apply and describe its range.
 
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "core/value_text.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/PlantState.h"
 
@@ -55,6 +67,9 @@ inline constexpr double kBig = 1e6;    ///< lengths (m), angles (degrees), rates
 inline constexpr double kTime = 1e9;   ///< plant ages, days (negative: not scheduled)
 inline constexpr double kCount = 1e9;  ///< counters and indices
 inline constexpr double kMaxLeafID = 1 << 30;
+/// Any finite float: a petiole's curvature read from a plant string is its bend rate now (the
+/// full-grown curvature over the fraction grown), which a young petiole has large.
+inline constexpr double kAnyFloat = 3.4028234663852886e38;
 
 template <class S, class V>
 requires SameAs<S, VegetativeBud>
@@ -75,8 +90,8 @@ void describeState(S& f, V& v) {
     v.field({"azimuth", -kBig, kBig, "side of the peduncle, degrees"}, f.azimuth);
     v.field({"pitch", -kBig, kBig, "from the peduncle axis, degrees"}, f.pitch);
     v.field({"roll", -kBig, kBig, "about its own axis, degrees"}, f.roll);
-    v.field({"flower_scale", -kBig, kBig, "flower length, m"}, f.flowerScale);
-    v.field({"fruit_scale", -kBig, kBig, "full-grown fruit length, m"}, f.fruitScale);
+    v.field({"flower_scale", 0, kBig, "flower length, m"}, f.flowerScale);
+    v.field({"fruit_scale", 0, kBig, "full-grown fruit length, m"}, f.fruitScale);
     v.field({"gravity_factor", -kBig, kBig, "how far the fruit turns to the ground"},
             f.gravityFactor);
     v.field({"variant", 0, kCount, "prototype shape variant"}, f.variant);
@@ -102,13 +117,13 @@ void describeState(S& b, V& v) {
              Check::LabelOrEmpty},
             b.parametersLabel);
     v.field({"fruit_age", -kTime, kTime, "days since fruit set"}, b.fruitAge);
-    v.field({"fruit_growth", -kBig, kBig, "current / full-grown fruit size"}, b.fruitGrowth);
+    v.field({"fruit_growth", 0, kBig, "current / full-grown fruit size"}, b.fruitGrowth);
     v.field({"stage_time", -kTime, kTime, "plant age when the stage began, days"}, b.stageTime);
     v.field({"next_time", -kTime, kTime, "plant age of the next stage (negative: none)"},
             b.nextTime);
     v.group("peduncle", [&](auto& p) {
-        p.field({"peduncle_length", -kBig, kBig, "m"}, b.peduncleLength);
-        p.field({"peduncle_radius", -kBig, kBig, "m"}, b.peduncleRadius);
+        p.field({"peduncle_length", 0, kBig, "m"}, b.peduncleLength);
+        p.field({"peduncle_radius", 0, kBig, "m"}, b.peduncleRadius);
         p.field({"peduncle_pitch", -kBig, kBig, "degrees"}, b.pedunclePitch);
         p.field({"peduncle_roll", -kBig, kBig, "degrees"}, b.peduncleRoll);
         p.field({"peduncle_curvature", -kBig, kBig, "degrees per m"}, b.peduncleCurvature);
@@ -129,7 +144,7 @@ void describeState(S& b, V& v) {
 template <class S, class V>
 requires SameAs<S, LeafOrgan>
 void describeState(S& l, V& v) {
-    v.field({"leaf_scale", -kBig, kBig, "full-grown length, m"}, l.scale);
+    v.field({"leaf_scale", 0, kBig, "full-grown length, m"}, l.scale);
     v.field({"leaf_pitch", -kBig, kBig, "degrees"}, l.pitch);
     v.field({"leaf_yaw", -kBig, kBig, "degrees"}, l.yaw);
     v.field({"leaf_roll", -kBig, kBig, "degrees"}, l.roll);
@@ -146,12 +161,12 @@ void describeState(S& l, V& v) {
 template <class S, class V>
 requires SameAs<S, Petiole>
 void describeState(S& p, V& v) {
-    v.field({"petiole_length", -kBig, kBig, "full-grown length, m"}, p.length);
-    v.field({"petiole_radius", -kBig, kBig, "base radius, m"}, p.radius);
+    v.field({"petiole_length", 0, kBig, "full-grown length, m"}, p.length);
+    v.field({"petiole_radius", 0, kBig, "base radius, m"}, p.radius);
     v.field({"petiole_pitch", -kBig, kBig, "from the internode axis, degrees"}, p.pitch);
-    v.field({"petiole_curvature", -kBig, kBig, "degrees per m"}, p.curvature);
+    v.field({"petiole_curvature", -kAnyFloat, kAnyFloat, "degrees per m"}, p.curvature);
     v.legacy("leaflet_scale");  // the listing's value; each leaf here carries its own scale
-    v.field({"petiole_taper", -kBig, kBig, "tip radius / base radius"}, p.taper);
+    v.field({"petiole_taper", 0, kBig, "tip radius / base radius"}, p.taper);
     v.field({"petiole_azimuth", -kBig, kBig, "about the internode axis, degrees"}, p.azimuth);
     v.field({"clearance_axis", -1, 1, "turn out of solid obstacles: world axis", Check::UnitVector},
             p.clearance.axis);
@@ -166,8 +181,8 @@ void describeState(S& p, V& v) {
 template <class S, class V>
 requires SameAs<S, Internode>
 void describeState(S& in, V& v) {
-    v.field({"internode_length", -kBig, kBig, "full-grown length, m"}, in.length);
-    v.field({"internode_radius", -kBig, kBig, "current radius, m"}, in.radius);
+    v.field({"internode_length", 0, kBig, "full-grown length, m"}, in.length);
+    v.field({"internode_radius", 0, kBig, "current radius, m"}, in.radius);
     v.field({"internode_pitch", -kBig, kBig, "realized zig-zag pitch, degrees"}, in.pitch);
     v.field({"phyllotactic_angle", -kBig, kBig, "roll from the previous phytomer, degrees"},
             in.phyllotacticAngle);
@@ -188,13 +203,12 @@ requires SameAs<S, Phytomer>
 void describeState(S& ph, V& v) {
     v.field({"age", -kTime, kTime, "days"}, ph.age);
     v.field({"birth", -kTime, kTime, "plant age when it was created, days"}, ph.birth);
-    v.field({"internode_fraction", -kBig, kBig, "current / full internode length"},
+    v.field({"internode_fraction", 0, kBig, "current / full internode length"},
             ph.internodeFraction);
-    v.field({"leaf_fraction", -kBig, kBig, "current / full petiole and leaf size"},
-            ph.leafFraction);
-    v.field({"internode_fraction_initial", -kBig, kBig, "at creation"}, ph.internodeFraction0);
-    v.field({"leaf_fraction_initial", -kBig, kBig, "at creation"}, ph.leafFraction0);
-    v.field({"radius_initial", -kBig, kBig, "internode radius at creation, m"}, ph.radiusInitial);
+    v.field({"leaf_fraction", 0, kBig, "current / full petiole and leaf size"}, ph.leafFraction);
+    v.field({"internode_fraction_initial", 0, kBig, "at creation"}, ph.internodeFraction0);
+    v.field({"leaf_fraction_initial", 0, kBig, "at creation"}, ph.leafFraction0);
+    v.field({"radius_initial", 0, kBig, "internode radius at creation, m"}, ph.radiusInitial);
     v.field({"parameters_label", 0, 0, "shoot type whose template built it", Check::Label},
             ph.parametersLabel);
     // The specification nests the petioles inside the internode.
@@ -219,7 +233,7 @@ void describeState(S& s, V& v) {
     // this bounds the growth a file can ask for.
     v.field({"max_nodes", 0, 100000, "realized"}, s.maxNodes);
     v.field({"max_nodes_per_season", 0, 100000, "realized"}, s.maxNodesPerSeason);
-    v.field({"internode_length_max", -kBig, kBig, "realized, m"}, s.internodeLengthMax);
+    v.field({"internode_length_max", 0, kBig, "realized, m"}, s.internodeLengthMax);
     v.field({"phyllochron", -kBig, kBig, "realized, days per node"}, s.phyllochron);
     v.field({"elongation_rate", -kBig, kBig, "realized, per day"}, s.elongationRate);
     v.field({"gravitropic_curvature", -kBig, kBig, "realized, degrees per m"},
@@ -269,6 +283,68 @@ void describeState(S& p, V& v) {
     v.parameters("phenology", p.phenology);
     v.parameters("shoot_type", p.shootTypes);
     v.list("shoot", p.shoots, true);
+}
+
+// ---- using the declarations ---------------------------------------------------------------
+
+/// Whether `v` lies in the field's range (a NaN never does).
+inline bool inside(const FieldInfo& f, double v) {
+    const bool openMin = f.check == Check::ExclusiveMin || f.check == Check::Exclusive;
+    const bool openMax = f.check == Check::Exclusive;
+    return (openMin ? v > f.min : v >= f.min) && (openMax ? v < f.max : v <= f.max);
+}
+
+/// The field's range as errors give it: "0 to 1e+06", "> 0 and <= 100".
+inline std::string rangeText(const FieldInfo& f) {
+    const bool openMin = f.check == Check::ExclusiveMin || f.check == Check::Exclusive;
+    const bool openMax = f.check == Check::Exclusive;
+    if (!openMin) return text::formatDouble(f.min) + " to " + text::formatDouble(f.max);
+    return "> " + text::formatDouble(f.min) + " and " + (openMax ? "< " : "<= ") +
+           text::formatDouble(f.max);
+}
+
+/// The declaration of the field `name` of S's own table (nested groups included, lists of
+/// other types not), e.g. fieldInfo<LeafOrgan>("leaf_scale"). Throws std::logic_error for a
+/// name the table does not declare: a mistake in plantarch, not in any input.
+/// Visits a table and keeps the declaration of the field named `name` (fieldInfo below).
+struct FieldFinder {
+    std::string_view name;
+    std::optional<FieldInfo> found;
+    template <class T>
+    void field(const FieldInfo& f, T&) {
+        if (!found && name == f.name) found = f;
+    }
+    template <class T>
+    void field(const params::FieldInfo&, T&) {}
+    template <class Fn>
+    void group(const char*, Fn&& fn) {
+        fn(*this);
+    }
+    template <class T>
+    void list(const char*, std::vector<T>&, bool = false) {}
+    template <class T>
+    void values(const FieldInfo& f, std::vector<T>&) {
+        if (!found && name == f.name) found = f;
+    }
+    template <class T>
+    void optional(const char*, std::optional<T>&) {}
+    template <class P>
+    void parameters(const char*, P&) {}
+    void legacy(const char*) {}
+    template <class T>
+    void objects(const char*, T&) {}
+};
+
+/// The declaration of the field `name` of S's own table (nested groups included, lists of
+/// other types not), e.g. fieldInfo<LeafOrgan>("leaf_scale"). Throws std::logic_error for a
+/// name the table does not declare: a mistake in plantarch, not in any input.
+template <class S>
+FieldInfo fieldInfo(std::string_view name) {
+    S object;  // only its members' addresses are visited
+    FieldFinder finder{name, std::nullopt};
+    describeState(object, finder);
+    if (!finder.found) throw std::logic_error("plant state table: no field " + std::string(name));
+    return *finder.found;
 }
 
 }  // namespace plantarch::state
