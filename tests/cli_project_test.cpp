@@ -102,7 +102,8 @@ TEST_F(CliProject, JSONNestedDeepAndNumbersBeyondRangeGiveOneLine) {
     const auto deep = cli::run("project check " + at("deep.json"));
     EXPECT_EQ(deep.status, 2);
     EXPECT_EQ(deep.out, "plantarch: " + at("deep.json") +
-                            ":2: name: nested too deep (valid: arrays and objects nested at most "
+                            ":2: name/0/0/0/0/0/0/0/...: nested too deep (valid: arrays and "
+                            "objects nested at most "
                             "64 deep)\n");
     // Within the limit, the value is quoted cut short.
     put(at("wide.json"), "{\"plantarch_project\": 1, \"name\": " + std::string(60, '[') +
