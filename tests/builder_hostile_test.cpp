@@ -64,7 +64,8 @@ TEST_F(BuilderHostile, JSONNestedDeepInAnyFieldIsRefusedAndTheServerServesOn) {
         "project/blocks/0/0/0/0/0/0/...: JSON nested too deep (valid: arrays and objects "
         "nested at most 64 deep)");
     // 64 deep is read (and refused as a project for what it is).
-    const std::string ok = "{\"project\": {\"name\": " + nested(62) + "}}";
+    const std::string ok =
+        "{\"project\": {\"plantarch_project\": 1, \"name\": " + nested(62) + "}}";
     auto r = client_->Post("/api/builds", {{"Origin", origin()}}, ok, "application/json");
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 400);

@@ -209,6 +209,8 @@ Project Server::Impl::requestProject(const json& j) const {
     const fs::path folder = output / "projects";
     Project p = readProjectString(j.dump(), "project", folder.string());
     const std::vector<std::string> library = listSpecies();
+    std::vector<std::string> written;  // each block's species as the request names it
+    for (const ProjectBlock& b : p.blocks) written.push_back(b.species);
     for (std::size_t i = 0; i < p.blocks.size(); ++i) {
         ProjectBlock& b = p.blocks[i];
         const bool path = b.species.find('/') != std::string::npos || b.species.ends_with(".xml");
@@ -235,7 +237,7 @@ Project Server::Impl::requestProject(const json& j) const {
     for (std::size_t i = 0; i < p.blocks.size(); ++i) {
         const std::string species = projectSpecies(p, p.blocks[i]);
         if (!checked.insert(species).second) continue;
-        const std::string& named = p.blocks[i].species;
+        const std::string& named = written[i];
         std::error_code ec;
         if ((named.find('/') != std::string::npos || named.ends_with(".xml")) &&
             !fs::is_regular_file(species, ec))
@@ -250,7 +252,7 @@ Project Server::Impl::requestProject(const json& j) const {
             confineSpecies(model, model.sourceFile);
         } catch (const HttpError& e) {
             throw HttpError{e.status, "project: blocks/" + std::to_string(i) + "/species = \"" +
-                                          clip(p.blocks[i].species) + "\": " + e.message};
+                                          clip(written[i]) + "\": " + e.message};
         }
     }
     return p;
