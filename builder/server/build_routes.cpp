@@ -67,7 +67,7 @@ void Server::Impl::buildRoutes() {
                 throw HttpError{400, "project: missing (valid: a project {...})"};
             for (const auto& [key, value] : body.items())
                 if (key != "project" && key != "from")
-                    throw HttpError{400, key + ": unknown field (valid: project, from)"};
+                    throw HttpError{400, clip(key) + ": unknown field (valid: project, from)"};
             Project project = requestProject(body["project"]);
             checkProject(project);
             auto queued = builds.submit(std::move(project), stringField(body, "from").value_or(""));

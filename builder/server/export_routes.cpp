@@ -63,7 +63,7 @@ void Server::Impl::exportRoutes() {
             for (const auto& [key, value] : body.items())
                 if (key != "build" && key != "format" && key != "per_plant" && key != "folder" &&
                     key != "name")
-                    throw HttpError{400, key +
+                    throw HttpError{400, clip(key) +
                                              ": unknown field (valid: build, format, "
                                              "per_plant, folder, name)"};
             const std::string id = stringField(body, "build").value_or("");
@@ -73,7 +73,7 @@ void Server::Impl::exportRoutes() {
             bool perPlant = false;
             if (body.contains("per_plant")) {
                 if (!body["per_plant"].is_boolean())
-                    throw HttpError{400, "per_plant = " + body["per_plant"].dump() +
+                    throw HttpError{400, "per_plant = " + shownJSON(body["per_plant"]) +
                                              ": expected true or false"};
                 perPlant = body["per_plant"].get<bool>();
             }
