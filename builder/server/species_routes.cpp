@@ -128,7 +128,7 @@ void Server::Impl::speciesRoutes() {
         return e;
     };
 
-    on("GET", "/api/species", [this, load](const httplib::Request&, httplib::Response& res) {
+    on("GET", "/api/species", [this](const httplib::Request&, httplib::Response& res) {
         guarded(res, [&] {
             json list;
             {
