@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "plantarch/Error.h"
@@ -28,9 +29,10 @@ struct ProjectArgs {
 // The statistics of the whole project as one line of JSON (--stats).
 std::string statsJSON(const Project& project, const ProjectStats& s) {
     return fmt::format(
-        "{{\"project\": \"{}\", \"plants\": {}, \"triangles\": {}, \"objects\": {}, "
+        "{{\"project\": {}, \"plants\": {}, \"triangles\": {}, \"objects\": {}, "
         "\"height\": {:.4f}, \"leaf_area\": {:.6f}, \"leaf_count\": {}}}",
-        project.name, s.plants, s.triangles, s.objects, s.height, s.leafArea, s.leafCount);
+        nlohmann::json(project.name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+        s.plants, s.triangles, s.objects, s.height, s.leafArea, s.leafCount);
 }
 
 int runProject(const ProjectArgs& a, const GlobalOptions& global) {
@@ -44,7 +46,7 @@ int runProject(const ProjectArgs& a, const GlobalOptions& global) {
     if (a.separate && a.outputs.empty())
         throw Error("--separate writes files: give -o FILE", {.parameter = "--separate"});
     checkSceneOutputs(a.outputs, global.points, true);
-    requireInputFile(a.file, "project file");
+    // readProjectFile checks the file (a directory, a pipe or device, its size) before it reads.
     const Project project = readProjectFile(a.file);
     checkProject(project);
     // Separate files get their names once the plants are known: their folder is checked
@@ -75,7 +77,6 @@ int runProject(const ProjectArgs& a, const GlobalOptions& global) {
 }
 
 int checkProjectFile(const std::string& file) {
-    requireInputFile(file, "project file");
     const Project project = readProjectFile(file);
     checkProject(project);
     std::size_t grid = 0;

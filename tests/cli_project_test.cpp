@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -91,6 +92,69 @@ TEST_F(CliProject, CheckNamesTheFieldOfABadValue) {
     const auto run = cli::run("project run " + at("bad.json") + " -o " + at("out/x.glb"));
     EXPECT_EQ(run.status, 2);
     EXPECT_FALSE(std::filesystem::exists(at("out")));
+}
+
+TEST_F(CliProject, JSONNestedDeepAndNumbersBeyondRangeGiveOneLine) {
+    // 100,000 deep: refused before anything recurses on it (it used to crash `project check`
+    // quoting the value).
+    put(at("deep.json"), "{\"plantarch_project\": 1,\n\"name\": " + std::string(100000, '[') +
+                             std::string(100000, ']') + "}");
+    const auto deep = cli::run("project check " + at("deep.json"));
+    EXPECT_EQ(deep.status, 2);
+    EXPECT_EQ(deep.out, "plantarch: " + at("deep.json") +
+                            ":2: name/0/0/0/0/0/0/0/...: nested too deep (valid: arrays and "
+                            "objects nested at most "
+                            "64 deep)\n");
+    // Within the limit, the value is quoted cut short.
+    put(at("wide.json"), "{\"plantarch_project\": 1, \"name\": " + std::string(60, '[') +
+                             std::string(60, ']') + "}");
+    const auto wide = cli::run("project check " + at("wide.json"));
+    EXPECT_EQ(wide.status, 2);
+    EXPECT_EQ(wide.out, "plantarch: " + at("wide.json") + ": name = " + std::string(57, '[') +
+                            "...: expected a text in quotes\n");
+    put(at("big.json"), R"({"plantarch_project": 1, "blocks": [{"species": "bean",
+      "count": [2, 1e400]}]})");
+    const auto big = cli::run("project run " + at("big.json") + " -o " + at("x.glb"));
+    EXPECT_EQ(big.status, 2);
+    EXPECT_EQ(big.out, "plantarch: " + at("big.json") +
+                           ":2: blocks/0/count/1 = 1e400: out of range (valid: whole numbers 1 "
+                           "to 1000000)\n");
+}
+
+TEST_F(CliProject, PipesAreNotReadAsProjectsSpeciesOrObstacles) {
+    ASSERT_EQ(mkfifo(at("pipe.json").c_str(), 0600), 0);
+    ASSERT_EQ(mkfifo(at("pipe.xml").c_str(), 0600), 0);
+    ASSERT_EQ(mkfifo(at("pipe.obj").c_str(), 0600), 0);
+    // `timeout`: a reader that opened the pipe would wait for a writer forever.
+    const std::string cli = "timeout 60 " + std::string(PLANTARCH_CLI);
+    const auto project = cli::runShell(cli + " project check " + at("pipe.json") + " 2>&1");
+    EXPECT_EQ(project.status, 2);
+    EXPECT_EQ(project.out, "plantarch: " + at("pipe.json") +
+                               ": is a FIFO, not a project file\n");
+    put(at("s.json"), R"({"plantarch_project": 1, "blocks": [{"species": "pipe.xml"}]})");
+    const auto species = cli::runShell(cli + " project check " + at("s.json") + " 2>&1");
+    EXPECT_EQ(species.status, 2);
+    EXPECT_EQ(species.out, "plantarch: " + at("s.json") +
+                               ": blocks/0/species = pipe.xml: not a regular file, not a species "
+                               "file (" +
+                               at("pipe.xml") +
+                               ") (valid: a library species name or "
+                               "a species file (.xml))\n");
+    put(at("o.json"), R"({"plantarch_project": 1, "obstacles": {"files": ["pipe.obj"]}})");
+    const auto obstacle = cli::runShell(cli + " project check " + at("o.json") + " 2>&1");
+    EXPECT_EQ(obstacle.status, 2);
+    EXPECT_NE(obstacle.out.find("obstacles/files/0 = " + at("pipe.obj") +
+                                ": is a FIFO, not an obstacle file"),
+              std::string::npos)
+        << obstacle.out;
+}
+
+TEST_F(CliProject, StatsQuoteTheProjectNameAsJSON) {
+    put(at("p.json"), R"({"plantarch_project": 1, "name": "say \"hi\"\\", "blocks": [
+      {"species": "bean", "layout": "single", "age": 5}]})");
+    const auto s = cli::run("project run " + at("p.json") + " --stats");
+    ASSERT_EQ(s.status, 0) << s.out;
+    EXPECT_EQ(s.out.rfind(R"({"project": "say \"hi\"\\", "plants": 1,)", 0), 0u) << s.out;
 }
 
 TEST_F(CliProject, TheBuilderServesUntilInterrupted) {

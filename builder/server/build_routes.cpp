@@ -60,14 +60,14 @@ std::shared_ptr<Scene> sceneOf(BuildQueue& builds, const std::string& id) {
 }  // namespace
 
 void Server::Impl::buildRoutes() {
-    http.Post("/api/builds", [this](const httplib::Request& req, httplib::Response& res) {
+    on("POST", "/api/builds", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const json body = bodyJSON(req);
             if (!body.contains("project"))
                 throw HttpError{400, "project: missing (valid: a project {...})"};
             for (const auto& [key, value] : body.items())
                 if (key != "project" && key != "from")
-                    throw HttpError{400, key + ": unknown field (valid: project, from)"};
+                    throw HttpError{400, clip(key) + ": unknown field (valid: project, from)"};
             Project project = requestProject(body["project"]);
             checkProject(project);
             auto queued = builds.submit(std::move(project), stringField(body, "from").value_or(""));
@@ -76,48 +76,49 @@ void Server::Impl::buildRoutes() {
             sendJSON(res, {{"id", std::get<std::string>(queued)}}, 202);
         });
     });
-    http.Get("/api/builds/([^/]+)", [this](const httplib::Request& req, httplib::Response& res) {
+    on("GET", "/api/builds/([^/]+)", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const auto b = builds.status(req.matches[1].str());
             if (!b) throw HttpError{404, "no build " + req.matches[1].str()};
             sendJSON(res, stateJSON(*b));
         });
     });
-    http.Delete("/api/builds/([^/]+)", [this](const httplib::Request& req, httplib::Response& res) {
-        guarded(res, [&] {
-            const auto cancelled = builds.cancel(req.matches[1].str());
-            if (!cancelled) throw HttpError{404, "no build " + req.matches[1].str()};
-            sendJSON(res, {{"state", *cancelled ? "cancelled" : "deleted"}});
-        });
-    });
-    http.Get("/api/builds/([^/]+)/scene.glb",
-             [this](const httplib::Request& req, httplib::Response& res) {
-                 guarded(res, [&] {
-                     auto bytes = builds.glb(req.matches[1].str(), [this](Scene& s) {
-                         return sceneFileBytes(*this, s, "glb");
-                     });
-                     if (const auto* r = std::get_if<Refusal>(&bytes))
-                         throw HttpError{r->status, r->message};
-                     res.set_header("Cache-Control", "no-store");
-                     res.set_content(std::get<std::string>(bytes), "model/gltf-binary");
-                 });
-             });
-    http.Get("/api/builds/([^/]+)/render.png",
-             [this](const httplib::Request& req, httplib::Response& res) {
-                 guarded(res, [&] {
-                     RenderOptions o;
-                     o.width = dimension(req, "w", 800);
-                     o.height = dimension(req, "h", 600);
-                     const std::shared_ptr<Scene> s = sceneOf(builds, req.matches[1].str());
-                     std::string png;
-                     {
-                         std::shared_lock<std::shared_mutex> read(s->lock);
-                         png = encodePNG(render(s->context, o));
-                     }
-                     res.set_header("Cache-Control", "no-store");
-                     res.set_content(png, "image/png");
-                 });
-             });
+    on("DELETE", "/api/builds/([^/]+)",
+       [this](const httplib::Request& req, httplib::Response& res) {
+           guarded(res, [&] {
+               const auto cancelled = builds.cancel(req.matches[1].str());
+               if (!cancelled) throw HttpError{404, "no build " + req.matches[1].str()};
+               sendJSON(res, {{"state", *cancelled ? "cancelled" : "deleted"}});
+           });
+       });
+    on("GET", "/api/builds/([^/]+)/scene.glb",
+       [this](const httplib::Request& req, httplib::Response& res) {
+           guarded(res, [&] {
+               auto bytes = builds.glb(req.matches[1].str(), [this](Scene& s) {
+                   return sceneFileBytes(*this, s, "glb");
+               });
+               if (const auto* r = std::get_if<Refusal>(&bytes))
+                   throw HttpError{r->status, r->message};
+               res.set_header("Cache-Control", "no-store");
+               res.set_content(std::get<std::string>(bytes), "model/gltf-binary");
+           });
+       });
+    on("GET", "/api/builds/([^/]+)/render.png",
+       [this](const httplib::Request& req, httplib::Response& res) {
+           guarded(res, [&] {
+               RenderOptions o;
+               o.width = dimension(req, "w", 800);
+               o.height = dimension(req, "h", 600);
+               const std::shared_ptr<Scene> s = sceneOf(builds, req.matches[1].str());
+               std::string png;
+               {
+                   std::shared_lock<std::shared_mutex> read(s->lock);
+                   png = encodePNG(render(s->context, o));
+               }
+               res.set_header("Cache-Control", "no-store");
+               res.set_content(png, "image/png");
+           });
+       });
 }
 
 }  // namespace plantarch::builder

@@ -121,6 +121,7 @@ std::variant<std::shared_ptr<Scene>, Refusal> BuildQueue::exportScene(const std:
     auto fresh = std::make_shared<Scene>();
     try {
         fresh->built = buildProject(project, *fresh->arch, {.maxTriangles = options_.maxTriangles});
+        if (options_.checkScene) options_.checkScene(fresh->context);
     } catch (const Error& e) {
         return Refusal{500, std::string("building build ") + id + " anew for export: " + e.what()};
     }
@@ -245,6 +246,7 @@ void BuildQueue::run(const std::shared_ptr<Build>& b) {
             scene = std::make_shared<Scene>();
             scene->built = buildProject(b->project, *scene->arch, options);
         }
+        if (options_.checkScene) options_.checkScene(scene->context);
         {
             std::lock_guard<std::mutex> lock(mutex_);
             for (std::size_t i = 0; i < b->project.blocks.size(); ++i) {

@@ -67,6 +67,10 @@ public:
         std::size_t maxTriangles = 0;
         std::size_t maxQueued = 4;     ///< builds waiting (not running) at most
         std::size_t keepFinished = 8;  ///< finished builds kept (older ones forgotten)
+        /// Called on each scene built or grown (before it is done) and on each scene built
+        /// anew for export; a plantarch::Error it throws fails the build (the server checks
+        /// the files the scene's materials name).
+        std::function<void(const Context&)> checkScene;
     };
     explicit BuildQueue(Options options);
     /// Cancels every build and joins the worker.

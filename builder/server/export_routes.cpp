@@ -57,13 +57,13 @@ Project withSpeciesNames(Project p, const Server::Impl& s) {
 }  // namespace
 
 void Server::Impl::exportRoutes() {
-    http.Post("/api/export", [this](const httplib::Request& req, httplib::Response& res) {
+    on("POST", "/api/export", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const json body = bodyJSON(req);
             for (const auto& [key, value] : body.items())
                 if (key != "build" && key != "format" && key != "per_plant" && key != "folder" &&
                     key != "name")
-                    throw HttpError{400, key +
+                    throw HttpError{400, clip(key) +
                                              ": unknown field (valid: build, format, "
                                              "per_plant, folder, name)"};
             const std::string id = stringField(body, "build").value_or("");
@@ -73,7 +73,7 @@ void Server::Impl::exportRoutes() {
             bool perPlant = false;
             if (body.contains("per_plant")) {
                 if (!body["per_plant"].is_boolean())
-                    throw HttpError{400, "per_plant = " + body["per_plant"].dump() +
+                    throw HttpError{400, "per_plant = " + shownJSON(body["per_plant"]) +
                                              ": expected true or false"};
                 perPlant = body["per_plant"].get<bool>();
             }
@@ -92,7 +92,7 @@ void Server::Impl::exportRoutes() {
             sendJSON(res, {{"files", list}});
         });
     });
-    http.Get("/api/export/download", [this](const httplib::Request& req, httplib::Response& res) {
+    on("GET", "/api/export/download", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const std::string id = req.get_param_value("build");
             const std::string format =
@@ -126,7 +126,7 @@ void Server::Impl::exportRoutes() {
 }
 
 void Server::Impl::projectRoutes() {
-    http.Post("/api/projects/save", [this](const httplib::Request& req, httplib::Response& res) {
+    on("POST", "/api/projects/save", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const json body = bodyJSON(req);
             const std::string name = stringField(body, "name").value_or("");
@@ -145,7 +145,7 @@ void Server::Impl::projectRoutes() {
             sendJSON(res, {{"path", "projects/" + name + ".json"}});
         });
     });
-    http.Get("/api/projects", [this](const httplib::Request&, httplib::Response& res) {
+    on("GET", "/api/projects", [this](const httplib::Request&, httplib::Response& res) {
         guarded(res, [&] {
             std::vector<std::string> names;
             std::error_code ec;
@@ -156,7 +156,7 @@ void Server::Impl::projectRoutes() {
             sendJSON(res, names);
         });
     });
-    http.Get("/api/projects/([^/]+)", [this](const httplib::Request& req, httplib::Response& res) {
+    on("GET", "/api/projects/([^/]+)", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const std::string name = req.matches[1].str();
             requireName(name, "project");

@@ -4,8 +4,15 @@
 
 #include "builder/server/server.h"
 
+#include <netdb.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <set>
 
 #include "builder/server/assets.h"
 #include "builder/server/server_impl.h"
@@ -20,43 +27,44 @@ namespace plantarch::builder {
 void sendJSON(httplib::Response& res, const json& body, int status) {
     res.status = status;
     res.set_header("Cache-Control", "no-store");
-    res.set_content(body.dump(), "application/json");
+    // Invalid UTF-8 in a request's text quoted by a message is replaced, not thrown about.
+    res.set_content(body.dump(-1, ' ', false, json::error_handler_t::replace), "application/json");
+}
+
+std::string oneLine(const std::string& message) {
+    std::string out;
+    for (const char c : clip(message, 1000)) {
+        if (c == '\n')
+            out += "\\n";
+        else if (c == '\r')
+            out += "\\r";
+        else
+            out += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
+    }
+    return out;
 }
 
 void guarded(httplib::Response& res, const std::function<void()>& handler) {
     try {
         handler();
     } catch (const HttpError& e) {
-        sendJSON(res, {{"error", e.message}}, e.status);
+        sendJSON(res, {{"error", oneLine(e.message)}}, e.status);
     } catch (const TriangleBudgetError& e) {
-        sendJSON(res, {{"error", std::string(e.what()) + " (--max-triangles)"}}, 400);
+        sendJSON(res, {{"error", oneLine(e.what()) + " (--max-triangles)"}}, 400);
     } catch (const Error& e) {
-        sendJSON(res, {{"error", e.what()}}, 400);
+        sendJSON(res, {{"error", oneLine(e.what())}}, 400);
     } catch (const std::bad_alloc&) {
         sendJSON(res, {{"error", "out of memory"}}, 500);
     } catch (const std::exception& e) {
-        sendJSON(res, {{"error", std::string("internal error: ") + e.what()}}, 500);
-    }
-}
-
-json bodyJSON(const httplib::Request& req) {
-    try {
-        json j = json::parse(req.body);
-        if (!j.is_object()) throw HttpError{400, "the request body is not a JSON object {...}"};
-        return j;
-    } catch (const json::parse_error& e) {
-        std::string why = e.what();
-        if (const auto colon = why.find(": "); colon != std::string::npos)
-            why = why.substr(colon + 2);
-        throw HttpError{400, "the request body is not JSON: " + why};
+        sendJSON(res, {{"error", "internal error: " + oneLine(e.what())}}, 500);
     }
 }
 
 std::optional<std::string> stringField(const json& j, const char* name) {
     if (!j.contains(name) || j[name].is_null()) return std::nullopt;
     if (!j[name].is_string())
-        throw HttpError{400,
-                        std::string(name) + " = " + j[name].dump() + ": expected a text in quotes"};
+        throw HttpError{
+            400, std::string(name) + " = " + shownJSON(j[name]) + ": expected a text in quotes"};
     return j[name].get<std::string>();
 }
 
@@ -85,17 +93,17 @@ bool isUnder(const fs::path& path, const fs::path& folder) {
 fs::path outputSubfolder(const fs::path& output, const std::string& sub) {
     const fs::path p(sub);
     if (sub.find('\0') != std::string::npos || p.is_absolute() || p.has_root_name())
-        throw HttpError{403, "folder = \"" + sub +
+        throw HttpError{403, "folder = \"" + clip(sub) +
                                  "\": not inside the output folder (valid: a "
                                  "relative folder such as \"trial/day30\")"};
     for (const fs::path& part : p)
         if (part == "..")
-            throw HttpError{403, "folder = \"" + sub +
+            throw HttpError{403, "folder = \"" + clip(sub) +
                                      "\": '..' leads out of the output folder "
                                      "(valid: a folder inside it)"};
     const fs::path folder = sub.empty() ? output : output / p;
     if (!isUnder(folder, output))
-        throw HttpError{403, "folder = \"" + sub +
+        throw HttpError{403, "folder = \"" + clip(sub) +
                                  "\": a symbolic link leads out of the output "
                                  "folder (valid: a folder inside it)"};
     return folder;
@@ -118,14 +126,49 @@ fs::path makeOutput(const std::string& folder) {
     return fs::canonical(folder);
 }
 
+// The species library's folder, canonical, if there is one.
+std::vector<fs::path> libraryFolder() {
+    try {
+        std::error_code ec;
+        const fs::path library = fs::canonical(speciesLibraryDirectory(), ec);
+        if (!ec) return {library};
+    } catch (const Error&) {
+        // No library: the builder reads only its output folder.
+    }
+    return {};
+}
+
 }  // namespace
 
 Server::Impl::Impl(ServerOptions o)
     : options(std::move(o)),
       output(makeOutput(options.output)),
+      port(options.port),
       builds(BuildQueue::Options{.maxTriangles = options.maxTriangles,
                                  .maxQueued = options.maxQueuedBuilds,
-                                 .keepFinished = options.keepFinishedBuilds}) {}
+                                 .keepFinished = options.keepFinishedBuilds,
+                                 .checkScene = [this](const Context& c) { confineScene(c); }}) {
+    readable = {output};
+    for (const fs::path& library : libraryFolder()) readable.push_back(library);
+    routes();
+}
+
+void Server::Impl::on(const char* method, const char* pattern, Handler handler) {
+    table.push_back({method, std::regex(pattern), std::move(handler)});
+}
+
+void Server::Impl::dispatch(const httplib::Request& req, httplib::Response& res) const {
+    if (const auto e = refused(req)) return sendJSON(res, {{"error", e->message}}, e->status);
+    const std::string method = req.method == "HEAD" ? "GET" : req.method;
+    // The route's captures go in the request as cpp-httplib's own routing puts them; the
+    // request is cpp-httplib's (or handle()'s) own object, not a constant.
+    auto& matches = const_cast<httplib::Request&>(req).matches;
+    for (const Route& r : table)
+        if (r.method == method && std::regex_match(req.path, matches, r.pattern))
+            return r.handler(req, res);
+    sendJSON(res, {{"error", "no such endpoint: " + clip(req.method, 16) + " " + clip(req.path)}},
+             404);
+}
 
 std::optional<HttpError> Server::Impl::refused(const httplib::Request& req) const {
     std::string portText = ":";  // appended: GCC 12 warns of a false overlap in ":" + ...
@@ -166,6 +209,8 @@ Project Server::Impl::requestProject(const json& j) const {
     const fs::path folder = output / "projects";
     Project p = readProjectString(j.dump(), "project", folder.string());
     const std::vector<std::string> library = listSpecies();
+    std::vector<std::string> written;  // each block's species as the request names it
+    for (const ProjectBlock& b : p.blocks) written.push_back(b.species);
     for (std::size_t i = 0; i < p.blocks.size(); ++i) {
         ProjectBlock& b = p.blocks[i];
         const bool path = b.species.find('/') != std::string::npos || b.species.ends_with(".xml");
@@ -174,7 +219,7 @@ Project Server::Impl::requestProject(const json& j) const {
             b.species = "../species/" + b.species + ".xml";
         if (path && !isUnder(projectPath(p, b.species), output))
             throw HttpError{403, "project: blocks/" + std::to_string(i) + "/species = \"" +
-                                     b.species +
+                                     clip(b.species) +
                                      "\": outside the output folder (valid: a file "
                                      "under " +
                                      output.string() + ")"};
@@ -182,18 +227,42 @@ Project Server::Impl::requestProject(const json& j) const {
     for (std::size_t i = 0; i < p.obstacleFiles.size(); ++i)
         if (!isUnder(projectPath(p, p.obstacleFiles[i]), output))
             throw HttpError{403, "project: obstacles/files/" + std::to_string(i) + " = \"" +
-                                     p.obstacleFiles[i] + "\": outside the output folder"};
+                                     clip(p.obstacleFiles[i]) + "\": outside the output folder"};
     if (!p.attractionFile.empty() && !isUnder(projectPath(p, p.attractionFile), output))
-        throw HttpError{403, "project: attraction/file = \"" + p.attractionFile +
+        throw HttpError{403, "project: attraction/file = \"" + clip(p.attractionFile) +
                                  "\": outside the output folder"};
+    // The files each block's species names (textures, OBJ models). A species that does not
+    // load is left to the build, which refuses it.
+    std::set<std::string> checked;
+    for (std::size_t i = 0; i < p.blocks.size(); ++i) {
+        const std::string species = projectSpecies(p, p.blocks[i]);
+        if (!checked.insert(species).second) continue;
+        const std::string& named = written[i];
+        std::error_code ec;
+        if ((named.find('/') != std::string::npos || named.ends_with(".xml")) &&
+            !fs::is_regular_file(species, ec))
+            continue;  // a species file missing, a pipe...: checkProject says which
+        SpeciesModel model;
+        try {
+            model = loadSpecies(species);
+        } catch (const Error&) {
+            continue;
+        }
+        try {
+            confineSpecies(model, model.sourceFile);
+        } catch (const HttpError& e) {
+            throw HttpError{e.status, "project: blocks/" + std::to_string(i) + "/species = \"" +
+                                          clip(written[i]) + "\": " + e.message};
+        }
+    }
     return p;
 }
 
 void Server::Impl::assetRoutes() {
-    http.Get(".*", [this](const httplib::Request& req, httplib::Response& res) {
+    on("GET", ".*", [](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             if (req.path.starts_with("/api/") || req.path == "/api")
-                throw HttpError{404, "no such endpoint: GET " + req.path};
+                throw HttpError{404, "no such endpoint: GET " + clip(req.path)};
             const std::string path = req.path == "/" ? "/index.html" : req.path;
             for (const Asset& a : assets())
                 if (a.path == path) {
@@ -203,20 +272,13 @@ void Server::Impl::assetRoutes() {
                     res.set_content(std::string(a.bytes), std::string(a.contentType));
                     return;
                 }
-            throw HttpError{404, "no such file: " + req.path};
+            throw HttpError{404, "no such file: " + clip(req.path)};
         });
     });
 }
 
 void Server::Impl::routes() {
     http.set_payload_max_length(options.maxBodyBytes);
-    http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-        if (const auto e = refused(req)) {
-            sendJSON(res, {{"error", e->message}}, e->status);
-            return httplib::Server::HandlerResponse::Handled;
-        }
-        return httplib::Server::HandlerResponse::Unhandled;
-    });
     http.set_error_handler([this](const httplib::Request& req, httplib::Response& res) {
         if (!res.body.empty()) return;
         std::string message = "HTTP " + std::to_string(res.status);
@@ -224,38 +286,39 @@ void Server::Impl::routes() {
             message = "request body too large (valid: at most " +
                       std::to_string(options.maxBodyBytes) + " bytes)";
         else if (res.status == 404)
-            message = "no such endpoint: " + req.method + " " + req.path;
+            message = "no such endpoint: " + clip(req.method, 16) + " " + clip(req.path);
         else if (res.status == 405)
-            message = "method not allowed: " + req.method + " " + req.path;
+            message = "method not allowed: " + clip(req.method, 16) + " " + clip(req.path);
         sendJSON(res, {{"error", message}}, res.status);
     });
     http.set_exception_handler(
         [](const httplib::Request&, httplib::Response& res, std::exception_ptr) {
             sendJSON(res, {{"error", "internal error"}}, 500);
         });
-    http.Get("/api/config", [this](const httplib::Request&, httplib::Response& res) {
+    on("GET", "/api/config", [this](const httplib::Request&, httplib::Response& res) {
         sendJSON(res, {{"version", PLANTARCH_VERSION_STRING},
                        {"output", output.string()},
                        {"max_triangles", options.maxTriangles},
                        {"max_queued_builds", options.maxQueuedBuilds},
                        {"max_body_bytes", options.maxBodyBytes},
+                       {"max_json_depth", kMaxRequestDepth},
                        {"formats", {"obj", "ply", "glb", "gltf", "usda", "xml"}}});
     });
     speciesRoutes();
     buildRoutes();
     exportRoutes();
     projectRoutes();
-    // Unknown API endpoints of other methods.
-    for (const char* method : {"POST", "DELETE", "PUT"}) {
-        auto notFound = [method](const httplib::Request& req, httplib::Response& res) {
-            sendJSON(res, {{"error", std::string("no such endpoint: ") + method + " " + req.path}},
-                     404);
-        };
-        if (std::string(method) == "POST") http.Post(".*", notFound);
-        if (std::string(method) == "DELETE") http.Delete(".*", notFound);
-        if (std::string(method) == "PUT") http.Put(".*", notFound);
-    }
     assetRoutes();
+    // cpp-httplib hands every request to dispatch(), which routes it (and answers 404).
+    const auto all = [this](const httplib::Request& req, httplib::Response& res) {
+        dispatch(req, res);
+    };
+    http.Get(".*", all);
+    http.Post(".*", all);
+    http.Put(".*", all);
+    http.Patch(".*", all);
+    http.Delete(".*", all);
+    http.Options(".*", all);
 }
 
 Server::Server(ServerOptions options) : impl_(std::make_unique<Impl>(std::move(options))) {}
@@ -264,19 +327,86 @@ Server::~Server() {
     stop();
 }
 
+namespace {
+
+// Why binding `host`:`port` fails, found by trying it with a socket of our own (cpp-httplib
+// says only that it failed).
+std::string bindFailure(const std::string& host, int port) {
+    addrinfo hints{};
+    hints.ai_family = AF_UNSPEC;
+    hints.ai_socktype = SOCK_STREAM;
+    hints.ai_flags = AI_PASSIVE;
+    addrinfo* found = nullptr;
+    if (const int e = getaddrinfo(host.c_str(), std::to_string(port).c_str(), &hints, &found))
+        return std::string("not an address of this machine (") + gai_strerror(e) + ")";
+    int error = 0;
+    const int sock = socket(found->ai_family, found->ai_socktype, found->ai_protocol);
+    if (sock < 0) {
+        error = errno;
+    } else {
+        const int yes = 1;
+        setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+        if (::bind(sock, found->ai_addr, found->ai_addrlen) != 0 || listen(sock, 1) != 0)
+            error = errno;
+        close(sock);
+    }
+    freeaddrinfo(found);
+    if (error == EADDRINUSE) return "the port is in use (another program listens on it)";
+    if (error == EADDRNOTAVAIL) return "not an address of this machine";
+    if (error == EACCES) return "a port below 1024 needs privileges";
+    return error ? std::strerror(error) : "in use, or not an address of this machine";
+}
+
+}  // namespace
+
 int Server::bind() {
     Impl& s = *impl_;
+    // cpp-httplib's default sets SO_REUSEPORT, with which a second server binds the same port
+    // and the kernel shares the connections between the two: SO_REUSEADDR only (a restart
+    // still binds while old connections linger), so a port in use is refused.
+    s.http.set_socket_options([](int sock) {
+        const int yes = 1;
+        setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+    });
     const int port =
         s.options.port == 0
             ? s.http.bind_to_any_port(s.options.host)
             : (s.http.bind_to_port(s.options.host, s.options.port) ? s.options.port : -1);
-    if (port <= 0)
+    if (port <= 0) {
+        const std::string why = bindFailure(s.options.host, s.options.port);
+        const bool address = why.starts_with("not an address");
         throw Error("cannot listen on " + s.options.host + ":" + std::to_string(s.options.port) +
-                        " (in use, or not an address of this machine)",
-                    {.parameter = "--port", .validRange = "a free port, or another --host"});
+                        ": " + why,
+                    {.parameter = address ? "--host" : "--port",
+                     .value = address ? s.options.host : std::to_string(s.options.port),
+                     .validRange = address ? "an address of this machine (127.0.0.1)"
+                                           : "a free port, or 0 for any free port"});
+    }
     s.port = port;
-    s.routes();
     return port;
+}
+
+Server::Reply Server::handle(const std::string& method, const std::string& target,
+                             const std::vector<std::pair<std::string, std::string>>& headers,
+                             const std::string& body) {
+    httplib::Request req;
+    httplib::Response res;
+    req.method = method;
+    req.target = target;
+    const auto query = target.find('?');
+    req.path = httplib::detail::decode_url(target.substr(0, query), false);
+    if (query != std::string::npos)
+        httplib::detail::parse_query_text(target.substr(query + 1), req.params);
+    for (const auto& [name, value] : headers) req.headers.emplace(name, value);
+    req.body = body;
+    if (body.size() > impl_->options.maxBodyBytes)  // as cpp-httplib refuses it
+        sendJSON(res,
+                 {{"error", "request body too large (valid: at most " +
+                                std::to_string(impl_->options.maxBodyBytes) + " bytes)"}},
+                 413);
+    else
+        impl_->dispatch(req, res);
+    return {res.status, res.get_header_value("Content-Type"), res.body};
 }
 
 void Server::serve() {

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace plantarch::builder {
 
@@ -36,6 +38,20 @@ public:
     void stop();
     /// The output folder, absolute.
     std::string outputFolder() const;
+
+    /// An answer of handle().
+    struct Reply {
+        int status = 0;
+        std::string contentType;
+        std::string body;
+    };
+    /// Handles one request in this process, without sockets (tests, fuzzing), as the server
+    /// handles it once cpp-httplib has read it: `target` is the path and query as sent
+    /// ("/api/builds/b1?x=1"), the Host header is checked against the bound port (or
+    /// ServerOptions::port before bind()), a body over maxBodyBytes is refused (413).
+    Reply handle(const std::string& method, const std::string& target,
+                 const std::vector<std::pair<std::string, std::string>>& headers,
+                 const std::string& body = "");
 
     struct Impl;  ///< the server's state, for its route files (server_impl.h)
 

@@ -115,17 +115,20 @@ void Server::Impl::speciesRoutes() {
                 else if (value.is_number() || value.is_boolean())
                     changes[key] = value.dump();
                 else
-                    throw HttpError{400,
-                                    key + " = " + value.dump() +
-                                        ": expected the value as text, e.g. \"uniform(10, 30)\""};
+                    throw HttpError{400, clip(key) + " = " + shownJSON(value) +
+                                             ": expected the value as text, e.g. "
+                                             "\"uniform(10, 30)\""};
             }
         }
         (void)user;
         e.model = editSpecies(model, changes, e.name);
+        // The files it names: where the species is saved (or would be) is where they are
+        // looked for.
+        confineSpecies(e.model, output / "species" / ((e.name.empty() ? base : e.name) + ".xml"));
         return e;
     };
 
-    http.Get("/api/species", [this, load](const httplib::Request&, httplib::Response& res) {
+    on("GET", "/api/species", [this](const httplib::Request&, httplib::Response& res) {
         guarded(res, [&] {
             json list;
             {
@@ -157,7 +160,7 @@ void Server::Impl::speciesRoutes() {
             sendJSON(res, list);
         });
     });
-    http.Get("/api/species/([^/]+)", [load](const httplib::Request& req, httplib::Response& res) {
+    on("GET", "/api/species/([^/]+)", [load](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             bool user = false;
             SpeciesModel m = load(req.matches[1].str(), user);
@@ -165,61 +168,63 @@ void Server::Impl::speciesRoutes() {
             sendJSON(res, details(m, user));
         });
     });
-    http.Get("/api/species/([^/]+)/thumbnail.png",
-             [this, load](const httplib::Request& req, httplib::Response& res) {
-                 guarded(res, [&] {
-                     const std::string name = req.matches[1].str();
-                     bool user = false;
-                     const SpeciesModel m = load(name, user);
-                     std::string png;
-                     {
-                         std::lock_guard<std::mutex> lock(cache);
-                         if (const auto it = thumbnails.find(name); it != thumbnails.end())
-                             png = it->second;
-                     }
-                     if (png.empty()) {
-                         Context ctx;
-                         PlantArchitecture arch(&ctx);
-                         arch.setTriangleLimit(options.maxTriangles);
-                         arch.setSeed(1);
-                         arch.loadPlantModelFromLibrary(user ? userSpecies(name)->string() : name);
-                         arch.buildPlantInstanceFromLibrary(vec3(0.0f), m.recommendedAge);
-                         RenderOptions o;
-                         o.width = 256;
-                         o.height = 256;
-                         png = encodePNG(render(ctx, o));
-                         std::lock_guard<std::mutex> lock(cache);
-                         thumbnails[name] = png;
-                     }
-                     res.set_header("Cache-Control", "no-cache");
-                     res.set_content(png, "image/png");
-                 });
-             });
-    http.Post("/api/species/check", [edit](const httplib::Request& req, httplib::Response& res) {
+    on("GET", "/api/species/([^/]+)/thumbnail.png",
+       [this, load](const httplib::Request& req, httplib::Response& res) {
+           guarded(res, [&] {
+               const std::string name = req.matches[1].str();
+               bool user = false;
+               const SpeciesModel m = load(name, user);
+               confineSpecies(m, m.sourceFile);
+               std::string png;
+               {
+                   std::lock_guard<std::mutex> lock(cache);
+                   if (const auto it = thumbnails.find(name); it != thumbnails.end())
+                       png = it->second;
+               }
+               if (png.empty()) {
+                   Context ctx;
+                   PlantArchitecture arch(&ctx);
+                   arch.setTriangleLimit(options.maxTriangles);
+                   arch.setSeed(1);
+                   arch.loadPlantModelFromLibrary(user ? userSpecies(name)->string() : name);
+                   arch.buildPlantInstanceFromLibrary(vec3(0.0f), m.recommendedAge);
+                   confineScene(ctx);
+                   RenderOptions o;
+                   o.width = 256;
+                   o.height = 256;
+                   png = encodePNG(render(ctx, o));
+                   std::lock_guard<std::mutex> lock(cache);
+                   thumbnails[name] = png;
+               }
+               res.set_header("Cache-Control", "no-cache");
+               res.set_content(png, "image/png");
+           });
+       });
+    on("POST", "/api/species/check", [edit](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             edit(bodyJSON(req), false);
             sendJSON(res, {{"ok", true}});
         });
     });
-    http.Post("/api/species/save", [this, edit](const httplib::Request& req,
-                                                httplib::Response& res) {
-        guarded(res, [&] {
-            const Edit e = edit(bodyJSON(req), true);
-            const fs::path path = output / "species" / (e.name + ".xml");
-            if (!isUnder(path, output))
-                throw HttpError{403, "species/" + e.name +
-                                         ".xml: a symbolic link leads out of the output folder"};
-            {
-                std::lock_guard<std::mutex> lock(files);
-                writeSpeciesFile(e.model, path.string());
-            }
-            {
-                std::lock_guard<std::mutex> lock(cache);
-                thumbnails.erase(e.name);
-            }
-            sendJSON(res, {{"path", "species/" + e.name + ".xml"}, {"name", e.name}});
-        });
-    });
+    on("POST", "/api/species/save",
+       [this, edit](const httplib::Request& req, httplib::Response& res) {
+           guarded(res, [&] {
+               const Edit e = edit(bodyJSON(req), true);
+               const fs::path path = output / "species" / (e.name + ".xml");
+               if (!isUnder(path, output))
+                   throw HttpError{403, "species/" + e.name +
+                                            ".xml: a symbolic link leads out of the output folder"};
+               {
+                   std::lock_guard<std::mutex> lock(files);
+                   writeSpeciesFile(e.model, path.string());
+               }
+               {
+                   std::lock_guard<std::mutex> lock(cache);
+                   thumbnails.erase(e.name);
+               }
+               sendJSON(res, {{"path", "species/" + e.name + ".xml"}, {"name", e.name}});
+           });
+       });
 }
 
 }  // namespace plantarch::builder

@@ -11,6 +11,7 @@
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Project.h"
 #include "plantarch/SpeciesIO.h"
+#include "project/json_scan.h"
 #include "project/project_fields.h"
 
 namespace plantarch {
@@ -45,6 +46,29 @@ bool isSpeciesPath(const std::string& species) {
            (species.size() > 4 && species.compare(species.size() - 4, 4, ".xml") == 0);
 }
 
+// A block's species file exists and is a regular file: else an error naming the project file,
+// the field and the path looked for (the species reader's own error would name only the
+// species file, which the user never typed as such).
+void requireSpeciesFile(const Project& p, std::size_t i) {
+    const ProjectBlock& b = p.blocks[i];
+    if (!isSpeciesPath(b.species)) return;
+    const std::string full = projectPath(p, b.species);
+    std::error_code ec;
+    const auto status = std::filesystem::status(full, ec);
+    const std::string field = "blocks/" + std::to_string(i) + "/species";
+    const std::string valid = "a library species name or a species file (.xml)";
+    if (!std::filesystem::exists(status))
+        throw Error(
+            "no such species file" + (full == b.species ? "" : " (" + full + ")"),
+            {.file = fileOf(p), .parameter = field, .value = b.species, .validRange = valid});
+    if (!std::filesystem::is_regular_file(status))
+        throw Error(
+            std::string(std::filesystem::is_directory(status) ? "a directory"
+                                                              : "not a regular file") +
+                ", not a species file" + (full == b.species ? "" : " (" + full + ")"),
+            {.file = fileOf(p), .parameter = field, .value = b.species, .validRange = valid});
+}
+
 // The species of every block, loaded and its build parameters checked.
 std::vector<SpeciesModel> loadBlockSpecies(const Project& p) {
     std::vector<SpeciesModel> models;
@@ -53,6 +77,7 @@ std::vector<SpeciesModel> loadBlockSpecies(const Project& p) {
         const ProjectBlock& b = p.blocks[i];
         const std::string at = "blocks/" + std::to_string(i);
         const std::string species = projectSpecies(p, b);
+        requireSpeciesFile(p, i);
         if (const auto it = loaded.find(species); it != loaded.end()) {
             models.push_back(models[it->second]);
         } else {
@@ -67,10 +92,11 @@ std::vector<SpeciesModel> loadBlockSpecies(const Project& p) {
             try {
                 resolveBuildParameters(models.back(), {{name, value}});
             } catch (const Error& e) {
-                throw Error(e.message(), {.file = fileOf(p),
-                                          .parameter = at + "/parameters/" + name,
-                                          .value = e.value(),
-                                          .validRange = e.validRange()});
+                throw Error(e.message(),
+                            {.file = fileOf(p),
+                             .parameter = at + "/parameters/" + project::printable(name, 80),
+                             .value = e.value(),
+                             .validRange = e.validRange()});
             }
         }
     }

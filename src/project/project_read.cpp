@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -14,6 +13,7 @@
 #include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Project.h"
+#include "project/json_scan.h"
 #include "project/project_fields.h"
 
 namespace plantarch {
@@ -22,15 +22,32 @@ namespace {
 
 using json = nlohmann::json;
 
+// JSON text of `v` (compact, as dump() writes it), stopping once `out` holds more than `max`
+// bytes. The text was parsed within project::kMaxJSONDepth, so this recurses no deeper.
+void dumpShort(const json& v, std::string& out, std::size_t max) {
+    if (!v.is_structured()) {
+        out += v.dump(-1, ' ', false, json::error_handler_t::replace);
+        return;
+    }
+    out += v.is_array() ? '[' : '{';
+    for (auto it = v.begin(); it != v.end() && out.size() <= max; ++it) {
+        if (it != v.begin()) out += ',';
+        if (v.is_object())
+            out += json(it.key()).dump(-1, ' ', false, json::error_handler_t::replace) + ":";
+        dumpShort(*it, out, max);
+    }
+    out += v.is_array() ? ']' : '}';
+}
+
 // The value as a person reads it in an error: JSON text, cut short.
 std::string shown(const json& v) {
     // A whole number written with a fraction or exponent (1e6) shown as a whole number.
     if (v.is_number_float() && std::isfinite(v.get<double>()) &&
         v.get<double>() == std::floor(v.get<double>()) && std::fabs(v.get<double>()) < 1e15)
         return std::to_string(std::int64_t(v.get<double>()));
-    std::string text = v.dump();
-    if (text.size() > 60) text = text.substr(0, 57) + "...";
-    return text;
+    std::string text;
+    dumpShort(v, text, 80);
+    return project::printable(text, text.size() > 60 ? 57 : 60);
 }
 
 class Reader {
@@ -40,7 +57,7 @@ public:
     [[noreturn]] void fail(const std::string& field, const std::string& message,
                            const json* value = nullptr, const std::string& range = "") const {
         throw Error(message, {.file = file_,
-                              .parameter = field,
+                              .parameter = project::printable(field, 160),
                               .value = value ? shown(*value) : "",
                               .validRange = range});
     }
@@ -74,8 +91,22 @@ public:
             fail(field, "out of range", &j, range);
         return v;
     }
+    // A number kept as a float: the float too is in range (1e-50 is > 0, but as a float 0),
+    // so that the project written reads back.
     float number(const json& j, const std::string& field, const Range& r) const {
-        return float(number(j, field, r.lo, r.hi, r.text, r.loOpen, r.whole, r.hiOpen));
+        const float v = float(number(j, field, r.lo, r.hi, r.text, r.loOpen, r.whole, r.hiOpen));
+        if (v < r.lo || v > r.hi || (r.loOpen && v == float(r.lo)) ||
+            (r.hiOpen && v == float(r.hi)))
+            fail(field, "out of range (as a 32-bit float)", &j, r.text);
+        return v;
+    }
+    // A file or species name: text without control characters.
+    std::string name(const json& j, const std::string& field, const std::string& range) const {
+        std::string s = string(j, field);
+        if (s.empty()) fail(field, "empty", &j, range);
+        if (std::any_of(s.begin(), s.end(), [](char c) { return (unsigned char)c < 0x20; }))
+            fail(field, "a control character in a name", &j, range);
+        return s;
     }
     bool flag(const json& j, const std::string& field) const {
         if (!j.is_boolean()) fail(field, "expected true or false", &j, "true, false");
@@ -124,8 +155,30 @@ private:
     std::string file_;
 };
 
-// Text -> JSON, with a duplicate key an error (a parser callback sees every key).
-json parseJSON(const std::string& text, const std::string& file) {
+// Text -> JSON, with a duplicate key an error (a parser callback sees every key). The text is
+// scanned first (json_scan.h): nesting deeper than kMaxJSONDepth and UTF-16 or UTF-32 text are
+// refused; each number beyond a double's range is read as 1e308 (of its sign), out of every
+// field's range, and listed in `overflows` for readProjectString to name in the error.
+json parseJSON(const std::string& text, const std::string& file,
+               std::vector<project::JSONScan::Overflow>& overflows) {
+    project::JSONScan scan = project::scanJSON(text);
+    if (!scan.encoding.empty())
+        throw Error("not a JSON document: the text is " + scan.encoding,
+                    {.file = file, .line = 1, .validRange = "UTF-8 text"});
+    if (scan.tooDeep)
+        throw Error("nested too deep",
+                    {.file = file,
+                     .line = scan.deepLine,
+                     .parameter = scan.deepField,
+                     .validRange = "arrays and objects nested at most " +
+                                   std::to_string(project::kMaxJSONDepth) + " deep"});
+    std::string substituted;
+    if (!scan.overflows.empty()) {
+        substituted = text;
+        for (auto o = scan.overflows.rbegin(); o != scan.overflows.rend(); ++o)
+            substituted.replace(o->offset, o->length, o->negative ? "-1e308" : "1e308");
+    }
+    const std::string& input = scan.overflows.empty() ? text : substituted;
     std::vector<std::set<std::string>> keys;
     std::string duplicate;
     const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
@@ -138,21 +191,29 @@ json parseJSON(const std::string& text, const std::string& file) {
     };
     json j;
     try {
-        j = json::parse(text, callback);
+        j = json::parse(input, callback);
     } catch (const json::parse_error& e) {
         int line = 1;
-        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
+        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, input.size());
              ++i)
-            if (text[i] == '\n') ++line;
+            if (input[i] == '\n') ++line;
         std::string why = e.what();
         if (const auto colon = why.find(": "); colon != std::string::npos)
             why = why.substr(colon + 2);  // past "[json.exception...] parse error at ...: "
-        throw Error("not a JSON document: " + why, {.file = file, .line = line});
+        throw Error("not a JSON document: " + project::printable(why, 160),
+                    {.file = file, .line = line});
+    } catch (const json::exception& e) {
+        // Not expected after the scan (a number out of range is read as 1e308); one line.
+        std::string why = e.what();
+        if (const auto bracket = why.find("] "); bracket != std::string::npos)
+            why = why.substr(bracket + 2);
+        throw Error("not a JSON document: " + project::printable(why, 160), {.file = file});
     }
     if (!duplicate.empty())
-        throw Error(
-            "a field given twice",
-            {.file = file, .parameter = duplicate, .validRange = "each field once per object"});
+        throw Error("a field given twice", {.file = file,
+                                            .parameter = project::printable(duplicate, 160),
+                                            .validRange = "each field once per object"});
+    overflows = std::move(scan.overflows);
     return j;
 }
 
@@ -183,9 +244,7 @@ void readObstacles(const Reader& r, const json& j, Project& p) {
             r.fail("obstacles/files", "expected a list [\"file.obj\", ...]", &files);
         for (std::size_t i = 0; i < files.size(); ++i) {
             const std::string field = "obstacles/files/" + std::to_string(i);
-            const std::string f = r.string(files[i], field);
-            if (f.empty()) r.fail(field, "empty file name", &files[i], "an OBJ file");
-            p.obstacleFiles.push_back(f);
+            p.obstacleFiles.push_back(r.name(files[i], field, "an OBJ file"));
         }
     }
     if (j.contains("avoid_distance"))
@@ -210,9 +269,7 @@ void readAttraction(const Reader& r, const json& j, Project& p) {
                 r.point(points[i], "attraction/points/" + std::to_string(i)));
     }
     if (j.contains("file") && !j["file"].is_null()) {
-        p.attractionFile = r.string(j["file"], "attraction/file");
-        if (p.attractionFile.empty())
-            r.fail("attraction/file", "empty file name", &j["file"], "a CSV file, or null");
+        p.attractionFile = r.name(j["file"], "attraction/file", "a CSV file, or null");
     }
     if (j.contains("cone")) {
         const auto v = r.numbers(j["cone"], "attraction/cone", 3, attractionConeRanges(),
@@ -249,9 +306,7 @@ ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, st
     }
     if (!j.contains("species"))
         r.fail(field("species"), "missing", nullptr, "a species name or file");
-    b.species = r.string(j["species"], field("species"));
-    if (b.species.empty())
-        r.fail(field("species"), "empty species", &j["species"], "a species name or file");
+    b.species = r.name(j["species"], field("species"), "a species name or file");
     if (j.contains("origin")) b.origin = r.point(j["origin"], field("origin"));
     if (b.layout == ProjectBlock::Layout::Grid) {
         if (j.contains("count")) {
@@ -285,13 +340,10 @@ ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, st
     return b;
 }
 
-}  // namespace
-
-Project readProjectString(const std::string& text, const std::string& nameForErrors,
-                          const std::string& folder) {
-    const std::string file = nameForErrors.empty() ? "project" : nameForErrors;
-    const Reader r(file);
-    const json j = parseJSON(text, file);
+// The project of parsed JSON `j`.
+Project readProject(const Reader& r, const json& j, const std::string& nameForErrors,
+                    const std::string& folder) {
+    const std::string& file = r.file();
     r.object(j, "", projectFields());
     if (!j.contains("plantarch_project"))
         throw Error("not a plantarch project: no \"plantarch_project\": 1",
@@ -321,21 +373,45 @@ Project readProjectString(const std::string& text, const std::string& nameForErr
             const std::string at = "blocks/" + std::to_string(i);
             p.blocks.push_back(readBlock(r, blocks[i], at, i));
             const auto [it, fresh] = names.emplace(p.blocks.back().name, i);
-            if (!fresh)
+            if (!fresh) {
+                // The name as written, or the default ("block 2") of a block without one.
+                const json name = p.blocks.back().name;
                 r.fail(at + "/name",
                        "another block has this name (blocks/" + std::to_string(it->second) + ")",
-                       &blocks[i]["name"], "a name of its own");
+                       &name, "a name of its own");
+            }
         }
     }
     return p;
 }
 
+}  // namespace
+
+Project readProjectString(const std::string& text, const std::string& nameForErrors,
+                          const std::string& folder) {
+    const std::string file = nameForErrors.empty() ? "project" : nameForErrors;
+    const Reader r(file);
+    std::vector<project::JSONScan::Overflow> overflows;
+    const json j = parseJSON(text, file, overflows);
+    try {
+        return readProject(r, j, nameForErrors, folder);
+    } catch (const Error& e) {
+        // A number beyond a double's range was read as 1e308: the error about it shows the
+        // number as written, on its line.
+        for (const auto& o : overflows)
+            if (e.parameter() == o.field)
+                throw Error(e.message(), {.file = file,
+                                          .line = o.line,
+                                          .parameter = e.parameter(),
+                                          .value = o.token,
+                                          .validRange = e.validRange()});
+        throw;
+    }
+}
+
 Project readProjectFile(const std::string& path) {
+    // Regular files only, at most the project file limit (16 MiB), read without blocking.
     const std::string text = io::readWholeFile(path, io::kProjectFile);
-    if (text.size() > kMaxProjectBytes)
-        throw Error("project file too large", {.file = path,
-                                               .value = std::to_string(text.size()) + " bytes",
-                                               .validRange = "at most 16 MB"});
     std::string folder = std::filesystem::path(path).parent_path().string();
     return readProjectString(text, path, folder.empty() ? "." : folder);
 }
