@@ -129,8 +129,7 @@ TEST_F(CliProject, PipesAreNotReadAsProjectsSpeciesOrObstacles) {
     const std::string cli = "timeout 60 " + std::string(PLANTARCH_CLI);
     const auto project = cli::runShell(cli + " project check " + at("pipe.json") + " 2>&1");
     EXPECT_EQ(project.status, 2);
-    EXPECT_EQ(project.out, "plantarch: " + at("pipe.json") +
-                               ": is a FIFO, not a project file\n");
+    EXPECT_EQ(project.out, "plantarch: " + at("pipe.json") + ": is a FIFO, not a project file\n");
     put(at("s.json"), R"({"plantarch_project": 1, "blocks": [{"species": "pipe.xml"}]})");
     const auto species = cli::runShell(cli + " project check " + at("s.json") + " 2>&1");
     EXPECT_EQ(species.status, 2);

@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "core/value_text.h"
-#include "model/plant_state_table.h"
 #include "io/plant_structure.h"
+#include "model/plant_state_table.h"
 #include "plantarch/ParameterTable.h"
 
 namespace plantarch::plant_io {
