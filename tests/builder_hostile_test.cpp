@@ -227,6 +227,15 @@ TEST_F(BuilderHostile, RequestsAreHandledInProcessWithoutSockets) {
         server_->handle("GET", "/api/export/download?build=b9&per_plant=maybe", host);
     EXPECT_EQ(download.status, 400);
     EXPECT_NE(download.body.find("per_plant = maybe"), std::string::npos) << download.body;
+    // A handler that sets only the content answers 200, as through cpp-httplib (the fuzzer's
+    // first finding: a zip download answered -1).
+    const std::string id = build(beans(2, 1, 8));
+    ASSERT_EQ(waitFor(id)["state"], "done");
+    const Server::Reply zip = server_->handle(
+        "GET", "/api/export/download?build=" + id + "&format=ply&per_plant=true&name=f", host);
+    EXPECT_EQ(zip.status, 200);
+    EXPECT_EQ(zip.contentType, "application/zip");
+    EXPECT_EQ(zip.body.substr(0, 2), "PK");
 }
 
 TEST_F(BuilderHostile, APortInUseIsRefused) {

@@ -406,7 +406,8 @@ Server::Reply Server::handle(const std::string& method, const std::string& targe
                  413);
     else
         impl_->dispatch(req, res);
-    return {res.status, res.get_header_value("Content-Type"), res.body};
+    // A handler that only sets content leaves the status to cpp-httplib, which makes it 200.
+    return {res.status == -1 ? 200 : res.status, res.get_header_value("Content-Type"), res.body};
 }
 
 void Server::serve() {
