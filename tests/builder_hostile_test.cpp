@@ -219,6 +219,14 @@ TEST_F(BuilderHostile, RequestsAreHandledInProcessWithoutSockets) {
     EXPECT_EQ(server_->handle("GET", "/api/species/a.b", host).status, 400);
     EXPECT_EQ(server_->handle("GET", "/api/species/bean", host).status, 200);
     EXPECT_EQ(server_->handle("PATCH", "/api/config", host).status, 404);
+    // A path with an encoded line break (cpp-httplib decodes it) is quoted on one line (the
+    // fuzzer's second finding).
+    const Server::Reply newline = server_->handle("GET", "/0%0api/x", host);
+    EXPECT_EQ(newline.status, 404);
+    EXPECT_EQ(json::parse(newline.body)["error"], "no such endpoint: GET /0\\npi/x");
+    auto viaSocket = client_->Get("/api/x%0ay");
+    ASSERT_TRUE(viaSocket);
+    EXPECT_EQ(errorOf(viaSocket), "no such endpoint: GET /api/x\\ny");
     const Server::Reply deep =
         server_->handle("POST", "/api/species/check", host, "{\"base\": " + nested(100000) + "}");
     EXPECT_EQ(deep.status, 400);
