@@ -219,6 +219,14 @@ TEST_F(BuilderHostile, RequestsAreHandledInProcessWithoutSockets) {
     EXPECT_EQ(server_->handle("GET", "/api/species/a.b", host).status, 400);
     EXPECT_EQ(server_->handle("GET", "/api/species/bean", host).status, 200);
     EXPECT_EQ(server_->handle("PATCH", "/api/config", host).status, 404);
+    // A path with an encoded line break (cpp-httplib decodes it) is quoted on one line (the
+    // fuzzer's second finding).
+    const Server::Reply newline = server_->handle("GET", "/0%0api/x", host);
+    EXPECT_EQ(newline.status, 404);
+    EXPECT_EQ(json::parse(newline.body)["error"], "no such endpoint: GET /0\\npi/x");
+    auto viaSocket = client_->Get("/api/x%0ay");
+    ASSERT_TRUE(viaSocket);
+    EXPECT_EQ(errorOf(viaSocket), "no such endpoint: GET /api/x\\ny");
     const Server::Reply deep =
         server_->handle("POST", "/api/species/check", host, "{\"base\": " + nested(100000) + "}");
     EXPECT_EQ(deep.status, 400);
@@ -227,6 +235,15 @@ TEST_F(BuilderHostile, RequestsAreHandledInProcessWithoutSockets) {
         server_->handle("GET", "/api/export/download?build=b9&per_plant=maybe", host);
     EXPECT_EQ(download.status, 400);
     EXPECT_NE(download.body.find("per_plant = maybe"), std::string::npos) << download.body;
+    // A handler that sets only the content answers 200, as through cpp-httplib (the fuzzer's
+    // first finding: a zip download answered -1).
+    const std::string id = build(beans(2, 1, 8));
+    ASSERT_EQ(waitFor(id)["state"], "done");
+    const Server::Reply zip = server_->handle(
+        "GET", "/api/export/download?build=" + id + "&format=ply&per_plant=true&name=f", host);
+    EXPECT_EQ(zip.status, 200);
+    EXPECT_EQ(zip.contentType, "application/zip");
+    EXPECT_EQ(zip.body.substr(0, 2), "PK");
 }
 
 TEST_F(BuilderHostile, APortInUseIsRefused) {

@@ -101,7 +101,18 @@ private:
 }  // namespace
 
 std::string clip(const std::string& text, std::size_t max) {
-    return text.size() <= max ? text : text.substr(0, max) + "...";
+    // Line breaks as \n, other control characters as '?': one line whatever the request holds
+    // (its path too: cpp-httplib decodes %0a).
+    std::string out;
+    for (const char c : text.size() <= max ? text : text.substr(0, max)) {
+        if (c == '\n')
+            out += "\\n";
+        else if (c == '\r')
+            out += "\\r";
+        else
+            out += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
+    }
+    return text.size() <= max ? out : out + "...";
 }
 
 std::string shownJSON(const json& value) {

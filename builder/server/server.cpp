@@ -32,16 +32,7 @@ void sendJSON(httplib::Response& res, const json& body, int status) {
 }
 
 std::string oneLine(const std::string& message) {
-    std::string out;
-    for (const char c : clip(message, 1000)) {
-        if (c == '\n')
-            out += "\\n";
-        else if (c == '\r')
-            out += "\\r";
-        else
-            out += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
-    }
-    return out;
+    return clip(message, 1000);
 }
 
 void guarded(httplib::Response& res, const std::function<void()>& handler) {
@@ -178,15 +169,14 @@ std::optional<HttpError> Server::Impl::refused(const httplib::Request& req) cons
         hosts.push_back(options.host + portText);
     const std::string host = req.get_header_value("Host");
     if (std::find(hosts.begin(), hosts.end(), host) == hosts.end())
-        return HttpError{403, "Host = \"" + host.substr(0, 80) +
-                                  "\": not this server (valid: 127.0.0.1" + portText +
-                                  " or localhost" + portText + ")"};
+        return HttpError{403, "Host = \"" + clip(host) + "\": not this server (valid: 127.0.0.1" +
+                                  portText + " or localhost" + portText + ")"};
     const bool changes = req.method != "GET" && req.method != "HEAD";
     if (changes && req.has_header("Origin")) {
         const std::string origin = req.get_header_value("Origin");
         if (std::none_of(hosts.begin(), hosts.end(),
                          [&](const std::string& h) { return origin == "http://" + h; }))
-            return HttpError{403, "Origin = \"" + origin.substr(0, 80) +
+            return HttpError{403, "Origin = \"" + clip(origin) +
                                       "\": requests that change anything come from the "
                                       "builder's own page (valid: http://127.0.0.1" +
                                       portText + ")"};
@@ -406,7 +396,8 @@ Server::Reply Server::handle(const std::string& method, const std::string& targe
                  413);
     else
         impl_->dispatch(req, res);
-    return {res.status, res.get_header_value("Content-Type"), res.body};
+    // A handler that only sets content leaves the status to cpp-httplib, which makes it 200.
+    return {res.status == -1 ? 200 : res.status, res.get_header_value("Content-Type"), res.body};
 }
 
 void Server::serve() {

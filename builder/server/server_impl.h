@@ -103,7 +103,8 @@ void sendJSON(httplib::Response& res, const json& body, int status = 200);
 /// The request body as JSON (400 when it is not JSON, not an object, nested deeper than
 /// kMaxRequestDepth or holds a number beyond a double's range; request_json.cpp).
 json bodyJSON(const httplib::Request& req);
-/// At most `max` bytes of `text` (for quoting a request's text in a message), "..." when cut.
+/// At most `max` bytes of `text` (for quoting a request's text in a message), "..." when cut,
+/// its line breaks written as \n and other control characters as '?'.
 std::string clip(const std::string& text, std::size_t max = 80);
 /// `message` cut to 1000 bytes, its line breaks written as \n and other control characters
 /// as '?': one line.
