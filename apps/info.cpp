@@ -219,8 +219,9 @@ void printMarkdown() {
         "This is the list the species reader accepts, the writer writes, validation checks and\n"
         "`plantarch info` prints. How each kind of value is written, and the rest of the file\n"
         "format, is in [species-format.md](species-format.md#values). Units: metres, degrees,\n"
-        "days. A range bounds every value a distribution can take (a normal distribution's mean\n"
-        "plus and minus three standard deviations).\n");
+        "days. A range bounds every value a distribution can take: a normal draw is limited to\n"
+        "its mean plus and minus three standard deviations, a Weibull draw to its 99.9 %%\n"
+        "quantile.\n");
     for (const Section& s : sections()) {
         std::printf("\n## %s: `%s`\n", s.title, s.element);
         std::string group = "-";

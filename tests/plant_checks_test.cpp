@@ -279,3 +279,46 @@ TEST(PlantChecks, AStringsUnknownShootTypeGetsDefaultsWithItsVariants) {
                                 " leaf shape variants as given") != std::string::npos;
     EXPECT_TRUE(named) << (warnings.empty() ? "no warning" : warnings[0]);
 }
+
+TEST(PlantChecks, DistributionTailsNeverRealizeAValueTheCheckRefuses) {
+    // normal(0.09, 0.03) fits prototype_scale's range (0 to 10) only by its mean - 3 stddev
+    // (0, to float rounding); a draw further out takes that limit, so thousands of leaves hold
+    // no negative scale, some sit exactly at the limit, and the file written reads back.
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    ShootParameters sp;
+    sp.phytomer_parameters.leaf.leaves_per_petiole = 5;
+    sp.phytomer_parameters.leaf.leaflet_offset = 0.2f;
+    const RandomFloat scale = RandomFloat::normal(0.09f, 0.03f);
+    ASSERT_GE(scale.lowerBound(), 0.0f);
+    ASSERT_LT(scale.lowerBound(), 1e-6f);
+    sp.phytomer_parameters.leaf.prototype_scale = scale;
+    sp.max_nodes = 60;
+    arch.defineShootType("stem", sp);
+    std::vector<unsigned> ids;
+    for (int i = 0; i < 20; ++i) {
+        const unsigned p = arch.addPlantInstance(vec3(float(i), 0, 0), 0.0f);
+        arch.addBaseStemShoot(p, {60, {0, 0, 0}, {0.002f, 0.02f, 1.0f, 1.0f}, 0.0f, "stem"});
+        ids.push_back(p);
+    }
+    std::size_t leaves = 0, atLimit = 0;
+    float smallest = 1.0f;
+    for (unsigned id : ids)
+        for (const Shoot& s : arch.plant(id).shoots)
+            for (const Phytomer& ph : s.phytomers)
+                for (const Petiole& pt : ph.petioles)
+                    for (const LeafOrgan& l : pt.leaves) {
+                        ++leaves;
+                        smallest = std::min(smallest, l.scale);
+                        atLimit += l.scale == scale.lowerBound() ? 1 : 0;
+                    }
+    EXPECT_EQ(leaves, 20u * 60u * 5u);
+    EXPECT_EQ(smallest, scale.lowerBound());
+    EXPECT_GT(atLimit, 0u);  // about 0.135 % of 6000 leaves
+    const std::string xml = arch.getPlantStructureXML(ids);
+    EXPECT_EQ(xml.find("<leaf_scale>-"), std::string::npos);
+    Context ctx2;
+    PlantArchitecture back(&ctx2);
+    EXPECT_EQ(back.readPlantStructureXMLString(xml).size(), ids.size());
+    EXPECT_EQ(back.getPlantStructureXML(back.getAllPlantIDs()), xml);
+}

@@ -58,13 +58,44 @@ Moments normalMoments(double mean, double stddev) {
     return {mean, v, 3.0 * v * v};
 }
 
-// Raw moments of Weibull(k, lambda) are lambda^n Gamma(1 + n / k).
-Moments weibullMoments(double shape, double scale) {
-    auto raw = [&](int n) { return std::pow(scale, n) * std::tgamma(1.0 + n / shape); };
-    const double m1 = raw(1), m2 = raw(2), m3 = raw(3), m4 = raw(4);
-    const double variance = m2 - m1 * m1;
-    const double fourth = m4 - 4.0 * m3 * m1 + 6.0 * m2 * m1 * m1 - 3.0 * m1 * m1 * m1 * m1;
-    return {m1, variance, fourth};
+// Moments of a draw limited to [lo, hi]: `expect(g)` is E[g(X)] of the limited variable.
+Moments momentsOf(const std::function<double(const std::function<double(double)>&)>& expect) {
+    const double mean = expect([](double x) { return x; });
+    const double variance = expect([&](double x) { return (x - mean) * (x - mean); });
+    const double fourth = expect([&](double x) { return std::pow(x - mean, 4.0); });
+    return {mean, variance, fourth};
+}
+
+// Normal(mean, stddev) limited to mean +- 3 stddev: the density inside (midpoint rule) and
+// each tail's probability, 0.5 erfc(3 / sqrt 2), at its limit.
+Moments limitedNormalMoments(double mean, double stddev) {
+    return momentsOf([&](const std::function<double(double)>& g) {
+        const int n = 20000;
+        const double h = 6.0 / n;
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double z = -3.0 + (i + 0.5) * h;
+            sum += g(mean + stddev * z) * std::exp(-0.5 * z * z) * h;
+        }
+        sum /= std::sqrt(2.0 * std::numbers::pi);
+        const double tail = 0.5 * std::erfc(3.0 / std::sqrt(2.0));
+        return sum + tail * (g(mean - 3.0 * stddev) + g(mean + 3.0 * stddev));
+    });
+}
+
+// Weibull(shape, scale) limited to its 99.9 % quantile: the quantile function integrated
+// over u in [0, 0.999] (midpoint rule), and 0.001 at the limit.
+Moments limitedWeibullMoments(double shape, double scale) {
+    const auto quantile = [&](double u) {
+        return scale * std::pow(-std::log(1.0 - u), 1.0 / shape);
+    };
+    return momentsOf([&](const std::function<double(double)>& g) {
+        const int n = 200000;
+        const double h = 0.999 / n;
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) sum += g(quantile((i + 0.5) * h)) * h;
+        return sum + 0.001 * g(quantile(0.999));
+    });
 }
 
 // A discrete uniform on n consecutive integers starting at lo.
@@ -536,7 +567,50 @@ TEST(RandomFloatTest, UniformWithEqualBoundsReturnsMin) {
 TEST(RandomFloatTest, NormalStatistics) {
     const RandomFloat p = RandomFloat::normal(-1.5f, 5.0f);
     Rng rng(33, 0);
-    expectMoments([&] { return double(p.sample(rng)); }, normalMoments(-1.5, 5.0));
+    expectMoments([&] { return double(p.sample(rng)); }, limitedNormalMoments(-1.5, 5.0));
+}
+
+TEST(RandomFloatTest, NormalDrawsStayWithinThreeStddev) {
+    // 200k draws: about 270 on each side would fall beyond 3 stddev and take the limit.
+    const RandomFloat p = RandomFloat::normal(2.0f, 0.5f);
+    EXPECT_EQ(p.lowerBound(), 0.5f);
+    EXPECT_EQ(p.upperBound(), 3.5f);
+    Rng rng(39, 0);
+    int low = 0, high = 0;
+    for (int i = 0; i < kSamples; ++i) {
+        const float x = p.sample(rng);
+        ASSERT_GE(x, 0.5f);
+        ASSERT_LE(x, 3.5f);
+        low += x == 0.5f ? 1 : 0;
+        high += x == 3.5f ? 1 : 0;
+    }
+    const double tail = 0.5 * std::erfc(3.0 / std::sqrt(2.0));
+    expectFrequency(low, kSamples, tail);
+    expectFrequency(high, kSamples, tail);
+}
+
+TEST(RandomFloatTest, WeibullDrawsStayBelowTheirQuantileLimit) {
+    const RandomFloat p = RandomFloat::weibull(0.8f, 3.0f);
+    const auto limit = float(3.0 * std::pow(std::log(1000.0), 1.0 / 0.8));
+    EXPECT_FLOAT_EQ(p.upperBound(), limit);
+    Rng rng(40, 0);
+    int atLimit = 0;
+    for (int i = 0; i < kSamples; ++i) {
+        const float x = p.sample(rng);
+        ASSERT_LE(x, p.upperBound());
+        atLimit += x == p.upperBound() ? 1 : 0;
+    }
+    expectFrequency(atLimit, kSamples, 0.001);
+}
+
+TEST(RandomFloatTest, LimitsPastFloatRangeAreInfinite) {
+    const float big = std::numeric_limits<float>::max();
+    EXPECT_EQ(RandomFloat::normal(big, big).upperBound(), kInf);
+    EXPECT_EQ(RandomFloat::normal(-big, big).lowerBound(), -kInf);
+    EXPECT_EQ(RandomFloat::weibull(0.01f, 1e30f).upperBound(), kInf);
+    Rng rng(41, 0);
+    for (int i = 0; i < 1000; ++i)
+        EXPECT_FALSE(std::isnan(RandomFloat::weibull(0.01f, 1e30f).sample(rng)));
 }
 
 TEST(RandomFloatTest, NormalWithZeroStddevReturnsTheMean) {
@@ -561,7 +635,7 @@ TEST(RandomFloatTest, WeibullStatistics) {
                 EXPECT_GE(x, 0.0f);
                 return double(x);
             },
-            weibullMoments(shape, scale));
+            limitedWeibullMoments(shape, scale));
     }
 }
 
@@ -613,10 +687,11 @@ TEST(RandomFloatTest, Bounds) {
     EXPECT_EQ(RandomFloat(2.0f).upperBound(), 2.0f);
     EXPECT_EQ(RandomFloat::uniform(-1.0f, 4.0f).lowerBound(), -1.0f);
     EXPECT_EQ(RandomFloat::uniform(-1.0f, 4.0f).upperBound(), 4.0f);
-    EXPECT_EQ(RandomFloat::normal(0.0f, 1.0f).lowerBound(), -kInf);
-    EXPECT_EQ(RandomFloat::normal(0.0f, 1.0f).upperBound(), kInf);
+    EXPECT_EQ(RandomFloat::normal(0.0f, 1.0f).lowerBound(), -3.0f);
+    EXPECT_EQ(RandomFloat::normal(0.0f, 1.0f).upperBound(), 3.0f);
     EXPECT_EQ(RandomFloat::weibull(1.5f, 2.0f).lowerBound(), 0.0f);
-    EXPECT_EQ(RandomFloat::weibull(1.5f, 2.0f).upperBound(), kInf);
+    EXPECT_FLOAT_EQ(RandomFloat::weibull(1.5f, 2.0f).upperBound(),
+                    float(2.0 * std::pow(std::log(1000.0), 1.0 / 1.5)));
 }
 
 TEST(RandomFloatTest, DescribeFormats) {

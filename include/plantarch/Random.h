@@ -86,7 +86,9 @@ public:
     float sample(Rng& rng) const;
     /// The distribution's mean (the constant itself for a constant).
     float mean() const;
-    /// Smallest and largest value a draw can take (infinite tails give +-inf or 0).
+    /// Smallest and largest value a draw can take. A normal draw is limited to mean +- 3
+    /// stddev and a Weibull draw to its 99.9 % quantile, scale (ln 1000)^(1 / shape) (a draw
+    /// past a limit takes the limit): the bounds species validation checks against a range.
     float lowerBound() const;
     float upperBound() const;
     /// Readable form: "20", "uniform(10, 30)", "normal(0, 5)", "weibull(1.5, 2)".

@@ -18,6 +18,18 @@ namespace plantarch {
 
 namespace {
 
+// The limits of a normal draw (in standard deviations) and of a Weibull draw (a quantile).
+constexpr double kNormalLimit = 3.0;
+constexpr double kWeibullLimit = 0.999;
+
+// A double as a float, infinite past float's range (a plain cast there is undefined).
+float toFloat(double v) {
+    constexpr double kMax = std::numeric_limits<float>::max();
+    if (v > kMax) return std::numeric_limits<float>::infinity();
+    if (v < -kMax) return -std::numeric_limits<float>::infinity();
+    return static_cast<float>(v);
+}
+
 // ---- generator constants --------------------------------------------------------------------
 
 // The 64-bit LCG multiplier used by PCG (Knuth's MMIX multiplier).
@@ -173,7 +185,7 @@ double Rng::normal01() {
 }
 
 float Rng::normal(float mean, float stddev) {
-    return static_cast<float>(static_cast<double>(mean) + static_cast<double>(stddev) * normal01());
+    return toFloat(static_cast<double>(mean) + static_cast<double>(stddev) * normal01());
 }
 
 bool Rng::chance(float p) {
@@ -224,12 +236,16 @@ float RandomFloat::sample(Rng& rng) const {
             // Rng::uniform returns a_ exactly when a_ == b_, still consuming its one draw.
             return rng.uniform(a_, b_);
         case Kind::Normal:
-            return rng.normal(a_, b_);
+            // Limited to mean +- 3 stddev (the bounds species validation checks against the
+            // field's range), so a rare far tail cannot realize an impossible size.
+            return std::clamp(rng.normal(a_, b_), lowerBound(), upperBound());
         case Kind::Weibull: {
-            // Inversion of F(x) = 1 - exp(-(x / scale)^shape); 1 - u lies in (0, 1].
+            // Inversion of F(x) = 1 - exp(-(x / scale)^shape); 1 - u lies in (0, 1]. Limited
+            // above to the 99.9 % quantile, the bound species validation checks.
             const double u = rng.uniform01d();
             const double e = -std::log(1.0 - u);
-            return static_cast<float>(static_cast<double>(b_) * std::pow(e, 1.0 / a_));
+            const float x = toFloat(static_cast<double>(b_) * std::pow(e, 1.0 / a_));
+            return std::min(x, upperBound());
         }
     }
     return a_;
@@ -243,7 +259,7 @@ float RandomFloat::mean() const {
         case Kind::Uniform:
             return static_cast<float>((static_cast<double>(a_) + b_) / 2.0);
         case Kind::Weibull:
-            return static_cast<float>(b_ * std::tgamma(1.0 + 1.0 / a_));
+            return toFloat(double(b_) * std::tgamma(1.0 + 1.0 / double(a_)));
     }
     return a_;
 }
@@ -254,7 +270,7 @@ float RandomFloat::lowerBound() const {
         case Kind::Uniform:
             return a_;
         case Kind::Normal:
-            return b_ == 0.0f ? a_ : -std::numeric_limits<float>::infinity();
+            return toFloat(double(a_) - kNormalLimit * double(b_));
         case Kind::Weibull:
             return 0.0f;
     }
@@ -268,9 +284,10 @@ float RandomFloat::upperBound() const {
         case Kind::Uniform:
             return b_;
         case Kind::Normal:
-            return b_ == 0.0f ? a_ : std::numeric_limits<float>::infinity();
+            return toFloat(double(a_) + kNormalLimit * double(b_));
         case Kind::Weibull:
-            return std::numeric_limits<float>::infinity();
+            // The 99.9 % quantile, scale * (-ln 0.001)^(1 / shape) (infinite past float range).
+            return toFloat(double(b_) * std::pow(-std::log(1.0 - kWeibullLimit), 1.0 / double(a_)));
     }
     return a_;
 }
