@@ -70,10 +70,13 @@ SpeciesModel editSpecies(const SpeciesModel& base,
 
 /// The folder holding the library's species files, the first that exists of:
 ///  1. the environment variable PLANTARCH_SPECIES_DIR (used as given, even if missing);
-///  2. `<dir of the running executable>/../share/plantarch/species` (an installed plantarch);
-///  3. the `species/` folder of the source tree this library was compiled from;
-///  4. `<dir of the running executable>/../species` and `<dir of the executable>/species`;
-///  5. `species/` in the current directory.
+///  2. when plantarch runs from a shared object (a shared library, the Python extension):
+///     `species/` beside it (a wheel), then `share/plantarch/species` in each of the five
+///     folders above it (an installed prefix);
+///  3. `<dir of the running executable>/../share/plantarch/species` (an installed plantarch);
+///  4. the `species/` folder of the source tree this library was compiled from;
+///  5. `<dir of the running executable>/../species` and `<dir of the executable>/species`;
+///  6. `species/` in the current directory.
 /// Throws plantarch::Error listing the places searched when none exists.
 std::string speciesLibraryDirectory();
 /// Names of the library's species (the *.xml files of speciesLibraryDirectory() without the

@@ -57,6 +57,82 @@ CollisionOrgans organs(bool internodes, bool leaves, bool petioles, bool flowers
     return {internodes, leaves, petioles, flowers, fruit};
 }
 
+bool isWhole(const py::handle& v) {
+    return PyLong_Check(v.ptr()) && !PyBool_Check(v.ptr());
+}
+
+bool isNumber(const py::handle& v) {
+    return (PyLong_Check(v.ptr()) || PyFloat_Check(v.ptr())) && !PyBool_Check(v.ptr());
+}
+
+std::string reprOf(const py::handle& v) {
+    return py::repr(v).cast<std::string>();
+}
+
+// advanceTime as Python users write it: the days first, then the plants (one ID or a list)
+// as a second argument or the keyword plantIDs; the reference package's keywords dt and
+// plant_id are read too. Two whole numbers given positionally read two ways (plantarch's C++
+// order is plant first), so they are refused with the keyword call that says which; so is a
+// whole number followed by a fraction (the C++ order, plant then days).
+void advanceTimeCall(PlantArchitecture& a, const py::args& args, const py::kwargs& kwargs) {
+    py::object days, plants = py::none();
+    bool plantsPositional = false;
+    if (args.size() > 2)
+        throw Error("advanceTime takes the days and the plants, " + std::to_string(args.size()) +
+                        " positional arguments given",
+                    {.validRange = "advanceTime(time_step_days, plantIDs=None)"});
+    if (!args.empty()) days = args[0];
+    if (args.size() == 2) {
+        plants = args[1];
+        plantsPositional = true;
+    }
+    for (const auto& [key, value] : kwargs) {
+        const std::string name = key.cast<std::string>();
+        const bool isDays = name == "time_step_days" || name == "dt";
+        const bool isPlants = name == "plantIDs" || name == "plant_id" || name == "plantID";
+        if (!isDays && !isPlants)
+            throw Error("advanceTime has no argument '" + name + "'",
+                        {.validRange = "time_step_days (or dt), plantIDs (or plant_id)"});
+        if ((isDays && days) || (isPlants && (plantsPositional || !plants.is_none())))
+            throw Error("advanceTime: " + name + " given twice",
+                        {.validRange = "advanceTime(time_step_days, plantIDs=None)"});
+        (isDays ? days : plants) = py::reinterpret_borrow<py::object>(value);
+    }
+    if (!days)
+        throw Error("advanceTime needs the days to grow",
+                    {.validRange = "advanceTime(time_step_days, plantIDs=None)"});
+    if (plantsPositional && isWhole(days) && isWhole(plants)) {
+        const std::string d = reprOf(days), p = reprOf(plants);
+        throw Error("advanceTime(" + d + ", " + p + ") reads two ways: write advanceTime(" + d +
+                        ", plantIDs=" + p + ") to grow plant " + p + " by " + d +
+                        " days, or advanceTime(" + p + ", plantIDs=" + d + ") to grow plant " + d +
+                        " by " + p + " days",
+                    {.validRange = "advanceTime(time_step_days, plantIDs=None)"});
+    }
+    if (!isNumber(days)) {
+        const bool oldOrder = plantsPositional && isNumber(plants);
+        throw Error(oldOrder ? "advanceTime takes the days first in Python: write advanceTime(" +
+                                   reprOf(plants) + ", plantIDs=" + reprOf(days) + ")"
+                             : "advanceTime: the days must be a number",
+                    {.parameter = "time_step_days", .value = reprOf(days)});
+    }
+    if (plantsPositional && isWhole(days) && PyFloat_Check(plants.ptr()))
+        throw Error("advanceTime takes the days first in Python: write advanceTime(" +
+                        reprOf(plants) + ", plantIDs=" + reprOf(days) + ")",
+                    {.parameter = "plantIDs", .value = reprOf(plants)});
+    const double step = days.cast<double>();
+    if (plants.is_none()) {
+        interruptible([&] { a.advanceTime(step); });
+        return;
+    }
+    const std::vector<unsigned> ids = idList(plants, "plantIDs");
+    if (isWhole(plants)) {
+        interruptible([&] { a.advanceTime(ids.front(), step); });
+        return;
+    }
+    interruptible([&] { a.advanceTime(ids, step); });
+}
+
 PlantStructureReadOptions readOptions(py::object warnings) {
     PlantStructureReadOptions o;
     if (!warnings.is_none()) {
@@ -293,37 +369,33 @@ void bindManual(py::class_<PlantArchitecture>& c) {
 }
 
 void bindGrowth(py::class_<PlantArchitecture>& c) {
+    {
+        // Its signature is written out (pybind11 would show *args, **kwargs to editors).
+        py::options written;
+        written.disable_function_signatures();
+        c.def("advanceTime", &advanceTimeCall,
+              "advanceTime(self, time_step_days: float, plantIDs: int | Sequence[int] | None = "
+              "None) -> None\n\n"
+              "Grows the plants by time_step_days (any split of the time gives the same "
+              "plants): every plant, or the plant or list of plants plantIDs names "
+              "(positionally or by keyword; dt and plant_id are read too). advanceTime(3, 2), "
+              "two whole numbers, reads two ways and raises plantarch.Error naming the keyword "
+              "call.");
+    }
     c.def(
-         "advanceTime",
-         [](PlantArchitecture& a, double days) { interruptible([&] { a.advanceTime(days); }); },
-         py::arg("time_step_days"),
-         "Grows every plant by time_step_days (any split of the time gives the same plants).")
-        .def(
-            "advanceTime",
-            [](PlantArchitecture& a, unsigned plant, double days) {
-                interruptible([&] { a.advanceTime(plant, days); });
-            },
-            py::arg("plantID"), py::arg("time_step_days"), "Grows one plant.")
-        .def(
-            "advanceTime",
-            [](PlantArchitecture& a, std::vector<unsigned> plants, double days) {
-                interruptible([&] { a.advanceTime(plants, days); });
-            },
-            py::arg("plantIDs"), py::arg("time_step_days"), "Grows the given plants together.")
-        .def(
-            "writeGrowthAnimation",
-            [](PlantArchitecture& a, std::vector<unsigned> plants, double start, double end,
-               double step, std::vector<std::string> filenames, double frameRate) {
-                interruptible([&] {
-                    writeGrowthAnimation(a, plants, {start, end, step}, filenames, {frameRate});
-                });
-            },
-            py::arg("plantIDs"), py::arg("start"), py::arg("end"), py::arg("step"),
-            py::arg("filenames"), py::arg("frame_rate") = 24.0,
-            "Grows the plants from frame to frame (a frame every `step` days of growth from "
-            "`start` to `end`) and writes the scene at each frame into every file (.glb, .gltf "
-            "or .usda) as one animation that shows frame i alone at i / frame_rate seconds. "
-            "The plants are left grown to the last frame.")
+         "writeGrowthAnimation",
+         [](PlantArchitecture& a, std::vector<unsigned> plants, double start, double end,
+            double step, std::vector<std::string> filenames, double frameRate) {
+             interruptible([&] {
+                 writeGrowthAnimation(a, plants, {start, end, step}, filenames, {frameRate});
+             });
+         },
+         py::arg("plantIDs"), py::arg("start"), py::arg("end"), py::arg("step"),
+         py::arg("filenames"), py::arg("frame_rate") = 24.0,
+         "Grows the plants from frame to frame (a frame every `step` days of growth from "
+         "`start` to `end`) and writes the scene at each frame into every file (.glb, .gltf "
+         "or .usda) as one animation that shows frame i alone at i / frame_rate seconds. "
+         "The plants are left grown to the last frame.")
         .def(
             "setProgressCallback",
             [](PlantArchitecture& a, py::object fn) { setUserProgress(a, fn); },
@@ -634,6 +706,13 @@ void bindArchitecture(py::module_& m) {
           }),
           py::arg("context"), py::keep_alive<1, 2>(),
           "Plants are built into `context` (kept alive as long as this object).")
+        .def(
+            "__enter__", [](py::object self) { return self; },
+            "`with PlantArchitecture(context) as arch:` gives the object itself.")
+        .def(
+            "__exit__", [](PlantArchitecture&, const py::args&) { return false; },
+            "Ends a with block and lets its exception through; the plants stay usable and are "
+            "freed when the last reference to the object goes.")
         .def("getContext", py::overload_cast<>(&PlantArchitecture::context),
              py::return_value_policy::reference_internal,
              "The Context the plants' geometry lives in.")

@@ -103,6 +103,13 @@ void bindContext(py::module_& m) {
                         "with a material and labelled data (plantID, organ, shootID, rank, "
                         "age, leafID ...).")
         .def(py::init<>())
+        .def(
+            "__enter__", [](py::object self) { return self; },
+            "`with Context() as context:` gives the Context itself.")
+        .def(
+            "__exit__", [](Context&, const py::args&) { return false; },
+            "Ends a with block and lets its exception through; the Context stays usable and "
+            "is freed when the last reference to it goes.")
         .def("addMaterial", &Context::addMaterial, py::arg("material"),
              "Adds a material (or finds an equal one); returns its ID.")
         .def(

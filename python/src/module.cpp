@@ -11,8 +11,14 @@ PYBIND11_MODULE(_plantarch, m) {
     m.doc() = "plantarch: builds and grows 3D plants from a phytomer-based parameter model.";
     // numpy's C API now, under the import lock: first set up by two threads at once, inside
     // calls, pybind11's one-time initialiser would wait with the GIL held (a deadlock).
-    py::module_::import("numpy");
-    py::detail::npy_api::get();
+    // Without numpy the module still imports; the calls that return arrays raise its
+    // ImportError (no module named 'numpy').
+    try {
+        py::module_::import("numpy");
+        py::detail::npy_api::get();
+    } catch (py::error_already_set& e) {
+        if (!e.matches(PyExc_ImportError)) throw;
+    }
     bindValues(m);  // first: the Error translator (PythonError's below is tried before it)
     bindCallbacks(m);
     bindParameters(m);

@@ -63,3 +63,52 @@ def test_the_formats_guide_python_block_runs(tmp_path):
     faces = scope["f"]
     assert sorted(set(faces["plant_id"].tolist())) == [0, 1]
     assert set(faces["organ"].tolist()) >= {1, 3}  # internodes and leaves
+
+
+def test_the_pyhelios_guide_blocks_run():
+    doc = DOC.parent / "pyhelios.md"
+    blocks = re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
+    assert blocks
+    scope = {}
+    for block in blocks:
+        exec(compile(block, str(doc), "exec"), scope)
+    assert scope["arch"].getCurrentShootParameters("tall_trifoliate").max_nodes == 20
+
+
+# A script as users of the reference package write it (context managers, keyword names,
+# days first), and the same plants written in plantarch's own style.
+REFERENCE_STYLE = """
+from plantarch import Context, PlantArchitecture, vec3
+
+with Context() as context:
+    with PlantArchitecture(context) as plantarch:
+        plantarch.loadPlantModelFromLibrary("bean")
+        first = plantarch.buildPlantInstanceFromLibrary(base_position=vec3(0, 0, 0), age=20)
+        second = plantarch.buildPlantInstanceFromLibrary(base_position=vec3(0.5, 0, 0), age=20)
+        plantarch.advanceTime(10.0)
+        plantarch.advanceTime(5.0, second)
+        plantarch.advanceTime(dt=2.5, plant_id=first)
+        strings = [plantarch.getPlantString(p) for p in plantarch.getAllPlantIDs()]
+"""
+
+PLANTARCH_STYLE = """
+import plantarch
+
+arch = plantarch.PlantArchitecture(plantarch.Context())
+arch.loadPlantModelFromLibrary("bean")
+a = arch.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+b = arch.buildPlantInstanceFromLibrary((0.5, 0, 0), 20)
+arch.advanceTime(10)
+arch.advanceTime(5, plantIDs=[b])
+arch.advanceTime(2.5, plantIDs=a)
+strings = [arch.getPlantString(p) for p in (a, b)]
+"""
+
+
+def test_a_reference_style_script_grows_the_same_plants():
+    reference, ours = {}, {}
+    exec(REFERENCE_STYLE, reference)
+    exec(PLANTARCH_STYLE, ours)
+    assert reference["strings"] == ours["strings"]
+    ages = [float(re.match(r"@\w+\(([^)]*)\)", s).group(1).split(",")[3]) for s in ours["strings"]]
+    assert ages == [32.5, 35.0], ours["strings"][0][:80]

@@ -35,7 +35,7 @@ def test_the_specifications_listing_runs_and_builds_a_plant():
     # The listing's plant has no shoots yet; the library builds the same species on.
     shoot = arch.addBaseStemShoot(plant, 3, shoot_type_label="trifoliate")
     assert shoot == 0 and arch.getShootNodeCount(plant, 0) == 3
-    arch.advanceTime(plant, 10)
+    arch.advanceTime(10.0, plant)
     assert arch.getPlantLeafCount(plant) > 0
 
 
@@ -85,9 +85,38 @@ def test_advance_time_all_one_and_subset(arch):
     p = [arch.buildPlantInstanceFromLibrary((x, 0, 0), 10) for x in range(3)]
     arch.advanceTime(5)
     assert [arch.getPlantAge(i) for i in p] == [15, 15, 15]
-    arch.advanceTime(p[0], 5)
-    arch.advanceTime([p[1], p[2]], 2)
+    arch.advanceTime(5.0, p[0])
+    arch.advanceTime(2, plantIDs=[p[1], p[2]])
     assert [arch.getPlantAge(i) for i in p] == [20, 17, 17]
+    arch.advanceTime(plantIDs=p[2], time_step_days=1)
+    arch.advanceTime(dt=1, plant_id=p[1])  # the reference package's keywords
+    assert [arch.getPlantAge(i) for i in p] == [20, 18, 18]
+
+
+@pytest.mark.parametrize("call, says", [
+    (lambda a, p: a.advanceTime(3, 2), r"advanceTime\(3, 2\) reads two ways: write "
+     r"advanceTime\(3, plantIDs=2\) to grow plant 2 by 3 days, or advanceTime\(2, plantIDs=3\)"),
+    (lambda a, p: a.advanceTime(p, 2.5), r"takes the days first in Python: write "
+     r"advanceTime\(2.5, plantIDs=0\)"),
+    (lambda a, p: a.advanceTime([p], 2.5), r"takes the days first in Python: write "
+     r"advanceTime\(2.5, plantIDs=\[0\]\)"),
+    (lambda a, p: a.advanceTime("5"), "the days must be a number"),
+    (lambda a, p: a.advanceTime(True), "the days must be a number"),
+    (lambda a, p: a.advanceTime(), "needs the days"),
+    (lambda a, p: a.advanceTime(1.0, 0, 1), "3 positional arguments"),
+    (lambda a, p: a.advanceTime(1.0, days=2), "no argument 'days'"),
+    (lambda a, p: a.advanceTime(1.0, dt=2), "dt given twice"),
+    (lambda a, p: a.advanceTime(1.0, p, plantIDs=p), "plantIDs given twice"),
+    (lambda a, p: a.advanceTime(1.0, "0"), "plantIDs = '0': not an ID or a list of IDs"),
+    (lambda a, p: a.advanceTime(1.0, [0.5]), "plantIDs = 0.5: not an ID"),
+    (lambda a, p: a.advanceTime(1.0, -1), "plantIDs = -1: not an ID"),
+])
+def test_advance_time_refuses_a_call_that_reads_two_ways(arch, call, says):
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 10)
+    before = arch.getPlantString(p)
+    with pytest.raises(plantarch.Error, match=says):
+        call(arch, p)
+    assert arch.getPlantString(p) == before  # nothing grew
 
 
 def test_step_size_does_not_change_the_plant():
@@ -96,7 +125,7 @@ def test_step_size_does_not_change_the_plant():
         a.loadPlantModelFromLibrary("bean")
         p = a.buildPlantInstanceFromLibrary((0, 0, 0), 0)
         for days in steps:
-            a.advanceTime(p, days)
+            a.advanceTime(days, plantIDs=p)
         return a.getPlantString(p, 0)
 
     assert grown([30]) == grown([1] * 30) == grown([10.5, 19.5])
@@ -112,7 +141,7 @@ def test_pruning_and_harvest(arch):
     assert arch.getShootNodeCount(p, stem) == 2
     assert arch.getShootCount(p) <= shoots
     arch.removeShootApex(p, stem)
-    arch.advanceTime(p, 10)
+    arch.advanceTime(10.0, p)
     assert arch.getShootNodeCount(p, stem) == 2
     fruit = len(arch.getPlantObjectIDs(p, plantarch.OrganKind.fruit))
     harvested = arch.harvestPlant(p)
@@ -125,10 +154,10 @@ def test_pruning_and_harvest(arch):
 def test_phenology_max_age_and_dormancy(arch):
     p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 10)
     arch.setPlantMaximumAge(p, 20)
-    arch.advanceTime(p, 30)
+    arch.advanceTime(30.0, p)
     structure = lambda: arch.getPlantString(p).split(")", 1)[1]  # without the age header
     frozen = structure()
-    arch.advanceTime(p, 30)
+    arch.advanceTime(30.0, p)
     assert structure() == frozen  # stopped developing at 20 days
     assert arch.getPlantPhenologicalThresholds(p).max_age == 20
     q = arch.buildPlantInstanceFromLibrary((1, 0, 0), 0)
@@ -214,3 +243,16 @@ def test_ply_colours_and_labels_from_python_match_the_cli(tmp):
     with pytest.raises(plantarch.Error, match="none, organ, plant, material"):
         plantarch.writePLY(a.getContext(), str(tmp / "bad.ply"), color="leafy")
     assert not (tmp / "bad.ply").exists()
+
+
+def test_with_blocks_as_the_reference_package_writes_them():
+    with plantarch.Context() as context:
+        with plantarch.PlantArchitecture(context) as arch:
+            arch.loadPlantModelFromLibrary("bean")
+            plant = arch.buildPlantInstanceFromLibrary((0, 0, 0), 10)
+            arch.advanceTime(5.0)
+    assert isinstance(context, plantarch.Context) and isinstance(arch, plantarch.PlantArchitecture)
+    assert arch.getPlantAge(plant) == 15  # still usable after the block
+    with pytest.raises(KeyError):  # the block's exception goes through
+        with plantarch.Context():
+            raise KeyError("from the block")

@@ -359,8 +359,8 @@ def test_mesh_arrays_outlive_plants_architecture_and_context():
     lambda a, c: a.getPlant(2**40),
     lambda a, c: a.getPlant(7),
     lambda a, c: a.getPlantHeight(-1),
-    lambda a, c: a.advanceTime(2**40, 1.0),
-    lambda a, c: a.advanceTime([0, 2**40], 1.0),
+    lambda a, c: a.advanceTime(1.0, 2**40),
+    lambda a, c: a.advanceTime(1.0, [0, 2**40]),
     lambda a, c: a.getMeshArrays(2**40),
     lambda a, c: a.getMeshArrays([-3]),
     lambda a, c: a.deletePlantInstance(99),
@@ -444,4 +444,4 @@ def test_an_exception_raised_in_a_rule_arrives_as_itself(tmp_path, kind):
     p = a.buildPlantInstanceFromLibrary((0, 0, 0), 5)
     a.registerPhytomerCreationFunction("misuse", raising_rule)
     with pytest.raises(kind, match="from the rule"):
-        a.advanceTime(p, 20.0)
+        a.advanceTime(20.0, p)

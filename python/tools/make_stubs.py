@@ -74,7 +74,8 @@ def emit_class(lines, name, cls):
         lines.append(f'    """{doc}"""')
     body = 0
     for attr, value in sorted(vars(cls).items()):
-        if attr.startswith("_") and attr not in ("__init__", "__eq__", "__iter__", "__len__"):
+        if attr.startswith("_") and attr not in (
+            "__init__", "__eq__", "__iter__", "__len__", "__enter__", "__exit__"):
             continue
         if isinstance(value, property):
             lines.append(f"    {attr}: Any")
@@ -100,7 +101,8 @@ def main():
     lines = [
         "# Type stubs of plantarch._plantarch, generated from the built module by",
         "# python/tools/make_stubs.py. Do not edit.",
-        "from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple, Union, overload",
+        "from typing import (Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple,",
+        "                    Union, overload)",
         "import numpy",
         "from plantarch import vec2, vec3",
         "",

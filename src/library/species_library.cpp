@@ -1,5 +1,7 @@
 // The species library on disk: where it is, what it holds, loading by name or path.
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
@@ -18,6 +20,19 @@ fs::path executableDirectory() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     return ec ? fs::path() : exe.parent_path();
+}
+
+// The folder of the file this code was loaded from when that is not the executable: a
+// shared library, or the Python extension that links plantarch.
+fs::path loadedObjectDirectory() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&loadedObjectDirectory), &info) == 0 || !info.dli_fname)
+        return {};
+    std::error_code ec;
+    const fs::path object = fs::canonical(info.dli_fname, ec);
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (object.empty() || object == exe) return {};
+    return object.parent_path();
 }
 
 // The species/ folder of the source tree this file was compiled from: the build system
@@ -48,6 +63,16 @@ bool looksLikePath(const std::string& s) {
 std::string speciesLibraryDirectory() {
     if (const char* env = std::getenv("PLANTARCH_SPECIES_DIR"); env && *env) return env;
     std::vector<fs::path> candidates;
+    // A wheel's species/ beside its extension, or <prefix>/share/plantarch/species above a
+    // shared library or an extension that `cmake --install` put under <prefix>/lib.
+    if (const fs::path objectDir = loadedObjectDirectory(); !objectDir.empty()) {
+        candidates.push_back(objectDir / "species");
+        fs::path up = objectDir;
+        for (int level = 0; level < 5 && up.has_relative_path(); ++level) {
+            up = up.parent_path();
+            candidates.push_back(up / "share" / "plantarch" / "species");
+        }
+    }
     const fs::path exeDir = executableDirectory();
     if (!exeDir.empty()) candidates.push_back(exeDir / ".." / "share" / "plantarch" / "species");
     candidates.push_back(sourceTreeSpecies());
