@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "callbacks.h"
+#include "plantarch/CollisionStatsFields.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"
@@ -39,17 +40,7 @@ std::vector<vec3> points(const py::object& value) {
 
 py::dict statsDict(const CollisionStats& s) {
     py::dict d;
-    d["softCones"] = s.softCones;
-    d["softRays"] = s.softRays;
-    d["softSteered"] = s.softSteered;
-    d["solidCones"] = s.solidCones;
-    d["solidSteered"] = s.solidSteered;
-    d["attractionQueries"] = s.attractionQueries;
-    d["attracted"] = s.attracted;
-    d["organsTurned"] = s.organsTurned;
-    d["organsUnresolved"] = s.organsUnresolved;
-    d["sceneRefreshes"] = s.sceneRefreshes;
-    d["sceneTriangles"] = s.sceneTriangles;
+    visitCollisionStats(s, [&](const char* name, auto value) { d[name] = value; });
     return d;
 }
 

@@ -3,6 +3,7 @@
 
 #include "bindings.h"
 #include "callbacks.h"
+#include "plantarch/PhytomerActions.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantState.h"
 
@@ -126,23 +127,15 @@ void bindState(py::module_& m) {
                        "current petiole and leaf size / full size")
         .def_readonly("parametersLabel", &Phytomer::parametersLabel,
                       "shoot type whose phytomer template built it")
-        .def(
-            "killVegetativeBuds",
-            [](Phytomer& p) {
-                for (Petiole& pt : p.petioles)
-                    for (VegetativeBud& b : pt.vegetativeBuds)
-                        if (b.state == BudState::Dormant || b.state == BudState::Active)
-                            b.state = BudState::Dead;
-            },
-            "Kills the phytomer's axillary vegetative buds that have not broken.")
-        .def(
-            "killFloralBuds",
-            [](Phytomer& p) {
-                for (Petiole& pt : p.petioles)
-                    for (FloralBud& b : pt.floralBuds)
-                        if (b.stage == FloralStage::Bud) b.state = BudState::Dead;
-            },
-            "Kills the phytomer's floral buds that have not flowered.")
+        .def("killVegetativeBuds", &killVegetativeBuds,
+             "Marks the dormant axillary vegetative buds dead (the remove_vegetative_buds "
+             "rule): no branch grows from this node; an active or broken bud keeps growing.")
+        .def("killFloralBuds", &killFloralBuds,
+             "Marks the unopened floral buds dead and removed (the remove_floral_buds rule): "
+             "no flowers from this node; open flowers and fruit stay.")
+        .def("removeLeaves", &removeLeaves,
+             "Removes the leaves, with their petioles' length and radius (the remove_leaves "
+             "rule).")
         .def(
             "scaleLeaves",
             [](Phytomer& p, float factor) {

@@ -1,5 +1,7 @@
 """The species library, growth, queries, pruning and phenology from Python."""
 
+import pathlib
+import re
 import subprocess
 
 import pytest
@@ -256,3 +258,13 @@ def test_with_blocks_as_the_reference_package_writes_them():
     with pytest.raises(KeyError):  # the block's exception goes through
         with plantarch.Context():
             raise KeyError("from the block")
+
+
+def test_collision_stats_hold_every_field_of_the_struct(arch):
+    header = (pathlib.Path(__file__).resolve().parents[2] / "include" / "plantarch" /
+              "Collision.h").read_text()
+    body = re.search(r"struct CollisionStats \{(.*?)\n\};", header, re.S).group(1)
+    fields = re.findall(r"^\s+(?:std::uint64_t|double|unsigned|float|int)\s+(\w+)\s*=", body, re.M)
+    assert len(fields) >= 15
+    stats = arch.getCollisionStats()
+    assert list(stats) == fields

@@ -1,6 +1,7 @@
 """Python functions as rules, the progress callback, Ctrl-C, and errors."""
 
 import os
+import re
 import signal
 
 import pytest
@@ -185,3 +186,56 @@ def test_a_leaf_prototype_written_in_python(arch):
     arch.updateCurrentShootParameters("trifoliate", p)
     with pytest.raises(plantarch.Error, match="must return a Mesh"):
         arch.buildPlantInstanceFromLibrary((1, 0, 0), 30)
+
+
+def test_bud_actions_from_python_do_what_the_species_rules_do(tmp_path):
+    """The bean's three bud rules taken out of its file and done by a Python creation function
+    with the phytomer's killFloralBuds / killVegetativeBuds grow the same plant, byte for
+    byte: the Python actions are the rules' own."""
+    text = open(plantarch.speciesLibraryDirectory() + "/bean.xml").read()
+    rules = re.findall(r"\s*<rule>(?:(?!</rule>).)*?remove_(?:floral|vegetative)_buds.*?</rule>",
+                       text, re.S)
+    assert len(rules) == 3
+    for rule in rules:
+        text = text.replace(rule, "", 1)
+    path = tmp_path / "bean_python_buds.xml"
+    path.write_text(text.replace(
+        "</node_rules>\n    </phytomer>\n  </shoot_type>",
+        "</node_rules>\n      <phytomer_creation_function>buds</phytomer_creation_function>\n"
+        "    </phytomer>\n  </shoot_type>", 1))
+
+    calls = []
+
+    def buds(ctx):
+        if ctx.shoot.type != "trifoliate":
+            return
+        calls.append(ctx.nodeIndex)
+        if ctx.rank <= 1 and ctx.nodeIndex <= 5:
+            ctx.phytomer.killFloralBuds()
+        if ctx.nodeIndex >= 6 or ctx.rank >= 2:
+            ctx.phytomer.killVegetativeBuds()
+
+    def grown(species, rule=None):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.setSeed(5)
+        if rule:
+            a.registerPhytomerCreationFunction("buds", rule)
+        a.loadPlantModelFromLibrary(species)
+        p = a.buildPlantInstanceFromLibrary((0, 0, 0), 60)
+        plantarch.writePLY(a.getContext(), str(tmp_path / "plant.ply"))
+        return a, p, a.getPlantString(p), (tmp_path / "plant.ply").read_bytes()
+
+    a, p, string, ply = grown("bean")
+    b, q, string_py, ply_py = grown(str(path), buds)
+    assert calls, "the function was never called"
+    def floral_buds(arch, plant):
+        return [fb for s in arch.plant(plant).shoots for ph in s.phytomers
+                for pt in ph.petioles for fb in pt.floralBuds]
+
+    assert a.getShootCount(p) > 3  # branches
+    assert any(fb.stage != plantarch.FloralStage.bud for fb in floral_buds(a, p))  # flowers
+    assert string_py == string
+    assert ply_py == ply
+    # A floral bud killed by the Python call is removed, as the rule leaves it.
+    dead = [fb.stage for fb in floral_buds(b, q) if fb.state == plantarch.BudState.dead]
+    assert dead and set(dead) == {plantarch.FloralStage.removed}

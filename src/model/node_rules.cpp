@@ -10,6 +10,7 @@
 #include "core/value_text.h"
 #include "model/plant_state_table.h"
 #include "plantarch/Error.h"
+#include "plantarch/PhytomerActions.h"
 
 namespace plantarch {
 
@@ -24,21 +25,6 @@ Formula NodeRule::formula(std::string_view text) {
 }
 
 namespace rules {
-
-void killVegetativeBuds(Phytomer& ph) {
-    for (Petiole& p : ph.petioles)
-        for (VegetativeBud& b : p.vegetativeBuds)
-            if (b.state == BudState::Dormant) b.state = BudState::Dead;
-}
-
-void killFloralBuds(Phytomer& ph) {
-    for (Petiole& p : ph.petioles)
-        for (FloralBud& b : p.floralBuds)
-            if (b.stage == FloralStage::Bud) {
-                b.state = BudState::Dead;
-                b.stage = FloralStage::Removed;
-            }
-}
 
 namespace {
 
@@ -163,14 +149,6 @@ void turn(const RuleFormula& f, const Place& at, const state::FieldInfo& field, 
           float& angle) {
     angle =
         checkedResult(f, at, field, change, angle, angle + change, double(angle) + double(change));
-}
-
-void removeLeaves(Phytomer& ph) {
-    for (Petiole& p : ph.petioles) {
-        for (LeafOrgan& l : p.leaves) l.removed = true;
-        p.length = 0.0f;
-        p.radius = 0.0f;
-    }
 }
 
 // Every floral bud that flowered, fruited or failed becomes an unopened dormant bud again; its

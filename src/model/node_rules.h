@@ -24,9 +24,4 @@ bool hasDailyRules(const std::map<std::string, ShootParameters>& types);
 void applyDaily(PlantInstance& plant, Shoot& shoot, unsigned node, const PhytomerParameters& pp,
                 double age, const std::function<vec3()>& nodeBase);
 
-/// Marks the dormant axillary vegetative buds of a phytomer dead (no branch from this node).
-void killVegetativeBuds(Phytomer& ph);
-/// Marks the unopened floral buds of a phytomer dead (no flowers from this node).
-void killFloralBuds(Phytomer& ph);
-
 }  // namespace plantarch::rules

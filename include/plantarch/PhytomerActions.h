@@ -1,0 +1,20 @@
+#pragma once
+// What a species node rule does to one phytomer, offered to phytomer creation functions in
+// C++ and Python so that a hand-written rule does exactly what the same rule in a species
+// file does.
+
+#include "plantarch/PlantState.h"
+
+namespace plantarch {
+
+/// Marks the phytomer's dormant axillary vegetative buds dead: no branch grows from this node
+/// (a bud that is already active or broken keeps growing). The `remove_vegetative_buds` rule.
+void killVegetativeBuds(Phytomer& phytomer);
+/// Marks the phytomer's unopened floral buds dead and removed: no flowers from this node
+/// (open flowers and fruit stay). The `remove_floral_buds` rule.
+void killFloralBuds(Phytomer& phytomer);
+/// Removes the phytomer's leaves, with their petioles' length and radius. The
+/// `remove_leaves` rule.
+void removeLeaves(Phytomer& phytomer);
+
+}  // namespace plantarch
