@@ -18,6 +18,7 @@
 #include "plantarch/Export.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/OutputFiles.h"
+#include "plantarch/OutputFormats.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Progress.h"
 
@@ -93,35 +94,6 @@ void clearProgress();
 std::string standardOutputFailure();
 
 // ---- output files (output_files.cpp) ------------------------------------------------------
-
-/// What a command may write into a file; each format declares the uses it serves.
-enum OutputUse : unsigned {
-    kSceneOutput = 1,      ///< a scene, through writeSceneFile
-    kPlantOutput = 2,      ///< plants as plants (structure, strings, cylinders): writePlantOutput
-    kAnimationOutput = 4,  ///< a growth animation (--frames)
-    kPictureOutput = 8,    ///< a picture (render, compare)
-    kScanOutput = 16,      ///< a labelled point cloud (scan)
-    kDepthOutput = 32,     ///< a depth image (render --label depth)
-};
-/// One file format a command writes.
-struct OutputFormat {
-    std::string_view extension;    ///< lower case, with its dot: ".obj", ".helios.xml"
-    std::string_view description;  ///< for help texts
-    unsigned uses;                 ///< OutputUse bits
-};
-/// Every output format, in the order they are listed to users.
-std::span<const OutputFormat> outputFormats();
-/// The format of `path` (its name's ending, in any case) among those serving one of `uses`;
-/// null when none.
-const OutputFormat* outputFormat(const std::string& path, unsigned uses);
-/// The extensions of the formats serving one of `uses`, for help texts and errors.
-std::string outputExtensions(unsigned uses);
-/// Throws plantarch::Error "`what`" naming the path, its extension and the valid extensions
-/// unless `path` has a format serving one of `uses`.
-void requireOutputFormat(const std::string& path, unsigned uses, const std::string& what);
-
-/// A path's extension in lower case, with its dot (".obj"); empty when it has none.
-std::string lowerExtension(const std::string& path);
 
 /// The files one command writes. Made before any work: it creates the missing folders of each
 /// path and checks that each can be written (checkOutputPath: not a directory, a folder that

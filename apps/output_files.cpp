@@ -1,5 +1,5 @@
-// The output formats of the plantarch command, declared once, and CommandOutputs: the files
-// of one command checked before any work and put in place together at its end.
+// CommandOutputs: the files of one command checked before any work and put in place together
+// at its end.
 
 #include <pthread.h>
 #include <signal.h>
@@ -12,66 +12,6 @@
 #include "plantarch/Error.h"
 
 namespace plantarch::cli {
-
-namespace {
-
-// Every file format a command writes, by extension (lower case). Help texts, the checks
-// before work and the error messages listing valid extensions are all made from this table.
-constexpr OutputFormat kOutputFormats[] = {
-    {".obj", "Wavefront OBJ mesh with its .mtl materials", kSceneOutput},
-    {".ply", "PLY mesh, or a point cloud with --points", kSceneOutput | kScanOutput},
-    {".glb", "binary glTF", kSceneOutput | kAnimationOutput},
-    {".gltf", "glTF", kSceneOutput | kAnimationOutput},
-    {".usda", "USD text", kSceneOutput | kAnimationOutput},
-    {".png", "picture", kSceneOutput | kPictureOutput | kDepthOutput},
-    {".npz", "NumPy point cloud (with --points)", kSceneOutput | kScanOutput},
-    {".npy", "NumPy array of depths in metres", kDepthOutput},
-    {".xml", "plant structure file", kPlantOutput},
-    {".helios.xml", "plant structure file in the Helios layout", kPlantOutput},
-    {".txt", "plant strings, one line per plant", kPlantOutput},
-    {".csv", "quantitative structure model (cylinders)", kPlantOutput},
-};
-
-std::string lower(std::string text) {
-    for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return text;
-}
-
-}  // namespace
-
-std::span<const OutputFormat> outputFormats() {
-    return kOutputFormats;
-}
-
-std::string lowerExtension(const std::string& path) {
-    return lower(std::filesystem::path(path).extension().string());
-}
-
-const OutputFormat* outputFormat(const std::string& path, unsigned uses) {
-    const std::string name = lower(std::filesystem::path(path).filename().string());
-    const OutputFormat* best = nullptr;
-    for (const OutputFormat& f : kOutputFormats)
-        if ((f.uses & uses) && name.size() > f.extension.size() && name.ends_with(f.extension) &&
-            (!best || f.extension.size() > best->extension.size()))
-            best = &f;
-    return best;
-}
-
-std::string outputExtensions(unsigned uses) {
-    std::string list;
-    for (const OutputFormat& f : kOutputFormats)
-        if (f.uses & uses) list += (list.empty() ? "" : ", ") + std::string(f.extension);
-    return list;
-}
-
-void requireOutputFormat(const std::string& path, unsigned uses, const std::string& what) {
-    if (outputFormat(path, uses)) return;
-    const std::string ext = lowerExtension(path);
-    if (ext.empty())
-        throw Error(what + ": the name has no extension",
-                    {.file = path, .validRange = outputExtensions(uses)});
-    throw Error(what, {.file = path, .value = ext, .validRange = outputExtensions(uses)});
-}
 
 // ---- CommandOutputs ------------------------------------------------------------------------
 

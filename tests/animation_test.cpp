@@ -229,10 +229,16 @@ TEST(Animation, BadFramesAndPathsAreOneLineErrors) {
               file +
                   ": frame 1 day = 5: animation frame days must be finite and increasing "
                   "(valid: more than 5)");
+    const std::string usda = tempPath("bad.usda").string();
+    EXPECT_EQ(std::string(errorOf([&] {
+                              writeUSDA({{&a, 0.0, {}}}, usda, {}, {0.0});
+                          }).what()),
+              usda + ": framesPerSecond = 0: frame rate out of range (valid: 0.001 to 1000)");
+    // A name of another format is refused before anything else is looked at.
     EXPECT_EQ(std::string(errorOf([&] {
                               writeUSDA({{&a, 0.0, {}}}, file, {}, {0.0});
                           }).what()),
-              file + ": framesPerSecond = 0: frame rate out of range (valid: 0.001 to 1000)");
+              file + ": '.glb': writeUSDA writes USD text (valid: .usda)");
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");

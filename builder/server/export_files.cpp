@@ -12,6 +12,7 @@
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch::builder {
 
@@ -38,11 +39,21 @@ TemporaryFolder::~TemporaryFolder() {
     fs::remove_all(path_, ignored);
 }
 
+std::vector<std::string> exportFormats() {
+    std::vector<std::string> names;
+    for (const OutputFormat& f : outputFormats())
+        if (f.uses & kBuilderExport) names.emplace_back(f.extension.substr(1));
+    return names;
+}
+
 std::string exportExtension(const std::string& format) {
-    for (const char* f : {"obj", "ply", "glb", "gltf", "usda", "xml"})
+    std::string valid;
+    for (const std::string& f : exportFormats()) {
         if (format == f) return "." + format;
+        valid += (valid.empty() ? "" : ", ") + f;
+    }
     throw HttpError{400, "format = \"" + format.substr(0, 40) +
-                             "\": unknown export format (valid: obj, ply, glb, gltf, usda, xml)"};
+                             "\": unknown export format (valid: " + valid + ")"};
 }
 
 std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,

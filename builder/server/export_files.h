@@ -11,6 +11,9 @@
 
 namespace plantarch::builder {
 
+/// The export formats the builder offers ("obj", "ply" ...), from plantarch's table of output
+/// formats (those marked kBuilderExport), in its order.
+std::vector<std::string> exportFormats();
 /// The file extension of an export format ("glb" -> ".glb"); 400 for an unknown format.
 std::string exportExtension(const std::string& format);
 

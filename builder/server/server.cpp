@@ -15,6 +15,7 @@
 #include <set>
 
 #include "builder/server/assets.h"
+#include "builder/server/export_files.h"
 #include "builder/server/server_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/SpeciesIO.h"
@@ -292,7 +293,7 @@ void Server::Impl::routes() {
                        {"max_queued_builds", options.maxQueuedBuilds},
                        {"max_body_bytes", options.maxBodyBytes},
                        {"max_json_depth", kMaxRequestDepth},
-                       {"formats", {"obj", "ply", "glb", "gltf", "usda", "xml"}}});
+                       {"formats", exportFormats()}});
     });
     speciesRoutes();
     buildRoutes();

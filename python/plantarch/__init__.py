@@ -143,3 +143,21 @@ Context._repr_png_ = _context_png
 PlantArchitecture._repr_png_ = _architecture_png
 PlantArchitecture.getPlant = lambda self, plantID: Plant(self, plantID)
 PlantArchitecture.getPlant.__doc__ = "The plant as a plantarch.Plant (statistics, shoot tree, picture)."
+
+
+def _nearest_attribute(cls):
+    """__getattr__ for a class of the module: a mistyped name raises AttributeError naming the
+    nearest attribute the class has."""
+
+    def __getattr__(self, name):
+        import difflib
+
+        near = difflib.get_close_matches(name, [n for n in dir(cls) if not n.startswith("_")], 1)
+        hint = f"; did you mean {near[0]!r}?" if near else ""
+        raise AttributeError(f"{cls.__name__!r} object has no attribute {name!r}{hint}")
+
+    return __getattr__
+
+
+for _cls in (Context, PlantArchitecture):
+    _cls.__getattr__ = _nearest_attribute(_cls)

@@ -187,7 +187,9 @@ void bindContext(py::module_& m) {
             "Sets int, float, text or vec3 data (a label keeps one type).")
         .def("listObjectDataLabels", &Context::objectDataLabels,
              "Labels used by any object, sorted (the same as objectDataLabels).")
-        .def("clear", &Context::clear, "Removes every object and material.")
+        .def("clear", &Context::clear, py::arg("release_memory") = true,
+             "Removes every object and material (IDs restart at 0). With release_memory=False "
+             "the storage keeps its capacity, for a Context filled again with as much.")
         .def("memoryBytes", &Context::memoryBytes, "Bytes held by the Context's storage.")
         .def("setTriangleLimit", &Context::setTriangleLimit, py::arg("limit"),
              "At most this many live triangles (0: no limit); adding past it raises "

@@ -268,3 +268,50 @@ def test_collision_stats_hold_every_field_of_the_struct(arch):
     assert len(fields) >= 15
     stats = arch.getCollisionStats()
     assert list(stats) == fields
+
+
+@pytest.mark.parametrize("write, name, says", [
+    (lambda a, f: plantarch.writeOBJ(a.getContext(), f), "x.glb",
+     r"'\.glb': writeOBJ writes a Wavefront OBJ mesh \(valid: \.obj\)"),
+    (lambda a, f: plantarch.writePLY(a.getContext(), f), "x.obj",
+     r"'\.obj': writePLY writes a PLY mesh \(valid: \.ply\)"),
+    (lambda a, f: plantarch.writeGLTF(a.getContext(), f), "x.usda",
+     r"writeGLTF writes glTF, binary or text \(valid: \.glb, \.gltf\)"),
+    (lambda a, f: plantarch.writeUSDA(a.getContext(), f), "x.usd", r"\(valid: \.usda\)"),
+    (lambda a, f: plantarch.writePointCloudPLY(a.getContext(), f, points=10), "x.npz",
+     r"\(valid: \.ply\)"),
+    (lambda a, f: plantarch.writeQSM(a, f), "x.txt", r"writeQSM writes cylinders as CSV"),
+    (lambda a, f: plantarch.writePNG(plantarch.render(a, width=8, height=8), f), "x.jpg",
+     r"'\.jpg': writePNG writes a PNG picture \(valid: \.png\)"),
+    (lambda a, f: a.writePlantStructureXML(0, f), "x.helios.xml",
+     r"'\.helios\.xml': writePlantStructureXML writes a plant structure file \(valid: \.xml\)"),
+    (lambda a, f: a.writeHeliosPlantStructureXML(0, f), "x.txt",
+     r"\(valid: \.xml, \.helios\.xml\)"),
+    (lambda a, f: plantarch.writeOBJ(a.getContext(), f), "noextension",
+     r"the name has no extension \(valid: \.obj\)"),
+])
+def test_a_writer_refuses_a_name_of_another_format(arch, tmp, write, name, says):
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), 5)
+    with pytest.raises(plantarch.Error, match=says):
+        write(arch, str(tmp / name))
+    assert list(tmp.iterdir()) == []  # nothing written
+
+
+def test_errors_name_what_to_write_instead():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    with pytest.raises(AttributeError, match="did you mean 'getPlantHeight'"):
+        a.getPlantHieght(0)
+    with pytest.raises(AttributeError, match="did you mean 'getObjectCount'"):
+        a.getContext().getObjectCuont()
+    assert not hasattr(a, "noSuchThing")
+    with pytest.raises(plantarch.Error, match="none defined yet: load a species"):
+        a.getCurrentShootParameters("trifoliate")
+    a.loadPlantModelFromLibrary("bean")
+    with pytest.raises(plantarch.Error, match=r"unknown shoot type \(valid: one of: trifoliate, "
+                                              r"unifoliate\)"):
+        a.getCurrentShootParameters("trifoliat")
+    with pytest.raises(plantarch.Error, match="not an ID"):
+        a.getPlantHeight(-1)
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 5)
+    a.getContext().clear()  # no argument needed
+    assert a.getContext().getObjectCount() == 0

@@ -10,6 +10,7 @@
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/ExportPlants.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch {
 
@@ -23,6 +24,7 @@ std::vector<GltfPlant> exportPlants(const PlantArchitecture& arch) {
 
 void writeQSM(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
               const std::string& path) {
+    requireOutputFormat(path, {".csv"}, "writeQSM writes cylinders as CSV");
     io::AtomicFile out(path);
     out.write(
         "# plantarch cylinders (one row per internode, as a quantitative structure model):\n"
@@ -110,7 +112,7 @@ void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& 
                           const AnimationOptions& animation) {
     const std::vector<double> days = growthFrameDays(frames);
     for (const std::string& path : paths) {
-        const std::string ext = io::lowerExtension(path);
+        const std::string ext = lowerExtension(path);
         if (ext != ".glb" && ext != ".gltf" && ext != ".usda")
             throw Error("an animation is written as .glb, .gltf or .usda",
                         {.file = path, .value = ext, .validRange = ".glb, .gltf, .usda"});
@@ -131,7 +133,7 @@ void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& 
     }
     steps.finish();
     for (const std::string& path : paths) {
-        if (io::lowerExtension(path) == ".usda") {
+        if (lowerExtension(path) == ".usda") {
             UsdOptions o;
             o.progress = animation.progress;
             writeUSDA(recorded, path, o, animation);

@@ -110,8 +110,17 @@ void PlantArchitecture::defineShootType(const std::string& label, const ShootPar
 
 const ShootParameters& PlantArchitecture::shootType(const std::string& label) const {
     auto it = impl_->store.shootTypes.find(label);
-    if (it == impl_->store.shootTypes.end())
-        throw Error("unknown shoot type", {.parameter = "shoot_type_label", .value = label});
+    if (it == impl_->store.shootTypes.end()) {
+        std::string valid;
+        for (const auto& [known, p] : impl_->store.shootTypes)
+            valid += (valid.empty() ? "one of: " : ", ") + known;
+        throw Error("unknown shoot type",
+                    {.parameter = "shoot_type_label",
+                     .value = label,
+                     .validRange = valid.empty() ? "none defined yet: load a species or "
+                                                   "defineShootType first"
+                                                 : valid});
+    }
     return it->second;
 }
 

@@ -17,6 +17,7 @@
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/HeliosPlantXML.h"
+#include "plantarch/OutputFormats.h"
 #include "plantarch/PlantStructureWrite.h"
 
 namespace plantarch {
@@ -88,6 +89,7 @@ std::string PlantArchitecture::getPlantStructureXML(const std::vector<unsigned>&
 
 void PlantArchitecture::writePlantStructureXML(const std::vector<unsigned>& plantIDs,
                                                const std::string& filename) const {
+    requireOutputFormat(filename, {".xml"}, "writePlantStructureXML writes a plant structure file");
     const std::string text = getPlantStructureXML(plantIDs);
     io::AtomicFile file(filename);
     file.write(text);
@@ -327,6 +329,8 @@ std::string getHeliosPlantStructureXML(const PlantArchitecture& arch,
 void writeHeliosPlantStructureXML(const PlantArchitecture& arch,
                                   const std::vector<unsigned>& plantIDs,
                                   const std::string& filename) {
+    requireOutputFormat(filename, {".xml", ".helios.xml"},
+                        "writeHeliosPlantStructureXML writes a plant structure file");
     const std::string text = getHeliosPlantStructureXML(arch, plantIDs);
     io::AtomicFile file(filename);
     file.write(text);
@@ -366,6 +370,7 @@ std::string getPlantStructureXML(const PlantArchitecture& arch,
 void writePlantStructureXML(const PlantArchitecture& arch, const std::vector<unsigned>& plantIDs,
                             const std::string& filename,
                             const PlantStructureWriteOptions& options) {
+    requireOutputFormat(filename, {".xml"}, "writePlantStructureXML writes a plant structure file");
     const std::string text = getPlantStructureXML(arch, plantIDs, options);
     io::AtomicFile file(filename);
     file.write(text);

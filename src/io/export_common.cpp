@@ -50,15 +50,6 @@ void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOp
     }
 }
 
-std::string lowerExtension(const std::string& path) {
-    const std::size_t dot = path.find_last_of('.');
-    const std::size_t slash = path.find_last_of('/');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-    std::string ext = path.substr(dot);
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 std::uint8_t organCode(std::string_view organ) {
     for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
         if (organ == kOrganLabels[i]) return std::uint8_t(i);

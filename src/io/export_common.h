@@ -82,9 +82,6 @@ void checkFrameRate(const AnimationOptions& animation, const std::string& file);
 void checkAnimation(const std::vector<AnimationFrame>& frames, const AnimationOptions& animation,
                     const std::string& file);
 
-/// The extension of a file name in lower case, with its dot (".glb"); empty when none.
-std::string lowerExtension(const std::string& path);
-
 /// The index in kOrganLabels of an organ name (trellis parts are obstacles); 0 for others.
 std::uint8_t organCode(std::string_view organ);
 

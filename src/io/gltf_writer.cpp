@@ -30,6 +30,7 @@
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch {
 
@@ -654,7 +655,7 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     json doc = document(scene, options, buffer);
     io::AtomicFile file(path);
     ProgressSteps steps(options.progress, "writing glTF", double(buffer.size()));
-    if (io::lowerExtension(path) == ".gltf") {
+    if (lowerExtension(path) == ".gltf") {
         std::string bytes;
         Sink sink(nullptr, &bytes, steps);
         writeBinary(scene, options, sink);
@@ -686,10 +687,7 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
 }
 
 void checkExtension(const std::string& path) {
-    const std::string ext = io::lowerExtension(path);
-    if (ext != ".glb" && ext != ".gltf")
-        throw Error("a glTF file ends in .glb (binary) or .gltf (text)",
-                    {.file = path, .value = ext, .validRange = ".glb, .gltf"});
+    requireOutputFormat(path, {".glb", ".gltf"}, "writeGLTF writes glTF, binary or text");
 }
 
 }  // namespace

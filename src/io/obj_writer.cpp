@@ -26,6 +26,7 @@
 #include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch {
 
@@ -474,6 +475,8 @@ void writeSplit(const Context& context, const std::string& dir, const ObjOptions
 }  // namespace
 
 void writeOBJ(const Context& context, const std::string& path, const ObjOptions& options) {
+    if (!options.splitPerObject)
+        requireOutputFormat(path, {".obj"}, "writeOBJ writes a Wavefront OBJ mesh");
     io::requireDataType(context, "organ", DataType::String, path);
     const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);
     if (options.splitPerObject) {

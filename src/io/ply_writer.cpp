@@ -18,6 +18,7 @@
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch {
 
@@ -288,6 +289,7 @@ std::vector<std::string> organLabelTable(const Context& context, bool includeHid
 }
 
 void writePLY(const Context& context, const std::string& path, const PlyOptions& options) {
+    requireOutputFormat(path, {".ply"}, "writePLY writes a PLY mesh");
     io::requireDataType(context, "organ", DataType::String, path);
     io::requireDataType(context, "plantID", DataType::Int, path);
     const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);

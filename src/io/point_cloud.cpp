@@ -17,6 +17,7 @@
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 #include "plantarch/Random.h"
 
 namespace plantarch {
@@ -132,6 +133,7 @@ bool scanned(const PointCloud& cloud, const std::string& path) {
 
 void writePointCloudPLY(const PointCloud& cloud, const std::string& path,
                         const ProgressCallback& progress) {
+    requireOutputFormat(path, {".ply"}, "writePointCloudPLY writes a PLY point cloud");
     const bool scan = scanned(cloud, path);
     io::AtomicFile out(path);
     std::string h = "ply\nformat binary_little_endian 1.0\n";
@@ -241,6 +243,7 @@ void put32(std::string& s, std::uint32_t v) {
 
 void writePointCloudNPZ(const PointCloud& cloud, const std::string& path,
                         const ProgressCallback& progress) {
+    requireOutputFormat(path, {".npz"}, "writePointCloudNPZ writes a NumPy point cloud");
     const bool scan = scanned(cloud, path);
     const std::size_t n = cloud.positions.size();
     const std::string rows = fmt::format("({},)", n), rows3 = fmt::format("({}, 3)", n);

@@ -15,6 +15,7 @@
 #include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch {
 
@@ -255,6 +256,7 @@ const char* kHeader =
 }  // namespace
 
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
+    requireOutputFormat(path, {".usda"}, "writeUSDA writes USD text");
     io::AtomicFile file(path);
     Text out(file);
     ProgressSteps steps(options.progress, "writing USD", double(context.triangleCount()));
@@ -268,6 +270,7 @@ void writeUSDA(const Context& context, const std::string& path, const UsdOptions
 
 void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& path,
                const UsdOptions& options, const AnimationOptions& animation) {
+    requireOutputFormat(path, {".usda"}, "writeUSDA writes USD text");
     io::checkAnimation(frames, animation, path);
     io::AtomicFile file(path);
     Text out(file);

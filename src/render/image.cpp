@@ -17,6 +17,7 @@
 #include "core/atomic_file.h"
 #include "core/image_file.h"
 #include "plantarch/Error.h"
+#include "plantarch/OutputFormats.h"
 #include "plantarch/Render.h"
 #include "render/render_internal.h"
 
@@ -62,6 +63,7 @@ std::vector<std::uint8_t> pngBytes(const Image& image, const std::string& path) 
 }  // namespace
 
 void writePNG(const Image& image, const std::string& path) {
+    requireOutputFormat(path, {".png"}, "writePNG writes a PNG picture");
     const std::vector<std::uint8_t> bytes = pngBytes(image, path);
     io::writeWholeFile(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
@@ -72,6 +74,7 @@ std::string encodePNG(const Image& image) {
 }
 
 void writeDepthNPY(const DepthImage& depth, const std::string& path) {
+    requireOutputFormat(path, {".npy"}, "writeDepthNPY writes a NumPy array");
     if (depth.width <= 0 || depth.height <= 0 ||
         depth.depth.size() != std::size_t(depth.width) * std::size_t(depth.height))
         throw Error("depth image has no pixels or a wrong buffer size", {.file = path});
