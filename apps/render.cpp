@@ -1,5 +1,6 @@
-// plantarch render: ray-casts an OBJ file (any OBJ, not only ours) into a PNG preview or a
-// segmentation mask.
+// plantarch render: ray-casts a scene (an OBJ file, any OBJ, not only ours; or plants from a
+// plant structure file or plant strings) into a PNG preview or a segmentation mask, with the
+// camera's matrices beside it on request.
 
 #include "plantarch/Render.h"
 
@@ -11,12 +12,14 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::cli {
 namespace {
@@ -31,6 +34,9 @@ struct RenderArgs {
     std::string label;
     std::string coco;
     bool cocoGiven = false;  // --coco '' is refused, not taken for no --coco
+    std::string cameraJson;
+    bool cameraJsonGiven = false;
+    std::string species;
     bool noGround = false;
     int samples = 0;  // 0: the renderer's default
 };
@@ -79,7 +85,14 @@ void organsFromNames(Context& ctx, const std::vector<ObjectID>& ids) {
 
 int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto start = std::chrono::steady_clock::now();
-    requireInputFile(a.input, "OBJ file");
+    requireInputFile(a.input, "scene file");
+    const std::string in = lowerExtension(a.input);
+    if (in != ".obj" && in != ".xml" && in != ".txt")
+        throw Error("render reads a scene plantarch writes with geometry or plant state",
+                    {.file = a.input,
+                     .value = in.empty() ? "no extension" : in,
+                     .validRange = ".obj (geometry), .xml (a plant structure or <helios> file), "
+                                   ".txt (plant strings, with --species)"});
     const bool depth = a.label == "depth";
     requireOutputFormat(a.output, depth ? kDepthOutput : kPictureOutput,
                         depth ? "a depth image is written as .npy (distances) or .png (a picture)"
@@ -130,10 +143,23 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
                          .validRange = ".json"});
         outputs.add(a.coco);
     }
+    if (a.cameraJsonGiven) {
+        requireOutputFormat(a.cameraJson, {".json"}, "the camera is written as JSON");
+        outputs.add(a.cameraJson);
+    }
     outputs.requireNotAnInput(a.input);
     Context ctx;
-    const std::vector<ObjectID> ids = readOBJ(ctx, a.input, {.progress = terminalProgress()});
-    organsFromNames(ctx, ids);
+    std::optional<PlantArchitecture> arch;  // holds plants read from a plant file
+    if (in == ".obj") {
+        const std::vector<ObjectID> ids = readOBJ(ctx, a.input, {.progress = terminalProgress()});
+        organsFromNames(ctx, ids);
+    } else {
+        arch.emplace(&ctx);
+        arch->setSeed(g.seed);
+        arch->setTriangleLimit(g.maxTriangles);
+        arch->setMeshDetail(g.meshDetail);
+        readPlantInput(*arch, a.input, a.species);
+    }
     info(g, fmt::format("read {}: {} objects, {} triangles", a.input, ctx.objectCount(),
                         ctx.triangleCount()));
     RenderScene scene(ctx, o.scene);
@@ -151,6 +177,10 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     }
     const auto rendered = std::chrono::steady_clock::now();
     if (!image.rgb.empty()) writePNG(image, a.output);
+    if (a.cameraJsonGiven) {
+        writeWholeFile(a.cameraJson, cameraJSON(scene.camera(o), o.width, o.height));
+        info(g, "wrote " + a.cameraJson);
+    }
     if (a.cocoGiven) {
         RenderOptions mask = o;
         mask.mode = RenderMode::LabelObject;
@@ -169,9 +199,16 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
 }
 
 std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
-    app.description("Render an OBJ file to a PNG (shaded preview or segmentation mask)");
+    app.description(
+        "Render a scene (.obj, or plants from .xml or .txt) to a PNG (shaded preview or "
+        "segmentation mask)");
     auto args = std::make_shared<RenderArgs>();
-    app.add_option("input", args->input, "OBJ file to render")->required();
+    app.add_option("input", args->input,
+                   "Scene to render: .obj, .xml (plant structure or <helios>) or .txt (plant "
+                   "strings, with --species)")
+        ->required();
+    app.add_option("--species", args->species,
+                   "Species giving the shoot types of plant strings (.txt input)");
     app.add_option("-o,--output", args->output,
                    "PNG file to write (with --label depth: .npy distances or a .png picture)")
         ->required();
@@ -197,6 +234,14 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
         },
         "Also write COCO-style JSON of the objects in view (categories: organ kinds; "
         "masks as RLE; bounding boxes in pixels)");
+    app.add_option_function<std::string>(
+        "--camera-json",
+        [args](const std::string& path) {
+            args->cameraJson = path;
+            args->cameraJsonGiven = true;
+        },
+        "Also write the camera as JSON: eye, target, up, field of view, image size, intrinsics "
+        "K and extrinsics world_to_camera (OpenCV's pinhole convention)");
     app.add_flag("--no-ground", args->noGround, "Leave out the ground plane");
     app.add_option("--samples", args->samples, "Camera rays per pixel (default 4)")
         ->check(numberCheck("--samples", "a ray count", 1, 1024, true, "1 to 1024"));

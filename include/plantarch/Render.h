@@ -178,6 +178,19 @@ struct CameraFrame {
     float fovDeg;
 };
 
+/// A render's camera as vision tools take it, in OpenCV's pinhole convention (camera x right,
+/// y down, z forward; pixel centres at whole coordinates; metres): a world point p is seen at
+/// pixel (u, v) with (u w, v w, w) = K (worldToCamera p).
+struct CameraMatrices {
+    std::array<std::array<double, 3>, 3> K;              ///< intrinsics
+    std::array<std::array<double, 4>, 4> worldToCamera;  ///< extrinsics (rotation, translation)
+};
+/// The matrices of `frame` for a width x height image, exactly the rays render() casts.
+CameraMatrices cameraMatrices(const CameraFrame& frame, int width, int height);
+/// The camera as JSON text: eye, target, up, vertical field of view, image size, K and
+/// world_to_camera (what `plantarch render --camera-json` writes beside a picture).
+std::string cameraJSON(const CameraFrame& frame, int width, int height);
+
 /// A Context prepared for ray casting: geometry copied into an Embree BVH, materials and
 /// textures loaded. It is a snapshot: later changes to the Context are not seen. Building it
 /// is the costly part; render() can then be called many times (several views, label masks).

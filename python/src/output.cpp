@@ -66,6 +66,50 @@ RenderMode modeNamed(const std::string& mode) {
         {.parameter = "mode", .value = mode, .validRange = "one of: shaded, organ, object"});
 }
 
+// The camera of a render call: orbit angles around the auto-framed scene, or a fixed eye
+// (with a target, the scene's centre when none is given, and an up direction).
+struct CameraArgs {
+    float azimuth, elevation, fov;
+    py::object eye, target, up;
+};
+
+Camera cameraOf(const CameraArgs& a) {
+    Camera c;
+    c.azimuthDeg = a.azimuth;
+    c.elevationDeg = a.elevation;
+    c.fovDeg = a.fov;
+    if (!a.eye.is_none()) {
+        c.autoFrame = false;
+        c.eye = toVec3(a.eye, "eye");
+        if (!a.target.is_none()) c.target = toVec3(a.target, "target");
+        c.up = toVec3(a.up, "up");
+    } else if (!a.target.is_none()) {
+        throw Error("a target needs an eye",
+                    {.parameter = "target", .validRange = "eye=(x, y, z) with target"});
+    }
+    return c;
+}
+
+// The options' camera made whole for `scene`: a fixed eye without a target looks at the
+// scene's centre.
+void aimAtScene(RenderOptions& o, const CameraArgs& a, const RenderScene& scene) {
+    if (!o.camera.autoFrame && a.target.is_none()) o.camera.target = scene.bounds().center();
+}
+
+py::dict cameraDict(const CameraFrame& f, int width, int height) {
+    const CameraMatrices m = cameraMatrices(f, width, height);
+    py::dict d;
+    d["width"] = width;
+    d["height"] = height;
+    d["eye"] = f.eye;
+    d["target"] = f.target;
+    d["up"] = f.up;
+    d["fov_y_deg"] = f.fovDeg;
+    d["K"] = m.K;
+    d["world_to_camera"] = m.worldToCamera;
+    return d;
+}
+
 }  // namespace
 
 void bindOutput(py::module_& m) {
@@ -205,46 +249,80 @@ void bindOutput(py::module_& m) {
     m.def(
         "render",
         [](const Context& c, int width, int height, const std::string& mode, float azimuth,
-           float elevation, float fov, int samples, bool ground, std::uint64_t seed) {
+           float elevation, float fov, int samples, bool ground, std::uint64_t seed, py::object eye,
+           py::object target, py::object up) {
+            const CameraArgs args{azimuth, elevation, fov, eye, target, up};
             RenderOptions o;
             o.width = width;
             o.height = height;
             o.mode = modeNamed(mode);
-            o.camera.azimuthDeg = azimuth;
-            o.camera.elevationDeg = elevation;
-            o.camera.fovDeg = fov;
+            o.camera = cameraOf(args);
             o.samplesPerPixel = samples;
             o.groundPlane = ground;
             o.seed = seed;
             Image image;
             {
                 py::gil_scoped_release release;
-                image = render(c, o);
+                const RenderScene scene(c, o.scene);
+                aimAtScene(o, args, scene);
+                image = scene.render(o);
             }
             return imageArray(std::move(image));
         },
         py::arg("context"), py::arg("width") = 640, py::arg("height") = 480,
         py::arg("mode") = "shaded", py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f,
         py::arg("fov") = 35.0f, py::arg("samples_per_pixel") = 4, py::arg("ground") = true,
-        py::arg("seed") = 0,
-        "Renders the Context, framed automatically, as a height x width x 3 uint8 array. mode: "
-        "'shaded', 'organ' (label colours per organ) or 'object' (one colour per object ID).");
+        py::arg("seed") = 0, py::arg("eye") = py::none(), py::arg("target") = py::none(),
+        py::arg("up") = vec3(0.0f, 0.0f, 1.0f),
+        "Renders the Context as a height x width x 3 uint8 array. mode: 'shaded', 'organ' "
+        "(label colours per organ) or 'object' (one colour per object ID; "
+        "objectIDsFromLabelImage decodes it). The camera is framed on the scene from azimuth "
+        "and elevation (degrees), or fixed with eye=(x, y, z), target (default: the scene's "
+        "centre) and up: a fixed camera frames every call alike. renderCamera gives its "
+        "matrices.");
     m.def(
-        "renderDepth",
+        "renderCamera",
         [](const Context& c, int width, int height, float azimuth, float elevation, float fov,
-           bool ground) {
+           py::object eye, py::object target, py::object up) {
+            const CameraArgs args{azimuth, elevation, fov, eye, target, up};
             RenderOptions o;
             o.width = width;
             o.height = height;
-            o.camera.azimuthDeg = azimuth;
-            o.camera.elevationDeg = elevation;
-            o.camera.fovDeg = fov;
+            o.camera = cameraOf(args);
+            CameraFrame frame;
+            {
+                py::gil_scoped_release release;
+                const RenderScene scene(c, o.scene);
+                aimAtScene(o, args, scene);
+                frame = scene.camera(o);
+            }
+            return cameraDict(frame, width, height);
+        },
+        py::arg("context"), py::arg("width") = 640, py::arg("height") = 480,
+        py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f, py::arg("fov") = 35.0f,
+        py::arg("eye") = py::none(), py::arg("target") = py::none(),
+        py::arg("up") = vec3(0.0f, 0.0f, 1.0f),
+        "The camera render() and renderDepth() use with the same arguments, as a dict: eye, "
+        "target, up, fov_y_deg, width, height, intrinsics K (3 x 3) and extrinsics "
+        "world_to_camera (4 x 4), in OpenCV's pinhole convention (x right, y down, z forward, "
+        "pixel centres at whole coordinates).");
+    m.def(
+        "renderDepth",
+        [](const Context& c, int width, int height, float azimuth, float elevation, float fov,
+           bool ground, py::object eye, py::object target, py::object up) {
+            const CameraArgs args{azimuth, elevation, fov, eye, target, up};
+            RenderOptions o;
+            o.width = width;
+            o.height = height;
+            o.camera = cameraOf(args);
             o.groundPlane = ground;
             auto* owned = new DepthImage;
             {
                 py::gil_scoped_release release;
                 try {
-                    *owned = renderDepth(c, o);
+                    const RenderScene scene(c, o.scene);
+                    aimAtScene(o, args, scene);
+                    *owned = scene.renderDepth(o);
                 } catch (...) {
                     delete owned;
                     throw;
@@ -257,9 +335,45 @@ void bindOutput(py::module_& m) {
         },
         py::arg("context"), py::arg("width") = 640, py::arg("height") = 480,
         py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f, py::arg("fov") = 35.0f,
-        py::arg("ground") = true,
+        py::arg("ground") = true, py::arg("eye") = py::none(), py::arg("target") = py::none(),
+        py::arg("up") = vec3(0.0f, 0.0f, 1.0f),
         "The depth image of the camera render() would use: a height x width float32 array of "
         "distances along the view axis in metres, 0 where nothing is hit.");
+    m.def(
+        "objectIDsFromLabelImage",
+        [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
+            if (a.ndim() != 3 || a.shape(2) != 3)
+                throw Error("a label image is height x width x 3",
+                            {.parameter = "image", .validRange = "an array of shape (h, w, 3)"});
+            const auto h = std::size_t(a.shape(0)), w = std::size_t(a.shape(1));
+            py::array_t<std::int64_t> ids({h, w});
+            const std::uint8_t* in = a.data();
+            std::int64_t* out = ids.mutable_data();
+            for (std::size_t i = 0; i < h * w; ++i) {
+                const auto id = objectIDFromLabelColor({in[3 * i], in[3 * i + 1], in[3 * i + 2]});
+                out[i] = id ? std::int64_t(*id) : -1;
+            }
+            return ids;
+        },
+        py::arg("image"),
+        "The object ID of every pixel of a render(mode='object') image as a height x width "
+        "int64 array, -1 where no object is (black).");
+    m.def(
+        "cocoAnnotations",
+        [](const Context& c,
+           const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a,
+           const std::string& imageFile) { return cocoAnnotations(c, imageFrom(a), imageFile); },
+        py::arg("context"), py::arg("image"), py::arg("image_file") = "image.png",
+        "COCO instance annotations (JSON text) of a render(mode='object') image of the "
+        "Context: one per object in view, its organ as category, object_id and plant_id, "
+        "bounding box and RLE mask; what `plantarch render --coco` writes.");
+    m.def(
+        "objectIDFromLabelColor",
+        [](std::uint8_t r, std::uint8_t g, std::uint8_t b) -> std::optional<ObjectID> {
+            return objectIDFromLabelColor({r, g, b});
+        },
+        py::arg("r"), py::arg("g"), py::arg("b"),
+        "The object ID of one colour of a render(mode='object') image; None for black.");
     m.def(
         "writePNG",
         [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a,

@@ -75,10 +75,12 @@ void requireOutputFormat(const std::string& path,
                          const std::string& what) {
     // The path's format as the table reads it (the longest ending), so that "a.helios.xml"
     // is not taken for a plain ".xml".
+    // A name the table does not know (".json") is matched by its ending alone.
     const OutputFormat* format = outputFormat(path, ~0u);
+    const std::string name = lower(std::filesystem::path(path).filename().string());
     std::string valid;
     for (std::string_view e : extensions) {
-        if (format && format->extension == e) return;
+        if (format ? format->extension == e : name.size() > e.size() && name.ends_with(e)) return;
         valid += (valid.empty() ? "" : ", ") + std::string(e);
     }
     const std::string ext = format ? std::string(format->extension) : lowerExtension(path);

@@ -436,13 +436,11 @@ Setup makeSetup(const SceneData& data, const RenderOptions& o, const CameraFrame
     s.width = o.width;
     s.height = o.height;
     s.eye = cam.eye;
-    s.forward = glm::normalize(cam.target - cam.eye);
-    vec3 up = glm::length(cam.up) > 0.0f ? glm::normalize(cam.up) : vec3(0, 0, 1);
-    if (glm::length(glm::cross(s.forward, up)) < 1e-4f)
-        up = std::abs(s.forward.y) < 0.9f ? vec3(0, 1, 0) : vec3(1, 0, 0);
+    const render_detail::CameraAxes axes = render_detail::cameraAxes(cam);
+    s.forward = axes.forward;
     const float tanHalf = std::tan(optionRadians(cam.fovDeg) * 0.5f);
     const float aspect = float(o.width) / float(o.height);
-    s.right = glm::normalize(glm::cross(s.forward, up)) * tanHalf * aspect;
+    s.right = glm::normalize(glm::cross(s.forward, axes.worldUp)) * tanHalf * aspect;
     s.up = glm::normalize(glm::cross(glm::normalize(s.right), s.forward)) * tanHalf;
     s.ground = o.groundPlane;
     s.groundZ = box.min.z - 1e-4f * radius;  // just below, so a ground object wins

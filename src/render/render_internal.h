@@ -89,6 +89,13 @@ struct SceneData {
 
 void buildScene(SceneData& data, const Context& context, const RenderSceneOptions& options);
 
+/// A camera frame's view direction (unit, toward the target) and the world up its image's up
+/// is made from (unit; an up parallel to the view falls back to y, then x).
+struct CameraAxes {
+    vec3 forward, worldUp;
+};
+CameraAxes cameraAxes(const CameraFrame& frame);
+
 /// A ray from `origin` along `direction` up to `tfar`, with no hit yet, for rtcIntersect1.
 inline RTCRayHit rayHit(const vec3& origin, const vec3& direction, float tfar) {
     RTCRayHit rh;
