@@ -165,7 +165,7 @@ TEST_F(CliOutputs, ADirectoryGivenAsAnInputFileIsCalledADirectory) {
         {"grow " + at("dir.txt") + " --species bean --days 3 -o " + at("x.obj"),
          at("dir.txt") + ": is a directory, not a plant string file"},
         {"convert " + o + " " + at("x.ply"), o + ": is a directory, not an OBJ file"},
-        {"render " + o + " -o " + at("x.png"), o + ": is a directory, not an OBJ file"},
+        {"render " + o + " -o " + at("x.png"), o + ": is a directory, not a scene file"},
         {"scan " + o + " --scanner 1,0,0 -o " + at("x.ply"),
          o + ": is a directory, not an OBJ file"},
         {"build bean --age 3 --stats --obstacle " + o,

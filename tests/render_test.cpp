@@ -534,7 +534,7 @@ TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
         {"render " + in + " -o /proc/x.png", "/proc/x.png: cannot write in folder /proc"},
         {"render " + in + " -o \"" + (dir / "out.obj").string() + "\"",
          "out.obj: '.obj': render writes a PNG picture (valid: .png)"},
-        {"render \"" + dir.path().string() + "\"" + out, "is a directory, not an OBJ file"},
+        {"render \"" + dir.path().string() + "\"" + out, "is a directory, not a scene file"},
     };
     for (const auto& [args, mentions] : cases) {
         const auto r = runCli(args, dir.path());

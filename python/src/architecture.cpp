@@ -698,7 +698,8 @@ void bindArchitecture(py::module_& m) {
           py::arg("context"), py::keep_alive<1, 2>(),
           "Plants are built into `context` (kept alive as long as this object).")
         .def(
-            "__enter__", [](py::object self) { return self; },
+            "__enter__", [](PlantArchitecture& self) -> PlantArchitecture& { return self; },
+            py::return_value_policy::reference,
             "`with PlantArchitecture(context) as arch:` gives the object itself.")
         .def(
             "__exit__", [](PlantArchitecture&, const py::args&) { return false; },

@@ -104,7 +104,8 @@ void bindContext(py::module_& m) {
                         "age, leafID ...).")
         .def(py::init<>())
         .def(
-            "__enter__", [](py::object self) { return self; },
+            "__enter__", [](Context& self) -> Context& { return self; },
+            py::return_value_policy::reference,
             "`with Context() as context:` gives the Context itself.")
         .def(
             "__exit__", [](Context&, const py::args&) { return false; },

@@ -113,8 +113,9 @@ void bindValues(py::module_& m) {
         *new py::exception<TriangleBudgetError>(m, "TriangleBudgetError", error.ptr());
     budget.doc() =
         "A job that needs more triangles than the triangle limit (setTriangleLimit) allows, "
-        "refused before it starts or stopped as it passes the limit. Attributes: those of "
-        "Error, and estimate and limit (triangles).";
+        "refused before it starts or stopped as it passes the limit; its estimate and limit "
+        "count triangles. Attributes: file, line, parameter, value, valid_range, estimate, "
+        "limit.";
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);

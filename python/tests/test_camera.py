@@ -3,6 +3,7 @@ a point onto the pixel that shows it at the depth the depth image gives, mask ID
 objects COCO annotates, and the command line reads plant files and writes the same camera."""
 
 import json
+from typing import Any
 import subprocess
 
 import numpy as np
@@ -20,7 +21,7 @@ def bean(age):
     return a
 
 
-FIXED = dict(eye=(0.8, -0.9, 0.6), target=(0, 0, 0.15))
+FIXED: dict[str, Any] = dict(eye=(0.8, -0.9, 0.6), target=(0, 0, 0.15))
 
 
 def test_a_fixed_camera_frames_every_age_alike_and_auto_framing_does_not():
@@ -44,7 +45,7 @@ def test_the_matrices_project_a_point_onto_the_pixel_that_shows_it():
                                  [-0.01, 0, 0.01]])
     square = context.addObject(corners, [[0, 1, 2], [0, 2, 3]])
     context.addObject(corners + [0.3, 0.2, 0.0], [[0, 1, 2], [0, 2, 3]])
-    view = dict(width=320, height=240, eye=(0.1, -1.0, 0.3), target=(0.1, 0.0, 0.3),
+    view: dict[str, Any] = dict(width=320, height=240, eye=(0.1, -1.0, 0.3), target=(0.1, 0.0, 0.3),
                 fov=20.0, ground=False)
     camera = plantarch.renderCamera(context, 320, 240, fov=20.0, eye=view["eye"],
                                     target=view["target"])

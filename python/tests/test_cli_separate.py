@@ -22,7 +22,9 @@ def test_separate_files_hold_every_plant_once_with_an_index(tmp_path):
                           "--separate", "-o", str(tmp_path / "field.ply"),
                           "-o", str(tmp_path / "field.glb")], check=True, capture_output=True,
                          text=True)
-    total = int(re.search(r"(\d+) triangles", run.stdout).group(1))
+    found = re.search(r"(\d+) triangles", run.stdout)
+    assert found, run.stdout
+    total = int(found.group(1))
     index = json.loads((tmp_path / "field_index.json").read_text())
     assert index["species"] == "bean" and index["seed"] == 4 and index["coordinates"] == "scene"
     assert [p["plantID"] for p in index["plants"]] == list(range(6))

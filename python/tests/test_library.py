@@ -263,7 +263,9 @@ def test_with_blocks_as_the_reference_package_writes_them():
 def test_collision_stats_hold_every_field_of_the_struct(arch):
     header = (pathlib.Path(__file__).resolve().parents[2] / "include" / "plantarch" /
               "Collision.h").read_text()
-    body = re.search(r"struct CollisionStats \{(.*?)\n\};", header, re.S).group(1)
+    found = re.search(r"struct CollisionStats \{(.*?)\n\};", header, re.S)
+    assert found
+    body = found.group(1)
     fields = re.findall(r"^\s+(?:std::uint64_t|double|unsigned|float|int)\s+(\w+)\s*=", body, re.M)
     assert len(fields) >= 15
     stats = arch.getCollisionStats()
@@ -300,9 +302,9 @@ def test_a_writer_refuses_a_name_of_another_format(arch, tmp, write, name, says)
 def test_errors_name_what_to_write_instead():
     a = plantarch.PlantArchitecture(plantarch.Context())
     with pytest.raises(AttributeError, match="did you mean 'getPlantHeight'"):
-        a.getPlantHieght(0)
+        a.getPlantHieght(0)  # pyright: ignore[reportAttributeAccessIssue]
     with pytest.raises(AttributeError, match="did you mean 'getObjectCount'"):
-        a.getContext().getObjectCuont()
+        a.getContext().getObjectCuont()  # pyright: ignore[reportAttributeAccessIssue]
     assert not hasattr(a, "noSuchThing")
     with pytest.raises(plantarch.Error, match="none defined yet: load a species"):
         a.getCurrentShootParameters("trifoliate")

@@ -15,16 +15,23 @@ KNOWN = {"Any", "None", "int", "float", "bool", "str", "bytes", "object"}
 
 
 def clean_type(text):
-    text = text.replace("plantarch._plantarch.", "").replace("numpy.ndarray", "numpy.ndarray")
+    text = text.replace("plantarch._plantarch.", "")
     text = re.sub(r"numpy\.ndarray\[[^\]]*\]", "numpy.ndarray", text)
-    text = text.replace("Callable[[", "Callable[[")
+    text = re.sub(r"\bfunction\b", "Callable[..., Any]", text)  # a Python callable
     return text
 
 
 def clean_args(args):
+    """Parameter annotations as callers may pass them: any sequence of numbers where a vec3 or
+    vec2 is taken (the module converts it), any sequence where a list is taken."""
     args = re.sub(r"<[^<>]*>", "...", args)  # defaults printed as <object at 0x...>
     args = re.sub(r"= [^,()\[\]]*\.\.\.[^,()\[\]]*", "= ...", args)
-    return clean_type(args)
+    args = clean_type(args)
+    args = re.sub(r"\bList\[", "Sequence[", args)
+    args = re.sub(r"\bvec3\b", "Vec3Like", args)
+    args = re.sub(r"\bvec2\b", "Vec2Like", args)
+    args = args.replace("numpy.ndarray", "numpy.typing.ArrayLike")
+    return args
 
 
 def valid(stub):
@@ -37,10 +44,13 @@ def valid(stub):
 
 def signatures(name, doc, method):
     out = []
+    overloaded = "Overloaded function." in (doc or "")
     for line in (doc or "").splitlines():
         m = SIGNATURE.match(line.strip())
         if not m or m.group(1) != name:
             continue
+        if overloaded and m.group(2) == "*args, **kwargs":
+            continue  # the dispatcher's own line above the numbered overloads
         args, ret = clean_args(m.group(2)), clean_type(m.group(3) or "None")
         text = f"def {name}({args}) -> {ret}: ..."
         if not valid(text):
@@ -73,6 +83,12 @@ def emit_class(lines, name, cls):
     if doc:
         lines.append(f'    """{doc}"""')
     body = 0
+    # An exception's attributes are set on each instance; its docstring names them.
+    listed = re.search(r"Attributes: ([\w, ]+)\.", cls.__doc__ or "")
+    if issubclass(cls, BaseException) and listed:
+        for attr in listed.group(1).split(", "):
+            lines.append(f"    {attr}: Any")
+            body += 1
     for attr, value in sorted(vars(cls).items()):
         if attr.startswith("_") and attr not in (
             "__init__", "__eq__", "__iter__", "__len__", "__enter__", "__exit__"):
@@ -83,12 +99,21 @@ def emit_class(lines, name, cls):
             if d:
                 lines.append(f'    """{d}"""')
             body += 1
+        elif isinstance(value, staticmethod):
+            lines.append("    @staticmethod")
+            emit_function(lines, attr, value.__func__, "    ", False)
+            body += 1
         elif callable(value):
             emit_function(lines, attr, value, "    ", True)
             body += 1
         elif isinstance(value, cls):  # enum members
             lines.append(f"    {attr}: {name}")
             body += 1
+    if hasattr(cls, "__members__"):  # an enum: its members by name, hashable
+        lines.append("    __members__: Dict[str, Any]")
+        lines.append("    def __hash__(self) -> int: ...")
+        lines.append("    def __int__(self) -> int: ...")
+        body += 1
     if not body:
         lines.append("    ...")
     lines.append("")
@@ -104,7 +129,12 @@ def main():
         "from typing import (Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple,",
         "                    Union, overload)",
         "import numpy",
+        "import numpy.typing",
         "from plantarch import vec2, vec3",
+        "",
+        "# What a parameter taking a point or a pair accepts: the named tuple or any sequence.",
+        "Vec3Like = Union[vec3, Tuple[float, float, float], Sequence[float]]",
+        "Vec2Like = Union[vec2, Tuple[float, float], Sequence[float]]",
         "",
     ]
     names = sorted(vars(module).items(), key=lambda kv: (not inspect.isclass(kv[1]), kv[0]))
