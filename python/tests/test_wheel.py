@@ -58,13 +58,20 @@ def test_the_wheel_holds_the_package_stubs_and_species(wheel):
     assert len(listed) == len(names)  # every file has its hash line, RECORD its own
 
 
-def test_a_fresh_venv_imports_the_wheel_and_writes_the_clis_bytes(wheel, tmp_path):
-    venv = tmp_path / "venv"
+def installed(wheel, folder):
+    """A fresh venv (no system site packages) in `folder` with the wheel installed offline;
+    returns (its python, the venv)."""
+    venv = folder / "venv"
     subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
     python = venv / "bin" / "python"
     run = subprocess.run([str(python), "-m", "pip", "install", "--no-index", "--no-deps",
                           str(wheel)], capture_output=True, text=True, env=clean_env())
     assert run.returncode == 0, run.stdout + run.stderr
+    return python, venv
+
+
+def test_a_fresh_venv_imports_the_wheel_and_writes_the_clis_bytes(wheel, tmp_path):
+    python, venv = installed(wheel, tmp_path)
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
     script = (
@@ -92,11 +99,7 @@ def test_a_fresh_venv_imports_the_wheel_and_writes_the_clis_bytes(wheel, tmp_pat
 
 
 def test_array_calls_without_numpy_name_it(wheel, tmp_path):
-    venv = tmp_path / "venv"
-    subprocess.run(["/usr/bin/python3", "-m", "venv", str(venv)], check=True)
-    python = venv / "bin" / "python"
-    subprocess.run([str(python), "-m", "pip", "install", "--no-index", "--no-deps", str(wheel)],
-                   check=True, capture_output=True, env=clean_env())
+    python, _ = installed(wheel, tmp_path)
     script = (
         "import plantarch\n"
         "a = plantarch.PlantArchitecture(plantarch.Context())\n"
