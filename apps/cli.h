@@ -21,6 +21,7 @@
 #include "plantarch/OutputFormats.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Progress.h"
+#include "plantarch/Render.h"
 
 namespace plantarch::cli {
 
@@ -31,7 +32,12 @@ struct GlobalOptions {
     int threads = 0;          ///< --threads (0 = all cores)
     int imageWidth = 1024;    ///< size of PNG outputs (--image-size on build and canopy)
     int imageHeight = 768;
-    int stringDigits = 4;    ///< significant digits of plant strings (--digits)
+    /// The camera of PNG outputs: framed on the scene unless --eye fixes it (--target, --fov).
+    Camera pictureCamera;
+    bool pictureTarget = false;                   ///< --target given
+    RenderMode pictureMode = RenderMode::Shaded;  ///< --label organ | object
+    bool cameraJson = false;  ///< --camera-json: NAME.camera.json beside each PNG output
+    int stringDigits = 4;     ///< significant digits of plant strings (--digits)
     std::size_t points = 0;  ///< --points: PLY outputs as labelled point clouds of this many points
     float meshDetail = 1.0f;  ///< --mesh-detail: factor on every organ's mesh resolution
     bool objectIDs = false;   ///< --object-ids: object IDs in .xml, object tables by meshes
@@ -45,7 +51,9 @@ struct GlobalOptions {
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
 vec3 parseVec3(const std::string& text, const char* option);
 
-/// Adds --image-size WxH (PNG output size) to a subcommand, stored in `global`.
+/// Adds the options of PNG outputs to a subcommand, stored in `global`: --image-size WxH,
+/// --eye, --target and --fov (a fixed camera), --label organ|object (a label mask) and
+/// --camera-json (the camera's matrices beside each picture, NAME.camera.json).
 void addImageSizeOption(CLI::App& app, GlobalOptions& global);
 
 /// A subcommand: `setup` adds it to the app and returns the function run when it is chosen.

@@ -49,7 +49,18 @@ void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOpt
         o.height = g.imageHeight;
         o.progress = progress;
         o.seed = g.seed;
-        writePNG(render(ctx, o), path);
+        o.camera = g.pictureCamera;
+        o.mode = g.pictureMode;
+        const RenderScene scene(ctx, o.scene);
+        if (!o.camera.autoFrame && !g.pictureTarget) o.camera.target = scene.bounds().center();
+        writePNG(scene.render(o), path);
+        if (g.cameraJson) {
+            const std::filesystem::path p(path);
+            const std::string json =
+                (p.parent_path() / (p.stem().string() + ".camera.json")).string();
+            writeWholeFile(json, cameraJSON(scene.camera(o), o.width, o.height));
+            info(g, "wrote " + json);
+        }
     } else {
         requireOutputFormat(path, kSceneOutput, "unknown output format");
         throw Error("an .npz output is a point cloud: give --points N",
@@ -121,6 +132,42 @@ void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
             global.imageHeight = h;
         },
         "PNG output size, WIDTHxHEIGHT (default 1024x768)");
+    app.add_option_function<std::string>(
+        "--eye",
+        [&global](const std::string& text) {
+            global.pictureCamera.autoFrame = false;
+            global.pictureCamera.eye = parseVec3(text, "--eye");
+        },
+        "Camera position x,y,z of PNG outputs in metres (default: framed on the scene); one "
+        "framing for every age");
+    app.add_option_function<std::string>(
+           "--target",
+           [&global](const std::string& text) {
+               global.pictureCamera.target = parseVec3(text, "--target");
+               global.pictureTarget = true;
+           },
+           "Point the PNG camera looks at, x,y,z (default: the scene's centre; needs --eye)")
+        ->needs("--eye");
+    app.add_option_function<float>(
+           "--fov", [&global](float fov) { global.pictureCamera.fovDeg = fov; },
+           "Vertical field of view of PNG outputs in degrees (default 35)")
+        ->check(numberCheck("--fov", "a field of view", 0.01, 170.0, false, "0.01 to 170 degrees"));
+    app.add_option_function<std::string>(
+        "--label",
+        [&global](const std::string& text) {
+            if (text == "organ" || text == "object") {
+                global.pictureMode =
+                    text == "organ" ? RenderMode::LabelOrgan : RenderMode::LabelObject;
+                return;
+            }
+            throw Error("unknown label mode",
+                        {.parameter = "--label", .value = text, .validRange = "organ, object"});
+        },
+        "PNG outputs as label masks: organ (a colour per organ kind) or object (a colour per "
+        "object)");
+    app.add_flag("--camera-json", global.cameraJson,
+                 "Beside each PNG output, NAME.camera.json: eye, target, up, field of view, "
+                 "intrinsics K and extrinsics world_to_camera (OpenCV's pinhole convention)");
 }
 
 }  // namespace plantarch::cli

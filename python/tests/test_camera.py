@@ -114,3 +114,31 @@ def test_the_command_line_renders_plant_files_and_writes_the_same_camera(tmp_pat
         "(valid: .obj (geometry), .xml (a plant structure or <helios> file), .txt (plant "
         "strings, with --species))")
     assert not (tmp_path / "x.png").exists()
+
+
+def test_build_pictures_take_a_fixed_camera_labels_and_write_the_camera(tmp_path):
+    view = ["--eye", "0.8,-0.9,0.6", "--target", "0,0,0.15", "--image-size", "200x150",
+            "--camera-json"]
+    for age in ("20", "40"):
+        subprocess.run([cli(), "--seed", "4", "build", "bean", "--age", age, "-o",
+                        str(tmp_path / f"bean{age}.png"), "-o", str(tmp_path / f"bean{age}.obj"),
+                        "--label", "object"] + view, check=True, capture_output=True)
+    young = json.loads((tmp_path / "bean20.camera.json").read_text())
+    old = json.loads((tmp_path / "bean40.camera.json").read_text())
+    assert young == old  # one framing for every age
+    assert young["width"] == 200 and young["height"] == 150
+    # The mask's IDs are objects of the plant, as render draws the same scene from its OBJ.
+    ids = plantarch.objectIDsFromLabelImage(plantarch.readImage(str(tmp_path / "bean40.png")))
+    context = plantarch.Context()
+    objects = set(plantarch.readOBJ(context, str(tmp_path / "bean40.obj")))
+    assert 0 < len(set(ids[ids >= 0].tolist())) and set(ids[ids >= 0].tolist()) <= objects
+    ours = plantarch.renderCamera(bean(40).getContext(), 200, 150, **FIXED)
+    assert np.allclose(old["K"], ours["K"]) and np.allclose(old["world_to_camera"],
+                                                            ours["world_to_camera"])
+    for bad, says in ((["--label", "leaves"], "--label = leaves: unknown label mode (valid: "
+                                               "organ, object)"),
+                      (["--target", "1,2,3"], "--target requires --eye")):
+        run = subprocess.run([cli(), "build", "bean", "--age", "5", "-o",
+                              str(tmp_path / "x.png")] + bad, capture_output=True, text=True)
+        assert run.returncode == 2 and run.stderr.strip() == "plantarch: " + says
+    assert not (tmp_path / "x.png").exists()
