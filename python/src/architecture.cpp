@@ -690,6 +690,7 @@ void bindArchitecture(py::module_& m) {
         m, "PlantArchitecture",
         "Builds plants from shoot types and keeps their geometry in a Context. Method names "
         "follow the model specification.");
+    bindWithBlock(c, "the PlantArchitecture");
     c.def(py::init([](Context* context) {
               auto a = std::make_unique<PlantArchitecture>(context);
               setUserProgress(*a, py::none());  // watches for Ctrl-C
@@ -697,14 +698,6 @@ void bindArchitecture(py::module_& m) {
           }),
           py::arg("context"), py::keep_alive<1, 2>(),
           "Plants are built into `context` (kept alive as long as this object).")
-        .def(
-            "__enter__", [](PlantArchitecture& self) -> PlantArchitecture& { return self; },
-            py::return_value_policy::reference,
-            "`with PlantArchitecture(context) as arch:` gives the object itself.")
-        .def(
-            "__exit__", [](PlantArchitecture&, const py::args&) { return false; },
-            "Ends a with block and lets its exception through; the plants stay usable and are "
-            "freed when the last reference to the object goes.")
         .def("getContext", py::overload_cast<>(&PlantArchitecture::context),
              py::return_value_policy::reference_internal,
              "The Context the plants' geometry lives in.")

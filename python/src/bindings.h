@@ -24,6 +24,21 @@ vec2 toVec2(py::handle value, const char* what);
 /// (negative, past 2^32 - 1), throws plantarch::Error naming `what`.
 std::vector<unsigned> idList(py::handle value, const char* what);
 
+/// `with T(...) as x:` for a bound class: __enter__ gives the object itself and __exit__ lets
+/// the block's exception through; the object stays usable after the block and is freed with
+/// its last reference. `what` names it in the help ("the Context").
+template <class T>
+void bindWithBlock(py::class_<T>& cls, const std::string& what) {
+    cls.def(
+           "__enter__", [](T& self) -> T& { return self; }, py::return_value_policy::reference,
+           ("`with` gives " + what + " itself.").c_str())
+        .def(
+            "__exit__", [](T&, const py::args&) { return false; },
+            ("Ends a with block and lets its exception through; " + what +
+             " stays usable and is freed when its last reference goes.")
+                .c_str());
+}
+
 void bindValues(py::module_& m);        // values.cpp: vec3, vec2, AxisRotation, errors
 void bindParameters(py::module_& m);    // parameters.cpp: the parameter table's structs
 void bindState(py::module_& m);         // state.cpp: plant state (shoots, phytomers, organs)

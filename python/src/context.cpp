@@ -98,19 +98,12 @@ void bindContext(py::module_& m) {
         .def("vertexCount", &Mesh::vertexCount, "Vertices of the mesh.")
         .def("area", &Mesh::area, "Sum of triangle areas, m^2.");
 
-    py::class_<Context>(m, "Context",
-                        "The geometry database: objects (one per organ), each a triangle mesh "
-                        "with a material and labelled data (plantID, organ, shootID, rank, "
-                        "age, leafID ...).")
-        .def(py::init<>())
-        .def(
-            "__enter__", [](Context& self) -> Context& { return self; },
-            py::return_value_policy::reference,
-            "`with Context() as context:` gives the Context itself.")
-        .def(
-            "__exit__", [](Context&, const py::args&) { return false; },
-            "Ends a with block and lets its exception through; the Context stays usable and "
-            "is freed when the last reference to it goes.")
+    py::class_<Context> context(
+        m, "Context",
+        "The geometry database: objects (one per organ), each a triangle mesh with a material "
+        "and labelled data (plantID, organ, shootID, rank, age, leafID ...).");
+    bindWithBlock(context, "the Context");
+    context.def(py::init<>())
         .def("addMaterial", &Context::addMaterial, py::arg("material"),
              "Adds a material (or finds an equal one); returns its ID.")
         .def(
