@@ -51,6 +51,9 @@ struct GlobalOptions {
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
 vec3 parseVec3(const std::string& text, const char* option);
 
+/// The mask a --label value selects: organ or object; an Error listing them (and `more`, the
+/// command's other values) for any other name.
+RenderMode labelMode(const std::string& name, const std::string& more = "");
 /// Adds the options of PNG outputs to a subcommand, stored in `global`: --image-size WxH,
 /// --eye, --target and --fov (a fixed camera), --label organ|object (a label mask) and
 /// --camera-json (the camera's matrices beside each picture, NAME.camera.json).

@@ -41,20 +41,10 @@ struct RenderArgs {
     int samples = 0;  // 0: the renderer's default
 };
 
-// The values of --label and the modes they select.
-constexpr std::pair<const char*, RenderMode> kLabelModes[] = {{"organ", RenderMode::LabelOrgan},
-                                                              {"object", RenderMode::LabelObject}};
-
+// --label: a mask (organ, object), or depth: a depth image, which renderDepth draws.
 RenderMode parseMode(const std::string& label) {
     if (label.empty() || label == "depth") return RenderMode::Shaded;
-    std::string valid;
-    for (const auto& [name, mode] : kLabelModes) {
-        if (label == name) return mode;
-        valid += (valid.empty() ? "" : ", ") + std::string(name);
-    }
-    valid += ", depth";
-    throw Error("unknown label mode",
-                {.parameter = "--label", .value = label, .validRange = valid});
+    return labelMode(label, "depth");
 }
 
 /// OBJ files written by plantarch name each group obj<ID>[_plant<P>]_<organ> (and carry the

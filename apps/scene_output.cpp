@@ -116,6 +116,19 @@ vec3 parseVec3(const std::string& text, const char* option) {
     return v;
 }
 
+RenderMode labelMode(const std::string& name, const std::string& more) {
+    // The values of --label and the masks they select.
+    constexpr std::pair<const char*, RenderMode> kLabelModes[] = {
+        {"organ", RenderMode::LabelOrgan}, {"object", RenderMode::LabelObject}};
+    std::string valid;
+    for (const auto& [label, mode] : kLabelModes) {
+        if (name == label) return mode;
+        valid += (valid.empty() ? "" : ", ") + std::string(label);
+    }
+    if (!more.empty()) valid += ", " + more;
+    throw Error("unknown label mode", {.parameter = "--label", .value = name, .validRange = valid});
+}
+
 void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
     app.add_option_function<std::string>(
         "--image-size",
@@ -153,16 +166,7 @@ void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
            "Vertical field of view of PNG outputs in degrees (default 35)")
         ->check(numberCheck("--fov", "a field of view", 0.01, 170.0, false, "0.01 to 170 degrees"));
     app.add_option_function<std::string>(
-        "--label",
-        [&global](const std::string& text) {
-            if (text == "organ" || text == "object") {
-                global.pictureMode =
-                    text == "organ" ? RenderMode::LabelOrgan : RenderMode::LabelObject;
-                return;
-            }
-            throw Error("unknown label mode",
-                        {.parameter = "--label", .value = text, .validRange = "organ, object"});
-        },
+        "--label", [&global](const std::string& text) { global.pictureMode = labelMode(text); },
         "PNG outputs as label masks: organ (a colour per organ kind) or object (a colour per "
         "object)");
     app.add_flag("--camera-json", global.cameraJson,
