@@ -201,6 +201,11 @@ public:
     /// already held is allowed (later additions throw).
     void setTriangleLimit(std::size_t limit);
     std::size_t triangleLimit() const;
+    /// Reserves `count` consecutive plant IDs and returns the first. Every PlantArchitecture
+    /// on this Context takes its plants' IDs here, so an ID (and the plant_ID label of its
+    /// objects) names one plant in the whole scene; IDs are never handed out twice, not even
+    /// after clear() or the plant's deletion.
+    unsigned reservePlantIDs(unsigned count);
 
     /// Bytes held by the Context's storage (capacity, not just size).
     std::size_t memoryBytes() const;

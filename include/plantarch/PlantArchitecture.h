@@ -11,6 +11,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -206,6 +207,12 @@ public:
     /// Redraws the plants there are; throws naming the range for a value outside it.
     void setMeshDetail(float detail);
     float getMeshDetail() const;
+    /// Whether organs of `kind` get geometry in the Context (all kinds do by default). Off,
+    /// the plants grow exactly as before and every other organ stands where it did; only
+    /// those objects are left out (a light model that needs no stems, say). Redraws the
+    /// plants there are and applies to plants added from now on.
+    void setOrganGeometry(OrganKind kind, bool build);
+    bool getOrganGeometry(OrganKind kind) const;
     /// At most this many triangles in the Context (0, the default: no limit; it sets
     /// Context::setTriangleLimit). A canopy whose estimate passes it is refused before it is
     /// grown: its first plants (as many as there are threads) are grown and the estimate is
@@ -239,6 +246,15 @@ public:
     unsigned addPlantInstance(const vec3& base_position, float current_age);
     /// Removes a plant and its objects from the Context.
     void deletePlantInstance(unsigned plantID);
+    /// A copy of a plant standing at `base_position`, turned about its base by `rotation`
+    /// (the frame a base stem with that rotation gets: pitch tilts it from the vertical, yaw
+    /// turns it about the vertical, roll about its own axis) and `age` days old: the same
+    /// shoots and organs, its scheduled events (phytomers, bud breaks, flowering, seasons)
+    /// moved with its clock. It grows on with random numbers of its own (the next stream);
+    /// its own attraction points move and turn with it; trellis objects are not copied.
+    /// Returns its ID.
+    unsigned duplicatePlantInstance(unsigned plantID, const vec3& base_position,
+                                    const AxisRotation& rotation, float age);
 
     /// The base stem of a plant (which must have no shoots yet). Returns its shoot ID (0).
     unsigned addBaseStemShoot(unsigned plantID, const ShootSpec& spec);
@@ -252,6 +268,19 @@ public:
     /// placed by hand. Returns its shoot ID.
     unsigned addChildShoot(unsigned plantID, unsigned parentShootID, unsigned parentNode,
                            const ShootSpec& spec, unsigned petioleIndex = 0);
+    /// An epicormic shoot (water sprout) from the wood of `parentShootID` at `position` along
+    /// it (a fraction of its length, (0, 1]: the node whose internode holds that point). It
+    /// grows from no axillary bud (the node's buds are left as they are) and starts upright,
+    /// spec.baseRotation.pitch degrees from the vertical. Returns its shoot ID.
+    unsigned addEpicormicShoot(unsigned plantID, unsigned parentShootID, float position,
+                               const ShootSpec& spec);
+    /// Water sprouts as the plant grows: on each day, each shoot of the plant grows an
+    /// epicormic shoot of `shootType` with probability `perMetrePerDay` x its length (m) x the
+    /// vertical part of its axis at a point drawn uniformly along it, at that point (one
+    /// phytomer, at the type's internode radius and length, 1% grown). 0 turns it off. Kept in
+    /// plant structure files.
+    void enableEpicormicChildShoots(unsigned plantID, const std::string& shootType,
+                                    float perMetrePerDay);
     /// One more phytomer at the tip of a shoot, built from `phytomer_parameters` at `size`.
     /// Returns the shoot's phytomer count.
     unsigned appendPhytomerToShoot(unsigned plantID, unsigned shootID,
@@ -309,6 +338,14 @@ public:
     /// The same for one plant.
     void setGroundClearance(unsigned plantID, bool on);
     bool getGroundClearance(unsigned plantID) const;
+    /// Ground clipping, beside clearance: at the end of every growth step each leaf, flower
+    /// and fruit whose geometry reaches below z = `height` (m) falls off (as at leaf fall),
+    /// and a side shoot whose stem reaches below it is pruned from its first node under it.
+    /// For every plant there is (applied now) and those added from now on; off by default.
+    void enableGroundClipping(float height = 0.0f);
+    void disableGroundClipping();
+    /// The clipping height, or none when off.
+    std::optional<float> getGroundClipping() const;
 
     // ---- collision avoidance and attraction points (docs/collision.md) ------------------
     /// Soft avoidance: new internodes (optionally petioles, peduncles) turn toward the
@@ -361,6 +398,15 @@ public:
     void setDefaultPhenology(const PhenologyParameters& thresholds);
     /// Where the plant is in its yearly cycle now.
     PhenologyStage getPhenologyStage(unsigned plantID) const;
+    /// Ends the plant's growing season now, as at its time_to_senescence: leaves fall unless
+    /// evergreen, flowers and fruit are shed, shoots stop, and dormancy breaks again after
+    /// time_to_dormancy_break days. Nothing happens to a plant that is dormant already.
+    void makePlantDormant(unsigned plantID);
+    /// Starts a growing season now, as at the end of time_to_dormancy_break: shoots and buds
+    /// resume, buds that need a winter are sorted. Nothing happens unless it is dormant.
+    void breakPlantDormancy(unsigned plantID);
+    /// Whether the plant is dormant (getPhenologyStage is Dormant).
+    bool isPlantDormant(unsigned plantID) const;
 
     /// Named functions that shoot types refer to (phytomer_creation_function,
     /// phytomer_callback_function). Registering a name again replaces it.
@@ -384,6 +430,11 @@ public:
     const PlantInstance& plant(unsigned plantID) const;
     /// Where the plant's base stands, m.
     vec3 getPlantBasePosition(unsigned plantID) const;
+    /// Moves the plant (its state, geometry and own attraction points) so its base stands at
+    /// `base_position`; trellis objects made with it move too.
+    void setPlantBasePosition(unsigned plantID, const vec3& base_position);
+    /// The plant's name: its species, or the label a plant file gave it.
+    std::string getPlantName(unsigned plantID) const;
     /// Age of the plant, days.
     float getPlantAge(unsigned plantID) const;
     /// Top of the plant's geometry above its base, m.
@@ -396,6 +447,8 @@ public:
     unsigned getPlantLeafCount(unsigned plantID) const;
     /// One-sided area of all leaves, m^2.
     float getPlantLeafArea(unsigned plantID) const;
+    /// The same summed over several plants.
+    float sumPlantLeafArea(const std::vector<unsigned>& plantIDs) const;
     /// Context objects of the plant's organs of one kind (the kind its objects' "organ" data
     /// names), shoot by shoot from the base. A leaf or flower may have several (one per
     /// prototype part); an organ of zero size (a fruit at the moment it sets) has none.

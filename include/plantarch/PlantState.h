@@ -32,6 +32,8 @@ struct AxisRotation {
 enum class BudState { Dormant, Active, Broken, Dead };
 enum class FloralStage { Bud, FlowerClosed, FlowerOpen, Fruit, Removed };
 enum class OrganKind { Internode, Petiole, Leaf, Peduncle, FlowerClosed, FlowerOpen, Fruit };
+/// The number of organ kinds.
+inline constexpr std::size_t kOrganKinds = std::size_t(OrganKind::Fruit) + 1;
 /// Where a plant is in its yearly cycle.
 enum class PhenologyStage { Dormant, Vegetative, Reproductive, Senescent };
 
@@ -216,8 +218,19 @@ inline bool hasSize(float size) {
     return size > 0.0f;
 }
 
+/// Water sprouts: shoots that grow from the wood of older shoots rather than from a bud of
+/// the current season (PlantArchitecture::enableEpicormicChildShoots).
+struct EpicormicShoots {
+    std::string shootType;     ///< type of the shoots made
+    float probability = 0.0f;  ///< per m of parent shoot per day, at a vertical parent
+};
+
 struct PlantInstance {
     unsigned id = 0;
+    /// The number of its random streams (Rng::forPlant(seed, stream)): the plants of one
+    /// PlantArchitecture count from 0 (PlantArchitecture::restartPlantStreams), whatever
+    /// their IDs, which the Context hands out.
+    unsigned stream = 0;
     std::string name;  ///< species or user label (object data plant_name)
     vec3 base{0.0f};
     double age = 0.0;                                   ///< days
@@ -241,6 +254,8 @@ struct PlantInstance {
     /// PlantArchitecture::enableAttractionPoints(plantID, ...)): it steers by these instead
     /// of the global ones. None: it follows the global points, if any.
     std::optional<AttractionPoints> attraction;
+    /// Water sprouts (none: the plant makes none).
+    std::optional<EpicormicShoots> epicormic;
 };
 
 }  // namespace plantarch

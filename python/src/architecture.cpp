@@ -263,7 +263,61 @@ void bindShootTypes(py::class_<PlantArchitecture>& c) {
              py::arg("params"), "The same for several shoot types at once.");
 }
 
+// The option structs of manual building, made with the specification's keyword names.
+void bindShootSpec(py::module_& m) {
+    py::class_<PhytomerSize>(m, "PhytomerSize",
+                             "Size of the phytomers a manual-building call makes.")
+        .def(py::init([](float radius, float lengthMax, float lengthScale, float leafScale) {
+                 return PhytomerSize{radius, lengthMax, lengthScale, leafScale};
+             }),
+             py::kw_only(), py::arg("internode_radius") = 0.001f,
+             py::arg("internode_length_max") = 0.02f,
+             py::arg("internode_length_scale_factor_fraction") = 1.0f,
+             py::arg("leaf_scale_factor_fraction") = 1.0f)
+        .def_readwrite("internodeRadius", &PhytomerSize::internodeRadius, "m, (0, 10]")
+        .def_readwrite("internodeLengthMax", &PhytomerSize::internodeLengthMax,
+                       "full-grown internode length, m, [0, 100]")
+        .def_readwrite("internodeLengthScale", &PhytomerSize::internodeLengthScale,
+                       "current / full internode length, (0, 1]")
+        .def_readwrite("leafScale", &PhytomerSize::leafScale,
+                       "current / full petiole and leaf size, (0, 1]");
+    py::class_<ShootSpec>(m, "ShootSpec",
+                          "Where and how a new shoot starts: the options of addBaseStemShoot, "
+                          "appendShoot, addChildShoot and addEpicormicShoot.")
+        .def(py::init([](const std::string& type, unsigned nodes, AxisRotation rot, float radius,
+                         float lengthMax, float lengthScale, float leafScale, float taper) {
+                 return shootSpec(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper,
+                                  type);
+             }),
+             py::kw_only(), py::arg("shoot_type_label"), py::arg("current_node_number") = 1,
+             py::arg("base_rotation") = AxisRotation{}, py::arg("internode_radius") = 0.001f,
+             py::arg("internode_length_max") = 0.02f,
+             py::arg("internode_length_scale_factor_fraction") = 1.0f,
+             py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f)
+        .def_readwrite("shootType", &ShootSpec::shootType, "shoot type label")
+        .def_readwrite("phytomers", &ShootSpec::phytomers, "phytomers to create now, 1 to 100000")
+        .def_readwrite("baseRotation", &ShootSpec::baseRotation, "degrees")
+        .def_readwrite("size", &ShootSpec::size, "size of the phytomers created (PhytomerSize)")
+        .def_readwrite("radiusTaper", &ShootSpec::radiusTaper,
+                       "tip radius reduction along the shoot, [0, 1]");
+}
+
 void bindManual(py::class_<PlantArchitecture>& c) {
+    c.def("addBaseStemShoot",
+          py::overload_cast<unsigned, const ShootSpec&>(&PlantArchitecture::addBaseStemShoot),
+          py::arg("plantID"), py::arg("spec"),
+          "The plant's base stem from a ShootSpec; returns its shoot ID (0).")
+        .def("appendShoot",
+             py::overload_cast<unsigned, unsigned, const ShootSpec&>(
+                 &PlantArchitecture::appendShoot),
+             py::arg("plantID"), py::arg("parent_shoot_ID"), py::arg("spec"),
+             "A shoot continuing from the tip of parent_shoot_ID, from a ShootSpec.")
+        .def("addChildShoot", &PlantArchitecture::addChildShoot, py::arg("plantID"),
+             py::arg("parent_shoot_ID"), py::arg("parent_node_index"), py::arg("spec"),
+             py::arg("petiole_index") = 0, "A lateral shoot from a ShootSpec; returns its ID.")
+        .def("addEpicormicShoot", &PlantArchitecture::addEpicormicShoot, py::arg("plantID"),
+             py::arg("parent_shoot_ID"), py::arg("parent_position_fraction"), py::arg("spec"),
+             "A water sprout from a ShootSpec; returns its shoot ID.", Release());
     c.def("addPlantInstance", &PlantArchitecture::addPlantInstance, py::arg("base_position"),
           py::arg("current_age"), "A new plant with no shoots; returns its ID.")
         .def("deletePlantInstance", &PlantArchitecture::deletePlantInstance, py::arg("plantID"),
@@ -685,6 +739,96 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
 
 }  // namespace
 
+// Copies, moves, water sprouts, seasons by hand, ground clipping and organ geometry.
+void bindPlantEdits(py::class_<PlantArchitecture>& c) {
+    c.def("duplicatePlantInstance", &PlantArchitecture::duplicatePlantInstance, py::arg("plantID"),
+          py::arg("base_position"), py::arg("base_rotation") = AxisRotation{}, py::arg("age"),
+          "A copy of a plant at base_position, turned about its base by base_rotation (pitch "
+          "from the vertical, yaw about it, roll), age days old; it grows on with random "
+          "numbers of its own. Returns its ID.",
+          Release())
+        .def("setPlantBasePosition", &PlantArchitecture::setPlantBasePosition, py::arg("plantID"),
+             py::arg("base_position"), "Moves the plant so its base stands at base_position.",
+             Release())
+        .def("getPlantName", &PlantArchitecture::getPlantName, py::arg("plantID"),
+             "The plant's species, or the label a plant file gave it.")
+        .def(
+            "addEpicormicShoot",
+            [](PlantArchitecture& a, unsigned plant, unsigned parent, float position,
+               unsigned nodes, AxisRotation rot, float radius, float lengthMax, float lengthScale,
+               float leafScale, float taper, const std::string& type) {
+                return a.addEpicormicShoot(
+                    plant, parent, position,
+                    shootSpec(nodes, rot, radius, lengthMax, lengthScale, leafScale, taper, type));
+            },
+            py::arg("plantID"), py::arg("parent_shoot_ID"), py::arg("parent_position_fraction"),
+            py::arg("current_node_number"), py::arg("base_rotation") = AxisRotation{},
+            py::arg("internode_radius") = 0.001f, py::arg("internode_length_max") = 0.02f,
+            py::arg("internode_length_scale_factor_fraction") = 1.0f,
+            py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
+            py::arg("shoot_type_label"),
+            "A water sprout from the wood of a shoot at a fraction (0, 1] of its length, upright "
+            "(base_rotation.pitch from the vertical); returns its shoot ID.",
+            Release())
+        .def("enableEpicormicChildShoots", &PlantArchitecture::enableEpicormicChildShoots,
+             py::arg("plantID"), py::arg("epicormic_shoot_type_label"),
+             py::arg("epicormic_probability_perlength_perday"),
+             "Water sprouts as the plant grows: each day each shoot grows one with probability "
+             "rate x its length x the vertical part of its axis at a random point (0: off).")
+        .def("makePlantDormant", &PlantArchitecture::makePlantDormant, py::arg("plantID"),
+             "Ends the plant's growing season now (leaves fall unless evergreen).", Release())
+        .def("breakPlantDormancy", &PlantArchitecture::breakPlantDormancy, py::arg("plantID"),
+             "Starts a growing season now, if the plant is dormant.", Release())
+        .def("isPlantDormant", &PlantArchitecture::isPlantDormant, py::arg("plantID"),
+             "Whether the plant is dormant.")
+        .def("enableGroundClipping", &PlantArchitecture::enableGroundClipping,
+             py::arg("ground_height") = 0.0f,
+             "Leaves, flowers and fruit reaching below ground_height (m) fall off at the end of "
+             "every growth step, side shoots reaching it stop; applied to the plants now too.",
+             Release())
+        .def("disableGroundClipping", &PlantArchitecture::disableGroundClipping,
+             "Turns ground clipping off.")
+        .def("getGroundClipping", &PlantArchitecture::getGroundClipping,
+             "The ground clipping height, or None when off.")
+        .def("setOrganGeometry", &PlantArchitecture::setOrganGeometry, py::arg("organ"),
+             py::arg("build"),
+             "Whether organs of one OrganKind get geometry in the Context (all do by default); "
+             "growth is unchanged. Redraws the plants there are.",
+             Release())
+        .def("getOrganGeometry", &PlantArchitecture::getOrganGeometry, py::arg("organ"),
+             "Whether organs of that OrganKind get geometry.")
+        .def("sumPlantLeafArea", &PlantArchitecture::sumPlantLeafArea, py::arg("plantIDs"),
+             "One-sided leaf area of several plants together, m^2.");
+    // The per-organ object lists as the model specification names them: one call each.
+    struct OrganList {
+        const char* name;
+        std::vector<OrganKind> kinds;
+        const char* doc;
+    };
+    const OrganList lists[] = {
+        {"getPlantInternodeObjectIDs", {OrganKind::Internode}, "Internode objects of a plant."},
+        {"getPlantPetioleObjectIDs", {OrganKind::Petiole}, "Petiole objects of a plant."},
+        {"getPlantLeafObjectIDs", {OrganKind::Leaf}, "Leaf objects of a plant."},
+        {"getPlantPeduncleObjectIDs", {OrganKind::Peduncle}, "Peduncle objects of a plant."},
+        {"getPlantFlowerObjectIDs",
+         {OrganKind::FlowerClosed, OrganKind::FlowerOpen},
+         "Flower objects of a plant, closed and open."},
+        {"getPlantFruitObjectIDs", {OrganKind::Fruit}, "Fruit objects of a plant."},
+    };
+    for (const OrganList& list : lists)
+        c.def(
+            list.name,
+            [kinds = list.kinds](const PlantArchitecture& a, unsigned plant) {
+                std::vector<ObjectID> ids;
+                for (OrganKind k : kinds) {
+                    const std::vector<ObjectID> some = a.getPlantObjectIDs(plant, k);
+                    ids.insert(ids.end(), some.begin(), some.end());
+                }
+                return ids;
+            },
+            py::arg("plantID"), list.doc);
+}
+
 void bindArchitecture(py::module_& m) {
     py::class_<PlantArchitecture> c(
         m, "PlantArchitecture",
@@ -712,11 +856,13 @@ void bindArchitecture(py::module_& m) {
         .def("getSeed", &PlantArchitecture::seed, "Seed of the scene.");
     bindLibrary(c);
     bindShootTypes(c);
+    bindShootSpec(m);
     bindManual(c);
     bindGrowth(c);
     bindCollision(c);
     bindQueries(c);
     bindFiles(c);
+    bindPlantEdits(c);
 }
 
 }  // namespace plantarch::python

@@ -316,6 +316,13 @@ float PlantArchitecture::getPlantLeafArea(unsigned plantID) const {
     return float(area);
 }
 
+float PlantArchitecture::sumPlantLeafArea(const std::vector<unsigned>& plantIDs) const {
+    for (unsigned id : plantIDs) impl_->store.plant(id);  // an unknown plant is an error
+    double area = 0.0;
+    for (unsigned id : plantIDs) area += getPlantLeafArea(id);
+    return float(area);
+}
+
 std::vector<ObjectID> PlantArchitecture::getPlantObjectIDs(unsigned plantID, OrganKind kind) const {
     const PlantInstance& p = impl_->store.plant(plantID);
     std::vector<ObjectID> ids;

@@ -159,15 +159,17 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                     {.parameter = "species", .validRange = "one of the library species"});
     resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
     if (impl_->trellisGeometry && impl_->species->trellis)     // and the trellis's
-        speciesTrellis(*impl_->species, seed_, impl_->store.stream(impl_->store.nextPlantID),
-                       vec3(0.0f), buildParameters);
+        speciesTrellis(*impl_->species, seed_, impl_->store.nextStream, vec3(0.0f),
+                       buildParameters);
     const bool together = impl_->collision.world && impl_->collision.world->soft();
     const std::size_t limit = context_->triangleLimit();
     impl_->store.triangleLimit = limit;
     // Plants with attraction points of their own count their work in this scene's stats.
     if (impl_->species->attraction) collision::worldOf(impl_->collision);
-    const unsigned first = impl_->store.nextPlantID;
     const int n = int(positions.size());
+    // Plant i gets ID first + i and random stream firstStream + i, whichever worker builds it.
+    const unsigned first = context_->reservePlantIDs(unsigned(n));
+    const unsigned firstStream = impl_->store.nextStream;
     const int threads = std::max(1, std::min(omp_get_max_threads(), n));
 
     std::vector<CanopyWorker> workers(static_cast<std::size_t>(threads));
@@ -179,8 +181,9 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         wi.species = impl_->species;
         wi.store.defaultPhenology = impl_->store.defaultPhenology;
         wi.store.meshDetail = impl_->store.meshDetail;
-        wi.store.streamBase = impl_->store.streamBase;
         wi.store.groundClearance = impl_->store.groundClearance;
+        wi.store.groundClipping = impl_->store.groundClipping;
+        wi.store.organGeometry = impl_->store.organGeometry;
         wi.store.triangleLimit = limit;
         wi.functions = impl_->functions;
         wi.trellisGeometry = false;  // trellises are added in the caller's Context below
@@ -320,7 +323,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                     ~Rebind() { arch.context_ = home; }
                 } rebind{w, &worker.ctx};
                 w.context_ = &slot;
-                w.impl_->store.nextPlantID = first + unsigned(i);  // its ID picks its stream
+                w.impl_->store.assignedID = first + unsigned(i);
+                w.impl_->store.nextStream = firstStream + unsigned(i);
                 w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
                 builtBy[std::size_t(i)] = t;
             },
@@ -328,7 +332,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                 return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
             },
             "building");
-        impl_->store.nextPlantID = first + unsigned(n);
+        impl_->store.nextStream = firstStream + unsigned(n);
         for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
         return ids;
     }
@@ -343,7 +347,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         probe.setTriangleLimit(limit);
         PlantArchitecture& w = *workers[0].arch;
         w.context_ = &probe;
-        w.impl_->store.nextPlantID = first;
+        w.impl_->store.assignedID = first;
+        w.impl_->store.nextStream = firstStream;
         std::size_t triangles = 0;
         try {
             const unsigned id = w.buildPlantInstanceFromLibrary(positions[0], age, buildParameters);
@@ -363,7 +368,8 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         structureErrors.run(i, [&] {
             const int t = omp_get_thread_num();
             PlantArchitecture& w = *workers[std::size_t(t)].arch;
-            w.impl_->store.nextPlantID = first + unsigned(i);  // the plant's ID picks its stream
+            w.impl_->store.assignedID = first + unsigned(i);
+            w.impl_->store.nextStream = firstStream + unsigned(i);
             w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
             builtBy[std::size_t(i)] = t;
         });
@@ -393,7 +399,7 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         },
         [&](int i) -> Impl& { return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_; },
         "tessellating");
-    impl_->store.nextPlantID = first + unsigned(n);
+    impl_->store.nextStream = firstStream + unsigned(n);
     for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
     return ids;
 }

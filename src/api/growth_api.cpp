@@ -3,12 +3,15 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "api/facade_impl.h"
 #include "collision/clearance.h"
 #include "collision/growth_driver.h"
 #include "core/progress_steps.h"
 #include "growth/growth.h"
+#include "growth/organ_clearance.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
@@ -82,6 +85,56 @@ void PlantArchitecture::setGroundClearance(unsigned plantID, bool on) {
 
 bool PlantArchitecture::getGroundClearance(unsigned plantID) const {
     return impl_->store.plant(plantID).groundClearance;
+}
+
+void PlantArchitecture::enableGroundClipping(float height) {
+    if (!std::isfinite(height))
+        throw Error(
+            "ground clipping height must be finite",
+            {.parameter = "height", .value = std::to_string(height), .validRange = "finite, m"});
+    impl_->store.groundClipping = height;
+    for (auto& [id, p] : impl_->store.plants)
+        if (clipBelowGround(impl_->store, impl_->prototypes, p, height)) updateGeometry(id);
+}
+
+void PlantArchitecture::disableGroundClipping() {
+    impl_->store.groundClipping.reset();
+}
+
+std::optional<float> PlantArchitecture::getGroundClipping() const {
+    return impl_->store.groundClipping;
+}
+
+void PlantArchitecture::enableEpicormicChildShoots(unsigned plantID, const std::string& shootType,
+                                                   float perMetrePerDay) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    if (!(perMetrePerDay >= 0.0f) || !std::isfinite(perMetrePerDay))
+        throw Error("invalid water sprout probability",
+                    {.parameter = "probability",
+                     .value = std::to_string(perMetrePerDay),
+                     .validRange = ">= 0, per m of shoot per day"});
+    if (perMetrePerDay == 0.0f) {
+        p.epicormic.reset();
+        return;
+    }
+    impl_->store.shootTypeFor(p, shootType);  // an unknown type names the known ones
+    p.epicormic = EpicormicShoots{shootType, perMetrePerDay};
+}
+
+void PlantArchitecture::makePlantDormant(unsigned plantID) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    changeSeason(impl_->growth(), p, false);
+    updateGeometry(plantID);
+}
+
+void PlantArchitecture::breakPlantDormancy(unsigned plantID) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    changeSeason(impl_->growth(), p, true);
+    updateGeometry(plantID);
+}
+
+bool PlantArchitecture::isPlantDormant(unsigned plantID) const {
+    return impl_->store.plant(plantID).stage == PhenologyStage::Dormant;
 }
 
 void PlantArchitecture::setProgressCallback(ProgressCallback callback) {

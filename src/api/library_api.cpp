@@ -65,8 +65,8 @@ unsigned PlantArchitecture::buildPlantInstanceFromLibrary(
                     {.parameter = "age", .value = std::to_string(age), .validRange = ">= 0 days"});
     resolveBuildParameters(*impl_->species, build_parameters);  // range errors before any change
     if (impl_->trellisGeometry && impl_->species->trellis)      // and the trellis's
-        speciesTrellis(*impl_->species, seed(), impl_->store.stream(impl_->store.nextPlantID),
-                       base_position, build_parameters);
+        speciesTrellis(*impl_->species, seed(), impl_->store.nextStream, base_position,
+                       build_parameters);
     // The plant is drawn once, when grown to its age: its objects are then made in the order
     // of its organs, as reading its file back makes them (and the seedling's geometry, which
     // growing would replace at once, is never made).
@@ -130,6 +130,22 @@ float PlantArchitecture::getMeshDetail() const {
     return impl_->store.meshDetail;
 }
 
+void PlantArchitecture::setOrganGeometry(OrganKind kind, bool build) {
+    const std::size_t k = std::size_t(kind);
+    if (k >= kOrganKinds)
+        throw Error("unknown organ kind", {.parameter = "kind", .value = std::to_string(k)});
+    if (impl_->store.organGeometry[k] == build) return;
+    impl_->store.organGeometry[k] = build;
+    for (const auto& [id, plant] : impl_->store.plants) updateGeometry(id);
+}
+
+bool PlantArchitecture::getOrganGeometry(OrganKind kind) const {
+    const std::size_t k = std::size_t(kind);
+    if (k >= kOrganKinds)
+        throw Error("unknown organ kind", {.parameter = "kind", .value = std::to_string(k)});
+    return impl_->store.organGeometry[k];
+}
+
 std::vector<ObjectID> PlantArchitecture::getPlantTrellisObjectIDs(unsigned plantID) const {
     impl_->store.plant(plantID);  // an unknown plant is an error
     const auto t = impl_->trellis.find(plantID);
@@ -141,7 +157,7 @@ void PlantArchitecture::addTrellis(unsigned plantID, const vec3& base,
     if (!impl_->trellisGeometry || !impl_->species || !impl_->species->trellis) return;
     const SpeciesModel& model = *impl_->species;
     const std::vector<TrellisPart> parts =
-        speciesTrellis(model, seed(), impl_->store.stream(plantID), base, build_parameters);
+        speciesTrellis(model, seed(), impl_->store.plant(plantID).stream, base, build_parameters);
     std::vector<ObjectID>& ids = impl_->trellis[plantID];
     for (const TrellisPart& part : parts) {
         const bool post = part.kind == TrellisPart::Kind::Post;
@@ -164,8 +180,8 @@ unsigned PlantArchitecture::buildPlantStructure(
         buildInitialStructure(*this, id, model, build_parameters);
         if (model.attraction)
             enableAttractionPoints(
-                id, speciesAttractionPoints(model, seed(), impl_->store.stream(id), base_position,
-                                            build_parameters));
+                id, speciesAttractionPoints(model, seed(), impl_->store.plant(id).stream,
+                                            base_position, build_parameters));
     } catch (...) {
         deletePlantInstance(id);
         throw;

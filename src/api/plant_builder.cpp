@@ -93,11 +93,11 @@ void PlantArchitecture::setSeed(std::uint64_t seed) {
 }
 
 void PlantArchitecture::restartPlantStreams() {
-    impl_->store.streamBase = impl_->store.nextPlantID;
+    impl_->store.nextStream = 0;
 }
 
 unsigned PlantArchitecture::plantStream(unsigned plantID) const {
-    return impl_->store.stream(plantID);
+    return impl_->store.plant(plantID).stream;
 }
 
 void PlantArchitecture::defineShootType(const std::string& label, const ShootParameters& params) {
@@ -145,10 +145,13 @@ unsigned PlantArchitecture::addPlantInstance(const vec3& base_position, float cu
                                           .value = text::formatFloat(current_age),
                                           .validRange = ">= 0 days"});
     PlantInstance p;
-    p.id = impl_->store.nextPlantID++;
+    PlantStore& store = impl_->store;
+    p.id = store.assignedID ? *store.assignedID : context_->reservePlantIDs(1);
+    store.assignedID.reset();
+    p.stream = store.nextStream++;
     p.base = base_position;
     p.age = current_age;
-    p.rng = Rng::forPlant(seed_, impl_->store.stream(p.id));
+    p.rng = Rng::forPlant(seed_, p.stream);
     p.shootTypes = impl_->store.shootTypes;
     p.phenology = impl_->store.defaultPhenology;
     p.groundClearance = impl_->store.groundClearance;
@@ -198,6 +201,24 @@ unsigned PlantArchitecture::addChildShoot(unsigned plantID, unsigned parentShoot
     PlantStore::shoot(p, parentShootID);
     const unsigned id = createShoot(impl_->growth(), p, spec, StartMode::Child, int(parentShootID),
                                     parentNode, petioleIndex);
+    updateGeometry(plantID);
+    return id;
+}
+
+unsigned PlantArchitecture::addEpicormicShoot(unsigned plantID, unsigned parentShootID,
+                                              float position, const ShootSpec& spec) {
+    PlantInstance& p = impl_->store.plant(plantID);
+    const Shoot& parent = PlantStore::shoot(p, parentShootID);
+    if (!(position > 0.0f && position <= 1.0f))
+        throw Error("position along the parent shoot out of range",
+                    {.parameter = "position",
+                     .value = std::to_string(position),
+                     .validRange = "> 0 and <= 1 (a fraction of its length)"});
+    if (parent.phytomers.empty())
+        throw Error("the parent shoot has no phytomers",
+                    {.parameter = "parentShootID", .value = std::to_string(parentShootID)});
+    const unsigned id = createShoot(impl_->growth(), p, spec, StartMode::Epicormic,
+                                    int(parentShootID), epicormicNode(parent, position), 0);
     updateGeometry(plantID);
     return id;
 }

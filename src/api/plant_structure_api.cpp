@@ -30,7 +30,7 @@ plant_io::Defaults defaultsOf(const PlantStore& store, std::uint64_t seed) {
     d.phenology = store.defaultPhenology;
     d.groundClearance = store.groundClearance;
     d.seed = seed;
-    d.firstPlantID = store.nextPlantID;
+    d.firstStream = store.nextStream;
     return d;
 }
 
@@ -260,8 +260,10 @@ std::vector<unsigned> adopt(PlantArchitecture& arch, PlantStore& store,
     std::vector<unsigned> ids;
     try {
         std::vector<PlantInstance*> added;
+        unsigned next = arch.context().reservePlantIDs(unsigned(read.plants.size()));
+        store.nextStream += unsigned(read.plants.size());
         for (PlantInstance& p : read.plants) {
-            const unsigned id = store.nextPlantID++;
+            const unsigned id = next++;
             p.id = id;
             added.push_back(&store.plants.emplace(id, std::move(p)).first->second);
             ids.push_back(id);

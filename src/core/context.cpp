@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <unordered_map>
 #include <utility>
@@ -98,6 +99,7 @@ struct Context::Impl {
     std::size_t liveVertices = 0;
     std::size_t liveIndices = 0;
     std::size_t triangleLimit = 0;  // 0: none
+    unsigned nextPlantID = 0;       // reservePlantIDs: kept through clear()
 
     Impl() { materials.push_back(Material{}); }
 
@@ -996,8 +998,10 @@ std::vector<std::string> Context::primitiveDataLabels() const {
 void Context::clear(bool releaseMemory) {
     if (releaseMemory) {
         const std::size_t limit = impl_->triangleLimit;  // a setting, not content
+        const unsigned nextPlant = impl_->nextPlantID;
         impl_ = std::make_unique<Impl>();
         impl_->triangleLimit = limit;
+        impl_->nextPlantID = nextPlant;
         return;
     }
     Impl& d = *impl_;
@@ -1036,6 +1040,18 @@ void Context::setTriangleLimit(std::size_t limit) {
 
 std::size_t Context::triangleLimit() const {
     return impl_->triangleLimit;
+}
+
+unsigned Context::reservePlantIDs(unsigned count) {
+    const unsigned first = impl_->nextPlantID;
+    if (count > std::numeric_limits<unsigned>::max() - first)
+        throw Error("plant IDs used up",
+                    {.parameter = "count",
+                     .value = std::to_string(count),
+                     .validRange = "at most " +
+                                   std::to_string(std::numeric_limits<unsigned>::max() - first)});
+    impl_->nextPlantID = first + count;
+    return first;
 }
 
 std::size_t Context::memoryBytes() const {

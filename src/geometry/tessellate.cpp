@@ -270,8 +270,10 @@ bool sameBits(vec3 a, vec3 b) {
 // Writes organs into the Context, reusing their objects.
 class ContextSink final : public OrganSink {
 public:
-    ContextSink(Context& ctx, const PlantInstance& plant)
+    ContextSink(Context& ctx, const PlantInstance& plant,
+                const std::array<bool, kOrganKinds>& built)
         : ctx_(ctx),
+          built_(built),
           plantID_(int(plant.id)),
           plantName_(plant.name),
           stage_(std::string(phenologyStageName(plant.stage))) {
@@ -281,14 +283,18 @@ public:
 
     bool wants(OrganKind) const override { return true; }
 
+    // Kinds the PlantArchitecture builds no geometry for (setOrganGeometry) are placed as
+    // usual and then dropped, so every other organ lands where it always does.
     void write(ObjectID& object, const Mesh& mesh, const Material& material,
                const OrganLabels& l) override {
+        if (!built_[std::size_t(l.kind)]) return remove(object);
         place(object, mesh, nullptr, material, l);
     }
 
     // Places every part of a prototype; extra old objects are deleted.
     void writeParts(std::vector<ObjectID>& objects, const OrganPrototype& proto, const mat4& xf,
                     const OrganLabels& l) override {
+        if (!built_[std::size_t(l.kind)]) return removeAll(objects);
         for (std::size_t i = proto.size(); i < objects.size(); ++i)
             if (ctx_.doesObjectExist(objects[i])) ctx_.deleteObject(objects[i]);
         objects.resize(proto.size(), kNoObject);
@@ -345,10 +351,11 @@ private:
     }
 
     Context& ctx_;
+    const std::array<bool, kOrganKinds>& built_;
     std::array<std::optional<DataColumn>, 9> columns_;
     // Values every object of the plant shares, made once.
     const DataValue plantID_, plantName_, stage_;
-    std::array<DataValue, std::size_t(OrganKind::Fruit) + 1> organNames_;
+    std::array<DataValue, kOrganKinds> organNames_;
 };
 
 void deleteIf(Context& ctx, ObjectID& id) {
@@ -928,7 +935,7 @@ void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, OrganS
 
 void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, Context& ctx,
                      PlantInstance& plant) {
-    ContextSink sink(ctx, plant);
+    ContextSink sink(ctx, plant, store.organGeometry);
     tessellatePlant(store, prototypes, sink, plant);
 }
 

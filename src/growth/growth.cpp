@@ -37,6 +37,7 @@ enum EventKind : int {
     kFloral = 4,
     kBudBreak = 5,
     kPhytomer = 6,
+    kEpicormic = 7,
 };
 
 struct Event {
@@ -153,6 +154,7 @@ struct Grower {
         push(plant.nextDormancyBreak, kDormancyBreak, 0);
         push(plant.senescenceTime, kSenescence, 0);
         if (usesCallbacks()) push(std::floor(now) + 1.0, kDaily, 0);
+        if (sprouts()) push(std::floor(now) + 1.0, kEpicormic, 0);
         for (Shoot& s : plant.shoots)
             if (!s.removed) enqueueShoot(s);
     }
@@ -516,6 +518,46 @@ struct Grower {
         push(now + 1.0, kDaily, 0);
     }
 
+    // ---- water sprouts --------------------------------------------------------------------
+
+    bool sprouts() const { return plant.epicormic && plant.epicormic->probability > 0.0f; }
+
+    // Once a day in a growing season, each shoot there was at the day's start draws a point
+    // along its phytomers and grows a water sprout there with probability rate x its length x
+    // the vertical part of that internode's axis (two draws per shoot, whatever the outcome).
+    void onEpicormic(double now) {
+        if (!sprouts()) return;
+        push(now + 1.0, kEpicormic, 0);
+        if (!growingSeason()) return;
+        const EpicormicShoots sprout = *plant.epicormic;
+        const std::size_t shoots = plant.shoots.size();
+        for (std::size_t i = 0; i < shoots; ++i) {
+            const Shoot& s = plant.shoots[i];
+            if (s.removed || s.phytomers.empty()) continue;
+            double length = 0.0;
+            for (const Phytomer& ph : s.phytomers)
+                length += double(ph.internode.length) * ph.internodeFraction;
+            const float u = plant.rng.uniform01();
+            const float draw = plant.rng.uniform01();
+            const unsigned node = epicormicNode(s, u);
+            const double chance = double(sprout.probability) * length *
+                                  std::abs(double(s.phytomers[node].internode.direction.z));
+            if (!(double(draw) < chance)) continue;
+            const ShootParameters& ct = typeOf(sprout.shootType);
+            ShootSpec spec;
+            spec.phytomers = 1;
+            spec.shootType = sprout.shootType;
+            spec.size.internodeRadius =
+                std::max(ct.phytomer_parameters.internode.radius_initial.sample(plant.rng), 1e-6f);
+            spec.size.internodeLengthMax = ct.internode_length_max.sample(plant.rng);
+            spec.size.internodeLengthScale = 0.01f;
+            spec.size.leafScale = 0.01f;
+            const unsigned id =
+                createShoot(growth, plant, spec, StartMode::Epicormic, int(i), node, 0);
+            enqueueShoot(plant.shoots[id]);
+        }
+    }
+
     // ---- continuous state --------------------------------------------------------------
 
     void updateContinuous(double now) {
@@ -665,6 +707,10 @@ struct Grower {
                 case kDaily:
                     onDaily(e.time);
                     break;
+                case kEpicormic:
+                    onEpicormic(e.time);
+                    budget.grew(*this);
+                    break;
                 case kPhytomer:
                     onPhytomer(plant.shoots[e.shoot], e.time);
                     budget.grew(*this);
@@ -749,6 +795,7 @@ struct Grower {
             case kSenescence:
                 return plant.senescenceTime == e.time;
             case kDaily:
+            case kEpicormic:
                 return true;
             default:
                 break;
@@ -814,6 +861,19 @@ void scheduleNewShoot(const GrowthContext& growth, PlantInstance& plant, Shoot& 
     for (Phytomer& ph : shoot.phytomers) grower.scheduleBuds(shoot, ph);
 }
 
+unsigned epicormicNode(const Shoot& shoot, float position) {
+    const std::size_t n = shoot.phytomers.size();
+    const double k = std::ceil(double(position) * double(n)) - 1.0;
+    return unsigned(std::clamp(k, 0.0, double(n) - 1.0));
+}
+
+void changeSeason(const GrowthContext& growth, PlantInstance& plant, bool begin) {
+    Grower grower{growth, plant, {}, {}, {}, {}};
+    grower.horizon = -1.0;  // nothing is queued: later runs queue from the stored times
+    if (begin && plant.stage == PhenologyStage::Dormant) grower.onDormancyBreak(plant.age);
+    if (!begin && grower.growingSeason()) grower.onSenescence(plant.age);
+}
+
 void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
                std::vector<ObjectID>& deletes, const std::function<void(double)>& onDay) {
     double target = plant.age + days;
@@ -828,6 +888,8 @@ void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
     deletes.insert(deletes.end(), grower.pendingDeletes.begin(), grower.pendingDeletes.end());
     clearSideOrgans(growth.store, growth.prototypes, plant, growth.obstacles,
                     growth.clearanceCounts);
+    if (growth.store.groundClipping)
+        clipBelowGround(growth.store, growth.prototypes, plant, *growth.store.groundClipping);
 }
 
 const char* phenologyStageName(PhenologyStage s) {

@@ -254,7 +254,107 @@ void resetTurns(PlantInstance& plant) {
     }
 }
 
+// Ground clipping: what reaches below z = height goes (growth.h, clipBelowGround).
+class Clipper {
+public:
+    Clipper(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant, float height)
+        : placer_(store, prototypes, plant, 1.0f), plant_(plant), height_(height) {}
+
+    bool run() {
+        for (Shoot& s : plant_.shoots) {
+            if (s.removed) continue;
+            const std::vector<vec3>& nodes = placer_.nodes(s.id);
+            if (s.rank > 0 && s.apicalBud.state != BudState::Dead &&
+                std::any_of(nodes.begin() + 1, nodes.end(),
+                            [&](const vec3& p) { return p.z < height_; })) {
+                s.apicalBud.state = BudState::Dead;
+                s.nextPhytomerTime = -1.0;
+                changed_ = true;
+            }
+            for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+                Phytomer& ph = s.phytomers[k];
+                const vec3 top = nodes[k + 1];
+                for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+                    Petiole& pt = ph.petioles[j];
+                    clipLeaves(s, k, j, pt, ph, top);
+                    for (unsigned b = 0; b < pt.floralBuds.size(); ++b)
+                        clipBud(s, k, j, b, false, pt.floralBuds[b], top);
+                }
+            }
+            if (s.phytomers.empty()) continue;
+            for (unsigned b = 0; b < s.terminalFloralBuds.size(); ++b)
+                clipBud(s, 0, 0, b, true, s.terminalFloralBuds[b], nodes.back());
+        }
+        return changed_;
+    }
+
+private:
+    bool below(const TrialSink::Part& part) const {
+        const mat4& m = part.transform;  // z of m x (p, 1): the third row
+        for (const PrototypePart& piece : *part.prototype)
+            for (const vec3& p : piece.mesh.positions)
+                if (m[0][2] * p.x + m[1][2] * p.y + m[2][2] * p.z + m[3][2] < height_) return true;
+        return false;
+    }
+
+    void clipLeaves(Shoot& s, unsigned k, unsigned j, Petiole& pt, const Phytomer& ph, vec3 top) {
+        float leaf = 0.0f;
+        for (const LeafOrgan& l : pt.leaves) leaf = std::max(leaf, l.scale);
+        const float reach = (pt.length + 1.5f * leaf) * ph.leafFraction + pt.radius +
+                            0.5f * ph.internode.radius + 0.01f;
+        if (top.z - reach > height_) return;
+        trial_.clear();
+        trial_.setWanted({OrganKind::Leaf});
+        placer_.petiole(trial_, s.id, k, j);
+        for (LeafOrgan& l : pt.leaves) {
+            if (l.removed) continue;
+            for (const TrialSink::Part& part : trial_.parts)
+                if (part.owner == &l.objects && below(part)) {
+                    l.removed = true;
+                    changed_ = true;
+                    break;
+                }
+        }
+    }
+
+    void clipBud(Shoot& s, unsigned k, unsigned j, unsigned b, bool terminal, FloralBud& fb,
+                 vec3 top) {
+        if (fb.stage != FloralStage::FlowerClosed && fb.stage != FloralStage::FlowerOpen &&
+            fb.stage != FloralStage::Fruit)
+            return;
+        float organ = 0.0f;
+        for (const FlowerOrgan& fl : fb.flowers)
+            organ = std::max({organ, fl.flowerScale, fl.fruitScale});
+        if (top.z - (fb.peduncleLength + 1.5f * organ + fb.peduncleRadius + 0.01f) > height_)
+            return;
+        trial_.clear();
+        trial_.setWanted({OrganKind::Peduncle, OrganKind::FlowerClosed, OrganKind::FlowerOpen,
+                          OrganKind::Fruit});
+        placer_.floralBud(trial_, s.id, k, j, b, terminal);
+        const bool clipped = std::any_of(trial_.triangles.begin(), trial_.triangles.end(),
+                                         [&](const vec3& p) { return p.z < height_; }) ||
+                             std::any_of(trial_.parts.begin(), trial_.parts.end(),
+                                         [&](const TrialSink::Part& part) { return below(part); });
+        if (!clipped) return;
+        fb.stage = FloralStage::Removed;
+        fb.state = BudState::Dead;
+        fb.nextTime = -1.0;
+        changed_ = true;
+    }
+
+    OrganPlacer placer_;
+    PlantInstance& plant_;
+    float height_;
+    TrialSink trial_;
+    bool changed_ = false;
+};
+
 }  // namespace
+
+bool clipBelowGround(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
+                     float height) {
+    return Clipper(store, prototypes, plant, height).run();
+}
 
 void clearSideOrgans(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
                      std::span<OrganObstacle* const> obstacles, ClearanceCounts* counts) {

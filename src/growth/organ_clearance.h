@@ -43,7 +43,7 @@ public:
     float tubeRadius = 0.0f;
 
 private:
-    bool kinds_[int(OrganKind::Fruit) + 1] = {};
+    bool kinds_[kOrganKinds] = {};
 };
 
 /// Something side organs are kept out of.
@@ -84,5 +84,11 @@ struct ClearanceCounts {
 void clearSideOrgans(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
                      std::span<OrganObstacle* const> obstacles = {},
                      ClearanceCounts* counts = nullptr);
+
+/// Ground clipping (PlantStore::groundClipping) at z = `height`: leaves and floral buds (peduncle,
+/// flowers, fruit) whose geometry reaches below it are removed; a side shoot whose stem does stops
+/// growing (its apical bud dies). State only. Returns whether anything changed.
+bool clipBelowGround(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
+                     float height);
 
 }  // namespace plantarch

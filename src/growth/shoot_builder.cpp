@@ -267,7 +267,23 @@ unsigned createShoot(const GrowthContext& growth, PlantInstance& plant, const Sh
     } else {
         Shoot& parent = PlantStore::shoot(plant, unsigned(parentID));
         s.rank = parent.rank + (mode == StartMode::Append ? 0 : 1);
-        if (mode == StartMode::Append) {
+        if (mode == StartMode::Epicormic) {
+            if (parentNode >= parent.phytomers.size())
+                throw Error("parent node out of range",
+                            {.parameter = "parent_node_index",
+                             .value = std::to_string(parentNode),
+                             .validRange = "0 to " + std::to_string(parent.phytomers.size() - 1)});
+            // Upright: its roll reference faces the way the parent's axis leans.
+            const vec3 axis = parent.phytomers[parentNode].internode.direction;
+            const vec3 lean = vec3(axis.x, axis.y, 0.0f);
+            const vec3 reference = glm::length(lean) > 1e-6f ? glm::normalize(lean) : vec3(1, 0, 0);
+            const AxisFrame f = turnedFrame({vec3(0, 0, 1), reference}, r.pitch, r.yaw, r.roll);
+            start.guide = f.axis;
+            start.rollReference = f.reference;
+            s.insertionAngle = std::acos(std::clamp(glm::dot(f.axis, axis), -1.0f, 1.0f)) / kDeg;
+            s.parentNode = int(parentNode);
+            s.parentPetiole = 0;
+        } else if (mode == StartMode::Append) {
             const Internode& tip = parent.phytomers.back().internode;
             const AxisFrame f = turnedFrame({tip.guide, tip.rollReference}, r.pitch, r.yaw, r.roll);
             start.guide = f.axis;

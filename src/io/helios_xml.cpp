@@ -616,7 +616,7 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
         for (const auto& [name, n] : reader.typeDefaults)
             notes.push_back(name + " (" + std::to_string(n) + "): the shoot type's mean");
         try {
-            completePlant(plant, given, defaults, defaults.firstPlantID + index, notes, where);
+            completePlant(plant, given, defaults, defaults.firstStream + index, notes, where);
             checkPlant(plant, where);
         } catch (const Error& err) {
             // At the element the path names, as far as the file has it (a value completion

@@ -35,8 +35,9 @@ public:
               std::vector<std::string>& notes, std::string where)
         : p_(p), m_(m), d_(d), notes_(notes), where_(std::move(where)) {}
 
-    void run(unsigned plantID) {
-        if (m_.missing(&p_.rng)) p_.rng = Rng::forPlant(d_.seed, plantID);
+    void run(unsigned stream) {
+        p_.stream = stream;
+        if (m_.missing(&p_.rng)) p_.rng = Rng::forPlant(d_.seed, stream);
         if (m_.missing(&p_.phenology)) p_.phenology = d_.phenology;
         if (m_.missing(&p_.groundClearance)) p_.groundClearance = d_.groundClearance;
         if (m_.missing(&p_.nextDormancyBreak)) {
@@ -470,8 +471,8 @@ float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n) {
 }
 
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
-                   unsigned plantID, std::vector<std::string>& notes, const std::string& where) {
-    Completer(plant, presence, defaults, notes, where).run(plantID);
+                   unsigned stream, std::vector<std::string>& notes, const std::string& where) {
+    Completer(plant, presence, defaults, notes, where).run(stream);
 }
 
 void checkPlant(PlantInstance& p, const std::string& where) {

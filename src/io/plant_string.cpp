@@ -720,7 +720,7 @@ ReadResult readPlantString(const std::string& text, const Defaults& defaults) {
     notePresent(plant, present);
     std::vector<std::string> notes;
     try {
-        completePlant(plant, present, defaults, defaults.firstPlantID, notes, "plant string");
+        completePlant(plant, present, defaults, defaults.firstStream, notes, "plant string");
         checkPlant(plant, "plant string");
     } catch (const Error& e) {
         throw parser.located(e);

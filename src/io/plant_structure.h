@@ -76,7 +76,7 @@ struct Defaults {
     PhenologyParameters phenology;
     bool groundClearance = true;  ///< PlantInstance::groundClearance
     std::uint64_t seed = 0;
-    unsigned firstPlantID = 0;  ///< ID the first plant read will get (its random stream)
+    unsigned firstStream = 0;  ///< random stream of the first plant read (PlantInstance::stream)
 };
 
 /// Plants read from a file or string, with one warning per plant that needed defaults.
@@ -89,8 +89,9 @@ struct ReadResult {
 
 /// Fills the values `presence` reports missing; `notes` receives what was taken from where
 /// (e.g. "shoot type unifoliate: the PlantArchitecture's"). Errors name paths below `where`.
+/// The plant gets random stream `stream` (its generator from it, when the input has none).
 void completePlant(PlantInstance& plant, const Presence& presence, const Defaults& defaults,
-                   unsigned plantID, std::vector<std::string>& notes, const std::string& where);
+                   unsigned stream, std::vector<std::string>& notes, const std::string& where);
 
 /// What completion derives for an internode after one with roll reference `previous`: that
 /// reference carried to the shoot axis `guide` with the smallest rotation (no twist), as

@@ -518,8 +518,8 @@ ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
         std::vector<std::string> notes;
         try {
             if (!reader.presence.complete())
-                completePlant(plant, reader.presence, defaults, defaults.firstPlantID + index,
-                              notes, where);
+                completePlant(plant, reader.presence, defaults, defaults.firstStream + index, notes,
+                              where);
             checkPlant(plant, where);
         } catch (const Error& err) {
             std::string rel = err.parameter();

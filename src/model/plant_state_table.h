@@ -50,6 +50,14 @@ enum class Check {
     Exclusive,     ///< the range excludes both ends: min < value < max
 };
 
+/// Whether a field is a time on the plant's clock (a plant age, days), which moves with it
+/// when a plant is copied to another age (model/plant_move.h).
+enum class Clock {
+    None,
+    Age,        ///< a plant age
+    Scheduled,  ///< a plant age, or negative: none (not scheduled, not yet)
+};
+
 /// What a state field is. The range bounds the value (each component of a vector).
 struct FieldInfo {
     const char* name;  ///< XML element
@@ -57,6 +65,7 @@ struct FieldInfo {
     double max;
     const char* doc;  ///< meaning and unit
     Check check = Check::None;
+    Clock clock = Clock::None;
 };
 
 using params::SameAs;
@@ -75,7 +84,8 @@ template <class S, class V>
 requires SameAs<S, VegetativeBud>
 void describeState(S& b, V& v) {
     v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
-    v.field({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)"},
+    v.field({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)",
+             Check::None, Clock::Scheduled},
             b.breakTime);
     v.field({"child_shoot_ID", -1, kCount, "shoot grown from this bud (-1: none)"}, b.childShoot);
     v.field({"shoot_type_label", 0, 0, "type it grows into (chosen when it breaks)",
@@ -118,8 +128,11 @@ void describeState(S& b, V& v) {
             b.parametersLabel);
     v.field({"fruit_age", -kTime, kTime, "days since fruit set"}, b.fruitAge);
     v.field({"fruit_growth", 0, kBig, "current / full-grown fruit size"}, b.fruitGrowth);
-    v.field({"stage_time", -kTime, kTime, "plant age when the stage began, days"}, b.stageTime);
-    v.field({"next_time", -kTime, kTime, "plant age of the next stage (negative: none)"},
+    v.field({"stage_time", -kTime, kTime, "plant age when the stage began, days", Check::None,
+             Clock::Age},
+            b.stageTime);
+    v.field({"next_time", -kTime, kTime, "plant age of the next stage (negative: none)",
+             Check::None, Clock::Scheduled},
             b.nextTime);
     v.group("peduncle", [&](auto& p) {
         p.field({"peduncle_length", 0, kBig, "m"}, b.peduncleLength);
@@ -153,7 +166,8 @@ void describeState(S& l, V& v) {
     v.field({"variant", 0, kCount, "prototype shape variant"}, l.variant);
     v.field({"leaf_ID", -1, kMaxLeafID, "unique within the plant"}, l.leafID);
     v.field({"age", -kTime, kTime, "days"}, l.age);
-    v.field({"birth", -kTime, kTime, "plant age when it appeared, days"}, l.birth);
+    v.field({"birth", -kTime, kTime, "plant age when it appeared, days", Check::None, Clock::Age},
+            l.birth);
     v.field({"removed", 0, 1, "shed or removed"}, l.removed);
     v.objects("object_IDs", l.objects);
 }
@@ -202,7 +216,9 @@ template <class S, class V>
 requires SameAs<S, Phytomer>
 void describeState(S& ph, V& v) {
     v.field({"age", -kTime, kTime, "days"}, ph.age);
-    v.field({"birth", -kTime, kTime, "plant age when it was created, days"}, ph.birth);
+    v.field(
+        {"birth", -kTime, kTime, "plant age when it was created, days", Check::None, Clock::Age},
+        ph.birth);
     v.field({"internode_fraction", 0, kBig, "current / full internode length"},
             ph.internodeFraction);
     v.field({"leaf_fraction", 0, kBig, "current / full petiole and leaf size"}, ph.leafFraction);
@@ -241,7 +257,8 @@ void describeState(S& s, V& v) {
     v.field({"tortuosity", -kBig, kBig, "realized"}, s.tortuosity);
     v.field({"girth_area_factor", -kBig, kBig, "realized, cm^2 per m^2"}, s.girthAreaFactor);
     v.field({"nodes_this_season", -kCount, kCount, ""}, s.nodesThisSeason);
-    v.field({"next_phytomer_time", -kTime, kTime, "plant age, days (negative: none)"},
+    v.field({"next_phytomer_time", -kTime, kTime, "plant age, days (negative: none)", Check::None,
+             Clock::Scheduled},
             s.nextPhytomerTime);
     v.field({"flowering", 0, 1, ""}, s.flowering);
     v.field({"removed", 0, 1, "pruned away"}, s.removed);
@@ -264,22 +281,36 @@ void describeState(S& a, V& v) {
 }
 
 template <class S, class V>
+requires SameAs<S, EpicormicShoots>
+void describeState(S& e, V& v) {
+    v.field({"shoot_type_label", 0, 0, "type of the water sprouts", Check::Label}, e.shootType);
+    v.field({"probability", 0, kBig, "per m of parent shoot per day, at a vertical parent"},
+            e.probability);
+}
+
+template <class S, class V>
 requires SameAs<S, PlantInstance>
 void describeState(S& p, V& v) {
     v.field({"plant_name", 0, 0, "species or user label"}, p.name);
     v.field({"base_position", -kBig, kBig, "m"}, p.base);
-    v.field({"plant_age", 0, kTime, "days"}, p.age);
+    v.field({"plant_age", 0, kTime, "days", Check::None, Clock::Age}, p.age);
     v.field({"random_generator", 0, 0, "PCG32 state and increment"}, p.rng);
     v.field({"next_leaf_ID", 0, kMaxLeafID, ""}, p.nextLeafID);
     v.field({"phenology_stage", 0, 0, "dormant, vegetative, reproductive or senescent"}, p.stage);
-    v.field({"dormancy_break_time", -kTime, kTime, "when the season began, days"},
+    v.field({"dormancy_break_time", -kTime, kTime,
+             "when the season began, days (negative: not yet)", Check::None, Clock::Scheduled},
             p.dormancyBreakTime);
-    v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)"}, p.nextDormancyBreak);
-    v.field({"senescence_time", -kTime, kTime, "days (negative: never)"}, p.senescenceTime);
+    v.field({"next_dormancy_break", -kTime, kTime, "days (negative: never)", Check::None,
+             Clock::Scheduled},
+            p.nextDormancyBreak);
+    v.field(
+        {"senescence_time", -kTime, kTime, "days (negative: never)", Check::None, Clock::Scheduled},
+        p.senescenceTime);
     v.field({"season", 0, kCount, "growing seasons begun"}, p.season);
     v.field({"ground_clearance", 0, 1, "side organs turned to stay above the base's z"},
             p.groundClearance);
     v.optional("attraction_points", p.attraction);
+    v.optional("epicormic_shoots", p.epicormic);
     v.parameters("phenology", p.phenology);
     v.parameters("shoot_type", p.shootTypes);
     v.list("shoot", p.shoots, true);

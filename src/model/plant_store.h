@@ -2,7 +2,9 @@
 // The plants of one PlantArchitecture by ID, and the shoot types and phenology that plants
 // added from now on start from.
 
+#include <array>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "plantarch/Parameters.h"
@@ -28,15 +30,19 @@ public:
     /// The phenological thresholds given to plants added from now on.
     PhenologyParameters defaultPhenology;
     std::map<unsigned, PlantInstance> plants;
-    /// The ID the next plant gets (IDs are never reused).
-    unsigned nextPlantID = 0;
-    /// The ID of the first plant added since PlantArchitecture::restartPlantStreams (0 until
-    /// then): a plant's random streams are numbered from it (stream()).
-    unsigned streamBase = 0;
-    /// The number of the random streams of the plant with this ID (Rng::forPlant(seed, n)).
-    unsigned stream(unsigned id) const { return id - streamBase; }
+    /// The random stream number the next plant gets (PlantInstance::stream): plants count
+    /// from 0, or from PlantArchitecture::restartPlantStreams. IDs come from the Context.
+    unsigned nextStream = 0;
+    /// The ID the next plant gets instead of one from the Context (a canopy worker building
+    /// plant i of IDs the caller reserved); used once.
+    std::optional<unsigned> assignedID;
     /// Ground clearance of plants added from now on (setGroundClearance).
     bool groundClearance = true;
+    /// Ground clipping (enableGroundClipping): leaves, flowers and fruit that reach below this
+    /// height (m) fall off, side shoots growing into it are pruned. None: off.
+    std::optional<float> groundClipping;
+    /// Organ kinds whose geometry the Context gets (setOrganGeometry); all by default.
+    std::array<bool, kOrganKinds> organGeometry = {true, true, true, true, true, true, true};
     /// The factor on every organ's mesh resolution (setMeshDetail).
     float meshDetail = 1.0f;
     /// Growth stops with TriangleBudgetError once a plant's organs need more triangles than

@@ -1,0 +1,103 @@
+"""Plant IDs unique in a Context whichever PlantArchitecture made the plant, and the model
+specification's calls for copies, water sprouts, seasons, ground clipping and organ lists."""
+
+import pytest
+
+import plantarch
+
+
+def test_two_architectures_on_one_context_never_share_a_plant_id():
+    context = plantarch.Context()
+    beans = plantarch.PlantArchitecture(context)
+    maize = plantarch.PlantArchitecture(context)
+    beans.loadPlantModelFromLibrary("bean")
+    maize.loadPlantModelFromLibrary("maize")
+    bean = beans.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    corn = maize.buildPlantInstanceFromLibrary((1, 0, 0), 20)
+    assert bean != corn
+    labels = {context.getObjectData(o, "plantID") for o in context.getAllObjectIDs()}
+    assert labels == {bean, corn}
+    beans.deletePlantInstance(bean)
+    again = beans.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    assert again not in (bean, corn)
+
+
+def test_duplicate_move_and_name():
+    context = plantarch.Context()
+    a = plantarch.PlantArchitecture(context)
+    a.loadPlantModelFromLibrary("bean")
+    plant = a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    copy = a.duplicatePlantInstance(plant, (1, 0, 0), plantarch.AxisRotation(0, 90, 0), 30)
+    assert a.getPlantName(copy) == "bean"
+    assert a.getPlantLeafArea(copy) == pytest.approx(a.getPlantLeafArea(plant), rel=1e-5)
+    assert a.sumPlantLeafArea([plant, copy]) == pytest.approx(
+        2 * a.getPlantLeafArea(plant), rel=1e-5)
+    a.setPlantBasePosition(copy, (2, 0, 0))
+    assert tuple(a.getPlantBasePosition(copy)) == (2, 0, 0)
+    with pytest.raises(plantarch.Error, match="age"):
+        a.duplicatePlantInstance(plant, (0, 0, 0), age=-1)
+
+
+def test_organ_lists_seasons_clipping_and_sprouts():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    plant = a.buildPlantInstanceFromLibrary((0, 0, 0), 45)
+    assert a.getPlantLeafObjectIDs(plant) == a.getPlantObjectIDs(plant, plantarch.OrganKind.Leaf)
+    assert a.getPlantInternodeObjectIDs(plant)
+    flowers = a.getPlantFlowerObjectIDs(plant)
+    assert sorted(flowers) == sorted(
+        a.getPlantObjectIDs(plant, plantarch.OrganKind.FlowerClosed)
+        + a.getPlantObjectIDs(plant, plantarch.OrganKind.FlowerOpen))
+
+    a.setOrganGeometry(plantarch.OrganKind.Internode, False)
+    assert a.getPlantInternodeObjectIDs(plant) == []
+    assert a.getOrganGeometry(plantarch.OrganKind.Internode) is False
+
+    a.enableEpicormicChildShoots(plant, "trifoliate", 5.0)
+    shoots = a.getShootCount(plant)
+    a.advanceTime(10, plant)
+    assert a.getShootCount(plant) > shoots
+
+    a.enableGroundClipping(0.1)
+    assert a.getGroundClipping() == pytest.approx(0.1)
+    a.disableGroundClipping()
+    assert a.getGroundClipping() is None
+
+    a.makePlantDormant(plant)
+    assert a.isPlantDormant(plant)
+    a.breakPlantDormancy(plant)
+    assert not a.isPlantDormant(plant)
+
+
+def test_out_of_range_plant_ids_are_plantarch_errors():
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    for bad in (-1, 2**40):
+        with pytest.raises(plantarch.Error):
+            a.getPlantHeight(bad)
+
+
+def test_a_shoot_spec_builds_the_same_shoots_as_the_keyword_calls():
+    def build(with_spec):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.loadPlantModelFromLibrary("bean")
+        plant = a.addPlantInstance((0, 0, 0), 0)
+        kwargs = dict(current_node_number=4, internode_radius=0.002,
+                      internode_length_max=0.03, shoot_type_label="trifoliate")
+        if with_spec:
+            spec = plantarch.ShootSpec(**kwargs)
+            a.addBaseStemShoot(plant, spec)
+            spec.phytomers = 2
+            a.addChildShoot(plant, 0, 1, spec)
+            a.addEpicormicShoot(plant, 0, 0.5, spec)
+        else:
+            a.addBaseStemShoot(plant, **kwargs)
+            kwargs["current_node_number"] = 2
+            a.addChildShoot(plant, 0, 1, **kwargs)
+            a.addEpicormicShoot(plant, 0, 0.5, **kwargs)
+        return a.getPlantString(plant)
+
+    assert build(True) == build(False)
+    spec = plantarch.ShootSpec(shoot_type_label="x", internode_radius=0.004)
+    assert spec.size.internodeRadius == pytest.approx(0.004)
+    with pytest.raises(TypeError):
+        plantarch.ShootSpec("x")  # keywords only
