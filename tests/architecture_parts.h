@@ -56,7 +56,7 @@ struct Parts {
             withoutFunctions(copy.shootTypes);
             store.plants.emplace(id, std::move(copy));
         }
-        store.nextPlantID = ids.empty() ? 0 : ids.back() + 1;
+        store.nextStream = ids.empty() ? 0 : arch.plant(ids.back()).stream + 1;
     }
 
     PlantInstance& plant(unsigned id) { return store.plant(id); }

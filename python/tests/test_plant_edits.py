@@ -42,20 +42,20 @@ def test_organ_lists_seasons_clipping_and_sprouts():
     a = plantarch.PlantArchitecture(plantarch.Context())
     a.loadPlantModelFromLibrary("bean")
     plant = a.buildPlantInstanceFromLibrary((0, 0, 0), 45)
-    assert a.getPlantLeafObjectIDs(plant) == a.getPlantObjectIDs(plant, plantarch.OrganKind.Leaf)
+    assert a.getPlantLeafObjectIDs(plant) == a.getPlantObjectIDs(plant, plantarch.OrganKind.leaf)
     assert a.getPlantInternodeObjectIDs(plant)
     flowers = a.getPlantFlowerObjectIDs(plant)
     assert sorted(flowers) == sorted(
-        a.getPlantObjectIDs(plant, plantarch.OrganKind.FlowerClosed)
-        + a.getPlantObjectIDs(plant, plantarch.OrganKind.FlowerOpen))
+        a.getPlantObjectIDs(plant, plantarch.OrganKind.flower_closed)
+        + a.getPlantObjectIDs(plant, plantarch.OrganKind.flower_open))
 
-    a.setOrganGeometry(plantarch.OrganKind.Internode, False)
+    a.setOrganGeometry(plantarch.OrganKind.internode, False)
     assert a.getPlantInternodeObjectIDs(plant) == []
-    assert a.getOrganGeometry(plantarch.OrganKind.Internode) is False
+    assert a.getOrganGeometry(plantarch.OrganKind.internode) is False
 
     a.enableEpicormicChildShoots(plant, "trifoliate", 5.0)
     shoots = a.getShootCount(plant)
-    a.advanceTime(10, plant)
+    a.advanceTime(10, plantIDs=plant)
     assert a.getShootCount(plant) > shoots
 
     a.enableGroundClipping(0.1)
@@ -100,4 +100,4 @@ def test_a_shoot_spec_builds_the_same_shoots_as_the_keyword_calls():
     spec = plantarch.ShootSpec(shoot_type_label="x", internode_radius=0.004)
     assert spec.size.internodeRadius == pytest.approx(0.004)
     with pytest.raises(TypeError):
-        plantarch.ShootSpec("x")  # keywords only
+        plantarch.ShootSpec("x")  # pyright: ignore  (keywords only)
