@@ -582,18 +582,28 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
              "Forgets the solid obstacles.")
         .def(
             "enableAttractionPoints",
-            [](PlantArchitecture& a, py::object pts, float halfAngle, float lookAhead,
-               float inertia, std::vector<std::string> types, std::optional<unsigned> plant) {
-                AttractionPoints ap{points(pts), halfAngle, lookAhead, inertia, std::move(types)};
+            [](PlantArchitecture& a, py::object pts, float halfAngle, float lookAhead, float weight,
+               std::vector<std::string> types, std::optional<unsigned> plant) {
+                // The specification's weight (1: turn fully toward the point) is plantarch's
+                // inertia read the other way round.
+                if (!(weight >= 0.0f && weight <= 1.0f))
+                    throw Error("attraction weight out of range",
+                                {.parameter = "attraction_weight",
+                                 .value = std::to_string(weight),
+                                 .validRange = "0 (no attraction) to 1 (turn fully toward it)"});
+                AttractionPoints ap{points(pts), halfAngle, lookAhead, 1.0f - weight,
+                                    std::move(types)};
                 if (plant)
                     a.enableAttractionPoints(*plant, ap);
                 else
                     a.enableAttractionPoints(ap);
             },
             py::arg("attraction_points"), py::arg("view_half_angle_deg") = 80.0f,
-            py::arg("look_ahead_distance") = 0.1f, py::arg("attraction_weight") = 0.4f,
+            py::arg("look_ahead_distance") = 0.1f, py::arg("attraction_weight") = 0.6f,
             py::arg("shoot_types") = std::vector<std::string>{}, py::arg("plantID") = py::none(),
-            "Growing tips turn toward the nearest point in their cone (for every plant, or one).")
+            "Growing tips turn toward the nearest point in their cone (for every plant, or one), "
+            "by attraction_weight: 0 not at all, 1 fully (AttractionPoints.inertia = 1 - "
+            "weight).")
         .def(
             "updateAttractionPoints",
             [](PlantArchitecture& a, py::object pts, std::optional<unsigned> plant) {

@@ -1,6 +1,8 @@
 """Plant IDs unique in a Context whichever PlantArchitecture made the plant, and the model
 specification's calls for copies, water sprouts, seasons, ground clipping and organ lists."""
 
+from typing import Any
+
 import pytest
 
 import plantarch
@@ -81,7 +83,7 @@ def test_a_shoot_spec_builds_the_same_shoots_as_the_keyword_calls():
         a = plantarch.PlantArchitecture(plantarch.Context())
         a.loadPlantModelFromLibrary("bean")
         plant = a.addPlantInstance((0, 0, 0), 0)
-        kwargs = dict(current_node_number=4, internode_radius=0.002,
+        kwargs: dict[str, Any] = dict(current_node_number=4, internode_radius=0.002,
                       internode_length_max=0.03, shoot_type_label="trifoliate")
         if with_spec:
             spec = plantarch.ShootSpec(**kwargs)
@@ -101,3 +103,20 @@ def test_a_shoot_spec_builds_the_same_shoots_as_the_keyword_calls():
     assert spec.size.internodeRadius == pytest.approx(0.004)
     with pytest.raises(TypeError):
         plantarch.ShootSpec("x")  # pyright: ignore  (keywords only)
+
+
+def test_attraction_weight_means_what_the_reference_means():
+    def grown(weight=None):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.loadPlantModelFromLibrary("bean")
+        if weight is not None:
+            wire = [(0.08, 0.0, 0.02 * k) for k in range(1, 30)]
+            a.enableAttractionPoints(wire, look_ahead_distance=0.5, attraction_weight=weight)
+        plant = a.buildPlantInstanceFromLibrary((0, 0, 0), 25)
+        return a.getPlantString(plant)
+
+    free = grown()
+    assert grown(0.0) == free  # no attraction at all
+    assert grown(1.0) != free
+    with pytest.raises(plantarch.Error, match="attraction_weight"):
+        grown(1.5)
