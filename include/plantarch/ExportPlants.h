@@ -2,6 +2,7 @@
 // Exports that need the plants, not only their geometry: the plants as the glTF and USD
 // writers describe them, and the internodes as QSM cylinders.
 
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,28 @@ inline constexpr std::size_t kMaxAnimationFrames = 10000;
 /// not positive, or more than kMaxAnimationFrames frames.
 std::vector<double> growthFrameDays(const GrowthFrames& frames,
                                     const std::string& parameter = "frames");
+
+/// Frames of a scene recorded between steps of the caller's own (growth, pruning, harvest,
+/// moving plants), written as one animation. Each frame is a copy of the Context as it stood
+/// (every object), so memory grows by one scene per frame.
+class GrowthRecorder {
+public:
+    /// Records the scene of `arch` as the next frame, at `day` (days, finite, after the last
+    /// frame's). Throws plantarch::Error for another day or past kMaxAnimationFrames frames.
+    void record(const PlantArchitecture& arch, double day);
+    std::size_t frameCount() const { return frames_.size(); }
+    /// The frames' days, in order.
+    std::vector<double> days() const;
+    void clear();
+    /// Writes the frames into each of `paths` (.glb, .gltf or .usda) as one animation showing
+    /// frame i alone at i / framesPerSecond seconds; every path is checked before any is
+    /// written, each is written atomically. Throws plantarch::Error naming the file.
+    void write(const std::vector<std::string>& paths, const AnimationOptions& animation = {}) const;
+
+private:
+    std::deque<Context> scenes_;  // a deque: the frames point at its elements
+    std::vector<AnimationFrame> frames_;
+};
 
 /// Grows `plants` of `arch` from frame to frame and writes the scene as it stands at each
 /// frame (every object of the Context) into each of `paths` as one animation: .glb or .gltf

@@ -1,7 +1,9 @@
 // Exporters (OBJ, PLY, plant label table), the renderer (images as numpy arrays) and the
 // species library directory.
 
+#include <algorithm>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "bindings.h"
@@ -388,6 +390,40 @@ void bindOutput(py::module_& m) {
     m.def(
         "readImage", [](const std::string& path) { return imageArray(readImage(path)); },
         py::arg("filename"), "Reads a PNG (or JPEG ...) as a height x width x 3 uint8 array.");
+    py::class_<GrowthRecorder>(
+        m, "GrowthRecorder",
+        "Frames of a scene recorded between steps of your own (growth, pruning, harvest), "
+        "written as one animation (.glb, .gltf or .usda). Each frame is a copy of the scene.")
+        .def(py::init<>())
+        .def(
+            "record",
+            [](GrowthRecorder& r, const PlantArchitecture& a, std::optional<double> day) {
+                double d = 0.0;
+                if (day)
+                    d = *day;
+                else
+                    for (unsigned id : a.getAllPlantIDs()) d = std::max(d, a.plant(id).age);
+                r.record(a, d);
+            },
+            py::arg("architecture"), py::arg("day") = py::none(),
+            "Records the architecture's scene as the next frame at `day` (days, after the last "
+            "frame's; by default the oldest plant's age).")
+        .def("frameCount", &GrowthRecorder::frameCount, "Frames recorded.")
+        .def("days", &GrowthRecorder::days, "The frames' days, in order.")
+        .def("clear", &GrowthRecorder::clear, "Forgets every frame.")
+        .def(
+            "write",
+            [](const GrowthRecorder& r, const py::object& filenames, double frameRate) {
+                std::vector<std::string> paths;
+                if (py::isinstance<py::str>(filenames))
+                    paths.push_back(filenames.cast<std::string>());
+                else
+                    paths = filenames.cast<std::vector<std::string>>();
+                r.write(paths, {frameRate});
+            },
+            py::arg("filenames"), py::arg("frame_rate") = 24.0,
+            "Writes the frames into a file or each of a list of files (.glb, .gltf or .usda) "
+            "as one animation showing frame i alone at i / frame_rate seconds.");
     m.def("speciesLibraryDirectory", &speciesLibraryDirectory,
           "The folder the species library is read from.");
     m.def("listSpecies", &listSpecies, "Names of the library species, sorted.");

@@ -120,3 +120,27 @@ def test_attraction_weight_means_what_the_reference_means():
     assert grown(1.0) != free
     with pytest.raises(plantarch.Error, match="attraction_weight"):
         grown(1.5)
+
+
+def test_a_growth_recorder_keeps_frames_between_steps_of_ones_own(tmp_path):
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    plant = a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    recorder = plantarch.GrowthRecorder()
+    recorder.record(a)  # at the plant's age
+    a.removePlantLeaves(plant)
+    recorder.record(a, 20.5)
+    a.advanceTime(5)
+    recorder.record(a)
+    assert recorder.frameCount() == 3
+    assert recorder.days() == [20, 20.5, 25]
+    with pytest.raises(plantarch.Error, match="after the last frame"):
+        recorder.record(a, 25)
+    recorder.write([str(tmp_path / "growth.glb"), str(tmp_path / "growth.usda")], frame_rate=2)
+    assert (tmp_path / "growth.glb").read_bytes()[:4] == b"glTF"
+    assert (tmp_path / "growth.usda").read_text().count('def Xform "day_') == 3
+    with pytest.raises(plantarch.Error, match="animation"):
+        recorder.write(str(tmp_path / "growth.obj"))
+    assert not (tmp_path / "growth.obj").exists()
+    recorder.clear()
+    assert recorder.frameCount() == 0

@@ -107,42 +107,83 @@ std::vector<double> growthFrameDays(const GrowthFrames& f, const std::string& pa
     return days;
 }
 
+namespace {
+
+// Every path an animation is written as, and the frame rate, checked before any work.
+void checkAnimationPaths(const std::vector<std::string>& paths, const AnimationOptions& animation) {
+    for (const std::string& path : paths)
+        requireOutputFormat(path, {".glb", ".gltf", ".usda"},
+                            "an animation is written as .glb, .gltf or .usda");
+    io::checkFrameRate(animation, paths.empty() ? std::string() : paths.front());
+}
+
+}  // namespace
+
+void GrowthRecorder::record(const PlantArchitecture& arch, double day) {
+    if (!std::isfinite(day) || (!frames_.empty() && !(day > frames_.back().day)))
+        throw Error(
+            "a frame's day must be finite and after the last frame's",
+            {.parameter = "day",
+             .value = text::formatDouble(day),
+             .validRange = frames_.empty() ? "a finite number of days"
+                                           : "> " + text::formatDouble(frames_.back().day)});
+    if (frames_.size() >= kMaxAnimationFrames)
+        throw Error("too many animation frames",
+                    {.parameter = "frames",
+                     .value = std::to_string(frames_.size() + 1),
+                     .validRange = "at most " + std::to_string(kMaxAnimationFrames)});
+    scenes_.push_back(arch.context());
+    try {
+        frames_.push_back({&scenes_.back(), day, exportPlants(arch)});
+    } catch (...) {
+        scenes_.pop_back();
+        throw;
+    }
+}
+
+std::vector<double> GrowthRecorder::days() const {
+    std::vector<double> out;
+    for (const AnimationFrame& f : frames_) out.push_back(f.day);
+    return out;
+}
+
+void GrowthRecorder::clear() {
+    frames_.clear();
+    scenes_.clear();
+}
+
+void GrowthRecorder::write(const std::vector<std::string>& paths,
+                           const AnimationOptions& animation) const {
+    checkAnimationPaths(paths, animation);
+    for (const std::string& path : paths) {
+        if (lowerExtension(path) == ".usda") {
+            UsdOptions o;
+            o.progress = animation.progress;
+            writeUSDA(frames_, path, o, animation);
+        } else {
+            GltfOptions o;
+            o.progress = animation.progress;
+            writeGLTF(frames_, path, o, animation);
+        }
+    }
+}
+
 void writeGrowthAnimation(PlantArchitecture& arch, const std::vector<unsigned>& plants,
                           const GrowthFrames& frames, const std::vector<std::string>& paths,
                           const AnimationOptions& animation) {
     const std::vector<double> days = growthFrameDays(frames);
-    for (const std::string& path : paths) {
-        const std::string ext = lowerExtension(path);
-        if (ext != ".glb" && ext != ".gltf" && ext != ".usda")
-            throw Error("an animation is written as .glb, .gltf or .usda",
-                        {.file = path, .value = ext, .validRange = ".glb, .gltf, .usda"});
-    }
-    // Checked before the growth, so a bad rate costs nothing.
-    io::checkFrameRate(animation, paths.empty() ? std::string() : paths.front());
-    std::vector<Context> scenes;
-    std::vector<AnimationFrame> recorded;
-    scenes.reserve(days.size());
+    checkAnimationPaths(paths, animation);  // before the growth, so a bad path costs nothing
+    GrowthRecorder recorder;
     double grown = 0.0;
     ProgressSteps steps(animation.progress, "growing", double(days.size()));
     for (double day : days) {
         if (day > grown) arch.advanceTime(plants, day - grown);
         grown = day;
-        scenes.push_back(arch.context());
-        recorded.push_back({&scenes.back(), day, exportPlants(arch)});
-        steps.at(double(recorded.size()));
+        recorder.record(arch, day);
+        steps.at(double(recorder.frameCount()));
     }
     steps.finish();
-    for (const std::string& path : paths) {
-        if (lowerExtension(path) == ".usda") {
-            UsdOptions o;
-            o.progress = animation.progress;
-            writeUSDA(recorded, path, o, animation);
-        } else {
-            GltfOptions o;
-            o.progress = animation.progress;
-            writeGLTF(recorded, path, o, animation);
-        }
-    }
+    recorder.write(paths, animation);
 }
 
 }  // namespace plantarch
