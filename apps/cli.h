@@ -50,6 +50,9 @@ struct GlobalOptions {
 
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
 vec3 parseVec3(const std::string& text, const char* option);
+/// --orbit AZIMUTH,ELEVATION (degrees; elevation -89 to 89) into an auto-framed camera's
+/// view direction; throws naming the option and its form.
+void parseOrbit(const std::string& text, Camera& camera);
 
 /// The mask a --label value selects: organ or object; an Error listing them (and `more`, the
 /// command's other values) for any other name.

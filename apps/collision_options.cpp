@@ -111,7 +111,7 @@ void applyCollisionOptions(const CollisionArgs& a, PlantArchitecture& arch, Cont
     };
     std::vector<ObjectID> obstacles;
     for (const std::string& f : a.obstacles) {
-        const std::vector<ObjectID> ids = readObstacleOBJ(ctx, f);
+        const std::vector<ObjectID> ids = readObstacleMesh(ctx, f);
         obstacles.insert(obstacles.end(), ids.begin(), ids.end());
     }
     if (!obstacles.empty()) {

@@ -29,7 +29,7 @@ struct RenderArgs {
     std::string output;
     int width = 1024;
     int height = 768;
-    std::string eye, target;
+    std::string eye, target, orbit;
     float fov = 0.0f;  // 0: the renderer's default
     std::string label;
     std::string coco;
@@ -77,12 +77,12 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto start = std::chrono::steady_clock::now();
     requireInputFile(a.input, "scene file");
     const std::string in = lowerExtension(a.input);
-    if (in != ".obj" && in != ".xml" && in != ".txt")
+    if (in != ".obj" && in != ".ply" && in != ".xml" && in != ".txt")
         throw Error("render reads a scene plantarch writes with geometry or plant state",
                     {.file = a.input,
                      .value = in.empty() ? "no extension" : in,
-                     .validRange = ".obj (geometry), .xml (a plant structure or <helios> file), "
-                                   ".txt (plant strings, with --species)"});
+                     .validRange = ".obj or .ply (geometry), .xml (a plant structure or "
+                                   "<helios> file), .txt (plant strings, with --species)"});
     const bool depth = a.label == "depth";
     requireOutputFormat(a.output, depth ? kDepthOutput : kPictureOutput,
                         depth ? "a depth image is written as .npy (distances) or .png (a picture)"
@@ -98,6 +98,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     o.scene.progress = o.progress;
     if (a.samples > 0) o.samplesPerPixel = a.samples;
     if (a.fov > 0.0f) o.camera.fovDeg = a.fov;
+    if (!a.orbit.empty()) parseOrbit(a.orbit, o.camera);
     if (!a.eye.empty()) {
         o.camera.autoFrame = false;
         o.camera.eye = parseVec3(a.eye, "--eye");
@@ -143,6 +144,8 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     if (in == ".obj") {
         const std::vector<ObjectID> ids = readOBJ(ctx, a.input, {.progress = terminalProgress()});
         organsFromNames(ctx, ids);
+    } else if (in == ".ply") {
+        readPLY(ctx, a.input, {.progress = terminalProgress()});
     } else {
         arch.emplace(&ctx);
         arch->setSeed(g.seed);
@@ -190,11 +193,11 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
 
 std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.description(
-        "Render a scene (.obj, or plants from .xml or .txt) to a PNG (shaded preview or "
+        "Render a scene (.obj or .ply, or plants from .xml or .txt) to a PNG (shaded preview or "
         "segmentation mask)");
     auto args = std::make_shared<RenderArgs>();
     app.add_option("input", args->input,
-                   "Scene to render: .obj, .xml (plant structure or <helios>) or .txt (plant "
+                   "Scene to render: .obj, .ply, .xml (plant structure or <helios>) or .txt (plant "
                    "strings, with --species)")
         ->required();
     app.add_option("--species", args->species,
@@ -211,6 +214,9 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.add_option("--eye", args->eye, "Camera position x,y,z in metres (default: auto-framed)");
     app.add_option("--target", args->target,
                    "Point looked at x,y,z (default: centre of the scene; needs --eye)");
+    app.add_option("--orbit", args->orbit,
+                   "View from AZIMUTH,ELEVATION degrees, framed on the scene (default -60,22)")
+        ->excludes("--eye");
     app.add_option("--fov", args->fov, "Vertical field of view in degrees (default 35)")
         ->check(numberCheck("--fov", "a field of view", 0.01, 170.0, false, "0.01 to 170 degrees"));
     app.add_option("--label", args->label,

@@ -116,6 +116,30 @@ vec3 parseVec3(const std::string& text, const char* option) {
     return v;
 }
 
+void parseOrbit(const std::string& text, Camera& camera) {
+    const auto fail = [&] {
+        return Error("not a view direction",
+                     {.parameter = "--orbit",
+                      .value = text,
+                      .validRange = "AZIMUTH,ELEVATION in degrees: azimuth from +x toward +y, "
+                                    "elevation -89 to 89"});
+    };
+    float v[2] = {0.0f, 0.0f};
+    const char* p = text.data();
+    const char* end = text.data() + text.size();
+    for (int i = 0; i < 2; ++i) {
+        while (p < end && *p == ' ') ++p;
+        const auto [next, ec] = std::from_chars(p, end, v[i]);
+        if (ec != std::errc() || !std::isfinite(v[i])) throw fail();
+        p = next;
+        while (p < end && *p == ' ') ++p;
+        if (i == 0 && (p == end || *p++ != ',')) throw fail();
+    }
+    if (p != end || !(v[1] >= -89.0f && v[1] <= 89.0f)) throw fail();
+    camera.azimuthDeg = v[0];
+    camera.elevationDeg = v[1];
+}
+
 RenderMode labelMode(const std::string& name, const std::string& more) {
     // The values of --label and the masks they select.
     constexpr std::pair<const char*, RenderMode> kLabelModes[] = {
@@ -153,6 +177,12 @@ void addImageSizeOption(CLI::App& app, GlobalOptions& global) {
         },
         "Camera position x,y,z of PNG outputs in metres (default: framed on the scene); one "
         "framing for every age");
+    app.add_option_function<std::string>(
+           "--orbit",
+           [&global](const std::string& text) { parseOrbit(text, global.pictureCamera); },
+           "PNG outputs seen from AZIMUTH,ELEVATION degrees (default -60,22), framed on the "
+           "scene")
+        ->excludes("--eye");
     app.add_option_function<std::string>(
            "--target",
            [&global](const std::string& text) {

@@ -303,7 +303,7 @@ TEST_F(InputFiles, MtllibIsReadAsAnInputFileNamedFromTheObj) {
         EXPECT_EQ(
             std::string(errorOf([&] { pa::readOBJ(ctx, at("fifo.obj")); }).what()),
             at("fifo.obj") + ":4: mtllib = " + at("m.fifo") + ": is a FIFO, not a material file");
-        EXPECT_EQ(std::string(errorOf([&] { pa::readObstacleOBJ(ctx, at("big.obj")); }).what()),
+        EXPECT_EQ(std::string(errorOf([&] { pa::readObstacleMesh(ctx, at("big.obj")); }).what()),
                   at("big.obj") + ":5: mtllib = " + at("big.mtl") +
                       ": too large for a material file: 64.0 MiB (67108865 bytes) (valid: at "
                       "most 64 MiB)");

@@ -521,9 +521,40 @@ TEST(RenderCli, LabelMaskAndExplicitCamera) {
     EXPECT_EQ(colours(readImage(png.string())), expected);
 }
 
+// A PLY plantarch wrote renders with its organ labels, as the OBJ of the same scene does;
+// --orbit turns the auto-framed view.
+TEST(RenderCli, RendersAPlyFileWithItsLabelsAndAnOrbitView) {
+    TempDir dir;
+    Context ctx;
+    writeSmallObj(dir / "in.obj");
+    const std::vector<ObjectID> ids = readOBJ(ctx, (dir / "in.obj").string());
+    ASSERT_EQ(ids.size(), 2u);  // the organs its group names give
+    ctx.setObjectData(ids[0], "organ", std::string("internode"));
+    ctx.setObjectData(ids[1], "organ", std::string("leaf"));
+    writePLY(ctx, (dir / "in.ply").string());
+    const std::string common = " --width 80 --height 60 --label organ --no-ground";
+    const auto fromPly = runCli("render \"" + (dir / "in.ply").string() + "\" -o \"" +
+                                    (dir / "ply.png").string() + "\"" + common,
+                                dir.path());
+    ASSERT_EQ(fromPly.status, 0) << fromPly.stderrText;
+    const auto fromObj = runCli("render \"" + (dir / "in.obj").string() + "\" -o \"" +
+                                    (dir / "obj.png").string() + "\"" + common,
+                                dir.path());
+    ASSERT_EQ(fromObj.status, 0) << fromObj.stderrText;
+    const Image ply = readImage((dir / "ply.png").string());
+    EXPECT_EQ(ply.rgb, readImage((dir / "obj.png").string()).rgb);
+    EXPECT_TRUE(colours(ply).count(organLabelColor("leaf")));
+    const auto turned = runCli("render \"" + (dir / "in.ply").string() + "\" -o \"" +
+                                   (dir / "top.png").string() + "\"" + common + " --orbit 0,89",
+                               dir.path());
+    ASSERT_EQ(turned.status, 0) << turned.stderrText;
+    EXPECT_NE(readImage((dir / "top.png").string()).rgb, ply.rgb);
+}
+
 TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
     TempDir dir;
     writeSmallObj(dir / "in.obj");
+    std::ofstream(dir / "in.stl") << "solid x\n";
     const std::string in = "\"" + (dir / "in.obj").string() + "\"";
     const std::string out = " -o \"" + (dir / "out.png").string() + "\"";
     const std::vector<std::pair<std::string, std::string>> cases = {
@@ -531,6 +562,10 @@ TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
         {"render " + in + out + " --eye 1,2", "--eye"},
         {"render " + in + out + " --eye 1,2,3 --target a,b,c", "--target"},
         {"render " + in + out + " --label leaves", "--label"},
+        {"render " + in + out + " --orbit 10,95", "--orbit"},
+        {"render " + in + out + " --orbit 10", "--orbit"},
+        {"render " + in + out + " --orbit 10,20 --eye 1,1,1", "--orbit"},
+        {"render \"" + (dir / "in.stl").string() + "\"" + out, "valid: .obj or .ply"},
         {"render " + in + " -o /proc/x.png", "/proc/x.png: cannot write in folder /proc"},
         {"render " + in + " -o \"" + (dir / "out.obj").string() + "\"",
          "out.obj: '.obj': render writes a PNG picture (valid: .png)"},

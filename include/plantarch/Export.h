@@ -115,9 +115,6 @@ struct ObjReadOptions {
 /// holds no faces. On error `context` is left unchanged.
 std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
                               const ObjReadOptions& options = {});
-/// Reads an OBJ file as an obstacle: its geometry only (readOBJ without labels, whatever
-/// labels its file carries: an obstacle is no plant), each object with organ "obstacle".
-std::vector<ObjectID> readObstacleOBJ(Context& context, const std::string& path);
 
 // ---- PLY ---------------------------------------------------------------------------
 
@@ -191,6 +188,33 @@ std::vector<std::string> organLabelTable(const Context& context, bool includeHid
 /// "plantID" data have the wrong type, or when the scene has more vertices than an int
 /// index can address.
 void writePLY(const Context& context, const std::string& path, const PlyOptions& options = {});
+
+/// Options of readPLY.
+struct PlyReadOptions {
+    /// Read the per-face labels writePLY writes: one object per `object_id`, with "plantID",
+    /// "organ" (named by the file's `comment organ_label` lines), "leafID", "shootID",
+    /// "rank", "node" and "age" data where the face has them (-1: absent). Off, or in files
+    /// without `object_id`, the whole mesh is one object.
+    bool labels = true;
+    /// Receives ("reading PLY", fraction) while the file is parsed; may be empty.
+    ProgressCallback progress;
+};
+
+/// Reads a PLY mesh (`format ascii`, `binary_little_endian` or `binary_big_endian` 1.0; at
+/// most 4 GiB) into `context` and returns the IDs of the objects added, in file order: the
+/// `vertex` element's x, y, z (any number type; other properties, such as normals and
+/// colours, are skipped) and the `face` element's `vertex_indices` (or `vertex_index`) lists,
+/// polygons of 3 to 1024 corners triangulated as fans; other elements are skipped. Objects
+/// get the default material. Throws Error naming the file for a malformed header, data that
+/// ends early, a number that is not one, a vertex that is not finite, a corner index out of
+/// range, or no faces; on error `context` is left unchanged.
+std::vector<ObjectID> readPLY(Context& context, const std::string& path,
+                              const PlyReadOptions& options = {});
+
+/// Reads an obstacle mesh, OBJ (readOBJ) or PLY (readPLY) by its extension: its geometry only
+/// (without labels, whatever its file carries: an obstacle is no plant), each object with
+/// organ "obstacle". Throws Error naming the file for another extension.
+std::vector<ObjectID> readObstacleMesh(Context& context, const std::string& path);
 
 /// A plant as a glTF file names it: its node is called "<species>_<id>", placed at its base,
 /// with the species, age and seed in the node's extras.

@@ -249,6 +249,17 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"),
         "Adds the objects of an OBJ file (obstacles, ground); returns their IDs.");
     m.def(
+        "readPLY",
+        [](Context& c, const std::string& path, bool labels) {
+            return readPLY(c, path, {.labels = labels});
+        },
+        py::arg("context"), py::arg("filename"), py::arg("labels") = true,
+        "Adds the mesh of a PLY file (ASCII or binary): one object per object_id with the "
+        "labels writePLY writes, or one object; returns their IDs.");
+    m.def("readObstacleMesh", &readObstacleMesh, py::arg("context"), py::arg("filename"),
+          "Adds an obstacle mesh (.obj or .ply) without labels, its objects with organ "
+          "'obstacle'; returns their IDs.");
+    m.def(
         "render",
         [](const Context& c, int width, int height, const std::string& mode, float azimuth,
            float elevation, float fov, int samples, bool ground, std::uint64_t seed, py::object eye,

@@ -144,3 +144,21 @@ def test_a_growth_recorder_keeps_frames_between_steps_of_ones_own(tmp_path):
     assert not (tmp_path / "growth.obj").exists()
     recorder.clear()
     assert recorder.frameCount() == 0
+
+
+def test_a_ply_written_reads_back_as_its_objects(tmp_path):
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    context = a.getContext()
+    plantarch.writePLY(context, str(tmp_path / "bean.ply"))
+    back = plantarch.Context()
+    ids = plantarch.readPLY(back, str(tmp_path / "bean.ply"))
+    assert len(ids) == len(context.getAllObjectIDs())
+    organs = sorted(str(context.getObjectData(o, "organ")) for o in context.getAllObjectIDs())
+    assert sorted(str(back.getObjectData(o, "organ")) for o in ids) == organs
+    wall = plantarch.readObstacleMesh(back, str(tmp_path / "bean.ply"))
+    assert {back.getObjectData(o, "organ") for o in wall} == {"obstacle"}
+    (tmp_path / "bad.ply").write_text("ply\nformat ascii 1.0\nelement vertex 1\nend_header\n")
+    with pytest.raises(plantarch.Error, match="bad.ply"):
+        plantarch.readPLY(back, str(tmp_path / "bad.ply"))

@@ -22,6 +22,7 @@
 #include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch {
 
@@ -513,8 +514,15 @@ std::vector<ObjectID> readOBJ(Context& context, const std::string& path,
     return ids;
 }
 
-std::vector<ObjectID> readObstacleOBJ(Context& context, const std::string& path) {
-    const std::vector<ObjectID> ids = readOBJ(context, path, {.labels = false});
+std::vector<ObjectID> readObstacleMesh(Context& context, const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    if (ext != ".obj" && ext != ".ply")
+        throw Error("an obstacle is read from an OBJ or PLY mesh",
+                    {.file = path,
+                     .value = ext.empty() ? "no extension" : ext,
+                     .validRange = ".obj, .ply"});
+    const std::vector<ObjectID> ids = ext == ".obj" ? readOBJ(context, path, {.labels = false})
+                                                    : readPLY(context, path, {.labels = false});
     const DataColumn organ = context.dataColumn("organ", DataType::String);
     for (ObjectID id : ids) context.setObjectData(id, organ, std::string("obstacle"));
     return ids;

@@ -194,7 +194,7 @@ void buildSurroundings(const Project& p, PlantArchitecture& arch, BuiltProject& 
     if (p.ground) built.ground.push_back(addGround(ctx, *p.ground));
     for (std::size_t i = 0; i < p.obstacleFiles.size(); ++i) {
         try {
-            const auto ids = readObstacleOBJ(ctx, projectPath(p, p.obstacleFiles[i]));
+            const auto ids = readObstacleMesh(ctx, projectPath(p, p.obstacleFiles[i]));
             built.obstacles.insert(built.obstacles.end(), ids.begin(), ids.end());
         } catch (const Error&) {
             rethrowAt(p, "obstacles/files/" + std::to_string(i));
@@ -270,7 +270,7 @@ void checkProject(const Project& p) {
         requireReadable(p, p.obstacleFiles[i], field, "an obstacle file");
         Context scratch;
         try {
-            readObstacleOBJ(scratch, projectPath(p, p.obstacleFiles[i]));
+            readObstacleMesh(scratch, projectPath(p, p.obstacleFiles[i]));
         } catch (const Error&) {
             rethrowAt(p, field);
         }
