@@ -77,12 +77,14 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     const auto start = std::chrono::steady_clock::now();
     requireInputFile(a.input, "scene file");
     const std::string in = lowerExtension(a.input);
-    if (in != ".obj" && in != ".ply" && in != ".xml" && in != ".txt")
+    if (in != ".obj" && in != ".ply" && in != ".glb" && in != ".gltf" && in != ".xml" &&
+        in != ".txt")
         throw Error("render reads a scene plantarch writes with geometry or plant state",
                     {.file = a.input,
                      .value = in.empty() ? "no extension" : in,
-                     .validRange = ".obj or .ply (geometry), .xml (a plant structure or "
-                                   "<helios> file), .txt (plant strings, with --species)"});
+                     .validRange = ".obj, .ply, .glb or .gltf (geometry), .xml (a plant "
+                                   "structure or <helios> file), .txt (plant strings, with "
+                                   "--species)"});
     const bool depth = a.label == "depth";
     requireOutputFormat(a.output, depth ? kDepthOutput : kPictureOutput,
                         depth ? "a depth image is written as .npy (distances) or .png (a picture)"
@@ -146,6 +148,8 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
         organsFromNames(ctx, ids);
     } else if (in == ".ply") {
         readPLY(ctx, a.input, {.progress = terminalProgress()});
+    } else if (in == ".glb" || in == ".gltf") {
+        readGLTF(ctx, a.input);
     } else {
         arch.emplace(&ctx);
         arch->setSeed(g.seed);
@@ -193,11 +197,13 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
 
 std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
     app.description(
-        "Render a scene (.obj or .ply, or plants from .xml or .txt) to a PNG (shaded preview or "
+        "Render a scene (.obj, .ply, .glb, .gltf, or plants from .xml or .txt) to a PNG (shaded "
+        "preview or "
         "segmentation mask)");
     auto args = std::make_shared<RenderArgs>();
     app.add_option("input", args->input,
-                   "Scene to render: .obj, .ply, .xml (plant structure or <helios>) or .txt (plant "
+                   "Scene to render: .obj, .ply, .glb, .gltf, .xml (plant structure or <helios>) "
+                   "or .txt (plant "
                    "strings, with --species)")
         ->required();
     app.add_option("--species", args->species,

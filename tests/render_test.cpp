@@ -521,9 +521,9 @@ TEST(RenderCli, LabelMaskAndExplicitCamera) {
     EXPECT_EQ(colours(readImage(png.string())), expected);
 }
 
-// A PLY plantarch wrote renders with its organ labels, as the OBJ of the same scene does;
+// A PLY or GLB plantarch wrote renders with its organ labels, as the OBJ of the same scene does;
 // --orbit turns the auto-framed view.
-TEST(RenderCli, RendersAPlyFileWithItsLabelsAndAnOrbitView) {
+TEST(RenderCli, RendersPlyAndGlbFilesWithTheirLabelsAndAnOrbitView) {
     TempDir dir;
     Context ctx;
     writeSmallObj(dir / "in.obj");
@@ -541,8 +541,14 @@ TEST(RenderCli, RendersAPlyFileWithItsLabelsAndAnOrbitView) {
                                     (dir / "obj.png").string() + "\"" + common,
                                 dir.path());
     ASSERT_EQ(fromObj.status, 0) << fromObj.stderrText;
+    writeGLTF(ctx, (dir / "in.glb").string());
+    const auto fromGlb = runCli("render \"" + (dir / "in.glb").string() + "\" -o \"" +
+                                    (dir / "glb.png").string() + "\"" + common,
+                                dir.path());
+    ASSERT_EQ(fromGlb.status, 0) << fromGlb.stderrText;
     const Image ply = readImage((dir / "ply.png").string());
     EXPECT_EQ(ply.rgb, readImage((dir / "obj.png").string()).rgb);
+    EXPECT_EQ(readImage((dir / "glb.png").string()).rgb, ply.rgb);
     EXPECT_TRUE(colours(ply).count(organLabelColor("leaf")));
     const auto turned = runCli("render \"" + (dir / "in.ply").string() + "\" -o \"" +
                                    (dir / "top.png").string() + "\"" + common + " --orbit 0,89",
@@ -565,7 +571,7 @@ TEST(RenderCli, BadInputExitsWithStatus2AndOneLine) {
         {"render " + in + out + " --orbit 10,95", "--orbit"},
         {"render " + in + out + " --orbit 10", "--orbit"},
         {"render " + in + out + " --orbit 10,20 --eye 1,1,1", "--orbit"},
-        {"render \"" + (dir / "in.stl").string() + "\"" + out, "valid: .obj or .ply"},
+        {"render \"" + (dir / "in.stl").string() + "\"" + out, "valid: .obj, .ply, .glb or .gltf"},
         {"render " + in + " -o /proc/x.png", "/proc/x.png: cannot write in folder /proc"},
         {"render " + in + " -o \"" + (dir / "out.obj").string() + "\"",
          "out.obj: '.obj': render writes a PNG picture (valid: .png)"},

@@ -211,6 +211,16 @@ struct PlyReadOptions {
 std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                               const PlyReadOptions& options = {});
 
+/// Reads the triangle meshes of a glTF 2.0 scene (.glb, or .gltf with its buffers embedded
+/// as data URIs; at most 4 GiB) into `context` and returns the IDs of the objects added: the
+/// default scene's nodes with their transforms, glTF's y up turned into plantarch's z up. A
+/// file plantarch wrote reads back as its objects, one per `_OBJECT_ID`, with "plantID" and
+/// "organ" data from `_PLANT_ID` and `_ORGAN`; in other files each primitive is one object.
+/// Materials and textures are not read. Throws Error naming the file for malformed JSON or
+/// binary chunks, references or accessors out of range, node cycles, external buffer files,
+/// or no triangles; on error `context` is left unchanged.
+std::vector<ObjectID> readGLTF(Context& context, const std::string& path);
+
 /// Reads an obstacle mesh, OBJ (readOBJ) or PLY (readPLY) by its extension: its geometry only
 /// (without labels, whatever its file carries: an obstacle is no plant), each object with
 /// organ "obstacle". Throws Error naming the file for another extension.

@@ -256,6 +256,10 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("labels") = true,
         "Adds the mesh of a PLY file (ASCII or binary): one object per object_id with the "
         "labels writePLY writes, or one object; returns their IDs.");
+    m.def("readGLTF", &readGLTF, py::arg("context"), py::arg("filename"),
+          "Adds the triangle meshes of a glTF scene (.glb, or .gltf with embedded buffers), z "
+          "up: one object per _OBJECT_ID with plantID and organ in files plantarch wrote; "
+          "returns their IDs.");
     m.def("readObstacleMesh", &readObstacleMesh, py::arg("context"), py::arg("filename"),
           "Adds an obstacle mesh (.obj or .ply) without labels, its objects with organ "
           "'obstacle'; returns their IDs.");

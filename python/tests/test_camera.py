@@ -111,8 +111,8 @@ def test_the_command_line_renders_plant_files_and_writes_the_same_camera(tmp_pat
                           str(tmp_path / "x.png")], capture_output=True, text=True)
     assert bad.returncode == 2
     assert bad.stderr.strip().endswith(
-        "(valid: .obj or .ply (geometry), .xml (a plant structure or <helios> file), .txt "
-        "(plant strings, with --species))")
+        "(valid: .obj, .ply, .glb or .gltf (geometry), .xml (a plant structure or <helios> file), "
+        ".txt (plant strings, with --species))")
     assert not (tmp_path / "x.png").exists()
 
 

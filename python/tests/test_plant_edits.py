@@ -162,3 +162,18 @@ def test_a_ply_written_reads_back_as_its_objects(tmp_path):
     (tmp_path / "bad.ply").write_text("ply\nformat ascii 1.0\nelement vertex 1\nend_header\n")
     with pytest.raises(plantarch.Error, match="bad.ply"):
         plantarch.readPLY(back, str(tmp_path / "bad.ply"))
+
+
+def test_a_glb_written_reads_back_as_its_objects(tmp_path):
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    context = a.getContext()
+    plantarch.writeGLTF(context, str(tmp_path / "bean.glb"), architecture=a)
+    back = plantarch.Context()
+    ids = plantarch.readGLTF(back, str(tmp_path / "bean.glb"))
+    assert len(ids) == len(context.getAllObjectIDs())
+    assert back.getTriangleCount() == context.getTriangleCount()
+    (tmp_path / "bad.glb").write_bytes(b"glTF\x01\x00\x00\x00")
+    with pytest.raises(plantarch.Error, match="bad.glb"):
+        plantarch.readGLTF(back, str(tmp_path / "bad.glb"))
