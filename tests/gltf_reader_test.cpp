@@ -9,12 +9,14 @@
 
 #include "error_of.h"
 #include "folder_test.h"
+#include "object_corners.h"
 #include "plantarch/Export.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
 using plantarch::testing::errorOf;
+using plantarch::testing::objectCorners;
 
 namespace {
 
@@ -22,18 +24,10 @@ class GltfReader : public FolderTest {
 protected:
     GltfReader() : FolderTest("plantarch_gltf_") {}
     std::string write(const std::string& name, const std::string& bytes) {
-        const std::string path = at(name);
-        std::ofstream(path, std::ios::binary) << bytes;
-        return path;
+        put(at(name), bytes);
+        return at(name);
     }
 };
-
-std::vector<vec3> corners(const Context& ctx, ObjectID id) {
-    std::vector<vec3> out;
-    const ObjectView v = ctx.object(id);
-    for (std::uint32_t i : v.indices) out.push_back(v.positions[i]);
-    return out;
-}
 
 // A .gltf of one triangle, its buffer embedded: three float positions (36 bytes).
 std::string triangleGltf(const std::string& nodes, const std::string& extra = "") {
@@ -70,9 +64,9 @@ TEST_F(GltfReader, PlantarchFilesReadBackAsTheirObjects) {
             const auto organ = back.objectDataString(id, "organ");
             ASSERT_TRUE(organ.has_value());
             EXPECT_EQ(back.objectDataInt(id, "plantID"), std::optional<std::int32_t>(0));
-            const std::vector<vec3> b = corners(back, id);
+            const std::vector<vec3> b = objectCorners(back, id);
             for (ObjectID s : source) {
-                const std::vector<vec3> a = corners(ctx, s);
+                const std::vector<vec3> a = objectCorners(ctx, s);
                 if (a.size() != b.size() || glm::length(a[0] - b[0]) > 1e-5f) continue;
                 EXPECT_EQ(ctx.objectDataString(s, "organ"), organ);
                 float worst = 0.0f;
@@ -94,7 +88,7 @@ TEST_F(GltfReader, NodeTransformsAndYUp) {
     Context ctx;
     const std::vector<ObjectID> ids = readGLTF(ctx, path);
     ASSERT_EQ(ids.size(), 1u);
-    const std::vector<vec3> c = corners(ctx, ids[0]);
+    const std::vector<vec3> c = objectCorners(ctx, ids[0]);
     // glTF (x, y, z) -> plantarch (x, -z, y)
     EXPECT_EQ(c[0], vec3(1, -3, 2));
     EXPECT_EQ(c[1], vec3(3, -3, 2));

@@ -11,11 +11,13 @@
 
 #include "error_of.h"
 #include "folder_test.h"
+#include "object_corners.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
 using plantarch::testing::errorOf;
+using plantarch::testing::objectCorners;
 
 namespace {
 
@@ -23,19 +25,10 @@ class PlyReader : public FolderTest {
 protected:
     PlyReader() : FolderTest("plantarch_ply_") {}
     std::string write(const std::string& name, const std::string& bytes) {
-        const std::string path = at(name);
-        std::ofstream(path, std::ios::binary) << bytes;
-        return path;
+        put(at(name), bytes);
+        return at(name);
     }
 };
-
-// Every object's triangles as corner positions, in order.
-std::vector<vec3> corners(const Context& ctx, ObjectID id) {
-    std::vector<vec3> out;
-    const ObjectView v = ctx.object(id);
-    for (std::uint32_t i : v.indices) out.push_back(v.positions[i]);
-    return out;
-}
 
 }  // namespace
 
@@ -54,7 +47,8 @@ TEST_F(PlyReader, PlantarchFilesReadBackAsTheirObjects) {
         const std::vector<ObjectID> ids = readPLY(back, path);
         ASSERT_EQ(ids.size(), source.size());
         for (std::size_t i = 0; i < ids.size(); ++i) {
-            const std::vector<vec3> a = corners(ctx, source[i]), b = corners(back, ids[i]);
+            const std::vector<vec3> a = objectCorners(ctx, source[i]),
+                                    b = objectCorners(back, ids[i]);
             ASSERT_EQ(a.size(), b.size());
             for (std::size_t k = 0; k < a.size(); ++k) EXPECT_LT(glm::length(a[k] - b[k]), 1e-6f);
             for (const char* label : {"plantID", "leafID", "shootID", "rank", "node"})

@@ -99,6 +99,34 @@ private:
     float z_;
 };
 
+// Visits the side organs of every shoot of the plant that is there, with its node positions
+// from `placer`: shoot(s, nodes) once per shoot, then petiole(s, k, j, petiole, phytomer,
+// top) for each petiole and bud(s, k, j, b, terminal, bud, top, stemRadius) for each of its
+// floral buds, then the shoot's terminal floral buds (`top` the node the organ hangs from).
+template <class ShootFn, class PetioleFn, class BudFn>
+void forEachSideOrgan(PlantInstance& plant, OrganPlacer& placer, ShootFn&& shoot,
+                      PetioleFn&& petiole, BudFn&& bud) {
+    for (Shoot& s : plant.shoots) {
+        if (s.removed) continue;
+        const std::vector<vec3>& nodes = placer.nodes(s.id);
+        shoot(s, nodes);
+        for (unsigned k = 0; k < s.phytomers.size(); ++k) {
+            Phytomer& ph = s.phytomers[k];
+            const vec3 top = nodes[k + 1];
+            for (unsigned j = 0; j < ph.petioles.size(); ++j) {
+                Petiole& pt = ph.petioles[j];
+                petiole(s, k, j, pt, ph, top);
+                for (unsigned b = 0; b < pt.floralBuds.size(); ++b)
+                    bud(s, k, j, b, false, pt.floralBuds[b], top, ph.internode.radius);
+            }
+        }
+        if (s.phytomers.empty()) continue;
+        const float radius = s.phytomers.back().internode.radius;
+        for (unsigned b = 0; b < s.terminalFloralBuds.size(); ++b)
+            bud(s, 0u, 0u, b, true, s.terminalFloralBuds[b], nodes.back(), radius);
+    }
+}
+
 class Clearer {
 public:
     Clearer(const PlantStore& store, PrototypeCache& prototypes, PlantInstance& plant,
@@ -110,24 +138,14 @@ public:
     }
 
     void run() {
-        for (Shoot& s : plant_.shoots) {
-            if (s.removed) continue;
-            const std::vector<vec3>& nodes = placer_.nodes(s.id);
-            for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-                Phytomer& ph = s.phytomers[k];
-                const vec3 top = nodes[k + 1];
-                for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                    Petiole& pt = ph.petioles[j];
-                    clearPetiole(s, k, j, pt, ph, top);
-                    for (unsigned b = 0; b < pt.floralBuds.size(); ++b)
-                        clearBud(s, k, j, b, false, pt.floralBuds[b], top, ph.internode.radius);
-                }
-            }
-            if (s.phytomers.empty()) continue;
-            const float radius = s.phytomers.back().internode.radius;
-            for (unsigned b = 0; b < s.terminalFloralBuds.size(); ++b)
-                clearBud(s, 0, 0, b, true, s.terminalFloralBuds[b], nodes.back(), radius);
-        }
+        forEachSideOrgan(
+            plant_, placer_, [](Shoot&, const std::vector<vec3>&) {},
+            [&](Shoot& s, unsigned k, unsigned j, Petiole& pt, Phytomer& ph, vec3 top) {
+                clearPetiole(s, k, j, pt, ph, top);
+            },
+            [&](Shoot& s, unsigned k, unsigned j, unsigned b, bool terminal, FloralBud& fb,
+                vec3 top,
+                float stemRadius) { clearBud(s, k, j, b, terminal, fb, top, stemRadius); });
     }
 
 private:
@@ -261,30 +279,22 @@ public:
         : placer_(store, prototypes, plant, 1.0f), plant_(plant), height_(height) {}
 
     bool run() {
-        for (Shoot& s : plant_.shoots) {
-            if (s.removed) continue;
-            const std::vector<vec3>& nodes = placer_.nodes(s.id);
-            if (s.rank > 0 && s.apicalBud.state != BudState::Dead &&
-                std::any_of(nodes.begin() + 1, nodes.end(),
-                            [&](const vec3& p) { return p.z < height_; })) {
-                s.apicalBud.state = BudState::Dead;
-                s.nextPhytomerTime = -1.0;
-                changed_ = true;
-            }
-            for (unsigned k = 0; k < s.phytomers.size(); ++k) {
-                Phytomer& ph = s.phytomers[k];
-                const vec3 top = nodes[k + 1];
-                for (unsigned j = 0; j < ph.petioles.size(); ++j) {
-                    Petiole& pt = ph.petioles[j];
-                    clipLeaves(s, k, j, pt, ph, top);
-                    for (unsigned b = 0; b < pt.floralBuds.size(); ++b)
-                        clipBud(s, k, j, b, false, pt.floralBuds[b], top);
+        forEachSideOrgan(
+            plant_, placer_,
+            [&](Shoot& s, const std::vector<vec3>& nodes) {
+                if (s.rank > 0 && s.apicalBud.state != BudState::Dead &&
+                    std::any_of(nodes.begin() + 1, nodes.end(),
+                                [&](const vec3& p) { return p.z < height_; })) {
+                    s.apicalBud.state = BudState::Dead;
+                    s.nextPhytomerTime = -1.0;
+                    changed_ = true;
                 }
-            }
-            if (s.phytomers.empty()) continue;
-            for (unsigned b = 0; b < s.terminalFloralBuds.size(); ++b)
-                clipBud(s, 0, 0, b, true, s.terminalFloralBuds[b], nodes.back());
-        }
+            },
+            [&](Shoot& s, unsigned k, unsigned j, Petiole& pt, Phytomer& ph, vec3 top) {
+                clipLeaves(s, k, j, pt, ph, top);
+            },
+            [&](Shoot& s, unsigned k, unsigned j, unsigned b, bool terminal, FloralBud& fb,
+                vec3 top, float) { clipBud(s, k, j, b, terminal, fb, top); });
         return changed_;
     }
 
