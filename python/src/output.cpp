@@ -115,6 +115,33 @@ py::dict cameraDict(const CameraFrame& f, int width, int height) {
 }  // namespace
 
 void bindOutput(py::module_& m) {
+    py::class_<ObjOptions>(m, "ObjOptions", "Options of writeOBJ.")
+        .def(py::init([](bool hidden, bool normals, bool uvs, bool materials, bool split) {
+                 ObjOptions o;
+                 o.includeHidden = hidden;
+                 o.normals = normals;
+                 o.uvs = uvs;
+                 o.materials = materials;
+                 o.splitPerObject = split;
+                 return o;
+             }),
+             py::kw_only(), py::arg("include_hidden") = false, py::arg("normals") = true,
+             py::arg("uvs") = true, py::arg("materials") = true,
+             py::arg("split_per_object") = false)
+        .def_readwrite("includeHidden", &ObjOptions::includeHidden, "also write hidden objects")
+        .def_readwrite("normals", &ObjOptions::normals, "smooth per-vertex normals (vn)")
+        .def_readwrite("uvs", &ObjOptions::uvs, "texture coordinates of objects that have them")
+        .def_readwrite("materials", &ObjOptions::materials, "the .mtl library and usemtl lines")
+        .def_readwrite("splitPerObject", &ObjOptions::splitPerObject,
+                       "one OBJ file per object in the folder the path names");
+    m.def(
+        "writeOBJ",
+        [](const Context& c, const std::string& path, const ObjOptions& options) {
+            py::gil_scoped_release release;
+            writeOBJ(c, path, options);
+        },
+        py::arg("context"), py::arg("filename"), py::arg("options"),
+        "Writes the Context as OBJ (+ MTL) with the options of an ObjOptions, atomically.");
     m.def(
         "writeOBJ",
         [](const Context& c, const std::string& path, bool includeHidden, bool normals, bool uvs,

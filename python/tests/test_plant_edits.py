@@ -177,3 +177,16 @@ def test_a_glb_written_reads_back_as_its_objects(tmp_path):
     (tmp_path / "bad.glb").write_bytes(b"glTF\x01\x00\x00\x00")
     with pytest.raises(plantarch.Error, match="bad.glb"):
         plantarch.readGLTF(back, str(tmp_path / "bad.glb"))
+
+
+def test_obj_options_as_a_keyword_class_write_what_the_keywords_write(tmp_path):
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), 15)
+    context = a.getContext()
+    plantarch.writeOBJ(context, str(tmp_path / "k.obj"), normals=False, materials=False)
+    options = plantarch.ObjOptions(normals=False, materials=False)
+    assert options.uvs and not options.normals
+    plantarch.writeOBJ(context, str(tmp_path / "o.obj"), options)
+    assert (tmp_path / "k.obj").read_bytes() == (tmp_path / "o.obj").read_bytes()
+    assert not (tmp_path / "o.mtl").exists()
