@@ -287,6 +287,16 @@ TEST(EpicormicShoots, GrowWithThePlantDeterministically) {
     EXPECT_EQ(arch.plant(read[0]).epicormic->shootType, "trifoliate");
     EXPECT_EQ(arch.plant(read[0]).epicormic->probability, 2.0f);
 
+    // A file naming a sprout type nobody defines is refused when read, not when it sprouts.
+    std::string bad = xml;
+    const std::string label = "<shoot_type_label>trifoliate</shoot_type_label>";
+    bad.replace(bad.find(label, bad.find("<epicormic_shoots>")), label.size(),
+                "<shoot_type_label>nowhere</shoot_type_label>");
+    const std::size_t plants = arch.getAllPlantIDs().size();
+    const Error e = errorOf([&] { arch.readPlantStructureXMLString(bad); });
+    EXPECT_NE(e.parameter().find("epicormic_shoots"), std::string::npos) << e.what();
+    EXPECT_EQ(arch.getAllPlantIDs().size(), plants);
+
     EXPECT_EQ(
         errorOf([&] { arch.enableEpicormicChildShoots(plant, "trifoliate", -1.0f); }).parameter(),
         "probability");

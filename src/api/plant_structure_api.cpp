@@ -255,6 +255,19 @@ std::vector<unsigned> adopt(PlantArchitecture& arch, PlantStore& store,
                     .withFile(file);
             }
         }
+    // Water sprouts of a type neither the plant nor the PlantArchitecture defines would stop
+    // growth later: refused now.
+    for (std::size_t k = 0; k < read.plants.size(); ++k)
+        if (const auto& e = read.plants[k].epicormic) {
+            try {
+                store.shootTypeFor(read.plants[k], e->shootType);
+            } catch (const Error& err) {
+                throw err
+                    .withParameterPrefix("plant_instance[" + std::to_string(k) +
+                                         "].epicormic_shoots")
+                    .withFile(file);
+            }
+        }
     std::vector<RecordedIDs> recorded;
     for (PlantInstance& p : read.plants) recorded.push_back(takeObjectIDs(p));
     std::vector<unsigned> ids;
