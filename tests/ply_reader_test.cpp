@@ -119,7 +119,12 @@ TEST_F(PlyReader, BadFilesAreRefusedAndLeaveTheContextUnchanged) {
         {head + "0 0 0\n1 0 0\n0 1 nan\n3 0 1 2\n", "not a finite float"},
         {head + "0 0 0\n1 0 0\n0 1 zz\n3 0 1 2\n", "not a number"},
         {head + "0 0 0\n1 0 0\n0 1 1e300\n3 0 1 2\n", "not a finite float"},
-        {head + "0 0 0\n1 0 0\n", "ends before its data"},
+        {head + "0 0 0\n1 0 0\n", "more than the rest of the file holds"},
+        {head + "0 0 0\n1 0 0\n0 1 0\n3 0 1", "ends before its data"},
+        {"ply\nformat binary_little_endian 1.0\nelement vertex 40\nproperty float x\n"
+         "property float y\nproperty float z\nend_header\n" +
+             std::string(64, '\0'),
+         "vertex claims 40 items"},
         {"ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
          "property float z\nend_header\n",
          "no faces"},

@@ -224,6 +224,17 @@ public:
         for (std::uint64_t i = 0; i < std::uint64_t(n); ++i) value(p.type);
     }
 
+    // Refuses an element that claims more items than the rest of the file can hold: each takes
+    // at least its scalars' bytes (binary) or two characters a property (ASCII).
+    void checkCount(const Element& e) const {
+        std::uint64_t least = 0;
+        for (const Property& p : e.properties)
+            least += format_ == Format::Ascii ? 2 : sizeOf(p.list ? p.countType : p.type);
+        if (least > 0 && e.count > (data_.size() - pos_) / least)
+            fail("element " + e.name + " claims " + std::to_string(e.count) +
+                 " items, more than the rest of the file holds");
+    }
+
     double fraction() const {
         return double(pos_) / double(std::max<std::size_t>(1, data_.size()));
     }
@@ -295,6 +306,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     std::vector<Face> faces;
     bool vertexSeen = false, faceSeen = false;
     for (const Element& e : h.elements) {
+        r.checkCount(e);
         if (e.name == "vertex" && !vertexSeen) {
             vertexSeen = true;
             int ix = -1, iy = -1, iz = -1;
