@@ -59,6 +59,16 @@ TEST_F(PlyReader, PlantarchFilesReadBackAsTheirObjects) {
         }
         Context plain;
         EXPECT_EQ(readPLY(plain, path, {.labels = false}).size(), 1u);
+        // Vertex colours written as the materials' become the objects' material colours.
+        writePLY(ctx, at("c.ply"), {.format = format, .color = PlyColor::Material});
+        Context coloured;
+        const std::vector<ObjectID> painted = readPLY(coloured, at("c.ply"));
+        ASSERT_EQ(painted.size(), source.size());
+        for (std::size_t i = 0; i < painted.size(); ++i) {
+            const vec3 want = ctx.material(ctx.objectMaterial(source[i])).color;
+            const vec3 got = coloured.material(coloured.objectMaterial(painted[i])).color;
+            EXPECT_LT(glm::length(got - want), 0.01f);
+        }
         EXPECT_EQ(plain.triangleCount(), ctx.triangleCount());
     }
 }

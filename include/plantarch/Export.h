@@ -204,8 +204,9 @@ struct PlyReadOptions {
 /// most 4 GiB) into `context` and returns the IDs of the objects added, in file order: the
 /// `vertex` element's x, y, z (any number type; other properties, such as normals and
 /// colours, are skipped) and the `face` element's `vertex_indices` (or `vertex_index`) lists,
-/// polygons of 3 to 1024 corners triangulated as fans; other elements are skipped. Objects
-/// get the default material. Throws Error naming the file for a malformed header, data that
+/// polygons of 3 to 1024 corners triangulated as fans; other elements are skipped. An object
+/// whose vertices carry uchar `red green blue` (writePLY's PlyColor::Material) gets a material
+/// of its first vertex's colour, others the default material. Throws Error naming the file for a malformed header, data that
 /// ends early, a number that is not one, a vertex that is not finite, a corner index out of
 /// range, or no faces; on error `context` is left unchanged.
 std::vector<ObjectID> readPLY(Context& context, const std::string& path,

@@ -299,6 +299,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     ProgressSteps steps(options.progress, "reading PLY", 1.0);
 
     std::vector<vec3> vertices;
+    std::vector<vec3> colours;  // the vertices' red, green, blue (0 to 1), when they have them
     struct Face {
         std::vector<std::uint32_t> corners;
         FaceLabels labels;
@@ -309,18 +310,23 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
         r.checkCount(e);
         if (e.name == "vertex" && !vertexSeen) {
             vertexSeen = true;
-            int ix = -1, iy = -1, iz = -1;
+            int ix = -1, iy = -1, iz = -1, ic[3] = {-1, -1, -1};
             for (std::size_t k = 0; k < e.properties.size(); ++k) {
                 const Property& p = e.properties[k];
                 if (p.list) continue;
                 if (p.name == "x") ix = int(k);
                 if (p.name == "y") iy = int(k);
                 if (p.name == "z") iz = int(k);
+                if (p.type == Type::U8 &&
+                    (p.name == "red" || p.name == "green" || p.name == "blue"))
+                    ic[p.name == "red" ? 0 : p.name == "green" ? 1 : 2] = int(k);
             }
+            const bool coloured = ic[0] >= 0 && ic[1] >= 0 && ic[2] >= 0;
             if (ix < 0 || iy < 0 || iz < 0) r.fail("the vertex element has no x, y and z");
             vertices.reserve(std::size_t(e.count));
             for (std::uint64_t i = 0; i < e.count; ++i) {
                 double xyz[3] = {0, 0, 0};
+                vec3 rgb(0.0f);
                 for (std::size_t k = 0; k < e.properties.size(); ++k) {
                     const Property& p = e.properties[k];
                     if (p.list) {
@@ -331,7 +337,10 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                     if (int(k) == ix) xyz[0] = v;
                     if (int(k) == iy) xyz[1] = v;
                     if (int(k) == iz) xyz[2] = v;
+                    for (int c = 0; c < 3; ++c)
+                        if (int(k) == ic[c]) rgb[c] = float(v) / 255.0f;
                 }
+                if (coloured) colours.push_back(rgb);
                 for (double c : xyz)
                     if (!(std::abs(c) <= double(std::numeric_limits<float>::max())))
                         r.fail("vertex " + std::to_string(i) + " is not a finite float");
@@ -394,6 +403,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
         Mesh mesh;
         FaceLabels labels;
         std::map<std::uint32_t, std::uint32_t> local;
+        std::optional<vec3> colour;  // of its first vertex
     };
     std::vector<Part> parts;
     std::map<int, std::size_t> partOf;
@@ -401,7 +411,12 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     for (const Face& f : faces) {
         const int key = perObject ? f.labels.object : -1;
         auto [it, added] = partOf.emplace(key, parts.size());
-        if (added) parts.push_back({{}, f.labels, {}});
+        if (added)
+            parts.push_back(
+                {{},
+                 f.labels,
+                 {},
+                 colours.empty() ? std::nullopt : std::optional<vec3>(colours[f.corners[0]])});
         Part& part = parts[it->second];
         std::vector<std::uint32_t> ids;
         for (std::uint32_t c : f.corners) {
@@ -418,7 +433,8 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     std::vector<ObjectID> made;
     try {
         for (Part& part : parts) {
-            const ObjectID id = context.addObject(part.mesh);
+            const ObjectID id = part.colour ? context.addObject(part.mesh, Material{*part.colour})
+                                            : context.addObject(part.mesh);
             made.push_back(id);
             if (!perObject) continue;
             const FaceLabels& l = part.labels;
