@@ -206,9 +206,9 @@ struct PlyReadOptions {
 /// colours, are skipped) and the `face` element's `vertex_indices` (or `vertex_index`) lists,
 /// polygons of 3 to 1024 corners triangulated as fans; other elements are skipped. An object
 /// whose vertices carry uchar `red green blue` (writePLY's PlyColor::Material) gets a material
-/// of its first vertex's colour, others the default material. Throws Error naming the file for a malformed header, data that
-/// ends early, a number that is not one, a vertex that is not finite, a corner index out of
-/// range, or no faces; on error `context` is left unchanged.
+/// of its first vertex's colour, others the default material. Throws Error naming the file for a
+/// malformed header, data that ends early, a number that is not one, a vertex that is not finite, a
+/// corner index out of range, or no faces; on error `context` is left unchanged.
 std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                               const PlyReadOptions& options = {});
 
