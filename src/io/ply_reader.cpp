@@ -370,9 +370,11 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                             if (int(k) != corners) continue;
                             if (!(v >= 0.0 && v < double(vertices.size()) && v == std::floor(v)))
                                 r.fail("face " + std::to_string(i) + " names vertex " +
-                                       std::to_string(whole(v)) + " (valid: 0 to " +
-                                       std::to_string(vertices.size()) + " - 1; vertices " +
-                                       "come before faces)");
+                                       std::to_string(whole(v)) +
+                                       (vertices.empty()
+                                            ? std::string(" (no vertices come before the faces)")
+                                            : " (valid: 0 to " +
+                                                  std::to_string(vertices.size() - 1) + ")"));
                             f.corners.push_back(std::uint32_t(v));
                         }
                         continue;
