@@ -8,6 +8,14 @@ import pytest
 import plantarch
 
 
+def bean(age):
+    """A PlantArchitecture with one library bean of that age."""
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), age)
+    return a
+
+
 def test_two_architectures_on_one_context_never_share_a_plant_id():
     context = plantarch.Context()
     beans = plantarch.PlantArchitecture(context)
@@ -147,9 +155,7 @@ def test_a_growth_recorder_keeps_frames_between_steps_of_ones_own(tmp_path):
 
 
 def test_a_ply_written_reads_back_as_its_objects(tmp_path):
-    a = plantarch.PlantArchitecture(plantarch.Context())
-    a.loadPlantModelFromLibrary("bean")
-    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    a = bean(20)
     context = a.getContext()
     plantarch.writePLY(context, str(tmp_path / "bean.ply"))
     back = plantarch.Context()
@@ -165,9 +171,7 @@ def test_a_ply_written_reads_back_as_its_objects(tmp_path):
 
 
 def test_a_glb_written_reads_back_as_its_objects(tmp_path):
-    a = plantarch.PlantArchitecture(plantarch.Context())
-    a.loadPlantModelFromLibrary("bean")
-    a.buildPlantInstanceFromLibrary((0, 0, 0), 20)
+    a = bean(20)
     context = a.getContext()
     plantarch.writeGLTF(context, str(tmp_path / "bean.glb"), architecture=a)
     back = plantarch.Context()
@@ -180,9 +184,7 @@ def test_a_glb_written_reads_back_as_its_objects(tmp_path):
 
 
 def test_obj_options_as_a_keyword_class_write_what_the_keywords_write(tmp_path):
-    a = plantarch.PlantArchitecture(plantarch.Context())
-    a.loadPlantModelFromLibrary("bean")
-    a.buildPlantInstanceFromLibrary((0, 0, 0), 15)
+    a = bean(15)
     context = a.getContext()
     plantarch.writeOBJ(context, str(tmp_path / "k.obj"), normals=False, materials=False)
     options = plantarch.ObjOptions(normals=False, materials=False)
