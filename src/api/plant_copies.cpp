@@ -2,8 +2,8 @@
 // model/plant_move.h, geometry made again from it).
 
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 #include <string>
-#include <type_traits>
 
 #include "api/facade_impl.h"
 #include "core/math.h"
@@ -34,12 +34,6 @@ glm::mat3 frameRotation(const AxisRotation& r) {
     return glm::mat3(f.reference, glm::cross(f.axis, f.reference), f.axis);
 }
 
-mat4 translation(vec3 shift) {
-    mat4 m(1.0f);
-    m[3] = glm::vec4(shift, 1.0f);
-    return m;
-}
-
 }  // namespace
 
 unsigned PlantArchitecture::duplicatePlantInstance(unsigned plantID, const vec3& base_position,
@@ -51,12 +45,7 @@ unsigned PlantArchitecture::duplicatePlantInstance(unsigned plantID, const vec3&
             "invalid plant age",
             {.parameter = "age", .value = text::formatFloat(age), .validRange = ">= 0 days"});
     PlantInstance copy = source;
-    plant_io::forEachObjectMember(copy, [](auto& member) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(member)>, ObjectID>)
-            member = kNoObject;
-        else
-            member.clear();
-    });
+    plant_io::clearObjectIDs(copy);
     movePlant(copy, {frameRotation(rotation), base_position, double(age)});
     PlantStore& store = impl_->store;
     copy.id = context_->reservePlantIDs(1);
@@ -81,7 +70,8 @@ void PlantArchitecture::setPlantBasePosition(unsigned plantID, const vec3& base_
     updateGeometry(plantID);
     if (const auto t = impl_->trellis.find(plantID); t != impl_->trellis.end())
         for (ObjectID id : t->second)
-            if (context_->doesObjectExist(id)) context_->transformObject(id, translation(shift));
+            if (context_->doesObjectExist(id))
+                context_->transformObject(id, glm::translate(mat4(1.0f), shift));
 }
 
 std::string PlantArchitecture::getPlantName(unsigned plantID) const {

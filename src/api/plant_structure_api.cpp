@@ -134,8 +134,7 @@ RecordedIDs takeObjectIDs(PlantInstance& p) {
 }
 
 void clearObjectIDs(const std::vector<PlantInstance*>& plants) {
-    for (PlantInstance* p : plants)
-        plant_io::forEachObjectMember(*p, [](auto& m) { setIDs(m, {}); });
+    for (PlantInstance* p : plants) plant_io::clearObjectIDs(*p);
 }
 
 // At most this many unused IDs are made below the restored ones (each costs a record).

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -164,6 +165,17 @@ void forEachObjectMember(Plant& p, F&& f) {
         }
         for (auto& fb : s.terminalFloralBuds) floral(fb);
     }
+}
+
+/// Forgets every organ's Context object IDs: the plant gets new objects when drawn next.
+template <class Plant>
+void clearObjectIDs(Plant& p) {
+    forEachObjectMember(p, [](auto& member) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(member)>, ObjectID>)
+            member = kNoObject;
+        else
+            member.clear();
+    });
 }
 
 // ---- plant strings -------------------------------------------------------------------
