@@ -16,6 +16,7 @@
 #include "cli_run.h"
 #include "plantarch/Error.h"
 #include "plantarch/Formula.h"
+#include "plantarch/PhytomerActions.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -478,7 +479,7 @@ TEST(NodeRules, InfoListsASpeciesRulesOnePerLine) {
         << r.out;
 }
 
-// A rule's result is held to the range of the state field it sets (model/plant_state_table.h):
+// A rule's result is held to the range of the state field it sets (plantarch/PlantStateTable.h):
 // a leaf 1e30 times its size, or a negative one, is refused at the formula's own line (a
 // rule running as a build step makes the node, or as the plant grows), naming the rule, the
 // formula's value, the range and where it ran; nothing is added.
@@ -541,4 +542,37 @@ TEST(NodeRules, ResultsAreHeldToTheirFieldsRangesAtTheFormulasLine) {
                "at node 2 of shoot 0 (stem) at plant age 2 days"),
         std::string::npos)
         << e;
+}
+
+// ---- the rules' actions as functions (plantarch/PhytomerActions.h) ---------------------------
+
+TEST(PhytomerActions, ScaleLeavesScalesEveryLeafOrRefusesChangingNothing) {
+    Phytomer ph;
+    ph.petioles.resize(2);
+    ph.petioles[0].leaves.resize(3);
+    ph.petioles[1].leaves.resize(1);
+    for (Petiole& p : ph.petioles)
+        for (LeafOrgan& l : p.leaves) l.scale = 0.1f;
+    ph.petioles[1].leaves[0].scale = 2.0f;
+    scaleLeaves(ph, 0.5f);
+    EXPECT_FLOAT_EQ(ph.petioles[0].leaves[2].scale, 0.05f);
+    EXPECT_FLOAT_EQ(ph.petioles[1].leaves[0].scale, 1.0f);
+    const Phytomer before = ph;
+    for (float factor : {NAN, INFINITY, -1.0f, 2e6f}) {
+        try {
+            scaleLeaves(ph, factor);
+            ADD_FAILURE() << "factor " << factor << " accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.context().parameter, "factor");
+            EXPECT_NE(std::string(e.what()).find("leaf_scale within 0 to 1000000"),
+                      std::string::npos)
+                << e.what();
+        }
+        // all or nothing: the first leaf would have stayed in range for 2e6
+        EXPECT_EQ(ph.petioles[0].leaves[0].scale, before.petioles[0].leaves[0].scale);
+        EXPECT_EQ(ph.petioles[1].leaves[0].scale, before.petioles[1].leaves[0].scale);
+    }
+    Phytomer bare;  // no leaves: any finite factor, nothing to change
+    EXPECT_NO_THROW(scaleLeaves(bare, -3.0f));
+    EXPECT_THROW(scaleLeaves(bare, NAN), Error);
 }

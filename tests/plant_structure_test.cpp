@@ -8,10 +8,10 @@
 #include <tuple>
 
 #include "collision_scenes.h"
-#include "model/plant_state_table.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantStateTable.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;

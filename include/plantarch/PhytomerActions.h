@@ -16,5 +16,9 @@ void killFloralBuds(Phytomer& phytomer);
 /// Removes the phytomer's leaves, with their petioles' length and radius. The
 /// `remove_leaves` rule.
 void removeLeaves(Phytomer& phytomer);
+/// Multiplies the full-grown size of the phytomer's leaves by `factor`. The `leaf_scale`
+/// rule. Throws plantarch::Error, changing nothing, for a factor that is not finite or that
+/// would take a leaf's size out of its declared range (a negative one, with any leaf).
+void scaleLeaves(Phytomer& phytomer, float factor);
 
 }  // namespace plantarch

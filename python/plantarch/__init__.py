@@ -45,6 +45,7 @@ from ._plantarch import (  # noqa: E402
     __version__,
 )
 from ._plantarch import ORGAN_LABELS  # noqa: E402,F401
+from . import _plantarch  # noqa: E402
 
 make_vec3 = vec3
 make_vec2 = vec2
@@ -97,9 +98,9 @@ class Plant:
         return [
             {
                 "id": s.id,
-                "type": s.type,
-                "parent": s.parent,
-                "parent_node": s.parentNode,
+                "type": s.shoot_type_label,
+                "parent": s.parent_shoot_ID,
+                "parent_node": s.parent_node_index,
                 "rank": s.rank,
                 "nodes": len(s.phytomers),
                 "children": list(s.children),
@@ -147,17 +148,27 @@ PlantArchitecture.getPlant.__doc__ = "The plant as a plantarch.Plant (statistics
 
 def _nearest_attribute(cls):
     """__getattr__ for a class of the module: a mistyped name raises AttributeError naming the
-    nearest attribute the class has."""
+    nearest attribute the class has: one that differs only in case and underscores (breakTime:
+    break_time), else one that ends with the name (length: internode_length), else the closest
+    spelling."""
 
     def __getattr__(self, name):
         import difflib
 
-        near = difflib.get_close_matches(name, [n for n in dir(cls) if not n.startswith("_")], 1)
+        names = [n for n in dir(cls) if not n.startswith("_")]
+        def fold(n):
+            return n.replace("_", "").lower()
+
+        near = [n for n in names if fold(n) == fold(name)]
+        near = near or [n for n in names if fold(n).endswith(fold(name)) and "_" in n]
+        near = near or difflib.get_close_matches(name, names, 1)
         hint = f"; did you mean {near[0]!r}?" if near else ""
-        raise AttributeError(f"{cls.__name__!r} object has no attribute {name!r}{hint}")
+        # obj without name: the hint above is the only one Python shows
+        raise AttributeError(f"{cls.__name__!r} object has no attribute {name!r}{hint}", obj=self)
 
     return __getattr__
 
 
-for _cls in (Context, PlantArchitecture):
-    _cls.__getattr__ = _nearest_attribute(_cls)
+for _cls in vars(_plantarch).values():
+    if isinstance(_cls, type) and not issubclass(_cls, BaseException) and not hasattr(_cls, "__members__"):
+        _cls.__getattr__ = _nearest_attribute(_cls)

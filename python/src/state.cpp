@@ -1,11 +1,20 @@
 // The plant state (PlantState.h) as Python objects: what rule functions see and change, and
-// what PlantArchitecture.plant() shows. Fields keep their C++ names.
+// what PlantArchitecture.plant() shows. Every attribute comes from the plant state table
+// (plantarch/PlantStateTable.h): its name is the plant structure file's element, its help the
+// table's meaning and range, and the traits the table marks editable take assignments held to
+// their declared range, as a plant file's values are.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <type_traits>
 
 #include "bindings.h"
 #include "callbacks.h"
 #include "plantarch/PhytomerActions.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantState.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch::python {
 
@@ -22,6 +31,257 @@ Shoot& shootOf(View& v) {
 template <class E>
 void nameEnum(py::enum_<E>& e, std::initializer_list<E> values, const char* (*name)(E)) {
     for (E v : values) e.value(name(v), v);
+}
+
+namespace st = plantarch::state;
+
+// The attribute of a list: the plural of its element ("leaf" -> "leaves").
+std::string plural(const std::string& element) {
+    if (element.ends_with("leaf")) return element.substr(0, element.size() - 1) + "ves";
+    return element + "s";
+}
+
+std::string shown(py::handle value) {
+    try {
+        return py::repr(value).cast<std::string>();
+    } catch (const py::error_already_set&) {
+        return "?";
+    }
+}
+
+// ---- finding a member of a live object by its element name ---------------------------------
+
+// Visits S's table and hands the member named `name` (a field, a nested struct, a list...) to
+// `use`, which takes it by reference. A nested struct's own fields are not searched (its name
+// is), so names never clash across structs.
+template <class Use>
+struct MemberNamed {
+    const std::string& name;
+    Use& use;
+    bool found = false;
+    void take(const char* element, auto& member) {
+        if (!found && name == element) {
+            found = true;
+            use(member);
+        }
+    }
+    template <class T>
+    void field(const st::FieldInfo& f, T& member) {
+        take(f.name, member);
+    }
+    template <class Fn>
+    void group(const char*, Fn&& fn) {
+        fn(*this);
+    }
+    template <class T, class More>
+    void member(const char* element, T& m, More&& more) {
+        take(element, m);
+        more(*this);
+    }
+    template <class T>
+    void list(const char* element, std::vector<T>& items, bool = false) {
+        if (!found && name == plural(element)) {
+            found = true;
+            use(items);
+        }
+    }
+    template <class T>
+    void values(const st::FieldInfo& f, std::vector<T>& items) {
+        take(f.name, items);
+    }
+    template <class T>
+    void optional(const char* element, std::optional<T>& o) {
+        take(element, o);
+    }
+    template <class P>
+    void parameters(const char* element, P& p) {
+        if constexpr (std::is_same_v<P, PhenologyParameters>)
+            take(element, p);
+        else if (!found && name == plural(element)) {
+            found = true;
+            use(p);
+        }
+    }
+    void legacy(const char*) {}
+    template <class T>
+    void objects(const char* element, T& ids) {
+        take(element, ids);
+    }
+};
+
+template <class S, class Use>
+void withMember(S& s, const std::string& name, Use&& use) {
+    MemberNamed<std::remove_reference_t<Use>> finder{name, use};
+    st::describeState(s, finder);
+}
+
+// ---- values ------------------------------------------------------------------------------
+
+template <class T>
+constexpr bool kShownInPython = !std::is_same_v<T, Rng>;  // the generator is the plant's own
+
+[[noreturn]] void refuse(const st::FieldInfo& f, py::handle value, const std::string& why,
+                         const std::string& valid) {
+    throw Error(why, {.parameter = f.name, .value = shown(value), .validRange = valid});
+}
+
+bool isNumber(py::handle v) {
+    return !py::isinstance<py::bool_>(v) &&
+           (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v) ||
+            (PyNumber_Check(v.ptr()) && py::hasattr(v, "__float__")));
+}
+
+double number(const st::FieldInfo& f, py::handle v, bool whole) {
+    if (!isNumber(v)) refuse(f, v, whole ? "not a whole number" : "not a number", st::rangeText(f));
+    const double d = v.cast<double>();
+    if (whole && d != std::floor(d)) refuse(f, v, "not a whole number", st::rangeText(f));
+    if (!st::inside(f, d)) refuse(f, v, "out of range", st::rangeText(f));
+    return d;
+}
+
+// An assignment to an editable trait, checked as a plant file's value is.
+template <class T>
+void assign(const st::FieldInfo& f, py::handle v, T& out) {
+    if constexpr (std::is_same_v<T, bool>) {
+        if (!py::isinstance<py::bool_>(v)) refuse(f, v, "not True or False", "True or False");
+        out = v.cast<bool>();
+    } else if constexpr (std::is_same_v<T, float>) {
+        const double d = number(f, v, false);
+        if (!st::inside(f, double(float(d)))) refuse(f, v, "out of range", st::rangeText(f));
+        out = float(d);
+    } else if constexpr (std::is_same_v<T, double>) {
+        out = number(f, v, false);
+    } else if constexpr (std::is_same_v<T, int> || std::is_same_v<T, unsigned>) {
+        out = T(number(f, v, true));
+    } else if constexpr (std::is_enum_v<T>) {
+        if (!py::isinstance<T>(v)) {
+            const std::string type = py::str(py::type::of<T>().attr("__name__"));
+            std::string names;
+            for (auto item : py::type::of<T>().attr("__members__"))
+                names +=
+                    (names.empty() ? "" : ", ") + type + "." + py::str(item).cast<std::string>();
+            refuse(f, v, "not a " + type, "one of: " + names);
+        }
+        out = v.cast<T>();
+    } else if constexpr (std::is_same_v<T, std::string>) {
+        if (!py::isinstance<py::str>(v)) refuse(f, v, "not a text", "a shoot type label");
+        std::string label = v.cast<std::string>();
+        const bool empty = f.check == st::Check::LabelOrEmpty && label.empty();
+        if (!empty) {
+            bool ok = !label.empty();
+            for (char c : label)
+                ok = ok && (std::isalnum((unsigned char)c) || c == '_' || c == '-');
+            if (!ok)
+                refuse(f, v, "not a label",
+                       std::string("letters, digits, '_' or '-'") +
+                           (f.check == st::Check::LabelOrEmpty ? ", or empty" : ""));
+        }
+        out = std::move(label);
+    } else {
+        static_assert(std::is_same_v<T, float>, "an editable field of a type Python cannot set");
+    }
+}
+
+std::string help(const st::FieldInfo& f, bool ranged) {
+    std::string doc = f.doc[0] ? f.doc : f.name;
+    if (ranged && !(f.min == 0 && f.max == 0)) doc += " (valid: " + st::rangeText(f) + ")";
+    doc += f.editable ? "; a phytomer function may set it" : "; read only";
+    return doc;
+}
+
+// Binds S's attributes by visiting its table: one property per field, nested struct, list,
+// optional part and parameter set, named as the plant file names them.
+template <class S>
+struct Binder {
+    py::class_<S>& cls;
+
+    // The member named `name` of a live object (the table gives its type M).
+    template <class M>
+    static M& memberOf(S& s, const std::string& name) {
+        M* found = nullptr;
+        withMember(s, name, [&](auto& m) {
+            if constexpr (std::is_same_v<std::remove_reference_t<decltype(m)>, M>) found = &m;
+        });
+        return *found;  // the name comes from the same table: always found
+    }
+
+    // A read-only attribute: values as copies, structs and lists as views of the object.
+    template <class M>
+    void getter(const std::string& name, const std::string& doc) {
+        cls.def_property_readonly(
+            name.c_str(), [name](S& s) -> M& { return memberOf<M>(s, name); },
+            py::return_value_policy::reference_internal, doc.c_str());
+    }
+
+    template <class T>
+    void field(const st::FieldInfo& f, T&) {
+        if constexpr (kShownInPython<T>) {
+            const std::string name = f.name;
+            const bool ranged = std::is_arithmetic_v<T> || std::is_same_v<T, vec3>;
+            if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T> ||
+                          std::is_same_v<T, std::string>) {
+                if (f.editable) {
+                    const st::FieldInfo info = f;
+                    cls.def_property(
+                        name.c_str(), [name](S& s) -> T { return memberOf<T>(s, name); },
+                        [name, info](S& s, py::handle v) { assign(info, v, memberOf<T>(s, name)); },
+                        help(f, ranged).c_str());
+                    return;
+                }
+            }
+            getter<T>(name, help(f, ranged));
+        }
+    }
+    template <class Fn>
+    void group(const char*, Fn&& fn) {
+        fn(*this);
+    }
+    template <class T, class More>
+    void member(const char* element, T&, More&& more) {
+        getter<T>(element,
+                  std::string("its ") + element + " (a view: changes reach this " + "object)");
+        more(*this);
+    }
+    template <class T>
+    void list(const char* element, std::vector<T>&, bool = false) {
+        std::string what = plural(element);
+        std::replace(what.begin(), what.end(), '_', ' ');
+        getter<std::vector<T>>(plural(element), "its " + what +
+                                                    " (views: changes reach this object; read only "
+                                                    "as a list)");
+    }
+    template <class T>
+    void values(const st::FieldInfo& f, std::vector<T>&) {
+        getter<std::vector<T>>(f.name, help(f, true));
+    }
+    template <class T>
+    void optional(const char* element, std::optional<T>&) {
+        getter<std::optional<T>>(element, std::string("its ") + element + ", or None");
+    }
+    template <class P>
+    void parameters(const char* element, P&) {
+        if constexpr (std::is_same_v<P, PhenologyParameters>)
+            getter<P>(element, "its phenological thresholds (PhenologyParameters)");
+        else
+            getter<P>(plural(element), "its own shoot types: label -> ShootParameters");
+    }
+    void legacy(const char*) {}
+    template <class T>
+    void objects(const char* element, T&) {
+        if constexpr (std::is_same_v<T, ObjectID>)
+            getter<T>(element, "its Context object ID (4294967295: none); read only");
+        else
+            getter<T>(element, "its Context object IDs; read only");
+    }
+};
+
+template <class S>
+py::class_<S> bindStateStruct(py::module_& m, const char* name, const char* doc) {
+    py::class_<S> cls(m, name, doc);
+    S prototype;  // only visited for its table
+    Binder<S> binder{cls};
+    st::describeState(prototype, binder);
+    return cls;
 }
 
 }  // namespace
@@ -46,87 +306,21 @@ void bindState(py::module_& m) {
               PhenologyStage::Senescent},
              phenologyStageName);
 
-    py::class_<VegetativeBud>(m, "VegetativeBud", "An axillary or apical vegetative bud.")
-        .def_readwrite("state", &VegetativeBud::state,
-                       "BudState: dormant (waiting), active, broken (grew a shoot) or dead")
-        .def_readwrite("breakTime", &VegetativeBud::breakTime, "plant age when it breaks, days")
-        .def_readonly("childShoot", &VegetativeBud::childShoot, "shoot grown from it, -1: none")
-        .def_readwrite("shootType", &VegetativeBud::shootType, "shoot type the bud grows into");
-    py::class_<FlowerOrgan>(m, "FlowerOrgan", "One flower or fruit on a peduncle.")
-        .def_readwrite("position", &FlowerOrgan::position,
-                       "along the peduncle from its base, fraction of its length")
-        .def_readwrite("azimuth", &FlowerOrgan::azimuth, "side of the peduncle, degrees")
-        .def_readwrite("pitch", &FlowerOrgan::pitch, "from the peduncle axis, degrees")
-        .def_readwrite("roll", &FlowerOrgan::roll, "about its own axis, degrees")
-        .def_readwrite("flowerScale", &FlowerOrgan::flowerScale, "flower length, m")
-        .def_readwrite("fruitScale", &FlowerOrgan::fruitScale, "full-grown fruit length, m")
-        .def_readonly("objects", &FlowerOrgan::objects,
-                      "Context objects of the flower or fruit (one per prototype part)");
-    py::class_<FloralBud>(m, "FloralBud", "A floral bud and the flowers or fruit it bears.")
-        .def_readwrite("stage", &FloralBud::stage,
-                       "FloralStage: bud, flower_closed, flower_open, fruit or removed")
-        .def_readwrite("state", &FloralBud::state, "BudState of the bud")
-        .def_readonly("terminal", &FloralBud::terminal, "at the shoot tip (else axillary)")
-        .def_readwrite("fruitGrowth", &FloralBud::fruitGrowth,
-                       "current fruit size / full-grown size")
-        .def_readonly("stageTime", &FloralBud::stageTime,
-                      "plant age when the current stage began, days")
-        .def_readwrite("peduncleLength", &FloralBud::peduncleLength, "m")
-        .def_readwrite("pedunclePitch", &FloralBud::pedunclePitch,
-                       "from the internode axis, toward its petiole's side, degrees")
-        .def_readonly("flowers", &FloralBud::flowers,
-                      "the flowers or fruit on its peduncle (FlowerOrgan)");
-    py::class_<LeafOrgan>(m, "LeafOrgan", "A leaf (or leaflet) on a petiole.")
-        .def_readonly("leafletIndex", &LeafOrgan::leafletIndex,
-                      "0 tip, negative left, positive right")
-        .def_readwrite("position", &LeafOrgan::position,
-                       "along the petiole from its base, fraction of its length")
-        .def_readwrite("scale", &LeafOrgan::scale, "full-grown length, m")
-        .def_readwrite("pitch", &LeafOrgan::pitch, "degrees")
-        .def_readwrite("yaw", &LeafOrgan::yaw, "degrees")
-        .def_readwrite("roll", &LeafOrgan::roll, "degrees")
-        .def_readonly("leafID", &LeafOrgan::leafID,
-                      "unique within the plant (the leafID object data)")
-        .def_readonly("age", &LeafOrgan::age, "days")
-        .def_readonly("removed", &LeafOrgan::removed, "shed or removed")
-        .def_readonly("objects", &LeafOrgan::objects, "Context objects of the leaf");
-    py::class_<Petiole>(m, "Petiole", "A petiole with its leaves and axillary buds.")
-        .def_readwrite("pitch", &Petiole::pitch, "from the internode axis, degrees")
-        .def_readwrite("length", &Petiole::length, "full-grown length, m")
-        .def_readwrite("radius", &Petiole::radius, "base radius, m")
-        .def_readwrite("curvature", &Petiole::curvature, "degrees per m")
-        .def_readonly("azimuth", &Petiole::azimuth, "about the internode axis, degrees")
-        .def_readwrite("leaves", &Petiole::leaves, "its leaves (LeafOrgan), views")
-        .def_readwrite("vegetativeBuds", &Petiole::vegetativeBuds,
-                       "its axillary vegetative buds, views")
-        .def_readwrite("floralBuds", &Petiole::floralBuds, "its floral buds, views")
-        .def_readonly("object", &Petiole::object, "Context object of the petiole tube");
-    py::class_<Internode>(m, "Internode", "An internode.")
-        .def_readonly("direction", &Internode::direction, "unit axis of the internode")
-        .def_readwrite("length", &Internode::length, "full-grown length, m")
-        .def_readwrite("radius", &Internode::radius, "current radius, m")
-        .def_readonly("pitch", &Internode::pitch, "realized zig-zag pitch, degrees")
-        .def_readonly("phyllotacticAngle", &Internode::phyllotacticAngle,
-                      "realized roll from the previous phytomer, degrees")
-        .def_readonly("object", &Internode::object, "Context object of the internode tube");
-    py::class_<Phytomer>(m, "Phytomer",
-                         "A phytomer: internode, petioles with leaves and buds. Lists such as "
-                         "petioles are views of the phytomer: in a rule, "
-                         "ctx.phytomer.petioles[0].vegetativeBuds[0].state = BudState.dead "
-                         "changes the plant.")
-        .def_readwrite("internode", &Phytomer::internode, "its internode")
-        .def_property_readonly(
-            "petioles", [](Phytomer& p) -> std::vector<Petiole>& { return p.petioles; },
-            py::return_value_policy::reference_internal,
-            "its petioles with their leaves and buds (views: changes reach the plant)")
-        .def_readonly("age", &Phytomer::age, "days")
-        .def_readonly("birth", &Phytomer::birth, "plant age when it was made, days")
-        .def_readwrite("internodeFraction", &Phytomer::internodeFraction,
-                       "current internode length / full length")
-        .def_readwrite("leafFraction", &Phytomer::leafFraction,
-                       "current petiole and leaf size / full size")
-        .def_readonly("parametersLabel", &Phytomer::parametersLabel,
-                      "shoot type whose phytomer template built it")
+    bindStateStruct<VegetativeBud>(m, "VegetativeBud", "An axillary or apical vegetative bud.");
+    bindStateStruct<FlowerOrgan>(m, "FlowerOrgan", "One flower or fruit on a peduncle.");
+    bindStateStruct<FloralBud>(m, "FloralBud",
+                               "A floral bud, its peduncle and the flowers or fruit it bears.");
+    bindStateStruct<LeafOrgan>(m, "LeafOrgan", "A leaf (or leaflet) on a petiole.");
+    bindStateStruct<Petiole>(m, "Petiole", "A petiole with its leaves and axillary buds.");
+    bindStateStruct<Internode>(m, "Internode", "An internode.");
+    bindStateStruct<AttractionPoints>(m, "PlantAttractionPoints",
+                                      "A plant's own attraction points and perception cone.");
+    bindStateStruct<EpicormicShoots>(m, "EpicormicShoots", "A plant's water sprouts.");
+    bindStateStruct<Phytomer>(
+        m, "Phytomer",
+        "A phytomer: internode, petioles with leaves and buds. Lists such as petioles hold "
+        "views of the phytomer: in a rule, ctx.phytomer.petioles[0].vegetative_buds[0].state = "
+        "BudState.dead changes the plant.")
         .def("killVegetativeBuds", &killVegetativeBuds,
              "Marks the dormant axillary vegetative buds dead (the remove_vegetative_buds "
              "rule): no branch grows from this node; an active or broken bud keeps growing.")
@@ -136,46 +330,18 @@ void bindState(py::module_& m) {
         .def("removeLeaves", &removeLeaves,
              "Removes the leaves, with their petioles' length and radius (the remove_leaves "
              "rule).")
-        .def(
-            "scaleLeaves",
-            [](Phytomer& p, float factor) {
-                if (!(factor >= 0.0f))
-                    throw Error("out of range", {.parameter = "factor",
-                                                 .value = std::to_string(factor),
-                                                 .validRange = ">= 0"});
-                for (Petiole& pt : p.petioles) {
-                    pt.length *= factor;
-                    for (LeafOrgan& l : pt.leaves) l.scale *= factor;
-                }
-            },
-            py::arg("factor"), "Multiplies the full-grown size of its petioles and leaves.");
-    py::class_<Shoot>(m, "Shoot", "A shoot: a chain of phytomers.")
-        .def_readonly("id", &Shoot::id, "shoot ID within the plant")
-        .def_readonly("type", &Shoot::type, "shoot type label")
-        .def_readonly("parent", &Shoot::parent, "parent shoot ID, -1 for the base stem")
-        .def_readonly("parentNode", &Shoot::parentNode, "node index on the parent")
-        .def_readonly("rank", &Shoot::rank, "0 base stem, 1 its children, ...")
-        .def_readonly("maxNodes", &Shoot::maxNodes, "realized max_nodes")
-        .def_readonly("phyllochron", &Shoot::phyllochron, "realized days between phytomers")
-        .def_readonly("apicalBud", &Shoot::apicalBud, "the apical bud (VegetativeBud)")
-        .def_property_readonly(
-            "phytomers", [](Shoot& s) -> std::vector<Phytomer>& { return s.phytomers; },
-            py::return_value_policy::reference_internal, "its phytomers from the base (views)")
-        .def_readonly("children", &Shoot::children, "IDs of the shoots growing from it")
-        .def_readonly("removed", &Shoot::removed, "pruned away");
-    py::class_<PlantInstance>(m, "PlantInstance",
-                              "A copy of a plant's whole state (read it; change the plant "
-                              "through PlantArchitecture's methods).")
-        .def_readonly("id", &PlantInstance::id, "plant ID")
-        .def_readonly("name", &PlantInstance::name, "species or user label")
-        .def_readonly("base", &PlantInstance::base, "where its base stands, m")
-        .def_readonly("age", &PlantInstance::age, "days")
-        .def_readonly("shoots", &PlantInstance::shoots, py::return_value_policy::reference_internal,
-                      "its shoots, indexed by shoot ID")
-        .def_readonly("phenology", &PlantInstance::phenology,
-                      "its phenological thresholds (PhenologyParameters)")
-        .def_readonly("stage", &PlantInstance::stage, "PhenologyStage now")
-        .def_readonly("season", &PlantInstance::season, "growing seasons begun");
+        .def("scaleLeaves", &scaleLeaves, py::arg("factor"),
+             "Multiplies the full-grown size of its leaves (the leaf_scale rule); raises "
+             "plantarch.Error, changing nothing, if a leaf's size would leave its range.");
+    // Not in the table: a shoot's ID is its place in the plant's list and its children are
+    // derived from the parents (as on reading a plant file).
+    bindStateStruct<Shoot>(m, "Shoot", "A shoot: a chain of phytomers.")
+        .def_readonly("id", &Shoot::id, "shoot ID within the plant (its index in shoots)")
+        .def_readonly("children", &Shoot::children, "IDs of the shoots growing from it");
+    bindStateStruct<PlantInstance>(m, "PlantInstance",
+                                   "A copy of a plant's whole state (read it; change the plant "
+                                   "through PlantArchitecture's methods).")
+        .def_readonly("id", &PlantInstance::id, "plant ID");
 
     py::class_<FloralPrototypeRequest>(m, "FloralPrototypeRequest",
                                        "What a flower or fruit prototype function is asked for.")

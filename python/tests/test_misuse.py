@@ -300,14 +300,14 @@ def test_state_and_phytomers_outlive_their_plant():
     state = a.plant(p)
     shoot = state.shoots[0]
     phytomer = shoot.phytomers[0]
-    length = phytomer.internode.length
+    length = phytomer.internode.internode_length
     a.advanceTime(10.0)  # the plant grows; the copy does not
     assert len(a.plant(p).shoots[0].phytomers) >= len(shoot.phytomers)
     a.deletePlantInstance(p)
     del a, state, shoot
     gc.collect()
-    assert phytomer.internode.length == length
-    assert phytomer.petioles[0].leaves[0].scale > 0
+    assert phytomer.internode.internode_length == length
+    assert phytomer.petioles[0].leaves[0].leaf_scale > 0
 
 
 def test_a_rule_context_kept_after_the_rule_raises(tmp_path):
@@ -326,7 +326,7 @@ def test_a_rule_context_kept_after_the_rule_raises(tmp_path):
             getattr(ctx, attribute)
     a.deletePlantInstance(p)
     gc.collect()
-    assert phytomer.petioles[0].length > 0 and shoot.rank >= 0  # copies: still readable
+    assert phytomer.petioles[0].petiole_length > 0 and shoot.rank >= 0  # copies: still readable
 
 
 def test_a_plant_handle_after_its_plant_is_deleted():

@@ -43,19 +43,114 @@ def test_a_python_creation_rule_named_in_a_species_file_changes_the_plant(tmp_pa
     assert all(s["rank"] <= 1 for s in a.getPlant(q).shoot_tree())
 
 
-def test_a_python_rule_that_scales_leaves(tmp_path):
-    def half(ctx):
-        ctx.phytomer.scaleLeaves(0.5)
+def test_a_python_rule_that_scales_leaves_does_what_the_leaf_scale_rule_does(tmp_path):
+    def half(ctx):  # unifoliate shoots inherit the function, not the trifoliate's node rules
+        if ctx.shoot.shoot_type_label == "trifoliate":
+            ctx.phytomer.scaleLeaves(0.5)
+
+    def grown(species, rule):
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.registerPhytomerCreationFunction("half", rule)
+        a.loadPlantModelFromLibrary(species)
+        return a, a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+
+    a, small = grown(species_with_rule(tmp_path, "half"), half)
+    b, full = grown(species_with_rule(tmp_path, "half"), lambda ctx: None)
+    assert a.getPlantLeafArea(small) < 0.6 * b.getPlantLeafArea(full)
+    # The same with the species file's own rule: the same plant.
+    text = open(plantarch.speciesLibraryDirectory() + "/bean.xml").read()
+    head, tail = text.split('<shoot_type label="trifoliate"', 1)
+    tail = tail.replace("</node_rules>", "<rule><leaf_scale>0.5</leaf_scale></rule></node_rules>", 1)
+    assert "<leaf_scale>0.5</leaf_scale>" in tail
+    path = tmp_path / "bean_leaf_scale.xml"
+    path.write_text(head + '<shoot_type label="trifoliate"' + tail)
+    c, by_rule = grown(str(path), lambda ctx: None)
+    assert c.getPlantString(by_rule) == a.getPlantString(small)
+
+
+def test_a_python_rule_cannot_put_a_plant_out_of_its_ranges(tmp_path):
+    """Every trait a rule sets is held to the plant state table's range, as a plant file's
+    value is; bookkeeping fields and the lists cannot be set at all."""
+
+    def attempt(change):
+        def rule(ctx):
+            pt = ctx.phytomer.petioles[0]
+            change(ctx.phytomer, pt)
+
+        a = plantarch.PlantArchitecture(plantarch.Context())
+        a.registerPhytomerCreationFunction("hostile", rule)
+        a.loadPlantModelFromLibrary(species_with_rule(tmp_path, "hostile"))
+        return lambda: a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+
+    cases = [
+        (lambda ph, pt: setattr(pt.leaves[0], "leaf_scale", float("nan")), "leaf_scale = nan: out of range"),
+        (lambda ph, pt: setattr(ph.internode, "internode_length", 1e30), "internode_length = 1e+30: out of range"),
+        (lambda ph, pt: setattr(pt, "petiole_pitch", "steep"), "petiole_pitch = 'steep': not a number"),
+        (lambda ph, pt: setattr(pt.vegetative_buds[0], "shoot_type_label", "a b"), "not a label"),
+        (lambda ph, pt: setattr(pt.vegetative_buds[0], "state", 3), "not a BudState"),
+        (lambda ph, pt: ph.scaleLeaves(float("inf")), "factor = inf: not a finite number"),
+        (lambda ph, pt: ph.scaleLeaves(1e30), "makes leaf_scale"),
+    ]
+    for change, message in cases:
+        with pytest.raises(plantarch.Error, match=re.escape(message)):
+            attempt(change)()
+    for change in (lambda ph, pt: setattr(pt.leaves[0], "leaf_ID", 7),
+                   lambda ph, pt: setattr(pt, "leaves", []),
+                   lambda ph, pt: setattr(ph, "petioles", []),
+                   lambda ph, pt: setattr(ph, "age", 3.0)):
+        with pytest.raises(AttributeError):
+            attempt(change)()
+
+
+def test_plant_state_attributes_are_the_plant_files_elements(tmp_path):
+    """The Python attributes of the plant state come from the table that writes plant files:
+    every element of a written plant names an attribute of its object (a list's element: the
+    list, in the plural)."""
+    import xml.etree.ElementTree as ET
 
     a = plantarch.PlantArchitecture(plantarch.Context())
-    a.registerPhytomerCreationFunction("half", half)
-    a.loadPlantModelFromLibrary(species_with_rule(tmp_path, "half"))
-    small = a.buildPlantInstanceFromLibrary((0, 0, 0), 30)
-    b = plantarch.PlantArchitecture(plantarch.Context())
-    b.registerPhytomerCreationFunction("half", lambda ctx: None)
-    b.loadPlantModelFromLibrary(species_with_rule(tmp_path, "half"))
-    full = b.buildPlantInstanceFromLibrary((0, 0, 0), 30)
-    assert a.getPlantLeafArea(small) < 0.6 * b.getPlantLeafArea(full)
+    a.loadPlantModelFromLibrary("bean")
+    p = a.buildPlantInstanceFromLibrary((0, 0, 0), 70)
+    a.enableEpicormicChildShoots(p, "trifoliate", 0.1)
+    root = ET.fromstring(a.getPlantStructureXML([p]))
+    state = a.plant(p)
+    shoot = next(s for s in state.shoots if any(pt.floral_buds for ph in s.phytomers for pt in ph.petioles))
+    phytomer = next(ph for ph in shoot.phytomers if ph.petioles[0].floral_buds)
+    petiole = phytomer.petioles[0]
+    objects = {
+        "plant_instance": state, "shoot": shoot, "phytomer": phytomer, "internode": phytomer.internode,
+        "petiole": petiole, "leaf": petiole.leaves[0], "vegetative_bud": shoot.apical_bud,
+        "floral_bud": petiole.floral_buds[0], "epicormic_shoots": state.epicormic_shoots,
+    }
+    grouped = {"peduncle"}  # elements that group fields of their own object
+
+    def plural(element):
+        return element[:-1] + "ves" if element.endswith("leaf") else element + "s"
+
+    def structure(element):  # not into the parameters, which have elements of the same names
+        yield element
+        for child in element:
+            if child.tag not in ("shoot_type", "phenology"):
+                yield from structure(child)
+
+    checked = set()
+    for element in structure(root):
+        obj = objects.get(element.tag)
+        if obj is None:
+            continue
+        children = [c for c in element if c.tag not in grouped] + [
+            g for c in element if c.tag in grouped for g in c]
+        for child in children:
+            if child.tag in ("random_generator", "phenology", "shoot_type"):
+                continue  # the plant's generator is its own; parameters are bound from their table
+            owner = phytomer if (element.tag, child.tag) == ("internode", "petiole") else obj
+            name = plural(child.tag) if child.tag in (
+                "shoot", "phytomer", "petiole", "leaf", "vegetative_bud", "floral_bud",
+                "terminal_floral_bud", "flower") else child.tag
+            assert hasattr(owner, name), f"<{element.tag}><{child.tag}>: no {type(owner).__name__}.{name}"
+            checked.add((element.tag, child.tag))
+    assert len(checked) > 90
+    assert hasattr(state, "shoot_types") and hasattr(state, "phenology")
 
 
 def test_a_python_callback_runs_daily(tmp_path):
@@ -207,7 +302,7 @@ def test_bud_actions_from_python_do_what_the_species_rules_do(tmp_path):
     calls = []
 
     def buds(ctx):
-        if ctx.shoot.type != "trifoliate":
+        if ctx.shoot.shoot_type_label != "trifoliate":
             return
         calls.append(ctx.nodeIndex)
         if ctx.rank <= 1 and ctx.nodeIndex <= 5:
@@ -230,7 +325,7 @@ def test_bud_actions_from_python_do_what_the_species_rules_do(tmp_path):
     assert calls, "the function was never called"
     def floral_buds(arch, plant):
         return [fb for s in arch.plant(plant).shoots for ph in s.phytomers
-                for pt in ph.petioles for fb in pt.floralBuds]
+                for pt in ph.petioles for fb in pt.floral_buds]
 
     assert a.getShootCount(p) > 3  # branches
     assert any(fb.stage != plantarch.FloralStage.bud for fb in floral_buds(a, p))  # flowers

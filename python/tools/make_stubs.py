@@ -62,6 +62,14 @@ def signatures(name, doc, method):
     return out
 
 
+def property_type(prop):
+    """The type a property's getter returns, from its pybind11 signature ("(arg0: X) -> T")."""
+    first = ((prop.fget and prop.fget.__doc__) or "").strip().splitlines()
+    m = re.match(r"^\(.*\) -> (.+)$", first[0]) if first else None
+    kind = clean_type(m.group(1)) if m else "Any"
+    return kind if kind != "object" and valid(f"x: {kind}") else "Any"
+
+
 def summary(doc):
     lines = [l for l in (doc or "").splitlines() if l.strip() and not SIGNATURE.match(l.strip())]
     return lines[0].strip().replace('"""', "'") if lines else ""
@@ -94,10 +102,15 @@ def emit_class(lines, name, cls):
             "__init__", "__eq__", "__iter__", "__len__", "__enter__", "__exit__"):
             continue
         if isinstance(value, property):
-            lines.append(f"    {attr}: Any")
+            kind = property_type(value)
             d = summary(value.__doc__)
-            if d:
-                lines.append(f'    """{d}"""')
+            if value.fset is None:  # read only: a property, so editors refuse assignments
+                lines.append("    @property")
+                lines.append(f"    def {attr}(self) -> {kind}:" + (f'\n        """{d}"""' if d else " ..."))
+            else:
+                lines.append(f"    {attr}: {kind}")
+                if d:
+                    lines.append(f'    """{d}"""')
             body += 1
         elif isinstance(value, staticmethod):
             lines.append("    @staticmethod")

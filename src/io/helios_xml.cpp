@@ -20,8 +20,8 @@
 #include "core/value_text.h"
 #include "core/xml_reader.h"
 #include "io/plant_structure.h"
-#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch::plant_io {
 
@@ -46,7 +46,7 @@ float number(const Element& e, double lo, double hi) {
     return v;
 }
 
-// A value of the state field `f` (model/plant_state_table.h): its declared range.
+// A value of the state field `f` (plantarch/PlantStateTable.h): its declared range.
 float number(const Element& e, const state::FieldInfo& f) {
     return number(e, f.min, f.max);
 }

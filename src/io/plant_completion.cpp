@@ -17,8 +17,8 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "io/plant_structure.h"
-#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch::plant_io {
 
@@ -281,7 +281,7 @@ private:
     throw Error(message, {.parameter = path, .value = value, .validRange = range});
 }
 
-// Every value of a plant held to its declared range (model/plant_state_table.h), whichever
+// Every value of a plant held to its declared range (plantarch/PlantStateTable.h), whichever
 // reader filled it: the shared check after reading. Paths are the plant structure file's
 // ("shoot[2].phytomer[0].internode.petiole[1].leaf[0].leaf_scale" below `where`).
 class ValueCheck {

@@ -105,7 +105,7 @@ vec3 internodeDirection(const Internode& in);
 float petioleAzimuth(float internodeAzimuth, std::size_t j, std::size_t n);
 
 /// The shared check of every plant read (plant structure file, `<helios>` file, plant string),
-/// after completion: every value in its declared range (model/plant_state_table.h) and
+/// after completion: every value in its declared range (plantarch/PlantStateTable.h) and
 /// finite; shoot references (parents listed before, existing nodes and petioles); buds whose
 /// shoot grows from them, no shoot claimed by two buds; unique leaf IDs below next_leaf_ID;
 /// known shoot types and shape variants. Throws plantarch::Error (parameter path such as

@@ -1,7 +1,7 @@
 // Reader of plant structure files (docs/plant-xml.md), on the XML reader layer
 // (core/xml_reader.h).
 //
-// One engine reads both tables: the plant state table (model/plant_state_table.h) and the
+// One engine reads both tables: the plant state table (plantarch/PlantStateTable.h) and the
 // species parameter table (plantarch/ParameterTable.h). At each element it visits the table
 // of the object being filled; every declared name takes its value from the child element of
 // that name, every child must be declared (else "unknown element ..., did you mean ...") and
@@ -21,8 +21,8 @@
 #include "core/xml_reader.h"
 #include "io/plant_structure.h"
 #include "library/parameter_reader.h"
-#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch::plant_io {
 

@@ -1,4 +1,4 @@
-// Writer of plant structure files: every field of the state table (model/plant_state_table.h)
+// Writer of plant structure files: every field of the state table (plantarch/PlantStateTable.h)
 // and of the parameter table, one element per value, numbers in their shortest round-trip
 // form, so reading the text back gives the same plant bit for bit.
 
@@ -7,8 +7,8 @@
 
 #include "core/value_text.h"
 #include "io/plant_structure.h"
-#include "model/plant_state_table.h"
 #include "plantarch/ParameterTable.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch::plant_io {
 

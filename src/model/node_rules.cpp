@@ -8,9 +8,9 @@
 #include <cmath>
 
 #include "core/value_text.h"
-#include "model/plant_state_table.h"
 #include "plantarch/Error.h"
 #include "plantarch/PhytomerActions.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch {
 
@@ -206,8 +206,12 @@ void act(const NodeRule& r, std::size_t index, Place& at) {
     if (!r.leaf_scale.empty()) {
         const RuleFormula f = ruleFormula(r.leaf_scale, at, index, "leaf_scale");
         const float s = value(f, at);
-        for (Petiole& p : ph.petioles)
-            for (LeafOrgan& l : p.leaves) scale(f, at, fields.leafScale, s, l.scale);
+        for (Petiole& p : ph.petioles)  // refused with the formula named, before any change
+            for (LeafOrgan& l : p.leaves) {
+                float size = l.scale;
+                scale(f, at, fields.leafScale, s, size);
+            }
+        scaleLeaves(ph, s);
     }
     if (!r.internode_scale.empty()) {
         const RuleFormula f = ruleFormula(r.internode_scale, at, index, "internode_scale");

@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "model/plant_state_table.h"
+#include "plantarch/PlantStateTable.h"
 
 namespace plantarch {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Carrying a plant's state to another place, orientation and clock, driven by the state table
-// (model/plant_state_table.h): every direction it declares turns, every plant age it declares
+// (plantarch/PlantStateTable.h): every direction it declares turns, every plant age it declares
 // moves, so a field added there is carried too (PlantArchitecture::duplicatePlantInstance).
 
 #include "core/math.h"

@@ -1,10 +1,13 @@
 #pragma once
 // The one declaration of every plant-state field that plant structure files hold: element
-// name, valid range and meaning, in file order.
+// name, valid range, meaning and whether a phytomer rule may change it, in file order.
+// Public so that front ends (the Python module) bind the plant state from it.
 //
 // describeState(object, visitor) calls, for each piece of the object:
 //   v.field(info, member)        a value (number, flag, vector, text, stage, generator)
 //   v.group(name, fn)            a nested element; fn(subVisitor) visits its content
+//   nested(v, name, member, more) a nested element holding the member struct's own table,
+//                                then more(subVisitor) (see nested() below)
 //   v.list(name, vector, ids)    one element per item (ids: items carry ID="index")
 //   v.values(info, vector)       one element per value (a list of numbers or vectors)
 //   v.optional(name, optional)   a nested element that may be absent (then: none, and no
@@ -34,7 +37,6 @@
 #include <string>
 #include <string_view>
 
-#include "core/value_text.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/PlantState.h"
 
@@ -60,13 +62,22 @@ enum class Clock {
 
 /// What a state field is. The range bounds the value (each component of a vector).
 struct FieldInfo {
-    const char* name;  ///< XML element
+    const char* name;  ///< XML element (and Python attribute)
     double min;
     double max;
     const char* doc;  ///< meaning and unit
     Check check = Check::None;
     Clock clock = Clock::None;
+    /// A trait a phytomer function may set (in C++ or Python, held to the range); the others
+    /// (identities, links, ages, derived directions) are bookkeeping that only growth changes.
+    bool editable = false;
 };
+
+/// `f` marked editable: a trait phytomer functions may set.
+constexpr FieldInfo editable(FieldInfo f) {
+    f.editable = true;
+    return f;
+}
 
 using params::SameAs;
 
@@ -83,26 +94,28 @@ inline constexpr double kAnyFloat = 3.4028234663852886e38;
 template <class S, class V>
 requires SameAs<S, VegetativeBud>
 void describeState(S& b, V& v) {
-    v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
-    v.field({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)",
-             Check::None, Clock::Scheduled},
-            b.breakTime);
+    v.field(editable({"state", 0, 0, "dormant, active, broken or dead"}), b.state);
+    v.field(
+        editable({"break_time", -kTime, kTime, "plant age when it breaks, days (negative: waiting)",
+                  Check::None, Clock::Scheduled}),
+        b.breakTime);
     v.field({"child_shoot_ID", -1, kCount, "shoot grown from this bud (-1: none)"}, b.childShoot);
-    v.field({"shoot_type_label", 0, 0, "type it grows into (chosen when it breaks)",
-             Check::LabelOrEmpty},
+    v.field(editable({"shoot_type_label", 0, 0, "type it grows into (chosen when it breaks)",
+                      Check::LabelOrEmpty}),
             b.shootType);
 }
 
 template <class S, class V>
 requires SameAs<S, FlowerOrgan>
 void describeState(S& f, V& v) {
-    v.field({"position", -kBig, kBig, "along the peduncle, fraction of its length"}, f.position);
-    v.field({"azimuth", -kBig, kBig, "side of the peduncle, degrees"}, f.azimuth);
-    v.field({"pitch", -kBig, kBig, "from the peduncle axis, degrees"}, f.pitch);
-    v.field({"roll", -kBig, kBig, "about its own axis, degrees"}, f.roll);
-    v.field({"flower_scale", 0, kBig, "flower length, m"}, f.flowerScale);
-    v.field({"fruit_scale", 0, kBig, "full-grown fruit length, m"}, f.fruitScale);
-    v.field({"gravity_factor", -kBig, kBig, "how far the fruit turns to the ground"},
+    v.field(editable({"position", -kBig, kBig, "along the peduncle, fraction of its length"}),
+            f.position);
+    v.field(editable({"azimuth", -kBig, kBig, "side of the peduncle, degrees"}), f.azimuth);
+    v.field(editable({"pitch", -kBig, kBig, "from the peduncle axis, degrees"}), f.pitch);
+    v.field(editable({"roll", -kBig, kBig, "about its own axis, degrees"}), f.roll);
+    v.field(editable({"flower_scale", 0, kBig, "flower length, m"}), f.flowerScale);
+    v.field(editable({"fruit_scale", 0, kBig, "full-grown fruit length, m"}), f.fruitScale);
+    v.field(editable({"gravity_factor", -kBig, kBig, "how far the fruit turns to the ground"}),
             f.gravityFactor);
     v.field({"variant", 0, kCount, "prototype shape variant"}, f.variant);
     v.field({"clearance_axis", -1, 1, "fruit adjustment: world axis", Check::UnitVector},
@@ -115,8 +128,9 @@ void describeState(S& f, V& v) {
 template <class S, class V>
 requires SameAs<S, FloralBud>
 void describeState(S& b, V& v) {
-    v.field({"stage", 0, 0, "bud, flower_closed, flower_open, fruit or removed"}, b.stage);
-    v.field({"state", 0, 0, "dormant, active, broken or dead"}, b.state);
+    v.field(editable({"stage", 0, 0, "bud, flower_closed, flower_open, fruit or removed"}),
+            b.stage);
+    v.field(editable({"state", 0, 0, "dormant, active, broken or dead"}), b.state);
     v.field({"terminal", 0, 1, "at the shoot tip (else axillary)"}, b.terminal);
     v.field(
         {"terminal_azimuth", -360, 360,
@@ -127,7 +141,7 @@ void describeState(S& b, V& v) {
              Check::LabelOrEmpty},
             b.parametersLabel);
     v.field({"fruit_age", -kTime, kTime, "days since fruit set"}, b.fruitAge);
-    v.field({"fruit_growth", 0, kBig, "current / full-grown fruit size"}, b.fruitGrowth);
+    v.field(editable({"fruit_growth", 0, kBig, "current / full-grown fruit size"}), b.fruitGrowth);
     v.field({"stage_time", -kTime, kTime, "plant age when the stage began, days", Check::None,
              Clock::Age},
             b.stageTime);
@@ -135,11 +149,12 @@ void describeState(S& b, V& v) {
              Check::None, Clock::Scheduled},
             b.nextTime);
     v.group("peduncle", [&](auto& p) {
-        p.field({"peduncle_length", 0, kBig, "m"}, b.peduncleLength);
-        p.field({"peduncle_radius", 0, kBig, "m"}, b.peduncleRadius);
-        p.field({"peduncle_pitch", -kBig, kBig, "degrees"}, b.pedunclePitch);
-        p.field({"peduncle_roll", -kBig, kBig, "degrees"}, b.peduncleRoll);
-        p.field({"peduncle_curvature", -kBig, kBig, "degrees per m"}, b.peduncleCurvature);
+        p.field(editable({"peduncle_length", 0, kBig, "m"}), b.peduncleLength);
+        p.field(editable({"peduncle_radius", 0, kBig, "m"}), b.peduncleRadius);
+        p.field(editable({"peduncle_pitch", -kBig, kBig, "degrees"}), b.pedunclePitch);
+        p.field(editable({"peduncle_roll", -kBig, kBig, "degrees"}), b.peduncleRoll);
+        p.field(editable({"peduncle_curvature", -kBig, kBig, "degrees per m"}),
+                b.peduncleCurvature);
         p.field({"peduncle_azimuth", -kBig, kBig,
                  "its side turned about the stem from its petiole's, degrees (0: not steered)"},
                 b.peduncleAzimuth);
@@ -157,12 +172,13 @@ void describeState(S& b, V& v) {
 template <class S, class V>
 requires SameAs<S, LeafOrgan>
 void describeState(S& l, V& v) {
-    v.field({"leaf_scale", 0, kBig, "full-grown length, m"}, l.scale);
-    v.field({"leaf_pitch", -kBig, kBig, "degrees"}, l.pitch);
-    v.field({"leaf_yaw", -kBig, kBig, "degrees"}, l.yaw);
-    v.field({"leaf_roll", -kBig, kBig, "degrees"}, l.roll);
+    v.field(editable({"leaf_scale", 0, kBig, "full-grown length, m"}), l.scale);
+    v.field(editable({"leaf_pitch", -kBig, kBig, "degrees"}), l.pitch);
+    v.field(editable({"leaf_yaw", -kBig, kBig, "degrees"}), l.yaw);
+    v.field(editable({"leaf_roll", -kBig, kBig, "degrees"}), l.roll);
     v.field({"leaflet_index", -1000, 1000, "0 tip, negative left, positive right"}, l.leafletIndex);
-    v.field({"position", -kBig, kBig, "along the petiole, fraction of its length"}, l.position);
+    v.field(editable({"position", -kBig, kBig, "along the petiole, fraction of its length"}),
+            l.position);
     v.field({"variant", 0, kCount, "prototype shape variant"}, l.variant);
     v.field({"leaf_ID", -1, kMaxLeafID, "unique within the plant"}, l.leafID);
     v.field({"age", -kTime, kTime, "days"}, l.age);
@@ -175,12 +191,12 @@ void describeState(S& l, V& v) {
 template <class S, class V>
 requires SameAs<S, Petiole>
 void describeState(S& p, V& v) {
-    v.field({"petiole_length", 0, kBig, "full-grown length, m"}, p.length);
-    v.field({"petiole_radius", 0, kBig, "base radius, m"}, p.radius);
-    v.field({"petiole_pitch", -kBig, kBig, "from the internode axis, degrees"}, p.pitch);
-    v.field({"petiole_curvature", -kAnyFloat, kAnyFloat, "degrees per m"}, p.curvature);
+    v.field(editable({"petiole_length", 0, kBig, "full-grown length, m"}), p.length);
+    v.field(editable({"petiole_radius", 0, kBig, "base radius, m"}), p.radius);
+    v.field(editable({"petiole_pitch", -kBig, kBig, "from the internode axis, degrees"}), p.pitch);
+    v.field(editable({"petiole_curvature", -kAnyFloat, kAnyFloat, "degrees per m"}), p.curvature);
     v.legacy("leaflet_scale");  // the listing's value; each leaf here carries its own scale
-    v.field({"petiole_taper", 0, kBig, "tip radius / base radius"}, p.taper);
+    v.field(editable({"petiole_taper", 0, kBig, "tip radius / base radius"}), p.taper);
     v.field({"petiole_azimuth", -kBig, kBig, "about the internode axis, degrees"}, p.azimuth);
     v.field({"clearance_axis", -1, 1, "turn out of solid obstacles: world axis", Check::UnitVector},
             p.clearance.axis);
@@ -195,8 +211,8 @@ void describeState(S& p, V& v) {
 template <class S, class V>
 requires SameAs<S, Internode>
 void describeState(S& in, V& v) {
-    v.field({"internode_length", 0, kBig, "full-grown length, m"}, in.length);
-    v.field({"internode_radius", 0, kBig, "current radius, m"}, in.radius);
+    v.field(editable({"internode_length", 0, kBig, "full-grown length, m"}), in.length);
+    v.field(editable({"internode_radius", 0, kBig, "current radius, m"}), in.radius);
     v.field({"internode_pitch", -kBig, kBig, "realized zig-zag pitch, degrees"}, in.pitch);
     v.field({"phyllotactic_angle", -kBig, kBig, "roll from the previous phytomer, degrees"},
             in.phyllotacticAngle);
@@ -212,6 +228,21 @@ void describeState(S& in, V& v) {
     v.objects("object_ID", in.object);
 }
 
+/// A nested element whose content is the table of `member` (a struct of its own), then
+/// more(subVisitor): fields or lists of the enclosing object that files keep inside it. A
+/// visitor that deals in whole structs (the Python binding) defines member(name, member,
+/// more); to every other visitor this is a group.
+template <class V, class T, class More>
+void nested(V& v, const char* name, T& member, More&& more) {
+    if constexpr (requires { v.member(name, member, more); })
+        v.member(name, member, more);
+    else
+        v.group(name, [&](auto& sub) {
+            describeState(member, sub);
+            more(sub);
+        });
+}
+
 template <class S, class V>
 requires SameAs<S, Phytomer>
 void describeState(S& ph, V& v) {
@@ -219,19 +250,17 @@ void describeState(S& ph, V& v) {
     v.field(
         {"birth", -kTime, kTime, "plant age when it was created, days", Check::None, Clock::Age},
         ph.birth);
-    v.field({"internode_fraction", 0, kBig, "current / full internode length"},
+    v.field(editable({"internode_fraction", 0, kBig, "current / full internode length"}),
             ph.internodeFraction);
-    v.field({"leaf_fraction", 0, kBig, "current / full petiole and leaf size"}, ph.leafFraction);
+    v.field(editable({"leaf_fraction", 0, kBig, "current / full petiole and leaf size"}),
+            ph.leafFraction);
     v.field({"internode_fraction_initial", 0, kBig, "at creation"}, ph.internodeFraction0);
     v.field({"leaf_fraction_initial", 0, kBig, "at creation"}, ph.leafFraction0);
     v.field({"radius_initial", 0, kBig, "internode radius at creation, m"}, ph.radiusInitial);
     v.field({"parameters_label", 0, 0, "shoot type whose template built it", Check::Label},
             ph.parametersLabel);
     // The specification nests the petioles inside the internode.
-    v.group("internode", [&](auto& sub) {
-        describeState(ph.internode, sub);
-        sub.list("petiole", ph.petioles);
-    });
+    nested(v, "internode", ph.internode, [&](auto& sub) { sub.list("petiole", ph.petioles); });
 }
 
 template <class S, class V>
@@ -262,7 +291,7 @@ void describeState(S& s, V& v) {
             s.nextPhytomerTime);
     v.field({"flowering", 0, 1, ""}, s.flowering);
     v.field({"removed", 0, 1, "pruned away"}, s.removed);
-    v.group("apical_bud", [&](auto& sub) { describeState(s.apicalBud, sub); });
+    nested(v, "apical_bud", s.apicalBud, [](auto&) {});
     v.list("phytomer", s.phytomers);
     v.list("terminal_floral_bud", s.terminalFloralBuds);
 }
@@ -326,17 +355,8 @@ inline bool inside(const FieldInfo& f, double v) {
 }
 
 /// The field's range as errors give it: "0 to 1e+06", "> 0 and <= 100".
-inline std::string rangeText(const FieldInfo& f) {
-    const bool openMin = f.check == Check::ExclusiveMin || f.check == Check::Exclusive;
-    const bool openMax = f.check == Check::Exclusive;
-    if (!openMin) return text::formatDouble(f.min) + " to " + text::formatDouble(f.max);
-    return "> " + text::formatDouble(f.min) + " and " + (openMax ? "< " : "<= ") +
-           text::formatDouble(f.max);
-}
+std::string rangeText(const FieldInfo& f);
 
-/// The declaration of the field `name` of S's own table (nested groups included, lists of
-/// other types not), e.g. fieldInfo<LeafOrgan>("leaf_scale"). Throws std::logic_error for a
-/// name the table does not declare: a mistake in plantarch, not in any input.
 /// Visits a table and keeps the declaration of the field named `name` (fieldInfo below).
 struct FieldFinder {
     std::string_view name;
