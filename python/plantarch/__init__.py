@@ -52,11 +52,6 @@ make_vec2 = vec2
 
 
 def render(scene, width=640, height=480, mode="shaded", **options):
-    """Renders a Context, a PlantArchitecture or a Plant as a height x width x 3 uint8 array.
-
-    mode: "shaded", "organ" (one label colour per organ kind) or "object" (one colour per
-    object). Other options: azimuth, elevation, fov (degrees), samples_per_pixel, ground, seed.
-    """
     if isinstance(scene, Plant):
         return scene.render(width=width, height=height, mode=mode, **options)
     if isinstance(scene, PlantArchitecture):
@@ -130,6 +125,9 @@ class Plant:
             f"<plantarch.Plant {s['plantID']}: {s['age']:g} days, {s['height']:.3f} m tall, "
             f"{s['leaf_count']} leaves, {s['shoots']} shoots, {s['triangles']} triangles>"
         )
+
+
+render.__doc__ = "The scene may also be a PlantArchitecture or a Plant.\n\n" + (_render.__doc__ or "")
 
 
 def _context_png(self):

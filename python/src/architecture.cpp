@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "callbacks.h"
+#include "docstrings.h"
 #include "plantarch/CollisionStatsFields.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/HeliosPlantXML.h"
@@ -139,13 +140,11 @@ PlantStructureReadOptions readOptions(py::object warnings) {
 
 void bindLibrary(py::class_<PlantArchitecture>& c) {
     c.def("loadPlantModelFromLibrary", &PlantArchitecture::loadPlantModelFromLibrary,
-          py::arg("plant_label"),
-          "Loads a species by library name ('bean') or file path: its shoot types replace the "
-          "current ones and its phenology becomes the default.")
+          py::arg("plant_label"), docs::PlantArchitecture_loadPlantModelFromLibrary)
         .def("getAvailablePlantModels", &PlantArchitecture::getAvailablePlantModels,
-             "Names of the species in the library, sorted.")
+             docs::PlantArchitecture_getAvailablePlantModels)
         .def("getCurrentPlantModel", &PlantArchitecture::getCurrentPlantModel,
-             "Name of the loaded species ('' when none).")
+             docs::PlantArchitecture_getCurrentPlantModel)
         .def(
             "buildPlantInstanceFromLibrary",
             [](PlantArchitecture& a, vec3 base, float age, std::map<std::string, float> bp) {
@@ -154,9 +153,7 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
             },
             py::arg("base_position"), py::arg("age"),
             py::arg("build_parameters") = std::map<std::string, float>{},
-            "Builds a plant of the loaded species at base_position, grown to `age` days; build "
-            "parameters (trunk height, scaffolds ...) override the species' defaults. Returns "
-            "its plant ID.")
+            docs::PlantArchitecture_buildPlantInstanceFromLibrary)
         .def(
             "buildPlantCanopyFromLibrary",
             [](PlantArchitecture& a, vec3 center, vec2 spacing, std::pair<int, int> count,
@@ -170,9 +167,11 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
             py::arg("canopy_center"), py::arg("plant_spacing"), py::arg("plant_count"),
             py::arg("age"), py::arg("germination_rate") = 1.0f,
             py::arg("build_parameters") = std::map<std::string, float>{},
-            "A grid of plant_count (x, y) plants plant_spacing (x, y) m apart centred on "
-            "canopy_center, grown to `age` days (in parallel; the same seed gives the same "
-            "plants for any thread count). Returns the plant IDs.")
+            inPython(
+                docs::PlantArchitecture_buildPlantCanopyFromLibrary,
+                "A grid of plant_count (x, y) plants plant_spacing (x, y) m apart centred on "
+                "canopy_center, grown to `age` days (in parallel; the same seed gives the same "
+                "plants for any thread count). Returns the plant IDs."))
         .def(
             "buildPlantCanopyScatteredFromLibrary",
             [](PlantArchitecture& a, vec3 center, vec2 extent, unsigned plants, float age,
@@ -192,75 +191,69 @@ void bindLibrary(py::class_<PlantArchitecture>& c) {
             "plant_count plants scattered at random over a canopy_extent (x, y) rectangle "
             "(buildPlantCanopyFromLibrary with CanopyOptions.Layout.Scatter).")
         .def("setTrellisGeometry", &PlantArchitecture::setTrellisGeometry, py::arg("on"),
-             "Whether library plants get their species' trellis (on by default).")
+             docs::PlantArchitecture_setTrellisGeometry)
         .def("getTrellisGeometry", &PlantArchitecture::getTrellisGeometry,
              "Whether library plants get their species' trellis (posts and wires).")
         .def("setMeshDetail", &PlantArchitecture::setMeshDetail, py::arg("detail"),
-             "Mesh resolution of every organ as a factor on its species' own (0.1 to 4, default "
-             "1); geometry only, the plants grow the same. Redraws the plants there are.",
-             Release())
+             docs::PlantArchitecture_setMeshDetail, Release())
         .def("getMeshDetail", &PlantArchitecture::getMeshDetail,
              "The factor on every organ's mesh resolution (setMeshDetail).")
         .def("setGroundClearance", py::overload_cast<bool>(&PlantArchitecture::setGroundClearance),
-             py::arg("on"),
-             "Ground clearance (on by default): leaves, flowers and fruit turned about their "
-             "attachment to stay above each plant's base. Sets it for every plant there is "
-             "(redrawn now) and for plants added from now on.",
-             Release())
+             py::arg("on"), docs::PlantArchitecture_setGroundClearance, Release())
         .def("setGroundClearance",
              py::overload_cast<unsigned, bool>(&PlantArchitecture::setGroundClearance),
-             py::arg("plant"), py::arg("on"), "Ground clearance of one plant.", Release())
+             py::arg("plant"), py::arg("on"), docs::PlantArchitecture_setGroundClearance, Release())
         .def("getGroundClearance",
              py::overload_cast<>(&PlantArchitecture::getGroundClearance, py::const_),
-             "The ground clearance plants added from now on get.")
+             docs::PlantArchitecture_getGroundClearance)
         .def("getGroundClearance",
              py::overload_cast<unsigned>(&PlantArchitecture::getGroundClearance, py::const_),
-             py::arg("plant"), "Whether one plant keeps its side organs above its base.")
+             py::arg("plant"), docs::PlantArchitecture_getGroundClearance)
         .def("setTriangleLimit", &PlantArchitecture::setTriangleLimit, py::arg("limit"),
-             "At most this many triangles in the Context (0: no limit). A canopy whose estimate "
-             "(its first plants' mean times the plant count) passes it is refused before it is "
-             "grown, a plant that passes it stops growing: TriangleBudgetError, and the scene "
-             "is left as it was.")
+             docs::PlantArchitecture_setTriangleLimit)
         .def("getTriangleLimit", &PlantArchitecture::getTriangleLimit,
              "The triangle limit (0: none).")
         .def_static("defaultTriangleLimit", &PlantArchitecture::defaultTriangleLimit,
-                    "A limit that fits this machine: half its physical memory at 100 bytes a "
-                    "triangle (the command line's default --max-triangles).")
+                    docs::PlantArchitecture_defaultTriangleLimit)
         .def("getPlantTrellisObjectIDs", &PlantArchitecture::getPlantTrellisObjectIDs,
-             py::arg("plantID"), "The trellis objects (posts and wires) made with a plant.");
+             py::arg("plantID"), docs::PlantArchitecture_getPlantTrellisObjectIDs);
 }
 
 void bindShootTypes(py::class_<PlantArchitecture>& c) {
     c.def("defineShootType", &PlantArchitecture::defineShootType, py::arg("shoot_type_label"),
-          py::arg("shoot_params"), "Defines (or replaces) a shoot type (validated).")
+          py::arg("shoot_params"), docs::PlantArchitecture_defineShootType)
         .def("getShootType", &PlantArchitecture::shootType, py::arg("shoot_type_label"),
              "A copy of a defined shoot type's parameters.")
         .def("listShootTypeLabels",
              py::overload_cast<>(&PlantArchitecture::listShootTypeLabels, py::const_),
-             "Labels of the defined shoot types, sorted.")
+             docs::PlantArchitecture_listShootTypeLabels)
         .def("listShootTypeLabels",
              py::overload_cast<unsigned>(&PlantArchitecture::listShootTypeLabels, py::const_),
-             py::arg("plantID"), "The shoot types of one plant.")
+             py::arg("plantID"), docs::PlantArchitecture_listShootTypeLabels)
         .def("listShootTypeLabels",
              py::overload_cast<const std::string&>(&PlantArchitecture::listShootTypeLabels,
                                                    py::const_),
-             py::arg("plant_label"), "The shoot types of a library species, without loading it.")
+             py::arg("plant_label"), docs::PlantArchitecture_listShootTypeLabels)
         .def("getCurrentShootParameters",
              py::overload_cast<const std::string&>(&PlantArchitecture::getCurrentShootParameters,
                                                    py::const_),
-             py::arg("shoot_type_label"), "A copy of one shoot type's parameters.")
+             py::arg("shoot_type_label"), docs::PlantArchitecture_getCurrentShootParameters)
         .def("getCurrentShootParameters",
              py::overload_cast<>(&PlantArchitecture::getCurrentShootParameters, py::const_),
-             "Copies of every shoot type's parameters, by label.")
+             docs::PlantArchitecture_getCurrentShootParameters)
         .def("updateCurrentShootParameters",
              py::overload_cast<const std::string&, const ShootParameters&>(
                  &PlantArchitecture::updateCurrentShootParameters),
              py::arg("shoot_type_label"), py::arg("params"),
-             "Replaces a shoot type's parameters (validated); named rules are kept as named.")
+             inPython(
+                 docs::PlantArchitecture_updateCurrentShootParameters,
+                 "Replaces a shoot type's parameters (validated); named rules are kept as named."))
         .def("updateCurrentShootParameters",
              py::overload_cast<const std::map<std::string, ShootParameters>&>(
                  &PlantArchitecture::updateCurrentShootParameters),
-             py::arg("params"), "The same for several shoot types at once.");
+             py::arg("params"),
+             inPython(docs::PlantArchitecture_updateCurrentShootParameters,
+                      "The same for several shoot types at once."));
 }
 
 // The option structs of manual building, made with the specification's keyword names.
@@ -305,23 +298,26 @@ void bindShootSpec(py::module_& m) {
 void bindManual(py::class_<PlantArchitecture>& c) {
     c.def("addBaseStemShoot",
           py::overload_cast<unsigned, const ShootSpec&>(&PlantArchitecture::addBaseStemShoot),
-          py::arg("plantID"), py::arg("spec"),
-          "The plant's base stem from a ShootSpec; returns its shoot ID (0).")
+          py::arg("plantID"), py::arg("spec"), docs::PlantArchitecture_addBaseStemShoot)
         .def("appendShoot",
              py::overload_cast<unsigned, unsigned, const ShootSpec&>(
                  &PlantArchitecture::appendShoot),
              py::arg("plantID"), py::arg("parent_shoot_ID"), py::arg("spec"),
-             "A shoot continuing from the tip of parent_shoot_ID, from a ShootSpec.")
+             docs::PlantArchitecture_appendShoot)
         .def("addChildShoot", &PlantArchitecture::addChildShoot, py::arg("plantID"),
              py::arg("parent_shoot_ID"), py::arg("parent_node_index"), py::arg("spec"),
-             py::arg("petiole_index") = 0, "A lateral shoot from a ShootSpec; returns its ID.")
+             py::arg("petiole_index") = 0,
+             inPython(docs::PlantArchitecture_addChildShoot,
+                      "A lateral shoot from a ShootSpec; returns its ID."))
         .def("addEpicormicShoot", &PlantArchitecture::addEpicormicShoot, py::arg("plantID"),
              py::arg("parent_shoot_ID"), py::arg("parent_position_fraction"), py::arg("spec"),
-             "A water sprout from a ShootSpec; returns its shoot ID.", Release());
+             inPython(docs::PlantArchitecture_addEpicormicShoot,
+                      "A water sprout from a ShootSpec; returns its shoot ID."),
+             Release());
     c.def("addPlantInstance", &PlantArchitecture::addPlantInstance, py::arg("base_position"),
-          py::arg("current_age"), "A new plant with no shoots; returns its ID.")
+          py::arg("current_age"), docs::PlantArchitecture_addPlantInstance)
         .def("deletePlantInstance", &PlantArchitecture::deletePlantInstance, py::arg("plantID"),
-             "Removes a plant and its objects from the Context.")
+             docs::PlantArchitecture_deletePlantInstance)
         .def(
             "addBaseStemShoot",
             [](PlantArchitecture& a, unsigned plant, unsigned nodes, AxisRotation rot, float radius,
@@ -335,7 +331,7 @@ void bindManual(py::class_<PlantArchitecture>& c) {
             py::arg("internode_length_max") = 0.02f,
             py::arg("internode_length_scale_factor_fraction") = 1.0f,
             py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
-            py::arg("shoot_type_label"), "The plant's base stem; returns its shoot ID (0).")
+            py::arg("shoot_type_label"), docs::PlantArchitecture_addBaseStemShoot)
         .def(
             "appendShoot",
             [](PlantArchitecture& a, unsigned plant, unsigned parent, unsigned nodes,
@@ -350,8 +346,7 @@ void bindManual(py::class_<PlantArchitecture>& c) {
             py::arg("internode_length_max") = 0.02f,
             py::arg("internode_length_scale_factor_fraction") = 1.0f,
             py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
-            py::arg("shoot_type_label"),
-            "A shoot continuing from the tip of parent_shoot_ID; returns its shoot ID.")
+            py::arg("shoot_type_label"), docs::PlantArchitecture_appendShoot)
         .def(
             "addChildShoot",
             [](PlantArchitecture& a, unsigned plant, unsigned parent, unsigned node, unsigned nodes,
@@ -368,7 +363,9 @@ void bindManual(py::class_<PlantArchitecture>& c) {
             py::arg("internode_length_scale_factor_fraction") = 1.0f,
             py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
             py::arg("shoot_type_label"), py::arg("petiole_index") = 0,
-            "A lateral shoot from the axil of a petiole at parent_node_index; returns its ID.")
+            inPython(
+                docs::PlantArchitecture_addChildShoot,
+                "A lateral shoot from the axil of a petiole at parent_node_index; returns its ID."))
         .def(
             "appendPhytomerToShoot",
             [](PlantArchitecture& a, unsigned plant, unsigned shoot, const PhytomerParameters& pp,
@@ -380,37 +377,32 @@ void bindManual(py::class_<PlantArchitecture>& c) {
             py::arg("internode_radius") = 0.001f, py::arg("internode_length_max") = 0.02f,
             py::arg("internode_length_scale_factor_fraction") = 1.0f,
             py::arg("leaf_scale_factor_fraction") = 1.0f,
-            "One more phytomer at the tip of a shoot; returns the shoot's phytomer count.")
+            docs::PlantArchitecture_appendPhytomerToShoot)
         .def("addFloralBud", &PlantArchitecture::addFloralBud, py::arg("plantID"),
              py::arg("shootID"), py::arg("node"), py::arg("stage"), py::arg("petiole_index") = 0,
-             "Adds a floral bud at a node with the given FloralStage (hand-built plants); returns "
-             "the flowers on its peduncle.")
+             docs::PlantArchitecture_addFloralBud)
         .def("pruneBranch", &PlantArchitecture::pruneBranch, py::arg("plantID"), py::arg("shootID"),
-             py::arg("node_index"),
-             "Removes the shoot's phytomers from node_index on, and every shoot on them.")
+             py::arg("node_index"), docs::PlantArchitecture_pruneBranch)
         .def("removePlantLeaves", &PlantArchitecture::removePlantLeaves, py::arg("plantID"),
-             "Removes every leaf of the plant (petioles stay).")
+             docs::PlantArchitecture_removePlantLeaves)
         .def("removeShootLeaves", &PlantArchitecture::removeShootLeaves, py::arg("plantID"),
-             py::arg("shootID"),
-             "Removes the leaves of a shoot with their petioles (bare nodes keep their buds).")
+             py::arg("shootID"), docs::PlantArchitecture_removeShootLeaves)
         .def("removeShootVegetativeBuds", &PlantArchitecture::removeShootVegetativeBuds,
              py::arg("plantID"), py::arg("shootID"),
-             "Removes every vegetative bud (apical and axillary): the shoot stops growing and "
-             "branching.")
+             docs::PlantArchitecture_removeShootVegetativeBuds)
         .def("removeShootAxillaryVegetativeBuds",
              &PlantArchitecture::removeShootAxillaryVegetativeBuds, py::arg("plantID"),
-             py::arg("shootID"),
-             "Removes the axillary vegetative buds; the shoot keeps growing from its tip.")
+             py::arg("shootID"), docs::PlantArchitecture_removeShootAxillaryVegetativeBuds)
         .def("removeShootApex", &PlantArchitecture::removeShootApex, py::arg("plantID"),
-             py::arg("shootID"), "Kills the apical bud: the shoot makes no more phytomers.")
+             py::arg("shootID"), docs::PlantArchitecture_removeShootApex)
         .def("removeShootFloralBuds", &PlantArchitecture::removeShootFloralBuds, py::arg("plantID"),
-             py::arg("shootID"), "Removes the floral buds of a shoot that have not flowered yet.")
+             py::arg("shootID"), docs::PlantArchitecture_removeShootFloralBuds)
         .def("removePlantFlowers", &PlantArchitecture::removePlantFlowers, py::arg("plantID"),
-             "Removes flowers (open and closed) and fruit, keeping peduncles.")
+             docs::PlantArchitecture_removePlantFlowers)
         .def("harvestPlant", &PlantArchitecture::harvestPlant, py::arg("plantID"),
-             "Removes all fruit; returns how many there were.")
+             docs::PlantArchitecture_harvestPlant)
         .def("updateGeometry", &PlantArchitecture::updateGeometry, py::arg("plantID"),
-             "Regenerates the plant's geometry from its state.");
+             docs::PlantArchitecture_updateGeometry);
 }
 
 void bindGrowth(py::class_<PlantArchitecture>& c) {
@@ -419,13 +411,15 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
         py::options written;
         written.disable_function_signatures();
         c.def("advanceTime", &advanceTimeCall,
-              "advanceTime(self, time_step_days: float, plantIDs: int | Sequence[int] | None = "
-              "None) -> None\n\n"
-              "Grows the plants by time_step_days (any split of the time gives the same "
-              "plants): every plant, or the plant or list of plants plantIDs names "
-              "(positionally or by keyword; dt and plant_id are read too). advanceTime(3, 2), "
-              "two whole numbers, reads two ways and raises plantarch.Error naming the keyword "
-              "call.");
+              inPython(
+                  docs::PlantArchitecture_advanceTime,
+                  "advanceTime(self, time_step_days: float, plantIDs: int | Sequence[int] | None = "
+                  "None) -> None\n\n"
+                  "Grows the plants by time_step_days (any split of the time gives the same "
+                  "plants): every plant, or the plant or list of plants plantIDs names "
+                  "(positionally or by keyword; dt and plant_id are read too). advanceTime(3, 2), "
+                  "two whole numbers, reads two ways and raises plantarch.Error naming the keyword "
+                  "call."));
     }
     c.def(
          "writeGrowthAnimation",
@@ -437,19 +431,22 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
          },
          py::arg("plantIDs"), py::arg("start"), py::arg("end"), py::arg("step"),
          py::arg("filenames"), py::arg("frame_rate") = 24.0,
-         "Grows the plants from frame to frame (a frame every `step` days of growth from "
-         "`start` to `end`) and writes the scene at each frame into every file (.glb, .gltf "
-         "or .usda) as one animation that shows frame i alone at i / frame_rate seconds. "
-         "The plants are left grown to the last frame.")
+         inPython(
+             docs::writeGrowthAnimation,
+             "Grows the plants from frame to frame (a frame every `step` days of growth from "
+             "`start` to `end`) and writes the scene at each frame into every file (.glb, .gltf "
+             "or .usda) as one animation that shows frame i alone at i / frame_rate seconds. "
+             "The plants are left grown to the last frame."))
         .def(
             "setProgressCallback",
             [](PlantArchitecture& a, py::object fn) { setUserProgress(a, fn); },
             py::arg("callback"),
-            "callback(stage: str, fraction: float) is told how long calls progress (None: "
-            "none). Ctrl-C stops a long call between plants with KeyboardInterrupt.")
+            inPython(docs::PlantArchitecture_setProgressCallback,
+                     "callback(stage: str, fraction: float) is told how long calls progress (None: "
+                     "none). Ctrl-C stops a long call between plants with KeyboardInterrupt."))
         .def("setPlantPhenologicalThresholds", &PlantArchitecture::setPlantPhenologicalThresholds,
              py::arg("plantID"), py::arg("thresholds"),
-             "Sets a plant's phenological thresholds (a PhenologyParameters; validated).")
+             docs::PlantArchitecture_setPlantPhenologicalThresholds)
         .def(
             "setPlantPhenologicalThresholds",
             [](PlantArchitecture& a, unsigned plant, float dormancyBreak, float initiation,
@@ -472,7 +469,8 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             py::arg("time_to_fruit_set"), py::arg("time_to_fruit_maturity"),
             py::arg("time_to_senescence"), py::arg("max_leaf_lifespan") = 1e6f,
             py::arg("is_evergreen") = false, py::arg("max_age") = py::none(),
-            "The specification's form, days (negative disables a stage).")
+            inPython(docs::PlantArchitecture_setPlantPhenologicalThresholds,
+                     "The specification's form, days (negative disables a stage)."))
         .def(
             "getPlantPhenologicalThresholds",
             [](const PlantArchitecture& a, unsigned plant) { return a.plant(plant).phenology; },
@@ -486,9 +484,9 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             },
             py::arg("plantID"), py::arg("max_age"), "The plant stops developing at max_age days.")
         .def("setDefaultPhenology", &PlantArchitecture::setDefaultPhenology, py::arg("thresholds"),
-             "Thresholds given to plants added from now on (a PhenologyParameters).")
+             docs::PlantArchitecture_setDefaultPhenology)
         .def("getPhenologyStage", &PlantArchitecture::getPhenologyStage, py::arg("plantID"),
-             "Where the plant is in its yearly cycle now (a PhenologyStage).")
+             docs::PlantArchitecture_getPhenologyStage)
         .def(
             "registerPhytomerCreationFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
@@ -496,8 +494,10 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
                                                    creationFunction(fn, callLockOf(a.context())));
             },
             py::arg("name"), py::arg("function"),
-            "fn(ctx: PhytomerCreationContext) runs for every new phytomer of shoot types whose "
-            "phytomer_creation_function names it (in species files too).")
+            inPython(
+                docs::PlantArchitecture_registerPhytomerCreationFunction,
+                "fn(ctx: PhytomerCreationContext) runs for every new phytomer of shoot types whose "
+                "phytomer_creation_function names it (in species files too)."))
         .def(
             "registerPhytomerCallbackFunction",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
@@ -513,9 +513,11 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
                 a.registerLeafPrototype(name, leafPrototypeFunction(fn, callLockOf(a.context())));
             },
             py::arg("name"), py::arg("function"),
-            "fn(params: LeafPrototype, leafletIndex: int) returns the leaf in prototype units "
-            "(length 1 along +x, base at the origin, +z up) as a Mesh or a list of (Mesh, "
-            "Material); shoot types name it in leaf.prototype.prototype_function.")
+            inPython(
+                docs::PlantArchitecture_registerLeafPrototype,
+                "fn(params: LeafPrototype, leafletIndex: int) returns the leaf in prototype units "
+                "(length 1 along +x, base at the origin, +z up) as a Mesh or a list of (Mesh, "
+                "Material); shoot types name it in leaf.prototype.prototype_function."))
         .def(
             "registerFloralPrototype",
             [](PlantArchitecture& a, const std::string& name, py::function fn) {
@@ -527,7 +529,7 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             "as a Mesh or a list of (Mesh, Material); named in flower_prototype_function or "
             "fruit_prototype_function.")
         .def("hasLeafPrototype", &PlantArchitecture::hasLeafPrototype, py::arg("name"),
-             "Whether a leaf prototype builder of that name is registered.")
+             docs::PlantArchitecture_hasLeafPrototype)
         .def("hasFloralPrototype", &PlantArchitecture::hasFloralPrototype, py::arg("name"),
              "Whether a flower or fruit prototype builder of that name is registered.");
 }
@@ -551,9 +553,11 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
          py::arg("inertia") = 0.4f, py::arg("steer_internodes") = true,
          py::arg("steer_petioles") = false, py::arg("steer_peduncles") = false,
          py::arg("obstacle_objects") = std::vector<ObjectID>{}, py::arg("update_interval") = 1.0,
-         "Soft avoidance: new organs turn toward open space among plant organs and obstacles.")
+         inPython(
+             docs::PlantArchitecture_enableSoftCollisionAvoidance,
+             "Soft avoidance: new organs turn toward open space among plant organs and obstacles."))
         .def("disableSoftCollisionAvoidance", &PlantArchitecture::disableSoftCollisionAvoidance,
-             "Turns soft collision avoidance off.")
+             docs::PlantArchitecture_disableSoftCollisionAvoidance)
         .def(
             "setCollisionRelevantOrgans",
             [](PlantArchitecture& a, bool internodes, bool leaves, bool petioles, bool flowers,
@@ -562,8 +566,7 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
             },
             py::arg("include_internodes") = false, py::arg("include_leaves") = true,
             py::arg("include_petioles") = false, py::arg("include_flowers") = false,
-            py::arg("include_fruit") = false,
-            "Which plant organs are obstacles for soft avoidance (leaves only by default).")
+            py::arg("include_fruit") = false, docs::PlantArchitecture_setCollisionRelevantOrgans)
         .def(
             "enableSolidObstacleAvoidance",
             [](PlantArchitecture& a, std::vector<ObjectID> obstacles, float distance,
@@ -577,9 +580,9 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
             },
             py::arg("obstacle_objectIDs"), py::arg("avoidance_distance") = 0.2f,
             py::arg("enable_fruit_adjustment") = false, py::arg("organ_clearance") = true,
-            "Solid obstacles growth never enters (the ground, walls ...).")
+            docs::PlantArchitecture_enableSolidObstacleAvoidance)
         .def("disableSolidObstacleAvoidance", &PlantArchitecture::disableSolidObstacleAvoidance,
-             "Forgets the solid obstacles.")
+             docs::PlantArchitecture_disableSolidObstacleAvoidance)
         .def(
             "enableAttractionPoints",
             [](PlantArchitecture& a, py::object pts, float halfAngle, float lookAhead, float weight,
@@ -601,9 +604,11 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
             py::arg("attraction_points"), py::arg("view_half_angle_deg") = 80.0f,
             py::arg("look_ahead_distance") = 0.1f, py::arg("attraction_weight") = 0.6f,
             py::arg("shoot_types") = std::vector<std::string>{}, py::arg("plantID") = py::none(),
-            "Growing tips turn toward the nearest point in their cone (for every plant, or one), "
-            "by attraction_weight: 0 not at all, 1 fully (AttractionPoints.inertia = 1 - "
-            "weight).")
+            inPython(docs::PlantArchitecture_enableAttractionPoints,
+                     "Growing tips turn toward the nearest point in their cone (for every plant, "
+                     "or one), "
+                     "by attraction_weight: 0 not at all, 1 fully (AttractionPoints.inertia = 1 - "
+                     "weight)."))
         .def(
             "updateAttractionPoints",
             [](PlantArchitecture& a, py::object pts, std::optional<unsigned> plant) {
@@ -611,7 +616,7 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
                       : a.updateAttractionPoints(points(pts));
             },
             py::arg("attraction_points"), py::arg("plantID") = py::none(),
-            "Replaces the global attraction points, or one plant's own, keeping their cone.")
+            docs::PlantArchitecture_updateAttractionPoints)
         .def(
             "appendAttractionPoints",
             [](PlantArchitecture& a, py::object pts, std::optional<unsigned> plant) {
@@ -619,74 +624,69 @@ void bindCollision(py::class_<PlantArchitecture>& c) {
                       : a.appendAttractionPoints(points(pts));
             },
             py::arg("attraction_points"), py::arg("plantID") = py::none(),
-            "Adds points to the global attraction points, or to one plant's own.")
+            docs::PlantArchitecture_appendAttractionPoints)
         .def(
             "disableAttractionPoints",
             [](PlantArchitecture& a, std::optional<unsigned> plant) {
                 plant ? a.disableAttractionPoints(*plant) : a.disableAttractionPoints();
             },
-            py::arg("plantID") = py::none(),
-            "Removes the global attraction points, or one plant's own (it follows the global ones "
-            "again).")
+            py::arg("plantID") = py::none(), docs::PlantArchitecture_disableAttractionPoints)
         .def("getAttractionPoints", &PlantArchitecture::getAttractionPoints, py::arg("plantID"),
-             "The attraction points a plant steers by (its own, else the global ones).")
+             docs::PlantArchitecture_getAttractionPoints)
         .def(
             "getCollisionStats",
             [](const PlantArchitecture& a) { return statsDict(a.getCollisionStats()); },
-            "Counts of the work collision avoidance did, as a dict.")
+            docs::PlantArchitecture_getCollisionStats)
         .def("resetCollisionStats", &PlantArchitecture::resetCollisionStats,
-             "Sets the counts of getCollisionStats to zero.");
+             docs::PlantArchitecture_resetCollisionStats);
 }
 
 void bindQueries(py::class_<PlantArchitecture>& c) {
     c.def("getAllPlantIDs", &PlantArchitecture::getAllPlantIDs,
-          "IDs of every plant, in increasing order.")
+          docs::PlantArchitecture_getAllPlantIDs)
         .def(
             "plant", [](const PlantArchitecture& a, unsigned plant) { return a.plant(plant); },
             py::arg("plantID"),
-            "A copy of the plant's whole state as it is now (read it; it stays valid whatever "
-            "happens to the plant).")
+            inPython(
+                docs::PlantArchitecture_plant,
+                "A copy of the plant's whole state as it is now (read it; it stays valid whatever "
+                "happens to the plant)."))
         .def("getPlantBasePosition", &PlantArchitecture::getPlantBasePosition, py::arg("plantID"),
-             "Where the plant's base stands, m.")
+             docs::PlantArchitecture_getPlantBasePosition)
         .def("getPlantAge", &PlantArchitecture::getPlantAge, py::arg("plantID"),
-             "Age of the plant, days.")
+             docs::PlantArchitecture_getPlantAge)
         .def("getPlantHeight", &PlantArchitecture::getPlantHeight, py::arg("plantID"),
-             "Top of the plant's geometry above its base, m.")
+             docs::PlantArchitecture_getPlantHeight)
         .def("getPlantStemHeight", &PlantArchitecture::getPlantStemHeight, py::arg("plantID"),
-             "Height of the tip of the base stem above the plant base, m.")
+             docs::PlantArchitecture_getPlantStemHeight)
         .def("getPlantLeafCount", &PlantArchitecture::getPlantLeafCount, py::arg("plantID"),
-             "Leaves (leaflets counted one by one) the plant has now.")
+             docs::PlantArchitecture_getPlantLeafCount)
         .def("getPlantLeafArea", &PlantArchitecture::getPlantLeafArea, py::arg("plantID"),
-             "One-sided area of all leaves, m^2.")
-        .def(
-            "getPlantObjectIDs", &PlantArchitecture::getPlantObjectIDs, py::arg("plantID"),
-            py::arg("organ"),
-            "Context objects of the plant's organs of one OrganKind, shoot by shoot from the base.")
+             docs::PlantArchitecture_getPlantLeafArea)
+        .def("getPlantObjectIDs", &PlantArchitecture::getPlantObjectIDs, py::arg("plantID"),
+             py::arg("organ"), docs::PlantArchitecture_getPlantObjectIDs)
         .def("getAllPlantObjectIDs", &PlantArchitecture::getAllPlantObjectIDs, py::arg("plantID"),
-             "Context objects of every organ of the plant, in increasing ID order.")
+             docs::PlantArchitecture_getAllPlantObjectIDs)
         .def("getAllObjectIDs", &PlantArchitecture::getAllObjectIDs,
-             "Context objects of every plant, in increasing ID order.")
+             docs::PlantArchitecture_getAllObjectIDs)
         .def("getShootCount", &PlantArchitecture::getShootCount, py::arg("plantID"),
-             "Shoots the plant has now (pruned ones not counted).")
+             docs::PlantArchitecture_getShootCount)
         .def("getShootNodeCount", &PlantArchitecture::getShootNodeCount, py::arg("plantID"),
-             py::arg("shootID"), "Phytomers (nodes) of a shoot.")
+             py::arg("shootID"), docs::PlantArchitecture_getShootNodeCount)
         .def("getShootParent", &PlantArchitecture::getShootParent, py::arg("plantID"),
-             py::arg("shootID"), "The shoot a shoot grows from; -1 for the base stem.")
+             py::arg("shootID"), docs::PlantArchitecture_getShootParent)
         .def("getShootRank", &PlantArchitecture::getShootRank, py::arg("plantID"),
-             py::arg("shootID"), "0 for the base stem, the parent's rank + 1 for a child shoot.")
+             py::arg("shootID"), docs::PlantArchitecture_getShootRank)
         .def("getShootChildren", &PlantArchitecture::getShootChildren, py::arg("plantID"),
-             py::arg("shootID"),
-             "Shoots growing directly from this one, in the order they were made.")
+             py::arg("shootID"), docs::PlantArchitecture_getShootChildren)
         .def("getShootDescendants", &PlantArchitecture::getShootDescendants, py::arg("plantID"),
-             py::arg("shootID"),
-             "Every shoot growing from this one, at any depth, in increasing ID order.")
+             py::arg("shootID"), docs::PlantArchitecture_getShootDescendants)
         .def("getTerminalShoots", &PlantArchitecture::getTerminalShoots, py::arg("plantID"),
-             "Shoots with no children.")
+             docs::PlantArchitecture_getTerminalShoots)
         .def("getShootPathToRoot", &PlantArchitecture::getShootPathToRoot, py::arg("plantID"),
-             py::arg("shootID"), "Shoot IDs from this shoot down to the base stem (inclusive).")
+             py::arg("shootID"), docs::PlantArchitecture_getShootPathToRoot)
         .def("getNodePosition", &PlantArchitecture::getNodePosition, py::arg("plantID"),
-             py::arg("shootID"), py::arg("node_index"),
-             "World position of a node (the tip of internode node_index), m.");
+             py::arg("shootID"), py::arg("node_index"), docs::PlantArchitecture_getNodePosition);
 }
 
 void bindFiles(py::class_<PlantArchitecture>& c) {
@@ -698,9 +698,10 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
              a.writePlantStructureXML(ids, file);
          },
          py::arg("plantID"), py::arg("filename"),
-         "Writes one plant (an ID) or several (a list) as a plant structure XML file.")
+         inPython(docs::PlantArchitecture_writePlantStructureXML,
+                  "Writes one plant (an ID) or several (a list) as a plant structure XML file."))
         .def("getPlantStructureXML", &PlantArchitecture::getPlantStructureXML, py::arg("plantIDs"),
-             "The plant structure XML document of the given plants, as a string.")
+             docs::PlantArchitecture_getPlantStructureXML)
         .def(
             "writeHeliosPlantStructureXML",
             [](const PlantArchitecture& a, py::object plants, const std::string& file) {
@@ -709,14 +710,16 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
                 writeHeliosPlantStructureXML(a, ids, file);
             },
             py::arg("plantID"), py::arg("filename"),
-            "Writes one plant (an ID) or several (a list) as a <helios> plant structure file, "
-            "the reference system's layout (docs/plant-xml.md).")
+            inPython(
+                docs::writeHeliosPlantStructureXML,
+                "Writes one plant (an ID) or several (a list) as a <helios> plant structure file, "
+                "the reference system's layout (docs/plant-xml.md)."))
         .def(
             "getHeliosPlantStructureXML",
             [](const PlantArchitecture& a, const std::vector<unsigned>& ids) {
                 return getHeliosPlantStructureXML(a, ids);
             },
-            py::arg("plantIDs"), "The <helios> plant structure document of the given plants.")
+            py::arg("plantIDs"), docs::getHeliosPlantStructureXML)
         .def(
             "readPlantStructureXML",
             [](PlantArchitecture& a, const std::string& file, py::object warnings) {
@@ -725,26 +728,28 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
                 return a.readPlantStructureXML(file, options);
             },
             py::arg("filename"), py::arg("warnings") = py::none(),
-            "Adds the plants of a file; returns their IDs. `warnings`: a list that receives one "
-            "line per plant whose file left values out.")
+            inPython(docs::PlantArchitecture_readPlantStructureXML,
+                     "Adds the plants of a file; returns their IDs. `warnings`: a list that "
+                     "receives one "
+                     "line per plant whose file left values out."))
         .def(
             "readPlantStructureXMLString",
             [](PlantArchitecture& a, const std::string& xml, py::object warnings) {
                 return a.readPlantStructureXMLString(xml, readOptions(warnings));
             },
             py::arg("xml"), py::arg("warnings") = py::none(),
-            "Adds the plants of a plant structure document in a string; returns their IDs.")
+            docs::PlantArchitecture_readPlantStructureXMLString)
         .def(
             "getPlantString",
             [](const PlantArchitecture& a, unsigned plant, int digits) {
                 return a.getPlantString(plant, {digits});
             },
             py::arg("plantID"), py::arg("significant_digits") = 4,
-            "A one-line text of the plant's visible structure.")
+            docs::PlantArchitecture_getPlantString)
         .def(
             "generatePlantFromString",
             [](PlantArchitecture& a, const std::string& s) { return a.generatePlantFromString(s); },
-            py::arg("plant_string"), "Adds the plant a plant string describes; returns its ID.");
+            py::arg("plant_string"), docs::PlantArchitecture_generatePlantFromString);
 }
 
 }  // namespace
@@ -753,15 +758,11 @@ void bindFiles(py::class_<PlantArchitecture>& c) {
 void bindPlantEdits(py::class_<PlantArchitecture>& c) {
     c.def("duplicatePlantInstance", &PlantArchitecture::duplicatePlantInstance, py::arg("plantID"),
           py::arg("base_position"), py::arg("base_rotation") = AxisRotation{}, py::arg("age"),
-          "A copy of a plant at base_position, turned about its base by base_rotation (pitch "
-          "from the vertical, yaw about it, roll), age days old; it grows on with random "
-          "numbers of its own. Returns its ID.",
-          Release())
+          docs::PlantArchitecture_duplicatePlantInstance, Release())
         .def("setPlantBasePosition", &PlantArchitecture::setPlantBasePosition, py::arg("plantID"),
-             py::arg("base_position"), "Moves the plant so its base stands at base_position.",
-             Release())
+             py::arg("base_position"), docs::PlantArchitecture_setPlantBasePosition, Release())
         .def("getPlantName", &PlantArchitecture::getPlantName, py::arg("plantID"),
-             "The plant's species, or the label a plant file gave it.")
+             docs::PlantArchitecture_getPlantName)
         .def(
             "addEpicormicShoot",
             [](PlantArchitecture& a, unsigned plant, unsigned parent, float position,
@@ -777,38 +778,37 @@ void bindPlantEdits(py::class_<PlantArchitecture>& c) {
             py::arg("internode_length_scale_factor_fraction") = 1.0f,
             py::arg("leaf_scale_factor_fraction") = 1.0f, py::arg("radius_taper") = 0.0f,
             py::arg("shoot_type_label"),
-            "A water sprout from the wood of a shoot at a fraction (0, 1] of its length, upright "
-            "(base_rotation.pitch from the vertical); returns its shoot ID.",
+            inPython(docs::PlantArchitecture_addEpicormicShoot,
+                     "A water sprout from the wood of a shoot at a fraction (0, 1] of its length, "
+                     "upright "
+                     "(base_rotation.pitch from the vertical); returns its shoot ID."),
             Release())
         .def("enableEpicormicChildShoots", &PlantArchitecture::enableEpicormicChildShoots,
              py::arg("plantID"), py::arg("epicormic_shoot_type_label"),
              py::arg("epicormic_probability_perlength_perday"),
-             "Water sprouts as the plant grows: each day each shoot grows one with probability "
-             "rate x its length x the vertical part of its axis at a random point (0: off).")
+             inPython(
+                 docs::PlantArchitecture_enableEpicormicChildShoots,
+                 "Water sprouts as the plant grows: each day each shoot grows one with probability "
+                 "rate x its length x the vertical part of its axis at a random point (0: off)."))
         .def("makePlantDormant", &PlantArchitecture::makePlantDormant, py::arg("plantID"),
-             "Ends the plant's growing season now (leaves fall unless evergreen).", Release())
+             docs::PlantArchitecture_makePlantDormant, Release())
         .def("breakPlantDormancy", &PlantArchitecture::breakPlantDormancy, py::arg("plantID"),
-             "Starts a growing season now, if the plant is dormant.", Release())
+             docs::PlantArchitecture_breakPlantDormancy, Release())
         .def("isPlantDormant", &PlantArchitecture::isPlantDormant, py::arg("plantID"),
-             "Whether the plant is dormant.")
+             docs::PlantArchitecture_isPlantDormant)
         .def("enableGroundClipping", &PlantArchitecture::enableGroundClipping,
-             py::arg("ground_height") = 0.0f,
-             "Leaves, flowers and fruit reaching below ground_height (m) fall off at the end of "
-             "every growth step, side shoots reaching it stop; applied to the plants now too.",
+             py::arg("ground_height") = 0.0f, docs::PlantArchitecture_enableGroundClipping,
              Release())
         .def("disableGroundClipping", &PlantArchitecture::disableGroundClipping,
              "Turns ground clipping off.")
         .def("getGroundClipping", &PlantArchitecture::getGroundClipping,
-             "The ground clipping height, or None when off.")
+             docs::PlantArchitecture_getGroundClipping)
         .def("setOrganGeometry", &PlantArchitecture::setOrganGeometry, py::arg("organ"),
-             py::arg("build"),
-             "Whether organs of one OrganKind get geometry in the Context (all do by default); "
-             "growth is unchanged. Redraws the plants there are.",
-             Release())
+             py::arg("build"), docs::PlantArchitecture_setOrganGeometry, Release())
         .def("getOrganGeometry", &PlantArchitecture::getOrganGeometry, py::arg("organ"),
              "Whether organs of that OrganKind get geometry.")
         .def("sumPlantLeafArea", &PlantArchitecture::sumPlantLeafArea, py::arg("plantIDs"),
-             "One-sided leaf area of several plants together, m^2.");
+             docs::PlantArchitecture_sumPlantLeafArea);
     // The per-organ object lists as the model specification names them: one call each.
     struct OrganList {
         const char* name;
@@ -856,13 +856,13 @@ void bindArchitecture(py::module_& m) {
              py::return_value_policy::reference_internal,
              "The Context the plants' geometry lives in.")
         .def("setSeed", &PlantArchitecture::setSeed, py::arg("seed"),
-             "Seed of the scene (42 by default), for plants added afterwards.")
+             docs::PlantArchitecture_setSeed)
         .def("context", py::overload_cast<>(&PlantArchitecture::context),
-             py::return_value_policy::reference_internal,
-             "The Context the plants' geometry lives in (the same as getContext).")
+             py::return_value_policy::reference_internal, docs::PlantArchitecture_context)
         .def("seed", &PlantArchitecture::seed, "Seed of the scene (the same as getSeed).")
         .def("shootType", &PlantArchitecture::shootType, py::arg("shoot_type_label"),
-             "A copy of a defined shoot type's parameters (the same as getShootType).")
+             inPython(docs::PlantArchitecture_shootType,
+                      "A copy of a defined shoot type's parameters (the same as getShootType)."))
         .def("getSeed", &PlantArchitecture::seed, "Seed of the scene.");
     bindLibrary(c);
     bindShootTypes(c);

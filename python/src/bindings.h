@@ -15,6 +15,11 @@ namespace py = pybind11;
 
 namespace plantarch::python {
 
+/// A docstring: the C++ declaration's comment (docs::..., generated from the public headers),
+/// then what differs in Python (its argument forms, its return values). The text lives as long
+/// as the module.
+const char* inPython(const char* cpp, const char* python);
+
 /// A vec3 from any sequence of three numbers (plantarch.vec3, tuple, list, numpy array).
 /// Throws plantarch::Error naming `what` otherwise.
 vec3 toVec3(py::handle value, const char* what);

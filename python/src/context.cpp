@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bindings.h"
+#include "docstrings.h"
 
 namespace plantarch::python {
 
@@ -104,8 +105,7 @@ void bindContext(py::module_& m) {
         "and labelled data (plantID, organ, shootID, rank, age, leafID ...).");
     bindWithBlock(context, "the Context");
     context.def(py::init<>())
-        .def("addMaterial", &Context::addMaterial, py::arg("material"),
-             "Adds a material (or finds an equal one); returns its ID.")
+        .def("addMaterial", &Context::addMaterial, py::arg("material"), docs::Context_addMaterial)
         .def(
             "addObject",
             [](Context& c, const FloatRows& positions, const IndexRows& triangles, py::object uvs,
@@ -115,11 +115,11 @@ void bindContext(py::module_& m) {
             },
             py::arg("positions"), py::arg("triangles"), py::arg("uvs") = py::none(),
             py::arg("material") = py::none(),
-            "Adds an object (e.g. an obstacle) from numpy arrays; returns its ID.")
-        .def("copyObject", &Context::copyObject, py::arg("objectID"),
-             "A new object with the same geometry, material and data; returns its ID.")
+            inPython(docs::Context_addObject,
+                     "Adds an object (e.g. an obstacle) from numpy arrays; returns its ID."))
+        .def("copyObject", &Context::copyObject, py::arg("objectID"), docs::Context_copyObject)
         .def("deleteObject", &Context::deleteObject, py::arg("objectID"),
-             "Removes an object, its triangles and data.")
+             docs::Context_deleteObject)
         .def("setObjectHidden", &Context::setObjectHidden, py::arg("objectID"), py::arg("hidden"),
              "Hides or shows an object (exporters and the renderer leave hidden ones out).")
         .def("isObjectHidden", &Context::isObjectHidden, py::arg("objectID"),
@@ -164,8 +164,7 @@ void bindContext(py::module_& m) {
                     for (int k = 0; k < 4; ++k) t[k][r] = matrix.at(r, k);  // row-major in
                 c.transformObject(id, t);
             },
-            py::arg("objectID"), py::arg("transform"),
-            "Applies a 4 x 4 transform (row-major, numpy convention) to the object.")
+            py::arg("objectID"), py::arg("transform"), docs::Context_transformObject)
         .def(
             "getObjectData",
             [](const Context& c, ObjectID id, const std::string& label) {
@@ -178,27 +177,24 @@ void bindContext(py::module_& m) {
                 c.setObjectData(id, label, toDataValue(value));
             },
             py::arg("objectID"), py::arg("label"), py::arg("value"),
-            "Sets int, float, text or vec3 data (a label keeps one type).")
+            inPython(docs::Context_setObjectData,
+                     "Sets int, float, text or vec3 data (a label keeps one type)."))
         .def("listObjectDataLabels", &Context::objectDataLabels,
              "Labels used by any object, sorted (the same as objectDataLabels).")
-        .def("clear", &Context::clear, py::arg("release_memory") = true,
-             "Removes every object and material (IDs restart at 0). With release_memory=False "
-             "the storage keeps its capacity, for a Context filled again with as much.")
-        .def("memoryBytes", &Context::memoryBytes, "Bytes held by the Context's storage.")
+        .def("clear", &Context::clear, py::arg("release_memory") = true, docs::Context_clear)
+        .def("memoryBytes", &Context::memoryBytes, docs::Context_memoryBytes)
         .def("setTriangleLimit", &Context::setTriangleLimit, py::arg("limit"),
-             "At most this many live triangles (0: no limit); adding past it raises "
-             "TriangleBudgetError and changes nothing.")
+             docs::Context_setTriangleLimit)
         .def("triangleLimit", &Context::triangleLimit, "The triangle limit (0: none).")
         // The C++ names (the get... names above are those the specification's users know).
-        .def("objectIDs", &Context::objectIDs, "Live objects, in increasing ID order.")
+        .def("objectIDs", &Context::objectIDs, docs::Context_objectIDs)
         .def("objectCount", &Context::objectCount, "Live objects.")
         .def("triangleCount", &Context::triangleCount, "Triangles of the live objects.")
         .def("vertexCount", &Context::vertexCount, "Vertices of the live objects.")
-        .def("objectIDLimit", &Context::objectIDLimit, "One past the largest object ID issued.")
-        .def("objectMesh", &Context::objectMesh, py::arg("objectID"), "A copy of its mesh.")
+        .def("objectIDLimit", &Context::objectIDLimit, docs::Context_objectIDLimit)
+        .def("objectMesh", &Context::objectMesh, py::arg("objectID"), docs::Context_objectMesh)
         .def("setObjectMesh", py::overload_cast<ObjectID, const Mesh&>(&Context::setObjectMesh),
-             py::arg("objectID"), py::arg("mesh"),
-             "Replaces the object's geometry, keeping its ID, material and data.")
+             py::arg("objectID"), py::arg("mesh"), docs::Context_setObjectMesh)
         .def("objectArea", &Context::objectArea, py::arg("objectID"), "m^2")
         .def("material", &Context::material, py::arg("materialID"), "A material by ID.")
         .def("materialCount", &Context::materialCount, "Materials in the Context.")
@@ -219,7 +215,7 @@ void bindContext(py::module_& m) {
                 return dataValue(c.objectData(id, label));
             },
             py::arg("objectID"), py::arg("label"), "The value, or None when unset.")
-        .def("objectDataLabels", &Context::objectDataLabels, "Labels used by any object, sorted.")
+        .def("objectDataLabels", &Context::objectDataLabels, docs::Context_objectDataLabels)
         .def(
             "objectDataType",
             [](const Context& c, const std::string& label) -> py::object {
@@ -235,7 +231,7 @@ void bindContext(py::module_& m) {
             },
             py::arg("objectID"), "(first primitive ID, count) of the object's triangles.")
         .def("primitiveObject", &Context::primitiveObject, py::arg("primitiveID"),
-             "The object a triangle (primitive) belongs to.")
+             docs::Context_primitiveObject)
         .def("doesPrimitiveExist", &Context::doesPrimitiveExist, py::arg("primitiveID"),
              "Whether a triangle of that ID is alive.")
         .def(
@@ -244,7 +240,7 @@ void bindContext(py::module_& m) {
                 const auto v = c.primitiveVertices(id);
                 return py::make_tuple(py::cast(v[0]), py::cast(v[1]), py::cast(v[2]));
             },
-            py::arg("primitiveID"), "The three corners, world coordinates.")
+            py::arg("primitiveID"), docs::Context_primitiveVertices)
         .def(
             "setPrimitiveData",
             [](Context& c, PrimitiveID id, const std::string& label, py::handle value) {
@@ -260,7 +256,7 @@ void bindContext(py::module_& m) {
             py::arg("primitiveID"), py::arg("label"), "A triangle's data, or None when unset.")
         .def("primitiveDataLabels", &Context::primitiveDataLabels,
              "Labels used by any triangle, sorted.")
-        .def("compact", &Context::compact, "Packs the storage after deletions (IDs kept).");
+        .def("compact", &Context::compact, docs::Context_compact);
 }
 
 }  // namespace plantarch::python

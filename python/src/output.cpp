@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bindings.h"
+#include "docstrings.h"
 #include "plantarch/Export.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
@@ -141,7 +142,9 @@ void bindOutput(py::module_& m) {
             writeOBJ(c, path, options);
         },
         py::arg("context"), py::arg("filename"), py::arg("options"),
-        "Writes the Context as OBJ (+ MTL) with the options of an ObjOptions, atomically.");
+        inPython(
+            docs::writeOBJ,
+            "Writes the Context as OBJ (+ MTL) with the options of an ObjOptions, atomically."));
     m.def(
         "writeOBJ",
         [](const Context& c, const std::string& path, bool includeHidden, bool normals, bool uvs,
@@ -152,7 +155,8 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("include_hidden") = false,
         py::arg("normals") = true, py::arg("uvs") = true, py::arg("materials") = true,
         py::arg("split_per_object") = false,
-        "Writes the Context as OBJ (+ MTL) with one group per object, atomically.");
+        inPython(docs::writeOBJ,
+                 "Writes the Context as OBJ (+ MTL) with one group per object, atomically."));
     m.def(
         "writePLY",
         [](const Context& c, const std::string& path, bool ascii, bool includeHidden, bool normals,
@@ -169,9 +173,11 @@ void bindOutput(py::module_& m) {
         },
         py::arg("context"), py::arg("filename"), py::arg("ascii") = false,
         py::arg("include_hidden") = false, py::arg("normals") = false, py::arg("color") = "none",
-        "Writes the Context as PLY with per-face labels (plant, object, organ, leaf, shoot, "
-        "rank, node, age) and, with color 'organ', 'plant' or 'material', vertex colours, "
-        "atomically.");
+        inPython(
+            docs::writePLY,
+            "Writes the Context as PLY with per-face labels (plant, object, organ, leaf, shoot, "
+            "rank, node, age) and, with color 'organ', 'plant' or 'material', vertex colours, "
+            "atomically."));
     m.def(
         "writeGLTF",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
@@ -189,9 +195,11 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("labels") = true,
-        "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
-        "plant (named, placed and described from `architecture` when given), a mesh per organ "
-        "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata.");
+        inPython(
+            docs::writeGLTF,
+            "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
+            "plant (named, placed and described from `architecture` when given), a mesh per organ "
+            "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata."));
     m.def(
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
@@ -207,9 +215,11 @@ void bindOutput(py::module_& m) {
         },
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
-        "Writes the Context as USD text (.usda), atomically: an Xform per plant (placed and "
-        "described from `architecture` when given), a Mesh per organ kind with normals, UVs, "
-        "per-face organ/plantID/objectID primvars and semantic class labels.");
+        inPython(
+            docs::writeUSDA,
+            "Writes the Context as USD text (.usda), atomically: an Xform per plant (placed and "
+            "described from `architecture` when given), a Mesh per organ kind with normals, UVs, "
+            "per-face organ/plantID/objectID primvars and semantic class labels."));
     m.def(
         "samplePoints",
         [](const Context& c, std::size_t points, std::uint64_t seed, bool includeHidden) {
@@ -222,9 +232,12 @@ void bindOutput(py::module_& m) {
         },
         py::arg("context"), py::arg("points") = 100000, py::arg("seed") = 0,
         py::arg("include_hidden") = false,
-        "A labelled point cloud: `points` points drawn uniformly by area over the visible "
-        "triangles, as numpy arrays positions (N x 3), normals (N x 3), plant_id, object_id and "
-        "organ (an index into ORGAN_LABELS). Same seed, same points; numpy.savez writes them.");
+        inPython(docs::samplePoints,
+                 "A labelled point cloud: `points` points drawn uniformly by area over the visible "
+                 "triangles, as numpy arrays positions (N x 3), normals (N x 3), plant_id, "
+                 "object_id and "
+                 "organ (an index into ORGAN_LABELS). Same seed, same points; numpy.savez writes "
+                 "them."));
     m.def(
         "scan",
         [](const Context& c, const std::vector<vec3>& scanners, float resolution,
@@ -248,10 +261,13 @@ void bindOutput(py::module_& m) {
         py::arg("zenith") = std::pair<float, float>(30.0f, 150.0f),
         py::arg("azimuth") = std::pair<float, float>(0.0f, 360.0f), py::arg("noise") = 0.0f,
         py::arg("max_range") = 100.0f, py::arg("seed") = 0,
-        "A simulated terrestrial LiDAR scan: rays from each scanner position (x, y, z) every "
-        "`resolution` degrees over the zenith (from straight up) and azimuth (from +x) ranges; "
-        "the first hit of each, as numpy arrays positions, normals (toward the scanner), "
-        "plant_id, object_id, organ, range (m, with Gaussian noise of sd `noise`) and scanner.");
+        inPython(
+            docs::scan,
+            "A simulated terrestrial LiDAR scan: rays from each scanner position (x, y, z) every "
+            "`resolution` degrees over the zenith (from straight up) and azimuth (from +x) ranges; "
+            "the first hit of each, as numpy arrays positions, normals (toward the scanner), "
+            "plant_id, object_id, organ, range (m, with Gaussian noise of sd `noise`) and "
+            "scanner."));
     m.def(
         "writePointCloudPLY",
         [](const Context& c, const std::string& path, std::size_t points, std::uint64_t seed) {
@@ -259,7 +275,8 @@ void bindOutput(py::module_& m) {
             writePointCloudPLY(samplePoints(c, {points, seed, false}), path);
         },
         py::arg("context"), py::arg("filename"), py::arg("points") = 100000, py::arg("seed") = 0,
-        "Samples a labelled point cloud and writes it as a binary PLY of vertices.");
+        inPython(docs::writePointCloudPLY,
+                 "Samples a labelled point cloud and writes it as a binary PLY of vertices."));
     m.def(
         "writeQSM",
         [](const PlantArchitecture& a, const std::string& path, py::object plantIDs) {
@@ -269,27 +286,34 @@ void bindOutput(py::module_& m) {
             writeQSM(a, plants, path);
         },
         py::arg("architecture"), py::arg("filename"), py::arg("plantIDs") = py::none(),
-        "Writes the plants' internodes (all plants by default) as QSM cylinders, CSV: id, "
-        "parent, plant, start, axis, length, radius, branch, branch order, position, type.");
+        inPython(
+            docs::writeQSM,
+            "Writes the plants' internodes (all plants by default) as QSM cylinders, CSV: id, "
+            "parent, plant, start, axis, length, radius, branch, branch order, position, type."));
     m.def(
         "readOBJ", [](Context& c, const std::string& path) { return readOBJ(c, path); },
         py::arg("context"), py::arg("filename"),
-        "Adds the objects of an OBJ file (obstacles, ground); returns their IDs.");
+        inPython(docs::readOBJ,
+                 "Adds the objects of an OBJ file (obstacles, ground); returns their IDs."));
     m.def(
         "readPLY",
         [](Context& c, const std::string& path, bool labels) {
             return readPLY(c, path, {.labels = labels});
         },
         py::arg("context"), py::arg("filename"), py::arg("labels") = true,
-        "Adds the mesh of a PLY file (ASCII or binary): one object per object_id with the "
-        "labels writePLY writes, or one object; returns their IDs.");
+        inPython(docs::readPLY,
+                 "Adds the mesh of a PLY file (ASCII or binary): one object per object_id with the "
+                 "labels writePLY writes, or one object; returns their IDs."));
     m.def("readGLTF", &readGLTF, py::arg("context"), py::arg("filename"),
-          "Adds the triangle meshes of a glTF scene (.glb, or .gltf with embedded buffers), z "
-          "up: one object per _OBJECT_ID with plantID and organ in files plantarch wrote; "
-          "returns their IDs.");
+          inPython(
+              docs::readGLTF,
+              "Adds the triangle meshes of a glTF scene (.glb, or .gltf with embedded buffers), z "
+              "up: one object per _OBJECT_ID with plantID and organ in files plantarch wrote; "
+              "returns their IDs."));
     m.def("readObstacleMesh", &readObstacleMesh, py::arg("context"), py::arg("filename"),
-          "Adds an obstacle mesh (.obj or .ply) without labels, its objects with organ "
-          "'obstacle'; returns their IDs.");
+          inPython(docs::readObstacleMesh,
+                   "Adds an obstacle mesh (.obj or .ply) without labels, its objects with organ "
+                   "'obstacle'; returns their IDs."));
     m.def(
         "render",
         [](const Context& c, int width, int height, const std::string& mode, float azimuth,
@@ -318,12 +342,14 @@ void bindOutput(py::module_& m) {
         py::arg("fov") = 35.0f, py::arg("samples_per_pixel") = 4, py::arg("ground") = true,
         py::arg("seed") = 0, py::arg("eye") = py::none(), py::arg("target") = py::none(),
         py::arg("up") = vec3(0.0f, 0.0f, 1.0f),
-        "Renders the Context as a height x width x 3 uint8 array. mode: 'shaded', 'organ' "
-        "(label colours per organ) or 'object' (one colour per object ID; "
-        "objectIDsFromLabelImage decodes it). The camera is framed on the scene from azimuth "
-        "and elevation (degrees), or fixed with eye=(x, y, z), target (default: the scene's "
-        "centre) and up: a fixed camera frames every call alike. renderCamera gives its "
-        "matrices.");
+        inPython(
+            docs::render,
+            "Renders the Context as a height x width x 3 uint8 array. mode: 'shaded', 'organ' "
+            "(label colours per organ) or 'object' (one colour per object ID; "
+            "objectIDsFromLabelImage decodes it). The camera is framed on the scene from azimuth "
+            "and elevation (degrees), or fixed with eye=(x, y, z), target (default: the scene's "
+            "centre) and up: a fixed camera frames every call alike. renderCamera gives its "
+            "matrices."));
     m.def(
         "renderCamera",
         [](const Context& c, int width, int height, float azimuth, float elevation, float fov,
@@ -381,8 +407,10 @@ void bindOutput(py::module_& m) {
         py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f, py::arg("fov") = 35.0f,
         py::arg("ground") = true, py::arg("eye") = py::none(), py::arg("target") = py::none(),
         py::arg("up") = vec3(0.0f, 0.0f, 1.0f),
-        "The depth image of the camera render() would use: a height x width float32 array of "
-        "distances along the view axis in metres, 0 where nothing is hit.");
+        inPython(
+            docs::renderDepth,
+            "The depth image of the camera render() would use: a height x width float32 array of "
+            "distances along the view axis in metres, 0 where nothing is hit."));
     m.def(
         "objectIDsFromLabelImage",
         [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
@@ -408,30 +436,33 @@ void bindOutput(py::module_& m) {
            const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a,
            const std::string& imageFile) { return cocoAnnotations(c, imageFrom(a), imageFile); },
         py::arg("context"), py::arg("image"), py::arg("image_file") = "image.png",
-        "COCO instance annotations (JSON text) of a render(mode='object') image of the "
-        "Context: one per object in view, its organ as category, object_id and plant_id, "
-        "bounding box and RLE mask; what `plantarch render --coco` writes.");
+        inPython(docs::cocoAnnotations,
+                 "COCO instance annotations (JSON text) of a render(mode='object') image of the "
+                 "Context: one per object in view, its organ as category, object_id and plant_id, "
+                 "bounding box and RLE mask; what `plantarch render --coco` writes."));
     m.def(
         "objectIDFromLabelColor",
         [](std::uint8_t r, std::uint8_t g, std::uint8_t b) -> std::optional<ObjectID> {
             return objectIDFromLabelColor({r, g, b});
         },
         py::arg("r"), py::arg("g"), py::arg("b"),
-        "The object ID of one colour of a render(mode='object') image; None for black.");
+        inPython(docs::objectIDFromLabelColor,
+                 "The object ID of one colour of a render(mode='object') image; None for black."));
     m.def(
         "writePNG",
         [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a,
            const std::string& path) { writePNG(imageFrom(a), path); },
-        py::arg("image"), py::arg("filename"), "Writes an image array as PNG, atomically.");
+        py::arg("image"), py::arg("filename"),
+        inPython(docs::writePNG, "Writes an image array as PNG, atomically."));
     m.def(
         "encodePNG",
         [](const py::array_t<std::uint8_t, py::array::c_style | py::array::forcecast>& a) {
             return py::bytes(encodePNG(imageFrom(a)));
         },
-        py::arg("image"), "An image array as PNG bytes.");
+        py::arg("image"), docs::encodePNG);
     m.def(
         "readImage", [](const std::string& path) { return imageArray(readImage(path)); },
-        py::arg("filename"), "Reads a PNG (or JPEG ...) as a height x width x 3 uint8 array.");
+        py::arg("filename"), docs::readImage);
     py::class_<GrowthRecorder>(
         m, "GrowthRecorder",
         "Frames of a scene recorded between steps of your own (growth, pruning, harvest), "
@@ -466,9 +497,8 @@ void bindOutput(py::module_& m) {
             py::arg("filenames"), py::arg("frame_rate") = 24.0,
             "Writes the frames into a file or each of a list of files (.glb, .gltf or .usda) "
             "as one animation showing frame i alone at i / frame_rate seconds.");
-    m.def("speciesLibraryDirectory", &speciesLibraryDirectory,
-          "The folder the species library is read from.");
-    m.def("listSpecies", &listSpecies, "Names of the library species, sorted.");
+    m.def("speciesLibraryDirectory", &speciesLibraryDirectory, docs::speciesLibraryDirectory);
+    m.def("listSpecies", &listSpecies, docs::listSpecies);
 }
 
 }  // namespace plantarch::python

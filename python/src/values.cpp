@@ -2,6 +2,7 @@
 
 #include <climits>
 #include <cmath>
+#include <deque>
 #include <string>
 
 #include "bindings.h"
@@ -65,6 +66,11 @@ std::string shown(py::handle value) {
 }
 
 }  // namespace
+
+const char* inPython(const char* cpp, const char* python) {
+    static std::deque<std::string> texts;  // filled while the module is made, then read only
+    return texts.emplace_back(std::string(cpp) + "\n\nIn Python: " + python).c_str();
+}
 
 vec3 toVec3(py::handle value, const char* what) {
     float v[3];

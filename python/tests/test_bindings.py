@@ -72,3 +72,45 @@ def test_the_walk_sees_a_known_method_and_a_private_one():
     methods = public_methods("include/plantarch/PlantArchitecture.h", "PlantArchitecture")
     assert {"advanceTime", "buildPlantInstanceFromLibrary", "getPlantHeight"} <= methods
     assert "impl_" not in methods
+
+
+def header_comments():
+    """The `///` comment of each declaration of the public headers, as the module's docstrings
+    are generated from them (python/tools/make_docstrings.py)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(
+        "make_docstrings", REPO / "python" / "tools" / "make_docstrings.py")
+    assert spec is not None and spec.loader is not None
+    tool = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(tool)
+    comments = {}
+    for header in sorted((REPO / "include" / "plantarch").glob("*.h")):
+        for scope, name, comment in tool.declarations(header.read_text()):
+            comments.setdefault((scope, name), []).append(comment)
+    return comments
+
+
+@pytest.mark.parametrize("cls, header", CLASSES)
+def test_a_bound_method_s_help_is_its_header_comment(cls, header):
+    """Where Python has a C++ method under its own name, its help carries the header's comment
+    (one text for C++ and Python; a Python note may follow it)."""
+    comments = header_comments()
+    checked = 0
+    for name in sorted(public_methods(header, cls)):
+        method = getattr(getattr(plantarch, cls), name, None)
+        if method is None or (cls, name) not in comments:
+            continue
+        doc = " ".join((method.__doc__ or "").split())
+        for comment in comments[(cls, name)]:
+            assert " ".join(comment.split()) in doc, f"{cls}.{name}: help lacks {comment[:60]!r}"
+        checked += 1
+    assert checked > (60 if cls == "PlantArchitecture" else 15)
+
+
+def test_the_module_s_functions_carry_their_header_comment():
+    comments = header_comments()
+    for name in ("writePLY", "writeGLTF", "readPLY", "samplePoints", "render", "writeQSM"):
+        doc = " ".join(getattr(plantarch, name).__doc__.split())
+        for comment in comments[("", name)]:
+            assert " ".join(comment.split()) in doc, f"{name}: help lacks {comment[:60]!r}"
