@@ -71,6 +71,10 @@ struct Command {
 
 std::vector<Command>& commandRegistry();
 
+/// The command line main() was given (argv[0] first), for a command that hands it on.
+void setCommandLine(int argc, char** argv);
+const std::vector<std::string>& commandLine();
+
 struct CommandRegistrar {
     explicit CommandRegistrar(Command c) { commandRegistry().push_back(std::move(c)); }
 };

@@ -140,6 +140,7 @@ int checkedExit(int status) {
 
 int main(int argc, char** argv) {
     using namespace plantarch::cli;
+    setCommandLine(argc, argv);
     CLI::App app{"plantarch: builds and grows 3D plants from a phytomer-based parameter model",
                  "plantarch"};
     app.set_version_flag("--version", std::string("plantarch ") + PLANTARCH_VERSION_STRING);

@@ -14,6 +14,21 @@
 
 namespace plantarch::cli {
 
+namespace {
+std::vector<std::string>& savedCommandLine() {
+    static std::vector<std::string> line;
+    return line;
+}
+}  // namespace
+
+void setCommandLine(int argc, char** argv) {
+    savedCommandLine().assign(argv, argv + argc);
+}
+
+const std::vector<std::string>& commandLine() {
+    return savedCommandLine();
+}
+
 std::vector<Command>& commandRegistry() {
     static std::vector<Command> registry;
     return registry;
