@@ -1,18 +1,35 @@
 #!/usr/bin/env bash
 # Installs every Debian package plantarch needs (idempotent, quiet on success), then
-# configures and builds the project into build/ (Release) unless --no-build is given.
-# Usage: bash scripts/setup.sh [--no-build] [--sanitize]
+# configures and builds the project into build/ (Release) unless --no-build is given: the
+# command-line tool, the builder and the Python module, which is all a user needs. --tests also
+# installs what the test binary, the benchmarks and the fuzz targets need and builds
+# everything (scripts/test.sh passes it).
+# Usage: bash scripts/setup.sh [--no-build] [--tests] [--sanitize]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config git clang
+  build-essential cmake ninja-build pkg-config git
   libglm-dev libpugixml-dev libembree-dev libstb-dev libtinyobjloader-dev
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpcg-cpp-dev
-  libomp-dev libgtest-dev libgmock-dev libbenchmark-dev libclang-rt-14-dev
-  pybind11-dev python3 python3-dev python3-numpy
+  libomp-dev pybind11-dev python3 python3-dev python3-numpy
   libcpp-httplib-dev libzip-dev
 )
+# The test binary, the benchmarks and the fuzz targets (clang's libFuzzer) only.
+TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev)
+
+build=1
+tests=OFF
+sanitize=OFF
+for a in "$@"; do
+  case "$a" in
+    --no-build) build=0 ;;
+    --tests) tests=ON ;;
+    --sanitize) sanitize=ON ;;
+    *) echo "setup: unknown option '$a' (valid: --no-build, --tests, --sanitize)" >&2; exit 2 ;;
+  esac
+done
+[ "$tests" = ON ] && PACKAGES+=("${TEST_PACKAGES[@]}")
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -39,23 +56,24 @@ if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json"
   npm ci --prefix "$web" --no-audit --no-fund --loglevel=error >/dev/null
 fi
 
-build=1
-sanitize=OFF
-for a in "$@"; do
-  case "$a" in
-    --no-build) build=0 ;;
-    --sanitize) sanitize=ON ;;
-    *) echo "setup: unknown option '$a' (valid: --no-build, --sanitize)" >&2; exit 2 ;;
-  esac
-done
 ((build)) || exit 0
 
 dir=build
 [ "$sanitize" = ON ] && dir=build-asan
 type=Release
 [ "$sanitize" = ON ] && type=RelWithDebInfo
-cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DPLANTARCH_SANITIZE="$sanitize" >/dev/null
-cmake --build "$dir" --parallel "$(nproc)" >"$dir/build.log" 2>&1 || { tail -50 "$dir/build.log" >&2; exit 1; }
+# Without --tests the build folder keeps whatever it was configured with (a fresh one: no
+# tests) and only the user's targets are built.
+options=()
+targets=(--target plantarch plantarch_python_package)
+if [ "$tests" = ON ]; then
+  options=(-DPLANTARCH_BUILD_TESTS=ON -DPLANTARCH_BUILD_BENCH=ON)
+  targets=()
+fi
+cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DPLANTARCH_SANITIZE="$sanitize" \
+  "${options[@]}" >/dev/null
+cmake --build "$dir" --parallel "$(nproc)" "${targets[@]}" >"$dir/build.log" 2>&1 ||
+  { tail -50 "$dir/build.log" >&2; exit 1; }
 
 # The Python module: a .pth file in /usr/bin/python3's site directory (the user's own when
 # that is not writable) puts build/python on its path, so `import plantarch` works from any

@@ -4,7 +4,7 @@
 # Usage: bash scripts/test.sh [--sanitize]   (--sanitize: ASan+UBSan build in build-asan/)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh "$@"
+bash scripts/setup.sh --tests "$@"
 # What only the tests need: the format check's clang-format, pytest for the Python tests,
 # Blender and Chromium (three.js) to load the glTF files, venv and pip for the wheel test.
 test_packages=(clang-format python3-pytest python3-venv python3-pip blender chromium)
