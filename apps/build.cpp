@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -54,11 +55,14 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
+        const auto started = std::chrono::steady_clock::now();  // for -v
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant = arch.buildPlantInstanceFromLibrary(
             vec3(0.0f), frames ? 0.0f : a->age, parseDefines(a->defines));
+        info(global, fmt::format("plantarch: species loaded and {} in {:.2f} ms",
+                                 frames ? "planted" : "grown", millisecondsSince(started)));
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, {plant}, *frames, a->outputs,

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -100,12 +101,15 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.setTriangleLimit(global.maxTriangles);
         arch.setProgressCallback(terminalProgress());
         arch.setMeshDetail(global.meshDetail);
+        const auto started = std::chrono::steady_clock::now();  // for -v
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const auto plants = arch.buildPlantCanopyFromLibrary(
             vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), frames ? 0.0f : a->age, a->germination,
             parseDefines(a->defines));
+        info(global, fmt::format("plantarch: species loaded and {} in {:.2f} ms",
+                                 frames ? "planted" : "grown", millisecondsSince(started)));
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, plants, *frames, a->outputs,

@@ -4,6 +4,7 @@
 // PLANTARCH_REGISTER_COMMAND, so adding one never touches main.cpp.
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -86,6 +87,8 @@ struct CommandRegistrar {
 
 /// Message on stderr when -v was given.
 void info(const GlobalOptions& g, const std::string& message);
+/// Wall time since `start`, ms (what -v reports).
+double millisecondsSince(std::chrono::steady_clock::time_point start);
 
 /// Writes `ctx` to `path`, format from the extension (.obj, .ply, .glb, .gltf, .png). Used by
 /// every subcommand that produces geometry; `plants` names and places the plants in glTF

@@ -111,6 +111,11 @@ std::string standardOutputFailure() {
            (err ? std::string(": ") + std::strerror(err) : std::string());
 }
 
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
 void info(const GlobalOptions& g, const std::string& message) {
     if (g.verbose == 0) return;
     clearProgress();

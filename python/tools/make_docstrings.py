@@ -46,7 +46,7 @@ def declarations(text):
                      if n not in NOT_NAMES]
             if names and "operator" not in head.split("(")[0]:
                 scope = scopes[-1][0] if scopes else ""
-                yield scope, names[0], " ".join(comment)
+                yield scope, names[0], "\n".join(comment)
         if stripped and not stripped.startswith("///"):
             comment = []
         depth += line.count("{") - line.count("}")
