@@ -13,13 +13,14 @@
 
 #include "collision/cone.h"
 #include "collision/proxies.h"
+#include "core/embree_api.h"
 
 namespace plantarch::collision {
 
 namespace {
 
 void check(RTCDevice device, const char* what) {
-    const RTCError err = rtcGetDeviceError(device);
+    const RTCError err = core::embree().rtcGetDeviceError(device);
     if (err != RTC_ERROR_NONE)
         throw std::runtime_error(std::string("Embree error ") + std::to_string(int(err)) +
                                  " while " + what);
@@ -27,12 +28,12 @@ void check(RTCDevice device, const char* what) {
 
 // A triangle geometry holding `soup` (three corners per triangle), committed.
 RTCGeometry triangleGeometry(RTCDevice device, const TriangleSoup& soup) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_LOW);
+    RTCGeometry g = core::embree().rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    core::embree().rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_LOW);
     const std::size_t n = soup.size();
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                          RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+    auto* v = static_cast<float*>(core::embree().rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
+    auto* idx = static_cast<unsigned*>(core::embree().rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n / 3));
     for (std::size_t i = 0; i < n; ++i) {
         v[3 * i + 0] = soup[i].x;
@@ -40,20 +41,20 @@ RTCGeometry triangleGeometry(RTCDevice device, const TriangleSoup& soup) {
         v[3 * i + 2] = soup[i].z;
         idx[i] = unsigned(i);
     }
-    rtcCommitGeometry(g);
+    core::embree().rtcCommitGeometry(g);
     return g;
 }
 
 // A committed scene of one triangle geometry (an empty scene when the soup is empty).
 RTCScene sceneOf(RTCDevice device, const TriangleSoup& soup) {
-    RTCScene s = rtcNewScene(device);
-    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_LOW);
+    RTCScene s = core::embree().rtcNewScene(device);
+    core::embree().rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_LOW);
     if (!soup.empty()) {
         RTCGeometry g = triangleGeometry(device, soup);
-        rtcAttachGeometryByID(s, g, 0);
-        rtcReleaseGeometry(g);
+        core::embree().rtcAttachGeometryByID(s, g, 0);
+        core::embree().rtcReleaseGeometry(g);
     }
-    rtcCommitScene(s);
+    core::embree().rtcCommitScene(s);
     return s;
 }
 
@@ -68,8 +69,8 @@ struct World::Embree {
     RTCDevice device = nullptr;
     RTCScene solid = nullptr;
     ~Embree() {
-        if (solid) rtcReleaseScene(solid);
-        if (device) rtcReleaseDevice(device);
+        if (solid) core::embree().rtcReleaseScene(solid);
+        if (device) core::embree().rtcReleaseDevice(device);
     }
 };
 
@@ -78,7 +79,7 @@ struct World::PlantSlot : PlantProxies {
 };
 
 World::World() : rtc_(std::make_unique<Embree>()) {
-    rtc_->device = rtcNewDevice(nullptr);
+    rtc_->device = core::embree().rtcNewDevice(nullptr);
     if (!rtc_->device) throw std::runtime_error("cannot create an Embree device");
     TriangleSoup none;
     rtc_->solid = sceneOf(rtc_->device, none);
@@ -111,7 +112,7 @@ void World::buildStaticScenes(const Context& ctx) {
         for (ObjectID id : soft_->objects) appendObject(ctx, id, softStatic_);
 
     boundingSpheres(softStatic_, softStaticSpheres_);
-    rtcReleaseScene(rtc_->solid);
+    core::embree().rtcReleaseScene(rtc_->solid);
     rtc_->solid = sceneOf(rtc_->device, solid);
     commit();
     check(rtc_->device, "building the obstacle scenes");
@@ -248,7 +249,7 @@ std::optional<SolidHit> World::solidHit(vec3 org, vec3 dir, float tnear, float t
     rh.ray.tfar = tfar;
     rh.ray.mask = 0xFFFFFFFFu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(rtc_->solid, &ictx, &rh);
+    core::embree().rtcIntersect1(rtc_->solid, &ictx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     // The normal of the stored triangle (not Embree's, so equal for any BVH layout).
     const auto& t = solidTriangles_[rh.hit.primID];
@@ -313,7 +314,7 @@ void World::solidTrianglesNear(vec3 center, float radius, std::vector<unsigned>&
     RTCPointQueryContext pctx;
     rtcInitPointQueryContext(&pctx);
     NearQuery nq{&out};
-    rtcPointQuery(rtc_->solid, &q, &pctx, collectNear, &nq);
+    core::embree().rtcPointQuery(rtc_->solid, &q, &pctx, collectNear, &nq);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
 }

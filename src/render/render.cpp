@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "core/embree_api.h"
 #include "core/math.h"
 #include "core/parallel.h"
 #include "plantarch/Error.h"
@@ -256,7 +257,7 @@ struct Hit {
 
 Hit intersect(const Setup& s, RTCIntersectContext& ictx, const vec3& org, const vec3& dir) {
     RTCRayHit rh = render_detail::rayHit(org, dir, kInf);
-    if (s.scene->triangles > 0) rtcIntersect1(s.rtc, &ictx, &rh);
+    if (s.scene->triangles > 0) core::embree().rtcIntersect1(s.rtc, &ictx, &rh);
     Hit hit;
     if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
         hit.found = true;
@@ -295,7 +296,7 @@ bool occluded(const Setup& s, RTCIntersectContext& ictx, const vec3& org, const 
     ray.mask = 0xFFFFFFFFu;
     ray.id = 0;
     ray.flags = 0;
-    rtcOccluded1(s.rtc, &ictx, &ray);
+    core::embree().rtcOccluded1(s.rtc, &ictx, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 

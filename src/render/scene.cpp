@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/embree_api.h"
 #include "core/parallel.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
@@ -20,7 +21,7 @@ namespace plantarch::render_detail {
 namespace {
 
 void throwOnDeviceError(RTCDevice device, const char* what) {
-    const RTCError err = rtcGetDeviceError(device);
+    const RTCError err = core::embree().rtcGetDeviceError(device);
     if (err != RTC_ERROR_NONE)
         throw std::runtime_error(std::string("Embree error ") + std::to_string(int(err)) +
                                  " during " + what);
@@ -63,9 +64,9 @@ struct Placement {
 
 SceneData::~SceneData() {
     for (auto& g : geometries)
-        if (g.geometry) rtcReleaseGeometry(g.geometry);
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
+        if (g.geometry) core::embree().rtcReleaseGeometry(g.geometry);
+    if (scene) core::embree().rtcReleaseScene(scene);
+    if (device) core::embree().rtcReleaseDevice(device);
 }
 
 namespace {
@@ -151,15 +152,15 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
 
     // ---- Embree device, scene and buffers -----------------------------------------------
     const std::string config = "threads=" + std::to_string(std::max(1, omp_get_max_threads()));
-    data.device = rtcNewDevice(config.c_str());
+    data.device = core::embree().rtcNewDevice(config.c_str());
     if (!data.device) throw std::runtime_error("cannot create an Embree device");
-    data.scene = rtcNewScene(data.device);
+    data.scene = core::embree().rtcNewScene(data.device);
     const RTCBuildQuality quality[] = {RTC_BUILD_QUALITY_LOW, RTC_BUILD_QUALITY_MEDIUM,
                                        RTC_BUILD_QUALITY_HIGH};
 
-    rtcSetSceneBuildQuality(data.scene, quality[int(options.bvhQuality)]);
+    core::embree().rtcSetSceneBuildQuality(data.scene, quality[int(options.bvhQuality)]);
     // Robust traversal: no cracks between neighbouring triangles in the label masks.
-    rtcSetSceneFlags(data.scene, RTC_SCENE_FLAG_ROBUST);
+    core::embree().rtcSetSceneFlags(data.scene, RTC_SCENE_FLAG_ROBUST);
 
     float* positions[2] = {nullptr, nullptr};
     std::uint32_t* indices[2] = {nullptr, nullptr};
@@ -167,14 +168,14 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
         GeometryData& g = data.geometries[k];
         g.scene = &data;
         if (triangleCount[k] == 0) continue;
-        g.geometry = rtcNewGeometry(data.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryBuildQuality(g.geometry, quality[int(options.bvhQuality)]);
-        positions[k] = static_cast<float*>(
-            rtcSetNewGeometryBuffer(g.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                    3 * sizeof(float), vertexCount[k]));
-        indices[k] = static_cast<std::uint32_t*>(
-            rtcSetNewGeometryBuffer(g.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                    3 * sizeof(std::uint32_t), triangleCount[k]));
+        g.geometry = core::embree().rtcNewGeometry(data.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        core::embree().rtcSetGeometryBuildQuality(g.geometry, quality[int(options.bvhQuality)]);
+        positions[k] = static_cast<float*>(core::embree().rtcSetNewGeometryBuffer(
+            g.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+            vertexCount[k]));
+        indices[k] = static_cast<std::uint32_t*>(core::embree().rtcSetNewGeometryBuffer(
+            g.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t),
+            triangleCount[k]));
         throwOnDeviceError(data.device, "buffer allocation");
         g.positions = positions[k];
         g.vertexCount = vertexCount[k];
@@ -231,20 +232,21 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
     for (int k = 0; k < 2; ++k) {
         GeometryData& g = data.geometries[k];
         if (!g.geometry) continue;
-        rtcSetGeometryUserData(g.geometry, &g);
+        core::embree().rtcSetGeometryUserData(g.geometry, &g);
         if (k == 1) {
-            rtcSetGeometryIntersectFilterFunction(g.geometry, alphaMaskFilter);
-            rtcSetGeometryOccludedFilterFunction(g.geometry, alphaMaskFilter);
+            core::embree().rtcSetGeometryIntersectFilterFunction(g.geometry, alphaMaskFilter);
+            core::embree().rtcSetGeometryOccludedFilterFunction(g.geometry, alphaMaskFilter);
         }
-        rtcCommitGeometry(g.geometry);
-        rtcAttachGeometryByID(data.scene, g.geometry, unsigned(k));
+        core::embree().rtcCommitGeometry(g.geometry);
+        core::embree().rtcAttachGeometryByID(data.scene, g.geometry, unsigned(k));
     }
     BuildMonitor monitor{&options.progress, {}, 0.3};
     if (options.progress) {
         options.progress("building scene", 0.3);
-        rtcSetSceneProgressMonitorFunction(data.scene, &BuildMonitor::report, &monitor);
+        core::embree().rtcSetSceneProgressMonitorFunction(data.scene, &BuildMonitor::report,
+                                                          &monitor);
     }
-    rtcCommitScene(data.scene);
+    core::embree().rtcCommitScene(data.scene);
     if (options.progress) options.progress("building scene", 1.0);
     throwOnDeviceError(data.device, "BVH build");
 }
