@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -58,7 +59,10 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         arch.setTriangleLimit(global.maxTriangles);
         arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
+        const auto started = std::chrono::steady_clock::now();  // for -v
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
+        info(global,
+             fmt::format("plantarch: {} read in {:.2f} ms", a->input, millisecondsSince(started)));
         if (a->noGroundClearance) arch.setGroundClearance(false);
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame

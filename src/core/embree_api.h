@@ -14,17 +14,30 @@
 namespace plantarch::core {
 
 // The Embree functions plantarch calls, each declared once here.
-#define PLANTARCH_EMBREE_FUNCTIONS(X)                                                 \
-    X(rtcNewDevice)                                                                   \
-    X(rtcReleaseDevice)                                                               \
-    X(rtcGetDeviceError) X(rtcNewScene) X(rtcReleaseScene) X(rtcSetSceneBuildQuality) \
-        X(rtcSetSceneFlags) X(rtcSetSceneProgressMonitorFunction) X(rtcCommitScene)   \
-            X(rtcNewGeometry) X(rtcReleaseGeometry) X(rtcSetGeometryBuildQuality)     \
-                X(rtcSetNewGeometryBuffer) X(rtcSetGeometryUserData)                  \
-                    X(rtcSetGeometryIntersectFilterFunction)                          \
-                        X(rtcSetGeometryOccludedFilterFunction) X(rtcCommitGeometry)  \
-                            X(rtcAttachGeometryByID) X(rtcIntersect1) X(rtcOccluded1) \
-                                X(rtcPointQuery)
+// clang-format off
+#define PLANTARCH_EMBREE_FUNCTIONS(X) \
+    X(rtcNewDevice) \
+    X(rtcReleaseDevice) \
+    X(rtcGetDeviceError) \
+    X(rtcNewScene) \
+    X(rtcReleaseScene) \
+    X(rtcSetSceneBuildQuality) \
+    X(rtcSetSceneFlags) \
+    X(rtcSetSceneProgressMonitorFunction) \
+    X(rtcCommitScene) \
+    X(rtcNewGeometry) \
+    X(rtcReleaseGeometry) \
+    X(rtcSetGeometryBuildQuality) \
+    X(rtcSetNewGeometryBuffer) \
+    X(rtcSetGeometryUserData) \
+    X(rtcSetGeometryIntersectFilterFunction) \
+    X(rtcSetGeometryOccludedFilterFunction) \
+    X(rtcCommitGeometry) \
+    X(rtcAttachGeometryByID) \
+    X(rtcIntersect1) \
+    X(rtcOccluded1) \
+    X(rtcPointQuery)
+// clang-format on
 
 /// The Embree functions, as pointers into the loaded library.
 struct EmbreeApi {
