@@ -3,14 +3,21 @@
 # starts the builder through plantarch-builder beside it; without it, `plantarch builder` says
 # so in one line and exits 2) and not Embree (loaded when a picture, scan or collision
 # avoidance first needs it; a library that cannot be loaded is one line and exit 2).
-# Usage: check_launch.sh BUILD_DIR
+# Usage: check_launch.sh BUILD_DIR EMBREE   (EMBREE: loaded, a release build's way; linked, a
+# sanitized build's, where LeakSanitizer cannot scan the threads of a library loaded later)
 set -euo pipefail
-build=${1:?usage: check_launch.sh BUILD_DIR}
+usage="usage: check_launch.sh BUILD_DIR loaded|linked"
+build=${1:?$usage}
+embree=${2:?$usage}
+[[ $embree == loaded || $embree == linked ]] || { echo "$usage" >&2; exit 2; }
 fail() { echo "check_launch: $*" >&2; exit 1; }
 
 needed=$(readelf -d "$build/plantarch" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
 [[ -n "$needed" ]] || fail "readelf found no NEEDED entries in $build/plantarch"
-for lib in httplib ssl crypto brotli zip bz2 embree tbb; do
+loaded_on_use=(httplib ssl crypto brotli zip bz2)
+[[ $embree == loaded ]] && loaded_on_use+=(embree tbb)
+[[ $embree == linked ]] && { grep -q embree <<< "$needed" || fail "a sanitized plantarch does not link Embree"; }
+for lib in "${loaded_on_use[@]}"; do
     if grep -q "$lib" <<< "$needed"; then fail "plantarch needs a library it loads only on use: $(grep "$lib" <<< "$needed")"; fi
 done
 readelf -d "$build/plantarch-builder" | grep -q 'NEEDED.*httplib' ||
