@@ -14,6 +14,7 @@
 #include <variant>
 
 #include "plantarch/Context.h"
+#include "plantarch/Error.h"
 
 namespace plantarch::fuzz {
 
@@ -58,6 +59,40 @@ std::string summary(const Context& ctx, Keep&& keep) {
                     },
                     *v);
     return s;
+}
+
+/// Every label counts.
+inline std::string summary(const Context& ctx) {
+    return summary(ctx, [](const std::string&, ObjectID) { return true; });
+}
+
+/// read(ctx) for an input: whether it read. A read that throws plantarch::Error must leave
+/// the Context empty; anything else thrown is a crash.
+template <class Read>
+bool readsOrAddsNothing(const char* target, Context& ctx, Read&& read) {
+    try {
+        read(ctx);
+        return true;
+    } catch (const Error&) {
+        if (ctx.objectCount() != 0) fail(target, "a failed read left objects in the Context");
+        return false;
+    }
+}
+
+/// write(ctx) then read(again) must give the same summary (`what` names the written file).
+template <class Write, class Read>
+void roundTrips(const char* target, const char* what, const Context& ctx, Write&& write,
+                Read&& read) {
+    try {
+        write(ctx);
+        Context again;
+        read(again);
+        if (summary(again) != summary(ctx))
+            fail(target, "write -> read changed the objects or labels:\n" + summary(ctx) +
+                             "-- became --\n" + summary(again));
+    } catch (const Error& e) {
+        fail(target, std::string("a written ") + what + " does not read back: " + e.what());
+    }
 }
 
 }  // namespace plantarch::fuzz

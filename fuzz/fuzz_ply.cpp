@@ -8,47 +8,22 @@
 
 #include "fuzz_mesh.h"
 #include "plantarch/Context.h"
-#include "plantarch/Error.h"
 #include "plantarch/Export.h"
 
 using namespace plantarch;
-
-namespace {
-
-[[noreturn]] void fail(const std::string& why) {
-    fuzz::fail("ply", why);
-}
-
-std::string summary(const Context& ctx) {
-    return fuzz::summary(ctx, [](const std::string&, ObjectID) { return true; });
-}
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     static const std::string input = fuzz::scratch("ply", "in.ply"),
                              output = fuzz::scratch("ply", "out.ply");
     fuzz::writeInput(input, data, size);
     Context ctx;
-    try {
-        readPLY(ctx, input);
-    } catch (const Error&) {
-        if (ctx.objectCount() != 0) fail("a failed read left objects in the Context");
-        return 0;
-    }
+    if (!fuzz::readsOrAddsNothing("ply", ctx, [&](Context& c) { readPLY(c, input); })) return 0;
     for (PlyFormat format : {PlyFormat::BinaryLittleEndian, PlyFormat::Ascii}) {
-        try {
-            PlyOptions options;
-            options.format = format;
-            writePLY(ctx, output, options);
-            Context again;
-            readPLY(again, output);
-            if (summary(again) != summary(ctx))
-                fail("write -> read changed the objects or labels:\n" + summary(ctx) +
-                     "-- became --\n" + summary(again));
-        } catch (const Error& e) {
-            fail(std::string("a written PLY does not read back: ") + e.what());
-        }
+        PlyOptions options;
+        options.format = format;
+        fuzz::roundTrips(
+            "ply", "PLY", ctx, [&](const Context& c) { writePLY(c, output, options); },
+            [&](Context& c) { readPLY(c, output); });
     }
     return 0;
 }

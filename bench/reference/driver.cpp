@@ -6,7 +6,8 @@
 //   reference_driver build SPECIES AGE [SEED]
 //   reference_driver canopy SPECIES NX NY SPACING AGE [ply|obj|soft]... [--out FILE]
 //   reference_driver xml-write SPECIES AGE FILE
-//   reference_driver xml-read FILE
+//   reference_driver xml-read SPECIES FILE   (the reference reads a file only with its
+//                                             species loaded)
 //
 // Run it from its build folder: the reference finds its assets there.
 
@@ -30,7 +31,7 @@ int usage() {
     std::fprintf(stderr,
                  "usage: reference_driver empty | build SPECIES AGE [SEED] | canopy SPECIES NX NY "
                  "SPACING AGE [ply|obj|soft]... [--out FILE] | xml-write SPECIES AGE FILE | "
-                 "xml-read FILE\n");
+                 "xml-read SPECIES FILE\n");
     return 2;
 }
 
@@ -94,9 +95,10 @@ int main(int argc, char** argv) {
         std::printf("{\"job\": \"xml-write\", \"ms\": %.3f}\n", since(t0));
         return 0;
     }
-    if (job == "xml-read" && argc == 3) {
+    if (job == "xml-read" && argc == 4) {
+        pa.loadPlantModelFromLibrary(argv[2]);
         const auto t0 = std::chrono::steady_clock::now();
-        const std::vector<uint> ids = pa.readPlantStructureXML(argv[2], true);
+        const std::vector<uint> ids = pa.readPlantStructureXML(argv[3], true);
         std::printf("{\"job\": \"xml-read\", \"ms\": %.3f, \"plants\": %zu}\n", since(t0),
                     ids.size());
         return 0;
