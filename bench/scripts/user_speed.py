@@ -55,7 +55,8 @@ def in_process_ms(kind, out, err):
         m = re.search(r"in ([0-9.]+) ms", err)
         return float(m.group(1)) if m else None
     try:
-        return float(json.loads(out.strip().splitlines()[-1]).get("ms"))
+        report = json.loads(out.strip().splitlines()[-1])
+        return float(report.get("build_ms", report.get("ms")))  # a canopy's build, as -v's
     except (ValueError, IndexError, TypeError):
         return None
 
