@@ -111,6 +111,30 @@ TEST_F(PlyReader, OtherToolsMeshesWithQuadsAndExtraElements) {
         ".obj, .ply");
 }
 
+// A file whose label table numbers "unlabelled" otherwise (found by fuzz/fuzz_ply.cpp): that
+// name means no organ data whatever its number, so the object writes back and reads again as
+// it read (writePLY gives objects without organ data label 0, "unlabelled").
+TEST_F(PlyReader, AnOrganLabelNamedUnlabelledGivesNoOrganDataWhateverItsNumber) {
+    const std::string path = write(
+        "relabelled.ply",
+        "ply\nformat ascii 1.0\ncomment organ_label 1 unlabelled\ncomment organ_label 2 leaf\n"
+        "element vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty list uchar int vertex_indices\nproperty int object_id\n"
+        "property int organ\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 0 1\n0 1 1\n"
+        "3 0 1 2 7 1\n3 3 4 5 8 2\n");
+    Context ctx;
+    const std::vector<ObjectID> ids = readPLY(ctx, path);
+    ASSERT_EQ(ids.size(), 2u);
+    EXPECT_FALSE(ctx.hasObjectData(ids[0], "organ"));
+    EXPECT_EQ(ctx.objectDataString(ids[1], "organ"), "leaf");
+    writePLY(ctx, at("again.ply"));
+    Context again;
+    const std::vector<ObjectID> back = readPLY(again, at("again.ply"));
+    ASSERT_EQ(back.size(), 2u);
+    EXPECT_FALSE(again.hasObjectData(back[0], "organ"));
+    EXPECT_EQ(again.objectDataString(back[1], "organ"), "leaf");
+}
+
 // Hostile files: one clear error each, and the Context left as it was.
 TEST_F(PlyReader, BadFilesAreRefusedAndLeaveTheContextUnchanged) {
     const std::string head =

@@ -441,7 +441,10 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
             if (!perObject) continue;
             const FaceLabels& l = part.labels;
             if (l.plant >= 0) context.setObjectData(id, "plantID", std::int32_t(l.plant));
-            if (const auto n = h.organNames.find(l.organ); n != h.organNames.end() && l.organ > 0)
+            // A label named "unlabelled" (writePLY's name for no organ data, whatever its
+            // number in the file) gives none, so that the object writes back as it read.
+            if (const auto n = h.organNames.find(l.organ);
+                n != h.organNames.end() && l.organ > 0 && n->second != kOrganLabels[0])
                 context.setObjectData(id, "organ", n->second);
             if (l.leaf >= 0) context.setObjectData(id, "leafID", std::int32_t(l.leaf));
             if (l.shoot >= 0) context.setObjectData(id, "shootID", std::int32_t(l.shoot));
