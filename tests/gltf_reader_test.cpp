@@ -82,6 +82,28 @@ TEST_F(GltfReader, PlantarchFilesReadBackAsTheirObjects) {
 }
 
 // Another tool's scene: y up and a node transform (scale 2, then a translation).
+// The writer groups objects by plant and organ kind; the reader puts them back in their
+// _OBJECT_ID order, so a scene reads back in the order it had (found by fuzz/fuzz_gltf.cpp).
+TEST_F(GltfReader, ObjectsComeBackInTheOrderTheyHad) {
+    Context ctx;
+    const Mesh triangle{{vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)}, {}, {0, 1, 2}};
+    const char* organs[] = {"leaf", "", "internode", "leaf"};
+    for (const char* organ : organs) {
+        const ObjectID id = ctx.addObject(triangle);
+        ctx.setObjectData(id, "plantID", std::int32_t(0));
+        if (*organ) ctx.setObjectData(id, "organ", std::string(organ));
+    }
+    writeGLTF(ctx, at("order.glb"));
+    Context back;
+    const std::vector<ObjectID> ids = readGLTF(back, at("order.glb"));
+    ASSERT_EQ(ids.size(), 4u);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        EXPECT_EQ(back.hasObjectData(ids[i], "organ") ? back.objectDataString(ids[i], "organ")
+                                                      : std::string(),
+                  organs[i])
+            << "object " << i;
+}
+
 TEST_F(GltfReader, NodeTransformsAndYUp) {
     const std::string path =
         write("t.gltf", triangleGltf(R"([{"mesh":0,"translation":[1,2,3],"scale":[2,2,2]}])"));

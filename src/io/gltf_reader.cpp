@@ -2,6 +2,7 @@
 // plantarch's own with their per-vertex labels and other tools' triangle meshes. Everything is
 // parsed and checked before the Context is touched, so a bad file leaves it unchanged.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -376,9 +377,17 @@ std::vector<ObjectID> readGLTF(Context& context, const std::string& path) {
     }
     if (parts.empty()) d.fail("no triangles: render needs a mesh");
 
+    // Objects in ascending _OBJECT_ID (a file plantarch wrote groups them by plant and organ
+    // kind: they come back in the order they had), then the primitives without one in file
+    // order.
+    std::vector<std::size_t> order, unlabelled;
+    for (const auto& [key, part] : partOf) (key >= 0 ? order : unlabelled).push_back(part);
+    std::sort(unlabelled.begin(), unlabelled.end());  // parts are numbered in file order
+    order.insert(order.end(), unlabelled.begin(), unlabelled.end());
     std::vector<ObjectID> made;
     try {
-        for (const Part& part : parts) {
+        for (std::size_t k : order) {
+            const Part& part = parts[k];
             const ObjectID id = context.addObject(part.mesh);
             made.push_back(id);
             if (part.plant >= 0) context.setObjectData(id, "plantID", std::int32_t(part.plant));
