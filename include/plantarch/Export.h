@@ -215,8 +215,9 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
 /// Reads the triangle meshes of a glTF 2.0 scene (.glb, or .gltf with its buffers embedded
 /// as data URIs; at most 4 GiB) into `context` and returns the IDs of the objects added: the
 /// default scene's nodes with their transforms, glTF's y up turned into plantarch's z up. A
-/// file plantarch wrote reads back as its objects, one per `_OBJECT_ID`, with "plantID" and
-/// "organ" data from `_PLANT_ID` and `_ORGAN`; in other files each primitive is one object.
+/// file plantarch wrote reads back as its objects, one per `_OBJECT_ID` in ascending order,
+/// with "plantID" and "organ" data from `_PLANT_ID` and `_ORGAN`; in other files each
+/// primitive is one object, in file order.
 /// Materials and textures are not read. Throws Error naming the file for malformed JSON or
 /// binary chunks, references or accessors out of range, node cycles, external buffer files,
 /// or no triangles; on error `context` is left unchanged.
