@@ -4,6 +4,7 @@
 
 #include <dlfcn.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -29,11 +30,13 @@ constexpr const char* kDefaultLibrary = "libembree3.so.3";
 }  // namespace
 
 const EmbreeApi& embree() {
+    // Called once per ray by the renderer: after the first load, one atomic read, no lock.
+    static std::atomic<const EmbreeApi*> ready{nullptr};
+    if (const EmbreeApi* api = ready.load(std::memory_order_acquire)) return *api;
     static std::mutex mutex;
     static EmbreeApi api;
-    static bool loaded = false;
     std::lock_guard<std::mutex> lock(mutex);
-    if (loaded) return api;
+    if (ready.load(std::memory_order_relaxed)) return api;
     const char* named = std::getenv("PLANTARCH_EMBREE_LIBRARY");
     const std::string library = named && *named ? named : kDefaultLibrary;
     // Kept loaded for the life of the process (its devices may outlive any one user).
@@ -52,7 +55,7 @@ const EmbreeApi& embree() {
     PLANTARCH_EMBREE_FUNCTIONS(PLANTARCH_EMBREE_LOOKUP)
 #undef PLANTARCH_EMBREE_LOOKUP
     api = found;
-    loaded = true;
+    ready.store(&api, std::memory_order_release);
     return api;
 }
 
