@@ -131,9 +131,9 @@ TEST(HeliosFormat, ReferenceFileBuildsThePlantItDescribes) {
     for (const LeafOrgan& l : young.petioles[0].leaves) byIndex[l.leafletIndex] = &l;
     ASSERT_EQ(byIndex.size(), 3u);
     EXPECT_FLOAT_EQ(byIndex.at(0)->scale, 0.041f / 0.55f);
-    EXPECT_EQ(byIndex.at(-1)->yaw, -20.0f);
-    EXPECT_EQ(byIndex.at(1)->yaw, 20.0f);
-    EXPECT_EQ(byIndex.at(1)->position, 0.8f);  // leaflet_offset 0.2 below the tip
+    // The first pair half a leaflet_offset (0.2) below the tip, as the reference places it.
+    EXPECT_FLOAT_EQ(byIndex.at(1)->position, 0.9f);
+    EXPECT_FLOAT_EQ(byIndex.at(-1)->position, 0.9f);
     EXPECT_EQ(young.petioles[0].leaves[0].leafletIndex, 0) << "tip first, as growth orders them";
     const FloralBud& pods = p.shoots[0].phytomers[2].petioles[0].floralBuds.at(0);
     EXPECT_EQ(pods.stage, FloralStage::Fruit);
@@ -143,7 +143,7 @@ TEST(HeliosFormat, ReferenceFileBuildsThePlantItDescribes) {
     EXPECT_EQ(pods.flowers.at(1).fruitScale, 0.085f);
     EXPECT_FLOAT_EQ(pods.flowers.at(1).position, 0.88f);
     // The perturbations turn the shoot axis: the second internode leans off vertical.
-    EXPECT_LT(p.shoots[0].phytomers[1].internode.guide.z, 1.0f);
+    EXPECT_LT(p.shoots[0].phytomers[1].internode.direction.z, 1.0f);
 
     // Geometry is made for every organ that has a size.
     EXPECT_EQ(arch.getPlantObjectIDs(ids[0], OrganKind::Internode).size(), 6u);
@@ -224,7 +224,9 @@ TEST(HeliosFormat, WrittenFileHasTheReferenceLayoutAndReadsBackTheSame) {
                    "current_leaf_scale_factor", "petiole_taper", "petiole_length_segments",
                    "petiole_radial_subdivisions", "leaflet_scale", "leaflet_offset", "leaf",
                    "floral_bud"}));
-    EXPECT_EQ(names["leaf"], (Set{"leaf_scale", "leaf_pitch", "leaf_yaw", "leaf_roll"}));
+    // (leaf_angles: plantarch's own, where the reference's angles cannot turn a leaf so)
+    EXPECT_EQ(names["leaf"],
+              (Set{"leaf_scale", "leaf_pitch", "leaf_yaw", "leaf_roll", "leaf_angles"}));
     EXPECT_EQ(names["floral_bud"],
               (Set{"bud_state", "parent_index", "bud_index", "is_terminal",
                    "current_fruit_scale_factor", "peduncle", "inflorescence"}));
@@ -262,13 +264,22 @@ TEST(HeliosFormat, WrittenFileHasTheReferenceLayoutAndReadsBackTheSame) {
             EXPECT_TRUE(near(b1.internode.length * b1.internodeFraction,
                              a1.internode.length * a1.internodeFraction));
             EXPECT_TRUE(near(b1.internode.pitch, a1.internode.pitch));
-            EXPECT_TRUE(near(b1.internode.guide.z, a1.internode.guide.z)) << s << " " << k;
+            // The same internode directions (the layout keeps the turns, not the frames).
+            EXPECT_LT(glm::length(b1.internode.direction - a1.internode.direction), 1e-4f)
+                << s << " " << k;
             ASSERT_EQ(b1.petioles.size(), a1.petioles.size());
             for (std::size_t j = 0; j < a1.petioles.size(); ++j) {
                 const Petiole& pa = a1.petioles[j];
                 const Petiole& pb = b1.petioles[j];
                 EXPECT_TRUE(near(pb.length * b1.leafFraction, pa.length * a1.leafFraction));
-                EXPECT_TRUE(near(pb.pitch, pa.pitch));
+                // The same petiole (a turn that kept it off the ground is part of its pitch in
+                // the file, so the pitches may differ).
+                // Its base moves by half the internode radius toward its side, and the side
+                // the file gives includes the turn: a fraction of a millimetre.
+                const AABB ba = ctx.objectBoundingBox(pa.object);
+                const AABB bb = ctx2.objectBoundingBox(pb.object);
+                EXPECT_LT(glm::length(ba.min - bb.min) + glm::length(ba.max - bb.max), 5e-4f)
+                    << s << " " << k << " " << j;
                 EXPECT_TRUE(near(pb.curvature, pa.curvature));
                 std::map<int, const LeafOrgan*> leaves;
                 for (const LeafOrgan& l : pb.leaves) leaves[l.leafletIndex] = &l;
@@ -277,8 +288,11 @@ TEST(HeliosFormat, WrittenFileHasTheReferenceLayoutAndReadsBackTheSame) {
                     ASSERT_TRUE(leaves.count(l.leafletIndex));
                     const LeafOrgan& m = *leaves.at(l.leafletIndex);
                     EXPECT_TRUE(near(m.scale * b1.leafFraction, l.scale * a1.leafFraction));
-                    EXPECT_TRUE(near(m.pitch, l.pitch));
-                    EXPECT_TRUE(near(m.roll, l.roll));
+                    // Within the 0.05 degrees below which the writer leaves a leaf to the
+                    // reference's angles alone.
+                    EXPECT_NEAR(m.pitch, l.pitch, 0.06f);
+                    EXPECT_NEAR(m.yaw, l.yaw, 0.06f);
+                    EXPECT_NEAR(m.roll, l.roll, 0.06f) << s << " " << k << " " << j;
                     EXPECT_TRUE(near(m.position, l.position));
                 }
                 ASSERT_EQ(pb.floralBuds.size(), pa.floralBuds.size());

@@ -1,16 +1,20 @@
 // A small command-line driver of the reference system, for whole-process timings beside
-// plantarch's own command (bench/scripts/user_speed.py). Each run does one job and prints
-// the in-process time of its main step as JSON on stdout:
+// plantarch's own command (bench/scripts/user_speed.py) and for the reference plants of
+// tests/data/reference_plants/. Each run does one job and prints the in-process time of its
+// main step (and the box of what it drew) as JSON on stdout:
 //
 //   reference_driver empty
 //   reference_driver build SPECIES AGE [SEED]
 //   reference_driver canopy SPECIES NX NY SPACING AGE [ply|obj|soft]... [--out FILE]
-//   reference_driver xml-write SPECIES AGE FILE
-//   reference_driver xml-read SPECIES FILE   (the reference reads a file only with its
-//                                             species loaded)
+//   reference_driver xml-write SPECIES AGE FILE [SEED [DUMP]]
+//   reference_driver xml-read SPECIES FILE [DUMP]
+//
+// (the reference reads a file only with its species loaded). DUMP: a text file listing every
+// primitive drawn, one per line: its object label, object ID and vertices.
 //
 // Run it from its build folder: the reference finds its assets there.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -27,11 +31,46 @@ double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The bounding box of every primitive's vertices, as JSON members.
+std::string boxJson(Context& context) {
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    for (const uint uuid : context.getAllUUIDs()) {
+        for (const vec3& v : context.getPrimitiveVertices(uuid)) {
+            const float c[3] = {v.x, v.y, v.z};
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = std::min(lo[k], c[k]);
+                hi[k] = std::max(hi[k], c[k]);
+            }
+        }
+    }
+    char text[256];
+    std::snprintf(text, sizeof text, "\"min\": [%.5f, %.5f, %.5f], \"max\": [%.5f, %.5f, %.5f]",
+                  lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+    return text;
+}
+
+// Every primitive as one line: its object_label (or "-") and its vertices.
+void dumpPrimitives(Context& context, const char* path) {
+    FILE* f = std::fopen(path, "w");
+    if (!f) return;
+    for (const uint uuid : context.getAllUUIDs()) {
+        std::string label = "-";
+        if (context.doesPrimitiveDataExist(uuid, "object_label"))
+            context.getPrimitiveData(uuid, "object_label", label);
+        std::fprintf(f, "%s %u", label.c_str(), context.getPrimitiveParentObjectID(uuid));
+        for (const vec3& v : context.getPrimitiveVertices(uuid))
+            std::fprintf(f, " %.6f %.6f %.6f", v.x, v.y, v.z);
+        std::fprintf(f, "\n");
+    }
+    std::fclose(f);
+}
+
 int usage() {
-    std::fprintf(stderr,
-                 "usage: reference_driver empty | build SPECIES AGE [SEED] | canopy SPECIES NX NY "
-                 "SPACING AGE [ply|obj|soft]... [--out FILE] | xml-write SPECIES AGE FILE | "
-                 "xml-read SPECIES FILE\n");
+    std::fprintf(
+        stderr,
+        "usage: reference_driver empty | build SPECIES AGE [SEED] | canopy SPECIES NX NY "
+        "SPACING AGE [ply|obj|soft]... [--out FILE] | xml-write SPECIES AGE FILE [SEED [DUMP]] | "
+        "xml-read SPECIES FILE [DUMP]\n");
     return 2;
 }
 
@@ -51,8 +90,9 @@ int main(int argc, char** argv) {
         const auto t0 = std::chrono::steady_clock::now();
         pa.loadPlantModelFromLibrary(argv[2]);
         pa.buildPlantInstanceFromLibrary(make_vec3(0, 0, 0), float(std::atof(argv[3])));
-        std::printf("{\"job\": \"build\", \"ms\": %.3f, \"primitives\": %zu}\n", since(t0),
-                    context.getPrimitiveCount());
+        const double ms = since(t0);
+        std::printf("{\"job\": \"build\", \"ms\": %.3f, \"primitives\": %zu, %s}\n", ms,
+                    context.getPrimitiveCount(), boxJson(context).c_str());
         return 0;
     }
     if (job == "canopy" && argc >= 7) {
@@ -86,21 +126,29 @@ int main(int argc, char** argv) {
             since(t0), context.getPrimitiveCount());
         return 0;
     }
-    if (job == "xml-write" && argc == 5) {
+    if (job == "xml-write" && (argc >= 5 && argc <= 7)) {
+        if (argc >= 6) context.seedRandomGenerator(uint(std::atoi(argv[5])));
         pa.loadPlantModelFromLibrary(argv[2]);
         const uint id =
             pa.buildPlantInstanceFromLibrary(make_vec3(0, 0, 0), float(std::atof(argv[3])));
         const auto t0 = std::chrono::steady_clock::now();
         pa.writePlantStructureXML(id, argv[4]);
-        std::printf("{\"job\": \"xml-write\", \"ms\": %.3f}\n", since(t0));
+        const double ms = since(t0);
+        std::printf("{\"job\": \"xml-write\", \"ms\": %.3f, \"primitives\": %zu, %s}\n", ms,
+                    context.getPrimitiveCount(), boxJson(context).c_str());
+        if (argc == 7) dumpPrimitives(context, argv[6]);
         return 0;
     }
-    if (job == "xml-read" && argc == 4) {
+    if (job == "xml-read" && (argc == 4 || argc == 5)) {
         pa.loadPlantModelFromLibrary(argv[2]);
         const auto t0 = std::chrono::steady_clock::now();
         const std::vector<uint> ids = pa.readPlantStructureXML(argv[3], true);
-        std::printf("{\"job\": \"xml-read\", \"ms\": %.3f, \"plants\": %zu}\n", since(t0),
-                    ids.size());
+        const double ms = since(t0);
+        std::printf(
+            "{\"job\": \"xml-read\", \"ms\": %.3f, \"plants\": %zu, \"primitives\": "
+            "%zu, %s}\n",
+            ms, ids.size(), context.getPrimitiveCount(), boxJson(context).c_str());
+        if (argc == 5) dumpPrimitives(context, argv[4]);
         return 0;
     }
     return usage();

@@ -19,6 +19,7 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "core/xml_reader.h"
+#include "io/helios_pose.h"
 #include "io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantStateTable.h"
@@ -112,12 +113,6 @@ std::vector<float> angleList(const Element& e) {
         at = end + 1;
     }
     return out;
-}
-
-float sum(const std::vector<float>& v) {
-    double s = 0.0;
-    for (float x : v) s += x;
-    return float(s);
 }
 
 // The full-grown size of an organ listed at `current` size, `fraction` of its full size. It
@@ -229,6 +224,7 @@ public:
     }
 
     std::map<std::string, int> typeDefaults;  // "petiole_taper" -> how many took the mean
+    HeliosExtras extras;                      // what the state has no place for
 
 private:
     const ShootParameters& typeFor(const std::string& label) const {
@@ -272,6 +268,7 @@ private:
         optionalChild(kids, e, "base_rotation", [&](const Element& c) {
             const vec3 r = triple(c, -kAngle, kAngle);
             s.baseRotation = {r.x, r.y, r.z};
+            extras.baseRotations[&s] = s.baseRotation;
             note(&s.baseRotation);
         });
         const std::vector<xml_node> phytomers = kids.takeAll("phytomer");
@@ -297,12 +294,12 @@ private:
             Phytomer& p = s.phytomers[k];
             if (!in) continue;  // its values are reported missing
             const bool last = k + 1 == phytomers.size();
-            internode(Element(ph, in, "internode"), s, p, k, type, last, terminalAt);
+            internode(Element(ph, in, "internode"), s, p, type, last, terminalAt);
         }
     }
 
-    void internode(const Element& e, Shoot& s, Phytomer& ph, std::size_t k,
-                   const ShootParameters& type, bool last, std::size_t& terminalAt) {
+    void internode(const Element& e, Shoot& s, Phytomer& ph, const ShootParameters& type, bool last,
+                   std::size_t& terminalAt) {
         e.checkAttributes({});
         Internode& in = ph.internode;
         Children kids(e);
@@ -333,9 +330,9 @@ private:
         });
         optionalChild(kids, e, "internode_length_max", [&](const Element& c) {
             lengthMax = number(c, fields().internodeLength);
-            // (within 1e-4: the reference system prints 6 digits of a length measured
-            // along its segments)
-            if (hasLength && length > lengthMax * (1.0f + 1e-4f))
+            // (within 1e-3: the reference system prints 6 digits of a length it measures
+            // along its segments, and that sum may pass the maximum in its last digits)
+            if (hasLength && length > lengthMax * (1.0f + 1e-3f))
                 c.fail("shorter than <internode_length> (" + text::formatFloat(length) + ")",
                        c.text(), "at least the internode's current length");
         });
@@ -360,10 +357,9 @@ private:
             note(&in.length);
             note(&ph.internodeFraction);
         }
-        // The shoot axis turns from the internode before by the perturbations: toward
-        // vertical by their curvature sum, about the vertical by their yaw sum.
-        if (k > 0 && (!curvature.empty() || !yaw.empty()))
-            given_.setTurn(&in, {sum(curvature), sum(yaw)});
+        extras.internodes[&in] = {in.pitch, in.phyllotacticAngle,
+                                  unsigned(segments > 0 ? segments : 1), std::move(curvature),
+                                  std::move(yaw)};
 
         const std::vector<xml_node> petioles = kids.takeAll("petiole");
         kids.finish();
@@ -390,8 +386,10 @@ private:
             pt.radius = number(c, fields().petioleRadius);
             note(&pt.radius);
         });
+        HeliosPetiole& extra = extras.petioles[&pt];
         optionalChild(kids, e, "petiole_pitch", [&](const Element& c) {
             pt.pitch = number(c, fields().petiolePitch);
+            extra.pitch = pt.pitch;
             note(&pt.pitch);
         });
         optionalChild(kids, e, "petiole_curvature", [&](const Element& c) {
@@ -417,8 +415,9 @@ private:
             ++typeDefaults["petiole_taper"];
         }
         note(&pt.taper);
-        optionalChild(kids, e, "petiole_length_segments",
-                      [&](const Element& c) { integer(c, 1, kSegments); });
+        optionalChild(kids, e, "petiole_length_segments", [&](const Element& c) {
+            extra.segments = unsigned(integer(c, 1, kSegments));
+        });
         optionalChild(kids, e, "petiole_radial_subdivisions",
                       [&](const Element& c) { integer(c, 3, kSegments); });
         optionalChild(kids, e, "leaflet_scale", [&](const Element& c) { number(c, 0.0, kLength); });
@@ -428,6 +427,7 @@ private:
             offset = type.phytomer_parameters.leaf.leaflet_offset.mean();
             ++typeDefaults["leaflet_offset"];
         }
+        extra.leafletOffset = offset;
         if (lengthNode) {
             pt.length = fullGrown(Element(e, lengthNode, "petiole_length"), length, fraction,
                                   fields().petioleLength);
@@ -480,7 +480,13 @@ private:
             angle("leaf_pitch", l.pitch);
             angle("leaf_yaw", l.yaw);
             angle("leaf_roll", l.roll);
+            HeliosLeaf& extra = extras.leaves[&l];
+            optionalChild(kids, le, "leaf_angles",
+                          [&](const Element& c) { extra.own = triple(c, -kAngle, kAngle); });
             kids.finish();
+            extra.pitch = l.pitch;
+            extra.yaw = l.yaw;
+            extra.roll = l.roll;
         }
     }
 
@@ -609,6 +615,7 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
         Presence given = Presence::recordingPresent();
         HeliosReader reader(defaults, given);
         reader.plant(e, plant);
+        poseAsReference(plant, reader.extras, defaults.shootTypes, given);
         std::map<std::string, int> missing;
         MissingReport report{given, missing, {}};
         state::describeState(plant, report);
@@ -653,6 +660,7 @@ public:
         int next = 0;
         for (std::size_t i = 0; i < p.shoots.size(); ++i)
             if (!p.shoots[i].removed) newID[i] = next++;
+        angles_ = referenceAngles(p);
         for (std::size_t i = 0; i < p.shoots.size(); ++i)
             if (newID[i] >= 0) shoot(p, p.shoots[i], newID);
         out_ += "\t</plant_instance>\n";
@@ -679,33 +687,6 @@ private:
         return it == p.shootTypes.end() ? nullptr : &it->second;
     }
 
-    // A branch's rotation as the layout has it: the angle its first internode's shoot axis
-    // leaves the parent internode at, the turn of that side about the parent axis from its
-    // petiole's side, and the roll of its reference (growth also draws the type's base yaw
-    // and roll, which the state holds only in these directions).
-    static AxisRotation baseRotationOf(const PlantInstance& p, const Shoot& s) {
-        if (s.parent < 0 || s.phytomers.empty()) return s.baseRotation;
-        const AxisRotation plain{s.insertionAngle, s.baseRotation.yaw, s.baseRotation.roll};
-        const Shoot& parent = p.shoots[std::size_t(s.parent)];
-        if (s.parentNode < 0 || std::size_t(s.parentNode) >= parent.phytomers.size()) return plain;
-        const Phytomer& node = parent.phytomers[std::size_t(s.parentNode)];
-        if (std::size_t(s.parentPetiole) >= node.petioles.size()) return plain;
-        const Internode& pin = node.internode;
-        const vec3 a = pin.direction;
-        const vec3 bud = azimuthDirection(pin.guide, pin.rollReference,
-                                          node.petioles[std::size_t(s.parentPetiole)].azimuth);
-        const vec3 side0 = unitOr(bud - glm::dot(bud, a) * a, anyPerpendicular(a));
-        const Internode& first = s.phytomers.front().internode;
-        const vec3 g = first.guide;
-        const vec3 side = unitOr(g - glm::dot(g, a) * a, side0);
-        const vec3 ref = unitOr(a - glm::dot(a, g) * g, side);
-        auto signedAngle = [](vec3 from, vec3 to, vec3 about) {
-            return std::atan2(glm::dot(glm::cross(from, to), about), glm::dot(from, to)) / kDeg;
-        };
-        return {std::acos(std::clamp(glm::dot(g, a), -1.0f, 1.0f)) / kDeg,
-                signedAngle(side0, side, a), signedAngle(ref, first.rollReference, g)};
-    }
-
     void shoot(const PlantInstance& p, const Shoot& s, const std::vector<int>& newID) {
         out_ += "\t\t<shoot ID=\"" + std::to_string(newID[s.id]) + "\">\n";
         line(3, "shoot_type_label", s.type);
@@ -713,7 +694,9 @@ private:
              std::to_string(s.parent < 0 ? -1 : newID[std::size_t(s.parent)]));
         line(3, "parent_node_index", std::to_string(s.parentNode));
         line(3, "parent_petiole_index", std::to_string(s.parentPetiole));
-        const AxisRotation r = baseRotationOf(p, s);
+        const auto found = angles_.baseRotations.find(&s);
+        const AxisRotation r =
+            found == angles_.baseRotations.end() ? AxisRotation{} : found->second;
         line(3, "base_rotation", num(r.pitch) + " " + num(r.yaw) + " " + num(r.roll));
         for (std::size_t k = 0; k < s.phytomers.size(); ++k) phytomer(p, s, k);
         out_ += "\t\t</shoot>\n";
@@ -729,26 +712,14 @@ private:
         open(4, "internode");
         line(5, "internode_length", num(in.length * ph.internodeFraction));
         line(5, "internode_radius", num(in.radius));
-        line(5, "internode_pitch", num(in.pitch));
-        line(5, "internode_phyllotactic_angle", num(in.phyllotacticAngle));
+        const HeliosInternode& x = angles_.internodes.at(&in);
+        line(5, "internode_pitch", num(x.pitch));
+        line(5, "internode_phyllotactic_angle", num(x.phyllotaxis));
         line(5, "internode_length_max", num(in.length));
-        const unsigned segments = std::max(1u, pp.internode.length_segments);
-        line(5, "internode_length_segments", std::to_string(segments));
+        line(5, "internode_length_segments", std::to_string(x.segments));
         if (k > 0) {
-            // The turn of the shoot axis from the internode before: toward vertical, then
-            // about the vertical, spread evenly over the segments.
-            const vec3 a = s.phytomers[k - 1].internode.guide, b = in.guide;
-            const float up = (std::acos(std::clamp(a.z, -1.0f, 1.0f)) -
-                              std::acos(std::clamp(b.z, -1.0f, 1.0f))) /
-                             kDeg;
-            float yaw = 0.0f;
-            if (std::hypot(a.x, a.y) > 1e-6f && std::hypot(b.x, b.y) > 1e-6f) {
-                yaw = (std::atan2(b.y, b.x) - std::atan2(a.y, a.x)) / kDeg;
-                if (yaw > 180.0f) yaw -= 360.0f;
-                if (yaw < -180.0f) yaw += 360.0f;
-            }
-            line(5, "curvature_perturbations", spread(up, segments));
-            line(5, "yaw_perturbations", spread(yaw, segments));
+            line(5, "curvature_perturbations", joined(x.curvature));
+            line(5, "yaw_perturbations", joined(x.yaw));
         }
         const std::size_t last = ph.petioles.empty() ? 0 : ph.petioles.size() - 1;
         for (std::size_t j = 0; j < ph.petioles.size(); ++j) {
@@ -759,10 +730,12 @@ private:
         close(3, "phytomer");
     }
 
-    static std::string spread(float total, unsigned n) {
+    static std::string joined(const std::vector<float>& values) {
         std::string out;
-        const std::string each = num(total / float(n));
-        for (unsigned i = 0; i < n; ++i) out += (i ? ";" : "") + each;
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            if (i) out += ';';
+            out += num(values[i]);
+        }
         return out;
     }
 
@@ -771,12 +744,12 @@ private:
         open(5, "petiole");
         line(6, "petiole_length", num(pt.length * ph.leafFraction));
         line(6, "petiole_radius", num(pt.radius));
-        line(6, "petiole_pitch", num(pt.pitch));
+        const HeliosPetiole& px = angles_.petioles.at(&pt);
+        line(6, "petiole_pitch", num(px.pitch));
         line(6, "petiole_curvature", num(pt.curvature));
         line(6, "current_leaf_scale_factor", num(ph.leafFraction));
         line(6, "petiole_taper", num(pt.taper));
-        line(6, "petiole_length_segments",
-             std::to_string(std::max(1u, pp.petiole.length_segments)));
+        line(6, "petiole_length_segments", std::to_string(px.segments));
         line(6, "petiole_radial_subdivisions",
              std::to_string(std::max(3u, pp.petiole.radial_subdivisions)));
         // Leaflets left to right; shed ones are not part of the reference layout.
@@ -786,24 +759,23 @@ private:
         std::stable_sort(leaves.begin(), leaves.end(), [](const LeafOrgan* a, const LeafOrgan* b) {
             return a->leafletIndex < b->leafletIndex;
         });
-        float largest = 0.0f, below = 0.0f, offset = pp.leaf.leaflet_offset.mean();
+        // leaflet_scale: the size of the first pair below the tip over the largest leaflet.
+        float largest = 0.0f, below = 0.0f;
         for (const LeafOrgan* l : leaves) largest = std::max(largest, l->scale);
-        for (const LeafOrgan* l : leaves) {
-            const int n = int(pt.leaves.size());
-            const int step = n % 2 == 1 ? std::abs(l->leafletIndex) : std::abs(l->leafletIndex) - 1;
-            if (step > 0) {
-                offset = (1.0f - l->position) / float(step);
-                below = l->scale;
-            }
-        }
+        for (const LeafOrgan* l : leaves)
+            if (std::abs(l->leafletIndex) == 1) below = l->scale;
+        const float offset =
+            pt.leaves.size() > 1 ? px.leafletOffset : pp.leaf.leaflet_offset.mean();
         line(6, "leaflet_scale", num(largest > 0.0f && below > 0.0f ? below / largest : 1.0f));
         line(6, "leaflet_offset", num(offset));
         for (const LeafOrgan* l : leaves) {
             open(6, "leaf");
             line(7, "leaf_scale", num(l->scale * ph.leafFraction));
-            line(7, "leaf_pitch", num(l->pitch));
-            line(7, "leaf_yaw", num(l->yaw));
-            line(7, "leaf_roll", num(l->roll));
+            const HeliosLeaf& a = angles_.leaves.at(l);
+            line(7, "leaf_pitch", num(a.pitch));
+            line(7, "leaf_yaw", num(a.yaw));
+            line(7, "leaf_roll", num(a.roll));
+            if (a.own) line(7, "leaf_angles", vec(*a.own));
             close(6, "leaf");
         }
         for (std::size_t b = 0; b < pt.floralBuds.size(); ++b)
@@ -873,6 +845,7 @@ private:
     }
 
     std::string& out_;
+    HeliosExtras angles_;  // the plant being written
 };
 
 }  // namespace

@@ -200,22 +200,6 @@ private:
         }
     }
 
-    // The shoot axis after `prev`'s, turned as the input says (else straight on): toward
-    // vertical about the horizontal axis across it, then about the vertical.
-    static vec3 turned(const Internode& prev, const Presence::Turn* t) {
-        vec3 g = prev.guide;
-        if (!t) return g;
-        const vec3 horizontal(g.x, g.y, 0.0f);
-        const vec3 tilt = glm::length(horizontal) > 1e-6f
-                              ? glm::normalize(glm::cross(vec3(0, 0, 1), horizontal))
-                              : unitOr(glm::cross(g, prev.rollReference), vec3(1, 0, 0));
-        const float zenith = std::acos(std::clamp(g.z, -1.0f, 1.0f));
-        const float target = std::clamp(zenith - t->up * kDeg, 0.0f, kPi);
-        g = rotateAbout(g, tilt, target - zenith);
-        g = rotateAbout(g, vec3(0, 0, 1), t->yaw * kDeg);
-        return unitOr(g, prev.guide);
-    }
-
     void phytomer(Shoot& s, std::size_t k, const AxisFrame& start) {
         Phytomer& ph = s.phytomers[k];
         if (m_.missing(&ph.parametersLabel)) ph.parametersLabel = s.type;
@@ -226,7 +210,7 @@ private:
         const Internode* prev = k > 0 ? &s.phytomers[k - 1].internode : nullptr;
         if (m_.missing(&in.azimuth))
             in.azimuth = prev ? std::fmod(prev->azimuth + in.phyllotacticAngle, 360.0f) : 0.0f;
-        if (m_.missing(&in.guide)) in.guide = prev ? turned(*prev, m_.turn(&in)) : start.axis;
+        if (m_.missing(&in.guide)) in.guide = prev ? prev->guide : start.axis;
         if (m_.missing(&in.rollReference))
             in.rollReference =
                 prev ? carriedRollReference(prev->rollReference, in.guide) : start.reference;

@@ -52,23 +52,10 @@ public:
     /// True when nothing was absent (a complete file): completion has nothing to do.
     bool complete() const { return !recordsPresent_ && set_.empty(); }
 
-    /// How far the input turns an internode's shoot axis from the one before, degrees:
-    /// toward vertical, then about the vertical (`<helios>` files' perturbations).
-    struct Turn {
-        float up = 0.0f;
-        float yaw = 0.0f;
-    };
-    void setTurn(const Internode* in, Turn t) { turns_[in] = t; }
-    const Turn* turn(const Internode* in) const {
-        auto it = turns_.find(in);
-        return it == turns_.end() ? nullptr : &it->second;
-    }
-
 private:
     explicit Presence(bool recordsPresent) : recordsPresent_(recordsPresent) {}
     bool recordsPresent_;
     std::unordered_set<const void*> set_;
-    std::unordered_map<const Internode*, Turn> turns_;
 };
 
 /// What the PlantArchitecture provides for values an input leaves out.
