@@ -106,7 +106,24 @@ TEST(HeliosFormat, ReferenceFileBuildsThePlantItDescribes) {
     const auto ids = arch.readPlantStructureXML(kFixture, o);
     ASSERT_EQ(ids.size(), 1u);
     ASSERT_EQ(warnings.size(), 1u) << "one warning per plant";
-    EXPECT_NE(warnings[0].find("values missing, defaults used: "), std::string::npos);
+    EXPECT_NE(warnings[0].find("values the file gives nowhere"), std::string::npos);
+    EXPECT_EQ(warnings[0].find("values missing"), std::string::npos) << warnings[0];
+    // A value given for some organs and left out for others is named, with its count.
+    std::string partial = fixtureText();
+    const std::string pitch = "<petiole_pitch>";
+    const auto at = partial.find(pitch);
+    ASSERT_NE(at, std::string::npos);
+    partial.erase(at, partial.find("</petiole_pitch>", at) + 16 - at);
+    Context ctx2;
+    PlantArchitecture arch2(&ctx2);
+    arch2.loadPlantModelFromLibrary("bean");
+    warnings.clear();
+    arch2.readPlantStructureXMLString(partial, o);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("; values missing, defaults used: "
+                               "shoot.phytomer.internode.petiole.petiole_pitch; "),
+              std::string::npos)
+        << warnings[0];
 
     const PlantInstance& p = arch.plant(ids[0]);
     EXPECT_EQ(p.age, 42.0);

@@ -15,6 +15,7 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "core/math.h"
 #include "core/value_text.h"
@@ -159,20 +160,28 @@ int canonicalSlot(int index, int n) {
     return 2 * (a - 1) + (index > 0);
 }
 
-// Counts what a file leaves out, by kind of value ("shoot.phytomer.age (3)").
+// Counts what a file leaves out, by kind of value ("shoot.phytomer.age (3)"), and notes the
+// kinds it gives somewhere.
 struct MissingReport {
     const Presence& given;
     std::map<std::string, int>& counts;
+    std::set<std::string>& seen;
     std::vector<const char*> kinds;
 
-    void add(const char* name) {
-        std::string key;
-        for (const char* k : kinds) key.append(k).append(".");
-        ++counts[key + name];
+    std::string key(const char* name) const {
+        std::string k;
+        for (const char* kind : kinds) k.append(kind).append(".");
+        return k + name;
+    }
+    void add(const void* member, const char* name) {
+        if (given.missing(member))
+            ++counts[key(name)];
+        else
+            seen.insert(key(name));
     }
     template <class T>
     void field(const state::FieldInfo& f, T& member) {
-        if (given.missing(&member)) add(f.name);
+        add(&member, f.name);
     }
     void legacy(const char*) {}
     template <class T>
@@ -195,7 +204,7 @@ struct MissingReport {
     void optional(const char*, std::optional<T>&) {}
     template <class P>
     void parameters(const char* name, P& member) {
-        if (given.missing(&member)) add(name);
+        add(&member, name);
     }
 };
 
@@ -503,12 +512,13 @@ private:
                    : state == 4 ? FloralStage::Fruit
                                 : FloralStage::Bud;
         note(&fb.stage);
-        if (state <= 1 || state == 5) {
-            fb.state = state == 0   ? BudState::Dormant
-                       : state == 1 ? BudState::Active
-                                    : BudState::Dead;
-            note(&fb.state);
-        }
+        // A bud showing flowers or fruit has broken (the layout has no state of its own
+        // for it).
+        fb.state = state == 0   ? BudState::Dormant
+                   : state == 1 ? BudState::Active
+                   : state == 5 ? BudState::Dead
+                                : BudState::Broken;
+        note(&fb.state);
         fb.terminal = terminal;
         note(&fb.terminal);
         optionalChild(kids, e, "parent_index", [&](const Element& c) {
@@ -567,8 +577,11 @@ private:
             const std::size_t step = opposite ? i / 2 : i;
             fl.position = std::max(0.0f, 1.0f - float(step) * offset);
             fl.azimuth = (i % 2 ? 180.0f : 0.0f) + (opposite ? 90.0f : 0.0f);
+            // One base scale per flower: the fruit's at the fruit stage, the flower's before.
+            // The other is the shoot type's mean (the layout holds none).
             fl.flowerScale = inf.flower_prototype_scale.mean();
             fl.fruitScale = inf.fruit_prototype_scale.mean();
+            note(fb.stage == FloralStage::Fruit ? &fl.flowerScale : &fl.fruitScale);
             fl.gravityFactor = inf.fruit_gravity_factor_fraction.mean();
             Children fk(fe);
             auto angle = [&](const char* name, float* member) {
@@ -615,10 +628,22 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
         Presence given = Presence::recordingPresent();
         HeliosReader reader(defaults, given);
         reader.plant(e, plant);
-        poseAsReference(plant, reader.extras, defaults.shootTypes, given);
         std::map<std::string, int> missing;
-        MissingReport report{given, missing, {}};
+        std::set<std::string> seen;
+        MissingReport report{given, missing, seen, {}};
         state::describeState(plant, report);
+        poseAsReference(plant, reader.extras, defaults.shootTypes, given);
+        // A value the file gives nowhere is one the layout does not hold (or one the whole
+        // file leaves out): said once, not named; those it leaves out here and there are named.
+        bool growthState = false;
+        for (auto it = missing.begin(); it != missing.end();) {
+            if (seen.count(it->first)) {
+                ++it;
+            } else {
+                growthState = true;
+                it = missing.erase(it);
+            }
+        }
         std::vector<std::string> notes;
         for (const auto& [name, n] : reader.typeDefaults)
             notes.push_back(name + " (" + std::to_string(n) + "): the shoot type's mean");
@@ -632,9 +657,16 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
             if (rel.compare(0, where.size() + 1, where + ".") == 0) rel.erase(0, where.size() + 1);
             doc.relocate(err, locateElement(plants[index], rel), err.parameter());
         }
-        if (!missing.empty() || !notes.empty()) {
-            std::string w = fileName + ": plant_instance " + std::to_string(index) +
-                            ": values missing, defaults used: " + missingReport(missing);
+        if (growthState || !missing.empty() || !notes.empty()) {
+            std::string w = fileName + ": plant_instance " + std::to_string(index) + ": ";
+            std::string sep;
+            if (growthState) {
+                w += "values the file gives nowhere (growth state: ages, phenology, random "
+                     "generator, ...) take plantarch's defaults";
+                sep = "; ";
+            }
+            if (!missing.empty())
+                w += sep + "values missing, defaults used: " + missingReport(missing);
             for (const std::string& n : notes) w += "; " + n;
             result.warnings.push_back(std::move(w));
         }
