@@ -278,7 +278,7 @@ int run(const InfoArgs& a) {
     return 0;
 }
 
-std::function<int()> setup(CLI::App& app, GlobalOptions&) {
+std::function<int()> setupInfo(CLI::App& app, GlobalOptions&) {
     app.description("Describe a species: shoot types, phenology, build parameters");
     auto args = std::make_shared<InfoArgs>();
     app.add_option("SPECIES", args->species, "Library name (see 'plantarch list') or species file");
@@ -296,6 +296,6 @@ std::function<int()> setup(CLI::App& app, GlobalOptions&) {
 
 }  // namespace
 
-PLANTARCH_REGISTER_COMMAND(info, "info", 70, setup);
+PLANTARCH_REGISTER_COMMAND(info, "info", 70, setupInfo);
 
 }  // namespace plantarch::cli

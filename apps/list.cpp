@@ -39,13 +39,13 @@ int run(const GlobalOptions& g) {
     return status;
 }
 
-std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
+std::function<int()> setupList(CLI::App& app, GlobalOptions& global) {
     app.description("List the species of the library (PLANTARCH_SPECIES_DIR overrides where)");
     return [&global] { return run(global); };
 }
 
 }  // namespace
 
-PLANTARCH_REGISTER_COMMAND(list, "list", 60, setup);
+PLANTARCH_REGISTER_COMMAND(list, "list", 60, setupList);
 
 }  // namespace plantarch::cli

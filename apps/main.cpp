@@ -206,8 +206,11 @@ int main(int argc, char** argv) {
     setProgressMode(ProgressMode::Auto);
     plantarch::removeTemporaryFilesOnSignal();  // named temporaries go on SIGINT and SIGTERM
     auto& registry = commandRegistry();
-    std::sort(registry.begin(), registry.end(),
-              [](const Command& a, const Command& b) { return a.order < b.order; });
+    std::sort(registry.begin(), registry.end(), [](const Command& a, const Command& b) {
+        // (by name where two share a place: registration order is the linker's)
+        return a.order != b.order ? a.order < b.order
+                                  : std::string_view(a.name) < std::string_view(b.name);
+    });
     std::vector<std::pair<CLI::App*, std::function<int()>>> runners;
     for (auto& cmd : registry) {
         CLI::App* sub = app.add_subcommand(cmd.name);

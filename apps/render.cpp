@@ -195,7 +195,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     return 0;
 }
 
-std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
+std::function<int()> setupRender(CLI::App& app, GlobalOptions& global) {
     app.description(
         "Render a scene (.obj, .ply, .glb, .gltf, or plants from .xml or .txt) to a PNG (shaded "
         "preview or "
@@ -252,6 +252,6 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
 
 }  // namespace
 
-PLANTARCH_REGISTER_COMMAND(render, "render", 50, setup);
+PLANTARCH_REGISTER_COMMAND(render, "render", 50, setupRender);
 
 }  // namespace plantarch::cli

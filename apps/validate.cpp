@@ -55,7 +55,7 @@ int run(const std::string& file, const GlobalOptions& g) {
     return 0;
 }
 
-std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
+std::function<int()> setupValidate(CLI::App& app, GlobalOptions& global) {
     app.description(
         "Check a species file strictly (exit 0 if valid; 2 and one line per error if not)");
     auto file = std::make_shared<std::string>();
@@ -65,6 +65,6 @@ std::function<int()> setup(CLI::App& app, GlobalOptions& global) {
 
 }  // namespace
 
-PLANTARCH_REGISTER_COMMAND(validate, "validate", 80, setup);
+PLANTARCH_REGISTER_COMMAND(validate, "validate", 80, setupValidate);
 
 }  // namespace plantarch::cli

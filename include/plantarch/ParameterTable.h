@@ -57,6 +57,10 @@ struct FieldInfo {
     bool probabilities = false;  ///< map fields: the values are probabilities summing to 1
 };
 
+/// A field's range as messages and files state it: "0 to 1", ">= 0", "<= 90", or "any finite
+/// number" when it has no bound.
+std::string rangeText(const FieldInfo& f);
+
 // ---- enum-like fields ------------------------------------------------------------------
 
 /// One valid value of an enum-like field: the enumerator, its name in files, what it means.

@@ -119,6 +119,10 @@ struct SpeciesModel {
     /// "phenology.max_age"), so later errors about a value can point at it. Empty for a
     /// model made in code.
     std::map<std::string, int> lines;
+
+    /// The line of `path` in sourceFile, or of the nearest enclosing path it has one for
+    /// ("trifoliate.phytomer.leaf.pitch", then "trifoliate.phytomer.leaf", ...); 0 if none.
+    int lineOf(std::string path) const;
 };
 
 }  // namespace plantarch

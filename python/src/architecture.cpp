@@ -53,7 +53,9 @@ bool isWhole(const py::handle& v) {
     return PyLong_Check(v.ptr()) && !PyBool_Check(v.ptr());
 }
 
-bool isNumber(const py::handle& v) {
+// A Python int or float (not a bool, not a numpy value): how advanceTime tells its forms
+// apart.
+bool isPlainNumber(const py::handle& v) {
     return (PyLong_Check(v.ptr()) || PyFloat_Check(v.ptr())) && !PyBool_Check(v.ptr());
 }
 
@@ -101,8 +103,8 @@ void advanceTimeCall(PlantArchitecture& a, const py::args& args, const py::kwarg
                         " by " + p + " days",
                     {.validRange = "advanceTime(time_step_days, plantIDs=None)"});
     }
-    if (!isNumber(days)) {
-        const bool oldOrder = plantsPositional && isNumber(plants);
+    if (!isPlainNumber(days)) {
+        const bool oldOrder = plantsPositional && isPlainNumber(plants);
         throw Error(oldOrder ? "advanceTime takes the days first in Python: write advanceTime(" +
                                    reprOf(plants) + ", plantIDs=" + reprOf(days) + ")"
                              : "advanceTime: the days must be a number",

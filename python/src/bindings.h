@@ -20,6 +20,12 @@ namespace plantarch::python {
 /// as the module.
 const char* inPython(const char* cpp, const char* python);
 
+/// A value as Python shows it (its repr), for messages; "?" when its repr raises.
+std::string shown(py::handle value);
+
+/// Whether a value is a number a field takes: an int or float (a numpy one too), not a bool.
+bool isNumber(py::handle v);
+
 /// A vec3 from any sequence of three numbers (plantarch.vec3, tuple, list, numpy array).
 /// Throws plantarch::Error naming `what` otherwise.
 vec3 toVec3(py::handle value, const char* what);

@@ -44,25 +44,11 @@ std::string rangeOf(const pp::FieldInfo& f) {
     return info.rangeText();
 }
 
-std::string shown(py::handle value) {
-    try {
-        return py::repr(value).cast<std::string>();
-    } catch (const py::error_already_set&) {
-        return "?";
-    }
-}
-
 [[noreturn]] void wrongType(const pp::FieldInfo& f, const std::string& path, py::handle value,
                             const std::string& expected) {
     throw Error("not " + expected, {.parameter = path.empty() ? f.name : path + "." + f.name,
                                     .value = shown(value),
                                     .validRange = rangeOf(f).empty() ? expected : rangeOf(f)});
-}
-
-bool isNumber(py::handle v) {
-    return !py::isinstance<py::bool_>(v) &&
-           (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v) ||
-            (PyNumber_Check(v.ptr()) && py::hasattr(v, "__float__")));
 }
 
 // ---- values: C++ field -> Python ------------------------------------------------------

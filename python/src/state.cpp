@@ -41,14 +41,6 @@ std::string plural(const std::string& element) {
     return element + "s";
 }
 
-std::string shown(py::handle value) {
-    try {
-        return py::repr(value).cast<std::string>();
-    } catch (const py::error_already_set&) {
-        return "?";
-    }
-}
-
 // ---- finding a member of a live object by its element name ---------------------------------
 
 // Visits S's table and hands the member named `name` (a field, a nested struct, a list...) to
@@ -123,12 +115,6 @@ constexpr bool kShownInPython = !std::is_same_v<T, Rng>;  // the generator is th
 [[noreturn]] void refuse(const st::FieldInfo& f, py::handle value, const std::string& why,
                          const std::string& valid) {
     throw Error(why, {.parameter = f.name, .value = shown(value), .validRange = valid});
-}
-
-bool isNumber(py::handle v) {
-    return !py::isinstance<py::bool_>(v) &&
-           (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v) ||
-            (PyNumber_Check(v.ptr()) && py::hasattr(v, "__float__")));
 }
 
 double number(const st::FieldInfo& f, py::handle v, bool whole) {

@@ -57,6 +57,13 @@ bool readNumbers(py::handle value, float (&out)[N]) {
     return true;
 }
 
+}  // namespace
+
+const char* inPython(const char* cpp, const char* python) {
+    static std::deque<std::string> texts;  // filled while the module is made, then read only
+    return texts.emplace_back(std::string(cpp) + "\n\nIn Python: " + python).c_str();
+}
+
 std::string shown(py::handle value) {
     try {
         return py::repr(value).cast<std::string>();
@@ -65,11 +72,10 @@ std::string shown(py::handle value) {
     }
 }
 
-}  // namespace
-
-const char* inPython(const char* cpp, const char* python) {
-    static std::deque<std::string> texts;  // filled while the module is made, then read only
-    return texts.emplace_back(std::string(cpp) + "\n\nIn Python: " + python).c_str();
+bool isNumber(py::handle v) {
+    return !py::isinstance<py::bool_>(v) &&
+           (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v) ||
+            (PyNumber_Check(v.ptr()) && py::hasattr(v, "__float__")));
 }
 
 vec3 toVec3(py::handle value, const char* what) {

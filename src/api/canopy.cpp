@@ -121,8 +121,8 @@ namespace {
 // together. A batch holds at most about this many triangles twice (and at least two plants
 // per thread). The plant Contexts are kept, with their capacity, from batch to batch: small
 // batches keep the memory they touch small, so that the scene's own storage is nearly all the
-// canopy's fresh memory (a 10 x 10 bean canopy: batches of 4e6 triangles took 1.9 times as
-// long on one thread and 1.5 times the memory, most of the difference the kernel's zeroing
+// canopy's fresh memory (a canopy of 10 x 10 plants at 40 days: batches of 4e6 triangles took 1.9
+// times as long on one thread and 1.5 times the memory, most of the difference the kernel's zeroing
 // of pages touched for the first time).
 constexpr double kBatchTriangles = 1.0e5;
 

@@ -14,10 +14,7 @@ namespace plantarch::organs {
 
 namespace {
 
-const vec3 kX{1.0f, 0.0f, 0.0f};
-const vec3 kY{0.0f, 1.0f, 0.0f};
-const vec3 kZ{0.0f, 0.0f, 1.0f};
-const vec3 kStalkGreen{0.42f, 0.50f, 0.22f};
+const vec3 kCerealStalkGreen{0.42f, 0.50f, 0.22f};
 
 // A grain or floret: a closed body pointed at the far end, along `dir` from `base`.
 Mesh grain(vec3 base, vec3 dir, vec3 up, float length, float width, float thickness, float point,
@@ -66,7 +63,7 @@ OrganPrototype buildSpike(const FloralPrototypeRequest& req, const Params& p, Rn
     PartSet parts;
     parts.declare("spikelets", req.color);
     parts.declare("awns", tint(req.color, 0.25f));
-    parts.declare("rachis", kStalkGreen);
+    parts.declare("rachis", kCerealStalkGreen);
     const int n = p.count("spikelet_count"), florets = p.count("florets");
     const float stalk = p("stalk_length"), ls = p("spikelet_length");
     const float top = 1.0f - 0.6f * ls, spacing = (top - stalk) / float(n);
@@ -126,7 +123,7 @@ OrganPrototype buildNoddingPanicle(const FloralPrototypeRequest& req, const Para
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("grains", req.color);
-    parts.declare("branches", kStalkGreen);
+    parts.declare("branches", kCerealStalkGreen);
     const int branches = p.count("branch_count"), grains = p.count("grains_per_branch");
     const float droop = p("droop"), gl = p("grain_length");
     const std::vector<vec3> axis = arcPath({0, 0, 0}, kX, -kZ, 1.0f, 0.6f * droop, 16);
@@ -267,7 +264,7 @@ OrganPrototype buildTassel(const FloralPrototypeRequest& req, const Params& p, R
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("spikelets", req.color);
-    parts.declare("axes", kStalkGreen);
+    parts.declare("axes", kCerealStalkGreen);
     parts.declare("anthers", {0.92f, 0.82f, 0.36f});
     const bool open = req.open, anthers = open && p.flag("anthers");
     const float density = p("spikelet_density");

@@ -15,7 +15,6 @@ namespace plantarch::organs {
 namespace {
 
 const vec3 kSepalGreen{0.30f, 0.48f, 0.17f};
-const vec3 kX{1.0f, 0.0f, 0.0f};
 
 // Pedicel stub and receptacle: a tube from the origin widening to `radius` at x = `length`.
 Mesh receptacle(float length, float radius, unsigned sides) {

@@ -15,7 +15,6 @@ namespace plantarch::organs {
 namespace {
 
 const vec3 kCalyxGreen{0.26f, 0.42f, 0.14f};
-const vec3 kX{1.0f, 0.0f, 0.0f};
 
 // ---- berry --------------------------------------------------------------------------------------
 

@@ -163,6 +163,11 @@ Mesh sepalStar(int count, float x0, float r0, float length, float width, float b
 /// Half-width of a petal outline at u in [0, 1] for a width of 1 (see PetalSpec).
 float petalHalfWidth(const PetalSpec& spec, float u);
 
+/// The axes of an organ's own frame (+x along the organ).
+inline const vec3 kX{1.0f, 0.0f, 0.0f};
+inline const vec3 kY{0.0f, 1.0f, 0.0f};
+inline const vec3 kZ{0.0f, 0.0f, 1.0f};
+
 /// Unit vector (0, cos a, sin a): the radial direction at azimuth `a` about +x.
 inline vec3 radialDir(float a) {
     return {0.0f, std::cos(a), std::sin(a)};

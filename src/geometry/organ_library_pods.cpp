@@ -13,9 +13,7 @@ namespace plantarch::organs {
 
 namespace {
 
-const vec3 kX{1.0f, 0.0f, 0.0f};
-const vec3 kZ{0.0f, 0.0f, 1.0f};
-const vec3 kStalkGreen{0.30f, 0.40f, 0.16f};
+const vec3 kPodStalkGreen{0.30f, 0.40f, 0.16f};
 
 // ---- legume_pod ---------------------------------------------------------------------------------
 
@@ -100,7 +98,7 @@ OrganPrototype buildPod(const FloralPrototypeRequest& req, const Params& p, Rng&
     const unsigned s = std::max(2u, req.subdivisions);
     PartSet parts;
     parts.declare("pod", req.color);
-    parts.declare("calyx", kStalkGreen);
+    parts.declare("calyx", kPodStalkGreen);
     parts.declare("hairs", p.color("hair"));
     const PodShape shape{p("width"),       p("thickness"),    p("seed_bump"),
                          p("beak_length"), p("section_lens"), p.count("seed_count")};

@@ -280,7 +280,7 @@ private:
 };
 
 // A face's labels, as writePLY writes them (-1: absent).
-struct FaceLabels {
+struct FaceValues {
     int plant = -1, object = -1, organ = -1, leaf = -1, shoot = -1, rank = -1, node = -1;
     double age = -1.0;
 };
@@ -302,7 +302,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     std::vector<vec3> colours;  // the vertices' red, green, blue (0 to 1), when they have them
     struct Face {
         std::vector<std::uint32_t> corners;
-        FaceLabels labels;
+        FaceValues labels;
     };
     std::vector<Face> faces;
     bool vertexSeen = false, faceSeen = false;
@@ -380,7 +380,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                         continue;
                     }
                     const double v = r.value(p.type);
-                    FaceLabels& l = f.labels;
+                    FaceValues& l = f.labels;
                     if (p.name == "plant_id") l.plant = whole(v);
                     if (p.name == "object_id") l.object = whole(v);
                     if (p.name == "organ") l.organ = whole(v);
@@ -403,7 +403,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     // One object per object_id (in first-appearance order), its vertices of its own.
     struct Part {
         Mesh mesh;
-        FaceLabels labels;
+        FaceValues labels;
         std::map<std::uint32_t, std::uint32_t> local;
         std::optional<vec3> colour;  // of its first vertex
     };
@@ -439,7 +439,7 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                                             : context.addObject(part.mesh);
             made.push_back(id);
             if (!perObject) continue;
-            const FaceLabels& l = part.labels;
+            const FaceValues& l = part.labels;
             if (l.plant >= 0) context.setObjectData(id, "plantID", std::int32_t(l.plant));
             // A label named "unlabelled" (writePLY's name for no organ data, whatever its
             // number in the file) gives none, so that the object writes back as it read.

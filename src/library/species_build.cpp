@@ -17,18 +17,6 @@ namespace plantarch {
 
 namespace {
 
-// The line of `path` (or of the nearest enclosing path) in the species file.
-int lineOf(const SpeciesModel& s, std::string path) {
-    while (!path.empty()) {
-        auto it = s.lines.find(path);
-        if (it != s.lines.end()) return it->second;
-        const auto dot = path.rfind('.');
-        if (dot == std::string::npos) break;
-        path.resize(dot);
-    }
-    return 0;
-}
-
 std::vector<std::string> buildParameterNames(const SpeciesModel& s) {
     std::vector<std::string> names;
     for (const BuildParameter& p : s.buildParameters) names.push_back(p.name);
@@ -381,7 +369,7 @@ void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& specie
         try {
             arch.defineShootType(label, params);
         } catch (const Error& e) {
-            throw e.withFile(species.sourceFile, lineOf(species, e.parameter()));
+            throw e.withFile(species.sourceFile, species.lineOf(e.parameter()));
         }
     }
 }

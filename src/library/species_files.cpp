@@ -54,18 +54,6 @@ void eachNamedFile(const std::string& label, Params& p, F&& f) {
               *fn, NamedFile{FileKind::FloralModel, inflorescence.normalize_OBJ_model});
 }
 
-// The line of `path` (or of the nearest enclosing path) in the species file.
-int lineOf(const SpeciesModel& s, std::string path) {
-    while (!path.empty()) {
-        const auto it = s.lines.find(path);
-        if (it != s.lines.end()) return it->second;
-        const auto dot = path.rfind('.');
-        if (dot == std::string::npos) break;
-        path.resize(dot);
-    }
-    return 0;
-}
-
 // Reads a file as what it must be, throwing plantarch::Error naming `path` when it is not: a
 // texture a PNG or JPEG image of sane size, a leaf image one whose alpha channel outlines a
 // leaf, an OBJ model an OBJ file that makes a prototype (the same reading as when the organ
@@ -119,7 +107,7 @@ Error fileError(const SpeciesModel& species, const std::string& parameter, const
                         : named.kind == FileKind::LeafImage ? "a PNG image with alpha"
                                                             : "an OBJ file";
     return Error(message, {.file = species.sourceFile,
-                           .line = lineOf(species, parameter),
+                           .line = species.lineOf(parameter),
                            .parameter = parameter,
                            .value = path,
                            .validRange = e.validRange().empty() ? valid : e.validRange()});
@@ -145,6 +133,17 @@ std::vector<Error> checkSpeciesFiles(const SpeciesModel& species) {
     std::stable_sort(errors.begin(), errors.end(),
                      [](const Error& a, const Error& b) { return a.line() < b.line(); });
     return errors;
+}
+
+int SpeciesModel::lineOf(std::string path) const {
+    while (!path.empty()) {
+        const auto it = lines.find(path);
+        if (it != lines.end()) return it->second;
+        const auto dot = path.rfind('.');
+        if (dot == std::string::npos) break;
+        path.resize(dot);
+    }
+    return 0;
 }
 
 }  // namespace plantarch

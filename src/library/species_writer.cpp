@@ -16,17 +16,15 @@ namespace {
 
 // Text safe inside <!-- -->: no "--" and no trailing '-'.
 std::string commentText(std::string s) {
-    for (std::size_t i = 0; (i = s.find("--", i)) != std::string::npos;) s.replace(i, 2, "- ");
+    for (std::size_t i = 0; (i = s.find("--", i)) != std::string::npos;) s[i + 1] = ' ';
     while (!s.empty() && s.back() == '-') s.pop_back();
     return s;
 }
 
-std::string rangeText(const params::FieldInfo& f) {
-    using text::formatDouble;
+// A field's range for its comment: none when it has no bound.
+std::string rangeComment(const params::FieldInfo& f) {
     if (f.min == -params::kInf && f.max == params::kInf) return "";
-    if (f.max == params::kInf) return ">= " + formatDouble(f.min);
-    if (f.min == -params::kInf) return "<= " + formatDouble(f.max);
-    return formatDouble(f.min) + " to " + formatDouble(f.max);
+    return params::rangeText(f);
 }
 
 class Writer {
@@ -142,7 +140,7 @@ private:
 
     void put(const params::FieldInfo& f, const std::string& value, bool withRange = true) {
         std::string note = f.unit;
-        const std::string range = withRange ? rangeText(f) : "";
+        const std::string range = withRange ? rangeComment(f) : "";
         if (!range.empty()) note = note.empty() ? range : note + ", " + range;
         w_.element(depth_, f.name, value, join(note, f.doc));
     }

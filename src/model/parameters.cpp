@@ -20,13 +20,6 @@ std::string number(double v) {
     return text::formatDouble(v);
 }
 
-std::string rangeText(const params::FieldInfo& f) {
-    if (f.min == -params::kInf && f.max == params::kInf) return "any finite number";
-    if (f.max == params::kInf) return ">= " + number(f.min);
-    if (f.min == -params::kInf) return "<= " + number(f.max);
-    return number(f.min) + " to " + number(f.max);
-}
-
 // Visits every field and throws on the first value outside its declared range.
 struct Validator {
     std::string path;
@@ -38,7 +31,7 @@ struct Validator {
                            const std::string& why, std::string range = "") const {
         throw Error(why, {.parameter = at(f),
                           .value = value,
-                          .validRange = range.empty() ? rangeText(f) : range});
+                          .validRange = range.empty() ? params::rangeText(f) : range});
     }
     void checkNumber(const params::FieldInfo& f, double lo, double hi,
                      const std::string& text) const {
@@ -85,7 +78,7 @@ struct Validator {
                 if (!std::isfinite(value) || value < f.min || value > f.max)
                     throw Error("out of range", {.parameter = at(f) + "." + key,
                                                  .value = number(value),
-                                                 .validRange = rangeText(f)});
+                                                 .validRange = params::rangeText(f)});
             return;
         }
         if (types.empty()) return;
@@ -94,7 +87,7 @@ struct Validator {
             if (!(prob >= f.min && prob <= f.max))
                 throw Error("probability out of range", {.parameter = at(f) + "." + label,
                                                          .value = number(prob),
-                                                         .validRange = rangeText(f)});
+                                                         .validRange = params::rangeText(f)});
             sum += prob;
         }
         if (std::abs(sum - 1.0) > 1e-4)
@@ -296,6 +289,13 @@ const char* floralStageName(FloralStage s) {
             return "removed";
     }
     return "unknown";
+}
+
+std::string params::rangeText(const FieldInfo& f) {
+    if (f.min == -kInf && f.max == kInf) return "any finite number";
+    if (f.max == kInf) return ">= " + text::formatDouble(f.min);
+    if (f.min == -kInf) return "<= " + text::formatDouble(f.max);
+    return text::formatDouble(f.min) + " to " + text::formatDouble(f.max);
 }
 
 }  // namespace plantarch

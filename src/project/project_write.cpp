@@ -13,31 +13,32 @@ namespace plantarch {
 
 namespace {
 
-using json = nlohmann::ordered_json;
+// Keys in the order written (a project file reads as its blocks were built).
+using OrderedJson = nlohmann::ordered_json;
 
 // A float as the shortest decimal that reads back to it (0.3, not 0.30000001192092896), and
 // whole values as integers.
-json num(float v) {
+OrderedJson num(float v) {
     if (v == std::floor(v) && std::fabs(v) < 1e15f) return std::int64_t(v);
     return std::stod(text::formatFloat(v));
 }
 
-json pair(const vec2& v) {
-    return json::array({num(v.x), num(v.y)});
+OrderedJson pair(const vec2& v) {
+    return OrderedJson::array({num(v.x), num(v.y)});
 }
 
-json point(const vec3& v) {
-    return json::array({num(v.x), num(v.y), num(v.z)});
+OrderedJson point(const vec3& v) {
+    return OrderedJson::array({num(v.x), num(v.y), num(v.z)});
 }
 
-json block(const ProjectBlock& b) {
-    json j;
+OrderedJson block(const ProjectBlock& b) {
+    OrderedJson j;
     j["name"] = b.name;
     j["species"] = b.species;
     j["layout"] = layoutName(b.layout);
     j["origin"] = point(b.origin);
     if (b.layout == ProjectBlock::Layout::Grid) {
-        j["count"] = json::array({b.count.x, b.count.y});
+        j["count"] = OrderedJson::array({b.count.x, b.count.y});
         j["spacing"] = pair(b.spacing);
     }
     if (b.layout == ProjectBlock::Layout::Scatter) {
@@ -47,7 +48,7 @@ json block(const ProjectBlock& b) {
     if (b.layout != ProjectBlock::Layout::Single) j["germination"] = num(b.germination);
     if (b.age) j["age"] = num(*b.age);
     if (b.seed) j["seed"] = *b.seed;
-    json params = json::object();
+    OrderedJson params = OrderedJson::object();
     for (const auto& [name, value] : b.parameters) params[name] = num(value);
     j["parameters"] = params;
     j["trellis"] = b.trellis;
@@ -57,30 +58,31 @@ json block(const ProjectBlock& b) {
 }  // namespace
 
 std::string writeProjectString(const Project& p) {
-    json j;
+    OrderedJson j;
     j["plantarch_project"] = kProjectVersion;
     j["name"] = p.name;
     j["seed"] = p.seed;
     j["mesh_detail"] = num(p.meshDetail);
-    j["ground"] = p.ground
-                      ? json{{"size", pair(p.ground->size)}, {"center", pair(p.ground->center)}}
-                      : json(nullptr);
+    j["ground"] =
+        p.ground ? OrderedJson{{"size", pair(p.ground->size)}, {"center", pair(p.ground->center)}}
+                 : OrderedJson(nullptr);
     j["soft_collision"] = {
         {"enabled", p.softCollision},
-        {"cone", json::array({num(p.softCone.halfAngle), num(p.softCone.lookAhead), p.softCone.rays,
-                              num(p.softCone.inertia)})}};
+        {"cone", OrderedJson::array({num(p.softCone.halfAngle), num(p.softCone.lookAhead),
+                                     p.softCone.rays, num(p.softCone.inertia)})}};
     j["obstacles"] = {{"files", p.obstacleFiles},
                       {"avoid_distance", num(p.avoidDistance)},
                       {"fruit_adjustment", p.fruitAdjustment}};
-    json points = json::array();
+    OrderedJson points = OrderedJson::array();
     for (const vec3& v : p.attractionPoints) points.push_back(point(v));
     j["attraction"] = {
         {"enabled", p.attraction},
         {"points", points},
-        {"file", p.attractionFile.empty() ? json(nullptr) : json(p.attractionFile)},
-        {"cone", json::array({num(p.attractionCone.halfAngle), num(p.attractionCone.lookAhead),
-                              num(p.attractionCone.inertia)})}};
-    json blocks = json::array();
+        {"file", p.attractionFile.empty() ? OrderedJson(nullptr) : OrderedJson(p.attractionFile)},
+        {"cone",
+         OrderedJson::array({num(p.attractionCone.halfAngle), num(p.attractionCone.lookAhead),
+                             num(p.attractionCone.inertia)})}};
+    OrderedJson blocks = OrderedJson::array();
     for (const ProjectBlock& b : p.blocks) blocks.push_back(block(b));
     j["blocks"] = blocks;
     return j.dump(2) + "\n";
