@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/plant_structure.h"
 #include "plantarch/Context.h"
 #include "plantarch/PlantArchitecture.h"
 
@@ -177,4 +178,58 @@ TEST(HeliosPose, OneOrganAngleConventions) {
     vec3 l = centre(own.leaf) - 2.0f * vec3(p.x, p.y, 0.0f);
     l.z = 0.0f;
     EXPECT_GT(glm::dot(glm::normalize(l), vec3(0, -1, 0)), 0.95f) << "along the petiole";
+}
+
+// A compound leaf that shed a leaflet is written with the leaflets it keeps; read back, each
+// kept leaflet lies where it lay (the file numbers them again: the middle one of three kept
+// two becomes a lateral).
+TEST(HeliosPose, ShedLeafletsKeepTheirPlaces) {
+    Context ctx;
+    PlantArchitecture a(&ctx);
+    a.loadPlantModelFromLibrary("bean");
+    const unsigned id = a.buildPlantInstanceFromLibrary(vec3(0.0f), 40.0f);
+    PlantInstance p = a.plant(id);
+    std::vector<std::vector<ObjectID>> keptObjects;  // per shedding petiole, left to right
+    for (Shoot& s : p.shoots)
+        for (Phytomer& ph : s.phytomers)
+            for (Petiole& pt : ph.petioles) {
+                if (pt.leaves.size() != 3) continue;
+                std::vector<ObjectID> kept;
+                for (LeafOrgan& l : pt.leaves) {
+                    if (l.leafletIndex == -1) l.removed = true;
+                    if (l.leafletIndex == 0) kept.insert(kept.begin(), l.objects.at(0));
+                    if (l.leafletIndex == 1) kept.push_back(l.objects.at(0));
+                }
+                keptObjects.push_back(kept);
+            }
+    ASSERT_GT(keptObjects.size(), 10u);
+    const std::string text = plant_io::writeHeliosPlants({&p});
+    Context ctx2;
+    PlantArchitecture b(&ctx2);
+    b.loadPlantModelFromLibrary("bean");
+    PlantStructureReadOptions o;
+    o.onWarning = [](const std::string&) {};
+    const PlantInstance& q = b.plant(b.readPlantStructureXMLString(text, o).at(0));
+    std::size_t at = 0, compared = 0;
+    for (const Shoot& s : q.shoots)
+        for (const Phytomer& ph : s.phytomers)
+            for (const Petiole& pt : ph.petioles) {
+                if (pt.leaves.size() != 2) continue;
+                ASSERT_LT(at, keptObjects.size());
+                std::vector<const LeafOrgan*> read;
+                for (const LeafOrgan& l : pt.leaves) read.push_back(&l);
+                std::sort(read.begin(), read.end(), [](const LeafOrgan* x, const LeafOrgan* y) {
+                    return x->leafletIndex < y->leafletIndex;
+                });
+                for (std::size_t i = 0; i < 2; ++i) {
+                    // (its shape variant is not in the layout: a few millimetres of outline)
+                    const vec3 was = centre(ctx.objectBoundingBox(keptObjects[at][i]));
+                    const vec3 now = centre(ctx2.objectBoundingBox(read[i]->objects.at(0)));
+                    EXPECT_LT(glm::length(was - now), 0.005f) << at << " " << i;
+                    ++compared;
+                }
+                ++at;
+            }
+    EXPECT_EQ(at, keptObjects.size());
+    EXPECT_GT(compared, 20u);
 }

@@ -264,7 +264,17 @@ void setOwnLeafAngles(const Frame& f, LeafAxes a, LeafOrgan& l) {
     l.roll = l.leafletIndex < 0 ? -r : r;
 }
 
-// Leaf `i` of `n` in the file's order from its leaflet index (the reader's mapping undone).
+}  // namespace
+
+int leafletIndexOf(int i, int n) {
+    const int twice = 2 * i - (n - 1);  // twice the signed distance from the middle
+    if (n % 2 == 1) return twice / 2;
+    return twice > 0 ? (twice + 1) / 2 : (twice - 1) / 2;
+}
+
+namespace {
+
+// Leaf `i` of `n` in the file's order from its leaflet index (leafletIndexOf undone).
 int fileOrder(int index, int n) {
     const int twice = n % 2 == 1 ? 2 * index : (index > 0 ? 2 * index - 1 : 2 * index + 1);
     return (twice + n - 1) / 2;
@@ -564,28 +574,43 @@ private:
         }
     }
 
+    // The leaves the file lists (shed ones are left out), left to right as written; each gets
+    // the leaflet index the reader gives its place.
     void leaves(const Petiole& pt, HeliosPetiole& px, const RefPetiole& r, vec3 internodeTip,
                 vec3 side) {
-        const int n = int(pt.leaves.size());
+        std::vector<const LeafOrgan*> kept;
+        for (const LeafOrgan& l : pt.leaves)
+            if (!l.removed) kept.push_back(&l);
+        std::stable_sort(kept.begin(), kept.end(), [](const LeafOrgan* a, const LeafOrgan* b) {
+            return a->leafletIndex < b->leafletIndex;
+        });
+        const int n = int(kept.size());
         px.leafletOffset = 0.0f;
-        for (const LeafOrgan& l : pt.leaves) {
-            const RefLeafPlace place = leafPlace(fileOrder(l.leafletIndex, n), n);
+        for (int i = 0; i < n; ++i) {
+            const RefLeafPlace place = leafPlace(i, n);
             if (place.pair != 0 && px.leafletOffset == 0.0f)
-                px.leafletOffset = (1.0f - l.position) / (float(std::abs(place.pair)) - 0.5f);
+                px.leafletOffset =
+                    (1.0f - kept[std::size_t(i)]->position) / (float(std::abs(place.pair)) - 0.5f);
         }
-        for (const LeafOrgan& l : pt.leaves) {
-            const RefLeafPlace place = leafPlace(fileOrder(l.leafletIndex, n), n);
+        for (int i = 0; i < n; ++i) {
+            const LeafOrgan& l = *kept[std::size_t(i)];
+            const RefLeafPlace place = leafPlace(i, n);
             const float position = referencePosition(place, n, px.leafletOffset);
             const Frame f = uprightFrame(segmentAt(r.segments, position), side);
             const LeafAxes own = ownLeafAxes(f, l);
             HeliosLeaf a = refLeafAngles(own, place, n, r.segments.back(), internodeTip);
             // What the reference draws from those angles; where it is not plantarch's leaf
-            // (beyond float noise), plantarch's own angles go along.
+            // (beyond float noise), plantarch's own angles go along, for the leaflet index the
+            // reader gives this place.
             const LeafAxes drawn =
                 refLeafAxes(leafTurns(a, place, n, r.segments.back(), internodeTip));
             if (glm::dot(drawn.x, own.x) < kSameDirection ||
-                glm::dot(drawn.y, own.y) < kSameDirection)
-                a.own = vec3(l.pitch, l.yaw, l.roll);
+                glm::dot(drawn.y, own.y) < kSameDirection) {
+                LeafOrgan read = l;
+                read.leafletIndex = leafletIndexOf(i, n);
+                setOwnLeafAngles(f, own, read);
+                a.own = vec3(read.pitch, read.yaw, read.roll);
+            }
             out_.leaves[&l] = a;
         }
     }

@@ -53,6 +53,10 @@ struct HeliosExtras {
     std::unordered_map<const LeafOrgan*, HeliosLeaf> leaves;
 };
 
+/// The leaflet index of leaf `i` of `n` listed left to right: 0 the tip, negative on the left,
+/// positive on the right; an even count has no tip (-n/2 ... -1, 1 ... n/2).
+int leafletIndexOf(int i, int n);
+
 /// Reading: sets the frames of every internode, petiole and leaf of `plant` (read from a
 /// `<helios>` file with its values in `extras`, not yet completed) so that plantarch draws
 /// what the reference system draws from the file, and notes each member set in `given`.

@@ -146,14 +146,8 @@ const ShootParameters& fallbackType() {
     return defaults;
 }
 
-// Leaf `i` of `n` listed left to right: its leaflet index (0 tip, negative left, positive
-// right; an even count has no tip) ...
-int leafletIndexOf(int i, int n) {
-    const int twice = 2 * i - (n - 1);  // twice the signed distance from the middle
-    if (n % 2 == 1) return twice / 2;
-    return twice > 0 ? (twice + 1) / 2 : (twice - 1) / 2;
-}
-// ... and its place in plantarch's order (tip first, then pairs -1, 1, -2, 2, ...).
+// A leaflet's place in plantarch's order (tip first, then pairs -1, 1, -2, 2, ...) from its
+// leaflet index (leafletIndexOf).
 int canonicalSlot(int index, int n) {
     const int a = std::abs(index);
     if (n % 2 == 1) return index == 0 ? 0 : 2 * a - 1 + (index > 0);
