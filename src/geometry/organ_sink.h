@@ -139,6 +139,25 @@ private:
 };
 
 namespace geometry {
+/// An organ's frame: x along it, y and z across.
+struct OrganFrame {
+    vec3 x, y, z;
+};
+
+/// The frame with x along `axis` (any length) and z as near world up as it can be (else toward
+/// `fallbackUp`, else any perpendicular); y = z x x.
+[[gnu::always_inline]] inline OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
+    constexpr vec3 up{0.0f, 0.0f, 1.0f};
+    OrganFrame f;
+    f.x = glm::normalize(axis);
+    vec3 z = up - glm::dot(up, f.x) * f.x;
+    if (glm::length(z) < 1e-4f) z = fallbackUp - glm::dot(fallbackUp, f.x) * f.x;
+    if (glm::length(z) < 1e-6f) z = anyPerpendicular(f.x);
+    f.z = glm::normalize(z);
+    f.y = glm::cross(f.z, f.x);
+    return f;
+}
+
 /// Where a leaf's prototype goes: at `origin` on its petiole (or rachis) heading along unit
 /// `tangent`, with the petiole leaning toward `side`, turned by the leaf's angles (`t`, from
 /// trigOf-style sines of its pitch, yaw and roll) and scaled by `scale`; `offset` is the

@@ -64,21 +64,8 @@ struct PathMeasure {
 }
 
 // An organ frame: x along the organ, z its "up" (lamina normal for leaves).
-struct OrganFrame {
-    vec3 x, y, z;
-};
-
-// Frame with x = `axis` and z as close to world up as possible.
-[[gnu::always_inline]] inline OrganFrame uprightFrame(vec3 axis, vec3 fallbackUp) {
-    OrganFrame f;
-    f.x = glm::normalize(axis);
-    vec3 z = kUp - glm::dot(kUp, f.x) * f.x;
-    if (glm::length(z) < 1e-4f) z = fallbackUp - glm::dot(fallbackUp, f.x) * f.x;
-    if (glm::length(z) < 1e-6f) z = anyPerpendicular(f.x);
-    f.z = glm::normalize(z);
-    f.y = glm::cross(f.z, f.x);
-    return f;
-}
+using geometry::OrganFrame;
+using geometry::uprightFrame;
 
 // Pitch lifts x toward z, yaw turns x toward y about z, roll turns about x.
 [[gnu::always_inline]] inline OrganFrame rotated(const OrganFrame& f, const TurnTrig& t) {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "geometry/organ_sink.h"
 
 namespace plantarch::plant_io {
 
@@ -135,21 +136,9 @@ RefPetiole petioleForward(const RefInternode& in, bool first, float phyllotaxis,
     return r;
 }
 
-// The frame plantarch places leaves in (geometry/tessellate.cpp): x along the petiole, z
-// toward the vertical, y across.
-struct Frame {
-    vec3 x, y, z;
-};
-Frame uprightFrame(vec3 along, vec3 side) {
-    Frame f;
-    f.x = glm::normalize(along);
-    vec3 z = kZ - glm::dot(kZ, f.x) * f.x;
-    if (glm::length(z) < 1e-4f) z = side - glm::dot(side, f.x) * f.x;
-    if (glm::length(z) < 1e-6f) z = anyPerpendicular(f.x);
-    f.z = glm::normalize(z);
-    f.y = glm::cross(f.z, f.x);
-    return f;
-}
+// The frame plantarch places leaves in: x along the petiole, z toward the vertical, y across.
+using Frame = geometry::OrganFrame;
+using geometry::uprightFrame;
 
 // A leaf's length and width directions in the world.
 struct LeafAxes {
