@@ -896,17 +896,23 @@ std::optional<DataValue> Context::objectData(ObjectID id, std::string_view label
     if (it == d.columns.end()) return std::nullopt;
     const Column& col = it->second;
     if (id >= col.present.size() || !col.present[id]) return std::nullopt;
+    // (made in place: GCC's sanitized builds see a moved-from variant as uninitialised)
+    std::optional<DataValue> value;
     switch (col.type) {
         case DataType::Int:
-            return DataValue(col.ints[id]);
+            value.emplace(std::in_place_type<int>, col.ints[id]);
+            break;
         case DataType::String:
-            return DataValue(d.strings[col.ints[id]]);
+            value.emplace(std::in_place_type<std::string>, d.strings[std::size_t(col.ints[id])]);
+            break;
         case DataType::Float:
-            return DataValue(col.floats[id]);
+            value.emplace(std::in_place_type<float>, col.floats[id]);
+            break;
         case DataType::Vec3:
-            return DataValue(col.vecs[id]);
+            value.emplace(std::in_place_type<vec3>, col.vecs[id]);
+            break;
     }
-    return std::nullopt;
+    return value;
 }
 
 bool Context::hasObjectData(ObjectID id, std::string_view label) const {
