@@ -373,13 +373,16 @@ private:
     void phytomer(Phytomer& ph, std::size_t i, std::size_t k, const AxisRotation& base,
                   float gravity) {
         Internode& in = ph.internode;
-        const RefInternode ref = internodeForward(parentOf(i, k), k == 0, base,
-                                                  find(x_.internodes, &in), gravity, in.length);
+        const auto found = x_.internodes.find(&in);
+        static const HeliosInternode none{};
+        const HeliosInternode& x = found == x_.internodes.end() ? none : found->second;
+        const RefInternode ref =
+            internodeForward(parentOf(i, k), k == 0, base, x, gravity, in.length);
         in.direction = ref.chord;
         in.guide = ref.chord;
         Posed& out = posed_[i][k];
         out.tip = ref.tip;
-        out.phyllotaxis = find(x_.internodes, &in).phyllotaxis;
+        out.phyllotaxis = x.phyllotaxis;
         out.index = k;
         const std::size_t count = ph.petioles.size();
         out.petioleBases.assign(count, ref.tip);
@@ -388,8 +391,8 @@ private:
             Petiole& pt = ph.petioles[j];
             const HeliosPetiole px = find(x_.petioles, &pt);
             const float bend = petioleBend(pt, ph, px.segments);
-            const RefPetiole r = petioleForward(ref, k == 0, find(x_.internodes, &in).phyllotaxis,
-                                                j, count, px.pitch, bend, px.segments);
+            const RefPetiole r =
+                petioleForward(ref, k == 0, x.phyllotaxis, j, count, px.pitch, bend, px.segments);
             out.petioleBases[j] = r.segments.front();
             // The reference turns before each segment, plantarch half a turn before the first
             // and whole turns after: plantarch's petiole starts half a turn on.
