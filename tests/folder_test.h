@@ -45,6 +45,16 @@ protected:
         s << in.rdbuf();
         return s.str();
     }
+    // The bytes of a file that must exist (a test comparing two files fails when either is
+    // missing, instead of finding two empty texts equal).
+    static std::string existingBytes(const std::string& path) {
+        std::error_code error;
+        if (!std::filesystem::is_regular_file(path, error)) {
+            ADD_FAILURE() << "no such file: " << path;
+            return "(missing " + path + ")";
+        }
+        return bytes(path);
+    }
     static void put(const std::string& path, const std::string& text) {
         std::ofstream(path, std::ios::binary) << text;
     }
