@@ -436,7 +436,7 @@ private:
                                   fields().petioleLength);
             note(&pt.length);
         }
-        leaves(e, kids.takeAll("leaf"), pt, fraction, offset);
+        leaves(e, kids.takeAll("leaf"), pt, fraction);
         const std::vector<xml_node> buds = kids.takeAll("floral_bud");
         kids.finish();
         std::size_t axillary = 0;
@@ -455,8 +455,8 @@ private:
         }
     }
 
-    void leaves(const Element& e, const std::vector<xml_node>& nodes, Petiole& pt, float fraction,
-                float offset) {
+    // (Their places along the petiole come from leaflet_offset in poseAsReference.)
+    void leaves(const Element& e, const std::vector<xml_node>& nodes, Petiole& pt, float fraction) {
         const int n = int(nodes.size());
         pt.leaves.resize(nodes.size());
         for (int i = 0; i < n; ++i) {
@@ -465,10 +465,7 @@ private:
             const int index = leafletIndexOf(i, n);
             LeafOrgan& l = pt.leaves[std::size_t(canonicalSlot(index, n))];
             l.leafletIndex = index;
-            const int step = n % 2 == 1 ? std::abs(index) : std::abs(index) - 1;
-            l.position = index == 0 || n == 1 ? 1.0f : std::max(0.0f, 1.0f - float(step) * offset);
             note(&l.leafletIndex);
-            note(&l.position);
             Children kids(le);
             optionalChild(kids, le, "leaf_scale", [&](const Element& c) {
                 l.scale = fullGrown(c, number(c, fields().leafScale), fraction, fields().leafScale);
