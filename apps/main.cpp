@@ -124,6 +124,21 @@ std::string parseErrorLine(const CLI::App& app, int argc, char** argv, const CLI
     return text;
 }
 
+// The first word of the command line that is neither a global option nor its value: the
+// command's name when the line is well formed.
+std::string namedCommand(const CLI::App& app, int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word.empty() || word[0] != '-') return word;
+        if (word == "--") return {};
+        if (word.find('=') != std::string::npos) continue;
+        const CLI::Option* option = app.get_option_no_throw(word);
+        if (!option) return {};  // a command's own option: CLI11 will say where it belongs
+        if (option->get_type_size_max() > 0) ++i;  // its value
+    }
+    return {};
+}
+
 // Standard output is an output like any file: a write that failed (a full disk, a closed
 // pipe's EPIPE) makes the command fail with one line instead of exiting 0 with a short file.
 int checkedExit(int status) {
@@ -211,9 +226,16 @@ int main(int argc, char** argv) {
         return a.order != b.order ? a.order < b.order
                                   : std::string_view(a.name) < std::string_view(b.name);
     });
+    // A command line that names its command before anything else but global options sets up
+    // that command alone (the others' options cost a few hundred microseconds a process);
+    // help, version and mistakes see every command.
+    const std::string named = namedCommand(app, argc, argv);
+    const bool one = std::any_of(registry.begin(), registry.end(),
+                                 [&](const Command& c) { return named == c.name; });
     std::vector<std::pair<CLI::App*, std::function<int()>>> runners;
     for (auto& cmd : registry) {
         CLI::App* sub = app.add_subcommand(cmd.name);
+        if (one && named != cmd.name) continue;
         runners.emplace_back(sub, cmd.setup(*sub, global));
         // A repeatable option (-o, --scanner, -D) takes one value each time it is given, so
         // `-o a.ply bean` leaves `bean` to the positional argument.

@@ -274,14 +274,17 @@ std::vector<dvec2> palmateLobes(const std::vector<dvec2>& half, int lateral, dou
         auto inside = [&](double rho) { return rho * s <= lobeWidth(rho * c); };
         const double far = 1.0 / c;
         constexpr int steps = 120;
-        for (int j = steps; j > 0; --j) {
-            const double rho = far * j / steps;
-            if (!inside(rho)) continue;
-            double in = rho, out = std::min(far, far * (j + 1) / steps);
-            for (int b = 0; b < 30; ++b) (inside(0.5 * (in + out)) ? in : out) = 0.5 * (in + out);
-            return in;
+        // The lobe is star-shaped around its base, so the outermost of `steps` points inside
+        // the margin is found by halving; then its margin crossing by bisection.
+        int j = 0, outside = steps + 1;
+        while (outside - j > 1) {
+            const int mid = (j + outside) / 2;
+            (inside(far * mid / steps) ? j : outside) = mid;
         }
-        return 0.0;
+        if (j == 0) return 0.0;
+        double in = far * j / steps, out = std::min(far, far * (j + 1) / steps);
+        for (int b = 0; b < 30; ++b) (inside(0.5 * (in + out)) ? in : out) = 0.5 * (in + out);
+        return in;
     };
     // Lobe width such that neighbouring lobes meet, half a sector off their axes, at
     // 1 - depth of their length.
