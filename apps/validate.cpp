@@ -12,6 +12,7 @@
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesBuild.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch::cli {

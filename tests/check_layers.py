@@ -7,8 +7,13 @@ Usage: check_layers.py PROJECT_DIR      checks the project; exit status 1 on any
 The order is read from src/layers.txt: one folder per line, lowest first; a file of src/ may
 include headers of its own folder and of folders listed before it, never of one listed after.
 `private FOLDER/HEADER` lines name headers that only files of their own folder may include.
-Front ends (apps/, examples/, python/) include the public headers only; tests/, bench/ and
-fuzz/ may include internal headers, but no private one. docs/architecture.md must describe
+`public HEADER FOLDER` lines name the folder that implements each public header of
+include/plantarch/ (for a header of types only, the lowest folder that owns them): a file of
+src/ may include a public header only from that folder or above it, and a public header may
+include another only when that one's folder is not above its own, so a call never goes up
+through the public API either. Every public header is mapped.
+Front ends (apps/, builder/, examples/, python/) include the public headers and their own
+headers only; tests/, bench/ and fuzz/ may include internal headers, but no private one. docs/architecture.md must describe
 every folder in a heading of its own ("### `src/FOLDER/`"), in the order of src/layers.txt.
 
 Each violation is printed as one line: file:line: what is wrong.
@@ -19,17 +24,18 @@ import re
 import sys
 import tempfile
 
-INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^">]+)[">]')
+INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^">]+)[">]')
 SOURCE_SUFFIXES = ('.h', '.hpp', '.cpp', '.cc', '.inc', '.in')
-FRONT_ENDS = ('apps', 'examples', 'python')
+FRONT_ENDS = ('apps', 'builder', 'examples', 'python')
 INTERNAL_USERS = ('tests', 'bench', 'fuzz')
 DOC_HEADING = re.compile(r'^###\s+`src/([A-Za-z0-9_]+)/`')
 
 
 def read_layers(root, problems):
-    """The folders in order and the private headers, from src/layers.txt."""
+    """The folders in order, the private headers and the public headers' folders, from
+    src/layers.txt."""
     path = os.path.join(root, 'src', 'layers.txt')
-    order, private = [], set()
+    order, private, public = [], set(), {}
     try:
         lines = open(path, encoding='utf-8').read().splitlines()
     except OSError as e:
@@ -41,14 +47,20 @@ def read_layers(root, problems):
             continue
         if words[0] == 'private' and len(words) == 2 and '/' in words[1]:
             private.add(words[1])
+        elif words[0] == 'public' and len(words) == 3 and '/' not in words[1]:
+            if words[1] in public:
+                problems.append(f'src/layers.txt:{number}: public header "{words[1]}" '
+                                f'mapped twice')
+            public[words[1]] = (words[2], number)
         elif len(words) == 1 and '/' not in words[0]:
             if words[0] in order:
                 problems.append(f'src/layers.txt:{number}: folder "{words[0]}" listed twice')
             order.append(words[0])
         else:
-            problems.append(f'src/layers.txt:{number}: expected a folder name or '
-                            f'"private FOLDER/HEADER", found "{line.strip()}"')
-    return order, private
+            problems.append(f'src/layers.txt:{number}: expected a folder name, '
+                            f'"private FOLDER/HEADER" or "public HEADER FOLDER", '
+                            f'found "{line.strip()}"')
+    return order, private, public
 
 
 def source_files(top):
@@ -59,13 +71,23 @@ def source_files(top):
                 yield os.path.join(directory, name)
 
 
-def includes(path):
-    """(line number, included name) of every #include of a file."""
+def includes(path, quoted_only=False):
+    """(line number, included name) of every #include of a file (or of its "..." ones)."""
     with open(path, encoding='utf-8', errors='replace') as f:
         for number, line in enumerate(f, 1):
             m = INCLUDE.match(line)
-            if m:
-                yield number, m.group(1)
+            if m and not (quoted_only and m.group(1) == '<'):
+                yield number, m.group(2)
+
+
+PUBLIC = 'plantarch/'
+
+
+def public_header(name):
+    """The public header an include names ("Context.h" for "plantarch/Context.h"), or None."""
+    if name.startswith(PUBLIC) and '/' not in name[len(PUBLIC):]:
+        return name[len(PUBLIC):]
+    return None
 
 
 def target_of(root, path, name, folders):
@@ -81,11 +103,43 @@ def target_of(root, path, name, folders):
     return None
 
 
+def foreign_header(root, top, path, name):
+    """Where a front end's quoted include lands outside its own folder `top` (relative to the
+    including file, from the project's root, or through another front end's folder, which
+    the build puts on the include path), or None: its own header or a generated one."""
+    inside = os.path.join(root, top) + os.sep
+    here = os.path.normpath(os.path.join(os.path.dirname(path), name))
+    if here.startswith(inside) and os.path.isfile(here):
+        return None
+    for base in ('',) + FRONT_ENDS:
+        candidate = os.path.normpath(os.path.join(root, base, name))
+        if os.path.isfile(candidate):
+            return None if candidate.startswith(inside) else os.path.relpath(candidate, root)
+    return None
+
+
 def check_tree(root):
     """Every violation in the project at `root`, as printable lines."""
     problems = []
-    order, private = read_layers(root, problems)
+    order, private, public = read_layers(root, problems)
     rank = {folder: i for i, folder in enumerate(order)}
+    headers = os.path.join(root, 'include', 'plantarch')
+    present = sorted(n for n in os.listdir(headers) if n.endswith('.h')) \
+        if os.path.isdir(headers) else []
+    for name in present:
+        if name not in public:
+            problems.append(f'include/plantarch/{name}: not mapped to the folder that '
+                            f'implements it (add "public {name} FOLDER" to src/layers.txt)')
+    for name, (folder, number) in sorted(public.items()):
+        if name not in present:
+            problems.append(f'src/layers.txt:{number}: public header "{name}" does not exist')
+        elif folder not in rank:
+            problems.append(f'src/layers.txt:{number}: public header "{name}" mapped to '
+                            f'"{folder}", which is not a layer')
+
+    def layer_of(name):
+        entry = public.get(name)
+        return entry[0] if entry and entry[0] in rank else None
     src = os.path.join(root, 'src')
     folders = sorted(d for d in os.listdir(src) if os.path.isdir(os.path.join(src, d)))
     for folder in folders:
@@ -105,6 +159,12 @@ def check_tree(root):
     for folder in folders:
         for path in source_files(os.path.join(src, folder)):
             for number, name in includes(path):
+                header = public_header(name)
+                to = layer_of(header) if header else None
+                if to and folder in rank and rank[to] > rank[folder]:
+                    report(path, number, name,
+                           f'{folder} may not include {name}, which src/{to}/ implements '
+                           f'above it (order: {" < ".join(order)})')
                 target = target_of(root, path, name, folders)
                 if target is None:
                     continue
@@ -117,10 +177,28 @@ def check_tree(root):
                     report(path, number, name,
                            f'{folder} may not include {to}, which is above it '
                            f'(order: {" < ".join(order)})')
+    for name in present:
+        own = layer_of(name)
+        if own is None:
+            continue
+        path = os.path.join(headers, name)
+        for number, included in includes(path):
+            other = public_header(included)
+            to = layer_of(other) if other else None
+            if to and rank[to] > rank[own]:
+                report(path, number, included,
+                       f'{name} (src/{own}/) may not include {included}, which src/{to}/ '
+                       f'implements above it')
     for top in FRONT_ENDS + INTERNAL_USERS:
         for path in source_files(os.path.join(root, top)):
-            for number, name in includes(path):
+            for number, name in includes(path, quoted_only=top in FRONT_ENDS):
                 target = target_of(root, path, name, folders)
+                foreign = None if target or public_header(name) or top not in FRONT_ENDS \
+                    else foreign_header(root, top, path, name)
+                if foreign:
+                    report(path, number, name, f'{top}/ includes the public API and its own '
+                           f'headers only, not {foreign}')
+                    continue
                 if target is None:
                     continue
                 if top in FRONT_ENDS:
@@ -166,10 +244,18 @@ def self_test():
     """Builds a clean tree (no problems), then breaks each rule once and expects its line."""
     failures = []
     with tempfile.TemporaryDirectory() as root:
-        write(root, 'src/layers.txt', '# lowest first\nbase\nmiddle\ntop\nprivate top/hub.h\n')
+        layers = ('# lowest first\nbase\nmiddle\ntop\nprivate top/hub.h\n'
+                  'public Types.h base\npublic Api.h top\n')
+        write(root, 'src/layers.txt', layers)
+        write(root, 'include/plantarch/Types.h', '#pragma once\n')
+        write(root, 'include/plantarch/Api.h', '#include "plantarch/Types.h"\n')
+        write(root, 'builder/server/routes.cpp', '#include "routes.h"\n#include "gen.h"\n'
+              '#include "builder/server/routes.h"\n#include "plantarch/Api.h"\n')
+        write(root, 'builder/server/routes.h', '#pragma once\n#include <string>\n')
+        write(root, 'apps/cli.h', '#pragma once\n')
         write(root, 'src/base/util.h', '#pragma once\n')
         write(root, 'src/middle/part.h', '#include "base/util.h"\n#include <vector>\n')
-        write(root, 'src/middle/part.cpp', '#include "part.h"\n#include "plantarch/Api.h"\n')
+        write(root, 'src/middle/part.cpp', '#include "part.h"\n#include "plantarch/Types.h"\n')
         write(root, 'src/top/hub.h', '#include "middle/part.h"\n')
         write(root, 'src/top/facade.cpp', '#include "hub.h"\n#include "../base/util.h"\n')
         write(root, 'apps/main.cpp', '#include "plantarch/Api.h"\n')
@@ -194,7 +280,20 @@ def self_test():
              'src/extra/: folder not listed in src/layers.txt'),
             ('docs/architecture.md', '### `src/middle/`\n### `src/base/`\n### `src/top/`\n',
              'docs/architecture.md: folder headings are middle < base < top'),
-            ('src/layers.txt', 'base\nmiddle\ntop\nprivate top/gone.h\n',
+            ('src/middle/part.cpp', '#include "part.h"\n#include "plantarch/Api.h"\n',
+             'src/middle/part.cpp:2: #include "plantarch/Api.h": middle may not include '
+             'plantarch/Api.h, which src/top/ implements above it'),
+            ('include/plantarch/Types.h', '#pragma once\n#include "plantarch/Api.h"\n',
+             'include/plantarch/Types.h:2: #include "plantarch/Api.h": Types.h (src/base/) may '
+             'not include plantarch/Api.h'),
+            ('include/plantarch/New.h', '#pragma once\n',
+             'include/plantarch/New.h: not mapped to the folder that implements it'),
+            ('builder/server/routes.cpp', '#include "routes.h"\n#include "cli.h"\n',
+             'builder/server/routes.cpp:2: #include "cli.h": builder/ includes the public API '
+             'and its own headers only, not apps/cli.h'),
+            ('src/layers.txt', layers + 'public Gone.h base\n',
+             'src/layers.txt:8: public header "Gone.h" does not exist'),
+            ('src/layers.txt', layers + 'private top/gone.h\n',
              'src/layers.txt: private header "top/gone.h" does not exist'),
         ]
         for relative, text, expected in cases:
@@ -207,7 +306,8 @@ def self_test():
                                 f'"{expected}", got {found}')
             if old is None:
                 os.remove(path)
-                os.rmdir(os.path.dirname(path))
+                if not os.listdir(os.path.dirname(path)):
+                    os.rmdir(os.path.dirname(path))
             else:
                 write(root, relative, old)
     for f in failures:

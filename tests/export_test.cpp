@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "core/atomic_file.h"
-#include "io/export_common.h"
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
 #include "ply_reader.h"
+#include "scene_io/export_common.h"
 
 using namespace plantarch;
 namespace fs = std::filesystem;

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Context.h"
 #include "plantarch/PlantArchitecture.h"
 

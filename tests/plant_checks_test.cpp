@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <string>
 
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"

@@ -19,6 +19,7 @@
 #include "library/expression.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/SpeciesBuild.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;

@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "plantarch/Mesh.h"
-#include "plantarch/PlantArchitecture.h"
+#include "plantarch/OrganFunctions.h"
 #include "plantarch/Random.h"
 
 namespace plantarch {
@@ -81,7 +81,8 @@ void validateFloralParameters(std::string_view family,
 OrganPrototype buildFloralPrototype(std::string_view family, const FloralPrototypeRequest& request,
                                     Rng& rng);
 
-/// Registers every family with `arch` under its name (floralFamilies()[i].name).
-void registerOrganLibrary(PlantArchitecture& arch);
+/// Every family's prototype function, under its name (floralFamilies()[i].name): what every
+/// PlantArchitecture registers as its flower and fruit families.
+std::vector<std::pair<std::string, FloralPrototypeFunction>> floralFamilyFunctions();
 
 }  // namespace plantarch

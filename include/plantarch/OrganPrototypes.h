@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "plantarch/PlantArchitecture.h"
+#include "plantarch/OrganFunctions.h"
 
 namespace plantarch {
 

@@ -17,85 +17,14 @@
 
 #include "plantarch/Collision.h"
 #include "plantarch/Context.h"
+#include "plantarch/OrganFunctions.h"
 #include "plantarch/Parameters.h"
 #include "plantarch/PlantState.h"
 #include "plantarch/PlantStructureIO.h"
 #include "plantarch/Progress.h"
+#include "plantarch/ShootSpec.h"
 
 namespace plantarch {
-
-/// One piece of an organ prototype: geometry in prototype units (unit length along +x, base
-/// at the origin, +z up) and its material. A flower may have several (petals, centre).
-struct PrototypePart {
-    Mesh mesh;
-    Material material;
-};
-using OrganPrototype = std::vector<PrototypePart>;
-
-/// Builds a leaf prototype. `leafletIndex`: 0 tip, negative left, positive right.
-using LeafPrototypeFunction =
-    std::function<OrganPrototype(const LeafPrototype& params, Rng& rng, int leafletIndex)>;
-/// What a flower or fruit prototype is asked to build.
-struct FloralPrototypeRequest {
-    bool fruit = false;  ///< a fruit (else a flower)
-    bool open = true;    ///< for flowers: open (else a closed bud)
-    /// Family shape parameters from the species (may be empty: family defaults apply).
-    std::map<std::string, float> parameters;
-    vec3 color{1.0f};           ///< main colour from the species
-    unsigned subdivisions = 8;  ///< mesh resolution
-};
-/// Builds a flower or fruit prototype in prototype units (length 1 along +x).
-using FloralPrototypeFunction =
-    std::function<OrganPrototype(const FloralPrototypeRequest& request, Rng& rng)>;
-
-/// What a phytomer creation function sees: the new phytomer (which it may change: kill
-/// buds, scale organs, remove leaves) and where it stands.
-struct PhytomerCreationContext {
-    PlantInstance& plant;
-    Shoot& shoot;
-    Phytomer& phytomer;
-    unsigned nodeIndex;   ///< index of the new phytomer on its shoot
-    int parentNodeIndex;  ///< node of the parent shoot this shoot grows from (-1: none)
-    int shootMaxNodes;    ///< the shoot's realized max_nodes
-    double plantAge;      ///< days
-};
-using PhytomerCreationFunction = std::function<void(PhytomerCreationContext&)>;
-
-/// What a phytomer callback sees, once per phytomer at every whole day of plant age (it may
-/// change the phytomer: remove leaves, kill buds).
-struct PhytomerCallbackContext {
-    PlantInstance& plant;
-    Shoot& shoot;
-    Phytomer& phytomer;
-    unsigned nodeIndex;
-    double plantAge;  ///< days
-    /// World position of the base of the phytomer's internode at this age (organs elongated
-    /// to their size on this day); its height above the plant is nodeBase.z - plant.base.z.
-    vec3 nodeBase{0.0f};
-};
-using PhytomerCallbackFunction = std::function<void(PhytomerCallbackContext&)>;
-
-/// Size of the phytomers a manual-building call makes. Errors name the specification's
-/// argument names, given in brackets.
-struct PhytomerSize {
-    float internodeRadius = 0.001f;     ///< m, (0, 10] (internode_radius)
-    float internodeLengthMax = 0.02f;   ///< full-grown internode length, m, [0, 100]
-                                        ///< (internode_length_max)
-    float internodeLengthScale = 1.0f;  ///< current / full internode length, (0, 1]
-                                        ///< (internode_length_scale_factor_fraction)
-    float leafScale = 1.0f;             ///< current / full petiole and leaf size, (0, 1]
-                                        ///< (leaf_scale_factor_fraction)
-};
-
-/// Where and how a new shoot starts: the options of addBaseStemShoot, appendShoot and
-/// addChildShoot. Errors name the specification's argument names, given in brackets.
-struct ShootSpec {
-    unsigned phytomers = 1;     ///< phytomers to create now, 1 to 100000 (current_node_number)
-    AxisRotation baseRotation;  ///< degrees (base_rotation)
-    PhytomerSize size;          ///< size of the phytomers created
-    float radiusTaper = 0.0f;   ///< tip radius reduction along the shoot, [0, 1] (radius_taper)
-    std::string shootType;      ///< label given to defineShootType (shoot_type_label)
-};
 
 /// How buildPlantCanopyFromLibrary places plants: on a grid (the specification's form) or
 /// scattered at random over a rectangle. Errors name the specification's argument names,

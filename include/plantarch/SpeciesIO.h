@@ -1,6 +1,7 @@
 #pragma once
-// Species files: strict reading, complete writing, the species library on disk, and building
-// a plant's initial structure from a species. The format is described in
+// Species files: strict reading, complete writing, the species library on disk, and the
+// values a species gives a plant (build parameters, attraction points, trellis); building a
+// plant from a species is in plantarch/SpeciesBuild.h. The format is described in
 // docs/species-format.md.
 //
 // Reading is strict: an unknown or misspelt element or attribute, a missing required value,
@@ -19,8 +20,6 @@
 #include "plantarch/Species.h"
 
 namespace plantarch {
-
-class PlantArchitecture;
 
 // ---- reading and writing ---------------------------------------------------------------
 
@@ -105,31 +104,13 @@ std::map<std::string, ShootParameters> speciesShootTypes(const SpeciesModel& spe
 /// PlantArchitecture::loadPlantModelFromLibrary and `plantarch validate` check them.
 std::vector<Error> checkSpeciesFiles(const SpeciesModel& species);
 
-// ---- building ----------------------------------------------------------------------------
-
-/// Defines every shoot type of the species in `arch` (PlantArchitecture::defineShootType), so
-/// plants added afterwards can use them, with the files they name resolved
-/// (speciesShootTypes). Errors (e.g. an unregistered prototype function) name the species
-/// file.
-void defineSpeciesShootTypes(PlantArchitecture& arch, const SpeciesModel& species);
+// ---- a plant's values -------------------------------------------------------------
 
 /// The species' build parameters with `overrides` applied: every name must be a build
 /// parameter of the species (else an Error listing the valid names) and every value within
 /// its declared range (else an Error giving the range).
 std::map<std::string, float> resolveBuildParameters(
     const SpeciesModel& species, const std::map<std::string, float>& overrides = {});
-
-/// Builds the species' initial structure (its <build> steps, in order) on plant `plantID`,
-/// which must have no shoots yet, through addBaseStemShoot / appendShoot / addChildShoot.
-/// The species' shoot types must be defined in `arch` before the plant was added
-/// (defineSpeciesShootTypes). Returns the IDs of the shoots created, in creation order.
-///
-/// Random expressions in the steps draw from their own stream,
-/// Rng::forPlant(arch.seed(), 2^62 + arch.plantStream(plantID)): deterministic per (seed, plant)
-/// and independent of the plant's own stream, which the shoots created draw from as usual.
-std::vector<unsigned> buildInitialStructure(PlantArchitecture& arch, unsigned plantID,
-                                            const SpeciesModel& species,
-                                            const std::map<std::string, float>& overrides = {});
 
 /// The attraction points of a plant of the species at `base` (its <attraction_points>
 /// evaluated with the build parameters, wires sampled at their spacing). Random expressions

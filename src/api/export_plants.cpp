@@ -7,10 +7,10 @@
 #include "core/progress_steps.h"
 #include "core/value_text.h"
 #include "geometry/tessellate.h"
-#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch {
 

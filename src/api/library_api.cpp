@@ -6,6 +6,7 @@
 #include "api/facade_impl.h"
 #include "core/value_text.h"
 #include "plantarch/Error.h"
+#include "plantarch/SpeciesBuild.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch {

@@ -79,7 +79,9 @@ void checkFunctions(const FunctionRegistry& functions, const ShootParameters& pa
 PlantArchitecture::PlantArchitecture(Context* context)
     : context_(context), impl_(std::make_unique<Impl>()) {
     if (!context) throw Error("PlantArchitecture needs a Context", {.parameter = "context"});
-    registerBuiltinPrototypes(*this);
+    BuiltinPrototypes builtin = builtinPrototypes();
+    for (auto& [name, fn] : builtin.leaves) registerLeafPrototype(name, std::move(fn));
+    for (auto& [name, fn] : builtin.floral) registerFloralPrototype(name, std::move(fn));
     // The library's own functions: the same in every PlantArchitecture, so their shapes are
     // shared by all of them (PrototypeCache).
     impl_->functions.userLeafPrototypes.clear();

@@ -8,8 +8,8 @@
 #include "api/facade_impl.h"
 #include "core/math.h"
 #include "core/value_text.h"
-#include "io/plant_structure.h"
 #include "model/plant_move.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {

@@ -11,7 +11,6 @@
 #include "core/math.h"
 #include "plantarch/LeafShapes.h"
 #include "plantarch/OrganLibrary.h"
-#include "plantarch/PlantArchitecture.h"
 
 namespace plantarch {
 
@@ -146,17 +145,19 @@ OrganPrototype taperedSpine(const LeafPrototype& p, Rng& rng, int) {
 
 }  // namespace
 
-void registerBuiltinPrototypes(PlantArchitecture& arch) {
+BuiltinPrototypes builtinPrototypes() {
+    BuiltinPrototypes b;
     // Procedural leaves: the outline family (or a traced PNG, which then also textures the
     // leaf), meshed to the outline and deformed.
-    arch.registerLeafPrototype("procedural", [](const LeafPrototype& p, Rng& rng, int leaflet) {
+    b.leaves.emplace_back("procedural", [](const LeafPrototype& p, Rng& rng, int leaflet) {
         return OrganPrototype{{buildLeafPrototype(p, rng, leaflet),
                                Material{p.color, leafTextureFile(p, leaflet), "leaf"}}};
     });
-    arch.registerLeafPrototype("tapered_spine", taperedSpine);
-    registerOrganLibrary(arch);
-    arch.registerFloralPrototype("builtin_fruit", builtinFruit);
-    arch.registerFloralPrototype("builtin_flower", builtinFlower);
+    b.leaves.emplace_back("tapered_spine", taperedSpine);
+    b.floral = floralFamilyFunctions();
+    b.floral.emplace_back("builtin_fruit", builtinFruit);
+    b.floral.emplace_back("builtin_flower", builtinFlower);
+    return b;
 }
 
 }  // namespace plantarch

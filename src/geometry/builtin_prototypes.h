@@ -1,12 +1,21 @@
 #pragma once
 // The organ prototypes every PlantArchitecture starts with (builtin_prototypes.cpp).
 
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "plantarch/OrganFunctions.h"
+
 namespace plantarch {
 
-class PlantArchitecture;
+struct BuiltinPrototypes {
+    std::vector<std::pair<std::string, LeafPrototypeFunction>> leaves;
+    std::vector<std::pair<std::string, FloralPrototypeFunction>> floral;
+};
 
-/// Registers the procedural leaf, the organ library's flower and fruit families and the
-/// simple builtin flower and fruit with `arch`.
-void registerBuiltinPrototypes(PlantArchitecture& arch);
+/// The procedural leaf, the organ library's flower and fruit families and the simple builtin
+/// flower and fruit, by name, in the order a PlantArchitecture registers them.
+BuiltinPrototypes builtinPrototypes();
 
 }  // namespace plantarch

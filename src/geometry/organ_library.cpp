@@ -217,15 +217,17 @@ OrganPrototype buildFloralPrototype(std::string_view family, const FloralPrototy
     return f.build(request, params, rng);
 }
 
-void registerOrganLibrary(PlantArchitecture& arch) {
+std::vector<std::pair<std::string, FloralPrototypeFunction>> floralFamilyFunctions() {
+    std::vector<std::pair<std::string, FloralPrototypeFunction>> functions;
     for (const organs::Family& f : organs::familyTable()) {
         const organs::Family* family = &f;  // the table lives for the whole program
-        arch.registerFloralPrototype(
-            f.info.name, [family](const FloralPrototypeRequest& request, Rng& rng) {
-                const organs::Params params(family->info, request.parameters);
-                return family->build(request, params, rng);
-            });
+        functions.emplace_back(f.info.name,
+                               [family](const FloralPrototypeRequest& request, Rng& rng) {
+                                   const organs::Params params(family->info, request.parameters);
+                                   return family->build(request, params, rng);
+                               });
     }
+    return functions;
 }
 
 }  // namespace plantarch

@@ -11,6 +11,7 @@
 #include "growth/steering.h"
 #include "model/function_registry.h"
 #include "model/plant_store.h"
+#include "plantarch/ShootSpec.h"
 
 namespace plantarch {
 

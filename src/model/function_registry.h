@@ -6,7 +6,7 @@
 #include <set>
 #include <string>
 
-#include "plantarch/PlantArchitecture.h"
+#include "plantarch/OrganFunctions.h"
 
 namespace plantarch {
 

@@ -14,9 +14,9 @@
 #include "core/embree_api.h"
 #include "core/parallel.h"
 #include "core/value_text.h"
-#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch {
 

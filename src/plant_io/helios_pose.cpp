@@ -2,7 +2,7 @@
 // were found by reading files into the reference system and comparing what it drew with
 // plantarch's drawing, one angle at a time; docs/plant-xml.md lists them.
 
-#include "io/helios_pose.h"
+#include "plant_io/helios_pose.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,10 +15,10 @@
 
 #include "core/atomic_file.h"
 #include "core/progress_steps.h"
-#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch {
 
@@ -32,7 +32,6 @@ static_assert(sizeof(vec3) == 3 * sizeof(float), "vec3 must be three packed floa
 // and a float (age).
 constexpr std::size_t kFaceBytes = 1 + 3 * 4 + 7 * 4 + 4;
 constexpr std::size_t kFacesPerChunk = io::AtomicFile::kMaxReserve / kFaceBytes;
-constexpr std::size_t kLineBytes = 256;
 
 // One object's per-face labels and its vertices' colour.
 struct FaceLabels {
@@ -206,7 +205,7 @@ void writeAsciiVertices(io::AtomicFile& out, const ObjectView& o, const PlyOptio
                         const FaceLabels& labels, std::vector<vec3>& normals) {
     if (options.normals) io::smoothNormals(o, normals);
     for (std::size_t i = 0; i < o.positions.size(); ++i) {
-        char* p = out.reserve(kLineBytes);
+        char* p = out.reserve(io::kLineBytes);
         const vec3& v = o.positions[i];
         p = io::writeFloat(p, v.x);
         *p++ = ' ';
@@ -250,7 +249,7 @@ void writeAsciiFaces(io::AtomicFile& out, const ObjectView& o, std::int32_t base
     const std::size_t tailLength = static_cast<std::size_t>(q - tail);
     const auto& idx = o.indices;
     for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
-        char* p = out.reserve(kLineBytes);
+        char* p = out.reserve(io::kLineBytes);
         *p++ = '3';
         for (int k = 0; k < 3; ++k) {
             *p++ = ' ';

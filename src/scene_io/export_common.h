@@ -16,6 +16,9 @@ namespace plantarch::io {
 
 /// Longest text writeFloat produces ("-1.17549435e-38").
 inline constexpr std::size_t kMaxFloatChars = 16;
+/// Room for one line of a text format: a face of three index triples of 20-digit numbers, or
+/// a vertex of a few floats.
+inline constexpr std::size_t kLineBytes = 256;
 
 /// Shortest text that reads back as the same float; -0 is written as 0.
 inline char* writeFloat(char* out, float value) {

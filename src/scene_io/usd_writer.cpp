@@ -12,10 +12,10 @@
 #include "core/atomic_file.h"
 #include "core/progress_steps.h"
 #include "core/value_text.h"
-#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch {
 
@@ -29,7 +29,7 @@ std::string primName(const std::string& text) {
     return out;
 }
 
-std::string quoted(const std::string& text) {
+std::string usdQuoted(const std::string& text) {
     std::string out = "\"";
     for (char c : text) {
         if (c == '"' || c == '\\') out += '\\';
@@ -124,126 +124,124 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
     const io::LabelReader labelsOf(context);
     std::map<std::int32_t, const GltfPlant*> info;
     for (const GltfPlant& p : plantInfo) info[p.id] = &p;
-    auto writePlant =
-        [&](std::int32_t plant, const std::map<std::string, Group>& organs) {
-            const auto it = info.find(plant);
-            const vec3 base = it != info.end() ? it->second->base : vec3(0.0f);
-            std::string name = "scene";
-            if (plant >= 0)
-                name =
-                    primName((it != info.end() && !it->second->species.empty() ? it->second->species
-                                                                               : "plant") +
-                             "_" + std::to_string(plant));
-            out << "    def Xform " << quoted(name) << " (\n        customData = {\n";
-            if (plant >= 0) {
-                out << "            int plantID = ";
-                out.integer(plant) << "\n";
-                if (it != info.end()) {
-                    out << "            string species = " << quoted(it->second->species) << "\n";
-                    out << "            double age = ";
-                    out.number(float(it->second->age)) << "\n";
-                    out << "            uint64 seed = ";
-                    out.integer(std::int64_t(it->second->seed)) << "\n";
+    auto writePlant = [&](std::int32_t plant, const std::map<std::string, Group>& organs) {
+        const auto it = info.find(plant);
+        const vec3 base = it != info.end() ? it->second->base : vec3(0.0f);
+        std::string name = "scene";
+        if (plant >= 0)
+            name = primName(
+                (it != info.end() && !it->second->species.empty() ? it->second->species : "plant") +
+                "_" + std::to_string(plant));
+        out << "    def Xform " << usdQuoted(name) << " (\n        customData = {\n";
+        if (plant >= 0) {
+            out << "            int plantID = ";
+            out.integer(plant) << "\n";
+            if (it != info.end()) {
+                out << "            string species = " << usdQuoted(it->second->species) << "\n";
+                out << "            double age = ";
+                out.number(float(it->second->age)) << "\n";
+                out << "            uint64 seed = ";
+                out.integer(std::int64_t(it->second->seed)) << "\n";
+            }
+        }
+        out << "        }\n    )\n    {\n";
+        if (base != vec3(0.0f)) {
+            out << "        double3 xformOp:translate = ";
+            out.tuple(&base.x, 3)
+                << "\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
+        }
+        std::vector<vec3> normals;
+        for (const auto& [organ, g] : organs) {
+            out << "\n        def Mesh " << usdQuoted(primName(organ))
+                << " (\n            prepend apiSchemas = [\"SemanticsLabelsAPI:class\"]\n      "
+                   "  )\n"
+                   "        {\n            uniform token subdivisionScheme = \"none\"\n"
+                   "            uniform bool doubleSided = 1\n";
+            out << "            token[] semantics:labels:class = [" << usdQuoted(organ) << "]\n";
+            out << "            int[] faceVertexCounts = [";
+            for (std::size_t t = 0; t < g.triangles; ++t) out << (t ? ", 3" : "3");
+            out << "]\n            int[] faceVertexIndices = [";
+            std::size_t first = 0;
+            bool comma = false;
+            for (ObjectID id : g.objects) {
+                const ObjectView o = context.object(id);
+                for (std::uint32_t k : o.indices) {
+                    if (comma) out << ", ";
+                    out.integer(std::int64_t(first + k));
+                    comma = true;
                 }
+                first += o.positions.size();
             }
-            out << "        }\n    )\n    {\n";
-            if (base != vec3(0.0f)) {
-                out << "        double3 xformOp:translate = ";
-                out.tuple(&base.x, 3)
-                    << "\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
-            }
-            std::vector<vec3> normals;
-            for (const auto& [organ, g] : organs) {
-                out << "\n        def Mesh " << quoted(primName(organ))
-                    << " (\n            prepend apiSchemas = [\"SemanticsLabelsAPI:class\"]\n      "
-                       "  )\n"
-                       "        {\n            uniform token subdivisionScheme = \"none\"\n"
-                       "            uniform bool doubleSided = 1\n";
-                out << "            token[] semantics:labels:class = [" << quoted(organ) << "]\n";
-                out << "            int[] faceVertexCounts = [";
-                for (std::size_t t = 0; t < g.triangles; ++t) out << (t ? ", 3" : "3");
-                out << "]\n            int[] faceVertexIndices = [";
-                std::size_t first = 0;
-                bool comma = false;
+            out << "]\n            point3f[] points = [";
+            comma = false;
+            for (ObjectID id : g.objects)
+                for (const vec3& v : context.object(id).positions) {
+                    const vec3 local = v - base;
+                    if (comma) out << ", ";
+                    out.tuple(&local.x, 3);
+                    comma = true;
+                }
+            out << "]\n";
+            if (options.normals) {
+                out << "            normal3f[] primvars:normals = [";
+                comma = false;
                 for (ObjectID id : g.objects) {
-                    const ObjectView o = context.object(id);
-                    for (std::uint32_t k : o.indices) {
+                    smoothNormals(context.object(id), normals);
+                    for (const vec3& n : normals) {
                         if (comma) out << ", ";
-                        out.integer(std::int64_t(first + k));
+                        out.tuple(&n.x, 3);
                         comma = true;
                     }
-                    first += o.positions.size();
                 }
-                out << "]\n            point3f[] points = [";
+                out << "] (\n                interpolation = \"vertex\"\n            )\n";
+            }
+            if (g.uvs && options.uvs) {
+                out << "            texCoord2f[] primvars:st = [";
                 comma = false;
                 for (ObjectID id : g.objects)
-                    for (const vec3& v : context.object(id).positions) {
-                        const vec3 local = v - base;
+                    for (const vec2& uv : context.object(id).uvs) {
                         if (comma) out << ", ";
-                        out.tuple(&local.x, 3);
+                        out.tuple(&uv.x, 2);
                         comma = true;
                     }
-                out << "]\n";
-                if (options.normals) {
-                    out << "            normal3f[] primvars:normals = [";
-                    comma = false;
-                    for (ObjectID id : g.objects) {
-                        smoothNormals(context.object(id), normals);
-                        for (const vec3& n : normals) {
-                            if (comma) out << ", ";
-                            out.tuple(&n.x, 3);
-                            comma = true;
-                        }
-                    }
-                    out << "] (\n                interpolation = \"vertex\"\n            )\n";
-                }
-                if (g.uvs && options.uvs) {
-                    out << "            texCoord2f[] primvars:st = [";
-                    comma = false;
-                    for (ObjectID id : g.objects)
-                        for (const vec2& uv : context.object(id).uvs) {
-                            if (comma) out << ", ";
-                            out.tuple(&uv.x, 2);
-                            comma = true;
-                        }
-                    out << "] (\n                interpolation = \"vertex\"\n            )\n";
-                }
-                // Per face: display colour (the organ's material) and the labels.
-                auto perFace = [&, &objects = g.objects](const char* type, const char* name,
-                                                         auto write) {
-                    out << "            " << type << " primvars:" << name << " = [";
-                    bool sep = false;
-                    for (ObjectID id : objects) {
-                        const std::size_t n = context.object(id).triangleCount();
-                        for (std::size_t t = 0; t < n; ++t) {
-                            if (sep) out << ", ";
-                            write(id);
-                            sep = true;
-                        }
-                    }
-                    out << "] (\n                interpolation = \"uniform\"\n            )\n";
-                };
-                perFace("color3f[]", "displayColor", [&](ObjectID id) {
-                    const vec3 c = context.material(context.objectMaterial(id)).color;
-                    out.tuple(&c.x, 3);
-                });
-                std::int64_t code = 0;  // the index in kOrganLabels (trellis parts are obstacles)
-                for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
-                    if (organ == kOrganLabels[i]) code = std::int64_t(i);
-                if (organ == "trellis") code = 9;
-                perFace("int[]", "organ", [&](ObjectID) { out.integer(code); });
-                perFace("int[]", "plantID", [&](ObjectID) { out.integer(plant); });
-                perFace("int[]", "objectID", [&](ObjectID id) { out.integer(std::int64_t(id)); });
-                perFace("int[]", "leafID", [&](ObjectID id) { out.integer(labelsOf(id).leaf); });
-                perFace("int[]", "shootID", [&](ObjectID id) { out.integer(labelsOf(id).shoot); });
-                perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
-                perFace("int[]", "node", [&](ObjectID id) { out.integer(labelsOf(id).node); });
-                perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
-                out << "        }\n";
-                steps.at(done += double(g.triangles));
+                out << "] (\n                interpolation = \"vertex\"\n            )\n";
             }
-            out << "    }\n";
-        };
+            // Per face: display colour (the organ's material) and the labels.
+            auto perFace = [&, &objects = g.objects](const char* type, const char* name,
+                                                     auto write) {
+                out << "            " << type << " primvars:" << name << " = [";
+                bool sep = false;
+                for (ObjectID id : objects) {
+                    const std::size_t n = context.object(id).triangleCount();
+                    for (std::size_t t = 0; t < n; ++t) {
+                        if (sep) out << ", ";
+                        write(id);
+                        sep = true;
+                    }
+                }
+                out << "] (\n                interpolation = \"uniform\"\n            )\n";
+            };
+            perFace("color3f[]", "displayColor", [&](ObjectID id) {
+                const vec3 c = context.material(context.objectMaterial(id)).color;
+                out.tuple(&c.x, 3);
+            });
+            std::int64_t code = 0;  // the index in kOrganLabels (trellis parts are obstacles)
+            for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
+                if (organ == kOrganLabels[i]) code = std::int64_t(i);
+            if (organ == "trellis") code = 9;
+            perFace("int[]", "organ", [&](ObjectID) { out.integer(code); });
+            perFace("int[]", "plantID", [&](ObjectID) { out.integer(plant); });
+            perFace("int[]", "objectID", [&](ObjectID id) { out.integer(std::int64_t(id)); });
+            perFace("int[]", "leafID", [&](ObjectID id) { out.integer(labelsOf(id).leaf); });
+            perFace("int[]", "shootID", [&](ObjectID id) { out.integer(labelsOf(id).shoot); });
+            perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
+            perFace("int[]", "node", [&](ObjectID id) { out.integer(labelsOf(id).node); });
+            perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
+            out << "        }\n";
+            steps.at(done += double(g.triangles));
+        }
+        out << "    }\n";
+    };
     for (const auto& [plant, organs] : plants)
         if (plant >= 0) writePlant(plant, organs);
     if (plants.count(-1)) writePlant(-1, plants.at(-1));
@@ -284,7 +282,7 @@ void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& pat
         std::string name = "day_" + text::formatDouble(frames[f].day);
         for (char& c : name)
             if (c == '.' || c == '-') c = '_';
-        out << (f ? "\n" : "") << "    def Xform " << quoted(name)
+        out << (f ? "\n" : "") << "    def Xform " << usdQuoted(name)
             << " (\n        customData = {\n            double day = "
             << text::formatDouble(frames[f].day) << "\n        }\n    )\n    {\n";
         // Shown at time code f alone: hidden before (held from the first sample back) and

@@ -1,13 +1,13 @@
-#include "io/object_table.h"
+#include "plant_io/object_table.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 #include <unordered_map>
 
-#include "io/export_common.h"
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Export.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch::io {
 

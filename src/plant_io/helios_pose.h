@@ -17,7 +17,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 
 namespace plantarch::plant_io {
 

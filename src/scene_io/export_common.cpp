@@ -1,4 +1,4 @@
-#include "io/export_common.h"
+#include "scene_io/export_common.h"
 
 #include <cctype>
 #include <cmath>

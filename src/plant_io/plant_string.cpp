@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "geometry/tessellate.h"
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 
 namespace plantarch::plant_io {

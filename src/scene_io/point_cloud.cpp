@@ -14,11 +14,11 @@
 
 #include "core/atomic_file.h"
 #include "core/progress_steps.h"
-#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
 #include "plantarch/Random.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch {
 

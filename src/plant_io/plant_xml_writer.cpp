@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "core/value_text.h"
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/PlantStateTable.h"
 

@@ -1,4 +1,4 @@
-#include "io/obj_labels.h"
+#include "scene_io/obj_labels.h"
 
 #include <algorithm>
 #include <charconv>

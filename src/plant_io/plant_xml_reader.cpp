@@ -19,8 +19,8 @@
 
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "io/plant_structure.h"
 #include "library/parameter_reader.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantStateTable.h"
 

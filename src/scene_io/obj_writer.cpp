@@ -22,11 +22,11 @@
 
 #include "core/atomic_file.h"
 #include "core/progress_steps.h"
-#include "io/export_common.h"
-#include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/export_common.h"
+#include "scene_io/obj_labels.h"
 
 namespace plantarch {
 
@@ -34,9 +34,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Room for one OBJ line: a face with three v/vt/vn triples of 20-digit numbers, or a
-// vertex with three floats.
-constexpr std::size_t kLineBytes = 256;
 // Lines of OBJ text formatted together by one thread (a few MB).
 constexpr std::uint64_t kChunkLines = std::uint64_t(1) << 16;
 // A split export writes many small files; a smaller buffer each is plenty.
@@ -113,7 +110,7 @@ void writeMTL(io::AtomicFile& out, const Context& context, const std::vector<std
         if (names[m].empty()) continue;
         const Material& mat = context.material(m);
         out.write("\nnewmtl " + names[m] + "\nKa 0 0 0\nKd ");
-        char* p = out.reserve(kLineBytes);
+        char* p = out.reserve(io::kLineBytes);
         p = io::writeFloat(p, mat.color.r);
         *p++ = ' ';
         p = io::writeFloat(p, mat.color.g);
@@ -177,7 +174,7 @@ public:
         out.write(head_);
 
         for (const vec3& v : o.positions) {
-            char* p = out.reserve(kLineBytes);
+            char* p = out.reserve(io::kLineBytes);
             *p++ = 'v';
             p = vec3Text(p, v);
             out.advance(p);
@@ -187,7 +184,7 @@ public:
         if (options_.normals) {
             io::smoothNormals(o, normals_);
             for (const vec3& n : normals_) {
-                char* p = out.reserve(kLineBytes);
+                char* p = out.reserve(io::kLineBytes);
                 *p++ = 'v';
                 *p++ = 'n';
                 *p++ = ' ';
@@ -251,7 +248,7 @@ private:
         const bool sameUVIndex = uvs && vBase == tBase;  // then "a/a/a": format a once
         const auto& idx = o.indices;
         for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
-            char* p = out.reserve(kLineBytes);
+            char* p = out.reserve(io::kLineBytes);
             *p++ = 'f';
             for (int k = 0; k < 3; ++k) {
                 // Format the index once; copy a fixed 24 bytes (one or two stores, no call)

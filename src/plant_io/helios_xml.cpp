@@ -20,8 +20,8 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "core/xml_reader.h"
-#include "io/helios_pose.h"
-#include "io/plant_structure.h"
+#include "plant_io/helios_pose.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantStateTable.h"
 

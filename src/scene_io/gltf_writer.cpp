@@ -27,10 +27,10 @@
 #include "core/parallel.h"
 #include "core/progress_steps.h"
 #include "core/value_text.h"
-#include "io/export_common.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/export_common.h"
 
 namespace plantarch {
 

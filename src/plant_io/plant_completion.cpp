@@ -16,7 +16,7 @@
 
 #include "core/math.h"
 #include "core/value_text.h"
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantStateTable.h"
 

@@ -19,10 +19,10 @@
 
 #include "core/input_file.h"
 #include "core/progress_steps.h"
-#include "io/obj_labels.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/obj_labels.h"
 
 namespace plantarch {
 

@@ -1,0 +1,34 @@
+#pragma once
+// What a manual-building call of PlantArchitecture (addBaseStemShoot, appendShoot,
+// addChildShoot, appendPhytomerToShoot) is given: where a shoot starts and how large its new
+// phytomers are.
+
+#include <string>
+
+#include "plantarch/PlantState.h"
+
+namespace plantarch {
+
+/// Size of the phytomers a manual-building call makes. Errors name the specification's
+/// argument names, given in brackets.
+struct PhytomerSize {
+    float internodeRadius = 0.001f;     ///< m, (0, 10] (internode_radius)
+    float internodeLengthMax = 0.02f;   ///< full-grown internode length, m, [0, 100]
+                                        ///< (internode_length_max)
+    float internodeLengthScale = 1.0f;  ///< current / full internode length, (0, 1]
+                                        ///< (internode_length_scale_factor_fraction)
+    float leafScale = 1.0f;             ///< current / full petiole and leaf size, (0, 1]
+                                        ///< (leaf_scale_factor_fraction)
+};
+
+/// Where and how a new shoot starts: the options of addBaseStemShoot, appendShoot and
+/// addChildShoot. Errors name the specification's argument names, given in brackets.
+struct ShootSpec {
+    unsigned phytomers = 1;     ///< phytomers to create now, 1 to 100000 (current_node_number)
+    AxisRotation baseRotation;  ///< degrees (base_rotation)
+    PhytomerSize size;          ///< size of the phytomers created
+    float radiusTaper = 0.0f;   ///< tip radius reduction along the shoot, [0, 1] (radius_taper)
+    std::string shootType;      ///< label given to defineShootType (shoot_type_label)
+};
+
+}  // namespace plantarch
