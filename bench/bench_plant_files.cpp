@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/plant_structure.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
