@@ -68,7 +68,8 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
             writeGrowthAnimation(arch, {plant}, *frames, a->outputs,
                                  {a->animation.rate, terminalProgress()});
         } else {
-            for (const std::string& out : a->outputs) writePlantOutput(arch, {plant}, out, global);
+            for (const std::string& out : a->outputs)
+                writePlantFile(arch, {plant}, out, plantFileOptions(global));
         }
         // Statistics are printed before the files are put in place, so that a failed write of
         // them (checked by commit()) leaves no file either.

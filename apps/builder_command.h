@@ -1,7 +1,7 @@
 #pragma once
 // The builder command (apps/builder.cpp) and the two ways it runs: plantarch starts
 // plantarch-builder (apps/launch/builder_exec.cpp), which serves the builder
-// (builder/server/builder_command.cpp). Each executable links one of the two.
+// (apps/launch/builder_serve.cpp). Each executable links one of the two.
 
 #include <string>
 

@@ -92,9 +92,9 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         checkCollisionOptions(a->collision);
         // Separate files get their names once the plants are known: their folder is checked
         // through the index's name.
-        CommandOutputs outputs(a->separate
-                                   ? std::vector<std::string>{separateIndexName(a->outputs.front())}
-                                   : a->outputs);
+        CommandOutputs outputs(
+            a->separate ? std::vector<std::string>{separatePlantIndexName(a->outputs.front())}
+                        : a->outputs);
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -115,9 +115,11 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
             writeGrowthAnimation(arch, plants, *frames, a->outputs,
                                  {a->animation.rate, terminalProgress()});
         } else if (a->separate)
-            writeSeparatePlantOutputs(arch, plants, a->outputs, a->plantOrigin, global);
+            writeSeparatePlantFiles(arch, plants, a->outputs, a->plantOrigin,
+                                    plantFileOptions(global));
         else
-            for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+            for (const std::string& out : a->outputs)
+                writePlantFile(arch, plants, out, plantFileOptions(global));
         // Statistics before the files go in place: commit() checks that they were written.
         if (a->stats)
             for (unsigned p : plants)

@@ -21,6 +21,7 @@
 #include "plantarch/OutputFiles.h"
 #include "plantarch/OutputFormats.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantFiles.h"
 #include "plantarch/Progress.h"
 #include "plantarch/Render.h"
 
@@ -89,13 +90,6 @@ struct CommandRegistrar {
 void info(const GlobalOptions& g, const std::string& message);
 /// Wall time since `start`, ms (what -v reports).
 double millisecondsSince(std::chrono::steady_clock::time_point start);
-
-/// Writes `ctx` to `path`, format from the extension (.obj, .ply, .glb, .gltf, .png). Used by
-/// every subcommand that produces geometry; `plants` names and places the plants in glTF
-/// files. Shows the writer's progress (terminalProgress) unless `showProgress` is false.
-/// Throws plantarch::Error on an unknown extension.
-void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
-                    const std::vector<GltfPlant>& plants = {}, bool showProgress = true);
 
 /// --progress: when the bar of terminalProgress() is drawn.
 enum class ProgressMode {
@@ -182,22 +176,10 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, un
 /// Writes `text` as one file, whole or not at all (held back by an open OutputSet).
 void writeWholeFile(const std::string& path, const std::string& text);
 
-/// `path` with the plant's ID before the extension: field.glb -> field_0007.glb.
-std::string separateFileName(const std::string& path, unsigned plant);
-/// The index of separate files: <stem of `path`>_index.json beside it.
-std::string separateIndexName(const std::string& path);
-/// One file per plant for each output path (separateFileName), each in scene coordinates or,
-/// with `ownOrigin`, moved so that the plant's base is at the origin; and one index,
-/// <stem of the first output>_index.json, of the plants' IDs, files, positions, species, ages
-/// and seed.
-void writeSeparatePlantOutputs(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
-                               const std::vector<std::string>& paths, bool ownOrigin,
-                               const GlobalOptions& g);
+/// The options of plant and scene files from the command's: each writer's progress on the
+/// terminal (none with `showProgress` false) and a "wrote PATH" line with -v.
+PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress = true);
 
-/// Writes `plants` of `arch` to `path`: a plant structure file (.xml), plant strings
-/// (.txt), or the whole scene through writeSceneFile.
-void writePlantOutput(const PlantArchitecture& arch, const std::vector<unsigned>& plants,
-                      const std::string& path, const GlobalOptions& g);
 /// Throws plantarch::Error naming `path` (and `option`, if given) unless it is a file that
 /// opens: "is a directory, not a <what>" or "cannot open <what>".
 void requireInputFile(const std::string& path, const std::string& what,
@@ -214,11 +196,6 @@ void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
 /// Adds --object-ids (.xml outputs carry each organ's object IDs; each mesh output gets an
 /// object table), --ply-color and --ply-format.
 void addLabelOptions(CLI::App& app, GlobalOptions& global);
-/// Whether an output of this path holds object IDs (.obj, .ply, .glb, .gltf, .usda, .npz),
-/// and so gets an object table with --object-ids.
-bool hasObjectIDs(const std::string& path);
-/// The object table next to a mesh: field.obj -> field.objects.json.
-std::string objectTablePath(const std::string& path);
 
 /// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
 /// (animation_options.cpp).

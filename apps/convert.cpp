@@ -49,8 +49,8 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
             // The labels of a plantarch OBJ (its label comments) and its object IDs come
             // along into every format that holds labels.
             readOBJ(ctx, a->input, {.progress = terminalProgress()});
-            writeSceneFile(ctx, a->output, global);
-            if (global.objectIDs && hasObjectIDs(a->output)) {
+            writeSceneFile(ctx, a->output, plantFileOptions(global));
+            if (global.objectIDs && holdsObjectIDs(a->output)) {
                 writeObjectTableJSON(ctx, objectTablePath(a->output));
                 info(global, "wrote " + objectTablePath(a->output));
             }
@@ -60,7 +60,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
         CommandOutputs outputs({a->output});
         const std::vector<unsigned> plants = readPlantInput(arch, a->input, a->species);
         info(global, "read " + std::to_string(plants.size()) + " plant(s) from " + a->input);
-        writePlantOutput(arch, plants, a->output, global);
+        writePlantFile(arch, plants, a->output, plantFileOptions(global));
         outputs.commit();
         return 0;
     };

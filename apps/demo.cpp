@@ -134,8 +134,8 @@ std::function<int()> setupDemo(CLI::App& app, GlobalOptions& global) {
         arch.setMeshDetail(global.meshDetail);
         demoShootTypes(arch);
         const unsigned plant = buildDemoPlant(arch, {0, 0, 0});
-        writeSceneFile(ctx, obj, global);
-        writeSceneFile(ctx, png, global);
+        writeSceneFile(ctx, obj, plantFileOptions(global));
+        writeSceneFile(ctx, png, plantFileOptions(global));
         outputs.commit();
         std::printf(
             "%s", fmt::format("Demo plant (seed {}): {} shoots, {} leaves (leaflets counted), "

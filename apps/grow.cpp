@@ -70,7 +70,8 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
                                  {a->animation.rate, terminalProgress()});
         } else {
             arch.advanceTime(plants, a->days);
-            for (const std::string& out : a->outputs) writePlantOutput(arch, plants, out, global);
+            for (const std::string& out : a->outputs)
+                writePlantFile(arch, plants, out, plantFileOptions(global));
         }
         outputs.commit();
         std::size_t leaves = 0;

@@ -41,15 +41,4 @@ void addLabelOptions(CLI::App& app, GlobalOptions& global) {
         ->type_name("FORMAT");
 }
 
-bool hasObjectIDs(const std::string& path) {
-    const std::string ext = lowerExtension(path);
-    return ext == ".obj" || ext == ".ply" || ext == ".glb" || ext == ".gltf" || ext == ".usda" ||
-           ext == ".npz";
-}
-
-std::string objectTablePath(const std::string& path) {
-    const std::filesystem::path p(path);
-    return (p.parent_path() / (p.stem().string() + ".objects.json")).string();
-}
-
 }  // namespace plantarch::cli

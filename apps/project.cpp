@@ -51,17 +51,19 @@ int runProject(const ProjectArgs& a, const GlobalOptions& global) {
     checkProject(project);
     // Separate files get their names once the plants are known: their folder is checked
     // through the index's name.
-    CommandOutputs outputs(
-        a.separate ? std::vector<std::string>{separateIndexName(a.outputs.front())} : a.outputs);
+    CommandOutputs outputs(a.separate
+                               ? std::vector<std::string>{separatePlantIndexName(a.outputs.front())}
+                               : a.outputs);
     Context ctx;
     PlantArchitecture arch(&ctx);
     const BuiltProject built = buildProject(
         project, arch, {.progress = terminalProgress(), .maxTriangles = global.maxTriangles});
     const std::vector<unsigned> plants = built.plants();
     if (a.separate)
-        writeSeparatePlantOutputs(arch, plants, a.outputs, a.plantOrigin, global);
+        writeSeparatePlantFiles(arch, plants, a.outputs, a.plantOrigin, plantFileOptions(global));
     else
-        for (const std::string& out : a.outputs) writePlantOutput(arch, plants, out, global);
+        for (const std::string& out : a.outputs)
+            writePlantFile(arch, plants, out, plantFileOptions(global));
     const ProjectStats s = projectStats(arch, built);
     // Statistics before the files go in place: commit() checks that they were written.
     if (a.stats) std::printf("%s\n", statsJSON(project, s).c_str());

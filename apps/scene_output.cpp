@@ -18,55 +18,23 @@
 
 namespace plantarch::cli {
 
-void writeSceneFile(const Context& ctx, const std::string& path, const GlobalOptions& g,
-                    const std::vector<GltfPlant>& plants, bool showProgress) {
-    const std::string ext = lowerExtension(path);
-    const ProgressCallback progress = showProgress ? terminalProgress() : ProgressCallback();
-    auto points = [&] {
-        return samplePoints(ctx, {.points = g.points, .seed = g.seed, .progress = progress});
-    };
-    if (ext == ".obj") {
-        writeOBJ(ctx, path, {.progress = progress});
-    } else if (ext == ".ply" && g.points > 0) {
-        writePointCloudPLY(points(), path, progress);
-    } else if (ext == ".ply") {
-        writePLY(ctx, path, {.format = g.plyFormat, .color = g.plyColor, .progress = progress});
-    } else if (ext == ".npz" && g.points > 0) {
-        writePointCloudNPZ(points(), path, progress);
-    } else if (ext == ".glb" || ext == ".gltf") {
-        GltfOptions o;
-        o.plants = plants;
-        o.progress = progress;
-        writeGLTF(ctx, path, o);
-    } else if (ext == ".usda") {
-        UsdOptions o;
-        o.plants = plants;
-        o.progress = progress;
-        writeUSDA(ctx, path, o);
-    } else if (ext == ".png") {
-        RenderOptions o;
-        o.width = g.imageWidth;
-        o.height = g.imageHeight;
-        o.progress = progress;
-        o.seed = g.seed;
-        o.camera = g.pictureCamera;
-        o.mode = g.pictureMode;
-        const RenderScene scene(ctx, o.scene);
-        if (!o.camera.autoFrame && !g.pictureTarget) o.camera.target = scene.bounds().center();
-        writePNG(scene.render(o), path);
-        if (g.cameraJson) {
-            const std::filesystem::path p(path);
-            const std::string json =
-                (p.parent_path() / (p.stem().string() + ".camera.json")).string();
-            writeWholeFile(json, cameraJSON(scene.camera(o), o.width, o.height));
-            info(g, "wrote " + json);
-        }
-    } else {
-        requireOutputFormat(path, kSceneOutput, "unknown output format");
-        throw Error("an .npz output is a point cloud: give --points N",
-                    {.file = path, .parameter = "--points", .validRange = "1 to 2147483648"});
-    }
-    info(g, "wrote " + path);
+PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress) {
+    PlantFileOptions o;
+    o.objectIDs = g.objectIDs;
+    o.stringDigits = g.stringDigits;
+    o.points = g.points;
+    o.seed = g.seed;
+    o.plyColor = g.plyColor;
+    o.plyFormat = g.plyFormat;
+    o.imageWidth = g.imageWidth;
+    o.imageHeight = g.imageHeight;
+    o.camera = g.pictureCamera;
+    o.cameraTarget = g.pictureTarget;
+    o.mode = g.pictureMode;
+    o.cameraJson = g.cameraJson;
+    if (showProgress) o.progress = terminalProgress();
+    o.onWritten = [&g](const std::string& path) { info(g, "wrote " + path); };
+    return o;
 }
 
 void checkSceneOutputs(const std::vector<std::string>& paths, std::size_t points, bool plants) {

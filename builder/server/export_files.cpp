@@ -1,6 +1,5 @@
-// A build's scene written with the command line's writers (writePlantOutput and
-// writeSeparatePlantOutputs, through CommandOutputs: checked paths, all files or none), and
-// zip archives of several files (libzip).
+// A build's scene written as the command line writes it (plantarch/PlantFiles.h, checked
+// paths, all files or none), and zip archives of several files (libzip).
 
 #include "builder/server/export_files.h"
 
@@ -10,9 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/OutputFiles.h"
 #include "plantarch/OutputFormats.h"
+#include "plantarch/PlantFiles.h"
 
 namespace plantarch::builder {
 
@@ -61,7 +61,7 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
                                       const std::string& format, bool perPlant) {
     const std::string ext = exportExtension(format);
     const std::string path = (folder / (name + ext)).string();
-    const cli::GlobalOptions options;  // as `plantarch project run` without options
+    const PlantFileOptions options;  // as `plantarch project run` without options
     const PlantArchitecture& arch = *scene.arch;
     const std::vector<unsigned> plants = scene.built.plants();
     std::vector<fs::path> files;
@@ -70,15 +70,14 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
         if (ext == ".obj") files.push_back(fs::path(file).replace_extension(".mtl"));
     };
     std::lock_guard<std::mutex> lock(server.files);
-    cli::CommandOutputs outputs(perPlant ? std::vector<std::string>{cli::separateIndexName(path)}
-                                         : std::vector<std::string>{path},
-                                /*endsProcess=*/false);
+    checkOutputPath(perPlant ? separatePlantIndexName(path) : path);
+    OutputSet outputs;
     if (perPlant) {
-        cli::writeSeparatePlantOutputs(arch, plants, {path}, false, options);
-        for (unsigned id : plants) withMaterials(cli::separateFileName(path, id));
-        files.push_back(cli::separateIndexName(path));
+        writeSeparatePlantFiles(arch, plants, {path}, false, options);
+        for (unsigned id : plants) withMaterials(separatePlantFileName(path, id));
+        files.push_back(separatePlantIndexName(path));
     } else {
-        cli::writePlantOutput(arch, plants, path, options);
+        writePlantFile(arch, plants, path, options);
         withMaterials(path);
     }
     outputs.commit();

@@ -1,9 +1,7 @@
 // The builder command's work in the executable that holds the server (plantarch-builder, and
-// the tests): serve the project builder until SIGINT or SIGTERM (apps/builder.cpp parses the
-// options; the plantarch command hands its command line to this executable, so it loads none of
-// the server's libraries itself).
-
-#include "builder_command.h"
+// the tests): serve the project builder (builder/server/server.h) until SIGINT or SIGTERM
+// (apps/builder.cpp parses the options; the plantarch command hands its command line to this
+// executable, so it loads none of the server's libraries itself).
 
 #include <fcntl.h>
 #include <pthread.h>
@@ -15,6 +13,7 @@
 #include <thread>
 
 #include "builder/server/server.h"
+#include "builder_command.h"
 #include "plantarch/Error.h"
 
 extern char** environ;
