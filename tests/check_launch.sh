@@ -47,4 +47,9 @@ PLANTARCH_EMBREE_LIBRARY=/nonexistent/libembree3.so.3 "$build/plantarch" build b
 grep -q "PLANTARCH_EMBREE_LIBRARY = /nonexistent/libembree3.so.3: cannot load the ray tracing library" "$scratch/err" ||
     fail "no Embree: unexpected message: $(cat "$scratch/err")"
 [[ ! -e "$scratch/none.png" ]] || fail "no Embree: a picture was written anyway"
+# A command that draws nothing and steers nothing never asks for Embree: a library that cannot
+# be loaded is no matter to it.
+PLANTARCH_EMBREE_LIBRARY=/nonexistent/libembree3.so.3 "$build/plantarch" build bean --age 5 \
+    -o "$scratch/bean.obj" > /dev/null 2> "$scratch/err" || fail "a mesh without Embree: $(cat "$scratch/err")"
+[[ -s "$scratch/bean.obj" ]] || fail "a mesh without Embree: nothing written"
 echo "check_launch: ok"

@@ -8,55 +8,15 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <stdexcept>
-#include <string>
 
 #include "collision/cone.h"
 #include "collision/proxies.h"
 #include "core/embree_api.h"
+#include "core/embree_scene.h"
 
 namespace plantarch::collision {
 
 namespace {
-
-void check(RTCDevice device, const char* what) {
-    const RTCError err = core::embree().rtcGetDeviceError(device);
-    if (err != RTC_ERROR_NONE)
-        throw std::runtime_error(std::string("Embree error ") + std::to_string(int(err)) +
-                                 " while " + what);
-}
-
-// A triangle geometry holding `soup` (three corners per triangle), committed.
-RTCGeometry triangleGeometry(RTCDevice device, const TriangleSoup& soup) {
-    RTCGeometry g = core::embree().rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    core::embree().rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_LOW);
-    const std::size_t n = soup.size();
-    auto* v = static_cast<float*>(core::embree().rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
-    auto* idx = static_cast<unsigned*>(core::embree().rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n / 3));
-    for (std::size_t i = 0; i < n; ++i) {
-        v[3 * i + 0] = soup[i].x;
-        v[3 * i + 1] = soup[i].y;
-        v[3 * i + 2] = soup[i].z;
-        idx[i] = unsigned(i);
-    }
-    core::embree().rtcCommitGeometry(g);
-    return g;
-}
-
-// A committed scene of one triangle geometry (an empty scene when the soup is empty).
-RTCScene sceneOf(RTCDevice device, const TriangleSoup& soup) {
-    RTCScene s = core::embree().rtcNewScene(device);
-    core::embree().rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_LOW);
-    if (!soup.empty()) {
-        RTCGeometry g = triangleGeometry(device, soup);
-        core::embree().rtcAttachGeometryByID(s, g, 0);
-        core::embree().rtcReleaseGeometry(g);
-    }
-    core::embree().rtcCommitScene(s);
-    return s;
-}
 
 void appendObject(const Context& ctx, ObjectID id, TriangleSoup& out) {
     const ObjectView v = ctx.object(id);
@@ -66,11 +26,9 @@ void appendObject(const Context& ctx, ObjectID id, TriangleSoup& out) {
 }  // namespace
 
 struct World::Embree {
-    RTCDevice device = nullptr;
     RTCScene solid = nullptr;
     ~Embree() {
         if (solid) core::embree().rtcReleaseScene(solid);
-        if (device) core::embree().rtcReleaseDevice(device);
     }
 };
 
@@ -79,11 +37,8 @@ struct World::PlantSlot : PlantProxies {
 };
 
 World::World() : rtc_(std::make_unique<Embree>()) {
-    rtc_->device = core::embree().rtcNewDevice(nullptr);
-    if (!rtc_->device) throw std::runtime_error("cannot create an Embree device");
-    TriangleSoup none;
-    rtc_->solid = sceneOf(rtc_->device, none);
-    check(rtc_->device, "creating the collision scene");
+    rtc_->solid = core::triangleScene({}, RTC_BUILD_QUALITY_LOW);
+    core::throwOnEmbreeError("creating the collision scene");
 }
 
 World::~World() = default;
@@ -113,9 +68,9 @@ void World::buildStaticScenes(const Context& ctx) {
 
     boundingSpheres(softStatic_, softStaticSpheres_);
     core::embree().rtcReleaseScene(rtc_->solid);
-    rtc_->solid = sceneOf(rtc_->device, solid);
+    rtc_->solid = core::triangleScene(solid, RTC_BUILD_QUALITY_LOW);
     commit();
-    check(rtc_->device, "building the obstacle scenes");
+    core::throwOnEmbreeError("building the obstacle scenes");
 }
 
 void World::reservePlants(const std::vector<unsigned>& ids) {
@@ -238,17 +193,7 @@ std::optional<SolidHit> World::solidHit(vec3 org, vec3 dir, float tnear, float t
     if (solidTriangles_.empty()) return std::nullopt;
     RTCIntersectContext ictx;
     rtcInitIntersectContext(&ictx);
-    RTCRayHit rh{};
-    rh.ray.org_x = org.x;
-    rh.ray.org_y = org.y;
-    rh.ray.org_z = org.z;
-    rh.ray.dir_x = dir.x;
-    rh.ray.dir_y = dir.y;
-    rh.ray.dir_z = dir.z;
-    rh.ray.tnear = tnear;
-    rh.ray.tfar = tfar;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = core::rayHit(org, dir, tnear, tfar);
     core::embree().rtcIntersect1(rtc_->solid, &ictx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     // The normal of the stored triangle (not Embree's, so equal for any BVH layout).

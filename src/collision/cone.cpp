@@ -207,6 +207,8 @@ void sampleCone(const World& world, vec3 apex, vec3 axis, const PerceptionCone& 
 namespace {
 
 // Bit j set when flag j of the n (at most 64) is 0: four flags at a time where SSE2 is at hand.
+// (SSE kept: bestGap costs 62 M instructions on bench/callgrind/soft_canopy.cpp soft with the
+// plain loop alone, 55 M with vector extensions, 49 M with this.)
 std::uint64_t openBits(const std::uint32_t* flags, int n) {
     std::uint64_t open = 0;
     int j = 0;

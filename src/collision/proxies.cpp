@@ -156,6 +156,11 @@ private:
     std::array<std::pair<const OrganPrototype*, const TriangleSoup*>, 32>& table_;
 };
 
+// SSE intrinsics kept in placeOutline and moveBy: the plain forms give the same bytes but cost
+// more (instructions of bench/callgrind/soft_canopy.cpp soft, one thread, in buildProxies,
+// 102 M with these): placeOutline on glm::vec4 columns 27 M more, moveBy as a plain loop 2.5 M
+// more (as twelve-float blocks, 6 M more).
+//
 // The points of a prototype's outline placed by `xf`, less `start`, into `out`: to the bit
 // as vec3(xf * vec4(p, 1)) - start (glm's product: (x c0 + y c1) + (z c2 + c3), the same
 // operations in the same order, four lanes at once where SSE is at hand).

@@ -3,24 +3,8 @@
 #include <climits>
 #include <cstring>
 
+#include "core/stb.h"
 #include "plantarch/Error.h"
-
-// stb_image with static linkage, private to this file: every image plantarch reads is
-// decoded here.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#endif
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_NO_STDIO  // files are read by InputFile only
-#include <stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 namespace plantarch::io {
 
@@ -28,11 +12,6 @@ namespace {
 
 bool startsWith(std::string_view bytes, std::string_view magic) {
     return bytes.substr(0, magic.size()) == magic;
-}
-
-std::string failureReason() {
-    const char* why = stbi_failure_reason();
-    return why ? why : "unknown reason";
 }
 
 }  // namespace
@@ -70,26 +49,23 @@ DecodedImage readImageFile(const std::string& path, int channels, const InputKin
                                       : ImageFormat::Other;
     if (bytes.size() > std::size_t(INT_MAX))
         throw Error("image file too large to decode", {.file = path});
-    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
     const int length = int(bytes.size());
     int w = 0, h = 0, n = 0;
-    if (!stbi_info_from_memory(data, length, &w, &h, &n))
-        throw Error("cannot decode " + std::string(format) + " image: " + failureReason(),
+    if (!core::stbImageInfo(data, length, w, h, n))
+        throw Error("cannot decode " + std::string(format) + " image: " + core::stbFailureReason(),
                     {.file = path, .validRange = valid});
     if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
         throw Error("image too large",
                     {.file = path,
                      .value = std::to_string(w) + " x " + std::to_string(h) + " pixels",
                      .validRange = "at most " + std::to_string(kMaxImageSide) + " pixels a side"});
-    stbi_uc* pixels = stbi_load_from_memory(data, length, &w, &h, &n, channels);
-    if (!pixels)
-        throw Error("cannot decode " + std::string(format) + " image: " + failureReason(),
+    if (!core::stbDecodeImage(data, length, channels, w, h, n, image.pixels))
+        throw Error("cannot decode " + std::string(format) + " image: " + core::stbFailureReason(),
                     {.file = path, .validRange = valid});
     image.width = w;
     image.height = h;
     image.fileChannels = n;
-    image.pixels.assign(pixels, pixels + std::size_t(w) * std::size_t(h) * std::size_t(channels));
-    stbi_image_free(pixels);
     return image;
 }
 

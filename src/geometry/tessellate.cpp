@@ -2,6 +2,8 @@
 // labelled for segmentation. A pure function of state: running it twice changes nothing,
 // and organs keep their object IDs while their shapes change.
 
+#include "geometry/tessellate.h"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -9,13 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <optional>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "core/math.h"
 #include "geometry/organ_sink.h"
-#include "geometry/tessellate.h"
 #include "geometry/tube.h"
 #include "plantarch/Error.h"
 #include "plantarch/LeafShapes.h"
@@ -113,77 +110,57 @@ LeafTrig trigOf(const LeafOrgan& leaf) {
     return t;
 }
 
-#if defined(__SSE2__)
-// glm's vec3 arithmetic on (x, y, z, 0) in one register: every lane the same operations in the
-// same order as glm's, so the results are the same to the bit (leaves are placed by the
-// hundred thousand: a canopy's collision proxies place them again at every refresh).
+// glm's vec3 arithmetic on (x, y, z, 0) in a glm::vec4, whose four lanes the compiler keeps in
+// one vector register: each lane the same operations in the same order as glm's vec3, so the
+// results are the same to the bit (leaves are placed by the hundred thousand: a canopy's
+// collision proxies place them again at every refresh).
 namespace lanes {
 
-using V = __m128;
+using V = glm::vec4;
 inline V load(vec3 v) {
-    return _mm_setr_ps(v.x, v.y, v.z, 0.0f);
+    return V(v, 0.0f);
 }
-inline V splat(float s) {
-    return _mm_set1_ps(s);
-}
-inline V add(V a, V b) {
-    return _mm_add_ps(a, b);
-}
-inline V sub(V a, V b) {
-    return _mm_sub_ps(a, b);
-}
-inline V mul(V a, V b) {
-    return _mm_mul_ps(a, b);
-}
-// glm::dot: (a.x b.x + a.y b.y) + a.z b.z, in lane 0.
-inline V dot(V a, V b) {
-    const V p = _mm_mul_ps(a, b);
-    return _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
+// glm::dot: (a.x b.x + a.y b.y) + a.z b.z.
+inline float dot(V a, V b) {
+    const V p = a * b;
+    return (p.x + p.y) + p.z;
 }
 inline float length(V v) {
-    return _mm_cvtss_f32(_mm_sqrt_ss(dot(v, v)));
+    return std::sqrt(dot(v, v));
 }
 // glm::normalize: v * (1 / sqrt(dot(v, v))).
 inline V normalize(V v) {
-    const V inverse = _mm_div_ss(_mm_set_ss(1.0f), _mm_sqrt_ss(dot(v, v)));
-    return _mm_mul_ps(v, _mm_shuffle_ps(inverse, inverse, 0));
+    return v * (1.0f / std::sqrt(dot(v, v)));
 }
 // glm::cross: (a.y b.z - b.y a.z, a.z b.x - b.z a.x, a.x b.y - b.x a.y).
 inline V cross(V a, V b) {
-    const V a1 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 0, 2, 1)),
-            a2 = _mm_shuffle_ps(a, a, _MM_SHUFFLE(3, 1, 0, 2));
-    const V b1 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 0, 2, 1)),
-            b2 = _mm_shuffle_ps(b, b, _MM_SHUFFLE(3, 1, 0, 2));
-    return _mm_sub_ps(_mm_mul_ps(a1, b2), _mm_mul_ps(b1, a2));
+    return V(a.y, a.z, a.x, 0.0f) * V(b.z, b.x, b.y, 0.0f) -
+           V(b.y, b.z, b.x, 0.0f) * V(a.z, a.x, a.y, 0.0f);
 }
 // s a + t b.
 inline V mix(float s, V a, float t, V b) {
-    return add(mul(splat(s), a), mul(splat(t), b));
+    return s * a + t * b;
 }
 
 }  // namespace lanes
-#endif
 
 }  // namespace
 
 mat4 geometry::leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
                              vec3 offset) {
-#if defined(__SSE2__)
-    // uprightFrame, the lateral leaflet's swing, rotated and placement below, lane by lane.
+    // uprightFrame, the lateral leaflet's swing, rotated and placement, lane by lane.
     using namespace lanes;
     const V x = normalize(load(tangent)), up = load(kUp);
-    V z = sub(up, mul(_mm_shuffle_ps(dot(up, x), dot(up, x), 0), x));
+    V z = up - dot(up, x) * x;
     if (length(z) < 1e-4f) {
-        const V fallback = load(side), along = dot(fallback, x);
-        z = sub(fallback, mul(_mm_shuffle_ps(along, along, 0), x));
+        const V fallback = load(side);
+        z = fallback - dot(fallback, x) * x;
     }
-    if (length(z) < 1e-6f) {
-        alignas(16) float v[4];
-        _mm_store_ps(v, x);
-        z = load(anyPerpendicular(vec3(v[0], v[1], v[2])));
-    }
+    if (length(z) < 1e-6f) z = load(anyPerpendicular(vec3(x)));
     V fz = normalize(z), fx = x, fy = cross(fz, x);
     if (t.leaflet != 0) {
+        // Lateral leaflet: perpendicular to the rachis on its side (left +y, right -y),
+        // swung toward the tip by yaw; roll mirrored so pairs are symmetric.
         const float sideSign = t.leaflet < 0 ? 1.0f : -1.0f;
         fx = normalize(mix(t.swing.s, x, t.swing.c * sideSign, fy));
         fy = cross(fz, fx);
@@ -193,34 +170,13 @@ mat4 geometry::leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTri
     const V x2 = mix(w.c, x1, w.s, fy), y2 = mix(-w.s, x1, w.c, fy);
     const V y3 = mix(r.c, y2, r.s, z1), z3 = mix(-r.s, y2, r.c, z1);
     offset *= scale;
-    const V base = add(add(add(load(origin), mul(x2, splat(offset.x))), mul(y3, splat(offset.y))),
-                       mul(z3, splat(offset.z)));
-    const V xyz = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
-    const V size = splat(scale);
+    const V base = ((load(origin) + x2 * offset.x) + y3 * offset.y) + z3 * offset.z;
     mat4 m;
-    _mm_storeu_ps(&m[0][0], _mm_and_ps(mul(x2, size), xyz));
-    _mm_storeu_ps(&m[1][0], _mm_and_ps(mul(y3, size), xyz));
-    _mm_storeu_ps(&m[2][0], _mm_and_ps(mul(z3, size), xyz));
-    _mm_storeu_ps(&m[3][0], _mm_or_ps(_mm_and_ps(base, xyz), _mm_setr_ps(0.0f, 0.0f, 0.0f, 1.0f)));
+    m[0] = V(vec3(x2 * scale), 0.0f);
+    m[1] = V(vec3(y3 * scale), 0.0f);
+    m[2] = V(vec3(z3 * scale), 0.0f);
+    m[3] = V(vec3(base), 1.0f);
     return m;
-#else
-    OrganFrame f = uprightFrame(tangent, side);
-    if (t.leaflet != 0) {
-        // Lateral leaflet: perpendicular to the rachis on its side (left +y, right -y),
-        // swung toward the tip by yaw; roll mirrored so pairs are symmetric.
-        const float sideSign = t.leaflet < 0 ? 1.0f : -1.0f;
-        OrganFrame lf;
-        lf.z = f.z;
-        lf.x = glm::normalize(t.swing.s * f.x + t.swing.c * sideSign * f.y);
-        lf.y = glm::cross(lf.z, lf.x);
-        f = rotated(lf, t.turn);
-    } else {
-        f = rotated(f, t.turn);
-    }
-    offset *= scale;
-    const vec3 base = origin + f.x * offset.x + f.y * offset.y + f.z * offset.z;
-    return placement(f, base, scale);
-#endif
 }
 
 namespace {

@@ -16,37 +16,15 @@
 
 #include "core/atomic_file.h"
 #include "core/image_file.h"
+#include "core/stb.h"
 #include "plantarch/Error.h"
 #include "plantarch/OutputFormats.h"
 #include "plantarch/Render.h"
 #include "render/render_internal.h"
 
-// stb_image_write is compiled here with static linkage so that another file of the library (or
-// a user's program) may include its own copy without duplicate symbols; images are decoded by
-// core/image_file.cpp.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#endif
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb_image_write.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-
 namespace plantarch {
 
 namespace {
-
-void appendBytes(void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-    const auto* bytes = static_cast<const std::uint8_t*>(data);
-    out->insert(out->end(), bytes, bytes + size);
-}
 
 std::vector<std::uint8_t> pngBytes(const Image& image, const std::string& path) {
     if (image.width <= 0 || image.height <= 0 ||
@@ -54,9 +32,8 @@ std::vector<std::uint8_t> pngBytes(const Image& image, const std::string& path) 
         throw Error("image has no pixels or a wrong buffer size", {.file = path});
     std::vector<std::uint8_t> bytes;
     bytes.reserve(image.rgb.size() / 2 + 1024);
-    const int ok = stbi_write_png_to_func(appendBytes, &bytes, image.width, image.height, 3,
-                                          image.rgb.data(), image.width * 3);
-    if (!ok) throw Error("PNG encoding failed", {.file = path});
+    if (!core::stbEncodePng(image.rgb.data(), image.width, image.height, 3, image.width * 3, bytes))
+        throw Error("PNG encoding failed", {.file = path});
     return bytes;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/embree_api.h"
+#include "core/embree_scene.h"
 #include "core/math.h"
 #include "core/parallel.h"
 #include "plantarch/Error.h"
@@ -256,7 +257,7 @@ struct Hit {
 };
 
 Hit intersect(const Setup& s, RTCIntersectContext& ictx, const vec3& org, const vec3& dir) {
-    RTCRayHit rh = render_detail::rayHit(org, dir, kInf);
+    RTCRayHit rh = core::rayHit(org, dir, 0.0f, kInf);
     if (s.scene->triangles > 0) core::embree().rtcIntersect1(s.rtc, &ictx, &rh);
     Hit hit;
     if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
@@ -283,19 +284,7 @@ Hit intersect(const Setup& s, RTCIntersectContext& ictx, const vec3& org, const 
 bool occluded(const Setup& s, RTCIntersectContext& ictx, const vec3& org, const vec3& dir,
               float tfar) {
     if (s.scene->triangles == 0) return false;
-    RTCRay ray;
-    ray.org_x = org.x;
-    ray.org_y = org.y;
-    ray.org_z = org.z;
-    ray.tnear = 0.0f;
-    ray.dir_x = dir.x;
-    ray.dir_y = dir.y;
-    ray.dir_z = dir.z;
-    ray.time = 0.0f;
-    ray.tfar = tfar;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = core::rayHit(org, dir, 0.0f, tfar).ray;
     core::embree().rtcOccluded1(s.rtc, &ictx, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }

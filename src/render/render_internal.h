@@ -73,7 +73,6 @@ struct GeometryData {
 };
 
 struct SceneData {
-    RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     std::vector<ObjectInfo> objects;
     std::vector<Texture> textures;
@@ -95,27 +94,6 @@ struct CameraAxes {
     vec3 forward, worldUp;
 };
 CameraAxes cameraAxes(const CameraFrame& frame);
-
-/// A ray from `origin` along `direction` up to `tfar`, with no hit yet, for rtcIntersect1.
-inline RTCRayHit rayHit(const vec3& origin, const vec3& direction, float tfar) {
-    RTCRayHit rh;
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.dir_x = direction.x;
-    rh.ray.dir_y = direction.y;
-    rh.ray.dir_z = direction.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = tfar;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-}
 
 // ---- sampling ----------------------------------------------------------------------------
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/embree_api.h"
+#include "core/embree_scene.h"
 #include "core/parallel.h"
 #include "core/value_text.h"
 #include "plantarch/Error.h"
@@ -145,7 +146,7 @@ PointCloud scan(const Context& context, const ScanOptions& options) {
                         const double azimuth = (azimuth0 + double(c) * step) * toRad;
                         const vec3 dir(float(sz * std::cos(azimuth)), float(sz * std::sin(azimuth)),
                                        float(cz));
-                        RTCRayHit rh = render_detail::rayHit(s.origin, dir, options.maxRange);
+                        RTCRayHit rh = core::rayHit(s.origin, dir, 0.0f, options.maxRange);
                         core::embree().rtcIntersect1(data.scene, &ictx, &rh);
                         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
                         float range = rh.ray.tfar;

@@ -1,17 +1,15 @@
 // Preparing a Context for ray casting: one Embree BVH over every visible triangle, plus the
 // tables that map a hit back to its object, material, texture and organ kind.
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/embree_api.h"
+#include "core/embree_scene.h"
 #include "core/parallel.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
@@ -19,13 +17,6 @@
 namespace plantarch::render_detail {
 
 namespace {
-
-void throwOnDeviceError(RTCDevice device, const char* what) {
-    const RTCError err = core::embree().rtcGetDeviceError(device);
-    if (err != RTC_ERROR_NONE)
-        throw std::runtime_error(std::string("Embree error ") + std::to_string(int(err)) +
-                                 " during " + what);
-}
 
 std::uint8_t organIndex(const std::optional<std::string>& organ) {
     if (!organ) return kOrganOther;
@@ -66,7 +57,6 @@ SceneData::~SceneData() {
     for (auto& g : geometries)
         if (g.geometry) core::embree().rtcReleaseGeometry(g.geometry);
     if (scene) core::embree().rtcReleaseScene(scene);
-    if (device) core::embree().rtcReleaseDevice(device);
 }
 
 namespace {
@@ -150,17 +140,11 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
     }
     data.triangles = triangleCount[0] + triangleCount[1];
 
-    // ---- Embree device, scene and buffers -----------------------------------------------
-    const std::string config = "threads=" + std::to_string(std::max(1, omp_get_max_threads()));
-    data.device = core::embree().rtcNewDevice(config.c_str());
-    if (!data.device) throw std::runtime_error("cannot create an Embree device");
-    data.scene = core::embree().rtcNewScene(data.device);
+    // ---- Embree scene and buffers ---------------------------------------------------------
     const RTCBuildQuality quality[] = {RTC_BUILD_QUALITY_LOW, RTC_BUILD_QUALITY_MEDIUM,
                                        RTC_BUILD_QUALITY_HIGH};
-
-    core::embree().rtcSetSceneBuildQuality(data.scene, quality[int(options.bvhQuality)]);
     // Robust traversal: no cracks between neighbouring triangles in the label masks.
-    core::embree().rtcSetSceneFlags(data.scene, RTC_SCENE_FLAG_ROBUST);
+    data.scene = core::newScene(quality[int(options.bvhQuality)], RTC_SCENE_FLAG_ROBUST);
 
     float* positions[2] = {nullptr, nullptr};
     std::uint32_t* indices[2] = {nullptr, nullptr};
@@ -168,15 +152,12 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
         GeometryData& g = data.geometries[k];
         g.scene = &data;
         if (triangleCount[k] == 0) continue;
-        g.geometry = core::embree().rtcNewGeometry(data.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        core::embree().rtcSetGeometryBuildQuality(g.geometry, quality[int(options.bvhQuality)]);
-        positions[k] = static_cast<float*>(core::embree().rtcSetNewGeometryBuffer(
-            g.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-            vertexCount[k]));
-        indices[k] = static_cast<std::uint32_t*>(core::embree().rtcSetNewGeometryBuffer(
-            g.geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t),
-            triangleCount[k]));
-        throwOnDeviceError(data.device, "buffer allocation");
+        const core::TriangleGeometry made = core::newTriangleGeometry(
+            vertexCount[k], triangleCount[k], quality[int(options.bvhQuality)]);
+        g.geometry = made.geometry;
+        positions[k] = made.positions;
+        indices[k] = made.indices;
+        core::throwOnEmbreeError("allocating buffers");
         g.positions = positions[k];
         g.vertexCount = vertexCount[k];
         g.indices = indices[k];
@@ -248,7 +229,7 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
     }
     core::embree().rtcCommitScene(data.scene);
     if (options.progress) options.progress("building scene", 1.0);
-    throwOnDeviceError(data.device, "BVH build");
+    core::throwOnEmbreeError("building the BVH");
 }
 
 }  // namespace plantarch::render_detail
