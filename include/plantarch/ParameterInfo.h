@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "plantarch/NumberRange.h"
 #include "plantarch/Parameters.h"
 
 namespace plantarch {
@@ -55,7 +56,10 @@ struct ParameterInfo {
 
     /// Whether min and max bound the value (numbers, triples, number maps).
     bool hasRange() const;
-    /// The range for people: "0 to 1", ">= 0.001", "any number"; "" without a range.
+    /// The range (whole numbers for the whole-number kinds); meaningful when hasRange().
+    NumberRange range() const;
+    /// plantarch::rangeText(range()) ("0 to 1", ">= 0.001", "any finite number"), or ""
+    /// without a range.
     std::string rangeText() const;
 };
 

@@ -37,11 +37,7 @@ constexpr const char* tableName() {
 
 // The range for people, as `plantarch info` and the docs give it ("" without one).
 std::string rangeOf(const pp::FieldInfo& f) {
-    if (f.min == 0 && f.max == 0) return "";
-    ParameterInfo info;
-    info.min = f.min;
-    info.max = f.max;
-    return info.rangeText();
+    return f.min == 0 && f.max == 0 ? "" : rangeText(f.range());
 }
 
 [[noreturn]] void wrongType(const pp::FieldInfo& f, const std::string& path, py::handle value,

@@ -118,10 +118,11 @@ constexpr bool kShownInPython = !std::is_same_v<T, Rng>;  // the generator is th
 }
 
 double number(const st::FieldInfo& f, py::handle v, bool whole) {
-    if (!isNumber(v)) refuse(f, v, whole ? "not a whole number" : "not a number", st::rangeText(f));
+    if (!isNumber(v))
+        refuse(f, v, whole ? "not a whole number" : "not a number", rangeText(f.range()));
     const double d = v.cast<double>();
-    if (whole && d != std::floor(d)) refuse(f, v, "not a whole number", st::rangeText(f));
-    if (!st::inside(f, d)) refuse(f, v, "out of range", st::rangeText(f));
+    if (whole && d != std::floor(d)) refuse(f, v, "not a whole number", rangeText(f.range()));
+    if (!st::inside(f, d)) refuse(f, v, "out of range", rangeText(f.range()));
     return d;
 }
 
@@ -133,7 +134,7 @@ void assign(const st::FieldInfo& f, py::handle v, T& out) {
         out = v.cast<bool>();
     } else if constexpr (std::is_same_v<T, float>) {
         const double d = number(f, v, false);
-        if (!st::inside(f, double(float(d)))) refuse(f, v, "out of range", st::rangeText(f));
+        if (!st::inside(f, double(float(d)))) refuse(f, v, "out of range", rangeText(f.range()));
         out = float(d);
     } else if constexpr (std::is_same_v<T, double>) {
         out = number(f, v, false);
@@ -170,7 +171,7 @@ void assign(const st::FieldInfo& f, py::handle v, T& out) {
 
 std::string help(const st::FieldInfo& f, bool ranged) {
     std::string doc = f.doc[0] ? f.doc : f.name;
-    if (ranged && !(f.min == 0 && f.max == 0)) doc += " (valid: " + st::rangeText(f) + ")";
+    if (ranged && !(f.min == 0 && f.max == 0)) doc += " (valid: " + rangeText(f.range()) + ")";
     doc += f.editable ? "; a phytomer function may set it" : "; read only";
     return doc;
 }

@@ -381,7 +381,7 @@ private:
 
     static void checkRange(const state::FieldInfo& f, const Element& e, double v,
                            std::string_view text) {
-        if (!state::inside(f, v)) e.fail("out of range", std::string(text), state::rangeText(f));
+        if (!state::inside(f, v)) e.fail("out of range", std::string(text), rangeText(f.range()));
     }
 
     // Parameters: as species files spell them.

@@ -154,13 +154,14 @@ bool ParameterInfo::hasRange() const {
     return false;
 }
 
+NumberRange ParameterInfo::range() const {
+    const bool whole =
+        kind == ParameterKind::WholeNumber || kind == ParameterKind::RandomWholeNumber;
+    return {.min = min, .max = max, .whole = whole};
+}
+
 std::string ParameterInfo::rangeText() const {
-    if (!hasRange()) return "";
-    const bool low = min != -params::kInf, high = max != params::kInf;
-    if (low && high) return text::formatDouble(min) + " to " + text::formatDouble(max);
-    if (low) return ">= " + text::formatDouble(min);
-    if (high) return "<= " + text::formatDouble(max);
-    return "any number";
+    return hasRange() ? plantarch::rangeText(range()) : "";
 }
 
 std::vector<ParameterInfo> parameterInfo(const ShootParameters& shoot) {
