@@ -28,9 +28,10 @@ Shoot& shootOf(View& v) {
     return *v.shoot;
 }
 
-template <class E>
-void nameEnum(py::enum_<E>& e, std::initializer_list<E> values, const char* (*name)(E)) {
-    for (E v : values) e.value(name(v), v);
+// The members of a state enum: its table's names and docs (plantarch/PlantState.h).
+template <StateEnum E>
+void nameEnum(py::enum_<E>& e) {
+    for (const StateName<E>& n : kStateNames<E>) e.value(n.name, n.value, n.doc);
 }
 
 namespace st = plantarch::state;
@@ -275,23 +276,13 @@ py::class_<S> bindStateStruct(py::module_& m, const char* name, const char* doc)
 
 void bindState(py::module_& m) {
     py::enum_<BudState> bud(m, "BudState", "State of a vegetative or floral bud.");
-    nameEnum(bud, {BudState::Dormant, BudState::Active, BudState::Broken, BudState::Dead},
-             budStateName);
+    nameEnum(bud);
     py::enum_<FloralStage> stage(m, "FloralStage", "Stage of a floral bud.");
-    nameEnum(stage,
-             {FloralStage::Bud, FloralStage::FlowerClosed, FloralStage::FlowerOpen,
-              FloralStage::Fruit, FloralStage::Removed},
-             floralStageName);
+    nameEnum(stage);
     py::enum_<OrganKind> organ(m, "OrganKind", "Kind of organ (the 'organ' object data).");
-    nameEnum(organ,
-             {OrganKind::Internode, OrganKind::Petiole, OrganKind::Leaf, OrganKind::Peduncle,
-              OrganKind::FlowerClosed, OrganKind::FlowerOpen, OrganKind::Fruit},
-             organName);
+    nameEnum(organ);
     py::enum_<PhenologyStage> pheno(m, "PhenologyStage", "Where a plant is in its yearly cycle.");
-    nameEnum(pheno,
-             {PhenologyStage::Dormant, PhenologyStage::Vegetative, PhenologyStage::Reproductive,
-              PhenologyStage::Senescent},
-             phenologyStageName);
+    nameEnum(pheno);
 
     bindStateStruct<VegetativeBud>(m, "VegetativeBud", "An axillary or apical vegetative bud.");
     bindStateStruct<FlowerOrgan>(m, "FlowerOrgan", "One flower or fruit on a peduncle.");
