@@ -69,6 +69,14 @@ std::vector<ParameterInfo> parameterInfo(const ShootParameters& shoot);
 /// Every field of <phenology>.
 std::vector<ParameterInfo> parameterInfo(const PhenologyParameters& phenology);
 
+/// The fields as JSON text, the one JSON form of ParameterInfo (the builder's species endpoint
+/// and the Python module's parameterInfo() both give it): an array with, per field, the object
+///   {"path", "name", "unit", "doc", "kind" (parameterKindText), "min", "max" (null without a
+///    range or for no bound), "range" (rangeText()), "choices": [{"name", "doc"}], "entry",
+///    "probabilities", "value"}
+/// in the order of `fields`, keys in that order, on one line.
+std::string parameterInfoJson(const std::vector<ParameterInfo>& fields);
+
 /// "random number", "true or false", ...: the kind of value, as docs/species-format.md names
 /// them (its section *Values* shows how each is written).
 const char* parameterKindText(ParameterKind kind);
