@@ -15,6 +15,7 @@
 #include "builder_fixture.h"
 #include "cli_run.h"
 #include "plantarch/Export.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/OutputFormats.h"
 #include "plantarch/Project.h"
 
@@ -136,6 +137,12 @@ TEST_F(BuilderServer, ListsSpeciesWithTheirParameters) {
     EXPECT_EQ(client_->Get("/api/species/a.b")->status, 400);
     auto apple = body(client_->Get("/api/species/apple"));
     EXPECT_FALSE(apple["build_parameters"].empty());
+    // A build parameter's range in the library's wording, from its float bounds.
+    for (const json& b : apple["build_parameters"])
+        EXPECT_EQ(b["range"],
+                  plantarch::rangeText(
+                      {.min = b["min"].get<float>(), .max = b["max"].get<float>(), .single = true}))
+            << b["name"];
 }
 
 TEST_F(BuilderServer, DrawsAThumbnail) {

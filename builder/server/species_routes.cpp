@@ -3,6 +3,7 @@
 
 #include "builder/server/server_impl.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/ParameterInfo.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
@@ -39,6 +40,7 @@ json details(const SpeciesModel& m, bool user) {
                          {"value", p.value},
                          {"min", p.min},
                          {"max", p.max},
+                         {"range", rangeText({.min = p.min, .max = p.max, .single = true})},
                          {"unit", p.unit},
                          {"doc", p.doc}});
     j["build_parameters"] = build;
