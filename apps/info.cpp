@@ -16,6 +16,7 @@
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/ParameterInfo.h"
 #include "plantarch/SpeciesIO.h"
 
@@ -135,10 +136,12 @@ void printSummary(const SpeciesModel& m, bool all) {
     } else {
         std::printf("\nbuild parameters (plantarch build -D name=value):\n");
         for (const BuildParameter& p : m.buildParameters)
-            std::printf("  %s\n", fmt::format("{} = {}{} (valid {} to {}){}", p.name, p.value,
-                                              p.unit.empty() ? "" : " " + p.unit, p.min, p.max,
-                                              p.doc.empty() ? "" : ": " + p.doc)
-                                      .c_str());
+            std::printf("  %s\n",
+                        fmt::format("{} = {}{} (valid {}){}", p.name, p.value,
+                                    p.unit.empty() ? "" : " " + p.unit,
+                                    rangeText({.min = p.min, .max = p.max, .single = true}),
+                                    p.doc.empty() ? "" : ": " + p.doc)
+                            .c_str());
     }
 
     std::printf("\ninitial structure (%zu step%s):\n", m.build.size(),

@@ -7,12 +7,17 @@
 #include <httplib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "builder_fixture.h"
 #include "cli_run.h"
+#include "plantarch/Export.h"
+#include "plantarch/NumberRange.h"
+#include "plantarch/OutputFormats.h"
+#include "plantarch/Project.h"
 
 TEST_F(BuilderServer, ServesThePageAndItsConfig) {
     auto page = client_->Get("/");
@@ -29,6 +34,70 @@ TEST_F(BuilderServer, ServesThePageAndItsConfig) {
     EXPECT_NE(body(missing)["error"].get<std::string>().find("no such endpoint"),
               std::string::npos);
     EXPECT_EQ(client_->Get("/no-such-file.js")->status, 404);
+}
+
+// GET /api/defaults: what the page takes instead of restating it, equal to the C++ declarations
+// (Project.h's defaults, the organ label colours, the builder's export formats).
+TEST_F(BuilderServer, ServesTheDefaultsOfTheCppDeclarations) {
+    using namespace plantarch;
+    auto r = client_->Get("/api/defaults");
+    ASSERT_TRUE(r && r->status == 200);
+    const json d = body(r);
+    const Project def;
+    const Project served = readProjectString(d["project"].dump(), "defaults");
+    EXPECT_EQ(served.seed, def.seed);
+    EXPECT_EQ(served.meshDetail, def.meshDetail);
+    EXPECT_FALSE(served.ground);
+    EXPECT_EQ(served.softCollision, def.softCollision);
+    EXPECT_EQ(served.softCone.halfAngle, def.softCone.halfAngle);
+    EXPECT_EQ(served.softCone.lookAhead, def.softCone.lookAhead);
+    EXPECT_EQ(served.softCone.rays, def.softCone.rays);
+    EXPECT_EQ(served.softCone.inertia, def.softCone.inertia);
+    EXPECT_EQ(served.avoidDistance, def.avoidDistance);
+    EXPECT_EQ(served.fruitAdjustment, def.fruitAdjustment);
+    EXPECT_EQ(served.attraction, def.attraction);
+    EXPECT_EQ(served.attractionCone.halfAngle, def.attractionCone.halfAngle);
+    EXPECT_EQ(served.attractionCone.lookAhead, def.attractionCone.lookAhead);
+    EXPECT_EQ(served.attractionCone.inertia, def.attractionCone.inertia);
+    EXPECT_TRUE(served.blocks.empty());
+    const ProjectGround ground;
+    EXPECT_EQ(d["ground"], json({{"size", {ground.size.x, ground.size.y}},
+                                 {"center", {ground.center.x, ground.center.y}}}));
+    const ProjectBlock block;
+    for (const char* layout : {"grid", "scatter", "single"}) {
+        json b = d["blocks"][layout];
+        b["species"] = "bean";
+        const json file = {{"plantarch_project", 1}, {"blocks", {b}}};
+        const ProjectBlock read = readProjectString(file.dump(), layout).blocks.at(0);
+        EXPECT_EQ(b["layout"], layout);
+        EXPECT_EQ(read.origin, block.origin) << layout;
+        EXPECT_EQ(read.count, block.count) << layout;
+        EXPECT_EQ(read.spacing, block.spacing) << layout;
+        EXPECT_EQ(read.area, block.area) << layout;
+        EXPECT_EQ(read.plants, block.plants) << layout;
+        EXPECT_EQ(read.germination, block.germination) << layout;
+        EXPECT_EQ(read.age, block.age) << layout;
+        EXPECT_EQ(read.seed, block.seed) << layout;
+        EXPECT_EQ(read.parameters, block.parameters) << layout;
+        EXPECT_EQ(read.trellis, block.trellis) << layout;
+    }
+    EXPECT_EQ(d["organ_colors"].size(), kOrganLabels.size());
+    for (std::string_view organ : kOrganLabels)
+        EXPECT_EQ(d["organ_colors"][std::string(organ)], json(organLabelColor(organ))) << organ;
+    for (const OrganLabelColor& c : organLabelColors())
+        EXPECT_EQ(d["organ_colors"][std::string(c.organ)], json(c.rgb)) << c.organ;
+    std::vector<std::string> formats;
+    for (const OutputFormat& f : outputFormats())
+        if (f.uses & kBuilderExport) {
+            formats.emplace_back(f.extension.substr(1));
+            EXPECT_NE(std::find(d["export_formats"].begin(), d["export_formats"].end(),
+                                json({{"format", formats.back()},
+                                      {"description", std::string(f.description)}})),
+                      d["export_formats"].end())
+                << f.extension;
+        }
+    EXPECT_EQ(d["export_formats"].size(), formats.size());
+    EXPECT_EQ(body(client_->Get("/api/config"))["formats"], json(formats));
 }
 
 TEST_F(BuilderServer, ListsSpeciesWithTheirParameters) {
@@ -68,6 +137,12 @@ TEST_F(BuilderServer, ListsSpeciesWithTheirParameters) {
     EXPECT_EQ(client_->Get("/api/species/a.b")->status, 400);
     auto apple = body(client_->Get("/api/species/apple"));
     EXPECT_FALSE(apple["build_parameters"].empty());
+    // A build parameter's range in the library's wording, from its float bounds.
+    for (const json& b : apple["build_parameters"])
+        EXPECT_EQ(b["range"],
+                  plantarch::rangeText(
+                      {.min = b["min"].get<float>(), .max = b["max"].get<float>(), .single = true}))
+            << b["name"];
 }
 
 TEST_F(BuilderServer, DrawsAThumbnail) {

@@ -5,11 +5,13 @@
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <tuple>
 
 #include "collision_scenes.h"
 #include "plant_geometry_bytes.h"
 #include "plantarch/Error.h"
+#include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantStateTable.h"
 #include "plantarch/SpeciesIO.h"
@@ -577,6 +579,79 @@ TEST(PlantStructureXML, DocsNameEveryElement) {
     for (const std::string& name : v.names)
         EXPECT_NE(doc.find("`" + name + "`"), std::string::npos)
             << name << " is not in docs/plant-xml.md";
+}
+
+namespace {
+
+// Every value of a state enum has one name, in enumerator order, that parses back, with a
+// doc; the names are distinct; docs/`doc` names each as `name`.
+template <class E>
+void expectNamed(const std::string& doc, const char* file) {
+    using namespace plantarch;
+    std::set<std::string> seen;
+    ASSERT_EQ(kStateCount<E>, kStateNames<E>.size());
+    for (std::size_t i = 0; i < kStateCount<E>; ++i) {
+        const std::string name = stateName(E(i));
+        EXPECT_NE(name, "unknown");
+        EXPECT_EQ(stateNamed<E>(name), E(i)) << name;
+        EXPECT_TRUE(seen.insert(name).second) << name << " named twice";
+        EXPECT_NE(std::string(kStateNames<E>[i].doc), "") << name;
+        EXPECT_NE(doc.find("`" + name + "`"), std::string::npos) << name << " is not in " << file;
+    }
+    EXPECT_EQ(stateNames<E>().size(), kStateCount<E>);
+    EXPECT_STREQ(stateName(E(kStateCount<E>)), "unknown");
+    EXPECT_FALSE(stateNamed<E>("no such name"));
+}
+
+}  // namespace
+
+TEST(PlantStructureXML, EveryStateEnumValueHasANameThatParsesBack) {
+    const std::string plantXml =
+        plantarch::testing::fileBytes(std::string(PLANTARCH_SOURCE_DIR) + "/docs/plant-xml.md");
+    const std::string formats =
+        plantarch::testing::fileBytes(std::string(PLANTARCH_SOURCE_DIR) + "/docs/formats.md");
+    expectNamed<BudState>(plantXml, "docs/plant-xml.md");
+    expectNamed<FloralStage>(plantXml, "docs/plant-xml.md");
+    expectNamed<PhenologyStage>(plantXml, "docs/plant-xml.md");
+    expectNamed<OrganKind>(formats, "docs/formats.md");
+    // The organ labels of exports: "unlabelled", the organ kinds in order, ground, obstacle.
+    EXPECT_EQ(plantarch::kOrganLabels.size(), plantarch::kOrganKinds + 3);
+    for (std::size_t k = 0; k < plantarch::kOrganKinds; ++k)
+        EXPECT_EQ(plantarch::kOrganLabels[k + 1], plantarch::organName(OrganKind(k)));
+}
+
+// Each state enum written to a plant file reads back, by its name (a bud's state, a floral
+// bud's stage, the plant's phenology stage), and a wrong name is refused with the valid ones.
+TEST(PlantStructureXML, StateEnumNamesAreWhatFilesHold) {
+    Context ctx;
+    PlantArchitecture a(&ctx);
+    a.loadPlantModelFromLibrary("bean");
+    const unsigned p = a.buildPlantInstanceFromLibrary(vec3(0.0f), 30.0f);
+    const std::string text = a.getPlantStructureXML({p});
+    for (const char* element : {"<phenology_stage>", "<state>", "<stage>"}) {
+        const std::size_t at = text.find(element);
+        ASSERT_NE(at, std::string::npos) << element;
+        const std::size_t from = at + std::string(element).size();
+        const std::string value = text.substr(from, text.find('<', from) - from);
+        const bool known = plantarch::stateNamed<BudState>(value) ||
+                           plantarch::stateNamed<FloralStage>(value) ||
+                           plantarch::stateNamed<PhenologyStage>(value);
+        EXPECT_TRUE(known) << element << value;
+    }
+    std::string bad = text;
+    const std::size_t at = bad.find("<phenology_stage>") + std::string("<phenology_stage>").size();
+    bad.replace(at, bad.find('<', at) - at, "sleeping");
+    Context other;
+    PlantArchitecture b(&other);
+    try {
+        b.readPlantStructureXMLString(bad);
+        ADD_FAILURE() << "a wrong phenology stage was read";
+    } catch (const plantarch::Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("sleeping"), std::string::npos) << message;
+        for (const std::string& name : plantarch::stateNames<PhenologyStage>())
+            EXPECT_NE(message.find(name), std::string::npos) << message;
+    }
 }
 
 // A shoot type defined after the plant was made, that the plant's own types name as a child

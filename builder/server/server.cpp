@@ -18,6 +18,9 @@
 #include "builder/server/export_files.h"
 #include "builder/server/server_impl.h"
 #include "plantarch/Error.h"
+#include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
+#include "plantarch/Project.h"
 #include "plantarch/SpeciesIO.h"
 #include "plantarch/Version.h"
 
@@ -268,6 +271,45 @@ void Server::Impl::assetRoutes() {
     });
 }
 
+namespace {
+
+// GET /api/defaults: what the page would otherwise restate, from the C++ declarations. A
+// project file's defaults as the library writes a default Project; a ground's and each
+// layout's block's, from projects that have one; the organ label colours; the export formats.
+json pageDefaults() {
+    const json project = json::parse(writeProjectString(Project{}));
+    Project grounded;
+    grounded.ground = ProjectGround{};
+    Project blocks;
+    for (ProjectBlock::Layout layout :
+         {ProjectBlock::Layout::Grid, ProjectBlock::Layout::Scatter, ProjectBlock::Layout::Single})
+        blocks.blocks.emplace_back().layout = layout;
+    const json written = json::parse(writeProjectString(blocks));
+    json byLayout = json::object();
+    for (json b : written["blocks"]) {
+        b.erase("name");  // a file's block has no default species; its name is numbered
+        b.erase("species");
+        byLayout[b["layout"].get<std::string>()] = b;
+    }
+    json colors = json::object();
+    for (std::string_view organ : kOrganLabels) {
+        const auto rgb = organLabelColor(organ);
+        colors[std::string(organ)] = {rgb[0], rgb[1], rgb[2]};
+    }
+    json formats = json::array();
+    for (const OutputFormat& f : outputFormats())
+        if (f.uses & kBuilderExport)
+            formats.push_back({{"format", std::string(f.extension.substr(1))},
+                               {"description", std::string(f.description)}});
+    return {{"project", project},
+            {"ground", json::parse(writeProjectString(grounded))["ground"]},
+            {"blocks", byLayout},
+            {"organ_colors", colors},
+            {"export_formats", formats}};
+}
+
+}  // namespace
+
 void Server::Impl::routes() {
     http.set_payload_max_length(options.maxBodyBytes);
     http.set_error_handler([this](const httplib::Request& req, httplib::Response& res) {
@@ -294,6 +336,10 @@ void Server::Impl::routes() {
                        {"max_body_bytes", options.maxBodyBytes},
                        {"max_json_depth", kMaxRequestDepth},
                        {"formats", exportFormats()}});
+    });
+    on("GET", "/api/defaults", [](const httplib::Request&, httplib::Response& res) {
+        static const json defaults = pageDefaults();
+        sendJSON(res, defaults);
     });
     speciesRoutes();
     buildRoutes();

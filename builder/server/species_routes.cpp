@@ -1,10 +1,9 @@
 // Species endpoints: the library and the user's saved species, each species' parameters as
 // the parameter table declares them, thumbnails, and editing (check, save).
 
-#include <cmath>
-
 #include "builder/server/server_impl.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/ParameterInfo.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
@@ -28,28 +27,9 @@ json summary(const SpeciesModel& m, bool user) {
             {"user", user}};
 }
 
-json bound(double v) {
-    return std::isfinite(v) ? json(v) : json(nullptr);
-}
-
+// The library's one JSON form of the fields (parameterInfoJson).
 json parameters(const std::vector<ParameterInfo>& fields) {
-    json list = json::array();
-    for (const ParameterInfo& f : fields) {
-        json choices = json::array();
-        for (const ParameterChoice& c : f.choices)
-            choices.push_back({{"name", c.name}, {"doc", c.doc}});
-        list.push_back({{"path", f.path},
-                        {"name", f.name},
-                        {"unit", f.unit},
-                        {"doc", f.doc},
-                        {"kind", parameterKindText(f.kind)},
-                        {"min", f.hasRange() ? bound(f.min) : json(nullptr)},
-                        {"max", f.hasRange() ? bound(f.max) : json(nullptr)},
-                        {"range", f.rangeText()},
-                        {"choices", choices},
-                        {"value", f.value}});
-    }
-    return list;
+    return json::parse(parameterInfoJson(fields));
 }
 
 json details(const SpeciesModel& m, bool user) {
@@ -60,6 +40,7 @@ json details(const SpeciesModel& m, bool user) {
                          {"value", p.value},
                          {"min", p.min},
                          {"max", p.max},
+                         {"range", rangeText({.min = p.min, .max = p.max, .single = true})},
                          {"unit", p.unit},
                          {"doc", p.doc}});
     j["build_parameters"] = build;

@@ -29,6 +29,7 @@
 
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
+#include "plantarch/PlantState.h"
 #include "plantarch/Progress.h"
 
 namespace plantarch {
@@ -148,12 +149,19 @@ struct PlyOptions {
     ProgressCallback progress;
 };
 
-/// Integer organ labels written by writePLY, index = label. Objects without "organ" data
-/// (or with an empty string) get 0. Organ strings not in this list get the next integers
-/// (10, 11, ...) in sorted order of the strings present among the exported objects.
-inline constexpr std::array<std::string_view, 10> kOrganLabels = {
-    "unlabelled",    "internode",   "petiole", "leaf",   "peduncle",
-    "flower_closed", "flower_open", "fruit",   "ground", "obstacle"};
+/// Integer organ labels written by writePLY, index = label: "unlabelled", the organ kinds'
+/// names in OrganKind order (plantarch/PlantState.h: "internode" ... "fruit"), "ground",
+/// "obstacle". Objects without "organ" data (or with an empty string) get 0. Organ strings
+/// not in this list get the next integers (10, 11, ...) in sorted order of the strings present
+/// among the exported objects.
+inline constexpr std::array<std::string_view, kOrganKinds + 3> kOrganLabels = [] {
+    std::array<std::string_view, kOrganKinds + 3> labels{};
+    labels[0] = "unlabelled";
+    for (std::size_t k = 0; k < kOrganKinds; ++k) labels[k + 1] = kStateNames<OrganKind>[k].name;
+    labels[kOrganKinds + 1] = "ground";
+    labels[kOrganKinds + 2] = "obstacle";
+    return labels;
+}();
 
 /// An organ's colour in label images (plantarch/Render.h) and colour-coded PLY files.
 struct OrganLabelColor {

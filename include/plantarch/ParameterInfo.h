@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "plantarch/NumberRange.h"
 #include "plantarch/Parameters.h"
 
 namespace plantarch {
@@ -55,7 +56,10 @@ struct ParameterInfo {
 
     /// Whether min and max bound the value (numbers, triples, number maps).
     bool hasRange() const;
-    /// The range for people: "0 to 1", ">= 0.001", "any number"; "" without a range.
+    /// The range (whole numbers for the whole-number kinds); meaningful when hasRange().
+    NumberRange range() const;
+    /// plantarch::rangeText(range()) ("0 to 1", ">= 0.001", "any finite number"), or ""
+    /// without a range.
     std::string rangeText() const;
 };
 
@@ -64,6 +68,14 @@ struct ParameterInfo {
 std::vector<ParameterInfo> parameterInfo(const ShootParameters& shoot);
 /// Every field of <phenology>.
 std::vector<ParameterInfo> parameterInfo(const PhenologyParameters& phenology);
+
+/// The fields as JSON text, the one JSON form of ParameterInfo (the builder's species endpoint
+/// and the Python module's parameterInfo() both give it): an array with, per field, the object
+///   {"path", "name", "unit", "doc", "kind" (parameterKindText), "min", "max" (null without a
+///    range or for no bound), "range" (rangeText()), "choices": [{"name", "doc"}], "entry",
+///    "probabilities", "value"}
+/// in the order of `fields`, keys in that order, on one line.
+std::string parameterInfoJson(const std::vector<ParameterInfo>& fields);
 
 /// "random number", "true or false", ...: the kind of value, as docs/species-format.md names
 /// them (its section *Values* shows how each is written).

@@ -31,6 +31,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "plantarch/NumberRange.h"
 #include "plantarch/Parameters.h"
 
 namespace plantarch::params {
@@ -55,11 +56,11 @@ struct FieldInfo {
     const char* doc;
     MapEntries entries = {};     ///< map fields: how an entry is written
     bool probabilities = false;  ///< map fields: the values are probabilities summing to 1
-};
 
-/// A field's range as messages and files state it: "0 to 1", ">= 0", "<= 90", or "any finite
-/// number" when it has no bound.
-std::string rangeText(const FieldInfo& f);
+    /// The range, for rangeText() (plantarch/NumberRange.h): "0 to 1", ">= 0", "any finite
+    /// number" (kInf at both ends).
+    NumberRange range() const { return {.min = min, .max = max}; }
+};
 
 // ---- enum-like fields ------------------------------------------------------------------
 

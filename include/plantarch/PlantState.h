@@ -8,7 +8,10 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "plantarch/Collision.h"
@@ -32,16 +35,124 @@ struct AxisRotation {
 enum class BudState { Dormant, Active, Broken, Dead };
 enum class FloralStage { Bud, FlowerClosed, FlowerOpen, Fruit, Removed };
 enum class OrganKind { Internode, Petiole, Leaf, Peduncle, FlowerClosed, FlowerOpen, Fruit };
-/// The number of organ kinds.
-inline constexpr std::size_t kOrganKinds = std::size_t(OrganKind::Fruit) + 1;
 /// Where a plant is in its yearly cycle.
 enum class PhenologyStage { Dormant, Vegetative, Reproductive, Senescent };
 
+// ---- the names of the state enums -------------------------------------------------------
+// Each state enum's one table of names: plant structure files write and read them, the
+// "organ" object data holds OrganKind's, the Python module names its enum members after them,
+// and docs/plant-xml.md lists them (tests check each). A new enumerator is one line in its
+// table, in enumerator order (checked below).
+
+/// One value of a state enum: the enumerator, its name, what it means.
+template <class E>
+struct StateName {
+    E value;
+    const char* name;
+    const char* doc;
+};
+
+/// The values of the state enum E in enumerator order; empty for a type without a table.
+template <class E>
+inline constexpr std::span<const StateName<E>> kStateNames{};
+
+inline constexpr StateName<BudState> kBudStates[] = {
+    {BudState::Dormant, "dormant", "Waiting to break (a floral bud: to flower, if drawn to)"},
+    {BudState::Active, "active", "Growing (an apical bud), or set to break without a draw"},
+    {BudState::Broken, "broken", "Grown into a shoot"},
+    {BudState::Dead, "dead", "Never grows or flowers"},
+};
+template <>
+inline constexpr std::span<const StateName<BudState>> kStateNames<BudState> = kBudStates;
+
+inline constexpr StateName<FloralStage> kFloralStages[] = {
+    {FloralStage::Bud, "bud", "An unopened floral bud"},
+    {FloralStage::FlowerClosed, "flower_closed", "Closed flowers"},
+    {FloralStage::FlowerOpen, "flower_open", "Open flowers"},
+    {FloralStage::Fruit, "fruit", "Fruit"},
+    {FloralStage::Removed, "removed", "Its flowers or fruit fell or were removed"},
+};
+template <>
+inline constexpr std::span<const StateName<FloralStage>> kStateNames<FloralStage> = kFloralStages;
+
+inline constexpr StateName<OrganKind> kOrganKindNames[] = {
+    {OrganKind::Internode, "internode", "An internode's tube"},
+    {OrganKind::Petiole, "petiole", "A petiole's tube"},
+    {OrganKind::Leaf, "leaf", "A leaf or leaflet blade"},
+    {OrganKind::Peduncle, "peduncle", "A peduncle's tube"},
+    {OrganKind::FlowerClosed, "flower_closed", "A closed flower"},
+    {OrganKind::FlowerOpen, "flower_open", "An open flower"},
+    {OrganKind::Fruit, "fruit", "A fruit"},
+};
+template <>
+inline constexpr std::span<const StateName<OrganKind>> kStateNames<OrganKind> = kOrganKindNames;
+
+inline constexpr StateName<PhenologyStage> kPhenologyStages[] = {
+    {PhenologyStage::Dormant, "dormant", "Dormant: no growth until dormancy breaks"},
+    {PhenologyStage::Vegetative, "vegetative", "Growing shoots and leaves"},
+    {PhenologyStage::Reproductive, "reproductive", "Flowering or fruiting"},
+    {PhenologyStage::Senescent, "senescent", "The season has ended"},
+};
+template <>
+inline constexpr std::span<const StateName<PhenologyStage>> kStateNames<PhenologyStage> =
+    kPhenologyStages;
+
+/// An enum type with a table of names.
+template <class E>
+concept StateEnum = std::is_enum_v<E> && !kStateNames<E>.empty();
+
+/// Whether E's table lists every enumerator from 0 up, in order (E(i) is entry i).
+template <StateEnum E>
+constexpr bool inEnumeratorOrder() {
+    for (std::size_t i = 0; i < kStateNames<E>.size(); ++i)
+        if (kStateNames<E>[i].value != E(i)) return false;
+    return true;
+}
+static_assert(inEnumeratorOrder<BudState>() && inEnumeratorOrder<FloralStage>() &&
+              inEnumeratorOrder<OrganKind>() && inEnumeratorOrder<PhenologyStage>());
+
+/// The number of values of E.
+template <StateEnum E>
+inline constexpr std::size_t kStateCount = kStateNames<E>.size();
+/// The number of organ kinds.
+inline constexpr std::size_t kOrganKinds = kStateCount<OrganKind>;
+
+/// The name of `value` ("unknown" for a value outside the table).
+template <StateEnum E>
+constexpr const char* stateName(E value) {
+    const auto i = std::size_t(value);
+    return i < kStateCount<E> ? kStateNames<E>[i].name : "unknown";
+}
+
+/// The value named `name` exactly, if there is one.
+template <StateEnum E>
+constexpr std::optional<E> stateNamed(std::string_view name) {
+    for (const StateName<E>& n : kStateNames<E>)
+        if (name == n.name) return n.value;
+    return std::nullopt;
+}
+
+/// Every name of E, in enumerator order.
+template <StateEnum E>
+std::vector<std::string> stateNames() {
+    std::vector<std::string> names;
+    for (const StateName<E>& n : kStateNames<E>) names.emplace_back(n.name);
+    return names;
+}
+
 /// Label written to object data "organ" for each kind.
-const char* organName(OrganKind kind);
-const char* budStateName(BudState state);
-const char* floralStageName(FloralStage stage);
-const char* phenologyStageName(PhenologyStage stage);
+constexpr const char* organName(OrganKind kind) {
+    return stateName(kind);
+}
+constexpr const char* budStateName(BudState state) {
+    return stateName(state);
+}
+constexpr const char* floralStageName(FloralStage stage) {
+    return stateName(stage);
+}
+constexpr const char* phenologyStageName(PhenologyStage stage) {
+    return stateName(stage);
+}
 
 /// A turn of an organ about its attachment point (world axis, degrees), set at the end of each
 /// growth step to keep the organ above the ground (PlantInstance::groundClearance) and out of

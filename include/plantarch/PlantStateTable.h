@@ -29,7 +29,7 @@
 // The ranges are also what every plant read must hold (plant_io::checkPlant, whatever the
 // input: plant structure file, plant string or `<helios>` file) and what node rules' results
 // are held to (model/node_rules.cpp): fieldInfo<S>("name") finds a field's declaration,
-// inside() and rangeText() apply and describe its range.
+// inside() and rangeText(f.range()) (plantarch/NumberRange.h) apply and describe its range.
 
 #include <cmath>
 #include <optional>
@@ -37,6 +37,7 @@
 #include <string>
 #include <string_view>
 
+#include "plantarch/NumberRange.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/PlantState.h"
 
@@ -71,6 +72,15 @@ struct FieldInfo {
     /// A trait a phytomer function may set (in C++ or Python, held to the range); the others
     /// (identities, links, ages, derived directions) are bookkeeping that only growth changes.
     bool editable = false;
+
+    /// The range, with the ends `check` excludes, for rangeText() (plantarch/NumberRange.h):
+    /// "0 to 1000000", "> 0 and <= 100".
+    NumberRange range() const {
+        return {.min = min,
+                .max = max,
+                .openMin = check == Check::ExclusiveMin || check == Check::Exclusive,
+                .openMax = check == Check::Exclusive};
+    }
 };
 
 /// `f` marked editable: a trait phytomer functions may set.
@@ -349,13 +359,9 @@ void describeState(S& p, V& v) {
 
 /// Whether `v` lies in the field's range (a NaN never does).
 inline bool inside(const FieldInfo& f, double v) {
-    const bool openMin = f.check == Check::ExclusiveMin || f.check == Check::Exclusive;
-    const bool openMax = f.check == Check::Exclusive;
-    return (openMin ? v > f.min : v >= f.min) && (openMax ? v < f.max : v <= f.max);
+    const NumberRange r = f.range();
+    return (r.openMin ? v > r.min : v >= r.min) && (r.openMax ? v < r.max : v <= r.max);
 }
-
-/// The field's range as errors give it: "0 to 1e+06", "> 0 and <= 100".
-std::string rangeText(const FieldInfo& f);
 
 /// Visits a table and keeps the declaration of the field named `name` (fieldInfo below).
 struct FieldFinder {

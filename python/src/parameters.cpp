@@ -37,11 +37,7 @@ constexpr const char* tableName() {
 
 // The range for people, as `plantarch info` and the docs give it ("" without one).
 std::string rangeOf(const pp::FieldInfo& f) {
-    if (f.min == 0 && f.max == 0) return "";
-    ParameterInfo info;
-    info.min = f.min;
-    info.max = f.max;
-    return info.rangeText();
+    return f.min == 0 && f.max == 0 ? "" : rangeText(f.range());
 }
 
 [[noreturn]] void wrongType(const pp::FieldInfo& f, const std::string& path, py::handle value,
@@ -542,27 +538,17 @@ void bindParameters(py::module_& m) {
     bindStruct<PhenologyParameters>(m, "PhenologyParameters",
                                     "Timing of a plant's phenological stages, days.");
 
+    // The library's one JSON form of the fields (parameterInfoJson), as Python values.
     auto infoList = [](const std::vector<ParameterInfo>& infos) {
-        py::list out;
-        for (const ParameterInfo& i : infos) {
-            py::dict d;
-            d["path"] = i.path;
-            d["name"] = i.name;
-            d["unit"] = i.unit;
-            d["doc"] = i.doc;
-            d["kind"] = parameterKindText(i.kind);
-            d["range"] = i.rangeText();
-            d["value"] = i.value;
-            out.append(d);
-        }
-        return out;
+        return py::list(py::module_::import("json").attr("loads")(parameterInfoJson(infos)));
     };
     m.def(
         "parameterInfo",
         [infoList](const ShootParameters& s) { return infoList(parameterInfo(s)); },
         py::arg("params"),
-        "Every field of a shoot type as dicts (path, name, unit, doc, kind, range, value as a "
-        "species file writes it), in file order.");
+        "Every field of a shoot type as dicts, in file order: path, name, unit, doc, kind, min "
+        "and max (None without a bound), range, choices, entry, probabilities, and value as a "
+        "species file writes it (the builder's species endpoint gives the same objects).");
     m.def(
         "parameterInfo",
         [infoList](const PhenologyParameters& s) { return infoList(parameterInfo(s)); },

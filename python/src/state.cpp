@@ -28,9 +28,10 @@ Shoot& shootOf(View& v) {
     return *v.shoot;
 }
 
-template <class E>
-void nameEnum(py::enum_<E>& e, std::initializer_list<E> values, const char* (*name)(E)) {
-    for (E v : values) e.value(name(v), v);
+// The members of a state enum: its table's names and docs (plantarch/PlantState.h).
+template <StateEnum E>
+void nameEnum(py::enum_<E>& e) {
+    for (const StateName<E>& n : kStateNames<E>) e.value(n.name, n.value, n.doc);
 }
 
 namespace st = plantarch::state;
@@ -118,10 +119,11 @@ constexpr bool kShownInPython = !std::is_same_v<T, Rng>;  // the generator is th
 }
 
 double number(const st::FieldInfo& f, py::handle v, bool whole) {
-    if (!isNumber(v)) refuse(f, v, whole ? "not a whole number" : "not a number", st::rangeText(f));
+    if (!isNumber(v))
+        refuse(f, v, whole ? "not a whole number" : "not a number", rangeText(f.range()));
     const double d = v.cast<double>();
-    if (whole && d != std::floor(d)) refuse(f, v, "not a whole number", st::rangeText(f));
-    if (!st::inside(f, d)) refuse(f, v, "out of range", st::rangeText(f));
+    if (whole && d != std::floor(d)) refuse(f, v, "not a whole number", rangeText(f.range()));
+    if (!st::inside(f, d)) refuse(f, v, "out of range", rangeText(f.range()));
     return d;
 }
 
@@ -133,7 +135,7 @@ void assign(const st::FieldInfo& f, py::handle v, T& out) {
         out = v.cast<bool>();
     } else if constexpr (std::is_same_v<T, float>) {
         const double d = number(f, v, false);
-        if (!st::inside(f, double(float(d)))) refuse(f, v, "out of range", st::rangeText(f));
+        if (!st::inside(f, double(float(d)))) refuse(f, v, "out of range", rangeText(f.range()));
         out = float(d);
     } else if constexpr (std::is_same_v<T, double>) {
         out = number(f, v, false);
@@ -170,7 +172,7 @@ void assign(const st::FieldInfo& f, py::handle v, T& out) {
 
 std::string help(const st::FieldInfo& f, bool ranged) {
     std::string doc = f.doc[0] ? f.doc : f.name;
-    if (ranged && !(f.min == 0 && f.max == 0)) doc += " (valid: " + st::rangeText(f) + ")";
+    if (ranged && !(f.min == 0 && f.max == 0)) doc += " (valid: " + rangeText(f.range()) + ")";
     doc += f.editable ? "; a phytomer function may set it" : "; read only";
     return doc;
 }
@@ -274,23 +276,13 @@ py::class_<S> bindStateStruct(py::module_& m, const char* name, const char* doc)
 
 void bindState(py::module_& m) {
     py::enum_<BudState> bud(m, "BudState", "State of a vegetative or floral bud.");
-    nameEnum(bud, {BudState::Dormant, BudState::Active, BudState::Broken, BudState::Dead},
-             budStateName);
+    nameEnum(bud);
     py::enum_<FloralStage> stage(m, "FloralStage", "Stage of a floral bud.");
-    nameEnum(stage,
-             {FloralStage::Bud, FloralStage::FlowerClosed, FloralStage::FlowerOpen,
-              FloralStage::Fruit, FloralStage::Removed},
-             floralStageName);
+    nameEnum(stage);
     py::enum_<OrganKind> organ(m, "OrganKind", "Kind of organ (the 'organ' object data).");
-    nameEnum(organ,
-             {OrganKind::Internode, OrganKind::Petiole, OrganKind::Leaf, OrganKind::Peduncle,
-              OrganKind::FlowerClosed, OrganKind::FlowerOpen, OrganKind::Fruit},
-             organName);
+    nameEnum(organ);
     py::enum_<PhenologyStage> pheno(m, "PhenologyStage", "Where a plant is in its yearly cycle.");
-    nameEnum(pheno,
-             {PhenologyStage::Dormant, PhenologyStage::Vegetative, PhenologyStage::Reproductive,
-              PhenologyStage::Senescent},
-             phenologyStageName);
+    nameEnum(pheno);
 
     bindStateStruct<VegetativeBud>(m, "VegetativeBud", "An axillary or apical vegetative bud.");
     bindStateStruct<FlowerOrgan>(m, "FlowerOrgan", "One flower or fruit on a peduncle.");

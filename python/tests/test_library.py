@@ -317,3 +317,23 @@ def test_errors_name_what_to_write_instead():
     a.buildPlantInstanceFromLibrary((0, 0, 0), 5)
     a.getContext().clear()  # no argument needed
     assert a.getContext().getObjectCount() == 0
+
+
+def test_state_enum_members_are_the_names_files_and_object_data_hold(arch):
+    # The members come from the C++ name tables (plantarch/PlantState.h): in enumerator order,
+    # each with its doc, named as plant files write the value and as the "organ" data labels.
+    for enum in (plantarch.BudState, plantarch.FloralStage, plantarch.OrganKind,
+                 plantarch.PhenologyStage):
+        members = list(enum.__members__.items())
+        assert [int(v) for _, v in members] == list(range(len(members))), enum
+        for name, _ in members:
+            assert f"{name} :" in (enum.__doc__ or ""), (enum, name)  # each member's doc
+    p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 30)
+    stage = arch.getPhenologyStage(p)
+    assert f"<phenology_stage>{stage.name}</phenology_stage>" in arch.getPlantStructureXML([p])
+    kinds = 0
+    for kind in plantarch.OrganKind.__members__.values():
+        for obj in arch.getPlantObjectIDs(p, kind)[:1]:
+            assert arch.getContext().getObjectData(obj, "organ") == kind.name
+            kinds += 1
+    assert kinds >= 3

@@ -1,6 +1,13 @@
 """Parameters: attributes, docs and ranges from the one table; checked assignments; round trips."""
 
+import json
+import socket
+import subprocess
+import time
+import urllib.request
+
 import pytest
+from conftest import cli
 
 import plantarch
 
@@ -174,3 +181,33 @@ def test_phenology_parameters():
     assert t.to_dict()["time_to_flower_opening"] == 12
     with pytest.raises(plantarch.Error, match="phenology.max_age = -1"):
         t.max_age = -1
+
+
+def test_parameter_info_is_the_builders_json(arch, tmp_path):
+    # One JSON form of the parameter table (parameterInfoJson): the builder's species endpoint
+    # and parameterInfo() give the same objects for the same shoot type.
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    server = subprocess.Popen([cli(), "builder", "--port", str(port), "--output", str(tmp_path)],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        detail = None
+        for _ in range(600):
+            assert server.poll() is None, "plantarch builder exited"
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/species/bean") as r:
+                    detail = json.load(r)
+                break
+            except OSError:
+                time.sleep(0.05)
+        assert detail is not None, "plantarch builder did not answer"
+    finally:
+        server.terminate()
+        server.wait()
+    assert detail["shoot_types"]
+    for label, fields in detail["shoot_types"].items():
+        assert plantarch.parameterInfo(arch.getCurrentShootParameters(label)) == fields, label
+    keys = ["path", "name", "unit", "doc", "kind", "min", "max", "range", "choices", "entry",
+            "probabilities", "value"]
+    assert all(list(f) == keys for f in plantarch.parameterInfo(plantarch.ShootParameters()))

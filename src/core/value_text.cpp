@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 
 namespace plantarch::text {
 
@@ -372,3 +373,23 @@ void appendXmlEscaped(std::string& out, std::string_view s) {
 }
 
 }  // namespace plantarch::text
+
+namespace plantarch {
+
+std::string rangeText(const NumberRange& r) {
+    const auto number = [&](double v) {
+        if (r.whole && std::abs(v) < 9.0e15) return std::to_string(static_cast<long long>(v));
+        return r.single ? text::formatFloat(float(v)) : text::formatDouble(v);
+    };
+    const bool low = std::isfinite(r.min), high = std::isfinite(r.max);
+    const std::string from = (r.openMin ? "> " : ">= ") + (low ? number(r.min) : "");
+    const std::string to = (r.openMax ? "< " : "<= ") + (high ? number(r.max) : "");
+    if (low && high)
+        return r.openMin || r.openMax ? from + " and " + to
+                                      : number(r.min) + " to " + number(r.max);
+    if (low) return from;
+    if (high) return to;
+    return r.whole ? "any whole number" : "any finite number";
+}
+
+}  // namespace plantarch

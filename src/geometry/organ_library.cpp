@@ -9,6 +9,7 @@
 
 #include "geometry/organ_library_internal.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 
 namespace plantarch {
 
@@ -62,7 +63,8 @@ void validate(const FloralFamilyInfo& info, const std::map<std::string, float>& 
             throw Error(
                 "not a parameter of the " + info.name + " prototype family",
                 {.parameter = name, .value = number(value), .validRange = parameterNames(info)});
-        const std::string range = number(p->min) + " to " + number(p->max);
+        const std::string range =
+            rangeText({.min = p->min, .max = p->max, .whole = p->integer, .single = true});
         if (!std::isfinite(value) || value < p->min || value > p->max)
             throw Error("out of range for the " + info.name + " prototype family",
                         {.parameter = name, .value = number(value), .validRange = range});

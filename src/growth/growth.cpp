@@ -892,18 +892,4 @@ void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
         clipBelowGround(growth.store, growth.prototypes, plant, *growth.store.groundClipping);
 }
 
-const char* phenologyStageName(PhenologyStage s) {
-    switch (s) {
-        case PhenologyStage::Dormant:
-            return "dormant";
-        case PhenologyStage::Vegetative:
-            return "vegetative";
-        case PhenologyStage::Reproductive:
-            return "reproductive";
-        case PhenologyStage::Senescent:
-            return "senescent";
-    }
-    return "unknown";
-}
-
 }  // namespace plantarch

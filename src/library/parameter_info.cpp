@@ -1,7 +1,9 @@
 // The parameter table as data (plantarch/ParameterInfo.h): a visitor of the declaration
 // table that records each field with its value written as species files write it.
 
+#include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -154,13 +156,14 @@ bool ParameterInfo::hasRange() const {
     return false;
 }
 
+NumberRange ParameterInfo::range() const {
+    const bool whole =
+        kind == ParameterKind::WholeNumber || kind == ParameterKind::RandomWholeNumber;
+    return {.min = min, .max = max, .whole = whole};
+}
+
 std::string ParameterInfo::rangeText() const {
-    if (!hasRange()) return "";
-    const bool low = min != -params::kInf, high = max != params::kInf;
-    if (low && high) return text::formatDouble(min) + " to " + text::formatDouble(max);
-    if (low) return ">= " + text::formatDouble(min);
-    if (high) return "<= " + text::formatDouble(max);
-    return "any number";
+    return hasRange() ? plantarch::rangeText(range()) : "";
 }
 
 std::vector<ParameterInfo> parameterInfo(const ShootParameters& shoot) {
@@ -169,6 +172,32 @@ std::vector<ParameterInfo> parameterInfo(const ShootParameters& shoot) {
 
 std::vector<ParameterInfo> parameterInfo(const PhenologyParameters& phenology) {
     return collect(phenology);
+}
+
+std::string parameterInfoJson(const std::vector<ParameterInfo>& fields) {
+    using json = nlohmann::ordered_json;
+    const auto bound = [](const ParameterInfo& f, double v) {
+        return f.hasRange() && std::isfinite(v) ? json(v) : json(nullptr);
+    };
+    json list = json::array();
+    for (const ParameterInfo& f : fields) {
+        json choices = json::array();
+        for (const ParameterChoice& c : f.choices)
+            choices.push_back({{"name", c.name}, {"doc", c.doc}});
+        list.push_back({{"path", f.path},
+                        {"name", f.name},
+                        {"unit", f.unit},
+                        {"doc", f.doc},
+                        {"kind", parameterKindText(f.kind)},
+                        {"min", bound(f, f.min)},
+                        {"max", bound(f, f.max)},
+                        {"range", f.rangeText()},
+                        {"choices", std::move(choices)},
+                        {"entry", f.entry},
+                        {"probabilities", f.probabilities},
+                        {"value", f.value}});
+    }
+    return list.dump();
 }
 
 const char* parameterKindText(ParameterKind kind) {

@@ -10,6 +10,7 @@
 #include "library/expression.h"
 #include "library/species_xml.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch {
@@ -194,12 +195,12 @@ std::map<std::string, float> resolveBuildParameters(const SpeciesModel& species,
                                                      : "one of: " + text::joinNames(names)});
         }
         if (!std::isfinite(value) || value < found->min || value > found->max)
-            throw Error("build parameter out of range",
-                        {.parameter = name,
-                         .value = text::formatFloat(value),
-                         .validRange = text::formatFloat(found->min) + " to " +
-                                       text::formatFloat(found->max) +
-                                       (found->unit.empty() ? "" : " " + found->unit)});
+            throw Error(
+                "build parameter out of range",
+                {.parameter = name,
+                 .value = text::formatFloat(value),
+                 .validRange = rangeText({.min = found->min, .max = found->max, .single = true}) +
+                               (found->unit.empty() ? "" : " " + found->unit)});
         values[name] = value;
     }
     return values;

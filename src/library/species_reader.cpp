@@ -20,6 +20,7 @@
 #include "library/parameter_reader.h"
 #include "library/species_xml.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/ParameterCheck.h"
 #include "plantarch/ParameterTable.h"
 #include "plantarch/SpeciesIO.h"
@@ -349,7 +350,7 @@ private:
                          "<= max (" + text::formatFloat(bp.max) + ")");
             if (bp.value < bp.min || bp.value > bp.max)
                 e.failAt("default", "default out of range", text::formatFloat(bp.value),
-                         text::formatFloat(bp.min) + " to " + text::formatFloat(bp.max));
+                         rangeText({.min = bp.min, .max = bp.max, .single = true}));
             m_.lines[e.path()] = e.line();
             m_.buildParameters.push_back(bp);
         }

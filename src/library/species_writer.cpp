@@ -24,7 +24,7 @@ std::string commentText(std::string s) {
 // A field's range for its comment: none when it has no bound.
 std::string rangeComment(const params::FieldInfo& f) {
     if (f.min == -params::kInf && f.max == params::kInf) return "";
-    return params::rangeText(f);
+    return rangeText(f.range());
 }
 
 class Writer {

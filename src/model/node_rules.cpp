@@ -135,7 +135,7 @@ float checkedResult(const RuleFormula& f, const Place& at, const state::FieldInf
         {.parameter = f.path(),
          .value = value == f.formula.text() ? value : value + " (from '" + f.formula.text() + "')",
          .validRange =
-             "results keeping " + std::string(field.name) + " within " + state::rangeText(field)});
+             "results keeping " + std::string(field.name) + " within " + rangeText(field.range())});
 }
 
 // A factor on a size: size x factor must stay in the size's range.

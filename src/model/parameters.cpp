@@ -31,7 +31,7 @@ struct Validator {
                            const std::string& why, std::string range = "") const {
         throw Error(why, {.parameter = at(f),
                           .value = value,
-                          .validRange = range.empty() ? params::rangeText(f) : range});
+                          .validRange = range.empty() ? rangeText(f.range()) : range});
     }
     void checkNumber(const params::FieldInfo& f, double lo, double hi,
                      const std::string& text) const {
@@ -78,7 +78,7 @@ struct Validator {
                 if (!std::isfinite(value) || value < f.min || value > f.max)
                     throw Error("out of range", {.parameter = at(f) + "." + key,
                                                  .value = number(value),
-                                                 .validRange = params::rangeText(f)});
+                                                 .validRange = rangeText(f.range())});
             return;
         }
         if (types.empty()) return;
@@ -87,7 +87,7 @@ struct Validator {
             if (!(prob >= f.min && prob <= f.max))
                 throw Error("probability out of range", {.parameter = at(f) + "." + label,
                                                          .value = number(prob),
-                                                         .validRange = params::rangeText(f)});
+                                                         .validRange = rangeText(f.range())});
             sum += prob;
         }
         if (std::abs(sum - 1.0) > 1e-4)
@@ -239,63 +239,6 @@ void ShootParameters::defineChildShootTypes(const std::vector<std::string>& labe
     ChildTypesOnly check;
     params::describeParameters(std::as_const(probe), check);
     child_shoot_types = std::move(types);
-}
-
-const char* organName(OrganKind kind) {
-    switch (kind) {
-        case OrganKind::Internode:
-            return "internode";
-        case OrganKind::Petiole:
-            return "petiole";
-        case OrganKind::Leaf:
-            return "leaf";
-        case OrganKind::Peduncle:
-            return "peduncle";
-        case OrganKind::FlowerClosed:
-            return "flower_closed";
-        case OrganKind::FlowerOpen:
-            return "flower_open";
-        case OrganKind::Fruit:
-            return "fruit";
-    }
-    return "unknown";
-}
-
-const char* budStateName(BudState s) {
-    switch (s) {
-        case BudState::Dormant:
-            return "dormant";
-        case BudState::Active:
-            return "active";
-        case BudState::Broken:
-            return "broken";
-        case BudState::Dead:
-            return "dead";
-    }
-    return "unknown";
-}
-
-const char* floralStageName(FloralStage s) {
-    switch (s) {
-        case FloralStage::Bud:
-            return "bud";
-        case FloralStage::FlowerClosed:
-            return "flower_closed";
-        case FloralStage::FlowerOpen:
-            return "flower_open";
-        case FloralStage::Fruit:
-            return "fruit";
-        case FloralStage::Removed:
-            return "removed";
-    }
-    return "unknown";
-}
-
-std::string params::rangeText(const FieldInfo& f) {
-    if (f.min == -kInf && f.max == kInf) return "any finite number";
-    if (f.max == kInf) return ">= " + text::formatDouble(f.min);
-    if (f.min == -kInf) return "<= " + text::formatDouble(f.max);
-    return text::formatDouble(f.min) + " to " + text::formatDouble(f.max);
 }
 
 }  // namespace plantarch

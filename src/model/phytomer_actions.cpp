@@ -38,7 +38,7 @@ void scaleLeaves(Phytomer& ph, float factor) {
         throw Error(why, {.parameter = "factor",
                           .value = text::formatFloat(factor),
                           .validRange = "a finite number keeping every leaf_scale within " +
-                                        state::rangeText(size)});
+                                        rangeText(size.range())});
     };
     if (!std::isfinite(factor)) refuse("not a finite number");
     for (const Petiole& p : ph.petioles)

@@ -42,7 +42,11 @@ public:
     /// height (m) fall off, side shoots growing into it are pruned. None: off.
     std::optional<float> groundClipping;
     /// Organ kinds whose geometry the Context gets (setOrganGeometry); all by default.
-    std::array<bool, kOrganKinds> organGeometry = {true, true, true, true, true, true, true};
+    std::array<bool, kOrganKinds> organGeometry = [] {
+        std::array<bool, kOrganKinds> all;
+        all.fill(true);
+        return all;
+    }();
     /// The factor on every organ's mesh resolution (setMeshDetail).
     float meshDetail = 1.0f;
     /// Growth stops with TriangleBudgetError once a plant's organs need more triangles than

@@ -23,6 +23,7 @@
 #include "plant_io/helios_pose.h"
 #include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
+#include "plantarch/NumberRange.h"
 #include "plantarch/PlantStateTable.h"
 
 namespace plantarch::plant_io {
@@ -37,14 +38,10 @@ constexpr double kLength = 1e6;  // m
 constexpr double kAngle = 1e6;   // degrees
 constexpr int kSegments = 1000;
 
-std::string rangeText(double lo, double hi) {
-    return text::formatDouble(lo) + " to " + text::formatDouble(hi);
-}
-
 float number(const Element& e, double lo, double hi) {
     const std::string s = e.text();
     const float v = e.convert(s, text::parseFloat);
-    if (!(v >= lo && v <= hi)) e.fail("out of range", s, rangeText(lo, hi));
+    if (!(v >= lo && v <= hi)) e.fail("out of range", s, rangeText({.min = lo, .max = hi}));
     return v;
 }
 
@@ -83,7 +80,7 @@ int integer(const Element& e, int lo, int hi) {
     const std::string s = e.text();
     const int v = e.convert(s, text::parseInt);
     if (v < lo || v > hi)
-        e.fail("out of range", s, std::to_string(lo) + " to " + std::to_string(hi));
+        e.fail("out of range", s, rangeText({.min = double(lo), .max = double(hi), .whole = true}));
     return v;
 }
 
@@ -91,7 +88,8 @@ vec3 triple(const Element& e, double lo, double hi) {
     const std::string s = e.text();
     const vec3 v = e.convert(s, text::parseVec3);
     for (int i = 0; i < 3; ++i)
-        if (!(v[i] >= lo && v[i] <= hi)) e.fail("out of range", s, rangeText(lo, hi));
+        if (!(v[i] >= lo && v[i] <= hi))
+            e.fail("out of range", s, rangeText({.min = lo, .max = hi}));
     return v;
 }
 

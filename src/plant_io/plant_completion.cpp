@@ -321,8 +321,8 @@ private:
     }
 
     void number(const state::FieldInfo& f, double v, const std::string& shown) {
-        if (!std::isfinite(v)) fail(f, shown, "not a finite number", state::rangeText(f));
-        if (!state::inside(f, v)) fail(f, shown, "out of range", state::rangeText(f));
+        if (!std::isfinite(v)) fail(f, shown, "not a finite number", rangeText(f.range()));
+        if (!state::inside(f, v)) fail(f, shown, "out of range", rangeText(f.range()));
     }
 
     template <class T>
@@ -341,10 +341,10 @@ private:
         const std::string shown =
             text::formatFloat(v.x) + " " + text::formatFloat(v.y) + " " + text::formatFloat(v.z);
         for (int i = 0; i < 3; ++i) {
-            if (!std::isfinite(v[i])) fail(f, shown, "not a finite number", state::rangeText(f));
+            if (!std::isfinite(v[i])) fail(f, shown, "not a finite number", rangeText(f.range()));
             // A direction's components may pass 1 by a rounding: its reader checks its length.
             if (f.check != state::Check::UnitVector && !state::inside(f, v[i]))
-                fail(f, shown, "out of range", state::rangeText(f));
+                fail(f, shown, "out of range", rangeText(f.range()));
         }
     }
     void check(const state::FieldInfo& f, const AxisRotation& r) {

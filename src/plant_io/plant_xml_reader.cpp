@@ -104,14 +104,12 @@ ObjectID objectID(std::string_view raw) {
     return v;
 }
 
-template <class Enum, class NameOf>
-Enum parseEnum(std::string_view raw, int count, NameOf&& nameOf) {
+// A value of a state enum by its name (plantarch/PlantState.h's tables).
+template <StateEnum E>
+E parseStateName(std::string_view raw) {
     const std::string_view s = text::trim(raw);
-    for (int i = 0; i < count; ++i)
-        if (s == nameOf(Enum(i))) return Enum(i);
-    std::vector<std::string> names;
-    for (int i = 0; i < count; ++i) names.emplace_back(nameOf(Enum(i)));
-    return Enum(text::parseChoice(s, names));  // throws: `s` is none of them
+    if (const std::optional<E> v = stateNamed<E>(s)) return *v;
+    return kStateNames<E>[text::parseChoice(s, stateNames<E>())].value;  // throws
 }
 
 // ---- the reader ------------------------------------------------------------------------
@@ -381,7 +379,7 @@ private:
 
     static void checkRange(const state::FieldInfo& f, const Element& e, double v,
                            std::string_view text) {
-        if (!state::inside(f, v)) e.fail("out of range", std::string(text), state::rangeText(f));
+        if (!state::inside(f, v)) e.fail("out of range", std::string(text), rangeText(f.range()));
     }
 
     // Parameters: as species files spell them.
@@ -445,16 +443,9 @@ private:
             at = end;
         }
     }
-    static void readValue(const state::FieldInfo&, const Element& e, BudState& m) {
-        m = e.parse([](std::string_view s) { return parseEnum<BudState>(s, 4, budStateName); });
-    }
-    static void readValue(const state::FieldInfo&, const Element& e, FloralStage& m) {
-        m = e.parse(
-            [](std::string_view s) { return parseEnum<FloralStage>(s, 5, floralStageName); });
-    }
-    static void readValue(const state::FieldInfo&, const Element& e, PhenologyStage& m) {
-        m = e.parse(
-            [](std::string_view s) { return parseEnum<PhenologyStage>(s, 4, phenologyStageName); });
+    template <StateEnum E>
+    static void readValue(const state::FieldInfo&, const Element& e, E& m) {
+        m = e.parse(parseStateName<E>);
     }
     static void readValue(const state::FieldInfo&, const Element& e, Rng& m) {
         m = e.parse(parseRng);

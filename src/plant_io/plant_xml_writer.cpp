@@ -223,12 +223,9 @@ public:
             }
         });
     }
-    void field(const state::FieldInfo& f, const BudState& v) { word(f.name, budStateName(v)); }
-    void field(const state::FieldInfo& f, const FloralStage& v) {
-        word(f.name, floralStageName(v));
-    }
-    void field(const state::FieldInfo& f, const PhenologyStage& v) {
-        word(f.name, phenologyStageName(v));
+    template <StateEnum E>
+    void field(const state::FieldInfo& f, const E& v) {
+        word(f.name, stateName(v));
     }
     void field(const state::FieldInfo& f, const Rng& rng) {
         x_.element(f.name, [&](std::string& o) {

@@ -15,8 +15,7 @@ namespace {
 // before work and the error messages listing valid extensions are all made from this table.
 constexpr OutputFormat kOutputFormats[] = {
     {".obj", "Wavefront OBJ mesh with its .mtl materials", kSceneOutput | kBuilderExport},
-    {".ply", "PLY mesh, or a point cloud with --points",
-     kSceneOutput | kScanOutput | kBuilderExport},
+    {".ply", "labelled PLY mesh (or point cloud)", kSceneOutput | kScanOutput | kBuilderExport},
     {".glb", "binary glTF", kSceneOutput | kAnimationOutput | kBuilderExport},
     {".gltf", "glTF", kSceneOutput | kAnimationOutput | kBuilderExport},
     {".usda", "USD text", kSceneOutput | kAnimationOutput | kBuilderExport},

@@ -53,6 +53,7 @@ export const api = {
   downloadUrl: ({ build, format, per_plant, name }) =>
     `/api/export/download?build=${enc(build)}&format=${enc(format)}&per_plant=${per_plant ? 'true' : 'false'}&name=${enc(name || 'scene')}`,
   config: () => request('GET', '/api/config'),
+  defaults: () => request('GET', '/api/defaults'),
   saveProject: (name, project) => request('POST', '/api/projects/save', { name, project }),
   projects: () => request('GET', '/api/projects'),
   project: (name) => request('GET', `/api/projects/${enc(name)}`),

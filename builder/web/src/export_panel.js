@@ -2,16 +2,13 @@
 // scene or one file per plant, downloaded (a zip for many files) or written into a folder
 // under the builder's output folder.
 import { api } from './api.js';
+import { defaults } from './defaults.js';
 import { h, render, field, select, checkbox, toast } from './ui.js';
 
-export const FORMATS = [
-  ['glb', 'glTF binary (.glb)'],
-  ['gltf', 'glTF (.gltf)'],
-  ['obj', 'Wavefront OBJ (.obj + .mtl)'],
-  ['ply', 'PLY, labelled (.ply)'],
-  ['usda', 'USD text (.usda)'],
-  ['xml', 'Plant structure XML (.xml)'],
-];
+/** The export formats as [format, label] options, from the server's table. */
+export function formatOptions() {
+  return defaults().export_formats.map((f) => [f.format, `${f.description} (.${f.format})`]);
+}
 
 export class ExportPanel {
   constructor(app, container) {
@@ -55,7 +52,7 @@ export class ExportPanel {
         field(
           'Format',
           select(
-            FORMATS,
+            formatOptions(),
             this.format,
             (v) => {
               this.format = v;

@@ -2,20 +2,13 @@
 // primitive carries per-vertex _PLANT_ID, _ORGAN and _FEATURE_ID_0 attributes (three.js names
 // them in lower case); the feature ID is the row of the EXT_structural_metadata property
 // table that holds each organ object's plant, organ, leaf, shoot, rank and age.
+import { defaults } from './defaults.js';
 
-// The organ label colours of plantarch's label images and colour-coded PLY files.
-export const ORGAN_COLORS = {
-  unlabelled: [255, 255, 255],
-  internode: [230, 25, 75],
-  petiole: [245, 130, 48],
-  leaf: [60, 180, 75],
-  peduncle: [255, 225, 25],
-  flower_closed: [240, 50, 230],
-  flower_open: [145, 30, 180],
-  fruit: [0, 130, 200],
-  ground: [128, 128, 128],
-  obstacle: [70, 240, 240],
-};
+/** The organ label colours of plantarch's label images and colour-coded PLY files, by organ
+ * name, as the server gives them. */
+export function organColors() {
+  return defaults().organ_colors;
+}
 
 const NONE = [150, 150, 150];
 
@@ -103,15 +96,16 @@ export const COLOR_MODES = [
 export function colorScheme(mode, table) {
   const c = table.columns;
   if (mode === 'organ') {
+    const colors = organColors();
     const used = new Set(c.organ);
     const name = (row) => table.organNames[c.organ[row]] ?? 'unlabelled';
     return {
-      color: (row) => ORGAN_COLORS[name(row)] ?? NONE,
+      color: (row) => colors[name(row)] ?? NONE,
       legend: [...used]
         .sort((a, b) => a - b)
         .map((o) => ({
           label: (table.organNames[o] ?? 'unlabelled').replace('_', ' '),
-          color: ORGAN_COLORS[table.organNames[o]] ?? NONE,
+          color: colors[table.organNames[o]] ?? NONE,
         })),
     };
   }

@@ -2,6 +2,7 @@
 // edited in the side panel; each change is built by the server (POST /api/builds), whose
 // progress is shown until the scene's GLB is loaded into the 3D view.
 import { api } from './api.js';
+import { setDefaults } from './defaults.js';
 import { defaultProject, toProjectFile, fromProjectFile } from './project.js';
 import { Viewer } from './viewer.js';
 import { COLOR_MODES } from './labels.js';
@@ -807,6 +808,16 @@ class App {
   }
 }
 
-const app = new App(document.getElementById('app'));
-window.plantarchBuilder = app; // for the end-to-end tests and the curious
-app.start().then(() => app.build());
+// The server's defaults first: the project, the colours and the formats are made from them.
+const root = document.getElementById('app');
+api.defaults().then(
+  (served) => {
+    setDefaults(served);
+    const app = new App(root);
+    window.plantarchBuilder = app; // for the end-to-end tests and the curious
+    app.start().then(() => app.build());
+  },
+  (e) => {
+    root.textContent = `The builder cannot start: ${e.message}`;
+  },
+);

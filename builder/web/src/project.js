@@ -1,25 +1,47 @@
 // The project as the builder edits it, and its file form (builder/API.md, "project file",
 // version 1). The editor keeps every field of a block whatever its layout (switching layout
 // back and forth loses nothing); toProjectFile writes only the fields of the block's layout.
+// A project file's defaults come from the server (defaults.js), which has them from
+// plantarch's own declarations; only the editor's starting values below are the page's.
+import { defaults } from './defaults.js';
 
 export const PROJECT_VERSION = 1;
 
-export function defaultBlock(index = 0, species = 'bean') {
+// The editor's starting values, which are not a project file's defaults: a new project's
+// name, and a new block's size (a 3 x 3 grid, or 12 positions over 1.5 m x 1.5 m) and age.
+// The editor also gives that age to a block whose file has none (which the command line
+// builds at the species' recommended age): it holds no "none" for an age.
+const NEW_PROJECT_NAME = 'untitled';
+const NEW_BLOCK = { count: [3, 3], plants: 12, area: [1.5, 1.5], age: 40 };
+
+// A block as a project file that omits every optional field gives it.
+function fileBlock(index, species) {
+  const { grid, scatter } = defaults().blocks;
   return {
     name: blockName(index),
     species,
-    layout: 'grid',
-    origin: [0, 0, 0],
-    count: [3, 3], // grid: plants along x and y
-    spacing: [0.3, 0.3], // grid: m
-    plants: 12, // scatter: positions drawn
-    area: [1.5, 1.5], // scatter: m
-    germination: 1,
-    age: 40,
-    seed: null, // null: the project's seed
-    parameters: {},
-    trellis: true,
+    layout: grid.layout,
+    origin: [...grid.origin],
+    count: [...grid.count], // grid: plants along x and y
+    spacing: [...grid.spacing], // grid: m
+    plants: scatter.count, // scatter: positions drawn
+    area: [...scatter.area], // scatter: m
+    germination: grid.germination,
+    age: NEW_BLOCK.age,
+    seed: grid.seed ?? null, // null: the project's seed
+    parameters: { ...grid.parameters },
+    trellis: grid.trellis,
   };
+}
+
+/** A new block of the editor: the file's defaults with the editor's starting size and age. */
+export function defaultBlock(index = 0, species = 'bean') {
+  return { ...fileBlock(index, species), ...structuredClone(NEW_BLOCK) };
+}
+
+function ground(enabled, size, center) {
+  const d = defaults().ground;
+  return { enabled, size: [...(size ?? d.size)], center: [...(center ?? d.center)] };
 }
 
 /** "A", "B", ... "Z", "AA", ... */
@@ -31,15 +53,26 @@ export function blockName(index) {
 }
 
 export function defaultProject() {
+  const f = defaults().project;
   return {
-    name: 'untitled',
-    seed: 1,
-    mesh_detail: 1,
-    // No ground, as `plantarch canopy`: the view draws a grid, the renderer its own floor.
-    ground: { enabled: false, size: [4, 4], center: [0, 0] },
-    soft_collision: { enabled: false, cone: [80, 0.1, 256, 0.4] },
-    obstacles: { files: [], avoid_distance: 0.2, fruit_adjustment: false },
-    attraction: { enabled: false, points: [], file: '', cone: [80, 0.1, 0.4] },
+    name: NEW_PROJECT_NAME,
+    seed: f.seed,
+    mesh_detail: f.mesh_detail,
+    // No ground by default, as `plantarch canopy`: the view draws a grid, the renderer its own
+    // floor.
+    ground: ground(f.ground !== null, f.ground?.size, f.ground?.center),
+    soft_collision: { enabled: f.soft_collision.enabled, cone: [...f.soft_collision.cone] },
+    obstacles: {
+      files: [...f.obstacles.files],
+      avoid_distance: f.obstacles.avoid_distance,
+      fruit_adjustment: f.obstacles.fruit_adjustment,
+    },
+    attraction: {
+      enabled: f.attraction.enabled,
+      points: f.attraction.points.map((q) => [...q]),
+      file: f.attraction.file ?? '',
+      cone: [...f.attraction.cone],
+    },
     blocks: [defaultBlock(0)],
   };
 }
@@ -102,13 +135,7 @@ export function fromProjectFile(json) {
   if (typeof json.name === 'string') p.name = json.name;
   if (Number.isFinite(json.seed)) p.seed = json.seed;
   if (Number.isFinite(json.mesh_detail)) p.mesh_detail = json.mesh_detail;
-  p.ground = json.ground
-    ? {
-        enabled: true,
-        size: [...(json.ground.size ?? [4, 4])],
-        center: [...(json.ground.center ?? [0, 0])],
-      }
-    : { enabled: false, size: [4, 4], center: [0, 0] };
+  p.ground = json.ground ? ground(true, json.ground.size, json.ground.center) : ground(false);
   if (json.soft_collision) {
     p.soft_collision = {
       enabled: !!json.soft_collision.enabled,
@@ -118,7 +145,7 @@ export function fromProjectFile(json) {
   if (json.obstacles) {
     p.obstacles = {
       files: [...(json.obstacles.files ?? [])],
-      avoid_distance: json.obstacles.avoid_distance ?? 0.2,
+      avoid_distance: json.obstacles.avoid_distance ?? p.obstacles.avoid_distance,
       fruit_adjustment: !!json.obstacles.fruit_adjustment,
     };
   }
@@ -135,8 +162,13 @@ export function fromProjectFile(json) {
   return p;
 }
 
+// The fields of the block's own layout that the file omits take the file format's defaults;
+// the other layouts' fields (used if the layout is switched) the editor's starting values.
 function blockFromFile(b, i) {
   const block = defaultBlock(i, b.species);
+  const file = fileBlock(i, b.species);
+  if ((b.layout ?? file.layout) === 'grid') Object.assign(block, { count: file.count });
+  if (b.layout === 'scatter') Object.assign(block, { plants: file.plants, area: file.area });
   for (const key of ['name', 'species', 'layout', 'germination', 'age', 'trellis']) {
     if (b[key] !== undefined) block[key] = b[key];
   }

@@ -311,11 +311,7 @@ export class SpeciesEditor {
   row(p) {
     const original = p.value ?? '';
     const current = this.changes.get(p.key) ?? original;
-    const range =
-      p.range ||
-      (Number.isFinite(p.min) && Number.isFinite(p.max) && p.min !== p.max
-        ? `${p.min} to ${p.max}`
-        : '');
+    const range = p.range; // the server's wording (plantarch's rangeText)
     const tip = [
       p.doc,
       p.kind ? `kind: ${p.kind}` : '',

@@ -1,8 +1,15 @@
 // Unit tests of the page's pure functions (node's test runner; ctest runs them as
-// builder_web_unit): the project file the page writes and reads, random-value text, typed
-// attraction points, and the label colours.
+// builder_web_unit, with PLANTARCH_CLI the plantarch binary): the project file the page writes
+// and reads, random-value text, typed attraction points, the label colours, and the defaults
+// the page takes from its server (GET /api/defaults of `plantarch builder`, started here).
 import test from 'node:test';
 import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import { mkdtempSync, rmSync } from 'node:fs';
+import net from 'node:net';
+import os from 'node:os';
+import path from 'node:path';
+import { setDefaults } from '../src/defaults.js';
 import {
   blockName,
   defaultBlock,
@@ -12,7 +19,41 @@ import {
 } from '../src/project.js';
 import { parseRandom, randomText } from '../src/species_editor.js';
 import { parsePoints } from '../src/environment_panel.js';
-import { colorScheme, ORGAN_COLORS } from '../src/labels.js';
+import { colorScheme, organColors } from '../src/labels.js';
+import { formatOptions } from '../src/export_panel.js';
+
+// GET /api/defaults of a `plantarch builder` started for it on a free port.
+async function servedDefaults() {
+  const cli = process.env.PLANTARCH_CLI;
+  if (!cli) throw new Error('PLANTARCH_CLI (the plantarch binary) is not set');
+  const probe = net.createServer();
+  await new Promise((resolve) => probe.listen(0, '127.0.0.1', resolve));
+  const { port } = probe.address();
+  await new Promise((resolve) => probe.close(resolve));
+  const tmp = mkdtempSync(path.join(os.tmpdir(), 'plantarch-web-unit-'));
+  const server = spawn(cli, ['builder', '--port', String(port), '--output', tmp], {
+    stdio: 'ignore',
+  });
+  try {
+    for (let i = 0; i < 600; i++) {
+      if (server.exitCode !== null) throw new Error(`plantarch builder exited (${server.exitCode})`);
+      try {
+        const response = await fetch(`http://127.0.0.1:${port}/api/defaults`);
+        if (response.ok) return await response.json();
+      } catch {
+        // not listening yet
+      }
+      await new Promise((resolve) => setTimeout(resolve, 50));
+    }
+    throw new Error('plantarch builder did not answer GET /api/defaults');
+  } finally {
+    server.kill();
+    rmSync(tmp, { recursive: true, force: true });
+  }
+}
+
+const served = await servedDefaults();
+setDefaults(served);
 
 // The three layouts of builder/API.md's example project.
 function exampleProject() {
@@ -125,7 +166,7 @@ test("organ colours are the label images' colours; ages run over the organs' ran
     },
   };
   const organ = colorScheme('organ', table);
-  assert.deepEqual(organ.color(1), ORGAN_COLORS.leaf);
+  assert.deepEqual(organ.color(1), organColors().leaf);
   assert.deepEqual(
     organ.legend.map((e) => e.label),
     ['internode', 'leaf'],
@@ -141,5 +182,33 @@ test("organ colours are the label images' colours; ages run over the organs' ran
   assert.deepEqual(
     rank.legend.map((e) => e.label),
     ['rank 0 (base stem)', 'rank 1', 'no shoot'],
+  );
+});
+
+test("the page's defaults are the server's: project, ground, blocks, colours, formats", () => {
+  const p = defaultProject();
+  const file = toProjectFile(p);
+  // Every project-wide field but the editor's name is the served project file's.
+  for (const key of ['seed', 'mesh_detail', 'ground', 'soft_collision', 'obstacles', 'attraction'])
+    assert.deepEqual(file[key], served.project[key], key);
+  p.ground.enabled = true;
+  assert.deepEqual(toProjectFile(p).ground, served.ground);
+  // A block that gives only its species and layout reads as the served block of its layout.
+  for (const [layout, block] of Object.entries(served.blocks)) {
+    const read = fromProjectFile({
+      plantarch_project: 1,
+      blocks: [{ species: 'bean', layout, age: 40 }],
+    });
+    const written = toProjectFile(read).blocks[0];
+    // (The page writes no empty parameters; the served block holds none.)
+    assert.deepEqual(block.parameters, {});
+    for (const key of Object.keys(block).filter((k) => !['name', 'age', 'parameters'].includes(k)))
+      assert.deepEqual(written[key], block[key], `${layout}: ${key}`);
+  }
+  assert.deepEqual(organColors(), served.organ_colors);
+  assert.ok(organColors().leaf && organColors().unlabelled);
+  assert.deepEqual(
+    formatOptions().map(([format]) => format),
+    served.export_formats.map((f) => f.format),
   );
 });
