@@ -189,10 +189,13 @@ TEST_F(BuilderServer, ChecksAndSavesAnEditedSpecies) {
         if (s["name"] == "my_bean") listed = s["user"] == true;
     EXPECT_TRUE(listed);
     auto mine = body(client_->Get("/api/species/my_bean"));
+    bool pitchFound = false;
     for (const json& p : mine["shoot_types"]["trifoliate"])
         if (p["path"] == "phytomer.internode.pitch") {
+            pitchFound = true;
             EXPECT_EQ(p["value"], "uniform(10, 30)");
         }
+    EXPECT_TRUE(pitchFound) << "the saved species lists no phytomer.internode.pitch";
     const auto r = cli::run("build " + file + " --age 12 -o " + at("mine.obj"));
     EXPECT_EQ(r.status, 0) << r.out;
     // Usable by name in a project.
