@@ -44,40 +44,6 @@ std::string number(double v) {
 
 }  // namespace
 
-xml_node locateElement(xml_node from, const std::string& path) {
-    xml_node at = from;
-    std::size_t start = 0;
-    while (start < path.size()) {
-        std::size_t end = path.find('.', start);
-        if (end == std::string::npos) end = path.size();
-        std::string part = path.substr(start, end - start);
-        start = end + 1;
-        // "name[3]": the fourth <name>; "name[label]": the <name label="label">.
-        std::string key;
-        if (const auto b = part.find('['); b != std::string::npos) {
-            key = part.substr(b + 1, part.size() - b - 2);
-            part.resize(b);
-        }
-        const bool numeric = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
-            return c >= '0' && c <= '9';
-        });
-        int index = numeric ? std::atoi(key.c_str()) : 0;
-        xml_node next;
-        for (xml_node c = at.child(part.c_str()); c; c = c.next_sibling(part.c_str())) {
-            const bool hit = key.empty() || numeric
-                                 ? index-- == 0
-                                 : key == text::trim(c.attribute("label").value());
-            if (hit) {
-                next = c;
-                break;
-            }
-        }
-        if (!next) break;
-        at = next;
-    }
-    return at;
-}
-
 namespace {
 
 // ---- value parsing -------------------------------------------------------------------
@@ -471,16 +437,6 @@ void checkFormat(const Element& root) {
 }
 
 }  // namespace
-
-std::string missingReport(const std::map<std::string, int>& counts) {
-    std::string out;
-    for (const auto& [path, n] : counts) {
-        if (!out.empty()) out += ", ";
-        out += path;
-        if (n > 1) out += " (" + std::to_string(n) + ")";
-    }
-    return out;
-}
 
 ReadResult readPlantsXML(const std::string& xml, const std::string& fileName,
                          const Defaults& defaults) {
