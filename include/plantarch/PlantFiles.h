@@ -24,8 +24,8 @@ struct PlantFileOptions {
     /// .xml files carry each organ's object IDs, and each mesh file gets an object table
     /// beside it (field.obj -> field.objects.json).
     bool objectIDs = false;
-    int stringDigits = 4;    ///< significant digits of plant strings (.txt)
-    std::size_t points = 0;  ///< .ply and .npz as labelled point clouds of this many points
+    int stringDigits = 4;     ///< significant digits of plant strings (.txt)
+    std::size_t points = 0;   ///< .ply and .npz as labelled point clouds of this many points
     std::uint64_t seed = 42;  ///< seed of the point sampling and of the picture's jitter
     PlyColor plyColor = PlyColor::None;
     PlyFormat plyFormat = PlyFormat::BinaryLittleEndian;
