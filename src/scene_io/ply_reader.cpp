@@ -289,128 +289,115 @@ int whole(double v) {
     return std::isfinite(v) && v >= -2147483648.0 && v <= 2147483647.0 ? int(v) : -1;
 }
 
-}  // namespace
+// A face: its corners (vertex indices) and its labels.
+struct PlyFace {
+    std::vector<std::uint32_t> corners;
+    FaceValues labels;
+};
 
-std::vector<ObjectID> readPLY(Context& context, const std::string& path,
-                              const PlyReadOptions& options) {
-    io::InputFile file(path, kPLYFile);
-    Reader r(file.readAll(), path);
-    const Header h = r.header();
-    ProgressSteps steps(options.progress, "reading PLY", 1.0);
-
-    std::vector<vec3> vertices;
-    std::vector<vec3> colours;  // the vertices' red, green, blue (0 to 1), when they have them
-    struct Face {
-        std::vector<std::uint32_t> corners;
-        FaceValues labels;
-    };
-    std::vector<Face> faces;
-    bool vertexSeen = false, faceSeen = false;
-    for (const Element& e : h.elements) {
-        r.checkCount(e);
-        if (e.name == "vertex" && !vertexSeen) {
-            vertexSeen = true;
-            int ix = -1, iy = -1, iz = -1, ic[3] = {-1, -1, -1};
-            for (std::size_t k = 0; k < e.properties.size(); ++k) {
-                const Property& p = e.properties[k];
-                if (p.list) continue;
-                if (p.name == "x") ix = int(k);
-                if (p.name == "y") iy = int(k);
-                if (p.name == "z") iz = int(k);
-                if (p.type == Type::U8 &&
-                    (p.name == "red" || p.name == "green" || p.name == "blue"))
-                    ic[p.name == "red" ? 0 : p.name == "green" ? 1 : 2] = int(k);
-            }
-            const bool coloured = ic[0] >= 0 && ic[1] >= 0 && ic[2] >= 0;
-            if (ix < 0 || iy < 0 || iz < 0) r.fail("the vertex element has no x, y and z");
-            vertices.reserve(std::size_t(e.count));
-            for (std::uint64_t i = 0; i < e.count; ++i) {
-                double xyz[3] = {0, 0, 0};
-                vec3 rgb(0.0f);
-                for (std::size_t k = 0; k < e.properties.size(); ++k) {
-                    const Property& p = e.properties[k];
-                    if (p.list) {
-                        r.skipList(p);
-                        continue;
-                    }
-                    const double v = r.value(p.type);
-                    if (int(k) == ix) xyz[0] = v;
-                    if (int(k) == iy) xyz[1] = v;
-                    if (int(k) == iz) xyz[2] = v;
-                    for (int c = 0; c < 3; ++c)
-                        if (int(k) == ic[c]) rgb[c] = float(v) / 255.0f;
-                }
-                if (coloured) colours.push_back(rgb);
-                for (double c : xyz)
-                    if (!(std::abs(c) <= double(std::numeric_limits<float>::max())))
-                        r.fail("vertex " + std::to_string(i) + " is not a finite float");
-                vertices.push_back(vec3{float(xyz[0]), float(xyz[1]), float(xyz[2])});
-            }
-        } else if (e.name == "face" && !faceSeen) {
-            faceSeen = true;
-            int corners = -1;
-            for (std::size_t k = 0; k < e.properties.size(); ++k)
-                if (e.properties[k].list && (e.properties[k].name == "vertex_indices" ||
-                                             e.properties[k].name == "vertex_index"))
-                    corners = int(k);
-            if (corners < 0) r.fail("the face element has no vertex_indices list");
-            faces.reserve(std::size_t(std::min<std::uint64_t>(e.count, 1u << 26)));
-            for (std::uint64_t i = 0; i < e.count; ++i) {
-                Face f;
-                for (std::size_t k = 0; k < e.properties.size(); ++k) {
-                    const Property& p = e.properties[k];
-                    if (p.list) {
-                        const double n = r.value(p.countType);
-                        if (!(n >= 0.0) || (int(k) == corners && (n < 3 || n > kMaxPolygon)))
-                            r.fail("face " + std::to_string(i) + " has " +
-                                   std::to_string(whole(n)) + " corners (valid: 3 to " +
-                                   std::to_string(kMaxPolygon) + ")");
-                        for (std::uint64_t j = 0; j < std::uint64_t(n); ++j) {
-                            const double v = r.value(p.type);
-                            if (int(k) != corners) continue;
-                            if (!(v >= 0.0 && v < double(vertices.size()) && v == std::floor(v)))
-                                r.fail("face " + std::to_string(i) + " names vertex " +
-                                       std::to_string(whole(v)) +
-                                       (vertices.empty()
-                                            ? std::string(" (no vertices come before the faces)")
-                                            : " (valid: 0 to " +
-                                                  std::to_string(vertices.size() - 1) + ")"));
-                            f.corners.push_back(std::uint32_t(v));
-                        }
-                        continue;
-                    }
-                    const double v = r.value(p.type);
-                    FaceValues& l = f.labels;
-                    if (p.name == "plant_id") l.plant = whole(v);
-                    if (p.name == "object_id") l.object = whole(v);
-                    if (p.name == "organ") l.organ = whole(v);
-                    if (p.name == "leaf_id") l.leaf = whole(v);
-                    if (p.name == "shoot_id") l.shoot = whole(v);
-                    if (p.name == "rank") l.rank = whole(v);
-                    if (p.name == "node") l.node = whole(v);
-                    if (p.name == "age") l.age = std::isfinite(v) ? v : -1.0;
-                }
-                faces.push_back(std::move(f));
-            }
-        } else {
-            for (std::uint64_t i = 0; i < e.count; ++i) r.skipItem(e);
-        }
-        steps.at(r.fraction());
+// The vertex element: positions, and colours when it has red, green and blue bytes.
+void readVertices(Reader& r, const Element& e, std::vector<vec3>& vertices,
+                  std::vector<vec3>& colours) {
+    int ix = -1, iy = -1, iz = -1, ic[3] = {-1, -1, -1};
+    for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const Property& p = e.properties[k];
+        if (p.list) continue;
+        if (p.name == "x") ix = int(k);
+        if (p.name == "y") iy = int(k);
+        if (p.name == "z") iz = int(k);
+        if (p.type == Type::U8 && (p.name == "red" || p.name == "green" || p.name == "blue"))
+            ic[p.name == "red" ? 0 : p.name == "green" ? 1 : 2] = int(k);
     }
-    if (!vertexSeen || !faceSeen || faces.empty())
-        r.fail("no faces: render and obstacles need a mesh (a vertex and a face element)");
+    const bool coloured = ic[0] >= 0 && ic[1] >= 0 && ic[2] >= 0;
+    if (ix < 0 || iy < 0 || iz < 0) r.fail("the vertex element has no x, y and z");
+    vertices.reserve(std::size_t(e.count));
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+        double xyz[3] = {0, 0, 0};
+        vec3 rgb(0.0f);
+        for (std::size_t k = 0; k < e.properties.size(); ++k) {
+            const Property& p = e.properties[k];
+            if (p.list) {
+                r.skipList(p);
+                continue;
+            }
+            const double v = r.value(p.type);
+            if (int(k) == ix) xyz[0] = v;
+            if (int(k) == iy) xyz[1] = v;
+            if (int(k) == iz) xyz[2] = v;
+            for (int c = 0; c < 3; ++c)
+                if (int(k) == ic[c]) rgb[c] = float(v) / 255.0f;
+        }
+        if (coloured) colours.push_back(rgb);
+        for (double c : xyz)
+            if (!(std::abs(c) <= double(std::numeric_limits<float>::max())))
+                r.fail("vertex " + std::to_string(i) + " is not a finite float");
+        vertices.push_back(vec3{float(xyz[0]), float(xyz[1]), float(xyz[2])});
+    }
+}
 
-    // One object per object_id (in first-appearance order), its vertices of its own.
-    struct Part {
-        Mesh mesh;
-        FaceValues labels;
-        std::map<std::uint32_t, std::uint32_t> local;
-        std::optional<vec3> colour;  // of its first vertex
-    };
-    std::vector<Part> parts;
+// The face element: corners checked against the `vertexCount` vertices read before it.
+std::vector<PlyFace> readFaces(Reader& r, const Element& e, std::size_t vertexCount) {
+    int corners = -1;
+    for (std::size_t k = 0; k < e.properties.size(); ++k)
+        if (e.properties[k].list &&
+            (e.properties[k].name == "vertex_indices" || e.properties[k].name == "vertex_index"))
+            corners = int(k);
+    if (corners < 0) r.fail("the face element has no vertex_indices list");
+    std::vector<PlyFace> faces;
+    faces.reserve(std::size_t(std::min<std::uint64_t>(e.count, 1u << 26)));
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+        PlyFace f;
+        for (std::size_t k = 0; k < e.properties.size(); ++k) {
+            const Property& p = e.properties[k];
+            if (p.list) {
+                const double n = r.value(p.countType);
+                if (!(n >= 0.0) || (int(k) == corners && (n < 3 || n > kMaxPolygon)))
+                    r.fail("face " + std::to_string(i) + " has " + std::to_string(whole(n)) +
+                           " corners (valid: 3 to " + std::to_string(kMaxPolygon) + ")");
+                for (std::uint64_t j = 0; j < std::uint64_t(n); ++j) {
+                    const double v = r.value(p.type);
+                    if (int(k) != corners) continue;
+                    if (!(v >= 0.0 && v < double(vertexCount) && v == std::floor(v)))
+                        r.fail("face " + std::to_string(i) + " names vertex " +
+                               std::to_string(whole(v)) +
+                               (vertexCount == 0
+                                    ? std::string(" (no vertices come before the faces)")
+                                    : " (valid: 0 to " + std::to_string(vertexCount - 1) + ")"));
+                    f.corners.push_back(std::uint32_t(v));
+                }
+                continue;
+            }
+            const double v = r.value(p.type);
+            FaceValues& l = f.labels;
+            if (p.name == "plant_id") l.plant = whole(v);
+            if (p.name == "object_id") l.object = whole(v);
+            if (p.name == "organ") l.organ = whole(v);
+            if (p.name == "leaf_id") l.leaf = whole(v);
+            if (p.name == "shoot_id") l.shoot = whole(v);
+            if (p.name == "rank") l.rank = whole(v);
+            if (p.name == "node") l.node = whole(v);
+            if (p.name == "age") l.age = std::isfinite(v) ? v : -1.0;
+        }
+        faces.push_back(std::move(f));
+    }
+    return faces;
+}
+
+// One object's mesh, labels and colour (of its first vertex).
+struct PlyObject {
+    Mesh mesh;
+    FaceValues labels;
+    std::map<std::uint32_t, std::uint32_t> local;
+    std::optional<vec3> colour;
+};
+
+// The faces as objects: one per object_id (in first-appearance order) when `perObject`, else
+// one, each with vertices of its own; polygons as fans.
+std::vector<PlyObject> partsOf(const std::vector<PlyFace>& faces, const std::vector<vec3>& vertices,
+                               const std::vector<vec3>& colours, bool perObject) {
+    std::vector<PlyObject> parts;
     std::map<int, std::size_t> partOf;
-    const bool perObject = options.labels;
-    for (const Face& f : faces) {
+    for (const PlyFace& f : faces) {
         const int key = perObject ? f.labels.object : -1;
         auto [it, added] = partOf.emplace(key, parts.size());
         if (added)
@@ -419,22 +406,26 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                  f.labels,
                  {},
                  colours.empty() ? std::nullopt : std::optional<vec3>(colours[f.corners[0]])});
-        Part& part = parts[it->second];
+        PlyObject& part = parts[it->second];
         std::vector<std::uint32_t> ids;
         for (std::uint32_t c : f.corners) {
             auto [at, fresh] = part.local.emplace(c, std::uint32_t(part.mesh.positions.size()));
             if (fresh) part.mesh.positions.push_back(vertices[c]);
             ids.push_back(at->second);
         }
-        for (std::size_t j = 1; j + 1 < ids.size(); ++j)  // polygons as fans
+        for (std::size_t j = 1; j + 1 < ids.size(); ++j)
             part.mesh.indices.insert(part.mesh.indices.end(), {ids[0], ids[j], ids[j + 1]});
     }
-    vertices.clear();
-    faces.clear();
+    return parts;
+}
 
+// The parts added to `context` with their labels as object data (when `perObject`); on
+// failure the objects added so far are deleted again.
+std::vector<ObjectID> addParts(Context& context, const std::vector<PlyObject>& parts,
+                               const Header& h, bool perObject) {
     std::vector<ObjectID> made;
     try {
-        for (Part& part : parts) {
+        for (const PlyObject& part : parts) {
             const ObjectID id = part.colour ? context.addObject(part.mesh, Material{*part.colour})
                                             : context.addObject(part.mesh);
             made.push_back(id);
@@ -456,6 +447,41 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
         context.deleteObjects(made);
         throw;
     }
+    return made;
+}
+
+}  // namespace
+
+std::vector<ObjectID> readPLY(Context& context, const std::string& path,
+                              const PlyReadOptions& options) {
+    io::InputFile file(path, kPLYFile);
+    Reader r(file.readAll(), path);
+    const Header h = r.header();
+    ProgressSteps steps(options.progress, "reading PLY", 1.0);
+
+    std::vector<vec3> vertices;
+    std::vector<vec3> colours;  // the vertices' red, green, blue (0 to 1), when they have them
+    std::vector<PlyFace> faces;
+    bool vertexSeen = false, faceSeen = false;
+    for (const Element& e : h.elements) {
+        r.checkCount(e);
+        if (e.name == "vertex" && !vertexSeen) {
+            vertexSeen = true;
+            readVertices(r, e, vertices, colours);
+        } else if (e.name == "face" && !faceSeen) {
+            faceSeen = true;
+            faces = readFaces(r, e, vertices.size());
+        } else {
+            for (std::uint64_t i = 0; i < e.count; ++i) r.skipItem(e);
+        }
+        steps.at(r.fraction());
+    }
+    if (!vertexSeen || !faceSeen || faces.empty())
+        r.fail("no faces: render and obstacles need a mesh (a vertex and a face element)");
+    std::vector<PlyObject> parts = partsOf(faces, vertices, colours, options.labels);
+    vertices.clear();
+    faces.clear();
+    const std::vector<ObjectID> made = addParts(context, parts, h, options.labels);
     steps.finish();
     return made;
 }
