@@ -335,17 +335,19 @@ json accessor(int view, int componentType, std::size_t count, const char* type) 
         {"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
 }
 
-// The JSON document and the buffer's layout.
-json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
-    json doc;
-    doc["asset"] = {{"version", "2.0"}, {"generator", "plantarch"}};
+// The arrays of the JSON document, filled in the order their buffer views are laid out.
+struct GltfArrays {
     json views = json::array(), accessors = json::array(), meshes = json::array();
     json nodes = json::array(), materials = json::array();
     json textures = json::array(), images = json::array();
+};
+
+// Images (their bytes first in the buffer) and materials.
+void addMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer) {
     for (const EmbeddedImage& image : s.imageData) {
-        images.push_back({{"bufferView", buffer.add(views, image.bytes.size(), 0)},
-                          {"mimeType", image.mimeType}});
-        textures.push_back({{"source", images.size() - 1}});
+        d.images.push_back({{"bufferView", buffer.add(d.views, image.bytes.size(), 0)},
+                            {"mimeType", image.mimeType}});
+        d.textures.push_back({{"source", d.images.size() - 1}});
     }
     for (const Material& mat : s.materials) {
         json pbr = {{"baseColorFactor",
@@ -360,12 +362,15 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
         json material = {{"pbrMetallicRoughness", pbr}, {"doubleSided", true}};
         if (!mat.name.empty()) material["name"] = mat.name;
         if (!mat.texture.empty() && options.textures) material["alphaMode"] = "MASK";
-        materials.push_back(std::move(material));
+        d.materials.push_back(std::move(material));
     }
+}
 
+// One mesh per node and organ, a primitive per Scene primitive; returns each node's meshes.
+std::vector<json> addMeshes(GltfArrays& d, const Scene& s, const GltfOptions& options,
+                            Buffer& buffer) {
     std::vector<json> nodeMeshes(s.nodes.size());
     std::map<std::pair<std::size_t, std::uint8_t>, int> meshOf;
-    const std::size_t features = s.records.size();
     for (const Primitive& p : s.primitives) {
         const Node& node = s.nodes[p.node];
         vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
@@ -376,59 +381,62 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
             }
         json attributes;
         auto vertexView = [&](std::size_t bytesPerVertex) {
-            return buffer.add(views, p.vertices * bytesPerVertex, kArrayBuffer);
+            return buffer.add(d.views, p.vertices * bytesPerVertex, kArrayBuffer);
         };
         int view = vertexView(12);
         json position = accessor(view, kFloat, p.vertices, "VEC3");
         position["min"] = {lo.x, lo.y, lo.z};
         position["max"] = {hi.x, hi.y, hi.z};
-        accessors.push_back(position);
-        attributes["POSITION"] = accessors.size() - 1;
+        d.accessors.push_back(position);
+        attributes["POSITION"] = d.accessors.size() - 1;
         if (options.normals) {
-            accessors.push_back(accessor(vertexView(12), kFloat, p.vertices, "VEC3"));
-            attributes["NORMAL"] = accessors.size() - 1;
+            d.accessors.push_back(accessor(vertexView(12), kFloat, p.vertices, "VEC3"));
+            attributes["NORMAL"] = d.accessors.size() - 1;
         }
         if (p.uvs) {
-            accessors.push_back(accessor(vertexView(8), kFloat, p.vertices, "VEC2"));
-            attributes["TEXCOORD_0"] = accessors.size() - 1;
+            d.accessors.push_back(accessor(vertexView(8), kFloat, p.vertices, "VEC2"));
+            attributes["TEXCOORD_0"] = d.accessors.size() - 1;
         }
         json extensions;
         if (options.labels) {
             for (const char* name : {"_PLANT_ID", "_OBJECT_ID", "_ORGAN", "_FEATURE_ID_0"}) {
-                accessors.push_back(accessor(vertexView(4), kFloat, p.vertices, "SCALAR"));
-                attributes[name] = accessors.size() - 1;
+                d.accessors.push_back(accessor(vertexView(4), kFloat, p.vertices, "SCALAR"));
+                attributes[name] = d.accessors.size() - 1;
             }
             extensions["EXT_mesh_features"] = {
                 {"featureIds",
                  {{{"featureCount", p.objects.size()}, {"attribute", 0}, {"propertyTable", 0}}}}};
         }
-        const int indexView = buffer.add(views, p.triangles * 12, kElementArrayBuffer);
-        accessors.push_back(accessor(indexView, kUInt, p.triangles * 3, "SCALAR"));
+        const int indexView = buffer.add(d.views, p.triangles * 12, kElementArrayBuffer);
+        d.accessors.push_back(accessor(indexView, kUInt, p.triangles * 3, "SCALAR"));
         json primitive = {{"attributes", attributes},
-                          {"indices", accessors.size() - 1},
+                          {"indices", d.accessors.size() - 1},
                           {"material", p.material},
                           {"mode", 4}};
         if (!extensions.empty()) primitive["extensions"] = extensions;
         const auto key = std::make_pair(p.node, p.organ);
-        auto [it, fresh] = meshOf.emplace(key, int(meshes.size()));
+        auto [it, fresh] = meshOf.emplace(key, int(d.meshes.size()));
         if (fresh) {
-            meshes.push_back(
+            d.meshes.push_back(
                 {{"name", std::string(kOrganLabels[p.organ])}, {"primitives", json::array()}});
             nodeMeshes[p.node].push_back(it->second);
         }
-        meshes[std::size_t(it->second)]["primitives"].push_back(std::move(primitive));
+        d.meshes[std::size_t(it->second)]["primitives"].push_back(std::move(primitive));
     }
+    return nodeMeshes;
+}
 
-    // One child node per mesh under each plant's node; with frames, the plants of each frame
-    // under the frame's node.
-    json roots = json::array();
+// One child node per mesh under each plant's node; returns each frame's plant nodes.
+std::vector<json> addPlantNodes(GltfArrays& d, const Scene& s,
+                                const std::vector<json>& nodeMeshes) {
     std::vector<json> frameChildren(s.frames.size(), json::array());
     for (std::size_t n = 0; n < s.nodes.size(); ++n) {
         const Node& node = s.nodes[n];
         json children = json::array();
         for (const json& mesh : nodeMeshes[n]) {
-            nodes.push_back({{"mesh", mesh}, {"name", meshes[mesh.get<std::size_t>()]["name"]}});
-            children.push_back(nodes.size() - 1);
+            d.nodes.push_back(
+                {{"mesh", mesh}, {"name", d.meshes[mesh.get<std::size_t>()]["name"]}});
+            children.push_back(d.nodes.size() - 1);
         }
         json parent;
         if (node.plant >= 0) {
@@ -448,44 +456,63 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
             parent["name"] = "scene";
         }
         if (!children.empty()) parent["children"] = children;
-        nodes.push_back(std::move(parent));
-        frameChildren[node.frame].push_back(nodes.size() - 1);
+        d.nodes.push_back(std::move(parent));
+        frameChildren[node.frame].push_back(d.nodes.size() - 1);
     }
-    json animation;
+    return frameChildren;
+}
+
+// With frames, a node per frame over its plants, shown on its days by a step animation of
+// its scale; the root nodes go to `roots`. Returns the animation (empty without frames).
+json addFrames(GltfArrays& d, const Scene& s, const std::vector<json>& frameChildren,
+               Buffer& buffer, json& roots) {
     if (!s.animated) {
         roots = frameChildren.front();
-    } else {
-        json channels = json::array(), samplers = json::array();
-        for (std::size_t f = 0; f < s.frames.size(); ++f) {
-            json frame = {{"name", frameName(s.days[f])}, {"extras", {{"day", s.days[f]}}}};
-            if (!frameChildren[f].empty()) frame["children"] = frameChildren[f];
-            const std::vector<FrameKey> keys = frameKeys(s, f);
-            if (keys.back().scale == 0.0f) frame["scale"] = {0.0, 0.0, 0.0};
-            nodes.push_back(std::move(frame));
-            roots.push_back(nodes.size() - 1);
-            json input =
-                accessor(buffer.add(views, keys.size() * 4, 0), kFloat, keys.size(), "SCALAR");
-            input["min"] = {keys.front().time};
-            input["max"] = {keys.back().time};
-            accessors.push_back(std::move(input));
-            accessors.push_back(
-                accessor(buffer.add(views, keys.size() * 12, 0), kFloat, keys.size(), "VEC3"));
-            samplers.push_back({{"input", accessors.size() - 2},
-                                {"output", accessors.size() - 1},
-                                {"interpolation", "STEP"}});
-            channels.push_back(
-                {{"sampler", f}, {"target", {{"node", nodes.size() - 1}, {"path", "scale"}}}});
-        }
-        animation = {{"name", "growth"}, {"channels", channels}, {"samplers", samplers}};
+        return json();
     }
+    json channels = json::array(), samplers = json::array();
+    for (std::size_t f = 0; f < s.frames.size(); ++f) {
+        json frame = {{"name", frameName(s.days[f])}, {"extras", {{"day", s.days[f]}}}};
+        if (!frameChildren[f].empty()) frame["children"] = frameChildren[f];
+        const std::vector<FrameKey> keys = frameKeys(s, f);
+        if (keys.back().scale == 0.0f) frame["scale"] = {0.0, 0.0, 0.0};
+        d.nodes.push_back(std::move(frame));
+        roots.push_back(d.nodes.size() - 1);
+        json input =
+            accessor(buffer.add(d.views, keys.size() * 4, 0), kFloat, keys.size(), "SCALAR");
+        input["min"] = {keys.front().time};
+        input["max"] = {keys.back().time};
+        d.accessors.push_back(std::move(input));
+        d.accessors.push_back(
+            accessor(buffer.add(d.views, keys.size() * 12, 0), kFloat, keys.size(), "VEC3"));
+        samplers.push_back({{"input", d.accessors.size() - 2},
+                            {"output", d.accessors.size() - 1},
+                            {"interpolation", "STEP"}});
+        channels.push_back(
+            {{"sampler", f}, {"target", {{"node", d.nodes.size() - 1}, {"path", "scale"}}}});
+    }
+    return {{"name", "growth"}, {"channels", channels}, {"samplers", samplers}};
+}
+
+// The JSON document and the buffer's layout.
+json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "plantarch"}};
+    GltfArrays d;
+    addMaterials(d, s, options, buffer);
+    const std::vector<json> nodeMeshes = addMeshes(d, s, options, buffer);
+    const std::vector<json> frameChildren = addPlantNodes(d, s, nodeMeshes);
+    json roots = json::array();
+    const json animation = addFrames(d, s, frameChildren, buffer, roots);
 
     if (options.labels) {
+        const std::size_t features = s.records.size();
         json properties;
         const std::pair<const char*, std::size_t> columns[] = {
             {"plant", 4}, {"object", 4}, {"organ", 1}, {"leaf", 4},
             {"shoot", 4}, {"rank", 4},   {"node", 4},  {"age", 4}};
         for (const auto& [name, bytes] : columns)
-            properties[name] = {{"values", buffer.add(views, features * bytes, 0)}};
+            properties[name] = {{"values", buffer.add(d.views, features * bytes, 0)}};
         doc["extensions"]["EXT_structural_metadata"] = {
             {"schema", schema()},
             {"propertyTables",
@@ -498,17 +525,17 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     json world = {{"name", "plantarch"},
                   {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}},
                   {"children", roots}};
-    nodes.push_back(world);
-    doc["scenes"] = {{{"nodes", {nodes.size() - 1}}}};
-    doc["nodes"] = nodes;
+    d.nodes.push_back(world);
+    doc["scenes"] = {{{"nodes", {d.nodes.size() - 1}}}};
+    doc["nodes"] = d.nodes;
     if (!animation.empty()) doc["animations"] = {animation};
-    if (!meshes.empty()) doc["meshes"] = meshes;
-    if (!materials.empty()) doc["materials"] = materials;
-    if (!accessors.empty()) doc["accessors"] = accessors;
-    if (!views.empty()) doc["bufferViews"] = views;
-    if (!images.empty()) {
-        doc["images"] = images;
-        doc["textures"] = textures;
+    if (!d.meshes.empty()) doc["meshes"] = d.meshes;
+    if (!d.materials.empty()) doc["materials"] = d.materials;
+    if (!d.accessors.empty()) doc["accessors"] = d.accessors;
+    if (!d.views.empty()) doc["bufferViews"] = d.views;
+    if (!d.images.empty()) {
+        doc["images"] = d.images;
+        doc["textures"] = d.textures;
         doc["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
         for (json& t : doc["textures"]) t["sampler"] = 0;
     }
