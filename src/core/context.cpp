@@ -394,6 +394,110 @@ struct Context::Impl {
         for (auto& [label, col] : columns)
             if (id < col.present.size()) col.present[id] = 0;
     }
+
+    // Where one source's objects go, and how its materials, labels and strings map here.
+    struct AppendPlan {
+        const Impl* from = nullptr;
+        std::span<const ObjectID> objects;
+        ObjectID firstObject = 0;
+        std::uint32_t firstVertex = 0;
+        std::uint32_t firstIndex = 0;
+        PrimitiveID firstPrimitive = 0;
+        std::vector<MaterialID> materials;                       // source material -> here
+        std::vector<std::int32_t> strings;                       // source string -> here
+        std::vector<std::pair<const Column*, Column*>> columns;  // (source, here)
+    };
+
+    // The columns appended objects carry, sized for `nextObject` objects.
+    void resizeAppendedColumns(const std::vector<AppendPlan>& plans, std::size_t nextObject) {
+        for (auto& [label, col] : columns) {
+            bool touched = false;
+            for (const AppendPlan& p : plans)
+                for (const auto& [from, to] : p.columns) touched = touched || to == &col;
+            if (!touched) continue;
+            col.present.resize(nextObject, 0);
+            switch (col.type) {
+                case DataType::Int:
+                case DataType::String:
+                    col.ints.resize(nextObject);
+                    break;
+                case DataType::Float:
+                    col.floats.resize(nextObject);
+                    break;
+                case DataType::Vec3:
+                    col.vecs.resize(nextObject);
+                    break;
+            }
+        }
+    }
+
+    // Copies one source's objects into the ranges its plan reserved. Nothing here throws.
+    void copyAppended(const AppendPlan& p) {
+        const Impl& f = *p.from;
+        ObjectID id = p.firstObject;
+        std::uint32_t v = p.firstVertex, x = p.firstIndex;
+        PrimitiveID prim = p.firstPrimitive;
+        for (ObjectID o : p.objects) {
+            const ObjectRecord& r = f.objects[o];
+            std::copy_n(f.positions.begin() + r.firstVertex, r.vertexCount, positions.begin() + v);
+            if (r.hasUVs)
+                std::copy_n(f.uvs.begin() + r.firstVertex, r.vertexCount, uvs.begin() + v);
+            else if (uvsEnabled)
+                std::fill_n(uvs.begin() + v, r.vertexCount, vec2(0.0f));
+            std::copy_n(f.indices.begin() + r.firstIndex, r.indexCount, indices.begin() + x);
+            ObjectRecord& n = objects[id];
+            n = r;
+            n.firstVertex = v;
+            n.firstIndex = x;
+            n.firstPrimitive = prim;
+            n.material = p.materials[r.material];
+            std::fill_n(primitiveOwner.begin() + prim, r.indexCount / 3, id);
+            for (const auto& [fromColumn, toColumn] : p.columns) {
+                const Column& a = *fromColumn;
+                Column& b = *toColumn;
+                if (o >= a.present.size() || !a.present[o]) continue;
+                b.present[id] = 1;
+                switch (a.type) {
+                    case DataType::Int:
+                        b.ints[id] = a.ints[o];
+                        break;
+                    case DataType::String:
+                        b.ints[id] = p.strings[std::size_t(a.ints[o])];
+                        break;
+                    case DataType::Float:
+                        b.floats[id] = a.floats[o];
+                        break;
+                    case DataType::Vec3:
+                        b.vecs[id] = a.vecs[o];
+                        break;
+                }
+            }
+            v += r.vertexCount;
+            x += r.indexCount;
+            prim += r.indexCount / 3;
+            ++id;
+        }
+    }
+
+    // One source's primitive data (rare: plants carry none), one thread.
+    void appendPrimitiveData(const AppendPlan& p) {
+        for (const auto& [label, col] : p.from->primitiveColumns) {
+            if (col.values.empty()) continue;
+            auto it = primitiveColumns.find(label);
+            if (it == primitiveColumns.end()) {
+                it = primitiveColumns.emplace(label, PrimitiveColumn{}).first;
+                it->second.type = col.type;
+            }
+            ObjectID id = p.firstObject;
+            for (ObjectID o : p.objects) {
+                const ObjectRecord& r = p.from->objects[o];
+                const PrimitiveID to = objects[id++].firstPrimitive;
+                for (std::uint32_t t = 0; t < r.indexCount / 3; ++t)
+                    if (auto v = col.values.find(r.firstPrimitive + t); v != col.values.end())
+                        it->second.values[to + t] = v->second;
+            }
+        }
+    }
 };
 
 Context::Context() : impl_(std::make_unique<Impl>()) {}
@@ -568,18 +672,6 @@ void checkLabelTypes(const Columns& from, const Columns& to, const char* kind) {
 }  // namespace
 
 std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sources) {
-    // Where one source's objects go, and how its materials, labels and strings map here.
-    struct AppendPlan {
-        const Impl* from = nullptr;
-        std::span<const ObjectID> objects;
-        ObjectID firstObject = 0;
-        std::uint32_t firstVertex = 0;
-        std::uint32_t firstIndex = 0;
-        PrimitiveID firstPrimitive = 0;
-        std::vector<MaterialID> materials;                       // source material -> here
-        std::vector<std::int32_t> strings;                       // source string -> here
-        std::vector<std::pair<const Column*, Column*>> columns;  // (source, here)
-    };
     Impl& d = *impl_;
     // Checks first, so that nothing changes when one fails.
     std::size_t objects = 0, vertices = 0, indices = 0;
@@ -609,12 +701,12 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
     d.checkTriangleLimit(indices / 3);
 
     // Plan (one thread): offsets, materials, labels, strings; the pools grow once.
-    std::vector<AppendPlan> plans(sources.size());
+    std::vector<Impl::AppendPlan> plans(sources.size());
     std::size_t nextObject = d.objects.size(), nextVertex = d.positions.size();
     std::size_t nextIndex = d.indices.size(), nextPrimitive = d.primitiveOwner.size();
     for (std::size_t i = 0; i < sources.size(); ++i) {
         const Impl& f = *sources[i].context->impl_;
-        AppendPlan& p = plans[i];
+        Impl::AppendPlan& p = plans[i];
         p.from = &f;
         p.objects = sources[i].objects;
         p.firstObject = static_cast<ObjectID>(nextObject);
@@ -649,97 +741,18 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
     d.indices.resize(nextIndex);
     d.objects.resize(nextObject);
     d.primitiveOwner.resize(nextPrimitive);
-    for (auto& [label, col] : d.columns) {
-        bool touched = false;
-        for (const AppendPlan& p : plans)
-            for (const auto& [from, to] : p.columns) touched = touched || to == &col;
-        if (!touched) continue;
-        col.present.resize(nextObject, 0);
-        switch (col.type) {
-            case DataType::Int:
-            case DataType::String:
-                col.ints.resize(nextObject);
-                break;
-            case DataType::Float:
-                col.floats.resize(nextObject);
-                break;
-            case DataType::Vec3:
-                col.vecs.resize(nextObject);
-                break;
-        }
-    }
+    d.resizeAppendedColumns(plans, nextObject);
 
     // Copy (all threads; each source writes its own ranges). Nothing in the loop throws (it
     // copies into pools sized above), so no exception can leave the parallel region.
     const long count = static_cast<long>(plans.size());
 #pragma omp parallel for schedule(dynamic, 1) if (vertices > 65536 && count > 1)
     for (long i = 0; i < count; ++i) {
-        const AppendPlan& p = plans[std::size_t(i)];
-        const Impl& f = *p.from;
-        ObjectID id = p.firstObject;
-        std::uint32_t v = p.firstVertex, x = p.firstIndex;
-        PrimitiveID prim = p.firstPrimitive;
-        for (ObjectID o : p.objects) {
-            const ObjectRecord& r = f.objects[o];
-            std::copy_n(f.positions.begin() + r.firstVertex, r.vertexCount,
-                        d.positions.begin() + v);
-            if (r.hasUVs)
-                std::copy_n(f.uvs.begin() + r.firstVertex, r.vertexCount, d.uvs.begin() + v);
-            else if (d.uvsEnabled)
-                std::fill_n(d.uvs.begin() + v, r.vertexCount, vec2(0.0f));
-            std::copy_n(f.indices.begin() + r.firstIndex, r.indexCount, d.indices.begin() + x);
-            ObjectRecord& n = d.objects[id];
-            n = r;
-            n.firstVertex = v;
-            n.firstIndex = x;
-            n.firstPrimitive = prim;
-            n.material = p.materials[r.material];
-            std::fill_n(d.primitiveOwner.begin() + prim, r.indexCount / 3, id);
-            for (const auto& [fromColumn, toColumn] : p.columns) {
-                const Column& a = *fromColumn;
-                Column& b = *toColumn;
-                if (o >= a.present.size() || !a.present[o]) continue;
-                b.present[id] = 1;
-                switch (a.type) {
-                    case DataType::Int:
-                        b.ints[id] = a.ints[o];
-                        break;
-                    case DataType::String:
-                        b.ints[id] = p.strings[std::size_t(a.ints[o])];
-                        break;
-                    case DataType::Float:
-                        b.floats[id] = a.floats[o];
-                        break;
-                    case DataType::Vec3:
-                        b.vecs[id] = a.vecs[o];
-                        break;
-                }
-            }
-            v += r.vertexCount;
-            x += r.indexCount;
-            prim += r.indexCount / 3;
-            ++id;
-        }
+        d.copyAppended(plans[std::size_t(i)]);
     }
 
     // Primitive data (rare: plants carry none), one thread.
-    for (const AppendPlan& p : plans)
-        for (const auto& [label, col] : p.from->primitiveColumns) {
-            if (col.values.empty()) continue;
-            auto it = d.primitiveColumns.find(label);
-            if (it == d.primitiveColumns.end()) {
-                it = d.primitiveColumns.emplace(label, PrimitiveColumn{}).first;
-                it->second.type = col.type;
-            }
-            ObjectID id = p.firstObject;
-            for (ObjectID o : p.objects) {
-                const ObjectRecord& r = p.from->objects[o];
-                const PrimitiveID to = d.objects[id++].firstPrimitive;
-                for (std::uint32_t t = 0; t < r.indexCount / 3; ++t)
-                    if (auto v = col.values.find(r.firstPrimitive + t); v != col.values.end())
-                        it->second.values[to + t] = v->second;
-            }
-        }
+    for (const Impl::AppendPlan& p : plans) d.appendPrimitiveData(p);
 
     d.liveObjects += objects;
     d.liveVertices += vertices;
@@ -747,7 +760,7 @@ std::vector<ObjectID> Context::appendObjects(std::span<const ObjectSource> sourc
     d.liveTriangles += indices / 3;
     std::vector<ObjectID> ids(objects);
     std::size_t k = 0;
-    for (const AppendPlan& p : plans)
+    for (const Impl::AppendPlan& p : plans)
         for (std::size_t j = 0; j < p.objects.size(); ++j) ids[k++] = p.firstObject + ObjectID(j);
     return ids;
 }
