@@ -454,7 +454,8 @@ private:
                                  const std::map<std::string, float>& build_parameters);
     std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
                                         const std::map<std::string, float>& build_parameters);
-    struct GrownPlant;  ///< a plant grown in a canopy worker (src/api/canopy.cpp)
+    struct GrownPlant;   ///< a plant grown in a canopy worker (src/api/canopy.cpp)
+    struct CanopyBuild;  ///< one canopy's build (src/api/canopy.cpp)
     void adoptPlants(std::span<GrownPlant> plants);
     /// Adds the loaded species' trellis for a plant built at `base` (when on and declared).
     void addTrellis(unsigned plantID, const vec3& base,

@@ -61,11 +61,6 @@ void checkCanopyArguments(float age, float germination) {
                                                       .validRange = "0 to 1"});
 }
 
-struct CanopyWorker {
-    Context ctx;
-    std::unique_ptr<PlantArchitecture> arch;
-};
-
 }  // namespace
 
 // A plant grown (and tessellated) in a worker: its objects, in ascending ID order, are in
@@ -150,53 +145,64 @@ int nextBatchSize(int threads, std::size_t triangles, int plants, int left, bool
 
 }  // namespace
 
-// With soft collision avoidance the plants must see each other while they grow, so they are
-// first built (initial structure only) by the workers, then grown together by
-// collision::growTogether (each step on all threads, every plant seeing the scene as it stood
-// at the step's start), then tessellated in batches and copied into the scene in plant order.
-// Without it, each batch of plants is grown and tessellated on all threads and copied in.
-std::vector<unsigned> PlantArchitecture::buildPlantsAt(
-    const std::vector<vec3>& positions, float age,
-    const std::map<std::string, float>& buildParameters) {
-    if (!impl_->species)
-        throw Error("no species loaded: call loadPlantModelFromLibrary first",
-                    {.parameter = "species", .validRange = "one of the library species"});
-    resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
-    if (impl_->trellisGeometry && impl_->species->trellis)     // and the trellis's
-        speciesTrellis(*impl_->species, seed_, impl_->store.nextStream, vec3(0.0f),
-                       buildParameters);
-    const bool together = impl_->collision.world && impl_->collision.world->soft();
-    const std::size_t limit = context_->triangleLimit();
-    impl_->store.triangleLimit = limit;
-    // Plants with attraction points of their own count their work in this scene's stats.
-    if (impl_->species->attraction) collision::worldOf(impl_->collision);
-    const int n = int(positions.size());
-    // Plant i gets ID first + i and random stream firstStream + i, whichever worker builds it.
-    const unsigned first = context_->reservePlantIDs(unsigned(n));
-    const unsigned firstStream = impl_->store.nextStream;
-    const int threads = std::max(1, std::min(omp_get_max_threads(), n));
+// One canopy's build: the plants at `positions`, grown to `age` by worker PlantArchitectures
+// (one per thread, each with its own caches) and copied into the scene in plant order.
+struct PlantArchitecture::CanopyBuild {
+    struct CanopyWorker {
+        Context ctx;
+        std::unique_ptr<PlantArchitecture> arch;
+    };
 
-    std::vector<CanopyWorker> workers(static_cast<std::size_t>(threads));
-    for (CanopyWorker& w : workers) {
-        w.arch = std::make_unique<PlantArchitecture>(&w.ctx);
-        w.arch->seed_ = seed_;
-        Impl& wi = *w.arch->impl_;
-        wi.store.shootTypes = impl_->store.shootTypes;
-        wi.species = impl_->species;
-        wi.store.defaultPhenology = impl_->store.defaultPhenology;
-        wi.store.meshDetail = impl_->store.meshDetail;
-        wi.store.groundClearance = impl_->store.groundClearance;
-        wi.store.groundClipping = impl_->store.groundClipping;
-        wi.store.organGeometry = impl_->store.organGeometry;
-        wi.store.triangleLimit = limit;
-        wi.functions = impl_->functions;
-        wi.trellisGeometry = false;  // trellises are added in the caller's Context below
-        if (!together) wi.collision.world = impl_->collision.world;
+    PlantArchitecture& arch;
+    const std::vector<vec3>& positions;
+    float age;
+    const std::map<std::string, float>& buildParameters;
+    std::size_t limit = 0;     // the Context's triangle limit (0: none)
+    int n = 0;                 // plants
+    unsigned first = 0;        // plant i gets ID first + i ...
+    unsigned firstStream = 0;  // ... and random stream firstStream + i
+    int threads = 1;
+    std::vector<CanopyWorker> workers;
+    std::vector<int> builtBy;    // the worker that holds plant i's state
+    std::vector<unsigned> ids;   // the plants copied into the scene so far
+    std::vector<Context> slots;  // one per plant of a batch, kept (with capacity) for the next
+    int nextReport = 0;          // progress within a batch: at most about a hundred reports
+    std::size_t trianglesSeen = 0;
+
+    CanopyBuild(PlantArchitecture& a, const std::vector<vec3>& at, float grownTo,
+                const std::map<std::string, float>& parameters, bool together)
+        : arch(a), positions(at), age(grownTo), buildParameters(parameters) {
+        Impl& impl = *arch.impl_;
+        limit = arch.context_->triangleLimit();
+        impl.store.triangleLimit = limit;
+        n = int(positions.size());
+        first = arch.context_->reservePlantIDs(unsigned(n));
+        firstStream = impl.store.nextStream;
+        threads = std::max(1, std::min(omp_get_max_threads(), n));
+        workers.resize(static_cast<std::size_t>(threads));
+        for (CanopyWorker& w : workers) {
+            w.arch = std::make_unique<PlantArchitecture>(&w.ctx);
+            w.arch->seed_ = arch.seed_;
+            Impl& wi = *w.arch->impl_;
+            wi.store.shootTypes = impl.store.shootTypes;
+            wi.species = impl.species;
+            wi.store.defaultPhenology = impl.store.defaultPhenology;
+            wi.store.meshDetail = impl.store.meshDetail;
+            wi.store.groundClearance = impl.store.groundClearance;
+            wi.store.groundClipping = impl.store.groundClipping;
+            wi.store.organGeometry = impl.store.organGeometry;
+            wi.store.triangleLimit = limit;
+            wi.functions = impl.functions;
+            wi.trellisGeometry = false;  // trellises are added in the caller's Context
+            if (!together) wi.collision.world = impl.collision.world;
+        }
+        builtBy.assign(static_cast<std::size_t>(n), -1);
     }
 
-    std::vector<int> builtBy(static_cast<std::size_t>(n), -1);
+    Impl& ownerOf(int i) { return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_; }
+
     // A plant's failure names the plant; a triangle limit passed keeps its own type.
-    auto failed = [&](ParallelErrors& errors, int i0) {
+    static void failed(ParallelErrors& errors, int i0) {
         if (!errors.failed()) return;
         const int i = i0 + int(errors.index());
         try {
@@ -206,33 +212,59 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         } catch (const std::exception& e) {
             throw Error("building canopy plant " + std::to_string(i) + " failed: " + e.what());
         }
-    };
+    }
+
     // The canopy's triangles from the first `built` plants' (`triangles`), refused before
     // any more are grown when over the limit.
-    auto checkEstimate = [&](std::size_t triangles, int built) {
+    void checkEstimate(std::size_t triangles, int built) const {
         if (limit == 0 || built <= 0 || built >= n) return;
         const double each = double(triangles) / double(built);
-        const double total = double(context_->triangleCount()) + each * double(n);
+        const double total = double(arch.context_->triangleCount()) + each * double(n);
         if (total > double(limit))
             throw TriangleBudgetError("a canopy of " + std::to_string(n) + " plants",
                                       std::size_t(std::ceil(total)), limit,
                                       "about " + std::to_string(std::size_t(std::lround(each))) +
                                           " each, the mean of its first " + std::to_string(built) +
                                           (built == 1 ? " plant" : " plants"));
-    };
-    std::vector<unsigned> ids;
+    }
+
     // A failed build (or a progress callback that throws: the caller stopping it) leaves the
     // Context as it was: the plants copied so far are deleted again.
-    auto undo = [&] {
-        for (unsigned id : ids) deletePlantInstance(id);
-    };
+    void undo() {
+        for (unsigned id : ids) arch.deletePlantInstance(id);
+    }
 
-    std::vector<Context> slots;  // one per plant of a batch, kept (with capacity) for the next
-    int nextReport = 0;          // progress within a batch: at most about a hundred reports
-    std::size_t trianglesSeen = 0;
+    // Room in the scene for the whole canopy, from the first batch's plants [0, end).
+    void reserveFrom(int end) {
+        std::size_t objects = 0, vertices = 0, triangles = 0;
+        for (int i = 0; i < end; ++i) {
+            const Context& slot = slots[std::size_t(i)];
+            objects += slot.objectCount();
+            vertices += slot.vertexCount();
+            triangles += slot.triangleCount();
+        }
+        const double scale = 1.05 * double(n) / double(end);
+        arch.context_->reserve(std::size_t(double(objects) * scale),
+                               std::size_t(double(vertices) * scale),
+                               std::size_t(double(triangles) * scale));
+    }
+
+    // Reports progress; a callback that throws undoes the canopy.
+    void report(const char* stage, double fraction) {
+        if (!arch.impl_->progress) return;
+        try {
+            arch.impl_->progress(stage, fraction);
+        } catch (...) {
+            undo();
+            throw;
+        }
+    }
+
     // Runs make(i, thread, slot) for every plant in batches on all threads, then copies each
-    // batch into the scene; `ownerOf(i)` holds plant i's state.
-    auto inBatches = [&](auto&& make, auto&& ownerOf, const char* stage) {
+    // batch into the scene.
+    template <class Make>
+    void inBatches(Make&& make, const char* stage) {
+        Impl& impl = *arch.impl_;
         for (int start = 0; start < n;) {
             const int size = nextBatchSize(threads, trianglesSeen, start, n - start, limit > 0);
             const int end = start + size;
@@ -259,11 +291,11 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                                                      plantObjects(owner.store.plant(id))};
                 });
                 const int done = start + ++finished;
-                if (impl_->progress && omp_get_thread_num() == 0 && done < end && !stopped &&
+                if (impl.progress && omp_get_thread_num() == 0 && done < end && !stopped &&
                     done >= nextReport) {
                     nextReport = done + std::max(1, n / 100);
                     try {
-                        impl_->progress(stage, double(done) / double(n));
+                        impl.progress(stage, double(done) / double(n));
                     } catch (...) {
                         stopped = std::current_exception();
                         stop = true;
@@ -283,21 +315,9 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             for (int i = start; i < end; ++i)
                 trianglesSeen += slots[std::size_t(i - start)].triangleCount();
             if (start == 0) checkEstimate(trianglesSeen, end);
-            if (start == 0 && end < n) {  // room for the rest, from this batch's plants
-                std::size_t objects = 0, vertices = 0, triangles = 0;
-                for (int i = start; i < end; ++i) {
-                    const Context& slot = slots[std::size_t(i - start)];
-                    objects += slot.objectCount();
-                    vertices += slot.vertexCount();
-                    triangles += slot.triangleCount();
-                }
-                const double scale = 1.05 * double(n) / double(end);
-                context_->reserve(std::size_t(double(objects) * scale),
-                                  std::size_t(double(vertices) * scale),
-                                  std::size_t(double(triangles) * scale));
-            }
+            if (start == 0 && end < n) reserveFrom(end);
             try {
-                adoptPlants(grown);
+                arch.adoptPlants(grown);
             } catch (...) {
                 undo();
                 throw;
@@ -305,18 +325,12 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
             for (int i = start; i < end; ++i) ids.push_back(first + unsigned(i));
             for (int i = start; i < end; ++i) slots[std::size_t(i - start)].clear(false);
             start = end;
-            if (impl_->progress) {
-                try {
-                    impl_->progress(stage, double(start) / double(n));
-                } catch (...) {
-                    undo();
-                    throw;
-                }
-            }
+            report(stage, double(start) / double(n));
         }
-    };
+    }
 
-    if (!together) {
+    // Each batch of plants grown and tessellated on all threads, each into its own Context.
+    void growApart() {
         inBatches(
             [&](int i, int t, Context& slot) {
                 CanopyWorker& worker = workers[std::size_t(t)];
@@ -332,21 +346,13 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
                 w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
                 builtBy[std::size_t(i)] = t;
             },
-            [&](int i) -> Impl& {
-                return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
-            },
             "building");
-        impl_->store.nextStream = firstStream + unsigned(n);
-        for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
-        return ids;
     }
 
-    // Together: build every plant's initial structure in a worker (its geometry is not needed:
-    // every plant is tessellated afresh when grown), plant i on thread i % threads, where it
-    // grows (collision::growTogether).
-    // With a limit, the estimate comes first: plant 0 grown alone, without collision
-    // avoidance, in a Context of its own (the plants' sizes differ little with avoidance).
-    if (limit > 0 && n > 1) {
+    // With a limit, the estimate before growing together: plant 0 grown alone, without
+    // collision avoidance, in a Context of its own (the plants' sizes differ little with it).
+    void estimateAlone() {
+        if (limit == 0 || n <= 1) return;
         Context probe;
         probe.setTriangleLimit(limit);
         PlantArchitecture& w = *workers[0].arch;
@@ -365,47 +371,77 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
         w.context_ = &workers[0].ctx;
         checkEstimate(triangles, 1);
     }
-    for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
-    ParallelErrors structureErrors;
+
+    // Every plant's initial structure built in a worker (its geometry is not needed: every
+    // plant is tessellated afresh when grown), plant i on thread i % threads, where it grows;
+    // then grown together (collision::growTogether) and tessellated in batches by whichever
+    // thread is free (the plant's state is only read).
+    void growTogether() {
+        estimateAlone();
+        for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = true;
+        ParallelErrors structureErrors;
 #pragma omp parallel for schedule(static, 1) num_threads(threads)
-    for (int i = 0; i < n; ++i)
-        structureErrors.run(i, [&] {
-            const int t = omp_get_thread_num();
-            PlantArchitecture& w = *workers[std::size_t(t)].arch;
-            w.impl_->store.assignedID = first + unsigned(i);
-            w.impl_->store.nextStream = firstStream + unsigned(i);
-            w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
-            builtBy[std::size_t(i)] = t;
-        });
-    for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = false;
-    failed(structureErrors, 0);
+        for (int i = 0; i < n; ++i)
+            structureErrors.run(i, [&] {
+                const int t = omp_get_thread_num();
+                PlantArchitecture& w = *workers[std::size_t(t)].arch;
+                w.impl_->store.assignedID = first + unsigned(i);
+                w.impl_->store.nextStream = firstStream + unsigned(i);
+                w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
+                builtBy[std::size_t(i)] = t;
+            });
+        for (CanopyWorker& w : workers) w.arch->impl_->geometryDeferred = false;
+        failed(structureErrors, 0);
 
-    // Grow them together.
-    std::vector<collision::GrowthSlot> growth;
-    std::vector<collision::Worker> growers;
-    for (CanopyWorker& w : workers) {
-        w.arch->impl_->collision.world = impl_->collision.world;
-        growers.push_back(w.arch->impl_->worker());
+        Impl& impl = *arch.impl_;
+        std::vector<collision::GrowthSlot> growth;
+        std::vector<collision::Worker> growers;
+        for (CanopyWorker& w : workers) {
+            w.arch->impl_->collision.world = impl.collision.world;
+            growers.push_back(w.arch->impl_->worker());
+        }
+        for (int i = 0; i < n; ++i) {
+            Impl& owner = ownerOf(i);
+            PlantInstance& plant = owner.store.plant(first + unsigned(i));
+            growth.push_back({&plant, collision::attractionFor(owner.collision, plant), {}});
+        }
+        collision::growTogether(*impl.collision.world, growth, age, arch.seed_, growers,
+                                impl.progress);
+        inBatches(
+            [&](int i, int t, Context& slot) {
+                Impl& w = *workers[std::size_t(t)].arch->impl_;
+                tessellatePlant(w.store, w.prototypes, slot, *growth[std::size_t(i)].plant);
+            },
+            "tessellating");
     }
-    for (int i = 0; i < n; ++i) {
-        Impl& owner = *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_;
-        PlantInstance& plant = owner.store.plant(first + unsigned(i));
-        growth.push_back({&plant, collision::attractionFor(owner.collision, plant), {}});
-    }
-    collision::growTogether(*impl_->collision.world, growth, age, seed_, growers, impl_->progress);
+};
 
-    // Tessellated in batches by whichever thread is free (the plant's state is only read), each
-    // into its own Context, and copied in.
-    inBatches(
-        [&](int i, int t, Context& slot) {
-            Impl& w = *workers[std::size_t(t)].arch->impl_;
-            tessellatePlant(w.store, w.prototypes, slot, *growth[std::size_t(i)].plant);
-        },
-        [&](int i) -> Impl& { return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_; },
-        "tessellating");
-    impl_->store.nextStream = firstStream + unsigned(n);
-    for (unsigned id : ids) addTrellis(id, positions[id - first], buildParameters);
-    return ids;
+// With soft collision avoidance the plants must see each other while they grow, so they are
+// first built (initial structure only) by the workers, then grown together by
+// collision::growTogether (each step on all threads, every plant seeing the scene as it stood
+// at the step's start), then tessellated in batches and copied into the scene in plant order.
+// Without it, each batch of plants is grown and tessellated on all threads and copied in.
+std::vector<unsigned> PlantArchitecture::buildPlantsAt(
+    const std::vector<vec3>& positions, float age,
+    const std::map<std::string, float>& buildParameters) {
+    if (!impl_->species)
+        throw Error("no species loaded: call loadPlantModelFromLibrary first",
+                    {.parameter = "species", .validRange = "one of the library species"});
+    resolveBuildParameters(*impl_->species, buildParameters);  // range errors up front
+    if (impl_->trellisGeometry && impl_->species->trellis)     // and the trellis's
+        speciesTrellis(*impl_->species, seed_, impl_->store.nextStream, vec3(0.0f),
+                       buildParameters);
+    const bool together = impl_->collision.world && impl_->collision.world->soft();
+    // Plants with attraction points of their own count their work in this scene's stats.
+    if (impl_->species->attraction) collision::worldOf(impl_->collision);
+    CanopyBuild build(*this, positions, age, buildParameters, together);
+    if (together)
+        build.growTogether();
+    else
+        build.growApart();
+    impl_->store.nextStream = build.firstStream + unsigned(build.n);
+    for (unsigned id : build.ids) addTrellis(id, positions[id - build.first], buildParameters);
+    return build.ids;
 }
 
 std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(const CanopyOptions& o,

@@ -130,6 +130,9 @@ ReadResult readHeliosPlants(const xml::Document& doc, const std::string& fileNam
 /// The plants as a `<helios>` document in the reference system's layout.
 std::string writeHeliosPlants(const std::vector<const PlantInstance*>& plants);
 
+/// Writes the plants' internodes as cylinders, one CSV row each (qsm_writer.cpp).
+void writeQSM(const std::vector<const PlantInstance*>& plants, const std::string& path);
+
 // ---- object IDs ----------------------------------------------------------------------
 
 /// Calls f(ObjectID&) or f(std::vector<ObjectID>&) for every object member of the plant's
