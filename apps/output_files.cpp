@@ -38,22 +38,15 @@ void CommandOutputs::removeMadeFolders() {
 }
 
 void CommandOutputs::makeFolders(const std::string& path) {
-    namespace fs = std::filesystem;
-    const fs::path folder = fs::path(path).parent_path();
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
     if (folder.empty()) return;
-    std::vector<fs::path> missing;  // innermost first
-    std::error_code ec;
-    for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec));
-         p = p.parent_path()) {
-        missing.push_back(p);
-        if (p == p.parent_path()) break;
+    std::vector<FolderMadeForOutputs> made;
+    try {
+        made = makeFoldersForOutputs(folder.string());
+    } catch (const Error& e) {
+        throw Error(e.message(), {.file = path});  // named by the output it is for
     }
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-        if (!fs::create_directory(*it, ec) && ec)
-            throw Error("cannot create folder " + it->string() + ": " + ec.message(),
-                        {.file = path});
-        madeFolders_.emplace_back(it->string());
-    }
+    for (FolderMadeForOutputs& f : made) madeFolders_.push_back(std::move(f));
 }
 
 namespace {

@@ -136,3 +136,30 @@ TEST_F(OutputSetTest, NamedTemporariesWorkTheSame) {
     ::unsetenv("PLANTARCH_NAMED_TEMPORARIES");
     EXPECT_EQ(names(), std::vector<std::string>{"a.txt"});
 }
+
+TEST_F(OutputSetTest, FoldersMadeForOutputsGoAgainOrStay) {
+    fs::create_directory(at("have"));
+    {
+        std::vector<plantarch::FolderMadeForOutputs> made =
+            plantarch::makeFoldersForOutputs(at("have/a/b"));
+        ASSERT_EQ(made.size(), 2u);  // "have" was there already
+        EXPECT_EQ(made[0].path(), at("have/a"));
+        EXPECT_EQ(made[1].path(), at("have/a/b"));
+        EXPECT_TRUE(fs::is_directory(at("have/a/b")));
+        for (auto m = made.rbegin(); m != made.rend(); ++m) m->remove();  // a failed job
+    }
+    EXPECT_FALSE(fs::exists(at("have/a")));
+    EXPECT_TRUE(fs::is_directory(at("have")));
+    {
+        std::vector<plantarch::FolderMadeForOutputs> made =
+            plantarch::makeFoldersForOutputs(at("have/c"));
+        for (plantarch::FolderMadeForOutputs& m : made) m.keep();  // a job that succeeded
+    }
+    EXPECT_TRUE(fs::is_directory(at("have/c")));
+    plantarch::writeFileAtomically(at("file"), "x");
+    EXPECT_NE(errorOf([&] {
+                  plantarch::makeFoldersForOutputs(at("file/d"));
+              }).find("cannot create folder"),
+              std::string::npos);
+    EXPECT_FALSE(fs::exists(at("file/d")));
+}

@@ -18,28 +18,6 @@ namespace plantarch::builder {
 
 namespace {
 
-// The folders of `folder` that do not exist yet, made outermost first and marked, so that an
-// export that fails (or a signal) removes them again.
-std::vector<FolderMadeForOutputs> makeFolders(const fs::path& folder) {
-    std::vector<fs::path> missing;  // innermost first
-    std::error_code ec;
-    for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec));
-         p = p.parent_path()) {
-        missing.push_back(p);
-        if (p == p.parent_path()) break;
-    }
-    std::vector<FolderMadeForOutputs> made;
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-        if (!fs::create_directory(*it, ec) && ec) {
-            for (auto m = made.rbegin(); m != made.rend(); ++m) m->remove();
-            throw Error("cannot create folder " + it->string() + ": " + ec.message(),
-                        {.file = it->string()});
-        }
-        made.emplace_back(it->string());
-    }
-    return made;
-}
-
 std::string readBytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot read back a file just written", {.file = path.string()});
@@ -92,7 +70,7 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
         if (ext == ".obj") files.push_back(fs::path(file).replace_extension(".mtl"));
     };
     std::lock_guard<std::mutex> lock(server.files);
-    std::vector<FolderMadeForOutputs> made = makeFolders(folder);
+    std::vector<FolderMadeForOutputs> made = makeFoldersForOutputs(folder.string());
     try {
         checkOutputPath(perPlant ? separatePlantIndexName(path) : path);
         OutputSet outputs;

@@ -23,6 +23,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace plantarch {
 
@@ -90,5 +91,11 @@ private:
     int slot_ = -1;  // -1 also when every signal slot was taken
     bool active_ = true;
 };
+
+/// Makes the folders of `folder` that do not exist yet, outermost first, each marked as a
+/// FolderMadeForOutputs (outermost first in the result), so that a job that fails removes
+/// them again (remove() in reverse order) and one that succeeds keeps them (keep()). Throws
+/// plantarch::Error naming the folder it cannot make, after removing those it made.
+std::vector<FolderMadeForOutputs> makeFoldersForOutputs(const std::string& folder);
 
 }  // namespace plantarch

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <mutex>
 #include <system_error>
 #include <utility>
@@ -148,5 +149,26 @@ bool holdInOpenOutputSet(AtomicFile& file) {
 }
 
 }  // namespace io
+
+std::vector<FolderMadeForOutputs> makeFoldersForOutputs(const std::string& folder) {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> missing;  // innermost first
+    std::error_code ec;
+    for (fs::path p = folder; !p.empty() && !fs::exists(fs::symlink_status(p, ec));
+         p = p.parent_path()) {
+        missing.push_back(p);
+        if (p == p.parent_path()) break;
+    }
+    std::vector<FolderMadeForOutputs> made;
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+        if (!fs::create_directory(*it, ec) && ec) {
+            for (auto m = made.rbegin(); m != made.rend(); ++m) m->remove();
+            throw Error("cannot create folder " + it->string() + ": " + ec.message(),
+                        {.file = it->string()});
+        }
+        made.emplace_back(it->string());
+    }
+    return made;
+}
 
 }  // namespace plantarch
