@@ -1,7 +1,7 @@
-// Plant outputs and inputs shared by the commands that make or read plants: plant structure
-// files (.xml), plant strings (.txt) and, through writeSceneFile, the scene formats.
+// Plant inputs shared by the commands that read plants (plant structure files and plant
+// strings), and the option and file helpers their outputs share; the outputs themselves are
+// written through plantarch/PlantFiles.h.
 
-#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -12,11 +12,8 @@
 
 #include "cli.h"
 #include "plantarch/Error.h"
-#include "plantarch/ExportPlants.h"
-#include "plantarch/HeliosPlantXML.h"
 #include "plantarch/InputFiles.h"
 #include "plantarch/PlantArchitecture.h"
-#include "plantarch/PlantStructureWrite.h"
 
 namespace plantarch::cli {
 

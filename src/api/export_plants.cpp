@@ -3,7 +3,6 @@
 #include <cmath>
 #include <string>
 
-#include "core/atomic_file.h"
 #include "core/progress_steps.h"
 #include "core/value_text.h"
 #include "plant_io/plant_structure.h"
