@@ -6,10 +6,12 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <type_traits>
 
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantSummary.h"
 
 namespace plantarch::cli {
 
@@ -102,37 +104,33 @@ double finite(const char* name, double v) {
 
 }  // namespace
 
-std::string plantStatsJSON(const PlantArchitecture& arch, const Context& ctx, unsigned plant,
+std::string plantStatsJSON(const PlantArchitecture& arch, const Context&, unsigned plant,
                            std::uint64_t seed) {
     const PlantInstance& p = arch.plant(plant);
-    std::size_t flowers = 0, fruit = 0;
-    for (const Shoot& s : p.shoots) {
-        if (s.removed) continue;
-        // Flowers and fruit of zero size (a fruit at the moment it sets) are not counted: they
-        // have no geometry yet (PlantState.h).
-        auto count = [&](const FloralBud& fb) {
-            const bool flower =
-                fb.stage == FloralStage::FlowerClosed || fb.stage == FloralStage::FlowerOpen;
-            if (!flower && fb.stage != FloralStage::Fruit) return;
-            for (const FlowerOrgan& fl : fb.flowers)
-                if (hasSize(currentFloralSize(fb, fl))) ++(flower ? flowers : fruit);
-        };
-        for (const Phytomer& ph : s.phytomers)
-            for (const Petiole& pt : ph.petioles)
-                for (const FloralBud& fb : pt.floralBuds) count(fb);
-        for (const FloralBud& fb : s.terminalFloralBuds) count(fb);
-    }
-    std::size_t triangles = 0;
-    for (ObjectID id : arch.getAllPlantObjectIDs(plant))
-        triangles += ctx.objectPrimitives(id).count;
+    const PlantSummary s = summarizePlant(arch, plant);
+    const auto numbers = [](const auto& values, const char* name) {
+        std::string text;
+        for (const auto v : values) {
+            text += text.empty() ? "" : ", ";
+            if constexpr (std::is_floating_point_v<decltype(v)>)
+                text += fmt::format("{:.4f}", finite(name, v));
+            else
+                text += fmt::format("{}", v);
+        }
+        return "[" + text + "]";
+    };
     return fmt::format(
         "{{\"species\": {}, \"plant\": {}, \"age\": {}, \"seed\": {}, \"height\": {:.4f}, "
         "\"leaves\": {}, \"leaf_area\": {:.5f}, \"shoots\": {}, \"flowers\": {}, \"fruit\": {}, "
-        "\"triangles\": {}}}",
-        jsonString(p.name), plant, finite("age", p.age), seed,
-        finite("height", arch.getPlantHeight(plant)), arch.getPlantLeafCount(plant),
-        finite("leaf_area", arch.getPlantLeafArea(plant)), arch.getShootCount(plant), flowers,
-        fruit, triangles);
+        "\"triangles\": {}, \"width_x\": {:.4f}, \"width_y\": {:.4f}, \"width_long\": {:.4f}, "
+        "\"width_short\": {:.4f}, \"main_nodes\": {}, \"shoots_by_rank\": {}, "
+        "\"phytomers_by_rank\": {}, \"leaf_inclination\": {}}}",
+        jsonString(p.name), plant, finite("age", p.age), seed, finite("height", s.height), s.leaves,
+        finite("leaf_area", s.leafArea), arch.getShootCount(plant), s.flowers, s.fruit, s.triangles,
+        finite("width_x", s.widthX), finite("width_y", s.widthY), finite("width_long", s.widthLong),
+        finite("width_short", s.widthShort), s.mainNodes, numbers(s.shootsByRank, "shoots_by_rank"),
+        numbers(s.phytomersByRank, "phytomers_by_rank"),
+        numbers(s.leafInclination, "leaf_inclination"));
 }
 
 }  // namespace plantarch::cli

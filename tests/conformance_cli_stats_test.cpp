@@ -17,6 +17,7 @@
 
 #include "cli_run.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantSummary.h"
 
 using namespace plantarch;
 
@@ -75,9 +76,25 @@ std::size_t trianglesOf(const Context& ctx, unsigned plant) {
 void expectStatsOf(const nlohmann::json& j, const PlantArchitecture& arch, const Context& ctx,
                    unsigned plant, const std::string& species, std::uint64_t seed) {
     SCOPED_TRACE(j.dump());
-    const std::set<std::string> keys = {"species", "plant",  "age",       "seed",
-                                        "height",  "leaves", "leaf_area", "shoots",
-                                        "flowers", "fruit",  "triangles"};
+    const std::set<std::string> keys = {"species",
+                                        "plant",
+                                        "age",
+                                        "seed",
+                                        "height",
+                                        "leaves",
+                                        "leaf_area",
+                                        "shoots",
+                                        "flowers",
+                                        "fruit",
+                                        "triangles",
+                                        "width_x",
+                                        "width_y",
+                                        "width_long",
+                                        "width_short",
+                                        "main_nodes",
+                                        "shoots_by_rank",
+                                        "phytomers_by_rank",
+                                        "leaf_inclination"};
     std::set<std::string> printed;
     for (const auto& [k, v] : j.items()) printed.insert(k);
     EXPECT_EQ(printed, keys) << "a number printed that this test does not check, or one missing";
@@ -93,6 +110,20 @@ void expectStatsOf(const nlohmann::json& j, const PlantArchitecture& arch, const
     EXPECT_EQ(j.at("flowers").get<std::size_t>(), organs.flowers);
     EXPECT_EQ(j.at("fruit").get<std::size_t>(), organs.fruit);
     EXPECT_EQ(j.at("triangles").get<std::size_t>(), trianglesOf(ctx, plant));
+    // The rest as summarizePlant gives them (tests/plant_summary_test.cpp checks it), to the
+    // printed 4 decimals.
+    const PlantSummary s = summarizePlant(arch, plant);
+    EXPECT_NEAR(j.at("width_x").get<double>(), s.widthX, 0.5e-4 + 1e-9);
+    EXPECT_NEAR(j.at("width_y").get<double>(), s.widthY, 0.5e-4 + 1e-9);
+    EXPECT_NEAR(j.at("width_long").get<double>(), s.widthLong, 0.5e-4 + 1e-9);
+    EXPECT_NEAR(j.at("width_short").get<double>(), s.widthShort, 0.5e-4 + 1e-9);
+    EXPECT_EQ(j.at("main_nodes").get<unsigned>(), s.mainNodes);
+    EXPECT_EQ(j.at("shoots_by_rank").get<std::vector<unsigned>>(), s.shootsByRank);
+    EXPECT_EQ(j.at("phytomers_by_rank").get<std::vector<unsigned>>(), s.phytomersByRank);
+    const auto inclination = j.at("leaf_inclination").get<std::vector<double>>();
+    ASSERT_EQ(inclination.size(), s.leafInclination.size());
+    for (std::size_t i = 0; i < inclination.size(); ++i)
+        EXPECT_NEAR(inclination[i], s.leafInclination[i], 0.5e-4 + 1e-9);
 }
 
 TEST(ConformanceCliStats, BuildPrintsTheLibrarysNumbers) {
