@@ -1,8 +1,8 @@
 // Every library species against the reference system's plants at three ages: the means over
-// seeds 1 to 10 of plantarch's height, one-sided leaf area, leaf count, widths along each
+// seeds 1 to 20 of plantarch's height, one-sided leaf area, leaf count, widths along each
 // plant's own horizontal axes (its longest extent and the extent square to it, so a plant
 // turned at random compares with one lying along x), flowers and fruit, against the means of
-// the reference's seeds 1 to 10 (tests/data/reference_stats.tsv, written from a build of the
+// the reference's seeds 1 to 20 (tests/data/reference_stats.tsv, written from a build of the
 // reference by bench/scripts/fidelity.py).
 //
 // Bands: height, leaf area and leaf count within 25 %; widths within 35 % (a crown's width
@@ -79,6 +79,23 @@ const std::vector<Departure> kDepartures = {
     // rosette is as wide across as along: the reference's long side.
     {"sugarbeet", 0, "width_short", "width_long", 1.0,
      "a spiral rosette, round where the reference's is flat (species/sugarbeet.xml)"},
+    // The reference's walnut makes nodes 0-3 of every shoot blind in its creation rule, but the
+    // rule sees a built shoot's whole node count as every node's index and never acts on the
+    // planted scaffolds: 53 of its 88 fruit at 200 days (seeds 1-10) sit on those nodes.
+    // plantarch keeps them blind, as the rule says, and is held to the reference's other
+    // fruit (35 of 88).
+    {"walnut", 200, "fruit", "", 35.0 / 88.0,
+     "nodes 0-3 blind, as the species' rule says; the reference's built scaffolds flower there "
+     "(species/walnut.xml)"},
+    // The reference turns each leaf to the mirror image of its petiole's azimuth (a petiole at
+    // azimuth a carries its leaf toward -a), which flattens its plants across x: plantarch's
+    // own plants with their leaves mirrored that way are 0.082 and 0.137 m across at 20 and 35
+    // days (the reference's 0.096 and 0.153), as drawn 0.155 and 0.212 m, 1.89 and 1.55 times
+    // as much. By 50 days the branches set the width and both agree.
+    {"groundcherryweed", 20, "width_short", "", 1.89,
+     "leaves along their petioles; the reference mirrors them across x (docs/testing.md)"},
+    {"groundcherryweed", 35, "width_short", "", 1.55,
+     "leaves along their petioles; the reference mirrors them across x (docs/testing.md)"},
     // The reference's laterals point out of the wall, where its wires are outside their cone
     // of perception (0.51-0.90 m deep at 400 days over its seeds 1-10, bare wood only); here
     // they are tied along the wires, so the wall is its wood's thickness deep when bare and
@@ -89,15 +106,17 @@ const std::vector<Departure> kDepartures = {
      "a wall trained along its wires, bare in winter (species/apple_fruitingwall.xml)"},
 };
 
-// Seeds 1 to N: 10 unless PLANTARCH_FIDELITY_SEEDS gives another count.
+// Seeds 1 to N: 20 unless PLANTARCH_FIDELITY_SEEDS gives another count (ten seeds of a
+// branching species still vary by a band: the tomato's leaf count over seeds 1-10 is 1.30 of
+// the reference's, over seeds 1-20 1.15, over 200 seeds 1.13).
 std::uint64_t seedCount() {
     const char* env = std::getenv("PLANTARCH_FIDELITY_SEEDS");
-    if (!env || !*env) return 10;
+    if (!env || !*env) return 20;
     char* end = nullptr;
     const unsigned long long n = std::strtoull(env, &end, 10);
     EXPECT_TRUE(*end == 0 && n >= 1 && n <= 1000)
         << "PLANTARCH_FIDELITY_SEEDS: " << env << " (a whole number from 1 to 1000)";
-    return *end == 0 && n >= 1 && n <= 1000 ? n : 10;
+    return *end == 0 && n >= 1 && n <= 1000 ? n : 20;
 }
 
 std::string digits4(double v) {

@@ -435,11 +435,16 @@ TEST(SpeciesOrchard, WyeWiresFollowTheBuildParameters) {
 
 // ---- eastern redbud ----------------------------------------------------------------------
 
-// Each winter every shoot keeps vegetative buds only on its N distal nodes and floral buds
-// only below them, N from 2 to 4 drawn once per shoot and winter: late in the winter no node
-// of the last season is left blind. Checked in the first and the second winter.
+// Each winter every shoot keeps vegetative buds only on its 2 distal nodes, loses its floral
+// buds on its 4 distal nodes and keeps them below: late in the winter the nodes of the last
+// season flower except the two below the branching ones. Checked in the first and the second
+// winter. In the winter the tree is planted in the rule waits: all four buds at the top of
+// the stem are still there when it breaks.
 TEST(SpeciesOrchard, RedbudBranchesFromTheTipAndFlowersBelowEachWinter) {
-    std::set<int> distalCounts;
+    const Grown planted = grow("easternredbud", 160.0f);  // dormancy breaks on day 165
+    ASSERT_EQ(planted.plant().shoots.size(), 2u);
+    for (const Phytomer& ph : planted.plant().shoots[1].phytomers)
+        EXPECT_TRUE(dormantVegetativeBud(ph));
     for (const auto& [growing, winter] : {std::pair{364.0f, 520.0f}, std::pair{729.0f, 880.0f}}) {
         SCOPED_TRACE("winter day " + std::to_string(winter));
         const Grown before = grow("easternredbud", growing);
@@ -455,30 +460,22 @@ TEST(SpeciesOrchard, RedbudBranchesFromTheTipAndFlowersBelowEachWinter) {
         for (const Shoot& s : after.plant().shoots) {
             const int n = int(s.phytomers.size());
             if (s.type != "eastern_redbud_shoot" || n < 5) continue;
-            int firstVegetative = n;
-            for (int k = n - 1; k >= 0 && dormantVegetativeBud(s.phytomers[std::size_t(k)]); --k)
-                firstVegetative = k;
-            const int distal = n - firstVegetative;
-            EXPECT_GE(distal, 2) << "shoot " << s.id;
-            EXPECT_LE(distal, 4) << "shoot " << s.id;
-            distalCounts.insert(distal);
             for (int k = 0; k < n; ++k) {
                 const Phytomer& ph = s.phytomers[std::size_t(k)];
-                if (k < firstVegetative) {
-                    EXPECT_FALSE(dormantVegetativeBud(ph)) << "shoot " << s.id << " node " << k;
-                    // Nodes of the last season all keep floral buds for the spring.
-                    if (ph.birth > growing - 200.0f) {
-                        EXPECT_TRUE(liveFloralBud(ph)) << "shoot " << s.id << " node " << k;
-                    }
-                    floweringNodes += liveFloralBud(ph) ? 1 : 0;
-                } else {
+                const int fromTip = n - 1 - k;
+                EXPECT_EQ(dormantVegetativeBud(ph), fromTip < 2)
+                    << "shoot " << s.id << " node " << k;
+                if (fromTip < 4) {
                     EXPECT_FALSE(liveFloralBud(ph)) << "shoot " << s.id << " node " << k;
+                } else if (ph.birth > growing - 200.0f) {
+                    // Nodes of the last season below those keep floral buds for the spring.
+                    EXPECT_TRUE(liveFloralBud(ph)) << "shoot " << s.id << " node " << k;
                 }
+                floweringNodes += liveFloralBud(ph) ? 1 : 0;
             }
         }
         EXPECT_GT(floweringNodes, 10u);
     }
-    EXPECT_EQ(distalCounts.size(), 3u);  // N is drawn per shoot: 2, 3 and 4 all occur
 }
 
 // The once-per-winter rule gives the same tree whatever the time steps.
@@ -660,4 +657,31 @@ TEST(SpeciesOrchard, EveryPlantWaitsForTheFirstWinterToEnd) {
         EXPECT_NE(grown.arch->getPhenologyStage(grown.id), PhenologyStage::Dormant);
         EXPECT_GT(grown.arch->getPlantLeafCount(grown.id), young.arch->getPlantLeafCount(young.id));
     }
+}
+
+// ---- the planting winter -----------------------------------------------------------------
+
+// A tree is planted dormant: when its first winter ends, each built shoot whose flowers need
+// a winter and whose apex lives carries its terminal floral buds (almond's scaffolds 3 each,
+// as a shoot sets them at the end of every later season); its trunk, whose type sets none
+// and whose apex is removed, carries none; none before the break.
+TEST(SpeciesOrchard, ThePlantingWinterGivesBuiltShootsTheirTerminalFloralBuds) {
+    const Grown planted = grow("almond", 85.0f);  // dormancy breaks on day 90
+    for (const Shoot& s : planted.plant().shoots) EXPECT_TRUE(s.terminalFloralBuds.empty());
+    const Grown spring = grow("almond", 91.0f);
+    unsigned scaffolds = 0;
+    for (const Shoot& s : spring.plant().shoots) {
+        if (s.type == "scaffold") {
+            ++scaffolds;
+            ASSERT_EQ(s.terminalFloralBuds.size(), 3u) << "shoot " << s.id;
+            for (const FloralBud& fb : s.terminalFloralBuds) {
+                EXPECT_TRUE(fb.terminal);
+                EXPECT_EQ(fb.stage, FloralStage::Bud);
+                EXPECT_GE(fb.nextTime, 90.0);  // scheduled to flower this spring
+            }
+        } else if (s.type == "trunk") {
+            EXPECT_TRUE(s.terminalFloralBuds.empty()) << "shoot " << s.id;
+        }
+    }
+    EXPECT_EQ(scaffolds, 4u);
 }

@@ -4,7 +4,7 @@ system (its driver, bench/reference/), species by species, age by age, over many
 by side.
 
 Usage: fidelity.py [--plantarch build/plantarch] --reference REF_BUILD/reference_driver
-                   [--species bean,maize] [--ages 20,35,50] [--seeds 10] [--jobs 2]
+                   [--species bean,maize] [--ages 20,35,50] [--seeds 20] [--jobs 2]
                    [--table OUT.tsv] [--write-reference tests/data/reference_stats.tsv]
                    [--cache REF_CACHE.json]
 
@@ -122,7 +122,7 @@ def main():
     parser.add_argument("--reference", required=True)
     parser.add_argument("--species", help="comma-separated (default: every species)")
     parser.add_argument("--ages", help="comma-separated days (default: three per species)")
-    parser.add_argument("--seeds", type=int, default=10)
+    parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--table", help="write the side-by-side rows as TSV")
     parser.add_argument("--write-reference", help="write the reference's table")

@@ -15,6 +15,7 @@
 #include "plantarch/ExportPlants.h"
 #include "plantarch/HeliosPlantXML.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/PlantSummary.h"
 
 namespace plantarch::python {
 
@@ -665,6 +666,10 @@ void bindQueries(py::class_<PlantArchitecture>& c) {
              docs::PlantArchitecture_getPlantLeafCount)
         .def("getPlantLeafArea", &PlantArchitecture::getPlantLeafArea, py::arg("plantID"),
              docs::PlantArchitecture_getPlantLeafArea)
+        .def(
+            "summarizePlant",
+            [](const PlantArchitecture& a, unsigned plant) { return summarizePlant(a, plant); },
+            py::arg("plantID"), docs::summarizePlant)
         .def("getPlantObjectIDs", &PlantArchitecture::getPlantObjectIDs, py::arg("plantID"),
              py::arg("organ"), docs::PlantArchitecture_getPlantObjectIDs)
         .def("getAllPlantObjectIDs", &PlantArchitecture::getAllPlantObjectIDs, py::arg("plantID"),
@@ -841,7 +846,36 @@ void bindPlantEdits(py::class_<PlantArchitecture>& c) {
             py::arg("plantID"), list.doc);
 }
 
+void bindSummary(py::module_& m) {
+    py::class_<PlantSummary>(
+        m, "PlantSummary", "One plant's statistics at a glance (PlantArchitecture.summarizePlant)")
+        .def_readonly("height", &PlantSummary::height, "top of the plant above its base (m)")
+        .def_readonly("leafArea", &PlantSummary::leafArea, "one-sided leaf area (m^2)")
+        .def_readonly("leaves", &PlantSummary::leaves, "leaf objects (each leaflet one)")
+        .def_readonly("widthX", &PlantSummary::widthX, "width of the plant's box along x (m)")
+        .def_readonly("widthY", &PlantSummary::widthY, "width of the plant's box along y (m)")
+        .def_readonly("widthLong", &PlantSummary::widthLong,
+                      "largest horizontal extent over every whole degree of direction (m)")
+        .def_readonly("widthShort", &PlantSummary::widthShort,
+                      "horizontal extent square to widthLong's direction (m)")
+        .def_readonly("flowers", &PlantSummary::flowers, "flowers drawn")
+        .def_readonly("fruit", &PlantSummary::fruit, "fruit drawn")
+        .def_readonly("shootsByRank", &PlantSummary::shootsByRank, "shoots of rank 0, 1, ...")
+        .def_readonly("phytomersByRank", &PlantSummary::phytomersByRank,
+                      "phytomers of the shoots of rank 0, 1, ...")
+        .def_readonly("mainNodes", &PlantSummary::mainNodes, "phytomers of the main shoot")
+        .def_readonly("leafInclination", &PlantSummary::leafInclination,
+                      "fraction of the leaf area inclined 0-10, 10-20, ... 80-90 degrees from "
+                      "horizontal")
+        .def_readonly("triangles", &PlantSummary::triangles, "triangles of every organ")
+        .def("__repr__", [](const PlantSummary& s) {
+            return "<PlantSummary height=" + std::to_string(s.height) +
+                   " leaves=" + std::to_string(s.leaves) + ">";
+        });
+}
+
 void bindArchitecture(py::module_& m) {
+    bindSummary(m);
     py::class_<PlantArchitecture> c(
         m, "PlantArchitecture",
         "Builds plants from shoot types and keeps their geometry in a Context. Method names "

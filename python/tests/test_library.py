@@ -1,5 +1,6 @@
 """The species library, growth, queries, pruning and phenology from Python."""
 
+import json
 import pathlib
 import re
 import subprocess
@@ -62,6 +63,25 @@ def test_library_plant_queries(arch):
     assert all(ctx.getObjectData(o, "plantID") == p for o in leaves)
     stats = arch.getPlant(p).statistics()
     assert stats["triangles"] == ctx.getTriangleCount()
+
+
+def test_plant_summary_is_the_clis_stats(arch, tmp):
+    arch.setSeed(5)
+    p = arch.buildPlantInstanceFromLibrary(plantarch.vec3(0, 0, 0), age=40)
+    s = arch.summarizePlant(p)
+    printed = json.loads(subprocess.run(
+        [cli(), "--seed", "5", "build", "bean", "--age", "40", "--stats"],
+        capture_output=True, text=True, check=True).stdout)
+    assert s.leaves == printed["leaves"] == arch.getPlantLeafCount(p)
+    assert s.height == pytest.approx(printed["height"], abs=1e-4)
+    assert s.widthLong == pytest.approx(printed["width_long"], abs=1e-4)
+    assert s.widthShort == pytest.approx(printed["width_short"], abs=1e-4)
+    assert list(s.shootsByRank) == printed["shoots_by_rank"]
+    assert list(s.phytomersByRank) == printed["phytomers_by_rank"]
+    assert sum(s.leafInclination) == pytest.approx(1.0, abs=1e-5)
+    assert s.leafInclination == pytest.approx(printed["leaf_inclination"], abs=1e-4)
+    with pytest.raises(plantarch.Error, match="no such plant"):
+        arch.summarizePlant(p + 1)
 
 
 def test_canopy_builds_and_same_seed_gives_same_plants():

@@ -405,6 +405,16 @@ struct Grower {
     }
 
     void onDormancyBreak(double now) {
+        // A plant built dormant spent its first winter as built: each built shoot whose
+        // flowers need a winter and whose apex lives set its terminal floral buds then, as a
+        // shoot does at the end of every later season (onSenescence).
+        if (plant.season == 0)
+            for (Shoot& s : plant.shoots) {
+                const ShootParameters& t = typeOf(s.type);
+                if (!s.removed && t.flowers_require_dormancy &&
+                    s.apicalBud.state != BudState::Dead)
+                    stopShoot(s, t);
+            }
         plant.nextDormancyBreak = -1.0;
         plant.stage = PhenologyStage::Vegetative;
         plant.dormancyBreakTime = now;
