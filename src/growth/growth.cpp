@@ -411,8 +411,7 @@ struct Grower {
         if (plant.season == 0)
             for (Shoot& s : plant.shoots) {
                 const ShootParameters& t = typeOf(s.type);
-                if (!s.removed && t.flowers_require_dormancy &&
-                    s.apicalBud.state != BudState::Dead)
+                if (!s.removed && t.flowers_require_dormancy && s.apicalBud.state != BudState::Dead)
                     stopShoot(s, t);
             }
         plant.nextDormancyBreak = -1.0;
