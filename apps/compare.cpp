@@ -1,9 +1,11 @@
-// plantarch compare SPECIES --age D [--reference FILE.png] -o FILE.png
+// plantarch compare SPECIES --age D [--reference FILE.png | --against SCENE] -o FILE.png
 // Draws a plant in a fixed, comparable framing: a side view looking along +y and an oblique
 // view from 35 degrees above, turned 45 degrees about z, both nearly orthographic and at the
 // same scale, framed on the plant's bounding box, with a 10 cm scale bar in each panel, the
 // ground line (side) and the ground footprint (oblique). With --reference, a picture made in
-// the same framing (another system's plant, a photograph) is put above it for comparison.
+// the same framing (another system's plant, a photograph) is put above it for comparison;
+// with --against, a scene file (another system's plant as OBJ, PLY or glTF, a scanned plant)
+// is drawn above it in the same framing and at the same scale.
 
 #include <fmt/format.h>
 
@@ -11,9 +13,12 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <optional>
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Render.h"
 
@@ -27,6 +32,7 @@ struct CompareArgs {
     float age = -1.0f;
     std::vector<std::string> defines;
     std::string reference;
+    std::string against;
     std::string output;
     int panelSize = 600;
 };
@@ -198,34 +204,25 @@ Image join(const std::vector<Image>& parts, bool across) {
     return out;
 }
 
-int run(const CompareArgs& a, const GlobalOptions& global) {
-    requireOutputFormat(a.output, kPictureOutput, "the comparison is a picture");
-    Image reference;
-    if (!a.reference.empty()) reference = readImage(a.reference);  // before any work
-    CommandOutputs outputs({a.output});
-    Context ctx;
-    PlantArchitecture arch(&ctx);
-    arch.setSeed(global.seed);
-    arch.setTriangleLimit(global.maxTriangles);
-    const ProgressCallback progress = terminalProgress();
-    arch.setProgressCallback(progress);
-    arch.setMeshDetail(global.meshDetail);
-    arch.loadPlantModelFromLibrary(a.species);
-    arch.setTrellisGeometry(!a.noTrellis);
-    const unsigned plant =
-        arch.buildPlantInstanceFromLibrary(vec3(0.0f), a.age, parseDefines(a.defines));
-    const RenderScene scene(ctx);
+// The scale (pixels per metre) at which the larger of the two views of every box fills 90 %
+// of its panel.
+float commonScale(const std::vector<AABB>& boxes, int size) {
+    float scale = 1e30f;
+    for (const AABB& box : boxes)
+        for (const View& v : {sideView(), obliqueView()}) {
+            const vec2 e = glm::max(extent(v, box.min, box.max), vec2(1e-3f));
+            scale = std::min(scale, 0.9f * float(size) / std::max(e.x, e.y));
+        }
+    return scale;
+}
+
+// The two panels of one scene at `scale`, with ground, captions and scale bars, under `title`.
+Image drawScene(const RenderScene& scene, float scale, int size, const std::string& title,
+                const ProgressCallback& progress) {
     const AABB box = scene.bounds();
     const vec3 lo = box.min, hi = box.max;
-    // One scale for both panels: the larger of the two views fills 90 % of its panel.
-    const View side = sideView(), oblique = obliqueView();
-    const int size = a.panelSize;
-    float scale = 1e30f;
-    for (const View& v : {side, oblique}) {
-        const vec2 e = glm::max(extent(v, lo, hi), vec2(1e-3f));
-        scale = std::min(scale, 0.9f * float(size) / std::max(e.x, e.y));
-    }
-    const Panel sidePanel(side, lo, hi, scale, size), obliquePanel(oblique, lo, hi, scale, size);
+    const Panel sidePanel(sideView(), lo, hi, scale, size),
+        obliquePanel(obliqueView(), lo, hi, scale, size);
     Image left = renderPanel(scene, sidePanel, progress, 0);
     Image right = renderPanel(scene, obliquePanel, progress, 1);
     const std::array<std::uint8_t, 3> grey{128, 128, 128};
@@ -246,12 +243,69 @@ int run(const CompareArgs& a, const GlobalOptions& global) {
     drawText(right, 14, 12, obliqueText, textScale, grey70);
     scaleBar(left, scale, textScale);
     scaleBar(right, scale, textScale);
-    const Image ours = withTitle(
-        join({left, right}, true),
+    return withTitle(join({left, right}, true), title, 44);
+}
+
+// A scene file read into `ctx` for --against: OBJ, PLY or glTF by its extension.
+void readAgainst(Context& ctx, const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext == ".obj")
+        readOBJ(ctx, path);
+    else if (ext == ".ply")
+        readPLY(ctx, path);
+    else if (ext == ".glb" || ext == ".gltf")
+        readGLTF(ctx, path);
+    else
+        throw Error(
+            "not a scene file",
+            {.parameter = "--against", .value = path, .validRange = ".obj, .ply, .glb or .gltf"});
+    if (ctx.triangleCount() == 0)
+        throw Error(
+            "the scene holds no triangles",
+            {.parameter = "--against", .value = path, .validRange = "a scene with triangles"});
+}
+
+int run(const CompareArgs& a, const GlobalOptions& global) {
+    requireOutputFormat(a.output, kPictureOutput, "the comparison is a picture");
+    Image reference;
+    if (!a.reference.empty()) reference = readImage(a.reference);  // before any work
+    Context againstCtx;
+    if (!a.against.empty()) readAgainst(againstCtx, a.against);
+    CommandOutputs outputs({a.output});
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(global.seed);
+    arch.setTriangleLimit(global.maxTriangles);
+    const ProgressCallback progress = terminalProgress();
+    arch.setProgressCallback(progress);
+    arch.setMeshDetail(global.meshDetail);
+    arch.loadPlantModelFromLibrary(a.species);
+    arch.setTrellisGeometry(!a.noTrellis);
+    const unsigned plant =
+        arch.buildPlantInstanceFromLibrary(vec3(0.0f), a.age, parseDefines(a.defines));
+    const RenderScene scene(ctx);
+    std::vector<AABB> boxes = {scene.bounds()};
+    std::optional<RenderScene> other;
+    if (!a.against.empty()) {
+        other.emplace(againstCtx);
+        boxes.push_back(other->bounds());
+    }
+    // One scale for every panel: the larger of the two views fills 90 % of its panel.
+    const float scale = commonScale(boxes, a.panelSize);
+    Image ours = drawScene(
+        scene, scale, a.panelSize,
         fmt::format("plantarch   {}   age {:g} d   height {:.2f} m   {} triangles   seed {}",
                     arch.getCurrentPlantModel(), a.age, arch.getPlantHeight(plant),
                     scene.triangleCount(), global.seed),
-        44);
+        progress);
+    if (other)
+        ours = join({drawScene(*other, scale, a.panelSize,
+                               fmt::format("{}   height {:.2f} m   {} triangles",
+                                           std::filesystem::path(a.against).filename().string(),
+                                           other->bounds().max.z, other->triangleCount()),
+                               progress),
+                     ours},
+                    false);
     writePNG(reference.width > 0 ? join({reference, ours}, false) : ours, a.output);
     outputs.commit();
     std::printf("%s",
@@ -269,8 +323,13 @@ std::function<int()> setupCompare(CLI::App& app, GlobalOptions& global) {
         "optionally below a reference picture");
     auto a = std::make_shared<CompareArgs>();
     addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis)->required();
-    app.add_option("--reference", a->reference,
-                   "Picture to show above (any PNG; one made in the same framing compares best)");
+    auto* picture = app.add_option(
+        "--reference", a->reference,
+        "Picture to show above (any PNG; one made in the same framing compares best)");
+    app.add_option("--against", a->against,
+                   "Scene to draw above in the same framing and scale (.obj, .ply, .glb, .gltf: "
+                   "another system's plant, a scanned plant)")
+        ->excludes(picture);
     app.add_option("--panel-size", a->panelSize, "Size of each square view in pixels")
         ->check(numberCheck("--panel-size", "a panel size", 64, 4096, true, "64 to 4096"));
     app.add_option("-o,--output", a->output, "PNG file to write")->required();
