@@ -8,8 +8,9 @@ Usage: fidelity_pictures.py --plantarch build/plantarch
                             --reference REF_BUILD/reference_driver --out DIR
                             [--species bean,maize] [--ages 35] [--seed 1] [--panel-size 400]
 
-Without --ages, each species is drawn at the middle of its three tabled ages (seven tenths of
-its usual age, or a tree's second season). The reference draws its leaves as textured
+Without --ages, each species is drawn at one tabled age besides its usual one: seven tenths
+of its usual age, or a tree's or vine's first season. Trellises are left out (the reference
+draws none). The reference draws its leaves as textured
 rectangles whose transparent corners an OBJ cannot carry: they are drawn whole here, so its
 leaves look square-ended. Not part of CI (bench/reference/build.sh builds the reference).
 """
@@ -77,8 +78,9 @@ def main():
     driver = os.path.abspath(args.reference)
     with tempfile.TemporaryDirectory() as scratch:
         for s in species:
+            tabled = fidelity.default_ages(pictures[s])
             ages = ([float(a) for a in args.ages.split(",")] if args.ages
-                    else [fidelity.default_ages(pictures[s])[1]])
+                    else [tabled[0] if pictures[s] >= 250 else tabled[1]])
             for age in ages:
                 dump = os.path.join(scratch, "dump.txt")
                 run = subprocess.run([driver, "xml-write", s, f"{age:g}",
@@ -90,7 +92,8 @@ def main():
                 dump_to_obj(dump, obj)
                 png = os.path.join(args.out, f"{s}_{age:g}d.png")
                 run = subprocess.run([args.plantarch, "--seed", str(args.seed), "compare", s,
-                                      "--age", f"{age:g}", "--against", obj, "--panel-size",
+                                      "--age", f"{age:g}", "--no-trellis", "--against", obj,
+                                      "--panel-size",
                                       str(args.panel_size), "-o", png],
                                      capture_output=True, text=True)
                 if run.returncode != 0:
