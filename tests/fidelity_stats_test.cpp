@@ -1,8 +1,8 @@
 // Every library species against the reference system's plants at three ages: the means over
-// seeds 1 to 20 of plantarch's height, one-sided leaf area, leaf count, widths along each
+// seeds 1 to 40 of plantarch's height, one-sided leaf area, leaf count, widths along each
 // plant's own horizontal axes (its longest extent and the extent square to it, so a plant
 // turned at random compares with one lying along x), flowers and fruit, against the means of
-// the reference's seeds 1 to 20 (tests/data/reference_stats.tsv, written from a build of the
+// the reference's seeds 1 to 40 (tests/data/reference_stats.tsv, written from a build of the
 // reference by bench/scripts/fidelity.py).
 //
 // Bands: height, leaf area and leaf count within 25 %; widths within 35 % (a crown's width
@@ -106,17 +106,18 @@ const std::vector<Departure> kDepartures = {
      "a wall trained along its wires, bare in winter (species/apple_fruitingwall.xml)"},
 };
 
-// Seeds 1 to N: 20 unless PLANTARCH_FIDELITY_SEEDS gives another count (ten seeds of a
-// branching species still vary by a band: the tomato's leaf count over seeds 1-10 is 1.30 of
-// the reference's, over seeds 1-20 1.15, over 200 seeds 1.13).
+// Seeds 1 to N: 40 unless PLANTARCH_FIDELITY_SEEDS gives another count. Fewer seeds of a
+// branching species vary by a band: the tomato's leaf count over seeds 1-10 is 1.30 of the
+// reference's, over seeds 1-20 1.15, over 200 seeds 1.13; the ground cherry's leaf count at
+// 50 days runs from 48 to 485 over the reference's seeds 1-20.
 std::uint64_t seedCount() {
     const char* env = std::getenv("PLANTARCH_FIDELITY_SEEDS");
-    if (!env || !*env) return 20;
+    if (!env || !*env) return 40;
     char* end = nullptr;
     const unsigned long long n = std::strtoull(env, &end, 10);
     EXPECT_TRUE(*end == 0 && n >= 1 && n <= 1000)
         << "PLANTARCH_FIDELITY_SEEDS: " << env << " (a whole number from 1 to 1000)";
-    return *end == 0 && n >= 1 && n <= 1000 ? n : 20;
+    return *end == 0 && n >= 1 && n <= 1000 ? n : 40;
 }
 
 std::string digits4(double v) {

@@ -73,7 +73,8 @@ void dumpPrimitives(Context& context, const char* path) {
 }
 
 // The horizontal extents of a point set along its own axes: the largest over every degree of
-// direction, and the extent square to that direction.
+// direction, and the extent square to that direction. The same measure as plantarch's
+// summarizePlant, written again here because this driver is built against the reference alone.
 void ownAxes(const std::vector<vec3>& points, double& longest, double& across) {
     longest = -1.0;
     across = 0.0;

@@ -4,7 +4,7 @@ system (its driver, bench/reference/), species by species, age by age, over many
 by side.
 
 Usage: fidelity.py [--plantarch build/plantarch] --reference REF_BUILD/reference_driver
-                   [--species bean,maize] [--ages 20,35,50] [--seeds 20] [--jobs 2]
+                   [--species bean,maize] [--ages 20,35,50] [--seeds 40] [--jobs 2]
                    [--table OUT.tsv] [--write-reference tests/data/reference_stats.tsv]
                    [--cache REF_CACHE.json]
 
@@ -18,8 +18,8 @@ as its mean angle). Printed: one row per species, age and quantity with both mea
 system's min and max over the seeds, and the ratio plantarch / reference. --table writes the
 same rows as TSV; --write-reference writes the reference's means, minima and maxima as the
 committed table the FidelityStats tests read. --cache keeps the reference's plants in a JSON
-file between runs (keyed by species, age and seed count): the reference does not change while
-plantarch does.
+file between runs (by species and age, seeds 1 to as many as were grown; a run grows only the
+seeds missing): the reference does not change while plantarch does.
 
 The reference driver runs in its own folder (it reads its assets from there). Not part of CI:
 the reference is built outside the repository (bench/reference/build.sh).
@@ -86,8 +86,10 @@ def derived(stats):
     return stats
 
 
-def run_reference(driver, species, age, seeds):
-    proc = subprocess.run([os.path.abspath(driver), "stats", species, f"{age:g}", "1", str(seeds)],
+def run_reference(driver, species, age, first, last):
+    """The reference's plants of seeds first to last, in order."""
+    proc = subprocess.run([os.path.abspath(driver), "stats", species, f"{age:g}", str(first),
+                           str(last)],
                           cwd=os.path.dirname(os.path.abspath(driver)), capture_output=True,
                           text=True)
     if proc.returncode != 0:
@@ -95,8 +97,9 @@ def run_reference(driver, species, age, seeds):
                  f"{proc.stderr[-300:]}")
     # Its progress bar shares stdout, with carriage returns: take each JSON object.
     rows = [json.loads(m) for m in re.findall(r'\{"species".*\}', proc.stdout)]
-    if len(rows) != seeds:
-        sys.exit(f"fidelity: reference {species} {age}: {len(rows)} plants, not {seeds}")
+    if [r["seed"] for r in rows] != list(range(first, last + 1)):
+        sys.exit(f"fidelity: reference {species} {age}: {len(rows)} plants, not seeds {first} "
+                 f"to {last}")
     return [derived(r) for r in rows]
 
 
@@ -122,7 +125,7 @@ def main():
     parser.add_argument("--reference", required=True)
     parser.add_argument("--species", help="comma-separated (default: every species)")
     parser.add_argument("--ages", help="comma-separated days (default: three per species)")
-    parser.add_argument("--seeds", type=int, default=20)
+    parser.add_argument("--seeds", type=int, default=40)
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--table", help="write the side-by-side rows as TSV")
     parser.add_argument("--write-reference", help="write the reference's table")
@@ -146,12 +149,15 @@ def main():
     if args.cache and os.path.exists(args.cache):
         with open(args.cache) as f:
             cache = json.load(f)
-    key = lambda job: f"{job[0]}/{job[1]:g}/{args.seeds}"
+    # The cache holds each species and age's plants of seeds 1 to however many were grown;
+    # only the seeds missing are grown.
+    key = lambda job: f"{job[0]}/{job[1]:g}"
     with concurrent.futures.ThreadPoolExecutor(max(1, args.jobs)) as pool:
-        ref_futures = {job: pool.submit(run_reference, args.reference, *job, args.seeds)
-                       for job in jobs if key(job) not in cache}
+        ref_futures = {job: pool.submit(run_reference, args.reference, *job,
+                                        len(cache.get(key(job), [])) + 1, args.seeds)
+                       for job in jobs if len(cache.get(key(job), [])) < args.seeds}
         for job, future in ref_futures.items():
-            cache[key(job)] = future.result()
+            cache[key(job)] = cache.get(key(job), []) + future.result()
         if args.cache:
             with open(args.cache + ".part", "w") as f:
                 json.dump(cache, f)
@@ -159,7 +165,7 @@ def main():
         ours_futures = {job: [pool.submit(run_plantarch, args.plantarch, *job, seed)
                               for seed in range(1, args.seeds + 1)] if args.plantarch else []
                         for job in jobs}
-        results = {job: (cache[key(job)], [f.result() for f in ours_futures[job]])
+        results = {job: (cache[key(job)][:args.seeds], [f.result() for f in ours_futures[job]])
                    for job in jobs}
 
     lines = ["species\tage\tquantity\treference\tref_min\tref_max\tplantarch\tours_min\t"
