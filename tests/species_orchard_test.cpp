@@ -685,3 +685,21 @@ TEST(SpeciesOrchard, ThePlantingWinterGivesBuiltShootsTheirTerminalFloralBuds) {
     }
     EXPECT_EQ(scaffolds, 4u);
 }
+
+// A deciduous tree is planted dormant, so bare: every library tree that is not evergreen
+// starts with no leaf on any built shoot, and is in leaf some weeks after its winter ends.
+TEST(SpeciesOrchard, DeciduousTreesArePlantedBare) {
+    unsigned trees = 0;
+    for (const std::string& name : listSpecies()) {
+        const SpeciesModel model = loadSpecies(name);
+        if (model.plantType != "tree" || model.phenology.evergreen) continue;
+        SCOPED_TRACE(name);
+        ++trees;
+        const Grown planted = grow(name, 0.0f);
+        EXPECT_EQ(planted.arch->getPlantLeafCount(planted.id), 0u);
+        const float spring = model.phenology.time_to_dormancy_break + 30.0f;
+        const Grown leafy = grow(name, spring);
+        EXPECT_GT(leafy.arch->getPlantLeafCount(leafy.id), 10u);
+    }
+    EXPECT_GE(trees, 8u);
+}
