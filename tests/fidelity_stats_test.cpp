@@ -99,12 +99,12 @@ const std::vector<Departure> kDepartures = {
     {"groundcherryweed", 35, "width_short", "", 1.64,
      "leaves along their petioles; the reference mirrors them across x (docs/testing.md)"},
     // The reference's laterals point out of the wall, where its wires are outside their cone
-    // of perception (0.51-0.90 m deep at 400 days over its seeds 1-10, bare wood only); here
-    // they are tied along the wires, so the wall is its wood's thickness deep when bare and
-    // its leaves' and fruiting shoots' in leaf.
+    // of perception (0.5-0.9 m deep at 400 days over its seeds, bare wood only); here they are
+    // tied along the wires, so the wall is as deep as its wood when bare and its leaves and
+    // fruiting shoots in leaf: over seeds 1-40, 0.056 and 0.255 m.
     {"apple_fruitingwall", 200, "width_short", "value", 0.25,
      "a wall trained along its wires (species/apple_fruitingwall.xml)"},
-    {"apple_fruitingwall", 400, "width_short", "value", 0.05,
+    {"apple_fruitingwall", 400, "width_short", "value", 0.056,
      "a wall trained along its wires, bare in winter (species/apple_fruitingwall.xml)"},
 };
 

@@ -505,7 +505,7 @@ TEST(SpeciesOrchard, RedbudIsBuiltAsABareWhipWithBudsAtTheTop) {
     for (const Phytomer& ph : p.shoots[0].phytomers) EXPECT_FALSE(dormantVegetativeBud(ph));
     for (const Phytomer& ph : p.shoots[1].phytomers) EXPECT_TRUE(dormantVegetativeBud(ph));
     EXPECT_EQ(g.arch->getPlantLeafCount(g.id), 0u);
-    // 16 internodes of 5 cm, tilted up to 18 degrees at the base and bending back up.
+    // 16 internodes of 5 cm, standing upright (the stem is not tilted; see the species file).
     const float top = g.arch->getNodePosition(g.id, 1, 3).z;
     EXPECT_GT(top, 0.8f * std::cos(18.0f * 3.14159265f / 180.0f));
     EXPECT_LE(top, 0.8f + 1e-4f);
