@@ -98,6 +98,14 @@ const std::vector<Departure> kDepartures = {
      "leaves along their petioles; the reference mirrors them across x (docs/testing.md)"},
     {"groundcherryweed", 35, "width_short", "", 1.64,
      "leaves along their petioles; the reference mirrors them across x (docs/testing.md)"},
+    // The reference draws the tomato's base-stem bud at node 0 twice (once as it builds the
+    // plant, again as it breaks the plant's dormancy), so that bud breaks with 0.25 x 0.25 =
+    // 6 % where the species says 25 %; a node-0 branch is the plant's largest (11 nodes, 77
+    // leaves). Over 200 seeds plantarch's leaf count at 50 days is 1.126 of the reference's
+    // (233.1 against 207.1), and 206.9 with node 0 kept from branching.
+    {"tomato", 50, "leaf_count", "", 1.126,
+     "the base stem's first bud breaks as the species says; the reference draws it twice "
+     "(species/tomato.xml)"},
     // The reference's laterals point out of the wall, where its wires are outside their cone
     // of perception (0.5-0.9 m deep at 400 days over its seeds, bare wood only); here they are
     // tied along the wires, so the wall is as deep as its wood when bare and its leaves and
