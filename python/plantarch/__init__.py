@@ -74,15 +74,15 @@ class Plant:
     def statistics(self):
         """Height, leaf area, leaf count, shoots and triangles, as a dict."""
         a, p = self.architecture, self.plantID
-        mesh = a.getMeshArrays(p, normals=False)
+        summary = a.summarizePlant(p)  # counts triangles without copying the mesh
         return {
             "plantID": p,
             "age": a.getPlantAge(p),
-            "height": a.getPlantHeight(p),
-            "leaf_area": a.getPlantLeafArea(p),
-            "leaf_count": a.getPlantLeafCount(p),
+            "height": summary.height,
+            "leaf_area": summary.leafArea,
+            "leaf_count": summary.leaves,
             "shoots": a.getShootCount(p),
-            "triangles": int(len(mesh["triangles"])),
+            "triangles": summary.triangles,
         }
 
     to_dict = statistics
