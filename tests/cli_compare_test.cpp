@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli_run.h"
@@ -116,6 +117,7 @@ TEST(CliCompare, ASceneFileIsDrawnAboveAtTheSameScale) {
 
 TEST(CliCompare, BadInputsAreOneLine) {
     const std::string d = dir();
+    std::ofstream(d + "/empty.obj").flush();
     const std::pair<std::string, std::string> cases[] = {
         {"compare bean --age 20 -o " + d + "/x.obj",
          d + "/x.obj: '.obj': the comparison is a picture (valid: .png)"},
@@ -127,6 +129,8 @@ TEST(CliCompare, BadInputsAreOneLine) {
          "--against = " + d + "/x.txt: not a scene file (valid: .obj, .ply, .glb or .gltf)"},
         {"compare bean --age 20 --against " + d + "/none.obj -o " + d + "/x.png",
          d + "/none.obj: cannot open OBJ file: No such file or directory"},
+        {"compare bean --age 20 --against " + d + "/empty.obj -o " + d + "/x.png",
+         d + "/empty.obj: OBJ file has no faces"},
         {"compare bean --age 20 --against " + d + "/a.obj --reference " + d + "/r.png -o " + d +
              "/x.png",
          "--reference excludes --against"},
