@@ -139,14 +139,14 @@ TEST(GroundClearance, OnByDefaultAndOffOnRequest) {
     EXPECT_EQ(turns(off.arch->plant(off.plant)), 0u);
 
     std::string first;
-    for (bool ground : {true, false}) {  // tomato's lowest leaf is 4 cm above the ground
+    for (bool ground : {true, false}) {  // tomato's lowest leaf is 3 cm above the ground
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(3);
         arch.setGroundClearance(ground);
         arch.loadPlantModelFromLibrary("tomato");
         const unsigned p = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 50.0f);
-        EXPECT_GT(lowest(arch, ctx, p, kSideOrgans), 0.03f);
+        EXPECT_GT(lowest(arch, ctx, p, kSideOrgans), 0.02f);
         EXPECT_EQ(turns(arch.plant(p)), 0u);
         if (ground)
             first = organBytes(arch, {p});

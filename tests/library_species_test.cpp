@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/SpeciesIO.h"
@@ -107,8 +108,7 @@ TEST(LibrarySpecies, ShootsCurveAsGravitropismSays) {
                 const double sfac = za > 90.0 + 1e-3 ? 1.0 : 0.5;
                 const double turn = sfac * (1.0 - std::cos(za * deg)) * double(b.length) *
                                     double(s.gravitropicCurvature);
-                const double expected =
-                    std::clamp(za - turn + double(b.walkZenith - a.walkZenith), 0.0, 180.0);
+                const double expected = std::clamp(za - turn + double(b.walkZenith), 0.0, 180.0);
                 EXPECT_NEAR(zb, expected, 0.05) << "shoot " << s.id << " node " << k;
                 turned += std::abs(turn) > 0.1 ? 1 : 0;
             }
@@ -116,4 +116,36 @@ TEST(LibrarySpecies, ShootsCurveAsGravitropismSays) {
         curvedSpecies += turned > 0 ? 1 : 0;
     }
     EXPECT_GE(curvedSpecies, 15u);  // not vacuous: most species have shoots that bend
+}
+
+// A compound leaf is one organ with one size: its tip leaflet has the size drawn for the leaf
+// and each pair below it leaflet_scale times the size of the pair above, in every species.
+TEST(LibrarySpecies, ALeafsLeafletsShareOneSizeDraw) {
+    std::size_t compound = 0;
+    for (const std::string& name : listSpecies()) {
+        SCOPED_TRACE(name);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary(name);
+        const unsigned p =
+            arch.buildPlantInstanceFromLibrary(vec3(0.0f), loadSpecies(name).recommendedAge);
+        for (const Shoot& s : arch.plant(p).shoots)
+            for (const Phytomer& ph : s.phytomers)
+                for (const Petiole& pt : ph.petioles) {
+                    std::map<int, float> byIndex;
+                    for (const LeafOrgan& l : pt.leaves) byIndex[l.leafletIndex] = l.scale;
+                    const bool odd = byIndex.count(0) > 0;  // a tip leaflet, or a tip pair
+                    if (byIndex.size() < (odd ? 3u : 4u)) continue;
+                    const float tip = odd ? byIndex.at(0) : byIndex.at(1);
+                    if (!(tip > 0.0f)) continue;  // a leaf a rule scaled to nothing
+                    ++compound;
+                    const float ratio = odd ? byIndex.at(-1) / tip : byIndex.at(-2) / tip;
+                    for (const auto& [index, scale] : byIndex) {
+                        const int steps = odd ? std::abs(index) : std::abs(index) - 1;
+                        EXPECT_NEAR(scale, tip * std::pow(ratio, float(steps)), 1e-5f * tip)
+                            << "shoot " << s.id << " leaflet " << index;
+                    }
+                }
+    }
+    EXPECT_GT(compound, 100u);  // not vacuous: the library has compound leaves
 }

@@ -576,3 +576,35 @@ TEST(PhytomerActions, ScaleLeavesScalesEveryLeafOrRefusesChangingNothing) {
     EXPECT_NO_THROW(scaleLeaves(bare, -3.0f));
     EXPECT_THROW(scaleLeaves(bare, NAN), Error);
 }
+
+// A smaller leaf has a petiole as much shorter and thinner that bends by the same angle.
+TEST(PhytomerActions, ScaleLeavesScalesTheirPetiolesKeepingTheirBend) {
+    Phytomer ph;
+    ph.petioles.resize(1);
+    Petiole& p = ph.petioles[0];
+    p.leaves.resize(2);
+    for (LeafOrgan& l : p.leaves) l.scale = 0.1f;
+    p.length = 0.2f;
+    p.radius = 0.002f;
+    p.curvature = -140.0f;
+    scaleLeaves(ph, 0.7f);
+    EXPECT_FLOAT_EQ(p.leaves[1].scale, 0.07f);
+    EXPECT_FLOAT_EQ(p.length, 0.14f);
+    EXPECT_FLOAT_EQ(p.radius, 0.0014f);
+    EXPECT_FLOAT_EQ(p.curvature, -200.0f);
+    EXPECT_FLOAT_EQ(p.curvature * p.length, -140.0f * 0.2f);  // the same bend, in degrees
+    // A factor that would take the curvature past the largest float changes nothing.
+    const Phytomer before = ph;
+    try {
+        scaleLeaves(ph, 1e-37f);
+        ADD_FAILURE() << "a curvature of -2e39 degrees per metre accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("makes petiole_curvature"), std::string::npos)
+            << e.what();
+        EXPECT_NE(e.context().validRange.find("petiole_curvature within"), std::string::npos)
+            << e.context().validRange;
+    }
+    EXPECT_EQ(p.length, before.petioles[0].length);
+    EXPECT_EQ(p.curvature, before.petioles[0].curvature);
+    EXPECT_EQ(p.leaves[0].scale, before.petioles[0].leaves[0].scale);
+}

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <set>
@@ -329,41 +330,46 @@ Grown growTrained(const std::string& species, float age, bool points,
 // of each pair a leader node (9 cm) above its wire, and grow under the attraction points,
 // which lay them on the wires. A single tree's wires span its 1.2 m of row, and a lateral built
 // 40 cm long from a leader leaning along the row may pass the end of its wire before it grows
-// (nothing is left there to hold it): most laterals end on their wires, and far more than
-// without the points (at this seed 6 of 8 against 2, 4 cm from the wire's line on average
-// against 9 cm).
+// (nothing is left there to hold it), and one whose random walk bends it away early may never
+// come near its wire: over seeds 1 to 3, most laterals end on their wires, and far more than
+// without the points.
 TEST(SpeciesOrchard, FruitingWallLateralsAreLaidOnTheirWiresByTheAttractionPoints) {
-    const Grown g = growTrained("apple_fruitingwall", 630.0f, true);
-    const PlantInstance& p = g.plant();
-    ASSERT_TRUE(p.attraction.has_value());
-    EXPECT_EQ(p.attraction->points.size(), 32u);
-    EXPECT_EQ(p.attraction->points.front(), vec3(0.0f, -0.6f, 0.75f));
-    EXPECT_NEAR(p.attraction->points[7].y, 0.6f, 1e-6f);
-    EXPECT_EQ(p.attraction->halfAngle, 45.0f);
-    EXPECT_EQ(p.attraction->lookAhead, 1.0f);
-    EXPECT_EQ(p.attraction->inertia, 0.2f);
-    const std::vector<WireLine> wires = wiresOf(p);
-    ASSERT_EQ(wires.size(), 4u);
-    const Grown free = growTrained("apple_fruitingwall", 630.0f, false);
     unsigned laterals = 0, onWire = 0, onWireFree = 0;
     float sum = 0.0f, sumFree = 0.0f;
-    for (const Shoot& s : p.shoots) {
-        if (s.type != "lateral") continue;
-        ++laterals;
-        EXPECT_EQ(s.phytomers.size(), 20u);
-        const float d = toNearestWire(wires, tipOf(g, s));
-        const float dFree = toNearestWire(wires, tipOf(free, free.plant().shoots[s.id]));
-        onWire += d < 0.04f ? 1u : 0u;
-        onWireFree += dFree < 0.04f ? 1u : 0u;
-        sum += d;
-        sumFree += dFree;
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+        const Grown g = growTrained("apple_fruitingwall", 630.0f, true, {}, seed);
+        const PlantInstance& p = g.plant();
+        ASSERT_TRUE(p.attraction.has_value());
+        EXPECT_EQ(p.attraction->points.size(), 32u);
+        EXPECT_EQ(p.attraction->points.front(), vec3(0.0f, -0.6f, 0.75f));
+        EXPECT_NEAR(p.attraction->points[7].y, 0.6f, 1e-6f);
+        EXPECT_EQ(p.attraction->halfAngle, 45.0f);
+        EXPECT_EQ(p.attraction->lookAhead, 1.0f);
+        EXPECT_EQ(p.attraction->inertia, 0.2f);
+        const std::vector<WireLine> wires = wiresOf(p);
+        ASSERT_EQ(wires.size(), 4u);
+        const Grown free = growTrained("apple_fruitingwall", 630.0f, false, {}, seed);
+        unsigned here = 0;
+        for (const Shoot& s : p.shoots) {
+            if (s.type != "lateral") continue;
+            ++laterals;
+            ++here;
+            EXPECT_EQ(s.phytomers.size(), 20u);
+            const float d = toNearestWire(wires, tipOf(g, s));
+            const float dFree = toNearestWire(wires, tipOf(free, free.plant().shoots[s.id]));
+            onWire += d < 0.04f ? 1u : 0u;
+            onWireFree += dFree < 0.04f ? 1u : 0u;
+            sum += d;
+            sumFree += dFree;
+        }
+        EXPECT_EQ(here, 8u);
+        EXPECT_GT(g.arch->getCollisionStats().attracted, 500u);
     }
-    EXPECT_EQ(laterals, 8u);
-    EXPECT_GE(onWire, 5u);
-    EXPECT_LE(onWireFree + 3u, onWire);
-    EXPECT_LT(sum / 8.0f, 0.06f);
-    EXPECT_GT(sumFree / 8.0f, 0.08f);
-    EXPECT_GT(g.arch->getCollisionStats().attracted, 500u);
+    std::printf("laterals %u: on a wire %u (free %u), mean distance %.3f m (free %.3f m)\n",
+                laterals, onWire, onWireFree, sum / float(laterals), sumFree / float(laterals));
+    EXPECT_GT(2u * onWire, laterals);
+    EXPECT_LE(onWireFree + laterals / 3u, onWire);
+    EXPECT_LT(2.0f * sum, sumFree);  // half as far from the wires on average, or nearer
 }
 
 // With the wires within the shoots' reach, shoots that come to a wire are laid along it

@@ -16,9 +16,11 @@ void killFloralBuds(Phytomer& phytomer);
 /// Removes the phytomer's leaves, with their petioles' length and radius. The
 /// `remove_leaves` rule.
 void removeLeaves(Phytomer& phytomer);
-/// Multiplies the full-grown size of the phytomer's leaves by `factor`. The `leaf_scale`
-/// rule. Throws plantarch::Error, changing nothing, for a factor that is not finite or that
-/// would take a leaf's size out of its declared range (a negative one, with any leaf).
+/// Multiplies the full-grown size of the phytomer's leaves, and the length and radius of
+/// their petioles, by `factor` (a petiole's curvature is divided by it, so it bends by the
+/// same angle). The `leaf_scale` rule. Throws plantarch::Error, changing nothing, for a
+/// factor that is not finite or that would take a leaf's size or a petiole's length or radius
+/// out of its declared range (a negative one, with any leaf).
 void scaleLeaves(Phytomer& phytomer, float factor);
 
 }  // namespace plantarch

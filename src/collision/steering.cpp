@@ -227,6 +227,9 @@ void SceneSteering::steerShootAxis(const PlantInstance& plant, const Shoot& shoo
         if (auto p = attraction->target(tip)) {
             g = blend(g, glm::normalize(*p - apex), o.inertia);
             attracted = true;
+            // A shoot held on its wire loses the bend its random walk was carrying.
+            in.walkZenith = 0.0f;
+            in.walkYaw = 0.0f;
             if (world) world->stats().attracted.fetch_add(1, std::memory_order_relaxed);
         }
     }

@@ -2,7 +2,12 @@
 
 #include "core/stb.h"
 
+// GCC sees stb's decoder state as maybe uninitialized where the decoder is inlined into the
+// functions below (stb_image fills it before use); the whole file, popped at its end (it may
+// share a unity batch with other files).
 #if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -60,3 +65,7 @@ bool stbEncodePng(const std::uint8_t* pixels, int width, int height, int channel
 }
 
 }  // namespace plantarch::core
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif

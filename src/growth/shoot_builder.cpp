@@ -87,11 +87,13 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
     const int n = lp.leaves_per_petiole.sample(plant.rng);
     const float offset = lp.leaflet_offset.sample(plant.rng);
     const float shrink = lp.leaflet_scale.sample(plant.rng);
+    // One size for the whole leaf: its leaflets are that size times their leaflet_scale steps.
+    const float size = lp.prototype_scale.sample(plant.rng);
     auto leaf = [&](int index, float position, float scaleFactor, bool rotated) {
         LeafOrgan l;
         l.leafletIndex = index;
         l.position = std::max(0.0f, position);
-        l.scale = lp.prototype_scale.sample(plant.rng) * scaleFactor;
+        l.scale = size * scaleFactor;
         l.pitch = rotated ? lp.pitch.sample(plant.rng) : 0.0f;
         l.yaw = rotated ? lp.yaw.sample(plant.rng) : 0.0f;
         l.roll = rotated ? lp.roll.sample(plant.rng) : 0.0f;
@@ -153,13 +155,14 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
         const float s = cosZ < -1e-5f ? 1.0f : 0.5f;
         in.gravitropicTurn = s * (1.0f - cosZ) * L * shoot.gravitropicCurvature;
         // Random walk on zenith and yaw: the damping term pulls the previous perturbation back
-        // and the tortuosity term adds N(0, L) noise.
+        // and the tortuosity term adds N(0, L) noise. Each internode turns from its parent by
+        // the walk's value, so a perturbation bends the shoot for as long as it lasts.
         const float sd = std::sqrt(std::max(L, 0.0f));
         in.walkZenith = prev.walkZenith - 0.5f * prev.walkZenith * L +
                         shoot.tortuosity * float(plant.rng.normal01()) * sd;
         in.walkYaw = prev.walkYaw - 0.5f * prev.walkYaw * L +
                      shoot.tortuosity * float(plant.rng.normal01()) * sd;
-        const float zenithChange = -in.gravitropicTurn + (in.walkZenith - prev.walkZenith);
+        const float zenithChange = -in.gravitropicTurn + in.walkZenith;
         const vec3 horizontal = vec3(g.x, g.y, 0.0f);
         // Rotating about this horizontal axis by a positive angle increases the zenith angle.
         const vec3 tiltAxis = glm::length(horizontal) > 1e-6f
@@ -168,7 +171,7 @@ void createPhytomer(const GrowthContext& growth, PlantInstance& plant, Shoot& sh
         const float zenith = std::acos(cosZ);
         const float newZenith = std::clamp(zenith + zenithChange * kDeg, 0.0f, kPi);
         g = rotateAbout(g, tiltAxis, newZenith - zenith);
-        g = rotateAbout(g, vec3(0, 0, 1), (in.walkYaw - prev.walkYaw) * kDeg);
+        g = rotateAbout(g, vec3(0, 0, 1), in.walkYaw * kDeg);
         in.guide = glm::normalize(g);
         // Carry the roll reference along with the smallest rotation (no twist).
         vec3 ref = prev.rollReference - glm::dot(prev.rollReference, in.guide) * in.guide;
