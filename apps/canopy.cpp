@@ -17,24 +17,6 @@ namespace plantarch::cli {
 
 namespace {
 
-// "10x12" or "0.3x0.25": two positive numbers joined by 'x'.
-template <class T>
-std::pair<T, T> parsePair(const std::string& text, const char* option) {
-    const auto x = text.find('x');
-    try {
-        if (x != std::string::npos) {
-            std::size_t a = 0, b = 0;
-            const double first = std::stod(text.substr(0, x), &a);
-            const double second = std::stod(text.substr(x + 1), &b);
-            if (a == x && b == text.size() - x - 1 && first > 0 && second > 0)
-                return {T(first), T(second)};
-        }
-    } catch (const std::exception&) {
-    }
-    throw Error("expected two positive numbers joined by 'x'",
-                {.parameter = option, .value = text, .validRange = "e.g. 10x10 or 0.3x0.3"});
-}
-
 struct CanopyArgs {
     bool noTrellis = false;
     std::string species, count = "10x10", spacing = "0.3x0.3";

@@ -52,6 +52,10 @@ struct GlobalOptions {
 
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
 vec3 parseVec3(const std::string& text, const char* option);
+/// Parses "10x12" or "0.3x0.25" (two positive numbers joined by 'x', whole numbers for an
+/// integral T) or throws an Error naming the option.
+template <class T>
+std::pair<T, T> parsePair(const std::string& text, const char* option);
 /// --orbit AZIMUTH,ELEVATION (degrees; elevation -89 to 89) into an auto-framed camera's
 /// view direction; throws naming the option and its form.
 void parseOrbit(const std::string& text, Camera& camera);

@@ -58,6 +58,25 @@ void checkSceneOutputs(const std::vector<std::string>& paths, std::size_t points
     }
 }
 
+template <class T>
+std::pair<T, T> parsePair(const std::string& text, const char* option) {
+    const auto x = text.find('x');
+    try {
+        if (x != std::string::npos) {
+            std::size_t a = 0, b = 0;
+            const double first = std::stod(text.substr(0, x), &a);
+            const double second = std::stod(text.substr(x + 1), &b);
+            if (a == x && b == text.size() - x - 1 && first > 0 && second > 0)
+                return {T(first), T(second)};
+        }
+    } catch (const std::exception&) {
+    }
+    throw Error("expected two positive numbers joined by 'x'",
+                {.parameter = option, .value = text, .validRange = "e.g. 10x10 or 0.3x0.3"});
+}
+template std::pair<int, int> parsePair<int>(const std::string&, const char*);
+template std::pair<float, float> parsePair<float>(const std::string&, const char*);
+
 vec3 parseVec3(const std::string& text, const char* option) {
     vec3 v(0.0f);
     const char* p = text.data();

@@ -139,6 +139,29 @@ TEST(DocsExamples, ObstacleExamplesRun) {
     fs::remove_all(dir);
 }
 
+// The light examples (docs/physiology.md) run as written and write what they name.
+TEST(DocsExamples, LightExamplesRun) {
+    const fs::path dir = fs::temp_directory_path() / "plantarch-docs-light-examples";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    int ran = 0;
+    for (const Example& e : examples()) {
+        if (e.words.size() < 2 || e.words[1] != "light") continue;
+        std::string args;
+        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
+        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
+        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.line;
+        for (std::size_t i = 0; i + 1 < e.words.size(); ++i) {
+            if (e.words[i] == "-o" || e.words[i] == "--series" || e.words[i] == "--leaves") {
+                EXPECT_TRUE(fs::exists(dir / e.words[i + 1])) << e.words[i + 1];
+            }
+        }
+        ++ran;
+    }
+    EXPECT_GE(ran, 1);
+    fs::remove_all(dir);
+}
+
 // The project examples run as written, from a folder where examples/ is the repository's.
 TEST(DocsExamples, ProjectExamplesRun) {
     const fs::path dir = fs::temp_directory_path() / "plantarch-docs-project-examples";

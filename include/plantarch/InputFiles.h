@@ -21,6 +21,7 @@ enum class InputFileKind {
     Material,          ///< .mtl file named by an OBJ's mtllib, 64 MiB
     AttractionPoints,  ///< attraction point file, 256 MiB
     Image,             ///< image or texture, 256 MiB (and at most 16384 pixels a side)
+    Weather,           ///< weather file, 64 MiB
 };
 
 /// The size limit of `kind`, bytes.

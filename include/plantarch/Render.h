@@ -102,6 +102,7 @@ enum class RenderMode {
     Shaded,       ///< lit, anti-aliased preview
     LabelOrgan,   ///< flat colour per organ kind (see the table above)
     LabelObject,  ///< flat colour per object ID (objectLabelColor)
+    Flat,         ///< each object's own material colour, unlit (false-colour pictures)
 };
 
 /// What is prepared once per scene (RenderScene); the one-shot render() takes it from

@@ -205,6 +205,8 @@ io::InputKind kindOf(InputFileKind kind) {
             return io::kAttractionFile;
         case InputFileKind::Image:
             return io::kImageFile;
+        case InputFileKind::Weather:
+            return io::kWeatherFile;
     }
     return io::kImageFile;
 }

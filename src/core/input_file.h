@@ -39,6 +39,7 @@ inline constexpr InputKind kProjectFile{"project file", 16 * kMiB};
 inline constexpr InputKind kOBJFile{"OBJ file", 4096 * kMiB};
 inline constexpr InputKind kMTLFile{"material file", 64 * kMiB};
 inline constexpr InputKind kAttractionFile{"attraction point file", 256 * kMiB};
+inline constexpr InputKind kWeatherFile{"weather file", 64 * kMiB};
 inline constexpr InputKind kImageFile{"image file", 256 * kMiB, false};
 
 /// `what` with "a" or "an" in front: "an OBJ file", "a species file".

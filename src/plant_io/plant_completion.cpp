@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <map>
 #include <optional>
+#include <pugixml.hpp>
 #include <set>
 #include <type_traits>
 

@@ -412,6 +412,10 @@ std::array<std::uint8_t, 3> labelColor(const Setup& s, const Hit& hit, RenderMod
     const render_detail::GeometryData& g = s.scene->geometries[hit.geom];
     const render_detail::ObjectInfo& obj = s.scene->objects[g.triangleObject[hit.prim]];
     if (mode == RenderMode::LabelObject) return objectLabelColor(obj.id);
+    if (mode == RenderMode::Flat)
+        return {render_detail::linearToSrgbByte(obj.albedo.x),
+                render_detail::linearToSrgbByte(obj.albedo.y),
+                render_detail::linearToSrgbByte(obj.albedo.z)};
     if (obj.organ == render_detail::kOrganOther) return organLabelColor("");
     return organLabelColors()[obj.organ].rgb;
 }
