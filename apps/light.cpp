@@ -17,9 +17,12 @@
 #include <cstdio>
 #include <memory>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/Photosynthesis.h"
 #include "plantarch/PlantArchitecture.h"
 
 namespace plantarch::cli {
@@ -91,7 +94,42 @@ void drawLegend(Image& image, double top, const std::string& unit) {
     drawText(image, x0, y0 - 10 * scale, "absorbed PAR", scale, white);
 }
 
-int run(const LightArgs& a, const GlobalOptions& g) {
+LightOptions lightOptions(const LightArgs& a, const GlobalOptions& g) {
+    LightOptions o;
+    const auto first = a.rays.find(','), last = a.rays.rfind(',');
+    unsigned v[3] = {0, 0, 0};
+    bool ok = first != std::string::npos && last != first;
+    try {
+        std::size_t used = 0;
+        if (ok) {
+            const std::string parts[3] = {a.rays.substr(0, first),
+                                          a.rays.substr(first + 1, last - first - 1),
+                                          a.rays.substr(last + 1)};
+            for (int k = 0; k < 3 && ok; ++k) {
+                const long n = std::stol(parts[k], &used);
+                ok = used == parts[k].size() && n >= 1 && n <= 100000;
+                v[k] = unsigned(n);
+            }
+        }
+    } catch (const std::exception&) {
+        ok = false;
+    }
+    if (!ok)
+        throw Error("expected three ray counts joined by ','",
+                    {.parameter = "--rays",
+                     .value = a.rays,
+                     .validRange = "DIRECT,DIFFUSE,SCATTER rays per triangle, each 1 to "
+                                   "100000, e.g. 4,64,32"});
+    o.directRays = v[0];
+    o.diffuseRays = v[1];
+    o.scatterRays = v[2];
+    o.scatteringOrders = a.noScattering ? 0 : 1;
+    o.seed = g.seed;
+    return o;
+}
+
+// Checks every option and output before any work; returns the outputs' paths.
+std::vector<std::string> checkOutputs(const LightArgs& a, const GlobalOptions& g) {
     if (a.age < 0.0f)
         throw Error("give the plants' age",
                     {.parameter = "--age", .validRange = "0 to 100000 days"});
@@ -100,42 +138,6 @@ int run(const LightArgs& a, const GlobalOptions& g) {
                                    : "--date and --weather both name the light: give one",
                     {.parameter = "--date, --weather",
                      .validRange = "--date YYYY-MM-DD for a clear day, or --weather FILE.csv"});
-    const auto [lat, lon] = parseTwo(a.location, ',', "--location", "LAT,LON in degrees");
-    const Location where{lat, lon};
-    sunPosition(where, UTCTime{});  // checks the place before any work
-    const auto [tMin, tMax] = parseTwo(a.temperature, ':', "--temperature", "MIN:MAX in °C");
-    LightOptions o;
-    {
-        const auto first = a.rays.find(','), last = a.rays.rfind(',');
-        unsigned v[3] = {0, 0, 0};
-        bool ok = first != std::string::npos && last != first;
-        try {
-            std::size_t used = 0;
-            if (ok) {
-                const std::string parts[3] = {a.rays.substr(0, first),
-                                              a.rays.substr(first + 1, last - first - 1),
-                                              a.rays.substr(last + 1)};
-                for (int k = 0; k < 3 && ok; ++k) {
-                    const long n = std::stol(parts[k], &used);
-                    ok = used == parts[k].size() && n >= 1 && n <= 100000;
-                    v[k] = unsigned(n);
-                }
-            }
-        } catch (const std::exception&) {
-            ok = false;
-        }
-        if (!ok)
-            throw Error("expected three ray counts joined by ','",
-                        {.parameter = "--rays",
-                         .value = a.rays,
-                         .validRange = "DIRECT,DIFFUSE,SCATTER rays per triangle, each 1 to "
-                                       "100000, e.g. 4,64,32"});
-        o.directRays = v[0];
-        o.diffuseRays = v[1];
-        o.scatterRays = v[2];
-    }
-    o.scatteringOrders = a.noScattering ? 0 : 1;
-    o.seed = g.seed;
     if (a.series.empty() && a.leaves.empty() && a.outputs.empty())
         throw Error("nothing to write: give --series, --leaves or -o",
                     {.parameter = "-o",
@@ -155,19 +157,15 @@ int run(const LightArgs& a, const GlobalOptions& g) {
     std::vector<std::string> all = a.outputs;
     if (!a.series.empty()) all.push_back(a.series);
     if (!a.leaves.empty()) all.push_back(a.leaves);
-    std::vector<WeatherHour> hours;
-    if (!a.weather.empty()) {
-        hours = readWeatherFile(a.weather);
-    } else {
-        const UTCTime day = parseUTCTime(a.date);
-        hours = clearSkyDay(where, day.year, day.month, day.day, a.clearness, tMin, tMax);
-    }
-    CommandOutputs outputs(all);
-    if (!a.weather.empty()) outputs.requireNotAnInput(a.weather, "--weather");
+    return all;
+}
 
-    const auto started = std::chrono::steady_clock::now();
-    Context ctx;
-    PlantArchitecture arch(&ctx);
+// The plants, and soil under them reaching out as far as they stand tall (unless
+// --no-ground); returns the plants and the ground object.
+std::pair<std::vector<unsigned>, std::optional<ObjectID>> buildScene(const LightArgs& a,
+                                                                     const GlobalOptions& g,
+                                                                     PlantArchitecture& arch,
+                                                                     Context& ctx) {
     arch.setSeed(g.seed);
     arch.setTriangleLimit(g.maxTriangles);
     arch.setMeshDetail(g.meshDetail);
@@ -185,7 +183,6 @@ int run(const LightArgs& a, const GlobalOptions& g) {
             arch.buildPlantInstanceFromLibrary(vec3(0.0f), a.age, parseDefines(a.defines)));
     }
     arch.setProgressCallback({});
-    // The ground: soil under the plants, reaching out as far as they stand tall.
     std::optional<ObjectID> ground;
     if (!a.noGround && ctx.triangleCount() > 0) {
         const AABB box = ctx.boundingBox();
@@ -197,22 +194,37 @@ int run(const LightArgs& a, const GlobalOptions& g) {
                                ctx.addMaterial(Material{vec3(0.35f, 0.3f, 0.25f), "", "soil"}));
         ctx.setObjectData(*ground, "organ", std::string("ground"));
     }
-    const LightModel model(ctx, o);
+    return {plants, ground};
+}
+
+// What the intervals add up to, per triangle and over the leaves.
+struct Day {
+    std::string series;
+    std::vector<double> area, absorbed, sunlit, assimilated;  // per triangle: m2, µmol, s, µmol
+    std::vector<char> leaf;
+    double seconds = 0, daylight = 0, above = 0, leafArea = 0, leafAbsorbed = 0, leafFixed = 0;
+};
+
+Day simulate(const LightModel& model, const Context& ctx, const Location& where,
+             const std::vector<WeatherHour>& hours) {
+    const FarquharParameters leafModel;
     const std::size_t n = model.triangleCount();
-    std::vector<double> total(n, 0.0), sunlitTime(n, 0.0), area(n, 0.0);
-    std::vector<char> leaf(n, 0);
+    Day d;
+    d.area.assign(n, 0.0);
+    d.absorbed.assign(n, 0.0);
+    d.sunlit.assign(n, 0.0);
+    d.assimilated.assign(n, 0.0);
+    d.leaf.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
         const PrimitiveID p = model.primitives()[i];
         const auto v = ctx.primitiveVertices(p);
-        area[i] = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
-        leaf[i] = ctx.objectDataString(ctx.primitiveObject(p), "organ") == std::string("leaf");
+        d.area[i] = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
+        d.leaf[i] = ctx.objectDataString(ctx.primitiveObject(p), "organ") == std::string("leaf");
+        d.leafArea += d.leaf[i] ? d.area[i] : 0.0;
     }
-    double leafArea = 0.0;
-    for (std::size_t i = 0; i < n; ++i) leafArea += leaf[i] ? area[i] : 0.0;
-    std::string series =
+    d.series =
         "time,sun_elevation,sun_azimuth,par,direct_normal,diffuse_horizontal,air_temperature,"
-        "leaf_absorbed,leaf_absorbed_per_area,leaf_sunlit_fraction\n";
-    double seconds = 0.0, daylight = 0.0, above = 0.0, absorbedTotal = 0.0;
+        "co2,leaf_absorbed,leaf_absorbed_per_area,leaf_sunlit_fraction,leaf_net_assimilation\n";
     for (std::size_t h = 0; h < hours.size(); ++h) {
         // Each row stands for the time to the next one (the last for as long as the one before).
         double dt = 3600.0;
@@ -220,105 +232,150 @@ int run(const LightArgs& a, const GlobalOptions& g) {
             const std::size_t k = h + 1 < hours.size() ? h : h - 1;
             dt = (daysSince2000(hours[k + 1].time) - daysSince2000(hours[k].time)) * 86400.0;
         }
-        const SkyLight sky = skyLight(where, hours[h]);
-        double leafAbs = 0.0, leafSun = 0.0;
-        if (hours[h].par > 0.0) {
-            const LightResult r = model.compute(sky);
-            for (std::size_t i = 0; i < n; ++i) {
-                total[i] += r.absorbed[i] * dt;
-                if (sky.directNormal > 0.0) sunlitTime[i] += r.sunlit[i] * dt;
-                if (!leaf[i]) continue;
-                leafAbs += r.absorbed[i] * area[i];
-                leafSun += r.sunlit[i] * area[i];
-            }
-            if (sky.directNormal > 0.0) daylight += dt;
+        const WeatherHour& w = hours[h];
+        const double co2 = w.co2 >= 0.0 ? w.co2 : 420.0;
+        const SkyLight sky = skyLight(where, w);
+        std::optional<LightResult> r;
+        if (w.par > 0.0) r = model.compute(sky);
+        double leafAbs = 0.0, leafSun = 0.0, leafNet = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double absorbed = r ? r->absorbed[i] : 0.0;
+            d.absorbed[i] += absorbed * dt;
+            if (r && sky.directNormal > 0.0) d.sunlit[i] += r->sunlit[i] * dt;
+            if (!d.leaf[i]) continue;
+            // Leaves at the air's temperature (no energy balance yet).
+            const double net = r ? farquharSunlitShaded(leafModel, absorbed, r->absorbedDirect[i],
+                                                        r->sunlit[i], w.airTemperature, co2)
+                                       .net
+                                 : farquhar(leafModel, 0.0, w.airTemperature, co2).net;
+            d.assimilated[i] += net * dt;
+            leafAbs += absorbed * d.area[i];
+            leafSun += (r ? r->sunlit[i] : 0.0) * d.area[i];
+            leafNet += net * d.area[i];
         }
-        seconds += dt;
-        above += hours[h].par * dt;
-        absorbedTotal += leafAbs * dt;
-        series +=
-            fmt::format("{},{:.3f},{:.3f},{:.6g},{:.6g},{:.6g},{:.4g},{:.6g},{:.6g},{:.4f}\n",
-                        formatUTCTime(hours[h].time), sky.sun.elevation, sky.sun.azimuth,
-                        hours[h].par, sky.directNormal, sky.diffuseHorizontal,
-                        hours[h].airTemperature, leafAbs, leafArea > 0 ? leafAbs / leafArea : 0.0,
-                        leafArea > 0 && sky.directNormal > 0 ? leafSun / leafArea : 0.0);
+        if (r && sky.directNormal > 0.0) d.daylight += dt;
+        d.seconds += dt;
+        d.above += w.par * dt;
+        d.leafAbsorbed += leafAbs * dt;
+        d.leafFixed += leafNet * dt;
+        d.series += fmt::format(
+            "{},{:.3f},{:.3f},{:.6g},{:.6g},{:.6g},{:.4g},{:.5g},{:.6g},{:.6g},{:.4f},{:.6g}\n",
+            formatUTCTime(w.time), sky.sun.elevation, sky.sun.azimuth, w.par, sky.directNormal,
+            sky.diffuseHorizontal, w.airTemperature, co2, leafAbs,
+            d.leafArea > 0 ? leafAbs / d.leafArea : 0.0,
+            d.leafArea > 0 && sky.directNormal > 0 ? leafSun / d.leafArea : 0.0, leafNet);
     }
-    // Per object: the time-mean absorbed PAR, the total (mol m-2) and the mean sunlit share.
-    struct ObjectLight {
+    return d;
+}
+
+// Per object: the time-mean absorbed PAR, its total (mol m-2), the mean sunlit share while
+// the sun is up and the net assimilation (mol CO2 m-2), as object data; returns the
+// leaves' rows and the largest leaf total.
+std::pair<std::string, double> objectTotals(Context& ctx, const LightModel& model, const Day& d) {
+    struct Sum {
         ObjectID id;
-        double area = 0, total = 0, sunlit = 0;
+        double area = 0, absorbed = 0, sunlit = 0, assimilated = 0;
     };
-    std::vector<ObjectLight> objects;
-    for (std::size_t i = 0; i < n; ++i) {
+    std::vector<Sum> sums;
+    for (std::size_t i = 0; i < model.triangleCount(); ++i) {
         const ObjectID id = ctx.primitiveObject(model.primitives()[i]);
-        if (objects.empty() || objects.back().id != id) objects.push_back({id});
-        objects.back().area += area[i];
-        objects.back().total += total[i] * area[i];
-        objects.back().sunlit += sunlitTime[i] * area[i];
+        if (sums.empty() || sums.back().id != id) sums.push_back({id});
+        sums.back().area += d.area[i];
+        sums.back().absorbed += d.absorbed[i] * d.area[i];
+        sums.back().sunlit += d.sunlit[i] * d.area[i];
+        sums.back().assimilated += d.assimilated[i] * d.area[i];
     }
+    std::string rows =
+        "object_id,plant_id,area,absorbed_par,absorbed_par_total,sunlit_fraction,"
+        "net_assimilation_total\n";
     double top = 0.0;
-    for (const ObjectLight& ob : objects) {
-        const double mol = ob.area > 0 ? ob.total / ob.area * 1e-6 : 0.0;
-        ctx.setObjectData(ob.id, "absorbed_par", float(mol * 1e6 / seconds));
-        ctx.setObjectData(ob.id, "absorbed_par_total", float(mol));
-        ctx.setObjectData(
-            ob.id, "sunlit_fraction",
-            float(daylight > 0 && ob.area > 0 ? ob.sunlit / ob.area / daylight : 0.0));
-        if (ctx.objectDataString(ob.id, "organ") == std::string("leaf")) top = std::max(top, mol);
+    for (const Sum& s : sums) {
+        const double a = s.area > 0 ? s.area : 1.0;
+        const double mol = s.absorbed / a * 1e-6;
+        const double sunlit = d.daylight > 0 ? s.sunlit / a / d.daylight : 0.0;
+        ctx.setObjectData(s.id, "absorbed_par", float(mol * 1e6 / d.seconds));
+        ctx.setObjectData(s.id, "absorbed_par_total", float(mol));
+        ctx.setObjectData(s.id, "sunlit_fraction", float(sunlit));
+        if (ctx.objectDataString(s.id, "organ") != std::string("leaf")) continue;
+        const double fixed = s.assimilated / a * 1e-6;
+        ctx.setObjectData(s.id, "net_assimilation_total", float(fixed));
+        top = std::max(top, mol);
+        rows += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.4f},{:.6g}\n", s.id,
+                            ctx.objectDataInt(s.id, "plantID").value_or(-1), s.area,
+                            mol * 1e6 / d.seconds, mol, sunlit, fixed);
     }
-    if (!a.series.empty()) writeWholeFile(a.series, series);
-    if (!a.leaves.empty()) {
-        std::string text =
-            "object_id,plant_id,area,absorbed_par,absorbed_par_total,sunlit_fraction\n";
-        for (const ObjectLight& ob : objects) {
-            if (ctx.objectDataString(ob.id, "organ") != std::string("leaf")) continue;
-            text += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.4f}\n", ob.id,
-                                ctx.objectDataInt(ob.id, "plantID").value_or(-1), ob.area,
-                                *ctx.objectDataFloat(ob.id, "absorbed_par"),
-                                *ctx.objectDataFloat(ob.id, "absorbed_par_total"),
-                                *ctx.objectDataFloat(ob.id, "sunlit_fraction"));
+    return {rows, top};
+}
+
+// The scene in false colour by each surface's absorbed PAR over the period (the leaves'
+// largest total is the top of the scale), as pictures with a scale or as meshes.
+void writeFalseColour(Context& ctx, const PlantArchitecture& arch,
+                      const std::vector<std::string>& outputs, std::optional<ObjectID> ground,
+                      double top, const GlobalOptions& g) {
+    for (ObjectID id : ctx.objectIDs()) {
+        const std::optional<float> mol = ctx.objectDataFloat(id, "absorbed_par_total");
+        if (!mol || (ground && id == *ground)) continue;
+        ctx.setObjectMaterial(
+            id, ctx.addMaterial(Material{falseColour(float(top > 0 ? *mol / top : 0.0)), "", ""}));
+    }
+    const PlantFileOptions files = plantFileOptions(g);
+    for (const std::string& out : outputs) {
+        if (lowerExtension(out) != ".png") {
+            writeSceneFile(ctx, out, files, exportPlants(arch));
+            continue;
         }
-        writeWholeFile(a.leaves, text);
+        if (ground) ctx.setObjectHidden(*ground, true);  // framed on the plants
+        RenderOptions r;
+        r.width = g.imageWidth;
+        r.height = g.imageHeight;
+        r.camera = g.pictureCamera;
+        r.mode = RenderMode::Flat;
+        Image image = render(ctx, r);
+        if (ground) ctx.setObjectHidden(*ground, false);
+        drawLegend(image, top, "mol/m2");
+        writePNG(image, out);
     }
-    if (!a.outputs.empty()) {
-        // False colour: every surface by its absorbed PAR over the period, on the leaves' scale.
-        for (const ObjectLight& ob : objects)
-            if (!ground || ob.id != *ground)
-                ctx.setObjectMaterial(
-                    ob.id, ctx.addMaterial(Material{
-                               falseColour(float(
-                                   top > 0 ? *ctx.objectDataFloat(ob.id, "absorbed_par_total") / top
-                                           : 0.0)),
-                               "", ""}));
-        PlantFileOptions files = plantFileOptions(g);
-        for (const std::string& out : a.outputs) {
-            if (lowerExtension(out) != ".png") {
-                writeSceneFile(ctx, out, files, exportPlants(arch));
-                continue;
-            }
-            if (ground) ctx.setObjectHidden(*ground, true);  // framed on the plants
-            RenderOptions r;
-            r.width = g.imageWidth;
-            r.height = g.imageHeight;
-            r.camera = g.pictureCamera;
-            r.mode = RenderMode::Flat;
-            Image image = render(ctx, r);
-            if (ground) ctx.setObjectHidden(*ground, false);
-            drawLegend(image, top, "mol/m2");
-            writePNG(image, out);
-        }
+}
+
+int run(const LightArgs& a, const GlobalOptions& g) {
+    const std::vector<std::string> all = checkOutputs(a, g);
+    const auto [lat, lon] = parseTwo(a.location, ',', "--location", "LAT,LON in degrees");
+    const Location where{lat, lon};
+    sunPosition(where, UTCTime{});  // checks the place before any work
+    const auto [tMin, tMax] = parseTwo(a.temperature, ':', "--temperature", "MIN:MAX in °C");
+    const LightOptions o = lightOptions(a, g);
+    std::vector<WeatherHour> hours;
+    if (!a.weather.empty()) {
+        hours = readWeatherFile(a.weather);
+    } else {
+        const UTCTime day = parseUTCTime(a.date);
+        hours = clearSkyDay(where, day.year, day.month, day.day, a.clearness, tMin, tMax);
     }
+    CommandOutputs outputs(all);
+    if (!a.weather.empty()) outputs.requireNotAnInput(a.weather, "--weather");
+
+    const auto started = std::chrono::steady_clock::now();
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const auto [plants, ground] = buildScene(a, g, arch, ctx);
+    const LightModel model(ctx, o);
+    const Day d = simulate(model, ctx, where, hours);
+    const auto [leafRows, top] = objectTotals(ctx, model, d);
+    if (!a.series.empty()) writeWholeFile(a.series, d.series);
+    if (!a.leaves.empty()) writeWholeFile(a.leaves, leafRows);
+    if (!a.outputs.empty()) writeFalseColour(ctx, arch, a.outputs, ground, top, g);
     outputs.commit();
     std::printf(
-        "%s", fmt::format("light on {} ({} plant(s), {} days) at {:.2f}, {:.2f} over {} "
-                          "interval(s), {:.1f} h of sun: {:.1f} mol m-2 of PAR above, the "
-                          "leaves ({:.3f} m2) absorbed {:.2f} mol ({:.1f} mol m-2 of leaf); "
-                          "{} triangles, {} rays in {:.2f} s.\n",
-                          arch.getCurrentPlantModel(), plants.size(), a.age, lat, lon, hours.size(),
-                          daylight / 3600.0, above * 1e-6, leafArea, absorbedTotal * 1e-6,
-                          leafArea > 0 ? absorbedTotal * 1e-6 / leafArea : 0.0, n, model.raysCast(),
-                          millisecondsSince(started) / 1000.0)
-                  .c_str());
+        "%s",
+        fmt::format("light on {} ({} plant(s), {} days) at {:.2f}, {:.2f} over {} interval(s), "
+                    "{:.1f} h of sun: {:.1f} mol m-2 of PAR above, the leaves ({:.3f} m2) "
+                    "absorbed {:.2f} mol ({:.1f} mol m-2 of leaf) and fixed {:.3f} mol CO2 net; "
+                    "{} triangles, {} rays in {:.2f} s.\n",
+                    arch.getCurrentPlantModel(), plants.size(), a.age, lat, lon, hours.size(),
+                    d.daylight / 3600.0, d.above * 1e-6, d.leafArea, d.leafAbsorbed * 1e-6,
+                    d.leafArea > 0 ? d.leafAbsorbed * 1e-6 / d.leafArea : 0.0, d.leafFixed * 1e-6,
+                    model.triangleCount(), model.raysCast(), millisecondsSince(started) / 1000.0)
+            .c_str());
     return 0;
 }
 

@@ -53,12 +53,16 @@ TEST_F(CliLight, AClearDayGivesAnHourlySeriesEveryLeafAndAPicture) {
         for (int i = 0; i <= k; ++i) std::getline(ss, v, ',');
         return std::stod(v);
     };
-    EXPECT_GT(field(series[21], 7), 0.0);
-    EXPECT_EQ(field(series[9], 7), 0.0);
+    EXPECT_GT(field(series[21], 8), 0.0);
+    EXPECT_GT(field(series[21], 11), 0.0);  // leaves fix carbon at noon
+    EXPECT_LT(field(series[9], 11), 0.0);   // and respire at night
+    EXPECT_EQ(field(series[9], 8), 0.0);
     EXPECT_GT(field(series[21], 1), 70.0);  // the sun's noon elevation at 38.5 N in June
     const auto leaves = lines(path("l.csv"));
     ASSERT_GT(leaves.size(), 20u);
-    EXPECT_EQ(leaves[0], "object_id,plant_id,area,absorbed_par,absorbed_par_total,sunlit_fraction");
+    EXPECT_EQ(leaves[0],
+              "object_id,plant_id,area,absorbed_par,absorbed_par_total,sunlit_fraction,"
+              "net_assimilation_total");
     double most = 0.0;
     for (std::size_t k = 1; k < leaves.size(); ++k) most = std::max(most, field(leaves[k], 4));
     EXPECT_GT(most, 10.0);  // mol m-2 over a clear June day on a leaf in the sun

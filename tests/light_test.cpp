@@ -19,6 +19,7 @@
 #include "error_of.h"
 #include "plantarch/Context.h"
 #include "plantarch/Error.h"
+#include "plantarch/Photosynthesis.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Random.h"
 
@@ -459,4 +460,48 @@ TEST(Light, OptionsOutOfRangeAreRefused) {
     EXPECT_THROW(model.compute(sky), Error);
     sky.directNormal = 100.0;
     EXPECT_TRUE(model.compute(sky).absorbed.empty());  // an empty scene: nothing to light
+}
+
+// A plant beside a wall on its sunny side fixes less carbon over a day than the same plant
+// in the open.
+TEST(Light, APlantShadedByAWallFixesLessCarbon) {
+    const Location davis{38.54, -121.74};
+    const auto day = clearSkyDay(davis, 2026, 6, 21);
+    double fixed[2] = {0.0, 0.0};
+    for (int walled = 0; walled < 2; ++walled) {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary("bean");
+        arch.buildPlantInstanceFromLibrary(vec3(0.0f), 30.0f);
+        if (walled) {  // 3 m wide and 2 m tall, 0.4 m south of the plant (the sun's side)
+            const std::vector<vec3> p{{-1.5f, -0.4f, 0.0f},
+                                      {1.5f, -0.4f, 0.0f},
+                                      {1.5f, -0.4f, 2.0f},
+                                      {-1.5f, -0.4f, 2.0f}};
+            ctx.setObjectData(ctx.addObject(p, {}, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}),
+                              "organ", std::string("obstacle"));
+        }
+        LightOptions o;
+        o.diffuseRays = 16;
+        o.scatterRays = 8;
+        const LightModel model(ctx, o);
+        for (const WeatherHour& h : day) {
+            if (h.par <= 0.0) continue;
+            const LightResult r = model.compute(skyLight(davis, h));
+            for (std::size_t i = 0; i < model.triangleCount(); ++i) {
+                const ObjectID id = ctx.primitiveObject(model.primitives()[i]);
+                if (ctx.objectDataString(id, "organ") != std::string("leaf")) continue;
+                const auto v = ctx.primitiveVertices(model.primitives()[i]);
+                const double area = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
+                fixed[walled] += farquharSunlitShaded({}, r.absorbed[i], r.absorbedDirect[i],
+                                                      r.sunlit[i], h.airTemperature)
+                                     .net *
+                                 area * 3600e-6;
+            }
+        }
+    }
+    std::printf("carbon fixed in daylight: open %.4f mol, beside the wall %.4f mol\n", fixed[0],
+                fixed[1]);
+    EXPECT_GT(fixed[1], 0.0);
+    EXPECT_LT(fixed[1], 0.9 * fixed[0]);  // seen: 0.78 of it
 }

@@ -148,6 +148,9 @@ struct LightResult {
     std::vector<float> sunlit;
     /// PAR arriving on the triangle (both sides, before absorption), µmol m⁻² s⁻¹.
     std::vector<float> incident;
+    /// The part of `absorbed` that came straight from the sun (over the whole triangle: on
+    /// its sunlit share it is this over `sunlit`).
+    std::vector<float> absorbedDirect;
 };
 
 /// The visible triangles of a Context as one ray-tracing scene. Build it once per geometry

@@ -347,7 +347,7 @@ LightResult LightModel::compute(const SkyLight& sky) const {
     if (sky.diffuseHorizontal > 0.0) std::call_once(m.skyOnce, [&] { m.traceSky(); });
     const bool sunUp = sky.sun.elevation > 0.0 && sky.directNormal > 0.0;
     const vec3 sun = sky.sun.direction();
-    std::vector<double> front(n, 0.0), back(n, 0.0);
+    std::vector<double> front(n, 0.0), back(n, 0.0), direct(n, 0.0);
     LightResult r;
     r.sunlit.assign(n, 0.0f);
     ParallelErrors errors;
@@ -375,6 +375,7 @@ LightResult LightModel::compute(const SkyLight& sky) const {
             r.sunlit[i] = float(open) / float(rays);
             const double e = sky.directNormal * std::abs(cosine) * r.sunlit[i];
             (cosine >= 0.0f ? front[i] : back[i]) += e;
+            direct[i] = e;
         });
     errors.rethrow();
     std::vector<double> front2(n, 0.0), back2(n, 0.0);
@@ -407,11 +408,14 @@ LightResult LightModel::compute(const SkyLight& sky) const {
     }
     r.absorbed.resize(n);
     r.incident.resize(n);
+    r.absorbedDirect.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
         const SurfaceOptics& o = m.optics(i);
+        const double absorptance = 1.0 - o.reflectance - o.transmittance;
         const double incident = front[i] + back[i] + front2[i] + back2[i];
         r.incident[i] = float(incident);
-        r.absorbed[i] = float(incident * (1.0 - o.reflectance - o.transmittance));
+        r.absorbed[i] = float(incident * absorptance);
+        r.absorbedDirect[i] = float(std::min(direct[i] * absorptance, double(r.absorbed[i])));
     }
     return r;
 }
