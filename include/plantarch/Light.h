@@ -172,6 +172,7 @@ public:
 
     /// The Context primitive ID of each triangle, in the result's order.
     const std::vector<PrimitiveID>& primitives() const;
+    /// The number of triangles lit (degenerate ones are left out).
     std::size_t triangleCount() const;
     /// Rays cast so far (all computations), for measuring.
     std::uint64_t raysCast() const;

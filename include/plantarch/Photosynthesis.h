@@ -57,14 +57,16 @@ LeafPhotosynthesis farquharSunlitShaded(const FarquharParameters& p, double abso
                                         double absorbedDirect, double sunlitFraction,
                                         double leafTemperature, double co2 = 420.0);
 
-/// A non-rectangular hyperbola: gross = (αI + Pmax - sqrt((αI + Pmax)² - 4θαI Pmax)) / 2θ,
-/// net = gross - respiration, for users with fitted light-response curves.
+/// A fitted light-response curve's parameters (lightResponse).
 struct LightResponseParameters {
     double alpha = 0.05;       ///< initial slope, mol CO2 per mol of absorbed photons
     double pmax = 25.0;        ///< light-saturated gross rate, µmol m⁻² s⁻¹
     double curvature = 0.7;    ///< θ, 0 to 1
     double respiration = 1.0;  ///< µmol m⁻² s⁻¹
 };
+/// A non-rectangular hyperbola: gross = (αI + Pmax - sqrt((αI + Pmax)² - 4θαI Pmax)) / 2θ,
+/// net = gross - respiration, for users with fitted light-response curves. Throws
+/// plantarch::Error for values out of range.
 LeafPhotosynthesis lightResponse(const LightResponseParameters& p, double absorbedPar);
 
 }  // namespace plantarch

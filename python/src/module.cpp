@@ -27,6 +27,7 @@ PYBIND11_MODULE(_plantarch, m) {
     bindArchitecture(m);
     bindGeometry(m);
     bindOutput(m);
+    bindLight(m);
 #ifdef PLANTARCH_VERSION_STRING
     m.attr("__version__") = PLANTARCH_VERSION_STRING;
 #endif

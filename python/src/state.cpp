@@ -180,7 +180,7 @@ std::string help(const st::FieldInfo& f, bool ranged) {
 // Binds S's attributes by visiting its table: one property per field, nested struct, list,
 // optional part and parameter set, named as the plant file names them.
 template <class S>
-struct Binder {
+struct StateBinder {
     py::class_<S>& cls;
 
     // The member named `name` of a live object (the table gives its type M).
@@ -267,7 +267,7 @@ template <class S>
 py::class_<S> bindStateStruct(py::module_& m, const char* name, const char* doc) {
     py::class_<S> cls(m, name, doc);
     S prototype;  // only visited for its table
-    Binder<S> binder{cls};
+    StateBinder<S> binder{cls};
     st::describeState(prototype, binder);
     return cls;
 }

@@ -178,10 +178,13 @@ struct LightModel::Impl {
         return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : long(rh.hit.primID);
     }
 
-    // Rays from triangle i to directions drawn over `patches` in proportion to solid angle x
-    // |n.d|, so that they go where light arrives from. Each calls
-    // sample(origin, direction, weight, onFront): the light along it times `weight` is what it
-    // adds to the irradiance of that face (an unbiased estimate, whatever the draw).
+    // Rays from triangle i through the patches of `patches` (the sky's, or the whole
+    // sphere's), drawn in proportion to each patch's solid angle x the cosine of its centre to
+    // the triangle's normal: the light on a face is the quadrature sum over patches of
+    // radiance x solid angle x cosine, with each patch's radiance sampled by rays through it
+    // (jittered over the patch). Each calls sample(origin, direction, weight, onFront): the
+    // radiance along it times `weight` is what it adds to that face's irradiance. The sums
+    // are scaled so that a face seeing one radiance L over its whole hemisphere gets pi L.
     template <class Sample>
     void cast(std::size_t i, const std::vector<Patch>& patches, unsigned n, std::uint64_t pass,
               Sample&& sample) const {
@@ -189,26 +192,35 @@ struct LightModel::Impl {
         std::vector<double> cdf(patches.size());
         double total = 0.0;
         for (std::size_t p = 0; p < patches.size(); ++p) {
-            // The patch centre's cosine, floored so that no patch has no chance of a ray.
-            const double w = patches[p].omega *
-                             std::max(1e-3, double(std::abs(glm::dot(nrm, patches[p].centre))));
-            total += w;
+            total += patches[p].omega * std::abs(glm::dot(nrm, patches[p].centre));
             cdf[p] = total;
         }
+        // Each face's whole hemisphere, over the sphere's patches, for the scale.
+        double hemisphereFront = 0.0, hemisphereBack = 0.0;
+        for (const Patch& q : sphere) {
+            const double c = glm::dot(nrm, q.centre);
+            (c >= 0.0 ? hemisphereFront : hemisphereBack) += q.omega * std::abs(c);
+        }
+        rays.fetch_add(n, std::memory_order_relaxed);
+        if (!(total > 0.0)) return;
         Rng rng(options.seed ^ (pass * 0x9E3779B97F4A7C15ULL), i);
         const vec3& a = soup[3 * i];
         const vec3& b = soup[3 * i + 1];
         const vec3& c = soup[3 * i + 2];
         for (unsigned k = 0; k < n; ++k) {
             const std::size_t p = drawPatch(cdf, k, n, rng);
-            const double prob = (cdf[p] - (p ? cdf[p - 1] : 0.0)) / total;
             const vec3 d = patchDirection(patches[p], rng.uniform01d(), rng.uniform01d());
-            const float cosine = glm::dot(nrm, d);
-            const vec3 side = cosine >= 0.0f ? nrm : -nrm;
+            const bool onFront = glm::dot(nrm, patches[p].centre) >= 0.0f;
+            const vec3 side = onFront ? nrm : -nrm;
+            // Keep the ray on the face's side even where the jitter crosses its plane.
+            const vec3 dir = glm::dot(d, side) > 1e-4f
+                                 ? d
+                                 : glm::normalize(d + side * (1e-4f - glm::dot(d, side)));
             const vec3 origin = trianglePoint(a, b, c, k, n, rng) + side * epsilon;
-            sample(origin, d, patches[p].omega * std::abs(cosine) / (prob * n), cosine >= 0.0f);
+            const double scale =
+                kPiL / std::max(1e-12, onFront ? hemisphereFront : hemisphereBack);
+            sample(origin, dir, total / n * scale, onFront);
         }
-        rays.fetch_add(n, std::memory_order_relaxed);
     }
 
     // The open sky of each face, for an isotropic sky of unit horizontal irradiance
