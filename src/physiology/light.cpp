@@ -217,8 +217,7 @@ struct LightModel::Impl {
                                  ? d
                                  : glm::normalize(d + side * (1e-4f - glm::dot(d, side)));
             const vec3 origin = trianglePoint(a, b, c, k, n, rng) + side * epsilon;
-            const double scale =
-                kPiL / std::max(1e-12, onFront ? hemisphereFront : hemisphereBack);
+            const double scale = kPiL / std::max(1e-12, onFront ? hemisphereFront : hemisphereBack);
             sample(origin, dir, total / n * scale, onFront);
         }
     }
