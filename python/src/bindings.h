@@ -56,7 +56,7 @@ void bindState(py::module_& m);         // state.cpp: plant state (shoots, phyto
 void bindContext(py::module_& m);       // context.cpp: Context, Mesh, Material
 void bindGeometry(py::module_& m);      // geometry.cpp: numpy views of the mesh
 void bindArchitecture(py::module_& m);  // architecture.cpp: PlantArchitecture
-void bindLight(py::module_& m);       // light.cpp: weather, sun, light model, photosynthesis
+void bindLight(py::module_& m);         // light.cpp: weather, sun, light model, photosynthesis
 void bindOutput(py::module_& m);        // output.cpp: exporters, renderer, species files
 
 }  // namespace plantarch::python
