@@ -52,6 +52,11 @@ struct GlobalOptions {
 
 /// Parses "x,y,z" (three finite numbers) or throws an Error naming the option.
 vec3 parseVec3(const std::string& text, const char* option);
+/// Parses two finite numbers joined by `separator` ("30:150", "38.5,-121.7"); throws an
+/// Error naming the option: "expected `expected`", with `example` as the valid form.
+std::pair<double, double> parseTwoNumbers(const std::string& text, char separator,
+                                          const char* option, const std::string& expected,
+                                          const std::string& example);
 /// Parses "10x12" or "0.3x0.25" (two positive numbers joined by 'x', whole numbers for an
 /// integral T) or throws an Error naming the option.
 template <class T>

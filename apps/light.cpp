@@ -40,23 +40,6 @@ struct LightArgs {
     bool noScattering = false, noGround = false, noTrellis = false;
 };
 
-std::pair<double, double> parseTwo(const std::string& text, char sep, const char* option,
-                                   const char* form) {
-    const auto at = text.find(sep);
-    try {
-        if (at != std::string::npos) {
-            std::size_t a = 0, b = 0;
-            const double first = std::stod(text.substr(0, at), &a);
-            const double second = std::stod(text.substr(at + 1), &b);
-            if (a == at && b == text.size() - at - 1 && std::isfinite(first) &&
-                std::isfinite(second))
-                return {first, second};
-        }
-    } catch (const std::exception&) {
-    }
-    throw Error(std::string("expected ") + form, {.parameter = option, .value = text});
-}
-
 // A perceptually even map from dark violet (0) through teal to yellow (1): the viridis
 // colour map's hues at nine stops, interpolated linearly in sRGB.
 vec3 falseColour(float t) {
@@ -339,10 +322,12 @@ void writeFalseColour(Context& ctx, const PlantArchitecture& arch,
 
 int run(const LightArgs& a, const GlobalOptions& g) {
     const std::vector<std::string> all = checkOutputs(a, g);
-    const auto [lat, lon] = parseTwo(a.location, ',', "--location", "LAT,LON in degrees");
+    const auto [lat, lon] =
+        parseTwoNumbers(a.location, ',', "--location", "LAT,LON in degrees", "e.g. 38.54,-121.74");
     const Location where{lat, lon};
     sunPosition(where, UTCTime{});  // checks the place before any work
-    const auto [tMin, tMax] = parseTwo(a.temperature, ':', "--temperature", "MIN:MAX in °C");
+    const auto [tMin, tMax] =
+        parseTwoNumbers(a.temperature, ':', "--temperature", "MIN:MAX in °C", "e.g. 15:28");
     const LightOptions o = lightOptions(a, g);
     std::vector<WeatherHour> hours;
     if (!a.weather.empty()) {

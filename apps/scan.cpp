@@ -32,20 +32,9 @@ struct ScanArgs {
 
 // "A:B", two finite numbers.
 std::pair<float, float> parseSpan(const std::string& text, const char* option) {
-    const auto colon = text.find(':');
-    try {
-        if (colon != std::string::npos) {
-            std::size_t a = 0, b = 0;
-            const float first = std::stof(text.substr(0, colon), &a);
-            const float second = std::stof(text.substr(colon + 1), &b);
-            if (a == colon && b == text.size() - colon - 1 && std::isfinite(first) &&
-                std::isfinite(second))
-                return {first, second};
-        }
-    } catch (const std::exception&) {
-    }
-    throw Error("expected two angles in degrees joined by ':'",
-                {.parameter = option, .value = text, .validRange = "e.g. 30:150"});
+    const auto [a, b] =
+        parseTwoNumbers(text, ':', option, "two angles in degrees joined by ':'", "e.g. 30:150");
+    return {float(a), float(b)};
 }
 
 int run(const ScanArgs& a, const GlobalOptions& g) {

@@ -58,21 +58,34 @@ void checkSceneOutputs(const std::vector<std::string>& paths, std::size_t points
     }
 }
 
-template <class T>
-std::pair<T, T> parsePair(const std::string& text, const char* option) {
-    const auto x = text.find('x');
+std::pair<double, double> parseTwoNumbers(const std::string& text, char separator,
+                                          const char* option, const std::string& expected,
+                                          const std::string& example) {
+    const auto at = text.find(separator);
     try {
-        if (x != std::string::npos) {
+        if (at != std::string::npos) {
             std::size_t a = 0, b = 0;
-            const double first = std::stod(text.substr(0, x), &a);
-            const double second = std::stod(text.substr(x + 1), &b);
-            if (a == x && b == text.size() - x - 1 && first > 0 && second > 0)
-                return {T(first), T(second)};
+            const double first = std::stod(text.substr(0, at), &a);
+            const double second = std::stod(text.substr(at + 1), &b);
+            if (a == at && b == text.size() - at - 1 && std::isfinite(first) &&
+                std::isfinite(second))
+                return {first, second};
         }
     } catch (const std::exception&) {
     }
-    throw Error("expected two positive numbers joined by 'x'",
-                {.parameter = option, .value = text, .validRange = "e.g. 10x10 or 0.3x0.3"});
+    throw Error("expected " + expected,
+                {.parameter = option, .value = text, .validRange = example});
+}
+
+template <class T>
+std::pair<T, T> parsePair(const std::string& text, const char* option) {
+    const std::string expected = "two positive numbers joined by 'x'";
+    const std::string example = "e.g. 10x10 or 0.3x0.3";
+    const auto [first, second] = parseTwoNumbers(text, 'x', option, expected, example);
+    if (!(first > 0 && second > 0))
+        throw Error("expected " + expected,
+                    {.parameter = option, .value = text, .validRange = example});
+    return {T(first), T(second)};
 }
 template std::pair<int, int> parsePair<int>(const std::string&, const char*);
 template std::pair<float, float> parsePair<float>(const std::string&, const char*);

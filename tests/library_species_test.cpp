@@ -15,6 +15,22 @@
 using namespace plantarch;
 
 // Every library species is pure data: its rules are node rules, no named C++ function.
+namespace {
+
+// Calls f(arch, plant) for every library species grown to its recommended age, one at a time.
+template <class F>
+void forEachLibraryPlant(F&& f) {
+    for (const std::string& name : listSpecies()) {
+        SCOPED_TRACE(name);
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.loadPlantModelFromLibrary(name);
+        f(arch, arch.buildPlantInstanceFromLibrary(vec3(0.0f), loadSpecies(name).recommendedAge));
+    }
+}
+
+}  // namespace
+
 TEST(LibrarySpecies, EverySpeciesIsPureData) {
     std::size_t withRules = 0;
     for (const std::string& name : listSpecies()) {
@@ -87,16 +103,10 @@ TEST(LibrarySpecies, EveryFileBuildsASanePlantAtThreeAgesAndSeeds) {
 TEST(LibrarySpecies, ShootsCurveAsGravitropismSays) {
     const double deg = 3.14159265358979323846 / 180.0;
     std::size_t curvedSpecies = 0;
-    for (const std::string& name : listSpecies()) {
-        SCOPED_TRACE(name);
-        Context ctx;
-        PlantArchitecture arch(&ctx);
-        arch.loadPlantModelFromLibrary(name);
-        const unsigned p =
-            arch.buildPlantInstanceFromLibrary(vec3(0.0f), loadSpecies(name).recommendedAge);
+    forEachLibraryPlant([&](const PlantArchitecture& arch, unsigned p) {
         // Attraction points (trellis wires) steer shoots on purpose; those plants are checked
         // by the collision tests instead.
-        if (!arch.getAttractionPoints(p).empty()) continue;
+        if (!arch.getAttractionPoints(p).empty()) return;
         std::size_t turned = 0;
         for (const Shoot& s : arch.plant(p).shoots) {
             if (s.removed) continue;
@@ -114,7 +124,7 @@ TEST(LibrarySpecies, ShootsCurveAsGravitropismSays) {
             }
         }
         curvedSpecies += turned > 0 ? 1 : 0;
-    }
+    });
     EXPECT_GE(curvedSpecies, 15u);  // not vacuous: most species have shoots that bend
 }
 
@@ -122,13 +132,7 @@ TEST(LibrarySpecies, ShootsCurveAsGravitropismSays) {
 // and each pair below it leaflet_scale times the size of the pair above, in every species.
 TEST(LibrarySpecies, ALeafsLeafletsShareOneSizeDraw) {
     std::size_t compound = 0;
-    for (const std::string& name : listSpecies()) {
-        SCOPED_TRACE(name);
-        Context ctx;
-        PlantArchitecture arch(&ctx);
-        arch.loadPlantModelFromLibrary(name);
-        const unsigned p =
-            arch.buildPlantInstanceFromLibrary(vec3(0.0f), loadSpecies(name).recommendedAge);
+    forEachLibraryPlant([&](const PlantArchitecture& arch, unsigned p) {
         for (const Shoot& s : arch.plant(p).shoots)
             for (const Phytomer& ph : s.phytomers)
                 for (const Petiole& pt : ph.petioles) {
@@ -146,6 +150,6 @@ TEST(LibrarySpecies, ALeafsLeafletsShareOneSizeDraw) {
                             << "shoot " << s.id << " leaflet " << index;
                     }
                 }
-    }
+    });
     EXPECT_GT(compound, 100u);  // not vacuous: the library has compound leaves
 }

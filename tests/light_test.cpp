@@ -76,6 +76,21 @@ double cornerViewFactor(double x, double y, double h) {
            (2 * kPi);
 }
 
+// Few diffuse and scattering rays: enough for the tests that need a plant's light, not a
+// physical check.
+LightOptions fewRays() {
+    LightOptions o;
+    o.diffuseRays = 16;
+    o.scatterRays = 8;
+    return o;
+}
+
+// A grid of beans grown into the architecture's Context.
+void beanCanopy(PlantArchitecture& arch, float spacing, int count, float age) {
+    arch.loadPlantModelFromLibrary("bean");
+    arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(spacing), glm::ivec2(count), age);
+}
+
 }  // namespace
 
 // ---- the sun ------------------------------------------------------------------------------
@@ -385,12 +400,8 @@ TEST(Light, AGroundReflectsLightOntoTheUndersideOfALeaf) {
 TEST(Light, TheSameForAnyThreadCount) {
     Context ctx;
     PlantArchitecture arch(&ctx);
-    arch.loadPlantModelFromLibrary("bean");
-    arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.3f, 0.3f), glm::ivec2(2, 2), 30.0f);
-    LightOptions o;
-    o.diffuseRays = 16;
-    o.scatterRays = 8;
-    const LightModel model(ctx, o);
+    beanCanopy(arch, 0.3f, 2, 30.0f);
+    const LightModel model(ctx, fewRays());
     SkyLight sky = skyLight({38.5, -121.7}, clearSkyDay({38.5, -121.7}, 2026, 6, 21)[19]);
     const int before = omp_get_max_threads();
     omp_set_num_threads(1);
@@ -407,12 +418,8 @@ TEST(Light, TheSameForAnyThreadCount) {
 TEST(Light, ACanopysLowerLeavesGetLessLightThanItsUpperOnes) {
     Context ctx;
     PlantArchitecture arch(&ctx);
-    arch.loadPlantModelFromLibrary("bean");
-    arch.buildPlantCanopyFromLibrary(vec3(0.0f), vec2(0.25f, 0.25f), glm::ivec2(3, 3), 40.0f);
-    LightOptions o;
-    o.diffuseRays = 16;
-    o.scatterRays = 8;
-    const LightModel model(ctx, o);
+    beanCanopy(arch, 0.25f, 3, 40.0f);
+    const LightModel model(ctx, fewRays());
     const Location where{38.5, -121.7};
     const LightResult r = model.compute(skyLight(where, clearSkyDay(where, 2026, 6, 21)[20]));
     writeLightData(ctx, model, r);
@@ -481,10 +488,7 @@ TEST(Light, APlantShadedByAWallFixesLessCarbon) {
             ctx.setObjectData(ctx.addObject(p, {}, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}),
                               "organ", std::string("obstacle"));
         }
-        LightOptions o;
-        o.diffuseRays = 16;
-        o.scatterRays = 8;
-        const LightModel model(ctx, o);
+        const LightModel model(ctx, fewRays());
         for (const WeatherHour& h : day) {
             if (h.par <= 0.0) continue;
             const LightResult r = model.compute(skyLight(davis, h));
