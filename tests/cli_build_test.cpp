@@ -142,7 +142,8 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
          "project, grow, render, scan, light, compare, list, info, validate, builder)\n"},
         {"",
          "plantarch: a command is required (valid: demo, build, canopy, convert, project, "
-         "grow, render, scan, light, compare, list, info, validate, builder; see plantarch --help)\n"},
+         "grow, render, scan, light, compare, list, info, validate, builder; see plantarch "
+         "--help)\n"},
         // Canopies.
         {"canopy bean --count 0x2 --age 10 -o /tmp/x.ply",
          "plantarch: --count = 0x2: expected two positive numbers joined by 'x' (valid: e.g. "
