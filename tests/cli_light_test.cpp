@@ -110,6 +110,9 @@ TEST_F(CliLight, BadInputsAreOneLineAndExit2) {
         {kPlant + " --weather " + path("fifo.csv") + out, "not a weather file"},
         {kPlant + " --weather " + path("none.csv") + out, "none.csv"},
         {"light bean --location 0,0 --date 2026-06-21" + out, "give the plants' age"},
+        {"light bean --age 40 --count 3x3 --location 0,0 --date 2026-06-21 --rays 4,64,100000" +
+             out,
+         "more than half of this machine's memory"},
     };
     for (const auto& [args, why] : cases) {
         const auto r = cli::run(args);

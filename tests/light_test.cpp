@@ -459,6 +459,17 @@ TEST(Light, OptionsOutOfRangeAreRefused) {
         change(o);
         EXPECT_THROW(LightModel(ctx, o), Error);
     }
+    {  // a scene whose scattering links would not fit in memory is refused up front
+        Context big;
+        PlantArchitecture arch(&big);
+        beanCanopy(arch, 0.3f, 3, 40.0f);
+        LightOptions o;
+        o.scatterRays = 100000;  // 8 bytes each on 248 060 triangles: 198 GB
+        const std::string e = plantarch::testing::errorOf([&] { LightModel(big, o); }).what();
+        EXPECT_NE(e.find("more than half of this machine's memory"), std::string::npos) << e;
+        o.scatteringOrders = 0;  // without scattering the same scene fits
+        EXPECT_NO_THROW(LightModel(big, o));
+    }
     const LightModel model(ctx);
     SkyLight sky;
     sky.directNormal = NAN;

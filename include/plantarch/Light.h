@@ -160,7 +160,9 @@ class LightModel {
 public:
     /// Every visible object's triangles; each object's kind of surface from its "organ" data.
     /// Throws plantarch::Error for options out of range (rays 1 to 100000, scattering order 0
-    /// or 1, optical shares from 0 to 1 with reflectance + transmittance at most 1).
+    /// or 1, optical shares from 0 to 1 with reflectance + transmittance at most 1), and
+    /// before any work when the model would take more than half of the machine's memory
+    /// (about 200 bytes a triangle and 8 for each scattering ray).
     explicit LightModel(const Context& context, const LightOptions& options = {});
     ~LightModel();
     LightModel(const LightModel&) = delete;

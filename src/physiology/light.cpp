@@ -14,6 +14,9 @@
 
 #include "plantarch/Light.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -302,6 +305,28 @@ LightModel::LightModel(const Context& context, const LightOptions& options)
     checkOptics(options.other, "other");
     Impl& m = *impl_;
     m.options = options;
+    // What the model keeps per triangle: its corners, normal and labels, the BVH, the open
+    // sky and a link for each scattering ray. Refused before anything is traced when it
+    // would take more than half of the machine's memory.
+    std::size_t triangles = 0;
+    context.forEachObject(
+        [&](const ObjectView& o) { triangles += o.hidden ? 0 : o.triangleCount(); });
+    const double perTriangle =
+        200.0 + (options.scatteringOrders > 0 ? 8.0 * options.scatterRays : 0.0);
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    if (pages > 0 && pageSize > 0) {
+        const double half = double(pages) * double(pageSize) / 2.0;
+        if (double(triangles) * perTriangle > half)
+            throw Error(
+                fmt::format("lighting {} triangles with {} scattering rays each needs "
+                            "about {:.1f} GB, more than half of this machine's memory",
+                            triangles, options.scatterRays, double(triangles) * perTriangle / 1e9),
+                {.parameter = "scatterRays",
+                 .value = std::to_string(options.scatterRays),
+                 .validRange = fmt::format(
+                     "fewer rays or triangles: at most {:.0f} triangles with these rays",
+                     half / perTriangle)});
+    }
     context.forEachObject([&](const ObjectView& o) {
         if (o.hidden) return;
         const Surface s = surfaceOf(context, o.id);
