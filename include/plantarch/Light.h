@@ -186,7 +186,8 @@ private:
 
 /// Writes a result as object data on the objects it covers, area-weighted over each object's
 /// triangles: `absorbed_par` (µmol m⁻² s⁻¹) and `sunlit_fraction` (float), replacing any
-/// values there.
+/// values there. Throws plantarch::Error for a result of another model or a Context that no
+/// longer holds the model's triangles.
 void writeLightData(Context& context, const LightModel& model, const LightResult& result);
 
 }  // namespace plantarch

@@ -105,3 +105,6 @@ def test_bad_values_are_plantarch_errors(tmp_path):
     with pytest.raises(pa.Error, match="light result does not match"):
         pa.writeLightData(ctx, model, {"absorbed": [1.0], "sunlit": [0.0], "incident": [1.0],
                                        "absorbed_direct": [0.0]})
+    ctx.deleteObject(ctx.objectIDs()[0])
+    with pytest.raises(pa.Error, match="no longer holds the light model's triangles"):
+        pa.writeLightData(ctx, model, model.compute(pa.SkyLight()))

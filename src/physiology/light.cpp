@@ -464,6 +464,12 @@ void writeLightData(Context& context, const LightModel& model, const LightResult
                      .value = std::to_string(result.absorbed.size()) + " triangles",
                      .validRange = std::to_string(n) + " triangles, from this model"});
     const std::vector<PrimitiveID>& prims = model.primitives();
+    for (PrimitiveID p : prims)
+        if (!context.doesPrimitiveExist(p))
+            throw Error("the Context no longer holds the light model's triangles",
+                        {.parameter = "context",
+                         .value = "primitive " + std::to_string(p) + " is gone",
+                         .validRange = "the Context the model was built from, unchanged"});
     std::size_t i = 0;
     while (i < n) {
         const ObjectID id = context.primitiveObject(prims[i]);
