@@ -52,7 +52,7 @@ struct SunPosition {
 };
 
 /// The sun's position from the NOAA solar calculator's equations (after Meeus, Astronomical
-/// Algorithms): within about 0.02 degrees from 1900 to 2100, without atmospheric refraction.
+/// Algorithms), for the years 1900 to 2100, without atmospheric refraction.
 /// Throws plantarch::Error for a location or time out of range.
 SunPosition sunPosition(const Location& where, const UTCTime& when);
 
