@@ -199,10 +199,8 @@ Day simulate(const LightModel& model, const Context& ctx, const Location& where,
     d.assimilated.assign(n, 0.0);
     d.leaf.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
-        const PrimitiveID p = model.primitives()[i];
-        const auto v = ctx.primitiveVertices(p);
-        d.area[i] = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
-        d.leaf[i] = ctx.objectDataString(ctx.primitiveObject(p), "organ") == std::string("leaf");
+        d.area[i] = model.areas()[i];
+        d.leaf[i] = ctx.objectDataString(model.objects()[i], "organ") == std::string("leaf");
         d.leafArea += d.leaf[i] ? d.area[i] : 0.0;
     }
     d.series =
@@ -261,7 +259,7 @@ std::pair<std::string, double> objectTotals(Context& ctx, const LightModel& mode
     };
     std::vector<Sum> sums;
     for (std::size_t i = 0; i < model.triangleCount(); ++i) {
-        const ObjectID id = ctx.primitiveObject(model.primitives()[i]);
+        const ObjectID id = model.objects()[i];
         if (sums.empty() || sums.back().id != id) sums.push_back({id});
         sums.back().area += d.area[i];
         sums.back().absorbed += d.absorbed[i] * d.area[i];

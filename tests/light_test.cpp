@@ -504,10 +504,9 @@ TEST(Light, APlantShadedByAWallFixesLessCarbon) {
             if (h.par <= 0.0) continue;
             const LightResult r = model.compute(skyLight(davis, h));
             for (std::size_t i = 0; i < model.triangleCount(); ++i) {
-                const ObjectID id = ctx.primitiveObject(model.primitives()[i]);
-                if (ctx.objectDataString(id, "organ") != std::string("leaf")) continue;
-                const auto v = ctx.primitiveVertices(model.primitives()[i]);
-                const double area = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
+                if (ctx.objectDataString(model.objects()[i], "organ") != std::string("leaf"))
+                    continue;
+                const double area = model.areas()[i];
                 fixed[walled] += farquharSunlitShaded({}, r.absorbed[i], r.absorbedDirect[i],
                                                       r.sunlit[i], h.airTemperature)
                                      .net *

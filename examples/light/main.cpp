@@ -23,11 +23,8 @@ int main() {
         const plantarch::LightResult light = model.compute(plantarch::skyLight(davis, hour));
         double absorbed = 0.0, net = 0.0;  // µmol s-1 over the leaves
         for (std::size_t i = 0; i < model.triangleCount(); ++i) {
-            const plantarch::PrimitiveID p = model.primitives()[i];
-            if (ctx.objectDataString(ctx.primitiveObject(p), "organ") != std::string("leaf"))
-                continue;
-            const auto v = ctx.primitiveVertices(p);
-            const double area = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
+            if (ctx.objectDataString(model.objects()[i], "organ") != std::string("leaf")) continue;
+            const double area = model.areas()[i];
             absorbed += light.absorbed[i] * area;
             net += plantarch::farquharSunlitShaded(leaf, light.absorbed[i], light.absorbedDirect[i],
                                                    light.sunlit[i], hour.airTemperature)

@@ -174,6 +174,10 @@ public:
 
     /// The Context primitive ID of each triangle, in the result's order.
     const std::vector<PrimitiveID>& primitives() const;
+    /// Each triangle's object, in the result's order.
+    const std::vector<ObjectID>& objects() const;
+    /// Each triangle's area (m², one side) as it was when the model was built.
+    const std::vector<float>& areas() const;
     /// The number of triangles lit (degenerate ones are left out).
     std::size_t triangleCount() const;
     /// Rays cast so far (all computations), for measuring.

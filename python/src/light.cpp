@@ -154,6 +154,8 @@ void bindLight(py::module_& m) {
                      "As numpy arrays, one value per triangle: absorbed, sunlit, incident and "
                      "absorbed_direct."))
         .def("primitives", &LightModel::primitives, docs::LightModel_primitives)
+        .def("objects", &LightModel::objects, docs::LightModel_objects)
+        .def("areas", &LightModel::areas, docs::LightModel_areas)
         .def("triangleCount", &LightModel::triangleCount, docs::LightModel_triangleCount)
         .def("raysCast", &LightModel::raysCast, docs::LightModel_raysCast);
     m.def(

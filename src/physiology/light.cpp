@@ -362,6 +362,14 @@ const std::vector<PrimitiveID>& LightModel::primitives() const {
     return impl_->primitives;
 }
 
+const std::vector<ObjectID>& LightModel::objects() const {
+    return impl_->objects;
+}
+
+const std::vector<float>& LightModel::areas() const {
+    return impl_->areas;
+}
+
 std::size_t LightModel::triangleCount() const {
     return impl_->normals.size();
 }
@@ -470,16 +478,16 @@ void writeLightData(Context& context, const LightModel& model, const LightResult
                         {.parameter = "context",
                          .value = "primitive " + std::to_string(p) + " is gone",
                          .validRange = "the Context the model was built from, unchanged"});
+    const std::vector<ObjectID>& objects = model.objects();
+    const std::vector<float>& areas = model.areas();
     std::size_t i = 0;
     while (i < n) {
-        const ObjectID id = context.primitiveObject(prims[i]);
+        const ObjectID id = objects[i];
         double area = 0.0, absorbed = 0.0, sunlit = 0.0;
-        for (; i < n && context.primitiveObject(prims[i]) == id; ++i) {
-            const auto v = context.primitiveVertices(prims[i]);
-            const double a = 0.5 * glm::length(glm::cross(v[1] - v[0], v[2] - v[0]));
-            area += a;
-            absorbed += a * result.absorbed[i];
-            sunlit += a * result.sunlit[i];
+        for (; i < n && objects[i] == id; ++i) {
+            area += areas[i];
+            absorbed += double(areas[i]) * result.absorbed[i];
+            sunlit += double(areas[i]) * result.sunlit[i];
         }
         context.setObjectData(id, "absorbed_par", float(area > 0.0 ? absorbed / area : 0.0));
         context.setObjectData(id, "sunlit_fraction", float(area > 0.0 ? sunlit / area : 0.0));
