@@ -541,6 +541,141 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
+requires SameAs<S, CarbohydrateParameters>
+void describeParameters(S& p, V& v) {
+    v.field({"enabled", "", 0, 1, "Run the carbohydrate budget for plants of this species"},
+            p.enabled);
+    v.field({"stem_density", "g m-3", 1, 5e6, "Dry mass of stem wood per volume"}, p.stem_density);
+    v.field({"stem_carbon_fraction", "g C g-1", 0.01, 1, "Carbon share of dry stem mass"},
+            p.stem_carbon_fraction);
+    v.field({"nonstructural_fraction", "g C g-1", 0, 1,
+             "Share of stem mass that is sugar and starch at full reserves (not wood)"},
+            p.nonstructural_fraction);
+    v.field(
+        {"wood_maturity_age", "days", 0.001, 1e5, "Age at which new wood reaches its full density"},
+        p.wood_maturity_age);
+    v.field({"young_wood_density_ratio", "", 0, 1, "Density of new wood over mature wood"},
+            p.young_wood_density_ratio);
+    v.field({"shoot_root_ratio", "", 0.01, 1000,
+             "Shoot mass over root mass: roots grow and respire in this proportion"},
+            p.shoot_root_ratio);
+    v.field({"leaf_carbon_per_area", "g C m-2", 0, 1000,
+             "Carbon a leaf is built of per square metre (one side)"},
+            p.leaf_carbon_per_area);
+    v.field({"flower_carbon", "mol C", 0, 10, "Carbon a flower costs as it forms"},
+            p.flower_carbon);
+    v.field({"fruit_density", "g m-3", 0, 5e6, "Dry mass of fruit per volume"}, p.fruit_density);
+    v.field({"fruit_carbon_fraction", "g C g-1", 0, 1, "Carbon share of dry fruit mass"},
+            p.fruit_carbon_fraction);
+    v.field({"wood_respiration_rate", "day-1", 0, 1,
+             "Maintenance respiration of stem carbon at 20 degrees C"},
+            p.wood_respiration_rate);
+    v.field({"root_respiration_rate", "day-1", 0, 1,
+             "Maintenance respiration of root carbon at 20 degrees C"},
+            p.root_respiration_rate);
+    v.field({"growth_respiration_fraction", "", 0, 10,
+             "Carbon respired per unit of carbon built into new organs"},
+            p.growth_respiration_fraction);
+    v.field({"respiration_q10", "", 1, 10, "Maintenance respiration's rise per 10 degrees C"},
+            p.respiration_q10);
+    v.field({"initial_concentration", "g C g-1", 0, 10,
+             "Sugar in a shoot's wood when the budget starts"},
+            p.initial_concentration);
+    v.field({"storage_capacity", "g C g-1", 0, 100,
+             "The most sugar and starch a shoot's wood holds; the rest grows roots"},
+            p.storage_capacity);
+    v.field({"abortion_threshold", "g C g-1", 0, 10,
+             "Below this a shoot counts poor days and then aborts flowers and fruit"},
+            p.abortion_threshold);
+    v.field({"pruning_threshold", "g C g-1", 0, 10,
+             "Below this for branch_death_time days a shoot dies"},
+            p.pruning_threshold);
+    v.field({"phyllochron_threshold", "g C g-1", 0.0001, 10,
+             "Below this a shoot makes nodes more slowly, in proportion"},
+            p.phyllochron_threshold);
+    v.field({"bud_break_threshold", "g C g-1", 0.0001, 10,
+             "Below this a shoot's buds break with proportionally lower probability"},
+            p.bud_break_threshold);
+    v.field({"transfer_up_threshold", "g C g-1", 0, 10,
+             "A shoot above this passes sugar to its child shoots"},
+            p.transfer_up_threshold);
+    v.field({"transfer_down_threshold", "g C g-1", 0, 10,
+             "A shoot above this returns sugar to its parent"},
+            p.transfer_down_threshold);
+    v.field({"starch_fraction", "day-1", 0, 1,
+             "Share of the sugar above the transfer threshold stored as starch each day"},
+            p.starch_fraction);
+    v.field({"conductance_up", "day-1", 0, 1, "Sugar flow toward the tips per concentration gap"},
+            p.conductance_up);
+    v.field({"conductance_down", "day-1", 0, 1, "Sugar flow toward the base per concentration gap"},
+            p.conductance_down);
+    v.field({"bud_death_time", "days", 0, 1e5,
+             "Poor days before a shoot starts aborting flowers and fruit"},
+            p.bud_death_time);
+    v.field({"branch_death_time", "days", 0, 1e5,
+             "Days below the pruning threshold before a shoot dies"},
+            p.branch_death_time);
+    v.field({"max_phyllochron_factor", "", 1, 1000,
+             "The most a poor shoot's phyllochron is lengthened, times the species value"},
+            p.max_phyllochron_factor);
+}
+
+template <class S, class V>
+requires SameAs<S, NitrogenParameters>
+void describeParameters(S& p, V& v) {
+    v.field({"enabled", "", 0, 1, "Run the nitrogen model for plants of this species"}, p.enabled);
+    v.field({"initial_available", "g N", 0, 1e6,
+             "Nitrogen available to the plant when the model starts"},
+            p.initial_available);
+    v.field(
+        {"target_leaf_nitrogen", "g N m-2", 0.01, 100, "Leaf nitrogen per area of a well-fed leaf"},
+        p.target_leaf_nitrogen);
+    v.field({"minimum_leaf_nitrogen", "g N m-2", 0, 100,
+             "Nitrogen a leaf keeps however much it gives away"},
+            p.minimum_leaf_nitrogen);
+    v.field({"initial_leaf_nitrogen", "g N m-2", 0, 100,
+             "Nitrogen of the leaves present when the model starts"},
+            p.initial_leaf_nitrogen);
+    v.field({"root_allocation", "", 0, 0.99,
+             "Share of added nitrogen kept by the roots (not available to leaves)"},
+            p.root_allocation);
+    v.field({"max_accumulation_rate", "g N m-2 day-1", 0, 100,
+             "Fastest a leaf takes up nitrogen from the available pool"},
+            p.max_accumulation_rate);
+    v.field({"remobilisation_efficiency", "", 0, 1,
+             "Share of an old leaf's releasable nitrogen that reaches young leaves"},
+            p.remobilisation_efficiency);
+    v.field({"remobilisation_rate", "day-1", 0, 1,
+             "Share of its releasable nitrogen an old leaf releases per day"},
+            p.remobilisation_rate);
+    v.field({"old_leaf_age", "", 0, 1,
+             "Age, as a share of the leaf lifespan, from which leaves release nitrogen"},
+            p.old_leaf_age);
+    v.field({"young_leaf_age", "", 0, 1,
+             "Age, as a share of the leaf lifespan, below which leaves receive it"},
+            p.young_leaf_age);
+    v.field({"fruit_nitrogen", "g N m-2", 0, 100, "Nitrogen per area of fruit surface"},
+            p.fruit_nitrogen);
+    v.field({"expansion_sensitivity", "", 0, 1,
+             "How much nitrogen stress shrinks new leaves: size x (1 - this x (1 - stress))"},
+            p.expansion_sensitivity);
+}
+
+template <class S, class V>
+requires SameAs<S, LeafPhysiologyParameters>
+void describeParameters(S& p, V& v) {
+    v.field({"vcmax25", "umol m-2 s-1", 0.01, 1000, "Maximum carboxylation rate at 25 degrees C"},
+            p.vcmax25);
+    v.field(
+        {"jmax25", "umol m-2 s-1", 0.01, 2000, "Maximum electron transport rate at 25 degrees C"},
+        p.jmax25);
+    v.field({"rd25", "umol m-2 s-1", 0, 100, "Day respiration at 25 degrees C"}, p.rd25);
+    v.field({"leaf_reflectance", "", 0, 1, "Share of PAR a leaf reflects"}, p.leaf_reflectance);
+    v.field({"leaf_transmittance", "", 0, 1, "Share of PAR a leaf lets through"},
+            p.leaf_transmittance);
+}
+
+template <class S, class V>
 requires SameAs<S, PhenologyParameters>
 void describeParameters(S& p, V& v) {
     v.field({"time_to_dormancy_break", "days", -1, 100000,
@@ -565,6 +700,11 @@ void describeParameters(S& p, V& v) {
             p.max_leaf_lifespan);
     v.field({"evergreen", "", 0, 1, "Keep leaves through dormancy"}, p.evergreen);
     v.field({"max_age", "days", 0, 1e6, "The plant stops developing at this age"}, p.max_age);
+    v.group("carbohydrates", p.carbohydrates,
+            [&](auto& sub) { describeParameters(p.carbohydrates, sub); });
+    v.group("nitrogen", p.nitrogen, [&](auto& sub) { describeParameters(p.nitrogen, sub); });
+    v.group("leaf_physiology", p.leaf_physiology,
+            [&](auto& sub) { describeParameters(p.leaf_physiology, sub); });
 }
 
 }  // namespace plantarch::params

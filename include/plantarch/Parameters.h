@@ -257,6 +257,70 @@ struct ShootParameters {
                                const std::vector<float>& probabilities);
 };
 
+/// A plant's carbohydrate budget (docs/physiology.md): per-shoot sugar and starch pools fed
+/// by its leaves' photosynthesis, spent on respiration and growth, limiting growth when low.
+/// Concentrations and thresholds are g C per g of dry stem.
+struct CarbohydrateParameters {
+    bool enabled = false;
+    float stem_density = 675000.0f;
+    float stem_carbon_fraction = 0.457f;
+    float nonstructural_fraction = 0.1228f;
+    float wood_maturity_age = 120.0f;
+    float young_wood_density_ratio = 0.25f;
+    float shoot_root_ratio = 3.0f;
+    float leaf_carbon_per_area = 20.0f;
+    float flower_carbon = 8.33e-4f;
+    float fruit_density = 525000.0f;
+    float fruit_carbon_fraction = 0.475f;
+    float wood_respiration_rate = 5.25164e-5f;
+    float root_respiration_rate = 5.25164e-3f;
+    float growth_respiration_fraction = 0.211f;
+    float respiration_q10 = 1.8f;
+    float initial_concentration = 0.15f;
+    float storage_capacity = 0.3f;
+    float abortion_threshold = 0.1f;
+    float pruning_threshold = 0.025f;
+    float phyllochron_threshold = 0.05f;
+    float bud_break_threshold = 0.05f;
+    float transfer_up_threshold = 0.04f;
+    float transfer_down_threshold = 0.025f;
+    float starch_fraction = 0.025f;
+    float conductance_up = 0.475f;
+    float conductance_down = 0.95f;
+    float bud_death_time = 2.0f;
+    float branch_death_time = 5.0f;
+    float max_phyllochron_factor = 10.0f;
+};
+
+/// A plant's nitrogen (docs/physiology.md): an available pool the leaves draw from, nitrogen
+/// per leaf area, remobilisation from old leaves and a stress factor that slows leaf expansion
+/// and photosynthesis.
+struct NitrogenParameters {
+    bool enabled = false;
+    float initial_available = 0.0f;
+    float target_leaf_nitrogen = 1.5f;
+    float minimum_leaf_nitrogen = 0.5f;
+    float initial_leaf_nitrogen = 1.5f;
+    float root_allocation = 0.15f;
+    float max_accumulation_rate = 0.1f;
+    float remobilisation_efficiency = 0.7f;
+    float remobilisation_rate = 0.05f;
+    float old_leaf_age = 0.7f;
+    float young_leaf_age = 0.5f;
+    float fruit_nitrogen = 1.0f;
+    float expansion_sensitivity = 1.0f;
+};
+
+/// A species' leaf photosynthesis at 25 degrees C (the Farquhar-von Caemmerer-Berry model's
+/// capacities; the temperature responses are the model's) and its leaves' optics in PAR.
+struct LeafPhysiologyParameters {
+    float vcmax25 = 100.0f;
+    float jmax25 = 175.0f;
+    float rd25 = 1.5f;
+    float leaf_reflectance = 0.10f;
+    float leaf_transmittance = 0.05f;
+};
+
 /// Timing of a plant's phenological stages, days. A negative threshold disables that
 /// transition (the next one is timed from the previous enabled one).
 struct PhenologyParameters {
@@ -269,6 +333,10 @@ struct PhenologyParameters {
     float max_leaf_lifespan = 1e6f;
     bool evergreen = false;
     float max_age = 999.0f;
+    /// The plant's physiology: carbon, nitrogen and its leaves' photosynthesis.
+    CarbohydrateParameters carbohydrates;
+    NitrogenParameters nitrogen;
+    LeafPhysiologyParameters leaf_physiology;
 };
 
 /// Checks every field against its declared range (and child probabilities: each in [0,1],

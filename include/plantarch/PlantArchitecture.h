@@ -25,6 +25,10 @@
 #include "plantarch/ShootSpec.h"
 
 namespace plantarch {
+struct PhysiologyRecord;  // plantarch/Physiology.h
+}
+
+namespace plantarch {
 
 /// How buildPlantCanopyFromLibrary places plants: on a grid (the specification's form) or
 /// scattered at random over a rectangle. Errors name the specification's argument names,
@@ -252,7 +256,36 @@ public:
     /// Grows one plant by `days`.
     void advanceTime(unsigned plantID, double days);
     /// Grows the given plants by `days` (together, as advanceTime(days) grows them all).
+    /// Plants with their carbohydrate or nitrogen model on grow in steps of at most a day,
+    /// each followed by their budgets (docs/physiology.md).
     void advanceTime(const std::vector<unsigned>& plantIDs, double days);
+
+    // ---- physiology (docs/physiology.md) ---------------------------------------------
+    /// Runs the plant's carbohydrate budget from now on: each shoot starts with the species'
+    /// initial concentration and its organs as now counted as paid for. Its parameters are
+    /// the plant's (`carbohydrates` of its phenology); a species with `enabled` set has it on
+    /// from its plants' first step.
+    void enableCarbohydrateModel(unsigned plantID);
+    /// Runs the plant's nitrogen model from now on (its leaves at the initial nitrogen, its
+    /// available pool at the initial value).
+    void enableNitrogenModel(unsigned plantID);
+    /// Whether the plant's carbohydrate budget or nitrogen model runs.
+    bool hasCarbohydrateModel(unsigned plantID) const;
+    bool hasNitrogenModel(unsigned plantID) const;
+    /// Fertilises a plant whose nitrogen model runs: `grams` of nitrogen (> 0, finite), of
+    /// which the species' root allocation stays in the roots and the rest becomes available.
+    void addPlantNitrogen(unsigned plantID, double grams);
+    /// Adds leaves' own net photosynthesis (µmol CO2 m⁻² s⁻¹ per leaf object, measured or
+    /// from another model) over `hours` (0 to 24) to their shoots' input for the next budget
+    /// step. Each object must be a leaf of a plant whose budget runs; nothing is added when
+    /// one is not.
+    void addLeafPhotosynthesis(const std::map<ObjectID, double>& netRates, double hours);
+    /// The mean air temperature (°C, -50 to 60) the budgets' respiration uses; 20 by default.
+    void setAirTemperature(double celsius);
+    /// Adds light absorbed by a plant's leaves (mol photons) to its next record.
+    void addAbsorbedLight(unsigned plantID, double molPhotons);
+    /// Every budget step's record of the plant so far (empty while its models are off).
+    const std::vector<PhysiologyRecord>& getPhysiologyRecords(unsigned plantID) const;
 
     /// Ground clearance (docs/growth.md), on by default: no petiole with its leaves, peduncle
     /// with its flowers or fruit of a plant goes below the plant's ground, the z of its base.
@@ -460,6 +493,13 @@ private:
     /// Adds the loaded species' trellis for a plant built at `base` (when on and declared).
     void addTrellis(unsigned plantID, const vec3& base,
                     const std::map<std::string, float>& build_parameters);
+
+    /// Grows the plants by `days` without their budgets (advanceTime's growth).
+    void growPlants(const std::vector<unsigned>& plantIDs, double days);
+    /// Starts the models a plant has enabled and not yet started (src/api/physiology_api.cpp).
+    void startPhysiology(unsigned plantID);
+    /// One budget step of `days` for a plant whose models run (src/api/physiology_api.cpp).
+    void stepPhysiology(unsigned plantID, double days);
 
     Context* context_;
     std::uint64_t seed_ = 42;

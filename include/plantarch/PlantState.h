@@ -216,6 +216,11 @@ struct FloralBud {
     std::vector<FlowerOrgan> flowers;
 };
 
+/// A leaf's nitrogen, when the plant's nitrogen model runs.
+struct LeafNitrogen {
+    double content = 0.0;  ///< g N in the leaf
+};
+
 struct LeafOrgan {
     int leafletIndex = 0;   ///< 0 tip, negative left, positive right (pairs from the tip)
     float position = 1.0f;  ///< along the petiole from its base, fraction of its length
@@ -229,6 +234,7 @@ struct LeafOrgan {
     double birth = 0.0;    ///< plant age when it appeared
     bool removed = false;
     std::vector<ObjectID> objects;
+    std::optional<LeafNitrogen> nitrogen;  ///< none unless the plant's nitrogen model runs
 };
 
 struct Petiole {
@@ -273,6 +279,21 @@ struct Phytomer {
     std::string parametersLabel;      ///< shoot type whose phytomer template built it
 };
 
+/// A shoot's carbohydrates, when the plant's budget runs (docs/physiology.md): its pools and
+/// what the budget remembers of its size at the last daily step, to charge the growth since.
+struct ShootCarbon {
+    double sugar = 0.0;           ///< mol C
+    double starch = 0.0;          ///< mol C
+    double woodCarbon = 0.0;      ///< mol C of structure in its internodes at the last step
+    double leafArea = 0.0;        ///< m² of leaves at the last step
+    double fruitVolume = 0.0;     ///< m³ of fruit at the last step
+    unsigned flowers = 0;         ///< flowers formed so far (each paid for once)
+    float poorDays = 0.0f;        ///< days in a row below the abortion threshold
+    float starvedDays = 0.0f;     ///< days in a row below the pruning threshold
+    float phyllochron = 0.0f;     ///< the shoot's own phyllochron, days, before any slowing
+    float budBreakFactor = 1.0f;  ///< the shoot's buds break with their probability times this
+};
+
 struct Shoot {
     unsigned id = 0;
     std::string type;
@@ -304,6 +325,7 @@ struct Shoot {
     double nextPhytomerTime = -1.0;
     bool flowering = false;  ///< determinate shoots stop growing once flowering
     bool removed = false;
+    std::optional<ShootCarbon> carbon;  ///< none unless the plant's budget runs
 };
 
 // ---- organ sizes ------------------------------------------------------------------------
@@ -334,6 +356,16 @@ inline bool hasSize(float size) {
 struct EpicormicShoots {
     std::string shootType;     ///< type of the shoots made
     float probability = 0.0f;  ///< per m of parent shoot per day, at a vertical parent
+};
+
+/// A plant's nitrogen, when its nitrogen model runs (docs/physiology.md).
+struct PlantNitrogen {
+    double available = 0.0;  ///< g N the leaves and fruit may take up
+    double roots = 0.0;      ///< g N kept by the roots
+    double uptake = 0.0;     ///< g N taken up by leaves and fruit so far
+    double fruit = 0.0;      ///< g N in fruit so far
+    double leaves = 0.0;     ///< g N in its leaves after the last step
+    float stress = 1.0f;     ///< area-weighted leaf N over its target, at most 1 (1: none)
 };
 
 struct PlantInstance {
@@ -367,6 +399,7 @@ struct PlantInstance {
     std::optional<AttractionPoints> attraction;
     /// Water sprouts (none: the plant makes none).
     std::optional<EpicormicShoots> epicormic;
+    std::optional<PlantNitrogen> nitrogen;  ///< none unless its nitrogen model runs
 };
 
 }  // namespace plantarch

@@ -196,6 +196,7 @@ void describeState(S& l, V& v) {
             l.birth);
     v.field({"removed", 0, 1, "shed or removed"}, l.removed);
     v.objects("object_IDs", l.objects);
+    v.optional("nitrogen", l.nitrogen);
 }
 
 template <class S, class V>
@@ -304,6 +305,40 @@ void describeState(S& s, V& v) {
     nested(v, "apical_bud", s.apicalBud, [](auto&) {});
     v.list("phytomer", s.phytomers);
     v.list("terminal_floral_bud", s.terminalFloralBuds);
+    v.optional("carbohydrates", s.carbon);
+}
+
+template <class S, class V>
+requires SameAs<S, ShootCarbon>
+void describeState(S& c, V& v) {
+    v.field({"sugar", -kBig, kBig, "sugar pool, mol C"}, c.sugar);
+    v.field({"starch", 0, kBig, "starch pool, mol C"}, c.starch);
+    v.field({"wood_carbon", 0, kBig, "structure in its internodes at the last step, mol C"},
+            c.woodCarbon);
+    v.field({"leaf_area", 0, kBig, "leaf area at the last step, m^2"}, c.leafArea);
+    v.field({"fruit_volume", 0, kBig, "fruit volume at the last step, m^3"}, c.fruitVolume);
+    v.field({"flowers", 0, kCount, "flowers formed and paid for"}, c.flowers);
+    v.field({"poor_days", 0, kTime, "days below the abortion threshold"}, c.poorDays);
+    v.field({"starved_days", 0, kTime, "days below the pruning threshold"}, c.starvedDays);
+    v.field({"phyllochron", 0, kBig, "the shoot's own phyllochron, days"}, c.phyllochron);
+    v.field({"bud_break_factor", 0, 1, "scales its buds' break probability"}, c.budBreakFactor);
+}
+
+template <class S, class V>
+requires SameAs<S, LeafNitrogen>
+void describeState(S& n, V& v) {
+    v.field({"content", 0, kBig, "g N in the leaf"}, n.content);
+}
+
+template <class S, class V>
+requires SameAs<S, PlantNitrogen>
+void describeState(S& n, V& v) {
+    v.field({"available", 0, kBig, "g N available to leaves and fruit"}, n.available);
+    v.field({"roots", 0, kBig, "g N kept by the roots"}, n.roots);
+    v.field({"uptake", 0, kBig, "g N taken up so far"}, n.uptake);
+    v.field({"fruit", 0, kBig, "g N in fruit so far"}, n.fruit);
+    v.field({"leaves", 0, kBig, "g N in its leaves after the last step"}, n.leaves);
+    v.field({"stress", 0, 1, "leaf N over target, at most 1"}, n.stress);
 }
 
 // A plant's own attraction points (docs/collision.md): the cone and the points, in world
@@ -350,6 +385,7 @@ void describeState(S& p, V& v) {
             p.groundClearance);
     v.optional("attraction_points", p.attraction);
     v.optional("epicormic_shoots", p.epicormic);
+    v.optional("nitrogen", p.nitrogen);
     v.parameters("phenology", p.phenology);
     v.parameters("shoot_type", p.shootTypes);
     v.list("shoot", p.shoots, true);

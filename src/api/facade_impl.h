@@ -10,6 +10,7 @@
 #include "growth/growth.h"
 #include "model/function_registry.h"
 #include "model/plant_store.h"
+#include "plantarch/Physiology.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Species.h"
 
@@ -27,6 +28,15 @@ struct PlantArchitecture::Impl {
     bool geometryDeferred = false;
     bool trellisGeometry = true;                        ///< setTrellisGeometry
     std::map<unsigned, std::vector<ObjectID>> trellis;  ///< trellis objects by plant
+
+    /// What the physiology of a plant keeps between budget steps (physiology_api.cpp).
+    struct PlantPhysiology {
+        std::map<unsigned, double> input;  ///< mol C fixed per shoot since the last step
+        double absorbed = 0.0;             ///< mol photons absorbed since the last step
+        std::vector<PhysiologyRecord> records;
+    };
+    std::map<unsigned, PlantPhysiology> physiology;
+    double airTemperature = 20.0;  ///< °C, for the budgets' respiration
 
     /// What growing by hand uses: no steering (only growth steers what it makes).
     GrowthContext growth() { return {store, functions, prototypes, nullptr}; }

@@ -1,5 +1,6 @@
 // PlantArchitecture: growth over time, phenology, progress and the phytomer functions.
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <functional>
@@ -28,7 +29,31 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
     if (!(days >= 0.0) || !std::isfinite(days))
         throw Error("time step must be a finite number of days >= 0",
                     {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
-    for (unsigned id : plantIDs) impl_->store.plant(id);     // all exist, or nothing happens
+    for (unsigned id : plantIDs) impl_->store.plant(id);  // all exist, or nothing happens
+    std::vector<unsigned> budgeted;
+    for (unsigned id : plantIDs) {
+        const PlantInstance& p = impl_->store.plant(id);
+        if (p.phenology.carbohydrates.enabled || p.phenology.nitrogen.enabled || p.nitrogen ||
+            (!p.shoots.empty() && p.shoots[0].carbon))
+            budgeted.push_back(id);
+    }
+    if (budgeted.empty()) {
+        growPlants(plantIDs, days);
+        return;
+    }
+    // Plants with budgets grow in steps of at most a day (all plants together, so they grow
+    // as one scene), each step followed by their budgets.
+    for (unsigned id : budgeted) startPhysiology(id);
+    double done = 0.0;
+    while (done < days) {
+        const double step = std::min(1.0, days - done);
+        growPlants(plantIDs, step);
+        for (unsigned id : budgeted) stepPhysiology(id, step);
+        done += step;
+    }
+}
+
+void PlantArchitecture::growPlants(const std::vector<unsigned>& plantIDs, double days) {
     impl_->store.triangleLimit = context_->triangleLimit();  // growth stops past it
     if (collision::collisionActive(impl_->collision, impl_->store)) {
         collision::advanceWithCollision(impl_->collision, impl_->store, impl_->worker(), *context_,

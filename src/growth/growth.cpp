@@ -285,8 +285,10 @@ struct Grower {
         const int n = int(s.phytomers.size());
         // Buds that need a winter were sorted when dormancy broke; the others are sorted now,
         // by their place below the growing tip.
+        // A shoot short of carbohydrates breaks fewer buds (docs/physiology.md).
+        const float carbon = s.carbon ? s.carbon->budBreakFactor : 1.0f;
         if (!t.growth_requires_dormancy &&
-            !plant.rng.chance(budBreakProbability(t, plant.rng, int(e.node), n, false))) {
+            !plant.rng.chance(carbon * budBreakProbability(t, plant.rng, int(e.node), n, false))) {
             bud.state = BudState::Dead;
             return;
         }
@@ -448,9 +450,11 @@ struct Grower {
                         if (bud.state == BudState::Dormant && bud.breakTime < 0.0) {
                             // Buds that need a winter are sorted as the season begins, by
                             // their place on the shoot as it stands now.
+                            const float carbon = s.carbon ? s.carbon->budBreakFactor : 1.0f;
                             if (t.growth_requires_dormancy &&
-                                !plant.rng.chance(budBreakProbability(
-                                    t, plant.rng, int(k), int(s.phytomers.size()), true))) {
+                                !plant.rng.chance(
+                                    carbon * budBreakProbability(t, plant.rng, int(k),
+                                                                 int(s.phytomers.size()), true))) {
                                 bud.state = BudState::Dead;
                                 continue;
                             }

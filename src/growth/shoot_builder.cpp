@@ -88,7 +88,11 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
     const float offset = lp.leaflet_offset.sample(plant.rng);
     const float shrink = lp.leaflet_scale.sample(plant.rng);
     // One size for the whole leaf: its leaflets are that size times their leaflet_scale steps.
-    const float size = lp.prototype_scale.sample(plant.rng);
+    float size = lp.prototype_scale.sample(plant.rng);
+    // A plant short of nitrogen makes smaller leaves (docs/physiology.md).
+    if (plant.nitrogen)
+        size *= 1.0f - plant.phenology.nitrogen.expansion_sensitivity *
+                           (1.0f - std::clamp(plant.nitrogen->stress, 0.0f, 1.0f));
     auto leaf = [&](int index, float position, float scaleFactor, bool rotated) {
         LeafOrgan l;
         l.leafletIndex = index;
