@@ -20,6 +20,7 @@
 #include "plantarch/ExportPlants.h"
 #include "plantarch/OutputFiles.h"
 #include "plantarch/OutputFormats.h"
+#include "plantarch/Physiology.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantFiles.h"
 #include "plantarch/Progress.h"
@@ -242,6 +243,29 @@ struct CollisionArgs {
 void addCollisionOptions(CLI::App& app, CollisionArgs& args);
 /// Checks the options' forms and that their files open, before any work is done.
 void checkCollisionOptions(const CollisionArgs& args);
+
+/// The physiology options of build and grow (apps/physiology_options.cpp).
+struct PhysiologyArgs {
+    bool carbon = false;                 ///< --carbon
+    bool nitrogen = false;               ///< --nitrogen
+    std::string location;                ///< --location LAT,LON
+    std::string start;                   ///< --start YYYY-MM-DD (clear days)
+    double clearness = 0.75;             ///< --clearness
+    std::string weather;                 ///< --weather FILE.csv
+    std::vector<std::string> fertilise;  ///< --fertilise AGE:GRAMS (repeatable)
+    unsigned lightEvery = 1;             ///< --light-every N
+    std::string series;                  ///< --series FILE.csv
+};
+void addPhysiologyOptions(CLI::App& app, PhysiologyArgs& args);
+/// Whether --carbon or --nitrogen was given.
+bool physiologyOn(const PhysiologyArgs& args);
+/// Checks the options' forms and that they go together, before any work is done.
+void checkPhysiologyOptions(const PhysiologyArgs& args);
+/// Turns the asked-for models on for `plants` and grows them `days` whole days through the
+/// weather (or clear days), each day's light traced; writes --series. Returns the records.
+std::vector<PhysiologyRecord> growWithPhysiology(PlantArchitecture& arch,
+                                                 const std::vector<unsigned>& plants,
+                                                 const PhysiologyArgs& args, double days);
 /// The help text of --no-ground-clearance (build, canopy, grow).
 extern const char* const kNoGroundClearanceHelp;
 /// Reads obstacles and points into `ctx` and enables what was asked for (ground clearance

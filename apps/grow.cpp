@@ -24,6 +24,7 @@ struct GrowArgs {
     std::vector<std::string> outputs;
     AnimationArgs animation;
     bool noGroundClearance = false;
+    PhysiologyArgs physiology;
 };
 
 std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
@@ -42,12 +43,16 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     addLabelOptions(app, global);
+    addPhysiologyOptions(app, a->physiology);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         if (frames && a->days >= 0.0)
             throw Error("--days and --frames both given: --frames gives the days of the frames");
         if (!frames && a->days < 0.0)
             throw Error("--days is required (or --frames for a growth animation)");
+        checkPhysiologyOptions(a->physiology);
+        if (frames && physiologyOn(a->physiology))
+            throw Error("--carbon/--nitrogen grow with --days, not --frames");
         if (frames)
             checkAnimationOutputs(a->outputs);
         else
@@ -69,7 +74,10 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
             writeGrowthAnimation(arch, plants, *frames, a->outputs,
                                  {a->animation.rate, terminalProgress()});
         } else {
-            arch.advanceTime(plants, a->days);
+            if (physiologyOn(a->physiology))
+                growWithPhysiology(arch, plants, a->physiology, a->days);
+            else
+                arch.advanceTime(plants, a->days);
             for (const std::string& out : a->outputs)
                 writePlantFile(arch, plants, out, plantFileOptions(global));
         }

@@ -582,8 +582,12 @@ void describeParameters(S& p, V& v) {
              "Sugar in a shoot's wood when the budget starts"},
             p.initial_concentration);
     v.field({"storage_capacity", "g C g-1", 0, 100,
-             "The most sugar and starch a shoot's wood holds; the rest grows roots"},
+             "The most sugar a shoot's wood holds; the rest grows roots"},
             p.storage_capacity);
+    v.field({"seed_reserve", "mol C", 0, 1e6,
+             "Starch the base stem gets when the budget starts: the seed's or planting stock's "
+             "reserve that feeds a seedling (0 for a plant started past that stage)"},
+            p.seed_reserve);
     v.field({"abortion_threshold", "g C g-1", 0, 10,
              "Below this a shoot counts poor days and then aborts flowers and fruit"},
             p.abortion_threshold);

@@ -278,6 +278,7 @@ struct CarbohydrateParameters {
     float respiration_q10 = 1.8f;
     float initial_concentration = 0.15f;
     float storage_capacity = 0.3f;
+    float seed_reserve = 0.02f;
     float abortion_threshold = 0.1f;
     float pruning_threshold = 0.025f;
     float phyllochron_threshold = 0.05f;

@@ -22,15 +22,18 @@ double amount(const CarbohydrateParameters& p, double concentration, double volu
     return concentration * p.stem_density * std::max(volume, kMinVolume) / kCarbonMolarMass;
 }
 
-// The chain of shoots that pays for a shoot's costs: itself, then its ancestors.
+// The chain of shoots that pays for a shoot's costs: itself, then its ancestors (the base
+// stem holds the seed's reserve).
 void pay(PlantInstance& plant, unsigned id, double cost) {
     int at = int(id);
     while (cost > 0.0 && at >= 0) {
         Shoot& s = plant.shoots[unsigned(at)];
-        if (s.carbon && !s.removed) {
-            const double paid = std::min(cost, std::max(0.0, s.carbon->sugar));
-            s.carbon->sugar -= paid;
-            cost -= paid;
+        if (s.carbon && !s.removed) {  // from its sugar, then its starch
+            const double sugar = std::min(cost, std::max(0.0, s.carbon->sugar));
+            s.carbon->sugar -= sugar;
+            const double starch = std::min(cost - sugar, s.carbon->starch);
+            s.carbon->starch -= starch;
+            cost -= sugar + starch;
         }
         at = s.parent;
     }
@@ -127,8 +130,12 @@ void abortFloral(Shoot& s, CarbonActions& actions) {
 }
 
 // Phyllochron, bud break and the counters of a shoot after the day's flows.
+// A shoot starves (and dies after branch_death_time days) only while it is poor and the
+// leaves of it and of everything growing from it do not pay for their upkeep (`selfBalance`:
+// their net input less maintenance): a poor shoot that feeds itself is in debt for growth it
+// already made, which it pays back, growing more slowly meanwhile.
 void regulate(PlantInstance& plant, Shoot& s, const ShootMeasure& m,
-              const CarbohydrateParameters& p, double days) {
+              const CarbohydrateParameters& p, double days, double selfBalance) {
     ShootCarbon& c = *s.carbon;
     const double total = pool(c);
     // Poorer than the phyllochron threshold: nodes come proportionally more slowly.
@@ -144,8 +151,9 @@ void regulate(PlantInstance& plant, Shoot& s, const ShootMeasure& m,
         float(std::clamp(total / amount(p, p.bud_break_threshold, m.woodVolume), 0.0, 1.0));
     c.poorDays =
         total < amount(p, p.abortion_threshold, m.woodVolume) ? c.poorDays + float(days) : 0.0f;
-    c.starvedDays =
-        total < amount(p, p.pruning_threshold, m.woodVolume) ? c.starvedDays + float(days) : 0.0f;
+    c.starvedDays = total < amount(p, p.pruning_threshold, m.woodVolume) && selfBalance < 0.0
+                        ? c.starvedDays + float(days)
+                        : 0.0f;
 }
 
 // Costs of what a shoot built since the last step: wood (with roots in proportion), leaves,
@@ -193,7 +201,8 @@ double startCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& measur
         c.fruitVolume = m.fruitVolume;
         c.flowers = m.flowers;
         c.phyllochron = s.phyllochron;
-        added += c.sugar;
+        if (s.parent < 0) c.starch = p.seed_reserve;  // the base stem
+        added += c.sugar + c.starch;
         s.carbon = c;
     }
     return added;
@@ -219,7 +228,9 @@ CarbonActions stepCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& 
     const double q10 = std::pow(double(p.respiration_q10), (temperature - 20.0) / 10.0);
     const double maintenanceRate =
         (p.wood_respiration_rate + p.root_respiration_rate / p.shoot_root_ratio) * q10;
-    // 1. Input, 2. maintenance.
+    // 1. Input, 2. maintenance; each subtree's balance of the two (children have larger IDs
+    // than their parents).
+    std::vector<double> balance(plant.shoots.size(), 0.0);
     for (Shoot& s : plant.shoots) {
         if (s.removed) continue;
         const ShootMeasure& m = measures[s.id];
@@ -228,7 +239,11 @@ CarbonActions stepCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& 
         const double respired = m.woodCarbon * maintenanceRate * days;
         s.carbon->sugar -= respired;
         record.maintenance += respired;
+        balance[s.id] = m.input - respired;
     }
+    for (std::size_t i = plant.shoots.size(); i-- > 0;)
+        if (!plant.shoots[i].removed && plant.shoots[i].parent >= 0)
+            balance[std::size_t(plant.shoots[i].parent)] += balance[i];
     // 3. Growth, paid by the shoot and then its ancestors (a young shoot lives on its parent).
     for (Shoot& s : plant.shoots) {
         if (s.removed) continue;
@@ -261,9 +276,8 @@ CarbonActions stepCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& 
     for (Shoot& s : plant.shoots) {
         if (s.removed) continue;
         ShootCarbon& c = *s.carbon;
-        const double excess = pool(c) - amount(p, p.storage_capacity, measures[s.id].woodVolume);
-        if (excess <= 0.0 || c.sugar <= 0.0) continue;
-        const double spent = std::min(excess, c.sugar);
+        const double spent = c.sugar - amount(p, p.storage_capacity, measures[s.id].woodVolume);
+        if (spent <= 0.0) continue;
         c.sugar -= spent;
         const double built = spent / (1.0 + p.growth_respiration_fraction);
         record.growth += built;
@@ -275,7 +289,7 @@ CarbonActions stepCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& 
     for (Shoot& s : plant.shoots) {
         if (s.removed) continue;
         const ShootMeasure& m = measures[s.id];
-        regulate(plant, s, m, p, days);
+        regulate(plant, s, m, p, days, balance[s.id]);
         const ShootCarbon& c = *s.carbon;
         if (c.starvedDays > p.branch_death_time) {
             dying.push_back(s.id);
