@@ -551,11 +551,6 @@ void describeParameters(S& p, V& v) {
     v.field({"nonstructural_fraction", "g C g-1", 0, 1,
              "Share of stem mass that is sugar and starch at full reserves (not wood)"},
             p.nonstructural_fraction);
-    v.field(
-        {"wood_maturity_age", "days", 0.001, 1e5, "Age at which new wood reaches its full density"},
-        p.wood_maturity_age);
-    v.field({"young_wood_density_ratio", "", 0, 1, "Density of new wood over mature wood"},
-            p.young_wood_density_ratio);
     v.field({"shoot_root_ratio", "", 0.01, 1000,
              "Shoot mass over root mass: roots grow and respire in this proportion"},
             p.shoot_root_ratio);

@@ -265,8 +265,6 @@ struct CarbohydrateParameters {
     float stem_density = 675000.0f;
     float stem_carbon_fraction = 0.457f;
     float nonstructural_fraction = 0.1228f;
-    float wood_maturity_age = 120.0f;
-    float young_wood_density_ratio = 0.25f;
     float shoot_root_ratio = 3.0f;
     float leaf_carbon_per_area = 20.0f;
     float flower_carbon = 8.33e-4f;

@@ -92,7 +92,7 @@ std::vector<physiology::ShootMeasure> measureShoots(const Context& ctx, const Pl
             const double r = ph.internode.radius;
             const double volume = M_PI * r * r * double(ph.internode.length) * ph.internodeFraction;
             m.woodVolume += volume;
-            m.woodCarbon += physiology::woodCarbon(p, volume, ph.age);
+            m.woodCarbon += physiology::woodCarbon(p, volume);
             for (const Petiole& pt : ph.petioles) {
                 for (const LeafOrgan& l : pt.leaves)
                     if (!l.removed)

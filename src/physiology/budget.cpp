@@ -178,14 +178,10 @@ std::pair<double, double> growthCost(const CarbohydrateParameters& p, ShootCarbo
 
 }  // namespace
 
-double woodCarbon(const CarbohydrateParameters& p, double volume, double age) {
-    const double structural =
-        p.stem_density * std::max(0.0, double(p.stem_carbon_fraction) - p.nonstructural_fraction) /
-        kCarbonMolarMass;
-    const double ratio = p.young_wood_density_ratio +
-                         (1.0 - p.young_wood_density_ratio) *
-                             std::min(1.0, std::max(0.0, age) / double(p.wood_maturity_age));
-    return structural * ratio * volume;
+double woodCarbon(const CarbohydrateParameters& p, double volume) {
+    return p.stem_density *
+           std::max(0.0, double(p.stem_carbon_fraction) - p.nonstructural_fraction) /
+           kCarbonMolarMass * volume;
 }
 
 double startCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& measures) {

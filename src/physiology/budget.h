@@ -15,7 +15,7 @@ namespace plantarch::physiology {
 /// drawn organs).
 struct ShootMeasure {
     double woodVolume = 0.0;   ///< m³ of its internodes as they are now
-    double woodCarbon = 0.0;   ///< mol C of structure in them, wood density by internode age
+    double woodCarbon = 0.0;   ///< mol C of structure in them
     double leafArea = 0.0;     ///< m² of its leaves (one side)
     double fruitVolume = 0.0;  ///< m³ of its fruit
     unsigned flowers = 0;      ///< flowers it has formed (open, closed or set as fruit)
@@ -34,9 +34,9 @@ struct CarbonActions {
     std::vector<AbortedBud> aborted;
 };
 
-/// The structural carbon of wood of `volume` m³ and `age` days (its density rising to the
-/// mature value over the maturity age), mol C.
-double woodCarbon(const CarbohydrateParameters& p, double volume, double age);
+/// The structural carbon of `volume` m³ of wood, mol C (stem density times its carbon share
+/// less the non-structural share).
+double woodCarbon(const CarbohydrateParameters& p, double volume);
 
 /// Gives every live shoot without pools its starting pools: the species' initial
 /// concentration of its wood, with its organs as now counted as already paid for. Returns
