@@ -269,8 +269,9 @@ public:
     /// Runs the plant's nitrogen model from now on (its leaves at the initial nitrogen, its
     /// available pool at the initial value).
     void enableNitrogenModel(unsigned plantID);
-    /// Whether the plant's carbohydrate budget or nitrogen model runs.
+    /// Whether the plant's carbohydrate budget runs.
     bool hasCarbohydrateModel(unsigned plantID) const;
+    /// Whether the plant's nitrogen model runs.
     bool hasNitrogenModel(unsigned plantID) const;
     /// Fertilises a plant whose nitrogen model runs: `grams` of nitrogen (> 0, finite), of
     /// which the species' root allocation stays in the roots and the rest becomes available.

@@ -57,6 +57,7 @@ void bindContext(py::module_& m);       // context.cpp: Context, Mesh, Material
 void bindGeometry(py::module_& m);      // geometry.cpp: numpy views of the mesh
 void bindArchitecture(py::module_& m);  // architecture.cpp: PlantArchitecture
 void bindLight(py::module_& m);         // light.cpp: weather, sun, light model, photosynthesis
+void bindPhysiology(py::module_& m);    // physiology.cpp: carbon and nitrogen
 void bindOutput(py::module_& m);        // output.cpp: exporters, renderer, species files
 
 }  // namespace plantarch::python

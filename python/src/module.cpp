@@ -28,6 +28,7 @@ PYBIND11_MODULE(_plantarch, m) {
     bindGeometry(m);
     bindOutput(m);
     bindLight(m);
+    bindPhysiology(m);  // after bindArchitecture: adds PlantArchitecture's methods
 #ifdef PLANTARCH_VERSION_STRING
     m.attr("__version__") = PLANTARCH_VERSION_STRING;
 #endif

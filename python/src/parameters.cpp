@@ -32,6 +32,9 @@ constexpr const char* tableName() {
     if constexpr (std::is_same_v<S, InflorescenceParameters>) return "inflorescence";
     if constexpr (std::is_same_v<S, NodeRule>) return "rule";
     if constexpr (std::is_same_v<S, PhenologyParameters>) return "phenology";
+    if constexpr (std::is_same_v<S, CarbohydrateParameters>) return "carbohydrates";
+    if constexpr (std::is_same_v<S, NitrogenParameters>) return "nitrogen";
+    if constexpr (std::is_same_v<S, LeafPhysiologyParameters>) return "leaf_physiology";
     return "";
 }
 
@@ -535,6 +538,12 @@ void bindParameters(py::module_& m) {
             [](const ShootParameters& s, const std::string& prefix) { validate(s, prefix); },
             py::arg("prefix") = "",
             "Checks every field and the fields against each other (raises plantarch.Error).");
+    bindStruct<CarbohydrateParameters>(m, "CarbohydrateParameters",
+                                       "A plant's carbohydrate budget (docs/physiology.md).");
+    bindStruct<NitrogenParameters>(m, "NitrogenParameters",
+                                   "A plant's nitrogen model (docs/physiology.md).");
+    bindStruct<LeafPhysiologyParameters>(m, "LeafPhysiologyParameters",
+                                         "Leaf photosynthesis capacities and optics.");
     bindStruct<PhenologyParameters>(m, "PhenologyParameters",
                                     "Timing of a plant's phenological stages, days.");
 

@@ -1,0 +1,105 @@
+// The carbohydrate budget and nitrogen model (plantarch/Physiology.h): PlantArchitecture's
+// physiology methods, growPhysiology, and the records as numpy arrays by column.
+
+#include "plantarch/Physiology.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bindings.h"
+#include "docstrings.h"
+#include "plantarch/PlantArchitecture.h"
+
+namespace plantarch::python {
+
+namespace {
+
+// Records as one numpy array per column (physiologyColumns), in record order.
+py::dict recordArrays(const std::vector<PhysiologyRecord>& records) {
+    const std::vector<std::string> columns = physiologyColumns();
+    std::vector<py::array_t<double>> arrays;
+    for (std::size_t c = 0; c < columns.size(); ++c)
+        arrays.emplace_back(py::ssize_t(records.size()));
+    for (std::size_t r = 0; r < records.size(); ++r) {
+        const std::vector<double> values = physiologyValues(records[r]);
+        for (std::size_t c = 0; c < columns.size(); ++c)
+            arrays[c].mutable_at(py::ssize_t(r)) = values[c];
+    }
+    py::dict out;
+    for (std::size_t c = 0; c < columns.size(); ++c) out[columns[c].c_str()] = arrays[c];
+    return out;
+}
+
+}  // namespace
+
+void bindPhysiology(py::module_& m) {
+    py::class_<PhysiologyOptions>(
+        m, "PhysiologyOptions", "How growPhysiology lights the scene and turns light into carbon.")
+        .def(py::init<>())
+        .def_property(
+            "location",
+            [](const PhysiologyOptions& o) {
+                return py::make_tuple(o.location.latitude, o.location.longitude);
+            },
+            [](PhysiologyOptions& o, std::pair<double, double> where) {
+                o.location = {where.first, where.second};
+            },
+            "(latitude, longitude) in degrees, north and east positive")
+        .def_readwrite("light", &PhysiologyOptions::light, "rays and optics (LightOptions)")
+        .def_readwrite("lightEvery", &PhysiologyOptions::lightEvery,
+                       "trace the sky every N hours of daylight (1 to 24)")
+        .def_readwrite("co2", &PhysiologyOptions::co2, "umol/mol where the weather gives none");
+    m.def("physiologyColumns", &physiologyColumns, docs::physiologyColumns);
+    m.def(
+        "growPhysiology",
+        [](PlantArchitecture& arch, const std::vector<WeatherHour>& weather,
+           const PhysiologyOptions& options) {
+            std::vector<PhysiologyRecord> records;
+            {
+                py::gil_scoped_release release;
+                records = growPhysiology(arch, weather, options);
+            }
+            return recordArrays(records);
+        },
+        py::arg("architecture"), py::arg("weather"), py::arg("options") = PhysiologyOptions{},
+        inPython(docs::growPhysiology,
+                 "The records as a dict of numpy arrays, one per column (physiologyColumns())."));
+    m.def(
+        "writePhysiologyCSV",
+        [](const std::string& path, PlantArchitecture& arch, unsigned plantID) {
+            writePhysiologyCSV(path, arch.getPhysiologyRecords(plantID));
+        },
+        py::arg("path"), py::arg("architecture"), py::arg("plant_id"),
+        inPython(docs::writePhysiologyCSV, "Writes the records of one plant of `architecture`."));
+
+    auto cls = py::reinterpret_borrow<py::class_<PlantArchitecture>>(m.attr("PlantArchitecture"));
+    cls.def("enableCarbohydrateModel", &PlantArchitecture::enableCarbohydrateModel,
+            py::arg("plant_id"), docs::PlantArchitecture_enableCarbohydrateModel)
+        .def("enableNitrogenModel", &PlantArchitecture::enableNitrogenModel, py::arg("plant_id"),
+             docs::PlantArchitecture_enableNitrogenModel)
+        .def("hasCarbohydrateModel", &PlantArchitecture::hasCarbohydrateModel, py::arg("plant_id"),
+             docs::PlantArchitecture_hasCarbohydrateModel)
+        .def("hasNitrogenModel", &PlantArchitecture::hasNitrogenModel, py::arg("plant_id"),
+             docs::PlantArchitecture_hasNitrogenModel)
+        .def("addPlantNitrogen", &PlantArchitecture::addPlantNitrogen, py::arg("plant_id"),
+             py::arg("grams"), docs::PlantArchitecture_addPlantNitrogen)
+        .def("addLeafPhotosynthesis", &PlantArchitecture::addLeafPhotosynthesis,
+             py::arg("net_rates"), py::arg("hours"),
+             inPython(docs::PlantArchitecture_addLeafPhotosynthesis,
+                      "`net_rates` is a dict {leaf object ID: umol m-2 s-1}."))
+        .def("setAirTemperature", &PlantArchitecture::setAirTemperature, py::arg("celsius"),
+             docs::PlantArchitecture_setAirTemperature)
+        .def("addAbsorbedLight", &PlantArchitecture::addAbsorbedLight, py::arg("plant_id"),
+             py::arg("mol_photons"), docs::PlantArchitecture_addAbsorbedLight)
+        .def(
+            "getPhysiologyRecords",
+            [](const PlantArchitecture& a, unsigned plantID) {
+                return recordArrays(a.getPhysiologyRecords(plantID));
+            },
+            py::arg("plant_id"),
+            inPython(docs::PlantArchitecture_getPhysiologyRecords,
+                     "As a dict of numpy arrays, one per column (physiologyColumns())."));
+}
+
+}  // namespace plantarch::python
