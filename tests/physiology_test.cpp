@@ -151,6 +151,8 @@ TEST(Carbon, AShadedPlantFixesLessMakesFewerNodesAndAbortsMore) {
         o.lightEvery = 6;
         o.light.other = {0.1f, 0.1f};
         o.light.scatteringOrders = 1;  // the light the net lets through
+        o.light.diffuseRays = 8;
+        o.light.scatterRays = 4;
         const auto records = growPhysiology(arch, summer(40), o);
         fixed = 0.0;
         aborted = 0;
@@ -352,4 +354,42 @@ TEST(Carbon, AnAlmondWithAmpleLightStaysNearTheAlmondWithoutABudget) {
     EXPECT_NEAR(budget.height / free.height, 1.0, 0.05);
     EXPECT_NEAR(budget.fruit / free.fruit, 1.0, 0.2);
     EXPECT_GT(budget.aborted, 0.0);
+}
+
+TEST(Physiology, ParametersThatCannotGoTogetherAreRefused) {
+    PhenologyParameters p;
+    EXPECT_NO_THROW(validate(p));
+    p.leaf_physiology.leaf_reflectance = 0.6f;
+    p.leaf_physiology.leaf_transmittance = 0.5f;
+    EXPECT_THAT_ERROR(validate(p), "cannot reflect and transmit more");
+    p = PhenologyParameters{};
+    p.nitrogen.minimum_leaf_nitrogen = 2.0f;
+    EXPECT_THAT_ERROR(validate(p), "minimum nitrogen exceeds its target");
+    p = PhenologyParameters{};
+    p.carbohydrates.stem_density = -1.0f;
+    EXPECT_THAT_ERROR(validate(p), "stem_density");
+    p = PhenologyParameters{};
+    p.carbohydrates.respiration_q10 = std::nanf("");
+    EXPECT_THAT_ERROR(validate(p), "respiration_q10");
+}
+
+// A species' `enabled` is honoured by growPhysiology; plain growth never starts a budget.
+TEST(Carbon, TheSpeciesSwitchIsHonouredByGrowPhysiologyOnly) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned id = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 15.0f);
+    PhenologyParameters ph = arch.plant(id).phenology;
+    ph.carbohydrates.enabled = true;
+    ph.nitrogen.enabled = true;
+    arch.setPlantPhenologicalThresholds(id, ph);
+    arch.advanceTime(id, 2.0);
+    EXPECT_FALSE(arch.hasCarbohydrateModel(id));
+    EXPECT_FALSE(arch.hasNitrogenModel(id));
+    EXPECT_TRUE(arch.getPhysiologyRecords(id).empty());
+    const auto records = growPhysiology(arch, summer(1), options());
+    EXPECT_TRUE(arch.hasCarbohydrateModel(id));
+    EXPECT_TRUE(arch.hasNitrogenModel(id));
+    ASSERT_EQ(records.size(), 1u);
+    EXPECT_GT(records[0].input, 0.0);
 }

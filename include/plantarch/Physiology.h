@@ -2,9 +2,10 @@
 // A plant's physiology over time (docs/physiology.md): its leaves' photosynthesis from the
 // light they absorb, a carbohydrate budget per shoot that pays for respiration and growth and
 // slows, thins and kills what it cannot pay for, and a nitrogen model whose stress shrinks new
-// leaves and lowers photosynthetic capacity. Switched on per plant (the species' `enabled`
-// parameters, or PlantArchitecture::enableCarbohydrateModel / enableNitrogenModel); a plant
-// with both off grows exactly as without them.
+// leaves and lowers photosynthetic capacity. Switched on per plant
+// (PlantArchitecture::enableCarbohydrateModel / enableNitrogenModel, or by growPhysiology for
+// the plants of a species with `enabled` set); a plant with both off grows exactly as without
+// them.
 
 #include <cstdint>
 #include <string>
@@ -59,6 +60,8 @@ void writePhysiologyCSV(const std::string& path, const std::vector<PhysiologyRec
 /// How growPhysiology lights the scene and turns light into carbon.
 struct PhysiologyOptions {
     Location location;
+    /// Rays and optics; the leaves' optics are those of the first plant with a budget
+    /// (its species' leaf_reflectance and leaf_transmittance).
     LightOptions light;
     /// Compute the sky's light every `lightEvery` hours of daylight and use it for the hours
     /// in between (1: every hour); photosynthesis is still computed each hour.
@@ -71,8 +74,10 @@ struct PhysiologyOptions {
 /// (the plants, the ground and every other object of the Context), each leaf's hourly net
 /// photosynthesis (Farquhar, with the species' capacities and its nitrogen) becomes its
 /// shoot's input, and the plants grow one day with their budgets at the day's mean
-/// temperature. Plants without a budget grow as usual. Returns the records of the days, in
-/// day and plant order. Throws plantarch::Error for weather that is empty or skips a date.
+/// temperature. First switches the models on for plants whose species has them `enabled`.
+/// Plants without a budget grow as usual; a plant whose budget has died has no more records.
+/// Returns the records of the days, in day and plant order. Throws plantarch::Error for weather
+/// that is empty or skips a date.
 std::vector<PhysiologyRecord> growPhysiology(PlantArchitecture& architecture,
                                              const std::vector<WeatherHour>& weather,
                                              const PhysiologyOptions& options);

@@ -263,8 +263,8 @@ public:
     // ---- physiology (docs/physiology.md) ---------------------------------------------
     /// Runs the plant's carbohydrate budget from now on: each shoot starts with the species'
     /// initial concentration and its organs as now counted as paid for. Its parameters are
-    /// the plant's (`carbohydrates` of its phenology); a species with `enabled` set has it on
-    /// from its plants' first step.
+    /// the plant's (`carbohydrates` of its phenology; growPhysiology switches it on for the
+    /// plants of a species with `enabled` set).
     void enableCarbohydrateModel(unsigned plantID);
     /// Runs the plant's nitrogen model from now on (its leaves at the initial nitrogen, its
     /// available pool at the initial value).

@@ -33,9 +33,9 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
     std::vector<unsigned> budgeted;
     for (unsigned id : plantIDs) {
         const PlantInstance& p = impl_->store.plant(id);
-        if (p.phenology.carbohydrates.enabled || p.phenology.nitrogen.enabled || p.nitrogen ||
-            (!p.shoots.empty() && p.shoots[0].carbon))
-            budgeted.push_back(id);
+        bool carbon = false;
+        for (const Shoot& s : p.shoots) carbon = carbon || (!s.removed && s.carbon);
+        if (carbon || p.nitrogen) budgeted.push_back(id);
     }
     if (budgeted.empty()) {
         growPlants(plantIDs, days);
@@ -43,7 +43,6 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
     }
     // Plants with budgets grow in steps of at most a day (all plants together, so they grow
     // as one scene), each step followed by their budgets.
-    for (unsigned id : budgeted) startPhysiology(id);
     double done = 0.0;
     while (done < days) {
         const double step = std::min(1.0, days - done);

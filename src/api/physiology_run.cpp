@@ -170,9 +170,15 @@ void simulateDay(PlantArchitecture& arch, const std::vector<WeatherHour>& hours,
         daylight = daylight || h.par > 0.0;
         temperature += h.airTemperature / double(hours.size());
     }
+    // The scene's leaves take the optics of the first plant with a budget.
+    LightOptions optics = options.light;
+    if (!leaves.empty()) {
+        const LeafPhysiologyParameters& lp =
+            arch.plant(leaves.begin()->second.plant).phenology.leaf_physiology;
+        optics.leaf = {lp.leaf_reflectance, lp.leaf_transmittance};
+    }
     std::unique_ptr<LightModel> model;
-    if (daylight && !leaves.empty())
-        model = std::make_unique<LightModel>(arch.context(), options.light);
+    if (daylight && !leaves.empty()) model = std::make_unique<LightModel>(arch.context(), optics);
     std::map<ObjectID, ObjectLight> light;
     double lightPar = 0.0;
     unsigned sinceLight = options.lightEvery;
@@ -235,12 +241,21 @@ std::vector<PhysiologyRecord> growPhysiology(PlantArchitecture& arch,
         }
         days.back().push_back(h);
     }
+    // Plants whose species switch the models on get them now.
+    for (unsigned id : arch.getAllPlantIDs()) {
+        const PhenologyParameters& ph = arch.plant(id).phenology;
+        if (ph.carbohydrates.enabled && !arch.hasCarbohydrateModel(id))
+            arch.enableCarbohydrateModel(id);
+        if (ph.nitrogen.enabled && !arch.hasNitrogenModel(id)) arch.enableNitrogenModel(id);
+    }
     std::vector<PhysiologyRecord> records;
     for (const auto& hours : days) {
+        std::map<unsigned, std::size_t> before;
+        for (unsigned id : arch.getAllPlantIDs()) before[id] = arch.getPhysiologyRecords(id).size();
         simulateDay(arch, hours, options);
-        for (unsigned id : arch.getAllPlantIDs()) {
+        for (unsigned id : arch.getAllPlantIDs()) {  // the day's new records (none once dead)
             const auto& r = arch.getPhysiologyRecords(id);
-            if (!r.empty()) records.push_back(r.back());
+            records.insert(records.end(), r.begin() + std::ptrdiff_t(before[id]), r.end());
         }
     }
     return records;

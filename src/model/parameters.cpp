@@ -203,6 +203,18 @@ void validate(const PhytomerParameters& p, const std::string& prefix) {
 void validate(const PhenologyParameters& p, const std::string& prefix) {
     Validator v{prefix};
     params::describeParameters(p, v);
+    auto at = [&](const char* name) { return prefix.empty() ? name : prefix + "." + name; };
+    const LeafPhysiologyParameters& leaf = p.leaf_physiology;
+    if (leaf.leaf_reflectance + leaf.leaf_transmittance > 1.0f)
+        throw Error("a leaf cannot reflect and transmit more than the light it gets",
+                    {.parameter = at("leaf_physiology.leaf_transmittance"),
+                     .value = std::to_string(leaf.leaf_transmittance),
+                     .validRange = "<= 1 - leaf_reflectance"});
+    if (p.nitrogen.minimum_leaf_nitrogen > p.nitrogen.target_leaf_nitrogen)
+        throw Error("a leaf's minimum nitrogen exceeds its target",
+                    {.parameter = at("nitrogen.minimum_leaf_nitrogen"),
+                     .value = std::to_string(p.nitrogen.minimum_leaf_nitrogen),
+                     .validRange = "<= target_leaf_nitrogen"});
 }
 
 void validate(const ShootParameters& p, const std::string& prefix) {
