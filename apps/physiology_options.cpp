@@ -118,18 +118,18 @@ std::vector<PhysiologyRecord> growWithPhysiology(PlantArchitecture& arch,
         if (a.carbon) arch.enableCarbohydrateModel(id);
         if (a.nitrogen) arch.enableNitrogenModel(id);
     }
+    std::vector<std::pair<double, double>> events;  // (age, grams), checked already
+    for (const std::string& f : a.fertilise)
+        events.push_back(parseTwoNumbers(f, ':', "--fertilise", "AGE:GRAMS", "e.g. 20:0.5"));
     std::map<std::pair<unsigned, std::size_t>, bool> fertilised;
     std::vector<PhysiologyRecord> records;
     for (int d = 0; d < int(days); ++d) {
         for (unsigned id : plants)
-            for (std::size_t i = 0; i < a.fertilise.size(); ++i) {
-                const auto [age, grams] =
-                    parseTwoNumbers(a.fertilise[i], ':', "--fertilise", "AGE:GRAMS", "e.g. 20:0.5");
-                if (arch.getPlantAge(id) >= age && !fertilised[{id, i}]) {
-                    arch.addPlantNitrogen(id, grams);
+            for (std::size_t i = 0; i < events.size(); ++i)
+                if (arch.getPlantAge(id) >= events[i].first && !fertilised[{id, i}]) {
+                    arch.addPlantNitrogen(id, events[i].second);
                     fertilised[{id, i}] = true;
                 }
-            }
         const auto day = growPhysiology(arch, byDay[std::size_t(d)], options);
         records.insert(records.end(), day.begin(), day.end());
     }

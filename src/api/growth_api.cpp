@@ -31,12 +31,8 @@ void PlantArchitecture::advanceTime(const std::vector<unsigned>& plantIDs, doubl
                     {.parameter = "days", .value = std::to_string(days), .validRange = ">= 0"});
     for (unsigned id : plantIDs) impl_->store.plant(id);  // all exist, or nothing happens
     std::vector<unsigned> budgeted;
-    for (unsigned id : plantIDs) {
-        const PlantInstance& p = impl_->store.plant(id);
-        bool carbon = false;
-        for (const Shoot& s : p.shoots) carbon = carbon || (!s.removed && s.carbon);
-        if (carbon || p.nitrogen) budgeted.push_back(id);
-    }
+    for (unsigned id : plantIDs)
+        if (hasCarbohydrateModel(id) || hasNitrogenModel(id)) budgeted.push_back(id);
     if (budgeted.empty()) {
         growPlants(plantIDs, days);
         return;

@@ -133,11 +133,11 @@ void PlantArchitecture::stepPhysiology(unsigned plantID, double days) {
     record.days = days;
     record.temperature = impl_->airTemperature;
     record.absorbedPar = state.absorbed;
-    for (const auto& leaf : measureLeaves(*context_, plant)) record.leafArea += leaf.area;
+    const std::vector<physiology::LeafMeasure> leaves = measureLeaves(*context_, plant);
+    for (const auto& leaf : leaves) record.leafArea += leaf.area;
     state.absorbed = 0.0;
     if (plant.nitrogen)
-        physiology::stepNitrogen(plant, measureLeaves(*context_, plant),
-                                 fruitArea(*context_, plant), days, record);
+        physiology::stepNitrogen(plant, leaves, fruitArea(*context_, plant), days, record);
     if (carbonStarted(plant)) {
         const physiology::CarbonActions actions =
             physiology::stepCarbon(plant, measureShoots(*context_, plant, state.input),
