@@ -29,7 +29,6 @@ struct BuildArgs {
     CollisionArgs collision;
     AnimationArgs animation;
     PhysiologyArgs physiology;
-    float from = 10.0f;
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
@@ -47,12 +46,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     addLabelOptions(app, global);
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
-    addPhysiologyOptions(app, a->physiology);
-    app.add_option(
-           "--from", a->from,
-           "With --carbon/--nitrogen: the age (whole days, default 10) from which the plant "
-           "grows with them; built as without them up to it")
-        ->check(daysCheck("--from"));
+    addPhysiologyOptions(app, a->physiology, true);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames =
             prepareGrowthOutputs(a->outputs, a->stats || !a->physiology.series.empty(), a->age,
@@ -60,13 +54,11 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         checkCollisionOptions(a->collision);
         checkPhysiologyOptions(a->physiology);
         const bool physiology = physiologyOn(a->physiology);
-        if (physiology && (frames || a->from > a->age || a->age != std::floor(a->age) ||
-                           a->from != std::floor(a->from)))
-            throw Error(
-                fmt::format("--carbon/--nitrogen grow whole days from --from ({}) to "
-                            "--age ({}): whole numbers, --from <= --age, no --frames",
-                            a->from, a->age));
+        const float buildAge = physiologyBuildAge(a->physiology, a->age, frames.has_value());
         CommandOutputs outputs(a->outputs);
+        if (!a->physiology.series.empty()) outputs.add(a->physiology.series);
+        if (!a->physiology.weather.empty())
+            outputs.requireNotAnInput(a->physiology.weather, "--weather");
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -77,12 +69,9 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.loadPlantModelFromLibrary(a->species);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
-        const unsigned plant = arch.buildPlantInstanceFromLibrary(vec3(0.0f),
-                                                                  frames       ? 0.0f
-                                                                  : physiology ? a->from
-                                                                               : a->age,
-                                                                  parseDefines(a->defines));
-        if (physiology) growWithPhysiology(arch, {plant}, a->physiology, a->age - a->from);
+        const unsigned plant = arch.buildPlantInstanceFromLibrary(
+            vec3(0.0f), frames ? 0.0f : buildAge, parseDefines(a->defines));
+        if (physiology) growWithPhysiology(arch, {plant}, a->physiology, a->age - buildAge);
         info(global, fmt::format("plantarch: species loaded and {} in {:.2f} ms",
                                  frames ? "planted" : "grown", millisecondsSince(started)));
         if (frames) {

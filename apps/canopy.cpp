@@ -1,5 +1,5 @@
 // plantarch canopy SPECIES --count NxM --spacing DXxDY --age D [--germination G]
-//                 [-D name=value ...] -o FILE [--stats]
+//                 [-D name=value ...] -o FILE [--stats] [--carbon/--nitrogen ... --from D]
 // Builds a grid canopy of a species, in parallel, and writes it (any scene or plant format),
 // whole or one file per plant (--separate).
 
@@ -27,6 +27,7 @@ struct CanopyArgs {
     bool separate = false, plantOrigin = false;
     CollisionArgs collision;
     AnimationArgs animation;
+    PhysiologyArgs physiology;
 };
 
 std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
@@ -58,6 +59,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         "--plant-origin", a->plantOrigin,
         "With --separate: each plant moved to its own origin (default: scene coordinates)");
     addCollisionOptions(app, a->collision);
+    addPhysiologyOptions(app, a->physiology, true);
     return [a, &global]() {
         const auto [nx, ny] = parsePair<int>(a->count, "--count");
         const auto [sx, sy] = parsePair<float>(a->spacing, "--spacing");
@@ -67,7 +69,10 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
             throw Error("--separate writes still files, one per plant: not with --frames",
                         {.parameter = "--separate", .validRange = "without --frames"});
         const std::optional<GrowthFrames> frames =
-            prepareGrowthOutputs(a->outputs, a->stats, a->age, a->animation, global.points);
+            prepareGrowthOutputs(a->outputs, a->stats || !a->physiology.series.empty(), a->age,
+                                 a->animation, global.points);
+        checkPhysiologyOptions(a->physiology);
+        const float buildAge = physiologyBuildAge(a->physiology, a->age, frames.has_value());
         if (a->plantOrigin && !a->separate)
             throw Error("--plant-origin places the plants of separate files",
                         {.parameter = "--plant-origin", .validRange = "with --separate"});
@@ -77,6 +82,9 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         CommandOutputs outputs(
             a->separate ? std::vector<std::string>{separatePlantIndexName(a->outputs.front())}
                         : a->outputs);
+        if (!a->physiology.series.empty()) outputs.add(a->physiology.series);
+        if (!a->physiology.weather.empty())
+            outputs.requireNotAnInput(a->physiology.weather, "--weather");
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);
@@ -88,8 +96,10 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const auto plants = arch.buildPlantCanopyFromLibrary(
-            vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), frames ? 0.0f : a->age, a->germination,
+            vec3(0.0f), vec2(sx, sy), glm::ivec2(nx, ny), frames ? 0.0f : buildAge, a->germination,
             parseDefines(a->defines));
+        if (physiologyOn(a->physiology))
+            growWithPhysiology(arch, plants, a->physiology, a->age - buildAge);
         info(global, fmt::format("plantarch: species loaded and {} in {:.2f} ms",
                                  frames ? "planted" : "grown", millisecondsSince(started)));
         if (frames) {

@@ -255,8 +255,13 @@ struct PhysiologyArgs {
     std::vector<std::string> fertilise;  ///< --fertilise AGE:GRAMS (repeatable)
     unsigned lightEvery = 1;             ///< --light-every N
     std::string series;                  ///< --series FILE.csv
+    float from = 10.0f;                  ///< --from D (build, canopy)
 };
-void addPhysiologyOptions(CLI::App& app, PhysiologyArgs& args);
+/// The physiology options; `withFrom` adds --from (the age the models start at).
+void addPhysiologyOptions(CLI::App& app, PhysiologyArgs& args, bool withFrom);
+/// The age to build the plants to: --from with --carbon/--nitrogen (checked against --age:
+/// whole days, not after it, no --frames), else `age`.
+float physiologyBuildAge(const PhysiologyArgs& args, float age, bool frames);
 /// Whether --carbon or --nitrogen was given.
 bool physiologyOn(const PhysiologyArgs& args);
 /// Checks the options' forms and that they go together, before any work is done.

@@ -43,7 +43,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     addImageSizeOption(app, global);
     addStringDigitsOption(app, global);
     addLabelOptions(app, global);
-    addPhysiologyOptions(app, a->physiology);
+    addPhysiologyOptions(app, a->physiology, false);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         if (frames && a->days >= 0.0)
@@ -58,6 +58,9 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         else
             checkSceneOutputs(a->outputs, global.points, true);
         CommandOutputs outputs(a->outputs);
+        if (!a->physiology.series.empty()) outputs.add(a->physiology.series);
+        if (!a->physiology.weather.empty())
+            outputs.requireNotAnInput(a->physiology.weather, "--weather");
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.setSeed(global.seed);

@@ -12,25 +12,7 @@
 
 namespace plantarch::cli {
 
-namespace {
-
-UTCTime nextDay(UTCTime t) {
-    const int lengths[] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    const bool leap = (t.year % 4 == 0 && t.year % 100 != 0) || t.year % 400 == 0;
-    const int length = t.month == 2 && leap ? 29 : lengths[t.month - 1];
-    if (++t.day > length) {
-        t.day = 1;
-        if (++t.month > 12) {
-            t.month = 1;
-            ++t.year;
-        }
-    }
-    return t;
-}
-
-}  // namespace
-
-void addPhysiologyOptions(CLI::App& app, PhysiologyArgs& a) {
+void addPhysiologyOptions(CLI::App& app, PhysiologyArgs& a, bool withFrom) {
     app.add_flag("--carbon", a.carbon,
                  "Grow with the carbohydrate budget, fed by traced light (docs/physiology.md)");
     app.add_flag("--nitrogen", a.nitrogen, "Grow with the nitrogen model");
@@ -49,6 +31,21 @@ void addPhysiologyOptions(CLI::App& app, PhysiologyArgs& a) {
                    "Trace the light every N hours of daylight (1 to 24; default 1)")
         ->check(numberCheck("--light-every", "hours", 1, 24, true, "1 to 24"));
     app.add_option("--series", a.series, "The physiology's daily records (.csv)");
+    if (withFrom)
+        app.add_option("--from", a.from,
+                       "With --carbon/--nitrogen: the age (whole days, default 10) from which "
+                       "the plants grow with them; built as without them up to it")
+            ->check(daysCheck("--from"));
+}
+
+float physiologyBuildAge(const PhysiologyArgs& a, float age, bool frames) {
+    if (!physiologyOn(a)) return age;
+    if (frames || a.from > age || age != std::floor(age) || a.from != std::floor(a.from))
+        throw Error(
+            fmt::format("--carbon/--nitrogen grow whole days from --from ({}) to --age ({}): "
+                        "whole numbers, --from <= --age, no --frames",
+                        a.from, age));
+    return a.from;
 }
 
 bool physiologyOn(const PhysiologyArgs& a) {
@@ -84,54 +81,31 @@ void checkPhysiologyOptions(const PhysiologyArgs& a) {
 std::vector<PhysiologyRecord> growWithPhysiology(PlantArchitecture& arch,
                                                  const std::vector<unsigned>& plants,
                                                  const PhysiologyArgs& a, double days) {
-    if (days != std::floor(days))
+    if (days != std::floor(days) || days < 0.0 || days > 100000.0)
         throw Error(fmt::format("--carbon/--nitrogen grow whole days: {} is not one", days));
     const auto [lat, lon] =
         parseTwoNumbers(a.location, ',', "--location", "LAT,LON in degrees", "e.g. 38.54,-121.74");
-    PhysiologyOptions options;
-    options.location = {lat, lon};
-    options.lightEvery = a.lightEvery;
-    sunPosition(options.location, UTCTime{});  // checks the place before any work
-    // The hours of each day.
-    std::vector<std::vector<WeatherHour>> byDay;
-    if (!a.weather.empty()) {
-        for (const WeatherHour& h : readWeatherFile(a.weather)) {
-            if (byDay.empty() || byDay.back().back().time.day != h.time.day ||
-                byDay.back().back().time.month != h.time.month ||
-                byDay.back().back().time.year != h.time.year)
-                byDay.emplace_back();
-            byDay.back().push_back(h);
-        }
-        if (double(byDay.size()) < days)
-            throw Error(fmt::format("{}: {} day(s) of weather for {} days of growth", a.weather,
-                                    byDay.size(), days),
-                        {.file = a.weather});
-    } else {
-        const UTCTime first = parseUTCTime(a.start);
-        UTCTime t{first.year, first.month, first.day, 0.0};
-        for (int d = 0; d < int(days); ++d) {
-            byDay.push_back(clearSkyDay(options.location, t.year, t.month, t.day, a.clearness));
-            t = nextDay(t);
-        }
+    PhysiologySeason season;
+    season.carbon = a.carbon;
+    season.nitrogen = a.nitrogen;
+    season.location = {lat, lon};
+    season.lightEvery = a.lightEvery;
+    season.clearness = a.clearness;
+    if (!a.weather.empty())
+        season.weather = readWeatherFile(a.weather);
+    else
+        season.start = parseUTCTime(a.start);
+    for (const std::string& f : a.fertilise) {  // checked already
+        const auto [age, grams] =
+            parseTwoNumbers(f, ':', "--fertilise", "AGE:GRAMS", "e.g. 20:0.5");
+        season.fertilise.push_back({age, grams});
     }
-    for (unsigned id : plants) {
-        if (a.carbon) arch.enableCarbohydrateModel(id);
-        if (a.nitrogen) arch.enableNitrogenModel(id);
-    }
-    std::vector<std::pair<double, double>> events;  // (age, grams), checked already
-    for (const std::string& f : a.fertilise)
-        events.push_back(parseTwoNumbers(f, ':', "--fertilise", "AGE:GRAMS", "e.g. 20:0.5"));
-    std::map<std::pair<unsigned, std::size_t>, bool> fertilised;
     std::vector<PhysiologyRecord> records;
-    for (int d = 0; d < int(days); ++d) {
-        for (unsigned id : plants)
-            for (std::size_t i = 0; i < events.size(); ++i)
-                if (arch.getPlantAge(id) >= events[i].first && !fertilised[{id, i}]) {
-                    arch.addPlantNitrogen(id, events[i].second);
-                    fertilised[{id, i}] = true;
-                }
-        const auto day = growPhysiology(arch, byDay[std::size_t(d)], options);
-        records.insert(records.end(), day.begin(), day.end());
+    try {
+        records = growPhysiologySeason(arch, plants, season, unsigned(days), terminalProgress());
+    } catch (const Error& e) {
+        if (e.parameter() == "weather") throw Error(a.weather + ": " + e.message());
+        throw;
     }
     if (!a.series.empty()) writePhysiologyCSV(a.series, records);
     return records;

@@ -1,4 +1,5 @@
 // plantarch project run FILE -o OUT [-o OUT ...] [--separate [--plant-origin]] [--stats]
+//                       [--series FILE.csv]
 // plantarch project check FILE
 // Builds a project file (a whole scene: blocks of plants, ground, obstacles, collision
 // options; docs/projects.md) and writes it in every format asked for, as `canopy` writes a
@@ -24,6 +25,7 @@ struct ProjectArgs {
     std::vector<std::string> outputs;
     bool stats = false;
     bool separate = false, plantOrigin = false;
+    std::string series;  ///< --series FILE.csv
 };
 
 // The statistics of the whole project as one line of JSON (--stats).
@@ -36,7 +38,7 @@ std::string statsJSON(const Project& project, const ProjectStats& s) {
 }
 
 int runProject(const ProjectArgs& a, const GlobalOptions& global) {
-    if (a.outputs.empty() && !a.stats)
+    if (a.outputs.empty() && !a.stats && a.series.empty())
         throw Error(
             "no output: give -o FILE (or --stats)",
             {.parameter = "-o", .validRange = outputExtensions(kSceneOutput | kPlantOutput)});
@@ -46,19 +48,30 @@ int runProject(const ProjectArgs& a, const GlobalOptions& global) {
     if (a.separate && a.outputs.empty())
         throw Error("--separate writes files: give -o FILE", {.parameter = "--separate"});
     checkSceneOutputs(a.outputs, global.points, true);
+    if (!a.series.empty() && !a.series.ends_with(".csv"))
+        throw Error("--series writes CSV: give a .csv name",
+                    {.parameter = "--series", .value = a.series, .validRange = "FILE.csv"});
     // readProjectFile checks the file (a directory, a pipe or device, its size) before it reads.
     const Project project = readProjectFile(a.file);
     checkProject(project);
+    if (!a.series.empty() && !project.physiology)
+        throw Error("--series writes the physiology's records: the project has no physiology",
+                    {.file = a.file, .parameter = "physiology"});
     // Separate files get their names once the plants are known: their folder is checked
     // through the index's name.
     CommandOutputs outputs(a.separate
                                ? std::vector<std::string>{separatePlantIndexName(a.outputs.front())}
                                : a.outputs);
+    if (!a.series.empty()) outputs.add(a.series);
+    if (project.physiology && !project.physiology->weatherFile.empty())
+        outputs.requireNotAnInput(projectPath(project, project.physiology->weatherFile),
+                                  "physiology/weather");
     Context ctx;
     PlantArchitecture arch(&ctx);
     const BuiltProject built = buildProject(
         project, arch, {.progress = terminalProgress(), .maxTriangles = global.maxTriangles});
     const std::vector<unsigned> plants = built.plants();
+    if (!a.series.empty()) writePhysiologyCSV(a.series, built.physiology);
     if (a.separate)
         writeSeparatePlantFiles(arch, plants, a.outputs, a.plantOrigin, plantFileOptions(global));
     else
@@ -112,6 +125,8 @@ std::function<int()> setupProject(CLI::App& app, GlobalOptions& global) {
     run->add_flag(
         "--plant-origin", a->plantOrigin,
         "With --separate: each plant moved to its own origin (default: scene coordinates)");
+    run->add_option("--series", a->series,
+                    "With a physiology section: its daily records per plant (.csv)");
     addImageSizeOption(*run, global);
     addStringDigitsOption(*run, global);
     addLabelOptions(*run, global);

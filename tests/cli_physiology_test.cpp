@@ -92,9 +92,69 @@ TEST_F(CliPhysiology, AWeatherFileGivesADayPerDate) {
     const auto short_ = cli::run("build bean --from 20 --age 25 --carbon" + kWhere + " --weather " +
                                  path("w.csv") + " --series " + path("t.csv"));
     EXPECT_EQ(short_.status, 2);
-    EXPECT_NE(short_.out.find("2 day(s) of weather for 5 days of growth"), std::string::npos)
-        << short_.out;
+    EXPECT_NE(short_.out.find("2 date(s) for 5 days of growth"), std::string::npos) << short_.out;
     EXPECT_FALSE(fs::exists(path("t.csv")));
+}
+
+TEST_F(CliPhysiology, ACanopyGrowsWithItsBudgetsPlantByPlant) {
+    const auto r = cli::run(
+        "canopy bean --count 2x1 --spacing 0.3x0.3 --from 20 --age 22 "
+        "--carbon --nitrogen --fertilise 20:0.5" +
+        kWhere + " --start 2026-06-01 --series " + path("c.csv") + " -o " + path("c.xml"));
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto rows = lines(path("c.csv"));
+    ASSERT_EQ(rows.size(), 5u);  // header, 2 days x 2 plants
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+        EXPECT_GT(field(rows[k], 4), 0.0);   // absorbed PAR
+        EXPECT_GT(field(rows[k], 16), 0.0);  // nitrogen available after fertilising
+    }
+    EXPECT_EQ(field(rows[1], 0), field(rows[3], 0));  // day by day, plant by plant
+    EXPECT_NE(field(rows[1], 0), field(rows[2], 0));
+    std::ifstream xml(path("c.xml"));
+    std::stringstream text;
+    text << xml.rdbuf();
+    EXPECT_NE(text.str().find("<carbohydrates>"), std::string::npos);
+}
+
+TEST_F(CliPhysiology, AProjectWithAPhysiologySectionGrowsItsLastDaysWithIt) {
+    std::ofstream(path("p.json")) << R"({"plantarch_project": 1, "seed": 4,
+      "blocks": [{"species": "bean", "count": [2, 1], "age": 23}],
+      "physiology": {"carbon": true, "nitrogen": true, "location": [38.54, -121.74],
+                     "start": "2026-06-01", "light_every": 4, "days": 3,
+                     "fertilise": [[20, 0.5]]}})";
+    const auto r = cli::run("project run " + path("p.json") + " --series " + path("p.csv") +
+                            " -o " + path("p.xml"));
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto rows = lines(path("p.csv"));
+    ASSERT_EQ(rows.size(), 7u);  // header, 3 days x 2 plants
+    EXPECT_EQ(field(rows[1], 1), 21.0);
+    EXPECT_EQ(field(rows[6], 1), 23.0);
+    // The same season through canopy gives the same records: a project is no other model.
+    const auto c = cli::run(
+        "--seed 4 canopy bean --count 2x1 --from 20 --age 23 --carbon --nitrogen --fertilise "
+        "20:0.5" +
+        kWhere + " --start 2026-06-01 --series " + path("c.csv"));
+    ASSERT_EQ(c.status, 0) << c.out;
+    EXPECT_EQ(lines(path("c.csv")), rows);
+    // A project without the section has no records to write; one whose blocks are younger
+    // than its days is refused before anything is built.
+    std::ofstream(path("q.json")) << R"({"plantarch_project": 1,
+      "blocks": [{"species": "bean", "count": [1, 1], "age": 2}],
+      "physiology": {"carbon": true, "location": [38.54, -121.74], "start": "2026-06-01",
+                     "days": 3}})";
+    const auto young = cli::run("project run " + path("q.json") + " --series " + path("q.csv"));
+    EXPECT_EQ(young.status, 2);
+    EXPECT_NE(young.out.find("blocks/0/age = 2: younger than the physiology's days"),
+              std::string::npos)
+        << young.out;
+    EXPECT_EQ(std::count(young.out.begin(), young.out.end(), '\n'), 1) << young.out;
+    EXPECT_FALSE(fs::exists(path("q.csv")));
+    std::ofstream(path("n.json")) << R"({"plantarch_project": 1,
+      "blocks": [{"species": "bean", "count": [1, 1], "age": 2}]})";
+    const auto none = cli::run("project run " + path("n.json") + " --series " + path("n.csv"));
+    EXPECT_EQ(none.status, 2);
+    EXPECT_NE(none.out.find("the project has no physiology"), std::string::npos) << none.out;
+    EXPECT_FALSE(fs::exists(path("n.csv")));
 }
 
 TEST_F(CliPhysiology, BadOptionsGetOneLineAndExit2) {
@@ -118,6 +178,14 @@ TEST_F(CliPhysiology, BadOptionsGetOneLineAndExit2) {
         {"build bean --age 20 --carbon --light-every 0 --location 1,2 --start 2026-01-01" + o,
          "--light-every"},
         {"build bean --age 20 --carbon --location 1,2 --weather /dev/zero" + o, "/dev/zero"},
+        {"canopy bean --count 2x2 --age 20 --carbon --from 25 --location 1,2 --start "
+         "2026-01-01" +
+             o,
+         "--from <= --age"},
+        {"canopy bean --count 2x2 --age 20 --nitrogen --fertilise x --location 1,2 --start "
+         "2026-01-01" +
+             o,
+         "--fertilise"},
     };
     for (const auto& [args, message] : cases) {
         const auto r = cli::run(args);

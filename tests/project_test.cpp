@@ -79,6 +79,60 @@ TEST(Project, EveryFieldReadsBackAfterWriting) {
     EXPECT_EQ(writeProjectString(parse(text)), text);
 }
 
+TEST(Project, APhysiologySectionReadsBackAfterWriting) {
+    const Project p = parse(R"({"plantarch_project": 1, "blocks": [{"species": "bean"}],
+      "physiology": {"carbon": true, "nitrogen": true, "location": [38.54, -121.74],
+                     "start": "2026-06-01", "clearness": 0.6, "light_every": 3, "days": 12,
+                     "fertilise": [[20, 0.5], [35, 0.25]]}})");
+    ASSERT_TRUE(p.physiology.has_value());
+    const PhysiologySeason& s = p.physiology->season;
+    EXPECT_TRUE(s.carbon && s.nitrogen);
+    EXPECT_EQ(s.location.latitude, 38.54);
+    EXPECT_EQ(s.start.month, 6);
+    EXPECT_EQ(s.lightEvery, 3u);
+    EXPECT_EQ(p.physiology->days, 12u);
+    ASSERT_EQ(s.fertilise.size(), 2u);
+    EXPECT_EQ(s.fertilise[1].grams, 0.25);
+    const std::string text = writeProjectString(p);
+    EXPECT_NE(text.find("\"start\": \"2026-06-01\""), std::string::npos) << text;
+    EXPECT_EQ(writeProjectString(parse(text)), text);
+    // A project without the section is written without it, as before.
+    EXPECT_EQ(writeProjectString(parse(R"({"plantarch_project": 1})")).find("physiology"),
+              std::string::npos);
+    const Project w = parse(R"({"plantarch_project": 1, "physiology": {"nitrogen": true,
+      "location": [0, 0], "weather": "w.csv"}})");
+    EXPECT_EQ(w.physiology->weatherFile, "w.csv");
+    EXPECT_EQ(writeProjectString(parse(writeProjectString(w))), writeProjectString(w));
+}
+
+TEST(Project, APhysiologySeasonIsRebuiltNotGrownOn) {
+    const char* json = R"({"plantarch_project": 1, "seed": 2,
+      "blocks": [{"species": "bean", "count": [1, 1], "age": 22}],
+      "physiology": {"carbon": true, "location": [38.54, -121.74], "start": "2026-06-01",
+                     "light_every": 6, "days": 2}})";
+    const Project p = parse(json);
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    const BuiltProject built = buildProject(p, arch);
+    ASSERT_EQ(built.physiology.size(), 2u);
+    EXPECT_EQ(built.physiology.back().age, 22.0);
+    EXPECT_GT(built.physiology.back().input, 0.0);
+    EXPECT_TRUE(arch.hasCarbohydrateModel(built.plants().front()));
+    // The plant built to 20 days and grown two with its budget differs from one built to 22.
+    Project plain = p;
+    plain.physiology.reset();
+    Context ctx2;
+    PlantArchitecture arch2(&ctx2);
+    const BuiltProject built2 = buildProject(plain, arch2);
+    EXPECT_EQ(arch.getPlantAge(built.plants().front()), arch2.getPlantAge(built2.plants().front()));
+    EXPECT_FALSE(arch2.hasCarbohydrateModel(built2.plants().front()));
+    Project later = p;
+    later.blocks[0].age = 25.0f;
+    EXPECT_NE(std::string(plantarch::testing::errorOf([&] { projectGrowth(p, later); }).what())
+                  .find("p.json: physiology: a project with a physiology season is built again"),
+              std::string::npos);
+}
+
 TEST(Project, DefaultsFillWhatIsLeftOut) {
     const Project p = parse(R"({"plantarch_project": 1, "blocks": [{"species": "bean"}]})");
     EXPECT_EQ(p.seed, 1u);
@@ -132,6 +186,33 @@ TEST(Project, EachBadValueIsOneLineNamingTheFieldTheValueAndTheRange) {
          "p.json: seed: a field given twice (valid: each field once per object)"},
         {"{\"plantarch_project\": 1,\n \"name\": }", "p.json:2: not a JSON document: "},
         {"[1, 2]", "p.json: '[1,2]': expected an object {...}"},
+        {R"({"plantarch_project": 1, "physiology": {"location": [0, 0], "start": "2026-01-01"}})",
+         "p.json: physiology: neither carbon nor nitrogen is on"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "start": "2026-01-01"}})",
+         "p.json: physiology/location: missing (valid: [latitude, longitude] in degrees)"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [91, 0], "start": "2026-01-01"}})",
+         "p.json: physiology/location/0 = 91: out of range (valid: latitude -90 to 90 degrees)"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0]}})",
+         "p.json: physiology/start: missing (valid: a start date \"YYYY-MM-DD\" (clear days) or "
+         "a weather file, not both)"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0], "start": "2026-02-30"}})",
+         "p.json: physiology/start = \"2026-02-30\": "},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0], "start": "2026-01-01", "days": 0}})",
+         "p.json: physiology/days = 0: out of range (valid: whole days 1 to 100000)"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0], "start": "2026-01-01", "light_every": 2.5}})",
+         "p.json: physiology/light_every = 2.5: expected a whole number"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0], "start": "2026-01-01", "fertilise": [[1, 2]]}})",
+         "p.json: physiology/fertilise: fertilisation adds nitrogen (valid: with \"nitrogen\": "
+         "true)"},
+        {R"({"plantarch_project": 1, "physiology": {"nitrogen": true, "location": [0, 0], "start": "2026-01-01", "fertilise": [[1, 0]]}})",
+         "p.json: physiology/fertilise/0/1 = 0: out of range (valid: > 0 to 1000000 g N)"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0], "weather": "none.csv"}})",
+         "p.json: physiology/weather"},
+        {R"({"plantarch_project": 1, "blocks": [{"species": "bean", "age": 5}], "physiology": {"carbon": true, "location": [0, 0], "start": "2026-01-01", "days": 10}})",
+         "p.json: blocks/0/age = 5: younger than the physiology's days (valid: >= physiology/days "
+         "(10 days))"},
+        {R"({"plantarch_project": 1, "physiology": {"carbon": true, "location": [0, 0], "start": "2026-01-01", "dyas": 3}})",
+         "p.json: physiology/dyas: unknown field, did you mean 'days'?"},
     };
     for (const auto& [json, expected] : cases) {
         const std::string message = errorOfProject(json);

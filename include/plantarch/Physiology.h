@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "plantarch/Light.h"
+#include "plantarch/Progress.h"
 
 namespace plantarch {
 
@@ -61,8 +62,10 @@ void writePhysiologyCSV(const std::string& path, const std::vector<PhysiologyRec
 struct PhysiologyOptions {
     Location location;
     /// Rays and optics; the leaves' optics are those of the first plant with a budget
-    /// (its species' leaf_reflectance and leaf_transmittance).
-    LightOptions light;
+    /// (its species' leaf_reflectance and leaf_transmittance). Photosynthesis needs each
+    /// leaf's light, not each triangle's: the light is sampled from 8 triangles of each
+    /// object (LightOptions::samplesPerObject; 0 traces every triangle).
+    LightOptions light{.samplesPerObject = 8};
     /// Compute the sky's light every `lightEvery` hours of daylight and use it for the hours
     /// in between (1: every hour); photosynthesis is still computed each hour.
     unsigned lightEvery = 1;
@@ -81,5 +84,51 @@ struct PhysiologyOptions {
 std::vector<PhysiologyRecord> growPhysiology(PlantArchitecture& architecture,
                                              const std::vector<WeatherHour>& weather,
                                              const PhysiologyOptions& options);
+
+}  // namespace plantarch
+
+namespace plantarch {
+
+// ---- a season ---------------------------------------------------------------------------------
+
+/// Nitrogen added to each plant's available pool once the plant reaches an age.
+struct Fertilisation {
+    double age = 0.0;    ///< days, >= 0
+    double grams = 0.0;  ///< g N per plant, > 0
+};
+
+/// A season of physiology for growPhysiologySeason: which models, where, the weather (given,
+/// or clear days from a date), fertilisation, how often the light is traced.
+struct PhysiologySeason {
+    bool carbon = false;    ///< the carbohydrate budget
+    bool nitrogen = false;  ///< the nitrogen model
+    Location location;
+    /// Weather hours (consecutive dates, one day of growth per date); when empty, clear days
+    /// from `start` with `clearness`.
+    std::vector<WeatherHour> weather;
+    UTCTime start;            ///< the first clear day (its date; the hour is ignored)
+    double clearness = 0.75;  ///< of the clear days, 0 to 1
+    std::vector<Fertilisation> fertilise;
+    unsigned lightEvery = 1;  ///< PhysiologyOptions::lightEvery
+};
+
+/// The date after `time`'s (the hour kept), across months, years and leap days.
+UTCTime nextDate(UTCTime time);
+
+/// Checks a season before any work: the place, the clear days' date and clearness, the
+/// fertilisations (age >= 0, grams > 0, nitrogen on), lightEvery 1 to 24, at least one model.
+/// Throws plantarch::Error naming the field.
+void checkPhysiologySeason(const PhysiologySeason& season);
+
+/// Switches the season's models on for `plants` and grows every plant of `architecture`
+/// `days` whole days through the season's weather (growPhysiology), each plant of `plants`
+/// given a fertilisation's nitrogen at the start of the first day it is at least that old.
+/// `progress` (optional) gets ("physiology", share of days done); one that throws stops the
+/// season between days. Returns the records of the days. Throws plantarch::Error when the
+/// weather has fewer dates than `days`.
+std::vector<PhysiologyRecord> growPhysiologySeason(PlantArchitecture& architecture,
+                                                   const std::vector<unsigned>& plants,
+                                                   const PhysiologySeason& season, unsigned days,
+                                                   const ProgressCallback& progress = {});
 
 }  // namespace plantarch

@@ -25,6 +25,7 @@
 
 #include "plantarch/Collision.h"
 #include "plantarch/Context.h"
+#include "plantarch/Physiology.h"
 #include "plantarch/Progress.h"
 
 namespace plantarch {
@@ -58,6 +59,19 @@ struct ProjectBlock {
     bool trellis = true;  ///< the species' trellis posts and wires, if it declares one
 };
 
+/// A season of physiology (docs/physiology.md): every block is built to its age less `days`,
+/// then every plant grows the last `days` days with the carbohydrate budget and/or the
+/// nitrogen model, its light traced each day through the whole scene.
+struct ProjectPhysiology {
+    /// The models, place, clear days (start, clearness), fertilisation and light interval;
+    /// its `weather` hours are read from `weatherFile` when the project is built.
+    PhysiologySeason season;
+    /// A weather file (CSV, relative paths from the project's folder), or "" for clear days
+    /// from season.start.
+    std::string weatherFile;
+    unsigned days = 30;  ///< whole days, 1 to 100000; no block may be younger
+};
+
 /// A ground rectangle (a Context object with organ "ground") at z = 0.
 struct ProjectGround {
     vec2 size{4.0f, 4.0f};    ///< m along x and y, > 0
@@ -80,6 +94,7 @@ struct Project {
     std::string attractionFile;          ///< CSV of x,y,z lines (added to the points)
     PerceptionCone attractionCone;       ///< halfAngle, lookAhead, inertia (rays unused)
     std::vector<ProjectBlock> blocks;
+    std::optional<ProjectPhysiology> physiology;  ///< absent: the plants grow without
     /// The folder relative paths (species files, obstacles, attraction file) are taken from:
     /// the project file's folder when read from a file. Not written.
     std::string folder = ".";
@@ -127,6 +142,8 @@ struct BuiltProject {
     std::vector<std::vector<unsigned>> blockPlants;
     std::vector<ObjectID> ground;     ///< the ground's objects
     std::vector<ObjectID> obstacles;  ///< obstacle objects, in file order
+    /// With a physiology season: its daily records (growPhysiologySeason), day by day.
+    std::vector<PhysiologyRecord> physiology;
     /// Every plant, block by block.
     std::vector<unsigned> plants() const;
 };
@@ -143,8 +160,9 @@ BuiltProject buildProject(const Project& project, PlantArchitecture& arch,
 /// Grows a built project on to the ages of `later`, a project equal to `built`'s but for
 /// later (or equal) block ages: each block's plants are grown by the difference
 /// (PlantArchitecture::advanceTime), not rebuilt. Throws plantarch::Error naming the field
-/// when `later` differs otherwise or an age is earlier. Same progress and cancelling as
-/// buildProject; a cancelled growth leaves the plants part grown.
+/// when `later` differs otherwise or an age is earlier, or when the project has a
+/// physiology season (its weather is dated: such a project is built again). Same progress and
+/// cancelling as buildProject; a cancelled growth leaves the plants part grown.
 void growProject(const Project& earlier, const Project& later, PlantArchitecture& arch,
                  const BuiltProject& built, const ProjectBuildOptions& options = {});
 /// The checks growProject makes before it grows anything: the days each block grows by, or a

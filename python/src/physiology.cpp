@@ -51,6 +51,56 @@ void bindPhysiology(py::module_& m) {
                        "trace the sky every N hours of daylight (1 to 24)")
         .def_readwrite("co2", &PhysiologyOptions::co2, "umol/mol where the weather gives none");
     m.def("physiologyColumns", &physiologyColumns, docs::physiologyColumns);
+    py::class_<Fertilisation>(
+        m, "Fertilisation", "Nitrogen added to each plant's available pool once it reaches an age.")
+        .def(py::init([](double age, double grams) {
+                 return Fertilisation{age, grams};
+             }),
+             py::arg("age"), py::arg("grams"))
+        .def_readwrite("age", &Fertilisation::age, "days, >= 0")
+        .def_readwrite("grams", &Fertilisation::grams, "g N per plant, > 0")
+        .def("__repr__", [](const Fertilisation& f) {
+            return "Fertilisation(age=" + py::repr(py::float_(f.age)).cast<std::string>() +
+                   ", grams=" + py::repr(py::float_(f.grams)).cast<std::string>() + ")";
+        });
+    py::class_<PhysiologySeason>(
+        m, "PhysiologySeason",
+        "A season for growPhysiologySeason: models, place, weather or clear days, fertilisation.")
+        .def(py::init<>())
+        .def_readwrite("carbon", &PhysiologySeason::carbon, "the carbohydrate budget")
+        .def_readwrite("nitrogen", &PhysiologySeason::nitrogen, "the nitrogen model")
+        .def_property(
+            "location",
+            [](const PhysiologySeason& s) {
+                return py::make_tuple(s.location.latitude, s.location.longitude);
+            },
+            [](PhysiologySeason& s, std::pair<double, double> where) {
+                s.location = {where.first, where.second};
+            },
+            "(latitude, longitude) in degrees, north and east positive")
+        .def_readwrite("weather", &PhysiologySeason::weather,
+                       "WeatherHour list (consecutive dates); empty: clear days from start")
+        .def_readwrite("start", &PhysiologySeason::start, "the first clear day (UTCTime)")
+        .def_readwrite("clearness", &PhysiologySeason::clearness, "of the clear days, 0 to 1")
+        .def_readwrite("fertilise", &PhysiologySeason::fertilise, "Fertilisation list")
+        .def_readwrite("lightEvery", &PhysiologySeason::lightEvery,
+                       "trace the sky every N hours of daylight (1 to 24)");
+    m.def("checkPhysiologySeason", &checkPhysiologySeason, py::arg("season"),
+          docs::checkPhysiologySeason);
+    m.def(
+        "growPhysiologySeason",
+        [](PlantArchitecture& arch, const std::vector<unsigned>& plants,
+           const PhysiologySeason& season, unsigned days) {
+            std::vector<PhysiologyRecord> records;
+            {
+                py::gil_scoped_release release;
+                records = growPhysiologySeason(arch, plants, season, days);
+            }
+            return recordArrays(records);
+        },
+        py::arg("architecture"), py::arg("plants"), py::arg("season"), py::arg("days"),
+        inPython(docs::growPhysiologySeason,
+                 "The records as a dict of numpy arrays, one per column (physiologyColumns())."));
     m.def(
         "growPhysiology",
         [](PlantArchitecture& arch, const std::vector<WeatherHour>& weather,

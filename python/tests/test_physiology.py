@@ -74,3 +74,38 @@ def test_parameters_are_in_the_plant_phenology():
     assert table.leaf_physiology.vcmax25 == pytest.approx(100.0)
     table.carbohydrates.seed_reserve = 0.05
     assert table.carbohydrates.seed_reserve == pytest.approx(0.05)
+
+
+def test_a_season_fertilises_at_plant_ages_and_checks_its_fields():
+    ctx = plantarch.Context()
+    arch = plantarch.PlantArchitecture(ctx)
+    arch.loadPlantModelFromLibrary("bean")
+    plants = arch.buildPlantCanopyFromLibrary(plantarch.vec3(0, 0, 0), plantarch.vec2(0.3, 0.3),
+                                              (2, 1), 20.0)
+    season = plantarch.PhysiologySeason()
+    season.carbon = True
+    season.nitrogen = True
+    season.location = (38.54, -121.74)
+    season.start = plantarch.UTCTime("2026-06-01")
+    season.lightEvery = 6
+    season.fertilise = [plantarch.Fertilisation(21, 0.5)]
+    plantarch.checkPhysiologySeason(season)
+    records = plantarch.growPhysiologySeason(arch, plants, season, 2)
+    np.testing.assert_array_equal(records["age"], [21.0, 21.0, 22.0, 22.0])
+    assert list(records["plant"][:2]) == list(plants)
+    # The fertiliser came on the second day (the plants 21 days old at its start).
+    assert (records["nitrogen_available"][2:] > records["nitrogen_available"][:2] + 0.3).all()
+    assert arch.hasCarbohydrateModel(plants[0]) and arch.hasNitrogenModel(plants[1])
+    bad = plantarch.PhysiologySeason()
+    bad.location = (38.54, -121.74)
+    bad.start = plantarch.UTCTime("2026-06-01")
+    with pytest.raises(plantarch.Error, match="carbon or nitrogen"):
+        plantarch.checkPhysiologySeason(bad)
+    bad.carbon = True
+    bad.fertilise = [plantarch.Fertilisation(3, 1.0)]
+    with pytest.raises(plantarch.Error, match="needs the nitrogen model"):
+        plantarch.growPhysiologySeason(arch, plants, bad, 1)
+    bad.fertilise = []
+    bad.lightEvery = 0
+    with pytest.raises(plantarch.Error, match="1 to 24"):
+        plantarch.checkPhysiologySeason(bad)

@@ -111,8 +111,9 @@ void requireReadable(const Project& p, const std::string& path, const std::strin
                      const std::string& what) {
     const std::string full = projectPath(p, path);
     // Without blocking on a FIFO or reading a device, within the size limit of its kind.
-    const io::InputKind kind = what.find("attraction") != std::string::npos
-                                   ? io::kAttractionFile
+    const io::InputKind kind = what.find("attraction") != std::string::npos ? io::kAttractionFile
+                               : what.find("weather") != std::string::npos
+                                   ? io::kWeatherFile
                                    : io::kOBJFile.named("obstacle file");
     try {
         io::checkInputFile(full, kind);
@@ -244,6 +245,48 @@ void buildSurroundings(const Project& p, PlantArchitecture& arch, BuiltProject& 
     }
 }
 
+// The season of the project's physiology, its weather read: checked, and no block younger than
+// its days.
+PhysiologySeason projectSeason(const Project& p, const std::vector<SpeciesModel>& models) {
+    const ProjectPhysiology& ph = *p.physiology;
+    PhysiologySeason s = ph.season;
+    if (!ph.weatherFile.empty()) {
+        requireReadable(p, ph.weatherFile, "physiology/weather", "a weather file");
+        try {
+            s.weather = readWeatherFile(projectPath(p, ph.weatherFile));
+        } catch (const Error&) {
+            rethrowAt(p, "physiology/weather");
+        }
+        std::size_t dates = 0;
+        for (std::size_t i = 0; i < s.weather.size(); ++i) {
+            const UTCTime& t = s.weather[i].time;
+            const UTCTime& u = s.weather[i == 0 ? 0 : i - 1].time;
+            if (i == 0 || t.day != u.day || t.month != u.month || t.year != u.year) ++dates;
+        }
+        if (dates < ph.days)
+            throw Error("the weather has " + std::to_string(dates) + " date(s)",
+                        {.file = fileOf(p),
+                         .parameter = "physiology/weather",
+                         .value = projectPath(p, ph.weatherFile),
+                         .validRange = "a date of weather for each of the " +
+                                       std::to_string(ph.days) + " days"});
+    }
+    try {
+        checkPhysiologySeason(s);
+    } catch (const Error&) {
+        rethrowAt(p, "physiology");
+    }
+    for (std::size_t i = 0; i < p.blocks.size(); ++i)
+        if (double(blockAge(p.blocks[i], models[i])) < double(ph.days))
+            throw Error(
+                "younger than the physiology's days",
+                {.file = fileOf(p),
+                 .parameter = "blocks/" + std::to_string(i) + "/age",
+                 .value = text::formatFloat(blockAge(p.blocks[i], models[i])),
+                 .validRange = ">= physiology/days (" + std::to_string(ph.days) + " days)"});
+    return s;
+}
+
 }  // namespace
 
 std::vector<unsigned> BuiltProject::plants() const {
@@ -279,6 +322,7 @@ void checkProject(const Project& p) {
         requireReadable(p, p.attractionFile, "attraction/file", "an attraction point file");
         readAttractionPointsCSV(projectPath(p, p.attractionFile), "attraction/file");
     }
+    if (p.physiology) projectSeason(p, loadBlockSpecies(p));
 }
 
 BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
@@ -289,6 +333,9 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
                      .validRange = "a PlantArchitecture and Context without "
                                    "plants or objects"});
     const std::vector<SpeciesModel> models = loadBlockSpecies(p);
+    std::optional<PhysiologySeason> season;
+    if (p.physiology) season = projectSeason(p, models);
+    const float seasonDays = p.physiology ? float(p.physiology->days) : 0.0f;
     BuiltProject built;
     try {
         arch.setTriangleLimit(options.maxTriangles);
@@ -296,9 +343,18 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
         buildSurroundings(p, arch, built);
         for (std::size_t i = 0; i < p.blocks.size(); ++i) {
             arch.setProgressCallback(blockProgress(options.progress, p, i));
-            built.blockPlants.push_back(buildBlock(p, i, blockAge(p.blocks[i], models[i]), arch));
+            built.blockPlants.push_back(
+                buildBlock(p, i, blockAge(p.blocks[i], models[i]) - seasonDays, arch));
         }
         arch.setProgressCallback({});
+        if (season) {
+            try {
+                built.physiology = growPhysiologySeason(arch, built.plants(), *season,
+                                                        p.physiology->days, options.progress);
+            } catch (const Error&) {
+                rethrowAt(p, "physiology");
+            }
+        }
         arch.setSeed(p.seed);
     } catch (...) {
         clearScene(arch);
@@ -308,6 +364,11 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
 }
 
 std::vector<double> projectGrowth(const Project& earlier, const Project& later) {
+    if (earlier.physiology || later.physiology)
+        throw Error("a project with a physiology season is built again, not grown on",
+                    {.file = fileOf(later),
+                     .parameter = "physiology",
+                     .validRange = "a project without physiology"});
     // Only the ages may differ.
     auto withoutAges = [](Project p) {
         for (ProjectBlock& b : p.blocks) b.age.reset();

@@ -70,7 +70,22 @@ inline std::vector<Range> attractionConeRanges() {
 
 inline std::vector<std::string> projectFields() {
     return {"plantarch_project", "name",      "seed",       "mesh_detail", "ground",
-            "soft_collision",    "obstacles", "attraction", "blocks"};
+            "soft_collision",    "obstacles", "attraction", "blocks",      "physiology"};
+}
+
+/// The fields of the physiology section, in the order they are written.
+inline std::vector<std::string> physiologyFields() {
+    return {"carbon",    "nitrogen",    "location", "start",    "weather",
+            "clearness", "light_every", "days",     "fertilise"};
+}
+inline Range physiologyDaysRange() {
+    return {1, 100000, "whole days 1 to 100000", false, true};
+}
+inline std::vector<Range> locationRanges() {
+    return {{-90, 90, "latitude -90 to 90 degrees"}, {-180, 180, "longitude -180 to 180 degrees"}};
+}
+inline std::vector<Range> fertiliseRanges() {
+    return {{0, 100000, "age 0 to 100000 days"}, {0, 1e6, "> 0 to 1000000 g N", true}};
 }
 
 inline std::vector<std::string> layoutNames() {

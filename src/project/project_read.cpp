@@ -280,6 +280,67 @@ void readAttraction(const Reader& r, const json& j, Project& p) {
     }
 }
 
+void readPhysiology(const Reader& r, const json& j, Project& p) {
+    if (j.is_null()) return;
+    r.object(j, "physiology", physiologyFields());
+    ProjectPhysiology ph;
+    PhysiologySeason& s = ph.season;
+    if (j.contains("carbon")) s.carbon = r.flag(j["carbon"], "physiology/carbon");
+    if (j.contains("nitrogen")) s.nitrogen = r.flag(j["nitrogen"], "physiology/nitrogen");
+    if (!s.carbon && !s.nitrogen)
+        r.fail("physiology", "neither carbon nor nitrogen is on", nullptr,
+               "\"carbon\": true and/or \"nitrogen\": true (or no physiology section)");
+    if (!j.contains("location"))
+        r.fail("physiology/location", "missing", nullptr, "[latitude, longitude] in degrees");
+    const json& where = j["location"];
+    if (!where.is_array() || where.size() != 2)
+        r.fail("physiology/location", "expected 2 numbers [latitude, longitude]", &where);
+    const auto ranges = locationRanges();
+    s.location.latitude =
+        r.number(where[0], "physiology/location/0", ranges[0].lo, ranges[0].hi, ranges[0].text);
+    s.location.longitude =
+        r.number(where[1], "physiology/location/1", ranges[1].lo, ranges[1].hi, ranges[1].text);
+    const bool start = j.contains("start") && !j["start"].is_null();
+    const bool weather = j.contains("weather") && !j["weather"].is_null();
+    if (start == weather)
+        r.fail("physiology/start", start ? "both a start date and a weather file" : "missing",
+               nullptr, "a start date \"YYYY-MM-DD\" (clear days) or a weather file, not both");
+    if (start) {
+        const std::string date = r.string(j["start"], "physiology/start");
+        try {
+            s.start = parseUTCTime(date);
+        } catch (const Error& e) {
+            r.fail("physiology/start", e.message(), &j["start"], "a date YYYY-MM-DD");
+        }
+        if (s.start.year < 1900 || s.start.year > 2100)
+            r.fail("physiology/start", "out of range", &j["start"], "the years 1900 to 2100");
+    }
+    if (weather) ph.weatherFile = r.name(j["weather"], "physiology/weather", "a CSV file");
+    if (j.contains("clearness"))
+        s.clearness = r.number(j["clearness"], "physiology/clearness", 0.0, 1.0, "0 to 1");
+    if (j.contains("light_every"))
+        s.lightEvery = unsigned(r.number(j["light_every"], "physiology/light_every", 1, 24,
+                                         "whole hours 1 to 24", false, true));
+    if (j.contains("days"))
+        ph.days = unsigned(r.number(j["days"], "physiology/days", physiologyDaysRange()));
+    if (j.contains("fertilise")) {
+        const json& events = j["fertilise"];
+        if (!events.is_array())
+            r.fail("physiology/fertilise", "expected a list [[age, grams], ...]", &events);
+        if (!events.empty() && !s.nitrogen)
+            r.fail("physiology/fertilise", "fertilisation adds nitrogen", nullptr,
+                   "with \"nitrogen\": true");
+        if (events.size() > 10000)
+            r.fail("physiology/fertilise", "too many events", nullptr, "at most 10000");
+        for (std::size_t i = 0; i < events.size(); ++i) {
+            const std::string at = "physiology/fertilise/" + std::to_string(i);
+            const auto v = r.numbers(events[i], at, 2, fertiliseRanges(), "[age, grams]");
+            s.fertilise.push_back({double(v[0]), double(v[1])});
+        }
+    }
+    p.physiology = ph;
+}
+
 ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, std::size_t index) {
     if (!j.is_object()) r.fail(at, "expected a block {...}", &j);
     ProjectBlock b;
@@ -363,6 +424,7 @@ Project readProject(const Reader& r, const json& j, const std::string& nameForEr
     if (j.contains("soft_collision")) readSoft(r, j["soft_collision"], p);
     if (j.contains("obstacles")) readObstacles(r, j["obstacles"], p);
     if (j.contains("attraction")) readAttraction(r, j["attraction"], p);
+    if (j.contains("physiology")) readPhysiology(r, j["physiology"], p);
     if (j.contains("blocks")) {
         const json& blocks = j["blocks"];
         if (!blocks.is_array()) r.fail("blocks", "expected a list of blocks [{...}, ...]", &blocks);

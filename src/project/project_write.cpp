@@ -85,6 +85,24 @@ std::string writeProjectString(const Project& p) {
     OrderedJson blocks = OrderedJson::array();
     for (const ProjectBlock& b : p.blocks) blocks.push_back(block(b));
     j["blocks"] = blocks;
+    if (p.physiology) {
+        const PhysiologySeason& s = p.physiology->season;
+        OrderedJson events = OrderedJson::array();
+        for (const Fertilisation& f : s.fertilise)
+            events.push_back(OrderedJson::array({num(float(f.age)), num(float(f.grams))}));
+        const bool clear = p.physiology->weatherFile.empty();
+        j["physiology"] = {
+            {"carbon", s.carbon},
+            {"nitrogen", s.nitrogen},
+            {"location", OrderedJson::array({s.location.latitude, s.location.longitude})},
+            {"start",
+             clear ? OrderedJson(formatUTCTime(s.start).substr(0, 10)) : OrderedJson(nullptr)},
+            {"weather", clear ? OrderedJson(nullptr) : OrderedJson(p.physiology->weatherFile)},
+            {"clearness", s.clearness},
+            {"light_every", s.lightEvery},
+            {"days", p.physiology->days},
+            {"fertilise", events}};
+    }
     return j.dump(2) + "\n";
 }
 
