@@ -1,7 +1,7 @@
 // plantarch light SPECIES --age D [--count NxM --spacing AxB] [-D name=value]
 //                 --location LAT,LON (--date YYYY-MM-DD [--clearness K] [--temperature MIN:MAX]
 //                                     | --weather FILE)
-//                 [--rays DIRECT,DIFFUSE,SCATTER] [--no-scattering] [--no-ground]
+//                 [--rays DIRECT,DIFFUSE,SCATTER] [--samples N] [--no-scattering] [--no-ground]
 //                 [--series FILE.csv] [--leaves FILE.csv] [-o FILE.png|.glb|.ply|...]
 // The PAR a plant or a canopy absorbs over a clear day or the intervals of a weather file,
 // traced through every surface (plantarch/Light.h): an hourly series, every leaf's share, and
@@ -34,6 +34,7 @@ constexpr const char* kLightOutputs = ".png, .obj, .ply, .glb, .gltf or .usda";
 struct LightArgs {
     std::string species, count, spacing = "0.3x0.3", location, date, weather;
     std::string temperature = "15:28", rays = "4,64,32";
+    unsigned samples = 0;
     float age = -1.0f, clearness = 0.75f;
     std::vector<std::string> defines, outputs;
     std::string series, leaves;
@@ -107,6 +108,7 @@ LightOptions lightOptions(const LightArgs& a, const GlobalOptions& g) {
     o.diffuseRays = v[1];
     o.scatterRays = v[2];
     o.scatteringOrders = a.noScattering ? 0 : 1;
+    o.samplesPerObject = a.samples;
     o.seed = g.seed;
     return o;
 }
@@ -219,16 +221,24 @@ Day simulate(const LightModel& model, const Context& ctx, const Location& where,
         std::optional<LightResult> r;
         if (w.par > 0.0) r = model.compute(sky);
         double leafAbs = 0.0, leafSun = 0.0, leafNet = 0.0;
+        double net = 0.0;  // the last leaf triangle's, kept for its object's next ones
         for (std::size_t i = 0; i < n; ++i) {
             const double absorbed = r ? r->absorbed[i] : 0.0;
             d.absorbed[i] += absorbed * dt;
             if (r && sky.directNormal > 0.0) d.sunlit[i] += r->sunlit[i] * dt;
             if (!d.leaf[i]) continue;
-            // Leaves at the air's temperature (no energy balance yet).
-            const double net = r ? farquharSunlitShaded(leafModel, absorbed, r->absorbedDirect[i],
-                                                        r->sunlit[i], w.airTemperature, co2)
-                                       .net
-                                 : farquhar(leafModel, 0.0, w.airTemperature, co2).net;
+            // Leaves at the air's temperature (no energy balance yet). A triangle with the light
+            // of the one before in its object (every one, sampled per object) has its rate.
+            const bool same = i > 0 && d.leaf[i - 1] &&
+                              model.objects()[i] == model.objects()[i - 1] &&
+                              (!r || (r->absorbed[i] == r->absorbed[i - 1] &&
+                                      r->absorbedDirect[i] == r->absorbedDirect[i - 1] &&
+                                      r->sunlit[i] == r->sunlit[i - 1]));
+            if (!same)
+                net = r ? farquharSunlitShaded(leafModel, absorbed, r->absorbedDirect[i],
+                                               r->sunlit[i], w.airTemperature, co2)
+                              .net
+                        : farquhar(leafModel, 0.0, w.airTemperature, co2).net;
             d.assimilated[i] += net * dt;
             leafAbs += absorbed * d.area[i];
             leafSun += (r ? r->sunlit[i] : 0.0) * d.area[i];
@@ -384,7 +394,13 @@ std::function<int()> setupLight(CLI::App& app, GlobalOptions& global) {
                    "With --date: the day's air temperature MIN:MAX in °C (default 15:28)");
     app.add_option("--weather", a->weather,
                    "Weather file (CSV: time, par or global_radiation, air_temperature, ...)");
-    app.add_option("--rays", a->rays, "Rays per triangle DIRECT,DIFFUSE,SCATTER (default 4,64,32)");
+    app.add_option("--rays", a->rays,
+                   "Rays per triangle (per sample with --samples) DIRECT,DIFFUSE,SCATTER (default "
+                   "4,64,32)");
+    app.add_option("--samples", a->samples,
+                   "Sample the light per object from N of its triangles (1 to 100000; default 0: "
+                   "every triangle)")
+        ->check(numberCheck("--samples", "triangles", 0, 100000, true, "0 to 100000"));
     app.add_flag("--no-scattering", a->noScattering,
                  "Leaves and ground absorb or lose what they do not absorb (no scattered light)");
     app.add_flag("--no-ground", a->noGround, "No soil under the plants");

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -335,39 +336,45 @@ TEST(Light, ATurbidCanopyWithSphericalLeavesFollowsBeersLaw) {
         addSquare(ctx, c, vec3(rxy * std::cos(phi), rxy * std::sin(phi), z), side, "leaf");
         centres.push_back(c);
     }
-    for (double elevation : {30.0, 60.0}) {
-        SkyLight sky;
-        sky.sun.elevation = elevation;
-        sky.sun.azimuth = 200.0;
-        sky.directNormal = 1000.0;
-        LightOptions o;
-        o.scatteringOrders = 0;
-        o.directRays = 1;
-        const LightModel model(ctx, o);
-        const LightResult r = model.compute(sky);
-        // Leaves far enough from the sides that their ray to the sun stays in the canopy.
-        const double sinE = std::sin(elevation * kPi / 180);
-        const double reach = height / std::tan(elevation * kPi / 180) + 0.02;
-        const int bins = 8;
-        std::vector<double> seen(bins, 0.0), expected(bins, 0.0), count(bins, 0.0);
-        for (std::size_t i = 0; i < model.triangleCount(); ++i) {
-            const vec3 c = centres[ctx.primitiveObject(model.primitives()[i])];
-            if (std::abs(c.x) > half - reach || std::abs(c.y) > half - reach) continue;
-            const double lai = density * (height - c.z);
-            const int b = std::min(bins - 1, int((height - c.z) / height * bins));
-            seen[b] += r.sunlit[i];
-            expected[b] += std::exp(-0.5 * lai / sinE);
-            count[b] += 1;
+    // Every triangle, and one of each leaf's two triangles (samplesPerObject 1: each leaf
+    // counted once, its light from one ray).
+    for (const unsigned samples : {0u, 1u})
+        for (double elevation : {30.0, 60.0}) {
+            SkyLight sky;
+            sky.sun.elevation = elevation;
+            sky.sun.azimuth = 200.0;
+            sky.directNormal = 1000.0;
+            LightOptions o;
+            o.scatteringOrders = 0;
+            o.directRays = 1;
+            o.samplesPerObject = samples;
+            const LightModel model(ctx, o);
+            const LightResult r = model.compute(sky);
+            // Leaves far enough from the sides that their ray to the sun stays in the canopy.
+            const double sinE = std::sin(elevation * kPi / 180);
+            const double reach = height / std::tan(elevation * kPi / 180) + 0.02;
+            const int bins = 8;
+            std::vector<double> seen(bins, 0.0), expected(bins, 0.0), count(bins, 0.0);
+            for (std::size_t i = 0; i < model.triangleCount(); ++i) {
+                if (samples > 0 && i > 0 && model.objects()[i] == model.objects()[i - 1]) continue;
+                const vec3 c = centres[ctx.primitiveObject(model.primitives()[i])];
+                if (std::abs(c.x) > half - reach || std::abs(c.y) > half - reach) continue;
+                const double lai = density * (height - c.z);
+                const int b = std::min(bins - 1, int((height - c.z) / height * bins));
+                seen[b] += r.sunlit[i];
+                expected[b] += std::exp(-0.5 * lai / sinE);
+                count[b] += 1;
+            }
+            for (int b = 0; b < bins; ++b) {
+                const double p = expected[b] / count[b], got = seen[b] / count[b];
+                const double se = std::sqrt(p * (1 - p) / count[b]);
+                std::printf(
+                    "%s, elevation %.0f, LAI %.2f-%.2f: sunlit %.4f, Beer %.4f (%.0f leaves)\n",
+                    samples ? "sampled" : "every triangle", elevation, density * height * b / bins,
+                    density * height * (b + 1) / bins, got, p, count[b]);
+                EXPECT_NEAR(got, p, 4 * se + 0.01) << "bin " << b;
+            }
         }
-        for (int b = 0; b < bins; ++b) {
-            const double p = expected[b] / count[b], got = seen[b] / count[b];
-            const double se = std::sqrt(p * (1 - p) / count[b]);
-            std::printf("elevation %.0f, LAI %.2f-%.2f: sunlit %.4f, Beer %.4f (%.0f leaves)\n",
-                        elevation, density * height * b / bins, density * height * (b + 1) / bins,
-                        got, p, count[b]);
-            EXPECT_NEAR(got, p, 4 * se + 0.01) << "bin " << b;
-        }
-    }
 }
 
 // Light scattered once: a small leaf over a bright, wide ground under a zenith sun gets on
@@ -412,6 +419,93 @@ TEST(Light, TheSameForAnyThreadCount) {
     ASSERT_GT(one.absorbed.size(), 1000u);
     EXPECT_EQ(one.absorbed, two.absorbed);
     EXPECT_EQ(one.sunlit, two.sunlit);
+    // Sampled per object: the same samples and rays for any thread count too.
+    LightOptions o = fewRays();
+    o.samplesPerObject = 4;
+    const LightModel sampled(ctx, o);
+    omp_set_num_threads(1);
+    const LightResult oneSampled = sampled.compute(sky);
+    omp_set_num_threads(2);
+    const LightResult twoSampled = sampled.compute(sky);
+    omp_set_num_threads(before);
+    EXPECT_LT(sampled.sampleCount(), sampled.triangleCount() / 4);
+    EXPECT_EQ(oneSampled.absorbed, twoSampled.absorbed);
+    EXPECT_EQ(oneSampled.sunlit, twoSampled.sunlit);
+    EXPECT_EQ(oneSampled.absorbedDirect, twoSampled.absorbedDirect);
+}
+
+// Sampled per object, the light of each plant of a canopy is the light traced from every
+// triangle, within the sampling's noise: each plant's absorbed PAR (µmol s-1 over its leaves)
+// summed over four hours of a day, the default rays, 8 samples per object against every
+// triangle. Seen over seeds 0-9: each plant within 2.5 % (without scattering the differences
+// average 0.1 % with a spread of 0.8 %; the scattered light, taken from each object's mean
+// rather than each triangle's, adds 0.5 to 1 %); 4 % is the bound.
+TEST(Light, SampledPerObjectTheCanopysPlantsAbsorbWhatEveryTriangleGives) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    beanCanopy(arch, 0.3f, 2, 35.0f);
+    const std::vector<vec3> p{{-1, -1, 0}, {1.3f, -1, 0}, {1.3f, 1.3f, 0}, {-1, 1.3f, 0}};
+    ctx.setObjectData(ctx.addObject(p, {}, std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3}), "organ",
+                      std::string("ground"));
+    const Location where{38.5, -121.7};
+    const auto day = clearSkyDay(where, 2026, 6, 21);
+    LightOptions o;
+    const LightModel full(ctx, o);
+    o.samplesPerObject = 8;
+    const LightModel sampled(ctx, o);
+    std::printf("%zu triangles, %zu samples\n", full.triangleCount(), sampled.sampleCount());
+    EXPECT_LT(sampled.sampleCount() * 8, full.triangleCount());
+    // Per plant, the leaves' absorbed PAR (µmol s-1) summed over the hours.
+    auto perPlant = [&](const LightModel& model) {
+        std::map<int, double> plants;
+        for (int h : {15, 17, 20, 23}) {
+            const LightResult r = model.compute(skyLight(where, day[std::size_t(h)]));
+            for (std::size_t i = 0; i < model.triangleCount(); ++i)
+                if (ctx.objectDataString(model.objects()[i], "organ") == std::string("leaf"))
+                    plants[ctx.objectDataInt(model.objects()[i], "plantID").value_or(-1)] +=
+                        double(r.absorbed[i]) * model.areas()[i];
+        }
+        return plants;
+    };
+    const std::map<int, double> a = perPlant(full), b = perPlant(sampled);
+    ASSERT_EQ(a.size(), 4u);
+    double worst = 0.0;
+    for (const auto& [plant, value] : a) {
+        const double d = b.at(plant) / value - 1.0;
+        std::printf("plant %d: every triangle %.2f, sampled %.2f µmol s-1 (%+.2f %%)\n", plant,
+                    value, b.at(plant), 100 * d);
+        worst = std::max(worst, std::abs(d));
+    }
+    EXPECT_LT(worst, 0.04);
+}
+
+// With a sample for each triangle (no object has more than samplesPerObject) and no
+// scattering, the sampled mode traces the very rays of the full one: the same light.
+TEST(Light, SampledWithEveryTriangleIsTheFullTrace) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    beanCanopy(arch, 0.3f, 1, 20.0f);
+    LightOptions o = fewRays();
+    o.scatteringOrders = 0;
+    const LightModel full(ctx, o);
+    o.samplesPerObject = 100000;
+    const LightModel sampled(ctx, o);
+    ASSERT_EQ(sampled.sampleCount(), full.triangleCount());
+    const Location where{38.5, -121.7};
+    const SkyLight sky = skyLight(where, clearSkyDay(where, 2026, 6, 21)[18]);
+    const LightResult a = full.compute(sky), b = sampled.compute(sky);
+    // Each object's area-weighted mean, as writeLightData gives it.
+    auto means = [&](const LightModel& model, const LightResult& r) {
+        writeLightData(ctx, model, r);
+        std::vector<float> values;
+        for (ObjectID id : ctx.objectIDs())
+            values.push_back(*ctx.objectDataFloat(id, "absorbed_par"));
+        return values;
+    };
+    const std::vector<float> x = means(full, a), y = means(sampled, b);
+    ASSERT_EQ(x.size(), y.size());
+    for (std::size_t k = 0; k < x.size(); ++k)
+        EXPECT_NEAR(y[k], x[k], 1e-3f * std::max(1.0f, x[k])) << k;
 }
 
 // In a canopy the upper leaves get more light than the lower ones.

@@ -6,7 +6,7 @@ count. Prints the medians, the day's own cost (light minus build), its ratio to 
 the rays per second it cast and the cost per million triangles.
 
     python3 bench/scripts/light_day.py --plantarch build/plantarch [--count 10x10]
-        [--age 40] [--repeats 3] [--threads 1,2]
+        [--age 40] [--repeats 3] [--threads 1,2] [--samples N]
 """
 
 import argparse
@@ -35,6 +35,8 @@ def main():
     p.add_argument("--age", default="40", help="plant age, days")
     p.add_argument("--repeats", type=int, default=3, help="runs of each command per thread count")
     p.add_argument("--threads", default="1,2", help="thread counts, comma-separated")
+    p.add_argument("--samples", default="0",
+                   help="light's --samples: 0 every triangle, N sampled per object")
     a = p.parse_args()
     if a.repeats < 1:
         sys.exit("light_day: --repeats must be 1 or more")
@@ -45,7 +47,8 @@ def main():
             build = base + ["canopy"] + plant + ["--stats"]
             light = base + ["light"] + plant + ["--location", "38.54,-121.74",
                                                 "--date", "2026-06-21",
-                                                "--series", f"{scratch}/series.csv"]
+                                                "--series", f"{scratch}/series.csv",
+                                                "--samples", a.samples]
             builds, days, rays, triangles = [], [], 0, 0
             for _ in range(a.repeats):
                 builds.append(timed(build)[0])
@@ -55,7 +58,7 @@ def main():
                 triangles, rays = int(m.group(1)), int(m.group(2))
             b, d = statistics.median(builds), statistics.median(days)
             day = d - b
-            print(f"threads {threads}: build {b:.2f} s, build and a day of light {d:.2f} s "
+            print(f"samples {a.samples}, threads {threads}: build {b:.2f} s, build and a day of light {d:.2f} s "
                   f"(medians of {a.repeats}); the day {day:.2f} s = {day / b:.1f} x the build, "
                   f"{rays / day / 1e6:.2f} million rays/s, {day / (triangles / 1e6):.1f} s per "
                   f"million triangles ({triangles} triangles, {rays} rays)")
