@@ -226,6 +226,37 @@ TEST(Carbon, MeasuredRatesThroughTheApiFeedTheBudget) {
     EXPECT_EQ(arch.getPhysiologyRecords(id).back().input, 0.0);
 }
 
+// Radial growth is paid for: a shoot well fed thickens as a plant without a budget does, a poor
+// one by at least 5 % of its increase a day but less than the well-fed one.
+TEST(Carbon, ThickeningTakesWhatTheShootCanPay) {
+    auto baseRadius = [](int mode) {  // 0: no budget, 1: rich, 2: poor
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(3);
+        arch.loadPlantModelFromLibrary("tomato");
+        const unsigned id = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 15.0f);
+        if (mode > 0) arch.enableCarbohydrateModel(id);
+        for (int d = 0; d < 30; ++d) {
+            if (mode > 0) {
+                std::map<ObjectID, double> rates;
+                for (ObjectID o : arch.getPlantObjectIDs(id, OrganKind::Leaf))
+                    rates[o] = mode == 1 ? 25.0 : 1.5;
+                arch.addLeafPhotosynthesis(rates, 14.0);
+            }
+            arch.advanceTime(id, 1.0);
+        }
+        return double(arch.plant(id).shoots.front().phytomers.front().internode.radius);
+    };
+    const double free = baseRadius(0), rich = baseRadius(1), poor = baseRadius(2);
+    std::printf(
+        "base internode radius after 30 days: %.2f mm without a budget, %.2f rich, "
+        "%.2f poor\n",
+        free * 1e3, rich * 1e3, poor * 1e3);
+    EXPECT_NEAR(rich / free, 1.0, 0.1);
+    EXPECT_LT(poor, 0.9 * rich);
+    EXPECT_GT(poor, 0.0);
+}
+
 TEST(Carbon, BuildingWithTheBudgetOffIsUnchanged) {
     auto build = [](bool touchRecords) {
         Context ctx;

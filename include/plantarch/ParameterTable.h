@@ -595,6 +595,9 @@ void describeParameters(S& p, V& v) {
     v.field({"bud_break_threshold", "g C g-1", 0.0001, 10,
              "Below this a shoot's buds break with proportionally lower probability"},
             p.bud_break_threshold);
+    v.field({"radial_growth_threshold", "g C g-1", 0, 10,
+             "Sugar a shoot keeps before it pays for thickening its internodes at full rate"},
+            p.radial_growth_threshold);
     v.field({"transfer_up_threshold", "g C g-1", 0, 10,
              "A shoot above this passes sugar to its child shoots"},
             p.transfer_up_threshold);

@@ -281,6 +281,7 @@ struct CarbohydrateParameters {
     float pruning_threshold = 0.025f;
     float phyllochron_threshold = 0.05f;
     float bud_break_threshold = 0.05f;
+    float radial_growth_threshold = 0.2f;
     float transfer_up_threshold = 0.04f;
     float transfer_down_threshold = 0.025f;
     float starch_fraction = 0.025f;

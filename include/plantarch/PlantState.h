@@ -292,6 +292,9 @@ struct ShootCarbon {
     float starvedDays = 0.0f;     ///< days in a row below the pruning threshold
     float phyllochron = 0.0f;     ///< the shoot's own phyllochron, days, before any slowing
     float budBreakFactor = 1.0f;  ///< the shoot's buds break with their probability times this
+    /// mol C the shoot may spend thickening its internodes until the next step (its pool
+    /// above the radial growth threshold); thickening takes at least 5 % of its full increase.
+    double radialAllowance = 0.0;
 };
 
 struct Shoot {

@@ -322,6 +322,9 @@ void describeState(S& c, V& v) {
     v.field({"starved_days", 0, kTime, "days below the pruning threshold"}, c.starvedDays);
     v.field({"phyllochron", 0, kBig, "the shoot's own phyllochron, days"}, c.phyllochron);
     v.field({"bud_break_factor", 0, 1, "scales its buds' break probability"}, c.budBreakFactor);
+    v.field(
+        {"radial_allowance", 0, kBig, "carbon it may spend thickening until the next step, mol C"},
+        c.radialAllowance);
 }
 
 template <class S, class V>

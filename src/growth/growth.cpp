@@ -22,12 +22,17 @@
 #include "core/value_text.h"
 #include "geometry/tessellate.h"
 #include "growth/leaf_expansion.h"
+#include "model/carbon_costs.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
 
 namespace plantarch {
 
 namespace {
+
+// The least share of its full increase a shoot's internodes thicken by at a girth update,
+// however poor the shoot (docs/physiology.md).
+constexpr double kRadialMinimum = 0.05;
 
 enum EventKind : int {
     kDormancyBreak = 0,
@@ -108,6 +113,7 @@ struct Grower {
         return *it->second;
     }
     std::vector<double> girthTotals, girthNodes;  // reused by updateGirth
+    std::vector<float> girthTargets;
     // Called at most once a day of growth with the fraction of the call's days done (before
     // that day's first event); may be null.
     const std::function<void(double)>* onDay = nullptr;
@@ -646,6 +652,35 @@ struct Grower {
         Table* table_;
     };
 
+    // Each internode of `s` toward its target radius. A shoot with a carbohydrate budget
+    // thickens as far as its radial allowance pays (the cross-sections' share of the full
+    // increase, at least radialMinimum, the allowance spent); others reach the targets.
+    void thicken(Shoot& s, const std::vector<float>& target) {
+        double share = 1.0;
+        if (s.carbon) {
+            const CarbohydrateParameters& p = plant.phenology.carbohydrates;
+            double volume = 0.0;  // m³ of the full increase
+            for (std::size_t k = 0; k < target.size(); ++k) {
+                const Phytomer& ph = s.phytomers[k];
+                const double r0 = ph.internode.radius, r1 = target[k];
+                volume += kPi * (r1 * r1 - r0 * r0) * double(ph.internode.length) *
+                          double(ph.internodeFraction);
+            }
+            const double cost = carbon::woodCost(p, carbon::woodCarbon(p, volume));
+            if (cost > 0.0) {
+                share = std::clamp(s.carbon->radialAllowance / cost, kRadialMinimum, 1.0);
+                s.carbon->radialAllowance = std::max(0.0, s.carbon->radialAllowance - share * cost);
+            }
+        }
+        for (std::size_t k = 0; k < target.size(); ++k) {
+            Internode& in = s.phytomers[k].internode;
+            const double r0 = in.radius, r1 = target[k];
+            in.radius =
+                std::max({in.radius, float(std::sqrt(r0 * r0 + share * (r1 * r1 - r0 * r0))),
+                          std::min(s.phytomers[k].radiusInitial, target[k])});
+        }
+    }
+
     // Internode cross-section = girth_area_factor (cm^2 per m^2) x leaf area downstream;
     // radii never shrink and never fall below their initial value.
     void updateGirth() {
@@ -674,15 +709,19 @@ struct Grower {
                     atNode[std::size_t(child.parentNode)] += shootTotal[c];
             }
             double downstream = 0.0;
+            std::vector<float>& target = girthTargets;
+            target.assign(s.phytomers.size(), 0.0f);
             for (std::size_t k = s.phytomers.size(); k-- > 0;) {
                 downstream += atNode[k];
-                Internode& in = s.phytomers[k].internode;
+                const Phytomer& ph = s.phytomers[k];
+                target[k] = ph.internode.radius;
                 if (s.girthAreaFactor > 0.0f) {
                     const double area = double(s.girthAreaFactor) * downstream * 1e-4;  // m^2
-                    const float r = float(std::sqrt(area / kPi));
-                    in.radius = std::max({in.radius, r, s.phytomers[k].radiusInitial});
+                    target[k] = std::max(
+                        {ph.internode.radius, float(std::sqrt(area / kPi)), ph.radiusInitial});
                 }
             }
+            thicken(s, target);
             shootTotal[i] = downstream;
         }
     }

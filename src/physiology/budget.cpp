@@ -6,20 +6,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/carbon_costs.h"
+
 namespace plantarch::physiology {
 
 namespace {
 
-constexpr double kCarbonMolarMass = 12.01;  // g mol⁻¹
-constexpr double kMinVolume = 1e-9;         // m³: a concentration for shoots of no wood yet
+using carbon::amount;
+using carbon::kCarbonMolarMass;
+using carbon::kMinVolume;
 
 double pool(const ShootCarbon& c) {
     return c.sugar + c.starch;
-}
-
-// Pool amount (mol C) of a concentration (g C per g dry stem) in `volume` m³ of wood.
-double amount(const CarbohydrateParameters& p, double concentration, double volume) {
-    return concentration * p.stem_density * std::max(volume, kMinVolume) / kCarbonMolarMass;
 }
 
 // The chain of shoots that pays for a shoot's costs: itself, then its ancestors (the base
@@ -149,6 +147,7 @@ void regulate(PlantInstance& plant, Shoot& s, const ShootMeasure& m,
     }
     c.budBreakFactor =
         float(std::clamp(total / amount(p, p.bud_break_threshold, m.woodVolume), 0.0, 1.0));
+    c.radialAllowance = std::max(0.0, c.sugar - amount(p, p.radial_growth_threshold, m.woodVolume));
     c.poorDays =
         total < amount(p, p.abortion_threshold, m.woodVolume) ? c.poorDays + float(days) : 0.0f;
     c.starvedDays = total < amount(p, p.pruning_threshold, m.woodVolume) && selfBalance < 0.0
@@ -179,9 +178,7 @@ std::pair<double, double> growthCost(const CarbohydrateParameters& p, ShootCarbo
 }  // namespace
 
 double woodCarbon(const CarbohydrateParameters& p, double volume) {
-    return p.stem_density *
-           std::max(0.0, double(p.stem_carbon_fraction) - p.nonstructural_fraction) /
-           kCarbonMolarMass * volume;
+    return carbon::woodCarbon(p, volume);
 }
 
 double startCarbon(PlantInstance& plant, const std::vector<ShootMeasure>& measures) {
