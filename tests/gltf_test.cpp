@@ -265,3 +265,105 @@ TEST(Gltf, TexturedMaterialsCarryTheirImage) {
     EXPECT_TRUE(g.doc["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0"));
     fs::remove(png);
 }
+
+// The physiology's float data (absorbed_par, sunlit_fraction, net_photosynthesis,
+// carbohydrate_concentration) become property table columns when some object carries them:
+// FLOAT32 with noData for the other rows, each named in docs/formats.md. Without them the
+// file is the bytes it always was.
+TEST(Gltf, PhysiologyDataAddFloatColumnsWithNoDataAndLeaveOtherFilesAlone) {
+    Scene s("bean", 2);
+    GltfOptions o;
+    o.plants = s.plants;
+    const fs::path path = tempPath("physiology.glb");
+    writeGLTF(s.ctx, path.string(), o);
+    const std::string plain = readAll(path.string());
+    const json plainTable =
+        parseGlb(plain).doc["extensions"]["EXT_structural_metadata"]["propertyTables"][0];
+    EXPECT_EQ(plainTable["properties"].size(), 8u);
+
+    std::map<ObjectID, float> par, sugar;
+    ObjectID shaded = 0;
+    for (ObjectID id : s.ctx.objectIDs()) {
+        const bool leaf = s.ctx.objectDataString(id, "organ") == "leaf";
+        if (leaf) {
+            par[id] = 10.0f + float(id % 97);
+            s.ctx.setObjectData(id, "absorbed_par", par[id]);
+            s.ctx.setObjectData(id, "net_photosynthesis", -0.5f);  // may be negative
+            shaded = id;
+        }
+        if (s.ctx.objectDataInt(id, "plantID") == s.plants[0].id) {
+            sugar[id] = 0.25f;
+            s.ctx.setObjectData(id, "carbohydrate_concentration", 0.25f);
+        }
+        s.ctx.setObjectData(id, "sunlit_fraction", std::int32_t(1));  // not a float: absent
+    }
+    ASSERT_FALSE(par.empty());
+    writeGLTF(s.ctx, path.string(), o);
+    const Glb g = parseGlb(readAll(path.string()));
+    const json& metadata = g.doc["extensions"]["EXT_structural_metadata"];
+    const json& table = metadata["propertyTables"][0];
+    const json& classProperties = metadata["schema"]["classes"]["organ"]["properties"];
+    const std::size_t rows = table["count"];
+    EXPECT_FALSE(table["properties"].contains("sunlit_fraction"));
+    const auto objects =
+        viewValues<std::uint32_t>(g, table["properties"]["object"]["values"], rows);
+    for (const auto& [name, expected] :
+         {std::pair{"absorbed_par", &par}, std::pair{"carbohydrate_concentration", &sugar}}) {
+        ASSERT_TRUE(table["properties"].contains(name)) << name;
+        const json& p = classProperties[name];
+        EXPECT_EQ(p["type"], "SCALAR");
+        EXPECT_EQ(p["componentType"], "FLOAT32");
+        const float noData = p["noData"].get<float>();
+        EXPECT_EQ(noData, -9999.0f);
+        const auto values = viewValues<float>(g, table["properties"][name]["values"], rows);
+        std::size_t carried = 0;
+        for (std::size_t r = 0; r < rows; ++r) {
+            const auto it = expected->find(objects[r]);
+            EXPECT_EQ(values[r], it == expected->end() ? noData : it->second) << name << r;
+            carried += it != expected->end();
+        }
+        EXPECT_EQ(carried, expected->size());
+    }
+    const auto net =
+        viewValues<float>(g, table["properties"]["net_photosynthesis"]["values"], rows);
+    for (std::size_t r = 0; r < rows; ++r)
+        if (objects[r] == shaded) {
+            EXPECT_EQ(net[r], -0.5f);
+        }
+    // Data removed again: the same bytes as before they were set.
+    for (ObjectID id : s.ctx.objectIDs())
+        for (const char* label :
+             {"absorbed_par", "net_photosynthesis", "carbohydrate_concentration"})
+            s.ctx.clearObjectData(id, label);
+    writeGLTF(s.ctx, path.string(), o);
+    EXPECT_EQ(readAll(path.string()), plain);
+    fs::remove(path);
+}
+
+// Every optional column the writer declares (the properties with noData) is named in
+// docs/formats.md, with the no-data value.
+TEST(Gltf, EveryPhysiologyColumnIsDocumented) {
+    Context ctx;
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.indices = {0, 1, 2};
+    const ObjectID id = ctx.addObject(m, Material{vec3(0.3f, 0.6f, 0.2f), "", "leaf"});
+    for (const char* label :
+         {"absorbed_par", "sunlit_fraction", "net_photosynthesis", "carbohydrate_concentration"})
+        ctx.setObjectData(id, label, 0.5f);
+    const fs::path path = tempPath("documented.glb");
+    writeGLTF(ctx, path.string());
+    const Glb g = parseGlb(readAll(path.string()));
+    fs::remove(path);
+    const json& properties =
+        g.doc["extensions"]["EXT_structural_metadata"]["schema"]["classes"]["organ"]["properties"];
+    const std::string docs = readAll(std::string(PLANTARCH_SOURCE_DIR) + "/docs/formats.md");
+    std::size_t optional = 0;
+    for (const auto& [name, p] : properties.items()) {
+        if (!p.contains("noData")) continue;
+        ++optional;
+        EXPECT_NE(docs.find("`" + name + "`"), std::string::npos) << name;
+    }
+    EXPECT_EQ(optional, 4u);
+    EXPECT_NE(docs.find("-9999"), std::string::npos);
+}

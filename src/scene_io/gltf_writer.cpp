@@ -1,8 +1,8 @@
 // glTF 2.0 writer (.glb binary, .gltf with the buffer embedded) with labels a receiving tool
 // reads: per-vertex _PLANT_ID, _OBJECT_ID and _ORGAN attributes, EXT_mesh_features feature
 // IDs that index an EXT_structural_metadata property table (plant, object, organ, leaf,
-// shoot, rank, node and age of every object), and node extras with each plant's species, age and
-// seed.
+// shoot, rank, node and age of every object, and the physiology's float data when the scene
+// has them), and node extras with each plant's species, age and seed.
 //
 // Layout: a node per plant (its base as the translation, vertices relative to it) and one for
 // the objects of no plant (trellis, obstacles, ground); under each, one mesh per organ kind,
@@ -12,6 +12,7 @@
 // from the Context without building it whole (the .gltf form encodes it in base64).
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -43,6 +44,25 @@ static_assert(std::endian::native == std::endian::little, "glTF buffers are litt
 constexpr int kFloat = 5126, kUInt = 5125;
 constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 
+// The property table's optional columns: float object data a physiology season leaves (on
+// leaves, or on every object of a shoot with a carbohydrate budget). A column is written when
+// any exported object carries its data (as a float); the others' rows hold kNoData, declared
+// as the property's noData. A scene with none of them is written as before.
+struct OptionalColumn {
+    const char* name;  // the object data's label, and the column's name
+    const char* description;
+};
+constexpr OptionalColumn kOptionalColumns[] = {
+    {"absorbed_par",
+     "PAR absorbed, umol m-2 s-1, mean over the last simulated day's daylight hours"},
+    {"sunlit_fraction", "sunlit share of the leaf, 0 to 1, mean over the same hours"},
+    {"net_photosynthesis", "net CO2 assimilation, umol m-2 s-1, mean over the same hours"},
+    {"carbohydrate_concentration",
+     "the shoot's sugar and starch per structural carbon of its wood, mol C / mol C"},
+};
+constexpr std::size_t kOptionalCount = std::size(kOptionalColumns);
+constexpr float kNoData = -9999.0f;
+
 // What one exported object contributes, and where.
 struct ObjectRecord {
     ObjectID id;
@@ -53,6 +73,7 @@ struct ObjectRecord {
     std::size_t material;  // index into Scene::materials
     std::uint32_t frame;
     bool uvs;
+    std::array<float, kOptionalCount> optional;  // kNoData where the object has no such data
 };
 
 // One primitive: the objects of one (node, organ kind, material).
@@ -197,9 +218,10 @@ struct Scene {
     std::vector<ObjectRecord> records;
     std::vector<Node> nodes;
     std::vector<Primitive> primitives;
-    std::vector<Material> materials;       // in glTF material order
-    std::vector<std::string> images;       // texture files, in glTF image order
-    std::vector<EmbeddedImage> imageData;  // each decoded and checked, as embedded
+    std::vector<Material> materials;               // in glTF material order
+    std::vector<std::string> images;               // texture files, in glTF image order
+    std::vector<EmbeddedImage> imageData;          // each decoded and checked, as embedded
+    std::array<bool, kOptionalCount> hasColumn{};  // the optional columns written
 
     ObjectView object(const ObjectRecord& r) const { return frames[r.frame]->object(r.id); }
     ObjectView object(std::size_t record) const { return object(records[record]); }
@@ -211,6 +233,9 @@ void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& p
     const Context& ctx = *s.frames[frame];
     const std::vector<ObjectID> ids = io::exportedObjects(ctx, options.includeHidden);
     const io::LabelReader labelsOf(ctx);
+    bool floatData[kOptionalCount];  // data of another type counts as absent, as for labels
+    for (std::size_t c = 0; c < kOptionalCount; ++c)
+        floatData[c] = ctx.objectDataType(kOptionalColumns[c].name) == DataType::Float;
     const std::size_t firstNode = s.nodes.size();
     std::map<std::int32_t, std::size_t> nodeOf;
     for (const GltfPlant& p : plants) {
@@ -228,8 +253,14 @@ void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& p
             if (at == s.materials.end()) s.materials.push_back(mat);
         }
         const io::ObjectLabels l = labelsOf(id);
-        ObjectRecord r{id,     l.plant, l.organ,   l.leaf, l.shoot,       l.rank,
-                       l.node, l.age,   m->second, frame,  !o.uvs.empty()};
+        ObjectRecord r{id,     l.plant, l.organ,   l.leaf, l.shoot,        l.rank,
+                       l.node, l.age,   m->second, frame,  !o.uvs.empty(), {}};
+        for (std::size_t c = 0; c < kOptionalCount; ++c) {
+            const std::optional<float> v =
+                floatData[c] ? ctx.objectDataFloat(id, kOptionalColumns[c].name) : std::nullopt;
+            r.optional[c] = v.value_or(kNoData);
+            if (v) s.hasColumn[c] = true;
+        }
         if (!nodeOf.count(r.plant)) {
             nodeOf.emplace(r.plant, s.nodes.size());
             s.nodes.push_back({frame, r.plant, vec3(0.0f), std::nullopt});
@@ -283,28 +314,34 @@ Scene collect(const std::vector<AnimationFrame>& frames, const GltfOptions& opti
     return s;
 }
 
-json schema() {
+json schema(const Scene& s) {
     json values = json::array();
     for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
         values.push_back({{"name", std::string(kOrganLabels[i])}, {"value", i}});
     auto scalar = [](const char* type, const char* description) {
         return json{{"type", "SCALAR"}, {"componentType", type}, {"description", description}};
     };
+    json properties = {
+        {"plant", scalar("INT32", "plant ID (-1: not a plant organ)")},
+        {"object", scalar("UINT32", "object ID")},
+        {"organ", {{"type", "ENUM"}, {"enumType", "organ_kind"}, {"description", "organ kind"}}},
+        {"leaf", scalar("INT32", "leaf ID within the plant (-1: not a leaf)")},
+        {"shoot", scalar("INT32", "shoot ID within the plant (-1: none)")},
+        {"rank", scalar("INT32", "shoot rank, 0 for the base stem (-1: none)")},
+        {"node", scalar("INT32", "node (phytomer) index on the shoot (-1: none)")},
+        {"age", scalar("FLOAT32", "organ age, days (-1: unknown)")}};
+    for (std::size_t c = 0; c < kOptionalCount; ++c)
+        if (s.hasColumn[c]) {
+            json p = scalar("FLOAT32", kOptionalColumns[c].description);
+            p["noData"] = kNoData;
+            properties[kOptionalColumns[c].name] = std::move(p);
+        }
     return {{"id", "plantarch"},
             {"enums", {{"organ_kind", {{"valueType", "UINT8"}, {"values", values}}}}},
             {"classes",
              {{"organ",
                {{"description", "One organ object: a leaf, an internode, a flower ..."},
-                {"properties",
-                 {{"plant", scalar("INT32", "plant ID (-1: not a plant organ)")},
-                  {"object", scalar("UINT32", "object ID")},
-                  {"organ",
-                   {{"type", "ENUM"}, {"enumType", "organ_kind"}, {"description", "organ kind"}}},
-                  {"leaf", scalar("INT32", "leaf ID within the plant (-1: not a leaf)")},
-                  {"shoot", scalar("INT32", "shoot ID within the plant (-1: none)")},
-                  {"rank", scalar("INT32", "shoot rank, 0 for the base stem (-1: none)")},
-                  {"node", scalar("INT32", "node (phytomer) index on the shoot (-1: none)")},
-                  {"age", scalar("FLOAT32", "organ age, days (-1: unknown)")}}}}}}}};
+                {"properties", properties}}}}}};
 }
 
 std::string frameName(double day) {
@@ -513,8 +550,12 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
             {"shoot", 4}, {"rank", 4},   {"node", 4},  {"age", 4}};
         for (const auto& [name, bytes] : columns)
             properties[name] = {{"values", buffer.add(d.views, features * bytes, 0)}};
+        for (std::size_t c = 0; c < kOptionalCount; ++c)
+            if (s.hasColumn[c])
+                properties[kOptionalColumns[c].name] = {
+                    {"values", buffer.add(d.views, features * sizeof(float), 0)}};
         doc["extensions"]["EXT_structural_metadata"] = {
-            {"schema", schema()},
+            {"schema", schema(s)},
             {"propertyTables",
              {{{"class", "organ"}, {"count", features}, {"properties", properties}}}}};
         doc["extensionsUsed"] = {"EXT_mesh_features", "EXT_structural_metadata"};
@@ -665,6 +706,9 @@ void writeBinary(const Scene& s, const GltfOptions& options, Sink& out) {
         columnOf([](const ObjectRecord& r) { return r.rank; }, std::int32_t{});
         columnOf([](const ObjectRecord& r) { return r.node; }, std::int32_t{});
         columnOf([](const ObjectRecord& r) { return r.age; }, float{});
+        for (std::size_t c = 0; c < kOptionalCount; ++c)
+            if (s.hasColumn[c])
+                columnOf([c](const ObjectRecord& r) { return r.optional[c]; }, float{});
     }
 }
 
