@@ -15,8 +15,10 @@ PACKAGES=(
   libomp-dev pybind11-dev python3 python3-dev python3-numpy
   libcpp-httplib-dev libzip-dev
 )
-# The test binary, the benchmarks and the fuzz targets (clang's libFuzzer) only.
-TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev)
+# The test binary, the benchmarks, the fuzz targets (clang's libFuzzer) and the plot of a
+# physiology series (scripts/plot_physiology.py, run by the Python tests) only.
+TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev
+  python3-matplotlib)
 
 build=1
 tests=OFF
