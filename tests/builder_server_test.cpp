@@ -81,6 +81,19 @@ TEST_F(BuilderServer, ServesTheDefaultsOfTheCppDeclarations) {
         EXPECT_EQ(read.parameters, block.parameters) << layout;
         EXPECT_EQ(read.trellis, block.trellis) << layout;
     }
+    // A season's defaults: a project of it reads back as the default season.
+    const ProjectPhysiology season;
+    json readable = {
+        {"plantarch_project", 1}, {"blocks", json::array()}, {"physiology", d["physiology"]}};
+    readable["physiology"]["carbon"] = true;  // a season needs a model to be read
+    const ProjectPhysiology read = readProjectString(readable.dump(), "season").physiology.value();
+    EXPECT_FALSE(d["physiology"]["carbon"].get<bool>());
+    EXPECT_EQ(d["physiology"]["nitrogen"].get<bool>(), season.season.nitrogen);
+    EXPECT_EQ(read.days, season.days);
+    EXPECT_EQ(read.season.clearness, season.season.clearness);
+    EXPECT_EQ(read.season.lightEvery, season.season.lightEvery);
+    EXPECT_TRUE(read.season.fertilise.empty());
+    EXPECT_TRUE(read.weatherFile.empty());
     EXPECT_EQ(d["organ_colors"].size(), kOrganLabels.size());
     for (std::string_view organ : kOrganLabels)
         EXPECT_EQ(d["organ_colors"][std::string(organ)], json(organLabelColor(organ))) << organ;

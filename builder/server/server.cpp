@@ -275,11 +275,14 @@ namespace {
 
 // GET /api/defaults: what the page would otherwise restate, from the C++ declarations. A
 // project file's defaults as the library writes a default Project; a ground's and each
-// layout's block's, from projects that have one; the organ label colours; the export formats.
+// layout's block's, from projects that have one; a physiology season's; the organ label
+// colours; the export formats.
 json pageDefaults() {
     const json project = json::parse(writeProjectString(Project{}));
     Project grounded;
     grounded.ground = ProjectGround{};
+    Project seasoned;
+    seasoned.physiology = ProjectPhysiology{};
     Project blocks;
     for (ProjectBlock::Layout layout :
          {ProjectBlock::Layout::Grid, ProjectBlock::Layout::Scatter, ProjectBlock::Layout::Single})
@@ -304,6 +307,7 @@ json pageDefaults() {
     return {{"project", project},
             {"ground", json::parse(writeProjectString(grounded))["ground"]},
             {"blocks", byLayout},
+            {"physiology", json::parse(writeProjectString(seasoned))["physiology"]},
             {"organ_colors", colors},
             {"export_formats", formats}};
 }

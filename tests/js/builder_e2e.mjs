@@ -12,7 +12,9 @@
 // are written and parse; the saved project, uploaded into the page, builds the same scene, and
 // its export is the file `plantarch project run` writes from the saved project, byte for byte;
 // Cancel takes a queued build out and the API stops a running one; the API refuses paths outside the output folder and requests
-// from other sites. With --screenshots, pictures of the page are written into DIR
+// from other sites; colour by light or carbon is offered only for a scene with that data, and
+// a physiology season switched on in the Environment tab is built afresh (never grown on), its
+// scene coloured by absorbed PAR with a legend of its range. With --screenshots, pictures of the page are written into DIR
 // (docs/images for docs/builder.md). Waits are for states the page or the server reports,
 // never for a time. CHROMIUM overrides /usr/bin/chromium.
 import { spawn, execFileSync } from 'node:child_process';
@@ -443,7 +445,121 @@ async function run() {
   assert.equal(foreign.status, 403, 'a build requested by another site');
   step('the API refuses paths outside the output folder (403) and requests from other sites');
 
+  await physiologySeason(page, base);
   assert.deepEqual(pageErrors, [], 'errors in the page');
+}
+
+// The colours of the 3D view's canvas: how many distinct ones (of a grid of samples), and
+// whether more than the background shows.
+async function canvasColors(page) {
+  return page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => {
+    const source = window.plantarchBuilder.viewer.renderer.domElement;
+    const c = document.createElement('canvas');
+    [c.width, c.height] = [source.width, source.height];
+    const ctx = c.getContext('2d');
+    ctx.drawImage(source, 0, 0);
+    const data = ctx.getImageData(0, 0, c.width, c.height).data;
+    const seen = new Set();
+    for (let y = 0; y < c.height; y += 4)
+      for (let x = 0; x < c.width; x += 4) {
+        const i = 4 * (y * c.width + x);
+        seen.add((data[i] >> 3) << 10 | (data[i + 1] >> 3) << 5 | data[i + 2] >> 3);
+      }
+    resolve(seen.size);
+  })));
+}
+
+// A tiny project with a physiology season: the colour modes of light and carbon are offered
+// only with their data (a disabled one says why), the season is built afresh from the page,
+// its progress shown, and the scene coloured by absorbed PAR shows a ramp and many colours.
+async function physiologySeason(page, base) {
+  await page.click('#show-3d');
+  const tooltip = (mode) => page.$eval(`#color-mode option[value=${mode}]`, (o) => ({ disabled: o.disabled, title: o.title }));
+  const plain = await tooltip('light');
+  assert.ok(plain.disabled && /physiology season/.test(plain.title), `light on a scene without a season: ${JSON.stringify(plain)}`);
+  assert.ok((await tooltip('carbon')).disabled, 'carbon on a scene without a season');
+
+  await page.click('[data-tab=scene]');
+  await page.select('.block-card.open select[name=layout]', 'single');
+  await setValue(page, '.block-card.open input[name=age]', 22);
+  await page.click('[data-tab=environment]');
+  await setChecked(page, 'input[name=physiology]', true);
+  await setValue(page, 'input[name=days]', 2);
+  await setValue(page, 'input[name=light-every]', 6);
+  assert.equal(await page.$eval('#physiology-problems', (el) => el.hidden), true, 'the page sees nothing wrong');
+  const project = await page.evaluate(() => window.plantarchBuilder.projectFile());
+  assert.deepEqual(
+    { ...project.physiology, location: undefined, start: undefined },
+    { carbon: true, nitrogen: false, location: undefined, start: undefined, weather: null, clearness: 0.75, light_every: 6, days: 2, fertilise: [] },
+  );
+  // The progress lines the page shows while the season is built.
+  await page.evaluate(() => {
+    window.progressSeen = [];
+    new MutationObserver(() => window.progressSeen.push(document.querySelector('.progress-text').textContent))
+      .observe(document.querySelector('.progress-text'), { childList: true, characterData: true, subtree: true });
+  });
+  const before = await page.$eval('#build-status', (s) => s.dataset.build);
+  await page.click('#build');
+  const season = await pageBuild(page, before);
+  assert.equal(season.state, 'done', `the season's build: ${season.text}`);
+  const seasonStatus = (await api(base, 'GET', `/api/builds/${season.id}`)).data;
+  assert.equal(seasonStatus.from, null, 'a season is built afresh');
+  assert.equal(seasonStatus.stats.plants, 1);
+  const progress = await page.evaluate(() => window.progressSeen.filter((t) => /Physiology/.test(t)));
+  step(`a 2-day season of one bean (${season.id}) built afresh; progress lines seen: ${progress.slice(0, 3).join(' | ') || '(the season ran between two polls)'}`);
+  // Growing the season on is refused by the server: the slider builds it again.
+  await setValue(page, '#age-slider', 23);
+  const again = await pageBuild(page, season.id);
+  assert.equal(again.state, 'done', again.text);
+  assert.equal((await api(base, 'GET', `/api/builds/${again.id}`)).data.from, null, 'the slider builds a season afresh');
+
+  const glb = (await api(base, 'GET', `/api/builds/${again.id}/scene.glb`)).data;
+  const jsonLength = glb.readUInt32LE(12);
+  const doc = JSON.parse(glb.subarray(20, 20 + jsonLength).toString('utf8'));
+  const columns = Object.keys(doc.extensions.EXT_structural_metadata.propertyTables[0].properties);
+  if (!columns.includes('absorbed_par')) {
+    // This plantarch's season leaves no light data on its leaves: the modes stay off, saying
+    // why, and the light colours are checked on a scene of `plantarch light`.
+    assert.ok((await tooltip('light')).disabled, 'light without absorbed_par data');
+    const lightGlb = path.join(tmp, 'light.glb');
+    execFileSync(options.cli, ['light', 'bean', '--age', '22', '--location', '38.5,-121.7', '--date', '2026-06-01', '-o', lightGlb], { stdio: 'pipe' });
+    const b64 = readFileSync(lightGlb).toString('base64');
+    await page.evaluate(async (data) => {
+      const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
+      const url = URL.createObjectURL(new Blob([bytes], { type: 'model/gltf-binary' }));
+      await window.plantarchBuilder.viewer.load(url, { frame: true });
+      window.plantarchBuilder.syncColorModes();
+    }, b64);
+    step('the season\'s scene has no absorbed_par column yet: light colours checked on `plantarch light`\'s scene');
+  }
+  assert.equal((await tooltip('light')).disabled, false, 'light is offered for a scene with absorbed PAR');
+  await page.evaluate(() => window.plantarchBuilder.viewer.frame());
+  const naturalColors = await canvasColors(page);
+  await page.select('#color-mode', 'light');
+  await page.waitForSelector('#legend .ramp');
+  const legend = await page.evaluate(() => ({
+    title: document.getElementById('legend-title').textContent,
+    min: Number(document.getElementById('legend-min').dataset.value),
+    max: Number(document.getElementById('legend-max').dataset.value),
+    rows: [...document.querySelectorAll('#legend .legend-row')].map((r) => r.textContent),
+  }));
+  assert.match(legend.title, /absorbed PAR.*µmol m⁻² s⁻¹/);
+  assert.ok(legend.min >= 0 && legend.max > legend.min, `the legend's range: ${legend.min} to ${legend.max}`);
+  // Objects without the data (stems and petioles of a season's plants) are listed once, grey.
+  assert.ok(legend.rows.every((r) => r === 'no data'), `legend rows: ${legend.rows}`);
+  const lightColors = await canvasColors(page);
+  assert.ok(lightColors > 20, `the canvas coloured by light shows ${lightColors} colours (natural: ${naturalColors})`);
+  await shot(page, 'physiology-light');
+  const carbon = await tooltip('carbon');
+  if (!columns.includes('carbohydrate_concentration')) {
+    assert.ok(carbon.disabled && /with Carbon/.test(carbon.title), `carbon without its data: ${JSON.stringify(carbon)}`);
+  } else {
+    await page.select('#color-mode', 'carbon');
+    await page.waitForFunction(() => /carbohydrate/.test(document.getElementById('legend-title')?.textContent));
+    await shot(page, 'physiology-carbon');
+  }
+  await page.select('#color-mode', 'natural');
+  step(`colour by light: a ramp of ${legend.min.toFixed(1)} to ${legend.max.toFixed(1)} µmol m⁻² s⁻¹, ${lightColors} colours on the canvas`);
 }
 
 let failed = false;

@@ -1,6 +1,8 @@
 // The Environment tab: the project's seed, the ground, soft collision avoidance, solid
-// obstacles (OBJ files) and attraction points, each with its parameters.
+// obstacles (OBJ files), attraction points, each with its parameters, and a physiology
+// season (physiology_panel.js).
 import { h, render, field, numberInput, vectorInput, checkbox } from './ui.js';
+import { physiologySection } from './physiology_panel.js';
 
 /** Lines of "x y z" (or "x, y, z") as points; throws naming the line that is not three numbers. */
 export function parsePoints(text) {
@@ -281,6 +283,7 @@ export class EnvironmentPanel {
           ),
         ),
       ),
+      physiologySection(this.app),
     );
   }
 }

@@ -1,7 +1,8 @@
 // The labels of plantarch's GLB files and the colours the viewer gives them. Every mesh
 // primitive carries per-vertex _PLANT_ID, _ORGAN and _FEATURE_ID_0 attributes (three.js names
 // them in lower case); the feature ID is the row of the EXT_structural_metadata property
-// table that holds each organ object's plant, organ, leaf, shoot, rank and age.
+// table that holds each organ object's plant, organ, leaf, shoot, rank and age, and, in a
+// scene grown through a physiology season, its light and carbon columns (docs/formats.md).
 import { defaults } from './defaults.js';
 
 /** The organ label colours of plantarch's label images and colour-coded PLY files, by organ
@@ -25,7 +26,9 @@ const COMPONENT_ARRAYS = {
 
 /**
  * The property table of a loaded GLB (three.js GLTFLoader result): {count, organNames,
- * columns: {plant, organ, leaf, shoot, rank, age: typed arrays}}, or null without one.
+ * columns: {plant, organ, leaf, shoot, rank, age, ...: typed arrays}, noData: {column:
+ * value}}, or null without one. Optional columns (absorbed_par, ...) are there when the file
+ * has them; noData holds the schema's no-data value of the columns that declare one.
  */
 export async function readPropertyTable(gltf) {
   const ext = gltf.parser.json.extensions?.EXT_structural_metadata;
@@ -36,8 +39,10 @@ export async function readPropertyTable(gltf) {
   const organNames = [];
   for (const v of organEnum) organNames[v.value] = v.name;
   const columns = {};
+  const noData = {};
   for (const [name, prop] of Object.entries(table.properties)) {
     const def = cls?.properties?.[name];
+    if (typeof def?.noData === 'number') noData[name] = def.noData;
     const type =
       def?.type === 'ENUM'
         ? (ext.schema.enums[def.enumType].valueType ?? 'UINT16')
@@ -47,7 +52,7 @@ export async function readPropertyTable(gltf) {
     const buffer = await gltf.parser.getDependency('bufferView', prop.values);
     columns[name] = new Array_(buffer, 0, table.count);
   }
-  return { count: table.count, organNames, columns };
+  return { count: table.count, organNames, columns, noData };
 }
 
 function hsl(h, s, l) {
@@ -65,19 +70,85 @@ export function indexColor(i) {
   return hsl((i * 0.618033988749895 + 0.08) % 1, 0.62, 0.52);
 }
 
-// A perceptually even ramp (dark blue, teal, green, yellow) for ages.
-const RAMP = [
+// Perceptually even ramps, dark to light, as sRGB stops evenly spaced from 0 to 1 (each
+// stop a little lighter than the one before, so order reads at a glance and in grey).
+// AGE_RAMP and LIGHT_RAMP run dark blue, teal, green, yellow; CARBON_RAMP runs dark violet,
+// red, orange, pale yellow, so the two physiology modes are not mistaken for each other.
+export const AGE_RAMP = [
   [68, 1, 84],
   [59, 82, 139],
   [33, 145, 140],
   [94, 201, 98],
   [253, 231, 37],
 ];
-export function rampColor(t) {
-  const x = Math.max(0, Math.min(1, t)) * (RAMP.length - 1);
-  const i = Math.min(RAMP.length - 2, Math.floor(x));
+export const LIGHT_RAMP = [
+  [68, 1, 84],
+  [72, 36, 117],
+  [64, 68, 136],
+  [52, 97, 141],
+  [41, 122, 142],
+  [32, 146, 140],
+  [40, 171, 129],
+  [81, 195, 105],
+  [146, 214, 70],
+  [218, 227, 38],
+  [253, 231, 37],
+];
+export const CARBON_RAMP = [
+  [18, 12, 50],
+  [60, 15, 110],
+  [110, 28, 120],
+  [160, 44, 112],
+  [205, 66, 90],
+  [236, 104, 70],
+  [249, 150, 80],
+  [253, 196, 120],
+  [252, 236, 176],
+];
+
+/** The colour at t (0 to 1, clamped) of a ramp of evenly spaced stops (AGE_RAMP by default). */
+export function rampColor(t, stops = AGE_RAMP) {
+  const x = Math.max(0, Math.min(1, Number.isFinite(t) ? t : 0)) * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(x));
   const f = x - i;
-  return RAMP[i].map((c, k) => c + (RAMP[i + 1][k] - c) * f);
+  return stops[i].map((c, k) => c + (stops[i + 1][k] - c) * f);
+}
+
+/** A CSS linear-gradient of a ramp, left to right. */
+export function rampGradient(stops) {
+  return `linear-gradient(90deg, ${stops.map((c) => `rgb(${c.join(', ')})`).join(', ')})`;
+}
+
+// The colour modes of a property table column that only a physiology season writes: the
+// column, what the legend calls it, its unit and ramp.
+export const DATA_MODES = {
+  light: {
+    column: 'absorbed_par',
+    label: 'absorbed PAR',
+    unit: 'µmol m⁻² s⁻¹',
+    stops: LIGHT_RAMP,
+    needs: 'switch the physiology season on (Environment tab) and build',
+  },
+  carbon: {
+    column: 'carbohydrate_concentration',
+    label: 'carbohydrate concentration',
+    unit: 'mol C / mol C',
+    stops: CARBON_RAMP,
+    needs: 'switch the physiology season on with Carbon (Environment tab) and build',
+  },
+};
+
+/**
+ * Why a colour mode cannot be used with a property table (null when it can): the physiology
+ * modes need their column, which only a scene grown through a physiology season has.
+ */
+export function modeUnavailable(mode, table) {
+  if (mode === 'natural') return null;
+  if (!table) return 'the scene has no labels';
+  const data = DATA_MODES[mode];
+  if (data && !table.columns[data.column])
+    return `the scene has no ${data.column} data: ${data.needs}`;
+  return null;
 }
 
 export const COLOR_MODES = [
@@ -87,6 +158,8 @@ export const COLOR_MODES = [
   ['leaf', 'Leaf'],
   ['age', 'Age'],
   ['rank', 'Shoot rank'],
+  ['light', 'Light (absorbed PAR)'],
+  ['carbon', 'Carbon (carbohydrate concentration)'],
 ];
 
 /**
@@ -95,6 +168,7 @@ export const COLOR_MODES = [
  */
 export function colorScheme(mode, table) {
   const c = table.columns;
+  if (DATA_MODES[mode]) return dataScheme(DATA_MODES[mode], table);
   if (mode === 'organ') {
     const colors = organColors();
     const used = new Set(c.organ);
@@ -156,6 +230,34 @@ export function colorScheme(mode, table) {
   const span = max - min || 1;
   return {
     color: (row) => (c.age[row] < 0 ? NONE : rampColor((c.age[row] - min) / span)),
-    ramp: { min, max, unit: 'days' },
+    ramp: { min, max, unit: 'days', label: 'organ age', stops: AGE_RAMP },
+  };
+}
+
+// A continuous column coloured over the range of the rows that have a value; rows at the
+// column's noData (objects without the data), or without a finite value, are grey. The ramp
+// is null when no row has a value.
+function dataScheme(data, table) {
+  const values = table.columns[data.column] ?? [];
+  const noData = table.noData?.[data.column];
+  const has = (v) => Number.isFinite(v) && v !== noData;
+  let min = Infinity,
+    max = -Infinity,
+    missing = 0;
+  for (const v of values) {
+    if (!has(v)) {
+      missing++;
+      continue;
+    }
+    min = Math.min(min, v);
+    max = Math.max(max, v);
+  }
+  const found = Number.isFinite(min);
+  const span = max - min || 1;
+  return {
+    color: (row) =>
+      has(values[row]) ? rampColor((values[row] - min) / span, data.stops) : NONE,
+    ramp: found ? { min, max, unit: data.unit, label: data.label, stops: data.stops } : null,
+    legend: missing || !found ? [{ label: 'no data', color: NONE }] : [],
   };
 }

@@ -5,7 +5,8 @@ import { api } from './api.js';
 import { setDefaults } from './defaults.js';
 import { defaultProject, toProjectFile, fromProjectFile } from './project.js';
 import { Viewer } from './viewer.js';
-import { COLOR_MODES } from './labels.js';
+import { progressText } from './physiology_panel.js';
+import { COLOR_MODES, modeUnavailable, rampGradient } from './labels.js';
 import { ScenePanel } from './scene_panel.js';
 import { EnvironmentPanel } from './environment_panel.js';
 import { SpeciesEditor } from './species_editor.js';
@@ -16,12 +17,19 @@ const POLL_MS = 200;
 const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 // The project without its ages: two projects with equal keys differ only by age, so the later
-// one can be grown from the earlier one's build ("from").
+// one can be grown from the earlier one's build ("from"). A project with a physiology season
+// is never grown on (its weather is dated): the server builds it again.
 function growthKey(projectFile) {
   return JSON.stringify({
     ...projectFile,
     blocks: projectFile.blocks.map(({ age, ...rest }) => rest),
   });
+}
+
+// Decimals for the ends of a ramp spanning `span`: enough to tell them apart.
+function rampDigits(span) {
+  if (!(span > 0)) return 3;
+  return Math.max(0, Math.min(4, 2 - Math.floor(Math.log10(span))));
 }
 
 class App {
@@ -313,6 +321,7 @@ class App {
 
     this.viewer = new Viewer(this.viewport);
     this.viewer.onLegend = (scheme) => this.showLegend(scheme);
+    this.syncColorModes();
     this.viewport.addEventListener('click', (e) => this.showPick(e));
     this.renderStats();
   }
@@ -416,6 +425,7 @@ class App {
 
   /** Called by the panels after every change to the project. */
   edited() {
+    this.checkPhysiology?.();
     this.markStale();
     if (!this.autoBuild) return;
     clearTimeout(this.buildTimer);
@@ -456,6 +466,7 @@ class App {
       api.cancelBuild(previous.id).catch(() => {});
     }
     const project = toProjectFile(this.project);
+    if (project.physiology) from = undefined; // a season is built afresh, never grown on
     const ticket = { id: null, state: 'queued' };
     this.current = ticket;
     this.showError(null);
@@ -480,12 +491,9 @@ class App {
         ticket.state = status.state;
         if (status.state === 'done' || status.state === 'failed' || status.state === 'cancelled')
           break;
-        const stage = status.stage
-          ? status.stage.charAt(0).toUpperCase() + status.stage.slice(1)
-          : 'Queued';
         this.setStatus(
           status.state,
-          `${stage}… ${Math.round((status.progress ?? 0) * 100)}%`,
+          progressText(status.stage, status.progress, project),
           status.progress ?? 0,
         );
         await sleep(POLL_MS);
@@ -515,6 +523,7 @@ class App {
       return false;
     }
     if (this.current !== ticket) return false;
+    this.syncColorModes();
     this.shownBuild = {
       id: ticket.id,
       stats: status.stats,
@@ -580,6 +589,26 @@ class App {
     );
   }
 
+  /**
+   * Enables the colour modes the shown scene has data for; a disabled one says why in its
+   * tooltip. A mode that became unavailable falls back to the natural colours.
+   */
+  syncColorModes() {
+    const table = this.viewer.model ? this.viewer.table : null;
+    for (const option of this.colorSelect.options) {
+      const why = this.viewer.model ? modeUnavailable(option.value, table) : null;
+      option.disabled = !!why;
+      option.title = why ? `Not available: ${why}` : '';
+    }
+    const mode = this.colorSelect.value;
+    if (this.colorSelect.selectedOptions[0]?.disabled) {
+      this.colorSelect.value = 'natural';
+      this.viewer.setMode('natural');
+    } else if (this.viewer.mode !== mode) {
+      this.viewer.setMode(mode);
+    }
+  }
+
   showLegend(scheme) {
     if (!scheme) {
       render(this.legend);
@@ -588,23 +617,27 @@ class App {
     }
     const swatch = (c) =>
       h('span', { class: 'swatch', style: { background: `rgb(${c.map(Math.round).join(',')})` } });
-    if (scheme.ramp) {
+    const rows = (scheme.legend ?? []).map((e) =>
+      h('div', { class: 'legend-row' }, swatch(e.color), e.label),
+    );
+    const ramp = scheme.ramp;
+    if (ramp) {
+      const digits = rampDigits(ramp.max - ramp.min);
+      const end = (id, value) => h('span', { id, dataset: { value } }, fmt(value, digits));
       render(
         this.legend,
-        h('div', { class: 'ramp' }),
         h(
           'div',
-          { class: 'ramp-labels' },
-          h('span', {}, `${fmt(scheme.ramp.min, 1)} d`),
-          h('span', {}, 'organ age'),
-          h('span', {}, `${fmt(scheme.ramp.max, 1)} d`),
+          { class: 'ramp-title', id: 'legend-title' },
+          ramp.label,
+          h('span', { class: 'unit' }, ramp.unit),
         ),
+        h('div', { class: 'ramp', style: { background: rampGradient(ramp.stops) } }),
+        h('div', { class: 'ramp-labels' }, end('legend-min', ramp.min), end('legend-max', ramp.max)),
+        rows,
       );
     } else {
-      render(
-        this.legend,
-        scheme.legend.map((e) => h('div', { class: 'legend-row' }, swatch(e.color), e.label)),
-      );
+      render(this.legend, rows);
     }
     this.legend.hidden = this.view === 'preview';
   }
@@ -620,6 +653,10 @@ class App {
     if (info.leaf >= 0) parts.push(`leaf ${info.leaf}`);
     if (info.rank >= 0) parts.push(`rank ${info.rank}`);
     if (info.age >= 0) parts.push(`${fmt(info.age, 1)} days old`);
+    if (info.absorbed_par !== undefined)
+      parts.push(`PAR ${fmt(info.absorbed_par, 1)} µmol m⁻² s⁻¹`);
+    if (info.carbohydrate_concentration !== undefined)
+      parts.push(`carbohydrate ${fmt(info.carbohydrate_concentration, 3)} mol C / mol C`);
     this.pickInfo.textContent = parts.join(' · ');
     this.pickInfo.hidden = false;
   }
@@ -657,6 +694,7 @@ class App {
     const project = toProjectFile(this.project);
     const shown = this.shownBuild;
     const grows =
+      !project.physiology &&
       shown &&
       !shown.consumed &&
       shown.key === growthKey(project) &&

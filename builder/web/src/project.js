@@ -13,6 +13,17 @@ export const PROJECT_VERSION = 1;
 // builds at the species' recommended age): it holds no "none" for an age.
 const NEW_PROJECT_NAME = 'untitled';
 const NEW_BLOCK = { count: [3, 3], plants: 12, area: [1.5, 1.5], age: 40 };
+// A physiology season as the editor starts it (off), where a file's defaults would not build:
+// the carbohydrate budget on, a place and a first clear day, and a short season traced every
+// 4 hours, quick enough to build after each change.
+const NEW_PHYSIOLOGY = {
+  enabled: false,
+  carbon: true,
+  location: [38.54, -121.74],
+  start: '2026-06-01',
+  light_every: 4,
+  days: 10,
+};
 
 // A block as a project file that omits every optional field gives it.
 function fileBlock(index, species) {
@@ -42,6 +53,20 @@ export function defaultBlock(index = 0, species = 'bean') {
 function ground(enabled, size, center) {
   const d = defaults().ground;
   return { enabled, size: [...(size ?? d.size)], center: [...(center ?? d.center)] };
+}
+
+// The editor's season: the file's defaults (the server's) under the editor's starting values.
+// `weather` is '' for clear days from `start`.
+function defaultPhysiology() {
+  const f = defaults().physiology;
+  return {
+    ...NEW_PHYSIOLOGY,
+    nitrogen: f.nitrogen,
+    location: [...NEW_PHYSIOLOGY.location],
+    weather: f.weather ?? '',
+    clearness: f.clearness,
+    fertilise: f.fertilise.map((e) => [...e]),
+  };
 }
 
 /** "A", "B", ... "Z", "AA", ... */
@@ -74,6 +99,7 @@ export function defaultProject() {
       cone: [...f.attraction.cone],
     },
     blocks: [defaultBlock(0)],
+    physiology: defaultPhysiology(),
   };
 }
 
@@ -99,7 +125,46 @@ export function toProjectFile(p) {
     cone: [...p.attraction.cone],
   };
   out.blocks = p.blocks.map(blockToFile);
+  if (p.physiology.enabled) out.physiology = physiologyToFile(p.physiology);
   return out;
+}
+
+function physiologyToFile(s) {
+  return {
+    carbon: s.carbon,
+    nitrogen: s.nitrogen,
+    location: [...s.location],
+    start: s.weather ? null : s.start,
+    weather: s.weather ? s.weather : null,
+    clearness: s.clearness,
+    light_every: s.light_every,
+    days: s.days,
+    fertilise: s.fertilise.map((e) => [...e]),
+  };
+}
+
+// The editor's season from a file's `physiology` (switched on); what the file omits keeps
+// the editor's value.
+function physiologyFromFile(json) {
+  if (typeof json !== 'object' || Array.isArray(json))
+    throw new Error('physiology: not an object {carbon, nitrogen, location, ...}');
+  const s = { ...defaultPhysiology(), enabled: true };
+  for (const key of ['carbon', 'nitrogen']) if (json[key] !== undefined) s[key] = !!json[key];
+  if (json.location !== undefined) {
+    if (!Array.isArray(json.location) || json.location.length !== 2)
+      throw new Error('physiology/location: not [latitude, longitude]');
+    s.location = [...json.location];
+  }
+  if (typeof json.start === 'string') s.start = json.start;
+  s.weather = typeof json.weather === 'string' ? json.weather : '';
+  for (const key of ['clearness', 'light_every', 'days'])
+    if (Number.isFinite(json[key])) s[key] = json[key];
+  if (json.fertilise !== undefined) {
+    if (!Array.isArray(json.fertilise) || json.fertilise.some((e) => !Array.isArray(e)))
+      throw new Error('physiology/fertilise: not a list of [age, grams]');
+    s.fertilise = json.fertilise.map((e) => [...e]);
+  }
+  return s;
 }
 
 function blockToFile(b) {
@@ -159,6 +224,8 @@ export function fromProjectFile(json) {
   }
   if (!Array.isArray(json.blocks)) throw new Error('blocks: missing (a list of blocks)');
   p.blocks = json.blocks.map((b, i) => blockFromFile(b, i));
+  if (json.physiology !== undefined && json.physiology !== null)
+    p.physiology = physiologyFromFile(json.physiology);
   return p;
 }
 

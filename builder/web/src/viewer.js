@@ -189,13 +189,19 @@ export class Viewer {
     if (!hit || !feature) return null;
     const row = feature.getX(hit.face.a);
     const c = this.table.columns;
-    return {
+    const info = {
       plant: c.plant?.[row],
       organ: this.table.organNames[c.organ?.[row]] ?? 'unlabelled',
       leaf: c.leaf?.[row],
       rank: c.rank?.[row],
       age: c.age?.[row],
     };
+    // The physiology's columns, where this object has a value (not the column's noData).
+    for (const name of ['absorbed_par', 'carbohydrate_concentration']) {
+      const v = c[name]?.[row];
+      if (Number.isFinite(v) && v !== this.table.noData?.[name]) info[name] = v;
+    }
+    return info;
   }
 }
 

@@ -1,11 +1,12 @@
 // Unit tests of the page's pure functions (node's test runner; ctest runs them as
 // builder_web_unit, with PLANTARCH_CLI the plantarch binary): the project file the page writes
-// and reads, random-value text, typed attraction points, the label colours, and the defaults
-// the page takes from its server (GET /api/defaults of `plantarch builder`, started here).
+// and reads (a physiology season too), random-value text, typed attraction points and
+// fertilisations, the label colours (light and carbon too), and the defaults the page takes
+// from its server (GET /api/defaults of `plantarch builder`, started here).
 import test from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
@@ -19,7 +20,21 @@ import {
 } from '../src/project.js';
 import { parseRandom, randomText } from '../src/species_editor.js';
 import { parsePoints } from '../src/environment_panel.js';
-import { colorScheme, organColors } from '../src/labels.js';
+import {
+  AGE_RAMP,
+  CARBON_RAMP,
+  LIGHT_RAMP,
+  colorScheme,
+  modeUnavailable,
+  organColors,
+  rampColor,
+} from '../src/labels.js';
+import {
+  isDate,
+  parseFertilise,
+  physiologyProblems,
+  progressText,
+} from '../src/physiology_panel.js';
 import { formatOptions } from '../src/export_panel.js';
 
 // GET /api/defaults of a `plantarch builder` started for it on a free port.
@@ -172,7 +187,7 @@ test("organ colours are the label images' colours; ages run over the organs' ran
     ['internode', 'leaf'],
   );
   const age = colorScheme('age', table);
-  assert.deepEqual(age.ramp, { min: 4, max: 10, unit: 'days' });
+  assert.deepEqual(age.ramp, { min: 4, max: 10, unit: 'days', label: 'organ age', stops: AGE_RAMP });
   assert.notDeepEqual(age.color(0), age.color(1));
   const plant = colorScheme('plant', table);
   assert.notDeepEqual(plant.color(0), plant.color(2));
@@ -211,4 +226,153 @@ test("the page's defaults are the server's: project, ground, blocks, colours, fo
     formatOptions().map(([format]) => format),
     served.export_formats.map((f) => f.format),
   );
+});
+
+test("the served season's defaults are the page's, under its own place, date and model", () => {
+  const s = defaultProject().physiology;
+  assert.equal(s.enabled, false);
+  assert.equal(s.carbon, true, 'a season needs a model: the page starts with the budget on');
+  assert.equal(s.nitrogen, served.physiology.nitrogen);
+  assert.equal(s.clearness, served.physiology.clearness);
+  assert.deepEqual(s.fertilise, served.physiology.fertilise);
+  assert.equal(s.weather, '');
+  assert.ok(isDate(s.start));
+  assert.ok(!('physiology' in toProjectFile(defaultProject())), 'off: no section written');
+});
+
+test('a physiology season is written after the blocks, read back the same, clear days or weather', () => {
+  const p = defaultProject();
+  p.blocks[0].age = 22;
+  Object.assign(p.physiology, {
+    enabled: true,
+    nitrogen: true,
+    location: [52.2, 0.12],
+    start: '2026-05-03',
+    light_every: 6,
+    days: 2,
+    fertilise: [[20, 0.5]],
+  });
+  const file = toProjectFile(p);
+  assert.deepEqual(Object.keys(file).slice(-2), ['blocks', 'physiology']);
+  assert.deepEqual(file.physiology, {
+    carbon: true,
+    nitrogen: true,
+    location: [52.2, 0.12],
+    start: '2026-05-03',
+    weather: null,
+    clearness: served.physiology.clearness,
+    light_every: 6,
+    days: 2,
+    fertilise: [[20, 0.5]],
+  });
+  assert.deepEqual(toProjectFile(fromProjectFile(JSON.parse(JSON.stringify(file)))), file);
+  p.physiology.weather = 'davis.csv';
+  const weathered = toProjectFile(p).physiology;
+  assert.equal(weathered.start, null);
+  assert.equal(weathered.weather, 'davis.csv');
+  assert.deepEqual(toProjectFile(fromProjectFile(toProjectFile(p))).physiology, weathered);
+  // The example project of the repository reads in and writes the same season.
+  const example = JSON.parse(
+    readFileSync(new URL('../../../examples/projects/season.json', import.meta.url), 'utf8'),
+  );
+  assert.deepEqual(toProjectFile(fromProjectFile(example)).physiology, {
+    weather: null,
+    ...example.physiology,
+  });
+  assert.throws(
+    () => fromProjectFile({ ...example, physiology: { location: 5 } }),
+    /physiology\/location/,
+  );
+});
+
+test('fertilisations: two numbers a line, in range; the page names what the server would refuse', () => {
+  assert.deepEqual(parseFertilise('20 0.5\n\n35, 1\n'), [
+    [20, 0.5],
+    [35, 1],
+  ]);
+  assert.throws(() => parseFertilise('20'), /line 1: '20' is not two numbers/);
+  assert.throws(() => parseFertilise('20 1\n-1 2'), /line 2: age -1/);
+  assert.throws(() => parseFertilise('20 0'), /0 g/);
+  assert.ok(isDate('2024-02-29') && !isDate('2023-02-29') && !isDate('2026-6-1'));
+  assert.ok(!isDate('1899-12-31') && isDate('2100-12-31'));
+
+  const p = defaultProject();
+  assert.deepEqual(physiologyProblems(p), [], 'off: nothing to say');
+  p.physiology.enabled = true;
+  p.blocks[0].age = 22;
+  p.physiology.days = 2;
+  assert.deepEqual(physiologyProblems(p), []);
+  Object.assign(p.physiology, { carbon: false, fertilise: [[20, 1]], start: '2026-02-30' });
+  p.physiology.days = 30;
+  const problems = physiologyProblems(p).join('\n');
+  assert.match(problems, /carbohydrate budget, the nitrogen model or both/);
+  assert.match(problems, /fertilisation needs the nitrogen model/);
+  assert.match(problems, /start '2026-02-30'/);
+  assert.match(problems, /block A is 22 days old: .* at least 30 days/);
+});
+
+test('a season counts its days in the progress line; other stages show their name', () => {
+  const project = { physiology: { days: 4 } };
+  assert.equal(progressText('physiology', 0, project), 'Physiology season: day 1 of 4… 0%');
+  assert.equal(progressText('physiology', 0.5, project), 'Physiology season: day 3 of 4… 50%');
+  assert.equal(progressText('physiology', 1, project), 'Physiology season: day 4 of 4… 100%');
+  assert.equal(progressText('building', 0.25, project), 'Building… 25%');
+  assert.equal(progressText(undefined, undefined, {}), 'Queued… 0%');
+});
+
+test('light and carbon colour over the range of the objects with data; the others are grey', () => {
+  const grey = [150, 150, 150];
+  const table = {
+    count: 4,
+    organNames: ['unlabelled', 'internode', 'petiole', 'leaf'],
+    columns: {
+      plant: Int32Array.from([0, 0, 0, -1]),
+      organ: Uint8Array.from([1, 3, 3, 0]),
+      age: Float32Array.from([10, 4, 2, -1]),
+      absorbed_par: Float32Array.from([-9999, 120, 480, -9999]),
+      carbohydrate_concentration: Float32Array.from([0.1, 0.3, 0.3, -9999]),
+    },
+    noData: { absorbed_par: -9999, carbohydrate_concentration: -9999 },
+  };
+  const light = colorScheme('light', table);
+  assert.deepEqual(light.ramp, {
+    min: 120,
+    max: 480,
+    unit: 'µmol m⁻² s⁻¹',
+    label: 'absorbed PAR',
+    stops: LIGHT_RAMP,
+  });
+  assert.deepEqual(light.color(0), grey, 'an internode has no absorbed PAR');
+  assert.deepEqual(light.color(3), grey);
+  assert.deepEqual(light.color(1), LIGHT_RAMP[0]);
+  assert.deepEqual(light.color(2), LIGHT_RAMP.at(-1));
+  assert.deepEqual(light.legend, [{ label: 'no data', color: grey }]);
+  const carbon = colorScheme('carbon', table);
+  assert.equal(carbon.ramp.min.toFixed(6), '0.100000');
+  assert.equal(carbon.ramp.max.toFixed(6), '0.300000');
+  assert.equal(carbon.ramp.unit, 'mol C / mol C');
+  assert.deepEqual(carbon.color(0), CARBON_RAMP[0]);
+  assert.notDeepEqual(carbon.color(1), light.color(1), 'the two modes use different ramps');
+  // The ramps run dark to light (each stop lighter), so order reads in grey too.
+  for (const ramp of [LIGHT_RAMP, CARBON_RAMP]) {
+    const luma = ramp.map(([r, g, b]) => 0.2126 * r + 0.7152 * g + 0.0722 * b);
+    for (let i = 1; i < luma.length; i++) assert.ok(luma[i] > luma[i - 1], `stop ${i}`);
+    assert.deepEqual(rampColor(0.5, ramp).length, 3);
+  }
+  // All values equal: one colour, no division by zero.
+  const flat = {
+    ...table,
+    columns: { ...table.columns, absorbed_par: Float32Array.from([5, 5, 5, 5]) },
+  };
+  assert.deepEqual(colorScheme('light', flat).color(0), LIGHT_RAMP[0]);
+  assert.deepEqual(colorScheme('light', flat).legend, []);
+
+  // Without the columns (a scene built without a season) the modes are unavailable, saying why.
+  const plain = { ...table, columns: { plant: table.columns.plant }, noData: {} };
+  assert.match(modeUnavailable('light', plain), /no absorbed_par data: switch the physiology season on/);
+  assert.match(modeUnavailable('carbon', plain), /no carbohydrate_concentration data: .* with Carbon/);
+  assert.equal(modeUnavailable('light', table), null);
+  assert.equal(modeUnavailable('age', plain), null);
+  assert.equal(modeUnavailable('natural', null), null);
+  assert.match(modeUnavailable('organ', null), /no labels/);
 });
