@@ -111,6 +111,23 @@ TEST(Carbon, TheBalanceClosesOverASeasonInTheLight) {
     EXPECT_GT(growth, 0.0);
     EXPECT_GT(liveShoots(arch.plant(id)), 0u);
     EXPECT_NEAR(records.back().age, 50.0, 1e-9);
+    // The last day's light and carbon are on the organs (the builder colours by them). Leaves
+    // that grew after the day's light have none; the rest have all three.
+    std::size_t lit = 0;
+    const auto leaves = arch.getPlantObjectIDs(id, OrganKind::Leaf);
+    for (ObjectID o : leaves) {
+        if (!ctx.hasObjectData(o, "absorbed_par")) continue;
+        ++lit;
+        EXPECT_GT(ctx.objectDataFloat(o, "absorbed_par").value_or(-1.0f), 0.0f);
+        const float sunlit = ctx.objectDataFloat(o, "sunlit_fraction").value_or(-1.0f);
+        EXPECT_TRUE(sunlit >= 0.0f && sunlit <= 1.0f) << sunlit;
+        EXPECT_TRUE(std::isfinite(ctx.objectDataFloat(o, "net_photosynthesis").value_or(-1.0f)));
+    }
+    EXPECT_GT(lit, leaves.size() * 8 / 10) << lit << " of " << leaves.size();
+    for (ObjectID o : arch.getAllPlantObjectIDs(id)) {
+        ASSERT_TRUE(ctx.hasObjectData(o, "carbohydrate_concentration")) << o;
+        EXPECT_GE(ctx.objectDataFloat(o, "carbohydrate_concentration").value_or(-1.0f), 0.0f);
+    }
 }
 
 TEST(Carbon, APlantInTheDarkLosesShootsAndDies) {

@@ -3,9 +3,12 @@
 
 #include <cmath>
 #include <map>
+#include <type_traits>
 
 #include "core/atomic_file.h"
 #include "core/value_text.h"
+#include "model/carbon_costs.h"
+#include "plant_io/plant_structure.h"
 #include "plantarch/Error.h"
 #include "plantarch/Photosynthesis.h"
 #include "plantarch/Physiology.h"
@@ -159,6 +162,53 @@ long dayNumber(const UTCTime& t) {
     return long(std::floor(daysSince2000(UTCTime{t.year, t.month, t.day, 0.0}) + 0.5));
 }
 
+// A leaf's light and photosynthesis over a day, for its object data.
+struct LeafDay {
+    double absorbed = 0.0, sunlit = 0.0, net = 0.0;  // sums over the daylight hours
+    double netAll = 0.0;                             // over every hour
+    unsigned daylightHours = 0, hours = 0;
+};
+
+// The day's means on each leaf object still there (`absorbed_par`, `sunlit_fraction`,
+// `net_photosynthesis`: over the daylight hours, or the night's respiration on a day without
+// light) and every organ's `carbohydrate_concentration`: its shoot's pool over its wood.
+void writeDayData(PlantArchitecture& arch, const std::map<ObjectID, LeafDay>& days) {
+    Context& ctx = arch.context();
+    for (const auto& [id, d] : days) {
+        if (!ctx.doesObjectExist(id) || d.hours == 0) continue;
+        const double n = std::max(1u, d.daylightHours);
+        ctx.setObjectData(id, "absorbed_par", float(d.absorbed / n));
+        ctx.setObjectData(id, "sunlit_fraction", float(d.sunlit / n));
+        ctx.setObjectData(id, "net_photosynthesis",
+                          float(d.daylightHours > 0 ? d.net / n : d.netAll / d.hours));
+    }
+    for (unsigned plantID : arch.getAllPlantIDs()) {
+        if (!arch.hasCarbohydrateModel(plantID)) continue;
+        const PlantInstance& plant = arch.plant(plantID);
+        const CarbohydrateParameters& p = plant.phenology.carbohydrates;
+        for (const Shoot& s : plant.shoots) {
+            if (s.removed || !s.carbon) continue;
+            double volume = 0.0;
+            for (const Phytomer& ph : s.phytomers) {
+                const double r = ph.internode.radius;
+                volume += M_PI * r * r * double(ph.internode.length) * ph.internodeFraction;
+            }
+            const float concentration =
+                float((s.carbon->sugar + s.carbon->starch) / carbon::amount(p, 1.0, volume));
+            auto set = [&](ObjectID o) {
+                if (o != kNoObject && ctx.doesObjectExist(o))
+                    ctx.setObjectData(o, "carbohydrate_concentration", concentration);
+            };
+            plant_io::forEachShootObjectMember(s, [&](const auto& member) {
+                if constexpr (std::is_same_v<std::decay_t<decltype(member)>, ObjectID>)
+                    set(member);
+                else
+                    for (ObjectID o : member) set(o);
+            });
+        }
+    }
+}
+
 // One day: the hours' light and photosynthesis into the budgets' inputs, then a day of growth.
 void simulateDay(PlantArchitecture& arch, const std::vector<WeatherHour>& hours,
                  const PhysiologyOptions& options) {
@@ -180,6 +230,7 @@ void simulateDay(PlantArchitecture& arch, const std::vector<WeatherHour>& hours,
     std::unique_ptr<LightModel> model;
     if (daylight && !leaves.empty()) model = std::make_unique<LightModel>(arch.context(), optics);
     std::map<ObjectID, ObjectLight> light;
+    std::map<ObjectID, LeafDay> day;
     double lightPar = 0.0;
     unsigned sinceLight = options.lightEvery;
     for (const WeatherHour& h : hours) {
@@ -207,12 +258,24 @@ void simulateDay(PlantArchitecture& arch, const std::vector<WeatherHour>& hours,
             } else {
                 rates[id] = farquhar(info.farquhar, 0.0, h.airTemperature, co2).net;
             }
+            LeafDay& d = day[id];
+            ++d.hours;
+            d.netAll += rates[id];
+            if (h.par > 0.0) {
+                ++d.daylightHours;
+                d.net += rates[id];
+                if (scale > 0.0 && it != light.end()) {
+                    d.absorbed += it->second.absorbed * scale;
+                    d.sunlit += it->second.sunlit;
+                }
+            }
         }
         arch.addLeafPhotosynthesis(rates, hoursEach);
         for (const auto& [plant, mol] : absorbed) arch.addAbsorbedLight(plant, mol);
     }
     arch.setAirTemperature(std::clamp(temperature, -50.0, 60.0));
     arch.advanceTime(1.0);
+    writeDayData(arch, day);
 }
 
 }  // namespace

@@ -135,26 +135,30 @@ void writeQSM(const std::vector<const PlantInstance*>& plants, const std::string
 
 // ---- object IDs ----------------------------------------------------------------------
 
-/// Calls f(ObjectID&) or f(std::vector<ObjectID>&) for every object member of the plant's
-/// organs, in a fixed order (shoots, phytomers: internode, petioles with their leaves and
-/// floral buds; then the shoot's terminal buds).
-template <class Plant, class F>
-void forEachObjectMember(Plant& p, F&& f) {
+/// Calls f(ObjectID&) or f(std::vector<ObjectID>&) for every object member of one shoot's
+/// organs, in a fixed order (phytomers: internode, petioles with their leaves and floral buds;
+/// then the shoot's terminal buds).
+template <class ShootT, class F>
+void forEachShootObjectMember(ShootT& s, F&& f) {
     auto floral = [&](auto& fb) {
         f(fb.peduncleObject);
         for (auto& fl : fb.flowers) f(fl.objects);
     };
-    for (auto& s : p.shoots) {
-        for (auto& ph : s.phytomers) {
-            f(ph.internode.object);
-            for (auto& pt : ph.petioles) {
-                f(pt.object);
-                for (auto& l : pt.leaves) f(l.objects);
-                for (auto& fb : pt.floralBuds) floral(fb);
-            }
+    for (auto& ph : s.phytomers) {
+        f(ph.internode.object);
+        for (auto& pt : ph.petioles) {
+            f(pt.object);
+            for (auto& l : pt.leaves) f(l.objects);
+            for (auto& fb : pt.floralBuds) floral(fb);
         }
-        for (auto& fb : s.terminalFloralBuds) floral(fb);
     }
+    for (auto& fb : s.terminalFloralBuds) floral(fb);
+}
+
+/// forEachShootObjectMember for every shoot of the plant, in shoot order.
+template <class Plant, class F>
+void forEachObjectMember(Plant& p, F&& f) {
+    for (auto& s : p.shoots) forEachShootObjectMember(s, f);
 }
 
 /// Forgets every organ's Context object IDs: the plant gets new objects when drawn next.
