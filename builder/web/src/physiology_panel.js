@@ -134,60 +134,7 @@ export function physiologySection(app) {
   const body = h(
     'div',
     { class: 'physiology-body', hidden: !s.enabled },
-    h(
-      'div',
-      { class: 'grid2' },
-      field('Carbon', checkbox(s.carbon, set('carbon'), { name: 'physiology-carbon' }), {
-        title: 'the carbohydrate budget: photosynthesis pays for growth, sugar and starch kept',
-      }),
-      field('Nitrogen', checkbox(s.nitrogen, set('nitrogen'), { name: 'physiology-nitrogen' }), {
-        title: 'the nitrogen model: leaf nitrogen sets photosynthesis, fertiliser adds to it',
-      }),
-      field(
-        'Latitude',
-        numberInput(s.location[0], place(0), { min: -90, max: 90, step: 0.01, name: 'latitude' }),
-        { unit: '°', title: 'north positive, -90 to 90' },
-      ),
-      field(
-        'Longitude',
-        numberInput(s.location[1], place(1), {
-          min: -180,
-          max: 180,
-          step: 0.01,
-          name: 'longitude',
-        }),
-        { unit: '°', title: 'east positive, -180 to 180' },
-      ),
-      field('Start', start, { title: 'the first of the clear days (UTC date)' }),
-      field(
-        'Days',
-        numberInput(s.days, set('days'), { min: 1, max: 100000, integer: true, name: 'days' }),
-        { title: 'the last days of growth, with the models; every block at least this old' },
-      ),
-      field(
-        'Light every',
-        numberInput(s.light_every, set('light_every'), {
-          min: 1,
-          max: 24,
-          integer: true,
-          name: 'light-every',
-        }),
-        {
-          unit: 'h',
-          title: 'hours of daylight between traces of the light, 1 to 24: more is faster',
-        },
-      ),
-      field(
-        'Clearness',
-        numberInput(s.clearness, set('clearness'), {
-          min: 0,
-          max: 1,
-          step: 0.05,
-          name: 'clearness',
-        }),
-        { title: 'of the clear days: 0 overcast, 1 a perfectly clear sky' },
-      ),
-    ),
+    seasonFields(s, set, place, start),
     field('Weather file (CSV)', weather, {
       wide: true,
       title: 'hourly weather, relative to the output folder; it replaces the clear days',
@@ -227,5 +174,64 @@ export function physiologySection(app) {
     ),
     body,
     problems,
+  );
+}
+
+// The grid of the season's models, place, dates and light: `set(key)` and `place(index)`
+// make each field's setter; `start` is the date input (disabled by a weather file).
+function seasonFields(s, set, place, start) {
+  return h(
+    'div',
+    { class: 'grid2' },
+    field('Carbon', checkbox(s.carbon, set('carbon'), { name: 'physiology-carbon' }), {
+      title: 'the carbohydrate budget: photosynthesis pays for growth, sugar and starch kept',
+    }),
+    field('Nitrogen', checkbox(s.nitrogen, set('nitrogen'), { name: 'physiology-nitrogen' }), {
+      title: 'the nitrogen model: leaf nitrogen sets photosynthesis, fertiliser adds to it',
+    }),
+    field(
+      'Latitude',
+      numberInput(s.location[0], place(0), { min: -90, max: 90, step: 0.01, name: 'latitude' }),
+      { unit: '°', title: 'north positive, -90 to 90' },
+    ),
+    field(
+      'Longitude',
+      numberInput(s.location[1], place(1), {
+        min: -180,
+        max: 180,
+        step: 0.01,
+        name: 'longitude',
+      }),
+      { unit: '°', title: 'east positive, -180 to 180' },
+    ),
+    field('Start', start, { title: 'the first of the clear days (UTC date)' }),
+    field(
+      'Days',
+      numberInput(s.days, set('days'), { min: 1, max: 100000, integer: true, name: 'days' }),
+      { title: 'the last days of growth, with the models; every block at least this old' },
+    ),
+    field(
+      'Light every',
+      numberInput(s.light_every, set('light_every'), {
+        min: 1,
+        max: 24,
+        integer: true,
+        name: 'light-every',
+      }),
+      {
+        unit: 'h',
+        title: 'hours of daylight between traces of the light, 1 to 24: more is faster',
+      },
+    ),
+    field(
+      'Clearness',
+      numberInput(s.clearness, set('clearness'), {
+        min: 0,
+        max: 1,
+        step: 0.05,
+        name: 'clearness',
+      }),
+      { title: 'of the clear days: 0 overcast, 1 a perfectly clear sky' },
+    ),
   );
 }
