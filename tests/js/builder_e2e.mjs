@@ -517,21 +517,8 @@ async function physiologySeason(page, base) {
   const jsonLength = glb.readUInt32LE(12);
   const doc = JSON.parse(glb.subarray(20, 20 + jsonLength).toString('utf8'));
   const columns = Object.keys(doc.extensions.EXT_structural_metadata.propertyTables[0].properties);
-  if (!columns.includes('absorbed_par')) {
-    // This plantarch's season leaves no light data on its leaves: the modes stay off, saying
-    // why, and the light colours are checked on a scene of `plantarch light`.
-    assert.ok((await tooltip('light')).disabled, 'light without absorbed_par data');
-    const lightGlb = path.join(tmp, 'light.glb');
-    execFileSync(options.cli, ['light', 'bean', '--age', '22', '--location', '38.5,-121.7', '--date', '2026-06-01', '-o', lightGlb], { stdio: 'pipe' });
-    const b64 = readFileSync(lightGlb).toString('base64');
-    await page.evaluate(async (data) => {
-      const bytes = Uint8Array.from(atob(data), (c) => c.charCodeAt(0));
-      const url = URL.createObjectURL(new Blob([bytes], { type: 'model/gltf-binary' }));
-      await window.plantarchBuilder.viewer.load(url, { frame: true });
-      window.plantarchBuilder.syncColorModes();
-    }, b64);
-    step('the season\'s scene has no absorbed_par column yet: light colours checked on `plantarch light`\'s scene');
-  }
+  for (const column of ['absorbed_par', 'carbohydrate_concentration'])
+    assert.ok(columns.includes(column), `the season's scene has the ${column} column`);
   assert.equal((await tooltip('light')).disabled, false, 'light is offered for a scene with absorbed PAR');
   await page.evaluate(() => window.plantarchBuilder.viewer.frame());
   const naturalColors = await canvasColors(page);
@@ -550,14 +537,12 @@ async function physiologySeason(page, base) {
   const lightColors = await canvasColors(page);
   assert.ok(lightColors > 20, `the canvas coloured by light shows ${lightColors} colours (natural: ${naturalColors})`);
   await shot(page, 'physiology-light');
-  const carbon = await tooltip('carbon');
-  if (!columns.includes('carbohydrate_concentration')) {
-    assert.ok(carbon.disabled && /with Carbon/.test(carbon.title), `carbon without its data: ${JSON.stringify(carbon)}`);
-  } else {
-    await page.select('#color-mode', 'carbon');
-    await page.waitForFunction(() => /carbohydrate/.test(document.getElementById('legend-title')?.textContent));
-    await shot(page, 'physiology-carbon');
-  }
+  assert.equal((await tooltip('carbon')).disabled, false, 'carbon is offered after a season with the budget');
+  await page.select('#color-mode', 'carbon');
+  await page.waitForFunction(() => /carbohydrate/.test(document.getElementById('legend-title')?.textContent));
+  const carbonColors = await canvasColors(page);
+  assert.ok(carbonColors > 5, `the canvas coloured by carbon shows ${carbonColors} colours`);
+  await shot(page, 'physiology-carbon');
   await page.select('#color-mode', 'natural');
   step(`colour by light: a ramp of ${legend.min.toFixed(1)} to ${legend.max.toFixed(1)} µmol m⁻² s⁻¹, ${lightColors} colours on the canvas`);
 }
