@@ -132,7 +132,9 @@ void bindLight(py::module_& m) {
         .def_readwrite("flowerAndFruit", &LightOptions::flowerAndFruit, "flowers and fruit")
         .def_readwrite("ground", &LightOptions::ground, "objects with organ ground")
         .def_readwrite("other", &LightOptions::other, "obstacles, trellises, the rest")
-        .def_readwrite("seed", &LightOptions::seed, "the rays' jitter");
+        .def_readwrite("seed", &LightOptions::seed, "the rays' jitter")
+        .def_readwrite("samplesPerObject", &LightOptions::samplesPerObject,
+                       "cast each object's rays from N of its triangles (0: every triangle)");
     py::class_<LightModel>(m, "LightModel", "The visible triangles of a Context, for light.")
         .def(py::init([](const Context& c, const LightOptions& o) {
                  py::gil_scoped_release release;
@@ -157,6 +159,7 @@ void bindLight(py::module_& m) {
         .def("objects", &LightModel::objects, docs::LightModel_objects)
         .def("areas", &LightModel::areas, docs::LightModel_areas)
         .def("triangleCount", &LightModel::triangleCount, docs::LightModel_triangleCount)
+        .def("sampleCount", &LightModel::sampleCount, docs::LightModel_sampleCount)
         .def("raysCast", &LightModel::raysCast, docs::LightModel_raysCast);
     m.def(
         "writeLightData",

@@ -69,6 +69,15 @@ def test_light_per_triangle_as_arrays_and_on_the_leaves():
         t.join()
     assert np.array_equal(results[0], r["absorbed"])
     assert np.array_equal(results[1], r["absorbed"])
+    # Sampled per object: fewer ray origins, each triangle its object's mean.
+    options = small_options()
+    options.samplesPerObject = 4
+    sampled = pa.LightModel(ctx, options)
+    assert sampled.sampleCount() < n == sampled.triangleCount()
+    rs = sampled.compute(sky)["absorbed"]
+    objects = np.array(sampled.objects())
+    for o in sorted(set(objects.tolist()))[:20]:
+        assert np.ptp(rs[objects == o]) == 0
 
 
 def test_photosynthesis():
