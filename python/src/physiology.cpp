@@ -31,21 +31,25 @@ py::dict recordArrays(const std::vector<PhysiologyRecord>& records) {
     return out;
 }
 
+// The `location` of options and seasons as Python's (latitude, longitude) pair.
+constexpr const char* kLocationDoc = "(latitude, longitude) in degrees, north and east positive";
+template <class T>
+py::tuple locationOf(const T& t) {
+    return py::make_tuple(t.location.latitude, t.location.longitude);
+}
+template <class T>
+void setLocation(T& t, std::pair<double, double> where) {
+    t.location = {where.first, where.second};
+}
+
 }  // namespace
 
 void bindPhysiology(py::module_& m) {
     py::class_<PhysiologyOptions>(
         m, "PhysiologyOptions", "How growPhysiology lights the scene and turns light into carbon.")
         .def(py::init<>())
-        .def_property(
-            "location",
-            [](const PhysiologyOptions& o) {
-                return py::make_tuple(o.location.latitude, o.location.longitude);
-            },
-            [](PhysiologyOptions& o, std::pair<double, double> where) {
-                o.location = {where.first, where.second};
-            },
-            "(latitude, longitude) in degrees, north and east positive")
+        .def_property("location", &locationOf<PhysiologyOptions>, &setLocation<PhysiologyOptions>,
+                      kLocationDoc)
         .def_readwrite("light", &PhysiologyOptions::light, "rays and optics (LightOptions)")
         .def_readwrite("lightEvery", &PhysiologyOptions::lightEvery,
                        "trace the sky every N hours of daylight (1 to 24)")
@@ -69,15 +73,8 @@ void bindPhysiology(py::module_& m) {
         .def(py::init<>())
         .def_readwrite("carbon", &PhysiologySeason::carbon, "the carbohydrate budget")
         .def_readwrite("nitrogen", &PhysiologySeason::nitrogen, "the nitrogen model")
-        .def_property(
-            "location",
-            [](const PhysiologySeason& s) {
-                return py::make_tuple(s.location.latitude, s.location.longitude);
-            },
-            [](PhysiologySeason& s, std::pair<double, double> where) {
-                s.location = {where.first, where.second};
-            },
-            "(latitude, longitude) in degrees, north and east positive")
+        .def_property("location", &locationOf<PhysiologySeason>, &setLocation<PhysiologySeason>,
+                      kLocationDoc)
         .def_readwrite("weather", &PhysiologySeason::weather,
                        "WeatherHour list (consecutive dates); empty: clear days from start")
         .def_readwrite("start", &PhysiologySeason::start, "the first clear day (UTCTime)")

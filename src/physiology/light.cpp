@@ -580,7 +580,7 @@ LightModel::LightModel(const Context& context, const LightOptions& options)
     m.epsilon = std::max(1e-7f, 1e-6f * extent);
     if (options.samplesPerObject > 0) m.drawSamples(options.samplesPerObject);
     // Sampled, the scene casts a few rays per object: the build is a large share of the cost
-    // and a quicker, looser tree pays (a bean season and a canopy's day 10 to 25 % faster).
+    // and a quicker, looser tree pays (a season of one plant and a canopy's day 10 to 25 % faster).
     m.scene = core::triangleScene(
         m.soup, options.samplesPerObject > 0 ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH);
     m.sky = tregenzaPatches(false);
