@@ -89,6 +89,8 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         if (!a->stats) {
             std::string outs;
             for (const std::string& o : a->outputs) outs += (outs.empty() ? "" : ", ") + o;
+            if (!a->physiology.series.empty())
+                outs += (outs.empty() ? "" : ", ") + a->physiology.series;
             std::printf(
                 "%s",
                 fmt::format(
