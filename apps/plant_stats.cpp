@@ -10,6 +10,7 @@
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/LeafAngles.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantSummary.h"
 
@@ -124,13 +125,15 @@ std::string plantStatsJSON(const PlantArchitecture& arch, const Context&, unsign
         "\"leaves\": {}, \"leaf_area\": {:.5f}, \"shoots\": {}, \"flowers\": {}, \"fruit\": {}, "
         "\"triangles\": {}, \"width_x\": {:.4f}, \"width_y\": {:.4f}, \"width_long\": {:.4f}, "
         "\"width_short\": {:.4f}, \"main_nodes\": {}, \"shoots_by_rank\": {}, "
-        "\"phytomers_by_rank\": {}, \"leaf_inclination\": {}}}",
+        "\"phytomers_by_rank\": {}, \"leaf_inclination\": {}, \"leaf_inclination_mean\": "
+        "{:.4f}}}",
         jsonString(p.name), plant, finite("age", p.age), seed, finite("height", s.height), s.leaves,
         finite("leaf_area", s.leafArea), arch.getShootCount(plant), s.flowers, s.fruit, s.triangles,
         finite("width_x", s.widthX), finite("width_y", s.widthY), finite("width_long", s.widthLong),
         finite("width_short", s.widthShort), s.mainNodes, numbers(s.shootsByRank, "shoots_by_rank"),
         numbers(s.phytomersByRank, "phytomers_by_rank"),
-        numbers(s.leafInclination, "leaf_inclination"));
+        numbers(s.leafInclination, "leaf_inclination"),
+        finite("leaf_inclination_mean", meanLeafInclination(arch, plant)));
 }
 
 }  // namespace plantarch::cli

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "cli_run.h"
+#include "plantarch/LeafAngles.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantSummary.h"
 
@@ -94,7 +95,8 @@ void expectStatsOf(const nlohmann::json& j, const PlantArchitecture& arch, const
                                         "main_nodes",
                                         "shoots_by_rank",
                                         "phytomers_by_rank",
-                                        "leaf_inclination"};
+                                        "leaf_inclination",
+                                        "leaf_inclination_mean"};
     std::set<std::string> printed;
     for (const auto& [k, v] : j.items()) printed.insert(k);
     EXPECT_EQ(printed, keys) << "a number printed that this test does not check, or one missing";
@@ -124,6 +126,8 @@ void expectStatsOf(const nlohmann::json& j, const PlantArchitecture& arch, const
     ASSERT_EQ(inclination.size(), s.leafInclination.size());
     for (std::size_t i = 0; i < inclination.size(); ++i)
         EXPECT_NEAR(inclination[i], s.leafInclination[i], 0.5e-4 + 1e-9);
+    EXPECT_NEAR(j.at("leaf_inclination_mean").get<double>(), meanLeafInclination(arch, plant),
+                0.5e-4 + 1e-9);
 }
 
 TEST(ConformanceCliStats, BuildPrintsTheLibrarysNumbers) {

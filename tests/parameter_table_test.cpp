@@ -49,7 +49,7 @@ constexpr std::size_t memberCount() {
         return N;
 }
 
-static_assert(memberCount<PhenologyParameters>() == 12);  // the counter itself works
+static_assert(memberCount<PhenologyParameters>() == 14);  // the counter itself works
 
 // ---- the check: one level of the table against its struct, then each nested group ---------
 
@@ -295,7 +295,7 @@ TEST(ParameterInfo, ListsEveryFieldWithItsDeclaration) {
     EXPECT_EQ(find("phytomer.leaf.prototype.leaf_texture_file").entry,
               "<image leaflet=\"INDEX\">TEXT</image>");
     EXPECT_EQ(parameterInfo(PhenologyParameters{}).back().path,
-              "leaf_physiology.leaf_transmittance");
+              "leaf_angles.azimuth_concentration");
 }
 
 // The page is what the command generates now: a field added to the table without

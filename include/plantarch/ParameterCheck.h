@@ -24,6 +24,9 @@ void checkField(const FieldInfo& f, const std::string& path, const LeafShape& va
 void checkField(const FieldInfo& f, const std::string& path, const FlowerArrangement& value);
 void checkField(const FieldInfo& f, const std::string& path, const NodeRuleTime& value);
 void checkField(const FieldInfo& f, const std::string& path,
+                const LeafInclinationDistribution& value);
+void checkField(const FieldInfo& f, const std::string& path, const LeafAzimuthDistribution& value);
+void checkField(const FieldInfo& f, const std::string& path,
                 const std::map<int, std::string>& value);
 void checkField(const FieldInfo& f, const std::string& path,
                 const std::map<std::string, float>& value);

@@ -122,6 +122,44 @@ inline constexpr Choice<NodeRuleTime> kNodeRuleTimes[] = {
 template <>
 inline constexpr std::span<const Choice<NodeRuleTime>> kChoices<NodeRuleTime> = kNodeRuleTimes;
 
+inline constexpr Choice<LeafInclinationDistribution> kLeafInclinationDistributions[] = {
+    {LeafInclinationDistribution::None, "none",
+     "Leaves keep the inclination their petiole and leaf angles give them (no draw)"},
+    {LeafInclinationDistribution::Planophile, "planophile",
+     "de Wit: mostly horizontal leaves, density (2/pi)(1 + cos 2t), mean 26.8 degrees"},
+    {LeafInclinationDistribution::Erectophile, "erectophile",
+     "de Wit: mostly vertical leaves, density (2/pi)(1 - cos 2t), mean 63.2 degrees"},
+    {LeafInclinationDistribution::Plagiophile, "plagiophile",
+     "de Wit: mostly oblique leaves, density (2/pi)(1 - cos 4t), mean 45 degrees"},
+    {LeafInclinationDistribution::Extremophile, "extremophile",
+     "de Wit: mostly horizontal or vertical leaves, density (2/pi)(1 + cos 4t), mean 45 degrees"},
+    {LeafInclinationDistribution::Spherical, "spherical",
+     "Normals spread evenly over the hemisphere (the surface of a sphere), density sin t, mean "
+     "57.3 degrees; G = 0.5 in every direction"},
+    {LeafInclinationDistribution::Uniform, "uniform",
+     "Every inclination equally likely, density 2/pi, mean 45 degrees"},
+    {LeafInclinationDistribution::Ellipsoidal, "ellipsoidal",
+     "Campbell's ellipsoidal distribution with ellipsoidal_x (1: spherical, above 1 flatter, "
+     "below 1 more upright)"},
+    {LeafInclinationDistribution::Beta, "beta",
+     "Goel and Strebel's beta distribution of t / 90 degrees with beta_mu and beta_nu, or with "
+     "beta_mean and beta_sd"},
+    {LeafInclinationDistribution::Histogram, "histogram",
+     "A measured histogram: the weights of the histogram's bins, uniform within each bin"},
+};
+template <>
+inline constexpr std::span<const Choice<LeafInclinationDistribution>>
+    kChoices<LeafInclinationDistribution> = kLeafInclinationDistributions;
+
+inline constexpr Choice<LeafAzimuthDistribution> kLeafAzimuthDistributions[] = {
+    {LeafAzimuthDistribution::Uniform, "uniform", "Every compass direction equally likely"},
+    {LeafAzimuthDistribution::VonMises, "von_mises",
+     "Von Mises around azimuth_mean with azimuth_concentration (0: uniform)"},
+};
+template <>
+inline constexpr std::span<const Choice<LeafAzimuthDistribution>>
+    kChoices<LeafAzimuthDistribution> = kLeafAzimuthDistributions;
+
 /// The name of `value` (nullptr for a value outside the declared choices).
 template <ChoiceType E>
 constexpr const char* choiceName(E value) {
@@ -678,6 +716,68 @@ void describeParameters(S& p, V& v) {
 }
 
 template <class S, class V>
+requires SameAs<S, MechanicsParameters>
+void describeParameters(S& p, V& v) {
+    v.field({"enabled", "", 0, 1,
+             "Bend the shoots of plants of this species under their load after each growth step"},
+            p.enabled);
+    v.field({"elastic_modulus", "Pa", 1e5, 1e12,
+             "Young's modulus of the stems (green wood 1e9 to 1e10, herbaceous 1e8 to 1e9)"},
+            p.elastic_modulus);
+    v.field({"stem_density", "kg m-3", 0, 3000, "Fresh mass of stem per volume"}, p.stem_density);
+    v.field({"leaf_mass_per_area", "kg m-2", 0, 10, "Fresh mass of a leaf per area (one side)"},
+            p.leaf_mass_per_area);
+    v.field({"fruit_density", "kg m-3", 0, 3000,
+             "Fresh mass of fruit per volume (a fruit: a sphere of its length)"},
+            p.fruit_density);
+}
+
+template <class S, class V>
+requires SameAs<S, LeafAngleParameters>
+void describeParameters(S& p, V& v) {
+    v.field({"inclination", "", 0, 0,
+             "Distribution of each leaf's inclination, the angle of its blade's mean normal from "
+             "vertical (none: the leaf's own angles decide)"},
+            p.inclination);
+    v.field({"ellipsoidal_x", "", 0.1, 10,
+             "Ellipsoidal: horizontal over vertical semi-axis of the ellipsoid whose surface the "
+             "leaves' normals follow"},
+            p.ellipsoidal_x);
+    v.field({"beta_mu", "", 0.1, 100,
+             "Beta: the density of inclination t is proportional to (1 - t/90)^(beta_mu - 1) "
+             "(t/90)^(beta_nu - 1); a larger beta_mu leans the leaves toward horizontal"},
+            p.beta_mu);
+    v.field({"beta_nu", "", 0.1, 100, "Beta: a larger beta_nu leans the leaves toward vertical"},
+            p.beta_nu);
+    v.field({"beta_mean", "degrees", 0, 89,
+             "Beta: mean inclination; with beta_sd it sets beta_mu and beta_nu (0: they are used "
+             "as given)"},
+            p.beta_mean);
+    v.field({"beta_sd", "degrees", 0, 45,
+             "Beta: standard deviation of the inclination (with beta_mean; below "
+             "sqrt(beta_mean (90 - beta_mean)))"},
+            p.beta_sd);
+    v.field({"histogram",
+             "",
+             0,
+             1e6,
+             "Histogram: weight of each bin, from the previous bin's upper edge (0 for the "
+             "first) to its own, in degrees up to 90",
+             {"bin", "to"}},
+            p.histogram);
+    v.field(
+        {"azimuth", "", 0, 0, "Distribution of the compass direction each leaf's upper side faces"},
+        p.azimuth);
+    v.field({"azimuth_mean", "degrees", 0, 360,
+             "Von Mises: the mean direction, clockwise from north (+y; 90: east, +x)"},
+            p.azimuth_mean);
+    v.field({"azimuth_concentration", "", 0, 100,
+             "Von Mises: the concentration kappa (0: uniform; 1: about 2.7 times as many leaves "
+             "face the mean as its opposite)"},
+            p.azimuth_concentration);
+}
+
+template <class S, class V>
 requires SameAs<S, PhenologyParameters>
 void describeParameters(S& p, V& v) {
     v.field({"time_to_dormancy_break", "days", -1, 100000,
@@ -707,6 +807,9 @@ void describeParameters(S& p, V& v) {
     v.group("nitrogen", p.nitrogen, [&](auto& sub) { describeParameters(p.nitrogen, sub); });
     v.group("leaf_physiology", p.leaf_physiology,
             [&](auto& sub) { describeParameters(p.leaf_physiology, sub); });
+    v.group("mechanics", p.mechanics, [&](auto& sub) { describeParameters(p.mechanics, sub); });
+    v.group("leaf_angles", p.leaf_angles,
+            [&](auto& sub) { describeParameters(p.leaf_angles, sub); });
 }
 
 }  // namespace plantarch::params

@@ -321,6 +321,53 @@ struct LeafPhysiologyParameters {
     float leaf_transmittance = 0.05f;
 };
 
+/// How a plant's shoots bend under their own weight and what they carry (docs/measured-plants.md,
+/// "Shoots bending under load"): the stiffness of their wood and the fresh masses that load it.
+struct MechanicsParameters {
+    bool enabled = false;
+    float elastic_modulus = 5e9f;
+    float stem_density = 1000.0f;
+    float leaf_mass_per_area = 0.2f;
+    float fruit_density = 900.0f;
+};
+
+/// The distribution a plant's leaves draw their inclination from (LeafAngleParameters): the
+/// angle of a blade's upper-side normal from the zenith, which is also the blade's angle from
+/// horizontal. Names in files and what each family means: the parameter table
+/// (docs/parameters.md) and docs/measured-plants.md.
+enum class LeafInclinationDistribution {
+    None,
+    Planophile,
+    Erectophile,
+    Plagiophile,
+    Extremophile,
+    Spherical,
+    Uniform,
+    Ellipsoidal,
+    Beta,
+    Histogram,
+};
+
+/// The distribution of the compass direction a blade's upper side faces (LeafAngleParameters).
+enum class LeafAzimuthDistribution { Uniform, VonMises };
+
+/// A plant's leaf angle distribution (docs/measured-plants.md, "Leaf angle distributions"):
+/// with an inclination distribution other than none, every leaf draws a target inclination
+/// and azimuth as it is made and its blade is turned so that its mean normal has them.
+struct LeafAngleParameters {
+    LeafInclinationDistribution inclination = LeafInclinationDistribution::None;
+    float ellipsoidal_x = 1.0f;
+    float beta_mu = 1.0f;
+    float beta_nu = 1.0f;
+    float beta_mean = 0.0f;
+    float beta_sd = 0.0f;
+    std::map<std::string, float> histogram;
+    LeafAzimuthDistribution azimuth = LeafAzimuthDistribution::Uniform;
+    float azimuth_mean = 0.0f;
+    float azimuth_concentration = 0.0f;
+    bool operator==(const LeafAngleParameters&) const = default;
+};
+
 /// Timing of a plant's phenological stages, days. A negative threshold disables that
 /// transition (the next one is timed from the previous enabled one).
 struct PhenologyParameters {
@@ -337,6 +384,10 @@ struct PhenologyParameters {
     CarbohydrateParameters carbohydrates;
     NitrogenParameters nitrogen;
     LeafPhysiologyParameters leaf_physiology;
+    /// Shoots bending under load.
+    MechanicsParameters mechanics;
+    /// The leaves' inclination and azimuth distribution.
+    LeafAngleParameters leaf_angles;
 };
 
 /// Checks every field against its declared range (and child probabilities: each in [0,1],

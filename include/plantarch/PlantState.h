@@ -221,6 +221,17 @@ struct LeafNitrogen {
     double content = 0.0;  ///< g N in the leaf
 };
 
+/// The pose a leaf was given by its plant's leaf angle distribution (LeafAngleParameters),
+/// drawn as it was made: its blade's mean normal stands at this inclination and faces this
+/// azimuth, whatever its petiole and stem do.
+struct LeafAngleTarget {
+    /// Of the blade's mean normal from the zenith (of the blade from horizontal), degrees.
+    float inclination = 0.0f;
+    /// The compass direction its upper side faces, degrees clockwise from north (+y).
+    float azimuth = 0.0f;
+    bool operator==(const LeafAngleTarget&) const = default;
+};
+
 struct LeafOrgan {
     int leafletIndex = 0;   ///< 0 tip, negative left, positive right (pairs from the tip)
     float position = 1.0f;  ///< along the petiole from its base, fraction of its length
@@ -235,6 +246,8 @@ struct LeafOrgan {
     bool removed = false;
     std::vector<ObjectID> objects;
     std::optional<LeafNitrogen> nitrogen;  ///< none unless the plant's nitrogen model runs
+    /// None unless its plant has a leaf angle distribution (LeafAngleParameters).
+    std::optional<LeafAngleTarget> angleTarget;
 };
 
 struct Petiole {
@@ -251,6 +264,14 @@ struct Petiole {
     ObjectID object = kNoObject;
 };
 
+/// How far an internode and everything it carries (its node's organs, the shoots above it) is
+/// turned from its rest place by the shoots bending under load (docs/measured-plants.md):
+/// the whole turn of the plant's bending up to it, about a world axis through each node.
+struct InternodeBend {
+    vec3 axis{0.0f, 0.0f, 1.0f};
+    float angle = 0.0f;  ///< degrees
+};
+
 struct Internode {
     vec3 direction{0, 0, 1};         ///< axis of this internode (after zig-zag pitch)
     vec3 guide{0, 0, 1};             ///< shoot axis here (curvature, random walk, steering applied)
@@ -264,6 +285,14 @@ struct Internode {
     float walkZenith = 0.0f;         ///< random-walk zenith perturbation, degrees
     float walkYaw = 0.0f;            ///< random-walk yaw perturbation, degrees
     ObjectID object = kNoObject;
+    /// Set while the plant bends under load (docs/measured-plants.md): direction, guide and
+    /// roll reference are the rest shape; geometry turns them by this.
+    std::optional<InternodeBend> bend;
+};
+
+/// What was measured of an internode (plantarch/MeasuredShoots.h).
+struct MeasuredInternode {
+    float radius = 0.0f;  ///< m
 };
 
 struct Phytomer {
@@ -277,6 +306,9 @@ struct Phytomer {
     float leafFraction0 = 1.0f;       ///< petiole and leaf fraction at creation
     float radiusInitial = 0.0f;       ///< internode radius at creation (girth never goes below)
     std::string parametersLabel;      ///< shoot type whose phytomer template built it
+    /// Set when its internode follows measured points (addShootFromNodePositions): growth
+    /// never changes its length, direction or radius.
+    std::optional<MeasuredInternode> measured;
 };
 
 /// A shoot's carbohydrates, when the plant's budget runs (docs/physiology.md): its pools and

@@ -197,6 +197,7 @@ void describeState(S& l, V& v) {
     v.field({"removed", 0, 1, "shed or removed"}, l.removed);
     v.objects("object_IDs", l.objects);
     v.optional("nitrogen", l.nitrogen);
+    v.optional("angle_target", l.angleTarget);
 }
 
 template <class S, class V>
@@ -220,6 +221,13 @@ void describeState(S& p, V& v) {
 }
 
 template <class S, class V>
+requires SameAs<S, InternodeBend>
+void describeState(S& b, V& v) {
+    v.field({"axis", -1, 1, "bend turn: world axis", Check::UnitVector}, b.axis);
+    v.field({"angle", -360, 360, "bend turn from the rest shape, degrees"}, b.angle);
+}
+
+template <class S, class V>
 requires SameAs<S, Internode>
 void describeState(S& in, V& v) {
     v.field(editable({"internode_length", 0, kBig, "full-grown length, m"}), in.length);
@@ -237,6 +245,7 @@ void describeState(S& in, V& v) {
     v.field({"walk_zenith", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkZenith);
     v.field({"walk_yaw", -kBig, kBig, "random-walk perturbation, degrees"}, in.walkYaw);
     v.objects("object_ID", in.object);
+    v.optional("bend", in.bend);
 }
 
 /// A nested element whose content is the table of `member` (a struct of its own), then
@@ -255,6 +264,12 @@ void nested(V& v, const char* name, T& member, More&& more) {
 }
 
 template <class S, class V>
+requires SameAs<S, MeasuredInternode>
+void describeState(S& m, V& v) {
+    v.field({"radius", 0, kBig, "measured internode radius, m"}, m.radius);
+}
+
+template <class S, class V>
 requires SameAs<S, Phytomer>
 void describeState(S& ph, V& v) {
     v.field({"age", -kTime, kTime, "days"}, ph.age);
@@ -270,6 +285,7 @@ void describeState(S& ph, V& v) {
     v.field({"radius_initial", 0, kBig, "internode radius at creation, m"}, ph.radiusInitial);
     v.field({"parameters_label", 0, 0, "shoot type whose template built it", Check::Label},
             ph.parametersLabel);
+    v.optional("measured", ph.measured);
     // The specification nests the petioles inside the internode.
     nested(v, "internode", ph.internode, [&](auto& sub) { sub.list("petiole", ph.petioles); });
 }
@@ -325,6 +341,18 @@ void describeState(S& c, V& v) {
     v.field(
         {"radial_allowance", 0, kBig, "carbon it may spend thickening until the next step, mol C"},
         c.radialAllowance);
+}
+
+template <class S, class V>
+requires SameAs<S, LeafAngleTarget>
+void describeState(S& t, V& v) {
+    v.field(editable({"inclination", 0, 90,
+                      "of the blade's mean normal from the zenith (of the blade from horizontal), "
+                      "degrees"}),
+            t.inclination);
+    v.field(editable({"azimuth", 0, 360,
+                      "the compass direction its upper side faces, degrees clockwise from north"}),
+            t.azimuth);
 }
 
 template <class S, class V>

@@ -35,6 +35,8 @@ constexpr const char* tableName() {
     if constexpr (std::is_same_v<S, CarbohydrateParameters>) return "carbohydrates";
     if constexpr (std::is_same_v<S, NitrogenParameters>) return "nitrogen";
     if constexpr (std::is_same_v<S, LeafPhysiologyParameters>) return "leaf_physiology";
+    if constexpr (std::is_same_v<S, MechanicsParameters>) return "mechanics";
+    if constexpr (std::is_same_v<S, LeafAngleParameters>) return "leaf_angles";
     return "";
 }
 
@@ -544,6 +546,12 @@ void bindParameters(py::module_& m) {
                                    "A plant's nitrogen model (docs/physiology.md).");
     bindStruct<LeafPhysiologyParameters>(m, "LeafPhysiologyParameters",
                                          "Leaf photosynthesis capacities and optics.");
+    bindStruct<MechanicsParameters>(
+        m, "MechanicsParameters",
+        "How a plant's shoots bend under load (docs/measured-plants.md).");
+    bindStruct<LeafAngleParameters>(
+        m, "LeafAngleParameters",
+        "A plant's leaf inclination and azimuth distribution (docs/measured-plants.md).");
     bindStruct<PhenologyParameters>(m, "PhenologyParameters",
                                     "Timing of a plant's phenological stages, days.");
 

@@ -289,8 +289,14 @@ void bindState(py::module_& m) {
     bindStateStruct<FloralBud>(m, "FloralBud",
                                "A floral bud, its peduncle and the flowers or fruit it bears.");
     bindStateStruct<LeafOrgan>(m, "LeafOrgan", "A leaf (or leaflet) on a petiole.");
+    bindStateStruct<LeafAngleTarget>(
+        m, "LeafAngleTarget", "A leaf's pose drawn from its plant's leaf angle distribution.");
     bindStateStruct<Petiole>(m, "Petiole", "A petiole with its leaves and axillary buds.");
     bindStateStruct<Internode>(m, "Internode", "An internode.");
+    bindStateStruct<InternodeBend>(m, "InternodeBend",
+                                   "An internode's turn from its rest place under load.");
+    bindStateStruct<MeasuredInternode>(m, "MeasuredInternode",
+                                       "What was measured of an internode (its radius).");
     bindStateStruct<AttractionPoints>(m, "PlantAttractionPoints",
                                       "A plant's own attraction points and perception cone.");
     bindStateStruct<EpicormicShoots>(m, "EpicormicShoots", "A plant's water sprouts.");

@@ -4,6 +4,7 @@
 // obstacles, and single organs placed on trial while turning them out of solid obstacles).
 // Both run the same placement code, so an organ's proxy sits exactly where its mesh does.
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -59,6 +60,13 @@ struct LeafTrig {
     TurnTrig turn;
     SinCos swing;  ///< lateral leaflets: their swing toward the tip (yaw)
     bool set = false;
+    /// A leaf with a target pose (LeafOrgan::angleTarget): `target` holds it and `normal` is
+    /// the world direction of its blade's mean normal; `prototypeNormal` is the mean normal
+    /// of the leaf's prototype (prototype coordinates, set by the caller with the prototype).
+    std::optional<LeafAngleTarget> target;
+    vec3 normal{0.0f, 0.0f, 1.0f};
+    vec3 prototypeNormal{0.0f, 0.0f, 1.0f};
+    const OrganPrototype* normalPrototype = nullptr;  ///< the prototype prototypeNormal is of
     /// The leaf's prototype as last looked up, for the parameters, variant and leaf ID it was
     /// looked up for, while PetioleTrig::epoch is the one it was looked up in.
     const OrganPrototype* prototype = nullptr;
@@ -164,9 +172,20 @@ struct OrganFrame {
 /// prototype's leaf_offset. The frame: x along the tangent, z as near world up as it can be
 /// (else toward `side`), y = z x x. A lateral leaflet (t.leaflet != 0) first points x across
 /// the rachis on its side (+y when t.leaflet < 0, else -y), swung toward the tip by t.swing.
-/// Then t.turn: pitch lifts x toward z, yaw turns x toward y, roll turns y toward z.
+/// Then t.turn: pitch lifts x toward z, yaw turns x toward y, roll turns y toward z. A leaf
+/// with a target (t.target) is then turned about `origin` so that its prototype's mean normal
+/// (t.prototypeNormal) points along t.normal, its midrib as near the turned x as it can be.
 mat4 leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
                    vec3 offset);
+
+/// The area-weighted mean normal of a leaf prototype's triangles (prototype coordinates, the
+/// side of +z: a blade's upper side), unit; +z for a prototype with no such normal (a blade
+/// folded shut).
+vec3 meanNormal(const OrganPrototype& prototype);
+
+/// The world direction of the mean normal of a leaf with target pose `t`: `inclination` from
+/// the zenith, facing `azimuth` clockwise from north (+y).
+vec3 targetNormal(const LeafAngleTarget& t);
 }  // namespace geometry
 
 }  // namespace plantarch

@@ -97,6 +97,8 @@ LeafTrig trigOf(const LeafOrgan& leaf) {
     t.roll = leaf.roll;
     t.leaflet = leaf.leafletIndex;
     t.set = true;
+    t.target = leaf.angleTarget;
+    if (leaf.angleTarget) t.normal = geometry::targetNormal(*leaf.angleTarget);
     if (leaf.leafletIndex != 0) {
         // Lateral leaflets are swung by yaw before they turn. Roll turns a leaflet about its
         // midrib so that a positive angle lifts its edge toward the petiole tip: the right-hand
@@ -146,6 +148,59 @@ inline V mix(float s, V a, float t, V b) {
 
 }  // namespace
 
+vec3 geometry::targetNormal(const LeafAngleTarget& t) {
+    const SinCos i = sinCosDeg(t.inclination), a = sinCosDeg(t.azimuth);
+    return glm::normalize(vec3(i.s * a.s, i.s * a.c, i.c));
+}
+
+vec3 geometry::meanNormal(const OrganPrototype& prototype) {
+    glm::dvec3 sum(0.0);
+    double area = 0.0;
+    for (const PrototypePart& part : prototype) {
+        const Mesh& m = part.mesh;
+        for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+            const glm::dvec3 a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]],
+                             c = m.positions[m.indices[i + 2]];
+            const glm::dvec3 n = glm::cross(b - a, c - a);
+            sum += n;
+            area += glm::length(n);
+        }
+    }
+    if (sum.z < 0.0) sum = -sum;  // the upper side is +z, whatever the triangles' winding
+    if (!(glm::length(sum) > 1e-3 * area)) return kUp;
+    return vec3(glm::normalize(sum));
+}
+
+namespace {
+
+// A leaf with a target pose (geometry::leafTransform): the frame whose z is the target normal
+// and whose x is the leaf's own x (`x`, else `y`) made square to it, applied after the turn
+// that takes the prototype's mean normal to its +z.
+mat4 targetTransform(vec3 origin, vec3 x, vec3 y, const LeafTrig& t, float scale, vec3 offset) {
+    const vec3 n = t.normal;
+    vec3 fx = x - glm::dot(x, n) * n;
+    if (glm::length(fx) < 1e-4f) fx = y - glm::dot(y, n) * n;
+    fx = unitOr(fx, anyPerpendicular(n));
+    const vec3 fy = glm::cross(n, fx);
+    // The prototype turned so that its mean normal is +z (the shortest turn).
+    const vec3 p = t.prototypeNormal;
+    vec3 axis = glm::cross(p, kUp);
+    const float turn = std::atan2(glm::length(axis), glm::dot(p, kUp));
+    axis = unitOr(axis, vec3(1.0f, 0.0f, 0.0f));
+    mat4 m(1.0f);
+    for (int i = 0; i < 3; ++i) {
+        vec3 e(0.0f);
+        e[i] = 1.0f;
+        const vec3 q = turn > 1e-7f ? rotateAbout(e, axis, turn) : e;
+        m[i] = glm::vec4((q.x * fx + q.y * fy + q.z * n) * scale, 0.0f);
+    }
+    const vec3 shift = vec3(m * glm::vec4(offset, 0.0f));
+    m[3] = glm::vec4(origin + shift, 1.0f);
+    return m;
+}
+
+}  // namespace
+
 mat4 geometry::leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTrig& t, float scale,
                              vec3 offset) {
     // uprightFrame, the lateral leaflet's swing, rotated and placement, lane by lane.
@@ -169,6 +224,7 @@ mat4 geometry::leafTransform(vec3 origin, vec3 tangent, vec3 side, const LeafTri
     const V x1 = mix(p.c, fx, p.s, fz), z1 = mix(-p.s, fx, p.c, fz);
     const V x2 = mix(w.c, x1, w.s, fy), y2 = mix(-w.s, x1, w.c, fy);
     const V y3 = mix(r.c, y2, r.s, z1), z3 = mix(-r.s, y2, r.c, z1);
+    if (t.target) return targetTransform(origin, vec3(x2), vec3(y3), t, scale, offset);
     offset *= scale;
     const V base = ((load(origin) + x2 * offset.x) + y3 * offset.y) + z3 * offset.z;
     mat4 m;
@@ -563,8 +619,10 @@ struct Tessellator {
             return;
         }
         const auto [origin, tangent] = alongPath(petiolePath, petioleMeasure, leaf.position);
-        const mat4 xf = geometry::leafTransform(origin, tangent, side, trigOf(leaf), scale,
-                                                lp.prototype.leaf_offset);
+        LeafTrig trig = trigOf(leaf);
+        if (trig.target) trig.prototypeNormal = prototypeNormal(leafPrototype(lp, leaf));
+        const mat4 xf =
+            geometry::leafTransform(origin, tangent, side, trig, scale, lp.prototype.leaf_offset);
         sink->writeParts(leaf.objects, prototypes.leafPrototype(lp, leaf, detail), xf,
                          {OrganKind::Leaf, &s, node, leaf.age, leaf.leafID});
     }
@@ -631,7 +689,8 @@ struct Tessellator {
             }
             LeafTrig& t = leafTrig[i];
             if (!t.set || t.leaflet != leaf.leafletIndex || !sameBits(t.pitch, leaf.pitch) ||
-                !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll))
+                !sameBits(t.yaw, leaf.yaw) || !sameBits(t.roll, leaf.roll) ||
+                t.target != leaf.angleTarget)
                 t = trigOf(leaf);
             if (!placed || !sameBits(position, leaf.position)) {
                 place = alongPath(petiolePath, petioleMeasure, leaf.position);
@@ -639,8 +698,6 @@ struct Tessellator {
                 placed = true;
             }
             const auto& [origin, tangent] = place;
-            out[i].transform =
-                geometry::leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
             if (!t.prototype || trig.epoch == 0 || t.epoch != trig.epoch || t.parameters != &lp ||
                 t.variant != leaf.variant || t.leafID != leaf.leafID) {
                 t.prototype = &leafPrototype(lp, leaf);
@@ -649,6 +706,12 @@ struct Tessellator {
                 t.leafID = leaf.leafID;
                 t.epoch = trig.epoch;
             }
+            if (t.target && t.normalPrototype != t.prototype) {
+                t.prototypeNormal = prototypeNormal(*t.prototype);
+                t.normalPrototype = t.prototype;
+            }
+            out[i].transform =
+                geometry::leafTransform(origin, tangent, side, t, scale, lp.prototype.leaf_offset);
             out[i].prototype = t.prototype;
         }
         return start;
@@ -662,6 +725,17 @@ struct Tessellator {
             lastLabel = ph.parametersLabel;
         }
         return *lastParameters;
+    }
+
+    // geometry::meanNormal of a leaf prototype, the last answer at hand.
+    const OrganPrototype* lastNormalPrototype = nullptr;
+    vec3 lastNormal{0.0f, 0.0f, 1.0f};
+    vec3 prototypeNormal(const OrganPrototype& prototype) {
+        if (lastNormalPrototype != &prototype) {
+            lastNormal = geometry::meanNormal(prototype);
+            lastNormalPrototype = &prototype;
+        }
+        return lastNormal;
     }
 
     // prototypes.leafPrototype with the last few answers at hand (a plant's leaves share a few).
@@ -869,9 +943,55 @@ double PrototypeCache::leafPrototypeArea(const LeafParameters& lp, const LeafOrg
     return area;
 }
 
+namespace {
+
+// A plant bent under load, for the length of a tessellation: each internode with a bend has
+// its directions, and the clearance axes of the organs on its node, turned by it; put back
+// as they were, to the bit, when it ends (docs/measured-plants.md).
+class BentView {
+public:
+    explicit BentView(PlantInstance& plant) {
+        for (Shoot& s : plant.shoots)
+            for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
+                Phytomer& ph = s.phytomers[i];
+                if (!ph.internode.bend || ph.internode.bend->angle == 0.0f) continue;
+                const InternodeBend b = *ph.internode.bend;
+                Internode& in = ph.internode;
+                turn(in.direction, b);
+                turn(in.guide, b);
+                turn(in.rollReference, b);
+                for (Petiole& pt : ph.petioles) {
+                    turn(pt.clearance.axis, b);
+                    for (FloralBud& fb : pt.floralBuds) floral(fb, b);
+                }
+                if (i + 1 == s.phytomers.size())
+                    for (FloralBud& fb : s.terminalFloralBuds) floral(fb, b);
+            }
+    }
+    ~BentView() {
+        for (auto& [where, was] : saved_) *where = was;
+    }
+    BentView(const BentView&) = delete;
+    BentView& operator=(const BentView&) = delete;
+
+private:
+    void turn(vec3& v, const InternodeBend& b) {
+        saved_.emplace_back(&v, v);
+        v = unitOr(rotateAbout(v, b.axis, b.angle * kDeg), v);
+    }
+    void floral(FloralBud& fb, const InternodeBend& b) {
+        turn(fb.peduncleClearance.axis, b);
+        for (FlowerOrgan& fl : fb.flowers) turn(fl.clearance.axis, b);
+    }
+    std::vector<std::pair<vec3*, vec3>> saved_;
+};
+
+}  // namespace
+
 void tessellatePlant(const PlantStore& store, PrototypeCache& prototypes, OrganSink& sink,
                      PlantInstance& plant) {
     prototypes.clearCallMemos();
+    const BentView bent(plant);
     Tessellator t{store, prototypes, plant, &sink, {}};
     t.run();
 }

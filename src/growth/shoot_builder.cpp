@@ -9,6 +9,7 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "growth/growth.h"
+#include "model/leaf_angle_distribution.h"
 #include "model/node_rules.h"
 #include "plantarch/Error.h"
 
@@ -93,6 +94,12 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
     if (plant.nitrogen)
         size *= 1.0f - plant.phenology.nitrogen.expansion_sensitivity *
                            (1.0f - std::clamp(plant.nitrogen->stress, 0.0f, 1.0f));
+    // A plant with a leaf angle distribution draws each leaf's pose last (none: no draw, so
+    // the plant's random stream is as without it).
+    const LeafAngleParameters& angles = plant.phenology.leaf_angles;
+    const leaf_angles::Sampler* poses = angles.inclination != LeafInclinationDistribution::None
+                                            ? &leaf_angles::sampler(angles)
+                                            : nullptr;
     auto leaf = [&](int index, float position, float scaleFactor, bool rotated) {
         LeafOrgan l;
         l.leafletIndex = index;
@@ -105,6 +112,7 @@ void addLeaves(PlantInstance& plant, Petiole& pt, const LeafParameters& lp) {
         // Which of the prototype's shape variants this leaf wears (0 = every leaf unique).
         const unsigned variants = lp.prototype.unique_prototypes;
         l.variant = variants > 1 ? plant.rng.nextU32() % variants : 0;
+        if (poses) l.angleTarget = poses->draw(plant.rng);
         pt.leaves.push_back(l);
     };
     if (n <= 1) {

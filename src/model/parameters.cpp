@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/value_text.h"
+#include "model/leaf_angle_distribution.h"
 #include "plantarch/Error.h"
 #include "plantarch/ParameterCheck.h"
 #include "plantarch/ParameterTable.h"
@@ -175,6 +176,8 @@ PLANTARCH_CHECK_FIELD(std::string)
 PLANTARCH_CHECK_FIELD(LeafShape)
 PLANTARCH_CHECK_FIELD(FlowerArrangement)
 PLANTARCH_CHECK_FIELD(NodeRuleTime)
+PLANTARCH_CHECK_FIELD(LeafInclinationDistribution)
+PLANTARCH_CHECK_FIELD(LeafAzimuthDistribution)
 PLANTARCH_CHECK_FIELD(Formula)
 #undef PLANTARCH_CHECK_FIELD
 
@@ -215,6 +218,7 @@ void validate(const PhenologyParameters& p, const std::string& prefix) {
                     {.parameter = at("nitrogen.minimum_leaf_nitrogen"),
                      .value = std::to_string(p.nitrogen.minimum_leaf_nitrogen),
                      .validRange = "<= target_leaf_nitrogen"});
+    leaf_angles::check(p.leaf_angles, at("leaf_angles"));
 }
 
 void validate(const ShootParameters& p, const std::string& prefix) {
