@@ -220,6 +220,11 @@ struct PlyReadOptions {
 std::vector<ObjectID> readPLY(Context& context, const std::string& path,
                               const PlyReadOptions& options = {});
 
+/// The points of a PLY file (a point cloud, or a mesh's vertices): its `vertex` element's x,
+/// y, z in file order, whatever else the file holds. Throws Error naming the file as readPLY
+/// does, and for a file without vertices.
+std::vector<vec3> readPLYPoints(const std::string& path);
+
 /// Reads the triangle meshes of a glTF 2.0 scene (.glb, or .gltf with its buffers embedded
 /// as data URIs; at most 4 GiB) into `context` and returns the IDs of the objects added: the
 /// default scene's nodes with their transforms, glTF's y up turned into plantarch's z up. A

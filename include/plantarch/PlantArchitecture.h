@@ -26,7 +26,8 @@
 
 namespace plantarch {
 struct PhysiologyRecord;  // plantarch/Physiology.h
-}
+struct SpeciesModel;      // plantarch/Species.h
+}  // namespace plantarch
 
 namespace plantarch {
 
@@ -100,6 +101,9 @@ public:
     /// Loads a species by library name ("bean") or file path ("my/plant.xml"): its shoot
     /// types replace the current ones and its phenology becomes the default.
     void loadPlantModelFromLibrary(const std::string& nameOrPath);
+    /// Loads a species already read (loadSpecies, editSpecies), as loadPlantModelFromLibrary
+    /// does; the files it names are found beside its sourceFile.
+    void loadPlantModel(const SpeciesModel& species);
     /// Names of the species in the library directory, sorted.
     std::vector<std::string> getAvailablePlantModels() const;
     /// Name of the loaded species ("" when none).
@@ -240,6 +244,26 @@ public:
     /// Harvest: removes all fruit and returns how many there were (fruit of zero size, just
     /// set, included).
     unsigned harvestPlant(unsigned plantID);
+
+    /// A shoot of `shootType` on measured points (a digitiser's nodes, a point-cloud
+    /// skeleton): docs/measured-plants.md. Point 0 is where the shoot starts, the plant's
+    /// base for the base stem (parentShootID -1) or node `parentNode` of the parent, and
+    /// must lie within options.attachTolerance of it; each further point ends one internode
+    /// (n points, n - 1 phytomers). `nodeRadii` holds the radius at each point (n values,
+    /// m, > 0; internode i takes the radius at its tip, point i + 1, and the first value is
+    /// not used) or is empty (the type's radius_initial). Petioles, leaves and buds are placed by
+    /// the type's parameters. The measured internodes keep their length, direction and radius as
+    /// the plant grows (Phytomer::measured); growth goes on from the tip and the axillary buds as
+    /// the type says. Returns the shoot's ID. Bad input throws naming the argument, value and
+    /// range.
+    unsigned addShootFromNodePositions(unsigned plantID, int parentShootID, unsigned parentNode,
+                                       const std::vector<vec3>& nodePositions,
+                                       const std::vector<float>& nodeRadii,
+                                       const std::string& shootType,
+                                       const MeasuredShootOptions& options = {});
+    /// The shoot type the loaded species makes its base stem of (its first build step); ""
+    /// when no species is loaded or it has no build steps.
+    std::string getBaseStemShootType() const;
 
     /// Adds a flowering bud at a node with the given stage (for hand-built plants; growth
     /// makes them on its own). Returns the number of flowers on its peduncle.

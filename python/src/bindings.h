@@ -58,6 +58,10 @@ void bindGeometry(py::module_& m);      // geometry.cpp: numpy views of the mesh
 void bindArchitecture(py::module_& m);  // architecture.cpp: PlantArchitecture
 void bindLight(py::module_& m);         // light.cpp: weather, sun, light model, photosynthesis
 void bindPhysiology(py::module_& m);    // physiology.cpp: carbon and nitrogen
+void bindSkeleton(py::module_& m);      // skeleton.cpp: measured plants, skeletons, MTG
+void bindLeafAngles(py::module_& m);    // leaf_angles.cpp: leaf inclination histograms
+void bindBending(py::module_& m);       // bending.cpp: shoots bending under load
+void bindCalibration(py::module_& m);   // calibration.cpp: fitting species to measurements
 void bindOutput(py::module_& m);        // output.cpp: exporters, renderer, species files
 
 }  // namespace plantarch::python

@@ -29,6 +29,10 @@ PYBIND11_MODULE(_plantarch, m) {
     bindOutput(m);
     bindLight(m);
     bindPhysiology(m);  // after bindArchitecture: adds PlantArchitecture's methods
+    bindLeafAngles(m);
+    bindBending(m);
+    bindCalibration(m);
+    bindSkeleton(m);  // after bindArchitecture: adds PlantArchitecture's methods
 #ifdef PLANTARCH_VERSION_STRING
     m.attr("__version__") = PLANTARCH_VERSION_STRING;
 #endif

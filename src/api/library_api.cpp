@@ -27,7 +27,11 @@ namespace {
 }  // namespace
 
 void PlantArchitecture::loadPlantModelFromLibrary(const std::string& nameOrPath) {
-    auto model = std::make_shared<SpeciesModel>(loadSpecies(nameOrPath));
+    loadPlantModel(loadSpecies(nameOrPath));
+}
+
+void PlantArchitecture::loadPlantModel(const SpeciesModel& species) {
+    auto model = std::make_shared<SpeciesModel>(species);
     // Validate everything before replacing anything: a failed load leaves the old model.
     if (const std::vector<Error> bad = checkSpeciesFiles(*model); !bad.empty()) throw bad.front();
     for (const auto& [label, params] : speciesShootTypes(*model)) {

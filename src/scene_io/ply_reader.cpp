@@ -486,4 +486,21 @@ std::vector<ObjectID> readPLY(Context& context, const std::string& path,
     return made;
 }
 
+std::vector<vec3> readPLYPoints(const std::string& path) {
+    io::InputFile file(path, kPLYFile);
+    Reader r(file.readAll(), path);
+    const Header h = r.header();
+    std::vector<vec3> vertices, colours;
+    for (const Element& e : h.elements) {
+        r.checkCount(e);
+        if (e.name == "vertex") {
+            readVertices(r, e, vertices, colours);
+            break;  // the elements after the vertices (faces) are not needed
+        }
+        for (std::uint64_t i = 0; i < e.count; ++i) r.skipItem(e);
+    }
+    if (vertices.empty()) r.fail("no points: a point cloud needs a vertex element of x, y, z");
+    return vertices;
+}
+
 }  // namespace plantarch
