@@ -194,9 +194,10 @@ PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress = tr
 /// opens: "is a directory, not a <what>" or "cannot open <what>".
 void requireInputFile(const std::string& path, const std::string& what,
                       const std::string& option = "");
-/// Reads plants from a plant structure file (.xml; its warnings go to stderr) or a file of
-/// plant strings (.txt, whose shoot types come from `species`, required then). Returns
-/// the plants' IDs.
+/// Reads plants from a plant structure file (.xml; its warnings go to stderr), a file of
+/// plant strings (.txt) or a measured skeleton (.mtg, .csv, .json: reconstructPlants with
+/// its defaults); the last two take their shoot types from `species`, required then.
+/// Returns the plants' IDs.
 std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string& path,
                                      const std::string& species);
 /// Adds --digits (significant digits of plant strings) to a subcommand.

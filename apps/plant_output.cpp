@@ -1,6 +1,6 @@
-// Plant inputs shared by the commands that read plants (plant structure files and plant
-// strings), and the option and file helpers their outputs share; the outputs themselves are
-// written through plantarch/PlantFiles.h.
+// Plant inputs shared by the commands that read plants (plant structure files, plant
+// strings and measured skeletons), and the option and file helpers their outputs share; the outputs
+// themselves are written through plantarch/PlantFiles.h.
 
 #include <unistd.h>
 
@@ -14,6 +14,7 @@
 #include "plantarch/Error.h"
 #include "plantarch/InputFiles.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/Skeleton.h"
 
 namespace plantarch::cli {
 
@@ -53,9 +54,21 @@ std::vector<unsigned> readPlantInput(PlantArchitecture& arch, const std::string&
         if (!species.empty()) arch.loadPlantModelFromLibrary(species);  // defaults for listings
         return arch.readPlantStructureXML(path, o);
     }
+    if (ext == ".mtg" || ext == ".csv" || ext == ".json") {
+        if (species.empty())
+            throw Error("a skeleton gives points only: give the species with --species",
+                        {.file = path,
+                         .parameter = "--species",
+                         .validRange = "a library species or species file"});
+        const Skeleton skeleton = readSkeletonFile(path);  // read before the species loads
+        arch.loadPlantModelFromLibrary(species);
+        return reconstructPlants(arch, skeleton);
+    }
     if (ext != ".txt")
         throw Error("unknown plant file format",
-                    {.file = path, .value = ext, .validRange = ".xml, .txt"});
+                    {.file = path,
+                     .value = ext,
+                     .validRange = ".xml, .txt, or a skeleton: .mtg, .csv, .json"});
     if (species.empty())
         throw Error("plant strings name shoot types only: give the species with --species",
                     {.file = path,

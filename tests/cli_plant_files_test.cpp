@@ -91,7 +91,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
         {"convert " + d + "/b.xml " + d + "/x.usdz",
          d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
              ".png, "
-             ".npz, .xml, .helios.xml, .txt, .csv)"},
+             ".npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
          d + "/missing.xml: cannot open plant structure file: No such file or directory"},
         {"convert " + d + "/b.xml", "output is required"},

@@ -4,6 +4,7 @@
 // phytomers are.
 
 #include <string>
+#include <vector>
 
 #include "plantarch/PlantState.h"
 
@@ -29,6 +30,23 @@ struct ShootSpec {
     PhytomerSize size;          ///< size of the phytomers created
     float radiusTaper = 0.0f;   ///< tip radius reduction along the shoot, [0, 1] (radius_taper)
     std::string shootType;      ///< label given to defineShootType (shoot_type_label)
+};
+
+/// Options of PlantArchitecture::addShootFromNodePositions. Errors name the option.
+struct MeasuredShootOptions {
+    /// Petiole and leaf size of the measured phytomers now, as a fraction of full size,
+    /// (0, 1] (leaf_scale); below 1 they grow on as young leaves do.
+    float leafScale = 1.0f;
+    /// How far the first point may be from where the shoot starts (the plant's base, or
+    /// the parent's node), m, [0, 10] (attach_tolerance).
+    float attachTolerance = 0.01f;
+    /// A shoot from a parent continues its tip (as appendShoot, `parentNode` its last node)
+    /// instead of growing from the axil of `petioleIndex` at `parentNode` (continue_parent).
+    bool continueParent = false;
+    unsigned petioleIndex = 0;  ///< axil of a lateral shoot (petiole_index)
+    /// Phytomers (0 for the first internode's) measured bare: their leaves are removed, with
+    /// their petioles' length and radius (bare_nodes).
+    std::vector<unsigned> bareNodes;
 };
 
 }  // namespace plantarch

@@ -715,7 +715,7 @@ struct Grower {
                 downstream += atNode[k];
                 const Phytomer& ph = s.phytomers[k];
                 target[k] = ph.internode.radius;
-                if (s.girthAreaFactor > 0.0f) {
+                if (s.girthAreaFactor > 0.0f && !ph.measured) {  // a measured radius stays
                     const double area = double(s.girthAreaFactor) * downstream * 1e-4;  // m^2
                     target[k] = std::max(
                         {ph.internode.radius, float(std::sqrt(area / kPi)), ph.radiusInitial});

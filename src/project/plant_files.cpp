@@ -15,6 +15,7 @@
 #include "plantarch/OutputFormats.h"
 #include "plantarch/PlantFiles.h"
 #include "plantarch/PlantStructureWrite.h"
+#include "plantarch/Skeleton.h"
 
 namespace plantarch {
 
@@ -90,6 +91,16 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
 
 namespace {
 
+// A skeleton node table: name ends .skeleton.csv.
+bool isSkeletonPath(const std::string& path) {
+    const std::string name = std::filesystem::path(path).filename().string();
+    constexpr std::string_view suffix = ".skeleton.csv";
+    if (name.size() <= suffix.size()) return false;
+    std::string tail = name.substr(name.size() - suffix.size());
+    for (char& c : tail) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return tail == suffix;
+}
+
 // A `<helios>` plant structure file (the reference system's layout): name ends .helios.xml.
 bool isHeliosPath(const std::string& path) {
     const std::string name = std::filesystem::path(path).filename().string();
@@ -111,6 +122,10 @@ void writePlantFile(const PlantArchitecture& arch, const std::vector<unsigned>& 
         PlantStructureWriteOptions o;
         o.objectIDs = g.objectIDs;
         writePlantStructureXML(arch, plants, path, o);
+    } else if (ext == ".mtg") {
+        writeFileAtomically(path, plantsMTG(arch, plants));
+    } else if (ext == ".csv" && isSkeletonPath(path)) {
+        writeFileAtomically(path, skeletonCSV(plantSkeleton(arch, plants)));
     } else if (ext == ".csv") {
         writeQSM(arch, plants, path);
     } else if (ext == ".txt") {
@@ -204,7 +219,7 @@ void writeSeparatePlantFiles(const PlantArchitecture& arch, const std::vector<un
         for (const std::string& path : paths) {
             const std::string file = separatePlantFileName(path, id);
             const std::string ext = lowerExtension(path);
-            if (ext == ".xml" || ext == ".txt" || ext == ".csv") {
+            if (ext == ".xml" || ext == ".txt" || ext == ".csv" || ext == ".mtg") {
                 writePlantFile(arch, {id}, file, quiet);
             } else {
                 Context one;

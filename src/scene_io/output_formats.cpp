@@ -26,6 +26,8 @@ constexpr OutputFormat kOutputFormats[] = {
     {".helios.xml", "plant structure file in the Helios layout", kPlantOutput},
     {".txt", "plant strings, one line per plant", kPlantOutput},
     {".csv", "quantitative structure model (cylinders)", kPlantOutput},
+    {".skeleton.csv", "skeleton node table (id, parent, x, y, z, radius ...)", kPlantOutput},
+    {".mtg", "MTG multiscale tree graph (OpenAlea)", kPlantOutput},
 };
 
 std::string lower(std::string text) {
