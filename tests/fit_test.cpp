@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "calibration/fit_cloud.h"
 #include "error_of.h"
@@ -281,4 +282,44 @@ TEST_F(Fit, CloudDistancesAreThoseWorkedByHand) {
     const double d =
         fit::symmetricMeanDistance(cloud, cloud.points(), soup, {vec3(0.25f, 0.25f, 0.0f)});
     EXPECT_NEAR(d, 0.5 * (1.0 + std::sqrt(1.125)), 1e-6);
+}
+
+// Every statistic a target can name is simulated: counts, widths, the leaf inclination (the
+// mean of plantarch/LeafAngles.h and PlantSummary's histogram, its 9 bins summing to 1).
+TEST_F(Fit, EveryStatisticIsSimulated) {
+    const SpeciesModel bean = loadSpecies("bean");
+    std::string ages = "{\"age\": 25";
+    for (FitStatistic s : fitStatistics()) {
+        const std::string name = fitStatisticName(s);
+        if (s == FitStatistic::InternodeLength)
+            ages += ", \"" + name + "\": [{\"rank\": 1, \"value\": 0.02}]";
+        else if (s == FitStatistic::LeafInclinationHistogram)
+            ages += ", \"" + name + "\": {\"values\": [0.2, 0.2, 0.1, 0.1, 0.1, 0.1, 0.1, 0.05, " +
+                    "0.05], \"sd\": 0.05}";
+        else
+            ages += ", \"" + name + "\": {\"value\": 1, \"sd\": 1}";
+    }
+    const std::string text =
+        "{\"plantarch_fit\": 1, \"seeds\": [3],\n \"parameters\": [{\"path\": "
+        "\"trifoliate.phyllochron_min\", \"lower\": 1, \"upper\": 4}],\n "
+        "\"ages\": [" +
+        ages + "}]}";
+    std::vector<FitResidual> r;
+    fitObjective(bean, readFitTargetString(text, "t.json"), {2.0}, {}, &r);
+    ASSERT_EQ(r.size(), fitStatistics().size() - 1 + 9);
+    std::map<std::string, double> v;
+    double histogram = 0.0;
+    for (const FitResidual& x : r) {
+        v[x.statistic] = x.simulated;
+        if (x.statistic.rfind("leaf_inclination_histogram[", 0) == 0) histogram += x.simulated;
+    }
+    EXPECT_NEAR(histogram, 1.0, 1e-5);
+    EXPECT_GT(v.at("height"), 0.1);
+    EXPECT_GT(v.at("leaves"), 10.0);
+    EXPECT_GE(v.at("shoots"), v.at("branches") + 1.0);
+    EXPECT_GT(v.at("width_long"), 0.0);
+    EXPECT_GE(v.at("width_long") + 1e-6, v.at("width_short"));
+    EXPECT_GT(v.at("internode_length[1]"), 0.0);
+    EXPECT_GT(v.at("leaf_inclination"), 5.0);
+    EXPECT_LT(v.at("leaf_inclination"), 85.0);
 }

@@ -36,19 +36,22 @@ struct FitParameter {
 /// The statistics a measurement can name (`plantarch fit` target files use the names of
 /// fitStatisticName).
 enum class FitStatistic {
-    Height,                    ///< m, top of the plant above its base
-    LeafArea,                  ///< m^2, one-sided
-    Leaves,                    ///< leaf count (each leaflet one)
-    Shoots,                    ///< shoot count (every rank)
-    Branches,                  ///< shoots of rank 1 and above
-    MainNodes,                 ///< phytomers of the main shoot
-    WidthX,                    ///< m, the plant's box along x
-    WidthY,                    ///< m, along y
-    WidthLong,                 ///< m, largest horizontal extent
-    WidthShort,                ///< m, extent square to it
-    InternodeLength,           ///< m, mean current internode length of the shoots of one rank
-    LeafInclination,           ///< degrees, area-weighted mean leaf inclination from horizontal
-    LeafInclinationHistogram,  ///< fractions of leaf area in 0-10, ... 80-90 degrees (9 bins)
+    Height,           ///< m, top of the plant above its base
+    LeafArea,         ///< m^2, one-sided
+    Leaves,           ///< leaf count (each leaflet one)
+    Shoots,           ///< shoot count (every rank)
+    Branches,         ///< shoots of rank 1 and above
+    MainNodes,        ///< phytomers of the main shoot
+    WidthX,           ///< m, the plant's box along x
+    WidthY,           ///< m, along y
+    WidthLong,        ///< m, largest horizontal extent
+    WidthShort,       ///< m, extent square to it
+    InternodeLength,  ///< m, mean current internode length of the shoots of one rank
+    /// degrees, area-weighted mean leaf inclination from horizontal (meanLeafInclination,
+    /// plantarch/LeafAngles.h)
+    LeafInclination,
+    /// fractions of leaf area in 0-10, ... 80-90 degrees (9 bins, PlantSummary's)
+    LeafInclinationHistogram,
 };
 const char* fitStatisticName(FitStatistic s);
 /// Every statistic, in the order above.

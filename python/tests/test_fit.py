@@ -85,3 +85,13 @@ def test_the_report_is_drawn_and_bad_reports_get_one_line(tmp_path):
         assert r.returncode != 0
         assert message in r.stderr, r.stderr
         assert r.stderr.count("\n") == 1, r.stderr
+
+
+def test_point_clouds_are_read_and_bad_ones_get_one_line(tmp_path):
+    xyz = tmp_path / "scan.xyz"
+    xyz.write_text("# x y z\n0 0 0\n0.1 0.2 0.3 extra columns\n")
+    points = plantarch.readPointCloudFile(str(xyz))
+    assert len(points) == 2 and abs(points[1].z - 0.3) < 1e-6
+    xyz.write_text("0 0 0\n0.1 nan 0.3\n")
+    with pytest.raises(plantarch.Error, match="scan.xyz:2: '0.1 nan 0.3': expected three numbers"):
+        plantarch.readPointCloudFile(str(xyz))

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <set>
 
 #include "calibration/fit_cloud.h"
@@ -18,6 +17,7 @@
 #include "plantarch/Calibration.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/LeafAngles.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantSummary.h"
 #include "plantarch/SpeciesIO.h"
@@ -31,28 +31,6 @@ bool wholeKind(const SpeciesModel& species, const std::string& path);
 double speciesValue(const SpeciesModel& species, const std::string& path);
 
 namespace {
-
-// The area-weighted mean inclination of the leaves from horizontal (degrees; 0 without
-// leaf area).
-double meanLeafInclination(const PlantArchitecture& arch, unsigned plant) {
-    const Context& ctx = arch.context();
-    double area = 0.0, sum = 0.0;
-    for (ObjectID id : arch.getPlantObjectIDs(plant, OrganKind::Leaf)) {
-        const ObjectView o = ctx.object(id);
-        for (std::size_t t = 0; t + 2 < o.indices.size(); t += 3) {
-            const vec3 a = o.positions[o.indices[t]], b = o.positions[o.indices[t + 1]],
-                       c = o.positions[o.indices[t + 2]];
-            const vec3 n = glm::cross(b - a, c - a);
-            const double twice = glm::length(n);
-            if (!(twice > 0.0)) continue;
-            const double angle =
-                std::acos(std::min(1.0, std::abs(double(n.z)) / twice)) * 180.0 / std::numbers::pi;
-            area += 0.5 * twice;
-            sum += 0.5 * twice * angle;
-        }
-    }
-    return area > 0.0 ? sum / area : 0.0;
-}
 
 // Mean current internode length of the shoots of one rank (m; 0 when none).
 double meanInternode(const PlantInstance& p, unsigned rank) {
@@ -110,7 +88,7 @@ void measure(const PlantArchitecture& arch, unsigned plant, const PlantSummary& 
             out.push_back(meanInternode(p, m.rank));
             return;
         case FitStatistic::LeafInclination:
-            out.push_back(meanLeafInclination(arch, plant));
+            out.push_back(plantarch::meanLeafInclination(arch, plant));
             return;
         case FitStatistic::LeafInclinationHistogram:
             for (float f : s.leafInclination) out.push_back(f);
@@ -155,7 +133,18 @@ struct Problem {
             whole.push_back(wholeKind(s, p.path));
         }
         if (t.pointCloud) {
-            std::vector<vec3> points = readCloudPoints(t.pointCloud->path);
+            std::vector<vec3> points;
+            try {
+                points = readCloudPoints(t.pointCloud->path);
+            } catch (const Error& e) {
+                // A file that does not open is named where the target names it.
+                if (e.line() != 0) throw;
+                throw Error(e.message(), {.file = t.file,
+                                          .line = t.pointCloud->line,
+                                          .parameter = "point_cloud/file",
+                                          .value = t.pointCloud->file,
+                                          .validRange = e.validRange()});
+            }
             for (vec3& p : points) p -= t.pointCloud->offset;
             cloudPoints = cloudSample(points, t.pointCloud->points, vec3(0.0f));
             cloud = std::make_unique<CloudScene>(std::move(points));

@@ -266,8 +266,9 @@ FitPointCloud readCloud(const TargetReader& r, const json& j, const std::string&
     c.file = r.string(r.required(j, at, "file", "a .ply, .xyz, .txt or .pts file"), at + "/file",
                       "a .ply, .xyz, .txt or .pts file");
     const std::filesystem::path p(c.file);
-    c.path =
-        p.is_absolute() || folder.empty() ? c.file : (std::filesystem::path(folder) / p).string();
+    c.path = p.is_absolute() || folder.empty() || folder == "."
+                 ? c.file
+                 : (std::filesystem::path(folder) / p).string();
     const NumberRange ages = positive(kMaxAge);
     c.age = r.number(r.required(j, at, "age", "days " + rangeText(ages)), at + "/age", ages);
     if (j.contains("points"))
