@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bend_options.h"
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -29,6 +30,7 @@ struct BuildArgs {
     CollisionArgs collision;
     AnimationArgs animation;
     PhysiologyArgs physiology;
+    BendArgs bend;
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
@@ -47,12 +49,16 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
     app.add_flag("--stats", a->stats, "Print one JSON object with the plant's statistics");
     addCollisionOptions(app, a->collision);
     addPhysiologyOptions(app, a->physiology, true);
+    addBendOptions(app, a->bend);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames =
             prepareGrowthOutputs(a->outputs, a->stats || !a->physiology.series.empty(), a->age,
                                  a->animation, global.points);
         checkCollisionOptions(a->collision);
         checkPhysiologyOptions(a->physiology);
+        checkBendOptions(a->bend);
+        if (frames && (!a->bend.pull.empty() || !a->bend.displace.empty()))
+            throw Error("--pull and --displace bend the plant at --age, not --frames");
         const bool physiology = physiologyOn(a->physiology);
         const float buildAge = physiologyBuildAge(a->physiology, a->age, frames.has_value());
         CommandOutputs outputs(a->outputs);
@@ -71,7 +77,9 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant = arch.buildPlantInstanceFromLibrary(
             vec3(0.0f), frames ? 0.0f : buildAge, parseDefines(a->defines));
+        enableBending(arch, {plant}, a->bend);
         if (physiology) growWithPhysiology(arch, {plant}, a->physiology, a->age - buildAge);
+        if (!frames) applyBending(arch, {plant}, a->bend, a->stats ? stderr : stdout);
         info(global, fmt::format("plantarch: species loaded and {} in {:.2f} ms",
                                  frames ? "planted" : "grown", millisecondsSince(started)));
         if (frames) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bend_options.h"
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
@@ -25,6 +26,7 @@ struct GrowArgs {
     AnimationArgs animation;
     bool noGroundClearance = false;
     PhysiologyArgs physiology;
+    BendArgs bend;
 };
 
 std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
@@ -44,6 +46,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
     addStringDigitsOption(app, global);
     addLabelOptions(app, global);
     addPhysiologyOptions(app, a->physiology, false);
+    addBendOptions(app, a->bend);
     return [a, &global]() {
         const std::optional<GrowthFrames> frames = parseFrames(a->animation);
         if (frames && a->days >= 0.0)
@@ -51,6 +54,9 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         if (!frames && a->days < 0.0)
             throw Error("--days is required (or --frames for a growth animation)");
         checkPhysiologyOptions(a->physiology);
+        checkBendOptions(a->bend);
+        if (frames && (!a->bend.pull.empty() || !a->bend.displace.empty()))
+            throw Error("--pull and --displace bend the plants after --days, not --frames");
         if (frames && physiologyOn(a->physiology))
             throw Error("--carbon/--nitrogen grow with --days, not --frames");
         if (frames)
@@ -72,6 +78,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         info(global,
              fmt::format("plantarch: {} read in {:.2f} ms", a->input, millisecondsSince(started)));
         if (a->noGroundClearance) arch.setGroundClearance(false);
+        enableBending(arch, plants, a->bend);
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, plants, *frames, a->outputs,
@@ -81,6 +88,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
                 growWithPhysiology(arch, plants, a->physiology, a->days);
             else
                 arch.advanceTime(plants, a->days);
+            applyBending(arch, plants, a->bend, stdout);
             for (const std::string& out : a->outputs)
                 writePlantFile(arch, plants, out, plantFileOptions(global));
         }

@@ -21,6 +21,7 @@
 #include "core/math.h"
 #include "core/value_text.h"
 #include "geometry/tessellate.h"
+#include "growth/bending.h"
 #include "growth/leaf_expansion.h"
 #include "model/carbon_costs.h"
 #include "model/node_rules.h"
@@ -942,6 +943,8 @@ void growPlant(const GrowthContext& growth, PlantInstance& plant, double days,
                     growth.clearanceCounts);
     if (growth.store.groundClipping)
         clipBelowGround(growth.store, growth.prototypes, plant, *growth.store.groundClipping);
+    if (plant.phenology.mechanics.enabled)  // shoots bending under load
+        bending::bendPlant(growth.store, growth.prototypes, plant);
 }
 
 }  // namespace plantarch
