@@ -13,6 +13,7 @@
 
 #include "bend_options.h"
 #include "cli.h"
+#include "leaf_angle_option.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
@@ -31,6 +32,7 @@ struct BuildArgs {
     AnimationArgs animation;
     PhysiologyArgs physiology;
     BendArgs bend;
+    std::string leafAngles;
 };
 
 std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
@@ -39,6 +41,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         "string)");
     auto a = std::make_shared<BuildArgs>();
     addPlantOptions(app, a->species, a->age, a->defines, a->noTrellis);
+    addLeafAngleOption(app, a->leafAngles);
     addAnimationOptions(app, a->animation, "of age");
     app.add_option("-o,--output", a->outputs,
                    "Output file(s): " + outputExtensions(kSceneOutput | kPlantOutput) +
@@ -72,7 +75,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         arch.setMeshDetail(global.meshDetail);
         arch.setProgressCallback(terminalProgress());
         const auto started = std::chrono::steady_clock::now();  // for -v
-        arch.loadPlantModelFromLibrary(a->species);
+        loadSpeciesWithLeafAngles(arch, a->species, a->leafAngles);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const unsigned plant = arch.buildPlantInstanceFromLibrary(

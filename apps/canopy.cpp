@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "cli.h"
+#include "leaf_angle_option.h"
 #include "plantarch/Error.h"
 #include "plantarch/PlantArchitecture.h"
 
@@ -28,6 +29,7 @@ struct CanopyArgs {
     CollisionArgs collision;
     AnimationArgs animation;
     PhysiologyArgs physiology;
+    std::string leafAngles;
 };
 
 std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
@@ -38,6 +40,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
     app.add_option("--count", a->count, "Plants along x and y, e.g. 10x10");
     app.add_option("--spacing", a->spacing, "Plant spacing along x and y in metres, e.g. 0.3x0.3");
     app.add_option("--age", a->age, "Plant age in days (0 to 100000)")->check(daysCheck("--age"));
+    addLeafAngleOption(app, a->leafAngles);
     addAnimationOptions(app, a->animation, "of age");
     app.add_option("--germination", a->germination,
                    "Probability each position has a plant (0 to 1)")
@@ -92,7 +95,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         arch.setProgressCallback(terminalProgress());
         arch.setMeshDetail(global.meshDetail);
         const auto started = std::chrono::steady_clock::now();  // for -v
-        arch.loadPlantModelFromLibrary(a->species);
+        loadSpeciesWithLeafAngles(arch, a->species, a->leafAngles);
         arch.setTrellisGeometry(!a->noTrellis);
         applyCollisionOptions(a->collision, arch, ctx);
         const auto plants = arch.buildPlantCanopyFromLibrary(

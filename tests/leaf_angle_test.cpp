@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numbers>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -497,4 +499,30 @@ TEST(LeafAngle, TheLightModelSeesTheExtinctionCoefficient) {
                     k, se);
         EXPECT_NEAR(measured, k, 4 * se + slack);
     }
+}
+
+// docs/measured-plants.md's species file example is a valid distribution, and its shares are
+// its bins' weights.
+TEST(LeafAngle, TheDocsExampleIsValid) {
+    std::ifstream in(std::string(PLANTARCH_SOURCE_DIR) + "/docs/measured-plants.md");
+    std::stringstream page;
+    page << in.rdbuf();
+    const std::string doc = page.str();
+    const std::size_t section = doc.find("## Leaf angle distributions");
+    ASSERT_NE(section, std::string::npos);
+    const std::size_t block = doc.find("```xml", section);
+    ASSERT_NE(block, std::string::npos);
+    const std::size_t open = doc.find("<leaf_angles>", block),
+                      close = doc.find("</leaf_angles>", block);
+    ASSERT_NE(open, std::string::npos);
+    ASSERT_NE(close, std::string::npos);
+    const std::string angles = doc.substr(open + 13, close - open - 13);
+    const SpeciesModel m = readSpeciesString(speciesWith(angles), "docs example");
+    const LeafAngleParameters& p = m.phenology.leaf_angles;
+    EXPECT_EQ(p.inclination, LeafInclinationDistribution::Histogram);
+    EXPECT_EQ(p.azimuth, LeafAzimuthDistribution::VonMises);
+    const std::vector<double> shares = leafInclinationFractions(p, {0, 15, 30, 45, 60, 90});
+    const std::vector<double> weights{1, 3, 4, 3, 1};
+    for (std::size_t i = 0; i < weights.size(); ++i)
+        EXPECT_NEAR(shares[i], weights[i] / 12.0, 1e-9) << i;
 }

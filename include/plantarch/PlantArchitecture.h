@@ -383,6 +383,9 @@ public:
     void setPlantPhenologicalThresholds(unsigned plantID, const PhenologyParameters& thresholds);
     /// Thresholds given to plants added from now on.
     void setDefaultPhenology(const PhenologyParameters& thresholds);
+    /// The thresholds plants added from now on get (the loaded species' phenology, or what
+    /// setDefaultPhenology set): change one group, such as leaf_angles, and set them back.
+    PhenologyParameters getDefaultPhenology() const;
     /// Where the plant is in its yearly cycle now.
     PhenologyStage getPhenologyStage(unsigned plantID) const;
     /// Ends the plant's growing season now, as at its time_to_senescence: leaves fall unless

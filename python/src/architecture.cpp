@@ -488,6 +488,8 @@ void bindGrowth(py::class_<PlantArchitecture>& c) {
             py::arg("plantID"), py::arg("max_age"), "The plant stops developing at max_age days.")
         .def("setDefaultPhenology", &PlantArchitecture::setDefaultPhenology, py::arg("thresholds"),
              docs::PlantArchitecture_setDefaultPhenology)
+        .def("getDefaultPhenology", &PlantArchitecture::getDefaultPhenology,
+             docs::PlantArchitecture_getDefaultPhenology)
         .def("getPhenologyStage", &PlantArchitecture::getPhenologyStage, py::arg("plantID"),
              docs::PlantArchitecture_getPhenologyStage)
         .def(

@@ -179,6 +179,10 @@ void PlantArchitecture::setDefaultPhenology(const PhenologyParameters& t) {
     impl_->store.defaultPhenology = t;
 }
 
+PhenologyParameters PlantArchitecture::getDefaultPhenology() const {
+    return impl_->store.defaultPhenology;
+}
+
 PhenologyStage PlantArchitecture::getPhenologyStage(unsigned plantID) const {
     return impl_->store.plant(plantID).stage;
 }
