@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -407,4 +408,75 @@ TEST(Skeleton, EachBadInputGetsOneLineNamingFileAndLine) {
     EXPECT_NE(e.message().find("is a directory"), std::string::npos) << e.message();
     std::filesystem::remove(dir);
     EXPECT_EQ(errorOf([] { readSkeletonFile("plant.ply"); }).validRange(), ".csv, .json, .mtg");
+}
+
+TEST(MeasuredShoot, MeasuredLeavesFaceTheirNormalAndHaveTheirLength) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const std::string type = arch.getBaseStemShootType();
+    const unsigned plant = arch.addPlantInstance(vec3(0.0f), 20.0f);
+    MeasuredShootOptions o;
+    const vec3 facing = glm::normalize(vec3(0.3f, -0.2f, 0.9f));
+    o.leaves = {{1, vec3(0.6f, -0.4f, 1.8f), 0.08f}, {0, vec3(0.0f, 0.0f, -1.0f), 0.0f}};
+    const unsigned shoot = arch.addShootFromNodePositions(
+        plant, -1, 0, {vec3(0.0f), vec3(0, 0, 0.05f), vec3(0.01f, 0, 0.1f)}, {}, type, o);
+    const Phytomer& ph = arch.plant(plant).shoots[shoot].phytomers[1];
+    float largest = 0.0f;
+    int posed = 0;
+    for (const Petiole& pt : ph.petioles)
+        for (const LeafOrgan& l : pt.leaves) {
+            largest = std::max(largest, l.scale);
+            vec3 sum(0.0f);  // area-weighted normal of the blade's triangles
+            for (ObjectID id : l.objects) {
+                const ObjectView v = ctx.object(id);
+                for (std::size_t t = 0; t + 2 < v.indices.size(); t += 3) {
+                    const vec3 a = v.positions[v.indices[t]], b = v.positions[v.indices[t + 1]],
+                               c = v.positions[v.indices[t + 2]];
+                    sum += glm::cross(b - a, c - a);
+                }
+            }
+            ASSERT_GT(glm::length(sum), 0.0f);
+            const float angle =
+                std::acos(std::clamp(glm::dot(glm::normalize(sum), facing), -1.0f, 1.0f)) /
+                0.0174533f;
+            EXPECT_LT(angle, 3.0f) << "leaf " << l.leafID;
+            ++posed;
+        }
+    EXPECT_GT(posed, 0);
+    EXPECT_FLOAT_EQ(largest, 0.08f);
+    // A normal pointing down poses the blade's plane: the leaves of node 0 lie flat.
+    for (const Petiole& pt : arch.plant(plant).shoots[shoot].phytomers[0].petioles)
+        for (const LeafOrgan& l : pt.leaves) {
+            ASSERT_TRUE(l.angleTarget.has_value());
+            EXPECT_NEAR(l.angleTarget->inclination, 0.0f, 1e-4f);
+        }
+    o.leaves = {{5, std::nullopt, 0.0f}};
+    EXPECT_EQ(
+        errorOf([&] {
+            arch.addShootFromNodePositions(plant, 0, 1, {vec3(0.0f), vec3(0.1f)}, {}, type, o);
+        }).parameter(),
+        "leaves[0].node");
+    o.leaves = {{0, vec3(0.0f), 0.0f}};
+    EXPECT_EQ(
+        errorOf([&] {
+            arch.addShootFromNodePositions(plant, 0, 1, {vec3(0.0f), vec3(0.1f)}, {}, type, o);
+        }).parameter(),
+        "leaves[0].normal");
+    // The same from a node table: leaf_nx, leaf_ny, leaf_nz, leaf_length.
+    const Skeleton sk = readSkeletonString(
+        "id,parent,x,y,z,leaf_nx,leaf_ny,leaf_nz,leaf_length\n0,,0,0,0,,,,\n1,0,0,0,5,,,,\n"
+        "2,1,1,0,10,0.6,-0.4,1.8,8\n",
+        "csv", "leaves.csv");
+    ReconstructOptions ro;
+    ro.unit = 0.01f;
+    const unsigned rebuilt = reconstructPlants(arch, sk, ro).at(0);
+    for (const Petiole& pt : arch.plant(rebuilt).shoots[0].phytomers[1].petioles)
+        for (const LeafOrgan& l : pt.leaves) {
+            ASSERT_TRUE(l.angleTarget.has_value());
+            EXPECT_NEAR(l.angleTarget->inclination, std::acos(facing.z) / 0.0174533f, 1e-3f);
+        }
+    EXPECT_NE(skeletonCSV(sk).find("leaf_nx,leaf_ny,leaf_nz,leaf_length"), std::string::npos);
+    EXPECT_EQ(readSkeletonString(skeletonCSV(sk), "csv", "again").nodes[2].leafNormal,
+              sk.nodes[2].leafNormal);
 }

@@ -3,6 +3,7 @@
 // addChildShoot, appendPhytomerToShoot) is given: where a shoot starts and how large its new
 // phytomers are.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,17 @@ struct ShootSpec {
     std::string shootType;      ///< label given to defineShootType (shoot_type_label)
 };
 
+/// The leaves measured at one node of a measured shoot (MeasuredShootOptions::leaves).
+struct MeasuredLeaf {
+    unsigned node = 0;  ///< the phytomer (0 for the first internode's)
+    /// The way the blade faces (any length > 0; pointing down, taken as its opposite): its
+    /// leaves are posed so their mean normal stands so (LeafOrgan::angleTarget). None: as the
+    /// species places them.
+    std::optional<vec3> normal;
+    /// The blade's length, m, [0, 10]; its leaflets keep their proportions (0: the species').
+    float length = 0.0f;
+};
+
 /// Options of PlantArchitecture::addShootFromNodePositions. Errors name the option.
 struct MeasuredShootOptions {
     /// Petiole and leaf size of the measured phytomers now, as a fraction of full size,
@@ -47,6 +59,8 @@ struct MeasuredShootOptions {
     /// Phytomers (0 for the first internode's) measured bare: their leaves are removed, with
     /// their petioles' length and radius (bare_nodes).
     std::vector<unsigned> bareNodes;
+    /// Leaves measured at nodes: the way their blades face and their length (leaves).
+    std::vector<MeasuredLeaf> leaves;
 };
 
 }  // namespace plantarch

@@ -5,6 +5,7 @@
 // internodes run through the points (docs/measured-plants.md). Plants are written back as
 // node tables and MTG files too, so a plant can go to those tools and come back.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,10 @@ struct SkeletonNode {
     std::string shootType;
     /// Organs measured at this node: "bare" (no petioles or leaves), "flower", "fruit".
     std::vector<std::string> organs;
-    int line = 0;  ///< line of the file it was read from (0: none)
+    /// The way the blades of this node's leaves face, if measured (MeasuredLeaf::normal).
+    std::optional<vec3> leafNormal;
+    float leafLength = 0.0f;  ///< their largest blade's length, m (0: the species')
+    int line = 0;             ///< line of the file it was read from (0: none)
 };
 
 /// A plant's measured nodes, parents before children or in any order.
@@ -86,7 +90,8 @@ std::vector<unsigned> reconstructPlants(PlantArchitecture& arch, const Skeleton&
 /// shoots with the radius of the internode ending there (each shoot's first node names its
 /// type and its link); reconstructPlants of it rebuilds the plants' axes.
 Skeleton plantSkeleton(const PlantArchitecture& arch, const std::vector<unsigned>& plantIDs);
-/// A skeleton as a node table (.csv): id,parent,x,y,z,radius,link,shoot_type,organs.
+/// A skeleton as a node table (.csv): id,parent,x,y,z,radius,link,shoot_type,organs (and
+/// leaf_nx,leaf_ny,leaf_nz,leaf_length when a node has a measured leaf).
 std::string skeletonCSV(const Skeleton& skeleton);
 /// Plants as an MTG file (FORM-A): scales P (plant), A (axis: a shoot), I (internode: a
 /// phytomer), with the features docs/measured-plants.md lists.

@@ -3,6 +3,7 @@
 
 #include "plantarch/Skeleton.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,16 @@
 namespace plantarch::python {
 
 void bindSkeleton(py::module_& m) {
+    py::class_<MeasuredLeaf>(m, "MeasuredLeaf",
+                             "The leaves measured at one node of a measured shoot.")
+        .def(py::init([](unsigned node, std::optional<vec3> normal, float length) {
+                 return MeasuredLeaf{node, normal, length};
+             }),
+             py::arg("node"), py::arg("normal") = py::none(), py::arg("length") = 0.0f)
+        .def_readwrite("node", &MeasuredLeaf::node, "the phytomer, 0-based")
+        .def_readwrite("normal", &MeasuredLeaf::normal, "the way the blades face, or None")
+        .def_readwrite("length", &MeasuredLeaf::length,
+                       "the largest blade's length, m (0: the species')");
     py::class_<MeasuredShootOptions>(m, "MeasuredShootOptions",
                                      "Options of PlantArchitecture.addShootFromNodePositions.")
         .def(py::init<>())
@@ -25,7 +36,8 @@ void bindSkeleton(py::module_& m) {
         .def_readwrite("petioleIndex", &MeasuredShootOptions::petioleIndex,
                        "the axil of a lateral shoot")
         .def_readwrite("bareNodes", &MeasuredShootOptions::bareNodes,
-                       "phytomers (0-based) measured without leaves");
+                       "phytomers (0-based) measured without leaves")
+        .def_readwrite("leaves", &MeasuredShootOptions::leaves, "list of MeasuredLeaf");
     auto cls = py::reinterpret_borrow<py::class_<PlantArchitecture>>(m.attr("PlantArchitecture"));
     cls.def("addShootFromNodePositions", &PlantArchitecture::addShootFromNodePositions,
             py::arg("plantID"), py::arg("parent_shoot_ID"), py::arg("parent_node_index"),
@@ -65,6 +77,10 @@ void bindSkeleton(py::module_& m) {
         .def_readwrite("shootType", &SkeletonNode::shootType,
                        "shoot type of the axis this node starts ('': chosen)")
         .def_readwrite("organs", &SkeletonNode::organs, "tags: bare, flower, fruit")
+        .def_readwrite("leafNormal", &SkeletonNode::leafNormal,
+                       "the way the node's leaf blades face, or None")
+        .def_readwrite("leafLength", &SkeletonNode::leafLength,
+                       "the node's largest blade's length (0: the species')")
         .def_readwrite("line", &SkeletonNode::line, "line of the file it was read from");
     py::class_<Skeleton>(m, "Skeleton", "Measured nodes of one or more plants (one per root).")
         .def(py::init<>())

@@ -87,3 +87,20 @@ def test_the_check_picture_of_a_reconstruction(tmp_path):
                         "-o", str(tmp_path / "x.png")], capture_output=True, text=True)
     assert r.returncode != 0 and r.stderr.count("\n") == 1 and "plot_skeleton:" in r.stderr
     assert not (tmp_path / "x.png").exists()
+
+
+def test_measured_leaves_face_their_normal():
+    _, arch = architecture()
+    plant = arch.addPlantInstance((0, 0, 0), 15)
+    options = plantarch.MeasuredShootOptions()
+    options.leaves = [plantarch.MeasuredLeaf(1, normal=(0, 0.5, 1), length=0.07)]
+    arch.addShootFromNodePositions(plant, -1, 0, [(0, 0, 0), (0, 0, 0.05), (0, 0, 0.1)], [],
+                                   arch.getBaseStemShootType(), options)
+    leaves = [leaf for pt in arch.plant(plant).shoots[0].phytomers[1].petioles for leaf in pt.leaves]
+    assert leaves and max(leaf.leaf_scale for leaf in leaves) == pytest.approx(0.07)
+    expected = 26.565  # degrees from the zenith of (0, 0.5, 1)
+    assert all(leaf.angle_target.inclination == pytest.approx(expected, abs=1e-3) for leaf in leaves)
+    options.leaves = [plantarch.MeasuredLeaf(0, normal=(0, 0, 0))]
+    with pytest.raises(plantarch.Error, match=r"leaves\[0\]\.normal"):
+        arch.addShootFromNodePositions(plant, 0, 1, [(0, 0, 0.1), (0, 0, 0.2)], [],
+                                       arch.getBaseStemShootType(), options)

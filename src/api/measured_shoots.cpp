@@ -68,6 +68,28 @@ void checkPoints(const std::vector<vec3>& points, const std::vector<float>& radi
                          .validRange = "> 0 and <= 10 m"});
 }
 
+// A node's leaves as measured: their blades facing `m.normal` (inclination from the zenith,
+// azimuth clockwise from +y, as LeafAngleTarget says), the largest `m.length` long.
+void poseLeaves(Phytomer& ph, const MeasuredLeaf& m) {
+    float largest = 0.0f;
+    for (const Petiole& pt : ph.petioles)
+        for (const LeafOrgan& l : pt.leaves) largest = std::max(largest, l.scale);
+    for (Petiole& pt : ph.petioles)
+        for (LeafOrgan& l : pt.leaves) {
+            if (m.normal) {
+                // A blade's plane is what is posed: a normal pointing down counts as its
+                // opposite (inclinations are 0 to 90 degrees).
+                vec3 n = glm::normalize(*m.normal);
+                if (n.z < 0.0f) n = -n;
+                float azimuth = std::atan2(n.x, n.y) / kDeg;
+                if (azimuth < 0.0f) azimuth += 360.0f;
+                l.angleTarget =
+                    LeafAngleTarget{std::acos(std::clamp(n.z, -1.0f, 1.0f)) / kDeg, azimuth};
+            }
+            if (m.length > 0.0f && largest > 0.0f) l.scale *= m.length / largest;
+        }
+}
+
 }  // namespace
 
 unsigned PlantArchitecture::addShootFromNodePositions(unsigned plantID, int parentShootID,
@@ -79,6 +101,26 @@ unsigned PlantArchitecture::addShootFromNodePositions(unsigned plantID, int pare
     PlantInstance& p = impl_->store.plant(plantID);
     checkOptions(options);
     checkPoints(nodePositions, nodeRadii);
+    for (std::size_t i = 0; i < options.leaves.size(); ++i) {
+        const MeasuredLeaf& m = options.leaves[i];
+        const std::string at = "leaves[" + std::to_string(i) + "]";
+        if (m.node + 1 >= nodePositions.size())
+            throw Error("measured leaf's node out of range",
+                        {.parameter = at + ".node",
+                         .value = std::to_string(m.node),
+                         .validRange = "0 to " + std::to_string(nodePositions.size() - 2)});
+        if (m.normal && !(std::isfinite(m.normal->x) && std::isfinite(m.normal->y) &&
+                          std::isfinite(m.normal->z) && glm::length(*m.normal) > 1e-6f))
+            throw Error("measured leaf normal not a direction",
+                        {.parameter = at + ".normal",
+                         .value = pointText(*m.normal),
+                         .validRange = "finite, of length > 0"});
+        if (!(m.length >= 0.0f && m.length <= 10.0f))
+            throw Error("measured leaf length out of range",
+                        {.parameter = at + ".length",
+                         .value = std::to_string(m.length),
+                         .validRange = "0 to 10 m (0: the species')"});
+    }
     for (unsigned k : options.bareNodes)
         if (k + 1 >= nodePositions.size())
             throw Error("bare node out of range",
@@ -162,6 +204,7 @@ unsigned PlantArchitecture::addShootFromNodePositions(unsigned plantID, int pare
         from = to;
     }
     for (unsigned k : options.bareNodes) removeLeaves(s.phytomers[k]);
+    for (const MeasuredLeaf& m : options.leaves) poseLeaves(s.phytomers[m.node], m);
     // Internodes grown on from the tip take the type's length, not the first segment's.
     s.internodeLengthMax = std::max(type.internode_length_max.mean(), 0.0f);
     updateGeometry(plantID);

@@ -395,6 +395,23 @@ private:
                                                     .line = v.line,
                                                     .value = std::to_string(n.radius),
                                                     .validRange = ">= 0"});
+            const auto nx = number(v, {"leaf_nx"}), ny = number(v, {"leaf_ny"}),
+                       nz = number(v, {"leaf_nz"});
+            if (nx || ny || nz) {
+                if (!nx || !ny || !nz)
+                    throw Error(
+                        "a leaf normal needs leaf_nx, leaf_ny and leaf_nz",
+                        {.file = name_, .line = v.line, .validRange = "all three, or none"});
+                n.leafNormal = vec3(float(*nx), float(*ny), float(*nz));
+            }
+            if (const auto len = number(v, {"leaf_length"})) {
+                if (!(*len >= 0.0))
+                    throw Error("leaf length out of range", {.file = name_,
+                                                             .line = v.line,
+                                                             .parameter = "leaf_length",
+                                                             .validRange = ">= 0"});
+                n.leafLength = float(*len);
+            }
             for (const auto& [key, value] : v.features) {
                 const ErrorContext at{.file = name_, .line = v.line, .parameter = key};
                 if (lower(key) == "shoot_type") n.shootType = skeleton::checkedShootType(value, at);

@@ -163,6 +163,7 @@ private:
         unsigned parentNode = 0;
         MeasuredShootOptions so = o_.shoot;
         so.bareNodes.clear();
+        so.leaves.clear();
         if (axis.parentAxis >= 0) {
             if (axis.tiller) {
                 parentShoot = int(shootOf_.at(0));
@@ -204,6 +205,12 @@ private:
         for (std::size_t k = 1; k < axis.nodes.size(); ++k)
             for (const std::string& organ : sk_.nodes[axis.nodes[k]].organs)
                 if (organ == "bare") so.bareNodes.push_back(unsigned(nodeAt[k] - 1));
+        for (std::size_t k = 1; k < axis.nodes.size(); ++k) {
+            const SkeletonNode& n = sk_.nodes[axis.nodes[k]];
+            if (n.leafNormal || n.leafLength > 0.0f)
+                so.leaves.push_back(
+                    {unsigned(nodeAt[k] - 1), n.leafNormal, n.leafLength * o_.unit});
+        }
         std::sort(so.bareNodes.begin(), so.bareNodes.end());
         so.bareNodes.erase(std::unique(so.bareNodes.begin(), so.bareNodes.end()),
                            so.bareNodes.end());

@@ -86,8 +86,9 @@ constexpr double kMaxCoordinate = 1e5;  // m (or the file's unit): 100 km
 // ---- node tables ------------------------------------------------------------------------
 
 const std::vector<std::string>& csvColumns() {
-    static const std::vector<std::string> c{"id",     "parent", "x",          "y",     "z",
-                                            "radius", "link",   "shoot_type", "organs"};
+    static const std::vector<std::string> c{"id",      "parent",  "x",          "y",      "z",
+                                            "radius",  "link",    "shoot_type", "organs", "leaf_nx",
+                                            "leaf_ny", "leaf_nz", "leaf_length"};
     return c;
 }
 
@@ -217,6 +218,16 @@ Skeleton readCSV(const std::string& textIn, const std::string& name) {
         n.link = skeleton::parseLink(cell("link"), where("link"));
         n.shootType = skeleton::checkedShootType(cell("shoot_type"), where("shoot_type"));
         n.organs = skeleton::parseOrgans(cell("organs"), where("organs"));
+        const bool anyNormal =
+            !cell("leaf_nx").empty() || !cell("leaf_ny").empty() || !cell("leaf_nz").empty();
+        if (anyNormal)
+            n.leafNormal =
+                vec3(real("leaf_nx", -kMaxCoordinate, "a number, with leaf_ny and leaf_nz"),
+                     real("leaf_ny", -kMaxCoordinate, "a number, with leaf_nx and leaf_nz"),
+                     real("leaf_nz", -kMaxCoordinate, "a number, with leaf_nx and leaf_ny"));
+        if (!cell("leaf_length").empty())
+            n.leafLength =
+                real("leaf_length", 0.0, "a number 0 to 100000 (0 or empty: the species')");
         sk.nodes.push_back(std::move(n));
     }
     if (column.empty())
@@ -299,10 +310,10 @@ Skeleton readJSON(const std::string& text, const std::string& name) {
             // The line of the key as written (its first appearance in quotes).
             const std::size_t at =
                 text.find(json(key).dump(-1, ' ', false, json::error_handler_t::replace));
-            const int line = at == std::string::npos
-                                 ? 1
-                                 : 1 + int(std::count(text.begin(),
-                                                      text.begin() + std::ptrdiff_t(at), '\n'));
+            const int line =
+                at == std::string::npos
+                    ? 1
+                    : 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
             throw Error("unknown field", {.file = name,
                                           .line = line,
                                           .parameter = project::printable(key, 40),
@@ -316,8 +327,8 @@ Skeleton readJSON(const std::string& text, const std::string& name) {
                     {.file = name, .parameter = "nodes", .validRange = "at most 10000000 nodes"});
     Skeleton sk;
     sk.source = name;
-    const std::vector<std::string> keys{"id",   "parent",     "position", "radius",
-                                        "link", "shoot_type", "organs"};
+    const std::vector<std::string> keys{"id",         "parent", "position",    "radius",     "link",
+                                        "shoot_type", "organs", "leaf_normal", "leaf_length"};
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         const json& j = nodes[i];
         const int line = i < lines.size() ? lines[i] : 0;
@@ -402,6 +413,27 @@ Skeleton readJSON(const std::string& text, const std::string& name) {
             }
             n.organs = skeleton::parseOrgans(joined, at("organs"));
         }
+        if (j.contains("leaf_normal")) {
+            const json& v = j["leaf_normal"];
+            if (!v.is_array() || v.size() != 3)
+                fail("leaf_normal", "expected [x, y, z]", v, "three numbers");
+            vec3 normal{0.0f};
+            for (int k = 0; k < 3; ++k) {
+                const double d = v[k].is_number() ? v[k].get<double>() : NAN;
+                if (!(std::fabs(d) <= kMaxCoordinate))
+                    fail("leaf_normal/" + std::to_string(k), "expected a number in range", v[k],
+                         "a number -100000 to 100000");
+                normal[k] = float(d);
+            }
+            n.leafNormal = normal;
+        }
+        if (j.contains("leaf_length")) {
+            const double d = j["leaf_length"].is_number() ? j["leaf_length"].get<double>() : NAN;
+            if (!(d >= 0.0 && d <= kMaxCoordinate))
+                fail("leaf_length", "expected a number in range", j["leaf_length"],
+                     "a number 0 to 100000 (0: the species')");
+            n.leafLength = float(d);
+        }
         sk.nodes.push_back(std::move(n));
     }
     return sk;
@@ -456,6 +488,8 @@ void checkSkeleton(const Skeleton& sk) {
         if (!(std::isfinite(n.position.x) && std::isfinite(n.position.y) &&
               std::isfinite(n.position.z)))
             fail(n, "position not finite", "", "finite coordinates");
+        if (n.leafNormal && !(glm::length(*n.leafNormal) > 0.0f))
+            fail(n, "leaf normal of length 0", "", "a direction: a vector of length > 0");
         if (!(n.radius >= 0.0f && std::isfinite(n.radius)))
             fail(n, "radius out of range", std::to_string(n.radius), ">= 0");
         if (n.id < 0) fail(n, "node id out of range", std::to_string(n.id), "0 or more");
@@ -501,7 +535,11 @@ void checkSkeleton(const Skeleton& sk) {
 }
 
 std::string skeletonCSV(const Skeleton& sk) {
-    std::string out = "id,parent,x,y,z,radius,link,shoot_type,organs\n";
+    const bool leaves = std::any_of(sk.nodes.begin(), sk.nodes.end(), [](const SkeletonNode& n) {
+        return n.leafNormal || n.leafLength > 0.0f;
+    });
+    std::string out = "id,parent,x,y,z,radius,link,shoot_type,organs";
+    out += leaves ? ",leaf_nx,leaf_ny,leaf_nz,leaf_length\n" : "\n";
     char buf[256];
     for (const SkeletonNode& n : sk.nodes) {
         const char* link = n.link == SkeletonLink::Continue ? "<"
@@ -513,7 +551,23 @@ std::string skeletonCSV(const Skeleton& sk) {
                       double(n.position.x), double(n.position.y), double(n.position.z),
                       double(n.radius), link);
         out += buf;
-        out += n.shootType + "," + organs + "\n";
+        out += n.shootType + "," + organs;
+        if (leaves) {
+            if (n.leafNormal) {
+                std::snprintf(buf, sizeof buf, ",%.9g,%.9g,%.9g", double(n.leafNormal->x),
+                              double(n.leafNormal->y), double(n.leafNormal->z));
+                out += buf;
+            } else {
+                out += ",,,";
+            }
+            if (n.leafLength > 0.0f) {
+                std::snprintf(buf, sizeof buf, ",%.9g", double(n.leafLength));
+                out += buf;
+            } else {
+                out += ",";
+            }
+        }
+        out += "\n";
     }
     return out;
 }
