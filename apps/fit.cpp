@@ -33,7 +33,8 @@ std::string valuesText(const std::vector<std::string>& paths, const std::vector<
 
 std::function<int()> setupFit(CLI::App& app, GlobalOptions& global) {
     app.description(
-        "Fit parameters of a species to measured plants (statistics at ages, or a point cloud)");
+        "Fit parameters of a species to measured plants (statistics at ages, a point cloud or a "
+        "skeleton)");
     auto a = std::make_shared<FitArgs>();
     app.add_option("species", a->species, "Library species name or species file (.xml)")
         ->required();
@@ -64,6 +65,7 @@ std::function<int()> setupFit(CLI::App& app, GlobalOptions& global) {
         CommandOutputs files(outputs);
         files.requireNotAnInput(a->target, "--target");
         if (target.pointCloud) files.requireNotAnInput(target.pointCloud->path, "point_cloud");
+        if (target.skeleton) files.requireNotAnInput(target.skeleton->path, "skeleton");
 
         std::vector<std::string> paths;
         for (const FitParameter& p : target.parameters) paths.push_back(p.path);

@@ -17,6 +17,7 @@
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
+#include "plantarch/Skeleton.h"
 #include "plantarch/SpeciesIO.h"
 
 using namespace plantarch;
@@ -322,4 +323,36 @@ TEST_F(Fit, EveryStatisticIsSimulated) {
     EXPECT_GT(v.at("internode_length[1]"), 0.0);
     EXPECT_GT(v.at("leaf_inclination"), 5.0);
     EXPECT_LT(v.at("leaf_inclination"), 85.0);
+}
+
+// A measured skeleton of a plant (here a bean's own nodes written as a node table): the
+// distance to the same plant is 0, to one with longer internodes more; a fit from a start of
+// 0.035 m comes back to the bean's 0.025.
+TEST_F(Fit, ASkeletonOfThePlantItselfIsFittedBack) {
+    const SpeciesModel bean = loadSpecies("bean");
+    {
+        Context ctx;
+        PlantArchitecture arch(&ctx);
+        arch.setSeed(1);
+        arch.loadPlantModel(bean);
+        const unsigned plant = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 20.0f);
+        std::ofstream(at("plant.csv")) << skeletonCSV(plantSkeleton(arch, {plant}));
+    }
+    const std::string text =
+        "{\"plantarch_fit\": 1, \"seeds\": [1],\n"
+        " \"parameters\": [{\"path\": \"" +
+        std::string(kPath) +
+        "\", \"lower\": 0.015, \"upper\": 0.045, \"start\": 0.035}],\n"
+        " \"optimizer\": {\"max_evaluations\": 30},\n"
+        " \"skeleton\": {\"file\": \"plant.csv\", \"age\": 20}}";
+    const FitTarget t = readFitTargetString(text, at("t.json"), at(""));
+    std::vector<FitResidual> same, longer;
+    fitObjective(bean, t, {0.025}, {}, &same);
+    fitObjective(bean, t, {0.04}, {}, &longer);
+    ASSERT_EQ(same.size(), 1u);
+    EXPECT_EQ(same[0].statistic, "skeleton_distance");
+    EXPECT_LT(same[0].simulated, 1e-6);
+    EXPECT_GT(longer[0].simulated, 0.005);
+    const FitResult r = fitSpecies(bean, t);
+    EXPECT_NEAR(r.best[0], 0.025, 0.0005);
 }

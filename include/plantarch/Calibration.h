@@ -2,9 +2,9 @@
 // Calibration to field data: chosen parameters of a species adjusted, within bounds, so that
 // the plants built from it match measured statistics (height, leaf area, leaf count, shoots,
 // widths, internode lengths by rank, leaf inclination) at one or more ages, averaged over
-// several seeds, and optionally a point cloud of one real plant. The optimiser is one of NLopt's
-// derivative-free local algorithms (Subplex by default; Nelder-Mead, BOBYQA, COBYLA) on the
-// parameters scaled to [0, 1] by their bounds. `plantarch fit` is the command;
+// several seeds, and optionally a point cloud or skeleton of one real plant. The optimiser is one
+// of NLopt's derivative-free local algorithms (Subplex by default; Nelder-Mead, BOBYQA, COBYLA) on
+// the parameters scaled to [0, 1] by their bounds. `plantarch fit` is the command;
 // docs/measured-plants.md describes the target file (JSON) and the report.
 //
 //   FitTarget target = readFitTargetFile("measurements.json");
@@ -93,6 +93,21 @@ struct FitPointCloud {
     int line = 0;
 };
 
+/// A measured skeleton of one real plant (plantarch/Skeleton.h: a node table .csv, .json or
+/// .mtg) at one age: the term is weight * (d / scale)^2, d the symmetric mean distance (m)
+/// between its nodes and the built plant's (plantSkeleton: its base and the tip of every
+/// internode), each node to the nearest of the other set, the two means averaged, averaged
+/// over the seeds.
+struct FitSkeleton {
+    std::string file;  ///< as written in the target (relative to the target's folder)
+    std::string path;  ///< resolved
+    double age = 0.0;
+    double scale = 0.01;  ///< m
+    double weight = 1.0;
+    vec3 offset{0.0f};  ///< where the real plant's base stands in the skeleton's coordinates
+    int line = 0;
+};
+
 /// NLopt's algorithms offered (all local and derivative-free).
 enum class FitAlgorithm { Bobyqa, Subplex, NelderMead, Cobyla };
 const char* fitAlgorithmName(FitAlgorithm a);
@@ -111,6 +126,7 @@ struct FitTarget {
     double tolerance = 1e-4;  ///< relative change of the scaled parameters that ends the fit
     std::vector<FitAge> ages;
     std::optional<FitPointCloud> pointCloud;
+    std::optional<FitSkeleton> skeleton;
 };
 
 /// Reads a target file (JSON, docs/measured-plants.md) strictly: an unknown key, a value of

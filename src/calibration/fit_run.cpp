@@ -20,6 +20,7 @@
 #include "plantarch/LeafAngles.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/PlantSummary.h"
+#include "plantarch/Skeleton.h"
 #include "plantarch/SpeciesIO.h"
 
 namespace plantarch {
@@ -101,6 +102,7 @@ std::vector<double> sampleAges(const FitTarget& t) {
     std::set<double> ages;
     for (const FitAge& a : t.ages) ages.insert(a.age);
     if (t.pointCloud) ages.insert(t.pointCloud->age);
+    if (t.skeleton) ages.insert(t.skeleton->age);
     return {ages.begin(), ages.end()};
 }
 
@@ -123,8 +125,8 @@ struct Problem {
     std::vector<bool> whole;
     std::vector<double> ages;
     std::unique_ptr<CloudScene> cloud;
-    std::vector<vec3> cloudPoints;  // the sample, moved to the origin
-    std::vector<vec3> shiftedCloud;
+    std::vector<vec3> cloudPoints;         // the sample, moved to the origin
+    std::unique_ptr<CloudScene> skeleton;  // the measured nodes, moved to the origin
 
     Problem(const SpeciesModel& s, const FitTarget& t, const FitOptions& o)
         : species(s), target(t), options(o), ages(sampleAges(t)) {
@@ -149,6 +151,27 @@ struct Problem {
             cloudPoints = cloudSample(points, t.pointCloud->points, vec3(0.0f));
             cloud = std::make_unique<CloudScene>(std::move(points));
         }
+        if (t.skeleton) {
+            Skeleton measured;
+            try {
+                measured = readSkeletonFile(t.skeleton->path);
+                checkSkeleton(measured);
+            } catch (const Error& e) {
+                if (e.line() != 0) throw;
+                throw Error(e.message(), {.file = t.file,
+                                          .line = t.skeleton->line,
+                                          .parameter = "skeleton/file",
+                                          .value = t.skeleton->file,
+                                          .validRange = e.validRange()});
+            }
+            std::vector<vec3> nodes;
+            for (const SkeletonNode& n : measured.nodes)
+                nodes.push_back(n.position - t.skeleton->offset);
+            if (nodes.empty())
+                throw Error("no nodes",
+                            {.file = t.skeleton->path, .validRange = "a skeleton of one plant"});
+            skeleton = std::make_unique<CloudScene>(std::move(nodes));
+        }
     }
 
     // The species with `values` (own units) put in.
@@ -170,7 +193,7 @@ struct Problem {
         arch.setTrellisGeometry(false);
         arch.loadPlantModel(model);
         std::map<double, std::vector<double>> byAge;
-        double distance = 0.0;
+        double distance = 0.0, skeletonGap = 0.0;
         unsigned plant = 0;
         double grown = 0.0;
         for (std::size_t k = 0; k < ages.size(); ++k) {
@@ -187,12 +210,29 @@ struct Problem {
                         measure(arch, plant, s, m, values);
             if (target.pointCloud && target.pointCloud->age == ages[k])
                 distance = cloudDistance(ctx, seed);
+            if (target.skeleton && target.skeleton->age == ages[k])
+                skeletonGap = skeletonDistance(arch, plant);
         }
         std::vector<double> out;
         for (const FitAge& a : target.ages)
             out.insert(out.end(), byAge[a.age].begin(), byAge[a.age].end());
         if (target.pointCloud) out.push_back(distance);
+        if (target.skeleton) out.push_back(skeletonGap);
         return out;
+    }
+
+    // The symmetric mean distance between the measured nodes and the plant's.
+    double skeletonDistance(const PlantArchitecture& arch, unsigned plant) const {
+        std::vector<vec3> nodes;
+        for (const SkeletonNode& n : plantSkeleton(arch, {plant}).nodes)
+            nodes.push_back(n.position);
+        if (nodes.empty()) return std::numeric_limits<double>::infinity();
+        const CloudScene built(nodes);
+        double toBuilt = 0.0, toMeasured = 0.0;
+        for (const vec3& p : skeleton->points()) toBuilt += built.nearest(p);
+        for (const vec3& p : nodes) toMeasured += skeleton->nearest(p);
+        return 0.5 *
+               (toBuilt / double(skeleton->points().size()) + toMeasured / double(nodes.size()));
     }
 
     double cloudDistance(const Context& ctx, std::uint64_t seed) const {
@@ -257,6 +297,12 @@ struct Problem {
             sum += r * r;
             if (out)
                 out->push_back({target.pointCloud->age, "point_cloud_distance", 0.0, 0.0, d, r});
+        }
+        if (target.skeleton) {
+            const double d = mean[k + (target.pointCloud ? 1 : 0)];
+            const double r = std::sqrt(target.skeleton->weight) * d / target.skeleton->scale;
+            sum += r * r;
+            if (out) out->push_back({target.skeleton->age, "skeleton_distance", 0.0, 0.0, d, r});
         }
         return sum;
     }

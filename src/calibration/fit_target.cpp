@@ -285,9 +285,36 @@ FitPointCloud readCloud(const TargetReader& r, const json& j, const std::string&
     return c;
 }
 
+FitSkeleton readSkeletonTarget(const TargetReader& r, const json& j, const std::string& folder) {
+    const std::string at = "skeleton";
+    r.object(j, at, {"file", "age", "scale", "weight", "offset"});
+    FitSkeleton k;
+    k.line = r.line(at);
+    const std::string files = "a skeleton file: .csv, .json or .mtg";
+    k.file = r.string(r.required(j, at, "file", files), at + "/file", files);
+    const std::filesystem::path p(k.file);
+    k.path = p.is_absolute() || folder.empty() || folder == "."
+                 ? k.file
+                 : (std::filesystem::path(folder) / p).string();
+    const NumberRange ages = positive(kMaxAge);
+    k.age = r.number(r.required(j, at, "age", "days " + rangeText(ages)), at + "/age", ages);
+    if (j.contains("scale")) k.scale = r.number(j["scale"], at + "/scale", positive(100.0));
+    if (j.contains("weight")) k.weight = r.number(j["weight"], at + "/weight", closed(0.0, 1e6));
+    if (j.contains("offset")) {
+        const json& o = j["offset"];
+        if (!o.is_array() || o.size() != 3) r.fail(at + "/offset", "expected [x, y, z]", &o);
+        for (int i = 0; i < 3; ++i)
+            k.offset[i] =
+                float(r.number(o[i], at + "/offset/" + std::to_string(i), closed(-1e6, 1e6)));
+    }
+    return k;
+}
+
 FitTarget readTarget(const TargetReader& r, const json& j, const std::string& file,
                      const std::string& folder) {
-    r.object(j, "", {"plantarch_fit", "parameters", "seeds", "optimizer", "ages", "point_cloud"});
+    r.object(
+        j, "",
+        {"plantarch_fit", "parameters", "seeds", "optimizer", "ages", "point_cloud", "skeleton"});
     if (!j.contains("plantarch_fit"))
         r.fail("plantarch_fit", "not a plantarch fit target: no \"plantarch_fit\": 1", nullptr,
                "1");
@@ -383,9 +410,12 @@ FitTarget readTarget(const TargetReader& r, const json& j, const std::string& fi
     }
     if (j.contains("point_cloud") && !j["point_cloud"].is_null())
         t.pointCloud = readCloud(r, j["point_cloud"], folder);
-    if (t.ages.empty() && !t.pointCloud)
+    if (j.contains("skeleton") && !j["skeleton"].is_null())
+        t.skeleton = readSkeletonTarget(r, j["skeleton"], folder);
+    if (t.ages.empty() && !t.pointCloud && !t.skeleton)
         r.fail("ages", "nothing to fit to", nullptr,
-               "measurements at one age at least (\"ages\"), or a \"point_cloud\"");
+               "measurements at one age at least (\"ages\"), a \"point_cloud\" or a "
+               "\"skeleton\"");
     return t;
 }
 
