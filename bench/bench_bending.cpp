@@ -88,12 +88,18 @@ static void BM_BendAppleTreeSolveOnly(benchmark::State& state) {
 }
 BENCHMARK(BM_BendAppleTreeSolveOnly)->Unit(benchmark::kMillisecond);
 
+// Its build to 630 days, without bending and bent after every growth step.
 static void BM_BuildAppleTree(benchmark::State& state) {
+    const bool bending = state.range(0) != 0;
     for (auto _ : state) {
         Context ctx;
         PlantArchitecture arch(&ctx);
         arch.loadPlantModelFromLibrary("apple");
+        PhenologyParameters ph = arch.plant(arch.addPlantInstance(vec3(9.0f), 0.0f)).phenology;
+        arch.deletePlantInstance(arch.getAllPlantIDs().back());
+        ph.mechanics.enabled = bending;
+        arch.setDefaultPhenology(ph);
         benchmark::DoNotOptimize(arch.buildPlantInstanceFromLibrary(vec3(0.0f), 630.0f));
     }
 }
-BENCHMARK(BM_BuildAppleTree)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BuildAppleTree)->ArgName("bending")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
