@@ -271,3 +271,54 @@ TEST_F(BuilderHostile, APortInUseIsRefused) {
                          "port, or 0 for any free port)\n");
     EXPECT_EQ(client_->Get("/api/config")->status, 200);  // the first serves on
 }
+
+// A skeleton block's file: bad text, outside the output folder, a FIFO, a directory, missing:
+// each refused before it is queued with one line naming the field, and the server serves on.
+TEST_F(BuilderHostile, ABadSkeletonFileIsOneLineAndNeverACrash) {
+    fs::create_directories(at("out/skeletons/folder.csv"));
+    put(at("out/skeletons/bad.csv"), "id,parent,x,y,z\n0,,0,0,0\n1,0,nan,0,1\n");
+    put(at("out/skeletons/cycle.csv"), "id,parent,x,y,z\n0,1,0,0,0\n1,0,0,0,1\n");
+    put(at("out/skeletons/bad.json"), "{\"nodes\": [[[[\n");
+    put(at("out/skeletons/bad.mtg"), "MTG:\nnothing here\n");
+    put(at("outside.csv"), "id,parent,x,y,z\n0,,0,0,0\n1,0,0,0,0.1\n");
+    ASSERT_EQ(mkfifo(at("out/skeletons/pipe.csv").c_str(), 0600), 0);
+    const std::string field = "project: blocks/0/skeleton/file";
+    const struct {
+        std::string file;
+        int status;
+        std::string expected;  // in the error
+    } cases[] = {
+        {"../skeletons/bad.csv", 400, "bad.csv:3"},
+        {"../skeletons/cycle.csv", 400, "cycle.csv"},
+        {"../skeletons/bad.json", 400, "bad.json"},
+        {"../skeletons/bad.mtg", 400, "bad.mtg"},
+        {"../skeletons/pipe.csv", 400, field + " = "},
+        {"../skeletons/folder.csv", 400, field + " = "},
+        {"../skeletons/missing.csv", 400, field + " = "},
+        {"../../outside.csv", 403, field + " = \"../../outside.csv\": outside the output folder"},
+        {"/etc/passwd", 403, field + " = \"/etc/passwd\": outside the output folder"},
+        {"../skeletons/notes.txt", 400, ""},
+    };
+    for (const auto& c : cases) {
+        json project = {{"plantarch_project", 1},
+                        {"blocks",
+                         {{{"species", "capsicum"},
+                           {"layout", "skeleton"},
+                           {"skeleton", {{"file", c.file}}}}}}};
+        auto r = post("/api/builds", {{"project", project}});
+        ASSERT_TRUE(r) << c.file;
+        EXPECT_EQ(r->status, c.status) << c.file << ": " << r->body;
+        const std::string error = errorOf(r);
+        EXPECT_NE(error.find(c.expected), std::string::npos) << c.file << ": " << error;
+        EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+    }
+    // A skeleton block without its file, and a field of another layout.
+    auto r =
+        post("/api/builds", {{"project",
+                              {{"plantarch_project", 1},
+                               {"blocks", {{{"species", "capsicum"}, {"layout", "skeleton"}}}}}}});
+    EXPECT_EQ(errorOf(r),
+              "project: blocks/0/skeleton: missing (valid: {\"file\": \"plant.csv\", "
+              "\"unit\": 1, \"spacing\": 0})");
+    EXPECT_EQ(client_->Get("/api/config")->status, 200);
+}

@@ -476,3 +476,56 @@ TEST_F(BuilderServer, ASavedUserSpeciesIsWrittenAsAPathAndReadBackByName) {
     project["blocks"][0]["species"] = "../../x.xml";
     EXPECT_EQ(post("/api/builds", {{"project", project}})->status, 403);
 }
+
+// A measured skeleton (a file under OUTPUT, named relative to OUTPUT/projects/ as the page
+// names it) rebuilt as a block of its own, next to a block of beans; bending on for it and off
+// changes its plant and only its plant.
+TEST_F(BuilderServer, BuildsASkeletonBlockAndBendsItOnRequest) {
+    fs::create_directories(at("out/skeletons"));
+    fs::copy_file(std::string(PLANTARCH_SOURCE_DIR) + "/examples/skeletons/pepper_digitised.csv",
+                  at("out/skeletons/pepper.csv"));
+    json project = beans(1, 1, 20);
+    project["blocks"].push_back(
+        {{"name", "measured"},
+         {"species", "capsicum"},
+         {"layout", "skeleton"},
+         {"origin", {0.5, 0, 0}},
+         {"skeleton", {{"file", "../skeletons/pepper.csv"}, {"unit", 0.01}}},
+         {"age", 60}});
+    const json straight = waitFor(build(project));
+    ASSERT_EQ(straight["state"], "done") << straight.dump();
+    EXPECT_EQ(straight["blocks"][1]["name"], "measured");
+    EXPECT_EQ(straight["blocks"][1]["plants"].size(), 1u);
+    EXPECT_EQ(straight["stats"]["plants"], 2);
+    const std::string straightGLB =
+        client_->Get(("/api/builds/" + straight["id"].get<std::string>() + "/scene.glb").c_str())
+            ->body;
+
+    project["blocks"][1]["bend"] = true;
+    project["blocks"][1]["elastic_modulus"] = 1e9;
+    const json bent = waitFor(build(project));
+    ASSERT_EQ(bent["state"], "done") << bent.dump();
+    const std::string bentGLB =
+        client_->Get(("/api/builds/" + bent["id"].get<std::string>() + "/scene.glb").c_str())->body;
+    EXPECT_EQ(bentGLB.substr(0, 4), "glTF");
+    EXPECT_NE(bentGLB, straightGLB);
+
+    // Exported like any build; the saved project holds the block as sent.
+    auto exported = post("/api/export", {{"build", bent["id"]}, {"format", "glb"}});
+    ASSERT_TRUE(exported && exported->status == 200) << (exported ? exported->body : "");
+    auto saved = post("/api/projects/save", {{"name", "measured"}, {"project", project}});
+    ASSERT_TRUE(saved && saved->status == 200) << (saved ? saved->body : "");
+    const json back = body(client_->Get("/api/projects/measured"));
+    EXPECT_EQ(back["blocks"][1]["skeleton"]["file"], "../skeletons/pepper.csv");
+    EXPECT_EQ(back["blocks"][1]["bend"], true);
+    EXPECT_EQ(back["blocks"][1]["elastic_modulus"], 1000000000);
+
+    // A modulus out of the species' range: the one-line error.
+    project["blocks"][1]["elastic_modulus"] = 10;
+    auto refused = post("/api/builds", {{"project", project}});
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 400);
+    EXPECT_EQ(body(refused)["error"],
+              "project: blocks/1/elastic_modulus = 10: out of range (valid: 1e5 to 1e12 Pa, or "
+              "null for the species')");
+}

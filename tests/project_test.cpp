@@ -153,7 +153,7 @@ TEST(Project, EachBadValueIsOneLineNamingTheFieldTheValueAndTheRange) {
          "scatter)"},
         {R"({"plantarch_project": 1, "blocks": [{"species": "bean", "layout": "grd"}]})",
          "p.json: blocks/0/layout = \"grd\": unknown layout, did you mean 'grid'? (valid: grid, "
-         "scatter, single)"},
+         "scatter, single, skeleton)"},
         {R"({"plantarch_project": 1, "blocks": [{"species": "beam"}]})",
          "p.json: blocks/0/species = beam: unknown species, did you mean 'bean'?"},
         {R"({"plantarch_project": 1, "blocks": [{"species": "apple", "parameters": {"trunk_height": 9}}]})",

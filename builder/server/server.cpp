@@ -222,6 +222,13 @@ Project Server::Impl::requestProject(const json& j) const {
         if (!isUnder(projectPath(p, p.obstacleFiles[i]), output))
             throw HttpError{403, "project: obstacles/files/" + std::to_string(i) + " = \"" +
                                      clip(p.obstacleFiles[i]) + "\": outside the output folder"};
+    for (std::size_t i = 0; i < p.blocks.size(); ++i)
+        if (p.blocks[i].layout == ProjectBlock::Layout::Skeleton &&
+            !isUnder(projectPath(p, p.blocks[i].skeleton), output))
+            throw HttpError{403, "project: blocks/" + std::to_string(i) + "/skeleton/file = \"" +
+                                     clip(p.blocks[i].skeleton) +
+                                     "\": outside the output folder (valid: a file under " +
+                                     output.string() + ")"};
     if (!p.attractionFile.empty() && !isUnder(projectPath(p, p.attractionFile), output))
         throw HttpError{403, "project: attraction/file = \"" + clip(p.attractionFile) +
                                  "\": outside the output folder"};
@@ -285,7 +292,8 @@ json pageDefaults() {
     seasoned.physiology = ProjectPhysiology{};
     Project blocks;
     for (ProjectBlock::Layout layout :
-         {ProjectBlock::Layout::Grid, ProjectBlock::Layout::Scatter, ProjectBlock::Layout::Single})
+         {ProjectBlock::Layout::Grid, ProjectBlock::Layout::Scatter, ProjectBlock::Layout::Single,
+          ProjectBlock::Layout::Skeleton})
         blocks.blocks.emplace_back().layout = layout;
     const json written = json::parse(writeProjectString(blocks));
     json byLayout = json::object();

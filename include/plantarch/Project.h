@@ -38,9 +38,10 @@ inline constexpr int kProjectVersion = 1;
 /// One block of plants of one species.
 struct ProjectBlock {
     enum class Layout {
-        Grid,     ///< count.x by count.y plants, spacing apart, centred on origin
-        Scatter,  ///< `plants` positions drawn uniformly over `area`, centred on origin
-        Single,   ///< one plant with its base at origin
+        Grid,      ///< count.x by count.y plants, spacing apart, centred on origin
+        Scatter,   ///< `plants` positions drawn uniformly over `area`, centred on origin
+        Single,    ///< one plant with its base at origin
+        Skeleton,  ///< the plants of a measured skeleton file, moved by origin
     };
     std::string name;     ///< shown by the builder; unique within the project
     std::string species;  ///< library name ("bean") or species file ("my_bean.xml")
@@ -57,6 +58,16 @@ struct ProjectBlock {
     /// the species' ranges when built.
     std::map<std::string, float> parameters;
     bool trellis = true;  ///< the species' trellis posts and wires, if it declares one
+    /// Skeleton: a skeleton file (.csv node table, .json or .mtg; plantarch/Skeleton.h),
+    /// relative paths from the project's folder, rebuilt with the species' shoot types.
+    std::string skeleton;
+    float skeletonUnit = 1.0f;     ///< Skeleton: m per unit of its coordinates, (0, 1000]
+    float skeletonSpacing = 0.0f;  ///< Skeleton: axes resampled to this m (0: every point), 0 to 10
+    /// The plants bend under their load (plantarch/Bending.h): the species' mechanics
+    /// enabled; false leaves the species' own `mechanics.enabled`.
+    bool bend = false;
+    /// The stems' elastic modulus, Pa, 1e5 to 1e12 (absent: the species').
+    std::optional<float> elasticModulus;
 };
 
 /// A season of physiology (docs/physiology.md): every block is built to its age less `days`,

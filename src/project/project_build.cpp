@@ -6,10 +6,12 @@
 
 #include "core/input_file.h"
 #include "core/value_text.h"
+#include "plantarch/Bending.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/PlantArchitecture.h"
 #include "plantarch/Project.h"
+#include "plantarch/Skeleton.h"
 #include "plantarch/SpeciesIO.h"
 #include "project/json_scan.h"
 #include "project/project_fields.h"
@@ -112,8 +114,9 @@ void requireReadable(const Project& p, const std::string& path, const std::strin
     const std::string full = projectPath(p, path);
     // Without blocking on a FIFO or reading a device, within the size limit of its kind.
     const io::InputKind kind = what.find("attraction") != std::string::npos ? io::kAttractionFile
-                               : what.find("weather") != std::string::npos
-                                   ? io::kWeatherFile
+                               : what.find("weather") != std::string::npos  ? io::kWeatherFile
+                               : what.find("skeleton") != std::string::npos
+                                   ? io::InputKind{"skeleton file", 256 * io::kMiB}
                                    : io::kOBJFile.named("obstacle file");
     try {
         io::checkInputFile(full, kind);
@@ -158,18 +161,63 @@ ProgressCallback blockProgress(const ProgressCallback& progress, const Project& 
     };
 }
 
+// A skeleton block's skeleton file, read (its errors name that file and line) and moved by
+// the block's origin.
+Skeleton readBlockSkeleton(const Project& p, std::size_t i) {
+    const ProjectBlock& b = p.blocks[i];
+    const std::string field = "blocks/" + std::to_string(i) + "/skeleton/file";
+    requireReadable(p, b.skeleton, field, "a skeleton file");
+    Skeleton s;
+    try {
+        s = readSkeletonFile(projectPath(p, b.skeleton));
+    } catch (const Error&) {
+        rethrowAt(p, field);
+    }
+    for (SkeletonNode& n : s.nodes) n.position += b.origin / b.skeletonUnit;
+    return s;
+}
+
 std::vector<unsigned> buildBlock(const Project& p, std::size_t i, float age,
-                                 PlantArchitecture& arch) {
+                                 const SpeciesModel& model, PlantArchitecture& arch) {
     const ProjectBlock& b = p.blocks[i];
     const std::string at = "blocks/" + std::to_string(i);
     try {
-        arch.loadPlantModelFromLibrary(projectSpecies(p, b));
+        if (b.bend || b.elasticModulus) {
+            // The block's mechanics on the species as loaded: its plants bend as they grow.
+            SpeciesModel bent = model;
+            if (b.bend) bent.phenology.mechanics.enabled = true;
+            if (b.elasticModulus) bent.phenology.mechanics.elastic_modulus = *b.elasticModulus;
+            arch.loadPlantModel(bent);
+        } else {
+            arch.loadPlantModelFromLibrary(projectSpecies(p, b));
+        }
     } catch (const Error&) {
         rethrowAt(p, at + "/species");
     }
     arch.setSeed(b.seed.value_or(p.seed));
     arch.restartPlantStreams();
-    arch.setTrellisGeometry(b.trellis);
+    arch.setTrellisGeometry(b.trellis && b.layout != ProjectBlock::Layout::Skeleton);
+    if (b.layout == ProjectBlock::Layout::Skeleton) {
+        const Skeleton skeleton = readBlockSkeleton(p, i);
+        std::vector<unsigned> ids;
+        try {
+            ReconstructOptions o;
+            o.age = age;
+            o.unit = b.skeletonUnit;
+            o.spacing = b.skeletonSpacing;
+            ids = reconstructPlants(arch, skeleton, o);
+        } catch (const Error&) {
+            rethrowAt(p, at + "/skeleton/file");
+        }
+        try {
+            // Rebuilt, not grown: bent now when the species (or the block) bends.
+            for (unsigned id : ids)
+                if (arch.plant(id).phenology.mechanics.enabled) bendPlant(arch, id);
+        } catch (const Error&) {
+            rethrowAt(p, at);
+        }
+        return ids;
+    }
     try {
         if (b.layout == ProjectBlock::Layout::Single)
             return {arch.buildPlantInstanceFromLibrary(b.origin, age, b.parameters)};
@@ -308,6 +356,8 @@ std::string projectSpecies(const Project& project, const ProjectBlock& block) {
 
 void checkProject(const Project& p) {
     loadBlockSpecies(p);
+    for (std::size_t i = 0; i < p.blocks.size(); ++i)
+        if (p.blocks[i].layout == ProjectBlock::Layout::Skeleton) readBlockSkeleton(p, i);
     for (std::size_t i = 0; i < p.obstacleFiles.size(); ++i) {
         const std::string field = "obstacles/files/" + std::to_string(i);
         requireReadable(p, p.obstacleFiles[i], field, "an obstacle file");
@@ -344,7 +394,7 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
         for (std::size_t i = 0; i < p.blocks.size(); ++i) {
             arch.setProgressCallback(blockProgress(options.progress, p, i));
             built.blockPlants.push_back(
-                buildBlock(p, i, blockAge(p.blocks[i], models[i]) - seasonDays, arch));
+                buildBlock(p, i, blockAge(p.blocks[i], models[i]) - seasonDays, models[i], arch));
         }
         arch.setProgressCallback({});
         if (season) {

@@ -89,7 +89,20 @@ inline std::vector<Range> fertiliseRanges() {
 }
 
 inline std::vector<std::string> layoutNames() {
-    return {"grid", "scatter", "single"};
+    return {"grid", "scatter", "single", "skeleton"};
+}
+/// The fields of a skeleton block's "skeleton" object, in the order they are written.
+inline std::vector<std::string> skeletonFields() {
+    return {"file", "unit", "spacing"};
+}
+inline Range skeletonUnitRange() {
+    return {0, 1000, "> 0 to 1000 m per unit", true};
+}
+inline Range skeletonSpacingRange() {
+    return {0, 10, "0 to 10 m (0: every point a node)"};
+}
+inline Range elasticModulusRange() {
+    return {1e5, 1e12, "1e5 to 1e12 Pa, or null for the species'"};
 }
 inline const char* layoutName(ProjectBlock::Layout layout) {
     switch (layout) {
@@ -99,6 +112,8 @@ inline const char* layoutName(ProjectBlock::Layout layout) {
             return "scatter";
         case ProjectBlock::Layout::Single:
             return "single";
+        case ProjectBlock::Layout::Skeleton:
+            return "skeleton";
     }
     return "grid";
 }
@@ -106,6 +121,7 @@ inline std::optional<ProjectBlock::Layout> layoutFromName(const std::string& nam
     if (name == "grid") return ProjectBlock::Layout::Grid;
     if (name == "scatter") return ProjectBlock::Layout::Scatter;
     if (name == "single") return ProjectBlock::Layout::Single;
+    if (name == "skeleton") return ProjectBlock::Layout::Skeleton;
     return std::nullopt;
 }
 
@@ -113,15 +129,21 @@ inline std::optional<ProjectBlock::Layout> layoutFromName(const std::string& nam
 inline std::vector<std::string> blockFields(ProjectBlock::Layout layout) {
     switch (layout) {
         case ProjectBlock::Layout::Grid:
-            return {"name",        "species", "layout", "origin",     "count",  "spacing",
-                    "germination", "age",     "seed",   "parameters", "trellis"};
+            return {"name",           "species", "layout", "origin",     "count",   "spacing",
+                    "germination",    "age",     "seed",   "parameters", "trellis", "bend",
+                    "elastic_modulus"};
         case ProjectBlock::Layout::Scatter:
-            return {"name",        "species", "layout", "origin",     "count",  "area",
-                    "germination", "age",     "seed",   "parameters", "trellis"};
+            return {"name",           "species", "layout", "origin",     "count",   "area",
+                    "germination",    "age",     "seed",   "parameters", "trellis", "bend",
+                    "elastic_modulus"};
+        case ProjectBlock::Layout::Skeleton:
+            return {"name", "species", "layout", "origin",         "skeleton",
+                    "age",  "seed",    "bend",   "elastic_modulus"};
         case ProjectBlock::Layout::Single:
             break;
     }
-    return {"name", "species", "layout", "origin", "age", "seed", "parameters", "trellis"};
+    return {"name", "species",    "layout",  "origin", "age",
+            "seed", "parameters", "trellis", "bend",   "elastic_modulus"};
 }
 
 /// Fields of other layouts, with the layouts they belong to (for the error of a field that

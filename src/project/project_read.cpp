@@ -353,7 +353,7 @@ ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, st
             const std::string near = text::closestMatch(layout, layoutNames());
             r.fail(layoutField,
                    "unknown layout" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
-                   &j["layout"], "grid, scatter, single");
+                   &j["layout"], "grid, scatter, single, skeleton");
         }
         b.layout = *found;
     }
@@ -386,6 +386,25 @@ ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, st
             b.plants = unsigned(r.number(j["count"], field("count"), scatterCountRange()));
         if (j.contains("area")) b.area = r.pair(j["area"], field("area"), areaRange());
     }
+    if (b.layout == ProjectBlock::Layout::Skeleton) {
+        if (!j.contains("skeleton"))
+            r.fail(field("skeleton"), "missing", nullptr,
+                   "{\"file\": \"plant.csv\", \"unit\": 1, \"spacing\": 0}");
+        const json& s = j["skeleton"];
+        const std::string sat = field("skeleton");
+        r.object(s, sat, skeletonFields());
+        if (!s.contains("file"))
+            r.fail(sat + "/file", "missing", nullptr, "a skeleton file (.csv, .json or .mtg)");
+        b.skeleton = r.name(s["file"], sat + "/file", "a skeleton file (.csv, .json or .mtg)");
+        if (s.contains("unit"))
+            b.skeletonUnit = r.number(s["unit"], sat + "/unit", skeletonUnitRange());
+        if (s.contains("spacing"))
+            b.skeletonSpacing = r.number(s["spacing"], sat + "/spacing", skeletonSpacingRange());
+    }
+    if (j.contains("bend")) b.bend = r.flag(j["bend"], field("bend"));
+    if (j.contains("elastic_modulus") && !j["elastic_modulus"].is_null())
+        b.elasticModulus =
+            r.number(j["elastic_modulus"], field("elastic_modulus"), elasticModulusRange());
     if (j.contains("germination"))
         b.germination = r.number(j["germination"], field("germination"), germinationRange());
     if (j.contains("age")) b.age = r.number(j["age"], field("age"), ageRange());

@@ -45,13 +45,22 @@ OrderedJson block(const ProjectBlock& b) {
         j["count"] = b.plants;
         j["area"] = pair(b.area);
     }
-    if (b.layout != ProjectBlock::Layout::Single) j["germination"] = num(b.germination);
+    if (b.layout == ProjectBlock::Layout::Skeleton)
+        j["skeleton"] = {{"file", b.skeleton},
+                         {"unit", num(b.skeletonUnit)},
+                         {"spacing", num(b.skeletonSpacing)}};
+    if (b.layout == ProjectBlock::Layout::Grid || b.layout == ProjectBlock::Layout::Scatter)
+        j["germination"] = num(b.germination);
     if (b.age) j["age"] = num(*b.age);
     if (b.seed) j["seed"] = *b.seed;
-    OrderedJson params = OrderedJson::object();
-    for (const auto& [name, value] : b.parameters) params[name] = num(value);
-    j["parameters"] = params;
-    j["trellis"] = b.trellis;
+    if (b.layout != ProjectBlock::Layout::Skeleton) {
+        OrderedJson params = OrderedJson::object();
+        for (const auto& [name, value] : b.parameters) params[name] = num(value);
+        j["parameters"] = params;
+        j["trellis"] = b.trellis;
+    }
+    j["bend"] = b.bend;
+    j["elastic_modulus"] = b.elasticModulus ? num(*b.elasticModulus) : OrderedJson(nullptr);
     return j;
 }
 
