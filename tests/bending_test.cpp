@@ -157,6 +157,9 @@ TEST(Bending, FruitDroopAndStiffness) {
         ph.mechanics.elastic_modulus = modulus;
         ph.mechanics.fruit_density = fruitDensity;
         arch.setPlantPhenologicalThresholds(id, ph);
+        std::vector<std::vector<vec3>> rest;  // every shoot's nodes before bending
+        for (const Shoot& s : arch.plant(id).shoots)
+            rest.push_back(bentNodePositions(arch, id, s.id));
         bendPlant(arch, id);
         // How far every node dropped below its rest place, summed.
         double drop = 0.0;
@@ -164,8 +167,10 @@ TEST(Bending, FruitDroopAndStiffness) {
         for (const Shoot& s : p.shoots) {
             if (s.removed || s.phytomers.empty()) continue;
             const std::vector<vec3> bent = bentNodePositions(arch, id, s.id);
-            for (std::size_t k = 1; k < bent.size(); ++k)
-                drop += arch.getNodePosition(id, s.id, unsigned(k - 1)).z - bent[k].z;
+            for (std::size_t k = 1; k < bent.size(); ++k) {
+                EXPECT_EQ(arch.getNodePosition(id, s.id, unsigned(k - 1)), bent[k]);
+                drop += rest[s.id][k].z - bent[k].z;
+            }
         }
         return drop;
     };
@@ -257,6 +262,7 @@ TEST(Bending, HostileInputsAreOneLineErrors) {
     EXPECT_EQ(e2.validRange(), "0 to 9");
     const Error e3 = errorOf([&] { pullNode(c.arch, c.plant, 4, 0, {0, 0, -1}); });
     EXPECT_EQ(e3.parameter(), "shoot");
+    EXPECT_EQ(e3.validRange(), "a shoot ID of the plant, 0 to 0 (not pruned)");
     const Error e4 = errorOf([&] { pullNode(c.arch, c.plant, 0, 3, {0, 0, 1e30f}); });
     EXPECT_EQ(e4.parameter(), "force");
     const Error e5 = errorOf([&] { displaceNode(c.arch, c.plant, 0, 3, {0, 0, INFINITY}); });

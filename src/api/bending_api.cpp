@@ -44,8 +44,10 @@ void checkNode(const PlantInstance& p, unsigned shootID, unsigned node) {
         throw Error("no such shoot on the plant",
                     {.parameter = "shoot",
                      .value = std::to_string(shootID),
-                     .validRange = "a shoot ID of the plant, 0 to " +
-                                   std::to_string(p.shoots.size()) + " (not pruned)"});
+                     .validRange = p.shoots.empty() ? std::string("none: the plant has no shoots")
+                                                    : "a shoot ID of the plant, 0 to " +
+                                                          std::to_string(p.shoots.size() - 1) +
+                                                          " (not pruned)"});
     const std::size_t n = p.shoots[shootID].phytomers.size();
     if (node >= n)
         throw Error("no such node on the shoot",
