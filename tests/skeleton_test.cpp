@@ -480,3 +480,33 @@ TEST(MeasuredShoot, MeasuredLeavesFaceTheirNormalAndHaveTheirLength) {
     EXPECT_EQ(readSkeletonString(skeletonCSV(sk), "csv", "again").nodes[2].leafNormal,
               sk.nodes[2].leafNormal);
 }
+
+TEST(MeasuredShoot, BendingLeavesMeasuredInternodesAsMeasured) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.loadPlantModelFromLibrary("bean");
+    const unsigned plant = arch.addPlantInstance(vec3(0.0f), 20.0f);
+    PhenologyParameters p = arch.plant(plant).phenology;
+    p.mechanics.enabled = true;
+    p.mechanics.elastic_modulus = 1e7f;  // very soft: anything that may bend, bends
+    arch.setPlantPhenologicalThresholds(plant, p);
+    // A measured stem leaning far over, carrying its leaves, of a type that grows on.
+    const std::vector<vec3> points{vec3(0.0f), vec3(0.04f, 0, 0.04f), vec3(0.1f, 0, 0.07f),
+                                   vec3(0.17f, 0, 0.09f)};
+    ASSERT_GT(arch.shootType("trifoliate").max_nodes.mean(), 10.0f);
+    const unsigned shoot = arch.addShootFromNodePositions(plant, -1, 0, points, {}, "trifoliate");
+    arch.advanceTime(plant, 10.0);
+    const Shoot& s = arch.plant(plant).shoots[shoot];
+    ASSERT_GT(s.phytomers.size(), 3u);
+    for (unsigned k = 0; k < 3; ++k) {
+        EXPECT_LT(distance(arch.getNodePosition(plant, shoot, k), points[k + 1]), 1e-5f) << k;
+        EXPECT_TRUE(!s.phytomers[k].internode.bend || s.phytomers[k].internode.bend->angle == 0.0f)
+            << k;
+    }
+    // The growth after them bends (the solve ran): its nodes hang below where they grew.
+    bool bent = false;
+    for (std::size_t k = 3; k < s.phytomers.size(); ++k)
+        bent =
+            bent || (s.phytomers[k].internode.bend && s.phytomers[k].internode.bend->angle > 1.0f);
+    EXPECT_TRUE(bent);
+}

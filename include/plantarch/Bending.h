@@ -58,7 +58,7 @@ PullResult displaceNode(PlantArchitecture& arch, unsigned plantID, unsigned shoo
                         const vec3& displacement);
 
 /// The positions of a shoot's nodes as drawn (0: its base; node k of the pull functions is
-/// k + 1 here), bends applied, m. (PlantArchitecture::getNodePosition gives the rest shape.)
+/// k + 1 here), bends applied, m: PlantArchitecture::getNodePosition's positions, all at once.
 std::vector<vec3> bentNodePositions(const PlantArchitecture& arch, unsigned plantID,
                                     unsigned shootID);
 

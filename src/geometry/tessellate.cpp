@@ -451,7 +451,17 @@ std::vector<vec3> shootNodePositions(const PlantInstance& plant, unsigned shootI
     for (std::size_t i = chain.size(); i-- > 0;) {
         const Shoot& s = plant.shoots[chain[i]];
         if (i + 1 < chain.size()) base = baseOn(s, nodes);
-        nodes = nodesFrom(s, base);
+        // As the geometry stands: each internode turned by its bend under load, exactly as
+        // the tessellation's BentView turns it.
+        nodes.clear();
+        nodes.push_back(base);
+        for (const Phytomer& ph : s.phytomers) {
+            vec3 d = ph.internode.direction;
+            if (ph.internode.bend && ph.internode.bend->angle != 0.0f)
+                d = unitOr(rotateAbout(d, ph.internode.bend->axis, ph.internode.bend->angle * kDeg),
+                           d);
+            nodes.push_back(nodes.back() + d * ph.internode.length * ph.internodeFraction);
+        }
     }
     return nodes;
 }

@@ -26,7 +26,8 @@ inline float petioleBendRate(const Petiole& pt, float fraction) {
     constexpr double kMax = std::numeric_limits<float>::max();
     return float(std::clamp(double(pt.curvature) / double(fraction), -kMax, kMax));
 }
-/// World positions of the nodes of a shoot: [0] its base, [i+1] the tip of internode i.
+/// World positions of the nodes of a shoot as its geometry stands (each internode turned by
+/// its bend under load, if any): [0] its base, [i+1] the tip of internode i.
 std::vector<vec3> shootNodePositions(const PlantInstance& plant, unsigned shootID);
 
 }  // namespace plantarch

@@ -144,7 +144,9 @@ struct Solver {
                 const double radius = in.radius;
                 r.weight[i] = kDown * (tubeMass(m.stem_density, radius, r.length[i]) * kGravity);
                 r.load[i] = kDown * nodeWeight(m, leafArea, ph);
-                if (radius > 0.0 && r.length[i] > 0.0) {
+                // A measured internode is held as measured (its shape is the loaded one):
+                // it adds no flexibility to the joints on either side.
+                if (radius > 0.0 && r.length[i] > 0.0 && !ph.measured) {
                     const double I = std::numbers::pi / 4.0 * radius * radius * radius * radius;
                     half[i] = r.length[i] / (2.0 * E * I);
                 }
