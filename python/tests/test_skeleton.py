@@ -32,7 +32,8 @@ def test_a_shoot_runs_through_measured_points_and_keeps_them_as_it_grows():
         assert node.x == pytest.approx(p[0], abs=1e-6) and node.z == pytest.approx(p[2], abs=1e-6)
     arch.advanceTime(20)
     assert arch.getNodePosition(plant, shoot, 2).z == pytest.approx(0.14, abs=1e-6)
-    assert arch.plant(plant).shoots[0].phytomers[0].measured.radius == pytest.approx(0.004)
+    measured = arch.plant(plant).shoots[0].phytomers[0].measured
+    assert measured is not None and measured.radius == pytest.approx(0.004)
     with pytest.raises(plantarch.Error, match="node_positions\\[1\\]"):
         arch.addShootFromNodePositions(plant, 0, 1, [points[2], (float("nan"), 0, 0)], [],
                                        arch.getBaseStemShootType())
@@ -99,7 +100,9 @@ def test_measured_leaves_face_their_normal():
     leaves = [leaf for pt in arch.plant(plant).shoots[0].phytomers[1].petioles for leaf in pt.leaves]
     assert leaves and max(leaf.leaf_scale for leaf in leaves) == pytest.approx(0.07)
     expected = 26.565  # degrees from the zenith of (0, 0.5, 1)
-    assert all(leaf.angle_target.inclination == pytest.approx(expected, abs=1e-3) for leaf in leaves)
+    targets = [leaf.angle_target for leaf in leaves]
+    assert all(t is not None and t.inclination == pytest.approx(expected, abs=1e-3)
+               for t in targets)
     options.leaves = [plantarch.MeasuredLeaf(0, normal=(0, 0, 0))]
     with pytest.raises(plantarch.Error, match=r"leaves\[0\]\.normal"):
         arch.addShootFromNodePositions(plant, 0, 1, [(0, 0, 0.1), (0, 0, 0.2)], [],
