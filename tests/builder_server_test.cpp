@@ -478,8 +478,9 @@ TEST_F(BuilderServer, ASavedUserSpeciesIsWrittenAsAPathAndReadBackByName) {
 }
 
 // A measured skeleton (a file under OUTPUT, named relative to OUTPUT/projects/ as the page
-// names it) rebuilt as a block of its own, next to a block of beans; bending on for it and off
-// changes its plant and only its plant.
+// names it) rebuilt as a block of its own, next to a block of beans. Bending on for the beans
+// bends them; on for the skeleton it leaves its measured internodes as measured (their shape
+// is the loaded one).
 TEST_F(BuilderServer, BuildsASkeletonBlockAndBendsItOnRequest) {
     fs::create_directories(at("out/skeletons"));
     fs::copy_file(std::string(PLANTARCH_SOURCE_DIR) + "/examples/skeletons/pepper_digitised.csv",
@@ -503,6 +504,11 @@ TEST_F(BuilderServer, BuildsASkeletonBlockAndBendsItOnRequest) {
 
     project["blocks"][1]["bend"] = true;
     project["blocks"][1]["elastic_modulus"] = 1e9;
+    const json measured = waitFor(build(project));
+    ASSERT_EQ(measured["state"], "done") << measured.dump();
+    EXPECT_EQ(measured["stats"], straight["stats"]);
+    project["blocks"][0]["bend"] = true;
+    project["blocks"][0]["elastic_modulus"] = 2e8;
     const json bent = waitFor(build(project));
     ASSERT_EQ(bent["state"], "done") << bent.dump();
     const std::string bentGLB =

@@ -27,7 +27,7 @@ const NEW_PHYSIOLOGY = {
 
 // A block as a project file that omits every optional field gives it.
 function fileBlock(index, species) {
-  const { grid, scatter } = defaults().blocks;
+  const { grid, scatter, skeleton } = defaults().blocks;
   return {
     name: blockName(index),
     species,
@@ -42,6 +42,10 @@ function fileBlock(index, species) {
     seed: grid.seed ?? null, // null: the project's seed
     parameters: { ...grid.parameters },
     trellis: grid.trellis,
+    // skeleton: a measured skeleton file (relative to OUTPUT/projects/), its unit and spacing
+    skeleton: { ...skeleton.skeleton },
+    bend: grid.bend, // the plants bend under their load
+    elastic_modulus: grid.elastic_modulus ?? null, // Pa; null: the species'
   };
 }
 
@@ -175,12 +179,18 @@ function blockToFile(b) {
   } else if (b.layout === 'scatter') {
     out.area = [...b.area];
     out.count = b.plants;
+  } else if (b.layout === 'skeleton') {
+    out.skeleton = { ...b.skeleton };
   }
-  if (b.layout !== 'single') out.germination = b.germination;
+  if (b.layout === 'grid' || b.layout === 'scatter') out.germination = b.germination;
   out.age = b.age;
   if (b.seed !== null && b.seed !== undefined) out.seed = b.seed;
-  if (Object.keys(b.parameters).length) out.parameters = { ...b.parameters };
-  out.trellis = b.trellis;
+  if (b.layout !== 'skeleton') {
+    if (Object.keys(b.parameters).length) out.parameters = { ...b.parameters };
+    out.trellis = b.trellis;
+  }
+  out.bend = !!b.bend;
+  out.elastic_modulus = b.elastic_modulus ?? null;
   return out;
 }
 
@@ -236,12 +246,15 @@ function blockFromFile(b, i) {
   const file = fileBlock(i, b.species);
   if ((b.layout ?? file.layout) === 'grid') Object.assign(block, { count: file.count });
   if (b.layout === 'scatter') Object.assign(block, { plants: file.plants, area: file.area });
-  for (const key of ['name', 'species', 'layout', 'germination', 'age', 'trellis']) {
+  for (const key of ['name', 'species', 'layout', 'germination', 'age', 'trellis', 'bend']) {
     if (b[key] !== undefined) block[key] = b[key];
   }
   if (Array.isArray(b.origin)) block.origin = [...b.origin];
   if (b.seed !== undefined) block.seed = b.seed;
   if (b.parameters) block.parameters = { ...b.parameters };
+  if (Number.isFinite(b.elastic_modulus)) block.elastic_modulus = b.elastic_modulus;
+  if (b.skeleton && typeof b.skeleton === 'object')
+    block.skeleton = { ...block.skeleton, ...b.skeleton };
   if (block.layout === 'grid') {
     if (Array.isArray(b.count)) block.count = [...b.count];
     if (Array.isArray(b.spacing)) block.spacing = [...b.spacing];

@@ -112,7 +112,9 @@ export class ScenePanel {
         ? `${b.count[0]}×${b.count[1]} grid`
         : b.layout === 'scatter'
           ? `${b.plants} scattered`
-          : 'single plant';
+          : b.layout === 'skeleton'
+            ? `skeleton ${b.skeleton.file || '(no file)'}`
+            : 'single plant';
     return `${layout} · ${fmt(b.age, 1)} d`;
   }
 
@@ -155,11 +157,16 @@ export class ScenePanel {
             { unit: 'm', wide: true },
           ),
         );
+      } else if (b.layout === 'skeleton') {
+        render(layoutFields, ...this.skeletonFields(b, edited));
       } else {
         render(layoutFields);
       }
+      // Build parameters, germination and trellis do not apply to a measured skeleton.
+      for (const el of [params, germination, trellis])
+        if (el) el.hidden = b.layout === 'skeleton';
+      if (buildHeading) buildHeading.hidden = b.layout === 'skeleton';
     };
-    fillLayout();
     const speciesInfo = this.app.species.find((s) => s.name === b.species);
     const recommended = speciesInfo?.recommended_age;
     const params = h(
@@ -168,6 +175,27 @@ export class ScenePanel {
       h('p', { class: 'hint' }, 'Loading build parameters…'),
     );
     this.fillParameters(b, params, edited);
+    const germination =
+      b.layout === 'single'
+        ? null
+        : field(
+            'Germination',
+            numberInput(b.germination, set('germination'), {
+              min: 0,
+              max: 1,
+              step: 0.05,
+              name: 'germination',
+            }),
+            { title: 'probability that a position gets a plant, 0 to 1' },
+          );
+    // Only a species that declares a trellis has one to draw.
+    const trellis = speciesInfo?.trellis
+      ? field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }), {
+          title: "the species' trellis posts and wires",
+        })
+      : null;
+    const buildHeading = h('h3', {}, 'Build parameters');
+    fillLayout();
     return h(
       'div',
       { class: 'block-editor' },
@@ -182,6 +210,7 @@ export class ScenePanel {
               ['grid', 'Grid'],
               ['scatter', 'Scatter'],
               ['single', 'Single plant'],
+              ['skeleton', 'Measured skeleton'],
             ],
             b.layout,
             (v) => {
@@ -218,31 +247,103 @@ export class ScenePanel {
             ? `recommended: ${recommended.min} to ${recommended.max} days`
             : undefined,
         }),
-        b.layout === 'single'
-          ? null
-          : field(
-              'Germination',
-              numberInput(b.germination, set('germination'), {
-                min: 0,
-                max: 1,
-                step: 0.05,
-                name: 'germination',
-              }),
-              { title: 'probability that a position gets a plant, 0 to 1' },
-            ),
+        germination,
         field('Seed', this.seedInput(b, edited), {
           title: "the block's random seed; empty: the project's",
         }),
-        // Only a species that declares a trellis has one to draw.
-        speciesInfo?.trellis
-          ? field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }), {
-              title: "the species' trellis posts and wires",
-            })
-          : null,
+        trellis,
       ),
-      h('h3', {}, 'Build parameters'),
+      h('h3', {}, 'Bending'),
+      h(
+        'div',
+        { class: 'grid2' },
+        field('Bend under load', checkbox(!!b.bend, set('bend'), { name: 'bend' }), {
+          title:
+            "the shoots bend under their own weight, leaves and fruit (the species' mechanics; " +
+            'docs/measured-plants.md)',
+        }),
+        field('Elastic modulus', this.modulusInput(b, edited), {
+          unit: 'Pa',
+          title:
+            "Young's modulus of the stems, 1e5 to 1e12 (green wood 1e9 to 1e10, herbaceous " +
+            "1e8 to 1e9); empty: the species'",
+        }),
+      ),
+      buildHeading,
       params,
     );
+  }
+
+  // A skeleton block's file (relative to OUTPUT/projects/, as obstacle files are), its unit
+  // and the spacing its axes are resampled to.
+  skeletonFields(b, edited) {
+    const file = h('input', {
+      type: 'text',
+      name: 'skeleton-file',
+      value: b.skeleton.file,
+      placeholder: '../skeletons/plant.csv',
+      spellcheck: false,
+    });
+    file.addEventListener('change', () => {
+      b.skeleton.file = file.value.trim();
+      edited();
+    });
+    const units = [
+      ['1', 'm'],
+      ['0.01', 'cm'],
+      ['0.001', 'mm'],
+    ];
+    const unit = String(b.skeleton.unit);
+    if (!units.some(([v]) => v === unit)) units.push([unit, `${unit} m`]);
+    return [
+      field('Skeleton file', file, {
+        wide: true,
+        title:
+          'a measured skeleton: a node table (.csv), .json or .mtg file, relative to ' +
+          "OUTPUT/projects/ (the output folder's files only)",
+      }),
+      field(
+        'Units',
+        select(
+          units,
+          unit,
+          (v) => {
+            b.skeleton.unit = parseFloat(v);
+            edited();
+          },
+          { name: 'skeleton-unit' },
+        ),
+        { title: "the skeleton's coordinates and radii" },
+      ),
+      field(
+        'Resample',
+        numberInput(b.skeleton.spacing, (v) => ((b.skeleton.spacing = v), edited()), {
+          min: 0,
+          max: 10,
+          step: 0.01,
+          name: 'skeleton-spacing',
+        }),
+        { unit: 'm', title: 'internodes of about this length (0: every point is a node)' },
+      ),
+    ];
+  }
+
+  modulusInput(b, edited) {
+    const input = h('input', {
+      type: 'number',
+      min: 1e5,
+      max: 1e12,
+      step: 'any',
+      value: b.elastic_modulus ?? '',
+      placeholder: "species'",
+      name: 'elastic-modulus',
+    });
+    input.addEventListener('change', () => {
+      const v = parseFloat(input.value);
+      b.elastic_modulus = Number.isFinite(v) ? v : null;
+      edited();
+    });
+    return input;
   }
 
   nameInput(b, refresh) {

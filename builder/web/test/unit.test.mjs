@@ -101,6 +101,8 @@ test('a grid block is written with count [x, y] and spacing, and nothing of othe
     germination: 1,
     age: 40,
     trellis: true,
+    bend: false,
+    elastic_modulus: null,
   });
   assert.equal(file.ground, null);
   const withGround = defaultProject();
@@ -116,6 +118,24 @@ test('a scatter block is written with count as a number and its area; a single p
   assert.ok(!('spacing' in scatter) && !('plants' in scatter));
   for (const key of ['count', 'spacing', 'area', 'germination', 'parameters'])
     assert.ok(!(key in single), key);
+});
+
+test('a skeleton block is written with its file, unit and spacing, bent or not', () => {
+  const p = defaultProject();
+  Object.assign(p.blocks[0], {
+    layout: 'skeleton',
+    skeleton: { file: '../skeletons/pepper.csv', unit: 0.01, spacing: 0 },
+    bend: true,
+    elastic_modulus: 2e9,
+  });
+  const [block] = toProjectFile(p).blocks;
+  assert.deepEqual(block.skeleton, { file: '../skeletons/pepper.csv', unit: 0.01, spacing: 0 });
+  assert.equal(block.bend, true);
+  assert.equal(block.elastic_modulus, 2e9);
+  for (const key of ['count', 'spacing', 'area', 'germination', 'parameters', 'trellis'])
+    assert.ok(!(key in block), key);
+  const file = toProjectFile(p);
+  assert.deepEqual(toProjectFile(fromProjectFile(JSON.parse(JSON.stringify(file)))), file);
 });
 
 test('a project file read back writes the same file', () => {
@@ -215,8 +235,9 @@ test("the page's defaults are the server's: project, ground, blocks, colours, fo
       blocks: [{ species: 'bean', layout, age: 40 }],
     });
     const written = toProjectFile(read).blocks[0];
-    // (The page writes no empty parameters; the served block holds none.)
-    assert.deepEqual(block.parameters, {});
+    // (The page writes no empty parameters; the served block holds none; a skeleton block
+    // has no build parameters at all.)
+    assert.deepEqual(block.parameters ?? {}, {});
     for (const key of Object.keys(block).filter((k) => !['name', 'age', 'parameters'].includes(k)))
       assert.deepEqual(written[key], block[key], `${layout}: ${key}`);
   }
