@@ -165,6 +165,30 @@ TEST(DocsExamples, LightExamplesRun) {
     fs::remove_all(dir);
 }
 
+// The measured-plant examples (reconstruct, skeleton and MTG outputs) run as written, from a
+// folder where examples/ is the repository's, and write what they name.
+TEST(DocsExamples, MeasuredPlantExamplesRun) {
+    const fs::path dir = fs::temp_directory_path() / "plantarch-docs-measured-examples";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "out");
+    fs::create_directory_symlink(kSource / "examples", dir / "examples");
+    int ran = 0;
+    for (const Example& e : examples()) {
+        const bool measured =
+            std::find(e.words.begin(), e.words.end(), "reconstruct") != e.words.end() ||
+            e.line.find(".mtg") != std::string::npos;
+        if (!measured) continue;
+        std::string args;
+        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
+        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
+        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.line;
+        for (const std::string& path : written(e)) EXPECT_TRUE(fs::exists(dir / path)) << path;
+        ++ran;
+    }
+    EXPECT_GE(ran, 4);
+    fs::remove_all(dir);
+}
+
 // The project examples run as written, from a folder where examples/ is the repository's.
 TEST(DocsExamples, ProjectExamplesRun) {
     const fs::path dir = fs::temp_directory_path() / "plantarch-docs-project-examples";

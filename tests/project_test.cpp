@@ -183,7 +183,7 @@ TEST(Project, EachBadValueIsOneLineNamingTheFieldTheValueAndTheRange) {
          "p.json: plantarch_project = 3: unsupported project version"},
         {R"({"name": "x"})", "p.json: plantarch_project: not a plantarch project"},
         {R"({"plantarch_project": 1, "seed": 1, "seed": 2})",
-         "p.json: seed: a field given twice (valid: each field once per object)"},
+         "p.json:1: seed: a field given twice (valid: each field once per object)"},
         {"{\"plantarch_project\": 1,\n \"name\": }", "p.json:2: not a JSON document: "},
         {"[1, 2]", "p.json: '[1,2]': expected an object {...}"},
         {R"({"plantarch_project": 1, "physiology": {"location": [0, 0], "start": "2026-01-01"}})",

@@ -15,6 +15,7 @@
 #include "plantarch/Calibration.h"
 #include "plantarch/Error.h"
 #include "plantarch/ParameterInfo.h"
+#include "project/json_document.h"
 #include "project/json_scan.h"
 
 namespace plantarch {
@@ -112,61 +113,9 @@ NumberRange positive(double hi = std::numeric_limits<double>::infinity()) {
 }
 const NumberRange kAnyNumber{};
 
-// Text -> JSON, a duplicate key an error (a parser callback sees every key); nesting, encoding
-// and numbers beyond a double's range are refused first (project/json_scan.h).
-json parseTarget(const std::string& text, const std::string& file, const JSONLines& lines) {
-    const project::JSONScan scan = project::scanJSON(text, 16);
-    if (!scan.encoding.empty())
-        throw Error("not a JSON document: the text is " + scan.encoding,
-                    {.file = file, .line = 1, .validRange = "UTF-8 text"});
-    if (scan.tooDeep)
-        throw Error("nested too deep", {.file = file,
-                                        .line = scan.deepLine,
-                                        .parameter = scan.deepField,
-                                        .validRange = "arrays and objects nested at most 16 deep"});
-    if (!scan.overflows.empty()) {
-        const auto& o = scan.overflows.front();
-        throw Error("a number beyond a double's range", {.file = file,
-                                                         .line = o.line,
-                                                         .parameter = o.field,
-                                                         .value = o.token,
-                                                         .validRange = "a finite number"});
-    }
-    std::vector<std::set<std::string>> keys;
-    std::string duplicate;
-    const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
-        if (event == json::parse_event_t::object_start) keys.emplace_back();
-        if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-        if (event == json::parse_event_t::key && !keys.empty() && duplicate.empty() &&
-            !keys.back().insert(parsed.get<std::string>()).second)
-            duplicate = parsed.get<std::string>();
-        return true;
-    };
-    json j;
-    try {
-        j = json::parse(text, callback);
-    } catch (const json::parse_error& e) {
-        int line = 1;
-        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
-             ++i)
-            if (text[i] == '\n') ++line;
-        std::string why = e.what();
-        if (const auto colon = why.find(": "); colon != std::string::npos)
-            why = why.substr(colon + 2);
-        throw Error("not a JSON document: " + project::printable(why, 160),
-                    {.file = file, .line = line});
-    } catch (const json::exception& e) {
-        std::string why = e.what();
-        if (const auto bracket = why.find("] "); bracket != std::string::npos)
-            why = why.substr(bracket + 2);
-        throw Error("not a JSON document: " + project::printable(why, 160), {.file = file});
-    }
-    if (!duplicate.empty())
-        throw Error("a key given twice", {.file = file,
-                                          .line = lines.line(""),
-                                          .parameter = project::printable(duplicate, 160),
-                                          .validRange = "each key once per object"});
-    return j;
+// Text -> JSON (project/json_document.h): a number beyond a double's range is an error.
+json parseTarget(const std::string& text, const std::string& file) {
+    return project::parseJSONDocument(text, file, 16, nullptr, "key");
 }
 
 std::optional<FitStatistic> statisticNamed(const std::string& name) {
@@ -490,7 +439,7 @@ FitTarget readFitTargetString(const std::string& text, const std::string& nameFo
                               const std::string& folder) {
     const std::string file = nameForErrors.empty() ? "fit target" : nameForErrors;
     const fit::JSONLines lines(text);
-    const nlohmann::json j = fit::parseTarget(text, file, lines);
+    const nlohmann::json j = fit::parseTarget(text, file);
     const fit::TargetReader r(file, lines);
     return fit::readTarget(r, j, file, folder);
 }

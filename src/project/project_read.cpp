@@ -13,6 +13,7 @@
 #include "core/value_text.h"
 #include "plantarch/Error.h"
 #include "plantarch/Project.h"
+#include "project/json_document.h"
 #include "project/json_scan.h"
 #include "project/project_fields.h"
 
@@ -155,66 +156,12 @@ private:
     std::string file_;
 };
 
-// Text -> JSON, with a duplicate key an error (a parser callback sees every key). The text is
-// scanned first (json_scan.h): nesting deeper than kMaxJSONDepth and UTF-16 or UTF-32 text are
-// refused; each number beyond a double's range is read as 1e308 (of its sign), out of every
-// field's range, and listed in `overflows` for readProjectString to name in the error.
+// Text -> JSON (json_document.h): each number beyond a double's range is read as 1e308 (of
+// its sign), out of every field's range, and listed in `overflows` for readProjectString to
+// name in the error.
 json parseJSON(const std::string& text, const std::string& file,
                std::vector<project::JSONScan::Overflow>& overflows) {
-    project::JSONScan scan = project::scanJSON(text);
-    if (!scan.encoding.empty())
-        throw Error("not a JSON document: the text is " + scan.encoding,
-                    {.file = file, .line = 1, .validRange = "UTF-8 text"});
-    if (scan.tooDeep)
-        throw Error("nested too deep",
-                    {.file = file,
-                     .line = scan.deepLine,
-                     .parameter = scan.deepField,
-                     .validRange = "arrays and objects nested at most " +
-                                   std::to_string(project::kMaxJSONDepth) + " deep"});
-    std::string substituted;
-    if (!scan.overflows.empty()) {
-        substituted = text;
-        for (auto o = scan.overflows.rbegin(); o != scan.overflows.rend(); ++o)
-            substituted.replace(o->offset, o->length, o->negative ? "-1e308" : "1e308");
-    }
-    const std::string& input = scan.overflows.empty() ? text : substituted;
-    std::vector<std::set<std::string>> keys;
-    std::string duplicate;
-    const json::parser_callback_t callback = [&](int, json::parse_event_t event, json& parsed) {
-        if (event == json::parse_event_t::object_start) keys.emplace_back();
-        if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-        if (event == json::parse_event_t::key && !keys.empty() && duplicate.empty() &&
-            !keys.back().insert(parsed.get<std::string>()).second)
-            duplicate = parsed.get<std::string>();
-        return true;
-    };
-    json j;
-    try {
-        j = json::parse(input, callback);
-    } catch (const json::parse_error& e) {
-        int line = 1;
-        for (std::size_t i = 0; i < std::min<std::size_t>(e.byte ? e.byte - 1 : 0, input.size());
-             ++i)
-            if (input[i] == '\n') ++line;
-        std::string why = e.what();
-        if (const auto colon = why.find(": "); colon != std::string::npos)
-            why = why.substr(colon + 2);  // past "[json.exception...] parse error at ...: "
-        throw Error("not a JSON document: " + project::printable(why, 160),
-                    {.file = file, .line = line});
-    } catch (const json::exception& e) {
-        // Not expected after the scan (a number out of range is read as 1e308); one line.
-        std::string why = e.what();
-        if (const auto bracket = why.find("] "); bracket != std::string::npos)
-            why = why.substr(bracket + 2);
-        throw Error("not a JSON document: " + project::printable(why, 160), {.file = file});
-    }
-    if (!duplicate.empty())
-        throw Error("a field given twice", {.file = file,
-                                            .parameter = project::printable(duplicate, 160),
-                                            .validRange = "each field once per object"});
-    overflows = std::move(scan.overflows);
-    return j;
+    return project::parseJSONDocument(text, file, project::kMaxJSONDepth, &overflows);
 }
 
 void readGround(const Reader& r, const json& j, Project& p) {

@@ -13,6 +13,7 @@
 #include "plantarch/InputFiles.h"
 #include "plantarch/OutputFormats.h"
 #include "plantarch/Skeleton.h"
+#include "project/json_document.h"
 #include "project/json_scan.h"
 #include "project/skeleton_internal.h"
 
@@ -281,27 +282,7 @@ std::vector<int> nodeLines(std::string_view t) {
 }
 
 Skeleton readJSON(const std::string& text, const std::string& name) {
-    const project::JSONScan scan = project::scanJSON(text, 8);
-    if (!scan.encoding.empty())
-        throw Error("the file is " + scan.encoding + ", not UTF-8 text",
-                    {.file = name, .line = 1, .validRange = "UTF-8 text"});
-    if (scan.tooDeep)
-        throw Error("JSON nested too deep",
-                    {.file = name, .line = scan.deepLine, .validRange = "at most 8 levels"});
-    if (!scan.overflows.empty())
-        throw Error("number out of range", {.file = name,
-                                            .line = scan.overflows[0].line,
-                                            .parameter = scan.overflows[0].field,
-                                            .value = scan.overflows[0].token});
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        int line = 1;
-        for (std::size_t i = 0; i < std::min(e.byte, text.size()); ++i)
-            if (text[i] == '\n') ++line;
-        throw Error("not valid JSON", {.file = name, .line = line});
-    }
+    const json doc = project::parseJSONDocument(text, name, 8, nullptr);
     const std::vector<int> lines = nodeLines(text);
     if (!doc.is_object())
         throw Error("expected an object {\"nodes\": [...]}", {.file = name, .line = 1});
