@@ -14,11 +14,14 @@
 // Cancel takes a queued build out and the API stops a running one; the API refuses paths outside the output folder and requests
 // from other sites; colour by light or carbon is offered only for a scene with that data, and
 // a physiology season switched on in the Environment tab is built afresh (never grown on), its
-// scene coloured by absorbed PAR with a legend of its range. With --screenshots, pictures of the page are written into DIR
+// scene coloured by absorbed PAR with a legend of its range; a measured skeleton (a file under
+// the output folder) is rebuilt as a block of capsicum, a bad one refused with the server's
+// line, and "Bend under load" bends a grown plant beside it. With --screenshots, pictures of the page are written into DIR
 // (docs/images for docs/builder.md). Waits are for states the page or the server reports,
 // never for a time. CHROMIUM overrides /usr/bin/chromium.
 import { spawn, execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, readdirSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, readdirSync, writeFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
 import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
@@ -446,6 +449,7 @@ async function run() {
   step('the API refuses paths outside the output folder (403) and requests from other sites');
 
   await physiologySeason(page, base);
+  await measuredSkeleton(page, base);
   assert.deepEqual(pageErrors, [], 'errors in the page');
 }
 
@@ -545,6 +549,67 @@ async function physiologySeason(page, base) {
   await shot(page, 'physiology-carbon');
   await page.select('#color-mode', 'natural');
   step(`colour by light: a ramp of ${legend.min.toFixed(1)} to ${legend.max.toFixed(1)} µmol m⁻² s⁻¹, ${lightColors} colours on the canvas`);
+}
+
+// A measured skeleton: the repository's digitised pepper, copied under the output folder,
+// named relative to OUTPUT/projects/ as the page's other files are. A bad skeleton file is
+// refused with the server's one line; the good one builds one plant, labelled with its block;
+// "Bend under load" with a softer wood bends a grown plant beside it (other GLB bytes).
+async function measuredSkeleton(page, base) {
+  const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+  mkdirSync(path.join(output, 'skeletons'), { recursive: true });
+  copyFileSync(path.join(root, 'examples/skeletons/pepper_digitised.csv'), path.join(output, 'skeletons/pepper.csv'));
+  writeFileSync(path.join(output, 'skeletons/bad.csv'), 'id,parent,x,y,z\n0,,0,0,0\n1,0,nan,0,1\n');
+  await page.click('[data-tab=environment]');
+  await setChecked(page, 'input[name=physiology]', false);
+  await page.click('[data-tab=scene]');
+  await page.click('.block-card.open .species-button');
+  await page.click('.species-popup [data-species=capsicum]');
+  await page.select('.block-card.open select[name=layout]', 'skeleton');
+  await setValue(page, '.block-card.open input[name=skeleton-file]', '../skeletons/bad.csv');
+  await page.select('.block-card.open select[name=skeleton-unit]', '0.01');
+  await setValue(page, '.block-card.open input[name=age]', 60);
+  await page.click('#build');
+  await page.waitForSelector('#build-error:not([hidden])');
+  const badError = await page.$eval('#build-error', (el) => el.textContent);
+  assert.match(badError, /bad\.csv:3/, `a bad skeleton's error: ${badError}`);
+  step(`a bad skeleton file shows: ${badError}`);
+
+  await setValue(page, '.block-card.open input[name=skeleton-file]', '../skeletons/pepper.csv');
+  const before = await page.$eval('#build-status', (s) => s.dataset.build);
+  await page.click('#build');
+  const straight = await pageBuild(page, before);
+  assert.equal(straight.state, 'done', `the skeleton's build: ${straight.text}`);
+  const status = (await api(base, 'GET', `/api/builds/${straight.id}`)).data;
+  assert.equal(status.stats.plants, 1, 'one measured plant');
+  assert.equal(await shownNumber(page, 'stat-plants'), 1, 'plants shown');
+  await shot(page, 'skeleton');
+
+  // A grown capsicum beside it, built straight, then with "Bend under load" and a softer wood:
+  // its shoots bend (other GLB bytes, a lower plant); the measured one is held as measured.
+  await page.click('#add-block');
+  await page.select('.block-card.open select[name=layout]', 'single');
+  await setValue(page, '.block-card.open input[name=age]', 60);
+  await page.click('#build');
+  const upright = await pageBuild(page, straight.id);
+  assert.equal(upright.state, 'done', `the grown capsicum's build: ${upright.text}`);
+  await setChecked(page, '.block-card.open input[name=bend]', true);
+  await setValue(page, '.block-card.open input[name=elastic-modulus]', 1e9);
+  const file = await page.evaluate(() => window.plantarchBuilder.projectFile());
+  assert.deepEqual(
+    file.blocks.map((b) => [b.layout, b.skeleton?.file, b.skeleton?.unit, b.bend, b.elastic_modulus]),
+    [['skeleton', '../skeletons/pepper.csv', 0.01, false, null], ['single', undefined, undefined, true, 1e9]],
+  );
+  await page.click('#build');
+  const bent = await pageBuild(page, upright.id);
+  assert.equal(bent.state, 'done', `the bent capsicum's build: ${bent.text}`);
+  const [a, b] = await Promise.all([upright.id, bent.id].map(async (id) => (await api(base, 'GET', `/api/builds/${id}/scene.glb`)).data));
+  assert.ok(!a.equals(b), 'bending changes the scene');
+  const heights = await Promise.all([upright.id, bent.id].map(async (id) => (await api(base, 'GET', `/api/builds/${id}`)).data.stats.height));
+  assert.ok(heights[1] < heights[0], `bent lower: ${heights}`);
+  await page.evaluate(() => window.plantarchBuilder.viewer.frame());
+  await shot(page, 'bending');
+  step(`a measured pepper skeleton built (${straight.id}); a capsicum bent under load (${bent.id}): ${heights[0].toFixed(3)} m upright, ${heights[1].toFixed(3)} m bent`);
 }
 
 let failed = false;

@@ -163,9 +163,9 @@ export class ScenePanel {
         render(layoutFields);
       }
       // Build parameters, germination and trellis do not apply to a measured skeleton.
-      for (const el of [params, germination, trellis])
+      for (const el of [params, trellis, buildHeading])
         if (el) el.hidden = b.layout === 'skeleton';
-      if (buildHeading) buildHeading.hidden = b.layout === 'skeleton';
+      germination.hidden = b.layout !== 'grid' && b.layout !== 'scatter';
     };
     const speciesInfo = this.app.species.find((s) => s.name === b.species);
     const recommended = speciesInfo?.recommended_age;
@@ -175,19 +175,16 @@ export class ScenePanel {
       h('p', { class: 'hint' }, 'Loading build parameters…'),
     );
     this.fillParameters(b, params, edited);
-    const germination =
-      b.layout === 'single'
-        ? null
-        : field(
-            'Germination',
-            numberInput(b.germination, set('germination'), {
-              min: 0,
-              max: 1,
-              step: 0.05,
-              name: 'germination',
-            }),
-            { title: 'probability that a position gets a plant, 0 to 1' },
-          );
+    const germination = field(
+      'Germination',
+      numberInput(b.germination, set('germination'), {
+        min: 0,
+        max: 1,
+        step: 0.05,
+        name: 'germination',
+      }),
+      { title: 'probability that a position gets a plant, 0 to 1' },
+    );
     // Only a species that declares a trellis has one to draw.
     const trellis = speciesInfo?.trellis
       ? field('Trellis', checkbox(b.trellis, set('trellis'), { name: 'trellis' }), {
