@@ -6,8 +6,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh --tests "$@"
 # What only the tests need: the format check's clang-format, pytest for the Python tests,
-# Blender and Chromium (three.js) to load the glTF files, venv and pip for the wheel test.
-test_packages=(clang-format python3-pytest python3-venv python3-pip blender chromium)
+# Blender and Chromium (three.js) to load the glTF files, venv and pip for the wheel test,
+# Slurm and munge for the dataset job array (a private cluster the test starts and stops).
+test_packages=(clang-format python3-pytest python3-venv python3-pip blender chromium slurm-wlm munge)
 missing=()
 for p in "${test_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
