@@ -265,7 +265,7 @@ glm::dmat4 localTransform(const json& node, const Document& d) {
 }
 
 // A label value as a whole number (-1 for one that is not: NaN, huge, negative).
-int whole(double v) {
+int labelNumber(double v) {
     return v >= 0.0 && v <= 2147483647.0 ? int(v) : -1;
 }
 
@@ -345,13 +345,13 @@ std::vector<ObjectID> readGLTF(Context& context, const std::string& path) {
             for (std::size_t t = 0; t < corners.size(); t += 3) {
                 if (!(corners[t] < double(n))) d.fail("a corner index is out of range");
                 const auto first = std::size_t(corners[t]);
-                const long long key =
-                    objects.empty() ? -1 - (long long)fresh : (long long)whole(objects[first]);
+                const long long key = objects.empty() ? -1 - (long long)fresh
+                                                      : (long long)labelNumber(objects[first]);
                 auto [it, added] = partOf.emplace(key, parts.size());
                 if (added) {
                     Part p;
-                    if (!plants.empty()) p.plant = whole(plants[first]);
-                    if (!organs.empty()) p.organ = whole(organs[first]);
+                    if (!plants.empty()) p.plant = labelNumber(plants[first]);
+                    if (!organs.empty()) p.organ = labelNumber(organs[first]);
                     parts.push_back(std::move(p));
                 }
                 Part& part = parts[it->second];
