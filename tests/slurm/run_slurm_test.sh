@@ -112,50 +112,56 @@ check_real_dataset() { # OUT
     local out=$1
     timeout 120 "$plantarch" dataset "$spec" --out "$tmp/serial" --samples "$samples" > "$tmp/log/serial.out" 2>&1 ||
         fail "the serial run failed: $(tail -n 3 "$tmp/log/serial.out")"
-    /usr/bin/python3 - "$out" "$tmp/serial" "$samples" << 'EOF' || fail "the dataset is not the serial run's"
+    say "serial run done"
+    /usr/bin/python3 - "$out" "$tmp/serial" "$samples" "$shards" << 'EOF' || fail "the dataset is not the serial run's"
 import json, os, sys
-out, serial, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+out, serial, n, shards = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
 
-def manifest(d):
-    path = os.path.join(d, "manifest.json")
+def load(path):
     if not os.path.isfile(path):
-        sys.exit(f"no manifest.json in {d}")
+        sys.exit(f"no {os.path.relpath(path, out)}")
     with open(path) as f:
         return json.load(f)
 
-def sample_entries(m):
-    s = m.get("samples") if isinstance(m, dict) else m
-    if not isinstance(s, list):
-        sys.exit("manifest.json has no list of samples")
-    return s
+def indices(value):  # every sample index a manifest lists, wherever it lists them
+    if isinstance(value, dict):
+        found = [value["index"]] if isinstance(value.get("index"), int) else []
+        return found + [i for v in value.values() for i in indices(v)]
+    if isinstance(value, list):
+        return [i for v in value for i in indices(v)]
+    return []
 
-merged = sample_entries(manifest(out))
-if len(merged) != n:
-    sys.exit(f"the merged manifest lists {len(merged)} samples, not {n}")
+# Each sample folder once, nothing half-written left beside them.
+names = sorted(os.listdir(os.path.join(out, "samples")))
+expected = [f"{i:06d}" for i in range(n)]
+if names != expected:
+    sys.exit(f"sample folders {names}, not {expected}")
+# Each shard's manifest lists its samples, the merged one all of them.
+for k in range(shards):
+    listed = sorted(indices(load(os.path.join(out, f"manifest-{k}-of-{shards}.json"))))
+    if listed != [i for i in range(n) if i % shards == k]:
+        sys.exit(f"manifest-{k}-of-{shards}.json lists samples {listed}")
+merged = sorted(indices(load(os.path.join(out, "dataset.json"))))
+if merged != list(range(n)):
+    sys.exit(f"dataset.json lists samples {merged}, not 0 to {n - 1}")
 
 def files(d):
     result = {}
-    for root, dirs, names in os.walk(d):
+    for root, _, names in os.walk(d):
         for name in names:
-            rel = os.path.relpath(os.path.join(root, name), d)
-            top = rel.split(os.sep)[0]
-            if top.startswith("manifest") or name.startswith("manifest"):
-                continue  # the manifests name shards and times
             with open(os.path.join(root, name), "rb") as f:
-                result[rel] = f.read()
+                result[os.path.relpath(os.path.join(root, name), d)] = f.read()
     return result
 
-a, b = files(out), files(serial)
-dirs = sorted({rel.split(os.sep)[0] for rel in a if os.sep in rel})
-if len(dirs) != n:
-    sys.exit(f"{len(dirs)} sample folders, not {n}: {dirs}")
+# The samples, byte for byte those of the serial run.
+a, b = files(os.path.join(out, "samples")), files(os.path.join(serial, "samples"))
 if sorted(a) != sorted(b):
-    only = sorted(set(a) ^ set(b))
-    sys.exit(f"files differ from the serial run's: {only[:5]}")
-different = [rel for rel in a if a[rel] != b[rel]]
+    sys.exit(f"files unlike the serial run's: {sorted(set(a) ^ set(b))[:5]}")
+different = sorted(rel for rel in a if a[rel] != b[rel])
 if different:
-    sys.exit(f"{len(different)} files differ from the serial run's bytes: {different[:5]}")
-print(f"{len(dirs)} sample folders, {len(a)} files equal to the serial run's")
+    sys.exit(f"{len(different)} files differ from the serial run's: {different[:5]}")
+print(f"{n} sample folders, {len(a)} files, each equal to the serial run's; "
+      f"{shards} shard manifests and dataset.json list them")
 EOF
 }
 
