@@ -250,6 +250,8 @@ KillWait=5
 NodeName=$node NodeAddr=127.0.0.1 $hardware State=UNKNOWN
 PartitionName=test Nodes=$node Default=YES MaxTime=10 State=UP
 EOF
+# Only this cluster's settings (the suite may itself run in a job of another cluster).
+while read -r name; do unset "$name"; done < <(compgen -e | grep -E '^(SLURM|SBATCH|SQUEUE|SINFO)_' || true)
 export SLURM_CONF=$tmp/slurm.conf
 
 slurmctld -D -f "$SLURM_CONF" > "$tmp/log/slurmctld.out" 2>&1 &
