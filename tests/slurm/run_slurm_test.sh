@@ -44,8 +44,13 @@ pids=()
 cleanup() {
     local status=$?
     # Jobs first (their steps end with them), then the daemons by the ids started here.
-    if [[ -n "${SLURM_CONF:-}" ]] && ((${#pids[@]} > 1)); then
-        timeout 5 scancel --full --quiet --user=root > /dev/null 2>&1 || true
+    if [[ -f "$tmp/slurm.conf" ]] && ((${#pids[@]} > 1)); then
+        export SLURM_CONF=$tmp/slurm.conf
+        timeout 5 scancel --full --quiet --user="$(id -un)" > /dev/null 2>&1 || true
+        for _ in $(seq 20); do
+            [[ -z $(timeout 5 squeue --noheader --format=%i 2> /dev/null) ]] && break
+            sleep 0.5
+        done
     fi
     local p
     for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done
