@@ -17,8 +17,8 @@
 #
 # Arguments: SPEC OUT [SAMPLES], or the environment variables SPEC, OUT and SAMPLES (sbatch
 # passes the submitting shell's environment by default). SAMPLES, when given, is passed as
-# --samples (the spec's own count otherwise). PLANTARCH is the plantarch command (default:
-# `plantarch` on the PATH).
+# --samples (the spec's own count otherwise; give the merge the same --samples). PLANTARCH
+# is the plantarch command (default: `plantarch` on the PATH).
 #
 #SBATCH --job-name=plantarch-dataset
 #SBATCH --array=0-3

@@ -181,7 +181,7 @@ run_directly() { # REASON
             timeout 120 bash "$script" "$spec" "$out" "$samples") > "$tmp/log/task-$k.out" 2>&1 ||
             fail "task $k: $(tail -n 3 "$tmp/log/task-$k.out")"
     done
-    (cd "$tmp/work" && timeout 120 "$command" dataset "$spec" --out "$out" --merge) > "$tmp/log/merge.out" 2>&1 ||
+    (cd "$tmp/work" && timeout 120 "$command" dataset "$spec" --out "$out" --samples "$samples" --merge) > "$tmp/log/merge.out" 2>&1 ||
         fail "merge: $(tail -n 3 "$tmp/log/merge.out")"
     check_dataset "$out"
     say "passed (tasks run directly, not through Slurm)"
@@ -285,8 +285,8 @@ status=0
 # shellcheck disable=SC2016 # the job's shell expands them, from --export
 merge_id=$(timeout 60 sbatch --parsable --wait --time=5 --dependency=afterok:"$jobid" \
     --output="$tmp/log/merge.out" \
-    --wrap '"$PLANTARCH" dataset "$SPEC" --out "$OUT" --merge' \
-    --export=ALL,SPEC="$spec",OUT="$out") || status=$?
+    --wrap '"$PLANTARCH" dataset "$SPEC" --out "$OUT" --samples "$SAMPLES" --merge' \
+    --export=ALL,SPEC="$spec",OUT="$out",SAMPLES="$samples") || status=$?
 ((status == 0)) || fail "the merge job ${merge_id:-?} ended with status $status: $(tail -n 5 "$tmp/log/merge.out" 2> /dev/null)"
 say "merge job ${merge_id%%;*} done"
 check_dataset "$out"
