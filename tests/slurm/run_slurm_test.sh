@@ -91,7 +91,8 @@ if ((stand_in)); then
     echo '{}' > "$spec"
 else
     command=$plantarch
-    spec=$(ls -S -r "$src"/examples/datasets/*.json 2> /dev/null | head -n 1 || true)
+    spec=$src/examples/datasets/tiny.json # else the smallest spec there
+    [[ -f "$spec" ]] || spec=$(ls -S -r "$src"/examples/datasets/*.json 2> /dev/null | head -n 1 || true)
     [[ -n "$spec" ]] || fail "no dataset spec (*.json) in $src/examples/datasets"
     timeout 20 "$plantarch" dataset --help > /dev/null 2>&1 || fail "$plantarch has no 'dataset' command"
 fi
@@ -128,25 +129,31 @@ def load(path):
     with open(path) as f:
         return json.load(f)
 
-def indices(value):  # every sample index a manifest lists, wherever it lists them
-    if isinstance(value, dict):
-        found = [value["index"]] if isinstance(value.get("index"), int) else []
-        return found + [i for v in value.values() for i in indices(v)]
-    if isinstance(value, list):
-        return [i for v in value for i in indices(v)]
-    return []
+def listed(path):  # the samples a manifest lists, each entry checked against its folder
+    m = load(path)
+    entries = m.get("entries") if isinstance(m, dict) else None
+    if not isinstance(entries, list) or m.get("samples") != n:
+        sys.exit(f"{os.path.basename(path)}: no entries, or not {n} samples")
+    for e in entries:
+        folder = os.path.join(out, e["folder"])
+        sizes = {f: os.path.getsize(os.path.join(folder, f)) for f in os.listdir(folder)}
+        if e["folder"] != f"samples/{e['sample']:06d}" or e["files"] != sizes:
+            sys.exit(f"{os.path.basename(path)}: entry of sample {e['sample']} unlike its folder")
+    return sorted(e["sample"] for e in entries)
 
 # Each sample folder once, nothing half-written left beside them.
 names = sorted(os.listdir(os.path.join(out, "samples")))
 expected = [f"{i:06d}" for i in range(n)]
 if names != expected:
     sys.exit(f"sample folders {names}, not {expected}")
-# Each shard's manifest lists its samples, the merged one all of them.
+if any(f.startswith(".") for f in os.listdir(out)):
+    sys.exit(f"left in the dataset folder: {[f for f in os.listdir(out) if f.startswith('.')]}")
+# Each shard's manifest lists its samples, the merged index all of them.
 for k in range(shards):
-    listed = sorted(indices(load(os.path.join(out, f"manifest-{k}-of-{shards}.json"))))
-    if listed != [i for i in range(n) if i % shards == k]:
-        sys.exit(f"manifest-{k}-of-{shards}.json lists samples {listed}")
-merged = sorted(indices(load(os.path.join(out, "dataset.json"))))
+    mine = listed(os.path.join(out, f"manifest-{k}-of-{shards}.json"))
+    if mine != [i for i in range(n) if i % shards == k]:
+        sys.exit(f"manifest-{k}-of-{shards}.json lists samples {mine}")
+merged = listed(os.path.join(out, "dataset.json"))
 if merged != list(range(n)):
     sys.exit(f"dataset.json lists samples {merged}, not 0 to {n - 1}")
 
@@ -165,8 +172,16 @@ if sorted(a) != sorted(b):
 different = sorted(rel for rel in a if a[rel] != b[rel])
 if different:
     sys.exit(f"{len(different)} files differ from the serial run's: {different[:5]}")
-print(f"{n} sample folders, {len(a)} files, each equal to the serial run's; "
-      f"{shards} shard manifests and dataset.json list them")
+# The index and the per-split COCO files too (the shard manifests name their shard).
+tops = sorted(f for f in os.listdir(serial) if f == "dataset.json" or f.startswith("coco_"))
+if sorted(f for f in os.listdir(out) if f == "dataset.json" or f.startswith("coco_")) != tops:
+    sys.exit(f"index and COCO files unlike the serial run's {tops}")
+for f in tops:
+    with open(os.path.join(out, f), "rb") as x, open(os.path.join(serial, f), "rb") as y:
+        if x.read() != y.read():
+            sys.exit(f"{f} differs from the serial run's")
+print(f"slurm test: {n} sample folders, {len(a)} files and {', '.join(tops)} equal to "
+      f"the serial run's; the {shards} shard manifests and dataset.json list the samples")
 EOF
 }
 
