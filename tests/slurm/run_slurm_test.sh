@@ -14,7 +14,7 @@
 # munge`); 1 failed. Without root, Slurm cannot run jobs as the daemons' user here, and the
 # script says so and runs the batch script's tasks directly instead, as it does when the
 # daemons cannot start on this machine (the reason printed) or PLANTARCH_SLURM_TEST_DIRECT
-# is set.
+# is set; with PLANTARCH_SLURM_TEST_REQUIRE set, not running through Slurm is a failure.
 set -euo pipefail
 usage="usage: run_slurm_test.sh SOURCE_DIR PLANTARCH [--stand-in]"
 src=$(cd "${1:?$usage}" && pwd)
@@ -188,6 +188,7 @@ EOF
 # ---- the batch script's tasks run by hand (when Slurm cannot run here) -------------------
 run_directly() { # REASON
     say "Slurm cannot run jobs here: $1"
+    [[ -z "${PLANTARCH_SLURM_TEST_REQUIRE:-}" ]] || fail "PLANTARCH_SLURM_TEST_REQUIRE is set"
     say "running the batch script's ${shards} array tasks and the merge directly instead"
     local out=$tmp/work/direct k
     for ((k = 0; k < shards; ++k)); do
@@ -231,7 +232,7 @@ s = [socket.socket() for _ in range(2)]
 for x in s: x.bind(("127.0.0.1", 0))
 print(" ".join(str(x.getsockname()[1]) for x in s))')
 read -r ctld_port slurmd_port <<< "$free_ports"
-node=$(hostname -s)
+node=$(hostname -s 2> /dev/null || uname -n)
 hardware=$(timeout 20 slurmd -C | head -n 1 | sed -e 's/^NodeName=[^ ]* //')
 [[ $hardware == *CPUs=* ]] || run_directly "slurmd -C does not describe this machine: $hardware"
 touch "$tmp/plugstack.conf"
