@@ -59,7 +59,20 @@ struct CanopyOptions {
     /// Build parameters overriding the species' defaults, checked against their ranges
     /// (build_parameters).
     std::map<std::string, float> buildParameters;
+    /// Only these plants of the canopy (indices in plant order, increasing, each below the
+    /// number of plants the whole canopy has), for a canopy built in parts (plantarch/Field.h);
+    /// absent: every plant. Each plant built gets the ID and random stream it gets when the
+    /// whole canopy is built (the IDs of the others are reserved and stay unused), so the
+    /// parts hold the same plants as the whole, exactly without soft collision avoidance (with
+    /// it a plant steers by the neighbours built with it).
+    std::optional<std::vector<unsigned>> only;
 };
+
+/// The bases of a canopy's plants in plant order, as buildPlantCanopyFromLibrary places them
+/// with scene seed `seed` (the germination and scatter draws included), without building
+/// anything. Throws plantarch::Error for a count, spacing, extent or germination rate out of
+/// range, as buildPlantCanopyFromLibrary does.
+std::vector<vec3> canopyPositions(const CanopyOptions& options, std::uint64_t seed);
 
 class PlantArchitecture {
 public:
@@ -513,8 +526,13 @@ private:
     /// points), not grown.
     unsigned buildPlantStructure(const vec3& base_position,
                                  const std::map<std::string, float>& build_parameters);
+    /// Builds the plants at `positions`, plant i with ID first + index(i) and stream
+    /// firstStream + index(i), where index is `indices` (empty: i itself) and `count` IDs and
+    /// streams are taken (at least positions.size()).
     std::vector<unsigned> buildPlantsAt(const std::vector<vec3>& positions, float age,
-                                        const std::map<std::string, float>& build_parameters);
+                                        const std::map<std::string, float>& build_parameters,
+                                        const std::vector<unsigned>& indices = {},
+                                        unsigned count = 0);
     struct GrownPlant;   ///< a plant grown in a canopy worker (src/api/canopy.cpp)
     struct CanopyBuild;  ///< one canopy's build (src/api/canopy.cpp)
     void adoptPlants(std::span<GrownPlant> plants);

@@ -145,7 +145,20 @@ struct ProjectBuildOptions {
     /// At most this many triangles in the Context (0: no limit); a block that would pass it
     /// throws TriangleBudgetError before it is grown.
     std::size_t maxTriangles = 0;
+    /// Only some plants (a field built in tiles, plantarch/Field.h): one list per block of
+    /// the indices of its plants to build, in the block's plant order (increasing; the order
+    /// of projectBlockPositions); absent: every plant. Each plant built gets the ID and the
+    /// random streams it gets when the whole project is built, so its geometry is the same
+    /// (exactly without soft collision avoidance). A skeleton block is not built in part
+    /// (an Error naming it).
+    std::optional<std::vector<std::vector<unsigned>>> only;
 };
+
+/// The bases of a block's plants as buildProject places them, in the block's plant order (a
+/// grid's germination and a scatter's draws with the block's seed), without building
+/// anything. A skeleton block's plants stand where its file puts them: Error (build it).
+/// Throws plantarch::Error naming the project file and the block's field.
+std::vector<vec3> projectBlockPositions(const Project& project, std::size_t block);
 
 /// What buildProject made, for statistics, growth and export.
 struct BuiltProject {

@@ -63,6 +63,7 @@ void bindLeafAngles(py::module_& m);    // leaf_angles.cpp: leaf inclination his
 void bindBending(py::module_& m);       // bending.cpp: shoots bending under load
 void bindCalibration(py::module_& m);   // calibration.cpp: fitting species to measurements
 void bindOutput(py::module_& m);        // output.cpp: exporters, renderer, species files
+void bindField(py::module_& m);         // field.cpp: fields built in tiles
 
 }  // namespace plantarch::python
 

@@ -33,6 +33,7 @@ PYBIND11_MODULE(_plantarch, m) {
     bindBending(m);
     bindCalibration(m);
     bindSkeleton(m);  // after bindArchitecture: adds PlantArchitecture's methods
+    bindField(m);
 #ifdef PLANTARCH_VERSION_STRING
     m.attr("__version__") = PLANTARCH_VERSION_STRING;
 #endif

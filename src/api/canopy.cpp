@@ -157,10 +157,11 @@ struct PlantArchitecture::CanopyBuild {
     const std::vector<vec3>& positions;
     float age;
     const std::map<std::string, float>& buildParameters;
-    std::size_t limit = 0;     // the Context's triangle limit (0: none)
-    int n = 0;                 // plants
-    unsigned first = 0;        // plant i gets ID first + i ...
-    unsigned firstStream = 0;  // ... and random stream firstStream + i
+    std::size_t limit = 0;                 // the Context's triangle limit (0: none)
+    int n = 0;                             // plants
+    unsigned first = 0;                    // plant i gets ID first + index(i) ...
+    unsigned firstStream = 0;              // ... and random stream firstStream + index(i)
+    const std::vector<unsigned>& indices;  // index(i): indices[i], or i when empty
     int threads = 1;
     std::vector<CanopyWorker> workers;
     std::vector<int> builtBy;    // the worker that holds plant i's state
@@ -170,13 +171,14 @@ struct PlantArchitecture::CanopyBuild {
     std::size_t trianglesSeen = 0;
 
     CanopyBuild(PlantArchitecture& a, const std::vector<vec3>& at, float grownTo,
-                const std::map<std::string, float>& parameters, bool together)
-        : arch(a), positions(at), age(grownTo), buildParameters(parameters) {
+                const std::map<std::string, float>& parameters, bool together,
+                const std::vector<unsigned>& only, unsigned count)
+        : arch(a), positions(at), age(grownTo), buildParameters(parameters), indices(only) {
         Impl& impl = *arch.impl_;
         limit = arch.context_->triangleLimit();
         impl.store.triangleLimit = limit;
         n = int(positions.size());
-        first = arch.context_->reservePlantIDs(unsigned(n));
+        first = arch.context_->reservePlantIDs(std::max(count, unsigned(n)));
         firstStream = impl.store.nextStream;
         threads = std::max(1, std::min(omp_get_max_threads(), n));
         workers.resize(static_cast<std::size_t>(threads));
@@ -200,6 +202,9 @@ struct PlantArchitecture::CanopyBuild {
     }
 
     Impl& ownerOf(int i) { return *workers[std::size_t(builtBy[std::size_t(i)])].arch->impl_; }
+    unsigned index(int i) const { return indices.empty() ? unsigned(i) : indices[std::size_t(i)]; }
+    unsigned idOf(int i) const { return first + index(i); }
+    unsigned streamOf(int i) const { return firstStream + index(i); }
 
     // A plant's failure names the plant; a triangle limit passed keeps its own type.
     static void failed(ParallelErrors& errors, int i0) {
@@ -286,7 +291,7 @@ struct PlantArchitecture::CanopyBuild {
                     Context& slot = slots[std::size_t(i - start)];
                     make(i, t, slot);
                     Impl& owner = ownerOf(i);
-                    const unsigned id = first + unsigned(i);
+                    const unsigned id = idOf(i);
                     grown[std::size_t(i - start)] = {id, &slot, &owner,
                                                      plantObjects(owner.store.plant(id))};
                 });
@@ -322,7 +327,7 @@ struct PlantArchitecture::CanopyBuild {
                 undo();
                 throw;
             }
-            for (int i = start; i < end; ++i) ids.push_back(first + unsigned(i));
+            for (int i = start; i < end; ++i) ids.push_back(idOf(i));
             for (int i = start; i < end; ++i) slots[std::size_t(i - start)].clear(false);
             start = end;
             report(stage, double(start) / double(n));
@@ -341,8 +346,8 @@ struct PlantArchitecture::CanopyBuild {
                     ~Rebind() { arch.context_ = home; }
                 } rebind{w, &worker.ctx};
                 w.context_ = &slot;
-                w.impl_->store.assignedID = first + unsigned(i);
-                w.impl_->store.nextStream = firstStream + unsigned(i);
+                w.impl_->store.assignedID = idOf(i);
+                w.impl_->store.nextStream = streamOf(i);
                 w.buildPlantInstanceFromLibrary(positions[std::size_t(i)], age, buildParameters);
                 builtBy[std::size_t(i)] = t;
             },
@@ -357,8 +362,8 @@ struct PlantArchitecture::CanopyBuild {
         probe.setTriangleLimit(limit);
         PlantArchitecture& w = *workers[0].arch;
         w.context_ = &probe;
-        w.impl_->store.assignedID = first;
-        w.impl_->store.nextStream = firstStream;
+        w.impl_->store.assignedID = idOf(0);
+        w.impl_->store.nextStream = streamOf(0);
         std::size_t triangles = 0;
         try {
             const unsigned id = w.buildPlantInstanceFromLibrary(positions[0], age, buildParameters);
@@ -385,8 +390,8 @@ struct PlantArchitecture::CanopyBuild {
             structureErrors.run(i, [&] {
                 const int t = omp_get_thread_num();
                 PlantArchitecture& w = *workers[std::size_t(t)].arch;
-                w.impl_->store.assignedID = first + unsigned(i);
-                w.impl_->store.nextStream = firstStream + unsigned(i);
+                w.impl_->store.assignedID = idOf(i);
+                w.impl_->store.nextStream = streamOf(i);
                 w.buildPlantStructure(positions[std::size_t(i)], buildParameters);
                 builtBy[std::size_t(i)] = t;
             });
@@ -402,7 +407,7 @@ struct PlantArchitecture::CanopyBuild {
         }
         for (int i = 0; i < n; ++i) {
             Impl& owner = ownerOf(i);
-            PlantInstance& plant = owner.store.plant(first + unsigned(i));
+            PlantInstance& plant = owner.store.plant(idOf(i));
             growth.push_back({&plant, collision::attractionFor(owner.collision, plant), {}});
         }
         collision::growTogether(*impl.collision.world, growth, age, arch.seed_, growers,
@@ -423,7 +428,8 @@ struct PlantArchitecture::CanopyBuild {
 // Without it, each batch of plants is grown and tessellated on all threads and copied in.
 std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     const std::vector<vec3>& positions, float age,
-    const std::map<std::string, float>& buildParameters) {
+    const std::map<std::string, float>& buildParameters, const std::vector<unsigned>& indices,
+    unsigned count) {
     if (!impl_->species)
         throw Error("no species loaded: call loadPlantModelFromLibrary first",
                     {.parameter = "species", .validRange = "one of the library species"});
@@ -434,20 +440,22 @@ std::vector<unsigned> PlantArchitecture::buildPlantsAt(
     const bool together = impl_->collision.world && impl_->collision.world->soft();
     // Plants with attraction points of their own count their work in this scene's stats.
     if (impl_->species->attraction) collision::worldOf(impl_->collision);
-    CanopyBuild build(*this, positions, age, buildParameters, together);
-    if (together)
-        build.growTogether();
-    else
-        build.growApart();
-    impl_->store.nextStream = build.firstStream + unsigned(build.n);
-    for (unsigned id : build.ids) addTrellis(id, positions[id - build.first], buildParameters);
+    CanopyBuild build(*this, positions, age, buildParameters, together, indices, count);
+    if (build.n > 0) {
+        if (together)
+            build.growTogether();
+        else
+            build.growApart();
+    }
+    impl_->store.nextStream = build.firstStream + std::max(count, unsigned(build.n));
+    for (int i = 0; i < build.n; ++i)
+        addTrellis(build.idOf(i), positions[std::size_t(i)], buildParameters);
     return build.ids;
 }
 
-std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(const CanopyOptions& o,
-                                                                     float age) {
-    checkCanopyArguments(age, o.germinationRate);
-    Rng scene(seed_, kCanopyStream);
+std::vector<vec3> canopyPositions(const CanopyOptions& o, std::uint64_t seed) {
+    checkCanopyArguments(0.0f, o.germinationRate);
+    Rng scene(seed, kCanopyStream);
     std::vector<vec3> positions;
     if (o.layout == CanopyOptions::Layout::Grid) {
         const glm::ivec2 count = o.count;
@@ -487,7 +495,26 @@ std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(const Canop
             if (scene.chance(o.germinationRate)) positions.push_back(o.center + vec3(x, y, 0.0f));
         }
     }
-    return buildPlantsAt(positions, age, o.buildParameters);
+    return positions;
+}
+
+std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(const CanopyOptions& o,
+                                                                     float age) {
+    checkCanopyArguments(age, o.germinationRate);
+    const std::vector<vec3> positions = canopyPositions(o, seed_);
+    if (!o.only) return buildPlantsAt(positions, age, o.buildParameters);
+    std::vector<vec3> some;
+    for (std::size_t k = 0; k < o.only->size(); ++k) {
+        const unsigned i = (*o.only)[k];
+        if (i >= positions.size() || (k > 0 && i <= (*o.only)[k - 1]))
+            throw Error("canopy plant index out of range or out of order",
+                        {.parameter = "only",
+                         .value = std::to_string(i),
+                         .validRange = "increasing indices below the canopy's " +
+                                       std::to_string(positions.size()) + " plants"});
+        some.push_back(positions[i]);
+    }
+    return buildPlantsAt(some, age, o.buildParameters, *o.only, unsigned(positions.size()));
 }
 
 std::vector<unsigned> PlantArchitecture::buildPlantCanopyFromLibrary(

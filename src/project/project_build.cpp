@@ -177,10 +177,33 @@ Skeleton readBlockSkeleton(const Project& p, std::size_t i) {
     return s;
 }
 
+// The canopy a grid or scatter block is.
+CanopyOptions blockCanopy(const ProjectBlock& b) {
+    CanopyOptions o;
+    o.layout = b.layout == ProjectBlock::Layout::Grid ? CanopyOptions::Layout::Grid
+                                                      : CanopyOptions::Layout::Scatter;
+    o.center = b.origin;
+    o.spacing = b.spacing;
+    o.count = b.count;
+    o.extent = b.area;
+    o.plants = b.plants;
+    o.germinationRate = b.germination;
+    o.buildParameters = b.parameters;
+    return o;
+}
+
+// `only`: the block's plants to build (absent: all of them).
 std::vector<unsigned> buildBlock(const Project& p, std::size_t i, float age,
-                                 const SpeciesModel& model, PlantArchitecture& arch) {
+                                 const SpeciesModel& model, PlantArchitecture& arch,
+                                 const std::optional<std::vector<unsigned>>& only) {
     const ProjectBlock& b = p.blocks[i];
     const std::string at = "blocks/" + std::to_string(i);
+    if (only && b.layout == ProjectBlock::Layout::Skeleton)
+        throw Error("a skeleton block is not built in part",
+                    {.file = fileOf(p),
+                     .parameter = at + "/layout",
+                     .value = "skeleton",
+                     .validRange = "grid, scatter or single, or every plant of the project"});
     try {
         if (b.bend || b.elasticModulus) {
             // The block's mechanics on the species as loaded: its plants bend as they grow.
@@ -219,18 +242,18 @@ std::vector<unsigned> buildBlock(const Project& p, std::size_t i, float age,
         return ids;
     }
     try {
-        if (b.layout == ProjectBlock::Layout::Single)
+        if (b.layout == ProjectBlock::Layout::Single) {
+            if (only && only->empty()) {
+                arch.context().reservePlantIDs(1);  // its ID, as when built
+                return {};
+            }
+            if (only && *only != std::vector<unsigned>{0})
+                throw Error("a single block has one plant",
+                            {.parameter = "only", .validRange = "plant 0 or none"});
             return {arch.buildPlantInstanceFromLibrary(b.origin, age, b.parameters)};
-        CanopyOptions o;
-        o.layout = b.layout == ProjectBlock::Layout::Grid ? CanopyOptions::Layout::Grid
-                                                          : CanopyOptions::Layout::Scatter;
-        o.center = b.origin;
-        o.spacing = b.spacing;
-        o.count = b.count;
-        o.extent = b.area;
-        o.plants = b.plants;
-        o.germinationRate = b.germination;
-        o.buildParameters = b.parameters;
+        }
+        CanopyOptions o = blockCanopy(b);
+        o.only = only;
         return arch.buildPlantCanopyFromLibrary(o, age);
     } catch (const Error&) {
         rethrowAt(p, at);
@@ -343,6 +366,28 @@ std::vector<unsigned> BuiltProject::plants() const {
     return all;
 }
 
+std::vector<vec3> projectBlockPositions(const Project& p, std::size_t i) {
+    if (i >= p.blocks.size())
+        throw Error("no such block", {.file = fileOf(p),
+                                      .parameter = "blocks",
+                                      .value = std::to_string(i),
+                                      .validRange = "0 to " + std::to_string(p.blocks.size())});
+    const ProjectBlock& b = p.blocks[i];
+    const std::string at = "blocks/" + std::to_string(i);
+    if (b.layout == ProjectBlock::Layout::Single) return {b.origin};
+    if (b.layout == ProjectBlock::Layout::Skeleton)
+        throw Error("a skeleton block's plants are placed by building it",
+                    {.file = fileOf(p),
+                     .parameter = at + "/layout",
+                     .value = "skeleton",
+                     .validRange = "grid, scatter or single"});
+    try {
+        return canopyPositions(blockCanopy(b), b.seed.value_or(p.seed));
+    } catch (const Error&) {
+        rethrowAt(p, at);
+    }
+}
+
 std::string projectPath(const Project& project, const std::string& path) {
     const std::filesystem::path p(path);
     if (path.empty() || p.is_absolute() || project.folder.empty() || project.folder == ".")
@@ -393,8 +438,18 @@ BuiltProject buildProject(const Project& p, PlantArchitecture& arch,
         buildSurroundings(p, arch, built);
         for (std::size_t i = 0; i < p.blocks.size(); ++i) {
             arch.setProgressCallback(blockProgress(options.progress, p, i));
-            built.blockPlants.push_back(
-                buildBlock(p, i, blockAge(p.blocks[i], models[i]) - seasonDays, models[i], arch));
+            std::optional<std::vector<unsigned>> only;
+            if (options.only) {
+                if (options.only->size() != p.blocks.size())
+                    throw Error("one list of plants per block",
+                                {.file = fileOf(p),
+                                 .parameter = "blocks",
+                                 .value = std::to_string(options.only->size()) + " lists",
+                                 .validRange = std::to_string(p.blocks.size()) + " lists"});
+                only = (*options.only)[i];
+            }
+            built.blockPlants.push_back(buildBlock(
+                p, i, blockAge(p.blocks[i], models[i]) - seasonDays, models[i], arch, only));
         }
         arch.setProgressCallback({});
         if (season) {
