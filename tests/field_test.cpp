@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -223,6 +224,36 @@ TEST_F(Field, WithSoftAvoidanceATileWritesOnlyItsOwnPlants) {
         plants.insert(*c.objectDataInt(obj, "plantID"));
     EXPECT_EQ(plants.size(), plan.tiles[0].plants.size());
     EXPECT_EQ(plants.count(int(plan.tiles[0].halo[0].id)), 0u);
+}
+
+// With soft avoidance a halo that reaches every plant makes each tile the whole field, so its
+// plants are exactly the whole build's; without a halo, plants by the border differ.
+TEST(FieldBuild, WithSoftAvoidanceAWideHaloGivesTheWholeFieldsPlants) {
+    const Project p = readProjectString(R"({"plantarch_project": 1, "seed": 3,
+      "soft_collision": {"enabled": true}, "blocks": [
+      {"name": "g", "species": "bean", "count": [4, 2], "spacing": [0.25, 0.25], "age": 40}]})",
+                                        "soft.json");
+    Context whole;
+    PlantArchitecture arch(&whole);
+    buildProject(p, arch);
+    std::size_t differ[2] = {0, 0};
+    for (int wide = 0; wide < 2; ++wide) {
+        const FieldPlan plan = fieldTiles(p, {.tileSize = 0.5f, .halo = wide ? 1.0f : 0.0f});
+        ASSERT_EQ(plan.tiles.size(), 2u);
+        for (const FieldTile& t : plan.tiles) {
+            std::vector<std::vector<unsigned>> only(1);
+            for (const FieldPlant& fp : t.plants) only[0].push_back(fp.index);
+            for (const FieldPlant& fp : t.halo) only[0].push_back(fp.index);
+            std::sort(only[0].begin(), only[0].end());
+            Context c;
+            PlantArchitecture a(&c);
+            buildProject(p, a, {.only = only});
+            for (const FieldPlant& fp : t.plants)
+                differ[wide] += printOf(a, fp.id).vertices != printOf(arch, fp.id).vertices;
+        }
+    }
+    EXPECT_GT(differ[0], 0u) << "the plants by the border see no neighbour without a halo";
+    EXPECT_EQ(differ[1], 0u);
 }
 
 TEST_F(Field, BadOptionsAreOneLineErrors) {
