@@ -7,6 +7,7 @@
 #include "plantarch/Field.h"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <charconv>
 #include <cstdio>
@@ -64,13 +65,27 @@ std::pair<std::size_t, std::size_t> parseFieldShard(const std::string& text) {
     }
 }
 
+// --out is a folder, or can be made: its nearest existing parent is a folder this process
+// may write in. Nothing is made before any work.
 void requireFieldFolder(const std::string& out) {
+    const auto bad = [&](const std::string& why, const std::string& path) {
+        return Error(
+            why, {.file = path, .parameter = "--out", .validRange = "a folder (made if missing)"});
+    };
+    if (out.empty()) throw bad("no output folder", out);
     std::error_code ec;
-    const auto status = std::filesystem::status(out, ec);
-    if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
-        throw Error(
-            "not a folder",
-            {.file = out, .parameter = "--out", .validRange = "a folder (made if missing)"});
+    const std::filesystem::path given = std::filesystem::absolute(out, ec);
+    for (std::filesystem::path p = given;; p = p.parent_path()) {
+        const auto status = std::filesystem::status(p, ec);
+        if (std::filesystem::exists(status)) {
+            if (!std::filesystem::is_directory(status))
+                throw bad("not a folder", p == given ? out : p.string());
+            if (::access(p.c_str(), W_OK | X_OK) != 0)
+                throw bad("cannot write in the folder", p.string());
+            return;
+        }
+        if (!p.has_parent_path() || p.parent_path() == p) throw bad("no such folder", out);
+    }
 }
 
 int runField(const FieldArgs& a, const GlobalOptions& global) {

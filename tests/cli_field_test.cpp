@@ -99,6 +99,10 @@ TEST(CliField, BadOptionsAreOneLineWithExitStatus2) {
         {"field " + kProject + " --out " + file + " --tile-size 1",
          "a-file: --out: not a folder (valid: a folder (made if missing))"},
         {"field /nonexistent.json --out " + out + " --tile-size 1", "nonexistent.json"},
+        {"field " + kProject + " --out /dev/null/x --tile-size 1",
+         "plantarch: /dev/null: --out: not a folder (valid: a folder (made if missing))\n"},
+        {"field " + kProject + " --out '' --tile-size 1",
+         "plantarch: --out: no output folder (valid: a folder (made if missing))\n"},
         {"field " + kProject + " --tile-size 1", "--out is required"},
     };
     for (const auto& [args, expected] : cases) {

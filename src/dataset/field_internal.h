@@ -14,7 +14,10 @@ std::string projectFile(const Project& project);
 std::string csvText(const std::string& s);
 /// A plant's row of plants.csv (fieldPlantsHeader()'s columns), without its newline.
 std::string rowText(const FieldPlantRow& row);
-/// Throws plantarch::Error naming `outDir` when it exists and is not a folder.
+/// Throws plantarch::Error naming `outDir` when it is empty, or exists and is not a folder.
 void requireFolder(const std::string& outDir);
+/// requireFolder, then makes `outDir` and its parents if missing; an Error naming it when that
+/// fails.
+void makeFolder(const std::string& outDir);
 
 }  // namespace plantarch::field

@@ -36,11 +36,23 @@ std::string rowText(const FieldPlantRow& r) {
 }
 
 void requireFolder(const std::string& outDir) {
+    if (outDir.empty())
+        throw Error("no output folder", {.parameter = "out", .validRange = "a folder's path"});
     std::error_code ec;
     const auto status = std::filesystem::status(outDir, ec);
     if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
         throw Error(
             "not a folder",
+            {.file = outDir, .parameter = "out", .validRange = "a folder (made if missing)"});
+}
+
+void makeFolder(const std::string& outDir) {
+    requireFolder(outDir);
+    std::error_code ec;
+    std::filesystem::create_directories(outDir, ec);
+    if (ec)
+        throw Error(
+            "cannot make the folder: " + ec.message(),
             {.file = outDir, .parameter = "out", .validRange = "a folder (made if missing)"});
 }
 
@@ -105,7 +117,7 @@ std::vector<FieldPlantRow> buildFieldTile(const Project& project, const FieldOpt
         }
         rows.push_back(std::move(r));
     }
-    std::filesystem::create_directories(outDir);
+    field::makeFolder(outDir);
     const std::filesystem::path dir(outDir);
     {
         io::AtomicFile csv((dir / (tile.name + ".csv")).string());
