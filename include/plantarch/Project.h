@@ -57,6 +57,9 @@ struct ProjectBlock {
     /// Build parameters overriding the species' defaults (trunk_height...), checked against
     /// the species' ranges when built.
     std::map<std::string, float> parameters;
+    /// Species fields changed for this block (editSpecies keys such as
+    /// "shoot_types.stem.internode_length_max", values as a species file writes them).
+    std::map<std::string, std::string> speciesParameters;
     bool trellis = true;  ///< the species' trellis posts and wires, if it declares one
     /// Skeleton: a skeleton file (.csv node table, .json or .mtg; plantarch/Skeleton.h),
     /// relative paths from the project's folder, rebuilt with the species' shoot types.

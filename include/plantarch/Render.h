@@ -133,6 +133,11 @@ struct RenderOptions {
     /// background in the label modes.
     bool groundPlane = true;
     vec3 groundColor{0.42f, 0.38f, 0.33f};  ///< sRGB albedo, neutral soil
+    /// Patchy soil on the ground plane: its albedo varies by up to this fraction either way
+    /// (0 to 1; 0: uniform), in smooth patches of about groundPatchSize metres (0.001 to
+    /// 1000) with finer detail inside, the pattern fixed by `seed`.
+    float groundVariation = 0.0f;
+    float groundPatchSize = 0.1f;
 
     /// Direction toward the sun (normalised internally; must have z > 0 to light anything).
     vec3 sunDirection{0.54f, 0.20f, 0.82f};
@@ -160,6 +165,22 @@ struct RenderOptions {
 /// shadowSamples sun rays and aoSamples sky rays in the shaded mode (camera rays only in the
 /// label modes). A depth image casts the rays of cameraRaysOnly(options).
 std::uint64_t renderRayCount(const RenderOptions& options);
+/// What one ray through each pixel's centre finds (RenderScene::renderSurfaces): rows top to
+/// bottom, width * height entries each.
+struct SurfaceImage {
+    int width = 0;
+    int height = 0;
+    /// The object seen, as its ObjectID + 1; 0 where the ray meets nothing or the ground
+    /// plane.
+    std::vector<std::uint32_t> object;
+    /// Distance along the view axis (m) to the surface seen, ground plane included; 0 where
+    /// nothing is hit (as DepthImage).
+    std::vector<float> depth;
+    /// Unit world-space normal of the surface seen, turned toward the camera ((0, 0, 1) on the
+    /// ground plane); (0, 0, 0) where nothing is hit. Smoothed as the shaded image is.
+    std::vector<vec3> normal;
+};
+
 /// The options with no sun or sky rays: what a depth image casts.
 RenderOptions cameraRaysOnly(const RenderOptions& options);
 /// The most rays one render may cast (2^32): a render is refused before any work when
@@ -210,6 +231,13 @@ public:
     /// The depth image of the same camera (one ray per pixel centre; mode, samples and lights
     /// do not matter). Throws plantarch::Error on invalid options.
     DepthImage renderDepth(const RenderOptions& options) const;
+    /// Object, depth and normal of the first surface through each pixel's centre, in one
+    /// pass (the rays of renderDepth). Throws plantarch::Error on invalid options.
+    SurfaceImage renderSurfaces(const RenderOptions& options) const;
+    /// Distance (m) along the unit `direction` from `origin` to the first triangle hit, as
+    /// the camera's rays see them (alpha cut-outs pass rays); infinity when none is hit. The
+    /// ground plane of the options is not part of the scene.
+    float hitDistance(const vec3& origin, const vec3& direction) const;
     /// The camera render() would use with these options.
     CameraFrame camera(const RenderOptions& options) const;
 
@@ -228,6 +256,26 @@ Image render(const Context& context, const RenderOptions& options = {});
 /// One-shot depth image: builds a RenderScene from `context` and calls renderDepth.
 DepthImage renderDepth(const Context& context, const RenderOptions& options = {});
 
+/// A one-channel 16-bit image (instance masks: a whole-number label per pixel), rows top to
+/// bottom.
+struct Image16 {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint16_t> values;  ///< width * height values
+};
+/// Writes a 16-bit greyscale PNG, atomically. Throws plantarch::Error naming the path.
+void writePNG16(const Image16& image, const std::string& path);
+/// The PNG file writePNG16 would write, as bytes.
+std::string encodePNG16(const Image16& image);
+/// Reads a one-channel PNG (16-bit, or 8-bit scaled by 257) as 16-bit values. Throws
+/// plantarch::Error naming the path.
+Image16 readImage16(const std::string& path);
+
+/// Writes float32 values as a NumPy .npy array (C order) of `shape`, whose product must be
+/// values.size(), atomically, for numpy.load. Throws plantarch::Error naming the path.
+void writeNPY(const std::vector<float>& values, const std::vector<std::size_t>& shape,
+              const std::string& path);
+
 /// Writes a depth image as a NumPy .npy file (float32, shape (height, width), metres; 0 where
 /// nothing was hit), atomically, for numpy.load.
 void writeDepthNPY(const DepthImage& depth, const std::string& path);
@@ -238,6 +286,21 @@ Image depthPicture(const DepthImage& depth);
 /// Writes `image` as a PNG, atomically (temporary file in the same folder, then rename).
 /// Throws plantarch::Error naming the path when it cannot be written.
 void writePNG(const Image& image, const std::string& path);
+/// One labelled region of an integer mask (maskRegions).
+struct MaskRegion {
+    std::uint32_t label = 0;
+    std::size_t area = 0;       ///< pixels
+    std::array<int, 4> bbox{};  ///< x, y, width, height of the smallest box holding it, pixels
+    /// COCO's uncompressed run-length encoding: counts of alternating background and region
+    /// pixels in column-major order, starting with background, summing to width * height.
+    std::vector<std::uint32_t> rle;
+};
+/// The regions of a width x height mask of integer labels (rows top to bottom; 0 is
+/// background), in increasing label order. Throws plantarch::Error when labels does not hold
+/// width * height values.
+std::vector<MaskRegion> maskRegions(const std::vector<std::uint32_t>& labels, int width,
+                                    int height);
+
 /// COCO-style instance annotations (JSON text) of an object label mask rendered from
 /// `context` (RenderMode::LabelObject): one image named `imageFile`, the organ kinds as
 /// categories (ids 1 to 9, as kOrganLabels), and one annotation per object seen with its

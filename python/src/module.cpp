@@ -34,6 +34,7 @@ PYBIND11_MODULE(_plantarch, m) {
     bindCalibration(m);
     bindSkeleton(m);  // after bindArchitecture: adds PlantArchitecture's methods
     bindField(m);
+    bindDataset(m);
 #ifdef PLANTARCH_VERSION_STRING
     m.attr("__version__") = PLANTARCH_VERSION_STRING;
 #endif

@@ -36,6 +36,7 @@ inline constexpr InputKind kSpeciesFile{"species file", 16 * kMiB};
 inline constexpr InputKind kPlantFile{"plant structure file", 256 * kMiB};  // also <helios>
 inline constexpr InputKind kPlantStringFile{"plant string file", 256 * kMiB};
 inline constexpr InputKind kProjectFile{"project file", 16 * kMiB};
+inline constexpr InputKind kDatasetSpecFile{"dataset spec", 16 * kMiB};
 inline constexpr InputKind kOBJFile{"OBJ file", 4096 * kMiB};
 inline constexpr InputKind kMTLFile{"material file", 64 * kMiB};
 inline constexpr InputKind kAttractionFile{"attraction point file", 256 * kMiB};

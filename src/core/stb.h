@@ -26,4 +26,14 @@ std::string stbFailureReason();
 bool stbEncodePng(const std::uint8_t* pixels, int width, int height, int channels, int stride,
                   std::vector<std::uint8_t>& out);
 
+/// PNG bytes of a one-channel 16-bit image (`pixels` width x height values, top row first),
+/// appended to `out`; false when it cannot be compressed.
+bool stbEncodePng16(const std::uint16_t* pixels, int width, int height,
+                    std::vector<std::uint8_t>& out);
+
+/// A one-channel image decoded at 16 bits per value (8-bit files scaled by 257), top row
+/// first; false when it cannot be decoded (see stbFailureReason()).
+bool stbDecodeImage16(const std::uint8_t* data, int length, int& width, int& height,
+                      std::vector<std::uint16_t>& values);
+
 }  // namespace plantarch::core

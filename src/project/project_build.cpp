@@ -74,21 +74,32 @@ void requireSpeciesFile(const Project& p, std::size_t i) {
 // The species of every block, loaded and its build parameters checked.
 std::vector<SpeciesModel> loadBlockSpecies(const Project& p) {
     std::vector<SpeciesModel> models;
-    std::map<std::string, std::size_t> loaded;  // by species reference: each read once
+    std::map<std::string, SpeciesModel> loaded;  // by species reference: each read once
     for (std::size_t i = 0; i < p.blocks.size(); ++i) {
         const ProjectBlock& b = p.blocks[i];
         const std::string at = "blocks/" + std::to_string(i);
         const std::string species = projectSpecies(p, b);
         requireSpeciesFile(p, i);
         if (const auto it = loaded.find(species); it != loaded.end()) {
-            models.push_back(models[it->second]);
+            models.push_back(it->second);
         } else {
             try {
                 models.push_back(loadSpecies(species));
             } catch (const Error&) {
                 rethrowAt(p, at + "/species");
             }
-            loaded.emplace(species, models.size() - 1);
+            loaded.emplace(species, models.back());
+        }
+        for (const auto& [name, value] : b.speciesParameters) {
+            try {
+                models.back() = editSpecies(models.back(), {{name, value}});
+            } catch (const Error& e) {
+                throw Error(e.message(), {.file = fileOf(p),
+                                          .parameter = at + "/species_parameters/" +
+                                                       project::printable(name, 80),
+                                          .value = value,
+                                          .validRange = e.validRange()});
+            }
         }
         for (const auto& [name, value] : b.parameters) {
             try {
@@ -205,8 +216,9 @@ std::vector<unsigned> buildBlock(const Project& p, std::size_t i, float age,
                      .value = "skeleton",
                      .validRange = "grid, scatter or single, or every plant of the project"});
     try {
-        if (b.bend || b.elasticModulus) {
-            // The block's mechanics on the species as loaded: its plants bend as they grow.
+        if (b.bend || b.elasticModulus || !b.speciesParameters.empty()) {
+            // The block's mechanics and species fields on the species as loaded (its edits
+            // made by loadBlockSpecies): its plants bend as they grow.
             SpeciesModel bent = model;
             if (b.bend) bent.phenology.mechanics.enabled = true;
             if (b.elasticModulus) bent.phenology.mechanics.elastic_modulus = *b.elasticModulus;

@@ -129,21 +129,52 @@ inline std::optional<ProjectBlock::Layout> layoutFromName(const std::string& nam
 inline std::vector<std::string> blockFields(ProjectBlock::Layout layout) {
     switch (layout) {
         case ProjectBlock::Layout::Grid:
-            return {"name",           "species", "layout", "origin",     "count",   "spacing",
-                    "germination",    "age",     "seed",   "parameters", "trellis", "bend",
+            return {"name",
+                    "species",
+                    "layout",
+                    "origin",
+                    "count",
+                    "spacing",
+                    "germination",
+                    "age",
+                    "seed",
+                    "parameters",
+                    "species_parameters",
+                    "trellis",
+                    "bend",
                     "elastic_modulus"};
         case ProjectBlock::Layout::Scatter:
-            return {"name",           "species", "layout", "origin",     "count",   "area",
-                    "germination",    "age",     "seed",   "parameters", "trellis", "bend",
+            return {"name",
+                    "species",
+                    "layout",
+                    "origin",
+                    "count",
+                    "area",
+                    "germination",
+                    "age",
+                    "seed",
+                    "parameters",
+                    "species_parameters",
+                    "trellis",
+                    "bend",
                     "elastic_modulus"};
         case ProjectBlock::Layout::Skeleton:
-            return {"name", "species", "layout", "origin",         "skeleton",
-                    "age",  "seed",    "bend",   "elastic_modulus"};
+            return {"name", "species", "layout", "origin",          "skeleton",
+                    "age",  "seed",    "bend",   "elastic_modulus", "species_parameters"};
         case ProjectBlock::Layout::Single:
             break;
     }
-    return {"name", "species",    "layout",  "origin", "age",
-            "seed", "parameters", "trellis", "bend",   "elastic_modulus"};
+    return {"name",
+            "species",
+            "layout",
+            "origin",
+            "age",
+            "seed",
+            "parameters",
+            "trellis",
+            "bend",
+            "elastic_modulus",
+            "species_parameters"};
 }
 
 /// Fields of other layouts, with the layouts they belong to (for the error of a field that

@@ -14,6 +14,7 @@
 #include "plantarch/Error.h"
 #include "plantarch/Project.h"
 #include "project/json_document.h"
+#include "project/json_fields.h"
 #include "project/json_scan.h"
 #include "project/project_fields.h"
 
@@ -23,138 +24,7 @@ namespace {
 
 using json = nlohmann::json;
 
-// JSON text of `v` (compact, as dump() writes it), stopping once `out` holds more than `max`
-// bytes. The text was parsed within project::kMaxJSONDepth, so this recurses no deeper.
-void dumpShort(const json& v, std::string& out, std::size_t max) {
-    if (!v.is_structured()) {
-        out += v.dump(-1, ' ', false, json::error_handler_t::replace);
-        return;
-    }
-    out += v.is_array() ? '[' : '{';
-    for (auto it = v.begin(); it != v.end() && out.size() <= max; ++it) {
-        if (it != v.begin()) out += ',';
-        if (v.is_object())
-            out += json(it.key()).dump(-1, ' ', false, json::error_handler_t::replace) + ":";
-        dumpShort(*it, out, max);
-    }
-    out += v.is_array() ? ']' : '}';
-}
-
-// The value as a person reads it in an error: JSON text, cut short.
-std::string shown(const json& v) {
-    // A whole number written with a fraction or exponent (1e6) shown as a whole number.
-    if (v.is_number_float() && std::isfinite(v.get<double>()) &&
-        v.get<double>() == std::floor(v.get<double>()) && std::fabs(v.get<double>()) < 1e15)
-        return std::to_string(std::int64_t(v.get<double>()));
-    std::string text;
-    dumpShort(v, text, 80);
-    return project::printable(text, text.size() > 60 ? 57 : 60);
-}
-
-class Reader {
-public:
-    explicit Reader(std::string file) : file_(std::move(file)) {}
-
-    [[noreturn]] void fail(const std::string& field, const std::string& message,
-                           const json* value = nullptr, const std::string& range = "") const {
-        throw Error(message, {.file = file_,
-                              .parameter = project::printable(field, 160),
-                              .value = value ? shown(*value) : "",
-                              .validRange = range});
-    }
-
-    // Checks that `j` is an object whose keys are all in `known`; a key valid elsewhere
-    // (`elsewhere`, with why) gets that reason, another the nearest known name.
-    void object(const json& j, const std::string& field, const std::vector<std::string>& known,
-                const std::map<std::string, std::string>& elsewhere = {},
-                const std::string& elsewhereMessage = "") const {
-        if (!j.is_object()) fail(field, "expected an object {...}", &j);
-        for (const auto& [key, value] : j.items()) {
-            if (std::find(known.begin(), known.end(), key) != known.end()) continue;
-            const std::string at = join(field, key);
-            if (const auto e = elsewhere.find(key); e != elsewhere.end())
-                fail(at, elsewhereMessage, nullptr, e->second);
-            const std::string near = text::closestMatch(key, known);
-            fail(at, "unknown field" + (near.empty() ? "" : ", did you mean '" + near + "'?"),
-                 nullptr, near.empty() ? text::oneOf(known) : "");
-        }
-    }
-
-    double number(const json& j, const std::string& field, double lo, double hi,
-                  const std::string& range, bool loOpen = false, bool whole = false,
-                  bool hiOpen = false) const {
-        if (!j.is_number())
-            fail(field, whole ? "expected a whole number" : "expected a number", &j, range);
-        const double v = j.get<double>();
-        if (!std::isfinite(v)) fail(field, "expected a finite number", &j, range);
-        if (whole && v != std::floor(v)) fail(field, "expected a whole number", &j, range);
-        if (v < lo || v > hi || (loOpen && v == lo) || (hiOpen && v == hi))
-            fail(field, "out of range", &j, range);
-        return v;
-    }
-    // A number kept as a float: the float too is in range (1e-50 is > 0, but as a float 0),
-    // so that the project written reads back.
-    float number(const json& j, const std::string& field, const Range& r) const {
-        const float v = float(number(j, field, r.lo, r.hi, r.text, r.loOpen, r.whole, r.hiOpen));
-        if (v < r.lo || v > r.hi || (r.loOpen && v == float(r.lo)) ||
-            (r.hiOpen && v == float(r.hi)))
-            fail(field, "out of range (as a 32-bit float)", &j, r.text);
-        return v;
-    }
-    // A file or species name: text without control characters.
-    std::string name(const json& j, const std::string& field, const std::string& range) const {
-        std::string s = string(j, field);
-        if (s.empty()) fail(field, "empty", &j, range);
-        if (std::any_of(s.begin(), s.end(), [](char c) { return (unsigned char)c < 0x20; }))
-            fail(field, "a control character in a name", &j, range);
-        return s;
-    }
-    bool flag(const json& j, const std::string& field) const {
-        if (!j.is_boolean()) fail(field, "expected true or false", &j, "true, false");
-        return j.get<bool>();
-    }
-    std::string string(const json& j, const std::string& field) const {
-        if (!j.is_string()) fail(field, "expected a text in quotes", &j);
-        return j.get<std::string>();
-    }
-    std::uint64_t seed(const json& j, const std::string& field) const {
-        const char* range = "a whole number 0 to 18446744073709551615";
-        if (j.is_number_unsigned()) return j.get<std::uint64_t>();
-        if (j.is_number_integer() && j.get<std::int64_t>() >= 0) return j.get<std::uint64_t>();
-        if (j.is_number_float()) {
-            const double v = j.get<double>();
-            if (v >= 0 && v == std::floor(v) && v < 9007199254740992.0) return std::uint64_t(v);
-        }
-        fail(field, "expected a seed", &j, range);
-    }
-    // `n` numbers [a, b, ...], each in `r`.
-    std::vector<float> numbers(const json& j, const std::string& field, std::size_t n,
-                               const std::vector<Range>& ranges, const std::string& form) const {
-        if (!j.is_array() || j.size() != n)
-            fail(field, "expected " + std::to_string(n) + " numbers " + form, &j);
-        std::vector<float> out;
-        for (std::size_t i = 0; i < n; ++i)
-            out.push_back(number(j[i], join(field, std::to_string(i)), ranges[i]));
-        return out;
-    }
-    vec3 point(const json& j, const std::string& field) const {
-        const Range any = anyNumber();
-        const auto v = numbers(j, field, 3, {any, any, any}, "[x, y, z]");
-        return vec3(v[0], v[1], v[2]);
-    }
-    vec2 pair(const json& j, const std::string& field, const Range& r) const {
-        const auto v = numbers(j, field, 2, {r, r}, "[x, y]");
-        return vec2(v[0], v[1]);
-    }
-
-    static std::string join(const std::string& field, const std::string& key) {
-        return field.empty() ? key : field + "/" + key;
-    }
-    const std::string& file() const { return file_; }
-
-private:
-    std::string file_;
-};
+using Reader = project::JSONFields;
 
 // Text -> JSON (json_document.h): each number beyond a double's range is read as 1e308 (of
 // its sign), out of every field's range, and listed in `overflows` for readProjectString to
@@ -363,6 +233,21 @@ ProjectBlock readBlock(const Reader& r, const json& j, const std::string& at, st
             r.fail(field("parameters"), "expected an object {\"name\": value, ...}", &params);
         for (const auto& [name, value] : params.items())
             b.parameters[name] = r.number(value, field("parameters") + "/" + name, anyNumber());
+    }
+    if (j.contains("species_parameters")) {
+        const json& params = j["species_parameters"];
+        if (!params.is_object())
+            r.fail(field("species_parameters"), "expected an object {\"field.path\": value, ...}",
+                   &params);
+        for (const auto& [name, value] : params.items()) {
+            const std::string f = field("species_parameters") + "/" + name;
+            if (name.empty()) r.fail(f, "empty field path", nullptr, "a species field path");
+            if (value.is_number())
+                b.speciesParameters[name] = text::formatFloat(r.number(value, f, anyNumber()));
+            else
+                b.speciesParameters[name] =
+                    r.name(value, f, "a number or a value as a species file writes it");
+        }
     }
     return b;
 }

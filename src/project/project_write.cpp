@@ -59,6 +59,9 @@ OrderedJson block(const ProjectBlock& b) {
         j["parameters"] = params;
         j["trellis"] = b.trellis;
     }
+    OrderedJson edits = OrderedJson::object();
+    for (const auto& [name, value] : b.speciesParameters) edits[name] = value;
+    j["species_parameters"] = edits;
     j["bend"] = b.bend;
     j["elastic_modulus"] = b.elasticModulus ? num(*b.elasticModulus) : OrderedJson(nullptr);
     return j;

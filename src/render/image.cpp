@@ -50,18 +50,24 @@ std::string encodePNG(const Image& image) {
     return std::string(bytes.begin(), bytes.end());
 }
 
-void writeDepthNPY(const DepthImage& depth, const std::string& path) {
-    requireOutputFormat(path, {".npy"}, "writeDepthNPY writes a NumPy array");
-    if (depth.width <= 0 || depth.height <= 0 ||
-        depth.depth.size() != std::size_t(depth.width) * std::size_t(depth.height))
-        throw Error("depth image has no pixels or a wrong buffer size", {.file = path});
+void writeNPY(const std::vector<float>& values, const std::vector<std::size_t>& shape,
+              const std::string& path) {
+    requireOutputFormat(path, {".npy"}, "writeNPY writes a NumPy array");
+    std::size_t count = 1;
+    std::string dims;  // "(h, w)", or "(n,)" for one dimension, as Python writes tuples
+    for (std::size_t d : shape) {
+        count *= d;
+        dims += (dims.empty() ? "" : ", ") + std::to_string(d);
+    }
+    if (shape.size() == 1) dims += ",";
+    if (shape.empty() || count == 0 || count != values.size())
+        throw Error("array shape and value count differ", {.file = path});
     // NPY 1.0: magic, version, header length, then a Python dict padded with spaces to a
     // multiple of 64 bytes (counting the 10 bytes before it) and ended by a newline.
-    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" +
-                         std::to_string(depth.height) + ", " + std::to_string(depth.width) + "), }";
+    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + dims + "), }";
     header.append(63 - (10 + header.size()) % 64, ' ');
     header += '\n';
-    const std::size_t dataBytes = depth.depth.size() * sizeof(float);
+    const std::size_t dataBytes = values.size() * sizeof(float);
     std::vector<std::uint8_t> bytes(10 + header.size() + dataBytes);
     const std::uint8_t magic[10] = {0x93,
                                     'N',
@@ -75,8 +81,51 @@ void writeDepthNPY(const DepthImage& depth, const std::string& path) {
                                     std::uint8_t(header.size() >> 8)};
     std::memcpy(bytes.data(), magic, sizeof magic);
     std::memcpy(bytes.data() + 10, header.data(), header.size());
-    std::memcpy(bytes.data() + 10 + header.size(), depth.depth.data(), dataBytes);
+    std::memcpy(bytes.data() + 10 + header.size(), values.data(), dataBytes);
     io::writeWholeFile(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+}
+
+void writeDepthNPY(const DepthImage& depth, const std::string& path) {
+    requireOutputFormat(path, {".npy"}, "writeDepthNPY writes a NumPy array");
+    if (depth.width <= 0 || depth.height <= 0 ||
+        depth.depth.size() != std::size_t(depth.width) * std::size_t(depth.height))
+        throw Error("depth image has no pixels or a wrong buffer size", {.file = path});
+    writeNPY(depth.depth, {std::size_t(depth.height), std::size_t(depth.width)}, path);
+}
+
+namespace {
+
+std::vector<std::uint8_t> png16Bytes(const Image16& image, const std::string& path) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.values.size() != std::size_t(image.width) * std::size_t(image.height))
+        throw Error("image has no pixels or a wrong buffer size", {.file = path});
+    std::vector<std::uint8_t> bytes;
+    if (!core::stbEncodePng16(image.values.data(), image.width, image.height, bytes))
+        throw Error("PNG encoding failed", {.file = path});
+    return bytes;
+}
+
+}  // namespace
+
+void writePNG16(const Image16& image, const std::string& path) {
+    requireOutputFormat(path, {".png"}, "writePNG16 writes a PNG picture");
+    const std::vector<std::uint8_t> bytes = png16Bytes(image, path);
+    io::writeWholeFile(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+}
+
+std::string encodePNG16(const Image16& image) {
+    const std::vector<std::uint8_t> bytes = png16Bytes(image, "");
+    return std::string(bytes.begin(), bytes.end());
+}
+
+Image16 readImage16(const std::string& path) {
+    const io::DecodedImage decoded = io::readImageFile(path, 1);
+    Image16 image;
+    const auto* data = reinterpret_cast<const std::uint8_t*>(decoded.bytes.data());
+    if (!core::stbDecodeImage16(data, int(decoded.bytes.size()), image.width, image.height,
+                                image.values))
+        throw Error("cannot decode the image: " + core::stbFailureReason(), {.file = path});
+    return image;
 }
 
 Image depthPicture(const DepthImage& depth) {

@@ -61,6 +61,8 @@ void validate(const RenderOptions& o) {
     checkRange("translucency", o.translucency, 0.0f, 1.0f, "0 to 1");
     checkRange("sunIntensity", o.sunIntensity, 0.0f, 1000.0f, "0 to 1000");
     checkRange("skyIntensity", o.skyIntensity, 0.0f, 1000.0f, "0 to 1000");
+    checkRange("groundVariation", o.groundVariation, 0.0f, 1.0f, "0 to 1");
+    checkRange("groundPatchSize", o.groundPatchSize, 0.001f, 1000.0f, "0.001 to 1000");
     checkFinite("groundColor", o.groundColor);
     checkFinite("skyZenithColor", o.skyZenithColor);
     checkFinite("skyHorizonColor", o.skyHorizonColor);
@@ -233,6 +235,7 @@ struct Setup {
     float eps;  ///< ray offset (m)
     float aoDistance;
     vec3 groundRadiance;  ///< ground as seen by ambient rays
+    float groundVariation, groundPatch;
     std::uint64_t seed;
 };
 
@@ -390,6 +393,35 @@ vec3 shade(const Setup& s, RTCIntersectContext& ictx, const vec3& p, const Surfa
     return surf.albedo * light;
 }
 
+/// A value in [-1, 1] hashed from a lattice point and the seed.
+float latticeValue(std::int64_t i, std::int64_t j, std::uint64_t seed) {
+    std::uint64_t h = seed * 0x9E3779B97F4A7C15ull ^ std::uint64_t(i) * 0xC2B2AE3D27D4EB4Full ^
+                      std::uint64_t(j) * 0x165667B19E3779F9ull;
+    h ^= h >> 33;
+    h *= 0xFF51AFD7ED558CCDull;
+    h ^= h >> 33;
+    return float(h >> 40) / float(1 << 23) - 1.0f;
+}
+
+/// Smooth value noise in [-1, 1] at p (lattice units).
+float valueNoise(vec2 p, std::uint64_t seed) {
+    const double fx = std::floor(double(p.x)), fy = std::floor(double(p.y));
+    const auto i = std::int64_t(fx), j = std::int64_t(fy);
+    const float tx = float(double(p.x) - fx), ty = float(double(p.y) - fy);
+    const float sx = tx * tx * (3.0f - 2.0f * tx), sy = ty * ty * (3.0f - 2.0f * ty);
+    const float a = glm::mix(latticeValue(i, j, seed), latticeValue(i + 1, j, seed), sx);
+    const float b = glm::mix(latticeValue(i, j + 1, seed), latticeValue(i + 1, j + 1, seed), sx);
+    return glm::mix(a, b, sy);
+}
+
+/// The ground's albedo at p: patches of groundPatch metres with detail a quarter that size.
+vec3 groundAlbedo(const Setup& s, const vec3& p) {
+    if (s.groundVariation <= 0.0f) return s.groundAlbedo;
+    const vec2 q = vec2(p) / s.groundPatch;
+    const float n = 0.7f * valueNoise(q, s.seed) + 0.3f * valueNoise(4.0f * q, s.seed + 1);
+    return s.groundAlbedo * std::max(0.0f, 1.0f + s.groundVariation * n);
+}
+
 /// Radiance along one camera ray.
 vec3 traceCamera(const Setup& s, RTCIntersectContext& ictx, const vec3& dir,
                  const SampleIndex& si) {
@@ -397,7 +429,7 @@ vec3 traceCamera(const Setup& s, RTCIntersectContext& ictx, const vec3& dir,
     if (!hit.found) return background(s, dir);
     const vec3 p = s.eye + hit.t * dir;
     if (hit.isGround) {
-        Surface surf{s.groundAlbedo, vec3(0, 0, 1), vec3(0, 0, 1), nullptr};
+        Surface surf{groundAlbedo(s, p), vec3(0, 0, 1), vec3(0, 0, 1), nullptr};
         const float dist = glm::length(vec2(p) - s.sceneCenter);
         if (dist >= s.fogEnd) return s.horizon;
         const vec3 lit = shade(s, ictx, p, surf, si);
@@ -458,6 +490,8 @@ Setup makeSetup(const SceneData& data, const RenderOptions& o, const CameraFrame
     // The ground lit by the unoccluded sun and sky, as ambient rays see it.
     s.groundRadiance = s.groundAlbedo * (s.sunIntensity * std::max(0.0f, s.sun.z) +
                                          s.skyIntensity * glm::mix(s.horizon, s.zenith, 0.6f));
+    s.groundVariation = o.groundVariation;
+    s.groundPatch = o.groundPatchSize;
     s.seed = o.seed;
     return s;
 }
@@ -574,6 +608,53 @@ DepthImage RenderScene::renderDepth(const RenderOptions& o) const {
     }
     errors.rethrow();
     return depth;
+}
+
+float RenderScene::hitDistance(const vec3& origin, const vec3& direction) const {
+    if (impl_->data.triangles == 0) return kInf;
+    RTCIntersectContext ictx;
+    rtcInitIntersectContext(&ictx);
+    RTCRayHit rh = core::rayHit(origin, direction, 0.0f, kInf);
+    core::embree().rtcIntersect1(impl_->data.scene, &ictx, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? kInf : rh.ray.tfar;
+}
+
+SurfaceImage RenderScene::renderSurfaces(const RenderOptions& o) const {
+    const Setup s = makeSetup(impl_->data, o, camera(cameraRaysOnly(o)));
+    SurfaceImage out;
+    out.width = o.width;
+    out.height = o.height;
+    const std::size_t n = std::size_t(o.width) * std::size_t(o.height);
+    out.object.assign(n, 0);
+    out.depth.assign(n, 0.0f);
+    out.normal.assign(n, vec3(0.0f));
+    const vec3 axis = glm::normalize(s.forward);
+    ParallelErrors errors;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int y = 0; y < s.height; ++y) {
+        errors.run(y, [&] {
+            RTCIntersectContext ictx;
+            rtcInitIntersectContext(&ictx);
+            for (int x = 0; x < s.width; ++x) {
+                const float sx = 2.0f * (float(x) + 0.5f) / float(s.width) - 1.0f;
+                const float sy = 1.0f - 2.0f * (float(y) + 0.5f) / float(s.height);
+                const vec3 dir = glm::normalize(s.forward + sx * s.right + sy * s.up);
+                const Hit hit = intersect(s, ictx, s.eye, dir);
+                if (!hit.found) continue;
+                const std::size_t i = std::size_t(y) * std::size_t(s.width) + std::size_t(x);
+                out.depth[i] = hit.t * glm::dot(dir, axis);
+                if (hit.isGround) {
+                    out.normal[i] = vec3(0.0f, 0.0f, 1.0f);
+                    continue;
+                }
+                const Surface surf = triangleSurface(s, hit, dir);
+                out.object[i] = surf.object->id + 1;
+                out.normal[i] = surf.ns;
+            }
+        });
+    }
+    errors.rethrow();
+    return out;
 }
 
 DepthImage renderDepth(const Context& context, const RenderOptions& options) {

@@ -1,0 +1,158 @@
+// plantarch dataset, as a user runs it: a whole run equals the union of its shards byte for
+// byte, --resume keeps what is made, --merge names what is missing, and every bad spec or
+// option gets one line and exit status 2 with no sample left behind.
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "cli_run.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cli::run;
+
+const std::string kTiny = std::string(PLANTARCH_SOURCE_DIR) + "/examples/datasets/tiny.json";
+
+std::string dir(const std::string& name) {
+    const auto d = fs::temp_directory_path() / "plantarch-cli-dataset" / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d.string();
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Every file under `root` (relative path -> bytes), manifests left out.
+std::map<std::string, std::string> tree(const fs::path& root) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(root)) {
+        if (!e.is_regular_file()) continue;
+        const std::string rel = fs::relative(e.path(), root).string();
+        if (rel.rfind("manifest-", 0) == 0) continue;
+        out[rel] = slurp(e.path());
+    }
+    return out;
+}
+
+std::size_t lines(const std::string& text) {
+    std::size_t n = 0;
+    for (char c : text) n += c == '\n';
+    return n;
+}
+
+TEST(CliDataset, ShardsMadeInAnyOrderEqualOneWholeRun) {
+    const std::string whole = dir("whole"), sharded = dir("sharded");
+    const cli::Result w = run("dataset " + kTiny + " --out " + whole);
+    ASSERT_EQ(w.status, 0) << w.out;
+    EXPECT_NE(w.out.find("made 4 sample(s)"), std::string::npos) << w.out;
+    for (const char* shard : {"2/3", "0/3", "1/3"}) {
+        const cli::Result r = run("dataset " + kTiny + " --out " + sharded + " --shard " + shard);
+        ASSERT_EQ(r.status, 0) << r.out;
+        EXPECT_NE(r.out.find("merge with --merge"), std::string::npos) << r.out;
+    }
+    EXPECT_TRUE(fs::exists(fs::path(sharded) / "manifest-0-of-3.json"));
+    EXPECT_FALSE(fs::exists(fs::path(sharded) / "dataset.json"));
+    const cli::Result m = run("dataset " + kTiny + " --out " + sharded + " --merge");
+    ASSERT_EQ(m.status, 0) << m.out;
+    const auto a = tree(whole), b = tree(sharded);
+    ASSERT_EQ(a.size(), b.size());
+    for (const auto& [file, bytes] : a) {
+        ASSERT_TRUE(b.count(file)) << file;
+        EXPECT_TRUE(b.at(file) == bytes) << file;
+    }
+    EXPECT_TRUE(a.count("dataset.json"));
+    EXPECT_TRUE(a.count("samples/000003/rgb.png"));
+}
+
+TEST(CliDataset, ResumeKeepsWhatIsMadeAndAnExistingSampleIsNotOverwritten) {
+    const std::string out = dir("resume");
+    ASSERT_EQ(run("dataset " + kTiny + " --out " + out + " --samples 2").status, 0);
+    const std::string before = slurp(fs::path(out) / "samples/000001/metadata.json");
+    const cli::Result again = run("dataset " + kTiny + " --out " + out + " --samples 2");
+    EXPECT_EQ(again.status, 2) << again.out;
+    EXPECT_EQ(lines(again.out), 1u) << again.out;
+    EXPECT_NE(again.out.find("--resume"), std::string::npos) << again.out;
+    const cli::Result resumed = run("dataset " + kTiny + " --out " + out + " --resume");
+    ASSERT_EQ(resumed.status, 0) << resumed.out;
+    EXPECT_NE(resumed.out.find("made 2 sample(s) (2 kept)"), std::string::npos) << resumed.out;
+    EXPECT_EQ(slurp(fs::path(out) / "samples/000001/metadata.json"), before);
+    EXPECT_TRUE(fs::exists(fs::path(out) / "samples/000003/rgb.png"));
+}
+
+TEST(CliDataset, MergeBeforeEveryShardIsDoneNamesTheMissingSamples) {
+    const std::string out = dir("early-merge");
+    ASSERT_EQ(run("dataset " + kTiny + " --out " + out + " --shard 1/2").status, 0);
+    const cli::Result m = run("dataset " + kTiny + " --out " + out + " --merge");
+    EXPECT_EQ(m.status, 2);
+    EXPECT_EQ(lines(m.out), 1u) << m.out;
+    EXPECT_NE(m.out.find("2 of 4 samples are missing (0, 2)"), std::string::npos) << m.out;
+}
+
+TEST(CliDataset, CheckShowsTheFirstSampleWithoutMakingOne) {
+    const std::string out = dir("check");
+    const cli::Result r = run("dataset " + kTiny + " --out " + out + "/x --check");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("4 samples; sample 0:"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(fs::path(out) / "x"));
+}
+
+TEST(CliDataset, EveryBadSpecOrOptionGetsOneLineAndExitStatus2) {
+    const std::string d = dir("bad");
+    auto write = [&](const std::string& name, const std::string& text) {
+        std::ofstream(fs::path(d) / name) << text;
+        return (fs::path(d) / name).string();
+    };
+    const std::string fifo = (fs::path(d) / "fifo.json").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string file = write("a-file", "x");
+    struct Case {
+        std::string args, expect;
+    };
+    const std::vector<Case> cases = {
+        {"dataset " + d + "/missing.json --out " + d + "/o", "missing.json"},
+        {"dataset " + d + " --out " + d + "/o", "directory"},
+        {"dataset " + fifo + " --out " + d + "/o", "is a FIFO, not a dataset spec"},
+        {"dataset /dev/zero --out " + d + "/o", "/dev/zero"},
+        {"dataset " + write("empty.json", "") + " --out " + d + "/o", "empty.json"},
+        {"dataset " + write("nan.json", "{\"plantarch_dataset\": 1, \"samples\": NaN}") +
+             " --out " + d + "/o",
+         "nan.json"},
+        {"dataset " + write("huge.json", "{\"plantarch_dataset\": 1, \"samples\": 1e999}") +
+             " --out " + d + "/o",
+         "samples"},
+        {"dataset " +
+             write("species.json",
+                   "{\"plantarch_dataset\": 1, \"scene\": {\"species\": "
+                   "[{\"species\": \"nope\"}]}}") +
+             " --out " + d + "/o",
+         "scene/species/0/species"},
+        {"dataset " + kTiny + " --out " + file, "not a folder"},
+        {"dataset " + kTiny + " --out " + d + "/o --shard 3/3", "--shard"},
+        {"dataset " + kTiny + " --out " + d + "/o --shard 1", "--shard"},
+        {"dataset " + kTiny + " --out " + d + "/o --shard -1/2", "--shard"},
+        {"dataset " + kTiny + " --out " + d + "/o --shard 0/99999999999", "--shard"},
+        {"dataset " + kTiny + " --out " + d + "/o --samples 0", "--samples"},
+        {"dataset " + kTiny + " --out " + d + "/o --samples 100000000", "--samples"},
+    };
+    for (const Case& c : cases) {
+        const cli::Result r = run(c.args);
+        EXPECT_EQ(r.status, 2) << c.args << "\n" << r.out;
+        EXPECT_EQ(lines(r.out), 1u) << c.args << "\n" << r.out;
+        EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.args << "\n" << r.out;
+    }
+    EXPECT_FALSE(fs::exists(fs::path(d) / "o" / "samples"));
+}
+
+}  // namespace
