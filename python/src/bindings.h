@@ -64,7 +64,7 @@ void bindBending(py::module_& m);       // bending.cpp: shoots bending under loa
 void bindCalibration(py::module_& m);   // calibration.cpp: fitting species to measurements
 void bindOutput(py::module_& m);        // output.cpp: exporters, renderer, species files
 void bindField(py::module_& m);         // field.cpp: fields built in tiles
-void bindDataset(py::module_& m);      // dataset.cpp: synthetic datasets
+void bindDataset(py::module_& m);       // dataset.cpp: synthetic datasets
 
 }  // namespace plantarch::python
 
