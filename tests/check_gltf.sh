@@ -17,11 +17,14 @@ trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" > /dev/null
 "$cli" --seed 3 build almond --age 400 -o "$out/almond.glb" > /dev/null
 "$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" -o "$out/growth.gltf" > /dev/null
+# The tiles of a field (plantarch field: one GLB per tile).
+"$cli" field "$root/examples/fields/bean_field.json" --out "$out/field" --tile-size 0.6 > /dev/null
 # The examples of docs/formats.md, run as written (build/plantarch is the binary under test).
 mkdir -p "$out/doc"
 awk '/^```sh$/{on=1; next} /^```$/{on=0} on' "$root/docs/formats.md" |
     sed "s|build/plantarch|$cli|" | (cd "$out/doc" && bash -euo pipefail) > /dev/null
-report=$(node "$root/tests/js/validate_gltf.mjs" "$out"/*.glb "$out"/*.gltf "$out"/doc/out/*.gl*) ||
+report=$(node "$root/tests/js/validate_gltf.mjs" "$out"/*.glb "$out"/*.gltf "$out"/doc/out/*.gl* \
+    "$out"/field/*.glb) ||
     { echo "$report"; exit 1; }
 echo "$report" | grep -q '"warnings":[1-9]' && { echo "$report"; exit 1; }
 echo "$report" | sed 's/"messages".*//'
