@@ -175,6 +175,11 @@ TEST_F(Field, TilesAndIndexHoldTheWholeFieldsPlants) {
         EXPECT_EQ(child["geometricError"].get<double>(), 0.0);
         const std::vector<double> box = child["boundingVolume"]["box"];
         ASSERT_EQ(box.size(), 12u);
+        // Inside the root's box (3D Tiles: a child's volume lies within its parent's).
+        const std::vector<double> root = tileset["root"]["boundingVolume"]["box"];
+        for (int a = 0; a < 3; ++a)
+            EXPECT_LE(std::abs(box[a] - root[a]) + box[3 + 4 * a], root[3 + 4 * a] + 1e-4)
+                << plan.tiles[i].name << " axis " << a;
         Context c;
         const std::vector<ObjectID> objects = readGLTF(c, out + "/" + plan.tiles[i].name + ".glb");
         triangles += c.triangleCount();
