@@ -45,6 +45,11 @@ std::pair<double, double> axis(double lo, double hi, double size) {
     return {count, 0.5 * (lo + hi) - 0.5 * count * size};
 }
 
+// A whole number of tiles as written: its digits, or a double's form past 10^15.
+std::string countText(double n) {
+    return n < 1e15 ? std::to_string(std::uint64_t(n)) : text::formatDouble(n);
+}
+
 unsigned cell(float x, float origin, float size, unsigned count) {
     const double c = std::floor((double(x) - double(origin)) / double(size));
     return unsigned(std::clamp(c, 0.0, double(count - 1)));
@@ -92,8 +97,8 @@ FieldPlan fieldTiles(const Project& project, const FieldOptions& options) {
         throw Error(
             "too many tiles",
             {.parameter = "tile_size",
-             .value = text::formatFloat(options.tileSize) + " m (" + text::formatFloat(float(nx)) +
-                      " x " + text::formatFloat(float(ny)) + " tiles)",
+             .value = text::formatFloat(options.tileSize) + " m (" + field::countText(nx) + " x " +
+                      field::countText(ny) + " tiles)",
              .validRange = "a size giving at most " + std::to_string(kMaxFieldTiles) + " tiles"});
     FieldPlan plan;
     plan.tileSize = options.tileSize;
