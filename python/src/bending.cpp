@@ -3,6 +3,8 @@
 
 #include "plantarch/Bending.h"
 
+#include <fmt/format.h>
+
 #include "bindings.h"
 #include "docstrings.h"
 #include "plantarch/PlantArchitecture.h"
@@ -32,8 +34,8 @@ void bindBending(py::module_& m) {
                       "fixed-point iterations of the last solve")
         .def("__repr__", [](const PullResult& r) {
             auto v = [](const vec3& x) {
-                return "(" + std::to_string(x.x) + ", " + std::to_string(x.y) + ", " +
-                       std::to_string(x.z) + ")";
+                // fmt, not "(" + std::string: GCC 12 warns falsely (-Wrestrict) on that form.
+                return fmt::format("({}, {}, {})", x.x, x.y, x.z);
             };
             return "PullResult(force=" + v(r.force) + ", displacement=" + v(r.displacement) +
                    ", baseForce=" + v(r.baseForce) + ")";
