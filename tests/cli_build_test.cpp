@@ -136,15 +136,15 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
         {"bulid bean --age 10",
          "plantarch: 'bulid' is not a command, did you mean 'build'? (valid: demo, build, "
          "canopy, convert, project, grow, reconstruct, field, render, scan, light, compare, list, "
-         "info, fit, validate, builder)\n"},
+         "info, fit, validate, builder, dataset)\n"},
         {"nosuchcommand",
          "plantarch: 'nosuchcommand' is not a command (valid: demo, build, canopy, convert, "
          "project, grow, reconstruct, field, render, scan, light, compare, list, info, fit, "
-         "validate, builder)\n"},
+         "validate, builder, dataset)\n"},
         {"",
          "plantarch: a command is required (valid: demo, build, canopy, convert, project, "
          "grow, reconstruct, field, render, scan, light, compare, list, info, fit, validate, "
-         "builder; see plantarch --help)\n"},
+         "builder, dataset; see plantarch --help)\n"},
         // Canopies.
         {"canopy bean --count 0x2 --age 10 -o /tmp/x.ply",
          "plantarch: --count = 0x2: expected two positive numbers joined by 'x' (valid: e.g. "
