@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "docs_images.h"
 #include "error_of.h"
 #include "plantarch/Export.h"
 #include "plantarch/Render.h"
@@ -561,6 +562,61 @@ TEST(DatasetSample, TheMasksAgreeWithThePointCloudLabels) {
     }
     EXPECT_GT(checked, 500u);
     EXPECT_GE(double(agree), 0.99 * double(checked)) << agree << " of " << checked;
+}
+
+}  // namespace
+
+namespace {
+
+// Rows `panels` of equal size stacked: a grid of strips.
+Image stack(const std::vector<Image>& rows) {
+    Image out(rows.front().width, 0);
+    for (const Image& r : rows) {
+        out.rgb.insert(out.rgb.end(), r.rgb.begin(), r.rgb.end());
+        out.height += r.height;
+    }
+    return out;
+}
+
+Image colouredLabels(const Image16& labels, bool organs) {
+    Image out(labels.width, labels.height);
+    for (std::size_t i = 0; i < labels.values.size(); ++i) {
+        const std::uint16_t v = labels.values[i];
+        if (v == 0) continue;
+        const auto c = organs ? organLabelColors()[v / 257 - 1].rgb : objectLabelColor(v * 7919u);
+        std::copy(c.begin(), c.end(), out.rgb.begin() + std::ptrdiff_t(3 * i));
+    }
+    return out;
+}
+
+// docs/images/dataset-sample.png: one sample of examples/datasets/bean_rows.json, its RGB,
+// semantic mask, organ and plant instances, depth and normals. Written full size with
+// PLANTARCH_WRITE_DOCS_IMAGES=1; otherwise made small as a check that the pipeline runs.
+TEST(DocsImages, ADatasetSampleAndItsLabels) {
+    const bool full = plantarch::testing::writingDocsImages();
+    DatasetSpec spec = readDatasetSpecFile(std::string(PLANTARCH_SOURCE_DIR) +
+                                           "/examples/datasets/bean_rows.json");
+    spec.camera.width = spec.camera.height = full ? 360 : 64;
+    spec.camera.samplesPerPixel = full ? 16 : 1;
+    spec.points = 1000;
+    const std::string out = scratch("docs-image");
+    writeDatasetSample(spec, 4, out);
+    const fs::path d = fs::path(out) / "samples" / "000004";
+    DepthImage depth;
+    depth.width = depth.height = spec.camera.width;
+    depth.depth = npyFloats(d / "depth.npy");
+    const Image16 semantic = readImage16((d / "semantic.png").string());
+    const Image picture =
+        stack({plantarch::testing::strip(
+                   {readImage((d / "rgb.png").string()), colouredLabels(semantic, true),
+                    colouredLabels(readImage16((d / "organ_instances.png").string()), false)}),
+               plantarch::testing::strip(
+                   {colouredLabels(readImage16((d / "plant_instances.png").string()), false),
+                    depthPicture(depth), readImage((d / "normals.png").string())})});
+    EXPECT_EQ(picture.width, 3 * spec.camera.width);
+    EXPECT_EQ(picture.height, 2 * spec.camera.height);
+    writePNG(picture, full ? plantarch::testing::docsImagePath("dataset-sample.png")
+                           : (fs::path(out) / "dataset-sample.png").string());
 }
 
 }  // namespace
