@@ -357,6 +357,7 @@ void Server::Impl::routes() {
     buildRoutes();
     exportRoutes();
     projectRoutes();
+    datasetRoutes();
     assetRoutes();
     // cpp-httplib hands every request to dispatch(), which routes it (and answers 404).
     const auto all = [this](const httplib::Request& req, httplib::Response& res) {

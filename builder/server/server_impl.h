@@ -33,6 +33,9 @@ inline constexpr std::size_t kMaxRequestDepth = 64;
 
 using Handler = std::function<void(const httplib::Request&, httplib::Response&)>;
 
+/// The dataset endpoints' previews and runs (dataset_routes.cpp).
+struct DatasetState;
+
 /// A route: requests of `method` whose whole path matches `pattern` go to `handler`.
 struct Route {
     std::string method;
@@ -56,6 +59,8 @@ struct Server::Impl {
     std::mutex cache;                               ///< guards the caches below
     std::map<std::string, std::string> thumbnails;  ///< PNG bytes by species name
     std::optional<json> librarySpecies;             ///< GET /api/species entries of the library
+    /// Declared last: destroyed first, it cancels a dataset run and waits for its thread.
+    std::shared_ptr<DatasetState> datasets;
 
     explicit Impl(ServerOptions o);
     /// Declares a route (dispatch() takes them in the order declared).
@@ -70,6 +75,7 @@ struct Server::Impl {
     void buildRoutes();
     void exportRoutes();
     void projectRoutes();
+    void datasetRoutes();
     void assetRoutes();
 
     /// The request allowed (Host and, for state-changing methods, Origin), or an HttpError.
