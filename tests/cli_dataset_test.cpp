@@ -156,3 +156,27 @@ TEST(CliDataset, EveryBadSpecOrOptionGetsOneLineAndExitStatus2) {
 }
 
 }  // namespace
+
+namespace {
+
+// The dataset examples of docs/datasets.md run as written, from a folder where examples/ is
+// the repository's.
+TEST(CliDataset, TheDocsExamplesRun) {
+    const fs::path d = dir("docs-examples");
+    fs::create_directories(d / "out");
+    fs::create_directory_symlink(fs::path(PLANTARCH_SOURCE_DIR) / "examples", d / "examples");
+    std::ifstream in(fs::path(PLANTARCH_SOURCE_DIR) / "docs" / "datasets.md");
+    int ran = 0;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("build/plantarch dataset ", 0) != 0) continue;
+        const auto r = cli::runShell("cd '" + d.string() + "' && " + PLANTARCH_CLI +
+                                     line.substr(std::string("build/plantarch").size()) + " 2>&1");
+        ASSERT_EQ(r.status, 0) << line << "\n" << r.out;
+        ++ran;
+    }
+    EXPECT_EQ(ran, 4);
+    EXPECT_TRUE(fs::exists(d / "out" / "tiny" / "dataset.json"));
+    EXPECT_TRUE(fs::exists(d / "out" / "beans" / "samples" / "000007" / "rgb.png"));
+}
+
+}  // namespace

@@ -5,6 +5,7 @@ LocalCluster of 2 worker processes are the serial run's byte for byte, and both 
 import json
 import os
 import pathlib
+import re
 import subprocess
 
 import pytest
@@ -99,3 +100,21 @@ def test_a_sample_from_python_has_its_labelled_files(tmp_path):
     assert coco["info"]["sample"] == 2
     names = [c["name"] for c in coco["categories"]]
     assert "leaf" in names and "plant" in names
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+def test_the_dask_example_of_the_datasets_guide_runs(tmp_path, capsys):
+    pytest.importorskip("distributed")
+    doc = REPO / "docs" / "datasets.md"
+    blocks = [b for b in re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
+              if "plantarch.dataset.generate(" in b]
+    assert len(blocks) == 1
+    (tmp_path / "examples").symlink_to(REPO / "examples")
+    cwd = os.getcwd()
+    os.chdir(tmp_path)
+    try:
+        exec(compile(blocks[0], str(doc), "exec"), {"__name__": "__main__"})
+    finally:
+        os.chdir(cwd)
+    assert capsys.readouterr().out.startswith("4 samples, ")
+    assert (tmp_path / "out" / "tiny-dask" / "dataset.json").is_file()
