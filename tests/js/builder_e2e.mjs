@@ -16,7 +16,9 @@
 // a physiology season switched on in the Environment tab is built afresh (never grown on), its
 // scene coloured by absorbed PAR with a legend of its range; a measured skeleton (a file under
 // the output folder) is rebuilt as a block of capsicum, a bad one refused with the server's
-// line, and "Bend under load" bends a grown plant beside it. With --screenshots, pictures of the page are written into DIR
+// line, and "Bend under load" bends a grown plant beside it; in the Dataset tab a spec is
+// opened, its error shown, a sample previewed as pictures and 2 samples run into a dataset.
+// With --screenshots, pictures of the page are written into DIR
 // (docs/images for docs/builder.md). Waits are for states the page or the server reports,
 // never for a time. CHROMIUM overrides /usr/bin/chromium.
 import { spawn, execFileSync } from 'node:child_process';
@@ -450,6 +452,7 @@ async function run() {
 
   await physiologySeason(page, base);
   await measuredSkeleton(page, base);
+  await datasetScenario(page);
   assert.deepEqual(pageErrors, [], 'errors in the page');
 }
 
@@ -610,6 +613,51 @@ async function measuredSkeleton(page, base) {
   await page.evaluate(() => window.plantarchBuilder.viewer.frame());
   await shot(page, 'bending');
   step(`a measured pepper skeleton built (${straight.id}); a capsicum bent under load (${bent.id}): ${heights[0].toFixed(3)} m upright, ${heights[1].toFixed(3)} m bent`);
+}
+
+// The Dataset tab: examples/datasets/tiny.json, copied into the output folder's datasets/, is
+// opened and checked; an error shows the spec reader's line and field; sample 0 is previewed
+// (its five pictures load at the spec's size) and a run of 2 samples writes the dataset.
+async function datasetScenario(page) {
+  const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '../..');
+  mkdirSync(path.join(output, 'datasets'), { recursive: true });
+  copyFileSync(path.join(root, 'examples/datasets/tiny.json'), path.join(output, 'datasets/tiny.json'));
+  await page.click('.tab[data-tab=dataset]');
+  await page.waitForFunction(() =>
+    [...document.querySelectorAll('#dataset-file option')].some((o) => o.value === 'datasets/tiny.json'));
+  await page.select('#dataset-file', 'datasets/tiny.json');
+  await page.click('#dataset-open');
+  await page.waitForSelector('#dataset-check[data-state=valid]');
+  const tiny = await page.$eval('#dataset-spec', (el) => el.value);
+  await setValue(page, '#dataset-spec', tiny.replace('"age": [12, 18]', '"age": [12, -18]'));
+  await page.click('#dataset-check-button');
+  await page.waitForSelector('#dataset-check[data-state=error]');
+  const shown = await page.$eval('#dataset-check', (el) => el.textContent);
+  assert.match(shown, /scene\/species\/0\/age/, `the spec's error: ${shown}`);
+  step(`a bad dataset spec shows: ${shown}`);
+  await setValue(page, '#dataset-spec', tiny);
+  await page.select('select[name=dataset-count]', '1');
+  await page.click('#dataset-preview');
+  await page.waitForSelector('#dataset-previews[data-state=done]');
+  const pictures = await page.waitForFunction(() => {
+    const images = [...document.querySelectorAll('#dataset-previews img')];
+    return images.length === 5 && images.every((i) => i.complete) &&
+      images.map((i) => [i.dataset.picture, i.naturalWidth, i.naturalHeight]);
+  });
+  const sizes = await pictures.jsonValue();
+  for (const [name, w, h] of sizes) assert.deepEqual([w, h], [160, 120], `the preview's ${name} picture`);
+  await setValue(page, 'input[name=dataset-samples]', 2);
+  await page.click('#dataset-run');
+  await page.waitForFunction(() =>
+    ['done', 'failed', 'cancelled'].includes(document.getElementById('dataset-run-status').dataset.state));
+  const run = await page.$eval('#dataset-run-status', (el) => ({ state: el.dataset.state, text: el.textContent }));
+  assert.equal(run.state, 'done', `the dataset run: ${run.text}`);
+  for (const file of ['dataset.json', 'manifest-0-of-1.json', 'samples/000001/rgb.png'])
+    assert.ok(existsSync(path.join(output, 'datasets/tiny', file)), `the run wrote ${file}`);
+  assert.ok(!existsSync(path.join(output, 'datasets/tiny/samples/000002')), 'two samples');
+  await page.$eval('#dataset-spec', (el) => { el.scrollTop = 0; });
+  await shot(page, 'dataset');
+  step(`tiny.json: sample 0 previewed (${sizes.map((s) => s[0]).join(', ')}); a run of 2 samples: ${run.text}`);
 }
 
 let failed = false;

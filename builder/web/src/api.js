@@ -2,9 +2,10 @@
 // an Error whose message is the server's one-line error.
 
 export class ApiError extends Error {
-  constructor(message, status) {
+  constructor(message, status, data) {
     super(message);
     this.status = status;
+    this.data = data; // the error's JSON ({error, ...}), when the server sent one
   }
 }
 
@@ -30,7 +31,8 @@ async function request(method, url, body) {
       typeof data === 'object' && data?.error
         ? data.error
         : `${method} ${url}: HTTP ${response.status}`;
-    throw new ApiError(message, response.status);
+    const json = typeof data === 'object' ? data : undefined;
+    throw new ApiError(message, response.status, json);
   }
   return data;
 }
@@ -57,4 +59,11 @@ export const api = {
   saveProject: (name, project) => request('POST', '/api/projects/save', { name, project }),
   projects: () => request('GET', '/api/projects'),
   project: (name) => request('GET', `/api/projects/${enc(name)}`),
+  datasetSpecs: () => request('GET', '/api/dataset/specs'),
+  datasetSpec: (path) => request('GET', `/api/dataset/spec?path=${enc(path)}`),
+  checkDataset: (body) => request('POST', '/api/dataset/check', body),
+  previewDataset: (body) => request('POST', '/api/dataset/preview', body),
+  startDatasetRun: (body) => request('POST', '/api/dataset/runs', body),
+  datasetRun: (id) => request('GET', `/api/dataset/runs/${enc(id)}`),
+  cancelDatasetRun: (id) => request('DELETE', `/api/dataset/runs/${enc(id)}`),
 };

@@ -11,6 +11,7 @@ import { ScenePanel } from './scene_panel.js';
 import { EnvironmentPanel } from './environment_panel.js';
 import { SpeciesEditor } from './species_editor.js';
 import { ExportPanel } from './export_panel.js';
+import { DatasetPanel } from './dataset_panel.js';
 import { h, render, select, toast, fmt, download, icon } from './ui.js';
 
 const POLL_MS = 200;
@@ -81,11 +82,13 @@ class App {
       environment: h('div', { class: 'tab-body', dataset: { panel: 'environment' } }),
       species: h('div', { class: 'tab-body', dataset: { panel: 'species' } }),
       export: h('div', { class: 'tab-body', dataset: { panel: 'export' } }),
+      dataset: h('div', { class: 'tab-body', dataset: { panel: 'dataset' } }),
     };
     this.scenePanel = new ScenePanel(this, this.panels.scene);
     this.environmentPanel = new EnvironmentPanel(this, this.panels.environment);
     this.speciesEditor = new SpeciesEditor(this, this.panels.species);
     this.exportPanel = new ExportPanel(this, this.panels.export);
+    this.datasetPanel = new DatasetPanel(this, this.panels.dataset);
 
     this.viewport = h('div', { class: 'viewport', id: 'viewport' });
     this.legend = h('div', { class: 'legend', hidden: true, id: 'legend' });
@@ -235,6 +238,7 @@ class App {
             tab('environment', 'Environment'),
             tab('species', 'Species'),
             tab('export', 'Export'),
+            tab('dataset', 'Dataset'),
           ),
           Object.values(this.panels),
         ),
@@ -367,6 +371,7 @@ class App {
       t.classList.toggle('active', t.dataset.tab === id);
     if (id === 'species') this.openSpeciesEditor();
     if (id === 'export') this.exportPanel.render();
+    if (id === 'dataset') this.datasetPanel.render();
   }
 
   selectedBlock() {
