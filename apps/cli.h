@@ -96,6 +96,10 @@ struct CommandRegistrar {
         { name, order, setupFn }                                  \
     }
 
+/// --shard K/N (shard_option.cpp): two whole numbers with 0 <= K < N <= maxShards; an Error
+/// naming --shard and its form otherwise.
+std::pair<std::size_t, std::size_t> parseShard(const std::string& text, std::size_t maxShards);
+
 /// Message on stderr when -v was given.
 void info(const GlobalOptions& g, const std::string& message);
 /// Wall time since `start`, ms (what -v reports).

@@ -26,25 +26,6 @@ struct DatasetArgs {
     bool resume = false, merge = false, check = false;
 };
 
-std::pair<std::size_t, std::size_t> parseShard(const std::string& text) {
-    const std::string form =
-        "K/N with 0 <= K < N (as $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)";
-    const auto slash = text.find('/');
-    auto whole = [&](const std::string& s) {
-        if (s.empty() || s.size() > 9 || s.find_first_not_of("0123456789") != std::string::npos)
-            throw Error("expected two whole numbers",
-                        {.parameter = "--shard", .value = text, .validRange = form});
-        return std::size_t(std::stoul(s));
-    };
-    if (slash == std::string::npos)
-        throw Error("expected K/N", {.parameter = "--shard", .value = text, .validRange = form});
-    const std::size_t k = whole(text.substr(0, slash)), n = whole(text.substr(slash + 1));
-    if (n == 0 || k >= n)
-        throw Error("shard out of range",
-                    {.parameter = "--shard", .value = text, .validRange = form});
-    return {k, n};
-}
-
 std::string duration(double seconds) {
     const auto s = long(seconds + 0.5);
     if (s >= 3600) return fmt::format("{}:{:02d}:{:02d}", s / 3600, s / 60 % 60, s % 60);
@@ -97,8 +78,8 @@ std::function<int()> setupDataset(CLI::App& app, GlobalOptions& global) {
                 "%s", fmt::format("merged {} samples: {}/dataset.json\n", samples, a->out).c_str());
             return 0;
         }
-        const auto [k, n] =
-            a->shard.empty() ? std::pair<std::size_t, std::size_t>{0, 1} : parseShard(a->shard);
+        const auto [k, n] = a->shard.empty() ? std::pair<std::size_t, std::size_t>{0, 1}
+                                             : parseShard(a->shard, kMaxDatasetSamples);
         const std::vector<std::size_t> mine = datasetShard(samples, k, n);
         fs::create_directories(a->out, ec);
         if (!fs::is_directory(a->out))

@@ -9,7 +9,6 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <charconv>
 #include <cstdio>
 #include <filesystem>
 
@@ -30,27 +29,6 @@ struct FieldArgs {
     bool resume = false;
     bool indexOnly = false;
 };
-
-// --shard K/N: two whole numbers, 0 <= K < N <= kMaxFieldTiles.
-std::pair<std::size_t, std::size_t> parseFieldShard(const std::string& text) {
-    const auto bad = [&] {
-        return Error("not a shard", {.parameter = "--shard",
-                                     .value = text,
-                                     .validRange = "K/N, whole numbers with 0 <= K < N <= " +
-                                                   std::to_string(kMaxFieldTiles)});
-    };
-    const auto slash = text.find('/');
-    if (slash == std::string::npos) throw bad();
-    std::size_t k = 0, n = 0;
-    const char* s = text.data();
-    const char* e = s + text.size();
-    const auto [kEnd, kErr] = std::from_chars(s, s + slash, k);
-    const auto [nEnd, nErr] = std::from_chars(s + slash + 1, e, n);
-    if (kErr != std::errc() || kEnd != s + slash || nErr != std::errc() || nEnd != e ||
-        slash == 0 || slash + 1 == text.size() || n == 0 || n > kMaxFieldTiles || k >= n)
-        throw bad();
-    return {k, n};
-}
 
 // The library's name for an option given on the command line.
 [[noreturn]] void rethrowFieldOption() {
@@ -93,7 +71,7 @@ int runField(const FieldArgs& a, const GlobalOptions& global) {
         throw Error("--index-only builds no tile",
                     {.parameter = "--index-only", .validRange = "without --shard and --resume"});
     std::size_t shard = 0, shards = 1;
-    if (!a.shard.empty()) std::tie(shard, shards) = parseFieldShard(a.shard);
+    if (!a.shard.empty()) std::tie(shard, shards) = parseShard(a.shard, kMaxFieldTiles);
     requireFieldFolder(a.out);
     const Project project = readProjectFile(a.project);
     FieldOptions options;
