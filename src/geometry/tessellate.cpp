@@ -427,12 +427,6 @@ void nodesFrom(const Shoot& s, vec3 base, std::vector<vec3>& nodes) {
                         ph.internode.direction * ph.internode.length * ph.internodeFraction);
 }
 
-std::vector<vec3> nodesFrom(const Shoot& s, vec3 base) {
-    std::vector<vec3> nodes;
-    nodesFrom(s, base, nodes);
-    return nodes;
-}
-
 // Where a shoot starts on its parent's nodes.
 vec3 baseOn(const Shoot& s, const std::vector<vec3>& parentNodes) {
     return parentNodes[std::min<std::size_t>(std::size_t(s.parentNode) + 1,
