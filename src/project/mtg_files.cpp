@@ -521,7 +521,9 @@ std::string plantsMTG(const PlantArchitecture& arch, const std::vector<unsigned>
         out += "\t" + type + "\t" + plantName + "\n";
     };
     unsigned plantNumber = 0;
-    for (const auto& [p, id] : plants) {
+    for (const auto& entry : plants) {
+        // Not a structured binding: the lambda below uses it (clang 14 cannot capture those).
+        const auto* p = entry.first;
         ++plantNumber;
         row(0, "/P" + std::to_string(plantNumber), &p->base, nullptr, "", p->name);
         if (p->shoots.empty() || p->shoots[0].removed) continue;
