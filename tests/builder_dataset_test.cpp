@@ -228,6 +228,21 @@ TEST_F(BuilderDataset, PreviewsTheLibrarysSampleAsPicturesWrittenOutsideTheOutpu
         EXPECT_NE(errorOf(r).find("sample = "), std::string::npos) << errorOf(r);
         EXPECT_NE(errorOf(r).find("(valid: 0 to 9999999)"), std::string::npos) << errorOf(r);
     }
+    // Previews asked for at once: each made or refused (429) with one line, one at a time.
+    std::vector<int> statuses(3, 0);
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < statuses.size(); ++t)
+        threads.emplace_back([&, t] {
+            httplib::Client c("127.0.0.1", port_);
+            c.set_read_timeout(60, 0);
+            auto a = c.Post("/api/dataset/preview", {{"Origin", origin()}},
+                            json({{"text", tinySpec()}, {"sample", t}}).dump(), "application/json");
+            statuses[t] = a ? a->status : -1;
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_GE(std::count(statuses.begin(), statuses.end(), 200), 1);
+    for (int status : statuses) EXPECT_TRUE(status == 200 || status == 429) << status;
+    EXPECT_EQ(names(), before);
     EXPECT_EQ(client_->Get("/api/dataset/previews/p999/rgb.png")->status, 404);
     EXPECT_EQ(client_->Get("/api/dataset/previews/p1/secret.png")->status, 404);
     EXPECT_EQ(client_->Get("/api/dataset/previews/p1/../../etc/passwd")->status, 404);

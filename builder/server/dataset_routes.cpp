@@ -32,8 +32,10 @@ namespace {
 
 /// A spec's text in a request: at most this many bytes (a spec is a few kilobytes).
 constexpr std::size_t kMaxSpecText = 1u << 20;
-/// Previews kept for their pictures to be fetched; older ones are forgotten.
+/// Previews kept for their pictures to be fetched (at most this many, of at most this many
+/// bytes of pictures together, the last always); older ones are forgotten.
 constexpr std::size_t kKeptPreviews = 16;
+constexpr std::size_t kKeptPreviewBytes = 256u << 20;
 /// Finished runs kept; older ones are forgotten.
 constexpr std::size_t kKeptRuns = 8;
 
@@ -89,6 +91,7 @@ struct DatasetState {
     std::unique_ptr<TemporaryFolder> previewFolder;  ///< made on the first preview
     std::map<std::string, DatasetPreview> previews;
     std::deque<std::string> previewOrder;
+    std::size_t previewBytes = 0;  ///< of the pictures kept
     std::uint64_t nextPreview = 1, nextRun = 1;
     std::map<std::string, std::shared_ptr<DatasetRun>> runs;
     std::deque<std::string> finishedRuns;
@@ -540,9 +543,15 @@ void Server::Impl::datasetRoutes() {
                json answer = {{"id", id}, {"images", images}, {"summary", p.summary}};
                {
                    std::lock_guard<std::mutex> lock(state.mutex);
+                   for (const auto& [name, bytes] : p.pictures) state.previewBytes += bytes.size();
                    state.previews[id] = std::move(p);
                    state.previewOrder.push_back(id);
-                   while (state.previewOrder.size() > kKeptPreviews) {
+                   while (
+                       state.previewOrder.size() > kKeptPreviews ||
+                       (state.previewOrder.size() > 1 && state.previewBytes > kKeptPreviewBytes)) {
+                       for (const auto& [name, bytes] :
+                            state.previews[state.previewOrder.front()].pictures)
+                           state.previewBytes -= bytes.size();
                        state.previews.erase(state.previewOrder.front());
                        state.previewOrder.pop_front();
                    }
