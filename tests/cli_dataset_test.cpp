@@ -139,6 +139,20 @@ TEST(CliDataset, EveryBadSpecOrOptionGetsOneLineAndExitStatus2) {
              " --out " + d + "/o",
          "scene/species/0/species"},
         {"dataset " + kTiny + " --out " + file, "not a folder"},
+        {"dataset " +
+             write("rays.json",
+                   "{\"plantarch_dataset\": 1, \"scene\": {\"species\": "
+                   "[{\"species\": \"bean\"}]}, \"camera\": {\"width\": 8192, "
+                   "\"height\": 8192, \"samples_per_pixel\": 256}}") +
+             " --out " + d + "/o",
+         "camera/samples_per_pixel"},
+        {"dataset " +
+             write("field.json",
+                   "{\"plantarch_dataset\": 1, \"scene\": {\"species\": [{\"species\": "
+                   "\"bean\", \"age\": 40}], \"layouts\": [{\"layout\": \"rows\", "
+                   "\"rows\": 1000, \"plants_per_row\": 1000}]}}") +
+             " --out " + d + "/o",
+         "sample 000000: a canopy of 1000000 plants"},
         {"dataset " + kTiny + " --out " + d + "/o --shard 3/3", "--shard"},
         {"dataset " + kTiny + " --out " + d + "/o --shard 1", "--shard"},
         {"dataset " + kTiny + " --out " + d + "/o --shard -1/2", "--shard"},
@@ -152,7 +166,8 @@ TEST(CliDataset, EveryBadSpecOrOptionGetsOneLineAndExitStatus2) {
         EXPECT_EQ(lines(r.out), 1u) << c.args << "\n" << r.out;
         EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.args << "\n" << r.out;
     }
-    EXPECT_FALSE(fs::exists(fs::path(d) / "o" / "samples"));
+    // A run that fails before its first sample leaves no folder it made.
+    EXPECT_FALSE(fs::exists(fs::path(d) / "o"));
 }
 
 }  // namespace

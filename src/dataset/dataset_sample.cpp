@@ -344,10 +344,9 @@ public:
         folderSlot_ = io::registerTemporaryFolder(path_.c_str());
     }
     ~PartialFolder() {
-        if (!kept_) {
-            std::error_code ec;
-            fs::remove_all(path_, ec);
-        }
+        std::error_code ec;
+        if (!kept_) fs::remove_all(path_, ec);
+        fs::remove(fs::path(path_).parent_path(), ec);  // .partial, when no other run uses it
         release();
     }
     PartialFolder(const PartialFolder&) = delete;
@@ -423,12 +422,6 @@ DatasetSampleResult writeDatasetSample(const DatasetSpec& spec, std::size_t inde
         result.skipped = true;
         return result;
     }
-    fs::create_directories(fs::path(outDir) / ".partial", ec);
-    fs::create_directories(samples, ec);
-    if (!fs::is_directory(samples))
-        throw Error("cannot make the samples folder" + (ec ? ": " + ec.message() : ""),
-                    {.file = samples});
-
     Context ctx;
     PlantArchitecture arch(&ctx);
     ProjectBuildOptions build;
@@ -532,6 +525,10 @@ DatasetSampleResult writeDatasetSample(const DatasetSpec& spec, std::size_t inde
         }
     bytes +=
         folder.write("metadata.json", metadataJSON(spec, s, arch, built, labels).dump(1) + "\n");
+    fs::create_directories(samples, ec);
+    if (!fs::is_directory(samples))
+        throw Error("cannot make the samples folder" + (ec ? ": " + ec.message() : ""),
+                    {.file = samples});
     if (!folder.keepAs(target)) {
         if (!options.resume)
             throw Error("the sample was written meanwhile by another run", {.file = target});

@@ -169,7 +169,7 @@ DatasetLayout readLayout(const Reader& rd, const json& j, const std::string& fie
     if (kind == layoutKinds().end())
         rd.fail(at(field, "layout"), "unknown layout", &j["layout"], text::oneOf(names));
     l.kind = kind->second;
-    const Range plantCount = wholeRange(1, 10000);
+    const Range plantCount = wholeRange(1, 1000);  // rows x plants per row: at most 10^6
     const Range spacing = spacingRange();
     switch (l.kind) {
         case DatasetLayout::Kind::Single:
@@ -199,7 +199,7 @@ DatasetLayout readLayout(const Reader& rd, const json& j, const std::string& fie
         case DatasetLayout::Kind::Scatter:
             rd.object(j, field, {"layout", "weight", "plants", "area"});
             if (j.contains("plants"))
-                l.plants = readDraw(rd, j["plants"], at(field, "plants"), plantCount);
+                l.plants = readDraw(rd, j["plants"], at(field, "plants"), wholeRange(1, 10000));
             if (j.contains("area"))
                 l.area =
                     readDraw(rd, j["area"], at(field, "area"), {0, 1000, "> 0 to 1000 m", true});
@@ -319,6 +319,16 @@ void readCamera(const Reader& rd, const json& j, DatasetSpec& s) {
     if (j.contains("samples_per_pixel"))
         c.samplesPerPixel = int(rd.number(j["samples_per_pixel"], "camera/samples_per_pixel",
                                           {1, 256, "whole numbers 1 to 256", false, true}));
+    {
+        // What one sample's picture casts: camera rays, each with a sun and a sky ray.
+        const std::uint64_t rays =
+            std::uint64_t(c.width) * std::uint64_t(c.height) * std::uint64_t(c.samplesPerPixel) * 3;
+        if (rays > kMaxRenderRays)
+            rd.fail(
+                j.contains("samples_per_pixel") ? "camera/samples_per_pixel" : "camera/width",
+                "a picture of " + std::to_string(rays) + " rays is too large", nullptr,
+                "width x height x samples_per_pixel x 3 at most " + std::to_string(kMaxRenderRays));
+    }
     if (j.contains("fov"))
         c.fov = readDraw(rd, j["fov"], "camera/fov", {1, 150, "1 to 150 degrees"});
     if (j.contains("azimuth"))
