@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <atomic>
@@ -137,7 +138,6 @@ TEST_F(BuilderDataset, ChecksASpecAndNamesTheFieldOfAnError) {
     r = post("/api/dataset/check", {{"path", "datasets/tiny.json"}});
     ASSERT_TRUE(r && r->status == 200) << (r ? r->body : "");
     EXPECT_EQ(body(r)["name"], "tiny");
-    EXPECT_EQ(body(client_->Get("/api/dataset/specs")), json({"datasets/tiny.json"}));
     r = client_->Get("/api/dataset/spec?path=datasets/tiny.json");
     ASSERT_TRUE(r && r->status == 200);
     EXPECT_EQ(body(r)["text"], tinySpec());
@@ -146,6 +146,11 @@ TEST_F(BuilderDataset, ChecksASpecAndNamesTheFieldOfAnError) {
     EXPECT_EQ(client_->Get("/api/dataset/spec?path=/etc/passwd")->status, 403);
     EXPECT_EQ(client_->Get("/api/dataset/spec?path=../../x.json")->status, 403);
     EXPECT_EQ(post("/api/dataset/check", {{"path", "datasets"}})->status, 400);
+    // A pipe is never opened (it would block), nor listed.
+    ASSERT_EQ(mkfifo(out("datasets/pipe.json").c_str(), 0600), 0);
+    EXPECT_EQ(post("/api/dataset/check", {{"path", "datasets/pipe.json"}})->status, 400);
+    EXPECT_EQ(client_->Get("/api/dataset/spec?path=datasets/pipe.json")->status, 400);
+    EXPECT_EQ(body(client_->Get("/api/dataset/specs")), json({"datasets/tiny.json"}));
     EXPECT_EQ(post("/api/dataset/check", {{"path", "datasets/none.json"}})->status, 404);
     EXPECT_EQ(post("/api/dataset/check", json::object())->status, 400);
     EXPECT_EQ(post("/api/dataset/check", {{"text", "{}"}, {"path", "x.json"}})->status, 400);
@@ -309,6 +314,11 @@ TEST_F(BuilderDataset, RunsSamplesIntoAFolderUnderTheOutputFolder) {
         std::string::npos);
     fs::remove_all(at("direct"));
     EXPECT_EQ(names(), before);
+    // A file where the folder would be.
+    std::ofstream(out("file")) << "x";
+    r = post("/api/dataset/runs", {{"text", tinySpec()}, {"out", "file"}});
+    EXPECT_EQ(r->status, 400);
+    EXPECT_NE(errorOf(r).find("not a folder"), std::string::npos) << errorOf(r);
     // A symbolic link out of the output folder.
     fs::create_directories(at("elsewhere"));
     fs::create_directory_symlink(at("elsewhere"), out("link"));

@@ -212,12 +212,14 @@ std::size_t wholeField(const json& body, const char* name, double lo, double hi,
 }
 
 void onlyFields(const json& body, std::initializer_list<const char*> names) {
-    for (const auto& [key, value] : body.items())
+    for (auto it = body.begin(); it != body.end(); ++it) {
+        const std::string& key = it.key();
         if (std::none_of(names.begin(), names.end(), [&](const char* n) { return key == n; })) {
             std::string valid;
             for (const char* n : names) valid += (valid.empty() ? "" : ", ") + std::string(n);
             throw HttpError{400, clip(key) + ": unknown field (valid: " + valid + ")"};
         }
+    }
 }
 
 json specSummary(const DatasetSpec& spec) {
