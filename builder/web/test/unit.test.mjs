@@ -36,6 +36,7 @@ import {
   progressText,
 } from '../src/physiology_panel.js';
 import { formatOptions } from '../src/export_panel.js';
+import { runText, PREVIEW_PICTURES } from '../src/dataset_panel.js';
 
 // GET /api/defaults of a `plantarch builder` started for it on a free port.
 async function servedDefaults() {
@@ -396,4 +397,18 @@ test('light and carbon colour over the range of the objects with data; the other
   assert.equal(modeUnavailable('age', plain), null);
   assert.equal(modeUnavailable('natural', null), null);
   assert.match(modeUnavailable('organ', null), /no labels/);
+});
+
+test("a dataset run's progress line: samples, rate, time left; the pictures a preview shows", () => {
+  const running = { state: 'running', done: 12, total: 100, per_minute: 35.24, seconds_left: 3725 };
+  assert.equal(runText(running), '12 / 100 samples · 35.2 per min · 1:02:05 left');
+  assert.equal(runText({ ...running, seconds_left: 40 }), '12 / 100 samples · 35.2 per min · 0:40 left');
+  assert.equal(runText({ ...running, per_minute: 0, seconds_left: null }), '12 / 100 samples');
+  const done = { state: 'done', done: 2, total: 2, per_minute: 1200, bytes: 1.7e6, seconds: 0.1 };
+  assert.equal(runText(done), '2 / 2 samples · 1,200 per min · 1.7 MB in 0.1 s');
+  assert.match(runText({ ...running, state: 'cancelled' }), /cancelled$/);
+  assert.deepEqual(
+    PREVIEW_PICTURES.map(([key]) => key),
+    ['rgb', 'semantic', 'instances', 'plants', 'depth'],
+  );
 });
