@@ -7,6 +7,7 @@ import os
 import pathlib
 import re
 import subprocess
+from typing import Any, cast
 
 import pytest
 
@@ -31,14 +32,16 @@ def test_samples_on_two_dask_workers_are_the_serial_run_and_the_cli_run(tmp_path
                                         progress=lambda done, total: seen.append((done, total)))
     assert serial["samples"] == 4 and serial["made"] == 4 and serial["kept"] == 0
     assert seen == [(1, 4), (2, 4), (3, 4), (4, 4)]
-    assert [r["sample"] for r in serial["results"]] == [0, 1, 2, 3]
+    assert sum(serial["splits"].values()) == 4 and serial["plants"] >= 4
     with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
                                   dashboard_address=None) as cluster, \
             distributed.Client(cluster) as client:
         mapped = plantarch.dataset.generate(TINY, tmp_path / "dask", client=client)
         workers = {w for w in client.run(lambda: os.getpid()).values()}
     assert len(workers) == 2
-    assert mapped["made"] == 4 and mapped["bytes"] == serial["bytes"]
+    assert mapped["made"] == 4
+    for key in ("bytes", "plants", "triangles", "annotations", "splits"):
+        assert mapped[key] == serial[key], key
     cli = os.environ.get("PLANTARCH_CLI")
     if cli:
         subprocess.run([cli, "dataset", str(TINY), "--out", str(tmp_path / "cli")], check=True,
@@ -77,8 +80,12 @@ def test_resume_keeps_samples_and_errors_are_one_line(tmp_path):
         plantarch.dataset.generate(bad, tmp_path / "never")
     assert "\n" not in str(e.value)
     assert not (tmp_path / "never").exists()
-    with pytest.raises(plantarch.Error, match="samples"):
-        plantarch.dataset.generate(TINY, tmp_path / "none", samples=0)
+    for count in (0, -1, 10**9, 2.5, True, "4"):
+        with pytest.raises(plantarch.Error, match="samples = "):
+            plantarch.dataset.generate(TINY, tmp_path / "none", samples=cast(Any, count))
+    assert not (tmp_path / "none").exists()
+    with pytest.raises(plantarch.Error, match="index"):
+        plantarch.writeDatasetSample(str(TINY), 10**7, str(tmp_path / "none"))
     with pytest.raises(plantarch.Error):
         plantarch.checkDatasetSpec(str(tmp_path))
 

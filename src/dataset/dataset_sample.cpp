@@ -403,8 +403,7 @@ DatasetSampleResult writeDatasetSample(const DatasetSpec& spec, std::size_t inde
                                        const DatasetWriteOptions& options) {
     if (index >= kMaxDatasetSamples)
         throw Error("sample index out of range",
-                    {.file = spec.file,
-                     .parameter = "samples",
+                    {.parameter = "index",
                      .value = std::to_string(index),
                      .validRange = "0 to " + std::to_string(kMaxDatasetSamples - 1)});
     const std::string name = datasetSampleName(index);

@@ -41,6 +41,8 @@ function fileBlock(index, species) {
     age: NEW_BLOCK.age,
     seed: grid.seed ?? null, // null: the project's seed
     parameters: { ...grid.parameters },
+    // species file fields changed for this block (plantarch fit's paths), kept as read
+    species_parameters: { ...(grid.species_parameters ?? {}) },
     trellis: grid.trellis,
     // skeleton: a measured skeleton file (relative to OUTPUT/projects/), its unit and spacing
     skeleton: { ...skeleton.skeleton },
@@ -189,6 +191,8 @@ function blockToFile(b) {
     if (Object.keys(b.parameters).length) out.parameters = { ...b.parameters };
     out.trellis = b.trellis;
   }
+  if (Object.keys(b.species_parameters ?? {}).length)
+    out.species_parameters = { ...b.species_parameters };
   out.bend = !!b.bend;
   out.elastic_modulus = b.elastic_modulus ?? null;
   return out;
@@ -252,6 +256,8 @@ function blockFromFile(b, i) {
   if (Array.isArray(b.origin)) block.origin = [...b.origin];
   if (b.seed !== undefined) block.seed = b.seed;
   if (b.parameters) block.parameters = { ...b.parameters };
+  if (b.species_parameters && typeof b.species_parameters === 'object')
+    block.species_parameters = { ...b.species_parameters };
   if (Number.isFinite(b.elastic_modulus)) block.elastic_modulus = b.elastic_modulus;
   if (b.skeleton && typeof b.skeleton === 'object')
     block.skeleton = { ...block.skeleton, ...b.skeleton };

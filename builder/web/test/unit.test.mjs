@@ -236,10 +236,12 @@ test("the page's defaults are the server's: project, ground, blocks, colours, fo
       blocks: [{ species: 'bean', layout, age: 40 }],
     });
     const written = toProjectFile(read).blocks[0];
-    // (The page writes no empty parameters; the served block holds none; a skeleton block
-    // has no build parameters at all.)
+    // (The page writes no empty parameters or species parameters; the served block holds
+    // none; a skeleton block has no build parameters at all.)
     assert.deepEqual(block.parameters ?? {}, {});
-    for (const key of Object.keys(block).filter((k) => !['name', 'age', 'parameters'].includes(k)))
+    assert.deepEqual(block.species_parameters ?? {}, {});
+    const unwritten = ['name', 'age', 'parameters', 'species_parameters'];
+    for (const key of Object.keys(block).filter((k) => !unwritten.includes(k)))
       assert.deepEqual(written[key], block[key], `${layout}: ${key}`);
   }
   assert.deepEqual(organColors(), served.organ_colors);
