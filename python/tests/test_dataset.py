@@ -125,3 +125,119 @@ def test_the_dask_example_of_the_datasets_guide_runs(tmp_path, capsys):
         os.chdir(cwd)
     assert capsys.readouterr().out.startswith("4 samples, ")
     assert (tmp_path / "out" / "tiny-dask" / "dataset.json").is_file()
+
+
+def _ply_points(path: pathlib.Path):
+    """Positions, plant IDs and organ labels of a binary point cloud PLY plantarch wrote."""
+    np = pytest.importorskip("numpy")
+    data = path.read_bytes()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode()
+    names, types = [], {"float": "<f4", "int": "<i4", "uint": "<u4", "uchar": "u1",
+                        "ushort": "<u2"}
+    dtype = []
+    for line in header.splitlines():
+        parts = line.split()
+        if parts[:1] == ["property"]:
+            dtype.append((parts[2], types[parts[1]]))
+            names.append(parts[2])
+    rows = np.frombuffer(data[end:], dtype=np.dtype(dtype))
+    xyz = np.stack([rows["x"], rows["y"], rows["z"]], axis=1).astype(np.float64)
+    return xyz, rows["plant_id"], rows["organ"]
+
+
+def test_a_twenty_sample_dataset_agrees_with_itself(tmp_path):
+    """Every sample of a 20-sample dataset: COCO loads and has one annotation per object seen
+    above the minimum area, its box and area those of the mask; the masks agree with the
+    point cloud's labels; each instance's object is in its plant's structure; each leaf tip
+    projects onto its keypoint through camera.json."""
+    np = pytest.importorskip("numpy")
+    png = pytest.importorskip("PIL.Image")
+    spec = json.loads(TINY.read_text())
+    spec["samples"] = 20
+    spec["points"] = {"count": 20000}
+    (tmp_path / "spec.json").write_text(json.dumps(spec))
+    result = plantarch.dataset.generate(tmp_path / "spec.json", tmp_path / "out")
+    assert result["made"] == 20
+    min_area = 20
+    checked_points = agreeing_points = 0
+    for i in range(20):
+        folder = tmp_path / "out" / "samples" / f"{i:06d}"
+        coco = json.loads((folder / "coco.json").read_text())
+        meta = json.loads((folder / "metadata.json").read_text())
+        camera = json.loads((folder / "camera.json").read_text())
+        organ = np.array(png.open(folder / "organ_instances.png")).astype(np.int64)
+        plant = np.array(png.open(folder / "plant_instances.png")).astype(np.int64)
+        semantic = np.array(png.open(folder / "semantic.png")).astype(np.int64)
+        depth = np.load(folder / "depth.npy")
+        h, w = organ.shape
+
+        # COCO: one annotation per organ instance and per plant of at least min_area pixels.
+        def regions(mask):
+            out = {}
+            for v in np.unique(mask[mask > 0]):
+                ys, xs = np.nonzero(mask == v)
+                out[int(v)] = (len(xs), [int(xs.min()), int(ys.min()),
+                                         int(xs.max() - xs.min() + 1),
+                                         int(ys.max() - ys.min() + 1)])
+            return out
+        organs, plants = regions(organ), regions(plant)
+        plant_category = next(c["id"] for c in coco["categories"] if c["name"] == "plant")
+        noted_organs = {a["instance"]: a for a in coco["annotations"]
+                        if a["category_id"] != plant_category}
+        noted_plants = {a["plant_instance"]: a for a in coco["annotations"]
+                        if a["category_id"] == plant_category}
+        assert sorted(noted_organs) == sorted(k for k, (n, _) in organs.items() if n >= min_area)
+        assert sorted(noted_plants) == sorted(k for k, (n, _) in plants.items() if n >= min_area)
+        for table, notes in ((organs, noted_organs), (plants, noted_plants)):
+            for k, a in notes.items():
+                assert a["area"] == table[k][0] and a["bbox"] == table[k][1], (i, k)
+
+        # Instance -> its object in its plant's part of plants.xml.
+        xml = (folder / "plants.xml").read_text()
+        parts = xml.split("<plant_instance")[1:]
+        assert len(parts) == len(meta["plants"])
+        for inst in meta["instances"]:
+            if inst["plant_instance"]:
+                part = parts[inst["plant_instance"] - 1]
+                assert re.search(rf"(?<![0-9]){inst['object_id']}(?![0-9])", part), (i, inst)
+            assert (semantic[organ == inst["instance"]]
+                    == [c["id"] for c in meta["categories"]
+                        if c["name"] == inst["category"]][0]).all()
+
+        # Camera matrices project each leaf's tip onto its keypoint.
+        K = np.array(camera["K"])
+        E = np.array(camera["world_to_camera"])
+
+        def project(p):
+            c = E @ np.append(np.asarray(p, dtype=np.float64), 1.0)
+            uvw = K @ c[:3]
+            return uvw[:2] / uvw[2], c[2]
+        for leaf in json.loads((folder / "keypoints.json").read_text())["leaves"]:
+            for name in ("base", "tip"):
+                uv, z = project(leaf[name]["world"])
+                if z > 0:
+                    assert np.abs(uv - leaf[name]["pixel"]).max() < 1e-3
+
+        # Points seen (the depth there is theirs) inside one object carry the masks' labels.
+        xyz, plant_id, organ_label = _ply_points(folder / "points.ply")
+        instance_of = {p["plant_id"]: p["plant_instance"] for p in meta["plants"]}
+        cam = (E @ np.c_[xyz, np.ones(len(xyz))].T).T
+        front = cam[:, 2] > 0
+        uvw = (K @ cam[front, :3].T).T
+        u = np.rint(uvw[:, 0] / uvw[:, 2]).astype(int)
+        v = np.rint(uvw[:, 1] / uvw[:, 2]).astype(int)
+        z = cam[front, 2]
+        inside = (u >= 1) & (v >= 1) & (u < w - 1) & (v < h - 1)
+        for k in np.nonzero(inside)[0]:
+            x, y = u[k], v[k]
+            if organ[y, x] == 0 or abs(depth[y, x] - z[k]) > 0.002 + 0.002 * z[k]:
+                continue
+            if not (organ[y - 1:y + 2, x - 1:x + 2] == organ[y, x]).all():
+                continue
+            j = np.nonzero(front)[0][k]
+            checked_points += 1
+            agreeing_points += (semantic[y, x] == organ_label[j]
+                                and plant[y, x] == instance_of.get(int(plant_id[j]), -1))
+    assert checked_points > 2000
+    assert agreeing_points >= 0.99 * checked_points, (agreeing_points, checked_points)
