@@ -3,7 +3,7 @@
 # build-fuzz/) and runs one of them for a number of seconds on one core:
 #
 #   bash scripts/fuzz.sh plant_xml 600      # TARGET: plant_xml, plant_string, species, obj,
-#                                           #         ply, gltf, project, builder, fit_target or skeleton
+#                                           #         ply, gltf, project, builder, fit_target, skeleton or dataset_spec
 #   bash scripts/fuzz.sh plant_xml 7200 10000000   # stop at 10 M executions or two hours
 #
 # The corpus in fuzz/corpus/TARGET/ (hand-made seeds and the inputs of earlier runs that
@@ -24,12 +24,12 @@
 # time, filling and recycling a 256 MB quarantine another 15 %.
 set -euo pipefail
 
-usage="usage: scripts/fuzz.sh TARGET SECONDS [RUNS]   (TARGET: plant_xml, plant_string, species, obj, ply, gltf, project, builder, fit_target, skeleton)"
+usage="usage: scripts/fuzz.sh TARGET SECONDS [RUNS]   (TARGET: plant_xml, plant_string, species, obj, ply, gltf, project, builder, fit_target, skeleton, dataset_spec)"
 target=${1:?$usage}
 seconds=${2:?$usage}
 runs=${3:--1}
 case "$target" in
-    plant_xml | species | obj | ply | gltf | project | builder | fit_target | skeleton) max_len=16384 ;;
+    plant_xml | species | obj | ply | gltf | project | builder | fit_target | skeleton | dataset_spec) max_len=16384 ;;
     plant_string) max_len=8192 ;;
     *) echo "$usage" >&2; exit 2 ;;
 esac
