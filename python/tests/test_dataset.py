@@ -13,7 +13,7 @@ import pytest
 
 import plantarch
 import plantarch.dataset
-from conftest import REPO
+from conftest import REPO, run_guide_example
 
 TINY = REPO / "examples" / "datasets" / "tiny.json"
 
@@ -112,17 +112,7 @@ def test_a_sample_from_python_has_its_labelled_files(tmp_path):
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
 def test_the_dask_example_of_the_datasets_guide_runs(tmp_path, capsys):
     pytest.importorskip("distributed")
-    doc = REPO / "docs" / "datasets.md"
-    blocks = [b for b in re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
-              if "plantarch.dataset.generate(" in b]
-    assert len(blocks) == 1
-    (tmp_path / "examples").symlink_to(REPO / "examples")
-    cwd = os.getcwd()
-    os.chdir(tmp_path)
-    try:
-        exec(compile(blocks[0], str(doc), "exec"), {"__name__": "__main__"})
-    finally:
-        os.chdir(cwd)
+    run_guide_example("datasets.md", "plantarch.dataset.generate(", tmp_path)
     assert capsys.readouterr().out.startswith("4 samples, ")
     assert (tmp_path / "out" / "tiny-dask" / "dataset.json").is_file()
 

@@ -4,15 +4,13 @@ tiles' plants are the plants of the field built whole."""
 
 import csv
 import json
-import os
 import pathlib
-import re
 
 import numpy as np
 import pytest
 
 import plantarch
-from conftest import REPO
+from conftest import REPO, run_guide_example
 from plantarch._field import generate_field
 
 PROJECT = {
@@ -81,16 +79,6 @@ def test_bad_tile_size_is_one_line(tmp_path):
 @pytest.mark.filterwarnings("ignore::DeprecationWarning")
 def test_the_example_of_the_datasets_guide_runs(tmp_path, capsys):
     pytest.importorskip("distributed")
-    doc = REPO / "docs" / "datasets.md"
-    blocks = [b for b in re.findall(r"```python\n(.*?)```", doc.read_text(), re.S)
-              if "generate_field" in b]
-    assert len(blocks) == 1
-    (tmp_path / "examples").symlink_to(REPO / "examples")
-    cwd = os.getcwd()
-    os.chdir(tmp_path)
-    try:
-        exec(compile(blocks[0], str(doc), "exec"), {"__name__": "__main__"})
-    finally:
-        os.chdir(cwd)
+    run_guide_example("datasets.md", "generate_field", tmp_path)
     assert "6 tiles, 27 plants:" in capsys.readouterr().out
     assert (tmp_path / "out" / "field" / "tileset.json").is_file()

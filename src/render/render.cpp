@@ -583,30 +583,11 @@ Image RenderScene::render(const RenderOptions& o) const {
 }
 
 DepthImage RenderScene::renderDepth(const RenderOptions& o) const {
-    const Setup s = makeSetup(impl_->data, o, camera(cameraRaysOnly(o)));
+    SurfaceImage surfaces = renderSurfaces(o);
     DepthImage depth;
-    depth.width = o.width;
-    depth.height = o.height;
-    depth.depth.assign(std::size_t(o.width) * std::size_t(o.height), 0.0f);
-    const vec3 axis = glm::normalize(s.forward);
-    ParallelErrors errors;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int y = 0; y < s.height; ++y) {
-        errors.run(y, [&] {
-            RTCIntersectContext ictx;
-            rtcInitIntersectContext(&ictx);
-            for (int x = 0; x < s.width; ++x) {
-                const float sx = 2.0f * (float(x) + 0.5f) / float(s.width) - 1.0f;
-                const float sy = 1.0f - 2.0f * (float(y) + 0.5f) / float(s.height);
-                const vec3 dir = glm::normalize(s.forward + sx * s.right + sy * s.up);
-                const Hit hit = intersect(s, ictx, s.eye, dir);
-                if (hit.found)
-                    depth.depth[std::size_t(y) * std::size_t(s.width) + std::size_t(x)] =
-                        hit.t * glm::dot(dir, axis);
-            }
-        });
-    }
-    errors.rethrow();
+    depth.width = surfaces.width;
+    depth.height = surfaces.height;
+    depth.depth = std::move(surfaces.depth);
     return depth;
 }
 
