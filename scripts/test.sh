@@ -8,7 +8,7 @@ bash scripts/setup.sh --tests "$@"
 # What only the tests need: the format check's clang-format, pytest for the Python tests,
 # Blender and Chromium (three.js) to load the glTF files, venv and pip for the wheel test,
 # Slurm and munge for the dataset job array (a private cluster the test starts and stops),
-# Dask's distributed for the fields built on a local cluster.
+# Dask's distributed for the samples and fields made on a local cluster.
 test_packages=(clang-format python3-pytest python3-venv python3-pip blender chromium slurm-wlm munge
   python3-distributed)
 missing=()
