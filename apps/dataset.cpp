@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -101,13 +102,20 @@ std::function<int()> setupDataset(CLI::App& app, GlobalOptions& global) {
         options.resume = a->resume;
         for (std::size_t j = 0; j < mine.size(); ++j) {
             if (bar) {
+                // The sample's place, the rate of those made so far and the time left; the
+                // fraction moves on as the sample is built.
                 const double seconds = millisecondsSince(start) / 1000.0;
                 const double rate = made > 0 ? double(made) / seconds : 0.0;
-                const std::string left =
-                    rate > 0.0 ? duration(double(mine.size() - j - skipped) / rate) + " left" : "";
-                bar(fmt::format("sample {}/{} {:.1f}/min {}", j + 1, mine.size(), 60.0 * rate,
-                                left),
-                    double(j) / double(mine.size()));
+                const std::string label =
+                    fmt::format("sample {}/{}", j + 1, mine.size()) +
+                    (rate > 0.0 ? fmt::format(" {:.1f}/min {} left", 60.0 * rate,
+                                              duration(double(mine.size() - j - skipped) / rate))
+                                : "");
+                const double n = double(mine.size());
+                options.progress = [bar, label, j, n](std::string_view, double f) {
+                    bar(label, (double(j) + 0.9 * std::clamp(f, 0.0, 1.0)) / n);
+                };
+                bar(label, double(j) / n);
             }
             const DatasetSampleResult r = writeDatasetSample(spec, mine[j], a->out, options);
             if (r.skipped) {
