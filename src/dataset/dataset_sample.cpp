@@ -390,6 +390,97 @@ private:
     bool kept_ = false;
 };
 
+// What a sample's files are made from, once it is built, seen and labelled.
+struct SampleViews {
+    const Context& ctx;
+    const PlantArchitecture& arch;
+    const std::vector<unsigned>& plants;
+    const RenderScene& scene;
+    const CameraFrame& frame;
+    const CameraMatrices& matrices;
+    const SurfaceImage& surfaces;
+    const dataset::SampleLabels& labels;
+    const std::vector<dataset::LeafKeypoints>& keypoints;
+    const OrderedJson& coco;
+};
+
+// Writes the files of the spec's outputs into `folder`; returns their bytes.
+std::uint64_t writeOutputs(const DatasetSpec& spec, const DatasetSample& s, const SampleViews& v,
+                           PartialFolder& folder, const std::string& target) {
+    const RenderOptions& o = s.render;
+    const int w = o.width, h = o.height;
+    std::uint64_t bytes = 0;
+    for (DatasetOutput out : spec.outputs) switch (out) {
+            case DatasetOutput::RGB:
+                bytes += folder.write("rgb.png", encodePNG(v.scene.render(o)));
+                break;
+            case DatasetOutput::Semantic:
+                bytes += folder.write("semantic.png", png8(v.labels.semantic, w, h, 1, target));
+                break;
+            case DatasetOutput::OrganInstances:
+                bytes += folder.write("organ_instances.png", png16(v.labels.organMask, w, h));
+                break;
+            case DatasetOutput::PlantInstances:
+                bytes += folder.write("plant_instances.png", png16(v.labels.plantMask, w, h));
+                break;
+            case DatasetOutput::Depth:
+                writeNPY(v.surfaces.depth, {std::size_t(h), std::size_t(w)},
+                         folder.path("depth.npy"));
+                bytes += folder.add("depth.npy");
+                break;
+            case DatasetOutput::Normals: {
+                const std::vector<float> n = cameraNormals(v.surfaces, v.matrices);
+                writeNPY(n, {std::size_t(h), std::size_t(w), 3}, folder.path("normals.npy"));
+                bytes += folder.add("normals.npy");
+                std::vector<std::uint8_t> picture(n.size(), 0);
+                for (std::size_t i = 0; i < n.size(); ++i)
+                    if (v.surfaces.normal[i / 3] != vec3(0.0f))
+                        picture[i] = std::uint8_t(std::lround(127.5f * (n[i] + 1.0f)));
+                bytes += folder.write("normals.png", png8(picture, w, h, 3, target));
+                break;
+            }
+            case DatasetOutput::Camera:
+                bytes += folder.write("camera.json", cameraJSON(v.frame, w, h));
+                break;
+            case DatasetOutput::COCO:
+                bytes += folder.write("coco.json", v.coco.dump() + "\n");
+                break;
+            case DatasetOutput::YOLO:
+                bytes += folder.write("yolo.txt", dataset::sampleYOLO(v.coco, w, h));
+                break;
+            case DatasetOutput::Keypoints:
+                bytes += folder.write("keypoints.json",
+                                      keypointsJSON(v.keypoints, v.labels).dump(1) + "\n");
+                break;
+            case DatasetOutput::Points: {
+                PointSampleOptions po;
+                po.points = spec.points;
+                po.seed = s.seed;
+                writePointCloudPLY(samplePoints(v.ctx, po), folder.path("points.ply"));
+                bytes += folder.add("points.ply");
+                break;
+            }
+            case DatasetOutput::Scan: {
+                ScanOptions so;
+                Scanner scanner;
+                scanner.origin = o.camera.eye;
+                scanner.resolution = spec.scanResolution;
+                scanner.zenithMin = 0.0f;
+                scanner.zenithMax = 180.0f;
+                so.scanners.push_back(scanner);
+                so.seed = s.seed;
+                writePointCloudPLY(scan(v.ctx, so), folder.path("scan.ply"));
+                bytes += folder.add("scan.ply");
+                break;
+            }
+            case DatasetOutput::PlantXML:
+                bytes += folder.write("plants.xml",
+                                      getPlantStructureXML(v.arch, v.plants, {.objectIDs = true}));
+                break;
+        }
+    return bytes;
+}
+
 std::string partialName(const std::string& name) {
     char host[256] = {};
     if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
@@ -452,76 +543,9 @@ DatasetSampleResult writeDatasetSample(const DatasetSpec& spec, std::size_t inde
     const OrderedJson coco = dataset::sampleCOCO(spec, s, labels, keypoints);
 
     PartialFolder folder((fs::path(outDir) / ".partial" / partialName(name)).string());
-    std::uint64_t bytes = 0;
-    const int w = o.width, h = o.height;
-    for (DatasetOutput out : spec.outputs) switch (out) {
-            case DatasetOutput::RGB:
-                bytes += folder.write("rgb.png", encodePNG(scene.render(o)));
-                break;
-            case DatasetOutput::Semantic:
-                bytes += folder.write("semantic.png", png8(labels.semantic, w, h, 1, target));
-                break;
-            case DatasetOutput::OrganInstances:
-                bytes += folder.write("organ_instances.png", png16(labels.organMask, w, h));
-                break;
-            case DatasetOutput::PlantInstances:
-                bytes += folder.write("plant_instances.png", png16(labels.plantMask, w, h));
-                break;
-            case DatasetOutput::Depth:
-                writeNPY(surfaces.depth, {std::size_t(h), std::size_t(w)},
-                         folder.path("depth.npy"));
-                bytes += folder.add("depth.npy");
-                break;
-            case DatasetOutput::Normals: {
-                const std::vector<float> n = cameraNormals(surfaces, matrices);
-                writeNPY(n, {std::size_t(h), std::size_t(w), 3}, folder.path("normals.npy"));
-                bytes += folder.add("normals.npy");
-                std::vector<std::uint8_t> picture(n.size(), 0);
-                for (std::size_t i = 0; i < n.size(); ++i)
-                    if (surfaces.normal[i / 3] != vec3(0.0f))
-                        picture[i] = std::uint8_t(std::lround(127.5f * (n[i] + 1.0f)));
-                bytes += folder.write("normals.png", png8(picture, w, h, 3, target));
-                break;
-            }
-            case DatasetOutput::Camera:
-                bytes += folder.write("camera.json", cameraJSON(frame, w, h));
-                break;
-            case DatasetOutput::COCO:
-                bytes += folder.write("coco.json", coco.dump() + "\n");
-                break;
-            case DatasetOutput::YOLO:
-                bytes += folder.write("yolo.txt", dataset::sampleYOLO(coco, w, h));
-                break;
-            case DatasetOutput::Keypoints:
-                bytes +=
-                    folder.write("keypoints.json", keypointsJSON(keypoints, labels).dump(1) + "\n");
-                break;
-            case DatasetOutput::Points: {
-                PointSampleOptions po;
-                po.points = spec.points;
-                po.seed = s.seed;
-                writePointCloudPLY(samplePoints(ctx, po), folder.path("points.ply"));
-                bytes += folder.add("points.ply");
-                break;
-            }
-            case DatasetOutput::Scan: {
-                ScanOptions so;
-                Scanner scanner;
-                scanner.origin = o.camera.eye;
-                scanner.resolution = spec.scanResolution;
-                scanner.zenithMin = 0.0f;
-                scanner.zenithMax = 180.0f;
-                so.scanners.push_back(scanner);
-                so.seed = s.seed;
-                writePointCloudPLY(scan(ctx, so), folder.path("scan.ply"));
-                bytes += folder.add("scan.ply");
-                break;
-            }
-            case DatasetOutput::PlantXML:
-                bytes += folder.write("plants.xml",
-                                      getPlantStructureXML(arch, plants, {.objectIDs = true}));
-                break;
-        }
+    const SampleViews views{ctx,      arch,     plants, scene,     frame,
+                            matrices, surfaces, labels, keypoints, coco};
+    std::uint64_t bytes = writeOutputs(spec, s, views, folder, target);
     bytes +=
         folder.write("metadata.json", metadataJSON(spec, s, arch, built, labels).dump(1) + "\n");
     fs::create_directories(samples, ec);
