@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Imports plantarch glTF files into Blender with the add-on plantarch ships
+# (blender/plantarch_import.py) and checks the labels it brings in as face attributes
+# (tests/blender/check_labels.py): plants as .glb through the add-on's operator, and a small
+# canopy as .gltf through its script mode, saved as a .blend and checked when opened. Usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY.
+# Exits 1 on a mismatch, 77 (skipped) when Blender is missing.
+set -euo pipefail
+src=$(realpath "${1:?usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY}")
+cli=$(realpath "${2:?usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY}")
+addon="$src/blender/plantarch_import.py"
+check="$src/tests/blender/check_labels.py"
+command -v blender > /dev/null || { echo "check_blender_labels: blender is not installed (skipped)" >&2; exit 77; }
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+status=0
+report() {  # report NAME OUTPUT: the check's line, or all of Blender's output when none
+    local line
+    line=$(grep '^PLANTARCH_LABELS ' <<< "$2" | head -1) || true
+    case "$line" in
+        "PLANTARCH_LABELS ok "*) echo "check_blender_labels: $1: ${line#PLANTARCH_LABELS ok }" ;;
+        *) echo "check_blender_labels: $1: ${line:-no result}"; [ -n "$line" ] || echo "$2" | tail -20
+           status=1 ;;
+    esac
+}
+# Through the add-on's operator: a bean; a strawberry with peduncles and closed and open
+# flowers; a young vine with its trellis (organ obstacle).
+"$cli" --seed 3 build bean --age 30 -o "$out/bean.glb" > /dev/null
+"$cli" --seed 3 build strawberry --age 60 -o "$out/strawberry.glb" > /dev/null
+"$cli" --seed 3 build grapevine_VSP --age 60 -o "$out/vine.glb" > /dev/null
+for name in bean strawberry vine; do
+    result=$(cd "$out" && blender -b --factory-startup --python-exit-code 1 --python "$check" -- \
+             "$out/$name.glb" --addon "$addon" 2>&1) || true
+    report "$name.glb, the add-on's operator" "$result"
+done
+"$cli" --seed 5 canopy bean --count 2x2 --spacing 0.4x0.4 --age 20 -o "$out/canopy.gltf" > /dev/null
+result=$(cd "$out" && blender -b --factory-startup --python-exit-code 1 --python "$addon" -- \
+         "$out/canopy.gltf" --out "$out/canopy.blend" 2>&1) || true
+if [ ! -s "$out/canopy.blend" ]; then
+    echo "check_blender_labels: canopy.gltf: the script mode wrote no .blend"; echo "$result" | tail -20
+    status=1
+else
+    result=$(cd "$out" && blender -b "$out/canopy.blend" --python-exit-code 1 --python "$check" -- \
+             "$out/canopy.gltf" 2>&1) || true
+    report "canopy.gltf, the script mode's .blend" "$result"
+fi
+exit "$status"
