@@ -2,14 +2,18 @@
 # Imports plantarch glTF files into Blender with the add-on plantarch ships
 # (blender/plantarch_import.py) and checks the labels it brings in as face attributes
 # (tests/blender/check_labels.py): plants as .glb through the add-on's operator, and a small
-# canopy as .gltf through its script mode, saved as a .blend and checked when opened. Usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY.
+# canopy as .gltf through its script mode, saved as a .blend and checked when opened.
+# Usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY.
 # Exits 1 on a mismatch, 77 (skipped) when Blender is missing.
 set -euo pipefail
 src=$(realpath "${1:?usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY}")
 cli=$(realpath "${2:?usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY}")
 addon="$src/blender/plantarch_import.py"
 check="$src/tests/blender/check_labels.py"
-command -v blender > /dev/null || { echo "check_blender_labels: blender is not installed (skipped)" >&2; exit 77; }
+if ! command -v blender > /dev/null; then
+    echo "check_blender_labels: blender is not installed (skipped)" >&2
+    exit 77
+fi
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 status=0
@@ -18,7 +22,8 @@ report() {  # report NAME OUTPUT: the check's line, or all of Blender's output w
     line=$(grep '^PLANTARCH_LABELS ' <<< "$2" | head -1) || true
     case "$line" in
         "PLANTARCH_LABELS ok "*) echo "check_blender_labels: $1: ${line#PLANTARCH_LABELS ok }" ;;
-        *) echo "check_blender_labels: $1: ${line:-no result}"; [ -n "$line" ] || echo "$2" | tail -20
+        *) echo "check_blender_labels: $1: ${line:-no result}"
+           [ -n "$line" ] || echo "$2" | tail -20
            status=1 ;;
     esac
 }
@@ -36,11 +41,12 @@ done
 result=$(cd "$out" && blender -b --factory-startup --python-exit-code 1 --python "$addon" -- \
          "$out/canopy.gltf" --out "$out/canopy.blend" 2>&1) || true
 if [ ! -s "$out/canopy.blend" ]; then
-    echo "check_blender_labels: canopy.gltf: the script mode wrote no .blend"; echo "$result" | tail -20
+    echo "check_blender_labels: canopy.gltf: the script mode wrote no .blend"
+    echo "$result" | tail -20
     status=1
 else
-    result=$(cd "$out" && blender -b "$out/canopy.blend" --python-exit-code 1 --python "$check" -- \
-             "$out/canopy.gltf" 2>&1) || true
+    result=$(cd "$out" && blender -b --factory-startup "$out/canopy.blend" --python-exit-code 1 \
+             --python "$check" -- "$out/canopy.gltf" 2>&1) || true
     report "canopy.gltf, the script mode's .blend" "$result"
 fi
 exit "$status"

@@ -138,7 +138,8 @@ def check(path):
         for value in organ:
             faces[organs[value]] = faces.get(organs[value], 0) + 1
         if set(organ) != {organs.index(kind) if kind in organs else None}:
-            problems.append("%s: organ values %s on a %s mesh" % (obj.name, sorted(set(organ)), kind))
+            problems.append("%s: organ values %s on a %s mesh" % (obj.name, sorted(set(organ)),
+                                                                   kind))
         plant = values(mesh, "plant_id")
         parent = re.sub(r"\.\d{3,}$", "", obj.parent.name) if obj.parent else ""
         want = plant_of.get((parent, kind), "none: no such mesh in the file")
