@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -484,7 +485,10 @@ std::uint64_t writeOutputs(const DatasetSpec& spec, const DatasetSample& s, cons
 std::string partialName(const std::string& name) {
     char host[256] = {};
     if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
-    return fmt::format("{}.{}.{}", name, host[0] ? host : "host", ::getpid());
+    // The host and process, and a number of this process's own: two threads making the
+    // same sample at once write into folders of their own (the first rename wins).
+    static std::atomic<std::uint64_t> made{0};
+    return fmt::format("{}.{}.{}.{}", name, host[0] ? host : "host", ::getpid(), made++);
 }
 
 }  // namespace
