@@ -14,6 +14,7 @@
 
 #include "cli.h"
 #include "plantarch/Error.h"
+#include "plantarch/OutputFiles.h"
 
 namespace plantarch::cli {
 
@@ -82,19 +83,16 @@ std::function<int()> setupDataset(CLI::App& app, GlobalOptions& global) {
         const auto [k, n] = a->shard.empty() ? std::pair<std::size_t, std::size_t>{0, 1}
                                              : parseShard(a->shard, kMaxDatasetSamples);
         const std::vector<std::size_t> mine = datasetShard(samples, k, n);
-        // A folder this run makes is removed again if the run fails before a sample is in it.
-        const bool madeOut = !fs::exists(a->out, ec) && fs::create_directories(a->out, ec);
-        if (!fs::is_directory(a->out))
-            throw Error("cannot make the folder" + (ec ? ": " + ec.message() : ""),
-                        {.file = a->out, .parameter = "--out"});
+        // The folders this run makes are removed again if it fails (or is stopped by a
+        // signal) before a sample is in them.
+        std::vector<FolderMadeForOutputs> madeFolders = makeFoldersForOutputs(a->out);
         struct RemoveIfEmpty {
-            std::string path;
-            bool armed;
+            std::vector<FolderMadeForOutputs>& folders;
+            bool armed = true;
             ~RemoveIfEmpty() {
-                std::error_code e;
-                if (armed && fs::is_empty(path, e) && !e) fs::remove(path, e);
+                for (auto it = folders.rbegin(); armed && it != folders.rend(); ++it) it->remove();
             }
-        } cleanup{a->out, madeOut};
+        } cleanup{madeFolders};
         const ProgressCallback bar = terminalProgress();
         std::size_t made = 0, skipped = 0;
         std::uint64_t bytes = 0;
@@ -130,6 +128,7 @@ std::function<int()> setupDataset(CLI::App& app, GlobalOptions& global) {
         }
         if (bar) bar("samples", 1.0);
         cleanup.armed = false;
+        for (FolderMadeForOutputs& f : madeFolders) f.keep();
         fs::remove(fs::path(a->out) / ".partial", ec);  // only when empty
         writeDatasetManifest(spec, a->out, samples, k, n);
         const bool whole = n == 1;

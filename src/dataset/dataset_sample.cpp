@@ -20,6 +20,7 @@
 #include "dataset/dataset_internal.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFiles.h"
 #include "plantarch/PlantStructureWrite.h"
 #include "plantarch/Scan.h"
 
@@ -338,6 +339,9 @@ OrderedJson metadataJSON(const DatasetSpec& spec, const DatasetSample& s,
 class PartialFolder {
 public:
     explicit PartialFolder(std::string path) : path_(std::move(path)) {
+        // .partial (and the output folder) when this makes them: removed again when empty,
+        // on signals too.
+        parents_ = makeFoldersForOutputs(fs::path(path_).parent_path().string());
         std::error_code ec;
         fs::remove_all(path_, ec);
         if (!fs::create_directories(path_, ec) && ec)
@@ -347,8 +351,10 @@ public:
     ~PartialFolder() {
         std::error_code ec;
         if (!kept_) fs::remove_all(path_, ec);
-        fs::remove(fs::path(path_).parent_path(), ec);  // .partial, when no other run uses it
         release();
+        // .partial, when no other run uses it; a folder this made, when it holds nothing.
+        fs::remove(fs::path(path_).parent_path(), ec);
+        for (auto it = parents_.rbegin(); it != parents_.rend(); ++it) it->remove();
     }
     PartialFolder(const PartialFolder&) = delete;
     PartialFolder& operator=(const PartialFolder&) = delete;
@@ -386,6 +392,7 @@ private:
         folderSlot_ = -1;
     }
     std::string path_;
+    std::vector<FolderMadeForOutputs> parents_;
     std::vector<int> slots_;
     int folderSlot_ = -1;
     bool kept_ = false;
