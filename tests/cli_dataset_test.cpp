@@ -2,8 +2,12 @@
 // byte, --resume keeps what is made, --merge names what is missing, and every bad spec or
 // option gets one line and exit status 2 with no sample left behind.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -192,6 +196,75 @@ TEST(CliDataset, TheDocsExamplesRun) {
     EXPECT_EQ(ran, 4);
     EXPECT_TRUE(fs::exists(d / "out" / "tiny" / "dataset.json"));
     EXPECT_TRUE(fs::exists(d / "out" / "beans" / "samples" / "000007" / "rgb.png"));
+}
+
+}  // namespace
+
+namespace {
+
+// Runs `plantarch --progress always dataset bean_rows.json --out OUT --samples 20`, waits until
+// stderr shows `until`, sends SIGINT and returns the waitpid status.
+int interruptDataset(const std::string& out, const std::string& until) {
+    const std::string spec =
+        std::string(PLANTARCH_SOURCE_DIR) + "/examples/datasets/bean_rows.json";
+    int fds[2];
+    if (::pipe(fds) != 0) return -1;
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::dup2(fds[1], 2);
+        ::close(fds[0]);
+        ::close(fds[1]);
+        const int devnull = ::open("/dev/null", O_WRONLY);
+        ::dup2(devnull, 1);
+        ::execl(PLANTARCH_CLI, PLANTARCH_CLI, "--progress", "always", "dataset", spec.c_str(),
+                "--out", out.c_str(), "--samples", "20", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::close(fds[1]);
+    std::string seen;
+    char buf[4096];
+    bool found = false;
+    while (!found) {
+        const ::ssize_t n = ::read(fds[0], buf, sizeof buf);
+        if (n <= 0) break;
+        seen.append(buf, std::size_t(n));
+        found = seen.find(until) != std::string::npos;
+    }
+    ::kill(pid, found ? SIGINT : SIGKILL);
+    while (::read(fds[0], buf, sizeof buf) > 0) {
+    }
+    ::close(fds[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return found ? status : -1;
+}
+
+TEST(CliDataset, AnInterruptedRunKeepsWholeSamplesAndNothingElse) {
+    // Stopped while its first sample is built: the folders it made go too.
+    const std::string first = dir("interrupt-first") + "/made/here";
+    const int a = interruptDataset(first, "sample 1/20 ");
+    ASSERT_NE(a, -1) << "the run ended before it was interrupted";
+    EXPECT_TRUE(WIFSIGNALED(a) && WTERMSIG(a) == SIGINT);
+    EXPECT_FALSE(fs::exists(fs::path(first).parent_path()));
+    // Stopped while its third is built: the first two stay whole, nothing half made.
+    const std::string third = dir("interrupt-third");
+    const int b = interruptDataset(third, "sample 3/20 ");
+    ASSERT_NE(b, -1) << "the run ended before it was interrupted";
+    EXPECT_TRUE(WIFSIGNALED(b) && WTERMSIG(b) == SIGINT);
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(third)) names.push_back(e.path().filename());
+    EXPECT_EQ(names, std::vector<std::string>{"samples"});
+    std::size_t samples = 0;
+    for (const auto& e : fs::directory_iterator(fs::path(third) / "samples")) {
+        ++samples;
+        EXPECT_TRUE(fs::exists(e.path() / "metadata.json")) << e.path();
+    }
+    EXPECT_GE(samples, 2u);
+    // Resumed, it makes the rest.
+    const cli::Result r =
+        run("dataset " + std::string(PLANTARCH_SOURCE_DIR) +
+            "/examples/datasets/bean_rows.json --out " + third + " --samples 3 --resume");
+    EXPECT_EQ(r.status, 0) << r.out;
 }
 
 }  // namespace
