@@ -75,6 +75,14 @@ std::vector<std::string> written(const Example& e) {
     return out;
 }
 
+// Runs an example as written from `dir` (its standard output dropped): the shell's status.
+int runIn(const fs::path& dir, const Example& e) {
+    std::string args;
+    for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
+    return std::system(
+        ("cd '" + dir.string() + "' && " + PLANTARCH_CLI + args + " > /dev/null").c_str());
+}
+
 bool underOut(const std::string& path) {
     return path == "out" || path.rfind("out/", 0) == 0;
 }
@@ -128,10 +136,7 @@ TEST(DocsExamples, ObstacleExamplesRun) {
     int ran = 0;
     for (const Example& e : examples()) {
         if (e.line.find("--obstacle") == std::string::npos) continue;
-        std::string args;
-        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
-        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
-        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.line;
+        ASSERT_EQ(runIn(dir, e), 0) << e.line;
         for (const std::string& path : written(e)) EXPECT_TRUE(fs::exists(dir / path)) << path;
         ++ran;
     }
@@ -150,10 +155,7 @@ TEST(DocsExamples, LightExamplesRun) {
         const bool physiology =
             std::find(e.words.begin(), e.words.end(), "--carbon") != e.words.end();
         if (e.words.size() < 2 || (e.words[1] != "light" && !physiology)) continue;
-        std::string args;
-        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
-        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
-        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.line;
+        ASSERT_EQ(runIn(dir, e), 0) << e.line;
         for (std::size_t i = 0; i + 1 < e.words.size(); ++i) {
             if (e.words[i] == "-o" || e.words[i] == "--series" || e.words[i] == "--leaves") {
                 EXPECT_TRUE(fs::exists(dir / e.words[i + 1])) << e.words[i + 1];
@@ -178,10 +180,7 @@ TEST(DocsExamples, MeasuredPlantExamplesRun) {
             std::find(e.words.begin(), e.words.end(), "reconstruct") != e.words.end() ||
             e.line.find(".mtg") != std::string::npos;
         if (!measured) continue;
-        std::string args;
-        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
-        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
-        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.line;
+        ASSERT_EQ(runIn(dir, e), 0) << e.line;
         for (const std::string& path : written(e)) EXPECT_TRUE(fs::exists(dir / path)) << path;
         ++ran;
     }
@@ -200,10 +199,7 @@ TEST(DocsExamples, ProjectExamplesRun) {
         // Those of shipped projects (docs/builder.md runs projects the builder saved).
         if (e.words.size() < 4 || e.words[1] != "project" || e.words[3].rfind("examples/", 0) != 0)
             continue;
-        std::string args;
-        for (std::size_t i = 1; i < e.words.size(); ++i) args += " " + e.words[i];
-        const std::string cmd = "cd '" + dir.string() + "' && " + PLANTARCH_CLI + args;
-        ASSERT_EQ(std::system((cmd + " > /dev/null").c_str()), 0) << e.page << ": " << e.line;
+        ASSERT_EQ(runIn(dir, e), 0) << e.page << ": " << e.line;
         // One file per plant (--separate) is named for each plant; its index is not.
         const bool separate = e.line.find("--separate") != std::string::npos;
         for (const std::string& path : written(e)) {
