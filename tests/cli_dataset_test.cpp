@@ -16,6 +16,7 @@
 #include <string>
 
 #include "cli_run.h"
+#include "plant_geometry_bytes.h"
 
 namespace {
 
@@ -32,10 +33,7 @@ std::string dir(const std::string& name) {
 }
 
 std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return plantarch::testing::fileBytes(p.string());
 }
 
 // Every file under `root` (relative path -> bytes), manifests left out.

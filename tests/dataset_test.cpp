@@ -17,6 +17,7 @@
 
 #include "docs_images.h"
 #include "error_of.h"
+#include "plant_geometry_bytes.h"
 #include "plantarch/Export.h"
 #include "plantarch/Render.h"
 
@@ -37,10 +38,7 @@ std::string scratch(const std::string& name) {
 }
 
 std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
+    return plantarch::testing::fileBytes(p.string());
 }
 
 // The tiny example spec with `edit` applied to its JSON.
