@@ -8,8 +8,9 @@
 // the objects of no plant (trellis, obstacles, ground); under each, one mesh per organ kind,
 // with one primitive per material. Few large meshes load fast (a viewer pays per draw call,
 // not per triangle), and the organ kind is what a user toggles. Every array has its own
-// buffer view, 8-byte aligned, written in order after the JSON, so the binary is streamed
-// from the Context without building it whole (the .gltf form encodes it in base64).
+// buffer view, 8-byte aligned, written in order after the JSON by the function given when the
+// view was laid out (gltf_internal.h), so the binary is streamed from the Context without
+// building it whole (the .gltf form encodes it in base64).
 
 #include <algorithm>
 #include <array>
@@ -32,81 +33,33 @@
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
+#include "scene_io/gltf_internal.h"
 
-namespace plantarch {
+namespace plantarch::gltf {
 
-namespace {
-
-using json = nlohmann::json;
-
-static_assert(std::endian::native == std::endian::little, "glTF buffers are little-endian");
-
-constexpr int kFloat = 5126, kUInt = 5125;
-constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
-
-// The property table's optional columns: float object data a physiology season leaves (on
-// leaves, or on every object of a shoot with a carbohydrate budget). A column is written when
-// any exported object carries its data (as a float); the others' rows hold kNoData, declared
-// as the property's noData. A scene with none of them is written as before.
-struct OptionalColumn {
-    const char* name;  // the object data's label, and the column's name
-    const char* description;
-};
-constexpr OptionalColumn kOptionalColumns[] = {
-    {"absorbed_par",
-     "PAR absorbed, umol m-2 s-1, mean over the last simulated day's daylight hours"},
-    {"sunlit_fraction", "sunlit share of the leaf, 0 to 1, mean over the same hours"},
-    {"net_photosynthesis", "net CO2 assimilation, umol m-2 s-1, mean over the same hours"},
-    {"carbohydrate_concentration",
-     "the shoot's sugar and starch per structural carbon of its wood, mol C / mol C"},
-};
-constexpr std::size_t kOptionalCount = std::size(kOptionalColumns);
-constexpr float kNoData = -9999.0f;
-
-// What one exported object contributes, and where.
-struct ObjectRecord {
-    ObjectID id;
-    std::int32_t plant;
-    std::uint8_t organ;
-    std::int32_t leaf, shoot, rank, node;
-    float age;
-    std::size_t material;  // index into Scene::materials
-    std::uint32_t frame;
-    bool uvs;
-    std::array<float, kOptionalCount> optional;  // kNoData where the object has no such data
-};
-
-// One primitive: the objects of one (node, organ kind, material).
-struct Primitive {
-    std::size_t node;
-    std::uint8_t organ;
-    std::size_t material;
-    std::vector<std::size_t> objects;  // indices into the records
-    std::size_t vertices = 0, triangles = 0;
-    bool uvs = true;
-};
-
-struct Node {
-    std::size_t frame;
-    std::int32_t plant;  // -1: the objects of no plant
-    vec3 base{0.0f};
-    std::optional<GltfPlant> info;  // species, age and seed, when given
-};
-
-float linear(float srgb) {
-    const float c = std::clamp(srgb, 0.0f, 1.0f);
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+int Buffer::add(json& views, std::size_t bytes, int target, Fill fill) {
+    json v = {{"buffer", 0}, {"byteOffset", size_}, {"byteLength", bytes}};
+    if (target) v["target"] = target;
+    views.push_back(std::move(v));
+    blocks_.push_back({bytes, std::move(fill)});
+    size_ = align8(size_ + bytes);
+    return int(views.size()) - 1;
 }
 
-std::size_t align8(std::size_t n) {
-    return (n + 7) & ~std::size_t(7);
+void Buffer::write(Sink& out) const {
+    for (const Block& block : blocks_) {
+        const std::size_t start = out.written();
+        block.fill(out);
+        if (out.written() - start != block.bytes)
+            throw std::logic_error("glTF buffer view written with the wrong size");
+        out.pad();
+    }
 }
 
-// A texture image as embedded: the bytes of a file that decoded as a PNG or JPEG image.
-struct EmbeddedImage {
-    std::string bytes;
-    const char* mimeType;
-};
+json accessor(int view, int componentType, std::size_t count, const char* type) {
+    return {
+        {"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
+}
 
 EmbeddedImage embeddedImage(const std::string& path) {
     io::DecodedImage image = io::readTextureFile(path);
@@ -114,76 +67,7 @@ EmbeddedImage embeddedImage(const std::string& path) {
             image.format == io::ImageFormat::PNG ? "image/png" : "image/jpeg"};
 }
 
-// The byte blocks of the binary buffer, in order; each is produced when written.
-class Buffer {
-public:
-    /// Reserves a block of `bytes` and returns its view index.
-    int add(json& views, std::size_t bytes, int target) {
-        json v = {{"buffer", 0}, {"byteOffset", size_}, {"byteLength", bytes}};
-        if (target) v["target"] = target;
-        views.push_back(std::move(v));
-        sizes_.push_back(bytes);
-        size_ = align8(size_ + bytes);
-        return int(views.size()) - 1;
-    }
-    std::size_t size() const { return size_; }
-    std::size_t viewSize(int view) const { return sizes_[std::size_t(view)]; }
-
-private:
-    std::size_t size_ = 0;
-    std::vector<std::size_t> sizes_;
-};
-
-// Writes bytes to a .glb file or collects them for a .gltf's base64. Blocks are filled in
-// place (reserve, then commit), so each byte is copied once on its way to the file.
-class Sink {
-public:
-    static constexpr std::size_t kBlock = io::AtomicFile::kMaxReserve;
-
-    Sink(io::AtomicFile* file, std::string* bytes, ProgressSteps& steps)
-        : file_(file), bytes_(bytes), steps_(steps) {}
-    void write(const void* data, std::size_t n) {
-        if (file_)
-            file_->write(data, n);
-        else
-            bytes_->append(static_cast<const char*>(data), n);
-        written_ += n;
-        steps_.at(double(written_));
-    }
-    /// Room for n <= kBlock bytes, to be filled and then handed back with commit(n).
-    char* reserve(std::size_t n) {
-        if (file_) return file_->reserve(n);
-        bytes_->resize(written_ + n);
-        return bytes_->data() + written_;
-    }
-    void commit(std::size_t n) {
-        if (file_) file_->advance(file_->reserve(n) + n);
-        written_ += n;
-        steps_.at(double(written_));
-    }
-    void pad() {
-        static const char zeros[8] = {};
-        write(zeros, align8(written_) - written_);
-    }
-
-    /// Writes `count` elements of `size` bytes, made by fill(destination, first, n) in
-    /// blocks of n elements.
-    template <class Fill>
-    void elements(std::size_t count, std::size_t size, Fill&& fill) {
-        const std::size_t perBlock = kBlock / size;
-        for (std::size_t first = 0; first < count; first += perBlock) {
-            const std::size_t n = std::min(perBlock, count - first);
-            fill(reserve(n * size), first, n);
-            commit(n * size);
-        }
-    }
-
-private:
-    io::AtomicFile* file_;
-    std::string* bytes_;
-    ProgressSteps& steps_;  // by bytes of the buffer
-    std::size_t written_ = 0;
-};
+namespace {
 
 std::string base64(const std::string& bytes) {
     static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -209,23 +93,6 @@ std::string base64(const std::string& bytes) {
     }
     return out;
 }
-
-struct Scene {
-    std::vector<const Context*> frames;
-    std::vector<double> days;  // the frames' times
-    bool animated = false;
-    double framesPerSecond = 24.0;
-    std::vector<ObjectRecord> records;
-    std::vector<Node> nodes;
-    std::vector<Primitive> primitives;
-    std::vector<Material> materials;               // in glTF material order
-    std::vector<std::string> images;               // texture files, in glTF image order
-    std::vector<EmbeddedImage> imageData;          // each decoded and checked, as embedded
-    std::array<bool, kOptionalCount> hasColumn{};  // the optional columns written
-
-    ObjectView object(const ObjectRecord& r) const { return frames[r.frame]->object(r.id); }
-    ObjectView object(std::size_t record) const { return object(records[record]); }
-};
 
 // The records and nodes of one frame's Context.
 void collectFrame(Scene& s, std::uint32_t frame, const std::vector<GltfPlant>& plants,
@@ -367,23 +234,46 @@ std::vector<FrameKey> frameKeys(const Scene& s, std::size_t f) {
     return keys;
 }
 
-json accessor(int view, int componentType, std::size_t count, const char* type) {
-    return {
-        {"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
+// Writes `count` values of T, value(i) for i in [0, count), as one block.
+template <class T, class Value>
+void writeValues(Sink& out, std::size_t count, Value value) {
+    out.elements(count, sizeof(T), [&](char* dst, std::size_t first, std::size_t n) {
+        for (std::size_t k = 0; k < n; ++k) {
+            const T v = T(value(first + k));
+            std::memcpy(dst + k * sizeof(T), &v, sizeof(T));
+        }
+    });
 }
 
-// The arrays of the JSON document, filled in the order their buffer views are laid out.
-struct GltfArrays {
-    json views = json::array(), accessors = json::array(), meshes = json::array();
-    json nodes = json::array(), materials = json::array();
-    json textures = json::array(), images = json::array();
-};
+// Smooth normals of every object, on all threads (each object its own slice).
+void computeNormals(Scene& s) {
+    s.normalAt.assign(s.records.size() + 1, 0);
+    for (std::size_t i = 0; i < s.records.size(); ++i)
+        s.normalAt[i + 1] = s.normalAt[i] + s.object(i).positions.size();
+    s.normals.resize(s.normalAt.back());
+    const std::ptrdiff_t n = std::ptrdiff_t(s.records.size());
+    ParallelErrors errors;
+#pragma omp parallel
+    {
+        std::vector<vec3> one;
+#pragma omp for schedule(dynamic, 64)
+        for (std::ptrdiff_t i = 0; i < n; ++i)
+            errors.run(i, [&] {
+                smoothNormals(s.object(std::size_t(i)), one);
+                std::copy(one.begin(), one.end(),
+                          s.normals.begin() + std::ptrdiff_t(s.normalAt[std::size_t(i)]));
+            });
+    }
+    errors.rethrow();
+}
 
 // Images (their bytes first in the buffer) and materials.
 void addMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer) {
     for (const EmbeddedImage& image : s.imageData) {
-        d.images.push_back({{"bufferView", buffer.add(d.views, image.bytes.size(), 0)},
-                            {"mimeType", image.mimeType}});
+        const int view = buffer.add(d.views, image.bytes.size(), 0, [&image](Sink& out) {
+            out.write(image.bytes.data(), image.bytes.size());
+        });
+        d.images.push_back({{"bufferView", view}, {"mimeType", image.mimeType}});
         d.textures.push_back({{"source", d.images.size() - 1}});
     }
     for (const Material& mat : s.materials) {
@@ -416,35 +306,83 @@ std::vector<json> addMeshes(GltfArrays& d, const Scene& s, const GltfOptions& op
                 lo = glm::min(lo, v - node.base);
                 hi = glm::max(hi, v - node.base);
             }
-        json attributes;
-        auto vertexView = [&](std::size_t bytesPerVertex) {
-            return buffer.add(d.views, p.vertices * bytesPerVertex, kArrayBuffer);
+        const vec3 base = node.base;
+        // Each block streams the primitive's objects in order.
+        auto eachObject = [&s, &p](auto&& f) {
+            for (std::size_t i : p.objects) f(i, s.object(i));
         };
-        int view = vertexView(12);
+        json attributes;
+        auto vertexView = [&](std::size_t bytesPerVertex, Buffer::Fill fill) {
+            return buffer.add(d.views, p.vertices * bytesPerVertex, kArrayBuffer, std::move(fill));
+        };
+        int view = vertexView(12, [eachObject, base](Sink& out) {
+            eachObject([&](std::size_t, const ObjectView& o) {
+                if (base == vec3(0.0f)) {
+                    out.write(o.positions.data(), o.positions.size_bytes());
+                    return;
+                }
+                writeValues<vec3>(out, o.positions.size(),
+                                  [&](std::size_t k) { return o.positions[k] - base; });
+            });
+        });
         json position = accessor(view, kFloat, p.vertices, "VEC3");
         position["min"] = {lo.x, lo.y, lo.z};
         position["max"] = {hi.x, hi.y, hi.z};
         d.accessors.push_back(position);
         attributes["POSITION"] = d.accessors.size() - 1;
         if (options.normals) {
-            d.accessors.push_back(accessor(vertexView(12), kFloat, p.vertices, "VEC3"));
+            view = vertexView(12, [eachObject, &s](Sink& out) {
+                eachObject([&](std::size_t i, const ObjectView& o) {
+                    out.write(s.normals.data() + s.normalAt[i], o.positions.size() * sizeof(vec3));
+                });
+            });
+            d.accessors.push_back(accessor(view, kFloat, p.vertices, "VEC3"));
             attributes["NORMAL"] = d.accessors.size() - 1;
         }
         if (p.uvs) {
-            d.accessors.push_back(accessor(vertexView(8), kFloat, p.vertices, "VEC2"));
+            view = vertexView(8, [eachObject](Sink& out) {
+                eachObject([&](std::size_t, const ObjectView& o) {
+                    out.write(o.uvs.data(), o.uvs.size_bytes());
+                });
+            });
+            d.accessors.push_back(accessor(view, kFloat, p.vertices, "VEC2"));
             attributes["TEXCOORD_0"] = d.accessors.size() - 1;
         }
         json extensions;
         if (options.labels) {
-            for (const char* name : {"_PLANT_ID", "_OBJECT_ID", "_ORGAN", "_FEATURE_ID_0"}) {
-                d.accessors.push_back(accessor(vertexView(4), kFloat, p.vertices, "SCALAR"));
+            // Per vertex, as floats: the plant, the object, the organ and the feature (the
+            // object's row in the property table).
+            const std::pair<const char*, float (*)(const Scene&, std::size_t)> labels[] = {
+                {"_PLANT_ID",
+                 [](const Scene& sc, std::size_t i) { return float(sc.records[i].plant); }},
+                {"_OBJECT_ID",
+                 [](const Scene& sc, std::size_t i) { return float(sc.records[i].id); }},
+                {"_ORGAN",
+                 [](const Scene& sc, std::size_t i) { return float(sc.records[i].organ); }},
+                {"_FEATURE_ID_0", [](const Scene&, std::size_t i) { return float(i); }}};
+            for (const auto& [name, label] : labels) {
+                view = vertexView(4, [eachObject, &s, label = label](Sink& out) {
+                    eachObject([&](std::size_t i, const ObjectView& o) {
+                        const float v = label(s, i);
+                        writeValues<float>(out, o.positions.size(), [v](std::size_t) { return v; });
+                    });
+                });
+                d.accessors.push_back(accessor(view, kFloat, p.vertices, "SCALAR"));
                 attributes[name] = d.accessors.size() - 1;
             }
             extensions["EXT_mesh_features"] = {
                 {"featureIds",
                  {{{"featureCount", p.objects.size()}, {"attribute", 0}, {"propertyTable", 0}}}}};
         }
-        const int indexView = buffer.add(d.views, p.triangles * 12, kElementArrayBuffer);
+        const int indexView =
+            buffer.add(d.views, p.triangles * 12, kElementArrayBuffer, [eachObject](Sink& out) {
+                std::uint32_t first = 0;
+                eachObject([&](std::size_t, const ObjectView& o) {
+                    writeValues<std::uint32_t>(out, o.indices.size(),
+                                               [&](std::size_t k) { return first + o.indices[k]; });
+                    first += std::uint32_t(o.positions.size());
+                });
+            });
         d.accessors.push_back(accessor(indexView, kUInt, p.triangles * 3, "SCALAR"));
         json primitive = {{"attributes", attributes},
                           {"indices", d.accessors.size() - 1},
@@ -515,13 +453,17 @@ json addFrames(GltfArrays& d, const Scene& s, const std::vector<json>& frameChil
         if (keys.back().scale == 0.0f) frame["scale"] = {0.0, 0.0, 0.0};
         d.nodes.push_back(std::move(frame));
         roots.push_back(d.nodes.size() - 1);
-        json input =
-            accessor(buffer.add(d.views, keys.size() * 4, 0), kFloat, keys.size(), "SCALAR");
+        const int times = buffer.add(d.views, keys.size() * 4, 0, [keys](Sink& out) {
+            writeValues<float>(out, keys.size(), [&](std::size_t k) { return keys[k].time; });
+        });
+        json input = accessor(times, kFloat, keys.size(), "SCALAR");
         input["min"] = {keys.front().time};
         input["max"] = {keys.back().time};
         d.accessors.push_back(std::move(input));
-        d.accessors.push_back(
-            accessor(buffer.add(d.views, keys.size() * 12, 0), kFloat, keys.size(), "VEC3"));
+        const int scales = buffer.add(d.views, keys.size() * 12, 0, [keys](Sink& out) {
+            writeValues<vec3>(out, keys.size(), [&](std::size_t k) { return vec3(keys[k].scale); });
+        });
+        d.accessors.push_back(accessor(scales, kFloat, keys.size(), "VEC3"));
         samplers.push_back({{"input", d.accessors.size() - 2},
                             {"output", d.accessors.size() - 1},
                             {"interpolation", "STEP"}});
@@ -545,15 +487,27 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     if (options.labels) {
         const std::size_t features = s.records.size();
         json properties;
-        const std::pair<const char*, std::size_t> columns[] = {
-            {"plant", 4}, {"object", 4}, {"organ", 1}, {"leaf", 4},
-            {"shoot", 4}, {"rank", 4},   {"node", 4},  {"age", 4}};
-        for (const auto& [name, bytes] : columns)
-            properties[name] = {{"values", buffer.add(d.views, features * bytes, 0)}};
+        // One column per property, a value per object (the table's row).
+        auto column = [&](const char* name, auto type, auto get) {
+            using T = decltype(type);
+            properties[name] = {
+                {"values", buffer.add(d.views, features * sizeof(T), 0, [&s, get](Sink& out) {
+                     writeValues<T>(out, s.records.size(),
+                                    [&](std::size_t i) { return get(s.records[i]); });
+                 })}};
+        };
+        column("plant", std::int32_t{}, [](const ObjectRecord& r) { return r.plant; });
+        column("object", std::uint32_t{}, [](const ObjectRecord& r) { return r.id; });
+        column("organ", std::uint8_t{}, [](const ObjectRecord& r) { return r.organ; });
+        column("leaf", std::int32_t{}, [](const ObjectRecord& r) { return r.leaf; });
+        column("shoot", std::int32_t{}, [](const ObjectRecord& r) { return r.shoot; });
+        column("rank", std::int32_t{}, [](const ObjectRecord& r) { return r.rank; });
+        column("node", std::int32_t{}, [](const ObjectRecord& r) { return r.node; });
+        column("age", float{}, [](const ObjectRecord& r) { return r.age; });
         for (std::size_t c = 0; c < kOptionalCount; ++c)
             if (s.hasColumn[c])
-                properties[kOptionalColumns[c].name] = {
-                    {"values", buffer.add(d.views, features * sizeof(float), 0)}};
+                column(kOptionalColumns[c].name, float{},
+                       [c](const ObjectRecord& r) { return r.optional[c]; });
         doc["extensions"]["EXT_structural_metadata"] = {
             {"schema", schema(s)},
             {"propertyTables",
@@ -584,144 +538,13 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     return doc;
 }
 
-// The binary buffer, view by view in the order document() laid them out; each view is
-// streamed object by object straight from the Context.
-void writeBinary(const Scene& s, const GltfOptions& options, Sink& out) {
-    for (const EmbeddedImage& image : s.imageData) {
-        out.write(image.bytes.data(), image.bytes.size());
-        out.pad();
-    }
-    // Normals of every object first, on all threads (each object's own slice).
-    std::vector<vec3> normals;
-    std::vector<std::size_t> normalAt(s.records.size() + 1, 0);
-    if (options.normals) {
-        for (std::size_t i = 0; i < s.records.size(); ++i)
-            normalAt[i + 1] = normalAt[i] + s.object(i).positions.size();
-        normals.resize(normalAt.back());
-        const std::ptrdiff_t n = std::ptrdiff_t(s.records.size());
-        ParallelErrors errors;
-#pragma omp parallel
-        {
-            std::vector<vec3> one;
-#pragma omp for schedule(dynamic, 64)
-            for (std::ptrdiff_t i = 0; i < n; ++i)
-                errors.run(i, [&] {
-                    smoothNormals(s.object(std::size_t(i)), one);
-                    std::copy(one.begin(), one.end(),
-                              normals.begin() + std::ptrdiff_t(normalAt[std::size_t(i)]));
-                });
-        }
-        errors.rethrow();
-    }
-    for (const Primitive& p : s.primitives) {
-        const vec3 base = s.nodes[p.node].base;
-        auto eachObject = [&](auto&& f) {
-            for (std::size_t i : p.objects) f(i, s.object(i));
-        };
-        eachObject([&](std::size_t, const ObjectView& o) {
-            if (base == vec3(0.0f)) {
-                out.write(o.positions.data(), o.positions.size_bytes());
-                return;
-            }
-            out.elements(o.positions.size(), sizeof(vec3),
-                         [&](char* dst, std::size_t first, std::size_t n) {
-                             for (std::size_t k = 0; k < n; ++k) {
-                                 const vec3 v = o.positions[first + k] - base;
-                                 std::memcpy(dst + k * sizeof(vec3), &v, sizeof(vec3));
-                             }
-                         });
-        });
-        out.pad();
-        if (options.normals) {
-            eachObject([&](std::size_t i, const ObjectView& o) {
-                out.write(normals.data() + normalAt[i], o.positions.size() * sizeof(vec3));
-            });
-            out.pad();
-        }
-        if (p.uvs) {
-            eachObject([&](std::size_t, const ObjectView& o) {
-                out.write(o.uvs.data(), o.uvs.size_bytes());
-            });
-            out.pad();
-        }
-        if (options.labels) {
-            auto perVertex = [&](auto value) {
-                eachObject([&](std::size_t i, const ObjectView& o) {
-                    const float v = float(value(i));
-                    out.elements(o.positions.size(), sizeof(float),
-                                 [&](char* dst, std::size_t, std::size_t n) {
-                                     for (std::size_t k = 0; k < n; ++k)
-                                         std::memcpy(dst + 4 * k, &v, 4);
-                                 });
-                });
-                out.pad();
-            };
-            perVertex([&](std::size_t i) { return s.records[i].plant; });
-            perVertex([&](std::size_t i) { return s.records[i].id; });
-            perVertex([&](std::size_t i) { return s.records[i].organ; });
-            perVertex([&](std::size_t i) { return i; });  // the feature: the table row
-        }
-        std::uint32_t first = 0;
-        eachObject([&](std::size_t, const ObjectView& o) {
-            out.elements(o.indices.size(), sizeof(std::uint32_t),
-                         [&](char* dst, std::size_t at, std::size_t n) {
-                             for (std::size_t k = 0; k < n; ++k) {
-                                 const std::uint32_t v = first + o.indices[at + k];
-                                 std::memcpy(dst + 4 * k, &v, 4);
-                             }
-                         });
-            first += std::uint32_t(o.positions.size());
-        });
-        out.pad();
-    }
-    if (s.animated) {  // the frames' keys, laid out with the nodes
-        for (std::size_t f = 0; f < s.frames.size(); ++f) {
-            const std::vector<FrameKey> keys = frameKeys(s, f);
-            for (const FrameKey& k : keys) out.write(&k.time, 4);
-            out.pad();
-            for (const FrameKey& k : keys) {
-                const float scale[3] = {k.scale, k.scale, k.scale};
-                out.write(scale, sizeof scale);
-            }
-            out.pad();
-        }
-    }
-    if (options.labels) {
-        auto columnOf = [&](auto get, auto type) {
-            using T = decltype(type);
-            out.elements(s.records.size(), sizeof(T),
-                         [&](char* dst, std::size_t at, std::size_t n) {
-                             for (std::size_t k = 0; k < n; ++k) {
-                                 const T v = T(get(s.records[at + k]));
-                                 std::memcpy(dst + k * sizeof(T), &v, sizeof(T));
-                             }
-                         });
-            out.pad();
-        };
-        columnOf([](const ObjectRecord& r) { return r.plant; }, std::int32_t{});
-        columnOf([](const ObjectRecord& r) { return r.id; }, std::uint32_t{});
-        columnOf([](const ObjectRecord& r) { return r.organ; }, std::uint8_t{});
-        columnOf([](const ObjectRecord& r) { return r.leaf; }, std::int32_t{});
-        columnOf([](const ObjectRecord& r) { return r.shoot; }, std::int32_t{});
-        columnOf([](const ObjectRecord& r) { return r.rank; }, std::int32_t{});
-        columnOf([](const ObjectRecord& r) { return r.node; }, std::int32_t{});
-        columnOf([](const ObjectRecord& r) { return r.age; }, float{});
-        for (std::size_t c = 0; c < kOptionalCount; ++c)
-            if (s.hasColumn[c])
-                columnOf([c](const ObjectRecord& r) { return r.optional[c]; }, float{});
-    }
-}
-
-}  // namespace
-
-namespace {
-
 void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     if (scene.records.size() >= (std::size_t(1) << 24))
         throw Error("too many objects for float labels in glTF",
                     {.file = path,
                      .value = std::to_string(scene.records.size()),
                      .validRange = "fewer than 16777216 objects"});
+    if (options.normals) computeNormals(scene);
     Buffer buffer;
     json doc = document(scene, options, buffer);
     io::AtomicFile file(path);
@@ -729,7 +552,7 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     if (lowerExtension(path) == ".gltf") {
         std::string bytes;
         Sink sink(nullptr, &bytes, steps);
-        writeBinary(scene, options, sink);
+        buffer.write(sink);
         if (!bytes.empty())
             doc["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(bytes);
         file.write(doc.dump());
@@ -751,7 +574,7 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
         const std::uint32_t binChunk[2] = {binLength, 0x004E4942u};  // "BIN"
         file.write(binChunk, sizeof binChunk);
         Sink sink(&file, nullptr, steps);
-        writeBinary(scene, options, sink);
+        buffer.write(sink);
     }
     file.commit();
     steps.finish();
@@ -763,20 +586,26 @@ void checkExtension(const std::string& path) {
 
 }  // namespace
 
+}  // namespace plantarch::gltf
+
+namespace plantarch {
+
+using gltf::Scene;
+
 void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options) {
-    checkExtension(path);
-    Scene scene = collect({AnimationFrame{&context, 0.0, options.plants}}, options);
-    write(scene, path, options);
+    gltf::checkExtension(path);
+    Scene scene = gltf::collect({AnimationFrame{&context, 0.0, options.plants}}, options);
+    gltf::write(scene, path, options);
 }
 
 void writeGLTF(const std::vector<AnimationFrame>& frames, const std::string& path,
                const GltfOptions& options, const AnimationOptions& animation) {
-    checkExtension(path);
+    gltf::checkExtension(path);
     io::checkAnimation(frames, animation, path);
-    Scene scene = collect(frames, options);
+    Scene scene = gltf::collect(frames, options);
     scene.animated = true;
     scene.framesPerSecond = animation.framesPerSecond;
-    write(scene, path, options);
+    gltf::write(scene, path, options);
 }
 
 }  // namespace plantarch
