@@ -10,6 +10,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -189,6 +190,17 @@ struct Scene {
     ObjectView object(const ObjectRecord& r) const { return frames[r.frame]->object(r.id); }
     ObjectView object(std::size_t record) const { return object(records[record]); }
 };
+
+/// Writes `count` values of T, value(i) for i in [0, count), as one block.
+template <class T, class Value>
+void writeValues(Sink& out, std::size_t count, Value value) {
+    out.elements(count, sizeof(T), [&](char* dst, std::size_t first, std::size_t n) {
+        for (std::size_t k = 0; k < n; ++k) {
+            const T v = T(value(first + k));
+            std::memcpy(dst + k * sizeof(T), &v, sizeof(T));
+        }
+    });
+}
 
 /// An accessor of `count` elements of a view.
 json accessor(int view, int componentType, std::size_t count, const char* type);

@@ -234,17 +234,6 @@ std::vector<FrameKey> frameKeys(const Scene& s, std::size_t f) {
     return keys;
 }
 
-// Writes `count` values of T, value(i) for i in [0, count), as one block.
-template <class T, class Value>
-void writeValues(Sink& out, std::size_t count, Value value) {
-    out.elements(count, sizeof(T), [&](char* dst, std::size_t first, std::size_t n) {
-        for (std::size_t k = 0; k < n; ++k) {
-            const T v = T(value(first + k));
-            std::memcpy(dst + k * sizeof(T), &v, sizeof(T));
-        }
-    });
-}
-
 // Smooth normals of every object, on all threads (each object its own slice).
 void computeNormals(Scene& s) {
     s.normalAt.assign(s.records.size() + 1, 0);
