@@ -46,6 +46,7 @@ struct GlobalOptions {
     bool objectIDs = false;   ///< --object-ids: object IDs in .xml, object tables by meshes
     PlyColor plyColor = PlyColor::None;                   ///< --ply-color
     PlyFormat plyFormat = PlyFormat::BinaryLittleEndian;  ///< --ply-format
+    bool skin = false;  ///< --skin: skeletons in glTF and USD outputs (skin_options.cpp)
     /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
     /// it) with one line; 0 for no limit. Default: PlantArchitecture::defaultTriangleLimit().
     std::size_t maxTriangles = PlantArchitecture::defaultTriangleLimit();
@@ -211,6 +212,8 @@ void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
 /// Adds --object-ids (.xml outputs carry each organ's object IDs; each mesh output gets an
 /// object table), --ply-color and --ply-format.
 void addLabelOptions(CLI::App& app, GlobalOptions& global);
+/// --skin (skin_options.cpp), added by addLabelOptions.
+void addSkinOptions(CLI::App& app, GlobalOptions& global);
 
 /// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
 /// (animation_options.cpp).

@@ -39,6 +39,7 @@ void addLabelOptions(CLI::App& app, GlobalOptions& global) {
            },
            "Encoding of .ply outputs: binary (default) or ascii; both hold the same labels")
         ->type_name("FORMAT");
+    addSkinOptions(app, global);  // skin_options.cpp
 }
 
 }  // namespace plantarch::cli

@@ -251,6 +251,46 @@ struct GltfPlant {
     std::uint64_t seed = 0;
 };
 
+// ---- a wind-ready skeleton (skinned glTF, UsdSkel) --------------------------------------
+
+/// A joint of a plant's skeleton (GltfSkeleton), at its bind pose, in plantarch's world axes
+/// (z up), m: the plant's root joint at its base, or one joint per internode at the internode's
+/// base (its node below), turning what the internode carries.
+struct GltfJoint {
+    std::string name;          ///< "plant<P>_root" or "plant<P>_shoot<S>_node<N>"
+    std::int32_t parent = -1;  ///< index in GltfSkeleton::joints (smaller than its own); -1: root
+    vec3 position{0.0f};       ///< the joint's origin, world
+    /// Its orientation, world: a unit quaternion (x, y, z, w) taking the joint's local axes to
+    /// world axes; local +y runs along its internode, local +x toward the internode's roll
+    /// reference (where petioles of azimuth 0 stand).
+    std::array<float, 4> rotation{0.0f, 0.0f, 0.0f, 1.0f};
+    std::int32_t shoot = -1, node = -1;  ///< the internode's shoot ID and node (-1: the root)
+};
+
+/// Up to four joints moving one vertex, with weights (non-negative, summing to 1; unused slots
+/// joint 0 and weight 0).
+struct GltfInfluence {
+    std::array<std::uint16_t, 4> joints{};
+    std::array<float, 4> weights{};
+};
+
+/// How an object of a plant is bound to its skeleton.
+struct GltfSkinnedObject {
+    ObjectID object = kNoObject;
+    std::uint16_t joint = 0;  ///< the joint moving every vertex, when `vertices` is empty
+    /// Per vertex of the object (its positions, in order), or empty (rigid on `joint`).
+    std::vector<GltfInfluence> vertices;
+};
+
+/// A plant's skeleton and the binding of its objects, made by exportSkeletons
+/// (plantarch/ExportPlants.h). The bind pose is the geometry as it stands in the Context.
+struct GltfSkeleton {
+    std::int32_t plant = 0;
+    std::vector<GltfJoint> joints;  ///< joints[0] is the root; parents before children
+    /// In ascending object ID; an object of the plant not listed is rigid on the root.
+    std::vector<GltfSkinnedObject> objects;
+};
+
 struct GltfOptions {
     bool includeHidden = false;
     bool normals = true;   ///< smooth per-vertex normals (NORMAL)
@@ -263,6 +303,10 @@ struct GltfOptions {
     /// Plants to name and place (from the PlantArchitecture: getPlantBasePosition, ...); a
     /// plant not listed gets a node named "plant_<id>" at the origin.
     std::vector<GltfPlant> plants;
+    /// Skinning (a wind-ready skeleton): the skeletons of plants whose meshes get a glTF skin
+    /// (JOINTS_0, WEIGHTS_0, joint nodes, inverse bind matrices); empty: no skins. Ignored
+    /// by growth animations.
+    std::vector<GltfSkeleton> skeletons;
     /// Receives ("writing glTF", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -279,6 +323,9 @@ struct UsdOptions {
     bool uvs = true;      ///< primvars:st for meshes whose objects all have UVs
     /// Plants to name and place, as for glTF.
     std::vector<GltfPlant> plants;
+    /// Skinning (a wind-ready skeleton): as GltfOptions::skeletons, written as UsdSkel (a
+    /// SkelRoot per plant, a Skeleton, joint indices and weights on its meshes).
+    std::vector<GltfSkeleton> skeletons;
     /// Receives ("writing USD", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };

@@ -14,6 +14,17 @@ namespace plantarch {
 /// Every plant of `arch`: its ID, species, base, age, and the scene's seed.
 std::vector<GltfPlant> exportPlants(const PlantArchitecture& arch);
 
+/// The skeletons of every plant of `arch` for a skinned (wind-ready) glTF or USD file
+/// (GltfOptions::skeletons): a root joint at the plant's base and one joint per internode at
+/// its base (its node below), parented along the shoots, a branch's first joint on the joint
+/// of the parent's internode that carries it. Internode tubes blend between the joints of
+/// the internodes they join on their shoot (half and half at a node, all on their own joint
+/// midway and at the shoot's two ends); every other organ of a shoot is rigid on the joint of
+/// its node's internode, objects of no shoot on the root.
+/// The bind pose is the geometry as it stands (bent, where the plant bends under load).
+/// Throws plantarch::Error for a plant of more than 65535 internodes.
+std::vector<GltfSkeleton> exportSkeletons(const PlantArchitecture& arch);
+
 /// Writes the plants' internodes as cylinders, the table a quantitative structure model
 /// (QSM, as TreeQSM makes from scans of trees) holds, as CSV with a header: one row per
 /// internode with its id, parent cylinder, plant, start point, unit axis, length, radius,

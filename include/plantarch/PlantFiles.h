@@ -37,6 +37,9 @@ struct PlantFileOptions {
     bool cameraTarget = false;
     RenderMode mode = RenderMode::Shaded;  ///< shaded picture or a label mask
     bool cameraJson = false;  ///< NAME.camera.json (the camera's matrices) beside each .png
+    /// Skinning: .glb, .gltf and .usda files of plants carry a wind-ready skeleton per plant
+    /// (exportSkeletons, GltfOptions::skeletons); other files are written as without it.
+    bool skin = false;
     /// Each writer's progress; for separate files, one report over the plants.
     ProgressCallback progress;
     /// Called with the path of every file written (an object table and a camera file too).
@@ -50,10 +53,12 @@ bool holdsObjectIDs(const std::string& path);
 std::string objectTablePath(const std::string& path);
 
 /// Writes a Context to `path` in the scene format its extension names; `plants` names and
-/// places the plants in glTF and USD files. Throws plantarch::Error for an extension that is
-/// not a scene format (or an .npz without points).
+/// places the plants in glTF and USD files, `skeletons` skins them there (exportSkeletons).
+/// Throws plantarch::Error for an extension that is not a scene format (or an .npz without
+/// points).
 void writeSceneFile(const Context& context, const std::string& path,
-                    const PlantFileOptions& options, const std::vector<GltfPlant>& plants = {});
+                    const PlantFileOptions& options, const std::vector<GltfPlant>& plants = {},
+                    const std::vector<GltfSkeleton>& skeletons = {});
 
 /// Writes `plants` of `arch` to `path`: a plant structure file, plant strings, cylinders or
 /// the whole scene (writeSceneFile, with an object table when options.objectIDs).

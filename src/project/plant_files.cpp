@@ -39,7 +39,8 @@ std::string objectTablePath(const std::string& path) {
 }
 
 void writeSceneFile(const Context& ctx, const std::string& path, const PlantFileOptions& g,
-                    const std::vector<GltfPlant>& plants) {
+                    const std::vector<GltfPlant>& plants,
+                    const std::vector<GltfSkeleton>& skeletons) {
     const std::string ext = lowerExtension(path);
     const ProgressCallback& progress = g.progress;
     auto points = [&] {
@@ -56,11 +57,13 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
     } else if (ext == ".glb" || ext == ".gltf") {
         GltfOptions o;
         o.plants = plants;
+        o.skeletons = skeletons;
         o.progress = progress;
         writeGLTF(ctx, path, o);
     } else if (ext == ".usda") {
         UsdOptions o;
         o.plants = plants;
+        o.skeletons = skeletons;
         o.progress = progress;
         writeUSDA(ctx, path, o);
     } else if (ext == ".png") {
@@ -135,7 +138,9 @@ void writePlantFile(const PlantArchitecture& arch, const std::vector<unsigned>& 
         for (unsigned id : plants) text += arch.getPlantString(id, o) + "\n";
         writeFileAtomically(path, text);
     } else {
-        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, exportPlants(arch));
+        const bool skinned = g.skin && (ext == ".glb" || ext == ".gltf" || ext == ".usda");
+        writeSceneFile(const_cast<PlantArchitecture&>(arch).context(), path, g, exportPlants(arch),
+                       skinned ? exportSkeletons(arch) : std::vector<GltfSkeleton>{});
         if (g.objectIDs && holdsObjectIDs(path)) {
             writeObjectTableJSON(arch, plants, objectTablePath(path));
             written(g, objectTablePath(path));

@@ -34,6 +34,7 @@
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
 #include "scene_io/gltf_internal.h"
+#include "scene_io/gltf_skin.h"
 
 namespace plantarch::gltf {
 
@@ -363,6 +364,7 @@ std::vector<json> addMeshes(GltfArrays& d, const Scene& s, const GltfOptions& op
                 {"featureIds",
                  {{{"featureCount", p.objects.size()}, {"attribute", 0}, {"propertyTable", 0}}}}};
         }
+        addSkinAttributes(d, s, options, buffer, p, attributes);  // gltf_skin.cpp
         const int indexView =
             buffer.add(d.views, p.triangles * 12, kElementArrayBuffer, [eachObject](Sink& out) {
                 std::uint32_t first = 0;
@@ -472,6 +474,7 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     const std::vector<json> frameChildren = addPlantNodes(d, s, nodeMeshes);
     json roots = json::array();
     const json animation = addFrames(d, s, frameChildren, buffer, roots);
+    const SkinNodes skins = addSkins(d, s, options, buffer, roots);  // gltf_skin.cpp
 
     if (options.labels) {
         const std::size_t features = s.records.size();
@@ -510,7 +513,10 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
                   {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}},
                   {"children", roots}};
     d.nodes.push_back(world);
-    doc["scenes"] = {{{"nodes", {d.nodes.size() - 1}}}};
+    json sceneRoots = json::array({d.nodes.size() - 1});
+    for (const json& r : skins.roots) sceneRoots.push_back(r);  // skinned meshes: roots
+    doc["scenes"] = {{{"nodes", sceneRoots}}};
+    if (!skins.skins.empty()) doc["skins"] = skins.skins;
     doc["nodes"] = d.nodes;
     if (!animation.empty()) doc["animations"] = {animation};
     if (!d.meshes.empty()) doc["meshes"] = d.meshes;
@@ -534,6 +540,7 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
                      .value = std::to_string(scene.records.size()),
                      .validRange = "fewer than 16777216 objects"});
     if (options.normals) computeNormals(scene);
+    checkSkins(scene, options, path);  // gltf_skin.cpp
     Buffer buffer;
     json doc = document(scene, options, buffer);
     io::AtomicFile file(path);
