@@ -34,6 +34,36 @@
 
 namespace plantarch {
 
+// ---- materials and procedural textures -----------------------------------------------
+
+/// How the writers and the renderer draw surfaces.
+enum class MaterialStyle {
+    Flat,      ///< one colour per material, as plantarch always wrote them
+    Textured,  ///< procedural textures and PBR factors per organ (docs/formats.md, "Materials")
+};
+/// "flat", "textured".
+const char* materialStyleName(MaterialStyle style);
+/// The MaterialStyle of a name of materialStyleName; nullopt for another text.
+std::optional<MaterialStyle> materialStyleFromName(std::string_view name);
+
+/// The smallest and largest texture size (texels a side); sizes are powers of two.
+inline constexpr int kMinTextureSize = 16, kMaxTextureSize = 4096;
+
+/// Materials of an export: flat colours (the default), or procedural textures drawn from the
+/// materials' colours and the leaves' outlines: leaves get base colour (venation from the
+/// outline, colour and gloss variation, alpha outside the outline), normal and
+/// occlusion-roughness-metallic maps; internodes bark (fine striations on green stems);
+/// petioles and peduncles a green stem's skin; fruit and flowers PBR factors only.
+struct MaterialOptions {
+    MaterialStyle style = MaterialStyle::Flat;
+    /// Texels a side of each texture: a power of two from kMinTextureSize to kMaxTextureSize.
+    int textureSize = 512;
+};
+
+/// Throws plantarch::Error (parameter "texture_size", its value and the valid sizes) unless
+/// options.textureSize is a power of two from kMinTextureSize to kMaxTextureSize.
+void checkMaterialOptions(const MaterialOptions& options);
+
 // ---- OBJ ---------------------------------------------------------------------------
 
 /// Options of writeOBJ. Defaults give one OBJ with normals, UVs and a material library.
@@ -54,6 +84,10 @@ struct ObjOptions {
     /// and all are renamed into place together at the end; files already in the directory are left
     /// alone.
     bool splitPerObject = false;
+    /// Materials and textures: with MaterialStyle::Textured the .mtl gets map_Kd, map_d,
+    /// norm/map_Bump and map_Pr (PNG files named `<stem>_<texture>_<map>.png` next to it,
+    /// written atomically with the OBJ) and PBR factors (Pr, Pm).
+    MaterialOptions appearance;
     /// Receives ("writing OBJ", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -307,6 +341,10 @@ struct GltfOptions {
     /// (JOINTS_0, WEIGHTS_0, joint nodes, inverse bind matrices); empty: no skins. Ignored
     /// by growth animations.
     std::vector<GltfSkeleton> skeletons;
+    /// Materials and textures: with MaterialStyle::Textured, PBR materials with
+    /// baseColorTexture (alphaMode MASK where a leaf's outline needs it), normalTexture,
+    /// occlusionTexture and metallicRoughnessTexture, the PNG images embedded.
+    MaterialOptions appearance;
     /// Receives ("writing glTF", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -326,6 +364,11 @@ struct UsdOptions {
     /// Skinning (a wind-ready skeleton): as GltfOptions::skeletons, written as UsdSkel (a
     /// SkelRoot per plant, a Skeleton, joint indices and weights on its meshes).
     std::vector<GltfSkeleton> skeletons;
+    /// Materials and textures: with MaterialStyle::Textured, a UsdPreviewSurface per material
+    /// (UsdUVTexture shaders reading primvars:st) bound to the meshes, the PNG files named
+    /// `<stem>_<texture>_<map>.png` next to the .usda (written atomically with it), or inside
+    /// the package for a .usdz.
+    MaterialOptions appearance;
     /// Receives ("writing USD", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -352,6 +395,9 @@ struct AnimationOptions {
     /// then each file's writing ("writing glTF", "writing USD"). The animated writeGLTF and
     /// writeUSDA report through their GltfOptions and UsdOptions instead.
     ProgressCallback progress;
+    /// writeGrowthAnimation's materials (MaterialOptions), given to each file's writer; the
+    /// animated writeGLTF and writeUSDA take theirs from their GltfOptions and UsdOptions.
+    MaterialOptions appearance;
 };
 
 /// Writes frames as one animated glTF (.glb or .gltf): under the root, a node per frame

@@ -1,0 +1,270 @@
+// Materials' textured looks: surfaces classified by organ, maps drawn once per distinct
+// surface (material_textures.h), and the MaterialOptions checks of plantarch/Export.h.
+
+#include "scene_io/material_textures.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string_view>
+
+#include "core/stb.h"
+#include "plantarch/Error.h"
+#include "scene_io/export_common.h"
+
+namespace plantarch {
+
+const char* materialStyleName(MaterialStyle style) {
+    return style == MaterialStyle::Textured ? "textured" : "flat";
+}
+
+std::optional<MaterialStyle> materialStyleFromName(std::string_view name) {
+    if (name == "flat") return MaterialStyle::Flat;
+    if (name == "textured") return MaterialStyle::Textured;
+    return std::nullopt;
+}
+
+void checkMaterialOptions(const MaterialOptions& options) {
+    const int n = options.textureSize;
+    if (n < kMinTextureSize || n > kMaxTextureSize || !std::has_single_bit(unsigned(n)))
+        throw Error("texture size " + std::to_string(n) + " is not allowed",
+                    {.parameter = "texture_size",
+                     .value = std::to_string(n),
+                     .validRange = "a power of two from " + std::to_string(kMinTextureSize) +
+                                   " to " + std::to_string(kMaxTextureSize)});
+}
+
+namespace io {
+
+namespace mattex {
+
+// The largest outline mask drawn (texels a side); larger textures scale it up.
+constexpr int kMaxMaskSize = 1024;
+// Distinct leaf meshes drawn into one outline at most; a material with more gets no alpha.
+constexpr std::size_t kMaxOutlineShapes = 256;
+
+SurfaceKind surfaceOfOrgan(std::string_view organ) {
+    if (organ == "leaf") return SurfaceKind::Leaf;
+    if (organ == "internode") return SurfaceKind::Bark;
+    if (organ == "petiole" || organ == "peduncle") return SurfaceKind::Stem;
+    if (organ == "fruit") return SurfaceKind::Fruit;
+    if (organ == "flower_open" || organ == "flower_closed") return SurfaceKind::Flower;
+    return SurfaceKind::Other;
+}
+
+// What is known of one material while planning.
+struct Planned {
+    Material material;
+    MaterialLook look;
+    bool allUVs = true;
+    std::vector<std::uint64_t> shapes;  // hashes of the distinct leaf meshes drawn
+    std::vector<std::uint8_t> mask;     // their texture-space coverage
+    bool maskOverflow = false;
+    float aspect = -1.0f;
+};
+
+// Blade width over length as the leaf's texture space stretches it: the area-weighted mean
+// of |dP/dv| / |dP/du| over its triangles.
+float textureAspect(const ObjectView& o) {
+    double sum = 0.0, weight = 0.0;
+    for (std::size_t t = 0; t + 2 < o.indices.size(); t += 3) {
+        const std::uint32_t a = o.indices[t], b = o.indices[t + 1], c = o.indices[t + 2];
+        const vec3 e1 = o.positions[b] - o.positions[a], e2 = o.positions[c] - o.positions[a];
+        const vec2 d1 = o.uvs[b] - o.uvs[a], d2 = o.uvs[c] - o.uvs[a];
+        const float det = d1.x * d2.y - d2.x * d1.y;
+        if (std::abs(det) < 1e-9f) continue;
+        const vec3 T = (e1 * d2.y - e2 * d1.y) / det, B = (e2 * d1.x - e1 * d2.x) / det;
+        const float lt = glm::length(T), lb = glm::length(B);
+        const float area = 0.5f * glm::length(glm::cross(e1, e2));
+        if (!(lt > 0.0f) || !std::isfinite(lb / lt) || !(area > 0.0f)) continue;
+        sum += double(area) * double(lb / lt);
+        weight += double(area);
+    }
+    return weight > 0.0 ? float(sum / weight) : 0.5f;
+}
+
+std::vector<std::uint8_t> scaledMask(const std::vector<std::uint8_t>& mask, int from, int to) {
+    if (from == to) return mask;
+    std::vector<std::uint8_t> out(std::size_t(to) * std::size_t(to));
+    const int f = to / from;
+    for (int j = 0; j < to; ++j)
+        for (int i = 0; i < to; ++i)
+            out[std::size_t(j) * std::size_t(to) + std::size_t(i)] =
+                mask[std::size_t(j / f) * std::size_t(from) + std::size_t(i / f)];
+    return out;
+}
+
+std::uint64_t colorSeed(SurfaceKind kind, const Material& m) {
+    std::uint64_t h = fnv1a(&kind, sizeof kind);
+    h = fnv1a(&m.color, sizeof m.color, h);
+    return fnv1a(m.name.data(), m.name.size(), h);
+}
+
+}  // namespace mattex
+
+const char* mapKindName(MapKind kind) {
+    switch (kind) {
+        case MapKind::BaseColor:
+            return "basecolor";
+        case MapKind::Normal:
+            return "normal";
+        case MapKind::ORM:
+            return "orm";
+        case MapKind::Alpha:
+            return "alpha";
+        case MapKind::Roughness:
+            break;
+    }
+    return "roughness";
+}
+
+std::string mapFileName(const std::string& prefix, const MaterialMaps& maps, MapKind kind) {
+    return prefix + maps.name + "_" + mapKindName(kind) + ".png";
+}
+
+std::string encodeMapPNG(const TextureMaps& maps, MapKind kind, bool flipRows) {
+    const int n = maps.size;
+    int channels = 3;
+    const std::vector<std::uint8_t>* source = &maps.orm;
+    int pick = -1;  // one channel of the source, for the grey maps
+    switch (kind) {
+        case MapKind::BaseColor:
+            source = &maps.baseColor;
+            channels = 4;
+            break;
+        case MapKind::Normal:
+            source = &maps.normal;
+            break;
+        case MapKind::ORM:
+            break;
+        case MapKind::Alpha:
+            source = &maps.baseColor;
+            channels = 4;
+            pick = 3;
+            break;
+        case MapKind::Roughness:
+            pick = 1;
+            break;
+    }
+    const bool dropAlpha = kind == MapKind::BaseColor && !maps.hasAlpha;
+    const int outChannels = pick >= 0 ? 1 : dropAlpha ? 3 : channels;
+    std::vector<std::uint8_t> pixels(std::size_t(n) * std::size_t(n) * std::size_t(outChannels));
+    for (int j = 0; j < n; ++j) {
+        const int row = flipRows ? n - 1 - j : j;
+        const std::uint8_t* in = source->data() + std::size_t(row) * std::size_t(n) * channels;
+        std::uint8_t* out = pixels.data() + std::size_t(j) * std::size_t(n) * outChannels;
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < outChannels; ++c)
+                out[std::size_t(i) * outChannels + c] =
+                    in[std::size_t(i) * channels + std::size_t(pick >= 0 ? pick : c)];
+    }
+    std::vector<std::uint8_t> png;
+    if (!core::stbEncodePng(pixels.data(), n, n, outChannels, n * outChannels, png))
+        throw Error("cannot encode a " + std::string(mapKindName(kind)) + " texture as PNG");
+    return std::string(png.begin(), png.end());
+}
+
+MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
+                             const MaterialOptions& options, bool includeHidden, bool uvs,
+                             const MapRequest& request) {
+    using namespace mattex;
+    checkMaterialOptions(options);
+    textured_ = options.style == MaterialStyle::Textured;
+    if (!textured_) return;
+    const int size = options.textureSize;
+    const int maskSize = std::min(size, kMaxMaskSize);
+    std::vector<Planned> planned;
+    for (const Context* ctx : contexts) {
+        const bool organs = ctx->objectDataType("organ") == DataType::String;
+        std::vector<std::int32_t> index(ctx->materialCount(), -1);
+        for (const ObjectID id : exportedObjects(*ctx, includeHidden)) {
+            const ObjectView o = ctx->object(id);
+            std::int32_t& p = index[o.material];
+            if (p < 0) {
+                const Material& m = ctx->material(o.material);
+                const auto at = std::find_if(planned.begin(), planned.end(),
+                                             [&](const Planned& q) { return q.material == m; });
+                p = std::int32_t(at - planned.begin());
+                if (at == planned.end()) {
+                    Planned fresh{m, {}, true, {}, {}, false, -1.0f};
+                    const std::optional<std::string> organ =
+                        organs ? ctx->objectDataString(id, "organ") : std::nullopt;
+                    fresh.look.kind = surfaceOfOrgan(organ ? *organ : "");
+                    fresh.look.factors = surfaceFactors(fresh.look.kind);
+                    planned.push_back(std::move(fresh));
+                }
+            }
+            Planned& q = planned[std::size_t(p)];
+            if (o.uvs.empty()) q.allUVs = false;
+            if (q.look.kind != SurfaceKind::Leaf || o.uvs.empty() || q.maskOverflow) continue;
+            if (q.aspect < 0.0f) q.aspect = textureAspect(o);
+            std::uint64_t h = fnv1a(o.uvs.data(), o.uvs.size_bytes());
+            h = fnv1a(o.indices.data(), o.indices.size_bytes(), h);
+            if (std::find(q.shapes.begin(), q.shapes.end(), h) != q.shapes.end()) continue;
+            if (q.shapes.size() == kMaxOutlineShapes) {
+                q.maskOverflow = true;
+                q.mask.clear();
+                continue;
+            }
+            q.shapes.push_back(h);
+            rasterizeUVTriangles(o.uvs, o.indices, maskSize, q.mask);
+        }
+    }
+    // Draw the maps, one set per distinct (surface, colour, outline).
+    std::vector<std::uint64_t> keys;
+    for (Planned& q : planned) {
+        const SurfaceKind kind = q.look.kind;
+        const bool drawn =
+            kind == SurfaceKind::Leaf || kind == SurfaceKind::Bark || kind == SurfaceKind::Stem;
+        if (!drawn || !uvs || !q.allUVs || !q.material.texture.empty()) {
+            looks_.emplace_back(q.material, q.look);
+            continue;
+        }
+        const std::uint64_t seed = colorSeed(kind, q.material);
+        std::uint64_t key = fnv1a(&seed, sizeof seed);
+        key = fnv1a(&q.aspect, sizeof q.aspect, key);
+        key = fnv1a(q.mask.data(), q.mask.size(), key);
+        const auto at = std::find(keys.begin(), keys.end(), key);
+        if (at != keys.end()) {
+            q.look.maps = int(at - keys.begin());
+            looks_.emplace_back(q.material, q.look);
+            continue;
+        }
+        MaterialMaps maps;
+        maps.kind = kind;
+        const int same = int(std::count_if(maps_.begin(), maps_.end(),
+                                           [&](const MaterialMaps& m) { return m.kind == kind; }));
+        maps.name = std::string(surfaceKindName(kind)) + "_" + std::to_string(same);
+        if (kind == SurfaceKind::Leaf) {
+            LeafTextureInput in;
+            in.color = q.material.color;
+            in.seed = seed;
+            in.size = size;
+            in.aspect = q.aspect > 0.0f ? q.aspect : 0.5f;
+            if (!q.mask.empty()) in.mask = scaledMask(q.mask, maskSize, size);
+            maps.pixels = leafTextureMaps(in);
+        } else {
+            maps.pixels = barkTextureMaps(q.material.color, seed, size, kind == SurfaceKind::Stem);
+        }
+        maps.hasAlpha = maps.pixels.hasAlpha;
+        for (const MapKind m : request.png)
+            maps.png[std::size_t(m)] = encodeMapPNG(maps.pixels, m, request.flipRows);
+        if (!request.keepPixels) maps.pixels = TextureMaps{};
+        q.look.maps = int(maps_.size());
+        keys.push_back(key);
+        maps_.push_back(std::move(maps));
+        looks_.emplace_back(q.material, q.look);
+    }
+}
+
+const MaterialLook& MaterialLooks::look(const Material& material) const {
+    static const MaterialLook flat{};
+    for (const auto& [m, look] : looks_)
+        if (m == material) return look;
+    return flat;
+}
+
+}  // namespace io
+}  // namespace plantarch
