@@ -113,6 +113,10 @@ struct RenderSceneOptions {
     bool smoothNormals = true;
     /// A texture that cannot be read is an Error; with this set the material colour is used.
     bool ignoreMissingTextures = false;
+    /// Procedural textures (MaterialOptions, plantarch/Export.h): with
+    /// MaterialStyle::Textured, leaves, internodes, petioles and peduncles get the base colour
+    /// (and alpha) the exporters write; normal and roughness maps are not used here.
+    MaterialOptions appearance;
     /// Embree BVH build quality: Low builds about twice as fast and traces somewhat slower;
     /// High is for many renders of one scene.
     enum class BvhQuality { Low, Medium, High };

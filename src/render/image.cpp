@@ -249,10 +249,14 @@ float srgbByteToLinear(std::uint8_t value) {
 
 Texture loadTexture(const std::string& path) {
     io::DecodedImage decoded = io::readTextureFile(path);
+    return textureOfPixels(decoded.width, decoded.height, std::move(decoded.pixels));
+}
+
+Texture textureOfPixels(int width, int height, std::vector<std::uint8_t> rgba) {
     Texture t;
-    t.width = decoded.width;
-    t.height = decoded.height;
-    t.rgba = std::move(decoded.pixels);
+    t.width = width;
+    t.height = height;
+    t.rgba = std::move(rgba);
     glm::dvec3 sum(0.0);
     std::size_t opaque = 0;
     for (std::size_t i = 0; i < t.rgba.size(); i += 4) {

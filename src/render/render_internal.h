@@ -45,6 +45,8 @@ struct Texture {
 
 /// Loads a texture file; throws plantarch::Error naming the file when it cannot be read.
 Texture loadTexture(const std::string& path);
+/// A texture of RGBA pixels (sRGB, row 0 at v = 1), such as a procedural map.
+Texture textureOfPixels(int width, int height, std::vector<std::uint8_t> rgba);
 
 // ---- prepared scene --------------------------------------------------------------------
 

@@ -13,6 +13,7 @@
 #include "core/parallel.h"
 #include "plantarch/Error.h"
 #include "render/render_internal.h"
+#include "scene_io/material_textures.h"
 
 namespace plantarch::render_detail {
 
@@ -104,6 +105,18 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
             }
         }
         materials[m].texture = it->second;
+    }
+    if (options.appearance.style == MaterialStyle::Textured) {  // procedural textures
+        const Context* contexts[] = {&ctx};
+        io::MaterialLooks looks(contexts, options.appearance, false, true, {.keepPixels = true});
+        const auto first = std::int32_t(data.textures.size());
+        for (const io::MaterialMaps& maps : looks.maps())
+            data.textures.push_back(
+                textureOfPixels(maps.pixels.size, maps.pixels.size, maps.pixels.baseColor));
+        for (MaterialID m = 0; m < materials.size(); ++m) {
+            const io::MaterialLook& look = looks.look(ctx.material(m));
+            if (look.maps >= 0) materials[m].texture = first + look.maps;
+        }
     }
 
     // ---- objects -----------------------------------------------------------------------

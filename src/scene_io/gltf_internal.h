@@ -215,4 +215,9 @@ struct GltfArrays {
     json textures = json::array(), images = json::array();
 };
 
+// ---- textured materials (gltf_materials.cpp) ----
+/// The images, textures and materials of MaterialStyle::Textured (options.appearance).
+void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options,
+                          Buffer& buffer);
+
 }  // namespace plantarch::gltf

@@ -259,6 +259,8 @@ void computeNormals(Scene& s) {
 
 // Images (their bytes first in the buffer) and materials.
 void addMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer) {
+    if (options.appearance.style == MaterialStyle::Textured)
+        return addTexturedMaterials(d, s, options, buffer);  // gltf_materials.cpp
     for (const EmbeddedImage& image : s.imageData) {
         const int view = buffer.add(d.views, image.bytes.size(), 0, [&image](Sink& out) {
             out.write(image.bytes.data(), image.bytes.size());

@@ -27,6 +27,7 @@
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
 #include "scene_io/obj_labels.h"
+#include "scene_io/obj_materials.h"
 
 namespace plantarch {
 
@@ -104,7 +105,7 @@ std::string textureReference(const std::string& texture, const fs::path& mtlDir)
 }
 
 void writeMTL(io::AtomicFile& out, const Context& context, const std::vector<std::string>& names,
-              const fs::path& mtlDir) {
+              const fs::path& mtlDir, const io::ObjTextures& textures) {
     out.write("# plantarch material library\n");
     for (MaterialID m = 0; m < names.size(); ++m) {
         if (names[m].empty()) continue;
@@ -120,6 +121,7 @@ void writeMTL(io::AtomicFile& out, const Context& context, const std::vector<std
         out.advance(p);
         if (!mat.texture.empty())
             out.write("map_Kd " + textureReference(mat.texture, mtlDir) + "\n");
+        out.write(textures.lines(mat));  // textured materials (obj_materials.cpp)
     }
 }
 
@@ -446,8 +448,9 @@ void writeSplit(const Context& context, const std::string& dir, const ObjOptions
     std::vector<io::AtomicFile> files;  // all finished first, then renamed together
     if (options.materials) {
         names = materialNames(context, ids);
+        const io::ObjTextures textures(context, options, root, "", files);
         files.emplace_back((root / kSplitMaterialFile).string(), kSplitBufferBytes);
-        writeMTL(files.back(), context, names, root);
+        writeMTL(files.back(), context, names, root, textures);
         files.back().finish();
     }
     ObjBodyWriter body(context, options);
@@ -487,19 +490,23 @@ void writeOBJ(const Context& context, const std::string& path, const ObjOptions&
     io::AtomicFile obj(
         path, std::clamp(estimate, kSplitBufferBytes / 4, io::AtomicFile::kDefaultBufferBytes));
     std::optional<io::AtomicFile> mtl;
+    std::vector<io::AtomicFile> textureFiles;  // textured materials' maps beside the .mtl
     std::vector<std::string> names;
     fs::path mtlPath;
     if (options.materials) {
         mtlPath = fs::path(path).replace_extension(".mtl");
         if (mtlPath == fs::path(path)) mtlPath += ".mtl";
         names = materialNames(context, ids);
+        const io::ObjTextures textures(context, options, mtlPath.parent_path(),
+                                       mtlPath.stem().string() + "_", textureFiles);
         mtl.emplace(mtlPath.string(), kSplitBufferBytes);
-        writeMTL(*mtl, context, names, mtlPath.parent_path());
+        writeMTL(*mtl, context, names, mtlPath.parent_path(), textures);
         mtl->finish();
     }
     writeHeader(obj, context, ids, options.materials ? mtlPath.filename().string() : "");
     writeBody(obj, context, options, ids, names);
     obj.finish();
+    for (io::AtomicFile& f : textureFiles) f.commit();
     if (mtl) mtl->commit();
     obj.commit();
     if (options.progress) options.progress("writing OBJ", 1.0);

@@ -19,6 +19,7 @@ constexpr OutputFormat kOutputFormats[] = {
     {".glb", "binary glTF", kSceneOutput | kAnimationOutput | kBuilderExport},
     {".gltf", "glTF", kSceneOutput | kAnimationOutput | kBuilderExport},
     {".usda", "USD text", kSceneOutput | kAnimationOutput | kBuilderExport},
+    {".usdz", "USD package (the .usda and its textures in one file)", kSceneOutput},
     {".png", "picture", kSceneOutput | kPictureOutput | kDepthOutput},
     {".npz", "NumPy point cloud (with --points)", kSceneOutput | kScanOutput},
     {".npy", "NumPy array of depths in metres", kDepthOutput},

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
+#include "scene_io/usd_materials.h"
 
 namespace plantarch {
 
@@ -38,10 +40,11 @@ std::string usdQuoted(const std::string& text) {
     return out + "\"";
 }
 
-// Numbers into the file's buffer, shortest exact text.
+// Numbers into the file's buffer (or a string, for a .usdz package), shortest exact text.
 class Text {
 public:
-    explicit Text(io::AtomicFile& file) : file_(file) {}
+    explicit Text(io::AtomicFile& file) : file_(&file) {}
+    explicit Text(std::string& text) : text_(&text) {}
     /// Text written at the start of each line from now on (the nesting of a frame's prims);
     /// called at the start of a line.
     void indent(std::string_view prefix) {
@@ -50,13 +53,13 @@ public:
     }
     Text& operator<<(std::string_view s) {
         if (indent_.empty()) {
-            file_.write(s);
+            put(s);
             return *this;
         }
         for (std::size_t at = 0; at < s.size();) {
             const std::size_t end = std::min(s.find('\n', at), s.size() - 1);
             lineStart();
-            file_.write(s.substr(at, end + 1 - at));
+            put(s.substr(at, end + 1 - at));
             lineStart_ = s[end] == '\n';
             at = end + 1;
         }
@@ -64,33 +67,40 @@ public:
     }
     Text& number(float v) {
         lineStart();
-        char* p = file_.reserve(io::kMaxFloatChars);
-        file_.advance(io::writeFloat(p, v));
+        char p[io::kMaxFloatChars];
+        put(std::string_view(p, std::size_t(io::writeFloat(p, v) - p)));
         return *this;
     }
     Text& integer(std::int64_t v) {
         lineStart();
-        char* p = file_.reserve(24);
-        file_.advance(io::writeInt(p, v));
+        char p[24];
+        put(std::string_view(p, std::size_t(io::writeInt(p, v) - p)));
         return *this;
     }
     Text& tuple(const float* v, int n) {
-        file_.write("(");
+        put("(");
         for (int i = 0; i < n; ++i) {
-            if (i) file_.write(", ");
+            if (i) put(", ");
             number(v[i]);
         }
-        file_.write(")");
+        put(")");
         return *this;
     }
 
 private:
+    void put(std::string_view s) {
+        if (file_)
+            file_->write(s);
+        else
+            text_->append(s);
+    }
     void lineStart() {
-        if (lineStart_ && !indent_.empty()) file_.write(indent_);
+        if (lineStart_ && !indent_.empty()) put(indent_);
         lineStart_ = false;
     }
 
-    io::AtomicFile& file_;
+    io::AtomicFile* file_ = nullptr;
+    std::string* text_ = nullptr;
     std::string indent_;
     bool lineStart_ = false;
 };
@@ -104,7 +114,8 @@ struct Group {  // the objects of one plant and organ kind
 // The Xforms of one scene's plants (and one for the objects of no plant).
 // Progress: `done` grows by the triangles of each mesh written.
 void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>& plantInfo,
-                const UsdOptions& options, ProgressSteps& steps, double& done) {
+                const UsdOptions& options, ProgressSteps& steps, double& done,
+                const io::UsdLooks& looks) {
     const std::vector<ObjectID> ids = io::exportedObjects(context, options.includeHidden);
     const bool hasPlant = context.objectDataType("plantID") == DataType::Int;
     // plant -> organ -> objects; plants in ID order, the objects of no plant (-1) last.
@@ -237,6 +248,7 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
             perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
             perFace("int[]", "node", [&](ObjectID id) { out.integer(labelsOf(id).node); });
             perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
+            out << looks.subsets(context, g.objects);  // textured materials (usd_materials.cpp)
             out << "        }\n";
             steps.at(done += double(g.triangles));
         }
@@ -251,58 +263,97 @@ const char* kHeader =
     "#usda 1.0\n(\n    defaultPrim = \"plantarch\"\n    doc = \"plantarch scene\"\n"
     "    metersPerUnit = 1\n    upAxis = \"Z\"\n";
 
+// Textured materials: the maps of a .usda are files beside it, named after it; a .usdz
+// package holds them as they are named.
+std::string texturePrefix(const std::string& path) {
+    return lowerExtension(path) == ".usdz" ? "" : std::filesystem::path(path).stem().string() + "_";
+}
+
+// Writes the layer `body` makes: a .usda, with the texture files beside it (all put in place
+// together), or a .usdz package of the layer (`<stem>.usda`, first) and the textures.
+template <class Body>
+void writeLayer(const std::string& path, const io::UsdLooks& looks, Body&& body) {
+    const std::filesystem::path target(path);
+    io::AtomicFile file(path);
+    if (lowerExtension(path) == ".usdz") {
+        std::string layer;
+        Text out(layer);
+        body(out);
+        std::vector<std::pair<std::string, std::string_view>> files = looks.files();
+        files.insert(files.begin(), {target.stem().string() + ".usda", layer});
+        io::writeUsdz(file, files);
+        file.commit();
+        return;
+    }
+    std::vector<io::AtomicFile> textures;
+    for (const auto& [name, bytes] : looks.files()) {
+        textures.emplace_back((target.parent_path() / name).string());
+        textures.back().write(bytes.data(), bytes.size());
+        textures.back().finish();
+    }
+    Text out(file);
+    body(out);
+    file.finish();
+    for (io::AtomicFile& t : textures) t.commit();
+    file.commit();
+}
+
 }  // namespace
 
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
-    requireOutputFormat(path, {".usda"}, "writeUSDA writes USD text");
-    io::AtomicFile file(path);
-    Text out(file);
+    requireOutputFormat(path, {".usda", ".usdz"}, "writeUSDA writes USD text or a USDZ package");
+    const Context* contexts[] = {&context};
+    const io::UsdLooks looks(contexts, options, texturePrefix(path));
     ProgressSteps steps(options.progress, "writing USD", double(context.triangleCount()));
     double done = 0.0;
-    out << kHeader << ")\n\ndef Xform \"plantarch\"\n{\n";
-    writeScene(out, context, options.plants, options, steps, done);
-    out << "}\n";
-    file.commit();
+    writeLayer(path, looks, [&](Text& out) {
+        out << kHeader << ")\n\ndef Xform \"plantarch\"\n{\n" << looks.scope();
+        writeScene(out, context, options.plants, options, steps, done, looks);
+        out << "}\n";
+    });
     steps.finish();
 }
 
 void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& path,
                const UsdOptions& options, const AnimationOptions& animation) {
-    requireOutputFormat(path, {".usda"}, "writeUSDA writes USD text");
+    requireOutputFormat(path, {".usda", ".usdz"}, "writeUSDA writes USD text or a USDZ package");
     io::checkAnimation(frames, animation, path);
-    io::AtomicFile file(path);
-    Text out(file);
+    std::vector<const Context*> contexts;
+    for (const AnimationFrame& frame : frames) contexts.push_back(frame.context);
+    const io::UsdLooks looks(contexts, options, texturePrefix(path));
     double triangles = 0.0, done = 0.0;
     for (const AnimationFrame& frame : frames) triangles += double(frame.context->triangleCount());
     ProgressSteps steps(options.progress, "writing USD", triangles);
-    out << kHeader << "    startTimeCode = 0\n    endTimeCode = ";
-    out.integer(std::int64_t(frames.size() - 1)) << "\n    timeCodesPerSecond = ";
-    out.number(float(animation.framesPerSecond)) << "\n)\n\ndef Xform \"plantarch\"\n{\n";
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-        std::string name = "day_" + text::formatDouble(frames[f].day);
-        for (char& c : name)
-            if (c == '.' || c == '-') c = '_';
-        out << (f ? "\n" : "") << "    def Xform " << usdQuoted(name)
-            << " (\n        customData = {\n            double day = "
-            << text::formatDouble(frames[f].day) << "\n        }\n    )\n    {\n";
-        // Shown at time code f alone: hidden before (held from the first sample back) and
-        // after; token values are held, never interpolated.
-        out << "        token visibility.timeSamples = {\n";
-        if (f > 0) out << "            0: \"invisible\",\n";
-        out << "            ";
-        out.integer(std::int64_t(f)) << ": \"inherited\",\n";
-        if (f + 1 < frames.size()) {
+    writeLayer(path, looks, [&](Text& out) {
+        out << kHeader << "    startTimeCode = 0\n    endTimeCode = ";
+        out.integer(std::int64_t(frames.size() - 1)) << "\n    timeCodesPerSecond = ";
+        out.number(float(animation.framesPerSecond)) << "\n)\n\ndef Xform \"plantarch\"\n{\n"
+                                                     << looks.scope();
+        for (std::size_t f = 0; f < frames.size(); ++f) {
+            std::string name = "day_" + text::formatDouble(frames[f].day);
+            for (char& c : name)
+                if (c == '.' || c == '-') c = '_';
+            out << (f ? "\n" : "") << "    def Xform " << usdQuoted(name)
+                << " (\n        customData = {\n            double day = "
+                << text::formatDouble(frames[f].day) << "\n        }\n    )\n    {\n";
+            // Shown at time code f alone: hidden before (held from the first sample back) and
+            // after; token values are held, never interpolated.
+            out << "        token visibility.timeSamples = {\n";
+            if (f > 0) out << "            0: \"invisible\",\n";
             out << "            ";
-            out.integer(std::int64_t(f + 1)) << ": \"invisible\",\n";
+            out.integer(std::int64_t(f)) << ": \"inherited\",\n";
+            if (f + 1 < frames.size()) {
+                out << "            ";
+                out.integer(std::int64_t(f + 1)) << ": \"invisible\",\n";
+            }
+            out << "        }\n";
+            out.indent("    ");
+            writeScene(out, *frames[f].context, frames[f].plants, options, steps, done, looks);
+            out.indent("");
+            out << "    }\n";
         }
-        out << "        }\n";
-        out.indent("    ");
-        writeScene(out, *frames[f].context, frames[f].plants, options, steps, done);
-        out.indent("");
-        out << "    }\n";
-    }
-    out << "}\n";
-    file.commit();
+        out << "}\n";
+    });
     steps.finish();
 }
 
