@@ -13,7 +13,7 @@ PACKAGES=(
   libglm-dev libpugixml-dev libembree-dev libstb-dev libtinyobjloader-dev
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libfmt-dev libpcg-cpp-dev
   libomp-dev pybind11-dev python3 python3-dev python3-numpy
-  libcpp-httplib-dev libzip-dev libnlopt-dev
+  libcpp-httplib-dev libzip-dev libnlopt-dev libmeshoptimizer-dev
 )
 # The test binary, the benchmarks, the fuzz targets (clang's libFuzzer) and the plot of a
 # physiology series (scripts/plot_physiology.py, run by the Python tests) only.

@@ -92,3 +92,31 @@ TEST(MeshDetail, CommandLineOption) {
     EXPECT_EQ(bad.status, 2);
     EXPECT_EQ(bad.out, "plantarch: --mesh-detail = 5: not a mesh detail (valid: 0.1 to 4)\n");
 }
+
+// The lowest detail (0.1) draws plants with a tenth of the triangles or fewer (leaves,
+// flowers and fruit thinned to about 1/25 of theirs, tubes to 3 sides and fewer segments),
+// with the same plant state, and no state depends on it.
+TEST(MeshDetail, LowestDetailIsATenthOfTheTriangles) {
+    for (const char* species : {"tomato", "bean", "soybean", "maize", "cowpea", "strawberry"}) {
+        SCOPED_TRACE(species);
+        const Built normal = build(species, 60.0f, 1.0f);
+        const Built lowest = build(species, 60.0f, 0.1f);
+        EXPECT_LE(lowest.triangles * 10, normal.triangles)
+            << lowest.triangles << " of " << normal.triangles;
+        EXPECT_GT(lowest.triangles, 0u);
+        EXPECT_EQ(lowest.exact, normal.exact);
+        // Coarse blades are smaller, but still leaves of about their size.
+        EXPECT_GT(lowest.leafArea, 0.5f * normal.leafArea);
+    }
+}
+
+// Every step down draws fewer triangles (or as many), down to the lowest.
+TEST(MeshDetail, TrianglesFallWithTheDetail) {
+    std::size_t above = build("tomato", 90.0f, 1.0f).triangles;
+    for (float detail : {0.75f, 0.5f, 0.4f, 0.25f, 0.15f, 0.1f}) {
+        SCOPED_TRACE(detail);
+        const std::size_t n = build("tomato", 90.0f, detail).triangles;
+        EXPECT_LE(n, above);
+        above = n;
+    }
+}

@@ -49,6 +49,11 @@ public:
     /// Drops every prototype (a prototype function was registered again).
     void clear() { entries_.clear(); }
 
+    /// `proto` (cached under `key`) thinned to coarseShare(detail) of each part's triangles,
+    /// never below `floor` a part, cached under its own key; `proto` itself from 0.5 up.
+    const OrganPrototype& coarse(const OrganPrototype& proto, const std::string& key, float detail,
+                                 std::size_t floor, Scope scope);
+
     // ---- leaves ----------------------------------------------------------------------
     /// The prototype a leaf uses (built and cached on first use; tessellate.cpp), at a mesh
     /// detail (PlantArchitecture::setMeshDetail; growth always asks at 1).
@@ -86,9 +91,11 @@ public:
     bool memosPinned = false;
 
 private:
-    /// The prototype of `proto`'s leaflet and variant, whose parameters `description` gives.
+    /// The prototype of `proto`'s leaflet and variant, whose parameters `description` gives;
+    /// below a mesh detail of 0.5, thinned to coarseShare(detail) of its triangles.
     const OrganPrototype& buildLeafPrototype(const LeafPrototype& proto, int leaflet,
-                                             unsigned variant, const std::string& description);
+                                             unsigned variant, const std::string& description,
+                                             float detail = 1.0f);
 
     using LeafKey =
         std::tuple<const LeafPrototype*, int, unsigned>;  ///< prototype, leaflet, variant

@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "core/math.h"
+#include "core/mesh_simplify.h"
 #include "geometry/organ_sink.h"
 #include "geometry/tube.h"
 #include "plantarch/Error.h"
@@ -20,9 +21,24 @@
 
 namespace plantarch {
 
+// The fewest triangles a part of a thinned prototype keeps (mesh detail below 0.5): a leaf
+// blade as two triangles either side of its midrib, a flower or fruit as a small solid.
+constexpr std::size_t kCoarseLeafTriangles = 2, kCoarseFloralTriangles = 8;
+
 namespace {
 
 const vec3 kUp{0.0f, 0.0f, 1.0f};
+
+// `segments` + 1 points of a path of more segments: its ends and the points nearest to equal
+// steps between them (a coarse mesh's tube along a finer path).
+template <class T>
+std::vector<T> everyNth(const std::vector<T>& path, unsigned segments) {
+    const std::size_t n = path.size() - 1;
+    std::vector<T> out;
+    out.reserve(segments + 1);
+    for (unsigned k = 0; k <= segments; ++k) out.push_back(path[(n * k + segments / 2) / segments]);
+    return out;
+}
 
 // Every angle goes through sinCosDeg (core/math.h), so a sine kept by a caller
 // (OrganPlacer::leaves) is the one tessellation computes.
@@ -501,13 +517,14 @@ struct Tessellator {
                                 (normalizeOBJ ? "|normalized" : "");
         const PrototypeCache::Scope scope =
             isOBJPrototypeName(fn) ? PrototypeCache::Scope::Own : prototypes.floralScope(fn);
-        if (auto hit = prototypes.find(key, scope)) return *hit;
+        if (auto hit = prototypes.find(key, scope))
+            return prototypes.coarse(*hit, key, detail, kCoarseFloralTriangles, scope);
         Rng rng(hashKey(key), 7);
         auto built = std::make_shared<OrganPrototype>(
             isOBJPrototypeName(fn) ? loadOBJPrototype(fn, normalizeOBJ)
                                    : prototypes.functions().floralPrototypes.at(fn)(request, rng));
         prototypes.insert(key, built, scope);
-        return *built;
+        return prototypes.coarse(*built, key, detail, kCoarseFloralTriangles, scope);
     }
 
     // The sides of a tube of `radial` sides at the mesh detail.
@@ -517,7 +534,9 @@ struct Tessellator {
         if (!sink->wants(OrganKind::Internode)) return;
         const std::vector<vec3>& pts = nodes[s.id];
         const ShootParameters& type = store.shootTypeFor(plant, s.type);
-        const unsigned segs = std::max(1u, type.phytomer_parameters.internode.length_segments);
+        // An internode's segments are straight steps: a coarse mesh draws fewer of them.
+        const unsigned segs = coarseSegments(
+            std::max(1u, type.phytomer_parameters.internode.length_segments), detail);
         std::vector<vec3> line;
         std::vector<float> radii;
         for (std::size_t i = 0; i < s.phytomers.size(); ++i) {
@@ -600,7 +619,13 @@ struct Tessellator {
             const float tip = std::max(pt.taper, 0.02f);
             for (unsigned k = 0; k <= segs; ++k)
                 radii.push_back(r0 * (1.0f - (1.0f - tip) * float(k) / float(segs)));
-            const auto rings = geometry::tubeRings(path, radii, in.direction);
+            // A coarse mesh draws the tube through fewer of the path's points (the leaves
+            // stay on the path).
+            const unsigned drawn = coarseSegments(segs, detail);
+            const auto rings = drawn == segs
+                                   ? geometry::tubeRings(path, radii, in.direction)
+                                   : geometry::tubeRings(everyNth(path, drawn),
+                                                         everyNth(radii, drawn), in.direction);
             const Mesh m = geometry::tubeMesh(rings, 0, rings.size() - 1,
                                               sides(pp.petiole.radial_subdivisions));
             sink->write(pt.object, m, Material{pp.petiole.color, "", ""},
@@ -811,8 +836,10 @@ struct Tessellator {
             top, dir, std::max(fb.peduncleLength, 1e-6f), fb.peduncleCurvature, kUp, segs);
         if (fb.peduncleLength > 1e-5f && fb.peduncleRadius > 0.0f &&
             sink->wants(OrganKind::Peduncle)) {
-            const std::vector<float> radii(path.size(), fb.peduncleRadius);
-            const auto rings = geometry::tubeRings(path, radii, axis);
+            const unsigned drawn = coarseSegments(segs, detail);
+            const std::vector<vec3> line = drawn == segs ? path : everyNth(path, drawn);
+            const std::vector<float> radii(line.size(), fb.peduncleRadius);
+            const auto rings = geometry::tubeRings(line, radii, axis);
             sink->write(fb.peduncleObject,
                         geometry::tubeMesh(rings, 0, rings.size() - 1,
                                            sides(pp.peduncle.radial_subdivisions)),
@@ -897,9 +924,9 @@ const OrganPrototype& PrototypeCache::leafPrototype(const LeafParameters& lp, co
         // are for the species' own resolution).
         LeafPrototype scaled = lp.prototype;
         scaled.subdivisions = detailed(lp.prototype.subdivisions, detail, 1);
-        if (scaled.subdivisions != lp.prototype.subdivisions)
-            return buildLeafPrototype(scaled, slot.leaflet, slot.variant,
-                                      describePrototype(scaled));
+        if (scaled.subdivisions != lp.prototype.subdivisions || detail < kCoarseDetail)
+            return buildLeafPrototype(scaled, slot.leaflet, slot.variant, describePrototype(scaled),
+                                      detail);
     }
     const LeafPrototype& proto = lp.prototype;
     const auto memoKey = std::make_tuple(&proto, slot.leaflet, slot.variant);
@@ -914,16 +941,35 @@ const OrganPrototype& PrototypeCache::leafPrototype(const LeafParameters& lp, co
     return built;
 }
 
+const OrganPrototype& PrototypeCache::coarse(const OrganPrototype& proto, const std::string& key,
+                                             float detail, std::size_t floor, Scope scope) {
+    const float share = coarseShare(detail);
+    if (share >= 1.0f) return proto;
+    const std::string coarseKey =
+        key + "|coarse=" + std::to_string(std::bit_cast<std::uint32_t>(share));
+    if (auto hit = find(coarseKey, scope)) return *hit;
+    auto thinned = std::make_shared<OrganPrototype>(proto);
+    for (PrototypePart& part : *thinned) {
+        const std::size_t n = part.mesh.triangleCount();
+        const std::size_t target =
+            std::max(std::min(floor, n), std::size_t(double(n) * double(share) + 0.5));
+        part.mesh = meshes::simplified(part.mesh, {.targetTriangles = target});
+    }
+    insert(coarseKey, thinned, scope);
+    return *thinned;
+}
+
 const OrganPrototype& PrototypeCache::buildLeafPrototype(const LeafPrototype& proto, int leaflet,
                                                          unsigned variant,
-                                                         const std::string& description) {
+                                                         const std::string& description,
+                                                         float detail) {
     const std::string key = variantKey(proto.prototype_function, description, leaflet, variant) +
                             (proto.unique_prototypes == 0 ? "|unique" : "");
     // A traced leaf image or an OBJ model is read from a file that may change: their shapes
     // stay with this cache.
     const bool fromFile = !proto.OBJ_model_file.empty() || !proto.leaf_texture_file.empty();
     const Scope scope = fromFile ? Scope::Own : leafScope(proto.prototype_function);
-    if (auto hit = find(key, scope)) return *hit;
+    if (auto hit = find(key, scope)) return coarse(*hit, key, detail, kCoarseLeafTriangles, scope);
     // Variants are seeded from their key, not the plant's stream, so plants sharing a
     // prototype see the same shapes and building one never shifts a plant's random numbers.
     Rng rng(hashKey(key), 7);
@@ -932,7 +978,7 @@ const OrganPrototype& PrototypeCache::buildLeafPrototype(const LeafPrototype& pr
             ? functions_->leafPrototypes.at(proto.prototype_function)(proto, rng, leaflet)
             : loadOBJPrototype(proto.OBJ_model_file, proto.normalize_OBJ_model));
     insert(key, built, scope);
-    return *built;
+    return coarse(*built, key, detail, kCoarseLeafTriangles, scope);
 }
 
 double PrototypeCache::leafPrototypeArea(const LeafParameters& lp, const LeafOrgan& leaf) {

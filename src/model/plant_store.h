@@ -22,6 +22,24 @@ inline unsigned detailed(unsigned n, float detail, unsigned floor) {
     return scaled < float(floor) ? floor : unsigned(scaled);
 }
 
+// Below a mesh detail of 0.5 the subdivisions' floors (3 sides to a tube, 4 rows to a leaf)
+// would stop the meshes from getting coarser, so organs are thinned further: each organ
+// prototype (leaf, flower, fruit) is simplified to coarseShare(detail) of its triangles, and
+// each tube drawn with coarseSegments() of its segments. Both are 1 (no change) from 0.5 up,
+// so that the meshes shrink steadily down to the lowest detail (0.1: about 1/25 of each
+// prototype's triangles, a tube of 1 segment in 5).
+inline constexpr float kCoarseDetail = 0.5f;
+inline float coarseShare(float detail) {
+    if (detail >= kCoarseDetail) return 1.0f;
+    const float f = detail / kCoarseDetail;
+    return f * f;
+}
+inline unsigned coarseSegments(unsigned segments, float detail) {
+    if (detail >= kCoarseDetail) return segments;
+    const float scaled = float(segments) * detail / kCoarseDetail + 0.5f;
+    return scaled < 1.0f ? 1u : unsigned(scaled);
+}
+
 class PlantStore {
 public:
     /// The shoot types by label. A plant takes a copy when it is added, and copies a type it
