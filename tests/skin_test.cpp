@@ -3,19 +3,32 @@
 // bending that poses it, skinned glTF and USD files, determinism and hostile inputs.
 
 #include <gtest/gtest.h>
+#include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "error_of.h"
+#include "glb_reader.h"
 #include "plantarch/Bending.h"
+#include "plantarch/Error.h"
 #include "plantarch/ExportPlants.h"
 #include "plantarch/PlantArchitecture.h"
 
 using namespace plantarch;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using plantarch::testing::errorOf;
+using plantarch::testing::Glb;
+using plantarch::testing::parseGlb;
+using plantarch::testing::readAll;
 
 namespace {
 
@@ -213,4 +226,176 @@ TEST(Skin, BendingPosesTheSkeleton) {
     EXPECT_LT(posedError["petiole"], 0.2 * restError["petiole"]);
     EXPECT_LT(posedError["leaf"], 0.5 * restError["leaf"]);
     EXPECT_LE(posedError["fruit"], restError["fruit"]);
+}
+
+namespace {
+
+fs::path tempPath(const std::string& name) {
+    return fs::temp_directory_path() /
+           ("plantarch_skin_" + std::to_string(::getpid()) + "_" + name);
+}
+
+// `count` elements of an accessor's view, tightly packed, as plantarch writes them.
+template <class T>
+std::vector<T> values(const Glb& g, std::size_t accessor, std::size_t perElement) {
+    const json& a = g.doc["accessors"][accessor];
+    const json& v = g.doc["bufferViews"][a["bufferView"].get<std::size_t>()];
+    std::vector<T> out(a["count"].get<std::size_t>() * perElement);
+    std::memcpy(out.data(), g.bin.data() + v["byteOffset"].get<std::size_t>(),
+                out.size() * sizeof(T));
+    return out;
+}
+
+// Every node's world matrix, from the scene's roots down.
+std::vector<glm::dmat4> worldMatrices(const json& doc) {
+    std::vector<glm::dmat4> world(doc["nodes"].size(), glm::dmat4(1.0));
+    std::vector<std::pair<std::size_t, glm::dmat4>> todo;
+    for (const json& r : doc["scenes"][0]["nodes"]) todo.push_back({r.get<std::size_t>(), {}});
+    for (auto& t : todo) t.second = glm::dmat4(1.0);
+    while (!todo.empty()) {
+        const auto [n, parent] = todo.back();
+        todo.pop_back();
+        const json& node = doc["nodes"][n];
+        glm::dmat4 m(1.0);
+        if (node.contains("translation")) {
+            const json& t = node["translation"];
+            m[3] = glm::dvec4(t[0].get<double>(), t[1].get<double>(), t[2].get<double>(), 1.0);
+        }
+        if (node.contains("rotation")) {
+            const json& r = node["rotation"];
+            const glm::dquat q(r[3].get<double>(), r[0].get<double>(), r[1].get<double>(),
+                               r[2].get<double>());
+            m = m * glm::dmat4(glm::mat3_cast(q));
+        }
+        EXPECT_FALSE(node.contains("scale") || node.contains("matrix"));
+        world[n] = parent * m;
+        for (const json& c : node.value("children", json::array()))
+            todo.push_back({c.get<std::size_t>(), world[n]});
+    }
+    return world;
+}
+
+std::string skinnedGlb(int threads, const std::string& name) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    Built b("bean", 40.0f);
+    GltfOptions o;
+    o.plants = exportPlants(b.arch);
+    o.skeletons = exportSkeletons(b.arch);
+    const fs::path path = tempPath(name);
+    writeGLTF(b.ctx, path.string(), o);
+    omp_set_num_threads(before);
+    const std::string bytes = readAll(path.string());
+    fs::remove(path);
+    return bytes;
+}
+
+}  // namespace
+
+// The file's skin at bind pose (its joints' world matrices times their inverse bind matrices,
+// blended by JOINTS_0 and WEIGHTS_0) puts every vertex where the plant node puts it unskinned:
+// the plant as built, within 1e-5 relative.
+TEST(Skin, GlbBindPoseReproducesThePlant) {
+    Built b("bean", 40.0f);
+    GltfOptions o;
+    o.plants = exportPlants(b.arch);
+    o.skeletons = exportSkeletons(b.arch);
+    const fs::path path = tempPath("bean.glb");
+    writeGLTF(b.ctx, path.string(), o);
+    const Glb g = parseGlb(readAll(path.string()));
+    fs::remove(path);
+    ASSERT_EQ(g.doc["skins"].size(), 1u);
+    const json& skin = g.doc["skins"][0];
+    ASSERT_EQ(skin["joints"].size(), o.skeletons[0].joints.size());
+    const std::vector<glm::dmat4> world = worldMatrices(g.doc);
+    const std::vector<float> ibm = values<float>(g, skin["inverseBindMatrices"], 16);
+    std::vector<glm::dmat4> joint;
+    for (std::size_t j = 0; j < skin["joints"].size(); ++j) {
+        glm::mat4 inverse;
+        std::memcpy(&inverse[0][0], ibm.data() + 16 * j, 64);
+        joint.push_back(world[skin["joints"][j].get<std::size_t>()] * glm::dmat4(inverse));
+    }
+    // The plant's node: the skeleton root's parent, placing the plant unskinned.
+    std::size_t plantNode = 0;
+    for (std::size_t n = 0; n < g.doc["nodes"].size(); ++n)
+        for (const json& c : g.doc["nodes"][n].value("children", json::array()))
+            if (c == skin["skeleton"]) plantNode = n;
+    ASSERT_EQ(g.doc["nodes"][plantNode]["extras"]["plantID"], o.skeletons[0].plant);
+    std::size_t vertices = 0, meshes = 0;
+    double worst = 0.0;
+    for (const json& r : g.doc["scenes"][0]["nodes"]) {
+        const json& node = g.doc["nodes"][r.get<std::size_t>()];
+        if (!node.contains("skin")) continue;
+        ++meshes;
+        EXPECT_FALSE(node.contains("translation") || node.contains("rotation"));
+        for (const json& prim : g.doc["meshes"][node["mesh"].get<std::size_t>()]["primitives"]) {
+            const json& at = prim["attributes"];
+            const auto p = values<float>(g, at["POSITION"], 3);
+            const auto jt = values<std::uint16_t>(g, at["JOINTS_0"], 4);
+            const auto w = values<float>(g, at["WEIGHTS_0"], 4);
+            for (std::size_t k = 0; k < p.size() / 3; ++k) {
+                const glm::dvec4 v(p[3 * k], p[3 * k + 1], p[3 * k + 2], 1.0);
+                glm::dvec4 sum(0.0);
+                double total = 0.0;
+                for (int i = 0; i < 4; ++i) {
+                    ASSERT_LT(jt[4 * k + i], joint.size());
+                    EXPECT_GE(w[4 * k + i], 0.0f);
+                    total += w[4 * k + i];
+                    sum += double(w[4 * k + i]) * (joint[jt[4 * k + i]] * v);
+                }
+                EXPECT_NEAR(total, 1.0, 1e-6);
+                const glm::dvec3 want(world[plantNode] * v);
+                worst = std::max(
+                    worst, glm::length(glm::dvec3(sum) - want) / std::max(1.0, glm::length(want)));
+                ++vertices;
+            }
+        }
+    }
+    EXPECT_EQ(meshes, g.doc["meshes"].size());
+    std::size_t all = 0;
+    for (ObjectID id : b.arch.getAllPlantObjectIDs(b.plant))
+        all += b.ctx.object(id).positions.size();
+    EXPECT_EQ(vertices, all);
+    EXPECT_LT(worst, 1e-5);
+}
+
+TEST(Skin, SameBytesOnAnyThreadCount) {
+    const std::string one = skinnedGlb(1, "one.glb");
+    EXPECT_NE(one.find("JOINTS_0"), std::string::npos);
+    EXPECT_EQ(one, skinnedGlb(4, "four.glb"));
+}
+
+// A skeleton that does not fit the scene is one error naming the file, and writes nothing.
+TEST(Skin, BadSkeletonsAreOneLineErrors) {
+    Built b("bean", 20.0f);
+    GltfOptions o;
+    o.plants = exportPlants(b.arch);
+    const std::vector<GltfSkeleton> good = exportSkeletons(b.arch);
+    const fs::path path = tempPath("bad.glb");
+    auto failure = [&](auto spoil) {
+        o.skeletons = good;
+        spoil(o.skeletons[0]);
+        const Error e = errorOf([&] { writeGLTF(b.ctx, path.string(), o); });
+        EXPECT_FALSE(fs::exists(path));
+        EXPECT_EQ(e.file(), path.string());
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+        return e;
+    };
+    failure([](GltfSkeleton& s) { s.joints[2].parent = 5; });
+    failure([](GltfSkeleton& s) { s.joints[1].position.x = std::nanf(""); });
+    failure([](GltfSkeleton& s) { s.joints[1].rotation = {0, 0, 0, 0}; });
+    failure([](GltfSkeleton& s) { s.joints.clear(); });
+    failure([](GltfSkeleton& s) { s.objects.front().joint = 60000; });
+    failure([](GltfSkeleton& s) {
+        for (GltfSkinnedObject& so : s.objects)
+            if (!so.vertices.empty()) so.vertices.pop_back();
+    });
+    failure([](GltfSkeleton& s) {
+        for (GltfSkinnedObject& so : s.objects)
+            if (!so.vertices.empty()) so.vertices[0].weights = {0.5f, 0.2f, 0.0f, 0.0f};
+    });
+    failure([](GltfSkeleton& s) {
+        for (GltfSkinnedObject& so : s.objects)
+            if (!so.vertices.empty()) so.vertices[0].weights = {2.0f, -1.0f, 0.0f, 0.0f};
+    });
 }
