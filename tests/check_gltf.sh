@@ -14,6 +14,9 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 build bean --age 40 -o "$out/bean.glb" -o "$out/bean.gltf" > /dev/null
 "$cli" --seed 3 canopy bean --count 2x2 --age 30 -o "$out/canopy.glb" > /dev/null
+# Skinned plants (--skin): a bean, and a tomato bent under its load with a node pulled.
+"$cli" --seed 3 build bean --age 40 --skin -o "$out/skinned.glb" -o "$out/skinned.gltf" > /dev/null
+"$cli" --seed 3 build tomato --age 80 --bend --pull 0:5:0.5,0,0 --skin -o "$out/bent_skinned.glb" > /dev/null
 "$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" > /dev/null
 "$cli" --seed 3 build almond --age 400 -o "$out/almond.glb" > /dev/null
 "$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" -o "$out/growth.gltf" > /dev/null

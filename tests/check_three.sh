@@ -47,5 +47,25 @@ if [ "$frames" != "$expected" ]; then
 else
     echo "check_three: growth.glb plays in three.js, frame by frame: $frames triangles"
 fi
+# A skinned bean (--skin): three.js loads its meshes as SkinnedMeshes with a bone per joint of
+# the file, the bean's triangles and labels, and at bind pose its vertices where the unskinned
+# bean has them (the same world box, within 1e-5 m).
+"$cli" --seed 3 build bean --age 40 --skin -o "$out/skinned.glb" > /dev/null
+lines=$(node "$root/tests/js/three_load.mjs" "$out/bean.glb" "$out/skinned.glb") || { echo "$lines"; exit 1; }
+if ! verdict=$(echo "$lines" | node -e '
+    const [plain, skin] = require("fs").readFileSync(0, "utf8").trim().split("\n").map(JSON.parse);
+    const s = skin.skinned || {};
+    const off = Math.max(...plain.box.map((x, k) => Math.abs(x - skin.box[k])));
+    const ok = s.meshes === skin.meshes && s.bones === s.joints && s.joints > 1 &&
+        skin.triangles === plain.triangles && skin.objects === plain.objects &&
+        ["_object_id", "_organ", "_plant_id", "skinIndex", "skinWeight"].every((a) => skin.attributes.includes(a)) &&
+        off < 1e-5;
+    console.log(JSON.stringify({ ...s, triangles: skin.triangles, boxOff: off }));
+    process.exit(ok ? 0 : 1);'); then
+    echo "check_three: skinned.glb in three.js: $verdict: $lines"
+    status=1
+else
+    echo "check_three: skinned.glb loads in three.js as skinned meshes at the bean's pose: $verdict"
+fi
 [ "$status" -eq 0 ] && echo "check_three: 4 files load in three.js with their triangles and labels"
 exit "$status"

@@ -38,6 +38,28 @@ window.loadFile = (url) => new Promise((resolve, reject) => {
       Object.keys(o.geometry.attributes).forEach((a) => attributes.add(a));
     });
     const result = { triangles, meshes, attributes: [...attributes].sort() };
+    // Skinned meshes (--skin): how many, the bones they move and the file's joints; and for
+    // every file, the world box of its vertices as three.js places them (bones applied), to
+    // compare a skinned plant at its bind pose with the same plant unskinned.
+    const skinned = [];
+    gltf.scene.traverse((o) => { if (o.isSkinnedMesh) skinned.push(o); });
+    if (skinned.length) {
+      const bones = new Set(skinned.flatMap((m) => m.skeleton.bones.map((b) => b.uuid)));
+      result.skinned = { meshes: skinned.length, bones: bones.size,
+                         joints: (gltf.parser.json.skins || []).reduce((n, s) => n + s.joints.length, 0) };
+    }
+    gltf.scene.updateMatrixWorld(true);
+    const v = gltf.scene.position.clone();  // a Vector3
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    gltf.scene.traverse((o) => {
+      if (!o.isMesh) return;
+      for (let i = 0; i < o.geometry.attributes.position.count; i++) {
+        o.getVertexPosition(i, v);
+        v.applyMatrix4(o.matrixWorld);
+        [v.x, v.y, v.z].forEach((x, k) => { lo[k] = Math.min(lo[k], x); hi[k] = Math.max(hi[k], x); });
+      }
+    });
+    result.box = [...lo, ...hi];
     // An animation played as a viewer plays it: the triangles shown at each key time.
     if (gltf.animations.length) {
       const clip = gltf.animations[0];
