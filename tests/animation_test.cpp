@@ -1,6 +1,6 @@
-// Growth animations: glTF frames keyed by scale, USD frames keyed by visibility, each frame the
-// scene as it stood at its day (the same plant as one built at that age), the same bytes
-// every time, and one-line errors for bad frames.
+// Growth animations: glTF organs keyed by their transforms and morph weights, USD frames keyed by
+// visibility, each frame the scene as it stood at its day (the same plant as one built at that
+// age), the same bytes every time, and one-line errors for bad frames.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,8 +9,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cli_run.h"
@@ -36,26 +41,99 @@ fs::path tempPath(const std::string& name) {
            ("plantarch_animation_" + std::to_string(::getpid()) + "_" + name);
 }
 
-// Triangles under a node, through its children.
-std::size_t trianglesUnder(const Glb& g, std::size_t node) {
-    const json& n = g.doc["nodes"][node];
-    std::size_t total = 0;
-    if (n.contains("mesh"))
-        for (const json& p : g.doc["meshes"][n["mesh"].get<std::size_t>()]["primitives"])
-            total +=
-                g.doc["accessors"][p["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
-    if (n.contains("children"))
-        for (const json& c : n["children"]) total += trianglesUnder(g, c.get<std::size_t>());
-    return total;
+// An organ as the test names it: organ, shoot, node, leaf and its ordinal among organs with
+// the same four.
+using OrganKey = std::tuple<std::string, int, int, int, int>;
+
+// Each organ's vertices in the bean built directly at `age` (seed 7), in ID order.
+std::map<OrganKey, std::vector<vec3>> builtAt(double age) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(7);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.buildPlantInstanceFromLibrary(vec3(0.0f), float(age));
+    std::map<OrganKey, std::vector<vec3>> out;
+    std::map<std::tuple<std::string, int, int, int>, int> ordinals;
+    for (ObjectID id : ctx.objectIDs()) {
+        const std::string organ = ctx.objectDataString(id, "organ").value_or("");
+        const int shoot = ctx.objectDataInt(id, "shootID").value_or(-1);
+        const int node = ctx.objectDataInt(id, "node").value_or(-1);
+        const int leaf = ctx.objectDataInt(id, "leafID").value_or(-1);
+        const int ordinal = ordinals[{organ, shoot, node, leaf}]++;
+        const ObjectView o = ctx.object(id);
+        out[{organ, shoot, node, leaf, ordinal}].assign(o.positions.begin(), o.positions.end());
+    }
+    return out;
 }
 
-// The scale a STEP sampler holds at time t: the last key at or before t (the first before it).
-float scaleAt(const Glb& g, const json& sampler, float t) {
-    const auto times = accessorValues<float>(g, sampler["input"]);
+// The value a STEP sampler holds at key `k` (the frames' keys are the sampler's inputs).
+std::vector<float> keyValue(const Glb& g, const json& sampler, std::size_t k, std::size_t n) {
     const auto values = accessorValues<float>(g, sampler["output"]);
-    std::size_t k = 0;
-    while (k + 1 < times.size() && times[k + 1] <= t) ++k;
-    return values[3 * k];
+    return std::vector<float>(values.begin() + std::ptrdiff_t(k * n),
+                              values.begin() + std::ptrdiff_t((k + 1) * n));
+}
+
+// Each organ's vertices (plantarch's z-up axes: under the root's turn) at frame `k`, from the
+// nodes' transforms, the channels keyed at k, morph targets and the shape nodes' scales.
+std::map<OrganKey, std::vector<vec3>> shownAt(const Glb& g, std::size_t k) {
+    const json& nodes = g.doc["nodes"];
+    std::map<std::pair<std::size_t, std::string>, const json*> channels;
+    const json& animation = g.doc["animations"][0];
+    for (const json& c : animation["channels"])
+        channels[{c["target"]["node"].get<std::size_t>(), c["target"]["path"]}] =
+            &animation["samplers"][c["sampler"].get<std::size_t>()];
+    auto property = [&](std::size_t node, const char* path, std::size_t n,
+                        std::vector<float> value) {
+        const auto at = channels.find({node, path});
+        if (at != channels.end()) return keyValue(g, *at->second, k, n);
+        if (nodes[node].contains(path)) return nodes[node][path].get<std::vector<float>>();
+        return value;
+    };
+    std::map<OrganKey, std::vector<vec3>> out;
+    // The organ a node draws: its own labels, or its organ node's for a shape node.
+    std::function<void(std::size_t, const mat4&, OrganKey)> visit = [&](std::size_t n,
+                                                                        const mat4& parent,
+                                                                        OrganKey organ) {
+        const std::vector<float> t = property(n, "translation", 3, {0, 0, 0});
+        const std::vector<float> r = property(n, "rotation", 4, {0, 0, 0, 1});
+        const std::vector<float> s = property(n, "scale", 3, {1, 1, 1});
+        if (s[0] == 0.0f) return;  // not shown
+        const mat4 m = parent * glm::translate(mat4(1.0f), vec3(t[0], t[1], t[2])) *
+                       glm::mat4_cast(glm::quat(r[3], r[0], r[1], r[2])) *
+                       glm::scale(mat4(1.0f), vec3(s[0], s[1], s[2]));
+        const json& node = nodes[n];
+        if (node.contains("extras") && node["extras"].contains("objectID")) {
+            const json& l = node["extras"];
+            const std::string name = node["name"];
+            const std::string last = name.substr(name.rfind('_') + 1);
+            const bool numbered = std::all_of(last.begin(), last.end(), ::isdigit);
+            organ = {l["organ"], l["shoot"], l["node"], l["leaf"],
+                     numbered ? std::stoi(last) - 1 : 0};
+        }
+        if (node.contains("mesh")) {
+            const json& mesh = g.doc["meshes"][node["mesh"].get<std::size_t>()];
+            const json& p = mesh["primitives"][0];
+            std::vector<float> positions = accessorValues<float>(g, p["attributes"]["POSITION"]);
+            if (p.contains("targets")) {
+                const std::vector<float> w =
+                    property(n, "weights", p["targets"].size(), mesh["weights"]);
+                for (std::size_t i = 0; i < w.size(); ++i) {
+                    if (w[i] == 0.0f) continue;
+                    const auto d = accessorValues<float>(g, p["targets"][i]["POSITION"]);
+                    for (std::size_t j = 0; j < d.size(); ++j) positions[j] += w[i] * d[j];
+                }
+            }
+            std::vector<vec3>& v = out[organ];
+            for (std::size_t i = 0; i < positions.size(); i += 3)
+                v.push_back(
+                    vec3(m * glm::vec4(positions[i], positions[i + 1], positions[i + 2], 1.0f)));
+        }
+        if (node.contains("children"))
+            for (const json& c : node["children"]) visit(c.get<std::size_t>(), m, organ);
+    };
+    const json& root = nodes[g.doc["scenes"][0]["nodes"][0].get<std::size_t>()];
+    for (const json& c : root["children"]) visit(c.get<std::size_t>(), mat4(1.0f), {});
+    return out;
 }
 
 // A bean grown from germination, with the triangles of its scene at each of `ages` (each
@@ -105,61 +183,60 @@ TEST(Animation, FrameDaysFromStartToEndByStep) {
               "--frames = 1: too many frames (100001) (valid: a step giving at most 10000 frames)");
 }
 
-TEST(Animation, GlbShowsEachFrameAloneAndEachFrameIsThePlantAtItsDay) {
+TEST(Animation, GlbPlaysEachFrameAsThePlantBuiltAtItsDay) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.setSeed(7);
     arch.loadPlantModelFromLibrary("bean");
     const unsigned plant = arch.buildPlantInstanceFromLibrary(vec3(0.0f), 0.0f);
     const fs::path path = tempPath("growth.glb");
-    writeGrowthAnimation(arch, {plant}, {10, 30, 10}, {path.string()}, {2.0});
+    const std::vector<double> days = {6, 12, 18, 24, 30};
+    writeGrowthAnimation(arch, {plant}, {6, 30, 6}, {path.string()}, {2.0});
     EXPECT_DOUBLE_EQ(arch.getPlantAge(plant), 30.0);  // left grown to the last frame
     const Glb g = parseGlb(readAll(path.string()));
 
-    // The root holds the frames, in order, named by day.
+    // The plant's node holds a node per shoot, and each a node per organ with its labels.
     const json& nodes = g.doc["nodes"];
     const json& root = nodes[g.doc["scenes"][0]["nodes"][0].get<std::size_t>()];
-    ASSERT_EQ(root["children"].size(), 3u);
-    const std::vector<std::size_t> expected = trianglesBuiltAt({10, 20, 30});
-    std::size_t total = 0;
-    for (std::size_t f = 0; f < 3; ++f) {
-        const std::size_t node = root["children"][f].get<std::size_t>();
-        EXPECT_EQ(nodes[node]["name"], "day_" + std::to_string(10 * (f + 1)));
-        EXPECT_EQ(nodes[node]["extras"]["day"].get<double>(), 10.0 * double(f + 1));
-        // Still viewers show the last frame only.
-        EXPECT_EQ(nodes[node].contains("scale"), f < 2) << f;
-        // Grown from germination in 10-day steps, the plant is the one built at that age.
-        EXPECT_EQ(trianglesUnder(g, node), expected[f]) << "frame " << f;
-        total += expected[f];
-        const json& plantNode = nodes[nodes[node]["children"][0].get<std::size_t>()];
-        EXPECT_EQ(plantNode["name"], "bean_" + std::to_string(plant));
-        EXPECT_DOUBLE_EQ(plantNode["extras"]["age"].get<double>(), 10.0 * double(f + 1));
-    }
-    EXPECT_LT(expected[0], expected[2]);  // the plant grows
-    // Every frame's objects are rows of the one property table.
-    const json& table = g.doc["extensions"]["EXT_structural_metadata"]["propertyTables"][0];
-    EXPECT_GT(table["count"].get<std::size_t>(), 0u);
-
-    // One channel per frame keys its scale; at frame i's time frame i alone is shown.
+    ASSERT_EQ(root["children"].size(), 1u);
+    const json& plantNode = nodes[root["children"][0].get<std::size_t>()];
+    EXPECT_EQ(plantNode["name"], "bean_" + std::to_string(plant));
+    EXPECT_DOUBLE_EQ(plantNode["extras"]["age"].get<double>(), 30.0);
+    const json& shoot = nodes[plantNode["children"][0].get<std::size_t>()];
+    EXPECT_EQ(shoot["name"].get<std::string>().rfind("shoot_", 0), 0u);
+    const json& organ = nodes[shoot["children"][0].get<std::size_t>()];
+    for (const char* key : {"plantID", "objectID", "organ", "shoot", "node", "leaf", "age"})
+        EXPECT_TRUE(organ["extras"].contains(key)) << key;
     const json& animation = g.doc["animations"][0];
     EXPECT_EQ(animation["name"], "growth");
-    ASSERT_EQ(animation["channels"].size(), 3u);
-    for (std::size_t f = 0; f < 3; ++f) {
-        const json& channel = animation["channels"][f];
-        EXPECT_EQ(channel["target"]["path"], "scale");
-        EXPECT_EQ(channel["target"]["node"], root["children"][f]);
-        EXPECT_EQ(animation["samplers"][channel["sampler"].get<std::size_t>()]["interpolation"],
-                  "STEP");
-    }
-    for (int i = 0; i < 3; ++i)
-        for (float t : {float(i) / 2.0f, (float(i) + 0.9f) / 2.0f})
-            for (std::size_t f = 0; f < 3; ++f) {
-                const json& channel = animation["channels"][f];
-                EXPECT_EQ(
-                    scaleAt(g, animation["samplers"][channel["sampler"].get<std::size_t>()], t),
-                    std::size_t(i) == f ? 1.0f : 0.0f)
-                    << "frame " << f << " at " << t << " s";
+    EXPECT_EQ(animation["extras"]["days"], json(days));
+
+    // At frame i's time every organ stands where it stands in the plant built at that day, to
+    // within the writer's tolerance, and nothing else is shown.
+    std::size_t morphs = 0;
+    for (const json& m : g.doc["meshes"]) morphs += m["primitives"][0].contains("targets");
+    EXPECT_GT(morphs, 0u);  // internodes that lengthen change shape: morph targets
+    for (std::size_t f = 0; f < days.size(); ++f) {
+        const std::map<OrganKey, std::vector<vec3>> shown = shownAt(g, f);
+        const std::map<OrganKey, std::vector<vec3>> built = builtAt(days[f]);
+        ASSERT_EQ(shown.size(), built.size()) << "frame " << f;
+        for (const auto& [key, vertices] : built) {
+            const auto at = shown.find(key);
+            ASSERT_NE(at, shown.end()) << "frame " << f << " organ " << std::get<0>(key);
+            ASSERT_EQ(at->second.size(), vertices.size());
+            AABB box;
+            for (const vec3& v : vertices) box.add(v);
+            const vec3 size = box.extent();
+            const float extent = std::max({size.x, size.y, size.z});
+            for (std::size_t i = 0; i < vertices.size(); ++i) {
+                const vec3 d = glm::abs(at->second[i] - vertices[i]);
+                const float reach = std::max(
+                    {std::abs(vertices[i].x), std::abs(vertices[i].y), std::abs(vertices[i].z)});
+                ASSERT_LE(std::max({d.x, d.y, d.z}), 1e-5f * extent + 4e-6f * reach + 1e-6f)
+                    << "frame " << f << " organ " << std::get<0>(key) << " vertex " << i;
             }
+        }
+    }
 
     // Same frames, same bytes.
     Context ctx2;
@@ -168,7 +245,7 @@ TEST(Animation, GlbShowsEachFrameAloneAndEachFrameIsThePlantAtItsDay) {
     arch2.loadPlantModelFromLibrary("bean");
     const unsigned plant2 = arch2.buildPlantInstanceFromLibrary(vec3(0.0f), 0.0f);
     const fs::path again = tempPath("again.glb");
-    writeGrowthAnimation(arch2, {plant2}, {10, 30, 10}, {again.string()}, {2.0});
+    writeGrowthAnimation(arch2, {plant2}, {6, 30, 6}, {again.string()}, {2.0});
     EXPECT_EQ(readAll(path.string()), readAll(again.string()));
     fs::remove(path);
     fs::remove(again);
@@ -238,7 +315,7 @@ TEST(Animation, BadFramesAndPathsAreOneLineErrors) {
     EXPECT_EQ(std::string(errorOf([&] {
                               writeUSDA({{&a, 0.0, {}}}, file, {}, {0.0});
                           }).what()),
-              file + ": '.glb': writeUSDA writes USD text (valid: .usda)");
+              file + ": '.glb': writeUSDA writes USD text or a USDZ package (valid: .usda, .usdz)");
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.loadPlantModelFromLibrary("bean");
@@ -266,7 +343,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
               std::string::npos)
         << r.out;
     const Glb g = parseGlb(readAll(glb));
-    EXPECT_EQ(g.doc["animations"][0]["channels"].size(), 5u);
+    EXPECT_EQ(g.doc["animations"][0]["extras"]["days"], json({0, 5, 10, 15, 20}));
     EXPECT_NE(readAll(usda).find("def Xform \"day_15\""), std::string::npos);
 
     // grow: frames count days from the file's state.

@@ -43,15 +43,35 @@ inline Glb parseGlb(const std::string& bytes) {
     return g;
 }
 
-/// The values of an accessor (tightly packed, as plantarch writes them).
+/// The values of an accessor (tightly packed, as plantarch writes them, from the accessor's
+/// byteOffset in its view; zeros with sparse values laid over them).
 template <class T>
 std::vector<T> accessorValues(const Glb& g, int accessorIndex) {
     const nlohmann::json& a = g.doc["accessors"][accessorIndex];
-    const nlohmann::json& v = g.doc["bufferViews"][a["bufferView"].get<int>()];
-    const std::size_t components = a["type"] == "VEC3" ? 3 : a["type"] == "VEC2" ? 2 : 1;
+    const std::string type = a["type"];
+    const std::size_t components = type == "VEC4" ? 4 : type == "VEC3" ? 3 : type == "VEC2" ? 2 : 1;
     std::vector<T> out(a["count"].get<std::size_t>() * components);
-    std::memcpy(out.data(), g.bin.data() + v["byteOffset"].get<std::size_t>(),
-                out.size() * sizeof(T));
+    if (a.contains("bufferView")) {
+        const nlohmann::json& v = g.doc["bufferViews"][a["bufferView"].get<int>()];
+        std::memcpy(out.data(),
+                    g.bin.data() + v["byteOffset"].get<std::size_t>() +
+                        a.value("byteOffset", std::size_t(0)),
+                    out.size() * sizeof(T));
+    }
+    if (a.contains("sparse")) {
+        const nlohmann::json& s = a["sparse"];
+        const std::size_t n = s["count"];
+        EXPECT_EQ(s["indices"]["componentType"], 5125);  // plantarch writes uint32 indices
+        const nlohmann::json& iv = g.doc["bufferViews"][s["indices"]["bufferView"].get<int>()];
+        const nlohmann::json& vv = g.doc["bufferViews"][s["values"]["bufferView"].get<int>()];
+        std::vector<std::uint32_t> indices(n);
+        std::memcpy(indices.data(), g.bin.data() + iv["byteOffset"].get<std::size_t>(), 4 * n);
+        for (std::size_t k = 0; k < n; ++k)
+            std::memcpy(
+                out.data() + indices[k] * components,
+                g.bin.data() + vv["byteOffset"].get<std::size_t>() + k * components * sizeof(T),
+                components * sizeof(T));
+    }
     return out;
 }
 

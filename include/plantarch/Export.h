@@ -325,6 +325,22 @@ struct GltfSkeleton {
     std::vector<GltfSkinnedObject> objects;
 };
 
+// ---- organ granularity and instancing (glTF and USD) ------------------------------------
+
+/// How a glTF or USD file groups each plant's geometry into nodes (USD: prims).
+enum class NodeLevel {
+    Plant,  ///< one mesh per plant, a primitive (USD: a mesh) per material
+    Kind,   ///< under each plant, one mesh per organ kind (the default)
+    /// Under each plant, a node per shoot and under it a node per organ (each leaf, internode,
+    /// petiole, flower, fruit ...), named "<organ>_s<shoot>_n<node>[_l<leaf>][_<k>]" and
+    /// labelled in its extras (USD: customData); organs of one shape share a mesh (instancing).
+    Organ,
+};
+/// "plant", "kind", "organ".
+const char* nodeLevelName(NodeLevel level);
+/// The NodeLevel of a name of nodeLevelName; nullopt for another text.
+std::optional<NodeLevel> nodeLevelFromName(std::string_view name);
+
 struct GltfOptions {
     bool includeHidden = false;
     bool normals = true;   ///< smooth per-vertex normals (NORMAL)
@@ -345,6 +361,14 @@ struct GltfOptions {
     /// baseColorTexture (alphaMode MASK where a leaf's outline needs it), normalTexture,
     /// occlusionTexture and metallicRoughnessTexture, the PNG images embedded.
     MaterialOptions appearance;
+    // Organ granularity and instancing (docs/formats.md, "Nodes and instancing").
+    /// How the geometry is grouped into nodes. Growth animations always have a node per organ.
+    NodeLevel nodes = NodeLevel::Kind;
+    /// With a node per organ: organs whose geometry equals another organ's up to a translation,
+    /// rotation and uniform scale place that organ's mesh instead of storing their own (the
+    /// shared mesh then carries the plant and organ labels per vertex, the object's in the
+    /// node's extras).
+    bool instancing = true;
     /// Receives ("writing glTF", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -369,6 +393,9 @@ struct UsdOptions {
     /// `<stem>_<texture>_<map>.png` next to the .usda (written atomically with it), or inside
     /// the package for a .usdz.
     MaterialOptions appearance;
+    // Organ granularity and instancing, as for glTF.
+    NodeLevel nodes = NodeLevel::Kind;
+    bool instancing = true;
     /// Receives ("writing USD", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };

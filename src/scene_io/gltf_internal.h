@@ -21,6 +21,7 @@
 #include "core/progress_steps.h"
 #include "plantarch/Context.h"
 #include "plantarch/Export.h"
+#include "scene_io/organ_tracks.h"
 
 namespace plantarch::gltf {
 
@@ -186,6 +187,11 @@ struct Scene {
     // Smooth normals of record i: normals[normalAt[i]] on, one per vertex (when written).
     std::vector<vec3> normals;
     std::vector<std::size_t> normalAt;
+    // A node per organ (NodeLevel::Organ, and every animation): the organs through the frames,
+    // and each shape's material index; records then hold one row per organ track.
+    bool organNodes = false;
+    io::OrganTracks organs;
+    std::vector<std::size_t> shapeMaterials;
 
     ObjectView object(const ObjectRecord& r) const { return frames[r.frame]->object(r.id); }
     ObjectView object(std::size_t record) const { return object(records[record]); }
@@ -205,6 +211,10 @@ void writeValues(Sink& out, std::size_t count, Value value) {
 /// An accessor of `count` elements of a view.
 json accessor(int view, int componentType, std::size_t count, const char* type);
 
+/// A plant's node ("<species>_<id>" at its base, species, age and seed in its extras; "scene"
+/// for the objects of no plant) over `children` (node indices).
+json plantNode(const Node& node, const json& children);
+
 /// The bytes of a decoded PNG or JPEG texture file, as embedded.
 EmbeddedImage embeddedImage(const std::string& path);
 
@@ -219,5 +229,14 @@ struct GltfArrays {
 /// The images, textures and materials of MaterialStyle::Textured (options.appearance).
 void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options,
                           Buffer& buffer);
+
+// ---- a node per organ (gltf_organs.cpp) ----
+/// Follows the organs of the scene's frames (io::trackOrgans) and makes the records one row per
+/// organ, from its last frame.
+void collectOrgans(Scene& s, const GltfOptions& options);
+/// The plant, shoot and organ nodes of an organ-level scene; the plant nodes go to `roots`.
+/// Returns the growth animation of an animated scene (empty otherwise).
+json addOrganNodes(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
+                   json& roots);
 
 }  // namespace plantarch::gltf

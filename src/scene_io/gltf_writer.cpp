@@ -68,6 +68,52 @@ EmbeddedImage embeddedImage(const std::string& path) {
             image.format == io::ImageFormat::PNG ? "image/png" : "image/jpeg"};
 }
 
+}  // namespace plantarch::gltf
+
+namespace plantarch {
+
+namespace {
+constexpr std::pair<NodeLevel, const char*> kNodeLevelNames[] = {
+    {NodeLevel::Plant, "plant"}, {NodeLevel::Kind, "kind"}, {NodeLevel::Organ, "organ"}};
+}  // namespace
+
+const char* nodeLevelName(NodeLevel level) {
+    for (const auto& [l, name] : kNodeLevelNames)
+        if (l == level) return name;
+    return "kind";
+}
+
+std::optional<NodeLevel> nodeLevelFromName(std::string_view name) {
+    for (const auto& [l, text] : kNodeLevelNames)
+        if (name == text) return l;
+    return std::nullopt;
+}
+
+}  // namespace plantarch
+
+namespace plantarch::gltf {
+
+json plantNode(const Node& node, const json& children) {
+    json parent;
+    if (node.plant >= 0) {
+        const std::string species = node.info ? node.info->species : "";
+        parent["name"] = (species.empty() ? "plant" : species) + "_" + std::to_string(node.plant);
+        json extras = {{"plantID", node.plant}};
+        if (node.info) {
+            extras["species"] = species;
+            extras["age"] = node.info->age;
+            extras["seed"] = node.info->seed;
+        }
+        parent["extras"] = extras;
+        if (node.base != vec3(0.0f))
+            parent["translation"] = {node.base.x, node.base.y, node.base.z};
+    } else {
+        parent["name"] = "scene";
+    }
+    if (!children.empty()) parent["children"] = children;
+    return parent;
+}
+
 namespace {
 
 std::string base64(const std::string& bytes) {
@@ -158,10 +204,12 @@ Scene collect(const std::vector<AnimationFrame>& frames, const GltfOptions& opti
     for (std::size_t i = 0; i < s.records.size(); ++i) {
         const ObjectRecord& r = s.records[i];
         const std::size_t node = nodeOf[{r.frame, r.plant}];
-        auto [it, fresh] = primitiveOf.emplace(std::make_tuple(node, r.organ, r.material), 0);
+        // One mesh per plant: the organ kinds together (kind 0 stands for all).
+        const std::uint8_t kind = options.nodes == NodeLevel::Plant ? 0 : r.organ;
+        auto [it, fresh] = primitiveOf.emplace(std::make_tuple(node, kind, r.material), 0);
         if (fresh) {
             it->second = s.primitives.size();
-            s.primitives.push_back({node, r.organ, r.material, {}});
+            s.primitives.push_back({node, kind, r.material, {}});
         }
         Primitive& p = s.primitives[it->second];
         p.objects.push_back(i);
@@ -210,29 +258,6 @@ json schema(const Scene& s) {
              {{"organ",
                {{"description", "One organ object: a leaf, an internode, a flower ..."},
                 {"properties", properties}}}}}};
-}
-
-std::string frameName(double day) {
-    std::string text = text::formatDouble(day);
-    for (char& c : text)
-        if (c == '.') c = '_';
-    return "day_" + text;
-}
-
-// The keys of frame f's scale: 0 (hidden) or 1 (shown), held from each time to the next.
-// Frame f is shown from f / rate seconds to (f + 1) / rate; the last frame stays shown.
-struct FrameKey {
-    float time, scale;
-};
-std::vector<FrameKey> frameKeys(const Scene& s, std::size_t f) {
-    const std::size_t n = s.frames.size();
-    const auto time = [&](std::size_t i) { return float(double(i) / s.framesPerSecond); };
-    std::vector<FrameKey> keys;
-    if (f > 0) keys.push_back({0.0f, 0.0f});
-    keys.push_back({time(f), 1.0f});
-    if (f + 1 < n) keys.push_back({time(f + 1), 0.0f});
-    keys.push_back({time(n), f + 1 == n ? 1.0f : 0.0f});
-    return keys;
 }
 
 // Smooth normals of every object, on all threads (each object its own slice).
@@ -386,7 +411,9 @@ std::vector<json> addMeshes(GltfArrays& d, const Scene& s, const GltfOptions& op
         auto [it, fresh] = meshOf.emplace(key, int(d.meshes.size()));
         if (fresh) {
             d.meshes.push_back(
-                {{"name", std::string(kOrganLabels[p.organ])}, {"primitives", json::array()}});
+                {{"name", options.nodes == NodeLevel::Plant ? std::string("plant")
+                                                            : std::string(kOrganLabels[p.organ])},
+                 {"primitives", json::array()}});
             nodeMeshes[p.node].push_back(it->second);
         }
         d.meshes[std::size_t(it->second)]["primitives"].push_back(std::move(primitive));
@@ -394,76 +421,20 @@ std::vector<json> addMeshes(GltfArrays& d, const Scene& s, const GltfOptions& op
     return nodeMeshes;
 }
 
-// One child node per mesh under each plant's node; returns each frame's plant nodes.
-std::vector<json> addPlantNodes(GltfArrays& d, const Scene& s,
-                                const std::vector<json>& nodeMeshes) {
-    std::vector<json> frameChildren(s.frames.size(), json::array());
+// One child node per mesh under each plant's node; returns the plant nodes.
+json addPlantNodes(GltfArrays& d, const Scene& s, const std::vector<json>& nodeMeshes) {
+    json roots = json::array();
     for (std::size_t n = 0; n < s.nodes.size(); ++n) {
-        const Node& node = s.nodes[n];
         json children = json::array();
         for (const json& mesh : nodeMeshes[n]) {
             d.nodes.push_back(
                 {{"mesh", mesh}, {"name", d.meshes[mesh.get<std::size_t>()]["name"]}});
             children.push_back(d.nodes.size() - 1);
         }
-        json parent;
-        if (node.plant >= 0) {
-            const std::string species = node.info ? node.info->species : "";
-            parent["name"] =
-                (species.empty() ? "plant" : species) + "_" + std::to_string(node.plant);
-            json extras = {{"plantID", node.plant}};
-            if (node.info) {
-                extras["species"] = species;
-                extras["age"] = node.info->age;
-                extras["seed"] = node.info->seed;
-            }
-            parent["extras"] = extras;
-            if (node.base != vec3(0.0f))
-                parent["translation"] = {node.base.x, node.base.y, node.base.z};
-        } else {
-            parent["name"] = "scene";
-        }
-        if (!children.empty()) parent["children"] = children;
-        d.nodes.push_back(std::move(parent));
-        frameChildren[node.frame].push_back(d.nodes.size() - 1);
-    }
-    return frameChildren;
-}
-
-// With frames, a node per frame over its plants, shown on its days by a step animation of
-// its scale; the root nodes go to `roots`. Returns the animation (empty without frames).
-json addFrames(GltfArrays& d, const Scene& s, const std::vector<json>& frameChildren,
-               Buffer& buffer, json& roots) {
-    if (!s.animated) {
-        roots = frameChildren.front();
-        return json();
-    }
-    json channels = json::array(), samplers = json::array();
-    for (std::size_t f = 0; f < s.frames.size(); ++f) {
-        json frame = {{"name", frameName(s.days[f])}, {"extras", {{"day", s.days[f]}}}};
-        if (!frameChildren[f].empty()) frame["children"] = frameChildren[f];
-        const std::vector<FrameKey> keys = frameKeys(s, f);
-        if (keys.back().scale == 0.0f) frame["scale"] = {0.0, 0.0, 0.0};
-        d.nodes.push_back(std::move(frame));
+        d.nodes.push_back(plantNode(s.nodes[n], children));
         roots.push_back(d.nodes.size() - 1);
-        const int times = buffer.add(d.views, keys.size() * 4, 0, [keys](Sink& out) {
-            writeValues<float>(out, keys.size(), [&](std::size_t k) { return keys[k].time; });
-        });
-        json input = accessor(times, kFloat, keys.size(), "SCALAR");
-        input["min"] = {keys.front().time};
-        input["max"] = {keys.back().time};
-        d.accessors.push_back(std::move(input));
-        const int scales = buffer.add(d.views, keys.size() * 12, 0, [keys](Sink& out) {
-            writeValues<vec3>(out, keys.size(), [&](std::size_t k) { return vec3(keys[k].scale); });
-        });
-        d.accessors.push_back(accessor(scales, kFloat, keys.size(), "VEC3"));
-        samplers.push_back({{"input", d.accessors.size() - 2},
-                            {"output", d.accessors.size() - 1},
-                            {"interpolation", "STEP"}});
-        channels.push_back(
-            {{"sampler", f}, {"target", {{"node", d.nodes.size() - 1}, {"path", "scale"}}}});
     }
-    return {{"name", "growth"}, {"channels", channels}, {"samplers", samplers}};
+    return roots;
 }
 
 // The JSON document and the buffer's layout.
@@ -472,10 +443,13 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     doc["asset"] = {{"version", "2.0"}, {"generator", "plantarch"}};
     GltfArrays d;
     addMaterials(d, s, options, buffer);
-    const std::vector<json> nodeMeshes = addMeshes(d, s, options, buffer);
-    const std::vector<json> frameChildren = addPlantNodes(d, s, nodeMeshes);
-    json roots = json::array();
-    const json animation = addFrames(d, s, frameChildren, buffer, roots);
+    json roots = json::array(), animation;
+    if (s.organNodes) {
+        animation = addOrganNodes(d, s, options, buffer, roots);  // gltf_organs.cpp
+    } else {
+        const std::vector<json> nodeMeshes = addMeshes(d, s, options, buffer);
+        roots = addPlantNodes(d, s, nodeMeshes);
+    }
     const SkinNodes skins = addSkins(d, s, options, buffer, roots);  // gltf_skin.cpp
 
     if (options.labels) {
@@ -541,7 +515,10 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
                     {.file = path,
                      .value = std::to_string(scene.records.size()),
                      .validRange = "fewer than 16777216 objects"});
-    if (options.normals) computeNormals(scene);
+    if (scene.organNodes && !scene.animated && !options.skeletons.empty())
+        throw Error("a node per organ cannot be written with a skin",
+                    {.file = path, .validRange = "skins with a node per plant or organ kind"});
+    if (options.normals && !scene.organNodes) computeNormals(scene);
     checkSkins(scene, options, path);  // gltf_skin.cpp
     Buffer buffer;
     json doc = document(scene, options, buffer);
@@ -593,6 +570,7 @@ using gltf::Scene;
 void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options) {
     gltf::checkExtension(path);
     Scene scene = gltf::collect({AnimationFrame{&context, 0.0, options.plants}}, options);
+    if (options.nodes == NodeLevel::Organ) gltf::collectOrgans(scene, options);
     gltf::write(scene, path, options);
 }
 
@@ -603,6 +581,7 @@ void writeGLTF(const std::vector<AnimationFrame>& frames, const std::string& pat
     Scene scene = gltf::collect(frames, options);
     scene.animated = true;
     scene.framesPerSecond = animation.framesPerSecond;
+    gltf::collectOrgans(scene, options);  // an animation has a node per organ
     gltf::write(scene, path, options);
 }
 
