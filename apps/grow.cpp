@@ -53,6 +53,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
             throw Error("--days and --frames both given: --frames gives the days of the frames");
         if (!frames && a->days < 0.0)
             throw Error("--days is required (or --frames for a growth animation)");
+        checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
         checkPhysiologyOptions(a->physiology);
         checkBendOptions(a->bend);
         if (frames && (!a->bend.pull.empty() || !a->bend.displace.empty()))

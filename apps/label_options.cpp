@@ -39,7 +39,8 @@ void addLabelOptions(CLI::App& app, GlobalOptions& global) {
            },
            "Encoding of .ply outputs: binary (default) or ascii; both hold the same labels")
         ->type_name("FORMAT");
-    addSkinOptions(app, global);  // skin_options.cpp
+    addSkinOptions(app, global);   // skin_options.cpp
+    addLevelOptions(app, global);  // lod_options.cpp
 }
 
 }  // namespace plantarch::cli

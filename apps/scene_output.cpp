@@ -32,6 +32,8 @@ PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress) {
     o.cameraTarget = g.pictureTarget;
     o.mode = g.pictureMode;
     o.cameraJson = g.cameraJson;
+    o.levels = g.levels;
+    o.meshoptCompression = g.meshopt;
     o.skin = g.skin;
     if (showProgress) o.progress = terminalProgress();
     o.onWritten = [&g](const std::string& path) { info(g, "wrote " + path); };

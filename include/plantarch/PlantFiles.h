@@ -37,6 +37,10 @@ struct PlantFileOptions {
     bool cameraTarget = false;
     RenderMode mode = RenderMode::Shaded;  ///< shaded picture or a label mask
     bool cameraJson = false;  ///< NAME.camera.json (the camera's matrices) beside each .png
+    // Levels of detail and compression of .glb and .gltf files (GltfOptions): levels given
+    // with another mesh format are an error.
+    std::vector<GltfLevel> levels;
+    bool meshoptCompression = false;
     /// Skinning: .glb, .gltf and .usda files of plants carry a wind-ready skeleton per plant
     /// (exportSkeletons, GltfOptions::skeletons); other files are written as without it.
     bool skin = false;

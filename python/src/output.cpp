@@ -181,12 +181,14 @@ void bindOutput(py::module_& m) {
     m.def(
         "writeGLTF",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
-           bool normals, bool uvs, bool labels) {
+           bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt) {
             GltfOptions o;
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
             o.labels = labels;
+            o.levels = parseGltfLevels(lod);  // levels of detail, as the CLI's --lod
+            o.meshoptCompression = meshopt;
             if (!architecture.is_none())
                 o.plants = exportPlants(architecture.cast<const PlantArchitecture&>());
             py::gil_scoped_release release;
@@ -194,12 +196,14 @@ void bindOutput(py::module_& m) {
         },
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
-        py::arg("labels") = true,
+        py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
             "plant (named, placed and described from `architecture` when given), a mesh per organ "
-            "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata."));
+            "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata. "
+            "`lod`: levels of detail as MSFT_lod, as the command line's --lod (e.g. "
+            "'reduced,cards'); `meshopt`: EXT_meshopt_compression."));
     m.def(
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,

@@ -43,6 +43,12 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
                     const std::vector<GltfSkeleton>& skeletons) {
     const std::string ext = lowerExtension(path);
     const ProgressCallback& progress = g.progress;
+    if ((!g.levels.empty() || g.meshoptCompression) && ext != ".glb" && ext != ".gltf" &&
+        ext != ".png")
+        throw Error("levels of detail and meshopt compression are written in glTF only",
+                    {.file = path,
+                     .parameter = g.levels.empty() ? "meshopt" : "lod",
+                     .validRange = ".glb, .gltf"});
     auto points = [&] {
         return samplePoints(ctx, {.points = g.points, .seed = g.seed, .progress = progress});
     };
@@ -59,6 +65,8 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         o.plants = plants;
         o.skeletons = skeletons;
         o.progress = progress;
+        o.levels = g.levels;
+        o.meshoptCompression = g.meshoptCompression;
         writeGLTF(ctx, path, o);
     } else if (ext == ".usda") {
         UsdOptions o;

@@ -34,6 +34,7 @@
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
 #include "scene_io/gltf_internal.h"
+#include "scene_io/gltf_lod.h"
 #include "scene_io/gltf_skin.h"
 
 namespace plantarch::gltf {
@@ -522,6 +523,17 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     checkSkins(scene, options, path);  // gltf_skin.cpp
     Buffer buffer;
     json doc = document(scene, options, buffer);
+    Levels levels;  // levels of detail and compression (gltf_lod.cpp)
+    addLevels(
+        doc, buffer, scene, options, levels,
+        [](const Context& c, const GltfOptions& o) {
+            return collect({AnimationFrame{&c, 0.0, o.plants}}, o);
+        },
+        [](Scene& s, const GltfOptions& o, Buffer& b) {
+            if (o.normals) computeNormals(s);
+            return document(s, o, b);
+        });
+    if (options.meshoptCompression) buffer = compressMeshopt(doc, buffer);
     io::AtomicFile file(path);
     ProgressSteps steps(options.progress, "writing glTF", double(buffer.size()));
     if (lowerExtension(path) == ".gltf") {
