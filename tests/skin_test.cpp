@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -398,4 +399,104 @@ TEST(Skin, BadSkeletonsAreOneLineErrors) {
         for (GltfSkinnedObject& so : s.objects)
             if (!so.vertices.empty()) so.vertices[0].weights = {2.0f, -1.0f, 0.0f, 0.0f};
     });
+}
+
+// USD: the plant a SkelRoot holding its Skeleton (a joint path, bind and rest transform per
+// joint, the rest transforms composing to the bind transforms), its meshes bound to it with
+// four joint indices and weights per point, the weights summing to 1.
+TEST(Skin, UsdSkelroot) {
+    Built b("bean", 30.0f);
+    UsdOptions o;
+    o.plants = exportPlants(b.arch);
+    o.skeletons = exportSkeletons(b.arch);
+    const std::size_t joints = o.skeletons[0].joints.size();
+    const fs::path path = tempPath("bean.usda");
+    writeUSDA(b.ctx, path.string(), o);
+    const std::string text = readAll(path.string());
+    fs::remove(path);
+    EXPECT_NE(text.find("def SkelRoot \"bean_"), std::string::npos);
+    // The array after `key = [` up to its `]`, split at ", " outside parentheses.
+    auto array = [&](std::size_t from, const std::string& key) {
+        const std::size_t at = text.find(key + " = [", from);
+        EXPECT_NE(at, std::string::npos) << key;
+        std::vector<std::string> items;
+        int depth = 0;
+        std::string item;
+        for (std::size_t i = at + key.size() + 4; i < text.size(); ++i) {
+            const char c = text[i];
+            if (depth == 0 && c == ']') break;
+            if (c == '(') ++depth;
+            if (c == ')') --depth;
+            if (depth == 0 && c == ',') {
+                items.push_back(item);
+                item.clear();
+                ++i;  // the space
+                continue;
+            }
+            item += c;
+        }
+        if (!item.empty()) items.push_back(item);
+        return items;
+    };
+    const std::size_t skeleton = text.find("def Skeleton \"skeleton\"");
+    ASSERT_NE(skeleton, std::string::npos);
+    const auto paths = array(skeleton, "uniform token[] joints");
+    ASSERT_EQ(paths.size(), joints);
+    EXPECT_EQ(paths[0], "\"root\"");
+    const auto bind = array(skeleton, "uniform matrix4d[] bindTransforms");
+    const auto rest = array(skeleton, "uniform matrix4d[] restTransforms");
+    ASSERT_EQ(bind.size(), joints);
+    ASSERT_EQ(rest.size(), joints);
+    auto matrix = [](std::string m) {
+        for (char& c : m)
+            if (c == '(' || c == ')' || c == ',') c = ' ';
+        std::istringstream in(m);
+        glm::dmat4 out;
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) in >> out[r][c];  // USD rows: glm columns
+        return out;
+    };
+    for (std::size_t j = 1; j < joints; ++j) {
+        const GltfJoint& jt = o.skeletons[0].joints[j];
+        // A joint's path is its parent's and its own name.
+        EXPECT_EQ(paths[j].rfind(paths[std::size_t(jt.parent)].substr(
+                                     0, paths[std::size_t(jt.parent)].size() - 1) +
+                                     "/",
+                                 0),
+                  0u);
+        const glm::dmat4 composed = matrix(bind[std::size_t(jt.parent)]) * matrix(rest[j]);
+        const glm::dmat4 want = matrix(bind[j]);
+        for (int c = 0; c < 4; ++c) EXPECT_LT(glm::length(composed[c] - want[c]), 1e-5) << paths[j];
+    }
+    std::size_t meshes = 0;
+    for (std::size_t at = text.find("def Mesh"); at != std::string::npos;
+         at = text.find("def Mesh", at + 1)) {
+        ++meshes;
+        const std::size_t points = array(at, "point3f[] points").size();
+        const auto indices = array(at, "int[] primvars:skel:jointIndices");
+        const auto weights = array(at, "float[] primvars:skel:jointWeights");
+        ASSERT_EQ(indices.size(), 4 * points);
+        ASSERT_EQ(weights.size(), 4 * points);
+        for (std::size_t k = 0; k < points; ++k) {
+            double sum = 0.0;
+            for (int i = 0; i < 4; ++i) {
+                EXPECT_LT(std::stoul(indices[4 * k + std::size_t(i)]), joints);
+                const double w = std::stod(weights[4 * k + std::size_t(i)]);
+                EXPECT_GE(w, 0.0);
+                sum += w;
+            }
+            EXPECT_NEAR(sum, 1.0, 1e-6);
+        }
+        EXPECT_NE(text.find("rel skel:skeleton = </plantarch/bean_", at), std::string::npos);
+    }
+    EXPECT_GE(meshes, 3u);
+    // A skeleton that does not fit: one error naming the file, nothing written.
+    o.skeletons[0].joints[3].parent = 7;
+    try {
+        writeUSDA(b.ctx, path.string(), o);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.file(), path.string());
+    }
+    EXPECT_FALSE(fs::exists(path));
 }
