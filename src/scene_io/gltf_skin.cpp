@@ -94,7 +94,7 @@ void checkSkeleton(const GltfSkeleton& sk, const Scene& s, std::size_t node,
 }  // namespace
 
 const GltfSkeleton* skeletonOf(const Scene& s, const GltfOptions& options, std::size_t node) {
-    if (s.animated || s.nodes[node].plant < 0) return nullptr;
+    if (s.animated || s.organNodes || s.nodes[node].plant < 0) return nullptr;
     for (const GltfSkeleton& sk : options.skeletons)
         if (sk.plant == s.nodes[node].plant) return &sk;
     return nullptr;
