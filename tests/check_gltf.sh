@@ -20,6 +20,11 @@ trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" > /dev/null
 "$cli" --seed 3 build almond --age 400 -o "$out/almond.glb" > /dev/null
 "$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" -o "$out/growth.gltf" > /dev/null
+# Levels of detail (MSFT_lod) and EXT_meshopt_compression: the validator checks the document and
+# lists both as extensions it does not check (three.js decodes them: check_three.sh).
+"$cli" --seed 3 build bean --age 40 --lod reduced,cards -o "$out/lod.glb" -o "$out/lod.gltf" > /dev/null
+"$cli" --seed 3 build tomato --age 60 --lod reduced:0.1,cards --meshopt \
+    -o "$out/lod_meshopt.glb" -o "$out/lod_meshopt.gltf" > /dev/null
 # The tiles of a field (plantarch field: one GLB per tile).
 "$cli" field "$root/examples/fields/bean_field.json" --out "$out/field" --tile-size 0.6 > /dev/null
 # The examples of docs/formats.md, run as written (build/plantarch is the binary under test).

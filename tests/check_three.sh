@@ -67,5 +67,28 @@ if ! verdict=$(echo "$lines" | node -e '
 else
     echo "check_three: skinned.glb loads in three.js as skinned meshes at the bean's pose: $verdict"
 fi
+# Levels of detail and meshopt compression: three.js (with its MeshoptDecoder) holds the plain
+# file's triangles and objects in the compressed files, and each MSFT_lod level, loaded by its
+# node, every object of the full level with fewer triangles than the level before.
+"$cli" --seed 3 build bean --age 40 --lod reduced,cards -o "$out/lod.glb" --meshopt -o "$out/lod_meshopt.gltf" > /dev/null
+"$cli" --seed 3 build bean --age 40 --meshopt -o "$out/meshopt.glb" > /dev/null
+report=$(node "$root/tests/js/three_load.mjs" "$out/bean.glb" "$out/meshopt.glb" "$out/lod.glb" "$out/lod_meshopt.gltf") ||
+    { echo "$report"; exit 1; }
+objects=$(echo "$report" | head -1 | sed -n 's/.*"objects":\([0-9]*\).*/\1/p')
+while read -r line; do
+    echo "$line" | grep -q "\"triangles\":$bean,.*\"objects\":$objects[,}]" ||
+        { echo "check_three: not the plain file's $bean triangles and $objects objects: $line"; status=1; }
+done <<< "$report"
+while read -r line; do
+    levels=$(echo "$line" | sed -n 's/.*"levels":\(\[[^]]*\]\).*/\1/p')
+    t1=$(echo "$levels" | sed -n 's/^\[{"triangles":\([0-9]*\),"objects":\([0-9]*\),"shared":\([0-9]*\)},{"triangles":\([0-9]*\),"objects":\([0-9]*\),"shared":\([0-9]*\)}\]$/\1 \2 \3 \4 \5 \6/p')
+    read -r r ro rs c co cs <<< "$t1"
+    if [ -z "$t1" ] || [ "$r" -ge "$bean" ] || [ "$c" -ge "$r" ] || [ "$ro" != "$objects" ] ||
+        [ "$rs" != "$objects" ] || [ "$co" != "$objects" ] || [ "$cs" != "$objects" ]; then
+        echo "check_three: levels of detail ${levels:-missing}, full level $bean triangles and $objects objects: $line"
+        status=1
+    fi
+done < <(echo "$report" | tail -2)
+[ "$status" -eq 0 ] && echo "check_three: meshopt and MSFT_lod files load in three.js, levels: $levels"
 [ "$status" -eq 0 ] && echo "check_three: 4 files load in three.js with their triangles and labels"
 exit "$status"

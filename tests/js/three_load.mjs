@@ -18,6 +18,7 @@ const page = `<!doctype html><script type="importmap">
 <script type="module">
 import { AnimationMixer } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 const count = (g) => (g.index ? g.index.count : g.attributes.position.count) / 3;
 // Triangles of the meshes a viewer draws: visible, with a world scale that is not zero.
 function shownTriangles(scene) {
@@ -28,8 +29,19 @@ function shownTriangles(scene) {
   });
   return n;
 }
+// Triangles and distinct _OBJECT_ID labels of the meshes under a node.
+function tally(root) {
+  let triangles = 0; const objects = new Set();
+  root.traverse((o) => {
+    if (!o.isMesh) return;
+    triangles += count(o.geometry);
+    const ids = o.geometry.attributes._object_id;
+    if (ids) for (let i = 0; i < ids.count; i++) objects.add(ids.getX(i));
+  });
+  return { triangles, objects };
+}
 window.loadFile = (url) => new Promise((resolve, reject) => {
-  new GLTFLoader().load(url, (gltf) => {
+  new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).load(url, async (gltf) => {
     let triangles = 0, meshes = 0; const attributes = new Set();
     gltf.scene.traverse((o) => {
       if (!o.isMesh) return;
@@ -37,7 +49,27 @@ window.loadFile = (url) => new Promise((resolve, reject) => {
       triangles += count(o.geometry);
       Object.keys(o.geometry.attributes).forEach((a) => attributes.add(a));
     });
-    const result = { triangles, meshes, attributes: [...attributes].sort() };
+    const result = { triangles, meshes, attributes: [...attributes].sort(),
+                     objects: tally(gltf.scene).objects.size };
+    // MSFT_lod (which GLTFLoader leaves out of the scene): each level's nodes loaded by
+    // index, with their triangles and objects, and how many of those are the full level's.
+    const json = gltf.parser.json;
+    const lods = (json.nodes || []).filter((n) => n.extensions && n.extensions.MSFT_lod);
+    if (lods.length) {
+      const full = tally(gltf.scene).objects;
+      result.levels = [];
+      for (let k = 0; k < lods[0].extensions.MSFT_lod.ids.length; k++) {
+        let t = 0; const objects = new Set();
+        for (const n of lods) {
+          const node = await gltf.parser.getDependency('node', n.extensions.MSFT_lod.ids[k]);
+          const one = tally(node);
+          t += one.triangles;
+          one.objects.forEach((o) => objects.add(o));
+        }
+        result.levels.push({ triangles: t, objects: objects.size,
+                             shared: [...objects].filter((o) => full.has(o)).length });
+      }
+    }
     // Skinned meshes (--skin): how many, the bones they move and the file's joints; and for
     // every file, the world box of its vertices as three.js places them (bones applied), to
     // compare a skinned plant at its bind pose with the same plant unskinned.
