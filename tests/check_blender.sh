@@ -48,4 +48,37 @@ if [ "$frames" != "[$expected]" ]; then
 else
     echo "check_blender: growth.glb plays in Blender, frame by frame: $frames triangles"
 fi
+# A skinned bean (--skin): one armature with a bone per joint of the file deforming its meshes,
+# the bean's triangles, and at rest every vertex where the unskinned bean has it.
+"$cli" --seed 3 build bean --age 40 --skin -o "$out/skinned.glb" > /dev/null
+skinned=$(cd "$out" && blender -b --factory-startup --python "$here/blender/import_gltf.py" -- "$out/skinned.glb" 2>&1 |
+          grep '^PLANTARCH ' | head -1 | cut -d' ' -f2-) || true
+if ! verdict=$(python3 - "$out/skinned.glb" "$n" "$skinned" <<'PY'
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+doc = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+joints = sum(len(s["joints"]) for s in doc["skins"])
+skinned = json.loads(sys.argv[3] or "{}")
+# The bean's box as written: its positions' bounds (z up, as Blender turns glTF back) moved by
+# its plant node's translation.
+base = next(n.get("translation", [0, 0, 0]) for n in doc["nodes"] if "plantID" in n.get("extras", {}))
+low, high = [float("inf")] * 3, [float("-inf")] * 3
+for mesh in doc["meshes"]:
+    for p in mesh["primitives"]:
+        a = doc["accessors"][p["attributes"]["POSITION"]]
+        low = [min(x, m + b) for x, m, b in zip(low, a["min"], base)]
+        high = [max(x, m + b) for x, m, b in zip(high, a["max"], base)]
+off = max(abs(x - y) for x, y in zip(low + high, skinned.get("box", [1e9] * 6)))
+ok = (skinned.get("armatures") == 1 and skinned.get("bones") == joints and
+      skinned.get("skinned", 0) > 0 and skinned.get("triangles") == int(sys.argv[2]) and off < 1e-5)
+print(json.dumps({k: skinned.get(k) for k in ("armatures", "bones", "skinned", "triangles")} |
+                 {"joints": joints, "box_off": off}))
+sys.exit(0 if ok else 1)
+PY
+); then
+    echo "check_blender: skinned.glb in Blender: $verdict ($skinned)"
+    status=1
+else
+    echo "check_blender: skinned.glb imports with its armature: $verdict"
+fi
 exit "$status"

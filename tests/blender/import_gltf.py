@@ -1,7 +1,7 @@
 """Run by Blender (blender -b --factory-startup --python import_gltf.py -- FILE): imports a
 glTF file with Blender's own importer and prints one JSON line with what it holds: triangles,
-mesh objects, the names of the mesh attributes (labels show up as attributes) and, for an
-animated file, the triangles shown at each frame."""
+mesh objects, the names of the mesh attributes (labels show up as attributes), for a skinned
+file its armatures and bones, and for an animated file the triangles shown at each frame."""
 
 import json
 import sys
@@ -28,6 +28,27 @@ for obj in bpy.data.objects:
     triangles += sum(len(p.vertices) - 2 for p in mesh.polygons)
     attributes.update(a.name for a in mesh.attributes)
 report = {"triangles": triangles, "meshes": meshes, "attributes": sorted(attributes)}
+
+# Skins: the armatures, their bones, the meshes an armature deforms, and the world box of every
+# mesh vertex as Blender places it (armatures applied).
+armatures = [o for o in bpy.data.objects if o.type == "ARMATURE"]
+if armatures:
+    graph = bpy.context.evaluated_depsgraph_get()
+    low, high = [float("inf")] * 3, [float("-inf")] * 3
+    for obj in bpy.data.objects:
+        if obj.type != "MESH":
+            continue
+        evaluated = obj.evaluated_get(graph)
+        for v in evaluated.to_mesh().vertices:
+            w = evaluated.matrix_world @ v.co
+            low = [min(a, b) for a, b in zip(low, w)]
+            high = [max(a, b) for a, b in zip(high, w)]
+        evaluated.to_mesh_clear()
+    report["armatures"] = len(armatures)
+    report["bones"] = sum(len(a.data.bones) for a in armatures)
+    report["skinned"] = sum(1 for o in bpy.data.objects if o.type == "MESH" and
+                            any(m.type == "ARMATURE" and m.object for m in o.modifiers))
+    report["box"] = low + high
 
 
 def shown_triangles():
