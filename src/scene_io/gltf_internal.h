@@ -229,6 +229,9 @@ struct GltfArrays {
 /// The images, textures and materials of MaterialStyle::Textured (options.appearance).
 void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options,
                           Buffer& buffer);
+/// TANGENT of a primitive whose material has a normal map (smooth normals written).
+void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
+                 const Primitive& p, json& attributes);
 
 // ---- a node per organ (gltf_organs.cpp) ----
 /// Follows the organs of the scene's frames (io::trackOrgans) and makes the records one row per

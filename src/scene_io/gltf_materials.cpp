@@ -5,12 +5,65 @@
 // their roughness. Texture files a material names (traced leaves) are embedded as before.
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "scene_io/gltf_internal.h"
 #include "scene_io/material_textures.h"
 
 namespace plantarch::gltf {
+
+namespace gltfmat {
+
+// Per-vertex tangents (xyz along increasing u, w the bitangent's sign) of one object: the
+// texture-space gradients summed over its triangles, made perpendicular to the vertex normal.
+// The bitangent cross(normal, tangent) * w points toward decreasing v, the "up" of glTF's
+// images, as the normal maps' green channel does (encodeMapPNG flips it for glTF).
+void objectTangents(const ObjectView& o, const vec3* normals, std::vector<glm::vec4>& out) {
+    std::vector<vec3> du(o.positions.size(), vec3(0.0f)), dv(o.positions.size(), vec3(0.0f));
+    for (std::size_t t = 0; t + 2 < o.indices.size(); t += 3) {
+        const std::uint32_t a = o.indices[t], b = o.indices[t + 1], c = o.indices[t + 2];
+        const vec3 e1 = o.positions[b] - o.positions[a], e2 = o.positions[c] - o.positions[a];
+        const vec2 d1 = o.uvs[b] - o.uvs[a], d2 = o.uvs[c] - o.uvs[a];
+        const float det = d1.x * d2.y - d2.x * d1.y;
+        if (!(std::abs(det) > 1e-12f)) continue;
+        const vec3 T = (e1 * d2.y - e2 * d1.y) / det, B = (e2 * d1.x - e1 * d2.x) / det;
+        if (!std::isfinite(T.x + T.y + T.z + B.x + B.y + B.z)) continue;
+        for (const std::uint32_t k : {a, b, c}) {
+            du[k] += T;
+            dv[k] += B;
+        }
+    }
+    out.resize(o.positions.size());
+    for (std::size_t k = 0; k < out.size(); ++k) {
+        const vec3 n = normals[k];
+        vec3 t = du[k] - n * glm::dot(n, du[k]);
+        if (!(glm::dot(t, t) > 1e-20f)) {  // no gradient: any direction across the normal
+            t = std::abs(n.x) < 0.9f ? glm::cross(n, vec3(1, 0, 0)) : glm::cross(n, vec3(0, 1, 0));
+        }
+        t = glm::normalize(t);
+        const float w = glm::dot(glm::cross(n, t), dv[k]) > 0.0f ? -1.0f : 1.0f;
+        out[k] = glm::vec4(t, w);
+    }
+}
+
+}  // namespace gltfmat
+
+void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
+                 const Primitive& p, json& attributes) {
+    if (options.appearance.style != MaterialStyle::Textured || !options.normals || !p.uvs ||
+        s.normals.empty() || !d.materials[p.material].contains("normalTexture"))
+        return;
+    const int view = buffer.add(d.views, p.vertices * 16, kArrayBuffer, [&s, &p](Sink& out) {
+        std::vector<glm::vec4> tangents;
+        for (const std::size_t i : p.objects) {
+            gltfmat::objectTangents(s.object(i), s.normals.data() + s.normalAt[i], tangents);
+            out.write(tangents.data(), tangents.size() * sizeof(glm::vec4));
+        }
+    });
+    d.accessors.push_back(accessor(view, kFloat, p.vertices, "VEC4"));
+    attributes["TANGENT"] = d.accessors.size() - 1;
+}
 
 void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options,
                           Buffer& buffer) {
@@ -59,7 +112,8 @@ void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& opti
             pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
             pbr["metallicRoughnessTexture"] = {{"index", t[std::size_t(io::MapKind::ORM)]}};
             pbr["roughnessFactor"] = 1.0;
-            material["normalTexture"] = {{"index", t[std::size_t(io::MapKind::Normal)]}};
+            if (options.normals && !s.organNodes)  // with tangents (addTangents)
+                material["normalTexture"] = {{"index", t[std::size_t(io::MapKind::Normal)]}};
             material["occlusionTexture"] = {{"index", t[std::size_t(io::MapKind::ORM)]}};
             if (looks->maps()[std::size_t(look.maps)].hasAlpha) material["alphaMode"] = "MASK";
         }

@@ -357,6 +357,7 @@ std::vector<json> addMeshes(GltfArrays& d, const Scene& s, const GltfOptions& op
             d.accessors.push_back(accessor(view, kFloat, p.vertices, "VEC3"));
             attributes["NORMAL"] = d.accessors.size() - 1;
         }
+        addTangents(d, s, options, buffer, p, attributes);  // gltf_materials.cpp
         if (p.uvs) {
             view = vertexView(8, [eachObject](Sink& out) {
                 eachObject([&](std::size_t, const ObjectView& o) {

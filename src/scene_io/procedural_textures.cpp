@@ -85,6 +85,30 @@ float cellBorder(float x, float y, std::uint32_t seed) {
     return 0.5f * (f2 - f1);
 }
 
+// As cellBorder, periodic over `px` x `py` cells; `cell` receives a value in [0, 1) of the
+// nearest cell (the same for every point of it).
+float cellBorderPeriodic(float x, float y, std::int32_t px, std::int32_t py, std::uint32_t seed,
+                         float& cell) {
+    const float fx = std::floor(x), fy = std::floor(y);
+    float f1 = 1e9f, f2 = 1e9f;
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            const auto cx = std::int32_t(fx) + i, cy = std::int32_t(fy) + j;
+            const std::int32_t wx = wrapIndex(cx, px), wy = wrapIndex(cy, py);
+            const float ox = float(cx) + 0.1f + 0.8f * latticeValue(wx, wy, seed);
+            const float oy = float(cy) + 0.1f + 0.8f * latticeValue(wx, wy, seed ^ 0x5bd1e995u);
+            const float d = std::sqrt((ox - x) * (ox - x) + (oy - y) * (oy - y));
+            if (d < f1) {
+                f2 = f1;
+                f1 = d;
+                cell = latticeValue(wx, wy, seed ^ 0x68e31da4u);
+            } else if (d < f2) {
+                f2 = d;
+            }
+        }
+    return 0.5f * (f2 - f1);
+}
+
 float smoothStep(float edge0, float edge1, float x) {
     const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
     return t * t * (3.0f - 2.0f * t);
@@ -96,7 +120,7 @@ float veinProfile(float distance, float width) {
 }
 
 std::uint8_t toByte(float v) {
-    return std::uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    return std::uint8_t(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
 }
 
 // Tangent-space normals and the height field's pixel slopes: `strength` turns height per
@@ -175,13 +199,14 @@ Veins veinsAt(const VeinLayout& L, float x, float y) {
     Veins v;
     const float ay = std::abs(y);
     const float across = std::clamp(ay / L.halfWidth, 0.0f, 1.5f);
-    const float midWidth = std::max(L.halfWidth * (0.03f + 0.045f * (1.0f - x)), 1.3f * L.texel);
+    const float midWidth =
+        std::max(L.halfWidth * (L.parallel ? 0.06f : 0.03f + 0.045f * (1.0f - x)), 1.3f * L.texel);
     v.midrib = veinProfile(ay, midWidth) * (1.0f - smoothStep(0.9f, 1.02f, x));
     if (L.parallel) {
         const float spacing = L.halfWidth / float(L.laterals);
         const float t = ay / spacing;
         const float d = std::abs(t - std::round(t)) * spacing;
-        const float w = std::max(0.10f * spacing, 0.8f * L.texel);
+        const float w = std::max(0.07f * spacing, 0.8f * L.texel);
         const float minor = std::abs(t * 4.0f - std::round(t * 4.0f)) * spacing / 4.0f;
         v.lateral = veinProfile(d, w) * (1.0f - smoothStep(0.93f, 1.0f, across));
         v.fine = 0.5f * veinProfile(minor, std::max(0.05f * spacing, 0.6f * L.texel));
@@ -266,8 +291,8 @@ TextureMaps leafTextureMaps(const LeafTextureInput& in) {
     VeinLayout L{};
     L.halfWidth = 0.5f * aspect;
     L.texel = std::max(1.0f, aspect) / float(n);
-    L.parallel = aspect < 0.18f;
-    L.laterals = L.parallel ? 5 + int(mixBits(seed) % 3u) : 7 + int(mixBits(seed) % 4u);
+    L.parallel = in.parallelVeins;
+    L.laterals = L.parallel ? 8 + int(mixBits(seed) % 4u) : 7 + int(mixBits(seed) % 4u);
     L.slope0 = 0.75f + 0.25f * latticeValue(1, 2, seed);
     L.bend = 0.9f / L.halfWidth;
     L.seed = seed;
@@ -294,7 +319,8 @@ TextureMaps leafTextureMaps(const LeafTextureInput& in) {
             const float v = 1.0f - (float(j) + 0.5f) / float(n);
             const float x = u, y = (v - 0.5f) * aspect;
             const Veins veins = veinsAt(L, x, y);
-            const float vein = std::max({veins.midrib, 0.85f * veins.lateral, 0.4f * veins.fine});
+            const float vein = std::max(
+                {veins.midrib, (L.parallel ? 0.4f : 0.85f) * veins.lateral, 0.4f * veins.fine});
 
             const float mottle = fbm(x * 7.0f, y * 7.0f, 0, 0, 4, seed ^ 0x1234567u);
             const float hue = fbm(x * 3.0f + 11.0f, y * 3.0f, 0, 0, 3, seed ^ 0x89abcdeu);
@@ -352,15 +378,24 @@ TextureMaps barkTextureMaps(vec3 color, std::uint64_t seed64, int n, bool stem) 
             const std::size_t k = std::size_t(j) * std::size_t(n) + std::size_t(i);
             const float u = (float(i) + 0.5f) / float(n);
             const float v = 1.0f - (float(j) + 0.5f) / float(n);
-            // Woody: plates split by fissures that run along the stem (stretched along v).
+            // Woody: plates, longer than wide, split by a network of fissures (cells of a
+            // Voronoi pattern stretched along the stem), each plate its own shade, with fine
+            // fibres along it and a grey cast on the lighter ones.
             const float warp = fbm(u * 4.0f, v * 4.0f, 4, 4, 3, seed ^ 0x51ed270bu);
-            const float ridge =
-                std::abs(fbm(u * 9.0f + 0.9f * warp, v * 2.0f, 9, 2, 4, seed) - 0.5f) * 2.0f;
-            const float plate = smoothStep(0.05f, 0.3f, ridge);
+            const float warp2 = fbm(u * 5.0f, v * 3.0f, 5, 3, 3, seed ^ 0x2f4a7c15u);
+            float cell = 0.0f;
+            const float border = cellBorderPeriodic(u * 11.0f + 1.1f * (warp - 0.5f),
+                                                    v * 2.0f + 0.5f * (warp2 - 0.5f), 11, 2,
+                                                    seed ^ 0x1b873593u, cell);
+            const float plate = smoothStep(0.01f + 0.05f * warp2, 0.16f, border);
             const float rough = fbm(u * 24.0f, v * 12.0f, 24, 12, 3, seed ^ 0x6c8e9cf5u);
-            vec3 wood = glm::mix(base * 0.42f, base * (0.95f + 0.3f * rough), plate);
-            wood = glm::mix(wood, vec3(luminance * 1.1f), 0.18f * smoothStep(0.55f, 0.8f, warp));
-            const float woodHeight = 0.9f * plate + 0.25f * rough;
+            const float fibre = fbm(u * 64.0f, v * 4.0f, 64, 4, 2, seed ^ 0x3c6ef372u);
+            const vec3 top = base * (0.6f + 0.3f * cell + 0.45f * rough + 0.3f * fibre);
+            vec3 wood = glm::mix(base * (0.3f + 0.1f * rough), top, plate);
+            wood =
+                glm::mix(wood, vec3(luminance * 1.1f), 0.3f * plate * smoothStep(0.6f, 0.9f, cell));
+            const float woodHeight =
+                0.8f * plate * (0.7f + 0.3f * cell) + 0.2f * rough + 0.1f * fibre;
             // Green: fine ridges along the stem, slightly wavy, and a faint mottle.
             const float wave = 0.25f * fbm(u * 3.0f, v * 3.0f, 3, 3, 2, seed ^ 0x7f4a7c15u);
             const float stripe = 0.5f + 0.5f * std::sin(kTwoPi * (u * float(stripes) + wave));

@@ -56,6 +56,8 @@ struct LeafTextureInput {
     /// Blade width over length, as the leaf's texture space stretches it (lateral veins are
     /// drawn at their true angles); 0.05 to 5.
     float aspect = 0.5f;
+    /// Parallel veins along the blade (grasses) instead of a midrib with pinnate laterals.
+    bool parallelVeins = false;
     /// size x size coverage of the blade (nonzero inside), row 0 at v = 1; empty: the whole
     /// square is blade (no alpha).
     std::vector<std::uint8_t> mask;
