@@ -89,7 +89,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, {plant}, *frames, a->outputs,
-                                 {a->animation.rate, terminalProgress()});
+                                 {a->animation.rate, terminalProgress(), global.appearance});
         } else {
             for (const std::string& out : a->outputs)
                 writePlantFile(arch, {plant}, out, plantFileOptions(global));

@@ -109,7 +109,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, plants, *frames, a->outputs,
-                                 {a->animation.rate, terminalProgress()});
+                                 {a->animation.rate, terminalProgress(), global.appearance});
         } else if (a->separate)
             writeSeparatePlantFiles(arch, plants, a->outputs, a->plantOrigin,
                                     plantFileOptions(global));

@@ -49,6 +49,8 @@ struct GlobalOptions {
     std::vector<GltfLevel> levels;  ///< --lod: levels of detail of glTF outputs (lod_options.cpp)
     bool meshopt = false;           ///< --meshopt: EXT_meshopt_compression of glTF outputs
     bool skin = false;  ///< --skin: skeletons in glTF and USD outputs (skin_options.cpp)
+    /// --materials and --texture-size: flat colours or procedural textures (material_options.cpp)
+    MaterialOptions appearance;
     /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
     /// it) with one line; 0 for no limit. Default: PlantArchitecture::defaultTriangleLimit().
     std::size_t maxTriangles = PlantArchitecture::defaultTriangleLimit();
@@ -222,6 +224,8 @@ void checkLevelOutputs(const GlobalOptions& global, const std::vector<std::strin
                        bool frames);
 /// --skin (skin_options.cpp), added by addLabelOptions.
 void addSkinOptions(CLI::App& app, GlobalOptions& global);
+/// --materials and --texture-size (material_options.cpp), added by addLabelOptions.
+void addMaterialOptions(CLI::App& app, GlobalOptions& global);
 
 /// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
 /// (animation_options.cpp).

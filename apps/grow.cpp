@@ -83,7 +83,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         if (frames) {
             arch.setProgressCallback({});  // one bar over the frames instead of one per frame
             writeGrowthAnimation(arch, plants, *frames, a->outputs,
-                                 {a->animation.rate, terminalProgress()});
+                                 {a->animation.rate, terminalProgress(), global.appearance});
         } else {
             if (physiologyOn(a->physiology))
                 growWithPhysiology(arch, plants, a->physiology, a->days);

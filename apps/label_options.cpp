@@ -39,8 +39,9 @@ void addLabelOptions(CLI::App& app, GlobalOptions& global) {
            },
            "Encoding of .ply outputs: binary (default) or ascii; both hold the same labels")
         ->type_name("FORMAT");
-    addSkinOptions(app, global);   // skin_options.cpp
-    addLevelOptions(app, global);  // lod_options.cpp
+    addSkinOptions(app, global);      // skin_options.cpp
+    addLevelOptions(app, global);     // lod_options.cpp
+    addMaterialOptions(app, global);  // material_options.cpp
 }
 
 }  // namespace plantarch::cli

@@ -98,6 +98,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
     o.seed = g.seed;
     o.progress = terminalProgress();
     o.scene.progress = o.progress;
+    o.scene.appearance = g.appearance;
     if (a.samples > 0) o.samplesPerPixel = a.samples;
     if (a.fov > 0.0f) o.camera.fovDeg = a.fov;
     if (!a.orbit.empty()) parseOrbit(a.orbit, o.camera);
@@ -245,6 +246,7 @@ std::function<int()> setupRender(CLI::App& app, GlobalOptions& global) {
         "Also write the camera as JSON: eye, target, up, field of view, image size, intrinsics "
         "K and extrinsics world_to_camera (OpenCV's pinhole convention)");
     app.add_flag("--no-ground", args->noGround, "Leave out the ground plane");
+    addMaterialOptions(app, global);  // --materials, --texture-size
     app.add_option("--samples", args->samples, "Camera rays per pixel (default 4)")
         ->check(numberCheck("--samples", "a ray count", 1, 1024, true, "1 to 1024"));
     return [args, &global] { return run(*args, global); };

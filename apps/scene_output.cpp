@@ -35,6 +35,7 @@ PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress) {
     o.levels = g.levels;
     o.meshoptCompression = g.meshopt;
     o.skin = g.skin;
+    o.appearance = g.appearance;
     if (showProgress) o.progress = terminalProgress();
     o.onWritten = [&g](const std::string& path) { info(g, "wrote " + path); };
     return o;

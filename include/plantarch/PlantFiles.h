@@ -44,6 +44,9 @@ struct PlantFileOptions {
     /// Skinning: .glb, .gltf and .usda files of plants carry a wind-ready skeleton per plant
     /// (exportSkeletons, GltfOptions::skeletons); other files are written as without it.
     bool skin = false;
+    /// Materials of .obj, .glb, .gltf, .usda, .usdz and .png outputs: flat colours or
+    /// procedural textures (MaterialOptions).
+    MaterialOptions appearance;
     /// Each writer's progress; for separate files, one report over the plants.
     ProgressCallback progress;
     /// Called with the path of every file written (an object table and a camera file too).

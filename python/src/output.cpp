@@ -115,6 +115,32 @@ py::dict cameraDict(const CameraFrame& f, int width, int height) {
 
 }  // namespace
 
+/// The materials keyword arguments of the writers (`appearance`, `texture_size`), checked as
+/// the command line checks --materials and --texture-size.
+MaterialOptions appearanceOf(const std::string& style, const py::object& size) {
+    const std::optional<MaterialStyle> s = materialStyleFromName(style);
+    if (!s)
+        throw Error("unknown material style",
+                    {.parameter = "appearance", .value = style, .validRange = "flat, textured"});
+    const std::string range = "a power of two from 16 to 4096";
+    const std::string text = py::str(size).cast<std::string>();
+    if (!py::isinstance<py::int_>(size) || py::isinstance<py::bool_>(size))
+        throw Error("texture size is a whole number of texels",
+                    {.parameter = "texture_size", .value = text, .validRange = range});
+    long long n = 0;
+    try {
+        n = py::int_(size).cast<long long>();
+    } catch (const py::cast_error&) {
+        n = kMaxTextureSize + 1;  // past 64 bits
+    }
+    if (n < kMinTextureSize || n > kMaxTextureSize)
+        throw Error("texture size " + text + " is not allowed",
+                    {.parameter = "texture_size", .value = text, .validRange = range});
+    const MaterialOptions o{*s, int(n)};
+    checkMaterialOptions(o);
+    return o;
+}
+
 void bindOutput(py::module_& m) {
     py::class_<ObjOptions>(m, "ObjOptions", "Options of writeOBJ.")
         .def(py::init([](bool hidden, bool normals, bool uvs, bool materials, bool split) {
@@ -148,15 +174,21 @@ void bindOutput(py::module_& m) {
     m.def(
         "writeOBJ",
         [](const Context& c, const std::string& path, bool includeHidden, bool normals, bool uvs,
-           bool materials, bool splitPerObject) {
+           bool materials, bool splitPerObject, const std::string& appearance,
+           const py::object& textureSize) {
+            ObjOptions o{includeHidden, normals, uvs, materials, splitPerObject};
+            o.appearance = appearanceOf(appearance, textureSize);
             py::gil_scoped_release release;
-            writeOBJ(c, path, {includeHidden, normals, uvs, materials, splitPerObject});
+            writeOBJ(c, path, o);
         },
         py::arg("context"), py::arg("filename"), py::arg("include_hidden") = false,
         py::arg("normals") = true, py::arg("uvs") = true, py::arg("materials") = true,
-        py::arg("split_per_object") = false,
+        py::arg("split_per_object") = false, py::arg("appearance") = "flat",
+        py::arg("texture_size") = 512,
         inPython(docs::writeOBJ,
-                 "Writes the Context as OBJ (+ MTL) with one group per object, atomically."));
+                 "Writes the Context as OBJ (+ MTL) with one group per object, atomically. "
+                 "`appearance` 'textured': procedural texture maps (PNG files beside the .mtl, "
+                 "`texture_size` texels a side) in the .mtl, as the command line's --materials."));
     m.def(
         "writePLY",
         [](const Context& c, const std::string& path, bool ascii, bool includeHidden, bool normals,
@@ -181,8 +213,10 @@ void bindOutput(py::module_& m) {
     m.def(
         "writeGLTF",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
-           bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt) {
+           bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt,
+           const std::string& appearance, const py::object& textureSize) {
             GltfOptions o;
+            o.appearance = appearanceOf(appearance, textureSize);
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
@@ -197,18 +231,22 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
+        py::arg("appearance") = "flat", py::arg("texture_size") = 512,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
             "plant (named, placed and described from `architecture` when given), a mesh per organ "
             "kind, labels as vertex attributes and EXT_mesh_features / EXT_structural_metadata. "
             "`lod`: levels of detail as MSFT_lod, as the command line's --lod (e.g. "
-            "'reduced,cards'); `meshopt`: EXT_meshopt_compression."));
+            "'reduced,cards'); `meshopt`: EXT_meshopt_compression; `appearance` 'textured': PBR "
+            "materials with procedural textures embedded, `texture_size` texels a side (16 to "
+            "4096, a power of two), as the command line's --materials and --texture-size."));
     m.def(
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
-           bool normals, bool uvs) {
+           bool normals, bool uvs, const std::string& appearance, const py::object& textureSize) {
             UsdOptions o;
+            o.appearance = appearanceOf(appearance, textureSize);
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
@@ -219,11 +257,14 @@ void bindOutput(py::module_& m) {
         },
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
+        py::arg("appearance") = "flat", py::arg("texture_size") = 512,
         inPython(
             docs::writeUSDA,
-            "Writes the Context as USD text (.usda), atomically: an Xform per plant (placed and "
-            "described from `architecture` when given), a Mesh per organ kind with normals, UVs, "
-            "per-face organ/plantID/objectID primvars and semantic class labels."));
+            "Writes the Context as USD text (.usda), or a .usdz package, atomically: an Xform per "
+            "plant (placed and described from `architecture` when given), a Mesh per organ kind "
+            "with normals, UVs, per-face organ/plantID/objectID primvars and semantic class "
+            "labels. `appearance` 'textured': UsdPreviewSurface materials with procedural "
+            "textures (PNG files beside the .usda, or inside the .usdz)."));
     m.def(
         "samplePoints",
         [](const Context& c, std::size_t points, std::uint64_t seed, bool includeHidden) {
@@ -322,11 +363,13 @@ void bindOutput(py::module_& m) {
         "render",
         [](const Context& c, int width, int height, const std::string& mode, float azimuth,
            float elevation, float fov, int samples, bool ground, std::uint64_t seed, py::object eye,
-           py::object target, py::object up) {
+           py::object target, py::object up, const std::string& appearance,
+           const py::object& textureSize) {
             const CameraArgs args{azimuth, elevation, fov, eye, target, up};
             RenderOptions o;
             o.width = width;
             o.height = height;
+            o.scene.appearance = appearanceOf(appearance, textureSize);
             o.mode = modeNamed(mode);
             o.camera = cameraOf(args);
             o.samplesPerPixel = samples;
@@ -345,7 +388,8 @@ void bindOutput(py::module_& m) {
         py::arg("mode") = "shaded", py::arg("azimuth") = -60.0f, py::arg("elevation") = 22.0f,
         py::arg("fov") = 35.0f, py::arg("samples_per_pixel") = 4, py::arg("ground") = true,
         py::arg("seed") = 0, py::arg("eye") = py::none(), py::arg("target") = py::none(),
-        py::arg("up") = vec3(0.0f, 0.0f, 1.0f),
+        py::arg("up") = vec3(0.0f, 0.0f, 1.0f), py::arg("appearance") = "flat",
+        py::arg("texture_size") = 512,
         inPython(
             docs::render,
             "Renders the Context as a height x width x 3 uint8 array. mode: 'shaded', 'organ' "
@@ -353,7 +397,8 @@ void bindOutput(py::module_& m) {
             "objectIDsFromLabelImage decodes it). The camera is framed on the scene from azimuth "
             "and elevation (degrees), or fixed with eye=(x, y, z), target (default: the scene's "
             "centre) and up: a fixed camera frames every call alike. renderCamera gives its "
-            "matrices."));
+            "matrices. appearance='textured': the procedural leaf, bark and stem textures of "
+            "the exporters (texture_size texels a side)."));
     m.def(
         "renderCamera",
         [](const Context& c, int width, int height, float azimuth, float elevation, float fov,

@@ -1,11 +1,11 @@
 """A reader for the subset of USD's text format (.usda) plantarch writes: prims with
-metadata, attributes with values or time samples, arrays, tuples, dictionaries and attribute
-metadata. It
-returns plain Python data so the tests can check structure, counts and labels."""
+metadata, attributes with values or time samples, arrays, tuples, dictionaries, paths (<...>),
+assets (@...@) and attribute metadata. It returns plain Python data so the tests can check
+structure, counts and labels."""
 
 import re
 
-TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|'
+TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|<[^>\s]*>|@[^@]*@|[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|'
                    r'[A-Za-z_][\w:.]*|\[\]|[()\[\]{}=,]')
 
 

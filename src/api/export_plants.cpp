@@ -103,10 +103,12 @@ void GrowthRecorder::write(const std::vector<std::string>& paths,
         if (lowerExtension(path) == ".usda") {
             UsdOptions o;
             o.progress = animation.progress;
+            o.appearance = animation.appearance;
             writeUSDA(frames_, path, o, animation);
         } else {
             GltfOptions o;
             o.progress = animation.progress;
+            o.appearance = animation.appearance;
             writeGLTF(frames_, path, o, animation);
         }
     }

@@ -53,7 +53,7 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         return samplePoints(ctx, {.points = g.points, .seed = g.seed, .progress = progress});
     };
     if (ext == ".obj") {
-        writeOBJ(ctx, path, {.progress = progress});
+        writeOBJ(ctx, path, {.appearance = g.appearance, .progress = progress});
     } else if (ext == ".ply" && g.points > 0) {
         writePointCloudPLY(points(), path, progress);
     } else if (ext == ".ply") {
@@ -67,12 +67,14 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         o.progress = progress;
         o.levels = g.levels;
         o.meshoptCompression = g.meshoptCompression;
+        o.appearance = g.appearance;
         writeGLTF(ctx, path, o);
-    } else if (ext == ".usda") {
+    } else if (ext == ".usda" || ext == ".usdz") {
         UsdOptions o;
         o.plants = plants;
         o.skeletons = skeletons;
         o.progress = progress;
+        o.appearance = g.appearance;
         writeUSDA(ctx, path, o);
     } else if (ext == ".png") {
         RenderOptions o;
@@ -82,6 +84,7 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         o.seed = g.seed;
         o.camera = g.camera;
         o.mode = g.mode;
+        o.scene.appearance = g.appearance;
         const RenderScene scene(ctx, o.scene);
         if (!o.camera.autoFrame && !g.cameraTarget) o.camera.target = scene.bounds().center();
         writePNG(scene.render(o), path);
