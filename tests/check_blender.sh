@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Imports glTF files of library plants (a bean as .glb and .gltf, a trellis vine with its
-# posts and wires) into Blender with its own importer, headless, and checks that Blender holds
+# posts and wires, a textured bean) into Blender with its own importer, headless, and checks that Blender holds
 # the same number of triangles as the file's scene, and plays a growth animation. Usage: check_blender.sh PLANTARCH_BINARY.
 # Exits 1 on a mismatch, 2 when Blender is missing (scripts/test.sh installs it).
 set -euo pipefail
@@ -80,5 +80,17 @@ PY
     status=1
 else
     echo "check_blender: skinned.glb imports with its armature: $verdict"
+fi
+# Procedural textures (--materials textured): the bean's triangles, and its four textured
+# materials (two leaf colours, bark, stems) each sampling the embedded maps, with a normal map.
+t=$("$cli" --seed 3 build bean --age 40 --materials textured --texture-size 128 -o "$out/textured.glb" | triangles)
+textured=$(cd "$out" && blender -b --factory-startup --python "$here/blender/import_gltf.py" -- "$out/textured.glb" 2>&1 |
+           grep '^PLANTARCH ' | head -1 | cut -d' ' -f2-) || true
+if ! echo "$textured" | grep -q "\"triangles\": $t," ||
+    ! echo "$textured" | grep -q '"textured_materials": 4, "normal_mapped": 4'; then
+    echo "check_blender: textured.glb in Blender: ${textured:-nothing}, expected $t triangles and 4 textured materials"
+    status=1
+else
+    echo "check_blender: textured.glb imports with its maps: $textured"
 fi
 exit "$status"

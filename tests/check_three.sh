@@ -47,6 +47,19 @@ if [ "$frames" != "$expected" ]; then
 else
     echo "check_three: growth.glb plays in three.js, frame by frame: $frames triangles"
 fi
+# A textured bean (--materials textured): three.js decodes its embedded maps, the leaves'
+# alpha-tested, every textured material with normal and roughness maps.
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 256 -o "$out/textured.glb" > /dev/null
+line=$(node "$root/tests/js/three_load.mjs" "$out/textured.glb") || { echo "$line"; exit 1; }
+textured=$(echo "$line" | sed -n 's/.*"textured":\({[^}]*}\).*/\1/p')
+n=$(echo "$textured" | sed -n 's/.*"materials":\([0-9]*\).*/\1/p')
+if [ -z "$n" ] || [ "$n" -lt 3 ] || ! echo "$textured" | grep -q "\"normal\":$n,\"roughness\":$n," ||
+    echo "$textured" | grep -q '"alphaTest":0' || ! echo "$textured" | grep -q '"width":256'; then
+    echo "check_three: textured.glb's materials in three.js: ${textured:-none}: $line"
+    status=1
+else
+    echo "check_three: textured.glb loads in three.js with its maps: $textured"
+fi
 # A skinned bean (--skin): three.js loads its meshes as SkinnedMeshes with a bone per joint of
 # the file, the bean's triangles and labels, and at bind pose its vertices where the unskinned
 # bean has them (the same world box, within 1e-5 m).
@@ -90,5 +103,5 @@ while read -r line; do
     fi
 done < <(echo "$report" | tail -2)
 [ "$status" -eq 0 ] && echo "check_three: meshopt and MSFT_lod files load in three.js, levels: $levels"
-[ "$status" -eq 0 ] && echo "check_three: 4 files load in three.js with their triangles and labels"
+[ "$status" -eq 0 ] && echo "check_three: 5 files load in three.js with their triangles and labels"
 exit "$status"

@@ -70,6 +70,20 @@ window.loadFile = (url) => new Promise((resolve, reject) => {
                              shared: [...objects].filter((o) => full.has(o)).length });
       }
     }
+    // Textured materials (--materials textured): those with a decoded base colour map, and
+    // how many of them also have a normal map, a roughness map and an alpha test (MASK).
+    const materials = new Map();
+    gltf.scene.traverse((o) => {
+      if (o.isMesh && o.material.map && o.material.map.image) materials.set(o.material.uuid, o.material);
+    });
+    if (materials.size) {
+      const all = [...materials.values()];
+      result.textured = { materials: all.length,
+                          normal: all.filter((m) => m.normalMap).length,
+                          roughness: all.filter((m) => m.roughnessMap).length,
+                          alphaTest: all.filter((m) => m.alphaTest > 0).length,
+                          width: Math.max(...all.map((m) => m.map.image.width)) };
+    }
     // Skinned meshes (--skin): how many, the bones they move and the file's joints; and for
     // every file, the world box of its vertices as three.js places them (bones applied), to
     // compare a skinned plant at its bind pose with the same plant unskinned.
