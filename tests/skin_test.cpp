@@ -332,15 +332,29 @@ TEST(Skin, GlbBindPoseReproducesThePlant) {
         for (const json& prim : g.doc["meshes"][node["mesh"].get<std::size_t>()]["primitives"]) {
             const json& at = prim["attributes"];
             const auto p = values<float>(g, at["POSITION"], 3);
-            const auto jt = values<std::uint16_t>(g, at["JOINTS_0"], 4);
-            const auto w = values<float>(g, at["WEIGHTS_0"], 4);
+            // Joints as unsigned bytes (up to 256 joints) or shorts, weights as normalized
+            // unsigned bytes.
+            std::vector<std::uint16_t> jt;
+            const json& joints = g.doc["accessors"][at["JOINTS_0"].get<std::size_t>()];
+            if (joints["componentType"] == 5121)
+                for (std::uint8_t j : values<std::uint8_t>(g, at["JOINTS_0"], 4)) jt.push_back(j);
+            else
+                jt = values<std::uint16_t>(g, at["JOINTS_0"], 4);
+            const json& weights = g.doc["accessors"][at["WEIGHTS_0"].get<std::size_t>()];
+            EXPECT_EQ(weights["componentType"], 5121);
+            EXPECT_TRUE(weights["normalized"].get<bool>());
+            std::vector<float> w;
+            for (std::uint8_t b : values<std::uint8_t>(g, at["WEIGHTS_0"], 4))
+                w.push_back(float(b) / 255.0f);
             for (std::size_t k = 0; k < p.size() / 3; ++k) {
                 const glm::dvec4 v(p[3 * k], p[3 * k + 1], p[3 * k + 2], 1.0);
                 glm::dvec4 sum(0.0);
                 double total = 0.0;
                 for (int i = 0; i < 4; ++i) {
                     ASSERT_LT(jt[4 * k + i], joint.size());
-                    EXPECT_GE(w[4 * k + i], 0.0f);
+                    if (w[4 * k + i] == 0.0f) {
+                        EXPECT_EQ(jt[4 * k + i], 0);  // unused slots: joint 0
+                    }
                     total += w[4 * k + i];
                     sum += double(w[4 * k + i]) * (joint[jt[4 * k + i]] * v);
                 }

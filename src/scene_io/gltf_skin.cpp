@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <string>
@@ -22,7 +23,22 @@ namespace plantarch::gltf {
 
 namespace {
 
-constexpr int kUShort = 5123;
+constexpr int kUByte = 5121, kUShort = 5123;
+
+// A vertex's weights as normalized unsigned bytes: each rounded, the largest taking what makes
+// the sum exactly 255.
+std::array<std::uint8_t, 4> byteWeights(const GltfInfluence& g) {
+    std::array<int, 4> w{};
+    int sum = 0;
+    std::size_t largest = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+        w[i] = int(std::lround(std::clamp(g.weights[i], 0.0f, 1.0f) * 255.0f));
+        sum += w[i];
+        if (g.weights[i] > g.weights[largest]) largest = i;
+    }
+    w[largest] = std::clamp(w[largest] + 255 - sum, 0, 255);
+    return {std::uint8_t(w[0]), std::uint8_t(w[1]), std::uint8_t(w[2]), std::uint8_t(w[3])};
+}
 
 glm::dquat quaternion(const GltfJoint& j) {
     return glm::dquat(j.rotation[3], j.rotation[0], j.rotation[1], j.rotation[2]);
@@ -104,30 +120,50 @@ void addSkinAttributes(GltfArrays& d, const Scene& s, const GltfOptions& options
                        const Primitive& p, json& attributes) {
     const GltfSkeleton* sk = skeletonOf(s, options, p.node);
     if (!sk) return;
-    // Each object's vertices, on their own joint or blended, in the primitive's order.
-    auto each = [&s, &p, sk](auto&& f) {
+    // Each object's vertices, on their own joint or blended, in the primitive's order: f(out,
+    // first influence, count, blended) writes one object's block.
+    auto each = [&s, &p, sk](Sink& out, std::size_t bytes, auto&& write) {
         for (std::size_t i : p.objects) {
             const GltfSkinnedObject* so = bindingOf(*sk, s.records[i].id);
             const std::size_t count = s.object(i).positions.size();
-            if (so && !so->vertices.empty())
-                for (const GltfInfluence& g : so->vertices) f(g);
-            else {
-                GltfInfluence g;
-                g.joints[0] = so ? so->joint : 0;
-                g.weights[0] = 1.0f;
-                for (std::size_t k = 0; k < count; ++k) f(g);
-            }
+            GltfInfluence rigid;
+            rigid.joints[0] = so ? so->joint : 0;
+            rigid.weights[0] = 1.0f;
+            const bool blended = so && !so->vertices.empty();
+            out.elements(count, bytes, [&](char* dst, std::size_t first, std::size_t n) {
+                for (std::size_t k = 0; k < n; ++k)
+                    write(dst + k * bytes, blended ? so->vertices[first + k] : rigid);
+            });
         }
     };
-    const int joints = buffer.add(d.views, p.vertices * 8, kArrayBuffer, [each](Sink& out) {
-        each([&](const GltfInfluence& g) { out.write(g.joints.data(), 8); });
-    });
-    d.accessors.push_back(accessor(joints, kUShort, p.vertices, "VEC4"));
+    // Joints as unsigned bytes for up to 256 joints, else shorts; weights as normalized
+    // unsigned bytes (a vertex's sum exactly 255: the bind pose is exact whatever the split).
+    const bool small = sk->joints.size() <= 256;
+    const std::size_t jointBytes = small ? 4 : 8;
+    const int joints =
+        buffer.add(d.views, p.vertices * jointBytes, kArrayBuffer, [each, small](Sink& out) {
+            each(out, small ? 4 : 8, [small](char* dst, const GltfInfluence& g) {
+                const std::array<std::uint8_t, 4> w = byteWeights(g);
+                for (int i = 0; i < 4; ++i) {
+                    const std::uint16_t j = w[std::size_t(i)] ? g.joints[std::size_t(i)] : 0;
+                    if (small)
+                        dst[i] = char(std::uint8_t(j));
+                    else
+                        std::memcpy(dst + 2 * i, &j, 2);
+                }
+            });
+        });
+    d.accessors.push_back(accessor(joints, small ? kUByte : kUShort, p.vertices, "VEC4"));
     attributes["JOINTS_0"] = d.accessors.size() - 1;
-    const int weights = buffer.add(d.views, p.vertices * 16, kArrayBuffer, [each](Sink& out) {
-        each([&](const GltfInfluence& g) { out.write(g.weights.data(), 16); });
+    const int weights = buffer.add(d.views, p.vertices * 4, kArrayBuffer, [each](Sink& out) {
+        each(out, 4, [](char* dst, const GltfInfluence& g) {
+            const std::array<std::uint8_t, 4> w = byteWeights(g);
+            std::memcpy(dst, w.data(), 4);
+        });
     });
-    d.accessors.push_back(accessor(weights, kFloat, p.vertices, "VEC4"));
+    json w = accessor(weights, kUByte, p.vertices, "VEC4");
+    w["normalized"] = true;
+    d.accessors.push_back(std::move(w));
     attributes["WEIGHTS_0"] = d.accessors.size() - 1;
 }
 
