@@ -251,7 +251,9 @@ TEST(Animation, GlbPlaysEachFrameAsThePlantBuiltAtItsDay) {
     fs::remove(again);
 }
 
-TEST(Animation, UsdFramesAreKeyedByVisibilityAtTheirTimeCodes) {
+// Where each organ stands at each frame is checked against the plant built at that day by
+// python/tests/test_usda.py, which parses the file; here its layout.
+TEST(Animation, UsdOrgansAreKeyedAtTheFramesTimeCodes) {
     Context ctx;
     PlantArchitecture arch(&ctx);
     arch.setSeed(7);
@@ -264,35 +266,22 @@ TEST(Animation, UsdFramesAreKeyedByVisibilityAtTheirTimeCodes) {
     EXPECT_NE(text.find("startTimeCode = 0\n    endTimeCode = 2\n    timeCodesPerSecond = 12\n"),
               std::string::npos);
     EXPECT_NE(text.find("upAxis = \"Z\""), std::string::npos);
-    const std::vector<std::size_t> expected = trianglesBuiltAt({10, 20, 30});
-    const char* keys[3] = {"            0: \"inherited\",\n            1: \"invisible\",\n",
-                           "            0: \"invisible\",\n            1: \"inherited\",\n"
-                           "            2: \"invisible\",\n",
-                           "            0: \"invisible\",\n            2: \"inherited\",\n"};
-    for (std::size_t f = 0; f < 3; ++f) {
-        const std::string name = "def Xform \"day_" + std::to_string(10 * (f + 1)) + "\"";
-        const std::size_t at = text.find(name);
-        ASSERT_NE(at, std::string::npos) << name;
-        const std::size_t next = f < 2 ? text.find("def Xform \"day_", at + 1) : text.size();
-        const std::string frame = text.substr(at, next - at);
-        EXPECT_NE(
-            frame.find("token visibility.timeSamples = {\n" + std::string(keys[f]) + "        }\n"),
-            std::string::npos)
-            << frame.substr(0, 400);
-        // The frame's plant, nested one level deeper, and its triangles.
-        EXPECT_NE(frame.find("\n        def Xform \"bean_" + std::to_string(plant) + "\""),
-                  std::string::npos);
-        std::size_t triangles = 0;
-        const std::string key = "int[] faceVertexCounts = [";
-        for (std::size_t k = frame.find(key); k != std::string::npos; k = frame.find(key, k + 1)) {
-            const std::size_t open = k + key.size(), close = frame.find(']', open);
-            if (close > open)
-                triangles += std::size_t(std::count(frame.begin() + std::ptrdiff_t(open),
-                                                    frame.begin() + std::ptrdiff_t(close), ',')) +
-                             1;
-        }
-        EXPECT_EQ(triangles, expected[f]) << "frame " << f;
-    }
+    EXPECT_NE(text.find("def Xform \"plantarch\" (\n    customData = {\n        double[] days = "
+                        "[10, 20, 30]\n"),
+              std::string::npos);
+    // The plant, a shoot, and organs placed per frame; an organ that appears after the first
+    // frame is hidden until then.
+    EXPECT_NE(text.find("\n    def Xform \"bean_" + std::to_string(plant) + "\""),
+              std::string::npos);
+    EXPECT_NE(text.find("\n        def Xform \"shoot_1\""), std::string::npos);
+    EXPECT_NE(text.find("float3 xformOp:translate.timeSamples = {\n"), std::string::npos);
+    EXPECT_NE(text.find("float3 xformOp:scale.timeSamples = {\n"), std::string::npos);
+    EXPECT_NE(text.find("token visibility.timeSamples = {\n"
+                        "                    0: \"invisible\",\n"),
+              std::string::npos);
+    EXPECT_NE(text.find("def Mesh \"leaf_s1_n0_l2\""), std::string::npos);
+    // No frame repeats the whole scene.
+    EXPECT_EQ(text.find("def Xform \"day_"), std::string::npos);
 }
 
 TEST(Animation, BadFramesAndPathsAreOneLineErrors) {
@@ -344,7 +333,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
         << r.out;
     const Glb g = parseGlb(readAll(glb));
     EXPECT_EQ(g.doc["animations"][0]["extras"]["days"], json({0, 5, 10, 15, 20}));
-    EXPECT_NE(readAll(usda).find("def Xform \"day_15\""), std::string::npos);
+    EXPECT_NE(readAll(usda).find("double[] days = [0, 5, 10, 15, 20]"), std::string::npos);
 
     // grow: frames count days from the file's state.
     const std::string xml = (dir / "bean.xml").string();
@@ -353,7 +342,7 @@ TEST(Animation, CommandLineWritesGrowthFromBuildAndGrow) {
     ASSERT_EQ(r.status, 0) << r.out;
     const std::string text = readAll(usda);
     EXPECT_NE(text.find("timeCodesPerSecond = 10"), std::string::npos);
-    EXPECT_NE(text.find("def Xform \"day_10\""), std::string::npos);
+    EXPECT_NE(text.find("double[] days = [0, 5, 10]"), std::string::npos);
     EXPECT_NE(text.find("double age = 20"), std::string::npos);
 
     // Bad uses: one line, status 2, nothing written.

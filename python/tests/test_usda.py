@@ -2,6 +2,8 @@
 
 import subprocess
 
+import numpy
+
 import plantarch
 import usda
 from conftest import cli
@@ -71,7 +73,95 @@ def test_usda_from_python_places_the_plant(arch, tmp_path):
     assert abs(x + 1 - first[0]) < 1e-6 and abs(y + 2 - first[1]) < 1e-6 and abs(z - first[2]) < 1e-6
 
 
-def test_growth_animation_shows_one_frame_per_time_code(arch, tmp_path):
+def _held(samples, code):
+    """The value a time-sampled token or number holds at a time code: its sample at or
+    before it (the first one before every sample)."""
+    times = sorted(samples)
+    held = [c for c in times if c <= code] or [times[0]]
+    return samples[held[-1]]
+
+
+def _attr(prim, name, code):
+    """An attribute's value at a time code, whether it is sampled or not (None if absent)."""
+    if name + ".timeSamples" in prim.attributes:
+        return _held(prim.attributes[name + ".timeSamples"]["value"], code)
+    a = prim.attributes.get(name)
+    return None if a is None else a["value"]
+
+
+def _rotate(q, v):
+    """v turned by the unit quaternion q = (w, x, y, z)."""
+    w, x, y, z = q
+    u = numpy.array([x, y, z])
+    v = numpy.asarray(v, dtype=float)
+    return v + 2.0 * numpy.cross(u, numpy.cross(u, v) + w * v)
+
+
+def _shown_organs(root, code):
+    """Each organ's points as shown at a time code: (organ, shoot, node, leaf, ordinal) ->
+    n x 3 array, the prims' placements, references and visibility resolved."""
+    paths = {}
+
+    def index(prim, path):
+        paths[path] = prim
+        for c in prim.children:
+            index(c, path + "/" + c.name)
+    index(root, "/" + root.name)
+
+    def points(prim):
+        if "points" in prim.attributes:
+            return numpy.array(prim.attributes["points"]["value"], dtype=float)
+        return points(paths[prim.metadata["references"].strip("<>")])
+
+    def visible(prim):
+        v = _attr(prim, "visibility", code)
+        if v is None and "references" in prim.metadata:
+            v = _attr(paths[prim.metadata["references"].strip("<>")], "visibility", code)
+        return v != "invisible"
+
+    out = {}
+    for plant in root.children:
+        if plant.specifier != "def":
+            continue
+        base = numpy.array(_attr(plant, "xformOp:translate", code) or (0, 0, 0), dtype=float)
+        organs = [o for s in plant.children for o in (s.children if s.name.startswith("shoot_")
+                                                       else [s])]
+        for organ in organs:
+            if not visible(organ):
+                continue
+            d = organ.metadata["customData"]
+            last = organ.name.rsplit("_", 1)[-1]
+            ordinal = int(last) - 1 if last.isdigit() else 0
+            key = (d["organ"], d["shootID"], d["node"], d["leafID"], ordinal)
+            meshes = [organ] if organ.kind == "Mesh" else \
+                [v for v in organ.children if visible(v)]
+            assert len(meshes) == 1, organ.name
+            t = numpy.array(_attr(organ, "xformOp:translate", code), dtype=float)
+            q = _attr(organ, "xformOp:orient", code)
+            s = _attr(organ, "xformOp:scale", code)[0]
+            out[key] = numpy.array([base + t + s * _rotate(q, p) for p in points(meshes[0])])
+    return out
+
+
+def _built_organs(seed, age):
+    """Each organ's vertices in a bean built directly at `age`, keyed as _shown_organs."""
+    arch = plantarch.PlantArchitecture(plantarch.Context())
+    arch.setSeed(seed)
+    arch.loadPlantModelFromLibrary("bean")
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), age)
+    ctx = arch.getContext()
+    out, ordinals = {}, {}
+    for i in ctx.getAllObjectIDs():
+        def label(name):
+            value = ctx.getObjectData(i, name)
+            return -1 if value is None else value
+        key = (ctx.getObjectData(i, "organ"), label("shootID"), label("node"), label("leafID"))
+        ordinals[key] = ordinals.get(key, -1) + 1
+        out[key + (ordinals[key],)] = ctx.getObjectMesh(i).positions
+    return out
+
+
+def test_growth_animation_places_every_organ_as_built_at_each_day(arch, tmp_path):
     p = arch.buildPlantInstanceFromLibrary((0, 0, 0), 0)
     path = tmp_path / "growth.usda"
     arch.writeGrowthAnimation([p], 0, 20, 10, [str(path)], frame_rate=12)
@@ -79,21 +169,16 @@ def test_growth_animation_shows_one_frame_per_time_code(arch, tmp_path):
     layer, (root,) = usda.read(path)
     assert layer["startTimeCode"] == 0 and layer["endTimeCode"] == 2
     assert layer["timeCodesPerSecond"] == 12 and layer["upAxis"] == "Z"
-    assert [f.name for f in root.children] == ["day_0", "day_10", "day_20"]
-    for i, frame in enumerate(root.children):
-        assert frame.metadata["customData"]["day"] == 10 * i
-        samples = frame.attributes["visibility.timeSamples"]["value"]
-        # USD holds a token from its sample on, and the first sample before it.
-        def shown(code):
-            held = [t for t in sorted(samples) if t <= code] or [min(samples)]
-            return samples[held[-1]] == "inherited"
-        assert [shown(c) for c in (0, 1, 2)] == [c == i for c in (0, 1, 2)]
-        (plant,) = frame.children
-        assert plant.metadata["customData"]["age"] == 10 * i
-        triangles = sum(len(m.attributes["faceVertexCounts"]["value"]) for m in plant.children)
-        # Each frame is the plant as built at that age in a scene of its own.
-        other = plantarch.PlantArchitecture(plantarch.Context())
-        other.setSeed(arch.seed())
-        other.loadPlantModelFromLibrary("bean")
-        other.buildPlantInstanceFromLibrary((0, 0, 0), 10 * i)
-        assert triangles == other.getContext().getTriangleCount()
+    assert root.metadata["customData"]["days"] == [0, 10, 20]
+    (plant,) = [c for c in root.children if c.specifier == "def"]
+    assert plant.metadata["customData"]["age"] == 20
+    for code, day in enumerate((0, 10, 20)):
+        shown = _shown_organs(root, code)
+        built = _built_organs(arch.seed(), day)
+        assert shown.keys() == built.keys(), day
+        for key, vertices in built.items():
+            extent = float(numpy.ptp(vertices, axis=0).max())
+            reach = numpy.abs(vertices).max(axis=1, keepdims=True)
+            error = numpy.abs(shown[key] - vertices)
+            assert (error <= 1e-5 * extent + 4e-6 * reach + 1e-6).all(), (day, key)
+

@@ -11,7 +11,7 @@ TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|<[^>\s]*>|@[^@]*@|[-+]?(?:\d+\.?\d*|\.\d+
 
 class Prim:
     def __init__(self, kind, name):
-        self.kind, self.name = kind, name
+        self.kind, self.name, self.specifier = kind, name, "def"
         self.metadata, self.attributes, self.children = {}, {}, []
 
     def child(self, name):
@@ -61,6 +61,8 @@ class Reader:
         d = {}
         while self.peek() != "}":
             self.take()  # the value's type
+            if self.peek() == "[]":
+                self.take()
             name = self.take()
             self.take("=")
             d[name] = self.value()
@@ -92,14 +94,17 @@ class Reader:
         return m
 
     def prim(self):
-        self.take("def")
+        specifier = self.take()
+        if specifier not in ("def", "class", "over"):
+            raise ValueError(f"expected a prim, found {specifier!r} at token {self.i}")
         kind = self.take()
         p = Prim(kind, self.value())
+        p.specifier = specifier
         if self.peek() == "(":
             p.metadata = self.metadata()
         self.take("{")
         while self.peek() != "}":
-            if self.peek() == "def":
+            if self.peek() in ("def", "class", "over"):
                 p.children.append(self.prim())
                 continue
             if self.peek() in ("uniform", "custom"):

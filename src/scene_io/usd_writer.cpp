@@ -19,92 +19,15 @@
 #include "scene_io/export_common.h"
 #include "scene_io/usd_materials.h"
 #include "scene_io/usd_skin.h"
+#include "scene_io/usd_text.h"
 
 namespace plantarch {
 
 namespace {
 
-// Prim names are identifiers: letters, digits and '_', not starting with a digit.
-std::string primName(const std::string& text) {
-    std::string out;
-    for (char c : text) out += (std::isalnum(static_cast<unsigned char>(c)) ? c : '_');
-    if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "_" + out;
-    return out;
-}
-
-std::string usdQuoted(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += (c == '\n' ? ' ' : c);
-    }
-    return out + "\"";
-}
-
-// Numbers into the file's buffer (or a string, for a .usdz package), shortest exact text.
-class Text {
-public:
-    explicit Text(io::AtomicFile& file) : file_(&file) {}
-    explicit Text(std::string& text) : text_(&text) {}
-    /// Text written at the start of each line from now on (the nesting of a frame's prims);
-    /// called at the start of a line.
-    void indent(std::string_view prefix) {
-        indent_ = prefix;
-        lineStart_ = true;
-    }
-    Text& operator<<(std::string_view s) {
-        if (indent_.empty()) {
-            put(s);
-            return *this;
-        }
-        for (std::size_t at = 0; at < s.size();) {
-            const std::size_t end = std::min(s.find('\n', at), s.size() - 1);
-            lineStart();
-            put(s.substr(at, end + 1 - at));
-            lineStart_ = s[end] == '\n';
-            at = end + 1;
-        }
-        return *this;
-    }
-    Text& number(float v) {
-        lineStart();
-        char p[io::kMaxFloatChars];
-        put(std::string_view(p, std::size_t(io::writeFloat(p, v) - p)));
-        return *this;
-    }
-    Text& integer(std::int64_t v) {
-        lineStart();
-        char p[24];
-        put(std::string_view(p, std::size_t(io::writeInt(p, v) - p)));
-        return *this;
-    }
-    Text& tuple(const float* v, int n) {
-        put("(");
-        for (int i = 0; i < n; ++i) {
-            if (i) put(", ");
-            number(v[i]);
-        }
-        put(")");
-        return *this;
-    }
-
-private:
-    void put(std::string_view s) {
-        if (file_)
-            file_->write(s);
-        else
-            text_->append(s);
-    }
-    void lineStart() {
-        if (lineStart_ && !indent_.empty()) put(indent_);
-        lineStart_ = false;
-    }
-
-    io::AtomicFile* file_ = nullptr;
-    std::string* text_ = nullptr;
-    std::string indent_;
-    bool lineStart_ = false;
-};
+using io::primName;
+using io::Text;
+using io::usdQuoted;
 
 struct Group {  // the objects of one plant and organ kind
     std::vector<ObjectID> objects;
@@ -126,6 +49,7 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
             hasPlant ? context.objectDataInt(id, "plantID").value_or(-1) : -1;
         std::string organ = io::organOf(context, id);
         if (organ.empty()) organ = "unlabelled";
+        if (options.nodes == NodeLevel::Plant) organ = "plant";  // one mesh per plant
         Group& g = plants[plant][organ];
         const ObjectView o = context.object(id);
         g.objects.push_back(id);
@@ -166,7 +90,6 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
                 << "\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
         }
         if (skeleton) out << io::usdSkeleton(*skeleton, base);
-        std::vector<vec3> normals;
         for (const auto& [organ, g] : organs) {
             out << "\n        def Mesh " << usdQuoted(primName(organ))
                 << " (\n            prepend apiSchemas = [\"SemanticsLabelsAPI:class\""
@@ -175,85 +98,8 @@ void writeScene(Text& out, const Context& context, const std::vector<GltfPlant>&
                    "        {\n            uniform token subdivisionScheme = \"none\"\n"
                    "            uniform bool doubleSided = 1\n";
             out << "            token[] semantics:labels:class = [" << usdQuoted(organ) << "]\n";
-            out << "            int[] faceVertexCounts = [";
-            for (std::size_t t = 0; t < g.triangles; ++t) out << (t ? ", 3" : "3");
-            out << "]\n            int[] faceVertexIndices = [";
-            std::size_t first = 0;
-            bool comma = false;
-            for (ObjectID id : g.objects) {
-                const ObjectView o = context.object(id);
-                for (std::uint32_t k : o.indices) {
-                    if (comma) out << ", ";
-                    out.integer(std::int64_t(first + k));
-                    comma = true;
-                }
-                first += o.positions.size();
-            }
-            out << "]\n            point3f[] points = [";
-            comma = false;
-            for (ObjectID id : g.objects)
-                for (const vec3& v : context.object(id).positions) {
-                    const vec3 local = v - base;
-                    if (comma) out << ", ";
-                    out.tuple(&local.x, 3);
-                    comma = true;
-                }
-            out << "]\n";
-            if (options.normals) {
-                out << "            normal3f[] primvars:normals = [";
-                comma = false;
-                for (ObjectID id : g.objects) {
-                    smoothNormals(context.object(id), normals);
-                    for (const vec3& n : normals) {
-                        if (comma) out << ", ";
-                        out.tuple(&n.x, 3);
-                        comma = true;
-                    }
-                }
-                out << "] (\n                interpolation = \"vertex\"\n            )\n";
-            }
-            if (g.uvs && options.uvs) {
-                out << "            texCoord2f[] primvars:st = [";
-                comma = false;
-                for (ObjectID id : g.objects)
-                    for (const vec2& uv : context.object(id).uvs) {
-                        if (comma) out << ", ";
-                        out.tuple(&uv.x, 2);
-                        comma = true;
-                    }
-                out << "] (\n                interpolation = \"vertex\"\n            )\n";
-            }
-            // Per face: display colour (the organ's material) and the labels.
-            auto perFace = [&, &objects = g.objects](const char* type, const char* name,
-                                                     auto write) {
-                out << "            " << type << " primvars:" << name << " = [";
-                bool sep = false;
-                for (ObjectID id : objects) {
-                    const std::size_t n = context.object(id).triangleCount();
-                    for (std::size_t t = 0; t < n; ++t) {
-                        if (sep) out << ", ";
-                        write(id);
-                        sep = true;
-                    }
-                }
-                out << "] (\n                interpolation = \"uniform\"\n            )\n";
-            };
-            perFace("color3f[]", "displayColor", [&](ObjectID id) {
-                const vec3 c = context.material(context.objectMaterial(id)).color;
-                out.tuple(&c.x, 3);
-            });
-            std::int64_t code = 0;  // the index in kOrganLabels (trellis parts are obstacles)
-            for (std::size_t i = 0; i < kOrganLabels.size(); ++i)
-                if (organ == kOrganLabels[i]) code = std::int64_t(i);
-            if (organ == "trellis") code = 9;
-            perFace("int[]", "organ", [&](ObjectID) { out.integer(code); });
-            perFace("int[]", "plantID", [&](ObjectID) { out.integer(plant); });
-            perFace("int[]", "objectID", [&](ObjectID id) { out.integer(std::int64_t(id)); });
-            perFace("int[]", "leafID", [&](ObjectID id) { out.integer(labelsOf(id).leaf); });
-            perFace("int[]", "shootID", [&](ObjectID id) { out.integer(labelsOf(id).shoot); });
-            perFace("int[]", "rank", [&](ObjectID id) { out.integer(labelsOf(id).rank); });
-            perFace("int[]", "node", [&](ObjectID id) { out.integer(labelsOf(id).node); });
-            perFace("float[]", "age", [&](ObjectID id) { out.number(labelsOf(id).age); });
+            io::writeMeshData(out, context, g.objects, base, plant, g.uvs && options.uvs, options,
+                              labelsOf);
             if (skeleton)
                 out << io::usdSkinBinding(*skeleton, context, g.objects,
                                           "/plantarch/" + name + "/skeleton");
@@ -318,7 +164,10 @@ void writeUSDA(const Context& context, const std::string& path, const UsdOptions
     double done = 0.0;
     writeLayer(path, looks, [&](Text& out) {
         out << kHeader << ")\n\ndef Xform \"plantarch\"\n{\n" << looks.scope();
-        writeScene(out, context, options.plants, options, steps, done, looks);
+        if (options.nodes == NodeLevel::Organ)  // usd_organs.cpp
+            io::writeOrganPrims(out, {&context}, {options.plants}, options, looks, false);
+        else
+            writeScene(out, context, options.plants, options, steps, done, looks);
         out << "}\n";
     });
     steps.finish();
@@ -333,40 +182,20 @@ void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& pat
     std::vector<const Context*> contexts;
     for (const AnimationFrame& frame : frames) contexts.push_back(frame.context);
     const io::UsdLooks looks(contexts, options, texturePrefix(path));
-    double triangles = 0.0, done = 0.0;
-    for (const AnimationFrame& frame : frames) triangles += double(frame.context->triangleCount());
-    ProgressSteps steps(options.progress, "writing USD", triangles);
     writeLayer(path, looks, [&](Text& out) {
         out << kHeader << "    startTimeCode = 0\n    endTimeCode = ";
         out.integer(std::int64_t(frames.size() - 1)) << "\n    timeCodesPerSecond = ";
-        out.number(float(animation.framesPerSecond)) << "\n)\n\ndef Xform \"plantarch\"\n{\n"
-                                                     << looks.scope();
-        for (std::size_t f = 0; f < frames.size(); ++f) {
-            std::string name = "day_" + text::formatDouble(frames[f].day);
-            for (char& c : name)
-                if (c == '.' || c == '-') c = '_';
-            out << (f ? "\n" : "") << "    def Xform " << usdQuoted(name)
-                << " (\n        customData = {\n            double day = "
-                << text::formatDouble(frames[f].day) << "\n        }\n    )\n    {\n";
-            // Shown at time code f alone: hidden before (held from the first sample back) and
-            // after; token values are held, never interpolated.
-            out << "        token visibility.timeSamples = {\n";
-            if (f > 0) out << "            0: \"invisible\",\n";
-            out << "            ";
-            out.integer(std::int64_t(f)) << ": \"inherited\",\n";
-            if (f + 1 < frames.size()) {
-                out << "            ";
-                out.integer(std::int64_t(f + 1)) << ": \"invisible\",\n";
-            }
-            out << "        }\n";
-            out.indent("    ");
-            writeScene(out, *frames[f].context, frames[f].plants, options, steps, done, looks);
-            out.indent("");
-            out << "    }\n";
-        }
+        out.number(float(animation.framesPerSecond))
+            << "\n)\n\ndef Xform \"plantarch\" (\n    customData = {\n        double[] days = [";
+        for (std::size_t f = 0; f < frames.size(); ++f)
+            out << (f ? ", " : "") << text::formatDouble(frames[f].day);
+        out << "]\n    }\n)\n{\n" << looks.scope();
+        // A prim per organ, its placement sampled at each frame (usd_organs.cpp).
+        std::vector<std::vector<GltfPlant>> plants;
+        for (const AnimationFrame& frame : frames) plants.push_back(frame.plants);
+        io::writeOrganPrims(out, contexts, plants, options, looks, true);
         out << "}\n";
     });
-    steps.finish();
 }
 
 }  // namespace plantarch
