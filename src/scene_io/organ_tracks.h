@@ -63,7 +63,8 @@ struct OrganTracks {
 /// equal labels). A placement reproduces the frame's vertices to within 1e-5 of the organ's size
 /// plus 2e-6 of their largest coordinate (a few float steps: 2 um at 1 m from the origin).
 /// `uvsMatter(material)` says whether objects of a material must keep their own UVs (those with
-/// a texture); objects of other materials share shapes whatever their UVs. `instancing` lets tracks share shapes; without it a shape belongs to one track.
+/// a texture); objects of other materials share shapes whatever their UVs. `instancing` lets tracks
+/// share shapes; without it a shape belongs to one track.
 OrganTracks trackOrgans(const std::vector<const Context*>& frames, bool includeHidden,
                         bool instancing, const std::function<bool(const Material&)>& uvsMatter);
 
