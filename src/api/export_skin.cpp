@@ -119,6 +119,7 @@ GltfSkeleton skeletonOf(const PlantInstance& p, const Context& ctx,
             const vec3 span = nodes[i + 1] - nodes[i];
             const float length2 = glm::dot(span, span);
             GltfSkinnedObject so{o, self, {}};
+            so.vertices.reserve(ctx.object(o).positions.size());
             for (const vec3& v : ctx.object(o).positions) {
                 const float t = length2 > 0.0f
                                     ? std::clamp(glm::dot(v - nodes[i], span) / length2, 0.0f, 1.0f)
