@@ -2,14 +2,20 @@
 
 An add-on (File > Import > plantarch glTF (.glb/.gltf)) and a script:
 
-    blender -b --python plantarch_import.py -- FILE.glb [--out FILE.blend]
+    blender -b --python plantarch_import.py -- FILE.glb [--out FILE.blend] [--split-instances]
 
 The file is imported by Blender's own glTF importer; then every mesh gets plantarch's labels
 as integer face attributes (POLYGON domain) plant_id, object_id, organ, leaf_id, shoot_id,
 rank and node, age as a float face attribute, and any float columns a physiology season adds
 (absorbed_par ...). The organ names, index = organ value, are the mesh's custom property
 `organ_labels`. Blender's importer keeps the plant nodes' extras (plantID, species, age,
-seed) as the empties' custom properties. See docs/formats.md, "Blender".
+seed) as the empties' custom properties.
+
+Files written with --nodes organ (an object per organ, labelled by its custom properties;
+shared meshes labelled with what their users share, or each organ's own with
+--split-instances), --skin (meshes under an armature), --lod (the lower levels hidden, each
+object's level its custom property plantarch_lod) and --materials textured import with their labels too; --meshopt files do not
+(Blender 3.4 cannot read EXT_meshopt_compression). See docs/formats.md, "Blender".
 """
 
 import base64
@@ -137,8 +143,10 @@ def _base_name(name):
 
 
 def _match_nodes(gltf, new_objects):
-    """The Blender object made for each glTF node of the default scene: {node: object}, found
-    by walking both trees from the roots and matching children by name."""
+    """The Blender object made for each glTF node of the default scene and of its lower
+    levels of detail: ({node: object}, {node: level}), found by walking both trees from the
+    roots and matching children by name. Levels (MSFT_lod, --lod) are 1, 2 ... for the nodes
+    of each lower level; Blender 3.4 makes them as trees of their own at the scene's root."""
     nodes = gltf.doc.get("nodes", [])
     scene = gltf.doc.get("scenes", [{}])[gltf.doc.get("scene", 0)]
     found = {}
@@ -156,8 +164,61 @@ def _match_nodes(gltf, new_objects):
             kids = [o for o in objs[0].children if o in new_objects]
             match(nodes[i].get("children", []), kids)
 
-    match(scene.get("nodes", []), [o for o in new_objects if o.parent not in new_objects])
-    return found
+    roots = [o for o in new_objects if o.parent not in new_objects]
+    match(scene.get("nodes", []), roots)
+    levels = {}
+
+    def mark(i, level):
+        levels[i] = level
+        for c in nodes[i].get("children", []):
+            mark(c, level)
+
+    for i in list(found):
+        for level, lod in enumerate(nodes[i].get("extensions", {}).get("MSFT_lod", {})
+                                    .get("ids", []), 1):
+            match([lod], roots)
+            mark(lod, level)
+    # Skinned meshes (--skin) are nodes at the scene's root in the file, but Blender's
+    # importer puts them under the armature it makes of their skin: the object of the node
+    # above the skin's skeleton root. Find them among that object's children by name.
+    parent_of = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+    skins = gltf.doc.get("skins", [])
+    for i, node in enumerate(nodes):
+        if i in found or "mesh" not in node or node.get("skin") is None:
+            continue
+        skin = skins[node["skin"]]
+        root = skin.get("skeleton", skin["joints"][0] if skin.get("joints") else None)
+        armature = found.get(parent_of.get(root)) or found.get(root)
+        if armature is None:
+            continue
+        name = node.get("name", "")
+        objs = [o for o in armature.children if o in new_objects and o.type == "MESH" and
+                _base_name(o.name) in (name, _base_name(name))]
+        if len(objs) == 1:
+            found[i] = objs[0]
+    return found, levels
+
+
+def _place_levels(gltf, found, levels):
+    """Puts each lower level of detail where the glTF places it (instead of the node whose
+    MSFT_lod lists it: under that node's parent, with its transform), hidden, each object
+    with its level as the custom property plantarch_lod."""
+    nodes = gltf.doc.get("nodes", [])
+    parent_of = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+    for i, full in list(found.items()):
+        for lod in nodes[i].get("extensions", {}).get("MSFT_lod", {}).get("ids", []):
+            obj = found.get(lod)
+            if obj is None:
+                continue
+            obj.parent = found.get(parent_of.get(i))
+            obj.matrix_parent_inverse.identity()
+            obj.matrix_basis = full.matrix_basis.copy()
+    for i, level in levels.items():
+        obj = found.get(i)
+        if obj is not None:
+            obj["plantarch_lod"] = level
+            obj.hide_viewport = obj.hide_render = True
+            obj.hide_set(True)
 
 
 def _vertex_features(gltf, mesh_index):
@@ -231,9 +292,39 @@ def _label_mesh(mesh, per_vertex, columns, organs):
     return sorted(values)
 
 
-def load(filepath, **importer_options):
+# A node's extras (a file written with --nodes organ) and the face attributes they fill.
+_EXTRAS = (("plantID", "plant_id", "INT"), ("objectID", "object_id", "INT"),
+           ("leaf", "leaf_id", "INT"), ("shoot", "shoot_id", "INT"), ("rank", "rank", "INT"),
+           ("node", "node", "INT"), ("age", "age", "FLOAT"))
+
+
+def _label_from_extras(mesh, extras, organs):
+    """Puts one organ's labels, from its node's extras, on every face of its own mesh;
+    returns the names added (none when the extras are not an organ's)."""
+    if "objectID" not in extras or not mesh.polygons:
+        return []
+    faces, added = len(mesh.polygons), []
+    for key, name, kind in _EXTRAS:
+        if isinstance(extras.get(key), (int, float)):
+            _set_face_attribute(mesh, name, numpy.full(faces, extras[key]), kind)
+            added.append(name)
+    if extras.get("organ") in organs:
+        _set_face_attribute(mesh, "organ", numpy.full(faces, organs.index(extras["organ"])),
+                            "INT")
+        mesh["organ_labels"] = organs
+        added.append("organ")
+    return added
+
+
+def load(filepath, split_instances=False, **importer_options):
     """Imports a plantarch glTF/GLB file into the current scene with Blender's importer and
-    adds the labels; returns a summary: {"meshes", "labelled", "triangles", "attributes"}."""
+    adds the labels; returns a summary: {"meshes", "labelled", "triangles", "attributes"}.
+
+    A file written with --nodes organ has an object per organ, its labels (plantID,
+    objectID, organ, leaf, shoot, node, rank, age) its custom properties. Organs of one shape
+    share one mesh (instancing): its faces get the labels all its users share (plant_id,
+    organ); with `split_instances`, each such object gets a mesh of its own (a copy) whose
+    faces carry all of its labels."""
     apply_numpy_fix()
     before = set(bpy.data.objects)
     result = bpy.ops.import_scene.gltf(filepath=str(filepath), **importer_options)
@@ -245,19 +336,37 @@ def load(filepath, **importer_options):
     nodes = gltf.doc.get("nodes", [])
     summary = {"meshes": 0, "labelled": 0, "triangles": 0, "attributes": set()}
     done = set()
-    for index, obj in sorted(_match_nodes(gltf, new_objects).items()):
-        for key, value in nodes[index].get("extras", {}).items():
+    found, levels = _match_nodes(gltf, new_objects)
+    _place_levels(gltf, found, levels)
+    matched = sorted(found.items())
+    users = {}
+    for index, obj in matched:
+        if obj.type == "MESH" and "mesh" in nodes[index]:
+            users[obj.data] = users.get(obj.data, 0) + 1
+    for index, obj in matched:
+        extras = nodes[index].get("extras", {})
+        for key, value in extras.items():
             if isinstance(value, (int, float, str)):
                 obj[key] = value  # as Blender's importer does: kept in case it stops
         if obj.type != "MESH" or "mesh" not in nodes[index]:
             continue
         summary["meshes"] += 1
-        summary["triangles"] += sum(len(p.vertices) - 2 for p in obj.data.polygons)
+        if index not in levels:  # the full level's
+            summary["triangles"] += sum(len(p.vertices) - 2 for p in obj.data.polygons)
+        per_vertex = _vertex_features(gltf, nodes[index]["mesh"])
+        # An organ's node whose mesh has no per-vertex object IDs (a shared one): its labels
+        # are its extras.
+        organ_node = "objectID" in extras and not (per_vertex and "object" in per_vertex)
+        if organ_node and users[obj.data] > 1 and split_instances:
+            users[obj.data] -= 1
+            obj.data = obj.data.copy()  # a mesh of its own, for its own labels
+            users[obj.data] = 1
         if obj.data in done:
             summary["labelled"] += 1
             continue
-        per_vertex = _vertex_features(gltf, nodes[index]["mesh"])
         added = _label_mesh(obj.data, per_vertex, columns, organs) if per_vertex else []
+        if organ_node and users[obj.data] == 1:
+            added = sorted(set(added) | set(_label_from_extras(obj.data, extras, organs)))
         if added:
             done.add(obj.data)
             summary["labelled"] += 1
@@ -275,10 +384,15 @@ class ImportPlantarchGltf(bpy.types.Operator):
 
     filepath: bpy.props.StringProperty(subtype="FILE_PATH")
     filter_glob: bpy.props.StringProperty(default="*.glb;*.gltf", options={"HIDDEN"})
+    split_instances: bpy.props.BoolProperty(
+        name="Split instances",
+        description="Give each organ that shares its mesh (a file written with --nodes organ) "
+        "a mesh of its own, so that its faces carry all its labels",
+        default=False)
 
     def execute(self, context):
         try:
-            summary = load(self.filepath)
+            summary = load(self.filepath, split_instances=self.split_instances)
         except (OSError, ValueError, KeyError, RuntimeError) as e:
             self.report({"ERROR"}, "plantarch: %s" % e)
             return {"CANCELLED"}
@@ -307,9 +421,11 @@ def unregister():
 
 
 def main(argv):
-    """blender -b --python plantarch_import.py -- FILE.glb [--out FILE.blend]: imports FILE
-    into an empty scene and saves it when --out is given."""
+    """blender -b --python plantarch_import.py -- FILE.glb [--out FILE.blend]
+    [--split-instances]: imports FILE into an empty scene and saves it when --out is given."""
     args = argv[argv.index("--") + 1:] if "--" in argv else []
+    split = "--split-instances" in args
+    args = [a for a in args if a != "--split-instances"]
     out = None
     if "--out" in args:
         at = args.index("--out")
@@ -319,8 +435,8 @@ def main(argv):
             return 2
         del args[at:at + 2]
     if len(args) != 1:
-        print("usage: blender -b --python plantarch_import.py -- FILE.glb [--out FILE.blend]",
-              file=sys.stderr)
+        print("usage: blender -b --python plantarch_import.py -- FILE.glb [--out FILE.blend] "
+              "[--split-instances]", file=sys.stderr)
         return 2
     path = args[0]
     if not os.path.isfile(path):
@@ -328,7 +444,7 @@ def main(argv):
         return 2
     bpy.ops.wm.read_factory_settings(use_empty=True)
     try:
-        summary = load(path)
+        summary = load(path, split_instances=split)
     except (OSError, ValueError, KeyError, RuntimeError) as e:
         print("plantarch_import: %s: %s" % (path, e), file=sys.stderr)
         return 2

@@ -2,7 +2,8 @@
 # Imports plantarch glTF files into Blender with the add-on plantarch ships
 # (blender/plantarch_import.py) and checks the labels it brings in as face attributes
 # (tests/blender/check_labels.py): plants as .glb through the add-on's operator, and a small
-# canopy as .gltf through its script mode, saved as a .blend and checked when opened.
+# canopy as .gltf through its script mode, saved as a .blend and checked when opened; then the
+# export variants (--nodes organ, --skin, --lod, --materials textured; check_variants.py).
 # Usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY.
 # Exits 1 on a mismatch, 77 (skipped) when Blender is missing.
 set -euo pipefail
@@ -49,4 +50,32 @@ else
              --python "$check" -- "$out/canopy.gltf" 2>&1) || true
     report "canopy.gltf, the script mode's .blend" "$result"
 fi
+# The export variants (tests/blender/check_variants.py): a node per organ (instanced organs
+# labelled by their custom properties), a skin, a level of detail, textured materials, through
+# the operator; a node per organ with --split-instances through the script mode's .blend.
+# The reduced level of --lod is left out: Blender drops the few zero-area triangles
+# meshoptimizer leaves in it, so its count differs. --meshopt is left out: Blender 3.4 cannot
+# read EXT_meshopt_compression.
+check_variants="$src/tests/blender/check_variants.py"
+for variant in "organ:--nodes organ" "skin:--skin" "lod:--lod cards" \
+               "textured:--materials textured --texture-size 64"; do
+    name=${variant%%:*}
+    # shellcheck disable=SC2086  # the options are words
+    "$cli" --seed 3 build strawberry --age 60 ${variant#*:} -o "$out/$name.glb" > /dev/null
+    result=$(cd "$out" && blender -b --factory-startup --python-exit-code 1 \
+             --python "$check_variants" -- "$out/$name.glb" --addon "$addon" 2>&1) || true
+    report "strawberry $name.glb (${variant#*:}), the add-on's operator" "$result"
+done
+result=$(cd "$out" && blender -b --factory-startup --python-exit-code 1 --python "$addon" -- \
+         "$out/organ.glb" --split-instances --out "$out/split.blend" 2>&1) || true
+if [ ! -s "$out/split.blend" ]; then
+    echo "check_blender_labels: organ.glb --split-instances: the script mode wrote no .blend"
+    echo "$result" | tail -20
+    status=1
+else
+    result=$(cd "$out" && blender -b --factory-startup "$out/split.blend" --python-exit-code 1 \
+             --python "$check_variants" -- "$out/organ.glb" --split 2>&1) || true
+    report "strawberry organ.glb, --split-instances in the script mode's .blend" "$result"
+fi
+echo "check_blender_labels: --meshopt files skipped: Blender 3.4 cannot read EXT_meshopt_compression"
 exit "$status"
