@@ -8,8 +8,11 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -95,6 +98,13 @@ std::string firstCornerLowest(const std::string& bytes) {
         }
     }
     return std::string(reinterpret_cast<const char*>(idx.data()), bytes.size());
+}
+
+std::vector<std::array<float, 3>> sortedPositions(const Mesh& m) {
+    std::vector<std::array<float, 3>> out;
+    for (const vec3& p : m.positions) out.push_back({p.x, p.y, p.z});
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 }  // namespace
@@ -245,4 +255,48 @@ TEST(GltfLod, BadLevelsAreOneError) {
     }
     EXPECT_TRUE(fs::is_empty(out));  // nothing written, nothing left
     fs::remove_all(out);
+}
+
+// plantarch reads its compressed files back (render, compare, convert): the same triangles
+// and labels as the plain file; a view whose data does not decode is one error.
+TEST(GltfLod, CompressedFilesReadBackAsThePlainOnes) {
+    Plants s("tomato", 60.0f);
+    GltfOptions o;
+    o.plants = s.plants;
+    const fs::path plainPath = tempPath("read_plain.glb"), packedPath = tempPath("read_packed.glb");
+    writeGLTF(s.ctx, plainPath.string(), o);
+    o.meshoptCompression = true;
+    writeGLTF(s.ctx, packedPath.string(), o);
+    Context plain, packed;
+    const auto plainIDs = readGLTF(plain, plainPath.string());
+    const auto packedIDs = readGLTF(packed, packedPath.string());
+    ASSERT_EQ(plainIDs.size(), packedIDs.size());
+    EXPECT_EQ(plain.triangleCount(), packed.triangleCount());
+    for (std::size_t i = 0; i < plainIDs.size(); ++i) {
+        // The same vertices and triangles (a triangle may start at another corner, so the
+        // reader may meet the vertices in another order).
+        const Mesh a = plain.objectMesh(plainIDs[i]), b = packed.objectMesh(packedIDs[i]);
+        EXPECT_EQ(a.triangleCount(), b.triangleCount());
+        EXPECT_EQ(sortedPositions(a), sortedPositions(b));
+        EXPECT_NEAR(a.area(), b.area(), 1e-9 * a.area());
+        EXPECT_EQ(plain.objectDataInt(plainIDs[i], "plantID"),
+                  packed.objectDataInt(packedIDs[i], "plantID"));
+        EXPECT_EQ(plain.objectDataString(plainIDs[i], "organ"),
+                  packed.objectDataString(packedIDs[i], "organ"));
+    }
+    // Corrupt the compressed data: one error naming the file.
+    std::string bytes = readAll(packedPath.string());
+    const Glb g = parseGlb(bytes);
+    const std::size_t binAt = bytes.size() - g.bin.size();
+    for (std::size_t k = 0; k < 64 && k < g.bin.size(); ++k) bytes[binAt + k] = char(0xFF);
+    std::ofstream(packedPath, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+    Context bad;
+    try {
+        readGLTF(bad, packedPath.string());
+        ADD_FAILURE() << "a corrupt file was read";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(packedPath.string()), std::string::npos) << e.what();
+    }
+    fs::remove(plainPath);
+    fs::remove(packedPath);
 }

@@ -268,4 +268,64 @@ Buffer compressMeshopt(json& doc, const Buffer& buffer) {
     return out;
 }
 
+void decodeMeshopt(json& doc, std::vector<std::string>& buffers, const std::string& path) {
+    auto views = doc.find("bufferViews");
+    if (views == doc.end() || !views->is_array()) return;
+    auto fail = [&](const std::string& what) {
+        return Error("EXT_meshopt_compression: " + what, {.file = path});
+    };
+    auto whole = [&](const json& o, const char* key, std::uint64_t fallback) -> std::uint64_t {
+        const auto it = o.find(key);
+        if (it == o.end()) return fallback;
+        if (!it->is_number_unsigned())
+            throw fail(std::string("\"") + key + "\" is not a whole number");
+        return it->get<std::uint64_t>();
+    };
+    for (json& v : *views) {
+        if (!v.is_object() || !v.contains("extensions") || !v["extensions"].is_object() ||
+            !v["extensions"].contains("EXT_meshopt_compression"))
+            continue;
+        const json& e = v["extensions"]["EXT_meshopt_compression"];
+        if (!e.is_object()) throw fail("the extension is not an object");
+        const std::uint64_t buffer = whole(e, "buffer", ~0ull), offset = whole(e, "byteOffset", 0),
+                            length = whole(e, "byteLength", ~0ull),
+                            stride = whole(e, "byteStride", 0), count = whole(e, "count", ~0ull);
+        const std::string mode = e.value("mode", std::string()),
+                          filter = e.value("filter", std::string("NONE"));
+        if (buffer >= buffers.size()) throw fail("it names no buffer");
+        const std::string& data = buffers[std::size_t(buffer)];
+        if (offset > data.size() || length > data.size() - offset)
+            throw fail("its data reaches past its buffer");
+        const bool indices = mode == "TRIANGLES" || mode == "INDICES";
+        if (!(mode == "ATTRIBUTES" || indices)) throw fail("unknown mode \"" + mode + "\"");
+        if (indices ? (stride != 2 && stride != 4)
+                    : (stride == 0 || stride % 4 != 0 || stride > 256))
+            throw fail("byteStride " + std::to_string(stride) + " does not suit mode " + mode);
+        if (count > (256 * length + 65536) / stride)
+            throw fail("it would decode to more than 256 times its size");
+        std::string out(std::size_t(count * stride), '\0');
+        const auto* src = reinterpret_cast<const unsigned char*>(data.data() + offset);
+        const int rc =
+            mode == "TRIANGLES"
+                ? (count % 3 ? -1
+                             : meshopt_decodeIndexBuffer(out.data(), count, stride, src, length))
+            : mode == "INDICES"
+                ? meshopt_decodeIndexSequence(out.data(), count, stride, src, length)
+                : meshopt_decodeVertexBuffer(out.data(), count, stride, src, length);
+        if (rc != 0) throw fail("a view's data does not decode");
+        if (filter == "OCTAHEDRAL" && !indices && (stride == 4 || stride == 8))
+            meshopt_decodeFilterOct(out.data(), count, stride);
+        else if (filter == "QUATERNION" && !indices && stride == 8)
+            meshopt_decodeFilterQuat(out.data(), count, stride);
+        else if (filter == "EXPONENTIAL" && !indices)
+            meshopt_decodeFilterExp(out.data(), count, stride);
+        else if (filter != "NONE")
+            throw fail("filter \"" + filter + "\" does not suit mode " + mode + " and byteStride " +
+                       std::to_string(stride));
+        buffers.push_back(std::move(out));
+        v["buffer"] = buffers.size() - 1;
+        v["byteOffset"] = std::uint64_t(0);
+    }
+}
+
 }  // namespace plantarch::gltf

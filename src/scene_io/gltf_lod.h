@@ -35,4 +35,10 @@ void addLevels(json& doc, Buffer& buffer, const Scene& full, const GltfOptions& 
 /// data, and the extension in extensionsUsed and extensionsRequired of `doc`.
 Buffer compressMeshopt(json& doc, const Buffer& buffer);
 
+/// For the reader: decodes each buffer view of `doc` that has EXT_meshopt_compression (any mode
+/// and filter) from its compressed buffer into a buffer of its own, appended to `buffers`, and
+/// points the view at it. Throws plantarch::Error naming `path` for data that does not decode,
+/// or that would decode to more than 256 times its size.
+void decodeMeshopt(json& doc, std::vector<std::string>& buffers, const std::string& path);
+
 }  // namespace plantarch::gltf

@@ -19,6 +19,7 @@
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
+#include "scene_io/gltf_lod.h"
 
 namespace plantarch {
 
@@ -115,6 +116,7 @@ public:
                      "\" is a separate file, which is not read: write the scene as .glb");
             buffers_.push_back(fromBase64(std::string_view(uri).substr(comma + 1), path_));
         }
+        gltf::decodeMeshopt(doc_, buffers_, path_);  // EXT_meshopt_compression (gltf_lod.cpp)
     }
 
     const json& doc() const { return doc_; }
