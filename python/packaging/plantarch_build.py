@@ -8,8 +8,8 @@ made from /usr/bin/python3 does), so a wheel after setup.sh only links and packs
 interpreter gets its own folder, `build/wheel-<tag>/`. `pip ... -C build-dir=DIR` names one.
 
 The wheel holds the package (`plantarch/__init__.py`, the extension, its type stubs and
-`py.typed`) and the species library (`plantarch/species/`), which the extension finds beside
-itself. The extension links plantarch statically; it needs the shared libraries the project's
+`py.typed`), the species library (`plantarch/species/`), which the extension finds beside
+itself, and the Blender add-on (`plantarch/blender/plantarch_import.py`). The extension links plantarch statically; it needs the shared libraries the project's
 Debian packages install (Embree, libzip, OpenMP), as the command-line tool does.
 """
 
@@ -158,12 +158,16 @@ class _Wheel:
 
 
 def _package_files(package):
-    """(name in the wheel, path) of the built package and the species library, sorted."""
+    """(name in the wheel, path) of the built package, the Blender add-on and the species
+    library, sorted."""
     files = []
     for entry in sorted(os.listdir(package)):
         path = os.path.join(package, entry)
         if os.path.isfile(path) and (entry.endswith((".py", ".pyi", ".so")) or entry == "py.typed"):
             files.append((f"{NAME}/{entry}", path))
+    # The Blender add-on (not a module of the package: it runs inside Blender).
+    addon = os.path.join(SOURCE, "blender", "plantarch_import.py")
+    files.append((f"{NAME}/blender/plantarch_import.py", addon))
     species = os.path.join(SOURCE, "species")
     for root, dirs, names in os.walk(species):
         dirs.sort()

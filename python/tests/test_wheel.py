@@ -1,7 +1,8 @@
 """The install paths docs/python.md gives: a wheel from `pip wheel . --no-build-isolation`
 installed with `--no-index` into a fresh venv (no system site packages) imports from another
-folder with nothing of the source tree on its path, finds the species library inside itself
-and writes the PLY bytes the command-line tool writes for the same seed."""
+folder with nothing of the source tree on its path, finds the species library inside itself,
+holds the Blender add-on and writes the PLY bytes the command-line tool writes for the same
+seed."""
 
 import os
 import pathlib
@@ -50,6 +51,7 @@ def test_the_wheel_holds_the_package_stubs_and_species(wheel):
     assert any(n.startswith("plantarch/_plantarch") and n.endswith(".so") for n in names)
     assert any(n.startswith("plantarch/_plantarch") and n.endswith(".pyi") for n in names)
     assert "plantarch/species/bean.xml" in names
+    assert "plantarch/blender/plantarch_import.py" in names
     species = {n for n in names if n.startswith("plantarch/species/")}
     assert len(species) == len(list((REPO / "species").glob("*.xml")))
     record = [n for n in names if n.endswith(".dist-info/RECORD")]
@@ -96,6 +98,9 @@ def test_a_fresh_venv_imports_the_wheel_and_writes_the_clis_bytes_without_numpy(
     site = venv / "lib"
     assert pathlib.Path(module_file).resolve().is_relative_to(site.resolve())
     assert pathlib.Path(species).resolve() == (pathlib.Path(module_file).parent / "species").resolve()
+    # The Blender add-on, installed beside the package, as in the source tree.
+    addon = pathlib.Path(module_file).parent / "blender" / "plantarch_import.py"
+    assert addon.read_bytes() == (REPO / "blender" / "plantarch_import.py").read_bytes()
     assert numpy_loaded == "False"  # the venv has no numpy, and building needs none
     assert "numpy" in array_error  # a call returning arrays names what it needs
     subprocess.run([cli(), "--seed", "3", "build", "bean", "--age", "30", "-o",
