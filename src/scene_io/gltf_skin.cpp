@@ -28,6 +28,7 @@ constexpr int kUByte = 5121, kUShort = 5123;
 // A vertex's weights as normalized unsigned bytes: each rounded, the largest taking what makes
 // the sum exactly 255.
 std::array<std::uint8_t, 4> byteWeights(const GltfInfluence& g) {
+    if (g.weights[0] == 1.0f) return {255, 0, 0, 0};  // rigid: most vertices
     std::array<int, 4> w{};
     int sum = 0;
     std::size_t largest = 0;
