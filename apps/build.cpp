@@ -58,6 +58,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
             prepareGrowthOutputs(a->outputs, a->stats || !a->physiology.series.empty(), a->age,
                                  a->animation, global.points);
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
+        checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
         checkCollisionOptions(a->collision);
         checkPhysiologyOptions(a->physiology);
         checkBendOptions(a->bend);

@@ -75,6 +75,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
             prepareGrowthOutputs(a->outputs, a->stats || !a->physiology.series.empty(), a->age,
                                  a->animation, global.points);
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
+        checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
         checkPhysiologyOptions(a->physiology);
         const float buildAge = physiologyBuildAge(a->physiology, a->age, frames.has_value());
         if (a->plantOrigin && !a->separate)

@@ -46,11 +46,13 @@ struct GlobalOptions {
     bool objectIDs = false;   ///< --object-ids: object IDs in .xml, object tables by meshes
     PlyColor plyColor = PlyColor::None;                   ///< --ply-color
     PlyFormat plyFormat = PlyFormat::BinaryLittleEndian;  ///< --ply-format
+    bool skin = false;  ///< --skin: skeletons in glTF and USD outputs (skin_options.cpp)
     std::vector<GltfLevel> levels;  ///< --lod: levels of detail of glTF outputs (lod_options.cpp)
     bool meshopt = false;           ///< --meshopt: EXT_meshopt_compression of glTF outputs
-    bool skin = false;  ///< --skin: skeletons in glTF and USD outputs (skin_options.cpp)
     /// --materials and --texture-size: flat colours or procedural textures (material_options.cpp)
     MaterialOptions appearance;
+    NodeLevel nodes = NodeLevel::Kind;  ///< --nodes (node_options.cpp)
+    bool instancing = true;             ///< --no-instancing clears it
     /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
     /// it) with one line; 0 for no limit. Default: PlantArchitecture::defaultTriangleLimit().
     std::size_t maxTriangles = PlantArchitecture::defaultTriangleLimit();
@@ -216,16 +218,22 @@ void addStringDigitsOption(CLI::App& app, GlobalOptions& global);
 /// Adds --object-ids (.xml outputs carry each organ's object IDs; each mesh output gets an
 /// object table), --ply-color and --ply-format.
 void addLabelOptions(CLI::App& app, GlobalOptions& global);
+/// --skin (skin_options.cpp), added by addLabelOptions.
+void addSkinOptions(CLI::App& app, GlobalOptions& global);
 /// --lod and --meshopt (lod_options.cpp), added by addLabelOptions.
 void addLevelOptions(CLI::App& app, GlobalOptions& global);
 /// Before any work: --lod and --meshopt only with glTF mesh outputs (pictures and plant files
 /// may come along), and not with --frames; throws naming the option.
 void checkLevelOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs,
                        bool frames);
-/// --skin (skin_options.cpp), added by addLabelOptions.
-void addSkinOptions(CLI::App& app, GlobalOptions& global);
 /// --materials and --texture-size (material_options.cpp), added by addLabelOptions.
 void addMaterialOptions(CLI::App& app, GlobalOptions& global);
+/// --nodes and --no-instancing (node_options.cpp), added by addLabelOptions.
+void addNodeOptions(CLI::App& app, GlobalOptions& global);
+/// Before any work: --nodes other than kind only with glTF and USD mesh outputs (pictures and
+/// plant files may come along); with --frames only organ. Throws naming the option.
+void checkNodeOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs,
+                      bool frames);
 
 /// A growth animation asked for with --frames START:END[:STEP] and --frame-rate
 /// (animation_options.cpp).

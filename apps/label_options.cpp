@@ -42,6 +42,7 @@ void addLabelOptions(CLI::App& app, GlobalOptions& global) {
     addSkinOptions(app, global);      // skin_options.cpp
     addLevelOptions(app, global);     // lod_options.cpp
     addMaterialOptions(app, global);  // material_options.cpp
+    addNodeOptions(app, global);      // node_options.cpp
 }
 
 }  // namespace plantarch::cli

@@ -32,10 +32,12 @@ PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress) {
     o.cameraTarget = g.pictureTarget;
     o.mode = g.pictureMode;
     o.cameraJson = g.cameraJson;
+    o.skin = g.skin;
     o.levels = g.levels;
     o.meshoptCompression = g.meshopt;
-    o.skin = g.skin;
     o.appearance = g.appearance;
+    o.nodes = g.nodes;
+    o.instancing = g.instancing;
     if (showProgress) o.progress = terminalProgress();
     o.onWritten = [&g](const std::string& path) { info(g, "wrote " + path); };
     return o;

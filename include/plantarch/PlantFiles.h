@@ -37,16 +37,20 @@ struct PlantFileOptions {
     bool cameraTarget = false;
     RenderMode mode = RenderMode::Shaded;  ///< shaded picture or a label mask
     bool cameraJson = false;  ///< NAME.camera.json (the camera's matrices) beside each .png
+    /// Skinning: .glb, .gltf and .usda files of plants carry a wind-ready skeleton per plant
+    /// (exportSkeletons, GltfOptions::skeletons); other files are written as without it.
+    bool skin = false;
     // Levels of detail and compression of .glb and .gltf files (GltfOptions): levels given
     // with another mesh format are an error.
     std::vector<GltfLevel> levels;
     bool meshoptCompression = false;
-    /// Skinning: .glb, .gltf and .usda files of plants carry a wind-ready skeleton per plant
-    /// (exportSkeletons, GltfOptions::skeletons); other files are written as without it.
-    bool skin = false;
     /// Materials of .obj, .glb, .gltf, .usda, .usdz and .png outputs: flat colours or
     /// procedural textures (MaterialOptions).
     MaterialOptions appearance;
+    /// Nodes of .glb, .gltf, .usda and .usdz files (GltfOptions::nodes, ::instancing); a level
+    /// other than NodeLevel::Kind with another mesh format is an error.
+    NodeLevel nodes = NodeLevel::Kind;
+    bool instancing = true;
     /// Each writer's progress; for separate files, one report over the plants.
     ProgressCallback progress;
     /// Called with the path of every file written (an object table and a camera file too).

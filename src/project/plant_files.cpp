@@ -49,6 +49,13 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
                     {.file = path,
                      .parameter = g.levels.empty() ? "meshopt" : "lod",
                      .validRange = ".glb, .gltf"});
+    if (g.nodes != NodeLevel::Kind && ext != ".glb" && ext != ".gltf" && ext != ".usda" &&
+        ext != ".usdz" && ext != ".png")
+        throw Error("node levels are written in glTF and USD only",
+                    {.file = path,
+                     .parameter = "nodes",
+                     .value = nodeLevelName(g.nodes),
+                     .validRange = ".glb, .gltf, .usda, .usdz"});
     auto points = [&] {
         return samplePoints(ctx, {.points = g.points, .seed = g.seed, .progress = progress});
     };
@@ -68,6 +75,8 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         o.levels = g.levels;
         o.meshoptCompression = g.meshoptCompression;
         o.appearance = g.appearance;
+        o.nodes = g.nodes;
+        o.instancing = g.instancing;
         writeGLTF(ctx, path, o);
     } else if (ext == ".usda" || ext == ".usdz") {
         UsdOptions o;
@@ -75,6 +84,8 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         o.skeletons = skeletons;
         o.progress = progress;
         o.appearance = g.appearance;
+        o.nodes = g.nodes;
+        o.instancing = g.instancing;
         writeUSDA(ctx, path, o);
     } else if (ext == ".png") {
         RenderOptions o;

@@ -1,0 +1,56 @@
+// --nodes plant|kind|organ and --no-instancing: how .glb, .gltf, .usda and .usdz outputs group
+// each plant's geometry into nodes (docs/formats.md, "Nodes and instancing").
+
+#include <string>
+
+#include "cli.h"
+#include "plantarch/Error.h"
+#include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
+#include "plantarch/PlantFiles.h"
+
+namespace plantarch::cli {
+
+void addNodeOptions(CLI::App& app, GlobalOptions& global) {
+    app.add_option_function<std::string>(
+           "--nodes",
+           [&global](const std::string& text) {
+               const std::optional<NodeLevel> level = nodeLevelFromName(text);
+               if (!level)
+                   throw Error(
+                       "unknown node level",
+                       {.parameter = "--nodes", .value = text, .validRange = "plant, kind, organ"});
+               global.nodes = *level;
+           },
+           "Nodes of .glb, .gltf, .usda and .usdz outputs: plant (a mesh per plant), kind "
+           "(default: a mesh per organ kind under each plant) or organ (a node per shoot and "
+           "per organ, named and labelled, so a viewer can pick one leaf or fruit); growth "
+           "animations always have a node per organ")
+        ->type_name("LEVEL");
+    app.add_flag_function(
+        "--no-instancing", [&global](std::int64_t) { global.instancing = false; },
+        "With --nodes organ (and in animations): give every organ its own mesh, even where "
+        "another organ has the same shape");
+}
+
+void checkNodeOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs,
+                      bool frames) {
+    if (global.nodes == NodeLevel::Kind) return;
+    if (frames && global.nodes != NodeLevel::Organ)
+        throw Error("a growth animation always has a node per organ",
+                    {.parameter = "--nodes",
+                     .value = nodeLevelName(global.nodes),
+                     .validRange = "organ, or no --nodes, with --frames"});
+    for (const std::string& out : outputs) {
+        const std::string ext = lowerExtension(out);
+        if (holdsObjectIDs(out) && ext != ".glb" && ext != ".gltf" && ext != ".usda" &&
+            ext != ".usdz")
+            throw Error("node levels are written in glTF and USD only",
+                        {.file = out,
+                         .parameter = "--nodes",
+                         .value = nodeLevelName(global.nodes),
+                         .validRange = ".glb, .gltf, .usda, .usdz"});
+    }
+}
+
+}  // namespace plantarch::cli
