@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "builder/server/export_files.h"
+#include "builder/server/export_options.h"
 #include "builder/server/server_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/Render.h"
@@ -94,8 +95,21 @@ void Server::Impl::buildRoutes() {
     on("GET", "/api/builds/([^/]+)/scene.glb",
        [this](const httplib::Request& req, httplib::Response& res) {
            guarded(res, [&] {
-               auto bytes = builds.glb(req.matches[1].str(), [this](Scene& s) {
-                   return sceneFileBytes(*this, s, "glb");
+               // The view's materials (flat or textured), as an export's; nothing else.
+               for (const auto& [param, value] : req.params)
+                   if (param != "materials" && param != "texture_size")
+                       throw HttpError{400, clip(param) +
+                                                ": unknown parameter of scene.glb (valid: "
+                                                "materials, texture_size)"};
+               PlantFileOptions variant;
+               variant.appearance = exportVariant(req, "glb").appearance;
+               const MaterialOptions& look = variant.appearance;
+               const std::string key = look.style == MaterialStyle::Flat
+                                           ? ""
+                                           : std::string(materialStyleName(look.style)) + ":" +
+                                                 std::to_string(look.textureSize);
+               auto bytes = builds.glb(req.matches[1].str(), key, [&](Scene& s) {
+                   return sceneFileBytes(*this, s, "glb", variant);
                });
                if (const auto* r = std::get_if<Refusal>(&bytes))
                    throw HttpError{r->status, r->message};

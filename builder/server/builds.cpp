@@ -149,15 +149,15 @@ std::optional<bool> BuildQueue::cancel(const std::string& id) {
     return false;
 }
 
-std::variant<std::string, Refusal> BuildQueue::glb(const std::string& id,
+std::variant<std::string, Refusal> BuildQueue::glb(const std::string& id, const std::string& key,
                                                    const std::function<std::string(Scene&)>& make) {
     std::shared_ptr<Build> b;
     std::shared_ptr<Scene> s;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         const auto it = builds_.find(id);
-        if (it != builds_.end() && !it->second->glb.empty() && it->second->takenBy.empty())
-            return it->second->glb;
+        if (it != builds_.end() && it->second->glb.count(key) && it->second->takenBy.empty())
+            return it->second->glb.at(key);
         if (it != builds_.end()) b = it->second;
     }
     auto found = scene(id);
@@ -169,7 +169,7 @@ std::variant<std::string, Refusal> BuildQueue::glb(const std::string& id,
         bytes = make(*s);
     }
     std::lock_guard<std::mutex> lock(mutex_);
-    if (b && b->takenBy.empty()) b->glb = bytes;
+    if (b && b->takenBy.empty()) b->glb[key] = bytes;
     return bytes;
 }
 

@@ -50,7 +50,8 @@ struct Build {
     std::shared_ptr<Scene> scene;  ///< set once done
     ProjectStats stats;
     std::vector<float> ages;  ///< each block's age as built
-    std::string glb;          ///< scene.glb, made on first request
+    /// scene.glb by its variant ("" flat, "textured:512" ...), each made on first request
+    std::map<std::string, std::string> glb;
     /// For a build grown on from another: its project built anew, for export (exportScene).
     std::shared_ptr<Scene> freshScene;
 };
@@ -94,8 +95,9 @@ public:
     /// Cancels a queued or running build (true), or forgets a finished one (false); nullopt
     /// for an unknown ID.
     std::optional<bool> cancel(const std::string& id);
-    /// The build's GLB bytes if made already; else stores `make()`'s (made outside the lock).
-    std::variant<std::string, Refusal> glb(const std::string& id,
+    /// The build's GLB bytes of variant `key` if made already; else stores `make()`'s (made
+    /// outside the lock).
+    std::variant<std::string, Refusal> glb(const std::string& id, const std::string& key,
                                            const std::function<std::string(Scene&)>& make);
 
 private:

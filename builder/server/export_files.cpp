@@ -4,9 +4,11 @@
 #include "builder/server/export_files.h"
 
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <zip.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "plantarch/Error.h"
@@ -24,6 +26,22 @@ std::string readBytes(const fs::path& path) {
     std::ostringstream ss;
     ss << in.rdbuf();
     return ss.str();
+}
+
+// The texture images in `folder` an OBJ or USD file named `name`... may have beside it
+// (`<stem>_<texture>_<map>.png`), with their inode numbers: those a write adds or replaces
+// (writers rename a new file into place) are the ones it wrote.
+std::map<fs::path, ino_t> textureImages(const fs::path& folder, const std::string& name) {
+    std::map<fs::path, ino_t> found;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::string file = entry.path().filename().string();
+        struct stat st {};
+        if (file.starts_with(name + "_") && entry.path().extension() == ".png" &&
+            ::lstat(entry.path().c_str(), &st) == 0 && S_ISREG(st.st_mode))
+            found[entry.path()] = st.st_ino;
+    }
+    return found;
 }
 
 }  // namespace
@@ -58,10 +76,12 @@ std::string exportExtension(const std::string& format) {
 
 std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
                                       const fs::path& folder, const std::string& name,
-                                      const std::string& format, bool perPlant) {
+                                      const std::string& format, bool perPlant,
+                                      const PlantFileOptions& options) {
     const std::string ext = exportExtension(format);
     const std::string path = (folder / (name + ext)).string();
-    const PlantFileOptions options;  // as `plantarch project run` without options
+    const bool images =
+        options.appearance.style == MaterialStyle::Textured && (ext == ".obj" || ext == ".usda");
     const PlantArchitecture& arch = *scene.arch;
     const std::vector<unsigned> plants = scene.built.plants();
     std::vector<fs::path> files;
@@ -71,6 +91,8 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
     };
     std::lock_guard<std::mutex> lock(server.files);
     std::vector<FolderMadeForOutputs> made = makeFoldersForOutputs(folder.string());
+    const std::map<fs::path, ino_t> before =
+        images ? textureImages(folder, name) : std::map<fs::path, ino_t>{};
     try {
         checkOutputPath(perPlant ? separatePlantIndexName(path) : path);
         OutputSet outputs;
@@ -83,6 +105,9 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
             withMaterials(path);
         }
         outputs.commit();
+        if (images)
+            for (const auto& [file, inode] : textureImages(folder, name))
+                if (!before.count(file) || before.at(file) != inode) files.push_back(file);
     } catch (...) {
         for (auto m = made.rbegin(); m != made.rend(); ++m) m->remove();
         throw;
@@ -91,10 +116,11 @@ std::vector<fs::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
     return files;
 }
 
-std::string sceneFileBytes(Server::Impl& server, const Scene& scene, const std::string& format) {
+std::string sceneFileBytes(Server::Impl& server, const Scene& scene, const std::string& format,
+                           const PlantFileOptions& options) {
     const TemporaryFolder temp;
     const std::vector<fs::path> files =
-        writeSceneFiles(server, scene, temp.path(), "scene", format, false);
+        writeSceneFiles(server, scene, temp.path(), "scene", format, false, options);
     return readBytes(files.front());
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "builder/server/server_impl.h"
+#include "plantarch/PlantFiles.h"
 
 namespace plantarch::builder {
 
@@ -18,15 +19,18 @@ std::vector<std::string> exportFormats();
 std::string exportExtension(const std::string& format);
 
 /// Writes the scene into `folder`/`name`<ext> (with `perPlant`, one file per plant and the
-/// index `name`_index.json, as `--separate` does), all or none. Returns the files written.
+/// index `name`_index.json, as `--separate` does) with `options` (the export's variant,
+/// export_options.h), all or none. Returns the files written, texture images included.
 /// Holds the server's file lock while it writes.
 std::vector<std::filesystem::path> writeSceneFiles(Server::Impl& server, const Scene& scene,
                                                    const std::filesystem::path& folder,
                                                    const std::string& name,
-                                                   const std::string& format, bool perPlant);
+                                                   const std::string& format, bool perPlant,
+                                                   const PlantFileOptions& options = {});
 
 /// The scene as one file of `format`, its bytes (written in a temporary folder, removed).
-std::string sceneFileBytes(Server::Impl& server, const Scene& scene, const std::string& format);
+std::string sceneFileBytes(Server::Impl& server, const Scene& scene, const std::string& format,
+                           const PlantFileOptions& options = {});
 
 /// A zip archive of `files`, each stored under its path relative to `base`.
 std::string zipArchive(const std::vector<std::filesystem::path>& files,

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "builder/server/export_files.h"
+#include "builder/server/export_options.h"
 #include "builder/server/server_impl.h"
 #include "plantarch/Error.h"
 #include "plantarch/Project.h"
@@ -60,12 +61,15 @@ void Server::Impl::exportRoutes() {
     on("POST", "/api/export", [this](const httplib::Request& req, httplib::Response& res) {
         guarded(res, [&] {
             const json body = bodyJSON(req);
+            const std::vector<std::string>& variants = exportVariantFields();
             for (const auto& [key, value] : body.items())
                 if (key != "build" && key != "format" && key != "per_plant" && key != "folder" &&
-                    key != "name")
+                    key != "name" &&
+                    std::find(variants.begin(), variants.end(), key) == variants.end())
                     throw HttpError{400, clip(key) +
                                              ": unknown field (valid: build, format, "
-                                             "per_plant, folder, name)"};
+                                             "per_plant, folder, name, materials, texture_size, "
+                                             "nodes, instancing, lod, meshopt, skin)"};
             const std::string id = stringField(body, "build").value_or("");
             const std::string format = stringField(body, "format").value_or("glb");
             const std::string name = stringField(body, "name").value_or("scene");
@@ -78,13 +82,14 @@ void Server::Impl::exportRoutes() {
                 perPlant = body["per_plant"].get<bool>();
             }
             exportExtension(format);
+            const PlantFileOptions variant = exportVariant(body, format);
             requireFileName(name);
             const fs::path folder = outputSubfolder(output, sub);
             const std::shared_ptr<Scene> scene = sceneFor(builds, id);
             std::vector<fs::path> files;
             {
                 std::shared_lock<std::shared_mutex> read(scene->lock);
-                files = writeSceneFiles(*this, *scene, folder, name, format, perPlant);
+                files = writeSceneFiles(*this, *scene, folder, name, format, perPlant, variant);
             }
             json list = json::array();
             for (const fs::path& f : files)
@@ -100,13 +105,15 @@ void Server::Impl::exportRoutes() {
             const std::string name = req.has_param("name") ? req.get_param_value("name") : "scene";
             const bool perPlant = boolParam(req.get_param_value("per_plant"), "per_plant");
             const std::string ext = exportExtension(format);
+            const PlantFileOptions variant = exportVariant(req, format);
             requireFileName(name);
             const std::shared_ptr<Scene> scene = sceneFor(builds, id);
             const TemporaryFolder temp;
             std::vector<fs::path> files;
             {
                 std::shared_lock<std::shared_mutex> read(scene->lock);
-                files = writeSceneFiles(*this, *scene, temp.path(), name, format, perPlant);
+                files =
+                    writeSceneFiles(*this, *scene, temp.path(), name, format, perPlant, variant);
             }
             res.set_header("Cache-Control", "no-store");
             if (files.size() == 1) {
