@@ -24,6 +24,10 @@ trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 \
     -o "$out/textured.glb" -o "$out/textured.gltf" > /dev/null
 "$cli" --seed 3 build tomato --age 60 --materials textured --texture-size 64 -o "$out/tomato_textured.glb" > /dev/null
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 --lod reduced,cards \
+    -o "$out/textured_lod.glb" > /dev/null
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 --nodes organ \
+    -o "$out/textured_organs.glb" > /dev/null
 # Levels of detail (MSFT_lod) and EXT_meshopt_compression: the validator checks the document and
 # lists both as extensions it does not check (three.js decodes them: check_three.sh).
 "$cli" --seed 3 build bean --age 40 --lod reduced,cards -o "$out/lod.glb" -o "$out/lod.gltf" > /dev/null

@@ -266,3 +266,30 @@ TEST(TexturedExport, RendererDrawsTheSameLeafTexture) {
     o.scene.appearance.textureSize = 100;
     EXPECT_THROW(render(bean.ctx, o), Error);
 }
+
+TEST(TexturedExport, NormalMappedPrimitivesCarryTangentsInEveryLevel) {
+    Bean bean;
+    Folder dir;
+    GltfOptions o;
+    o.appearance = kTextured;
+    o.levels = {{.kind = GltfLevel::Kind::Reduced, .share = 0.25f, .coverage = 0.3f},
+                {.kind = GltfLevel::Kind::Cards, .share = 0.25f, .coverage = 0.1f}};
+    writeGLTF(bean.ctx, dir / "lod.glb", o);
+    const Glb g = parseGlb(readAll(dir / "lod.glb"));
+    int mapped = 0;
+    for (const json& mesh : g.doc["meshes"])
+        for (const json& p : mesh["primitives"])
+            if (g.doc["materials"][p["material"].get<int>()].contains("normalTexture")) {
+                ++mapped;
+                EXPECT_TRUE(p["attributes"].contains("TANGENT")) << mesh["name"];
+            }
+    EXPECT_GT(mapped, 4);
+    // A node per organ keeps the maps but leaves the normal map out (its meshes have no
+    // tangents).
+    o.levels.clear();
+    o.nodes = NodeLevel::Organ;
+    writeGLTF(bean.ctx, dir / "organs.glb", o);
+    const Glb organs = parseGlb(readAll(dir / "organs.glb"));
+    for (const json& m : organs.doc["materials"]) EXPECT_FALSE(m.contains("normalTexture"));
+    EXPECT_FALSE(organs.doc["images"].empty());
+}

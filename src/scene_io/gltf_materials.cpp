@@ -52,8 +52,16 @@ void objectTangents(const ObjectView& o, const vec3* normals, std::vector<glm::v
 void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
                  const Primitive& p, json& attributes) {
     if (options.appearance.style != MaterialStyle::Textured || !options.normals || !p.uvs ||
-        s.normals.empty() || !d.materials[p.material].contains("normalTexture"))
+        s.normals.empty() || p.objects.empty())
         return;
+    // A level of detail is written without textures, its primitives using the full level's
+    // materials: there the organs that get normal maps (leaves, internodes, petioles,
+    // peduncles) carry tangents too.
+    const std::string_view organ = kOrganLabels[s.records[p.objects.front()].organ];
+    const bool mapped = d.materials[p.material].contains("normalTexture") ||
+                        (!options.textures && (organ == "leaf" || organ == "internode" ||
+                                               organ == "petiole" || organ == "peduncle"));
+    if (!mapped) return;
     const int view = buffer.add(d.views, p.vertices * 16, kArrayBuffer, [&s, &p](Sink& out) {
         std::vector<glm::vec4> tangents;
         for (const std::size_t i : p.objects) {
