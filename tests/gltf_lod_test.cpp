@@ -227,8 +227,9 @@ TEST(GltfLod, SameBytesOnAnyNumberOfThreads) {
 }
 
 TEST(GltfLod, BadLevelsAreOneError) {
-    for (const char* bad : {"reduced:0", "reduced:1", "reduced:-0.5", "reduced:nan", "cards@2",
-                            "reduced@0.1,cards@0.2", "bogus", "reduced,", ",cards", "cards@"}) {
+    for (const char* bad :
+         {"reduced:0", "reduced:1", "reduced:-0.5", "reduced:nan", "cards@2",
+          "reduced@0.1,cards@0.2", "cards@0", "bogus", "reduced,", ",cards", "cards@"}) {
         SCOPED_TRACE(bad);
         EXPECT_THROW(parseGltfLevels(bad), Error);
     }
@@ -239,6 +240,11 @@ TEST(GltfLod, BadLevelsAreOneError) {
     EXPECT_FLOAT_EQ(levels[0].share, 0.1f);
     EXPECT_FLOAT_EQ(levels[0].coverage, 0.3f);
     EXPECT_EQ(levels[1].kind, GltfLevel::Kind::Cards);
+    EXPECT_FLOAT_EQ(gltfLevelCoverage(levels, 1), 0.4f / 3.0f);  // the default of level 1
+    // Levels made in C++ with their defaults are valid as they are.
+    const std::vector<GltfLevel> defaults = {GltfLevel{}, {.kind = GltfLevel::Kind::Cards}};
+    EXPECT_NO_THROW(checkGltfLevels(defaults));
+    EXPECT_FLOAT_EQ(gltfLevelCoverage(defaults, 0), 0.4f);
 
     const fs::path out = tempPath("cli");
     fs::create_directories(out);

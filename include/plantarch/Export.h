@@ -325,6 +325,34 @@ struct GltfSkeleton {
     std::vector<GltfSkinnedObject> objects;
 };
 
+/// One lower level of detail of a glTF file (GltfOptions::levels). Every level keeps every
+/// object with its ID, material and labels; only its mesh is coarser.
+struct GltfLevel {
+    enum class Kind {
+        Reduced,  ///< each object simplified by meshoptimizer to `share` of its triangles
+        Cards,    ///< each object a card: one quad for a flat organ, two crossed ones otherwise
+    };
+    Kind kind = Kind::Reduced;
+    /// Reduced: the share of each object's triangles kept, above 0 and below 1.
+    float share = 0.25f;
+    /// MSFT_screencoverage: the level is shown while the plant covers less than this share of
+    /// the screen's height (and more than the next level's), above 0 and below 1; 0 (the
+    /// default) for 0.4 / 3^i, level i counted from 0 (gltfLevelCoverage).
+    float coverage = 0.0f;
+};
+/// "reduced", "cards".
+const char* gltfLevelName(GltfLevel::Kind kind);
+/// Throws plantarch::Error (parameter "levels", the value, the valid range) unless each level's
+/// share is above 0 and below 1 and the coverages fall from one level to the next within 0 to 1.
+void checkGltfLevels(const std::vector<GltfLevel>& levels);
+/// The screen coverage of levels[i]: its own, or 0.4 / 3^i when it has none (0).
+float gltfLevelCoverage(const std::vector<GltfLevel>& levels, std::size_t i);
+/// Levels from text (the command line's --lod): comma-separated `reduced` (a quarter of the
+/// triangles), `reduced:SHARE` (0 < SHARE < 1) or `cards`, each optionally `@COVERAGE` (without,
+/// gltfLevelCoverage's default). "none" or "" gives no levels. Throws plantarch::Error
+/// (parameter `option`, the text, the valid form) for anything else.
+std::vector<GltfLevel> parseGltfLevels(std::string_view text, const std::string& option = "lod");
+
 // ---- organ granularity and instancing (glTF and USD) ------------------------------------
 
 /// How a glTF or USD file groups each plant's geometry into nodes (USD: prims).
@@ -340,31 +368,6 @@ enum class NodeLevel {
 const char* nodeLevelName(NodeLevel level);
 /// The NodeLevel of a name of nodeLevelName; nullopt for another text.
 std::optional<NodeLevel> nodeLevelFromName(std::string_view name);
-
-/// One lower level of detail of a glTF file (GltfOptions::levels). Every level keeps every
-/// object with its ID, material and labels; only its mesh is coarser.
-struct GltfLevel {
-    enum class Kind {
-        Reduced,  ///< each object simplified by meshoptimizer to `share` of its triangles
-        Cards,    ///< each object a card: one quad for a flat organ, two crossed ones otherwise
-    };
-    Kind kind = Kind::Reduced;
-    /// Reduced: the share of each object's triangles kept, above 0 and below 1.
-    float share = 0.25f;
-    /// MSFT_screencoverage: the level is shown while the plant covers less than this share of
-    /// the screen's height (and more than the next level's); below 0 and above 1 not allowed.
-    float coverage = 0.2f;
-};
-/// "reduced", "cards".
-const char* gltfLevelName(GltfLevel::Kind kind);
-/// Throws plantarch::Error (parameter "levels", the value, the valid range) unless each level's
-/// share is above 0 and below 1 and the coverages fall from one level to the next within 0 to 1.
-void checkGltfLevels(const std::vector<GltfLevel>& levels);
-/// Levels from text (the command line's --lod): comma-separated `reduced` (a quarter of the
-/// triangles), `reduced:SHARE` (0 < SHARE < 1) or `cards`, each optionally `@COVERAGE`; level i
-/// (from 0) without one gets 0.4 / 3^i. "none" or "" gives no levels. Throws plantarch::Error
-/// (parameter `option`, the text, the valid form) for anything else.
-std::vector<GltfLevel> parseGltfLevels(std::string_view text, const std::string& option = "lod");
 
 struct GltfOptions {
     bool includeHidden = false;
@@ -386,14 +389,6 @@ struct GltfOptions {
     /// baseColorTexture (alphaMode MASK where a leaf's outline needs it), normalTexture,
     /// occlusionTexture and metallicRoughnessTexture, the PNG images embedded.
     MaterialOptions appearance;
-    // Organ granularity and instancing (docs/formats.md, "Nodes and instancing").
-    /// How the geometry is grouped into nodes. Growth animations always have a node per organ.
-    NodeLevel nodes = NodeLevel::Kind;
-    /// With a node per organ: organs whose geometry equals another organ's up to a translation,
-    /// rotation and uniform scale place that organ's mesh instead of storing their own (the
-    /// shared mesh then carries the plant and organ labels per vertex, the object's in the
-    /// node's extras).
-    bool instancing = true;
     // Levels of detail and compression (docs/formats.md, "Levels of detail").
     /// Lower levels of detail after the full one, from finer to coarser, written as MSFT_lod
     /// alternatives of each plant's node (and of the node of the objects of no plant); empty:
@@ -403,6 +398,14 @@ struct GltfOptions {
     /// triangles and labels), listed in extensionsRequired. Readers need meshoptimizer's
     /// decoder (three.js with MeshoptDecoder, Babylon.js, gltfpack); Blender 3.4 cannot read it.
     bool meshoptCompression = false;
+    // Organ granularity and instancing (docs/formats.md, "Nodes and instancing").
+    /// How the geometry is grouped into nodes. Growth animations always have a node per organ.
+    NodeLevel nodes = NodeLevel::Kind;
+    /// With a node per organ: organs whose geometry equals another organ's up to a translation,
+    /// rotation and uniform scale place that organ's mesh instead of storing their own (the
+    /// shared mesh then carries the plant and organ labels per vertex, the object's in the
+    /// node's extras).
+    bool instancing = true;
     /// Receives ("writing glTF", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };

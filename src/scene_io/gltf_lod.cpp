@@ -132,7 +132,8 @@ void addLevels(json& doc, Buffer& buffer, const Scene& full, const GltfOptions& 
         if (!n.contains("extensions")) continue;
         json coverage = json::array();
         for (std::size_t k = 0; k < n["extensions"]["MSFT_lod"]["ids"].size(); ++k)
-            coverage.push_back(std::round(double(options.levels[k].coverage) * 1e6) / 1e6);
+            coverage.push_back(std::round(double(gltfLevelCoverage(options.levels, k)) * 1e6) /
+                               1e6);
         coverage.push_back(0.0);
         n["extras"]["MSFT_screencoverage"] = coverage;
     }

@@ -21,21 +21,27 @@ const char* gltfLevelName(GltfLevel::Kind kind) {
     return kind == GltfLevel::Kind::Cards ? "cards" : "reduced";
 }
 
+float gltfLevelCoverage(const std::vector<GltfLevel>& levels, std::size_t i) {
+    if (levels.at(i).coverage != 0.0f) return levels[i].coverage;
+    return float(0.4 / std::pow(3.0, double(i)));
+}
+
 void checkGltfLevels(const std::vector<GltfLevel>& levels) {
     float above = 1.0f;
     for (std::size_t i = 0; i < levels.size(); ++i) {
         const GltfLevel& l = levels[i];
+        const float coverage = gltfLevelCoverage(levels, i);
         const std::string at = "levels/" + std::to_string(i);
         if (l.kind == GltfLevel::Kind::Reduced && !(l.share > 0.0f && l.share < 1.0f))
             throw Error("not a share of triangles", {.parameter = at + "/share",
                                                      .value = text::formatDouble(l.share),
                                                      .validRange = "above 0 and below 1"});
-        if (!(l.coverage > 0.0f && l.coverage < above))
+        if (!(coverage > 0.0f && coverage < above))
             throw Error("screen coverages must fall from level to level",
                         {.parameter = at + "/coverage",
-                         .value = text::formatDouble(l.coverage),
+                         .value = text::formatDouble(coverage),
                          .validRange = "above 0 and below " + text::formatDouble(above)});
-        above = l.coverage;
+        above = coverage;
     }
 }
 
@@ -259,9 +265,9 @@ std::vector<GltfLevel> parseGltfLevels(std::string_view text, const std::string&
         std::string_view item = text.substr(start, comma - start);
         start = comma + 1;
         GltfLevel level;
-        level.coverage = float(0.4 / std::pow(3.0, double(levels.size())));
         if (const std::size_t at = item.find('@'); at != std::string_view::npos) {
             level.coverage = number(item.substr(at + 1));
+            if (level.coverage == 0.0f) throw bad("a screen coverage of 0");
             item = item.substr(0, at);
         }
         if (item == "cards") {
