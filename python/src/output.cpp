@@ -141,6 +141,16 @@ MaterialOptions appearanceOf(const std::string& style, const py::object& size) {
     return o;
 }
 
+/// The skeletons of the writers' `skin=True` (exportSkeletons), which needs the architecture.
+std::vector<GltfSkeleton> skeletonsOf(const py::object& architecture) {
+    if (architecture.is_none())
+        throw Error("a skin needs the plants: give architecture=",
+                    {.parameter = "skin",
+                     .value = "True",
+                     .validRange = "skin=True with architecture=<PlantArchitecture>"});
+    return exportSkeletons(architecture.cast<const PlantArchitecture&>());
+}
+
 void bindOutput(py::module_& m) {
     py::class_<ObjOptions>(m, "ObjOptions", "Options of writeOBJ.")
         .def(py::init([](bool hidden, bool normals, bool uvs, bool materials, bool split) {
@@ -214,7 +224,7 @@ void bindOutput(py::module_& m) {
         "writeGLTF",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt,
-           const std::string& appearance, const py::object& textureSize) {
+           const std::string& appearance, const py::object& textureSize, bool skin) {
             GltfOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
             o.includeHidden = includeHidden;
@@ -225,13 +235,14 @@ void bindOutput(py::module_& m) {
             o.meshoptCompression = meshopt;
             if (!architecture.is_none())
                 o.plants = exportPlants(architecture.cast<const PlantArchitecture&>());
+            if (skin) o.skeletons = skeletonsOf(architecture);
             py::gil_scoped_release release;
             writeGLTF(c, path, o);
         },
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
-        py::arg("appearance") = "flat", py::arg("texture_size") = 512,
+        py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
@@ -240,11 +251,14 @@ void bindOutput(py::module_& m) {
             "`lod`: levels of detail as MSFT_lod, as the command line's --lod (e.g. "
             "'reduced,cards'); `meshopt`: EXT_meshopt_compression; `appearance` 'textured': PBR "
             "materials with procedural textures embedded, `texture_size` texels a side (16 to "
-            "4096, a power of two), as the command line's --materials and --texture-size."));
+            "4096, a power of two), as the command line's --materials and --texture-size; "
+            "`skin`: a wind-ready skeleton per plant of `architecture` (a glTF skin: a joint per "
+            "internode, per-vertex weights), as the command line's --skin."));
     m.def(
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
-           bool normals, bool uvs, const std::string& appearance, const py::object& textureSize) {
+           bool normals, bool uvs, const std::string& appearance, const py::object& textureSize,
+           bool skin) {
             UsdOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
             o.includeHidden = includeHidden;
@@ -252,19 +266,21 @@ void bindOutput(py::module_& m) {
             o.uvs = uvs;
             if (!architecture.is_none())
                 o.plants = exportPlants(architecture.cast<const PlantArchitecture&>());
+            if (skin) o.skeletons = skeletonsOf(architecture);
             py::gil_scoped_release release;
             writeUSDA(c, path, o);
         },
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
-        py::arg("appearance") = "flat", py::arg("texture_size") = 512,
+        py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
         inPython(
             docs::writeUSDA,
             "Writes the Context as USD text (.usda), or a .usdz package, atomically: an Xform per "
             "plant (placed and described from `architecture` when given), a Mesh per organ kind "
             "with normals, UVs, per-face organ/plantID/objectID primvars and semantic class "
             "labels. `appearance` 'textured': UsdPreviewSurface materials with procedural "
-            "textures (PNG files beside the .usda, or inside the .usdz)."));
+            "textures (PNG files beside the .usda, or inside the .usdz); `skin`: UsdSkel, a "
+            "skeleton per plant of `architecture`, as the command line's --skin."));
     m.def(
         "samplePoints",
         [](const Context& c, std::size_t points, std::uint64_t seed, bool includeHidden) {
