@@ -67,7 +67,7 @@ std::string written(const Context& ctx, const std::string& name, const GltfOptio
 // The triangles and object IDs under node `n`; every triangle's three vertices checked to
 // belong to one object.
 struct Tally {
-    std::size_t triangles = 0, mixed = 0;
+    std::size_t triangles = 0, mixed = 0, mislabelled = 0;
     std::set<int> objects;
 };
 void tally(const Glb& g, std::size_t n, Tally& t) {
@@ -75,6 +75,15 @@ void tally(const Glb& g, std::size_t n, Tally& t) {
     if (node.contains("mesh"))
         for (const json& p : g.doc["meshes"][node["mesh"].get<std::size_t>()]["primitives"]) {
             const auto ids = accessorValues<float>(g, p["attributes"]["_OBJECT_ID"].get<int>());
+            // Each vertex's feature ID is the property table's row of its object.
+            const json& table = g.doc["extensions"]["EXT_structural_metadata"]["propertyTables"][0];
+            const auto rows = plantarch::testing::viewValues<std::uint32_t>(
+                g, table["properties"]["object"]["values"].get<int>(),
+                table["count"].get<std::size_t>());
+            const auto features =
+                accessorValues<float>(g, p["attributes"]["_FEATURE_ID_0"].get<int>());
+            for (std::size_t k = 0; k < features.size(); ++k)
+                if (rows.at(std::size_t(features[k])) != std::uint32_t(ids[k])) ++t.mislabelled;
             const auto idx = accessorValues<std::uint32_t>(g, p["indices"].get<int>());
             t.triangles += idx.size() / 3;
             for (std::size_t k = 0; k < idx.size(); k += 3) {
@@ -130,6 +139,7 @@ TEST(GltfLod, LevelsAreMsftLodAlternativesKeepingEveryObject) {
         Tally full;
         tally(g, c.get<std::size_t>(), full);
         EXPECT_EQ(full.mixed, 0u);
+        EXPECT_EQ(full.mislabelled, 0u);
         std::size_t above = full.triangles;
         for (const json& id : ids) {
             const json& level = g.doc["nodes"][id.get<std::size_t>()];
@@ -138,6 +148,7 @@ TEST(GltfLod, LevelsAreMsftLodAlternativesKeepingEveryObject) {
             Tally t;
             tally(g, id.get<std::size_t>(), t);
             EXPECT_EQ(t.mixed, 0u);              // no triangle mixes two organs
+            EXPECT_EQ(t.mislabelled, 0u);        // every feature ID is its object's row
             EXPECT_EQ(t.objects, full.objects);  // every organ on every level
             EXPECT_LT(t.triangles, above);
             above = t.triangles;
