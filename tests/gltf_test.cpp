@@ -367,3 +367,70 @@ TEST(Gltf, EveryPhysiologyColumnIsDocumented) {
     EXPECT_EQ(optional, 4u);
     EXPECT_NE(docs.find("-9999"), std::string::npos);
 }
+
+// --nodes organ: a node per organ under a node per shoot, each labelled, placing a shape that
+// organs of the same geometry share; the scene shown is the scene written, organ for organ.
+TEST(Gltf, ANodePerOrganShowsEveryOrganWhereItStandsAndSharesEqualShapes) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(5);
+    arch.loadPlantModelFromLibrary("tomato");
+    const unsigned plant = arch.buildPlantInstanceFromLibrary(vec3(0.3f, -0.2f, 0.0f), 60.0f);
+    const fs::path path = tempPath("organs.glb");
+    GltfOptions options;
+    options.nodes = NodeLevel::Organ;
+    writeGLTF(ctx, path.string(), options);
+    const Glb g = parseGlb(readAll(path.string()));
+    EXPECT_TRUE(plantarch::testing::sameOrgans(plantarch::testing::shownAt(g),
+                                               plantarch::testing::organVertices(ctx)));
+    std::set<std::string> names;
+    std::set<std::size_t> meshes;
+    std::size_t organs = 0, triangles = 0;
+    for (const json& n : g.doc["nodes"]) {
+        if (!n.contains("extras") || !n["extras"].contains("objectID")) continue;
+        ++organs;
+        const ObjectID id = n["extras"]["objectID"];
+        EXPECT_EQ(n["extras"]["plantID"], int(plant));
+        EXPECT_EQ(n["extras"]["organ"], ctx.objectDataString(id, "organ").value());
+        EXPECT_EQ(n["extras"]["node"], ctx.objectDataInt(id, "node").value_or(-1));
+        const std::string shoot = "_s" + std::to_string(n["extras"]["shoot"].get<int>());
+        EXPECT_NE(n["name"].get<std::string>().find(shoot), std::string::npos) << n["name"];
+        names.insert(n["name"].get<std::string>() + "/" + shoot);
+        meshes.insert(n["mesh"].get<std::size_t>());
+        const json& p = g.doc["meshes"][n["mesh"].get<std::size_t>()]["primitives"][0];
+        triangles +=
+            g.doc["accessors"][p["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
+    }
+    EXPECT_EQ(organs, ctx.objectCount());
+    EXPECT_EQ(names.size(), organs);  // every organ named apart
+    EXPECT_EQ(triangles, ctx.triangleCount());
+    EXPECT_LT(meshes.size(), organs);  // equal leaflets share their mesh
+    // A shared mesh carries no object labels per vertex; a mesh of one organ does.
+    std::map<std::size_t, int> users;
+    for (const json& n : g.doc["nodes"])
+        if (n.contains("mesh")) ++users[n["mesh"].get<std::size_t>()];
+    for (const auto& [mesh, count] : users) {
+        const json& a = g.doc["meshes"][mesh]["primitives"][0]["attributes"];
+        EXPECT_TRUE(a.contains("_PLANT_ID") && a.contains("_ORGAN"));
+        EXPECT_EQ(a.contains("_OBJECT_ID"), count == 1) << mesh;
+    }
+    // Without instancing every organ has a mesh of its own.
+    options.instancing = false;
+    writeGLTF(ctx, path.string(), options);
+    const Glb own = parseGlb(readAll(path.string()));
+    EXPECT_EQ(own.doc["meshes"].size(), ctx.objectCount());
+    EXPECT_TRUE(plantarch::testing::sameOrgans(plantarch::testing::shownAt(own),
+                                               plantarch::testing::organVertices(ctx)));
+    // --nodes plant: one mesh per plant, a primitive per material, every triangle.
+    options.nodes = NodeLevel::Plant;
+    writeGLTF(ctx, path.string(), options);
+    const Glb one = parseGlb(readAll(path.string()));
+    ASSERT_EQ(one.doc["meshes"].size(), 1u);
+    EXPECT_EQ(one.doc["meshes"][0]["name"], "plant");
+    std::size_t all = 0;
+    for (const json& p : one.doc["meshes"][0]["primitives"])
+        all +=
+            one.doc["accessors"][p["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
+    EXPECT_EQ(all, ctx.triangleCount());
+    fs::remove(path);
+}
