@@ -199,3 +199,26 @@ TEST(MaterialTextures, DumpForLooking) {
             out << m.png[std::size_t(k)];
         }
 }
+
+TEST(MaterialTextures, AMaterialSharedByLeavesAndStemsStaysAColour) {
+    // As a file read without materials gives: every object the default material.
+    Context ctx;
+    Mesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    const ObjectID leaf = ctx.addObject(quad, Material{});
+    const ObjectID stem = ctx.addObject(quad, Material{});
+    ctx.setObjectData(leaf, "organ", std::string("leaf"));
+    ctx.setObjectData(stem, "organ", std::string("internode"));
+    const Context* contexts[] = {&ctx};
+    const MaterialLooks looks(contexts, textured(32), false, true, {});
+    EXPECT_EQ(looks.look(Material{}).kind, SurfaceKind::Other);
+    EXPECT_EQ(looks.look(Material{}).maps, -1);
+    EXPECT_TRUE(looks.maps().empty());
+    // One organ alone gets its maps.
+    ctx.deleteObject(stem);
+    const MaterialLooks leafOnly(contexts, textured(32), false, true, {});
+    EXPECT_EQ(leafOnly.look(Material{}).kind, SurfaceKind::Leaf);
+    EXPECT_EQ(leafOnly.maps().size(), 1u);
+}

@@ -64,6 +64,7 @@ struct Planned {
     std::vector<std::uint8_t> mask;     // their texture-space coverage
     bool maskOverflow = false;
     float aspect = -1.0f;
+    bool mixed = false;  // used by organs of different surfaces (a file read without materials)
 };
 
 // Blade width over length as the leaf's texture space stretches it: the area-weighted mean
@@ -206,6 +207,9 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
         std::vector<std::int32_t> index(ctx->materialCount(), -1);
         for (const ObjectID id : exportedObjects(*ctx, includeHidden)) {
             const ObjectView o = ctx->object(id);
+            const std::optional<std::string> organ =
+                organs ? ctx->objectDataString(id, "organ") : std::nullopt;
+            const SurfaceKind surface = surfaceOfOrgan(organ ? *organ : "");
             std::int32_t& p = index[o.material];
             if (p < 0) {
                 const Material& m = ctx->material(o.material);
@@ -213,16 +217,15 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
                                              [&](const Planned& q) { return q.material == m; });
                 p = std::int32_t(at - planned.begin());
                 if (at == planned.end()) {
-                    Planned fresh{m, {}, true, {}, {}, false, -1.0f};
-                    const std::optional<std::string> organ =
-                        organs ? ctx->objectDataString(id, "organ") : std::nullopt;
-                    fresh.look.kind = surfaceOfOrgan(organ ? *organ : "");
+                    Planned fresh{m, {}, true, {}, {}, false, -1.0f, false};
+                    fresh.look.kind = surface;
                     fresh.look.factors = surfaceFactors(fresh.look.kind);
                     planned.push_back(std::move(fresh));
                 }
             }
             Planned& q = planned[std::size_t(p)];
             if (o.uvs.empty()) q.allUVs = false;
+            if (surface != q.look.kind) q.mixed = true;
             if (q.look.kind != SurfaceKind::Leaf || o.uvs.empty() || q.maskOverflow) continue;
             if (q.aspect < 0.0f) q.aspect = textureAspect(o);
             std::uint64_t h = fnv1a(o.uvs.data(), o.uvs.size_bytes());
@@ -240,6 +243,7 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
     // Draw the maps, one set per distinct (surface, colour, outline).
     std::vector<std::uint64_t> keys;
     for (Planned& q : planned) {
+        if (q.mixed) q.look = MaterialLook{};  // no one surface: a colour, as when flat
         const SurfaceKind kind = q.look.kind;
         const bool drawn =
             kind == SurfaceKind::Leaf || kind == SurfaceKind::Bark || kind == SurfaceKind::Stem;
