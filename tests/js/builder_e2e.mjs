@@ -9,8 +9,10 @@
 // parameter shows the species reader's own message, and an invalid block field the server's;
 // the age slider grows the scene on (a build "from" the shown one, the same plants as built
 // at that age anew) and the play button grows it day by day; GLB and per-plant OBJ exports
-// are written and parse; the saved project, uploaded into the page, builds the same scene, and
-// its export is the file `plantarch project run` writes from the saved project, byte for byte;
+// are written and parse; a textured GLB with a node per organ is written from the page (the
+// view showing the textured scene) and a refused variant shows the server's line; the saved
+// project, uploaded into the page, builds the same scene, and its export is the file
+// `plantarch project run` writes from the saved project, byte for byte;
 // Cancel takes a queued build out and the API stops a running one; the API refuses paths outside the output folder and requests
 // from other sites; colour by light or carbon is offered only for a scene with that data, and
 // a physiology season switched on in the Environment tab is built afresh (never grown on), its
@@ -178,6 +180,11 @@ function glbTriangles(bytes) {
     for (const p of doc.meshes[node.mesh].primitives) triangles += doc.accessors[p.indices].count / 3;
   }
   return triangles;
+}
+
+// The JSON document of a GLB.
+function glbDocument(bytes) {
+  return JSON.parse(bytes.subarray(20, 20 + bytes.readUInt32LE(12)).toString('utf8'));
 }
 
 // Faces of an OBJ file, checking that every face's vertices exist.
@@ -373,6 +380,59 @@ async function run() {
   for (const f of objs) assert.ok(objFaces(readFileSync(path.join(output, 'e2e', 'plants', f), 'utf8')) > 0, `${f} has faces`);
   step(`per-plant OBJ export: ${objs.length} files, each parses with faces`);
   await shot(page, 'export');
+
+  // An export variant from the page: procedural textures (the view loads the textured scene)
+  // and a node per organ; the GLB written holds a node per object of the scene, labelled in
+  // its extras, the scene's triangles and its textures, and is the download of the same
+  // variant. Then back to the defaults, for the byte-for-byte checks below.
+  await setChecked(page, 'input[name=per-plant]', false);
+  await page.select('select[name=export-format]', 'glb');
+  await page.select('select[name=export-materials]', 'textured');
+  await page.waitForSelector('#viewport[data-look="textured:512"]');
+  await page.select('select[name=export-texture-size]', '256');
+  await page.waitForSelector('#viewport[data-look="textured:256"]');
+  const viewMaps = await page.evaluate(() => {
+    const maps = new Set();
+    window.plantarchBuilder.viewer.model.traverse((o) => {
+      const m = o.userData.naturalMaterial;
+      if (o.isMesh && m?.map?.image) maps.add(m.map.image.width);
+    });
+    return [...maps];
+  });
+  assert.deepEqual(viewMaps, [256], 'the view shows the textured materials, 256 texels a side');
+  assert.equal(await page.$eval('#view-materials', (el) => el.value), 'textured');
+  await page.select('select[name=export-nodes]', 'organ');
+  await setValue(page, 'input[name=export-folder]', 'e2e/variant');
+  await setValue(page, 'input[name=export-name]', 'organs');
+  await page.$eval('#export-result', (el) => { el.dataset.state = ''; });
+  await page.click('#export-write');
+  await page.waitForSelector('#export-result[data-state=done]');
+  const variantGlb = readFileSync(path.join(output, 'e2e', 'variant', 'organs.glb'));
+  const variantDoc = glbDocument(variantGlb);
+  const organNodes = variantDoc.nodes.filter((n) => n.extras?.organ && n.extras.objectID !== undefined);
+  assert.equal(organNodes.length, shownStatus.stats.objects, 'a node per object, labelled');
+  assert.ok(organNodes.some((n) => n.extras.organ === 'leaf' && /^leaf_s\d+_n\d+/.test(n.name)), 'leaf nodes named');
+  assert.equal(glbTriangles(variantGlb), shownStatus.stats.triangles, 'the variant holds the scene\'s triangles');
+  assert.ok(variantDoc.images.length > 0 &&
+    variantDoc.materials.some((m) => m.pbrMetallicRoughness?.baseColorTexture), 'textured materials');
+  const variantDownload = await api(base, 'GET',
+    `/api/export/download?build=${shownId}&format=glb&name=organs&materials=textured&texture_size=256&nodes=organ`);
+  assert.equal(variantDownload.status, 200);
+  assert.ok(variantDownload.data.equals(variantGlb), 'the variant\'s download is the file written');
+  await page.evaluate(() => window.plantarchBuilder.viewer.frame());
+  await shot(page, 'textured');
+  // A refused variant shows the server's line in the page.
+  await page.select('select[name=export-format]', 'ply');
+  await page.$eval('#export-result', (el) => { el.dataset.state = ''; });
+  await page.click('#export-download');
+  await page.waitForSelector('#export-result[data-state=error]');
+  const refusedVariant = await page.$eval('#export-result', (el) => el.textContent);
+  assert.match(refusedVariant, /^materials = textured: textured materials are written in OBJ, glTF and USD only/);
+  step(`textured GLB with a node per organ: ${organNodes.length} organ nodes, ${variantDoc.images.length} images; a PLY of it refused: ${refusedVariant}`);
+  await page.select('select[name=export-format]', 'glb');
+  await page.select('select[name=export-nodes]', 'kind');
+  await page.select('select[name=export-materials]', 'flat');
+  await page.waitForSelector('#viewport[data-look="flat"]');
 
   // The project saved from the page and run from the command line writes the bytes of the
   // page's export of the scene played day by day (an export of a grown scene writes the

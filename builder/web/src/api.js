@@ -49,11 +49,19 @@ export const api = {
     request('POST', '/api/builds', from ? { project, from } : { project }),
   build: (id) => request('GET', `/api/builds/${enc(id)}`),
   cancelBuild: (id) => request('DELETE', `/api/builds/${enc(id)}`),
-  sceneUrl: (id) => `/api/builds/${enc(id)}/scene.glb`,
+  /** The scene for the view, with flat or textured materials (look: {materials, textureSize}). */
+  sceneUrl: (id, look) =>
+    look?.materials === 'textured'
+      ? `/api/builds/${enc(id)}/scene.glb?materials=textured&texture_size=${enc(look.textureSize)}`
+      : `/api/builds/${enc(id)}/scene.glb`,
   renderUrl: (id, w, h) => `/api/builds/${enc(id)}/render.png?w=${w}&h=${h}`,
   exportFiles: (body) => request('POST', '/api/export', body),
-  downloadUrl: ({ build, format, per_plant, name }) =>
-    `/api/export/download?build=${enc(build)}&format=${enc(format)}&per_plant=${per_plant ? 'true' : 'false'}&name=${enc(name || 'scene')}`,
+  /** The download of an export; `variant` holds its variant's fields (materials, nodes ...). */
+  downloadUrl: ({ build, format, per_plant, name }, variant = {}) =>
+    `/api/export/download?build=${enc(build)}&format=${enc(format)}&per_plant=${per_plant ? 'true' : 'false'}&name=${enc(name || 'scene')}` +
+    Object.entries(variant)
+      .map(([k, v]) => `&${enc(k)}=${enc(v)}`)
+      .join(''),
   config: () => request('GET', '/api/config'),
   defaults: () => request('GET', '/api/defaults'),
   saveProject: (name, project) => request('POST', '/api/projects/save', { name, project }),

@@ -1,9 +1,24 @@
 // The Export tab: the shown build written as OBJ, PLY, glTF/GLB, USD or plant XML, the whole
-// scene or one file per plant, downloaded (a zip for many files) or written into a folder
-// under the builder's output folder.
+// scene or one file per plant, with its variant (materials, nodes, levels of detail, meshopt
+// compression, skin: the command line's options, builder/API.md), downloaded (a zip for many
+// files) or written into a folder under the builder's output folder. The materials chosen here
+// are the view's too (app.look).
 import { api } from './api.js';
 import { defaults } from './defaults.js';
-import { h, render, field, select, checkbox, toast } from './ui.js';
+import { h, render, field, select, checkbox, toast, download } from './ui.js';
+
+export const TEXTURE_SIZES = [64, 128, 256, 512, 1024, 2048, 4096];
+const NODE_LEVELS = [
+  ['kind', 'A mesh per organ kind (default)'],
+  ['plant', 'A mesh per plant'],
+  ['organ', 'A node per organ (pick one leaf or fruit)'],
+];
+const LEVELS = [
+  ['', 'None'],
+  ['reduced', 'Reduced (a quarter of the triangles)'],
+  ['reduced,cards', 'Reduced, then cards'],
+  ['cards', 'Cards'],
+];
 
 /** The export formats as [format, label] options, from the server's table. */
 export function formatOptions() {
@@ -18,6 +33,101 @@ export class ExportPanel {
     this.perPlant = false;
     this.folder = 'exports';
     this.name = 'scene';
+    this.nodes = 'kind';
+    this.instancing = true;
+    this.lod = '';
+    this.meshopt = false;
+    this.skin = false;
+  }
+
+  /** The export's variant as the API's fields, those that differ from the defaults. */
+  variant() {
+    const v = {};
+    const look = this.app.look;
+    if (look.materials === 'textured') {
+      v.materials = 'textured';
+      v.texture_size = look.textureSize;
+    }
+    if (this.nodes !== 'kind') v.nodes = this.nodes;
+    if (this.nodes === 'organ' && !this.instancing) v.instancing = false;
+    if (this.lod) v.lod = this.lod;
+    if (this.meshopt) v.meshopt = true;
+    if (this.skin) v.skin = true;
+    return v;
+  }
+
+  /** The variant's controls (those that apply to the chosen settings shown). */
+  variantControls() {
+    const look = this.app.look;
+    const set = (key) => (v) => {
+      this[key] = v;
+      this.render();
+    };
+    return h(
+      'section',
+      { class: 'group', id: 'export-variant' },
+      h('h2', {}, 'Variant'),
+      h(
+        'p',
+        { class: 'hint' },
+        'Materials: OBJ, glTF and USD; nodes and skin: glTF and USD; levels of detail and ' +
+          'meshopt: glTF. The view shows the materials chosen.',
+      ),
+      h(
+        'div',
+        { class: 'grid2' },
+        field(
+          'Materials',
+          select(
+            [
+              ['flat', 'Flat colours'],
+              ['textured', 'Procedural textures'],
+            ],
+            look.materials,
+            (v) => this.app.setLook({ materials: v }),
+            { name: 'export-materials' },
+          ),
+        ),
+        look.materials === 'textured'
+          ? field(
+              'Texture size',
+              select(
+                TEXTURE_SIZES.map((n) => [String(n), `${n} × ${n}`]),
+                String(look.textureSize),
+                (v) => this.app.setLook({ textureSize: Number(v) }),
+                { name: 'export-texture-size' },
+              ),
+              { title: 'texels a side of each texture' },
+            )
+          : null,
+      ),
+      field('Nodes', select(NODE_LEVELS, this.nodes, set('nodes'), { name: 'export-nodes' }), {
+        wide: true,
+      }),
+      this.nodes === 'organ'
+        ? h(
+            'label',
+            { class: 'toggle' },
+            checkbox(this.instancing, set('instancing'), { name: 'export-instancing' }),
+            'Share one mesh among organs of one shape (instancing)',
+          )
+        : null,
+      field('Levels of detail', select(LEVELS, this.lod, set('lod'), { name: 'export-lod' }), {
+        wide: true,
+      }),
+      h(
+        'label',
+        { class: 'toggle' },
+        checkbox(this.meshopt, set('meshopt'), { name: 'export-meshopt' }),
+        'Meshopt compression (not read by Blender 3.4)',
+      ),
+      h(
+        'label',
+        { class: 'toggle' },
+        checkbox(this.skin, set('skin'), { name: 'export-skin' }),
+        'Skin: a wind-ready skeleton',
+      ),
+    );
   }
 
   render() {
@@ -74,6 +184,7 @@ export class ExportPanel {
           'One file per plant',
         ),
       ),
+      this.variantControls(),
       h(
         'section',
         { class: 'group' },
@@ -123,21 +234,31 @@ export class ExportPanel {
     );
   }
 
-  download() {
+  /** Fetches the download (so that a refusal shows its line here) and saves it. */
+  async download() {
     const build = this.app.shownBuild;
     if (!build) return;
-    const a = h('a', {
-      href: api.downloadUrl({
-        build: build.id,
-        format: this.format,
-        per_plant: this.perPlant,
-        name: this.name.trim(),
-      }),
-      download: '',
-    });
-    document.body.append(a);
-    a.click();
-    a.remove();
+    const url = api.downloadUrl(
+      { build: build.id, format: this.format, per_plant: this.perPlant, name: this.name.trim() },
+      this.variant(),
+    );
+    this.result.dataset.state = 'downloading';
+    render(this.result, h('p', { class: 'hint' }, 'Preparing the download…'));
+    try {
+      const response = await fetch(url);
+      if (!response.ok) {
+        const data = await response.json().catch(() => ({}));
+        throw new Error(data.error ?? `HTTP ${response.status}`);
+      }
+      const disposition = response.headers.get('Content-Disposition') ?? '';
+      const name = /filename="([^"]+)"/.exec(disposition)?.[1] ?? 'scene';
+      download(await response.blob(), name);
+      this.result.dataset.state = 'downloaded';
+      render(this.result, h('p', {}, 'Downloaded ', h('code', {}, name), '.'));
+    } catch (e) {
+      this.result.dataset.state = 'error';
+      render(this.result, h('p', { class: 'error-text' }, e.message));
+    }
   }
 
   async write() {
@@ -152,6 +273,7 @@ export class ExportPanel {
         per_plant: this.perPlant,
         folder: this.folder.trim(),
         name: this.name.trim() || 'scene',
+        ...this.variant(),
       });
       this.result.dataset.state = 'done';
       render(

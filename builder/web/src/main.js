@@ -33,6 +33,11 @@ function rampDigits(span) {
   return Math.max(0, Math.min(4, 2 - Math.floor(Math.log10(span))));
 }
 
+/** "flat" or "textured:SIZE": which materials a scene.glb was asked with. */
+function lookKey(look) {
+  return look.materials === 'textured' ? `textured:${look.textureSize}` : 'flat';
+}
+
 class App {
   constructor(root) {
     this.project = defaultProject();
@@ -90,7 +95,11 @@ class App {
     this.exportPanel = new ExportPanel(this, this.panels.export);
     this.datasetPanel = new DatasetPanel(this, this.panels.dataset);
 
-    this.viewport = h('div', { class: 'viewport', id: 'viewport' });
+    this.viewport = h('div', {
+      class: 'viewport',
+      id: 'viewport',
+      dataset: { look: 'flat' },
+    });
     this.legend = h('div', { class: 'legend', hidden: true, id: 'legend' });
     this.pickInfo = h('div', { class: 'pick-info', hidden: true });
     this.emptyState = h(
@@ -113,6 +122,17 @@ class App {
       id: 'color-mode',
       title: 'Colour by',
     });
+    // The materials of the view and of the export (the Export tab's are the same).
+    this.look = { materials: 'flat', textureSize: 512 };
+    this.lookSelect = select(
+      [
+        ['flat', 'Flat colours'],
+        ['textured', 'Textured'],
+      ],
+      'flat',
+      (v) => this.setLook({ materials: v }),
+      { id: 'view-materials', title: 'Materials of the view and of the export' },
+    );
 
     this.buildButton = h(
       'button',
@@ -275,6 +295,7 @@ class App {
               ),
             ),
             h('label', { class: 'inline' }, 'Colour by', this.colorSelect),
+            h('label', { class: 'inline' }, 'Materials', this.lookSelect),
             h(
               'button',
               {
@@ -520,7 +541,8 @@ class App {
     }
     this.setStatus('loading', 'Loading the scene…', 1);
     try {
-      await this.viewer.load(api.sceneUrl(ticket.id), { frame: !this.shownBuild });
+      await this.viewer.load(api.sceneUrl(ticket.id, this.look), { frame: !this.shownBuild });
+      this.viewport.dataset.look = lookKey(this.look);
     } catch (e) {
       if (this.current !== ticket) return false;
       this.setStatus('failed', 'Failed', 0);
@@ -592,6 +614,32 @@ class App {
         row('Objects', 'stat-objects', s ? fmt(s.objects, 0) : '–', '', s?.objects),
       ),
     );
+  }
+
+  /**
+   * Changes the materials of the view and of the export (`change`: materials, textureSize) and
+   * loads the shown scene again with them; #viewport's data-look says which it shows
+   * ("flat", "textured:512"; "loading" meanwhile).
+   */
+  async setLook(change) {
+    this.look = { ...this.look, ...change };
+    this.lookSelect.value = this.look.materials;
+    if (this.tab === 'export') this.exportPanel.render();
+    const build = this.shownBuild;
+    if (!build) return;
+    const key = lookKey(this.look);
+    this.viewport.dataset.look = 'loading';
+    this.lookLoad = key;
+    try {
+      await this.viewer.load(api.sceneUrl(build.id, this.look));
+    } catch (e) {
+      if (this.lookLoad === key)
+        this.showError(`the ${key} scene does not load: ${e.message ?? e}`);
+      return;
+    }
+    if (this.lookLoad !== key || this.shownBuild !== build) return;
+    this.syncColorModes();
+    this.viewport.dataset.look = key;
   }
 
   /**
