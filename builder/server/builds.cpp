@@ -169,7 +169,11 @@ std::variant<std::string, Refusal> BuildQueue::glb(const std::string& id, const 
         bytes = make(*s);
     }
     std::lock_guard<std::mutex> lock(mutex_);
-    if (b && b->takenBy.empty()) b->glb[key] = bytes;
+    if (b && b->takenBy.empty()) {
+        // The flat scene and the last variant asked for: a textured scene can weigh 100 MB.
+        std::erase_if(b->glb, [&](const auto& kept) { return !kept.first.empty(); });
+        b->glb[key] = bytes;
+    }
     return bytes;
 }
 

@@ -50,7 +50,8 @@ struct Build {
     std::shared_ptr<Scene> scene;  ///< set once done
     ProjectStats stats;
     std::vector<float> ages;  ///< each block's age as built
-    /// scene.glb by its variant ("" flat, "textured:512" ...), each made on first request
+    /// scene.glb by its variant ("" flat, "textured:512" ...), each made on first request;
+    /// the flat one and the last other one kept
     std::map<std::string, std::string> glb;
     /// For a build grown on from another: its project built anew, for export (exportScene).
     std::shared_ptr<Scene> freshScene;
