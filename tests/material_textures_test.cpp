@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -221,4 +222,32 @@ TEST(MaterialTextures, AMaterialSharedByLeavesAndStemsStaysAColour) {
     const MaterialLooks leafOnly(contexts, textured(32), false, true, {});
     EXPECT_EQ(leafOnly.look(Material{}).kind, SurfaceKind::Leaf);
     EXPECT_EQ(leafOnly.maps().size(), 1u);
+}
+
+TEST(MaterialTextures, TexturesTooLargeForThisMachineAreRefusedBeforeDrawing) {
+    // Enough stems of different colours that their 4096-texel maps need more than half the
+    // memory: refused at once, naming the size this machine allows.
+    const double half = 0.5 * double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+    const std::size_t count = std::size_t(half / (4096.0 * 4096.0 * 2.5)) + 10;
+    Context ctx;
+    Mesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    for (std::size_t i = 0; i < count; ++i) {
+        const float c = float(i) / float(count);
+        const ObjectID id = ctx.addObject(quad, Material{vec3(0.3f, 0.4f, c), "", ""});
+        ctx.setObjectData(id, "organ", std::string("internode"));
+    }
+    const Context* contexts[] = {&ctx};
+    try {
+        const MaterialLooks looks(contexts, textured(4096), false, true, {{MapKind::BaseColor}});
+        ADD_FAILURE() << count << " materials at 4096 accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.parameter(), "texture_size");
+        EXPECT_EQ(e.value(), "4096");
+        EXPECT_EQ(e.validRange().rfind("at most ", 0), 0u) << e.validRange();
+        EXPECT_NE(std::string(e.what()).find("more than half of this machine's memory"),
+                  std::string::npos);
+    }
 }

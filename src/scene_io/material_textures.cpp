@@ -3,6 +3,8 @@
 
 #include "scene_io/material_textures.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -114,6 +116,29 @@ bool parallelVenation(const std::vector<std::uint8_t>& mask, int n, float aspect
     int widest = 0;
     for (int i = 0; i < n; ++i) widest = std::max(widest, width(i));
     return 2 * width(n / 10) > widest;
+}
+
+// Memory a scene's textures take while they are drawn and written: one set's pixels and
+// buffers (about 20 bytes a texel) and every set's PNGs (about 2.5 bytes a texel), or every
+// set's pixels when they are kept (10 bytes a texel). Refused above half the machine's memory.
+void checkTextureMemory(std::size_t sets, int size, bool keepPixels) {
+    if (sets == 0) return;
+    const double texels = double(size) * double(size);
+    const double bytes = texels * (20.0 + double(sets) * (keepPixels ? 12.5 : 2.5));
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+    if (pages <= 0 || pageSize <= 0) return;
+    const double half = 0.5 * double(pages) * double(pageSize);
+    if (bytes <= half) return;
+    int fits = size;
+    while (fits > kMinTextureSize &&
+           double(fits) * double(fits) * (20.0 + double(sets) * (keepPixels ? 12.5 : 2.5)) > half)
+        fits /= 2;
+    throw Error(std::to_string(sets) + " textured materials at " + std::to_string(size) +
+                    " texels a side need about " + std::to_string(int(bytes / 1e9 + 0.5)) +
+                    " GB, more than half of this machine's memory",
+                {.parameter = "texture_size",
+                 .value = std::to_string(size),
+                 .validRange = "at most " + std::to_string(fits) + " on this machine"});
 }
 
 std::uint64_t colorSeed(SurfaceKind kind, const Material& m) {
@@ -240,21 +265,34 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
             rasterizeUVTriangles(o.uvs, o.indices, maskSize, q.mask);
         }
     }
-    // Draw the maps, one set per distinct (surface, colour, outline).
-    std::vector<std::uint64_t> keys;
-    for (Planned& q : planned) {
+    // One set of maps per distinct (surface, colour, outline): counted first, so that a size
+    // too large for this machine is refused before any is drawn.
+    std::vector<std::uint64_t> setKeys(planned.size(), 0), distinct;
+    for (std::size_t i = 0; i < planned.size(); ++i) {
+        Planned& q = planned[i];
         if (q.mixed) q.look = MaterialLook{};  // no one surface: a colour, as when flat
         const SurfaceKind kind = q.look.kind;
         const bool drawn =
             kind == SurfaceKind::Leaf || kind == SurfaceKind::Bark || kind == SurfaceKind::Stem;
-        if (!drawn || !uvs || !q.allUVs || !q.material.texture.empty()) {
+        if (!drawn || !uvs || !q.allUVs || !q.material.texture.empty()) continue;
+        const std::uint64_t seed = colorSeed(kind, q.material);
+        std::uint64_t key = fnv1a(&seed, sizeof seed) | 1;  // never 0 (not drawn)
+        key = fnv1a(&q.aspect, sizeof q.aspect, key) | 1;
+        setKeys[i] = fnv1a(q.mask.data(), q.mask.size(), key) | 1;
+        if (std::find(distinct.begin(), distinct.end(), setKeys[i]) == distinct.end())
+            distinct.push_back(setKeys[i]);
+    }
+    checkTextureMemory(distinct.size(), size, request.keepPixels);
+    std::vector<std::uint64_t> keys;
+    for (std::size_t i = 0; i < planned.size(); ++i) {
+        Planned& q = planned[i];
+        const SurfaceKind kind = q.look.kind;
+        if (setKeys[i] == 0) {
             looks_.emplace_back(q.material, q.look);
             continue;
         }
         const std::uint64_t seed = colorSeed(kind, q.material);
-        std::uint64_t key = fnv1a(&seed, sizeof seed);
-        key = fnv1a(&q.aspect, sizeof q.aspect, key);
-        key = fnv1a(q.mask.data(), q.mask.size(), key);
+        const std::uint64_t key = setKeys[i];
         const auto at = std::find(keys.begin(), keys.end(), key);
         if (at != keys.end()) {
             q.look.maps = int(at - keys.begin());
