@@ -141,6 +141,15 @@ MaterialOptions appearanceOf(const std::string& style, const py::object& size) {
     return o;
 }
 
+/// The node level of the writers' `nodes` keyword ("plant", "kind", "organ"), as --nodes.
+NodeLevel nodeLevelOf(const std::string& name) {
+    const std::optional<NodeLevel> level = nodeLevelFromName(name);
+    if (!level)
+        throw Error("unknown node level",
+                    {.parameter = "nodes", .value = name, .validRange = "plant, kind, organ"});
+    return *level;
+}
+
 /// The skeletons of the writers' `skin=True` (exportSkeletons), which needs the architecture.
 std::vector<GltfSkeleton> skeletonsOf(const py::object& architecture) {
     if (architecture.is_none())
@@ -224,9 +233,12 @@ void bindOutput(py::module_& m) {
         "writeGLTF",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt,
-           const std::string& appearance, const py::object& textureSize, bool skin) {
+           const std::string& appearance, const py::object& textureSize, bool skin,
+           const std::string& nodes, bool instancing) {
             GltfOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
+            o.nodes = nodeLevelOf(nodes);
+            o.instancing = instancing;
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
@@ -243,6 +255,7 @@ void bindOutput(py::module_& m) {
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
+        py::arg("nodes") = "kind", py::arg("instancing") = true,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
@@ -253,14 +266,18 @@ void bindOutput(py::module_& m) {
             "materials with procedural textures embedded, `texture_size` texels a side (16 to "
             "4096, a power of two), as the command line's --materials and --texture-size; "
             "`skin`: a wind-ready skeleton per plant of `architecture` (a glTF skin: a joint per "
-            "internode, per-vertex weights), as the command line's --skin."));
+            "internode, per-vertex weights), as the command line's --skin; `nodes` 'plant', "
+            "'kind' or 'organ' (a node per shoot and organ, named and labelled, equal shapes "
+            "shared unless `instancing` is False), as --nodes and --no-instancing."));
     m.def(
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, const std::string& appearance, const py::object& textureSize,
-           bool skin) {
+           bool skin, const std::string& nodes, bool instancing) {
             UsdOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
+            o.nodes = nodeLevelOf(nodes);
+            o.instancing = instancing;
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
@@ -273,6 +290,7 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
+        py::arg("nodes") = "kind", py::arg("instancing") = true,
         inPython(
             docs::writeUSDA,
             "Writes the Context as USD text (.usda), or a .usdz package, atomically: an Xform per "
@@ -280,7 +298,8 @@ void bindOutput(py::module_& m) {
             "with normals, UVs, per-face organ/plantID/objectID primvars and semantic class "
             "labels. `appearance` 'textured': UsdPreviewSurface materials with procedural "
             "textures (PNG files beside the .usda, or inside the .usdz); `skin`: UsdSkel, a "
-            "skeleton per plant of `architecture`, as the command line's --skin."));
+            "skeleton per plant of `architecture`, as the command line's --skin; `nodes` and "
+            "`instancing` as for writeGLTF (a prim per organ)."));
     m.def(
         "samplePoints",
         [](const Context& c, std::size_t points, std::uint64_t seed, bool includeHidden) {

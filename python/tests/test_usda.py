@@ -3,6 +3,7 @@
 import subprocess
 
 import numpy
+import pytest
 
 import plantarch
 import usda
@@ -138,7 +139,9 @@ def _shown_organs(root, code):
             assert len(meshes) == 1, organ.name
             t = numpy.array(_attr(organ, "xformOp:translate", code), dtype=float)
             q = _attr(organ, "xformOp:orient", code)
-            s = _attr(organ, "xformOp:scale", code)[0]
+            scale = _attr(organ, "xformOp:scale", code)
+            assert q is not None and scale is not None, organ.name
+            s = scale[0]
             out[key] = numpy.array([base + t + s * _rotate(q, p) for p in points(meshes[0])])
     return out
 
@@ -182,3 +185,23 @@ def test_growth_animation_places_every_organ_as_built_at_each_day(arch, tmp_path
             error = numpy.abs(shown[key] - vertices)
             assert (error <= 1e-5 * extent + 4e-6 * reach + 1e-6).all(), (day, key)
 
+
+
+def test_a_prim_per_organ_from_python_with_and_without_instancing(arch, tmp_path):
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), 40)
+    ctx = arch.getContext()
+    for instancing in (True, False):
+        path = tmp_path / f"organs_{instancing}.usda"
+        plantarch.writeUSDA(ctx, str(path), architecture=arch, nodes="organ",
+                            instancing=instancing)
+        _, (root,) = usda.read(path)
+        shapes = [c for c in root.children if c.specifier == "class"]
+        assert bool(shapes) == instancing  # equal leaflets written once, then referenced
+        shown = _shown_organs(root, 0)
+        built = _built_organs(arch.seed(), 40)
+        assert shown.keys() == built.keys()
+        for key, vertices in built.items():
+            assert numpy.abs(shown[key] - vertices).max() <= 1e-5 * numpy.ptp(vertices) + 4e-6
+    with pytest.raises(plantarch.Error, match="nodes = leaf: unknown node level"):
+        plantarch.writeUSDA(ctx, str(tmp_path / "bad.usda"), nodes="leaf")
+    assert not (tmp_path / "bad.usda").exists()
