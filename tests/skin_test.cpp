@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.h"
 #include "error_of.h"
 #include "glb_reader.h"
 #include "plantarch/Bending.h"
@@ -513,4 +514,29 @@ TEST(Skin, UsdSkelroot) {
         EXPECT_EQ(e.file(), path.string());
     }
     EXPECT_FALSE(fs::exists(path));
+}
+
+// The command line: --skin skins .glb, .gltf and .usda outputs and leaves others as they were;
+// combinations it cannot write are one line and exit 2, leaving no file.
+TEST(Skin, CommandLine) {
+    const fs::path dir = tempPath("cli");
+    fs::create_directories(dir);
+    const std::string d = dir.string() + "/";
+    fs::create_directories(d + "plain");
+    cli::Result r = cli::run("--seed 3 build bean --age 20 --skin -o " + d + "s.glb -o " + d +
+                             "s.usda -o " + d + "s.obj -o " + d + "s.ply");
+    ASSERT_EQ(r.status, 0) << r.out;
+    r = cli::run("--seed 3 build bean --age 20 -o " + d + "plain/s.obj -o " + d + "plain/s.ply");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_TRUE(readAll(d + "s.obj") == readAll(d + "plain/s.obj"));
+    EXPECT_TRUE(readAll(d + "s.ply") == readAll(d + "plain/s.ply"));
+    EXPECT_EQ(parseGlb(readAll(d + "s.glb")).doc["skins"].size(), 1u);
+    EXPECT_NE(readAll(d + "s.usda").find("def SkelRoot"), std::string::npos);
+    for (const std::string& bad : {"--nodes organ", "--lod reduced"}) {
+        r = cli::run("--seed 3 build bean --age 20 --skin " + bad + " -o " + d + "bad.glb");
+        EXPECT_EQ(r.status, 2) << bad << ": " << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+        EXPECT_FALSE(fs::exists(d + "bad.glb"));
+    }
+    fs::remove_all(dir);
 }
