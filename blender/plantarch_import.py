@@ -213,6 +213,7 @@ def _place_levels(gltf, found, levels):
             obj.parent = found.get(parent_of.get(i))
             obj.matrix_parent_inverse.identity()
             obj.matrix_basis = full.matrix_basis.copy()
+    bpy.context.view_layer.update()  # world matrices of the moved levels
     for i, level in levels.items():
         obj = found.get(i)
         if obj is not None:

@@ -22,6 +22,7 @@ import struct
 import sys
 
 import bpy
+from mathutils import Vector
 
 _FORMATS = {5120: "b", 5121: "B", 5122: "h", 5123: "H", 5125: "I", 5126: "f"}
 
@@ -147,6 +148,16 @@ def check_level(doc, binary, level, meshes, split, problems):
     return total, len(faces), own, shared, organ_seen
 
 
+def world_box(meshes):
+    """The world box of some mesh objects: (low corner, high corner)."""
+    lo, hi = Vector((1e30,) * 3), Vector((-1e30,) * 3)
+    for o in meshes:
+        for corner in o.bound_box:
+            w = o.matrix_world @ Vector(corner)
+            lo, hi = Vector(map(min, lo, w)), Vector(map(max, hi, w))
+    return lo, hi
+
+
 def check(path, split):
     doc, binary = read_file(path)
     problems = []
@@ -158,6 +169,15 @@ def check(path, split):
     total, objects, own, shared, organ_seen = found[0]
     if any(o.get("plantarch_lod", 0) >= levels for o in meshes):
         problems.append("meshes of a level the file does not have")
+    # Each lower level stands where the full one does (within 5 % of its size).
+    bpy.context.view_layer.update()
+    full = world_box([o for o in meshes if o.get("plantarch_lod", 0) == 0])
+    size = (full[1] - full[0]).length
+    for k in range(1, levels):
+        box = world_box([o for o in meshes if o.get("plantarch_lod", 0) == k])
+        off = max((box[0] - full[0]).length, (box[1] - full[1]).length)
+        if off > 0.05 * size:
+            problems.append("level %d stands %.3f m away from the full level" % (k, off))
     images = [i for i in bpy.data.images if i.type == "IMAGE" and i.size[0] > 0]
     if len(images) < len(doc.get("images", [])):
         problems.append("%d images, the file's %d" % (len(images), len(doc["images"])))
