@@ -19,6 +19,18 @@ Mesh simplified(const Mesh& mesh, const SimplifyOptions& options) {
     kept.resize(meshopt_simplify(kept.data(), mesh.indices.data(), mesh.indices.size(),
                                  &mesh.positions[0].x, mesh.positions.size(), sizeof(vec3),
                                  target * 3, options.maxError, flags, nullptr));
+    // Triangles that collapsed to no area (two corners at one position: seam vertices with
+    // different UVs move apart from their index), which viewers drop or shade as black.
+    std::size_t at = 0;
+    for (std::size_t k = 0; k + 2 < kept.size(); k += 3) {
+        const vec3 a = mesh.positions[kept[k]], b = mesh.positions[kept[k + 1]],
+                   c = mesh.positions[kept[k + 2]];
+        if (glm::cross(b - a, c - a) == vec3(0.0f)) continue;
+        std::copy(kept.begin() + std::ptrdiff_t(k), kept.begin() + std::ptrdiff_t(k + 3),
+                  kept.begin() + std::ptrdiff_t(at));
+        at += 3;
+    }
+    if (at > 0) kept.resize(at);  // all collapsed: keep them, an object needs a triangle
     // Vertices renumbered in their first order, so the result does not depend on the order
     // meshoptimizer visits them.
     constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
