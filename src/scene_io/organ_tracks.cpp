@@ -1,7 +1,7 @@
 // Organs followed through frames, each frame's geometry fitted as a similarity transform of a
 // stored shape (organ_tracks.h). The rotation is Horn's closed form: the unit quaternion that
 // best maps one centred point set onto another is the eigenvector of the largest eigenvalue of
-// a symmetric 4x4 matrix built from their cross-covariance, found here by Jacobi rotations.
+// a symmetric 4x4 matrix built from their cross-covariance (core/symmetric_eigen.h).
 
 #include "scene_io/organ_tracks.h"
 
@@ -12,49 +12,21 @@
 #include <span>
 #include <tuple>
 
+#include "core/symmetric_eigen.h"
+
 namespace plantarch::io {
 
 namespace {
 
 using Matrix4 = std::array<std::array<double, 4>, 4>;
 
-// The eigenvector of the largest eigenvalue of a symmetric 4x4 matrix (cyclic Jacobi).
-std::array<double, 4> largestEigenvector(Matrix4 a) {
-    Matrix4 v{};
-    for (int i = 0; i < 4; ++i) v[i][i] = 1.0;
-    for (int sweep = 0; sweep < 50; ++sweep) {
-        double off = 0.0, scale = 0.0;
-        for (int i = 0; i < 4; ++i)
-            for (int j = 0; j < 4; ++j) (i == j ? scale : off) += a[i][j] * a[i][j];
-        if (off <= 1e-30 * std::max(scale, 1e-300)) break;
-        for (int p = 0; p < 3; ++p)
-            for (int q = p + 1; q < 4; ++q) {
-                if (a[p][q] == 0.0) continue;
-                const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                const double t =
-                    (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-                for (int k = 0; k < 4; ++k) {  // columns p and q
-                    const double akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 4; ++k) {  // rows p and q
-                    const double apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 4; ++k) {
-                    const double vkp = v[k][p], vkq = v[k][q];
-                    v[k][p] = c * vkp - s * vkq;
-                    v[k][q] = s * vkp + c * vkq;
-                }
-            }
-    }
-    int best = 0;
-    for (int i = 1; i < 4; ++i)
-        if (a[i][i] > a[best][best]) best = i;
-    return {v[0][best], v[1][best], v[2][best], v[3][best]};
+// The eigenvector of the largest eigenvalue of a symmetric 4x4 matrix.
+std::array<double, 4> largestEigenvector(const Matrix4& a) {
+    const SymmetricEigen<4> e = symmetricEigen<4>(a);
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < 4; ++i)
+        if (e.values[i] > e.values[best]) best = i;
+    return e.vectors[best];
 }
 
 // Largest coordinate extent of a point set.

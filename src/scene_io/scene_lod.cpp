@@ -12,6 +12,7 @@
 
 #include "core/mesh_simplify.h"
 #include "core/parallel.h"
+#include "core/symmetric_eigen.h"
 #include "core/value_text.h"
 #include "plantarch/Error.h"
 
@@ -73,43 +74,21 @@ Context eachObject(const Context& ctx, Make make) {
     return out;
 }
 
-// The symmetric 3x3 matrix's eigenvectors (columns), by Jacobi rotations, ordered by
-// decreasing eigenvalue.
-std::array<dvec3, 3> mainDirections(dmat3 a) {
-    dmat3 v(1.0);
-    for (int sweep = 0; sweep < 32; ++sweep) {
-        double off = 0.0;
-        for (int p = 0; p < 3; ++p)
-            for (int q = p + 1; q < 3; ++q) off += a[p][q] * a[p][q];
-        if (off < 1e-30) break;
-        for (int p = 0; p < 3; ++p)
-            for (int q = p + 1; q < 3; ++q) {
-                if (std::abs(a[p][q]) < 1e-300) continue;
-                const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                const double t =
-                    (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-                const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-                for (int k = 0; k < 3; ++k) {  // a = J^T a J
-                    const double akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const double apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 3; ++k) {
-                    const double vkp = v[p][k], vkq = v[q][k];
-                    v[p][k] = c * vkp - s * vkq;
-                    v[q][k] = s * vkp + c * vkq;
-                }
-            }
-    }
+// The symmetric 3x3 matrix's eigenvectors, ordered by decreasing eigenvalue.
+std::array<dvec3, 3> mainDirections(const dmat3& m) {
+    std::array<std::array<double, 3>, 3> a;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) a[std::size_t(i)][std::size_t(j)] = m[i][j];
+    const SymmetricEigen<3> e = symmetricEigen<3>(a);
+    std::array<dvec3, 3> v;
+    for (std::size_t k = 0; k < 3; ++k)
+        v[k] = dvec3(e.vectors[k][0], e.vectors[k][1], e.vectors[k][2]);
     std::array<int, 3> order{0, 1, 2};
-    std::sort(order.begin(), order.end(), [&](int i, int j) { return a[i][i] > a[j][j]; });
+    std::sort(order.begin(), order.end(),
+              [&](int i, int j) { return e.values[std::size_t(i)] > e.values[std::size_t(j)]; });
     std::array<dvec3, 3> out;
-    for (int k = 0; k < 3; ++k) out[std::size_t(k)] = glm::normalize(v[order[std::size_t(k)]]);
+    for (int k = 0; k < 3; ++k)
+        out[std::size_t(k)] = glm::normalize(v[std::size_t(order[std::size_t(k)])]);
     // Right-handed, each pointing to its positive side, so that the cards do not flip.
     for (dvec3& d : out) {
         const int big = std::abs(d.x) >= std::abs(d.y) && std::abs(d.x) >= std::abs(d.z)
