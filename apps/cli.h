@@ -47,6 +47,7 @@ struct GlobalOptions {
     PlyColor plyColor = PlyColor::None;                   ///< --ply-color
     PlyFormat plyFormat = PlyFormat::BinaryLittleEndian;  ///< --ply-format
     bool skin = false;  ///< --skin: skeletons in glTF and USD outputs (skin_options.cpp)
+    float wind = 0.0f;  ///< --wind DEGREES: a wind animation of skinned glTF outputs
     std::vector<GltfLevel> levels;  ///< --lod: levels of detail of glTF outputs (lod_options.cpp)
     bool meshopt = false;           ///< --meshopt: EXT_meshopt_compression of glTF outputs
     /// --materials and --texture-size: flat colours or procedural textures (material_options.cpp)

@@ -33,6 +33,7 @@ PlantFileOptions plantFileOptions(const GlobalOptions& g, bool showProgress) {
     o.mode = g.pictureMode;
     o.cameraJson = g.cameraJson;
     o.skin = g.skin;
+    o.wind = g.wind;
     o.levels = g.levels;
     o.meshoptCompression = g.meshopt;
     o.appearance = g.appearance;

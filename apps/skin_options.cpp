@@ -1,5 +1,6 @@
 // --skin: glTF and USD outputs of plants carry a wind-ready skeleton (a joint per internode,
-// vertex weights), posed as the plant stands (bent under load where it bends).
+// vertex weights), posed as the plant stands (bent under load where it bends); --wind adds a
+// looping animation swaying it to glTF outputs.
 
 #include "cli.h"
 
@@ -10,6 +11,16 @@ void addSkinOptions(CLI::App& app, GlobalOptions& global) {
                  "Skin the plants of .glb, .gltf and .usda outputs: a skeleton with a joint per "
                  "internode and per-vertex weights, so an engine can sway them (bind pose: the "
                  "plant as built, bent where it bends); other outputs are unchanged");
+    app.add_option_function<float>(
+           "--wind",
+           [&global](float degrees) {
+               global.wind = degrees;
+               global.skin = global.skin || degrees > 0.0f;
+           },
+           "With --skin (implied): a looping 2 s animation \"wind\" in .glb and .gltf outputs "
+           "swaying each plant toward +x, its deepest tip by about DEGREES (0 to 90)")
+        ->type_name("DEGREES")
+        ->check(numberCheck("--wind", "an angle in degrees", 0.0, 90.0, false, "0 to 90"));
 }
 
 }  // namespace plantarch::cli

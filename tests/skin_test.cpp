@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -539,4 +540,47 @@ TEST(Skin, CommandLine) {
         EXPECT_FALSE(fs::exists(d + "bad.glb"));
     }
     fs::remove_all(dir);
+}
+
+// GltfOptions::windDegrees: a looping animation "wind" turning every joint but the root, unit
+// rotations over one period whose first and last keys agree; none without it; out of range an
+// error.
+TEST(Skin, WindAnimation) {
+    Built b("bean", 30.0f);
+    GltfOptions o;
+    o.plants = exportPlants(b.arch);
+    o.skeletons = exportSkeletons(b.arch);
+    const fs::path path = tempPath("wind.glb");
+    writeGLTF(b.ctx, path.string(), o);
+    EXPECT_FALSE(parseGlb(readAll(path.string())).doc.contains("animations"));
+    o.windDegrees = 15.0f;
+    writeGLTF(b.ctx, path.string(), o);
+    const Glb g = parseGlb(readAll(path.string()));
+    ASSERT_EQ(g.doc["animations"].size(), 1u);
+    const json& wind = g.doc["animations"][0];
+    EXPECT_EQ(wind["name"], "wind");
+    const std::size_t joints = o.skeletons[0].joints.size();
+    ASSERT_EQ(wind["channels"].size(), joints - 1);
+    std::set<std::size_t> targets;
+    for (const json& c : wind["channels"]) {
+        EXPECT_EQ(c["target"]["path"], "rotation");
+        targets.insert(c["target"]["node"].get<std::size_t>());
+        const json& sampler = wind["samplers"][c["sampler"].get<std::size_t>()];
+        const std::vector<float> times = values<float>(g, sampler["input"], 1);
+        EXPECT_EQ(times.front(), 0.0f);
+        EXPECT_FLOAT_EQ(times.back(), 2.0f);
+        const std::vector<float> q = values<float>(g, sampler["output"], 4);
+        ASSERT_EQ(q.size(), 4 * times.size());
+        for (std::size_t k = 0; k < times.size(); ++k)
+            EXPECT_NEAR(std::hypot(std::hypot(q[4 * k], q[4 * k + 1]),
+                                   std::hypot(q[4 * k + 2], q[4 * k + 3])),
+                        1.0, 1e-5);
+        for (int i = 0; i < 4; ++i)
+            EXPECT_NEAR(q[std::size_t(i)], q[q.size() - 4 + std::size_t(i)], 1e-5);
+    }
+    const json& skin = g.doc["skins"][0]["joints"];
+    for (std::size_t j = 1; j < joints; ++j) EXPECT_TRUE(targets.count(skin[j].get<std::size_t>()));
+    o.windDegrees = 120.0f;
+    EXPECT_THROW(writeGLTF(b.ctx, path.string(), o), Error);
+    fs::remove(path);
 }

@@ -385,6 +385,11 @@ struct GltfOptions {
     /// (JOINTS_0, WEIGHTS_0, joint nodes, inverse bind matrices); empty: no skins. Ignored
     /// by growth animations.
     std::vector<GltfSkeleton> skeletons;
+    /// With skeletons: a looping two-second animation "wind" swaying every skinned plant toward
+    /// +x (world), each joint turning about the horizontal axis across the wind, more toward the
+    /// tips and a little later the higher it is, the deepest tip by about this many degrees in
+    /// all (0 to 90; 0: no animation).
+    float windDegrees = 0.0f;
     /// Materials and textures: with MaterialStyle::Textured, PBR materials with
     /// baseColorTexture (alphaMode MASK where a leaf's outline needs it), normalTexture,
     /// occlusionTexture and metallicRoughnessTexture, the PNG images embedded.

@@ -40,6 +40,8 @@ struct PlantFileOptions {
     /// Skinning: .glb, .gltf and .usda files of plants carry a wind-ready skeleton per plant
     /// (exportSkeletons, GltfOptions::skeletons); other files are written as without it.
     bool skin = false;
+    /// With `skin`: .glb and .gltf files get a "wind" animation (GltfOptions::windDegrees).
+    float wind = 0.0f;
     // Levels of detail and compression of .glb and .gltf files (GltfOptions): levels given
     // with another mesh format are an error.
     std::vector<GltfLevel> levels;

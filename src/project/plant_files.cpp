@@ -71,6 +71,7 @@ void writeSceneFile(const Context& ctx, const std::string& path, const PlantFile
         GltfOptions o;
         o.plants = plants;
         o.skeletons = skeletons;
+        o.windDegrees = g.wind;
         o.progress = progress;
         o.levels = g.levels;
         o.meshoptCompression = g.meshoptCompression;

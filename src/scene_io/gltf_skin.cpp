@@ -15,6 +15,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <numbers>
 #include <string>
 
 #include "plantarch/Error.h"
@@ -108,6 +109,70 @@ void checkSkeleton(const GltfSkeleton& sk, const Scene& s, std::size_t node,
     }
 }
 
+// The wind: key times shared by every joint, 17 over one period (the last the first again).
+constexpr int kWindKeys = 17;
+constexpr double kWindPeriod = 2.0;  // s
+
+// Adds the wind's channels of one skeleton (joint j's node at first + j) to `animation`,
+// starting it (and its key times) when null. A joint at depth k (its root 0) turns about the
+// world's y axis through its origin by A k / (1 + 2 + ... + K) sin(2 pi t / T - 0.3 k), K the
+// deepest: its subtree's turns add up to about A at the deepest tip, a wave running upward.
+void addWind(GltfArrays& d, Buffer& buffer, const GltfSkeleton& sk, std::size_t first,
+             float degrees, json& animation, std::size_t& input) {
+    if (animation.is_null()) {
+        const int times = buffer.add(d.views, kWindKeys * 4, 0, [](Sink& out) {
+            writeValues<float>(out, kWindKeys, [](std::size_t k) {
+                return float(kWindPeriod * double(k) / double(kWindKeys - 1));
+            });
+        });
+        json keys = accessor(times, kFloat, kWindKeys, "SCALAR");
+        keys["min"] = {0.0};
+        keys["max"] = {kWindPeriod};
+        d.accessors.push_back(std::move(keys));
+        input = d.accessors.size() - 1;
+        animation = {{"name", "wind"}, {"channels", json::array()}, {"samplers", json::array()}};
+    }
+    std::vector<int> depth(sk.joints.size(), 0);
+    int deepest = 1;
+    for (std::size_t j = 1; j < sk.joints.size(); ++j)
+        deepest = std::max(deepest, depth[j] = depth[std::size_t(sk.joints[j].parent)] + 1);
+    const double sum = 0.5 * double(deepest) * double(deepest + 1);
+    const double amplitude = double(degrees) * std::numbers::pi / 180.0 / sum;
+    // Each joint's rest rotation (relative to its parent, as its node has it) and, for each
+    // key, that rotation followed by the sway about world y seen from the joint.
+    const std::size_t joints = sk.joints.size() - 1;
+    const int view =
+        buffer.add(d.views, joints * kWindKeys * 16, 0, [&sk, depth, amplitude](Sink& out) {
+            for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+                const GltfJoint& jt = sk.joints[j];
+                const glm::dquat world = glm::normalize(quaternion(jt));
+                const glm::dquat rest = glm::normalize(
+                    glm::conjugate(glm::normalize(quaternion(sk.joints[std::size_t(jt.parent)]))) *
+                    world);
+                const glm::dvec3 axis = glm::conjugate(world) * glm::dvec3(0.0, 1.0, 0.0);
+                for (int k = 0; k < kWindKeys; ++k) {
+                    const double t = kWindPeriod * double(k) / double(kWindKeys - 1);
+                    const double angle =
+                        amplitude * double(depth[j]) *
+                        std::sin(2.0 * std::numbers::pi * t / kWindPeriod - 0.3 * double(depth[j]));
+                    const glm::dquat q = glm::normalize(rest * glm::angleAxis(angle, axis));
+                    const float v[4] = {float(q.x), float(q.y), float(q.z), float(q.w)};
+                    out.write(v, 16);
+                }
+            }
+        });
+    for (std::size_t j = 1; j < sk.joints.size(); ++j) {
+        json output = accessor(view, kFloat, kWindKeys, "VEC4");
+        output["byteOffset"] = (j - 1) * kWindKeys * 16;
+        d.accessors.push_back(std::move(output));
+        json& samplers = animation["samplers"];
+        samplers.push_back(
+            {{"input", input}, {"output", d.accessors.size() - 1}, {"interpolation", "LINEAR"}});
+        animation["channels"].push_back({{"sampler", samplers.size() - 1},
+                                         {"target", {{"node", first + j}, {"path", "rotation"}}}});
+    }
+}
+
 }  // namespace
 
 const GltfSkeleton* skeletonOf(const Scene& s, const GltfOptions& options, std::size_t node) {
@@ -169,6 +234,11 @@ void addSkinAttributes(GltfArrays& d, const Scene& s, const GltfOptions& options
 }
 
 void checkSkins(const Scene& s, const GltfOptions& options, const std::string& path) {
+    if (!(options.windDegrees >= 0.0f && options.windDegrees <= 90.0f))
+        throw Error("the wind's sway out of range", {.file = path,
+                                                     .parameter = "wind",
+                                                     .value = std::to_string(options.windDegrees),
+                                                     .validRange = "0 to 90 degrees"});
     for (std::size_t n = 0; n < s.nodes.size(); ++n)
         if (const GltfSkeleton* sk = skeletonOf(s, options, n)) checkSkeleton(*sk, s, n, path);
 }
@@ -176,6 +246,7 @@ void checkSkins(const Scene& s, const GltfOptions& options, const std::string& p
 SkinNodes addSkins(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
                    const json& plantNodes) {
     SkinNodes out;
+    std::size_t windInput = 0;  // the wind's key times, shared by every skeleton
     for (std::size_t n = 0; n < s.nodes.size(); ++n) {
         const GltfSkeleton* sk = skeletonOf(s, options, n);
         if (!sk) continue;
@@ -240,6 +311,8 @@ SkinNodes addSkins(GltfArrays& d, const Scene& s, const GltfOptions& options, Bu
                              {"inverseBindMatrices", d.accessors.size() - 1},
                              {"skeleton", first},
                              {"joints", jointNodes}});
+        if (options.windDegrees > 0.0f)
+            addWind(d, buffer, *sk, first, options.windDegrees, out.animation, windInput);
     }
     return out;
 }

@@ -20,6 +20,7 @@ void addSkinAttributes(GltfArrays& d, const Scene& s, const GltfOptions& options
 struct SkinNodes {
     json skins = json::array();  ///< the document's skins
     json roots = json::array();  ///< the skinned meshes' nodes: more roots of the scene
+    json animation;              ///< the "wind" animation (GltfOptions::windDegrees), or null
 };
 
 /// Checks every skeleton of options.skeletons the scene uses: parents before children, finite

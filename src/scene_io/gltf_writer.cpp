@@ -497,6 +497,7 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     if (!skins.skins.empty()) doc["skins"] = skins.skins;
     doc["nodes"] = d.nodes;
     if (!animation.empty()) doc["animations"] = {animation};
+    if (!skins.animation.empty()) doc["animations"].push_back(skins.animation);  // wind
     if (!d.meshes.empty()) doc["meshes"] = d.meshes;
     if (!d.materials.empty()) doc["materials"] = d.materials;
     if (!d.accessors.empty()) doc["accessors"] = d.accessors;
