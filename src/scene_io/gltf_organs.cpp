@@ -27,16 +27,6 @@ bool uvsMatter(const Material& m, const GltfOptions& options) {
            (!m.texture.empty() || options.appearance.style == MaterialStyle::Textured);
 }
 
-// Node name of an organ: "<organ>_s<shoot>_n<node>[_l<leaf>][_<ordinal + 1>]".
-std::string organName(const io::OrganTrack& t) {
-    std::string name(kOrganLabels[t.labels.organ]);
-    if (t.labels.shoot >= 0) name += "_s" + std::to_string(t.labels.shoot);
-    if (t.labels.node >= 0) name += "_n" + std::to_string(t.labels.node);
-    if (t.labels.leaf >= 0) name += "_l" + std::to_string(t.labels.leaf);
-    if (t.ordinal > 0) name += "_" + std::to_string(t.ordinal + 1);
-    return name;
-}
-
 std::array<float, 4> xyzw(const glm::quat& q) {
     return {q.x, q.y, q.z, q.w};
 }
@@ -349,7 +339,7 @@ std::size_t OrganWriter::organNode(std::size_t t, vec3 base) {
         if (p && std::find(shapes.begin(), shapes.end(), p->shape) == shapes.end())
             shapes.push_back(p->shape);
     const ObjectRecord& r = s_.records[t];
-    json node = {{"name", organName(track)},
+    json node = {{"name", io::organName(track)},
                  {"extras",
                   {{"plantID", r.plant},
                    {"objectID", r.id},
@@ -382,7 +372,7 @@ std::size_t OrganWriter::organNode(std::size_t t, vec3 base) {
     } else {
         json children = json::array();
         for (std::size_t k = 0; k < shapes.size(); ++k) {
-            json child = {{"name", organName(track) + "_v" + std::to_string(k)},
+            json child = {{"name", io::organName(track) + "_v" + std::to_string(k)},
                           {"mesh", mesh(shapes[k])}};
             if (shapes[k] != last.shape) child["scale"] = {0.0, 0.0, 0.0};
             d_.nodes.push_back(std::move(child));

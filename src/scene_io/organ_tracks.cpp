@@ -128,6 +128,15 @@ constexpr std::size_t kShapesTried = 8;
 
 }  // namespace
 
+std::string organName(const OrganTrack& t) {
+    std::string name(kOrganLabels[t.labels.organ]);
+    if (t.labels.shoot >= 0) name += "_s" + std::to_string(t.labels.shoot);
+    if (t.labels.node >= 0) name += "_n" + std::to_string(t.labels.node);
+    if (t.labels.leaf >= 0) name += "_l" + std::to_string(t.labels.leaf);
+    if (t.ordinal > 0) name += "_" + std::to_string(t.ordinal + 1);
+    return name;
+}
+
 OrganTracks trackOrgans(const std::vector<const Context*>& frames, bool includeHidden,
                         bool instancing, const std::function<bool(const Material&)>& uvsMatter) {
     OrganTracks out;

@@ -13,6 +13,7 @@
 #include <functional>
 #include <glm/gtc/quaternion.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "plantarch/Context.h"
@@ -50,6 +51,10 @@ struct OrganTrack {
     std::int32_t ordinal = 0;     ///< among organs of equal labels in a frame, in ID order
     std::vector<std::optional<OrganPlacement>> frames;
 };
+
+/// The name of an organ's node or prim: "<organ>_s<shoot>_n<node>[_l<leaf>][_<k>]", the parts
+/// of labels it lacks left out, `_<k>` for the k-th organ of equal labels (from 2).
+std::string organName(const OrganTrack& track);
 
 struct OrganTracks {
     std::vector<OrganShape> shapes;

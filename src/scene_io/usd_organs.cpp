@@ -114,16 +114,6 @@ void writeMeshData(Text& out, const Context& context, std::span<const ObjectID> 
 
 namespace {
 
-// Prim name of an organ: "<organ>_s<shoot>_n<node>[_l<leaf>][_<ordinal + 1>]".
-std::string organPrim(const OrganTrack& t) {
-    std::string name(kOrganLabels[t.labels.organ]);
-    if (t.labels.shoot >= 0) name += "_s" + std::to_string(t.labels.shoot);
-    if (t.labels.node >= 0) name += "_n" + std::to_string(t.labels.node);
-    if (t.labels.leaf >= 0) name += "_l" + std::to_string(t.labels.leaf);
-    if (t.ordinal > 0) name += "_" + std::to_string(t.ordinal + 1);
-    return primName(name);
-}
-
 bool uvsMatter(const Material& m, const UsdOptions& options) {
     return options.uvs &&
            (!m.texture.empty() || options.appearance.style == MaterialStyle::Textured);
@@ -302,7 +292,7 @@ void OrganPrims::organ(std::size_t t, vec3 base) {
             shapes.push_back(p->shape);
     std::vector<bool> shown;
     for (const auto& p : track.frames) shown.push_back(p.has_value());
-    const std::string name = organPrim(track);
+    const std::string name = primName(organName(track));
     const std::string organ(kOrganLabels[track.labels.organ]);
     const bool single = shapes.size() == 1;
     const auto shared = single ? shapePaths_.find(shapes.front()) : shapePaths_.end();
