@@ -234,7 +234,7 @@ void bindOutput(py::module_& m) {
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt,
            const std::string& appearance, const py::object& textureSize, bool skin,
-           const std::string& nodes, bool instancing) {
+           const std::string& nodes, bool instancing, float wind) {
             GltfOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
             o.nodes = nodeLevelOf(nodes);
@@ -247,7 +247,8 @@ void bindOutput(py::module_& m) {
             o.meshoptCompression = meshopt;
             if (!architecture.is_none())
                 o.plants = exportPlants(architecture.cast<const PlantArchitecture&>());
-            if (skin) o.skeletons = skeletonsOf(architecture);
+            if (skin || wind > 0.0f) o.skeletons = skeletonsOf(architecture);
+            o.windDegrees = wind;
             py::gil_scoped_release release;
             writeGLTF(c, path, o);
         },
@@ -255,7 +256,7 @@ void bindOutput(py::module_& m) {
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
-        py::arg("nodes") = "kind", py::arg("instancing") = true,
+        py::arg("nodes") = "kind", py::arg("instancing") = true, py::arg("wind") = 0.0f,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
@@ -266,7 +267,8 @@ void bindOutput(py::module_& m) {
             "materials with procedural textures embedded, `texture_size` texels a side (16 to "
             "4096, a power of two), as the command line's --materials and --texture-size; "
             "`skin`: a wind-ready skeleton per plant of `architecture` (a glTF skin: a joint per "
-            "internode, per-vertex weights), as the command line's --skin; `nodes` 'plant', "
+            "internode, per-vertex weights), as the command line's --skin; `wind`: degrees of a "
+            "looping 'wind' animation swaying it (implies skin), as --wind; `nodes` 'plant', "
             "'kind' or 'organ' (a node per shoot and organ, named and labelled, equal shapes "
             "shared unless `instancing` is False), as --nodes and --no-instancing."));
     m.def(

@@ -51,3 +51,13 @@ def test_skin_without_the_plants_is_refused(bean, tmp_path):
     with pytest.raises(plantarch.Error, match="skin"):
         plantarch.writeGLTF(bean.getContext(), str(tmp_path / "x.glb"), skin=True)
     assert not (tmp_path / "x.glb").exists()
+
+
+def test_wind_adds_a_looping_animation(bean, tmp_path):
+    plantarch.writeGLTF(bean.getContext(), str(tmp_path / "wind.glb"), architecture=bean, wind=10.0)
+    doc = glb_json(tmp_path / "wind.glb")
+    assert doc["skins"] and [a["name"] for a in doc["animations"]] == ["wind"]
+    with pytest.raises(plantarch.Error, match="wind"):
+        plantarch.writeGLTF(bean.getContext(), str(tmp_path / "bad.glb"), architecture=bean,
+                            wind=200.0)
+    assert not (tmp_path / "bad.glb").exists()
