@@ -80,6 +80,17 @@ if ! verdict=$(echo "$lines" | node -e '
 else
     echo "check_three: skinned.glb loads in three.js as skinned meshes at the bean's pose: $verdict"
 fi
+# --wind: three.js's AnimationMixer plays the "wind" clip, a rotation track per joint but the root.
+"$cli" --seed 3 build bean --age 40 --wind 15 -o "$out/wind.glb" > /dev/null
+line=$(node "$root/tests/js/three_load.mjs" "$out/wind.glb") || { echo "$line"; exit 1; }
+joints=$(echo "$line" | sed -n 's/.*"joints":\([0-9]*\).*/\1/p')
+if ! echo "$line" | grep -q '"animation":"wind"' ||
+    ! echo "$line" | grep -q "\"tracks\":$((joints - 1))[,}]"; then
+    echo "check_three: wind.glb's animation in three.js: $line"
+    status=1
+else
+    echo "check_three: wind.glb plays its wind clip in three.js: $((joints - 1)) joint tracks"
+fi
 # Levels of detail and meshopt compression: three.js (with its MeshoptDecoder) holds the plain
 # file's triangles and objects in the compressed files, and each MSFT_lod level, loaded by its
 # node, every object of the full level with fewer triangles than the level before.
