@@ -46,6 +46,7 @@ inline Glb parseGlb(const std::string& bytes) {
     Glb g;
     g.doc = nlohmann::json::parse(bytes.substr(20, chunk[0]));
     const std::size_t binAt = 20 + chunk[0];
+    if (binAt == bytes.size()) return g;  // no binary chunk: a scene with no data
     std::memcpy(chunk, bytes.data() + binAt, 8);
     EXPECT_EQ(chunk[1], 0x004E4942u);  // "BIN"
     g.bin = bytes.substr(binAt + 8, chunk[0]);

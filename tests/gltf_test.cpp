@@ -434,3 +434,20 @@ TEST(Gltf, ANodePerOrganShowsEveryOrganWhereItStandsAndSharesEqualShapes) {
     EXPECT_EQ(all, ctx.triangleCount());
     fs::remove(path);
 }
+
+// An empty scene is a valid file: no property table (a table of no rows is not allowed) and no
+// buffer views of no bytes, at every node level.
+TEST(Gltf, AnEmptySceneIsAValidFileWithNoEmptyArrays) {
+    Context ctx;
+    const fs::path path = tempPath("empty.glb");
+    for (NodeLevel level : {NodeLevel::Plant, NodeLevel::Kind, NodeLevel::Organ}) {
+        GltfOptions options;
+        options.nodes = level;
+        writeGLTF(ctx, path.string(), options);
+        const Glb g = parseGlb(readAll(path.string()));
+        EXPECT_FALSE(g.doc.contains("extensions")) << nodeLevelName(level);
+        EXPECT_FALSE(g.doc.contains("bufferViews")) << nodeLevelName(level);
+        EXPECT_EQ(g.doc["scenes"][0]["nodes"].size(), 1u);
+    }
+    fs::remove(path);
+}
