@@ -454,7 +454,7 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
     }
     const SkinNodes skins = addSkins(d, s, options, buffer, roots);  // gltf_skin.cpp
 
-    if (options.labels) {
+    if (options.labels && !s.records.empty()) {  // an empty table is not allowed
         const std::size_t features = s.records.size();
         json properties;
         // One column per property, a value per object (the table's row).
@@ -487,9 +487,8 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
 
     doc["scene"] = 0;
     // z up in plantarch, y up in glTF: the root turns the scene about x by -90 degrees.
-    json world = {{"name", "plantarch"},
-                  {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}},
-                  {"children", roots}};
+    json world = {{"name", "plantarch"}, {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}}};
+    if (!roots.empty()) world["children"] = roots;  // an empty list is not allowed
     d.nodes.push_back(world);
     json sceneRoots = json::array({d.nodes.size() - 1});
     for (const json& r : skins.roots) sceneRoots.push_back(r);  // skinned meshes: roots
