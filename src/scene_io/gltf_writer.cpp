@@ -520,6 +520,10 @@ void write(Scene& scene, const std::string& path, const GltfOptions& options) {
     if (scene.organNodes && !scene.animated && !options.skeletons.empty())
         throw Error("a node per organ cannot be written with a skin",
                     {.file = path, .validRange = "skins with a node per plant or organ kind"});
+    if (scene.organNodes && !options.levels.empty())
+        throw Error(
+            "a node per organ cannot be written with levels of detail",
+            {.file = path, .validRange = "levels of detail with a node per plant or organ kind"});
     if (options.normals && !scene.organNodes) computeNormals(scene);
     checkSkins(scene, options, path);  // gltf_skin.cpp
     Buffer buffer;
