@@ -92,7 +92,7 @@ TEST(CliBuild, BadInputIsOneLineAndStatus2) {
          "plantarch: --age = -3: not a number of days (valid: 0 to 100000)\n"},
         {"build bean --age 10 -o /tmp/x.stl",
          "plantarch: /tmp/x.stl: '.stl': unknown output format (valid: .obj, .ply, .glb, .gltf, "
-         ".usda, .png, .npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)\n"},
+         ".usda, .usdz, .png, .npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)\n"},
         {"build bean --age 10 -D foo -o /tmp/x.obj",
          "plantarch: -D = foo: a build parameter is written name=value (valid: name=value)\n"},
         {"build bean --age 10 -D trunk_height=1 -o /tmp/x.obj",

@@ -71,9 +71,10 @@ TEST_F(CliOutputs, ExtensionsAreReadInAnyCase) {
 TEST_F(CliOutputs, AnUnknownExtensionListsEveryFormatTheCommandWrites) {
     const cli::Result r = cli::run("build bean --age 10 -o " + at("x.foo"));
     EXPECT_EQ(r.status, 2);
-    EXPECT_EQ(r.out, "plantarch: " + at("x.foo") +
-                         ": '.foo': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
-                         ".png, .npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)\n");
+    EXPECT_EQ(r.out,
+              "plantarch: " + at("x.foo") +
+                  ": '.foo': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, .usdz, "
+                  ".png, .npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)\n");
     const cli::Result none = cli::run("canopy bean --count 1x1 --age 5 -o " + at("noext"));
     EXPECT_NE(none.out.find("noext: unknown output format: the name has no extension (valid: .obj"),
               std::string::npos)

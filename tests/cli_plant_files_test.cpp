@@ -87,11 +87,10 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
     const std::pair<std::string, std::string> cases[] = {
         {"convert " + d + "/b.obj " + d + "/x.xml",
          d + "/x.xml: '.xml': an OBJ file holds geometry only, not the plant structure (valid: "
-             ".obj, .ply, .glb, .gltf, .usda, .png, .npz)"},
-        {"convert " + d + "/b.xml " + d + "/x.usdz",
-         d + "/x.usdz: '.usdz': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
-             ".png, "
-             ".npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)"},
+             ".obj, .ply, .glb, .gltf, .usda, .usdz, .png, .npz)"},
+        {"convert " + d + "/b.xml " + d + "/x.usdc",
+         d + "/x.usdc: '.usdc': unknown output format (valid: .obj, .ply, .glb, .gltf, .usda, "
+             ".usdz, .png, .npz, .xml, .helios.xml, .txt, .csv, .skeleton.csv, .mtg)"},
         {"convert " + d + "/missing.xml " + d + "/x.obj",
          d + "/missing.xml: cannot open plant structure file: No such file or directory"},
         {"convert " + d + "/b.xml", "output is required"},
@@ -110,7 +109,7 @@ TEST(CliPlantFiles, BadInputsExitWithOneLine) {
         const CliResult r = run(args);
         EXPECT_EQ(r.status, 2) << args << "\n" << r.out;
         EXPECT_EQ(r.out, "plantarch: " + expected + "\n") << args;
-        for (const char* name : {"/x.xml", "/x.obj", "/x.txt", "/x.usdz"})
+        for (const char* name : {"/x.xml", "/x.obj", "/x.txt", "/x.usdc"})
             EXPECT_FALSE(std::filesystem::exists(d + name)) << args << ": " << name;
     }
 }
