@@ -59,6 +59,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
                                  a->animation, global.points);
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
         checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
+        checkSkinOutputs(global, frames.has_value());               // skin_options.cpp
         checkCollisionOptions(a->collision);
         checkPhysiologyOptions(a->physiology);
         checkBendOptions(a->bend);

@@ -231,6 +231,8 @@ void checkLevelOutputs(const GlobalOptions& global, const std::vector<std::strin
 void addMaterialOptions(CLI::App& app, GlobalOptions& global);
 /// --nodes and --no-instancing (node_options.cpp), added by addLabelOptions.
 void addNodeOptions(CLI::App& app, GlobalOptions& global);
+/// Before any work: --skin (or --wind) neither with --frames nor with canopy --separate.
+void checkSkinOutputs(const GlobalOptions& global, bool frames, bool separate = false);
 /// Before any work: --nodes other than kind only with glTF and USD mesh outputs (pictures and
 /// plant files may come along); with --frames only organ. Throws naming the option.
 void checkNodeOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs,

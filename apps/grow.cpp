@@ -55,6 +55,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
             throw Error("--days is required (or --frames for a growth animation)");
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
         checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
+        checkSkinOutputs(global, frames.has_value());               // skin_options.cpp
         checkPhysiologyOptions(a->physiology);
         checkBendOptions(a->bend);
         if (frames && (!a->bend.pull.empty() || !a->bend.displace.empty()))

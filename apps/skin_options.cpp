@@ -3,6 +3,7 @@
 // looping animation swaying it to glTF outputs.
 
 #include "cli.h"
+#include "plantarch/Error.h"
 
 namespace plantarch::cli {
 
@@ -21,6 +22,17 @@ void addSkinOptions(CLI::App& app, GlobalOptions& global) {
            "swaying each plant toward +x, its deepest tip by about DEGREES (0 to 90)")
         ->type_name("DEGREES")
         ->check(numberCheck("--wind", "an angle in degrees", 0.0, 90.0, false, "0 to 90"));
+}
+
+void checkSkinOutputs(const GlobalOptions& global, bool frames, bool separate) {
+    if (!global.skin) return;
+    const char* option = global.wind > 0.0f ? "--wind" : "--skin";
+    if (frames)
+        throw Error("a growth animation is not skinned (its organs are keyed per frame)",
+                    {.parameter = option, .validRange = "without --frames"});
+    if (separate)
+        throw Error("files of one plant each are not skinned",
+                    {.parameter = option, .validRange = "without --separate"});
 }
 
 }  // namespace plantarch::cli

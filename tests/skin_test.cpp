@@ -533,8 +533,9 @@ TEST(Skin, CommandLine) {
     EXPECT_TRUE(readAll(d + "s.ply") == readAll(d + "plain/s.ply"));
     EXPECT_EQ(parseGlb(readAll(d + "s.glb")).doc["skins"].size(), 1u);
     EXPECT_NE(readAll(d + "s.usda").find("def SkelRoot"), std::string::npos);
-    for (const std::string& bad : {"--nodes organ", "--lod reduced"}) {
-        r = cli::run("--seed 3 build bean --age 20 --skin " + bad + " -o " + d + "bad.glb");
+    for (const char* bad : {"--nodes organ", "--lod reduced"}) {
+        r = cli::run(std::string("--seed 3 build bean --age 20 --skin ") + bad + " -o " + d +
+                     "bad.glb");
         EXPECT_EQ(r.status, 2) << bad << ": " << r.out;
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
         EXPECT_FALSE(fs::exists(d + "bad.glb"));
