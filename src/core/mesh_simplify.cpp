@@ -15,7 +15,7 @@ Mesh simplified(const Mesh& mesh, const SimplifyOptions& options) {
     const std::size_t target = std::max<std::size_t>(options.targetTriangles, 1);
     if (mesh.triangleCount() <= target) return mesh;
     std::vector<std::uint32_t> kept(mesh.indices.size());
-    const unsigned flags = options.lockBorder ? meshopt_SimplifyLockBorder : 0u;
+    const unsigned flags = options.lockBorder ? unsigned(meshopt_SimplifyLockBorder) : 0u;
     kept.resize(meshopt_simplify(kept.data(), mesh.indices.data(), mesh.indices.size(),
                                  &mesh.positions[0].x, mesh.positions.size(), sizeof(vec3),
                                  target * 3, options.maxError, flags, nullptr));
