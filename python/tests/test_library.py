@@ -299,7 +299,7 @@ def test_collision_stats_hold_every_field_of_the_struct(arch):
      r"'\.obj': writePLY writes a PLY mesh \(valid: \.ply\)"),
     (lambda a, f: plantarch.writeGLTF(a.getContext(), f), "x.usda",
      r"writeGLTF writes glTF, binary or text \(valid: \.glb, \.gltf\)"),
-    (lambda a, f: plantarch.writeUSDA(a.getContext(), f), "x.usd", r"\(valid: \.usda\)"),
+    (lambda a, f: plantarch.writeUSDA(a.getContext(), f), "x.usd", r"\(valid: \.usda, \.usdz\)"),
     (lambda a, f: plantarch.writePointCloudPLY(a.getContext(), f, points=10), "x.npz",
      r"\(valid: \.ply\)"),
     (lambda a, f: plantarch.writeQSM(a, f), "x.txt", r"writeQSM writes cylinders as CSV"),
