@@ -1,6 +1,8 @@
+import json
 import os
 import pathlib
 import re
+import struct
 
 import pytest
 
@@ -16,6 +18,23 @@ def arch():
     a = plantarch.PlantArchitecture(plantarch.Context())
     a.loadPlantModelFromLibrary("bean")
     return a
+
+
+@pytest.fixture(scope="module")
+def bean():
+    """A bean built at 25 days (seed 3), shared by a module's tests."""
+    a = plantarch.PlantArchitecture(plantarch.Context())
+    a.setSeed(3)
+    a.loadPlantModelFromLibrary("bean")
+    a.buildPlantInstanceFromLibrary((0, 0, 0), age=25)
+    return a
+
+
+def glb_json(path):
+    """The JSON chunk of a .glb file."""
+    data = pathlib.Path(path).read_bytes()
+    (length,) = struct.unpack_from("<I", data, 12)
+    return json.loads(data[20:20 + length])
 
 
 @pytest.fixture

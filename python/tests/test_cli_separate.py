@@ -2,19 +2,13 @@
 
 import json
 import re
-import struct
 import subprocess
 import zipfile
 
 import numpy as np
 
-from conftest import cli
+from conftest import cli, glb_json
 
-
-def glb_json(path):
-    data = path.read_bytes()
-    size = struct.unpack_from("<I", data, 12)[0]
-    return json.loads(data[20:20 + size])
 
 
 def test_separate_files_hold_every_plant_once_with_an_index(tmp_path):

@@ -1,17 +1,11 @@
 """Levels of detail (MSFT_lod) and EXT_meshopt_compression from Python's writeGLTF, and a mesh
 detail of 0.1 drawing a tenth of the triangles or fewer."""
-import json
-import struct
 
 import pytest
 
 import plantarch
+from conftest import glb_json
 
-
-def glb_json(path):
-    data = path.read_bytes()
-    size = struct.unpack_from("<I", data, 12)[0]
-    return json.loads(data[20:20 + size])
 
 
 def test_levels_and_meshopt(arch, tmp_path):

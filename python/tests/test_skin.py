@@ -1,27 +1,13 @@
 """Skinned plants from Python: writeGLTF and writeUSDA with skin=True give a glTF skin (a joint
 per internode, weights on every vertex) and UsdSkel prims; skin without the plants is refused."""
 
-import json
-import struct
 
 import pytest
 
 import plantarch
+from conftest import glb_json
 
 
-@pytest.fixture(scope="module")
-def bean():
-    arch = plantarch.PlantArchitecture(plantarch.Context())
-    arch.setSeed(3)
-    arch.loadPlantModelFromLibrary("bean")
-    arch.buildPlantInstanceFromLibrary((0, 0, 0), age=25)
-    return arch
-
-
-def glb_json(path):
-    data = path.read_bytes()
-    (length,) = struct.unpack_from("<I", data, 12)
-    return json.loads(data[20:20 + length])
 
 
 def test_skinned_glb_has_a_joint_per_internode(bean, tmp_path):

@@ -1,7 +1,6 @@
 """Procedural textures from Python: textured glTF, USD (.usda beside its PNGs, .usdz package),
 OBJ and pictures, and texture sizes refused with plantarch.Error."""
 
-import json
 import math
 import struct
 import zipfile
@@ -10,21 +9,9 @@ import pytest
 
 import plantarch
 import usda
+from conftest import glb_json
 
 
-@pytest.fixture(scope="module")
-def bean():
-    arch = plantarch.PlantArchitecture(plantarch.Context())
-    arch.setSeed(3)
-    arch.loadPlantModelFromLibrary("bean")
-    arch.buildPlantInstanceFromLibrary((0, 0, 0), age=25)
-    return arch
-
-
-def glb_json(path):
-    data = path.read_bytes()
-    (length,) = struct.unpack_from("<I", data, 12)
-    return json.loads(data[20:20 + length])
 
 
 def test_textured_glb_embeds_maps_and_flat_is_the_default(bean, tmp_path):
