@@ -28,6 +28,8 @@ trap 'rm -rf "$out"' EXIT
     -o "$out/textured_lod.glb" > /dev/null
 "$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 --nodes organ \
     -o "$out/textured_organs.glb" > /dev/null
+"$cli" --seed 3 build bean --frames 10:20:5 --materials textured --texture-size 64 \
+    -o "$out/textured_growth.glb" > /dev/null
 # Levels of detail (MSFT_lod) and EXT_meshopt_compression: the validator checks the document and
 # lists both as extensions it does not check (three.js decodes them: check_three.sh).
 "$cli" --seed 3 build bean --age 40 --lod reduced,cards -o "$out/lod.glb" -o "$out/lod.gltf" > /dev/null

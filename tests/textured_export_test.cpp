@@ -26,6 +26,7 @@
 using namespace plantarch;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using plantarch::testing::accessorValues;
 using plantarch::testing::Glb;
 using plantarch::testing::parseGlb;
 using plantarch::testing::readAll;
@@ -284,12 +285,63 @@ TEST(TexturedExport, NormalMappedPrimitivesCarryTangentsInEveryLevel) {
                 EXPECT_TRUE(p["attributes"].contains("TANGENT")) << mesh["name"];
             }
     EXPECT_GT(mapped, 4);
-    // A node per organ keeps the maps but leaves the normal map out (its meshes have no
-    // tangents).
+    // A node per organ keeps the normal maps: each normal-mapped organ mesh carries unit
+    // tangents across its normals, w +-1, pointing along increasing u on its triangles.
     o.levels.clear();
     o.nodes = NodeLevel::Organ;
     writeGLTF(bean.ctx, dir / "organs.glb", o);
     const Glb organs = parseGlb(readAll(dir / "organs.glb"));
-    for (const json& m : organs.doc["materials"]) EXPECT_FALSE(m.contains("normalTexture"));
-    EXPECT_FALSE(organs.doc["images"].empty());
+    int organMapped = 0, triangles = 0, alongU = 0;
+    for (const json& mesh : organs.doc["meshes"]) {
+        const json& p = mesh["primitives"][0];
+        if (!organs.doc["materials"][p["material"].get<int>()].contains("normalTexture")) continue;
+        ++organMapped;
+        const json& a = p["attributes"];
+        ASSERT_TRUE(a.contains("TANGENT")) << mesh["name"];
+        const auto t = accessorValues<float>(organs, a["TANGENT"]);
+        const auto n = accessorValues<float>(organs, a["NORMAL"]);
+        const auto x = accessorValues<float>(organs, a["POSITION"]);
+        const auto uv = accessorValues<float>(organs, a["TEXCOORD_0"]);
+        const auto idx = accessorValues<std::uint32_t>(organs, p["indices"]);
+        for (std::size_t v = 0; v < n.size() / 3; ++v) {
+            const vec3 tv(t[4 * v], t[4 * v + 1], t[4 * v + 2]),
+                nv(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+            EXPECT_NEAR(glm::length(tv), 1.0f, 1e-4f);
+            EXPECT_NEAR(glm::dot(tv, nv), 0.0f, 1e-3f);
+            EXPECT_EQ(std::abs(t[4 * v + 3]), 1.0f);
+        }
+        for (std::size_t k = 0; k + 2 < idx.size(); k += 3) {
+            const std::uint32_t i = idx[k], j = idx[k + 1], m = idx[k + 2];
+            auto at = [&](std::uint32_t q) { return vec3(x[3 * q], x[3 * q + 1], x[3 * q + 2]); };
+            const vec3 e1 = at(j) - at(i), e2 = at(m) - at(i);
+            const float d1u = uv[2 * j] - uv[2 * i], d1v = uv[2 * j + 1] - uv[2 * i + 1];
+            const float d2u = uv[2 * m] - uv[2 * i], d2v = uv[2 * m + 1] - uv[2 * i + 1];
+            const float det = d1u * d2v - d2u * d1v;
+            if (std::abs(det) < 1e-8f) continue;
+            const vec3 dPdu = (e1 * d2v - e2 * d1v) / det;
+            ++triangles;
+            if (glm::dot(dPdu, vec3(t[4 * i], t[4 * i + 1], t[4 * i + 2])) > 0.0f) ++alongU;
+        }
+    }
+    EXPECT_GT(organMapped, 4);
+    EXPECT_GT(triangles, 100);
+    EXPECT_GE(alongU, triangles * 99 / 100);  // averaged across a vertex's triangles
+    // The same in a growth animation, whose organ meshes are written the same way.
+    int animatedMapped = 0;
+    Context young;
+    PlantArchitecture arch(&young);
+    arch.setSeed(3);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.buildPlantInstanceFromLibrary(vec3(0.0f), 20);
+    writeGLTF({{&young, 20.0}, {&bean.ctx, 25.0}}, dir / "growth.glb", o);
+    const Glb growth = parseGlb(readAll(dir / "growth.glb"));
+    for (const json& mesh : growth.doc["meshes"]) {
+        const json& p = mesh["primitives"][0];
+        if (!growth.doc["materials"][p["material"].get<int>()].contains("normalTexture")) continue;
+        ++animatedMapped;
+        EXPECT_TRUE(p["attributes"].contains("TANGENT")) << mesh["name"];
+        for (const json& target : p.value("targets", json::array()))
+            EXPECT_TRUE(target.contains("TANGENT"));
+    }
+    EXPECT_GT(animatedMapped, 4);
 }

@@ -469,20 +469,22 @@ struct AnimationOptions {
     MaterialOptions appearance;
 };
 
-/// Writes frames as one animated glTF (.glb or .gltf): under the root, a node per frame
-/// ("day_<day>", extras {"day": ...}) holding that frame's plant nodes as writeGLTF lays
-/// them out, and an animation "growth" that shows frame i alone from i / framesPerSecond
-/// seconds on (each frame node's scale keyed 1 or 0 with STEP interpolation, which every
-/// glTF viewer plays). The property table holds the objects of every frame. Throws
+/// Writes frames as one animated glTF (.glb or .gltf): a node per organ, laid out as
+/// NodeLevel::Organ lays out a still file, its organs followed from frame to frame by their
+/// labels. An animation "growth" (extras {"days": [...]}) keys, with STEP samplers at
+/// i / framesPerSecond seconds for frame i, each organ node's translation, rotation and scale
+/// (scale 0 before the organ exists) and, for an organ whose shape changed in another way, the
+/// weights selecting its morph targets. The property table holds a row per organ. Throws
 /// plantarch::Error naming the file for no frames, times not increasing or a bad rate.
 void writeGLTF(const std::vector<AnimationFrame>& frames, const std::string& path,
                const GltfOptions& options = {}, const AnimationOptions& animation = {});
 
-/// Writes frames as one animated USD text file: an Xform per frame ("day_<day>", its day in
-/// customData) holding that frame's plant Xforms as writeUSDA lays them out, its visibility
-/// keyed so that frame i alone is shown at time code i (startTimeCode 0, endTimeCode the last
-/// frame's index, timeCodesPerSecond = framesPerSecond). Throws plantarch::Error as the glTF
-/// form does.
+/// Writes frames as one animated USD file (.usda, or .usdz): a prim per organ as
+/// NodeLevel::Organ lays out a still file, its translate, orient and scale time-sampled at
+/// time code i for frame i (startTimeCode 0, endTimeCode the last frame's index,
+/// timeCodesPerSecond = framesPerSecond) and its visibility keyed invisible before it appears;
+/// an organ whose shape changed holds a mesh per shape, each visible on its frames. Throws
+/// plantarch::Error as the glTF form does.
 void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& path,
                const UsdOptions& options = {}, const AnimationOptions& animation = {});
 

@@ -232,6 +232,9 @@ void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& opti
 /// TANGENT of a primitive whose material has a normal map (smooth normals written).
 void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
                  const Primitive& p, json& attributes);
+/// Per-vertex tangents of one object (xyz along increasing u, w the bitangent's sign), made
+/// perpendicular to its vertex `normals`.
+void objectTangents(const ObjectView& o, const vec3* normals, std::vector<glm::vec4>& out);
 
 // ---- a node per organ (gltf_organs.cpp) ----
 /// Follows the organs of the scene's frames (io::trackOrgans) and makes the records one row per

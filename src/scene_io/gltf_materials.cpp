@@ -13,8 +13,6 @@
 
 namespace plantarch::gltf {
 
-namespace gltfmat {
-
 // Per-vertex tangents (xyz along increasing u, w the bitangent's sign) of one object: the
 // texture-space gradients summed over its triangles, made perpendicular to the vertex normal.
 // The bitangent cross(normal, tangent) * w points toward decreasing v, the "up" of glTF's
@@ -47,8 +45,6 @@ void objectTangents(const ObjectView& o, const vec3* normals, std::vector<glm::v
     }
 }
 
-}  // namespace gltfmat
-
 void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buffer& buffer,
                  const Primitive& p, json& attributes) {
     if (options.appearance.style != MaterialStyle::Textured || !options.normals || !p.uvs ||
@@ -65,7 +61,7 @@ void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buff
     const int view = buffer.add(d.views, p.vertices * 16, kArrayBuffer, [&s, &p](Sink& out) {
         std::vector<glm::vec4> tangents;
         for (const std::size_t i : p.objects) {
-            gltfmat::objectTangents(s.object(i), s.normals.data() + s.normalAt[i], tangents);
+            objectTangents(s.object(i), s.normals.data() + s.normalAt[i], tangents);
             out.write(tangents.data(), tangents.size() * sizeof(glm::vec4));
         }
     });
@@ -120,7 +116,7 @@ void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& opti
             pbr["baseColorFactor"] = {1.0, 1.0, 1.0, 1.0};
             pbr["metallicRoughnessTexture"] = {{"index", t[std::size_t(io::MapKind::ORM)]}};
             pbr["roughnessFactor"] = 1.0;
-            if (options.normals && !s.organNodes)  // with tangents (addTangents)
+            if (options.normals)  // with tangents (addTangents, or the organ meshes')
                 material["normalTexture"] = {{"index", t[std::size_t(io::MapKind::Normal)]}};
             material["occlusionTexture"] = {{"index", t[std::size_t(io::MapKind::ORM)]}};
             if (looks->maps()[std::size_t(look.maps)].hasAlpha) material["alphaMode"] = "MASK";

@@ -77,6 +77,12 @@ public:
 private:
     std::size_t organNode(std::size_t track, vec3 base);
     std::size_t mesh(std::size_t shape);
+    // Whether shape k's mesh carries tangents: its material has a normal map.
+    bool tangents(std::size_t k) const {
+        const json& material = d_.materials[s_.shapeMaterials[k]];
+        return options_.normals && material.contains("normalTexture") &&
+               !s_.frames[s_.organs.shapes[k].frame]->object(s_.organs.shapes[k].id).uvs.empty();
+    }
     std::size_t sharedAccessor(std::map<std::pair<std::size_t, std::size_t>, std::size_t>& cache,
                                std::pair<std::size_t, std::size_t> key,
                                const std::function<std::size_t()>& make);
@@ -147,6 +153,15 @@ std::size_t OrganWriter::mesh(std::size_t k) {
                 const ObjectView v = frame->object(id);
                 out.write(v.uvs.data(), v.uvs.size_bytes());
             });
+        });
+    if (tangents(k))
+        attributes["TANGENT"] = vertexAccessor(16, "VEC4", [frame, id](Sink& out) {
+            std::vector<vec3> normals;
+            std::vector<glm::vec4> tangents;
+            const ObjectView v = frame->object(id);
+            smoothNormals(v, normals);
+            objectTangents(v, normals.data(), tangents);
+            out.write(tangents.data(), tangents.size() * sizeof(glm::vec4));
         });
     json primitive;
     if (options_.labels) {
@@ -242,18 +257,27 @@ std::size_t OrganWriter::visibility(const io::OrganTrack& track, std::size_t sha
 }
 
 // A mesh showing shape `base` with the other shapes of its topology as morph targets: target
-// k holds shape k's vertices (about its centre) minus the base's, and its normals' change.
+// k holds shape k's vertices (about its centre) minus the base's, and its normals' and
+// tangents' change.
 std::size_t OrganWriter::morphMesh(std::size_t base, const std::vector<std::size_t>& targets) {
     json primitive = d_.meshes[mesh(base)]["primitives"][0];
     const io::OrganShape& b = s_.organs.shapes[base];
     const std::size_t vertices = s_.frames[b.frame]->object(b.id).positions.size();
     const std::size_t count = targets.size(), bytes = count * vertices * sizeof(vec3);
     // Called while the file is written, after this writer is gone: captures the scene only.
-    auto deltas = [&s = s_, base, targets](Sink& out, bool normals) {
+    enum Of { Positions, Normals, Tangents };
+    auto deltas = [&s = s_, base, targets](Sink& out, Of of) {
         auto values = [&](std::size_t k, std::vector<vec3>& v) {
             const io::OrganShape& shape = s.organs.shapes[k];
             const ObjectView o = s.frames[shape.frame]->object(shape.id);
-            if (normals) return smoothNormals(o, v);
+            if (of != Positions) smoothNormals(o, v);
+            if (of == Normals) return;
+            if (of == Tangents) {
+                std::vector<glm::vec4> t;
+                objectTangents(o, v.data(), t);
+                for (std::size_t i = 0; i < v.size(); ++i) v[i] = vec3(t[i]);
+                return;
+            }
             v.resize(o.positions.size());
             for (std::size_t i = 0; i < v.size(); ++i) v[i] = o.positions[i] - shape.centre;
         };
@@ -264,13 +288,15 @@ std::size_t OrganWriter::morphMesh(std::size_t base, const std::vector<std::size
             writeValues<vec3>(out, to.size(), [&](std::size_t i) { return to[i] - from[i]; });
         }
     };
-    const int positions =
-        buffer_.add(d_.views, bytes, kArrayBuffer, [deltas](Sink& out) { deltas(out, false); });
-    const int normals = options_.normals ? buffer_.add(d_.views, bytes, kArrayBuffer,
-                                                       [deltas](Sink& out) { deltas(out, true); })
-                                         : -1;
-    d_.views[std::size_t(positions)]["byteStride"] = sizeof(vec3);
-    if (normals >= 0) d_.views[std::size_t(normals)]["byteStride"] = sizeof(vec3);
+    auto view = [&](bool wanted, Of of) {
+        if (!wanted) return -1;
+        const int v = buffer_.add(d_.views, bytes, kArrayBuffer,
+                                  [deltas, of](Sink& out) { deltas(out, of); });
+        d_.views[std::size_t(v)]["byteStride"] = sizeof(vec3);
+        return v;
+    };
+    const int positions = view(true, Positions), normals = view(options_.normals, Normals),
+              tangents = view(primitive["attributes"].contains("TANGENT"), Tangents);
     const ObjectView from = s_.frames[b.frame]->object(b.id);
     json list = json::array();
     for (std::size_t t = 0; t < count; ++t) {
@@ -288,11 +314,12 @@ std::size_t OrganWriter::morphMesh(std::size_t base, const std::vector<std::size
         position["max"] = {hi.x, hi.y, hi.z};
         d_.accessors.push_back(std::move(position));
         json target = {{"POSITION", d_.accessors.size() - 1}};
-        if (normals >= 0) {
-            json normal = accessor(normals, kFloat, vertices, "VEC3");
-            normal["byteOffset"] = t * vertices * sizeof(vec3);
-            d_.accessors.push_back(std::move(normal));
-            target["NORMAL"] = d_.accessors.size() - 1;
+        for (const auto& [view, name] : {std::pair{normals, "NORMAL"}, {tangents, "TANGENT"}}) {
+            if (view < 0) continue;
+            json delta = accessor(view, kFloat, vertices, "VEC3");
+            delta["byteOffset"] = t * vertices * sizeof(vec3);
+            d_.accessors.push_back(std::move(delta));
+            target[name] = d_.accessors.size() - 1;
         }
         list.push_back(std::move(target));
     }
