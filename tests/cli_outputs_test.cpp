@@ -3,6 +3,7 @@
 // nothing is left behind when it fails. Inputs that are directories are called directories.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <array>
@@ -44,6 +45,27 @@ TEST_F(CliOutputs, AnUnwritableSecondOutputStopsTheCommandBeforeAnyFileIsWritten
               "plantarch: /proc/x.obj: cannot write in folder /proc: it does not take new "
               "files\n");
     EXPECT_EQ(names(), std::vector<std::string>{});
+}
+
+// A FIFO as output is refused before any work and stays a FIFO; so is one in the place of a
+// side file (a textured USD file's texture image).
+TEST_F(CliOutputs, AFifoAsOutputIsRefusedAndLeftAsItWas) {
+    ASSERT_EQ(::mkfifo(at("p.glb").c_str(), 0600), 0);
+    const cli::Result r = cli::run("build bean --age 10 --nodes organ -o " + at("p.glb"));
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "plantarch: " + at("p.glb") +
+                         ": cannot write: is a FIFO, not a file (plantarch writes whole files and "
+                         "puts them in place)\n");
+    EXPECT_TRUE(fs::is_fifo(at("p.glb")));
+    ASSERT_EQ(::mkfifo(at("t_bark_0_basecolor.png").c_str(), 0600), 0);
+    const cli::Result t =
+        cli::run("build bean --age 10 --materials textured --texture-size 16 -o " + at("t.usda") +
+                 " -o " + at("t.ply"));
+    EXPECT_EQ(t.status, 2);
+    EXPECT_NE(t.out.find("t_bark_0_basecolor.png: cannot write: is a FIFO"), std::string::npos)
+        << t.out;
+    EXPECT_EQ(names(), (std::vector<std::string>{"p.glb", "t_bark_0_basecolor.png"}));
+    EXPECT_TRUE(fs::is_fifo(at("t_bark_0_basecolor.png")));
 }
 
 TEST_F(CliOutputs, ADirectoryAsOutputIsCalledADirectoryAndLeavesNoMaterialFile) {

@@ -2,10 +2,14 @@
 // set commits, all together; nothing when it is discarded; paths checked before any work.
 
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -116,6 +120,49 @@ TEST_F(OutputSetTest, CheckOutputPathSaysWhy) {
               "/proc/x.obj: cannot write in folder /proc: it does not take new files");
     EXPECT_NO_THROW(plantarch::checkOutputPath(at("ok.obj")));
     EXPECT_EQ(names(), std::vector<std::string>{"d.obj/"});  // the check leaves nothing
+}
+
+// A FIFO, a device node or a socket at the target is refused, never replaced by a regular
+// file: when checked, when opened and at commit (made after the file was opened). A symbolic
+// link is replaced by the file; what it pointed at is left alone.
+TEST_F(OutputSetTest, FifosDevicesAndSocketsAreRefusedAndLeftInPlace) {
+    ASSERT_EQ(::mkfifo(at("p.glb").c_str(), 0600), 0);
+    const std::string fifo = at("p.glb") + ": cannot write: is a FIFO, not a file";
+    EXPECT_EQ(errorOf([&] { plantarch::checkOutputPath(at("p.glb")); }).rfind(fifo, 0), 0u);
+    EXPECT_EQ(errorOf([&] { plantarch::writeFileAtomically(at("p.glb"), "x"); }).rfind(fifo, 0),
+              0u);
+    fs::create_symlink("/dev/null", at("null.obj"));
+    EXPECT_NO_THROW(plantarch::checkOutputPath(at("null.obj")));
+    EXPECT_EQ(errorOf([] { plantarch::checkOutputPath("/dev/null"); }),
+              "/dev/null: cannot write: is a device, not a file (plantarch writes whole files and "
+              "puts them in place)");
+    const int sock = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    const std::string socketPath = at("s.ply");
+    ASSERT_LT(socketPath.size(), sizeof(addr.sun_path));
+    std::strcpy(addr.sun_path, socketPath.c_str());
+    ASSERT_EQ(::bind(sock, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)), 0);
+    EXPECT_NE(errorOf([&] { plantarch::checkOutputPath(socketPath); }).find("is a socket"),
+              std::string::npos);
+    ::close(sock);
+    {  // a FIFO made while the set was open: nothing is replaced
+        plantarch::OutputSet set;
+        plantarch::writeFileAtomically(at("a.txt"), "a");
+        plantarch::writeFileAtomically(at("late.glb"), "late");
+        ASSERT_EQ(::mkfifo(at("late.glb").c_str(), 0600), 0);
+        EXPECT_EQ(errorOf([&] {
+                      set.commit();
+                  }).rfind(at("late.glb") + ": cannot replace file: is a FIFO", 0),
+                  0u);
+    }
+    EXPECT_TRUE(fs::is_fifo(at("p.glb")));
+    EXPECT_TRUE(fs::is_fifo(at("late.glb")));
+    EXPECT_FALSE(fs::exists(at("a.txt")));
+    plantarch::writeFileAtomically(at("null.obj"), "o");  // the link is replaced
+    EXPECT_FALSE(fs::is_symlink(at("null.obj")));
+    EXPECT_EQ(bytes(at("null.obj")), "o");
+    EXPECT_TRUE(fs::is_character_file("/dev/null"));
 }
 
 // Without unnamed files (the fallback), writing works the same and a discarded file leaves

@@ -62,6 +62,7 @@ AtomicFile::AtomicFile(std::string path, std::size_t bufferBytes)
     struct stat st {};
     if (::stat(path_.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
         throw Error("cannot write: is a directory, not a file", {.file = path_});
+    refuseSpecialFile(path_, "cannot write");
     buffer_ = std::make_unique_for_overwrite<char[]>(capacity_);  // before the file exists
     if (unnamedWanted()) {
         do {
@@ -212,6 +213,19 @@ void writeWholeFile(const std::string& path, std::string_view bytes) {
     AtomicFile file(path, std::min<std::size_t>(bytes.size() + 1, AtomicFile::kDefaultBufferBytes));
     file.write(bytes);
     file.commit();
+}
+
+void refuseSpecialFile(const std::string& path, const char* what) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) return;
+    const char* kind = S_ISFIFO(st.st_mode)                         ? "a FIFO"
+                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                       : S_ISSOCK(st.st_mode)                       ? "a socket"
+                                                                    : nullptr;
+    if (!kind) return;
+    throw Error(std::string(what) + ": is " + kind +
+                    ", not a file (plantarch writes whole files and puts them in place)",
+                {.file = path});
 }
 
 }  // namespace plantarch::io

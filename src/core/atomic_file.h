@@ -104,4 +104,9 @@ bool holdInOpenOutputSet(AtomicFile& file);
 /// Writes `bytes` to `path` through an AtomicFile.
 void writeWholeFile(const std::string& path, std::string_view bytes);
 
+/// Throws plantarch::Error ("<what>: is a FIFO, not a file ...", naming the path) when `path`
+/// names a FIFO, a device or a socket: putting a file in place renames over its target, which
+/// would replace the node with a regular file. A symbolic link is replaced, not followed.
+void refuseSpecialFile(const std::string& path, const char* what);
+
 }  // namespace plantarch::io

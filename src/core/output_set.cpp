@@ -59,6 +59,7 @@ void checkOutputPath(const std::string& path) {
     if (path.empty()) throw Error("cannot write: empty file name");
     if (path.back() == '/' || isDirectory(path))
         throw Error("cannot write: is a directory, not a file", {.file = path});
+    io::refuseSpecialFile(path, "cannot write");
     const std::size_t slash = path.find_last_of('/');
     const std::string folder =
         slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
@@ -102,6 +103,7 @@ void OutputSet::commit() {
     for (io::AtomicFile& f : files) {
         if (isDirectory(f.path()))
             throw Error("cannot replace file: is a directory, not a file", {.file = f.path()});
+        io::refuseSpecialFile(f.path(), "cannot replace file");
         f.nameTemporary();
     }
     for (io::AtomicFile& f : files) f.place();
