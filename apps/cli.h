@@ -52,8 +52,8 @@ struct GlobalOptions {
     bool meshopt = false;           ///< --meshopt: EXT_meshopt_compression of glTF outputs
     /// --materials and --texture-size: flat colours or procedural textures (material_options.cpp)
     MaterialOptions appearance;
-    NodeLevel nodes = NodeLevel::Kind;  ///< --nodes (node_options.cpp)
-    bool instancing = true;             ///< --no-instancing clears it
+    NodeLevel nodes = NodeLevel::Kind;           ///< --nodes (node_options.cpp)
+    Instancing instancing = Instancing::Shared;  ///< --instancing
     /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
     /// it) with one line; 0 for no limit. Default: PlantArchitecture::defaultTriangleLimit().
     std::size_t maxTriangles = PlantArchitecture::defaultTriangleLimit();
@@ -229,7 +229,7 @@ void checkLevelOutputs(const GlobalOptions& global, const std::vector<std::strin
                        bool frames);
 /// --materials and --texture-size (material_options.cpp), added by addLabelOptions.
 void addMaterialOptions(CLI::App& app, GlobalOptions& global);
-/// --nodes and --no-instancing (node_options.cpp), added by addLabelOptions.
+/// --nodes and --instancing (node_options.cpp), added by addLabelOptions.
 void addNodeOptions(CLI::App& app, GlobalOptions& global);
 /// Before any work: --skin (or --wind) neither with --frames nor with canopy --separate.
 void checkSkinOutputs(const GlobalOptions& global, bool frames, bool separate = false);

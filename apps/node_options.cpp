@@ -1,5 +1,5 @@
-// --nodes plant|kind|organ and --no-instancing: how .glb, .gltf, .usda and .usdz outputs group
-// each plant's geometry into nodes (docs/formats.md, "Nodes and instancing").
+// --nodes plant|kind|organ and --instancing none|shared|gpu: how .glb, .gltf, .usda and .usdz
+// outputs group each plant's geometry into nodes (docs/formats.md, "Nodes and instancing").
 
 #include <string>
 
@@ -27,14 +27,33 @@ void addNodeOptions(CLI::App& app, GlobalOptions& global) {
            "per organ, named and labelled, so a viewer can pick one leaf or fruit); growth "
            "animations always have a node per organ")
         ->type_name("LEVEL");
-    app.add_flag_function(
-        "--no-instancing", [&global](std::int64_t) { global.instancing = false; },
-        "With --nodes organ (and in animations): give every organ its own mesh, even where "
-        "another organ has the same shape");
+    app.add_option_function<std::string>(
+           "--instancing",
+           [&global](const std::string& text) {
+               const std::optional<Instancing> instancing = instancingFromName(text);
+               if (!instancing)
+                   throw Error("unknown instancing", {.parameter = "--instancing",
+                                                      .value = text,
+                                                      .validRange = "none, shared, gpu"});
+               global.instancing = *instancing;
+           },
+           "With --nodes organ (and in animations), organs of one shape: shared (default: "
+           "organ nodes that point at one mesh), gpu (one node per shape with "
+           "EXT_mesh_gpu_instancing, USD point instancers; not with --frames) or none (every "
+           "organ its own mesh)")
+        ->type_name("MODE");
 }
 
 void checkNodeOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs,
                       bool frames) {
+    if (global.instancing == Instancing::Gpu && global.nodes != NodeLevel::Organ)
+        throw Error("gpu instancing needs a node per organ",
+                    {.parameter = "--instancing", .value = "gpu", .validRange = "--nodes organ"});
+    if (global.instancing == Instancing::Gpu && frames)
+        throw Error("gpu instances cannot be animated",
+                    {.parameter = "--instancing",
+                     .value = "gpu",
+                     .validRange = "shared or none with --frames"});
     if (global.nodes == NodeLevel::Kind) return;
     if (frames && global.nodes != NodeLevel::Organ)
         throw Error("a growth animation always has a node per organ",

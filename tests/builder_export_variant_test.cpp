@@ -129,7 +129,7 @@ TEST_F(BuilderServer, ExportsLevelsOfDetailMeshoptAndSkins) {
                                       {"format", "usda"},
                                       {"name", "p"},
                                       {"nodes", "plant"},
-                                      {"instancing", false}});
+                                      {"instancing", "none"}});
     ASSERT_TRUE(plant && plant->status == 200) << plant->body;
 }
 
@@ -174,7 +174,9 @@ TEST_F(BuilderServer, RefusesBadExportVariants) {
         {{{"texture_size", 64.5}}, "texture_size = 64.5: texture size is a whole number"},
         {{{"texture_size", "512"}}, "texture_size = \"512\": texture size is a whole number"},
         {{{"nodes", "leaf"}}, "nodes = leaf: unknown node level (valid: plant, kind, organ)"},
-        {{{"instancing", "no"}}, "instancing = \"no\": expected true or false"},
+        {{{"instancing", "no"}}, "instancing = no: unknown instancing (valid: none, shared, gpu)"},
+        {{{"instancing", false}}, "instancing = false: expected a text in quotes"},
+        {{{"instancing", "gpu"}}, "instancing = gpu: gpu instancing needs a node per organ"},
         {{{"lod", "foo"}}, "lod = foo: unknown level of detail (valid: none, or comma-separated"},
         {{{"lod", "reduced:nan"}}, "lod = reduced:nan: not a number"},
         {{{"lod", "reduced:1.5"}}, "lod = reduced:1.5"},

@@ -163,9 +163,43 @@ inline std::vector<float> keyValue(const Glb& g, const json& sampler, std::size_
                               values.begin() + std::ptrdiff_t((k + 1) * n));
 }
 
+/// The organs a node with EXT_mesh_gpu_instancing draws (under `parent`), keyed by their
+/// labels as instances: the node's organ, the instance's _SHOOT, _NODE and _LEAF attributes and
+/// the ordinal in its name (extras "instances").
+inline void instances(const Glb& g, const json& node, const mat4& parent,
+                      std::map<OrganKey, std::vector<vec3>>& out) {
+    const json& a = node["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    const auto t = accessorValues<float>(g, a["TRANSLATION"]);
+    const auto r = accessorValues<float>(g, a["ROTATION"]);
+    const auto s = accessorValues<float>(g, a["SCALE"]);
+    const auto shoot = accessorValues<float>(g, a["_SHOOT"]);
+    const auto nodeOf = accessorValues<float>(g, a["_NODE"]);
+    const auto leaf = accessorValues<float>(g, a["_LEAF"]);
+    const json& p = g.doc["meshes"][node["mesh"].get<std::size_t>()]["primitives"][0];
+    const std::vector<float> positions = accessorValues<float>(g, p["attributes"]["POSITION"]);
+    const json& names = node["extras"]["instances"];
+    EXPECT_EQ(names.size(), shoot.size());
+    for (std::size_t i = 0; i < shoot.size(); ++i) {
+        const mat4 m =
+            parent * glm::translate(mat4(1.0f), vec3(t[3 * i], t[3 * i + 1], t[3 * i + 2])) *
+            glm::mat4_cast(glm::quat(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2])) *
+            glm::scale(mat4(1.0f), vec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]));
+        const std::string name = names[i];
+        const std::string last = name.substr(name.rfind('_') + 1);
+        const bool numbered = std::all_of(last.begin(), last.end(), ::isdigit);
+        const OrganKey key = {node["extras"]["organ"], int(shoot[i]), int(nodeOf[i]), int(leaf[i]),
+                              numbered ? std::stoi(last) - 1 : 0};
+        std::vector<vec3>& v = out[key];  // several plants: appended in plant order
+        for (std::size_t j = 0; j < positions.size(); j += 3)
+            v.push_back(
+                vec3(m * glm::vec4(positions[j], positions[j + 1], positions[j + 2], 1.0f)));
+    }
+}
+
 /// Each organ's vertices of a file with a node per organ (plantarch's z-up axes: under the
 /// root's turn) at frame `k` of its animation (or as it stands), from the nodes' transforms,
-/// the channels keyed at k, morph targets and the shape nodes' scales.
+/// the channels keyed at k, morph targets and the shape nodes' scales; instances of
+/// EXT_mesh_gpu_instancing nodes by their instance transforms.
 inline std::map<OrganKey, std::vector<vec3>> shownAt(const Glb& g, std::size_t k = 0) {
     const json& nodes = g.doc["nodes"];
     std::map<std::pair<std::size_t, std::string>, const json*> channels;
@@ -203,7 +237,9 @@ inline std::map<OrganKey, std::vector<vec3>> shownAt(const Glb& g, std::size_t k
             organ = {l["organ"], l["shoot"], l["node"], l["leaf"],
                      numbered ? std::stoi(last) - 1 : 0};
         }
-        if (node.contains("mesh")) {
+        if (node.contains("extensions") && node["extensions"].contains("EXT_mesh_gpu_instancing")) {
+            instances(g, node, m, out);
+        } else if (node.contains("mesh")) {
             const json& mesh = g.doc["meshes"][node["mesh"].get<std::size_t>()];
             const json& p = mesh["primitives"][0];
             std::vector<float> positions = accessorValues<float>(g, p["attributes"]["POSITION"]);

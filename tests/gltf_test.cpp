@@ -415,7 +415,7 @@ TEST(Gltf, ANodePerOrganShowsEveryOrganWhereItStandsAndSharesEqualShapes) {
         EXPECT_EQ(a.contains("_OBJECT_ID"), count == 1) << mesh;
     }
     // Without instancing every organ has a mesh of its own.
-    options.instancing = false;
+    options.instancing = Instancing::None;
     writeGLTF(ctx, path.string(), options);
     const Glb own = parseGlb(readAll(path.string()));
     EXPECT_EQ(own.doc["meshes"].size(), ctx.objectCount());

@@ -21,7 +21,7 @@ namespace {
 using Texts = std::map<std::string, std::string>;
 
 bool isFlag(const std::string& field) {
-    return field == "instancing" || field == "meshopt" || field == "skin";
+    return field == "meshopt" || field == "skin";
 }
 
 bool flag(const std::string& field, const std::string& text) {
@@ -76,7 +76,14 @@ PlantFileOptions variant(const Texts& t, const std::string& format) {
                 {.parameter = "nodes", .value = t.at("nodes"), .validRange = "plant, kind, organ"});
         o.nodes = *level;
     }
-    if (given("instancing")) o.instancing = flag("instancing", t.at("instancing"));
+    if (given("instancing")) {
+        const std::optional<Instancing> instancing = instancingFromName(t.at("instancing"));
+        if (!instancing)
+            throw Error("unknown instancing", {.parameter = "instancing",
+                                               .value = t.at("instancing"),
+                                               .validRange = "none, shared, gpu"});
+        o.instancing = *instancing;
+    }
     if (given("lod")) o.levels = parseGltfLevels(t.at("lod"), "lod");
     if (given("meshopt")) o.meshoptCompression = flag("meshopt", t.at("meshopt"));
     if (given("skin")) o.skin = flag("skin", t.at("skin"));
@@ -104,6 +111,9 @@ PlantFileOptions variant(const Texts& t, const std::string& format) {
         throw Error(
             "skins are written in glTF and USD only",
             {.parameter = "skin", .value = "true", .validRange = "format glb, gltf or usda"});
+    if (o.instancing == Instancing::Gpu && o.nodes != NodeLevel::Organ)
+        throw Error("gpu instancing needs a node per organ",
+                    {.parameter = "instancing", .value = "gpu", .validRange = "nodes = organ"});
     if (o.nodes == NodeLevel::Organ && !o.levels.empty())
         throw Error("a node per organ cannot be written with levels of detail",
                     {.parameter = "lod", .value = lod, .validRange = "none with nodes = organ"});

@@ -17,9 +17,10 @@ namespace plantarch::builder {
 const std::vector<std::string>& exportVariantFields();
 
 /// The options of an export of `format` (an export format, "glb" ...) from the variant fields
-/// of a JSON body (text for materials, nodes and lod; a whole number for texture_size; true or
-/// false for instancing, meshopt and skin; other fields ignored). Throws plantarch::Error (400)
-/// naming the first bad field, its value and what is valid, or a variant `format` cannot hold.
+/// of a JSON body (text for materials, nodes, instancing and lod; a whole number for
+/// texture_size; true or false for meshopt and skin; other fields ignored). Throws
+/// plantarch::Error (400) naming the first bad field, its value and what is valid, or a variant
+/// `format` cannot hold.
 PlantFileOptions exportVariant(const json& body, const std::string& format);
 
 /// The same from a request's query parameters (all text; true, false, 1 or 0 for the flags).

@@ -369,6 +369,22 @@ const char* nodeLevelName(NodeLevel level);
 /// The NodeLevel of a name of nodeLevelName; nullopt for another text.
 std::optional<NodeLevel> nodeLevelFromName(std::string_view name);
 
+/// How organs of one shape (equal up to a translation, rotation and uniform scale) are stored
+/// with a node per organ (docs/formats.md, "Nodes and instancing").
+enum class Instancing {
+    None,    ///< every organ its own mesh
+    Shared,  ///< organ nodes (USD prims) that point at one mesh (the default)
+    /// Each shape that two or more organs of a plant use is one node with EXT_mesh_gpu_instancing
+    /// (USD: a UsdGeomPointInstancer per plant), the organs its instances, labelled per
+    /// instance; organs of a shape of their own keep their nodes. Needs NodeLevel::Organ and
+    /// cannot be animated.
+    Gpu,
+};
+/// "none", "shared", "gpu".
+const char* instancingName(Instancing instancing);
+/// The Instancing of a name of instancingName; nullopt for another text.
+std::optional<Instancing> instancingFromName(std::string_view name);
+
 struct GltfOptions {
     bool includeHidden = false;
     bool normals = true;   ///< smooth per-vertex normals (NORMAL)
@@ -409,8 +425,8 @@ struct GltfOptions {
     /// With a node per organ: organs whose geometry equals another organ's up to a translation,
     /// rotation and uniform scale place that organ's mesh instead of storing their own (the
     /// shared mesh then carries the plant and organ labels per vertex, the object's in the
-    /// node's extras).
-    bool instancing = true;
+    /// node's extras); Instancing::Gpu makes them instances of one node.
+    Instancing instancing = Instancing::Shared;
     /// Receives ("writing glTF", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };
@@ -437,7 +453,7 @@ struct UsdOptions {
     MaterialOptions appearance;
     // Organ granularity and instancing, as for glTF.
     NodeLevel nodes = NodeLevel::Kind;
-    bool instancing = true;
+    Instancing instancing = Instancing::Shared;
     /// Receives ("writing USD", fraction) while the file is written; may be empty.
     ProgressCallback progress;
 };

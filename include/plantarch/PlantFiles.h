@@ -52,7 +52,7 @@ struct PlantFileOptions {
     /// Nodes of .glb, .gltf, .usda and .usdz files (GltfOptions::nodes, ::instancing); a level
     /// other than NodeLevel::Kind with another mesh format is an error.
     NodeLevel nodes = NodeLevel::Kind;
-    bool instancing = true;
+    Instancing instancing = Instancing::Shared;
     /// Each writer's progress; for separate files, one report over the plants.
     ProgressCallback progress;
     /// Called with the path of every file written (an object table and a camera file too).

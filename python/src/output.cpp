@@ -150,6 +150,14 @@ NodeLevel nodeLevelOf(const std::string& name) {
     return *level;
 }
 
+Instancing instancingOf(const std::string& name) {
+    const std::optional<Instancing> instancing = instancingFromName(name);
+    if (!instancing)
+        throw Error("unknown instancing",
+                    {.parameter = "instancing", .value = name, .validRange = "none, shared, gpu"});
+    return *instancing;
+}
+
 /// The skeletons of the writers' `skin=True` (exportSkeletons), which needs the architecture.
 std::vector<GltfSkeleton> skeletonsOf(const py::object& architecture) {
     if (architecture.is_none())
@@ -234,11 +242,11 @@ void bindOutput(py::module_& m) {
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt,
            const std::string& appearance, const py::object& textureSize, bool skin,
-           const std::string& nodes, bool instancing, float wind) {
+           const std::string& nodes, const std::string& instancing, float wind) {
             GltfOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
             o.nodes = nodeLevelOf(nodes);
-            o.instancing = instancing;
+            o.instancing = instancingOf(instancing);
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
@@ -256,7 +264,7 @@ void bindOutput(py::module_& m) {
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
-        py::arg("nodes") = "kind", py::arg("instancing") = true, py::arg("wind") = 0.0f,
+        py::arg("nodes") = "kind", py::arg("instancing") = "shared", py::arg("wind") = 0.0f,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
@@ -269,17 +277,19 @@ void bindOutput(py::module_& m) {
             "`skin`: a wind-ready skeleton per plant of `architecture` (a glTF skin: a joint per "
             "internode, per-vertex weights), as the command line's --skin; `wind`: degrees of a "
             "looping 'wind' animation swaying it (implies skin), as --wind; `nodes` 'plant', "
-            "'kind' or 'organ' (a node per shoot and organ, named and labelled, equal shapes "
-            "shared unless `instancing` is False), as --nodes and --no-instancing."));
+            "'kind' or 'organ' (a node per shoot and organ, named and labelled); `instancing` "
+            "with 'organ': 'shared' (organs of one shape point at one mesh), 'gpu' "
+            "(EXT_mesh_gpu_instancing, one node per shared shape) or 'none', as --nodes and "
+            "--instancing."));
     m.def(
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, const std::string& appearance, const py::object& textureSize,
-           bool skin, const std::string& nodes, bool instancing) {
+           bool skin, const std::string& nodes, const std::string& instancing) {
             UsdOptions o;
             o.appearance = appearanceOf(appearance, textureSize);
             o.nodes = nodeLevelOf(nodes);
-            o.instancing = instancing;
+            o.instancing = instancingOf(instancing);
             o.includeHidden = includeHidden;
             o.normals = normals;
             o.uvs = uvs;
@@ -292,7 +302,7 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
-        py::arg("nodes") = "kind", py::arg("instancing") = true,
+        py::arg("nodes") = "kind", py::arg("instancing") = "shared",
         inPython(
             docs::writeUSDA,
             "Writes the Context as USD text (.usda), or a .usdz package, atomically: an Xform per "

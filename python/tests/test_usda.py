@@ -98,9 +98,16 @@ def _rotate(q, v):
     return v + 2.0 * numpy.cross(u, numpy.cross(u, v) + w * v)
 
 
-def _shown_organs(root, code):
+def _ordinal(name):
+    last = name.rsplit("_", 1)[-1]
+    return int(last) - 1 if last.isdigit() else 0
+
+
+def _shown_organs(root, code, by_plant=False):
     """Each organ's points as shown at a time code: (organ, shoot, node, leaf, ordinal) ->
-    n x 3 array, the prims' placements, references and visibility resolved."""
+    n x 3 array, the prims' placements, references and visibility resolved, a
+    PointInstancer's instances by their positions, orientations and scales (keys prefixed
+    by the plant prim's name with `by_plant`)."""
     paths = {}
 
     def index(prim, path):
@@ -120,20 +127,42 @@ def _shown_organs(root, code):
             v = _attr(paths[prim.metadata["references"].strip("<>")], "visibility", code)
         return v != "invisible"
 
+    def resolved(prim, name):
+        if name in prim.attributes:
+            return prim.attributes[name]["value"]
+        return resolved(paths[prim.metadata["references"].strip("<>")], name)
+
+    def instances(instancer, base, prefix, out):
+        a = instancer.attributes
+        protos = [paths[p.strip("<>")] for p in a["prototypes"]["value"]]
+        names = instancer.metadata["customData"]["instanceNames"]
+        labels = [a["primvars:" + n]["value"] for n in ("shootID", "node", "leafID")]
+        for i, k in enumerate(a["protoIndices"]["value"]):
+            q = a["orientationsf"]["value"][i]
+            assert numpy.abs(numpy.subtract(a["orientations"]["value"][i], q)).max() < 1e-6
+            organ = resolved(protos[k], "semantics:labels:class")[0]
+            key = prefix + (organ,) + tuple(v[i] for v in labels) + (_ordinal(names[i]),)
+            t = numpy.array(a["positions"]["value"][i], dtype=float)
+            s = a["scales"]["value"][i][0]
+            assert key not in out, key
+            out[key] = numpy.array([base + t + s * _rotate(q, p) for p in points(protos[k])])
+
     out = {}
     for plant in root.children:
         if plant.specifier != "def":
             continue
+        prefix = (plant.name,) if by_plant else ()
         base = numpy.array(_attr(plant, "xformOp:translate", code) or (0, 0, 0), dtype=float)
         organs = [o for s in plant.children for o in (s.children if s.name.startswith("shoot_")
                                                        else [s])]
         for organ in organs:
+            if organ.kind == "PointInstancer":
+                instances(organ, base, prefix, out)
+                continue
             if not visible(organ):
                 continue
             d = organ.metadata["customData"]
-            last = organ.name.rsplit("_", 1)[-1]
-            ordinal = int(last) - 1 if last.isdigit() else 0
-            key = (d["organ"], d["shootID"], d["node"], d["leafID"], ordinal)
+            key = prefix + (d["organ"], d["shootID"], d["node"], d["leafID"], _ordinal(organ.name))
             meshes = [organ] if organ.kind == "Mesh" else \
                 [v for v in organ.children if visible(v)]
             assert len(meshes) == 1, organ.name
@@ -190,13 +219,14 @@ def test_growth_animation_places_every_organ_as_built_at_each_day(arch, tmp_path
 def test_a_prim_per_organ_from_python_with_and_without_instancing(arch, tmp_path):
     arch.buildPlantInstanceFromLibrary((0, 0, 0), 40)
     ctx = arch.getContext()
-    for instancing in (True, False):
+    for instancing in ("shared", "none", "gpu"):
         path = tmp_path / f"organs_{instancing}.usda"
         plantarch.writeUSDA(ctx, str(path), architecture=arch, nodes="organ",
                             instancing=instancing)
         _, (root,) = usda.read(path)
         shapes = [c for c in root.children if c.specifier == "class"]
-        assert bool(shapes) == instancing  # equal leaflets written once, then referenced
+        # equal leaflets written once, then referenced
+        assert bool(shapes) == (instancing != "none")
         shown = _shown_organs(root, 0)
         built = _built_organs(arch.seed(), 40)
         assert shown.keys() == built.keys()

@@ -16,7 +16,9 @@
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
 #include "scene_io/export_common.h"
+#include "scene_io/gltf_instancing.h"
 #include "scene_io/gltf_internal.h"
+#include "scene_io/instancing.h"
 
 namespace plantarch::gltf {
 
@@ -436,6 +438,10 @@ json OrganWriter::plantNodes() {
         json children = json::array();
         std::map<std::int32_t, std::pair<std::int32_t, json>> shoots;  // rank, nodes
         for (std::size_t t : tracksOf[plant->plant]) {
+            if (options_.instancing == Instancing::Gpu &&
+                io::gpuInstanced(s_.organs.shapes[io::onlyPlacement(s_.organs.tracks[t]).shape],
+                                 options_.instancing))
+                continue;  // an instance (gltf_instancing.cpp)
             const std::size_t node = organNode(t, plant->base);
             const io::ObjectLabels& l = s_.organs.tracks[t].labels;
             if (l.shoot < 0) {
@@ -452,6 +458,9 @@ json OrganWriter::plantNodes() {
                                 {"children", content.second}});
             children.push_back(d_.nodes.size() - 1);
         }
+        addInstanceNodes(
+            d_, s_, options_, buffer_, tracksOf[plant->plant], plant->base,
+            [this](std::size_t k) { return mesh(k); }, children);
         d_.nodes.push_back(plantNode(*plant, children));
         roots.push_back(d_.nodes.size() - 1);
     }
@@ -474,8 +483,9 @@ void collectOrgans(Scene& s, const GltfOptions& options) {
     s.organNodes = true;
     // UVs matter only where a texture maps them: shapes of flat colours are shared whatever
     // their UVs, and written without them.
-    s.organs = io::trackOrgans(s.frames, options.includeHidden, options.instancing,
-                               [&options](const Material& m) { return uvsMatter(m, options); });
+    s.organs =
+        io::trackOrgans(s.frames, options.includeHidden, options.instancing != Instancing::None,
+                        [&options](const Material& m) { return uvsMatter(m, options); });
     std::map<std::pair<std::uint32_t, ObjectID>, std::size_t> recordOf;
     for (std::size_t i = 0; i < s.records.size(); ++i)
         recordOf[{s.records[i].frame, s.records[i].id}] = i;

@@ -33,9 +33,11 @@
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
+#include "scene_io/gltf_instancing.h"
 #include "scene_io/gltf_internal.h"
 #include "scene_io/gltf_lod.h"
 #include "scene_io/gltf_skin.h"
+#include "scene_io/instancing.h"
 
 namespace plantarch::gltf {
 
@@ -484,6 +486,7 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
              {{{"class", "organ"}, {"count", features}, {"properties", properties}}}}};
         doc["extensionsUsed"] = {"EXT_mesh_features", "EXT_structural_metadata"};
     }
+    declareInstancing(doc, d.nodes);  // gltf_instancing.cpp
 
     doc["scene"] = 0;
     // z up in plantarch, y up in glTF: the root turns the scene about x by -90 degrees.
@@ -586,6 +589,7 @@ using gltf::Scene;
 
 void writeGLTF(const Context& context, const std::string& path, const GltfOptions& options) {
     gltf::checkExtension(path);
+    io::checkInstancing(path, options.nodes, options.instancing, false);
     Scene scene = gltf::collect({AnimationFrame{&context, 0.0, options.plants}}, options);
     if (options.nodes == NodeLevel::Organ) gltf::collectOrgans(scene, options);
     gltf::write(scene, path, options);
@@ -595,6 +599,7 @@ void writeGLTF(const std::vector<AnimationFrame>& frames, const std::string& pat
                const GltfOptions& options, const AnimationOptions& animation) {
     gltf::checkExtension(path);
     io::checkAnimation(frames, animation, path);
+    io::checkInstancing(path, NodeLevel::Organ, options.instancing, true);
     Scene scene = gltf::collect(frames, options);
     scene.animated = true;
     scene.framesPerSecond = animation.framesPerSecond;

@@ -14,7 +14,9 @@
 #include <set>
 
 #include "plantarch/Export.h"
+#include "scene_io/instancing.h"
 #include "scene_io/organ_tracks.h"
+#include "scene_io/usd_instancing.h"
 #include "scene_io/usd_materials.h"
 #include "scene_io/usd_text.h"
 
@@ -128,7 +130,7 @@ public:
           options_(options),
           looks_(looks),
           animated_(animated),
-          organs_(trackOrgans(frames, options.includeHidden, options.instancing,
+          organs_(trackOrgans(frames, options.includeHidden, options.instancing != Instancing::None,
                               [&options](const Material& m) { return uvsMatter(m, options); })),
           steps_(options.progress, "writing USD", shapeTriangles()) {}
     void finish() { steps_.finish(); }
@@ -363,10 +365,18 @@ void OrganPrims::plant(std::int32_t plant, const GltfPlant* info) {
             << "\n        uniform token[] xformOpOrder = [\"xformOp:translate\"]\n";
     }
     // Organs by shoot, shoots in ID order; organs of no shoot directly under the plant.
+    // With Instancing::Gpu, organs of a shared shape are instances (usd_instancing.cpp).
     std::map<std::int32_t, std::vector<std::size_t>> shoots;
-    for (std::size_t t = 0; t < organs_.tracks.size(); ++t)
-        if (organs_.tracks[t].labels.plant == plant)
-            shoots[organs_.tracks[t].labels.shoot].push_back(t);
+    std::vector<std::size_t> instances;
+    for (std::size_t t = 0; t < organs_.tracks.size(); ++t) {
+        const OrganTrack& track = organs_.tracks[t];
+        if (track.labels.plant != plant) continue;
+        if (options_.instancing == Instancing::Gpu &&
+            gpuInstanced(organs_.shapes[onlyPlacement(track).shape], options_.instancing))
+            instances.push_back(t);
+        else
+            shoots[track.labels.shoot].push_back(t);
+    }
     for (const auto& [shoot, tracks] : shoots) {
         if (shoot < 0) {
             path_ = "/plantarch/" + name;
@@ -382,6 +392,7 @@ void OrganPrims::plant(std::int32_t plant, const GltfPlant* info) {
         for (std::size_t t : tracks) organ(t, base);
         out_ << "        }\n";
     }
+    writePointInstancer(out_, organs_, instances, base, "/plantarch/" + name, shapePaths_);
     out_ << "    }\n";
 }
 

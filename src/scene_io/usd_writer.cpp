@@ -17,6 +17,7 @@
 #include "plantarch/Export.h"
 #include "plantarch/OutputFormats.h"
 #include "scene_io/export_common.h"
+#include "scene_io/instancing.h"
 #include "scene_io/usd_materials.h"
 #include "scene_io/usd_skin.h"
 #include "scene_io/usd_text.h"
@@ -157,6 +158,7 @@ void writeLayer(const std::string& path, const io::UsdLooks& looks, Body&& body)
 
 void writeUSDA(const Context& context, const std::string& path, const UsdOptions& options) {
     requireOutputFormat(path, {".usda", ".usdz"}, "writeUSDA writes USD text or a USDZ package");
+    io::checkInstancing(path, options.nodes, options.instancing, false);
     const Context* contexts[] = {&context};
     const io::UsdLooks looks(contexts, options, texturePrefix(path));
     io::checkUsdSkins(options, context, path);  // usd_skin.cpp
@@ -177,6 +179,7 @@ void writeUSDA(const std::vector<AnimationFrame>& frames, const std::string& pat
                const UsdOptions& given, const AnimationOptions& animation) {
     requireOutputFormat(path, {".usda", ".usdz"}, "writeUSDA writes USD text or a USDZ package");
     io::checkAnimation(frames, animation, path);
+    io::checkInstancing(path, NodeLevel::Organ, given.instancing, true);
     UsdOptions options = given;  // skeletons bind one scene's objects, not a frame's
     options.skeletons.clear();
     std::vector<const Context*> contexts;

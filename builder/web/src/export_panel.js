@@ -13,6 +13,11 @@ const NODE_LEVELS = [
   ['plant', 'A mesh per plant'],
   ['organ', 'A node per organ (pick one leaf or fruit)'],
 ];
+const INSTANCING = [
+  ['shared', 'Organs of one shape share a mesh (default)'],
+  ['gpu', 'GPU instances (EXT_mesh_gpu_instancing; not Blender 3.4)'],
+  ['none', 'A mesh per organ'],
+];
 const LEVELS = [
   ['', 'None'],
   ['reduced', 'Reduced (a quarter of the triangles)'],
@@ -34,7 +39,7 @@ export class ExportPanel {
     this.folder = 'exports';
     this.name = 'scene';
     this.nodes = 'kind';
-    this.instancing = true;
+    this.instancing = 'shared';
     this.lod = '';
     this.meshopt = false;
     this.skin = false;
@@ -49,7 +54,7 @@ export class ExportPanel {
       v.texture_size = look.textureSize;
     }
     if (this.nodes !== 'kind') v.nodes = this.nodes;
-    if (this.nodes === 'organ' && !this.instancing) v.instancing = false;
+    if (this.nodes === 'organ' && this.instancing !== 'shared') v.instancing = this.instancing;
     if (this.lod) v.lod = this.lod;
     if (this.meshopt) v.meshopt = true;
     if (this.skin) v.skin = true;
@@ -105,11 +110,10 @@ export class ExportPanel {
         wide: true,
       }),
       this.nodes === 'organ'
-        ? h(
-            'label',
-            { class: 'toggle' },
-            checkbox(this.instancing, set('instancing'), { name: 'export-instancing' }),
-            'Share one mesh among organs of one shape (instancing)',
+        ? field(
+            'Instancing',
+            select(INSTANCING, this.instancing, set('instancing'), { name: 'export-instancing' }),
+            { wide: true, title: '--instancing' },
           )
         : null,
       field('Levels of detail', select(LEVELS, this.lod, set('lod'), { name: 'export-lod' }), {
