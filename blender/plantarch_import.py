@@ -15,7 +15,9 @@ Files written with --nodes organ (an object per organ, labelled by its custom pr
 shared meshes labelled with what their users share, or each organ's own with
 --split-instances), --skin (meshes under an armature), --lod (the lower levels hidden, each
 object's level its custom property plantarch_lod) and --materials textured import with their labels too; --meshopt files do not
-(Blender 3.4 cannot read EXT_meshopt_compression). See docs/formats.md, "Blender".
+(Blender 3.4 cannot read EXT_meshopt_compression). --instancing gpu files import with each
+instance an object (Blender 3.4's importer cannot read EXT_mesh_gpu_instancing: the instances
+are expanded first). See docs/formats.md, "Blender".
 """
 
 import base64
@@ -317,6 +319,96 @@ def _label_from_extras(mesh, extras, organs):
     return added
 
 
+# The per-instance labels of --instancing gpu and the extras keys of an organ node.
+_INSTANCE_LABELS = (("_OBJECT_ID", "objectID", int), ("_SHOOT", "shoot", int),
+                    ("_RANK", "rank", int), ("_NODE", "node", int), ("_LEAF", "leaf", int),
+                    ("_AGE", "age", float), ("_FEATURE_ID_0", "feature", int))
+_INSTANCING = ("EXT_mesh_gpu_instancing", "EXT_instance_features")
+
+
+def expand_instances(gltf):
+    """Blender 3.4's importer cannot read EXT_mesh_gpu_instancing (--instancing gpu): turns
+    each instancing node of `gltf` into a node per instance under it, placed by the instance's
+    translation, rotation and scale and labelled in its extras as an organ node of
+    --instancing shared is (the mesh shared). Returns whether the file had any."""
+    nodes = gltf.doc.get("nodes", [])
+    found = False
+    for node in list(nodes):
+        extension = node.get("extensions", {}).get("EXT_mesh_gpu_instancing")
+        if extension is None:
+            continue
+        found = True
+        values = {k: gltf.accessor(i) for k, i in extension["attributes"].items()}
+        count = len(next(iter(values.values())))
+        extras = node.get("extras", {})
+        names = extras.get("instances", [])
+        children = []
+        for i in range(count):
+            child = {"name": names[i] if i < len(names) else "%s_%d" % (node.get("name"), i),
+                     "mesh": node["mesh"]}
+            for key in ("TRANSLATION", "ROTATION", "SCALE"):
+                if key in values:
+                    child[key.lower()] = [float(v) for v in values[key][i]]
+            labels = {k: extras[k] for k in ("plantID", "organ") if k in extras}
+            for attribute, key, kind in _INSTANCE_LABELS:
+                if attribute in values:
+                    labels[key] = kind(values[attribute][i][0])
+            child["extras"] = labels
+            nodes.append(child)
+            children.append(len(nodes) - 1)
+        del node["mesh"]
+        for name in _INSTANCING:
+            node["extensions"].pop(name, None)
+        if not node["extensions"]:
+            del node["extensions"]
+        node["children"] = node.get("children", []) + children
+    if found:
+        for key in ("extensionsUsed", "extensionsRequired"):
+            kept = [e for e in gltf.doc.get(key, []) if e not in _INSTANCING]
+            if kept:
+                gltf.doc[key] = kept
+            else:
+                gltf.doc.pop(key, None)
+    return found
+
+
+def _write_glb(gltf, path):
+    """`gltf` (its first buffer as the binary chunk) as a .glb file."""
+    doc = dict(gltf.doc)
+    binary = gltf.buffers[0] if gltf.buffers else b""
+    if doc.get("buffers"):
+        first = {k: v for k, v in doc["buffers"][0].items() if k != "uri"}
+        first["byteLength"] = len(binary)
+        doc["buffers"] = [first] + doc["buffers"][1:]
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    binary += b"\0" * (-len(binary) % 4)
+    chunks = struct.pack("<II", len(text), 0x4E4F534A) + text
+    if binary:
+        chunks += struct.pack("<II", len(binary), 0x004E4942) + binary
+    with open(path, "wb") as f:
+        f.write(struct.pack("<III", 0x46546C67, 2, 12 + len(chunks)) + chunks)
+
+
+def _import(filepath, gltf, importer_options):
+    """Blender's importer on the file, or on a copy with the instances expanded beside it (in
+    the temporary folder where the file's folder cannot be written)."""
+    if not expand_instances(gltf):
+        return bpy.ops.import_scene.gltf(filepath=str(filepath), **importer_options)
+    import tempfile
+    try:
+        handle, copy = tempfile.mkstemp(suffix=".glb", dir=os.path.dirname(os.path.abspath(
+            filepath)))
+    except OSError:
+        handle, copy = tempfile.mkstemp(suffix=".glb")
+    os.close(handle)
+    try:
+        _write_glb(gltf, copy)
+        return bpy.ops.import_scene.gltf(filepath=copy, **importer_options)
+    finally:
+        os.remove(copy)
+
+
 def load(filepath, split_instances=False, **importer_options):
     """Imports a plantarch glTF/GLB file into the current scene with Blender's importer and
     adds the labels; returns a summary: {"meshes", "labelled", "triangles", "attributes"}.
@@ -325,14 +417,16 @@ def load(filepath, split_instances=False, **importer_options):
     objectID, organ, leaf, shoot, node, rank, age) its custom properties. Organs of one shape
     share one mesh (instancing): its faces get the labels all its users share (plant_id,
     organ); with `split_instances`, each such object gets a mesh of its own (a copy) whose
-    faces carry all of its labels."""
+    faces carry all of its labels. A file written with --instancing gpu is imported so too:
+    Blender 3.4 cannot read EXT_mesh_gpu_instancing, so each instance becomes an object (on a
+    copy of the file beside it, removed after the import)."""
     apply_numpy_fix()
     before = set(bpy.data.objects)
-    result = bpy.ops.import_scene.gltf(filepath=str(filepath), **importer_options)
+    gltf = GltfFile(filepath)
+    result = _import(filepath, gltf, importer_options)  # instances expanded
     if "FINISHED" not in result:
         raise RuntimeError("%s: Blender's glTF importer failed" % filepath)
     new_objects = set(o for o in bpy.data.objects if o not in before)
-    gltf = GltfFile(filepath)
     columns, organs, _ = gltf.labels()
     nodes = gltf.doc.get("nodes", [])
     summary = {"meshes": 0, "labelled": 0, "triangles": 0, "attributes": set()}

@@ -3,7 +3,8 @@
 # (blender/plantarch_import.py) and checks the labels it brings in as face attributes
 # (tests/blender/check_labels.py): plants as .glb through the add-on's operator, and a small
 # canopy as .gltf through its script mode, saved as a .blend and checked when opened; then the
-# export variants (--nodes organ, --skin, --lod, --materials textured; check_variants.py).
+# export variants (--nodes organ, --instancing gpu, --skin, --lod, --materials textured;
+# check_variants.py).
 # Usage: check_blender_labels.sh SOURCE_DIR PLANTARCH_BINARY.
 # Exits 1 on a mismatch, 77 (skipped) when Blender is missing.
 set -euo pipefail
@@ -57,8 +58,10 @@ fi
 # meshoptimizer leaves in it, so its count differs. --meshopt is left out: Blender 3.4 cannot
 # read EXT_meshopt_compression.
 check_variants="$src/tests/blender/check_variants.py"
-for variant in "organ:--nodes organ" "skin:--skin" "lod:--lod cards" \
-               "textured:--materials textured --texture-size 64"; do
+# --instancing gpu: Blender 3.4's importer refuses EXT_mesh_gpu_instancing; the add-on
+# expands the instances into objects first.
+for variant in "organ:--nodes organ" "gpu:--nodes organ --instancing gpu" "skin:--skin" \
+               "lod:--lod cards" "textured:--materials textured --texture-size 64"; do
     name=${variant%%:*}
     # shellcheck disable=SC2086  # the options are words
     "$cli" --seed 3 build strawberry --age 60 ${variant#*:} -o "$out/$name.glb" > /dev/null

@@ -30,6 +30,12 @@ trap 'rm -rf "$out"' EXIT
     -o "$out/textured_organs.glb" > /dev/null
 "$cli" --seed 3 build bean --frames 10:20:5 --materials textured --texture-size 64 \
     -o "$out/textured_growth.glb" > /dev/null
+# GPU instancing (EXT_mesh_gpu_instancing, required): the validator checks the document and
+# lists the extension as one it does not check (three.js draws the instances: check_three.sh).
+"$cli" --seed 3 build tomato --age 60 --nodes organ --instancing gpu \
+    -o "$out/tomato_gpu.glb" -o "$out/tomato_gpu.gltf" > /dev/null
+"$cli" --seed 3 canopy bean --count 2x2 --age 30 --nodes organ --instancing gpu \
+    -o "$out/canopy_gpu.glb" > /dev/null
 # Levels of detail (MSFT_lod) and EXT_meshopt_compression: the validator checks the document and
 # lists both as extensions it does not check (three.js decodes them: check_three.sh).
 "$cli" --seed 3 build bean --age 40 --lod reduced,cards -o "$out/lod.glb" -o "$out/lod.gltf" > /dev/null

@@ -257,3 +257,37 @@ TEST(GpuInstancing, WithoutANodePerOrganOrInAnAnimationItIsRefusedAndLeavesNoFil
         EXPECT_EQ(instancingFromName(instancingName(Instancing::Gpu)), Instancing::Gpu);
     }
 }
+
+// plantarch's own reader (readGLTF, render) draws every instance: the gpu file reads back as the
+// file with a node per organ does, triangle for triangle and within the writers' tolerance.
+TEST(GpuInstancing, ReadGltfPlacesEveryInstance) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(5);
+    arch.loadPlantModelFromLibrary("tomato");
+    arch.buildPlantInstanceFromLibrary(vec3(0.3f, -0.2f, 0.0f), 60.0f);
+    std::vector<Context> read(2);
+    for (int k = 0; k < 2; ++k) {
+        const fs::path path = tempPath(k ? "read_gpu.glb" : "read_shared.glb");
+        GltfOptions options;
+        options.nodes = NodeLevel::Organ;
+        options.instancing = k ? Instancing::Gpu : Instancing::Shared;
+        writeGLTF(ctx, path.string(), options);
+        readGLTF(read[std::size_t(k)], path.string());
+        fs::remove(path);
+    }
+    ASSERT_EQ(read[1].triangleCount(), ctx.triangleCount());
+    ASSERT_EQ(read[0].triangleCount(), read[1].triangleCount());
+    auto box = [](const Context& c) {
+        vec3 lo(1e30f), hi(-1e30f);
+        for (ObjectID id : c.objectIDs())
+            for (const vec3& p : c.object(id).positions) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+        return std::pair{lo, hi};
+    };
+    const auto [lo0, hi0] = box(read[0]);
+    const auto [lo1, hi1] = box(read[1]);
+    EXPECT_LT(glm::length(lo0 - lo1) + glm::length(hi0 - hi1), 1e-5f);
+}

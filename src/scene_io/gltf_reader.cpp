@@ -139,14 +139,16 @@ public:
         return item;
     }
 
-    // The values of a SCALAR or VEC3 accessor as doubles (components in order).
+    // The values of a SCALAR, VEC3 or VEC4 accessor as doubles (components in order).
     std::vector<double> accessor(const json& index, const char* type, bool indices) const {
         const json& a = at("accessors", index);
         const std::uint64_t count = number(a, "count");
         const int componentType = int(number(a, "componentType"));
         if (a.value("type", std::string()) != type)
             fail(std::string("an accessor is not of type ") + type);
-        const int components = std::string_view(type) == "VEC3" ? 3 : 1;
+        const int components = std::string_view(type) == "VEC3"   ? 3
+                               : std::string_view(type) == "VEC4" ? 4
+                                                                  : 1;
         std::size_t size = 0;
         switch (componentType) {
             case 5121:
@@ -266,6 +268,41 @@ glm::dmat4 localTransform(const json& node, const Document& d) {
     return m;
 }
 
+// The instance transforms of a node with EXT_mesh_gpu_instancing (each instance's translation,
+// rotation and scale, applied before the node's transform); one identity without it.
+std::vector<glm::dmat4> instanceTransforms(const json& node, const Document& d) {
+    const auto ext = node.find("extensions");
+    if (ext == node.end() || !ext->is_object() || !ext->contains("EXT_mesh_gpu_instancing"))
+        return {glm::dmat4(1.0)};
+    const json& e = (*ext)["EXT_mesh_gpu_instancing"];
+    if (!e.is_object() || !e.contains("attributes") || !e["attributes"].is_object())
+        d.fail("EXT_mesh_gpu_instancing has no attributes");
+    const json& a = e["attributes"];
+    auto values = [&](const char* name, const char* type) {
+        std::vector<double> v;
+        if (a.contains(name)) v = d.accessor(a[name], type, false);
+        for (double x : v)
+            if (!std::isfinite(x)) d.fail("EXT_mesh_gpu_instancing: an instance is not finite");
+        return v;
+    };
+    const std::vector<double> t = values("TRANSLATION", "VEC3"), r = values("ROTATION", "VEC4"),
+                              s = values("SCALE", "VEC3");
+    const std::size_t count = std::max({t.size() / 3, r.size() / 4, s.size() / 3});
+    if ((!t.empty() && t.size() != 3 * count) || (!r.empty() && r.size() != 4 * count) ||
+        (!s.empty() && s.size() != 3 * count))
+        d.fail("EXT_mesh_gpu_instancing: attributes of different counts");
+    std::vector<glm::dmat4> out;
+    for (std::size_t i = 0; i < count; ++i) {
+        glm::dmat4 m(1.0);
+        if (!t.empty()) m = glm::translate(m, glm::dvec3(t[3 * i], t[3 * i + 1], t[3 * i + 2]));
+        if (!r.empty())
+            m = m * glm::mat4_cast(glm::dquat(r[4 * i + 3], r[4 * i], r[4 * i + 1], r[4 * i + 2]));
+        if (!s.empty()) m = glm::scale(m, glm::dvec3(s[3 * i], s[3 * i + 1], s[3 * i + 2]));
+        out.push_back(m);
+    }
+    return out;
+}
+
 // A label value as a whole number (-1 for one that is not: NaN, huge, negative).
 int labelNumber(double v) {
     return v >= 0.0 && v <= 2147483647.0 ? int(v) : -1;
@@ -298,7 +335,9 @@ std::vector<ObjectID> readGLTF(Context& context, const std::string& path) {
             d.fail("the node hierarchy has a cycle or is too deep");
         visiting[i] = 1;
         const glm::dmat4 world = parent * localTransform(node, d);
-        if (node.contains("mesh")) placed.emplace_back(&d.at("meshes", node["mesh"]), world);
+        if (node.contains("mesh"))  // once per instance with EXT_mesh_gpu_instancing
+            for (const glm::dmat4& instance : instanceTransforms(node, d))
+                placed.emplace_back(&d.at("meshes", node["mesh"]), world * instance);
         if (const auto c = node.find("children"); c != node.end()) {
             if (!c->is_array()) d.fail("a node's children are not a list");
             for (const json& child : *c) self(self, child, world, depth + 1);

@@ -1,5 +1,5 @@
 """Run by Blender: checks the labels blender/plantarch_import.py puts on a variant of a plantarch
-glTF file (--nodes organ, --skin, --lod, --materials textured).
+glTF file (--nodes organ, --instancing gpu, --skin, --lod, --materials textured).
 
     blender -b --factory-startup --python check_variants.py -- FILE --addon plantarch_import.py
         registers the add-on and imports FILE through its operator, then checks;
@@ -66,7 +66,13 @@ def expected(doc, binary, level):
     def walk(i):
         node = nodes[i]
         extras = node.get("extras", {})
-        if "mesh" in node:
+        if "EXT_mesh_gpu_instancing" in node.get("extensions", {}):  # --instancing gpu
+            for p in doc["meshes"][node["mesh"]]["primitives"]:
+                n = doc["accessors"][p["indices"]]["count"] // 3
+                for oid in extras["objectIDs"]:
+                    triangles[oid] = triangles.get(oid, 0) + n
+                    organ_of[oid] = extras.get("organ")
+        elif "mesh" in node:
             for p in doc["meshes"][node["mesh"]]["primitives"]:
                 n = doc["accessors"][p["indices"]]["count"] // 3
                 if "objectID" in extras and "_OBJECT_ID" not in p["attributes"]:

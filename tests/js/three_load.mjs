@@ -1,5 +1,6 @@
 // Loads glTF files with three.js's GLTFLoader in headless Chromium (Debian's, driven by
-// puppeteer-core) and prints one JSON line per file: triangles, meshes, the vertex
+// puppeteer-core) and prints one JSON line per file: triangles, meshes, the triangles drawn
+// (an InstancedMesh of EXT_mesh_gpu_instancing once per instance) and InstancedMeshes, the vertex
 // attributes three.js sees (the labels _PLANT_ID, _OBJECT_ID, _ORGAN among them) and, for an
 // animated file, the triangles shown at each key time of its first animation played by an
 // AnimationMixer.
@@ -42,15 +43,18 @@ function tally(root) {
 }
 window.loadFile = (url) => new Promise((resolve, reject) => {
   new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).load(url, async (gltf) => {
-    let triangles = 0, meshes = 0; const attributes = new Set();
+    let triangles = 0, meshes = 0, drawn = 0, instanced = 0; const attributes = new Set();
     gltf.scene.traverse((o) => {
       if (!o.isMesh) return;
       meshes++;
       triangles += count(o.geometry);
+      // EXT_mesh_gpu_instancing: an InstancedMesh draws its triangles once per instance.
+      drawn += count(o.geometry) * (o.isInstancedMesh ? o.count : 1);
+      if (o.isInstancedMesh) instanced++;
       Object.keys(o.geometry.attributes).forEach((a) => attributes.add(a));
     });
     const result = { triangles, meshes, attributes: [...attributes].sort(),
-                     objects: tally(gltf.scene).objects.size };
+                     objects: tally(gltf.scene).objects.size, drawn, instanced };
     // MSFT_lod (which GLTFLoader leaves out of the scene): each level's nodes loaded by
     // index, with their triangles and objects, and how many of those are the full level's.
     const json = gltf.parser.json;
