@@ -19,16 +19,37 @@ namespace plantarch::gltf {
 
 namespace {
 
-// An accessor of per-instance values (a view with no target: not vertex data).
-template <class T>
-std::size_t instanceAccessor(GltfArrays& d, Buffer& buffer, std::vector<T> values,
-                             std::size_t count, const char* type) {
-    auto shared = std::make_shared<std::vector<T>>(std::move(values));
-    const int view = buffer.add(d.views, shared->size() * sizeof(T), 0, [shared](Sink& out) {
-        out.write(shared->data(), shared->size() * sizeof(T));
-    });
-    d.accessors.push_back(accessor(view, kFloat, count, type));
-    return d.accessors.size() - 1;
+constexpr const char* kInstanceLabels[] = {"_OBJECT_ID", "_FEATURE_ID_0", "_SHOOT", "_RANK",
+                                           "_NODE",      "_LEAF",         "_AGE"};
+
+// The per-instance values of one plant's instancing nodes, all in one buffer view (each
+// attribute an accessor at its offset): a view per attribute would cost more JSON than the
+// values themselves where a shape has few instances.
+struct InstanceData {
+    struct Attribute {
+        std::string name;
+        std::size_t offset, count;  // in floats; count in elements
+        const char* type;
+    };
+    std::vector<float> values;
+    std::vector<std::vector<Attribute>> nodes;  // per instancing node
+
+    void add(const char* name, std::vector<float> v, std::size_t count, const char* type) {
+        nodes.back().push_back({name, values.size(), count, type});
+        values.insert(values.end(), v.begin(), v.end());
+    }
+};
+
+// Adds the accessors of node k's attributes over `view`.
+json attributesOf(GltfArrays& d, const InstanceData& data, std::size_t k, int view) {
+    json attributes = json::object();
+    for (const InstanceData::Attribute& a : data.nodes[k]) {
+        json acc = accessor(view, kFloat, a.count, a.type);
+        if (a.offset) acc["byteOffset"] = a.offset * sizeof(float);
+        d.accessors.push_back(std::move(acc));
+        attributes[a.name] = d.accessors.size() - 1;
+    }
+    return attributes;
 }
 
 }  // namespace
@@ -42,6 +63,9 @@ void addInstanceNodes(GltfArrays& d, const Scene& s, const GltfOptions& options,
         const std::size_t k = io::onlyPlacement(s.organs.tracks[t]).shape;
         if (io::gpuInstanced(s.organs.shapes[k], options.instancing)) instancesOf[k].push_back(t);
     }
+    if (instancesOf.empty()) return;
+    auto data = std::make_shared<InstanceData>();
+    std::vector<json> nodes;
     for (const auto& [k, users] : instancesOf) {
         const std::size_t n = users.size();
         std::vector<float> translation, rotation, scale;
@@ -56,36 +80,38 @@ void addInstanceNodes(GltfArrays& d, const Scene& s, const GltfOptions& options,
                             {p.rotation.x, p.rotation.y, p.rotation.z, p.rotation.w});
             scale.insert(scale.end(), {p.scale, p.scale, p.scale});
             const ObjectRecord& r = s.records[t];
-            labels["_OBJECT_ID"].push_back(float(r.id));
-            labels["_FEATURE_ID_0"].push_back(float(t));
-            labels["_SHOOT"].push_back(float(r.shoot));
-            labels["_RANK"].push_back(float(r.rank));
-            labels["_NODE"].push_back(float(r.node));
-            labels["_LEAF"].push_back(float(r.leaf));
-            labels["_AGE"].push_back(r.age);
+            const float values[] = {float(r.id),   float(t),      float(r.shoot), float(r.rank),
+                                    float(r.node), float(r.leaf), r.age};
+            for (std::size_t i = 0; i < std::size(kInstanceLabels); ++i)
+                labels[kInstanceLabels[i]].push_back(values[i]);
             names.push_back(io::organName(track));
             ids.push_back(r.id);
         }
-        json attributes = {
-            {"TRANSLATION", instanceAccessor(d, buffer, std::move(translation), n, "VEC3")},
-            {"ROTATION", instanceAccessor(d, buffer, std::move(rotation), n, "VEC4")},
-            {"SCALE", instanceAccessor(d, buffer, std::move(scale), n, "VEC3")}};
+        data->nodes.emplace_back();
+        data->add("TRANSLATION", std::move(translation), n, "VEC3");
+        data->add("ROTATION", std::move(rotation), n, "VEC4");
+        data->add("SCALE", std::move(scale), n, "VEC3");
         json node = {{"mesh", mesh(k)}};
         if (options.labels) {
-            for (const char* name :
-                 {"_OBJECT_ID", "_FEATURE_ID_0", "_SHOOT", "_RANK", "_NODE", "_LEAF", "_AGE"})
-                attributes[name] =
-                    instanceAccessor(d, buffer, std::move(labels[name]), n, "SCALAR");
+            for (const char* name : kInstanceLabels)
+                data->add(name, std::move(labels[name]), n, "SCALAR");
             node["extensions"]["EXT_instance_features"] = {
                 {"featureIds", {{{"featureCount", n}, {"attribute", 0}, {"propertyTable", 0}}}}};
         }
-        node["extensions"]["EXT_mesh_gpu_instancing"] = {{"attributes", attributes}};
         const io::ObjectLabels& l = s.organs.tracks[users.front()].labels;
         const std::string organ(kOrganLabels[l.organ]);
         node["name"] = organ + "_instances_" + std::to_string(k);
         node["extras"] = {
             {"plantID", l.plant}, {"organ", organ}, {"instances", names}, {"objectIDs", ids}};
-        d.nodes.push_back(std::move(node));
+        nodes.push_back(std::move(node));
+    }
+    const int view = buffer.add(d.views, data->values.size() * sizeof(float), 0, [data](Sink& out) {
+        out.write(data->values.data(), data->values.size() * sizeof(float));
+    });
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        nodes[i]["extensions"]["EXT_mesh_gpu_instancing"] = {
+            {"attributes", attributesOf(d, *data, i, view)}};
+        d.nodes.push_back(std::move(nodes[i]));
         children.push_back(d.nodes.size() - 1);
     }
 }
