@@ -291,3 +291,42 @@ TEST(GpuInstancing, ReadGltfPlacesEveryInstance) {
     const auto [lo1, hi1] = box(read[1]);
     EXPECT_LT(glm::length(lo0 - lo1) + glm::length(hi0 - hi1), 1e-5f);
 }
+
+// USD: a point instancer per plant only where shapes repeat; an empty scene and organs all of
+// different shapes have none; the same bytes every time.
+TEST(GpuInstancing, UsdHasAPointInstancerOnlyWhereShapesRepeat) {
+    auto usda = [](const Context& ctx, const std::string& name) {
+        const fs::path path = tempPath(name);
+        UsdOptions options;
+        options.nodes = NodeLevel::Organ;
+        options.instancing = Instancing::Gpu;
+        writeUSDA(ctx, path.string(), options);
+        std::string text = readAll(path.string());
+        fs::remove(path);
+        return text;
+    };
+    Context empty;
+    EXPECT_EQ(usda(empty, "empty.usda").find("PointInstancer"), std::string::npos);
+    Context unique;
+    for (int k = 1; k <= 3; ++k) {
+        Mesh m;
+        m.positions = {vec3(0.0f), vec3(0.1f * float(k), 0.0f, 0.0f), vec3(0.0f, 0.05f, 0.02f)};
+        m.indices = {0, 1, 2};
+        const ObjectID id = unique.addObject(m);
+        unique.setObjectData(id, "organ", std::string("leaf"));
+        unique.setObjectData(id, "plantID", 0);
+    }
+    EXPECT_EQ(usda(unique, "unique.usda").find("PointInstancer"), std::string::npos);
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(7);
+    arch.loadPlantModelFromLibrary("bean");
+    for (int i = 0; i < 2; ++i) arch.buildPlantInstanceFromLibrary(vec3(0.5f * float(i), 0, 0), 30);
+    const std::string text = usda(ctx, "beans.usda");
+    std::size_t instancers = 0;
+    for (std::size_t at = text.find("def PointInstancer"); at != std::string::npos;
+         at = text.find("def PointInstancer", at + 1))
+        ++instancers;
+    EXPECT_EQ(instancers, 2u);
+    EXPECT_EQ(usda(ctx, "beans.usda"), text);
+}
