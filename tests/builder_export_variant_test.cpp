@@ -131,6 +131,11 @@ TEST_F(BuilderServer, ExportsLevelsOfDetailMeshoptAndSkins) {
                                       {"nodes", "plant"},
                                       {"instancing", "none"}});
     ASSERT_TRUE(plant && plant->status == 200) << plant->body;
+    // GPU instances (EXT_mesh_gpu_instancing), as the query of a download.
+    auto gpu = client_->Get(
+        ("/api/export/download?build=" + id + "&format=glb&nodes=organ&instancing=gpu").c_str());
+    ASSERT_TRUE(gpu && gpu->status == 200) << gpu->body;
+    EXPECT_TRUE(uses(parseGlb(gpu->body).doc, "EXT_mesh_gpu_instancing"));
 }
 
 // The view's scene.glb with textured materials: embedded images, made once per texture size.
