@@ -1,4 +1,5 @@
-// Materials of mesh and picture outputs: --materials flat|textured and --texture-size N
+// Materials of mesh and picture outputs: --materials flat|textured, --texture-size N and
+// --no-texture-atlas
 // (docs/formats.md, "Materials and textures").
 
 #include <charconv>
@@ -52,6 +53,10 @@ void addMaterialOptions(CLI::App& app, GlobalOptions& global) {
            "Texels a side of each texture with --materials textured: a power of two from 16 "
            "to 4096 (default 512)")
         ->type_name("N");
+    app.add_flag_callback(
+        "--no-texture-atlas", [&global] { global.appearance.atlas = false; },
+        "With --materials textured: an image per leaf material instead of one atlas of them "
+        "read through texture transforms");
 }
 
 }  // namespace plantarch::cli

@@ -34,9 +34,11 @@ std::string slurp(const fs::path& p) {
 TEST(CliMaterials, TexturedBuildWritesEveryFormat) {
     const fs::path dir = scratch("formats");
     const std::string d = dir.string();
-    const auto r = run("--seed 3 build bean --age 20 --materials textured --texture-size 64 -o " +
-                       d + "/b.glb -o " + d + "/b.usda -o " + d + "/b.usdz -o " + d +
-                       "/b.obj --image-size 64x48 -o " + d + "/b.png 2>&1");
+    const auto r =
+        run("--seed 3 build bean --age 20 --materials textured --texture-size 64 "
+            "--no-texture-atlas -o " +
+            d + "/b.glb -o " + d + "/b.usda -o " + d + "/b.usdz -o " + d +
+            "/b.obj --image-size 64x48 -o " + d + "/b.png 2>&1");
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(slurp(dir / "b.glb").find("\"baseColorTexture\""), std::string::npos);
     EXPECT_NE(slurp(dir / "b.usda").find("UsdPreviewSurface"), std::string::npos);
@@ -44,6 +46,24 @@ TEST(CliMaterials, TexturedBuildWritesEveryFormat) {
     EXPECT_NE(slurp(dir / "b.mtl").find("map_Kd b_leaf_0_basecolor.png"), std::string::npos);
     EXPECT_EQ(slurp(dir / "b.usdz").substr(0, 2), "PK");
     EXPECT_TRUE(fs::exists(dir / "b.png"));
+    fs::remove_all(dir);
+}
+
+// By default the bean's two leaf colours share an atlas, each reading its part through a
+// transform; bark and stems keep their own maps.
+TEST(CliMaterials, TexturedBuildWritesAnAtlas) {
+    const fs::path dir = scratch("atlas");
+    const std::string d = dir.string();
+    const auto r = run("--seed 3 build bean --age 20 --materials textured --texture-size 64 -o " +
+                       d + "/b.glb -o " + d + "/b.usda -o " + d + "/b.obj 2>&1");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(slurp(dir / "b.glb").find("\"extensionsRequired\":[\"KHR_texture_transform\"]"),
+              std::string::npos);
+    EXPECT_NE(slurp(dir / "b.usda").find("UsdTransform2d"), std::string::npos);
+    EXPECT_NE(slurp(dir / "b.mtl").find("map_Kd -o "), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir / "b_atlas_basecolor.png"));
+    EXPECT_TRUE(fs::exists(dir / "b_bark_0_basecolor.png"));
+    EXPECT_FALSE(fs::exists(dir / "b_leaf_0_basecolor.png"));
     fs::remove_all(dir);
 }
 
@@ -81,5 +101,6 @@ TEST(CliMaterials, HelpListsTheOptions) {
     const auto r = run("build --help");
     EXPECT_NE(r.out.find("--materials"), std::string::npos);
     EXPECT_NE(r.out.find("--texture-size"), std::string::npos);
+    EXPECT_NE(r.out.find("--no-texture-atlas"), std::string::npos);
     EXPECT_NE(run("render --help").out.find("--materials"), std::string::npos);
 }

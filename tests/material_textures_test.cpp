@@ -42,8 +42,9 @@ struct Bean {
     }
 };
 
+// An image per set of maps (the atlas has its own tests: texture_atlas_test.cpp).
 MaterialOptions textured(int size) {
-    return {MaterialStyle::Textured, size};
+    return {MaterialStyle::Textured, size, false};
 }
 
 const MaterialMaps* mapsOfKind(const MaterialLooks& looks, SurfaceKind kind) {

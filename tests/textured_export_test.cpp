@@ -43,7 +43,9 @@ struct Bean {
     }
 };
 
-const MaterialOptions kTextured{MaterialStyle::Textured, 128};
+// An image per set of maps (the atlas: texture_atlas_test.cpp,
+// CliMaterials.TexturedBuildWritesAnAtlas).
+const MaterialOptions kTextured{MaterialStyle::Textured, 128, false};
 
 struct Folder {
     fs::path path;

@@ -21,7 +21,7 @@ namespace {
 using Texts = std::map<std::string, std::string>;
 
 bool isFlag(const std::string& field) {
-    return field == "meshopt" || field == "skin";
+    return field == "atlas" || field == "meshopt" || field == "skin";
 }
 
 bool flag(const std::string& field, const std::string& text) {
@@ -68,6 +68,7 @@ PlantFileOptions variant(const Texts& t, const std::string& format) {
         o.appearance.style = *style;
     }
     if (given("texture_size")) o.appearance.textureSize = textureSize(t.at("texture_size"));
+    if (given("atlas")) o.appearance.atlas = flag("atlas", t.at("atlas"));  // --no-texture-atlas
     if (given("nodes")) {
         const std::optional<NodeLevel> level = nodeLevelFromName(t.at("nodes"));
         if (!level)
@@ -131,7 +132,7 @@ PlantFileOptions variant(const Texts& t, const std::string& format) {
 
 const std::vector<std::string>& exportVariantFields() {
     static const std::vector<std::string> fields = {
-        "materials", "texture_size", "nodes", "instancing", "lod", "meshopt", "skin"};
+        "materials", "texture_size", "atlas", "nodes", "instancing", "lod", "meshopt", "skin"};
     return fields;
 }
 

@@ -13,12 +13,12 @@
 namespace plantarch::builder {
 
 /// The fields of an export's variant, in the order the API lists them: materials,
-/// texture_size, nodes, instancing, lod, meshopt, skin.
+/// texture_size, atlas, nodes, instancing, lod, meshopt, skin.
 const std::vector<std::string>& exportVariantFields();
 
 /// The options of an export of `format` (an export format, "glb" ...) from the variant fields
 /// of a JSON body (text for materials, nodes, instancing and lod; a whole number for
-/// texture_size; true or false for meshopt and skin; other fields ignored). Throws
+/// texture_size; true or false for atlas, meshopt and skin; other fields ignored). Throws
 /// plantarch::Error (400) naming the first bad field, its value and what is valid, or a variant
 /// `format` cannot hold.
 PlantFileOptions exportVariant(const json& body, const std::string& format);

@@ -69,7 +69,7 @@ void Server::Impl::exportRoutes() {
                     throw HttpError{400, clip(key) +
                                              ": unknown field (valid: build, format, "
                                              "per_plant, folder, name, materials, texture_size, "
-                                             "nodes, instancing, lod, meshopt, skin)"};
+                                             "atlas, nodes, instancing, lod, meshopt, skin)"};
             const std::string id = stringField(body, "build").value_or("");
             const std::string format = stringField(body, "format").value_or("glb");
             const std::string name = stringField(body, "name").value_or("scene");

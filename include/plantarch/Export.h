@@ -58,6 +58,12 @@ struct MaterialOptions {
     MaterialStyle style = MaterialStyle::Flat;
     /// Texels a side of each texture: a power of two from kMinTextureSize to kMaxTextureSize.
     int textureSize = 512;
+    /// Pack the maps of leaves (all whose texture coordinates stay in 0..1) into one atlas
+    /// image per map kind, each material reading its part through a texture transform
+    /// (KHR_texture_transform, UsdTransform2d, MTL -o/-s); off: an image per material
+    /// (--no-texture-atlas). An atlas that would pass 8192 texels a side is not made: the
+    /// maps stay separate images.
+    bool atlas = true;
 };
 
 /// Throws plantarch::Error (parameter "texture_size", its value and the valid sizes) unless

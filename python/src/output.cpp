@@ -115,9 +115,9 @@ py::dict cameraDict(const CameraFrame& f, int width, int height) {
 
 }  // namespace
 
-/// The materials keyword arguments of the writers (`appearance`, `texture_size`), checked as
-/// the command line checks --materials and --texture-size.
-MaterialOptions appearanceOf(const std::string& style, const py::object& size) {
+/// The materials keyword arguments of the writers (`appearance`, `texture_size`, `atlas`),
+/// checked as the command line checks --materials and --texture-size.
+MaterialOptions appearanceOf(const std::string& style, const py::object& size, bool atlas) {
     const std::optional<MaterialStyle> s = materialStyleFromName(style);
     if (!s)
         throw Error("unknown material style",
@@ -136,7 +136,7 @@ MaterialOptions appearanceOf(const std::string& style, const py::object& size) {
     if (n < kMinTextureSize || n > kMaxTextureSize)
         throw Error("texture size " + text + " is not allowed",
                     {.parameter = "texture_size", .value = text, .validRange = range});
-    const MaterialOptions o{*s, int(n)};
+    const MaterialOptions o{*s, int(n), atlas};
     checkMaterialOptions(o);
     return o;
 }
@@ -202,20 +202,21 @@ void bindOutput(py::module_& m) {
         "writeOBJ",
         [](const Context& c, const std::string& path, bool includeHidden, bool normals, bool uvs,
            bool materials, bool splitPerObject, const std::string& appearance,
-           const py::object& textureSize) {
+           const py::object& textureSize, bool atlas) {
             ObjOptions o{includeHidden, normals, uvs, materials, splitPerObject};
-            o.appearance = appearanceOf(appearance, textureSize);
+            o.appearance = appearanceOf(appearance, textureSize, atlas);
             py::gil_scoped_release release;
             writeOBJ(c, path, o);
         },
         py::arg("context"), py::arg("filename"), py::arg("include_hidden") = false,
         py::arg("normals") = true, py::arg("uvs") = true, py::arg("materials") = true,
         py::arg("split_per_object") = false, py::arg("appearance") = "flat",
-        py::arg("texture_size") = 512,
+        py::arg("texture_size") = 512, py::arg("atlas") = true,
         inPython(docs::writeOBJ,
                  "Writes the Context as OBJ (+ MTL) with one group per object, atomically. "
                  "`appearance` 'textured': procedural texture maps (PNG files beside the .mtl, "
-                 "`texture_size` texels a side) in the .mtl, as the command line's --materials."));
+                 "`texture_size` texels a side) in the .mtl, as the command line's --materials; "
+                 "`atlas` False: an image per leaf material, as --no-texture-atlas."));
     m.def(
         "writePLY",
         [](const Context& c, const std::string& path, bool ascii, bool includeHidden, bool normals,
@@ -242,9 +243,9 @@ void bindOutput(py::module_& m) {
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, bool labels, const std::string& lod, bool meshopt,
            const std::string& appearance, const py::object& textureSize, bool skin,
-           const std::string& nodes, const std::string& instancing, float wind) {
+           const std::string& nodes, const std::string& instancing, float wind, bool atlas) {
             GltfOptions o;
-            o.appearance = appearanceOf(appearance, textureSize);
+            o.appearance = appearanceOf(appearance, textureSize, atlas);
             o.nodes = nodeLevelOf(nodes);
             o.instancing = instancingOf(instancing);
             o.includeHidden = includeHidden;
@@ -265,6 +266,7 @@ void bindOutput(py::module_& m) {
         py::arg("labels") = true, py::arg("lod") = "", py::arg("meshopt") = false,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
         py::arg("nodes") = "kind", py::arg("instancing") = "shared", py::arg("wind") = 0.0f,
+        py::arg("atlas") = true,
         inPython(
             docs::writeGLTF,
             "Writes the Context as glTF 2.0 (.glb binary or .gltf text), atomically: a node per "
@@ -273,7 +275,8 @@ void bindOutput(py::module_& m) {
             "`lod`: levels of detail as MSFT_lod, as the command line's --lod (e.g. "
             "'reduced,cards'); `meshopt`: EXT_meshopt_compression; `appearance` 'textured': PBR "
             "materials with procedural textures embedded, `texture_size` texels a side (16 to "
-            "4096, a power of two), as the command line's --materials and --texture-size; "
+            "4096, a power of two), leaves' maps in one atlas unless `atlas` is False, as the "
+            "command line's --materials, --texture-size and --no-texture-atlas; "
             "`skin`: a wind-ready skeleton per plant of `architecture` (a glTF skin: a joint per "
             "internode, per-vertex weights), as the command line's --skin; `wind`: degrees of a "
             "looping 'wind' animation swaying it (implies skin), as --wind; `nodes` 'plant', "
@@ -285,9 +288,9 @@ void bindOutput(py::module_& m) {
         "writeUSDA",
         [](const Context& c, const std::string& path, py::object architecture, bool includeHidden,
            bool normals, bool uvs, const std::string& appearance, const py::object& textureSize,
-           bool skin, const std::string& nodes, const std::string& instancing) {
+           bool skin, const std::string& nodes, const std::string& instancing, bool atlas) {
             UsdOptions o;
-            o.appearance = appearanceOf(appearance, textureSize);
+            o.appearance = appearanceOf(appearance, textureSize, atlas);
             o.nodes = nodeLevelOf(nodes);
             o.instancing = instancingOf(instancing);
             o.includeHidden = includeHidden;
@@ -302,7 +305,7 @@ void bindOutput(py::module_& m) {
         py::arg("context"), py::arg("filename"), py::arg("architecture") = py::none(),
         py::arg("include_hidden") = false, py::arg("normals") = true, py::arg("uvs") = true,
         py::arg("appearance") = "flat", py::arg("texture_size") = 512, py::arg("skin") = false,
-        py::arg("nodes") = "kind", py::arg("instancing") = "shared",
+        py::arg("nodes") = "kind", py::arg("instancing") = "shared", py::arg("atlas") = true,
         inPython(
             docs::writeUSDA,
             "Writes the Context as USD text (.usda), or a .usdz package, atomically: an Xform per "
@@ -311,7 +314,7 @@ void bindOutput(py::module_& m) {
             "labels. `appearance` 'textured': UsdPreviewSurface materials with procedural "
             "textures (PNG files beside the .usda, or inside the .usdz); `skin`: UsdSkel, a "
             "skeleton per plant of `architecture`, as the command line's --skin; `nodes` and "
-            "`instancing` as for writeGLTF (a prim per organ)."));
+            "`instancing` as for writeGLTF (a prim per organ); `atlas` as for writeGLTF."));
     m.def(
         "samplePoints",
         [](const Context& c, std::size_t points, std::uint64_t seed, bool includeHidden) {
@@ -411,12 +414,12 @@ void bindOutput(py::module_& m) {
         [](const Context& c, int width, int height, const std::string& mode, float azimuth,
            float elevation, float fov, int samples, bool ground, std::uint64_t seed, py::object eye,
            py::object target, py::object up, const std::string& appearance,
-           const py::object& textureSize) {
+           const py::object& textureSize, bool atlas) {
             const CameraArgs args{azimuth, elevation, fov, eye, target, up};
             RenderOptions o;
             o.width = width;
             o.height = height;
-            o.scene.appearance = appearanceOf(appearance, textureSize);
+            o.scene.appearance = appearanceOf(appearance, textureSize, atlas);
             o.mode = modeNamed(mode);
             o.camera = cameraOf(args);
             o.samplesPerPixel = samples;
@@ -436,7 +439,7 @@ void bindOutput(py::module_& m) {
         py::arg("fov") = 35.0f, py::arg("samples_per_pixel") = 4, py::arg("ground") = true,
         py::arg("seed") = 0, py::arg("eye") = py::none(), py::arg("target") = py::none(),
         py::arg("up") = vec3(0.0f, 0.0f, 1.0f), py::arg("appearance") = "flat",
-        py::arg("texture_size") = 512,
+        py::arg("texture_size") = 512, py::arg("atlas") = true,
         inPython(
             docs::render,
             "Renders the Context as a height x width x 3 uint8 array. mode: 'shaded', 'organ' "

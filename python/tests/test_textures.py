@@ -1,5 +1,6 @@
 """Procedural textures from Python: textured glTF, USD (.usda beside its PNGs, .usdz package),
-OBJ and pictures, and texture sizes refused with plantarch.Error."""
+OBJ and pictures, the leaves' texture atlas read through texture transforms in each, and
+texture sizes refused with plantarch.Error."""
 
 import math
 import struct
@@ -29,14 +30,16 @@ def test_textured_glb_embeds_maps_and_flat_is_the_default(bean, tmp_path):
 
 def test_usda_and_usdz(bean, tmp_path):
     ctx = bean.getContext()
-    plantarch.writeUSDA(ctx, str(tmp_path / "bean.usda"), appearance="textured", texture_size=32)
+    plantarch.writeUSDA(ctx, str(tmp_path / "bean.usda"), appearance="textured", texture_size=32,
+                        atlas=False)
     layer, prims = usda.read(tmp_path / "bean.usda")  # the text parses
     (root,) = prims
     looks = [c for c in root.children if c.name == "Looks"]
     assert looks and looks[0].children
     pngs = sorted(p.name for p in tmp_path.glob("bean_*.png"))
     assert "bean_leaf_0_basecolor.png" in pngs and "bean_bark_0_normal.png" in pngs
-    plantarch.writeUSDA(ctx, str(tmp_path / "bean.usdz"), appearance="textured", texture_size=32)
+    plantarch.writeUSDA(ctx, str(tmp_path / "bean.usdz"), appearance="textured", texture_size=32,
+                        atlas=False)
     with zipfile.ZipFile(tmp_path / "bean.usdz") as z:
         assert z.testzip() is None
         infos = z.infolist()
@@ -52,12 +55,92 @@ def test_usda_and_usdz(bean, tmp_path):
 
 def test_obj_maps_and_textured_render(bean, tmp_path):
     ctx = bean.getContext()
-    plantarch.writeOBJ(ctx, str(tmp_path / "bean.obj"), appearance="textured", texture_size=32)
+    plantarch.writeOBJ(ctx, str(tmp_path / "bean.obj"), appearance="textured", texture_size=32,
+                       atlas=False)
     mtl = (tmp_path / "bean.mtl").read_text()
     assert "map_Kd bean_leaf_0_basecolor.png" in mtl and "map_d bean_leaf_0_alpha.png" in mtl
     flat = plantarch.render(ctx, width=96, height=72)
     textured = plantarch.render(ctx, width=96, height=72, appearance="textured", texture_size=64)
     assert flat.shape == textured.shape and (flat != textured).any()
+
+
+def test_glb_atlas_one_image_per_kind_with_transforms(bean, tmp_path):
+    ctx = bean.getContext()
+    plantarch.writeGLTF(ctx, str(tmp_path / "atlas.glb"), appearance="textured", texture_size=32)
+    plantarch.writeGLTF(ctx, str(tmp_path / "own.glb"), appearance="textured", texture_size=32,
+                        atlas=False)
+    atlas, own = glb_json(tmp_path / "atlas.glb"), glb_json(tmp_path / "own.glb")
+    assert "KHR_texture_transform" not in own.get("extensionsUsed", [])
+    assert "KHR_texture_transform" in atlas["extensionsUsed"]
+    assert "KHR_texture_transform" in atlas["extensionsRequired"]
+    leaves = [m for m in atlas["materials"] if m.get("name") == "leaf"]
+    assert len(leaves) >= 2
+    # Every map of a leaf reads the atlas (one image per kind) through the same transform.
+    infos = [[m["pbrMetallicRoughness"]["baseColorTexture"],
+              m["pbrMetallicRoughness"]["metallicRoughnessTexture"],
+              m["normalTexture"], m["occlusionTexture"]] for m in leaves]
+    sources = {kind: {atlas["textures"][i[kind]["index"]]["source"] for i in infos}
+               for kind in range(4)}
+    assert all(len(s) == 1 for s in sources.values())
+    transforms = [[i["extensions"]["KHR_texture_transform"] for i in info] for info in infos]
+    assert all(all(t == ts[0] for t in ts) for ts in transforms)
+    parts = {tuple(ts[0]["offset"]) for ts in transforms}
+    assert len(parts) >= 2  # the leaf colours in different parts
+    for ts in transforms:
+        assert all(0 <= o < 1 and 0 < s < 1 for o, s in zip(ts[0]["offset"], ts[0]["scale"]))
+    # The atlas replaces the leaves' own images: fewer images, and bark keeps its own.
+    assert len(atlas["images"]) < len(own["images"])
+    bark = [m for m in atlas["materials"] if m.get("name") == "bark"]
+    assert bark and "extensions" not in bark[0]["pbrMetallicRoughness"]["baseColorTexture"]
+
+
+def test_usda_atlas_transform_network(bean, tmp_path):
+    ctx = bean.getContext()
+    plantarch.writeUSDA(ctx, str(tmp_path / "bean.usda"), appearance="textured", texture_size=32)
+    _, (root,) = usda.read(tmp_path / "bean.usda")
+    looks = root.child("Looks")
+    transformed = 0
+    for material in looks.children:
+        shaders = {c.name: c for c in material.children}
+        if "Transform" not in shaders:
+            continue
+        transformed += 1
+        path = f"</plantarch/Looks/{material.name}"
+        t = shaders["Transform"]
+        assert t.attributes["info:id"]["value"] == "UsdTransform2d"
+        assert t.attributes["inputs:in.connect"]["value"] == path + "/TexCoord.outputs:result>"
+        scale, translation = (t.attributes["inputs:scale"]["value"],
+                              t.attributes["inputs:translation"]["value"])
+        assert all(0 < s < 1 for s in scale) and all(0 <= x < 1 for x in translation)
+        for name in ("BaseColor", "Normal", "ORM"):
+            texture = shaders[name].attributes
+            assert texture["inputs:st.connect"]["value"] == path + "/Transform.outputs:result>"
+            assert "atlas_" in texture["inputs:file"]["value"]
+    assert transformed >= 2
+    pngs = sorted(p.name for p in tmp_path.glob("bean_*.png"))
+    assert "bean_atlas_basecolor.png" in pngs and "bean_bark_0_basecolor.png" in pngs
+    assert not any(p.startswith("bean_leaf_") for p in pngs)
+
+
+def test_obj_atlas_offsets_and_scales(bean, tmp_path):
+    ctx = bean.getContext()
+    plantarch.writeOBJ(ctx, str(tmp_path / "bean.obj"), appearance="textured", texture_size=32)
+    mtl = (tmp_path / "bean.mtl").read_text()
+    lines = [l.split() for l in mtl.splitlines() if l.startswith(("map_", "norm"))]
+    atlas = [l for l in lines if l[-1].startswith("bean_atlas_")]
+    assert atlas and all(l[1] == "-o" and l[4] == "-s" and len(l) == 8 for l in atlas)
+    assert all(0 < float(x) < 1 for l in atlas for x in l[5:7])
+    assert (tmp_path / "bean_atlas_basecolor.png").exists()
+    own = [l for l in lines if not l[-1].startswith("bean_atlas_")]
+    assert own and all(len(l) == 2 for l in own)  # bark and stems: no transform
+
+
+def test_atlas_render_matches_separate_images(bean):
+    ctx = bean.getContext()
+    kw = dict(width=96, height=72, appearance="textured", texture_size=64)
+    with_atlas = plantarch.render(ctx, **kw)
+    without = plantarch.render(ctx, atlas=False, **kw)
+    assert abs(with_atlas.astype(int) - without.astype(int)).mean() < 0.5
 
 
 @pytest.mark.parametrize("size", [0, -8, 100, 8, 8192, 2**40, 2**70, math.nan, 64.0, "64", True])

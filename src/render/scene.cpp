@@ -88,6 +88,8 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
     struct MaterialInfo {
         vec3 albedo;
         std::int32_t texture = -1;
+        bool inAtlas = false;  // reads its part of the texture atlas through `transform`
+        io::UVTransform transform;
     };
     std::vector<MaterialInfo> materials(ctx.materialCount());
     std::map<std::string, std::int32_t> textureIndex;
@@ -112,10 +114,12 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
         const auto first = std::int32_t(data.textures.size());
         for (const io::MaterialMaps& maps : looks.maps())
             data.textures.push_back(
-                textureOfPixels(maps.pixels.size, maps.pixels.size, maps.pixels.baseColor));
+                textureOfPixels(maps.pixels.size, maps.pixels.rows(), maps.pixels.baseColor));
         for (MaterialID m = 0; m < materials.size(); ++m) {
             const io::MaterialLook& look = looks.look(ctx.material(m));
             if (look.maps >= 0) materials[m].texture = first + look.maps;
+            materials[m].inAtlas = look.inAtlas;
+            materials[m].transform = look.transform;
         }
     }
 
@@ -199,9 +203,14 @@ void buildScene(SceneData& data, const Context& ctx, const RenderSceneOptions& o
             for (std::size_t j = 0; j < view.indices.size(); ++j) idx[j] = base + view.indices[j];
             std::fill_n(g.triangleObject.begin() + std::ptrdiff_t(p.firstTriangle),
                         view.triangleCount(), p.slot);
-            if (!g.uvs.empty() && !view.uvs.empty())
+            if (!g.uvs.empty() && !view.uvs.empty()) {
                 std::copy(view.uvs.begin(), view.uvs.end(),
                           g.uvs.begin() + std::ptrdiff_t(p.firstVertex));
+                const MaterialInfo& mat = materials[view.material];
+                if (mat.inAtlas)  // the material's square onto its part of the atlas
+                    for (std::size_t v = 0; v < view.uvs.size(); ++v)
+                        g.uvs[p.firstVertex + v] = mat.transform.apply(view.uvs[v]);
+            }
             if (!g.normals.empty()) {
                 // Area-weighted face normals summed at shared vertices.
                 vec3* normal = g.normals.data() + p.firstVertex;

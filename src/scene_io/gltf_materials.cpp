@@ -3,11 +3,14 @@
 // alphaMode MASK where a leaf's outline leaves texels transparent), normalTexture,
 // occlusionTexture and metallicRoughnessTexture (one ORM image), and for fruit and flowers
 // their roughness. Texture files a material names (traced leaves) are embedded as before.
+// Materials whose maps are part of the atlas read them through KHR_texture_transform.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 
+#include "scene_io/export_common.h"
 #include "scene_io/gltf_internal.h"
 #include "scene_io/material_textures.h"
 
@@ -69,6 +72,28 @@ void addTangents(GltfArrays& d, const Scene& s, const GltfOptions& options, Buff
     attributes["TANGENT"] = d.accessors.size() - 1;
 }
 
+namespace {
+
+// KHR_texture_transform on every texture of a material that reads its part of the atlas. The
+// maps' v-up transform serves as it is: glTF's images are written flipped, its UVs unchanged.
+void transformTextures(json& material, const io::UVTransform& t) {
+    const auto number = [](float v) {  // the float's shortest text, not its double's digits
+        char text[io::kMaxFloatChars + 1] = {};
+        io::writeFloat(text, v);
+        return std::strtod(text, nullptr);
+    };
+    const json transform = {{"offset", {number(t.offset.x), number(t.offset.y)}},
+                            {"scale", {number(t.scale.x), number(t.scale.y)}}};
+    const auto add = [&](json& info) { info["extensions"]["KHR_texture_transform"] = transform; };
+    for (const char* key : {"normalTexture", "occlusionTexture"})
+        if (material.contains(key)) add(material[key]);
+    json& pbr = material["pbrMetallicRoughness"];
+    for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
+        if (pbr.contains(key)) add(pbr[key]);
+}
+
+}  // namespace
+
 void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& options,
                           Buffer& buffer) {
     const io::MapRequest request{
@@ -122,6 +147,7 @@ void addTexturedMaterials(GltfArrays& d, const Scene& s, const GltfOptions& opti
             if (looks->maps()[std::size_t(look.maps)].hasAlpha) material["alphaMode"] = "MASK";
         }
         material["pbrMetallicRoughness"] = std::move(pbr);
+        if (look.maps >= 0 && look.inAtlas) transformTextures(material, look.transform);
         material["name"] =
             !mat.name.empty() ? mat.name : std::string(io::surfaceKindName(look.kind));
         d.materials.push_back(std::move(material));

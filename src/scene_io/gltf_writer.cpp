@@ -509,6 +509,18 @@ json document(const Scene& s, const GltfOptions& options, Buffer& buffer) {
         doc["textures"] = d.textures;
         doc["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9987}}};
         for (json& t : doc["textures"]) t["sampler"] = 0;
+        // The texture atlas (gltf_materials.cpp): a viewer ignoring the transforms would draw
+        // the wrong part of it, so the extension is required.
+        if (std::any_of(d.materials.begin(), d.materials.end(), [](const json& m) {
+                const auto pbr = m.find("pbrMetallicRoughness");
+                if (pbr == m.end() || !pbr->contains("baseColorTexture")) return false;
+                return (*pbr)["baseColorTexture"].contains("extensions");
+            }))
+            for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+                json& l = doc[list];
+                if (!l.is_array()) l = json::array();
+                l.push_back("KHR_texture_transform");
+            }
     }
     if (buffer.size()) doc["buffers"] = {{{"byteLength", buffer.size()}}};
     return doc;

@@ -66,8 +66,17 @@ struct Planned {
     std::vector<std::uint8_t> mask;     // their texture-space coverage
     bool maskOverflow = false;
     float aspect = -1.0f;
-    bool mixed = false;  // used by organs of different surfaces (a file read without materials)
+    bool mixed = false;   // used by organs of different surfaces (a file read without materials)
+    bool unitUVs = true;  // every leaf's texture coordinates in 0..1 (an atlas can hold it)
 };
+
+// Texture coordinates within the unit square (a rounding's worth outside allowed).
+bool withinUnitSquare(std::span<const vec2> uvs) {
+    constexpr float lo = -1e-4f, hi = 1.0f + 1e-4f;
+    for (const vec2 uv : uvs)
+        if (!(uv.x >= lo && uv.x <= hi && uv.y >= lo && uv.y <= hi)) return false;
+    return true;
+}
 
 // Blade width over length as the leaf's texture space stretches it: the area-weighted mean
 // of |dP/dv| / |dP/du| over its triangles.
@@ -120,25 +129,66 @@ bool parallelVenation(const std::vector<std::uint8_t>& mask, int n, float aspect
 
 // Memory a scene's textures take while they are drawn and written: one set's pixels and
 // buffers (about 20 bytes a texel) and every set's PNGs (about 2.5 bytes a texel), or every
-// set's pixels when they are kept (10 bytes a texel). Refused above half the machine's memory.
-void checkTextureMemory(std::size_t sets, int size, bool keepPixels) {
+// set's pixels when they are kept (10 bytes a texel); `packed` of the sets go to an atlas of
+// `atlasTexels` instead (its pixels, 10 bytes a texel, one map's copy to encode and its PNGs).
+// Refused above half the machine's memory.
+void checkTextureMemory(std::size_t sets, std::size_t packed, int size, bool keepPixels,
+                        double atlasTexels) {
     if (sets == 0) return;
-    const double texels = double(size) * double(size);
-    const double bytes = texels * (20.0 + double(sets) * (keepPixels ? 12.5 : 2.5));
+    const auto bytesAt = [&](int n) {
+        const double texels = double(n) * double(n), scale = texels / double(size) / size;
+        return texels * (20.0 + double(sets - packed) * (keepPixels ? 12.5 : 2.5)) +
+               atlasTexels * scale * (keepPixels ? 14.0 : 17.0);
+    };
+    const double bytes = bytesAt(size);
     const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
     if (pages <= 0 || pageSize <= 0) return;
     const double half = 0.5 * double(pages) * double(pageSize);
     if (bytes <= half) return;
     int fits = size;
-    while (fits > kMinTextureSize &&
-           double(fits) * double(fits) * (20.0 + double(sets) * (keepPixels ? 12.5 : 2.5)) > half)
-        fits /= 2;
+    while (fits > kMinTextureSize && bytesAt(fits) > half) fits /= 2;
     throw Error(std::to_string(sets) + " textured materials at " + std::to_string(size) +
                     " texels a side need about " + std::to_string(int(bytes / 1e9 + 0.5)) +
                     " GB, more than half of this machine's memory",
                 {.parameter = "texture_size",
                  .value = std::to_string(size),
                  .validRange = "at most " + std::to_string(fits) + " on this machine"});
+}
+
+// An atlas of `layout`'s size: transparent, flat normals, no occlusion, until drawn into.
+MaterialMaps emptyAtlas(const AtlasLayout& layout) {
+    MaterialMaps atlas;
+    atlas.name = "atlas";
+    atlas.kind = SurfaceKind::Leaf;
+    atlas.atlas = true;
+    const std::size_t texels = std::size_t(layout.width) * std::size_t(layout.height);
+    atlas.pixels.size = layout.width;
+    atlas.pixels.height = layout.height;
+    atlas.pixels.baseColor.assign(texels * 4, 0);
+    atlas.pixels.normal.resize(texels * 3);
+    atlas.pixels.orm.resize(texels * 3);
+    for (std::size_t t = 0; t < texels; ++t) {
+        atlas.pixels.normal[3 * t] = atlas.pixels.normal[3 * t + 1] = 128;
+        atlas.pixels.normal[3 * t + 2] = 255;
+        atlas.pixels.orm[3 * t] = atlas.pixels.orm[3 * t + 1] = 255;
+        atlas.pixels.orm[3 * t + 2] = 0;
+    }
+    return atlas;
+}
+
+// The PNGs of one set (or the atlas) at once (each a function of the pixels alone); its
+// pixels dropped unless kept.
+void encodeMaps(MaterialMaps& maps, const MapRequest& request) {
+    const auto kinds = std::ptrdiff_t(request.png.size());
+    ParallelErrors errors;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < kinds; ++k)
+        errors.run(k, [&] {
+            const MapKind m = request.png[std::size_t(k)];
+            maps.png[std::size_t(m)] = encodeMapPNG(maps.pixels, m, request.flipRows);
+        });
+    errors.rethrow();
+    if (!request.keepPixels) maps.pixels = TextureMaps{};
 }
 
 std::uint64_t colorSeed(SurfaceKind kind, const Material& m) {
@@ -170,7 +220,7 @@ std::string mapFileName(const std::string& prefix, const MaterialMaps& maps, Map
 }
 
 std::string encodeMapPNG(const TextureMaps& maps, MapKind kind, bool flipRows) {
-    const int n = maps.size;
+    const int n = maps.size, rows = maps.rows();
     int channels = 3;
     const std::vector<std::uint8_t>* source = &maps.orm;
     int pick = -1;  // one channel of the source, for the grey maps
@@ -195,12 +245,12 @@ std::string encodeMapPNG(const TextureMaps& maps, MapKind kind, bool flipRows) {
     }
     const bool dropAlpha = kind == MapKind::BaseColor && !maps.hasAlpha;
     const int outChannels = pick >= 0 ? 1 : dropAlpha ? 3 : channels;
-    std::vector<std::uint8_t> pixels(std::size_t(n) * std::size_t(n) * std::size_t(outChannels));
+    std::vector<std::uint8_t> pixels(std::size_t(n) * std::size_t(rows) * std::size_t(outChannels));
     // glTF's images start at v = 0, so flipping them turns "up" in the image from +v to -v:
     // a normal map's green (its +v component) is inverted with them.
     const bool invertGreen = flipRows && kind == MapKind::Normal;
-    for (int j = 0; j < n; ++j) {
-        const int row = flipRows ? n - 1 - j : j;
+    for (int j = 0; j < rows; ++j) {
+        const int row = flipRows ? rows - 1 - j : j;
         const std::uint8_t* in = source->data() + std::size_t(row) * std::size_t(n) * channels;
         std::uint8_t* out = pixels.data() + std::size_t(j) * std::size_t(n) * outChannels;
         for (int i = 0; i < n; ++i)
@@ -212,7 +262,7 @@ std::string encodeMapPNG(const TextureMaps& maps, MapKind kind, bool flipRows) {
                 out[std::size_t(i) * 3 + 1] = 255 - out[std::size_t(i) * 3 + 1];
     }
     std::vector<std::uint8_t> png;
-    if (!core::stbEncodePng(pixels.data(), n, n, outChannels, n * outChannels, png))
+    if (!core::stbEncodePng(pixels.data(), n, rows, outChannels, n * outChannels, png))
         throw Error("cannot encode a " + std::string(mapKindName(kind)) + " texture as PNG");
     return std::string(png.begin(), png.end());
 }
@@ -242,7 +292,7 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
                                              [&](const Planned& q) { return q.material == m; });
                 p = std::int32_t(at - planned.begin());
                 if (at == planned.end()) {
-                    Planned fresh{m, {}, true, {}, {}, false, -1.0f, false};
+                    Planned fresh{m, {}, true, {}, {}, false, -1.0f, false, true};
                     fresh.look.kind = surface;
                     fresh.look.factors = surfaceFactors(fresh.look.kind);
                     planned.push_back(std::move(fresh));
@@ -251,7 +301,9 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
             Planned& q = planned[std::size_t(p)];
             if (o.uvs.empty()) q.allUVs = false;
             if (surface != q.look.kind) q.mixed = true;
-            if (q.look.kind != SurfaceKind::Leaf || o.uvs.empty() || q.maskOverflow) continue;
+            if (q.look.kind != SurfaceKind::Leaf || o.uvs.empty()) continue;
+            if (q.unitUVs && !withinUnitSquare(o.uvs)) q.unitUVs = false;
+            if (q.maskOverflow) continue;
             if (q.aspect < 0.0f) q.aspect = textureAspect(o);
             std::uint64_t h = fnv1a(o.uvs.data(), o.uvs.size_bytes());
             h = fnv1a(o.indices.data(), o.indices.size_bytes(), h);
@@ -282,8 +334,27 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
         if (std::find(distinct.begin(), distinct.end(), setKeys[i]) == distinct.end())
             distinct.push_back(setKeys[i]);
     }
-    checkTextureMemory(distinct.size(), size, request.keepPixels);
-    std::vector<std::uint64_t> keys;
+    // The atlas: the leaf sets whose every material keeps its coordinates in 0..1, in order.
+    std::vector<std::uint64_t> packed;
+    if (options.atlas) {
+        for (std::size_t i = 0; i < planned.size(); ++i)
+            if (setKeys[i] != 0 && planned[i].look.kind == SurfaceKind::Leaf &&
+                std::find(packed.begin(), packed.end(), setKeys[i]) == packed.end())
+                packed.push_back(setKeys[i]);
+        for (std::size_t i = 0; i < planned.size(); ++i)
+            if (setKeys[i] != 0 && !planned[i].unitUVs)
+                packed.erase(std::remove(packed.begin(), packed.end(), setKeys[i]), packed.end());
+    }
+    AtlasLayout layout;
+    if (packed.size() >= 2) {
+        const std::vector<std::array<int, 2>> sizes(packed.size(), {size, size});
+        layout = packAtlas(sizes);
+    }
+    if (layout.width == 0) packed.clear();  // none, one, or too large: separate images
+    checkTextureMemory(distinct.size(), packed.size(), size, request.keepPixels,
+                       double(layout.width) * double(layout.height));
+    std::vector<std::pair<std::uint64_t, MaterialLook>> drawn;  // the looks of each key drawn
+    int atlasMaps = -1;                                         // the atlas's index in maps_
     for (std::size_t i = 0; i < planned.size(); ++i) {
         Planned& q = planned[i];
         const SurfaceKind kind = q.look.kind;
@@ -293,16 +364,20 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
         }
         const std::uint64_t seed = colorSeed(kind, q.material);
         const std::uint64_t key = setKeys[i];
-        const auto at = std::find(keys.begin(), keys.end(), key);
-        if (at != keys.end()) {
-            q.look.maps = int(at - keys.begin());
+        const auto at =
+            std::find_if(drawn.begin(), drawn.end(), [&](const auto& d) { return d.first == key; });
+        if (at != drawn.end()) {
+            q.look.maps = at->second.maps;
+            q.look.inAtlas = at->second.inAtlas;
+            q.look.transform = at->second.transform;
             looks_.emplace_back(q.material, q.look);
             continue;
         }
         MaterialMaps maps;
         maps.kind = kind;
-        const int same = int(std::count_if(maps_.begin(), maps_.end(),
-                                           [&](const MaterialMaps& m) { return m.kind == kind; }));
+        const int same = int(std::count_if(maps_.begin(), maps_.end(), [&](const MaterialMaps& m) {
+            return m.kind == kind && !m.atlas;
+        }));
         maps.name = std::string(surfaceKindName(kind)) + "_" + std::to_string(same);
         if (kind == SurfaceKind::Leaf) {
             LeafTextureInput in;
@@ -317,22 +392,33 @@ MaterialLooks::MaterialLooks(std::span<const Context* const> contexts,
             maps.pixels = barkTextureMaps(q.material.color, seed, size, kind == SurfaceKind::Stem);
         }
         maps.hasAlpha = maps.pixels.hasAlpha;
-        // The PNGs of one set at once (each a function of the pixels alone).
-        const auto kinds = std::ptrdiff_t(request.png.size());
-        ParallelErrors errors;
-#pragma omp parallel for schedule(dynamic, 1)
-        for (std::ptrdiff_t k = 0; k < kinds; ++k)
-            errors.run(k, [&] {
-                const MapKind m = request.png[std::size_t(k)];
-                maps.png[std::size_t(m)] = encodeMapPNG(maps.pixels, m, request.flipRows);
-            });
-        errors.rethrow();
-        if (!request.keepPixels) maps.pixels = TextureMaps{};
-        q.look.maps = int(maps_.size());
-        keys.push_back(key);
-        maps_.push_back(std::move(maps));
+        const auto inAtlas = std::find(packed.begin(), packed.end(), key);
+        if (inAtlas != packed.end()) {
+            if (atlasMaps < 0) {  // the atlas takes the place of its first set
+                atlasMaps = int(maps_.size());
+                maps_.push_back(emptyAtlas(layout));
+            }
+            MaterialMaps& atlas = maps_[std::size_t(atlasMaps)];
+            const AtlasRect& rect = layout.rects[std::size_t(inAtlas - packed.begin())];
+            blitWithGutter(maps.pixels.baseColor.data(), 4, rect, kAtlasGutter,
+                           atlas.pixels.baseColor.data(), layout.width, layout.height);
+            blitWithGutter(maps.pixels.normal.data(), 3, rect, kAtlasGutter,
+                           atlas.pixels.normal.data(), layout.width, layout.height);
+            blitWithGutter(maps.pixels.orm.data(), 3, rect, kAtlasGutter, atlas.pixels.orm.data(),
+                           layout.width, layout.height);
+            atlas.hasAlpha = atlas.pixels.hasAlpha = atlas.hasAlpha || maps.hasAlpha;
+            q.look.maps = atlasMaps;
+            q.look.inAtlas = true;
+            q.look.transform = atlasTransform(layout, rect);
+        } else {
+            encodeMaps(maps, request);
+            q.look.maps = int(maps_.size());
+            maps_.push_back(std::move(maps));
+        }
+        drawn.emplace_back(key, q.look);
         looks_.emplace_back(q.material, q.look);
     }
+    if (atlasMaps >= 0) encodeMaps(maps_[std::size_t(atlasMaps)], request);
 }
 
 const MaterialLook& MaterialLooks::look(const Material& material) const {

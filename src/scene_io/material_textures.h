@@ -9,6 +9,11 @@
 // prototype share theirs), its aspect the blade's width over length measured on its first
 // object. Everything is a function of the exported objects, so the same scene gives the same
 // bytes.
+//
+// With MaterialOptions::atlas, the sets of leaves whose texture coordinates all stay in 0..1
+// (bark and stem skins repeat along their tubes and keep their own images) are drawn into one
+// atlas (texture_atlas.h) when two or more are: their materials' looks name the atlas's maps
+// and the transform onto their rectangle. An atlas that would pass kMaxAtlasSide is not made.
 
 #include <array>
 #include <cstdint>
@@ -19,6 +24,7 @@
 #include "plantarch/Context.h"
 #include "plantarch/Export.h"
 #include "scene_io/procedural_textures.h"
+#include "scene_io/texture_atlas.h"
 
 namespace plantarch::io {
 
@@ -38,16 +44,19 @@ const char* mapKindName(MapKind kind);
 struct MaterialLook {
     SurfaceKind kind = SurfaceKind::Other;
     SurfaceFactors factors;
-    int maps = -1;  ///< index into MaterialLooks::maps(); -1: a colour (and factors) only
+    int maps = -1;          ///< index into MaterialLooks::maps(); -1: a colour (and factors) only
+    bool inAtlas = false;   ///< maps is the atlas: read it through `transform`
+    UVTransform transform;  ///< the material's [0,1] square onto its part of the atlas
 };
 
 /// The maps drawn for one or more materials.
 struct MaterialMaps {
-    std::string name;  ///< "leaf_0", "bark_1", ...: unique in the scene
+    std::string name;  ///< "leaf_0", "bark_1", ..., "atlas": unique in the scene
     SurfaceKind kind = SurfaceKind::Other;
     TextureMaps pixels;                      ///< kept when asked (the renderer)
     std::array<std::string, kMapKinds> png;  ///< PNG bytes of the kinds asked for
     bool hasAlpha = false;
+    bool atlas = false;  ///< the atlas of several sets (pixels.height rows of pixels.size)
 };
 
 /// What to keep of the drawn maps.

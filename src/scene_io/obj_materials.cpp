@@ -38,7 +38,13 @@ std::string ObjTextures::lines(const Material& material) const {
         "Pr " + text(look.factors.roughness) + "\nPm " + text(look.factors.metallic) + "\n";
     if (look.maps < 0) return out;
     const MaterialMaps& maps = looks_->maps()[std::size_t(look.maps)];
-    const auto file = [&](MapKind kind) { return mapFileName(prefix_, maps, kind); };
+    // A part of the atlas: the map's origin offset (-o) and its size scaled (-s) onto it.
+    const std::string place =
+        !look.inAtlas
+            ? ""
+            : "-o " + text(look.transform.offset.x) + " " + text(look.transform.offset.y) + " -s " +
+                  text(look.transform.scale.x) + " " + text(look.transform.scale.y) + " ";
+    const auto file = [&](MapKind kind) { return place + mapFileName(prefix_, maps, kind); };
     out += "Kd 1 1 1\nmap_Kd " + file(MapKind::BaseColor) + "\n";
     if (maps.hasAlpha) out += "map_d " + file(MapKind::Alpha) + "\n";
     out += "norm " + file(MapKind::Normal) + "\nmap_Bump " + file(MapKind::Normal) + "\nmap_Pr " +

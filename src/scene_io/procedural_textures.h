@@ -42,6 +42,8 @@ SurfaceFactors surfaceFactors(SurfaceKind kind);
 /// The maps of one material, each size x size, row 0 at v = 1.
 struct TextureMaps {
     int size = 0;
+    int height = 0;  ///< rows when not `size` (an atlas, material_textures.h); 0: size
+    int rows() const { return height > 0 ? height : size; }
     std::vector<std::uint8_t> baseColor;  ///< RGBA, sRGB colour, alpha 0 outside the outline
     std::vector<std::uint8_t> normal;     ///< RGB, tangent space (+x along u, +y along v)
     std::vector<std::uint8_t> orm;        ///< RGB: occlusion, roughness, metallic (glTF order)

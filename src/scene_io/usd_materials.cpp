@@ -122,6 +122,21 @@ std::string UsdLooks::scope() const {
                  "                uniform token info:id = \"UsdPrimvarReader_float2\"\n"
                  "                string inputs:varname = \"st\"\n"
                  "                float2 outputs:result\n            }\n";
+            // A part of the atlas: its coordinates through a UsdTransform2d (scale, then
+            // translation), which the textures read instead of the primvar.
+            std::string st = "/TexCoord.outputs:result>";
+            if (look.inAtlas) {
+                const UVTransform& t = look.transform;
+                s += "\n            def Shader \"Transform\"\n            {\n"
+                     "                uniform token info:id = \"UsdTransform2d\"\n"
+                     "                float2 inputs:in.connect = " +
+                     path + st + "\n                float2 inputs:scale = (" +
+                     floatText(t.scale.x) + ", " + floatText(t.scale.y) +
+                     ")\n                float2 inputs:translation = (" + floatText(t.offset.x) +
+                     ", " + floatText(t.offset.y) +
+                     ")\n                float2 outputs:result\n            }\n";
+                st = "/Transform.outputs:result>";
+            }
             const auto texture = [&](const char* shader, MapKind kind, bool srgb,
                                      const char* outputs) {
                 s += std::string("\n            def Shader \"") + shader +
@@ -131,8 +146,8 @@ std::string UsdLooks::scope() const {
                      mapFileName(prefix_, *maps, kind) +
                      "@\n"
                      "                float2 inputs:st.connect = " +
-                     path +
-                     "/TexCoord.outputs:result>\n"
+                     path + st +
+                     "\n"
                      "                token inputs:wrapS = \"repeat\"\n"
                      "                token inputs:wrapT = \"repeat\"\n"
                      "                token inputs:sourceColorSpace = \"" +

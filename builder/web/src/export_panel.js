@@ -43,6 +43,7 @@ export class ExportPanel {
     this.lod = '';
     this.meshopt = false;
     this.skin = false;
+    this.atlas = true;
   }
 
   /** The export's variant as the API's fields, those that differ from the defaults. */
@@ -52,6 +53,7 @@ export class ExportPanel {
     if (look.materials === 'textured') {
       v.materials = 'textured';
       v.texture_size = look.textureSize;
+      if (!this.atlas) v.atlas = false;
     }
     if (this.nodes !== 'kind') v.nodes = this.nodes;
     if (this.nodes === 'organ' && this.instancing !== 'shared') v.instancing = this.instancing;
@@ -106,6 +108,14 @@ export class ExportPanel {
             )
           : null,
       ),
+      look.materials === 'textured'
+        ? h(
+            'label',
+            { class: 'toggle', title: 'off: --no-texture-atlas' },
+            checkbox(this.atlas, set('atlas'), { name: 'export-atlas' }),
+            "Texture atlas: the leaves' maps in one image, read through texture transforms",
+          )
+        : null,
       field('Nodes', select(NODE_LEVELS, this.nodes, set('nodes'), { name: 'export-nodes' }), {
         wide: true,
       }),
