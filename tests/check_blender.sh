@@ -82,13 +82,15 @@ else
     echo "check_blender: skinned.glb imports with its armature: $verdict"
 fi
 # Procedural textures (--materials textured): the bean's triangles, and its four textured
-# materials (two leaf colours, bark, stems) each sampling the embedded maps, with a normal map.
+# materials (two leaf colours, bark, stems) each sampling the embedded maps, with a normal map;
+# the two leaf colours read their parts of the atlas through a Mapping node
+# (KHR_texture_transform, required by the file).
 t=$("$cli" --seed 3 build bean --age 40 --materials textured --texture-size 128 -o "$out/textured.glb" | triangles)
 textured=$(cd "$out" && blender -b --factory-startup --python "$here/blender/import_gltf.py" -- "$out/textured.glb" 2>&1 |
            grep '^PLANTARCH ' | head -1 | cut -d' ' -f2-) || true
 if ! echo "$textured" | grep -q "\"triangles\": $t," ||
-    ! echo "$textured" | grep -q '"textured_materials": 4, "normal_mapped": 4'; then
-    echo "check_blender: textured.glb in Blender: ${textured:-nothing}, expected $t triangles and 4 textured materials"
+    ! echo "$textured" | grep -q '"textured_materials": 4, "normal_mapped": 4, "transformed": 2'; then
+    echo "check_blender: textured.glb in Blender: ${textured:-nothing}, expected $t triangles, 4 textured materials, 2 transformed"
     status=1
 else
     echo "check_blender: textured.glb imports with its maps: $textured"

@@ -20,9 +20,13 @@ trap 'rm -rf "$out"' EXIT
 "$cli" --seed 3 build grapevine_VSP --age 270 -o "$out/vine.glb" > /dev/null
 "$cli" --seed 3 build almond --age 400 -o "$out/almond.glb" > /dev/null
 "$cli" --seed 3 build bean --frames 0:20:10 -o "$out/growth.glb" -o "$out/growth.gltf" > /dev/null
-# Procedural textures, embedded (binary buffer and base64), and an animation with them.
+# Procedural textures, embedded (binary buffer and base64), and an animation with them. The
+# bean's two leaf colours share an atlas (KHR_texture_transform, required); without it
+# (--no-texture-atlas) each has its own images.
 "$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 \
     -o "$out/textured.glb" -o "$out/textured.gltf" > /dev/null
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 --no-texture-atlas \
+    -o "$out/textured_no_atlas.glb" > /dev/null
 "$cli" --seed 3 build tomato --age 60 --materials textured --texture-size 64 -o "$out/tomato_textured.glb" > /dev/null
 "$cli" --seed 3 build bean --age 40 --materials textured --texture-size 64 --lod reduced,cards \
     -o "$out/textured_lod.glb" > /dev/null

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Loads glTF files of library plants (a bean as .glb and .gltf, a trellis vine) with three.js's
 # GLTFLoader in headless Chromium and checks that three.js holds the file's triangles and sees
-# the label attributes (_PLANT_ID, _OBJECT_ID, _ORGAN), and plays a growth animation.
+# the label attributes (_PLANT_ID, _OBJECT_ID, _ORGAN), plays a growth animation, and reads
+# textured materials with and without the texture atlas.
 # Usage: check_three.sh PROJECT_DIR
 # PLANTARCH_BINARY. Exits 1 on a mismatch, 2 when node, Chromium or the npm packages are
 # missing (scripts/test.sh installs them).
@@ -62,17 +63,45 @@ else
     echo "check_three: growth.glb plays in three.js, frame by frame: $frames triangles"
 fi
 # A textured bean (--materials textured): three.js decodes its embedded maps, the leaves'
-# alpha-tested, every textured material with normal and roughness maps.
-"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 256 -o "$out/textured.glb" > /dev/null
-line=$(node "$root/tests/js/three_load.mjs" "$out/textured.glb") || { echo "$line"; exit 1; }
+# alpha-tested, every textured material with normal and roughness maps. Without the atlas
+# (--no-texture-atlas) every map is 256 texels wide and none is transformed; with it (the
+# default) the two leaf colours read their parts of one atlas (two 256-texel squares with
+# 8-texel gutters one above the other: 272 x 544) through KHR_texture_transform, each material's maps
+# all the same part, at the offsets and scales the file gives.
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 256 --no-texture-atlas \
+    -o "$out/textured.glb" > /dev/null
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 256 \
+    -o "$out/atlas.gltf" > /dev/null
+lines=$(node "$root/tests/js/three_load.mjs" "$out/textured.glb" "$out/atlas.gltf") || { echo "$lines"; exit 1; }
+line=$(echo "$lines" | sed -n 1p)
 textured=$(echo "$line" | sed -n 's/.*"textured":\({[^}]*}\).*/\1/p')
 n=$(echo "$textured" | sed -n 's/.*"materials":\([0-9]*\).*/\1/p')
 if [ -z "$n" ] || [ "$n" -lt 3 ] || ! echo "$textured" | grep -q "\"normal\":$n,\"roughness\":$n," ||
-    echo "$textured" | grep -q '"alphaTest":0' || ! echo "$textured" | grep -q '"width":256'; then
+    echo "$textured" | grep -q '"alphaTest":0' || ! echo "$textured" | grep -q '"width":256,"transformed":0,'; then
     echo "check_three: textured.glb's materials in three.js: ${textured:-none}: $line"
     status=1
 else
     echo "check_three: textured.glb loads in three.js with its maps: $textured"
+fi
+line=$(echo "$lines" | sed -n 2p)
+if ! verdict=$(echo "$line" | node -e '
+    const fs = require("fs");
+    const t = JSON.parse(fs.readFileSync(0, "utf8")).textured || {};
+    const doc = JSON.parse(fs.readFileSync(process.argv[1], "utf8"));
+    const filed = doc.materials.map((m) => m.pbrMetallicRoughness.baseColorTexture)
+        .filter((i) => i && i.extensions).map((i) => i.extensions.KHR_texture_transform)
+        .map((k) => [...k.offset, ...k.scale].map((x) => Math.round(x * 1e4) / 1e4));
+    const parts = (t.parts || []).filter((p) => p.join() !== "0,0,1,1");
+    const ok = t.transformed === 2 && t.sameParts === true && t.width === 272 &&
+        t.normal === t.materials && t.roughness === t.materials &&
+        JSON.stringify(parts.sort()) === JSON.stringify(filed.sort()) &&
+        doc.extensionsRequired.includes("KHR_texture_transform");
+    console.log(JSON.stringify({ transformed: t.transformed, sameParts: t.sameParts, width: t.width, parts, filed }));
+    process.exit(ok ? 0 : 1);' "$out/atlas.gltf"); then
+    echo "check_three: atlas.gltf in three.js: ${verdict:-nothing}: $line"
+    status=1
+else
+    echo "check_three: atlas.gltf's leaves read their atlas parts in three.js: $verdict"
 fi
 # A skinned bean (--skin): three.js loads its meshes as SkinnedMeshes with a bone per joint of
 # the file, the bean's triangles and labels, and at bind pose its vertices where the unskinned

@@ -30,13 +30,15 @@ for obj in bpy.data.objects:
 report = {"triangles": triangles, "meshes": meshes, "attributes": sorted(attributes)}
 
 # Textured materials (--materials textured): images Blender decoded, and the materials whose
-# node tree samples one, with a normal map among them.
+# node tree samples one, with a normal map among them, and those reading part of an atlas.
 images = [i for i in bpy.data.images if i.size[0] > 0]
 if images:
     nodes = [m.node_tree.nodes for m in bpy.data.materials if m.use_nodes and m.node_tree]
     report["images"] = len(images)
     report["textured_materials"] = sum(1 for n in nodes if any(x.type == "TEX_IMAGE" for x in n))
     report["normal_mapped"] = sum(1 for n in nodes if any(x.type == "NORMAL_MAP" for x in n))
+    # Parts of a texture atlas (KHR_texture_transform): a Mapping node before the textures.
+    report["transformed"] = sum(1 for n in nodes if any(x.type == "MAPPING" for x in n))
 
 # Skins: the armatures, their bones, the meshes an armature deforms, and the world box of every
 # mesh vertex as Blender places it (armatures applied).

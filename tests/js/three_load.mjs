@@ -86,7 +86,16 @@ window.loadFile = (url) => new Promise((resolve, reject) => {
                           normal: all.filter((m) => m.normalMap).length,
                           roughness: all.filter((m) => m.roughnessMap).length,
                           alphaTest: all.filter((m) => m.alphaTest > 0).length,
-                          width: Math.max(...all.map((m) => m.map.image.width)) };
+                          width: Math.max(...all.map((m) => m.map.image.width)),
+                          // Atlas parts (KHR_texture_transform): materials whose base colour
+                          // map is offset or scaled, and whether every map of each material
+                          // reads the same part (offset and repeat) as its base colour.
+                          transformed: all.filter((m) => m.map.offset.x !== 0 || m.map.offset.y !== 0 ||
+                                                         m.map.repeat.x !== 1 || m.map.repeat.y !== 1).length,
+                          sameParts: all.every((m) => [m.normalMap, m.roughnessMap, m.aoMap].every((t) =>
+                            !t || (t.offset.equals(m.map.offset) && t.repeat.equals(m.map.repeat)))),
+                          parts: all.map((m) => [m.map.offset.x, m.map.offset.y, m.map.repeat.x, m.map.repeat.y]
+                            .map((x) => Math.round(x * 1e4) / 1e4)).sort() };
     }
     // Skinned meshes (--skin): how many, the bones they move and the file's joints; and for
     // every file, the world box of its vertices as three.js places them (bones applied), to
