@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -329,4 +330,51 @@ TEST(GpuInstancing, UsdHasAPointInstancerOnlyWhereShapesRepeat) {
         ++instancers;
     EXPECT_EQ(instancers, 2u);
     EXPECT_EQ(usda(ctx, "beans.usda"), text);
+}
+
+// A malformed EXT_mesh_gpu_instancing node is one line naming the file, the Context untouched.
+TEST(GpuInstancing, ReadGltfRefusesMalformedInstances) {
+    Context ctx;
+    PlantArchitecture arch(&ctx);
+    arch.setSeed(5);
+    arch.loadPlantModelFromLibrary("bean");
+    arch.buildPlantInstanceFromLibrary(vec3(0.0f), 30);
+    const Glb g = written(ctx, "good.glb", Instancing::Gpu);
+    auto glb = [](const json& doc, const std::string& bin) {
+        std::string text = doc.dump();
+        text.append((4 - text.size() % 4) % 4, ' ');
+        auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<char*>(&v), 4); };
+        return u32(0x46546C67u) + u32(2) + u32(std::uint32_t(28 + text.size() + bin.size())) +
+               u32(std::uint32_t(text.size())) + u32(0x4E4F534Au) + text +
+               u32(std::uint32_t(bin.size())) + u32(0x004E4942u) + bin;
+    };
+    std::size_t node = 0;
+    while (!g.doc["nodes"][node].contains("extensions")) ++node;
+    const json attributes =
+        g.doc["nodes"][node]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    std::vector<std::pair<json, std::string>> bad;
+    json doc = g.doc;
+    doc["nodes"][node]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["ROTATION"] =
+        attributes["SCALE"];  // a VEC3 as rotations
+    bad.push_back({doc, "not of type VEC4"});
+    doc = g.doc;
+    doc["accessors"][attributes["SCALE"].get<std::size_t>()]["count"] = 1;
+    bad.push_back({doc, "attributes of different counts"});
+    doc = g.doc;
+    doc["nodes"][node]["extensions"]["EXT_mesh_gpu_instancing"] = 7;
+    bad.push_back({doc, "has no attributes"});
+    const fs::path path = tempPath("bad.glb");
+    for (const auto& [d, message] : bad) {
+        { std::ofstream(path, std::ios::binary) << glb(d, g.bin); }
+        Context read;
+        try {
+            readGLTF(read, path.string());
+            ADD_FAILURE() << "read: " << message;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+            EXPECT_EQ(e.file(), path.string());
+        }
+        EXPECT_EQ(read.objectCount(), 0u);
+    }
+    fs::remove(path);
 }
