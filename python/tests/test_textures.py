@@ -137,9 +137,10 @@ def test_obj_atlas_offsets_and_scales(bean, tmp_path):
 
 def test_atlas_render_matches_separate_images(bean):
     ctx = bean.getContext()
-    kw = dict(width=96, height=72, appearance="textured", texture_size=64)
-    with_atlas = plantarch.render(ctx, **kw)
-    without = plantarch.render(ctx, atlas=False, **kw)
+    with_atlas = plantarch.render(ctx, width=96, height=72, appearance="textured",
+                                  texture_size=64)
+    without = plantarch.render(ctx, width=96, height=72, appearance="textured", texture_size=64,
+                               atlas=False)
     assert abs(with_atlas.astype(int) - without.astype(int)).mean() < 0.5
 
 
