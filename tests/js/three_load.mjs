@@ -43,18 +43,26 @@ function tally(root) {
 }
 window.loadFile = (url) => new Promise((resolve, reject) => {
   new GLTFLoader().setMeshoptDecoder(MeshoptDecoder).load(url, async (gltf) => {
-    let triangles = 0, meshes = 0, drawn = 0, instanced = 0; const attributes = new Set();
+    let triangles = 0, meshes = 0, drawn = 0, instanced = 0, mislabelled = 0;
+    const attributes = new Set();
     gltf.scene.traverse((o) => {
       if (!o.isMesh) return;
       meshes++;
       triangles += count(o.geometry);
       // EXT_mesh_gpu_instancing: an InstancedMesh draws its triangles once per instance.
       drawn += count(o.geometry) * (o.isInstancedMesh ? o.count : 1);
-      if (o.isInstancedMesh) instanced++;
+      if (o.isInstancedMesh) {
+        // Its per-instance labels: instance i's _OBJECT_ID is the i-th of the node's objectIDs
+        // (extras), and its name the i-th of its instances.
+        instanced++;
+        const ids = o.geometry.attributes._OBJECT_ID, u = o.userData;
+        if (!ids || ids.count !== o.count || (u.instances ?? []).length !== o.count ||
+            (u.objectIDs ?? []).some((id, i) => ids.getX(i) !== id)) mislabelled++;
+      }
       Object.keys(o.geometry.attributes).forEach((a) => attributes.add(a));
     });
     const result = { triangles, meshes, attributes: [...attributes].sort(),
-                     objects: tally(gltf.scene).objects.size, drawn, instanced };
+                     objects: tally(gltf.scene).objects.size, drawn, instanced, mislabelled };
     // MSFT_lod (which GLTFLoader leaves out of the scene): each level's nodes loaded by
     // index, with their triangles and objects, and how many of those are the full level's.
     const json = gltf.parser.json;
