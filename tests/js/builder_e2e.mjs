@@ -419,6 +419,16 @@ async function run() {
     `/api/export/download?build=${shownId}&format=glb&name=organs&materials=textured&texture_size=256&nodes=organ`);
   assert.equal(variantDownload.status, 200);
   assert.ok(variantDownload.data.equals(variantGlb), 'the variant\'s download is the file written');
+  // GPU instances (--instancing gpu): organs of one shape drawn by one EXT_mesh_gpu_instancing node.
+  await page.select('select[name=export-instancing]', 'gpu');
+  await setValue(page, 'input[name=export-name]', 'gpu');
+  await page.$eval('#export-result', (el) => { el.dataset.state = ''; });
+  await page.click('#export-write');
+  await page.waitForSelector('#export-result[data-state=done]');
+  const gpuDoc = glbDocument(readFileSync(path.join(output, 'e2e', 'variant', 'gpu.glb')));
+  assert.ok(gpuDoc.extensionsRequired?.includes('EXT_mesh_gpu_instancing') &&
+    gpuDoc.nodes.some((n) => n.extensions?.EXT_mesh_gpu_instancing), 'GPU instances');
+  await page.select('select[name=export-instancing]', 'shared');
   await page.evaluate(() => window.plantarchBuilder.viewer.frame());
   await shot(page, 'textured');
   // A refused variant shows the server's line in the page.
