@@ -391,15 +391,20 @@ async function run() {
   await page.waitForSelector('#viewport[data-look="textured:512"]');
   await page.select('select[name=export-texture-size]', '256');
   await page.waitForSelector('#viewport[data-look="textured:256"]');
-  const viewMaps = await page.evaluate(() => {
+  // Bark and stems 256 texels a side; the leaves read their parts of one atlas (two 256-texel
+  // squares with gutters, 272 wide) through KHR_texture_transform.
+  const [viewMaps, viewParts] = await page.evaluate(() => {
     const maps = new Set();
+    let parts = 0;
     window.plantarchBuilder.viewer.model.traverse((o) => {
       const m = o.userData.naturalMaterial;
       if (o.isMesh && m?.map?.image) maps.add(m.map.image.width);
+      if (o.isMesh && m?.map?.image && m.map.repeat.y !== 1) parts++;
     });
-    return [...maps];
+    return [[...maps].sort(), parts];
   });
-  assert.deepEqual(viewMaps, [256], 'the view shows the textured materials, 256 texels a side');
+  assert.deepEqual(viewMaps, [256, 272], 'the view shows the textured materials, 256 texels a side');
+  assert.ok(viewParts > 0, 'the view\'s leaves read their parts of the atlas');
   assert.equal(await page.$eval('#view-materials', (el) => el.value), 'textured');
   await page.select('select[name=export-nodes]', 'organ');
   await setValue(page, 'input[name=export-folder]', 'e2e/variant');
@@ -419,6 +424,17 @@ async function run() {
     `/api/export/download?build=${shownId}&format=glb&name=organs&materials=textured&texture_size=256&nodes=organ`);
   assert.equal(variantDownload.status, 200);
   assert.ok(variantDownload.data.equals(variantGlb), 'the variant\'s download is the file written');
+  assert.ok(variantDoc.extensionsRequired?.includes('KHR_texture_transform'), 'the leaves\' atlas');
+  // Without the atlas (the checkbox, as --no-texture-atlas): an image per leaf colour.
+  await setChecked(page, 'input[name=export-atlas]', false);
+  await setValue(page, 'input[name=export-name]', 'own');
+  await page.$eval('#export-result', (el) => { el.dataset.state = ''; });
+  await page.click('#export-write');
+  await page.waitForSelector('#export-result[data-state=done]');
+  const ownDoc = glbDocument(readFileSync(path.join(output, 'e2e', 'variant', 'own.glb')));
+  assert.ok(!ownDoc.extensionsUsed?.includes('KHR_texture_transform') &&
+    ownDoc.images.length > variantDoc.images.length, 'no atlas: an image per leaf colour');
+  await setChecked(page, 'input[name=export-atlas]', true);
   // GPU instances (--instancing gpu): organs of one shape drawn by one EXT_mesh_gpu_instancing node.
   await page.select('select[name=export-instancing]', 'gpu');
   await setValue(page, 'input[name=export-name]', 'gpu');
