@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Imports glTF files of library plants (a bean as .glb and .gltf, a trellis vine with its
-# posts and wires, a textured bean) into Blender with its own importer, headless, and checks that Blender holds
+# posts and wires, a textured bean, and that bean as a textured OBJ with its atlas's -o/-s)
+# into Blender with its own importers, headless, and checks that Blender holds
 # the same number of triangles as the file's scene, and plays a growth animation. Usage: check_blender.sh PLANTARCH_BINARY.
 # Exits 1 on a mismatch, 2 when Blender is missing (scripts/test.sh installs it).
 set -euo pipefail
@@ -94,5 +95,29 @@ if ! echo "$textured" | grep -q "\"triangles\": $t," ||
     status=1
 else
     echo "check_blender: textured.glb imports with its maps: $textured"
+fi
+# The same bean as a textured OBJ: Blender's OBJ importer turns each atlas map line's -o and -s
+# into a Mapping node, at the .mtl's offset and scale; the bark's and stems' maps have none.
+"$cli" --seed 3 build bean --age 40 --materials textured --texture-size 128 -o "$out/textured.obj" > /dev/null
+objmaps=$(cd "$out" && blender -b --factory-startup --python "$here/blender/import_obj_maps.py" -- "$out/textured.obj" 2>&1 |
+          grep '^PLANTARCH ' | head -1 | cut -d' ' -f2-) || true
+if ! verdict=$(echo "$objmaps" | python3 -c '
+import json, sys
+report = json.load(sys.stdin)
+mtl = open(sys.argv[1]).read().splitlines()
+filed = sorted({tuple(round(float(x), 5) for x in l.split()[2:4] + l.split()[5:7])
+                for l in mtl if l.startswith("map_Kd -o ")})
+seen = sorted({tuple(m) for r in report.values() for m in r["mappings"]})
+atlas = [r for r in report.values() if any("atlas" in i for i in r["images"])]
+plain = [r for r in report.values() if r["images"] and not any("atlas" in i for i in r["images"])]
+ok = (len(filed) == 2 and seen == filed and len(atlas) == 2 and
+      all(len(r["mappings"]) == 1 for r in atlas) and plain and
+      all(not r["mappings"] for r in plain))
+print(json.dumps({"filed": filed, "blender": seen}))
+sys.exit(0 if ok else 1)' "$out/textured.mtl"); then
+    echo "check_blender: textured.obj in Blender: ${verdict:-nothing}: $objmaps"
+    status=1
+else
+    echo "check_blender: textured.obj's atlas parts as Blender Mapping nodes: $verdict"
 fi
 exit "$status"
