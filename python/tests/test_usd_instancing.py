@@ -1,5 +1,6 @@
-"""instancing="gpu" / --instancing gpu in USD: a PointInstancer per plant whose instances sit
-where the prims of --instancing shared put the organs, labelled per instance; the refusals."""
+"""instancing="gpu" / --instancing gpu: in USD a PointInstancer per plant whose instances sit
+where the prims of --instancing shared put the organs, labelled per instance; the refusals; a
+GLB from Python with a node per shared shape."""
 
 import subprocess
 
@@ -8,7 +9,7 @@ import pytest
 
 import plantarch
 import usda
-from conftest import cli
+from conftest import cli, glb_json
 from test_usda import _shown_organs
 
 
@@ -97,3 +98,21 @@ def test_bad_or_impossible_instancing_is_refused_and_writes_nothing(arch, tmp_pa
         assert run.returncode == 2, run.stderr
         assert message in run.stderr and len(run.stderr.strip().splitlines()) == 1, run.stderr
         assert not out.exists()
+
+
+def test_gltf_from_python_has_an_instancing_node_per_shared_shape(arch, tmp_path):
+    arch.setSeed(4)
+    arch.buildPlantInstanceFromLibrary((0, 0, 0), 40)
+    ctx = arch.getContext()
+    path = tmp_path / "gpu.glb"
+    plantarch.writeGLTF(ctx, str(path), architecture=arch, nodes="organ", instancing="gpu")
+    doc = glb_json(path)
+    assert "EXT_mesh_gpu_instancing" in doc["extensionsRequired"]
+    nodes = [n for n in doc["nodes"] if "EXT_mesh_gpu_instancing" in n.get("extensions", {})]
+    organs = [n for n in doc["nodes"] if "objectID" in n.get("extras", {})]
+    instances = sum(len(n["extras"]["instances"]) for n in nodes)
+    assert nodes and all(len(n["extras"]["instances"]) >= 2 for n in nodes)
+    assert instances + len(organs) == len(ctx.getAllObjectIDs())
+    ids = [i for n in nodes for i in n["extras"]["objectIDs"]] + [n["extras"]["objectID"]
+                                                                  for n in organs]
+    assert sorted(ids) == sorted(ctx.getAllObjectIDs())
