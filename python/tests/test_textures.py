@@ -3,8 +3,10 @@ OBJ and pictures, the leaves' texture atlas read through texture transforms in e
 texture sizes refused with plantarch.Error."""
 
 import math
+import pathlib
 import struct
 import zipfile
+import zlib
 
 import pytest
 
@@ -155,3 +157,79 @@ def test_bad_texture_sizes_are_plantarch_errors(bean, tmp_path, size):
 def test_unknown_appearance_is_a_plantarch_error(bean, tmp_path):
     with pytest.raises(plantarch.Error, match="flat, textured"):
         plantarch.writeUSDA(bean.getContext(), str(tmp_path / "x.usda"), appearance="shiny")
+
+
+def _png_pixels(data):
+    """Rows of byte tuples (one per pixel) of an 8-bit, non-interlaced PNG."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    at, idat = 8, b""
+    while at < len(data):
+        (length,), kind = struct.unpack_from(">I", data, at), data[at + 4:at + 8]
+        body = data[at + 8:at + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, color = struct.unpack_from(">IIBB", body)
+            assert depth == 8
+        elif kind == b"IDAT":
+            idat += body
+        at += 12 + length
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}[color]
+    raw, stride = zlib.decompress(idat), width * channels
+    rows, previous = [], bytearray(stride)
+    for y in range(height):
+        start = y * (stride + 1)
+        kind, line = raw[start], bytearray(raw[start + 1:start + 1 + stride])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b, c = previous[i], previous[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([tuple(line[x * channels:(x + 1) * channels]) for x in range(width)])
+        previous = line
+    return rows
+
+
+def _glb_image(path, doc, texture):
+    """The decoded image of a texture of a .glb."""
+    data = pathlib.Path(path).read_bytes()
+    (json_length,) = struct.unpack_from("<I", data, 12)
+    binary = 20 + json_length + 8
+    view = doc["bufferViews"][doc["images"][doc["textures"][texture]["source"]]["bufferView"]]
+    start = binary + view.get("byteOffset", 0)
+    return _png_pixels(data[start:start + view["byteLength"]])
+
+
+def test_glb_atlas_parts_hold_the_texels_of_the_separate_images(bean, tmp_path):
+    # glTF's own reading: texture coordinates (u, t) through KHR_texture_transform onto the
+    # atlas sample the very texels (u, t) samples in the leaf's separate image.
+    ctx = bean.getContext()
+    plantarch.writeGLTF(ctx, str(tmp_path / "atlas.glb"), appearance="textured", texture_size=32)
+    plantarch.writeGLTF(ctx, str(tmp_path / "own.glb"), appearance="textured", texture_size=32,
+                        atlas=False)
+    atlas, own = glb_json(tmp_path / "atlas.glb"), glb_json(tmp_path / "own.glb")
+    checked = 0
+    for mine, theirs in zip(atlas["materials"], own["materials"]):
+        for where in ("baseColorTexture", "metallicRoughnessTexture"):
+            info = mine["pbrMetallicRoughness"].get(where, {})
+            if "extensions" not in info:
+                continue
+            t = info["extensions"]["KHR_texture_transform"]
+            big = _glb_image(tmp_path / "atlas.glb", atlas, info["index"])
+            small = _glb_image(tmp_path / "own.glb", own,
+                               theirs["pbrMetallicRoughness"][where]["index"])
+            n, width, height = len(small), len(big[0]), len(big)
+            for y in range(n):
+                for x in range(n):
+                    u, v = (x + 0.5) / n, (y + 0.5) / n
+                    bx = int((t["offset"][0] + t["scale"][0] * u) * width)
+                    by = int((t["offset"][1] + t["scale"][1] * v) * height)
+                    assert big[by][bx] == small[y][x], (where, x, y)
+            checked += 1
+    assert checked >= 4
