@@ -204,7 +204,7 @@ TEST_F(BuilderServer, RefusesBadExportVariants) {
          "meshopt = true: meshopt compression is written in glTF only"},
         {{{"colour", "red"}},
          "colour: unknown field (valid: build, format, per_plant, folder, "
-         "name, materials, texture_size, nodes, instancing, lod, meshopt, "
+         "name, materials, texture_size, atlas, nodes, instancing, lod, meshopt, "
          "skin)"},
     };
     for (const auto& request : posted) {
