@@ -60,6 +60,7 @@ std::function<int()> setupBuild(CLI::App& app, GlobalOptions& global) {
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
         checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
         checkSkinOutputs(global, frames.has_value());               // skin_options.cpp
+        checkMaterialOutputs(global, a->outputs);                   // material_options.cpp
         checkCollisionOptions(a->collision);
         checkPhysiologyOptions(a->physiology);
         checkBendOptions(a->bend);

@@ -77,6 +77,7 @@ std::function<int()> setupCanopy(CLI::App& app, GlobalOptions& global) {
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
         checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
         checkSkinOutputs(global, frames.has_value(), a->separate);  // skin_options.cpp
+        checkMaterialOutputs(global, a->outputs);                   // material_options.cpp
         checkPhysiologyOptions(a->physiology);
         const float buildAge = physiologyBuildAge(a->physiology, a->age, frames.has_value());
         if (a->plantOrigin && !a->separate)

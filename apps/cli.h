@@ -52,6 +52,8 @@ struct GlobalOptions {
     bool meshopt = false;           ///< --meshopt: EXT_meshopt_compression of glTF outputs
     /// --materials and --texture-size: flat colours or procedural textures (material_options.cpp)
     MaterialOptions appearance;
+    std::string
+        textureOption;  ///< the first of --texture-size, --no-texture-atlas given ("": none)
     NodeLevel nodes = NodeLevel::Kind;           ///< --nodes (node_options.cpp)
     Instancing instancing = Instancing::Shared;  ///< --instancing
     /// --max-triangles: a job that needs more stops before it starts (or as soon as it passes
@@ -229,6 +231,9 @@ void checkLevelOutputs(const GlobalOptions& global, const std::vector<std::strin
                        bool frames);
 /// --materials and --texture-size (material_options.cpp), added by addLabelOptions.
 void addMaterialOptions(CLI::App& app, GlobalOptions& global);
+/// Before any work: --texture-size and --no-texture-atlas only with --materials textured, and
+/// --materials textured only with an output that holds materials (.obj, glTF, USD, .png).
+void checkMaterialOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs);
 /// --nodes and --instancing (node_options.cpp), added by addLabelOptions.
 void addNodeOptions(CLI::App& app, GlobalOptions& global);
 /// Before any work: --skin (or --wind) neither with --frames nor with canopy --separate.

@@ -36,6 +36,7 @@ std::function<int()> setupConvert(CLI::App& app, GlobalOptions& global) {
     addLabelOptions(app, global);
     return [a, &global]() {
         checkSceneOutputs({a->output}, global.points, true);
+        checkMaterialOutputs(global, {a->output});
         const std::string in = lowerExtension(a->input);
         Context ctx;
         PlantArchitecture arch(&ctx);

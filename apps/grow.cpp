@@ -56,6 +56,7 @@ std::function<int()> setupGrow(CLI::App& app, GlobalOptions& global) {
         checkLevelOutputs(global, a->outputs, frames.has_value());  // lod_options.cpp
         checkNodeOutputs(global, a->outputs, frames.has_value());   // node_options.cpp
         checkSkinOutputs(global, frames.has_value());               // skin_options.cpp
+        checkMaterialOutputs(global, a->outputs);                   // material_options.cpp
         checkPhysiologyOptions(a->physiology);
         checkBendOptions(a->bend);
         if (frames && (!a->bend.pull.empty() || !a->bend.displace.empty()))

@@ -8,6 +8,7 @@
 #include "cli.h"
 #include "plantarch/Error.h"
 #include "plantarch/Export.h"
+#include "plantarch/OutputFormats.h"
 
 namespace plantarch::cli {
 
@@ -49,14 +50,37 @@ void addMaterialOptions(CLI::App& app, GlobalOptions& global) {
                                              .validRange = e.validRange()});
                }
                global.appearance.textureSize = size;
+               if (global.textureOption.empty()) global.textureOption = "--texture-size";
            },
            "Texels a side of each texture with --materials textured: a power of two from 16 "
            "to 4096 (default 512)")
         ->type_name("N");
     app.add_flag_callback(
-        "--no-texture-atlas", [&global] { global.appearance.atlas = false; },
+        "--no-texture-atlas",
+        [&global] {
+            global.appearance.atlas = false;
+            if (global.textureOption.empty()) global.textureOption = "--no-texture-atlas";
+        },
         "With --materials textured: an image per leaf material instead of one atlas of them "
         "read through texture transforms");
+}
+
+void checkMaterialOutputs(const GlobalOptions& global, const std::vector<std::string>& outputs) {
+    const bool textured = global.appearance.style == MaterialStyle::Textured;
+    if (!textured && !global.textureOption.empty())
+        throw Error("needs textured materials",
+                    {.parameter = global.textureOption, .validRange = "with --materials textured"});
+    if (!textured) return;
+    for (const std::string& out : outputs) {
+        const std::string ext = lowerExtension(out);
+        if (ext == ".obj" || ext == ".glb" || ext == ".gltf" || ext == ".usda" || ext == ".usdz" ||
+            ext == ".png")
+            return;
+    }
+    throw Error("no output holds textured materials",
+                {.parameter = "--materials",
+                 .value = "textured",
+                 .validRange = "with an .obj, .glb, .gltf, .usda, .usdz or .png output"});
 }
 
 }  // namespace plantarch::cli

@@ -48,6 +48,7 @@ int runProject(const ProjectArgs& a, const GlobalOptions& global) {
     if (a.separate && a.outputs.empty())
         throw Error("--separate writes files: give -o FILE", {.parameter = "--separate"});
     checkSceneOutputs(a.outputs, global.points, true);
+    checkMaterialOutputs(global, a.outputs);
     if (!a.series.empty() && !a.series.ends_with(".csv"))
         throw Error("--series writes CSV: give a .csv name",
                     {.parameter = "--series", .value = a.series, .validRange = "FILE.csv"});

@@ -125,6 +125,7 @@ int run(const RenderArgs& a, const GlobalOptions& g) {
              .validRange = fmt::format("at most {} rays: lower --samples, --width or --height",
                                        kMaxRenderRays)});
 
+    checkMaterialOutputs(g, {a.output});  // material_options.cpp
     // Fail before the costly part when an output could not be written anyway.
     CommandOutputs outputs({a.output});
     if (a.cocoGiven) {

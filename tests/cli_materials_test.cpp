@@ -97,6 +97,38 @@ TEST(CliMaterials, BadValuesAreOneLineAndStatus2) {
     fs::remove_all(dir);
 }
 
+// Texture options without textured materials, and textured materials with no output that
+// holds them, are refused before any work instead of being ignored.
+TEST(CliMaterials, OptionsThatWouldBeIgnoredAreRefused) {
+    const fs::path dir = scratch("ignored");
+    const std::string glb = " -o " + (dir / "x.glb").string(),
+                      ply = " -o " + (dir / "x.ply").string();
+    const std::pair<std::string, std::string> cases[] = {
+        {"build bean --age 5 --texture-size 64" + glb,
+         "plantarch: --texture-size: needs textured materials (valid: with --materials "
+         "textured)\n"},
+        {"build bean --age 5 --no-texture-atlas" + glb,
+         "plantarch: --no-texture-atlas: needs textured materials (valid: with --materials "
+         "textured)\n"},
+        {"build bean --age 5 --materials textured" + ply,
+         "plantarch: --materials = textured: no output holds textured materials (valid: with an "
+         ".obj, .glb, .gltf, .usda, .usdz or .png output)\n"},
+        {"canopy bean --age 5 --count 2x1 --materials textured" + ply,
+         "plantarch: --materials = textured: no output holds textured materials (valid: with an "
+         ".obj, .glb, .gltf, .usda, .usdz or .png output)\n"},
+    };
+    for (const auto& [args, message] : cases) {
+        const auto r = run(args + " 2>&1");
+        EXPECT_EQ(r.status, 2) << args;
+        EXPECT_EQ(r.out, message) << args;
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+    // Textured with one output that holds materials beside one that does not is fine.
+    const auto ok = run("build bean --age 5 --materials textured --texture-size 16" + ply + glb);
+    EXPECT_EQ(ok.status, 0) << ok.out;
+    fs::remove_all(dir);
+}
+
 TEST(CliMaterials, HelpListsTheOptions) {
     const auto r = run("build --help");
     EXPECT_NE(r.out.find("--materials"), std::string::npos);
