@@ -37,13 +37,9 @@ using plantarch::testing::parseGlb;
 using plantarch::testing::readAll;
 using plantarch::testing::sameOrgans;
 using plantarch::testing::shownAt;
+using plantarch::testing::tempPath;
 
 namespace {
-
-fs::path tempPath(const std::string& name) {
-    return fs::temp_directory_path() /
-           ("plantarch_animation_" + std::to_string(::getpid()) + "_" + name);
-}
 
 // Each organ's vertices in the bean built directly at `age` (seed 7), in ID order.
 std::map<OrganKey, std::vector<vec3>> builtAt(double age) {

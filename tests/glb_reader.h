@@ -3,10 +3,12 @@
 // its accessors and buffer views.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <glm/glm.hpp>
@@ -21,6 +23,14 @@
 #include "plantarch/Context.h"
 
 namespace plantarch::testing {
+
+/// A path in the temporary folder for `name`, unique to this process and the running test's
+/// suite (plantarch_<suite>_<pid>_<name>).
+inline std::filesystem::path tempPath(const std::string& name) {
+    const char* suite = ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name();
+    return std::filesystem::temp_directory_path() /
+           ("plantarch_" + std::string(suite) + "_" + std::to_string(::getpid()) + "_" + name);
+}
 
 inline std::string readAll(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

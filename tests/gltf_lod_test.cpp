@@ -32,6 +32,7 @@ using plantarch::testing::accessorValues;
 using plantarch::testing::Glb;
 using plantarch::testing::parseGlb;
 using plantarch::testing::readAll;
+using plantarch::testing::tempPath;
 
 namespace {
 
@@ -51,10 +52,6 @@ struct Plants {
         }
     }
 };
-
-fs::path tempPath(const std::string& name) {
-    return fs::temp_directory_path() / ("plantarch_lod_" + std::to_string(::getpid()) + "_" + name);
-}
 
 std::string written(const Context& ctx, const std::string& name, const GltfOptions& o) {
     const fs::path path = tempPath(name);

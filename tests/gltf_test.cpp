@@ -29,6 +29,7 @@ using plantarch::testing::accessorValues;
 using plantarch::testing::Glb;
 using plantarch::testing::parseGlb;
 using plantarch::testing::readAll;
+using plantarch::testing::tempPath;
 using plantarch::testing::viewValues;
 
 namespace {
@@ -49,11 +50,6 @@ struct Scene {
         }
     }
 };
-
-fs::path tempPath(const std::string& name) {
-    return fs::temp_directory_path() /
-           ("plantarch_gltf_" + std::to_string(::getpid()) + "_" + name);
-}
 
 }  // namespace
 

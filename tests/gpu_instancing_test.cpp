@@ -29,12 +29,9 @@ using plantarch::testing::parseGlb;
 using plantarch::testing::readAll;
 using plantarch::testing::sameOrgans;
 using plantarch::testing::shownAt;
+using plantarch::testing::tempPath;
 
 namespace {
-
-fs::path tempPath(const std::string& name) {
-    return fs::temp_directory_path() / ("plantarch_gpu_" + std::to_string(::getpid()) + "_" + name);
-}
 
 Glb written(const Context& ctx, const std::string& name, Instancing instancing) {
     const fs::path path = tempPath(name);

@@ -32,6 +32,7 @@ using plantarch::testing::errorOf;
 using plantarch::testing::Glb;
 using plantarch::testing::parseGlb;
 using plantarch::testing::readAll;
+using plantarch::testing::tempPath;
 
 namespace {
 
@@ -232,11 +233,6 @@ TEST(Skin, BendingPosesTheSkeleton) {
 }
 
 namespace {
-
-fs::path tempPath(const std::string& name) {
-    return fs::temp_directory_path() /
-           ("plantarch_skin_" + std::to_string(::getpid()) + "_" + name);
-}
 
 // `count` elements of an accessor's view, tightly packed, as plantarch writes them.
 template <class T>
