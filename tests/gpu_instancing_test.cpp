@@ -94,6 +94,19 @@ void expectInstanceLabels(const Context& ctx, const Glb& g, const json& n) {
     }
 }
 
+// Three leaves of one plant, each a triangle of its own shape: nothing to instance.
+void addUniqueLeaves(Context& ctx) {
+    for (int k = 1; k <= 3; ++k) {
+        Mesh m;
+        m.positions = {vec3(0.0f), vec3(0.1f * float(k), 0.0f, 0.0f), vec3(0.0f, 0.05f, 0.02f)};
+        m.indices = {0, 1, 2};
+        const ObjectID id = ctx.addObject(m);
+        ctx.setObjectData(id, "organ", std::string("leaf"));
+        ctx.setObjectData(id, "plantID", 0);
+        ctx.setObjectData(id, "leafID", k);
+    }
+}
+
 }  // namespace
 
 // A tomato: each shape several organs share is one node whose instances land vertex for vertex
@@ -193,15 +206,7 @@ TEST(GpuInstancing, NoRepeatedShapeWritesNoInstancesAndNoExtension) {
     EXPECT_FALSE(none.doc.contains("extensionsUsed"));
     EXPECT_FALSE(none.doc.contains("extensionsRequired"));
     Context ctx;
-    for (int k = 1; k <= 3; ++k) {
-        Mesh m;
-        m.positions = {vec3(0.0f), vec3(0.1f * float(k), 0.0f, 0.0f), vec3(0.0f, 0.05f, 0.02f)};
-        m.indices = {0, 1, 2};
-        const ObjectID id = ctx.addObject(m);
-        ctx.setObjectData(id, "organ", std::string("leaf"));
-        ctx.setObjectData(id, "plantID", 0);
-        ctx.setObjectData(id, "leafID", k);
-    }
+    addUniqueLeaves(ctx);
     const Glb g = written(ctx, "unique.glb", Instancing::Gpu);
     EXPECT_TRUE(instancingNodes(g).empty());
     EXPECT_FALSE(listed(g, "extensionsUsed", "EXT_mesh_gpu_instancing"));
@@ -306,14 +311,7 @@ TEST(GpuInstancing, UsdHasAPointInstancerOnlyWhereShapesRepeat) {
     Context empty;
     EXPECT_EQ(usda(empty, "empty.usda").find("PointInstancer"), std::string::npos);
     Context unique;
-    for (int k = 1; k <= 3; ++k) {
-        Mesh m;
-        m.positions = {vec3(0.0f), vec3(0.1f * float(k), 0.0f, 0.0f), vec3(0.0f, 0.05f, 0.02f)};
-        m.indices = {0, 1, 2};
-        const ObjectID id = unique.addObject(m);
-        unique.setObjectData(id, "organ", std::string("leaf"));
-        unique.setObjectData(id, "plantID", 0);
-    }
+    addUniqueLeaves(unique);
     EXPECT_EQ(usda(unique, "unique.usda").find("PointInstancer"), std::string::npos);
     Context ctx;
     PlantArchitecture arch(&ctx);
